@@ -1,0 +1,161 @@
+//! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
+//! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
+
+use crate::error::{Error, Result};
+use crate::geometry::profile::Profile;
+use crate::{check, export, report, scene, spec};
+use clap::{Parser, Subcommand};
+use std::io::Write;
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "cycloid",
+    version,
+    about = "Design checks for cycloidal speed reducers"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run every scene of a spec and check its limits.
+    Check {
+        /// The YAML spec.
+        spec: String,
+        /// Write the results as JSON to this path.
+        #[arg(long)]
+        json: Option<String>,
+        /// Print what will be computed and why, then stop.
+        #[arg(long)]
+        explain: bool,
+    },
+    /// Export the modified disc profile as CSV points and a DXF polyline.
+    Profile {
+        spec: String,
+        #[arg(long)]
+        csv: Option<String>,
+        #[arg(long)]
+        dxf: Option<String>,
+        /// Largest chordal error of the exported polyline, µm.
+        #[arg(long, default_value_t = 0.5)]
+        tolerance_um: f64,
+    },
+}
+
+/// How a command ended when it did not fail with an error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    Passed,
+    ChecksFailed,
+}
+
+fn write_file(path: &str, text: &str) -> Result<()> {
+    std::fs::write(path, text).map_err(|e| Error::io(path, e))
+}
+
+/// Run a parsed command, writing the user-facing text to `out`.
+pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Outcome> {
+    match cli.command {
+        Command::Check {
+            spec,
+            json,
+            explain,
+        } => run_check(&spec, json.as_deref(), explain, out),
+        Command::Profile {
+            spec,
+            csv,
+            dxf,
+            tolerance_um,
+        } => run_profile(&spec, csv.as_deref(), dxf.as_deref(), tolerance_um, out),
+    }
+}
+
+fn print(out: &mut dyn Write, text: &str) -> Result<()> {
+    out.write_all(text.as_bytes())
+        .map_err(|e| Error::io("<stdout>", e))
+}
+
+fn run_check(
+    path: &str,
+    json: Option<&str>,
+    explain: bool,
+    out: &mut dyn Write,
+) -> Result<Outcome> {
+    let spec = spec::load(path)?;
+    check::validate(&spec).map_err(|e| locate(e, &spec))?;
+    if explain {
+        print(out, &scene::explain(&spec))?;
+        return Ok(Outcome::Passed);
+    }
+    let mut results = Vec::new();
+    for s in &spec.scenes {
+        results.push(scene::run(&spec, s, &scene::Plan::for_scene(s))?);
+    }
+    let checks = check::evaluate(&spec.limits, &results);
+    print(out, &format!("cycloid check `{}`\n", spec.name))?;
+    print(out, &report::table::render(&checks))?;
+    if let Some(p) = json {
+        let doc = report::json::document(&spec, &checks, &results);
+        let text =
+            serde_json::to_string_pretty(&doc).map_err(|e| Error::computation(e.to_string()))?;
+        write_file(p, &text)?;
+    }
+    Ok(if checks.iter().all(|c| c.passed) {
+        Outcome::Passed
+    } else {
+        Outcome::ChecksFailed
+    })
+}
+
+/// Give an error about a spec key the key's location in the spec file.
+fn locate(mut e: Error, spec: &spec::Spec) -> Error {
+    if e.location.is_none() {
+        if let Some((line, column)) = e
+            .key_path
+            .as_deref()
+            .and_then(|k| spec::locate(&spec.source, k))
+        {
+            e.location = Some(crate::error::Location {
+                file: spec.path.clone(),
+                line,
+                column,
+            });
+        }
+    }
+    e
+}
+
+fn run_profile(
+    path: &str,
+    csv: Option<&str>,
+    dxf: Option<&str>,
+    tolerance_um: f64,
+    out: &mut dyn Write,
+) -> Result<Outcome> {
+    if !(tolerance_um.is_finite() && tolerance_um > 0.0) {
+        return Err(Error::new(
+            crate::ErrorKind::InvalidValue,
+            format!("--tolerance-um must be a positive number, got {tolerance_um}"),
+        ));
+    }
+    let spec = spec::load(path)?;
+    let tol = tolerance_um / 1000.0;
+    let points = export::polyline(&Profile::new(&spec.design, &spec.modification), tol);
+    if let Some(p) = csv {
+        write_file(p, &export::csv(&spec, &points, tol))?;
+    }
+    if let Some(p) = dxf {
+        write_file(p, &export::dxf(&spec, &points, tol))?;
+    }
+    print(
+        out,
+        &format!(
+            "profile of `{}`: {} points, chordal error <= {tolerance_um} um\n",
+            spec.name,
+            points.len()
+        ),
+    )?;
+    Ok(Outcome::Passed)
+}

@@ -1,0 +1,1 @@
+//! Contact laws and Hertz line-contact pressure.

@@ -1,0 +1,1 @@
+//! Quasi-static equilibrium of the disc.

@@ -1,0 +1,131 @@
+//! Profile export: the modified disc profile as CSV points and as a closed DXF polyline,
+//! spaced so that the chordal error (distance of the true profile from each chord) stays
+//! under a tolerance.
+
+use crate::geometry::profile::Profile;
+use crate::geometry::Vec2;
+use crate::spec::Spec;
+use std::f64::consts::TAU;
+
+/// One exported profile point. Disc frame, mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProfilePoint {
+    pub t: f64,
+    pub point: Vec2,
+    /// Outward unit normal.
+    pub normal: Vec2,
+    /// Signed curvature of Γ, 1/mm (positive convex).
+    pub curvature_per_mm: f64,
+}
+
+/// Largest distance of Γ from the chord Γ(a)Γ(b), sampled at 8 interior points.
+fn chord_error(profile: &Profile, a: f64, b: f64) -> f64 {
+    let (pa, pb) = (profile.point(a), profile.point(b));
+    let chord = pb - pa;
+    let len = chord.norm();
+    (1..8)
+        .map(|k| {
+            let p = profile.point(a + (b - a) * k as f64 / 8.0) - pa;
+            if len > 0.0 {
+                (p.x * chord.y - p.y * chord.x).abs() / len
+            } else {
+                p.norm()
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Points of the whole closed profile (t in [0, 2π), the closing chord back to t = 0 implied)
+/// with every chord within `tolerance_mm` of the profile. The step starts from the sagitta
+/// estimate dt = sqrt(8·tol/(|κ|·|Γ'|²)) and is halved until the measured error meets the bound.
+pub fn polyline(profile: &Profile, tolerance_mm: f64) -> Vec<ProfilePoint> {
+    let max_step = TAU / (profile.rollers as f64 * 16.0);
+    let mut points = Vec::new();
+    let mut t = 0.0;
+    while t < TAU {
+        points.push(ProfilePoint {
+            t,
+            point: profile.point(t),
+            normal: profile.normal(t),
+            curvature_per_mm: profile.curvature(t),
+        });
+        let speed = profile.tangent(t).norm();
+        let k = profile.curvature(t).abs().max(1e-12);
+        let mut dt = (8.0 * tolerance_mm / k).sqrt() / speed;
+        dt = dt.min(max_step).min(TAU - t);
+        while chord_error(profile, t, t + dt) > tolerance_mm && dt > 1e-12 {
+            dt *= 0.5;
+        }
+        t += dt;
+    }
+    points
+}
+
+fn header_lines(spec: &Spec, tolerance_mm: f64, count: usize) -> Vec<String> {
+    let m = &spec.modification;
+    vec![
+        format!("cycloid profile of spec `{}` ({})", spec.name, spec.path),
+        format!(
+            "modification: shift {} mm, equidistant {} mm, rotation {} deg",
+            m.shift_mm,
+            m.equidistant_mm,
+            m.rotation_rad.to_degrees()
+        ),
+        format!(
+            "units: mm, disc frame (origin at disc centre, tooth root on +x); \
+             {count} points, chordal error <= {} um",
+            tolerance_mm * 1000.0
+        ),
+    ]
+}
+
+/// CSV text: `#` header lines, then x_mm,y_mm,normal_x,normal_y,curvature_per_mm.
+pub fn csv(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
+    let mut out: String = header_lines(spec, tolerance_mm, points.len())
+        .iter()
+        .map(|l| format!("# {l}\n"))
+        .collect();
+    out += "x_mm,y_mm,normal_x,normal_y,curvature_per_mm\n";
+    for p in points {
+        out += &format!(
+            "{:.9},{:.9},{:.12},{:.12},{:.9e}\n",
+            p.point.x, p.point.y, p.normal.x, p.normal.y, p.curvature_per_mm
+        );
+    }
+    out
+}
+
+/// DXF (R12) text: one closed POLYLINE on layer PROFILE, units mm ($INSUNITS = 4).
+pub fn dxf(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
+    let mut out = String::new();
+    let mut pair = |code: i32, value: &str| out += &format!("{code}\n{value}\n");
+    for line in header_lines(spec, tolerance_mm, points.len()) {
+        pair(999, &line);
+    }
+    for (code, value) in [(0, "SECTION"), (2, "HEADER"), (9, "$INSUNITS"), (70, "4")] {
+        pair(code, value);
+    }
+    pair(0, "ENDSEC");
+    for (code, value) in [
+        (0, "SECTION"),
+        (2, "ENTITIES"),
+        (0, "POLYLINE"),
+        (8, "PROFILE"),
+    ] {
+        pair(code, value);
+    }
+    for (code, value) in [(66, "1"), (70, "1"), (10, "0.0"), (20, "0.0"), (30, "0.0")] {
+        pair(code, value);
+    }
+    for p in points {
+        pair(0, "VERTEX");
+        pair(8, "PROFILE");
+        pair(10, &format!("{:.9}", p.point.x));
+        pair(20, &format!("{:.9}", p.point.y));
+        pair(30, "0.0");
+    }
+    for (code, value) in [(0, "SEQEND"), (8, "PROFILE"), (0, "ENDSEC"), (0, "EOF")] {
+        pair(code, value);
+    }
+    out
+}

@@ -1,0 +1,258 @@
+//! Unloaded tooth contact analysis: the gap of every roller, angular backlash, unloaded TE,
+//! lost motion and the whole-mesh minimum clearance (MODEL.md "Clearance").
+//!
+//! Sign conventions (fixed frame at the input axis, angles counter-clockwise):
+//! - crank φ; disc centre at e·(cos φ, sin φ) + u (u: bearing deflection, zero when rigid);
+//! - disc rotation ψ = −φ/nc + β, β the lag (positive opposes the motion);
+//! - gap > 0 clearance, gap < 0 interference;
+//! - moment arm l > 0: a contact force on that roller turns the disc clockwise (drives it), and
+//!   the roller's gap closes as β grows: ∂gap/∂β = −l exactly.
+
+use super::profile::{ClosestPointFailure, Profile};
+use super::{cross, rotate, Vec2};
+use crate::spec::{Design, Modification};
+
+/// Pose of the disc at one crank angle. Fixed frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    /// Crank angle φ, rad.
+    pub crank_rad: f64,
+    /// Lag β of the disc behind its ideal rotation −φ/nc, rad.
+    pub lag_rad: f64,
+    /// Displacement of the disc centre from e·(cos φ, sin φ), mm.
+    pub centre_offset_mm: Vec2,
+}
+
+impl Pose {
+    pub fn ideal(crank_rad: f64) -> Self {
+        Self::lagging(crank_rad, 0.0)
+    }
+
+    pub fn lagging(crank_rad: f64, lag_rad: f64) -> Self {
+        Pose {
+            crank_rad,
+            lag_rad,
+            centre_offset_mm: Vec2::zeros(),
+        }
+    }
+}
+
+/// Contact geometry of one roller against the disc at one pose. Disc frame, mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollerGap {
+    /// Normal gap (signed distance of the roller centre to Γ, minus Rrp); < 0 is interference.
+    pub gap_mm: f64,
+    /// Locus parameter of the contact point.
+    pub t: f64,
+    /// Contact point on Γ.
+    pub point: Vec2,
+    /// Outward normal of Γ at the contact point; the roller pushes the disc along −normal.
+    pub normal: Vec2,
+    /// Moment arm about the disc centre, mm (sign as in the module doc).
+    pub arm_mm: f64,
+}
+
+/// A roller whose closest point could not be found: names the roller and the pose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GapFailure {
+    pub roller: usize,
+    pub pose: Pose,
+    pub detail: ClosestPointFailure,
+}
+
+impl std::fmt::Display for GapFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "closest point of roller {} did not converge at crank {:.4}° (lag {:.3e} rad) after {} iterations",
+            self.roller,
+            self.pose.crank_rad.to_degrees(),
+            self.pose.lag_rad,
+            self.detail.iterations
+        )
+    }
+}
+
+/// A disc profile meshing with a fixed ring of rollers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mesh {
+    pub profile: Profile,
+    pub teeth: usize,
+    pub rollers: usize,
+    pub eccentricity_mm: f64,
+    pub roller_circle_radius_mm: f64,
+    pub roller_radius_mm: f64,
+}
+
+impl Mesh {
+    pub fn new(design: &Design, modification: &Modification) -> Self {
+        Mesh {
+            profile: Profile::new(design, modification),
+            teeth: design.teeth,
+            rollers: design.rollers,
+            eccentricity_mm: design.eccentricity_mm,
+            roller_circle_radius_mm: design.roller_circle_radius_mm,
+            roller_radius_mm: design.roller_radius_mm,
+        }
+    }
+
+    /// Disc rotation ψ = −φ/nc + β.
+    pub fn disc_rotation(&self, pose: &Pose) -> f64 {
+        -pose.crank_rad / self.teeth as f64 + pose.lag_rad
+    }
+
+    /// Disc centre in the fixed frame.
+    pub fn disc_centre(&self, pose: &Pose) -> Vec2 {
+        let (s, c) = pose.crank_rad.sin_cos();
+        Vec2::new(c, s) * self.eccentricity_mm + pose.centre_offset_mm
+    }
+
+    /// Centre of roller i in the fixed frame: Rp·(cos 2πi/np, sin 2πi/np).
+    pub fn roller_centre(&self, i: usize) -> Vec2 {
+        let a = std::f64::consts::TAU * i as f64 / self.rollers as f64;
+        Vec2::new(a.cos(), a.sin()) * self.roller_circle_radius_mm
+    }
+
+    /// Centre of roller i in the disc frame: Rot(−ψ)·(roller − disc centre).
+    pub fn roller_in_disc(&self, i: usize, pose: &Pose) -> Vec2 {
+        let (s, c) = self.disc_rotation(pose).sin_cos();
+        rotate(self.roller_centre(i) - self.disc_centre(pose), c, -s)
+    }
+
+    /// The roller's own locus parameter, the Newton start: 2πi/np + φ/nc − β.
+    pub fn locus_parameter(&self, i: usize, pose: &Pose) -> f64 {
+        std::f64::consts::TAU * i as f64 / self.rollers as f64 + pose.crank_rad / self.teeth as f64
+            - pose.lag_rad
+    }
+
+    /// Exact gap of roller i at `pose`; `t_start` warm-starts the closest-point search.
+    pub fn roller_gap(
+        &self,
+        i: usize,
+        pose: &Pose,
+        t_start: Option<f64>,
+    ) -> Result<RollerGap, GapFailure> {
+        let p = self.roller_in_disc(i, pose);
+        let t0 = t_start.unwrap_or_else(|| self.locus_parameter(i, pose));
+        let foot = self
+            .profile
+            .closest_point(p, t0)
+            .map_err(|detail| GapFailure {
+                roller: i,
+                pose: *pose,
+                detail,
+            })?;
+        Ok(RollerGap {
+            gap_mm: foot.signed_distance_mm - self.roller_radius_mm,
+            t: foot.t,
+            point: foot.point,
+            normal: foot.normal,
+            arm_mm: cross(p, foot.normal),
+        })
+    }
+
+    /// Lag at which roller i's gap closes at crank φ (Newton on gap(β) = 0, ∂gap/∂β = −l).
+    ///
+    /// `None` when the roller cannot close within half a roller pitch of disc rotation: its arm
+    /// is too small or of the wrong sign, or following it would push the roller centre so deep
+    /// into the disc that the nearest flank is no longer its own. Such a roller never sets the
+    /// backlash, which is the smallest closing lag. Steps are damped to a tenth of that reach.
+    pub fn closing_lag(&self, i: usize, crank_rad: f64) -> Result<Option<f64>, GapFailure> {
+        let reach = std::f64::consts::PI / self.rollers as f64;
+        let mut pose = Pose::ideal(crank_rad);
+        let mut g = self.roller_gap(i, &pose, None)?;
+        for _ in 0..60 {
+            if g.arm_mm.abs() < 1e-9 * self.roller_circle_radius_mm {
+                return Ok(None);
+            }
+            let step = (g.gap_mm / g.arm_mm).clamp(-0.1 * reach, 0.1 * reach);
+            pose.lag_rad += step;
+            if pose.lag_rad.abs() > reach {
+                return Ok(None);
+            }
+            g = match self.roller_gap(i, &pose, Some(g.t)) {
+                Ok(g) => g,
+                Err(_) => return Ok(None),
+            };
+            if step.abs() <= 1e-15 + 1e-12 * pose.lag_rad.abs() {
+                return Ok(Some(pose.lag_rad));
+            }
+        }
+        Ok(None)
+    }
+}
+
+/// Where the smallest gap of a sweep occurs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MinClearance {
+    pub gap_mm: f64,
+    pub roller: usize,
+    pub crank_rad: f64,
+    /// Position on the tooth: 0 at the root, 0.5 at the tip, (0, 0.5) one flank, (0.5, 1) the other.
+    pub tooth_phase: f64,
+}
+
+/// Clearance of every roller over a crank sweep at the ideal pose (β = 0).
+/// Arrays are indexed [roller][angle]. Backlash values are lags in rad.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClearanceSweep {
+    pub gap_mm: Vec<Vec<f64>>,
+    /// Unloaded TE: the smallest closing lag among rollers closed by a positive lag (the load
+    /// direction of a positive output torque). Negative under interference (preload).
+    pub backlash_rad: Vec<f64>,
+    /// The same for the reverse direction, as a magnitude (−β of the nearest closing roller).
+    pub backlash_reverse_rad: Vec<f64>,
+    /// Lost motion: backlash + reverse backlash.
+    pub lost_motion_rad: Vec<f64>,
+    pub min: MinClearance,
+}
+
+/// Gaps and backlash at every crank angle.
+pub fn sweep(mesh: &Mesh, crank_rad: &[f64]) -> Result<ClearanceSweep, GapFailure> {
+    let n = mesh.rollers;
+    let mut gap_mm = vec![Vec::with_capacity(crank_rad.len()); n];
+    let mut backlash_rad = Vec::with_capacity(crank_rad.len());
+    let mut backlash_reverse_rad = Vec::with_capacity(crank_rad.len());
+    let mut min = MinClearance {
+        gap_mm: f64::INFINITY,
+        roller: 0,
+        crank_rad: 0.0,
+        tooth_phase: 0.0,
+    };
+    let tooth = std::f64::consts::TAU / mesh.teeth as f64;
+    for &phi in crank_rad {
+        let pose = Pose::ideal(phi);
+        let (mut forward, mut reverse) = (f64::INFINITY, f64::INFINITY);
+        for (i, gaps) in gap_mm.iter_mut().enumerate() {
+            let g = mesh.roller_gap(i, &pose, None)?;
+            gaps.push(g.gap_mm);
+            if g.gap_mm < min.gap_mm {
+                min = MinClearance {
+                    gap_mm: g.gap_mm,
+                    roller: i,
+                    crank_rad: phi,
+                    tooth_phase: g.t.rem_euclid(tooth) / tooth,
+                };
+            }
+            match mesh.closing_lag(i, phi)? {
+                Some(b) if g.arm_mm > 0.0 => forward = forward.min(b),
+                Some(b) if g.arm_mm < 0.0 => reverse = reverse.min(-b),
+                _ => {}
+            }
+        }
+        backlash_rad.push(forward);
+        backlash_reverse_rad.push(reverse);
+    }
+    let lost_motion_rad = backlash_rad
+        .iter()
+        .zip(&backlash_reverse_rad)
+        .map(|(a, b)| a + b)
+        .collect();
+    Ok(ClearanceSweep {
+        gap_mm,
+        backlash_rad,
+        backlash_reverse_rad,
+        lost_motion_rad,
+        min,
+    })
+}

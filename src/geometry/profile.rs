@@ -1,0 +1,258 @@
+//! The modified disc profile, evaluated exactly (closed form, analytic derivatives).
+//!
+//! Frame: the disc frame, origin at the disc centre, x along the disc's own reference line
+//! (MODEL.md: roller 0 sits in the root at t = 0 when φ = 0). Units: mm and rad.
+//!
+//! Roller-centre locus (MODEL.md "Profile", after paper Eq. 6):
+//!   C(t) = R'·(cos t, sin t) − e·(cos np·t, sin np·t),   R' = Rp + ΔRp,
+//! disc profile, the inward offset of the locus by r' = Rrp + ΔRrp, turned by Δδ:
+//!   Γ(t) = Rot(Δδ)·(C(t) − r'·N(t)),   N the outward unit normal of C.
+//! With the tangent T = C'/|C'| and curvature κ_C = (C' × C'')/|C'|³ (positive where convex),
+//! Γ'(t) = |C'|·(1 − r'·κ_C)·T, so Γ is regular (no cusp, no undercut) iff r'·κ_C < 1 everywhere:
+//! r' must be smaller than the smallest convex radius of curvature of C.
+
+use super::{cross, rotate, Vec2};
+use crate::spec::{Design, Modification};
+use std::f64::consts::PI;
+
+/// Disc profile of one design and modification.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Profile {
+    /// Number of rollers np (lobes of the locus term).
+    pub rollers: usize,
+    /// Eccentricity e, mm.
+    pub eccentricity_mm: f64,
+    /// R' = Rp + ΔRp, mm.
+    pub locus_radius_mm: f64,
+    /// r' = Rrp + ΔRrp, mm.
+    pub offset_mm: f64,
+    /// Δδ, rad, counter-clockwise.
+    pub rotation_rad: f64,
+    rot_cos: f64,
+    rot_sin: f64,
+}
+
+/// Locus value and its first two derivatives with respect to t.
+#[derive(Debug, Clone, Copy)]
+pub struct LocusJet {
+    pub c: Vec2,
+    pub d1: Vec2,
+    pub d2: Vec2,
+}
+
+/// Foot of the normal from a point to Γ. Disc frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Foot {
+    /// Locus parameter t of the foot (wrapped into [0, 2π)).
+    pub t: f64,
+    /// Closest point on Γ, mm.
+    pub point: Vec2,
+    /// Outward unit normal of Γ at the foot (points out of the disc material).
+    pub normal: Vec2,
+    /// Signed distance of the query point from Γ along `normal`, mm: positive outside the disc.
+    pub signed_distance_mm: f64,
+}
+
+/// The guarded Newton iteration left its bracket or ran out of iterations.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClosestPointFailure {
+    pub t_start: f64,
+    pub t_last: f64,
+    pub iterations: usize,
+}
+
+/// Smallest radius of curvature on the convex part of the locus C, and where.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConvexRadius {
+    pub radius_mm: f64,
+    pub t: f64,
+}
+
+impl Profile {
+    pub fn new(design: &Design, modification: &Modification) -> Self {
+        Self::from_parts(
+            design.rollers,
+            design.eccentricity_mm,
+            design.roller_circle_radius_mm + modification.shift_mm,
+            design.roller_radius_mm + modification.equidistant_mm,
+            modification.rotation_rad,
+        )
+    }
+
+    pub fn from_parts(
+        rollers: usize,
+        eccentricity_mm: f64,
+        locus_radius_mm: f64,
+        offset_mm: f64,
+        rotation_rad: f64,
+    ) -> Self {
+        let (rot_sin, rot_cos) = rotation_rad.sin_cos();
+        Profile {
+            rollers,
+            eccentricity_mm,
+            locus_radius_mm,
+            offset_mm,
+            rotation_rad,
+            rot_cos,
+            rot_sin,
+        }
+    }
+
+    /// C, C', C'' at t (mm, mm/rad, mm/rad²).
+    #[inline]
+    pub fn locus_jet(&self, t: f64) -> LocusJet {
+        let n = self.rollers as f64;
+        let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
+        let (s, c) = t.sin_cos();
+        let (sn, cn) = (n * t).sin_cos();
+        LocusJet {
+            c: Vec2::new(r * c - e * cn, r * s - e * sn),
+            d1: Vec2::new(-r * s + e * n * sn, r * c - e * n * cn),
+            d2: Vec2::new(-r * c + e * n * n * cn, -r * s + e * n * n * sn),
+        }
+    }
+
+    /// C''' at t, mm/rad³ (for the derivative of the curvature).
+    pub fn locus_d3(&self, t: f64) -> Vec2 {
+        let n = self.rollers as f64;
+        let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
+        let (s, c) = t.sin_cos();
+        let (sn, cn) = (n * t).sin_cos();
+        Vec2::new(r * s - e * n.powi(3) * sn, -r * c + e * n.powi(3) * cn)
+    }
+
+    /// Signed curvature of the locus, κ_C = (C' × C'')/|C'|³, 1/mm; positive where convex.
+    pub fn locus_curvature(&self, t: f64) -> f64 {
+        let j = self.locus_jet(t);
+        cross(j.d1, j.d2) / j.d1.norm().powi(3)
+    }
+
+    /// dκ_C/dt = (C' × C''')/|C'|³ − 3·κ_C·(C'·C'')/|C'|², 1/(mm·rad).
+    pub fn locus_curvature_derivative(&self, t: f64) -> f64 {
+        let j = self.locus_jet(t);
+        let s2 = j.d1.norm_squared();
+        cross(j.d1, self.locus_d3(t)) / s2.powf(1.5)
+            - 3.0 * cross(j.d1, j.d2) / s2.powf(1.5) * j.d1.dot(&j.d2) / s2
+    }
+
+    fn unrotated_normal(j: &LocusJet) -> Vec2 {
+        Vec2::new(j.d1.y, -j.d1.x) / j.d1.norm()
+    }
+
+    fn turned(&self, v: Vec2) -> Vec2 {
+        rotate(v, self.rot_cos, self.rot_sin)
+    }
+
+    fn unturned(&self, v: Vec2) -> Vec2 {
+        rotate(v, self.rot_cos, -self.rot_sin)
+    }
+
+    /// Γ(t), mm, disc frame.
+    pub fn point(&self, t: f64) -> Vec2 {
+        let j = self.locus_jet(t);
+        self.turned(j.c - self.offset_mm * Self::unrotated_normal(&j))
+    }
+
+    /// Outward unit normal of Γ (and of C) at t, disc frame.
+    pub fn normal(&self, t: f64) -> Vec2 {
+        self.turned(Self::unrotated_normal(&self.locus_jet(t)))
+    }
+
+    /// Γ'(t) = |C'|·(1 − r'κ_C)·T, mm/rad, disc frame.
+    pub fn tangent(&self, t: f64) -> Vec2 {
+        let j = self.locus_jet(t);
+        let k = cross(j.d1, j.d2) / j.d1.norm().powi(3);
+        self.turned(j.d1 * (1.0 - self.offset_mm * k))
+    }
+
+    /// Signed curvature of Γ, κ_Γ = κ_C/(1 − r'κ_C), 1/mm; positive where the disc is convex.
+    /// Its reciprocal is ρ_C − r' (the offset shortens convex radii by r').
+    pub fn curvature(&self, t: f64) -> f64 {
+        let k = self.locus_curvature(t);
+        k / (1.0 - self.offset_mm * k)
+    }
+
+    /// The smallest convex radius of curvature of C (= 1/max κ_C), by a dense scan of one
+    /// half tooth (C is symmetric about t = 0 and repeats every 2π/nc) and golden-section refinement.
+    pub fn min_convex_radius(&self) -> ConvexRadius {
+        let teeth = (self.rollers - 1) as f64;
+        let half_tooth = PI / teeth;
+        let samples = 4096;
+        let h = half_tooth / samples as f64;
+        let best = (0..=samples)
+            .map(|k| k as f64 * h)
+            .max_by(|&a, &b| self.locus_curvature(a).total_cmp(&self.locus_curvature(b)))
+            .unwrap_or(0.0);
+        let (mut a, mut b) = ((best - h).max(0.0), (best + h).min(half_tooth));
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..80 {
+            let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+            if self.locus_curvature(x1) > self.locus_curvature(x2) {
+                b = x2;
+            } else {
+                a = x1;
+            }
+        }
+        let t = 0.5 * (a + b);
+        let k = self.locus_curvature(t);
+        ConvexRadius {
+            radius_mm: if k > 0.0 { 1.0 / k } else { f64::INFINITY },
+            t,
+        }
+    }
+
+    /// Closest point on Γ to `p` (disc frame), by guarded Newton from `t_start`.
+    ///
+    /// Stationarity of |Γ(t) − p|² is (Γ − p)·Γ' = 0. Because Γ' ∥ T and N ⊥ T, for a regular
+    /// profile this is exactly (C(t) − p)·C'(t) = 0, so the iteration runs on
+    ///   h(t) = (C − p)·C',   h'(t) = |C'|² + (C − p)·C''.
+    /// Guards: a step is at most 0.05 rad, a non-positive h' takes a bounded descent step, and
+    /// the foot must stay within half a roller pitch (π/np) of `t_start`.
+    pub fn closest_point(&self, p: Vec2, t_start: f64) -> Result<Foot, ClosestPointFailure> {
+        const MAX_STEP: f64 = 0.05;
+        const MAX_ITER: usize = 60;
+        let q = self.unturned(p);
+        let t0 = t_start.rem_euclid(std::f64::consts::TAU);
+        let reach = PI / self.rollers as f64;
+        let mut t = t0;
+        for iteration in 1..=MAX_ITER {
+            let j = self.locus_jet(t);
+            let d = j.c - q;
+            let h = d.dot(&j.d1);
+            let dh = j.d1.norm_squared() + d.dot(&j.d2);
+            let step = if dh > 0.0 {
+                (-h / dh).clamp(-MAX_STEP, MAX_STEP)
+            } else {
+                -h.signum() * MAX_STEP
+            };
+            t += step;
+            if (t - t0).abs() > reach || !t.is_finite() {
+                return Err(ClosestPointFailure {
+                    t_start,
+                    t_last: t,
+                    iterations: iteration,
+                });
+            }
+            if step.abs() <= 1e-13 {
+                return Ok(self.foot(t, q));
+            }
+        }
+        Err(ClosestPointFailure {
+            t_start,
+            t_last: t,
+            iterations: MAX_ITER,
+        })
+    }
+
+    fn foot(&self, t: f64, q: Vec2) -> Foot {
+        let j = self.locus_jet(t);
+        let n = Self::unrotated_normal(&j);
+        let point = j.c - self.offset_mm * n;
+        Foot {
+            t: t.rem_euclid(std::f64::consts::TAU),
+            point: self.turned(point),
+            normal: self.turned(n),
+            signed_distance_mm: (q - point).dot(&n),
+        }
+    }
+}

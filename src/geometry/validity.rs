@@ -1,0 +1,110 @@
+//! Design rules a disc must satisfy before anything is computed. Each failure names the rule,
+//! the numbers and the spec key to change.
+
+use super::profile::Profile;
+use crate::error::{Error, ErrorKind, Result};
+use crate::spec::{Design, Modification};
+use std::f64::consts::PI;
+
+fn rule(key: &str, message: String) -> Error {
+    Error::new(ErrorKind::ImpossibleDesign, message).at_key(key)
+}
+
+/// Check every geometric rule; the first one broken is the error.
+pub fn check(design: &Design, m: &Modification) -> Result<()> {
+    let e = design.eccentricity_mm;
+    let np = design.rollers as f64;
+    let rp = design.roller_circle_radius_mm;
+    let k1 = design.k1();
+    if k1 >= 1.0 {
+        return Err(rule(
+            "reducer.eccentricity_mm",
+            format!(
+                "short-amplitude coefficient K1 = e·np/Rp = {e}·{np}/{rp} = {k1:.4} must be below 1 \
+                 (the locus would loop)"
+            ),
+        ));
+    }
+    let locus_radius = rp + m.shift_mm;
+    let locus_k1 = e * np / locus_radius;
+    if locus_radius <= 0.0 || locus_k1 >= 1.0 {
+        return Err(rule(
+            "modification.shift_mm",
+            format!(
+                "the shifted locus radius Rp + ΔRp = {locus_radius:.4} mm gives K1 = {locus_k1:.4}; \
+                 it must stay below 1"
+            ),
+        ));
+    }
+    let offset = design.roller_radius_mm + m.equidistant_mm;
+    if offset <= 0.0 {
+        return Err(rule(
+            "modification.equidistant_mm",
+            format!("the generating roller radius Rrp + ΔRrp = {offset:.4} mm must be positive"),
+        ));
+    }
+    let convex = Profile::new(design, m).min_convex_radius();
+    if offset >= convex.radius_mm {
+        return Err(rule(
+            "reducer.roller_radius_mm",
+            format!(
+                "undercut: the generating roller radius Rrp + ΔRrp = {offset:.4} mm is not smaller than \
+                 the smallest convex radius of curvature of the roller-centre locus, {:.4} mm \
+                 (at t = {:.3}° from the tooth root); the profile would have cusps",
+                convex.radius_mm,
+                convex.t.to_degrees()
+            ),
+        ));
+    }
+    let pitch = 2.0 * rp * (PI / np).sin();
+    if pitch <= 2.0 * design.roller_radius_mm {
+        return Err(rule(
+            "reducer.roller_radius_mm",
+            format!(
+                "rollers overlap: the distance between neighbouring roller centres, \
+                 2·Rp·sin(π/np) = {pitch:.4} mm, must exceed the roller diameter {:.4} mm",
+                2.0 * design.roller_radius_mm
+            ),
+        ));
+    }
+    check_holes(design, locus_radius - e - offset)
+}
+
+fn check_holes(design: &Design, root_radius: f64) -> Result<()> {
+    let rw = design.pins.circle_radius_mm;
+    let hole = design.hole_radius_mm();
+    let m = design.pins.count as f64;
+    if rw + hole >= root_radius {
+        return Err(rule(
+            "reducer.output_pins.circle_radius_mm",
+            format!(
+                "output-pin holes cut into the tooth root: pin circle radius + hole radius \
+                 = {rw} + {hole:.4} = {:.4} mm reaches the root radius of the profile, \
+                 Rp + ΔRp − e − (Rrp + ΔRrp) = {root_radius:.4} mm \
+                 (hole radius = pin radius + e + hole clearance)",
+                rw + hole
+            ),
+        ));
+    }
+    let spacing = 2.0 * rw * (PI / m).sin();
+    if spacing <= 2.0 * hole {
+        return Err(rule(
+            "reducer.output_pins.count",
+            format!(
+                "output-pin holes overlap: neighbouring hole centres are {spacing:.4} mm apart, \
+                 less than the hole diameter {:.4} mm",
+                2.0 * hole
+            ),
+        ));
+    }
+    if rw <= hole {
+        return Err(rule(
+            "reducer.output_pins.circle_radius_mm",
+            format!(
+                "output-pin holes reach the disc centre: pin circle radius {rw} mm must exceed \
+                 the hole radius {hole:.4} mm"
+            ),
+        ));
+    }
+    Ok(())
+}

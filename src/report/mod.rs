@@ -1,0 +1,4 @@
+//! Outputs: the terminal table and the results JSON.
+
+pub mod json;
+pub mod table;

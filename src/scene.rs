@@ -5,6 +5,8 @@
 //! in the scenes that compute its quantity (`check`), and a limit that no scene can evaluate is
 //! an error.
 
+use crate::equilibrium::curves::{self, LoadedSweep};
+use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, ClearanceSweep, Mesh};
 use crate::spec::{GeometryMode, Scene, Spec};
@@ -100,6 +102,7 @@ pub struct SceneResult {
     pub name: String,
     pub crank_rad: Vec<f64>,
     pub clearance: Option<ClearanceSweep>,
+    pub loaded: LoadedSweep,
 }
 
 /// Run one scene according to its plan.
@@ -113,10 +116,37 @@ pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
     } else {
         None
     };
+    let (rollers, pins, bearing) = (
+        plan.has(Effect::RollerContact),
+        plan.has(Effect::OutputPins),
+        plan.has(Effect::Bearing),
+    );
+    let loaded = if rollers || pins || bearing {
+        let model = Model::new(
+            &spec.design,
+            &spec.modification,
+            scene,
+            rollers,
+            pins,
+            bearing,
+        );
+        let periodic = scene.spans_whole_periods(&spec.design);
+        curves::sweep(&model, &scene.crank_rad, periodic).map_err(|f| {
+            Error::computation(format!(
+                "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {}",
+                scene.name,
+                f.crank_rad.to_degrees(),
+                f.failure
+            ))
+        })?
+    } else {
+        LoadedSweep::default()
+    };
     Ok(SceneResult {
         name: scene.name.clone(),
         crank_rad: scene.crank_rad.clone(),
         clearance,
+        loaded,
     })
 }
 
@@ -143,6 +173,20 @@ pub fn explain(spec: &Spec) -> String {
                 GeometryMode::FirstOrder => "first-order",
             }
         );
+        if plan.has(Effect::RollerContact) || plan.has(Effect::OutputPins) {
+            out += &format!(
+                "  contact law {:?}, crank bearing {}\n",
+                scene.contact_law,
+                match scene.bearing_stiffness_n_per_mm {
+                    Some(k) => format!("compliant ({k} N/mm)"),
+                    None => "rigid".to_string(),
+                }
+            );
+        }
+        if plan.has(Effect::RollerContact) && !plan.has(Effect::OutputPins) {
+            out +=
+                "  note    output pins not modelled: loaded TE is the disc lag β alone (βo = 0)\n";
+        }
         for p in &plan.effects {
             out += &format!("  compute {:<15} {}\n", p.effect.name(), p.reason);
         }

@@ -1,6 +1,8 @@
 //! Limits → checks → verdicts. A limit applies to every scene that computes its quantity.
 
+use crate::equilibrium::curves::{extremes, fluctuation, max_entry};
 use crate::error::{Error, ErrorKind, Result};
+use crate::report::json::ARCSEC_PER_RAD;
 use crate::scene::{Effect, Plan, SceneResult};
 use crate::spec::{Limits, Spec};
 
@@ -34,25 +36,134 @@ struct LimitDef {
     value: fn(&SceneResult) -> Option<(f64, String)>,
 }
 
-const LIMITS: &[LimitDef] = &[LimitDef {
-    key: "min_clearance_mm",
-    bound: Bound::Min,
-    effect: Effect::Clearance,
-    get: |l| l.min_clearance_mm,
-    value: |r| {
-        r.clearance.as_ref().map(|c| {
-            (
-                c.min.gap_mm,
-                format!(
-                    "roller {} at crank {:.2}°, tooth phase {:.3} (0 root, 0.5 tip)",
-                    c.min.roller,
-                    c.min.crank_rad.to_degrees(),
-                    c.min.tooth_phase
-                ),
-            )
-        })
+fn at_angle(r: &SceneResult, k: usize) -> f64 {
+    r.crank_rad.get(k).copied().unwrap_or(0.0).to_degrees()
+}
+
+fn max_over(r: &SceneResult, rows: &[Vec<f64>], what: &str) -> (f64, String) {
+    let (v, i, k) = max_entry(rows);
+    (v, format!("{what} {i} at crank {:.2}°", at_angle(r, k)))
+}
+
+const LIMITS: &[LimitDef] = &[
+    LimitDef {
+        key: "min_clearance_mm",
+        bound: Bound::Min,
+        effect: Effect::Clearance,
+        get: |l| l.min_clearance_mm,
+        value: |r| {
+            r.clearance.as_ref().map(|c| {
+                (
+                    c.min.gap_mm,
+                    format!(
+                        "roller {} at crank {:.2}°, tooth phase {:.3} (0 root, 0.5 tip)",
+                        c.min.roller,
+                        c.min.crank_rad.to_degrees(),
+                        c.min.tooth_phase
+                    ),
+                )
+            })
+        },
     },
-}];
+    LimitDef {
+        key: "max_roller_force_n",
+        bound: Bound::Max,
+        effect: Effect::RollerContact,
+        get: |l| l.max_roller_force_n,
+        value: |r| {
+            r.loaded
+                .rollers
+                .as_ref()
+                .map(|c| max_over(r, &c.force_n, "roller"))
+        },
+    },
+    LimitDef {
+        key: "max_contact_pressure_mpa",
+        bound: Bound::Max,
+        effect: Effect::RollerContact,
+        get: |l| l.max_contact_pressure_mpa,
+        value: |r| {
+            r.loaded
+                .rollers
+                .as_ref()
+                .map(|c| max_over(r, &c.pressure_mpa, "roller"))
+        },
+    },
+    LimitDef {
+        key: "min_rollers_in_contact",
+        bound: Bound::Min,
+        effect: Effect::RollerContact,
+        get: |l| l.min_rollers_in_contact.map(|n| n as f64),
+        value: |r| {
+            r.loaded.rollers.as_ref().map(|c| {
+                let counts: Vec<f64> = c.contacts.iter().map(|&n| n as f64).collect();
+                let ((lo, k), _) = extremes(&counts);
+                (lo, format!("crank {:.2}°", at_angle(r, k)))
+            })
+        },
+    },
+    LimitDef {
+        key: "max_te_fluctuation_arcsec",
+        bound: Bound::Max,
+        effect: Effect::RollerContact,
+        get: |l| l.max_te_fluctuation_arcsec,
+        value: |r| {
+            r.loaded.transmission.as_ref().map(|t| {
+                let ((_, lo), (_, hi)) = extremes(&t.te_rad);
+                (
+                    fluctuation(&t.te_rad) * ARCSEC_PER_RAD,
+                    format!(
+                        "min at {:.2}°, max at {:.2}°",
+                        at_angle(r, lo),
+                        at_angle(r, hi)
+                    ),
+                )
+            })
+        },
+    },
+    LimitDef {
+        key: "max_ratio_fluctuation",
+        bound: Bound::Max,
+        effect: Effect::RollerContact,
+        get: |l| l.max_ratio_fluctuation,
+        value: |r| {
+            let ratio = r.loaded.transmission.as_ref()?.ratio.as_ref()?;
+            let ((_, lo), (_, hi)) = extremes(ratio);
+            Some((
+                fluctuation(ratio),
+                format!(
+                    "min at {:.2}°, max at {:.2}°",
+                    at_angle(r, lo),
+                    at_angle(r, hi)
+                ),
+            ))
+        },
+    },
+    LimitDef {
+        key: "max_pin_force_n",
+        bound: Bound::Max,
+        effect: Effect::OutputPins,
+        get: |l| l.max_pin_force_n,
+        value: |r| {
+            r.loaded
+                .pins
+                .as_ref()
+                .map(|c| max_over(r, &c.force_n, "pin"))
+        },
+    },
+    LimitDef {
+        key: "max_bearing_force_n",
+        bound: Bound::Max,
+        effect: Effect::Bearing,
+        get: |l| l.max_bearing_force_n,
+        value: |r| {
+            r.loaded.bearing.as_ref().map(|b| {
+                let (_, (v, k)) = extremes(&b.force_n);
+                (v, format!("crank {:.2}°", at_angle(r, k)))
+            })
+        },
+    },
+];
 
 /// Keys of the limits that a scene with this plan evaluates.
 pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {

@@ -1,1 +1,5 @@
-//! Contact laws and Hertz line-contact pressure.
+//! Contact between the disc and a roller or output pin: force–approach laws and Hertz
+//! line-contact pressure.
+
+pub mod hertz_line;
+pub mod law;

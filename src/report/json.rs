@@ -2,6 +2,7 @@
 //! converted to the units named in the keys here. A quantity not computed is absent.
 
 use crate::check::Check;
+use crate::equilibrium::curves::{extremes, max_entry};
 use crate::scene::SceneResult;
 use crate::spec::Spec;
 use serde_json::{json, Map, Value};
@@ -47,7 +48,68 @@ fn scene(r: &SceneResult) -> Value {
         );
         s.insert("lost_motion_arcsec".into(), arcsec(&c.lost_motion_rad));
     }
+    loaded(&mut s, r);
     Value::Object(s)
+}
+
+fn grid(rows: &[Vec<f64>]) -> Value {
+    Value::Array(rows.iter().map(|row| list(row.iter().copied())).collect())
+}
+
+/// Curves and scalar summaries of the loaded solve (absent when not computed).
+fn loaded(s: &mut Map<String, Value>, r: &SceneResult) {
+    let l = &r.loaded;
+    let arcsec = |v: &[f64]| list(v.iter().map(|b| b * ARCSEC_PER_RAD));
+    if let Some(c) = &l.rollers {
+        s.insert("lag_arcsec".into(), arcsec(&c.lag_rad));
+        s.insert("roller_force_n".into(), grid(&c.force_n));
+        s.insert("contact_pressure_mpa".into(), grid(&c.pressure_mpa));
+        s.insert("contact_half_width_mm".into(), grid(&c.half_width_mm));
+        s.insert("contacts".into(), json!(c.contacts));
+        s.insert("max_roller_force_n".into(), num(max_entry(&c.force_n).0));
+        s.insert(
+            "max_contact_pressure_mpa".into(),
+            num(max_entry(&c.pressure_mpa).0),
+        );
+        let counts: Vec<f64> = c.contacts.iter().map(|&n| n as f64).collect();
+        s.insert("min_rollers_in_contact".into(), num(extremes(&counts).0 .0));
+    }
+    if let Some(p) = &l.pins {
+        s.insert("output_lag_arcsec".into(), arcsec(&p.output_lag_rad));
+        s.insert("pin_force_n".into(), grid(&p.force_n));
+        s.insert("max_pin_force_n".into(), num(max_entry(&p.force_n).0));
+    }
+    if let Some(b) = &l.bearing {
+        s.insert("bearing_force_n".into(), list(b.force_n.iter().copied()));
+        s.insert(
+            "bearing_angle_deg".into(),
+            list(b.angle_rad.iter().map(|a| a.to_degrees())),
+        );
+        s.insert(
+            "bearing_deflection_mm".into(),
+            list(b.deflection_mm.iter().copied()),
+        );
+        s.insert("residual".into(), list(b.residual.iter().copied()));
+        s.insert("max_residual".into(), num(extremes(&b.residual).1 .0));
+        s.insert("max_bearing_force_n".into(), num(extremes(&b.force_n).1 .0));
+    }
+    if let Some(t) = &l.transmission {
+        let ((lo, _), (hi, _)) = extremes(&t.te_rad);
+        s.insert("te_arcsec".into(), arcsec(&t.te_rad));
+        s.insert("te_max_arcsec".into(), num(hi * ARCSEC_PER_RAD));
+        s.insert("te_min_arcsec".into(), num(lo * ARCSEC_PER_RAD));
+        s.insert(
+            "te_fluctuation_arcsec".into(),
+            num((hi - lo) * ARCSEC_PER_RAD),
+        );
+        if let Some(ratio) = &t.ratio {
+            let ((lo, _), (hi, _)) = extremes(ratio);
+            s.insert("ratio".into(), list(ratio.iter().copied()));
+            s.insert("ratio_max".into(), num(hi));
+            s.insert("ratio_min".into(), num(lo));
+            s.insert("ratio_fluctuation".into(), num(hi - lo));
+        }
+    }
 }
 
 /// The whole results document.

@@ -1,0 +1,111 @@
+//! Force–approach laws of a line contact of length L (the face width).
+//!
+//! The approach d (mm) is the overlap of the undeformed bodies along the contact normal,
+//! d = −gap; no force for d ≤ 0. Forces in N, stiffnesses dF/dd in N/mm.
+
+use crate::spec::ContactLaw;
+use std::f64::consts::PI;
+
+/// What a contact law needs to know about one contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineContact {
+    /// E* = 1/((1−ν1²)/E1 + (1−ν2²)/E2), MPa.
+    pub contact_modulus_mpa: f64,
+    /// (1−ν²)/E of each body, 1/MPa (for the logarithmic law).
+    pub compliance_per_mpa: [f64; 2],
+    /// Contact length L, mm.
+    pub length_mm: f64,
+    /// Magnitude of each body's radius of curvature at the contact, mm.
+    pub radii_mm: [f64; 2],
+    /// Effective radius R*, 1/R* = Σ signed curvatures (a concave body counts negative), mm.
+    pub effective_radius_mm: f64,
+}
+
+/// Force and stiffness at one approach.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactForce {
+    pub force_n: f64,
+    pub stiffness_n_per_mm: f64,
+}
+
+impl ContactForce {
+    pub const NONE: ContactForce = ContactForce {
+        force_n: 0.0,
+        stiffness_n_per_mm: 0.0,
+    };
+}
+
+/// Paper Eq. 9: F = (π/4)·E*·L·d, a constant stiffness k = (π/4)·E*·L.
+pub fn paper_linear_stiffness(c: &LineContact) -> f64 {
+    0.25 * PI * c.contact_modulus_mpa * c.length_mm
+}
+
+/// Hertz half-width b = sqrt(4·F·R*/(π·L·E*)), mm.
+pub fn half_width_mm(c: &LineContact, force_n: f64) -> f64 {
+    (4.0 * force_n * c.effective_radius_mm / (PI * c.length_mm * c.contact_modulus_mpa)).sqrt()
+}
+
+/// Johnson's logarithmic line-contact compliance (K. L. Johnson, *Contact Mechanics*, CUP 1985,
+/// §5.6; Puttock & Thwaite, CSIRO 1969): the approach of the axes of two cylinders pressed
+/// together by F over a length L is the sum over both bodies k of
+///   d_k = (2F/(πL))·c_k·(ln(4R_k/b) − 1/2),   c_k = (1−ν_k²)/E_k,
+/// with b the Hertz half-width. With equal materials it is (F/(πLE*))·(ln(4R1/b) + ln(4R2/b) − 1).
+/// Its derivative, using ∂ln b/∂F = 1/(2F), is
+///   ∂d/∂F = (2/(πL))·Σ c_k·(ln(4R_k/b) − 1),
+/// positive while b < 4R/e: the law stiffens with load and starts with zero stiffness.
+pub fn johnson_approach_mm(c: &LineContact, force_n: f64) -> (f64, f64) {
+    if force_n <= 0.0 {
+        return (0.0, f64::INFINITY);
+    }
+    let b = half_width_mm(c, force_n);
+    let scale = 2.0 / (PI * c.length_mm);
+    let (mut d, mut dd) = (0.0, 0.0);
+    for k in 0..2 {
+        let log = (4.0 * c.radii_mm[k] / b).ln();
+        d += scale * force_n * c.compliance_per_mpa[k] * (log - 0.5);
+        dd += scale * c.compliance_per_mpa[k] * (log - 1.0);
+    }
+    (d, dd)
+}
+
+/// Invert Johnson's law: the force that produces approach `d` (safeguarded Newton in ln F,
+/// started from the linear law; d(ln F) steps are bounded so the iteration cannot overshoot).
+pub fn johnson_force(c: &LineContact, approach_mm: f64) -> ContactForce {
+    if approach_mm <= 0.0 {
+        return ContactForce::NONE;
+    }
+    let mut ln_f = (paper_linear_stiffness(c) * approach_mm).ln();
+    for _ in 0..100 {
+        let f = ln_f.exp();
+        let (d, dd) = johnson_approach_mm(c, f);
+        // Newton on g(ln F) = d(F) − d_target, g' = F·∂d/∂F.
+        let step = ((approach_mm - d) / (f * dd.max(1e-300))).clamp(-2.0, 2.0);
+        ln_f += step;
+        if step.abs() < 1e-14 {
+            break;
+        }
+    }
+    let f = ln_f.exp();
+    let (_, dd) = johnson_approach_mm(c, f);
+    ContactForce {
+        force_n: f,
+        stiffness_n_per_mm: 1.0 / dd,
+    }
+}
+
+/// Force and stiffness of a contact under `law` at approach `d` (mm).
+pub fn force(law: ContactLaw, c: &LineContact, approach_mm: f64) -> ContactForce {
+    if approach_mm <= 0.0 {
+        return ContactForce::NONE;
+    }
+    match law {
+        ContactLaw::PaperLinear => {
+            let k = paper_linear_stiffness(c);
+            ContactForce {
+                force_n: k * approach_mm,
+                stiffness_n_per_mm: k,
+            }
+        }
+        ContactLaw::HertzNonlinear => johnson_force(c, approach_mm),
+    }
+}

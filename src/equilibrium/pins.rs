@@ -1,0 +1,116 @@
+//! Output pins in the disc's holes at one pose.
+//!
+//! Pin j's centre Q = rw·e^{i(γj + βo)}, its hole's centre H = O_c + rw·e^{iγj},
+//! γj = 2πj/M + ψ (fixed frame; ψ the disc rotation, βo the lag of the output behind the disc).
+//! With d = Q − H and hole radius R_h = r_pin + e + c, the gap is e + c − |d| (ideal geometry:
+//! d = −e·(cos φ, sin φ), gap = c). The pin pushes the hole wall along û = d/|d|; its moment
+//! about the disc centre has arm a = rw·e^{iγj} × û (rw·sin(γj − φ) when ideal), positive arms
+//! carry a positive output torque. Exact derivatives: ∂gap/∂βo = −(Q − O) × û and ∂gap/∂u = û.
+
+use crate::contact::law::{self, ContactForce, LineContact};
+use crate::geometry::{cross, Vec2};
+use crate::spec::{ContactLaw, Design};
+
+/// One pin's contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PinState {
+    pub gap_mm: f64,
+    pub force_n: f64,
+    pub stiffness_n_per_mm: f64,
+    /// Moment arm about the disc centre, mm.
+    pub arm_mm: f64,
+    /// Direction of the pin's force on the disc (unit, fixed frame).
+    pub direction: Vec2,
+    /// Contact point on the hole wall, fixed frame, mm.
+    pub point: Vec2,
+    /// ∂gap/∂βo, mm/rad.
+    pub gap_slope_mm: f64,
+}
+
+impl PinState {
+    pub fn force_vector(&self) -> Vec2 {
+        self.force_n * self.direction
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Pins {
+    pub count: usize,
+    circle_radius_mm: f64,
+    eccentricity_mm: f64,
+    clearance_mm: f64,
+    hole_radius_mm: f64,
+    contact: LineContact,
+    law: ContactLaw,
+}
+
+impl Pins {
+    pub fn new(design: &Design, law: ContactLaw) -> Self {
+        let pin = design.pins.pin_radius_mm;
+        let hole = design.hole_radius_mm();
+        Pins {
+            count: design.pins.count,
+            circle_radius_mm: design.pins.circle_radius_mm,
+            eccentricity_mm: design.eccentricity_mm,
+            clearance_mm: design.pins.hole_clearance_mm,
+            hole_radius_mm: hole,
+            contact: LineContact {
+                contact_modulus_mpa: design.contact_modulus_mpa(),
+                compliance_per_mpa: [
+                    design.disc_material.compliance_per_mpa(),
+                    design.roller_material.compliance_per_mpa(),
+                ],
+                length_mm: design.face_width_mm,
+                radii_mm: [hole, pin],
+                effective_radius_mm: 1.0 / (1.0 / pin - 1.0 / hole),
+            },
+            law,
+        }
+    }
+
+    pub fn line_contact(&self) -> &LineContact {
+        &self.contact
+    }
+
+    /// Evaluate every pin. `disc_centre` includes any bearing deflection; `psi` is the disc
+    /// rotation; `output_lag` is βo.
+    pub fn evaluate(&self, disc_centre: Vec2, psi: f64, output_lag: f64, out: &mut Vec<PinState>) {
+        out.clear();
+        let m = self.count as f64;
+        for j in 0..self.count {
+            let gamma = std::f64::consts::TAU * j as f64 / m + psi;
+            let arm_vec = Vec2::new(gamma.cos(), gamma.sin()) * self.circle_radius_mm;
+            let pin = Vec2::new((gamma + output_lag).cos(), (gamma + output_lag).sin())
+                * self.circle_radius_mm;
+            let d = pin - (disc_centre + arm_vec);
+            let dist = d.norm();
+            let u = d / dist;
+            let gap_mm = self.eccentricity_mm + self.clearance_mm - dist;
+            let cf = if gap_mm < 0.0 {
+                law::force(self.law, &self.contact, -gap_mm)
+            } else {
+                ContactForce::NONE
+            };
+            out.push(PinState {
+                gap_mm,
+                force_n: cf.force_n,
+                stiffness_n_per_mm: cf.stiffness_n_per_mm,
+                arm_mm: cross(arm_vec, u),
+                direction: u,
+                point: disc_centre + arm_vec + self.hole_radius_mm * u,
+                gap_slope_mm: -cross(pin, u),
+            });
+        }
+    }
+}
+
+/// Σ F·a (N·mm), its slope ∂/∂βo = Σ k·a·(−∂gap/∂βo), and the scale Σ |F·a|.
+pub fn moment(states: &[PinState]) -> (f64, f64, f64) {
+    states.iter().fold((0.0, 0.0, 0.0), |(m, dm, scale), s| {
+        (
+            m + s.force_n * s.arm_mm,
+            dm - s.stiffness_n_per_mm * s.arm_mm * s.gap_slope_mm,
+            scale + (s.force_n * s.arm_mm).abs(),
+        )
+    })
+}

@@ -1,0 +1,449 @@
+//! The loaded solve at every crank angle of a scene, and the curves it produces.
+//!
+//! Rigid bearing: the disc centre sits at e·(cos φ, sin φ); moment balance about it decouples
+//! into the roller balance Σ F_i·l_i(β) = T and the pin balance Σ F_j·a_j(βo) = T, each a
+//! monotone 1-D root (`solve`). The bearing force is then −(Σ roller forces + Σ pin forces).
+//! Compliant bearing (stiffness kb): the disc centre moves by u and all of x = (ux, uy, β, βo)
+//! are solved together by Newton with an analytic Jacobian (nalgebra), with a bracketed
+//! fixed-point fallback.
+
+use super::pins::{self, PinState, Pins};
+use super::rollers::{self, RollerState, Rollers};
+use super::solve::{monotone_root, Balance, Settings, SolveFailure};
+use crate::geometry::clearance::Pose;
+use crate::geometry::{cross, Vec2};
+use crate::spec::{Design, Modification, Scene};
+use nalgebra::{Matrix4, Vector4};
+
+/// What the loaded model of a scene includes.
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub rollers: Option<Rollers>,
+    pub pins: Option<Pins>,
+    pub bearing: bool,
+    pub bearing_stiffness_n_per_mm: Option<f64>,
+    pub torque_nmm: f64,
+    pub teeth: usize,
+    pub eccentricity_mm: f64,
+    pub settings: Settings,
+}
+
+impl Model {
+    pub fn new(
+        design: &Design,
+        m: &Modification,
+        scene: &Scene,
+        rollers: bool,
+        pins: bool,
+        bearing: bool,
+    ) -> Self {
+        Model {
+            rollers: rollers.then(|| Rollers::new(design, m, scene.contact_law, scene.geometry)),
+            pins: pins.then(|| Pins::new(design, scene.contact_law)),
+            bearing,
+            bearing_stiffness_n_per_mm: scene.bearing_stiffness_n_per_mm.filter(|_| bearing),
+            torque_nmm: scene.output_torque_nmm,
+            teeth: design.teeth,
+            eccentricity_mm: design.eccentricity_mm,
+            settings: Settings::default(),
+        }
+    }
+
+    fn ideal_centre(&self, crank: f64) -> Vec2 {
+        Vec2::new(crank.cos(), crank.sin()) * self.eccentricity_mm
+    }
+}
+
+/// The equilibrium at one crank angle. Fixed frame; lags in rad (positive opposes the motion).
+#[derive(Debug, Clone, Default)]
+pub struct AngleSolution {
+    /// β, when the rollers are modelled.
+    pub lag_rad: Option<f64>,
+    pub rollers: Vec<RollerState>,
+    /// βo, when the pins are modelled.
+    pub output_lag_rad: Option<f64>,
+    pub pins: Vec<PinState>,
+    /// Disc-centre displacement from e·(cos φ, sin φ) (compliant bearing), mm.
+    pub centre_offset_mm: Vec2,
+    /// Crank-bearing force on the disc, N, when `bearing` is modelled.
+    pub bearing_force_n: Option<Vec2>,
+    /// Largest relative residual of the force and moment balance (paper Eqs. 12–14).
+    pub residual: Option<f64>,
+}
+
+fn roller_balance(
+    r: &Rollers,
+    pose: &Pose,
+    states: &mut Vec<RollerState>,
+) -> Result<Balance, String> {
+    r.evaluate(pose, states).map_err(|f| f.to_string())?;
+    let (value, slope, scale) = rollers::moment(states);
+    Ok(Balance {
+        value,
+        slope,
+        scale,
+    })
+}
+
+fn pin_balance(p: &Pins, centre: Vec2, psi: f64, lag: f64, states: &mut Vec<PinState>) -> Balance {
+    p.evaluate(centre, psi, lag, states);
+    let (value, slope, scale) = pins::moment(states);
+    Balance {
+        value,
+        slope,
+        scale,
+    }
+}
+
+/// Zero torque with clearance leaves the disc free within its backlash; we report the limit
+/// T → 0⁺: the lag at which the nearest contact in the load direction just closes.
+/// Newton on the smallest gap, x ← x + min(gap/(−∂gap/∂x)) over contacts that close as x grows.
+fn touching<S>(
+    mut eval: impl FnMut(f64) -> Result<Vec<(f64, f64)>, S>,
+    start: f64,
+) -> Result<f64, S> {
+    let mut x = start;
+    for _ in 0..50 {
+        let step = eval(x)?
+            .into_iter()
+            .filter(|&(_, slope)| slope < 0.0)
+            .map(|(gap, slope)| gap / -slope)
+            .fold(f64::INFINITY, f64::min);
+        if !step.is_finite() {
+            break;
+        }
+        x += step;
+        if step.abs() <= 1e-16 + 1e-13 * x.abs() {
+            break;
+        }
+    }
+    Ok(x)
+}
+
+fn in_contact<'a>(forces: impl IntoIterator<Item = &'a f64>) -> bool {
+    forces.into_iter().any(|&f| f > 0.0)
+}
+
+/// Solve the rollers at a fixed centre offset: β with Σ F·l = T.
+fn solve_rollers(
+    model: &Model,
+    r: &Rollers,
+    crank: f64,
+    offset: Vec2,
+    guess: f64,
+    states: &mut Vec<RollerState>,
+) -> Result<f64, SolveFailure> {
+    let pose = |lag| Pose {
+        crank_rad: crank,
+        lag_rad: lag,
+        centre_offset_mm: offset,
+    };
+    let root = monotone_root(
+        |lag| roller_balance(r, &pose(lag), states),
+        model.torque_nmm,
+        guess,
+        &model.settings,
+    )?;
+    let mut lag = root.x;
+    roller_balance(r, &pose(lag), states).map_err(SolveFailure::Evaluation)?;
+    if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
+        lag = touching(
+            |l| {
+                roller_balance(r, &pose(l), states)
+                    .map(|_| states.iter().map(|s| (s.gap_mm, -s.arm_mm)).collect())
+            },
+            lag,
+        )
+        .map_err(SolveFailure::Evaluation)?;
+        roller_balance(r, &pose(lag), states).map_err(SolveFailure::Evaluation)?;
+    }
+    Ok(lag)
+}
+
+/// Solve the pins at a fixed disc pose: βo with Σ F·a = T.
+fn solve_pins(
+    model: &Model,
+    p: &Pins,
+    centre: Vec2,
+    psi: f64,
+    guess: f64,
+    states: &mut Vec<PinState>,
+) -> Result<f64, SolveFailure> {
+    let root = monotone_root(
+        |lag| Ok::<_, String>(pin_balance(p, centre, psi, lag, states)),
+        model.torque_nmm,
+        guess,
+        &model.settings,
+    )?;
+    let mut lag = root.x;
+    pin_balance(p, centre, psi, lag, states);
+    if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
+        lag = touching(
+            |l| {
+                pin_balance(p, centre, psi, l, states);
+                Ok::<_, String>(states.iter().map(|s| (s.gap_mm, s.gap_slope_mm)).collect())
+            },
+            lag,
+        )
+        .map_err(SolveFailure::Evaluation)?;
+        pin_balance(p, centre, psi, lag, states);
+    }
+    Ok(lag)
+}
+
+fn net_force(sol: &AngleSolution) -> Vec2 {
+    let r: Vec2 = sol.rollers.iter().map(|s| s.force_vector()).sum();
+    let p: Vec2 = sol.pins.iter().map(|s| s.force_vector()).sum();
+    r + p
+}
+
+/// Solve the rigid-bearing equilibrium at one crank angle, warm-started from `previous`.
+fn solve_rigid(
+    model: &Model,
+    crank: f64,
+    previous: &AngleSolution,
+    offset: Vec2,
+) -> Result<AngleSolution, SolveFailure> {
+    let mut sol = AngleSolution {
+        centre_offset_mm: offset,
+        rollers: previous.rollers.clone(),
+        ..Default::default()
+    };
+    let mut psi = -crank / model.teeth as f64;
+    if let Some(r) = &model.rollers {
+        let lag = solve_rollers(
+            model,
+            r,
+            crank,
+            offset,
+            previous.lag_rad.unwrap_or(0.0),
+            &mut sol.rollers,
+        )?;
+        psi += lag;
+        sol.lag_rad = Some(lag);
+    }
+    if let Some(p) = &model.pins {
+        let centre = model.ideal_centre(crank) + offset;
+        let guess = previous.output_lag_rad.unwrap_or(0.0);
+        sol.output_lag_rad = Some(solve_pins(model, p, centre, psi, guess, &mut sol.pins)?);
+    }
+    Ok(sol)
+}
+
+/// Residual vector of the compliant problem and the per-row scales.
+fn compliant_residual(model: &Model, kb: f64, sol: &AngleSolution) -> (Vector4<f64>, Vector4<f64>) {
+    let f = net_force(sol);
+    let u = sol.centre_offset_mm;
+    let (mr, _, sr) = rollers::moment(&sol.rollers);
+    let (mp, _, sp) = pins::moment(&sol.pins);
+    let force_scale: f64 = sol.rollers.iter().map(|s| s.force_n).sum::<f64>()
+        + sol.pins.iter().map(|s| s.force_n).sum::<f64>()
+        + kb * u.norm();
+    let t = model.torque_nmm.abs();
+    (
+        Vector4::new(
+            f.x - kb * u.x,
+            f.y - kb * u.y,
+            mr - model.torque_nmm,
+            mp - model.torque_nmm,
+        ),
+        Vector4::new(force_scale, force_scale, t.max(sr), t.max(sp)).map(|s| s.max(1e-300)),
+    )
+}
+
+/// Evaluate rollers and pins at x = (ux, uy, β, βo).
+fn evaluate_at(
+    model: &Model,
+    crank: f64,
+    x: &Vector4<f64>,
+    sol: &mut AngleSolution,
+) -> Result<(), SolveFailure> {
+    let (r, p) = (model.rollers.as_ref(), model.pins.as_ref());
+    let (Some(r), Some(p)) = (r, p) else {
+        return Err(SolveFailure::Evaluation(
+            "a compliant bearing needs rollers and pins".into(),
+        ));
+    };
+    sol.centre_offset_mm = Vec2::new(x[0], x[1]);
+    sol.lag_rad = Some(x[2]);
+    sol.output_lag_rad = Some(x[3]);
+    let pose = Pose {
+        crank_rad: crank,
+        lag_rad: x[2],
+        centre_offset_mm: sol.centre_offset_mm,
+    };
+    r.evaluate(&pose, &mut sol.rollers)
+        .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
+    let centre = model.ideal_centre(crank) + sol.centre_offset_mm;
+    p.evaluate(
+        centre,
+        -crank / model.teeth as f64 + x[2],
+        x[3],
+        &mut sol.pins,
+    );
+    Ok(())
+}
+
+/// Jacobian of `compliant_residual` (contact normals and arms held fixed over a step).
+fn compliant_jacobian(kb: f64, sol: &AngleSolution) -> Matrix4<f64> {
+    let mut j = Matrix4::zeros();
+    j[(0, 0)] = -kb;
+    j[(1, 1)] = -kb;
+    for s in &sol.rollers {
+        let (k, n, l) = (s.stiffness_n_per_mm, s.normal, s.arm_mm);
+        // f = −F·n, F = F(−gap), ∂gap/∂u = −n, ∂gap/∂β = −l.
+        for a in 0..2 {
+            for b in 0..2 {
+                j[(a, b)] -= k * n[a] * n[b];
+            }
+            j[(a, 2)] -= k * l * n[a];
+            j[(2, a)] += k * l * n[a];
+        }
+        j[(2, 2)] += k * l * l;
+    }
+    for s in &sol.pins {
+        let (k, d, a, g) = (s.stiffness_n_per_mm, s.direction, s.arm_mm, s.gap_slope_mm);
+        // f = F·û, ∂gap/∂u = û, ∂gap/∂βo = g.
+        for r in 0..2 {
+            for c in 0..2 {
+                j[(r, c)] -= k * d[r] * d[c];
+            }
+            j[(r, 3)] -= k * g * d[r];
+            j[(3, r)] -= k * a * d[r];
+        }
+        j[(3, 3)] -= k * a * g;
+    }
+    j
+}
+
+fn merit(r: &Vector4<f64>, s: &Vector4<f64>) -> f64 {
+    r.component_div(s).amax()
+}
+
+/// Compliant bearing: Newton on x = (ux, uy, β, βo) from the rigid solution, with backtracking.
+fn solve_compliant(
+    model: &Model,
+    kb: f64,
+    crank: f64,
+    previous: &AngleSolution,
+) -> Result<AngleSolution, SolveFailure> {
+    let rigid = solve_rigid(model, crank, previous, Vec2::zeros())?;
+    let u0 = net_force(&rigid) / kb;
+    let mut x = Vector4::new(
+        u0.x,
+        u0.y,
+        rigid.lag_rad.unwrap_or(0.0),
+        rigid.output_lag_rad.unwrap_or(0.0),
+    );
+    let mut sol = rigid;
+    evaluate_at(model, crank, &x, &mut sol)?;
+    let (mut r, mut s) = compliant_residual(model, kb, &sol);
+    let tol = model.settings.rel_tol * 100.0;
+    for _ in 0..60 {
+        if merit(&r, &s) <= tol {
+            return Ok(sol);
+        }
+        let Some(dx) = compliant_jacobian(kb, &sol).lu().solve(&(-r)) else {
+            break;
+        };
+        let mut step = 1.0;
+        let current = merit(&r, &s);
+        loop {
+            let trial_x = x + dx * step;
+            let mut trial = sol.clone();
+            evaluate_at(model, crank, &trial_x, &mut trial)?;
+            let (tr, ts) = compliant_residual(model, kb, &trial);
+            if merit(&tr, &ts) < current || step < 1e-6 {
+                (x, sol, r, s) = (trial_x, trial, tr, ts);
+                break;
+            }
+            step *= 0.5;
+        }
+    }
+    fixed_point(model, kb, crank, sol)
+}
+
+/// Fallback: alternate bracketed 1-D solves for β and βo at a fixed centre with a damped
+/// update of the centre from the bearing balance u = Σf/kb.
+fn fixed_point(
+    model: &Model,
+    kb: f64,
+    crank: f64,
+    mut sol: AngleSolution,
+) -> Result<AngleSolution, SolveFailure> {
+    let mut residual = f64::INFINITY;
+    for _ in 0..500 {
+        let next = solve_rigid(model, crank, &sol, sol.centre_offset_mm)?;
+        let target = net_force(&next) / kb;
+        let du = target - next.centre_offset_mm;
+        let offset = next.centre_offset_mm + 0.5 * du;
+        sol = next;
+        let (r, s) = compliant_residual(model, kb, &sol);
+        residual = merit(&r, &s);
+        if residual <= 1e-10 {
+            return Ok(sol);
+        }
+        sol.centre_offset_mm = offset;
+    }
+    Err(SolveFailure::NotConverged {
+        x: sol.lag_rad.unwrap_or(0.0),
+        residual,
+    })
+}
+
+/// Relative residual of the paper's Eqs. 12–14, evaluated independently of how the solution
+/// was found: force balance with the bearing force rebuilt from magnitude and angle ε, moment
+/// balance about the fixed origin with every force at its contact point (Eqs. 12–13 + 14 via
+/// the lever of each force), and the pin/roller moment equality about the disc centre (Eq. 14).
+pub fn residual(model: &Model, crank: f64, sol: &AngleSolution, bearing: Vec2) -> f64 {
+    let centre = model.ideal_centre(crank) + sol.centre_offset_mm;
+    let ecc = Vec2::new(crank.cos(), crank.sin());
+    let magnitude = bearing.norm();
+    let eps = cross(ecc, bearing).atan2(ecc.dot(&bearing));
+    let (c, s) = ((crank + eps).cos(), (crank + eps).sin());
+    let rebuilt = Vec2::new(c, s) * magnitude;
+    let forces: Vec<(Vec2, Vec2)> = sol
+        .rollers
+        .iter()
+        .map(|r| (r.point, r.force_vector()))
+        .chain(sol.pins.iter().map(|p| (p.point, p.force_vector())))
+        .chain(std::iter::once((centre, rebuilt)))
+        .collect();
+    let sum_f: Vec2 = forces.iter().map(|(_, f)| f).sum();
+    let scale_f: f64 = forces.iter().map(|(_, f)| f.norm()).sum();
+    let sum_m: f64 = forces.iter().map(|(p, f)| cross(*p, *f)).sum();
+    let scale_m: f64 = forces.iter().map(|(p, f)| cross(*p, *f).abs()).sum();
+    let (mr, _, sr) = rollers::moment(&sol.rollers);
+    let (mp, _, sp) = pins::moment(&sol.pins);
+    let rel = |x: f64, scale: f64| {
+        if scale > 0.0 {
+            x.abs() / scale
+        } else {
+            x.abs()
+        }
+    };
+    rel(sum_f.norm(), scale_f)
+        .max(rel(sum_m, scale_m))
+        .max(rel(mp - mr, sr.max(sp).max(model.torque_nmm.abs())))
+}
+
+/// Solve one crank angle with the model's bearing.
+pub fn solve_angle(
+    model: &Model,
+    crank: f64,
+    previous: &AngleSolution,
+) -> Result<AngleSolution, SolveFailure> {
+    let mut sol = match model.bearing_stiffness_n_per_mm {
+        Some(kb) => solve_compliant(model, kb, crank, previous)?,
+        None => solve_rigid(model, crank, previous, Vec2::zeros())?,
+    };
+    if model.bearing {
+        let fb = match model.bearing_stiffness_n_per_mm {
+            Some(kb) => -kb * sol.centre_offset_mm,
+            None => -net_force(&sol),
+        };
+        sol.bearing_force_n = Some(fb);
+        sol.residual = Some(residual(model, crank, &sol, fb));
+    }
+    Ok(sol)
+}

@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
-use crate::{check, export, report, scene, spec};
+use crate::{check, export, optimise, report, scene, spec};
 use clap::{Parser, Subcommand};
 use std::io::Write;
 
@@ -30,6 +30,22 @@ pub enum Command {
         /// Print what will be computed and why, then stop.
         #[arg(long)]
         explain: bool,
+    },
+    /// Optimise the tooth-profile modification as the spec's `optimise` section says.
+    Optimise {
+        spec: String,
+        /// Run only this study (default: all).
+        #[arg(long)]
+        study: Option<String>,
+        /// Write the spec with the optimum of the study (the first, or --study) filled in.
+        #[arg(long)]
+        write: Option<String>,
+        /// Write the objective over a grid of the first two variables as CSV.
+        #[arg(long)]
+        map: Option<String>,
+        /// Grid points per variable for --map.
+        #[arg(long, default_value_t = 21)]
+        map_steps: usize,
     },
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
@@ -63,6 +79,20 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Outcome> {
             json,
             explain,
         } => run_check(&spec, json.as_deref(), explain, out),
+        Command::Optimise {
+            spec,
+            study,
+            write,
+            map,
+            map_steps,
+        } => run_optimise(
+            &spec,
+            study.as_deref(),
+            write.as_deref(),
+            map.as_deref(),
+            map_steps,
+            out,
+        ),
         Command::Profile {
             spec,
             csv,
@@ -93,8 +123,17 @@ fn run_check(
     for s in &spec.scenes {
         results.push(scene::run(&spec, s, &scene::Plan::for_scene(s))?);
     }
-    let checks = check::evaluate(&spec.limits, &results);
+    let mut checks = check::evaluate(&spec.limits, &results);
+    let studies: Vec<_> = spec
+        .studies
+        .iter()
+        .map(|s| optimise::run_study(&spec, s))
+        .collect();
+    checks.extend(check::optimisation(&spec, &studies));
     print(out, &format!("cycloid check `{}`\n", spec.name))?;
+    for (s, r) in spec.studies.iter().zip(&studies) {
+        print(out, &report::optimisation::render(&spec, s, r))?;
+    }
     print(out, &report::table::render(&checks))?;
     if let Some(p) = json {
         let doc = report::json::document(&spec, &checks, &results);
@@ -158,4 +197,80 @@ fn run_profile(
         ),
     )?;
     Ok(Outcome::Passed)
+}
+
+fn run_optimise(
+    path: &str,
+    only: Option<&str>,
+    write: Option<&str>,
+    map: Option<&str>,
+    map_steps: usize,
+    out: &mut dyn Write,
+) -> Result<Outcome> {
+    let spec = spec::load(path)?;
+    if spec.studies.is_empty() {
+        return Err(Error::new(
+            crate::ErrorKind::InvalidValue,
+            format!("{path}: the spec has no `optimise` section"),
+        ));
+    }
+    let chosen: Vec<&spec::Study> = match only {
+        Some(name) => {
+            let s = spec
+                .studies
+                .iter()
+                .find(|s| s.name == name)
+                .ok_or_else(|| {
+                    Error::new(
+                        crate::ErrorKind::InvalidValue,
+                        format!(
+                            "no study named `{name}`; studies: {}",
+                            spec.studies
+                                .iter()
+                                .map(|s| s.name.as_str())
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    )
+                })?;
+            vec![s]
+        }
+        None => spec.studies.iter().collect(),
+    };
+    if map.is_some() && map_steps < 2 {
+        return Err(Error::new(
+            crate::ErrorKind::InvalidValue,
+            format!("--map-steps must be at least 2, got {map_steps}"),
+        ));
+    }
+    let mut all_feasible = true;
+    for (k, study) in chosen.iter().enumerate() {
+        let r = optimise::run_study(&spec, study);
+        print(out, &report::optimisation::render(&spec, study, &r))?;
+        all_feasible &= r.optimum.feasible();
+        if k == 0 {
+            if let Some(p) = write {
+                let text =
+                    optimise::write::with_modification(p, &spec.source, &r.optimum.modification)?;
+                write_file(p, &text)?;
+                print(
+                    out,
+                    &format!("wrote {p} with the optimum of `{}`\n", r.name),
+                )?;
+            }
+            if let Some(p) = map {
+                let cells = optimise::map(&spec, study, map_steps, &r.optimum.modification);
+                write_file(p, &report::optimisation::map_csv(study, &cells))?;
+                print(
+                    out,
+                    &format!("wrote the objective map of `{}` to {p}\n", r.name),
+                )?;
+            }
+        }
+    }
+    Ok(if all_feasible {
+        Outcome::Passed
+    } else {
+        Outcome::ChecksFailed
+    })
 }

@@ -11,6 +11,7 @@ pub mod equilibrium;
 pub mod error;
 pub mod export;
 pub mod geometry;
+pub mod optimise;
 pub mod report;
 pub mod scene;
 pub mod spec;

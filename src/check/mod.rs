@@ -15,6 +15,21 @@ pub enum Bound {
     Min,
 }
 
+/// Comparison tolerance of limits and constraints: 1e-12 of max(1, |limit|). It absorbs the
+/// binary representation of decimal inputs (0.150 − 0.135 is 0.01499999999999999 in f64) and
+/// the ~1e-14 mm round-off of the exact gap, and is a picometre on a millimetre limit.
+pub fn tolerance(limit: f64) -> f64 {
+    1e-12 * limit.abs().max(1.0)
+}
+
+/// Does `value` satisfy `limit` in the direction `bound` (within `tolerance`)?
+pub fn passes(value: f64, limit: f64, bound: Bound) -> bool {
+    match bound {
+        Bound::Max => value <= limit + tolerance(limit),
+        Bound::Min => value >= limit - tolerance(limit),
+    }
+}
+
 /// One evaluated limit in one scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Check {
@@ -203,10 +218,7 @@ pub fn evaluate(limits: &Limits, results: &[SceneResult]) -> Vec<Check> {
             let (Some(limit), Some((value, at))) = ((d.get)(limits), (d.value)(r)) else {
                 continue;
             };
-            let passed = match d.bound {
-                Bound::Max => value <= limit,
-                Bound::Min => value >= limit,
-            };
+            let passed = passes(value, limit, d.bound);
             checks.push(Check {
                 id: format!("{}/{}", r.name, d.key),
                 value,
@@ -214,6 +226,57 @@ pub fn evaluate(limits: &Limits, results: &[SceneResult]) -> Vec<Check> {
                 bound: d.bound,
                 passed,
                 at,
+            });
+        }
+    }
+    checks
+}
+
+/// Checks on optimisation studies: the optimum satisfies every constraint (value: the smallest
+/// margin, ≥ 0), and, when a limit is set, its objective is within `optimum_max_objective`.
+pub fn optimisation(spec: &Spec, results: &[crate::optimise::StudyResult]) -> Vec<Check> {
+    let mut checks = Vec::new();
+    for (study, r) in spec.studies.iter().zip(results) {
+        let o = &r.optimum;
+        let at = o
+            .margins
+            .iter()
+            .min_by(|a, b| a.margin.total_cmp(&b.margin))
+            .map_or(String::new(), |m| format!("tightest: {}", m.name));
+        checks.push(Check {
+            id: format!("optimise/{}/constraints", r.name),
+            value: if o.failure.is_some() {
+                f64::NEG_INFINITY
+            } else {
+                o.worst_margin().min(f64::MAX)
+            },
+            limit: 0.0,
+            bound: Bound::Min,
+            passed: o.feasible(),
+            at,
+        });
+        if let Some(limit) = study
+            .optimum_max_objective
+            .or(spec.limits.optimum_max_objective)
+        {
+            checks.push(Check {
+                id: format!("optimise/{}/objective", r.name),
+                value: o.objective,
+                limit,
+                bound: Bound::Max,
+                passed: passes(o.objective, limit, Bound::Max),
+                at: study
+                    .variables
+                    .iter()
+                    .map(|v| {
+                        format!(
+                            "{} {:.5}",
+                            v.kind.key(),
+                            v.kind.to_spec_unit(v.kind.get(&o.modification))
+                        )
+                    })
+                    .collect::<Vec<_>>()
+                    .join(", "),
             });
         }
     }

@@ -192,6 +192,36 @@ pub struct MinClearance {
     pub tooth_phase: f64,
 }
 
+/// The smallest gap over every roller and crank angle at the ideal pose (β = 0): the
+/// whole-mesh interference check, without the backlash work of `sweep`. Each roller's
+/// closest-point search starts from its answer at the previous angle.
+pub fn min_gap(mesh: &Mesh, crank_rad: &[f64]) -> Result<MinClearance, GapFailure> {
+    let tooth = std::f64::consts::TAU / mesh.teeth as f64;
+    let mut warm: Vec<Option<f64>> = vec![None; mesh.rollers];
+    let mut min = MinClearance {
+        gap_mm: f64::INFINITY,
+        roller: 0,
+        crank_rad: 0.0,
+        tooth_phase: 0.0,
+    };
+    for &phi in crank_rad {
+        let pose = Pose::ideal(phi);
+        for (i, t) in warm.iter_mut().enumerate() {
+            let g = mesh.roller_gap(i, &pose, *t)?;
+            *t = Some(g.t);
+            if g.gap_mm < min.gap_mm {
+                min = MinClearance {
+                    gap_mm: g.gap_mm,
+                    roller: i,
+                    crank_rad: phi,
+                    tooth_phase: g.t.rem_euclid(tooth) / tooth,
+                };
+            }
+        }
+    }
+    Ok(min)
+}
+
 /// Clearance of every roller over a crank sweep at the ideal pose (β = 0).
 /// Arrays are indexed [roller][angle]. Backlash values are lags in rad.
 #[derive(Debug, Clone, PartialEq)]

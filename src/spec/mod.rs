@@ -25,8 +25,29 @@ pub fn parse(path: &str, text: &str) -> Result<Spec> {
 }
 
 fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
+    match deserialize::<RawOptimise>(path, text) {
+        // An untagged `optimise` that matched no form: parse again as the form the YAML has
+        // (a mapping is one study, a list is many) to get the precise key and location.
+        Err(e) if e.key_path.as_deref() == Some("optimise") => {
+            let shape: serde_yaml::Value = serde_yaml::from_str(text).unwrap_or_default();
+            let precise = match shape.get("optimise") {
+                Some(serde_yaml::Value::Sequence(_)) => {
+                    deserialize::<Vec<RawStudy>>(path, text).err()
+                }
+                _ => deserialize::<RawStudy>(path, text).err(),
+            };
+            Err(precise.unwrap_or(e))
+        }
+        other => other,
+    }
+}
+
+fn deserialize<O>(path: &str, text: &str) -> Result<RawSpecOf<RawOptimise>>
+where
+    O: serde::de::DeserializeOwned + Into<RawOptimise>,
+{
     let de = serde_yaml::Deserializer::from_str(text);
-    serde_path_to_error::deserialize(de).map_err(|err| {
+    let raw: RawSpecOf<O> = serde_path_to_error::deserialize(de).map_err(|err| {
         let key_path = err.path().to_string();
         let inner = err.into_inner();
         let mut message = inner.to_string();
@@ -37,23 +58,40 @@ fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
         if let Some(cut) = message.strip_prefix(&format!("{key_path}: ")) {
             message = cut.to_string();
         }
+        if message.contains("untagged enum RawObjective") {
+            message = "expected an objective name or a map of objective names to weights".into();
+        }
         let mut error = Error::new(ErrorKind::Syntax, message);
         if key_path != "." && !key_path.is_empty() {
             error = error.at_key(key_path);
         }
-        match inner.location() {
-            Some(loc) => error.at(Location {
-                file: path.to_string(),
-                line: loc.line(),
-                column: loc.column(),
-            }),
-            None => error.at(Location {
-                file: path.to_string(),
-                line: 1,
-                column: 1,
-            }),
-        }
+        let (line, column) = inner.location().map_or((1, 1), |l| (l.line(), l.column()));
+        error.at(Location {
+            file: path.to_string(),
+            line,
+            column,
+        })
+    })?;
+    Ok(RawSpecOf {
+        name: raw.name,
+        reducer: raw.reducer,
+        modification: raw.modification,
+        scenes: raw.scenes,
+        limits: raw.limits,
+        optimise: raw.optimise.map(Into::into),
     })
+}
+
+impl From<RawStudy> for RawOptimise {
+    fn from(s: RawStudy) -> Self {
+        RawOptimise::One(Box::new(s))
+    }
+}
+
+impl From<Vec<RawStudy>> for RawOptimise {
+    fn from(v: Vec<RawStudy>) -> Self {
+        RawOptimise::Many(v)
+    }
 }
 
 /// Attach a location to a value/design error from its key path, if the key is in the text.
@@ -76,6 +114,11 @@ fn locate_error(mut error: Error, path: &str, text: &str) -> Error {
 /// Find the 1-based line and column of a dotted key path (`scenes[0].crank.steps`) in YAML text.
 /// Best effort: keys are matched in order as `key:` outside comments; list items by indentation.
 pub fn locate(text: &str, key_path: &str) -> Option<(usize, usize)> {
+    locate_offset(text, key_path).map(|offset| line_column(text, offset))
+}
+
+/// Byte offset of a dotted key path in YAML text (see `locate`).
+pub fn locate_offset(text: &str, key_path: &str) -> Option<usize> {
     let mut pos = 0usize;
     let mut hit = None;
     for segment in key_path.split('.') {
@@ -95,7 +138,7 @@ pub fn locate(text: &str, key_path: &str) -> Option<(usize, usize)> {
             hit = Some(pos);
         }
     }
-    hit.map(|offset| line_column(text, offset))
+    hit
 }
 
 fn find_key(text: &str, from: usize, key: &str) -> Option<usize> {
@@ -356,6 +399,7 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
             .min_rollers_in_contact
             .map(|n| count("limits.min_rollers_in_contact", n, 0))
             .transpose()?,
+        optimum_max_objective: f("optimum_max_objective", raw.optimum_max_objective)?,
     })
 }
 
@@ -380,6 +424,30 @@ fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         }
         scenes.push(s);
     }
+    let studies = match raw.optimise {
+        Some(o) => {
+            let many = matches!(o, RawOptimise::Many(_));
+            let raws = o.into_studies();
+            let mut studies: Vec<Study> = Vec::new();
+            for (i, r) in raws.into_iter().enumerate() {
+                let key = if many {
+                    format!("optimise[{i}]")
+                } else {
+                    "optimise".to_string()
+                };
+                let s = study(&key, i, r, &scenes, &modification)?;
+                if studies.iter().any(|o| o.name == s.name) {
+                    return Err(invalid(
+                        &format!("{key}.name"),
+                        format!("study name `{}` is used twice", s.name),
+                    ));
+                }
+                studies.push(s);
+            }
+            studies
+        }
+        None => Vec::new(),
+    };
     Ok(Spec {
         name: raw.name,
         path: path.to_string(),
@@ -388,5 +456,181 @@ fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         modification,
         scenes,
         limits: limits(&raw.limits)?,
+        studies,
+    })
+}
+
+fn bounds(key: &str, b: [f64; 2]) -> Result<(f64, f64)> {
+    let [lo, hi] = b;
+    if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+        return Err(invalid(
+            key,
+            format!("bounds must be two finite numbers [lower, upper] with lower < upper, got [{lo}, {hi}]"),
+        ));
+    }
+    Ok((lo, hi))
+}
+
+fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
+    let known = || Objective::ALL.map(|o| o.name()).join(", ");
+    let named = |name: &str| {
+        Objective::from_name(name).ok_or_else(|| {
+            invalid(
+                key,
+                format!("unknown objective `{name}`; known objectives: {}", known()),
+            )
+        })
+    };
+    match raw {
+        RawObjective::Name(name) => Ok(vec![(named(&name)?, 1.0)]),
+        RawObjective::Weighted(map) => {
+            if map.is_empty() {
+                return Err(invalid(
+                    key,
+                    "a weighted objective needs at least one term".into(),
+                ));
+            }
+            map.into_iter()
+                .map(|(name, w)| {
+                    if !(w.is_finite() && w > 0.0) {
+                        return Err(invalid(
+                            key,
+                            format!("the weight of `{name}` must be a positive number, got {w}"),
+                        ));
+                    }
+                    Ok((named(&name)?, w))
+                })
+                .collect()
+        }
+    }
+}
+
+fn study(
+    key: &str,
+    index: usize,
+    raw: RawStudy,
+    scenes: &[Scene],
+    modification: &Modification,
+) -> Result<Study> {
+    let scene = scenes
+        .iter()
+        .position(|s| s.name == raw.scene)
+        .ok_or_else(|| {
+            invalid(
+                &format!("{key}.scene"),
+                format!(
+                    "no scene named `{}`; scenes: {}",
+                    raw.scene,
+                    scenes
+                        .iter()
+                        .map(|s| s.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )
+        })?;
+    let mut variables = Vec::new();
+    let v = &raw.variables;
+    for (kind, b) in [
+        (VariableKind::Shift, v.shift_mm),
+        (VariableKind::Equidistant, v.equidistant_mm),
+        (VariableKind::Rotation, v.rotation_deg),
+    ] {
+        if let Some(b) = b {
+            let (lo, hi) = bounds(&format!("{key}.variables.{}", kind.key()), b)?;
+            let scale = if kind == VariableKind::Rotation {
+                1f64.to_radians()
+            } else {
+                1.0
+            };
+            variables.push(Variable {
+                kind,
+                lower: lo * scale,
+                upper: hi * scale,
+            });
+        }
+    }
+    if variables.is_empty() {
+        return Err(invalid(
+            &format!("{key}.variables"),
+            "a study needs at least one variable (shift_mm, equidistant_mm, rotation_deg)".into(),
+        ));
+    }
+    let mut start = *modification;
+    if let Some(p) = raw.start {
+        for (kind, value) in [
+            (VariableKind::Shift, p.shift_mm),
+            (VariableKind::Equidistant, p.equidistant_mm),
+            (VariableKind::Rotation, p.rotation_deg.map(f64::to_radians)),
+        ] {
+            if let Some(x) = value {
+                kind.set(
+                    &mut start,
+                    finite(&format!("{key}.start.{}", kind.key()), x)?,
+                );
+            }
+        }
+    }
+    for var in &variables {
+        let x = var.kind.get(&start);
+        if !(var.lower..=var.upper).contains(&x) {
+            let unit = |x| var.kind.to_spec_unit(x);
+            return Err(invalid(
+                &format!("{key}.start"),
+                format!(
+                    "the start {} = {} lies outside its bounds [{}, {}] (give a start inside \
+                     the bounds; the spec's modification is the start when none is given)",
+                    var.kind.key(),
+                    unit(x),
+                    unit(var.lower),
+                    unit(var.upper)
+                ),
+            ));
+        }
+    }
+    let c = &raw.constraints;
+    let tip_clearance_mm = c
+        .tip_clearance_mm
+        .map(|b| bounds(&format!("{key}.constraints.tip_clearance_mm"), b))
+        .transpose()?;
+    let min_clearance_mm = c
+        .min_clearance_mm
+        .map(|x| finite(&format!("{key}.constraints.min_clearance_mm"), x))
+        .transpose()?;
+    let mut references = Vec::new();
+    for (j, r) in raw.references.into_iter().enumerate() {
+        let rk = format!("{key}.references[{j}]");
+        references.push((
+            r.label,
+            Modification {
+                shift_mm: finite(&format!("{rk}.shift_mm"), r.shift_mm)?,
+                equidistant_mm: finite(&format!("{rk}.equidistant_mm"), r.equidistant_mm)?,
+                rotation_rad: finite(&format!("{rk}.rotation_deg"), r.rotation_deg)?.to_radians(),
+            },
+        ));
+    }
+    Ok(Study {
+        name: raw.name.unwrap_or_else(|| format!("study-{}", index + 1)),
+        scene,
+        objective: objective(&format!("{key}.objective"), raw.objective)?,
+        variables,
+        start,
+        tip_clearance_mm,
+        min_clearance_mm,
+        references,
+        optimum_max_objective: raw
+            .optimum_max_objective
+            .map(|x| finite(&format!("{key}.optimum_max_objective"), x))
+            .transpose()?,
+        global_samples: count(
+            &format!("{key}.global_samples"),
+            raw.global_samples.unwrap_or(64),
+            1,
+        )?,
+        local_evaluations: count(
+            &format!("{key}.local_evaluations"),
+            raw.local_evaluations.unwrap_or(200),
+            10,
+        )?,
     })
 }

@@ -143,6 +143,7 @@ pub struct Limits {
     pub max_te_fluctuation_arcsec: Option<f64>,
     pub max_ratio_fluctuation: Option<f64>,
     pub min_rollers_in_contact: Option<usize>,
+    pub optimum_max_objective: Option<f64>,
 }
 
 /// A validated spec, with the text it came from (for error locations and hashing).
@@ -155,4 +156,125 @@ pub struct Spec {
     pub modification: Modification,
     pub scenes: Vec<Scene>,
     pub limits: Limits,
+    pub studies: Vec<Study>,
+}
+
+/// A quantity an optimisation can minimise. Each is a scalar of one scene's sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Objective {
+    /// κmax − κmin (paper Eq. 18), dimensionless.
+    RatioFluctuation,
+    /// δmax − δmin of the loaded TE (paper Eqs. 22–23), arcsec.
+    TeFluctuation,
+    /// Largest roller force, N.
+    MaxRollerForce,
+    /// Largest lost motion over the sweep, arcsec.
+    LostMotion,
+    /// Largest crank-bearing force, N.
+    MaxBearingForce,
+}
+
+impl Objective {
+    pub const ALL: [Objective; 5] = [
+        Objective::RatioFluctuation,
+        Objective::TeFluctuation,
+        Objective::MaxRollerForce,
+        Objective::LostMotion,
+        Objective::MaxBearingForce,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Objective::RatioFluctuation => "ratio_fluctuation",
+            Objective::TeFluctuation => "te_fluctuation",
+            Objective::MaxRollerForce => "max_roller_force",
+            Objective::LostMotion => "lost_motion",
+            Objective::MaxBearingForce => "max_bearing_force",
+        }
+    }
+
+    pub fn unit(self) -> &'static str {
+        match self {
+            Objective::RatioFluctuation => "",
+            Objective::TeFluctuation | Objective::LostMotion => "arcsec",
+            Objective::MaxRollerForce | Objective::MaxBearingForce => "N",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Objective> {
+        Objective::ALL.into_iter().find(|o| o.name() == name)
+    }
+}
+
+/// A design variable of a study, bounds in engine units (mm, or rad for the rotation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VariableKind {
+    Shift,
+    Equidistant,
+    Rotation,
+}
+
+impl VariableKind {
+    pub fn key(self) -> &'static str {
+        match self {
+            VariableKind::Shift => "shift_mm",
+            VariableKind::Equidistant => "equidistant_mm",
+            VariableKind::Rotation => "rotation_deg",
+        }
+    }
+
+    /// The value of this variable in a modification, engine units.
+    pub fn get(self, m: &Modification) -> f64 {
+        match self {
+            VariableKind::Shift => m.shift_mm,
+            VariableKind::Equidistant => m.equidistant_mm,
+            VariableKind::Rotation => m.rotation_rad,
+        }
+    }
+
+    pub fn set(self, m: &mut Modification, value: f64) {
+        match self {
+            VariableKind::Shift => m.shift_mm = value,
+            VariableKind::Equidistant => m.equidistant_mm = value,
+            VariableKind::Rotation => m.rotation_rad = value,
+        }
+    }
+
+    /// Engine value to the spec's unit (mm stay mm, rad become degrees).
+    pub fn to_spec_unit(self, value: f64) -> f64 {
+        match self {
+            VariableKind::Rotation => value.to_degrees(),
+            _ => value,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Variable {
+    pub kind: VariableKind,
+    pub lower: f64,
+    pub upper: f64,
+}
+
+/// One optimisation study (paper §4): minimise a (weighted) objective of one scene over the
+/// modification variables, subject to the tip clearance band (paper Eqs. 8, 21) and the
+/// whole-mesh minimum clearance, checked on the exact geometry.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Study {
+    pub name: String,
+    /// Index into `Spec::scenes`.
+    pub scene: usize,
+    /// Weighted terms; a single objective has weight 1.
+    pub objective: Vec<(Objective, f64)>,
+    pub variables: Vec<Variable>,
+    /// The starting modification (variables not optimised keep the spec's values).
+    pub start: Modification,
+    /// ΔRrp − ΔRp ∈ [lower, upper], mm.
+    pub tip_clearance_mm: Option<(f64, f64)>,
+    /// Whole-mesh minimum clearance ≥ this, mm.
+    pub min_clearance_mm: Option<f64>,
+    pub references: Vec<(String, Modification)>,
+    pub optimum_max_objective: Option<f64>,
+    pub global_samples: usize,
+    pub local_evaluations: usize,
 }

@@ -3,10 +3,13 @@
 //! Units are in the key names; conversion to engine units happens in `model`.
 
 use serde::Deserialize;
+use std::collections::BTreeMap;
 
+/// The whole spec, generic over the form of `optimise` so that a failed untagged match can be
+/// parsed again as the form the YAML has, for a precise error (see `spec::parse_raw`).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct RawSpec {
+pub struct RawSpecOf<O> {
     pub name: String,
     pub reducer: RawReducer,
     #[serde(default)]
@@ -14,6 +17,95 @@ pub struct RawSpec {
     pub scenes: Vec<RawScene>,
     #[serde(default)]
     pub limits: RawLimits,
+    #[serde(default = "Option::default")]
+    pub optimise: Option<O>,
+}
+
+pub type RawSpec = RawSpecOf<RawOptimise>;
+
+/// `optimise:` is one study (a mapping) or a list of studies.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum RawOptimise {
+    One(Box<RawStudy>),
+    Many(Vec<RawStudy>),
+}
+
+impl RawOptimise {
+    pub fn into_studies(self) -> Vec<RawStudy> {
+        match self {
+            RawOptimise::One(s) => vec![*s],
+            RawOptimise::Many(v) => v,
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStudy {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub scene: String,
+    pub objective: RawObjective,
+    pub variables: RawVariables,
+    #[serde(default)]
+    pub start: Option<RawPoint>,
+    #[serde(default)]
+    pub constraints: RawConstraints,
+    /// Modifications to evaluate and compare with the optimum (e.g. a published optimum).
+    #[serde(default)]
+    pub references: Vec<RawReference>,
+    #[serde(default)]
+    pub optimum_max_objective: Option<f64>,
+    /// Points of the global (low-discrepancy) stage.
+    #[serde(default)]
+    pub global_samples: Option<i64>,
+    /// Evaluations allowed to each local (COBYLA) run.
+    #[serde(default)]
+    pub local_evaluations: Option<i64>,
+}
+
+/// An objective name, or a map of objective names to weights (a weighted sum).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum RawObjective {
+    Name(String),
+    Weighted(BTreeMap<String, f64>),
+}
+
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct RawVariables {
+    pub shift_mm: Option<[f64; 2]>,
+    pub equidistant_mm: Option<[f64; 2]>,
+    pub rotation_deg: Option<[f64; 2]>,
+}
+
+#[derive(Debug, Deserialize, Default, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct RawPoint {
+    pub shift_mm: Option<f64>,
+    pub equidistant_mm: Option<f64>,
+    pub rotation_deg: Option<f64>,
+}
+
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct RawConstraints {
+    pub tip_clearance_mm: Option<[f64; 2]>,
+    pub min_clearance_mm: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawReference {
+    pub label: String,
+    #[serde(default)]
+    pub shift_mm: f64,
+    #[serde(default)]
+    pub equidistant_mm: f64,
+    #[serde(default)]
+    pub rotation_deg: f64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -95,4 +187,6 @@ pub struct RawLimits {
     pub max_te_fluctuation_arcsec: Option<f64>,
     pub max_ratio_fluctuation: Option<f64>,
     pub min_rollers_in_contact: Option<i64>,
+    /// Upper limit on every optimisation study's optimum objective.
+    pub optimum_max_objective: Option<f64>,
 }

@@ -1,0 +1,252 @@
+//! Optimisation: the global sample, determinism, constraint handling on the exact geometry,
+//! the paper's studies, and writing the optimum back into a spec.
+
+use cycloid::geometry::clearance::{self, Mesh};
+use cycloid::optimise::global::{halton, radical_inverse};
+use cycloid::optimise::problem::Problem;
+use cycloid::optimise::{self, run_study};
+use cycloid::spec::{self, Modification, Objective, Spec};
+use std::process::Command;
+
+fn paper() -> Spec {
+    spec::load("specs/paper.yaml").expect("paper spec loads")
+}
+
+fn study<'a>(spec: &'a Spec, name: &str) -> &'a cycloid::spec::Study {
+    spec.studies
+        .iter()
+        .find(|s| s.name == name)
+        .expect("study exists")
+}
+
+/// A cheaper copy of the paper spec: 72 crank angles (0.5°), small budgets.
+fn small_paper() -> Spec {
+    let text = std::fs::read_to_string("specs/paper.yaml")
+        .unwrap()
+        .replace("steps: 360", "steps: 72")
+        .replace(
+            "- name: positive-ratio",
+            "- name: positive-ratio\n    global_samples: 12\n    local_evaluations: 40",
+        );
+    spec::parse("small-paper.yaml", &text).unwrap()
+}
+
+#[test]
+fn van_der_corput_digits_are_reversed() {
+    // Radical inverse by hand: 1 = 1₂ → 0.1₂ = 1/2; 2 = 10₂ → 0.01₂ = 1/4; 3 = 11₂ → 3/4;
+    // 5 = 12₃ → 0.21₃ = 2/3 + 1/9.
+    assert_eq!(radical_inverse(1, 2), 0.5);
+    assert_eq!(radical_inverse(2, 2), 0.25);
+    assert_eq!(radical_inverse(3, 2), 0.75);
+    assert!((radical_inverse(5, 3) - (2.0 / 3.0 + 1.0 / 9.0)).abs() < 1e-15);
+    // A Halton set fills the square evenly: every cell of a 4×4 grid gets one of 16 points ±1
+    // (a discrepancy property that a random sample would break with high probability).
+    let mut cells = [0; 16];
+    for p in halton(16, 2) {
+        cells[(p[0] * 4.0) as usize * 4 + (p[1] * 4.0) as usize] += 1;
+    }
+    assert!(cells.iter().all(|&c| (0..=2).contains(&c)), "{cells:?}");
+}
+
+#[test]
+fn the_same_spec_gives_the_same_optimum_bit_for_bit() {
+    let spec = small_paper();
+    let s = study(&spec, "positive-ratio");
+    let a = run_study(&spec, s);
+    let b = run_study(&spec, s);
+    assert_eq!(a.optimum.modification, b.optimum.modification);
+    assert_eq!(a.optimum.objective.to_bits(), b.optimum.objective.to_bits());
+    assert_eq!(a.evaluations, b.evaluations);
+}
+
+#[test]
+fn positive_ratio_optimum_is_no_worse_than_the_papers_and_satisfies_every_constraint() {
+    let spec = paper();
+    let s = study(&spec, "positive-ratio");
+    let r = run_study(&spec, s);
+    let (label, paper_opt) = &r.references[0];
+    assert_eq!(label, "paper optimum");
+    assert!(
+        paper_opt.feasible(),
+        "the paper's optimum satisfies the constraints"
+    );
+    assert!(
+        r.optimum.objective <= paper_opt.objective,
+        "optimum {} vs paper {}",
+        r.optimum.objective,
+        paper_opt.objective
+    );
+    assert!(r.optimum.feasible());
+    // Re-check the whole-mesh clearance through the other code path (the full clearance sweep
+    // with backlash, not the optimiser's min_gap) on the exact geometry.
+    let m = r.optimum.modification;
+    let tip = m.equidistant_mm - m.shift_mm;
+    assert!((0.015..=0.5).contains(&tip), "tip clearance {tip}");
+    let sweep = clearance::sweep(&Mesh::new(&spec.design, &m), &spec.scenes[0].crank_rad).unwrap();
+    assert!(
+        sweep.min.gap_mm >= 0.015 - 1e-12,
+        "whole-mesh min {}",
+        sweep.min.gap_mm
+    );
+}
+
+#[test]
+fn the_negative_start_meets_eq8_but_not_the_whole_mesh_clearance() {
+    let spec = paper();
+    let s = study(&spec, "negative-ratio");
+    let problem = Problem::new(&spec, s);
+    let e = problem.evaluate(&s.start);
+    // Eq. 8 holds to the last bit of decimal input: ΔRrp − ΔRp = −0.135 + 0.15 = 0.015.
+    assert!(e
+        .margins
+        .iter()
+        .filter(|m| m.name.starts_with("tip"))
+        .all(|m| m.satisfied()));
+    // An independent Python brute force (dense sampling of Γ, 0.1° steps) gives −23.41 µm at
+    // mid-flank; 0.1 µm covers the crank sampling (the gap varies ~1 µm per degree there).
+    let min = e.min_clearance.unwrap();
+    assert!((min.gap_mm * 1000.0 + 23.41).abs() < 0.1, "{}", min.gap_mm);
+    assert!(min.tooth_phase > 0.05 && (min.tooth_phase - 0.5).abs() > 0.05);
+    assert!(!e.feasible());
+    let text = cycloid::report::optimisation::render(
+        &spec,
+        s,
+        &run_study(&small_paper(), study(&small_paper(), "negative-ratio")),
+    );
+    assert!(text.contains("satisfies the paper's Eq. 8"), "{text}");
+    assert!(text.contains("interference"), "{text}");
+}
+
+#[test]
+fn the_optimiser_objective_is_the_checkers_ratio_fluctuation() {
+    // Two code paths: the optimiser's Problem (only the effects the objective needs) and a full
+    // scene run (all effects) must agree on κmax − κmin at the paper's optimum.
+    let spec = paper();
+    let s = study(&spec, "positive-ratio");
+    let e = Problem::new(&spec, s).evaluate(&spec.modification);
+    let scene = &spec.scenes[0];
+    let result =
+        cycloid::scene::run(&spec, scene, &cycloid::scene::Plan::for_scene(scene)).unwrap();
+    let ratio = result.loaded.transmission.unwrap().ratio.unwrap();
+    let fluct = cycloid::equilibrium::curves::fluctuation(&ratio);
+    assert_eq!(e.terms, vec![(Objective::RatioFluctuation, fluct)]);
+}
+
+#[test]
+fn writing_the_optimum_keeps_comments_and_reads_back_exactly() {
+    let text = std::fs::read_to_string("specs/paper.yaml").unwrap();
+    let m = Modification {
+        // A sum, so the value needs all 17 digits to round-trip.
+        shift_mm: 0.1 + 0.069_646_123_456_789,
+        equidistant_mm: 0.2292471,
+        rotation_rad: 0.0,
+    };
+    let out = optimise::write::with_modification("out.yaml", &text, &m).unwrap();
+    assert!(out.contains("# paper's optimum"), "the comment survives");
+    assert_eq!(spec::parse("out.yaml", &out).unwrap().modification, m);
+    // A spec without a modification section gets one.
+    let bare = std::fs::read_to_string("specs/reducer.yaml").unwrap();
+    let start = bare.find("modification:").unwrap();
+    let end = bare.find("scenes:").unwrap();
+    let bare = format!("{}{}", &bare[..start], &bare[end..]);
+    let out = optimise::write::with_modification("out.yaml", &bare, &m).unwrap();
+    assert_eq!(spec::parse("out.yaml", &out).unwrap().modification, m);
+}
+
+#[test]
+fn the_map_covers_the_grid_and_marks_the_tip_constraint() {
+    let spec = small_paper();
+    let s = study(&spec, "positive-ratio");
+    let cells = optimise::map(&spec, s, 4, &s.start);
+    assert_eq!(cells.len(), 16);
+    for c in &cells {
+        let tip = c.modification.equidistant_mm - c.modification.shift_mm;
+        if !(0.015..=0.5).contains(&tip) {
+            assert!(!c.feasible(), "tip {tip} must be infeasible");
+        }
+    }
+    let csv = cycloid::report::optimisation::map_csv(s, &cells);
+    assert_eq!(csv.lines().count(), 17);
+    assert!(csv.starts_with("shift_mm,equidistant_mm,objective,feasible"));
+}
+
+fn cycloid(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn optimise_command_writes_a_spec_that_passes_check() {
+    let dir = std::env::temp_dir().join(format!("cycloid-opt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let small = dir.join("small.yaml");
+    let text = std::fs::read_to_string("specs/reducer.yaml").unwrap().replace("steps: 360", "steps: 72")
+        + "optimise:\n  scene: rated\n  objective: lost_motion\n  variables: { shift_mm: [0.0, 0.3], equidistant_mm: [0.0, 0.3] }\n  start: { shift_mm: 0.1, equidistant_mm: 0.13 }\n  constraints: { tip_clearance_mm: [0.015, 0.5], min_clearance_mm: 0.015 }\n  global_samples: 8\n  local_evaluations: 30\n";
+    std::fs::write(&small, text).unwrap();
+    let written = dir.join("written.yaml");
+    let map = dir.join("map.csv");
+    let (code, stdout, stderr) = cycloid(&[
+        "optimise",
+        small.to_str().unwrap(),
+        "--write",
+        written.to_str().unwrap(),
+        "--map",
+        map.to_str().unwrap(),
+        "--map-steps",
+        "3",
+    ]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.contains("lost_motion [arcsec]"), "{stdout}");
+    assert_eq!(std::fs::read_to_string(&map).unwrap().lines().count(), 10);
+    // The written spec is checked as a design: it must pass min_clearance (the optimum is
+    // feasible) and its own optimisation constraints.
+    let (code, stdout, _) = cycloid(&["check", written.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stdout}");
+    // Lost motion grows with the clearance, so the optimum sits on the whole-mesh clearance
+    // bound: its tightest constraint margin is ~0.
+    assert!(stdout.contains("optimise/study-1/constraints"), "{stdout}");
+}
+
+#[test]
+fn optimise_input_errors_exit_2_with_the_reason() {
+    let (code, _, stderr) = cycloid(&["optimise", "specs/reducer.yaml"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("has no `optimise` section"), "{stderr}");
+    let (code, _, stderr) = cycloid(&["optimise", "specs/paper.yaml", "--study", "nope"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("no study named `nope`; studies: positive-ratio"),
+        "{stderr}"
+    );
+    let bad = std::fs::read_to_string("specs/paper.yaml")
+        .unwrap()
+        .replacen("start: { shift_mm: 0.135", "start: { shift_mm: 0.635", 1);
+    let err = spec::parse("bad.yaml", &bad).unwrap_err().to_string();
+    assert!(
+        err.contains("the start shift_mm = 0.635 lies outside its bounds [0, 0.5]"),
+        "{err}"
+    );
+    let bad = std::fs::read_to_string("specs/paper.yaml")
+        .unwrap()
+        .replacen(
+            "objective: ratio_fluctuation     # paper Eq. 18",
+            "objective: ratio_wobble",
+            1,
+        );
+    let err = spec::parse("bad.yaml", &bad).unwrap_err().to_string();
+    assert!(
+        err.starts_with("bad.yaml:25:5: invalid value: optimise[0].objective: "),
+        "{err}"
+    );
+    assert!(
+        err.contains("unknown objective `ratio_wobble`; known objectives: ratio_fluctuation"),
+        "{err}"
+    );
+}

@@ -2,8 +2,14 @@
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
 use super::solve::SolveFailure;
-use super::sweep::{solve_angle, AngleSolution, Model};
+use super::sweep::{solve_into, AngleSolution, Model, Work};
 use crate::geometry::{cross, Vec2};
+use rayon::prelude::*;
+
+/// Crank angles solved in sequence by one worker, warm-starting each from the previous. The
+/// chunk size is fixed (not derived from the thread count) so results are the same bit for bit
+/// however many threads run them.
+pub const CHUNK: usize = 64;
 
 /// Roller contact over the sweep.
 #[derive(Debug, Clone, PartialEq)]
@@ -100,98 +106,123 @@ pub fn derivative(values: &[f64], h: f64, periodic: bool) -> Option<Vec<f64>> {
     )
 }
 
-/// Solve every crank angle (warm-started from the previous one) and collect the curves.
-pub fn sweep(
-    model: &Model,
-    crank_rad: &[f64],
-    periodic: bool,
-) -> Result<LoadedSweep, SweepFailure> {
-    let mut previous = AngleSolution::default();
-    let mut solutions = Vec::with_capacity(crank_rad.len());
+/// Per-angle results of one chunk, flat: [angle][roller] and [angle][pin].
+#[derive(Default)]
+struct Chunk {
+    lag: Vec<f64>,
+    output_lag: Vec<f64>,
+    roller_force: Vec<f64>,
+    pressure: Vec<f64>,
+    half_width: Vec<f64>,
+    contacts: Vec<usize>,
+    pin_force: Vec<f64>,
+    bearing: Vec<Vec2>,
+    residual: Vec<f64>,
+    deflection: Vec<f64>,
+}
+
+impl Chunk {
+    fn record(&mut self, model: &Model, sol: &AngleSolution) {
+        self.lag.push(sol.lag_rad.unwrap_or(0.0));
+        self.output_lag.push(sol.output_lag_rad.unwrap_or(0.0));
+        if let Some(r) = &model.rollers {
+            let mut contacts = 0;
+            for s in &sol.rollers {
+                self.roller_force.push(s.force_n);
+                let (p, b) = if s.force_n > 0.0 {
+                    contacts += 1;
+                    let h = r.hertz(s);
+                    (h.peak_pressure_mpa, h.half_width_mm)
+                } else {
+                    (0.0, 0.0)
+                };
+                self.pressure.push(p);
+                self.half_width.push(b);
+            }
+            self.contacts.push(contacts);
+        }
+        self.pin_force.extend(sol.pins.iter().map(|p| p.force_n));
+        self.bearing.push(sol.bearing_force_n.unwrap_or_default());
+        self.residual.push(sol.residual.unwrap_or(0.0));
+        self.deflection.push(sol.centre_offset_mm.norm());
+    }
+}
+
+fn solve_chunk(model: &Model, crank_rad: &[f64]) -> Result<Chunk, SweepFailure> {
+    let mut work = Work::default();
+    let mut chunk = Chunk::default();
     for &phi in crank_rad {
         let fail = |failure| SweepFailure {
             crank_rad: phi,
             failure,
         };
-        let sol = solve_angle(model, phi, &previous).map_err(fail)?;
-        if !all_finite(&sol) {
+        solve_into(model, phi, &mut work).map_err(fail)?;
+        if !all_finite(&work.sol) {
             return Err(fail(SolveFailure::NonFinite {
-                x: sol.lag_rad.unwrap_or(0.0),
+                x: work.sol.lag_rad.unwrap_or(0.0),
             }));
         }
-        previous = sol.clone();
-        solutions.push(sol);
+        chunk.record(model, &work.sol);
     }
-    Ok(collect(model, crank_rad, &solutions, periodic))
+    Ok(chunk)
 }
 
-fn transpose(rows: impl Iterator<Item = Vec<f64>>, width: usize) -> Vec<Vec<f64>> {
+/// Solve every crank angle and collect the curves. Chunks of `CHUNK` angles run in parallel;
+/// within a chunk each angle is warm-started from the previous ones.
+pub fn sweep(
+    model: &Model,
+    crank_rad: &[f64],
+    periodic: bool,
+) -> Result<LoadedSweep, SweepFailure> {
+    let chunks: Vec<Chunk> = crank_rad
+        .par_chunks(CHUNK)
+        .map(|c| solve_chunk(model, c))
+        .collect::<Result<_, _>>()?;
+    Ok(collect(model, crank_rad, &chunks, periodic))
+}
+
+/// [angle][column] flat chunks → [column][angle].
+fn columns(chunks: &[Chunk], width: usize, field: fn(&Chunk) -> &[f64]) -> Vec<Vec<f64>> {
     let mut out = vec![Vec::new(); width];
-    for row in rows {
-        for (column, v) in out.iter_mut().zip(row) {
-            column.push(v);
+    for c in chunks {
+        for row in field(c).chunks(width.max(1)) {
+            for (column, v) in out.iter_mut().zip(row) {
+                column.push(*v);
+            }
         }
     }
     out
 }
 
-fn collect(
-    model: &Model,
-    crank_rad: &[f64],
-    sols: &[AngleSolution],
-    periodic: bool,
-) -> LoadedSweep {
+fn concat<T: Copy>(chunks: &[Chunk], field: fn(&Chunk) -> &[T]) -> Vec<T> {
+    chunks
+        .iter()
+        .flat_map(|c| field(c).iter().copied())
+        .collect()
+}
+
+fn collect(model: &Model, crank_rad: &[f64], chunks: &[Chunk], periodic: bool) -> LoadedSweep {
     let mut out = LoadedSweep::default();
+    let lag = concat(chunks, |c| &c.lag);
+    let output_lag = concat(chunks, |c| &c.output_lag);
     if let Some(r) = &model.rollers {
         let n = r.count();
-        let hertz = |s: &AngleSolution| -> Vec<(f64, f64)> {
-            s.rollers
-                .iter()
-                .map(|st| {
-                    let h = r.hertz(st);
-                    (h.peak_pressure_mpa, h.half_width_mm)
-                })
-                .collect()
-        };
         out.rollers = Some(RollerCurves {
-            lag_rad: sols.iter().map(|s| s.lag_rad.unwrap_or(0.0)).collect(),
-            force_n: transpose(
-                sols.iter()
-                    .map(|s| s.rollers.iter().map(|r| r.force_n).collect()),
-                n,
-            ),
-            pressure_mpa: transpose(
-                sols.iter().map(|s| hertz(s).iter().map(|h| h.0).collect()),
-                n,
-            ),
-            half_width_mm: transpose(
-                sols.iter().map(|s| hertz(s).iter().map(|h| h.1).collect()),
-                n,
-            ),
-            contacts: sols
-                .iter()
-                .map(|s| s.rollers.iter().filter(|r| r.force_n > 0.0).count())
-                .collect(),
+            lag_rad: lag.clone(),
+            force_n: columns(chunks, n, |c| &c.roller_force),
+            pressure_mpa: columns(chunks, n, |c| &c.pressure),
+            half_width_mm: columns(chunks, n, |c| &c.half_width),
+            contacts: concat(chunks, |c| &c.contacts),
         });
     }
     if let Some(p) = &model.pins {
         out.pins = Some(PinCurves {
-            output_lag_rad: sols
-                .iter()
-                .map(|s| s.output_lag_rad.unwrap_or(0.0))
-                .collect(),
-            force_n: transpose(
-                sols.iter()
-                    .map(|s| s.pins.iter().map(|p| p.force_n).collect()),
-                p.count,
-            ),
+            output_lag_rad: output_lag.clone(),
+            force_n: columns(chunks, p.count, |c| &c.pin_force),
         });
     }
     if model.bearing {
-        let fb: Vec<Vec2> = sols
-            .iter()
-            .map(|s| s.bearing_force_n.unwrap_or_default())
-            .collect();
+        let fb = concat(chunks, |c| &c.bearing);
         out.bearing = Some(BearingCurves {
             force_n: fb.iter().map(|f| f.norm()).collect(),
             angle_rad: fb
@@ -202,15 +233,12 @@ fn collect(
                     cross(e, *f).atan2(e.dot(f))
                 })
                 .collect(),
-            residual: sols.iter().map(|s| s.residual.unwrap_or(0.0)).collect(),
-            deflection_mm: sols.iter().map(|s| s.centre_offset_mm.norm()).collect(),
+            residual: concat(chunks, |c| &c.residual),
+            deflection_mm: concat(chunks, |c| &c.deflection),
         });
     }
     if model.rollers.is_some() {
-        let te_rad: Vec<f64> = sols
-            .iter()
-            .map(|s| s.lag_rad.unwrap_or(0.0) + s.output_lag_rad.unwrap_or(0.0))
-            .collect();
+        let te_rad: Vec<f64> = lag.iter().zip(&output_lag).map(|(b, o)| b + o).collect();
         let h = match crank_rad {
             [a, b, ..] => b - a,
             _ => 1.0,

@@ -8,7 +8,7 @@
 //! carry a positive output torque. Exact derivatives: ∂gap/∂βo = −(Q − O) × û and ∂gap/∂u = û.
 
 use crate::contact::law::{self, ContactForce, LineContact};
-use crate::geometry::{cross, Vec2};
+use crate::geometry::{cross, rotate, sin_cos, Vec2};
 use crate::spec::{ContactLaw, Design};
 
 /// One pin's contact.
@@ -36,6 +36,8 @@ impl PinState {
 #[derive(Debug, Clone)]
 pub struct Pins {
     pub count: usize,
+    /// Unit vectors at 2πj/M.
+    base: Vec<Vec2>,
     circle_radius_mm: f64,
     eccentricity_mm: f64,
     clearance_mm: f64,
@@ -48,8 +50,15 @@ impl Pins {
     pub fn new(design: &Design, law: ContactLaw) -> Self {
         let pin = design.pins.pin_radius_mm;
         let hole = design.hole_radius_mm();
+        let m = design.pins.count;
         Pins {
-            count: design.pins.count,
+            count: m,
+            base: (0..m)
+                .map(|j| {
+                    let a = std::f64::consts::TAU * j as f64 / m as f64;
+                    Vec2::new(a.cos(), a.sin())
+                })
+                .collect(),
             circle_radius_mm: design.pins.circle_radius_mm,
             eccentricity_mm: design.eccentricity_mm,
             clearance_mm: design.pins.hole_clearance_mm,
@@ -76,31 +85,101 @@ impl Pins {
     /// rotation; `output_lag` is βo.
     pub fn evaluate(&self, disc_centre: Vec2, psi: f64, output_lag: f64, out: &mut Vec<PinState>) {
         out.clear();
-        let m = self.count as f64;
-        for j in 0..self.count {
-            let gamma = std::f64::consts::TAU * j as f64 / m + psi;
-            let arm_vec = Vec2::new(gamma.cos(), gamma.sin()) * self.circle_radius_mm;
-            let pin = Vec2::new((gamma + output_lag).cos(), (gamma + output_lag).sin())
-                * self.circle_radius_mm;
+        let (s, c) = psi.sin_cos();
+        let (sl, cl) = sin_cos(output_lag);
+        for w in &self.base {
+            let arm_vec = rotate(*w, c, s) * self.circle_radius_mm;
+            let pin = rotate(arm_vec, cl, sl);
             let d = pin - (disc_centre + arm_vec);
             let dist = d.norm();
             let u = d / dist;
             let gap_mm = self.eccentricity_mm + self.clearance_mm - dist;
-            let cf = if gap_mm < 0.0 {
-                law::force(self.law, &self.contact, -gap_mm)
-            } else {
-                ContactForce::NONE
-            };
-            out.push(PinState {
+            out.push(self.state(
                 gap_mm,
-                force_n: cf.force_n,
-                stiffness_n_per_mm: cf.stiffness_n_per_mm,
-                arm_mm: cross(arm_vec, u),
-                direction: u,
-                point: disc_centre + arm_vec + self.hole_radius_mm * u,
-                gap_slope_mm: -cross(pin, u),
-            });
+                cross(arm_vec, u),
+                u,
+                disc_centre + arm_vec,
+                -cross(pin, u),
+            ));
         }
+    }
+
+    /// First-order pins: gap c − βo·a_j − e_φ·u with a_j = rw·sin(γj − φ), force along −e_φ
+    /// (ideal pin-in-hole directions; MODEL.md "Equilibrium").
+    pub fn evaluate_first_order(
+        &self,
+        crank: f64,
+        disc_centre: Vec2,
+        psi: f64,
+        output_lag: f64,
+        out: &mut Vec<PinState>,
+    ) {
+        let (s, c) = psi.sin_cos();
+        self.first_order_at(
+            Vec2::new(crank.cos(), crank.sin()),
+            (s, c),
+            disc_centre,
+            output_lag,
+            out,
+        );
+    }
+
+    /// `evaluate_first_order` from the eccentric direction and (sin, cos) of ψ.
+    pub fn first_order_at(
+        &self,
+        e_phi: Vec2,
+        (s, c): (f64, f64),
+        disc_centre: Vec2,
+        output_lag: f64,
+        out: &mut Vec<PinState>,
+    ) {
+        out.clear();
+        let u = -e_phi;
+        let offset = disc_centre - e_phi * self.eccentricity_mm;
+        for w in &self.base {
+            let arm_vec = rotate(*w, c, s) * self.circle_radius_mm;
+            let arm = cross(arm_vec, u);
+            let gap_mm = self.clearance_mm - output_lag * arm - e_phi.dot(&offset);
+            out.push(self.state(gap_mm, arm, u, disc_centre + arm_vec, -arm));
+        }
+    }
+
+    /// Move first-order pin states evaluated at lag 0 to `output_lag` (gaps are linear in it).
+    pub fn first_order_lagged(&self, output_lag: f64, states: &mut [PinState]) {
+        for st in states.iter_mut() {
+            let gap_mm = st.gap_mm - output_lag * st.arm_mm;
+            let hole = st.point - self.hole_radius_mm * st.direction;
+            *st = self.state(gap_mm, st.arm_mm, st.direction, hole, st.gap_slope_mm);
+        }
+    }
+
+    fn state(
+        &self,
+        gap_mm: f64,
+        arm_mm: f64,
+        direction: Vec2,
+        hole: Vec2,
+        gap_slope_mm: f64,
+    ) -> PinState {
+        let cf = if gap_mm < 0.0 {
+            law::force(self.law, &self.contact, -gap_mm)
+        } else {
+            ContactForce::NONE
+        };
+        PinState {
+            gap_mm,
+            force_n: cf.force_n,
+            stiffness_n_per_mm: cf.stiffness_n_per_mm,
+            arm_mm,
+            direction,
+            point: hole + self.hole_radius_mm * direction,
+            gap_slope_mm,
+        }
+    }
+
+    /// Linear-law stiffness, N/mm, when the law is linear.
+    pub fn linear_stiffness(&self) -> Option<f64> {
+        (self.law == ContactLaw::PaperLinear).then(|| law::paper_linear_stiffness(&self.contact))
     }
 }
 

@@ -4,17 +4,22 @@
 //! the disc at the contact); its moment about the disc centre is −F·l (MODEL.md sign: l > 0
 //! rollers drive the disc clockwise and close as the lag β grows, ∂gap/∂β = −l, and a
 //! displacement u of the disc centre changes the gap by −n·u).
+//!
+//! Speed: the pose's trigonometry is done once per evaluation, roller centres are precomputed,
+//! the closest-point search is warm-started from the roller's last contact parameter, and a
+//! roller that provably cannot touch (`Reach`) is not evaluated at all.
 
 use crate::contact::hertz_line::{hertz, HertzLine};
 use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::clearance::{GapFailure, Mesh, Pose};
 use crate::geometry::first_order;
-use crate::geometry::{rotate, Vec2};
+use crate::geometry::{cross, rotate, sin_cos, Vec2};
 use crate::spec::{ContactLaw, Design, GeometryMode, Modification};
 
 /// One roller's contact at one pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RollerState {
+    /// Normal gap, mm; for a roller skipped as out of reach, a positive lower bound of it.
     pub gap_mm: f64,
     pub force_n: f64,
     pub stiffness_n_per_mm: f64,
@@ -23,8 +28,6 @@ pub struct RollerState {
     pub normal: Vec2,
     /// Contact point, fixed frame, mm.
     pub point: Vec2,
-    /// Signed curvature of the disc profile at the contact, 1/mm (positive convex).
-    pub curvature_per_mm: f64,
     /// Locus parameter of the contact (warm start for the next evaluation).
     pub t: f64,
 }
@@ -36,6 +39,45 @@ impl RollerState {
     }
 }
 
+/// Where a roller was last evaluated exactly, to bound how far its gap can have moved since:
+/// the roller centre, seen from the disc, moves by at most |P|·(|Δφ|/nc + |Δβ|) + e·|Δφ| + |Δu|
+/// (first order) plus `curvature_bound`·(Δφ² + Δβ²), and the gap moves no more than it does.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reach {
+    pub crank_rad: f64,
+    pub lag_rad: f64,
+    pub offset_mm: Vec2,
+    pub gap_mm: f64,
+}
+
+/// Trigonometry of one crank angle, shared by every evaluation at that angle: the eccentric
+/// direction e_φ and the ideal disc rotation −φ/nc. A lag β then costs only a small rotation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AngleTrig {
+    pub crank_rad: f64,
+    pub e_phi: Vec2,
+    /// (sin, cos) of −φ/nc.
+    pub ideal: (f64, f64),
+}
+
+impl AngleTrig {
+    pub fn new(crank_rad: f64, teeth: usize) -> Self {
+        let (s, c) = crank_rad.sin_cos();
+        AngleTrig {
+            crank_rad,
+            e_phi: Vec2::new(c, s),
+            ideal: (-crank_rad / teeth as f64).sin_cos(),
+        }
+    }
+
+    /// (sin, cos) of ψ = −φ/nc + β.
+    pub fn rotation(&self, lag_rad: f64) -> (f64, f64) {
+        let (sb, cb) = sin_cos(lag_rad);
+        let (s0, c0) = self.ideal;
+        (s0 * cb + c0 * sb, c0 * cb - s0 * sb)
+    }
+}
+
 /// The rollers of one design under one contact law and geometry mode.
 #[derive(Debug, Clone)]
 pub struct Rollers {
@@ -44,21 +86,47 @@ pub struct Rollers {
     modification: Modification,
     pub law: ContactLaw,
     pub geometry: GeometryMode,
+    /// Roller centres, fixed frame.
+    centres: Vec<Vec2>,
+    /// Largest distance of a roller centre from the disc centre, mm.
+    reach_radius_mm: f64,
+    /// Bound on the second derivative of a gap w.r.t. crank and lag, mm/rad².
+    curvature_bound: f64,
+    /// Linear-law stiffness (π/4)·E*·L, N/mm.
+    linear_stiffness: f64,
 }
 
 impl Rollers {
     pub fn new(design: &Design, m: &Modification, law: ContactLaw, geometry: GeometryMode) -> Self {
-        Rollers {
-            mesh: Mesh::new(design, m),
+        let mesh = Mesh::new(design, m);
+        let centres = (0..design.rollers).map(|i| mesh.roller_centre(i)).collect();
+        let reach = design.roller_circle_radius_mm + design.eccentricity_mm;
+        // |∂²gap/∂β²| ≤ |P| + |P|²/ρ, ρ the smallest convex radius of Γ (the distance field's
+        // Hessian is bounded by 1/ρ), doubled for safety and for the crank terms.
+        let convex = mesh.profile.min_convex_radius().radius_mm - mesh.profile.offset_mm;
+        let curvature_bound = 2.0 * (reach + reach * reach / convex.max(1e-6));
+        let mut r = Rollers {
+            mesh,
             design: design.clone(),
             modification: *m,
             law,
             geometry,
-        }
+            centres,
+            reach_radius_mm: reach,
+            curvature_bound,
+            linear_stiffness: 0.0,
+        };
+        r.linear_stiffness = law::paper_linear_stiffness(&r.line_contact(0.0));
+        r
     }
 
     pub fn count(&self) -> usize {
         self.design.rollers
+    }
+
+    /// The linear law's stiffness k = (π/4)·E*·L, N/mm.
+    pub fn linear_stiffness(&self) -> f64 {
+        self.linear_stiffness
     }
 
     /// Contact description for the laws: disc flank of signed curvature κ against a roller.
@@ -82,71 +150,173 @@ impl Rollers {
         }
     }
 
-    /// Hertz pressure and half-width of a roller state.
-    pub fn hertz(&self, s: &RollerState) -> HertzLine {
-        hertz(&self.line_contact(s.curvature_per_mm), s.force_n)
+    /// Signed curvature of the disc profile at a roller's contact, 1/mm (positive convex).
+    pub fn curvature(&self, s: &RollerState) -> f64 {
+        self.mesh.profile.curvature(s.t)
     }
 
-    fn contact_force(&self, gap_mm: f64, curvature_per_mm: f64) -> ContactForce {
+    /// Hertz pressure and half-width of a roller state.
+    pub fn hertz(&self, s: &RollerState) -> HertzLine {
+        hertz(&self.line_contact(self.curvature(s)), s.force_n)
+    }
+
+    fn contact_force(&self, gap_mm: f64, t: f64) -> ContactForce {
         if gap_mm >= 0.0 {
             return ContactForce::NONE;
         }
-        law::force(self.law, &self.line_contact(curvature_per_mm), -gap_mm)
+        match self.law {
+            ContactLaw::PaperLinear => ContactForce {
+                force_n: -gap_mm * self.linear_stiffness,
+                stiffness_n_per_mm: self.linear_stiffness,
+            },
+            ContactLaw::HertzNonlinear => {
+                let c = self.line_contact(self.mesh.profile.curvature(t));
+                law::force(self.law, &c, -gap_mm)
+            }
+        }
+    }
+
+    /// A lower bound on roller i's gap at `pose`, from where it was last evaluated.
+    fn gap_lower_bound(&self, reach: &Reach, pose: &Pose) -> f64 {
+        let dphi = (pose.crank_rad - reach.crank_rad).abs();
+        let dlag = (pose.lag_rad - reach.lag_rad).abs();
+        let du = (pose.centre_offset_mm - reach.offset_mm).norm();
+        let nc = self.design.teeth as f64;
+        let first =
+            self.reach_radius_mm * (dphi / nc + dlag) + self.design.eccentricity_mm * dphi + du;
+        reach.gap_mm - first - self.curvature_bound * (dphi * dphi + dlag * dlag)
     }
 
     /// Evaluate every roller at `pose`. `states` holds the previous evaluation (its `t` is the
     /// warm start) or is empty.
     pub fn evaluate(&self, pose: &Pose, states: &mut Vec<RollerState>) -> Result<(), GapFailure> {
+        self.evaluate_within(pose, states, &mut [])
+    }
+
+    /// Evaluate at `pose`, skipping rollers whose `reaches` entry proves a positive gap (they
+    /// get zero force and the bound as gap). With an empty `reaches` every roller is evaluated;
+    /// otherwise an evaluated roller's entry is updated.
+    pub fn evaluate_within(
+        &self,
+        pose: &Pose,
+        states: &mut Vec<RollerState>,
+        reaches: &mut [Reach],
+    ) -> Result<(), GapFailure> {
+        let trig = AngleTrig::new(pose.crank_rad, self.design.teeth);
+        self.evaluate_at(pose, &trig, states, reaches)
+    }
+
+    /// `evaluate_within` with the angle's trigonometry computed once by the caller.
+    pub fn evaluate_at(
+        &self,
+        pose: &Pose,
+        trig: &AngleTrig,
+        states: &mut Vec<RollerState>,
+        reaches: &mut [Reach],
+    ) -> Result<(), GapFailure> {
         let n = self.count();
-        let warm = states.len() == n;
-        if !warm {
+        if states.len() != n {
             states.clear();
+            states.resize(
+                n,
+                RollerState {
+                    gap_mm: 0.0,
+                    force_n: 0.0,
+                    stiffness_n_per_mm: 0.0,
+                    arm_mm: 0.0,
+                    normal: Vec2::zeros(),
+                    point: Vec2::zeros(),
+                    t: f64::NAN,
+                },
+            );
+            for (i, s) in states.iter_mut().enumerate() {
+                s.t = self.mesh.locus_parameter(i, pose);
+            }
         }
-        let psi = self.mesh.disc_rotation(pose);
-        let (s, c) = psi.sin_cos();
-        let centre = self.mesh.disc_centre(pose);
-        for i in 0..n {
-            let t_start = if warm { Some(states[i].t) } else { None };
-            let state = match self.geometry {
-                GeometryMode::Exact => {
-                    let g = self.mesh.roller_gap(i, pose, t_start)?;
-                    let normal = rotate(g.normal, c, s);
-                    let curvature = self.mesh.profile.curvature(g.t);
-                    let cf = self.contact_force(g.gap_mm, curvature);
-                    RollerState {
-                        gap_mm: g.gap_mm,
-                        force_n: cf.force_n,
-                        stiffness_n_per_mm: cf.stiffness_n_per_mm,
-                        arm_mm: g.arm_mm,
-                        normal,
-                        point: centre + rotate(g.point, c, s),
-                        curvature_per_mm: curvature,
-                        t: g.t,
-                    }
+        let (s, c) = trig.rotation(pose.lag_rad);
+        let centre = trig.e_phi * self.design.eccentricity_mm + pose.centre_offset_mm;
+        for (i, st) in states.iter_mut().enumerate() {
+            if let Some(reach) = reaches.get(i) {
+                let bound = self.gap_lower_bound(reach, pose);
+                if bound > 0.0 {
+                    (st.gap_mm, st.force_n, st.stiffness_n_per_mm) = (bound, 0.0, 0.0);
+                    continue;
                 }
-                GeometryMode::FirstOrder => self.first_order_state(i, pose),
+            }
+            *st = match self.geometry {
+                GeometryMode::Exact => self.exact_state(i, pose, st.t, centre, (s, c))?,
+                GeometryMode::FirstOrder => self.first_order_state(i, pose, trig.e_phi),
             };
-            if warm {
-                states[i] = state;
-            } else {
-                states.push(state);
+            if let Some(reach) = reaches.get_mut(i) {
+                *reach = Reach {
+                    crank_rad: pose.crank_rad,
+                    lag_rad: pose.lag_rad,
+                    offset_mm: pose.centre_offset_mm,
+                    gap_mm: st.gap_mm,
+                };
             }
         }
         Ok(())
     }
 
+    fn exact_state(
+        &self,
+        i: usize,
+        pose: &Pose,
+        t_start: f64,
+        centre: Vec2,
+        (s, c): (f64, f64),
+    ) -> Result<RollerState, GapFailure> {
+        let p = rotate(self.centres[i] - centre, c, -s);
+        let foot = self
+            .mesh
+            .profile
+            .closest_point(p, t_start)
+            .map_err(|detail| GapFailure {
+                roller: i,
+                pose: *pose,
+                detail,
+            })?;
+        let gap_mm = foot.signed_distance_mm - self.design.roller_radius_mm;
+        let cf = self.contact_force(gap_mm, foot.t);
+        Ok(RollerState {
+            gap_mm,
+            force_n: cf.force_n,
+            stiffness_n_per_mm: cf.stiffness_n_per_mm,
+            arm_mm: cross(p, foot.normal),
+            normal: rotate(foot.normal, c, s),
+            point: centre + rotate(foot.point, c, s),
+            t: foot.t,
+        })
+    }
+
+    /// First-order gap at zero lag and arm of roller i (`first_order::roller`), from the unit
+    /// vector of the eccentric direction instead of trigonometry per roller:
+    /// cos φi = u_i·e_φ, sin φi = e_φ × u_i.
+    fn first_order_term(&self, i: usize, e_phi: Vec2) -> (f64, f64) {
+        let u = self.centres[i] / self.design.roller_circle_radius_mm;
+        first_order::from_phase(
+            &self.design,
+            &self.modification,
+            u.dot(&e_phi),
+            cross(e_phi, u),
+        )
+    }
+
     /// First-order state: closed-form gap and arm; the normal points from the pitch point
     /// (e·np along the eccentric direction) to the roller centre, as for the unmodified profile.
-    fn first_order_state(&self, i: usize, pose: &Pose) -> RollerState {
-        let fo = first_order::roller(&self.design, &self.modification, i, pose.crank_rad);
-        let roller = self.mesh.roller_centre(i);
-        let (s, c) = pose.crank_rad.sin_cos();
-        let pitch = Vec2::new(c, s) * (self.design.eccentricity_mm * self.design.rollers as f64);
+    fn first_order_state(&self, i: usize, pose: &Pose, e_phi: Vec2) -> RollerState {
+        let (gap0, arm) = self.first_order_term(i, e_phi);
+        let fo = first_order::FirstOrderRoller {
+            gap_mm: gap0,
+            arm_mm: arm,
+        };
+        let roller = self.centres[i];
+        let pitch = e_phi * (self.design.eccentricity_mm * self.design.rollers as f64);
         let normal = (roller - pitch).normalize();
         let gap_mm = fo.gap_mm - fo.arm_mm * pose.lag_rad - normal.dot(&pose.centre_offset_mm);
         let t = self.mesh.locus_parameter(i, pose);
-        let curvature = self.mesh.profile.curvature(t);
-        let cf = self.contact_force(gap_mm, curvature);
+        let cf = self.contact_force(gap_mm, t);
         RollerState {
             gap_mm,
             force_n: cf.force_n,
@@ -154,9 +324,15 @@ impl Rollers {
             arm_mm: fo.arm_mm,
             normal,
             point: roller - self.design.roller_radius_mm * normal,
-            curvature_per_mm: curvature,
             t,
         }
+    }
+
+    /// First-order gaps at zero lag and arms of every roller at crank φ: (g_i, l_i).
+    pub fn first_order_terms(&self, crank_rad: f64, out: &mut Vec<(f64, f64)>) {
+        out.clear();
+        let e_phi = Vec2::new(crank_rad.cos(), crank_rad.sin());
+        out.extend((0..self.count()).map(|i| self.first_order_term(i, e_phi)));
     }
 }
 

@@ -8,11 +8,11 @@
 //! fixed-point fallback.
 
 use super::pins::{self, PinState, Pins};
-use super::rollers::{self, RollerState, Rollers};
-use super::solve::{monotone_root, Balance, Settings, SolveFailure};
+use super::rollers::{self, AngleTrig, Reach, RollerState, Rollers};
+use super::solve::{monotone_root, piecewise_linear_root, Balance, Settings, SolveFailure};
 use crate::geometry::clearance::Pose;
 use crate::geometry::{cross, Vec2};
-use crate::spec::{Design, Modification, Scene};
+use crate::spec::{ContactLaw, Design, GeometryMode, Modification, Scene};
 use nalgebra::{Matrix4, Vector4};
 
 /// What the loaded model of a scene includes.
@@ -26,6 +26,8 @@ pub struct Model {
     pub teeth: usize,
     pub eccentricity_mm: f64,
     pub settings: Settings,
+    /// First-order geometry (also for pins when rollers are not modelled).
+    pub first_order: bool,
 }
 
 impl Model {
@@ -46,11 +48,20 @@ impl Model {
             teeth: design.teeth,
             eccentricity_mm: design.eccentricity_mm,
             settings: Settings::default(),
+            first_order: scene.geometry == GeometryMode::FirstOrder,
         }
     }
 
     fn ideal_centre(&self, crank: f64) -> Vec2 {
         Vec2::new(crank.cos(), crank.sin()) * self.eccentricity_mm
+    }
+
+    /// Pins follow the rollers' geometry mode (first order: ideal directions, linear gaps).
+    fn first_order_pins(&self) -> bool {
+        self.rollers
+            .as_ref()
+            .is_some_and(|r| r.geometry == GeometryMode::FirstOrder)
+            || self.first_order
     }
 }
 
@@ -71,6 +82,44 @@ pub struct AngleSolution {
     pub residual: Option<f64>,
 }
 
+/// Reusable state of a sequential run over neighbouring crank angles: the last solution (its
+/// buffers and warm starts), where each roller was last evaluated, and the last two lags for
+/// extrapolating the next guess.
+#[derive(Debug, Clone, Default)]
+pub struct Work {
+    pub sol: AngleSolution,
+    reaches: Vec<Reach>,
+    history: Vec<(f64, f64, f64)>,
+    terms: Vec<(f64, f64)>,
+    events: Vec<(f64, f64, f64)>,
+}
+
+impl Work {
+    /// Guesses for (β, βo) at `crank`: linear extrapolation of the last two angles.
+    fn guess(&self, crank: f64) -> (f64, f64) {
+        match self.history.as_slice() {
+            [.., (p0, b0, o0), (p1, b1, o1)] if p1 != p0 => {
+                let w = (crank - p1) / (p1 - p0);
+                (b1 + w * (b1 - b0), o1 + w * (o1 - o0))
+            }
+            [.., (_, b, o)] => (*b, *o),
+            [] => (0.0, 0.0),
+        }
+    }
+
+    fn remember(&mut self, crank: f64) {
+        let entry = (
+            crank,
+            self.sol.lag_rad.unwrap_or(0.0),
+            self.sol.output_lag_rad.unwrap_or(0.0),
+        );
+        if self.history.len() == 2 {
+            self.history.remove(0);
+        }
+        self.history.push(entry);
+    }
+}
+
 fn roller_balance(
     r: &Rollers,
     pose: &Pose,
@@ -83,16 +132,6 @@ fn roller_balance(
         slope,
         scale,
     })
-}
-
-fn pin_balance(p: &Pins, centre: Vec2, psi: f64, lag: f64, states: &mut Vec<PinState>) -> Balance {
-    p.evaluate(centre, psi, lag, states);
-    let (value, slope, scale) = pins::moment(states);
-    Balance {
-        value,
-        slope,
-        scale,
-    }
 }
 
 /// Zero torque with clearance leaves the disc free within its backlash; we report the limit
@@ -131,21 +170,58 @@ fn solve_rollers(
     crank: f64,
     offset: Vec2,
     guess: f64,
-    states: &mut Vec<RollerState>,
+    work: &mut Work,
 ) -> Result<f64, SolveFailure> {
     let pose = |lag| Pose {
         crank_rad: crank,
         lag_rad: lag,
         centre_offset_mm: offset,
     };
+    let closed_form = r.geometry == GeometryMode::FirstOrder
+        && r.law == ContactLaw::PaperLinear
+        && offset == Vec2::zeros();
+    if closed_form {
+        r.first_order_terms(crank, &mut work.terms);
+        let (k, t) = (r.linear_stiffness(), model.torque_nmm);
+        let lag = piecewise_linear_root(k, &work.terms, t, &mut work.events).ok_or(
+            SolveFailure::NoBracket {
+                lo: f64::NEG_INFINITY,
+                hi: f64::INFINITY,
+            },
+        )?;
+        r.evaluate(&pose(lag), &mut work.sol.rollers)
+            .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
+        return Ok(lag);
+    }
+    if work.reaches.len() != r.count() {
+        work.reaches = vec![
+            Reach {
+                crank_rad: crank,
+                lag_rad: guess,
+                offset_mm: offset,
+                gap_mm: f64::NEG_INFINITY,
+            };
+            r.count()
+        ];
+    }
+    let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
+    let trig = AngleTrig::new(crank, model.teeth);
     let root = monotone_root(
-        |lag| roller_balance(r, &pose(lag), states),
+        |lag| {
+            r.evaluate_at(&pose(lag), &trig, states, reaches)
+                .map_err(|f| f.to_string())?;
+            let (value, slope, scale) = rollers::moment(states);
+            Ok::<_, String>(Balance {
+                value,
+                slope,
+                scale,
+            })
+        },
         model.torque_nmm,
         guess,
         &model.settings,
     )?;
     let mut lag = root.x;
-    roller_balance(r, &pose(lag), states).map_err(SolveFailure::Evaluation)?;
     if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
         lag = touching(
             |l| {
@@ -156,6 +232,9 @@ fn solve_rollers(
         )
         .map_err(SolveFailure::Evaluation)?;
         roller_balance(r, &pose(lag), states).map_err(SolveFailure::Evaluation)?;
+        reaches
+            .iter_mut()
+            .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
     }
     Ok(lag)
 }
@@ -164,29 +243,60 @@ fn solve_rollers(
 fn solve_pins(
     model: &Model,
     p: &Pins,
+    crank: f64,
     centre: Vec2,
     psi: f64,
     guess: f64,
-    states: &mut Vec<PinState>,
+    work: &mut Work,
 ) -> Result<f64, SolveFailure> {
+    let first_order = model.first_order_pins();
+    if first_order {
+        if let (Some(k), true) = (p.linear_stiffness(), centre == model.ideal_centre(crank)) {
+            p.evaluate_first_order(crank, centre, psi, 0.0, &mut work.sol.pins);
+            work.terms.clear();
+            work.terms
+                .extend(work.sol.pins.iter().map(|s| (s.gap_mm, s.arm_mm)));
+            let lag = piecewise_linear_root(k, &work.terms, model.torque_nmm, &mut work.events)
+                .ok_or(SolveFailure::NoBracket {
+                    lo: f64::NEG_INFINITY,
+                    hi: f64::INFINITY,
+                })?;
+            p.first_order_lagged(lag, &mut work.sol.pins);
+            return Ok(lag);
+        }
+    }
+    let states = &mut work.sol.pins;
+    let evaluate = |lag: f64, states: &mut Vec<PinState>| {
+        if first_order {
+            p.evaluate_first_order(crank, centre, psi, lag, states);
+        } else {
+            p.evaluate(centre, psi, lag, states);
+        }
+        let (value, slope, scale) = pins::moment(states);
+        Balance {
+            value,
+            slope,
+            scale,
+        }
+    };
     let root = monotone_root(
-        |lag| Ok::<_, String>(pin_balance(p, centre, psi, lag, states)),
+        |lag| Ok::<_, String>(evaluate(lag, states)),
         model.torque_nmm,
         guess,
         &model.settings,
     )?;
     let mut lag = root.x;
-    pin_balance(p, centre, psi, lag, states);
+    evaluate(lag, states);
     if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
         lag = touching(
             |l| {
-                pin_balance(p, centre, psi, l, states);
+                evaluate(l, states);
                 Ok::<_, String>(states.iter().map(|s| (s.gap_mm, s.gap_slope_mm)).collect())
             },
             lag,
         )
         .map_err(SolveFailure::Evaluation)?;
-        pin_balance(p, centre, psi, lag, states);
+        evaluate(lag, states);
     }
     Ok(lag)
 }
@@ -197,37 +307,27 @@ fn net_force(sol: &AngleSolution) -> Vec2 {
     r + p
 }
 
-/// Solve the rigid-bearing equilibrium at one crank angle, warm-started from `previous`.
+/// Solve the rigid-bearing balances at one crank angle and a fixed centre offset, into
+/// `work.sol`, warm-started from the work's history.
 fn solve_rigid(
     model: &Model,
     crank: f64,
-    previous: &AngleSolution,
+    work: &mut Work,
     offset: Vec2,
-) -> Result<AngleSolution, SolveFailure> {
-    let mut sol = AngleSolution {
-        centre_offset_mm: offset,
-        rollers: previous.rollers.clone(),
-        ..Default::default()
-    };
+) -> Result<(), SolveFailure> {
+    let (guess_lag, guess_out) = work.guess(crank);
+    work.sol.centre_offset_mm = offset;
     let mut psi = -crank / model.teeth as f64;
     if let Some(r) = &model.rollers {
-        let lag = solve_rollers(
-            model,
-            r,
-            crank,
-            offset,
-            previous.lag_rad.unwrap_or(0.0),
-            &mut sol.rollers,
-        )?;
+        let lag = solve_rollers(model, r, crank, offset, guess_lag, work)?;
         psi += lag;
-        sol.lag_rad = Some(lag);
+        work.sol.lag_rad = Some(lag);
     }
     if let Some(p) = &model.pins {
         let centre = model.ideal_centre(crank) + offset;
-        let guess = previous.output_lag_rad.unwrap_or(0.0);
-        sol.output_lag_rad = Some(solve_pins(model, p, centre, psi, guess, &mut sol.pins)?);
+        work.sol.output_lag_rad = Some(solve_pins(model, p, crank, centre, psi, guess_out, work)?);
     }
-    Ok(sol)
+    Ok(())
 }
 
 /// Residual vector of the compliant problem and the per-row scales.
@@ -325,9 +425,10 @@ fn solve_compliant(
     model: &Model,
     kb: f64,
     crank: f64,
-    previous: &AngleSolution,
+    work: &mut Work,
 ) -> Result<AngleSolution, SolveFailure> {
-    let rigid = solve_rigid(model, crank, previous, Vec2::zeros())?;
+    solve_rigid(model, crank, work, Vec2::zeros())?;
+    let rigid = work.sol.clone();
     let u0 = net_force(&rigid) / kb;
     let mut x = Vector4::new(
         u0.x,
@@ -360,7 +461,8 @@ fn solve_compliant(
             step *= 0.5;
         }
     }
-    fixed_point(model, kb, crank, sol)
+    work.sol = sol;
+    fixed_point(model, kb, crank, work)
 }
 
 /// Fallback: alternate bracketed 1-D solves for β and βo at a fixed centre with a damped
@@ -369,50 +471,51 @@ fn fixed_point(
     model: &Model,
     kb: f64,
     crank: f64,
-    mut sol: AngleSolution,
+    work: &mut Work,
 ) -> Result<AngleSolution, SolveFailure> {
     let mut residual = f64::INFINITY;
+    let mut offset = work.sol.centre_offset_mm;
     for _ in 0..500 {
-        let next = solve_rigid(model, crank, &sol, sol.centre_offset_mm)?;
-        let target = net_force(&next) / kb;
-        let du = target - next.centre_offset_mm;
-        let offset = next.centre_offset_mm + 0.5 * du;
-        sol = next;
-        let (r, s) = compliant_residual(model, kb, &sol);
+        solve_rigid(model, crank, work, offset)?;
+        let target = net_force(&work.sol) / kb;
+        let (r, s) = compliant_residual(model, kb, &work.sol);
         residual = merit(&r, &s);
         if residual <= 1e-10 {
-            return Ok(sol);
+            return Ok(work.sol.clone());
         }
-        sol.centre_offset_mm = offset;
+        offset += 0.5 * (target - offset);
     }
     Err(SolveFailure::NotConverged {
-        x: sol.lag_rad.unwrap_or(0.0),
+        x: work.sol.lag_rad.unwrap_or(0.0),
         residual,
     })
 }
 
 /// Relative residual of the paper's Eqs. 12–14, evaluated independently of how the solution
-/// was found: force balance with the bearing force rebuilt from magnitude and angle ε, moment
-/// balance about the fixed origin with every force at its contact point (Eqs. 12–13 + 14 via
-/// the lever of each force), and the pin/roller moment equality about the disc centre (Eq. 14).
+/// was found: force balance (Eqs. 12–13), moment balance about the fixed origin with every
+/// force at its contact point and the bearing force at the disc centre, and the pin/roller
+/// moment equality about the disc centre (Eq. 14).
 pub fn residual(model: &Model, crank: f64, sol: &AngleSolution, bearing: Vec2) -> f64 {
     let centre = model.ideal_centre(crank) + sol.centre_offset_mm;
-    let ecc = Vec2::new(crank.cos(), crank.sin());
-    let magnitude = bearing.norm();
-    let eps = cross(ecc, bearing).atan2(ecc.dot(&bearing));
-    let (c, s) = ((crank + eps).cos(), (crank + eps).sin());
-    let rebuilt = Vec2::new(c, s) * magnitude;
-    let forces: Vec<(Vec2, Vec2)> = sol
+    let rebuilt = bearing;
+    // One pass over every force: Σf, Σ|f|, Σ p×f and Σ|p×f|.
+    let forces = sol
         .rollers
         .iter()
         .map(|r| (r.point, r.force_vector()))
         .chain(sol.pins.iter().map(|p| (p.point, p.force_vector())))
-        .chain(std::iter::once((centre, rebuilt)))
-        .collect();
-    let sum_f: Vec2 = forces.iter().map(|(_, f)| f).sum();
-    let scale_f: f64 = forces.iter().map(|(_, f)| f.norm()).sum();
-    let sum_m: f64 = forces.iter().map(|(p, f)| cross(*p, *f)).sum();
-    let scale_m: f64 = forces.iter().map(|(p, f)| cross(*p, *f).abs()).sum();
+        .chain(std::iter::once((centre, rebuilt)));
+    let (mut sum_f, mut scale_f, mut sum_m, mut scale_m) = (Vec2::zeros(), 0.0, 0.0, 0.0);
+    for (p, f) in forces {
+        if f == Vec2::zeros() {
+            continue;
+        }
+        let m = cross(p, f);
+        sum_f += f;
+        scale_f += f.norm();
+        sum_m += m;
+        scale_m += m.abs();
+    }
     let (mr, _, sr) = rollers::moment(&sol.rollers);
     let (mp, _, sp) = pins::moment(&sol.pins);
     let rel = |x: f64, scale: f64| {
@@ -427,23 +530,37 @@ pub fn residual(model: &Model, crank: f64, sol: &AngleSolution, bearing: Vec2) -
         .max(rel(mp - mr, sr.max(sp).max(model.torque_nmm.abs())))
 }
 
-/// Solve one crank angle with the model's bearing.
+/// Solve one crank angle with the model's bearing, warm-started from `previous`.
 pub fn solve_angle(
     model: &Model,
     crank: f64,
     previous: &AngleSolution,
 ) -> Result<AngleSolution, SolveFailure> {
-    let mut sol = match model.bearing_stiffness_n_per_mm {
-        Some(kb) => solve_compliant(model, kb, crank, previous)?,
-        None => solve_rigid(model, crank, previous, Vec2::zeros())?,
+    let mut work = Work {
+        sol: previous.clone(),
+        ..Work::default()
     };
+    if previous.lag_rad.is_some() || previous.output_lag_rad.is_some() {
+        work.remember(f64::NAN);
+    }
+    solve_into(model, crank, &mut work)?;
+    Ok(work.sol)
+}
+
+/// Solve one crank angle into `work.sol`, then remember it for the next angle's guess.
+pub fn solve_into(model: &Model, crank: f64, work: &mut Work) -> Result<(), SolveFailure> {
+    match model.bearing_stiffness_n_per_mm {
+        Some(kb) => work.sol = solve_compliant(model, kb, crank, work)?,
+        None => solve_rigid(model, crank, work, Vec2::zeros())?,
+    }
     if model.bearing {
         let fb = match model.bearing_stiffness_n_per_mm {
-            Some(kb) => -kb * sol.centre_offset_mm,
-            None => -net_force(&sol),
+            Some(kb) => -kb * work.sol.centre_offset_mm,
+            None => -net_force(&work.sol),
         };
-        sol.bearing_force_n = Some(fb);
-        sol.residual = Some(residual(model, crank, &sol, fb));
+        work.sol.bearing_force_n = Some(fb);
+        work.sol.residual = Some(residual(model, crank, &work.sol, fb));
     }
-    Ok(sol)
+    work.remember(crank);
+    Ok(())
 }

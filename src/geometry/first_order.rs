@@ -19,15 +19,20 @@ pub struct FirstOrderRoller {
 
 /// Roller i at crank φ, lag 0 (the profile rotation Δδ is included as a lag).
 pub fn roller(design: &Design, m: &Modification, i: usize, crank_rad: f64) -> FirstOrderRoller {
+    let (s, c) = (design.roller_angle(i) - crank_rad).sin_cos();
+    let (gap_mm, arm_mm) = from_phase(design, m, c, s);
+    FirstOrderRoller { gap_mm, arm_mm }
+}
+
+/// (gap at zero lag, arm) of a roller from cos φi and sin φi.
+#[inline]
+pub fn from_phase(design: &Design, m: &Modification, cos_phi_i: f64, sin_phi_i: f64) -> (f64, f64) {
     let k1 = design.k1();
-    let phi_i = design.roller_angle(i) - crank_rad;
-    let (s, c) = phi_i.sin_cos();
-    let big_s = (1.0 + k1 * k1 - 2.0 * k1 * c).sqrt();
-    let arm_mm = design.eccentricity_mm * design.teeth as f64 * s / big_s;
-    FirstOrderRoller {
-        gap_mm: m.equidistant_mm - m.shift_mm * (1.0 - k1 * c) / big_s - arm_mm * m.rotation_rad,
-        arm_mm,
-    }
+    let big_s = (1.0 + k1 * k1 - 2.0 * k1 * cos_phi_i).sqrt();
+    let arm_mm = design.eccentricity_mm * design.teeth as f64 * sin_phi_i / big_s;
+    let gap_mm =
+        m.equidistant_mm - m.shift_mm * (1.0 - k1 * cos_phi_i) / big_s - arm_mm * m.rotation_rad;
+    (gap_mm, arm_mm)
 }
 
 /// The literature's Δ(φi) = ΔRrp(1 − sin φi/S) − ΔRp(1 − K1 cos φi − sqrt(1 − K1²) sin φi)/S.

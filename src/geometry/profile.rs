@@ -11,7 +11,7 @@
 //! Γ'(t) = |C'|·(1 − r'·κ_C)·T, so Γ is regular (no cusp, no undercut) iff r'·κ_C < 1 everywhere:
 //! r' must be smaller than the smallest convex radius of curvature of C.
 
-use super::{cross, rotate, Vec2};
+use super::{cross, rotate, sin_cos, Vec2};
 use crate::spec::{Design, Modification};
 use std::f64::consts::PI;
 
@@ -38,6 +38,40 @@ pub struct LocusJet {
     pub c: Vec2,
     pub d1: Vec2,
     pub d2: Vec2,
+}
+
+/// sin and cos of t and of n·t, carried through a Newton iteration.
+#[derive(Debug, Clone, Copy)]
+struct Trig {
+    s: f64,
+    c: f64,
+    sn: f64,
+    cn: f64,
+}
+
+impl Trig {
+    #[inline]
+    fn at(t: f64, n: f64) -> Trig {
+        let (s, c) = t.sin_cos();
+        let (sn, cn) = (n * t).sin_cos();
+        Trig { s, c, sn, cn }
+    }
+
+    /// The trig of t + dt by angle addition (exact libm calls when n·dt is not small).
+    #[inline]
+    fn advanced(&self, t: f64, dt: f64, n: f64) -> Trig {
+        if (n * dt).abs() > 0.05 {
+            return Trig::at(t + dt, n);
+        }
+        let (ds, dc) = sin_cos(dt);
+        let (dsn, dcn) = sin_cos(n * dt);
+        Trig {
+            s: self.s * dc + self.c * ds,
+            c: self.c * dc - self.s * ds,
+            sn: self.sn * dcn + self.cn * dsn,
+            cn: self.cn * dcn - self.sn * dsn,
+        }
+    }
 }
 
 /// Foot of the normal from a point to Γ. Disc frame.
@@ -101,10 +135,15 @@ impl Profile {
     /// C, C', C'' at t (mm, mm/rad, mm/rad²).
     #[inline]
     pub fn locus_jet(&self, t: f64) -> LocusJet {
+        self.jet_from(&Trig::at(t, self.rollers as f64))
+    }
+
+    /// C, C', C'' from the sines and cosines of t and n·t.
+    #[inline]
+    fn jet_from(&self, trig: &Trig) -> LocusJet {
         let n = self.rollers as f64;
         let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
-        let (s, c) = t.sin_cos();
-        let (sn, cn) = (n * t).sin_cos();
+        let Trig { s, c, sn, cn } = *trig;
         LocusJet {
             c: Vec2::new(r * c - e * cn, r * s - e * sn),
             d1: Vec2::new(-r * s + e * n * sn, r * c - e * n * cn),
@@ -122,9 +161,18 @@ impl Profile {
     }
 
     /// Signed curvature of the locus, κ_C = (C' × C'')/|C'|³, 1/mm; positive where convex.
+    /// In closed form (expand C' × C'' and |C'|² with c = cos((n − 1)t)):
+    ///   κ_C = (R'² + e²n³ − R'e·n(n + 1)·c) / (R'² + e²n² − 2R'e·n·c)^{3/2}.
     pub fn locus_curvature(&self, t: f64) -> f64 {
-        let j = self.locus_jet(t);
-        cross(j.d1, j.d2) / j.d1.norm().powi(3)
+        self.locus_curvature_at(((self.rollers - 1) as f64 * t).cos())
+    }
+
+    /// κ_C from c = cos((n − 1)t); see `locus_curvature`.
+    pub fn locus_curvature_at(&self, c: f64) -> f64 {
+        let n = self.rollers as f64;
+        let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
+        let speed2 = r * r + e * e * n * n - 2.0 * r * e * n * c;
+        (r * r + e * e * n * n * n - r * e * n * (n + 1.0) * c) / (speed2 * speed2.sqrt())
     }
 
     /// dκ_C/dt = (C' × C''')/|C'|³ − 3·κ_C·(C'·C'')/|C'|², 1/(mm·rad).
@@ -214,9 +262,12 @@ impl Profile {
         let q = self.unturned(p);
         let t0 = t_start.rem_euclid(std::f64::consts::TAU);
         let reach = PI / self.rollers as f64;
+        let n = self.rollers as f64;
         let mut t = t0;
+        // sin/cos are computed once; Newton updates advance them by angle addition.
+        let mut trig = Trig::at(t, n);
         for iteration in 1..=MAX_ITER {
-            let j = self.locus_jet(t);
+            let j = self.jet_from(&trig);
             let d = j.c - q;
             let h = d.dot(&j.d1);
             let dh = j.d1.norm_squared() + d.dot(&j.d2);
@@ -225,6 +276,10 @@ impl Profile {
             } else {
                 -h.signum() * MAX_STEP
             };
+            if step.abs() <= 1e-13 {
+                return Ok(self.foot_from(t, &j, q));
+            }
+            trig = trig.advanced(t, step, n);
             t += step;
             if (t - t0).abs() > reach || !t.is_finite() {
                 return Err(ClosestPointFailure {
@@ -233,8 +288,10 @@ impl Profile {
                     iterations: iteration,
                 });
             }
-            if step.abs() <= 1e-13 {
-                return Ok(self.foot(t, q));
+            // Newton is quadratic here (h' > 0 and the step is tiny): the error after this step
+            // is ~ (h''/2h')·step² < 1e-15 rad, so the jet at the new t is the answer.
+            if dh > 0.0 && step.abs() <= 1e-8 {
+                return Ok(self.foot_from(t, &self.jet_from(&trig), q));
             }
         }
         Err(ClosestPointFailure {
@@ -244,9 +301,8 @@ impl Profile {
         })
     }
 
-    fn foot(&self, t: f64, q: Vec2) -> Foot {
-        let j = self.locus_jet(t);
-        let n = Self::unrotated_normal(&j);
+    fn foot_from(&self, t: f64, j: &LocusJet, q: Vec2) -> Foot {
+        let n = Self::unrotated_normal(j);
         let point = j.c - self.offset_mm * n;
         Foot {
             t: t.rem_euclid(std::f64::consts::TAU),

@@ -1,0 +1,82 @@
+//! Engine benchmarks (divan). Run: `cargo bench --bench engine`. Numbers go in BENCHMARKS.md.
+//! Single-threaded by default (RAYON_NUM_THREADS=1 recommended for the per-core targets).
+
+use cycloid::equilibrium::curves;
+use cycloid::equilibrium::sweep::Model;
+use cycloid::geometry::clearance::{self, Mesh};
+use cycloid::spec::{self, GeometryMode, Spec};
+use std::hint::black_box;
+
+fn main() {
+    divan::main();
+}
+
+fn paper() -> Spec {
+    spec::load("specs/paper.yaml").expect("specs/paper.yaml")
+}
+
+fn crank(n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|k| std::f64::consts::TAU / 10.0 * k as f64 / n as f64)
+        .collect()
+}
+
+/// Unloaded clearance of every roller with backlash, one mesh period at 0.1°.
+#[divan::bench]
+fn clearance_sweep_360(b: divan::Bencher) {
+    let s = paper();
+    let mesh = Mesh::new(&s.design, &s.modification);
+    let c = crank(360);
+    b.bench(|| clearance::sweep(black_box(&mesh), &c).unwrap());
+}
+
+/// Whole-mesh minimum clearance (the optimiser's constraint), 360 angles.
+#[divan::bench]
+fn min_gap_360(b: divan::Bencher) {
+    let s = paper();
+    let mesh = Mesh::new(&s.design, &s.modification);
+    let c = crank(360);
+    b.bench(|| clearance::min_gap(black_box(&mesh), &c).unwrap());
+}
+
+fn loaded(b: divan::Bencher, geometry: GeometryMode) {
+    let s = paper();
+    let mut scene = s.scenes[0].clone();
+    scene.geometry = geometry;
+    let model = Model::new(&s.design, &s.modification, &scene, true, true, true);
+    let c = crank(3600);
+    b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
+}
+
+/// Loaded sweep of 3,600 crank angles, exact geometry (target < 10 ms on one core).
+#[divan::bench(sample_count = 20)]
+fn loaded_sweep_3600_exact(b: divan::Bencher) {
+    loaded(b, GeometryMode::Exact);
+}
+
+/// Loaded sweep of 3,600 crank angles, first-order geometry (target < 1 ms on one core).
+#[divan::bench(sample_count = 50)]
+fn loaded_sweep_3600_first_order(b: divan::Bencher) {
+    loaded(b, GeometryMode::FirstOrder);
+}
+
+/// One full optimisation study (the paper's positive ratio study).
+#[divan::bench(sample_count = 3)]
+fn optimisation_positive_ratio(b: divan::Bencher) {
+    let s = paper();
+    b.bench(|| cycloid::optimise::run_study(&s, &s.studies[0]));
+}
+
+/// `check specs/paper.yaml` end to end, all four optimisations included (target < 2 s).
+#[divan::bench(sample_count = 3)]
+fn check_paper_end_to_end(b: divan::Bencher) {
+    b.bench(|| {
+        let mut out = Vec::new();
+        let cli = <cycloid::cli::Cli as clap::Parser>::parse_from([
+            "cycloid",
+            "check",
+            "specs/paper.yaml",
+        ]);
+        cycloid::cli::run(cli, &mut out).unwrap()
+    });
+}

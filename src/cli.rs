@@ -54,8 +54,8 @@ pub enum Command {
         csv: Option<String>,
         #[arg(long)]
         dxf: Option<String>,
-        /// Largest chordal error of the exported polyline, µm.
-        #[arg(long, default_value_t = 0.5)]
+        /// Largest chordal error of the exported polyline, µm (at least 0.001).
+        #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
         tolerance_um: f64,
     },
 }
@@ -166,6 +166,9 @@ fn locate(mut e: Error, spec: &spec::Spec) -> Error {
     e
 }
 
+/// Finest chordal tolerance `profile` accepts, µm.
+pub const MIN_TOLERANCE_UM: f64 = 0.001;
+
 fn run_profile(
     path: &str,
     csv: Option<&str>,
@@ -177,6 +180,16 @@ fn run_profile(
         return Err(Error::new(
             crate::ErrorKind::InvalidValue,
             format!("--tolerance-um must be a positive number, got {tolerance_um}"),
+        ));
+    }
+    // Below a nanometre the point count explodes (≈ 1/√tolerance) and the chords approach the
+    // rounding of f64 coordinates; the export would run for hours and exhaust memory.
+    if tolerance_um < MIN_TOLERANCE_UM {
+        return Err(Error::new(
+            crate::ErrorKind::InvalidValue,
+            format!(
+                "--tolerance-um must be at least {MIN_TOLERANCE_UM} (1 nm), got {tolerance_um}"
+            ),
         ));
     }
     let spec = spec::load(path)?;

@@ -9,7 +9,7 @@ use crate::equilibrium::curves::{self, LoadedSweep};
 use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, ClearanceSweep, Mesh};
-use crate::spec::{GeometryMode, Scene, Spec};
+use crate::spec::{ContactLaw, GeometryMode, Scene, Spec};
 
 /// A physical effect a scene can ask for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -175,8 +175,11 @@ pub fn explain(spec: &Spec) -> String {
         );
         if plan.has(Effect::RollerContact) || plan.has(Effect::OutputPins) {
             out += &format!(
-                "  contact law {:?}, crank bearing {}\n",
-                scene.contact_law,
+                "  contact law {}, crank bearing {}\n",
+                match scene.contact_law {
+                    ContactLaw::PaperLinear => "paper_linear",
+                    ContactLaw::HertzNonlinear => "hertz_nonlinear",
+                },
                 match scene.bearing_stiffness_n_per_mm {
                     Some(k) => format!("compliant ({k} N/mm)"),
                     None => "rigid".to_string(),

@@ -182,6 +182,11 @@ impl Mesh {
     }
 }
 
+/// Gaps closer than this count as equal when locating the minimum, so that mirror-symmetric
+/// rollers with equal gaps report the first (lowest roller index, earliest angle) whatever the
+/// last bit of round-off says. A picometre: far below any tolerance that matters.
+const TIE_MM: f64 = 1e-9 * 1e-3;
+
 /// Where the smallest gap of a sweep occurs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MinClearance {
@@ -209,7 +214,7 @@ pub fn min_gap(mesh: &Mesh, crank_rad: &[f64]) -> Result<MinClearance, GapFailur
         for (i, t) in warm.iter_mut().enumerate() {
             let g = mesh.roller_gap(i, &pose, *t)?;
             *t = Some(g.t);
-            if g.gap_mm < min.gap_mm {
+            if g.gap_mm < min.gap_mm - TIE_MM {
                 min = MinClearance {
                     gap_mm: g.gap_mm,
                     roller: i,
@@ -256,7 +261,7 @@ pub fn sweep(mesh: &Mesh, crank_rad: &[f64]) -> Result<ClearanceSweep, GapFailur
         for (i, gaps) in gap_mm.iter_mut().enumerate() {
             let g = mesh.roller_gap(i, &pose, None)?;
             gaps.push(g.gap_mm);
-            if g.gap_mm < min.gap_mm {
+            if g.gap_mm < min.gap_mm - TIE_MM {
                 min = MinClearance {
                     gap_mm: g.gap_mm,
                     roller: i,

@@ -25,6 +25,40 @@ pub fn parse(path: &str, text: &str) -> Result<Spec> {
 }
 
 fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
+    let at = |line: usize, column: usize| Location {
+        file: path.to_string(),
+        line,
+        column,
+    };
+    // YAML syntax first, on an untyped value: a syntax error then carries no key path (the
+    // typed pass would name whatever key it had reached, e.g. `name` for a tab on line 2).
+    // Duplicate keys and integers too large for any YAML value are left to the typed pass,
+    // which knows their key path.
+    let typed_error = |m: &str| {
+        [
+            "duplicate entry with key",
+            "invalid type: ",
+            "invalid value: ",
+        ]
+        .iter()
+        .any(|p| m.contains(p))
+    };
+    match serde_yaml::from_str::<serde_yaml::Value>(text) {
+        Ok(serde_yaml::Value::Null) => {
+            return Err(Error::new(
+                ErrorKind::Syntax,
+                "the spec is empty; it needs at least `name`, `reducer` and `scenes`",
+            )
+            .at(at(1, 1)))
+        }
+        Err(err) if !typed_error(&err.to_string()) => {
+            let (line, column) = err.location().map_or((1, 1), |l| (l.line(), l.column()));
+            return Err(
+                Error::new(ErrorKind::Syntax, yaml_message(&err.to_string())).at(at(line, column)),
+            );
+        }
+        _ => {}
+    }
     match deserialize::<RawOptimise>(path, text) {
         // An untagged `optimise` that matched no form: parse again as the form the YAML has
         // (a mapping is one study, a list is many) to get the precise key and location.
@@ -46,31 +80,29 @@ fn deserialize<O>(path: &str, text: &str) -> Result<RawSpecOf<RawOptimise>>
 where
     O: serde::de::DeserializeOwned + Into<RawOptimise>,
 {
+    let at = |line: usize, column: usize| Location {
+        file: path.to_string(),
+        line,
+        column,
+    };
     let de = serde_yaml::Deserializer::from_str(text);
     let raw: RawSpecOf<O> = serde_path_to_error::deserialize(de).map_err(|err| {
         let key_path = err.path().to_string();
+        let key_path = if key_path == "." {
+            String::new()
+        } else {
+            key_path
+        };
         let inner = err.into_inner();
-        let mut message = inner.to_string();
-        // serde_yaml appends " at line L column C"; the location goes in front instead.
-        if let Some(cut) = message.find(" at line ") {
-            message.truncate(cut);
-        }
-        if let Some(cut) = message.strip_prefix(&format!("{key_path}: ")) {
-            message = cut.to_string();
-        }
-        if message.contains("untagged enum RawObjective") {
-            message = "expected an objective name or a map of objective names to weights".into();
-        }
-        let mut error = Error::new(ErrorKind::Syntax, message);
-        if key_path != "." && !key_path.is_empty() {
+        let (line, column) = inner.location().map_or((1, 1), |l| (l.line(), l.column()));
+        let (key_path, message, relocated) =
+            user_message(text, &key_path, &yaml_message(&inner.to_string()));
+        let (line, column) = relocated.unwrap_or((line, column));
+        let mut error = Error::new(ErrorKind::Syntax, message).at(at(line, column));
+        if !key_path.is_empty() {
             error = error.at_key(key_path);
         }
-        let (line, column) = inner.location().map_or((1, 1), |l| (l.line(), l.column()));
-        error.at(Location {
-            file: path.to_string(),
-            line,
-            column,
-        })
+        error
     })?;
     Ok(RawSpecOf {
         name: raw.name,
@@ -94,6 +126,155 @@ impl From<Vec<RawStudy>> for RawOptimise {
     }
 }
 
+/// serde_yaml's message without what the error already says elsewhere: its own key-path prefix
+/// (`reducer: `) and the first ` at line L column C` (the location goes in front instead).
+fn yaml_message(message: &str) -> String {
+    if message.starts_with("deserializing from YAML containing more than one document") {
+        return "more than one YAML document (`---`); a spec is a single document".to_string();
+    }
+    let mut message = message.to_string();
+    if let Some((head, tail)) = message.split_once(": ") {
+        let is_path = !head.is_empty()
+            && head
+                .chars()
+                .all(|c| c.is_alphanumeric() || "_.[]?".contains(c));
+        if is_path {
+            message = tail.to_string();
+        }
+    }
+    if let Some(start) = message.find(" at line ") {
+        let rest = &message[start + " at line ".len()..];
+        let number = |s: &str| s.len() - s.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+        let n = number(rest);
+        if n > 0 && rest[n..].starts_with(" column ") {
+            let tail = &rest[n + " column ".len()..];
+            let m = number(tail);
+            if m > 0 {
+                message = format!("{}{}", &message[..start], &tail[m..]);
+            }
+        }
+    }
+    message
+}
+
+/// The names between backticks in a serde message, in order.
+fn backticked(message: &str) -> Vec<&str> {
+    message.split('`').skip(1).step_by(2).collect()
+}
+
+/// Turn serde's wording (fields, Rust types) into the spec's (keys, numbers). Returns the key
+/// path, the message and, for a duplicate key, the location of the second occurrence.
+fn user_message(
+    text: &str,
+    key_path: &str,
+    message: &str,
+) -> (String, String, Option<(usize, usize)>) {
+    let join = |parent: &str, key: &str| {
+        if parent.is_empty() {
+            key.to_string()
+        } else {
+            format!("{parent}.{key}")
+        }
+    };
+    if let Some(rest) = message.strip_prefix("unknown field ") {
+        // serde_path_to_error's path already ends with the unknown key.
+        let names = backticked(rest);
+        let (unknown, known) = names.split_first().map_or(("", &[][..]), |(u, k)| (*u, k));
+        let message = match did_you_mean(unknown, known.iter().copied()) {
+            Some(close) => format!("unknown key; did you mean `{close}`?"),
+            None if known.is_empty() => "unknown key; this mapping takes no keys".to_string(),
+            None => format!("unknown key; the keys here are {}", known.join(", ")),
+        };
+        return (key_path.to_string(), message, None);
+    }
+    if let Some(rest) = message.strip_prefix("missing field ") {
+        return (
+            key_path.to_string(),
+            format!("missing required key {rest}"),
+            None,
+        );
+    }
+    if let Some(rest) = message.strip_prefix("duplicate field ") {
+        let key = backticked(rest).first().copied().unwrap_or("");
+        let full = join(key_path, key);
+        let second = locate_duplicate(text, key_path, key);
+        return (full, "key appears twice".to_string(), second);
+    }
+    // An integer beyond i64: serde_yaml says "invalid value: integer `N`, expected i64" or
+    // "invalid type: integer `N` as u128, expected i64".
+    let integer = ["invalid value: integer `", "invalid type: integer `"]
+        .iter()
+        .any(|p| message.starts_with(p));
+    if integer && message.ends_with(", expected i64") {
+        let digits = backticked(message).first().copied().unwrap_or("");
+        return (
+            key_path.to_string(),
+            format!("integer `{digits}` is out of range"),
+            None,
+        );
+    }
+    if message.contains("untagged enum RawObjective") {
+        return (
+            key_path.to_string(),
+            "expected an objective name or a map of objective names to weights".to_string(),
+            None,
+        );
+    }
+    let message = message
+        .replace("unit value", "null")
+        .replace(", expected i64", ", expected an integer")
+        .replace(", expected f64", ", expected a number");
+    (key_path.to_string(), message, None)
+}
+
+/// The closest of `known` to `unknown` when it is close enough to be a misspelling.
+fn did_you_mean<'a>(unknown: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    let limit = (unknown.chars().count() / 3).max(2);
+    known
+        .map(|k| (edit_distance(unknown, k), k))
+        .filter(|(d, _)| *d <= limit)
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, k)| k)
+}
+
+/// Levenshtein distance over chars.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let next = (prev + usize::from(ca != cb))
+                .min(row[j] + 1)
+                .min(row[j + 1] + 1);
+            prev = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
+}
+
+/// The second `key:` at the same column as the first, inside the mapping at `parent`.
+fn locate_duplicate(text: &str, parent: &str, key: &str) -> Option<(usize, usize)> {
+    let start = if parent.is_empty() {
+        0
+    } else {
+        locate_offset(text, parent)?
+    };
+    let first = find_key(text, start, key)?;
+    let column = line_column(text, first).1;
+    let mut from = first + key.len();
+    loop {
+        let next = find_key(text, from, key)?;
+        let (line, col) = line_column(text, next);
+        if col == column {
+            return Some((line, col));
+        }
+        from = next + key.len();
+    }
+}
+
 /// Attach a location to a value/design error from its key path, if the key is in the text.
 fn locate_error(mut error: Error, path: &str, text: &str) -> Error {
     if error.location.is_none() {
@@ -112,7 +293,9 @@ fn locate_error(mut error: Error, path: &str, text: &str) -> Error {
 }
 
 /// Find the 1-based line and column of a dotted key path (`scenes[0].crank.steps`) in YAML text.
-/// Best effort: keys are matched in order as `key:` outside comments; list items by indentation.
+/// Best effort: keys are matched in order as `key:` outside comments; list items of block
+/// sequences by indentation, of flow sequences (`[a, b]`) by commas. A list item's location is
+/// its value (after `- `), so `scenes[0].effects[1]` points at the effect's name.
 pub fn locate(text: &str, key_path: &str) -> Option<(usize, usize)> {
     locate_offset(text, key_path).map(|offset| line_column(text, offset))
 }
@@ -122,19 +305,17 @@ pub fn locate_offset(text: &str, key_path: &str) -> Option<usize> {
     let mut pos = 0usize;
     let mut hit = None;
     for segment in key_path.split('.') {
-        let (key, index) = match segment.find('[') {
-            Some(b) => (
-                &segment[..b],
-                segment[b + 1..segment.len() - 1].parse::<usize>().ok(),
-            ),
-            None => (segment, None),
+        let (key, indices) = match segment.find('[') {
+            Some(b) => (&segment[..b], &segment[b..]),
+            None => (segment, ""),
         };
         if !key.is_empty() {
             pos = find_key(text, pos, key)?;
             hit = Some(pos);
         }
-        if let Some(i) = index {
-            pos = find_item(text, pos, i)?;
+        for index in indices.split(']').filter(|s| !s.is_empty()) {
+            let index = index.strip_prefix('[')?.parse::<usize>().ok()?;
+            pos = find_item(text, pos, index)?;
             hit = Some(pos);
         }
     }
@@ -160,26 +341,110 @@ fn find_key(text: &str, from: usize, key: &str) -> Option<usize> {
     None
 }
 
+/// Item `index` of the sequence that is the value of the key (or item) at `from`.
 fn find_item(text: &str, from: usize, index: usize) -> Option<usize> {
-    let mut indent = None;
+    let line_end = text[from..].find('\n').map_or(text.len(), |n| from + n);
+    // The value on the key's own line: `key: [a, b]` or `- [a, b]`.
+    let value = match text[from..line_end].find(": ") {
+        Some(colon) => from + colon + 1,
+        None => text[from..line_end]
+            .find(':')
+            .map_or(line_end, |colon| from + colon + 1),
+    };
+    let value = value + (text[value..line_end].len() - text[value..line_end].trim_start().len());
+    if text[value..].starts_with('[') {
+        return find_flow_item(text, value, index);
+    }
+    find_block_item(text, from, line_end, index)
+}
+
+/// Item `index` of the flow sequence whose `[` is at `open`.
+fn find_flow_item(text: &str, open: usize, index: usize) -> Option<usize> {
+    let mut depth = 0usize;
+    let mut count = 0usize;
+    let mut expect_item = false;
+    let mut quote: Option<char> = None;
+    let mut comment = false;
+    let mut prev = ' ';
+    for (rel, c) in text[open..].char_indices() {
+        let at = open + rel;
+        if comment {
+            comment = c != '\n';
+        } else if let Some(q) = quote {
+            if c == q {
+                quote = None;
+            }
+        } else if c == '#' && prev.is_whitespace() {
+            comment = true;
+        } else if expect_item && !c.is_whitespace() && c != ']' {
+            if count == index {
+                return Some(at);
+            }
+            count += 1;
+            expect_item = false;
+            if c == '"' || c == '\'' {
+                quote = Some(c);
+            } else if c == '[' || c == '{' {
+                depth += 1;
+            }
+        } else {
+            match c {
+                '"' | '\'' => quote = Some(c),
+                '[' | '{' => {
+                    depth += 1;
+                    expect_item = depth == 1;
+                }
+                ']' | '}' => {
+                    depth = depth.checked_sub(1)?;
+                    if depth == 0 {
+                        return None;
+                    }
+                }
+                ',' if depth == 1 => expect_item = true,
+                _ => {}
+            }
+        }
+        prev = c;
+    }
+    None
+}
+
+/// Item `index` of the block sequence on the lines after the key at `from`.
+fn find_block_item(text: &str, from: usize, line_end: usize, index: usize) -> Option<usize> {
+    let line_start = text[..from].rfind('\n').map_or(0, |n| n + 1);
+    let key_indent = from - line_start;
+    let mut indent: Option<usize> = None;
     let mut count = 0;
-    let mut offset = text[from..].find('\n').map(|n| from + n + 1)?;
+    let mut offset = (line_end + 1).min(text.len());
     for line in text[offset..].split_inclusive('\n') {
         let trimmed = line.trim_start_matches(' ');
         let this_indent = line.len() - trimmed.len();
-        if trimmed.starts_with("- ") || trimmed.trim_end() == "-" {
-            if indent.is_none_or(|i| i == this_indent) {
-                indent = Some(this_indent);
-                if count == index {
-                    return Some(offset + this_indent);
-                }
-                count += 1;
+        let content = trimmed.trim_end();
+        if content.is_empty() || content.starts_with('#') {
+            offset += line.len();
+            continue;
+        }
+        let is_item = trimmed.starts_with("- ") || content == "-";
+        let list_indent = match indent {
+            // The value is a block sequence only if its first line is an item under the key.
+            None if is_item && this_indent >= key_indent => *indent.insert(this_indent),
+            None => return None,
+            Some(i) => i,
+        };
+        if this_indent < list_indent || (this_indent == list_indent && !is_item) {
+            return None;
+        }
+        if this_indent == list_indent {
+            if count == index {
+                let after_dash = &trimmed[1..];
+                let value = after_dash.trim_start_matches(' ');
+                return Some(if value.trim_end().is_empty() {
+                    offset + this_indent
+                } else {
+                    offset + this_indent + 1 + (after_dash.len() - value.len())
+                });
             }
-        } else if let Some(i) = indent {
-            let content = !trimmed.trim().is_empty() && !trimmed.starts_with('#');
-            if content && this_indent < i {
-                return None;
-            }
+            count += 1;
         }
         offset += line.len();
     }
@@ -300,7 +565,11 @@ fn modification(raw: &RawModification) -> Result<Modification> {
     })
 }
 
-fn crank(key: &str, raw: &RawCrank) -> Result<Vec<f64>> {
+/// Largest rollers × crank angles of one scene: every per-roller, per-angle array of the results
+/// must fit in memory (10⁷ f64 are 80 MB).
+pub const MAX_ROLLER_ANGLES: i64 = 10_000_000;
+
+fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
     let from = finite(&format!("{key}.from_deg"), raw.from_deg)?;
     let to = finite(&format!("{key}.to_deg"), raw.to_deg)?;
     let steps = raw.steps;
@@ -308,6 +577,16 @@ fn crank(key: &str, raw: &RawCrank) -> Result<Vec<f64>> {
         return Err(invalid(
             &format!("{key}.steps"),
             format!("a crank range needs at least 1 step, got {steps}"),
+        ));
+    }
+    let max_steps = MAX_ROLLER_ANGLES / rollers.max(1) as i64;
+    if steps > max_steps {
+        return Err(invalid(
+            &format!("{key}.steps"),
+            format!(
+                "at most {max_steps} steps with {rollers} rollers \
+                 (rollers × steps ≤ {MAX_ROLLER_ANGLES}), got {steps}"
+            ),
         ));
     }
     if to <= from {
@@ -322,7 +601,7 @@ fn crank(key: &str, raw: &RawCrank) -> Result<Vec<f64>> {
         .collect())
 }
 
-fn scene(index: usize, raw: RawScene) -> Result<Scene> {
+fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
     let key = format!("scenes[{index}]");
     if raw.name.trim().is_empty() {
         return Err(invalid(&format!("{key}.name"), "must not be empty".into()));
@@ -330,14 +609,15 @@ fn scene(index: usize, raw: RawScene) -> Result<Scene> {
     let mut effects = Vec::new();
     for (j, name) in raw.effects.iter().enumerate() {
         let effect = Effect::from_name(name).ok_or_else(|| {
-            invalid(
-                &format!("{key}.effects[{j}]"),
-                format!(
+            let known = Effect::ALL.map(|e| e.name());
+            let message = match did_you_mean(name, known.into_iter()) {
+                Some(close) => format!("unknown effect `{name}`; did you mean `{close}`?"),
+                None => format!(
                     "unknown effect `{name}`; known effects: {}",
-                    Effect::ALL.map(|e| e.name()).join(", ")
+                    known.join(", ")
                 ),
-            )
-            .at_key(format!("{key}.effects"))
+            };
+            invalid(&format!("{key}.effects[{j}]"), message)
         })?;
         if !effects.contains(&effect) {
             effects.push(effect);
@@ -376,7 +656,7 @@ fn scene(index: usize, raw: RawScene) -> Result<Scene> {
     Ok(Scene {
         output_torque_nmm: finite(&format!("{key}.output_torque_nm"), raw.output_torque_nm)?
             * 1000.0,
-        crank_rad: crank(&format!("{key}.crank"), &raw.crank)?,
+        crank_rad: crank(&format!("{key}.crank"), &raw.crank, rollers)?,
         name: raw.name,
         effects,
         contact_law,
@@ -415,7 +695,7 @@ fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     }
     let mut scenes: Vec<Scene> = Vec::new();
     for (i, s) in raw.scenes.into_iter().enumerate() {
-        let s = scene(i, s)?;
+        let s = scene(i, s, design.rollers)?;
         if scenes.iter().any(|other| other.name == s.name) {
             return Err(invalid(
                 &format!("scenes[{i}].name"),

@@ -8,7 +8,10 @@ use std::collections::BTreeMap;
 /// The whole spec, generic over the form of `optimise` so that a failed untagged match can be
 /// parsed again as the form the YAML has, for a precise error (see `spec::parse_raw`).
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a spec: a mapping with the keys name, reducer, scenes (and optionally modification, limits, optimise)"
+)]
 pub struct RawSpecOf<O> {
     pub name: String,
     pub reducer: RawReducer,
@@ -109,7 +112,10 @@ pub struct RawReference {
 }
 
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping of the reducer keys (teeth, rollers, eccentricity_mm, ...)"
+)]
 pub struct RawReducer {
     pub teeth: i64,
     pub rollers: i64,
@@ -125,7 +131,10 @@ pub struct RawReducer {
 }
 
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys count, circle_radius_mm, pin_radius_mm (and optionally hole_clearance_mm)"
+)]
 pub struct RawOutputPins {
     pub count: i64,
     pub circle_radius_mm: f64,
@@ -135,14 +144,20 @@ pub struct RawOutputPins {
 }
 
 #[derive(Debug, Deserialize, Clone, Copy)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys youngs_modulus_gpa, poisson_ratio"
+)]
 pub struct RawMaterial {
     pub youngs_modulus_gpa: f64,
     pub poisson_ratio: f64,
 }
 
 #[derive(Debug, Deserialize, Default)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys shift_mm, equidistant_mm, rotation_deg"
+)]
 pub struct RawModification {
     #[serde(default)]
     pub shift_mm: f64,
@@ -153,7 +168,10 @@ pub struct RawModification {
 }
 
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a scene: a mapping with the keys name, crank, effects (and optionally output_torque_nm, ...)"
+)]
 pub struct RawScene {
     pub name: String,
     #[serde(default)]
@@ -169,7 +187,10 @@ pub struct RawScene {
 }
 
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys from_deg, to_deg, steps"
+)]
 pub struct RawCrank {
     pub from_deg: f64,
     pub to_deg: f64,
@@ -177,7 +198,10 @@ pub struct RawCrank {
 }
 
 #[derive(Debug, Deserialize, Default)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping of limit keys (min_clearance_mm, ...)"
+)]
 pub struct RawLimits {
     pub min_clearance_mm: Option<f64>,
     pub max_roller_force_n: Option<f64>,

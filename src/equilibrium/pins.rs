@@ -8,7 +8,7 @@
 //! carry a positive output torque. Exact derivatives: ∂gap/∂βo = −(Q − O) × û and ∂gap/∂u = û.
 
 use crate::contact::law::{self, ContactForce, LineContact};
-use crate::geometry::{cross, Vec2};
+use crate::geometry::{cross, rotate, Vec2};
 use crate::spec::{ContactLaw, Design};
 
 /// One pin's contact.
@@ -72,20 +72,44 @@ impl Pins {
         &self.contact
     }
 
-    /// Evaluate every pin. `disc_centre` includes any bearing deflection; `psi` is the disc
-    /// rotation; `output_lag` is βo.
-    pub fn evaluate(&self, disc_centre: Vec2, psi: f64, output_lag: f64, out: &mut Vec<PinState>) {
+    /// Evaluate every pin at crank φ with the disc centre at e·(cos φ, sin φ) + `offset`;
+    /// `psi` is the disc rotation; `output_lag` is βo.
+    ///
+    /// The approach of a pin is tiny (~1e-7 mm at small torques) next to the pin and hole
+    /// positions (~rw from the origin), so the gap is never formed by subtracting those nearly
+    /// equal vectors, whose rounding (a few ulp of rw, ~1e-14 mm) would swamp the balance.
+    /// With w = Q − rw·e^{iγ} = rw·e^{iγ}·(e^{iβo} − 1) and O the disc centre, d = w − O and
+    ///   e + c − |d| = c − (|d|² − e²)/(|d| + e),  |d|² − e² = 2e·ê·u + |u|² − 2·O·w + |w|²,
+    /// every term of which is formed from small quantities.
+    pub fn evaluate(
+        &self,
+        crank_rad: f64,
+        offset: Vec2,
+        psi: f64,
+        output_lag: f64,
+        out: &mut Vec<PinState>,
+    ) {
         out.clear();
         let m = self.count as f64;
+        let e = self.eccentricity_mm;
+        let (sc, cc) = crank_rad.sin_cos();
+        let ecc = Vec2::new(cc, sc);
+        let disc_centre = ecc * e + offset;
+        let half = (0.5 * output_lag).sin();
+        // e^{iβo} − 1, with cos βo − 1 = −2·sin²(βo/2) (no cancellation).
+        let turn = Vec2::new(-2.0 * half * half, output_lag.sin());
+        let centre_sq = 2.0 * e * ecc.dot(&offset) + offset.norm_squared();
         for j in 0..self.count {
             let gamma = std::f64::consts::TAU * j as f64 / m + psi;
-            let arm_vec = Vec2::new(gamma.cos(), gamma.sin()) * self.circle_radius_mm;
-            let pin = Vec2::new((gamma + output_lag).cos(), (gamma + output_lag).sin())
-                * self.circle_radius_mm;
-            let d = pin - (disc_centre + arm_vec);
+            let (sg, cg) = gamma.sin_cos();
+            let arm_vec = Vec2::new(cg, sg) * self.circle_radius_mm;
+            let w = rotate(turn, cg, sg) * self.circle_radius_mm;
+            let pin = arm_vec + w;
+            let d = w - disc_centre;
             let dist = d.norm();
             let u = d / dist;
-            let gap_mm = self.eccentricity_mm + self.clearance_mm - dist;
+            let excess = centre_sq - 2.0 * disc_centre.dot(&w) + w.norm_squared();
+            let gap_mm = self.clearance_mm - excess / (dist + e);
             let cf = if gap_mm < 0.0 {
                 law::force(self.law, &self.contact, -gap_mm)
             } else {

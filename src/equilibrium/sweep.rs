@@ -85,8 +85,15 @@ fn roller_balance(
     })
 }
 
-fn pin_balance(p: &Pins, centre: Vec2, psi: f64, lag: f64, states: &mut Vec<PinState>) -> Balance {
-    p.evaluate(centre, psi, lag, states);
+fn pin_balance(
+    p: &Pins,
+    crank: f64,
+    offset: Vec2,
+    psi: f64,
+    lag: f64,
+    states: &mut Vec<PinState>,
+) -> Balance {
+    p.evaluate(crank, offset, psi, lag, states);
     let (value, slope, scale) = pins::moment(states);
     Balance {
         value,
@@ -164,29 +171,30 @@ fn solve_rollers(
 fn solve_pins(
     model: &Model,
     p: &Pins,
-    centre: Vec2,
+    crank: f64,
+    offset: Vec2,
     psi: f64,
     guess: f64,
     states: &mut Vec<PinState>,
 ) -> Result<f64, SolveFailure> {
     let root = monotone_root(
-        |lag| Ok::<_, String>(pin_balance(p, centre, psi, lag, states)),
+        |lag| Ok::<_, String>(pin_balance(p, crank, offset, psi, lag, states)),
         model.torque_nmm,
         guess,
         &model.settings,
     )?;
     let mut lag = root.x;
-    pin_balance(p, centre, psi, lag, states);
+    pin_balance(p, crank, offset, psi, lag, states);
     if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
         lag = touching(
             |l| {
-                pin_balance(p, centre, psi, l, states);
+                pin_balance(p, crank, offset, psi, l, states);
                 Ok::<_, String>(states.iter().map(|s| (s.gap_mm, s.gap_slope_mm)).collect())
             },
             lag,
         )
         .map_err(SolveFailure::Evaluation)?;
-        pin_balance(p, centre, psi, lag, states);
+        pin_balance(p, crank, offset, psi, lag, states);
     }
     Ok(lag)
 }
@@ -223,9 +231,16 @@ fn solve_rigid(
         sol.lag_rad = Some(lag);
     }
     if let Some(p) = &model.pins {
-        let centre = model.ideal_centre(crank) + offset;
         let guess = previous.output_lag_rad.unwrap_or(0.0);
-        sol.output_lag_rad = Some(solve_pins(model, p, centre, psi, guess, &mut sol.pins)?);
+        sol.output_lag_rad = Some(solve_pins(
+            model,
+            p,
+            crank,
+            offset,
+            psi,
+            guess,
+            &mut sol.pins,
+        )?);
     }
     Ok(sol)
 }
@@ -274,9 +289,9 @@ fn evaluate_at(
     };
     r.evaluate(&pose, &mut sol.rollers)
         .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
-    let centre = model.ideal_centre(crank) + sol.centre_offset_mm;
     p.evaluate(
-        centre,
+        crank,
+        sol.centre_offset_mm,
         -crank / model.teeth as f64 + x[2],
         x[3],
         &mut sol.pins,

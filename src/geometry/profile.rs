@@ -51,6 +51,9 @@ pub struct Foot {
     pub normal: Vec2,
     /// Signed distance of the query point from Γ along `normal`, mm: positive outside the disc.
     pub signed_distance_mm: f64,
+    /// Signed distance of the query point from the locus C along `normal`, mm
+    /// (`signed_distance_mm` − r', without the rounding of adding and removing r').
+    pub locus_distance_mm: f64,
 }
 
 /// The guarded Newton iteration left its bracket or ran out of iterations.
@@ -244,6 +247,84 @@ impl Profile {
         })
     }
 
+    /// Closest point on Γ to the point q = e^{−iα}·L(t_ref) + w (disc frame), where
+    /// L(t) = r_ref·e^{it} − e·e^{i·np·t} is a locus of this profile's eccentricity and lobes,
+    /// α a rotation and w a vector, both small.
+    ///
+    /// A roller centre sits on such a locus (r_ref = Rp, t_ref its own locus parameter), so this
+    /// is the roller's closest point without forming C(t) − q from two vectors of size ~Rp: that
+    /// difference, the sub-micrometre approach of a lightly loaded contact, would carry a
+    /// rounding of a few ulp of Rp (~1e-14 mm), too much for the 1e-9 balance. Here
+    ///   C(t_ref + s) − q = e^{i·t_ref}·((R' − r_ref)·e^{is} + r_ref·(e^{is} − 1))
+    ///                      − e·e^{i·np·t_ref}·(e^{i·np·s} − 1) − (e^{−iα} − 1)·L(t_ref) − w
+    /// with e^{ix} − 1 = (−2·sin²(x/2), sin x): every term is formed from small quantities.
+    /// Same iteration and guards as `closest_point`, in s = t − t_ref.
+    pub fn closest_point_near_locus(
+        &self,
+        t_ref: f64,
+        r_ref: f64,
+        alpha: f64,
+        w: Vec2,
+        t_start: f64,
+    ) -> Result<Foot, ClosestPointFailure> {
+        const MAX_STEP: f64 = 0.05;
+        const MAX_ITER: usize = 60;
+        let n = self.rollers as f64;
+        let e = self.eccentricity_mm;
+        // The profile turned by Δδ is the query turned back by Δδ.
+        let alpha = alpha + self.rotation_rad;
+        let w = self.unturned(w);
+        let base = expi(t_ref);
+        let lobe = expi(n * t_ref);
+        let locus_ref = base * r_ref - lobe * e;
+        let fixed = -(cmul(expi_minus_one(-alpha), locus_ref) + w);
+        let difference = |s: f64| -> Vec2 {
+            let radial = expi(s) * (self.locus_radius_mm - r_ref) + expi_minus_one(s) * r_ref;
+            cmul(base, radial) - cmul(lobe, expi_minus_one(n * s)) * e + fixed
+        };
+        let reach = PI / self.rollers as f64;
+        let s0 = (t_start - t_ref + PI).rem_euclid(std::f64::consts::TAU) - PI;
+        let mut s = s0;
+        for iteration in 1..=MAX_ITER {
+            let j = self.locus_jet(t_ref + s);
+            let d = difference(s);
+            let h = d.dot(&j.d1);
+            let dh = j.d1.norm_squared() + d.dot(&j.d2);
+            let step = if dh > 0.0 {
+                (-h / dh).clamp(-MAX_STEP, MAX_STEP)
+            } else {
+                -h.signum() * MAX_STEP
+            };
+            s += step;
+            if (s - s0).abs() > reach || !s.is_finite() {
+                return Err(ClosestPointFailure {
+                    t_start,
+                    t_last: t_ref + s,
+                    iterations: iteration,
+                });
+            }
+            if step.abs() <= 1e-13 {
+                let t = t_ref + s;
+                let j = self.locus_jet(t);
+                let normal = Self::unrotated_normal(&j);
+                let point = j.c - self.offset_mm * normal;
+                return Ok(Foot {
+                    t: t.rem_euclid(std::f64::consts::TAU),
+                    point: self.turned(point),
+                    normal: self.turned(normal),
+                    // (q − Γ)·N = −(C − q)·N + r'.
+                    signed_distance_mm: self.offset_mm - difference(s).dot(&normal),
+                    locus_distance_mm: -difference(s).dot(&normal),
+                });
+            }
+        }
+        Err(ClosestPointFailure {
+            t_start,
+            t_last: t_ref + s,
+            iterations: MAX_ITER,
+        })
+    }
+
     fn foot(&self, t: f64, q: Vec2) -> Foot {
         let j = self.locus_jet(t);
         let n = Self::unrotated_normal(&j);
@@ -253,6 +334,24 @@ impl Profile {
             point: self.turned(point),
             normal: self.turned(n),
             signed_distance_mm: (q - point).dot(&n),
+            locus_distance_mm: (q - j.c).dot(&n),
         }
     }
+}
+
+/// e^{ix} as a vector.
+fn expi(x: f64) -> Vec2 {
+    let (s, c) = x.sin_cos();
+    Vec2::new(c, s)
+}
+
+/// e^{ix} − 1 without cancellation: (−2·sin²(x/2), sin x).
+fn expi_minus_one(x: f64) -> Vec2 {
+    let h = (0.5 * x).sin();
+    Vec2::new(-2.0 * h * h, x.sin())
+}
+
+/// Complex product of two vectors.
+fn cmul(a: Vec2, b: Vec2) -> Vec2 {
+    Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
 }

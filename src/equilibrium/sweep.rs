@@ -124,6 +124,20 @@ fn touching<S>(
             break;
         }
     }
+    // Land on the open side: in the limit the first contact just touches and carries no force.
+    // Newton may stop a rounding error past the touch (a gap of −1e-18 mm, a force of 1e-12 N),
+    // which would make the contact count at zero torque depend on rounding.
+    for _ in 0..8 {
+        let overlap = eval(x)?
+            .into_iter()
+            .filter(|&(gap, slope)| slope < 0.0 && gap < 0.0)
+            .map(|(gap, slope)| gap / slope)
+            .fold(0.0, f64::max);
+        if overlap == 0.0 {
+            break;
+        }
+        x -= overlap + f64::EPSILON * x.abs();
+    }
     Ok(x)
 }
 

@@ -81,19 +81,43 @@ impl Pins {
         &self.contact
     }
 
-    /// Evaluate every pin. `disc_centre` includes any bearing deflection; `psi` is the disc
-    /// rotation; `output_lag` is βo.
-    pub fn evaluate(&self, disc_centre: Vec2, psi: f64, output_lag: f64, out: &mut Vec<PinState>) {
+    /// Evaluate every pin at crank φ with the disc centre at e·(cos φ, sin φ) + `offset`;
+    /// `psi` is the disc rotation; `output_lag` is βo.
+    ///
+    /// The approach of a pin is tiny (~1e-7 mm at small torques) next to the pin and hole
+    /// positions (~rw from the origin), so the gap is never formed by subtracting those nearly
+    /// equal vectors, whose rounding (a few ulp of rw, ~1e-14 mm) would swamp the balance.
+    /// With w = Q − rw·e^{iγ} = rw·e^{iγ}·(e^{iβo} − 1) and O the disc centre, d = w − O and
+    ///   e + c − |d| = c − (|d|² − e²)/(|d| + e),  |d|² − e² = 2e·ê·u + |u|² − 2·O·w + |w|²,
+    /// every term of which is formed from small quantities.
+    pub fn evaluate(
+        &self,
+        crank_rad: f64,
+        offset: Vec2,
+        psi: f64,
+        output_lag: f64,
+        out: &mut Vec<PinState>,
+    ) {
         out.clear();
+        let e = self.eccentricity_mm;
+        let (sc, cc) = crank_rad.sin_cos();
+        let ecc = Vec2::new(cc, sc);
+        let disc_centre = ecc * e + offset;
+        // e^{iβo} − 1 = (−2·sin²(βo/2), sin βo), without cancellation.
+        let half = sin_cos(0.5 * output_lag).0;
+        let turn = Vec2::new(-2.0 * half * half, sin_cos(output_lag).0);
+        let centre_sq = 2.0 * e * ecc.dot(&offset) + offset.norm_squared();
         let (s, c) = psi.sin_cos();
-        let (sl, cl) = sin_cos(output_lag);
-        for w in &self.base {
-            let arm_vec = rotate(*w, c, s) * self.circle_radius_mm;
-            let pin = rotate(arm_vec, cl, sl);
-            let d = pin - (disc_centre + arm_vec);
+        for unit in &self.base {
+            let (cg, sg) = (c * unit.x - s * unit.y, s * unit.x + c * unit.y);
+            let arm_vec = Vec2::new(cg, sg) * self.circle_radius_mm;
+            let w = rotate(turn, cg, sg) * self.circle_radius_mm;
+            let pin = arm_vec + w;
+            let d = w - disc_centre;
             let dist = d.norm();
             let u = d / dist;
-            let gap_mm = self.eccentricity_mm + self.clearance_mm - dist;
+            let excess = centre_sq - 2.0 * disc_centre.dot(&w) + w.norm_squared();
+            let gap_mm = self.clearance_mm - excess / (dist + e);
             out.push(self.state(
                 gap_mm,
                 cross(arm_vec, u),

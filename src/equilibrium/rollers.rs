@@ -13,8 +13,10 @@ use crate::contact::hertz_line::{hertz, HertzLine};
 use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::clearance::{GapFailure, Mesh, Pose};
 use crate::geometry::first_order;
+use crate::geometry::profile::LocusFrame;
 use crate::geometry::{cross, rotate, sin_cos, Vec2};
 use crate::spec::{ContactLaw, Design, GeometryMode, Modification};
+use std::f64::consts::{PI, TAU};
 
 /// One roller's contact at one pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,15 +60,20 @@ pub struct AngleTrig {
     pub e_phi: Vec2,
     /// (sin, cos) of −φ/nc.
     pub ideal: (f64, f64),
+    /// e^{i·np·φ/nc}: the lobe factor of every roller's locus point at this angle.
+    pub lobe: Vec2,
 }
 
 impl AngleTrig {
     pub fn new(crank_rad: f64, teeth: usize) -> Self {
         let (s, c) = crank_rad.sin_cos();
+        let turn = crank_rad / teeth as f64;
+        let lobe = (teeth + 1) as f64 * turn;
         AngleTrig {
             crank_rad,
             e_phi: Vec2::new(c, s),
-            ideal: (-crank_rad / teeth as f64).sin_cos(),
+            ideal: (-turn).sin_cos(),
+            lobe: Vec2::new(lobe.cos(), lobe.sin()),
         }
     }
 
@@ -244,7 +251,7 @@ impl Rollers {
                 }
             }
             *st = match self.geometry {
-                GeometryMode::Exact => self.exact_state(i, pose, st.t, centre, (s, c))?,
+                GeometryMode::Exact => self.exact_state(i, pose, trig, st.t, centre, (s, c))?,
                 GeometryMode::FirstOrder => self.first_order_state(i, pose, trig.e_phi),
             };
             if let Some(reach) = reaches.get_mut(i) {
@@ -259,26 +266,44 @@ impl Rollers {
         Ok(())
     }
 
+    /// Exact state of roller i. The roller centre is e^{−iβ}·L(t_i) + w in the disc frame
+    /// (L the unmodified locus, t_i = 2πi/np + φ/nc, w the bearing offset seen from the disc),
+    /// and the gap is formed from small quantities (`Profile::closest_point_in_frame`).
     fn exact_state(
         &self,
         i: usize,
         pose: &Pose,
+        trig: &AngleTrig,
         t_start: f64,
         centre: Vec2,
         (s, c): (f64, f64),
     ) -> Result<RollerState, GapFailure> {
-        let p = rotate(self.centres[i] - centre, c, -s);
+        let unit = self.centres[i] / self.design.roller_circle_radius_mm;
+        let (s0, c0) = trig.ideal;
+        // e^{i·t_i} = e^{i·2πi/np}·e^{iφ/nc}, and e^{iφ/nc} = conj(e^{−iφ/nc}).
+        let base = rotate(unit, c0, -s0);
+        let t_ref = self.mesh.locus_parameter(i, &Pose::ideal(pose.crank_rad));
+        let frame = LocusFrame {
+            t_ref,
+            r_ref: self.design.roller_circle_radius_mm,
+            base,
+            lobe: trig.lobe,
+        };
+        let w = -rotate(pose.centre_offset_mm, c, -s);
+        let s_start = (t_start - t_ref + PI).rem_euclid(TAU) - PI;
         let foot = self
             .mesh
             .profile
-            .closest_point(p, t_start)
+            .closest_point_in_frame(&frame, pose.lag_rad, w, s_start)
             .map_err(|detail| GapFailure {
                 roller: i,
                 pose: *pose,
                 detail,
             })?;
-        let gap_mm = foot.signed_distance_mm - self.design.roller_radius_mm;
+        let gap_mm =
+            (self.mesh.profile.offset_mm - self.design.roller_radius_mm) + foot.locus_distance_mm;
         let cf = self.contact_force(gap_mm, foot.t);
+        let p = rotate(self.centres[i] - centre, c, -s);
         Ok(RollerState {
             gap_mm,
             force_n: cf.force_n,

@@ -108,7 +108,7 @@ pub fn monotone_root<E: std::fmt::Display>(
         }
     };
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-    let mut step = settings.initial_step;
+    let mut step = 16.0 * settings.initial_step;
     let mut x = guess;
     for calls in 1..=settings.max_iterations {
         let b = eval(x)?;
@@ -126,17 +126,22 @@ pub fn monotone_root<E: std::fmt::Display>(
             hi = x;
         }
         let newton = (b.slope > 0.0).then(|| x - (b.value - target) / b.slope);
-        let next = match newton {
-            Some(n) if n > lo && n < hi => n,
-            _ if lo.is_finite() && hi.is_finite() => 0.5 * (lo + hi),
-            _ => {
-                // One-sided: march outwards with doubling steps.
+        let next = if lo.is_finite() && hi.is_finite() {
+            match newton {
+                Some(n) if n > lo && n < hi => n,
+                _ => 0.5 * (lo + hi),
+            }
+        } else {
+            // One-sided: Newton within a trust step that doubles whenever it binds, so a
+            // wild Newton step (steep or flat parts) becomes a march outwards.
+            let toward = if lo.is_finite() { 1.0 } else { -1.0 };
+            let wanted = newton.map_or(toward * f64::INFINITY, |n| n - x);
+            if wanted.abs() > step || wanted * toward <= 0.0 {
+                let move_by = toward * step;
                 step *= 2.0;
-                if lo.is_finite() {
-                    lo + step
-                } else {
-                    hi - step
-                }
+                x + move_by
+            } else {
+                x + wanted
             }
         };
         if (next - guess).abs() > settings.max_range {

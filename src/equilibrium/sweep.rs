@@ -66,6 +66,8 @@ impl Model {
 }
 
 /// The equilibrium at one crank angle. Fixed frame; lags in rad (positive opposes the motion).
+/// From `solve_angle` every roller state is exact; inside a sweep a roller proven out of reach
+/// has zero force, a lower bound as its gap and the geometry of its last exact evaluation.
 #[derive(Debug, Clone, Default)]
 pub struct AngleSolution {
     /// β, when the rollers are modelled.
@@ -88,6 +90,10 @@ pub struct AngleSolution {
 #[derive(Debug, Clone, Default)]
 pub struct Work {
     pub sol: AngleSolution,
+    /// Evaluate every roller exactly at the answer. Off in sweeps, where a roller proven out
+    /// of reach keeps the geometry of its last exact evaluation and a lower bound as its gap
+    /// (its force is exactly zero either way).
+    pub exact_final: bool,
     reaches: Vec<Reach>,
     history: Vec<(f64, f64, f64)>,
     terms: Vec<(f64, f64)>,
@@ -156,6 +162,20 @@ fn touching<S>(
             break;
         }
     }
+    // Land on the open side: in the limit the first contact just touches and carries no force.
+    // Newton may stop a rounding error past the touch (a gap of −1e-18 mm, a force of 1e-12 N),
+    // which would make the contact count at zero torque depend on rounding.
+    for _ in 0..8 {
+        let overlap = eval(x)?
+            .into_iter()
+            .filter(|&(gap, slope)| slope < 0.0 && gap < 0.0)
+            .map(|(gap, slope)| gap / slope)
+            .fold(0.0, f64::max);
+        if overlap == 0.0 {
+            break;
+        }
+        x -= overlap + f64::EPSILON * x.abs();
+    }
     Ok(x)
 }
 
@@ -204,6 +224,7 @@ fn solve_rollers(
             r.count()
         ];
     }
+    let exact_final = work.exact_final;
     let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
     let trig = AngleTrig::new(crank, model.teeth);
     let root = monotone_root(
@@ -222,6 +243,11 @@ fn solve_rollers(
         &model.settings,
     )?;
     let mut lag = root.x;
+    if exact_final {
+        // Every roller exact at the answer (skipped ones carried only a gap bound).
+        r.evaluate_at(&pose(lag), &trig, states, &mut [])
+            .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
+    }
     if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
         lag = touching(
             |l| {
@@ -244,14 +270,15 @@ fn solve_pins(
     model: &Model,
     p: &Pins,
     crank: f64,
-    centre: Vec2,
+    offset: Vec2,
     psi: f64,
     guess: f64,
     work: &mut Work,
 ) -> Result<f64, SolveFailure> {
     let first_order = model.first_order_pins();
     if first_order {
-        if let (Some(k), true) = (p.linear_stiffness(), centre == model.ideal_centre(crank)) {
+        if let (Some(k), true) = (p.linear_stiffness(), offset == Vec2::zeros()) {
+            let centre = model.ideal_centre(crank);
             p.evaluate_first_order(crank, centre, psi, 0.0, &mut work.sol.pins);
             work.terms.clear();
             work.terms
@@ -268,9 +295,9 @@ fn solve_pins(
     let states = &mut work.sol.pins;
     let evaluate = |lag: f64, states: &mut Vec<PinState>| {
         if first_order {
-            p.evaluate_first_order(crank, centre, psi, lag, states);
+            p.evaluate_first_order(crank, model.ideal_centre(crank) + offset, psi, lag, states);
         } else {
-            p.evaluate(centre, psi, lag, states);
+            p.evaluate(crank, offset, psi, lag, states);
         }
         let (value, slope, scale) = pins::moment(states);
         Balance {
@@ -324,8 +351,7 @@ fn solve_rigid(
         work.sol.lag_rad = Some(lag);
     }
     if let Some(p) = &model.pins {
-        let centre = model.ideal_centre(crank) + offset;
-        work.sol.output_lag_rad = Some(solve_pins(model, p, crank, centre, psi, guess_out, work)?);
+        work.sol.output_lag_rad = Some(solve_pins(model, p, crank, offset, psi, guess_out, work)?);
     }
     Ok(())
 }
@@ -374,9 +400,9 @@ fn evaluate_at(
     };
     r.evaluate(&pose, &mut sol.rollers)
         .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
-    let centre = model.ideal_centre(crank) + sol.centre_offset_mm;
     p.evaluate(
-        centre,
+        crank,
+        sol.centre_offset_mm,
         -crank / model.teeth as f64 + x[2],
         x[3],
         &mut sol.pins,
@@ -538,6 +564,7 @@ pub fn solve_angle(
 ) -> Result<AngleSolution, SolveFailure> {
     let mut work = Work {
         sol: previous.clone(),
+        exact_final: true,
         ..Work::default()
     };
     if previous.lag_rad.is_some() || previous.output_lag_rad.is_some() {

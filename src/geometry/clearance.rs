@@ -134,16 +134,25 @@ impl Mesh {
     ) -> Result<RollerGap, GapFailure> {
         let p = self.roller_in_disc(i, pose);
         let t0 = t_start.unwrap_or_else(|| self.locus_parameter(i, pose));
+        // In the disc frame the roller centre is q = e^{−iβ}·C0(t_i) − e^{−iψ}·u, C0 the
+        // unmodified locus (radius Rp) and t_i = 2πi/np + φ/nc its locus parameter at β = 0
+        // (np·t_i ≡ np·φ/nc mod 2π). The closest point is found from that form, without the
+        // rounding of subtracting vectors of size Rp (see `closest_point_near_locus`).
+        let t_i = std::f64::consts::TAU * i as f64 / self.rollers as f64
+            + pose.crank_rad / self.teeth as f64;
+        let (s, c) = self.disc_rotation(pose).sin_cos();
+        let w = -rotate(pose.centre_offset_mm, c, -s);
         let foot = self
             .profile
-            .closest_point(p, t0)
+            .closest_point_near_locus(t_i, self.roller_circle_radius_mm, pose.lag_rad, w, t0)
             .map_err(|detail| GapFailure {
                 roller: i,
                 pose: *pose,
                 detail,
             })?;
         Ok(RollerGap {
-            gap_mm: foot.signed_distance_mm - self.roller_radius_mm,
+            // ΔRrp + the signed distance to C (MODEL.md), summed small to small.
+            gap_mm: (self.profile.offset_mm - self.roller_radius_mm) + foot.locus_distance_mm,
             t: foot.t,
             point: foot.point,
             normal: foot.normal,

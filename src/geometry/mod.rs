@@ -32,3 +32,31 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
         - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
     (s, c)
 }
+
+/// (sin x, cos x − 1) without cancellation: Taylor series for |x| ≤ 0.05, and
+/// cos x − 1 = −2·sin²(x/2) beyond. e^{ix} − 1 as a vector is (cos x − 1, sin x).
+#[inline]
+pub fn sin_cosm1(x: f64) -> (f64, f64) {
+    if x.abs() > 0.05 {
+        let h = (0.5 * x).sin();
+        return (x.sin(), -2.0 * h * h);
+    }
+    let x2 = x * x;
+    let s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
+    let cm1 =
+        -x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
+    (s, cm1)
+}
+
+/// Complex product of two vectors.
+#[inline]
+pub fn cmul(a: Vec2, b: Vec2) -> Vec2 {
+    Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
+}
+
+/// e^{ix} − 1 as a vector, without cancellation.
+#[inline]
+pub fn expi_minus_one(x: f64) -> Vec2 {
+    let (s, cm1) = sin_cosm1(x);
+    Vec2::new(cm1, s)
+}

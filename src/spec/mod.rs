@@ -473,6 +473,29 @@ fn positive(key: &str, value: f64) -> Result<f64> {
     }
 }
 
+/// Largest length the engine accepts, mm. Beyond 100 m a double's ~1e-16 relative precision
+/// no longer resolves the micrometre gaps this tool exists to check.
+const MAX_LENGTH_MM: f64 = 1e5;
+
+/// Largest crank angle magnitude, degrees (~28,000 revolutions): an angle's rounding stays
+/// below 1e-9 rad.
+const MAX_CRANK_DEG: f64 = 1e7;
+
+/// A positive length no larger than `MAX_LENGTH_MM`.
+fn length(key: &str, value: f64) -> Result<f64> {
+    let value = positive(key, value)?;
+    if value > MAX_LENGTH_MM {
+        return Err(invalid(
+            key,
+            format!(
+                "{value} mm is larger than the {MAX_LENGTH_MM} mm (100 m) this tool handles: \
+                 beyond it double precision cannot resolve micrometre gaps"
+            ),
+        ));
+    }
+    Ok(value)
+}
+
 fn finite(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
@@ -536,20 +559,20 @@ fn design(raw: RawReducer) -> Result<Design> {
     Ok(Design {
         teeth,
         rollers,
-        eccentricity_mm: positive("reducer.eccentricity_mm", raw.eccentricity_mm)?,
-        roller_circle_radius_mm: positive(
+        eccentricity_mm: length("reducer.eccentricity_mm", raw.eccentricity_mm)?,
+        roller_circle_radius_mm: length(
             "reducer.roller_circle_radius_mm",
             raw.roller_circle_radius_mm,
         )?,
-        roller_radius_mm: positive("reducer.roller_radius_mm", raw.roller_radius_mm)?,
-        face_width_mm: positive("reducer.face_width_mm", raw.face_width_mm)?,
+        roller_radius_mm: length("reducer.roller_radius_mm", raw.roller_radius_mm)?,
+        face_width_mm: length("reducer.face_width_mm", raw.face_width_mm)?,
         pins: OutputPins {
             count: count("reducer.output_pins.count", pins.count, 2)?,
-            circle_radius_mm: positive(
+            circle_radius_mm: length(
                 "reducer.output_pins.circle_radius_mm",
                 pins.circle_radius_mm,
             )?,
-            pin_radius_mm: positive("reducer.output_pins.pin_radius_mm", pins.pin_radius_mm)?,
+            pin_radius_mm: length("reducer.output_pins.pin_radius_mm", pins.pin_radius_mm)?,
             hole_clearance_mm: clearance,
         },
         disc_material,
@@ -570,8 +593,22 @@ fn modification(raw: &RawModification) -> Result<Modification> {
 pub const MAX_ROLLER_ANGLES: i64 = 10_000_000;
 
 fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
-    let from = finite(&format!("{key}.from_deg"), raw.from_deg)?;
-    let to = finite(&format!("{key}.to_deg"), raw.to_deg)?;
+    let angle = |name: &str, value: f64| -> Result<f64> {
+        let k = format!("{key}.{name}");
+        let value = finite(&k, value)?;
+        if value.abs() > MAX_CRANK_DEG {
+            return Err(invalid(
+                &k,
+                format!(
+                    "{value}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where \
+                     the crank angle's rounding would exceed 1e-9 rad"
+                ),
+            ));
+        }
+        Ok(value)
+    };
+    let from = angle("from_deg", raw.from_deg)?;
+    let to = angle("to_deg", raw.to_deg)?;
     let steps = raw.steps;
     if steps < 1 {
         return Err(invalid(

@@ -174,7 +174,12 @@ impl Mesh {
                 Ok(g) => g,
                 Err(_) => return Ok(None),
             };
-            if step.abs() <= 1e-15 + 1e-12 * pose.lag_rad.abs() {
+            // Converged when the step is negligible or the gap is closed to its round-off (a few
+            // ulp of Rp). The step test alone cannot be met once round-off in the gap, divided
+            // by the arm, exceeds 1e-15 + 1e-12·|β| rad: such a roller was wrongly reported as
+            // not closing, and the backlash then depended on round-off.
+            let closed = g.gap_mm.abs() <= 32.0 * f64::EPSILON * self.roller_circle_radius_mm;
+            if closed || step.abs() <= 1e-15 + 1e-12 * pose.lag_rad.abs() {
                 return Ok(Some(pose.lag_rad));
             }
         }

@@ -180,6 +180,14 @@ impl Mesh {
             // not closing, and the backlash then depended on round-off.
             let closed = g.gap_mm.abs() <= 32.0 * f64::EPSILON * self.roller_circle_radius_mm;
             if closed || step.abs() <= 1e-15 + 1e-12 * pose.lag_rad.abs() {
+                // The warm start follows one flank. If another part of the profile is nearer
+                // at this lag (a roller wedged into a root sharper than the shift: one side
+                // opens while the other still interferes), the roller has not closed.
+                if let Ok(fresh) = self.roller_gap(i, &pose, None) {
+                    if fresh.gap_mm < g.gap_mm - 1e-12 * self.roller_circle_radius_mm {
+                        return Ok(None);
+                    }
+                }
                 return Ok(Some(pose.lag_rad));
             }
         }

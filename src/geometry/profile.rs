@@ -220,6 +220,14 @@ impl Profile {
             let d = j.c - q;
             let h = d.dot(&j.d1);
             let dh = j.d1.norm_squared() + d.dot(&j.d2);
+            // At a minimum whose h is down to its round-off (products of coordinates ~|C|, |p|
+            // with |C'|), the foot is found: near a degenerate foot (the point close to the
+            // centre of curvature of a concave flank, h' ≈ 0) the step −h/h' is round-off noise
+            // that need not fall below 1e-13 rad, and the iteration used to run out.
+            let noise = 64.0 * f64::EPSILON * (j.c.norm() + q.norm()) * j.d1.norm();
+            if dh > 0.0 && h.abs() <= noise {
+                return Ok(self.foot(t, q));
+            }
             let step = if dh > 0.0 {
                 (-h / dh).clamp(-MAX_STEP, MAX_STEP)
             } else {

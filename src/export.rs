@@ -72,6 +72,11 @@ pub fn polyline(profile: &Profile, tolerance_mm: f64) -> Vec<ProfilePoint> {
         while chord_error(profile, t, t + dt) > tolerance_mm && dt > 1e-12 {
             dt *= 0.5;
         }
+        // This chord closes the profile (its end is point 0, at t = 2π): stop here, rather than
+        // let round-off in t + (2π − t) leave a duplicate of point 0 just short of 2π.
+        if t + dt >= TAU - 1e-9 * dt {
+            break;
+        }
         t += dt;
     }
     points

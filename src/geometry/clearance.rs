@@ -142,14 +142,28 @@ impl Mesh {
             + pose.crank_rad / self.teeth as f64;
         let (s, c) = self.disc_rotation(pose).sin_cos();
         let w = -rotate(pose.centre_offset_mm, c, -s);
-        let foot = self
-            .profile
-            .closest_point_near_locus(t_i, self.roller_circle_radius_mm, pose.lag_rad, w, t0)
-            .map_err(|detail| GapFailure {
-                roller: i,
-                pose: *pose,
-                detail,
-            })?;
+        let precise = |start: f64| {
+            self.profile
+                .closest_point_near_locus(t_i, self.roller_circle_radius_mm, pose.lag_rad, w, start)
+                .map_err(|detail| GapFailure {
+                    roller: i,
+                    pose: *pose,
+                    detail,
+                })
+        };
+        let mut foot = precise(t0)?;
+        if t_start.is_none() {
+            // A cold start follows the roller's own flank; the scanning search also finds an
+            // opposite flank that may be nearer (a roller pushed across its tooth space), and
+            // the precise iteration is then restarted there.
+            if let Ok(scan) = self.profile.closest_point(p, t0) {
+                let nearer = scan.signed_distance_mm.abs()
+                    < foot.signed_distance_mm.abs() - 1e-9 * self.roller_radius_mm;
+                if nearer {
+                    foot = precise(scan.t)?;
+                }
+            }
+        }
         Ok(RollerGap {
             // ΔRrp + the signed distance to C (MODEL.md), summed small to small.
             gap_mm: (self.profile.offset_mm - self.roller_radius_mm) + foot.locus_distance_mm,
@@ -183,7 +197,20 @@ impl Mesh {
                 Ok(g) => g,
                 Err(_) => return Ok(None),
             };
-            if step.abs() <= 1e-15 + 1e-12 * pose.lag_rad.abs() {
+            // Converged when the step is negligible or the gap is closed to its round-off (a few
+            // ulp of Rp). The step test alone cannot be met once round-off in the gap, divided
+            // by the arm, exceeds 1e-15 + 1e-12·|β| rad: such a roller was wrongly reported as
+            // not closing, and the backlash then depended on round-off.
+            let closed = g.gap_mm.abs() <= 32.0 * f64::EPSILON * self.roller_circle_radius_mm;
+            if closed || step.abs() <= 1e-15 + 1e-12 * pose.lag_rad.abs() {
+                // The warm start follows one flank. If another part of the profile is nearer
+                // at this lag (a roller wedged into a root sharper than the shift: one side
+                // opens while the other still interferes), the roller has not closed.
+                if let Ok(fresh) = self.roller_gap(i, &pose, None) {
+                    if fresh.gap_mm < g.gap_mm - 1e-12 * self.roller_circle_radius_mm {
+                        return Ok(None);
+                    }
+                }
                 return Ok(Some(pose.lag_rad));
             }
         }

@@ -262,21 +262,57 @@ impl Profile {
         }
     }
 
-    /// Closest point on Γ to `p` (disc frame), by guarded Newton from `t_start`.
+    /// Closest point on Γ to `p` (disc frame) within half a roller pitch (π/np) of `t_start`,
+    /// by guarded Newton.
     ///
     /// Stationarity of |Γ(t) − p|² is (Γ − p)·Γ' = 0. Because Γ' ∥ T and N ⊥ T, for a regular
     /// profile this is exactly (C(t) − p)·C'(t) = 0, so the iteration runs on
     ///   h(t) = (C − p)·C',   h'(t) = |C'|² + (C − p)·C''.
     /// Guards: a step is at most 0.05 rad, a non-positive h' takes a bounded descent step, and
     /// the foot must stay within half a roller pitch (π/np) of `t_start`.
+    ///
+    /// Newton finds the local minimum of the distance around its start. A roller pushed
+    /// towards the opposite flank of its tooth space (interference, a lagging disc) can be
+    /// nearer to that flank, so Newton also starts from every local minimum of a coarse scan of
+    /// the reach, and the nearest foot wins.
     pub fn closest_point(&self, p: Vec2, t_start: f64) -> Result<Foot, ClosestPointFailure> {
-        const MAX_STEP: f64 = 0.05;
-        const MAX_ITER: usize = 60;
+        const SCAN: usize = 32;
         let q = self.unturned(p);
         let t0 = t_start.rem_euclid(std::f64::consts::TAU);
         let reach = PI / self.rollers as f64;
+        let dist = |t: f64| {
+            let j = self.locus_jet(t);
+            (j.c - self.offset_mm * Self::unrotated_normal(&j) - q).norm()
+        };
+        let ts: Vec<f64> = (0..=SCAN)
+            .map(|k| t0 - reach + 2.0 * reach * k as f64 / SCAN as f64)
+            .collect();
+        let ds: Vec<f64> = ts.iter().map(|&t| dist(t)).collect();
+        let seeds = (1..SCAN)
+            .filter(|&k| ds[k] <= ds[k - 1] && ds[k] <= ds[k + 1])
+            .map(|k| ts[k]);
+        let mut best = self.newton(q, t0, t0, reach);
+        for seed in seeds {
+            if let Ok(foot) = self.newton(q, t0, seed, reach) {
+                let nearer = match &best {
+                    Ok(b) => foot.signed_distance_mm.abs() < b.signed_distance_mm.abs(),
+                    Err(_) => true,
+                };
+                if nearer {
+                    best = Ok(foot);
+                }
+            }
+        }
+        best.map_err(|failure| ClosestPointFailure { t_start, ..failure })
+    }
+
+    /// Guarded Newton from `seed` for the foot of `q` (`q` in the unturned frame); the foot must
+    /// stay within `reach` of `t0`.
+    fn newton(&self, q: Vec2, t0: f64, seed: f64, reach: f64) -> Result<Foot, ClosestPointFailure> {
+        const MAX_STEP: f64 = 0.05;
+        const MAX_ITER: usize = 60;
+        let mut t = seed;
         let n = self.rollers as f64;
-        let mut t = t0;
         // sin/cos are computed once; Newton updates advance them by angle addition.
         let mut trig = Trig::at(t, n);
         for iteration in 1..=MAX_ITER {
@@ -284,6 +320,14 @@ impl Profile {
             let d = j.c - q;
             let h = d.dot(&j.d1);
             let dh = j.d1.norm_squared() + d.dot(&j.d2);
+            // At a minimum whose h is down to its round-off (products of coordinates ~|C|, |p|
+            // with |C'|), the foot is found: near a degenerate foot (the point close to the
+            // centre of curvature of a concave flank, h' ≈ 0) the step −h/h' is round-off noise
+            // that need not fall below 1e-13 rad, and the iteration used to run out.
+            let noise = 64.0 * f64::EPSILON * (j.c.norm() + q.norm()) * j.d1.norm();
+            if dh > 0.0 && h.abs() <= noise {
+                return Ok(self.foot_from(t, &j, q));
+            }
             let step = if dh > 0.0 {
                 (-h / dh).clamp(-MAX_STEP, MAX_STEP)
             } else {
@@ -296,7 +340,7 @@ impl Profile {
             t += step;
             if (t - t0).abs() > reach || !t.is_finite() {
                 return Err(ClosestPointFailure {
-                    t_start,
+                    t_start: t0,
                     t_last: t,
                     iterations: iteration,
                 });
@@ -308,7 +352,7 @@ impl Profile {
             }
         }
         Err(ClosestPointFailure {
-            t_start,
+            t_start: t0,
             t_last: t,
             iterations: MAX_ITER,
         })

@@ -11,6 +11,8 @@ pub mod equilibrium;
 pub mod error;
 pub mod export;
 pub mod geometry;
+pub mod golden;
+pub mod quantity;
 pub mod report;
 pub mod scene;
 pub mod spec;

@@ -1,4 +1,7 @@
-//! Outputs: the terminal table and the results JSON.
+//! Outputs: the terminal table, the results JSON, JUnit XML and the HTML design review.
 
+pub mod html;
 pub mod json;
+pub mod junit;
+pub mod svg;
 pub mod table;

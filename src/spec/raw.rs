@@ -14,6 +14,9 @@ pub struct RawSpec {
     pub scenes: Vec<RawScene>,
     #[serde(default)]
     pub limits: RawLimits,
+    /// Reviewed reference curves the results must stay close to.
+    #[serde(default)]
+    pub golden: Vec<RawGolden>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -95,4 +98,25 @@ pub struct RawLimits {
     pub max_te_fluctuation_arcsec: Option<f64>,
     pub max_ratio_fluctuation: Option<f64>,
     pub min_rollers_in_contact: Option<i64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawGolden {
+    pub scene: String,
+    pub quantity: String,
+    /// CSV path, relative to the directory of the spec file.
+    pub file: String,
+    pub tolerance: RawTolerance,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTolerance {
+    /// Absolute band, in the quantity's unit.
+    #[serde(default)]
+    pub abs: f64,
+    /// Relative band, a fraction of the golden value.
+    #[serde(default)]
+    pub rel: f64,
 }

@@ -246,7 +246,13 @@ fn per_row(x: &[f64], rows: &[Vec<f64>], what: &str, scale: f64) -> (Vec<Series>
 fn mesh_step(spec: &Spec, x: &[f64]) -> Option<f64> {
     let span = (x.last()? - x.first()?) * x.len() as f64 / (x.len() as f64 - 1.0).max(1.0);
     let period = spec.design.mesh_period_rad().to_degrees();
-    (span <= 1.5 * period).then_some(period / 6.0)
+    if span <= 1.5 * period {
+        Some(period / 6.0)
+    } else if span <= 4.5 * period {
+        Some(period / 2.0)
+    } else {
+        None
+    }
 }
 
 fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {

@@ -542,7 +542,7 @@ impl MapPlot {
             .collect();
         let z_lo = zs.iter().copied().fold(f64::INFINITY, f64::min);
         let z_hi = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let zt = ticks(z_lo, z_hi, 5, false);
+        let zt = ticks(z_lo, z_hi, 6, false);
         let label_w = yt
             .values
             .iter()
@@ -659,13 +659,22 @@ impl MapPlot {
                 );
             }
         }
+        let mut placed: Vec<(f64, f64)> = Vec::new();
         for (x, y, label, color) in &self.markers {
-            let (cx, cy) = (sx(*x), sy(*y));
+            let (cx, mut cy) = (sx(*x), sy(*y));
+            // Markers on the same spot (an optimum on a published value): stack the labels.
+            let same = placed
+                .iter()
+                .filter(|(px_, py_)| (px_ - cx).abs() < 30.0 && (py_ - sy(*y)).abs() < 14.0)
+                .count();
+            placed.push((cx, sy(*y)));
+            let marker_y = cy;
+            cy += 16.0 * same as f64;
             let _ = writeln!(
                 s,
                 r#"<circle cx="{}" cy="{}" r="6" fill="{color}" stroke="white" stroke-width="2"/><text x="{}" y="{}" font-size="12" font-weight="bold" fill="white" stroke="white" stroke-width="3" paint-order="stroke">{}</text><text x="{}" y="{}" font-size="12" font-weight="bold" fill="{color}">{}</text>"#,
                 px(cx),
-                px(cy),
+                px(marker_y),
                 px(cx + 9.0),
                 px(cy - 7.0),
                 esc(label),

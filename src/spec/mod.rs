@@ -34,8 +34,17 @@ fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
         if let Some(cut) = message.find(" at line ") {
             message.truncate(cut);
         }
-        if let Some(cut) = message.strip_prefix(&format!("{key_path}: ")) {
-            message = cut.to_string();
+        // serde may repeat the path (or, for an unknown field, its parent) in front.
+        let mut prefix = key_path.as_str();
+        loop {
+            if let Some(cut) = message.strip_prefix(&format!("{prefix}: ")) {
+                message = cut.to_string();
+                break;
+            }
+            match prefix.rfind(['.', '[']) {
+                Some(at) => prefix = &prefix[..at],
+                None => break,
+            }
         }
         let mut error = Error::new(ErrorKind::Syntax, message);
         if key_path != "." && !key_path.is_empty() {

@@ -422,11 +422,11 @@ pub const NOT_REVIEWED: &str = "NOT REVIEWED: written by `cycloid bless`; a pers
      these curves against an independent reason (a hand calculation, another implementation, a \
      physical law) and replace this text with what was checked";
 
-/// The previous review text of a golden, if its metadata file can be read.
-pub fn previous_review(csv: &Path) -> Option<String> {
+/// A text field of a golden's previous metadata (`reviewed`, `date`), if it can be read.
+pub fn previous_meta(csv: &Path, field: &str) -> Option<String> {
     let text = std::fs::read_to_string(meta_path(csv)).ok()?;
     let v: serde_yaml::Value = serde_yaml::from_str(&text).ok()?;
-    v.get("reviewed")?.as_str().map(str::to_string)
+    v.get(field)?.as_str().map(str::to_string)
 }
 
 /// SHA-256 of a text as lowercase hex (what `sha256sum` prints for the file).
@@ -509,7 +509,13 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
                 Err(m) => BlessChange::Replaced(m),
             },
         };
-        let reviewed = match (&change, previous_review(&g.path)) {
+        // An unchanged curve keeps the date it was blessed on.
+        let unchanged = matches!(&change, BlessChange::Compared(c) if c.largest.deviation == 0.0);
+        let date = match previous_meta(&g.path, "date") {
+            Some(old) if unchanged => old,
+            _ => date.clone(),
+        };
+        let reviewed = match (&change, previous_meta(&g.path, "reviewed")) {
             (BlessChange::Compared(c), Some(old)) if c.passed => old,
             (_, Some(old)) if !old.starts_with("NOT REVIEWED") => format!(
                 "NOT REVIEWED since {date}: the curve moved outside its tolerance when blessed. \
@@ -535,7 +541,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
                 rel: g.tolerance.rel,
             },
             tool_version: env!("CARGO_PKG_VERSION").to_string(),
-            date: date.clone(),
+            date,
             reviewed,
         };
         if let Some(dir) = g.path.parent().filter(|d| !d.as_os_str().is_empty()) {

@@ -235,8 +235,12 @@ fn per_row(x: &[f64], rows: &[Vec<f64>], what: &str, scale: f64) -> (Vec<Series>
     let note = if idle.is_empty() {
         String::new()
     } else {
+        let mut rest = what.chars();
+        let first = rest.next().map(|c| c.to_uppercase().to_string());
         format!(
-            "{what}s without load over the sweep (not drawn): {}",
+            "{}{}s without load over the sweep (not drawn): {}.",
+            first.unwrap_or_default(),
+            rest.as_str(),
             idle.join(", ")
         )
     };

@@ -158,3 +158,42 @@ fn colour_only_when_asked() {
         .unwrap();
     assert!(!String::from_utf8_lossy(&out.stdout).contains('\x1b'));
 }
+
+#[test]
+fn failures_come_first_the_furthest_outside_first() {
+    use cycloid::check::{Bound, Check, CheckKind};
+    let check = |id: &str, value: f64, limit: f64, bound: Bound| Check {
+        id: id.into(),
+        kind: CheckKind::Limit,
+        value,
+        limit,
+        unit: "",
+        bound,
+        passed: match bound {
+            Bound::Max => value <= limit,
+            Bound::Min => value >= limit,
+        },
+        at: String::new(),
+    };
+    let checks = vec![
+        check("s/passes", 1.0, 2.0, Bound::Max),
+        check("s/ten_percent_over", 1100.0, 1000.0, Bound::Max),
+        check("s/three_times_under", -0.03, 0.015, Bound::Min),
+        check("s/also_passes", 5.0, 1.0, Bound::Min),
+        check("s/one_percent_over", 1.01, 1.0, Bound::Max),
+    ];
+    let order: Vec<&str> = cycloid::report::table::ordered(&checks)
+        .iter()
+        .map(|c| c.id.as_str())
+        .collect();
+    assert_eq!(
+        order,
+        [
+            "s/three_times_under",
+            "s/ten_percent_over",
+            "s/one_percent_over",
+            "s/passes",
+            "s/also_passes"
+        ]
+    );
+}

@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
-use crate::{check, export, optimise, report, scene, spec};
+use crate::{check, export, golden, optimise, report, scene, spec};
 use clap::{Parser, Subcommand};
 use std::io::Write;
 
@@ -30,6 +30,16 @@ pub enum Command {
         /// Print what will be computed and why, then stop.
         #[arg(long)]
         explain: bool,
+        /// Write a JUnit XML report (one test case per check and golden curve) to this path.
+        #[arg(long)]
+        junit: Option<String>,
+        /// Write a design-review report (index.html and SVG plots) into this directory.
+        #[arg(long)]
+        report: Option<String>,
+        /// Crank angle of the disc drawing in the report, degrees [default: where the smallest
+        /// gap occurs].
+        #[arg(long, allow_negative_numbers = true)]
+        report_crank_deg: Option<f64>,
     },
     /// Optimise the tooth-profile modification as the spec's `optimise` section says.
     Optimise {
@@ -47,6 +57,9 @@ pub enum Command {
         #[arg(long, default_value_t = 21)]
         map_steps: usize,
     },
+    /// Rewrite the golden files of a spec from the current results, on purpose, and print
+    /// what moved. CI never blesses.
+    Bless { spec: String },
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
         spec: String,
@@ -71,14 +84,37 @@ fn write_file(path: &str, text: &str) -> Result<()> {
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
 }
 
-/// Run a parsed command, writing the user-facing text to `out`.
+/// Run a parsed command, writing the user-facing text to `out` (without colour).
 pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Outcome> {
+    run_with(cli, out, false)
+}
+
+/// Run a parsed command; `color` colours the verdicts of the checks table.
+pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
     match cli.command {
         Command::Check {
             spec,
             json,
             explain,
-        } => run_check(&spec, json.as_deref(), explain, out),
+            junit,
+            report,
+            report_crank_deg,
+        } => {
+            let outputs = Outputs {
+                json: json.as_deref(),
+                junit: junit.as_deref(),
+                report: report.as_deref(),
+                report_crank_deg,
+                color,
+            };
+            let result = run_check(&spec, &outputs, explain, out);
+            if let (Err(e), Some(path)) = (&result, outputs.junit) {
+                // CI shows the error as a test case too; the error itself still goes to stderr.
+                let _ = std::fs::write(path, report::junit::error_document(&spec, &e.to_string()));
+            }
+            result
+        }
+        Command::Bless { spec } => run_bless(&spec, out),
         Command::Optimise {
             spec,
             study,
@@ -107,18 +143,30 @@ fn print(out: &mut dyn Write, text: &str) -> Result<()> {
         .map_err(|e| Error::io("<stdout>", e))
 }
 
-fn run_check(
-    path: &str,
-    json: Option<&str>,
-    explain: bool,
-    out: &mut dyn Write,
-) -> Result<Outcome> {
+/// Where `check` writes its results besides the terminal.
+struct Outputs<'a> {
+    json: Option<&'a str>,
+    junit: Option<&'a str>,
+    report: Option<&'a str>,
+    report_crank_deg: Option<f64>,
+    color: bool,
+}
+
+fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) -> Result<Outcome> {
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
     if explain {
         print(out, &scene::explain(&spec))?;
         return Ok(Outcome::Passed);
     }
+    if let Some(deg) = outputs.report_crank_deg.filter(|d| !d.is_finite()) {
+        return Err(Error::new(
+            crate::ErrorKind::InvalidValue,
+            format!("--report-crank-deg must be a finite angle, got {deg}"),
+        ));
+    }
+    // Read the golden files before computing anything: a missing one fails fast.
+    let golden_curves = golden::load_all(&spec).map_err(|e| locate(e, &spec))?;
     let mut results = Vec::new();
     for s in &spec.scenes {
         results.push(scene::run(&spec, s, &scene::Plan::for_scene(s))?);
@@ -130,22 +178,72 @@ fn run_check(
         .map(|s| optimise::run_study(&spec, s))
         .collect();
     checks.extend(check::optimisation(&spec, &studies));
+    let goldens =
+        golden::evaluate(&spec, &results, &golden_curves).map_err(|e| locate(e, &spec))?;
+    checks.extend(goldens.iter().map(check::Check::from_golden));
     print(out, &format!("cycloid check `{}`\n", spec.name))?;
     for (s, r) in spec.studies.iter().zip(&studies) {
         print(out, &report::optimisation::render(&spec, s, r))?;
     }
-    print(out, &report::table::render(&checks))?;
-    if let Some(p) = json {
-        let doc = report::json::document(&spec, &checks, &results);
+    print(out, &report::table::render_styled(&checks, outputs.color))?;
+    if let Some(p) = outputs.json {
+        let doc = report::json::document_with_golden(&spec, &checks, &results, &goldens);
         let text =
             serde_json::to_string_pretty(&doc).map_err(|e| Error::computation(e.to_string()))?;
         write_file(p, &text)?;
+    }
+    if let Some(p) = outputs.junit {
+        write_file(p, &report::junit::document(&spec.name, &spec.path, &checks))?;
+    }
+    if let Some(dir) = outputs.report {
+        let input = report::html::ReportInput {
+            spec: &spec,
+            checks: &checks,
+            results: &results,
+            goldens: &goldens,
+            crank_deg: outputs.report_crank_deg,
+            optimisation: None,
+        };
+        let files = report::html::write(std::path::Path::new(dir), &input)?;
+        print(
+            out,
+            &format!(
+                "design review: {} ({} files)\n",
+                std::path::Path::new(dir).join("index.html").display(),
+                files.len()
+            ),
+        )?;
     }
     Ok(if checks.iter().all(|c| c.passed) {
         Outcome::Passed
     } else {
         Outcome::ChecksFailed
     })
+}
+
+fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
+    let spec = spec::load(path)?;
+    check::validate(&spec).map_err(|e| locate(e, &spec))?;
+    if spec.golden.is_empty() {
+        print(
+            out,
+            &format!(
+                "cycloid bless `{}`: the spec has no `golden` entries, nothing to bless\n",
+                spec.name
+            ),
+        )?;
+        return Ok(Outcome::Passed);
+    }
+    // Run only the scenes that a golden refers to.
+    let mut results = Vec::new();
+    for s in &spec.scenes {
+        if spec.golden.iter().any(|g| g.scene == s.name) {
+            results.push(scene::run(&spec, s, &scene::Plan::for_scene(s))?);
+        }
+    }
+    let blessed = golden::bless(&spec, &results).map_err(|e| locate(e, &spec))?;
+    print(out, &golden::bless_report(&spec, &blessed))?;
+    Ok(Outcome::Passed)
 }
 
 /// Give an error about a spec key the key's location in the spec file.

@@ -2,6 +2,7 @@
 
 use clap::Parser;
 use cycloid::cli::{self, Cli, Outcome};
+use std::io::IsTerminal;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -13,7 +14,9 @@ fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
-    match cli::run(args, &mut std::io::stdout().lock()) {
+    let stdout = std::io::stdout();
+    let color = cycloid::report::table::use_color(stdout.is_terminal());
+    match cli::run_with(args, &mut stdout.lock(), color) {
         Ok(Outcome::Passed) => ExitCode::SUCCESS,
         Ok(Outcome::ChecksFailed) => ExitCode::from(1),
         Err(e) => {

@@ -130,7 +130,7 @@ pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
             pins,
             bearing,
         );
-        let periodic = scene.spans_whole_periods(&spec.design);
+        let periodic = scene.spans_whole(spec.design.loaded_period_rad(pins || bearing));
         curves::sweep(&model, &scene.crank_rad, periodic).map_err(|f| {
             Error::computation(format!(
                 "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {}",

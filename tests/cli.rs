@@ -154,8 +154,8 @@ fn shipped_spec_passes_with_the_table() {
         &out,
         0,
         "cycloid check `paper-table-1`
-check                   value    limit      verdict  where
-rated/min_clearance_mm  0.03430  ≥ 0.01500  pass     roller 0 at crank 0.00°, tooth phase 0.000 (0 root, 0.5 tip)
+check                   value       limit         verdict  where
+rated/min_clearance_mm  0.03430 mm  ≥ 0.01500 mm  pass     roller 0 at crank 0.00°, tooth phase 0.000 (0 root, 0.5 tip)
 1 checks: 1 passed, 0 failed
 ",
         "",
@@ -174,8 +174,8 @@ fn paper_negative_modification_fails_with_exit_1() {
         &check(&spec),
         1,
         "cycloid check `paper-table-1`
-check                   value     limit      verdict  where
-rated/min_clearance_mm  -0.02341  ≥ 0.01500  FAIL     roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
+check                   value        limit         verdict  where
+rated/min_clearance_mm  -0.02341 mm  ≥ 0.01500 mm  FAIL     roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
 1 checks: 0 passed, 1 failed
 ",
         "",
@@ -200,9 +200,9 @@ fn failed_rows_come_first() {
         &check(&spec),
         1,
         "cycloid check `paper-table-1`
-check                   value     limit       verdict  where
-rated/min_clearance_mm  -0.02341  ≥ -0.02200  FAIL     roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
-start/min_clearance_mm  -0.02155  ≥ -0.02200  pass     roller 1 at crank 0.00°, tooth phase 0.892 (0 root, 0.5 tip)
+check                   value        limit          verdict  where
+rated/min_clearance_mm  -0.02341 mm  ≥ -0.02200 mm  FAIL     roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
+start/min_clearance_mm  -0.02155 mm  ≥ -0.02200 mm  pass     roller 1 at crank 0.00°, tooth phase 0.892 (0 root, 0.5 tip)
 2 checks: 1 passed, 1 failed
 ",
         "",
@@ -699,14 +699,30 @@ fn json_has_schema_1_sized_arrays_and_consistent_minimum() {
     )]);
     let (out, doc) = json_of(&dir, &spec);
     assert_eq!(out.code, Some(0), "{out:?}");
-    assert_eq!(keys(&doc), ["checks", "name", "passed", "scenes", "schema"]);
+    assert_eq!(
+        keys(&doc),
+        [
+            "checks",
+            "golden",
+            "name",
+            "passed",
+            "scenes",
+            "schema",
+            "spec_path",
+            "spec_sha256",
+            "tool_version"
+        ]
+    );
     assert_eq!(doc["schema"], 1);
     assert_eq!(doc["name"], "paper-table-1");
     assert_eq!(doc["passed"], true);
     let checks = doc["checks"].as_array().unwrap();
     assert_eq!(checks.len(), 2);
     for c in checks {
-        assert_eq!(keys(c), ["at", "id", "limit", "passed", "value"]);
+        assert_eq!(
+            keys(c),
+            ["at", "id", "kind", "limit", "passed", "unit", "value"]
+        );
     }
     let scenes = doc["scenes"].as_array().unwrap();
     assert_eq!(scenes.len(), 2);

@@ -124,7 +124,7 @@ fn the_optimiser_objective_is_the_checkers_ratio_fluctuation() {
     let spec = paper();
     let s = study(&spec, "positive-ratio");
     let e = Problem::new(&spec, s).evaluate(&spec.modification);
-    let scene = &spec.scenes[0];
+    let scene = &spec.scenes[s.scene];
     let result =
         cycloid::scene::run(&spec, scene, &cycloid::scene::Plan::for_scene(scene)).unwrap();
     let ratio = result.loaded.transmission.unwrap().ratio.unwrap();
@@ -142,7 +142,10 @@ fn writing_the_optimum_keeps_comments_and_reads_back_exactly() {
         rotation_rad: 0.0,
     };
     let out = optimise::write::with_modification("out.yaml", &text, &m).unwrap();
-    assert!(out.contains("# paper's optimum"), "the comment survives");
+    assert!(
+        out.contains("# dRp: + makes teeth thicker"),
+        "the comment survives"
+    );
     assert_eq!(spec::parse("out.yaml", &out).unwrap().modification, m);
     // A spec without a modification section gets one.
     let bare = std::fs::read_to_string("specs/reducer.yaml").unwrap();
@@ -242,7 +245,7 @@ fn optimise_input_errors_exit_2_with_the_reason() {
         );
     let err = spec::parse("bad.yaml", &bad).unwrap_err().to_string();
     assert!(
-        err.starts_with("bad.yaml:25:5: invalid value: optimise[0].objective: "),
+        err.starts_with("bad.yaml:50:5: invalid value: optimise[0].objective: "),
         "{err}"
     );
     assert!(

@@ -30,17 +30,101 @@ pub fn passes(value: f64, limit: f64, bound: Bound) -> bool {
     }
 }
 
-/// One evaluated limit in one scene.
+/// What a check compares.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CheckKind {
+    /// A `limits` entry: the value is the scene's extreme of the quantity.
+    Limit,
+    /// A `golden` entry: the value is the worst |deviation| from the golden curve, the limit
+    /// the tolerance band at that point.
+    Golden,
+}
+
+/// One evaluated limit (or golden curve) in one scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Check {
-    /// `scene/limit_key`.
+    /// `scene/limit_key`, or `scene/golden:quantity`.
     pub id: String,
+    pub kind: CheckKind,
     pub value: f64,
     pub limit: f64,
+    /// Unit of value and limit ("" when dimensionless).
+    pub unit: &'static str,
     pub bound: Bound,
     pub passed: bool,
     /// Where the value occurs (roller, crank angle, ...), for the reader.
     pub at: String,
+}
+
+impl Check {
+    /// The scene part of the id.
+    pub fn scene(&self) -> &str {
+        self.id.split_once('/').map_or("", |(s, _)| s)
+    }
+
+    /// The check part of the id (limit key or `golden:quantity`).
+    pub fn name(&self) -> &str {
+        self.id.split_once('/').map_or(&self.id, |(_, n)| n)
+    }
+
+    /// How far beyond the limit the value lies, relative to |limit| (to 1 when the limit is 0):
+    /// positive outside, negative inside. Sorts failures worst first.
+    pub fn excess(&self) -> f64 {
+        let scale = if self.limit != 0.0 {
+            self.limit.abs()
+        } else {
+            1.0
+        };
+        let beyond = match self.bound {
+            Bound::Max => self.value - self.limit,
+            Bound::Min => self.limit - self.value,
+        };
+        if beyond.is_nan() {
+            f64::INFINITY
+        } else {
+            beyond / scale
+        }
+    }
+
+    /// The check of a golden comparison.
+    pub fn from_golden(g: &crate::golden::GoldenResult) -> Check {
+        let w = &g.comparison.worst;
+        let num = crate::report::table::number;
+        Check {
+            id: format!("{}/golden:{}", g.golden.scene, g.golden.quantity),
+            kind: CheckKind::Golden,
+            value: w.deviation,
+            limit: w.band,
+            unit: g.unit,
+            bound: Bound::Max,
+            passed: g.comparison.passed,
+            at: format!(
+                "worst at {}: golden {}, now {} ({})",
+                w.place(),
+                num(w.golden),
+                num(w.value),
+                g.golden.path.display()
+            ),
+        }
+    }
+}
+
+/// Relative distance from a limit within which a value counts as on it (and passes).
+pub const ON_LIMIT: f64 = 1e-9;
+
+/// Unit of a limit, from its key's suffix.
+fn unit_of(key: &str) -> &'static str {
+    for (suffix, unit) in [
+        ("_mm", "mm"),
+        ("_n", "N"),
+        ("_mpa", "MPa"),
+        ("_arcsec", "arcsec"),
+    ] {
+        if key.ends_with(suffix) {
+            return unit;
+        }
+    }
+    ""
 }
 
 struct LimitDef {
@@ -189,8 +273,25 @@ pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
         .collect()
 }
 
-/// Every limit must be evaluated by at least one scene.
+/// Every limit must be evaluated by at least one scene, and every golden's scene must compute
+/// its quantity.
 pub fn validate(spec: &Spec) -> Result<()> {
+    for g in &spec.golden {
+        let q = crate::quantity::find(g.quantity).expect("validated quantity");
+        let scene = spec.scenes.iter().find(|s| s.name == g.scene);
+        if scene.is_some_and(|s| !Plan::for_scene(s).has(q.effect)) {
+            return Err(Error::new(
+                ErrorKind::InvalidValue,
+                format!(
+                    "scene `{}` does not compute `{}`; add the effect `{}` to the scene",
+                    g.scene,
+                    g.quantity,
+                    q.effect.name()
+                ),
+            )
+            .at_key(format!("{}.quantity", g.key)));
+        }
+    }
     for d in LIMITS {
         if (d.get)(&spec.limits).is_none() {
             continue;
@@ -221,6 +322,8 @@ pub fn evaluate(limits: &Limits, results: &[SceneResult]) -> Vec<Check> {
             let passed = passes(value, limit, d.bound);
             checks.push(Check {
                 id: format!("{}/{}", r.name, d.key),
+                kind: CheckKind::Limit,
+                unit: unit_of(d.key),
                 value,
                 limit,
                 bound: d.bound,
@@ -244,6 +347,9 @@ pub fn optimisation(spec: &Spec, results: &[crate::optimise::StudyResult]) -> Ve
             .min_by(|a, b| a.margin.total_cmp(&b.margin))
             .map_or(String::new(), |m| format!("tightest: {}", m.name));
         checks.push(Check {
+            kind: CheckKind::Limit,
+            // Every constraint (tip clearance band, whole-mesh clearance) is a length.
+            unit: "mm",
             id: format!("optimise/{}/constraints", r.name),
             value: if o.failure.is_some() {
                 f64::NEG_INFINITY
@@ -259,7 +365,13 @@ pub fn optimisation(spec: &Spec, results: &[crate::optimise::StudyResult]) -> Ve
             .optimum_max_objective
             .or(spec.limits.optimum_max_objective)
         {
+            let unit = match study.objective.as_slice() {
+                [(o, _)] => o.unit(),
+                _ => "",
+            };
             checks.push(Check {
+                kind: CheckKind::Limit,
+                unit,
                 id: format!("optimise/{}/objective", r.name),
                 value: o.objective,
                 limit,

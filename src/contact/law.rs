@@ -52,7 +52,14 @@ pub fn half_width_mm(c: &LineContact, force_n: f64) -> f64 {
 /// with b the Hertz half-width. With equal materials it is (F/(πLE*))·(ln(4R1/b) + ln(4R2/b) − 1).
 /// Its derivative, using ∂ln b/∂F = 1/(2F), is
 ///   ∂d/∂F = (2/(πL))·Σ c_k·(ln(4R_k/b) − 1),
-/// positive while b < 4R/e: the law stiffens with load and starts with zero stiffness.
+/// positive while every b < 4R_k/e: the law stiffens with load and starts with zero stiffness.
+///
+/// Validity: the formula describes cylinders whose radii are much larger than the contact
+/// half-width. A body whose radius falls below e·b (a sharp concave root under a heavy
+/// preload) is no longer such a cylinder, and the formula would turn over (∂d/∂F < 0, two
+/// forces for one approach). Its radius is therefore floored at e·b in the log term: that term
+/// becomes (2F/(πL))·c_k·(ln 4 + 1/2), linear in F, so d(F) stays continuous and strictly
+/// increasing and its inverse unique.
 pub fn johnson_approach_mm(c: &LineContact, force_n: f64) -> (f64, f64) {
     if force_n <= 0.0 {
         return (0.0, f64::INFINITY);
@@ -61,9 +68,17 @@ pub fn johnson_approach_mm(c: &LineContact, force_n: f64) -> (f64, f64) {
     let scale = 2.0 / (PI * c.length_mm);
     let (mut d, mut dd) = (0.0, 0.0);
     for k in 0..2 {
+        let c_k = c.compliance_per_mpa[k];
         let log = (4.0 * c.radii_mm[k] / b).ln();
-        d += scale * force_n * c.compliance_per_mpa[k] * (log - 0.5);
-        dd += scale * c.compliance_per_mpa[k] * (log - 1.0);
+        if log >= 1.0 + 4f64.ln() {
+            d += scale * force_n * c_k * (log - 0.5);
+            dd += scale * c_k * (log - 1.0);
+        } else {
+            // Radius floored at e·b: ln(4·e·b/b) = 1 + ln 4, independent of F.
+            let floored = 1.0 + 4f64.ln();
+            d += scale * force_n * c_k * (floored - 0.5);
+            dd += scale * c_k * (floored - 0.5);
+        }
     }
     (d, dd)
 }

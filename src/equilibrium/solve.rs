@@ -110,9 +110,14 @@ pub fn monotone_root<E: std::fmt::Display>(
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
     let mut step = 16.0 * settings.initial_step;
     let mut x = guess;
+    let mut last_residual = f64::INFINITY;
     for calls in 1..=settings.max_iterations {
         let b = eval(x)?;
         let residual = relative(&b, target);
+        // Newton that fails to halve the residual (a kink where a contact opens or closes)
+        // gives way to bisection once the bracket is closed.
+        let stalled = residual > 0.5 * last_residual;
+        last_residual = residual;
         if residual <= settings.rel_tol {
             return Ok(Root {
                 x,
@@ -128,7 +133,7 @@ pub fn monotone_root<E: std::fmt::Display>(
         let newton = (b.slope > 0.0).then(|| x - (b.value - target) / b.slope);
         let next = if lo.is_finite() && hi.is_finite() {
             match newton {
-                Some(n) if n > lo && n < hi => n,
+                Some(n) if n > lo && n < hi && !stalled => n,
                 _ => 0.5 * (lo + hi),
             }
         } else {
@@ -164,7 +169,7 @@ pub fn monotone_root<E: std::fmt::Display>(
     }
     Err(SolveFailure::NotConverged {
         x,
-        residual: f64::NAN,
+        residual: last_residual,
     })
 }
 

@@ -171,7 +171,7 @@ impl<'a> Problem<'a> {
         let pins = bearing || (transmission && self.scene_has_pins);
         let loaded = if rollers {
             let model = Model::new(design, m, self.scene, true, pins, bearing);
-            let periodic = self.scene.spans_whole_periods(design);
+            let periodic = self.scene.spans_whole(design.loaded_period_rad(pins));
             Some(curves::sweep(&model, crank, periodic).map_err(|f| {
                 format!(
                     "crank angle {:.4}°: equilibrium solve failed: {}",

@@ -1,8 +1,9 @@
 //! The results JSON (schema 1). Arrays are [roller][angle] or [angle]; engine values are
 //! converted to the units named in the keys here. A quantity not computed is absent.
 
-use crate::check::Check;
+use crate::check::{Check, CheckKind};
 use crate::equilibrium::curves::{extremes, max_entry};
+use crate::golden::{sha256_hex, GoldenResult, Point};
 use crate::scene::SceneResult;
 use crate::spec::Spec;
 use serde_json::{json, Map, Value};
@@ -112,19 +113,61 @@ fn loaded(s: &mut Map<String, Value>, r: &SceneResult) {
     }
 }
 
-/// The whole results document.
+fn point(p: &Point) -> Value {
+    json!({
+        "column": p.column,
+        "crank_deg": num(p.crank_deg),
+        "golden": num(p.golden),
+        "value": num(p.value),
+        "deviation": num(p.deviation),
+        "band": num(p.band),
+    })
+}
+
+fn golden(g: &GoldenResult) -> Value {
+    let c = &g.comparison;
+    json!({
+        "scene": g.golden.scene,
+        "quantity": g.golden.quantity,
+        "unit": g.unit,
+        "file": g.golden.path.display().to_string(),
+        "tolerance": {"abs": num(g.golden.tolerance.abs), "rel": num(g.golden.tolerance.rel)},
+        "passed": c.passed,
+        "points_compared": c.points,
+        "worst": point(&c.worst),
+        "largest": point(&c.largest),
+    })
+}
+
+/// The whole results document, without golden curves.
 pub fn document(spec: &Spec, checks: &[Check], results: &[SceneResult]) -> Value {
+    document_with_golden(spec, checks, results, &[])
+}
+
+/// The whole results document. `checks` holds the golden checks too; `goldens` their detail.
+pub fn document_with_golden(
+    spec: &Spec,
+    checks: &[Check],
+    results: &[SceneResult],
+    goldens: &[GoldenResult],
+) -> Value {
     json!({
         "schema": 1,
         "name": spec.name,
+        "tool_version": env!("CARGO_PKG_VERSION"),
+        "spec_path": spec.path,
+        "spec_sha256": sha256_hex(&spec.source),
         "passed": checks.iter().all(|c| c.passed),
         "checks": checks.iter().map(|c| json!({
             "id": c.id,
+            "kind": match c.kind { CheckKind::Limit => "limit", CheckKind::Golden => "golden" },
             "value": num(c.value),
             "limit": num(c.limit),
+            "unit": c.unit,
             "passed": c.passed,
             "at": c.at,
         })).collect::<Vec<_>>(),
+        "golden": goldens.iter().map(golden).collect::<Vec<_>>(),
         "scenes": results.iter().map(scene).collect::<Vec<_>>(),
     })
 }

@@ -1,5 +1,8 @@
-//! Outputs: the terminal table and the results JSON.
+//! Outputs: the terminal table, the results JSON, JUnit XML and the HTML design review.
 
+pub mod html;
 pub mod json;
+pub mod junit;
 pub mod optimisation;
+pub mod svg;
 pub mod table;

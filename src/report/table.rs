@@ -12,10 +12,44 @@ pub fn number(x: f64) -> String {
     }
 }
 
-/// The table, one check a row, failures first.
-pub fn render(checks: &[Check]) -> String {
+fn with_unit(x: String, unit: &str) -> String {
+    if unit.is_empty() {
+        x
+    } else {
+        format!("{x} {unit}")
+    }
+}
+
+/// The order a reader wants: failures first, the furthest outside its limit (relative to the
+/// limit) first; then the passes in spec order.
+pub fn ordered(checks: &[Check]) -> Vec<&Check> {
     let mut rows: Vec<&Check> = checks.iter().collect();
-    rows.sort_by_key(|c| c.passed);
+    rows.sort_by(|a, b| {
+        a.passed.cmp(&b.passed).then_with(|| {
+            if a.passed {
+                std::cmp::Ordering::Equal
+            } else {
+                b.excess().total_cmp(&a.excess())
+            }
+        })
+    });
+    rows
+}
+
+/// Whether the terminal table should be coloured: only on a terminal, never with NO_COLOR set
+/// (to anything but the empty string, as no-color.org asks).
+pub fn use_color(is_terminal: bool) -> bool {
+    is_terminal && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+}
+
+/// The table without colour, one check a row, worst failures first.
+pub fn render(checks: &[Check]) -> String {
+    render_styled(checks, false)
+}
+
+/// The table, one check a row, worst failures first; `color` adds ANSI colour to the verdicts.
+pub fn render_styled(checks: &[Check], color: bool) -> String {
+    let rows = ordered(checks);
     let header = ["check", "value", "limit", "verdict", "where"];
     let cells: Vec<[String; 5]> = rows
         .iter()
@@ -26,8 +60,8 @@ pub fn render(checks: &[Check]) -> String {
             };
             [
                 c.id.clone(),
-                number(c.value),
-                format!("{op} {}", number(c.limit)),
+                with_unit(number(c.value), c.unit),
+                with_unit(format!("{op} {}", number(c.limit)), c.unit),
                 if c.passed { "pass" } else { "FAIL" }.to_string(),
                 c.at.clone(),
             ]
@@ -42,10 +76,16 @@ pub fn render(checks: &[Check]) -> String {
     let line = |row: [&str; 5]| {
         let mut s = String::new();
         for (k, (cell, w)) in row.iter().zip(widths).enumerate() {
+            let pad = " ".repeat(w - cell.chars().count());
+            let shown = match (color, *cell) {
+                (true, "FAIL") => format!("\x1b[1;31m{cell}\x1b[0m"),
+                (true, "pass") => format!("\x1b[32m{cell}\x1b[0m"),
+                _ => cell.to_string(),
+            };
             if k + 1 == row.len() {
-                s += cell;
+                s += &shown;
             } else {
-                s += &format!("{cell}{}  ", " ".repeat(w - cell.chars().count()));
+                s += &format!("{shown}{pad}  ");
             }
         }
         s.trim_end().to_string() + "\n"

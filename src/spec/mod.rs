@@ -111,6 +111,7 @@ where
         scenes: raw.scenes,
         limits: raw.limits,
         optimise: raw.optimise.map(Into::into),
+        golden: raw.golden,
     })
 }
 
@@ -765,6 +766,21 @@ fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         }
         None => Vec::new(),
     };
+    let limits = limits(&raw.limits)?;
+    let mut golden = Vec::new();
+    for (i, g) in raw.golden.into_iter().enumerate() {
+        let g = golden_entry(path, i, g, &scenes)?;
+        if let Some(other) = golden.iter().find(|o: &&Golden| o.path == g.path) {
+            return Err(invalid(
+                &format!("golden[{i}].file"),
+                format!(
+                    "golden file `{}` is already used by {}; every golden curve needs its own file",
+                    g.file, other.key
+                ),
+            ));
+        }
+        golden.push(g);
+    }
     Ok(Spec {
         name: raw.name,
         path: path.to_string(),
@@ -772,8 +788,85 @@ fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         design,
         modification,
         scenes,
-        limits: limits(&raw.limits)?,
+        limits,
+        golden,
         studies,
+    })
+}
+
+/// Resolve a golden path against the spec file's directory, dropping `.` and `dir/..` pairs
+/// so messages show `golden/x.csv` rather than `specs/../golden/x.csv`.
+pub fn resolve(spec_path: &str, file: &str) -> std::path::PathBuf {
+    use std::path::{Component, Path, PathBuf};
+    let base = Path::new(spec_path).parent().unwrap_or(Path::new(""));
+    let mut out = PathBuf::new();
+    for c in base.join(file).components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                let last = out.components().next_back();
+                if matches!(last, Some(Component::Normal(_))) {
+                    out.pop();
+                } else {
+                    out.push("..");
+                }
+            }
+            other => out.push(other.as_os_str()),
+        }
+    }
+    out
+}
+
+fn golden_entry(path: &str, i: usize, raw: RawGolden, scenes: &[Scene]) -> Result<Golden> {
+    let key = format!("golden[{i}]");
+    if !scenes.iter().any(|s| s.name == raw.scene) {
+        let names: Vec<String> = scenes.iter().map(|s| format!("`{}`", s.name)).collect();
+        return Err(invalid(
+            &format!("{key}.scene"),
+            format!(
+                "unknown scene `{}`; scenes in this spec: {}",
+                raw.scene,
+                names.join(", ")
+            ),
+        ));
+    }
+    let quantity = crate::quantity::find(&raw.quantity).ok_or_else(|| {
+        invalid(
+            &format!("{key}.quantity"),
+            format!(
+                "unknown quantity `{}`; known quantities: {}",
+                raw.quantity,
+                crate::quantity::known_keys()
+            ),
+        )
+    })?;
+    if raw.file.trim().is_empty() {
+        return Err(invalid(&format!("{key}.file"), "must not be empty".into()));
+    }
+    let (abs, rel) = (raw.tolerance.abs, raw.tolerance.rel);
+    for (name, v) in [("abs", abs), ("rel", rel)] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(invalid(
+                &format!("{key}.tolerance.{name}"),
+                format!("must be zero or positive, got {v}"),
+            ));
+        }
+    }
+    if abs == 0.0 && rel == 0.0 {
+        return Err(invalid(
+            &format!("{key}.tolerance"),
+            "abs and rel are both zero: no computed curve matches to the last bit on every \
+             machine; give a band"
+                .into(),
+        ));
+    }
+    Ok(Golden {
+        path: resolve(path, &raw.file),
+        key,
+        scene: raw.scene,
+        quantity: quantity.key,
+        file: raw.file,
+        tolerance: Tolerance { abs, rel },
     })
 }
 

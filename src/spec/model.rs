@@ -62,6 +62,26 @@ impl Design {
         std::f64::consts::TAU / self.rollers as f64
     }
 
+    /// Period of the output-pin pattern in crank angle, 2π·nc/(np·M): a pin's arm depends on
+    /// γj − φ = 2πj/M − φ·np/nc, and the pattern repeats when that advances by 2π/M.
+    pub fn pin_period_rad(&self) -> f64 {
+        std::f64::consts::TAU * self.teeth as f64 / (self.rollers * self.pins.count) as f64
+    }
+
+    /// Crank period of loaded curves: the mesh period 2π/np, or, with the output pins modelled,
+    /// the least common multiple of it and the pin period, (2π/np)·nc/gcd(nc, M) (108° for the
+    /// paper's design: TE = β + βo, pin and bearing forces repeat only after it).
+    pub fn loaded_period_rad(&self, pins_modelled: bool) -> f64 {
+        if !pins_modelled {
+            return self.mesh_period_rad();
+        }
+        let (mut a, mut b) = (self.teeth, self.pins.count);
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        self.mesh_period_rad() * (self.teeth / a) as f64
+    }
+
     /// Radius of an output-pin hole in the disc: pin radius + e + hole clearance.
     pub fn hole_radius_mm(&self) -> f64 {
         self.pins.pin_radius_mm + self.eccentricity_mm + self.pins.hole_clearance_mm
@@ -120,14 +140,19 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// True when the sweep covers a whole number of mesh periods (so curves wrap around).
+    /// True when the sweep covers a whole number of mesh periods (so unloaded curves wrap).
     pub fn spans_whole_periods(&self, design: &Design) -> bool {
+        self.spans_whole(design.mesh_period_rad())
+    }
+
+    /// True when the sweep covers a whole number of `period_rad` (so its curves wrap around).
+    pub fn spans_whole(&self, period_rad: f64) -> bool {
         let n = self.crank_rad.len();
         if n < 2 {
             return false;
         }
         let step = self.crank_rad[1] - self.crank_rad[0];
-        let span = step * n as f64 / design.mesh_period_rad();
+        let span = step * n as f64 / period_rad;
         (span - span.round()).abs() < 1e-9 && span.round() >= 1.0
     }
 }
@@ -157,6 +182,7 @@ pub struct Spec {
     pub scenes: Vec<Scene>,
     pub limits: Limits,
     pub studies: Vec<Study>,
+    pub golden: Vec<Golden>,
 }
 
 /// A quantity an optimisation can minimise. Each is a scalar of one scene's sweep.
@@ -277,4 +303,33 @@ pub struct Study {
     pub optimum_max_objective: Option<f64>,
     pub global_samples: usize,
     pub local_evaluations: usize,
+}
+
+/// Allowed deviation from a golden value g: |value − g| ≤ abs + rel·|g|.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerance {
+    pub abs: f64,
+    pub rel: f64,
+}
+
+impl Tolerance {
+    /// The band around a golden value.
+    pub fn band(&self, golden: f64) -> f64 {
+        self.abs + self.rel * golden.abs()
+    }
+}
+
+/// A reviewed reference curve (`golden[]`) that a scene's results are compared with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Golden {
+    /// Key path of this entry in the spec (`golden[2]`), for error locations.
+    pub key: String,
+    pub scene: String,
+    /// Key of a per-angle quantity (`crate::quantity::QUANTITIES`).
+    pub quantity: &'static str,
+    /// The path as written in the spec.
+    pub file: String,
+    /// The path resolved against the spec file's directory (lexically normalised).
+    pub path: std::path::PathBuf,
+    pub tolerance: Tolerance,
 }

@@ -22,6 +22,9 @@ pub struct RawSpecOf<O> {
     pub limits: RawLimits,
     #[serde(default = "Option::default")]
     pub optimise: Option<O>,
+    /// Reviewed reference curves the results must stay close to.
+    #[serde(default)]
+    pub golden: Vec<RawGolden>,
 }
 
 pub type RawSpec = RawSpecOf<RawOptimise>;
@@ -213,4 +216,25 @@ pub struct RawLimits {
     pub min_rollers_in_contact: Option<i64>,
     /// Upper limit on every optimisation study's optimum objective.
     pub optimum_max_objective: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawGolden {
+    pub scene: String,
+    pub quantity: String,
+    /// CSV path, relative to the directory of the spec file.
+    pub file: String,
+    pub tolerance: RawTolerance,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTolerance {
+    /// Absolute band, in the quantity's unit.
+    #[serde(default)]
+    pub abs: f64,
+    /// Relative band, a fraction of the golden value.
+    #[serde(default)]
+    pub rel: f64,
 }

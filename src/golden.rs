@@ -1,0 +1,606 @@
+//! Golden curves: reviewed reference curves that a scene's results must stay close to.
+//!
+//! A golden file is CSV with a header: `crank_deg`, then one column per roller or pin
+//! (`roller_0`, ...) or one column named after the quantity (`te_arcsec`). Beside it,
+//! `<name>.meta.yaml` records the spec it came from (path and SHA-256), the tool version, the
+//! date and what a person reviewed. `cycloid bless` writes both; `cycloid check` reads the CSV.
+//!
+//! Comparison: the curve with fewer samples sets the angles compared; the other one is
+//! linearly interpolated there (exactly sampled when the grids nest, e.g. 0.2° inside 0.1°).
+//! A point passes when |value − golden| ≤ abs + rel·|golden|. The worst point is the one
+//! furthest outside (or least inside) its band.
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::quantity::{self, Curves};
+use crate::scene::SceneResult;
+use crate::spec::{Golden, Spec, Tolerance};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// Crank angles closer than this (degrees) are the same sample.
+const SAME_ANGLE_DEG: f64 = 1e-7;
+
+/// The content of a golden CSV file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GoldenCurves {
+    pub crank_deg: Vec<f64>,
+    pub curves: Curves,
+}
+
+/// Format a number for a golden file: 10 significant digits, shortest text that reads back
+/// to that rounded value (the rounding, 5e-11 relative, is far below any sensible tolerance).
+pub fn csv_number(x: f64) -> String {
+    if x.is_nan() {
+        return "nan".into();
+    }
+    if x.is_infinite() {
+        return if x > 0.0 { "inf" } else { "-inf" }.into();
+    }
+    let rounded: f64 = format!("{x:.9e}").parse().unwrap_or(x);
+    if rounded == 0.0 {
+        "0".into()
+    } else {
+        format!("{rounded}")
+    }
+}
+
+impl GoldenCurves {
+    /// CSV text: header, then one row per crank angle.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::from("crank_deg");
+        for c in &self.curves.columns {
+            out.push(',');
+            out.push_str(c);
+        }
+        out.push('\n');
+        for (k, phi) in self.crank_deg.iter().enumerate() {
+            out.push_str(&csv_number(*phi));
+            for col in &self.curves.values {
+                out.push(',');
+                out.push_str(&csv_number(col[k]));
+            }
+            out.push('\n');
+        }
+        out
+    }
+
+    /// Parse CSV text; `name` is used in messages. Lines starting with `#` are comments.
+    pub fn parse(name: &str, text: &str) -> std::result::Result<GoldenCurves, String> {
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+        let (_, header) = lines
+            .next()
+            .ok_or_else(|| format!("{name}: empty file, expected a header `crank_deg,...`"))?;
+        let mut names = header.split(',').map(|h| h.trim().to_string());
+        if names.next().as_deref() != Some("crank_deg") {
+            return Err(format!(
+                "{name}:1: the first column must be `crank_deg`, got `{header}`"
+            ));
+        }
+        let columns: Vec<String> = names.collect();
+        if columns.is_empty() {
+            return Err(format!("{name}:1: no value columns after `crank_deg`"));
+        }
+        let mut crank_deg = Vec::new();
+        let mut values = vec![Vec::new(); columns.len()];
+        for (n, line) in lines {
+            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+            if cells.len() != columns.len() + 1 {
+                return Err(format!(
+                    "{name}:{}: {} cells, the header has {}",
+                    n + 1,
+                    cells.len(),
+                    columns.len() + 1
+                ));
+            }
+            let mut numbers = cells.iter().map(|c| {
+                c.parse::<f64>()
+                    .map_err(|_| format!("{name}:{}: `{c}` is not a number", n + 1))
+            });
+            let phi = numbers.next().unwrap_or(Ok(0.0))?;
+            if !phi.is_finite() || crank_deg.last().is_some_and(|&last| phi <= last) {
+                return Err(format!(
+                    "{name}:{}: crank angles must be finite and increasing, got {phi}",
+                    n + 1
+                ));
+            }
+            crank_deg.push(phi);
+            for (col, v) in values.iter_mut().zip(numbers) {
+                col.push(v?);
+            }
+        }
+        if crank_deg.is_empty() {
+            return Err(format!("{name}: no data rows"));
+        }
+        Ok(GoldenCurves {
+            crank_deg,
+            curves: Curves { columns, values },
+        })
+    }
+}
+
+/// One compared point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    pub column: String,
+    pub crank_deg: f64,
+    pub golden: f64,
+    pub value: f64,
+    /// |value − golden|.
+    pub deviation: f64,
+    /// abs + rel·|golden|.
+    pub band: f64,
+}
+
+impl Point {
+    /// deviation / band: ≤ 1 inside the band.
+    pub fn ratio(&self) -> f64 {
+        if self.deviation == 0.0 {
+            0.0
+        } else if self.band > 0.0 {
+            self.deviation / self.band
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// "roller 3 at crank 12.30°" (or "crank 12.30°" for a single curve).
+    pub fn place(&self) -> String {
+        match self.column.rsplit_once('_') {
+            Some((what, i)) if i.parse::<usize>().is_ok() => {
+                format!("{what} {i} at crank {:.2}°", self.crank_deg)
+            }
+            _ => format!("crank {:.2}°", self.crank_deg),
+        }
+    }
+}
+
+/// A whole-curve comparison.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comparison {
+    /// Number of (angle, column) points compared.
+    pub points: usize,
+    /// The point furthest outside (or closest to the edge of) its band.
+    pub worst: Point,
+    /// The point with the largest |deviation|.
+    pub largest: Point,
+    pub passed: bool,
+}
+
+/// The difference a − b, taken into (−period/2, period/2] for a wrapping angle.
+fn difference(a: f64, b: f64, period: Option<f64>) -> f64 {
+    match period {
+        Some(p) if (a - b).is_finite() => {
+            let d = (a - b).rem_euclid(p);
+            if d > p / 2.0 {
+                d - p
+            } else {
+                d
+            }
+        }
+        _ => a - b,
+    }
+}
+
+/// Linear interpolation of a sampled curve at x (exact at a sample). `None` outside the range.
+fn interpolate(xs: &[f64], ys: &[f64], x: f64, period: Option<f64>) -> Option<f64> {
+    let k = xs.partition_point(|&v| v < x - SAME_ANGLE_DEG);
+    if k < xs.len() && (xs[k] - x).abs() <= SAME_ANGLE_DEG {
+        return Some(ys[k]);
+    }
+    if k == 0 || k >= xs.len() {
+        return None;
+    }
+    let (x0, x1) = (xs[k - 1], xs[k]);
+    let w = (x - x0) / (x1 - x0);
+    Some(ys[k - 1] + w * difference(ys[k], ys[k - 1], period))
+}
+
+fn step(xs: &[f64]) -> f64 {
+    match xs {
+        [a, b, ..] => b - a,
+        _ => 0.0,
+    }
+}
+
+fn deviation(value: f64, golden: f64, period: Option<f64>) -> f64 {
+    if value == golden {
+        0.0
+    } else {
+        let d = difference(value, golden, period).abs();
+        if d.is_nan() {
+            f64::INFINITY
+        } else {
+            d
+        }
+    }
+}
+
+/// Compare computed curves (at `now_deg`) with a golden. Errors (columns or crank ranges that
+/// do not match) mean the golden does not describe this quantity any more: re-bless it.
+/// `period` is the quantity's wrap-around (360 for an angle in degrees), if any.
+pub fn compare(
+    golden: &GoldenCurves,
+    now_deg: &[f64],
+    now: &Curves,
+    tolerance: Tolerance,
+    period: Option<f64>,
+) -> std::result::Result<Comparison, String> {
+    if golden.curves.columns != now.columns {
+        return Err(format!(
+            "the golden has columns [{}] but the scene computes [{}]",
+            golden.curves.columns.join(", "),
+            now.columns.join(", ")
+        ));
+    }
+    let (g0, g1) = (
+        golden.crank_deg[0],
+        *golden.crank_deg.last().unwrap_or(&0.0),
+    );
+    let (r0, r1) = (now_deg[0], *now_deg.last().unwrap_or(&0.0));
+    let slack = step(now_deg).max(step(&golden.crank_deg)) + SAME_ANGLE_DEG;
+    if r0 > g0 + SAME_ANGLE_DEG || r1 < g1 - slack {
+        let n = csv_number;
+        return Err(format!(
+            "the golden covers crank {}° to {}° but the scene only {}° to {}°",
+            n(g0),
+            n(g1),
+            n(r0),
+            n(r1)
+        ));
+    }
+    // The coarser curve sets the angles; the finer one is interpolated there.
+    let golden_sets = golden.crank_deg.len() <= now_deg.len();
+    let mut points = 0;
+    let mut worst: Option<Point> = None;
+    let mut largest: Option<Point> = None;
+    for (c, column) in now.columns.iter().enumerate() {
+        let (gy, ry) = (&golden.curves.values[c], &now.values[c]);
+        let (base_x, base_y, other_x, other_y) = if golden_sets {
+            (&golden.crank_deg[..], &gy[..], now_deg, &ry[..])
+        } else {
+            (now_deg, &ry[..], &golden.crank_deg[..], &gy[..])
+        };
+        for (&x, &b) in base_x.iter().zip(base_y) {
+            let Some(o) = interpolate(other_x, other_y, x, period) else {
+                continue;
+            };
+            let (g, v) = if golden_sets { (b, o) } else { (o, b) };
+            let p = Point {
+                column: column.clone(),
+                crank_deg: x,
+                golden: g,
+                value: v,
+                deviation: deviation(v, g, period),
+                band: tolerance.band(g),
+            };
+            points += 1;
+            if worst.as_ref().is_none_or(|w| p.ratio() > w.ratio()) {
+                worst = Some(p.clone());
+            }
+            if largest.as_ref().is_none_or(|w| p.deviation > w.deviation) {
+                largest = Some(p);
+            }
+        }
+    }
+    let (Some(worst), Some(largest)) = (worst, largest) else {
+        return Err("the golden and the scene share no crank angle".into());
+    };
+    Ok(Comparison {
+        points,
+        passed: worst.ratio() <= 1.0,
+        worst,
+        largest,
+    })
+}
+
+/// A golden of a spec compared with its scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GoldenResult {
+    pub golden: Golden,
+    pub unit: &'static str,
+    pub comparison: Comparison,
+}
+
+fn file_error(g: &Golden, message: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, message).at_key(format!("{}.file", g.key))
+}
+
+/// Read every golden file of a spec (before any computation, so a missing file fails fast).
+pub fn load_all(spec: &Spec) -> Result<Vec<GoldenCurves>> {
+    spec.golden
+        .iter()
+        .map(|g| {
+            let text = std::fs::read_to_string(&g.path).map_err(|e| {
+                let hint = if e.kind() == std::io::ErrorKind::NotFound {
+                    format!(
+                        "golden file `{}` does not exist; create it with `cycloid bless {}` \
+                         (paths are relative to the spec file's directory)",
+                        g.path.display(),
+                        spec.path
+                    )
+                } else {
+                    format!("golden file `{}`: {e}", g.path.display())
+                };
+                file_error(g, hint)
+            })?;
+            GoldenCurves::parse(&g.path.display().to_string(), &text)
+                .map_err(|m| file_error(g, format!("bad golden file: {m}")))
+        })
+        .collect()
+}
+
+/// The computed curves of a golden's quantity, in output units.
+pub fn computed<'a>(
+    g: &Golden,
+    results: &'a [SceneResult],
+) -> Result<(&'a SceneResult, Vec<f64>, Curves)> {
+    let q = quantity::find(g.quantity).expect("validated quantity");
+    let r = results
+        .iter()
+        .find(|r| r.name == g.scene)
+        .ok_or_else(|| Error::computation(format!("scene `{}` was not run", g.scene)))?;
+    let curves = q.curves(r).ok_or_else(|| {
+        Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "scene `{}` computed no `{}` (a ratio needs at least 3 crank angles)",
+                g.scene, g.quantity
+            ),
+        )
+        .at_key(format!("{}.quantity", g.key))
+    })?;
+    let deg = r.crank_rad.iter().map(|a| a.to_degrees()).collect();
+    Ok((r, deg, curves))
+}
+
+/// Compare every golden of a spec with the results.
+pub fn evaluate(
+    spec: &Spec,
+    results: &[SceneResult],
+    loaded: &[GoldenCurves],
+) -> Result<Vec<GoldenResult>> {
+    spec.golden
+        .iter()
+        .zip(loaded)
+        .map(|(g, golden)| {
+            let (_, deg, curves) = computed(g, results)?;
+            let period = quantity::find(g.quantity).and_then(|q| q.period);
+            let comparison = compare(golden, &deg, &curves, g.tolerance, period).map_err(|m| {
+                file_error(
+                    g,
+                    format!(
+                        "golden file `{}` does not match scene `{}`: {m}; if the change is \
+                         intended, re-bless with `cycloid bless {}`",
+                        g.path.display(),
+                        g.scene,
+                        spec.path
+                    ),
+                )
+            })?;
+            Ok(GoldenResult {
+                golden: g.clone(),
+                unit: quantity::find(g.quantity).map_or("", |q| q.unit),
+                comparison,
+            })
+        })
+        .collect()
+}
+
+/// The metadata file beside a golden CSV: `x.csv` → `x.meta.yaml`.
+pub fn meta_path(csv: &Path) -> PathBuf {
+    csv.with_extension("meta.yaml")
+}
+
+/// What `<name>.meta.yaml` holds. `reviewed` is written by a person; `bless` keeps it while
+/// the curve stays inside its tolerance and marks it NOT REVIEWED when the curve moves out.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Meta {
+    pub spec: String,
+    pub spec_name: String,
+    pub spec_sha256: String,
+    pub scene: String,
+    pub quantity: String,
+    pub unit: String,
+    pub crank: String,
+    pub tolerance: MetaTolerance,
+    pub tool_version: String,
+    pub date: String,
+    pub reviewed: String,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct MetaTolerance {
+    pub abs: f64,
+    pub rel: f64,
+}
+
+/// Placeholder review text of a golden nobody has reviewed yet.
+pub const NOT_REVIEWED: &str = "NOT REVIEWED: written by `cycloid bless`; a person must check \
+     these curves against an independent reason (a hand calculation, another implementation, a \
+     physical law) and replace this text with what was checked";
+
+/// A text field of a golden's previous metadata (`reviewed`, `date`), if it can be read.
+pub fn previous_meta(csv: &Path, field: &str) -> Option<String> {
+    let text = std::fs::read_to_string(meta_path(csv)).ok()?;
+    let v: serde_yaml::Value = serde_yaml::from_str(&text).ok()?;
+    v.get(field)?.as_str().map(str::to_string)
+}
+
+/// SHA-256 of a text as lowercase hex (what `sha256sum` prints for the file).
+pub fn sha256_hex(text: &str) -> String {
+    use sha2::Digest;
+    sha2::Sha256::digest(text.as_bytes())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// Today's date (UTC) as YYYY-MM-DD; `SOURCE_DATE_EPOCH` (seconds) overrides the clock.
+pub fn today() -> String {
+    let secs = std::env::var("SOURCE_DATE_EPOCH")
+        .ok()
+        .and_then(|s| s.trim().parse::<i64>().ok())
+        .unwrap_or_else(|| {
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.as_secs() as i64)
+        });
+    // Days since 1970-01-01 to a civil date (H. Hinnant's algorithm).
+    let z = secs.div_euclid(86_400) + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!("{y:04}-{m:02}-{d:02}")
+}
+
+/// What blessing did to one golden file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BlessChange {
+    /// No file before.
+    New,
+    /// The previous file could not be compared (unreadable, other columns or range).
+    Replaced(String),
+    /// Compared with the previous file.
+    Compared(Comparison),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Blessed {
+    pub golden: Golden,
+    pub unit: &'static str,
+    pub rows: usize,
+    pub change: BlessChange,
+}
+
+/// Rewrite every golden file of a spec from the results (and its metadata beside it).
+pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
+    let date = today();
+    let mut out = Vec::new();
+    for g in &spec.golden {
+        let (_, deg, curves) = computed(g, results)?;
+        let unit = quantity::find(g.quantity).map_or("", |q| q.unit);
+        let period = quantity::find(g.quantity).and_then(|q| q.period);
+        let new = GoldenCurves {
+            crank_deg: deg.clone(),
+            curves,
+        };
+        // Compare what will be written (rounded) with what was there.
+        let written = GoldenCurves::parse("new", &new.to_csv()).map_err(Error::computation)?;
+        let change = match std::fs::read_to_string(&g.path) {
+            Err(_) => BlessChange::New,
+            Ok(text) => match GoldenCurves::parse("old", &text).and_then(|old| {
+                compare(
+                    &old,
+                    &written.crank_deg,
+                    &written.curves,
+                    g.tolerance,
+                    period,
+                )
+            }) {
+                Ok(c) => BlessChange::Compared(c),
+                Err(m) => BlessChange::Replaced(m),
+            },
+        };
+        // An unchanged curve keeps the date it was blessed on.
+        let unchanged = matches!(&change, BlessChange::Compared(c) if c.largest.deviation == 0.0);
+        let date = match previous_meta(&g.path, "date") {
+            Some(old) if unchanged => old,
+            _ => date.clone(),
+        };
+        let reviewed = match (&change, previous_meta(&g.path, "reviewed")) {
+            (BlessChange::Compared(c), Some(old)) if c.passed => old,
+            (_, Some(old)) if !old.starts_with("NOT REVIEWED") => format!(
+                "NOT REVIEWED since {date}: the curve moved outside its tolerance when blessed. \
+                 Previous review: {old}"
+            ),
+            _ => NOT_REVIEWED.to_string(),
+        };
+        let meta = Meta {
+            spec: spec.path.clone(),
+            spec_name: spec.name.clone(),
+            spec_sha256: sha256_hex(&spec.source),
+            scene: g.scene.clone(),
+            quantity: g.quantity.to_string(),
+            unit: unit.to_string(),
+            crank: format!(
+                "{} angles from {}° to {}°",
+                deg.len(),
+                csv_number(deg[0]),
+                csv_number(*deg.last().unwrap_or(&0.0))
+            ),
+            tolerance: MetaTolerance {
+                abs: g.tolerance.abs,
+                rel: g.tolerance.rel,
+            },
+            tool_version: env!("CARGO_PKG_VERSION").to_string(),
+            date,
+            reviewed,
+        };
+        if let Some(dir) = g.path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
+        }
+        let path = g.path.display().to_string();
+        std::fs::write(&g.path, new.to_csv()).map_err(|e| Error::io(&path, e))?;
+        let meta_file = meta_path(&g.path);
+        let meta_text =
+            serde_yaml::to_string(&meta).map_err(|e| Error::computation(e.to_string()))?;
+        std::fs::write(&meta_file, meta_text)
+            .map_err(|e| Error::io(&meta_file.display().to_string(), e))?;
+        out.push(Blessed {
+            golden: g.clone(),
+            unit,
+            rows: deg.len(),
+            change,
+        });
+    }
+    Ok(out)
+}
+
+/// The lines `cycloid bless` prints: per golden, what moved, by how much and where.
+pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
+    let mut out = format!(
+        "cycloid bless `{}`: {} golden file(s)\n",
+        spec.name,
+        blessed.len()
+    );
+    for b in blessed {
+        let file = b.golden.path.display();
+        let cols = match quantity::find(b.golden.quantity).and_then(|q| q.per) {
+            Some(what) => format!("{what} columns"),
+            None => "1 column".into(),
+        };
+        let what = match &b.change {
+            BlessChange::New => format!("new: {} crank angles, {cols}", b.rows),
+            BlessChange::Replaced(why) => format!("replaced ({why})"),
+            BlessChange::Compared(c) if c.largest.deviation == 0.0 => {
+                "unchanged (max |change| 0)".into()
+            }
+            BlessChange::Compared(c) => format!(
+                "moved: max |change| {} {} at {} ({} → {}); {}",
+                crate::report::table::number(c.largest.deviation),
+                b.unit,
+                c.largest.place(),
+                crate::report::table::number(c.largest.golden),
+                crate::report::table::number(c.largest.value),
+                if c.passed {
+                    "within tolerance"
+                } else {
+                    "OUTSIDE the old tolerance: the review is reset, review it again"
+                }
+            ),
+        };
+        out += &format!(
+            "  {file}  {}/{}: {what}\n",
+            b.golden.scene, b.golden.quantity
+        );
+    }
+    out
+}

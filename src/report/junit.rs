@@ -1,0 +1,138 @@
+//! JUnit XML for CI servers: one test case per check and per golden curve, grouped in one test
+//! suite per spec. A failed check is a `<failure>` whose message carries the value, the limit
+//! and how far outside it lies; an invalid spec or a failed computation is one `<error>` case.
+
+use crate::check::{Bound, Check, CheckKind};
+use crate::report::table::number;
+
+/// Escape text for XML attributes and character data.
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            // XML 1.0 forbids most control characters, even escaped.
+            c if (c as u32) < 0x20 && !matches!(c, '\t' | '\n' | '\r') => out.push(' '),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+fn with_unit(x: f64, unit: &str) -> String {
+    if unit.is_empty() {
+        number(x)
+    } else {
+        format!("{} {unit}", number(x))
+    }
+}
+
+/// One line saying what the check found.
+pub fn message(c: &Check) -> String {
+    let op = match c.bound {
+        Bound::Max => "≤",
+        Bound::Min => "≥",
+    };
+    let beyond = match c.bound {
+        Bound::Max => c.value - c.limit,
+        Bound::Min => c.limit - c.value,
+    };
+    match c.kind {
+        CheckKind::Limit => {
+            let verdict = if c.passed {
+                format!("{} inside", with_unit(-beyond, c.unit))
+            } else {
+                format!("{} outside", with_unit(beyond, c.unit))
+            };
+            format!(
+                "value {}, limit {op} {}: {verdict}; {}",
+                with_unit(c.value, c.unit),
+                with_unit(c.limit, c.unit),
+                c.at
+            )
+        }
+        CheckKind::Golden => format!(
+            "deviation {} {} tolerance band {} ({:.3}× the band); {}",
+            with_unit(c.value, c.unit),
+            if c.passed { "within" } else { "outside" },
+            with_unit(c.limit, c.unit),
+            if c.limit > 0.0 {
+                c.value / c.limit
+            } else {
+                f64::INFINITY
+            },
+            c.at
+        ),
+    }
+}
+
+fn classname(suite: &str, c: &Check) -> String {
+    let kind = match c.kind {
+        CheckKind::Limit => "limits",
+        CheckKind::Golden => "golden",
+    };
+    format!("cycloid.{suite}.{}.{kind}", c.scene())
+}
+
+/// The document for a finished run.
+pub fn document(spec_name: &str, spec_path: &str, checks: &[Check]) -> String {
+    let failures = checks.iter().filter(|c| !c.passed).count();
+    let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    out += &format!(
+        "<testsuites name=\"cycloid\" tests=\"{}\" failures=\"{failures}\" errors=\"0\">\n",
+        checks.len()
+    );
+    out += &format!(
+        "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{failures}\" errors=\"0\" skipped=\"0\" \
+         time=\"0\">\n",
+        escape(spec_name),
+        checks.len()
+    );
+    out += &format!(
+        "    <properties>\n      <property name=\"spec\" value=\"{}\"/>\n      \
+         <property name=\"tool_version\" value=\"{}\"/>\n    </properties>\n",
+        escape(spec_path),
+        env!("CARGO_PKG_VERSION")
+    );
+    for c in checks {
+        let text = escape(&message(c));
+        out += &format!(
+            "    <testcase classname=\"{}\" name=\"{}\" time=\"0\">\n",
+            escape(&classname(spec_name, c)),
+            escape(c.name())
+        );
+        if c.passed {
+            out += &format!("      <system-out>{text}</system-out>\n");
+        } else {
+            let kind = match c.kind {
+                CheckKind::Limit => "limit",
+                CheckKind::Golden => "golden",
+            };
+            out += &format!(
+                "      <failure message=\"{text}\" type=\"{kind}\">{}: {text}</failure>\n",
+                escape(&c.id)
+            );
+        }
+        out += "    </testcase>\n";
+    }
+    out += "  </testsuite>\n</testsuites>\n";
+    out
+}
+
+/// The document for a run that stopped on an error (exit 2): one test case in error.
+pub fn error_document(spec_path: &str, error: &str) -> String {
+    let text = escape(error);
+    format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
+         <testsuites name=\"cycloid\" tests=\"1\" failures=\"0\" errors=\"1\">\n  \
+         <testsuite name=\"{path}\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\" time=\"0\">\n    \
+         <testcase classname=\"cycloid\" name=\"check {path}\" time=\"0\">\n      \
+         <error message=\"{text}\" type=\"invalid\">{text}</error>\n    \
+         </testcase>\n  </testsuite>\n</testsuites>\n",
+        path = escape(spec_path)
+    )
+}

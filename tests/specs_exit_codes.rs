@@ -1,0 +1,54 @@
+//! Every spec under specs/ runs through `cycloid check` with its expected exit code. A new spec
+//! must be added to the table, so nothing ships unchecked.
+
+use std::process::Command;
+
+/// (file name, exit code, why).
+const EXPECTED: &[(&str, i32, &str)] = &[
+    ("reducer.yaml", 0, "paper optimum, clearance only"),
+    (
+        "paper.yaml",
+        0,
+        "paper optimum (0.125, 0.1593) with its golden curves",
+    ),
+    (
+        "paper-positive-start.yaml",
+        0,
+        "paper's positive start (0.135, 0.150): 15 µm, exactly on dt",
+    ),
+    (
+        "paper-negative-start.yaml",
+        1,
+        "paper's negative start (−0.15, −0.135): −23 µm at mid-flank fails min_clearance",
+    ),
+];
+
+#[test]
+fn every_spec_exits_as_expected() {
+    let mut found: Vec<String> = std::fs::read_dir("specs")
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".yaml") || n.ends_with(".yml"))
+        .collect();
+    found.sort();
+    let mut listed: Vec<String> = EXPECTED.iter().map(|e| e.0.to_string()).collect();
+    listed.sort();
+    assert_eq!(
+        found, listed,
+        "specs/ and the table of expected exit codes differ"
+    );
+    for (name, code, why) in EXPECTED {
+        let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
+            .args(["check", &format!("specs/{name}")])
+            .env("NO_COLOR", "1")
+            .output()
+            .unwrap();
+        assert_eq!(
+            out.status.code(),
+            Some(*code),
+            "specs/{name} ({why}):\n{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}

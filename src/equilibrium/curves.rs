@@ -150,7 +150,21 @@ impl Chunk {
 
 fn solve_chunk(model: &Model, crank_rad: &[f64]) -> Result<Chunk, SweepFailure> {
     let mut work = Work::default();
-    let mut chunk = Chunk::default();
+    let n = crank_rad.len();
+    let rollers = model.rollers.as_ref().map_or(0, |r| r.count()) * n;
+    let pins = model.pins.as_ref().map_or(0, |p| p.count) * n;
+    let mut chunk = Chunk {
+        lag: Vec::with_capacity(n),
+        output_lag: Vec::with_capacity(n),
+        roller_force: Vec::with_capacity(rollers),
+        pressure: Vec::with_capacity(rollers),
+        half_width: Vec::with_capacity(rollers),
+        contacts: Vec::with_capacity(n),
+        pin_force: Vec::with_capacity(pins),
+        bearing: Vec::with_capacity(n),
+        residual: Vec::with_capacity(n),
+        deflection: Vec::with_capacity(n),
+    };
     for &phi in crank_rad {
         let fail = |failure| SweepFailure {
             crank_rad: phi,

@@ -98,16 +98,27 @@ impl Pins {
         output_lag: f64,
         out: &mut Vec<PinState>,
     ) {
+        let (sc, cc) = crank_rad.sin_cos();
+        self.evaluate_at(Vec2::new(cc, sc), psi.sin_cos(), offset, output_lag, out);
+    }
+
+    /// `evaluate` from the eccentric direction e_φ and (sin, cos) of ψ, computed once per crank
+    /// angle by the caller.
+    pub fn evaluate_at(
+        &self,
+        ecc: Vec2,
+        (s, c): (f64, f64),
+        offset: Vec2,
+        output_lag: f64,
+        out: &mut Vec<PinState>,
+    ) {
         out.clear();
         let e = self.eccentricity_mm;
-        let (sc, cc) = crank_rad.sin_cos();
-        let ecc = Vec2::new(cc, sc);
         let disc_centre = ecc * e + offset;
         // e^{iβo} − 1 = (−2·sin²(βo/2), sin βo), without cancellation.
         let half = sin_cos(0.5 * output_lag).0;
         let turn = Vec2::new(-2.0 * half * half, sin_cos(output_lag).0);
         let centre_sq = 2.0 * e * ecc.dot(&offset) + offset.norm_squared();
-        let (s, c) = psi.sin_cos();
         for unit in &self.base {
             let (cg, sg) = (c * unit.x - s * unit.y, s * unit.x + c * unit.y);
             let arm_vec = Vec2::new(cg, sg) * self.circle_radius_mm;

@@ -187,6 +187,54 @@ pub fn piecewise_linear_root(
     target: f64,
     events: &mut Vec<(f64, f64, f64)>,
 ) -> Option<f64> {
+    piecewise_linear_root_near(k, terms, target, f64::NAN, events)
+}
+
+/// `piecewise_linear_root` started from a guess (the previous crank angle's root): a few
+/// Newton steps on the segment of the guess, each exact on its segment; when one lands on the
+/// segment it was computed from, that is the root. Otherwise (or at zero target, or without a
+/// guess) the breakpoint sweep decides.
+pub fn piecewise_linear_root_near(
+    k: f64,
+    terms: &[(f64, f64)],
+    target: f64,
+    guess: f64,
+    events: &mut Vec<(f64, f64, f64)>,
+) -> Option<f64> {
+    if guess.is_finite() && target != 0.0 {
+        let mut x = guess;
+        for _ in 0..4 {
+            // The active set at x: terms with l·x > g.
+            let (mut a, mut b) = (0.0, 0.0);
+            for &(g, l) in terms {
+                if l != 0.0 && l * x > g {
+                    a += k * l * l;
+                    b += k * l * g;
+                }
+            }
+            if a <= 0.0 {
+                break;
+            }
+            let next = (target + b) / a;
+            // Same active set at the new point: it solves the balance exactly.
+            let same = terms
+                .iter()
+                .all(|&(g, l)| l == 0.0 || (l * x > g) == (l * next > g));
+            if same {
+                return Some(next);
+            }
+            x = next;
+        }
+    }
+    sweep_breakpoints(k, terms, target, events)
+}
+
+fn sweep_breakpoints(
+    k: f64,
+    terms: &[(f64, f64)],
+    target: f64,
+    events: &mut Vec<(f64, f64, f64)>,
+) -> Option<f64> {
     events.clear();
     let (mut a, mut b) = (0.0, 0.0);
     let (mut plateau_lo, mut plateau_hi) = (f64::NEG_INFINITY, f64::INFINITY);

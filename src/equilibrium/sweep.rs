@@ -9,7 +9,7 @@
 
 use super::pins::{self, PinState, Pins};
 use super::rollers::{self, AngleTrig, Reach, RollerState, Rollers};
-use super::solve::{monotone_root, piecewise_linear_root, Balance, Settings, SolveFailure};
+use super::solve::{monotone_root, piecewise_linear_root_near, Balance, Settings, SolveFailure};
 use crate::geometry::clearance::Pose;
 use crate::geometry::{cross, Vec2};
 use crate::spec::{ContactLaw, Design, GeometryMode, Modification, Scene};
@@ -101,9 +101,16 @@ pub struct Work {
 }
 
 impl Work {
-    /// Guesses for (β, βo) at `crank`: linear extrapolation of the last two angles.
+    /// Guesses for (β, βo) at `crank`: quadratic (Lagrange) extrapolation of the last three
+    /// angles, linear from two, the last value from one.
     fn guess(&self, crank: f64) -> (f64, f64) {
         match self.history.as_slice() {
+            [(p0, b0, o0), (p1, b1, o1), (p2, b2, o2)] if p0 != p1 && p1 != p2 && p0 != p2 => {
+                let l0 = (crank - p1) * (crank - p2) / ((p0 - p1) * (p0 - p2));
+                let l1 = (crank - p0) * (crank - p2) / ((p1 - p0) * (p1 - p2));
+                let l2 = (crank - p0) * (crank - p1) / ((p2 - p0) * (p2 - p1));
+                (l0 * b0 + l1 * b1 + l2 * b2, l0 * o0 + l1 * o1 + l2 * o2)
+            }
             [.., (p0, b0, o0), (p1, b1, o1)] if p1 != p0 => {
                 let w = (crank - p1) / (p1 - p0);
                 (b1 + w * (b1 - b0), o1 + w * (o1 - o0))
@@ -119,7 +126,7 @@ impl Work {
             self.sol.lag_rad.unwrap_or(0.0),
             self.sol.output_lag_rad.unwrap_or(0.0),
         );
-        if self.history.len() == 2 {
+        if self.history.len() == 3 {
             self.history.remove(0);
         }
         self.history.push(entry);
@@ -203,7 +210,7 @@ fn solve_rollers(
     if closed_form {
         r.first_order_terms(crank, &mut work.terms);
         let (k, t) = (r.linear_stiffness(), model.torque_nmm);
-        let lag = piecewise_linear_root(k, &work.terms, t, &mut work.events).ok_or(
+        let lag = piecewise_linear_root_near(k, &work.terms, t, guess, &mut work.events).ok_or(
             SolveFailure::NoBracket {
                 lo: f64::NEG_INFINITY,
                 hi: f64::INFINITY,
@@ -283,21 +290,31 @@ fn solve_pins(
             work.terms.clear();
             work.terms
                 .extend(work.sol.pins.iter().map(|s| (s.gap_mm, s.arm_mm)));
-            let lag = piecewise_linear_root(k, &work.terms, model.torque_nmm, &mut work.events)
-                .ok_or(SolveFailure::NoBracket {
-                    lo: f64::NEG_INFINITY,
-                    hi: f64::INFINITY,
-                })?;
+            let lag = piecewise_linear_root_near(
+                k,
+                &work.terms,
+                model.torque_nmm,
+                guess,
+                &mut work.events,
+            )
+            .ok_or(SolveFailure::NoBracket {
+                lo: f64::NEG_INFINITY,
+                hi: f64::INFINITY,
+            })?;
             p.first_order_lagged(lag, &mut work.sol.pins);
             return Ok(lag);
         }
     }
     let states = &mut work.sol.pins;
+    // The angle's trigonometry, once for every evaluation of the pin balance.
+    let ecc = Vec2::new(crank.cos(), crank.sin());
+    let rotation = psi.sin_cos();
     let evaluate = |lag: f64, states: &mut Vec<PinState>| {
         if first_order {
-            p.evaluate_first_order(crank, model.ideal_centre(crank) + offset, psi, lag, states);
+            let centre = ecc * model.eccentricity_mm + offset;
+            p.first_order_at(ecc, rotation, centre, lag, states);
         } else {
-            p.evaluate(crank, offset, psi, lag, states);
+            p.evaluate_at(ecc, rotation, offset, lag, states);
         }
         let (value, slope, scale) = pins::moment(states);
         Balance {

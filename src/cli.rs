@@ -167,16 +167,9 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     }
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec).map_err(|e| locate(e, &spec))?;
-    let mut results = Vec::new();
-    for s in &spec.scenes {
-        results.push(scene::run(&spec, s, &scene::Plan::for_scene(s))?);
-    }
+    let results = run_scenes(&spec)?;
     let mut checks = check::evaluate(&spec.limits, &results);
-    let studies: Vec<_> = spec
-        .studies
-        .iter()
-        .map(|s| optimise::run_study(&spec, s))
-        .collect();
+    let studies = run_studies(&spec, spec.studies.iter().collect());
     checks.extend(check::optimisation(&spec, &studies));
     let goldens =
         golden::evaluate(&spec, &results, &golden_curves).map_err(|e| locate(e, &spec))?;
@@ -244,6 +237,42 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
     let blessed = golden::bless(&spec, &results).map_err(|e| locate(e, &spec))?;
     print(out, &golden::bless_report(&spec, &blessed))?;
     Ok(Outcome::Passed)
+}
+
+/// Every scene, in parallel; results (and the first error) in spec order.
+fn run_scenes(spec: &spec::Spec) -> Result<Vec<scene::SceneResult>> {
+    use rayon::prelude::*;
+    let results: Vec<Result<scene::SceneResult>> = spec
+        .scenes
+        .par_iter()
+        .map(|s| scene::run(spec, s, &scene::Plan::for_scene(s)))
+        .collect();
+    results.into_iter().collect()
+}
+
+/// Studies in parallel, in spec order, with a progress spinner on a terminal (hidden when
+/// stderr is not one, so CI logs stay clean).
+fn run_studies(spec: &spec::Spec, studies: Vec<&spec::Study>) -> Vec<optimise::StudyResult> {
+    use rayon::prelude::*;
+    if studies.is_empty() {
+        return Vec::new();
+    }
+    let bar = indicatif::ProgressBar::new_spinner().with_message(format!(
+        "optimising {} stud{}",
+        studies.len(),
+        if studies.len() == 1 { "y" } else { "ies" }
+    ));
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg}: {pos} evaluations, {elapsed}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    let results = studies
+        .par_iter()
+        .map(|s| optimise::run_study_with(spec, s, Some(&bar)))
+        .collect();
+    bar.finish_and_clear();
+    results
 }
 
 /// Give an error about a spec key the key's location in the spec file.
@@ -355,8 +384,8 @@ fn run_optimise(
         ));
     }
     let mut all_feasible = true;
-    for (k, study) in chosen.iter().enumerate() {
-        let r = optimise::run_study(&spec, study);
+    let results = run_studies(&spec, chosen.clone());
+    for (k, (study, r)) in chosen.iter().zip(results).enumerate() {
         print(out, &report::optimisation::render(&spec, study, &r))?;
         all_feasible &= r.optimum.feasible();
         if k == 0 {

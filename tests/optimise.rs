@@ -253,3 +253,44 @@ fn optimise_input_errors_exit_2_with_the_reason() {
         "{err}"
     );
 }
+
+#[test]
+fn min_gap_equals_the_smallest_gap_of_the_full_clearance_sweep() {
+    // The optimiser's constraint takes shortcuts (one mesh period of a whole-period sweep,
+    // warm starts in the locus frame); the clearance sweep evaluates every roller at every
+    // angle from scratch. Both must find the same minimum. 1e-12 mm covers the round-off of
+    // the two gap formulas (small-quantity sums of terms below 1 mm).
+    let spec = paper();
+    let deg = |d: f64| d.to_radians();
+    let grid = |from: f64, to: f64, steps: usize| -> Vec<f64> {
+        (0..steps)
+            .map(|k| deg(from + (to - from) * k as f64 / steps as f64))
+            .collect()
+    };
+    let cases = [
+        (0.125, 0.1593, 0.0, grid(0.0, 108.0, 540)),
+        (-0.15, -0.135, 0.0, grid(5.0, 77.0, 360)),
+        (0.1, 0.13, 0.02, grid(0.0, 20.0, 77)),
+        (-0.05, -0.02, -0.01, grid(3.3, 39.3, 360)),
+    ];
+    for (shift, equidistant, rotation_deg, crank) in cases {
+        let m = Modification {
+            shift_mm: shift,
+            equidistant_mm: equidistant,
+            rotation_rad: deg(rotation_deg),
+        };
+        let mesh = Mesh::new(&spec.design, &m);
+        let fast = clearance::min_gap(&mesh, &crank).unwrap();
+        let full = clearance::sweep(&mesh, &crank).unwrap();
+        let smallest = full
+            .gap_mm
+            .iter()
+            .flatten()
+            .fold(f64::INFINITY, |a, &b| a.min(b));
+        assert!(
+            (fast.gap_mm - smallest).abs() <= 1e-12,
+            "({shift}, {equidistant}, {rotation_deg}°): min_gap {} vs sweep {smallest}",
+            fast.gap_mm
+        );
+    }
+}

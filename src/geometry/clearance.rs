@@ -8,9 +8,11 @@
 //! - moment arm l > 0: a contact force on that roller turns the disc clockwise (drives it), and
 //!   the roller's gap closes as β grows: ∂gap/∂β = −l exactly.
 
+use super::profile::LocusFrame;
 use super::profile::{ClosestPointFailure, Profile};
 use super::{cross, rotate, Vec2};
 use crate::spec::{Design, Modification};
+use std::f64::consts::{PI, TAU};
 
 /// Pose of the disc at one crank angle. Fixed frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -234,33 +236,92 @@ pub struct MinClearance {
 }
 
 /// The smallest gap over every roller and crank angle at the ideal pose (β = 0): the
-/// whole-mesh interference check, without the backlash work of `sweep`. Each roller's
-/// closest-point search starts from its answer at the previous angle.
+/// whole-mesh interference check, without the backlash work of `sweep`.
+///
+/// Gaps repeat with the mesh period with the roller index shifted by one (crank φ + 2π/np puts
+/// roller i where roller i − 1 was at φ, turned by one tooth, and the profile is the same
+/// after a tooth): a uniform sweep over whole mesh periods needs only its first period. Each
+/// roller's closest point is found once from scratch (the scanning search), then followed
+/// from angle to angle in its locus frame (`Profile::closest_point_in_frame`), with the
+/// angle's trigonometry computed once for all rollers.
 pub fn min_gap(mesh: &Mesh, crank_rad: &[f64]) -> Result<MinClearance, GapFailure> {
-    let tooth = std::f64::consts::TAU / mesh.teeth as f64;
-    let mut warm: Vec<Option<f64>> = vec![None; mesh.rollers];
+    let crank = first_period(mesh, crank_rad);
+    let tooth = TAU / mesh.teeth as f64;
+    let np = mesh.rollers as f64;
+    let units: Vec<Vec2> = (0..mesh.rollers)
+        .map(|i| mesh.roller_centre(i) / mesh.roller_circle_radius_mm)
+        .collect();
+    let mut warm: Vec<f64> = Vec::with_capacity(mesh.rollers);
     let mut min = MinClearance {
         gap_mm: f64::INFINITY,
         roller: 0,
         crank_rad: 0.0,
         tooth_phase: 0.0,
     };
-    for &phi in crank_rad {
+    let offset = mesh.profile.offset_mm - mesh.roller_radius_mm;
+    for &phi in crank {
         let pose = Pose::ideal(phi);
-        for (i, t) in warm.iter_mut().enumerate() {
-            let g = mesh.roller_gap(i, &pose, *t)?;
-            *t = Some(g.t);
-            if g.gap_mm < min.gap_mm - TIE_MM {
+        let turn = phi / mesh.teeth as f64;
+        let (st, ct) = turn.sin_cos();
+        let lobe = Vec2::new((np * turn).cos(), (np * turn).sin());
+        for i in 0..mesh.rollers {
+            let (gap_mm, t) = match warm.get(i) {
+                None => {
+                    let g = mesh.roller_gap(i, &pose, None)?;
+                    warm.push(g.t);
+                    (g.gap_mm, g.t)
+                }
+                Some(&t_prev) => {
+                    let t_ref = TAU * i as f64 / np + turn;
+                    let frame = LocusFrame {
+                        t_ref,
+                        r_ref: mesh.roller_circle_radius_mm,
+                        base: rotate(units[i], ct, st),
+                        lobe,
+                    };
+                    let s_start = (t_prev - t_ref + PI).rem_euclid(TAU) - PI;
+                    let foot = mesh
+                        .profile
+                        .closest_point_in_frame(&frame, 0.0, Vec2::zeros(), s_start)
+                        .map_err(|detail| GapFailure {
+                            roller: i,
+                            pose,
+                            detail,
+                        })?;
+                    warm[i] = foot.t;
+                    (offset + foot.locus_distance_mm, foot.t)
+                }
+            };
+            if gap_mm < min.gap_mm - TIE_MM {
                 min = MinClearance {
-                    gap_mm: g.gap_mm,
+                    gap_mm,
                     roller: i,
                     crank_rad: phi,
-                    tooth_phase: g.t.rem_euclid(tooth) / tooth,
+                    tooth_phase: t.rem_euclid(tooth) / tooth,
                 };
             }
         }
     }
     Ok(min)
+}
+
+/// The leading mesh period of a uniform sweep that covers at least one whole period on its
+/// grid; otherwise the whole sweep.
+fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
+    let n = crank_rad.len();
+    if n < 2 {
+        return crank_rad;
+    }
+    let h = crank_rad[1] - crank_rad[0];
+    let span = crank_rad[n - 1] - crank_rad[0];
+    let uniform = (span - h * (n - 1) as f64).abs() <= 1e-9 * span.abs().max(1.0);
+    let per_period = TAU / mesh.rollers as f64 / h;
+    let m = per_period.round();
+    if uniform && m >= 1.0 && (per_period - m).abs() < 1e-9 && (m as usize) <= n {
+        &crank_rad[..m as usize]
+    } else {
+        crank_rad
+    }
 }
 
 /// Clearance of every roller over a crank sweep at the ideal pose (β = 0).

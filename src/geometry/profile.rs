@@ -233,32 +233,23 @@ impl Profile {
         k / (1.0 - self.offset_mm * k)
     }
 
-    /// The smallest convex radius of curvature of C (= 1/max κ_C), by a dense scan of one
-    /// half tooth (C is symmetric about t = 0 and repeats every 2π/nc) and golden-section refinement.
+    /// The smallest convex radius of curvature of C (= 1/max κ_C), in closed form.
+    ///
+    /// With c = cos((n − 1)t), κ_C = (A − B·c)/(P − Q·c)^{3/2} (see `locus_curvature_at`),
+    /// A = R'² + e²n³, B = R'e·n(n + 1), P = R'² + e²n², Q = 2R'e·n. The numerator of dκ/dc,
+    /// (3QA − 2BP)/2 − (QB/2)·c, is linear and decreasing in c, so κ has a single maximum at
+    /// c* = (3QA − 2BP)/(QB), clamped to [−1, 1] (c = 1 is the tooth root, −1 the tip). The
+    /// point is t = acos(c*)/(n − 1) from the root, the same on every tooth and both flanks.
     pub fn min_convex_radius(&self) -> ConvexRadius {
-        let teeth = (self.rollers - 1) as f64;
-        let half_tooth = PI / teeth;
-        let samples = 4096;
-        let h = half_tooth / samples as f64;
-        let best = (0..=samples)
-            .map(|k| k as f64 * h)
-            .max_by(|&a, &b| self.locus_curvature(a).total_cmp(&self.locus_curvature(b)))
-            .unwrap_or(0.0);
-        let (mut a, mut b) = ((best - h).max(0.0), (best + h).min(half_tooth));
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        for _ in 0..80 {
-            let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-            if self.locus_curvature(x1) > self.locus_curvature(x2) {
-                b = x2;
-            } else {
-                a = x1;
-            }
-        }
-        let t = 0.5 * (a + b);
-        let k = self.locus_curvature(t);
+        let n = self.rollers as f64;
+        let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
+        let (a, b) = (r * r + e * e * n * n * n, r * e * n * (n + 1.0));
+        let (p, q) = (r * r + e * e * n * n, 2.0 * r * e * n);
+        let c = ((3.0 * q * a - 2.0 * b * p) / (q * b)).clamp(-1.0, 1.0);
+        let k = self.locus_curvature_at(c);
         ConvexRadius {
             radius_mm: if k > 0.0 { 1.0 / k } else { f64::INFINITY },
-            t,
+            t: c.acos() / (n - 1.0),
         }
     }
 

@@ -42,11 +42,12 @@ pub fn scale(problem: &Problem, z: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// Evaluate the study's global sample.
+/// Evaluate the study's global sample (infeasible points get no objective: they never seed a
+/// local run).
 pub fn sample(problem: &Problem) -> Vec<Evaluation> {
     let dims = problem.study.variables.len();
     halton(problem.study.global_samples, dims)
         .par_iter()
-        .map(|z| problem.evaluate(&problem.modification_at(&scale(problem, z))))
+        .map(|z| problem.evaluate_screened(&problem.modification_at(&scale(problem, z)), true))
         .collect()
 }

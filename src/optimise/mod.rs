@@ -54,8 +54,17 @@ fn seeds(start: &Evaluation, global: &[Evaluation]) -> Vec<Evaluation> {
 
 /// Run one study: global sample, local runs, best feasible point.
 pub fn run_study(spec: &Spec, study: &Study) -> StudyResult {
+    run_study_with(spec, study, None)
+}
+
+/// `run_study`, counting evaluations on a progress bar.
+pub fn run_study_with(
+    spec: &Spec,
+    study: &Study,
+    progress: Option<&indicatif::ProgressBar>,
+) -> StudyResult {
     let clock = Instant::now();
-    let problem = Problem::new(spec, study);
+    let problem = Problem::new(spec, study).with_progress(progress);
     let start = problem.evaluate(&study.start);
     let references: Vec<(String, Evaluation)> = study
         .references

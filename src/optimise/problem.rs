@@ -76,6 +76,7 @@ pub struct Problem<'a> {
     pub study: &'a Study,
     pub scene: &'a Scene,
     scene_has_pins: bool,
+    progress: Option<&'a indicatif::ProgressBar>,
 }
 
 impl<'a> Problem<'a> {
@@ -86,7 +87,14 @@ impl<'a> Problem<'a> {
             study,
             scene,
             scene_has_pins: Plan::for_scene(scene).has(Effect::OutputPins),
+            progress: None,
         }
+    }
+
+    /// Count every evaluation on `progress`.
+    pub fn with_progress(mut self, progress: Option<&'a indicatif::ProgressBar>) -> Self {
+        self.progress = progress;
+        self
     }
 
     /// The modification at variable values x (engine units, in `study.variables` order).
@@ -109,6 +117,16 @@ impl<'a> Problem<'a> {
 
     /// Evaluate a candidate: design rules, constraints, then the objective terms.
     pub fn evaluate(&self, m: &Modification) -> Evaluation {
+        self.evaluate_screened(m, false)
+    }
+
+    /// `evaluate`, but with `screen` a candidate that violates a constraint gets no objective
+    /// (+∞): the global stage only seeds local runs from feasible points, so the loaded sweep
+    /// of an infeasible one would be wasted.
+    pub fn evaluate_screened(&self, m: &Modification, screen: bool) -> Evaluation {
+        if let Some(bar) = self.progress {
+            bar.inc(1);
+        }
         let mut e = Evaluation {
             modification: *m,
             objective: f64::INFINITY,
@@ -136,7 +154,11 @@ impl<'a> Problem<'a> {
             e.failure = Some(err.message);
             return e;
         }
-        match self.terms(m, &mut e) {
+        if screen && !e.margins.iter().all(Margin::satisfied) {
+            return e;
+        }
+        match self.terms(m, &mut e, screen) {
+            Ok(terms) if terms.is_empty() => {}
             Ok(terms) => {
                 e.objective = terms
                     .iter()
@@ -150,7 +172,12 @@ impl<'a> Problem<'a> {
         e
     }
 
-    fn terms(&self, m: &Modification, e: &mut Evaluation) -> Result<Vec<(Objective, f64)>, String> {
+    fn terms(
+        &self,
+        m: &Modification,
+        e: &mut Evaluation,
+        screen: bool,
+    ) -> Result<Vec<(Objective, f64)>, String> {
         let design = &self.spec.design;
         let crank = &self.scene.crank_rad;
         let mesh = Mesh::new(design, m);
@@ -163,6 +190,9 @@ impl<'a> Problem<'a> {
                 margin: min.gap_mm - dt,
             });
             e.min_clearance = Some(min);
+        }
+        if screen && !e.margins.iter().all(Margin::satisfied) {
+            return Ok(Vec::new());
         }
         let transmission =
             self.needs(Objective::RatioFluctuation) || self.needs(Objective::TeFluctuation);

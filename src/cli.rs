@@ -242,6 +242,29 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     if let Some(p) = outputs.junit {
         write_file(p, &report::junit::document(&spec.name, &spec.path, &checks))?;
     }
+    // The accuracy ladder runs only for the design review: `check` alone stays fast.
+    let ladder = match (&spec.accuracy, outputs.report) {
+        (Some(a), Some(_)) => {
+            let start = std::time::Instant::now();
+            let ladder = accuracy::run(&spec, a.scene, &a.options, &mut |_| {})?;
+            print(
+                out,
+                &format!(
+                    "accuracy ladder of scene `{}`: {} rungs in {:.2} s; cheapest meeting every \
+                     tolerance: {}\n",
+                    ladder.layout.scene,
+                    ladder.rungs.len(),
+                    start.elapsed().as_secs_f64(),
+                    match ladder.cheapest {
+                        Some(i) => format!("`{}`", ladder.rungs[i].label),
+                        None => "none".to_string(),
+                    }
+                ),
+            )?;
+            Some(ladder)
+        }
+        _ => None,
+    };
     if let Some(dir) = outputs.report {
         let input = report::html::ReportInput {
             spec: &spec,
@@ -250,6 +273,7 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
             goldens: &goldens,
             crank_deg: outputs.report_crank_deg,
             optimisation: None,
+            accuracy: ladder.as_ref(),
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;
         print(

@@ -208,6 +208,11 @@ impl Quantity {
         }
     }
 
+    /// Does an error meet this quantity's tolerance? (A NaN error does not.)
+    pub fn within(self, error: f64, t: &Tolerances) -> bool {
+        error <= self.tolerance(t)
+    }
+
     fn index(self) -> usize {
         self as usize
     }
@@ -319,7 +324,7 @@ impl Rung {
     pub fn misses(&self, t: &Tolerances) -> Vec<Quantity> {
         Quantity::ALL
             .into_iter()
-            .filter(|&q| self.error(q).is_some_and(|e| !(e <= q.tolerance(t))))
+            .filter(|&q| self.error(q).is_some_and(|e| !q.within(e, t)))
             .collect()
     }
 
@@ -933,7 +938,8 @@ fn seconds_text(s: f64) -> String {
     }
 }
 
-fn steps_text(x: f64) -> String {
+/// Steps per period (or periods): an integer as such, else two decimals.
+pub fn steps_text(x: f64) -> String {
     if (x - x.round()).abs() < 1e-9 {
         format!("{}", x.round())
     } else {

@@ -979,7 +979,7 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
             rows,
             "<tr class=\"{class}\"><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td class=\"num\">{:e}</td><td class=\"num\">{}</td>",
             esc(&r.label),
-            esc(&number(r.steps_per_period)),
+            esc(&acc::steps_text(r.steps_per_period)),
             r.angles,
             acc::geometry_name(r.geometry),
             acc::law_name(r.law),
@@ -998,8 +998,7 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
             };
             let over = !r.is_reference
                 && !r.model_difference
-                && r.error(q)
-                    .is_some_and(|e| !(e <= q.tolerance(&l.tolerances)));
+                && r.error(q).is_some_and(|e| !q.within(e, &l.tolerances));
             let _ = write!(
                 rows,
                 "<td class=\"num{}\">{}</td>",
@@ -1029,7 +1028,7 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
         esc(&l.scene),
         esc(&number(l.from_deg)),
         esc(&number(l.to_deg)),
-        esc(&number(l.periods)),
+        esc(&acc::steps_text(l.periods)),
         l.finest,
         acc::geometry_name(l.geometry),
         acc::law_name(l.law),
@@ -1074,7 +1073,7 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
             format!(
                 "Cheapest rung meeting every tolerance: <b>{}</b> ({} steps per mesh period).",
                 esc(&r.label),
-                esc(&number(r.steps_per_period))
+                esc(&acc::steps_text(r.steps_per_period))
             )
         }
         None => "No rung meets every tolerance.".to_string(),

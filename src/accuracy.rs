@@ -384,7 +384,8 @@ pub struct Layout {
     pub law: ContactLaw,
     /// The TE and ratio curves wrap around (the range covers whole loaded periods).
     pub periodic: bool,
-    /// The scene computes a loaded effect (settings rungs exist).
+    /// The scene computes roller contact, so the loaded outputs exist and the settings rungs
+    /// run (output pins alone give none of the ladder's quantities).
     pub loaded: bool,
 }
 
@@ -596,9 +597,7 @@ fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
         geometry: scene.geometry,
         law: scene.contact_law,
         periodic: probe.spans_whole(spec.design.loaded_period_rad(pins)),
-        loaded: plan.has(Effect::RollerContact)
-            || plan.has(Effect::OutputPins)
-            || plan.has(Effect::Bearing),
+        loaded: plan.has(Effect::RollerContact),
     }
 }
 
@@ -878,8 +877,8 @@ pub fn run(
         }
     } else {
         skipped.push(
-            "settings rungs: the scene computes no loaded effect, and clearance depends on the \
-             crank steps only"
+            "settings rungs: the scene computes no roller contact, and clearance depends on \
+             the crank steps only"
                 .to_string(),
         );
     }

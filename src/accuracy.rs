@@ -937,6 +937,15 @@ fn seconds_text(s: f64) -> String {
     }
 }
 
+/// An observed order, two decimals (no "-0.00" for an error that did not move).
+pub fn order_text(p: f64) -> String {
+    if p.abs() < 0.005 {
+        "0.00".to_string()
+    } else {
+        format!("{p:.2}")
+    }
+}
+
 /// Steps per period (or periods): an integer as such, else two decimals.
 pub fn steps_text(x: f64) -> String {
     if (x - x.round()).abs() < 1e-9 {
@@ -1102,11 +1111,9 @@ pub fn footer(ladder: &Ladder) -> String {
             }
             let text: Vec<String> = o
                 .iter()
-                .map(|(_, p)| p.map_or("—".to_string(), |p| format!("{p:.2}")))
+                .map(|(_, p)| p.map_or("—".to_string(), order_text))
                 .collect();
-            let fit = ladder
-                .fitted_order(q)
-                .map_or("—".to_string(), |p| format!("{p:.2}"));
+            let fit = ladder.fitted_order(q).map_or("—".to_string(), order_text);
             Some(format!(
                 "  {}{}   fit {fit}",
                 pad_right(q.label(), 15),

@@ -1089,13 +1089,13 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
             .map(|(_, p)| {
                 format!(
                     "<td class=\"num\">{}</td>",
-                    p.map_or("—".to_string(), |p| format!("{p:.2}"))
+                    p.map_or("—".to_string(), acc::order_text)
                 )
             })
             .collect();
         let fit = ladder
             .fitted_order(q)
-            .map_or("—".to_string(), |p| format!("{p:.2}"));
+            .map_or("—".to_string(), acc::order_text);
         let _ = writeln!(
             orders,
             "<tr><td>{}</td>{cells}<td class=\"num\"><b>{fit}</b></td></tr>",

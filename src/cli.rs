@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
-use crate::{check, export, golden, optimise, report, scene, spec};
+use crate::{accuracy, check, export, golden, optimise, report, scene, spec};
 use clap::{Parser, Subcommand};
 use std::io::Write;
 
@@ -56,6 +56,35 @@ pub enum Command {
         /// Grid points per variable for --map.
         #[arg(long, default_value_t = 21)]
         map_steps: usize,
+    },
+    /// Run a scene on a ladder of settings (crank steps per mesh period, geometry, contact law,
+    /// solver tolerance) and print each rung's error against the finest rung and its time.
+    Accuracy {
+        spec: String,
+        /// The scene to run [default: the spec's `accuracy.scene`, else the first scene with
+        /// roller contact, else the first scene].
+        #[arg(long)]
+        scene: Option<String>,
+        /// Crank steps per mesh period of the finest rung, the reference: 12·2^k, at least 24
+        /// [default: the spec's `accuracy.finest_steps_per_period`, else 3072].
+        #[arg(long, allow_negative_numbers = true)]
+        finest: Option<i64>,
+        /// Crank steps per mesh period of the rungs that change one setting [default: the
+        /// cheapest steps rung that meets every tolerance, else the finest].
+        #[arg(long, allow_negative_numbers = true)]
+        settings_steps: Option<i64>,
+        /// Tolerance on the TE curve and the TE fluctuation, arcsec [default: 0.1].
+        #[arg(long, allow_negative_numbers = true)]
+        te_tol_arcsec: Option<f64>,
+        /// Tolerance on the max roller and bearing forces, N [default: 0.5].
+        #[arg(long, allow_negative_numbers = true)]
+        force_tol_n: Option<f64>,
+        /// Tolerance on the ratio fluctuation κmax − κmin [default: 1e-4].
+        #[arg(long, allow_negative_numbers = true)]
+        ratio_tol: Option<f64>,
+        /// Tolerance on the min clearance, µm [default: 0.1].
+        #[arg(long, allow_negative_numbers = true)]
+        clearance_tol_um: Option<f64>,
     },
     /// Rewrite the golden files of a spec from the current results, on purpose, and print
     /// what moved. CI never blesses.
@@ -115,6 +144,24 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             result
         }
         Command::Bless { spec } => run_bless(&spec, out),
+        Command::Accuracy {
+            spec,
+            scene,
+            finest,
+            settings_steps,
+            te_tol_arcsec,
+            force_tol_n,
+            ratio_tol,
+            clearance_tol_um,
+        } => {
+            let asked = AccuracyArgs {
+                scene,
+                finest,
+                settings_steps,
+                tolerances: [te_tol_arcsec, force_tol_n, ratio_tol, clearance_tol_um],
+            };
+            run_accuracy(&spec, &asked, out)
+        }
         Command::Optimise {
             spec,
             study,
@@ -188,6 +235,29 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     if let Some(p) = outputs.junit {
         write_file(p, &report::junit::document(&spec.name, &spec.path, &checks))?;
     }
+    // The accuracy ladder runs only for the design review: `check` alone stays fast.
+    let ladder = match (&spec.accuracy, outputs.report) {
+        (Some(a), Some(_)) => {
+            let start = std::time::Instant::now();
+            let ladder = accuracy::run(&spec, a.scene, &a.options, &mut |_| {})?;
+            print(
+                out,
+                &format!(
+                    "accuracy ladder of scene `{}`: {} rungs in {:.2} s; cheapest meeting every \
+                     tolerance: {}\n",
+                    ladder.layout.scene,
+                    ladder.rungs.len(),
+                    start.elapsed().as_secs_f64(),
+                    match ladder.cheapest {
+                        Some(i) => format!("`{}`", ladder.rungs[i].label),
+                        None => "none".to_string(),
+                    }
+                ),
+            )?;
+            Some(ladder)
+        }
+        _ => None,
+    };
     if let Some(dir) = outputs.report {
         let input = report::html::ReportInput {
             spec: &spec,
@@ -196,6 +266,7 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
             goldens: &goldens,
             crank_deg: outputs.report_crank_deg,
             optimisation: None,
+            accuracy: ladder.as_ref(),
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;
         print(
@@ -273,6 +344,96 @@ fn run_studies(spec: &spec::Spec, studies: Vec<&spec::Study>) -> Vec<optimise::S
         .collect();
     bar.finish_and_clear();
     results
+}
+
+/// The options of `cycloid accuracy` as given; unset ones come from the spec's `accuracy`
+/// section, else the defaults.
+struct AccuracyArgs {
+    scene: Option<String>,
+    finest: Option<i64>,
+    settings_steps: Option<i64>,
+    /// TE (arcsec), force (N), ratio, clearance (µm).
+    tolerances: [Option<f64>; 4],
+}
+
+fn run_accuracy(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Result<Outcome> {
+    let bad = |flag: &str, m: String| {
+        Error::new(crate::ErrorKind::InvalidValue, format!("--{flag}: {m}"))
+    };
+    let spec = spec::load(path)?;
+    let from_spec = spec.accuracy.as_ref();
+    let scene = match &asked.scene {
+        Some(name) => spec
+            .scenes
+            .iter()
+            .position(|s| &s.name == name)
+            .ok_or_else(|| {
+                bad(
+                    "scene",
+                    format!(
+                        "no scene named `{name}`; scenes: {}",
+                        spec.scenes
+                            .iter()
+                            .map(|s| s.name.as_str())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                )
+            })?,
+        None => from_spec.map_or_else(|| accuracy::default_scene(&spec), |a| a.scene),
+    };
+    let mut options = from_spec.map_or_else(accuracy::Options::default, |a| a.options);
+    if let Some(n) = asked.finest {
+        options.finest =
+            accuracy::ladder_steps(n, 2 * accuracy::COARSEST).map_err(|m| bad("finest", m))?;
+    }
+    if let Some(n) = asked.settings_steps {
+        options.settings_steps = Some(
+            accuracy::ladder_steps(n, accuracy::COARSEST).map_err(|m| bad("settings-steps", m))?,
+        );
+    }
+    let t = &mut options.tolerances;
+    for ((flag, value), slot) in [
+        "te-tol-arcsec",
+        "force-tol-n",
+        "ratio-tol",
+        "clearance-tol-um",
+    ]
+    .into_iter()
+    .zip(asked.tolerances)
+    .zip([
+        &mut t.te_arcsec,
+        &mut t.force_n,
+        &mut t.ratio,
+        &mut t.clearance_um,
+    ]) {
+        if let Some(v) = value {
+            *slot = accuracy::tolerance(v).map_err(|m| bad(flag, m))?;
+        }
+    }
+    accuracy::check(&spec.design, &spec.scenes[scene], &options).map_err(|(which, m)| {
+        let flag = match which {
+            accuracy::Setting::Scene => "scene",
+            accuracy::Setting::Finest => "finest",
+            accuracy::Setting::SettingsSteps => "settings-steps",
+        };
+        bad(flag, m)
+    })?;
+    // Rows are printed as their runs finish: the finest run comes first and takes longest.
+    let mut written: Result<()> = Ok(());
+    let ladder = accuracy::run(&spec, scene, &options, &mut |event| {
+        let text = match event {
+            accuracy::Event::Started(layout) => accuracy::header(layout),
+            accuracy::Event::Rung(layout, rung) => accuracy::row(layout, rung, false),
+        };
+        if written.is_ok() {
+            written =
+                print(out, &text).and_then(|_| out.flush().map_err(|e| Error::io("<stdout>", e)));
+        }
+    })?;
+    written?;
+    print(out, &accuracy::footer(&ladder))?;
+    Ok(Outcome::Passed)
 }
 
 /// Give an error about a spec key the key's location in the spec file.

@@ -4,6 +4,7 @@
 //! Units inside the engine: mm, N, N·mm, rad, MPa. Conversions happen only in `spec` (input)
 //! and `report` (output). Conventions are those of `shared/MODEL.md`, restated on the types.
 
+pub mod accuracy;
 pub mod check;
 pub mod cli;
 pub mod contact;

@@ -6,6 +6,7 @@
 //! an error.
 
 use crate::equilibrium::curves::{self, LoadedSweep};
+use crate::equilibrium::solve::Settings;
 use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, ClearanceSweep, Mesh};
@@ -107,6 +108,17 @@ pub struct SceneResult {
 
 /// Run one scene according to its plan.
 pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
+    run_with(spec, scene, plan, &Settings::default())
+}
+
+/// Run one scene according to its plan, with the loaded solves converged to `settings`
+/// (`run` uses the default settings; the accuracy ladder varies them).
+pub fn run_with(
+    spec: &Spec,
+    scene: &Scene,
+    plan: &Plan,
+    settings: &Settings,
+) -> Result<SceneResult> {
     let mesh = Mesh::new(&spec.design, &spec.modification);
     let clearance = if plan.has(Effect::Clearance) {
         Some(
@@ -122,7 +134,7 @@ pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
         plan.has(Effect::Bearing),
     );
     let loaded = if rollers || pins || bearing {
-        let model = Model::new(
+        let mut model = Model::new(
             &spec.design,
             &spec.modification,
             scene,
@@ -130,6 +142,7 @@ pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
             pins,
             bearing,
         );
+        model.settings = *settings;
         let periodic = scene.spans_whole(spec.design.loaded_period_rad(pins || bearing));
         curves::sweep(&model, &scene.crank_rad, periodic).map_err(|f| {
             Error::computation(format!(

@@ -166,6 +166,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         goldens: &[],
         crank_deg: Some(0.0),
         optimisation: Some(&view),
+        accuracy: None,
     });
     // CYCLOID_KEEP_REPORT=DIR keeps the synthetic report to look at.
     if let Some(dir) = std::env::var_os("CYCLOID_KEEP_REPORT") {
@@ -200,6 +201,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         goldens: &[],
         crank_deg: None,
         optimisation: None,
+        accuracy: None,
     });
     assert!(!files.iter().any(|(n, _)| n == "optimisation.svg"));
 }

@@ -7,6 +7,11 @@ use std::process::Command;
 const EXPECTED: &[(&str, i32, &str)] = &[
     ("reducer.yaml", 0, "paper optimum, clearance only"),
     (
+        "reducer-loaded.yaml",
+        0,
+        "paper optimum under 10 N·m, every effect, accuracy ladder for the design review",
+    ),
+    (
         "paper.yaml",
         0,
         "paper optimum (0.125, 0.1593) with its golden curves",

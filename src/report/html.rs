@@ -53,6 +53,8 @@ pub struct ReportInput<'a> {
     /// Crank angle of the disc drawing, degrees; default: where the smallest gap occurs.
     pub crank_deg: Option<f64>,
     pub optimisation: Option<&'a OptimisationView>,
+    /// The accuracy ladder of a scene (`accuracy:` in the spec), when one was run.
+    pub accuracy: Option<&'a crate::accuracy::Ladder>,
 }
 
 /// The report's files: (file name, content), `index.html` first.
@@ -109,6 +111,9 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
                  red: the optimiser's path from its start to the optimum."
             )
         );
+    }
+    if let Some(ladder) = input.accuracy {
+        figures += &accuracy_section(ladder);
     }
     let page = page(input, &figures);
     files.insert(0, ("index.html".into(), page));
@@ -922,6 +927,208 @@ fn optimisation_svg(o: &OptimisationView) -> String {
     .to_svg()
 }
 
+/// The accuracy ladder as a table: one row per rung, errors against the reference, times, the
+/// cheapest rung that meets every tolerance highlighted; observed orders and notes below.
+fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
+    use crate::accuracy::{self as acc, Variation};
+    let l = &ladder.layout;
+    let mut head = String::from(
+        "<tr><th>rung</th><th>steps per mesh period</th><th>crank angles</th><th>geometry</th>\
+         <th>contact law</th><th>solver rel_tol</th><th>time</th>",
+    );
+    for q in &l.quantities {
+        let unit = if q.unit().is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", q.unit())
+        };
+        let _ = write!(
+            head,
+            "<th>{}{}<br><span class=\"note\">tol {}</span></th>",
+            esc(q.label()),
+            esc(&unit),
+            esc(&acc::short(q.tolerance(&l.tolerances)))
+        );
+    }
+    head += "<th>tolerances</th></tr>";
+    let mut rows = String::new();
+    for (i, r) in ladder.rungs.iter().enumerate() {
+        let cheapest = ladder.cheapest == Some(i);
+        let misses = r.misses(&l.tolerances);
+        let (class, verdict) = if r.is_reference {
+            ("reference", "reference".to_string())
+        } else if r.model_difference {
+            ("model", "model difference".to_string())
+        } else if misses.is_empty() {
+            ("pass", "met".to_string())
+        } else {
+            (
+                "fail",
+                format!(
+                    "not met: {}",
+                    misses
+                        .iter()
+                        .map(|q| q.label())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )
+        };
+        let class = if cheapest { "pass cheapest" } else { class };
+        let _ = write!(
+            rows,
+            "<tr class=\"{class}\"><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td class=\"num\">{:e}</td><td class=\"num\">{}</td>",
+            esc(&r.label),
+            esc(&acc::steps_text(r.steps_per_period)),
+            r.angles,
+            acc::geometry_name(r.geometry),
+            acc::law_name(r.law),
+            r.rel_tol,
+            esc(&if r.seconds < 1.0 {
+                format!("{:.1} ms", r.seconds * 1000.0)
+            } else {
+                format!("{:.2} s", r.seconds)
+            }),
+        );
+        for &q in &l.quantities {
+            let cell = match r.error(q) {
+                _ if r.is_reference => "—".to_string(),
+                Some(e) => acc::short(e),
+                None => "n/a".to_string(),
+            };
+            let over = !r.is_reference
+                && !r.model_difference
+                && r.error(q).is_some_and(|e| !q.within(e, &l.tolerances));
+            let _ = write!(
+                rows,
+                "<td class=\"num{}\">{}</td>",
+                if over { " over" } else { "" },
+                esc(&cell)
+            );
+        }
+        let _ = writeln!(
+            rows,
+            "<td class=\"verdict\">{}{}</td></tr>",
+            esc(&verdict),
+            if cheapest { " — <b>cheapest</b>" } else { "" }
+        );
+    }
+    let missing: Vec<&str> = acc::Quantity::ALL
+        .into_iter()
+        .filter(|q| !l.quantities.contains(q))
+        .map(|q| q.description())
+        .collect();
+    let mut notes = format!(
+        "Scene <code>{}</code> over crank {}° to {}° ({} mesh periods) on a ladder of settings. \
+         The reference is the finest rung: {} steps per mesh period, {} geometry, {}, solver \
+         rel_tol 1e-11. Each error is |rung − reference| in the quantity's unit; the TE curve's \
+         is the largest difference between the reference and the rung's curve interpolated \
+         linearly between its crank angles. Times are wall-clock measurements of the rung's run \
+         (the fastest of up to {} runs for runs under {} ms).",
+        esc(&l.scene),
+        esc(&number(l.from_deg)),
+        esc(&number(l.to_deg)),
+        esc(&acc::steps_text(l.periods)),
+        l.finest,
+        acc::geometry_name(l.geometry),
+        acc::law_name(l.law),
+        acc::REPEATS,
+        acc::REPEAT_BELOW_S * 1000.0,
+    );
+    if !missing.is_empty() {
+        let _ = write!(
+            notes,
+            " Not computed by this scene (no column): {}.",
+            esc(&missing.join(", "))
+        );
+    }
+    if ladder.rungs.iter().any(|r| r.variation != Variation::Steps) {
+        let _ = write!(
+            notes,
+            " The rungs that change one setting run at {} steps per mesh period{}.",
+            ladder.settings_steps,
+            if ladder.settings_steps == l.finest {
+                " (the finest, so their errors are the setting's own effect)"
+            } else {
+                "; their errors include that resolution's, shown by its steps rung"
+            }
+        );
+    }
+    if ladder
+        .rungs
+        .iter()
+        .any(|r| r.variation == Variation::ContactLaw)
+    {
+        notes += " Another contact law is another model: its difference from the reference is a \
+                  model difference, not a discretisation error, and it is never the cheapest.";
+    }
+    let verdict = match ladder.cheapest {
+        Some(i) if ladder.rungs[i].is_reference => {
+            "Only the reference meets every tolerance; its own error is not measured (no finer \
+             rung)."
+                .to_string()
+        }
+        Some(i) => {
+            let r = &ladder.rungs[i];
+            format!(
+                "Cheapest rung meeting every tolerance: <b>{}</b> ({} steps per mesh period).",
+                esc(&r.label),
+                esc(&acc::steps_text(r.steps_per_period))
+            )
+        }
+        None => "No rung meets every tolerance.".to_string(),
+    };
+    let mut orders = String::new();
+    for &q in &l.quantities {
+        let o = ladder.orders(q);
+        if o.is_empty() {
+            continue;
+        }
+        let cells: String = o
+            .iter()
+            .map(|(_, p)| {
+                format!(
+                    "<td class=\"num\">{}</td>",
+                    p.map_or("—".to_string(), acc::order_text)
+                )
+            })
+            .collect();
+        let fit = ladder
+            .fitted_order(q)
+            .map_or("—".to_string(), acc::order_text);
+        let _ = writeln!(
+            orders,
+            "<tr><td>{}</td>{cells}<td class=\"num\"><b>{fit}</b></td></tr>",
+            esc(q.label())
+        );
+    }
+    let order_table = if orders.is_empty() {
+        String::new()
+    } else {
+        let ns: String = ladder
+            .orders(l.quantities[0])
+            .iter()
+            .map(|(n, _)| format!("<th>{n}→{}</th>", 2 * n))
+            .collect();
+        format!(
+            "<p class=\"note\">Observed order of convergence log2(e(N)/e(2N)) of the steps rungs \
+             (— where an error is at round-off), and the least-squares fit over N = 12 … \
+             finest/4.</p><table><thead><tr><th>quantity</th>{ns}<th>fit</th></tr></thead>\
+             <tbody>{orders}</tbody></table>"
+        )
+    };
+    let skipped: String = ladder
+        .skipped
+        .iter()
+        .map(|k| format!(" Skipped: {}.", esc(k)))
+        .collect();
+    format!(
+        "<section id=\"accuracy\"><h2>Accuracy ladder: what accuracy costs in time</h2>\
+         <p class=\"note\">{notes}{skipped}</p><p>{verdict}</p>\
+         <table><thead>{head}</thead><tbody>{rows}</tbody></table>{order_table}</section>\n"
+    )
+}
+
 fn check_rows(checks: &[Check]) -> String {
     let mut rows = String::new();
     for c in crate::report::table::ordered(checks) {
@@ -1072,6 +1279,9 @@ td.num {{ text-align: right; font-variant-numeric: tabular-nums; white-space: no
 tr.fail td.verdict {{ color: #b00; font-weight: bold; }}
 tr.pass td.verdict {{ color: #1d6b1a; }}
 tr.fail {{ background: #fff3f3; }}
+tr.cheapest {{ background: #e3f4e1; font-weight: bold; }}
+tr.reference {{ background: #f3f3f3; }}
+td.over {{ color: #b00; }}
 .cols {{ display: flex; gap: 40px; flex-wrap: wrap; }}
 .grid {{ display: grid; grid-template-columns: repeat(auto-fill, minmax(660px, 1fr)); gap: 18px; }}
 figure {{ margin: 0; }}

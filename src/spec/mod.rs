@@ -112,6 +112,7 @@ where
         limits: raw.limits,
         optimise: raw.optimise.map(Into::into),
         golden: raw.golden,
+        accuracy: raw.accuracy,
     })
 }
 
@@ -633,10 +634,18 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
             format!("the crank range is empty: to_deg = {to} must exceed from_deg = {from}"),
         ));
     }
-    let step = (to - from) / steps as f64;
-    Ok((0..steps)
-        .map(|k| (from + step * k as f64).to_radians())
-        .collect())
+    Ok(crank_angles(from, to, steps as usize))
+}
+
+/// Crank angles of a range in rad: `from + k·(to − from)/steps` degrees, k = 0 … steps − 1.
+/// Grids of `steps` and `steps·2^m` over the same range nest exactly: every angle of the coarser
+/// is, bit for bit, the angle 2^m·k of the finer (division and multiplication by a power of two
+/// are exact in binary floating point).
+pub fn crank_angles(from_deg: f64, to_deg: f64, steps: usize) -> Vec<f64> {
+    let step = (to_deg - from_deg) / steps as f64;
+    (0..steps)
+        .map(|k| (from_deg + step * k as f64).to_radians())
+        .collect()
 }
 
 fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
@@ -695,6 +704,8 @@ fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
         output_torque_nmm: finite(&format!("{key}.output_torque_nm"), raw.output_torque_nm)?
             * 1000.0,
         crank_rad: crank(&format!("{key}.crank"), &raw.crank, rollers)?,
+        crank_from_deg: raw.crank.from_deg,
+        crank_to_deg: raw.crank.to_deg,
         name: raw.name,
         effects,
         contact_law,
@@ -781,6 +792,10 @@ fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         }
         golden.push(g);
     }
+    let accuracy = raw
+        .accuracy
+        .map(|a| accuracy_section(a, &scenes, &design))
+        .transpose()?;
     Ok(Spec {
         name: raw.name,
         path: path.to_string(),
@@ -791,7 +806,73 @@ fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         limits,
         golden,
         studies,
+        accuracy,
     })
+}
+
+/// `accuracy:`: the scene exists and computes something the ladder compares, the rungs are
+/// rungs of the ladder, the tolerances are positive.
+fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Result<Accuracy> {
+    use crate::accuracy as acc;
+    let scene = scenes
+        .iter()
+        .position(|s| s.name == raw.scene)
+        .ok_or_else(|| {
+            invalid(
+                "accuracy.scene",
+                format!(
+                    "no scene named `{}`; scenes: {}",
+                    raw.scene,
+                    scenes
+                        .iter()
+                        .map(|s| s.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )
+        })?;
+    let steps = |key: &str, value: Option<i64>, min: usize| {
+        value
+            .map(|n| acc::ladder_steps(n, min).map_err(|m| invalid(&format!("accuracy.{key}"), m)))
+            .transpose()
+    };
+    let finest = steps(
+        "finest_steps_per_period",
+        raw.finest_steps_per_period,
+        2 * acc::COARSEST,
+    )?
+    .unwrap_or(acc::DEFAULT_FINEST);
+    let settings_steps = steps(
+        "settings_steps_per_period",
+        raw.settings_steps_per_period,
+        acc::COARSEST,
+    )?;
+    let defaults = acc::Tolerances::default();
+    let t = &raw.tolerance;
+    let tol = |key: &str, value: Option<f64>, default: f64| {
+        value.map_or(Ok(default), |v| {
+            acc::tolerance(v).map_err(|m| invalid(&format!("accuracy.tolerance.{key}"), m))
+        })
+    };
+    let options = acc::Options {
+        finest,
+        settings_steps,
+        tolerances: acc::Tolerances {
+            te_arcsec: tol("te_arcsec", t.te_arcsec, defaults.te_arcsec)?,
+            force_n: tol("force_n", t.force_n, defaults.force_n)?,
+            ratio: tol("ratio", t.ratio, defaults.ratio)?,
+            clearance_um: tol("clearance_um", t.clearance_um, defaults.clearance_um)?,
+        },
+    };
+    acc::check(design, &scenes[scene], &options).map_err(|(which, m)| {
+        let key = match which {
+            acc::Setting::Scene => "accuracy.scene",
+            acc::Setting::Finest => "accuracy.finest_steps_per_period",
+            acc::Setting::SettingsSteps => "accuracy.settings_steps_per_period",
+        };
+        invalid(key, m)
+    })?;
+    Ok(Accuracy { scene, options })
 }
 
 /// Resolve a golden path against the spec file's directory, dropping `.` and `dir/..` pairs

@@ -131,6 +131,9 @@ pub struct Scene {
     pub output_torque_nmm: f64,
     /// Crank angles φ in rad: `from + k·(to − from)/steps`, k = 0..steps (end excluded).
     pub crank_rad: Vec<f64>,
+    /// The crank range as written (`crank.from_deg`, `crank.to_deg`), degrees.
+    pub crank_from_deg: f64,
+    pub crank_to_deg: f64,
     /// Effects as the spec asks for them; `scene::Plan` adds what they need.
     pub effects: Vec<Effect>,
     pub contact_law: ContactLaw,
@@ -183,6 +186,16 @@ pub struct Spec {
     pub limits: Limits,
     pub studies: Vec<Study>,
     pub golden: Vec<Golden>,
+    /// The accuracy ladder the design review shows (`accuracy:`), if asked for.
+    pub accuracy: Option<Accuracy>,
+}
+
+/// `accuracy:` of a spec: which scene's ladder the design review shows, and how.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Accuracy {
+    /// Index into `Spec::scenes`.
+    pub scene: usize,
+    pub options: crate::accuracy::Options,
 }
 
 /// A quantity an optimisation can minimise. Each is a scalar of one scene's sweep.

@@ -25,6 +25,9 @@ pub struct RawSpecOf<O> {
     /// Reviewed reference curves the results must stay close to.
     #[serde(default)]
     pub golden: Vec<RawGolden>,
+    /// The accuracy ladder of one scene, shown in the design review (`check --report`).
+    #[serde(default)]
+    pub accuracy: Option<RawAccuracy>,
 }
 
 pub type RawSpec = RawSpecOf<RawOptimise>;
@@ -237,4 +240,35 @@ pub struct RawTolerance {
     /// Relative band, a fraction of the golden value.
     #[serde(default)]
     pub rel: f64,
+}
+
+/// `accuracy:`: run one scene on a ladder of settings (see `crate::accuracy`).
+#[derive(Debug, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the key scene (and optionally finest_steps_per_period, settings_steps_per_period, tolerance)"
+)]
+pub struct RawAccuracy {
+    pub scene: String,
+    /// Crank steps per mesh period of the reference run (12·2^k).
+    #[serde(default)]
+    pub finest_steps_per_period: Option<i64>,
+    /// Steps per mesh period of the rungs that vary one setting.
+    #[serde(default)]
+    pub settings_steps_per_period: Option<i64>,
+    #[serde(default)]
+    pub tolerance: RawAccuracyTolerance,
+}
+
+/// Tolerances a rung must meet against the reference, in the units of the key names.
+#[derive(Debug, Deserialize, Default)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys te_arcsec, force_n, ratio, clearance_um"
+)]
+pub struct RawAccuracyTolerance {
+    pub te_arcsec: Option<f64>,
+    pub force_n: Option<f64>,
+    pub ratio: Option<f64>,
+    pub clearance_um: Option<f64>,
 }

@@ -1,0 +1,1169 @@
+//! What accuracy costs in time: one scene run on a ladder of settings, each rung's headline
+//! outputs compared with the finest rung (the reference), and the wall-clock time of each run.
+//!
+//! The ladder:
+//! - **steps rungs**: 12, 24, 48, … crank steps per mesh period up to the finest (3072 by
+//!   default), over the scene's own crank range and in its own geometry, contact law and solver
+//!   tolerance. The number of crank angles scales with the range, so a 108° range (three mesh
+//!   periods) runs 36, 72, … angles. Every grid is nested in the finest: angle k of a rung with
+//!   N steps per period is, bit for bit, angle k·(finest/N) of the reference.
+//! - **settings rungs**, one setting changed at a time at the settings resolution (by default the
+//!   cheapest steps rung that meets every tolerance, else the finest): the other geometry mode
+//!   (`first_order` ↔ `exact`), the other contact law (`paper_linear` ↔ `hertz_nonlinear`) and
+//!   the solver tolerances rel_tol 1e-6 and 1e-9 (the default 1e-11 is the steps rung itself).
+//!
+//! A different contact law is a different model: its "error" is a model difference, not an
+//! approximation of the reference, so it is never chosen as the cheapest rung. The same holds
+//! for the `exact` rung of a scene that asks for `first_order`: the reference is always the
+//! scene's own model, at the finest resolution, with the default tolerance.
+//!
+//! The errors, each in its quantity's unit:
+//! - **TE curve**: max |δ_ref(φ) − δ_rung(φ)| over the reference's angles, the rung's curve
+//!   linearly interpolated between its samples (wrapping around when the sweep covers whole
+//!   loaded periods, else only between its first and last angle). At its own angles a rung
+//!   agrees with the reference to the solver tolerance, since every angle is solved on its own:
+//!   the discretisation error of a sampled curve lies between its samples
+//!   (`Rung::te_at_nodes_arcsec` keeps the agreement at the samples).
+//! - **TE fluctuation** δmax − δmin (arcsec), **ratio fluctuation** κmax − κmin, **max roller
+//!   force** (N), **max bearing force** (N), **min clearance** (µm): |rung − reference|.
+//!
+//! Only the quantities the scene computes are compared (a scene without `bearing` has no
+//! bearing column). Times are wall-clock measurements of `scene::run_with` for the rung, the
+//! same work `check` does for the scene; they are printed, never asserted.
+
+use crate::equilibrium::curves::{fluctuation, max_entry};
+use crate::equilibrium::solve::Settings;
+use crate::error::{Error, ErrorKind, Result};
+use crate::report::json::ARCSEC_PER_RAD;
+use crate::report::table::number;
+use crate::scene::{self, Effect, Plan, SceneResult};
+use crate::spec::{self, ContactLaw, Design, GeometryMode, Scene, Spec};
+use std::time::Instant;
+
+/// Steps per mesh period of the coarsest rung.
+pub const COARSEST: usize = 12;
+/// Steps per mesh period of the reference unless asked otherwise.
+pub const DEFAULT_FINEST: usize = 3072;
+/// Largest finest rung accepted: 12·2^12.
+pub const MAX_FINEST: usize = COARSEST << 12;
+/// Runs shorter than this (s) are repeated, and the fastest of `REPEATS` runs is the time.
+pub const REPEAT_BELOW_S: f64 = 0.05;
+pub const REPEATS: usize = 5;
+/// A rung is cheaper than an earlier row of the table only when its time is below this
+/// fraction of that row's.
+pub const CLEARLY_FASTER: f64 = 0.95;
+/// Solver tolerances of the tolerance rungs (the default, `Settings::default().rel_tol`, is the
+/// steps rung at the same resolution).
+pub const LOOSE_REL_TOL: [f64; 2] = [1e-6, 1e-9];
+
+/// What a rung must reach against the reference to count as accurate enough.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerances {
+    /// TE curve and TE fluctuation, arcsec.
+    pub te_arcsec: f64,
+    /// Max roller and bearing force, N.
+    pub force_n: f64,
+    /// Ratio fluctuation κmax − κmin.
+    pub ratio: f64,
+    /// Min clearance, µm.
+    pub clearance_um: f64,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Tolerances {
+            te_arcsec: 0.1,
+            force_n: 0.5,
+            ratio: 1e-4,
+            clearance_um: 0.1,
+        }
+    }
+}
+
+/// How to build the ladder.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// Steps per mesh period of the reference (12·2^k, k ≥ 1).
+    pub finest: usize,
+    /// Steps per mesh period of the settings rungs; `None`: the cheapest steps rung that meets
+    /// the tolerances (the finest when none does).
+    pub settings_steps: Option<usize>,
+    pub tolerances: Tolerances,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            finest: DEFAULT_FINEST,
+            settings_steps: None,
+            tolerances: Tolerances::default(),
+        }
+    }
+}
+
+/// A steps-per-period value of the ladder: 12·2^k with 24 ≤ n ≤ `MAX_FINEST` (`min` 12 for the
+/// settings resolution). The message says what is accepted.
+pub fn ladder_steps(n: i64, min: usize) -> std::result::Result<usize, String> {
+    let mut rungs = Vec::new();
+    let mut r = COARSEST;
+    while r <= MAX_FINEST {
+        if r >= min {
+            rungs.push(r);
+        }
+        r *= 2;
+    }
+    match rungs.iter().find(|&&r| r as i64 == n) {
+        Some(&r) => Ok(r),
+        None => Err(format!(
+            "steps per mesh period must be 12·2^k, one of {}, got {n}",
+            rungs
+                .iter()
+                .map(|r| r.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
+
+/// A tolerance: a positive finite number.
+pub fn tolerance(value: f64) -> std::result::Result<f64, String> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(format!(
+            "a tolerance must be a positive number, got {value}"
+        ))
+    }
+}
+
+/// A headline output of a scene, compared rung by rung.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Quantity {
+    TeCurve,
+    TeFluctuation,
+    RatioFluctuation,
+    MaxRollerForce,
+    MaxBearingForce,
+    MinClearance,
+}
+
+impl Quantity {
+    pub const ALL: [Quantity; 6] = [
+        Quantity::TeCurve,
+        Quantity::TeFluctuation,
+        Quantity::RatioFluctuation,
+        Quantity::MaxRollerForce,
+        Quantity::MaxBearingForce,
+        Quantity::MinClearance,
+    ];
+
+    /// Short column heading.
+    pub fn label(self) -> &'static str {
+        match self {
+            Quantity::TeCurve => "TE curve",
+            Quantity::TeFluctuation => "TE fluct.",
+            Quantity::RatioFluctuation => "ratio fluct.",
+            Quantity::MaxRollerForce => "max roller F",
+            Quantity::MaxBearingForce => "max bearing F",
+            Quantity::MinClearance => "min clearance",
+        }
+    }
+
+    /// What the error is, in words.
+    pub fn description(self) -> &'static str {
+        match self {
+            Quantity::TeCurve => "loaded TE curve, max |difference| between the curves",
+            Quantity::TeFluctuation => "TE fluctuation δmax − δmin",
+            Quantity::RatioFluctuation => "ratio fluctuation κmax − κmin",
+            Quantity::MaxRollerForce => "max roller force",
+            Quantity::MaxBearingForce => "max crank-bearing force",
+            Quantity::MinClearance => "min clearance over the mesh",
+        }
+    }
+
+    pub fn unit(self) -> &'static str {
+        match self {
+            Quantity::TeCurve | Quantity::TeFluctuation => "arcsec",
+            Quantity::RatioFluctuation => "",
+            Quantity::MaxRollerForce | Quantity::MaxBearingForce => "N",
+            Quantity::MinClearance => "µm",
+        }
+    }
+
+    /// The effect a scene must compute for this quantity to exist.
+    pub fn effect(self) -> Effect {
+        match self {
+            Quantity::MaxBearingForce => Effect::Bearing,
+            Quantity::MinClearance => Effect::Clearance,
+            _ => Effect::RollerContact,
+        }
+    }
+
+    pub fn tolerance(self, t: &Tolerances) -> f64 {
+        match self {
+            Quantity::TeCurve | Quantity::TeFluctuation => t.te_arcsec,
+            Quantity::RatioFluctuation => t.ratio,
+            Quantity::MaxRollerForce | Quantity::MaxBearingForce => t.force_n,
+            Quantity::MinClearance => t.clearance_um,
+        }
+    }
+
+    /// Does an error meet this quantity's tolerance? (A NaN error does not.)
+    pub fn within(self, error: f64, t: &Tolerances) -> bool {
+        error <= self.tolerance(t)
+    }
+
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// The headline outputs of one run, in report units (arcsec, N, µm).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Outputs {
+    pub crank_rad: Vec<f64>,
+    /// Loaded TE δ at every crank angle, arcsec.
+    pub te_arcsec: Option<Vec<f64>>,
+    /// Transmission ratio κ at every crank angle (central differences of δ).
+    pub ratio: Option<Vec<f64>>,
+    /// Rollers carrying load at every crank angle.
+    pub contacts: Option<Vec<usize>>,
+    pub te_fluctuation_arcsec: Option<f64>,
+    pub ratio_fluctuation: Option<f64>,
+    pub max_roller_force_n: Option<f64>,
+    pub max_bearing_force_n: Option<f64>,
+    pub min_clearance_um: Option<f64>,
+}
+
+impl Outputs {
+    pub fn of(r: &SceneResult) -> Outputs {
+        let t = r.loaded.transmission.as_ref();
+        let te_arcsec: Option<Vec<f64>> =
+            t.map(|t| t.te_rad.iter().map(|d| d * ARCSEC_PER_RAD).collect());
+        Outputs {
+            crank_rad: r.crank_rad.clone(),
+            te_fluctuation_arcsec: te_arcsec.as_deref().map(fluctuation),
+            te_arcsec,
+            ratio: t.and_then(|t| t.ratio.clone()),
+            contacts: r.loaded.rollers.as_ref().map(|c| c.contacts.clone()),
+            ratio_fluctuation: t.and_then(|t| t.ratio.as_deref()).map(fluctuation),
+            max_roller_force_n: r.loaded.rollers.as_ref().map(|c| max_entry(&c.force_n).0),
+            max_bearing_force_n: r
+                .loaded
+                .bearing
+                .as_ref()
+                .map(|b| b.force_n.iter().copied().fold(0.0, f64::max)),
+            min_clearance_um: r.clearance.as_ref().map(|c| c.min.gap_mm * 1000.0),
+        }
+    }
+
+    /// The scalar value of a quantity (the TE curve's is its largest |δ|).
+    pub fn value(&self, q: Quantity) -> Option<f64> {
+        match q {
+            Quantity::TeCurve => self
+                .te_arcsec
+                .as_ref()
+                .map(|v| v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))),
+            Quantity::TeFluctuation => self.te_fluctuation_arcsec,
+            Quantity::RatioFluctuation => self.ratio_fluctuation,
+            Quantity::MaxRollerForce => self.max_roller_force_n,
+            Quantity::MaxBearingForce => self.max_bearing_force_n,
+            Quantity::MinClearance => self.min_clearance_um,
+        }
+    }
+}
+
+/// Which setting a rung changes from the reference.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variation {
+    /// Crank steps per mesh period (the reference is the finest of these).
+    Steps,
+    /// The other geometry mode.
+    Geometry,
+    /// The other contact law: a different model.
+    ContactLaw,
+    /// A looser solver tolerance.
+    SolverTolerance,
+}
+
+/// One run of the ladder.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rung {
+    pub label: String,
+    pub variation: Variation,
+    /// Crank steps per mesh period (12·2^k; not an integer for a range of partial periods).
+    pub steps_per_period: f64,
+    /// Crank angles solved.
+    pub angles: usize,
+    pub geometry: GeometryMode,
+    pub law: ContactLaw,
+    pub rel_tol: f64,
+    /// Wall-clock time of the run, s: loaded effects plus clearance.
+    pub seconds: f64,
+    /// The part of `seconds` spent on the clearance (unloaded) sweep; a settings rung reuses
+    /// the clearance of the steps rung at its resolution, and its time.
+    pub clearance_seconds: f64,
+    pub outputs: Outputs,
+    /// |rung − reference| per quantity (index: `Quantity as usize`); `None` when not computed.
+    pub errors: [Option<f64>; 6],
+    /// max |δ_ref − δ_rung| at the rung's own crank angles, arcsec (solver round-off only).
+    pub te_at_nodes_arcsec: Option<f64>,
+    /// This rung is the reference.
+    pub is_reference: bool,
+    /// The rung is another model, not an approximation of the reference (its error is a model
+    /// difference): never chosen as the cheapest.
+    pub model_difference: bool,
+}
+
+impl Rung {
+    pub fn error(&self, q: Quantity) -> Option<f64> {
+        self.errors[q.index()]
+    }
+
+    /// The quantities whose error exceeds its tolerance.
+    pub fn misses(&self, t: &Tolerances) -> Vec<Quantity> {
+        Quantity::ALL
+            .into_iter()
+            .filter(|&q| self.error(q).is_some_and(|e| !q.within(e, t)))
+            .collect()
+    }
+
+    pub fn meets(&self, t: &Tolerances) -> bool {
+        self.misses(t).is_empty()
+    }
+
+    fn settings(&self) -> String {
+        format!(
+            "{} geometry, {}, rel_tol {}",
+            geometry_name(self.geometry),
+            law_name(self.law),
+            tol_text(self.rel_tol)
+        )
+    }
+}
+
+pub fn geometry_name(g: GeometryMode) -> &'static str {
+    match g {
+        GeometryMode::Exact => "exact",
+        GeometryMode::FirstOrder => "first_order",
+    }
+}
+
+pub fn law_name(l: ContactLaw) -> &'static str {
+    match l {
+        ContactLaw::PaperLinear => "paper_linear",
+        ContactLaw::HertzNonlinear => "hertz_nonlinear",
+    }
+}
+
+fn tol_text(x: f64) -> String {
+    let e = x.log10().round();
+    if (10f64.powf(e) - x).abs() <= 1e-6 * x {
+        format!("1e{}", e as i32)
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// What is known before anything runs: the scene, its range, the quantities compared.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layout {
+    pub spec_name: String,
+    pub scene: String,
+    pub from_deg: f64,
+    pub to_deg: f64,
+    /// Mesh periods covered by the range.
+    pub periods: f64,
+    /// Crank angles per 12 steps per mesh period (the coarsest rung's angle count).
+    pub base_angles: usize,
+    /// The quantities the scene computes, in column order.
+    pub quantities: Vec<Quantity>,
+    pub finest: usize,
+    pub tolerances: Tolerances,
+    pub geometry: GeometryMode,
+    pub law: ContactLaw,
+    /// The TE and ratio curves wrap around (the range covers whole loaded periods).
+    pub periodic: bool,
+    /// The scene computes roller contact, so the loaded outputs exist and the settings rungs
+    /// run (output pins alone give none of the ladder's quantities).
+    pub loaded: bool,
+}
+
+impl Layout {
+    fn angles(&self, steps_per_period: usize) -> usize {
+        self.base_angles * (steps_per_period / COARSEST)
+    }
+
+    fn steps_per_period(&self, angles: usize) -> f64 {
+        angles as f64 / self.periods
+    }
+}
+
+/// The whole ladder.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ladder {
+    pub layout: Layout,
+    /// Steps rungs from coarse to fine (the reference last), then the settings rungs.
+    pub rungs: Vec<Rung>,
+    /// Steps per mesh period of the settings rungs.
+    pub settings_steps: usize,
+    /// Index of the cheapest (shortest time) rung that meets every tolerance, model differences
+    /// excluded; the reference when nothing cheaper does.
+    pub cheapest: Option<usize>,
+    /// Settings rungs left out, and why.
+    pub skipped: Vec<String>,
+}
+
+impl Ladder {
+    pub fn reference(&self) -> &Rung {
+        self.rungs
+            .iter()
+            .find(|r| r.is_reference)
+            .expect("a ladder has a reference")
+    }
+
+    /// The steps rungs, coarse to fine, the reference last.
+    pub fn steps_rungs(&self) -> impl Iterator<Item = &Rung> {
+        self.rungs
+            .iter()
+            .filter(|r| r.variation == Variation::Steps)
+    }
+
+    /// Errors at or below this are round-off, not discretisation: 1e-8 of the quantity's
+    /// magnitude in the reference (the largest |δ| for the TE quantities, the largest κ for the
+    /// ratio fluctuation). The solves converge to 1e-11 relative; central differences divide
+    /// their round-off by the step.
+    pub fn noise_floor(&self, q: Quantity) -> f64 {
+        let o = &self.reference().outputs;
+        let scale = match q {
+            Quantity::RatioFluctuation => o
+                .ratio
+                .as_ref()
+                .map_or(0.0, |r| r.iter().fold(0.0, |m: f64, x| m.max(x.abs()))),
+            Quantity::TeFluctuation => o.value(Quantity::TeCurve).unwrap_or(0.0),
+            _ => o.value(q).map_or(0.0, f64::abs),
+        };
+        1e-8 * scale
+    }
+
+    /// An error above the noise floor, else `None`.
+    fn resolved(&self, r: &Rung, q: Quantity) -> Option<f64> {
+        r.error(q).filter(|&e| e > self.noise_floor(q))
+    }
+
+    /// Observed order of convergence of a quantity between successive steps rungs below the
+    /// reference: p = log2(e(N)/e(2N)), one value per pair (N, 2N) with 2N below the finest;
+    /// `None` where an error is at round-off (`noise_floor`), e.g. an extreme that falls on a
+    /// crank angle every grid shares.
+    pub fn orders(&self, q: Quantity) -> Vec<(usize, Option<f64>)> {
+        let steps: Vec<&Rung> = self.steps_rungs().filter(|r| !r.is_reference).collect();
+        steps
+            .windows(2)
+            .map(|w| {
+                let n = w[0].steps_per_period.round() as usize;
+                let p = match (self.resolved(w[0], q), self.resolved(w[1], q)) {
+                    (Some(a), Some(b)) => Some((a / b).log2()),
+                    _ => None,
+                };
+                (n, p)
+            })
+            .collect()
+    }
+}
+
+impl Ladder {
+    /// Least-squares slope of log e against log N over the steps rungs below the reference,
+    /// without the one just below it (its error against the reference is inflated by the
+    /// reference's own error: e(N/2)/e(N) = 2^p + 1 instead of 2^p). `None` with fewer than two
+    /// errors above the noise floor.
+    pub fn fitted_order(&self, q: Quantity) -> Option<f64> {
+        let steps: Vec<&Rung> = self.steps_rungs().filter(|r| !r.is_reference).collect();
+        let points: Vec<(f64, f64)> = steps[..steps.len().saturating_sub(1)]
+            .iter()
+            .filter_map(|r| {
+                let e = self.resolved(r, q)?;
+                Some((r.steps_per_period.log2(), e.log2()))
+            })
+            .collect();
+        if points.len() < 2 {
+            return None;
+        }
+        let n = points.len() as f64;
+        let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
+        let my = points.iter().map(|p| p.1).sum::<f64>() / n;
+        let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+        let sxx: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+        (sxx > 0.0).then(|| -sxy / sxx)
+    }
+}
+
+/// What the ladder reports while it runs.
+pub enum Event<'a> {
+    /// Before the first run.
+    Started(&'a Layout),
+    /// A rung finished (in table order: steps rungs coarse to fine, then settings rungs).
+    Rung(&'a Layout, &'a Rung),
+}
+
+/// The scene a ladder runs by default: the first that computes roller contact, else the first.
+pub fn default_scene(spec: &Spec) -> usize {
+    spec.scenes
+        .iter()
+        .position(|s| Plan::for_scene(s).has(Effect::RollerContact))
+        .unwrap_or(0)
+}
+
+/// The setting a problem of `check` is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Setting {
+    Scene,
+    Finest,
+    SettingsSteps,
+}
+
+/// Can this scene be run on this ladder? The error names the setting and says why not.
+pub fn check(
+    design: &Design,
+    scene: &Scene,
+    options: &Options,
+) -> std::result::Result<(), (Setting, String)> {
+    if let Some(s) = options.settings_steps {
+        if s > options.finest {
+            return Err((
+                Setting::SettingsSteps,
+                format!(
+                    "the settings rungs' {s} steps per mesh period exceed the finest rung's {}",
+                    options.finest
+                ),
+            ));
+        }
+    }
+    let plan = Plan::for_scene(scene);
+    if !Quantity::ALL.iter().any(|q| plan.has(q.effect())) {
+        return Err((
+            Setting::Scene,
+            format!(
+            "scene `{}` computes none of the ladder's outputs (it needs clearance, roller_contact \
+             or bearing)",
+            scene.name
+        ),
+        ));
+    }
+    let periods =
+        (scene.crank_to_deg - scene.crank_from_deg).to_radians() / design.mesh_period_rad();
+    let base = base_angles(periods);
+    let finest = base as f64 * (options.finest / COARSEST) as f64;
+    let max = (spec::MAX_ROLLER_ANGLES as usize / design.rollers) as f64;
+    if finest > max {
+        return Err((
+            Setting::Finest,
+            format!(
+            "the finest rung would solve {finest} crank angles over {:.4} mesh periods; at most \
+             {max} fit in memory with {} rollers: choose a smaller finest rung or a shorter crank \
+             range",
+            periods, design.rollers
+        ),
+        ));
+    }
+    Ok(())
+}
+
+/// Crank angles of the coarsest rung: 12 per mesh period, at least one.
+fn base_angles(periods: f64) -> usize {
+    ((COARSEST as f64 * periods).round() as usize).max(1)
+}
+
+fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
+    let plan = Plan::for_scene(scene);
+    let (from_deg, to_deg) = (scene.crank_from_deg, scene.crank_to_deg);
+    let periods = (to_deg - from_deg).to_radians() / spec.design.mesh_period_rad();
+    let pins = plan.has(Effect::OutputPins) || plan.has(Effect::Bearing);
+    let base = base_angles(periods);
+    let mut probe = scene.clone();
+    probe.crank_rad = spec::crank_angles(from_deg, to_deg, base);
+    Layout {
+        spec_name: spec.name.clone(),
+        scene: scene.name.clone(),
+        from_deg,
+        to_deg,
+        periods,
+        base_angles: base,
+        quantities: Quantity::ALL
+            .into_iter()
+            .filter(|q| plan.has(q.effect()))
+            .collect(),
+        finest: options.finest,
+        tolerances: options.tolerances,
+        geometry: scene.geometry,
+        law: scene.contact_law,
+        periodic: probe.spans_whole(spec.design.loaded_period_rad(pins)),
+        loaded: plan.has(Effect::RollerContact),
+    }
+}
+
+/// The errors of `rung` against `reference`; the rung's grid is nested in the reference's
+/// (`ratio` reference angles per rung angle).
+fn errors(
+    reference: &Outputs,
+    rung: &Outputs,
+    ratio: usize,
+    periodic: bool,
+) -> ([Option<f64>; 6], Option<f64>) {
+    let mut e = [None; 6];
+    let mut at_nodes = None;
+    if let (Some(f), Some(c)) = (&reference.te_arcsec, &rung.te_arcsec) {
+        let (curve, nodes) = curve_error(f, c, ratio, periodic);
+        e[Quantity::TeCurve.index()] = Some(curve);
+        at_nodes = Some(nodes);
+    }
+    for q in Quantity::ALL.into_iter().skip(1) {
+        if let (Some(a), Some(b)) = (reference.value(q), rung.value(q)) {
+            e[q.index()] = Some((a - b).abs());
+        }
+    }
+    (e, at_nodes)
+}
+
+/// max |fine − interpolated coarse| over the fine samples, and max |fine − coarse| at the
+/// coarse samples. Coarse sample k sits at fine sample k·ratio; between samples the coarse
+/// curve is linear, wrapping from the last sample to the first when `periodic` (fine samples
+/// past the last coarse one are skipped otherwise).
+pub fn curve_error(fine: &[f64], coarse: &[f64], ratio: usize, periodic: bool) -> (f64, f64) {
+    let (mut curve, mut nodes) = (0.0f64, 0.0f64);
+    let n = coarse.len();
+    for (j, &f) in fine.iter().enumerate() {
+        let (k, i) = (j / ratio, j % ratio);
+        if k >= n {
+            break;
+        }
+        let value = if i == 0 {
+            nodes = nodes.max((f - coarse[k]).abs());
+            coarse[k]
+        } else if k + 1 < n || periodic {
+            let w = i as f64 / ratio as f64;
+            coarse[k] * (1.0 - w) + coarse[(k + 1) % n] * w
+        } else {
+            continue;
+        };
+        curve = curve.max((f - value).abs());
+    }
+    (curve, nodes)
+}
+
+/// A rung's run: its outputs and the measured times of its loaded effects and its clearance.
+struct Run {
+    outputs: Outputs,
+    loaded_seconds: f64,
+    clearance_seconds: f64,
+}
+
+/// Run `plan` for `scene` with `settings`, timed. A short run is timed again (up to `REPEATS`
+/// runs in all) and the fastest time kept: milliseconds are at the mercy of the scheduler, and
+/// the cheapest rung is chosen by time.
+fn timed(
+    spec: &Spec,
+    scene: &Scene,
+    plan: &Plan,
+    settings: &Settings,
+) -> Result<(SceneResult, f64)> {
+    let mut best = f64::INFINITY;
+    let mut first = None;
+    for _ in 0..REPEATS {
+        let start = Instant::now();
+        let result = scene::run_with(spec, scene, plan, settings)?;
+        let seconds = start.elapsed().as_secs_f64();
+        best = best.min(seconds);
+        let done = seconds >= REPEAT_BELOW_S;
+        first.get_or_insert(result);
+        if done {
+            break;
+        }
+    }
+    Ok((first.expect("at least one run"), best))
+}
+
+/// The plan with only the effects `keep` accepts.
+fn part(plan: &Plan, keep: impl Fn(Effect) -> bool) -> Plan {
+    Plan {
+        scene: plan.scene.clone(),
+        effects: plan
+            .effects
+            .iter()
+            .filter(|p| keep(p.effect))
+            .cloned()
+            .collect(),
+    }
+}
+
+/// Run the ladder of one scene. `progress` hears of every finished rung as it finishes.
+///
+/// The clearance (unloaded, exact geometry) and the loaded effects are run and timed apart:
+/// the clearance depends on the crank steps only, so the settings rungs reuse the clearance of
+/// the steps rung at their resolution, its result and its measured time.
+pub fn run(
+    spec: &Spec,
+    scene_index: usize,
+    options: &Options,
+    progress: &mut dyn FnMut(Event),
+) -> Result<Ladder> {
+    let scene = &spec.scenes[scene_index];
+    check(&spec.design, scene, options).map_err(|(_, m)| Error::new(ErrorKind::InvalidValue, m))?;
+    let layout = layout(spec, scene, options);
+    progress(Event::Started(&layout));
+    let plan = Plan::for_scene(scene);
+    let clearance_plan = part(&plan, |e| e == Effect::Clearance);
+    let loaded_plan = part(&plan, |e| e != Effect::Clearance);
+    let default_tol = Settings::default().rel_tol;
+    let run_once = |steps_per_period: usize,
+                    geometry: GeometryMode,
+                    law: ContactLaw,
+                    rel_tol: f64,
+                    clearance: bool|
+     -> Result<Run> {
+        let mut s = scene.clone();
+        s.crank_rad = spec::crank_angles(
+            layout.from_deg,
+            layout.to_deg,
+            layout.angles(steps_per_period),
+        );
+        s.geometry = geometry;
+        s.contact_law = law;
+        let settings = Settings {
+            rel_tol,
+            ..Settings::default()
+        };
+        let (mut result, loaded_seconds) = if loaded_plan.effects.is_empty() {
+            (scene::run_with(spec, &s, &loaded_plan, &settings)?, 0.0)
+        } else {
+            timed(spec, &s, &loaded_plan, &settings)?
+        };
+        let mut clearance_seconds = 0.0;
+        if clearance && !clearance_plan.effects.is_empty() {
+            let (c, seconds) = timed(spec, &s, &clearance_plan, &settings)?;
+            result.clearance = c.clearance;
+            clearance_seconds = seconds;
+        }
+        Ok(Run {
+            outputs: Outputs::of(&result),
+            loaded_seconds,
+            clearance_seconds,
+        })
+    };
+    let (geometry, law) = (scene.geometry, scene.contact_law);
+    // Warm-up, untimed: the first run of a process starts the thread pool and touches fresh
+    // memory, which would be charged to the reference otherwise.
+    run_once(COARSEST, geometry, law, default_tol, true)?;
+    let reference_run = run_once(options.finest, geometry, law, default_tol, true)?;
+    let reference = reference_run.outputs.clone();
+    let make = |label: String,
+                variation: Variation,
+                geometry: GeometryMode,
+                law: ContactLaw,
+                rel_tol: f64,
+                run: Run| {
+        let n = run.outputs.crank_rad.len();
+        let ratio = layout.angles(options.finest) / n;
+        let (errors, te_at_nodes_arcsec) = errors(&reference, &run.outputs, ratio, layout.periodic);
+        Rung {
+            label,
+            variation,
+            steps_per_period: layout.steps_per_period(n),
+            angles: n,
+            geometry,
+            law,
+            rel_tol,
+            seconds: run.loaded_seconds + run.clearance_seconds,
+            clearance_seconds: run.clearance_seconds,
+            outputs: run.outputs,
+            errors,
+            te_at_nodes_arcsec,
+            is_reference: false,
+            model_difference: variation == Variation::ContactLaw
+                || (variation == Variation::Geometry && geometry == GeometryMode::Exact),
+        }
+    };
+    let mut rungs = Vec::new();
+    let mut n = COARSEST;
+    while n < options.finest {
+        let run = run_once(n, geometry, law, default_tol, true)?;
+        let rung = make(
+            format!("steps {n}"),
+            Variation::Steps,
+            geometry,
+            law,
+            default_tol,
+            run,
+        );
+        progress(Event::Rung(&layout, &rung));
+        rungs.push(rung);
+        n *= 2;
+    }
+    let mut top = make(
+        format!("steps {} (reference)", options.finest),
+        Variation::Steps,
+        geometry,
+        law,
+        default_tol,
+        reference_run,
+    );
+    top.is_reference = true;
+    progress(Event::Rung(&layout, &top));
+    rungs.push(top);
+
+    let settings_steps = options.settings_steps.unwrap_or_else(|| {
+        rungs
+            .iter()
+            .find(|r| !r.is_reference && r.meets(&options.tolerances))
+            .map_or(options.finest, |r| {
+                (r.angles / layout.base_angles) * COARSEST
+            })
+    });
+    // The steps rung at the settings resolution: its clearance is every settings rung's.
+    let base = rungs
+        .iter()
+        .find(|r| r.angles == layout.angles(settings_steps))
+        .cloned()
+        .expect("the settings resolution is a steps rung");
+    let mut skipped = Vec::new();
+    if layout.loaded {
+        let other_geometry = match geometry {
+            GeometryMode::Exact => GeometryMode::FirstOrder,
+            GeometryMode::FirstOrder => GeometryMode::Exact,
+        };
+        let other_law = match law {
+            ContactLaw::PaperLinear => ContactLaw::HertzNonlinear,
+            ContactLaw::HertzNonlinear => ContactLaw::PaperLinear,
+        };
+        let mut variants = vec![
+            (
+                format!("{} geometry", geometry_name(other_geometry)),
+                Variation::Geometry,
+                other_geometry,
+                law,
+                default_tol,
+            ),
+            (
+                format!("{} law", law_name(other_law)),
+                Variation::ContactLaw,
+                geometry,
+                other_law,
+                default_tol,
+            ),
+        ];
+        if geometry == GeometryMode::FirstOrder && law == ContactLaw::PaperLinear {
+            skipped.push(
+                "solver tolerance rungs: first-order geometry with the linear law is solved in \
+                 closed form, without a tolerance"
+                    .to_string(),
+            );
+        } else {
+            for tol in LOOSE_REL_TOL {
+                variants.push((
+                    format!("rel_tol {}", tol_text(tol)),
+                    Variation::SolverTolerance,
+                    geometry,
+                    law,
+                    tol,
+                ));
+            }
+        }
+        for (label, variation, g, l, tol) in variants {
+            let mut run = run_once(settings_steps, g, l, tol, false)?;
+            run.outputs.min_clearance_um = base.outputs.min_clearance_um;
+            run.clearance_seconds = base.clearance_seconds;
+            let rung = make(label, variation, g, l, tol, run);
+            progress(Event::Rung(&layout, &rung));
+            rungs.push(rung);
+        }
+    } else {
+        skipped.push(
+            "settings rungs: the scene computes no roller contact, and clearance depends on \
+             the crank steps only"
+                .to_string(),
+        );
+    }
+    // The cheapest by measured time among the rungs that meet every tolerance; the reference
+    // meets them by definition and is the answer when nothing cheaper does. Rows are taken in
+    // table order and a later one wins only when it is clearly faster (`CLEARLY_FASTER`), so
+    // that scheduler noise between runs of equal work does not pick the answer.
+    let mut cheapest: Option<usize> = None;
+    for (i, r) in rungs.iter().enumerate() {
+        if r.model_difference || !r.meets(&options.tolerances) {
+            continue;
+        }
+        if cheapest.is_none_or(|c| r.seconds < CLEARLY_FASTER * rungs[c].seconds) {
+            cheapest = Some(i);
+        }
+    }
+    Ok(Ladder {
+        layout,
+        rungs,
+        settings_steps,
+        cheapest,
+        skipped,
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// Text rendering. Columns have fixed widths so rows can be printed as they finish.
+
+const LABEL_W: usize = 26;
+const NUM_W: usize = 13;
+
+fn pad_left(s: &str, w: usize) -> String {
+    format!("{}{s}", " ".repeat(w.saturating_sub(s.chars().count())))
+}
+
+fn pad_right(s: &str, w: usize) -> String {
+    format!("{s}{}", " ".repeat(w.saturating_sub(s.chars().count())))
+}
+
+/// A number for the table: 3 significant digits, exponent form below 0.01.
+pub fn short(x: f64) -> String {
+    if x == 0.0 {
+        "0".to_string()
+    } else if (0.01..1e5).contains(&x.abs()) {
+        number(x)
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
+fn seconds_text(s: f64) -> String {
+    if s < 1.0 {
+        format!("{:.1} ms", s * 1000.0)
+    } else {
+        format!("{s:.2} s")
+    }
+}
+
+/// An observed order, two decimals (no "-0.00" for an error that did not move).
+pub fn order_text(p: f64) -> String {
+    if p.abs() < 0.005 {
+        "0.00".to_string()
+    } else {
+        format!("{p:.2}")
+    }
+}
+
+/// Steps per period (or periods): an integer as such, else two decimals.
+pub fn steps_text(x: f64) -> String {
+    if (x - x.round()).abs() < 1e-9 {
+        format!("{}", x.round())
+    } else {
+        format!("{x:.2}")
+    }
+}
+
+fn tolerance_text(q: Quantity, t: &Tolerances) -> String {
+    let v = short(q.tolerance(t));
+    if q.unit().is_empty() {
+        v
+    } else {
+        format!("{v} {}", q.unit())
+    }
+}
+
+/// The lines before the first row: scene, reference, tolerances, column headings.
+pub fn header(l: &Layout) -> String {
+    let mut s = format!(
+        "accuracy ladder of scene `{}` (spec `{}`): crank {}° to {}° ({} mesh periods)\n",
+        l.scene,
+        l.spec_name,
+        number(l.from_deg),
+        number(l.to_deg),
+        steps_text(l.periods)
+    );
+    s += &format!(
+        "reference: {} steps per mesh period ({} crank angles), {} geometry, {}, rel_tol {}\n",
+        l.finest,
+        l.angles(l.finest),
+        geometry_name(l.geometry),
+        law_name(l.law),
+        tol_text(Settings::default().rel_tol)
+    );
+    let tolerances: Vec<String> = l
+        .quantities
+        .iter()
+        .map(|&q| format!("{} {}", q.label(), tolerance_text(q, &l.tolerances)))
+        .collect();
+    s += &format!(
+        "errors are |rung − reference| in each quantity's unit; tolerances: {}\n",
+        tolerances.join(", ")
+    );
+    let missing: Vec<&str> = Quantity::ALL
+        .into_iter()
+        .filter(|q| !l.quantities.contains(q))
+        .map(|q| q.description())
+        .collect();
+    if !missing.is_empty() {
+        s += &format!(
+            "not computed by this scene (no column): {}\n",
+            missing.join(", ")
+        );
+    }
+    let mut h1 = format!(
+        "{}{}{}{}",
+        pad_right("rung", LABEL_W),
+        pad_left("steps/period", 13),
+        pad_left("angles", 8),
+        pad_left("time", 11)
+    );
+    let mut h2 = " ".repeat(LABEL_W + 13 + 8 + 11);
+    for q in &l.quantities {
+        h1 += &pad_left(q.label(), NUM_W + 1);
+        h2 += &pad_left(q.unit(), NUM_W + 1);
+    }
+    h1 += "  tolerances";
+    s += h1.trim_end();
+    s += "\n";
+    s += h2.trim_end();
+    s += "\n";
+    s
+}
+
+/// One row of the table; `cheapest` appends the mark.
+pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
+    let mut s = format!(
+        "{}{}{}{}",
+        pad_right(&r.label, LABEL_W),
+        pad_left(&steps_text(r.steps_per_period), 13),
+        pad_left(&r.angles.to_string(), 8),
+        pad_left(&seconds_text(r.seconds), 11)
+    );
+    for &q in &l.quantities {
+        let cell = match r.error(q) {
+            _ if r.is_reference => "—".to_string(),
+            Some(e) => short(e),
+            None => "n/a".to_string(),
+        };
+        s += &pad_left(&cell, NUM_W + 1);
+    }
+    let verdict = if r.is_reference {
+        "reference".to_string()
+    } else if r.model_difference {
+        "model difference".to_string()
+    } else {
+        let misses = r.misses(&l.tolerances);
+        if misses.is_empty() {
+            "met".to_string()
+        } else {
+            format!(
+                "not met: {}",
+                misses
+                    .iter()
+                    .map(|q| q.label())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }
+    };
+    s += "  ";
+    s += &verdict;
+    if cheapest {
+        s += "  <- cheapest";
+    }
+    s + "\n"
+}
+
+/// The lines after the last row: the cheapest rung, the observed orders, the notes.
+pub fn footer(ladder: &Ladder) -> String {
+    let l = &ladder.layout;
+    let reference = ladder.reference();
+    let mut s = String::new();
+    if ladder.layout.loaded && ladder.rungs.iter().any(|r| r.variation != Variation::Steps) {
+        s += &format!(
+            "settings rungs at {} steps per mesh period{}\n",
+            ladder.settings_steps,
+            if ladder.settings_steps == l.finest {
+                " (the finest: their errors are the settings' own effect)"
+            } else {
+                " (their errors include that resolution's, shown by its steps rung)"
+            }
+        );
+    }
+    match ladder.cheapest {
+        Some(i) if ladder.rungs[i].is_reference => {
+            s += "cheapest rung meeting every tolerance: only the reference, whose own error is not \
+                  measured (no finer rung): ask for looser tolerances or a finer reference\n";
+        }
+        Some(i) => {
+            let r = &ladder.rungs[i];
+            s += &format!(
+                "cheapest rung meeting every tolerance: `{}` ({} steps per mesh period, {}): {} \
+                 against {} for the reference\n",
+                r.label,
+                steps_text(r.steps_per_period),
+                r.settings(),
+                seconds_text(r.seconds),
+                seconds_text(reference.seconds)
+            );
+        }
+        None => s += "no rung meets every tolerance\n",
+    }
+    let orders: Vec<String> = l
+        .quantities
+        .iter()
+        .filter_map(|&q| {
+            let o = ladder.orders(q);
+            if o.is_empty() {
+                return None;
+            }
+            let text: Vec<String> = o
+                .iter()
+                .map(|(_, p)| p.map_or("—".to_string(), order_text))
+                .collect();
+            let fit = ladder.fitted_order(q).map_or("—".to_string(), order_text);
+            Some(format!(
+                "  {}{}   fit {fit}",
+                pad_right(q.label(), 15),
+                text.join(" ")
+            ))
+        })
+        .collect();
+    if !orders.is_empty() {
+        let ns: Vec<String> = ladder
+            .orders(l.quantities[0])
+            .iter()
+            .map(|(n, _)| n.to_string())
+            .collect();
+        s += &format!(
+            "observed order log2(e(N)/e(2N)) of the steps rungs, N = {}; fit: least squares \
+             over N = 12 … finest/4:\n",
+            ns.join(", ")
+        );
+        for o in orders {
+            s += &o;
+            s += "\n";
+        }
+    }
+    if ladder
+        .rungs
+        .iter()
+        .any(|r| r.variation == Variation::ContactLaw)
+    {
+        s += "note: another contact law is another model: its \"error\" is the difference between \
+              the models, not a discretisation error, and it is never chosen as the cheapest\n";
+    }
+    if ladder
+        .rungs
+        .iter()
+        .any(|r| r.variation == Variation::Geometry && r.model_difference)
+    {
+        s += "note: the scene asks for first_order geometry, so the reference is first_order; the \
+              exact rung's difference is the first-order model's error\n";
+    }
+    for k in &ladder.skipped {
+        s += &format!("skipped: {k}\n");
+    }
+    s
+}
+
+/// The whole table (header, rows with the cheapest marked, footer).
+pub fn render(ladder: &Ladder) -> String {
+    let mut s = header(&ladder.layout);
+    for (i, r) in ladder.rungs.iter().enumerate() {
+        s += &row(&ladder.layout, r, ladder.cheapest == Some(i));
+    }
+    s + &footer(ladder)
+}

@@ -1120,11 +1120,16 @@ fn study_section(o: &OptimisationView, file: &str) -> String {
     } else {
         "No path: the optimum is a point of the global stage.".to_string()
     };
+    let references = if o.references.is_empty() {
+        ""
+    } else {
+        " black diamonds: the references;"
+    };
     let caption = format!(
         "Colour: {} on the grid ({}); hatched cells violate a constraint, and the colour range \
          is that of the feasible cells. White dots and crosses: the feasible and infeasible \
-         points of the global stage. {path} Orange circle: the start; black diamonds: the \
-         references; red star: the optimum, the best feasible point evaluated anywhere.",
+         points of the global stage. {path} Orange circle: the start;{references} red star: the \
+         optimum, the best feasible point evaluated anywhere.",
         o.objective_label,
         if o.map.is_empty() {
             "no map computed"

@@ -40,6 +40,10 @@ pub enum Command {
         /// gap occurs].
         #[arg(long, allow_negative_numbers = true)]
         report_crank_deg: Option<f64>,
+        /// Grid points per variable of each study's objective map in the report (0: no map;
+        /// the map costs steps² evaluations per study).
+        #[arg(long, default_value_t = DEFAULT_REPORT_MAP_STEPS)]
+        report_map_steps: usize,
     },
     /// Optimise the tooth-profile modification as the spec's `optimise` section says.
     Optimise {
@@ -128,12 +132,14 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             junit,
             report,
             report_crank_deg,
+            report_map_steps,
         } => {
             let outputs = Outputs {
                 json: json.as_deref(),
                 junit: junit.as_deref(),
                 report: report.as_deref(),
                 report_crank_deg,
+                report_map_steps,
                 color,
             };
             let result = run_check(&spec, &outputs, explain, out);
@@ -196,8 +202,15 @@ struct Outputs<'a> {
     junit: Option<&'a str>,
     report: Option<&'a str>,
     report_crank_deg: Option<f64>,
+    report_map_steps: usize,
     color: bool,
 }
+
+/// Default grid of the report's objective maps: 15 × 15 = 225 evaluations per study, about
+/// as many as the study itself.
+pub const DEFAULT_REPORT_MAP_STEPS: usize = 15;
+/// Largest grid of a report map (101² = 10 201 evaluations per study).
+pub const MAX_REPORT_MAP_STEPS: usize = 101;
 
 fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) -> Result<Outcome> {
     let spec = spec::load(path)?;
@@ -210,6 +223,15 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
         return Err(Error::new(
             crate::ErrorKind::InvalidValue,
             format!("--report-crank-deg must be a finite angle, got {deg}"),
+        ));
+    }
+    let steps = outputs.report_map_steps;
+    if outputs.report.is_some() && (steps == 1 || steps > MAX_REPORT_MAP_STEPS) {
+        return Err(Error::new(
+            crate::ErrorKind::InvalidValue,
+            format!(
+                "--report-map-steps must be 0 (no map) or 2 to {MAX_REPORT_MAP_STEPS}, got {steps}"
+            ),
         ));
     }
     // Read the golden files before computing anything: a missing one fails fast.
@@ -259,13 +281,26 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
         _ => None,
     };
     if let Some(dir) = outputs.report {
+        let views: Vec<_> = spec
+            .studies
+            .iter()
+            .zip(&studies)
+            .map(|(s, r)| {
+                let cells = if steps >= 2 {
+                    optimise::map(&spec, s, steps, &r.optimum.modification)
+                } else {
+                    Vec::new()
+                };
+                report::optimisation::view(&spec, s, r, &cells, steps)
+            })
+            .collect();
         let input = report::html::ReportInput {
             spec: &spec,
             checks: &checks,
             results: &results,
             goldens: &goldens,
             crank_deg: outputs.report_crank_deg,
-            optimisation: None,
+            optimisation: &views,
             accuracy: ladder.as_ref(),
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;

@@ -1,7 +1,10 @@
 //! The design-review report: index.html, the SVGs it links, well-formed SVG with axis labels
-//! that carry units, and the optimisation map drawn from synthetic data.
+//! that carry units; the optimisation section of a spec with studies (map, global sample, path,
+//! start, references, optimum, the study table), and the map drawn from synthetic data.
 
-use cycloid::report::html::{render, OptimisationView, ReportInput};
+use cycloid::optimise::problem::Margin;
+use cycloid::report::html::{render, OptimisationView, ReportInput, StudyPoint};
+use cycloid::report::svg::MapCell;
 use quick_xml::events::Event;
 use quick_xml::Reader;
 use std::process::Command;
@@ -104,6 +107,9 @@ fn check_writes_a_page_with_every_plot_it_links() {
     }
     let detail = read("disc-detail.svg");
     assert!(detail.contains("interference -23.41 µm"), "{detail}");
+    // A spec without studies has no optimisation section.
+    assert!(!html.contains("<h2>Optimisation</h2>"));
+    assert!(!files.iter().any(|f| f.starts_with("optimisation")));
     // The drawing is at the angle of the smallest gap; a chosen angle overrides it.
     let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
         .args([
@@ -111,6 +117,8 @@ fn check_writes_a_page_with_every_plot_it_links() {
             "specs/paper.yaml",
             "--report-crank-deg",
             "12.5",
+            "--report-map-steps",
+            "6",
             "--report",
         ])
         .arg(&dir)
@@ -122,6 +130,156 @@ fn check_writes_a_page_with_every_plot_it_links() {
         read("disc.svg").contains("Fb "),
         "the loaded scene draws the bearing force"
     );
+    optimisation_section_of_the_paper_spec(&dir);
+}
+
+/// `check specs/paper.yaml --report-map-steps 6 --report DIR`: one map and one table per study.
+fn optimisation_section_of_the_paper_spec(dir: &std::path::Path) {
+    let read = |f: &str| std::fs::read_to_string(dir.join(f)).unwrap();
+    let html = read("index.html");
+    assert!(html.contains("<h2>Optimisation</h2>"));
+    let files = linked_files(&html);
+    let studies = [
+        "positive-ratio",
+        "positive-te",
+        "negative-ratio",
+        "negative-te",
+    ];
+    for (k, name) in studies.iter().enumerate() {
+        let file = format!("optimisation-{}-{name}.svg", k + 1);
+        assert!(files.contains(&file), "{file} not linked");
+        assert!(
+            html.contains(&format!("Study <code>{name}</code>")),
+            "{name}"
+        );
+        let svg = read(&file);
+        well_formed(&file, &svg);
+        let numbers = svg.replace("infeasible", "");
+        assert!(
+            !numbers.contains("NaN") && !numbers.contains("inf"),
+            "{file}"
+        );
+        // The map: 6 × 6 cells, infeasible ones hatched; the global sample; the path of the
+        // winning local run; axis labels with units; a legend.
+        assert_eq!(svg.matches("class=\"cell\"").count(), 36, "{file}");
+        assert!(svg.matches("class=\"infeasible\"").count() > 0, "{file}");
+        assert!(svg.contains("class=\"path\""), "{file}");
+        for l in [
+            "shift ΔRp (mm)",
+            "equidistant ΔRrp (mm)",
+            "6 × 6 grid, 36 evaluations",
+            "infeasible: a constraint is violated",
+            "global sample (feasible)",
+            "global sample (infeasible)",
+            "local run ",
+            ">start<",
+            ">optimum<",
+        ] {
+            assert!(svg.contains(l), "{file} lacks `{l}`");
+        }
+        let objective = if name.ends_with("ratio") {
+            "ratio fluctuation κmax − κmin"
+        } else {
+            "TE fluctuation δmax − δmin (arcsec)"
+        };
+        assert!(svg.contains(objective), "{file} lacks `{objective}`");
+        // The paper's optimum is a reference of the positive studies only.
+        assert_eq!(
+            svg.contains(">paper optimum<"),
+            name.starts_with("positive"),
+            "{file}"
+        );
+    }
+    // The table of each study: start, references and optimum with objective and margins.
+    let section = &html[html.find("<h2>Optimisation</h2>").unwrap()..];
+    let table = |name: &str| {
+        let at = section.find(&format!("Study <code>{name}</code>")).unwrap();
+        let t = &section[at..];
+        &t[t.find("<table").unwrap()..t.find("</table>").unwrap()]
+    };
+    let positive = table("positive-ratio");
+    // The optimum the table shows is the one `cycloid optimise` finds for the same study (the
+    // optimiser is deterministic): its variables to 6 decimals and its objective to 4 digits.
+    let optimum = Command::new(env!("CARGO_BIN_EXE_cycloid"))
+        .args(["optimise", "specs/paper.yaml", "--study", "positive-ratio"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&optimum.stdout).into_owned();
+    let line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("optimum "))
+        .unwrap_or_else(|| panic!("{text}"));
+    let value = |key: &str| -> String {
+        let rest = &line[line.find(key).unwrap() + key.len()..];
+        rest.split(|c: char| c == ',' || c == ':')
+            .next()
+            .unwrap()
+            .trim()
+            .to_string()
+    };
+    for cell in [
+        value("shift_mm "),
+        value("equidistant_mm "),
+        value("objective "),
+    ] {
+        assert!(
+            positive.contains(&cell),
+            "positive-ratio table lacks the optimum's `{cell}`"
+        );
+    }
+    for cell in [
+        ">start<",
+        ">paper optimum<",
+        ">optimum<",
+        "shift ΔRp (mm)",
+        "ratio fluctuation κmax − κmin",
+        "min_clearance_mm",
+        "0.04158",
+        "margin 0 (on the bound)",
+        "feasible",
+    ] {
+        assert!(
+            positive.contains(cell),
+            "positive-ratio table lacks `{cell}`"
+        );
+    }
+    let negative = table("negative-ratio");
+    for cell in [
+        "−0.150000",
+        "−0.020130",
+        "INFEASIBLE",
+        "−0.02341",
+        "0.07016",
+    ] {
+        assert!(
+            negative.contains(cell),
+            "negative-ratio table lacks `{cell}`"
+        );
+    }
+    assert!(section.contains("evaluations (64 global, 4 local runs)"));
+    assert!(section.contains("converged"));
+    assert!(section.contains("satisfies the paper&apos;s Eq. 8"));
+    assert!(section.contains("lower than the paper optimum"));
+}
+
+#[test]
+fn a_map_grid_of_one_step_or_too_many_is_refused() {
+    for steps in ["1", "102"] {
+        let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
+            .args([
+                "check",
+                "specs/paper.yaml",
+                "--report",
+                "/nonexistent/never-written",
+                "--report-map-steps",
+                steps,
+            ])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{steps}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("--report-map-steps"), "{err}");
+    }
 }
 
 #[test]
@@ -131,33 +289,71 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
     let mut scene = spec.scenes[0].clone();
     scene.crank_rad.truncate(20);
     let r = cycloid::scene::run(&spec, &scene, &cycloid::scene::Plan::for_scene(&scene)).unwrap();
-    // A synthetic bowl with its minimum at (0.125, 0.16), infeasible where ΔRrp − ΔRp < 0.015.
+    // A synthetic bowl with its minimum at (0.125, 0.16), infeasible where ΔRrp − ΔRp < 0.015,
+    // not evaluated (a design rule) in one corner.
     let mut map = Vec::new();
     for i in 0..21 {
         for j in 0..21 {
             let (x, y) = (0.05 + 0.01 * i as f64, 0.05 + 0.01 * j as f64);
-            let z = if y - x < 0.015 {
+            let z = if i == 20 && j == 0 {
                 f64::NAN
             } else {
                 0.04 + (x - 0.125).powi(2) + 2.0 * (y - 0.16).powi(2)
             };
-            map.push((x, y, z));
+            map.push(MapCell {
+                x,
+                y,
+                z,
+                feasible: y - x >= 0.015,
+            });
         }
     }
+    let infeasible = map
+        .iter()
+        .filter(|c| !c.feasible && c.z.is_finite())
+        .count();
+    let margin = |value: f64| Margin {
+        name: "min_clearance_mm (whole mesh)".into(),
+        value,
+        bound: 0.015,
+        margin: value - 0.015,
+    };
+    let point = |label: &str, x: f64, y: f64, z: f64| StudyPoint {
+        label: label.into(),
+        variables: vec![x, y],
+        objective: Some(z),
+        failure: None,
+        feasible: y - x >= 0.015,
+        margins: vec![margin(y - x)],
+    };
     let view = OptimisationView {
+        name: "synthetic".into(),
+        summary: "Minimise a bowl.".into(),
         x_label: "shift ΔRp (mm)".into(),
         y_label: "equidistant ΔRrp (mm)".into(),
         objective_label: "ratio fluctuation κmax − κmin".into(),
         map,
+        map_note: "21 × 21 grid".into(),
+        global: vec![(0.06, 0.2, true), (0.2, 0.1, false)],
         path: vec![
             (0.135, 0.15),
             (0.13, 0.155),
             (0.126, 0.159),
             (0.125, 0.1593),
         ],
+        path_label: "local run 1 of 1, from the start".into(),
+        path_evaluations: 3,
         start: Some((0.135, 0.15)),
         optimum: Some((0.125, 0.1593)),
         references: vec![(0.125, 0.1593, "paper".into())],
+        variables: vec!["shift ΔRp (mm)".into(), "equidistant ΔRrp (mm)".into()],
+        points: vec![
+            point("start", 0.135, 0.15, 0.0403),
+            point("paper", 0.125, 0.1593, 0.04),
+            point("optimum", 0.125, 0.1593, 0.04),
+        ],
+        outcome: "3 evaluations".into(),
+        notes: vec!["A remark.".into()],
     };
     let files = render(&ReportInput {
         spec: &spec,
@@ -165,7 +361,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         results: std::slice::from_ref(&r),
         goldens: &[],
         crank_deg: Some(0.0),
-        optimisation: Some(&view),
+        optimisation: std::slice::from_ref(&view),
         accuracy: None,
     });
     // CYCLOID_KEEP_REPORT=DIR keeps the synthetic report to look at.
@@ -176,23 +372,41 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         }
     }
     let (_, html) = &files[0];
-    assert!(html.contains("src=\"optimisation.svg\""));
-    let (_, svg) = files.iter().find(|(n, _)| n == "optimisation.svg").unwrap();
-    well_formed("optimisation.svg", svg);
+    assert!(html.contains("src=\"optimisation-1-synthetic.svg\""));
+    assert!(html.contains("Study <code>synthetic</code>"));
+    assert!(html.contains("<li>A remark.</li>"));
+    let (_, svg) = files
+        .iter()
+        .find(|(n, _)| n == "optimisation-1-synthetic.svg")
+        .unwrap();
+    well_formed("optimisation-1-synthetic.svg", svg);
     for l in [
         "shift ΔRp (mm)",
         "equidistant ΔRrp (mm)",
-        "ratio fluctuation",
+        "ratio fluctuation κmax − κmin",
         ">start<",
         ">optimum<",
         ">paper<",
+        "local run 1 of 1, from the start",
+        "not evaluated: breaks a design rule",
+        "global sample (feasible)",
+        "global sample (infeasible)",
     ] {
-        assert!(svg.contains(l), "optimisation.svg lacks `{l}`");
+        assert!(svg.contains(l), "optimisation svg lacks `{l}`");
     }
-    // 441 cells, infeasible ones white; the path as a polyline.
-    assert_eq!(svg.matches("<rect").count() - 1 - 1 - 48 - 1 - 1, 441);
+    // 441 cells: infeasible ones hatched, the one not evaluated white; the objective spans less
+    // than a factor 20, so the colour scale is linear.
+    assert_eq!(svg.matches("class=\"cell\"").count(), 441);
+    assert_eq!(svg.matches("class=\"infeasible\"").count(), infeasible);
     assert!(svg.contains("fill=\"#ffffff\""));
-    assert!(svg.contains("<polyline points="));
+    assert!(svg.contains("class=\"path\""));
+    assert!(!svg.contains("log scale"));
+    // The table: one column per point, the margin of each constraint.
+    let table = &html[html.find("<table class=\"study\"").unwrap()..];
+    let table = &table[..table.find("</table>").unwrap()];
+    assert!(table.contains("<th class=\"optimum\">optimum</th>"));
+    assert!(table.contains("min_clearance_mm<br><small>≥ 0.01500 (whole mesh)</small>"));
+    assert!(table.contains("margin +0.01930"));
     // Without a view there is no optimisation section.
     let files = render(&ReportInput {
         spec: &spec,
@@ -200,10 +414,49 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         results: std::slice::from_ref(&r),
         goldens: &[],
         crank_deg: None,
-        optimisation: None,
+        optimisation: &[],
         accuracy: None,
     });
-    assert!(!files.iter().any(|(n, _)| n == "optimisation.svg"));
+    assert!(!files.iter().any(|(n, _)| n.starts_with("optimisation")));
+    assert!(!files[0].1.contains("<h2>Optimisation</h2>"));
+}
+
+#[test]
+fn a_map_spanning_more_than_a_factor_20_has_a_log_colour_scale() {
+    use cycloid::report::svg::{MapPlot, LOG_SPAN};
+    let cells: Vec<MapCell> = (0..10)
+        .flat_map(|i| {
+            (0..10).map(move |j| MapCell {
+                x: i as f64,
+                y: j as f64,
+                z: 0.01 * 10f64.powf((i + j) as f64 / 6.0),
+                feasible: true,
+            })
+        })
+        .collect();
+    let plot = MapPlot {
+        title: "t".into(),
+        subtitle: String::new(),
+        x_label: "x (mm)".into(),
+        y_label: "y (mm)".into(),
+        z_label: "z (N)".into(),
+        cells,
+        samples: Vec::new(),
+        samples_label: String::new(),
+        path: Vec::new(),
+        path_label: String::new(),
+        markers: Vec::new(),
+        z_range: None,
+        width: 700.0,
+    };
+    assert!(plot.log_scale() && LOG_SPAN == 20.0);
+    let svg = plot.to_svg();
+    well_formed("log map", &svg);
+    assert!(svg.contains("z (N) (log scale)"));
+    // Decade ticks on the colour bar.
+    for t in [">0.01<", ">0.1<", ">1<", ">10<"] {
+        assert!(svg.contains(t), "lacks tick {t}");
+    }
 }
 
 #[test]

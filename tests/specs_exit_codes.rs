@@ -26,6 +26,16 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         1,
         "paper's negative start (−0.15, −0.135): −23 µm at mid-flank fails min_clearance",
     ),
+    (
+        "paper-negative-optimum.yaml",
+        0,
+        "this engine's negative optimum (−0.020130, 0): 15 µm, on dt at mid-flank",
+    ),
+    (
+        "paper-positive-optimum.yaml",
+        0,
+        "this engine's positive ratio optimum (0.169641, 0.229179): 59.5 µm",
+    ),
 ];
 
 #[test]

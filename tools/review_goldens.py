@@ -11,7 +11,7 @@ It shares no code with cycloid. From the paper's design (Table 1) and MODEL.md o
 - the bearing force is minus the sum of the roller and pin force vectors.
 It then compares TE, roller, pin and bearing forces and the clearance with the golden CSVs and
 prints the largest differences. Run from the repository root:  python3 tools/review_goldens.py
-Needs numpy only. Takes a few minutes.
+[CASE ...] (default: every case in CASES). Needs numpy only. About a minute per case.
 """
 import csv
 import math
@@ -29,6 +29,9 @@ CASES = {
     "paper": (0.125, 0.1593),
     "paper-positive-start": (0.135, 0.150),
     "paper-negative-start": (-0.15, -0.135),
+    # The optima found by cycloid's optimiser (specs/paper-*-optimum.yaml), full precision.
+    "paper-negative-optimum": (-0.020129994269645513, 0.0),
+    "paper-positive-optimum": (0.16964106759699482, 0.22917929821048158),
 }
 
 
@@ -144,9 +147,27 @@ def windows_for(phi, drp, drrp, samples=3000):
     return out
 
 
+def spec_modification(case):
+    """(shift_mm, equidistant_mm) as written in specs/<case>.yaml, to catch a stale CASES entry."""
+    found = {}
+    with open(f"specs/{case}.yaml") as f:
+        for line in f:
+            key, _, value = line.split("#")[0].strip().partition(":")
+            if key in ("shift_mm", "equidistant_mm") and value.strip():
+                found.setdefault(key, float(value))
+    return found.get("shift_mm", 0.0), found.get("equidistant_mm", 0.0)
+
+
 def main():
     worst_all = {}
+    only = sys.argv[1:]
+    unknown = [c for c in only if c not in CASES]
+    if unknown:
+        sys.exit(f"unknown case(s) {unknown}; known: {list(CASES)}")
     for case, (drp, drrp) in CASES.items():
+        if only and case not in only:
+            continue
+        assert spec_modification(case) == (drp, drrp), (case, spec_modification(case))
         gold = {q: read(case, q) for q in
                 ["clearance_mm", "te_arcsec", "roller_force_n", "pin_force_n",
                  "bearing_force_n", "bearing_angle_deg"]}

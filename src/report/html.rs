@@ -5,9 +5,12 @@
 //! the disc with rollers, pins and holes at a chosen crank angle (with the contact forces when a
 //! scene is loaded) and a close-up of the smallest gap; per scene: clearance per roller,
 //! backlash, roller forces, Hertz pressure, loaded TE, ratio, bearing force magnitude and
-//! direction, pin forces; the optimisation map and path when one is given.
+//! direction, pin forces; per optimisation study, the objective map with the global sample,
+//! the winning local run's path, start, references and optimum, and a table of those points.
 
-use super::svg::{self, esc, px, Frame, LinePlot, MapPlot, RefLine, Series, PALETTE};
+use super::svg::{
+    self, esc, px, Frame, LinePlot, MapCell, MapPlot, Marker, RefLine, Series, Shape, PALETTE,
+};
 use crate::check::{Bound, Check};
 use crate::equilibrium::sweep::{solve_angle, AngleSolution, Model};
 use crate::error::{Error, Result};
@@ -15,6 +18,7 @@ use crate::geometry::clearance::{Mesh, Pose};
 use crate::geometry::profile::Profile;
 use crate::geometry::{rotate, Vec2};
 use crate::golden::GoldenResult;
+use crate::optimise::problem::Margin;
 use crate::report::table::number;
 use crate::scene::{Effect, Plan, SceneResult};
 use crate::spec::{ContactLaw, GeometryMode, Spec};
@@ -22,25 +26,64 @@ use std::f64::consts::TAU;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
-/// An optimisation to draw: the objective over two modification variables, the path the
-/// optimiser took, its start and its optimum. Produced by the optimiser (issue 4); the report
-/// only draws it.
+/// One optimisation study as the report shows it: the objective map over the study's first two
+/// variables with the global sample, the winning local run's path, the start, the references
+/// and the optimum; and a table of start, references and optimum. Built from a study result by
+/// `report::optimisation::view`; the report only draws it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OptimisationView {
-    /// E.g. "ΔRp (mm)".
+    /// The study's name.
+    pub name: String,
+    /// What it minimises, on which scene, over which bounds (a sentence).
+    pub summary: String,
+    /// E.g. "shift ΔRp (mm)".
     pub x_label: String,
-    /// E.g. "ΔRrp (mm)".
+    /// E.g. "equidistant ΔRrp (mm)".
     pub y_label: String,
     /// E.g. "ratio fluctuation κmax − κmin".
     pub objective_label: String,
-    /// Grid samples (x, y, objective); a non-finite objective is an infeasible point.
-    pub map: Vec<(f64, f64, f64)>,
-    /// Iterates in order.
+    /// The objective on a grid (`MapCell::z` non-finite where a design rule fails); empty when
+    /// no map was computed.
+    pub map: Vec<MapCell>,
+    /// How the map was made (grid, variables held fixed).
+    pub map_note: String,
+    /// Global-stage samples (x, y, feasible).
+    pub global: Vec<(f64, f64, bool)>,
+    /// The winning local run's iterates, from its start to the optimum.
     pub path: Vec<(f64, f64)>,
+    /// What the path is (which run, from where).
+    pub path_label: String,
+    /// Evaluations of that run up to the optimum.
+    pub path_evaluations: usize,
     pub start: Option<(f64, f64)>,
     pub optimum: Option<(f64, f64)>,
     /// Further labelled points (e.g. a published optimum).
     pub references: Vec<(f64, f64, String)>,
+    /// Column headers of the variables in the table, with units.
+    pub variables: Vec<String>,
+    /// Table rows: start, references, optimum.
+    pub points: Vec<StudyPoint>,
+    /// Evaluations, time and why the search stopped.
+    pub outcome: String,
+    /// Remarks: the optimum against each reference, a point that satisfies the paper's Eq. 8
+    /// but not the whole-mesh clearance.
+    pub notes: Vec<String>,
+}
+
+/// One row of a study's table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyPoint {
+    /// "start", a reference's label, "optimum".
+    pub label: String,
+    /// Variable values in the spec's units, in `OptimisationView::variables` order.
+    pub variables: Vec<f64>,
+    /// None when the point could not be evaluated.
+    pub objective: Option<f64>,
+    /// Why the point could not be evaluated.
+    pub failure: Option<String>,
+    pub feasible: bool,
+    /// Every constraint's value, bound and margin (≥ 0 satisfied).
+    pub margins: Vec<Margin>,
 }
 
 /// Everything the report shows.
@@ -52,7 +95,8 @@ pub struct ReportInput<'a> {
     pub goldens: &'a [GoldenResult],
     /// Crank angle of the disc drawing, degrees; default: where the smallest gap occurs.
     pub crank_deg: Option<f64>,
-    pub optimisation: Option<&'a OptimisationView>,
+    /// Optimisation studies to draw and tabulate (none: no optimisation section).
+    pub optimisation: &'a [OptimisationView],
     /// The accuracy ladder of a scene (`accuracy:` in the spec), when one was run.
     pub accuracy: Option<&'a crate::accuracy::Ladder>,
 }
@@ -99,17 +143,19 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
             esc(&scene_summary(input.spec, scene))
         );
     }
-    if let Some(opt) = input.optimisation {
-        files.push(("optimisation.svg".into(), optimisation_svg(opt)));
+    if !input.optimisation.is_empty() {
+        let mut studies = String::new();
+        for (k, o) in input.optimisation.iter().enumerate() {
+            let file = format!("optimisation-{}-{}.svg", k + 1, slug(&o.name));
+            files.push((file.clone(), optimisation_svg(o)));
+            studies += &study_section(o, &file);
+        }
         let _ = writeln!(
             figures,
-            "<section><h2>Optimisation</h2><div class=\"grid\">{}</div></section>",
-            figure(
-                "optimisation.svg",
-                "Objective map and optimiser path",
-                "Colour: the objective over the two modification variables (white: infeasible); \
-                 red: the optimiser's path from its start to the optimum."
-            )
+            "<section><h2>Optimisation</h2><p class=\"note\">Every study of the spec: the \
+             objective over its first two variables, where the optimiser looked and what it \
+             found; the table gives the objective and every constraint at the start, the \
+             references and the optimum.</p>{studies}</section>"
         );
     }
     if let Some(ladder) = input.accuracy {
@@ -905,24 +951,46 @@ fn gap_detail(spec: &Spec, phi_deg: f64) -> Option<(String, String)> {
 fn optimisation_svg(o: &OptimisationView) -> String {
     let mut markers = Vec::new();
     if let Some((x, y)) = o.start {
-        markers.push((x, y, "start".to_string(), "#ff7f0e".to_string()));
-    }
-    if let Some((x, y)) = o.optimum {
-        markers.push((x, y, "optimum".to_string(), "#d62728".to_string()));
+        markers.push(Marker {
+            x,
+            y,
+            label: "start".into(),
+            color: "#ff7f0e".into(),
+            shape: Shape::Circle,
+        });
     }
     for (x, y, label) in &o.references {
-        markers.push((*x, *y, label.clone(), "#111111".to_string()));
+        markers.push(Marker {
+            x: *x,
+            y: *y,
+            label: label.clone(),
+            color: "#111111".into(),
+            shape: Shape::Diamond,
+        });
+    }
+    if let Some((x, y)) = o.optimum {
+        markers.push(Marker {
+            x,
+            y,
+            label: "optimum".into(),
+            color: "#d62728".into(),
+            shape: Shape::Star,
+        });
     }
     MapPlot {
-        title: "Objective over the modification".into(),
+        title: format!("Study {}: objective over the modification", o.name),
+        subtitle: o.map_note.clone(),
         x_label: o.x_label.clone(),
         y_label: o.y_label.clone(),
         z_label: o.objective_label.clone(),
         cells: o.map.clone(),
+        samples: o.global.clone(),
+        samples_label: "global sample".into(),
         path: o.path.clone(),
+        path_label: o.path_label.clone(),
         markers,
+        z_range: None,
         width: 700.0,
-        height: 560.0,
     }
     .to_svg()
 }
@@ -1129,6 +1197,164 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
     )
 }
 
+/// A constraint's margin as the table shows it: on the bound within the checker's tolerance
+/// (decimal inputs such as 0.150 − 0.135 land a few 1e-17 mm off), else signed.
+fn margin_text(m: &Margin) -> String {
+    if m.margin.abs() <= crate::check::tolerance(m.bound) {
+        "margin 0 (on the bound)".into()
+    } else {
+        format!(
+            "margin {}{}",
+            if m.margin > 0.0 { "+" } else { "" },
+            number(m.margin)
+        )
+    }
+}
+
+/// A study's heading, table (one column per point: start, references, optimum), outcome and
+/// figure.
+fn study_section(o: &OptimisationView, file: &str) -> String {
+    let constraints: Vec<&Margin> = o
+        .points
+        .iter()
+        .max_by_key(|p| p.margins.len())
+        .map(|p| p.margins.iter().collect())
+        .unwrap_or_default();
+    let optimum_class = |p: &StudyPoint| {
+        if p.label == "optimum" {
+            " class=\"optimum\""
+        } else {
+            ""
+        }
+    };
+    let mut head = String::from("<th></th>");
+    for p in &o.points {
+        let _ = write!(head, "<th{}>{}</th>", optimum_class(p), esc(&p.label));
+    }
+    let mut rows = String::new();
+    for (k, v) in o.variables.iter().enumerate() {
+        let _ = write!(rows, "<tr><th>{}</th>", esc(v));
+        for p in &o.points {
+            let value = p
+                .variables
+                .get(k)
+                .map_or(String::new(), |x| format!("{x:.6}").replace('-', "−"));
+            let _ = write!(
+                rows,
+                "<td class=\"num{}\">{value}</td>",
+                if p.label == "optimum" { " optimum" } else { "" }
+            );
+        }
+        rows += "</tr>\n";
+    }
+    let _ = write!(rows, "<tr><th>{}</th>", esc(&o.objective_label));
+    for p in &o.points {
+        let cell = match (&p.objective, &p.failure) {
+            (Some(z), _) => format!(
+                "<td class=\"num{}\">{}</td>",
+                if p.label == "optimum" { " optimum" } else { "" },
+                esc(&number(*z).replace('-', "−"))
+            ),
+            (None, why) => format!(
+                "<td class=\"violated\">not evaluated: {}</td>",
+                esc(why.as_deref().unwrap_or("no value"))
+            ),
+        };
+        rows += &cell;
+    }
+    rows += "</tr>\n";
+    for c in &constraints {
+        let (name, qualifier) = match c.name.split_once(" (") {
+            Some((n, q)) => (n.to_string(), format!(" ({q}")),
+            None => (c.name.clone(), String::new()),
+        };
+        // A lower bound has margin value − bound, an upper one bound − value.
+        let op = if (c.margin - (c.value - c.bound)).abs() <= (c.margin - (c.bound - c.value)).abs()
+        {
+            "≥"
+        } else {
+            "≤"
+        };
+        let _ = write!(
+            rows,
+            "<tr><th>{}<br><small>{op} {}{}</small></th>",
+            esc(&name),
+            esc(&number(c.bound)),
+            esc(&qualifier)
+        );
+        for p in &o.points {
+            match p.margins.iter().find(|m| m.name == c.name) {
+                Some(m) => {
+                    let _ = write!(
+                        rows,
+                        "<td class=\"num{}\">{}<br><small>{}</small></td>",
+                        if m.satisfied() { "" } else { " violated" },
+                        esc(&number(m.value).replace('-', "−")),
+                        esc(&margin_text(m).replace('-', "−"))
+                    );
+                }
+                None => rows += "<td class=\"num\">—</td>",
+            }
+        }
+        rows += "</tr>\n";
+    }
+    rows += "<tr><th>verdict</th>";
+    for p in &o.points {
+        let _ = write!(
+            rows,
+            "<td class=\"verdict {}\">{}</td>",
+            if p.feasible { "pass" } else { "fail" },
+            if p.feasible { "feasible" } else { "INFEASIBLE" }
+        );
+    }
+    rows += "</tr>\n";
+    let notes: String = o
+        .notes
+        .iter()
+        .map(|n| format!("<li>{}</li>", esc(n)))
+        .collect();
+    let notes = if notes.is_empty() {
+        String::new()
+    } else {
+        format!("<ul class=\"note\">{notes}</ul>")
+    };
+    let path = if o.path.len() > 1 {
+        format!(
+            "Red: the iterates of {} up to the optimum ({} evaluations; COBYLA probes around \
+             its trust region, so the path zig-zags).",
+            o.path_label, o.path_evaluations
+        )
+    } else {
+        "No path: the optimum is a point of the global stage.".to_string()
+    };
+    let references = if o.references.is_empty() {
+        ""
+    } else {
+        " black diamonds: the references;"
+    };
+    let caption = format!(
+        "Colour: {} on the grid ({}); hatched cells violate a constraint, and the colour range \
+         is that of the feasible cells. White dots and crosses: the feasible and infeasible \
+         points of the global stage. {path} Orange circle: the start;{references} red star: the \
+         optimum, the best feasible point evaluated anywhere.",
+        o.objective_label,
+        if o.map.is_empty() {
+            "no map computed"
+        } else {
+            o.map_note.as_str()
+        },
+    );
+    format!(
+        "<h3>Study <code>{name}</code></h3><p class=\"note\">{summary}</p><div class=\"grid\">{figure}<div>\
+         <table class=\"study\"><thead><tr>{head}</tr></thead><tbody>\n{rows}</tbody></table>\
+         <p class=\"note\">{outcome}</p>{notes}</div></div>\n",
+        name = esc(&o.name),
+        summary = esc(&o.summary),
+        figure = figure(file, &format!("Study {}: objective map and search", o.name), &caption),
+        outcome = esc(&o.outcome),
+    )
+}
+
 fn check_rows(checks: &[Check]) -> String {
     let mut rows = String::new();
     for c in crate::report::table::ordered(checks) {
@@ -1282,6 +1508,13 @@ tr.fail {{ background: #fff3f3; }}
 tr.cheapest {{ background: #e3f4e1; font-weight: bold; }}
 tr.reference {{ background: #f3f3f3; }}
 td.over {{ color: #b00; }}
+table.study th {{ font-weight: normal; }}
+table.study thead th {{ font-weight: bold; text-align: right; }}
+table.study .optimum {{ font-weight: bold; }}
+table.study small {{ font-weight: normal; color: #666; }}
+td.verdict.pass {{ color: #1d6b1a; }}
+td.verdict.fail, td.violated {{ color: #b00; font-weight: bold; }}
+h3 {{ font-size: 17px; margin: 22px 0 4px; }}
 .cols {{ display: flex; gap: 40px; flex-wrap: wrap; }}
 .grid {{ display: grid; grid-template-columns: repeat(auto-fill, minmax(660px, 1fr)); gap: 18px; }}
 figure {{ margin: 0; }}

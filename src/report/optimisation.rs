@@ -1,10 +1,13 @@
 //! Text of an optimisation study: start, references and optimum with objective values, every
-//! constraint's margin, evaluations, time and why it stopped; plus the objective map CSV.
+//! constraint's margin, evaluations, time and why it stopped; the objective map CSV; and the
+//! same study as a view for the design-review report (`view`).
 
 use crate::optimise::problem::Evaluation;
 use crate::optimise::StudyResult;
+use crate::report::html::{OptimisationView, StudyPoint};
+use crate::report::svg::MapCell;
 use crate::report::table::number;
-use crate::spec::{Spec, Study};
+use crate::spec::{Objective, Spec, Study, VariableKind};
 
 fn objective_label(study: &Study) -> String {
     study
@@ -163,4 +166,254 @@ pub fn map_csv(study: &Study, cells: &[Evaluation]) -> String {
         );
     }
     out
+}
+
+/// A spec input as written (0.015, 0.5), or to 4 significant digits when longer.
+fn short(v: f64) -> String {
+    let plain = format!("{v}");
+    if plain.len() <= 8 {
+        plain
+    } else {
+        number(v)
+    }
+}
+
+/// Axis label of a variable, with its unit.
+pub fn variable_label(kind: VariableKind) -> &'static str {
+    match kind {
+        VariableKind::Shift => "shift ΔRp (mm)",
+        VariableKind::Equidistant => "equidistant ΔRrp (mm)",
+        VariableKind::Rotation => "rotation Δδ (deg)",
+    }
+}
+
+/// Axis label of a study's objective, with its unit.
+pub fn objective_axis_label(study: &Study) -> String {
+    match study.objective.as_slice() {
+        [(o, _)] => match o {
+            Objective::RatioFluctuation => "ratio fluctuation κmax − κmin".into(),
+            Objective::TeFluctuation => "TE fluctuation δmax − δmin (arcsec)".into(),
+            Objective::MaxRollerForce => "largest roller force (N)".into(),
+            Objective::LostMotion => "largest lost motion (arcsec)".into(),
+            Objective::MaxBearingForce => "largest bearing force (N)".into(),
+        },
+        _ => format!("weighted objective {}", objective_label(study)),
+    }
+}
+
+/// The design-review view of one study: `map` is `optimise::map` of the study over a
+/// `steps` × `steps` grid around the optimum (empty: no map).
+pub fn view(
+    spec: &Spec,
+    study: &Study,
+    r: &StudyResult,
+    map: &[Evaluation],
+    steps: usize,
+) -> OptimisationView {
+    let vars = &study.variables;
+    let xy = |e: &Evaluation| {
+        let at = |k: usize| {
+            vars.get(k)
+                .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
+        };
+        (at(0), at(1))
+    };
+    let scene = &spec.scenes[study.scene];
+    let bounds: Vec<String> = vars
+        .iter()
+        .map(|v| {
+            let unit = if v.kind == VariableKind::Rotation {
+                "deg"
+            } else {
+                "mm"
+            };
+            format!(
+                "{} in [{}, {}] {unit}",
+                v.kind.key(),
+                short(v.kind.to_spec_unit(v.lower)),
+                short(v.kind.to_spec_unit(v.upper))
+            )
+        })
+        .collect();
+    let mut constraints = Vec::new();
+    if let Some((lo, hi)) = study.tip_clearance_mm {
+        constraints.push(format!(
+            "tip clearance ΔRrp − ΔRp in [{}, {}] mm (paper Eqs. 8, 21)",
+            short(lo),
+            short(hi)
+        ));
+    }
+    if let Some(dt) = study.min_clearance_mm {
+        constraints.push(format!(
+            "whole-mesh clearance ≥ {} mm on the exact geometry",
+            short(dt)
+        ));
+    }
+    let summary = format!(
+        "Minimise {} on scene “{}” ({} N·m, {} crank angles) over {}{}.",
+        objective_label(study),
+        scene.name,
+        short(scene.output_torque_nmm / 1000.0),
+        scene.crank_rad.len(),
+        bounds.join(", "),
+        if constraints.is_empty() {
+            String::new()
+        } else {
+            format!(", subject to {}", constraints.join(" and "))
+        }
+    );
+    let held: Vec<String> = vars
+        .iter()
+        .skip(2)
+        .map(|v| {
+            format!(
+                "{} held at the optimum's {}",
+                v.kind.key(),
+                number(v.kind.to_spec_unit(v.kind.get(&r.optimum.modification)))
+            )
+        })
+        .collect();
+    let map_note = if map.is_empty() {
+        "no map computed".to_string()
+    } else {
+        let grid = if vars.len() > 1 {
+            format!("{steps} × {steps} grid")
+        } else {
+            format!("{steps} points")
+        };
+        let mut note = format!("{grid}, {} evaluations", map.len());
+        for h in &held {
+            note += &format!("; {h}");
+        }
+        note
+    };
+    // The winning local run, from its start up to the optimum.
+    let (path, path_label, path_evaluations) = match r.winner.map(|k| (k, &r.local_runs[k])) {
+        Some((k, run)) => {
+            let end = run
+                .path
+                .iter()
+                .position(|e| *e == r.optimum)
+                .map_or(run.path.len(), |i| i + 1);
+            let mut points = Vec::new();
+            if run.path.first() != Some(&run.start) {
+                points.push(xy(&run.start));
+            }
+            points.extend(run.path[..end].iter().map(xy));
+            let from = if run.start == r.start {
+                "from the start".to_string()
+            } else {
+                match r.global.iter().position(|g| *g == run.start) {
+                    Some(i) => format!("from global sample {}", i + 1),
+                    None => "from a global sample".to_string(),
+                }
+            };
+            (
+                points,
+                format!("local run {} of {}, {from}", k + 1, r.local_runs.len()),
+                end,
+            )
+        }
+        None => (Vec::new(), String::new(), 0),
+    };
+    let point = |label: &str, e: &Evaluation| StudyPoint {
+        label: label.to_string(),
+        variables: vars
+            .iter()
+            .map(|v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
+            .collect(),
+        objective: e.failure.is_none().then_some(e.objective),
+        failure: e.failure.clone(),
+        feasible: e.feasible(),
+        margins: e.margins.clone(),
+    };
+    let mut points = vec![point("start", &r.start)];
+    points.extend(r.references.iter().map(|(l, e)| point(l, e)));
+    points.push(point("optimum", &r.optimum));
+    let mut notes = Vec::new();
+    for (label, e) in &r.references {
+        if e.failure.is_none() && r.optimum.failure.is_none() {
+            let diff = r.optimum.objective - e.objective;
+            notes.push(format!(
+                "The optimum's objective is {} {} than the {label}'s ({} vs {}).",
+                number(diff.abs()),
+                if diff <= 0.0 { "lower" } else { "HIGHER" },
+                number(r.optimum.objective),
+                number(e.objective)
+            ));
+        }
+    }
+    for (label, e) in std::iter::once(("start", &r.start))
+        .chain(r.references.iter().map(|(l, e)| (l.as_str(), e)))
+        .chain(std::iter::once(("optimum", &r.optimum)))
+    {
+        if let Some(note) = eq8_note(label, e, study) {
+            let note = note.trim().trim_start_matches("note: ");
+            let mut chars = note.chars();
+            let first = chars.next().map(|c| c.to_uppercase().to_string());
+            notes.push(format!("{}{}.", first.unwrap_or_default(), chars.as_str()));
+        }
+    }
+    OptimisationView {
+        name: r.name.clone(),
+        summary,
+        x_label: vars.first().map_or("", |v| variable_label(v.kind)).into(),
+        y_label: vars
+            .get(1)
+            .map_or("(one variable)", |v| variable_label(v.kind))
+            .into(),
+        objective_label: objective_axis_label(study),
+        map: map
+            .iter()
+            .map(|e| {
+                let (x, y) = xy(e);
+                MapCell {
+                    x,
+                    y,
+                    z: if e.failure.is_none() {
+                        e.objective
+                    } else {
+                        f64::NAN
+                    },
+                    feasible: e.feasible(),
+                }
+            })
+            .collect(),
+        map_note,
+        global: r
+            .global
+            .iter()
+            .map(|e| {
+                let (x, y) = xy(e);
+                (x, y, e.feasible())
+            })
+            .collect(),
+        path,
+        path_label,
+        path_evaluations,
+        start: Some(xy(&r.start)),
+        optimum: Some(xy(&r.optimum)),
+        references: r
+            .references
+            .iter()
+            .map(|(l, e)| {
+                let (x, y) = xy(e);
+                (x, y, l.clone())
+            })
+            .collect(),
+        variables: vars
+            .iter()
+            .map(|v| variable_label(v.kind).to_string())
+            .collect(),
+        points,
+        outcome: format!(
+            "{} evaluations ({} global, {} local runs) in {:.2} s; {}.",
+            r.evaluations,
+            r.global.len(),
+            r.local_runs.len(),
+            r.elapsed.as_secs_f64(),
+            r.stop_reason
+        ),
+        notes,
+    }
 }

@@ -471,21 +471,69 @@ pub fn viridis(t: f64) -> String {
     )
 }
 
-/// A map of an objective over two variables, with an optional path and markers.
+/// One cell of an objective map: the objective `z` at (x, y), non-finite when the point could
+/// not be evaluated (a design rule), and whether it satisfies every constraint.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapCell {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+    pub feasible: bool,
+}
+
+/// The symbol of a map marker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shape {
+    Circle,
+    Diamond,
+    Star,
+}
+
+/// A labelled point on a map (a start, an optimum, a published value).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Marker {
+    pub x: f64,
+    pub y: f64,
+    pub label: String,
+    pub color: String,
+    pub shape: Shape,
+}
+
+/// A map of an objective over two variables: cells coloured by the objective (a log scale when
+/// it spans more than `LOG_SPAN`), infeasible cells washed out and hatched, further sample
+/// points, a path, labelled markers, a colour bar and a legend under the axes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MapPlot {
     pub title: String,
+    /// A second, smaller line under the title.
+    pub subtitle: String,
     pub x_label: String,
     pub y_label: String,
     pub z_label: String,
-    /// Samples (x, y, z); drawn as cells of a grid through the distinct x and y values.
-    pub cells: Vec<(f64, f64, f64)>,
+    /// Samples on a grid; drawn as cells through the distinct x and y values.
+    pub cells: Vec<MapCell>,
+    /// Further evaluated points (x, y, feasible), e.g. a global sample.
+    pub samples: Vec<(f64, f64, bool)>,
+    /// Legend text of the samples.
+    pub samples_label: String,
+    /// A path in order (e.g. the iterates of a local search).
     pub path: Vec<(f64, f64)>,
-    /// Labelled markers (start, optimum, a published value).
-    pub markers: Vec<(f64, f64, String, String)>,
+    /// Legend text of the path.
+    pub path_label: String,
+    pub markers: Vec<Marker>,
+    /// Colour range; default: the feasible cells' objective (every cell's when none is).
+    pub z_range: Option<(f64, f64)>,
     pub width: f64,
-    pub height: f64,
 }
+
+/// The colour scale turns logarithmic when the largest objective exceeds the smallest (> 0)
+/// by this factor.
+pub const LOG_SPAN: f64 = 20.0;
+
+/// Draws a legend swatch with its left edge at x, centred on y.
+type Swatch<'a> = Box<dyn Fn(f64, f64) -> String + 'a>;
+
+const HATCH: &str = r##"<defs><pattern id="hatch" width="7" height="7" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="7" height="7" fill="white" fill-opacity="0.55"/><line x1="0" y1="0" x2="0" y2="7" stroke="white" stroke-width="2.5"/></pattern></defs>"##;
 
 fn distinct(mut v: Vec<f64>) -> Vec<f64> {
     v.retain(|x| x.is_finite());
@@ -509,22 +557,213 @@ fn edges(c: &[f64]) -> Vec<f64> {
     }
 }
 
+/// Ticks of a logarithmic axis over [lo, hi] (0 < lo < hi): 1·10^k, else 1, 2, 5·10^k, else
+/// every digit, whichever first gives at least four.
+fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    let (k0, k1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let mut out = Vec::new();
+    for mults in [
+        &[1.0][..],
+        &[1.0, 2.0, 5.0][..],
+        &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0][..],
+    ] {
+        out = (k0..=k1)
+            .flat_map(|k| mults.iter().map(move |m| m * 10f64.powi(k)))
+            .filter(|v| *v >= lo * (1.0 - 1e-9) && *v <= hi * (1.0 + 1e-9))
+            .collect();
+        if out.len() >= 4 {
+            break;
+        }
+    }
+    out
+}
+
+/// A tick value of a log axis with as many decimals as it needs (0.05, 2, 300).
+fn log_label(v: f64) -> String {
+    let decimals = (-(v.log10() + 1e-9).floor()).max(0.0) as usize;
+    format!("{v:.decimals$}")
+}
+
+/// The symbol of a marker at (cx, cy), pixels.
+fn symbol(shape: Shape, cx: f64, cy: f64, color: &str) -> String {
+    let outline = r#"stroke="white" stroke-width="2""#;
+    match shape {
+        Shape::Circle => format!(
+            r#"<circle cx="{}" cy="{}" r="6.5" fill="{color}" {outline}/>"#,
+            px(cx),
+            px(cy)
+        ),
+        Shape::Diamond => format!(
+            r#"<path d="M{},{} l8,8 l-8,8 l-8,-8 Z" fill="{color}" {outline}/>"#,
+            px(cx),
+            px(cy - 8.0)
+        ),
+        Shape::Star => {
+            let pts: Vec<String> = (0..10)
+                .map(|k| {
+                    let r = if k % 2 == 0 { 10.0 } else { 4.2 };
+                    let a = std::f64::consts::PI * (k as f64 / 5.0 - 0.5);
+                    format!("{},{}", px(cx + r * a.cos()), px(cy + r * a.sin()))
+                })
+                .collect();
+            format!(
+                r#"<polygon points="{}" fill="{color}" {outline} stroke-linejoin="round"/>"#,
+                pts.join(" ")
+            )
+        }
+    }
+}
+
+/// A small cross for an infeasible sample, visible on dark and light cells.
+fn cross_mark(cx: f64, cy: f64, r: f64) -> String {
+    let d = format!(
+        "M{},{} L{},{} M{},{} L{},{}",
+        px(cx - r),
+        px(cy - r),
+        px(cx + r),
+        px(cy + r),
+        px(cx - r),
+        px(cy + r),
+        px(cx + r),
+        px(cy - r)
+    );
+    format!(
+        r##"<path d="{d}" stroke="#222" stroke-width="3"/><path d="{d}" stroke="white" stroke-width="1.3"/>"##
+    )
+}
+
+fn dot_mark(cx: f64, cy: f64) -> String {
+    format!(
+        r##"<circle cx="{}" cy="{}" r="2.8" fill="white" stroke="#222" stroke-width="1"/>"##,
+        px(cx),
+        px(cy)
+    )
+}
+
+/// A text with a white halo, so that it reads on any cell colour.
+fn halo_text(x: f64, y: f64, anchor: &str, color: &str, text: &str) -> String {
+    format!(
+        r#"<text x="{x}" y="{y}" font-size="12" font-weight="bold" text-anchor="{anchor}" fill="white" stroke="white" stroke-width="3.5" stroke-linejoin="round">{t}</text><text x="{x}" y="{y}" font-size="12" font-weight="bold" text-anchor="{anchor}" fill="{color}">{t}</text>"#,
+        x = px(x),
+        y = px(y),
+        t = esc(text)
+    )
+}
+
 impl MapPlot {
-    pub fn to_svg(&self) -> String {
-        let xs = distinct(self.cells.iter().map(|c| c.0).collect());
-        let ys = distinct(self.cells.iter().map(|c| c.1).collect());
-        let (xe, ye) = (edges(&xs), edges(&ys));
-        let mut x_lo = xe[0];
-        let mut x_hi = *xe.last().unwrap_or(&1.0);
-        let mut y_lo = ye[0];
-        let mut y_hi = *ye.last().unwrap_or(&1.0);
-        for &(x, y) in self.path.iter().chain(
-            self.markers
+    /// Whether the colour scale is logarithmic.
+    pub fn log_scale(&self) -> bool {
+        let (lo, hi) = self.z_bounds();
+        lo > 0.0 && hi / lo > LOG_SPAN
+    }
+
+    fn z_bounds(&self) -> (f64, f64) {
+        if let Some((lo, hi)) = self.z_range.filter(|(a, b)| a.is_finite() && b.is_finite()) {
+            return (lo.min(hi), lo.max(hi));
+        }
+        let feasible: Vec<f64> = self
+            .cells
+            .iter()
+            .filter(|c| c.feasible && c.z.is_finite())
+            .map(|c| c.z)
+            .collect();
+        let zs = if feasible.is_empty() {
+            self.cells
                 .iter()
-                .map(|m| (m.0, m.1))
-                .collect::<Vec<_>>()
-                .iter(),
-        ) {
+                .map(|c| c.z)
+                .filter(|z| z.is_finite())
+                .collect()
+        } else {
+            feasible
+        };
+        let lo = zs.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if lo.is_finite() {
+            (lo, hi)
+        } else {
+            (0.0, 1.0)
+        }
+    }
+
+    /// Legend entries: (swatch, text).
+    fn legend(&self) -> Vec<(Swatch<'_>, String)> {
+        let mut out: Vec<(Swatch, String)> = Vec::new();
+        if self.cells.iter().any(|c| c.z.is_finite() && !c.feasible) {
+            out.push((
+                Box::new(|x, y| {
+                    format!(
+                        r##"<rect x="{}" y="{}" width="22" height="12" fill="{}"/><rect x="{}" y="{}" width="22" height="12" fill="url(#hatch)" stroke="#555" stroke-width="0.8"/>"##,
+                        px(x),
+                        px(y - 6.0),
+                        viridis(0.35),
+                        px(x),
+                        px(y - 6.0)
+                    )
+                }),
+                "infeasible: a constraint is violated".into(),
+            ));
+        }
+        if self.cells.iter().any(|c| !c.z.is_finite()) {
+            out.push((
+                Box::new(|x, y| {
+                    format!(
+                        r##"<rect x="{}" y="{}" width="22" height="12" fill="white" stroke="#555" stroke-width="0.8"/>"##,
+                        px(x),
+                        px(y - 6.0)
+                    )
+                }),
+                "not evaluated: breaks a design rule".into(),
+            ));
+        }
+        if self.samples.iter().any(|s| s.2) {
+            out.push((
+                Box::new(|x, y| dot_mark(x + 11.0, y)),
+                format!("{} (feasible)", self.samples_label),
+            ));
+        }
+        if self.samples.iter().any(|s| !s.2) {
+            out.push((
+                Box::new(|x, y| cross_mark(x + 11.0, y, 3.5)),
+                format!("{} (infeasible)", self.samples_label),
+            ));
+        }
+        if self.path.len() > 1 {
+            out.push((
+                Box::new(|x, y| {
+                    format!(
+                        r##"<line x1="{}" y1="{y}" x2="{}" y2="{y}" stroke="#d62728" stroke-width="2"/><circle cx="{}" cy="{y}" r="2.2" fill="#d62728"/>"##,
+                        px(x),
+                        px(x + 22.0),
+                        px(x + 11.0),
+                        y = px(y)
+                    )
+                }),
+                self.path_label.clone(),
+            ));
+        }
+        for m in &self.markers {
+            let (shape, color) = (m.shape, m.color.clone());
+            out.push((
+                Box::new(move |x, y| symbol(shape, x + 11.0, y, &color)),
+                m.label.clone(),
+            ));
+        }
+        out
+    }
+
+    pub fn to_svg(&self) -> String {
+        let xs = distinct(self.cells.iter().map(|c| c.x).collect());
+        let ys = distinct(self.cells.iter().map(|c| c.y).collect());
+        let (xe, ye) = (edges(&xs), edges(&ys));
+        let (mut x_lo, mut x_hi) = (xe[0], *xe.last().unwrap_or(&1.0));
+        let (mut y_lo, mut y_hi) = (ye[0], *ye.last().unwrap_or(&1.0));
+        let extra = self
+            .path
+            .iter()
+            .copied()
+            .chain(self.samples.iter().map(|s| (s.0, s.1)))
+            .chain(self.markers.iter().map(|m| (m.x, m.y)));
+        for (x, y) in extra {
             if x.is_finite() && y.is_finite() {
                 x_lo = x_lo.min(x);
                 x_hi = x_hi.max(x);
@@ -534,46 +773,73 @@ impl MapPlot {
         }
         let xt = ticks(x_lo, x_hi, 6, false);
         let yt = ticks(y_lo, y_hi, 6, false);
-        let zs: Vec<f64> = self
-            .cells
-            .iter()
-            .map(|c| c.2)
-            .filter(|z| z.is_finite())
-            .collect();
-        let z_lo = zs.iter().copied().fold(f64::INFINITY, f64::min);
-        let z_hi = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let zt = ticks(z_lo, z_hi, 6, false);
-        let label_w = yt
-            .values
-            .iter()
-            .map(|v| text_width(&yt.label(*v), 12.0))
-            .fold(0.0, f64::max);
-        let zlabel_w = zt
-            .values
-            .iter()
-            .map(|v| text_width(&zt.label(*v), 12.0))
-            .fold(0.0, f64::max);
-        let (w, h) = (self.width, self.height);
-        let (left, right, top, bottom) = (label_w + 42.0, 70.0 + zlabel_w, 44.0, 52.0);
-        let (pw, ph) = (w - left - right, h - top - bottom);
-        let (xl, xh) = (xt.lo.min(x_lo), xt.hi.max(x_hi));
-        let (yl, yh) = (yt.lo.min(y_lo), yt.hi.max(y_hi));
-        let sx = |x: f64| left + (x - xl) / (xh - xl) * pw;
-        let sy = |y: f64| top + ph - (y - yl) / (yh - yl) * ph;
+        let (z_lo, z_hi) = self.z_bounds();
+        let log = self.log_scale();
+        let (z_ticks, z_text): (Vec<f64>, Box<dyn Fn(f64) -> String>) = if log {
+            (log_ticks(z_lo, z_hi), Box::new(log_label))
+        } else {
+            let t = ticks(z_lo, z_hi, 6, false);
+            (t.values.clone(), Box::new(move |v| t.label(v)))
+        };
         let zn = |z: f64| {
-            if z_hi > z_lo {
+            if log {
+                (z.ln() - z_lo.ln()) / (z_hi.ln() - z_lo.ln())
+            } else if z_hi > z_lo {
                 (z - z_lo) / (z_hi - z_lo)
             } else {
                 0.5
             }
         };
+        let label_w = yt
+            .values
+            .iter()
+            .map(|v| text_width(&yt.label(*v), 12.0))
+            .fold(0.0, f64::max);
+        let zlabel_w = z_ticks
+            .iter()
+            .map(|v| text_width(&z_text(*v), 12.0))
+            .fold(0.0, f64::max);
+        let legend = self.legend();
+        let w = self.width;
+        // Legend entries in columns under the axes, as many columns as the widest fits.
+        let widest = legend
+            .iter()
+            .map(|(_, text)| 30.0 + text_width(text, 12.0) + 16.0)
+            .fold(0.0, f64::max);
+        let columns = (((w - 28.0) / widest.max(1.0)).floor() as usize).clamp(1, 3);
+        let col_w = (w - 28.0) / columns as f64;
+        let slots: Vec<(f64, usize)> = (0..legend.len())
+            .map(|k| (14.0 + col_w * (k % columns) as f64, k / columns))
+            .collect();
+        let row = legend.len().saturating_sub(1) / columns;
+        let rows = if legend.is_empty() { 0 } else { row + 1 };
+        let top = if self.subtitle.is_empty() { 44.0 } else { 62.0 };
+        let (left, right) = (label_w + 44.0, 76.0 + zlabel_w);
+        let pw = w - left - right;
+        let ph = pw.min(460.0);
+        let legend_top = top + ph + 58.0;
+        let h = legend_top + 18.0 * rows as f64 + 6.0;
+        let (xl, xh) = (xt.lo.min(x_lo), xt.hi.max(x_hi));
+        let (yl, yh) = (yt.lo.min(y_lo), yt.hi.max(y_hi));
+        let sx = |x: f64| left + (x - xl) / (xh - xl) * pw;
+        let sy = |y: f64| top + ph - (y - yl) / (yh - yl) * ph;
         let mut s = header(w, h);
+        s += HATCH;
+        s += "\n";
         let _ = writeln!(
             s,
             r#"<text x="{}" y="24" font-size="16" font-weight="bold">{}</text>"#,
             px(left),
             esc(&self.title)
         );
+        if !self.subtitle.is_empty() {
+            let _ = writeln!(
+                s,
+                r##"<text x="{}" y="44" font-size="12" fill="#555">{}</text>"##,
+                px(left),
+                esc(&self.subtitle)
+            );
+        }
         let _ = writeln!(
             s,
             r##"<rect x="{}" y="{}" width="{}" height="{}" fill="#f4f4f4"/>"##,
@@ -582,31 +848,41 @@ impl MapPlot {
             px(pw),
             px(ph)
         );
-        for &(x, y, z) in &self.cells {
-            let (Some(i), Some(j)) = (
-                xs.iter()
-                    .position(|v| (v - x).abs() <= 1e-12 * (1.0 + x.abs())),
-                ys.iter()
-                    .position(|v| (v - y).abs() <= 1e-12 * (1.0 + y.abs())),
-            ) else {
+        let index = |v: &[f64], a: f64| {
+            v.iter()
+                .position(|b| (b - a).abs() <= 1e-12 * (1.0 + a.abs()))
+        };
+        let mut hatched = String::new();
+        for c in &self.cells {
+            let (Some(i), Some(j)) = (index(&xs, c.x), index(&ys, c.y)) else {
                 continue;
             };
-            let fill = if z.is_finite() {
-                viridis(zn(z))
+            let fill = if c.z.is_finite() {
+                viridis(zn(c.z))
             } else {
                 "#ffffff".into()
             };
             let (ax, bx) = (sx(xe[i]), sx(xe[i + 1]));
             let (ay, by) = (sy(ye[j + 1]), sy(ye[j]));
-            let _ = writeln!(
-                s,
-                r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{fill}" stroke="{fill}" stroke-width="0.5"/>"#,
+            let rect = format!(
+                r#"x="{}" y="{}" width="{}" height="{}""#,
                 px(ax),
                 px(ay),
                 px(bx - ax),
                 px(by - ay)
             );
+            let _ = writeln!(
+                s,
+                r#"<rect class="cell" {rect} fill="{fill}" stroke="{fill}" stroke-width="0.5"/>"#
+            );
+            if c.z.is_finite() && !c.feasible {
+                let _ = writeln!(
+                    hatched,
+                    r#"<rect {rect} fill="url(#hatch)" class="infeasible"/>"#
+                );
+            }
         }
+        s += &hatched;
         for &v in &yt.values {
             let _ = writeln!(
                 s,
@@ -638,53 +914,125 @@ impl MapPlot {
             px(pw),
             px(ph)
         );
-        if self.path.len() > 1 {
-            let pts: Vec<String> = self
-                .path
+        let _ = writeln!(
+            s,
+            r#"<clipPath id="area"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath><g clip-path="url(#area)" fill="none">"#,
+            px(left - 10.0),
+            px(top - 10.0),
+            px(pw + 20.0),
+            px(ph + 20.0)
+        );
+        for &(x, y, feasible) in &self.samples {
+            if x.is_finite() && y.is_finite() {
+                s += &if feasible {
+                    dot_mark(sx(x), sy(y))
+                } else {
+                    cross_mark(sx(x), sy(y), 3.5)
+                };
+                s += "\n";
+            }
+        }
+        let path: Vec<(f64, f64)> = self
+            .path
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .map(|&(x, y)| (sx(x), sy(y)))
+            .collect();
+        if path.len() > 1 {
+            let pts: Vec<String> = path
                 .iter()
-                .map(|&(x, y)| format!("{},{}", px(sx(x)), px(sy(y))))
+                .map(|&(x, y)| format!("{},{}", px(x), px(y)))
                 .collect();
             let _ = writeln!(
                 s,
-                r##"<polyline points="{}" fill="none" stroke="white" stroke-width="4"/><polyline points="{}" fill="none" stroke="#d62728" stroke-width="2"/>"##,
-                pts.join(" "),
-                pts.join(" ")
+                r##"<polyline class="path" points="{p}" stroke="white" stroke-width="4.5" stroke-linejoin="round"/><polyline points="{p}" stroke="#d62728" stroke-width="2" stroke-linejoin="round"/>"##,
+                p = pts.join(" ")
             );
-            for &(x, y) in &self.path {
+            for &(x, y) in &path {
                 let _ = writeln!(
                     s,
-                    r##"<circle cx="{}" cy="{}" r="2.5" fill="#d62728"/>"##,
-                    px(sx(x)),
-                    px(sy(y))
+                    r##"<circle cx="{}" cy="{}" r="2.2" fill="#d62728"/>"##,
+                    px(x),
+                    px(y)
                 );
             }
         }
-        let mut placed: Vec<(f64, f64)> = Vec::new();
-        for (x, y, label, color) in &self.markers {
-            let (cx, mut cy) = (sx(*x), sy(*y));
-            // Markers on the same spot (an optimum on a published value): stack the labels.
-            let same = placed
+        s += "</g>\n";
+        // Markers, then their labels placed where they stay inside the axes and clear of the
+        // other markers and labels.
+        let spots: Vec<(f64, f64)> = self.markers.iter().map(|m| (sx(m.x), sy(m.y))).collect();
+        // Largest symbol first, so that markers on the same spot (an optimum on a published
+        // value) all stay visible.
+        let mut order: Vec<usize> = (0..self.markers.len()).collect();
+        order.sort_by_key(|&k| match self.markers[k].shape {
+            Shape::Star => 0,
+            Shape::Diamond => 1,
+            Shape::Circle => 2,
+        });
+        for k in order {
+            let (m, (cx, cy)) = (&self.markers[k], spots[k]);
+            s += &symbol(m.shape, cx, cy, &m.color);
+            s += "\n";
+        }
+        let mut boxes: Vec<(f64, f64, f64, f64)> = spots
+            .iter()
+            .map(|&(x, y)| (x - 9.0, y - 9.0, x + 9.0, y + 9.0))
+            .collect();
+        // The path too, sampled every few pixels along its segments.
+        for pair in path.windows(2) {
+            let ((ax, ay), (bx, by)) = (pair[0], pair[1]);
+            let n = ((bx - ax).hypot(by - ay) / 4.0).ceil().max(1.0) as usize;
+            for k in 0..=n {
+                let t = k as f64 / n as f64;
+                let (x, y) = (ax + t * (bx - ax), ay + t * (by - ay));
+                boxes.push((x - 2.0, y - 2.0, x + 2.0, y + 2.0));
+            }
+        }
+        let overlaps = |a: &(f64, f64, f64, f64), b: &(f64, f64, f64, f64)| {
+            a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
+        };
+        for (m, &(cx, cy)) in self.markers.iter().zip(&spots) {
+            let tw = text_width(&m.label, 12.0) + 4.0;
+            let candidates = [
+                (12.0, 0.0),
+                (-12.0, 0.0),
+                (12.0, -16.0),
+                (12.0, 16.0),
+                (-12.0, -16.0),
+                (-12.0, 16.0),
+                (12.0, -32.0),
+                (12.0, 32.0),
+                (-12.0, -32.0),
+                (-12.0, 32.0),
+            ];
+            let place = |&(dx, dy): &(f64, f64)| {
+                let x0 = if dx > 0.0 { cx + dx } else { cx + dx - tw };
+                (x0, cy + dy - 9.0, x0 + tw, cy + dy + 5.0)
+            };
+            let inside = |b: &(f64, f64, f64, f64)| {
+                b.0 >= left && b.2 <= left + pw && b.1 >= top && b.3 <= top + ph
+            };
+            // Inside the axes first, then the fewest overlaps, then the order above.
+            let chosen = candidates
                 .iter()
-                .filter(|(px_, py_)| (px_ - cx).abs() < 30.0 && (py_ - sy(*y)).abs() < 14.0)
-                .count();
-            placed.push((cx, sy(*y)));
-            let marker_y = cy;
-            cy += 16.0 * same as f64;
-            let _ = writeln!(
-                s,
-                r#"<circle cx="{}" cy="{}" r="6" fill="{color}" stroke="white" stroke-width="2"/><text x="{}" y="{}" font-size="12" font-weight="bold" fill="white" stroke="white" stroke-width="3" paint-order="stroke">{}</text><text x="{}" y="{}" font-size="12" font-weight="bold" fill="{color}">{}</text>"#,
-                px(cx),
-                px(marker_y),
-                px(cx + 9.0),
-                px(cy - 7.0),
-                esc(label),
-                px(cx + 9.0),
-                px(cy - 7.0),
-                esc(label)
-            );
+                .min_by_key(|c| {
+                    let b = place(c);
+                    let hits = boxes.iter().filter(|o| overlaps(&b, o)).count();
+                    (!inside(&b), hits)
+                })
+                .unwrap_or(&candidates[0]);
+            let b = place(chosen);
+            boxes.push(b);
+            let (anchor, x) = if chosen.0 > 0.0 {
+                ("start", cx + chosen.0)
+            } else {
+                ("end", cx + chosen.0)
+            };
+            s += &halo_text(x, cy + chosen.1 + 4.0, anchor, &m.color, &m.label);
+            s += "\n";
         }
         // Colour bar.
-        let (bx, bw) = (left + pw + 18.0, 16.0);
+        let (bx, bw) = (left + pw + 16.0, 16.0);
         let steps = 48;
         for k in 0..steps {
             let t0 = k as f64 / steps as f64;
@@ -707,7 +1055,7 @@ impl MapPlot {
             px(bw),
             px(ph)
         );
-        for &v in &zt.values {
+        for &v in &z_ticks {
             let y = top + ph * (1.0 - zn(v));
             let _ = writeln!(
                 s,
@@ -716,22 +1064,27 @@ impl MapPlot {
                 px(bx + bw + 4.0),
                 px(bx + bw + 7.0),
                 px(y + 4.0),
-                esc(&zt.label(v)),
+                esc(&z_text(v)),
                 y = px(y)
             );
         }
+        let z_label = if log {
+            format!("{} (log scale)", self.z_label)
+        } else {
+            self.z_label.clone()
+        };
         let _ = writeln!(
             s,
             r#"<text transform="translate({},{}) rotate(-90)" font-size="13" text-anchor="middle">{}</text>"#,
-            px(w - 10.0),
+            px(w - 8.0),
             px(top + ph / 2.0),
-            esc(&self.z_label)
+            esc(&z_label)
         );
         let _ = writeln!(
             s,
             r#"<text x="{}" y="{}" font-size="13" text-anchor="middle">{}</text>"#,
             px(left + pw / 2.0),
-            px(h - 12.0),
+            px(top + ph + 40.0),
             esc(&self.x_label)
         );
         let _ = writeln!(
@@ -741,6 +1094,18 @@ impl MapPlot {
             px(top + ph / 2.0),
             esc(&self.y_label)
         );
+        // Legend under the axes.
+        for ((swatch, text), &(x, row)) in legend.iter().zip(&slots) {
+            let y = legend_top + 18.0 * row as f64;
+            s += &swatch(x, y);
+            let _ = writeln!(
+                s,
+                r#"<text x="{}" y="{}" font-size="12">{}</text>"#,
+                px(x + 30.0),
+                px(y + 4.0),
+                esc(text)
+            );
+        }
         s += "</svg>\n";
         s
     }

@@ -1376,6 +1376,7 @@ fn monotone_root_converges_on_closed_form_functions() {
                     value,
                     slope,
                     scale: value.abs(),
+                    resolution: 0.0,
                 })
             },
             target,
@@ -1406,6 +1407,7 @@ fn monotone_root_reports_failures_as_statuses() {
             value: x.atan(),
             slope: 1.0 / (1.0 + x * x),
             scale: 1.0,
+            resolution: 0.0,
         })
     };
     // atan never reaches 10.
@@ -1419,6 +1421,7 @@ fn monotone_root_reports_failures_as_statuses() {
             value: if x < 0.5 { -1.0 } else { 1.0 },
             slope: 0.0,
             scale: 1.0,
+            resolution: 0.0,
         })
     };
     match monotone_root(jump, 0.0, 0.0, &settings(10.0)) {
@@ -1437,6 +1440,7 @@ fn monotone_root_reports_failures_as_statuses() {
             value: x,
             slope: 0.0,
             scale: 1.0,
+            resolution: 0.0,
         })
     };
     assert!(matches!(
@@ -1454,6 +1458,7 @@ fn monotone_root_reports_failures_as_statuses() {
             value: if x > 0.1 { f64::NAN } else { x },
             slope: 1.0,
             scale: 1.0,
+            resolution: 0.0,
         })
     };
     assert!(matches!(

@@ -9,7 +9,9 @@
 
 use super::pins::{self, PinState, Pins};
 use super::rollers::{self, AngleTrig, Reach, RollerState, Rollers};
-use super::solve::{monotone_root, piecewise_linear_root, Balance, Settings, SolveFailure};
+use super::solve::{
+    monotone_root, piecewise_linear_root, settle_straddle, Balance, Settings, SolveFailure,
+};
 use crate::geometry::clearance::Pose;
 use crate::geometry::{cross, Vec2};
 use crate::spec::{ContactLaw, Design, GeometryMode, Modification, Scene};
@@ -137,6 +139,7 @@ fn roller_balance(
         value,
         slope,
         scale,
+        resolution: r.moment_resolution(states, pose.centre_offset_mm.norm()),
     })
 }
 
@@ -209,9 +212,25 @@ fn solve_rollers(
                 hi: f64::INFINITY,
             },
         )?;
-        r.evaluate(&pose(lag), &mut work.sol.rollers)
-            .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
-        return Ok(lag);
+        let states = &mut work.sol.rollers;
+        let evaluate = |lag: f64, states: &mut Vec<RollerState>| {
+            r.evaluate(&pose(lag), states)
+                .map_err(|f| SolveFailure::Evaluation(f.to_string()))
+                .map(|()| rollers::moment(states))
+        };
+        let (m, _, scale) = evaluate(lag, states)?;
+        if (m - t).abs() <= model.settings.rel_tol * t.abs().max(scale) {
+            return Ok(lag);
+        }
+        // The root is exact, but the gaps at the double nearest to it, g − l·x, carry the
+        // round-off of l·x: at a tiny torque (1e-6 N·m) that is more than the tolerance.
+        // Mix the states of two neighbouring lags as the iterative solve does.
+        let mut other = states.clone();
+        let (at, weight) = settle_straddle(lag, lag, m, t, |y| {
+            evaluate(y, &mut other).map(|(value, _, _)| value)
+        })?;
+        rollers::blend(states, &other, 1.0 - weight);
+        return Ok(if weight > 0.5 { at } else { lag });
     }
     if work.reaches.len() != r.count() {
         work.reaches = vec![
@@ -227,6 +246,7 @@ fn solve_rollers(
     let exact_final = work.exact_final;
     let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
     let trig = AngleTrig::new(crank, model.teeth);
+    let offset_norm = offset.norm();
     let root = monotone_root(
         |lag| {
             r.evaluate_at(&pose(lag), &trig, states, reaches)
@@ -236,6 +256,7 @@ fn solve_rollers(
                 value,
                 slope,
                 scale,
+                resolution: r.moment_resolution(states, offset_norm),
             })
         },
         model.torque_nmm,
@@ -243,24 +264,57 @@ fn solve_rollers(
         &model.settings,
     )?;
     let mut lag = root.x;
-    if exact_final {
+    if let Some(towards) = root.straddle {
+        // The balance steps over the torque between two adjacent lags (round-off of the
+        // gaps): every roller exact at both ends, forces mixed so that Σ F·l = T.
+        let exact = |lag: f64, states: &mut Vec<RollerState>| {
+            r.evaluate_at(&pose(lag), &trig, states, &mut [])
+                .map_err(|f| SolveFailure::Evaluation(f.to_string()))
+        };
+        exact(lag, states)?;
+        let mut other = states.clone();
+        let (at, weight) = settle_straddle(
+            lag,
+            towards,
+            rollers::moment(states).0,
+            model.torque_nmm,
+            |y| {
+                exact(y, &mut other)?;
+                Ok(rollers::moment(&other).0)
+            },
+        )?;
+        rollers::blend(states, &other, 1.0 - weight);
+        if weight > 0.5 {
+            lag = at;
+        }
+    } else if exact_final {
         // Every roller exact at the answer (skipped ones carried only a gap bound).
         r.evaluate_at(&pose(lag), &trig, states, &mut [])
             .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
     }
-    if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
-        lag = touching(
-            |l| {
-                roller_balance(r, &pose(l), states)
-                    .map(|_| states.iter().map(|s| (s.gap_mm, -s.arm_mm)).collect())
-            },
-            lag,
-        )
-        .map_err(SolveFailure::Evaluation)?;
-        roller_balance(r, &pose(lag), states).map_err(SolveFailure::Evaluation)?;
-        reaches
-            .iter_mut()
-            .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
+    if model.torque_nmm == 0.0 {
+        if !in_contact(states.iter().map(|s| &s.force_n)) {
+            lag = touching(
+                |l| {
+                    roller_balance(r, &pose(l), states)
+                        .map(|_| states.iter().map(|s| (s.gap_mm, -s.arm_mm)).collect())
+                },
+                lag,
+            )
+            .map_err(SolveFailure::Evaluation)?;
+            roller_balance(r, &pose(lag), states).map_err(SolveFailure::Evaluation)?;
+            reaches
+                .iter_mut()
+                .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
+        }
+        // Forces whose moments are round-off (an unmodified profile touches every roller at
+        // zero torque, with gaps of ±1e-17 mm) are zero: the limit T → 0⁺ of no load.
+        let (_, _, scale) = rollers::moment(states);
+        if scale <= r.moment_resolution(states, offset_norm) {
+            for s in states.iter_mut() {
+                (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
+            }
+        }
     }
     Ok(lag)
 }
@@ -288,8 +342,23 @@ fn solve_pins(
                     lo: f64::NEG_INFINITY,
                     hi: f64::INFINITY,
                 })?;
-            p.first_order_lagged(lag, &mut work.sol.pins);
-            return Ok(lag);
+            let states = &mut work.sol.pins;
+            p.first_order_lagged(lag, states);
+            let (m, _, scale) = pins::moment(states);
+            let t = model.torque_nmm;
+            if (m - t).abs() <= model.settings.rel_tol * t.abs().max(scale) {
+                return Ok(lag);
+            }
+            // Round-off of the gaps at the root's double, as for the rollers. The gaps are
+            // linear in the lag: those at y are the ones at the root moved by y − lag.
+            let mut other = states.clone();
+            let (at, weight) = settle_straddle(lag, lag, m, t, |y| {
+                other.copy_from_slice(states);
+                p.first_order_lagged(y - lag, &mut other);
+                Ok(pins::moment(&other).0)
+            })?;
+            pins::blend(states, &other, 1.0 - weight);
+            return Ok(if weight > 0.5 { at } else { lag });
         }
     }
     let states = &mut work.sol.pins;
@@ -304,6 +373,7 @@ fn solve_pins(
             value,
             slope,
             scale,
+            resolution: p.moment_resolution(states, offset.norm()),
         }
     };
     let root = monotone_root(
@@ -314,6 +384,24 @@ fn solve_pins(
     )?;
     let mut lag = root.x;
     evaluate(lag, states);
+    if let Some(towards) = root.straddle {
+        // As for the rollers: forces mixed between two neighbouring output lags.
+        let mut other = states.clone();
+        let (at, weight) = settle_straddle(
+            lag,
+            towards,
+            pins::moment(states).0,
+            model.torque_nmm,
+            |y| {
+                evaluate(y, &mut other);
+                Ok(pins::moment(&other).0)
+            },
+        )?;
+        pins::blend(states, &other, 1.0 - weight);
+        if weight > 0.5 {
+            lag = at;
+        }
+    }
     if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
         lag = touching(
             |l| {

@@ -1412,7 +1412,13 @@ fn monotone_root_reports_failures_as_statuses() {
     };
     // atan never reaches 10.
     match monotone_root(smooth, 10.0, 0.0, &settings(100.0)) {
-        Err(SolveFailure::NoBracket { lo, hi }) => assert!(lo < hi && hi > 100.0 - 1e-9),
+        Err(SolveFailure::NoBracket { lo, hi, nearest }) => {
+            assert!(lo < hi && hi > 100.0 - 1e-9);
+            // atan is increasing: the nearest value is the last one (the march doubles its
+            // steps, so past half the range), below π/2.
+            let (x, value) = nearest.unwrap();
+            assert!(x > 50.0 && (value - x.atan()).abs() < 1e-15 && value < 10.0);
+        }
         other => panic!("expected NoBracket, got {other:?}"),
     }
     // A jump across the target: the bracket shrinks to one ulp at x = 0.5 with the residual 1.

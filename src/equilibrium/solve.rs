@@ -31,8 +31,13 @@ pub struct Root {
 /// Why a solve stopped without a root. A status, not a panic: the caller names scene and angle.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SolveFailure {
-    /// No sign change found within the search range.
-    NoBracket { lo: f64, hi: f64 },
+    /// No sign change found within the search range. `nearest` is the evaluation (x, value)
+    /// that came nearest the target, when there was one.
+    NoBracket {
+        lo: f64,
+        hi: f64,
+        nearest: Option<(f64, f64)>,
+    },
     /// Iterations exhausted; the best residual reached.
     NotConverged { x: f64, residual: f64 },
     /// The balance itself could not be evaluated (e.g. a closest point failed).
@@ -44,11 +49,18 @@ pub enum SolveFailure {
 impl std::fmt::Display for SolveFailure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            SolveFailure::NoBracket { lo, hi } => {
+            SolveFailure::NoBracket { lo, hi, nearest } => {
                 write!(
                     f,
                     "no balance found for a lag between {lo:.3e} and {hi:.3e} rad"
-                )
+                )?;
+                match nearest {
+                    Some((x, value)) => write!(
+                        f,
+                        " (the nearest the balance came is {value:.4e} N·mm, at lag {x:.3e} rad)"
+                    ),
+                    None => Ok(()),
+                }
             }
             SolveFailure::NotConverged { x, residual } => write!(
                 f,
@@ -126,9 +138,13 @@ pub fn monotone_root<E: std::fmt::Display>(
     let mut step = 16.0 * settings.initial_step;
     let mut x = guess;
     let mut last_residual = f64::INFINITY;
+    let mut nearest: Option<(f64, f64)> = None;
     for calls in 1..=settings.max_iterations {
         let b = eval(x)?;
         let residual = relative(&b, target);
+        if nearest.is_none_or(|(_, v)| (b.value - target).abs() < (v - target).abs()) {
+            nearest = Some((x, b.value));
+        }
         // Newton that fails to halve the residual (a kink where a contact opens or closes)
         // gives way to bisection once the bracket is closed.
         let stalled = residual > 0.5 * last_residual;
@@ -172,7 +188,7 @@ pub fn monotone_root<E: std::fmt::Display>(
             }
         };
         if (next - guess).abs() > settings.max_range {
-            return Err(SolveFailure::NoBracket { lo, hi });
+            return Err(SolveFailure::NoBracket { lo, hi, nearest });
         }
         if next <= lo || next >= hi || next == x {
             // The bracket is one ulp wide: this is as close as f64 gets. A step of the value

@@ -186,6 +186,36 @@ fn in_contact<'a>(forces: impl IntoIterator<Item = &'a f64>) -> bool {
     forces.into_iter().any(|&f| f > 0.0)
 }
 
+/// The rollers' moment never reached the torque within the lags searched: say how far it got
+/// and how deep the contacts were there. Far beyond the rated load the moment stops growing
+/// with the lag (rollers pressed millimetres into the flanks slide towards the tips, their arms
+/// shrink), so the torque is more than the disc can hold in this contact model.
+fn beyond_reach(r: &Rollers, pose: &Pose, moment_nmm: f64, torque_nmm: f64) -> SolveFailure {
+    let mut states = Vec::new();
+    let deepest = match r.evaluate(pose, &mut states) {
+        Ok(()) => states
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.gap_mm.total_cmp(&b.1.gap_mm))
+            .map(|(i, s)| {
+                format!(
+                    "; there roller {i} is pressed {:.3} mm into the disc (roller radius {} mm)",
+                    -s.gap_mm, r.mesh.roller_radius_mm
+                )
+            })
+            .unwrap_or_default(),
+        Err(_) => String::new(),
+    };
+    SolveFailure::Evaluation(format!(
+        "the rollers cannot balance an output torque of {} N·m: the largest moment found is \
+         {:.4} N·m, at a lag of {:.4} rad{deepest}; the load is beyond what this disc can hold \
+         in the contact model",
+        torque_nmm / 1000.0,
+        moment_nmm / 1000.0,
+        pose.lag_rad
+    ))
+}
+
 /// Solve the rollers at a fixed centre offset: β with Σ F·l = T.
 fn solve_rollers(
     model: &Model,
@@ -210,6 +240,7 @@ fn solve_rollers(
             SolveFailure::NoBracket {
                 lo: f64::NEG_INFINITY,
                 hi: f64::INFINITY,
+                nearest: None,
             },
         )?;
         let states = &mut work.sol.rollers;
@@ -262,7 +293,14 @@ fn solve_rollers(
         model.torque_nmm,
         guess,
         &model.settings,
-    )?;
+    )
+    .map_err(|failure| match failure {
+        SolveFailure::NoBracket {
+            nearest: Some((x, value)),
+            ..
+        } => beyond_reach(r, &pose(x), value, model.torque_nmm),
+        other => other,
+    })?;
     let mut lag = root.x;
     if let Some(towards) = root.straddle {
         // The balance steps over the torque between two adjacent lags (round-off of the
@@ -341,6 +379,7 @@ fn solve_pins(
                 .ok_or(SolveFailure::NoBracket {
                     lo: f64::NEG_INFINITY,
                     hi: f64::INFINITY,
+                    nearest: None,
                 })?;
             let states = &mut work.sol.pins;
             p.first_order_lagged(lag, states);

@@ -15,7 +15,7 @@ use super::solve::{
 use crate::geometry::clearance::Pose;
 use crate::geometry::{cross, Vec2};
 use crate::spec::{ContactLaw, Design, GeometryMode, Modification, Scene};
-use nalgebra::{Matrix4, Vector4};
+use nalgebra::{Matrix2, Matrix4, Vector4};
 
 /// What the loaded model of a scene includes.
 #[derive(Debug, Clone)]
@@ -589,11 +589,16 @@ fn solve_compliant(
         rigid.lag_rad.unwrap_or(0.0),
         rigid.output_lag_rad.unwrap_or(0.0),
     );
-    let mut sol = rigid;
-    evaluate_at(model, crank, &x, &mut sol)?;
+    let mut sol = rigid.clone();
+    if evaluate_at(model, crank, &x, &mut sol).is_err() {
+        // The first centre estimate already pushes a roller out of its closest-point reach:
+        // the damped fallback approaches it from the rigid pose.
+        work.sol = rigid;
+        return fixed_point(model, kb, crank, work);
+    }
     let (mut r, mut s) = compliant_residual(model, kb, &sol);
     let tol = model.settings.rel_tol * 100.0;
-    for _ in 0..60 {
+    'newton: for _ in 0..60 {
         if merit(&r, &s) <= tol {
             return Ok(sol);
         }
@@ -605,7 +610,17 @@ fn solve_compliant(
         loop {
             let trial_x = x + dx * step;
             let mut trial = sol.clone();
-            evaluate_at(model, crank, &trial_x, &mut trial)?;
+            // A step that cannot be evaluated (a nearly singular Jacobian, e.g. pins without
+            // load at zero torque, sends a roller out of its reach) is too long: shorten it.
+            let evaluated = dx.iter().all(|d| d.is_finite())
+                && evaluate_at(model, crank, &trial_x, &mut trial).is_ok();
+            if !evaluated {
+                if step < 1e-6 {
+                    break 'newton;
+                }
+                step *= 0.5;
+                continue;
+            }
             let (tr, ts) = compliant_residual(model, kb, &trial);
             if merit(&tr, &ts) < current || step < 1e-6 {
                 (x, sol, r, s) = (trial_x, trial, tr, ts);
@@ -636,7 +651,30 @@ fn fixed_point(
         if residual <= 1e-10 {
             return Ok(work.sol.clone());
         }
-        offset += 0.5 * (target - offset);
+        // Newton on the centre alone, β and βo re-solved at each centre: the force residual
+        // f(u) − kb·u has the Jacobian −(kb·I + K), K = Σ k·n·nᵀ of the contacts. A fixed
+        // damping (u += ½(f/kb − u)) diverges once the contacts are stiffer than the bearing
+        // (a preloaded disc on a soft bearing: K ≈ 7·kb).
+        let mut stiffness = Matrix2::identity() * kb;
+        let directions = work
+            .sol
+            .rollers
+            .iter()
+            .map(|s| (s.stiffness_n_per_mm, s.normal))
+            .chain(
+                work.sol
+                    .pins
+                    .iter()
+                    .map(|p| (p.stiffness_n_per_mm, p.direction)),
+            );
+        for (k, n) in directions {
+            stiffness += k * n * n.transpose();
+        }
+        let force = kb * (target - offset);
+        offset += stiffness
+            .lu()
+            .solve(&force)
+            .unwrap_or(0.5 * (target - offset));
     }
     Err(SolveFailure::NotConverged {
         x: work.sol.lag_rad.unwrap_or(0.0),

@@ -586,10 +586,10 @@ fn multi_revolution_curves_repeat_with_the_loaded_period() {
             (tb[j] - tt[k]).abs() * ARCSEC_PER_RAD <= 1e-6,
             "TE at sample {k}"
         );
-        for i in 0..n {
+        for (i, row) in ft.iter().enumerate() {
             let b = (i + n * w - (roller_shift * w) % n) % n;
             assert!(
-                (fb[b][j] - ft[i][k]).abs() <= 1e-8 * scale,
+                (fb[b][j] - row[k]).abs() <= 1e-8 * scale,
                 "roller {i} sample {k}"
             );
         }

@@ -236,8 +236,9 @@ pub fn monotone_root<E: std::fmt::Display>(
 /// returns its value. Round-off depends on the path (a closest point found from another warm
 /// start differs in its last bits), so the pair is re-established here: y moves away from x,
 /// starting at the bracket's width |towards − x| and doubling, until m(y) lies on the other
-/// side of the target, at most 1e-9·max(1, |x|) away. Returns y and the weight w with (1 − w)·value_x + w·m(y) = target: the states
-/// mixed so balance exactly, and the root lies between x and y (a few ulp apart).
+/// side of the target, at most 1e-9·max(1, |x|) away. Returns y and the weight w with
+/// (1 − w)·value_x + w·m(y) = target: the states mixed so balance exactly, and the root lies
+/// between x and y (a few ulp apart).
 pub fn settle_straddle(
     x: f64,
     towards: f64,

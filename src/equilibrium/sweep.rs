@@ -592,7 +592,7 @@ fn solve_compliant(
     let mut sol = rigid.clone();
     if evaluate_at(model, crank, &x, &mut sol).is_err() {
         // The first centre estimate already pushes a roller out of its closest-point reach:
-        // the damped fallback approaches it from the rigid pose.
+        // the fallback approaches it from the rigid pose.
         work.sol = rigid;
         return fixed_point(model, kb, crank, work);
     }

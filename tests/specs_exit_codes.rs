@@ -29,7 +29,7 @@ const EXPECTED: &[(&str, i32, &str)] = &[
     (
         "hard/torque-1e5.yaml",
         1,
-        "1e5 N·m on a 3× reducer: ~14.6 GPa fails the pressure limit",
+        "1e5 N·m on a 3× reducer: ~13 GPa fails the pressure limit",
     ),
     (
         "hard/torque-1e5-beyond-capacity.yaml",

@@ -256,9 +256,27 @@ fn nano_modification_matches_zero_within_the_derived_bound() {
 fn torque_1e_6_is_balanced_and_linear() {
     let run = cli_case("torque-1e-6", 0);
     let json = run.json.unwrap();
-    for s in json["scenes"].as_array().unwrap() {
+    let scenes = json["scenes"].as_array().unwrap();
+    for s in &scenes[..4] {
         assert!(s["min_rollers_in_contact"].as_f64().unwrap() >= 1.0);
         assert!(s["max_roller_force_n"].as_f64().unwrap() > 0.0);
+    }
+    // The limit T → 0 in the closed form: no force at all (the touching contact's round-off
+    // force used to leave an unbalanced moment: residual 1), the same TE as at 1e-6 N·m.
+    let idle = &scenes[4];
+    assert_eq!(idle["name"], "first-order-idle");
+    assert_eq!(idle["max_roller_force_n"].as_f64(), Some(0.0));
+    assert_eq!(idle["max_residual"].as_f64(), Some(0.0));
+    let te = |s: &Value| -> Vec<f64> {
+        s["te_arcsec"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    for (a, b) in te(idle).iter().zip(te(&scenes[1])) {
+        assert!((a - b).abs() <= 1e-5, "TE {a} vs {b} arcsec");
     }
     let exact = &json["scenes"][0];
     let te = exact["te_arcsec"].as_array().unwrap();

@@ -262,7 +262,12 @@ pub fn settle_straddle(
     while distance.abs() <= 1e-9 * x.abs().max(1.0) {
         let y = x + distance;
         let value_y = evaluate(y)?;
-        if (value_y >= target) == below {
+        let crossed = if below {
+            value_y >= target
+        } else {
+            value_y <= target
+        };
+        if crossed {
             return Ok((y, (target - value_x) / (value_y - value_x)));
         }
         distance *= 2.0;

@@ -250,6 +250,18 @@ fn solve_rollers(
                 .map(|()| rollers::moment(states))
         };
         let (m, _, scale) = evaluate(lag, states)?;
+        if t == 0.0 {
+            // The closed form's answer is the touching pose (T → 0⁺, or a preload's balance).
+            // The touching contact's gap g − l·x is round-off (±1e-17 mm), and so is its force
+            // (~5e-12 N, whose unbalanced moment made the residual 1): zero, as in the
+            // iterative solve.
+            if scale <= r.moment_resolution(states, 0.0) {
+                for s in states.iter_mut() {
+                    (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
+                }
+            }
+            return Ok(lag);
+        }
         if (m - t).abs() <= model.settings.rel_tol * t.abs().max(scale) {
             return Ok(lag);
         }
@@ -385,7 +397,7 @@ fn solve_pins(
             p.first_order_lagged(lag, states);
             let (m, _, scale) = pins::moment(states);
             let t = model.torque_nmm;
-            if (m - t).abs() <= model.settings.rel_tol * t.abs().max(scale) {
+            if t == 0.0 || (m - t).abs() <= model.settings.rel_tol * t.abs().max(scale) {
                 return Ok(lag);
             }
             // Round-off of the gaps at the root's double, as for the rollers. The gaps are

@@ -1376,6 +1376,7 @@ fn monotone_root_converges_on_closed_form_functions() {
                     value,
                     slope,
                     scale: value.abs(),
+                    resolution: 0.0,
                 })
             },
             target,
@@ -1406,11 +1407,18 @@ fn monotone_root_reports_failures_as_statuses() {
             value: x.atan(),
             slope: 1.0 / (1.0 + x * x),
             scale: 1.0,
+            resolution: 0.0,
         })
     };
     // atan never reaches 10.
     match monotone_root(smooth, 10.0, 0.0, &settings(100.0)) {
-        Err(SolveFailure::NoBracket { lo, hi }) => assert!(lo < hi && hi > 100.0 - 1e-9),
+        Err(SolveFailure::NoBracket { lo, hi, nearest }) => {
+            assert!(lo < hi && hi > 100.0 - 1e-9);
+            // atan is increasing: the nearest value is the last one (the march doubles its
+            // steps, so past half the range), below π/2.
+            let (x, value) = nearest.unwrap();
+            assert!(x > 50.0 && (value - x.atan()).abs() < 1e-15 && value < 10.0);
+        }
         other => panic!("expected NoBracket, got {other:?}"),
     }
     // A jump across the target: the bracket shrinks to one ulp at x = 0.5 with the residual 1.
@@ -1419,6 +1427,7 @@ fn monotone_root_reports_failures_as_statuses() {
             value: if x < 0.5 { -1.0 } else { 1.0 },
             slope: 0.0,
             scale: 1.0,
+            resolution: 0.0,
         })
     };
     match monotone_root(jump, 0.0, 0.0, &settings(10.0)) {
@@ -1437,6 +1446,7 @@ fn monotone_root_reports_failures_as_statuses() {
             value: x,
             slope: 0.0,
             scale: 1.0,
+            resolution: 0.0,
         })
     };
     assert!(matches!(
@@ -1454,6 +1464,7 @@ fn monotone_root_reports_failures_as_statuses() {
             value: if x > 0.1 { f64::NAN } else { x },
             slope: 1.0,
             scale: 1.0,
+            resolution: 0.0,
         })
     };
     assert!(matches!(

@@ -211,11 +211,7 @@ fn optimisation_section_of_the_paper_spec(dir: &std::path::Path) {
         .unwrap_or_else(|| panic!("{text}"));
     let value = |key: &str| -> String {
         let rest = &line[line.find(key).unwrap() + key.len()..];
-        rest.split(|c: char| c == ',' || c == ':')
-            .next()
-            .unwrap()
-            .trim()
-            .to_string()
+        rest.split([',', ':']).next().unwrap().trim().to_string()
     };
     for cell in [
         value("shift_mm "),

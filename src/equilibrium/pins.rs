@@ -44,6 +44,9 @@ pub struct Pins {
     hole_radius_mm: f64,
     contact: LineContact,
     law: ContactLaw,
+    /// Bound on the round-off of a pin gap, mm: 16·ε·(c + e + rw), a few ulp of the largest
+    /// length it is formed from.
+    gap_resolution_mm: f64,
 }
 
 impl Pins {
@@ -74,7 +77,22 @@ impl Pins {
                 effective_radius_mm: 1.0 / (1.0 / pin - 1.0 / hole),
             },
             law,
+            gap_resolution_mm: 16.0
+                * f64::EPSILON
+                * (design.pins.hole_clearance_mm
+                    + design.eccentricity_mm
+                    + design.pins.circle_radius_mm),
         }
+    }
+
+    /// Bound on the round-off of Σ F·a at a pose whose centre is offset by `offset_mm`:
+    /// each contact's force moves by its stiffness times the gap's round-off.
+    pub fn moment_resolution(&self, states: &[PinState], offset_mm: f64) -> f64 {
+        let gap = self.gap_resolution_mm + 16.0 * f64::EPSILON * offset_mm;
+        gap * states
+            .iter()
+            .map(|s| s.stiffness_n_per_mm * s.arm_mm.abs())
+            .sum::<f64>()
     }
 
     pub fn line_contact(&self) -> &LineContact {
@@ -227,4 +245,15 @@ pub fn moment(states: &[PinState]) -> (f64, f64, f64) {
             scale + (s.force_n * s.arm_mm).abs(),
         )
     })
+}
+
+/// Mix two evaluations of the pins at neighbouring output lags, `states` ← (1 − weight)·`low`
+/// + weight·`states` in force, stiffness and gap (see `solve::Straddle`).
+pub fn blend(states: &mut [PinState], low: &[PinState], weight: f64) {
+    for (s, l) in states.iter_mut().zip(low) {
+        s.force_n = l.force_n + weight * (s.force_n - l.force_n);
+        s.stiffness_n_per_mm =
+            l.stiffness_n_per_mm + weight * (s.stiffness_n_per_mm - l.stiffness_n_per_mm);
+        s.gap_mm = l.gap_mm + weight * (s.gap_mm - l.gap_mm);
+    }
 }

@@ -101,6 +101,10 @@ pub struct Rollers {
     curvature_bound: f64,
     /// Linear-law stiffness (π/4)·E*·L, N/mm.
     linear_stiffness: f64,
+    /// Bound on the round-off of an exact gap at zero centre offset, mm: a gap is a sum of
+    /// terms no larger than the positions it is measured between (Rp, e) and the
+    /// modifications, so it is resolved to a few ulp of their sum, 16·ε·(Rp + e + |ΔRp| + |ΔRrp|).
+    gap_resolution_mm: f64,
 }
 
 impl Rollers {
@@ -122,6 +126,9 @@ impl Rollers {
             reach_radius_mm: reach,
             curvature_bound,
             linear_stiffness: 0.0,
+            gap_resolution_mm: 16.0
+                * f64::EPSILON
+                * (reach + m.shift_mm.abs() + m.equidistant_mm.abs()),
         };
         r.linear_stiffness = law::paper_linear_stiffness(&r.line_contact(0.0));
         r
@@ -134,6 +141,16 @@ impl Rollers {
     /// The linear law's stiffness k = (π/4)·E*·L, N/mm.
     pub fn linear_stiffness(&self) -> f64 {
         self.linear_stiffness
+    }
+
+    /// Bound on the round-off of Σ F·l at a pose whose centre is offset by `offset_mm` from
+    /// e·(cos φ, sin φ): each contact's force moves by its stiffness times the gap's round-off.
+    pub fn moment_resolution(&self, states: &[RollerState], offset_mm: f64) -> f64 {
+        let gap = self.gap_resolution_mm + 16.0 * f64::EPSILON * offset_mm;
+        gap * states
+            .iter()
+            .map(|s| s.stiffness_n_per_mm * s.arm_mm.abs())
+            .sum::<f64>()
     }
 
     /// Contact description for the laws: disc flank of signed curvature κ against a roller.
@@ -371,4 +388,16 @@ pub fn moment(states: &[RollerState]) -> (f64, f64, f64) {
             scale + (s.force_n * s.arm_mm).abs(),
         )
     })
+}
+
+/// Mix two evaluations of the rollers at neighbouring lags, `states` ← (1 − weight)·`low` +
+/// weight·`states` in force, stiffness and gap (see `solve::Straddle`). Geometry is that of
+/// `states`: one ulp of lag apart, it is the same to round-off.
+pub fn blend(states: &mut [RollerState], low: &[RollerState], weight: f64) {
+    for (s, l) in states.iter_mut().zip(low) {
+        s.force_n = l.force_n + weight * (s.force_n - l.force_n);
+        s.stiffness_n_per_mm =
+            l.stiffness_n_per_mm + weight * (s.stiffness_n_per_mm - l.stiffness_n_per_mm);
+        s.gap_mm = l.gap_mm + weight * (s.gap_mm - l.gap_mm);
+    }
 }

@@ -4,13 +4,15 @@
 //! non-decreasing in their lag (more lag closes more contacts harder). The bracket makes the
 //! iteration unable to diverge; Newton steps that leave it, or stall, fall back to bisection.
 
-/// One evaluation of the balance: value, slope ∂m/∂x (may be 0 on flat parts) and a scale for
-/// relative convergence (e.g. Σ|F·l|).
+/// One evaluation of the balance: value, slope ∂m/∂x (may be 0 on flat parts), a scale for
+/// relative convergence (e.g. Σ|F·l|) and the value's resolution: a bound on its round-off,
+/// absolute (0 when unknown: the value is then taken as exact).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Balance {
     pub value: f64,
     pub slope: f64,
     pub scale: f64,
+    pub resolution: f64,
 }
 
 /// Converged root.
@@ -19,13 +21,23 @@ pub struct Root {
     pub x: f64,
     pub residual: f64,
     pub iterations: usize,
+    /// The other end of a one-ulp bracket across which the balance steps over the target by
+    /// no more than its round-off (`monotone_root`): no double meets the tolerance, and the
+    /// caller mixes its states at `x` and near this end (`settle_straddle`). `residual` is
+    /// then that of the mix as the solver saw it.
+    pub straddle: Option<f64>,
 }
 
 /// Why a solve stopped without a root. A status, not a panic: the caller names scene and angle.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SolveFailure {
-    /// No sign change found within the search range.
-    NoBracket { lo: f64, hi: f64 },
+    /// No sign change found within the search range. `nearest` is the evaluation (x, value)
+    /// that came nearest the target, when there was one.
+    NoBracket {
+        lo: f64,
+        hi: f64,
+        nearest: Option<(f64, f64)>,
+    },
     /// Iterations exhausted; the best residual reached.
     NotConverged { x: f64, residual: f64 },
     /// The balance itself could not be evaluated (e.g. a closest point failed).
@@ -37,11 +49,18 @@ pub enum SolveFailure {
 impl std::fmt::Display for SolveFailure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            SolveFailure::NoBracket { lo, hi } => {
+            SolveFailure::NoBracket { lo, hi, nearest } => {
                 write!(
                     f,
                     "no balance found for a lag between {lo:.3e} and {hi:.3e} rad"
-                )
+                )?;
+                match nearest {
+                    Some((x, value)) => write!(
+                        f,
+                        " (the nearest the balance came is {value:.4e} N·mm, at lag {x:.3e} rad)"
+                    ),
+                    None => Ok(()),
+                }
             }
             SolveFailure::NotConverged { x, residual } => write!(
                 f,
@@ -93,6 +112,13 @@ fn relative(b: &Balance, target: f64) -> f64 {
 /// would leave the bracket, or a flat part (slope 0), expands the bracket by doubling steps
 /// while it is one-sided and bisects once it is closed. From a warm start this costs 2–4
 /// evaluations; it can never diverge.
+///
+/// A balance is a staircase at the scale of its round-off: at a tiny target (1e-6 N·m on
+/// gaps of 0.03 mm) one ulp of a gap moves the value by more than the 1e-9 tolerance, and no
+/// double x meets it. When the bracket has shrunk to adjacent doubles and the step of the
+/// value across it is within the two ends' `resolution` (plus the slope over one ulp), the
+/// root is returned with `straddle` set to the other end. A larger step is a real jump of the
+/// balance and stays `NotConverged`.
 pub fn monotone_root<E: std::fmt::Display>(
     mut m: impl FnMut(f64) -> Result<Balance, E>,
     target: f64,
@@ -108,27 +134,39 @@ pub fn monotone_root<E: std::fmt::Display>(
         }
     };
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    let (mut at_lo, mut at_hi) = (None::<Balance>, None::<Balance>);
     let mut step = 16.0 * settings.initial_step;
     let mut x = guess;
     let mut last_residual = f64::INFINITY;
+    let mut nearest: Option<(f64, f64)> = None;
     for calls in 1..=settings.max_iterations {
         let b = eval(x)?;
         let residual = relative(&b, target);
+        if nearest.is_none_or(|(_, v)| (b.value - target).abs() < (v - target).abs()) {
+            nearest = Some((x, b.value));
+        }
         // Newton that fails to halve the residual (a kink where a contact opens or closes)
         // gives way to bisection once the bracket is closed.
         let stalled = residual > 0.5 * last_residual;
         last_residual = residual;
-        if residual <= settings.rel_tol {
+        // At a zero target a value within its round-off is zero: the relative residual of
+        // forces that are themselves round-off (an unmodified profile touching every roller at
+        // zero torque) is 1 at any x.
+        let zero = target == 0.0 && b.value.abs() <= b.resolution;
+        if residual <= settings.rel_tol || zero {
             return Ok(Root {
                 x,
                 residual,
                 iterations: calls,
+                straddle: None,
             });
         }
         if b.value < target {
             lo = x;
+            at_lo = Some(b);
         } else {
             hi = x;
+            at_hi = Some(b);
         }
         let newton = (b.slope > 0.0).then(|| x - (b.value - target) / b.slope);
         let next = if lo.is_finite() && hi.is_finite() {
@@ -150,16 +188,36 @@ pub fn monotone_root<E: std::fmt::Display>(
             }
         };
         if (next - guess).abs() > settings.max_range {
-            return Err(SolveFailure::NoBracket { lo, hi });
+            return Err(SolveFailure::NoBracket { lo, hi, nearest });
         }
         if next <= lo || next >= hi || next == x {
-            // The bracket is one ulp wide: this is as close as f64 gets. Accept it only within
-            // the product's residual bound (1e-9 relative); otherwise say so.
+            // The bracket is one ulp wide: this is as close as f64 gets. A step of the value
+            // across it within round-off is straddled; otherwise accept x only within the
+            // product's residual bound (1e-9 relative), or say so.
+            if let (Some(a), Some(b)) = (at_lo, at_hi) {
+                let jump = b.value - a.value;
+                let noise = a.resolution + b.resolution + a.slope.max(b.slope) * (hi - lo);
+                if jump > 0.0 && jump <= noise {
+                    let weight = ((target - a.value) / jump).clamp(0.0, 1.0);
+                    let blend = Balance {
+                        value: a.value + weight * jump,
+                        scale: a.scale.max(b.scale),
+                        ..b
+                    };
+                    return Ok(Root {
+                        x,
+                        residual: relative(&blend, target),
+                        iterations: calls,
+                        straddle: Some(if x == lo { hi } else { lo }),
+                    });
+                }
+            }
             return if residual <= 1e-9 {
                 Ok(Root {
                     x,
                     residual,
                     iterations: calls,
+                    straddle: None,
                 })
             } else {
                 Err(SolveFailure::NotConverged { x, residual })
@@ -170,6 +228,53 @@ pub fn monotone_root<E: std::fmt::Display>(
     Err(SolveFailure::NotConverged {
         x,
         residual: last_residual,
+    })
+}
+
+/// Settle a straddled root (`Root::straddle`): the caller holds its states at `x`, where the
+/// balance is `value_x`; `evaluate(y)` evaluates the balance at y into scratch states and
+/// returns its value. Round-off depends on the path (a closest point found from another warm
+/// start differs in its last bits), so the pair is re-established here: y moves away from x,
+/// starting at the bracket's width |towards − x| and doubling, until m(y) lies on the other
+/// side of the target, at most 1e-9·max(1, |x|) away. Returns y and the weight w with
+/// (1 − w)·value_x + w·m(y) = target: the states mixed so balance exactly, and the root lies
+/// between x and y (a few ulp apart).
+pub fn settle_straddle(
+    x: f64,
+    towards: f64,
+    value_x: f64,
+    target: f64,
+    mut evaluate: impl FnMut(f64) -> Result<f64, SolveFailure>,
+) -> Result<(f64, f64), SolveFailure> {
+    if value_x == target {
+        return Ok((x, 0.0));
+    }
+    // m is non-decreasing: below the target the other side lies at larger x.
+    let below = value_x < target;
+    let step = (towards - x)
+        .abs()
+        .max(f64::EPSILON * x.abs())
+        .max(f64::MIN_POSITIVE);
+    let mut distance = if below { step } else { -step };
+    // Up to 1e-9 of max(1, |x|) away: far below any physical scale of the lag, and enough
+    // doublings to cross zero from a root at round-off distance from it (zero torque on an
+    // unmodified profile puts the root at |x| ~ 1e-27).
+    while distance.abs() <= 1e-9 * x.abs().max(1.0) {
+        let y = x + distance;
+        let value_y = evaluate(y)?;
+        let crossed = if below {
+            value_y >= target
+        } else {
+            value_y <= target
+        };
+        if crossed {
+            return Ok((y, (target - value_x) / (value_y - value_x)));
+        }
+        distance *= 2.0;
+    }
+    Err(SolveFailure::NotConverged {
+        x,
+        residual: (value_x - target).abs() / target.abs().max(value_x.abs()),
     })
 }
 

@@ -9,11 +9,13 @@
 
 use super::pins::{self, PinState, Pins};
 use super::rollers::{self, AngleTrig, Reach, RollerState, Rollers};
-use super::solve::{monotone_root, piecewise_linear_root_near, Balance, Settings, SolveFailure};
+use super::solve::{
+    monotone_root, piecewise_linear_root_near, settle_straddle, Balance, Settings, SolveFailure,
+};
 use crate::geometry::clearance::Pose;
 use crate::geometry::{cross, Vec2};
 use crate::spec::{ContactLaw, Design, GeometryMode, Modification, Scene};
-use nalgebra::{Matrix4, Vector4};
+use nalgebra::{Matrix2, Matrix4, Vector4};
 
 /// What the loaded model of a scene includes.
 #[derive(Debug, Clone)]
@@ -144,6 +146,7 @@ fn roller_balance(
         value,
         slope,
         scale,
+        resolution: r.moment_resolution(states, pose.centre_offset_mm.norm()),
     })
 }
 
@@ -190,6 +193,36 @@ fn in_contact<'a>(forces: impl IntoIterator<Item = &'a f64>) -> bool {
     forces.into_iter().any(|&f| f > 0.0)
 }
 
+/// The rollers' moment never reached the torque within the lags searched: say how far it got
+/// and how deep the contacts were there. Far beyond the rated load the moment stops growing
+/// with the lag (rollers pressed millimetres into the flanks slide towards the tips, their arms
+/// shrink), so the torque is more than the disc can hold in this contact model.
+fn beyond_reach(r: &Rollers, pose: &Pose, moment_nmm: f64, torque_nmm: f64) -> SolveFailure {
+    let mut states = Vec::new();
+    let deepest = match r.evaluate(pose, &mut states) {
+        Ok(()) => states
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.gap_mm.total_cmp(&b.1.gap_mm))
+            .map(|(i, s)| {
+                format!(
+                    "; there roller {i} is pressed {:.3} mm into the disc (roller radius {} mm)",
+                    -s.gap_mm, r.mesh.roller_radius_mm
+                )
+            })
+            .unwrap_or_default(),
+        Err(_) => String::new(),
+    };
+    SolveFailure::Evaluation(format!(
+        "the rollers cannot balance an output torque of {} N·m: the largest moment found is \
+         {:.4} N·m, at a lag of {:.4} rad{deepest}; the load is beyond what this disc can hold \
+         in the contact model",
+        torque_nmm / 1000.0,
+        moment_nmm / 1000.0,
+        pose.lag_rad
+    ))
+}
+
 /// Solve the rollers at a fixed centre offset: β with Σ F·l = T.
 fn solve_rollers(
     model: &Model,
@@ -214,11 +247,40 @@ fn solve_rollers(
             SolveFailure::NoBracket {
                 lo: f64::NEG_INFINITY,
                 hi: f64::INFINITY,
+                nearest: None,
             },
         )?;
-        r.evaluate(&pose(lag), &mut work.sol.rollers)
-            .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
-        return Ok(lag);
+        let states = &mut work.sol.rollers;
+        let evaluate = |lag: f64, states: &mut Vec<RollerState>| {
+            r.evaluate(&pose(lag), states)
+                .map_err(|f| SolveFailure::Evaluation(f.to_string()))
+                .map(|()| rollers::moment(states))
+        };
+        let (m, _, scale) = evaluate(lag, states)?;
+        if t == 0.0 {
+            // The closed form's answer is the touching pose (T → 0⁺, or a preload's balance).
+            // The touching contact's gap g − l·x is round-off (±1e-17 mm), and so is its force
+            // (~5e-12 N, whose unbalanced moment made the residual 1): zero, as in the
+            // iterative solve.
+            if scale <= r.moment_resolution(states, 0.0) {
+                for s in states.iter_mut() {
+                    (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
+                }
+            }
+            return Ok(lag);
+        }
+        if (m - t).abs() <= model.settings.rel_tol * t.abs().max(scale) {
+            return Ok(lag);
+        }
+        // The root is exact, but the gaps at the double nearest to it, g − l·x, carry the
+        // round-off of l·x: at a tiny torque (1e-6 N·m) that is more than the tolerance.
+        // Mix the states of two neighbouring lags as the iterative solve does.
+        let mut other = states.clone();
+        let (at, weight) = settle_straddle(lag, lag, m, t, |y| {
+            evaluate(y, &mut other).map(|(value, _, _)| value)
+        })?;
+        rollers::blend(states, &other, 1.0 - weight);
+        return Ok(if weight > 0.5 { at } else { lag });
     }
     if work.reaches.len() != r.count() {
         work.reaches = vec![
@@ -234,6 +296,7 @@ fn solve_rollers(
     let exact_final = work.exact_final;
     let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
     let trig = AngleTrig::new(crank, model.teeth);
+    let offset_norm = offset.norm();
     let root = monotone_root(
         |lag| {
             r.evaluate_at(&pose(lag), &trig, states, reaches)
@@ -243,31 +306,72 @@ fn solve_rollers(
                 value,
                 slope,
                 scale,
+                resolution: r.moment_resolution(states, offset_norm),
             })
         },
         model.torque_nmm,
         guess,
         &model.settings,
-    )?;
+    )
+    .map_err(|failure| match failure {
+        SolveFailure::NoBracket {
+            nearest: Some((x, value)),
+            ..
+        } => beyond_reach(r, &pose(x), value, model.torque_nmm),
+        other => other,
+    })?;
     let mut lag = root.x;
-    if exact_final {
+    if let Some(towards) = root.straddle {
+        // The balance steps over the torque between two adjacent lags (round-off of the
+        // gaps): every roller exact at both ends, forces mixed so that Σ F·l = T.
+        let exact = |lag: f64, states: &mut Vec<RollerState>| {
+            r.evaluate_at(&pose(lag), &trig, states, &mut [])
+                .map_err(|f| SolveFailure::Evaluation(f.to_string()))
+        };
+        exact(lag, states)?;
+        let mut other = states.clone();
+        let (at, weight) = settle_straddle(
+            lag,
+            towards,
+            rollers::moment(states).0,
+            model.torque_nmm,
+            |y| {
+                exact(y, &mut other)?;
+                Ok(rollers::moment(&other).0)
+            },
+        )?;
+        rollers::blend(states, &other, 1.0 - weight);
+        if weight > 0.5 {
+            lag = at;
+        }
+    } else if exact_final {
         // Every roller exact at the answer (skipped ones carried only a gap bound).
         r.evaluate_at(&pose(lag), &trig, states, &mut [])
             .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
     }
-    if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
-        lag = touching(
-            |l| {
-                roller_balance(r, &pose(l), states)
-                    .map(|_| states.iter().map(|s| (s.gap_mm, -s.arm_mm)).collect())
-            },
-            lag,
-        )
-        .map_err(SolveFailure::Evaluation)?;
-        roller_balance(r, &pose(lag), states).map_err(SolveFailure::Evaluation)?;
-        reaches
-            .iter_mut()
-            .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
+    if model.torque_nmm == 0.0 {
+        if !in_contact(states.iter().map(|s| &s.force_n)) {
+            lag = touching(
+                |l| {
+                    roller_balance(r, &pose(l), states)
+                        .map(|_| states.iter().map(|s| (s.gap_mm, -s.arm_mm)).collect())
+                },
+                lag,
+            )
+            .map_err(SolveFailure::Evaluation)?;
+            roller_balance(r, &pose(lag), states).map_err(SolveFailure::Evaluation)?;
+            reaches
+                .iter_mut()
+                .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
+        }
+        // Forces whose moments are round-off (an unmodified profile touches every roller at
+        // zero torque, with gaps of ±1e-17 mm) are zero: the limit T → 0⁺ of no load.
+        let (_, _, scale) = rollers::moment(states);
+        if scale <= r.moment_resolution(states, offset_norm) {
+            for s in states.iter_mut() {
+                (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
+            }
+        }
     }
     Ok(lag)
 }
@@ -300,9 +404,25 @@ fn solve_pins(
             .ok_or(SolveFailure::NoBracket {
                 lo: f64::NEG_INFINITY,
                 hi: f64::INFINITY,
+                nearest: None,
             })?;
-            p.first_order_lagged(lag, &mut work.sol.pins);
-            return Ok(lag);
+            let states = &mut work.sol.pins;
+            p.first_order_lagged(lag, states);
+            let (m, _, scale) = pins::moment(states);
+            let t = model.torque_nmm;
+            if t == 0.0 || (m - t).abs() <= model.settings.rel_tol * t.abs().max(scale) {
+                return Ok(lag);
+            }
+            // Round-off of the gaps at the root's double, as for the rollers. The gaps are
+            // linear in the lag: those at y are the ones at the root moved by y − lag.
+            let mut other = states.clone();
+            let (at, weight) = settle_straddle(lag, lag, m, t, |y| {
+                other.copy_from_slice(states);
+                p.first_order_lagged(y - lag, &mut other);
+                Ok(pins::moment(&other).0)
+            })?;
+            pins::blend(states, &other, 1.0 - weight);
+            return Ok(if weight > 0.5 { at } else { lag });
         }
     }
     let states = &mut work.sol.pins;
@@ -321,6 +441,7 @@ fn solve_pins(
             value,
             slope,
             scale,
+            resolution: p.moment_resolution(states, offset.norm()),
         }
     };
     let root = monotone_root(
@@ -331,6 +452,24 @@ fn solve_pins(
     )?;
     let mut lag = root.x;
     evaluate(lag, states);
+    if let Some(towards) = root.straddle {
+        // As for the rollers: forces mixed between two neighbouring output lags.
+        let mut other = states.clone();
+        let (at, weight) = settle_straddle(
+            lag,
+            towards,
+            pins::moment(states).0,
+            model.torque_nmm,
+            |y| {
+                evaluate(y, &mut other);
+                Ok(pins::moment(&other).0)
+            },
+        )?;
+        pins::blend(states, &other, 1.0 - weight);
+        if weight > 0.5 {
+            lag = at;
+        }
+    }
     if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
         lag = touching(
             |l| {
@@ -479,11 +618,16 @@ fn solve_compliant(
         rigid.lag_rad.unwrap_or(0.0),
         rigid.output_lag_rad.unwrap_or(0.0),
     );
-    let mut sol = rigid;
-    evaluate_at(model, crank, &x, &mut sol)?;
+    let mut sol = rigid.clone();
+    if evaluate_at(model, crank, &x, &mut sol).is_err() {
+        // The first centre estimate already pushes a roller out of its closest-point reach:
+        // the fallback approaches it from the rigid pose.
+        work.sol = rigid;
+        return fixed_point(model, kb, crank, work);
+    }
     let (mut r, mut s) = compliant_residual(model, kb, &sol);
     let tol = model.settings.rel_tol * 100.0;
-    for _ in 0..60 {
+    'newton: for _ in 0..60 {
         if merit(&r, &s) <= tol {
             return Ok(sol);
         }
@@ -495,7 +639,17 @@ fn solve_compliant(
         loop {
             let trial_x = x + dx * step;
             let mut trial = sol.clone();
-            evaluate_at(model, crank, &trial_x, &mut trial)?;
+            // A step that cannot be evaluated (a nearly singular Jacobian, e.g. pins without
+            // load at zero torque, sends a roller out of its reach) is too long: shorten it.
+            let evaluated = dx.iter().all(|d| d.is_finite())
+                && evaluate_at(model, crank, &trial_x, &mut trial).is_ok();
+            if !evaluated {
+                if step < 1e-6 {
+                    break 'newton;
+                }
+                step *= 0.5;
+                continue;
+            }
             let (tr, ts) = compliant_residual(model, kb, &trial);
             if merit(&tr, &ts) < current || step < 1e-6 {
                 (x, sol, r, s) = (trial_x, trial, tr, ts);
@@ -526,7 +680,30 @@ fn fixed_point(
         if residual <= 1e-10 {
             return Ok(work.sol.clone());
         }
-        offset += 0.5 * (target - offset);
+        // Newton on the centre alone, β and βo re-solved at each centre: the force residual
+        // f(u) − kb·u has the Jacobian −(kb·I + K), K = Σ k·n·nᵀ of the contacts. A fixed
+        // damping (u += ½(f/kb − u)) diverges once the contacts are stiffer than the bearing
+        // (a preloaded disc on a soft bearing: K ≈ 7·kb).
+        let mut stiffness = Matrix2::identity() * kb;
+        let directions = work
+            .sol
+            .rollers
+            .iter()
+            .map(|s| (s.stiffness_n_per_mm, s.normal))
+            .chain(
+                work.sol
+                    .pins
+                    .iter()
+                    .map(|p| (p.stiffness_n_per_mm, p.direction)),
+            );
+        for (k, n) in directions {
+            stiffness += k * n * n.transpose();
+        }
+        let force = kb * (target - offset);
+        offset += stiffness
+            .lu()
+            .solve(&force)
+            .unwrap_or(0.5 * (target - offset));
     }
     Err(SolveFailure::NotConverged {
         x: work.sol.lag_rad.unwrap_or(0.0),

@@ -1,0 +1,20 @@
+//! Fuzz the spec parser: any UTF-8 text either parses into a validated spec or gives an error
+//! located as `file:line:column`; a parsed spec also passes through the cheap checks that run
+//! before any computation (`check::validate`, `scene::explain`). Never a panic.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|text: &str| {
+    match cycloid::spec::parse("fuzz.yaml", text) {
+        Ok(spec) => {
+            let _ = cycloid::check::validate(&spec);
+            let _ = cycloid::scene::explain(&spec);
+        }
+        Err(e) => {
+            let rendered = e.to_string();
+            assert!(e.location.is_some(), "error without a location: {rendered}");
+            assert!(rendered.starts_with("fuzz.yaml:"), "{rendered}");
+        }
+    }
+});

@@ -320,6 +320,24 @@ impl Rung {
         self.errors[q.index()]
     }
 
+    /// The rung's verdict: a class (`reference`, `model`, `pass`, `fail`) and its text
+    /// ("met", or "not met: …" naming the quantities over their tolerance).
+    pub fn verdict(&self, t: &Tolerances) -> (&'static str, String) {
+        if self.is_reference {
+            return ("reference", "reference".to_string());
+        }
+        if self.model_difference {
+            return ("model", "model difference".to_string());
+        }
+        let misses = self.misses(t);
+        if misses.is_empty() {
+            ("pass", "met".to_string())
+        } else {
+            let names: Vec<&str> = misses.iter().map(|q| q.label()).collect();
+            ("fail", format!("not met: {}", names.join(", ")))
+        }
+    }
+
     /// The quantities whose error exceeds its tolerance.
     pub fn misses(&self, t: &Tolerances) -> Vec<Quantity> {
         Quantity::ALL
@@ -1039,25 +1057,7 @@ pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
         };
         s += &pad_left(&cell, NUM_W + 1);
     }
-    let verdict = if r.is_reference {
-        "reference".to_string()
-    } else if r.model_difference {
-        "model difference".to_string()
-    } else {
-        let misses = r.misses(&l.tolerances);
-        if misses.is_empty() {
-            "met".to_string()
-        } else {
-            format!(
-                "not met: {}",
-                misses
-                    .iter()
-                    .map(|q| q.label())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-        }
-    };
+    let (_, verdict) = r.verdict(&l.tolerances);
     s += "  ";
     s += &verdict;
     if cheapest {

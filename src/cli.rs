@@ -407,11 +407,7 @@ fn run_accuracy(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Result
                     "scene",
                     format!(
                         "no scene named `{name}`; scenes: {}",
-                        spec.scenes
-                            .iter()
-                            .map(|s| s.name.as_str())
-                            .collect::<Vec<_>>()
-                            .join(", ")
+                        spec::scene_names(&spec.scenes)
                     ),
                 )
             })?,

@@ -1022,26 +1022,7 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
     let mut rows = String::new();
     for (i, r) in ladder.rungs.iter().enumerate() {
         let cheapest = ladder.cheapest == Some(i);
-        let misses = r.misses(&l.tolerances);
-        let (class, verdict) = if r.is_reference {
-            ("reference", "reference".to_string())
-        } else if r.model_difference {
-            ("model", "model difference".to_string())
-        } else if misses.is_empty() {
-            ("pass", "met".to_string())
-        } else {
-            (
-                "fail",
-                format!(
-                    "not met: {}",
-                    misses
-                        .iter()
-                        .map(|q| q.label())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            )
-        };
+        let (class, verdict) = r.verdict(&l.tolerances);
         let class = if cheapest { "pass cheapest" } else { class };
         let _ = write!(
             rows,

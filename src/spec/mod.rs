@@ -823,11 +823,7 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
                 format!(
                     "no scene named `{}`; scenes: {}",
                     raw.scene,
-                    scenes
-                        .iter()
-                        .map(|s| s.name.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    scene_names(scenes)
                 ),
             )
         })?;
@@ -1012,11 +1008,7 @@ fn study(
                 format!(
                     "no scene named `{}`; scenes: {}",
                     raw.scene,
-                    scenes
-                        .iter()
-                        .map(|s| s.name.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    scene_names(scenes)
                 ),
             )
         })?;
@@ -1124,4 +1116,13 @@ fn study(
             10,
         )?,
     })
+}
+
+/// The scenes' names, comma-separated, for messages about an unknown scene.
+pub fn scene_names(scenes: &[Scene]) -> String {
+    scenes
+        .iter()
+        .map(|s| s.name.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
 }

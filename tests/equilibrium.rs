@@ -889,16 +889,7 @@ fn first_order_pin_count(arms: &[f64], c: f64, k: f64, t: f64) -> (usize, f64) {
             })
             .sum()
     };
-    let (mut lo, mut hi) = (0.0, 1.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if moment(mid) < t {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let b = 0.5 * (lo + hi);
+    let b = bisect(moment, t, 0.0, 1.0);
     (arms.iter().filter(|&&a| a * b > c).count(), b)
 }
 
@@ -1546,16 +1537,7 @@ fn first_order_rollers(r: &Reducer, phi: f64, t: f64) -> (f64, Vec<usize>) {
             .map(|&(_, l, g)| k * l * (l * b - g).max(0.0))
             .sum()
     };
-    let (mut lo, mut hi) = (-0.1, 0.1);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if moment(mid) < t {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let b = 0.5 * (lo + hi);
+    let b = bisect(moment, t, -0.1, 0.1);
     let loaded = parts
         .iter()
         .filter(|&&(_, l, g)| l * b > g)
@@ -1698,4 +1680,18 @@ fn paper_optimum_at_10_nm_regression() {
         bearing.force_n.iter().cloned().fold(0.0, f64::max),
         bearing.residual.iter().cloned().fold(0.0, f64::max),
     );
+}
+
+/// Root of an increasing function m(x) = target in [lo, hi] by 200 halvings: the independent
+/// reference for the engine's Newton solver (to the last bit of f64).
+fn bisect(m: impl Fn(f64) -> f64, target: f64, mut lo: f64, mut hi: f64) -> f64 {
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if m(mid) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
 }

@@ -109,9 +109,6 @@ impl Check {
     }
 }
 
-/// Relative distance from a limit within which a value counts as on it (and passes).
-pub const ON_LIMIT: f64 = 1e-9;
-
 /// Unit of a limit, from its key's suffix.
 fn unit_of(key: &str) -> &'static str {
     for (suffix, unit) in [

@@ -762,7 +762,8 @@ pub fn solve_angle(
         ..Work::default()
     };
     if previous.lag_rad.is_some() || previous.output_lag_rad.is_some() {
-        work.remember(f64::NAN);
+        // One history entry at this very angle: the guess is the previous solution's lags.
+        work.remember(crank);
     }
     solve_into(model, crank, &mut work)?;
     Ok(work.sol)

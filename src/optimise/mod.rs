@@ -34,6 +34,20 @@ pub struct StudyResult {
     pub stop_reason: String,
 }
 
+impl StudyResult {
+    /// How the search went: evaluations, time and why it stopped.
+    pub fn outcome(&self) -> String {
+        format!(
+            "{} evaluations ({} global, {} local runs) in {:.2} s; {}",
+            self.evaluations,
+            self.global.len(),
+            self.local_runs.len(),
+            self.elapsed.as_secs_f64(),
+            self.stop_reason
+        )
+    }
+}
+
 fn best<'a>(candidates: impl IntoIterator<Item = &'a Evaluation>) -> Option<&'a Evaluation> {
     candidates
         .into_iter()

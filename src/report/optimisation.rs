@@ -128,14 +128,7 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
             out += &note;
         }
     }
-    out += &format!(
-        "  {} evaluations ({} global, {} local runs), {:.2} s; {}\n",
-        r.evaluations,
-        r.global.len(),
-        r.local_runs.len(),
-        r.elapsed.as_secs_f64(),
-        r.stop_reason
-    );
+    out += &format!("  {}\n", r.outcome());
     out
 }
 
@@ -406,14 +399,7 @@ pub fn view(
             .map(|v| variable_label(v.kind).to_string())
             .collect(),
         points,
-        outcome: format!(
-            "{} evaluations ({} global, {} local runs) in {:.2} s; {}.",
-            r.evaluations,
-            r.global.len(),
-            r.local_runs.len(),
-            r.elapsed.as_secs_f64(),
-            r.stop_reason
-        ),
+        outcome: format!("{}.", r.outcome()),
         notes,
     }
 }

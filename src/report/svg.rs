@@ -262,20 +262,7 @@ impl LinePlot {
         let sx = |x: f64| left + (x - xt.lo) / (xt.hi - xt.lo) * pw;
         let sy = |y: f64| top + ph - (y - yt.lo) / (yt.hi - yt.lo) * ph;
         let mut s = header(w, h);
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="24" font-size="16" font-weight="bold">{}</text>"#,
-            px(left),
-            esc(&self.title)
-        );
-        if !self.subtitle.is_empty() {
-            let _ = writeln!(
-                s,
-                r##"<text x="{}" y="44" font-size="12" fill="#555">{}</text>"##,
-                px(left),
-                esc(&self.subtitle)
-            );
-        }
+        titles(&mut s, left, &self.title, &self.subtitle);
         // Grid, ticks and tick labels.
         for &v in &yt.values {
             let y = sy(v);
@@ -320,19 +307,12 @@ impl LinePlot {
             px(ph)
         );
         // Axis labels (with units, as given).
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" font-size="13" text-anchor="middle">{}</text>"#,
-            px(left + pw / 2.0),
-            px(h - 12.0),
-            esc(&self.x_label)
-        );
-        let _ = writeln!(
-            s,
-            r#"<text transform="translate({},{}) rotate(-90)" font-size="13" text-anchor="middle">{}</text>"#,
-            px(16.0),
-            px(top + ph / 2.0),
-            esc(&self.y_label)
+        axis_labels(
+            &mut s,
+            (left, top, pw, ph),
+            h - 12.0,
+            &self.x_label,
+            &self.y_label,
         );
         // Curves, clipped to the plot area.
         let _ = writeln!(
@@ -826,20 +806,7 @@ impl MapPlot {
         let mut s = header(w, h);
         s += HATCH;
         s += "\n";
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="24" font-size="16" font-weight="bold">{}</text>"#,
-            px(left),
-            esc(&self.title)
-        );
-        if !self.subtitle.is_empty() {
-            let _ = writeln!(
-                s,
-                r##"<text x="{}" y="44" font-size="12" fill="#555">{}</text>"##,
-                px(left),
-                esc(&self.subtitle)
-            );
-        }
+        titles(&mut s, left, &self.title, &self.subtitle);
         let _ = writeln!(
             s,
             r##"<rect x="{}" y="{}" width="{}" height="{}" fill="#f4f4f4"/>"##,
@@ -1080,19 +1047,12 @@ impl MapPlot {
             px(top + ph / 2.0),
             esc(&z_label)
         );
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" font-size="13" text-anchor="middle">{}</text>"#,
-            px(left + pw / 2.0),
-            px(top + ph + 40.0),
-            esc(&self.x_label)
-        );
-        let _ = writeln!(
-            s,
-            r#"<text transform="translate({},{}) rotate(-90)" font-size="13" text-anchor="middle">{}</text>"#,
-            px(16.0),
-            px(top + ph / 2.0),
-            esc(&self.y_label)
+        axis_labels(
+            &mut s,
+            (left, top, pw, ph),
+            top + ph + 40.0,
+            &self.x_label,
+            &self.y_label,
         );
         // Legend under the axes.
         for ((swatch, text), &(x, row)) in legend.iter().zip(&slots) {
@@ -1109,6 +1069,49 @@ impl MapPlot {
         s += "</svg>\n";
         s
     }
+}
+
+/// A plot's title (bold, top left) and subtitle (grey, below it, when given).
+fn titles(s: &mut String, left: f64, title: &str, subtitle: &str) {
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="24" font-size="16" font-weight="bold">{}</text>"#,
+        px(left),
+        esc(title)
+    );
+    if !subtitle.is_empty() {
+        let _ = writeln!(
+            s,
+            r##"<text x="{}" y="44" font-size="12" fill="#555">{}</text>"##,
+            px(left),
+            esc(subtitle)
+        );
+    }
+}
+
+/// Axis labels of a plot area (left, top, width, height): x centred under it with its baseline
+/// at `x_baseline`, y rotated along the left edge.
+fn axis_labels(
+    s: &mut String,
+    (left, top, pw, ph): (f64, f64, f64, f64),
+    x_baseline: f64,
+    x_label: &str,
+    y_label: &str,
+) {
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="{}" font-size="13" text-anchor="middle">{}</text>"#,
+        px(left + pw / 2.0),
+        px(x_baseline),
+        esc(x_label)
+    );
+    let _ = writeln!(
+        s,
+        r#"<text transform="translate({},{}) rotate(-90)" font-size="13" text-anchor="middle">{}</text>"#,
+        px(16.0),
+        px(top + ph / 2.0),
+        esc(y_label)
+    );
 }
 
 /// Maps world coordinates (mm, y up) into a pixel box (y down), same scale on both axes.

@@ -1,6 +1,7 @@
 //! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
+use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
 use crate::geometry::{cross, Vec2};
@@ -106,9 +107,12 @@ pub fn derivative(values: &[f64], h: f64, periodic: bool) -> Option<Vec<f64>> {
     )
 }
 
-/// Per-angle results of one chunk, flat: [angle][roller] and [angle][pin].
-#[derive(Default)]
+/// Per-angle results of one chunk, flat and column-major: [roller][angle] and [pin][angle],
+/// allocated for the whole chunk and written in place.
 struct Chunk {
+    angles: usize,
+    rollers: usize,
+    pins: usize,
     lag: Vec<f64>,
     output_lag: Vec<f64>,
     roller_force: Vec<f64>,
@@ -117,18 +121,73 @@ struct Chunk {
     contacts: Vec<usize>,
     pin_force: Vec<f64>,
     bearing: Vec<Vec2>,
+    /// Angle of the bearing force from the eccentric direction, rad.
+    bearing_angle: Vec<f64>,
     residual: Vec<f64>,
     deflection: Vec<f64>,
 }
 
+/// Angle of a force from the eccentric direction e_φ, counter-clockwise, rad.
+fn angle_from(e_phi: Vec2, f: Vec2) -> f64 {
+    cross(e_phi, f).atan2(e_phi.dot(&f))
+}
+
 impl Chunk {
-    fn record(&mut self, model: &Model, sol: &AngleSolution) {
-        self.lag.push(sol.lag_rad.unwrap_or(0.0));
-        self.output_lag.push(sol.output_lag_rad.unwrap_or(0.0));
+    fn new(model: &Model, angles: usize) -> Self {
+        let rollers = model.rollers.as_ref().map_or(0, |r| r.count());
+        let pins = model.pins.as_ref().map_or(0, |p| p.count);
+        Chunk {
+            angles,
+            rollers,
+            pins,
+            lag: vec![0.0; angles],
+            output_lag: vec![0.0; angles],
+            roller_force: vec![0.0; angles * rollers],
+            pressure: vec![0.0; angles * rollers],
+            half_width: vec![0.0; angles * rollers],
+            contacts: vec![0; angles],
+            pin_force: vec![0.0; angles * pins],
+            bearing: vec![Vec2::zeros(); angles],
+            bearing_angle: vec![0.0; angles],
+            residual: vec![0.0; angles],
+            deflection: vec![0.0; angles],
+        }
+    }
+
+    /// Entry k of column i of a column-major [column][angle] array.
+    fn at(&self, i: usize, k: usize) -> usize {
+        i * self.angles + k
+    }
+
+    /// Record angle k of the lean first-order sweep.
+    fn record_first_order(&mut self, k: usize, e_phi: Vec2, row: &Row<'_>, s: &Summary) {
+        for (i, &f) in row.roller_force_n.iter().enumerate() {
+            let at = self.at(i, k);
+            self.roller_force[at] = f;
+            self.pressure[at] = row.pressure_mpa[i];
+            self.half_width[at] = row.half_width_mm[i];
+        }
+        for (j, &f) in row.pin_force_n.iter().enumerate() {
+            let at = self.at(j, k);
+            self.pin_force[at] = f;
+        }
+        self.lag[k] = s.lag_rad;
+        self.output_lag[k] = s.output_lag_rad;
+        self.contacts[k] = s.contacts;
+        self.bearing[k] = s.bearing_n;
+        self.bearing_angle[k] = angle_from(e_phi, s.bearing_n);
+        self.residual[k] = s.residual;
+    }
+
+    /// Record angle k of the general solve.
+    fn record(&mut self, k: usize, model: &Model, e_phi: Vec2, sol: &AngleSolution) {
+        self.lag[k] = sol.lag_rad.unwrap_or(0.0);
+        self.output_lag[k] = sol.output_lag_rad.unwrap_or(0.0);
         if let Some(r) = &model.rollers {
             let mut contacts = 0;
-            for s in &sol.rollers {
-                self.roller_force.push(s.force_n);
+            for (i, s) in sol.rollers.iter().enumerate() {
+                let at = self.at(i, k);
+                self.roller_force[at] = s.force_n;
                 let (p, b) = if s.force_n > 0.0 {
                     contacts += 1;
                     let h = r.hertz(s);
@@ -136,36 +195,49 @@ impl Chunk {
                 } else {
                     (0.0, 0.0)
                 };
-                self.pressure.push(p);
-                self.half_width.push(b);
+                self.pressure[at] = p;
+                self.half_width[at] = b;
             }
-            self.contacts.push(contacts);
+            self.contacts[k] = contacts;
         }
-        self.pin_force.extend(sol.pins.iter().map(|p| p.force_n));
-        self.bearing.push(sol.bearing_force_n.unwrap_or_default());
-        self.residual.push(sol.residual.unwrap_or(0.0));
-        self.deflection.push(sol.centre_offset_mm.norm());
+        for (j, p) in sol.pins.iter().enumerate() {
+            let at = self.at(j, k);
+            self.pin_force[at] = p.force_n;
+        }
+        let bearing = sol.bearing_force_n.unwrap_or_default();
+        self.bearing[k] = bearing;
+        self.bearing_angle[k] = angle_from(e_phi, bearing);
+        self.residual[k] = sol.residual.unwrap_or(0.0);
+        self.deflection[k] = sol.centre_offset_mm.norm();
     }
 }
 
 fn solve_chunk(model: &Model, crank_rad: &[f64]) -> Result<Chunk, SweepFailure> {
     let mut work = Work::default();
-    let n = crank_rad.len();
-    let rollers = model.rollers.as_ref().map_or(0, |r| r.count()) * n;
-    let pins = model.pins.as_ref().map_or(0, |p| p.count) * n;
-    let mut chunk = Chunk {
-        lag: Vec::with_capacity(n),
-        output_lag: Vec::with_capacity(n),
-        roller_force: Vec::with_capacity(rollers),
-        pressure: Vec::with_capacity(rollers),
-        half_width: Vec::with_capacity(rollers),
-        contacts: Vec::with_capacity(n),
-        pin_force: Vec::with_capacity(pins),
-        bearing: Vec::with_capacity(n),
-        residual: Vec::with_capacity(n),
-        deflection: Vec::with_capacity(n),
-    };
-    for &phi in crank_rad {
+    let mut chunk = Chunk::new(model, crank_rad.len());
+    let lean = FirstOrderSweep::new(model);
+    let mut scratch = Scratch::default();
+    let (rollers, pins) = (chunk.rollers, chunk.pins);
+    let mut entries = [vec![0.0; rollers], vec![0.0; rollers], vec![0.0; rollers]];
+    let mut pin_entries = vec![0.0; pins];
+    for (k, &phi) in crank_rad.iter().enumerate() {
+        if let Some(lean) = &lean {
+            let (sin, cos) = phi.sin_cos();
+            let e_phi = Vec2::new(cos, sin);
+            let guess = work.guess(phi);
+            let [forces, pressures, widths] = &mut entries;
+            let mut row = Row {
+                roller_force_n: forces,
+                pressure_mpa: pressures,
+                half_width_mm: widths,
+                pin_force_n: &mut pin_entries,
+            };
+            if let Some(s) = lean.solve(phi, e_phi, guess, &mut scratch, &mut row) {
+                work.remember_lags(phi, s.lag_rad, s.output_lag_rad);
+                chunk.record_first_order(k, e_phi, &row, &s);
+                continue;
+            }
+        }
         let fail = |failure| SweepFailure {
             crank_rad: phi,
             failure,
@@ -176,7 +248,7 @@ fn solve_chunk(model: &Model, crank_rad: &[f64]) -> Result<Chunk, SweepFailure> 
                 x: work.sol.lag_rad.unwrap_or(0.0),
             }));
         }
-        chunk.record(model, &work.sol);
+        chunk.record(k, model, work.e_phi, &work.sol);
     }
     Ok(chunk)
 }
@@ -195,17 +267,18 @@ pub fn sweep(
     Ok(collect(model, crank_rad, &chunks, periodic))
 }
 
-/// [angle][column] flat chunks → [column][angle].
+/// Column-major chunks → [column][angle].
 fn columns(chunks: &[Chunk], width: usize, field: fn(&Chunk) -> &[f64]) -> Vec<Vec<f64>> {
-    let mut out = vec![Vec::new(); width];
-    for c in chunks {
-        for row in field(c).chunks(width.max(1)) {
-            for (column, v) in out.iter_mut().zip(row) {
-                column.push(*v);
+    let rows = chunks.iter().map(|c| c.angles).sum::<usize>();
+    (0..width)
+        .map(|i| {
+            let mut column = Vec::with_capacity(rows);
+            for c in chunks {
+                column.extend_from_slice(&field(c)[c.at(i, 0)..c.at(i + 1, 0)]);
             }
-        }
-    }
-    out
+            column
+        })
+        .collect()
 }
 
 fn concat<T: Copy>(chunks: &[Chunk], field: fn(&Chunk) -> &[T]) -> Vec<T> {
@@ -239,14 +312,7 @@ fn collect(model: &Model, crank_rad: &[f64], chunks: &[Chunk], periodic: bool) -
         let fb = concat(chunks, |c| &c.bearing);
         out.bearing = Some(BearingCurves {
             force_n: fb.iter().map(|f| f.norm()).collect(),
-            angle_rad: fb
-                .iter()
-                .zip(crank_rad)
-                .map(|(f, &phi)| {
-                    let e = Vec2::new(phi.cos(), phi.sin());
-                    cross(e, *f).atan2(e.dot(f))
-                })
-                .collect(),
+            angle_rad: concat(chunks, |c| &c.bearing_angle),
             residual: concat(chunks, |c| &c.residual),
             deflection_mm: concat(chunks, |c| &c.deflection),
         });

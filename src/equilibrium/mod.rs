@@ -5,6 +5,7 @@
 //! the pins transmit the output torque T, the rollers balance it.
 
 pub mod curves;
+pub mod first_order_sweep;
 pub mod pins;
 pub mod rollers;
 pub mod solve;

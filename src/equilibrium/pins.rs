@@ -37,11 +37,11 @@ impl PinState {
 pub struct Pins {
     pub count: usize,
     /// Unit vectors at 2πj/M.
-    base: Vec<Vec2>,
-    circle_radius_mm: f64,
-    eccentricity_mm: f64,
-    clearance_mm: f64,
-    hole_radius_mm: f64,
+    pub(super) base: Vec<Vec2>,
+    pub(super) circle_radius_mm: f64,
+    pub(super) eccentricity_mm: f64,
+    pub(super) clearance_mm: f64,
+    pub(super) hole_radius_mm: f64,
     contact: LineContact,
     law: ContactLaw,
     /// Bound on the round-off of a pin gap, mm: 16·ε·(c + e + rw), a few ulp of the largest

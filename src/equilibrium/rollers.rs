@@ -89,12 +89,21 @@ impl AngleTrig {
 #[derive(Debug, Clone)]
 pub struct Rollers {
     pub mesh: Mesh,
-    design: Design,
-    modification: Modification,
+    pub(super) design: Design,
     pub law: ContactLaw,
     pub geometry: GeometryMode,
     /// Roller centres, fixed frame.
-    centres: Vec<Vec2>,
+    pub(super) centres: Vec<Vec2>,
+    /// Unit vectors of the roller centres, u_i = (cos 2πi/np, sin 2πi/np).
+    pub(super) units: Vec<Vec2>,
+    /// K1 = e·np/Rp.
+    pub(super) k1: f64,
+    /// Contact modulus, compliances and length of the roller contacts.
+    pub(super) materials: LineContact,
+    /// Constants of the first-order gaps and arms.
+    pub(super) first_order: first_order::Coefficients,
+    /// 2πi/np, the locus parameter of roller i at φ = β = 0.
+    angles: Vec<f64>,
     /// Largest distance of a roller centre from the disc centre, mm.
     reach_radius_mm: f64,
     /// Bound on the second derivative of a gap w.r.t. crank and lag, mm/rad².
@@ -110,7 +119,11 @@ pub struct Rollers {
 impl Rollers {
     pub fn new(design: &Design, m: &Modification, law: ContactLaw, geometry: GeometryMode) -> Self {
         let mesh = Mesh::new(design, m);
-        let centres = (0..design.rollers).map(|i| mesh.roller_centre(i)).collect();
+        let centres: Vec<Vec2> = (0..design.rollers).map(|i| mesh.roller_centre(i)).collect();
+        let units = centres
+            .iter()
+            .map(|c| c / design.roller_circle_radius_mm)
+            .collect();
         let reach = design.roller_circle_radius_mm + design.eccentricity_mm;
         // |∂²gap/∂β²| ≤ |P| + |P|²/ρ, ρ the smallest convex radius of Γ (the distance field's
         // Hessian is bounded by 1/ρ), doubled for safety and for the crank terms.
@@ -119,10 +132,16 @@ impl Rollers {
         let mut r = Rollers {
             mesh,
             design: design.clone(),
-            modification: *m,
             law,
             geometry,
             centres,
+            units,
+            k1: design.k1(),
+            first_order: first_order::Coefficients::new(design, m),
+            materials: Self::materials(design),
+            angles: (0..design.rollers)
+                .map(|i| design.roller_angle(i))
+                .collect(),
             reach_radius_mm: reach,
             curvature_bound,
             linear_stiffness: 0.0,
@@ -163,14 +182,23 @@ impl Rollers {
         let flank = (1.0 / curvature_per_mm.abs()).min(rp);
         let inv_r = (curvature_per_mm + 1.0 / rrp).max(1.0 / rp);
         LineContact {
+            radii_mm: [flank, rrp],
+            effective_radius_mm: 1.0 / inv_r,
+            ..self.materials
+        }
+    }
+
+    /// The materials and length of every roller contact (radii left to `line_contact`).
+    fn materials(d: &Design) -> LineContact {
+        LineContact {
             contact_modulus_mpa: d.contact_modulus_mpa(),
             compliance_per_mpa: [
                 d.disc_material.compliance_per_mpa(),
                 d.roller_material.compliance_per_mpa(),
             ],
             length_mm: d.face_width_mm,
-            radii_mm: [flank, rrp],
-            effective_radius_mm: 1.0 / inv_r,
+            radii_mm: [f64::NAN; 2],
+            effective_radius_mm: f64::NAN,
         }
     }
 
@@ -295,7 +323,7 @@ impl Rollers {
         centre: Vec2,
         (s, c): (f64, f64),
     ) -> Result<RollerState, GapFailure> {
-        let unit = self.centres[i] / self.design.roller_circle_radius_mm;
+        let unit = self.units[i];
         let (s0, c0) = trig.ideal;
         // e^{i·t_i} = e^{i·2πi/np}·e^{iφ/nc}, and e^{iφ/nc} = conj(e^{−iφ/nc}).
         let base = rotate(unit, c0, -s0);
@@ -336,45 +364,67 @@ impl Rollers {
     /// vector of the eccentric direction instead of trigonometry per roller:
     /// cos φi = u_i·e_φ, sin φi = e_φ × u_i.
     fn first_order_term(&self, i: usize, e_phi: Vec2) -> (f64, f64) {
-        let u = self.centres[i] / self.design.roller_circle_radius_mm;
-        first_order::from_phase(
-            &self.design,
-            &self.modification,
-            u.dot(&e_phi),
-            cross(e_phi, u),
-        )
+        let u = self.units[i];
+        self.first_order.at(u.dot(&e_phi), cross(e_phi, u))
     }
 
-    /// First-order state: closed-form gap and arm; the normal points from the pitch point
-    /// (e·np along the eccentric direction) to the roller centre, as for the unmodified profile.
-    fn first_order_state(&self, i: usize, pose: &Pose, e_phi: Vec2) -> RollerState {
-        let (gap0, arm) = self.first_order_term(i, e_phi);
-        let fo = first_order::FirstOrderRoller {
-            gap_mm: gap0,
-            arm_mm: arm,
-        };
-        let roller = self.centres[i];
-        let pitch = e_phi * (self.design.eccentricity_mm * self.design.rollers as f64);
-        let normal = (roller - pitch).normalize();
-        let gap_mm = fo.gap_mm - fo.arm_mm * pose.lag_rad - normal.dot(&pose.centre_offset_mm);
-        let t = self.mesh.locus_parameter(i, pose);
+    /// First-order state of roller i from its term (g_i, l_i) at `pose`: gap g_i − l_i·β − n·u
+    /// (u the centre offset) and arm l_i. The normal points from the pitch point e·np·e_φ to
+    /// the roller centre Rp·u_i, as for the unmodified profile:
+    /// n = (u_i − K1·e_φ)/|u_i − K1·e_φ|, K1 = e·np/Rp.
+    fn first_order_from_term(
+        &self,
+        i: usize,
+        pose: &Pose,
+        e_phi: Vec2,
+        (gap0, arm): (f64, f64),
+    ) -> RollerState {
+        let towards = self.units[i] - self.k1 * e_phi;
+        let normal = towards / towards.norm();
+        let gap_mm = gap0 - arm * pose.lag_rad - normal.dot(&pose.centre_offset_mm);
+        // `Mesh::locus_parameter`, with 2πi/np precomputed.
+        let t = self.angles[i] + pose.crank_rad / self.design.teeth as f64 - pose.lag_rad;
         let cf = self.contact_force(gap_mm, t);
         RollerState {
             gap_mm,
             force_n: cf.force_n,
             stiffness_n_per_mm: cf.stiffness_n_per_mm,
-            arm_mm: fo.arm_mm,
+            arm_mm: arm,
             normal,
-            point: roller - self.design.roller_radius_mm * normal,
+            point: self.centres[i] - self.design.roller_radius_mm * normal,
             t,
         }
     }
 
-    /// First-order gaps at zero lag and arms of every roller at crank φ: (g_i, l_i).
-    pub fn first_order_terms(&self, crank_rad: f64, out: &mut Vec<(f64, f64)>) {
+    /// First-order state of roller i at `pose` (`first_order_term`, `first_order_from_term`).
+    fn first_order_state(&self, i: usize, pose: &Pose, e_phi: Vec2) -> RollerState {
+        self.first_order_from_term(i, pose, e_phi, self.first_order_term(i, e_phi))
+    }
+
+    /// First-order gaps at zero lag and arms of every roller at the eccentric direction
+    /// e_φ = (cos φ, sin φ): (g_i, l_i).
+    pub fn first_order_terms(&self, e_phi: Vec2, out: &mut Vec<(f64, f64)>) {
         out.clear();
-        let e_phi = Vec2::new(crank_rad.cos(), crank_rad.sin());
         out.extend((0..self.count()).map(|i| self.first_order_term(i, e_phi)));
+    }
+
+    /// First-order states of every roller at `pose` from their `first_order_terms` at the
+    /// pose's crank angle: the same as `evaluate` in first-order geometry without recomputing
+    /// the terms.
+    pub fn first_order_states(
+        &self,
+        pose: &Pose,
+        e_phi: Vec2,
+        terms: &[(f64, f64)],
+        states: &mut Vec<RollerState>,
+    ) {
+        states.clear();
+        states.extend(
+            terms
+                .iter()
+                .enumerate()
+                .map(|(i, &term)| self.first_order_from_term(i, pose, e_phi, term)),
+        );
     }
 }
 

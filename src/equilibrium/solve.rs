@@ -307,31 +307,45 @@ pub fn piecewise_linear_root_near(
     events: &mut Vec<(f64, f64, f64)>,
 ) -> Option<f64> {
     if guess.is_finite() && target != 0.0 {
-        let mut x = guess;
-        for _ in 0..4 {
-            // The active set at x: terms with l·x > g.
-            let (mut a, mut b) = (0.0, 0.0);
-            for &(g, l) in terms {
-                if l != 0.0 && l * x > g {
-                    a += k * l * l;
-                    b += k * l * g;
-                }
-            }
-            if a <= 0.0 {
-                break;
-            }
-            let next = (target + b) / a;
-            // Same active set at the new point: it solves the balance exactly.
-            let same = terms
-                .iter()
-                .all(|&(g, l)| l == 0.0 || (l * x > g) == (l * next > g));
-            if same {
-                return Some(next);
-            }
-            x = next;
+        if let Some(root) = newton_on_segments(k, terms, target, guess) {
+            return Some(root);
         }
     }
     sweep_breakpoints(k, terms, target, events)
+}
+
+/// Up to four Newton steps of `piecewise_linear_root_near` from x = `guess`. The active set
+/// (terms with l·x > g) of each point is kept as a bit mask, so a step is one pass over the
+/// terms: the step to x' = (target + B)/A, with A = Σ k·l² and B = Σ k·l·g over the active set
+/// at x, is the root when the active set at x' is the same.
+fn newton_on_segments(k: f64, terms: &[(f64, f64)], target: f64, guess: f64) -> Option<f64> {
+    if terms.len() > 128 {
+        return None;
+    }
+    let active = |x: f64| {
+        let (mut mask, mut a, mut b) = (0u128, 0.0, 0.0);
+        for (i, &(g, l)) in terms.iter().enumerate() {
+            if l != 0.0 && l * x > g {
+                mask |= 1 << i;
+                a += k * l * l;
+                b += k * l * g;
+            }
+        }
+        (mask, a, b)
+    };
+    let (mut mask, mut a, mut b) = active(guess);
+    for _ in 0..4 {
+        if a <= 0.0 {
+            return None;
+        }
+        let next = (target + b) / a;
+        let at_next = active(next);
+        if at_next.0 == mask {
+            return Some(next);
+        }
+        (mask, a, b) = at_next;
+    }
+    None
 }
 
 fn sweep_breakpoints(

@@ -54,10 +54,6 @@ impl Model {
         }
     }
 
-    fn ideal_centre(&self, crank: f64) -> Vec2 {
-        Vec2::new(crank.cos(), crank.sin()) * self.eccentricity_mm
-    }
-
     /// Pins follow the rollers' geometry mode (first order: ideal directions, linear gaps).
     fn first_order_pins(&self) -> bool {
         self.rollers
@@ -96,8 +92,13 @@ pub struct Work {
     /// of reach keeps the geometry of its last exact evaluation and a lower bound as its gap
     /// (its force is exactly zero either way).
     pub exact_final: bool,
+    /// (cos φ, sin φ) of the angle being solved.
+    pub e_phi: Vec2,
     reaches: Vec<Reach>,
-    history: Vec<(f64, f64, f64)>,
+    /// The last (up to three) solved angles (φ, β, βo), oldest first, in the last `filled`
+    /// entries.
+    history: [(f64, f64, f64); 3],
+    filled: usize,
     terms: Vec<(f64, f64)>,
     events: Vec<(f64, f64, f64)>,
 }
@@ -105,8 +106,8 @@ pub struct Work {
 impl Work {
     /// Guesses for (β, βo) at `crank`: quadratic (Lagrange) extrapolation of the last three
     /// angles, linear from two, the last value from one.
-    fn guess(&self, crank: f64) -> (f64, f64) {
-        match self.history.as_slice() {
+    pub(super) fn guess(&self, crank: f64) -> (f64, f64) {
+        match &self.history[3 - self.filled..] {
             [(p0, b0, o0), (p1, b1, o1), (p2, b2, o2)] if p0 != p1 && p1 != p2 && p0 != p2 => {
                 let l0 = (crank - p1) * (crank - p2) / ((p0 - p1) * (p0 - p2));
                 let l1 = (crank - p0) * (crank - p2) / ((p1 - p0) * (p1 - p2));
@@ -123,15 +124,14 @@ impl Work {
     }
 
     fn remember(&mut self, crank: f64) {
-        let entry = (
-            crank,
-            self.sol.lag_rad.unwrap_or(0.0),
-            self.sol.output_lag_rad.unwrap_or(0.0),
-        );
-        if self.history.len() == 3 {
-            self.history.remove(0);
-        }
-        self.history.push(entry);
+        let lag = self.sol.lag_rad.unwrap_or(0.0);
+        self.remember_lags(crank, lag, self.sol.output_lag_rad.unwrap_or(0.0));
+    }
+
+    /// Remember the lags (β, βo) solved at `crank` for the next angle's guess.
+    pub(super) fn remember_lags(&mut self, crank: f64, lag: f64, output_lag: f64) {
+        self.history = [self.history[1], self.history[2], (crank, lag, output_lag)];
+        self.filled = (self.filled + 1).min(3);
     }
 }
 
@@ -223,11 +223,11 @@ fn beyond_reach(r: &Rollers, pose: &Pose, moment_nmm: f64, torque_nmm: f64) -> S
     ))
 }
 
-/// Solve the rollers at a fixed centre offset: β with Σ F·l = T.
+/// Solve the rollers at a fixed centre offset: β with Σ F·l = T. `e_phi` = (cos φ, sin φ).
 fn solve_rollers(
     model: &Model,
     r: &Rollers,
-    crank: f64,
+    (crank, e_phi): (f64, Vec2),
     offset: Vec2,
     guess: f64,
     work: &mut Work,
@@ -241,7 +241,7 @@ fn solve_rollers(
         && r.law == ContactLaw::PaperLinear
         && offset == Vec2::zeros();
     if closed_form {
-        r.first_order_terms(crank, &mut work.terms);
+        r.first_order_terms(e_phi, &mut work.terms);
         let (k, t) = (r.linear_stiffness(), model.torque_nmm);
         let lag = piecewise_linear_root_near(k, &work.terms, t, guess, &mut work.events).ok_or(
             SolveFailure::NoBracket {
@@ -251,12 +251,12 @@ fn solve_rollers(
             },
         )?;
         let states = &mut work.sol.rollers;
+        let terms = &work.terms;
         let evaluate = |lag: f64, states: &mut Vec<RollerState>| {
-            r.evaluate(&pose(lag), states)
-                .map_err(|f| SolveFailure::Evaluation(f.to_string()))
-                .map(|()| rollers::moment(states))
+            r.first_order_states(&pose(lag), e_phi, terms, states);
+            rollers::moment(states)
         };
-        let (m, _, scale) = evaluate(lag, states)?;
+        let (m, _, scale) = evaluate(lag, states);
         if t == 0.0 {
             // The closed form's answer is the touching pose (T → 0⁺, or a preload's balance).
             // The touching contact's gap g − l·x is round-off (±1e-17 mm), and so is its force
@@ -276,9 +276,7 @@ fn solve_rollers(
         // round-off of l·x: at a tiny torque (1e-6 N·m) that is more than the tolerance.
         // Mix the states of two neighbouring lags as the iterative solve does.
         let mut other = states.clone();
-        let (at, weight) = settle_straddle(lag, lag, m, t, |y| {
-            evaluate(y, &mut other).map(|(value, _, _)| value)
-        })?;
+        let (at, weight) = settle_straddle(lag, lag, m, t, |y| Ok(evaluate(y, &mut other).0))?;
         rollers::blend(states, &other, 1.0 - weight);
         return Ok(if weight > 0.5 { at } else { lag });
     }
@@ -380,7 +378,7 @@ fn solve_rollers(
 fn solve_pins(
     model: &Model,
     p: &Pins,
-    crank: f64,
+    e_phi: Vec2,
     offset: Vec2,
     psi: f64,
     guess: f64,
@@ -389,8 +387,8 @@ fn solve_pins(
     let first_order = model.first_order_pins();
     if first_order {
         if let (Some(k), true) = (p.linear_stiffness(), offset == Vec2::zeros()) {
-            let centre = model.ideal_centre(crank);
-            p.evaluate_first_order(crank, centre, psi, 0.0, &mut work.sol.pins);
+            let centre = e_phi * model.eccentricity_mm;
+            p.first_order_at(e_phi, psi.sin_cos(), centre, 0.0, &mut work.sol.pins);
             work.terms.clear();
             work.terms
                 .extend(work.sol.pins.iter().map(|s| (s.gap_mm, s.arm_mm)));
@@ -427,7 +425,7 @@ fn solve_pins(
     }
     let states = &mut work.sol.pins;
     // The angle's trigonometry, once for every evaluation of the pin balance.
-    let ecc = Vec2::new(crank.cos(), crank.sin());
+    let ecc = e_phi;
     let rotation = psi.sin_cos();
     let evaluate = |lag: f64, states: &mut Vec<PinState>| {
         if first_order {
@@ -501,13 +499,14 @@ fn solve_rigid(
     let (guess_lag, guess_out) = work.guess(crank);
     work.sol.centre_offset_mm = offset;
     let mut psi = -crank / model.teeth as f64;
+    let e_phi = work.e_phi;
     if let Some(r) = &model.rollers {
-        let lag = solve_rollers(model, r, crank, offset, guess_lag, work)?;
+        let lag = solve_rollers(model, r, (crank, e_phi), offset, guess_lag, work)?;
         psi += lag;
         work.sol.lag_rad = Some(lag);
     }
     if let Some(p) = &model.pins {
-        work.sol.output_lag_rad = Some(solve_pins(model, p, crank, offset, psi, guess_out, work)?);
+        work.sol.output_lag_rad = Some(solve_pins(model, p, e_phi, offset, psi, guess_out, work)?);
     }
     Ok(())
 }
@@ -716,38 +715,85 @@ fn fixed_point(
 /// force at its contact point and the bearing force at the disc centre, and the pin/roller
 /// moment equality about the disc centre (Eq. 14).
 pub fn residual(model: &Model, crank: f64, sol: &AngleSolution, bearing: Vec2) -> f64 {
-    let centre = model.ideal_centre(crank) + sol.centre_offset_mm;
-    let rebuilt = bearing;
-    // One pass over every force: Σf, Σ|f|, Σ p×f and Σ|p×f|.
-    let forces = sol
-        .rollers
-        .iter()
-        .map(|r| (r.point, r.force_vector()))
-        .chain(sol.pins.iter().map(|p| (p.point, p.force_vector())))
-        .chain(std::iter::once((centre, rebuilt)));
-    let (mut sum_f, mut scale_f, mut sum_m, mut scale_m) = (Vec2::zeros(), 0.0, 0.0, 0.0);
-    for (p, f) in forces {
-        if f == Vec2::zeros() {
-            continue;
-        }
-        let m = cross(p, f);
-        sum_f += f;
-        scale_f += f.norm();
-        sum_m += m;
-        scale_m += m.abs();
+    let (sin, cos) = crank.sin_cos();
+    residual_at(model, Vec2::new(cos, sin), sol, bearing)
+}
+
+/// `residual` with the eccentric direction e_φ = (cos φ, sin φ) given, in one pass over the
+/// forces in contact.
+pub(super) fn residual_at(model: &Model, e_phi: Vec2, sol: &AngleSolution, bearing: Vec2) -> f64 {
+    let mut sums = BalanceSums::default();
+    for r in sol.rollers.iter().filter(|r| r.force_n != 0.0) {
+        sums.roller(r.point, r.force_vector(), r.force_n * r.arm_mm);
     }
-    let (mr, _, sr) = rollers::moment(&sol.rollers);
-    let (mp, _, sp) = pins::moment(&sol.pins);
-    let rel = |x: f64, scale: f64| {
-        if scale > 0.0 {
-            x.abs() / scale
-        } else {
-            x.abs()
+    for p in sol.pins.iter().filter(|p| p.force_n != 0.0) {
+        sums.pin(p.point, p.force_vector(), p.force_n * p.arm_mm);
+    }
+    sums.relative(
+        model,
+        e_phi * model.eccentricity_mm + sol.centre_offset_mm,
+        bearing,
+    )
+}
+
+/// Sums of the forces on the disc for the residual of Eqs. 12–14: Σf, Σ|f|, Σ p×f and Σ|p×f|
+/// about the origin, and the moments Σ F·l (rollers) and Σ F·a (pins) about the disc centre
+/// with their scales.
+#[derive(Debug, Default)]
+pub(super) struct BalanceSums {
+    force: Vec2,
+    force_scale: f64,
+    moment: f64,
+    moment_scale: f64,
+    rollers: (f64, f64),
+    pins: (f64, f64),
+}
+
+impl BalanceSums {
+    fn add(&mut self, p: Vec2, f: Vec2) {
+        let m = cross(p, f);
+        self.force += f;
+        self.force_scale += f.norm();
+        self.moment += m;
+        self.moment_scale += m.abs();
+    }
+
+    /// A roller force f at p, with moment F·l about the disc centre.
+    pub(super) fn roller(&mut self, p: Vec2, f: Vec2, moment: f64) {
+        self.add(p, f);
+        self.rollers.0 += moment;
+        self.rollers.1 += moment.abs();
+    }
+
+    /// A pin force f at p, with moment F·a about the disc centre.
+    pub(super) fn pin(&mut self, p: Vec2, f: Vec2, moment: f64) {
+        self.add(p, f);
+        self.pins.0 += moment;
+        self.pins.1 += moment.abs();
+    }
+
+    /// Σf of the forces added so far.
+    pub(super) fn net_force(&self) -> Vec2 {
+        self.force
+    }
+
+    /// With the bearing force at the disc centre: the largest relative residual.
+    pub(super) fn relative(mut self, model: &Model, centre: Vec2, bearing: Vec2) -> f64 {
+        if bearing != Vec2::zeros() {
+            self.add(centre, bearing);
         }
-    };
-    rel(sum_f.norm(), scale_f)
-        .max(rel(sum_m, scale_m))
-        .max(rel(mp - mr, sr.max(sp).max(model.torque_nmm.abs())))
+        let rel = |x: f64, scale: f64| {
+            if scale > 0.0 {
+                x.abs() / scale
+            } else {
+                x.abs()
+            }
+        };
+        let ((mr, sr), (mp, sp)) = (self.rollers, self.pins);
+        rel(self.force.norm(), self.force_scale)
+            .max(rel(self.moment, self.moment_scale))
+            .max(rel(mp - mr, sr.max(sp).max(model.torque_nmm.abs())))
+    }
 }
 
 /// Solve one crank angle with the model's bearing, warm-started from `previous`.
@@ -771,6 +817,8 @@ pub fn solve_angle(
 
 /// Solve one crank angle into `work.sol`, then remember it for the next angle's guess.
 pub fn solve_into(model: &Model, crank: f64, work: &mut Work) -> Result<(), SolveFailure> {
+    let (sin, cos) = crank.sin_cos();
+    work.e_phi = Vec2::new(cos, sin);
     match model.bearing_stiffness_n_per_mm {
         Some(kb) => work.sol = solve_compliant(model, kb, crank, work)?,
         None => solve_rigid(model, crank, work, Vec2::zeros())?,
@@ -781,7 +829,7 @@ pub fn solve_into(model: &Model, crank: f64, work: &mut Work) -> Result<(), Solv
             None => -net_force(&work.sol),
         };
         work.sol.bearing_force_n = Some(fb);
-        work.sol.residual = Some(residual(model, crank, &work.sol, fb));
+        work.sol.residual = Some(residual_at(model, work.e_phi, &work.sol, fb));
     }
     work.remember(crank);
     Ok(())

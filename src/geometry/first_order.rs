@@ -27,12 +27,57 @@ pub fn roller(design: &Design, m: &Modification, i: usize, crank_rad: f64) -> Fi
 /// (gap at zero lag, arm) of a roller from cos φi and sin φi.
 #[inline]
 pub fn from_phase(design: &Design, m: &Modification, cos_phi_i: f64, sin_phi_i: f64) -> (f64, f64) {
-    let k1 = design.k1();
-    let big_s = (1.0 + k1 * k1 - 2.0 * k1 * cos_phi_i).sqrt();
-    let arm_mm = design.eccentricity_mm * design.teeth as f64 * sin_phi_i / big_s;
-    let gap_mm =
-        m.equidistant_mm - m.shift_mm * (1.0 - k1 * cos_phi_i) / big_s - arm_mm * m.rotation_rad;
-    (gap_mm, arm_mm)
+    Coefficients::new(design, m).at(cos_phi_i, sin_phi_i)
+}
+
+/// The design and modification constants of `from_phase`, computed once for a sweep.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coefficients {
+    /// 1 + K1².
+    one_plus_k1_sq: f64,
+    /// 2·K1.
+    two_k1: f64,
+    k1: f64,
+    /// e·nc, mm.
+    e_nc_mm: f64,
+    equidistant_mm: f64,
+    shift_mm: f64,
+    rotation_rad: f64,
+}
+
+impl Coefficients {
+    pub fn new(design: &Design, m: &Modification) -> Self {
+        let k1 = design.k1();
+        Coefficients {
+            one_plus_k1_sq: 1.0 + k1 * k1,
+            two_k1: 2.0 * k1,
+            k1,
+            e_nc_mm: design.eccentricity_mm * design.teeth as f64,
+            equidistant_mm: m.equidistant_mm,
+            shift_mm: m.shift_mm,
+            rotation_rad: m.rotation_rad,
+        }
+    }
+
+    /// (g_i, l_i): S = sqrt(1 + K1² − 2K1·cos φi), l_i = e·nc·sin φi/S,
+    /// g_i = ΔRrp − ΔRp·(1 − K1·cos φi)/S − l_i·Δδ.
+    #[inline]
+    pub fn at(&self, cos_phi_i: f64, sin_phi_i: f64) -> (f64, f64) {
+        let (gap_mm, arm_mm, _) = self.with_s(cos_phi_i, sin_phi_i);
+        (gap_mm, arm_mm)
+    }
+
+    /// `at` and S, which is also |u_i − K1·e_φ|: the distance from the pitch point to the
+    /// roller centre in units of Rp.
+    #[inline]
+    pub fn with_s(&self, cos_phi_i: f64, sin_phi_i: f64) -> (f64, f64, f64) {
+        let big_s = (self.one_plus_k1_sq - self.two_k1 * cos_phi_i).sqrt();
+        let arm_mm = self.e_nc_mm * sin_phi_i / big_s;
+        let gap_mm = self.equidistant_mm
+            - self.shift_mm * (1.0 - self.k1 * cos_phi_i) / big_s
+            - arm_mm * self.rotation_rad;
+        (gap_mm, arm_mm, big_s)
+    }
 }
 
 /// The literature's Δ(φi) = ΔRrp(1 − sin φi/S) − ΔRp(1 − K1 cos φi − sqrt(1 − K1²) sin φi)/S.

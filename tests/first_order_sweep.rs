@@ -1,0 +1,212 @@
+//! The lean first-order sweep (`equilibrium::first_order_sweep`) against the general solve of
+//! the same model (`sweep::solve_angle`, which builds every roller and pin state, takes Hertz
+//! from `Rollers::hertz` and the residual from `sweep::residual`). Both evaluate the same
+//! closed forms, so they must agree to round-off; what differs is how: the lean kernel takes
+//! the contact curvature from cos(φi + nc·β) instead of cos(nc·t), forms the normal from S
+//! instead of normalising, settles the root from its own Newton step, and records only what
+//! the curves need. Tolerances below are round-off bounds of those differences.
+
+use cycloid::equilibrium::curves::{self, LoadedSweep};
+use cycloid::equilibrium::first_order_sweep::{FirstOrderSweep, Row, Scratch};
+use cycloid::equilibrium::sweep::{residual, solve_angle, AngleSolution, Model};
+use cycloid::geometry::Vec2;
+use cycloid::spec::{self, ContactLaw, GeometryMode, Spec};
+
+/// The spec's scene `scene` as a first-order, linear-law, rigid-bearing model with rollers,
+/// pins and bearing: the models the lean sweep applies to.
+fn model(spec: &Spec, scene: usize) -> Model {
+    let mut s = spec.scenes[scene].clone();
+    s.geometry = GeometryMode::FirstOrder;
+    s.contact_law = ContactLaw::PaperLinear;
+    s.bearing_stiffness_n_per_mm = None;
+    Model::new(&spec.design, &spec.modification, &s, true, true, true)
+}
+
+fn load(path: &str) -> Spec {
+    spec::load(path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+fn grid(spec: &Spec, scene: usize, n: usize) -> Vec<f64> {
+    let s = &spec.scenes[scene];
+    let (from, to) = (s.crank_from_deg.to_radians(), s.crank_to_deg.to_radians());
+    (0..n)
+        .map(|k| from + (to - from) * k as f64 / n as f64)
+        .collect()
+}
+
+/// The general solve, angle by angle, warm-started from the previous angle.
+fn general(model: &Model, angles: &[f64]) -> Vec<AngleSolution> {
+    let mut previous = AngleSolution::default();
+    angles
+        .iter()
+        .map(|&phi| {
+            let sol = solve_angle(model, phi, &previous).expect("general solve");
+            previous = sol.clone();
+            sol
+        })
+        .collect()
+}
+
+/// |a − b| within `rel` of the larger magnitude plus `abs`.
+fn close(a: f64, b: f64, rel: f64, abs: f64) -> bool {
+    (a - b).abs() <= rel * a.abs().max(b.abs()) + abs
+}
+
+/// The lean sweep's curves agree with the general solve at every angle.
+///
+/// Tolerances: lags 1e-12 relative (two exact roots of the same piecewise-linear balance,
+/// reached from different guesses: round-off of Σ k·l·g over the contacts, ~1e-15 relative);
+/// forces 1e-9 relative plus 1e-6 N (k·|l|·δβ with k ~ 1e6 N/mm, |l| ≤ e·nc, δβ the lag's
+/// round-off; a contact that is just closing has a force of that size in one and 0 in the other);
+/// pressures compared squared, as p² = F·E*/(πLR*) is linear in F: 1e-9 relative plus the
+/// force tolerance times the largest p²/F; bearing force 1e-9 relative plus 1e-5 N (the sum
+/// of up to 2·np force tolerances); residual ≤ 1e-9 in both (the product's bound).
+fn assert_agrees(name: &str, model: &Model, angles: &[f64], lean: &LoadedSweep) {
+    let solutions = general(model, angles);
+    let rollers = lean.rollers.as_ref().expect("rollers");
+    let pins = lean.pins.as_ref().expect("pins");
+    let bearing = lean.bearing.as_ref().expect("bearing");
+    let r = model.rollers.as_ref().unwrap();
+    let hertz: Vec<Vec<(f64, f64)>> = solutions
+        .iter()
+        .map(|s| {
+            s.rollers
+                .iter()
+                .map(|st| (st.force_n, r.hertz(st).peak_pressure_mpa))
+                .collect()
+        })
+        .collect();
+    let p2_per_force = hertz
+        .iter()
+        .flatten()
+        .filter(|(f, _)| *f > 1e-3)
+        .map(|(f, p)| p * p / f)
+        .fold(0.0, f64::max);
+    for (k, (sol, &phi)) in solutions.iter().zip(angles).enumerate() {
+        let at = format!("{name}: crank {:.4}°", phi.to_degrees());
+        let (lag, out) = (sol.lag_rad.unwrap(), sol.output_lag_rad.unwrap());
+        assert!(
+            close(rollers.lag_rad[k], lag, 1e-12, 1e-300),
+            "{at}: β {} vs {lag}",
+            rollers.lag_rad[k]
+        );
+        assert!(
+            close(pins.output_lag_rad[k], out, 1e-12, 1e-300),
+            "{at}: βo {} vs {out}",
+            pins.output_lag_rad[k]
+        );
+        for (i, &(force, p)) in hertz[k].iter().enumerate() {
+            let (lf, lp) = (rollers.force_n[i][k], rollers.pressure_mpa[i][k]);
+            assert!(
+                close(lf, force, 1e-9, 1e-6),
+                "{at}: roller {i} force {lf} vs {force}"
+            );
+            let p2_tol = 1e-9 * (lp * lp).max(p * p) + 1e-6 * p2_per_force;
+            assert!(
+                (lp * lp - p * p).abs() <= p2_tol,
+                "{at}: roller {i} pressure {lp} vs {p}"
+            );
+        }
+        for (j, st) in sol.pins.iter().enumerate() {
+            let lf = pins.force_n[j][k];
+            assert!(
+                close(lf, st.force_n, 1e-9, 1e-6),
+                "{at}: pin {j} force {lf} vs {}",
+                st.force_n
+            );
+        }
+        let fb = sol.bearing_force_n.unwrap();
+        assert!(
+            close(bearing.force_n[k], fb.norm(), 1e-9, 1e-5),
+            "{at}: bearing {} vs {}",
+            bearing.force_n[k],
+            fb.norm()
+        );
+        assert!(
+            bearing.residual[k] <= 1e-9,
+            "{at}: lean residual {}",
+            bearing.residual[k]
+        );
+        assert!(
+            residual(model, phi, sol, fb) <= 1e-9,
+            "{at}: general residual"
+        );
+    }
+}
+
+/// The paper design at its rated torque: every angle settles in the lean kernel itself (no
+/// fallback to the general solve), and the kernel agrees with the general solve.
+#[test]
+fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
+    let spec = load("specs/paper.yaml");
+    let scene = spec.scenes.iter().position(|s| s.name == "rated").unwrap();
+    let model = model(&spec, scene);
+    let lean = FirstOrderSweep::new(&model).expect("the lean sweep applies");
+    let angles = grid(&spec, scene, 720);
+    let (nr, np) = (
+        model.rollers.as_ref().unwrap().count(),
+        model.pins.as_ref().unwrap().count,
+    );
+    let mut scratch = Scratch::default();
+    let (mut forces, mut pressures, mut widths, mut pin_forces) =
+        (vec![0.0; nr], vec![0.0; nr], vec![0.0; nr], vec![0.0; np]);
+    let mut guess = (0.0, 0.0);
+    for &phi in &angles {
+        let mut row = Row {
+            roller_force_n: &mut forces,
+            pressure_mpa: &mut pressures,
+            half_width_mm: &mut widths,
+            pin_force_n: &mut pin_forces,
+        };
+        let e_phi = Vec2::new(phi.cos(), phi.sin());
+        let s = lean
+            .solve(phi, e_phi, guess, &mut scratch, &mut row)
+            .unwrap_or_else(|| panic!("fell back at {:.3}°", phi.to_degrees()));
+        guess = (s.lag_rad, s.output_lag_rad);
+        // Balance of the recorded forces, independently of the kernel's own residual: the
+        // rollers' moment about the disc centre equals the torque (1e-9, the product bound).
+        let r = model.rollers.as_ref().unwrap();
+        let sol = solve_angle(&model, phi, &AngleSolution::default()).unwrap();
+        let moment: f64 = forces
+            .iter()
+            .zip(&sol.rollers)
+            .map(|(f, st)| f * st.arm_mm)
+            .sum();
+        assert!(
+            close(moment, model.torque_nmm, 1e-9, 0.0),
+            "moment {moment} at {phi}"
+        );
+        assert_eq!(r.count(), forces.len());
+    }
+    let sweep = curves::sweep(&model, &angles, false).unwrap();
+    assert_agrees("paper", &model, &angles, &sweep);
+}
+
+/// Cases that exercise the fall-back to the general solve (zero torque, a torque so small
+/// that the balance straddles it, more than 64 rollers for the kernel's active-set mask) and
+/// cases with unusual load sharing: the sweep still agrees angle by angle.
+#[test]
+fn sweep_agrees_with_the_general_solve_on_hard_cases() {
+    for case in [
+        "torque-1e-6",
+        "preload-zero-torque",
+        "zero-modification",
+        "rollers-80",
+        "rollers-4",
+        "hole-clearance",
+        "k1-0.95",
+        "multi-revolution",
+    ] {
+        let spec = load(&format!("specs/hard/{case}.yaml"));
+        let scene = spec
+            .scenes
+            .iter()
+            .position(|s| s.output_torque_nmm >= 0.0)
+            .unwrap();
+        let model = model(&spec, scene);
+        let angles = grid(&spec, scene, 240);
+        let sweep = curves::sweep(&model, &angles, false)
+            .unwrap_or_else(|f| panic!("{case}: {:?}", f.failure));
+        assert_agrees(case, &model, &angles, &sweep);
+    }
+}

@@ -24,7 +24,7 @@ use super::rollers::Rollers;
 use super::solve::piecewise_linear_root_near;
 use super::sweep::{BalanceSums, Model};
 use crate::contact::law;
-use crate::geometry::{cross, rotate, Vec2};
+use crate::geometry::{cross, rotate, sin_cos, Vec2};
 use crate::spec::{ContactLaw, GeometryMode};
 use std::f64::consts::PI;
 
@@ -64,7 +64,10 @@ pub struct Summary {
 /// Scratch space reused over a chunk of angles.
 #[derive(Debug, Default)]
 pub struct Scratch {
+    /// (g, l) of every roller.
     terms: Vec<(f64, f64)>,
+    /// (c, a) of every pin.
+    pin_terms: Vec<(f64, f64)>,
     /// (cos φi, sin φi, S_i) of every roller.
     phases: Vec<(f64, f64, f64)>,
     events: Vec<(f64, f64, f64)>,
@@ -171,7 +174,16 @@ impl<'a> FirstOrderSweep<'a> {
             (*term, *phase) = ((g, l), (c, s, big_s));
             at_guess.add(i, k, (g, l), guess);
         }
-        let (lag, moment, scale) = settle(k, torque, guess, at_guess, scratch, force_n)?;
+        let terms = &scratch.terms;
+        let (lag, moment, scale) = settle(
+            k,
+            torque,
+            guess,
+            at_guess,
+            terms,
+            &mut scratch.events,
+            force_n,
+        )?;
         if (moment - torque).abs() > self.model.settings.rel_tol * torque.abs().max(scale) {
             return None;
         }
@@ -201,7 +213,7 @@ impl<'a> FirstOrderSweep<'a> {
     ) {
         let r = self.rollers;
         let profile = &r.mesh.profile;
-        let (sin_nc_lag, cos_nc_lag) = (self.model.teeth as f64 * lag).sin_cos();
+        let (sin_nc_lag, cos_nc_lag) = sin_cos(self.model.teeth as f64 * lag);
         let d = &r.design;
         let (min_inv_r, roller_inv_r) = (1.0 / d.roller_circle_radius_mm, 1.0 / d.roller_radius_mm);
         for (i, &force) in force_n.iter().enumerate() {
@@ -234,19 +246,28 @@ impl<'a> FirstOrderSweep<'a> {
         let torque = self.model.torque_nmm;
         let (s, c) = psi.sin_cos();
         let direction = -e_phi;
-        scratch.terms.resize(p.base.len(), (0.0, 0.0));
+        scratch.pin_terms.resize(p.base.len(), (0.0, 0.0));
         let mut at_guess = Segment::default();
-        for (i, (w, term)) in p.base.iter().zip(&mut scratch.terms).enumerate() {
+        for (i, (w, term)) in p.base.iter().zip(&mut scratch.pin_terms).enumerate() {
             let arm = cross(rotate(*w, c, s) * p.circle_radius_mm, direction);
             *term = (p.clearance_mm, arm);
             at_guess.add(i, k, *term, guess);
         }
-        let (lag, moment, scale) = settle(k, torque, guess, at_guess, scratch, force_n)?;
+        let terms = &scratch.pin_terms;
+        let (lag, moment, scale) = settle(
+            k,
+            torque,
+            guess,
+            at_guess,
+            terms,
+            &mut scratch.events,
+            force_n,
+        )?;
         if (moment - torque).abs() > self.model.settings.rel_tol * torque.abs().max(scale) {
             return None;
         }
         let wall = e_phi * p.eccentricity_mm + direction * p.hole_radius_mm;
-        for ((w, &force), &(_, a)) in p.base.iter().zip(&*force_n).zip(&scratch.terms) {
+        for ((w, &force), &(_, a)) in p.base.iter().zip(&*force_n).zip(terms) {
             if force > 0.0 {
                 let point = wall + rotate(*w, c, s) * p.circle_radius_mm;
                 sums.pin(point, force * direction, force * a);
@@ -287,10 +308,10 @@ fn settle(
     torque: f64,
     guess: f64,
     at_guess: Segment,
-    scratch: &mut Scratch,
+    terms: &[(f64, f64)],
+    events: &mut Vec<(f64, f64, f64)>,
     force_n: &mut [f64],
 ) -> Option<(f64, f64, f64)> {
-    let terms = &scratch.terms;
     if terms.len() <= 64 && at_guess.a > 0.0 {
         let x = (torque + at_guess.b) / at_guess.a;
         let (moment, scale, mask) = linear_forces(k, terms, x, force_n);
@@ -298,7 +319,7 @@ fn settle(
             return Some((x, moment, scale));
         }
     }
-    let x = piecewise_linear_root_near(k, terms, torque, guess, &mut scratch.events)?;
+    let x = piecewise_linear_root_near(k, terms, torque, guess, events)?;
     let (moment, scale, _) = linear_forces(k, terms, x, force_n);
     Some((x, moment, scale))
 }

@@ -14,9 +14,8 @@ use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::clearance::{GapFailure, Mesh, Pose};
 use crate::geometry::first_order;
 use crate::geometry::profile::LocusFrame;
-use crate::geometry::{cross, rotate, sin_cos, Vec2};
+use crate::geometry::{cross, rotate, sin_cos, wrap_pi, Vec2};
 use crate::spec::{ContactLaw, Design, GeometryMode, Modification};
-use std::f64::consts::{PI, TAU};
 
 /// One roller's contact at one pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -335,7 +334,7 @@ impl Rollers {
             lobe: trig.lobe,
         };
         let w = -rotate(pose.centre_offset_mm, c, -s);
-        let s_start = (t_start - t_ref + PI).rem_euclid(TAU) - PI;
+        let s_start = wrap_pi(t_start - t_ref);
         let foot = self
             .mesh
             .profile

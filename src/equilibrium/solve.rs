@@ -105,7 +105,8 @@ fn relative(b: &Balance, target: f64) -> f64 {
     }
 }
 
-/// Solve m(x) = target for non-decreasing m, starting at `guess`.
+/// Solve m(x) = target for non-decreasing m, starting at `guess`. The last evaluation of m
+/// is always at the returned x, so a caller whose m writes states holds those of the answer.
 ///
 /// Newton steps from the guess while they stay inside the bracket known so far (every
 /// evaluation tightens it: below the target is a lower end, above an upper end). A step that

@@ -448,8 +448,8 @@ fn solve_pins(
         guess,
         &model.settings,
     )?;
+    // `states` holds the evaluation at root.x: the solver's last evaluation is at its answer.
     let mut lag = root.x;
-    evaluate(lag, states);
     if let Some(towards) = root.straddle {
         // As for the rollers: forces mixed between two neighbouring output lags.
         let mut other = states.clone();

@@ -12,7 +12,7 @@ use super::profile::LocusFrame;
 use super::profile::{ClosestPointFailure, Profile};
 use super::{cross, rotate, Vec2};
 use crate::spec::{Design, Modification};
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 /// Pose of the disc at one crank angle. Fixed frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -279,7 +279,7 @@ pub fn min_gap(mesh: &Mesh, crank_rad: &[f64]) -> Result<MinClearance, GapFailur
                         base: rotate(units[i], ct, st),
                         lobe,
                     };
-                    let s_start = (t_prev - t_ref + PI).rem_euclid(TAU) - PI;
+                    let s_start = super::wrap_pi(t_prev - t_ref);
                     let foot = mesh
                         .profile
                         .closest_point_in_frame(&frame, 0.0, Vec2::zeros(), s_start)

@@ -370,7 +370,7 @@ impl Profile {
         t_start: f64,
     ) -> Result<Foot, ClosestPointFailure> {
         let frame = self.frame(t_ref, r_ref);
-        let s0 = (t_start - t_ref + PI).rem_euclid(std::f64::consts::TAU) - PI;
+        let s0 = super::wrap_pi(t_start - t_ref);
         self.closest_point_in_frame(&frame, alpha, w, s0)
     }
 
@@ -427,7 +427,7 @@ impl Profile {
             let point = et * rl - ent * e - self.offset_mm * normal;
             let locus_distance_mm = -diff.dot(&normal);
             Foot {
-                t: (t_ref + s).rem_euclid(std::f64::consts::TAU),
+                t: super::wrap_tau(t_ref + s),
                 point: self.turned(point),
                 normal: self.turned(normal),
                 signed_distance_mm: self.offset_mm + locus_distance_mm,
@@ -476,7 +476,7 @@ impl Profile {
         let n = Self::unrotated_normal(j);
         let point = j.c - self.offset_mm * n;
         Foot {
-            t: t.rem_euclid(std::f64::consts::TAU),
+            t: super::wrap_tau(t),
             point: self.turned(point),
             normal: self.turned(n),
             signed_distance_mm: (q - point).dot(&n),

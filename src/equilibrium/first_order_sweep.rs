@@ -162,17 +162,21 @@ impl<'a> FirstOrderSweep<'a> {
         let n = r.units.len();
         scratch.terms.resize(n, (0.0, 0.0));
         scratch.phases.resize(n, (0.0, 0.0, 0.0));
-        let mut at_guess = Segment::default();
+        // Terms first, in a loop without branches (the compiler can vectorise it), then the
+        // active set at the guess.
         let rollers = r
             .units
             .iter()
             .zip(&mut scratch.terms)
             .zip(&mut scratch.phases);
-        for (i, ((u, term), phase)) in rollers.enumerate() {
+        for ((u, term), phase) in rollers {
             let (c, s) = (u.dot(&e_phi), cross(e_phi, *u));
             let (g, l, big_s) = r.first_order.with_s(c, s);
             (*term, *phase) = ((g, l), (c, s, big_s));
-            at_guess.add(i, k, (g, l), guess);
+        }
+        let mut at_guess = Segment::default();
+        for (i, &term) in scratch.terms.iter().enumerate() {
+            at_guess.add(i, k, term, guess);
         }
         let terms = &scratch.terms;
         let (lag, moment, scale) = settle(

@@ -119,7 +119,10 @@ mod tests {
             let (_, cm1) = sin_cosm1(x);
             let h = (0.5 * x).sin();
             let cm1_0 = -2.0 * h * h;
-            assert!((cm1 - cm1_0).abs() <= 8.0 * f64::EPSILON * cm1_0.abs(), "cos−1 {x}");
+            assert!(
+                (cm1 - cm1_0).abs() <= 8.0 * f64::EPSILON * cm1_0.abs(),
+                "cos−1 {x}"
+            );
         }
     }
 

@@ -179,18 +179,16 @@ impl<'a> FirstOrderSweep<'a> {
             at_guess.add(i, k, term, guess);
         }
         let terms = &scratch.terms;
-        let (lag, moment, scale) = settle(
+        let tol = self.model.settings.rel_tol;
+        let lag = settle(
             k,
-            torque,
+            (torque, tol),
             guess,
             at_guess,
             terms,
             &mut scratch.events,
             force_n,
         )?;
-        if (moment - torque).abs() > self.model.settings.rel_tol * torque.abs().max(scale) {
-            return None;
-        }
         let rrp = r.design.roller_radius_mm;
         let mut contacts = 0;
         for (i, &force) in force_n.iter().enumerate() {
@@ -258,18 +256,16 @@ impl<'a> FirstOrderSweep<'a> {
             at_guess.add(i, k, *term, guess);
         }
         let terms = &scratch.pin_terms;
-        let (lag, moment, scale) = settle(
+        let tol = self.model.settings.rel_tol;
+        let lag = settle(
             k,
-            torque,
+            (torque, tol),
             guess,
             at_guess,
             terms,
             &mut scratch.events,
             force_n,
         )?;
-        if (moment - torque).abs() > self.model.settings.rel_tol * torque.abs().max(scale) {
-            return None;
-        }
         let wall = e_phi * p.eccentricity_mm + direction * p.hole_radius_mm;
         for ((w, &force), &(_, a)) in p.base.iter().zip(&*force_n).zip(terms) {
             if force > 0.0 {
@@ -303,29 +299,33 @@ impl Segment {
 }
 
 /// The root of the linear balance Σ k·max(0, l·x − g)·l = T and the forces there, into
-/// `force_n`, with the moment Σ F·l and its scale Σ |F·l|. The first Newton step from the
-/// guess's segment, x = (T + B)/A, is the root when the active set at x is the guess's (the
-/// first step of `piecewise_linear_root_near`, checked in the pass that computes the forces);
-/// otherwise `piecewise_linear_root_near` decides.
+/// `force_n`. The first Newton step from the guess's segment, x = (T + B)/A, is the root when
+/// the active set at x is the guess's (the first step of `piecewise_linear_root_near`, checked
+/// in the pass that computes the forces); otherwise `piecewise_linear_root_near` decides.
+/// `None` also when the forces miss the torque by more than the solver tolerance,
+/// |Σ F·l − T| > rel_tol·max(|T|, Σ |F·l|) (the round-off of a tiny torque, left to the general
+/// solve's straddle).
 fn settle(
     k: f64,
-    torque: f64,
+    (torque, rel_tol): (f64, f64),
     guess: f64,
     at_guess: Segment,
     terms: &[(f64, f64)],
     events: &mut Vec<(f64, f64, f64)>,
     force_n: &mut [f64],
-) -> Option<(f64, f64, f64)> {
+) -> Option<f64> {
+    let settled =
+        |(moment, scale): (f64, f64)| (moment - torque).abs() <= rel_tol * torque.abs().max(scale);
     if terms.len() <= 64 && at_guess.a > 0.0 {
         let x = (torque + at_guess.b) / at_guess.a;
         let (moment, scale, mask) = linear_forces(k, terms, x, force_n);
         if mask == at_guess.mask {
-            return Some((x, moment, scale));
+            return settled((moment, scale)).then_some(x);
         }
     }
     let x = piecewise_linear_root_near(k, terms, torque, guess, events)?;
     let (moment, scale, _) = linear_forces(k, terms, x, force_n);
-    Some((x, moment, scale))
+    settled((moment, scale)).then_some(x)
 }
 
 /// Whether a term (g, l) is in contact at x, as `solve::piecewise_linear_root_near` decides it.

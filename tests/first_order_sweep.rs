@@ -165,7 +165,6 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
         guess = (s.lag_rad, s.output_lag_rad);
         // Balance of the recorded forces, independently of the kernel's own residual: the
         // rollers' moment about the disc centre equals the torque (1e-9, the product bound).
-        let r = model.rollers.as_ref().unwrap();
         let sol = solve_angle(&model, phi, &AngleSolution::default()).unwrap();
         let moment: f64 = forces
             .iter()
@@ -176,7 +175,6 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
             close(moment, model.torque_nmm, 1e-9, 0.0),
             "moment {moment} at {phi}"
         );
-        assert_eq!(r.count(), forces.len());
     }
     let sweep = curves::sweep(&model, &angles, false).unwrap();
     assert_agrees("paper", &model, &angles, &sweep);
@@ -198,11 +196,8 @@ fn sweep_agrees_with_the_general_solve_on_hard_cases() {
         "multi-revolution",
     ] {
         let spec = load(&format!("specs/hard/{case}.yaml"));
-        let scene = spec
-            .scenes
-            .iter()
-            .position(|s| s.output_torque_nmm >= 0.0)
-            .unwrap();
+        // The spec's first scene, whatever its effects: the model asks for everything.
+        let scene = 0;
         let model = model(&spec, scene);
         let angles = grid(&spec, scene, 240);
         let sweep = curves::sweep(&model, &angles, false)

@@ -158,7 +158,7 @@ impl<'a> FirstOrderSweep<'a> {
         force_n: &mut [f64],
     ) -> Option<(f64, usize)> {
         let r = self.rollers;
-        let (torque, k) = (self.model.torque_nmm, self.roller_stiffness);
+        let k = self.roller_stiffness;
         let n = r.units.len();
         scratch.terms.resize(n, (0.0, 0.0));
         scratch.phases.resize(n, (0.0, 0.0, 0.0));
@@ -174,21 +174,7 @@ impl<'a> FirstOrderSweep<'a> {
             let (g, l, big_s) = r.first_order.with_s(c, s);
             (*term, *phase) = ((g, l), (c, s, big_s));
         }
-        let mut at_guess = Segment::default();
-        for (i, &term) in scratch.terms.iter().enumerate() {
-            at_guess.add(i, k, term, guess);
-        }
-        let terms = &scratch.terms;
-        let tol = self.model.settings.rel_tol;
-        let lag = settle(
-            k,
-            (torque, tol),
-            guess,
-            at_guess,
-            terms,
-            &mut scratch.events,
-            force_n,
-        )?;
+        let lag = self.settle(k, guess, &scratch.terms, &mut scratch.events, force_n)?;
         let rrp = r.design.roller_radius_mm;
         let mut contacts = 0;
         for (i, &force) in force_n.iter().enumerate() {
@@ -245,27 +231,15 @@ impl<'a> FirstOrderSweep<'a> {
         sums: &mut BalanceSums,
         force_n: &mut [f64],
     ) -> Option<f64> {
-        let torque = self.model.torque_nmm;
         let (s, c) = psi.sin_cos();
         let direction = -e_phi;
         scratch.pin_terms.resize(p.base.len(), (0.0, 0.0));
-        let mut at_guess = Segment::default();
-        for (i, (w, term)) in p.base.iter().zip(&mut scratch.pin_terms).enumerate() {
+        for (w, term) in p.base.iter().zip(&mut scratch.pin_terms) {
             let arm = cross(rotate(*w, c, s) * p.circle_radius_mm, direction);
             *term = (p.clearance_mm, arm);
-            at_guess.add(i, k, *term, guess);
         }
         let terms = &scratch.pin_terms;
-        let tol = self.model.settings.rel_tol;
-        let lag = settle(
-            k,
-            (torque, tol),
-            guess,
-            at_guess,
-            terms,
-            &mut scratch.events,
-            force_n,
-        )?;
+        let lag = self.settle(k, guess, terms, &mut scratch.events, force_n)?;
         let wall = e_phi * p.eccentricity_mm + direction * p.hole_radius_mm;
         for ((w, &force), &(_, a)) in p.base.iter().zip(&*force_n).zip(terms) {
             if force > 0.0 {
@@ -298,34 +272,41 @@ impl Segment {
     }
 }
 
-/// The root of the linear balance Σ k·max(0, l·x − g)·l = T and the forces there, into
-/// `force_n`. The first Newton step from the guess's segment, x = (T + B)/A, is the root when
-/// the active set at x is the guess's (the first step of `piecewise_linear_root_near`, checked
-/// in the pass that computes the forces); otherwise `piecewise_linear_root_near` decides.
-/// `None` also when the forces miss the torque by more than the solver tolerance,
-/// |Σ F·l − T| > rel_tol·max(|T|, Σ |F·l|) (the round-off of a tiny torque, left to the general
-/// solve's straddle).
-fn settle(
-    k: f64,
-    (torque, rel_tol): (f64, f64),
-    guess: f64,
-    at_guess: Segment,
-    terms: &[(f64, f64)],
-    events: &mut Vec<(f64, f64, f64)>,
-    force_n: &mut [f64],
-) -> Option<f64> {
-    let settled =
-        |(moment, scale): (f64, f64)| (moment - torque).abs() <= rel_tol * torque.abs().max(scale);
-    if terms.len() <= 64 && at_guess.a > 0.0 {
-        let x = (torque + at_guess.b) / at_guess.a;
-        let (moment, scale, mask) = linear_forces(k, terms, x, force_n);
-        if mask == at_guess.mask {
-            return settled((moment, scale)).then_some(x);
+impl FirstOrderSweep<'_> {
+    /// The root of the linear balance Σ k·max(0, l·x − g)·l = T and the forces there, into
+    /// `force_n`. The first Newton step from the guess's segment, x = (T + B)/A, is the root
+    /// when the active set at x is the guess's (the first step of `piecewise_linear_root_near`,
+    /// checked in the pass that computes the forces); otherwise `piecewise_linear_root_near`
+    /// decides. `None` also when the forces miss the torque by more than the solver tolerance,
+    /// |Σ F·l − T| > rel_tol·max(|T|, Σ |F·l|) (the round-off of a tiny torque, left to the
+    /// general solve's straddle).
+    fn settle(
+        &self,
+        k: f64,
+        guess: f64,
+        terms: &[(f64, f64)],
+        events: &mut Vec<(f64, f64, f64)>,
+        force_n: &mut [f64],
+    ) -> Option<f64> {
+        let (torque, rel_tol) = (self.model.torque_nmm, self.model.settings.rel_tol);
+        let settled = |(moment, scale): (f64, f64)| {
+            (moment - torque).abs() <= rel_tol * torque.abs().max(scale)
+        };
+        let mut at_guess = Segment::default();
+        for (i, &term) in terms.iter().enumerate() {
+            at_guess.add(i, k, term, guess);
         }
+        if terms.len() <= 64 && at_guess.a > 0.0 {
+            let x = (torque + at_guess.b) / at_guess.a;
+            let (moment, scale, mask) = linear_forces(k, terms, x, force_n);
+            if mask == at_guess.mask {
+                return settled((moment, scale)).then_some(x);
+            }
+        }
+        let x = piecewise_linear_root_near(k, terms, torque, guess, events)?;
+        let (moment, scale, _) = linear_forces(k, terms, x, force_n);
+        settled((moment, scale)).then_some(x)
     }
-    let x = piecewise_linear_root_near(k, terms, torque, guess, events)?;
-    let (moment, scale, _) = linear_forces(k, terms, x, force_n);
-    settled((moment, scale)).then_some(x)
 }
 
 /// Whether a term (g, l) is in contact at x, as `solve::piecewise_linear_root_near` decides it.

@@ -158,26 +158,8 @@ impl Pins {
     }
 
     /// First-order pins: gap c − βo·a_j − e_φ·u with a_j = rw·sin(γj − φ), force along −e_φ
-    /// (ideal pin-in-hole directions; MODEL.md "Equilibrium").
-    pub fn evaluate_first_order(
-        &self,
-        crank: f64,
-        disc_centre: Vec2,
-        psi: f64,
-        output_lag: f64,
-        out: &mut Vec<PinState>,
-    ) {
-        let (s, c) = psi.sin_cos();
-        self.first_order_at(
-            Vec2::new(crank.cos(), crank.sin()),
-            (s, c),
-            disc_centre,
-            output_lag,
-            out,
-        );
-    }
-
-    /// `evaluate_first_order` from the eccentric direction and (sin, cos) of ψ.
+    /// (ideal pin-in-hole directions; MODEL.md "Equilibrium"), from the eccentric direction e_φ,
+    /// (sin, cos) of the disc rotation ψ and the disc centre (u its offset from e·e_φ).
     pub fn first_order_at(
         &self,
         e_phi: Vec2,

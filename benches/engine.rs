@@ -2,10 +2,11 @@
 //! Single-threaded by default (RAYON_NUM_THREADS=1 recommended for the per-core targets).
 
 use cycloid::equilibrium::curves;
-use cycloid::equilibrium::sweep::Model;
 use cycloid::geometry::clearance::{self, Mesh};
 use cycloid::spec::{self, GeometryMode, Spec};
 use std::hint::black_box;
+
+mod common;
 
 fn main() {
     divan::main();
@@ -40,17 +41,7 @@ fn min_gap_360(b: divan::Bencher) {
 }
 
 fn loaded(b: divan::Bencher, geometry: GeometryMode) {
-    let s = paper();
-    // The 10 N·m scene (scene 0, `mesh`, is the unloaded one).
-    let mut scene = s
-        .scenes
-        .iter()
-        .find(|c| c.name == "rated")
-        .expect("rated")
-        .clone();
-    scene.geometry = geometry;
-    let model = Model::new(&s.design, &s.modification, &scene, true, true, true);
-    let c = crank(3600);
+    let (model, c) = common::rated_sweep(geometry, 3600);
     b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
 }
 

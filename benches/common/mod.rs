@@ -1,0 +1,22 @@
+//! The loaded sweep the benchmarks and `examples/profile_sweep.rs` measure (shared by path).
+
+use cycloid::equilibrium::sweep::Model;
+use cycloid::spec::{self, GeometryMode};
+
+/// The paper optimum's 10 N·m scene (`rated`; scene 0, `mesh`, is the unloaded one) with
+/// rollers, pins and a rigid bearing in `geometry`, and `n` crank angles over one mesh period.
+pub fn rated_sweep(geometry: GeometryMode, n: usize) -> (Model, Vec<f64>) {
+    let s = spec::load("specs/paper.yaml").expect("specs/paper.yaml");
+    let mut scene = s
+        .scenes
+        .iter()
+        .find(|c| c.name == "rated")
+        .expect("rated")
+        .clone();
+    scene.geometry = geometry;
+    let model = Model::new(&s.design, &s.modification, &scene, true, true, true);
+    let crank = (0..n)
+        .map(|k| std::f64::consts::TAU / 10.0 * k as f64 / n as f64)
+        .collect();
+    (model, crank)
+}

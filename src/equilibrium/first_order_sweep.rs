@@ -180,7 +180,7 @@ impl<'a> FirstOrderSweep<'a> {
         for (i, &force) in force_n.iter().enumerate() {
             if force > 0.0 {
                 contacts += 1;
-                let normal = (r.units[i] - r.k1 * e_phi) / scratch.phases[i].2;
+                let normal = (r.units[i] - r.first_order.k1 * e_phi) / scratch.phases[i].2;
                 let point = r.centres[i] - rrp * normal;
                 sums.roller(point, -force * normal, force * scratch.terms[i].1);
             }

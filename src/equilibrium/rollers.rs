@@ -95,14 +95,10 @@ pub struct Rollers {
     pub(super) centres: Vec<Vec2>,
     /// Unit vectors of the roller centres, u_i = (cos 2πi/np, sin 2πi/np).
     pub(super) units: Vec<Vec2>,
-    /// K1 = e·np/Rp.
-    pub(super) k1: f64,
     /// Contact modulus, compliances and length of the roller contacts.
     pub(super) materials: LineContact,
     /// Constants of the first-order gaps and arms.
     pub(super) first_order: first_order::Coefficients,
-    /// 2πi/np, the locus parameter of roller i at φ = β = 0.
-    angles: Vec<f64>,
     /// Largest distance of a roller centre from the disc centre, mm.
     reach_radius_mm: f64,
     /// Bound on the second derivative of a gap w.r.t. crank and lag, mm/rad².
@@ -135,12 +131,8 @@ impl Rollers {
             geometry,
             centres,
             units,
-            k1: design.k1(),
             first_order: first_order::Coefficients::new(design, m),
             materials: Self::materials(design),
-            angles: (0..design.rollers)
-                .map(|i| design.roller_angle(i))
-                .collect(),
             reach_radius_mm: reach,
             curvature_bound,
             linear_stiffness: 0.0,
@@ -378,11 +370,10 @@ impl Rollers {
         e_phi: Vec2,
         (gap0, arm): (f64, f64),
     ) -> RollerState {
-        let towards = self.units[i] - self.k1 * e_phi;
+        let towards = self.units[i] - self.first_order.k1 * e_phi;
         let normal = towards / towards.norm();
         let gap_mm = gap0 - arm * pose.lag_rad - normal.dot(&pose.centre_offset_mm);
-        // `Mesh::locus_parameter`, with 2πi/np precomputed.
-        let t = self.angles[i] + pose.crank_rad / self.design.teeth as f64 - pose.lag_rad;
+        let t = self.mesh.locus_parameter(i, pose);
         let cf = self.contact_force(gap_mm, t);
         RollerState {
             gap_mm,

@@ -93,7 +93,7 @@ pub struct Work {
     /// (its force is exactly zero either way).
     pub exact_final: bool,
     /// (cos φ, sin φ) of the angle being solved.
-    pub e_phi: Vec2,
+    pub(super) e_phi: Vec2,
     reaches: Vec<Reach>,
     /// The last (up to three) solved angles (φ, β, βo), oldest first, in the last `filled`
     /// entries.

@@ -37,7 +37,8 @@ pub struct Coefficients {
     one_plus_k1_sq: f64,
     /// 2·K1.
     two_k1: f64,
-    k1: f64,
+    /// K1 = e·np/Rp.
+    pub k1: f64,
     /// e·nc, mm.
     e_nc_mm: f64,
     equidistant_mm: f64,

@@ -52,6 +52,11 @@ fn close(a: f64, b: f64, rel: f64, abs: f64) -> bool {
     (a - b).abs() <= rel * a.abs().max(b.abs()) + abs
 }
 
+/// Each column as a slice (a row of one angle for `Row`).
+fn slices(columns: &mut [Vec<f64>]) -> Vec<&mut [f64]> {
+    columns.iter_mut().map(|v| v.as_mut_slice()).collect()
+}
+
 /// The lean sweep's curves agree with the general solve at every angle.
 ///
 /// Tolerances: lags 1e-12 relative (two exact roots of the same piecewise-linear balance,
@@ -148,19 +153,25 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
         model.pins.as_ref().unwrap().count,
     );
     let mut scratch = Scratch::default();
+    let column = |n: usize| vec![vec![0.0; 1]; n];
     let (mut forces, mut pressures, mut widths, mut pin_forces) =
-        (vec![0.0; nr], vec![0.0; nr], vec![0.0; nr], vec![0.0; np]);
+        (column(nr), column(nr), column(nr), column(np));
     let mut guess = (0.0, 0.0);
     for &phi in &angles {
+        let mut f = slices(&mut forces);
+        let mut p = slices(&mut pressures);
+        let mut w = slices(&mut widths);
+        let mut pf = slices(&mut pin_forces);
         let mut row = Row {
-            roller_force_n: &mut forces,
-            pressure_mpa: &mut pressures,
-            half_width_mm: &mut widths,
-            pin_force_n: &mut pin_forces,
+            k: 0,
+            roller_force_n: &mut f,
+            pressure_mpa: &mut p,
+            half_width_mm: &mut w,
+            pin_force_n: &mut pf,
         };
         let e_phi = Vec2::new(phi.cos(), phi.sin());
         let s = lean
-            .solve(phi, e_phi, guess, &mut scratch, &mut row)
+            .solve(phi, e_phi, || guess, &mut scratch, &mut row)
             .unwrap_or_else(|| panic!("fell back at {:.3}°", phi.to_degrees()));
         guess = (s.lag_rad, s.output_lag_rad);
         // Balance of the recorded forces, independently of the kernel's own residual: the
@@ -169,7 +180,7 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
         let moment: f64 = forces
             .iter()
             .zip(&sol.rollers)
-            .map(|(f, st)| f * st.arm_mm)
+            .map(|(f, st)| f[0] * st.arm_mm)
             .sum();
         assert!(
             close(moment, model.torque_nmm, 1e-9, 0.0),

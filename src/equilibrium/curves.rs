@@ -90,41 +90,54 @@ pub fn derivative(values: &[f64], h: f64, periodic: bool) -> Option<Vec<f64>> {
     if n < 3 {
         return None;
     }
-    Some(
-        (0..n)
-            .map(|k| {
-                if periodic {
-                    (values[(k + 1) % n] - values[(k + n - 1) % n]) / (2.0 * h)
-                } else if k == 0 {
-                    (-3.0 * values[0] + 4.0 * values[1] - values[2]) / (2.0 * h)
-                } else if k == n - 1 {
-                    (3.0 * values[n - 1] - 4.0 * values[n - 2] + values[n - 3]) / (2.0 * h)
-                } else {
-                    (values[k + 1] - values[k - 1]) / (2.0 * h)
-                }
-            })
-            .collect(),
-    )
+    let (first, last) = if periodic {
+        (
+            (values[1] - values[n - 1]) / (2.0 * h),
+            (values[0] - values[n - 2]) / (2.0 * h),
+        )
+    } else {
+        (
+            (-3.0 * values[0] + 4.0 * values[1] - values[2]) / (2.0 * h),
+            (3.0 * values[n - 1] - 4.0 * values[n - 2] + values[n - 3]) / (2.0 * h),
+        )
+    };
+    let mut d = Vec::with_capacity(n);
+    d.push(first);
+    d.extend(values.windows(3).map(|w| (w[2] - w[0]) / (2.0 * h)));
+    d.push(last);
+    Some(d)
 }
 
-/// Per-angle results of one chunk, flat and column-major: [roller][angle] and [pin][angle],
-/// allocated for the whole chunk and written in place.
-struct Chunk {
-    angles: usize,
-    rollers: usize,
-    pins: usize,
+/// The curves of a sweep as columns [angle] and [roller|pin][angle], allocated once and
+/// written in place by the chunks (`Columns::chunks`).
+struct Columns {
     lag: Vec<f64>,
     output_lag: Vec<f64>,
-    roller_force: Vec<f64>,
-    pressure: Vec<f64>,
-    half_width: Vec<f64>,
+    roller_force: Vec<Vec<f64>>,
+    pressure: Vec<Vec<f64>>,
+    half_width: Vec<Vec<f64>>,
     contacts: Vec<usize>,
-    pin_force: Vec<f64>,
-    bearing: Vec<Vec2>,
+    pin_force: Vec<Vec<f64>>,
+    bearing_force: Vec<f64>,
     /// Angle of the bearing force from the eccentric direction, rad.
     bearing_angle: Vec<f64>,
     residual: Vec<f64>,
     deflection: Vec<f64>,
+}
+
+/// One chunk's rows of every column: `Columns` cut at the same angles.
+struct Chunk<'a> {
+    lag: &'a mut [f64],
+    output_lag: &'a mut [f64],
+    roller_force: Vec<&'a mut [f64]>,
+    pressure: Vec<&'a mut [f64]>,
+    half_width: Vec<&'a mut [f64]>,
+    contacts: &'a mut [usize],
+    pin_force: Vec<&'a mut [f64]>,
+    bearing_force: &'a mut [f64],
+    bearing_angle: &'a mut [f64],
+    residual: &'a mut [f64],
+    deflection: &'a mut [f64],
 }
 
 /// Angle of a force from the eccentric direction e_φ, counter-clockwise, rad.
@@ -132,51 +145,104 @@ fn angle_from(e_phi: Vec2, f: Vec2) -> f64 {
     cross(e_phi, f).atan2(e_phi.dot(&f))
 }
 
-impl Chunk {
+/// `column` cut into pieces of `CHUNK` angles.
+fn pieces<T>(column: &mut [T]) -> std::slice::ChunksMut<'_, T> {
+    column.chunks_mut(CHUNK)
+}
+
+/// [column][angle] cut into [chunk][column] pieces of `CHUNK` angles (`chunks` of them).
+fn piece_rows(columns: &mut [Vec<f64>], chunks: usize) -> Vec<Vec<&mut [f64]>> {
+    let mut rows: Vec<Vec<&mut [f64]>> = (0..chunks).map(|_| Vec::new()).collect();
+    for column in columns {
+        for (row, piece) in rows.iter_mut().zip(pieces(column)) {
+            row.push(piece);
+        }
+    }
+    rows
+}
+
+impl Columns {
     fn new(model: &Model, angles: usize) -> Self {
         let rollers = model.rollers.as_ref().map_or(0, |r| r.count());
         let pins = model.pins.as_ref().map_or(0, |p| p.count);
-        Chunk {
-            angles,
-            rollers,
-            pins,
-            lag: vec![0.0; angles],
-            output_lag: vec![0.0; angles],
-            roller_force: vec![0.0; angles * rollers],
-            pressure: vec![0.0; angles * rollers],
-            half_width: vec![0.0; angles * rollers],
+        let column = || vec![0.0; angles];
+        Columns {
+            lag: column(),
+            output_lag: column(),
+            roller_force: (0..rollers).map(|_| column()).collect(),
+            pressure: (0..rollers).map(|_| column()).collect(),
+            half_width: (0..rollers).map(|_| column()).collect(),
             contacts: vec![0; angles],
-            pin_force: vec![0.0; angles * pins],
-            bearing: vec![Vec2::zeros(); angles],
-            bearing_angle: vec![0.0; angles],
-            residual: vec![0.0; angles],
-            deflection: vec![0.0; angles],
+            pin_force: (0..pins).map(|_| column()).collect(),
+            bearing_force: column(),
+            bearing_angle: column(),
+            residual: column(),
+            deflection: column(),
         }
     }
 
-    /// Entry k of column i of a column-major [column][angle] array.
-    fn at(&self, i: usize, k: usize) -> usize {
-        i * self.angles + k
+    /// The chunks of `CHUNK` angles, in order.
+    fn chunks(&mut self) -> Vec<Chunk<'_>> {
+        let n = self.lag.len().div_ceil(CHUNK);
+        let mut roller_force = piece_rows(&mut self.roller_force, n).into_iter();
+        let mut pressure = piece_rows(&mut self.pressure, n).into_iter();
+        let mut half_width = piece_rows(&mut self.half_width, n).into_iter();
+        let mut pin_force = piece_rows(&mut self.pin_force, n).into_iter();
+        let scalars = pieces(&mut self.lag)
+            .zip(pieces(&mut self.output_lag))
+            .zip(pieces(&mut self.contacts))
+            .zip(pieces(&mut self.bearing_force))
+            .zip(pieces(&mut self.bearing_angle))
+            .zip(pieces(&mut self.residual))
+            .zip(pieces(&mut self.deflection));
+        scalars
+            .map(
+                |(
+                    (((((lag, output_lag), contacts), bearing_force), bearing_angle), residual),
+                    deflection,
+                )| Chunk {
+                    lag,
+                    output_lag,
+                    roller_force: roller_force.next().unwrap_or_default(),
+                    pressure: pressure.next().unwrap_or_default(),
+                    half_width: half_width.next().unwrap_or_default(),
+                    contacts,
+                    pin_force: pin_force.next().unwrap_or_default(),
+                    bearing_force,
+                    bearing_angle,
+                    residual,
+                    deflection,
+                },
+            )
+            .collect()
+    }
+}
+
+impl<'a> Chunk<'a> {
+    /// The per-roller and per-pin entries of angle k, for the lean sweep to write in place.
+    fn row(&mut self, k: usize) -> Row<'_, 'a> {
+        Row {
+            k,
+            roller_force_n: &mut self.roller_force,
+            pressure_mpa: &mut self.pressure,
+            half_width_mm: &mut self.half_width,
+            pin_force_n: &mut self.pin_force,
+        }
     }
 
-    /// Record angle k of the lean first-order sweep.
-    fn record_first_order(&mut self, k: usize, e_phi: Vec2, row: &Row<'_>, s: &Summary) {
-        for (i, &f) in row.roller_force_n.iter().enumerate() {
-            let at = self.at(i, k);
-            self.roller_force[at] = f;
-            self.pressure[at] = row.pressure_mpa[i];
-            self.half_width[at] = row.half_width_mm[i];
-        }
-        for (j, &f) in row.pin_force_n.iter().enumerate() {
-            let at = self.at(j, k);
-            self.pin_force[at] = f;
-        }
+    /// Record the bearing force at angle k, its angle from e_φ and the residual.
+    fn record_bearing(&mut self, k: usize, e_phi: Vec2, bearing: Vec2, residual: f64) {
+        self.bearing_force[k] = bearing.norm();
+        self.bearing_angle[k] = angle_from(e_phi, bearing);
+        self.residual[k] = residual;
+    }
+
+    /// Record the rest of angle k of the lean first-order sweep (its row is written).
+    fn record_first_order(&mut self, k: usize, e_phi: Vec2, s: &Summary) {
         self.lag[k] = s.lag_rad;
         self.output_lag[k] = s.output_lag_rad;
         self.contacts[k] = s.contacts;
-        self.bearing[k] = s.bearing_n;
-        self.bearing_angle[k] = angle_from(e_phi, s.bearing_n);
-        self.residual[k] = s.residual;
+        self.record_bearing(k, e_phi, s.bearing_n, s.residual);
     }
 
     /// Record angle k of the general solve.
@@ -186,8 +252,7 @@ impl Chunk {
         if let Some(r) = &model.rollers {
             let mut contacts = 0;
             for (i, s) in sol.rollers.iter().enumerate() {
-                let at = self.at(i, k);
-                self.roller_force[at] = s.force_n;
+                self.roller_force[i][k] = s.force_n;
                 let (p, b) = if s.force_n > 0.0 {
                     contacts += 1;
                     let h = r.hertz(s);
@@ -195,46 +260,36 @@ impl Chunk {
                 } else {
                     (0.0, 0.0)
                 };
-                self.pressure[at] = p;
-                self.half_width[at] = b;
+                self.pressure[i][k] = p;
+                self.half_width[i][k] = b;
             }
             self.contacts[k] = contacts;
         }
         for (j, p) in sol.pins.iter().enumerate() {
-            let at = self.at(j, k);
-            self.pin_force[at] = p.force_n;
+            self.pin_force[j][k] = p.force_n;
         }
         let bearing = sol.bearing_force_n.unwrap_or_default();
-        self.bearing[k] = bearing;
-        self.bearing_angle[k] = angle_from(e_phi, bearing);
-        self.residual[k] = sol.residual.unwrap_or(0.0);
+        self.record_bearing(k, e_phi, bearing, sol.residual.unwrap_or(0.0));
         self.deflection[k] = sol.centre_offset_mm.norm();
     }
 }
 
-fn solve_chunk(model: &Model, crank_rad: &[f64]) -> Result<Chunk, SweepFailure> {
+fn solve_chunk(
+    model: &Model,
+    crank_rad: &[f64],
+    chunk: &mut Chunk<'_>,
+) -> Result<(), SweepFailure> {
     let mut work = Work::default();
-    let mut chunk = Chunk::new(model, crank_rad.len());
     let lean = FirstOrderSweep::new(model);
     let mut scratch = Scratch::default();
-    let (rollers, pins) = (chunk.rollers, chunk.pins);
-    let mut entries = [vec![0.0; rollers], vec![0.0; rollers], vec![0.0; rollers]];
-    let mut pin_entries = vec![0.0; pins];
     for (k, &phi) in crank_rad.iter().enumerate() {
         if let Some(lean) = &lean {
             let (sin, cos) = phi.sin_cos();
             let e_phi = Vec2::new(cos, sin);
-            let guess = work.guess(phi);
-            let [forces, pressures, widths] = &mut entries;
-            let mut row = Row {
-                roller_force_n: forces,
-                pressure_mpa: pressures,
-                half_width_mm: widths,
-                pin_force_n: &mut pin_entries,
-            };
-            if let Some(s) = lean.solve(phi, e_phi, guess, &mut scratch, &mut row) {
+            let guess = || work.guess(phi);
+            if let Some(s) = lean.solve(phi, e_phi, guess, &mut scratch, &mut chunk.row(k)) {
                 work.remember_lags(phi, s.lag_rad, s.output_lag_rad);
-                chunk.record_first_order(k, e_phi, &row, &s);
+                chunk.record_first_order(k, e_phi, &s);
                 continue;
             }
         }
@@ -250,75 +305,37 @@ fn solve_chunk(model: &Model, crank_rad: &[f64]) -> Result<Chunk, SweepFailure> 
         }
         chunk.record(k, model, work.e_phi, &work.sol);
     }
-    Ok(chunk)
+    Ok(())
 }
 
 /// Solve every crank angle and collect the curves. Chunks of `CHUNK` angles run in parallel;
-/// within a chunk each angle is warm-started from the previous ones.
+/// within a chunk each angle is warm-started from the previous ones. A failure is reported at
+/// the first crank angle that fails.
 pub fn sweep(
     model: &Model,
     crank_rad: &[f64],
     periodic: bool,
 ) -> Result<LoadedSweep, SweepFailure> {
-    let chunks: Vec<Chunk> = crank_rad
+    let mut columns = Columns::new(model, crank_rad.len());
+    let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
         .par_chunks(CHUNK)
-        .map(|c| solve_chunk(model, c))
-        .collect::<Result<_, _>>()?;
-    Ok(collect(model, crank_rad, &chunks, periodic))
+        .zip(columns.chunks())
+        .map(|(c, mut chunk)| solve_chunk(model, c, &mut chunk))
+        .collect();
+    outcomes.into_iter().collect::<Result<(), _>>()?;
+    Ok(collect(model, crank_rad, columns, periodic))
 }
 
-/// Column-major chunks → [column][angle].
-fn columns(chunks: &[Chunk], width: usize, field: fn(&Chunk) -> &[f64]) -> Vec<Vec<f64>> {
-    let rows = chunks.iter().map(|c| c.angles).sum::<usize>();
-    (0..width)
-        .map(|i| {
-            let mut column = Vec::with_capacity(rows);
-            for c in chunks {
-                column.extend_from_slice(&field(c)[c.at(i, 0)..c.at(i + 1, 0)]);
-            }
-            column
-        })
-        .collect()
-}
-
-fn concat<T: Copy>(chunks: &[Chunk], field: fn(&Chunk) -> &[T]) -> Vec<T> {
-    chunks
-        .iter()
-        .flat_map(|c| field(c).iter().copied())
-        .collect()
-}
-
-fn collect(model: &Model, crank_rad: &[f64], chunks: &[Chunk], periodic: bool) -> LoadedSweep {
+fn collect(model: &Model, crank_rad: &[f64], columns: Columns, periodic: bool) -> LoadedSweep {
     let mut out = LoadedSweep::default();
-    let lag = concat(chunks, |c| &c.lag);
-    let output_lag = concat(chunks, |c| &c.output_lag);
-    if let Some(r) = &model.rollers {
-        let n = r.count();
-        out.rollers = Some(RollerCurves {
-            lag_rad: lag.clone(),
-            force_n: columns(chunks, n, |c| &c.roller_force),
-            pressure_mpa: columns(chunks, n, |c| &c.pressure),
-            half_width_mm: columns(chunks, n, |c| &c.half_width),
-            contacts: concat(chunks, |c| &c.contacts),
-        });
-    }
-    if let Some(p) = &model.pins {
-        out.pins = Some(PinCurves {
-            output_lag_rad: output_lag.clone(),
-            force_n: columns(chunks, p.count, |c| &c.pin_force),
-        });
-    }
-    if model.bearing {
-        let fb = concat(chunks, |c| &c.bearing);
-        out.bearing = Some(BearingCurves {
-            force_n: fb.iter().map(|f| f.norm()).collect(),
-            angle_rad: concat(chunks, |c| &c.bearing_angle),
-            residual: concat(chunks, |c| &c.residual),
-            deflection_mm: concat(chunks, |c| &c.deflection),
-        });
-    }
+    let c = columns;
     if model.rollers.is_some() {
-        let te_rad: Vec<f64> = lag.iter().zip(&output_lag).map(|(b, o)| b + o).collect();
+        let te_rad: Vec<f64> = c
+            .lag
+            .iter()
+            .zip(&c.output_lag)
+            .map(|(b, o)| b + o)
+            .collect();
         let h = match crank_rad {
             [a, b, ..] => b - a,
             _ => 1.0,
@@ -327,6 +344,29 @@ fn collect(model: &Model, crank_rad: &[f64], chunks: &[Chunk], periodic: bool) -
         let ratio = derivative(&te_rad, h, periodic)
             .map(|d| d.iter().map(|dd| 1.0 / (1.0 / nc - dd)).collect());
         out.transmission = Some(Transmission { te_rad, ratio });
+    }
+    if model.rollers.is_some() {
+        out.rollers = Some(RollerCurves {
+            lag_rad: c.lag,
+            force_n: c.roller_force,
+            pressure_mpa: c.pressure,
+            half_width_mm: c.half_width,
+            contacts: c.contacts,
+        });
+    }
+    if model.pins.is_some() {
+        out.pins = Some(PinCurves {
+            output_lag_rad: c.output_lag,
+            force_n: c.pin_force,
+        });
+    }
+    if model.bearing {
+        out.bearing = Some(BearingCurves {
+            force_n: c.bearing_force,
+            angle_rad: c.bearing_angle,
+            residual: c.residual,
+            deflection_mm: c.deflection,
+        });
     }
     out
 }

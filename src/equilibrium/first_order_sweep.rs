@@ -18,13 +18,19 @@
 //! Per pin j (w_j its unit direction, ψ = −φ/nc + β the disc rotation):
 //!   a_j = rw·(R(ψ)·w_j) × (−e_φ), gap c − βo·a_j, force F_j·(−e_φ) at the hole wall
 //!   O + rw·R(ψ)·w_j − R_h·e_φ.
+//!
+//! The root of each linear balance is first sought on the active set of the last angle the
+//! kernel settled: with A = Σ k·l² and B = Σ k·l·g over that set, x = (T + B)/A is the root when
+//! the set of contacts at x is that set (the balance is then A·x − B = T exactly on it). It
+//! usually is from one crank step to the next; when it is not, `piecewise_linear_root_near`
+//! starts from the warm-start guess.
 
 use super::pins::Pins;
 use super::rollers::Rollers;
 use super::solve::piecewise_linear_root_near;
 use super::sweep::{BalanceSums, Model};
 use crate::contact::law;
-use crate::geometry::{cross, rotate, sin_cos, Vec2};
+use crate::geometry::{sin_cos, Vec2};
 use crate::spec::{ContactLaw, GeometryMode};
 use std::f64::consts::PI;
 
@@ -39,15 +45,37 @@ pub struct FirstOrderSweep<'a> {
     /// E*/(π·L) and 4/(π·L·E*): p0 = sqrt(F·(1/R*)·E*/(πL)), b = sqrt(F·R*·4/(πLE*)).
     pressure_factor: f64,
     width_factor: f64,
+    /// The roller directions u_i and the pin directions w_j as x and y columns, so that the
+    /// per-angle loops over them vectorise.
+    roller_units: Columns,
+    pin_units: Columns,
 }
 
-/// The per-roller and per-pin entries the curves record at one angle, written in place.
+/// x and y components of a set of unit vectors.
+#[derive(Debug, Default)]
+struct Columns {
+    x: Vec<f64>,
+    y: Vec<f64>,
+}
+
+impl Columns {
+    fn of(v: &[Vec2]) -> Self {
+        Columns {
+            x: v.iter().map(|u| u.x).collect(),
+            y: v.iter().map(|u| u.y).collect(),
+        }
+    }
+}
+
+/// The per-roller and per-pin entries the curves record at one angle, written in place: entry
+/// `k` of column i (roller or pin i) of each. Every entry of every roller and pin is written.
 #[derive(Debug)]
-pub struct Row<'a> {
-    pub roller_force_n: &'a mut [f64],
-    pub pressure_mpa: &'a mut [f64],
-    pub half_width_mm: &'a mut [f64],
-    pub pin_force_n: &'a mut [f64],
+pub struct Row<'r, 'c> {
+    pub k: usize,
+    pub roller_force_n: &'r mut [&'c mut [f64]],
+    pub pressure_mpa: &'r mut [&'c mut [f64]],
+    pub half_width_mm: &'r mut [&'c mut [f64]],
+    pub pin_force_n: &'r mut [&'c mut [f64]],
 }
 
 /// The rest of what the curves record at one angle (engine units; `bearing_n` is zero when
@@ -61,31 +89,78 @@ pub struct Summary {
     pub residual: f64,
 }
 
-/// Scratch space reused over a chunk of angles.
-#[derive(Debug, Default)]
+/// Most rollers and pins the kernel takes: it keeps an active set as a bit mask.
+const MAX_TERMS: usize = 64;
+
+/// Scratch space reused over a chunk of angles, and the active sets of the last angle settled.
+/// Fixed-size columns, so that the loops over them vectorise without aliasing checks.
+#[derive(Debug)]
 pub struct Scratch {
-    /// (g, l) of every roller.
+    /// Per roller: cos φi, sin φi, S_i, g_i, l_i.
+    cos: [f64; MAX_TERMS],
+    sin: [f64; MAX_TERMS],
+    big_s: [f64; MAX_TERMS],
+    gap: [f64; MAX_TERMS],
+    arm: [f64; MAX_TERMS],
+    /// Per pin: the gap c (the hole clearance) and the arm a_j.
+    pin_gap: [f64; MAX_TERMS],
+    pin_arm: [f64; MAX_TERMS],
+    /// (g, l) pairs and breakpoints for `piecewise_linear_root_near`.
     terms: Vec<(f64, f64)>,
-    /// (c, a) of every pin.
-    pin_terms: Vec<(f64, f64)>,
-    /// (cos φi, sin φi, S_i) of every roller.
-    phases: Vec<(f64, f64, f64)>,
     events: Vec<(f64, f64, f64)>,
+    /// Contacts (bit i: term i has a negative gap) of the rollers and the pins at the last
+    /// angle this kernel settled; empty before the first and after a fall-back.
+    last: (u64, u64),
+}
+
+impl Default for Scratch {
+    fn default() -> Self {
+        let zeros = [0.0; MAX_TERMS];
+        Scratch {
+            cos: zeros,
+            sin: zeros,
+            big_s: zeros,
+            gap: zeros,
+            arm: zeros,
+            pin_gap: zeros,
+            pin_arm: zeros,
+            terms: Vec::new(),
+            events: Vec::new(),
+            last: (0, 0),
+        }
+    }
+}
+
+impl Scratch {
+    /// Forget the last active sets (the next angle starts from its warm-start guess).
+    pub fn forget(&mut self) {
+        self.last = (0, 0);
+    }
+}
+
+/// A linear balance Σ k·max(0, l·x − g)·l = T over terms (g, l) given as columns.
+struct Balance<'s> {
+    stiffness: f64,
+    gap: &'s [f64],
+    arm: &'s [f64],
 }
 
 impl<'a> FirstOrderSweep<'a> {
     /// The lean sweep of `model`, or `None` when the model needs the general solve: exact
-    /// geometry, the logarithmic law, a compliant bearing, or no rollers.
+    /// geometry, the logarithmic law, a compliant bearing, no rollers, or more than 64 rollers
+    /// or pins (the kernel keeps an active set as a bit mask).
     pub fn new(model: &'a Model) -> Option<Self> {
         let r = model.rollers.as_ref()?;
         let applies = r.geometry == GeometryMode::FirstOrder
             && r.law == ContactLaw::PaperLinear
-            && model.bearing_stiffness_n_per_mm.is_none();
+            && model.bearing_stiffness_n_per_mm.is_none()
+            && r.units.len() <= MAX_TERMS;
         if !applies {
             return None;
         }
         let pins = match &model.pins {
-            Some(p) => Some((p, p.linear_stiffness()?)),
+            Some(p) if p.base.len() <= MAX_TERMS => Some((p, p.linear_stiffness()?)),
+            Some(_) => return None,
             None => None,
         };
         let c = &r.materials;
@@ -96,45 +171,65 @@ impl<'a> FirstOrderSweep<'a> {
             roller_stiffness: law::paper_linear_stiffness(c),
             pressure_factor: c.contact_modulus_mpa / (PI * c.length_mm),
             width_factor: 4.0 / (PI * c.length_mm * c.contact_modulus_mpa),
+            roller_units: Columns::of(&r.units),
+            pin_units: pins.map_or_else(Columns::default, |(p, _)| Columns::of(&p.base)),
         })
     }
 
-    /// Solve crank φ (e_φ its direction) from the guesses of the lags, writing `row`. `None`
-    /// leaves the angle to the general solve (see the module documentation); `row` is then
-    /// partly written.
+    /// Solve crank φ (e_φ its direction), writing `row`. `guess` gives the warm-start lags
+    /// (β, βo) when the last angle's active sets do not settle this one. `None` leaves the
+    /// angle to the general solve (see the module documentation); `row` is then partly
+    /// written and `scratch` has forgotten its active sets.
     pub fn solve(
         &self,
         crank_rad: f64,
         e_phi: Vec2,
-        (guess_lag, guess_output): (f64, f64),
+        guess: impl Fn() -> (f64, f64),
         scratch: &mut Scratch,
-        row: &mut Row<'_>,
+        row: &mut Row<'_, '_>,
+    ) -> Option<Summary> {
+        let summary = self.try_solve(crank_rad, e_phi, guess, scratch, row);
+        if summary.is_none() {
+            scratch.forget();
+        }
+        summary
+    }
+
+    fn try_solve(
+        &self,
+        crank_rad: f64,
+        e_phi: Vec2,
+        guess: impl Fn() -> (f64, f64),
+        scratch: &mut Scratch,
+        row: &mut Row<'_, '_>,
     ) -> Option<Summary> {
         if self.model.torque_nmm == 0.0 {
             return None;
         }
         let mut sums = BalanceSums::default();
-        let Row {
-            roller_force_n,
-            pressure_mpa,
-            half_width_mm,
-            pin_force_n,
-        } = row;
-        let (roller_force_n, pin_force_n) = (&mut **roller_force_n, &mut **pin_force_n);
-        let (lag, contacts) =
-            self.rollers_at(e_phi, guess_lag, scratch, &mut sums, roller_force_n)?;
-        self.hertz(lag, scratch, roller_force_n, pressure_mpa, half_width_mm);
+        self.roller_terms(e_phi, scratch);
+        let (lag, mask) = self.settle(
+            Balance {
+                stiffness: self.roller_stiffness,
+                gap: &scratch.gap[..self.roller_units.x.len()],
+                arm: &scratch.arm[..self.roller_units.x.len()],
+            },
+            scratch.last.0,
+            || guess().0,
+            (&mut scratch.terms, &mut scratch.events),
+            (row.roller_force_n, row.k),
+        )?;
+        scratch.last.0 = mask;
+        self.roller_contacts(e_phi, lag, mask, scratch, row, &mut sums);
         let mut output_lag = 0.0;
         if let Some((p, k)) = self.pins {
             let psi = -crank_rad / self.model.teeth as f64 + lag;
-            let guess = guess_output;
-            output_lag =
-                self.pins_at(p, k, (e_phi, psi), guess, scratch, &mut sums, pin_force_n)?;
+            output_lag = self.pins_at(p, k, (e_phi, psi), &guess, scratch, row, &mut sums)?;
         }
         let mut summary = Summary {
             lag_rad: lag,
             output_lag_rad: output_lag,
-            contacts,
+            contacts: mask.count_ones() as usize,
             ..Summary::default()
         };
         if self.model.bearing {
@@ -146,185 +241,174 @@ impl<'a> FirstOrderSweep<'a> {
         finite.then_some(summary)
     }
 
-    /// β with Σ F·l = T and the roller forces into `force_n`, those in contact added to
-    /// `sums`; with the number of contacts. `None` when the root is not settled to the solver
-    /// tolerance.
-    fn rollers_at(
-        &self,
-        e_phi: Vec2,
-        guess: f64,
-        scratch: &mut Scratch,
-        sums: &mut BalanceSums,
-        force_n: &mut [f64],
-    ) -> Option<(f64, usize)> {
-        let r = self.rollers;
-        let k = self.roller_stiffness;
-        let n = r.units.len();
-        scratch.terms.resize(n, (0.0, 0.0));
-        scratch.phases.resize(n, (0.0, 0.0, 0.0));
-        // Terms first, in a loop without branches (the compiler can vectorise it), then the
-        // active set at the guess.
-        let rollers = r
-            .units
-            .iter()
-            .zip(&mut scratch.terms)
-            .zip(&mut scratch.phases);
-        for ((u, term), phase) in rollers {
-            let (c, s) = (u.dot(&e_phi), cross(e_phi, *u));
-            let (g, l, big_s) = r.first_order.with_s(c, s);
-            (*term, *phase) = ((g, l), (c, s, big_s));
+    /// cos φi, sin φi, S_i, g_i and l_i of every roller into `scratch`, in one loop over
+    /// columns (no branches, so it vectorises).
+    fn roller_terms(&self, e_phi: Vec2, scratch: &mut Scratch) {
+        let u = &self.roller_units;
+        let n = u.x.len();
+        let coefficients = &self.rollers.first_order;
+        let (ux, uy) = (&u.x[..n], &u.y[..n]);
+        for i in 0..n {
+            let (c, s) = (
+                ux[i] * e_phi.x + uy[i] * e_phi.y,
+                e_phi.x * uy[i] - e_phi.y * ux[i],
+            );
+            let (g, l, root) = coefficients.with_s(c, s);
+            scratch.cos[i] = c;
+            scratch.sin[i] = s;
+            scratch.big_s[i] = root;
+            scratch.gap[i] = g;
+            scratch.arm[i] = l;
         }
-        let lag = self.settle(k, guess, &scratch.terms, &mut scratch.events, force_n)?;
-        let rrp = r.design.roller_radius_mm;
-        let mut contacts = 0;
-        for (i, &force) in force_n.iter().enumerate() {
-            if force > 0.0 {
-                contacts += 1;
-                let normal = (r.units[i] - r.first_order.k1 * e_phi) / scratch.phases[i].2;
-                let point = r.centres[i] - rrp * normal;
-                sums.roller(point, -force * normal, force * scratch.terms[i].1);
-            }
-        }
-        Some((lag, contacts))
     }
 
-    /// Hertz peak pressure and half-width of every roller (`contact::hertz_line`, zero out of
-    /// contact), with 1/R* = max(κ + 1/r_rp, 1/Rp) as in `Rollers::line_contact` and κ the
-    /// curvature at the roller's locus parameter.
-    fn hertz(
+    /// The rollers in `mask` (in contact at lag β, forces in `row`): their forces into `sums`,
+    /// and Hertz peak pressure and half-width of every roller into `row` (`contact::hertz_line`,
+    /// zero out of contact), with 1/R* = max(κ + 1/r_rp, 1/Rp) as in `Rollers::line_contact`
+    /// and κ the curvature at the roller's locus parameter.
+    fn roller_contacts(
         &self,
+        e_phi: Vec2,
         lag: f64,
+        mask: u64,
         scratch: &Scratch,
-        force_n: &[f64],
-        pressure_mpa: &mut [f64],
-        half_width_mm: &mut [f64],
+        row: &mut Row<'_, '_>,
+        sums: &mut BalanceSums,
     ) {
         let r = self.rollers;
         let profile = &r.mesh.profile;
         let (sin_nc_lag, cos_nc_lag) = sin_cos(self.model.teeth as f64 * lag);
         let d = &r.design;
         let (min_inv_r, roller_inv_r) = (1.0 / d.roller_circle_radius_mm, 1.0 / d.roller_radius_mm);
-        for (i, &force) in force_n.iter().enumerate() {
-            if force <= 0.0 {
-                (pressure_mpa[i], half_width_mm[i]) = (0.0, 0.0);
+        let k1_e = r.first_order.k1 * e_phi;
+        let k = row.k;
+        for i in 0..r.units.len() {
+            if mask >> i & 1 == 0 {
+                (row.pressure_mpa[i][k], row.half_width_mm[i][k]) = (0.0, 0.0);
                 continue;
             }
-            let (c, s, _) = scratch.phases[i];
+            let force = row.roller_force_n[i][k];
+            let normal = (r.units[i] - k1_e) / scratch.big_s[i];
+            let point = r.centres[i] - d.roller_radius_mm * normal;
+            sums.roller(point, -force * normal, force * scratch.arm[i]);
+            let (c, s) = (scratch.cos[i], scratch.sin[i]);
             let locus = profile.locus_curvature_at(c * cos_nc_lag - s * sin_nc_lag);
             let kappa = locus / (1.0 - profile.offset_mm * locus);
             let inv_r = (kappa + roller_inv_r).max(min_inv_r);
-            pressure_mpa[i] = (force * inv_r * self.pressure_factor).sqrt();
-            half_width_mm[i] = (force / inv_r * self.width_factor).sqrt();
+            row.pressure_mpa[i][k] = (force * inv_r * self.pressure_factor).sqrt();
+            row.half_width_mm[i][k] = (force / inv_r * self.width_factor).sqrt();
         }
     }
 
-    /// βo with Σ F·a = T at disc rotation ψ, the pin forces into `force_n` and those in
-    /// contact into `sums`.
+    /// βo with Σ F·a = T at disc rotation ψ, the pin forces into `row` and those in contact
+    /// into `sums`.
     #[allow(clippy::too_many_arguments)]
     fn pins_at(
         &self,
         p: &Pins,
         k: f64,
         (e_phi, psi): (Vec2, f64),
-        guess: f64,
+        guess: &impl Fn() -> (f64, f64),
         scratch: &mut Scratch,
+        row: &mut Row<'_, '_>,
         sums: &mut BalanceSums,
-        force_n: &mut [f64],
     ) -> Option<f64> {
         let (s, c) = psi.sin_cos();
-        let direction = -e_phi;
-        scratch.pin_terms.resize(p.base.len(), (0.0, 0.0));
-        for (w, term) in p.base.iter().zip(&mut scratch.pin_terms) {
-            let arm = cross(rotate(*w, c, s) * p.circle_radius_mm, direction);
-            *term = (p.clearance_mm, arm);
+        let w = &self.pin_units;
+        let m = w.x.len();
+        scratch.pin_gap[..m].fill(p.clearance_mm);
+        let rw = p.circle_radius_mm;
+        // a_j = (rw·R(ψ)·w_j) × (−e_φ), as `cross(rotate(w, c, s)·rw, −e_φ)`.
+        for ((arm, &x), &y) in scratch.pin_arm[..m].iter_mut().zip(&w.x).zip(&w.y) {
+            let (rx, ry) = ((c * x - s * y) * rw, (s * x + c * y) * rw);
+            *arm = rx * -e_phi.y - ry * -e_phi.x;
         }
-        let terms = &scratch.pin_terms;
-        let lag = self.settle(k, guess, terms, &mut scratch.events, force_n)?;
+        let (lag, mask) = self.settle(
+            Balance {
+                stiffness: k,
+                gap: &scratch.pin_gap[..m],
+                arm: &scratch.pin_arm[..m],
+            },
+            scratch.last.1,
+            || guess().1,
+            (&mut scratch.terms, &mut scratch.events),
+            (row.pin_force_n, row.k),
+        )?;
+        scratch.last.1 = mask;
+        let direction = -e_phi;
         let wall = e_phi * p.eccentricity_mm + direction * p.hole_radius_mm;
-        for ((w, &force), &(_, a)) in p.base.iter().zip(&*force_n).zip(terms) {
-            if force > 0.0 {
-                let point = wall + rotate(*w, c, s) * p.circle_radius_mm;
-                sums.pin(point, force * direction, force * a);
-            }
+        for j in (0..m).filter(|j| mask >> j & 1 == 1) {
+            let force = row.pin_force_n[j][row.k];
+            let point = wall + Vec2::new(c * w.x[j] - s * w.y[j], s * w.x[j] + c * w.y[j]) * rw;
+            sums.pin(point, force * direction, force * scratch.pin_arm[j]);
         }
         Some(lag)
     }
-}
 
-/// The active set (terms with l·x > g, as a bit mask) at one lag and its sums A = Σ k·l² and
-/// B = Σ k·l·g over it, as in `solve::piecewise_linear_root_near`.
-#[derive(Debug, Default, Clone, Copy)]
-struct Segment {
-    /// Bit i for term i; terms beyond the 64th are not tracked (`settle` then falls back).
-    mask: u64,
-    a: f64,
-    b: f64,
-}
-
-impl Segment {
-    #[inline]
-    fn add(&mut self, i: usize, k: f64, (g, l): (f64, f64), x: f64) {
-        if active(g, l, x) {
-            self.mask |= 1 << (i % 64);
-            self.a += k * l * l;
-            self.b += k * l * g;
-        }
-    }
-}
-
-impl FirstOrderSweep<'_> {
-    /// The root of the linear balance Σ k·max(0, l·x − g)·l = T and the forces there, into
-    /// `force_n`. The first Newton step from the guess's segment, x = (T + B)/A, is the root
-    /// when the active set at x is the guess's (the first step of `piecewise_linear_root_near`,
-    /// checked in the pass that computes the forces); otherwise `piecewise_linear_root_near`
-    /// decides. `None` also when the forces miss the torque by more than the solver tolerance,
+    /// The root x of the linear balance and the forces there into `out` (entry `at` of column i),
+    /// with the set of contacts at x. First the Newton step on the active set `last` (see the
+    /// module documentation), then `piecewise_linear_root_near` from `guess`. `None` when the
+    /// forces miss the torque by more than the solver tolerance,
     /// |Σ F·l − T| > rel_tol·max(|T|, Σ |F·l|) (the round-off of a tiny torque, left to the
     /// general solve's straddle).
     fn settle(
         &self,
-        k: f64,
-        guess: f64,
-        terms: &[(f64, f64)],
-        events: &mut Vec<(f64, f64, f64)>,
-        force_n: &mut [f64],
-    ) -> Option<f64> {
+        balance: Balance<'_>,
+        last: u64,
+        guess: impl FnOnce() -> f64,
+        (terms, events): (&mut Vec<(f64, f64)>, &mut Vec<(f64, f64, f64)>),
+        out: (&mut [&mut [f64]], usize),
+    ) -> Option<(f64, u64)> {
         let (torque, rel_tol) = (self.model.torque_nmm, self.model.settings.rel_tol);
         let settled = |(moment, scale): (f64, f64)| {
             (moment - torque).abs() <= rel_tol * torque.abs().max(scale)
         };
-        let mut at_guess = Segment::default();
-        for (i, &term) in terms.iter().enumerate() {
-            at_guess.add(i, k, term, guess);
+        let Balance {
+            stiffness: k,
+            gap,
+            arm,
+        } = balance;
+        let (mut a, mut b) = (0.0, 0.0);
+        let mut bits = last;
+        while bits != 0 {
+            let i = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            a += k * arm[i] * arm[i];
+            b += k * arm[i] * gap[i];
         }
-        if terms.len() <= 64 && at_guess.a > 0.0 {
-            let x = (torque + at_guess.b) / at_guess.a;
-            let (moment, scale, mask) = linear_forces(k, terms, x, force_n);
-            if mask == at_guess.mask {
-                return settled((moment, scale)).then_some(x);
+        if a > 0.0 {
+            let x = (torque + b) / a;
+            let (moment, scale, mask) = linear_forces(k, gap, arm, x, out.0, out.1);
+            if mask == last {
+                return settled((moment, scale)).then_some((x, mask));
             }
         }
-        let x = piecewise_linear_root_near(k, terms, torque, guess, events)?;
-        let (moment, scale, _) = linear_forces(k, terms, x, force_n);
-        settled((moment, scale)).then_some(x)
+        terms.clear();
+        terms.extend(gap.iter().zip(arm).map(|(&g, &l)| (g, l)));
+        let x = piecewise_linear_root_near(k, terms, torque, guess(), events)?;
+        let (moment, scale, mask) = linear_forces(k, gap, arm, x, out.0, out.1);
+        settled((moment, scale)).then_some((x, mask))
     }
 }
 
-/// Whether a term (g, l) is in contact at x, as `solve::piecewise_linear_root_near` decides it.
-#[inline]
-fn active(g: f64, l: f64, x: f64) -> bool {
-    l != 0.0 && l * x > g
-}
-
-/// Linear-law forces k·max(0, l·x − g) of the terms (g, l) at x into `force_n`; returns the
-/// moment Σ F·l, its scale Σ |F·l| and the mask of the active set at x (`Segment`).
-fn linear_forces(k: f64, terms: &[(f64, f64)], x: f64, force_n: &mut [f64]) -> (f64, f64, u64) {
+/// Linear-law forces k·max(0, l·x − g) of the terms (g, l) at x into entry `at` of the
+/// columns `out`; returns the moment Σ F·l, its scale Σ |F·l| and the contacts (bit i: g − l·x < 0).
+fn linear_forces(
+    k: f64,
+    gap: &[f64],
+    arm: &[f64],
+    x: f64,
+    out: &mut [&mut [f64]],
+    at: usize,
+) -> (f64, f64, u64) {
     let (mut moment, mut scale, mut mask) = (0.0, 0.0, 0u64);
-    for (i, (&(g, l), f)) in terms.iter().zip(force_n).enumerate() {
-        let gap = g - l * x;
-        *f = if gap < 0.0 { -gap * k } else { 0.0 };
-        moment += *f * l;
-        scale += (*f * l).abs();
-        mask |= u64::from(active(g, l, x)) << (i % 64);
+    for (i, ((&g, &l), column)) in gap.iter().zip(arm).zip(out).enumerate() {
+        let closing = g - l * x;
+        let f = if closing < 0.0 { -closing * k } else { 0.0 };
+        column[at] = f;
+        moment += f * l;
+        scale += (f * l).abs();
+        mask |= u64::from(closing < 0.0) << i;
     }
     (moment, scale, mask)
 }

@@ -4,7 +4,7 @@
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
-use crate::geometry::{cross, Vec2};
+use crate::geometry::{cross, NearbySinCos, Vec2};
 use rayon::prelude::*;
 
 /// Crank angles solved in sequence by one worker, warm-starting each from the previous. The
@@ -282,9 +282,10 @@ fn solve_chunk(
     let mut work = Work::default();
     let lean = FirstOrderSweep::new(model);
     let mut scratch = Scratch::default();
+    let mut crank_direction = NearbySinCos::default();
     for (k, &phi) in crank_rad.iter().enumerate() {
         if let Some(lean) = &lean {
-            let (sin, cos) = phi.sin_cos();
+            let (sin, cos) = crank_direction.sin_cos(phi);
             let e_phi = Vec2::new(cos, sin);
             let guess = || work.guess(phi);
             if let Some(s) = lean.solve(phi, e_phi, guess, &mut scratch, &mut chunk.row(k)) {

@@ -30,7 +30,7 @@ use super::rollers::Rollers;
 use super::solve::piecewise_linear_root_near;
 use super::sweep::{BalanceSums, Model};
 use crate::contact::law;
-use crate::geometry::{sin_cos, Vec2};
+use crate::geometry::{sin_cos, NearbySinCos, Vec2};
 use crate::spec::{ContactLaw, GeometryMode};
 use std::f64::consts::PI;
 
@@ -68,7 +68,9 @@ impl Columns {
 }
 
 /// The per-roller and per-pin entries the curves record at one angle, written in place: entry
-/// `k` of column i (roller or pin i) of each. Every entry of every roller and pin is written.
+/// `k` of column i (roller or pin i) of each. Only the entries of rollers and pins in contact
+/// are written: the others must be zero already (a sweep's columns start at zero, and each
+/// entry belongs to one angle).
 #[derive(Debug)]
 pub struct Row<'r, 'c> {
     pub k: usize,
@@ -96,21 +98,24 @@ const MAX_TERMS: usize = 64;
 /// Fixed-size columns, so that the loops over them vectorise without aliasing checks.
 #[derive(Debug)]
 pub struct Scratch {
-    /// Per roller: cos φi, sin φi, S_i, g_i, l_i.
+    /// Per roller: cos φi, sin φi, 1/S_i, g_i, l_i.
     cos: [f64; MAX_TERMS],
     sin: [f64; MAX_TERMS],
-    big_s: [f64; MAX_TERMS],
+    inverse_s: [f64; MAX_TERMS],
     gap: [f64; MAX_TERMS],
     arm: [f64; MAX_TERMS],
     /// Per pin: the gap c (the hole clearance) and the arm a_j.
     pin_gap: [f64; MAX_TERMS],
     pin_arm: [f64; MAX_TERMS],
-    /// (g, l) pairs and breakpoints for `piecewise_linear_root_near`.
-    terms: Vec<(f64, f64)>,
-    events: Vec<(f64, f64, f64)>,
+    /// Forces of the rollers and of the pins at the root, N.
+    force: [f64; MAX_TERMS],
+    pin_force: [f64; MAX_TERMS],
+    root: RootScratch,
     /// Contacts (bit i: term i has a negative gap) of the rollers and the pins at the last
     /// angle this kernel settled; empty before the first and after a fall-back.
     last: (u64, u64),
+    /// sin and cos of the disc rotation ψ, which moves little from one angle to the next.
+    disc_rotation: NearbySinCos,
 }
 
 impl Default for Scratch {
@@ -119,16 +124,25 @@ impl Default for Scratch {
         Scratch {
             cos: zeros,
             sin: zeros,
-            big_s: zeros,
+            inverse_s: zeros,
             gap: zeros,
             arm: zeros,
             pin_gap: zeros,
             pin_arm: zeros,
-            terms: Vec::new(),
-            events: Vec::new(),
+            force: zeros,
+            pin_force: zeros,
+            root: RootScratch::default(),
             last: (0, 0),
+            disc_rotation: NearbySinCos::default(),
         }
     }
+}
+
+/// (g, l) pairs and breakpoints for `piecewise_linear_root_near`.
+#[derive(Debug, Default)]
+struct RootScratch {
+    terms: Vec<(f64, f64)>,
+    events: Vec<(f64, f64, f64)>,
 }
 
 impl Scratch {
@@ -138,11 +152,13 @@ impl Scratch {
     }
 }
 
-/// A linear balance Σ k·max(0, l·x − g)·l = T over terms (g, l) given as columns.
+/// A linear balance Σ k·max(0, l·x − g)·l = T over terms (g, l) given as columns, and the
+/// column its forces are written to.
 struct Balance<'s> {
     stiffness: f64,
     gap: &'s [f64],
     arm: &'s [f64],
+    force: &'s mut [f64],
 }
 
 impl<'a> FirstOrderSweep<'a> {
@@ -208,16 +224,17 @@ impl<'a> FirstOrderSweep<'a> {
         }
         let mut sums = BalanceSums::default();
         self.roller_terms(e_phi, scratch);
+        let n = self.roller_units.x.len();
         let (lag, mask) = self.settle(
             Balance {
                 stiffness: self.roller_stiffness,
-                gap: &scratch.gap[..self.roller_units.x.len()],
-                arm: &scratch.arm[..self.roller_units.x.len()],
+                gap: &scratch.gap[..n],
+                arm: &scratch.arm[..n],
+                force: &mut scratch.force[..n],
             },
             scratch.last.0,
             || guess().0,
-            (&mut scratch.terms, &mut scratch.events),
-            (row.roller_force_n, row.k),
+            &mut scratch.root,
         )?;
         scratch.last.0 = mask;
         self.roller_contacts(e_phi, lag, mask, scratch, row, &mut sums);
@@ -241,7 +258,7 @@ impl<'a> FirstOrderSweep<'a> {
         finite.then_some(summary)
     }
 
-    /// cos φi, sin φi, S_i, g_i and l_i of every roller into `scratch`, in one loop over
+    /// cos φi, sin φi, 1/S_i, g_i and l_i of every roller into `scratch`, in one loop over
     /// columns (no branches, so it vectorises).
     fn roller_terms(&self, e_phi: Vec2, scratch: &mut Scratch) {
         let u = &self.roller_units;
@@ -253,10 +270,10 @@ impl<'a> FirstOrderSweep<'a> {
                 ux[i] * e_phi.x + uy[i] * e_phi.y,
                 e_phi.x * uy[i] - e_phi.y * ux[i],
             );
-            let (g, l, root) = coefficients.with_s(c, s);
+            let (g, l, inverse_s) = coefficients.with_inverse_s(c, s);
             scratch.cos[i] = c;
             scratch.sin[i] = s;
-            scratch.big_s[i] = root;
+            scratch.inverse_s[i] = inverse_s;
             scratch.gap[i] = g;
             scratch.arm[i] = l;
         }
@@ -282,18 +299,14 @@ impl<'a> FirstOrderSweep<'a> {
         let (min_inv_r, roller_inv_r) = (1.0 / d.roller_circle_radius_mm, 1.0 / d.roller_radius_mm);
         let k1_e = r.first_order.k1 * e_phi;
         let k = row.k;
-        for i in 0..r.units.len() {
-            if mask >> i & 1 == 0 {
-                (row.pressure_mpa[i][k], row.half_width_mm[i][k]) = (0.0, 0.0);
-                continue;
-            }
-            let force = row.roller_force_n[i][k];
-            let normal = (r.units[i] - k1_e) / scratch.big_s[i];
+        for i in (0..r.units.len()).filter(|i| mask >> i & 1 == 1) {
+            let force = scratch.force[i];
+            row.roller_force_n[i][k] = force;
+            let normal = (r.units[i] - k1_e) * scratch.inverse_s[i];
             let point = r.centres[i] - d.roller_radius_mm * normal;
-            sums.roller(point, -force * normal, force * scratch.arm[i]);
+            sums.roller(point, force, -force * normal, force * scratch.arm[i]);
             let (c, s) = (scratch.cos[i], scratch.sin[i]);
-            let locus = profile.locus_curvature_at(c * cos_nc_lag - s * sin_nc_lag);
-            let kappa = locus / (1.0 - profile.offset_mm * locus);
+            let kappa = profile.curvature_at(c * cos_nc_lag - s * sin_nc_lag);
             let inv_r = (kappa + roller_inv_r).max(min_inv_r);
             row.pressure_mpa[i][k] = (force * inv_r * self.pressure_factor).sqrt();
             row.half_width_mm[i][k] = (force / inv_r * self.width_factor).sqrt();
@@ -313,7 +326,7 @@ impl<'a> FirstOrderSweep<'a> {
         row: &mut Row<'_, '_>,
         sums: &mut BalanceSums,
     ) -> Option<f64> {
-        let (s, c) = psi.sin_cos();
+        let (s, c) = scratch.disc_rotation.sin_cos(psi);
         let w = &self.pin_units;
         let m = w.x.len();
         scratch.pin_gap[..m].fill(p.clearance_mm);
@@ -328,24 +341,25 @@ impl<'a> FirstOrderSweep<'a> {
                 stiffness: k,
                 gap: &scratch.pin_gap[..m],
                 arm: &scratch.pin_arm[..m],
+                force: &mut scratch.pin_force[..m],
             },
             scratch.last.1,
             || guess().1,
-            (&mut scratch.terms, &mut scratch.events),
-            (row.pin_force_n, row.k),
+            &mut scratch.root,
         )?;
         scratch.last.1 = mask;
         let direction = -e_phi;
         let wall = e_phi * p.eccentricity_mm + direction * p.hole_radius_mm;
         for j in (0..m).filter(|j| mask >> j & 1 == 1) {
-            let force = row.pin_force_n[j][row.k];
+            let force = scratch.pin_force[j];
+            row.pin_force_n[j][row.k] = force;
             let point = wall + Vec2::new(c * w.x[j] - s * w.y[j], s * w.x[j] + c * w.y[j]) * rw;
-            sums.pin(point, force * direction, force * scratch.pin_arm[j]);
+            sums.pin(point, force, force * direction, force * scratch.pin_arm[j]);
         }
         Some(lag)
     }
 
-    /// The root x of the linear balance and the forces there into `out` (entry `at` of column i),
+    /// The root x of the linear balance and the forces there into its force column,
     /// with the set of contacts at x. First the Newton step on the active set `last` (see the
     /// module documentation), then `piecewise_linear_root_near` from `guess`. `None` when the
     /// forces miss the torque by more than the solver tolerance,
@@ -356,8 +370,7 @@ impl<'a> FirstOrderSweep<'a> {
         balance: Balance<'_>,
         last: u64,
         guess: impl FnOnce() -> f64,
-        (terms, events): (&mut Vec<(f64, f64)>, &mut Vec<(f64, f64, f64)>),
-        out: (&mut [&mut [f64]], usize),
+        root: &mut RootScratch,
     ) -> Option<(f64, u64)> {
         let (torque, rel_tol) = (self.model.torque_nmm, self.model.settings.rel_tol);
         let settled = |(moment, scale): (f64, f64)| {
@@ -367,6 +380,7 @@ impl<'a> FirstOrderSweep<'a> {
             stiffness: k,
             gap,
             arm,
+            force,
         } = balance;
         let (mut a, mut b) = (0.0, 0.0);
         let mut bits = last;
@@ -378,34 +392,27 @@ impl<'a> FirstOrderSweep<'a> {
         }
         if a > 0.0 {
             let x = (torque + b) / a;
-            let (moment, scale, mask) = linear_forces(k, gap, arm, x, out.0, out.1);
+            let (moment, scale, mask) = linear_forces(k, gap, arm, x, force);
             if mask == last {
                 return settled((moment, scale)).then_some((x, mask));
             }
         }
-        terms.clear();
-        terms.extend(gap.iter().zip(arm).map(|(&g, &l)| (g, l)));
-        let x = piecewise_linear_root_near(k, terms, torque, guess(), events)?;
-        let (moment, scale, mask) = linear_forces(k, gap, arm, x, out.0, out.1);
+        root.terms.clear();
+        root.terms
+            .extend(gap.iter().zip(arm).map(|(&g, &l)| (g, l)));
+        let x = piecewise_linear_root_near(k, &root.terms, torque, guess(), &mut root.events)?;
+        let (moment, scale, mask) = linear_forces(k, gap, arm, x, force);
         settled((moment, scale)).then_some((x, mask))
     }
 }
 
-/// Linear-law forces k·max(0, l·x − g) of the terms (g, l) at x into entry `at` of the
-/// columns `out`; returns the moment Σ F·l, its scale Σ |F·l| and the contacts (bit i: g − l·x < 0).
-fn linear_forces(
-    k: f64,
-    gap: &[f64],
-    arm: &[f64],
-    x: f64,
-    out: &mut [&mut [f64]],
-    at: usize,
-) -> (f64, f64, u64) {
+/// Linear-law forces k·max(0, l·x − g) of the terms (g, l) at x into `force`; returns the moment Σ F·l, its scale Σ |F·l| and the contacts (bit i: g − l·x < 0).
+fn linear_forces(k: f64, gap: &[f64], arm: &[f64], x: f64, force: &mut [f64]) -> (f64, f64, u64) {
     let (mut moment, mut scale, mut mask) = (0.0, 0.0, 0u64);
-    for (i, ((&g, &l), column)) in gap.iter().zip(arm).zip(out).enumerate() {
+    for (i, ((&g, &l), force)) in gap.iter().zip(arm).zip(force).enumerate() {
         let closing = g - l * x;
         let f = if closing < 0.0 { -closing * k } else { 0.0 };
-        column[at] = f;
+        *force = f;
         moment += f * l;
         scale += (f * l).abs();
         mask |= u64::from(closing < 0.0) << i;

@@ -724,10 +724,10 @@ pub fn residual(model: &Model, crank: f64, sol: &AngleSolution, bearing: Vec2) -
 pub(super) fn residual_at(model: &Model, e_phi: Vec2, sol: &AngleSolution, bearing: Vec2) -> f64 {
     let mut sums = BalanceSums::default();
     for r in sol.rollers.iter().filter(|r| r.force_n != 0.0) {
-        sums.roller(r.point, r.force_vector(), r.force_n * r.arm_mm);
+        sums.roller(r.point, r.force_n, r.force_vector(), r.force_n * r.arm_mm);
     }
     for p in sol.pins.iter().filter(|p| p.force_n != 0.0) {
-        sums.pin(p.point, p.force_vector(), p.force_n * p.arm_mm);
+        sums.pin(p.point, p.force_n, p.force_vector(), p.force_n * p.arm_mm);
     }
     sums.relative(
         model,
@@ -750,24 +750,26 @@ pub(super) struct BalanceSums {
 }
 
 impl BalanceSums {
-    fn add(&mut self, p: Vec2, f: Vec2) {
+    /// A force f of magnitude |`magnitude`| at p (the forces are a magnitude times a unit
+    /// direction, so |f| is known without a square root).
+    fn add(&mut self, p: Vec2, magnitude: f64, f: Vec2) {
         let m = cross(p, f);
         self.force += f;
-        self.force_scale += f.norm();
+        self.force_scale += magnitude.abs();
         self.moment += m;
         self.moment_scale += m.abs();
     }
 
-    /// A roller force f at p, with moment F·l about the disc centre.
-    pub(super) fn roller(&mut self, p: Vec2, f: Vec2, moment: f64) {
-        self.add(p, f);
+    /// A roller force f = F·(unit direction) at p, with moment F·l about the disc centre.
+    pub(super) fn roller(&mut self, p: Vec2, force_n: f64, f: Vec2, moment: f64) {
+        self.add(p, force_n, f);
         self.rollers.0 += moment;
         self.rollers.1 += moment.abs();
     }
 
-    /// A pin force f at p, with moment F·a about the disc centre.
-    pub(super) fn pin(&mut self, p: Vec2, f: Vec2, moment: f64) {
-        self.add(p, f);
+    /// A pin force f = F·(unit direction) at p, with moment F·a about the disc centre.
+    pub(super) fn pin(&mut self, p: Vec2, force_n: f64, f: Vec2, moment: f64) {
+        self.add(p, force_n, f);
         self.pins.0 += moment;
         self.pins.1 += moment.abs();
     }
@@ -780,7 +782,7 @@ impl BalanceSums {
     /// With the bearing force at the disc centre: the largest relative residual.
     pub(super) fn relative(mut self, model: &Model, centre: Vec2, bearing: Vec2) -> f64 {
         if bearing != Vec2::zeros() {
-            self.add(centre, bearing);
+            self.add(centre, bearing.norm(), bearing);
         }
         let rel = |x: f64, scale: f64| {
             if scale > 0.0 {

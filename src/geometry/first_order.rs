@@ -64,20 +64,20 @@ impl Coefficients {
     /// g_i = ΔRrp − ΔRp·(1 − K1·cos φi)/S − l_i·Δδ.
     #[inline]
     pub fn at(&self, cos_phi_i: f64, sin_phi_i: f64) -> (f64, f64) {
-        let (gap_mm, arm_mm, _) = self.with_s(cos_phi_i, sin_phi_i);
+        let (gap_mm, arm_mm, _) = self.with_inverse_s(cos_phi_i, sin_phi_i);
         (gap_mm, arm_mm)
     }
 
-    /// `at` and S, which is also |u_i − K1·e_φ|: the distance from the pitch point to the
-    /// roller centre in units of Rp.
+    /// `at` and 1/S, where S is also |u_i − K1·e_φ|: the distance from the pitch point to the
+    /// roller centre in units of Rp. Both quotients by S multiply by 1/S (one division).
     #[inline]
-    pub fn with_s(&self, cos_phi_i: f64, sin_phi_i: f64) -> (f64, f64, f64) {
-        let big_s = (self.one_plus_k1_sq - self.two_k1 * cos_phi_i).sqrt();
-        let arm_mm = self.e_nc_mm * sin_phi_i / big_s;
+    pub fn with_inverse_s(&self, cos_phi_i: f64, sin_phi_i: f64) -> (f64, f64, f64) {
+        let inverse_s = 1.0 / (self.one_plus_k1_sq - self.two_k1 * cos_phi_i).sqrt();
+        let arm_mm = self.e_nc_mm * sin_phi_i * inverse_s;
         let gap_mm = self.equidistant_mm
-            - self.shift_mm * (1.0 - self.k1 * cos_phi_i) / big_s
+            - self.shift_mm * (1.0 - self.k1 * cos_phi_i) * inverse_s
             - arm_mm * self.rotation_rad;
-        (gap_mm, arm_mm, big_s)
+        (gap_mm, arm_mm, inverse_s)
     }
 }
 

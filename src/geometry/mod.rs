@@ -83,15 +83,15 @@ impl NearbySinCos {
     #[inline]
     pub fn sin_cos(&mut self, x: f64) -> (f64, f64) {
         let d = x - self.angle;
-        // Written so that a NaN difference (no reference yet) takes the libm branch.
-        if !(d.abs() <= 0.05) {
-            (self.sin, self.cos) = x.sin_cos();
-            self.angle = x;
-            return (self.sin, self.cos);
+        // A NaN difference (no reference yet) takes the libm branch.
+        if d.abs() <= 0.05 {
+            let (sd, cm1) = small_sin_cosm1(d);
+            let (s, c) = (self.sin, self.cos);
+            return (s + (s * cm1 + c * sd), c + (c * cm1 - s * sd));
         }
-        let (sd, cm1) = small_sin_cosm1(d);
-        let (s, c) = (self.sin, self.cos);
-        (s + (s * cm1 + c * sd), c + (c * cm1 - s * sd))
+        (self.sin, self.cos) = x.sin_cos();
+        self.angle = x;
+        (self.sin, self.cos)
     }
 }
 

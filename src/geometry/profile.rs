@@ -182,10 +182,19 @@ impl Profile {
 
     /// κ_C from c = cos((n − 1)t); see `locus_curvature`.
     pub fn locus_curvature_at(&self, c: f64) -> f64 {
+        let (numerator, denominator) = self.locus_curvature_parts(c);
+        numerator / denominator
+    }
+
+    /// κ_C = N/D from c = cos((n − 1)t): (N, D) = (C' × C'', |C'|³).
+    fn locus_curvature_parts(&self, c: f64) -> (f64, f64) {
         let n = self.rollers as f64;
         let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
         let speed2 = r * r + e * e * n * n - 2.0 * r * e * n * c;
-        (r * r + e * e * n * n * n - r * e * n * (n + 1.0) * c) / (speed2 * speed2.sqrt())
+        (
+            r * r + e * e * n * n * n - r * e * n * (n + 1.0) * c,
+            speed2 * speed2.sqrt(),
+        )
     }
 
     /// dκ_C/dt = (C' × C''')/|C'|³ − 3·κ_C·(C'·C'')/|C'|², 1/(mm·rad).
@@ -229,8 +238,14 @@ impl Profile {
     /// Signed curvature of Γ, κ_Γ = κ_C/(1 − r'κ_C), 1/mm; positive where the disc is convex.
     /// Its reciprocal is ρ_C − r' (the offset shortens convex radii by r').
     pub fn curvature(&self, t: f64) -> f64 {
-        let k = self.locus_curvature(t);
-        k / (1.0 - self.offset_mm * k)
+        self.curvature_at(((self.rollers - 1) as f64 * t).cos())
+    }
+
+    /// κ_Γ from c = cos((n − 1)t): with κ_C = N/D (`locus_curvature_at`),
+    /// κ_Γ = κ_C/(1 − r'κ_C) = N/(D − r'·N), one division.
+    pub fn curvature_at(&self, c: f64) -> f64 {
+        let (numerator, denominator) = self.locus_curvature_parts(c);
+        numerator / (denominator - self.offset_mm * numerator)
     }
 
     /// The smallest convex radius of curvature of C (= 1/max κ_C), in closed form.

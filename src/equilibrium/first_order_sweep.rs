@@ -283,6 +283,7 @@ impl<'a> FirstOrderSweep<'a> {
     /// and Hertz peak pressure and half-width of every roller into `row` (`contact::hertz_line`,
     /// zero out of contact), with 1/R* = max(κ + 1/r_rp, 1/Rp) as in `Rollers::line_contact`
     /// and κ the curvature at the roller's locus parameter.
+    #[inline(always)]
     fn roller_contacts(
         &self,
         e_phi: Vec2,
@@ -299,7 +300,7 @@ impl<'a> FirstOrderSweep<'a> {
         let (min_inv_r, roller_inv_r) = (1.0 / d.roller_circle_radius_mm, 1.0 / d.roller_radius_mm);
         let k1_e = r.first_order.k1 * e_phi;
         let k = row.k;
-        for i in (0..r.units.len()).filter(|i| mask >> i & 1 == 1) {
+        for i in bits(mask) {
             let force = scratch.force[i];
             row.roller_force_n[i][k] = force;
             let normal = (r.units[i] - k1_e) * scratch.inverse_s[i];
@@ -350,7 +351,7 @@ impl<'a> FirstOrderSweep<'a> {
         scratch.last.1 = mask;
         let direction = -e_phi;
         let wall = e_phi * p.eccentricity_mm + direction * p.hole_radius_mm;
-        for j in (0..m).filter(|j| mask >> j & 1 == 1) {
+        for j in bits(mask) {
             let force = scratch.pin_force[j];
             row.pin_force_n[j][row.k] = force;
             let point = wall + Vec2::new(c * w.x[j] - s * w.y[j], s * w.x[j] + c * w.y[j]) * rw;
@@ -383,10 +384,7 @@ impl<'a> FirstOrderSweep<'a> {
             force,
         } = balance;
         let (mut a, mut b) = (0.0, 0.0);
-        let mut bits = last;
-        while bits != 0 {
-            let i = bits.trailing_zeros() as usize;
-            bits &= bits - 1;
+        for i in bits(last) {
             a += k * arm[i] * arm[i];
             b += k * arm[i] * gap[i];
         }
@@ -406,16 +404,30 @@ impl<'a> FirstOrderSweep<'a> {
     }
 }
 
-/// Linear-law forces k·max(0, l·x − g) of the terms (g, l) at x into `force`; returns the moment Σ F·l, its scale Σ |F·l| and the contacts (bit i: g − l·x < 0).
+/// Linear-law forces k·max(0, l·x − g) of the terms (g, l) at x into `force`; returns the
+/// moment Σ F·l, its scale Σ |F·l| and the contacts (bit i: g − l·x < 0).
 fn linear_forces(k: f64, gap: &[f64], arm: &[f64], x: f64, force: &mut [f64]) -> (f64, f64, u64) {
-    let (mut moment, mut scale, mut mask) = (0.0, 0.0, 0u64);
-    for (i, ((&g, &l), force)) in gap.iter().zip(arm).zip(force).enumerate() {
+    let mut mask = 0u64;
+    for (i, ((&g, &l), f)) in gap.iter().zip(arm).zip(force.iter_mut()).enumerate() {
         let closing = g - l * x;
-        let f = if closing < 0.0 { -closing * k } else { 0.0 };
-        *force = f;
-        moment += f * l;
-        scale += (f * l).abs();
+        *f = if closing < 0.0 { -closing * k } else { 0.0 };
         mask |= u64::from(closing < 0.0) << i;
     }
+    // The sums over the contacts only (in index order): the other terms would add exact zeros.
+    let (mut moment, mut scale) = (0.0, 0.0);
+    for i in bits(mask) {
+        let m = force[i] * arm[i];
+        moment += m;
+        scale += m.abs();
+    }
     (moment, scale, mask)
+}
+
+/// The set bits of a mask, lowest first.
+fn bits(mut mask: u64) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        let i = mask.trailing_zeros() as usize;
+        mask &= mask.wrapping_sub(1);
+        (i < 64).then_some(i)
+    })
 }

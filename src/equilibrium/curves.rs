@@ -4,7 +4,7 @@
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
-use crate::geometry::{cross, NearbySinCos, Vec2};
+use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
 use rayon::prelude::*;
 
 /// Crank angles solved in sequence by one worker, warm-starting each from the previous. The
@@ -231,18 +231,27 @@ impl<'a> Chunk<'a> {
     }
 
     /// Record the bearing force at angle k, its angle from e_φ and the residual.
-    fn record_bearing(&mut self, k: usize, e_phi: Vec2, bearing: Vec2, residual: f64) {
+    fn record_bearing(&mut self, k: usize, bearing: Vec2, angle: f64, residual: f64) {
         self.bearing_force[k] = bearing.norm();
-        self.bearing_angle[k] = angle_from(e_phi, bearing);
+        self.bearing_angle[k] = angle;
         self.residual[k] = residual;
     }
 
-    /// Record the rest of angle k of the lean first-order sweep (its row is written).
-    fn record_first_order(&mut self, k: usize, e_phi: Vec2, s: &Summary) {
+    /// Record the rest of angle k of the lean first-order sweep (its row is written), with
+    /// the bearing force's angle from `bearing_angle`, which follows the force along the chunk.
+    fn record_first_order(
+        &mut self,
+        k: usize,
+        e_phi: Vec2,
+        s: &Summary,
+        bearing_angle: &mut NearbyAtan2,
+    ) {
         self.lag[k] = s.lag_rad;
         self.output_lag[k] = s.output_lag_rad;
         self.contacts[k] = s.contacts;
-        self.record_bearing(k, e_phi, s.bearing_n, s.residual);
+        let f = s.bearing_n;
+        let angle = bearing_angle.atan2(cross(e_phi, f), e_phi.dot(&f));
+        self.record_bearing(k, f, angle, s.residual);
     }
 
     /// Record angle k of the general solve.
@@ -269,7 +278,8 @@ impl<'a> Chunk<'a> {
             self.pin_force[j][k] = p.force_n;
         }
         let bearing = sol.bearing_force_n.unwrap_or_default();
-        self.record_bearing(k, e_phi, bearing, sol.residual.unwrap_or(0.0));
+        let angle = angle_from(e_phi, bearing);
+        self.record_bearing(k, bearing, angle, sol.residual.unwrap_or(0.0));
         self.deflection[k] = sol.centre_offset_mm.norm();
     }
 }
@@ -283,14 +293,17 @@ fn solve_chunk(
     let lean = FirstOrderSweep::new(model);
     let mut scratch = Scratch::default();
     let mut crank_direction = NearbySinCos::default();
+    let mut bearing_angle = NearbyAtan2::default();
     for (k, &phi) in crank_rad.iter().enumerate() {
         if let Some(lean) = &lean {
             let (sin, cos) = crank_direction.sin_cos(phi);
             let e_phi = Vec2::new(cos, sin);
             let guess = || work.guess(phi);
             if let Some(s) = lean.solve(phi, e_phi, guess, &mut scratch, &mut chunk.row(k)) {
-                work.remember_lags(phi, s.lag_rad, s.output_lag_rad);
-                chunk.record_first_order(k, e_phi, &s);
+                chunk.record_first_order(k, e_phi, &s, &mut bearing_angle);
+                // The lags from the recorded entries: loading them from `s` as a pair stalls
+                // on the two separate stores that wrote them.
+                work.remember_lags(phi, chunk.lag[k], chunk.output_lag[k]);
                 continue;
             }
         }

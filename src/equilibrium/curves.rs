@@ -152,7 +152,8 @@ fn pieces<T>(column: &mut [T]) -> std::slice::ChunksMut<'_, T> {
 
 /// [column][angle] cut into [chunk][column] pieces of `CHUNK` angles (`chunks` of them).
 fn piece_rows(columns: &mut [Vec<f64>], chunks: usize) -> Vec<Vec<&mut [f64]>> {
-    let mut rows: Vec<Vec<&mut [f64]>> = (0..chunks).map(|_| Vec::new()).collect();
+    let width = columns.len();
+    let mut rows: Vec<Vec<&mut [f64]>> = (0..chunks).map(|_| Vec::with_capacity(width)).collect();
     for column in columns {
         for (row, piece) in rows.iter_mut().zip(pieces(column)) {
             row.push(piece);
@@ -286,16 +287,16 @@ impl<'a> Chunk<'a> {
 
 fn solve_chunk(
     model: &Model,
+    lean: Option<&FirstOrderSweep<'_>>,
     crank_rad: &[f64],
     chunk: &mut Chunk<'_>,
 ) -> Result<(), SweepFailure> {
     let mut work = Work::default();
-    let lean = FirstOrderSweep::new(model);
     let mut scratch = Scratch::default();
     let mut crank_direction = NearbySinCos::default();
     let mut bearing_angle = NearbyAtan2::default();
     for (k, &phi) in crank_rad.iter().enumerate() {
-        if let Some(lean) = &lean {
+        if let Some(lean) = lean {
             let (sin, cos) = crank_direction.sin_cos(phi);
             let e_phi = Vec2::new(cos, sin);
             let guess = || work.guess(phi);
@@ -331,10 +332,11 @@ pub fn sweep(
     periodic: bool,
 ) -> Result<LoadedSweep, SweepFailure> {
     let mut columns = Columns::new(model, crank_rad.len());
+    let lean = FirstOrderSweep::new(model);
     let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
         .par_chunks(CHUNK)
         .zip(columns.chunks())
-        .map(|(c, mut chunk)| solve_chunk(model, c, &mut chunk))
+        .map(|(c, mut chunk)| solve_chunk(model, lean.as_ref(), c, &mut chunk))
         .collect();
     outcomes.into_iter().collect::<Result<(), _>>()?;
     Ok(collect(model, crank_rad, columns, periodic))

@@ -332,10 +332,11 @@ impl<'a> FirstOrderSweep<'a> {
         let m = w.x.len();
         scratch.pin_gap[..m].fill(p.clearance_mm);
         let rw = p.circle_radius_mm;
-        // a_j = (rw·R(ψ)·w_j) × (−e_φ), as `cross(rotate(w, c, s)·rw, −e_φ)`.
+        // a_j = (rw·R(ψ)·w_j) × (−e_φ) = rw·(x_j·P + y_j·Q) with w_j = (x_j, y_j),
+        // P = sin ψ·e_x − cos ψ·e_y and Q = cos ψ·e_x + sin ψ·e_y.
+        let (sp, sq) = (s * e_phi.x - c * e_phi.y, c * e_phi.x + s * e_phi.y);
         for ((arm, &x), &y) in scratch.pin_arm[..m].iter_mut().zip(&w.x).zip(&w.y) {
-            let (rx, ry) = ((c * x - s * y) * rw, (s * x + c * y) * rw);
-            *arm = rx * -e_phi.y - ry * -e_phi.x;
+            *arm = (x * sp + y * sq) * rw;
         }
         let (lag, mask) = self.settle(
             Balance {

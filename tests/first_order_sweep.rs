@@ -220,3 +220,22 @@ fn sweep_agrees_with_the_general_solve_on_hard_cases() {
         assert_agrees(case, &model, &angles, &sweep);
     }
 }
+
+/// Chunks are solved from nothing before them, with scratch space reused across the chunks a
+/// thread takes: the curves are the same bit for bit on one thread (every chunk after the first
+/// inherits the scratch of the one before) and on four (each thread's first chunk starts fresh).
+#[test]
+fn sweep_is_the_same_on_one_and_on_four_threads() {
+    let spec = load("specs/paper.yaml");
+    let scene = spec.scenes.iter().position(|s| s.name == "rated").unwrap();
+    let model = model(&spec, scene);
+    let angles = grid(&spec, scene, 1000);
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| curves::sweep(&model, &angles, true).unwrap())
+    };
+    assert_eq!(on(1), on(4));
+}

@@ -290,9 +290,10 @@ fn solve_chunk(
     lean: Option<&FirstOrderSweep<'_>>,
     crank_rad: &[f64],
     chunk: &mut Chunk<'_>,
+    scratch: &mut Scratch,
 ) -> Result<(), SweepFailure> {
     let mut work = Work::default();
-    let mut scratch = Scratch::default();
+    scratch.restart();
     let mut crank_direction = NearbySinCos::default();
     let mut bearing_angle = NearbyAtan2::default();
     for (k, &phi) in crank_rad.iter().enumerate() {
@@ -300,7 +301,7 @@ fn solve_chunk(
             let (sin, cos) = crank_direction.sin_cos(phi);
             let e_phi = Vec2::new(cos, sin);
             let guess = || work.guess(phi);
-            if let Some(s) = lean.solve(phi, e_phi, guess, &mut scratch, &mut chunk.row(k)) {
+            if let Some(s) = lean.solve(phi, e_phi, guess, scratch, &mut chunk.row(k)) {
                 chunk.record_first_order(k, e_phi, &s, &mut bearing_angle);
                 // The lags from the recorded entries: loading them from `s` as a pair stalls
                 // on the two separate stores that wrote them.
@@ -324,8 +325,10 @@ fn solve_chunk(
 }
 
 /// Solve every crank angle and collect the curves. Chunks of `CHUNK` angles run in parallel;
-/// within a chunk each angle is warm-started from the previous ones. A failure is reported at
-/// the first crank angle that fails.
+/// within a chunk each angle is warm-started from the previous ones, and from nothing before
+/// the chunk, so results do not depend on how chunks are shared out (scratch space is reused
+/// across chunks, its state restarted). A failure is reported at the first crank angle that
+/// fails.
 pub fn sweep(
     model: &Model,
     crank_rad: &[f64],
@@ -336,7 +339,9 @@ pub fn sweep(
     let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
         .par_chunks(CHUNK)
         .zip(columns.chunks())
-        .map(|(c, mut chunk)| solve_chunk(model, lean.as_ref(), c, &mut chunk))
+        .map_init(Scratch::default, |scratch, (c, mut chunk)| {
+            solve_chunk(model, lean.as_ref(), c, &mut chunk, scratch)
+        })
         .collect();
     outcomes.into_iter().collect::<Result<(), _>>()?;
     Ok(collect(model, crank_rad, columns, periodic))

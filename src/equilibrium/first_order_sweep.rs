@@ -150,6 +150,14 @@ impl Scratch {
     pub fn forget(&mut self) {
         self.last = (0, 0);
     }
+
+    /// Start a new sequence of angles: forget the active sets and the disc rotation's
+    /// reference, so that what follows does not depend on what came before (the columns are
+    /// always written before they are read).
+    pub fn restart(&mut self) {
+        self.forget();
+        self.disc_rotation = NearbySinCos::default();
+    }
 }
 
 /// A linear balance Σ k·max(0, l·x − g)·l = T over terms (g, l) given as columns, and the

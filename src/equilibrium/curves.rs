@@ -303,6 +303,9 @@ fn solve_chunk(
             let guess = || work.guess(phi);
             if let Some(s) = lean.solve(phi, e_phi, guess, scratch, &mut chunk.row(k)) {
                 chunk.record_first_order(k, e_phi, &s, &mut bearing_angle);
+                if !scratch.screened() {
+                    lean.screen(&crank_rad[k + 1..], s.lag_rad, scratch);
+                }
                 // The lags from the recorded entries: loading them from `s` as a pair stalls
                 // on the two separate stores that wrote them.
                 work.remember_lags(phi, chunk.lag[k], chunk.output_lag[k]);

@@ -24,6 +24,12 @@
 //! the set of contacts at x is that set (the balance is then A·x − B = T exactly on it). It
 //! usually is from one crank step to the next; when it is not, `piecewise_linear_root_near`
 //! starts from the warm-start guess.
+//!
+//! Most rollers are far from contact at any angle. After the first angle of a chunk settles,
+//! `screen` proves from bounds on the closing's rates (`Coefficients::closing_rate_bounds`)
+//! which rollers stay out of contact over the chunk's remaining angles and over lags near the
+//! one just found; only the others are evaluated while the lag stays in that range (checked at
+//! every angle, else the angle is solved again on every roller).
 
 use super::pins::Pins;
 use super::rollers::Rollers;
@@ -116,7 +122,36 @@ pub struct Scratch {
     last: (u64, u64),
     /// sin and cos of the disc rotation ψ, which moves little from one angle to the next.
     disc_rotation: NearbySinCos,
+    /// The rollers that may touch over the angles ahead, when screened (`FirstOrderSweep::screen`).
+    screen: Option<Screen>,
+    /// Screens still allowed in this sequence of angles (a screen that keeps failing its lag
+    /// check is not worth rebuilding at every angle).
+    screens_left: u32,
 }
+
+/// Rollers proven out of contact over a range of crank angles and lags: the others
+/// (`candidates`) are the only ones evaluated while the lag stays within `lag_reach` of
+/// `lag_rad`.
+#[derive(Debug, Clone, Copy)]
+struct Screen {
+    candidates: u64,
+    lag_rad: f64,
+    lag_reach: f64,
+}
+
+/// Screens per sequence of angles (`Scratch::restart`).
+const SCREENS: u32 = 4;
+
+/// The range of lags a screen holds for: this share of the lag it was built at, plus a floor.
+/// A choice of reach only (wider keeps more rollers in, narrower rebuilds sooner): every
+/// angle checks that its lag is in range.
+const SCREEN_LAG_SHARE: f64 = 0.05;
+const SCREEN_LAG_FLOOR_RAD: f64 = 1e-6;
+
+/// The least closing, mm, a roller must provably keep to be left out: far above the
+/// round-off of a closing (~1e-15 mm), so that the roller would be out of contact in the
+/// computed closing too.
+const SCREEN_MARGIN_MM: f64 = 1e-9;
 
 impl Default for Scratch {
     fn default() -> Self {
@@ -134,6 +169,8 @@ impl Default for Scratch {
             root: RootScratch::default(),
             last: (0, 0),
             disc_rotation: NearbySinCos::default(),
+            screen: None,
+            screens_left: SCREENS,
         }
     }
 }
@@ -149,6 +186,12 @@ impl Scratch {
     /// Forget the last active sets (the next angle starts from its warm-start guess).
     pub fn forget(&mut self) {
         self.last = (0, 0);
+        self.screen = None;
+    }
+
+    /// Whether the rollers are screened (`FirstOrderSweep::screen`).
+    pub fn screened(&self) -> bool {
+        self.screen.is_some()
     }
 
     /// Start a new sequence of angles: forget the active sets and the disc rotation's
@@ -157,6 +200,7 @@ impl Scratch {
     pub fn restart(&mut self) {
         self.forget();
         self.disc_rotation = NearbySinCos::default();
+        self.screens_left = SCREENS;
     }
 }
 
@@ -167,6 +211,9 @@ struct Balance<'s> {
     gap: &'s [f64],
     arm: &'s [f64],
     force: &'s mut [f64],
+    /// The terms that may be in contact (bit i); the others are out of contact, with zero
+    /// force already in `force`.
+    candidates: u64,
 }
 
 impl<'a> FirstOrderSweep<'a> {
@@ -231,19 +278,7 @@ impl<'a> FirstOrderSweep<'a> {
             return None;
         }
         let mut sums = BalanceSums::default();
-        self.roller_terms(e_phi, scratch);
-        let n = self.roller_units.x.len();
-        let (lag, mask) = self.settle(
-            Balance {
-                stiffness: self.roller_stiffness,
-                gap: &scratch.gap[..n],
-                arm: &scratch.arm[..n],
-                force: &mut scratch.force[..n],
-            },
-            scratch.last.0,
-            || guess().0,
-            &mut scratch.root,
-        )?;
+        let (lag, mask) = self.rollers_at(e_phi, &guess, scratch)?;
         scratch.last.0 = mask;
         self.roller_contacts(e_phi, lag, mask, scratch, row, &mut sums);
         let mut output_lag = 0.0;
@@ -264,6 +299,114 @@ impl<'a> FirstOrderSweep<'a> {
         }
         let finite = lag.is_finite() && output_lag.is_finite() && summary.residual.is_finite();
         finite.then_some(summary)
+    }
+
+    /// The rollers' lag and contacts: on the screened candidates while a screen holds (and
+    /// the lag stays in its range), else on every roller.
+    fn rollers_at(
+        &self,
+        e_phi: Vec2,
+        guess: &impl Fn() -> (f64, f64),
+        scratch: &mut Scratch,
+    ) -> Option<(f64, u64)> {
+        let n = self.roller_units.x.len();
+        if let Some(screen) = scratch.screen {
+            self.candidate_terms(e_phi, screen.candidates, scratch);
+            let settled = self.settle_rollers(screen.candidates, guess, scratch);
+            if let Some(settled) = settled {
+                if (settled.0 - screen.lag_rad).abs() <= screen.lag_reach {
+                    return Some(settled);
+                }
+            }
+            // No root among the candidates, or one outside the lags the screen holds for:
+            // every roller, from the start.
+            scratch.screen = None;
+        }
+        self.roller_terms(e_phi, scratch);
+        self.settle_rollers(all(n), guess, scratch)
+    }
+
+    fn settle_rollers(
+        &self,
+        candidates: u64,
+        guess: &impl Fn() -> (f64, f64),
+        scratch: &mut Scratch,
+    ) -> Option<(f64, u64)> {
+        let n = self.roller_units.x.len();
+        self.settle(
+            Balance {
+                stiffness: self.roller_stiffness,
+                gap: &scratch.gap[..n],
+                arm: &scratch.arm[..n],
+                force: &mut scratch.force[..n],
+                candidates,
+            },
+            scratch.last.0,
+            || guess().0,
+            &mut scratch.root,
+        )
+    }
+
+    /// `roller_terms` for the rollers in `candidates` only.
+    fn candidate_terms(&self, e_phi: Vec2, candidates: u64, scratch: &mut Scratch) {
+        let u = &self.roller_units;
+        let coefficients = &self.rollers.first_order;
+        for i in bits(candidates) {
+            let (c, s) = (
+                u.x[i] * e_phi.x + u.y[i] * e_phi.y,
+                e_phi.x * u.y[i] - e_phi.y * u.x[i],
+            );
+            let (g, l, inverse_s) = coefficients.with_inverse_s(c, s);
+            scratch.cos[i] = c;
+            scratch.sin[i] = s;
+            scratch.inverse_s[i] = inverse_s;
+            scratch.gap[i] = g;
+            scratch.arm[i] = l;
+        }
+    }
+
+    /// Screen the rollers for the crank angles ahead (`crank_ahead`, after an angle that
+    /// settled at `lag_rad`): a roller whose closing h = g − l·β provably stays positive over
+    /// those angles and over lags within `lag_reach` of `lag_rad` is left out until the lag
+    /// leaves that range. With φm the middle of the angles and r their reach from it, h at
+    /// (φm, `lag_rad`) less |∂h/∂φ|·r (bounded at `lag_rad`, over the window's least S) and
+    /// |∂h/∂β|·`lag_reach` (`first_order::Coefficients::closing_rate_bounds`, the two legs of
+    /// the mean value theorem) must exceed `SCREEN_MARGIN_MM`. Rollers left out get g = MAX,
+    /// l = 0 and zero force, which every later step reads as out of contact.
+    pub fn screen(&self, crank_ahead: &[f64], lag_rad: f64, scratch: &mut Scratch) {
+        if scratch.screens_left == 0 || crank_ahead.is_empty() {
+            return;
+        }
+        scratch.screens_left -= 1;
+        let (lo, hi) = crank_ahead
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+                (lo.min(x), hi.max(x))
+            });
+        let middle = 0.5 * (lo + hi);
+        let reach = (hi - middle).max(middle - lo);
+        let (sin, cos) = middle.sin_cos();
+        self.roller_terms(Vec2::new(cos, sin), scratch);
+        let lag_reach = SCREEN_LAG_SHARE * lag_rad.abs() + SCREEN_LAG_FLOOR_RAD;
+        let coefficients = &self.rollers.first_order;
+        let n = self.roller_units.x.len();
+        let mut candidates = 0u64;
+        for i in 0..n {
+            let closing = scratch.gap[i] - scratch.arm[i] * lag_rad;
+            let least_s = coefficients.least_s_within((scratch.cos[i], scratch.sin[i]), reach);
+            let (per_crank, per_lag) = coefficients.closing_rate_bounds(least_s, lag_rad);
+            let lowest = closing - per_crank * reach - per_lag * lag_reach;
+            if lowest > SCREEN_MARGIN_MM {
+                (scratch.gap[i], scratch.arm[i], scratch.force[i]) = (f64::MAX, 0.0, 0.0);
+            } else {
+                candidates |= 1 << i;
+            }
+        }
+        scratch.screen = (candidates != all(n)).then_some(Screen {
+            candidates,
+            lag_rad,
+            lag_reach,
+        });
     }
 
     /// cos φi, sin φi, 1/S_i, g_i and l_i of every roller into `scratch`, in one loop over
@@ -352,6 +495,7 @@ impl<'a> FirstOrderSweep<'a> {
                 gap: &scratch.pin_gap[..m],
                 arm: &scratch.pin_arm[..m],
                 force: &mut scratch.pin_force[..m],
+                candidates: all(m),
             },
             scratch.last.1,
             || guess().1,
@@ -391,6 +535,7 @@ impl<'a> FirstOrderSweep<'a> {
             gap,
             arm,
             force,
+            candidates,
         } = balance;
         let (mut a, mut b) = (0.0, 0.0);
         for i in bits(last) {
@@ -399,7 +544,7 @@ impl<'a> FirstOrderSweep<'a> {
         }
         if a > 0.0 {
             let x = (torque + b) / a;
-            let (moment, scale, mask) = linear_forces(k, gap, arm, x, force);
+            let (moment, scale, mask) = linear_forces(k, (gap, arm), x, force, candidates);
             if mask == last {
                 return settled((moment, scale)).then_some((x, mask));
             }
@@ -408,19 +553,35 @@ impl<'a> FirstOrderSweep<'a> {
         root.terms
             .extend(gap.iter().zip(arm).map(|(&g, &l)| (g, l)));
         let x = piecewise_linear_root_near(k, &root.terms, torque, guess(), &mut root.events)?;
-        let (moment, scale, mask) = linear_forces(k, gap, arm, x, force);
+        let (moment, scale, mask) = linear_forces(k, (gap, arm), x, force, candidates);
         settled((moment, scale)).then_some((x, mask))
     }
 }
 
-/// Linear-law forces k·max(0, l·x − g) of the terms (g, l) at x into `force`; returns the
-/// moment Σ F·l, its scale Σ |F·l| and the contacts (bit i: g − l·x < 0).
-fn linear_forces(k: f64, gap: &[f64], arm: &[f64], x: f64, force: &mut [f64]) -> (f64, f64, u64) {
+/// Linear-law forces k·max(0, l·x − g) of the `candidates` among the terms (g, l) at x into
+/// `force` (the others keep their zero force); returns the moment Σ F·l, its scale Σ |F·l| and
+/// the contacts (bit i: g − l·x < 0).
+#[inline(always)]
+fn linear_forces(
+    k: f64,
+    (gap, arm): (&[f64], &[f64]),
+    x: f64,
+    force: &mut [f64],
+    candidates: u64,
+) -> (f64, f64, u64) {
     let mut mask = 0u64;
-    for (i, ((&g, &l), f)) in gap.iter().zip(arm).zip(force.iter_mut()).enumerate() {
-        let closing = g - l * x;
-        *f = if closing < 0.0 { -closing * k } else { 0.0 };
-        mask |= u64::from(closing < 0.0) << i;
+    if candidates == all(gap.len()) {
+        for (i, ((&g, &l), f)) in gap.iter().zip(arm).zip(force.iter_mut()).enumerate() {
+            let closing = g - l * x;
+            *f = if closing < 0.0 { -closing * k } else { 0.0 };
+            mask |= u64::from(closing < 0.0) << i;
+        }
+    } else {
+        for i in bits(candidates) {
+            let closing = gap[i] - arm[i] * x;
+            force[i] = if closing < 0.0 { -closing * k } else { 0.0 };
+            mask |= u64::from(closing < 0.0) << i;
+        }
     }
     // The sums over the contacts only (in index order): the other terms would add exact zeros.
     let (mut moment, mut scale) = (0.0, 0.0);
@@ -432,11 +593,129 @@ fn linear_forces(k: f64, gap: &[f64], arm: &[f64], x: f64, force: &mut [f64]) ->
     (moment, scale, mask)
 }
 
+/// The mask of n terms (n ≤ 64).
+fn all(n: usize) -> u64 {
+    if n >= 64 {
+        u64::MAX
+    } else {
+        (1 << n) - 1
+    }
+}
+
 /// The set bits of a mask, lowest first.
+#[inline]
 fn bits(mut mask: u64) -> impl Iterator<Item = usize> {
     std::iter::from_fn(move || {
         let i = mask.trailing_zeros() as usize;
         mask &= mask.wrapping_sub(1);
         (i < 64).then_some(i)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{all, bits, FirstOrderSweep, Scratch};
+    use crate::equilibrium::sweep::Model;
+    use crate::spec::{self, ContactLaw, GeometryMode, Modification};
+    use proptest::prelude::*;
+
+    /// An angle whose candidates have no root, or whose root falls outside the lags the screen
+    /// holds for, is solved on every roller: a screen built at the opposite lag (which keeps
+    /// the wrong flanks) and one that leaves out a contact (so that the root of the others lies
+    /// beyond its range) change nothing.
+    #[test]
+    fn an_angle_the_screen_does_not_hold_for_is_solved_on_every_roller() {
+        let s = spec::load("specs/paper.yaml").unwrap();
+        let mut scene = s.scenes.iter().find(|c| c.name == "rated").unwrap().clone();
+        scene.geometry = GeometryMode::FirstOrder;
+        let model = Model::new(&s.design, &s.modification, &scene, true, true, true);
+        let kernel = FirstOrderSweep::new(&model).unwrap();
+        let n = kernel.rollers.units.len();
+        let column = || vec![vec![0.0]; n];
+        for k in 0..12 {
+            let phi = 0.05 * k as f64;
+            let e = crate::geometry::Vec2::new(phi.cos(), phi.sin());
+            let solve = |scratch: &mut Scratch| {
+                let (mut f, mut p, mut w) = (column(), column(), column());
+                let mut pf = vec![vec![0.0]; kernel.pin_units.x.len()];
+                let mut fs: Vec<&mut [f64]> = f.iter_mut().map(|v| v.as_mut_slice()).collect();
+                let mut ps: Vec<&mut [f64]> = p.iter_mut().map(|v| v.as_mut_slice()).collect();
+                let mut ws: Vec<&mut [f64]> = w.iter_mut().map(|v| v.as_mut_slice()).collect();
+                let mut pfs: Vec<&mut [f64]> = pf.iter_mut().map(|v| v.as_mut_slice()).collect();
+                let mut row = super::Row {
+                    k: 0,
+                    roller_force_n: &mut fs,
+                    pressure_mpa: &mut ps,
+                    half_width_mm: &mut ws,
+                    pin_force_n: &mut pfs,
+                };
+                let summary = kernel
+                    .solve(phi, e, || (0.0, 0.0), scratch, &mut row)
+                    .unwrap();
+                (summary.lag_rad, summary.output_lag_rad, f)
+            };
+            let fresh = solve(&mut Scratch::default());
+            let mut screened = Scratch::default();
+            kernel.screen(&[phi], -fresh.0, &mut screened);
+            assert!(screened.screened(), "the opposite lag leaves rollers out");
+            assert_eq!(solve(&mut screened), fresh, "crank {phi}, opposite lag");
+            // A screen that leaves out all contacts but the first, held for a lag range too
+            // narrow for the root the remaining contact gives.
+            let contacts: Vec<usize> = (0..n).filter(|&i| fresh.2[i][0] > 0.0).collect();
+            assert!(contacts.len() >= 2, "crank {phi}: {contacts:?}");
+            let mut narrow = Scratch::default();
+            let mut left_out = 0u64;
+            for &i in &contacts[1..] {
+                (narrow.gap[i], narrow.arm[i], narrow.force[i]) = (f64::MAX, 0.0, 0.0);
+                left_out |= 1 << i;
+            }
+            narrow.screen = Some(super::Screen {
+                candidates: all(n) & !left_out,
+                lag_rad: fresh.0,
+                lag_reach: 1e-12,
+            });
+            assert_eq!(solve(&mut narrow), fresh, "crank {phi}, narrow screen");
+        }
+    }
+
+    proptest! {
+        /// A screen only leaves out rollers that stay out of contact: at every crank angle it
+        /// was built for and at the ends and middle of its range of lags, the closing g − l·β of
+        /// each roller left out (the same first-order closed form the kernel evaluates) is
+        /// positive. Random modifications, lags, step sizes and chunk lengths.
+        #[test]
+        fn screened_out_rollers_stay_out_of_contact(
+            shift in -0.3f64..0.3,
+            equidistant in -0.3f64..0.3,
+            rotation in -0.002f64..0.002,
+            lag in -0.02f64..0.02,
+            start in -3.2f64..3.2,
+            step in 1e-5f64..0.02,
+            angles in 1usize..64,
+        ) {
+            let s = spec::load("specs/paper.yaml").unwrap();
+            let mut scene = s.scenes.iter().find(|c| c.name == "rated").unwrap().clone();
+            scene.geometry = GeometryMode::FirstOrder;
+            scene.contact_law = ContactLaw::PaperLinear;
+            let modification = Modification { shift_mm: shift, equidistant_mm: equidistant, rotation_rad: rotation };
+            let model = Model::new(&s.design, &modification, &scene, true, true, true);
+            let kernel = FirstOrderSweep::new(&model).unwrap();
+            let crank: Vec<f64> = (0..angles).map(|k| start + step * k as f64).collect();
+            let mut scratch = Scratch::default();
+            kernel.screen(&crank, lag, &mut scratch);
+            let Some(screen) = scratch.screen else { return Ok(()) };
+            let r = kernel.rollers;
+            let left_out = all(r.units.len()) & !screen.candidates;
+            for &phi in &crank {
+                let e = crate::geometry::Vec2::new(phi.cos(), phi.sin());
+                for i in bits(left_out) {
+                    let u = r.units[i];
+                    let (g, l) = r.first_order.at(u.dot(&e), crate::geometry::cross(e, u));
+                    for x in [lag - screen.lag_reach, lag, lag + screen.lag_reach] {
+                        prop_assert!(g - l * x > 0.0, "roller {i} at {phi}, lag {x}: {}", g - l * x);
+                    }
+                }
+            }
+        }
+    }
 }

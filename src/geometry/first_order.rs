@@ -81,6 +81,34 @@ impl Coefficients {
     }
 }
 
+impl Coefficients {
+    /// S at the angle φi nearest the pitch point (φi = 0, where S is least) within `reach` rad
+    /// of the angle whose (cos φi, sin φi) is given: a lower bound of S over that window.
+    pub fn least_s_within(&self, (cos_phi_i, sin_phi_i): (f64, f64), reach: f64) -> f64 {
+        let from_pitch = sin_phi_i.atan2(cos_phi_i).abs();
+        let nearest = (from_pitch - reach).max(0.0);
+        (self.one_plus_k1_sq - self.two_k1 * nearest.cos())
+            .max(0.0)
+            .sqrt()
+    }
+
+    /// Bounds of how fast the closing h = g_i − l_i·β = ΔRrp − ΔRp·f − e·nc·(β + Δδ)·q of a
+    /// roller changes, with f = (1 − K1·c)/S and q = s/S (c, s = cos φi, sin φi; φi moves with
+    /// −φ). With S² = (c − K1)² + s²:
+    ///   f' = K1²·s·(K1 − c)/S³, and |s·(K1 − c)| ≤ S²/2 (AM–GM), so |f'| ≤ K1²/(2S);
+    ///   q' = (c − K1)·(1 − K1·c)/S³, and |c − K1| ≤ S, |1 − K1·c| ≤ S
+    ///        ((1 − K1·c)² = S² − K1²·s²), so |q'| ≤ 1/S;
+    ///   |∂h/∂β| = e·nc·|q| ≤ e·nc, as |s| ≤ S.
+    /// Hence |∂h/∂φ| ≤ (|ΔRp|·K1²/2 + e·nc·|β + Δδ|)/S for S ≥ `least_s`; both bounds are
+    /// attained in the limit (no slack to spare). Returns (bound of |∂h/∂φ| at lag β, bound of
+    /// |∂h/∂β|), mm/rad.
+    pub fn closing_rate_bounds(&self, least_s: f64, lag_rad: f64) -> (f64, f64) {
+        let lever = self.e_nc_mm * (lag_rad + self.rotation_rad).abs();
+        let crank = (self.shift_mm.abs() * self.k1 * self.k1 * 0.5 + lever) / least_s;
+        (crank, self.e_nc_mm)
+    }
+}
+
 /// The literature's Δ(φi) = ΔRrp(1 − sin φi/S) − ΔRp(1 − K1 cos φi − sqrt(1 − K1²) sin φi)/S.
 pub fn literature_gap(design: &Design, m: &Modification, i: usize, crank_rad: f64) -> f64 {
     let k1 = design.k1();
@@ -89,4 +117,60 @@ pub fn literature_gap(design: &Design, m: &Modification, i: usize, crank_rad: f6
     let big_s = (1.0 + k1 * k1 - 2.0 * k1 * c).sqrt();
     m.equidistant_mm * (1.0 - s / big_s)
         - m.shift_mm * (1.0 - k1 * c - (1.0 - k1 * k1).sqrt() * s) / big_s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Coefficients;
+    use proptest::prelude::*;
+
+    fn coefficients(k1: f64, e_nc_mm: f64, shift_mm: f64, rotation_rad: f64) -> Coefficients {
+        Coefficients {
+            one_plus_k1_sq: 1.0 + k1 * k1,
+            two_k1: 2.0 * k1,
+            k1,
+            e_nc_mm,
+            equidistant_mm: 0.1,
+            shift_mm,
+            rotation_rad,
+        }
+    }
+
+    proptest! {
+        /// The closing rate bounds hold against finite differences of the closed form: over a
+        /// window of `reach` around φi, the change of h = g − l·β from the window's centre is
+        /// within (bound of |∂h/∂φ|)·|Δφ| at the centre's lag, and within (bound of |∂h/∂β|)·|Δβ|
+        /// at a fixed angle (the two legs the sweep's screen adds up). The 1e-12 mm slack covers
+        /// the round-off of h (a few ulp of terms of ~1 mm).
+        #[test]
+        fn closing_changes_within_the_rate_bounds(
+            k1 in 0.05f64..0.97,
+            e_nc in 1.0f64..40.0,
+            shift in -0.5f64..0.5,
+            rotation in -0.01f64..0.01,
+            lag in -0.02f64..0.02,
+            centre in -3.2f64..3.2,
+            reach in 1e-4f64..0.3,
+            dlag in -1e-3f64..1e-3,
+        ) {
+            let c = coefficients(k1, e_nc, shift, rotation);
+            let at = |phi: f64, lag: f64| {
+                let (g, l) = c.at(phi.cos(), phi.sin());
+                g - l * lag
+            };
+            let least_s = c.least_s_within((centre.cos(), centre.sin()), reach);
+            let (rate_crank, rate_lag) = c.closing_rate_bounds(least_s, lag);
+            let h0 = at(centre, lag);
+            for k in -20..=20 {
+                let phi = centre + reach * k as f64 / 20.0;
+                let s = (1.0 + k1 * k1 - 2.0 * k1 * phi.cos()).sqrt();
+                prop_assert!(least_s <= s * (1.0 + 1e-12), "S {s} below {least_s}");
+                let h = at(phi, lag);
+                let dphi = (phi - centre).abs();
+                prop_assert!((h - h0).abs() <= rate_crank * dphi + 1e-12, "crank leg at {phi}");
+                let moved = at(phi, lag + dlag);
+                prop_assert!((moved - h).abs() <= rate_lag * dlag.abs() + 1e-12, "lag leg at {phi}");
+            }
+        }
+    }
 }

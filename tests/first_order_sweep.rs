@@ -9,7 +9,6 @@
 use cycloid::equilibrium::curves::{self, LoadedSweep};
 use cycloid::equilibrium::first_order_sweep::{FirstOrderSweep, Row, Scratch};
 use cycloid::equilibrium::sweep::{residual, solve_angle, AngleSolution, Model};
-use cycloid::geometry::Vec2;
 use cycloid::spec::{self, ContactLaw, GeometryMode, Spec};
 
 /// The spec's scene `scene` as a first-order, linear-law, rigid-bearing model with rollers,
@@ -173,9 +172,14 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
             half_width_mm: &mut w,
             pin_force_n: &mut pf,
         };
-        let e_phi = Vec2::new(phi.cos(), phi.sin());
         let s = lean
-            .solve(phi, e_phi, || guess, &mut scratch, &mut row)
+            .solve(
+                phi,
+                (phi.cos(), phi.sin()),
+                || guess,
+                &mut scratch,
+                &mut row,
+            )
             .unwrap_or_else(|| panic!("fell back at {:.3}°", phi.to_degrees()));
         guess = (s.lag_rad, s.output_lag_rad);
         // Balance of the recorded forces, independently of the kernel's own residual: the

@@ -301,7 +301,7 @@ fn solve_chunk(
             let (sin, cos) = crank_direction.sin_cos(phi);
             let e_phi = Vec2::new(cos, sin);
             let guess = || work.guess(phi);
-            if let Some(s) = lean.solve(phi, e_phi, guess, scratch, &mut chunk.row(k)) {
+            if let Some(s) = lean.solve(phi, (cos, sin), guess, scratch, &mut chunk.row(k)) {
                 chunk.record_first_order(k, e_phi, &s, &mut bearing_angle);
                 if !scratch.screened() {
                     lean.screen(&crank_rad[k + 1..], s.lag_rad, scratch);

@@ -247,18 +247,21 @@ impl<'a> FirstOrderSweep<'a> {
         })
     }
 
-    /// Solve crank φ (e_φ its direction), writing `row`. `guess` gives the warm-start lags
-    /// (β, βo) when the last angle's active sets do not settle this one. `None` leaves the
-    /// angle to the general solve (see the module documentation); `row` is then partly
-    /// written and `scratch` has forgotten its active sets.
+    /// Solve crank φ, with (cos φ, sin φ) given, writing `row`. `guess` gives the warm-start
+    /// lags (β, βo) when the last angle's active sets do not settle this one. `None` leaves
+    /// the angle to the general solve (see the module documentation); `row` is then partly
+    /// written and `scratch` has forgotten its active sets. (The direction comes as a pair of
+    /// numbers, which are passed in registers: a `Vec2` goes through memory, where loading
+    /// both halves at once stalls on the two stores that wrote them.)
     pub fn solve(
         &self,
         crank_rad: f64,
-        e_phi: Vec2,
+        (cos, sin): (f64, f64),
         guess: impl Fn() -> (f64, f64),
         scratch: &mut Scratch,
         row: &mut Row<'_, '_>,
     ) -> Option<Summary> {
+        let e_phi = Vec2::new(cos, sin);
         let summary = self.try_solve(crank_rad, e_phi, guess, scratch, row);
         if summary.is_none() {
             scratch.forget();
@@ -326,6 +329,7 @@ impl<'a> FirstOrderSweep<'a> {
         self.settle_rollers(all(n), guess, scratch)
     }
 
+    #[inline(always)]
     fn settle_rollers(
         &self,
         candidates: u64,
@@ -650,7 +654,7 @@ mod tests {
                     pin_force_n: &mut pfs,
                 };
                 let summary = kernel
-                    .solve(phi, e, || (0.0, 0.0), scratch, &mut row)
+                    .solve(phi, (e.x, e.y), || (0.0, 0.0), scratch, &mut row)
                     .unwrap();
                 (summary.lag_rad, summary.output_lag_rad, f)
             };

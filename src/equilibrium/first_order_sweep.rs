@@ -353,19 +353,8 @@ impl<'a> FirstOrderSweep<'a> {
 
     /// `roller_terms` for the rollers in `candidates` only.
     fn candidate_terms(&self, e_phi: Vec2, candidates: u64, scratch: &mut Scratch) {
-        let u = &self.roller_units;
-        let coefficients = &self.rollers.first_order;
         for i in bits(candidates) {
-            let (c, s) = (
-                u.x[i] * e_phi.x + u.y[i] * e_phi.y,
-                e_phi.x * u.y[i] - e_phi.y * u.x[i],
-            );
-            let (g, l, inverse_s) = coefficients.with_inverse_s(c, s);
-            scratch.cos[i] = c;
-            scratch.sin[i] = s;
-            scratch.inverse_s[i] = inverse_s;
-            scratch.gap[i] = g;
-            scratch.arm[i] = l;
+            self.roller_term(i, e_phi, scratch);
         }
     }
 
@@ -416,22 +405,25 @@ impl<'a> FirstOrderSweep<'a> {
     /// cos φi, sin φi, 1/S_i, g_i and l_i of every roller into `scratch`, in one loop over
     /// columns (no branches, so it vectorises).
     fn roller_terms(&self, e_phi: Vec2, scratch: &mut Scratch) {
-        let u = &self.roller_units;
-        let n = u.x.len();
-        let coefficients = &self.rollers.first_order;
-        let (ux, uy) = (&u.x[..n], &u.y[..n]);
-        for i in 0..n {
-            let (c, s) = (
-                ux[i] * e_phi.x + uy[i] * e_phi.y,
-                e_phi.x * uy[i] - e_phi.y * ux[i],
-            );
-            let (g, l, inverse_s) = coefficients.with_inverse_s(c, s);
-            scratch.cos[i] = c;
-            scratch.sin[i] = s;
-            scratch.inverse_s[i] = inverse_s;
-            scratch.gap[i] = g;
-            scratch.arm[i] = l;
+        for i in 0..self.roller_units.x.len() {
+            self.roller_term(i, e_phi, scratch);
         }
+    }
+
+    /// cos φi, sin φi, 1/S_i, g_i and l_i of roller i into `scratch`.
+    #[inline(always)]
+    fn roller_term(&self, i: usize, e_phi: Vec2, scratch: &mut Scratch) {
+        let u = &self.roller_units;
+        let (c, s) = (
+            u.x[i] * e_phi.x + u.y[i] * e_phi.y,
+            e_phi.x * u.y[i] - e_phi.y * u.x[i],
+        );
+        let (g, l, inverse_s) = self.rollers.first_order.with_inverse_s(c, s);
+        scratch.cos[i] = c;
+        scratch.sin[i] = s;
+        scratch.inverse_s[i] = inverse_s;
+        scratch.gap[i] = g;
+        scratch.arm[i] = l;
     }
 
     /// The rollers in `mask` (in contact at lag β, forces in `row`): their forces into `sums`,

@@ -46,13 +46,13 @@ fn loaded(b: divan::Bencher, geometry: GeometryMode) {
 }
 
 /// Loaded sweep of 3,600 crank angles, exact geometry (target < 10 ms on one core).
-#[divan::bench(sample_count = 20)]
+#[divan::bench(sample_count = 60)]
 fn loaded_sweep_3600_exact(b: divan::Bencher) {
     loaded(b, GeometryMode::Exact);
 }
 
 /// Loaded sweep of 3,600 crank angles, first-order geometry (target < 1 ms on one core).
-#[divan::bench(sample_count = 50)]
+#[divan::bench(sample_count = 300)]
 fn loaded_sweep_3600_first_order(b: divan::Bencher) {
     loaded(b, GeometryMode::FirstOrder);
 }

@@ -100,8 +100,10 @@ pub struct Summary {
 /// Most rollers and pins the kernel takes: it keeps an active set as a bit mask.
 const MAX_TERMS: usize = 64;
 
-/// Scratch space reused over a chunk of angles, and the active sets of the last angle settled.
-/// Fixed-size columns, so that the loops over them vectorise without aliasing checks.
+/// Scratch space reused over the chunks a worker takes (`restart` between them), and the state
+/// carried from one angle to the next: the active sets of the last angle settled, the disc
+/// rotation's reference, the screen. Fixed-size columns, so that the loops over them vectorise
+/// without aliasing checks.
 #[derive(Debug)]
 pub struct Scratch {
     /// Per roller: cos φi, sin φi, 1/S_i, g_i, l_i.

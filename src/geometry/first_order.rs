@@ -99,9 +99,10 @@ impl Coefficients {
     ///   q' = (c − K1)·(1 − K1·c)/S³, and |c − K1| ≤ S, |1 − K1·c| ≤ S
     ///        ((1 − K1·c)² = S² − K1²·s²), so |q'| ≤ 1/S;
     ///   |∂h/∂β| = e·nc·|q| ≤ e·nc, as |s| ≤ S.
-    /// Hence |∂h/∂φ| ≤ (|ΔRp|·K1²/2 + e·nc·|β + Δδ|)/S for S ≥ `least_s`; both bounds are
-    /// attained in the limit (no slack to spare). Returns (bound of |∂h/∂φ| at lag β, bound of
-    /// |∂h/∂β|), mm/rad.
+    /// Hence |∂h/∂φ| ≤ (|ΔRp|·K1²/2 + e·nc·|β + Δδ|)/S for S ≥ `least_s`. Each of the three
+    /// bounds on f', q' and q is attained somewhere (so none can be lowered as it stands), though
+    /// not all at the same φi, and the least S of a window adds slack over the rest of it.
+    /// Returns (bound of |∂h/∂φ| at lag β, bound of |∂h/∂β|), mm/rad.
     pub fn closing_rate_bounds(&self, least_s: f64, lag_rad: f64) -> (f64, f64) {
         let lever = self.e_nc_mm * (lag_rad + self.rotation_rad).abs();
         let crank = (self.shift_mm.abs() * self.k1 * self.k1 * 0.5 + lever) / least_s;

@@ -58,9 +58,9 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// reference); the others by turning the reference through the difference d = x − x_ref:
 ///   sin x = s_r + (s_r·(cos d − 1) + c_r·sin d),  cos x = c_r + (c_r·(cos d − 1) − s_r·sin d),
 /// with the series of `sin_cosm1` for d. A correction of size |d| is added to the reference, so
-/// the result is within a few ulp of 1 of libm's; d itself is exact when x and x_ref are within
-/// a factor 2 (Sterbenz), and otherwise off by at most half an ulp of x, which is below the
-/// representation error of x itself.
+/// the result is within a few ulp of 1 (absolute) of libm's; d itself is exact when x and x_ref
+/// are within a factor 2 (Sterbenz), and otherwise off by at most half an ulp of the larger of
+/// |x| and |x_ref|, ≤ ε·(|x| + 0.05)/2 (they are at most 0.05 apart).
 #[derive(Debug, Clone, Copy)]
 pub struct NearbySinCos {
     angle: f64,
@@ -96,12 +96,14 @@ impl NearbySinCos {
 }
 
 /// atan2(y, x) of a sequence of vectors that turn little from one to the next (a force along a
-/// sweep): the first, and any turned by more than atan 0.05 from the current reference (or not
-/// in its half-plane), by libm (which becomes the reference); the others as the reference's
-/// angle plus the turn from it, δ = atan t with t = (r × v)/(r · v), by the Taylor series of atan
-/// to t¹¹ (truncation < t¹³/13 < 2e-17·|t| at |t| ≤ 0.05), reduced to [−π, π]. t carries the
-/// round-off of a cross product of nearly parallel vectors, ~ε absolute, so the result is within
-/// a few ulp of π of libm's.
+/// sweep): the first, any turned by more than atan 0.05 from the current reference (or not in
+/// its half-plane), and any whose reference lies within 0.06 rad of the cut at ±π, by libm
+/// (which becomes the reference); the others as the reference's angle plus the turn from it,
+/// δ = atan t with t = (r × v)/(r · v), by the Taylor series of atan to t¹¹ (truncation
+/// < t¹³/13 < 2e-17·|t| at |t| ≤ 0.05). Away from the cut, the sum cannot cross it, so no
+/// reduction is needed and the result is on libm's side of it. t carries the round-off of a
+/// cross product of nearly parallel vectors, ~ε absolute, so the result is within a few ulp of
+/// π of libm's.
 #[derive(Debug, Clone, Copy)]
 pub struct NearbyAtan2 {
     angle: f64,
@@ -121,23 +123,17 @@ impl NearbyAtan2 {
     /// atan2(y, x), in [−π, π].
     #[inline]
     pub fn atan2(&mut self, y: f64, x: f64) -> f64 {
-        use std::f64::consts::{PI, TAU};
+        use std::f64::consts::PI;
         let r = self.reference;
         let (turn, along) = (r.x * y - r.y * x, r.x * x + r.y * y);
-        if along > 0.0 && turn.abs() <= 0.05 * along {
+        let near = along > 0.0 && turn.abs() <= 0.05 * along;
+        if near && self.angle.abs() <= PI - 0.06 {
             let t = turn / along;
             let t2 = t * t;
             let series = 1.0
                 - t2 * (1.0 / 3.0
                     - t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0 - t2 * (1.0 / 9.0 - t2 * (1.0 / 11.0)))));
-            let angle = self.angle + t * series;
-            return if angle > PI {
-                angle - TAU
-            } else if angle < -PI {
-                angle + TAU
-            } else {
-                angle
-            };
+            return self.angle + t * series;
         }
         self.angle = y.atan2(x);
         self.reference = Vec2::new(x, y);
@@ -272,6 +268,10 @@ mod tests {
         let mut near = NearbyAtan2::default();
         assert_eq!(near.atan2(0.0, 0.0), 0.0);
         assert_eq!(near.atan2(0.0, 0.0), 0.0);
+        // Across the cut by round-off: libm's side of it, not 2π away.
+        let mut near = NearbyAtan2::default();
+        near.atan2(0.01, -1.0);
+        assert_eq!(near.atan2(-1e-17, -1.0), (-1e-17f64).atan2(-1.0));
     }
 
     /// Reduction keeps in-range values and lands every other value in range, a whole number of

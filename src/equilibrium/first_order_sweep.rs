@@ -56,6 +56,8 @@ pub struct FirstOrderSweep<'a> {
     /// per-angle loops over them vectorise.
     roller_units: Columns,
     pin_units: Columns,
+    /// The gap of every pin at zero output lag: the hole clearance c, mm.
+    pin_gaps: Vec<f64>,
 }
 
 /// x and y components of a set of unit vectors.
@@ -113,8 +115,7 @@ pub struct Scratch {
     inverse_s: [f64; MAX_TERMS],
     gap: [f64; MAX_TERMS],
     arm: [f64; MAX_TERMS],
-    /// Per pin: the gap c (the hole clearance) and the arm a_j.
-    pin_gap: [f64; MAX_TERMS],
+    /// Per pin: the arm a_j.
     pin_arm: [f64; MAX_TERMS],
     /// Forces of the rollers and of the pins at the root, N.
     force: [f64; MAX_TERMS],
@@ -165,7 +166,6 @@ impl Default for Scratch {
             inverse_s: zeros,
             gap: zeros,
             arm: zeros,
-            pin_gap: zeros,
             pin_arm: zeros,
             force: zeros,
             pin_force: zeros,
@@ -247,6 +247,7 @@ impl<'a> FirstOrderSweep<'a> {
             width_factor: 4.0 / (PI * c.length_mm * c.contact_modulus_mpa),
             roller_units: Columns::of(&r.units),
             pin_units: pins.map_or_else(Columns::default, |(p, _)| Columns::of(&p.base)),
+            pin_gaps: pins.map_or_else(Vec::new, |(p, _)| vec![p.clearance_mm; p.base.len()]),
         })
     }
 
@@ -481,7 +482,6 @@ impl<'a> FirstOrderSweep<'a> {
         let (s, c) = scratch.disc_rotation.sin_cos(psi);
         let w = &self.pin_units;
         let m = w.x.len();
-        scratch.pin_gap[..m].fill(p.clearance_mm);
         let rw = p.circle_radius_mm;
         // a_j = (rw·R(ψ)·w_j) × (−e_φ) = rw·(x_j·P + y_j·Q) with w_j = (x_j, y_j),
         // P = sin ψ·e_x − cos ψ·e_y and Q = cos ψ·e_x + sin ψ·e_y.
@@ -492,7 +492,7 @@ impl<'a> FirstOrderSweep<'a> {
         let (lag, mask) = self.settle(
             Balance {
                 stiffness: k,
-                gap: &scratch.pin_gap[..m],
+                gap: &self.pin_gaps,
                 arm: &scratch.pin_arm[..m],
                 force: &mut scratch.pin_force[..m],
                 candidates: all(m),
@@ -619,6 +619,11 @@ mod tests {
     use crate::spec::{self, ContactLaw, GeometryMode, Modification};
     use proptest::prelude::*;
 
+    /// Each column as a slice (a row of one angle for `Row`).
+    fn slices(columns: &mut [Vec<f64>]) -> Vec<&mut [f64]> {
+        columns.iter_mut().map(|v| v.as_mut_slice()).collect()
+    }
+
     /// An angle whose candidates have no root, or whose root falls outside the lags the screen
     /// holds for, is solved on every roller: a screen built at the opposite lag (which keeps
     /// the wrong flanks) and one that leaves out a contact (so that the root of the others lies
@@ -638,16 +643,12 @@ mod tests {
             let solve = |scratch: &mut Scratch| {
                 let (mut f, mut p, mut w) = (column(), column(), column());
                 let mut pf = vec![vec![0.0]; kernel.pin_units.x.len()];
-                let mut fs: Vec<&mut [f64]> = f.iter_mut().map(|v| v.as_mut_slice()).collect();
-                let mut ps: Vec<&mut [f64]> = p.iter_mut().map(|v| v.as_mut_slice()).collect();
-                let mut ws: Vec<&mut [f64]> = w.iter_mut().map(|v| v.as_mut_slice()).collect();
-                let mut pfs: Vec<&mut [f64]> = pf.iter_mut().map(|v| v.as_mut_slice()).collect();
                 let mut row = super::Row {
                     k: 0,
-                    roller_force_n: &mut fs,
-                    pressure_mpa: &mut ps,
-                    half_width_mm: &mut ws,
-                    pin_force_n: &mut pfs,
+                    roller_force_n: &mut slices(&mut f),
+                    pressure_mpa: &mut slices(&mut p),
+                    half_width_mm: &mut slices(&mut w),
+                    pin_force_n: &mut slices(&mut pf),
                 };
                 let summary = kernel
                     .solve(phi, (e.x, e.y), || (0.0, 0.0), scratch, &mut row)

@@ -3,7 +3,8 @@
 
 use cycloid::equilibrium::curves;
 use cycloid::geometry::clearance::{self, Mesh};
-use cycloid::spec::{self, GeometryMode, Spec};
+use cycloid::model::GeometryMode;
+use cycloid::spec::{self, Spec};
 use std::hint::black_box;
 
 mod common;
@@ -61,7 +62,7 @@ fn loaded_sweep_3600_first_order(b: divan::Bencher) {
 #[divan::bench(sample_count = 3)]
 fn optimisation_positive_ratio(b: divan::Bencher) {
     let s = paper();
-    b.bench(|| cycloid::optimise::run_study(&s, &s.studies[0]));
+    b.bench(|| cycloid::engine::optimise::run_study(&s, &s.studies[0]));
 }
 
 /// `check specs/paper.yaml` end to end, all four optimisations included (target < 2 s).

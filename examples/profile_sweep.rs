@@ -5,7 +5,7 @@
 //! to remove the set-up cost.
 
 use cycloid::equilibrium::curves;
-use cycloid::spec::GeometryMode;
+use cycloid::model::GeometryMode;
 
 #[path = "../benches/common/mod.rs"]
 mod common;

@@ -1,9 +1,12 @@
 //! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
+use crate::engine::{accuracy, check, golden, optimise, scene};
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
-use crate::{accuracy, check, export, golden, optimise, report, scene, spec};
+use crate::model::Plan;
+use crate::report::export;
+use crate::{report, spec};
 use clap::{Parser, Subcommand};
 use std::io::Write;
 
@@ -337,7 +340,7 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
     let mut results = Vec::new();
     for s in &spec.scenes {
         if spec.golden.iter().any(|g| g.scene == s.name) {
-            results.push(scene::run(&spec, s, &scene::Plan::for_scene(s))?);
+            results.push(scene::run(&spec, s, &Plan::for_scene(s))?);
         }
     }
     let blessed = golden::bless(&spec, &results).map_err(|e| locate(e, &spec))?;
@@ -346,19 +349,22 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
 }
 
 /// Every scene, in parallel; results (and the first error) in spec order.
-fn run_scenes(spec: &spec::Spec) -> Result<Vec<scene::SceneResult>> {
+fn run_scenes(spec: &spec::Spec) -> Result<Vec<crate::model::results::SceneResult>> {
     use rayon::prelude::*;
-    let results: Vec<Result<scene::SceneResult>> = spec
+    let results: Vec<Result<crate::model::results::SceneResult>> = spec
         .scenes
         .par_iter()
-        .map(|s| scene::run(spec, s, &scene::Plan::for_scene(s)))
+        .map(|s| scene::run(spec, s, &Plan::for_scene(s)))
         .collect();
     results.into_iter().collect()
 }
 
 /// Studies in parallel, in spec order, with a progress spinner on a terminal (hidden when
 /// stderr is not one, so CI logs stay clean).
-fn run_studies(spec: &spec::Spec, studies: Vec<&spec::Study>) -> Vec<optimise::StudyResult> {
+fn run_studies(
+    spec: &spec::Spec,
+    studies: Vec<&crate::model::Study>,
+) -> Vec<optimise::StudyResult> {
     use rayon::prelude::*;
     if studies.is_empty() {
         return Vec::new();
@@ -546,7 +552,7 @@ fn run_optimise(
             format!("{path}: the spec has no `optimise` section"),
         ));
     }
-    let chosen: Vec<&spec::Study> = match only {
+    let chosen: Vec<&crate::model::Study> = match only {
         Some(name) => {
             let s = spec
                 .studies

@@ -1,22 +1,35 @@
 //! `cycloid`: design checks for cycloidal speed reducers.
 //!
-//! Data flow: spec → geometry → contact → equilibrium → (optimise) → check → report.
-//! Units inside the engine: mm, N, N·mm, rad, MPa. Conversions happen only in `spec` (input)
-//! and `report` (output). Conventions are those of `shared/MODEL.md`, restated on the types.
+//! Layers, each importing only the ones before it (`tests/architecture.rs` keeps it so):
+//! - `error`, `units`, `numeric`, `files`: errors, unit conversions, numeric helpers, safe I/O;
+//! - `model`: the data model (design, scenes and plans, limits, studies, results) and the one
+//!   registry of quantities;
+//! - `spec`: YAML → raw → validated model, with located errors and the design rules;
+//! - `geometry` → `contact` → `equilibrium`: the physics;
+//! - `engine`: runs scenes, checks limits and goldens, optimises, runs the accuracy ladder;
+//! - `report`: the terminal table, JSON, JUnit, the design review, the profile export;
+//! - `cli`: the commands.
+//!
+//! Units inside the engine: mm, N, N·mm, rad, MPa; every conversion is a `units` function,
+//! called at the edges. Conventions are those of `shared/MODEL.md`, restated on the types.
 
-pub mod accuracy;
-pub mod check;
-pub mod cli;
+pub mod error;
+pub mod files;
+pub mod numeric;
+pub mod units;
+
+pub mod model;
+
+pub mod spec;
+
 pub mod contact;
 pub mod equilibrium;
-pub mod error;
-pub mod export;
 pub mod geometry;
-pub mod golden;
-pub mod optimise;
-pub mod quantity;
+
+pub mod engine;
+
 pub mod report;
-pub mod scene;
-pub mod spec;
+
+pub mod cli;
 
 pub use error::{Error, ErrorKind, Result};

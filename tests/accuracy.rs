@@ -14,7 +14,7 @@
 //!
 //! No timing is asserted: times are measurements printed for the user.
 
-use cycloid::accuracy::{self, Ladder, Options, Quantity, Tolerances, Variation};
+use cycloid::engine::accuracy::{self, Ladder, Options, Quantity, Tolerances, Variation};
 use cycloid::spec::{self, Spec};
 use std::path::PathBuf;
 use std::process::Command;

@@ -9,7 +9,8 @@ use cycloid::contact::law::{
 };
 use cycloid::equilibrium::pins::Pins;
 use cycloid::equilibrium::rollers::Rollers;
-use cycloid::spec::{self, ContactLaw, GeometryMode, Spec};
+use cycloid::model::{ContactLaw, GeometryMode};
+use cycloid::spec::{self, Spec};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 

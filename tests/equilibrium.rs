@@ -6,13 +6,15 @@
 //! zero clearance, a very stiff bearing) and scaling. Tolerances name the error they cover.
 
 use cycloid::contact::law::{self, paper_linear_stiffness};
+use cycloid::engine::scene::run;
 use cycloid::equilibrium::curves;
 use cycloid::equilibrium::solve::{monotone_root, Balance, Settings, SolveFailure};
 use cycloid::equilibrium::sweep::{residual, solve_angle, AngleSolution, Model};
 use cycloid::geometry::clearance::Mesh;
 use cycloid::geometry::{cross, Vec2};
-use cycloid::scene::{run, Plan};
-use cycloid::spec::{self, ContactLaw, GeometryMode, Spec};
+use cycloid::model::Plan;
+use cycloid::model::{ContactLaw, GeometryMode};
+use cycloid::spec::{self, Spec};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 
@@ -725,7 +727,7 @@ fn pin_balance_converges_at_tiny_torque_on_a_large_pin_circle() {
 #[test]
 fn accurate_roller_gap_agrees_with_the_plain_closest_point() {
     use cycloid::geometry::clearance::Pose;
-    use cycloid::spec::Modification;
+    use cycloid::model::Modification;
     let spec = Reducer::paper().spec(&SceneText::new(10.0));
     for (shift, eq, rot_deg) in [
         (0.0, 0.0, 0.0),
@@ -1666,10 +1668,10 @@ fn paper_optimum_at_10_nm_regression() {
     assert!((harmonic - 9.0).abs() <= 1e-12 * 9.0);
 
     // Pinned: the largest pin force 4T/(M·rw) = 370.37 N (see the pin-share test's bound).
-    let (pin_max, _, _) = curves::max_entry(&pins.force_n);
+    let (pin_max, _, _) = cycloid::numeric::max_entry(&pins.force_n);
     assert!((pin_max - 370.370).abs() <= 0.2, "max pin force {pin_max}");
 
-    let (roller_max, _, _) = curves::max_entry(&rollers.force_n);
+    let (roller_max, _, _) = cycloid::numeric::max_entry(&rollers.force_n);
     eprintln!(
         "paper optimum 10 N·m: unloaded TE {:.2}..{:.2} arcsec (first order {:.2}..{:.2}, β1 \
          {:.2}), elastic TE {e_lo:.2}..{e_hi:.2} arcsec, contacts {:?}, max roller force \

@@ -4,9 +4,9 @@
 mod common;
 
 use common::*;
-use cycloid::export::{self, ProfilePoint};
 use cycloid::geometry::profile::Profile;
 use cycloid::geometry::{cross, Vec2};
+use cycloid::report::export::{self, ProfilePoint};
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 

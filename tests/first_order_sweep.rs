@@ -6,10 +6,12 @@
 //! instead of normalising, settles the root from its own Newton step, and records only what
 //! the curves need. Tolerances below are round-off bounds of those differences.
 
-use cycloid::equilibrium::curves::{self, LoadedSweep};
+use cycloid::equilibrium::curves;
 use cycloid::equilibrium::first_order_sweep::{FirstOrderSweep, Row, Scratch};
 use cycloid::equilibrium::sweep::{residual, solve_angle, AngleSolution, Model};
-use cycloid::spec::{self, ContactLaw, GeometryMode, Spec};
+use cycloid::model::results::LoadedSweep;
+use cycloid::model::{ContactLaw, GeometryMode};
+use cycloid::spec::{self, Spec};
 
 /// The spec's scene `scene` as a first-order, linear-law, rigid-bearing model with rollers,
 /// pins and bearing: the models the lean sweep applies to.

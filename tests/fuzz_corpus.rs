@@ -187,8 +187,8 @@ fn exercise(text: &str) -> Result<bool, String> {
     let outcome = catch_unwind(AssertUnwindSafe(|| {
         match cycloid::spec::parse("fuzz.yaml", text) {
             Ok(spec) => {
-                let _ = cycloid::check::validate(&spec);
-                let _ = cycloid::scene::explain(&spec);
+                let _ = cycloid::engine::check::validate(&spec);
+                let _ = cycloid::engine::scene::explain(&spec);
                 Ok(true)
             }
             Err(e) => {

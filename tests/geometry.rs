@@ -12,9 +12,9 @@ use common::*;
 use cycloid::geometry::clearance::{self, Mesh, Pose};
 use cycloid::geometry::first_order;
 use cycloid::geometry::profile::Profile;
-use cycloid::geometry::validity;
 use cycloid::geometry::{cross, Vec2};
-use cycloid::spec::{Design, Modification};
+use cycloid::model::{Design, Modification};
+use cycloid::spec::rules as validity;
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 
@@ -577,7 +577,10 @@ proptest! {
 // ---------------------------------------------------------------------------------------------
 // 2. The paper's cases
 
-fn paper_sweep(shift: f64, equidistant: f64) -> (cycloid::spec::Spec, clearance::ClearanceSweep) {
+fn paper_sweep(
+    shift: f64,
+    equidistant: f64,
+) -> (cycloid::spec::Spec, cycloid::model::results::ClearanceSweep) {
     let spec = paper_spec(shift, equidistant);
     let scene = &spec.scenes[0];
     // One mesh period in 0.1° steps (reducer.yaml's scene).

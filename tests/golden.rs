@@ -1,9 +1,9 @@
 //! Golden curves: whole-curve comparison with interpolation, a perturbed golden failing with
 //! exit 1 at the right place, `bless` reporting what moved, and the spec errors around goldens.
 
-use cycloid::golden::{compare, GoldenCurves};
-use cycloid::quantity::{Curves, QUANTITIES};
-use cycloid::spec::Tolerance;
+use cycloid::engine::golden::{compare, GoldenCurves};
+use cycloid::model::quantity::{Curves, QUANTITIES};
+use cycloid::model::Tolerance;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -371,9 +371,9 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
     let spec = cycloid::spec::parse("specs/paper.yaml", &text).unwrap();
     let mut scene = spec.scenes[1].clone();
     scene.crank_rad.truncate(12);
-    scene.effects = cycloid::scene::Effect::ALL.to_vec();
-    let plan = cycloid::scene::Plan::for_scene(&scene);
-    let r = cycloid::scene::run(&spec, &scene, &plan).unwrap();
+    scene.effects = cycloid::model::Effect::ALL.to_vec();
+    let plan = cycloid::model::Plan::for_scene(&scene);
+    let r = cycloid::engine::scene::run(&spec, &scene, &plan).unwrap();
     let doc = cycloid::report::json::document(&spec, &[], std::slice::from_ref(&r));
     let json = &doc["scenes"][0];
     let mut seen = 0;

@@ -6,10 +6,13 @@
 //! anywhere in the scenes of the results JSON; the residual of the paper's Eqs. 12–14
 //! (`max_residual`) ≤ 1e-9.
 
+use cycloid::engine::scene;
 use cycloid::equilibrium::sweep::{solve_angle, AngleSolution, Model};
 use cycloid::geometry::first_order;
-use cycloid::scene::{self, Plan, SceneResult};
-use cycloid::spec::{self, GeometryMode, Spec};
+use cycloid::model::results::SceneResult;
+use cycloid::model::GeometryMode;
+use cycloid::model::Plan;
+use cycloid::spec::{self, Spec};
 use serde_json::Value;
 use std::f64::consts::{PI, TAU};
 use std::path::PathBuf;

@@ -1,18 +1,19 @@
 //! Optimisation: the global sample, determinism, constraint handling on the exact geometry,
 //! the paper's studies, and writing the optimum back into a spec.
 
+use cycloid::engine::optimise::global::{halton, radical_inverse};
+use cycloid::engine::optimise::problem::Problem;
+use cycloid::engine::optimise::{self, run_study};
 use cycloid::geometry::clearance::{self, Mesh};
-use cycloid::optimise::global::{halton, radical_inverse};
-use cycloid::optimise::problem::Problem;
-use cycloid::optimise::{self, run_study};
-use cycloid::spec::{self, Modification, Objective, Spec};
+use cycloid::model::{Modification, Objective};
+use cycloid::spec::{self, Spec};
 use std::process::Command;
 
 fn paper() -> Spec {
     spec::load("specs/paper.yaml").expect("paper spec loads")
 }
 
-fn study<'a>(spec: &'a Spec, name: &str) -> &'a cycloid::spec::Study {
+fn study<'a>(spec: &'a Spec, name: &str) -> &'a cycloid::model::Study {
     spec.studies
         .iter()
         .find(|s| s.name == name)
@@ -126,9 +127,9 @@ fn the_optimiser_objective_is_the_checkers_ratio_fluctuation() {
     let e = Problem::new(&spec, s).evaluate(&spec.modification);
     let scene = &spec.scenes[s.scene];
     let result =
-        cycloid::scene::run(&spec, scene, &cycloid::scene::Plan::for_scene(scene)).unwrap();
+        cycloid::engine::scene::run(&spec, scene, &cycloid::model::Plan::for_scene(scene)).unwrap();
     let ratio = result.loaded.transmission.unwrap().ratio.unwrap();
-    let fluct = cycloid::equilibrium::curves::fluctuation(&ratio);
+    let fluct = cycloid::numeric::fluctuation(&ratio);
     assert_eq!(e.terms, vec![(Objective::RatioFluctuation, fluct)]);
 }
 

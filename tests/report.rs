@@ -2,7 +2,7 @@
 //! that carry units; the optimisation section of a spec with studies (map, global sample, path,
 //! start, references, optimum, the study table), and the map drawn from synthetic data.
 
-use cycloid::optimise::problem::Margin;
+use cycloid::engine::optimise::problem::Margin;
 use cycloid::report::html::{render, OptimisationView, ReportInput, StudyPoint};
 use cycloid::report::svg::MapCell;
 use quick_xml::events::Event;
@@ -47,7 +47,7 @@ fn check_writes_a_page_with_every_plot_it_links() {
     assert!(html.contains("FAILED: 1 of 8 checks fail"));
     assert!(html.contains("paper-table-1-negative-start"));
     // Traceable: the spec's SHA-256 and the tool version.
-    let sha = cycloid::golden::sha256_hex(
+    let sha = cycloid::engine::golden::sha256_hex(
         &std::fs::read_to_string("specs/paper-negative-start.yaml").unwrap(),
     );
     assert!(html.contains(&sha));
@@ -284,7 +284,8 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
     let spec = cycloid::spec::parse("specs/reducer.yaml", &text).unwrap();
     let mut scene = spec.scenes[0].clone();
     scene.crank_rad.truncate(20);
-    let r = cycloid::scene::run(&spec, &scene, &cycloid::scene::Plan::for_scene(&scene)).unwrap();
+    let r = cycloid::engine::scene::run(&spec, &scene, &cycloid::model::Plan::for_scene(&scene))
+        .unwrap();
     // A synthetic bowl with its minimum at (0.125, 0.16), infeasible where ΔRrp − ΔRp < 0.015,
     // not evaluated (a design rule) in one corner.
     let mut map = Vec::new();

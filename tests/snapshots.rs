@@ -140,8 +140,9 @@ fn colour_only_when_asked() {
     let text = std::fs::read_to_string("specs/paper-negative-start.yaml").unwrap();
     let spec = cycloid::spec::parse("x.yaml", &text).unwrap();
     let scene = &spec.scenes[0];
-    let r = cycloid::scene::run(&spec, scene, &cycloid::scene::Plan::for_scene(scene)).unwrap();
-    let checks = cycloid::check::evaluate(&spec.limits, &[r]);
+    let r =
+        cycloid::engine::scene::run(&spec, scene, &cycloid::model::Plan::for_scene(scene)).unwrap();
+    let checks = cycloid::engine::check::evaluate(&spec.limits, &[r]);
     let plain = cycloid::report::table::render_styled(&checks, false);
     let coloured = cycloid::report::table::render_styled(&checks, true);
     assert!(!plain.contains('\x1b'));
@@ -164,7 +165,7 @@ fn colour_only_when_asked() {
 
 #[test]
 fn failures_come_first_the_furthest_outside_first() {
-    use cycloid::check::{Bound, Check, CheckKind};
+    use cycloid::engine::check::{Bound, Check, CheckKind};
     let check = |id: &str, value: f64, limit: f64, bound: Bound| Check {
         id: id.into(),
         kind: CheckKind::Limit,

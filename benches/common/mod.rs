@@ -1,7 +1,8 @@
 //! The loaded sweep the benchmarks and `examples/profile_sweep.rs` measure (shared by path).
 
 use cycloid::equilibrium::sweep::Model;
-use cycloid::spec::{self, GeometryMode};
+use cycloid::model::GeometryMode;
+use cycloid::spec::{self};
 
 /// The paper optimum's 10 N·m scene (`rated`; scene 0, `mesh`, is the unloaded one) with
 /// rollers, pins and a rigid bearing in `geometry`, and `n` crank angles over one mesh period.

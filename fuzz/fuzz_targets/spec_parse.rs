@@ -8,8 +8,8 @@ use libfuzzer_sys::fuzz_target;
 fuzz_target!(|text: &str| {
     match cycloid::spec::parse("fuzz.yaml", text) {
         Ok(spec) => {
-            let _ = cycloid::check::validate(&spec);
-            let _ = cycloid::scene::explain(&spec);
+            let _ = cycloid::engine::check::validate(&spec);
+            let _ = cycloid::engine::scene::explain(&spec);
         }
         Err(e) => {
             let rendered = e.to_string();

@@ -3,7 +3,7 @@
 //! The approach d (mm) is the overlap of the undeformed bodies along the contact normal,
 //! d = −gap; no force for d ≤ 0. Forces in N, stiffnesses dF/dd in N/mm.
 
-use crate::spec::ContactLaw;
+use crate::model::ContactLaw;
 use std::f64::consts::PI;
 
 /// What a contact law needs to know about one contact.

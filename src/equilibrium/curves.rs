@@ -5,59 +5,13 @@ use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
 use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
+use crate::model::results::{BearingCurves, LoadedSweep, PinCurves, RollerCurves, Transmission};
 use rayon::prelude::*;
 
 /// Crank angles solved in sequence by one worker, warm-starting each from the previous. The
 /// chunk size is fixed (not derived from the thread count) so results are the same bit for bit
 /// however many threads run them.
 pub const CHUNK: usize = 64;
-
-/// Roller contact over the sweep.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RollerCurves {
-    /// β: lag of the disc behind −φ/nc, rad (positive opposes the motion).
-    pub lag_rad: Vec<f64>,
-    pub force_n: Vec<Vec<f64>>,
-    pub pressure_mpa: Vec<Vec<f64>>,
-    pub half_width_mm: Vec<Vec<f64>>,
-    pub contacts: Vec<usize>,
-}
-
-/// Output pins over the sweep.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PinCurves {
-    /// βo: lag of the output behind the disc, rad.
-    pub output_lag_rad: Vec<f64>,
-    pub force_n: Vec<Vec<f64>>,
-}
-
-/// Crank bearing over the sweep: force magnitude, its angle ε from the eccentric direction
-/// (counter-clockwise), and the relative residual of the paper's Eqs. 12–14.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BearingCurves {
-    pub force_n: Vec<f64>,
-    pub angle_rad: Vec<f64>,
-    pub residual: Vec<f64>,
-    /// Disc-centre displacement magnitude (compliant bearing; zeros when rigid), mm.
-    pub deflection_mm: Vec<f64>,
-}
-
-/// Loaded transmission error δ = β + βo (rad; βo = 0 when the pins are not modelled) and the
-/// ratio κ = dφ/dφout = 1/(1/nc − dδ/dφ), by central differences (periodic when the sweep
-/// covers whole mesh periods, second-order one-sided at the ends otherwise).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Transmission {
-    pub te_rad: Vec<f64>,
-    pub ratio: Option<Vec<f64>>,
-}
-
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct LoadedSweep {
-    pub rollers: Option<RollerCurves>,
-    pub pins: Option<PinCurves>,
-    pub bearing: Option<BearingCurves>,
-    pub transmission: Option<Transmission>,
-}
 
 /// A solve that failed, with the crank angle it failed at.
 #[derive(Debug, Clone, PartialEq)]
@@ -393,46 +347,4 @@ fn collect(model: &Model, crank_rad: &[f64], columns: Columns, periodic: bool) -
         });
     }
     out
-}
-
-/// Largest entry of a [row][angle] array: (value, row, angle index). Empty gives (0, 0, 0).
-pub fn max_entry(rows: &[Vec<f64>]) -> (f64, usize, usize) {
-    let mut best = (f64::NEG_INFINITY, 0, 0);
-    for (i, row) in rows.iter().enumerate() {
-        for (k, &v) in row.iter().enumerate() {
-            if v > best.0 {
-                best = (v, i, k);
-            }
-        }
-    }
-    if best.0.is_finite() {
-        best
-    } else {
-        (0.0, 0, 0)
-    }
-}
-
-/// (min, max) of a curve with their indices.
-pub fn extremes(values: &[f64]) -> ((f64, usize), (f64, usize)) {
-    let mut lo = (f64::INFINITY, 0);
-    let mut hi = (f64::NEG_INFINITY, 0);
-    for (k, &v) in values.iter().enumerate() {
-        if v < lo.0 {
-            lo = (v, k);
-        }
-        if v > hi.0 {
-            hi = (v, k);
-        }
-    }
-    (lo, hi)
-}
-
-/// max − min of a curve.
-pub fn fluctuation(values: &[f64]) -> f64 {
-    let ((lo, _), (hi, _)) = extremes(values);
-    if values.is_empty() {
-        0.0
-    } else {
-        hi - lo
-    }
 }

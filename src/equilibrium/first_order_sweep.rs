@@ -38,7 +38,7 @@ use super::solve::piecewise_linear_root_near;
 use super::sweep::{BalanceSums, Model};
 use crate::contact::law;
 use crate::geometry::{sin_cos, NearbySinCos, Vec2};
-use crate::spec::{ContactLaw, GeometryMode};
+use crate::model::{ContactLaw, GeometryMode};
 use std::f64::consts::PI;
 
 /// The closed-form sweep of one model, when the model is one it applies to.
@@ -616,7 +616,8 @@ fn bits(mut mask: u64) -> impl Iterator<Item = usize> {
 mod tests {
     use super::{all, bits, FirstOrderSweep, Scratch};
     use crate::equilibrium::sweep::Model;
-    use crate::spec::{self, ContactLaw, GeometryMode, Modification};
+    use crate::model::{ContactLaw, GeometryMode, Modification};
+    use crate::spec::{self};
     use proptest::prelude::*;
 
     /// Each column as a slice (a row of one angle for `Row`).

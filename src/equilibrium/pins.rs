@@ -9,7 +9,7 @@
 
 use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::{cross, rotate, sin_cos, Vec2};
-use crate::spec::{ContactLaw, Design};
+use crate::model::{ContactLaw, Design};
 
 /// One pin's contact.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -15,7 +15,7 @@ use crate::geometry::clearance::{GapFailure, Mesh, Pose};
 use crate::geometry::first_order;
 use crate::geometry::profile::LocusFrame;
 use crate::geometry::{cross, rotate, sin_cos, wrap_pi, Vec2};
-use crate::spec::{ContactLaw, Design, GeometryMode, Modification};
+use crate::model::{ContactLaw, Design, GeometryMode, Modification};
 
 /// One roller's contact at one pose.
 #[derive(Debug, Clone, Copy, PartialEq)]

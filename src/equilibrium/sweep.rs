@@ -14,7 +14,8 @@ use super::solve::{
 };
 use crate::geometry::clearance::Pose;
 use crate::geometry::{cross, Vec2};
-use crate::spec::{ContactLaw, Design, GeometryMode, Modification, Scene};
+use crate::model::{ContactLaw, Design, GeometryMode, Modification, Scene};
+use crate::units;
 use nalgebra::{Matrix2, Matrix4, Vector4};
 
 /// What the loaded model of a scene includes.
@@ -217,8 +218,8 @@ fn beyond_reach(r: &Rollers, pose: &Pose, moment_nmm: f64, torque_nmm: f64) -> S
         "the rollers cannot balance an output torque of {} N·m: the largest moment found is \
          {:.4} N·m, at a lag of {:.4} rad{deepest}; the load is beyond what this disc can hold \
          in the contact model",
-        torque_nmm / 1000.0,
-        moment_nmm / 1000.0,
+        units::nm(torque_nmm),
+        units::nm(moment_nmm),
         pose.lag_rad
     ))
 }

@@ -11,7 +11,9 @@
 use super::profile::LocusFrame;
 use super::profile::{ClosestPointFailure, Profile};
 use super::{cross, rotate, Vec2};
-use crate::spec::{Design, Modification};
+use crate::model::results::{ClearanceSweep, MinClearance};
+use crate::model::{Design, Modification};
+use crate::units;
 use std::f64::consts::TAU;
 
 /// Pose of the disc at one crank angle. Fixed frame.
@@ -68,7 +70,7 @@ impl std::fmt::Display for GapFailure {
             f,
             "closest point of roller {} did not converge at crank {:.4}° (lag {:.3e} rad) after {} iterations",
             self.roller,
-            self.pose.crank_rad.to_degrees(),
+            units::deg(self.pose.crank_rad),
             self.pose.lag_rad,
             self.detail.iterations
         )
@@ -225,16 +227,6 @@ impl Mesh {
 /// last bit of round-off says. A picometre: far below any tolerance that matters.
 const TIE_MM: f64 = 1e-9 * 1e-3;
 
-/// Where the smallest gap of a sweep occurs.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MinClearance {
-    pub gap_mm: f64,
-    pub roller: usize,
-    pub crank_rad: f64,
-    /// Position on the tooth: 0 at the root, 0.5 at the tip, (0, 0.5) one flank, (0.5, 1) the other.
-    pub tooth_phase: f64,
-}
-
 /// The smallest gap over every roller and crank angle at the ideal pose (β = 0): the
 /// whole-mesh interference check, without the backlash work of `sweep`.
 ///
@@ -322,21 +314,6 @@ fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
     } else {
         crank_rad
     }
-}
-
-/// Clearance of every roller over a crank sweep at the ideal pose (β = 0).
-/// Arrays are indexed [roller][angle]. Backlash values are lags in rad.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ClearanceSweep {
-    pub gap_mm: Vec<Vec<f64>>,
-    /// Unloaded TE: the smallest closing lag among rollers closed by a positive lag (the load
-    /// direction of a positive output torque). Negative under interference (preload).
-    pub backlash_rad: Vec<f64>,
-    /// The same for the reverse direction, as a magnitude (−β of the nearest closing roller).
-    pub backlash_reverse_rad: Vec<f64>,
-    /// Lost motion: backlash + reverse backlash.
-    pub lost_motion_rad: Vec<f64>,
-    pub min: MinClearance,
 }
 
 /// Gaps and backlash at every crank angle.

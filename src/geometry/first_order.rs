@@ -8,7 +8,7 @@
 //! The literature's closed form Δ(φi) (the gap after the disc turned to close its first gap) is
 //! g_i − l_i·β1 with β1 = (ΔRrp − ΔRp·sqrt(1 − K1²))/(e·nc); see `literature_gap`.
 
-use crate::spec::{Design, Modification};
+use crate::model::{Design, Modification};
 
 /// First-order gap at zero lag and moment arm of one roller.
 #[derive(Debug, Clone, Copy, PartialEq)]

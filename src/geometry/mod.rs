@@ -3,7 +3,6 @@
 pub mod clearance;
 pub mod first_order;
 pub mod profile;
-pub mod validity;
 
 pub type Vec2 = nalgebra::Vector2<f64>;
 

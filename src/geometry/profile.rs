@@ -12,7 +12,7 @@
 //! r' must be smaller than the smallest convex radius of curvature of C.
 
 use super::{cmul, cross, expi_minus_one, rotate, sin_cos, Vec2};
-use crate::spec::{Design, Modification};
+use crate::model::{ConvexRadius, Design, Locus, Modification};
 use std::f64::consts::PI;
 
 /// Disc profile of one design and modification.
@@ -108,13 +108,6 @@ pub struct ClosestPointFailure {
     pub iterations: usize,
 }
 
-/// Smallest radius of curvature on the convex part of the locus C, and where.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ConvexRadius {
-    pub radius_mm: f64,
-    pub t: f64,
-}
-
 impl Profile {
     pub fn new(design: &Design, modification: &Modification) -> Self {
         Self::from_parts(
@@ -182,19 +175,16 @@ impl Profile {
 
     /// κ_C from c = cos((n − 1)t); see `locus_curvature`.
     pub fn locus_curvature_at(&self, c: f64) -> f64 {
-        let (numerator, denominator) = self.locus_curvature_parts(c);
-        numerator / denominator
+        self.locus().curvature_at(c)
     }
 
-    /// κ_C = N/D from c = cos((n − 1)t): (N, D) = (C' × C'', |C'|³).
-    fn locus_curvature_parts(&self, c: f64) -> (f64, f64) {
-        let n = self.rollers as f64;
-        let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
-        let speed2 = r * r + e * e * n * n - 2.0 * r * e * n * c;
-        (
-            r * r + e * e * n * n * n - r * e * n * (n + 1.0) * c,
-            speed2 * speed2.sqrt(),
-        )
+    /// The locus C of this profile, for its closed forms.
+    pub fn locus(&self) -> Locus {
+        Locus {
+            rollers: self.rollers,
+            eccentricity_mm: self.eccentricity_mm,
+            radius_mm: self.locus_radius_mm,
+        }
     }
 
     /// dκ_C/dt = (C' × C''')/|C'|³ − 3·κ_C·(C'·C'')/|C'|², 1/(mm·rad).
@@ -244,28 +234,14 @@ impl Profile {
     /// κ_Γ from c = cos((n − 1)t): with κ_C = N/D (`locus_curvature_at`),
     /// κ_Γ = κ_C/(1 − r'κ_C) = N/(D − r'·N), one division.
     pub fn curvature_at(&self, c: f64) -> f64 {
-        let (numerator, denominator) = self.locus_curvature_parts(c);
+        let (numerator, denominator) = self.locus().curvature_parts(c);
         numerator / (denominator - self.offset_mm * numerator)
     }
 
-    /// The smallest convex radius of curvature of C (= 1/max κ_C), in closed form.
-    ///
-    /// With c = cos((n − 1)t), κ_C = (A − B·c)/(P − Q·c)^{3/2} (see `locus_curvature_at`),
-    /// A = R'² + e²n³, B = R'e·n(n + 1), P = R'² + e²n², Q = 2R'e·n. The numerator of dκ/dc,
-    /// (3QA − 2BP)/2 − (QB/2)·c, is linear and decreasing in c, so κ has a single maximum at
-    /// c* = (3QA − 2BP)/(QB), clamped to [−1, 1] (c = 1 is the tooth root, −1 the tip). The
-    /// point is t = acos(c*)/(n − 1) from the root, the same on every tooth and both flanks.
+    /// The smallest convex radius of curvature of C (= 1/max κ_C), in closed form
+    /// (`model::Locus::min_convex_radius`).
     pub fn min_convex_radius(&self) -> ConvexRadius {
-        let n = self.rollers as f64;
-        let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
-        let (a, b) = (r * r + e * e * n * n * n, r * e * n * (n + 1.0));
-        let (p, q) = (r * r + e * e * n * n, 2.0 * r * e * n);
-        let c = ((3.0 * q * a - 2.0 * b * p) / (q * b)).clamp(-1.0, 1.0);
-        let k = self.locus_curvature_at(c);
-        ConvexRadius {
-            radius_mm: if k > 0.0 { 1.0 / k } else { f64::INFINITY },
-            t: c.acos() / (n - 1.0),
-        }
+        self.locus().min_convex_radius()
     }
 
     /// Closest point on Γ to `p` (disc frame) within half a roller pitch (π/np) of `t_start`,

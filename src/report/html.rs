@@ -11,17 +11,19 @@
 use super::svg::{
     self, esc, px, Frame, LinePlot, MapCell, MapPlot, Marker, RefLine, Series, Shape, PALETTE,
 };
-use crate::check::{Bound, Check};
+use crate::engine::check::{Bound, Check};
+use crate::engine::golden::GoldenResult;
+use crate::engine::optimise::problem::Margin;
 use crate::equilibrium::sweep::{solve_angle, AngleSolution, Model};
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{Mesh, Pose};
 use crate::geometry::profile::Profile;
 use crate::geometry::{rotate, Vec2};
-use crate::golden::GoldenResult;
-use crate::optimise::problem::Margin;
-use crate::report::table::number;
-use crate::scene::{Effect, Plan, SceneResult};
-use crate::spec::{ContactLaw, GeometryMode, Spec};
+use crate::model::results::SceneResult;
+use crate::model::ContactLaw;
+use crate::model::{Effect, Plan};
+use crate::numeric::number;
+use crate::spec::Spec;
 use std::f64::consts::TAU;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -98,7 +100,7 @@ pub struct ReportInput<'a> {
     /// Optimisation studies to draw and tabulate (none: no optimisation section).
     pub optimisation: &'a [OptimisationView],
     /// The accuracy ladder of a scene (`accuracy:` in the spec), when one was run.
-    pub accuracy: Option<&'a crate::accuracy::Ladder>,
+    pub accuracy: Option<&'a crate::engine::accuracy::Ladder>,
 }
 
 /// The report's files: (file name, content), `index.html` first.
@@ -208,7 +210,7 @@ fn default_angle(results: &[SceneResult]) -> f64 {
         .map_or(0.0, |c| c.min.crank_rad.to_degrees())
 }
 
-fn scene_summary(spec: &Spec, scene: &crate::spec::Scene) -> String {
+fn scene_summary(spec: &Spec, scene: &crate::model::Scene) -> String {
     let plan = Plan::for_scene(scene);
     let n = scene.crank_rad.len();
     let step = match scene.crank_rad.as_slice() {
@@ -231,18 +233,15 @@ fn scene_summary(spec: &Spec, scene: &crate::spec::Scene) -> String {
                 ContactLaw::PaperLinear => "F = (π/4)·E*·L·d (paper Eq. 9)",
                 ContactLaw::HertzNonlinear => "Hertz line contact (Johnson, non-linear)",
             },
-            match scene.geometry {
-                GeometryMode::Exact => "exact",
-                GeometryMode::FirstOrder => "first-order",
-            },
+            scene.geometry,
             match scene.bearing_stiffness_n_per_mm {
                 Some(k) => format!("compliant ({} N/mm)", number(k)),
                 None => "rigid".into(),
             }
         );
     }
-    let plan = crate::scene::Plan::for_scene(scene);
-    let pins = plan.has(crate::scene::Effect::OutputPins);
+    let plan = crate::model::Plan::for_scene(scene);
+    let pins = plan.has(crate::model::Effect::OutputPins);
     if !scene.spans_whole(spec.design.loaded_period_rad(pins)) {
         s += if pins {
             " The sweep does not cover whole periods of the loaded disc (mesh and output pins)."
@@ -320,7 +319,7 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
     let x: Vec<f64> = r.crank_rad.iter().map(|a| a.to_degrees()).collect();
     let xl = "crank angle φ (deg)";
     let lim = &spec.limits;
-    let arcsec = crate::report::json::ARCSEC_PER_RAD;
+    let arcsec = crate::units::ARCSEC_PER_RAD;
     let mut plots = Vec::new();
     // The whole crank range: its end is not a sample (it wraps to the start).
     let x_range = match x.as_slice() {
@@ -395,7 +394,7 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
         (p.series, note) = per_row(&x, &c.force_n, "roller", 1.0);
         p.ref_lines = limit_line(lim.max_roller_force_n, "limit", 1.0, "N");
         p.include_zero = true;
-        let (fmax, i, k) = crate::equilibrium::curves::max_entry(&c.force_n);
+        let (fmax, i, k) = crate::numeric::max_entry(&c.force_n);
         p.subtitle = format!(
             "largest {} N on roller {i} at φ = {:.2}°",
             number(fmax),
@@ -421,7 +420,7 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
         let mut p = LinePlot::new("Loaded transmission error", xl, "TE δ = β + βo (arcsec)");
         p.subtitle = format!(
             "fluctuation {} arcsec (max − min), mean {} arcsec",
-            number(crate::equilibrium::curves::fluctuation(&te)),
+            number(crate::numeric::fluctuation(&te)),
             number(te.iter().sum::<f64>() / te.len().max(1) as f64)
         );
         if let Some(pins) = &r.loaded.pins {
@@ -455,7 +454,7 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
             let mut p = LinePlot::new("Transmission ratio", xl, "ratio κ = dφ/dφout");
             p.subtitle = format!(
                 "fluctuation {} (max − min)",
-                number(crate::equilibrium::curves::fluctuation(ratio))
+                number(crate::numeric::fluctuation(ratio))
             );
             p.series = vec![Series::new("κ", x.clone(), ratio.clone(), PALETTE[0])];
             p.ref_lines = vec![RefLine {
@@ -638,7 +637,7 @@ fn disc_drawing(spec: &Spec, results: &[SceneResult], phi_deg: f64) -> Drawing {
         px(f.len(d.roller_circle_radius_mm))
     );
     // Disc with its holes (even-odd fill), then the pins.
-    let points = crate::export::polyline(&profile, 0.02 / f.scale.max(1e-9) * 10.0);
+    let points = crate::report::export::polyline(&profile, 0.02 / f.scale.max(1e-9) * 10.0);
     let mut path = String::from("M");
     for (k, p) in points.iter().enumerate() {
         let q = to_fixed(p.point);
@@ -997,8 +996,8 @@ fn optimisation_svg(o: &OptimisationView) -> String {
 
 /// The accuracy ladder as a table: one row per rung, errors against the reference, times, the
 /// cheapest rung that meets every tolerance highlighted; observed orders and notes below.
-fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
-    use crate::accuracy::{self as acc, Variation};
+fn accuracy_section(ladder: &crate::engine::accuracy::Ladder) -> String {
+    use crate::engine::accuracy::{self as acc, Variation};
     let l = &ladder.layout;
     let mut head = String::from(
         "<tr><th>rung</th><th>steps per mesh period</th><th>crank angles</th><th>geometry</th>\
@@ -1030,8 +1029,8 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
             esc(&r.label),
             esc(&acc::steps_text(r.steps_per_period)),
             r.angles,
-            acc::geometry_name(r.geometry),
-            acc::law_name(r.law),
+            r.geometry.name(),
+            r.law.name(),
             r.rel_tol,
             esc(&if r.seconds < 1.0 {
                 format!("{:.1} ms", r.seconds * 1000.0)
@@ -1079,8 +1078,8 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
         esc(&number(l.to_deg)),
         esc(&acc::steps_text(l.periods)),
         l.finest,
-        acc::geometry_name(l.geometry),
-        acc::law_name(l.law),
+        l.geometry.name(),
+        l.law.name(),
         acc::REPEATS,
         acc::REPEAT_BELOW_S * 1000.0,
     );
@@ -1181,7 +1180,7 @@ fn accuracy_section(ladder: &crate::accuracy::Ladder) -> String {
 /// A constraint's margin as the table shows it: on the bound within the checker's tolerance
 /// (decimal inputs such as 0.150 − 0.135 land a few 1e-17 mm off), else signed.
 fn margin_text(m: &Margin) -> String {
-    if m.margin.abs() <= crate::check::tolerance(m.bound) {
+    if m.margin.abs() <= crate::engine::check::tolerance(m.bound) {
         "margin 0 (on the bound)".into()
     } else {
         format!(
@@ -1523,9 +1522,9 @@ pre {{ background: #f7f7f7; padding: 10px; font-size: 12px; overflow-x: auto; }}
         name = esc(&spec.name),
         font = svg::FONT,
         path = esc(&spec.path),
-        sha = crate::golden::sha256_hex(&spec.source),
+        sha = crate::engine::golden::sha256_hex(&spec.source),
         version = env!("CARGO_PKG_VERSION"),
-        date = crate::golden::today(),
+        date = crate::engine::golden::today(),
         checks = check_rows(input.checks),
         source = esc(&spec.source),
     )

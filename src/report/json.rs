@@ -1,10 +1,10 @@
 //! The results JSON (schema 1). Arrays are [roller][angle] or [angle]; engine values are
 //! converted to the units named in the keys here. A quantity not computed is absent.
 
-use crate::check::{Check, CheckKind};
-use crate::equilibrium::curves::{extremes, max_entry};
-use crate::golden::{sha256_hex, GoldenResult, Point};
-use crate::scene::SceneResult;
+use crate::engine::check::{Check, CheckKind};
+use crate::engine::golden::{sha256_hex, GoldenResult, Point};
+use crate::model::results::SceneResult;
+use crate::numeric::{extremes, max_entry};
 use crate::spec::Spec;
 use serde_json::{json, Map, Value};
 

@@ -2,12 +2,13 @@
 //! constraint's margin, evaluations, time and why it stopped; the objective map CSV; and the
 //! same study as a view for the design-review report (`view`).
 
-use crate::optimise::problem::Evaluation;
-use crate::optimise::StudyResult;
+use crate::engine::optimise::problem::Evaluation;
+use crate::engine::optimise::StudyResult;
+use crate::model::{Objective, Study, VariableKind};
+use crate::numeric::number;
 use crate::report::html::{OptimisationView, StudyPoint};
 use crate::report::svg::MapCell;
-use crate::report::table::number;
-use crate::spec::{Objective, Spec, Study, VariableKind};
+use crate::spec::Spec;
 
 fn objective_label(study: &Study) -> String {
     study
@@ -66,9 +67,10 @@ fn eq8_note(label: &str, e: &Evaluation, study: &Study) -> Option<String> {
     let min = e.min_clearance?;
     let dt = study.min_clearance_mm?;
     let tip = e.modification.tip_clearance_mm();
-    let eq8 = tip >= lo - crate::check::tolerance(lo);
-    (eq8 && !crate::check::passes(min.gap_mm, dt, crate::check::Bound::Min)).then(|| {
-        format!(
+    let eq8 = tip >= lo - crate::engine::check::tolerance(lo);
+    (eq8 && !crate::engine::check::passes(min.gap_mm, dt, crate::engine::check::Bound::Min)).then(
+        || {
+            format!(
             "  note: the {label} satisfies the paper's Eq. 8 (ΔRrp − ΔRp = {:.4} mm ≥ {lo} mm) but \
              violates the whole-mesh clearance: {:.1} µm < {:.1} µm at roller {}, crank {:.2}°, \
              tooth phase {:.3} (0 root, 0.5 tip){}\n",
@@ -80,7 +82,8 @@ fn eq8_note(label: &str, e: &Evaluation, study: &Study) -> Option<String> {
             min.tooth_phase,
             if min.gap_mm < 0.0 { " — interference" } else { "" }
         )
-    })
+        },
+    )
 }
 
 /// The full text of one study result.

@@ -1,6 +1,6 @@
 //! The terminal table of checks: check, value, limit, verdict, where.
 
-use crate::check::{Bound, Check};
+use crate::engine::check::{Bound, Check};
 
 /// Format a number for a person: 4 significant figures, no exponent for ordinary magnitudes.
 pub fn number(x: f64) -> String {

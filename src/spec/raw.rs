@@ -242,7 +242,7 @@ pub struct RawTolerance {
     pub rel: f64,
 }
 
-/// `accuracy:`: run one scene on a ladder of settings (see `crate::accuracy`).
+/// `accuracy:`: run one scene on a ladder of settings (see `crate::engine::accuracy`).
 #[derive(Debug, Deserialize)]
 #[serde(
     deny_unknown_fields,

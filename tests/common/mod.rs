@@ -5,7 +5,8 @@
 //! derived below from the definition of the locus in MODEL.md.
 #![allow(dead_code)] // each test crate uses a different subset
 
-use cycloid::spec::{self, Design, Material, Modification, OutputPins, Spec};
+use cycloid::model::{Design, Material, Modification, OutputPins};
+use cycloid::spec::{self, Spec};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 

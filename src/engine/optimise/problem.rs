@@ -5,13 +5,16 @@
 //! `max_bearing_force` needs the bearing; `lost_motion` needs the clearance sweep. The
 //! whole-mesh clearance constraint uses the light `clearance::min_gap`.
 
-use crate::equilibrium::curves::{self, extremes, fluctuation, max_entry};
+use crate::equilibrium::curves;
 use crate::equilibrium::sweep::Model;
-use crate::geometry::clearance::{self, Mesh, MinClearance};
-use crate::geometry::validity;
-use crate::report::json::ARCSEC_PER_RAD;
-use crate::scene::{Effect, Plan};
-use crate::spec::{Modification, Objective, Scene, Spec, Study};
+use crate::geometry::clearance::{self, Mesh};
+use crate::model::results::MinClearance;
+use crate::model::{Effect, Plan};
+use crate::model::{Modification, Objective, Scene, Study};
+use crate::numeric::{extremes, fluctuation, max_entry};
+use crate::spec::rules;
+use crate::spec::Spec;
+use crate::units;
 
 /// A constraint's value, its bound and the margin (≥ 0 satisfied).
 #[derive(Debug, Clone, PartialEq)]
@@ -25,7 +28,7 @@ pub struct Margin {
 impl Margin {
     /// Satisfied within the checker's comparison tolerance (`check::tolerance`).
     pub fn satisfied(&self) -> bool {
-        self.margin >= -crate::check::tolerance(self.bound)
+        self.margin >= -crate::engine::check::tolerance(self.bound)
     }
 }
 
@@ -150,7 +153,7 @@ impl<'a> Problem<'a> {
                 margin: hi - tip,
             });
         }
-        if let Err(err) = validity::check(&self.spec.design, m) {
+        if let Err(err) = rules::check(&self.spec.design, m) {
             e.failure = Some(err.message);
             return e;
         }
@@ -205,7 +208,7 @@ impl<'a> Problem<'a> {
             Some(curves::sweep(&model, crank, periodic).map_err(|f| {
                 format!(
                     "crank angle {:.4}°: equilibrium solve failed: {}",
-                    f.crank_rad.to_degrees(),
+                    units::deg(f.crank_rad),
                     f.failure
                 )
             })?)
@@ -214,7 +217,7 @@ impl<'a> Problem<'a> {
         };
         let lost_motion = if self.needs(Objective::LostMotion) {
             let sweep = clearance::sweep(&mesh, crank).map_err(|f| f.to_string())?;
-            Some(extremes(&sweep.lost_motion_rad).1 .0 * ARCSEC_PER_RAD)
+            Some(units::arcsec(extremes(&sweep.lost_motion_rad).1 .0))
         } else {
             None
         };
@@ -232,7 +235,7 @@ impl<'a> Problem<'a> {
                         .ok_or_else(|| missing("the ratio (needs at least 3 crank angles)"))?,
                     Objective::TeFluctuation => l
                         .and_then(|l| l.transmission.as_ref())
-                        .map(|t| fluctuation(&t.te_rad) * ARCSEC_PER_RAD)
+                        .map(|t| units::arcsec(fluctuation(&t.te_rad)))
                         .ok_or_else(|| missing("the loaded TE"))?,
                     Objective::MaxRollerForce => l
                         .and_then(|l| l.rollers.as_ref())

@@ -1,10 +1,12 @@
 //! Limits → checks → verdicts. A limit applies to every scene that computes its quantity.
 
-use crate::equilibrium::curves::{extremes, fluctuation, max_entry};
 use crate::error::{Error, ErrorKind, Result};
-use crate::report::json::ARCSEC_PER_RAD;
-use crate::scene::{Effect, Plan, SceneResult};
-use crate::spec::{Limits, Spec};
+use crate::model::results::SceneResult;
+use crate::model::Limits;
+use crate::model::{Effect, Plan};
+use crate::numeric::{extremes, fluctuation, max_entry};
+use crate::spec::Spec;
+use crate::units;
 
 /// Direction of a limit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -87,9 +89,9 @@ impl Check {
     }
 
     /// The check of a golden comparison.
-    pub fn from_golden(g: &crate::golden::GoldenResult) -> Check {
+    pub fn from_golden(g: &crate::engine::golden::GoldenResult) -> Check {
         let w = &g.comparison.worst;
-        let num = crate::report::table::number;
+        let num = crate::numeric::number;
         Check {
             id: format!("{}/golden:{}", g.golden.scene, g.golden.quantity),
             kind: CheckKind::Golden,
@@ -133,7 +135,7 @@ struct LimitDef {
 }
 
 fn at_angle(r: &SceneResult, k: usize) -> f64 {
-    r.crank_rad.get(k).copied().unwrap_or(0.0).to_degrees()
+    units::deg(r.crank_rad.get(k).copied().unwrap_or(0.0))
 }
 
 fn max_over(r: &SceneResult, rows: &[Vec<f64>], what: &str) -> (f64, String) {
@@ -154,7 +156,7 @@ const LIMITS: &[LimitDef] = &[
                     format!(
                         "roller {} at crank {:.2}°, tooth phase {:.3} (0 root, 0.5 tip)",
                         c.min.roller,
-                        c.min.crank_rad.to_degrees(),
+                        units::deg(c.min.crank_rad),
                         c.min.tooth_phase
                     ),
                 )
@@ -207,7 +209,7 @@ const LIMITS: &[LimitDef] = &[
             r.loaded.transmission.as_ref().map(|t| {
                 let ((_, lo), (_, hi)) = extremes(&t.te_rad);
                 (
-                    fluctuation(&t.te_rad) * ARCSEC_PER_RAD,
+                    units::arcsec(fluctuation(&t.te_rad)),
                     format!(
                         "min at {:.2}°, max at {:.2}°",
                         at_angle(r, lo),
@@ -274,7 +276,7 @@ pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
 /// its quantity.
 pub fn validate(spec: &Spec) -> Result<()> {
     for g in &spec.golden {
-        let q = crate::quantity::find(g.quantity).expect("validated quantity");
+        let q = crate::model::quantity::find(g.quantity).expect("validated quantity");
         let scene = spec.scenes.iter().find(|s| s.name == g.scene);
         if scene.is_some_and(|s| !Plan::for_scene(s).has(q.effect)) {
             return Err(Error::new(
@@ -334,7 +336,7 @@ pub fn evaluate(limits: &Limits, results: &[SceneResult]) -> Vec<Check> {
 
 /// Checks on optimisation studies: the optimum satisfies every constraint (value: the smallest
 /// margin, ≥ 0), and, when a limit is set, its objective is within `optimum_max_objective`.
-pub fn optimisation(spec: &Spec, results: &[crate::optimise::StudyResult]) -> Vec<Check> {
+pub fn optimisation(spec: &Spec, results: &[crate::engine::optimise::StudyResult]) -> Vec<Check> {
     let mut checks = Vec::new();
     for (study, r) in spec.studies.iter().zip(results) {
         let o = &r.optimum;

@@ -9,7 +9,8 @@ pub mod local;
 pub mod problem;
 pub mod write;
 
-use crate::spec::{Spec, Study};
+use crate::model::Study;
+use crate::spec::Spec;
 use local::LocalRun;
 use problem::{Evaluation, Problem};
 use rayon::prelude::*;
@@ -122,7 +123,7 @@ pub fn map(
     spec: &Spec,
     study: &Study,
     steps: usize,
-    around: &crate::spec::Modification,
+    around: &crate::model::Modification,
 ) -> Vec<Evaluation> {
     let problem = Problem::new(spec, study);
     let vars = &study.variables;

@@ -1,9 +1,9 @@
 //! Design rules a disc must satisfy before anything is computed. Each failure names the rule,
 //! the numbers and the spec key to change.
 
-use super::profile::Profile;
 use crate::error::{Error, ErrorKind, Result};
-use crate::spec::{Design, Modification};
+use crate::model::{Design, Modification};
+use crate::units;
 use std::f64::consts::PI;
 
 fn rule(key: &str, message: String) -> Error {
@@ -43,7 +43,7 @@ pub fn check(design: &Design, m: &Modification) -> Result<()> {
             format!("the generating roller radius Rrp + ΔRrp = {offset:.4} mm must be positive"),
         ));
     }
-    let convex = Profile::new(design, m).min_convex_radius();
+    let convex = design.locus(m).min_convex_radius();
     if offset >= convex.radius_mm {
         return Err(rule(
             "reducer.roller_radius_mm",
@@ -52,7 +52,7 @@ pub fn check(design: &Design, m: &Modification) -> Result<()> {
                  the smallest convex radius of curvature of the roller-centre locus, {:.4} mm \
                  (at t = {:.3}° from the tooth root); the profile would have cusps",
                 convex.radius_mm,
-                convex.t.to_degrees()
+                units::deg(convex.t)
             ),
         ));
     }

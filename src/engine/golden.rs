@@ -11,9 +11,11 @@
 //! furthest outside (or least inside) its band.
 
 use crate::error::{Error, ErrorKind, Result};
-use crate::quantity::{self, Curves};
-use crate::scene::SceneResult;
-use crate::spec::{Golden, Spec, Tolerance};
+use crate::model::quantity::{self, Curves};
+use crate::model::results::SceneResult;
+use crate::model::{Golden, Tolerance};
+use crate::spec::Spec;
+use crate::units;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -352,7 +354,7 @@ pub fn computed<'a>(
         )
         .at_key(format!("{}.quantity", g.key))
     })?;
-    let deg = r.crank_rad.iter().map(|a| a.to_degrees()).collect();
+    let deg = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
     Ok((r, deg, curves))
 }
 
@@ -585,11 +587,11 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
             }
             BlessChange::Compared(c) => format!(
                 "moved: max |change| {} {} at {} ({} → {}); {}",
-                crate::report::table::number(c.largest.deviation),
+                crate::numeric::number(c.largest.deviation),
                 b.unit,
                 c.largest.place(),
-                crate::report::table::number(c.largest.golden),
-                crate::report::table::number(c.largest.value),
+                crate::numeric::number(c.largest.golden),
+                crate::numeric::number(c.largest.value),
                 if c.passed {
                     "within tolerance"
                 } else {

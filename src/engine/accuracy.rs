@@ -31,21 +31,22 @@
 //! bearing column). Times are wall-clock measurements of `scene::run_with` for the rung, the
 //! same work `check` does for the scene; they are printed, never asserted.
 
-use crate::equilibrium::curves::{fluctuation, max_entry};
+use crate::engine::scene;
 use crate::equilibrium::solve::Settings;
 use crate::error::{Error, ErrorKind, Result};
-use crate::report::json::ARCSEC_PER_RAD;
-use crate::report::table::number;
-use crate::scene::{self, Effect, Plan, SceneResult};
-use crate::spec::{self, ContactLaw, Design, GeometryMode, Scene, Spec};
+pub use crate::model::accuracy::{
+    base_angles, check, ladder_steps, tolerance, Options, Setting, Tolerances, COARSEST,
+    DEFAULT_FINEST, MAX_FINEST,
+};
+use crate::model::results::SceneResult;
+use crate::model::{ContactLaw, GeometryMode, Scene};
+use crate::model::{Effect, Plan};
+use crate::numeric::number;
+use crate::numeric::{fluctuation, max_entry};
+use crate::spec::{self, Spec};
+use crate::units;
 use std::time::Instant;
 
-/// Steps per mesh period of the coarsest rung.
-pub const COARSEST: usize = 12;
-/// Steps per mesh period of the reference unless asked otherwise.
-pub const DEFAULT_FINEST: usize = 3072;
-/// Largest finest rung accepted: 12·2^12.
-pub const MAX_FINEST: usize = COARSEST << 12;
 /// Runs shorter than this (s) are repeated, and the fastest of `REPEATS` runs is the time.
 pub const REPEAT_BELOW_S: f64 = 0.05;
 pub const REPEATS: usize = 5;
@@ -55,86 +56,6 @@ pub const CLEARLY_FASTER: f64 = 0.95;
 /// Solver tolerances of the tolerance rungs (the default, `Settings::default().rel_tol`, is the
 /// steps rung at the same resolution).
 pub const LOOSE_REL_TOL: [f64; 2] = [1e-6, 1e-9];
-
-/// What a rung must reach against the reference to count as accurate enough.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Tolerances {
-    /// TE curve and TE fluctuation, arcsec.
-    pub te_arcsec: f64,
-    /// Max roller and bearing force, N.
-    pub force_n: f64,
-    /// Ratio fluctuation κmax − κmin.
-    pub ratio: f64,
-    /// Min clearance, µm.
-    pub clearance_um: f64,
-}
-
-impl Default for Tolerances {
-    fn default() -> Self {
-        Tolerances {
-            te_arcsec: 0.1,
-            force_n: 0.5,
-            ratio: 1e-4,
-            clearance_um: 0.1,
-        }
-    }
-}
-
-/// How to build the ladder.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Options {
-    /// Steps per mesh period of the reference (12·2^k, k ≥ 1).
-    pub finest: usize,
-    /// Steps per mesh period of the settings rungs; `None`: the cheapest steps rung that meets
-    /// the tolerances (the finest when none does).
-    pub settings_steps: Option<usize>,
-    pub tolerances: Tolerances,
-}
-
-impl Default for Options {
-    fn default() -> Self {
-        Options {
-            finest: DEFAULT_FINEST,
-            settings_steps: None,
-            tolerances: Tolerances::default(),
-        }
-    }
-}
-
-/// A steps-per-period value of the ladder: 12·2^k with 24 ≤ n ≤ `MAX_FINEST` (`min` 12 for the
-/// settings resolution). The message says what is accepted.
-pub fn ladder_steps(n: i64, min: usize) -> std::result::Result<usize, String> {
-    let mut rungs = Vec::new();
-    let mut r = COARSEST;
-    while r <= MAX_FINEST {
-        if r >= min {
-            rungs.push(r);
-        }
-        r *= 2;
-    }
-    match rungs.iter().find(|&&r| r as i64 == n) {
-        Some(&r) => Ok(r),
-        None => Err(format!(
-            "steps per mesh period must be 12·2^k, one of {}, got {n}",
-            rungs
-                .iter()
-                .map(|r| r.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        )),
-    }
-}
-
-/// A tolerance: a positive finite number.
-pub fn tolerance(value: f64) -> std::result::Result<f64, String> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(format!(
-            "a tolerance must be a positive number, got {value}"
-        ))
-    }
-}
 
 /// A headline output of a scene, compared rung by rung.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -239,7 +160,7 @@ impl Outputs {
     pub fn of(r: &SceneResult) -> Outputs {
         let t = r.loaded.transmission.as_ref();
         let te_arcsec: Option<Vec<f64>> =
-            t.map(|t| t.te_rad.iter().map(|d| d * ARCSEC_PER_RAD).collect());
+            t.map(|t| t.te_rad.iter().map(|&d| units::arcsec(d)).collect());
         Outputs {
             crank_rad: r.crank_rad.clone(),
             te_fluctuation_arcsec: te_arcsec.as_deref().map(fluctuation),
@@ -253,7 +174,7 @@ impl Outputs {
                 .bearing
                 .as_ref()
                 .map(|b| b.force_n.iter().copied().fold(0.0, f64::max)),
-            min_clearance_um: r.clearance.as_ref().map(|c| c.min.gap_mm * 1000.0),
+            min_clearance_um: r.clearance.as_ref().map(|c| units::um(c.min.gap_mm)),
         }
     }
 
@@ -353,24 +274,10 @@ impl Rung {
     fn settings(&self) -> String {
         format!(
             "{} geometry, {}, rel_tol {}",
-            geometry_name(self.geometry),
-            law_name(self.law),
+            self.geometry.name(),
+            self.law.name(),
             tol_text(self.rel_tol)
         )
-    }
-}
-
-pub fn geometry_name(g: GeometryMode) -> &'static str {
-    match g {
-        GeometryMode::Exact => "exact",
-        GeometryMode::FirstOrder => "first_order",
-    }
-}
-
-pub fn law_name(l: ContactLaw) -> &'static str {
-    match l {
-        ContactLaw::PaperLinear => "paper_linear",
-        ContactLaw::HertzNonlinear => "hertz_nonlinear",
     }
 }
 
@@ -531,70 +438,10 @@ pub fn default_scene(spec: &Spec) -> usize {
         .unwrap_or(0)
 }
 
-/// The setting a problem of `check` is about.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Setting {
-    Scene,
-    Finest,
-    SettingsSteps,
-}
-
-/// Can this scene be run on this ladder? The error names the setting and says why not.
-pub fn check(
-    design: &Design,
-    scene: &Scene,
-    options: &Options,
-) -> std::result::Result<(), (Setting, String)> {
-    if let Some(s) = options.settings_steps {
-        if s > options.finest {
-            return Err((
-                Setting::SettingsSteps,
-                format!(
-                    "the settings rungs' {s} steps per mesh period exceed the finest rung's {}",
-                    options.finest
-                ),
-            ));
-        }
-    }
-    let plan = Plan::for_scene(scene);
-    if !Quantity::ALL.iter().any(|q| plan.has(q.effect())) {
-        return Err((
-            Setting::Scene,
-            format!(
-            "scene `{}` computes none of the ladder's outputs (it needs clearance, roller_contact \
-             or bearing)",
-            scene.name
-        ),
-        ));
-    }
-    let periods =
-        (scene.crank_to_deg - scene.crank_from_deg).to_radians() / design.mesh_period_rad();
-    let base = base_angles(periods);
-    let finest = base as f64 * (options.finest / COARSEST) as f64;
-    let max = (spec::MAX_ROLLER_ANGLES as usize / design.rollers) as f64;
-    if finest > max {
-        return Err((
-            Setting::Finest,
-            format!(
-            "the finest rung would solve {finest} crank angles over {:.4} mesh periods; at most \
-             {max} fit in memory with {} rollers: choose a smaller finest rung or a shorter crank \
-             range",
-            periods, design.rollers
-        ),
-        ));
-    }
-    Ok(())
-}
-
-/// Crank angles of the coarsest rung: 12 per mesh period, at least one.
-fn base_angles(periods: f64) -> usize {
-    ((COARSEST as f64 * periods).round() as usize).max(1)
-}
-
 fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
     let plan = Plan::for_scene(scene);
     let (from_deg, to_deg) = (scene.crank_from_deg, scene.crank_to_deg);
-    let periods = (to_deg - from_deg).to_radians() / spec.design.mesh_period_rad();
+    let periods = units::rad(to_deg - from_deg) / spec.design.mesh_period_rad();
     let pins = plan.has(Effect::OutputPins) || plan.has(Effect::Bearing);
     let base = base_angles(periods);
     let mut probe = scene.clone();
@@ -854,14 +701,14 @@ pub fn run(
         };
         let mut variants = vec![
             (
-                format!("{} geometry", geometry_name(other_geometry)),
+                format!("{} geometry", other_geometry.name()),
                 Variation::Geometry,
                 other_geometry,
                 law,
                 default_tol,
             ),
             (
-                format!("{} law", law_name(other_law)),
+                format!("{} law", other_law.name()),
                 Variation::ContactLaw,
                 geometry,
                 other_law,
@@ -996,8 +843,8 @@ pub fn header(l: &Layout) -> String {
         "reference: {} steps per mesh period ({} crank angles), {} geometry, {}, rel_tol {}\n",
         l.finest,
         l.angles(l.finest),
-        geometry_name(l.geometry),
-        law_name(l.law),
+        l.geometry.name(),
+        l.law.name(),
         tol_text(Settings::default().rel_tol)
     );
     let tolerances: Vec<String> = l

@@ -3,7 +3,9 @@
 //! the modification written (values are printed in Rust's shortest round-trip form).
 
 use crate::error::{Error, ErrorKind, Result};
-use crate::spec::{self, locate_offset, Modification};
+use crate::model::Modification;
+use crate::spec::{self, locate_offset};
+use crate::units;
 
 /// Replace the scalar after `key:` at `offset` with `value`.
 fn replace_value(text: &mut String, offset: usize, value: &str) {
@@ -43,7 +45,7 @@ pub fn with_modification(path: &str, text: &str, m: &Modification) -> Result<Str
     for (key, value) in [
         ("shift_mm", m.shift_mm),
         ("equidistant_mm", m.equidistant_mm),
-        ("rotation_deg", m.rotation_rad.to_degrees()),
+        ("rotation_deg", units::deg(m.rotation_rad)),
     ] {
         let value = format!("{value:?}");
         match locate_offset(&out, &format!("modification.{key}")) {

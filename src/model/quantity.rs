@@ -4,8 +4,9 @@
 //! is either one curve over crank angle (`te_arcsec`) or one curve per roller or pin
 //! (`roller_force_n`); values are in the unit named by the key (arcsec, N, mm, MPa, deg).
 
-use crate::report::json::ARCSEC_PER_RAD;
-use crate::scene::{Effect, SceneResult};
+use crate::model::results::SceneResult;
+use crate::model::Effect;
+use crate::units;
 
 /// Rows [column][angle] in output units.
 type Rows = Vec<Vec<f64>>;
@@ -37,7 +38,7 @@ pub struct Curves {
 }
 
 fn arcsec(v: &[f64]) -> Rows {
-    vec![v.iter().map(|x| x * ARCSEC_PER_RAD).collect()]
+    vec![v.iter().map(|&x| units::arcsec(x)).collect()]
 }
 
 fn one(v: &[f64]) -> Rows {
@@ -198,7 +199,7 @@ pub const QUANTITIES: &[QuantityDef] = &[
             r.loaded
                 .bearing
                 .as_ref()
-                .map(|b| vec![b.angle_rad.iter().map(|a| a.to_degrees()).collect()])
+                .map(|b| vec![b.angle_rad.iter().map(|&a| units::deg(a)).collect()])
         },
     },
     QuantityDef {

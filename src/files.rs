@@ -1,0 +1,319 @@
+//! Reading inputs and writing outputs without losing data.
+//!
+//! Inputs are read only from regular files of bounded size (a FIFO or `/dev/zero` would be read
+//! without end). Every output is written to a temporary file in its target's directory and
+//! renamed into place, so a killed run or a full disk never leaves a cut-off file where a
+//! complete one was; a `Batch` of several files replaces all of them or none.
+
+use crate::error::{Error, ErrorKind, Result};
+use std::fs::{self, File};
+use std::io::{self, Read, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Largest input file read (a spec or a golden CSV), bytes: 64 MiB, far above any real one (the
+/// paper's largest golden is 90 KiB), and a bound on what a wrong path can make the tool read.
+pub const MAX_INPUT_BYTES: u64 = 64 << 20;
+
+/// The text of a regular file of at most `max_bytes`, a leading UTF-8 byte-order mark removed.
+/// `what` names the file's role in messages ("spec", "golden file").
+pub fn read_text(path: &Path, what: &str, max_bytes: u64) -> Result<String> {
+    let shown = path.display().to_string();
+    let meta = fs::metadata(path).map_err(|e| Error::io(&shown, e))?;
+    if !meta.is_file() {
+        return Err(Error::new(
+            ErrorKind::Io,
+            format!("{shown}: the {what} is not a regular file (a directory, FIFO or device); give a file"),
+        ));
+    }
+    let too_big = |size: String| {
+        Error::new(
+            ErrorKind::Io,
+            format!("{shown}: the {what} is {size} bytes, more than the {max_bytes} bytes read"),
+        )
+    };
+    if meta.len() > max_bytes {
+        return Err(too_big(meta.len().to_string()));
+    }
+    let mut bytes = Vec::new();
+    File::open(path)
+        .and_then(|f| f.take(max_bytes + 1).read_to_end(&mut bytes))
+        .map_err(|e| Error::io(&shown, e))?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(too_big(format!("over {max_bytes}")));
+    }
+    let text = String::from_utf8(bytes).map_err(|e| {
+        Error::new(
+            ErrorKind::Io,
+            format!(
+                "{shown}: the {what} is not UTF-8 text (byte {} is invalid)",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })?;
+    Ok(match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => text,
+    })
+}
+
+/// A temporary path beside `path`, unique within the process and across processes.
+fn temporary(path: &Path) -> PathBuf {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    path.with_file_name(format!(".{name}.{}-{n}.tmp", std::process::id()))
+}
+
+/// Write a temporary file beside `path` with `write`, flushed to disk; its path.
+fn stage(path: &Path, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<PathBuf> {
+    let shown = path.display().to_string();
+    if path.file_name().is_none() {
+        return Err(Error::new(
+            ErrorKind::Io,
+            format!("`{shown}` names no file"),
+        ));
+    }
+    let temp = temporary(path);
+    let result = File::options()
+        .write(true)
+        .create_new(true)
+        .open(&temp)
+        .and_then(|file| {
+            let mut out = io::BufWriter::new(file);
+            write(&mut out)?;
+            let file = out.into_inner().map_err(|e| e.into_error())?;
+            file.sync_all()
+        });
+    match result {
+        Ok(()) => Ok(temp),
+        Err(e) => {
+            let _ = fs::remove_file(&temp);
+            Err(Error::io(&shown, e))
+        }
+    }
+}
+
+/// Write `path` atomically: `write` fills a temporary file in the same directory, which then
+/// replaces `path` by a rename. On any error `path` is untouched and no temporary file is left.
+pub fn write_atomic_with(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<()> {
+    let temp = stage(path, write)?;
+    fs::rename(&temp, path).map_err(|e| {
+        let _ = fs::remove_file(&temp);
+        Error::io(&path.display().to_string(), e)
+    })
+}
+
+/// Write `bytes` to `path` atomically (`write_atomic_with`).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_atomic_with(path, |out| out.write_all(bytes))
+}
+
+/// Several files replaced together: each is staged beside its target, and `commit` renames
+/// them into place in the order they were added, or, if any step fails, leaves every target
+/// as it was.
+#[derive(Debug, Default)]
+pub struct Batch {
+    staged: Vec<(PathBuf, PathBuf)>,
+}
+
+impl Batch {
+    pub fn new() -> Self {
+        Batch::default()
+    }
+
+    /// Stage `path` with the content `write` produces.
+    pub fn add_with(
+        &mut self,
+        path: &Path,
+        write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+    ) -> Result<()> {
+        let temp = stage(path, write)?;
+        self.staged.push((temp, path.to_path_buf()));
+        Ok(())
+    }
+
+    /// Stage `path` with `bytes`.
+    pub fn add(&mut self, path: &Path, bytes: &[u8]) -> Result<()> {
+        self.add_with(path, |out| out.write_all(bytes))
+    }
+
+    /// Replace every target. Targets that exist are first moved aside to a backup; if a rename
+    /// fails, the targets already replaced get their backups back, so the batch replaces all of
+    /// its files or none.
+    pub fn commit(mut self) -> Result<()> {
+        let staged = std::mem::take(&mut self.staged);
+        let mut done: Vec<(PathBuf, Option<PathBuf>)> = Vec::new();
+        for (temp, target) in &staged {
+            let backup = if target.exists() {
+                let backup = temporary(target);
+                if let Err(e) = fs::rename(target, &backup) {
+                    return Err(self.undo(&staged, &done, target, e));
+                }
+                Some(backup)
+            } else {
+                None
+            };
+            if let Err(e) = fs::rename(temp, target) {
+                if let Some(b) = &backup {
+                    let _ = fs::rename(b, target);
+                }
+                return Err(self.undo(&staged, &done, target, e));
+            }
+            done.push((target.clone(), backup));
+        }
+        for (_, backup) in done {
+            if let Some(b) = backup {
+                let _ = fs::remove_file(b);
+            }
+        }
+        Ok(())
+    }
+
+    /// Put the replaced targets back and remove every temporary file.
+    fn undo(
+        &self,
+        staged: &[(PathBuf, PathBuf)],
+        done: &[(PathBuf, Option<PathBuf>)],
+        failed: &Path,
+        e: io::Error,
+    ) -> Error {
+        for (target, backup) in done.iter().rev() {
+            match backup {
+                Some(b) => {
+                    let _ = fs::rename(b, target);
+                }
+                None => {
+                    let _ = fs::remove_file(target);
+                }
+            }
+        }
+        for (temp, _) in staged {
+            let _ = fs::remove_file(temp);
+        }
+        Error::io(&failed.display().to_string(), e)
+    }
+}
+
+impl Drop for Batch {
+    /// A batch dropped without `commit` (an error while staging a later file) leaves no
+    /// temporary files behind.
+    fn drop(&mut self) {
+        for (temp, _) in &self.staged {
+            let _ = fs::remove_file(temp);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(tag: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("cycloid-files-{tag}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+
+    /// A write that fails half-way (the disk filled up, the process was told to stop) leaves
+    /// the old file whole and no temporary file beside it.
+    #[test]
+    fn a_failed_write_leaves_the_old_file_untouched() {
+        let dir = scratch("fail");
+        let path = dir.join("spec.yaml");
+        fs::write(&path, "old content\n").unwrap();
+        let err = write_atomic_with(&path, |out| {
+            out.write_all(b"new cont")?;
+            Err(io::Error::new(io::ErrorKind::StorageFull, "disk full"))
+        })
+        .unwrap_err();
+        assert!(err.to_string().contains("disk full"), "{err}");
+        assert_eq!(fs::read_to_string(&path).unwrap(), "old content\n");
+        assert_eq!(entries(&dir), ["spec.yaml"]);
+        write_atomic(&path, b"new content\n").unwrap();
+        assert_eq!(fs::read_to_string(&path).unwrap(), "new content\n");
+        assert_eq!(entries(&dir), ["spec.yaml"]);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// A batch whose second file cannot be staged replaces nothing; a batch that stages
+    /// every file replaces them all, new files included.
+    #[test]
+    fn a_batch_replaces_all_its_files_or_none() {
+        let dir = scratch("batch");
+        let (a, b) = (dir.join("a.csv"), dir.join("b.csv"));
+        fs::write(&a, "a0").unwrap();
+        fs::write(&b, "b0").unwrap();
+        let mut batch = Batch::new();
+        batch.add(&a, b"a1").unwrap();
+        let failed = batch.add_with(&b, |_| Err(io::Error::other("killed")));
+        assert!(failed.is_err());
+        drop(batch);
+        assert_eq!(fs::read_to_string(&a).unwrap(), "a0");
+        assert_eq!(fs::read_to_string(&b).unwrap(), "b0");
+        assert_eq!(entries(&dir), ["a.csv", "b.csv"]);
+        let c = dir.join("c.csv");
+        let mut batch = Batch::new();
+        for (p, t) in [(&a, "a2"), (&b, "b2"), (&c, "c2")] {
+            batch.add(p, t.as_bytes()).unwrap();
+        }
+        batch.commit().unwrap();
+        for (p, t) in [(&a, "a2"), (&b, "b2"), (&c, "c2")] {
+            assert_eq!(fs::read_to_string(p).unwrap(), t);
+        }
+        assert_eq!(entries(&dir), ["a.csv", "b.csv", "c.csv"]);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// A commit whose rename fails (here: the second file's directory vanished after it was
+    /// staged) puts back the files it had already replaced.
+    #[test]
+    fn a_failed_commit_restores_what_it_replaced() {
+        let dir = scratch("commit");
+        let sub = dir.join("sub");
+        fs::create_dir_all(&sub).unwrap();
+        let (a, b) = (dir.join("a.csv"), sub.join("b.csv"));
+        fs::write(&a, "a0").unwrap();
+        let mut batch = Batch::new();
+        batch.add(&a, b"a1").unwrap();
+        batch.add(&b, b"b1").unwrap();
+        fs::remove_dir_all(&sub).unwrap();
+        assert!(batch.commit().is_err());
+        assert_eq!(fs::read_to_string(&a).unwrap(), "a0");
+        assert_eq!(entries(&dir), ["a.csv"]);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// Only regular files of bounded size are read; a byte-order mark is dropped.
+    #[test]
+    fn inputs_are_regular_bounded_files() {
+        let dir = scratch("read");
+        let path = dir.join("s.yaml");
+        fs::write(&path, "\u{feff}name: x\n").unwrap();
+        assert_eq!(read_text(&path, "spec", 100).unwrap(), "name: x\n");
+        let err = read_text(&path, "spec", 4).unwrap_err().to_string();
+        assert!(err.contains("more than the 4 bytes"), "{err}");
+        let err = read_text(&dir, "spec", 100).unwrap_err().to_string();
+        assert!(err.contains("not a regular file"), "{err}");
+        if Path::new("/dev/zero").exists() {
+            let err = read_text(Path::new("/dev/zero"), "spec", 100).unwrap_err();
+            assert!(err.to_string().contains("not a regular file"), "{err}");
+        }
+        let _ = fs::remove_dir_all(&dir);
+    }
+}

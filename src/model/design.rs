@@ -1,0 +1,176 @@
+//! The reducer as designed: geometry, materials, the tooth-profile modification, and the
+//! closed forms of the roller-centre locus that the design rules need (MODEL.md "Profile").
+//! Engine units: mm, MPa, rad.
+
+/// Elastic material of one body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    pub youngs_modulus_mpa: f64,
+    pub poisson_ratio: f64,
+}
+
+impl Material {
+    /// Compliance term (1 − ν²)/E in 1/MPa.
+    pub fn compliance_per_mpa(&self) -> f64 {
+        (1.0 - self.poisson_ratio * self.poisson_ratio) / self.youngs_modulus_mpa
+    }
+}
+
+/// Output mechanism: pins on the output flange, running in holes of the disc.
+/// A hole's radius is `pin_radius_mm + e + hole_clearance_mm` (ideal pin-in-hole plus clearance).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OutputPins {
+    pub count: usize,
+    pub circle_radius_mm: f64,
+    pub pin_radius_mm: f64,
+    pub hole_clearance_mm: f64,
+}
+
+/// Reducer geometry (MODEL.md "Paper design"): one disc, `rollers = teeth + 1`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Design {
+    pub teeth: usize,
+    pub rollers: usize,
+    pub eccentricity_mm: f64,
+    pub roller_circle_radius_mm: f64,
+    pub roller_radius_mm: f64,
+    pub face_width_mm: f64,
+    pub pins: OutputPins,
+    pub disc_material: Material,
+    pub roller_material: Material,
+}
+
+impl Design {
+    /// Short-amplitude coefficient K1 = e·np/Rp (MODEL.md); a disc exists only for K1 < 1.
+    pub fn k1(&self) -> f64 {
+        self.eccentricity_mm * self.rollers as f64 / self.roller_circle_radius_mm
+    }
+
+    /// Contact modulus E* = 1 / ((1−ν1²)/E1 + (1−ν2²)/E2) in MPa (paper Eq. 10).
+    pub fn contact_modulus_mpa(&self) -> f64 {
+        1.0 / (self.disc_material.compliance_per_mpa() + self.roller_material.compliance_per_mpa())
+    }
+
+    /// Angular position of roller i in the fixed frame: 2πi/np.
+    pub fn roller_angle(&self, i: usize) -> f64 {
+        std::f64::consts::TAU * i as f64 / self.rollers as f64
+    }
+
+    /// Mesh period in crank angle: 2π/np.
+    pub fn mesh_period_rad(&self) -> f64 {
+        std::f64::consts::TAU / self.rollers as f64
+    }
+
+    /// Period of the output-pin pattern in crank angle, 2π·nc/(np·M): a pin's arm depends on
+    /// γj − φ = 2πj/M − φ·np/nc, and the pattern repeats when that advances by 2π/M.
+    pub fn pin_period_rad(&self) -> f64 {
+        std::f64::consts::TAU * self.teeth as f64 / (self.rollers * self.pins.count) as f64
+    }
+
+    /// Crank period of loaded curves: the mesh period 2π/np, or, with the output pins modelled,
+    /// the least common multiple of it and the pin period, (2π/np)·nc/gcd(nc, M) (108° for the
+    /// paper's design: TE = β + βo, pin and bearing forces repeat only after it).
+    pub fn loaded_period_rad(&self, pins_modelled: bool) -> f64 {
+        if !pins_modelled {
+            return self.mesh_period_rad();
+        }
+        let (mut a, mut b) = (self.teeth, self.pins.count);
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        self.mesh_period_rad() * (self.teeth / a) as f64
+    }
+
+    /// Radius of an output-pin hole in the disc: pin radius + e + hole clearance.
+    pub fn hole_radius_mm(&self) -> f64 {
+        self.pins.pin_radius_mm + self.eccentricity_mm + self.pins.hole_clearance_mm
+    }
+}
+
+/// Tooth-profile modification (MODEL.md "Profile").
+/// `shift_mm` = ΔRp (+ thicker teeth), `equidistant_mm` = ΔRrp (+ thinner teeth),
+/// `rotation_rad` = Δδ, the profile turned counter-clockwise about the disc centre.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Modification {
+    pub shift_mm: f64,
+    pub equidistant_mm: f64,
+    pub rotation_rad: f64,
+}
+
+impl Modification {
+    /// Normal gap at tooth tip and root, ΔRrp − ΔRp (paper Eq. 8's left side).
+    pub fn tip_clearance_mm(&self) -> f64 {
+        self.equidistant_mm - self.shift_mm
+    }
+}
+
+/// Closed forms of the roller-centre locus C(t) = R'(cos t, sin t) − e(cos np·t, sin np·t).
+///
+/// With c = cos((np − 1)t), expanding C' × C'' and |C'|²:
+///   κ_C = N/D,  N = R'² + e²np³ − R'e·np(np + 1)·c,  D = (R'² + e²np² − 2R'e·np·c)^{3/2}.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Locus {
+    pub rollers: usize,
+    pub eccentricity_mm: f64,
+    /// R' = Rp + ΔRp, mm.
+    pub radius_mm: f64,
+}
+
+/// Smallest radius of curvature on the convex part of the locus C, and where.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConvexRadius {
+    pub radius_mm: f64,
+    /// Locus parameter from the tooth root, rad.
+    pub t: f64,
+}
+
+impl Locus {
+    /// (N, D) of κ_C = N/D at c = cos((np − 1)t): (C' × C'', |C'|³).
+    #[inline]
+    pub fn curvature_parts(&self, c: f64) -> (f64, f64) {
+        let n = self.rollers as f64;
+        let (r, e) = (self.radius_mm, self.eccentricity_mm);
+        let speed2 = r * r + e * e * n * n - 2.0 * r * e * n * c;
+        (
+            r * r + e * e * n * n * n - r * e * n * (n + 1.0) * c,
+            speed2 * speed2.sqrt(),
+        )
+    }
+
+    /// κ_C at c = cos((np − 1)t), 1/mm, positive where convex.
+    pub fn curvature_at(&self, c: f64) -> f64 {
+        let (numerator, denominator) = self.curvature_parts(c);
+        numerator / denominator
+    }
+
+    /// The smallest convex radius of curvature of C (= 1/max κ_C), in closed form.
+    ///
+    /// κ_C = (A − B·c)/(P − Q·c)^{3/2}, A = R'² + e²n³, B = R'e·n(n + 1), P = R'² + e²n²,
+    /// Q = 2R'e·n. The numerator of dκ/dc, (3QA − 2BP)/2 − (QB/2)·c, is linear and decreasing
+    /// in c, so κ has a single maximum at c* = (3QA − 2BP)/(QB), clamped to [−1, 1] (c = 1 is
+    /// the tooth root, −1 the tip). The point is t = acos(c*)/(n − 1) from the root, the same on
+    /// every tooth and both flanks.
+    pub fn min_convex_radius(&self) -> ConvexRadius {
+        let n = self.rollers as f64;
+        let (r, e) = (self.radius_mm, self.eccentricity_mm);
+        let (a, b) = (r * r + e * e * n * n * n, r * e * n * (n + 1.0));
+        let (p, q) = (r * r + e * e * n * n, 2.0 * r * e * n);
+        let c = ((3.0 * q * a - 2.0 * b * p) / (q * b)).clamp(-1.0, 1.0);
+        let k = self.curvature_at(c);
+        ConvexRadius {
+            radius_mm: if k > 0.0 { 1.0 / k } else { f64::INFINITY },
+            t: c.acos() / (n - 1.0),
+        }
+    }
+}
+
+impl Design {
+    /// The roller-centre locus of this design under a modification (R' = Rp + ΔRp).
+    pub fn locus(&self, m: &Modification) -> Locus {
+        Locus {
+            rollers: self.rollers,
+            eccentricity_mm: self.eccentricity_mm,
+            radius_mm: self.roller_circle_radius_mm + m.shift_mm,
+        }
+    }
+}

@@ -1,0 +1,30 @@
+//! A golden curve entry of a spec: the reviewed file a scene's curve is compared with.
+
+/// Allowed deviation from a golden value g: |value − g| ≤ abs + rel·|g|.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerance {
+    pub abs: f64,
+    pub rel: f64,
+}
+
+impl Tolerance {
+    /// The band around a golden value.
+    pub fn band(&self, golden: f64) -> f64 {
+        self.abs + self.rel * golden.abs()
+    }
+}
+
+/// A reviewed reference curve (`golden[]`) that a scene's results are compared with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Golden {
+    /// Key path of this entry in the spec (`golden[2]`), for error locations.
+    pub key: String,
+    pub scene: String,
+    /// Key of a per-angle quantity (`crate::model::quantity::QUANTITIES`).
+    pub quantity: &'static str,
+    /// The path as written in the spec.
+    pub file: String,
+    /// The path resolved against the spec file's directory (lexically normalised).
+    pub path: std::path::PathBuf,
+    pub tolerance: Tolerance,
+}

@@ -1,0 +1,84 @@
+//! What the engine computes for a scene: plain data, engine units (mm, N, MPa, rad), arrays
+//! [angle] or [roller|pin][angle]. A quantity that was not computed is `None`. The quantity
+//! registry (`model::quantity`) reads these in the output units of its keys.
+
+/// Where the smallest gap of a sweep occurs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MinClearance {
+    pub gap_mm: f64,
+    pub roller: usize,
+    pub crank_rad: f64,
+    /// Position on the tooth: 0 at the root, 0.5 at the tip, (0, 0.5) one flank, (0.5, 1) the other.
+    pub tooth_phase: f64,
+}
+
+/// Clearance of every roller over a crank sweep at the ideal pose (β = 0).
+/// Arrays are indexed [roller][angle]. Backlash values are lags in rad.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClearanceSweep {
+    pub gap_mm: Vec<Vec<f64>>,
+    /// Unloaded TE: the smallest closing lag among rollers closed by a positive lag (the load
+    /// direction of a positive output torque). Negative under interference (preload).
+    pub backlash_rad: Vec<f64>,
+    /// The same for the reverse direction, as a magnitude (−β of the nearest closing roller).
+    pub backlash_reverse_rad: Vec<f64>,
+    /// Lost motion: backlash + reverse backlash.
+    pub lost_motion_rad: Vec<f64>,
+    pub min: MinClearance,
+}
+
+/// Roller contact over the sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RollerCurves {
+    /// β: lag of the disc behind −φ/nc, rad (positive opposes the motion).
+    pub lag_rad: Vec<f64>,
+    pub force_n: Vec<Vec<f64>>,
+    pub pressure_mpa: Vec<Vec<f64>>,
+    pub half_width_mm: Vec<Vec<f64>>,
+    pub contacts: Vec<usize>,
+}
+
+/// Output pins over the sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PinCurves {
+    /// βo: lag of the output behind the disc, rad.
+    pub output_lag_rad: Vec<f64>,
+    pub force_n: Vec<Vec<f64>>,
+}
+
+/// Crank bearing over the sweep: force magnitude, its angle ε from the eccentric direction
+/// (counter-clockwise), and the relative residual of the paper's Eqs. 12–14.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BearingCurves {
+    pub force_n: Vec<f64>,
+    pub angle_rad: Vec<f64>,
+    pub residual: Vec<f64>,
+    /// Disc-centre displacement magnitude (compliant bearing; zeros when rigid), mm.
+    pub deflection_mm: Vec<f64>,
+}
+
+/// Loaded transmission error δ = β + βo (rad; βo = 0 when the pins are not modelled) and the
+/// ratio κ = dφ/dφout = 1/(1/nc − dδ/dφ), by central differences (periodic when the sweep
+/// covers whole mesh periods, second-order one-sided at the ends otherwise).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Transmission {
+    pub te_rad: Vec<f64>,
+    pub ratio: Option<Vec<f64>>,
+}
+
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LoadedSweep {
+    pub rollers: Option<RollerCurves>,
+    pub pins: Option<PinCurves>,
+    pub bearing: Option<BearingCurves>,
+    pub transmission: Option<Transmission>,
+}
+
+/// Everything computed for one scene. A quantity that was not computed is `None`.
+#[derive(Debug, Clone)]
+pub struct SceneResult {
+    pub name: String,
+    pub crank_rad: Vec<f64>,
+    pub clearance: Option<ClearanceSweep>,
+    pub loaded: LoadedSweep,
+}

@@ -1,0 +1,149 @@
+//! A load scene: the crank range, the torque, the effects it asks for and how they are
+//! computed; and the plan of the effects that run for it.
+//!
+//! The plan follows the scene: an effect is computed when the scene asks for it or when an
+//! effect it asked for cannot be computed without it. Limits never add work: a limit is checked
+//! in the scenes that compute its quantity, and a limit that no scene can evaluate is an error.
+
+use super::design::Design;
+
+/// Force–approach law of a line contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactLaw {
+    /// F = (π/4)·E*·L·d, the paper's Eq. 9.
+    PaperLinear,
+    /// Johnson's logarithmic line-contact compliance (see `contact::law`).
+    HertzNonlinear,
+}
+
+/// How gaps and moment arms are evaluated under load.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GeometryMode {
+    /// Closest point on the exact profile at the loaded pose.
+    Exact,
+    /// Closed-form first-order gaps and arms of MODEL.md.
+    FirstOrder,
+}
+
+named!(ContactLaw "contact law" {
+    PaperLinear => "paper_linear",
+    HertzNonlinear => "hertz_nonlinear",
+});
+
+named!(GeometryMode "geometry mode" {
+    Exact => "exact",
+    FirstOrder => "first_order",
+});
+
+/// Largest rollers × crank angles of one scene: every per-roller, per-angle array of the results
+/// must fit in memory (10⁷ f64 are 80 MB).
+pub const MAX_ROLLER_ANGLES: i64 = 10_000_000;
+
+/// One load case swept over crank angle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    pub name: String,
+    /// Torque on the disc, N·mm (spec: `output_torque_nm`).
+    pub output_torque_nmm: f64,
+    /// Crank angles φ in rad: `from + k·(to − from)/steps`, k = 0..steps (end excluded).
+    pub crank_rad: Vec<f64>,
+    /// The crank range as written (`crank.from_deg`, `crank.to_deg`), degrees.
+    pub crank_from_deg: f64,
+    pub crank_to_deg: f64,
+    /// Effects as the spec asks for them; `Plan` adds what they need.
+    pub effects: Vec<Effect>,
+    pub contact_law: ContactLaw,
+    pub geometry: GeometryMode,
+    /// Radial stiffness of the crank bearing, N/mm; `None` is a rigid bearing.
+    pub bearing_stiffness_n_per_mm: Option<f64>,
+}
+
+impl Scene {
+    /// True when the sweep covers a whole number of mesh periods (so unloaded curves wrap).
+    pub fn spans_whole_periods(&self, design: &Design) -> bool {
+        self.spans_whole(design.mesh_period_rad())
+    }
+
+    /// True when the sweep covers a whole number of `period_rad` (so its curves wrap around).
+    pub fn spans_whole(&self, period_rad: f64) -> bool {
+        let n = self.crank_rad.len();
+        if n < 2 {
+            return false;
+        }
+        let step = self.crank_rad[1] - self.crank_rad[0];
+        let span = step * n as f64 / period_rad;
+        (span - span.round()).abs() < 1e-9 && span.round() >= 1.0
+    }
+}
+
+/// A physical effect a scene can ask for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Effect {
+    /// Unloaded gaps, backlash, unloaded TE, lost motion, minimum clearance.
+    Clearance,
+    /// Loaded lag, roller forces, contacts, Hertz pressure.
+    RollerContact,
+    /// Output-pin forces and pin deflection.
+    OutputPins,
+    /// Crank-bearing force from the force balance, equilibrium residuals.
+    Bearing,
+}
+
+named!(Effect "effect" {
+    Clearance => "clearance",
+    RollerContact => "roller_contact",
+    OutputPins => "output_pins",
+    Bearing => "bearing",
+});
+
+impl Effect {
+    /// Effects this one cannot be computed without.
+    pub fn needs(self) -> &'static [Effect] {
+        match self {
+            Effect::Bearing => &[Effect::RollerContact, Effect::OutputPins],
+            _ => &[],
+        }
+    }
+}
+
+/// One effect in a plan, with the reason it is there.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PlannedEffect {
+    pub effect: Effect,
+    pub reason: String,
+}
+
+/// What will be computed for one scene.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Plan {
+    pub scene: String,
+    pub effects: Vec<PlannedEffect>,
+}
+
+impl Plan {
+    pub fn for_scene(scene: &Scene) -> Plan {
+        let mut effects: Vec<PlannedEffect> = Vec::new();
+        for &asked in &scene.effects {
+            add(&mut effects, asked, "asked for by the scene".to_string());
+        }
+        effects.sort_by_key(|p| p.effect);
+        Plan {
+            scene: scene.name.clone(),
+            effects,
+        }
+    }
+
+    pub fn has(&self, effect: Effect) -> bool {
+        self.effects.iter().any(|p| p.effect == effect)
+    }
+}
+
+fn add(effects: &mut Vec<PlannedEffect>, effect: Effect, reason: String) {
+    if effects.iter().any(|p| p.effect == effect) {
+        return;
+    }
+    effects.push(PlannedEffect { effect, reason });
+    for &need in effect.needs() {
+        add(effects, need, format!("needed by {}", effect.name()));
+    }
+}

@@ -1,0 +1,657 @@
+//! The raw spec → the validated model: every value checked and converted to engine units; the
+//! first broken rule is the error, with its key path.
+
+use super::parse::did_you_mean;
+use super::raw::*;
+use super::{scene_names, Accuracy, Spec};
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::accuracy as acc;
+use crate::model::scene::MAX_ROLLER_ANGLES;
+use crate::model::*;
+use crate::units;
+
+fn invalid(key: &str, message: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, message).at_key(key)
+}
+
+/// A named choice (`contact_law`, `geometry`), when given.
+fn named<T: std::str::FromStr<Err = String>>(key: &str, value: Option<&str>) -> Result<Option<T>> {
+    value
+        .map(|v| v.parse().map_err(|m| invalid(key, m)))
+        .transpose()
+}
+
+fn positive(key: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(invalid(
+            key,
+            format!("must be a positive number, got {value}"),
+        ))
+    }
+}
+
+/// Largest length the engine accepts, mm. Beyond 100 m a double's ~1e-16 relative precision
+/// no longer resolves the micrometre gaps this tool exists to check.
+const MAX_LENGTH_MM: f64 = 1e5;
+
+/// Largest crank angle magnitude, degrees (~28,000 revolutions): an angle's rounding stays
+/// below 1e-9 rad.
+const MAX_CRANK_DEG: f64 = 1e7;
+
+/// A positive length no larger than `MAX_LENGTH_MM`.
+fn length(key: &str, value: f64) -> Result<f64> {
+    let value = positive(key, value)?;
+    if value > MAX_LENGTH_MM {
+        return Err(invalid(
+            key,
+            format!(
+                "{value} mm is larger than the {MAX_LENGTH_MM} mm (100 m) this tool handles: \
+                 beyond it double precision cannot resolve micrometre gaps"
+            ),
+        ));
+    }
+    Ok(value)
+}
+
+fn finite(key: &str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(invalid(
+            key,
+            format!("must be a finite number, got {value}"),
+        ))
+    }
+}
+
+fn count(key: &str, value: i64, min: i64) -> Result<usize> {
+    if value >= min {
+        Ok(value as usize)
+    } else {
+        Err(invalid(key, format!("must be at least {min}, got {value}")))
+    }
+}
+
+fn material(key: &str, raw: RawMaterial) -> Result<Material> {
+    let youngs_gpa = positive(&format!("{key}.youngs_modulus_gpa"), raw.youngs_modulus_gpa)?;
+    let nu = raw.poisson_ratio;
+    if !(nu.is_finite() && (0.0..0.5).contains(&nu)) {
+        return Err(invalid(
+            &format!("{key}.poisson_ratio"),
+            format!("must lie in [0, 0.5), got {nu}"),
+        ));
+    }
+    Ok(Material {
+        youngs_modulus_mpa: units::mpa(youngs_gpa),
+        poisson_ratio: nu,
+    })
+}
+
+fn design(raw: RawReducer) -> Result<Design> {
+    let teeth = count("reducer.teeth", raw.teeth, 2)?;
+    let rollers = count("reducer.rollers", raw.rollers, 3)?;
+    if rollers != teeth + 1 {
+        return Err(Error::new(
+            ErrorKind::ImpossibleDesign,
+            format!(
+                "rollers must equal teeth + 1 (one-tooth-difference reducer): \
+                 rollers = {rollers}, teeth = {teeth}"
+            ),
+        )
+        .at_key("reducer.rollers"));
+    }
+    let pins = &raw.output_pins;
+    let disc_material = material("reducer.material", raw.material)?;
+    let roller_material = match raw.roller_material {
+        Some(m) => material("reducer.roller_material", m)?,
+        None => disc_material,
+    };
+    let clearance = raw.output_pins.hole_clearance_mm;
+    if !(clearance.is_finite() && clearance >= 0.0) {
+        return Err(invalid(
+            "reducer.output_pins.hole_clearance_mm",
+            format!("must be zero or positive, got {clearance}"),
+        ));
+    }
+    Ok(Design {
+        teeth,
+        rollers,
+        eccentricity_mm: length("reducer.eccentricity_mm", raw.eccentricity_mm)?,
+        roller_circle_radius_mm: length(
+            "reducer.roller_circle_radius_mm",
+            raw.roller_circle_radius_mm,
+        )?,
+        roller_radius_mm: length("reducer.roller_radius_mm", raw.roller_radius_mm)?,
+        face_width_mm: length("reducer.face_width_mm", raw.face_width_mm)?,
+        pins: OutputPins {
+            count: count("reducer.output_pins.count", pins.count, 2)?,
+            circle_radius_mm: length(
+                "reducer.output_pins.circle_radius_mm",
+                pins.circle_radius_mm,
+            )?,
+            pin_radius_mm: length("reducer.output_pins.pin_radius_mm", pins.pin_radius_mm)?,
+            hole_clearance_mm: clearance,
+        },
+        disc_material,
+        roller_material,
+    })
+}
+
+fn modification(raw: &RawModification) -> Result<Modification> {
+    Ok(Modification {
+        shift_mm: finite("modification.shift_mm", raw.shift_mm)?,
+        equidistant_mm: finite("modification.equidistant_mm", raw.equidistant_mm)?,
+        rotation_rad: units::rad(finite("modification.rotation_deg", raw.rotation_deg)?),
+    })
+}
+
+fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
+    let angle = |name: &str, value: f64| -> Result<f64> {
+        let k = format!("{key}.{name}");
+        let value = finite(&k, value)?;
+        if value.abs() > MAX_CRANK_DEG {
+            return Err(invalid(
+                &k,
+                format!(
+                    "{value}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where \
+                     the crank angle's rounding would exceed 1e-9 rad"
+                ),
+            ));
+        }
+        Ok(value)
+    };
+    let from = angle("from_deg", raw.from_deg)?;
+    let to = angle("to_deg", raw.to_deg)?;
+    let steps = raw.steps;
+    if steps < 1 {
+        return Err(invalid(
+            &format!("{key}.steps"),
+            format!("a crank range needs at least 1 step, got {steps}"),
+        ));
+    }
+    let max_steps = MAX_ROLLER_ANGLES / rollers.max(1) as i64;
+    if steps > max_steps {
+        return Err(invalid(
+            &format!("{key}.steps"),
+            format!(
+                "at most {max_steps} steps with {rollers} rollers \
+                 (rollers × steps ≤ {MAX_ROLLER_ANGLES}), got {steps}"
+            ),
+        ));
+    }
+    if to <= from {
+        return Err(invalid(
+            &format!("{key}.to_deg"),
+            format!("the crank range is empty: to_deg = {to} must exceed from_deg = {from}"),
+        ));
+    }
+    Ok(crank_angles(from, to, steps as usize))
+}
+
+/// Crank angles of a range in rad: `from + k·(to − from)/steps` degrees, k = 0 … steps − 1.
+/// Grids of `steps` and `steps·2^m` over the same range nest exactly: every angle of the coarser
+/// is, bit for bit, the angle 2^m·k of the finer (division and multiplication by a power of two
+/// are exact in binary floating point).
+pub fn crank_angles(from_deg: f64, to_deg: f64, steps: usize) -> Vec<f64> {
+    let step = (to_deg - from_deg) / steps as f64;
+    (0..steps)
+        .map(|k| units::rad(from_deg + step * k as f64))
+        .collect()
+}
+
+fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
+    let key = format!("scenes[{index}]");
+    if raw.name.trim().is_empty() {
+        return Err(invalid(&format!("{key}.name"), "must not be empty".into()));
+    }
+    let mut effects = Vec::new();
+    for (j, name) in raw.effects.iter().enumerate() {
+        let effect = Effect::from_name(name).ok_or_else(|| {
+            let known = Effect::ALL.map(|e| e.name());
+            let message = match did_you_mean(name, known.into_iter()) {
+                Some(close) => format!("unknown effect `{name}`; did you mean `{close}`?"),
+                None => format!(
+                    "unknown effect `{name}`; known effects: {}",
+                    known.join(", ")
+                ),
+            };
+            invalid(&format!("{key}.effects[{j}]"), message)
+        })?;
+        if !effects.contains(&effect) {
+            effects.push(effect);
+        }
+    }
+    if effects.is_empty() {
+        return Err(invalid(
+            &format!("{key}.effects"),
+            "a scene must ask for at least one effect".into(),
+        ));
+    }
+    let contact_law = named(&format!("{key}.contact_law"), raw.contact_law.as_deref())?
+        .unwrap_or(ContactLaw::PaperLinear);
+    let geometry =
+        named(&format!("{key}.geometry"), raw.geometry.as_deref())?.unwrap_or(GeometryMode::Exact);
+    let bearing_stiffness_n_per_mm = raw
+        .bearing_stiffness_n_per_mm
+        .map(|k| positive(&format!("{key}.bearing_stiffness_n_per_mm"), k))
+        .transpose()?;
+    Ok(Scene {
+        output_torque_nmm: units::nmm(finite(
+            &format!("{key}.output_torque_nm"),
+            raw.output_torque_nm,
+        )?),
+        crank_rad: crank(&format!("{key}.crank"), &raw.crank, rollers)?,
+        crank_from_deg: raw.crank.from_deg,
+        crank_to_deg: raw.crank.to_deg,
+        name: raw.name,
+        effects,
+        contact_law,
+        geometry,
+        bearing_stiffness_n_per_mm,
+    })
+}
+
+fn limits(raw: &RawLimits) -> Result<Limits> {
+    let f = |key: &str, v: Option<f64>| v.map(|x| finite(&format!("limits.{key}"), x)).transpose();
+    Ok(Limits {
+        min_clearance_mm: f("min_clearance_mm", raw.min_clearance_mm)?,
+        max_roller_force_n: f("max_roller_force_n", raw.max_roller_force_n)?,
+        max_pin_force_n: f("max_pin_force_n", raw.max_pin_force_n)?,
+        max_bearing_force_n: f("max_bearing_force_n", raw.max_bearing_force_n)?,
+        max_contact_pressure_mpa: f("max_contact_pressure_mpa", raw.max_contact_pressure_mpa)?,
+        max_te_fluctuation_arcsec: f("max_te_fluctuation_arcsec", raw.max_te_fluctuation_arcsec)?,
+        max_ratio_fluctuation: f("max_ratio_fluctuation", raw.max_ratio_fluctuation)?,
+        min_rollers_in_contact: raw
+            .min_rollers_in_contact
+            .map(|n| count("limits.min_rollers_in_contact", n, 0))
+            .transpose()?,
+        optimum_max_objective: f("optimum_max_objective", raw.optimum_max_objective)?,
+    })
+}
+
+pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
+    if raw.name.trim().is_empty() {
+        return Err(invalid("name", "must not be empty".into()));
+    }
+    let design = design(raw.reducer)?;
+    let modification = modification(&raw.modification)?;
+    super::rules::check(&design, &modification)?;
+    if raw.scenes.is_empty() {
+        return Err(invalid("scenes", "a spec needs at least one scene".into()));
+    }
+    let mut scenes: Vec<Scene> = Vec::new();
+    for (i, s) in raw.scenes.into_iter().enumerate() {
+        let s = scene(i, s, design.rollers)?;
+        if scenes.iter().any(|other| other.name == s.name) {
+            return Err(invalid(
+                &format!("scenes[{i}].name"),
+                format!("scene name `{}` is used twice", s.name),
+            ));
+        }
+        scenes.push(s);
+    }
+    let studies = match raw.optimise {
+        Some(o) => {
+            let many = matches!(o, RawOptimise::Many(_));
+            let raws = o.into_studies();
+            let mut studies: Vec<Study> = Vec::new();
+            for (i, r) in raws.into_iter().enumerate() {
+                let key = if many {
+                    format!("optimise[{i}]")
+                } else {
+                    "optimise".to_string()
+                };
+                let s = study(&key, i, r, &scenes, &modification)?;
+                if studies.iter().any(|o| o.name == s.name) {
+                    return Err(invalid(
+                        &format!("{key}.name"),
+                        format!("study name `{}` is used twice", s.name),
+                    ));
+                }
+                studies.push(s);
+            }
+            studies
+        }
+        None => Vec::new(),
+    };
+    let limits = limits(&raw.limits)?;
+    let mut golden = Vec::new();
+    for (i, g) in raw.golden.into_iter().enumerate() {
+        let g = golden_entry(path, i, g, &scenes)?;
+        if let Some(other) = golden.iter().find(|o: &&Golden| o.path == g.path) {
+            return Err(invalid(
+                &format!("golden[{i}].file"),
+                format!(
+                    "golden file `{}` is already used by {}; every golden curve needs its own file",
+                    g.file, other.key
+                ),
+            ));
+        }
+        golden.push(g);
+    }
+    let accuracy = raw
+        .accuracy
+        .map(|a| accuracy_section(a, &scenes, &design))
+        .transpose()?;
+    Ok(Spec {
+        name: raw.name,
+        path: path.to_string(),
+        source: text.to_string(),
+        design,
+        modification,
+        scenes,
+        limits,
+        golden,
+        studies,
+        accuracy,
+    })
+}
+
+/// `accuracy:`: the scene exists and computes something the ladder compares, the rungs are
+/// rungs of the ladder, the tolerances are positive.
+fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Result<Accuracy> {
+    let scene = scenes
+        .iter()
+        .position(|s| s.name == raw.scene)
+        .ok_or_else(|| {
+            invalid(
+                "accuracy.scene",
+                format!(
+                    "no scene named `{}`; scenes: {}",
+                    raw.scene,
+                    scene_names(scenes)
+                ),
+            )
+        })?;
+    let steps = |key: &str, value: Option<i64>, min: usize| {
+        value
+            .map(|n| acc::ladder_steps(n, min).map_err(|m| invalid(&format!("accuracy.{key}"), m)))
+            .transpose()
+    };
+    let finest = steps(
+        "finest_steps_per_period",
+        raw.finest_steps_per_period,
+        2 * acc::COARSEST,
+    )?
+    .unwrap_or(acc::DEFAULT_FINEST);
+    let settings_steps = steps(
+        "settings_steps_per_period",
+        raw.settings_steps_per_period,
+        acc::COARSEST,
+    )?;
+    let defaults = acc::Tolerances::default();
+    let t = &raw.tolerance;
+    let tol = |key: &str, value: Option<f64>, default: f64| {
+        value.map_or(Ok(default), |v| {
+            acc::tolerance(v).map_err(|m| invalid(&format!("accuracy.tolerance.{key}"), m))
+        })
+    };
+    let options = acc::Options {
+        finest,
+        settings_steps,
+        tolerances: acc::Tolerances {
+            te_arcsec: tol("te_arcsec", t.te_arcsec, defaults.te_arcsec)?,
+            force_n: tol("force_n", t.force_n, defaults.force_n)?,
+            ratio: tol("ratio", t.ratio, defaults.ratio)?,
+            clearance_um: tol("clearance_um", t.clearance_um, defaults.clearance_um)?,
+        },
+    };
+    acc::check(design, &scenes[scene], &options).map_err(|(which, m)| {
+        let key = match which {
+            acc::Setting::Scene => "accuracy.scene",
+            acc::Setting::Finest => "accuracy.finest_steps_per_period",
+            acc::Setting::SettingsSteps => "accuracy.settings_steps_per_period",
+        };
+        invalid(key, m)
+    })?;
+    Ok(Accuracy { scene, options })
+}
+
+/// Resolve a golden path against the spec file's directory, dropping `.` and `dir/..` pairs
+/// so messages show `golden/x.csv` rather than `specs/../golden/x.csv`.
+pub fn resolve(spec_path: &str, file: &str) -> std::path::PathBuf {
+    use std::path::{Component, Path, PathBuf};
+    let base = Path::new(spec_path).parent().unwrap_or(Path::new(""));
+    let mut out = PathBuf::new();
+    for c in base.join(file).components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                let last = out.components().next_back();
+                if matches!(last, Some(Component::Normal(_))) {
+                    out.pop();
+                } else {
+                    out.push("..");
+                }
+            }
+            other => out.push(other.as_os_str()),
+        }
+    }
+    out
+}
+
+fn golden_entry(path: &str, i: usize, raw: RawGolden, scenes: &[Scene]) -> Result<Golden> {
+    let key = format!("golden[{i}]");
+    if !scenes.iter().any(|s| s.name == raw.scene) {
+        let names: Vec<String> = scenes.iter().map(|s| format!("`{}`", s.name)).collect();
+        return Err(invalid(
+            &format!("{key}.scene"),
+            format!(
+                "unknown scene `{}`; scenes in this spec: {}",
+                raw.scene,
+                names.join(", ")
+            ),
+        ));
+    }
+    let quantity = crate::model::quantity::find(&raw.quantity).ok_or_else(|| {
+        invalid(
+            &format!("{key}.quantity"),
+            format!(
+                "unknown quantity `{}`; known quantities: {}",
+                raw.quantity,
+                crate::model::quantity::known_keys()
+            ),
+        )
+    })?;
+    if raw.file.trim().is_empty() {
+        return Err(invalid(&format!("{key}.file"), "must not be empty".into()));
+    }
+    let (abs, rel) = (raw.tolerance.abs, raw.tolerance.rel);
+    for (name, v) in [("abs", abs), ("rel", rel)] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(invalid(
+                &format!("{key}.tolerance.{name}"),
+                format!("must be zero or positive, got {v}"),
+            ));
+        }
+    }
+    if abs == 0.0 && rel == 0.0 {
+        return Err(invalid(
+            &format!("{key}.tolerance"),
+            "abs and rel are both zero: no computed curve matches to the last bit on every \
+             machine; give a band"
+                .into(),
+        ));
+    }
+    Ok(Golden {
+        path: resolve(path, &raw.file),
+        key,
+        scene: raw.scene,
+        quantity: quantity.key,
+        file: raw.file,
+        tolerance: Tolerance { abs, rel },
+    })
+}
+
+fn bounds(key: &str, b: [f64; 2]) -> Result<(f64, f64)> {
+    let [lo, hi] = b;
+    if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+        return Err(invalid(
+            key,
+            format!("bounds must be two finite numbers [lower, upper] with lower < upper, got [{lo}, {hi}]"),
+        ));
+    }
+    Ok((lo, hi))
+}
+
+fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
+    let known = || Objective::ALL.map(|o| o.name()).join(", ");
+    let named = |name: &str| {
+        Objective::from_name(name).ok_or_else(|| {
+            invalid(
+                key,
+                format!("unknown objective `{name}`; known objectives: {}", known()),
+            )
+        })
+    };
+    match raw {
+        RawObjective::Name(name) => Ok(vec![(named(&name)?, 1.0)]),
+        RawObjective::Weighted(map) => {
+            if map.is_empty() {
+                return Err(invalid(
+                    key,
+                    "a weighted objective needs at least one term".into(),
+                ));
+            }
+            map.into_iter()
+                .map(|(name, w)| {
+                    if !(w.is_finite() && w > 0.0) {
+                        return Err(invalid(
+                            key,
+                            format!("the weight of `{name}` must be a positive number, got {w}"),
+                        ));
+                    }
+                    Ok((named(&name)?, w))
+                })
+                .collect()
+        }
+    }
+}
+
+fn study(
+    key: &str,
+    index: usize,
+    raw: RawStudy,
+    scenes: &[Scene],
+    modification: &Modification,
+) -> Result<Study> {
+    let scene = scenes
+        .iter()
+        .position(|s| s.name == raw.scene)
+        .ok_or_else(|| {
+            invalid(
+                &format!("{key}.scene"),
+                format!(
+                    "no scene named `{}`; scenes: {}",
+                    raw.scene,
+                    scene_names(scenes)
+                ),
+            )
+        })?;
+    let mut variables = Vec::new();
+    let v = &raw.variables;
+    for (kind, b) in [
+        (VariableKind::Shift, v.shift_mm),
+        (VariableKind::Equidistant, v.equidistant_mm),
+        (VariableKind::Rotation, v.rotation_deg),
+    ] {
+        if let Some(b) = b {
+            let (lo, hi) = bounds(&format!("{key}.variables.{}", kind.key()), b)?;
+            let scale = if kind == VariableKind::Rotation {
+                units::rad(1.0)
+            } else {
+                1.0
+            };
+            variables.push(Variable {
+                kind,
+                lower: lo * scale,
+                upper: hi * scale,
+            });
+        }
+    }
+    if variables.is_empty() {
+        return Err(invalid(
+            &format!("{key}.variables"),
+            "a study needs at least one variable (shift_mm, equidistant_mm, rotation_deg)".into(),
+        ));
+    }
+    let mut start = *modification;
+    if let Some(p) = raw.start {
+        for (kind, value) in [
+            (VariableKind::Shift, p.shift_mm),
+            (VariableKind::Equidistant, p.equidistant_mm),
+            (VariableKind::Rotation, p.rotation_deg.map(units::rad)),
+        ] {
+            if let Some(x) = value {
+                kind.set(
+                    &mut start,
+                    finite(&format!("{key}.start.{}", kind.key()), x)?,
+                );
+            }
+        }
+    }
+    for var in &variables {
+        let x = var.kind.get(&start);
+        if !(var.lower..=var.upper).contains(&x) {
+            let unit = |x| var.kind.to_spec_unit(x);
+            return Err(invalid(
+                &format!("{key}.start"),
+                format!(
+                    "the start {} = {} lies outside its bounds [{}, {}] (give a start inside \
+                     the bounds; the spec's modification is the start when none is given)",
+                    var.kind.key(),
+                    unit(x),
+                    unit(var.lower),
+                    unit(var.upper)
+                ),
+            ));
+        }
+    }
+    let c = &raw.constraints;
+    let tip_clearance_mm = c
+        .tip_clearance_mm
+        .map(|b| bounds(&format!("{key}.constraints.tip_clearance_mm"), b))
+        .transpose()?;
+    let min_clearance_mm = c
+        .min_clearance_mm
+        .map(|x| finite(&format!("{key}.constraints.min_clearance_mm"), x))
+        .transpose()?;
+    let mut references = Vec::new();
+    for (j, r) in raw.references.into_iter().enumerate() {
+        let rk = format!("{key}.references[{j}]");
+        references.push((
+            r.label,
+            Modification {
+                shift_mm: finite(&format!("{rk}.shift_mm"), r.shift_mm)?,
+                equidistant_mm: finite(&format!("{rk}.equidistant_mm"), r.equidistant_mm)?,
+                rotation_rad: units::rad(finite(&format!("{rk}.rotation_deg"), r.rotation_deg)?),
+            },
+        ));
+    }
+    Ok(Study {
+        name: raw.name.unwrap_or_else(|| format!("study-{}", index + 1)),
+        scene,
+        objective: objective(&format!("{key}.objective"), raw.objective)?,
+        variables,
+        start,
+        tip_clearance_mm,
+        min_clearance_mm,
+        references,
+        optimum_max_objective: raw
+            .optimum_max_objective
+            .map(|x| finite(&format!("{key}.optimum_max_objective"), x))
+            .transpose()?,
+        global_samples: count(
+            &format!("{key}.global_samples"),
+            raw.global_samples.unwrap_or(64),
+            1,
+        )?,
+        local_evaluations: count(
+            &format!("{key}.local_evaluations"),
+            raw.local_evaluations.unwrap_or(200),
+            10,
+        )?,
+    })
+}

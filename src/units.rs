@@ -1,0 +1,105 @@
+//! Every unit conversion of the tool, in one place.
+//!
+//! The engine works in mm, N, N·mm, rad and MPa. The spec's keys and the outputs' keys name
+//! other units (N·m, GPa, deg, arcsec, arcmin, µm, h); a value crosses between the two only
+//! through these functions, at the edges: `spec` (input), the quantity registry and `report`
+//! (output), and the command line.
+
+use std::f64::consts::PI;
+
+/// Arcseconds in a radian.
+pub const ARCSEC_PER_RAD: f64 = 180.0 * 3600.0 / PI;
+/// Arcminutes in a radian.
+pub const ARCMIN_PER_RAD: f64 = 180.0 * 60.0 / PI;
+/// N·mm in a N·m.
+pub const NMM_PER_NM: f64 = 1000.0;
+/// MPa in a GPa.
+pub const MPA_PER_GPA: f64 = 1000.0;
+/// µm in a mm.
+pub const UM_PER_MM: f64 = 1000.0;
+
+/// rad → arcsec.
+#[inline]
+pub fn arcsec(rad: f64) -> f64 {
+    rad * ARCSEC_PER_RAD
+}
+
+/// rad → arcmin.
+#[inline]
+pub fn arcmin(rad: f64) -> f64 {
+    rad * ARCMIN_PER_RAD
+}
+
+/// arcsec → rad.
+#[inline]
+pub fn rad_from_arcsec(arcsec: f64) -> f64 {
+    arcsec / ARCSEC_PER_RAD
+}
+
+/// rad → deg.
+#[inline]
+pub fn deg(rad: f64) -> f64 {
+    rad.to_degrees()
+}
+
+/// deg → rad.
+#[inline]
+pub fn rad(deg: f64) -> f64 {
+    deg.to_radians()
+}
+
+/// N·m → N·mm.
+#[inline]
+pub fn nmm(nm: f64) -> f64 {
+    nm * NMM_PER_NM
+}
+
+/// N·mm → N·m.
+#[inline]
+pub fn nm(nmm: f64) -> f64 {
+    nmm / NMM_PER_NM
+}
+
+/// GPa → MPa.
+#[inline]
+pub fn mpa(gpa: f64) -> f64 {
+    gpa * MPA_PER_GPA
+}
+
+/// MPa → GPa.
+#[inline]
+pub fn gpa(mpa: f64) -> f64 {
+    mpa / MPA_PER_GPA
+}
+
+/// mm → µm.
+#[inline]
+pub fn um(mm: f64) -> f64 {
+    mm * UM_PER_MM
+}
+
+/// µm → mm.
+#[inline]
+pub fn mm_from_um(um: f64) -> f64 {
+    um / UM_PER_MM
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The conversions against their definitions: a full turn is 360° = 21600′ = 1296000″,
+    /// and each pair of functions inverts.
+    #[test]
+    fn conversions_match_their_definitions() {
+        let turn = 2.0 * PI;
+        assert!((arcsec(turn) - 1_296_000.0).abs() < 1e-6);
+        assert!((arcmin(turn) - 21_600.0).abs() < 1e-9);
+        assert!((deg(turn) - 360.0).abs() < 1e-12);
+        assert!((rad_from_arcsec(arcsec(0.3)) - 0.3).abs() < 1e-15);
+        assert!((rad(deg(1.25)) - 1.25).abs() < 1e-15);
+        assert_eq!(nm(nmm(2.5)), 2.5);
+        assert_eq!(gpa(mpa(206.0)), 206.0);
+        assert_eq!(mm_from_um(um(0.015)), 0.015);
+    }
+}

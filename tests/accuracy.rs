@@ -284,7 +284,7 @@ fn solver_tolerance_rungs_stay_within_what_the_tolerance_implies() {
     let l = ladder(&s, 384, Some(384));
     let reference = &l.reference().outputs;
     let te_max = reference.value(Quantity::TeCurve).unwrap();
-    let f_max = reference.max_roller_force_n.unwrap();
+    let f_max = reference.value(Quantity::MaxRollerForce).unwrap();
     let kappa_max = reference
         .ratio
         .as_ref()

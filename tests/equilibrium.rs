@@ -12,8 +12,8 @@ use cycloid::equilibrium::solve::{monotone_root, Balance, Settings, SolveFailure
 use cycloid::equilibrium::sweep::{residual, solve_angle, AngleSolution, Model};
 use cycloid::geometry::clearance::Mesh;
 use cycloid::geometry::{cross, Vec2};
-use cycloid::model::Plan;
 use cycloid::model::{ContactLaw, GeometryMode};
+use cycloid::model::{Effect, Plan};
 use cycloid::spec::{self, Spec};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
@@ -176,14 +176,14 @@ impl SceneText {
 
 /// A model of the spec's only scene with rollers, pins and bearing as asked.
 fn model(spec: &Spec, rollers: bool, pins: bool, bearing: bool) -> Model {
-    Model::new(
-        &spec.design,
-        &spec.modification,
-        &spec.scenes[0],
-        rollers,
-        pins,
-        bearing,
-    )
+    let asked = [
+        (rollers, Effect::RollerContact),
+        (pins, Effect::OutputPins),
+        (bearing, Effect::Bearing),
+    ];
+    let effects: Vec<Effect> = asked.iter().filter(|a| a.0).map(|a| a.1).collect();
+    let plan = Plan::of(&spec.scenes[0].name, &effects);
+    Model::new(&spec.design, &spec.modification, &spec.scenes[0], &plan)
 }
 
 /// Solve a sequence of crank angles, warm-starting each from the previous one (as a sweep does).

@@ -20,7 +20,12 @@ fn model(spec: &Spec, scene: usize) -> Model {
     s.geometry = GeometryMode::FirstOrder;
     s.contact_law = ContactLaw::PaperLinear;
     s.bearing_stiffness_n_per_mm = None;
-    Model::new(&spec.design, &spec.modification, &s, true, true, true)
+    Model::new(
+        &spec.design,
+        &spec.modification,
+        &s,
+        &cycloid::model::Plan::of("rated", &[cycloid::model::Effect::Bearing]),
+    )
 }
 
 fn load(path: &str) -> Spec {

@@ -517,7 +517,12 @@ fn hole_clearance_loads_pins_one_by_one() {
     }
     // One angle, torque from 1 mN·m up: loaded pins never decrease, starting with one.
     let scene = &spec.scenes[0];
-    let mut model = Model::new(&spec.design, &spec.modification, scene, true, true, true);
+    let mut model = Model::new(
+        &spec.design,
+        &spec.modification,
+        scene,
+        &cycloid::model::Plan::of("rated", &[cycloid::model::Effect::Bearing]),
+    );
     let mut counts = Vec::new();
     for t in [1.0, 1e2, 1e3, 1e4, 1e5, 1e6, 3e6, 1e7] {
         model.torque_nmm = t;

@@ -15,7 +15,12 @@ pub fn rated_sweep(geometry: GeometryMode, n: usize) -> (Model, Vec<f64>) {
         .expect("rated")
         .clone();
     scene.geometry = geometry;
-    let model = Model::new(&s.design, &s.modification, &scene, true, true, true);
+    let model = Model::new(
+        &s.design,
+        &s.modification,
+        &scene,
+        &cycloid::model::Plan::of("rated", &[cycloid::model::Effect::Bearing]),
+    );
     let crank = (0..n)
         .map(|k| std::f64::consts::TAU / 10.0 * k as f64 / n as f64)
         .collect();

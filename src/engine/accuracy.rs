@@ -38,11 +38,11 @@ pub use crate::model::accuracy::{
     base_angles, check, ladder_steps, tolerance, Options, Setting, Tolerances, COARSEST,
     DEFAULT_FINEST, MAX_FINEST,
 };
+use crate::model::quantity::{self, TE};
 use crate::model::results::SceneResult;
 use crate::model::{ContactLaw, GeometryMode, Scene};
 use crate::model::{Effect, Plan};
 use crate::numeric::number;
-use crate::numeric::{fluctuation, max_entry};
 use crate::spec::{self, Spec};
 use crate::units;
 use std::time::Instant;
@@ -90,34 +90,46 @@ impl Quantity {
         }
     }
 
-    /// What the error is, in words.
-    pub fn description(self) -> &'static str {
+    /// The quantity of the registry it is (the TE curve's is the loaded TE).
+    pub fn registry(self) -> &'static quantity::Quantity {
         match self {
-            Quantity::TeCurve => "loaded TE curve, max |difference| between the curves",
-            Quantity::TeFluctuation => "TE fluctuation δmax − δmin",
-            Quantity::RatioFluctuation => "ratio fluctuation κmax − κmin",
-            Quantity::MaxRollerForce => "max roller force",
-            Quantity::MaxBearingForce => "max crank-bearing force",
-            Quantity::MinClearance => "min clearance over the mesh",
+            Quantity::TeCurve => &quantity::TE,
+            Quantity::TeFluctuation => &quantity::TE_FLUCTUATION,
+            Quantity::RatioFluctuation => &quantity::RATIO_FLUCTUATION,
+            Quantity::MaxRollerForce => &quantity::MAX_ROLLER_FORCE,
+            Quantity::MaxBearingForce => &quantity::MAX_BEARING_FORCE,
+            Quantity::MinClearance => &quantity::MIN_CLEARANCE,
         }
     }
 
+    /// What the error is, in words.
+    pub fn description(self) -> String {
+        match self {
+            Quantity::TeCurve => "loaded TE curve, max |difference| between the curves".to_string(),
+            q => q.registry().label.to_string(),
+        }
+    }
+
+    /// The unit of the errors: the registry's, but µm for the clearance (its tolerance is a
+    /// fraction of a micrometre).
     pub fn unit(self) -> &'static str {
         match self {
-            Quantity::TeCurve | Quantity::TeFluctuation => "arcsec",
-            Quantity::RatioFluctuation => "",
-            Quantity::MaxRollerForce | Quantity::MaxBearingForce => "N",
             Quantity::MinClearance => "µm",
+            q => q.registry().unit,
+        }
+    }
+
+    /// The registry's value in `unit`.
+    fn scale(self) -> f64 {
+        match self {
+            Quantity::MinClearance => units::um(1.0),
+            _ => 1.0,
         }
     }
 
     /// The effect a scene must compute for this quantity to exist.
     pub fn effect(self) -> Effect {
-        match self {
-            Quantity::MaxBearingForce => Effect::Bearing,
-            Quantity::MinClearance => Effect::Clearance,
-            _ => Effect::RollerContact,
-        }
+        self.registry().effect
     }
 
     pub fn tolerance(self, t: &Tolerances) -> f64 {
@@ -139,7 +151,7 @@ impl Quantity {
     }
 }
 
-/// The headline outputs of one run, in report units (arcsec, N, µm).
+/// The headline outputs of one run, in the ladder's units (arcsec, N, µm).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Outputs {
     pub crank_rad: Vec<f64>,
@@ -149,48 +161,35 @@ pub struct Outputs {
     pub ratio: Option<Vec<f64>>,
     /// Rollers carrying load at every crank angle.
     pub contacts: Option<Vec<usize>>,
-    pub te_fluctuation_arcsec: Option<f64>,
-    pub ratio_fluctuation: Option<f64>,
-    pub max_roller_force_n: Option<f64>,
-    pub max_bearing_force_n: Option<f64>,
-    pub min_clearance_um: Option<f64>,
+    /// The scalar quantities (index: `Quantity as usize`; the TE curve's is its largest |δ|).
+    pub scalars: [Option<f64>; 6],
 }
 
 impl Outputs {
     pub fn of(r: &SceneResult) -> Outputs {
-        let t = r.loaded.transmission.as_ref();
-        let te_arcsec: Option<Vec<f64>> =
-            t.map(|t| t.te_rad.iter().map(|&d| units::arcsec(d)).collect());
+        let curve = |q: &quantity::Quantity| q.curves(r).and_then(|c| c.values.into_iter().next());
+        let te_arcsec = curve(&TE);
+        let mut scalars = [None; 6];
+        for q in Quantity::ALL {
+            scalars[q.index()] = match q {
+                Quantity::TeCurve => te_arcsec
+                    .as_ref()
+                    .map(|v| v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))),
+                q => q.registry().scalar(r).map(|e| e.value * q.scale()),
+            };
+        }
         Outputs {
             crank_rad: r.crank_rad.clone(),
-            te_fluctuation_arcsec: te_arcsec.as_deref().map(fluctuation),
             te_arcsec,
-            ratio: t.and_then(|t| t.ratio.clone()),
+            ratio: curve(&quantity::RATIO),
             contacts: r.loaded.rollers.as_ref().map(|c| c.contacts.clone()),
-            ratio_fluctuation: t.and_then(|t| t.ratio.as_deref()).map(fluctuation),
-            max_roller_force_n: r.loaded.rollers.as_ref().map(|c| max_entry(&c.force_n).0),
-            max_bearing_force_n: r
-                .loaded
-                .bearing
-                .as_ref()
-                .map(|b| b.force_n.iter().copied().fold(0.0, f64::max)),
-            min_clearance_um: r.clearance.as_ref().map(|c| units::um(c.min.gap_mm)),
+            scalars,
         }
     }
 
     /// The scalar value of a quantity (the TE curve's is its largest |δ|).
     pub fn value(&self, q: Quantity) -> Option<f64> {
-        match q {
-            Quantity::TeCurve => self
-                .te_arcsec
-                .as_ref()
-                .map(|v| v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))),
-            Quantity::TeFluctuation => self.te_fluctuation_arcsec,
-            Quantity::RatioFluctuation => self.ratio_fluctuation,
-            Quantity::MaxRollerForce => self.max_roller_force_n,
-            Quantity::MaxBearingForce => self.max_bearing_force_n,
-            Quantity::MinClearance => self.min_clearance_um,
-        }
+        self.scalars[q.index()]
     }
 }
 
@@ -734,7 +733,8 @@ pub fn run(
         }
         for (label, variation, g, l, tol) in variants {
             let mut run = run_once(settings_steps, g, l, tol, false)?;
-            run.outputs.min_clearance_um = base.outputs.min_clearance_um;
+            let clearance = Quantity::MinClearance.index();
+            run.outputs.scalars[clearance] = base.outputs.scalars[clearance];
             run.clearance_seconds = base.clearance_seconds;
             let rung = make(label, variation, g, l, tol, run);
             progress(Event::Rung(&layout, &rung));
@@ -856,7 +856,7 @@ pub fn header(l: &Layout) -> String {
         "errors are |rung − reference| in each quantity's unit; tolerances: {}\n",
         tolerances.join(", ")
     );
-    let missing: Vec<&str> = Quantity::ALL
+    let missing: Vec<String> = Quantity::ALL
         .into_iter()
         .filter(|q| !l.quantities.contains(q))
         .map(|q| q.description())

@@ -1,21 +1,12 @@
 //! Limits → checks → verdicts. A limit applies to every scene that computes its quantity.
 
 use crate::error::{Error, ErrorKind, Result};
+pub use crate::model::quantity::Bound;
+
 use crate::model::results::SceneResult;
 use crate::model::Limits;
-use crate::model::{Effect, Plan};
-use crate::numeric::{extremes, fluctuation, max_entry};
+use crate::model::Plan;
 use crate::spec::Spec;
-use crate::units;
-
-/// Direction of a limit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Bound {
-    /// value ≤ limit passes.
-    Max,
-    /// value ≥ limit passes.
-    Min,
-}
 
 /// Comparison tolerance of limits and constraints: 1e-12 of max(1, |limit|). It absorbs the
 /// binary representation of decimal inputs (0.150 − 0.135 is 0.01499999999999999 in f64) and
@@ -93,7 +84,7 @@ impl Check {
         let w = &g.comparison.worst;
         let num = crate::numeric::number;
         Check {
-            id: format!("{}/golden:{}", g.golden.scene, g.golden.quantity),
+            id: format!("{}/golden:{}", g.golden.scene, g.golden.quantity.key),
             kind: CheckKind::Golden,
             value: w.deviation,
             limit: w.band,
@@ -111,164 +102,13 @@ impl Check {
     }
 }
 
-/// Unit of a limit, from its key's suffix.
-fn unit_of(key: &str) -> &'static str {
-    for (suffix, unit) in [
-        ("_mm", "mm"),
-        ("_n", "N"),
-        ("_mpa", "MPa"),
-        ("_arcsec", "arcsec"),
-    ] {
-        if key.ends_with(suffix) {
-            return unit;
-        }
-    }
-    ""
-}
-
-struct LimitDef {
-    key: &'static str,
-    bound: Bound,
-    effect: Effect,
-    get: fn(&Limits) -> Option<f64>,
-    value: fn(&SceneResult) -> Option<(f64, String)>,
-}
-
-fn at_angle(r: &SceneResult, k: usize) -> f64 {
-    units::deg(r.crank_rad.get(k).copied().unwrap_or(0.0))
-}
-
-fn max_over(r: &SceneResult, rows: &[Vec<f64>], what: &str) -> (f64, String) {
-    let (v, i, k) = max_entry(rows);
-    (v, format!("{what} {i} at crank {:.2}°", at_angle(r, k)))
-}
-
-const LIMITS: &[LimitDef] = &[
-    LimitDef {
-        key: "min_clearance_mm",
-        bound: Bound::Min,
-        effect: Effect::Clearance,
-        get: |l| l.min_clearance_mm,
-        value: |r| {
-            r.clearance.as_ref().map(|c| {
-                (
-                    c.min.gap_mm,
-                    format!(
-                        "roller {} at crank {:.2}°, tooth phase {:.3} (0 root, 0.5 tip)",
-                        c.min.roller,
-                        units::deg(c.min.crank_rad),
-                        c.min.tooth_phase
-                    ),
-                )
-            })
-        },
-    },
-    LimitDef {
-        key: "max_roller_force_n",
-        bound: Bound::Max,
-        effect: Effect::RollerContact,
-        get: |l| l.max_roller_force_n,
-        value: |r| {
-            r.loaded
-                .rollers
-                .as_ref()
-                .map(|c| max_over(r, &c.force_n, "roller"))
-        },
-    },
-    LimitDef {
-        key: "max_contact_pressure_mpa",
-        bound: Bound::Max,
-        effect: Effect::RollerContact,
-        get: |l| l.max_contact_pressure_mpa,
-        value: |r| {
-            r.loaded
-                .rollers
-                .as_ref()
-                .map(|c| max_over(r, &c.pressure_mpa, "roller"))
-        },
-    },
-    LimitDef {
-        key: "min_rollers_in_contact",
-        bound: Bound::Min,
-        effect: Effect::RollerContact,
-        get: |l| l.min_rollers_in_contact.map(|n| n as f64),
-        value: |r| {
-            r.loaded.rollers.as_ref().map(|c| {
-                let counts: Vec<f64> = c.contacts.iter().map(|&n| n as f64).collect();
-                let ((lo, k), _) = extremes(&counts);
-                (lo, format!("crank {:.2}°", at_angle(r, k)))
-            })
-        },
-    },
-    LimitDef {
-        key: "max_te_fluctuation_arcsec",
-        bound: Bound::Max,
-        effect: Effect::RollerContact,
-        get: |l| l.max_te_fluctuation_arcsec,
-        value: |r| {
-            r.loaded.transmission.as_ref().map(|t| {
-                let ((_, lo), (_, hi)) = extremes(&t.te_rad);
-                (
-                    units::arcsec(fluctuation(&t.te_rad)),
-                    format!(
-                        "min at {:.2}°, max at {:.2}°",
-                        at_angle(r, lo),
-                        at_angle(r, hi)
-                    ),
-                )
-            })
-        },
-    },
-    LimitDef {
-        key: "max_ratio_fluctuation",
-        bound: Bound::Max,
-        effect: Effect::RollerContact,
-        get: |l| l.max_ratio_fluctuation,
-        value: |r| {
-            let ratio = r.loaded.transmission.as_ref()?.ratio.as_ref()?;
-            let ((_, lo), (_, hi)) = extremes(ratio);
-            Some((
-                fluctuation(ratio),
-                format!(
-                    "min at {:.2}°, max at {:.2}°",
-                    at_angle(r, lo),
-                    at_angle(r, hi)
-                ),
-            ))
-        },
-    },
-    LimitDef {
-        key: "max_pin_force_n",
-        bound: Bound::Max,
-        effect: Effect::OutputPins,
-        get: |l| l.max_pin_force_n,
-        value: |r| {
-            r.loaded
-                .pins
-                .as_ref()
-                .map(|c| max_over(r, &c.force_n, "pin"))
-        },
-    },
-    LimitDef {
-        key: "max_bearing_force_n",
-        bound: Bound::Max,
-        effect: Effect::Bearing,
-        get: |l| l.max_bearing_force_n,
-        value: |r| {
-            r.loaded.bearing.as_ref().map(|b| {
-                let (_, (v, k)) = extremes(&b.force_n);
-                (v, format!("crank {:.2}°", at_angle(r, k)))
-            })
-        },
-    },
-];
-
 /// Keys of the limits that a scene with this plan evaluates.
 pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
-    LIMITS
+    limits
+        .entries
         .iter()
-        .filter(|d| (d.get)(limits).is_some() && plan.has(d.effect))
-        .map(|d| d.key)
+        .filter(|l| plan.has(l.def.quantity.effect))
+        .map(|l| l.def.key)
         .collect()
 }
 
@@ -276,7 +116,7 @@ pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
 /// its quantity.
 pub fn validate(spec: &Spec) -> Result<()> {
     for g in &spec.golden {
-        let q = crate::model::quantity::find(g.quantity).expect("validated quantity");
+        let q = g.quantity;
         let scene = spec.scenes.iter().find(|s| s.name == g.scene);
         if scene.is_some_and(|s| !Plan::for_scene(s).has(q.effect)) {
             return Err(Error::new(
@@ -284,24 +124,23 @@ pub fn validate(spec: &Spec) -> Result<()> {
                 format!(
                     "scene `{}` does not compute `{}`; add the effect `{}` to the scene",
                     g.scene,
-                    g.quantity,
+                    q.key,
                     q.effect.name()
                 ),
             )
             .at_key(format!("{}.quantity", g.key)));
         }
     }
-    for d in LIMITS {
-        if (d.get)(&spec.limits).is_none() {
-            continue;
-        }
-        let covered = spec.scenes.iter().any(|s| Plan::for_scene(s).has(d.effect));
+    for l in &spec.limits.entries {
+        let d = l.def;
+        let effect = d.quantity.effect;
+        let covered = spec.scenes.iter().any(|s| Plan::for_scene(s).has(effect));
         if !covered {
             return Err(Error::new(
                 ErrorKind::InvalidValue,
                 format!(
                     "no scene computes this limit's quantity; add the effect `{}` to a scene",
-                    d.effect.name()
+                    effect.name()
                 ),
             )
             .at_key(format!("limits.{}", d.key)));
@@ -314,20 +153,20 @@ pub fn validate(spec: &Spec) -> Result<()> {
 pub fn evaluate(limits: &Limits, results: &[SceneResult]) -> Vec<Check> {
     let mut checks = Vec::new();
     for r in results {
-        for d in LIMITS {
-            let (Some(limit), Some((value, at))) = ((d.get)(limits), (d.value)(r)) else {
+        for l in &limits.entries {
+            let q = l.def.quantity;
+            let Some(e) = q.scalar(r) else {
                 continue;
             };
-            let passed = passes(value, limit, d.bound);
             checks.push(Check {
-                id: format!("{}/{}", r.name, d.key),
+                id: format!("{}/{}", r.name, l.def.key),
                 kind: CheckKind::Limit,
-                unit: unit_of(d.key),
-                value,
-                limit,
-                bound: d.bound,
-                passed,
-                at,
+                unit: q.unit,
+                value: e.value,
+                limit: l.value,
+                bound: l.def.bound,
+                passed: passes(e.value, l.value, l.def.bound),
+                at: e.at,
             });
         }
     }
@@ -365,7 +204,7 @@ pub fn optimisation(spec: &Spec, results: &[crate::engine::optimise::StudyResult
             .or(spec.limits.optimum_max_objective)
         {
             let unit = match study.objective.as_slice() {
-                [(o, _)] => o.unit(),
+                [(o, _)] => o.quantity.unit,
                 _ => "",
             };
             checks.push(Check {

@@ -11,7 +11,7 @@
 //! furthest outside (or least inside) its band.
 
 use crate::error::{Error, ErrorKind, Result};
-use crate::model::quantity::{self, Curves};
+use crate::model::quantity::Curves;
 use crate::model::results::SceneResult;
 use crate::model::{Golden, Tolerance};
 use crate::spec::Spec;
@@ -339,7 +339,7 @@ pub fn computed<'a>(
     g: &Golden,
     results: &'a [SceneResult],
 ) -> Result<(&'a SceneResult, Vec<f64>, Curves)> {
-    let q = quantity::find(g.quantity).expect("validated quantity");
+    let q = g.quantity;
     let r = results
         .iter()
         .find(|r| r.name == g.scene)
@@ -369,7 +369,7 @@ pub fn evaluate(
         .zip(loaded)
         .map(|(g, golden)| {
             let (_, deg, curves) = computed(g, results)?;
-            let period = quantity::find(g.quantity).and_then(|q| q.period);
+            let period = g.quantity.period;
             let comparison = compare(golden, &deg, &curves, g.tolerance, period).map_err(|m| {
                 file_error(
                     g,
@@ -384,7 +384,7 @@ pub fn evaluate(
             })?;
             Ok(GoldenResult {
                 golden: g.clone(),
-                unit: quantity::find(g.quantity).map_or("", |q| q.unit),
+                unit: g.quantity.unit,
                 comparison,
             })
         })
@@ -488,8 +488,8 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
     let mut out = Vec::new();
     for g in &spec.golden {
         let (_, deg, curves) = computed(g, results)?;
-        let unit = quantity::find(g.quantity).map_or("", |q| q.unit);
-        let period = quantity::find(g.quantity).and_then(|q| q.period);
+        let unit = g.quantity.unit;
+        let period = g.quantity.period;
         let new = GoldenCurves {
             crank_deg: deg.clone(),
             curves,
@@ -575,7 +575,7 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
     );
     for b in blessed {
         let file = b.golden.path.display();
-        let cols = match quantity::find(b.golden.quantity).and_then(|q| q.per) {
+        let cols = match b.golden.quantity.shape.per() {
             Some(what) => format!("{what} columns"),
             None => "1 column".into(),
         };

@@ -11,7 +11,7 @@ use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
 use crate::model::results::{LoadedSweep, SceneResult};
-use crate::model::{Effect, Plan, Scene};
+use crate::model::{Design, Effect, Modification, Plan, Scene};
 use crate::spec::Spec;
 use crate::units;
 
@@ -28,7 +28,19 @@ pub fn run_with(
     plan: &Plan,
     settings: &Settings,
 ) -> Result<SceneResult> {
-    let mesh = Mesh::new(&spec.design, &spec.modification);
+    run_design(&spec.design, &spec.modification, scene, plan, settings)
+}
+
+/// Run one scene of `design` with the modification `m` (an optimisation candidate, or the
+/// spec's own) according to `plan`.
+pub fn run_design(
+    design: &Design,
+    m: &Modification,
+    scene: &Scene,
+    plan: &Plan,
+    settings: &Settings,
+) -> Result<SceneResult> {
+    let mesh = Mesh::new(design, m);
     let clearance = if plan.has(Effect::Clearance) {
         Some(
             clearance::sweep(&mesh, &scene.crank_rad)
@@ -37,22 +49,12 @@ pub fn run_with(
     } else {
         None
     };
-    let (rollers, pins, bearing) = (
-        plan.has(Effect::RollerContact),
-        plan.has(Effect::OutputPins),
-        plan.has(Effect::Bearing),
-    );
-    let loaded = if rollers || pins || bearing {
-        let mut model = Model::new(
-            &spec.design,
-            &spec.modification,
-            scene,
-            rollers,
-            pins,
-            bearing,
-        );
+    let loaded_effects = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing];
+    let loaded = if loaded_effects.iter().any(|&e| plan.has(e)) {
+        let mut model = Model::new(design, m, scene, plan);
         model.settings = *settings;
-        let periodic = scene.spans_whole(spec.design.loaded_period_rad(pins || bearing));
+        let pins = plan.has(Effect::OutputPins);
+        let periodic = scene.spans_whole(design.loaded_period_rad(pins));
         curves::sweep(&model, &scene.crank_rad, periodic).map_err(|f| {
             Error::computation(format!(
                 "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {}",

@@ -634,7 +634,12 @@ mod tests {
         let s = spec::load("specs/paper.yaml").unwrap();
         let mut scene = s.scenes.iter().find(|c| c.name == "rated").unwrap().clone();
         scene.geometry = GeometryMode::FirstOrder;
-        let model = Model::new(&s.design, &s.modification, &scene, true, true, true);
+        let model = Model::new(
+            &s.design,
+            &s.modification,
+            &scene,
+            &crate::model::Plan::of("rated", &[crate::model::Effect::Bearing]),
+        );
         let kernel = FirstOrderSweep::new(&model).unwrap();
         let n = kernel.rollers.units.len();
         let column = || vec![vec![0.0]; n];
@@ -700,7 +705,7 @@ mod tests {
             scene.geometry = GeometryMode::FirstOrder;
             scene.contact_law = ContactLaw::PaperLinear;
             let modification = Modification { shift_mm: shift, equidistant_mm: equidistant, rotation_rad: rotation };
-            let model = Model::new(&s.design, &modification, &scene, true, true, true);
+            let model = Model::new(&s.design, &modification, &scene, &crate::model::Plan::of("rated", &[crate::model::Effect::Bearing]));
             let kernel = FirstOrderSweep::new(&model).unwrap();
             let crank: Vec<f64> = (0..angles).map(|k| start + step * k as f64).collect();
             let mut scratch = Scratch::default();

@@ -14,7 +14,7 @@ use super::solve::{
 };
 use crate::geometry::clearance::Pose;
 use crate::geometry::{cross, Vec2};
-use crate::model::{ContactLaw, Design, GeometryMode, Modification, Scene};
+use crate::model::{ContactLaw, Design, Effect, GeometryMode, Modification, Plan, Scene};
 use crate::units;
 use nalgebra::{Matrix2, Matrix4, Vector4};
 
@@ -34,14 +34,14 @@ pub struct Model {
 }
 
 impl Model {
-    pub fn new(
-        design: &Design,
-        m: &Modification,
-        scene: &Scene,
-        rollers: bool,
-        pins: bool,
-        bearing: bool,
-    ) -> Self {
+    /// The loaded model of `scene` with the loaded effects of `plan` (roller contact, output
+    /// pins, bearing); the crank bearing's compliance applies only with the bearing modelled.
+    pub fn new(design: &Design, m: &Modification, scene: &Scene, plan: &Plan) -> Self {
+        let (rollers, pins, bearing) = (
+            plan.has(Effect::RollerContact),
+            plan.has(Effect::OutputPins),
+            plan.has(Effect::Bearing),
+        );
         Model {
             rollers: rollers.then(|| Rollers::new(design, m, scene.contact_law, scene.geometry)),
             pins: pins.then(|| Pins::new(design, scene.contact_law)),

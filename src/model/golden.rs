@@ -1,5 +1,7 @@
 //! A golden curve entry of a spec: the reviewed file a scene's curve is compared with.
 
+use super::quantity::Quantity;
+
 /// Allowed deviation from a golden value g: |value − g| ≤ abs + rel·|g|.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tolerance {
@@ -20,8 +22,8 @@ pub struct Golden {
     /// Key path of this entry in the spec (`golden[2]`), for error locations.
     pub key: String,
     pub scene: String,
-    /// Key of a per-angle quantity (`crate::model::quantity::QUANTITIES`).
-    pub quantity: &'static str,
+    /// A per-angle quantity of the registry.
+    pub quantity: &'static Quantity,
     /// The path as written in the spec.
     pub file: String,
     /// The path resolved against the spec file's directory (lexically normalised).

@@ -1,15 +1,31 @@
-//! Acceptance limits of a spec.
+//! Acceptance limits of a spec: bounds on scalar quantities of the registry
+//! (`quantity::LIMITS`), each applied to every scene that computes its quantity.
+
+use super::quantity::LimitDef;
+
+/// One limit set by a spec.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limit {
+    pub def: &'static LimitDef,
+    /// The bound, in the quantity's unit.
+    pub value: f64,
+}
 
 /// Acceptance limits; each applies to every scene that computes its quantity.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Limits {
-    pub min_clearance_mm: Option<f64>,
-    pub max_roller_force_n: Option<f64>,
-    pub max_pin_force_n: Option<f64>,
-    pub max_bearing_force_n: Option<f64>,
-    pub max_contact_pressure_mpa: Option<f64>,
-    pub max_te_fluctuation_arcsec: Option<f64>,
-    pub max_ratio_fluctuation: Option<f64>,
-    pub min_rollers_in_contact: Option<usize>,
+    /// In the registry's order (`quantity::LIMITS`).
+    pub entries: Vec<Limit>,
+    /// Upper limit on every optimisation study's optimum objective.
     pub optimum_max_objective: Option<f64>,
+}
+
+impl Limits {
+    /// The value of the limit with this key, when the spec sets it.
+    pub fn get(&self, key: &str) -> Option<f64> {
+        self.entries
+            .iter()
+            .find(|l| l.def.key == key)
+            .map(|l| l.value)
+    }
 }

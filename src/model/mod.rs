@@ -56,13 +56,13 @@ pub mod study;
 
 pub use design::{ConvexRadius, Design, Locus, Material, Modification, OutputPins};
 pub use golden::{Golden, Tolerance};
-pub use limits::Limits;
+pub use limits::{Limit, Limits};
 pub use scene::{ContactLaw, Effect, GeometryMode, Plan, PlannedEffect, Scene};
 pub use study::{Objective, Study, Variable, VariableKind};
 
 #[cfg(test)]
 mod tests {
-    use super::{ContactLaw, Effect, GeometryMode, Objective};
+    use super::{ContactLaw, Effect, GeometryMode};
 
     /// Every name reads back as its variant, and an unknown one names the known ones.
     #[test]
@@ -75,10 +75,6 @@ mod tests {
         }
         assert_eq!("first_order".parse(), Ok(GeometryMode::FirstOrder));
         assert_eq!(ContactLaw::ALL.len(), 2);
-        assert_eq!(
-            Objective::from_name("lost_motion"),
-            Some(Objective::LostMotion)
-        );
         assert_eq!(
             "bogus".parse::<ContactLaw>(),
             Err("unknown contact law `bogus`; known: paper_linear, hertz_nonlinear".to_string())

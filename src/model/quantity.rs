@@ -1,19 +1,61 @@
-//! Per-angle output quantities, named and scaled exactly as in the results JSON.
+//! The one registry of quantities: every output the tool names, its key (as in the results
+//! JSON), unit, label, the effect that computes it, and how to read it from a scene's results.
+//! Limits, goldens, the accuracy ladder, optimisation objectives, summaries and plots all look
+//! their quantities up here; a new quantity is one entry.
 //!
-//! One table serves the golden curves (`golden`), the report plots and their units. A quantity
-//! is either one curve over crank angle (`te_arcsec`) or one curve per roller or pin
-//! (`roller_force_n`); values are in the unit named by the key (arcsec, N, mm, MPa, deg).
+//! A quantity is either per crank angle (`Shape::Curve`, or one curve per roller or pin) or a
+//! scalar of the whole sweep (`Shape::Scalar`: an extreme with where it occurs). Values are in
+//! the unit named by the key (arcsec, N, mm, MPa, deg).
 
-use crate::model::results::SceneResult;
-use crate::model::Effect;
+use super::results::SceneResult;
+use super::scene::Effect;
+use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 
 /// Rows [column][angle] in output units.
 type Rows = Vec<Vec<f64>>;
 
-/// One per-angle output quantity.
-pub struct QuantityDef {
-    /// Key in the results JSON and in `golden[].quantity`.
+/// How a quantity is laid out over a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shape {
+    /// One value per crank angle.
+    Curve,
+    /// One curve per roller.
+    PerRoller,
+    /// One curve per output pin.
+    PerPin,
+    /// One value for the whole sweep (an extreme, with where it occurs).
+    Scalar,
+}
+
+impl Shape {
+    /// What one column is ("roller", "pin") when there is one curve per part.
+    pub fn per(self) -> Option<&'static str> {
+        match self {
+            Shape::PerRoller => Some("roller"),
+            Shape::PerPin => Some("pin"),
+            _ => None,
+        }
+    }
+}
+
+/// A scalar of a sweep and where it occurs ("roller 3 at crank 12.30°").
+#[derive(Debug, Clone, PartialEq)]
+pub struct Extreme {
+    pub value: f64,
+    pub at: String,
+}
+
+#[derive(Clone, Copy)]
+enum Read {
+    Curves(fn(&SceneResult) -> Option<Rows>),
+    Scalar(fn(&SceneResult) -> Option<Extreme>),
+}
+
+/// One quantity of the registry.
+#[derive(Clone, Copy)]
+pub struct Quantity {
+    /// Key in the results JSON (and in `golden[].quantity`, limits, summaries).
     pub key: &'static str,
     /// Unit for axis labels and messages ("" when dimensionless).
     pub unit: &'static str,
@@ -21,11 +63,30 @@ pub struct QuantityDef {
     pub label: &'static str,
     /// The effect that computes it.
     pub effect: Effect,
-    /// `Some("roller")`/`Some("pin")` when there is one curve per roller or pin.
-    pub per: Option<&'static str>,
+    pub shape: Shape,
     /// For an angle that wraps (±180°), its period: deviations are taken modulo it.
     pub period: Option<f64>,
-    get: fn(&SceneResult) -> Option<Rows>,
+    /// For a scalar, the curve it is an extreme of (where a limit on it is drawn).
+    pub of: Option<&'static str>,
+    read: Read,
+}
+
+impl std::fmt::Debug for Quantity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Quantity({})", self.key)
+    }
+}
+
+impl std::fmt::Display for Quantity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.key)
+    }
+}
+
+impl PartialEq for Quantity {
+    fn eq(&self, other: &Self) -> bool {
+        self.key == other.key
+    }
 }
 
 /// Named curves of one quantity over the crank angles of a scene.
@@ -37,205 +98,31 @@ pub struct Curves {
     pub values: Vec<Vec<f64>>,
 }
 
-fn arcsec(v: &[f64]) -> Rows {
-    vec![v.iter().map(|&x| units::arcsec(x)).collect()]
-}
-
-fn one(v: &[f64]) -> Rows {
-    vec![v.to_vec()]
-}
-
-/// Every per-angle output. The equilibrium `residual` is left out on purpose: it is solver
-/// noise, not a property of the design, and a golden of noise can only flake.
-pub const QUANTITIES: &[QuantityDef] = &[
-    QuantityDef {
-        key: "clearance_mm",
-        unit: "mm",
-        label: "clearance",
-        effect: Effect::Clearance,
-        per: Some("roller"),
-        period: None,
-        get: |r| r.clearance.as_ref().map(|c| c.gap_mm.clone()),
-    },
-    QuantityDef {
-        key: "backlash_arcsec",
-        unit: "arcsec",
-        label: "backlash (unloaded TE)",
-        effect: Effect::Clearance,
-        per: None,
-        period: None,
-        get: |r| r.clearance.as_ref().map(|c| arcsec(&c.backlash_rad)),
-    },
-    QuantityDef {
-        key: "backlash_reverse_arcsec",
-        unit: "arcsec",
-        label: "reverse backlash",
-        effect: Effect::Clearance,
-        per: None,
-        period: None,
-        get: |r| {
-            r.clearance
-                .as_ref()
-                .map(|c| arcsec(&c.backlash_reverse_rad))
-        },
-    },
-    QuantityDef {
-        key: "lost_motion_arcsec",
-        unit: "arcsec",
-        label: "lost motion",
-        effect: Effect::Clearance,
-        per: None,
-        period: None,
-        get: |r| r.clearance.as_ref().map(|c| arcsec(&c.lost_motion_rad)),
-    },
-    QuantityDef {
-        key: "lag_arcsec",
-        unit: "arcsec",
-        label: "disc lag β",
-        effect: Effect::RollerContact,
-        per: None,
-        period: None,
-        get: |r| r.loaded.rollers.as_ref().map(|c| arcsec(&c.lag_rad)),
-    },
-    QuantityDef {
-        key: "te_arcsec",
-        unit: "arcsec",
-        label: "loaded transmission error",
-        effect: Effect::RollerContact,
-        per: None,
-        period: None,
-        get: |r| r.loaded.transmission.as_ref().map(|t| arcsec(&t.te_rad)),
-    },
-    QuantityDef {
-        key: "ratio",
-        unit: "",
-        label: "transmission ratio κ",
-        effect: Effect::RollerContact,
-        per: None,
-        period: None,
-        get: |r| {
-            r.loaded
-                .transmission
-                .as_ref()
-                .and_then(|t| t.ratio.as_deref().map(one))
-        },
-    },
-    QuantityDef {
-        key: "roller_force_n",
-        unit: "N",
-        label: "roller force",
-        effect: Effect::RollerContact,
-        per: Some("roller"),
-        period: None,
-        get: |r| r.loaded.rollers.as_ref().map(|c| c.force_n.clone()),
-    },
-    QuantityDef {
-        key: "contact_pressure_mpa",
-        unit: "MPa",
-        label: "Hertz peak pressure",
-        effect: Effect::RollerContact,
-        per: Some("roller"),
-        period: None,
-        get: |r| r.loaded.rollers.as_ref().map(|c| c.pressure_mpa.clone()),
-    },
-    QuantityDef {
-        key: "contact_half_width_mm",
-        unit: "mm",
-        label: "contact half-width",
-        effect: Effect::RollerContact,
-        per: Some("roller"),
-        period: None,
-        get: |r| r.loaded.rollers.as_ref().map(|c| c.half_width_mm.clone()),
-    },
-    QuantityDef {
-        key: "contacts",
-        unit: "",
-        label: "rollers in contact",
-        effect: Effect::RollerContact,
-        per: None,
-        period: None,
-        get: |r| {
-            r.loaded
-                .rollers
-                .as_ref()
-                .map(|c| vec![c.contacts.iter().map(|&n| n as f64).collect()])
-        },
-    },
-    QuantityDef {
-        key: "output_lag_arcsec",
-        unit: "arcsec",
-        label: "output lag βo",
-        effect: Effect::OutputPins,
-        per: None,
-        period: None,
-        get: |r| r.loaded.pins.as_ref().map(|p| arcsec(&p.output_lag_rad)),
-    },
-    QuantityDef {
-        key: "pin_force_n",
-        unit: "N",
-        label: "output-pin force",
-        effect: Effect::OutputPins,
-        per: Some("pin"),
-        period: None,
-        get: |r| r.loaded.pins.as_ref().map(|p| p.force_n.clone()),
-    },
-    QuantityDef {
-        key: "bearing_force_n",
-        unit: "N",
-        label: "crank-bearing force",
-        effect: Effect::Bearing,
-        per: None,
-        period: None,
-        get: |r| r.loaded.bearing.as_ref().map(|b| one(&b.force_n)),
-    },
-    QuantityDef {
-        key: "bearing_angle_deg",
-        unit: "deg",
-        label: "crank-bearing force angle ε",
-        effect: Effect::Bearing,
-        per: None,
-        period: Some(360.0),
-        get: |r| {
-            r.loaded
-                .bearing
-                .as_ref()
-                .map(|b| vec![b.angle_rad.iter().map(|&a| units::deg(a)).collect()])
-        },
-    },
-    QuantityDef {
-        key: "bearing_deflection_mm",
-        unit: "mm",
-        label: "crank-bearing deflection",
-        effect: Effect::Bearing,
-        per: None,
-        period: None,
-        get: |r| r.loaded.bearing.as_ref().map(|b| one(&b.deflection_mm)),
-    },
-];
-
-/// The quantity with this key.
-pub fn find(key: &str) -> Option<&'static QuantityDef> {
-    QUANTITIES.iter().find(|q| q.key == key)
-}
-
-/// Every key, comma-separated, for error messages.
-pub fn known_keys() -> String {
-    QUANTITIES
-        .iter()
-        .map(|q| q.key)
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-impl QuantityDef {
-    /// The quantity's curves in a scene's results; `None` when the scene did not compute it.
+impl Quantity {
+    /// The quantity's curves in a scene's results; `None` when the scene did not compute it,
+    /// or for a scalar.
     pub fn curves(&self, r: &SceneResult) -> Option<Curves> {
-        let values = (self.get)(r)?;
-        let columns = match self.per {
+        let Read::Curves(read) = self.read else {
+            return None;
+        };
+        let values = read(r)?;
+        let columns = match self.shape.per() {
             Some(what) => (0..values.len()).map(|i| format!("{what}_{i}")).collect(),
             None => vec![self.key.to_string()],
         };
         Some(Curves { columns, values })
+    }
+
+    /// The scalar's value and where it occurs; `None` when not computed, or for a curve.
+    pub fn scalar(&self, r: &SceneResult) -> Option<Extreme> {
+        match self.read {
+            Read::Scalar(read) => read(r),
+            Read::Curves(_) => None,
+        }
+    }
+
+    pub fn is_scalar(&self) -> bool {
+        self.shape == Shape::Scalar
     }
 
     /// "label (unit)" for an axis.
@@ -244,6 +131,632 @@ impl QuantityDef {
             self.label.to_string()
         } else {
             format!("{} ({})", self.label, self.unit)
+        }
+    }
+}
+
+fn arcsec(v: &[f64]) -> Rows {
+    vec![v.iter().map(|&x| units::arcsec(x)).collect()]
+}
+
+fn one(v: &[f64]) -> Rows {
+    vec![v.to_vec()]
+}
+
+fn crank_deg(r: &SceneResult, k: usize) -> f64 {
+    units::deg(r.crank_rad.get(k).copied().unwrap_or(0.0))
+}
+
+/// The largest entry of per-part curves and where: "roller 3 at crank 12.30°".
+fn largest(r: &SceneResult, rows: &[Vec<f64>], what: &str) -> Extreme {
+    let (value, i, k) = max_entry(rows);
+    Extreme {
+        value,
+        at: format!("{what} {i} at crank {:.2}°", crank_deg(r, k)),
+    }
+}
+
+/// The largest value of a curve and where.
+fn highest(r: &SceneResult, curve: &[f64]) -> Extreme {
+    let (_, (value, k)) = extremes(curve);
+    Extreme {
+        value,
+        at: format!("crank {:.2}°", crank_deg(r, k)),
+    }
+}
+
+/// max − min of a curve (scaled), with where each occurs.
+fn spread(r: &SceneResult, curve: &[f64], scale: f64) -> Extreme {
+    let ((_, lo), (_, hi)) = extremes(curve);
+    Extreme {
+        value: fluctuation(curve) * scale,
+        at: format!(
+            "min at {:.2}°, max at {:.2}°",
+            crank_deg(r, lo),
+            crank_deg(r, hi)
+        ),
+    }
+}
+
+pub const CLEARANCE: Quantity = Quantity {
+    key: "clearance_mm",
+    unit: "mm",
+    label: "clearance",
+    effect: Effect::Clearance,
+    shape: Shape::PerRoller,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.clearance.as_ref().map(|c| c.gap_mm.clone())),
+};
+
+pub const BACKLASH: Quantity = Quantity {
+    key: "backlash_arcsec",
+    unit: "arcsec",
+    label: "backlash (unloaded TE)",
+    effect: Effect::Clearance,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.clearance.as_ref().map(|c| arcsec(&c.backlash_rad))),
+};
+
+pub const BACKLASH_REVERSE: Quantity = Quantity {
+    key: "backlash_reverse_arcsec",
+    unit: "arcsec",
+    label: "reverse backlash",
+    effect: Effect::Clearance,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| {
+        r.clearance
+            .as_ref()
+            .map(|c| arcsec(&c.backlash_reverse_rad))
+    }),
+};
+
+pub const LOST_MOTION: Quantity = Quantity {
+    key: "lost_motion_arcsec",
+    unit: "arcsec",
+    label: "lost motion",
+    effect: Effect::Clearance,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.clearance.as_ref().map(|c| arcsec(&c.lost_motion_rad))),
+};
+
+pub const LAG: Quantity = Quantity {
+    key: "lag_arcsec",
+    unit: "arcsec",
+    label: "disc lag β",
+    effect: Effect::RollerContact,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| arcsec(&c.lag_rad))),
+};
+
+pub const TE: Quantity = Quantity {
+    key: "te_arcsec",
+    unit: "arcsec",
+    label: "loaded transmission error",
+    effect: Effect::RollerContact,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.loaded.transmission.as_ref().map(|t| arcsec(&t.te_rad))),
+};
+
+pub const RATIO: Quantity = Quantity {
+    key: "ratio",
+    unit: "",
+    label: "transmission ratio κ",
+    effect: Effect::RollerContact,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| {
+        r.loaded
+            .transmission
+            .as_ref()
+            .and_then(|t| t.ratio.as_deref().map(one))
+    }),
+};
+
+pub const ROLLER_FORCE: Quantity = Quantity {
+    key: "roller_force_n",
+    unit: "N",
+    label: "roller force",
+    effect: Effect::RollerContact,
+    shape: Shape::PerRoller,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| c.force_n.clone())),
+};
+
+pub const CONTACT_PRESSURE: Quantity = Quantity {
+    key: "contact_pressure_mpa",
+    unit: "MPa",
+    label: "Hertz peak pressure",
+    effect: Effect::RollerContact,
+    shape: Shape::PerRoller,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| c.pressure_mpa.clone())),
+};
+
+pub const CONTACT_HALF_WIDTH: Quantity = Quantity {
+    key: "contact_half_width_mm",
+    unit: "mm",
+    label: "contact half-width",
+    effect: Effect::RollerContact,
+    shape: Shape::PerRoller,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| c.half_width_mm.clone())),
+};
+
+pub const CONTACTS: Quantity = Quantity {
+    key: "contacts",
+    unit: "",
+    label: "rollers in contact",
+    effect: Effect::RollerContact,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| {
+        r.loaded
+            .rollers
+            .as_ref()
+            .map(|c| vec![c.contacts.iter().map(|&n| n as f64).collect()])
+    }),
+};
+
+pub const OUTPUT_LAG: Quantity = Quantity {
+    key: "output_lag_arcsec",
+    unit: "arcsec",
+    label: "output lag βo",
+    effect: Effect::OutputPins,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.loaded.pins.as_ref().map(|p| arcsec(&p.output_lag_rad))),
+};
+
+pub const PIN_FORCE: Quantity = Quantity {
+    key: "pin_force_n",
+    unit: "N",
+    label: "output-pin force",
+    effect: Effect::OutputPins,
+    shape: Shape::PerPin,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.loaded.pins.as_ref().map(|p| p.force_n.clone())),
+};
+
+pub const BEARING_FORCE: Quantity = Quantity {
+    key: "bearing_force_n",
+    unit: "N",
+    label: "crank-bearing force",
+    effect: Effect::Bearing,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.loaded.bearing.as_ref().map(|b| one(&b.force_n))),
+};
+
+pub const BEARING_ANGLE: Quantity = Quantity {
+    key: "bearing_angle_deg",
+    unit: "deg",
+    label: "crank-bearing force angle ε",
+    effect: Effect::Bearing,
+    shape: Shape::Curve,
+    period: Some(360.0),
+    of: None,
+    read: Read::Curves(|r| {
+        r.loaded
+            .bearing
+            .as_ref()
+            .map(|b| vec![b.angle_rad.iter().map(|&a| units::deg(a)).collect()])
+    }),
+};
+
+pub const BEARING_DEFLECTION: Quantity = Quantity {
+    key: "bearing_deflection_mm",
+    unit: "mm",
+    label: "crank-bearing deflection",
+    effect: Effect::Bearing,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| r.loaded.bearing.as_ref().map(|b| one(&b.deflection_mm))),
+};
+
+pub const MIN_CLEARANCE: Quantity = Quantity {
+    key: "min_clearance_mm",
+    unit: "mm",
+    label: "min clearance over the mesh",
+    effect: Effect::Clearance,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("clearance_mm"),
+    read: Read::Scalar(|r| {
+        r.clearance.as_ref().map(|c| Extreme {
+            value: c.min.gap_mm,
+            at: format!(
+                "roller {} at crank {:.2}°, tooth phase {:.3} (0 root, 0.5 tip)",
+                c.min.roller,
+                units::deg(c.min.crank_rad),
+                c.min.tooth_phase
+            ),
+        })
+    }),
+};
+
+pub const MAX_LOST_MOTION: Quantity = Quantity {
+    key: "max_lost_motion_arcsec",
+    unit: "arcsec",
+    label: "max lost motion (unloaded)",
+    effect: Effect::Clearance,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("lost_motion_arcsec"),
+    read: Read::Scalar(|r| {
+        let c = r.clearance.as_ref()?;
+        let mut e = highest(r, &c.lost_motion_rad);
+        e.value = units::arcsec(e.value);
+        Some(e)
+    }),
+};
+
+pub const MAX_ROLLER_FORCE: Quantity = Quantity {
+    key: "max_roller_force_n",
+    unit: "N",
+    label: "max roller force",
+    effect: Effect::RollerContact,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("roller_force_n"),
+    read: Read::Scalar(|r| Some(largest(r, &r.loaded.rollers.as_ref()?.force_n, "roller"))),
+};
+
+pub const MAX_CONTACT_PRESSURE: Quantity = Quantity {
+    key: "max_contact_pressure_mpa",
+    unit: "MPa",
+    label: "max Hertz pressure",
+    effect: Effect::RollerContact,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("contact_pressure_mpa"),
+    read: Read::Scalar(|r| {
+        Some(largest(
+            r,
+            &r.loaded.rollers.as_ref()?.pressure_mpa,
+            "roller",
+        ))
+    }),
+};
+
+pub const MIN_ROLLERS_IN_CONTACT: Quantity = Quantity {
+    key: "min_rollers_in_contact",
+    unit: "",
+    label: "fewest rollers in contact",
+    effect: Effect::RollerContact,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("contacts"),
+    read: Read::Scalar(|r| {
+        let c = r.loaded.rollers.as_ref()?;
+        let counts: Vec<f64> = c.contacts.iter().map(|&n| n as f64).collect();
+        let ((value, k), _) = extremes(&counts);
+        Some(Extreme {
+            value,
+            at: format!("crank {:.2}°", crank_deg(r, k)),
+        })
+    }),
+};
+
+pub const TE_FLUCTUATION: Quantity = Quantity {
+    key: "te_fluctuation_arcsec",
+    unit: "arcsec",
+    label: "TE fluctuation δmax − δmin",
+    effect: Effect::RollerContact,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("te_arcsec"),
+    read: Read::Scalar(|r| {
+        let t = r.loaded.transmission.as_ref()?;
+        Some(spread(r, &t.te_rad, units::arcsec(1.0)))
+    }),
+};
+
+pub const RATIO_FLUCTUATION: Quantity = Quantity {
+    key: "ratio_fluctuation",
+    unit: "",
+    label: "ratio fluctuation κmax − κmin",
+    effect: Effect::RollerContact,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("ratio"),
+    read: Read::Scalar(|r| {
+        let ratio = r.loaded.transmission.as_ref()?.ratio.as_ref()?;
+        Some(spread(r, ratio, 1.0))
+    }),
+};
+
+pub const MAX_PIN_FORCE: Quantity = Quantity {
+    key: "max_pin_force_n",
+    unit: "N",
+    label: "max pin force",
+    effect: Effect::OutputPins,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("pin_force_n"),
+    read: Read::Scalar(|r| Some(largest(r, &r.loaded.pins.as_ref()?.force_n, "pin"))),
+};
+
+pub const MAX_BEARING_FORCE: Quantity = Quantity {
+    key: "max_bearing_force_n",
+    unit: "N",
+    label: "max crank-bearing force",
+    effect: Effect::Bearing,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("bearing_force_n"),
+    read: Read::Scalar(|r| Some(highest(r, &r.loaded.bearing.as_ref()?.force_n))),
+};
+
+pub const MAX_RESIDUAL: Quantity = Quantity {
+    key: "max_residual",
+    unit: "",
+    label: "largest residual of Eqs. 12–14",
+    effect: Effect::Bearing,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| Some(highest(r, &r.loaded.bearing.as_ref()?.residual))),
+};
+
+/// Every quantity, curves first, in the order of the results JSON.
+///
+/// The equilibrium `residual` per angle is left out of the curves on purpose: it is solver
+/// noise, not a property of the design, and a golden of noise can only flake.
+pub const QUANTITIES: &[&Quantity] = &[
+    &CLEARANCE,
+    &BACKLASH,
+    &BACKLASH_REVERSE,
+    &LOST_MOTION,
+    &LAG,
+    &TE,
+    &RATIO,
+    &ROLLER_FORCE,
+    &CONTACT_PRESSURE,
+    &CONTACT_HALF_WIDTH,
+    &CONTACTS,
+    &OUTPUT_LAG,
+    &PIN_FORCE,
+    &BEARING_FORCE,
+    &BEARING_ANGLE,
+    &BEARING_DEFLECTION,
+    &MIN_CLEARANCE,
+    &MAX_LOST_MOTION,
+    &MAX_ROLLER_FORCE,
+    &MAX_CONTACT_PRESSURE,
+    &MIN_ROLLERS_IN_CONTACT,
+    &TE_FLUCTUATION,
+    &RATIO_FLUCTUATION,
+    &MAX_PIN_FORCE,
+    &MAX_BEARING_FORCE,
+    &MAX_RESIDUAL,
+];
+
+/// The headline results of a scene, in the order a summary shows them.
+pub const SUMMARY: &[&Quantity] = &[
+    &MIN_CLEARANCE,
+    &MAX_LOST_MOTION,
+    &MAX_ROLLER_FORCE,
+    &MAX_CONTACT_PRESSURE,
+    &MAX_PIN_FORCE,
+    &MAX_BEARING_FORCE,
+    &TE_FLUCTUATION,
+    &RATIO_FLUCTUATION,
+    &MIN_ROLLERS_IN_CONTACT,
+];
+
+/// The quantity with this key.
+pub fn find(key: &str) -> Option<&'static Quantity> {
+    QUANTITIES.iter().copied().find(|q| q.key == key)
+}
+
+/// The per-angle quantity (a curve) with this key: what a golden can compare.
+pub fn find_curve(key: &str) -> Option<&'static Quantity> {
+    find(key).filter(|q| !q.is_scalar())
+}
+
+/// The keys of the per-angle quantities, comma-separated, for messages.
+pub fn curve_keys() -> String {
+    QUANTITIES
+        .iter()
+        .filter(|q| !q.is_scalar())
+        .map(|q| q.key)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Which side of its limit a value must stay on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bound {
+    /// value ≤ limit passes.
+    Max,
+    /// value ≥ limit passes.
+    Min,
+}
+
+impl Bound {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Bound::Max => "≤",
+            Bound::Min => "≥",
+        }
+    }
+}
+
+/// A limit a spec can set (`limits.<key>`): a bound on a scalar quantity of every scene that
+/// computes it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LimitDef {
+    pub key: &'static str,
+    pub quantity: &'static Quantity,
+    pub bound: Bound,
+    /// The limit is a count (a whole number).
+    pub whole: bool,
+}
+
+/// Every limit, in the order the checks table lists them.
+pub const LIMITS: &[LimitDef] = &[
+    LimitDef {
+        key: "min_clearance_mm",
+        quantity: &MIN_CLEARANCE,
+        bound: Bound::Min,
+        whole: false,
+    },
+    LimitDef {
+        key: "max_roller_force_n",
+        quantity: &MAX_ROLLER_FORCE,
+        bound: Bound::Max,
+        whole: false,
+    },
+    LimitDef {
+        key: "max_contact_pressure_mpa",
+        quantity: &MAX_CONTACT_PRESSURE,
+        bound: Bound::Max,
+        whole: false,
+    },
+    LimitDef {
+        key: "min_rollers_in_contact",
+        quantity: &MIN_ROLLERS_IN_CONTACT,
+        bound: Bound::Min,
+        whole: true,
+    },
+    LimitDef {
+        key: "max_te_fluctuation_arcsec",
+        quantity: &TE_FLUCTUATION,
+        bound: Bound::Max,
+        whole: false,
+    },
+    LimitDef {
+        key: "max_ratio_fluctuation",
+        quantity: &RATIO_FLUCTUATION,
+        bound: Bound::Max,
+        whole: false,
+    },
+    LimitDef {
+        key: "max_pin_force_n",
+        quantity: &MAX_PIN_FORCE,
+        bound: Bound::Max,
+        whole: false,
+    },
+    LimitDef {
+        key: "max_bearing_force_n",
+        quantity: &MAX_BEARING_FORCE,
+        bound: Bound::Max,
+        whole: false,
+    },
+    LimitDef {
+        key: "max_lost_motion_arcsec",
+        quantity: &MAX_LOST_MOTION,
+        bound: Bound::Max,
+        whole: false,
+    },
+];
+
+/// The limit with this key.
+pub fn find_limit(key: &str) -> Option<&'static LimitDef> {
+    LIMITS.iter().find(|l| l.key == key)
+}
+
+/// An optimisation objective (`optimise.objective`): a scalar quantity to minimise.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObjectiveDef {
+    /// Its name in a spec.
+    pub name: &'static str,
+    pub quantity: &'static Quantity,
+    /// Axis label of a map of it.
+    pub label: &'static str,
+}
+
+/// Every objective.
+pub const OBJECTIVES: &[ObjectiveDef] = &[
+    ObjectiveDef {
+        name: "ratio_fluctuation",
+        quantity: &RATIO_FLUCTUATION,
+        label: "ratio fluctuation κmax − κmin",
+    },
+    ObjectiveDef {
+        name: "te_fluctuation",
+        quantity: &TE_FLUCTUATION,
+        label: "TE fluctuation δmax − δmin (arcsec)",
+    },
+    ObjectiveDef {
+        name: "max_roller_force",
+        quantity: &MAX_ROLLER_FORCE,
+        label: "largest roller force (N)",
+    },
+    ObjectiveDef {
+        name: "lost_motion",
+        quantity: &MAX_LOST_MOTION,
+        label: "largest lost motion (arcsec)",
+    },
+    ObjectiveDef {
+        name: "max_bearing_force",
+        quantity: &MAX_BEARING_FORCE,
+        label: "largest bearing force (N)",
+    },
+];
+
+/// The objective with this name.
+pub fn find_objective(name: &str) -> Option<&'static ObjectiveDef> {
+    OBJECTIVES.iter().find(|o| o.name == name)
+}
+
+/// Every objective name, comma-separated, for messages.
+pub fn objective_names() -> String {
+    OBJECTIVES
+        .iter()
+        .map(|o| o.name)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Keys are unique across the registry, limits and objectives; every limit and objective
+    /// bounds a scalar; every scalar that is an extreme of a curve names a curve that exists.
+    #[test]
+    fn the_registry_is_consistent() {
+        for (i, a) in QUANTITIES.iter().enumerate() {
+            assert!(
+                QUANTITIES[i + 1..].iter().all(|b| b.key != a.key),
+                "{} twice",
+                a.key
+            );
+            if let Some(curve) = a.of {
+                assert!(find_curve(curve).is_some(), "{} is of {curve}", a.key);
+                assert_eq!(find(curve).unwrap().effect, a.effect, "{}", a.key);
+            }
+        }
+        for l in LIMITS {
+            assert!(l.quantity.is_scalar(), "{}", l.key);
+            assert!(find(l.quantity.key).is_some(), "{}", l.key);
+        }
+        for o in OBJECTIVES {
+            assert!(o.quantity.is_scalar(), "{}", o.name);
+        }
+        for q in SUMMARY {
+            assert!(q.is_scalar(), "{}", q.key);
         }
     }
 }

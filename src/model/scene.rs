@@ -133,6 +133,20 @@ impl Plan {
         }
     }
 
+    /// The plan of `effects` and what they need, for the scene named `scene` (an
+    /// optimisation candidate, a test).
+    pub fn of(scene: &str, effects: &[Effect]) -> Plan {
+        let mut planned: Vec<PlannedEffect> = Vec::new();
+        for &asked in effects {
+            add(&mut planned, asked, "asked for".to_string());
+        }
+        planned.sort_by_key(|p| p.effect);
+        Plan {
+            scene: scene.to_string(),
+            effects: planned,
+        }
+    }
+
     pub fn has(&self, effect: Effect) -> bool {
         self.effects.iter().any(|p| p.effect == effect)
     }

@@ -1,40 +1,11 @@
 //! An optimisation study (paper §4): objective, variables, start, constraints.
 
 use super::design::Modification;
+use super::quantity::ObjectiveDef;
 use crate::units;
 
-/// A quantity an optimisation can minimise. Each is a scalar of one scene's sweep.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Objective {
-    /// κmax − κmin (paper Eq. 18), dimensionless.
-    RatioFluctuation,
-    /// δmax − δmin of the loaded TE (paper Eqs. 22–23), arcsec.
-    TeFluctuation,
-    /// Largest roller force, N.
-    MaxRollerForce,
-    /// Largest lost motion over the sweep, arcsec.
-    LostMotion,
-    /// Largest crank-bearing force, N.
-    MaxBearingForce,
-}
-
-named!(Objective "objective" {
-    RatioFluctuation => "ratio_fluctuation",
-    TeFluctuation => "te_fluctuation",
-    MaxRollerForce => "max_roller_force",
-    LostMotion => "lost_motion",
-    MaxBearingForce => "max_bearing_force",
-});
-
-impl Objective {
-    pub fn unit(self) -> &'static str {
-        match self {
-            Objective::RatioFluctuation => "",
-            Objective::TeFluctuation | Objective::LostMotion => "arcsec",
-            Objective::MaxRollerForce | Objective::MaxBearingForce => "N",
-        }
-    }
-}
+/// An optimisation objective: a scalar quantity of the registry (`quantity::OBJECTIVES`).
+pub type Objective = &'static ObjectiveDef;
 
 /// A design variable of a study, bounds in engine units (mm, or rad for the rotation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -339,7 +339,7 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
     if let Some(c) = &r.clearance {
         let mut p = LinePlot::new("Clearance per roller", xl, "clearance (µm)");
         (p.series, _) = per_row(&x, &c.gap_mm, "roller", 1000.0);
-        p.ref_lines = limit_line(lim.min_clearance_mm, "limit", 1000.0, "µm");
+        p.ref_lines = limit_line(lim.get("min_clearance_mm"), "limit", 1000.0, "µm");
         p.include_zero = c.min.gap_mm < 0.0;
         p.subtitle = format!(
             "smallest {} µm: roller {} at φ = {:.2}°, tooth phase {:.3} (0 root, 0.5 tip)",
@@ -392,7 +392,7 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
         let mut p = LinePlot::new("Roller forces", xl, "roller force (N)");
         let note;
         (p.series, note) = per_row(&x, &c.force_n, "roller", 1.0);
-        p.ref_lines = limit_line(lim.max_roller_force_n, "limit", 1.0, "N");
+        p.ref_lines = limit_line(lim.get("max_roller_force_n"), "limit", 1.0, "N");
         p.include_zero = true;
         let (fmax, i, k) = crate::numeric::max_entry(&c.force_n);
         p.subtitle = format!(
@@ -407,7 +407,7 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
         );
         let mut p = LinePlot::new("Hertz peak pressure", xl, "peak contact pressure (MPa)");
         (p.series, _) = per_row(&x, &c.pressure_mpa, "roller", 1.0);
-        p.ref_lines = limit_line(lim.max_contact_pressure_mpa, "limit", 1.0, "MPa");
+        p.ref_lines = limit_line(lim.get("max_contact_pressure_mpa"), "limit", 1.0, "MPa");
         p.include_zero = true;
         add(
             "pressure",
@@ -479,7 +479,7 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
             b.force_n.clone(),
             PALETTE[0],
         )];
-        p.ref_lines = limit_line(lim.max_bearing_force_n, "limit", 1.0, "N");
+        p.ref_lines = limit_line(lim.get("max_bearing_force_n"), "limit", 1.0, "N");
         p.include_zero = true;
         add(
             "bearing-force",
@@ -510,7 +510,7 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
         let mut p = LinePlot::new("Output-pin forces", xl, "pin force (N)");
         let note;
         (p.series, note) = per_row(&x, &pins.force_n, "pin", 1.0);
-        p.ref_lines = limit_line(lim.max_pin_force_n, "limit", 1.0, "N");
+        p.ref_lines = limit_line(lim.get("max_pin_force_n"), "limit", 1.0, "N");
         p.include_zero = true;
         add(
             "pin-forces",
@@ -580,14 +580,7 @@ fn loaded_at(spec: &Spec, phi: f64) -> Option<(String, AngleSolution, Model)> {
         .iter()
         .find(|s| Plan::for_scene(s).has(Effect::RollerContact))?;
     let plan = Plan::for_scene(scene);
-    let model = Model::new(
-        &spec.design,
-        &spec.modification,
-        scene,
-        true,
-        plan.has(Effect::OutputPins),
-        plan.has(Effect::Bearing),
-    );
+    let model = Model::new(&spec.design, &spec.modification, scene, &plan);
     let sol = solve_angle(&model, phi, &AngleSolution::default()).ok()?;
     Some((scene.name.clone(), sol, model))
 }
@@ -1061,7 +1054,7 @@ fn accuracy_section(ladder: &crate::engine::accuracy::Ladder) -> String {
             if cheapest { " — <b>cheapest</b>" } else { "" }
         );
     }
-    let missing: Vec<&str> = acc::Quantity::ALL
+    let missing: Vec<String> = acc::Quantity::ALL
         .into_iter()
         .filter(|q| !l.quantities.contains(q))
         .map(|q| q.description())

@@ -128,7 +128,7 @@ fn golden(g: &GoldenResult) -> Value {
     let c = &g.comparison;
     json!({
         "scene": g.golden.scene,
-        "quantity": g.golden.quantity,
+        "quantity": g.golden.quantity.key,
         "unit": g.unit,
         "file": g.golden.path.display().to_string(),
         "tolerance": {"abs": num(g.golden.tolerance.abs), "rel": num(g.golden.tolerance.rel)},

@@ -4,7 +4,7 @@
 
 use crate::engine::optimise::problem::Evaluation;
 use crate::engine::optimise::StudyResult;
-use crate::model::{Objective, Study, VariableKind};
+use crate::model::{Study, VariableKind};
 use crate::numeric::number;
 use crate::report::html::{OptimisationView, StudyPoint};
 use crate::report::svg::MapCell;
@@ -15,15 +15,15 @@ fn objective_label(study: &Study) -> String {
         .objective
         .iter()
         .map(|(o, w)| {
-            let unit = if o.unit().is_empty() {
+            let unit = if o.quantity.unit.is_empty() {
                 String::new()
             } else {
-                format!(" [{}]", o.unit())
+                format!(" [{}]", o.quantity.unit)
             };
             if study.objective.len() == 1 {
-                format!("{}{unit}", o.name())
+                format!("{}{unit}", o.name)
             } else {
-                format!("{w}·{}{unit}", o.name())
+                format!("{w}·{}{unit}", o.name)
             }
         })
         .collect::<Vec<_>>()
@@ -186,13 +186,7 @@ pub fn variable_label(kind: VariableKind) -> &'static str {
 /// Axis label of a study's objective, with its unit.
 pub fn objective_axis_label(study: &Study) -> String {
     match study.objective.as_slice() {
-        [(o, _)] => match o {
-            Objective::RatioFluctuation => "ratio fluctuation κmax − κmin".into(),
-            Objective::TeFluctuation => "TE fluctuation δmax − δmin (arcsec)".into(),
-            Objective::MaxRollerForce => "largest roller force (N)".into(),
-            Objective::LostMotion => "largest lost motion (arcsec)".into(),
-            Objective::MaxBearingForce => "largest bearing force (N)".into(),
-        },
+        [(o, _)] => o.label.to_string(),
         _ => format!("weighted objective {}", objective_label(study)),
     }
 }

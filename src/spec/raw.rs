@@ -203,23 +203,10 @@ pub struct RawCrank {
     pub steps: i64,
 }
 
-#[derive(Debug, Deserialize, Default)]
-#[serde(
-    deny_unknown_fields,
-    expecting = "a mapping of limit keys (min_clearance_mm, ...)"
-)]
-pub struct RawLimits {
-    pub min_clearance_mm: Option<f64>,
-    pub max_roller_force_n: Option<f64>,
-    pub max_pin_force_n: Option<f64>,
-    pub max_bearing_force_n: Option<f64>,
-    pub max_contact_pressure_mpa: Option<f64>,
-    pub max_te_fluctuation_arcsec: Option<f64>,
-    pub max_ratio_fluctuation: Option<f64>,
-    pub min_rollers_in_contact: Option<i64>,
-    /// Upper limit on every optimisation study's optimum objective.
-    pub optimum_max_objective: Option<f64>,
-}
+/// `limits:`, a mapping of limit keys (`min_clearance_mm`, ...; the registry's
+/// `quantity::LIMITS`, and `optimum_max_objective`) to values; unknown keys are refused when
+/// the spec is validated, with the closest known key.
+pub type RawLimits = std::collections::BTreeMap<String, f64>;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

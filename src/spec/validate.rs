@@ -6,6 +6,7 @@ use super::raw::*;
 use super::{scene_names, Accuracy, Spec};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
+use crate::model::quantity;
 use crate::model::scene::MAX_ROLLER_ANGLES;
 use crate::model::*;
 use crate::units;
@@ -253,21 +254,47 @@ fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
     })
 }
 
+/// The limits a spec sets, in the registry's order; an unknown key is an error naming the
+/// closest known one.
 fn limits(raw: &RawLimits) -> Result<Limits> {
-    let f = |key: &str, v: Option<f64>| v.map(|x| finite(&format!("limits.{key}"), x)).transpose();
+    const OPTIMUM: &str = "optimum_max_objective";
+    let known = || {
+        quantity::LIMITS
+            .iter()
+            .map(|l| l.key)
+            .chain(std::iter::once(OPTIMUM))
+    };
+    if let Some(unknown) = raw.keys().find(|k| known().all(|key| key != k.as_str())) {
+        let message = match did_you_mean(unknown, known()) {
+            Some(close) => format!("unknown key; did you mean `{close}`?"),
+            None => format!(
+                "unknown key; the keys here are {}",
+                known().collect::<Vec<_>>().join(", ")
+            ),
+        };
+        return Err(Error::new(ErrorKind::Syntax, message).at_key(format!("limits.{unknown}")));
+    }
+    let mut entries = Vec::new();
+    for def in quantity::LIMITS {
+        let Some(&value) = raw.get(def.key) else {
+            continue;
+        };
+        let key = format!("limits.{}", def.key);
+        let value = finite(&key, value)?;
+        if def.whole && (value.fract() != 0.0 || value < 0.0) {
+            return Err(invalid(
+                &key,
+                format!("must be a whole number of at least 0, got {value}"),
+            ));
+        }
+        entries.push(Limit { def, value });
+    }
     Ok(Limits {
-        min_clearance_mm: f("min_clearance_mm", raw.min_clearance_mm)?,
-        max_roller_force_n: f("max_roller_force_n", raw.max_roller_force_n)?,
-        max_pin_force_n: f("max_pin_force_n", raw.max_pin_force_n)?,
-        max_bearing_force_n: f("max_bearing_force_n", raw.max_bearing_force_n)?,
-        max_contact_pressure_mpa: f("max_contact_pressure_mpa", raw.max_contact_pressure_mpa)?,
-        max_te_fluctuation_arcsec: f("max_te_fluctuation_arcsec", raw.max_te_fluctuation_arcsec)?,
-        max_ratio_fluctuation: f("max_ratio_fluctuation", raw.max_ratio_fluctuation)?,
-        min_rollers_in_contact: raw
-            .min_rollers_in_contact
-            .map(|n| count("limits.min_rollers_in_contact", n, 0))
+        entries,
+        optimum_max_objective: raw
+            .get(OPTIMUM)
+            .map(|&x| finite(&format!("limits.{OPTIMUM}"), x))
             .transpose()?,
-        optimum_max_objective: f("optimum_max_objective", raw.optimum_max_objective)?,
     })
 }
 
@@ -445,13 +472,13 @@ fn golden_entry(path: &str, i: usize, raw: RawGolden, scenes: &[Scene]) -> Resul
             ),
         ));
     }
-    let quantity = crate::model::quantity::find(&raw.quantity).ok_or_else(|| {
+    let quantity = quantity::find_curve(&raw.quantity).ok_or_else(|| {
         invalid(
             &format!("{key}.quantity"),
             format!(
                 "unknown quantity `{}`; known quantities: {}",
                 raw.quantity,
-                crate::model::quantity::known_keys()
+                quantity::curve_keys()
             ),
         )
     })?;
@@ -479,7 +506,7 @@ fn golden_entry(path: &str, i: usize, raw: RawGolden, scenes: &[Scene]) -> Resul
         path: resolve(path, &raw.file),
         key,
         scene: raw.scene,
-        quantity: quantity.key,
+        quantity,
         file: raw.file,
         tolerance: Tolerance { abs, rel },
     })
@@ -497,12 +524,14 @@ fn bounds(key: &str, b: [f64; 2]) -> Result<(f64, f64)> {
 }
 
 fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
-    let known = || Objective::ALL.map(|o| o.name()).join(", ");
     let named = |name: &str| {
-        Objective::from_name(name).ok_or_else(|| {
+        quantity::find_objective(name).ok_or_else(|| {
             invalid(
                 key,
-                format!("unknown objective `{name}`; known objectives: {}", known()),
+                format!(
+                    "unknown objective `{name}`; known objectives: {}",
+                    quantity::objective_names()
+                ),
             )
         })
     };

@@ -1,20 +1,17 @@
 //! One optimisation study as a problem: a modification in, objective and constraint margins out.
 //!
-//! Only the effects the objective needs are simulated: the fluctuation objectives need the
-//! roller balance (and the pins when the study's scene models them, since TE = β + βo);
-//! `max_bearing_force` needs the bearing; `lost_motion` needs the clearance sweep. The
-//! whole-mesh clearance constraint uses the light `clearance::min_gap`.
+//! Only the effects the objective needs are simulated (`candidate_plan`): each objective is a
+//! scalar quantity of the registry, read from the candidate's scene run exactly as `check`
+//! reads it. The whole-mesh clearance constraint uses the light `clearance::min_gap`.
 
-use crate::equilibrium::curves;
-use crate::equilibrium::sweep::Model;
+use crate::engine::scene;
+use crate::equilibrium::solve::Settings;
 use crate::geometry::clearance::{self, Mesh};
+use crate::model::quantity::{RATIO_FLUCTUATION, TE_FLUCTUATION};
 use crate::model::results::MinClearance;
-use crate::model::{Effect, Plan};
-use crate::model::{Modification, Objective, Scene, Study};
-use crate::numeric::{extremes, fluctuation, max_entry};
+use crate::model::{Effect, Modification, Objective, Plan, Scene, Study};
 use crate::spec::rules;
 use crate::spec::Spec;
-use crate::units;
 
 /// A constraint's value, its bound and the margin (≥ 0 satisfied).
 #[derive(Debug, Clone, PartialEq)]
@@ -72,13 +69,28 @@ impl Evaluation {
     }
 }
 
+/// The effects a candidate of a study simulates: those of its objectives' quantities, and the
+/// output pins when the scene models them and an objective is of the transmission (TE and
+/// ratio are β + βo: with the pins in the scene its TE includes their deflection).
+fn candidate_plan(scene: &Scene, objectives: &[(Objective, f64)]) -> Plan {
+    let mut effects: Vec<Effect> = objectives.iter().map(|(o, _)| o.quantity.effect).collect();
+    let transmission = objectives
+        .iter()
+        .any(|(o, _)| [TE_FLUCTUATION.key, RATIO_FLUCTUATION.key].contains(&o.quantity.key));
+    if transmission && Plan::for_scene(scene).has(Effect::OutputPins) {
+        effects.push(Effect::OutputPins);
+    }
+    Plan::of(&scene.name, &effects)
+}
+
 /// A study bound to its spec.
 #[derive(Debug, Clone)]
 pub struct Problem<'a> {
     pub spec: &'a Spec,
     pub study: &'a Study,
     pub scene: &'a Scene,
-    scene_has_pins: bool,
+    /// What a candidate simulates: only the effects its objectives need.
+    plan: Plan,
     progress: Option<&'a indicatif::ProgressBar>,
 }
 
@@ -89,7 +101,7 @@ impl<'a> Problem<'a> {
             spec,
             study,
             scene,
-            scene_has_pins: Plan::for_scene(scene).has(Effect::OutputPins),
+            plan: candidate_plan(scene, &study.objective),
             progress: None,
         }
     }
@@ -112,10 +124,6 @@ impl<'a> Problem<'a> {
     /// Variable values of a modification.
     pub fn variables_of(&self, m: &Modification) -> Vec<f64> {
         self.study.variables.iter().map(|v| v.kind.get(m)).collect()
-    }
-
-    fn needs(&self, o: Objective) -> bool {
-        self.study.objective.iter().any(|(t, _)| *t == o)
     }
 
     /// Evaluate a candidate: design rules, constraints, then the objective terms.
@@ -197,60 +205,22 @@ impl<'a> Problem<'a> {
         if screen && !e.margins.iter().all(Margin::satisfied) {
             return Ok(Vec::new());
         }
-        let transmission =
-            self.needs(Objective::RatioFluctuation) || self.needs(Objective::TeFluctuation);
-        let bearing = self.needs(Objective::MaxBearingForce);
-        let rollers = transmission || bearing || self.needs(Objective::MaxRollerForce);
-        let pins = bearing || (transmission && self.scene_has_pins);
-        let loaded = if rollers {
-            let model = Model::new(design, m, self.scene, true, pins, bearing);
-            let periodic = self.scene.spans_whole(design.loaded_period_rad(pins));
-            Some(curves::sweep(&model, crank, periodic).map_err(|f| {
-                format!(
-                    "crank angle {:.4}°: equilibrium solve failed: {}",
-                    units::deg(f.crank_rad),
-                    f.failure
-                )
-            })?)
-        } else {
-            None
-        };
-        let lost_motion = if self.needs(Objective::LostMotion) {
-            let sweep = clearance::sweep(&mesh, crank).map_err(|f| f.to_string())?;
-            Some(units::arcsec(extremes(&sweep.lost_motion_rad).1 .0))
-        } else {
-            None
-        };
-        let missing = |what: &str| format!("{what} was not computed");
+        let r = scene::run_design(design, m, self.scene, &self.plan, &Settings::default())
+            .map_err(|err| err.message)?;
         self.study
             .objective
             .iter()
             .map(|&(o, _)| {
-                let l = loaded.as_ref();
-                let value = match o {
-                    Objective::RatioFluctuation => l
-                        .and_then(|l| l.transmission.as_ref())
-                        .and_then(|t| t.ratio.as_deref())
-                        .map(fluctuation)
-                        .ok_or_else(|| missing("the ratio (needs at least 3 crank angles)"))?,
-                    Objective::TeFluctuation => l
-                        .and_then(|l| l.transmission.as_ref())
-                        .map(|t| units::arcsec(fluctuation(&t.te_rad)))
-                        .ok_or_else(|| missing("the loaded TE"))?,
-                    Objective::MaxRollerForce => l
-                        .and_then(|l| l.rollers.as_ref())
-                        .map(|r| max_entry(&r.force_n).0)
-                        .ok_or_else(|| missing("the roller forces"))?,
-                    Objective::MaxBearingForce => l
-                        .and_then(|l| l.bearing.as_ref())
-                        .map(|b| extremes(&b.force_n).1 .0)
-                        .ok_or_else(|| missing("the bearing force"))?,
-                    Objective::LostMotion => lost_motion.ok_or_else(|| missing("lost motion"))?,
-                };
+                let value = o.quantity.scalar(&r).map(|x| x.value).ok_or_else(|| {
+                    format!(
+                        "{} was not computed (a ratio needs at least 3 crank angles)",
+                        o.quantity.label
+                    )
+                })?;
                 if value.is_finite() {
                     Ok((o, value))
                 } else {
-                    Err(format!("objective {} is not finite", o.name()))
+                    Err(format!("objective {} is not finite", o.name))
                 }
             })
             .collect()

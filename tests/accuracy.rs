@@ -14,12 +14,11 @@
 //!
 //! No timing is asserted: times are measurements printed for the user.
 
+mod common;
+
+use common::{PaperSpec, Scratch};
 use cycloid::engine::accuracy::{self, Ladder, Options, Quantity, Tolerances, Variation};
 use cycloid::spec::{self, Spec};
-use std::path::PathBuf;
-use std::process::Command;
-
-const PAPER: &str = include_str!("../specs/reducer.yaml");
 
 /// The loaded scene of these tests.
 fn rated(torque_nm: f64) -> String {
@@ -33,21 +32,12 @@ fn rated(torque_nm: f64) -> String {
 /// specs/reducer.yaml with the modification (ΔRp, ΔRrp) and `scenes` replaced (its limits go
 /// with its scenes), plus `extra` top-level text.
 fn spec_text(shift_mm: f64, equidistant_mm: f64, scenes: &str, extra: &str) -> String {
-    let mut text = String::new();
-    for line in PAPER.lines() {
-        let key = line.trim_start();
-        if key.starts_with("shift_mm:") {
-            text += &format!("  shift_mm: {shift_mm}\n");
-        } else if key.starts_with("equidistant_mm:") {
-            text += &format!("  equidistant_mm: {equidistant_mm}\n");
-        } else if key.starts_with("scenes:") {
-            break;
-        } else {
-            text += line;
-            text += "\n";
-        }
-    }
-    text + "scenes:\n" + scenes + extra
+    PaperSpec::new()
+        .modification(shift_mm, equidistant_mm)
+        .scenes(scenes)
+        .with(extra)
+        .text()
+        .to_string()
 }
 
 fn spec_with(shift_mm: f64, equidistant_mm: f64, scenes: &str) -> Spec {
@@ -373,34 +363,8 @@ fn rungs_and_columns_follow_the_scene() {
 // ------------------------------------------------------------------------------------------
 // CLI, spec key, design review.
 
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(tag: &str) -> Scratch {
-        let p = std::env::temp_dir().join(format!("cycloid-accuracy-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&p);
-        std::fs::create_dir_all(&p).unwrap();
-        Scratch(p)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
 fn cycloid(dir: &Scratch, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
-        .args(args)
-        .current_dir(&dir.0)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
+    common::cycloid(&dir.path, args).parts()
 }
 
 #[test]
@@ -408,11 +372,7 @@ fn cli_prints_the_ladder_and_rejects_bad_input_with_exit_2() {
     let dir = Scratch::new("cli");
     let scenes = rated(10.0)
         + "  - name: mesh\n    crank: { from_deg: 0.0, to_deg: 36.0, steps: 36 }\n    effects: [clearance]\n";
-    std::fs::write(
-        dir.0.join("spec.yaml"),
-        spec_text(0.125, 0.1593, &scenes, ""),
-    )
-    .unwrap();
+    std::fs::write(dir.join("spec.yaml"), spec_text(0.125, 0.1593, &scenes, "")).unwrap();
     let (code, out, err) = cycloid(
         &dir,
         &[
@@ -487,7 +447,7 @@ fn spec_key_puts_the_ladder_in_the_design_review() {
     let dir = Scratch::new("report");
     let section = "accuracy:\n  scene: rated\n  finest_steps_per_period: 96\n  tolerance: { ratio: 1.0e-2 }\n";
     std::fs::write(
-        dir.0.join("spec.yaml"),
+        dir.join("spec.yaml"),
         spec_text(0.125, 0.1593, &rated(10.0), section),
     )
     .unwrap();
@@ -501,7 +461,7 @@ fn spec_key_puts_the_ladder_in_the_design_review() {
         out.contains("accuracy ladder of scene `rated`: 8 rungs in"),
         "{out}"
     );
-    let html = std::fs::read_to_string(dir.0.join("review/index.html")).unwrap();
+    let html = std::fs::read_to_string(dir.join("review/index.html")).unwrap();
     assert!(html.contains("<section id=\"accuracy\">"));
     assert!(html.contains("steps 96 (reference)"));
     assert!(html.contains("<b>cheapest</b>"));
@@ -534,7 +494,7 @@ fn spec_key_puts_the_ladder_in_the_design_review() {
             "invalid value: accuracy.tolerance.force_n: a tolerance must be a positive number, got 0",
         ),
     ] {
-        std::fs::write(dir.0.join("spec.yaml"), spec_text(0.125, 0.1593, &rated(10.0), section)).unwrap();
+        std::fs::write(dir.join("spec.yaml"), spec_text(0.125, 0.1593, &rated(10.0), section)).unwrap();
         let (code, out, err) = cycloid(&dir, &["check", "spec.yaml"]);
         assert_eq!(code, 2, "{section}: {out}{err}");
         assert!(err.contains(message), "{section}: {err}");

@@ -4,102 +4,11 @@
 //! written into a scratch directory under the system temp dir; the binary runs inside that
 //! directory so messages name the spec as `spec.yaml`.
 
+mod common;
+
+use common::{cycloid, Run as Output, Scratch, PAPER};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::{Duration, Instant};
-
-/// The shipped spec: the paper's Table 1 design with its optimum modification.
-const PAPER: &str = include_str!("../specs/reducer.yaml");
-
-/// Longest a single run may take before the test calls it a hang.
-const TIMEOUT: Duration = Duration::from_secs(120);
-
-/// A scratch directory, unique per test and process, removed when dropped.
-struct Scratch {
-    path: PathBuf,
-}
-
-impl Scratch {
-    fn new(tag: &str) -> Scratch {
-        static NEXT: AtomicUsize = AtomicUsize::new(0);
-        let path = std::env::temp_dir().join(format!(
-            "cycloid-cli-{tag}-{}-{}",
-            std::process::id(),
-            NEXT.fetch_add(1, Ordering::Relaxed)
-        ));
-        let _ = std::fs::remove_dir_all(&path);
-        std::fs::create_dir_all(&path).unwrap();
-        Scratch { path }
-    }
-
-    fn write(&self, name: &str, text: impl AsRef<[u8]>) {
-        std::fs::write(self.path.join(name), text).unwrap();
-    }
-
-    fn read(&self, name: &str) -> String {
-        std::fs::read_to_string(self.path.join(name))
-            .unwrap_or_else(|e| panic!("{name} was not written: {e}"))
-    }
-
-    fn exists(&self, name: &str) -> bool {
-        self.path.join(name).exists()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.path);
-    }
-}
-
-/// What a run of the binary produced.
-#[derive(Debug)]
-struct Output {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-/// Run `cycloid ARGS` in `dir`. Output goes to files (no pipe can fill up); a run that takes
-/// longer than `TIMEOUT` is killed and fails the test.
-fn cycloid(dir: &Path, args: &[&str]) -> Output {
-    static NEXT: AtomicUsize = AtomicUsize::new(0);
-    let n = NEXT.fetch_add(1, Ordering::Relaxed);
-    let capture = std::env::temp_dir().join(format!("cycloid-cli-out-{}-{n}", std::process::id()));
-    std::fs::create_dir_all(&capture).unwrap();
-    let (out_path, err_path) = (capture.join("stdout"), capture.join("stderr"));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_cycloid"))
-        .args(args)
-        .current_dir(dir)
-        .env_remove("RUST_BACKTRACE")
-        .stdin(Stdio::null())
-        .stdout(std::fs::File::create(&out_path).unwrap())
-        .stderr(std::fs::File::create(&err_path).unwrap())
-        .spawn()
-        .expect("the cycloid binary runs");
-    let start = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if start.elapsed() > TIMEOUT {
-            let _ = child.kill();
-            let _ = child.wait();
-            let _ = std::fs::remove_dir_all(&capture);
-            panic!("cycloid {args:?} did not finish within {TIMEOUT:?}");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    };
-    let output = Output {
-        code: status.code(),
-        stdout: String::from_utf8_lossy(&std::fs::read(&out_path).unwrap()).into_owned(),
-        stderr: String::from_utf8_lossy(&std::fs::read(&err_path).unwrap()).into_owned(),
-    };
-    let _ = std::fs::remove_dir_all(&capture);
-    output
-}
+use std::path::Path;
 
 /// Assert the exit code and the exact stdout and stderr.
 #[track_caller]

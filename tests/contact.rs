@@ -3,6 +3,8 @@
 //! Expected values come from the textbook formulas (Johnson, Contact Mechanics, §4.2 and §5.6),
 //! restated here independently of `contact::law`, and from finite differences.
 
+mod common;
+
 use cycloid::contact::hertz_line::hertz;
 use cycloid::contact::law::{
     self, half_width_mm, johnson_approach_mm, johnson_force, paper_linear_stiffness, LineContact,
@@ -10,7 +12,7 @@ use cycloid::contact::law::{
 use cycloid::equilibrium::pins::Pins;
 use cycloid::equilibrium::rollers::Rollers;
 use cycloid::model::{ContactLaw, GeometryMode};
-use cycloid::spec::{self, Spec};
+use cycloid::spec::Spec;
 use proptest::prelude::*;
 use std::f64::consts::PI;
 
@@ -19,23 +21,13 @@ const E_STAR: f64 = 206_000.0 / (2.0 * (1.0 - 0.09));
 const COMPLIANCE: f64 = (1.0 - 0.09) / 206_000.0;
 
 fn paper_spec() -> Spec {
-    let text = "name: paper
-reducer:
-  teeth: 9
-  rollers: 10
-  eccentricity_mm: 2.0
-  roller_circle_radius_mm: 30.0
-  roller_radius_mm: 3.0
-  face_width_mm: 8.0
-  output_pins: { count: 6, circle_radius_mm: 18.0, pin_radius_mm: 3.0, hole_clearance_mm: 0.0 }
-  material: { youngs_modulus_gpa: 206.0, poisson_ratio: 0.3 }
-scenes:
-  - name: s
-    output_torque_nm: 10.0
-    crank: { from_deg: 0.0, to_deg: 36.0, steps: 36 }
-    effects: [roller_contact]
-";
-    spec::parse("paper.yaml", text).unwrap()
+    common::PaperSpec::new()
+        .modification(0.0, 0.0)
+        .scenes(
+            "  - name: s\n    output_torque_nm: 10.0\n    \
+             crank: { from_deg: 0.0, to_deg: 36.0, steps: 36 }\n    effects: [roller_contact]\n",
+        )
+        .parse("paper.yaml")
 }
 
 fn steel(length_mm: f64, radii_mm: [f64; 2], effective_radius_mm: f64) -> LineContact {

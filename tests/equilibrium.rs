@@ -5,6 +5,8 @@
 //! first-order arms l = e·nc·sin φi/S, the ideal pin share T·a/Σa², limit cases (zero torque,
 //! zero clearance, a very stiff bearing) and scaling. Tolerances name the error they cover.
 
+mod common;
+
 use cycloid::contact::law::{self, paper_linear_stiffness};
 use cycloid::engine::scene::run;
 use cycloid::equilibrium::curves;
@@ -43,16 +45,17 @@ struct Reducer {
 impl Reducer {
     /// The paper's Table 1 design, unmodified.
     fn paper() -> Self {
+        let d = common::PaperSpec::new().parse("paper.yaml").design;
         Reducer {
-            rollers: 10,
-            rp: 30.0,
-            e: 2.0,
-            rrp: 3.0,
-            width: 8.0,
-            pins: 6,
-            rw: 18.0,
-            pin_radius: 3.0,
-            hole_clearance: 0.0,
+            rollers: d.rollers,
+            rp: d.roller_circle_radius_mm,
+            e: d.eccentricity_mm,
+            rrp: d.roller_radius_mm,
+            width: d.face_width_mm,
+            pins: d.pins.count,
+            rw: d.pins.circle_radius_mm,
+            pin_radius: d.pins.pin_radius_mm,
+            hole_clearance: d.pins.hole_clearance_mm,
             shift: 0.0,
             equidistant: 0.0,
         }

@@ -6,6 +6,7 @@
 //! instead of normalising, settles the root from its own Newton step, and records only what
 //! the curves need. Tolerances below are round-off bounds of those differences.
 
+use approx::relative_eq;
 use cycloid::equilibrium::curves;
 use cycloid::equilibrium::first_order_sweep::{FirstOrderSweep, Row, Scratch};
 use cycloid::equilibrium::sweep::{residual, solve_angle, AngleSolution, Model};
@@ -51,11 +52,6 @@ fn general(model: &Model, angles: &[f64]) -> Vec<AngleSolution> {
             sol
         })
         .collect()
-}
-
-/// |a − b| within `rel` of the larger magnitude plus `abs`.
-fn close(a: f64, b: f64, rel: f64, abs: f64) -> bool {
-    (a - b).abs() <= rel * a.abs().max(b.abs()) + abs
 }
 
 /// Each column as a slice (a row of one angle for `Row`).
@@ -107,12 +103,22 @@ fn assert_agrees(name: &str, model: &Model, angles: &[f64], lean: &LoadedSweep) 
         let at = format!("{name}: crank {:.4}°", phi.to_degrees());
         let (lag, out) = (sol.lag_rad.unwrap(), sol.output_lag_rad.unwrap());
         assert!(
-            close(rollers.lag_rad[k], lag, 1e-12, 1e-300),
+            relative_eq!(
+                rollers.lag_rad[k],
+                lag,
+                epsilon = 1e-300,
+                max_relative = 1e-12
+            ),
             "{at}: β {} vs {lag}",
             rollers.lag_rad[k]
         );
         assert!(
-            close(pins.output_lag_rad[k], out, 1e-12, 1e-300),
+            relative_eq!(
+                pins.output_lag_rad[k],
+                out,
+                epsilon = 1e-300,
+                max_relative = 1e-12
+            ),
             "{at}: βo {} vs {out}",
             pins.output_lag_rad[k]
         );
@@ -125,7 +131,7 @@ fn assert_agrees(name: &str, model: &Model, angles: &[f64], lean: &LoadedSweep) 
                 "{at}: roller {i} half-width {lb} vs {b}"
             );
             assert!(
-                close(lf, force, 1e-9, 1e-6),
+                relative_eq!(lf, force, epsilon = 1e-6, max_relative = 1e-9),
                 "{at}: roller {i} force {lf} vs {force}"
             );
             let p2_tol = 1e-9 * (lp * lp).max(p * p) + 1e-6 * p2_per_force;
@@ -137,7 +143,7 @@ fn assert_agrees(name: &str, model: &Model, angles: &[f64], lean: &LoadedSweep) 
         for (j, st) in sol.pins.iter().enumerate() {
             let lf = pins.force_n[j][k];
             assert!(
-                close(lf, st.force_n, 1e-9, 1e-6),
+                relative_eq!(lf, st.force_n, epsilon = 1e-6, max_relative = 1e-9),
                 "{at}: pin {j} force {lf} vs {}",
                 st.force_n
             );
@@ -159,7 +165,12 @@ fn assert_agrees(name: &str, model: &Model, angles: &[f64], lean: &LoadedSweep) 
         );
         let fb = sol.bearing_force_n.unwrap();
         assert!(
-            close(bearing.force_n[k], fb.norm(), 1e-9, 1e-5),
+            relative_eq!(
+                bearing.force_n[k],
+                fb.norm(),
+                epsilon = 1e-5,
+                max_relative = 1e-9
+            ),
             "{at}: bearing {} vs {}",
             bearing.force_n[k],
             fb.norm()
@@ -242,7 +253,7 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
             .map(|(f, st)| f[0] * st.arm_mm)
             .sum();
         assert!(
-            close(moment, model.torque_nmm, 1e-9, 0.0),
+            relative_eq!(moment, model.torque_nmm, epsilon = 0.0, max_relative = 1e-9),
             "moment {moment} at {phi}"
         );
     }

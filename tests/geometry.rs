@@ -8,6 +8,7 @@
 
 mod common;
 
+use approx::relative_eq;
 use common::*;
 use cycloid::geometry::clearance::{self, Mesh, Pose};
 use cycloid::geometry::first_order;
@@ -48,14 +49,6 @@ fn phi_i_and_s(d: &Design, i: usize, phi: f64) -> (f64, f64) {
 fn arm_closed(d: &Design, i: usize, phi: f64) -> f64 {
     let (phi_i, s) = phi_i_and_s(d, i, phi);
     d.eccentricity_mm * nc(d) * phi_i.sin() / s
-}
-
-/// a and b equal within `rel`·max(|a|,|b|) + `abs`; an infinity equals only itself.
-fn close(a: f64, b: f64, rel: f64, abs: f64) -> bool {
-    if a.is_infinite() || b.is_infinite() {
-        return a == b;
-    }
-    (a - b).abs() <= rel * a.abs().max(b.abs()) + abs
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -211,7 +204,7 @@ proptest! {
             // (~1e-14·Rp mm) over the arm: allow 1e-9 relative and 1e-11 rad absolute.
             for (name, a) in [("backlash", &s.backlash_rad), ("reverse", &s.backlash_reverse_rad),
                               ("lost motion", &s.lost_motion_rad)] {
-                prop_assert!(close(a[k], a[k + steps], 1e-9, 1e-11),
+                prop_assert!(relative_eq!(a[k], a[k + steps], epsilon = 1e-11, max_relative = 1e-9),
                     "{name} at φ = {} is {}, one period later {}", crank[k], a[k], a[k + steps]);
             }
         }
@@ -233,7 +226,7 @@ proptest! {
         for k in 0..steps {
             let mirrored = (steps - k) % steps;
             // Closing-lag convergence, as in the periodicity test.
-            prop_assert!(close(s.backlash_reverse_rad[k], s.backlash_rad[mirrored], 1e-9, 1e-11),
+            prop_assert!(relative_eq!(s.backlash_reverse_rad[k], s.backlash_rad[mirrored], epsilon = 1e-11, max_relative = 1e-9),
                 "reverse backlash at φ_{k} = {}, forward at φ_{mirrored} = {}",
                 s.backlash_reverse_rad[k], s.backlash_rad[mirrored]);
         }
@@ -836,14 +829,17 @@ fn paper_lost_motion_of_a_pure_equidistant_modification_is_twice_the_backlash() 
         (min, max)
     };
     // Closing-lag convergence (relative 1e-12), summed over 36 angles.
-    assert!(close(
+    assert!(relative_eq!(
         mean(&s.backlash_rad),
         mean(&s.backlash_reverse_rad),
-        1e-9,
-        0.0
+        epsilon = 0.0,
+        max_relative = 1e-9
     ));
     let (a, b) = (range(&s.backlash_rad), range(&s.backlash_reverse_rad));
-    assert!(close(a.0, b.0, 1e-9, 0.0) && close(a.1, b.1, 1e-9, 0.0));
+    assert!(
+        relative_eq!(a.0, b.0, epsilon = 0.0, max_relative = 1e-9)
+            && relative_eq!(a.1, b.1, epsilon = 0.0, max_relative = 1e-9)
+    );
     let f = crank
         .iter()
         .map(|&phi| {

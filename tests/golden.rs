@@ -4,59 +4,34 @@
 use cycloid::engine::golden::{compare, GoldenCurves};
 use cycloid::model::quantity::{Curves, QUANTITIES};
 use cycloid::model::Tolerance;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
-fn bin() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_cycloid"));
-    c.env("NO_COLOR", "1").env("SOURCE_DATE_EPOCH", "0");
-    c
-}
+mod common;
+use common::{cycloid_here, cycloid_with, PaperSpec, Scratch};
 
 /// A fresh scratch directory for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("cycloid-golden-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn scratch(name: &str) -> Scratch {
+    Scratch::new(&format!("golden-{name}"))
 }
 
 fn run(args: &[&str]) -> (i32, String, String) {
-    let Output {
-        status,
-        stdout,
-        stderr,
-    } = bin().args(args).output().unwrap();
-    (
-        status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&stdout).into_owned(),
-        String::from_utf8_lossy(&stderr).into_owned(),
-    )
+    cycloid_here(args).parts()
 }
 
 /// The paper's design with one loaded scene sampled with `steps` angles over one mesh period
 /// and the given golden entries.
 fn spec_text(steps: usize, golden: &str) -> String {
-    format!(
-        "name: golden-test
-reducer:
-  teeth: 9
-  rollers: 10
-  eccentricity_mm: 2.0
-  roller_circle_radius_mm: 30.0
-  roller_radius_mm: 3.0
-  face_width_mm: 8.0
-  output_pins: {{ count: 6, circle_radius_mm: 18.0, pin_radius_mm: 3.0 }}
-  material: {{ youngs_modulus_gpa: 206.0, poisson_ratio: 0.3 }}
-modification: {{ shift_mm: 0.125, equidistant_mm: 0.1593 }}
-scenes:
-  - name: rated
+    PaperSpec::new()
+        .scenes(&format!(
+            "  - name: rated
     output_torque_nm: 10.0
     crank: {{ from_deg: 0.0, to_deg: 36.0, steps: {steps} }}
     effects: [clearance, roller_contact]
-golden:
-{golden}"
-    )
+"
+        ))
+        .with(&format!("golden:\n{golden}"))
+        .text()
+        .to_string()
 }
 
 const TE_GOLDEN: &str = "  - scene: rated
@@ -193,12 +168,13 @@ fn bless_keeps_a_review_while_the_curve_stays_in_its_band_and_resets_it_otherwis
         .join("\n");
     write(&meta, &reviewed);
     // A year later, nothing changed: the review and the date stay.
-    let later = bin()
-        .env("SOURCE_DATE_EPOCH", "31536000")
-        .args(["bless", p(&spec)])
-        .output()
-        .unwrap();
-    assert!(later.status.success());
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let later = cycloid_with(
+        here,
+        &["bless", p(&spec)],
+        &[("SOURCE_DATE_EPOCH", "31536000")],
+    );
+    assert_eq!(later.code(), 0, "{later:?}");
     let text = std::fs::read_to_string(&meta).unwrap();
     assert!(text.contains("reviewed: checked by hand"), "{text}");
     assert!(text.contains("date: 1970-01-01"), "{text}");
@@ -223,8 +199,14 @@ fn a_missing_golden_file_is_exit_2_naming_it_and_suggesting_bless() {
     assert!(err.contains("golden/te.csv"), "{err}");
     assert!(err.contains("does not exist"), "{err}");
     assert!(err.contains("cycloid bless"), "{err}");
-    // Located at the golden's `file` key (line 20 of the spec text).
-    assert!(err.contains("spec.yaml:20:5:"), "{err}");
+    // Located at the golden's `file` key.
+    let text = spec_text(36, TE_GOLDEN);
+    let line = text
+        .lines()
+        .position(|l| l.contains("file: golden/te.csv"))
+        .unwrap()
+        + 1;
+    assert!(err.contains(&format!("spec.yaml:{line}:5:")), "{err}");
 }
 
 #[test]

@@ -16,7 +16,7 @@ use cycloid::spec::{self, Spec};
 use serde_json::Value;
 use std::f64::consts::{PI, TAU};
 use std::path::PathBuf;
-use std::process::Command;
+mod common;
 
 const ARCSEC_PER_RAD: f64 = 180.0 * 3600.0 / PI;
 
@@ -61,17 +61,13 @@ fn check(case: &str) -> Run {
     let json: PathBuf =
         std::env::temp_dir().join(format!("cycloid-hard-{case}-{}.json", std::process::id()));
     let _ = std::fs::remove_file(&json);
-    let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
-        .args(["check", &path(case), "--json", json.to_str().unwrap()])
-        .env("NO_COLOR", "1")
-        .output()
-        .unwrap();
+    let out = common::cycloid_here(&["check", &path(case), "--json", json.to_str().unwrap()]);
     let text = std::fs::read_to_string(&json).ok();
     let _ = std::fs::remove_file(&json);
     Run {
-        code: out.status.code(),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+        code: out.code,
+        stdout: out.stdout,
+        stderr: out.stderr,
         json: text.map(|t| serde_json::from_str(&t).unwrap()),
     }
 }

@@ -3,7 +3,7 @@
 
 use quick_xml::events::Event;
 use quick_xml::Reader;
-use std::process::Command;
+mod common;
 
 struct Parsed {
     testcases: Vec<(String, String)>,
@@ -59,24 +59,17 @@ fn parse(xml: &str) -> Parsed {
 }
 
 fn check(spec: &str, junit: &std::path::Path) -> i32 {
-    Command::new(env!("CARGO_BIN_EXE_cycloid"))
-        .args(["check", spec, "--junit", junit.to_str().unwrap()])
-        .output()
-        .unwrap()
-        .status
-        .code()
-        .unwrap()
+    common::cycloid_here(&["check", spec, "--junit", junit.to_str().unwrap()]).code()
 }
 
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("cycloid-junit-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn scratch(name: &str) -> common::Scratch {
+    common::Scratch::new(&format!("junit-{name}"))
 }
 
 #[test]
 fn a_failing_spec_gives_one_case_per_check_and_golden_with_the_numbers_in_the_failure() {
-    let path = scratch("failing").join("r.xml");
+    let dir = scratch("failing");
+    let path = dir.join("r.xml");
     assert_eq!(check("specs/paper-negative-start.yaml", &path), 1);
     let xml = std::fs::read_to_string(&path).unwrap();
     let doc = parse(&xml);
@@ -110,7 +103,8 @@ fn a_failing_spec_gives_one_case_per_check_and_golden_with_the_numbers_in_the_fa
 
 #[test]
 fn golden_cases_state_the_deviation_and_the_band() {
-    let path = scratch("passing").join("r.xml");
+    let dir = scratch("passing");
+    let path = dir.join("r.xml");
     assert_eq!(check("specs/paper.yaml", &path), 0);
     let xml = std::fs::read_to_string(&path).unwrap();
     let doc = parse(&xml);

@@ -7,7 +7,7 @@ use cycloid::engine::optimise::{self, run_study};
 use cycloid::geometry::clearance::{self, Mesh};
 use cycloid::model::Modification;
 use cycloid::spec::{self, Spec};
-use std::process::Command;
+mod common;
 
 fn paper() -> Spec {
     spec::load("specs/paper.yaml").expect("paper spec loads")
@@ -176,15 +176,7 @@ fn the_map_covers_the_grid_and_marks_the_tip_constraint() {
 }
 
 fn cycloid(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::cycloid_here(args).parts()
 }
 
 #[test]

@@ -3,19 +3,10 @@
 //! far coarser than the golden tolerances, so solver noise cannot flip them. Update on purpose
 //! with `INSTA_UPDATE=always cargo test --release --test snapshots` and review the diff.
 
-use std::process::Command;
+mod common;
 
 fn cycloid(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::cycloid_here(args).parts()
 }
 
 /// x to 4 significant digits, as text.
@@ -155,12 +146,12 @@ fn colour_only_when_asked() {
     assert_eq!(stripped, plain);
     assert!(!cycloid::report::table::use_color(false));
     // The binary's stdout here is a pipe: no colour even without NO_COLOR.
-    let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
-        .args(["check", "specs/paper-negative-start.yaml"])
-        .env_remove("NO_COLOR")
-        .output()
-        .unwrap();
-    assert!(!String::from_utf8_lossy(&out.stdout).contains('\x1b'));
+    let out = common::cycloid_with(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")),
+        &["check", "specs/paper-negative-start.yaml"],
+        &[("NO_COLOR", "")],
+    );
+    assert!(!out.stdout.contains('\x1b'));
 }
 
 #[test]

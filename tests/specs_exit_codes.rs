@@ -2,7 +2,7 @@
 //! `cycloid check` with its expected exit code. A new spec must be added to the table, so
 //! nothing ships unchecked.
 
-use std::process::Command;
+mod common;
 
 /// (file name, exit code, why).
 const EXPECTED: &[(&str, i32, &str)] = &[
@@ -120,17 +120,13 @@ fn every_spec_exits_as_expected() {
         "specs/ and the table of expected exit codes differ"
     );
     for (name, code, why) in EXPECTED {
-        let out = Command::new(env!("CARGO_BIN_EXE_cycloid"))
-            .args(["check", &format!("specs/{name}")])
-            .env("NO_COLOR", "1")
-            .output()
-            .unwrap();
+        let out = common::cycloid_here(&["check", &format!("specs/{name}")]);
         assert_eq!(
-            out.status.code(),
+            out.code,
             Some(*code),
             "specs/{name} ({why}):\n{}{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
+            out.stdout,
+            out.stderr
         );
     }
 }

@@ -1,14 +1,233 @@
-//! Helpers shared by the geometry and export tests: designs built directly, the paper's spec,
-//! a closed form of the locus curvature, and the proptest strategy of valid designs.
+//! Helpers shared by the tests: the `cycloid` binary run in a scratch directory (`Scratch`,
+//! `cycloid`), the paper's spec with edits (`PaperSpec`), designs built directly, a closed form
+//! of the locus curvature, and the proptest strategy of valid designs.
 //!
 //! Nothing here calls the code under test to produce an expected value: the closed forms are
 //! derived below from the definition of the locus in MODEL.md.
 #![allow(dead_code)] // each test crate uses a different subset
 
 use cycloid::model::{Design, Material, Modification, OutputPins};
-use cycloid::spec::{self, Spec};
+use cycloid::spec::Spec;
 use proptest::prelude::*;
 use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+/// The shipped spec: the paper's Table 1 design with its optimum modification, clearance only.
+pub const PAPER: &str = include_str!("../../specs/reducer.yaml");
+
+/// A scratch directory, unique per call and process, removed when dropped.
+pub struct Scratch {
+    pub path: PathBuf,
+}
+
+impl Scratch {
+    pub fn new(tag: &str) -> Scratch {
+        static NEXT: AtomicUsize = AtomicUsize::new(0);
+        let path = std::env::temp_dir().join(format!(
+            "cycloid-test-{tag}-{}-{}",
+            std::process::id(),
+            NEXT.fetch_add(1, Ordering::Relaxed)
+        ));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path).unwrap();
+        Scratch { path }
+    }
+
+    /// `name` inside the directory.
+    pub fn join(&self, name: &str) -> PathBuf {
+        self.path.join(name)
+    }
+
+    /// Write `name` (creating its directories).
+    pub fn write(&self, name: &str, text: impl AsRef<[u8]>) {
+        let path = self.path.join(name);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).unwrap();
+        }
+        std::fs::write(path, text).unwrap();
+    }
+
+    pub fn read(&self, name: &str) -> String {
+        std::fs::read_to_string(self.path.join(name))
+            .unwrap_or_else(|e| panic!("{name} was not written: {e}"))
+    }
+
+    pub fn exists(&self, name: &str) -> bool {
+        self.path.join(name).exists()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.path);
+    }
+}
+
+/// What a run of the binary produced.
+#[derive(Debug)]
+pub struct Run {
+    pub code: Option<i32>,
+    pub stdout: String,
+    pub stderr: String,
+}
+
+impl Run {
+    /// The exit code (-1 when killed by a signal).
+    pub fn code(&self) -> i32 {
+        self.code.unwrap_or(-1)
+    }
+
+    /// (exit code, stdout, stderr).
+    pub fn parts(self) -> (i32, String, String) {
+        (self.code(), self.stdout, self.stderr)
+    }
+}
+
+/// Longest a single run may take before the test calls it a hang.
+const TIMEOUT: Duration = Duration::from_secs(300);
+
+/// Run `cycloid ARGS` in `dir` (no colour, the date pinned by `SOURCE_DATE_EPOCH=0`). Output
+/// goes to files (no pipe can fill up); a run longer than `TIMEOUT` is killed and fails.
+pub fn cycloid(dir: &Path, args: &[&str]) -> Run {
+    cycloid_with(dir, args, &[])
+}
+
+/// `cycloid` with extra environment variables.
+pub fn cycloid_with(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Run {
+    static NEXT: AtomicUsize = AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, Ordering::Relaxed);
+    let capture = std::env::temp_dir().join(format!("cycloid-test-out-{}-{n}", std::process::id()));
+    std::fs::create_dir_all(&capture).unwrap();
+    let (out_path, err_path) = (capture.join("stdout"), capture.join("stderr"));
+    let mut command = Command::new(env!("CARGO_BIN_EXE_cycloid"));
+    command
+        .args(args)
+        .current_dir(dir)
+        .env_remove("RUST_BACKTRACE")
+        .env("NO_COLOR", "1")
+        .env("SOURCE_DATE_EPOCH", "0")
+        .stdin(Stdio::null())
+        .stdout(std::fs::File::create(&out_path).unwrap())
+        .stderr(std::fs::File::create(&err_path).unwrap());
+    for (k, v) in env {
+        command.env(k, v);
+    }
+    let mut child = command.spawn().expect("the cycloid binary runs");
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if start.elapsed() > TIMEOUT {
+            let _ = child.kill();
+            let _ = child.wait();
+            let _ = std::fs::remove_dir_all(&capture);
+            panic!("cycloid {args:?} did not finish within {TIMEOUT:?}");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    let run = Run {
+        code: status.code(),
+        stdout: String::from_utf8_lossy(&std::fs::read(&out_path).unwrap()).into_owned(),
+        stderr: String::from_utf8_lossy(&std::fs::read(&err_path).unwrap()).into_owned(),
+    };
+    let _ = std::fs::remove_dir_all(&capture);
+    run
+}
+
+/// `cycloid ARGS` in the repository's root (shipped specs by their relative path).
+pub fn cycloid_here(args: &[&str]) -> Run {
+    cycloid(Path::new(env!("CARGO_MANIFEST_DIR")), args)
+}
+
+/// The paper's spec (`specs/reducer.yaml`) as text, edited: the modification, the scenes (its
+/// limits go with them), extra top-level sections, or any exact replacement.
+#[derive(Debug, Clone)]
+pub struct PaperSpec {
+    text: String,
+}
+
+impl Default for PaperSpec {
+    fn default() -> Self {
+        PaperSpec {
+            text: PAPER.to_string(),
+        }
+    }
+}
+
+impl PaperSpec {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Replace `from` by `to`; `from` must occur exactly once, so that an edit can never
+    /// silently do nothing.
+    pub fn edit(mut self, from: &str, to: &str) -> Self {
+        assert_eq!(
+            self.text.matches(from).count(),
+            1,
+            "`{from}` must occur once in the spec"
+        );
+        self.text = self.text.replacen(from, to, 1);
+        self
+    }
+
+    /// The modification (ΔRp, ΔRrp), mm.
+    pub fn modification(mut self, shift_mm: f64, equidistant_mm: f64) -> Self {
+        let mut replaced = 0;
+        let lines: Vec<String> = self
+            .text
+            .lines()
+            .map(|line| {
+                let key = line.trim_start();
+                if key.starts_with("shift_mm:") {
+                    replaced += 1;
+                    format!("  shift_mm: {shift_mm:?}")
+                } else if key.starts_with("equidistant_mm:") {
+                    replaced += 1;
+                    format!("  equidistant_mm: {equidistant_mm:?}")
+                } else {
+                    line.to_string()
+                }
+            })
+            .collect();
+        assert_eq!(replaced, 2, "one shift_mm and one equidistant_mm");
+        self.text = lines.join("\n") + "\n";
+        self
+    }
+
+    /// The `scenes:` section and everything after it (the limits) replaced by `scenes`, the
+    /// YAML items of the list.
+    pub fn scenes(mut self, scenes: &str) -> Self {
+        let at = self.text.find("\nscenes:").expect("the spec has scenes") + 1;
+        self.text.truncate(at);
+        self.text += "scenes:\n";
+        self.text += scenes;
+        self
+    }
+
+    /// Top-level YAML appended at the end.
+    pub fn with(mut self, extra: &str) -> Self {
+        if !self.text.ends_with('\n') {
+            self.text.push('\n');
+        }
+        self.text += extra;
+        self
+    }
+
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The spec parsed and validated (named `path` in messages).
+    pub fn parse(&self, path: &str) -> cycloid::spec::Spec {
+        cycloid::spec::parse(path, &self.text)
+            .unwrap_or_else(|e| panic!("test spec is valid: {e}\n{}", self.text))
+    }
+}
 
 pub const STEEL: Material = Material {
     youngs_modulus_mpa: 206_000.0,
@@ -43,37 +262,17 @@ pub fn modification(shift_mm: f64, equidistant_mm: f64, rotation_rad: f64) -> Mo
     }
 }
 
-/// The paper's design (Table 1): nc 9, np 10, e 2, Rp 30, Rrp 3.
+/// The paper's design (Table 1): nc 9, np 10, e 2, Rp 30, Rrp 3 (from specs/reducer.yaml).
 pub fn paper_design() -> Design {
-    design(10, 2.0, 30.0, 3.0)
+    PaperSpec::new().parse("reducer.yaml").design
 }
 
 /// specs/reducer.yaml with its modification replaced, parsed and validated by `spec::parse`.
 pub fn paper_spec(shift_mm: f64, equidistant_mm: f64) -> Spec {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/specs/reducer.yaml");
-    let text = std::fs::read_to_string(path).expect("specs/reducer.yaml is readable");
-    let mut replaced = 0;
-    let text: String = text
-        .lines()
-        .map(|line| {
-            let key = line.trim_start();
-            if key.starts_with("shift_mm:") {
-                replaced += 1;
-                format!("  shift_mm: {shift_mm}")
-            } else if key.starts_with("equidistant_mm:") {
-                replaced += 1;
-                format!("  equidistant_mm: {equidistant_mm}")
-            } else {
-                line.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("\n");
-    assert_eq!(
-        replaced, 2,
-        "reducer.yaml has one shift_mm and one equidistant_mm"
-    );
-    spec::parse(path, &text).unwrap_or_else(|e| panic!("paper spec is valid: {e}"))
+    PaperSpec::new()
+        .modification(shift_mm, equidistant_mm)
+        .parse(path)
 }
 
 /// Curvature of the locus C(t) = R(cos t, sin t) − e(cos nt, sin nt) (n = np) as a function of

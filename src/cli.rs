@@ -1,7 +1,7 @@
 //! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
-use crate::engine::{accuracy, check, golden, optimise, scene};
+use crate::engine::{accuracy, check, golden, optimise, scene, summary};
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
 use crate::model::Plan;
@@ -251,6 +251,8 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
         print(out, &report::optimisation::render(&spec, s, r))?;
     }
     print(out, &report::table::render_styled(&checks, outputs.color))?;
+    let summaries = summary::summarise(&results);
+    print(out, &report::table::render_summary(&summaries))?;
     if let Some(p) = outputs.json {
         let doc = report::json::document_with_golden(&spec, &checks, &results, &goldens);
         let text =

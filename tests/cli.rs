@@ -65,11 +65,19 @@ fn shipped_spec_passes_with_the_table() {
         "cycloid check `paper-table-1`
 check                   value       limit         verdict  where
 rated/min_clearance_mm  0.03430 mm  ≥ 0.01500 mm  pass     roller 0 at crank 0.00°, tooth phase 0.000 (0 root, 0.5 tip)
-1 checks: 1 passed, 0 failed
+1 check: 1 passed, 0 failed
+headline results:
+scene `rated`:
+  min clearance over the mesh   0.03430 mm  roller 0 at crank 0.00°, tooth phase 0.000 (0 root, 0.5 tip)
+  max lost motion (unloaded)   1511 arcsec  crank 18.00°
 ",
         "",
     );
 }
+
+// The summary's lost motion cross-checks with the first-order closed form (MODEL.md): the
+// backlash is (ΔRrp − ΔRp·sqrt(1 − K1²))/(e·nc) = (0.1593 − 0.125·0.7454)/18 rad = 757.8″ each
+// way, 1516″ of lost motion; the exact 1511″ differs at second order of the modification.
 
 /// The paper's negative modification meets its own tip condition ΔRrp − ΔRp = 15 µm ≥ dt but
 /// interferes by 23 µm at mid-flank (README): the whole-mesh check must catch it.
@@ -85,7 +93,11 @@ fn paper_negative_modification_fails_with_exit_1() {
         "cycloid check `paper-table-1`
 check                   value        limit         verdict  where
 rated/min_clearance_mm  -0.02341 mm  ≥ 0.01500 mm  FAIL     roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
-1 checks: 0 passed, 1 failed
+1 check: 0 passed, 1 failed
+headline results:
+scene `rated`:
+  min clearance over the mesh    -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
+  max lost motion (unloaded)   -494.8 arcsec  crank 4.40°
 ",
         "",
     );
@@ -113,6 +125,13 @@ check                   value        limit          verdict  where
 rated/min_clearance_mm  -0.02341 mm  ≥ -0.02200 mm  FAIL     roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
 start/min_clearance_mm  -0.02155 mm  ≥ -0.02200 mm  pass     roller 1 at crank 0.00°, tooth phase 0.892 (0 root, 0.5 tip)
 2 checks: 1 passed, 1 failed
+headline results:
+scene `start`:
+  min clearance over the mesh    -0.02155 mm  roller 1 at crank 0.00°, tooth phase 0.892 (0 root, 0.5 tip)
+  max lost motion (unloaded)   -502.2 arcsec  crank 0.00°
+scene `rated`:
+  min clearance over the mesh    -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
+  max lost motion (unloaded)   -494.8 arcsec  crank 4.40°
 ",
         "",
     );

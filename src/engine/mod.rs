@@ -1,9 +1,11 @@
 //! The engine: runs the scenes of a spec (`scene`), checks its limits (`check`) and golden
 //! curves (`golden`), optimises the modification (`optimise`) and runs the accuracy ladder
-//! (`accuracy`).
+//! (`accuracy`), and summarises the headline results of each scene (`summary`).
 
 pub mod accuracy;
 pub mod check;
 pub mod golden;
 pub mod optimise;
+pub mod progress;
 pub mod scene;
+pub mod summary;

@@ -1,6 +1,8 @@
-//! The terminal table of checks: check, value, limit, verdict, where.
+//! The terminal table of checks (check, value, limit, verdict, where) and the summary of each
+//! scene's headline results.
 
 use crate::engine::check::{Bound, Check};
+use crate::engine::summary::SceneSummary;
 
 /// Format a number for a person: 4 significant figures, no exponent for ordinary magnitudes.
 pub fn number(x: f64) -> String {
@@ -96,10 +98,57 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
     }
     let failed = checks.iter().filter(|c| !c.passed).count();
     out += &format!(
-        "{} checks: {} passed, {} failed\n",
+        "{} check{}: {} passed, {} failed\n",
         checks.len(),
+        if checks.len() == 1 { "" } else { "s" },
         checks.len() - failed,
         failed
     );
+    out
+}
+
+/// A count (a whole dimensionless value, e.g. rollers in contact) as an integer, else `number`.
+fn count_or_number(x: f64, unit: &str) -> String {
+    if unit.is_empty() && x.fract() == 0.0 && x.abs() < 1e9 {
+        format!("{x:.0}")
+    } else {
+        number(x)
+    }
+}
+
+/// The headline results of each scene, one block per scene: quantity, value with its unit,
+/// where it occurs. A scene that computed none of them says so.
+pub fn render_summary(summaries: &[SceneSummary]) -> String {
+    let mut out = String::from("headline results:\n");
+    for s in summaries {
+        out += &format!("scene `{}`:\n", s.scene);
+        if s.headlines.is_empty() {
+            out += "  no headline results (the scene computes none of them)\n";
+            continue;
+        }
+        let label_w = s
+            .headlines
+            .iter()
+            .map(|h| h.quantity.label.chars().count())
+            .max()
+            .unwrap_or(0);
+        let values: Vec<String> = s
+            .headlines
+            .iter()
+            .map(|h| with_unit(count_or_number(h.value, h.quantity.unit), h.quantity.unit))
+            .collect();
+        let value_w = values.iter().map(|v| v.chars().count()).max().unwrap_or(0);
+        for (h, v) in s.headlines.iter().zip(&values) {
+            let label = h.quantity.label;
+            let line = format!(
+                "  {label}{}  {}{v}  {}",
+                " ".repeat(label_w - label.chars().count()),
+                " ".repeat(value_w - v.chars().count()),
+                h.at
+            );
+            out += line.trim_end();
+            out += "\n";
+        }
+    }
     out
 }

@@ -2,13 +2,15 @@
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
 use crate::engine::{accuracy, check, golden, optimise, scene, summary};
-use crate::error::{Error, Result};
+use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::profile::Profile;
 use crate::model::Plan;
 use crate::report::export;
+use crate::{files, numeric};
 use crate::{report, spec};
 use clap::{Parser, Subcommand};
 use std::io::Write;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Parser)]
 #[command(
@@ -116,8 +118,52 @@ pub enum Outcome {
     ChecksFailed,
 }
 
+/// Write an output file atomically (a temporary file renamed into place).
 fn write_file(path: &str, text: &str) -> Result<()> {
-    std::fs::write(path, text).map_err(|e| Error::io(path, e))
+    files::write_atomic(Path::new(path), text.as_bytes())
+}
+
+/// Refuse, before anything is written, outputs that would destroy an input or one another: an
+/// empty path, an output at the path of one of `inputs` (what it is, its path), or two
+/// outputs at one path. `outputs` are (option, path); a `--report` directory also claims its
+/// `index.html`.
+fn distinct_outputs(inputs: &[(String, PathBuf)], outputs: &[(&str, &str)]) -> Result<()> {
+    let usage = |m: String| Error::new(ErrorKind::Usage, format!("{m}; nothing was written"));
+    let mut claimed: Vec<(String, PathBuf)> = inputs
+        .iter()
+        .map(|(what, p)| (what.clone(), files::identity(p)))
+        .collect();
+    for &(flag, path) in outputs {
+        if path.is_empty() {
+            return Err(usage(format!("{flag} \"\": an empty path names no file")));
+        }
+        let mut ids = vec![files::identity(Path::new(path))];
+        if flag == "--report" {
+            ids.push(ids[0].join("index.html"));
+        }
+        for id in ids {
+            if let Some((what, _)) = claimed.iter().find(|(_, c)| *c == id) {
+                return Err(usage(format!(
+                    "{flag} {path} would overwrite {what}; give another path"
+                )));
+            }
+            claimed.push((format!("the output of {flag}"), id));
+        }
+    }
+    Ok(())
+}
+
+/// The files a spec's run reads or owns, which no output may replace: the spec, and each
+/// golden file with its metadata.
+fn inputs_of(spec_path: &str, spec: Option<&spec::Spec>) -> Vec<(String, PathBuf)> {
+    let mut inputs = vec![("the spec".to_string(), PathBuf::from(spec_path))];
+    for g in spec.map_or(&[][..], |s| &s.golden) {
+        inputs.push((format!("the golden file of {}", g.key), g.path.clone()));
+        for meta in golden::meta_paths(&g.path) {
+            inputs.push((format!("the metadata of {}", g.key), meta));
+        }
+    }
+    inputs
 }
 
 /// Run a parsed command, writing the user-facing text to `out` (without colour).
@@ -145,10 +191,18 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
                 report_map_steps,
                 color,
             };
+            distinct_outputs(&inputs_of(&spec, None), &outputs.paths())?;
             let result = run_check(&spec, &outputs, explain, out);
-            if let (Err(e), Some(path)) = (&result, outputs.junit) {
-                // CI shows the error as a test case too; the error itself still goes to stderr.
-                let _ = std::fs::write(path, report::junit::error_document(&spec, &e.to_string()));
+            match (&result, outputs.junit) {
+                (Err(e), Some(path))
+                    if !matches!(e.kind, ErrorKind::Usage | ErrorKind::OutputClosed) =>
+                {
+                    // CI shows the error as a test case too; the error itself still goes to
+                    // stderr.
+                    let doc = report::junit::error_document(&spec, &e.to_string());
+                    let _ = write_file(path, &doc);
+                }
+                _ => {}
             }
             result
         }
@@ -194,9 +248,24 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
     }
 }
 
+/// Print text for a person, its control characters escaped (names come from the spec).
 fn print(out: &mut dyn Write, text: &str) -> Result<()> {
-    out.write_all(text.as_bytes())
-        .map_err(|e| Error::io("<stdout>", e))
+    print_keeping(out, text, &[])
+}
+
+/// `print`, letting the sequences in `keep` (the tool's own colours) through.
+fn print_keeping(out: &mut dyn Write, text: &str, keep: &[&str]) -> Result<()> {
+    out.write_all(crate::error::printable(text, keep).as_bytes())
+        .map_err(stdout_error)
+}
+
+/// A failed write to standard output; a reader that closed it (`| head`) is `OutputClosed`.
+fn stdout_error(e: std::io::Error) -> Error {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        Error::new(ErrorKind::OutputClosed, "standard output was closed")
+    } else {
+        Error::io("<stdout>", e)
+    }
 }
 
 /// Where `check` writes its results besides the terminal.
@@ -209,6 +278,20 @@ struct Outputs<'a> {
     color: bool,
 }
 
+impl Outputs<'_> {
+    /// The files and directories this run writes, by option.
+    fn paths(&self) -> Vec<(&'static str, &str)> {
+        [
+            ("--json", self.json),
+            ("--junit", self.junit),
+            ("--report", self.report),
+        ]
+        .into_iter()
+        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
+        .collect()
+    }
+}
+
 /// Default grid of the report's objective maps: 15 × 15 = 225 evaluations per study, about
 /// as many as the study itself.
 pub const DEFAULT_REPORT_MAP_STEPS: usize = 15;
@@ -218,20 +301,21 @@ pub const MAX_REPORT_MAP_STEPS: usize = 101;
 fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) -> Result<Outcome> {
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
+    distinct_outputs(&inputs_of(path, Some(&spec)), &outputs.paths())?;
     if explain {
         print(out, &scene::explain(&spec))?;
         return Ok(Outcome::Passed);
     }
     if let Some(deg) = outputs.report_crank_deg.filter(|d| !d.is_finite()) {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
+            ErrorKind::InvalidValue,
             format!("--report-crank-deg must be a finite angle, got {deg}"),
         ));
     }
     let steps = outputs.report_map_steps;
     if outputs.report.is_some() && (steps == 1 || steps > MAX_REPORT_MAP_STEPS) {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
+            ErrorKind::InvalidValue,
             format!(
                 "--report-map-steps must be 0 (no map) or 2 to {MAX_REPORT_MAP_STEPS}, got {steps}"
             ),
@@ -250,7 +334,16 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     for (s, r) in spec.studies.iter().zip(&studies) {
         print(out, &report::optimisation::render(&spec, s, r))?;
     }
-    print(out, &report::table::render_styled(&checks, outputs.color))?;
+    let styles: &[&str] = if outputs.color {
+        &report::table::STYLES
+    } else {
+        &[]
+    };
+    print_keeping(
+        out,
+        &report::table::render_styled(&checks, outputs.color),
+        styles,
+    )?;
     let summaries = summary::summarise(&results);
     print(out, &report::table::render_summary(&summaries))?;
     if let Some(p) = outputs.json {
@@ -400,9 +493,7 @@ struct AccuracyArgs {
 }
 
 fn run_accuracy(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Result<Outcome> {
-    let bad = |flag: &str, m: String| {
-        Error::new(crate::ErrorKind::InvalidValue, format!("--{flag}: {m}"))
-    };
+    let bad = |flag: &str, m: String| Error::new(ErrorKind::InvalidValue, format!("--{flag}: {m}"));
     let spec = spec::load(path)?;
     let from_spec = spec.accuracy.as_ref();
     let scene = match &asked.scene {
@@ -466,8 +557,7 @@ fn run_accuracy(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Result
             accuracy::Event::Rung(layout, rung) => accuracy::row(layout, rung, false),
         };
         if written.is_ok() {
-            written =
-                print(out, &text).and_then(|_| out.flush().map_err(|e| Error::io("<stdout>", e)));
+            written = print(out, &text).and_then(|_| out.flush().map_err(stdout_error));
         }
     })?;
     written?;
@@ -505,20 +595,29 @@ fn run_profile(
 ) -> Result<Outcome> {
     if !(tolerance_um.is_finite() && tolerance_um > 0.0) {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
-            format!("--tolerance-um must be a positive number, got {tolerance_um}"),
+            ErrorKind::InvalidValue,
+            format!(
+                "--tolerance-um must be a positive number, got {}",
+                numeric::input(tolerance_um)
+            ),
         ));
     }
     // Below a nanometre the point count explodes (≈ 1/√tolerance) and the chords approach the
     // rounding of f64 coordinates; the export would run for hours and exhaust memory.
     if tolerance_um < MIN_TOLERANCE_UM {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
+            ErrorKind::InvalidValue,
             format!(
-                "--tolerance-um must be at least {MIN_TOLERANCE_UM} (1 nm), got {tolerance_um}"
+                "--tolerance-um must be at least {MIN_TOLERANCE_UM} (1 nm), got {}",
+                numeric::input(tolerance_um)
             ),
         ));
     }
+    let outputs: Vec<_> = [("--csv", csv), ("--dxf", dxf)]
+        .into_iter()
+        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
+        .collect();
+    distinct_outputs(&inputs_of(path, None), &outputs)?;
     let spec = spec::load(path)?;
     let tol = tolerance_um / 1000.0;
     let points = export::polyline(&Profile::new(&spec.design, &spec.modification), tol);
@@ -550,7 +649,7 @@ fn run_optimise(
     let spec = spec::load(path)?;
     if spec.studies.is_empty() {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
+            ErrorKind::InvalidValue,
             format!("{path}: the spec has no `optimise` section"),
         ));
     }
@@ -562,7 +661,7 @@ fn run_optimise(
                 .find(|s| s.name == name)
                 .ok_or_else(|| {
                     Error::new(
-                        crate::ErrorKind::InvalidValue,
+                        ErrorKind::InvalidValue,
                         format!(
                             "no study named `{name}`; studies: {}",
                             spec.studies
@@ -579,7 +678,7 @@ fn run_optimise(
     };
     if map.is_some() && map_steps < 2 {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
+            ErrorKind::InvalidValue,
             format!("--map-steps must be at least 2, got {map_steps}"),
         ));
     }

@@ -925,7 +925,7 @@ fn profile_tolerance_must_be_positive_and_not_absurdly_fine() {
         ),
         (
             "1e-12",
-            "invalid value: --tolerance-um must be at least 0.001 (1 nm), got 0.000000000001\n",
+            "invalid value: --tolerance-um must be at least 0.001 (1 nm), got 1e-12\n",
         ),
     ] {
         let out = cycloid(

@@ -171,12 +171,18 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
 /// Write the report into `dir` (created if missing); returns the files written.
 pub fn write(dir: &Path, input: &ReportInput) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
+    // One batch, `index.html` renamed into place last: a report is replaced whole or not at
+    // all, and a page never links plots of another run.
+    let mut files = render(input);
+    files.sort_by_key(|(name, _)| name == "index.html");
+    let mut batch = crate::files::Batch::new();
     let mut written = Vec::new();
-    for (name, text) in render(input) {
+    for (name, text) in files {
         let path = dir.join(&name);
-        std::fs::write(&path, text).map_err(|e| Error::io(&path.display().to_string(), e))?;
+        batch.add(&path, text.as_bytes())?;
         written.push(path);
     }
+    batch.commit()?;
     Ok(written)
 }
 

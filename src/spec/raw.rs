@@ -25,6 +25,10 @@ pub struct RawSpecOf<O> {
     /// Reviewed reference curves the results must stay close to.
     #[serde(default)]
     pub golden: Vec<RawGolden>,
+    /// A directory, relative to the spec's, where `bless` may write goldens besides the spec's
+    /// own directory tree (`../golden` for a spec in `specs/`).
+    #[serde(default)]
+    pub golden_root: Option<String>,
     /// The accuracy ladder of one scene, shown in the design review (`check --report`).
     #[serde(default)]
     pub accuracy: Option<RawAccuracy>,

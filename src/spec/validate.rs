@@ -9,7 +9,7 @@ use crate::model::accuracy as acc;
 use crate::model::quantity;
 use crate::model::scene::MAX_ROLLER_ANGLES;
 use crate::model::*;
-use crate::units;
+use crate::{numeric, units};
 
 fn invalid(key: &str, message: String) -> Error {
     Error::new(ErrorKind::InvalidValue, message).at_key(key)
@@ -28,7 +28,7 @@ fn positive(key: &str, value: f64) -> Result<f64> {
     } else {
         Err(invalid(
             key,
-            format!("must be a positive number, got {value}"),
+            format!("must be a positive number, got {}", numeric::input(value)),
         ))
     }
 }
@@ -48,8 +48,9 @@ fn length(key: &str, value: f64) -> Result<f64> {
         return Err(invalid(
             key,
             format!(
-                "{value} mm is larger than the {MAX_LENGTH_MM} mm (100 m) this tool handles: \
-                 beyond it double precision cannot resolve micrometre gaps"
+                "{} mm is larger than the {MAX_LENGTH_MM} mm (100 m) this tool handles: \
+                 beyond it double precision cannot resolve micrometre gaps",
+                numeric::input(value)
             ),
         ));
     }
@@ -81,7 +82,7 @@ fn material(key: &str, raw: RawMaterial) -> Result<Material> {
     if !(nu.is_finite() && (0.0..0.5).contains(&nu)) {
         return Err(invalid(
             &format!("{key}.poisson_ratio"),
-            format!("must lie in [0, 0.5), got {nu}"),
+            format!("must lie in [0, 0.5), got {}", numeric::input(nu)),
         ));
     }
     Ok(Material {
@@ -113,7 +114,10 @@ fn design(raw: RawReducer) -> Result<Design> {
     if !(clearance.is_finite() && clearance >= 0.0) {
         return Err(invalid(
             "reducer.output_pins.hole_clearance_mm",
-            format!("must be zero or positive, got {clearance}"),
+            format!(
+                "must be zero or positive, got {}",
+                numeric::input(clearance)
+            ),
         ));
     }
     Ok(Design {
@@ -148,7 +152,8 @@ fn modification(raw: &RawModification) -> Result<Modification> {
     })
 }
 
-fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
+/// The crank angles of a scene; `used` is the rollers × steps of the scenes before it.
+fn crank(key: &str, raw: &RawCrank, rollers: usize, used: i64) -> Result<Vec<f64>> {
     let angle = |name: &str, value: f64| -> Result<f64> {
         let k = format!("{key}.{name}");
         let value = finite(&k, value)?;
@@ -156,8 +161,9 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
             return Err(invalid(
                 &k,
                 format!(
-                    "{value}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where \
-                     the crank angle's rounding would exceed 1e-9 rad"
+                    "{}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where \
+                     the crank angle's rounding would exceed 1e-9 rad",
+                    numeric::input(value)
                 ),
             ));
         }
@@ -172,13 +178,18 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
             format!("a crank range needs at least 1 step, got {steps}"),
         ));
     }
-    let max_steps = MAX_ROLLER_ANGLES / rollers.max(1) as i64;
+    let max_steps = (MAX_ROLLER_ANGLES - used) / rollers.max(1) as i64;
     if steps > max_steps {
+        let others = if used > 0 {
+            format!(" over all scenes; the scenes before this one use {used}")
+        } else {
+            String::new()
+        };
         return Err(invalid(
             &format!("{key}.steps"),
             format!(
                 "at most {max_steps} steps with {rollers} rollers \
-                 (rollers × steps ≤ {MAX_ROLLER_ANGLES}), got {steps}"
+                 (rollers × steps ≤ {MAX_ROLLER_ANGLES}{others}), got {steps}"
             ),
         ));
     }
@@ -188,7 +199,24 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
             format!("the crank range is empty: to_deg = {to} must exceed from_deg = {from}"),
         ));
     }
-    Ok(crank_angles(from, to, steps as usize))
+    let angles = crank_angles(from, to, steps as usize);
+    // Each step must move the crank: a range narrower than the doubles' spacing near it
+    // repeats angles, and the ratio (a derivative over neighbours) is then undefined.
+    if let Some(k) = angles.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(invalid(
+            &format!("{key}.steps"),
+            format!(
+                "{steps} steps from {}° to {}° are not distinct angles (steps {k} and {} are \
+                 the same double, {}°): the range is too narrow for double precision there; \
+                 give fewer steps or a wider range",
+                numeric::input(from),
+                numeric::input(to),
+                k + 1,
+                numeric::input(units::deg(angles[k]))
+            ),
+        ));
+    }
+    Ok(angles)
 }
 
 /// Crank angles of a range in rad: `from + k·(to − from)/steps` degrees, k = 0 … steps − 1.
@@ -202,7 +230,7 @@ pub fn crank_angles(from_deg: f64, to_deg: f64, steps: usize) -> Vec<f64> {
         .collect()
 }
 
-fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
+fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene> {
     let key = format!("scenes[{index}]");
     if raw.name.trim().is_empty() {
         return Err(invalid(&format!("{key}.name"), "must not be empty".into()));
@@ -243,7 +271,7 @@ fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
             &format!("{key}.output_torque_nm"),
             raw.output_torque_nm,
         )?),
-        crank_rad: crank(&format!("{key}.crank"), &raw.crank, rollers)?,
+        crank_rad: crank(&format!("{key}.crank"), &raw.crank, rollers, used)?,
         crank_from_deg: raw.crank.from_deg,
         crank_to_deg: raw.crank.to_deg,
         name: raw.name,
@@ -284,7 +312,10 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
         if def.whole && (value.fract() != 0.0 || value < 0.0) {
             return Err(invalid(
                 &key,
-                format!("must be a whole number of at least 0, got {value}"),
+                format!(
+                    "must be a whole number of at least 0, got {}",
+                    numeric::input(value)
+                ),
             ));
         }
         entries.push(Limit { def, value });
@@ -310,7 +341,10 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     }
     let mut scenes: Vec<Scene> = Vec::new();
     for (i, s) in raw.scenes.into_iter().enumerate() {
-        let s = scene(i, s, design.rollers)?;
+        // The cap on rollers × steps holds for all scenes together: they are computed, and
+        // their results held, at once.
+        let used = scenes.iter().map(|s| s.crank_rad.len()).sum::<usize>() * design.rollers;
+        let s = scene(i, s, design.rollers, used as i64)?;
         if scenes.iter().any(|other| other.name == s.name) {
             return Err(invalid(
                 &format!("scenes[{i}].name"),
@@ -358,6 +392,12 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         }
         golden.push(g);
     }
+    let golden_root = match raw.golden_root.as_deref() {
+        Some(root) if root.trim().is_empty() => {
+            return Err(invalid("golden_root", "must not be empty".into()))
+        }
+        root => root.map(|r| resolve(path, r)),
+    };
     let accuracy = raw
         .accuracy
         .map(|a| accuracy_section(a, &scenes, &design))
@@ -371,6 +411,7 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         scenes,
         limits,
         golden,
+        golden_root,
         studies,
         accuracy,
     })
@@ -490,7 +531,7 @@ fn golden_entry(path: &str, i: usize, raw: RawGolden, scenes: &[Scene]) -> Resul
         if !(v.is_finite() && v >= 0.0) {
             return Err(invalid(
                 &format!("{key}.tolerance.{name}"),
-                format!("must be zero or positive, got {v}"),
+                format!("must be zero or positive, got {}", numeric::input(v)),
             ));
         }
     }
@@ -517,7 +558,11 @@ fn bounds(key: &str, b: [f64; 2]) -> Result<(f64, f64)> {
     if !(lo.is_finite() && hi.is_finite() && lo < hi) {
         return Err(invalid(
             key,
-            format!("bounds must be two finite numbers [lower, upper] with lower < upper, got [{lo}, {hi}]"),
+            format!(
+                "bounds must be two finite numbers [lower, upper] with lower < upper, got [{}, {}]",
+                numeric::input(lo),
+                numeric::input(hi)
+            ),
         ));
     }
     Ok((lo, hi))
@@ -549,7 +594,10 @@ fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
                     if !(w.is_finite() && w > 0.0) {
                         return Err(invalid(
                             key,
-                            format!("the weight of `{name}` must be a positive number, got {w}"),
+                            format!(
+                                "the weight of `{name}` must be a positive number, got {}",
+                                numeric::input(w)
+                            ),
                         ));
                     }
                     Ok((named(&name)?, w))

@@ -321,9 +321,12 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
             ),
         ));
     }
+    if outputs.json.is_some() {
+        json_fits(&spec).map_err(|e| locate(e, &spec))?;
+    }
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec).map_err(|e| locate(e, &spec))?;
-    let results = run_scenes(&spec)?;
+    let results = run_scenes(&spec).map_err(|e| locate(e, &spec))?;
     let mut checks = check::evaluate(&spec.limits, &results);
     let studies = run_studies(&spec, spec.studies.iter().collect());
     checks.extend(check::optimisation(&spec, &studies));
@@ -418,6 +421,41 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     })
 }
 
+/// Memory that writing the results JSON takes per number, bytes: the JSON tree (a 32-byte
+/// value per number, in arrays) and the pretty-printed text (22 to 30 bytes a number). Measured
+/// as 62.5 to 63 bytes a number of peak RSS above the same run without `--json`
+/// (`specs/reducer.yaml` at 2·10⁴ steps with every effect, 59 numbers an angle, and at 10⁵ and
+/// 3·10⁵ steps with the clearance only, 14 an angle); 80 leaves a quarter for other machines.
+const JSON_BYTES_PER_VALUE: u64 = 80;
+
+/// Largest memory the results JSON may take, bytes (512 MiB): about 6.7·10⁶ numbers, e.g.
+/// 4.8·10⁵ crank angles of a 10-roller clearance scene, a 200 MB file.
+const MAX_JSON_BYTES: u64 = 512 << 20;
+
+/// Refuse `--json` for results too large to write, before computing them, with the estimate
+/// and the scene that holds most of it.
+fn json_fits(spec: &spec::Spec) -> Result<()> {
+    let values = scene::result_values(spec);
+    let bytes = values.saturating_mul(JSON_BYTES_PER_VALUE);
+    if bytes <= MAX_JSON_BYTES {
+        return Ok(());
+    }
+    let largest = (0..spec.scenes.len())
+        .max_by_key(|&i| spec.scenes[i].crank_rad.len())
+        .unwrap_or(0);
+    let mb = |b: u64| b.div_ceil(1_000_000);
+    Err(Error::new(
+        ErrorKind::InvalidValue,
+        format!(
+            "--json: the results hold {values} numbers, about {} MB of memory to write as JSON, \
+             more than the {} MB allowed; give the scenes fewer crank steps, or leave --json out",
+            mb(bytes),
+            mb(MAX_JSON_BYTES)
+        ),
+    )
+    .at_key(format!("scenes[{largest}].crank.steps")))
+}
+
 fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
@@ -435,7 +473,8 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
     let mut results = Vec::new();
     for s in &spec.scenes {
         if spec.golden.iter().any(|g| g.scene == s.name) {
-            results.push(scene::run(&spec, s, &Plan::for_scene(s))?);
+            let r = scene::run(&spec, s, &Plan::for_scene(s)).map_err(|e| locate(e, &spec))?;
+            results.push(r);
         }
     }
     let blessed = golden::bless(&spec, &results).map_err(|e| locate(e, &spec))?;

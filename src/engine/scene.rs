@@ -20,6 +20,24 @@ pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
     run_with(spec, scene, plan, &Settings::default())
 }
 
+/// A failure of a scene of the spec, with the spec key it points at: the scene's torque when
+/// the rollers cannot carry it, else the scene itself, so that an absurd value is found in
+/// the spec.
+fn at_scene(spec: &Spec, scene: &Scene, e: Error) -> Error {
+    let Some(i) = spec.scenes.iter().position(|s| s.name == scene.name) else {
+        return e;
+    };
+    if e.key_path.is_some() {
+        return e;
+    }
+    let key = if e.message.contains("cannot balance an output torque") {
+        format!("scenes[{i}].output_torque_nm")
+    } else {
+        format!("scenes[{i}]")
+    };
+    e.at_key(key)
+}
+
 /// Run one scene according to its plan, with the loaded solves converged to `settings`
 /// (`run` uses the default settings; the accuracy ladder varies them).
 pub fn run_with(
@@ -29,6 +47,7 @@ pub fn run_with(
     settings: &Settings,
 ) -> Result<SceneResult> {
     run_design(&spec.design, &spec.modification, scene, plan, settings)
+        .map_err(|e| at_scene(spec, scene, e))
 }
 
 /// Run one scene of `design` with the modification `m` (an optimisation candidate, or the
@@ -72,6 +91,36 @@ pub fn run_design(
         clearance,
         loaded,
     })
+}
+
+/// How many numbers the results of a spec's scenes hold: per crank angle, the angle, the
+/// residual of a loaded solve and each curve of the registry that the scene's plan computes (one per roller or
+/// pin for those shapes). What the results JSON writes, and what its size grows with.
+pub fn result_values(spec: &Spec) -> u64 {
+    use crate::model::quantity::{Shape, QUANTITIES};
+    let d = &spec.design;
+    spec.scenes
+        .iter()
+        .map(|scene| {
+            let plan = Plan::for_scene(scene);
+            let loaded = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
+                .iter()
+                .any(|&e| plan.has(e));
+            let per_angle: usize = 1
+                + usize::from(loaded)
+                + QUANTITIES
+                    .iter()
+                    .filter(|q| plan.has(q.effect))
+                    .map(|q| match q.shape {
+                        Shape::Curve => 1,
+                        Shape::PerRoller => d.rollers,
+                        Shape::PerPin => d.pins.count,
+                        Shape::Scalar => 0,
+                    })
+                    .sum::<usize>();
+            (per_angle * scene.crank_rad.len()) as u64
+        })
+        .sum()
 }
 
 /// Human-readable plan of a spec: what runs, in which scene, and why.

@@ -218,7 +218,7 @@ fn beyond_reach(r: &Rollers, pose: &Pose, moment_nmm: f64, torque_nmm: f64) -> S
         "the rollers cannot balance an output torque of {} N·m: the largest moment found is \
          {:.4} N·m, at a lag of {:.4} rad{deepest}; the load is beyond what this disc can hold \
          in the contact model",
-        units::nm(torque_nmm),
+        crate::numeric::input(units::nm(torque_nmm)),
         units::nm(moment_nmm),
         pose.lag_rad
     ))

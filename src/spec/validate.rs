@@ -111,14 +111,18 @@ fn design(raw: RawReducer) -> Result<Design> {
         None => disc_material,
     };
     let clearance = raw.output_pins.hole_clearance_mm;
+    let clearance_key = "reducer.output_pins.hole_clearance_mm";
     if !(clearance.is_finite() && clearance >= 0.0) {
         return Err(invalid(
-            "reducer.output_pins.hole_clearance_mm",
+            clearance_key,
             format!(
                 "must be zero or positive, got {}",
                 numeric::input(clearance)
             ),
         ));
+    }
+    if clearance > 0.0 {
+        length(clearance_key, clearance)?;
     }
     Ok(Design {
         teeth,
@@ -206,13 +210,11 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize, used: i64) -> Result<Vec<f64
         return Err(invalid(
             &format!("{key}.steps"),
             format!(
-                "{steps} steps from {}° to {}° are not distinct angles (steps {k} and {} are \
-                 the same double, {}°): the range is too narrow for double precision there; \
-                 give fewer steps or a wider range",
-                numeric::input(from),
-                numeric::input(to),
+                "{steps} steps from {from}° to {to}° are not distinct angles (steps {k} and {} \
+                 are the same double, {} rad): the range is too narrow for double precision \
+                 there; give fewer steps or a wider range",
                 k + 1,
-                numeric::input(units::deg(angles[k]))
+                angles[k]
             ),
         ));
     }

@@ -69,10 +69,30 @@ const TE: &str = "golden:
     tolerance: { abs: 0.01, rel: 1.0e-6 }
 ";
 
-/// The paper's spec, clearance over one mesh period at 1° (fast).
-fn small_spec() -> String {
+/// A scratch directory with `s.yaml` (one scene at 1° over 36°, golden `TE`) blessed.
+fn blessed_te(tag: &str) -> Scratch {
+    let dir = Scratch::new(tag);
+    dir.write("s.yaml", spec_with_golden(36, TE));
+    let run = cycloid(&dir.path, &["bless", "s.yaml"]);
+    assert_eq!(run.code(), 0, "{run:?}");
+    dir
+}
+
+/// `TE` and a golden of the roller forces in `forces`.
+fn te_and_forces(forces: &str) -> String {
+    format!(
+        "{TE}  - scene: rated
+    quantity: roller_force_n
+    file: {forces}
+    tolerance: {{ abs: 0.01, rel: 1.0e-6 }}
+"
+    )
+}
+
+/// The paper's spec (clearance over one mesh period) with `steps` crank angles.
+fn paper_with_steps(steps: usize) -> String {
     PaperSpec::new()
-        .edit("steps: 360", "steps: 36")
+        .edit("steps: 360", &format!("steps: {steps}"))
         .text()
         .to_string()
 }
@@ -84,44 +104,39 @@ fn small_spec() -> String {
 #[test]
 fn check_refuses_an_output_that_is_an_input_or_another_output() {
     let dir = Scratch::new("rel-outputs");
-    dir.write("s.yaml", small_spec());
+    dir.write("s.yaml", paper_with_steps(36));
     dir.write("golden/te.csv", "crank_deg,te_arcsec\n0,1\n");
-    let overwrite = "usage error: --json s.yaml would overwrite the spec";
-    refused(&dir, &["check", "s.yaml", "--json", "s.yaml"], overwrite);
-    refused(
-        &dir,
-        &["check", "s.yaml", "--junit", "./s.yaml"],
-        "--junit ./s.yaml would overwrite the spec",
-    );
-    refused(
-        &dir,
-        &["check", "s.yaml", "--json", "r.xml", "--junit", "r.xml"],
-        "--junit r.xml would overwrite the output of --json",
-    );
-    refused(
-        &dir,
-        &["check", "s.yaml", "--report", ""],
-        "--report \"\": an empty path names no file",
-    );
-    refused(
-        &dir,
-        &[
-            "check",
-            "s.yaml",
-            "--json",
-            "out/index.html",
-            "--report",
-            "out",
-        ],
-        "--report out would overwrite the output of --json",
-    );
-    // A golden the spec reads is an input too.
     dir.write("g.yaml", spec_with_golden(36, TE));
-    refused(
-        &dir,
-        &["check", "g.yaml", "--junit", "golden/te.csv"],
-        "--junit golden/te.csv would overwrite the golden file of golden[0]",
-    );
+    let cases: [(&[&str], &str); 6] = [
+        (
+            &["s.yaml", "--json", "s.yaml"],
+            "usage error: --json s.yaml would overwrite the spec",
+        ),
+        (
+            &["s.yaml", "--junit", "./s.yaml"],
+            "--junit ./s.yaml would overwrite the spec",
+        ),
+        (
+            &["s.yaml", "--json", "r.xml", "--junit", "r.xml"],
+            "--junit r.xml would overwrite the output of --json",
+        ),
+        (
+            &["s.yaml", "--report", ""],
+            "--report \"\": an empty path names no file",
+        ),
+        (
+            &["s.yaml", "--json", "out/index.html", "--report", "out"],
+            "--report out would overwrite the output of --json",
+        ),
+        // A golden the spec reads is an input too.
+        (
+            &["g.yaml", "--junit", "golden/te.csv"],
+            "--junit golden/te.csv would overwrite the golden file of golden[0]",
+        ),
+    ];
+    for (args, message) in cases {
+        refused(&dir, &[&["check"], args].concat(), message);
+    }
     // Distinct paths still work.
     let run = cycloid(
         &dir.path,
@@ -135,17 +150,20 @@ fn check_refuses_an_output_that_is_an_input_or_another_output() {
 #[test]
 fn profile_refuses_an_output_that_is_an_input_or_another_output() {
     let dir = Scratch::new("rel-profile");
-    dir.write("s.yaml", small_spec());
-    refused(
-        &dir,
-        &["profile", "s.yaml", "--csv", "d.txt", "--dxf", "d.txt"],
-        "--dxf d.txt would overwrite the output of --csv",
-    );
-    refused(
-        &dir,
-        &["profile", "s.yaml", "--dxf", "s.yaml"],
-        "--dxf s.yaml would overwrite the spec",
-    );
+    dir.write("s.yaml", paper_with_steps(36));
+    let cases: [(&[&str], &str); 2] = [
+        (
+            &["--csv", "d.txt", "--dxf", "d.txt"],
+            "--dxf d.txt would overwrite the output of --csv",
+        ),
+        (
+            &["--dxf", "s.yaml"],
+            "--dxf s.yaml would overwrite the spec",
+        ),
+    ];
+    for (args, message) in cases {
+        refused(&dir, &[&["profile", "s.yaml"], args].concat(), message);
+    }
 }
 
 // ---------------------------------------------------------------- data loss: bless
@@ -192,13 +210,7 @@ fn bless_writes_only_goldens_under_the_spec_directory_or_its_golden_root() {
 #[test]
 fn bless_replaces_all_goldens_or_none() {
     let dir = Scratch::new("rel-bless-all");
-    let two = format!(
-        "{TE}  - scene: rated
-    quantity: roller_force_n
-    file: golden/forces.csv
-    tolerance: {{ abs: 0.01, rel: 1.0e-6 }}
-"
-    );
+    let two = te_and_forces("golden/forces.csv");
     dir.write("s.yaml", spec_with_golden(36, &two));
     assert_eq!(cycloid(&dir.path, &["bless", "s.yaml"]).code(), 0);
     // The torque doubles: every curve moves. The second golden is now a directory.
@@ -220,13 +232,7 @@ fn bless_replaces_all_goldens_or_none() {
 #[test]
 fn golden_metadata_is_named_after_the_whole_file_and_old_names_migrate() {
     let dir = Scratch::new("rel-meta");
-    let two = format!(
-        "{TE}  - scene: rated
-    quantity: roller_force_n
-    file: golden/te.txt
-    tolerance: {{ abs: 0.01, rel: 1.0e-6 }}
-"
-    );
+    let two = te_and_forces("golden/te.txt");
     dir.write("s.yaml", spec_with_golden(36, &two));
     let run = cycloid(&dir.path, &["bless", "s.yaml"]);
     assert_eq!(run.code(), 0, "{run:?}");
@@ -239,18 +245,10 @@ fn golden_metadata_is_named_after_the_whole_file_and_old_names_migrate() {
     assert!(!dir.exists("golden/te.meta.yaml"));
 
     // A golden blessed under the old name, then reviewed by a person.
-    let review = dir
-        .read("golden/te.csv.meta.yaml")
-        .lines()
-        .map(|l| {
-            if l.starts_with("reviewed:") {
-                "reviewed: checked by hand".to_string()
-            } else {
-                l.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("\n");
+    let mut meta: serde_yaml::Value =
+        serde_yaml::from_str(&dir.read("golden/te.csv.meta.yaml")).unwrap();
+    meta["reviewed"] = "checked by hand".into();
+    let review = serde_yaml::to_string(&meta).unwrap();
     std::fs::remove_file(dir.join("golden/te.csv.meta.yaml")).unwrap();
     dir.write("golden/te.meta.yaml", &review);
     // Still a golden: check passes and bless overwrites it, keeping the review.
@@ -272,9 +270,7 @@ fn golden_metadata_is_named_after_the_whole_file_and_old_names_migrate() {
 /// exit 2 naming the file (and the line where there is one), never a pass.
 #[test]
 fn a_broken_golden_is_exit_2_never_a_pass() {
-    let dir = Scratch::new("rel-broken");
-    dir.write("s.yaml", spec_with_golden(36, TE));
-    assert_eq!(cycloid(&dir.path, &["bless", "s.yaml"]).code(), 0);
+    let dir = blessed_te("rel-broken");
     let good = dir.read("golden/te.csv");
     let lines: Vec<&str> = good.lines().collect();
     assert_eq!(lines.len(), 37, "header and 36 rows");
@@ -392,11 +388,7 @@ fn the_size_cap_holds_for_all_scenes_together() {
 #[test]
 fn json_output_is_refused_with_its_memory_estimate_when_too_large() {
     let dir = Scratch::new("rel-json");
-    let spec = PaperSpec::new()
-        .edit("steps: 360", "steps: 700000")
-        .text()
-        .to_string();
-    dir.write("s.yaml", spec);
+    dir.write("s.yaml", paper_with_steps(700000));
     let run = refused(
         &dir,
         &["check", "s.yaml", "--json", "r.json"],
@@ -490,11 +482,7 @@ fn inputs_are_regular_files_of_bounded_size() {
 fn a_closed_standard_output_ends_quietly_and_writes_no_file() {
     let dir = Scratch::new("rel-pipe");
     // 3600 angles: the run computes for a while before it prints anything.
-    let spec = PaperSpec::new()
-        .edit("steps: 360", "steps: 3600")
-        .text()
-        .to_string();
-    dir.write("s.yaml", spec);
+    dir.write("s.yaml", paper_with_steps(3600));
     dir.write("r.xml", "the previous JUnit report\n");
     let before = files(&dir.path);
     let mut child = Command::new(env!("CARGO_BIN_EXE_cycloid"))
@@ -518,9 +506,7 @@ fn a_closed_standard_output_ends_quietly_and_writes_no_file() {
 /// A spec or a golden saved with a UTF-8 byte-order mark (Windows editors) reads as without.
 #[test]
 fn a_byte_order_mark_is_accepted_in_specs_and_goldens() {
-    let dir = Scratch::new("rel-bom");
-    dir.write("s.yaml", spec_with_golden(36, TE));
-    assert_eq!(cycloid(&dir.path, &["bless", "s.yaml"]).code(), 0);
+    let dir = blessed_te("rel-bom");
     let spec = dir.read("s.yaml");
     let golden = dir.read("golden/te.csv");
     dir.write("s.yaml", format!("\u{feff}{spec}"));

@@ -42,8 +42,8 @@ fn refused(dir: &Scratch, args: &[&str], message: &str) -> Run {
     let before = files(&dir.path);
     let run = cycloid(&dir.path, args);
     assert_eq!(run.code(), 2, "{args:?}: {run:?}");
+    assert_eq!(files(&dir.path), before, "{args:?} changed files: {run:?}");
     assert!(run.stderr.contains(message), "{args:?}: {}", run.stderr);
-    assert_eq!(files(&dir.path), before, "{args:?} changed files");
     run
 }
 
@@ -588,6 +588,12 @@ fn absurd_values_give_short_numbers_and_name_their_key() {
         &["profile", "s.yaml", "--tolerance-um", "1e-300"],
     );
     assert!(run.stderr.contains("got 1e-300"), "{}", run.stderr);
+    dir.write("s.yaml", paper_with_steps(36));
+    let run = cycloid(
+        &dir.path,
+        &["accuracy", "s.yaml", "--te-tol-arcsec", "-1e300"],
+    );
+    assert!(run.stderr.contains("got -1e300"), "{}", run.stderr);
     // A torque no disc can carry: the solver's failure points at the torque.
     let heavy = PaperSpec::new()
         .scenes(

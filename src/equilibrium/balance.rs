@@ -2,7 +2,7 @@
 //! β) and the output pins (output lag βo): the moment, its slope and scale, and the mix of two
 //! neighbouring states that a balance stepping over its target by round-off settles on.
 
-use super::solve::Weights;
+use super::solve::{piecewise_linear_root_near, settle_straddle, SolveFailure, Weights};
 
 /// One contact of the disc in a moment balance about the disc centre, as a function of its lag
 /// x (β for a roller, βo for a pin).
@@ -67,6 +67,59 @@ pub fn blend<C: Contact>(states: &mut [C], other: &[C], w: Weights) {
     for (s, o) in states.iter_mut().zip(other) {
         s.mix(o, w);
     }
+}
+
+/// The balance Σ F·a = `torque` of linear contacts in closed form (first-order geometry,
+/// linear law), shared by the rollers (β) and the pins (βo): the exact root of the
+/// piecewise-linear balance of `terms` (gap, arm) with stiffness `k`, the states evaluated
+/// there by `evaluate(lag, states)`, and, when the gaps' round-off at that double leaves the balance off by
+/// more than `rel_tol`, the states of two neighbouring lags mixed so that it holds
+/// (`settle_straddle`). Returns the lag and the moment scale Σ |F·a| of the states.
+pub fn closed_form<C: Contact + Clone>(
+    (k, terms, torque, rel_tol): (f64, &[(f64, f64)], f64, f64),
+    guess: f64,
+    events: &mut Vec<(f64, f64, f64)>,
+    states: &mut Vec<C>,
+    mut evaluate: impl FnMut(f64, &mut Vec<C>),
+) -> Result<(f64, f64), SolveFailure> {
+    let lag = piecewise_linear_root_near(k, terms, torque, guess, events).ok_or(
+        SolveFailure::NoBracket {
+            lo: f64::NEG_INFINITY,
+            hi: f64::INFINITY,
+            nearest: None,
+        },
+    )?;
+    evaluate(lag, states);
+    let (m, _, scale) = moment(states);
+    if torque == 0.0 || (m - torque).abs() <= rel_tol * torque.abs().max(scale) {
+        return Ok((lag, scale));
+    }
+    let mut other = states.clone();
+    let (at, weight) = settle_straddle(lag, lag, m, torque, |y| {
+        evaluate(y, &mut other);
+        Ok(moment(&other).0)
+    })?;
+    blend(states, &other, weight);
+    Ok((if weight.y > 0.5 { at } else { lag }, scale))
+}
+
+/// Settle a root the iterative solve straddles (`Root::straddle`): `states` hold the contacts
+/// at `lag`; `evaluate(y, states)` evaluates them at y. Mixes them with those of the
+/// neighbouring lag so that Σ F·a = `torque`; returns the lag nearer the mix.
+pub fn settle<C: Contact + Clone>(
+    lag: f64,
+    towards: f64,
+    torque: f64,
+    states: &mut [C],
+    mut evaluate: impl FnMut(f64, &mut Vec<C>) -> Result<(), SolveFailure>,
+) -> Result<f64, SolveFailure> {
+    let mut other = states.to_vec();
+    let (at, weight) = settle_straddle(lag, towards, moment(states).0, torque, |y| {
+        evaluate(y, &mut other)?;
+        Ok(moment(&other).0)
+    })?;
+    blend(states, &other, weight);
+    Ok(if weight.y > 0.5 { at } else { lag })
 }
 
 /// w.x·a + w.y·b, with both weights given (not one as 1 − the other): at 1e-100 N·m a

@@ -7,12 +7,10 @@
 //! are solved together by Newton with an analytic Jacobian (nalgebra), with a bracketed
 //! fixed-point fallback.
 
-use super::balance::{blend, moment};
+use super::balance::{closed_form, moment, settle};
 use super::pins::{PinState, Pins};
 use super::rollers::{AngleTrig, Reach, RollerState, Rollers};
-use super::solve::{
-    monotone_root, piecewise_linear_root_near, settle_straddle, Balance, Settings, SolveFailure,
-};
+use super::solve::{monotone_root, Balance, Settings, SolveFailure};
 use crate::geometry::clearance::Pose;
 use crate::geometry::{cross, Vec2};
 use crate::model::{ContactLaw, Design, Effect, GeometryMode, Modification, Plan, Scene};
@@ -278,48 +276,31 @@ fn solve_rollers(
         lag_rad: lag,
         centre_offset_mm: offset,
     };
-    let closed_form = r.geometry == GeometryMode::FirstOrder
+    let linear = r.geometry == GeometryMode::FirstOrder
         && r.law == ContactLaw::PaperLinear
         && offset == Vec2::zeros();
-    if closed_form {
+    if linear {
         r.first_order_terms(e_phi, &mut work.terms);
         let (k, t) = (r.linear_stiffness(), model.torque_nmm);
-        let lag = piecewise_linear_root_near(k, &work.terms, t, guess, &mut work.events).ok_or(
-            SolveFailure::NoBracket {
-                lo: f64::NEG_INFINITY,
-                hi: f64::INFINITY,
-                nearest: None,
-            },
-        )?;
-        let states = &mut work.sol.rollers;
         let terms = &work.terms;
-        let evaluate = |lag: f64, states: &mut Vec<RollerState>| {
-            r.first_order_states(&pose(lag), e_phi, terms, states);
-            moment(states)
-        };
-        let (m, _, scale) = evaluate(lag, states);
-        if t == 0.0 {
-            // The closed form's answer is the touching pose (T → 0⁺, or a preload's balance).
-            // The touching contact's gap g − l·x is round-off (±1e-17 mm), and so is its force
-            // (~5e-12 N, whose unbalanced moment made the residual 1): zero, as in the
-            // iterative solve.
-            if scale <= r.moment_resolution(states, 0.0) {
-                for s in states.iter_mut() {
-                    (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
-                }
+        let states = &mut work.sol.rollers;
+        let (lag, scale) = closed_form(
+            (k, terms, t, model.settings.rel_tol),
+            guess,
+            &mut work.events,
+            states,
+            |lag, states| r.first_order_states(&pose(lag), e_phi, terms, states),
+        )?;
+        // The closed form's answer at zero torque is the touching pose (T → 0⁺, or a
+        // preload's balance). The touching contact's gap g − l·x is round-off (±1e-17 mm), and
+        // so is its force (~5e-12 N, whose unbalanced moment made the residual 1): zero, as in
+        // the iterative solve.
+        if t == 0.0 && scale <= r.moment_resolution(states, 0.0) {
+            for s in states.iter_mut() {
+                (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
             }
-            return Ok(lag);
         }
-        if (m - t).abs() <= model.settings.rel_tol * t.abs().max(scale) {
-            return Ok(lag);
-        }
-        // The root is exact, but the gaps at the double nearest to it, g − l·x, carry the
-        // round-off of l·x: at a tiny torque (1e-6 N·m) that is more than the tolerance.
-        // Mix the states of two neighbouring lags as the iterative solve does.
-        let mut other = states.clone();
-        let (at, weight) = settle_straddle(lag, lag, m, t, |y| Ok(evaluate(y, &mut other).0))?;
-        blend(states, &other, weight);
-        return Ok(if weight.y > 0.5 { at } else { lag });
+        return Ok(lag);
     }
     if work.reaches.len() != r.count() {
         work.reaches = vec![
@@ -368,16 +349,7 @@ fn solve_rollers(
                 .map_err(|f| SolveFailure::Evaluation(f.to_string()))
         };
         exact(lag, states)?;
-        let mut other = states.clone();
-        let (at, weight) =
-            settle_straddle(lag, towards, moment(states).0, model.torque_nmm, |y| {
-                exact(y, &mut other)?;
-                Ok(moment(&other).0)
-            })?;
-        blend(states, &other, weight);
-        if weight.y > 0.5 {
-            lag = at;
-        }
+        lag = settle(lag, towards, model.torque_nmm, states, exact)?;
     } else if exact_final {
         // Every roller exact at the answer (skipped ones carried only a gap bound).
         r.evaluate_at(&pose(lag), &trig, states, &mut [])
@@ -421,43 +393,25 @@ fn solve_pins(
     work: &mut Work,
 ) -> Result<f64, SolveFailure> {
     let first_order = model.first_order_pins();
-    if first_order {
-        if let (Some(k), true) = (p.linear_stiffness(), offset == Vec2::zeros()) {
-            let centre = e_phi * model.eccentricity_mm;
-            p.first_order_at(e_phi, psi.sin_cos(), centre, 0.0, &mut work.sol.pins);
-            work.terms.clear();
-            work.terms
-                .extend(work.sol.pins.iter().map(|s| (s.gap_mm, s.arm_mm)));
-            let lag = piecewise_linear_root_near(
-                k,
-                &work.terms,
-                model.torque_nmm,
-                guess,
-                &mut work.events,
-            )
-            .ok_or(SolveFailure::NoBracket {
-                lo: f64::NEG_INFINITY,
-                hi: f64::INFINITY,
-                nearest: None,
-            })?;
-            let states = &mut work.sol.pins;
-            p.first_order_lagged(lag, states);
-            let (m, _, scale) = moment(states);
-            let t = model.torque_nmm;
-            if t == 0.0 || (m - t).abs() <= model.settings.rel_tol * t.abs().max(scale) {
-                return Ok(lag);
-            }
-            // Round-off of the gaps at the root's double, as for the rollers. The gaps are
-            // linear in the lag: those at y are the ones at the root moved by y − lag.
-            let mut other = states.clone();
-            let (at, weight) = settle_straddle(lag, lag, m, t, |y| {
-                other.copy_from_slice(states);
-                p.first_order_lagged(y - lag, &mut other);
-                Ok(moment(&other).0)
-            })?;
-            blend(states, &other, weight);
-            return Ok(if weight.y > 0.5 { at } else { lag });
-        }
+    if let (true, Some(k), true) = (first_order, p.linear_stiffness(), offset == Vec2::zeros()) {
+        let centre = e_phi * model.eccentricity_mm;
+        p.first_order_at(e_phi, psi.sin_cos(), centre, 0.0, &mut work.sol.pins);
+        work.terms.clear();
+        work.terms
+            .extend(work.sol.pins.iter().map(|s| (s.gap_mm, s.arm_mm)));
+        // The gaps are linear in the lag: those at any lag are the ones at 0 moved by it.
+        let at_zero = work.sol.pins.clone();
+        let (lag, _) = closed_form(
+            (k, &work.terms, model.torque_nmm, model.settings.rel_tol),
+            guess,
+            &mut work.events,
+            &mut work.sol.pins,
+            |lag, states| {
+                states.clone_from(&at_zero);
+                p.first_order_lagged(lag, states);
+            },
+        )?;
+        return Ok(lag);
     }
     let states = &mut work.sol.pins;
     // The angle's trigonometry, once for every evaluation of the pin balance.
@@ -488,16 +442,10 @@ fn solve_pins(
     let mut lag = root.x;
     if let Some(towards) = root.straddle {
         // As for the rollers: forces mixed between two neighbouring output lags.
-        let mut other = states.clone();
-        let (at, weight) =
-            settle_straddle(lag, towards, moment(states).0, model.torque_nmm, |y| {
-                evaluate(y, &mut other);
-                Ok(moment(&other).0)
-            })?;
-        blend(states, &other, weight);
-        if weight.y > 0.5 {
-            lag = at;
-        }
+        lag = settle(lag, towards, model.torque_nmm, states, |y, other| {
+            evaluate(y, other);
+            Ok(())
+        })?;
     }
     if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
         lag = touching(

@@ -190,6 +190,13 @@ fn model(spec: &Spec, rollers: bool, pins: bool, bearing: bool) -> Model {
 }
 
 /// Solve a sequence of crank angles, warm-starting each from the previous one (as a sweep does).
+/// The plan of a scene with the backlash computed (as a golden or `--json` would ask).
+fn backlash_plan(scene: &cycloid::model::Scene) -> Plan {
+    let mut plan = Plan::for_scene(scene);
+    plan.ask(&cycloid::model::quantity::BACKLASH, "test");
+    plan
+}
+
 fn solve_all(model: &Model, angles: &[f64]) -> Vec<AngleSolution> {
     let mut previous = AngleSolution::default();
     angles
@@ -1214,7 +1221,7 @@ fn zero_torque_on_a_clearance_profile_is_force_free_and_lags_by_the_backlash() {
     scene.effects = "clearance, roller_contact, output_pins, bearing";
     scene.steps = 24;
     let spec = r.spec(&scene);
-    let result = run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0])).unwrap();
+    let result = run(&spec, &spec.scenes[0], &backlash_plan(&spec.scenes[0])).unwrap();
     let loaded = &result.loaded;
     let rollers = loaded.rollers.as_ref().unwrap();
     assert!(rollers.force_n.iter().flatten().all(|&f| f == 0.0));
@@ -1224,7 +1231,14 @@ fn zero_torque_on_a_clearance_profile_is_force_free_and_lags_by_the_backlash() {
     assert!(pins.force_n.iter().flatten().all(|&f| f == 0.0));
     let bearing = loaded.bearing.as_ref().unwrap();
     assert!(bearing.force_n.iter().all(|&f| f == 0.0));
-    let backlash = &result.clearance.as_ref().unwrap().backlash_rad;
+    let backlash = &result
+        .clearance
+        .as_ref()
+        .unwrap()
+        .backlash
+        .as_ref()
+        .unwrap()
+        .forward_rad;
     for (k, (&lag, &b)) in rollers.lag_rad.iter().zip(backlash).enumerate() {
         assert!(b > 0.0);
         assert!(
@@ -1569,14 +1583,21 @@ fn paper_optimum_at_10_nm_regression() {
     scene.to_deg = 108.0;
     scene.steps = 216;
     let spec = r.spec(&scene);
-    let result = run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0])).unwrap();
+    let result = run(&spec, &spec.scenes[0], &backlash_plan(&spec.scenes[0])).unwrap();
     let angles = &result.crank_rad;
     let loaded = &result.loaded;
     let rollers = loaded.rollers.as_ref().unwrap();
     let pins = loaded.pins.as_ref().unwrap();
     let bearing = loaded.bearing.as_ref().unwrap();
     let tr = loaded.transmission.as_ref().unwrap();
-    let backlash = &result.clearance.as_ref().unwrap().backlash_rad;
+    let backlash = &result
+        .clearance
+        .as_ref()
+        .unwrap()
+        .backlash
+        .as_ref()
+        .unwrap()
+        .forward_rad;
 
     // Equilibrium at every angle.
     assert!(bearing.residual.iter().all(|&x| x <= 1e-9));

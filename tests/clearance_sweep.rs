@@ -176,17 +176,7 @@ fn nearest_on_locus(p: &Profile, q: Vec2, samples: usize) -> f64 {
         .map(|k| k as f64 * h)
         .min_by(|a, b| dist(*a).total_cmp(&dist(*b)))
         .unwrap();
-    let (mut a, mut b) = (best - h, best + h);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..100 {
-        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-        if dist(x1) < dist(x2) {
-            b = x2;
-        } else {
-            a = x1;
-        }
-    }
-    dist(0.5 * (a + b))
+    dist(golden_section_min(dist, best - h, best + h))
 }
 
 /// The paper's design with each modification of specs/paper*.yaml (its optimum, the start

@@ -259,17 +259,7 @@ fn brute_force_signed_distance(profile: &Profile, p: Vec2, samples: usize) -> (f
         .unwrap();
     let h = TAU / samples as f64;
     let dist = |t: f64| (profile.point(t) - p).norm();
-    let (mut a, mut b) = (ts[best] - h, ts[best] + h);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..100 {
-        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-        if dist(x1) < dist(x2) {
-            b = x2;
-        } else {
-            a = x1;
-        }
-    }
-    let t = 0.5 * (a + b);
+    let t = golden_section_min(dist, ts[best] - h, ts[best] + h);
     let mut inside = false;
     for k in 0..samples {
         let (u, v) = (pts[k], pts[(k + 1) % samples]);

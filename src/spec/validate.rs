@@ -41,6 +41,22 @@ const MAX_LENGTH_MM: f64 = 1e5;
 /// below 1e-9 rad.
 const MAX_CRANK_DEG: f64 = 1e7;
 
+/// An angle in degrees within ±`MAX_CRANK_DEG` (a crank angle, a profile rotation).
+fn angle_deg(key: &str, value: f64) -> Result<f64> {
+    let value = finite(key, value)?;
+    if value.abs() > MAX_CRANK_DEG {
+        return Err(invalid(
+            key,
+            format!(
+                "{}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where the \
+                 angle's rounding would exceed 1e-9 rad",
+                crate::numeric::input(value)
+            ),
+        ));
+    }
+    Ok(value)
+}
+
 /// A positive length no larger than `MAX_LENGTH_MM`.
 fn length(key: &str, value: f64) -> Result<f64> {
     let value = positive(key, value)?;
@@ -144,27 +160,13 @@ fn modification(raw: &RawModification) -> Result<Modification> {
     Ok(Modification {
         shift_mm: finite("modification.shift_mm", raw.shift_mm)?,
         equidistant_mm: finite("modification.equidistant_mm", raw.equidistant_mm)?,
-        rotation_rad: units::rad(finite("modification.rotation_deg", raw.rotation_deg)?),
+        rotation_rad: units::rad(angle_deg("modification.rotation_deg", raw.rotation_deg)?),
     })
 }
 
 fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
-    let angle = |name: &str, value: f64| -> Result<f64> {
-        let k = format!("{key}.{name}");
-        let value = finite(&k, value)?;
-        if value.abs() > MAX_CRANK_DEG {
-            return Err(invalid(
-                &k,
-                format!(
-                    "{value}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where \
-                     the crank angle's rounding would exceed 1e-9 rad"
-                ),
-            ));
-        }
-        Ok(value)
-    };
-    let from = angle("from_deg", raw.from_deg)?;
-    let to = angle("to_deg", raw.to_deg)?;
+    let from = angle_deg(&format!("{key}.from_deg"), raw.from_deg)?;
+    let to = angle_deg(&format!("{key}.to_deg"), raw.to_deg)?;
     let steps = raw.steps;
     if steps < 1 {
         return Err(invalid(
@@ -655,7 +657,7 @@ fn study(
             Modification {
                 shift_mm: finite(&format!("{rk}.shift_mm"), r.shift_mm)?,
                 equidistant_mm: finite(&format!("{rk}.equidistant_mm"), r.equidistant_mm)?,
-                rotation_rad: units::rad(finite(&format!("{rk}.rotation_deg"), r.rotation_deg)?),
+                rotation_rad: units::rad(angle_deg(&format!("{rk}.rotation_deg"), r.rotation_deg)?),
             },
         ));
     }

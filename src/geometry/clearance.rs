@@ -427,8 +427,8 @@ struct Tracker<'a> {
     /// locus, and at least r' − d from a point d inside it, distances the offset attains.
     certified_mm: f64,
     /// Where a roller's foot is sought at the start of a chunk, as an offset s = t − t_ref in
-    /// its frame: the roller's own locus parameter turned back by the profile's rotation (the
-    /// query is turned by Δδ, so the foot of a turned profile sits at s ≈ −Δδ).
+    /// its frame: `Mesh::foot_guess` at β = 0, the roller's own locus parameter t_ref turned
+    /// back by the profile's rotation (reduced to within half a tooth pitch).
     first_s: f64,
 }
 

@@ -260,11 +260,12 @@ fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
 /// closest known one.
 fn limits(raw: &RawLimits) -> Result<Limits> {
     const OPTIMUM: &str = "optimum_max_objective";
+    const RESOLVED: &str = "accuracy_resolved";
     let known = || {
         quantity::LIMITS
             .iter()
             .map(|l| l.key)
-            .chain(std::iter::once(OPTIMUM))
+            .chain([OPTIMUM, RESOLVED])
     };
     if let Some(unknown) = raw.keys().find(|k| known().all(|key| key != k.as_str())) {
         let message = match did_you_mean(unknown, known()) {
@@ -276,27 +277,41 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
         };
         return Err(Error::new(ErrorKind::Syntax, message).at_key(format!("limits.{unknown}")));
     }
+    let bound = |key: &str| -> Result<Option<f64>> {
+        let at = format!("limits.{key}");
+        match raw.get(key) {
+            None => Ok(None),
+            Some(RawLimit::Bound(x)) => finite(&at, *x).map(Some),
+            Some(RawLimit::Flag(b)) => Err(invalid(&at, format!("must be a number, got {b}"))),
+        }
+    };
     let mut entries = Vec::new();
     for def in quantity::LIMITS {
-        let Some(&value) = raw.get(def.key) else {
+        let Some(value) = bound(def.key)? else {
             continue;
         };
-        let key = format!("limits.{}", def.key);
-        let value = finite(&key, value)?;
         if def.whole && (value.fract() != 0.0 || value < 0.0) {
             return Err(invalid(
-                &key,
+                &format!("limits.{}", def.key),
                 format!("must be a whole number of at least 0, got {value}"),
             ));
         }
         entries.push(Limit { def, value });
     }
+    let accuracy_resolved = match raw.get(RESOLVED) {
+        None => false,
+        Some(RawLimit::Flag(b)) => *b,
+        Some(RawLimit::Bound(x)) => {
+            return Err(invalid(
+                &format!("limits.{RESOLVED}"),
+                format!("must be true or false, got {x}"),
+            ))
+        }
+    };
     Ok(Limits {
         entries,
-        optimum_max_objective: raw
-            .get(OPTIMUM)
-            .map(|&x| finite(&format!("limits.{OPTIMUM}"), x))
-            .transpose()?,
+        optimum_max_objective: bound(OPTIMUM)?,
+        accuracy_resolved,
     })
 }
 
@@ -364,6 +379,13 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         .accuracy
         .map(|a| accuracy_section(a, &scenes, &design))
         .transpose()?;
+    if limits.accuracy_resolved && accuracy.is_none() {
+        return Err(invalid(
+            "limits.accuracy_resolved",
+            "needs an `accuracy:` section: its scene and tolerances say what resolved means"
+                .to_string(),
+        ));
+    }
     Ok(Spec {
         name: raw.name,
         path: path.to_string(),

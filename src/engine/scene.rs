@@ -1,41 +1,69 @@
 //! Which effects a scene needs, why, and the plan that runs exactly those.
 //!
 //! The plan follows the scene: an effect is computed when the scene asks for it or when an
-//! effect it asked for cannot be computed without it. Limits never add work: a limit is checked
-//! in the scenes that compute its quantity (`check`), and a limit that no scene can evaluate is
-//! an error.
+//! effect it asked for cannot be computed without it. Limits never add effects: a limit is
+//! checked in the scenes that compute its quantity (`check`), and a limit that no scene can
+//! evaluate is an error. A detail of an effect (the closing lags of `clearance`) is computed
+//! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
 use crate::equilibrium::curves;
-use crate::equilibrium::solve::Settings;
+use crate::equilibrium::solve::{Settings, SolveFailure};
 use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
+use crate::model::quantity::QUANTITIES;
 use crate::model::results::{LoadedSweep, SceneResult};
-use crate::model::{Design, Effect, Modification, Plan, Scene};
+use crate::model::{Design, Detail, Effect, Modification, Plan, Scene};
 use crate::spec::Spec;
 use crate::units;
+
+/// The output files of a run that read every quantity of every scene.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Writes {
+    /// The results JSON (`--json`).
+    pub json: bool,
+    /// The design review (`--report`).
+    pub report: bool,
+}
+
+/// The plan of `scene` in a run of `spec` that writes `writes`: the scene's effects, and the
+/// details of them that the spec's limits and the scene's goldens read, or every detail when
+/// an output file reads every quantity.
+pub fn plan(spec: &Spec, scene: &Scene, writes: Writes) -> Plan {
+    let mut plan = Plan::for_scene(scene);
+    for l in &spec.limits.entries {
+        plan.ask(l.def.quantity, &format!("limit {}", l.def.key));
+    }
+    for g in spec.golden.iter().filter(|g| g.scene == scene.name) {
+        plan.ask(g.quantity, &format!("golden {}", g.quantity.key));
+    }
+    for (file, writes) in [("--json", writes.json), ("--report", writes.report)] {
+        if writes {
+            for q in QUANTITIES {
+                plan.ask(q, file);
+            }
+        }
+    }
+    plan
+}
 
 /// Run one scene according to its plan.
 pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
     run_with(spec, scene, plan, &Settings::default())
 }
 
-/// A failure of a scene of the spec, with the spec key it points at: the scene's torque when
-/// the rollers cannot carry it, else the scene itself, so that an absurd value is found in
-/// the spec.
-fn at_scene(spec: &Spec, scene: &Scene, e: Error) -> Error {
+/// A failure of a scene of the spec, with the spec key it points at: the scene's value that
+/// `run_design` named (the torque the rollers cannot carry, the bearing too soft for it), else
+/// the scene itself, so that an absurd value is found in the spec.
+fn at_scene(spec: &Spec, scene: &Scene, mut e: Error) -> Error {
     let Some(i) = spec.scenes.iter().position(|s| s.name == scene.name) else {
         return e;
     };
-    if e.key_path.is_some() {
-        return e;
-    }
-    let key = if e.message.contains("cannot balance an output torque") {
-        format!("scenes[{i}].output_torque_nm")
-    } else {
-        format!("scenes[{i}]")
-    };
-    e.at_key(key)
+    e.key_path = Some(match e.key_path.take() {
+        Some(k) => format!("scenes[{i}].{k}"),
+        None => format!("scenes[{i}]"),
+    });
+    e
 }
 
 /// Run one scene according to its plan, with the loaded solves converged to `settings`
@@ -61,8 +89,13 @@ pub fn run_design(
 ) -> Result<SceneResult> {
     let mesh = Mesh::new(design, m);
     let clearance = if plan.has(Effect::Clearance) {
+        let scope = if plan.has_detail(Detail::Backlash) {
+            clearance::Scope::Backlash
+        } else {
+            clearance::Scope::Gaps
+        };
         Some(
-            clearance::sweep(&mesh, &scene.crank_rad)
+            clearance::sweep(&mesh, &scene.crank_rad, scope)
                 .map_err(|f| Error::computation(format!("scene `{}`: {f}", scene.name)))?,
         )
     } else {
@@ -75,12 +108,18 @@ pub fn run_design(
         let pins = plan.has(Effect::OutputPins);
         let periodic = scene.spans_whole(design.loaded_period_rad(pins));
         curves::sweep(&model, &scene.crank_rad, periodic).map_err(|f| {
-            Error::computation(format!(
+            let e = Error::computation(format!(
                 "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {}",
                 scene.name,
                 units::deg(f.crank_rad),
                 f.failure
-            ))
+            ));
+            // The scene's value that a failure points at (made a spec key by `at_scene`).
+            match f.failure {
+                SolveFailure::BeyondCapacity { .. } => e.at_key("output_torque_nm"),
+                SolveFailure::OutOfMesh { .. } => e.at_key("bearing_stiffness_n_per_mm"),
+                _ => e,
+            }
         })?
     } else {
         LoadedSweep::default()
@@ -93,16 +132,23 @@ pub fn run_design(
     })
 }
 
-/// How many numbers the results of a spec's scenes hold: per crank angle, the angle, the
-/// residual of a loaded solve and each curve of the registry that the scene's plan computes (one per roller or
-/// pin for those shapes). What the results JSON writes, and what its size grows with.
+/// How many numbers the results JSON of a spec holds: per crank angle of each scene, the
+/// angle, the residual of a loaded solve and each curve of the registry that the scene's plan
+/// for `--json` computes (one per roller or pin for those shapes).
 pub fn result_values(spec: &Spec) -> u64 {
-    use crate::model::quantity::{Shape, QUANTITIES};
+    use crate::model::quantity::Shape;
     let d = &spec.design;
     spec.scenes
         .iter()
         .map(|scene| {
-            let plan = Plan::for_scene(scene);
+            let plan = plan(
+                spec,
+                scene,
+                Writes {
+                    json: true,
+                    report: false,
+                },
+            );
             let loaded = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
                 .iter()
                 .any(|&e| plan.has(e));
@@ -123,11 +169,11 @@ pub fn result_values(spec: &Spec) -> u64 {
         .sum()
 }
 
-/// Human-readable plan of a spec: what runs, in which scene, and why.
-pub fn explain(spec: &Spec) -> String {
+/// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.
+pub fn explain(spec: &Spec, writes: Writes) -> String {
     let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
     for scene in &spec.scenes {
-        let plan = Plan::for_scene(scene);
+        let plan = plan(spec, scene, writes);
         let first = units::deg(scene.crank_rad.first().copied().unwrap_or(0.0));
         let step = match scene.crank_rad.as_slice() {
             [a, b, ..] => units::deg(b - a),
@@ -159,6 +205,23 @@ pub fn explain(spec: &Spec) -> String {
         }
         for p in &plan.effects {
             out += &format!("  compute {:<15} {}\n", p.effect.name(), p.reason);
+        }
+        for p in &plan.details {
+            out += &format!(
+                "  compute {:<15} part of {}, read by {}\n",
+                p.detail.name(),
+                p.detail.effect().name(),
+                p.read_by.join(", ")
+            );
+        }
+        for d in Detail::ALL {
+            if plan.has(d.effect()) && !plan.has_detail(d) {
+                out += &format!(
+                    "  skip    {} (part of {}; no limit, golden or output file reads it)\n",
+                    d.name(),
+                    d.effect().name()
+                );
+            }
         }
         let skipped: Vec<&str> = Effect::ALL
             .iter()

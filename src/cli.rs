@@ -331,7 +331,14 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
 /// The accuracy ladder of the design review and its wall-clock time, s.
 fn run_ladder(spec: &spec::Spec, a: &spec::Accuracy) -> Result<(accuracy::Ladder, f64)> {
     let start = std::time::Instant::now();
-    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |_| {})?;
+    // Steps rungs 12 … finest, and at most four settings rungs.
+    let rungs = (a.options.finest / accuracy::COARSEST).trailing_zeros() as u64 + 1 + 4;
+    let bar = report::terminal::Bar::new("accuracy ladder", "rungs", rungs, 0);
+    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |event| {
+        if let accuracy::Event::Rung(..) = event {
+            crate::progress::Progress::advance(&bar, 1);
+        }
+    })?;
     Ok((ladder, start.elapsed().as_secs_f64()))
 }
 
@@ -381,10 +388,27 @@ fn run_scenes(
     writes: scene::Writes,
 ) -> Result<Vec<crate::model::results::SceneResult>> {
     use rayon::prelude::*;
+    // A bar for large scenes only: the sweeps of every scene, in crank angles.
+    let total: usize = spec
+        .scenes
+        .iter()
+        .map(|s| s.crank_rad.len() * scene::sweeps(&scene::plan(spec, s, writes)))
+        .sum();
+    let bar = report::terminal::Bar::new(
+        "solving the scenes",
+        "crank angles",
+        total as u64,
+        report::terminal::WORTH_SHOWING * 10,
+    );
     let results: Vec<Result<crate::model::results::SceneResult>> = spec
         .scenes
         .par_iter()
-        .map(|s| scene::run(spec, s, &scene::plan(spec, s, writes)))
+        .map(|s| {
+            let plan = scene::plan(spec, s, writes);
+            let settings = crate::equilibrium::solve::Settings::default();
+            let d = (&spec.design, &spec.modification);
+            scene::run_observed(d.0, d.1, (s, &plan), &settings, &bar)
+        })
         .collect();
     results.into_iter().collect()
 }

@@ -13,7 +13,9 @@ use std::io::Write;
 #[command(
     name = "cycloid",
     version,
-    about = "Design checks for cycloidal speed reducers"
+    about = "Design checks for cycloidal speed reducers",
+    after_help = "Exit codes: 0 every check passed, 1 a check failed, 2 invalid input or a \
+                  computation that could not be done (the message says where and why)."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -49,6 +51,7 @@ pub enum Command {
     },
     /// Optimise the tooth-profile modification as the spec's `optimise` section says.
     Optimise {
+        /// The YAML spec; its `optimise` section (one study or a list) says what to optimise.
         spec: String,
         /// Run only this study (default: all).
         #[arg(long)]
@@ -66,6 +69,7 @@ pub enum Command {
     /// Run a scene on a ladder of settings (crank steps per mesh period, geometry, contact law,
     /// solver tolerance) and print each rung's error against the finest rung and its time.
     Accuracy {
+        /// The YAML spec.
         spec: String,
         /// The scene to run [default: the spec's `accuracy.scene`, else the first scene with
         /// roller contact, else the first scene].
@@ -94,12 +98,18 @@ pub enum Command {
     },
     /// Rewrite the golden files of a spec from the current results, on purpose, and print
     /// what moved. CI never blesses.
-    Bless { spec: String },
+    Bless {
+        /// The YAML spec whose `golden` files are rewritten.
+        spec: String,
+    },
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
+        /// The YAML spec whose design and modification give the profile.
         spec: String,
+        /// Write the profile points as CSV (x_mm, y_mm) to this path (optional).
         #[arg(long)]
         csv: Option<String>,
+        /// Write the profile as a closed DXF polyline to this path (optional).
         #[arg(long)]
         dxf: Option<String>,
         /// Largest chordal error of the exported polyline, µm (at least 0.001).

@@ -15,7 +15,9 @@ use std::path::{Path, PathBuf};
 #[command(
     name = "cycloid",
     version,
-    about = "Design checks for cycloidal speed reducers"
+    about = "Design checks for cycloidal speed reducers",
+    after_help = "Exit codes: 0 every check passed, 1 a check failed, 2 invalid input or a \
+                  computation that could not be done (the message says where and why)."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -51,6 +53,7 @@ pub enum Command {
     },
     /// Optimise the tooth-profile modification as the spec's `optimise` section says.
     Optimise {
+        /// The YAML spec; its `optimise` section (one study or a list) says what to optimise.
         spec: String,
         /// Run only this study (default: all).
         #[arg(long)]
@@ -68,6 +71,7 @@ pub enum Command {
     /// Run a scene on a ladder of settings (crank steps per mesh period, geometry, contact law,
     /// solver tolerance) and print each rung's error against the finest rung and its time.
     Accuracy {
+        /// The YAML spec.
         spec: String,
         /// The scene to run [default: the spec's `accuracy.scene`, else the first scene with
         /// roller contact, else the first scene].
@@ -96,12 +100,18 @@ pub enum Command {
     },
     /// Rewrite the golden files of a spec from the current results, on purpose, and print
     /// what moved. CI never blesses.
-    Bless { spec: String },
+    Bless {
+        /// The YAML spec whose `golden` files are rewritten.
+        spec: String,
+    },
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
+        /// The YAML spec whose design and modification give the profile.
         spec: String,
+        /// Write the profile points as CSV (x_mm, y_mm) to this path (optional).
         #[arg(long)]
         csv: Option<String>,
+        /// Write the profile as a closed DXF polyline to this path (optional).
         #[arg(long)]
         dxf: Option<String>,
         /// Largest chordal error of the exported polyline, µm (at least 0.001).
@@ -462,7 +472,14 @@ fn json_fits(spec: &spec::Spec) -> Result<()> {
 /// The accuracy ladder of the design review and its wall-clock time, s.
 fn run_ladder(spec: &spec::Spec, a: &spec::Accuracy) -> Result<(accuracy::Ladder, f64)> {
     let start = std::time::Instant::now();
-    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |_| {})?;
+    // Steps rungs 12 … finest, and at most four settings rungs.
+    let rungs = (a.options.finest / accuracy::COARSEST).trailing_zeros() as u64 + 1 + 4;
+    let bar = report::terminal::Bar::new("accuracy ladder", "rungs", rungs, 0);
+    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |event| {
+        if let accuracy::Event::Rung(..) = event {
+            crate::progress::Progress::advance(&bar, 1);
+        }
+    })?;
     Ok((ladder, start.elapsed().as_secs_f64()))
 }
 
@@ -513,10 +530,28 @@ fn run_scenes(
     writes: scene::Writes,
 ) -> Result<Vec<crate::model::results::SceneResult>> {
     use rayon::prelude::*;
+    // A bar for large scenes only: the sweeps of every scene, in crank angles.
+    let total: usize = spec
+        .scenes
+        .iter()
+        .map(|s| s.crank_rad.len() * scene::sweeps(&scene::plan(spec, s, writes)))
+        .sum();
+    let bar = report::terminal::Bar::new(
+        "solving the scenes",
+        "crank angles",
+        total as u64,
+        report::terminal::WORTH_SHOWING * 10,
+    );
     let results: Vec<Result<crate::model::results::SceneResult>> = spec
         .scenes
         .par_iter()
-        .map(|s| scene::run(spec, s, &scene::plan(spec, s, writes)))
+        .map(|s| {
+            let plan = scene::plan(spec, s, writes);
+            let settings = crate::equilibrium::solve::Settings::default();
+            let d = (&spec.design, &spec.modification);
+            scene::run_observed(d.0, d.1, (s, &plan), &settings, &bar)
+                .map_err(|e| scene::at_scene(spec, s, e))
+        })
         .collect();
     results.into_iter().collect()
 }

@@ -254,10 +254,15 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     let summaries = summary::summarise(&results);
     print(out, &report::table::render_summary(&summaries))?;
     if let Some(p) = outputs.json {
-        let doc = report::json::document_with_golden(&spec, &checks, &results, &goldens);
-        let text =
-            serde_json::to_string_pretty(&doc).map_err(|e| Error::computation(e.to_string()))?;
-        write_file(p, &text)?;
+        let doc = report::json::Document::new(&report::json::Contents {
+            spec: &spec,
+            checks: &checks,
+            results: &results,
+            goldens: &goldens,
+            summaries: &summaries,
+            studies: &studies,
+        });
+        report::json::write(std::path::Path::new(p), &doc)?;
     }
     if let Some(p) = outputs.junit {
         write_file(p, &report::junit::document(&spec.name, &spec.path, &checks))?;

@@ -356,7 +356,7 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
     scene.effects = cycloid::model::Effect::ALL.to_vec();
     let plan = cycloid::model::Plan::for_scene(&scene);
     let r = cycloid::engine::scene::run(&spec, &scene, &plan).unwrap();
-    let doc = cycloid::report::json::document(&spec, &[], std::slice::from_ref(&r));
+    let doc = cycloid::report::json::scenes_value(&spec, std::slice::from_ref(&r)).unwrap();
     let json = &doc["scenes"][0];
     let mut seen = 0;
     for q in QUANTITIES {

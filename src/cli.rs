@@ -1,7 +1,7 @@
 //! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
-use crate::engine::{accuracy, check, golden, optimise, scene, summary};
+use crate::engine::{accuracy, check, drawing, golden, optimise, scene, summary};
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
 use crate::model::Plan;
@@ -304,14 +304,19 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
                 report::optimisation::view(&spec, s, r, &cells, steps)
             })
             .collect();
+        let crank_rad = outputs
+            .report_crank_deg
+            .map_or_else(|| drawing::default_crank_rad(&results), crate::units::rad);
+        let disc = drawing::disc(&spec, crank_rad)?;
         let input = report::html::ReportInput {
             spec: &spec,
             checks: &checks,
             results: &results,
             goldens: &goldens,
-            crank_deg: outputs.report_crank_deg,
+            disc: &disc,
             optimisation: &views,
             accuracy: ladder.as_ref(),
+            warnings: &[],
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;
         print(

@@ -452,19 +452,8 @@ fn a_map_spanning_more_than_a_factor_20_has_a_log_colour_scale() {
         })
         .collect();
     let plot = MapPlot {
-        title: "t".into(),
-        subtitle: String::new(),
-        x_label: "x (mm)".into(),
-        y_label: "y (mm)".into(),
-        z_label: "z (N)".into(),
-        cells,
-        samples: Vec::new(),
-        samples_label: String::new(),
-        path: Vec::new(),
-        path_label: String::new(),
-        markers: Vec::new(),
-        z_range: None,
         width: 700.0,
+        ..MapPlot::of_cells("t", "x (mm)", "y (mm)", "z (N)", cells)
     };
     assert!(plot.log_scale() && LOG_SPAN == 20.0);
     let svg = plot.to_svg();

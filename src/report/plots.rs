@@ -386,19 +386,8 @@ fn heat_map(
         .collect();
     let title = format!("{}: every {part}", def.title);
     let plot = MapPlot {
-        title: title.clone(),
         subtitle: format!("{} {part}s × {} crank angles", rows.len(), x.len()),
-        x_label: "crank angle φ (deg)".into(),
-        y_label: part.into(),
-        z_label: z_label.into(),
-        cells,
-        samples: Vec::new(),
-        samples_label: String::new(),
-        path: Vec::new(),
-        path_label: String::new(),
-        markers: Vec::new(),
-        z_range: None,
-        width: 660.0,
+        ..MapPlot::of_cells(&title, "crank angle φ (deg)", part, z_label, cells)
     };
     (title, plot.to_svg())
 }

@@ -233,6 +233,32 @@ const LABEL_SPOTS: [(f64, f64); 10] = [
 ];
 
 impl MapPlot {
+    /// A map of `cells` alone (no samples, path or markers), 660 px wide, its colour range the
+    /// cells'.
+    pub fn of_cells(
+        title: &str,
+        x_label: &str,
+        y_label: &str,
+        z_label: &str,
+        cells: Vec<MapCell>,
+    ) -> Self {
+        MapPlot {
+            title: title.into(),
+            subtitle: String::new(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            z_label: z_label.into(),
+            cells,
+            samples: Vec::new(),
+            samples_label: String::new(),
+            path: Vec::new(),
+            path_label: String::new(),
+            markers: Vec::new(),
+            z_range: None,
+            width: 660.0,
+        }
+    }
+
     /// Whether the colour scale is logarithmic.
     pub fn log_scale(&self) -> bool {
         let (lo, hi) = self.z_bounds();

@@ -1,10 +1,9 @@
 //! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
-use crate::engine::{accuracy, check, drawing, golden, optimise, scene, summary};
+use crate::engine::{accuracy, check, drawing, golden, optimise, resolution, scene, summary};
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
-use crate::model::Plan;
 use crate::report::export;
 use crate::{report, spec};
 use clap::{Parser, Subcommand};
@@ -218,8 +217,12 @@ pub const MAX_REPORT_MAP_STEPS: usize = 101;
 fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) -> Result<Outcome> {
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
+    let writes = scene::Writes {
+        json: outputs.json.is_some(),
+        report: outputs.report.is_some(),
+    };
     if explain {
-        print(out, &scene::explain(&spec))?;
+        print(out, &scene::explain(&spec, writes))?;
         return Ok(Outcome::Passed);
     }
     if let Some(deg) = outputs.report_crank_deg.filter(|d| !d.is_finite()) {
@@ -239,18 +242,38 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     }
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec).map_err(|e| locate(e, &spec))?;
-    let results = run_scenes(&spec)?;
+    let results = run_scenes(&spec, writes)?;
     let mut checks = check::evaluate(&spec.limits, &results);
     let studies = run_studies(&spec, spec.studies.iter().collect());
     checks.extend(check::optimisation(&spec, &studies));
     let goldens =
         golden::evaluate(&spec, &results, &golden_curves).map_err(|e| locate(e, &spec))?;
     checks.extend(goldens.iter().map(check::Check::from_golden));
+    // The full accuracy ladder runs only for the design review; `check` alone runs the steps
+    // rungs it needs to judge the accuracy scene's resolution (`engine::resolution`).
+    let ladder = match (&spec.accuracy, outputs.report) {
+        (Some(a), Some(_)) => Some(run_ladder(&spec, a)?),
+        _ => None,
+    };
+    let resolution = match (&spec.accuracy, &ladder) {
+        (Some(a), Some((l, _))) => Some(resolution::of_ladder(
+            l,
+            spec.scenes[a.scene].crank_rad.len(),
+        )),
+        (Some(a), None) => Some(resolution::run(&spec, a.scene, &a.options)?),
+        _ => None,
+    };
+    if let (true, Some(r)) = (spec.limits.accuracy_resolved, &resolution) {
+        checks.push(check::resolution(r));
+    }
     print(out, &format!("cycloid check `{}`\n", spec.name))?;
     for (s, r) in spec.studies.iter().zip(&studies) {
         print(out, &report::optimisation::render(&spec, s, r))?;
     }
     print(out, &report::table::render_styled(&checks, outputs.color))?;
+    if let Some(w) = resolution.as_ref().and_then(|r| r.warning()) {
+        print(out, &format!("{w}\n"))?;
+    }
     let summaries = summary::summarise(&results);
     print(out, &report::table::render_summary(&summaries))?;
     if let Some(p) = outputs.json {
@@ -267,29 +290,9 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     if let Some(p) = outputs.junit {
         write_file(p, &report::junit::document(&spec.name, &spec.path, &checks))?;
     }
-    // The accuracy ladder runs only for the design review: `check` alone stays fast.
-    let ladder = match (&spec.accuracy, outputs.report) {
-        (Some(a), Some(_)) => {
-            let start = std::time::Instant::now();
-            let ladder = accuracy::run(&spec, a.scene, &a.options, &mut |_| {})?;
-            print(
-                out,
-                &format!(
-                    "accuracy ladder of scene `{}`: {} rungs in {:.2} s; cheapest meeting every \
-                     tolerance: {}\n",
-                    ladder.layout.scene,
-                    ladder.rungs.len(),
-                    start.elapsed().as_secs_f64(),
-                    match ladder.cheapest {
-                        Some(i) => format!("`{}`", ladder.rungs[i].label),
-                        None => "none".to_string(),
-                    }
-                ),
-            )?;
-            Some(ladder)
-        }
-        _ => None,
-    };
+    if let Some((l, seconds)) = &ladder {
+        print(out, &ladder_line(l, *seconds))?;
+    }
     if let Some(dir) = outputs.report {
         let views: Vec<_> = spec
             .studies
@@ -308,6 +311,13 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
             .report_crank_deg
             .map_or_else(|| drawing::default_crank_rad(&results), crate::units::rad);
         let disc = drawing::disc(&spec, crank_rad)?;
+        // The resolution warning `check` printed, as a banner under the verdict.
+        let warnings: Vec<String> = resolution
+            .as_ref()
+            .and_then(|r| r.warning())
+            .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
+            .into_iter()
+            .collect();
         let input = report::html::ReportInput {
             spec: &spec,
             checks: &checks,
@@ -315,8 +325,8 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
             goldens: &goldens,
             disc: &disc,
             optimisation: &views,
-            accuracy: ladder.as_ref(),
-            warnings: &[],
+            accuracy: ladder.as_ref().map(|(l, _)| l),
+            warnings: &warnings,
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;
         print(
@@ -333,6 +343,27 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     } else {
         Outcome::ChecksFailed
     })
+}
+
+/// The accuracy ladder of the design review and its wall-clock time, s.
+fn run_ladder(spec: &spec::Spec, a: &spec::Accuracy) -> Result<(accuracy::Ladder, f64)> {
+    let start = std::time::Instant::now();
+    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |_| {})?;
+    Ok((ladder, start.elapsed().as_secs_f64()))
+}
+
+/// The line `check --report` prints about the ladder.
+fn ladder_line(ladder: &accuracy::Ladder, seconds: f64) -> String {
+    format!(
+        "accuracy ladder of scene `{}`: {} rungs in {seconds:.2} s; cheapest meeting every \
+         tolerance: {}\n",
+        ladder.layout.scene,
+        ladder.rungs.len(),
+        match ladder.cheapest {
+            Some(i) => format!("`{}`", ladder.rungs[i].label),
+            None => "none".to_string(),
+        }
+    )
 }
 
 fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
@@ -352,7 +383,8 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
     let mut results = Vec::new();
     for s in &spec.scenes {
         if spec.golden.iter().any(|g| g.scene == s.name) {
-            results.push(scene::run(&spec, s, &Plan::for_scene(s))?);
+            let plan = scene::plan(&spec, s, scene::Writes::default());
+            results.push(scene::run(&spec, s, &plan)?);
         }
     }
     let blessed = golden::bless(&spec, &results).map_err(|e| locate(e, &spec))?;
@@ -361,12 +393,15 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
 }
 
 /// Every scene, in parallel; results (and the first error) in spec order.
-fn run_scenes(spec: &spec::Spec) -> Result<Vec<crate::model::results::SceneResult>> {
+fn run_scenes(
+    spec: &spec::Spec,
+    writes: scene::Writes,
+) -> Result<Vec<crate::model::results::SceneResult>> {
     use rayon::prelude::*;
     let results: Vec<Result<crate::model::results::SceneResult>> = spec
         .scenes
         .par_iter()
-        .map(|s| scene::run(spec, s, &Plan::for_scene(s)))
+        .map(|s| scene::run(spec, s, &scene::plan(spec, s, writes)))
         .collect();
     results.into_iter().collect()
 }

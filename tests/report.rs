@@ -759,3 +759,29 @@ fn the_drawn_forces_are_those_of_the_sweep() {
     assert_eq!(seen, loaded_parts);
     assert!((loaded.lag_rad - l.rollers.as_ref().unwrap().lag_rad[k]).abs() < 1e-12);
 }
+
+/// `specs/reducer-loaded.yaml` as shipped is solved coarser than its accuracy ladder needs:
+/// the warning `check` prints stands under the report's verdict too.
+#[test]
+fn a_crank_resolution_coarser_than_the_ladder_needs_is_a_banner() {
+    let dir = Scratch::new("report-resolution");
+    let spec = format!("{}/specs/reducer-loaded.yaml", env!("CARGO_MANIFEST_DIR"));
+    let out = run(&dir.path, &["check", &spec, "--report", "r"]);
+    assert_eq!(out.code, Some(0), "{out:?}");
+    let printed = out
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("warning: scene `rated`"))
+        .unwrap();
+    let html = dir.read("r/index.html");
+    let banner = &html[html
+        .find("<div class=\"banner warn\">")
+        .expect("a warning banner")..];
+    let banner = &banner[..banner.find("</div>").unwrap()];
+    let text = printed.trim_start_matches("warning: ").replace('>', "&gt;");
+    assert!(
+        banner.contains(&format!("Warning: {text}")),
+        "{banner}\n{printed}"
+    );
+    assert!(html.find("banner warn").unwrap() < html.find("<nav").unwrap());
+}

@@ -9,5 +9,6 @@ pub mod drawing;
 pub mod golden;
 pub mod optimise;
 pub mod progress;
+pub mod resolution;
 pub mod scene;
 pub mod summary;

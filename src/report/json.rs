@@ -194,6 +194,7 @@ fn min_clearance_at(c: &ClearanceSweep) -> MinClearanceAt {
 impl<'a> SceneDoc<'a> {
     pub fn new(r: &'a SceneResult) -> Self {
         let c = r.clearance.as_ref();
+        let backlash = c.and_then(|c| c.backlash.as_ref());
         let l = &r.loaded;
         let (rollers, pins, bearing) = (l.rollers.as_ref(), l.pins.as_ref(), l.bearing.as_ref());
         let te = l.transmission.as_ref();
@@ -207,9 +208,9 @@ impl<'a> SceneDoc<'a> {
             crank_deg: Curve::new(&r.crank_rad, To::Deg),
             clearance_mm: c.map(|c| Rows(&c.gap_mm)),
             min_clearance_at: c.map(min_clearance_at),
-            backlash_arcsec: c.map(|c| arcsec(&c.backlash_rad)),
-            backlash_reverse_arcsec: c.map(|c| arcsec(&c.backlash_reverse_rad)),
-            lost_motion_arcsec: c.map(|c| arcsec(&c.lost_motion_rad)),
+            backlash_arcsec: backlash.map(|b| arcsec(&b.forward_rad)),
+            backlash_reverse_arcsec: backlash.map(|b| arcsec(&b.reverse_rad)),
+            lost_motion_arcsec: backlash.map(|b| arcsec(&b.lost_motion_rad)),
             lag_arcsec: rollers.map(|c| arcsec(&c.lag_rad)),
             roller_force_n: rollers.map(|c| Rows(&c.force_n)),
             contact_pressure_mpa: rollers.map(|c| Rows(&c.pressure_mpa)),

@@ -80,7 +80,11 @@ fn candidate_plan(scene: &Scene, objectives: &[(Objective, f64)]) -> Plan {
     if transmission && Plan::for_scene(scene).has(Effect::OutputPins) {
         effects.push(Effect::OutputPins);
     }
-    Plan::of(&scene.name, &effects)
+    let mut plan = Plan::of(&scene.name, &effects);
+    for (o, _) in objectives {
+        plan.ask(o.quantity, &format!("objective {}", o.name));
+    }
+    plan
 }
 
 /// A study bound to its spec.

@@ -243,7 +243,7 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec).map_err(|e| locate(e, &spec))?;
     let results = run_scenes(&spec, writes)?;
-    let mut checks = check::evaluate(&spec.limits, &results);
+    let mut checks = check::evaluate(&spec, &results)?;
     let studies = run_studies(&spec, spec.studies.iter().collect());
     checks.extend(check::optimisation(&spec, &studies));
     let goldens =

@@ -1,7 +1,7 @@
 //! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
-use crate::engine::{accuracy, check, golden, optimise, resolution, scene, summary};
+use crate::engine::{accuracy, check, drawing, golden, optimise, resolution, scene, summary};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::profile::Profile;
 use crate::report::export;
@@ -334,9 +334,6 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
             ),
         ));
     }
-    if outputs.json.is_some() {
-        json_fits(&spec).map_err(|e| locate(e, &spec))?;
-    }
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec).map_err(|e| locate(e, &spec))?;
     let results = run_scenes(&spec, writes).map_err(|e| locate(e, &spec))?;
@@ -383,10 +380,15 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     let summaries = summary::summarise(&results);
     print(out, &report::table::render_summary(&summaries))?;
     if let Some(p) = outputs.json {
-        let doc = report::json::document_with_golden(&spec, &checks, &results, &goldens);
-        let text =
-            serde_json::to_string_pretty(&doc).map_err(|e| Error::computation(e.to_string()))?;
-        write_file(p, &text)?;
+        let doc = report::json::Document::new(&report::json::Contents {
+            spec: &spec,
+            checks: &checks,
+            results: &results,
+            goldens: &goldens,
+            summaries: &summaries,
+            studies: &studies,
+        });
+        report::json::write(std::path::Path::new(p), &doc)?;
     }
     if let Some(p) = outputs.junit {
         write_file(p, &report::junit::document(&spec.name, &spec.path, &checks))?;
@@ -408,14 +410,26 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
                 report::optimisation::view(&spec, s, r, &cells, steps)
             })
             .collect();
+        let crank_rad = outputs
+            .report_crank_deg
+            .map_or_else(|| drawing::default_crank_rad(&results), crate::units::rad);
+        let disc = drawing::disc(&spec, crank_rad)?;
+        // The resolution warning `check` printed, as a banner under the verdict.
+        let warnings: Vec<String> = resolution
+            .as_ref()
+            .and_then(|r| r.warning())
+            .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
+            .into_iter()
+            .collect();
         let input = report::html::ReportInput {
             spec: &spec,
             checks: &checks,
             results: &results,
             goldens: &goldens,
-            crank_deg: outputs.report_crank_deg,
+            disc: &disc,
             optimisation: &views,
             accuracy: ladder.as_ref().map(|(l, _)| l),
+            warnings: &warnings,
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;
         print(
@@ -432,41 +446,6 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     } else {
         Outcome::ChecksFailed
     })
-}
-
-/// Memory that writing the results JSON takes per number, bytes: the JSON tree (a 32-byte
-/// value per number, in arrays) and the pretty-printed text (22 to 30 bytes a number). Measured
-/// as 62.5 to 63 bytes a number of peak RSS above the same run without `--json`
-/// (`specs/reducer.yaml` at 2·10⁴ steps with every effect, 59 numbers an angle, and at 10⁵ and
-/// 3·10⁵ steps with the clearance only, 14 an angle); 80 leaves a quarter for other machines.
-const JSON_BYTES_PER_VALUE: u64 = 80;
-
-/// Largest memory the results JSON may take, bytes (512 MiB): about 6.7·10⁶ numbers, e.g.
-/// 4.8·10⁵ crank angles of a 10-roller clearance scene, a 200 MB file.
-const MAX_JSON_BYTES: u64 = 512 << 20;
-
-/// Refuse `--json` for results too large to write, before computing them, with the estimate
-/// and the scene that holds most of it.
-fn json_fits(spec: &spec::Spec) -> Result<()> {
-    let values = scene::result_values(spec);
-    let bytes = values.saturating_mul(JSON_BYTES_PER_VALUE);
-    if bytes <= MAX_JSON_BYTES {
-        return Ok(());
-    }
-    let largest = (0..spec.scenes.len())
-        .max_by_key(|&i| spec.scenes[i].crank_rad.len())
-        .unwrap_or(0);
-    let mb = |b: u64| b.div_ceil(1_000_000);
-    Err(Error::new(
-        ErrorKind::InvalidValue,
-        format!(
-            "--json: the results hold {values} numbers, about {} MB of memory to write as JSON, \
-             more than the {} MB allowed; give the scenes fewer crank steps, or leave --json out",
-            mb(bytes),
-            mb(MAX_JSON_BYTES)
-        ),
-    )
-    .at_key(format!("scenes[{largest}].crank.steps")))
 }
 
 /// The accuracy ladder of the design review and its wall-clock time, s.

@@ -380,65 +380,6 @@ fn the_size_cap_holds_for_all_scenes_together() {
     );
 }
 
-/// A 10⁶-step JSON took 1 GB; the memory `--json` needs is estimated before computing and a
-/// run above the cap is refused with the estimate. 7·10⁵ angles of a 10-roller clearance
-/// scene hold 14 numbers an angle (the angle, 10 gaps, backlash both ways and lost motion; the
-/// count is checked against a real JSON below), 9.8·10⁶ numbers at 80 bytes: 784 MB, over the
-/// 537 MB (512 MiB) cap.
-#[test]
-fn json_output_is_refused_with_its_memory_estimate_when_too_large() {
-    let dir = Scratch::new("rel-json");
-    dir.write("s.yaml", paper_with_steps(700000));
-    let run = refused(
-        &dir,
-        &["check", "s.yaml", "--json", "r.json"],
-        "scenes[0].crank.steps: --json: the results hold 9800000 numbers, about 784 MB of \
-         memory to write as JSON, more than the 537 MB allowed",
-    );
-    assert!(run.stderr.starts_with("s.yaml:"), "{}", run.stderr);
-}
-
-/// The estimate counts what the JSON writes: every number in a scene's arrays, for a scene
-/// with every effect (rollers, pins, bearing) and one with the clearance only.
-#[test]
-fn the_json_estimate_counts_the_numbers_the_json_holds() {
-    let dir = Scratch::new("rel-json-count");
-    let spec = PaperSpec::new().scenes(
-        "  - name: all
-    output_torque_nm: 10.0
-    crank: { from_deg: 0.0, to_deg: 36.0, steps: 12 }
-    effects: [clearance, roller_contact, output_pins, bearing]
-    bearing_stiffness_n_per_mm: 1.0e5
-  - name: gaps
-    output_torque_nm: 10.0
-    crank: { from_deg: 0.0, to_deg: 36.0, steps: 7 }
-    effects: [clearance]
-",
-    );
-    dir.write("s.yaml", spec.text());
-    let run = cycloid(&dir.path, &["check", "s.yaml", "--json", "r.json"]);
-    assert_eq!(run.code(), 0, "{run:?}");
-    let doc: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
-    fn numbers(v: &serde_json::Value) -> u64 {
-        match v {
-            serde_json::Value::Array(items) => items.iter().map(numbers).sum(),
-            serde_json::Value::Number(_) | serde_json::Value::Null => 1,
-            _ => 0,
-        }
-    }
-    let in_arrays: u64 = doc["scenes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(|s| s.as_object().unwrap().values())
-        .filter(|v| v.is_array())
-        .map(numbers)
-        .sum();
-    let parsed = spec.parse(dir.join("s.yaml").to_str().unwrap());
-    let estimate = cycloid::engine::scene::result_values(&parsed);
-    assert_eq!(estimate, in_arrays);
-}
-
 /// Specs and goldens that are not regular files (a FIFO would block, `/dev/zero` never ends)
 /// or above the stated size are refused before reading.
 #[test]

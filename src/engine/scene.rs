@@ -116,17 +116,11 @@ pub fn run_observed(
     };
     let loaded_effects = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing];
     let loaded = if loaded_effects.iter().any(|&e| plan.has(e)) {
-        let mut model = Model::new(design, m, scene, plan);
-        model.settings = *settings;
+        let model = loaded_model(design, m, scene, plan, settings);
         let pins = plan.has(Effect::OutputPins);
         let periodic = scene.spans_whole(design.loaded_period_rad(pins));
         curves::sweep_observed(&model, &scene.crank_rad, periodic, progress).map_err(|f| {
-            let e = Error::computation(format!(
-                "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {}",
-                scene.name,
-                units::deg(f.crank_rad),
-                f.failure
-            ));
+            let e = solve_failed(scene, f.crank_rad, &f.failure);
             // The scene's value that a failure points at (made a spec key by `at_scene`).
             match f.failure {
                 SolveFailure::BeyondCapacity { .. } => e.at_key("output_torque_nm"),
@@ -145,43 +139,6 @@ pub fn run_observed(
     })
 }
 
-/// How many numbers the results JSON of a spec holds: per crank angle of each scene, the
-/// angle, the residual of a loaded solve and each curve of the registry that the scene's plan
-/// for `--json` computes (one per roller or pin for those shapes).
-pub fn result_values(spec: &Spec) -> u64 {
-    use crate::model::quantity::Shape;
-    let d = &spec.design;
-    spec.scenes
-        .iter()
-        .map(|scene| {
-            let plan = plan(
-                spec,
-                scene,
-                Writes {
-                    json: true,
-                    report: false,
-                },
-            );
-            let loaded = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
-                .iter()
-                .any(|&e| plan.has(e));
-            let per_angle: usize = 1
-                + usize::from(loaded)
-                + QUANTITIES
-                    .iter()
-                    .filter(|q| plan.has(q.effect))
-                    .map(|q| match q.shape {
-                        Shape::Curve => 1,
-                        Shape::PerRoller => d.rollers,
-                        Shape::PerPin => d.pins.count,
-                        Shape::Scalar => 0,
-                    })
-                    .sum::<usize>();
-            (per_angle * scene.crank_rad.len()) as u64
-        })
-        .sum()
-}
-
 /// How many sweeps over its crank angles `plan` runs (clearance, loaded): the work a progress
 /// display of the scene counts, in crank angles.
 pub fn sweeps(plan: &Plan) -> usize {
@@ -189,6 +146,30 @@ pub fn sweeps(plan: &Plan) -> usize {
         .iter()
         .any(|&e| plan.has(e));
     usize::from(plan.has(Effect::Clearance)) + usize::from(loaded)
+}
+
+/// The loaded model of a scene (roller contact, output pins, bearing as `plan` says) solved to
+/// `settings`: what the sweep of `run_design` solves at every crank angle, and what the design
+/// review's drawing solves at its one angle.
+pub fn loaded_model(
+    design: &Design,
+    m: &Modification,
+    scene: &Scene,
+    plan: &Plan,
+    settings: &Settings,
+) -> Model {
+    let mut model = Model::new(design, m, scene, plan);
+    model.settings = *settings;
+    model
+}
+
+/// The error of a loaded solve that failed: the scene and the crank angle.
+pub fn solve_failed(scene: &Scene, crank_rad: f64, failure: &impl std::fmt::Display) -> Error {
+    Error::computation(format!(
+        "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {failure}",
+        scene.name,
+        units::deg(crank_rad),
+    ))
 }
 
 /// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.

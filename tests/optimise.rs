@@ -1,7 +1,7 @@
 //! Optimisation: the global sample, determinism, constraint handling on the exact geometry,
 //! the paper's studies, and writing the optimum back into a spec.
 
-use cycloid::engine::optimise::global::{halton, radical_inverse};
+use cycloid::engine::optimise::global;
 use cycloid::engine::optimise::problem::Problem;
 use cycloid::engine::optimise::{self, run_study};
 use cycloid::geometry::clearance::{self, Mesh};
@@ -33,20 +33,37 @@ fn small_paper() -> Spec {
 }
 
 #[test]
-fn van_der_corput_digits_are_reversed() {
-    // Radical inverse by hand: 1 = 1₂ → 0.1₂ = 1/2; 2 = 10₂ → 0.01₂ = 1/4; 3 = 11₂ → 3/4;
-    // 5 = 12₃ → 0.21₃ = 2/3 + 1/9.
-    assert_eq!(radical_inverse(1, 2), 0.5);
-    assert_eq!(radical_inverse(2, 2), 0.25);
-    assert_eq!(radical_inverse(3, 2), 0.75);
-    assert!((radical_inverse(5, 3) - (2.0 / 3.0 + 1.0 / 9.0)).abs() < 1e-15);
-    // A Halton set fills the square evenly: every cell of a 4×4 grid gets one of 16 points ±1
-    // (a discrepancy property that a random sample would break with high probability).
-    let mut cells = [0; 16];
-    for p in halton(16, 2) {
-        cells[(p[0] * 4.0) as usize * 4 + (p[1] * 4.0) as usize] += 1;
+fn the_global_sample_fills_the_box_and_lies_on_the_faces() {
+    let spec = paper();
+    let s = study(&spec, "positive-ratio");
+    let zs = global::points(s);
+    // The first two dimensions of a Sobol sequence are a (0, m, 2)-net in base 2, and Owen
+    // scrambling keeps that: 512 points put exactly one point in each cell of a 16 × 32 grid
+    // (a random sample would leave about a third of the cells empty).
+    assert_eq!(s.global_samples, 512);
+    let mut cells = vec![0; 16 * 32];
+    for z in &zs[..512] {
+        cells[(z[0] * 16.0) as usize * 32 + (z[1] * 32.0) as usize] += 1;
     }
-    assert!(cells.iter().all(|&c| (0..=2).contains(&c)), "{cells:?}");
+    assert!(cells.iter().all(|&c| c == 1), "{cells:?}");
+    // Then 64 points on each face that lies inside the box: the 4 box sides, and the two
+    // planes ΔRrp − ΔRp = 0.015 and 0.5 mm of the tip band (the valleys of the objectives lie
+    // along the lower one), each exactly on its face up to the round-off of z ↦ mm (1e-15 mm).
+    let problem = Problem::new(&spec, s);
+    let on = |pred: &dyn Fn(&Modification) -> bool| {
+        zs[512..]
+            .iter()
+            .filter(|z| pred(&problem.modification_at_unit(z)))
+            .count()
+    };
+    let near = |a: f64, b: f64| (a - b).abs() < 1e-15;
+    assert_eq!(on(&|m| near(m.shift_mm, 0.0)), 64);
+    assert_eq!(on(&|m| near(m.equidistant_mm, 0.5)), 64);
+    let tip_low = on(&|m| near(m.tip_clearance_mm(), 0.015));
+    // The band's lower plane crosses the box from ΔRp = 0 to 0.485 mm: 97 % of its points
+    // fall inside, the others are dropped.
+    assert!((60..=64).contains(&tip_low), "{tip_low}");
+    assert!(zs.iter().all(|z| z.iter().all(|x| (0.0..=1.0).contains(x))));
 }
 
 #[test]
@@ -162,7 +179,7 @@ fn writing_the_optimum_keeps_comments_and_reads_back_exactly() {
 fn the_map_covers_the_grid_and_marks_the_tip_constraint() {
     let spec = small_paper();
     let s = study(&spec, "positive-ratio");
-    let cells = optimise::map(&spec, s, 4, &s.start);
+    let cells = optimise::map(&spec, s, 4, &s.start, &cycloid::engine::progress::Silent);
     assert_eq!(cells.len(), 16);
     for c in &cells {
         let tip = c.modification.equidistant_mm - c.modification.shift_mm;

@@ -162,7 +162,7 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
     }
     out += &row(study, "optimum", &r.optimum);
     for (label, e) in r.references.iter().map(|(l, e)| (l.as_str(), e)) {
-        if e.failure.is_none() && r.optimum.failure.is_none() {
+        if e.objective.is_finite() && r.optimum.objective.is_finite() {
             let diff = r.optimum.objective - e.objective;
             out += &format!(
                 "  optimum vs {label}: {} ({})\n",
@@ -396,7 +396,7 @@ pub fn view(
             .join("; ")
     )];
     for (label, e) in &r.references {
-        if e.failure.is_none() && r.optimum.failure.is_none() {
+        if e.objective.is_finite() && r.optimum.objective.is_finite() {
             let diff = r.optimum.objective - e.objective;
             notes.push(format!(
                 "The optimum's objective is {} {} than the {label}'s ({} vs {}).",

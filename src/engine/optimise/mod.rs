@@ -103,10 +103,11 @@ impl StudyResult {
     /// How the search went: evaluations, time and where the optimum was found.
     pub fn outcome(&self) -> String {
         format!(
-            "{} evaluations ({} global, {} local runs{}) in {:.2} s; {}",
+            "{} evaluations ({} global, {} local run{}{}) in {:.2} s; {}",
             self.evaluations,
             self.global.len(),
             self.local_runs.len(),
+            if self.local_runs.len() == 1 { "" } else { "s" },
             self.verification
                 .as_ref()
                 .map_or(String::new(), |v| format!(

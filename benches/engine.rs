@@ -78,3 +78,17 @@ fn check_paper_end_to_end(b: divan::Bencher) {
         cycloid::cli::run(cli, &mut out).unwrap()
     });
 }
+
+/// The paper's four optimisation studies (`specs/paper.yaml`), the whole search: global
+/// sample, local runs and 41 × 41 verification grid (target: a few seconds on one core; run
+/// with RAYON_NUM_THREADS=1).
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn paper_studies(b: divan::Bencher) {
+    let s = paper();
+    b.bench(|| {
+        s.studies
+            .iter()
+            .map(|study| cycloid::engine::optimise::run_study(black_box(&s), study).evaluations)
+            .sum::<usize>()
+    });
+}

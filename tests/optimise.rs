@@ -77,6 +77,27 @@ fn the_same_spec_gives_the_same_optimum_bit_for_bit() {
     assert_eq!(a.evaluations, b.evaluations);
 }
 
+/// Counts what it hears.
+#[derive(Default)]
+struct Count(std::sync::atomic::AtomicU64);
+
+impl cycloid::engine::progress::Progress for Count {
+    fn advance(&self, n: u64) {
+        self.0.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+#[test]
+fn the_progress_observer_hears_of_every_evaluation_once() {
+    // Every stage (start, references, global sample, local runs, verification grid and its
+    // refinements) tells the observer; the result counts the same evaluations on its own.
+    let spec = small_paper();
+    let s = study(&spec, "positive-ratio");
+    let count = Count::default();
+    let r = optimise::run_study_with(&spec, s, &count);
+    assert_eq!(count.0.into_inner(), r.evaluations as u64);
+}
+
 #[test]
 fn positive_ratio_optimum_is_no_worse_than_the_papers_and_satisfies_every_constraint() {
     let spec = paper();

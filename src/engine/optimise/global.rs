@@ -16,6 +16,7 @@
 //! depend on the number of threads.
 
 use super::problem::{Evaluation, Problem};
+use crate::engine::progress::Progress;
 use crate::model::study::MAX_GLOBAL_SAMPLES;
 use crate::model::{Study, VariableKind};
 use rayon::prelude::*;
@@ -108,9 +109,12 @@ pub fn spacing(study: &Study) -> f64 {
 }
 
 /// Evaluate the global sample at `zs` (infeasible points get no objective: they never seed a
-/// local run).
-pub fn sample(problem: &Problem, zs: &[Vec<f64>]) -> Vec<Evaluation> {
+/// local run), each told to `progress`.
+pub fn sample(problem: &Problem, zs: &[Vec<f64>], progress: &dyn Progress) -> Vec<Evaluation> {
     zs.par_iter()
-        .map(|z| problem.evaluate_screened(&problem.modification_at_unit(z), true))
+        .map(|z| {
+            progress.advance(1);
+            problem.evaluate_screened(&problem.modification_at_unit(z), true)
+        })
         .collect()
 }

@@ -7,6 +7,7 @@
 //! Objective and constraints at one point share one evaluation through a cache.
 
 use super::problem::{Evaluation, Problem};
+use crate::engine::progress::Progress;
 use cobyla::{minimize, Func, RhoBeg, StopTols, SuccessStatus};
 use std::cell::RefCell;
 
@@ -76,12 +77,14 @@ pub struct LocalRun {
     pub stop: StopReason,
 }
 
-/// Run COBYLA from `start`, with initial steps of `rho_begin` of each variable's range.
+/// Run COBYLA from `start`, with initial steps of `rho_begin` of each variable's range, telling
+/// `progress` of every evaluation.
 pub fn run(
     problem: &Problem,
     start: &Evaluation,
     rho_begin: f64,
     max_evaluations: usize,
+    progress: &dyn Progress,
 ) -> LocalRun {
     let dims = problem.study.variables.len();
     let z0: Vec<f64> = problem.unit_of(&start.modification);
@@ -91,6 +94,7 @@ pub fn run(
         if let Some(e) = path.borrow().iter().rev().find(|e| e.modification == m) {
             return e.clone();
         }
+        progress.advance(1);
         let e = problem.evaluate(&m);
         path.borrow_mut().push(e.clone());
         e

@@ -132,19 +132,6 @@ impl StudyResult {
     }
 }
 
-/// Evaluations a study may take, at most (for a progress bar: local runs often stop early).
-pub fn budget(study: &Study) -> u64 {
-    let dims = study.variables.len();
-    let grid = study.verify_grid.pow(dims as u32);
-    let faces = 2 * dims + 2;
-    let runs = 1 + 2 * seeds::LOCAL_SEEDS;
-    (1 + study.references.len()
-        + study.global_samples
-        + faces * study.boundary_samples
-        + grid
-        + runs * study.local_evaluations) as u64
-}
-
 /// Run one study: global sample, local runs, verification grid, best feasible point.
 pub fn run_study(spec: &Spec, study: &Study) -> StudyResult {
     run_study_with(spec, study, &Silent)
@@ -153,8 +140,9 @@ pub fn run_study(spec: &Spec, study: &Study) -> StudyResult {
 /// `run_study`, telling `progress` of every evaluation.
 pub fn run_study_with(spec: &Spec, study: &Study, progress: &dyn Progress) -> StudyResult {
     let clock = Instant::now();
-    let problem = Problem::new(spec, study).with_progress(progress);
+    let problem = Problem::new(spec, study);
     let dims = study.variables.len();
+    progress.advance(1 + study.references.len() as u64);
     let start = problem.evaluate(&study.start);
     let references: Vec<(String, Evaluation)> = study
         .references
@@ -162,7 +150,7 @@ pub fn run_study_with(spec: &Spec, study: &Study, progress: &dyn Progress) -> St
         .map(|(label, m)| (label.clone(), problem.evaluate(m)))
         .collect();
     let zs = global::points(study);
-    let global = global::sample(&problem, &zs);
+    let global = global::sample(&problem, &zs, progress);
     let h = global::spacing(study);
     let feasible: Vec<usize> = (0..global.len())
         .filter(|&k| global[k].feasible())
@@ -175,7 +163,7 @@ pub fn run_study_with(spec: &Spec, study: &Study, progress: &dyn Progress) -> St
     );
     let local_runs: Vec<LocalRun> = starts
         .par_iter()
-        .map(|s| local::run(&problem, s, h, study.local_evaluations))
+        .map(|s| local::run(&problem, s, h, study.local_evaluations, progress))
         .collect();
     let searched = best(
         std::iter::once(&start)
@@ -184,7 +172,8 @@ pub fn run_study_with(spec: &Spec, study: &Study, progress: &dyn Progress) -> St
     )
     .cloned()
     .unwrap_or_else(|| start.clone());
-    let mut verification = (study.verify_grid >= 2).then(|| verify::run(&problem, &searched));
+    let mut verification =
+        (study.verify_grid >= 2).then(|| verify::run(&problem, &searched, progress));
     let refined = verification
         .iter()
         .flat_map(|v| v.best.iter().chain(v.refinements.iter().map(|r| &r.best)));
@@ -261,7 +250,7 @@ pub fn map(
     around: &crate::model::Modification,
     progress: &dyn Progress,
 ) -> Vec<Evaluation> {
-    let problem = Problem::new(spec, study).with_progress(progress);
+    let problem = Problem::new(spec, study);
     let vars = &study.variables;
     let axis = |k: usize, i: usize| {
         let v = &vars[k];
@@ -278,6 +267,7 @@ pub fn map(
             if vars.len() > 1 {
                 vars[1].kind.set(&mut m, axis(1, j));
             }
+            progress.advance(1);
             problem.evaluate(&m)
         })
         .collect()

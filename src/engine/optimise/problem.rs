@@ -6,7 +6,6 @@
 //! motion (a constraint, and a column of the study tables) the full clearance sweep over one
 //! mesh period of the scene's crank angles.
 
-use crate::engine::progress::{Progress, Silent};
 use crate::engine::scene;
 use crate::equilibrium::solve::Settings;
 use crate::geometry::clearance::{self, Mesh};
@@ -151,15 +150,13 @@ fn candidate_plan(scene: &Scene, objectives: &[(Objective, f64)]) -> Plan {
 }
 
 /// A study bound to its spec.
-#[derive(Clone)]
+#[derive(Debug, Clone)]
 pub struct Problem<'a> {
     pub spec: &'a Spec,
     pub study: &'a Study,
     pub scene: &'a Scene,
     /// What a candidate simulates: only the effects its objectives need.
     plan: Plan,
-    /// Hears of every evaluation.
-    progress: &'a dyn Progress,
 }
 
 impl<'a> Problem<'a> {
@@ -170,14 +167,7 @@ impl<'a> Problem<'a> {
             study,
             scene,
             plan: candidate_plan(scene, &study.objective),
-            progress: &Silent,
         }
-    }
-
-    /// Tell `progress` of every evaluation (one unit each).
-    pub fn with_progress(mut self, progress: &'a dyn Progress) -> Self {
-        self.progress = progress;
-        self
     }
 
     /// The modification at variable values x (engine units, in `study.variables` order).
@@ -225,7 +215,6 @@ impl<'a> Problem<'a> {
     /// (+∞) and no further constraints: the sampling stages only need the objective of feasible
     /// points, so the loaded sweep of an infeasible one would be wasted.
     pub fn evaluate_screened(&self, m: &Modification, screen: bool) -> Evaluation {
-        self.progress.advance(1);
         let mut e = Evaluation::new(m);
         if let Some((lo, hi)) = self.study.tip_clearance_mm {
             let tip = m.tip_clearance_mm();

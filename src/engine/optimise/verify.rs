@@ -6,6 +6,7 @@
 use super::local::{self, LocalRun};
 use super::problem::{best, Evaluation, Problem};
 use super::seeds;
+use crate::engine::progress::Progress;
 use rayon::prelude::*;
 
 /// The verification of one study's optimum.
@@ -58,14 +59,18 @@ pub fn points(steps: usize, dims: usize) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// Evaluate the grid and refine from its points that beat `searched` (the search's optimum).
-pub fn run(problem: &Problem, searched: &Evaluation) -> Verification {
+/// Evaluate the grid and refine from its points that beat `searched` (the search's optimum),
+/// telling `progress` of every evaluation.
+pub fn run(problem: &Problem, searched: &Evaluation, progress: &dyn Progress) -> Verification {
     let dims = problem.study.variables.len();
     let steps = problem.study.verify_grid;
     let zs = points(steps, dims);
     let grid: Vec<Evaluation> = zs
         .par_iter()
-        .map(|z| problem.evaluate_screened(&problem.modification_at_unit(z), true))
+        .map(|z| {
+            progress.advance(1);
+            problem.evaluate_screened(&problem.modification_at_unit(z), true)
+        })
         .collect();
     let feasible = grid.iter().filter(|e| e.feasible()).count();
     let best_point = best(grid.iter().filter(|e| e.feasible())).cloned();
@@ -82,7 +87,15 @@ pub fn run(problem: &Problem, searched: &Evaluation) -> Verification {
     let starts = seeds::local_minima(&zs, &grid, &better, seeds::radius(h, dims));
     let refinements: Vec<LocalRun> = starts
         .par_iter()
-        .map(|&k| local::run(problem, &grid[k], h, problem.study.local_evaluations))
+        .map(|&k| {
+            local::run(
+                problem,
+                &grid[k],
+                h,
+                problem.study.local_evaluations,
+                progress,
+            )
+        })
         .collect();
     Verification {
         steps,

@@ -237,6 +237,24 @@ fn small_paper_in(dir: &common::Scratch, study: &str) -> String {
     path.to_str().unwrap().to_string()
 }
 
+/// `cycloid optimise SOURCE --study positive-ratio --write WRITTEN EXTRA...`.
+fn optimise_writing(
+    source: &str,
+    written: &std::path::Path,
+    extra: &[&str],
+) -> (i32, String, String) {
+    let mut args = vec![
+        "optimise",
+        source,
+        "--study",
+        "positive-ratio",
+        "--write",
+        written.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    cycloid(&args)
+}
+
 #[test]
 fn optimise_write_gives_a_spec_that_passes_check_from_another_folder() {
     let dir = common::Scratch::new("opt-write");
@@ -244,18 +262,11 @@ fn optimise_write_gives_a_spec_that_passes_check_from_another_folder() {
     std::fs::create_dir_all(dir.join("elsewhere/out")).unwrap();
     let written = dir.join("elsewhere/out/optimum.yaml");
     let map = dir.join("map.csv");
-    let (code, stdout, stderr) = cycloid(&[
-        "optimise",
+    let (code, stdout, stderr) = optimise_writing(
         &source,
-        "--study",
-        "positive-ratio",
-        "--write",
-        written.to_str().unwrap(),
-        "--map",
-        map.to_str().unwrap(),
-        "--map-steps",
-        "3",
-    ]);
+        &written,
+        &["--map", map.to_str().unwrap(), "--map-steps", "3"],
+    );
     assert_eq!(code, 0, "{stdout}{stderr}");
     assert_eq!(std::fs::read_to_string(&map).unwrap().lines().count(), 10);
     let text = std::fs::read_to_string(&written).unwrap();
@@ -289,14 +300,7 @@ fn an_infeasible_optimum_is_never_written() {
     );
     std::fs::write(&source, text).unwrap();
     let written = dir.join("optimum.yaml");
-    let (code, stdout, stderr) = cycloid(&[
-        "optimise",
-        &source,
-        "--study",
-        "positive-ratio",
-        "--write",
-        written.to_str().unwrap(),
-    ]);
+    let (code, stdout, stderr) = optimise_writing(&source, &written, &[]);
     assert_eq!(code, 1, "{stdout}{stderr}");
     assert!(!written.exists(), "an infeasible optimum was written");
     assert!(stdout.contains("nothing written"), "{stdout}");

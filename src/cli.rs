@@ -2,7 +2,7 @@
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
 use crate::engine::progress::Progress;
-use crate::engine::{accuracy, check, golden, optimise, scene, summary};
+use crate::engine::{accuracy, check, golden, optimise, resolution, scene, summary};
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
 use crate::model::Plan;
@@ -247,11 +247,31 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     let goldens =
         golden::evaluate(&spec, &results, &golden_curves).map_err(|e| locate(e, &spec))?;
     checks.extend(goldens.iter().map(check::Check::from_golden));
+    // The full accuracy ladder runs only for the design review; `check` alone runs the steps
+    // rungs it needs to judge the accuracy scene's resolution (`engine::resolution`).
+    let ladder = match (&spec.accuracy, outputs.report) {
+        (Some(a), Some(_)) => Some(run_ladder(&spec, a)?),
+        _ => None,
+    };
+    let resolution = match (&spec.accuracy, &ladder) {
+        (Some(a), Some((l, _))) => Some(resolution::of_ladder(
+            l,
+            spec.scenes[a.scene].crank_rad.len(),
+        )),
+        (Some(a), None) => Some(resolution::run(&spec, a.scene, &a.options)?),
+        _ => None,
+    };
+    if let (true, Some(r)) = (spec.limits.accuracy_resolved, &resolution) {
+        checks.push(check::resolution(r));
+    }
     print(out, &format!("cycloid check `{}`\n", spec.name))?;
     for (s, r) in spec.studies.iter().zip(&studies) {
         print(out, &report::optimisation::render(&spec, s, r))?;
     }
     print(out, &report::table::render_styled(&checks, outputs.color))?;
+    if let Some(w) = resolution.as_ref().and_then(|r| r.warning()) {
+        print(out, &format!("{w}\n"))?;
+    }
     let summaries = summary::summarise(&results);
     print(out, &report::table::render_summary(&summaries))?;
     if let Some(p) = outputs.json {
@@ -263,29 +283,9 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     if let Some(p) = outputs.junit {
         write_file(p, &report::junit::document(&spec.name, &spec.path, &checks))?;
     }
-    // The accuracy ladder runs only for the design review: `check` alone stays fast.
-    let ladder = match (&spec.accuracy, outputs.report) {
-        (Some(a), Some(_)) => {
-            let start = std::time::Instant::now();
-            let ladder = accuracy::run(&spec, a.scene, &a.options, &mut |_| {})?;
-            print(
-                out,
-                &format!(
-                    "accuracy ladder of scene `{}`: {} rungs in {:.2} s; cheapest meeting every \
-                     tolerance: {}\n",
-                    ladder.layout.scene,
-                    ladder.rungs.len(),
-                    start.elapsed().as_secs_f64(),
-                    match ladder.cheapest {
-                        Some(i) => format!("`{}`", ladder.rungs[i].label),
-                        None => "none".to_string(),
-                    }
-                ),
-            )?;
-            Some(ladder)
-        }
-        _ => None,
-    };
+    if let Some((l, seconds)) = &ladder {
+        print(out, &ladder_line(l, *seconds))?;
+    }
     if let Some(dir) = outputs.report {
         let views: Vec<_> = spec
             .studies
@@ -307,7 +307,7 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
             goldens: &goldens,
             crank_deg: outputs.report_crank_deg,
             optimisation: &views,
-            accuracy: ladder.as_ref(),
+            accuracy: ladder.as_ref().map(|(l, _)| l),
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;
         print(
@@ -324,6 +324,27 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     } else {
         Outcome::ChecksFailed
     })
+}
+
+/// The accuracy ladder of the design review and its wall-clock time, s.
+fn run_ladder(spec: &spec::Spec, a: &spec::Accuracy) -> Result<(accuracy::Ladder, f64)> {
+    let start = std::time::Instant::now();
+    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |_| {})?;
+    Ok((ladder, start.elapsed().as_secs_f64()))
+}
+
+/// The line `check --report` prints about the ladder.
+fn ladder_line(ladder: &accuracy::Ladder, seconds: f64) -> String {
+    format!(
+        "accuracy ladder of scene `{}`: {} rungs in {seconds:.2} s; cheapest meeting every \
+         tolerance: {}\n",
+        ladder.layout.scene,
+        ladder.rungs.len(),
+        match ladder.cheapest {
+            Some(i) => format!("`{}`", ladder.rungs[i].label),
+            None => "none".to_string(),
+        }
+    )
 }
 
 fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {

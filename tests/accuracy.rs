@@ -500,3 +500,97 @@ fn spec_key_puts_the_ladder_in_the_design_review() {
         assert!(err.contains(message), "{section}: {err}");
     }
 }
+
+/// `check` judges the accuracy scene's own crank resolution against the ladder's tolerances.
+/// specs/reducer-loaded.yaml as shipped solves 360 steps per mesh period (1080 over 108°);
+/// the max roller force is off by 1.1 N up to 384 steps (the third roller's window of 0.12°
+/// is not resolved, module doc), over the 0.5 N tolerance. So `check` warns under its verdict,
+/// naming the steps it needs; refined to those steps the warning goes; and the limit
+/// `accuracy_resolved: true` turns the warning into a failing check (exit 1).
+#[test]
+fn check_warns_when_the_scene_is_coarser_than_its_tolerances_allow() {
+    let dir = Scratch::new("resolution");
+    let shipped = std::fs::read_to_string("specs/reducer-loaded.yaml").unwrap();
+    dir.write("s.yaml", &shipped);
+    let (code, out, _) = cycloid(&dir, &["check", "s.yaml"]);
+    assert_eq!(code, 0, "{out}");
+    let warning = out
+        .lines()
+        .find(|l| l.starts_with("warning: scene `rated` is solved at 360"))
+        .unwrap_or_else(|| panic!("no resolution warning:\n{out}"));
+    assert!(warning.contains("max roller F"), "{warning}");
+    // The warning sits right under the verdict line.
+    let verdict = out
+        .lines()
+        .position(|l| l.contains("1 check: 1 passed"))
+        .unwrap();
+    assert_eq!(out.lines().nth(verdict + 1), Some(warning));
+    let needed: usize = warning
+        .split("ladder needs ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap();
+    // The ladder's 12·2^k rungs between the 384 that misses and the finest, 3072.
+    assert!([768, 1536, 3072].contains(&needed), "{needed}");
+    let refined = shipped.replace("steps: 1080", &format!("steps: {}", 3 * needed));
+    dir.write("fine.yaml", &refined);
+    let (code, out, _) = cycloid(&dir, &["check", "fine.yaml"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(!out.contains("warning:"), "{out}");
+
+    let strict = shipped.replace(
+        "  min_clearance_mm: 0.015        # dt of the paper\n",
+        "  min_clearance_mm: 0.015        # dt of the paper\n  accuracy_resolved: true\n",
+    );
+    assert_ne!(strict, shipped);
+    dir.write("strict.yaml", &strict);
+    let (code, out, _) = cycloid(&dir, &["check", "strict.yaml"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("rated/accuracy_resolved"), "{out}");
+    assert!(out.contains("2 checks: 1 passed, 1 failed"), "{out}");
+}
+
+/// The verdict from the full ladder (the design review's) and from the steps rungs `check`
+/// runs alone agree: the same rungs, the same reference, two code paths.
+#[test]
+fn the_resolution_verdict_is_the_full_ladders() {
+    use cycloid::engine::resolution;
+    let spec = spec::load("specs/reducer-loaded.yaml").unwrap();
+    let a = spec.accuracy.as_ref().unwrap();
+    let full = accuracy::run(&spec, a.scene, &a.options, &mut |_| {}).unwrap();
+    let angles = spec.scenes[a.scene].crank_rad.len();
+    let from_ladder = resolution::of_ladder(&full, angles);
+    let alone = resolution::run(&spec, a.scene, &a.options).unwrap();
+    assert_eq!(from_ladder.needed_steps(), alone.needed_steps());
+    assert_eq!(from_ladder.resolved(), alone.resolved());
+    assert!(!alone.resolved());
+    // `check` stops at the first rung that meets at or above the scene: a prefix of the ladder.
+    assert_eq!(from_ladder.rungs[..alone.rungs.len()], alone.rungs[..]);
+}
+
+/// `accuracy_resolved` is a flag, and needs an `accuracy:` section.
+#[test]
+fn accuracy_resolved_is_a_located_flag() {
+    let dir = Scratch::new("resolved-flag");
+    let shipped = std::fs::read_to_string("specs/reducer-loaded.yaml").unwrap();
+    let with = |value: &str| {
+        shipped.replace(
+            "  min_clearance_mm: 0.015        # dt of the paper\n",
+            &format!("  min_clearance_mm: 0.015\n  accuracy_resolved: {value}\n"),
+        )
+    };
+    dir.write("number.yaml", with("1.5"));
+    let (code, _, err) = cycloid(&dir, &["check", "number.yaml"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("number.yaml:31:") && err.contains("must be true or false"),
+        "{err}"
+    );
+    let without = with("true");
+    let without = &without[..without.find("accuracy:\n  scene").unwrap()];
+    dir.write("bare.yaml", without);
+    let (code, _, err) = cycloid(&dir, &["check", "bare.yaml"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("needs an `accuracy:` section"), "{err}");
+}

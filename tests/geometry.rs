@@ -456,6 +456,45 @@ proptest! {
 }
 
 proptest! {
+    /// Any rotation of the profile computes, and is the same disc as its rotation reduced to
+    /// the tooth pitch: the locus has nc-fold symmetry, R(−2π/nc)·C(t) = C(t − 2π/nc) (expand
+    /// both: the lobe term turns by np·2π/nc ≡ 2π/nc), so a profile turned by Δδ is the profile
+    /// turned by Δδ' = Δδ mod 2π/nc, which in turn is the unturned disc lagging by Δδ'
+    /// (`profile_rotation_is_a_lag`). Rotations up to three turns either way, including whole
+    /// pitches and half pitches (rollers on the tooth tips). Δδ' is reduced here by its own
+    /// remainder, independently of the code's reduction.
+    #[test]
+    fn any_rotation_is_the_same_disc_as_its_rotation_within_a_pitch(
+        c in cases(),
+        turns in -3.0f64..3.0,
+        pitches in -4i32..4,
+        half in proptest::bool::ANY,
+        phi in 0.0..TAU,
+    ) {
+        let d = &c.design;
+        let pitch = TAU / d.teeth as f64;
+        let rotation = if half {
+            (pitches as f64 + 0.5) * pitch
+        } else {
+            turns * TAU + pitches as f64 * pitch
+        };
+        let turned = Mesh::new(d, &modification(c.m.shift_mm, c.m.equidistant_mm, rotation));
+        let plain = Mesh::new(d, &modification(c.m.shift_mm, c.m.equidistant_mm, 0.0));
+        let mut reduced = rotation.rem_euclid(pitch);
+        if reduced > 0.5 * pitch {
+            reduced -= pitch;
+        }
+        for i in 0..d.rollers {
+            let a = gap(&turned, i, phi, 0.0);
+            let b = gap(&plain, i, phi, reduced);
+            // The reduction of a rotation of up to 3 turns rounds to ~1e-15 rad, moving a gap
+            // by at most that times the arm (≤ Rp + e): 1e-12 mm covers it and the round-off
+            // of the two routes.
+            let tol = 1e-12 * (1.0 + d.roller_circle_radius_mm);
+            prop_assert!((a - b).abs() < tol, "roller {i}, rotation {rotation}: {a} vs {b}");
+        }
+    }
+
     /// Mesh::closing_lag returns a lag at which the gap is zero (to round-off), for any
     /// modification; and it does find one for every roller that the first-order model says
     /// closes nearby: with a pure equidistant δ = 1e-3·e every roller with |arm| ≥ 0.2·e·nc closes

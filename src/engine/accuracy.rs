@@ -314,7 +314,7 @@ pub struct Layout {
 }
 
 impl Layout {
-    fn angles(&self, steps_per_period: usize) -> usize {
+    pub(crate) fn angles(&self, steps_per_period: usize) -> usize {
         self.base_angles * (steps_per_period / COARSEST)
     }
 
@@ -437,7 +437,7 @@ pub fn default_scene(spec: &Spec) -> usize {
         .unwrap_or(0)
 }
 
-fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
+pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
     let plan = Plan::for_scene(scene);
     let (from_deg, to_deg) = (scene.crank_from_deg, scene.crank_to_deg);
     let periods = units::rad(to_deg - from_deg) / spec.design.mesh_period_rad();
@@ -467,7 +467,7 @@ fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
 
 /// The errors of `rung` against `reference`; the rung's grid is nested in the reference's
 /// (`ratio` reference angles per rung angle).
-fn errors(
+pub(crate) fn errors(
     reference: &Outputs,
     rung: &Outputs,
     ratio: usize,

@@ -229,3 +229,28 @@ pub fn optimisation(spec: &Spec, results: &[crate::engine::optimise::StudyResult
     }
     checks
 }
+
+/// The check of `limits.accuracy_resolved: true`: the accuracy scene's crank steps per mesh
+/// period (value) against the steps its ladder needs to meet the tolerances (limit).
+pub fn resolution(r: &crate::engine::resolution::Resolution) -> Check {
+    let needed = r.needed_steps() as f64;
+    Check {
+        id: format!("{}/accuracy_resolved", r.scene),
+        kind: CheckKind::Limit,
+        value: r.scene_steps,
+        // Resolved also when the coarsest rung meets every tolerance: the bound is then that rung.
+        limit: if r.resolved() {
+            needed.min(r.scene_steps)
+        } else {
+            needed
+        },
+        unit: "steps/period",
+        bound: Bound::Min,
+        passed: r.resolved(),
+        at: if r.resolved() {
+            "crank steps per mesh period meet the accuracy tolerances".to_string()
+        } else {
+            r.misses_text()
+        },
+    }
+}

@@ -7,5 +7,6 @@ pub mod check;
 pub mod golden;
 pub mod optimise;
 pub mod progress;
+pub mod resolution;
 pub mod scene;
 pub mod summary;

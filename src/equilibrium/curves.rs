@@ -254,7 +254,7 @@ fn solve_chunk(
         if let Some(lean) = lean {
             let (sin, cos) = crank_direction.sin_cos(phi);
             let e_phi = Vec2::new(cos, sin);
-            let guess = || work.guess(phi);
+            let guess = || work.guess(phi, model);
             if let Some(s) = lean.solve(phi, (cos, sin), guess, scratch, &mut chunk.row(k)) {
                 chunk.record_first_order(k, e_phi, &s, &mut bearing_angle);
                 if !scratch.screened() {

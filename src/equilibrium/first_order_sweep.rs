@@ -13,8 +13,8 @@
 //!   cos φi = u_i·e_φ, sin φi = e_φ × u_i, (g_i, l_i, 1/S_i) from `first_order::Coefficients`,
 //!   F_i = k·max(0, l_i·β − g_i), force on the disc −F_i·n_i with n_i = (u_i − K1·e_φ)/S_i,
 //!   acting at Rp·u_i − r_rp·n_i;
-//!   curvature at the contact from cos(nc·t_i) = cos(φi + nc·β) = cos φi·cos ncβ − sin φi·sin ncβ
-//!   (t_i = 2πi/np + φ/nc − β, the locus parameter).
+//!   curvature at the contact from cos(nc·t_i) = cos(φi + nc·(β + Δδ)) (t_i = 2πi/np + φ/nc −
+//!   β − Δδ, the contact's locus parameter; `Mesh::foot_guess`).
 //! Per pin j (w_j its unit direction, ψ = −φ/nc + β the disc rotation):
 //!   a_j = rw·(R(ψ)·w_j) × (−e_φ), gap c − βo·a_j, force F_j·(−e_φ) at the hole wall
 //!   O + rw·R(ψ)·w_j − R_h·e_φ.
@@ -447,7 +447,9 @@ impl<'a> FirstOrderSweep<'a> {
     ) {
         let r = self.rollers;
         let profile = &r.mesh.profile;
-        let (sin_nc_lag, cos_nc_lag) = sin_cos(self.model.teeth as f64 * lag);
+        // The profile rotation Δδ turns the contact like a lag (`Mesh::foot_guess`).
+        let (sin_nc_lag, cos_nc_lag) =
+            sin_cos(self.model.teeth as f64 * (lag + profile.rotation_rad));
         let d = &r.design;
         let (min_inv_r, roller_inv_r) = (1.0 / d.roller_circle_radius_mm, 1.0 / d.roller_radius_mm);
         let k1_e = r.first_order.k1 * e_phi;

@@ -4,6 +4,7 @@
 //! hole walls, the crank bearing holds the disc centre. Moments are about the disc centre;
 //! the pins transmit the output torque T, the rollers balance it.
 
+pub mod balance;
 pub mod curves;
 pub mod first_order_sweep;
 pub mod pins;

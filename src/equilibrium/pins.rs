@@ -7,6 +7,7 @@
 //! about the disc centre has arm a = rw·e^{iγj} × û (rw·sin(γj − φ) when ideal), positive arms
 //! carry a positive output torque. Exact derivatives: ∂gap/∂βo = −(Q − O) × û and ∂gap/∂u = û.
 
+use super::balance::impl_contact;
 use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::{cross, rotate, sin_cos, Vec2};
 use crate::model::{ContactLaw, Design};
@@ -218,24 +219,4 @@ impl Pins {
     }
 }
 
-/// Σ F·a (N·mm), its slope ∂/∂βo = Σ k·a·(−∂gap/∂βo), and the scale Σ |F·a|.
-pub fn moment(states: &[PinState]) -> (f64, f64, f64) {
-    states.iter().fold((0.0, 0.0, 0.0), |(m, dm, scale), s| {
-        (
-            m + s.force_n * s.arm_mm,
-            dm - s.stiffness_n_per_mm * s.arm_mm * s.gap_slope_mm,
-            scale + (s.force_n * s.arm_mm).abs(),
-        )
-    })
-}
-
-/// Mix two evaluations of the pins at neighbouring output lags, `states` ← (1 − weight)·`low`
-/// + weight·`states` in force, stiffness and gap (see `solve::Straddle`).
-pub fn blend(states: &mut [PinState], low: &[PinState], weight: f64) {
-    for (s, l) in states.iter_mut().zip(low) {
-        s.force_n = l.force_n + weight * (s.force_n - l.force_n);
-        s.stiffness_n_per_mm =
-            l.stiffness_n_per_mm + weight * (s.stiffness_n_per_mm - l.stiffness_n_per_mm);
-        s.gap_mm = l.gap_mm + weight * (s.gap_mm - l.gap_mm);
-    }
-}
+impl_contact!(PinState, |s| s.gap_slope_mm);

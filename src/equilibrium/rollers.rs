@@ -9,6 +9,7 @@
 //! the closest-point search is warm-started from the roller's last contact parameter, and a
 //! roller that provably cannot touch (`Reach`) is not evaluated at all.
 
+use super::balance::impl_contact;
 use crate::contact::hertz_line::{hertz, HertzLine};
 use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::clearance::{GapFailure, Mesh, Pose};
@@ -273,7 +274,7 @@ impl Rollers {
                 },
             );
             for (i, s) in states.iter_mut().enumerate() {
-                s.t = self.mesh.locus_parameter(i, pose);
+                s.t = self.mesh.foot_guess(i, pose);
             }
         }
         let (s, c) = trig.rotation(pose.lag_rad);
@@ -373,7 +374,7 @@ impl Rollers {
         let towards = self.units[i] - self.first_order.k1 * e_phi;
         let normal = towards / towards.norm();
         let gap_mm = gap0 - arm * pose.lag_rad - normal.dot(&pose.centre_offset_mm);
-        let t = self.mesh.locus_parameter(i, pose);
+        let t = self.mesh.foot_guess(i, pose);
         let cf = self.contact_force(gap_mm, t);
         RollerState {
             gap_mm,
@@ -418,26 +419,5 @@ impl Rollers {
     }
 }
 
-/// Moment of the rollers' forces that balances the load, Σ F·l (N·mm), its slope ∂/∂β = Σ k·l²,
-/// and its scale Σ |F·l| (for relative residuals).
-pub fn moment(states: &[RollerState]) -> (f64, f64, f64) {
-    states.iter().fold((0.0, 0.0, 0.0), |(m, dm, scale), s| {
-        (
-            m + s.force_n * s.arm_mm,
-            dm + s.stiffness_n_per_mm * s.arm_mm * s.arm_mm,
-            scale + (s.force_n * s.arm_mm).abs(),
-        )
-    })
-}
-
-/// Mix two evaluations of the rollers at neighbouring lags, `states` ← (1 − weight)·`low` +
-/// weight·`states` in force, stiffness and gap (see `solve::Straddle`). Geometry is that of
-/// `states`: one ulp of lag apart, it is the same to round-off.
-pub fn blend(states: &mut [RollerState], low: &[RollerState], weight: f64) {
-    for (s, l) in states.iter_mut().zip(low) {
-        s.force_n = l.force_n + weight * (s.force_n - l.force_n);
-        s.stiffness_n_per_mm =
-            l.stiffness_n_per_mm + weight * (s.stiffness_n_per_mm - l.stiffness_n_per_mm);
-        s.gap_mm = l.gap_mm + weight * (s.gap_mm - l.gap_mm);
-    }
-}
+// ∂gap/∂β = −l (MODEL.md sign convention, `geometry::clearance`).
+impl_contact!(RollerState, |s| -s.arm_mm);

@@ -139,6 +139,7 @@ pub fn monotone_root<E: std::fmt::Display>(
     let mut step = 16.0 * settings.initial_step;
     let mut x = guess;
     let mut last_residual = f64::INFINITY;
+    let mut last_miss = f64::INFINITY;
     let mut nearest: Option<(f64, f64)> = None;
     for calls in 1..=settings.max_iterations {
         let b = eval(x)?;
@@ -146,9 +147,14 @@ pub fn monotone_root<E: std::fmt::Display>(
         if nearest.is_none_or(|(_, v)| (b.value - target).abs() < (v - target).abs()) {
             nearest = Some((x, b.value));
         }
-        // Newton that fails to halve the residual (a kink where a contact opens or closes)
-        // gives way to bisection once the bracket is closed.
-        let stalled = residual > 0.5 * last_residual;
+        // Newton that fails to halve the miss |m − target| (a kink where a contact opens or
+        // closes) gives way to bisection once the bracket is closed. The miss is absolute: a
+        // relative residual is scaled by the moment of the point itself, and stays near 1 at
+        // every point far above a tiny target (1e-100 N·m), so Newton, exact on a linear
+        // segment, would never be taken again.
+        let miss = (b.value - target).abs();
+        let stalled = miss > 0.5 * last_miss;
+        last_miss = miss;
         last_residual = residual;
         // At a zero target a value within its round-off is zero: the relative residual of
         // forces that are themselves round-off (an unmodified profile touching every roller at
@@ -170,9 +176,17 @@ pub fn monotone_root<E: std::fmt::Display>(
             at_hi = Some(b);
         }
         let newton = (b.slope > 0.0).then(|| x - (b.value - target) / b.slope);
-        let next = if lo.is_finite() && hi.is_finite() {
+        let next = if let (Some(a), Some(c)) = (at_lo.filter(|_| lo.is_finite()), at_hi) {
+            // Newton, else the secant through the bracket's ends, else bisection. The secant
+            // lo + (target − m_lo)·(hi − lo)/(m_hi − m_lo) has no cancellation where Newton's
+            // x − (m − target)/slope has: far above a tiny target (1e-100 N·m) the two terms of
+            // Newton's step agree to round-off and its answer is noise, while the secant from
+            // an unloaded lo is the exact root of a balance linear in the lag.
+            let secant = lo + (target - a.value) * ((hi - lo) / (c.value - a.value));
             match newton {
-                Some(n) if n > lo && n < hi && !stalled => n,
+                _ if stalled => 0.5 * (lo + hi),
+                Some(n) if n > lo && n < hi => n,
+                _ if secant > lo && secant < hi => secant,
                 _ => 0.5 * (lo + hi),
             }
         } else {
@@ -232,13 +246,22 @@ pub fn monotone_root<E: std::fmt::Display>(
     })
 }
 
+/// The weights of two states mixed to balance exactly (`settle_straddle`), each formed from the
+/// values directly: one of them can be far below ε (1e-88 at 1e-100 N·m), and as 1 − the
+/// other it would round to nothing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Weights {
+    pub x: f64,
+    pub y: f64,
+}
+
 /// Settle a straddled root (`Root::straddle`): the caller holds its states at `x`, where the
 /// balance is `value_x`; `evaluate(y)` evaluates the balance at y into scratch states and
 /// returns its value. Round-off depends on the path (a closest point found from another warm
 /// start differs in its last bits), so the pair is re-established here: y moves away from x,
 /// starting at the bracket's width |towards − x| and doubling, until m(y) lies on the other
-/// side of the target, at most 1e-9·max(1, |x|) away. Returns y and the weight w with
-/// (1 − w)·value_x + w·m(y) = target: the states mixed so balance exactly, and the root lies
+/// side of the target, at most 1e-9·max(1, |x|) away. Returns y and the weights with
+/// w_x·value_x + w_y·m(y) = target: the states mixed so balance exactly, and the root lies
 /// between x and y (a few ulp apart).
 pub fn settle_straddle(
     x: f64,
@@ -246,9 +269,9 @@ pub fn settle_straddle(
     value_x: f64,
     target: f64,
     mut evaluate: impl FnMut(f64) -> Result<f64, SolveFailure>,
-) -> Result<(f64, f64), SolveFailure> {
+) -> Result<(f64, Weights), SolveFailure> {
     if value_x == target {
-        return Ok((x, 0.0));
+        return Ok((x, Weights { x: 1.0, y: 0.0 }));
     }
     // m is non-decreasing: below the target the other side lies at larger x.
     let below = value_x < target;
@@ -269,7 +292,12 @@ pub fn settle_straddle(
             value_y <= target
         };
         if crossed {
-            return Ok((y, (target - value_x) / (value_y - value_x)));
+            let span = value_y - value_x;
+            let weights = Weights {
+                x: (value_y - target) / span,
+                y: (target - value_x) / span,
+            };
+            return Ok((y, weights));
         }
         distance *= 2.0;
     }
@@ -357,6 +385,12 @@ fn sweep_breakpoints(
 ) -> Option<f64> {
     events.clear();
     let (mut a, mut b) = (0.0, 0.0);
+    // Terms in contact by the sign of their arm. Where none is, the running sums are reset to
+    // the exact zero: their round-off after a cancellation (~1e-7 of sums ~1e9) would be taken
+    // for a slope. A segment where only negative arms touch has M ≤ 0 and holds no root of a
+    // positive target (and vice versa): its affine root lies past its end by t/(k·l²), which
+    // rounds to the end itself at a tiny target (1e-97 N·mm).
+    let (mut positive, mut negative) = (0usize, 0usize);
     let (mut plateau_lo, mut plateau_hi) = (f64::NEG_INFINITY, f64::INFINITY);
     for &(g, l) in terms {
         if l == 0.0 {
@@ -371,6 +405,7 @@ fn sweep_breakpoints(
             // In contact for x below its breakpoint, so already at x → −∞.
             a += da;
             b += db;
+            negative += 1;
             events.push((x, -da, -db));
             plateau_lo = plateau_lo.max(x);
         }
@@ -378,16 +413,59 @@ fn sweep_breakpoints(
     if target == 0.0 && plateau_lo <= plateau_hi && plateau_hi.is_finite() {
         return Some(plateau_hi);
     }
+    let reachable = |positive: usize, negative: usize| {
+        (target >= 0.0 || negative > 0) && (target <= 0.0 || positive > 0)
+    };
     events.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
     for &(x_end, da, db) in events.iter() {
-        if a > 0.0 {
+        if a > 0.0 && reachable(positive, negative) {
             let root = (target + b) / a;
             if root <= x_end {
                 return Some(root);
             }
         }
-        a += da;
-        b += db;
+        (a, b) = (a + da, b + db);
+        if da > 0.0 {
+            positive += 1;
+        } else {
+            negative -= 1;
+        }
+        if positive + negative == 0 {
+            (a, b) = (0.0, 0.0);
+        }
     }
-    (a > 0.0).then(|| (target + b) / a)
+    (a > 0.0 && reachable(positive, negative)).then(|| (target + b) / a)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A disc on the line of centres: rollers in symmetric pairs (g, ±l), clear at lag 0.
+    /// A positive torque, however tiny, is carried by the positive arms once they close at
+    /// x = g/l (the limit T → 0⁺ of the root (T + k·l·g)/(k·l²)); M ≤ 0 below it. The sweep's
+    /// running sums used to keep ~1e-7 of round-off after the negative arms opened, and put
+    /// the root of 1e-97 N·mm at 1e-97/1e-7 inside the clearance plateau.
+    #[test]
+    fn a_tiny_target_closes_the_first_positive_arm() {
+        let k = 7.111737215818652e5;
+        let pairs = [(0.0641, 17.4943), (0.0616, 16.8481), (0.0487, 12.5642)];
+        let terms: Vec<(f64, f64)> = pairs.iter().flat_map(|&(g, l)| [(g, l), (g, -l)]).collect();
+        let closes = pairs
+            .iter()
+            .map(|(g, l)| g / l)
+            .fold(f64::INFINITY, f64::min);
+        for target in [1e-3, 1e-97, 1e-297] {
+            let x = piecewise_linear_root(k, &terms, target, &mut Vec::new()).unwrap();
+            // The root sits on the first closing breakpoint to within one ulp of it plus
+            // the approach T/(k·l²) it needs (below 1e-10 rad at 1e-3 N·mm).
+            assert!(
+                x >= closes * (1.0 - 1e-15),
+                "{target:e}: {x:e} < {closes:e}"
+            );
+            assert!(x <= closes + 1e-10, "{target:e}: {x:e}");
+            let below = piecewise_linear_root(k, &terms, -target, &mut Vec::new()).unwrap();
+            assert!(below <= -closes * (1.0 - 1e-15), "{target:e}: {below:e}");
+        }
+    }
 }

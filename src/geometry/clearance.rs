@@ -129,6 +129,13 @@ impl Mesh {
             - pose.lag_rad
     }
 
+    /// Where the foot of roller i lies to first order, the seed of its closest-point search:
+    /// its own locus parameter turned back by the profile rotation, 2πi/np + φ/nc − β − Δδ (a
+    /// rotation of the profile is a lag of the disc; exact at whole tooth pitches).
+    pub fn foot_guess(&self, i: usize, pose: &Pose) -> f64 {
+        self.locus_parameter(i, pose) - self.profile.rotation_rad
+    }
+
     /// Exact gap of roller i at `pose`; `t_start` warm-starts the closest-point search.
     pub fn roller_gap(
         &self,
@@ -137,7 +144,7 @@ impl Mesh {
         t_start: Option<f64>,
     ) -> Result<RollerGap, GapFailure> {
         let p = self.roller_in_disc(i, pose);
-        let t0 = t_start.unwrap_or_else(|| self.locus_parameter(i, pose));
+        let t0 = t_start.unwrap_or_else(|| self.foot_guess(i, pose));
         // In the disc frame the roller centre is q = e^{−iβ}·C0(t_i) − e^{−iψ}·u, C0 the
         // unmodified locus (radius Rp) and t_i = 2πi/np + φ/nc its locus parameter at β = 0
         // (np·t_i ≡ np·φ/nc mod 2π). The closest point is found from that form, without the

@@ -56,7 +56,7 @@ impl Coefficients {
             e_nc_mm: design.eccentricity_mm * design.teeth as f64,
             equidistant_mm: m.equidistant_mm,
             shift_mm: m.shift_mm,
-            rotation_rad: m.rotation_rad,
+            rotation_rad: m.rotation_within_pitch(design.teeth),
         }
     }
 

@@ -115,7 +115,7 @@ impl Profile {
             design.eccentricity_mm,
             design.roller_circle_radius_mm + modification.shift_mm,
             design.roller_radius_mm + modification.equidistant_mm,
-            modification.rotation_rad,
+            modification.rotation_within_pitch(design.teeth),
         )
     }
 

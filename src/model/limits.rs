@@ -18,6 +18,9 @@ pub struct Limits {
     pub entries: Vec<Limit>,
     /// Upper limit on every optimisation study's optimum objective.
     pub optimum_max_objective: Option<f64>,
+    /// `accuracy_resolved: true`: the accuracy scene's crank resolution must meet the accuracy
+    /// ladder's tolerances (`engine::resolution`), a failing check otherwise.
+    pub accuracy_resolved: bool,
 }
 
 impl Limits {

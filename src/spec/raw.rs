@@ -211,9 +211,17 @@ pub struct RawCrank {
 }
 
 /// `limits:`, a mapping of limit keys (`min_clearance_mm`, ...; the registry's
-/// `quantity::LIMITS`, and `optimum_max_objective`) to values; unknown keys are refused when
-/// the spec is validated, with the closest known key.
-pub type RawLimits = std::collections::BTreeMap<String, f64>;
+/// `quantity::LIMITS`, `optimum_max_objective` and the flag `accuracy_resolved`) to values;
+/// unknown keys are refused when the spec is validated, with the closest known key.
+pub type RawLimits = std::collections::BTreeMap<String, RawLimit>;
+
+/// A limit's value: a bound, or a flag (`accuracy_resolved: true`).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum RawLimit {
+    Bound(f64),
+    Flag(bool),
+}
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

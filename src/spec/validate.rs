@@ -45,6 +45,22 @@ const MAX_LENGTH_MM: f64 = 1e5;
 /// below 1e-9 rad.
 const MAX_CRANK_DEG: f64 = 1e7;
 
+/// An angle in degrees within ±`MAX_CRANK_DEG` (a crank angle, a profile rotation).
+fn angle_deg(key: &str, value: f64) -> Result<f64> {
+    let value = finite(key, value)?;
+    if value.abs() > MAX_CRANK_DEG {
+        return Err(invalid(
+            key,
+            format!(
+                "{}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where the \
+                 angle's rounding would exceed 1e-9 rad",
+                crate::numeric::input(value)
+            ),
+        ));
+    }
+    Ok(value)
+}
+
 /// A positive length no larger than `MAX_LENGTH_MM`.
 fn length(key: &str, value: f64) -> Result<f64> {
     let value = positive(key, value)?;
@@ -161,27 +177,13 @@ fn modification(raw: &RawModification) -> Result<Modification> {
     Ok(Modification {
         shift_mm: finite("modification.shift_mm", raw.shift_mm)?,
         equidistant_mm: finite("modification.equidistant_mm", raw.equidistant_mm)?,
-        rotation_rad: units::rad(finite("modification.rotation_deg", raw.rotation_deg)?),
+        rotation_rad: units::rad(angle_deg("modification.rotation_deg", raw.rotation_deg)?),
     })
 }
 
 fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
-    let angle = |name: &str, value: f64| -> Result<f64> {
-        let k = format!("{key}.{name}");
-        let value = finite(&k, value)?;
-        if value.abs() > MAX_CRANK_DEG {
-            return Err(invalid(
-                &k,
-                format!(
-                    "{value}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where \
-                     the crank angle's rounding would exceed 1e-9 rad"
-                ),
-            ));
-        }
-        Ok(value)
-    };
-    let from = angle("from_deg", raw.from_deg)?;
-    let to = angle("to_deg", raw.to_deg)?;
+    let from = angle_deg(&format!("{key}.from_deg"), raw.from_deg)?;
+    let to = angle_deg(&format!("{key}.to_deg"), raw.to_deg)?;
     let steps = raw.steps;
     if steps < 1 {
         return Err(invalid(
@@ -275,11 +277,12 @@ fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
 /// closest known one.
 fn limits(raw: &RawLimits) -> Result<Limits> {
     const OPTIMUM: &str = "optimum_max_objective";
+    const RESOLVED: &str = "accuracy_resolved";
     let known = || {
         quantity::LIMITS
             .iter()
             .map(|l| l.key)
-            .chain(std::iter::once(OPTIMUM))
+            .chain([OPTIMUM, RESOLVED])
     };
     if let Some(unknown) = raw.keys().find(|k| known().all(|key| key != k.as_str())) {
         let message = match did_you_mean(unknown, known()) {
@@ -291,27 +294,41 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
         };
         return Err(Error::new(ErrorKind::Syntax, message).at_key(format!("limits.{unknown}")));
     }
+    let bound = |key: &str| -> Result<Option<f64>> {
+        let at = format!("limits.{key}");
+        match raw.get(key) {
+            None => Ok(None),
+            Some(RawLimit::Bound(x)) => finite(&at, *x).map(Some),
+            Some(RawLimit::Flag(b)) => Err(invalid(&at, format!("must be a number, got {b}"))),
+        }
+    };
     let mut entries = Vec::new();
     for def in quantity::LIMITS {
-        let Some(&value) = raw.get(def.key) else {
+        let Some(value) = bound(def.key)? else {
             continue;
         };
-        let key = format!("limits.{}", def.key);
-        let value = finite(&key, value)?;
         if def.whole && (value.fract() != 0.0 || value < 0.0) {
             return Err(invalid(
-                &key,
+                &format!("limits.{}", def.key),
                 format!("must be a whole number of at least 0, got {value}"),
             ));
         }
         entries.push(Limit { def, value });
     }
+    let accuracy_resolved = match raw.get(RESOLVED) {
+        None => false,
+        Some(RawLimit::Flag(b)) => *b,
+        Some(RawLimit::Bound(x)) => {
+            return Err(invalid(
+                &format!("limits.{RESOLVED}"),
+                format!("must be true or false, got {x}"),
+            ))
+        }
+    };
     Ok(Limits {
         entries,
-        optimum_max_objective: raw
-            .get(OPTIMUM)
-            .map(|&x| finite(&format!("limits.{OPTIMUM}"), x))
-            .transpose()?,
+        optimum_max_objective: bound(OPTIMUM)?,
+        accuracy_resolved,
     })
 }
 
@@ -379,6 +396,13 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         .accuracy
         .map(|a| accuracy_section(a, &scenes, &design))
         .transpose()?;
+    if limits.accuracy_resolved && accuracy.is_none() {
+        return Err(invalid(
+            "limits.accuracy_resolved",
+            "needs an `accuracy:` section: its scene and tolerances say what resolved means"
+                .to_string(),
+        ));
+    }
     Ok(Spec {
         name: raw.name,
         path: path.to_string(),
@@ -711,7 +735,7 @@ fn study(
             Modification {
                 shift_mm: finite(&format!("{rk}.shift_mm"), r.shift_mm)?,
                 equidistant_mm: finite(&format!("{rk}.equidistant_mm"), r.equidistant_mm)?,
-                rotation_rad: units::rad(finite(&format!("{rk}.rotation_deg"), r.rotation_deg)?),
+                rotation_rad: units::rad(angle_deg(&format!("{rk}.rotation_deg"), r.rotation_deg)?),
             },
         ));
     }

@@ -1,0 +1,184 @@
+//! Is a scene's own crank resolution fine enough for the tolerances of its spec's accuracy
+//! ladder? `check` asks this of the ladder's scene whenever the spec has an `accuracy:`
+//! section, so that a run never passes while its own accuracy table calls it too coarse.
+//!
+//! The steps rungs of the ladder (12, 24, … crank steps per mesh period, nested in the finest,
+//! `engine::accuracy`) are compared with the reference at the finest. The scene is
+//! **unresolved** when the coarsest rung already misses a tolerance (so resolution matters at
+//! all) and the scene's steps per mesh period are fewer than those of the coarsest rung from
+//! which on every steps rung meets the tolerances (the reference's, when none coarser does).
+//! Without the full ladder (`check` without `--report`), the reference and the steps rungs up
+//! to the first one that decides are run, untimed.
+
+use super::accuracy::{self, Ladder, Layout, Outputs, Quantity, Tolerances};
+use crate::engine::scene;
+use crate::error::Result;
+use crate::model::Plan;
+use crate::numeric::number;
+use crate::spec::{self, Spec};
+
+/// A steps rung of the ladder and the tolerances it misses.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepsRung {
+    /// Crank steps per mesh period.
+    pub steps: usize,
+    /// (quantity, |rung − reference| in its unit) of every quantity over its tolerance.
+    pub misses: Vec<(Quantity, f64)>,
+}
+
+/// The verdict on a scene's crank resolution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Resolution {
+    pub scene: String,
+    /// The scene's crank steps per mesh period (its crank angles over the periods its range
+    /// covers; need not be 12·2^k).
+    pub scene_steps: f64,
+    /// Steps per mesh period of the reference.
+    pub finest: usize,
+    pub tolerances: Tolerances,
+    /// The steps rungs compared, coarse to fine (the reference left out).
+    pub rungs: Vec<StepsRung>,
+}
+
+impl Resolution {
+    /// Steps per mesh period from which on every steps rung meets the tolerances (the finest
+    /// when the rung below it misses).
+    pub fn needed_steps(&self) -> usize {
+        let mut needed = self.finest;
+        for r in self.rungs.iter().rev() {
+            if !r.misses.is_empty() {
+                break;
+            }
+            needed = r.steps;
+        }
+        needed
+    }
+
+    /// Fine enough: the coarsest rung meets every tolerance, or the scene is at least as fine
+    /// as `needed_steps`.
+    pub fn resolved(&self) -> bool {
+        self.rungs.first().is_none_or(|r| r.misses.is_empty())
+            || self.scene_steps >= self.needed_steps() as f64
+    }
+
+    /// The finest rung at most as fine as the scene (else the coarsest), with what it misses:
+    /// the evidence that the scene is too coarse.
+    pub fn evidence(&self) -> Option<&StepsRung> {
+        self.rungs
+            .iter()
+            .rev()
+            .find(|r| r.steps as f64 <= self.scene_steps && !r.misses.is_empty())
+            .or_else(|| self.rungs.iter().find(|r| !r.misses.is_empty()))
+    }
+
+    /// What the misses of `evidence` are, "TE curve 0.1105 > 0.1 arcsec, …".
+    pub fn misses_text(&self) -> String {
+        let Some(r) = self.evidence() else {
+            return String::new();
+        };
+        let parts: Vec<String> = r
+            .misses
+            .iter()
+            .map(|&(q, e)| {
+                let unit = q.unit();
+                let unit = if unit.is_empty() {
+                    String::new()
+                } else {
+                    format!(" {unit}")
+                };
+                format!(
+                    "{} {} > {}{unit}",
+                    q.label(),
+                    number(e),
+                    number(q.tolerance(&self.tolerances))
+                )
+            })
+            .collect();
+        format!("at {} steps: {}", r.steps, parts.join(", "))
+    }
+
+    /// The warning `check` prints under its verdict when the scene is unresolved.
+    pub fn warning(&self) -> Option<String> {
+        (!self.resolved()).then(|| {
+            format!(
+                "warning: scene `{}` is solved at {} crank steps per mesh period; its accuracy \
+                 ladder needs {} to meet the tolerances ({}); refine the crank steps or loosen \
+                 `accuracy.tolerance`",
+                self.scene,
+                number(self.scene_steps),
+                self.needed_steps(),
+                self.misses_text()
+            )
+        })
+    }
+}
+
+/// The resolution verdict from a ladder already run (the design review's).
+pub fn of_ladder(ladder: &Ladder, scene_angles: usize) -> Resolution {
+    let rungs = ladder
+        .steps_rungs()
+        .filter(|r| !r.is_reference)
+        .map(|r| StepsRung {
+            steps: r.steps_per_period.round() as usize,
+            misses: misses(&ladder.layout.tolerances, |q| r.error(q)),
+        })
+        .collect();
+    Resolution {
+        scene: ladder.layout.scene.clone(),
+        scene_steps: scene_angles as f64 / ladder.layout.periods,
+        finest: ladder.layout.finest,
+        tolerances: ladder.layout.tolerances,
+        rungs,
+    }
+}
+
+/// The resolution verdict of the spec's accuracy scene, running the reference and the steps
+/// rungs from the coarsest up to the first that meets every tolerance at or above the scene's
+/// resolution.
+pub fn run(spec: &Spec, scene_index: usize, options: &accuracy::Options) -> Result<Resolution> {
+    let scene = &spec.scenes[scene_index];
+    let layout = accuracy::layout(spec, scene, options);
+    let outputs = |steps: usize| -> Result<Outputs> {
+        let mut s = scene.clone();
+        s.crank_rad = spec::crank_angles(layout.from_deg, layout.to_deg, layout.angles(steps));
+        Ok(Outputs::of(&scene::run(spec, &s, &Plan::for_scene(&s))?))
+    };
+    let reference = outputs(options.finest)?;
+    let mut resolution = Resolution {
+        scene: scene.name.clone(),
+        scene_steps: scene.crank_rad.len() as f64 / layout.periods,
+        finest: options.finest,
+        tolerances: options.tolerances,
+        rungs: Vec::new(),
+    };
+    let mut steps = accuracy::COARSEST;
+    while steps < options.finest {
+        let rung = rung(&layout, &reference, steps, outputs(steps)?);
+        let met = rung.misses.is_empty();
+        resolution.rungs.push(rung);
+        // A rung that meets decides when it is the coarsest (resolution does not matter) or
+        // at least as fine as the scene; one that misses never does: the rung that meets
+        // above it is the resolution the warning names.
+        if met && (steps == accuracy::COARSEST || steps as f64 >= resolution.scene_steps) {
+            break;
+        }
+        steps *= 2;
+    }
+    Ok(resolution)
+}
+
+fn rung(layout: &Layout, reference: &Outputs, steps: usize, outputs: Outputs) -> StepsRung {
+    let ratio = layout.angles(layout.finest) / layout.angles(steps);
+    let (errors, _) = accuracy::errors(reference, &outputs, ratio, layout.periodic);
+    StepsRung {
+        steps,
+        misses: misses(&layout.tolerances, |q| errors[q as usize]),
+    }
+}
+
+fn misses(t: &Tolerances, error: impl Fn(Quantity) -> Option<f64>) -> Vec<(Quantity, f64)> {
+    Quantity::ALL
+        .into_iter()
+        .filter_map(|q| error(q).filter(|&e| !q.within(e, t)).map(|e| (q, e)))
+        .collect()
+}

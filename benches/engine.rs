@@ -2,7 +2,7 @@
 //! Single-threaded by default (RAYON_NUM_THREADS=1 recommended for the per-core targets).
 
 use cycloid::equilibrium::curves;
-use cycloid::geometry::clearance::{self, Mesh};
+use cycloid::geometry::clearance::{self, Mesh, Scope};
 use cycloid::model::GeometryMode;
 use cycloid::spec::{self, Spec};
 use std::hint::black_box;
@@ -23,13 +23,24 @@ fn crank(n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// Unloaded clearance of every roller with backlash, one mesh period at 0.1°.
+/// Unloaded clearance of every roller with backlash both ways and lost motion, one mesh period
+/// at 0.1° (3,600 roller-angles).
 #[divan::bench]
 fn clearance_sweep_360(b: divan::Bencher) {
     let s = paper();
     let mesh = Mesh::new(&s.design, &s.modification);
     let c = crank(360);
-    b.bench(|| clearance::sweep(black_box(&mesh), &c).unwrap());
+    b.bench(|| clearance::sweep(black_box(&mesh), &c, Scope::Backlash).unwrap());
+}
+
+/// Unloaded gaps of every roller and the smallest, one mesh period at 0.1° (what a
+/// `min_clearance_mm` limit needs).
+#[divan::bench]
+fn clearance_gaps_360(b: divan::Bencher) {
+    let s = paper();
+    let mesh = Mesh::new(&s.design, &s.modification);
+    let c = crank(360);
+    b.bench(|| clearance::sweep(black_box(&mesh), &c, Scope::Gaps).unwrap());
 }
 
 /// Whole-mesh minimum clearance (the optimiser's constraint), 360 angles.
@@ -41,8 +52,37 @@ fn min_gap_360(b: divan::Bencher) {
     b.bench(|| clearance::min_gap(black_box(&mesh), &c).unwrap());
 }
 
+/// `check specs/reducer.yaml` in-process: the paper optimum's clearance over one mesh period at
+/// 0.1° (360 angles) against its `min_clearance_mm` limit; compare `loaded_sweep_360_*`.
+#[divan::bench]
+fn check_clearance_only_360(b: divan::Bencher) {
+    b.bench(|| {
+        let mut out = Vec::new();
+        let cli = <cycloid::cli::Cli as clap::Parser>::parse_from([
+            "cycloid",
+            "check",
+            "specs/reducer.yaml",
+        ]);
+        cycloid::cli::run(cli, &mut out).unwrap()
+    });
+}
+
 fn loaded(b: divan::Bencher, geometry: GeometryMode) {
     let (model, c) = common::rated_sweep(geometry, 3600);
+    b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
+}
+
+/// Loaded sweep of 360 crank angles (the angles of `check_clearance_only_360`), exact geometry.
+#[divan::bench]
+fn loaded_sweep_360_exact(b: divan::Bencher) {
+    let (model, c) = common::rated_sweep(GeometryMode::Exact, 360);
+    b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
+}
+
+/// Loaded sweep of 360 crank angles, first-order geometry.
+#[divan::bench]
+fn loaded_sweep_360_first_order(b: divan::Bencher) {
+    let (model, c) = common::rated_sweep(GeometryMode::FirstOrder, 360);
     b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
 }
 

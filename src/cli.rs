@@ -5,7 +5,6 @@ use crate::engine::progress::Progress;
 use crate::engine::{accuracy, check, golden, optimise, resolution, scene, summary};
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
-use crate::model::Plan;
 use crate::report::export;
 use crate::{report, spec};
 use clap::{Parser, Subcommand};
@@ -219,8 +218,12 @@ pub const MAX_REPORT_MAP_STEPS: usize = 101;
 fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) -> Result<Outcome> {
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
+    let writes = scene::Writes {
+        json: outputs.json.is_some(),
+        report: outputs.report.is_some(),
+    };
     if explain {
-        print(out, &scene::explain(&spec))?;
+        print(out, &scene::explain(&spec, writes))?;
         return Ok(Outcome::Passed);
     }
     if let Some(deg) = outputs.report_crank_deg.filter(|d| !d.is_finite()) {
@@ -240,8 +243,8 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     }
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec).map_err(|e| locate(e, &spec))?;
-    let results = run_scenes(&spec)?;
-    let mut checks = check::evaluate(&spec.limits, &results);
+    let results = run_scenes(&spec, writes)?;
+    let mut checks = check::evaluate(&spec, &results)?;
     let studies = run_studies(&spec, spec.studies.iter().collect());
     checks.extend(check::optimisation(&spec, &studies));
     let goldens =
@@ -364,7 +367,8 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
     let mut results = Vec::new();
     for s in &spec.scenes {
         if spec.golden.iter().any(|g| g.scene == s.name) {
-            results.push(scene::run(&spec, s, &Plan::for_scene(s))?);
+            let plan = scene::plan(&spec, s, scene::Writes::default());
+            results.push(scene::run(&spec, s, &plan)?);
         }
     }
     let blessed = golden::bless(&spec, &results).map_err(|e| locate(e, &spec))?;
@@ -373,12 +377,15 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
 }
 
 /// Every scene, in parallel; results (and the first error) in spec order.
-fn run_scenes(spec: &spec::Spec) -> Result<Vec<crate::model::results::SceneResult>> {
+fn run_scenes(
+    spec: &spec::Spec,
+    writes: scene::Writes,
+) -> Result<Vec<crate::model::results::SceneResult>> {
     use rayon::prelude::*;
     let results: Vec<Result<crate::model::results::SceneResult>> = spec
         .scenes
         .par_iter()
-        .map(|s| scene::run(spec, s, &Plan::for_scene(s)))
+        .map(|s| scene::run(spec, s, &scene::plan(spec, s, writes)))
         .collect();
     results.into_iter().collect()
 }

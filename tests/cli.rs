@@ -68,16 +68,36 @@ rated/min_clearance_mm  0.03430 mm  ≥ 0.01500 mm  pass     roller 0 at crank 0
 1 check: 1 passed, 0 failed
 headline results:
 scene `rated`:
+  min clearance over the mesh  0.03430 mm  roller 0 at crank 0.00°, tooth phase 0.000 (0 root, 0.5 tip)
+",
+        "",
+    );
+}
+
+/// A limit on the lost motion makes the clearance scene compute the backlash (nothing else in
+/// the shipped spec reads it): the check and the summary show it. It cross-checks with the
+/// first-order closed form (MODEL.md): the backlash is (ΔRrp − ΔRp·sqrt(1 − K1²))/(e·nc) =
+/// (0.1593 − 0.125·0.7454)/18 rad = 757.8″ each way, 1516″ of lost motion; the exact 1511″
+/// differs at second order of the modification.
+#[test]
+fn a_lost_motion_limit_computes_the_backlash() {
+    let spec = paper_with(&[("limits:\n", "limits:\n  max_lost_motion_arcsec: 1500\n")]);
+    assert_output(
+        &check(&spec),
+        1,
+        "cycloid check `paper-table-1`
+check                         value        limit          verdict  where
+rated/max_lost_motion_arcsec  1511 arcsec  ≤ 1500 arcsec  FAIL     crank 18.00°
+rated/min_clearance_mm        0.03430 mm   ≥ 0.01500 mm   pass     roller 0 at crank 0.00°, tooth phase 0.000 (0 root, 0.5 tip)
+2 checks: 1 passed, 1 failed
+headline results:
+scene `rated`:
   min clearance over the mesh   0.03430 mm  roller 0 at crank 0.00°, tooth phase 0.000 (0 root, 0.5 tip)
   max lost motion (unloaded)   1511 arcsec  crank 18.00°
 ",
         "",
     );
 }
-
-// The summary's lost motion cross-checks with the first-order closed form (MODEL.md): the
-// backlash is (ΔRrp − ΔRp·sqrt(1 − K1²))/(e·nc) = (0.1593 − 0.125·0.7454)/18 rad = 757.8″ each
-// way, 1516″ of lost motion; the exact 1511″ differs at second order of the modification.
 
 /// The paper's negative modification meets its own tip condition ΔRrp − ΔRp = 15 µm ≥ dt but
 /// interferes by 23 µm at mid-flank (README): the whole-mesh check must catch it.
@@ -96,8 +116,7 @@ rated/min_clearance_mm  -0.02341 mm  ≥ 0.01500 mm  FAIL     roller 9 at crank 
 1 check: 0 passed, 1 failed
 headline results:
 scene `rated`:
-  min clearance over the mesh    -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
-  max lost motion (unloaded)   -494.8 arcsec  crank 4.40°
+  min clearance over the mesh  -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
 ",
         "",
     );
@@ -127,11 +146,9 @@ start/min_clearance_mm  -0.02155 mm  ≥ -0.02200 mm  pass     roller 1 at crank
 2 checks: 1 passed, 1 failed
 headline results:
 scene `start`:
-  min clearance over the mesh    -0.02155 mm  roller 1 at crank 0.00°, tooth phase 0.892 (0 root, 0.5 tip)
-  max lost motion (unloaded)   -502.2 arcsec  crank 0.00°
+  min clearance over the mesh  -0.02155 mm  roller 1 at crank 0.00°, tooth phase 0.892 (0 root, 0.5 tip)
 scene `rated`:
-  min clearance over the mesh    -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
-  max lost motion (unloaded)   -494.8 arcsec  crank 4.40°
+  min clearance over the mesh  -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip)
 ",
         "",
     );
@@ -769,6 +786,7 @@ fn explain_prints_the_plan() {
 
 scene `rated`: output torque 10 N·m, 360 crank angles from 0.0000° in steps of 0.1000°, exact geometry
   compute clearance       asked for by the scene
+  skip    backlash (part of clearance; no limit, golden or output file reads it)
   skip    roller_contact, output_pins, bearing (not asked for)
   limits  min_clearance_mm
 
@@ -781,6 +799,56 @@ scene `loaded`: output torque 25 N·m, 4 crank angles from 0.0000° in steps of 
 ",
         "",
     );
+}
+
+/// The backlash (the closing lags of every roller) is computed when something reads it, and
+/// `--explain` says what: a limit, a golden of the scene, the results JSON or the design review
+/// (which read every quantity). A golden of another scene does not ask for it here.
+#[test]
+fn explain_says_what_reads_the_backlash() {
+    let dir = Scratch::new("explain-backlash");
+    dir.write(
+        "golden/backlash_arcsec.csv",
+        "crank_deg,backlash_arcsec\n0,1\n",
+    );
+    let explain = |spec: &str, args: &[&str]| {
+        dir.write("spec.yaml", spec);
+        let out = cycloid(
+            &dir.path,
+            &[&["check", "spec.yaml", "--explain"], args].concat(),
+        );
+        assert_eq!(out.code, Some(0), "{out:?}");
+        out.stdout
+            .lines()
+            .find(|l| l.contains("backlash"))
+            .unwrap_or("")
+            .to_string()
+    };
+    let skip = "  skip    backlash (part of clearance; no limit, golden or output file reads it)";
+    let read_by =
+        |what: &str| format!("  compute backlash        part of clearance, read by {what}");
+    assert_eq!(explain(PAPER, &[]), skip);
+    assert_eq!(explain(PAPER, &["--json", "r.json"]), read_by("--json"));
+    assert_eq!(explain(PAPER, &["--report", "review"]), read_by("--report"));
+    let limit = paper_with(&[("limits:\n", "limits:\n  max_lost_motion_arcsec: 2000\n")]);
+    assert_eq!(
+        explain(&limit, &["--json", "r.json"]),
+        read_by("limit max_lost_motion_arcsec, --json")
+    );
+    let golden = |scene: &str| {
+        format!(
+            "{PAPER}golden:\n  - {{ scene: {scene}, quantity: lost_motion_arcsec, file: golden/backlash_arcsec.csv, tolerance: {{ abs: 1.0 }} }}\n"
+        )
+    };
+    assert_eq!(
+        explain(&golden("rated"), &[]),
+        read_by("golden lost_motion_arcsec")
+    );
+    let two_scenes = golden("other").replace(
+        "limits:",
+        "  - name: other\n    crank: { from_deg: 0.0, to_deg: 36.0, steps: 4 }\n    effects: [clearance]\nlimits:",
+    );
+    assert_eq!(explain(&two_scenes, &[]), skip);
 }
 
 /// `--explain` computes nothing: a design whose check fails (exit 1) explains with exit 0, no

@@ -14,6 +14,7 @@ use cycloid::equilibrium::solve::{monotone_root, Balance, Settings, SolveFailure
 use cycloid::equilibrium::sweep::{residual, solve_angle, AngleSolution, Model};
 use cycloid::geometry::clearance::Mesh;
 use cycloid::geometry::{cross, Vec2};
+use cycloid::model::results::SceneResult;
 use cycloid::model::{ContactLaw, GeometryMode};
 use cycloid::model::{Effect, Plan};
 use cycloid::spec::{self, Spec};
@@ -187,6 +188,18 @@ fn model(spec: &Spec, rollers: bool, pins: bool, bearing: bool) -> Model {
     let effects: Vec<Effect> = asked.iter().filter(|a| a.0).map(|a| a.1).collect();
     let plan = Plan::of(&spec.scenes[0].name, &effects);
     Model::new(&spec.design, &spec.modification, &spec.scenes[0], &plan)
+}
+
+/// The first scene of `spec` run with its backlash computed (as a golden or `--json` would ask
+/// for it), and that backlash.
+fn run_with_backlash(spec: &Spec) -> (SceneResult, Vec<f64>) {
+    let scene = &spec.scenes[0];
+    let mut plan = Plan::for_scene(scene);
+    plan.ask(&cycloid::model::quantity::BACKLASH, "test");
+    let result = run(spec, scene, &plan).unwrap();
+    let clearance = result.clearance.as_ref().unwrap();
+    let backlash = clearance.backlash.as_ref().unwrap().forward_rad.clone();
+    (result, backlash)
 }
 
 /// Solve a sequence of crank angles, warm-starting each from the previous one (as a sweep does).
@@ -1214,7 +1227,7 @@ fn zero_torque_on_a_clearance_profile_is_force_free_and_lags_by_the_backlash() {
     scene.effects = "clearance, roller_contact, output_pins, bearing";
     scene.steps = 24;
     let spec = r.spec(&scene);
-    let result = run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0])).unwrap();
+    let (result, backlash) = run_with_backlash(&spec);
     let loaded = &result.loaded;
     let rollers = loaded.rollers.as_ref().unwrap();
     assert!(rollers.force_n.iter().flatten().all(|&f| f == 0.0));
@@ -1224,8 +1237,7 @@ fn zero_torque_on_a_clearance_profile_is_force_free_and_lags_by_the_backlash() {
     assert!(pins.force_n.iter().flatten().all(|&f| f == 0.0));
     let bearing = loaded.bearing.as_ref().unwrap();
     assert!(bearing.force_n.iter().all(|&f| f == 0.0));
-    let backlash = &result.clearance.as_ref().unwrap().backlash_rad;
-    for (k, (&lag, &b)) in rollers.lag_rad.iter().zip(backlash).enumerate() {
+    for (k, (&lag, &b)) in rollers.lag_rad.iter().zip(&backlash).enumerate() {
         assert!(b > 0.0);
         assert!(
             (lag - b).abs() <= 1e-10 * b,
@@ -1569,14 +1581,13 @@ fn paper_optimum_at_10_nm_regression() {
     scene.to_deg = 108.0;
     scene.steps = 216;
     let spec = r.spec(&scene);
-    let result = run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0])).unwrap();
+    let (result, backlash) = run_with_backlash(&spec);
     let angles = &result.crank_rad;
     let loaded = &result.loaded;
     let rollers = loaded.rollers.as_ref().unwrap();
     let pins = loaded.pins.as_ref().unwrap();
     let bearing = loaded.bearing.as_ref().unwrap();
     let tr = loaded.transmission.as_ref().unwrap();
-    let backlash = &result.clearance.as_ref().unwrap().backlash_rad;
 
     // Equilibrium at every angle.
     assert!(bearing.residual.iter().all(|&x| x <= 1e-9));
@@ -1606,7 +1617,7 @@ fn paper_optimum_at_10_nm_regression() {
     assert!(fo_min >= 0.99 * beta1);
     // Exact vs first order differs at O(s²): ×(0.1593/0.08)² ≈ 4 of the 0.45 arcsec measured
     // at s = 0.08 mm in the exact-vs-first-order test, ~0.25 %; allowed 0.5 %.
-    for (&phi, &b) in angles.iter().zip(backlash) {
+    for (&phi, &b) in angles.iter().zip(&backlash) {
         let fo = fo_unloaded(phi);
         assert!(
             (b - fo).abs() <= 0.005 * fo,

@@ -188,7 +188,7 @@ fn exercise(text: &str) -> Result<bool, String> {
         match cycloid::spec::parse("fuzz.yaml", text) {
             Ok(spec) => {
                 let _ = cycloid::engine::check::validate(&spec);
-                let _ = cycloid::engine::scene::explain(&spec);
+                let _ = cycloid::engine::scene::explain(&spec, Default::default());
                 Ok(true)
             }
             Err(e) => {

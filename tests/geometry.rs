@@ -10,7 +10,7 @@ mod common;
 
 use approx::relative_eq;
 use common::*;
-use cycloid::geometry::clearance::{self, Mesh, Pose};
+use cycloid::geometry::clearance::{self, Mesh, Pose, Scope};
 use cycloid::geometry::first_order;
 use cycloid::geometry::profile::Profile;
 use cycloid::geometry::{cross, Vec2};
@@ -194,7 +194,8 @@ proptest! {
         let crank: Vec<f64> = (0..2 * steps)
             .map(|k| phi0 + k as f64 * period / steps as f64)
             .collect();
-        let s = clearance::sweep(&mesh, &crank).unwrap_or_else(|f| panic!("{f}"));
+        let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap_or_else(|f| panic!("{f}"));
+        let b = s.backlash.as_ref().expect("backlash");
         let n = d.rollers;
         for k in 0..steps {
             for i in 0..n {
@@ -202,8 +203,8 @@ proptest! {
             }
             // Closing lags converge to a relative step of 1e-12 or to the gap's round-off
             // (~1e-14·Rp mm) over the arm: allow 1e-9 relative and 1e-11 rad absolute.
-            for (name, a) in [("backlash", &s.backlash_rad), ("reverse", &s.backlash_reverse_rad),
-                              ("lost motion", &s.lost_motion_rad)] {
+            for (name, a) in [("backlash", &b.forward_rad), ("reverse", &b.reverse_rad),
+                              ("lost motion", &b.lost_motion_rad)] {
                 prop_assert!(relative_eq!(a[k], a[k + steps], epsilon = 1e-11, max_relative = 1e-9),
                     "{name} at φ = {} is {}, one period later {}", crank[k], a[k], a[k + steps]);
             }
@@ -222,13 +223,14 @@ proptest! {
         let steps = 6;
         let period = d.mesh_period_rad();
         let crank: Vec<f64> = (0..steps).map(|k| k as f64 * period / steps as f64).collect();
-        let s = clearance::sweep(&mesh, &crank).unwrap_or_else(|f| panic!("{f}"));
+        let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap_or_else(|f| panic!("{f}"));
+        let b = s.backlash.as_ref().expect("backlash");
         for k in 0..steps {
             let mirrored = (steps - k) % steps;
             // Closing-lag convergence, as in the periodicity test.
-            prop_assert!(relative_eq!(s.backlash_reverse_rad[k], s.backlash_rad[mirrored], epsilon = 1e-11, max_relative = 1e-9),
+            prop_assert!(relative_eq!(b.reverse_rad[k], b.forward_rad[mirrored], epsilon = 1e-11, max_relative = 1e-9),
                 "reverse backlash at φ_{k} = {}, forward at φ_{mirrored} = {}",
-                s.backlash_reverse_rad[k], s.backlash_rad[mirrored]);
+                b.reverse_rad[k], b.forward_rad[mirrored]);
         }
         for i in 0..n {
             let a = gap(&mesh, i, phi, 0.0);
@@ -257,17 +259,7 @@ fn brute_force_signed_distance(profile: &Profile, p: Vec2, samples: usize) -> (f
         .unwrap();
     let h = TAU / samples as f64;
     let dist = |t: f64| (profile.point(t) - p).norm();
-    let (mut a, mut b) = (ts[best] - h, ts[best] + h);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..100 {
-        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-        if dist(x1) < dist(x2) {
-            b = x2;
-        } else {
-            a = x1;
-        }
-    }
-    let t = 0.5 * (a + b);
+    let t = golden_section_min(dist, ts[best] - h, ts[best] + h);
     let mut inside = false;
     for k in 0..samples {
         let (u, v) = (pts[k], pts[(k + 1) % samples]);
@@ -620,7 +612,7 @@ fn paper_sweep(
     assert!((scene.crank_rad[1] - scene.crank_rad[0] - 0.1f64.to_radians()).abs() < 1e-15);
     assert!(scene.spans_whole_periods(&spec.design));
     let mesh = Mesh::new(&spec.design, &spec.modification);
-    let sweep = clearance::sweep(&mesh, &scene.crank_rad).expect("sweep converges");
+    let sweep = clearance::sweep(&mesh, &scene.crank_rad, Scope::Gaps).expect("sweep converges");
     (spec, sweep)
 }
 
@@ -782,17 +774,16 @@ fn backlash_errors(d: &Design, delta: f64) -> (f64, f64, Vec<f64>) {
     let mut crank: Vec<f64> = (0..24).map(|k| k as f64 * period / 24.0).collect();
     crank.push(best);
     let mesh = Mesh::new(d, &modification(0.0, delta, 0.0));
-    let s = clearance::sweep(&mesh, &crank).unwrap_or_else(|f| panic!("{f}"));
+    let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap_or_else(|f| panic!("{f}"));
+    let b = s.backlash.as_ref().expect("backlash");
     let (mut fwd_err, mut rev_err): (f64, f64) = (0.0, 0.0);
     for (k, &phi) in crank.iter().enumerate() {
         let (fwd, rev) = first_order_backlash(d, delta, phi);
-        fwd_err = fwd_err.max((s.backlash_rad[k] / fwd - 1.0).abs());
-        rev_err = rev_err.max((s.backlash_reverse_rad[k] / rev - 1.0).abs());
-        assert!(
-            (s.lost_motion_rad[k] - s.backlash_rad[k] - s.backlash_reverse_rad[k]).abs() < 1e-15
-        );
+        fwd_err = fwd_err.max((b.forward_rad[k] / fwd - 1.0).abs());
+        rev_err = rev_err.max((b.reverse_rad[k] / rev - 1.0).abs());
+        assert!((b.lost_motion_rad[k] - b.forward_rad[k] - b.reverse_rad[k]).abs() < 1e-15);
     }
-    (fwd_err, rev_err, s.backlash_rad)
+    (fwd_err, rev_err, b.forward_rad.clone())
 }
 
 /// Backlash of the paper's design with a pure equidistant modification δ: first order is
@@ -860,7 +851,8 @@ fn paper_lost_motion_of_a_pure_equidistant_modification_is_twice_the_backlash() 
         .map(|k| k as f64 * period / steps as f64)
         .collect();
     let mesh = Mesh::new(&d, &modification(0.0, delta, 0.0));
-    let s = clearance::sweep(&mesh, &crank).unwrap();
+    let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap();
+    let lags = s.backlash.as_ref().expect("backlash");
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
     let range = |v: &[f64]| {
         let max = v.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
@@ -869,12 +861,12 @@ fn paper_lost_motion_of_a_pure_equidistant_modification_is_twice_the_backlash() 
     };
     // Closing-lag convergence (relative 1e-12), summed over 36 angles.
     assert!(relative_eq!(
-        mean(&s.backlash_rad),
-        mean(&s.backlash_reverse_rad),
+        mean(&lags.forward_rad),
+        mean(&lags.reverse_rad),
         epsilon = 0.0,
         max_relative = 1e-9
     ));
-    let (a, b) = (range(&s.backlash_rad), range(&s.backlash_reverse_rad));
+    let (a, b) = (range(&lags.forward_rad), range(&lags.reverse_rad));
     assert!(
         relative_eq!(a.0, b.0, epsilon = 0.0, max_relative = 1e-9)
             && relative_eq!(a.1, b.1, epsilon = 0.0, max_relative = 1e-9)
@@ -888,11 +880,11 @@ fn paper_lost_motion_of_a_pure_equidistant_modification_is_twice_the_backlash() 
         .fold(f64::INFINITY, f64::min);
     println!(
         "lost motion: mean {:.4e} rad, 2δ/(e·nc) = {:.4e} rad, best-roller arm fraction ≥ {f:.4}",
-        mean(&s.lost_motion_rad),
+        mean(&lags.lost_motion_rad),
         2.0 * delta / e_nc
     );
     // Second-order term of the closing lag: relative ≲ 1e-3 at δ = 2 µm (see the backlash test).
-    for &lm in &s.lost_motion_rad {
+    for &lm in &lags.lost_motion_rad {
         let ratio = lm * e_nc / (2.0 * delta);
         assert!(
             ratio >= 1.0 - 1e-3 && ratio <= 1.0 / f + 1e-3,

@@ -354,7 +354,12 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
     let mut scene = spec.scenes[1].clone();
     scene.crank_rad.truncate(12);
     scene.effects = cycloid::model::Effect::ALL.to_vec();
-    let plan = cycloid::model::Plan::for_scene(&scene);
+    // The plan of a run that writes the results JSON: every quantity is read.
+    let writes = cycloid::engine::scene::Writes {
+        json: true,
+        report: false,
+    };
+    let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
     let r = cycloid::engine::scene::run(&spec, &scene, &plan).unwrap();
     let doc = cycloid::report::json::document(&spec, &[], std::slice::from_ref(&r));
     let json = &doc["scenes"][0];

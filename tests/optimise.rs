@@ -4,7 +4,7 @@
 use cycloid::engine::optimise::global;
 use cycloid::engine::optimise::problem::Problem;
 use cycloid::engine::optimise::{self, run_study};
-use cycloid::geometry::clearance::{self, Mesh};
+use cycloid::geometry::clearance::{self, Mesh, Scope};
 use cycloid::model::Modification;
 use cycloid::spec::{self, Spec};
 mod common;
@@ -121,7 +121,12 @@ fn positive_ratio_optimum_is_no_worse_than_the_papers_and_satisfies_every_constr
     let m = r.optimum.modification;
     let tip = m.equidistant_mm - m.shift_mm;
     assert!((0.015..=0.5).contains(&tip), "tip clearance {tip}");
-    let sweep = clearance::sweep(&Mesh::new(&spec.design, &m), &spec.scenes[0].crank_rad).unwrap();
+    let sweep = clearance::sweep(
+        &Mesh::new(&spec.design, &m),
+        &spec.scenes[0].crank_rad,
+        Scope::Backlash,
+    )
+    .unwrap();
     assert!(
         sweep.min.gap_mm >= 0.015 - 1e-12,
         "whole-mesh min {}",
@@ -479,7 +484,7 @@ fn min_gap_equals_the_smallest_gap_of_the_full_clearance_sweep() {
         };
         let mesh = Mesh::new(&spec.design, &m);
         let fast = clearance::min_gap(&mesh, &crank).unwrap();
-        let full = clearance::sweep(&mesh, &crank).unwrap();
+        let full = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap();
         let smallest = full
             .gap_mm
             .iter()

@@ -133,7 +133,7 @@ fn colour_only_when_asked() {
     let scene = &spec.scenes[0];
     let r =
         cycloid::engine::scene::run(&spec, scene, &cycloid::model::Plan::for_scene(scene)).unwrap();
-    let checks = cycloid::engine::check::evaluate(&spec.limits, &[r]);
+    let checks = cycloid::engine::check::evaluate(&spec, &[r]).unwrap();
     let plain = cycloid::report::table::render_styled(&checks, false);
     let coloured = cycloid::report::table::render_styled(&checks, true);
     assert!(!plain.contains('\x1b'));

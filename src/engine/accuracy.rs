@@ -556,6 +556,12 @@ fn part(plan: &Plan, keep: impl Fn(Effect) -> bool) -> Plan {
             .filter(|p| keep(p.effect))
             .cloned()
             .collect(),
+        details: plan
+            .details
+            .iter()
+            .filter(|p| keep(p.detail.effect()))
+            .cloned()
+            .collect(),
     }
 }
 

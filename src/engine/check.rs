@@ -149,13 +149,30 @@ pub fn validate(spec: &Spec) -> Result<()> {
     Ok(())
 }
 
-/// Evaluate the spec's limits on the results of its scenes.
-pub fn evaluate(limits: &Limits, results: &[SceneResult]) -> Vec<Check> {
+/// Evaluate the spec's limits on the results of its scenes. A limit applies to every scene
+/// whose plan computes its quantity; a value missing from such a scene is an error, never a
+/// skipped check (a planning fault must not pass a limit silently).
+pub fn evaluate(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Check>> {
     let mut checks = Vec::new();
     for r in results {
-        for l in &limits.entries {
+        let plan = spec
+            .scenes
+            .iter()
+            .find(|s| s.name == r.name)
+            .map(Plan::for_scene);
+        for l in &spec.limits.entries {
             let q = l.def.quantity;
             let Some(e) = q.scalar(r) else {
+                if plan.as_ref().is_some_and(|p| p.has(q.effect)) {
+                    return Err(Error::computation(format!(
+                        "scene `{}` computes `{}` but its {} is missing: no check of `limits.{}` \
+                         can pass without it",
+                        r.name,
+                        q.effect.name(),
+                        q.label,
+                        l.def.key
+                    )));
+                }
                 continue;
             };
             checks.push(Check {
@@ -170,7 +187,7 @@ pub fn evaluate(limits: &Limits, results: &[SceneResult]) -> Vec<Check> {
             });
         }
     }
-    checks
+    Ok(checks)
 }
 
 /// Checks on optimisation studies: the optimum satisfies every constraint (value: the smallest
@@ -252,5 +269,32 @@ pub fn resolution(r: &crate::engine::resolution::Resolution) -> Check {
         } else {
             r.misses_text()
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::evaluate;
+    use crate::engine::scene::{self, Writes};
+    use crate::model::Plan;
+
+    /// A lost-motion limit on a clearance scene: with the scene planned as the spec asks (the
+    /// limit reads the backlash detail) it is checked; with a plan that leaves the backlash
+    /// out (a planning fault) the run is an error, not a limit quietly skipped.
+    #[test]
+    fn a_limit_whose_value_is_missing_is_an_error() {
+        let text = std::fs::read_to_string("specs/reducer.yaml")
+            .unwrap()
+            .replace("limits:\n", "limits:\n  max_lost_motion_arcsec: 100000.0\n");
+        let spec = crate::spec::parse("lost.yaml", &text).unwrap();
+        let s = &spec.scenes[0];
+        let planned = scene::run(&spec, s, &scene::plan(&spec, s, Writes::default())).unwrap();
+        let checks = evaluate(&spec, &[planned]).unwrap();
+        assert!(checks
+            .iter()
+            .any(|c| c.id.ends_with("/max_lost_motion_arcsec")));
+        let bare = scene::run(&spec, s, &Plan::for_scene(s)).unwrap();
+        let e = evaluate(&spec, &[bare]).unwrap_err();
+        assert!(e.to_string().contains("max_lost_motion_arcsec"), "{e}");
     }
 }

@@ -1,19 +1,51 @@
 //! Which effects a scene needs, why, and the plan that runs exactly those.
 //!
 //! The plan follows the scene: an effect is computed when the scene asks for it or when an
-//! effect it asked for cannot be computed without it. Limits never add work: a limit is checked
-//! in the scenes that compute its quantity (`check`), and a limit that no scene can evaluate is
-//! an error.
+//! effect it asked for cannot be computed without it. Limits never add effects: a limit is
+//! checked in the scenes that compute its quantity (`check`), and a limit that no scene can
+//! evaluate is an error. A detail of an effect (the closing lags of `clearance`) is computed
+//! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
 use crate::equilibrium::curves;
 use crate::equilibrium::solve::Settings;
 use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
+use crate::model::quantity::QUANTITIES;
 use crate::model::results::{LoadedSweep, SceneResult};
-use crate::model::{Design, Effect, Modification, Plan, Scene};
+use crate::model::{Design, Detail, Effect, Modification, Plan, Scene};
 use crate::spec::Spec;
 use crate::units;
+
+/// The output files of a run that read every quantity of every scene.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Writes {
+    /// The results JSON (`--json`).
+    pub json: bool,
+    /// The design review (`--report`).
+    pub report: bool,
+}
+
+/// The plan of `scene` in a run of `spec` that writes `writes`: the scene's effects, and the
+/// details of them that the spec's limits and the scene's goldens read, or every detail when
+/// an output file reads every quantity.
+pub fn plan(spec: &Spec, scene: &Scene, writes: Writes) -> Plan {
+    let mut plan = Plan::for_scene(scene);
+    for l in &spec.limits.entries {
+        plan.ask(l.def.quantity, &format!("limit {}", l.def.key));
+    }
+    for g in spec.golden.iter().filter(|g| g.scene == scene.name) {
+        plan.ask(g.quantity, &format!("golden {}", g.quantity.key));
+    }
+    for (file, writes) in [("--json", writes.json), ("--report", writes.report)] {
+        if writes {
+            for q in QUANTITIES {
+                plan.ask(q, file);
+            }
+        }
+    }
+    plan
+}
 
 /// Run one scene according to its plan.
 pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
@@ -42,8 +74,13 @@ pub fn run_design(
 ) -> Result<SceneResult> {
     let mesh = Mesh::new(design, m);
     let clearance = if plan.has(Effect::Clearance) {
+        let scope = if plan.has_detail(Detail::Backlash) {
+            clearance::Scope::Backlash
+        } else {
+            clearance::Scope::Gaps
+        };
         Some(
-            clearance::sweep(&mesh, &scene.crank_rad)
+            clearance::sweep(&mesh, &scene.crank_rad, scope)
                 .map_err(|f| Error::computation(format!("scene `{}`: {f}", scene.name)))?,
         )
     } else {
@@ -74,11 +111,11 @@ pub fn run_design(
     })
 }
 
-/// Human-readable plan of a spec: what runs, in which scene, and why.
-pub fn explain(spec: &Spec) -> String {
+/// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.
+pub fn explain(spec: &Spec, writes: Writes) -> String {
     let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
     for scene in &spec.scenes {
-        let plan = Plan::for_scene(scene);
+        let plan = plan(spec, scene, writes);
         let first = units::deg(scene.crank_rad.first().copied().unwrap_or(0.0));
         let step = match scene.crank_rad.as_slice() {
             [a, b, ..] => units::deg(b - a),
@@ -110,6 +147,23 @@ pub fn explain(spec: &Spec) -> String {
         }
         for p in &plan.effects {
             out += &format!("  compute {:<15} {}\n", p.effect.name(), p.reason);
+        }
+        for p in &plan.details {
+            out += &format!(
+                "  compute {:<15} part of {}, read by {}\n",
+                p.detail.name(),
+                p.detail.effect().name(),
+                p.read_by.join(", ")
+            );
+        }
+        for d in Detail::ALL {
+            if plan.has(d.effect()) && !plan.has_detail(d) {
+                out += &format!(
+                    "  skip    {} (part of {}; no limit, golden or output file reads it)\n",
+                    d.name(),
+                    d.effect().name()
+                );
+            }
         }
         let skipped: Vec<&str> = Effect::ALL
             .iter()

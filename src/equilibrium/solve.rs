@@ -28,6 +28,10 @@ pub struct Root {
     pub straddle: Option<f64>,
 }
 
+use crate::geometry::clearance::GapFailure;
+use crate::numeric::input;
+use crate::units;
+
 /// Why a solve stopped without a root. A status, not a panic: the caller names scene and angle.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SolveFailure {
@@ -40,10 +44,41 @@ pub enum SolveFailure {
     },
     /// Iterations exhausted; the best residual reached.
     NotConverged { x: f64, residual: f64 },
-    /// The balance itself could not be evaluated (e.g. a closest point failed).
+    /// A roller's closest point could not be found: the roller and the pose.
+    Gap(GapFailure),
+    /// The rollers' moment never reached the torque (N·mm): the largest moment found (N·mm),
+    /// at that lag (rad), and the deepest roller there (index, depth mm, roller radius mm).
+    BeyondCapacity {
+        torque_nmm: f64,
+        moment_nmm: f64,
+        lag_rad: f64,
+        deepest: Option<(usize, f64, f64)>,
+    },
+    /// A compliant crank bearing (N/mm) so soft under the torque (N·mm) that the disc centre
+    /// moved (mm) more than the eccentricity (mm), still out of balance by a force (N).
+    OutOfMesh {
+        bearing_n_per_mm: f64,
+        torque_nmm: f64,
+        offset_mm: f64,
+        unbalanced_n: f64,
+        eccentricity_mm: f64,
+    },
+    /// The balance could not be evaluated, for a reason given by a caller's own evaluation.
     Evaluation(String),
     /// A non-finite value appeared.
     NonFinite { x: f64 },
+}
+
+impl From<GapFailure> for SolveFailure {
+    fn from(f: GapFailure) -> Self {
+        SolveFailure::Gap(f)
+    }
+}
+
+impl From<String> for SolveFailure {
+    fn from(message: String) -> Self {
+        SolveFailure::Evaluation(message)
+    }
 }
 
 impl std::fmt::Display for SolveFailure {
@@ -65,6 +100,48 @@ impl std::fmt::Display for SolveFailure {
             SolveFailure::NotConverged { x, residual } => write!(
                 f,
                 "did not converge (lag {x:.6e} rad, relative residual {residual:.2e})"
+            ),
+            SolveFailure::Gap(g) => write!(f, "{g}"),
+            SolveFailure::BeyondCapacity {
+                torque_nmm,
+                moment_nmm,
+                lag_rad,
+                deepest,
+            } => {
+                write!(
+                    f,
+                    "the rollers cannot balance an output torque of {} N·m: the largest moment \
+                     found is {:.4} N·m, at a lag of {lag_rad:.4} rad",
+                    units::nm(*torque_nmm),
+                    units::nm(*moment_nmm)
+                )?;
+                if let Some((i, depth, radius)) = deepest {
+                    write!(
+                        f,
+                        "; there roller {i} is pressed {depth:.3} mm into the disc (roller \
+                         radius {radius} mm)"
+                    )?;
+                }
+                write!(
+                    f,
+                    "; the load is beyond what this disc can hold in the contact model"
+                )
+            }
+            SolveFailure::OutOfMesh {
+                bearing_n_per_mm,
+                torque_nmm,
+                offset_mm,
+                unbalanced_n,
+                eccentricity_mm,
+            } => write!(
+                f,
+                "the crank bearing of {} N/mm cannot hold the disc at {} N·m: its centre has \
+                 moved by {offset_mm:.3} mm (still {unbalanced_n:.0} N out of balance), more than \
+                 the eccentricity {} mm, and the disc would leave its mesh; the bearing is too \
+                 soft for this torque",
+                input(*bearing_n_per_mm),
+                input(units::nm(*torque_nmm)),
+                input(*eccentricity_mm)
             ),
             SolveFailure::Evaluation(msg) => write!(f, "{msg}"),
             SolveFailure::NonFinite { x } => write!(f, "non-finite value at lag {x:.6e} rad"),
@@ -120,14 +197,14 @@ fn relative(b: &Balance, target: f64) -> f64 {
 /// value across it is within the two ends' `resolution` (plus the slope over one ulp), the
 /// root is returned with `straddle` set to the other end. A larger step is a real jump of the
 /// balance and stays `NotConverged`.
-pub fn monotone_root<E: std::fmt::Display>(
+pub fn monotone_root<E: Into<SolveFailure>>(
     mut m: impl FnMut(f64) -> Result<Balance, E>,
     target: f64,
     guess: f64,
     settings: &Settings,
 ) -> Result<Root, SolveFailure> {
     let mut eval = |x: f64| -> Result<Balance, SolveFailure> {
-        let b = m(x).map_err(|e| SolveFailure::Evaluation(e.to_string()))?;
+        let b = m(x).map_err(Into::into)?;
         if b.value.is_finite() && b.slope.is_finite() && b.scale.is_finite() {
             Ok(b)
         } else {

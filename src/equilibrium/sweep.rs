@@ -11,10 +11,9 @@ use super::balance::{closed_form, moment, settle};
 use super::pins::{PinState, Pins};
 use super::rollers::{AngleTrig, Reach, RollerState, Rollers};
 use super::solve::{monotone_root, Balance, Settings, SolveFailure};
-use crate::geometry::clearance::Pose;
+use crate::geometry::clearance::{GapFailure, Pose};
 use crate::geometry::{cross, Vec2};
 use crate::model::{ContactLaw, Design, Effect, GeometryMode, Modification, Plan, Scene};
-use crate::units;
 use nalgebra::{Matrix4, Vector4};
 
 /// What the loaded model of a scene includes.
@@ -178,8 +177,8 @@ fn roller_balance(
     r: &Rollers,
     pose: &Pose,
     states: &mut Vec<RollerState>,
-) -> Result<Balance, String> {
-    r.evaluate(pose, states).map_err(|f| f.to_string())?;
+) -> Result<Balance, GapFailure> {
+    r.evaluate(pose, states)?;
     let (value, slope, scale) = moment(states);
     Ok(Balance {
         value,
@@ -238,28 +237,19 @@ fn in_contact<'a>(forces: impl IntoIterator<Item = &'a f64>) -> bool {
 /// shrink), so the torque is more than the disc can hold in this contact model.
 fn beyond_reach(r: &Rollers, pose: &Pose, moment_nmm: f64, torque_nmm: f64) -> SolveFailure {
     let mut states = Vec::new();
-    let deepest = match r.evaluate(pose, &mut states) {
-        Ok(()) => states
+    let deepest = r.evaluate(pose, &mut states).ok().and_then(|()| {
+        states
             .iter()
             .enumerate()
             .min_by(|a, b| a.1.gap_mm.total_cmp(&b.1.gap_mm))
-            .map(|(i, s)| {
-                format!(
-                    "; there roller {i} is pressed {:.3} mm into the disc (roller radius {} mm)",
-                    -s.gap_mm, r.mesh.roller_radius_mm
-                )
-            })
-            .unwrap_or_default(),
-        Err(_) => String::new(),
-    };
-    SolveFailure::Evaluation(format!(
-        "the rollers cannot balance an output torque of {} N·m: the largest moment found is \
-         {:.4} N·m, at a lag of {:.4} rad{deepest}; the load is beyond what this disc can hold \
-         in the contact model",
-        units::nm(torque_nmm),
-        units::nm(moment_nmm),
-        pose.lag_rad
-    ))
+            .map(|(i, s)| (i, -s.gap_mm, r.mesh.roller_radius_mm))
+    });
+    SolveFailure::BeyondCapacity {
+        torque_nmm,
+        moment_nmm,
+        lag_rad: pose.lag_rad,
+        deepest,
+    }
 }
 
 /// Solve the rollers at a fixed centre offset: β with Σ F·l = T. `e_phi` = (cos φ, sin φ).
@@ -319,10 +309,9 @@ fn solve_rollers(
     let offset_norm = offset.norm();
     let root = monotone_root(
         |lag| {
-            r.evaluate_at(&pose(lag), &trig, states, reaches)
-                .map_err(|f| f.to_string())?;
+            r.evaluate_at(&pose(lag), &trig, states, reaches)?;
             let (value, slope, scale) = moment(states);
-            Ok::<_, String>(Balance {
+            Ok::<_, GapFailure>(Balance {
                 value,
                 slope,
                 scale,
@@ -346,14 +335,14 @@ fn solve_rollers(
         // gaps): every roller exact at both ends, forces mixed so that Σ F·l = T.
         let exact = |lag: f64, states: &mut Vec<RollerState>| {
             r.evaluate_at(&pose(lag), &trig, states, &mut [])
-                .map_err(|f| SolveFailure::Evaluation(f.to_string()))
+                .map_err(SolveFailure::Gap)
         };
         exact(lag, states)?;
         lag = settle(lag, towards, model.torque_nmm, states, exact)?;
     } else if exact_final {
         // Every roller exact at the answer (skipped ones carried only a gap bound).
         r.evaluate_at(&pose(lag), &trig, states, &mut [])
-            .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
+            .map_err(SolveFailure::Gap)?;
     }
     if model.torque_nmm == 0.0 {
         if !in_contact(states.iter().map(|s| &s.force_n)) {
@@ -364,8 +353,8 @@ fn solve_rollers(
                 },
                 lag,
             )
-            .map_err(SolveFailure::Evaluation)?;
-            roller_balance(r, &pose(lag), states).map_err(SolveFailure::Evaluation)?;
+            .map_err(SolveFailure::Gap)?;
+            roller_balance(r, &pose(lag), states).map_err(SolveFailure::Gap)?;
             reaches
                 .iter_mut()
                 .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
@@ -433,7 +422,7 @@ fn solve_pins(
         }
     };
     let root = monotone_root(
-        |lag| Ok::<_, String>(evaluate(lag, states)),
+        |lag| Ok::<_, SolveFailure>(evaluate(lag, states)),
         model.torque_nmm,
         guess,
         &model.settings,
@@ -451,11 +440,10 @@ fn solve_pins(
         lag = touching(
             |l| {
                 evaluate(l, states);
-                Ok::<_, String>(states.iter().map(|s| (s.gap_mm, s.gap_slope_mm)).collect())
+                Ok::<_, SolveFailure>(states.iter().map(|s| (s.gap_mm, s.gap_slope_mm)).collect())
             },
             lag,
-        )
-        .map_err(SolveFailure::Evaluation)?;
+        )?;
         evaluate(lag, states);
     }
     Ok(lag)
@@ -535,7 +523,7 @@ fn evaluate_at(
         centre_offset_mm: sol.centre_offset_mm,
     };
     r.evaluate(&pose, &mut sol.rollers)
-        .map_err(|f| SolveFailure::Evaluation(f.to_string()))?;
+        .map_err(SolveFailure::Gap)?;
     p.evaluate(
         crank,
         sol.centre_offset_mm,
@@ -727,14 +715,12 @@ fn directional_roots(
             let scale = force_scale(kb, &best);
             let root = monotone_root(
                 |s: f64| {
-                    centre_residual(model, kb, crank, work, u + e * s)
-                        .map(|r| Balance {
-                            value: -e.dot(&r),
-                            slope,
-                            scale,
-                            resolution: 0.0,
-                        })
-                        .map_err(|f| f.to_string())
+                    centre_residual(model, kb, crank, work, u + e * s).map(|r| Balance {
+                        value: -e.dot(&r),
+                        slope,
+                        scale,
+                        resolution: 0.0,
+                    })
                 },
                 0.0,
                 0.0,
@@ -787,16 +773,13 @@ fn force_residual(model: &Model, kb: f64, sol: &AngleSolution) -> Vec2 {
 /// more than the eccentricity (the scale of the whole mesh: the disc centre orbits the input
 /// axis at e), the rollers no longer hold the disc in its tooth spaces.
 fn out_of_mesh(kb: f64, u: Vec2, force: Vec2, model: &Model) -> SolveFailure {
-    SolveFailure::Evaluation(format!(
-        "the crank bearing of {} N/mm cannot hold the disc at {} N·m: its centre has moved by \
-         {:.3} mm (still {:.0} N out of balance), more than the eccentricity {} mm, and the disc \
-         would leave its mesh; the bearing is too soft for this torque",
-        crate::numeric::input(kb),
-        crate::numeric::input(units::nm(model.torque_nmm)),
-        u.norm(),
-        force.norm(),
-        crate::numeric::input(model.eccentricity_mm)
-    ))
+    SolveFailure::OutOfMesh {
+        bearing_n_per_mm: kb,
+        torque_nmm: model.torque_nmm,
+        offset_mm: u.norm(),
+        unbalanced_n: force.norm(),
+        eccentricity_mm: model.eccentricity_mm,
+    }
 }
 
 /// The end of a compliant solve that ran out of steps: accepted within the documented 1e-9.

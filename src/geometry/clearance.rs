@@ -8,13 +8,13 @@
 //! - moment arm l > 0: a contact force on that roller turns the disc clockwise (drives it), and
 //!   the roller's gap closes as β grows: ∂gap/∂β = −l exactly.
 
-use super::profile::LocusFrame;
-use super::profile::{ClosestPointFailure, Profile};
-use super::{cross, rotate, Vec2};
-use crate::model::results::{ClearanceSweep, MinClearance};
+use super::profile::{ClosestPointFailure, LocusFrame, Profile};
+use super::{cross, rotate, sin_cos, wrap_pi, Vec2};
+use crate::model::results::{BacklashCurves, ClearanceSweep, MinClearance};
 use crate::model::{Design, Modification};
 use crate::units;
-use std::f64::consts::TAU;
+use rayon::prelude::*;
+use std::f64::consts::{PI, TAU};
 
 /// Pose of the disc at one crank angle. Fixed frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -234,74 +234,30 @@ impl Mesh {
 /// last bit of round-off says. A picometre: far below any tolerance that matters.
 const TIE_MM: f64 = 1e-9 * 1e-3;
 
+/// Crank angles one worker sweeps in sequence, each roller warm-started from the angle before
+/// and from nothing before the chunk. Fixed (as the loaded sweep's `CHUNK`), so that the results
+/// are the same bit for bit however many threads share the chunks.
+pub const CHUNK: usize = 64;
+
+/// What a clearance sweep computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scope {
+    /// The gap of every roller at every crank angle, and the smallest.
+    Gaps,
+    /// The gaps, and the closing lag of every roller: backlash both ways and lost motion.
+    Backlash,
+}
+
 /// The smallest gap over every roller and crank angle at the ideal pose (β = 0): the
 /// whole-mesh interference check, without the backlash work of `sweep`.
 ///
 /// Gaps repeat with the mesh period with the roller index shifted by one (crank φ + 2π/np puts
 /// roller i where roller i − 1 was at φ, turned by one tooth, and the profile is the same
-/// after a tooth): a uniform sweep over whole mesh periods needs only its first period. Each
-/// roller's closest point is found once from scratch (the scanning search), then followed
-/// from angle to angle in its locus frame (`Profile::closest_point_in_frame`), with the
-/// angle's trigonometry computed once for all rollers.
+/// after a tooth): a uniform sweep over whole mesh periods needs only its first period.
 pub fn min_gap(mesh: &Mesh, crank_rad: &[f64]) -> Result<MinClearance, GapFailure> {
     let crank = first_period(mesh, crank_rad);
-    let tooth = TAU / mesh.teeth as f64;
-    let np = mesh.rollers as f64;
-    let units: Vec<Vec2> = (0..mesh.rollers)
-        .map(|i| mesh.roller_centre(i) / mesh.roller_circle_radius_mm)
-        .collect();
-    let mut warm: Vec<f64> = Vec::with_capacity(mesh.rollers);
-    let mut min = MinClearance {
-        gap_mm: f64::INFINITY,
-        roller: 0,
-        crank_rad: 0.0,
-        tooth_phase: 0.0,
-    };
-    let offset = mesh.profile.offset_mm - mesh.roller_radius_mm;
-    for &phi in crank {
-        let pose = Pose::ideal(phi);
-        let turn = phi / mesh.teeth as f64;
-        let (st, ct) = turn.sin_cos();
-        let lobe = Vec2::new((np * turn).cos(), (np * turn).sin());
-        for i in 0..mesh.rollers {
-            let (gap_mm, t) = match warm.get(i) {
-                None => {
-                    let g = mesh.roller_gap(i, &pose, None)?;
-                    warm.push(g.t);
-                    (g.gap_mm, g.t)
-                }
-                Some(&t_prev) => {
-                    let t_ref = TAU * i as f64 / np + turn;
-                    let frame = LocusFrame {
-                        t_ref,
-                        r_ref: mesh.roller_circle_radius_mm,
-                        base: rotate(units[i], ct, st),
-                        lobe,
-                    };
-                    let s_start = super::wrap_pi(t_prev - t_ref);
-                    let foot = mesh
-                        .profile
-                        .closest_point_in_frame(&frame, 0.0, Vec2::zeros(), s_start)
-                        .map_err(|detail| GapFailure {
-                            roller: i,
-                            pose,
-                            detail,
-                        })?;
-                    warm[i] = foot.t;
-                    (offset + foot.locus_distance_mm, foot.t)
-                }
-            };
-            if gap_mm < min.gap_mm - TIE_MM {
-                min = MinClearance {
-                    gap_mm,
-                    roller: i,
-                    crank_rad: phi,
-                    tooth_phase: t.rem_euclid(tooth) / tooth,
-                };
-            }
-        }
-    }
-    Ok(min)
+    let columns = Tracker::new(mesh).sweep(crank, Scope::Gaps)?;
+    smallest(mesh, crank, &columns.gap_mm)
 }
 
 /// The leading mesh period of a uniform sweep that covers at least one whole period on its
@@ -323,52 +279,357 @@ pub fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
     }
 }
 
-/// Gaps and backlash at every crank angle.
-pub fn sweep(mesh: &Mesh, crank_rad: &[f64]) -> Result<ClearanceSweep, GapFailure> {
-    let n = mesh.rollers;
-    let mut gap_mm = vec![Vec::with_capacity(crank_rad.len()); n];
-    let mut backlash_rad = Vec::with_capacity(crank_rad.len());
-    let mut backlash_reverse_rad = Vec::with_capacity(crank_rad.len());
+/// Gaps at every crank angle, and with `Scope::Backlash` the backlash both ways and the lost
+/// motion.
+///
+/// Each roller's closest point is followed from angle to angle in its locus frame
+/// (`Profile::closest_point_in_frame`, a Newton step or two from the foot of the angle before)
+/// and accepted when its distance from the locus proves it the nearest point of Γ
+/// (`Tracker::certified_mm`); otherwise, and at a failure, the roller is evaluated from scratch
+/// (`Mesh::roller_gap` with its scanning search), as every roller used to be. Closing lags
+/// follow the same way (`Tracker::closing_lag`). Chunks of `CHUNK` angles run in parallel and
+/// write their rows in place.
+pub fn sweep(mesh: &Mesh, crank_rad: &[f64], scope: Scope) -> Result<ClearanceSweep, GapFailure> {
+    let columns = Tracker::new(mesh).sweep(crank_rad, scope)?;
+    let min = smallest(mesh, crank_rad, &columns.gap_mm)?;
+    let backlash = (scope == Scope::Backlash).then(|| {
+        let lost_motion_rad = columns
+            .forward_rad
+            .iter()
+            .zip(&columns.reverse_rad)
+            .map(|(a, b)| a + b)
+            .collect();
+        BacklashCurves {
+            forward_rad: columns.forward_rad,
+            reverse_rad: columns.reverse_rad,
+            lost_motion_rad,
+        }
+    });
+    Ok(ClearanceSweep {
+        gap_mm: columns.gap_mm,
+        min,
+        backlash,
+    })
+}
+
+/// The smallest gap of the columns [roller][angle], scanned angle by angle, roller by roller,
+/// a new minimum only when lower by more than `TIE_MM`; its place on the tooth from the
+/// roller's closest point evaluated from scratch.
+fn smallest(
+    mesh: &Mesh,
+    crank_rad: &[f64],
+    gap_mm: &[Vec<f64>],
+) -> Result<MinClearance, GapFailure> {
     let mut min = MinClearance {
         gap_mm: f64::INFINITY,
         roller: 0,
         crank_rad: 0.0,
         tooth_phase: 0.0,
     };
-    let tooth = std::f64::consts::TAU / mesh.teeth as f64;
-    for &phi in crank_rad {
-        let pose = Pose::ideal(phi);
-        let (mut forward, mut reverse) = (f64::INFINITY, f64::INFINITY);
-        for (i, gaps) in gap_mm.iter_mut().enumerate() {
-            let g = mesh.roller_gap(i, &pose, None)?;
-            gaps.push(g.gap_mm);
-            if g.gap_mm < min.gap_mm - TIE_MM {
-                min = MinClearance {
-                    gap_mm: g.gap_mm,
-                    roller: i,
-                    crank_rad: phi,
-                    tooth_phase: g.t.rem_euclid(tooth) / tooth,
-                };
-            }
-            match mesh.closing_lag(i, phi)? {
-                Some(b) if g.arm_mm > 0.0 => forward = forward.min(b),
-                Some(b) if g.arm_mm < 0.0 => reverse = reverse.min(-b),
-                _ => {}
+    for (k, &phi) in crank_rad.iter().enumerate() {
+        for (i, gaps) in gap_mm.iter().enumerate() {
+            if gaps[k] < min.gap_mm - TIE_MM {
+                min.gap_mm = gaps[k];
+                min.roller = i;
+                min.crank_rad = phi;
             }
         }
-        backlash_rad.push(forward);
-        backlash_reverse_rad.push(reverse);
     }
-    let lost_motion_rad = backlash_rad
-        .iter()
-        .zip(&backlash_reverse_rad)
-        .map(|(a, b)| a + b)
-        .collect();
-    Ok(ClearanceSweep {
-        gap_mm,
-        backlash_rad,
-        backlash_reverse_rad,
-        lost_motion_rad,
-        min,
-    })
+    if min.gap_mm.is_finite() {
+        let tooth = TAU / mesh.teeth as f64;
+        let foot = mesh.roller_gap(min.roller, &Pose::ideal(min.crank_rad), None)?;
+        min.tooth_phase = foot.t.rem_euclid(tooth) / tooth;
+    }
+    Ok(min)
+}
+
+/// The curves of a sweep, [roller][angle] and [angle]; the backlash columns are empty for
+/// `Scope::Gaps`.
+struct Columns {
+    gap_mm: Vec<Vec<f64>>,
+    forward_rad: Vec<f64>,
+    reverse_rad: Vec<f64>,
+}
+
+/// One chunk's rows of the columns.
+struct Rows<'a> {
+    gap_mm: Vec<&'a mut [f64]>,
+    /// Forward and reverse backlash, with `Scope::Backlash`.
+    backlash: Option<(&'a mut [f64], &'a mut [f64])>,
+}
+
+impl Columns {
+    fn new(rollers: usize, angles: usize, scope: Scope) -> Self {
+        let backlash = if scope == Scope::Backlash { angles } else { 0 };
+        Columns {
+            gap_mm: vec![vec![0.0; angles]; rollers],
+            forward_rad: vec![0.0; backlash],
+            reverse_rad: vec![0.0; backlash],
+        }
+    }
+
+    /// The rows of the chunks of `CHUNK` angles, in order.
+    fn chunks(&mut self, angles: usize) -> Vec<Rows<'_>> {
+        let n = angles.div_ceil(CHUNK);
+        let mut rows: Vec<Rows<'_>> = (0..n)
+            .map(|_| Rows {
+                gap_mm: Vec::with_capacity(self.gap_mm.len()),
+                backlash: None,
+            })
+            .collect();
+        for column in &mut self.gap_mm {
+            for (row, piece) in rows.iter_mut().zip(column.chunks_mut(CHUNK)) {
+                row.gap_mm.push(piece);
+            }
+        }
+        let backlash = self
+            .forward_rad
+            .chunks_mut(CHUNK)
+            .zip(self.reverse_rad.chunks_mut(CHUNK));
+        for (row, pair) in rows.iter_mut().zip(backlash) {
+            row.backlash = Some(pair);
+        }
+        rows
+    }
+}
+
+/// A roller's gap at one lag, found in its locus frame.
+#[derive(Debug, Clone, Copy)]
+struct Found {
+    gap_mm: f64,
+    arm_mm: f64,
+    /// The foot's offset s = t − t_ref in the frame.
+    s: f64,
+    /// The foot is proven the nearest point of Γ.
+    nearest: bool,
+}
+
+/// What a roller carries from one crank angle to the next within a chunk.
+#[derive(Debug, Clone, Copy, Default)]
+struct Warm {
+    /// The foot offset of the gap at β = 0.
+    gap: Option<f64>,
+    /// The closing lag and its foot offset.
+    closing: Option<(f64, f64)>,
+}
+
+/// The constants of a sweep of one mesh.
+struct Tracker<'a> {
+    mesh: &'a Mesh,
+    /// Roller i's direction e^{i·2πi/np}.
+    units: Vec<Vec2>,
+    /// r' − Rrp: the gap is this plus the roller centre's distance from the locus.
+    offset_mm: f64,
+    /// A foot of the normal from a roller centre closer to the locus than this is the nearest
+    /// point of the locus (`Profile::locus_reach_bound_mm`, with a tenth off for its round-off)
+    /// and, the centre then being outside the disc (this is also below r'), its offset is the
+    /// nearest point of Γ: every point of the disc is at least r' from the outside of the
+    /// locus, and at least r' − d from a point d inside it, distances the offset attains.
+    certified_mm: f64,
+    /// Where a roller's foot is sought at the start of a chunk, as an offset s = t − t_ref in
+    /// its frame: `Mesh::foot_guess` at β = 0, the roller's own locus parameter t_ref turned
+    /// back by the profile's rotation (reduced to within half a tooth pitch).
+    first_s: f64,
+}
+
+impl<'a> Tracker<'a> {
+    fn new(mesh: &'a Mesh) -> Self {
+        let profile = &mesh.profile;
+        Tracker {
+            mesh,
+            units: (0..mesh.rollers)
+                .map(|i| mesh.roller_centre(i) / mesh.roller_circle_radius_mm)
+                .collect(),
+            offset_mm: profile.offset_mm - mesh.roller_radius_mm,
+            certified_mm: 0.9 * profile.locus_reach_bound_mm().min(profile.offset_mm),
+            first_s: wrap_pi(-profile.rotation_rad),
+        }
+    }
+
+    /// Every chunk of `crank_rad`, in parallel; the first failure in crank order.
+    fn sweep(&self, crank_rad: &[f64], scope: Scope) -> Result<Columns, GapFailure> {
+        let mut columns = Columns::new(self.mesh.rollers, crank_rad.len(), scope);
+        let outcomes: Vec<Result<(), GapFailure>> = crank_rad
+            .par_chunks(CHUNK)
+            .zip(columns.chunks(crank_rad.len()))
+            .map(|(crank, mut rows)| self.chunk(crank, &mut rows))
+            .collect();
+        outcomes.into_iter().collect::<Result<(), _>>()?;
+        Ok(columns)
+    }
+
+    /// One chunk, each roller followed from the angle before.
+    fn chunk(&self, crank_rad: &[f64], rows: &mut Rows<'_>) -> Result<(), GapFailure> {
+        let mesh = self.mesh;
+        let (nc, np) = (mesh.teeth as f64, mesh.rollers as f64);
+        let mut warm = vec![Warm::default(); mesh.rollers];
+        for (k, &phi) in crank_rad.iter().enumerate() {
+            // Roller i's frame: t_ref = 2πi/np + φ/nc, the roller centre e^{i·t_ref}·Rp −
+            // e·e^{i·np·t_ref} at β = 0, with e^{i·np·t_ref} = e^{i·np·φ/nc} for every roller.
+            let turn = phi / nc;
+            let (st, ct) = turn.sin_cos();
+            let (sl, cl) = (np * turn).sin_cos();
+            let (mut forward, mut reverse) = (f64::INFINITY, f64::INFINITY);
+            for (i, w) in warm.iter_mut().enumerate() {
+                let frame = LocusFrame {
+                    t_ref: TAU * i as f64 / np + turn,
+                    r_ref: mesh.roller_circle_radius_mm,
+                    base: rotate(self.units[i], ct, st),
+                    lobe: Vec2::new(cl, sl),
+                };
+                let g = self.gap(i, phi, &frame, w.gap)?;
+                w.gap = Some(g.s);
+                rows.gap_mm[i][k] = g.gap_mm;
+                if rows.backlash.is_none() {
+                    continue;
+                }
+                w.closing = self.closing_lag(i, phi, &frame, &g, w.closing);
+                match w.closing {
+                    Some((b, _)) if g.arm_mm > 0.0 => forward = forward.min(b),
+                    Some((b, _)) if g.arm_mm < 0.0 => reverse = reverse.min(-b),
+                    _ => {}
+                }
+            }
+            if let Some((f, r)) = &mut rows.backlash {
+                f[k] = forward;
+                r[k] = reverse;
+            }
+        }
+        Ok(())
+    }
+
+    /// Roller i's gap at β = 0, followed from the foot offset `warm` (at the start of a chunk
+    /// from `first_s`, the roller's own parameter turned by the profile's rotation), or from
+    /// scratch when it is not proven the nearest point.
+    fn gap(
+        &self,
+        i: usize,
+        phi: f64,
+        frame: &LocusFrame,
+        warm: Option<f64>,
+    ) -> Result<Found, GapFailure> {
+        match self.follow(frame, 0.0, warm.unwrap_or(self.first_s)) {
+            Ok(g) if g.nearest => Ok(g),
+            _ => self.afresh(i, phi, frame),
+        }
+    }
+
+    /// The gap at lag β from the closest point followed in `frame` from the offset `s_start`.
+    fn follow(
+        &self,
+        frame: &LocusFrame,
+        lag_rad: f64,
+        s_start: f64,
+    ) -> Result<Found, ClosestPointFailure> {
+        let mesh = self.mesh;
+        let foot = mesh
+            .profile
+            .closest_point_in_frame(frame, lag_rad, Vec2::zeros(), s_start)?;
+        // The roller centre in the disc frame: e^{−iβ}·(e^{i·t_ref}·Rp − e·e^{i·np·t_ref}).
+        let (sb, cb) = sin_cos(lag_rad);
+        let centre = frame.base * frame.r_ref - frame.lobe * mesh.eccentricity_mm;
+        let p = rotate(centre, cb, -sb);
+        Ok(Found {
+            gap_mm: self.offset_mm + foot.locus_distance_mm,
+            arm_mm: cross(p, foot.normal),
+            s: wrap_pi(foot.t - frame.t_ref),
+            nearest: foot.locus_distance_mm.abs() < self.certified_mm,
+        })
+    }
+
+    /// The gap at β = 0 from scratch (`Mesh::roller_gap`, with its scanning search).
+    fn afresh(&self, i: usize, phi: f64, frame: &LocusFrame) -> Result<Found, GapFailure> {
+        let g = self.mesh.roller_gap(i, &Pose::ideal(phi), None)?;
+        Ok(Found {
+            gap_mm: g.gap_mm,
+            arm_mm: g.arm_mm,
+            s: wrap_pi(g.t - frame.t_ref),
+            nearest: true,
+        })
+    }
+
+    /// Roller i's closing lag and its foot offset: the Newton iteration of `Mesh::closing_lag`
+    /// on gap(β) = 0, from the previous angle's closing lag when there is one, else from β = 0
+    /// with the gap just found (whose first step is the first-order closing lag g/l).
+    ///
+    /// A roller whose arm at β = 0 is too small does not close (as in the cold iteration). A
+    /// warm start that does not close the roller, or closes it on the other side of β = 0
+    /// than g/l or with its arm turned over, is run again from β = 0: a roller closes, and
+    /// where, as the cold-start iteration says.
+    fn closing_lag(
+        &self,
+        i: usize,
+        phi: f64,
+        frame: &LocusFrame,
+        at_zero: &Found,
+        warm: Option<(f64, f64)>,
+    ) -> Option<(f64, f64)> {
+        // The cold iteration's first test: an arm too small at β = 0 (a roller on the
+        // centreline of a tooth or a tooth space) does not close, whatever a warm start finds.
+        if at_zero.arm_mm.abs() < 1e-9 * self.mesh.roller_circle_radius_mm {
+            return None;
+        }
+        if let Some((lag, s)) = warm {
+            if let Ok(start) = self.follow(frame, lag, s) {
+                if let Some((b, g)) = self.close(i, phi, frame, lag, start) {
+                    let same_side = b * at_zero.gap_mm * at_zero.arm_mm >= 0.0;
+                    if same_side && g.arm_mm * at_zero.arm_mm > 0.0 {
+                        return Some((b, g.s));
+                    }
+                }
+            }
+        }
+        self.close(i, phi, frame, 0.0, *at_zero)
+            .map(|(b, g)| (b, g.s))
+    }
+
+    /// Newton on gap(β) = 0 from lag β with gap g (`Mesh::closing_lag`): the closing lag and
+    /// the gap found there, or `None` when the roller does not close within half a roller pitch.
+    fn close(
+        &self,
+        i: usize,
+        phi: f64,
+        frame: &LocusFrame,
+        mut lag: f64,
+        mut g: Found,
+    ) -> Option<(f64, Found)> {
+        let mesh = self.mesh;
+        let rp = mesh.roller_circle_radius_mm;
+        let reach = PI / mesh.rollers as f64;
+        // The state two iterations back: a roller just past a tip or root, its small arm
+        // pointing away from the flank it would close on, is thrown back and forth between two
+        // lags by the clamped steps. Every step being a function of the state, a state seen
+        // before repeats forever and the roller never closes: said at once instead of after
+        // the 60 iterations of `Mesh::closing_lag`.
+        let mut before = [(f64::NAN, f64::NAN); 2];
+        for _ in 0..60 {
+            if g.arm_mm.abs() < 1e-9 * rp {
+                return None;
+            }
+            let step = (g.gap_mm / g.arm_mm).clamp(-0.1 * reach, 0.1 * reach);
+            lag += step;
+            if lag.abs() > reach {
+                return None;
+            }
+            if before[0] == (lag, g.s) {
+                return None;
+            }
+            before = [before[1], (lag, g.s)];
+            g = self.follow(frame, lag, g.s).ok()?;
+            let closed = g.gap_mm.abs() <= 32.0 * f64::EPSILON * rp;
+            if closed || step.abs() <= 1e-15 + 1e-12 * lag.abs() {
+                // A foot not proven the nearest point: if another part of the profile is nearer
+                // at this lag, the roller has not closed (`Mesh::closing_lag`).
+                if !g.nearest {
+                    if let Ok(fresh) = mesh.roller_gap(i, &Pose::lagging(phi, lag), None) {
+                        if fresh.gap_mm < g.gap_mm - 1e-12 * rp {
+                            return None;
+                        }
+                    }
+                }
+                return Some((lag, g));
+            }
+        }
+        None
+    }
 }

@@ -244,6 +244,41 @@ impl Profile {
         self.locus().min_convex_radius()
     }
 
+    /// A lower bound of the reach of the locus C, mm: a point closer to C than the reach has one
+    /// nearest point on C, and a foot of the normal from it (a stationary point of the
+    /// distance, what Newton finds) closer than the reach is that nearest point (Federer,
+    /// "Curvature measures", 1959, Thm 4.8 (12)).
+    ///
+    /// The reach of a closed C² curve is the smaller of its least radius of curvature and half
+    /// its shortest double normal, a chord normal to the curve at both ends (Aamari et al.,
+    /// "Estimating the reach of a manifold", 2019, Thm 3.4). Both are bounded in closed form
+    /// (c = cos((np − 1)t), n = np, R' the locus radius):
+    /// - curvature: κ_C(c) has a single stationary point, its maximum (`Locus::min_convex_radius`),
+    ///   so max |κ_C| is there or at c = ±1 (root, tip);
+    /// - double normals: |C(a) − C(b)| ≥ 2R'·|sin(Δ/2)| − 2e·|sin(n·Δ/2)| ≥ 2(R' − e·n)·|sin(Δ/2)|
+    ///   (Δ = a − b, and |sin(n·x)| ≤ n·|sin x|). Along a double normal from a to b the tangent
+    ///   turns by at least π/2: it is ⊥ to the chord at a and ∥ to it somewhere between (mean
+    ///   value theorem). It turns at dθ/dt = C' × C''/|C'|², a ratio of functions linear in c,
+    ///   hence largest in magnitude at c = ±1: ω = max(|R' − e·n²|/(R' − e·n),
+    ///   (R' + e·n²)/(R' + e·n)). So |Δ| ≥ π/(2ω) on the shorter arc, and a double normal is at
+    ///   least 2(R' − e·n)·sin(π/(4ω)) long.
+    pub fn locus_reach_bound_mm(&self) -> f64 {
+        let locus = self.locus();
+        let n = self.rollers as f64;
+        let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
+        let slowest = r - e * n;
+        if slowest <= 0.0 {
+            return 0.0;
+        }
+        let convex = 1.0 / locus.min_convex_radius().radius_mm;
+        let curvature = [locus.curvature_at(1.0), locus.curvature_at(-1.0), convex]
+            .into_iter()
+            .fold(0.0, |m: f64, k| m.max(k.abs()));
+        let turn_rate = ((r - e * n * n).abs() / slowest).max((r + e * n * n) / (r + e * n));
+        let shortest_arc = (0.5 * PI / turn_rate).min(PI);
+        (1.0 / curvature).min(slowest * (0.5 * shortest_arc).sin())
+    }
+
     /// Closest point on Γ to `p` (disc frame) within half a roller pitch (π/np) of `t_start`,
     /// by guarded Newton.
     ///

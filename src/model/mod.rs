@@ -57,7 +57,9 @@ pub mod study;
 pub use design::{ConvexRadius, Design, Locus, Material, Modification, OutputPins};
 pub use golden::{Golden, Tolerance};
 pub use limits::{Limit, Limits};
-pub use scene::{ContactLaw, Effect, GeometryMode, Plan, PlannedEffect, Scene};
+pub use scene::{
+    ContactLaw, Detail, Effect, GeometryMode, Plan, PlannedDetail, PlannedEffect, Scene,
+};
 pub use study::{Objective, Study, Variable, VariableKind};
 
 #[cfg(test)]

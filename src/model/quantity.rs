@@ -7,8 +7,8 @@
 //! scalar of the whole sweep (`Shape::Scalar`: an extreme with where it occurs). Values are in
 //! the unit named by the key (arcsec, N, mm, MPa, deg).
 
-use super::results::SceneResult;
-use super::scene::Effect;
+use super::results::{BacklashCurves, SceneResult};
+use super::scene::{Detail, Effect};
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 
@@ -125,6 +125,11 @@ impl Quantity {
         self.shape == Shape::Scalar
     }
 
+    /// The detail of its effect this quantity needs beyond the effect itself (`NEEDS_BACKLASH`).
+    pub fn detail(&self) -> Option<Detail> {
+        NEEDS_BACKLASH.contains(&self).then_some(Detail::Backlash)
+    }
+
     /// "label (unit)" for an axis.
     pub fn axis_label(&self) -> String {
         if self.unit.is_empty() {
@@ -133,6 +138,11 @@ impl Quantity {
             format!("{} ({})", self.label, self.unit)
         }
     }
+}
+
+/// The backlash curves of a scene, when computed.
+fn backlash(r: &SceneResult) -> Option<&BacklashCurves> {
+    r.clearance.as_ref()?.backlash.as_ref()
 }
 
 fn arcsec(v: &[f64]) -> Rows {
@@ -197,7 +207,7 @@ pub const BACKLASH: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.clearance.as_ref().map(|c| arcsec(&c.backlash_rad))),
+    read: Read::Curves(|r| backlash(r).map(|b| arcsec(&b.forward_rad))),
 };
 
 pub const BACKLASH_REVERSE: Quantity = Quantity {
@@ -208,11 +218,7 @@ pub const BACKLASH_REVERSE: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| {
-        r.clearance
-            .as_ref()
-            .map(|c| arcsec(&c.backlash_reverse_rad))
-    }),
+    read: Read::Curves(|r| backlash(r).map(|b| arcsec(&b.reverse_rad))),
 };
 
 pub const LOST_MOTION: Quantity = Quantity {
@@ -223,7 +229,7 @@ pub const LOST_MOTION: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.clearance.as_ref().map(|c| arcsec(&c.lost_motion_rad))),
+    read: Read::Curves(|r| backlash(r).map(|b| arcsec(&b.lost_motion_rad))),
 };
 
 pub const LAG: Quantity = Quantity {
@@ -403,8 +409,7 @@ pub const MAX_LOST_MOTION: Quantity = Quantity {
     period: None,
     of: Some("lost_motion_arcsec"),
     read: Read::Scalar(|r| {
-        let c = r.clearance.as_ref()?;
-        let mut e = highest(r, &c.lost_motion_rad);
+        let mut e = highest(r, &backlash(r)?.lost_motion_rad);
         e.value = units::arcsec(e.value);
         Some(e)
     }),
@@ -550,6 +555,11 @@ pub const QUANTITIES: &[&Quantity] = &[
     &MAX_BEARING_FORCE,
     &MAX_RESIDUAL,
 ];
+
+/// The quantities read from the closing lags of the rollers (`Detail::Backlash`): computed only
+/// when one of them is read.
+pub const NEEDS_BACKLASH: &[&Quantity] =
+    &[&BACKLASH, &BACKLASH_REVERSE, &LOST_MOTION, &MAX_LOST_MOTION];
 
 /// The headline results of a scene, in the order a summary shows them.
 pub const SUMMARY: &[&Quantity] = &[

@@ -13,18 +13,25 @@ pub struct MinClearance {
 }
 
 /// Clearance of every roller over a crank sweep at the ideal pose (β = 0).
-/// Arrays are indexed [roller][angle]. Backlash values are lags in rad.
+/// Arrays are indexed [roller][angle].
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClearanceSweep {
     pub gap_mm: Vec<Vec<f64>>,
+    pub min: MinClearance,
+    /// `None` when nothing read it (`Detail::Backlash` not planned).
+    pub backlash: Option<BacklashCurves>,
+}
+
+/// Backlash over a crank sweep, from the closing lag of every roller: lags in rad, [angle].
+#[derive(Debug, Clone, PartialEq)]
+pub struct BacklashCurves {
     /// Unloaded TE: the smallest closing lag among rollers closed by a positive lag (the load
     /// direction of a positive output torque). Negative under interference (preload).
-    pub backlash_rad: Vec<f64>,
+    pub forward_rad: Vec<f64>,
     /// The same for the reverse direction, as a magnitude (−β of the nearest closing roller).
-    pub backlash_reverse_rad: Vec<f64>,
+    pub reverse_rad: Vec<f64>,
     /// Lost motion: backlash + reverse backlash.
     pub lost_motion_rad: Vec<f64>,
-    pub min: MinClearance,
 }
 
 /// Roller contact over the sweep.

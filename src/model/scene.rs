@@ -2,10 +2,14 @@
 //! computed; and the plan of the effects that run for it.
 //!
 //! The plan follows the scene: an effect is computed when the scene asks for it or when an
-//! effect it asked for cannot be computed without it. Limits never add work: a limit is checked
-//! in the scenes that compute its quantity, and a limit that no scene can evaluate is an error.
+//! effect it asked for cannot be computed without it. Limits never add effects: a limit is
+//! checked in the scenes that compute its quantity, and a limit that no scene can evaluate is an
+//! error. Within a planned effect, a costly detail that only some of its quantities need (the
+//! closing lags of `clearance`) is computed only when a limit, golden, objective or output reads
+//! one of those quantities (`Plan::ask`).
 
 use super::design::Design;
+use super::quantity::Quantity;
 
 /// Force–approach law of a line contact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -113,11 +117,42 @@ pub struct PlannedEffect {
     pub reason: String,
 }
 
+/// Work within an effect that only some of its quantities need, done only when one of them is
+/// read (by a limit, a golden, an objective or an output file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Detail {
+    /// The closing lag of every roller at every crank angle, within `clearance`: backlash both
+    /// ways and lost motion. The gaps and the smallest gap need none of it.
+    Backlash,
+}
+
+named!(Detail "detail" {
+    Backlash => "backlash",
+});
+
+impl Detail {
+    /// The effect it is part of.
+    pub fn effect(self) -> Effect {
+        match self {
+            Detail::Backlash => Effect::Clearance,
+        }
+    }
+}
+
+/// A detail in a plan, with what reads it ("limit max_lost_motion_arcsec", "--json").
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PlannedDetail {
+    pub detail: Detail,
+    pub read_by: Vec<String>,
+}
+
 /// What will be computed for one scene.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Plan {
     pub scene: String,
     pub effects: Vec<PlannedEffect>,
+    /// The details of planned effects that something reads (none unless asked: `Plan::ask`).
+    pub details: Vec<PlannedDetail>,
 }
 
 impl Plan {
@@ -130,6 +165,7 @@ impl Plan {
         Plan {
             scene: scene.name.clone(),
             effects,
+            details: Vec::new(),
         }
     }
 
@@ -144,11 +180,38 @@ impl Plan {
         Plan {
             scene: scene.to_string(),
             effects: planned,
+            details: Vec::new(),
         }
     }
 
     pub fn has(&self, effect: Effect) -> bool {
         self.effects.iter().any(|p| p.effect == effect)
+    }
+
+    /// `quantity` is read by `by` (a limit, a golden, an objective, an output): plan the detail
+    /// it needs, if any, when the plan computes its effect. Never adds an effect.
+    pub fn ask(&mut self, quantity: &Quantity, by: &str) {
+        let Some(detail) = quantity.detail() else {
+            return;
+        };
+        if !self.has(detail.effect()) {
+            return;
+        }
+        match self.details.iter_mut().find(|p| p.detail == detail) {
+            Some(p) if p.read_by.iter().any(|b| b == by) => {}
+            Some(p) => p.read_by.push(by.to_string()),
+            None => {
+                self.details.push(PlannedDetail {
+                    detail,
+                    read_by: vec![by.to_string()],
+                });
+                self.details.sort_by_key(|p| p.detail);
+            }
+        }
+    }
+
+    pub fn has_detail(&self, detail: Detail) -> bool {
+        self.details.iter().any(|p| p.detail == detail)
     }
 }
 

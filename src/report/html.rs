@@ -355,12 +355,14 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
              load); negative is interference. Dashed red: the min_clearance limit."
                 .into(),
         );
+    }
+    if let Some(b) = r.clearance.as_ref().and_then(|c| c.backlash.as_ref()) {
         let mut p = LinePlot::new("Backlash and lost motion (no load)", xl, "angle (arcsec)");
         p.series = vec![
             Series::new(
                 "backlash (unloaded TE)",
                 x.clone(),
-                c.backlash_rad.iter().map(|b| b * arcsec).collect(),
+                b.forward_rad.iter().map(|b| b * arcsec).collect(),
                 PALETTE[0],
             ),
             Series {
@@ -368,14 +370,14 @@ fn scene_plots(spec: &Spec, r: &SceneResult, slug: &str) -> Vec<Plot> {
                 ..Series::new(
                     "reverse backlash",
                     x.clone(),
-                    c.backlash_reverse_rad.iter().map(|b| b * arcsec).collect(),
+                    b.reverse_rad.iter().map(|b| b * arcsec).collect(),
                     PALETTE[1],
                 )
             },
             Series::new(
                 "lost motion",
                 x.clone(),
-                c.lost_motion_rad.iter().map(|b| b * arcsec).collect(),
+                b.lost_motion_rad.iter().map(|b| b * arcsec).collect(),
                 PALETTE[2],
             ),
         ];

@@ -41,13 +41,12 @@ fn scene(r: &SceneResult) -> Value {
                 "tooth_phase": num(c.min.tooth_phase),
             }),
         );
-        let arcsec = |v: &[f64]| list(v.iter().map(|b| b * ARCSEC_PER_RAD));
-        s.insert("backlash_arcsec".into(), arcsec(&c.backlash_rad));
-        s.insert(
-            "backlash_reverse_arcsec".into(),
-            arcsec(&c.backlash_reverse_rad),
-        );
-        s.insert("lost_motion_arcsec".into(), arcsec(&c.lost_motion_rad));
+        if let Some(b) = &c.backlash {
+            let arcsec = |v: &[f64]| list(v.iter().map(|b| b * ARCSEC_PER_RAD));
+            s.insert("backlash_arcsec".into(), arcsec(&b.forward_rad));
+            s.insert("backlash_reverse_arcsec".into(), arcsec(&b.reverse_rad));
+            s.insert("lost_motion_arcsec".into(), arcsec(&b.lost_motion_rad));
+        }
     }
     loaded(&mut s, r);
     Value::Object(s)

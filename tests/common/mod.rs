@@ -383,3 +383,19 @@ pub fn unmodified_cases() -> impl Strategy<Value = Case> {
         c
     })
 }
+
+/// The minimiser of a unimodal `f` on [a, b] by golden-section search (100 steps shrink the
+/// bracket by 0.618^100 ≈ 1e-21: to the round-off of the argument).
+#[allow(dead_code)]
+pub fn golden_section_min(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..100 {
+        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+        if f(x1) < f(x2) {
+            b = x2;
+        } else {
+            a = x1;
+        }
+    }
+    0.5 * (a + b)
+}

@@ -146,7 +146,11 @@ fn candidate_plan(scene: &Scene, objectives: &[(Objective, f64)]) -> Plan {
     if transmission && Plan::for_scene(scene).has(Effect::OutputPins) {
         effects.push(Effect::OutputPins);
     }
-    Plan::of(&scene.name, &effects)
+    let mut plan = Plan::of(&scene.name, &effects);
+    for (o, _) in objectives {
+        plan.ask(o.quantity, &format!("objective {}", o.name));
+    }
+    plan
 }
 
 /// A study bound to its spec.
@@ -299,9 +303,12 @@ impl<'a> Problem<'a> {
     /// is enough (`clearance::first_period`).
     fn lost_motion_arcsec(&self, mesh: &Mesh) -> Result<f64, String> {
         let crank = clearance::first_period(mesh, &self.scene.crank_rad);
-        let sweep = clearance::sweep(mesh, crank).map_err(|f| f.to_string())?;
+        let sweep =
+            clearance::sweep(mesh, crank, clearance::Scope::Backlash).map_err(|f| f.to_string())?;
         let max = sweep
-            .lost_motion_rad
+            .backlash
+            .as_ref()
+            .map_or(&[][..], |b| &b.lost_motion_rad)
             .iter()
             .fold(f64::NEG_INFINITY, |a, &b| a.max(b));
         if max.is_finite() {

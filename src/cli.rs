@@ -1,7 +1,6 @@
 //! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
-use crate::engine::progress::Progress;
 use crate::engine::{accuracy, check, golden, optimise, resolution, scene, summary};
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
@@ -14,7 +13,9 @@ use std::io::Write;
 #[command(
     name = "cycloid",
     version,
-    about = "Design checks for cycloidal speed reducers"
+    about = "Design checks for cycloidal speed reducers",
+    after_help = "Exit codes: 0 every check passed, 1 a check failed, 2 invalid input or a \
+                  computation that could not be done (the message says where and why)."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -50,6 +51,7 @@ pub enum Command {
     },
     /// Optimise the tooth-profile modification as the spec's `optimise` section says.
     Optimise {
+        /// The YAML spec; its `optimise` section (one study or a list) says what to optimise.
         spec: String,
         /// Run only this study (default: all).
         #[arg(long)]
@@ -67,6 +69,7 @@ pub enum Command {
     /// Run a scene on a ladder of settings (crank steps per mesh period, geometry, contact law,
     /// solver tolerance) and print each rung's error against the finest rung and its time.
     Accuracy {
+        /// The YAML spec.
         spec: String,
         /// The scene to run [default: the spec's `accuracy.scene`, else the first scene with
         /// roller contact, else the first scene].
@@ -95,12 +98,18 @@ pub enum Command {
     },
     /// Rewrite the golden files of a spec from the current results, on purpose, and print
     /// what moved. CI never blesses.
-    Bless { spec: String },
+    Bless {
+        /// The YAML spec whose `golden` files are rewritten.
+        spec: String,
+    },
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
+        /// The YAML spec whose design and modification give the profile.
         spec: String,
+        /// Write the profile points as CSV (x_mm, y_mm) to this path (optional).
         #[arg(long)]
         csv: Option<String>,
+        /// Write the profile as a closed DXF polyline to this path (optional).
         #[arg(long)]
         dxf: Option<String>,
         /// Largest chordal error of the exported polyline, µm (at least 0.001).
@@ -332,7 +341,14 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
 /// The accuracy ladder of the design review and its wall-clock time, s.
 fn run_ladder(spec: &spec::Spec, a: &spec::Accuracy) -> Result<(accuracy::Ladder, f64)> {
     let start = std::time::Instant::now();
-    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |_| {})?;
+    // Steps rungs 12 … finest, and at most four settings rungs.
+    let rungs = (a.options.finest / accuracy::COARSEST).trailing_zeros() as u64 + 1 + 4;
+    let bar = report::terminal::Bar::new("accuracy ladder", "rungs", rungs, 0);
+    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |event| {
+        if let accuracy::Event::Rung(..) = event {
+            crate::progress::Progress::advance(&bar, 1);
+        }
+    })?;
     Ok((ladder, start.elapsed().as_secs_f64()))
 }
 
@@ -382,51 +398,29 @@ fn run_scenes(
     writes: scene::Writes,
 ) -> Result<Vec<crate::model::results::SceneResult>> {
     use rayon::prelude::*;
+    // A bar for large scenes only: the sweeps of every scene, in crank angles.
+    let total: usize = spec
+        .scenes
+        .iter()
+        .map(|s| s.crank_rad.len() * scene::sweeps(&scene::plan(spec, s, writes)))
+        .sum();
+    let bar = report::terminal::Bar::new(
+        "solving the scenes",
+        "crank angles",
+        total as u64,
+        report::terminal::WORTH_SHOWING * 10,
+    );
     let results: Vec<Result<crate::model::results::SceneResult>> = spec
         .scenes
         .par_iter()
-        .map(|s| scene::run(spec, s, &scene::plan(spec, s, writes)))
+        .map(|s| {
+            let plan = scene::plan(spec, s, writes);
+            let settings = crate::equilibrium::solve::Settings::default();
+            let d = (&spec.design, &spec.modification);
+            scene::run_observed(d.0, d.1, (s, &plan), &settings, &bar)
+        })
         .collect();
     results.into_iter().collect()
-}
-
-/// The command line's progress observer: an indicatif bar (or, with no total, a spinner with a
-/// count) on stderr. indicatif draws nothing when stderr is not a terminal, so logs stay clean.
-struct TerminalProgress(indicatif::ProgressBar);
-
-impl TerminalProgress {
-    fn new() -> Self {
-        TerminalProgress(indicatif::ProgressBar::hidden())
-    }
-}
-
-impl Progress for TerminalProgress {
-    fn start(&self, what: &str, total: u64) {
-        let template = if total > 0 {
-            "{msg} [{bar:30}] {pos}/{len}, {elapsed}"
-        } else {
-            "{spinner} {msg}: {pos}, {elapsed}"
-        };
-        let bar = &self.0;
-        bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(template)
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner())
-                .progress_chars("=> "),
-        );
-        bar.set_message(what.to_string());
-        bar.set_length(total);
-        bar.reset();
-        bar.enable_steady_tick(std::time::Duration::from_millis(120));
-    }
-
-    fn advance(&self, n: u64) {
-        self.0.inc(n);
-    }
-
-    fn finish(&self) {
-        self.0.finish_and_clear();
-    }
 }
 
 /// Studies in parallel, in spec order, counting evaluations on a terminal.
@@ -438,20 +432,20 @@ fn run_studies(
     if studies.is_empty() {
         return Vec::new();
     }
-    let progress = TerminalProgress::new();
-    progress.start(
-        &format!(
-            "optimising {} stud{}: evaluations",
-            studies.len(),
-            if studies.len() == 1 { "y" } else { "ies" }
-        ),
-        0,
+    // At most this many evaluations: local runs often stop before their budget, and then the
+    // bar ends short of full.
+    let most: usize = studies.iter().map(|s| optimise::most_evaluations(s)).sum();
+    let what = format!(
+        "optimising {} stud{}",
+        studies.len(),
+        if studies.len() == 1 { "y" } else { "ies" }
     );
+    let progress = report::terminal::Bar::new(&what, "evaluations at most", most as u64, 0);
     let results = studies
         .par_iter()
         .map(|s| optimise::run_study_with(spec, s, &progress))
         .collect();
-    progress.finish();
+    drop(progress);
     results
 }
 
@@ -462,15 +456,15 @@ fn map_with_progress(
     steps: usize,
     around: &crate::model::Modification,
 ) -> Vec<optimise::problem::Evaluation> {
-    let progress = TerminalProgress::new();
     let cells = if study.variables.len() > 1 {
         steps * steps
     } else {
         steps
     };
-    progress.start(&format!("objective map of `{}`", study.name), cells as u64);
+    let what = format!("objective map of `{}`", study.name);
+    let progress = report::terminal::Bar::new(&what, "cells", cells as u64, 0);
     let map = optimise::map(spec, study, steps, around, &progress);
-    progress.finish();
+    drop(progress);
     map
 }
 

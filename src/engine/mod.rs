@@ -6,7 +6,8 @@ pub mod accuracy;
 pub mod check;
 pub mod golden;
 pub mod optimise;
-pub mod progress;
+/// The progress observer (`crate::progress`), where the engine's callers look for it.
+pub use crate::progress;
 pub mod resolution;
 pub mod scene;
 pub mod summary;

@@ -14,6 +14,7 @@ use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::QUANTITIES;
 use crate::model::results::{LoadedSweep, SceneResult};
 use crate::model::{Design, Detail, Effect, Modification, Plan, Scene};
+use crate::progress::{Progress, Silent};
 use crate::spec::Spec;
 use crate::units;
 
@@ -72,6 +73,18 @@ pub fn run_design(
     plan: &Plan,
     settings: &Settings,
 ) -> Result<SceneResult> {
+    run_observed(design, m, (scene, plan), settings, &Silent)
+}
+
+/// `run_design`, telling `progress` of the crank angles done by each sweep the plan runs
+/// (`progress::Progress::start` is the caller's: `sweeps` says how many it will hear of).
+pub fn run_observed(
+    design: &Design,
+    m: &Modification,
+    (scene, plan): (&Scene, &Plan),
+    settings: &Settings,
+    progress: &dyn Progress,
+) -> Result<SceneResult> {
     let mesh = Mesh::new(design, m);
     let clearance = if plan.has(Effect::Clearance) {
         let scope = if plan.has_detail(Detail::Backlash) {
@@ -80,7 +93,7 @@ pub fn run_design(
             clearance::Scope::Gaps
         };
         Some(
-            clearance::sweep(&mesh, &scene.crank_rad, scope)
+            clearance::sweep_observed(&mesh, &scene.crank_rad, scope, progress)
                 .map_err(|f| Error::computation(format!("scene `{}`: {f}", scene.name)))?,
         )
     } else {
@@ -92,7 +105,7 @@ pub fn run_design(
         model.settings = *settings;
         let pins = plan.has(Effect::OutputPins);
         let periodic = scene.spans_whole(design.loaded_period_rad(pins));
-        curves::sweep(&model, &scene.crank_rad, periodic).map_err(|f| {
+        curves::sweep_observed(&model, &scene.crank_rad, periodic, progress).map_err(|f| {
             Error::computation(format!(
                 "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {}",
                 scene.name,
@@ -109,6 +122,15 @@ pub fn run_design(
         clearance,
         loaded,
     })
+}
+
+/// How many sweeps over its crank angles `plan` runs (clearance, loaded): the work a progress
+/// display of the scene counts, in crank angles.
+pub fn sweeps(plan: &Plan) -> usize {
+    let loaded = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
+        .iter()
+        .any(|&e| plan.has(e));
+    usize::from(plan.has(Effect::Clearance)) + usize::from(loaded)
 }
 
 /// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.

@@ -7,3 +7,4 @@ pub mod junit;
 pub mod optimisation;
 pub mod svg;
 pub mod table;
+pub mod terminal;

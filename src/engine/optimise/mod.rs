@@ -132,6 +132,20 @@ impl StudyResult {
     }
 }
 
+/// Most evaluations a study can take (for a progress bar): the start and references, the
+/// global sample, every local run at its budget, the verification grid and as many
+/// refinements as local seeds. Local runs often stop early.
+pub fn most_evaluations(study: &Study) -> usize {
+    let dims = study.variables.len() as u32;
+    let grid = if study.verify_grid >= 2 {
+        study.verify_grid.pow(dims)
+    } else {
+        0
+    };
+    let runs = 1 + 2 * seeds::LOCAL_SEEDS;
+    1 + study.references.len() + global::points(study).len() + grid + runs * study.local_evaluations
+}
+
 /// Run one study: global sample, local runs, verification grid, best feasible point.
 pub fn run_study(spec: &Spec, study: &Study) -> StudyResult {
     run_study_with(spec, study, &Silent)

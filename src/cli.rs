@@ -1,7 +1,7 @@
 //! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
-use crate::engine::{accuracy, check, golden, optimise, resolution, scene, summary};
+use crate::engine::{accuracy, check, drawing, golden, optimise, resolution, scene, summary};
 use crate::error::{Error, Result};
 use crate::geometry::profile::Profile;
 use crate::report::export;
@@ -287,10 +287,15 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     let summaries = summary::summarise(&results);
     print(out, &report::table::render_summary(&summaries))?;
     if let Some(p) = outputs.json {
-        let doc = report::json::document_with_golden(&spec, &checks, &results, &goldens);
-        let text =
-            serde_json::to_string_pretty(&doc).map_err(|e| Error::computation(e.to_string()))?;
-        write_file(p, &text)?;
+        let doc = report::json::Document::new(&report::json::Contents {
+            spec: &spec,
+            checks: &checks,
+            results: &results,
+            goldens: &goldens,
+            summaries: &summaries,
+            studies: &studies,
+        });
+        report::json::write(std::path::Path::new(p), &doc)?;
     }
     if let Some(p) = outputs.junit {
         write_file(p, &report::junit::document(&spec.name, &spec.path, &checks))?;
@@ -312,14 +317,26 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
                 report::optimisation::view(&spec, s, r, &cells, steps)
             })
             .collect();
+        let crank_rad = outputs
+            .report_crank_deg
+            .map_or_else(|| drawing::default_crank_rad(&results), crate::units::rad);
+        let disc = drawing::disc(&spec, crank_rad)?;
+        // The resolution warning `check` printed, as a banner under the verdict.
+        let warnings: Vec<String> = resolution
+            .as_ref()
+            .and_then(|r| r.warning())
+            .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
+            .into_iter()
+            .collect();
         let input = report::html::ReportInput {
             spec: &spec,
             checks: &checks,
             results: &results,
             goldens: &goldens,
-            crank_deg: outputs.report_crank_deg,
+            disc: &disc,
             optimisation: &views,
             accuracy: ladder.as_ref().map(|(l, _)| l),
+            warnings: &warnings,
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;
         print(

@@ -361,7 +361,7 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
     };
     let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
     let r = cycloid::engine::scene::run(&spec, &scene, &plan).unwrap();
-    let doc = cycloid::report::json::document(&spec, &[], std::slice::from_ref(&r));
+    let doc = cycloid::report::json::scenes_value(&spec, std::slice::from_ref(&r)).unwrap();
     let json = &doc["scenes"][0];
     let mut seen = 0;
     for q in QUANTITIES {

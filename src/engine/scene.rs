@@ -101,18 +101,11 @@ pub fn run_observed(
     };
     let loaded_effects = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing];
     let loaded = if loaded_effects.iter().any(|&e| plan.has(e)) {
-        let mut model = Model::new(design, m, scene, plan);
-        model.settings = *settings;
+        let model = loaded_model(design, m, scene, plan, settings);
         let pins = plan.has(Effect::OutputPins);
         let periodic = scene.spans_whole(design.loaded_period_rad(pins));
-        curves::sweep_observed(&model, &scene.crank_rad, periodic, progress).map_err(|f| {
-            Error::computation(format!(
-                "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {}",
-                scene.name,
-                units::deg(f.crank_rad),
-                f.failure
-            ))
-        })?
+        curves::sweep_observed(&model, &scene.crank_rad, periodic, progress)
+            .map_err(|f| solve_failed(scene, f.crank_rad, &f.failure))?
     } else {
         LoadedSweep::default()
     };
@@ -131,6 +124,30 @@ pub fn sweeps(plan: &Plan) -> usize {
         .iter()
         .any(|&e| plan.has(e));
     usize::from(plan.has(Effect::Clearance)) + usize::from(loaded)
+}
+
+/// The loaded model of a scene (roller contact, output pins, bearing as `plan` says) solved to
+/// `settings`: what the sweep of `run_design` solves at every crank angle, and what the design
+/// review's drawing solves at its one angle.
+pub fn loaded_model(
+    design: &Design,
+    m: &Modification,
+    scene: &Scene,
+    plan: &Plan,
+    settings: &Settings,
+) -> Model {
+    let mut model = Model::new(design, m, scene, plan);
+    model.settings = *settings;
+    model
+}
+
+/// The error of a loaded solve that failed: the scene and the crank angle.
+pub fn solve_failed(scene: &Scene, crank_rad: f64, failure: &impl std::fmt::Display) -> Error {
+    Error::computation(format!(
+        "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {failure}",
+        scene.name,
+        units::deg(crank_rad),
+    ))
 }
 
 /// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.

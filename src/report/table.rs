@@ -108,7 +108,7 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
 }
 
 /// A count (a whole dimensionless value, e.g. rollers in contact) as an integer, else `number`.
-fn count_or_number(x: f64, unit: &str) -> String {
+pub fn count_or_number(x: f64, unit: &str) -> String {
     if unit.is_empty() && x.fract() == 0.0 && x.abs() < 1e9 {
         format!("{x:.0}")
     } else {

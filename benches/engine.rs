@@ -119,6 +119,20 @@ fn check_paper_end_to_end(b: divan::Bencher) {
     });
 }
 
+/// The paper's four optimisation studies (`specs/paper.yaml`), the whole search: global
+/// sample, local runs and 41 × 41 verification grid (target: a few seconds on one core; run
+/// with RAYON_NUM_THREADS=1).
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn paper_studies(b: divan::Bencher) {
+    let s = paper();
+    b.bench(|| {
+        s.studies
+            .iter()
+            .map(|study| cycloid::engine::optimise::run_study(black_box(&s), study).evaluations)
+            .sum::<usize>()
+    });
+}
+
 /// The spec of the JSON benchmarks: the paper optimum at 10 N·m (`specs/reducer-loaded.yaml`)
 /// with rollers, pins and a rigid bearing over 3,600 crank angles (one mesh period at 0.01°),
 /// no clearance sweep, no accuracy section, written into a scratch directory (the same one at every run, so that

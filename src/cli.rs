@@ -403,7 +403,7 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
             .zip(&studies)
             .map(|(s, r)| {
                 let cells = if steps >= 2 {
-                    optimise::map(&spec, s, steps, &r.optimum.modification)
+                    map_with_progress(&spec, s, steps, &r.optimum.modification)
                 } else {
                     Vec::new()
                 };
@@ -535,8 +535,7 @@ fn run_scenes(
     results.into_iter().collect()
 }
 
-/// Studies in parallel, in spec order, with a progress spinner on a terminal (hidden when
-/// stderr is not one, so CI logs stay clean).
+/// Studies in parallel, in spec order, counting evaluations on a terminal.
 fn run_studies(
     spec: &spec::Spec,
     studies: Vec<&crate::model::Study>,
@@ -545,22 +544,86 @@ fn run_studies(
     if studies.is_empty() {
         return Vec::new();
     }
-    let bar = indicatif::ProgressBar::new_spinner().with_message(format!(
+    // At most this many evaluations: local runs often stop before their budget, and then the
+    // bar ends short of full.
+    let most: usize = studies.iter().map(|s| optimise::most_evaluations(s)).sum();
+    let what = format!(
         "optimising {} stud{}",
         studies.len(),
         if studies.len() == 1 { "y" } else { "ies" }
-    ));
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{spinner} {msg}: {pos} evaluations, {elapsed}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
     );
-    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    let progress = report::terminal::Bar::new(&what, "evaluations at most", most as u64, 0);
     let results = studies
         .par_iter()
-        .map(|s| optimise::run_study_with(spec, s, Some(&bar)))
+        .map(|s| optimise::run_study_with(spec, s, &progress))
         .collect();
-    bar.finish_and_clear();
+    drop(progress);
     results
+}
+
+/// `optimise::map`, with a bar of its cells on a terminal.
+fn map_with_progress(
+    spec: &spec::Spec,
+    study: &crate::model::Study,
+    steps: usize,
+    around: &crate::model::Modification,
+) -> Vec<optimise::problem::Evaluation> {
+    let cells = if study.variables.len() > 1 {
+        steps * steps
+    } else {
+        steps
+    };
+    let what = format!("objective map of `{}`", study.name);
+    let progress = report::terminal::Bar::new(&what, "cells", cells as u64, 0);
+    let map = optimise::map(spec, study, steps, around, &progress);
+    drop(progress);
+    map
+}
+
+/// `optimise --write OUT`: the spec of a study's optimum, written only when it is feasible;
+/// returns what to tell the user.
+fn write_optimum(
+    spec: &spec::Spec,
+    path: &str,
+    study: &crate::model::Study,
+    r: &optimise::StudyResult,
+    out_path: &str,
+) -> Result<String> {
+    if !r.optimum.feasible() {
+        return Ok(format!(
+            "no feasible optimum of `{}` was found: nothing written to {out_path}\n",
+            r.name
+        ));
+    }
+    let name = format!("{}-{}-optimum", spec.name, r.name);
+    let mut header = format!(
+        "# Written by `cycloid optimise {path} --study {}`: the optimum of that study, {} = {};\n\
+         # {}.\n",
+        r.name,
+        study
+            .objective
+            .iter()
+            .map(|(o, _)| o.name)
+            .collect::<Vec<_>>()
+            .join(" + "),
+        crate::numeric::number(r.optimum.objective),
+        r.found,
+    );
+    if let Some(v) = report::optimisation::verification_text(study, r) {
+        header += &format!("# {}.\n", v.replace('\n', " "));
+    }
+    let text = optimise::write::optimum_spec(
+        out_path,
+        &spec.source,
+        &r.optimum.modification,
+        &name,
+        &header,
+    )?;
+    write_file(out_path, &text)?;
+    Ok(format!(
+        "wrote {out_path} (`{name}`) with the optimum of `{}`\n",
+        r.name
+    ))
 }
 
 /// The options of `cycloid accuracy` as given; unset ones come from the spec's `accuracy`
@@ -757,10 +820,10 @@ fn run_optimise(
         }
         None => spec.studies.iter().collect(),
     };
-    if map.is_some() && map_steps < 2 {
+    if map.is_some() && !(2..=MAX_REPORT_MAP_STEPS).contains(&map_steps) {
         return Err(Error::new(
             ErrorKind::InvalidValue,
-            format!("--map-steps must be at least 2, got {map_steps}"),
+            format!("--map-steps must be 2 to {MAX_REPORT_MAP_STEPS}, got {map_steps}"),
         ));
     }
     let mut all_feasible = true;
@@ -770,16 +833,10 @@ fn run_optimise(
         all_feasible &= r.optimum.feasible();
         if k == 0 {
             if let Some(p) = write {
-                let text =
-                    optimise::write::with_modification(p, &spec.source, &r.optimum.modification)?;
-                write_file(p, &text)?;
-                print(
-                    out,
-                    &format!("wrote {p} with the optimum of `{}`\n", r.name),
-                )?;
+                print(out, &write_optimum(&spec, path, study, &r, p)?)?;
             }
             if let Some(p) = map {
-                let cells = optimise::map(&spec, study, map_steps, &r.optimum.modification);
+                let cells = map_with_progress(&spec, study, map_steps, &r.optimum.modification);
                 write_file(p, &report::optimisation::map_csv(study, &cells))?;
                 print(
                     out,

@@ -843,6 +843,32 @@ fn json_has_the_summary_of_each_scene_and_the_result_of_each_study() {
         let name = c["name"].as_str().unwrap();
         assert!(printed.contains(name), "{name}");
     }
+    // What the objective hides and how good the answer is, as the optimiser prints them.
+    let clearance_um = study["min_clearance_mm"].as_f64().unwrap() * 1e3;
+    assert!(
+        line.contains(&format!("min clearance {clearance_um:.2} µm")),
+        "{line}"
+    );
+    let lost = study["lost_motion_arcsec"].as_f64().unwrap();
+    assert!(
+        line.contains(&format!("lost motion {lost:.1} arcsec")),
+        "{line}: {lost}"
+    );
+    let v = &study["verification"];
+    assert_eq!(
+        (v["steps"].as_u64(), v["points"].as_u64()),
+        (Some(41), Some(1681))
+    );
+    let margin = v["margin"].as_f64().unwrap();
+    assert!(
+        margin >= 0.0,
+        "a grid point beats the optimum by {}",
+        -margin
+    );
+    assert!(
+        printed.contains(&format!("is higher by {margin:.6}")),
+        "{printed}: {margin}"
+    );
 }
 
 #[test]

@@ -263,7 +263,7 @@ pub fn min_gap(mesh: &Mesh, crank_rad: &[f64]) -> Result<MinClearance, GapFailur
 
 /// The leading mesh period of a uniform sweep that covers at least one whole period on its
 /// grid; otherwise the whole sweep.
-fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
+pub fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
     let n = crank_rad.len();
     if n < 2 {
         return crank_rad;

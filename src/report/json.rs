@@ -344,7 +344,30 @@ pub struct StudyDoc<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     failure: Option<&'a str>,
     evaluations: usize,
-    stop_reason: &'a str,
+    /// Where the optimum was found and why that search stopped (`optimise::Found`).
+    stop_reason: String,
+    /// What the objective alone hides: the optimum's smallest clearance over the whole mesh
+    /// (mm) and its largest unloaded lost motion (arcsec, negative under interference).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    min_clearance_mm: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    lost_motion_arcsec: Option<Finite>,
+    /// The check of the optimum against the verification grid, when it ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    verification: Option<VerificationDoc>,
+}
+
+/// The verification grid of a study (`optimise::Verification`).
+#[derive(Serialize)]
+pub struct VerificationDoc {
+    /// Grid points per variable, and in all.
+    steps: usize,
+    points: usize,
+    feasible: usize,
+    /// The best feasible grid point's objective minus the optimum's: ≥ 0 when no grid point
+    /// is better. Absent when no grid point is feasible.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    margin: Option<Finite>,
 }
 
 impl<'a> StudyDoc<'a> {
@@ -396,7 +419,15 @@ impl<'a> StudyDoc<'a> {
             feasible: o.feasible(),
             failure: o.failure.as_deref(),
             evaluations: r.evaluations,
-            stop_reason: &r.stop_reason,
+            stop_reason: r.found.to_string(),
+            min_clearance_mm: o.min_clearance.as_ref().map(|c| Finite(c.gap_mm)),
+            lost_motion_arcsec: o.lost_motion_arcsec.map(Finite),
+            verification: r.verification.as_ref().map(|v| VerificationDoc {
+                steps: v.steps,
+                points: v.points,
+                feasible: v.feasible,
+                margin: v.margin.filter(|m| m.is_finite()).map(Finite),
+            }),
         }
     }
 }

@@ -70,12 +70,18 @@ pub struct RawStudy {
     pub references: Vec<RawReference>,
     #[serde(default)]
     pub optimum_max_objective: Option<f64>,
-    /// Points of the global (low-discrepancy) stage.
+    /// Interior points of the global (space-filling) stage.
     #[serde(default)]
     pub global_samples: Option<i64>,
+    /// Points of the global stage on each face of the feasible region.
+    #[serde(default)]
+    pub boundary_samples: Option<i64>,
     /// Evaluations allowed to each local (COBYLA) run.
     #[serde(default)]
     pub local_evaluations: Option<i64>,
+    /// Points per variable of the verification grid (0: none).
+    #[serde(default)]
+    pub verify_grid: Option<i64>,
 }
 
 /// An objective name, or a map of objective names to weights (a weighted sum).
@@ -107,6 +113,7 @@ pub struct RawPoint {
 pub struct RawConstraints {
     pub tip_clearance_mm: Option<[f64; 2]>,
     pub min_clearance_mm: Option<f64>,
+    pub max_lost_motion_arcsec: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -8,6 +8,10 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
 use crate::model::quantity;
 use crate::model::scene::MAX_ROLLER_ANGLES;
+use crate::model::study::{
+    default_boundary_samples, default_global_samples, default_verify_grid, MAX_GLOBAL_SAMPLES,
+    MAX_LOCAL_EVALUATIONS, MAX_VERIFY_POINTS,
+};
 use crate::model::*;
 use crate::{numeric, units};
 
@@ -89,6 +93,19 @@ fn count(key: &str, value: i64, min: i64) -> Result<usize> {
         Ok(value as usize)
     } else {
         Err(invalid(key, format!("must be at least {min}, got {value}")))
+    }
+}
+
+/// A count in [min, max]; `why` says where the cap comes from.
+fn count_capped(key: &str, value: i64, min: i64, max: usize, why: &str) -> Result<usize> {
+    let n = count(key, value, min)?;
+    if n <= max {
+        Ok(n)
+    } else {
+        Err(invalid(
+            key,
+            format!("must be at most {max} ({why}), got {value}"),
+        ))
     }
 }
 
@@ -632,6 +649,40 @@ fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
     }
 }
 
+/// Points per variable of a verification grid: 0 (none) or at least 2, with steps^dims at most
+/// `MAX_VERIFY_POINTS`.
+fn verify_grid(key: &str, value: i64, dims: usize) -> Result<usize> {
+    if value == 0 {
+        return Ok(0);
+    }
+    if value < 2 {
+        return Err(invalid(
+            key,
+            format!("must be 0 (no verification) or at least 2, got {value}"),
+        ));
+    }
+    let steps = value as usize;
+    let points = u32::try_from(dims)
+        .ok()
+        .and_then(|d| steps.checked_pow(d))
+        .unwrap_or(usize::MAX);
+    if points > MAX_VERIFY_POINTS {
+        return Err(invalid(
+            key,
+            format!(
+                "{steps} points per variable make {} grid points over {dims} variables; at most \
+                 {MAX_VERIFY_POINTS} (the cap on the verification grid), or 0 for none",
+                if points == usize::MAX {
+                    "too many".to_string()
+                } else {
+                    points.to_string()
+                }
+            ),
+        ));
+    }
+    Ok(steps)
+}
+
 fn study(
     key: &str,
     index: usize,
@@ -711,6 +762,7 @@ fn study(
             ));
         }
     }
+    let dims = variables.len();
     let c = &raw.constraints;
     let tip_clearance_mm = c
         .tip_clearance_mm
@@ -719,6 +771,10 @@ fn study(
     let min_clearance_mm = c
         .min_clearance_mm
         .map(|x| finite(&format!("{key}.constraints.min_clearance_mm"), x))
+        .transpose()?;
+    let max_lost_motion_arcsec = c
+        .max_lost_motion_arcsec
+        .map(|x| positive(&format!("{key}.constraints.max_lost_motion_arcsec"), x))
         .transpose()?;
     let mut references = Vec::new();
     for (j, r) in raw.references.into_iter().enumerate() {
@@ -740,20 +796,39 @@ fn study(
         start,
         tip_clearance_mm,
         min_clearance_mm,
+        max_lost_motion_arcsec,
         references,
         optimum_max_objective: raw
             .optimum_max_objective
             .map(|x| finite(&format!("{key}.optimum_max_objective"), x))
             .transpose()?,
-        global_samples: count(
+        global_samples: count_capped(
             &format!("{key}.global_samples"),
-            raw.global_samples.unwrap_or(64),
+            raw.global_samples
+                .unwrap_or(default_global_samples(dims) as i64),
             1,
+            MAX_GLOBAL_SAMPLES,
+            "the length of the global stage's Sobol sequence",
         )?,
-        local_evaluations: count(
+        boundary_samples: count_capped(
+            &format!("{key}.boundary_samples"),
+            raw.boundary_samples
+                .unwrap_or(default_boundary_samples(dims) as i64),
+            1,
+            MAX_GLOBAL_SAMPLES,
+            "the length of the global stage's Sobol sequence",
+        )?,
+        local_evaluations: count_capped(
             &format!("{key}.local_evaluations"),
             raw.local_evaluations.unwrap_or(200),
             10,
+            MAX_LOCAL_EVALUATIONS,
+            "the cap on one local run",
+        )?,
+        verify_grid: verify_grid(
+            &format!("{key}.verify_grid"),
+            raw.verify_grid.unwrap_or(default_verify_grid(dims) as i64),
+            dims,
         )?,
     })
 }

@@ -791,6 +791,11 @@ fn run_optimise(
     out: &mut dyn Write,
 ) -> Result<Outcome> {
     let spec = spec::load(path)?;
+    let outputs: Vec<(&str, &str)> = [("--write", write), ("--map", map)]
+        .into_iter()
+        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
+        .collect();
+    distinct_outputs(&inputs_of(path, Some(&spec)), &outputs)?;
     if spec.studies.is_empty() {
         return Err(Error::new(
             ErrorKind::InvalidValue,

@@ -166,6 +166,36 @@ fn profile_refuses_an_output_that_is_an_input_or_another_output() {
     }
 }
 
+/// `optimise --write` and `--map` follow the same rule: never over the spec (an in-place
+/// optimum would replace the user's design), never both at one path.
+#[test]
+fn optimise_refuses_an_output_that_is_an_input_or_another_output() {
+    let dir = Scratch::new("rel-optimise");
+    let spec = PaperSpec::new().with(
+        "optimise:\n  name: tiny\n  scene: rated\n  objective: te_fluctuation\n  \
+         variables: { shift_mm: [0.1, 0.15], equidistant_mm: [0.13, 0.2] }\n  \
+         global_samples: 8\n  local_evaluations: 10\n",
+    );
+    dir.write("s.yaml", spec.text());
+    let cases: [(&[&str], &str); 3] = [
+        (
+            &["--write", "s.yaml"],
+            "--write s.yaml would overwrite the spec",
+        ),
+        (
+            &["--map", "./s.yaml"],
+            "--map ./s.yaml would overwrite the spec",
+        ),
+        (
+            &["--write", "o.yaml", "--map", "o.yaml"],
+            "--map o.yaml would overwrite the output of --write",
+        ),
+    ];
+    for (args, message) in cases {
+        refused(&dir, &[&["optimise", "s.yaml"], args].concat(), message);
+    }
+}
+
 // ---------------------------------------------------------------- data loss: bless
 
 /// `bless` wrote wherever `golden[].file` pointed: out of the spec's directory, over the spec

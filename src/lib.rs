@@ -25,6 +25,7 @@ pub mod spec;
 pub mod contact;
 pub mod equilibrium;
 pub mod geometry;
+pub mod measure;
 
 pub mod engine;
 

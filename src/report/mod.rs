@@ -1,6 +1,7 @@
 //! Outputs: the terminal table, the results JSON, JUnit XML and the HTML design review.
 
 pub mod export;
+pub mod fit;
 pub mod html;
 pub mod json;
 pub mod junit;

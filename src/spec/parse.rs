@@ -94,6 +94,7 @@ where
         optimise: raw.optimise.map(Into::into),
         golden: raw.golden,
         accuracy: raw.accuracy,
+        measured_profile: raw.measured_profile,
     })
 }
 

@@ -61,6 +61,10 @@ pub const MAX_RMS_MM: f64 = 0.05;
 
 const MAX_ITERATIONS: usize = 60;
 
+/// Below this RMS change of the residuals per step, mm, the feet of the last parameters start
+/// Newton alone (`Profile::closest_point_from`): a µm-sized move keeps every foot on its flank.
+const WARM_MM: f64 = 1e-2;
+
 /// What to identify: the design, the spec's modification (the start, and the value of what is
 /// not fitted), which modifications to fit and the highest form-error harmonic.
 #[derive(Debug, Clone, Copy)]
@@ -254,6 +258,8 @@ struct State<'a> {
     hole_offset: f64,
     params: &'a [f64],
     layout: &'a Layout,
+    /// The feet's starts are the feet of the previous, nearby parameters: Newton alone.
+    warm: bool,
 }
 
 impl<'a> State<'a> {
@@ -276,6 +282,7 @@ impl<'a> State<'a> {
             hole_offset: get(layout.hole, 0.0),
             params,
             layout,
+            warm: false,
         }
     }
 
@@ -352,6 +359,11 @@ impl<'a> State<'a> {
     /// (half a roller pitch) does not hold the foot — a start far off, early in the iteration —
     /// the nearest of the searches started at every half pitch around the disc.
     fn foot(&self, q: Vec2, t_start: f64) -> std::result::Result<Foot, ClosestPointFailure> {
+        if self.warm {
+            if let Ok(foot) = self.profile.closest_point_from(q, t_start) {
+                return Ok(foot);
+            }
+        }
         let first = self.profile.closest_point(q, t_start);
         if first.is_ok() {
             return first;
@@ -407,17 +419,18 @@ impl<'a> State<'a> {
     }
 }
 
-/// Residuals (and Jacobian when asked) of every point; `feet` are the warm starts of the
-/// profile points' feet, updated.
+/// Residuals (and Jacobian when asked) of every point; `feet` are the starts of the profile
+/// points' feet (warm: the feet at nearby parameters), updated.
 fn evaluate(
     request: &Request,
     layout: &Layout,
     params: &[f64],
     points: &[MeasuredPoint],
-    feet: &mut [f64],
+    (feet, warm): (&mut [f64], bool),
     mut jacobian: Option<&mut Mat<f64>>,
 ) -> Result<Vec<f64>> {
-    let state = State::new(request, layout, params);
+    let mut state = State::new(request, layout, params);
+    state.warm = warm;
     let mut row = vec![0.0; layout.len];
     let mut residuals = Vec::with_capacity(points.len());
     for (i, p) in points.iter().enumerate() {
@@ -449,7 +462,9 @@ struct Step {
     weakest: usize,
 }
 
-fn solve(jacobian: &Mat<f64>, residuals: &[f64]) -> Result<Step> {
+/// The step, and with `statistics` the condition number and variances (at the solution only:
+/// they cost an SVD and a triangular inverse of R).
+fn solve(jacobian: &Mat<f64>, residuals: &[f64], statistics: bool) -> Result<Step> {
     let (m, n) = (jacobian.nrows(), jacobian.ncols());
     let scale: Vec<f64> = (0..n)
         .map(|c| jacobian.col(c).norm_l2())
@@ -460,6 +475,15 @@ fn solve(jacobian: &Mat<f64>, residuals: &[f64]) -> Result<Step> {
     let mut rhs = Mat::from_fn(m, 1, |i, _| -residuals[i]);
     qr.solve_lstsq_in_place(rhs.as_mut());
     let delta = (0..n).map(|c| rhs[(c, 0)] / scale[c]).collect();
+    let (forward, _) = qr.P().arrays();
+    if !statistics {
+        return Ok(Step {
+            delta,
+            condition: f64::NAN,
+            variances: Vec::new(),
+            weakest: forward[n - 1],
+        });
+    }
     let r = qr.thin_R();
     let singular = r
         .singular_values()
@@ -478,7 +502,6 @@ fn solve(jacobian: &Mat<f64>, residuals: &[f64]) -> Result<Step> {
         inverse.as_mut(),
         faer::Par::Seq,
     );
-    let (forward, _) = qr.P().arrays();
     let mut variances = vec![0.0; n];
     for (pivoted, &original) in forward.iter().enumerate() {
         let row_norm2: f64 = (0..n).map(|c| inverse[(pivoted, c)].powi(2)).sum();
@@ -550,12 +573,20 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
     }
     let (mut params, mut feet) = initial(request, &layout, points)?;
     let mut jac = Mat::<f64>::zeros(points.len(), layout.len);
-    let mut residuals = evaluate(request, &layout, &params, points, &mut feet, Some(&mut jac))?;
+    let mut residuals = evaluate(
+        request,
+        &layout,
+        &params,
+        points,
+        (&mut feet, false),
+        Some(&mut jac),
+    )?;
     let mut iterations = 0;
+    let mut warm = false;
     let mut converged = false;
     while iterations < MAX_ITERATIONS {
         iterations += 1;
-        let step = solve(&jac, &residuals)?;
+        let step = solve(&jac, &residuals, false)?;
         let cost = sum_squares(&residuals);
         let mut lambda = 1.0;
         let mut accepted = None;
@@ -566,7 +597,14 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
                 .map(|(p, d)| p + lambda * d)
                 .collect();
             let mut trial_feet = feet.clone();
-            if let Ok(r) = evaluate(request, &layout, &trial, points, &mut trial_feet, None) {
+            if let Ok(r) = evaluate(
+                request,
+                &layout,
+                &trial,
+                points,
+                (&mut trial_feet, warm),
+                None,
+            ) {
                 if sum_squares(&r) <= cost {
                     accepted = Some((trial, trial_feet));
                     break;
@@ -593,7 +631,15 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
             / (points.len() as f64).sqrt();
         params = trial;
         feet = trial_feet;
-        residuals = evaluate(request, &layout, &params, points, &mut feet, Some(&mut jac))?;
+        warm = moved < WARM_MM;
+        residuals = evaluate(
+            request,
+            &layout,
+            &params,
+            points,
+            (&mut feet, warm),
+            Some(&mut jac),
+        )?;
         if moved < 1e-9 {
             converged = true;
             break;
@@ -606,7 +652,7 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
             1e3 * (sum_squares(&residuals) / points.len() as f64).sqrt()
         )));
     }
-    let last = solve(&jac, &residuals)?;
+    let last = solve(&jac, &residuals, true)?;
     finish(
         request, &layout, &params, points, &feet, &residuals, &last, iterations,
     )
@@ -842,7 +888,7 @@ fn initial(
             trial[i] = rotation;
         }
         let mut feet = start_feet(&trial, &sample);
-        if let Ok(r) = evaluate(request, layout, &trial, &sample, &mut feet, None) {
+        if let Ok(r) = evaluate(request, layout, &trial, &sample, (&mut feet, false), None) {
             let cost = sum_squares(&r);
             if cost < best.0 {
                 best = (cost, turn);
@@ -926,7 +972,7 @@ mod tests {
         };
         let j = Mat::from_fn(m, n, value);
         let r = vec![0.0; m];
-        let step = solve(&j, &r).unwrap();
+        let step = solve(&j, &r, true).unwrap();
         let jn = nalgebra::DMatrix::from_fn(m, n, value);
         let inv = (jn.transpose() * &jn).try_inverse().unwrap();
         for c in 0..n {

@@ -254,7 +254,9 @@ struct State<'a> {
     design: &'a Design,
     profile: Profile,
     centre: Vec2,
-    orientation: f64,
+    /// (sin, cos) of θ0 and of Δδ.
+    orientation: (f64, f64),
+    rotation: (f64, f64),
     hole_offset: f64,
     params: &'a [f64],
     layout: &'a Layout,
@@ -278,7 +280,8 @@ impl<'a> State<'a> {
             design: d,
             profile,
             centre: Vec2::new(params[0], params[1]),
-            orientation: params[2],
+            orientation: params[2].sin_cos(),
+            rotation: profile.rotation_rad.sin_cos(),
             hole_offset: get(layout.hole, 0.0),
             params,
             layout,
@@ -287,19 +290,18 @@ impl<'a> State<'a> {
     }
 
     fn to_disc(&self, p: Vec2) -> Vec2 {
-        let (s, c) = self.orientation.sin_cos();
+        let (s, c) = self.orientation;
         rotate(p - self.centre, c, -s)
     }
 
-    fn form(&self, t: f64) -> f64 {
+    /// w(t) and, in `basis`, (cos k·t, sin k·t) of every order of the series.
+    fn form(&self, t: f64, basis: &mut [f64]) -> f64 {
         let l = self.layout;
-        l.orders
+        cos_sin_orders(t, &l.orders, basis);
+        basis
             .iter()
-            .enumerate()
-            .map(|(k, &order)| {
-                let (s, c) = (order as f64 * t).sin_cos();
-                self.params[l.form + 2 * k] * c + self.params[l.form + 2 * k + 1] * s
-            })
+            .zip(&self.params[l.form..])
+            .map(|(b, a)| b * a)
             .sum()
     }
 
@@ -319,22 +321,21 @@ impl<'a> State<'a> {
             ))
         })?;
         let t = foot.t;
-        let d = foot.locus_distance_mm + self.profile.offset_mm + self.form(t);
+        let l = self.layout;
+        let mut basis = [0.0; 2 * MAX_ORDERS];
+        let basis = &mut basis[..2 * l.orders.len()];
+        let d = foot.locus_distance_mm + self.profile.offset_mm + self.form(t, basis);
         if let Some(row) = row {
-            let (s, c) = self.orientation.sin_cos();
+            let (s, c) = self.orientation;
             let n_machine = rotate(foot.normal, c, s);
             let locus = foot.point + self.profile.offset_mm * foot.normal;
             let turn = -cross(locus, foot.normal);
             row[0] = -n_machine.x;
             row[1] = -n_machine.y;
             row[2] = turn;
-            let l = self.layout;
             if let Some(i) = l.shift {
-                let radial = rotate(
-                    Vec2::new(t.cos(), t.sin()),
-                    self.profile_cos(),
-                    self.profile_sin(),
-                );
+                let (s, c) = self.rotation;
+                let radial = rotate(Vec2::new(t.cos(), t.sin()), c, s);
                 row[i] = -radial.dot(&foot.normal);
             }
             if let Some(i) = l.equidistant {
@@ -346,11 +347,7 @@ impl<'a> State<'a> {
             if let Some(i) = l.hole {
                 row[i] = 0.0;
             }
-            for (k, &order) in l.orders.iter().enumerate() {
-                let (s, c) = (order as f64 * t).sin_cos();
-                row[l.form + 2 * k] = c;
-                row[l.form + 2 * k + 1] = s;
-            }
+            row[l.form..].copy_from_slice(basis);
         }
         Ok((d, t))
     }
@@ -383,14 +380,6 @@ impl<'a> State<'a> {
             .ok_or_else(|| first.unwrap_err())
     }
 
-    fn profile_cos(&self) -> f64 {
-        self.profile.rotation_rad.cos()
-    }
-
-    fn profile_sin(&self) -> f64 {
-        self.profile.rotation_rad.sin()
-    }
-
     fn hole_centre(&self, j: usize) -> Vec2 {
         let pins = &self.design.pins;
         let a = TAU * j as f64 / pins.count as f64;
@@ -406,7 +395,7 @@ impl<'a> State<'a> {
         if let Some(row) = row {
             row.fill(0.0);
             let u = if r > 0.0 { v / r } else { Vec2::new(1.0, 0.0) };
-            let (s, c) = self.orientation.sin_cos();
+            let (s, c) = self.orientation;
             let u_machine = rotate(u, c, s);
             row[0] = -u_machine.x;
             row[1] = -u_machine.y;
@@ -427,27 +416,22 @@ fn evaluate(
     params: &[f64],
     points: &[MeasuredPoint],
     (feet, warm): (&mut [f64], bool),
-    mut jacobian: Option<&mut Mat<f64>>,
+    mut jacobian: Option<&mut [f64]>,
 ) -> Result<Vec<f64>> {
     let mut state = State::new(request, layout, params);
     state.warm = warm;
-    let mut row = vec![0.0; layout.len];
+    let n = layout.len;
     let mut residuals = Vec::with_capacity(points.len());
     for (i, p) in points.iter().enumerate() {
-        let want = jacobian.is_some();
+        let row = jacobian.as_deref_mut().map(|j| &mut j[i * n..(i + 1) * n]);
         let d = match p.feature {
             Feature::Profile => {
-                let (d, t) = state.profile_residual(p, feet[i], want.then_some(&mut row[..]))?;
+                let (d, t) = state.profile_residual(p, feet[i], row)?;
                 feet[i] = t;
                 d
             }
-            Feature::Hole(j) => state.hole_residual(p, j, want.then_some(&mut row[..])),
+            Feature::Hole(j) => state.hole_residual(p, j, row),
         };
-        if let Some(jac) = jacobian.as_deref_mut() {
-            for (c, v) in row.iter().enumerate() {
-                jac[(i, c)] = *v;
-            }
-        }
         residuals.push(d);
     }
     Ok(residuals)
@@ -464,26 +448,36 @@ struct Step {
 
 /// The step, and with `statistics` the condition number and variances (at the solution only:
 /// they cost an SVD and a triangular inverse of R).
-fn solve(jacobian: &Mat<f64>, residuals: &[f64], statistics: bool) -> Result<Step> {
-    let (m, n) = (jacobian.nrows(), jacobian.ncols());
-    let scale: Vec<f64> = (0..n)
-        .map(|c| jacobian.col(c).norm_l2())
-        .map(|s| if s > 0.0 { s } else { 1.0 })
+/// `jacobian` is row-major, a row of `n` per residual.
+fn solve(jacobian: &[f64], n: usize, residuals: &[f64], statistics: bool) -> Result<Step> {
+    let m = residuals.len();
+    let mut scale = vec![0.0; n];
+    for row in jacobian.chunks_exact(n) {
+        for (s, v) in scale.iter_mut().zip(row) {
+            *s += v * v;
+        }
+    }
+    let scale: Vec<f64> = scale
+        .into_iter()
+        .map(|s| if s > 0.0 { s.sqrt() } else { 1.0 })
         .collect();
-    let scaled = Mat::from_fn(m, n, |i, c| jacobian[(i, c)] / scale[c]);
-    let qr = scaled.col_piv_qr();
+    let scaled = Mat::from_fn(m, n, |i, c| jacobian[i * n + c] / scale[c]);
     let mut rhs = Mat::from_fn(m, 1, |i, _| -residuals[i]);
+    if !statistics {
+        // The steps on the way: Householder QR without pivoting (blocked, faster); the
+        // solution's statistics below pivot, to name the least independent column.
+        scaled.qr().solve_lstsq_in_place(rhs.as_mut());
+        return Ok(Step {
+            delta: (0..n).map(|c| rhs[(c, 0)] / scale[c]).collect(),
+            condition: f64::NAN,
+            variances: Vec::new(),
+            weakest: 0,
+        });
+    }
+    let qr = scaled.col_piv_qr();
     qr.solve_lstsq_in_place(rhs.as_mut());
     let delta = (0..n).map(|c| rhs[(c, 0)] / scale[c]).collect();
     let (forward, _) = qr.P().arrays();
-    if !statistics {
-        return Ok(Step {
-            delta,
-            condition: f64::NAN,
-            variances: Vec::new(),
-            weakest: forward[n - 1],
-        });
-    }
     let r = qr.thin_R();
     let singular = r
         .singular_values()
@@ -558,6 +552,15 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
         hole_points > 0,
         FormError::orders(request.harmonics, design.teeth),
     );
+    if layout.orders.len() > MAX_ORDERS {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "{} form-error orders asked for; at most {MAX_ORDERS}",
+                layout.orders.len()
+            ),
+        ));
+    }
     if profile_count <= layout.len {
         return Err(Error::new(
             ErrorKind::InvalidValue,
@@ -572,7 +575,8 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
         ));
     }
     let (mut params, mut feet) = initial(request, &layout, points)?;
-    let mut jac = Mat::<f64>::zeros(points.len(), layout.len);
+    let n = layout.len;
+    let mut jac = vec![0.0; points.len() * n];
     let mut residuals = evaluate(
         request,
         &layout,
@@ -581,12 +585,13 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
         (&mut feet, false),
         Some(&mut jac),
     )?;
+    let mut trial_jac = vec![0.0; points.len() * n];
     let mut iterations = 0;
     let mut warm = false;
     let mut converged = false;
     while iterations < MAX_ITERATIONS {
         iterations += 1;
-        let step = solve(&jac, &residuals, false)?;
+        let step = solve(&jac, n, &residuals, false)?;
         let cost = sum_squares(&residuals);
         let mut lambda = 1.0;
         let mut accepted = None;
@@ -597,50 +602,40 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
                 .map(|(p, d)| p + lambda * d)
                 .collect();
             let mut trial_feet = feet.clone();
-            if let Ok(r) = evaluate(
-                request,
-                &layout,
-                &trial,
-                points,
-                (&mut trial_feet, warm),
-                None,
-            ) {
+            let at = (&mut trial_feet[..], warm);
+            if let Ok(r) = evaluate(request, &layout, &trial, points, at, Some(&mut trial_jac)) {
                 if sum_squares(&r) <= cost {
-                    accepted = Some((trial, trial_feet));
+                    accepted = Some((trial, trial_feet, r));
                     break;
                 }
             }
             lambda *= 0.5;
         }
-        let Some((trial, trial_feet)) = accepted else {
+        let Some((trial, trial_feet, trial_residuals)) = accepted else {
             // No step along the Gauss–Newton direction decreases the cost: a minimum to
             // working precision.
             converged = true;
             break;
         };
         // Size of the step's effect on the residuals, RMS mm: ‖J·δ‖/√m.
-        let moved = (0..points.len())
-            .map(|i| {
-                (0..layout.len)
-                    .map(|c| jac[(i, c)] * step.delta[c] * lambda)
-                    .sum::<f64>()
-                    .powi(2)
+        let moved = jac
+            .chunks_exact(n)
+            .map(|row| {
+                let d: f64 = row.iter().zip(&step.delta).map(|(j, d)| j * d).sum();
+                (lambda * d).powi(2)
             })
             .sum::<f64>()
             .sqrt()
             / (points.len() as f64).sqrt();
         params = trial;
         feet = trial_feet;
+        residuals = trial_residuals;
+        std::mem::swap(&mut jac, &mut trial_jac);
         warm = moved < WARM_MM;
-        residuals = evaluate(
-            request,
-            &layout,
-            &params,
-            points,
-            (&mut feet, warm),
-            Some(&mut jac),
-        )?;
-        if moved < 1e-9 {
+        // Converged when the step moves the residuals by less than 1e-4 of their RMS (or 1 pm):
+        // what remains changes no unknown by more than ~1e-4 of its uncertainty.
+        let rms = (sum_squares(&residuals) / points.len() as f64).sqrt();
+        if moved < (1e-4 * rms).max(1e-9) {
             converged = true;
             break;
         }
@@ -652,7 +647,7 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
             1e3 * (sum_squares(&residuals) / points.len() as f64).sqrt()
         )));
     }
-    let last = solve(&jac, &residuals, true)?;
+    let last = solve(&jac, n, &residuals, true)?;
     finish(
         request, &layout, &params, points, &feet, &residuals, &last, iterations,
     )
@@ -768,6 +763,25 @@ fn finish(
         unknowns: layout.len,
         iterations,
     })
+}
+
+/// Most orders of a form-error series (`spec::measured::MAX_HARMONICS` = 200 and fewer).
+const MAX_ORDERS: usize = 256;
+
+/// (cos k·t, sin k·t) for the ascending `orders`, into `out` in pairs, by powers of e^{it}:
+/// one sin_cos per point instead of one per order; k products lose at most ~k·ε (2e-14 at
+/// order 200).
+fn cos_sin_orders(t: f64, orders: &[usize], out: &mut [f64]) {
+    let (s1, c1) = t.sin_cos();
+    let (mut c, mut s, mut k) = (1.0, 0.0, 0);
+    for (pair, &order) in out.chunks_exact_mut(2).zip(orders) {
+        while k < order {
+            (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
+            k += 1;
+        }
+        pair[0] = c;
+        pair[1] = s;
+    }
 }
 
 /// Flank of a locus parameter: (tooth, side).
@@ -970,9 +984,9 @@ mod tests {
                 _ => 5.0 * (2.0 * x).cos(),
             }
         };
-        let j = Mat::from_fn(m, n, value);
+        let j: Vec<f64> = (0..m * n).map(|k| value(k / n, k % n)).collect();
         let r = vec![0.0; m];
-        let step = solve(&j, &r, true).unwrap();
+        let step = solve(&j, n, &r, true).unwrap();
         let jn = nalgebra::DMatrix::from_fn(m, n, value);
         let inv = (jn.transpose() * &jn).try_inverse().unwrap();
         for c in 0..n {

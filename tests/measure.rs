@@ -24,6 +24,18 @@ struct Truth {
     form: Vec<(usize, f64, f64)>,
 }
 
+impl Truth {
+    /// The design's own profile (no modification, no form error) at a pose.
+    fn unmodified(centre: Vec2, orientation: f64) -> Truth {
+        Truth {
+            modification: Modification::default(),
+            centre,
+            orientation,
+            form: Vec::new(),
+        }
+    }
+}
+
 /// Deterministic normal deviates (splitmix64 + Box–Muller), so a case replays from its seed.
 struct Noise(u64);
 
@@ -77,7 +89,7 @@ fn measure(
     );
     let mut noise = Noise(seed);
     let (s, c) = truth.orientation.sin_cos();
-    let mut place = |p: Vec2, noise: &mut Noise| {
+    let place = |p: Vec2, noise: &mut Noise| {
         let turned = Vec2::new(c * p.x - s * p.y, s * p.x + c * p.y);
         turned + truth.centre + Vec2::new(noise.normal(), noise.normal()) * sigma_mm
     };
@@ -107,6 +119,13 @@ fn measure(
     }
     points
 }
+
+/// ΔRp and ΔRrp, without Δδ (no hole points needed).
+const TEETH: Fitted = Fitted {
+    shift: true,
+    equidistant: true,
+    rotation: false,
+};
 
 const ALL: Fitted = Fitted {
     shift: true,
@@ -220,12 +239,7 @@ fn single_harmonic_form_error_shows_as_that_harmonic() {
         form: vec![(5, 0.003 * 0.6, 0.003 * 0.8)],
     };
     let points = measure(&d, &truth, 4000, (0.0, TAU), 0, 1e-3, 7);
-    let fitted = Fitted {
-        shift: true,
-        equidistant: true,
-        rotation: false,
-    };
-    let id = identify(&d, fitted, 20, &points);
+    let id = identify(&d, TEETH, 20, &points);
     for h in &id.form.harmonics {
         let truth = if h.order == 5 { 0.003 } else { 0.0 };
         let sigma = h.cos_mm.sigma.max(h.sin_mm.sigma);
@@ -264,12 +278,7 @@ fn partial_coverage_is_reported() {
         form: Vec::new(),
     };
     let points = measure(&d, &truth, 1500, (0.0, TAU / 3.0), 0, 1e-3, 11);
-    let fitted = Fitted {
-        shift: true,
-        equidistant: true,
-        rotation: false,
-    };
-    let id = identify(&d, fitted, 0, &points);
+    let id = identify(&d, TEETH, 0, &points);
     let e = id.equidistant_mm.unwrap();
     assert!((e.value + 0.03).abs() <= Z * e.sigma, "{e:?}");
     // The points span 1/3 of t; the bins of 1/16 pitch hold 1500 random points, all filled.
@@ -297,12 +306,7 @@ fn error_of(d: &Design, fit: Fitted, harmonics: usize, points: &[MeasuredPoint])
 #[test]
 fn rotation_without_hole_points_is_refused_saying_why() {
     let d = paper();
-    let truth = Truth {
-        modification: Modification::default(),
-        centre: Vec2::zeros(),
-        orientation: 0.0,
-        form: Vec::new(),
-    };
+    let truth = Truth::unmodified(Vec2::zeros(), 0.0);
     let points = measure(&d, &truth, 500, (0.0, TAU), 0, 1e-3, 1);
     let e = error_of(&d, ALL, 0, &points);
     assert!(
@@ -314,20 +318,10 @@ fn rotation_without_hole_points_is_refused_saying_why() {
 #[test]
 fn fewer_points_than_unknowns_are_refused() {
     let d = paper();
-    let truth = Truth {
-        modification: Modification::default(),
-        centre: Vec2::zeros(),
-        orientation: 0.0,
-        form: Vec::new(),
-    };
+    let truth = Truth::unmodified(Vec2::zeros(), 0.0);
     // 12 harmonics: 10 orders, 20 coefficients, + centre (2), orientation, 2 modifications = 25.
     let points = measure(&d, &truth, 25, (0.0, TAU), 0, 1e-3, 1);
-    let fitted = Fitted {
-        shift: true,
-        equidistant: true,
-        rotation: false,
-    };
-    let e = error_of(&d, fitted, 12, &points);
+    let e = error_of(&d, TEETH, 12, &points);
     assert!(e.contains("25 profile points for 25 unknowns"), "{e}");
 }
 
@@ -344,12 +338,7 @@ fn points_of_another_design_are_refused() {
         form: Vec::new(),
     };
     let points = measure(&other, &truth, 800, (0.0, TAU), 0, 1e-3, 3);
-    let fitted = Fitted {
-        shift: true,
-        equidistant: true,
-        rotation: false,
-    };
-    let e = error_of(&d, fitted, 0, &points);
+    let e = error_of(&d, TEETH, 0, &points);
     assert!(
         e.contains("the points are not a disc of this design"),
         "{e}"
@@ -361,18 +350,8 @@ fn points_of_another_design_are_refused() {
 #[test]
 fn ill_posed_fit_is_refused() {
     let d = paper();
-    let truth = Truth {
-        modification: Modification::default(),
-        centre: Vec2::zeros(),
-        orientation: 0.0,
-        form: Vec::new(),
-    };
+    let truth = Truth::unmodified(Vec2::zeros(), 0.0);
     let points = measure(&d, &truth, 3000, (0.0, TAU / 6.0), 0, 1e-3, 5);
-    let fitted = Fitted {
-        shift: true,
-        equidistant: true,
-        rotation: false,
-    };
-    let e = error_of(&d, fitted, 40, &points);
+    let e = error_of(&d, TEETH, 40, &points);
     assert!(e.contains("the identification is ill-posed"), "{e}");
 }

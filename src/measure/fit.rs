@@ -240,7 +240,7 @@ impl Layout {
             }
         }
         let k = (i - self.form) / 2;
-        let part = if (i - self.form) % 2 == 0 {
+        let part = if (i - self.form).is_multiple_of(2) {
             "cos"
         } else {
             "sin"

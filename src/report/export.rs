@@ -117,9 +117,9 @@ pub fn csv(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
 }
 
 /// DXF (R12) text: one closed POLYLINE on layer PROFILE, and the output-pin holes as CIRCLE
-/// entities on layers HOLE_0 … HOLE_{M−1} (hole j at angle 2πj/M on the pin circle, radius pin
-/// + e + hole clearance; cut in the same set-up, they fix the rotation modification), units mm
-/// ($INSUNITS = 4).
+/// entities on layers HOLE_0 … HOLE_{M−1} (hole j at angle 2πj/M on the pin circle, its radius
+/// the pin's plus e plus the hole clearance; cut in the same set-up, they fix the rotation
+/// modification), units mm ($INSUNITS = 4).
 pub fn dxf(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
     let mut out = String::new();
     let mut pair = |code: i32, value: &str| out += &format!("{code}\n{value}\n");

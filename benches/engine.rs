@@ -118,3 +118,74 @@ fn check_paper_end_to_end(b: divan::Bencher) {
         cycloid::cli::run(cli, &mut out).unwrap()
     });
 }
+
+/// The paper's four optimisation studies (`specs/paper.yaml`), the whole search: global
+/// sample, local runs and 41 × 41 verification grid (target: a few seconds on one core; run
+/// with RAYON_NUM_THREADS=1).
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn paper_studies(b: divan::Bencher) {
+    let s = paper();
+    b.bench(|| {
+        s.studies
+            .iter()
+            .map(|study| cycloid::engine::optimise::run_study(black_box(&s), study).evaluations)
+            .sum::<usize>()
+    });
+}
+
+/// The spec of the JSON benchmarks: the paper optimum at 10 N·m (`specs/reducer-loaded.yaml`)
+/// with rollers, pins and a rigid bearing over 3,600 crank angles (one mesh period at 0.01°),
+/// no clearance sweep, no accuracy section, written into a scratch directory (the same one at every run, so that
+/// runs leave one set of files behind). Returns (spec, results JSON in the temporary
+/// directory, results JSON in memory-backed /dev/shm when there is one).
+fn json_scene() -> (String, String, String) {
+    let dir = std::env::temp_dir().join("cycloid-bench-json");
+    std::fs::create_dir_all(&dir).expect("scratch directory");
+    let text = std::fs::read_to_string("specs/reducer-loaded.yaml")
+        .expect("specs/reducer-loaded.yaml")
+        .replace(
+            "crank: { from_deg: 0.0, to_deg: 108.0, steps: 1080 }",
+            "crank: { from_deg: 0.0, to_deg: 36.0, steps: 3600 }",
+        )
+        .replace("effects: [clearance, bearing]", "effects: [bearing]")
+        .replace("  min_clearance_mm: 0.015", "  max_roller_force_n: 1.0e6");
+    // Without its `accuracy:` section, whose resolution check would run ladder rungs.
+    let text = &text[..text.find("\naccuracy:").map_or(text.len(), |at| at + 1)];
+    let spec = dir.join("rated-3600.yaml");
+    std::fs::write(&spec, text).expect("bench spec written");
+    let shm = std::path::Path::new("/dev/shm");
+    let memory = if shm.is_dir() { shm } else { dir.as_path() };
+    let file = "cycloid-bench-results.json";
+    let path = |p: std::path::PathBuf| p.display().to_string();
+    (path(spec), path(dir.join(file)), path(memory.join(file)))
+}
+
+fn check(args: &[&str]) {
+    let mut out = Vec::new();
+    let cli = <cycloid::cli::Cli as clap::Parser>::parse_from(args);
+    cycloid::cli::run(cli, &mut out).expect("check runs");
+}
+
+/// `check` of the 3,600-angle loaded scene (`json_scene`) without `--json`: the baseline of
+/// `check_json_3600*` (target: those at most 1.5× this).
+#[divan::bench(sample_count = 60)]
+fn check_3600(b: divan::Bencher) {
+    let (spec, _, _) = json_scene();
+    b.bench(|| check(&["cycloid", "check", &spec]));
+}
+
+/// `check --json` of the same scene into the temporary directory (on disk): 3,600 angles ×
+/// (10 rollers × 3 curves, 6 pins, bearing, TE, ratio) written atomically, the fsync included.
+#[divan::bench(sample_count = 60)]
+fn check_json_3600(b: divan::Bencher) {
+    let (spec, json, _) = json_scene();
+    b.bench(|| check(&["cycloid", "check", &spec, "--json", &json]));
+}
+
+/// `check --json` of the same scene into /dev/shm (memory): the tool's own cost of the JSON,
+/// without the disk's.
+#[divan::bench(sample_count = 60)]
+fn check_json_3600_memory(b: divan::Bencher) {
+    let (spec, _, json) = json_scene();
+    b.bench(|| check(&["cycloid", "check", &spec, "--json", &json]));
+}

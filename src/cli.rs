@@ -1,19 +1,23 @@
 //! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
-use crate::engine::{accuracy, check, golden, optimise, resolution, scene, summary};
-use crate::error::{Error, Result};
+use crate::engine::{accuracy, check, drawing, golden, optimise, resolution, scene, summary};
+use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::profile::Profile;
 use crate::report::export;
+use crate::{files, numeric};
 use crate::{report, spec};
 use clap::{Parser, Subcommand};
 use std::io::Write;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Parser)]
 #[command(
     name = "cycloid",
     version,
-    about = "Design checks for cycloidal speed reducers"
+    about = "Design checks for cycloidal speed reducers",
+    after_help = "Exit codes: 0 every check passed, 1 a check failed, 2 invalid input or a \
+                  computation that could not be done (the message says where and why)."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -49,6 +53,7 @@ pub enum Command {
     },
     /// Optimise the tooth-profile modification as the spec's `optimise` section says.
     Optimise {
+        /// The YAML spec; its `optimise` section (one study or a list) says what to optimise.
         spec: String,
         /// Run only this study (default: all).
         #[arg(long)]
@@ -66,6 +71,7 @@ pub enum Command {
     /// Run a scene on a ladder of settings (crank steps per mesh period, geometry, contact law,
     /// solver tolerance) and print each rung's error against the finest rung and its time.
     Accuracy {
+        /// The YAML spec.
         spec: String,
         /// The scene to run [default: the spec's `accuracy.scene`, else the first scene with
         /// roller contact, else the first scene].
@@ -94,10 +100,14 @@ pub enum Command {
     },
     /// Rewrite the golden files of a spec from the current results, on purpose, and print
     /// what moved. CI never blesses.
-    Bless { spec: String },
+    Bless {
+        /// The YAML spec whose `golden` files are rewritten.
+        spec: String,
+    },
     /// Identify the disc of the spec's `measured_profile` points: centre, orientation, the
     /// fitted modifications and the form error, with uncertainties.
     Fit {
+        /// The YAML spec with the `measured_profile` section whose points are identified.
         spec: String,
         /// Write the spec with the identified modification filled in.
         #[arg(long)]
@@ -108,9 +118,12 @@ pub enum Command {
     },
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
+        /// The YAML spec whose design and modification give the profile.
         spec: String,
+        /// Write the profile points as CSV (x_mm, y_mm) to this path (optional).
         #[arg(long)]
         csv: Option<String>,
+        /// Write the profile as a closed DXF polyline to this path (optional).
         #[arg(long)]
         dxf: Option<String>,
         /// Largest chordal error of the exported polyline, µm (at least 0.001).
@@ -126,8 +139,52 @@ pub enum Outcome {
     ChecksFailed,
 }
 
+/// Write an output file atomically (a temporary file renamed into place).
 fn write_file(path: &str, text: &str) -> Result<()> {
-    std::fs::write(path, text).map_err(|e| Error::io(path, e))
+    files::write_atomic(Path::new(path), text.as_bytes())
+}
+
+/// Refuse, before anything is written, outputs that would destroy an input or one another: an
+/// empty path, an output at the path of one of `inputs` (what it is, its path), or two
+/// outputs at one path. `outputs` are (option, path); a `--report` directory also claims its
+/// `index.html`.
+fn distinct_outputs(inputs: &[(String, PathBuf)], outputs: &[(&str, &str)]) -> Result<()> {
+    let usage = |m: String| Error::new(ErrorKind::Usage, format!("{m}; nothing was written"));
+    let mut claimed: Vec<(String, PathBuf)> = inputs
+        .iter()
+        .map(|(what, p)| (what.clone(), files::identity(p)))
+        .collect();
+    for &(flag, path) in outputs {
+        if path.is_empty() {
+            return Err(usage(format!("{flag} \"\": an empty path names no file")));
+        }
+        let mut ids = vec![files::identity(Path::new(path))];
+        if flag == "--report" {
+            ids.push(ids[0].join("index.html"));
+        }
+        for id in ids {
+            if let Some((what, _)) = claimed.iter().find(|(_, c)| *c == id) {
+                return Err(usage(format!(
+                    "{flag} {path} would overwrite {what}; give another path"
+                )));
+            }
+            claimed.push((format!("the output of {flag}"), id));
+        }
+    }
+    Ok(())
+}
+
+/// The files a spec's run reads or owns, which no output may replace: the spec, and each
+/// golden file with its metadata.
+fn inputs_of(spec_path: &str, spec: Option<&spec::Spec>) -> Vec<(String, PathBuf)> {
+    let mut inputs = vec![("the spec".to_string(), PathBuf::from(spec_path))];
+    for g in spec.map_or(&[][..], |s| &s.golden) {
+        inputs.push((format!("the golden file of {}", g.key), g.path.clone()));
+        for meta in golden::meta_paths(&g.path) {
+            inputs.push((format!("the metadata of {}", g.key), meta));
+        }
+    }
+    inputs
 }
 
 /// Run a parsed command, writing the user-facing text to `out` (without colour).
@@ -155,10 +212,18 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
                 report_map_steps,
                 color,
             };
+            distinct_outputs(&inputs_of(&spec, None), &outputs.paths())?;
             let result = run_check(&spec, &outputs, explain, out);
-            if let (Err(e), Some(path)) = (&result, outputs.junit) {
-                // CI shows the error as a test case too; the error itself still goes to stderr.
-                let _ = std::fs::write(path, report::junit::error_document(&spec, &e.to_string()));
+            match (&result, outputs.junit) {
+                (Err(e), Some(path))
+                    if !matches!(e.kind, ErrorKind::Usage | ErrorKind::OutputClosed) =>
+                {
+                    // CI shows the error as a test case too; the error itself still goes to
+                    // stderr.
+                    let doc = report::junit::error_document(&spec, &e.to_string());
+                    let _ = write_file(path, &doc);
+                }
+                _ => {}
             }
             result
         }
@@ -209,9 +274,24 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
     }
 }
 
+/// Print text for a person, its control characters escaped (names come from the spec).
 fn print(out: &mut dyn Write, text: &str) -> Result<()> {
-    out.write_all(text.as_bytes())
-        .map_err(|e| Error::io("<stdout>", e))
+    print_keeping(out, text, &[])
+}
+
+/// `print`, letting the sequences in `keep` (the tool's own colours) through.
+fn print_keeping(out: &mut dyn Write, text: &str, keep: &[&str]) -> Result<()> {
+    out.write_all(crate::error::printable(text, keep).as_bytes())
+        .map_err(stdout_error)
+}
+
+/// A failed write to standard output; a reader that closed it (`| head`) is `OutputClosed`.
+fn stdout_error(e: std::io::Error) -> Error {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        Error::new(ErrorKind::OutputClosed, "standard output was closed")
+    } else {
+        Error::io("<stdout>", e)
+    }
 }
 
 /// Where `check` writes its results besides the terminal.
@@ -224,6 +304,20 @@ struct Outputs<'a> {
     color: bool,
 }
 
+impl Outputs<'_> {
+    /// The files and directories this run writes, by option.
+    fn paths(&self) -> Vec<(&'static str, &str)> {
+        [
+            ("--json", self.json),
+            ("--junit", self.junit),
+            ("--report", self.report),
+        ]
+        .into_iter()
+        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
+        .collect()
+    }
+}
+
 /// Default grid of the report's objective maps: 15 × 15 = 225 evaluations per study, about
 /// as many as the study itself.
 pub const DEFAULT_REPORT_MAP_STEPS: usize = 15;
@@ -233,6 +327,7 @@ pub const MAX_REPORT_MAP_STEPS: usize = 101;
 fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) -> Result<Outcome> {
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
+    distinct_outputs(&inputs_of(path, Some(&spec)), &outputs.paths())?;
     let writes = scene::Writes {
         json: outputs.json.is_some(),
         report: outputs.report.is_some(),
@@ -243,14 +338,14 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     }
     if let Some(deg) = outputs.report_crank_deg.filter(|d| !d.is_finite()) {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
+            ErrorKind::InvalidValue,
             format!("--report-crank-deg must be a finite angle, got {deg}"),
         ));
     }
     let steps = outputs.report_map_steps;
     if outputs.report.is_some() && (steps == 1 || steps > MAX_REPORT_MAP_STEPS) {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
+            ErrorKind::InvalidValue,
             format!(
                 "--report-map-steps must be 0 (no map) or 2 to {MAX_REPORT_MAP_STEPS}, got {steps}"
             ),
@@ -258,8 +353,8 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     }
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec).map_err(|e| locate(e, &spec))?;
-    let results = run_scenes(&spec, writes)?;
-    let mut checks = check::evaluate(&spec, &results)?;
+    let results = run_scenes(&spec, writes).map_err(|e| locate(e, &spec))?;
+    let mut checks = check::evaluate(&spec, &results).map_err(|e| locate(e, &spec))?;
     let studies = run_studies(&spec, spec.studies.iter().collect());
     checks.extend(check::optimisation(&spec, &studies));
     let goldens =
@@ -286,17 +381,31 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     for (s, r) in spec.studies.iter().zip(&studies) {
         print(out, &report::optimisation::render(&spec, s, r))?;
     }
-    print(out, &report::table::render_styled(&checks, outputs.color))?;
+    let styles: &[&str] = if outputs.color {
+        &report::table::STYLES
+    } else {
+        &[]
+    };
+    print_keeping(
+        out,
+        &report::table::render_styled(&checks, outputs.color),
+        styles,
+    )?;
     if let Some(w) = resolution.as_ref().and_then(|r| r.warning()) {
         print(out, &format!("{w}\n"))?;
     }
     let summaries = summary::summarise(&results);
     print(out, &report::table::render_summary(&summaries))?;
     if let Some(p) = outputs.json {
-        let doc = report::json::document_with_golden(&spec, &checks, &results, &goldens);
-        let text =
-            serde_json::to_string_pretty(&doc).map_err(|e| Error::computation(e.to_string()))?;
-        write_file(p, &text)?;
+        let doc = report::json::Document::new(&report::json::Contents {
+            spec: &spec,
+            checks: &checks,
+            results: &results,
+            goldens: &goldens,
+            summaries: &summaries,
+            studies: &studies,
+        });
+        report::json::write(std::path::Path::new(p), &doc)?;
     }
     if let Some(p) = outputs.junit {
         write_file(p, &report::junit::document(&spec.name, &spec.path, &checks))?;
@@ -311,21 +420,33 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
             .zip(&studies)
             .map(|(s, r)| {
                 let cells = if steps >= 2 {
-                    optimise::map(&spec, s, steps, &r.optimum.modification)
+                    map_with_progress(&spec, s, steps, &r.optimum.modification)
                 } else {
                     Vec::new()
                 };
                 report::optimisation::view(&spec, s, r, &cells, steps)
             })
             .collect();
+        let crank_rad = outputs
+            .report_crank_deg
+            .map_or_else(|| drawing::default_crank_rad(&results), crate::units::rad);
+        let disc = drawing::disc(&spec, crank_rad)?;
+        // The resolution warning `check` printed, as a banner under the verdict.
+        let warnings: Vec<String> = resolution
+            .as_ref()
+            .and_then(|r| r.warning())
+            .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
+            .into_iter()
+            .collect();
         let input = report::html::ReportInput {
             spec: &spec,
             checks: &checks,
             results: &results,
             goldens: &goldens,
-            crank_deg: outputs.report_crank_deg,
+            disc: &disc,
             optimisation: &views,
             accuracy: ladder.as_ref().map(|(l, _)| l),
+            warnings: &warnings,
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;
         print(
@@ -347,7 +468,14 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
 /// The accuracy ladder of the design review and its wall-clock time, s.
 fn run_ladder(spec: &spec::Spec, a: &spec::Accuracy) -> Result<(accuracy::Ladder, f64)> {
     let start = std::time::Instant::now();
-    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |_| {})?;
+    // Steps rungs 12 … finest, and at most four settings rungs.
+    let rungs = (a.options.finest / accuracy::COARSEST).trailing_zeros() as u64 + 1 + 4;
+    let bar = report::terminal::Bar::new("accuracy ladder", "rungs", rungs, 0);
+    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |event| {
+        if let accuracy::Event::Rung(..) = event {
+            crate::progress::Progress::advance(&bar, 1);
+        }
+    })?;
     Ok((ladder, start.elapsed().as_secs_f64()))
 }
 
@@ -383,7 +511,8 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
     for s in &spec.scenes {
         if spec.golden.iter().any(|g| g.scene == s.name) {
             let plan = scene::plan(&spec, s, scene::Writes::default());
-            results.push(scene::run(&spec, s, &plan)?);
+            let r = scene::run(&spec, s, &plan).map_err(|e| locate(e, &spec))?;
+            results.push(r);
         }
     }
     let blessed = golden::bless(&spec, &results).map_err(|e| locate(e, &spec))?;
@@ -397,16 +526,33 @@ fn run_scenes(
     writes: scene::Writes,
 ) -> Result<Vec<crate::model::results::SceneResult>> {
     use rayon::prelude::*;
+    // A bar for large scenes only: the sweeps of every scene, in crank angles.
+    let total: usize = spec
+        .scenes
+        .iter()
+        .map(|s| s.crank_rad.len() * scene::sweeps(&scene::plan(spec, s, writes)))
+        .sum();
+    let bar = report::terminal::Bar::new(
+        "solving the scenes",
+        "crank angles",
+        total as u64,
+        report::terminal::WORTH_SHOWING * 10,
+    );
     let results: Vec<Result<crate::model::results::SceneResult>> = spec
         .scenes
         .par_iter()
-        .map(|s| scene::run(spec, s, &scene::plan(spec, s, writes)))
+        .map(|s| {
+            let plan = scene::plan(spec, s, writes);
+            let settings = crate::equilibrium::solve::Settings::default();
+            let d = (&spec.design, &spec.modification);
+            scene::run_observed(d.0, d.1, (s, &plan), &settings, &bar)
+                .map_err(|e| scene::at_scene(spec, s, e))
+        })
         .collect();
     results.into_iter().collect()
 }
 
-/// Studies in parallel, in spec order, with a progress spinner on a terminal (hidden when
-/// stderr is not one, so CI logs stay clean).
+/// Studies in parallel, in spec order, counting evaluations on a terminal.
 fn run_studies(
     spec: &spec::Spec,
     studies: Vec<&crate::model::Study>,
@@ -415,22 +561,86 @@ fn run_studies(
     if studies.is_empty() {
         return Vec::new();
     }
-    let bar = indicatif::ProgressBar::new_spinner().with_message(format!(
+    // At most this many evaluations: local runs often stop before their budget, and then the
+    // bar ends short of full.
+    let most: usize = studies.iter().map(|s| optimise::most_evaluations(s)).sum();
+    let what = format!(
         "optimising {} stud{}",
         studies.len(),
         if studies.len() == 1 { "y" } else { "ies" }
-    ));
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{spinner} {msg}: {pos} evaluations, {elapsed}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
     );
-    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    let progress = report::terminal::Bar::new(&what, "evaluations at most", most as u64, 0);
     let results = studies
         .par_iter()
-        .map(|s| optimise::run_study_with(spec, s, Some(&bar)))
+        .map(|s| optimise::run_study_with(spec, s, &progress))
         .collect();
-    bar.finish_and_clear();
+    drop(progress);
     results
+}
+
+/// `optimise::map`, with a bar of its cells on a terminal.
+fn map_with_progress(
+    spec: &spec::Spec,
+    study: &crate::model::Study,
+    steps: usize,
+    around: &crate::model::Modification,
+) -> Vec<optimise::problem::Evaluation> {
+    let cells = if study.variables.len() > 1 {
+        steps * steps
+    } else {
+        steps
+    };
+    let what = format!("objective map of `{}`", study.name);
+    let progress = report::terminal::Bar::new(&what, "cells", cells as u64, 0);
+    let map = optimise::map(spec, study, steps, around, &progress);
+    drop(progress);
+    map
+}
+
+/// `optimise --write OUT`: the spec of a study's optimum, written only when it is feasible;
+/// returns what to tell the user.
+fn write_optimum(
+    spec: &spec::Spec,
+    path: &str,
+    study: &crate::model::Study,
+    r: &optimise::StudyResult,
+    out_path: &str,
+) -> Result<String> {
+    if !r.optimum.feasible() {
+        return Ok(format!(
+            "no feasible optimum of `{}` was found: nothing written to {out_path}\n",
+            r.name
+        ));
+    }
+    let name = format!("{}-{}-optimum", spec.name, r.name);
+    let mut header = format!(
+        "# Written by `cycloid optimise {path} --study {}`: the optimum of that study, {} = {};\n\
+         # {}.\n",
+        r.name,
+        study
+            .objective
+            .iter()
+            .map(|(o, _)| o.name)
+            .collect::<Vec<_>>()
+            .join(" + "),
+        crate::numeric::number(r.optimum.objective),
+        r.found,
+    );
+    if let Some(v) = report::optimisation::verification_text(study, r) {
+        header += &format!("# {}.\n", v.replace('\n', " "));
+    }
+    let text = optimise::write::optimum_spec(
+        out_path,
+        &spec.source,
+        &r.optimum.modification,
+        &name,
+        &header,
+    )?;
+    write_file(out_path, &text)?;
+    Ok(format!(
+        "wrote {out_path} (`{name}`) with the optimum of `{}`\n",
+        r.name
+    ))
 }
 
 /// The options of `cycloid accuracy` as given; unset ones come from the spec's `accuracy`
@@ -444,9 +654,7 @@ struct AccuracyArgs {
 }
 
 fn run_accuracy(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Result<Outcome> {
-    let bad = |flag: &str, m: String| {
-        Error::new(crate::ErrorKind::InvalidValue, format!("--{flag}: {m}"))
-    };
+    let bad = |flag: &str, m: String| Error::new(ErrorKind::InvalidValue, format!("--{flag}: {m}"));
     let spec = spec::load(path)?;
     let from_spec = spec.accuracy.as_ref();
     let scene = match &asked.scene {
@@ -510,8 +718,7 @@ fn run_accuracy(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Result
             accuracy::Event::Rung(layout, rung) => accuracy::row(layout, rung, false),
         };
         if written.is_ok() {
-            written =
-                print(out, &text).and_then(|_| out.flush().map_err(|e| Error::io("<stdout>", e)));
+            written = print(out, &text).and_then(|_| out.flush().map_err(stdout_error));
         }
     })?;
     written?;
@@ -549,20 +756,29 @@ fn run_profile(
 ) -> Result<Outcome> {
     if !(tolerance_um.is_finite() && tolerance_um > 0.0) {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
-            format!("--tolerance-um must be a positive number, got {tolerance_um}"),
+            ErrorKind::InvalidValue,
+            format!(
+                "--tolerance-um must be a positive number, got {}",
+                numeric::input(tolerance_um)
+            ),
         ));
     }
     // Below a nanometre the point count explodes (≈ 1/√tolerance) and the chords approach the
     // rounding of f64 coordinates; the export would run for hours and exhaust memory.
     if tolerance_um < MIN_TOLERANCE_UM {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
+            ErrorKind::InvalidValue,
             format!(
-                "--tolerance-um must be at least {MIN_TOLERANCE_UM} (1 nm), got {tolerance_um}"
+                "--tolerance-um must be at least {MIN_TOLERANCE_UM} (1 nm), got {}",
+                numeric::input(tolerance_um)
             ),
         ));
     }
+    let outputs: Vec<_> = [("--csv", csv), ("--dxf", dxf)]
+        .into_iter()
+        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
+        .collect();
+    distinct_outputs(&inputs_of(path, None), &outputs)?;
     let spec = spec::load(path)?;
     let tol = tolerance_um / 1000.0;
     let points = export::polyline(&Profile::new(&spec.design, &spec.modification), tol);
@@ -594,7 +810,7 @@ fn run_optimise(
     let spec = spec::load(path)?;
     if spec.studies.is_empty() {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
+            ErrorKind::InvalidValue,
             format!("{path}: the spec has no `optimise` section"),
         ));
     }
@@ -606,7 +822,7 @@ fn run_optimise(
                 .find(|s| s.name == name)
                 .ok_or_else(|| {
                     Error::new(
-                        crate::ErrorKind::InvalidValue,
+                        ErrorKind::InvalidValue,
                         format!(
                             "no study named `{name}`; studies: {}",
                             spec.studies
@@ -621,10 +837,10 @@ fn run_optimise(
         }
         None => spec.studies.iter().collect(),
     };
-    if map.is_some() && map_steps < 2 {
+    if map.is_some() && !(2..=MAX_REPORT_MAP_STEPS).contains(&map_steps) {
         return Err(Error::new(
-            crate::ErrorKind::InvalidValue,
-            format!("--map-steps must be at least 2, got {map_steps}"),
+            ErrorKind::InvalidValue,
+            format!("--map-steps must be 2 to {MAX_REPORT_MAP_STEPS}, got {map_steps}"),
         ));
     }
     let mut all_feasible = true;
@@ -634,16 +850,10 @@ fn run_optimise(
         all_feasible &= r.optimum.feasible();
         if k == 0 {
             if let Some(p) = write {
-                let text =
-                    optimise::write::with_modification(p, &spec.source, &r.optimum.modification)?;
-                write_file(p, &text)?;
-                print(
-                    out,
-                    &format!("wrote {p} with the optimum of `{}`\n", r.name),
-                )?;
+                print(out, &write_optimum(&spec, path, study, &r, p)?)?;
             }
             if let Some(p) = map {
-                let cells = optimise::map(&spec, study, map_steps, &r.optimum.modification);
+                let cells = map_with_progress(&spec, study, map_steps, &r.optimum.modification);
                 write_file(p, &report::optimisation::map_csv(study, &cells))?;
                 print(
                     out,

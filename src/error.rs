@@ -25,6 +25,12 @@ pub enum ErrorKind {
     ImpossibleDesign,
     /// A solver that did not converge, or produced a non-finite number.
     Computation,
+    /// Command-line options that contradict each other (two outputs at one path, an output
+    /// that is an input): nothing was written.
+    Usage,
+    /// Standard output was closed by its reader (`cycloid check … | head`): not a failure, the
+    /// run stops quietly with exit 0 and writes no file.
+    OutputClosed,
 }
 
 impl ErrorKind {
@@ -35,6 +41,8 @@ impl ErrorKind {
             ErrorKind::InvalidValue => "invalid value",
             ErrorKind::ImpossibleDesign => "impossible design",
             ErrorKind::Computation => "computation failed",
+            ErrorKind::Usage => "usage error",
+            ErrorKind::OutputClosed => "output closed",
         }
     }
 }
@@ -78,18 +86,79 @@ impl Error {
 }
 
 impl fmt::Display for Error {
+    /// `file:line:column: kind: key.path: message`, with control characters escaped: names
+    /// and paths come from the user and must not drive the terminal.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if let Some(loc) = &self.location {
-            write!(f, "{}:{}:{}: ", loc.file, loc.line, loc.column)?;
+            write!(
+                f,
+                "{}:{}:{}: ",
+                printable(&loc.file, &[]),
+                loc.line,
+                loc.column
+            )?;
         }
         write!(f, "{}: ", self.kind.label())?;
         if let Some(path) = &self.key_path {
-            write!(f, "{path}: ")?;
+            write!(f, "{}: ", printable(path, &[]))?;
         }
-        write!(f, "{}", self.message)
+        write!(f, "{}", printable(&self.message, &[]))
     }
+}
+
+/// Whether a character can change what a terminal shows beyond itself: control characters
+/// (escape sequences, carriage return, backspace) and the bidirectional overrides that reorder
+/// text. Line feeds and tabs are layout, not control.
+fn controls(c: char) -> bool {
+    (c.is_control() && c != '\n' && c != '\t')
+        || matches!(c, '\u{200e}' | '\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+}
+
+/// Text for a terminal: every control character escaped as Rust writes it (`\u{1b}`), except
+/// the sequences in `keep` (the tool's own colours), which pass unchanged.
+pub fn printable<'a>(text: &'a str, keep: &[&str]) -> std::borrow::Cow<'a, str> {
+    if !text.chars().any(controls) {
+        return text.into();
+    }
+    let mut out = String::with_capacity(text.len() + 16);
+    let mut rest = text;
+    while let Some(c) = rest.chars().next() {
+        if let Some(k) = keep.iter().find(|k| rest.starts_with(**k)) {
+            out.push_str(k);
+            rest = &rest[k.len()..];
+            continue;
+        }
+        if controls(c) {
+            out.extend(c.escape_unicode());
+        } else {
+            out.push(c);
+        }
+        rest = &rest[c.len_utf8()..];
+    }
+    out.into()
 }
 
 impl std::error::Error for Error {}
 
 pub type Result<T> = std::result::Result<T, Error>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Escape sequences, carriage returns and bidi overrides are shown, not obeyed; line
+    /// breaks, tabs, ordinary Unicode and the kept colour codes pass unchanged.
+    #[test]
+    fn control_characters_are_escaped() {
+        assert_eq!(printable("a\u{1b}[2Jb\rc", &[]), "a\\u{1b}[2Jb\\u{d}c");
+        assert_eq!(printable("x\u{202e}y", &[]), "x\\u{202e}y");
+        assert_eq!(printable("ΔRp 12°\n\tok", &[]), "ΔRp 12°\n\tok");
+        assert_eq!(
+            printable(
+                "\u{1b}[32mpass\u{1b}[0m\u{1b}[31m",
+                &["\u{1b}[32m", "\u{1b}[0m"]
+            ),
+            "\u{1b}[32mpass\u{1b}[0m\\u{1b}[31m"
+        );
+    }
+}

@@ -115,11 +115,12 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 }
 
 /// Several files replaced together: each is staged beside its target, and `commit` renames
-/// them into place in the order they were added, or, if any step fails, leaves every target
-/// as it was.
+/// them into place in the order they were added (so the file that indexes the others goes
+/// last), or, if any step fails, leaves every target as it was.
 #[derive(Debug, Default)]
 pub struct Batch {
-    staged: Vec<(PathBuf, PathBuf)>,
+    /// (staged temporary file, target); no temporary file: the target is to be removed.
+    staged: Vec<(Option<PathBuf>, PathBuf)>,
 }
 
 impl Batch {
@@ -134,13 +135,19 @@ impl Batch {
         write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
     ) -> Result<()> {
         let temp = stage(path, write)?;
-        self.staged.push((temp, path.to_path_buf()));
+        self.staged.push((Some(temp), path.to_path_buf()));
         Ok(())
     }
 
     /// Stage `path` with `bytes`.
     pub fn add(&mut self, path: &Path, bytes: &[u8]) -> Result<()> {
         self.add_with(path, |out| out.write_all(bytes))
+    }
+
+    /// Remove `path` with the batch (a file the new ones replace under another name); put
+    /// back if the batch fails.
+    pub fn remove(&mut self, path: &Path) {
+        self.staged.push((None, path.to_path_buf()));
     }
 
     /// Replace every target. Targets that exist are first moved aside to a backup; if a rename
@@ -150,20 +157,26 @@ impl Batch {
         let staged = std::mem::take(&mut self.staged);
         let mut done: Vec<(PathBuf, Option<PathBuf>)> = Vec::new();
         for (temp, target) in &staged {
-            let backup = if target.exists() {
+            let backup = if fs::symlink_metadata(target).is_ok() {
                 let backup = temporary(target);
                 if let Err(e) = fs::rename(target, &backup) {
-                    return Err(self.undo(&staged, &done, target, e));
+                    return Err(undo(&staged, &done, target, e));
                 }
                 Some(backup)
             } else {
                 None
             };
+            let Some(temp) = temp else {
+                if backup.is_some() {
+                    done.push((target.clone(), backup));
+                }
+                continue;
+            };
             if let Err(e) = fs::rename(temp, target) {
                 if let Some(b) = &backup {
                     let _ = fs::rename(b, target);
                 }
-                return Err(self.undo(&staged, &done, target, e));
+                return Err(undo(&staged, &done, target, e));
             }
             done.push((target.clone(), backup));
         }
@@ -174,38 +187,69 @@ impl Batch {
         }
         Ok(())
     }
+}
 
-    /// Put the replaced targets back and remove every temporary file.
-    fn undo(
-        &self,
-        staged: &[(PathBuf, PathBuf)],
-        done: &[(PathBuf, Option<PathBuf>)],
-        failed: &Path,
-        e: io::Error,
-    ) -> Error {
-        for (target, backup) in done.iter().rev() {
-            match backup {
-                Some(b) => {
-                    let _ = fs::rename(b, target);
-                }
-                None => {
-                    let _ = fs::remove_file(target);
-                }
+/// Put the replaced targets of a failed commit back and remove every temporary file.
+fn undo(
+    staged: &[(Option<PathBuf>, PathBuf)],
+    done: &[(PathBuf, Option<PathBuf>)],
+    failed: &Path,
+    e: io::Error,
+) -> Error {
+    for (target, backup) in done.iter().rev() {
+        match backup {
+            Some(b) => {
+                let _ = fs::rename(b, target);
+            }
+            None => {
+                let _ = fs::remove_file(target);
             }
         }
-        for (temp, _) in staged {
-            let _ = fs::remove_file(temp);
-        }
-        Error::io(&failed.display().to_string(), e)
     }
+    for temp in staged.iter().filter_map(|(t, _)| t.as_ref()) {
+        let _ = fs::remove_file(temp);
+    }
+    Error::io(&failed.display().to_string(), e)
 }
 
 impl Drop for Batch {
     /// A batch dropped without `commit` (an error while staging a later file) leaves no
     /// temporary files behind.
     fn drop(&mut self) {
-        for (temp, _) in &self.staged {
+        for temp in self.staged.iter().filter_map(|(t, _)| t.as_ref()) {
             let _ = fs::remove_file(temp);
+        }
+    }
+}
+
+/// A path as the file system resolves it, for telling whether two paths, which need not exist
+/// yet, name the same file: absolute, `.` and `..` resolved, and the symbolic links of its
+/// longest existing ancestor followed.
+pub fn identity(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut lexical = PathBuf::new();
+    for c in absolute.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                lexical.pop();
+            }
+            other => lexical.push(other.as_os_str()),
+        }
+    }
+    let mut tail = Vec::new();
+    let mut head = lexical.as_path();
+    loop {
+        if let Ok(real) = fs::canonicalize(head) {
+            return tail.iter().rev().fold(real, |p, name| p.join(name));
+        }
+        match (head.parent(), head.file_name()) {
+            (Some(parent), Some(name)) => {
+                tail.push(name.to_os_string());
+                head = parent;
+            }
+            _ => return lexical,
         }
     }
 }
@@ -296,6 +340,50 @@ mod tests {
         assert!(batch.commit().is_err());
         assert_eq!(fs::read_to_string(&a).unwrap(), "a0");
         assert_eq!(entries(&dir), ["a.csv"]);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// A removal in a batch happens with the batch, and is undone with it.
+    #[test]
+    fn a_batch_removes_a_file_all_or_none() {
+        let dir = scratch("remove");
+        let (old, new) = (dir.join("te.meta.yaml"), dir.join("te.csv.meta.yaml"));
+        fs::write(&old, "review").unwrap();
+        let sub = dir.join("sub");
+        fs::create_dir_all(&sub).unwrap();
+        let mut batch = Batch::new();
+        batch.add(&new, b"review").unwrap();
+        batch.remove(&old);
+        batch.add(&sub.join("x"), b"x").unwrap();
+        fs::remove_dir_all(&sub).unwrap();
+        assert!(batch.commit().is_err());
+        assert_eq!(entries(&dir), ["te.meta.yaml"]);
+        let mut batch = Batch::new();
+        batch.add(&new, b"review").unwrap();
+        batch.remove(&old);
+        batch.commit().unwrap();
+        assert_eq!(entries(&dir), ["te.csv.meta.yaml"]);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// Two spellings of one file have one identity, whether or not the file exists.
+    #[test]
+    fn paths_to_one_file_have_one_identity() {
+        let dir = scratch("identity");
+        fs::create_dir_all(dir.join("a")).unwrap();
+        fs::write(dir.join("s.yaml"), "x").unwrap();
+        let same = [
+            (dir.join("s.yaml"), dir.join("a/../s.yaml")),
+            (dir.join("new.json"), dir.join("./a/../new.json")),
+            (dir.join("a/new.json"), dir.join("a/./new.json")),
+        ];
+        for (x, y) in same {
+            assert_eq!(identity(&x), identity(&y), "{x:?} {y:?}");
+        }
+        assert_ne!(
+            identity(&dir.join("s.yaml")),
+            identity(&dir.join("a/s.yaml"))
+        );
         let _ = fs::remove_dir_all(&dir);
     }
 

@@ -1,7 +1,8 @@
 //! `cycloid`: design checks for cycloidal speed reducers.
 //!
 //! Layers, each importing only the ones before it (`tests/architecture.rs` keeps it so):
-//! - `error`, `units`, `numeric`, `files`: errors, unit conversions, numeric helpers, safe I/O;
+//! - `error`, `units`, `numeric`, `progress`, `files`: errors, unit conversions, numeric
+//!   helpers, the progress observer, safe I/O;
 //! - `model`: the data model (design, scenes and plans, limits, studies, results) and the one
 //!   registry of quantities;
 //! - `spec`: YAML → raw → validated model, with located errors and the design rules;
@@ -17,6 +18,7 @@
 pub mod error;
 pub mod files;
 pub mod numeric;
+pub mod progress;
 pub mod units;
 
 pub mod model;

@@ -2,7 +2,8 @@
 
 use clap::Parser;
 use cycloid::cli::{self, Cli, Outcome};
-use std::io::IsTerminal;
+use cycloid::ErrorKind;
+use std::io::{IsTerminal, Write};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -19,8 +20,11 @@ fn main() -> ExitCode {
     match cli::run_with(args, &mut stdout.lock(), color) {
         Ok(Outcome::Passed) => ExitCode::SUCCESS,
         Ok(Outcome::ChecksFailed) => ExitCode::from(1),
+        // A reader that closed standard output (`| head`) has what it wanted: quietly done.
+        Err(e) if e.kind == ErrorKind::OutputClosed => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("{e}");
+            // Not eprintln!, which panics when stderr is closed too.
+            let _ = writeln!(std::io::stderr(), "{e}");
             ExitCode::from(2)
         }
     }

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 /// The layers, lowest first. A module may use the modules of lower layers only.
 const LAYERS: &[&[&str]] = &[
-    &["error", "units", "numeric"],
+    &["error", "units", "numeric", "progress"],
     &["files"],
     &["model"],
     &["spec"],

@@ -655,6 +655,8 @@ fn json_has_schema_1_sized_arrays_and_consistent_minimum() {
             "schema",
             "spec_path",
             "spec_sha256",
+            "studies",
+            "summary",
             "tool_version"
         ]
     );
@@ -684,6 +686,7 @@ fn json_has_schema_1_sized_arrays_and_consistent_minimum() {
                 "clearance_mm",
                 "crank_deg",
                 "lost_motion_arcsec",
+                "max_lost_motion_arcsec",
                 "min_clearance_at",
                 "min_clearance_mm",
                 "name"
@@ -738,6 +741,134 @@ fn json_has_schema_1_sized_arrays_and_consistent_minimum() {
         assert_eq!(check["limit"], 0.015);
         assert_eq!(check["passed"], true);
     }
+}
+
+/// `summary` holds, per scene, the registry's headline scalars (`quantity::SUMMARY`) the scene
+/// computed, each equal to the scene's own value under the same key and described by the
+/// registry's label and unit; `studies` holds each study's optimum as `cycloid optimise`
+/// prints it (variables to 6 decimals, objective to 4 digits, evaluations exactly) with its
+/// constraints, whose margins are value − bound or bound − value and satisfied when ≥ 0.
+#[test]
+fn json_has_the_summary_of_each_scene_and_the_result_of_each_study() {
+    let dir = Scratch::new("json-summary");
+    let out = cycloid(
+        Path::new(env!("CARGO_MANIFEST_DIR")),
+        &[
+            "check",
+            "specs/paper.yaml",
+            "--json",
+            &dir.join("r.json").display().to_string(),
+        ],
+    );
+    assert_eq!(out.code, Some(0), "{out:?}");
+    let doc: Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    let scenes = doc["scenes"].as_array().unwrap();
+    let summary = doc["summary"].as_array().unwrap();
+    assert_eq!(summary.len(), scenes.len());
+    let mut headlines = 0;
+    for (s, scene) in summary.iter().zip(scenes) {
+        assert_eq!(s["scene"], scene["name"]);
+        for h in s["headlines"].as_array().unwrap() {
+            assert_eq!(keys(h), ["at", "key", "label", "unit", "value"]);
+            let key = h["key"].as_str().unwrap();
+            let q = cycloid::model::quantity::find(key).unwrap();
+            assert!(cycloid::model::quantity::SUMMARY.contains(&q), "{key}");
+            assert_eq!(
+                (h["label"].as_str(), h["unit"].as_str()),
+                (Some(q.label), Some(q.unit))
+            );
+            assert_eq!(h["value"], scene[key], "{key}");
+            headlines += 1;
+        }
+    }
+    // mesh: clearance and lost motion; rated and study: the loaded ones.
+    assert!(headlines >= 10, "{headlines}");
+    let studies = doc["studies"].as_array().unwrap();
+    let names: Vec<&str> = studies
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "positive-ratio",
+            "positive-te",
+            "negative-ratio",
+            "negative-te"
+        ]
+    );
+    let study = &studies[0];
+    let printed = cycloid(
+        Path::new(env!("CARGO_MANIFEST_DIR")),
+        &["optimise", "specs/paper.yaml", "--study", "positive-ratio"],
+    )
+    .stdout;
+    let line = printed
+        .lines()
+        .find(|l| l.trim_start().starts_with("optimum "))
+        .unwrap();
+    let variables = &study["variables"];
+    assert_eq!(keys(variables), ["equidistant_mm", "shift_mm"]);
+    for key in ["shift_mm", "equidistant_mm"] {
+        let value = format!("{key} {:.6}", variables[key].as_f64().unwrap());
+        assert!(line.contains(&value), "`{line}` lacks `{value}`");
+    }
+    let objective = study["objective_value"].as_f64().unwrap();
+    assert!(
+        line.contains(&format!("objective {objective:.5}")),
+        "{line}: {objective}"
+    );
+    assert_eq!(study["objective"][0]["name"], "ratio_fluctuation");
+    assert_eq!(
+        study["objective"][0]["value"], study["objective_value"],
+        "weight 1"
+    );
+    let evaluations = study["evaluations"].as_u64().unwrap();
+    assert!(
+        printed.contains(&format!("{evaluations} evaluations")),
+        "{printed}"
+    );
+    assert_eq!(study["feasible"], true);
+    let constraints = study["constraints"].as_array().unwrap();
+    assert_eq!(constraints.len(), 3);
+    for c in constraints {
+        let (value, bound, margin) = (
+            c["value"].as_f64().unwrap(),
+            c["bound"].as_f64().unwrap(),
+            c["margin"].as_f64().unwrap(),
+        );
+        // Exactly one of the two differences, as the optimiser computed it.
+        assert!(margin == value - bound || margin == bound - value, "{c}");
+        assert_eq!(c["satisfied"], margin >= 0.0, "{c}");
+        let name = c["name"].as_str().unwrap();
+        assert!(printed.contains(name), "{name}");
+    }
+    // What the objective hides and how good the answer is, as the optimiser prints them.
+    let clearance_um = study["min_clearance_mm"].as_f64().unwrap() * 1e3;
+    assert!(
+        line.contains(&format!("min clearance {clearance_um:.2} µm")),
+        "{line}"
+    );
+    let lost = study["lost_motion_arcsec"].as_f64().unwrap();
+    assert!(
+        line.contains(&format!("lost motion {lost:.1} arcsec")),
+        "{line}: {lost}"
+    );
+    let v = &study["verification"];
+    assert_eq!(
+        (v["steps"].as_u64(), v["points"].as_u64()),
+        (Some(41), Some(1681))
+    );
+    let margin = v["margin"].as_f64().unwrap();
+    assert!(
+        margin >= 0.0,
+        "a grid point beats the optimum by {}",
+        -margin
+    );
+    assert!(
+        printed.contains(&format!("is higher by {margin:.6}")),
+        "{printed}: {margin}"
+    );
 }
 
 #[test]
@@ -993,7 +1124,7 @@ fn profile_tolerance_must_be_positive_and_not_absurdly_fine() {
         ),
         (
             "1e-12",
-            "invalid value: --tolerance-um must be at least 0.001 (1 nm), got 0.000000000001\n",
+            "invalid value: --tolerance-um must be at least 0.001 (1 nm), got 1e-12\n",
         ),
     ] {
         let out = cycloid(

@@ -150,7 +150,7 @@ fn bless_keeps_a_review_while_the_curve_stays_in_its_band_and_resets_it_otherwis
     let spec = dir.join("spec.yaml");
     write(&spec, &spec_text(90, TE_GOLDEN));
     assert_eq!(run(&["bless", p(&spec)]).0, 0);
-    let meta = dir.join("golden/te.meta.yaml");
+    let meta = dir.join("golden/te.csv.meta.yaml");
     let text = std::fs::read_to_string(&meta).unwrap();
     assert!(text.contains("NOT REVIEWED"), "{text}");
     assert!(text.contains("date: 1970-01-01"), "{text}");
@@ -222,7 +222,7 @@ fn a_golden_whose_columns_or_range_no_longer_match_is_exit_2() {
     );
     let (code, _, err) = run(&["check", p(&spec)]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("only 0° to 17°"), "{err}");
+    assert!(err.contains("but the scene 0° to 17°"), "{err}");
     assert!(err.contains("re-bless"), "{err}");
 }
 
@@ -322,10 +322,7 @@ fn golden_csv_reads_back_what_it_writes_and_rejects_bad_files() {
         crank_deg: vec![0.0, 0.1, 0.2],
         curves: Curves {
             columns: vec!["roller_0".into(), "roller_1".into()],
-            values: vec![
-                vec![1.0 / 3.0, 0.0, -2.5e-7],
-                vec![1e6, 12.0, f64::INFINITY],
-            ],
+            values: vec![vec![1.0 / 3.0, 0.0, -2.5e-7], vec![1e6, 12.0, -1e300]],
         },
     };
     let text = g.to_csv();
@@ -341,6 +338,20 @@ fn golden_csv_reads_back_what_it_writes_and_rejects_bad_files() {
         ("crank_deg,x\n0,one\n", "`one` is not a number"),
         ("crank_deg,x\n1,1\n0,1\n", "increasing"),
         ("crank_deg,x\n", "no data rows"),
+        // A computed value is finite; `inf` or `nan` in a golden is a broken file.
+        (
+            "crank_deg,x\n0,1\n1,inf\n",
+            "x.csv:3: `inf` is not a finite number",
+        ),
+        (
+            "crank_deg,x\n0,NaN\n",
+            "x.csv:2: `NaN` is not a finite number",
+        ),
+        // A row cut out of the middle leaves a double step.
+        (
+            "crank_deg,x\n0,1\n1,1\n3,1\n4,1\n",
+            "x.csv:4: crank 3° follows 1°",
+        ),
     ] {
         let e = GoldenCurves::parse("x.csv", bad).unwrap_err();
         assert!(e.contains(why), "{bad:?}: {e}");
@@ -361,7 +372,7 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
     };
     let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
     let r = cycloid::engine::scene::run(&spec, &scene, &plan).unwrap();
-    let doc = cycloid::report::json::document(&spec, &[], std::slice::from_ref(&r));
+    let doc = cycloid::report::json::scenes_value(&spec, std::slice::from_ref(&r)).unwrap();
     let json = &doc["scenes"][0];
     let mut seen = 0;
     for q in QUANTITIES {

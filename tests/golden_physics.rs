@@ -85,7 +85,7 @@ fn goldens_cover_their_periods_at_0_1_deg() {
                 assert!((d - 0.1 * k as f64).abs() < 1e-9, "{case}/{q}");
             }
             assert!(g.cols.iter().flatten().all(|v| v.is_finite()), "{case}/{q}");
-            let meta = std::fs::read_to_string(format!("golden/{case}/{q}.meta.yaml")).unwrap();
+            let meta = std::fs::read_to_string(format!("golden/{case}/{q}.csv.meta.yaml")).unwrap();
             assert!(
                 meta.contains(&format!("spec: specs/{case}.yaml")),
                 "{case}/{q}"

@@ -402,7 +402,10 @@ fn torque_1e5_beyond_capacity_says_so() {
     let run = cli_case("torque-1e5-beyond-capacity", 2);
     let e = run.stderr.trim();
     assert!(
-        e.starts_with("computation failed: scene `overload`: crank angle 0.0000°"),
+        e.starts_with(
+            "specs/hard/torque-1e5-beyond-capacity.yaml:22:5: computation failed: \
+             scenes[0].output_torque_nm: scene `overload`: crank angle 0.0000°"
+        ),
         "{e}"
     );
     for part in [

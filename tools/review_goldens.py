@@ -31,7 +31,7 @@ CASES = {
     "paper-negative-start": (-0.15, -0.135),
     # The optima found by cycloid's optimiser (specs/paper-*-optimum.yaml), full precision.
     "paper-negative-optimum": (-0.020129994269645513, 0.0),
-    "paper-positive-optimum": (0.16964106759699482, 0.22917929821048158),
+    "paper-positive-optimum": (0.05514788220176706, 0.07014788220176706),
 }
 
 

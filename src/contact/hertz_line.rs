@@ -17,8 +17,38 @@ pub struct HertzLine {
 pub fn hertz(c: &LineContact, force_n: f64) -> HertzLine {
     let f = force_n.max(0.0);
     HertzLine {
-        peak_pressure_mpa: (f * c.contact_modulus_mpa / (PI * c.length_mm * c.effective_radius_mm))
-            .sqrt(),
+        // The half-width as the contact laws compute it (Johnson's law takes its logarithm).
         half_width_mm: half_width_mm(c, f),
+        ..HertzFactors::of(c).at(f, 1.0 / c.effective_radius_mm)
+    }
+}
+
+/// The factors of a line contact's pressure and width that do not change with the contact
+/// point: E*/(π·L) and 4/(π·L·E*), so that p0 = sqrt(F·(1/R*)·E*/(πL)) and
+/// b = sqrt(F·R*·4/(πLE*)). The first-order sweep holds them once per scene and evaluates
+/// every roller and angle with `at`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HertzFactors {
+    pressure: f64,
+    width: f64,
+}
+
+impl HertzFactors {
+    pub fn of(c: &LineContact) -> Self {
+        HertzFactors {
+            pressure: c.contact_modulus_mpa / (PI * c.length_mm),
+            width: 4.0 / (PI * c.length_mm * c.contact_modulus_mpa),
+        }
+    }
+
+    /// The contact under force F (N; a negative force is none) with effective curvature
+    /// 1/R* (1/mm).
+    #[inline(always)]
+    pub fn at(&self, force_n: f64, inverse_radius_per_mm: f64) -> HertzLine {
+        let f = force_n.max(0.0);
+        HertzLine {
+            peak_pressure_mpa: (f * inverse_radius_per_mm * self.pressure).sqrt(),
+            half_width_mm: (f / inverse_radius_per_mm * self.width).sqrt(),
+        }
     }
 }

@@ -196,20 +196,17 @@ pub fn optimisation(spec: &Spec, results: &[crate::engine::optimise::StudyResult
     let mut checks = Vec::new();
     for (study, r) in spec.studies.iter().zip(results) {
         let o = &r.optimum;
-        let at = o
-            .margins
-            .iter()
-            .min_by(|a, b| a.margin.total_cmp(&b.margin))
-            .map_or(String::new(), |m| format!("tightest: {}", m.name));
+        // The tightest constraint relative to its bound; its margin in its own unit.
+        let tightest = o.tightest();
+        let at = tightest.map_or(String::new(), |m| format!("tightest: {}", m.name));
         checks.push(Check {
             kind: CheckKind::Limit,
-            // Every constraint (tip clearance band, whole-mesh clearance) is a length.
-            unit: "mm",
+            unit: tightest.map_or("mm", |m| m.unit),
             id: format!("optimise/{}/constraints", r.name),
             value: if o.failure.is_some() {
                 f64::NEG_INFINITY
             } else {
-                o.worst_margin().min(f64::MAX)
+                tightest.map_or(f64::MAX, |m| m.margin)
             },
             limit: 0.0,
             bound: Bound::Min,

@@ -2,8 +2,15 @@
 //!
 //! A golden file is CSV with a header: `crank_deg`, then one column per roller or pin
 //! (`roller_0`, ...) or one column named after the quantity (`te_arcsec`). Beside it,
-//! `<name>.meta.yaml` records the spec it came from (path and SHA-256), the tool version, the
-//! date and what a person reviewed. `cycloid bless` writes both; `cycloid check` reads the CSV.
+//! `<file>.meta.yaml` (`te.csv` → `te.csv.meta.yaml`; older goldens have `te.meta.yaml`, still
+//! read) records the spec it came from (path and SHA-256), the tool version, the date and what a
+//! person reviewed. `cycloid bless` writes both together; `cycloid check` reads the CSV.
+//!
+//! A golden is evidence, so a broken one is an error, never a pass: a file that does not cover
+//! the scene's crank range, whose angles are not evenly spaced (rows missing) or that holds a
+//! non-finite value is exit 2 with its file and line. `bless` writes only under the spec's
+//! directory (or the `golden_root` it declares), never over a file that is not a golden, and
+//! replaces all the files of a spec or none.
 //!
 //! Comparison: the curve with fewer samples sets the angles compared; the other one is
 //! linearly interpolated there (exactly sampled when the grids nest, e.g. 0.2° inside 0.1°).
@@ -11,12 +18,14 @@
 //! furthest outside (or least inside) its band.
 
 use crate::error::{Error, ErrorKind, Result};
+use crate::files;
 use crate::model::quantity::Curves;
 use crate::model::results::SceneResult;
 use crate::model::{Golden, Tolerance};
 use crate::spec::Spec;
 use crate::units;
 use serde::{Deserialize, Serialize};
+use std::io::ErrorKind::NotFound;
 use std::path::{Path, PathBuf};
 
 /// Crank angles closer than this (degrees) are the same sample.
@@ -86,6 +95,7 @@ impl GoldenCurves {
             return Err(format!("{name}:1: no value columns after `crank_deg`"));
         }
         let mut crank_deg = Vec::new();
+        let mut line_of = Vec::new();
         let mut values = vec![Vec::new(); columns.len()];
         for (n, line) in lines {
             let cells: Vec<&str> = line.split(',').map(str::trim).collect();
@@ -97,9 +107,14 @@ impl GoldenCurves {
                     columns.len() + 1
                 ));
             }
-            let mut numbers = cells.iter().map(|c| {
-                c.parse::<f64>()
-                    .map_err(|_| format!("{name}:{}: `{c}` is not a number", n + 1))
+            let mut numbers = cells.iter().map(|c| match c.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                Ok(_) => Err(format!(
+                    "{name}:{}: `{c}` is not a finite number; a golden holds computed values, \
+                     which are finite",
+                    n + 1
+                )),
+                Err(_) => Err(format!("{name}:{}: `{c}` is not a number", n + 1)),
             });
             let phi = numbers.next().unwrap_or(Ok(0.0))?;
             if !phi.is_finite() || crank_deg.last().is_some_and(|&last| phi <= last) {
@@ -109,6 +124,7 @@ impl GoldenCurves {
                 ));
             }
             crank_deg.push(phi);
+            line_of.push(n + 1);
             for (col, v) in values.iter_mut().zip(numbers) {
                 col.push(v?);
             }
@@ -116,11 +132,53 @@ impl GoldenCurves {
         if crank_deg.is_empty() {
             return Err(format!("{name}: no data rows"));
         }
+        even_steps(&crank_deg).map_err(|(k, m)| format!("{name}:{}: {m}", line_of[k]))?;
         Ok(GoldenCurves {
             crank_deg,
             curves: Curves { columns, values },
         })
     }
+}
+
+/// A golden's crank angles are evenly spaced, as `bless` writes them: a missing row shows as a
+/// wider step. The tolerance covers the 10-digit rounding of each angle (5e-10 relative, twice
+/// for a difference) with room to spare, and is far below a doubled step. On failure, the
+/// index of the angle that ends the odd step and a message.
+fn even_steps(deg: &[f64]) -> std::result::Result<(), (usize, String)> {
+    let (Some(&first), Some(&last)) = (deg.first(), deg.last()) else {
+        return Ok(());
+    };
+    if deg.len() < 3 {
+        return Ok(());
+    }
+    // The median step: rows cut out anywhere leave most steps as they were.
+    let mut steps: Vec<f64> = deg.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    let typical = steps[steps.len() / 2];
+    let slack = 1e-3 * typical + 1e-9 * first.abs().max(last.abs());
+    match deg
+        .windows(2)
+        .position(|w| ((w[1] - w[0]) - typical).abs() > slack)
+    {
+        None => Ok(()),
+        Some(k) => Err((
+            k + 1,
+            format!(
+                "crank {}° follows {}°, a step of {}° where the golden's steps are {}°: rows \
+                 are missing or out of place; restore the file or re-bless it",
+                csv_number(deg[k + 1]),
+                csv_number(deg[k]),
+                csv_number(deg[k + 1] - deg[k]),
+                csv_number(typical)
+            ),
+        )),
+    }
+}
+
+/// Whether two crank angles are the same sample: within `slack`, `SAME_ANGLE_DEG` and the
+/// 10-digit rounding of a golden's angles.
+fn same_angle(a: f64, b: f64, slack: f64) -> bool {
+    (a - b).abs() <= slack + SAME_ANGLE_DEG + 1e-9 * a.abs().max(b.abs())
 }
 
 /// One compared point.
@@ -242,15 +300,19 @@ pub fn compare(
         *golden.crank_deg.last().unwrap_or(&0.0),
     );
     let (r0, r1) = (now_deg[0], *now_deg.last().unwrap_or(&0.0));
-    let slack = step(now_deg).max(step(&golden.crank_deg)) + SAME_ANGLE_DEG;
-    if r0 > g0 + SAME_ANGLE_DEG || r1 < g1 - slack {
+    // Both curves cover the scene's range: from the same first angle to last angles at most
+    // one step of the coarser apart (0.2° steps end at 107.8°, 0.1° steps at 107.9°).
+    let slack = step(now_deg).max(step(&golden.crank_deg));
+    if !(same_angle(g0, r0, 0.0) && same_angle(g1, r1, slack)) {
         let n = csv_number;
         return Err(format!(
-            "the golden covers crank {}° to {}° but the scene only {}° to {}°",
+            "the golden covers crank {}° to {}° ({} rows) but the scene {}° to {}° ({} angles)",
             n(g0),
             n(g1),
+            golden.crank_deg.len(),
             n(r0),
-            n(r1)
+            n(r1),
+            now_deg.len()
         ));
     }
     // The coarser curve sets the angles; the finer one is interpolated there.
@@ -315,19 +377,19 @@ pub fn load_all(spec: &Spec) -> Result<Vec<GoldenCurves>> {
     spec.golden
         .iter()
         .map(|g| {
-            let text = std::fs::read_to_string(&g.path).map_err(|e| {
-                let hint = if e.kind() == std::io::ErrorKind::NotFound {
+            if std::fs::symlink_metadata(&g.path).is_err_and(|e| e.kind() == NotFound) {
+                return Err(file_error(
+                    g,
                     format!(
                         "golden file `{}` does not exist; create it with `cycloid bless {}` \
                          (paths are relative to the spec file's directory)",
                         g.path.display(),
                         spec.path
-                    )
-                } else {
-                    format!("golden file `{}`: {e}", g.path.display())
-                };
-                file_error(g, hint)
-            })?;
+                    ),
+                ));
+            }
+            let text = files::read_text(&g.path, "golden file", files::MAX_INPUT_BYTES)
+                .map_err(|e| file_error(g, e.message))?;
             GoldenCurves::parse(&g.path.display().to_string(), &text)
                 .map_err(|m| file_error(g, format!("bad golden file: {m}")))
         })
@@ -391,9 +453,24 @@ pub fn evaluate(
         .collect()
 }
 
-/// The metadata file beside a golden CSV: `x.csv` → `x.meta.yaml`.
+/// The metadata file beside a golden CSV: `te.csv` → `te.csv.meta.yaml` (its whole name, so
+/// `te.csv` and `te.txt` keep separate reviews).
 pub fn meta_path(csv: &Path) -> PathBuf {
+    let mut name = csv.file_name().unwrap_or_default().to_os_string();
+    name.push(".meta.yaml");
+    csv.with_file_name(name)
+}
+
+/// The metadata name of goldens blessed before `meta_path` kept the extension: `te.meta.yaml`.
+/// Read (when it is about the same scene and quantity) and replaced by `meta_path` at the
+/// next bless.
+pub fn legacy_meta_path(csv: &Path) -> PathBuf {
     csv.with_extension("meta.yaml")
+}
+
+/// Both metadata names of a golden: the current one, then the legacy one.
+pub fn meta_paths(csv: &Path) -> [PathBuf; 2] {
+    [meta_path(csv), legacy_meta_path(csv)]
 }
 
 /// What `<name>.meta.yaml` holds. `reviewed` is written by a person; `bless` keeps it while
@@ -424,11 +501,31 @@ pub const NOT_REVIEWED: &str = "NOT REVIEWED: written by `cycloid bless`; a pers
      these curves against an independent reason (a hand calculation, another implementation, a \
      physical law) and replace this text with what was checked";
 
+/// Largest metadata file read, bytes: a review is a paragraph.
+const MAX_META_BYTES: u64 = 1 << 20;
+
+/// A golden's previous metadata and the file it is in: `meta_path`, else the legacy name when
+/// that file describes the same scene and quantity (two goldens `te.csv` and `te.txt` once
+/// shared `te.meta.yaml`).
+pub fn previous_meta(g: &Golden) -> Option<(PathBuf, serde_yaml::Value)> {
+    let read = |path: PathBuf| {
+        let text = files::read_text(&path, "golden metadata", MAX_META_BYTES).ok()?;
+        let v: serde_yaml::Value = serde_yaml::from_str(&text).ok()?;
+        Some((path, v))
+    };
+    let field =
+        |v: &serde_yaml::Value, k: &str| v.get(k).and_then(|x| x.as_str()).map(String::from);
+    read(meta_path(&g.path)).or_else(|| {
+        read(legacy_meta_path(&g.path)).filter(|(_, v)| {
+            field(v, "scene").as_deref() == Some(g.scene.as_str())
+                && field(v, "quantity").as_deref() == Some(g.quantity.key)
+        })
+    })
+}
+
 /// A text field of a golden's previous metadata (`reviewed`, `date`), if it can be read.
-pub fn previous_meta(csv: &Path, field: &str) -> Option<String> {
-    let text = std::fs::read_to_string(meta_path(csv)).ok()?;
-    let v: serde_yaml::Value = serde_yaml::from_str(&text).ok()?;
-    v.get(field)?.as_str().map(str::to_string)
+fn meta_field(meta: &Option<(PathBuf, serde_yaml::Value)>, field: &str) -> Option<String> {
+    meta.as_ref()?.1.get(field)?.as_str().map(str::to_string)
 }
 
 /// SHA-256 of a text as lowercase hex (what `sha256sum` prints for the file).
@@ -482,9 +579,76 @@ pub struct Blessed {
     pub change: BlessChange,
 }
 
-/// Rewrite every golden file of a spec from the results (and its metadata beside it).
+/// Where `bless` may write: the spec's directory tree and the `golden_root` it declares.
+fn bless_roots(spec: &Spec) -> Vec<PathBuf> {
+    let dir = Path::new(&spec.path)
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::iter::once(dir.to_path_buf())
+        .chain(spec.golden_root.clone())
+        .map(|p| files::identity(&p))
+        .collect()
+}
+
+/// Refuse, before anything is written, a golden that `bless` must not write: a path outside
+/// `bless_roots`, an existing file that is not a golden (not a regular file, or no metadata
+/// beside it: the spec itself, a drawing, someone's notes), or a path that the spec or
+/// another golden's file or metadata also has.
+fn check_writable(spec: &Spec) -> Result<()> {
+    let roots = bless_roots(spec);
+    let mut claimed = vec![(
+        files::identity(Path::new(&spec.path)),
+        "the spec".to_string(),
+    )];
+    for g in &spec.golden {
+        let id = files::identity(&g.path);
+        if !roots.iter().any(|r| id.starts_with(r)) {
+            let allowed: Vec<String> = roots.iter().map(|r| r.display().to_string()).collect();
+            return Err(file_error(
+                g,
+                format!(
+                    "`{}` is {}, outside {}: bless writes goldens only under the spec's \
+                     directory or the `golden_root` the spec declares",
+                    g.file,
+                    id.display(),
+                    allowed.join(" and ")
+                ),
+            ));
+        }
+        if let Ok(m) = std::fs::metadata(&g.path) {
+            if !(m.is_file() && (meta_path(&g.path).is_file() || previous_meta(g).is_some())) {
+                return Err(file_error(
+                    g,
+                    format!(
+                        "`{}` exists and is not a golden (no `{}` beside it); bless does not \
+                         overwrite it: move it away or name another file",
+                        g.path.display(),
+                        meta_path(&g.path).display()
+                    ),
+                ));
+            }
+        }
+        for path in [g.path.clone(), meta_path(&g.path)] {
+            let id = files::identity(&path);
+            if let Some((_, what)) = claimed.iter().find(|(c, _)| *c == id) {
+                return Err(file_error(
+                    g,
+                    format!("`{}` is also {what}", path.display()),
+                ));
+            }
+            claimed.push((id, format!("a file of {}", g.key)));
+        }
+    }
+    Ok(())
+}
+
+/// Rewrite every golden file of a spec from the results, each with its metadata beside it:
+/// all of them or, on any error, none.
 pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
+    check_writable(spec)?;
     let date = today();
+    let mut batch = files::Batch::new();
     let mut out = Vec::new();
     for g in &spec.golden {
         let (_, deg, curves) = computed(g, results)?;
@@ -495,29 +659,39 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
             curves,
         };
         // Compare what will be written (rounded) with what was there.
-        let written = GoldenCurves::parse("new", &new.to_csv()).map_err(Error::computation)?;
-        let change = match std::fs::read_to_string(&g.path) {
+        let csv = new.to_csv();
+        let written = GoldenCurves::parse(&g.path.display().to_string(), &csv).map_err(|m| {
+            Error::computation(format!(
+                "scene `{}` computed a `{}` that cannot be a golden ({m}); nothing was blessed",
+                g.scene, g.quantity
+            ))
+        })?;
+        let change = match std::fs::metadata(&g.path) {
             Err(_) => BlessChange::New,
-            Ok(text) => match GoldenCurves::parse("old", &text).and_then(|old| {
-                compare(
-                    &old,
-                    &written.crank_deg,
-                    &written.curves,
-                    g.tolerance,
-                    period,
-                )
-            }) {
+            Ok(_) => match files::read_text(&g.path, "golden file", files::MAX_INPUT_BYTES)
+                .map_err(|e| e.message)
+                .and_then(|text| GoldenCurves::parse("old", &text))
+                .and_then(|old| {
+                    compare(
+                        &old,
+                        &written.crank_deg,
+                        &written.curves,
+                        g.tolerance,
+                        period,
+                    )
+                }) {
                 Ok(c) => BlessChange::Compared(c),
                 Err(m) => BlessChange::Replaced(m),
             },
         };
+        let previous = previous_meta(g);
         // An unchanged curve keeps the date it was blessed on.
         let unchanged = matches!(&change, BlessChange::Compared(c) if c.largest.deviation == 0.0);
-        let date = match previous_meta(&g.path, "date") {
+        let date = match meta_field(&previous, "date") {
             Some(old) if unchanged => old,
             _ => date.clone(),
         };
-        let reviewed = match (&change, previous_meta(&g.path, "reviewed")) {
+        let reviewed = match (&change, meta_field(&previous, "reviewed")) {
             (BlessChange::Compared(c), Some(old)) if c.passed => old,
             (_, Some(old)) if !old.starts_with("NOT REVIEWED") => format!(
                 "NOT REVIEWED since {date}: the curve moved outside its tolerance when blessed. \
@@ -549,13 +723,14 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
         if let Some(dir) = g.path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
         }
-        let path = g.path.display().to_string();
-        std::fs::write(&g.path, new.to_csv()).map_err(|e| Error::io(&path, e))?;
-        let meta_file = meta_path(&g.path);
         let meta_text =
             serde_yaml::to_string(&meta).map_err(|e| Error::computation(e.to_string()))?;
-        std::fs::write(&meta_file, meta_text)
-            .map_err(|e| Error::io(&meta_file.display().to_string(), e))?;
+        batch.add(&g.path, csv.as_bytes())?;
+        batch.add(&meta_path(&g.path), meta_text.as_bytes())?;
+        // A review under the legacy name moves to the current one.
+        if let Some((old, _)) = previous.filter(|(old, _)| *old != meta_path(&g.path)) {
+            batch.remove(&old);
+        }
         out.push(Blessed {
             golden: g.clone(),
             unit,
@@ -563,6 +738,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
             change,
         });
     }
+    batch.commit()?;
     Ok(out)
 }
 

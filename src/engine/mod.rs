@@ -1,12 +1,15 @@
 //! The engine: runs the scenes of a spec (`scene`), checks its limits (`check`) and golden
 //! curves (`golden`), optimises the modification (`optimise`) and runs the accuracy ladder
-//! (`accuracy`), and summarises the headline results of each scene (`summary`).
+//! (`accuracy`), summarises the headline results of each scene (`summary`), and computes what
+//! the design review draws of the disc (`drawing`).
 
 pub mod accuracy;
 pub mod check;
+pub mod drawing;
 pub mod golden;
 pub mod optimise;
-pub mod progress;
+/// The progress observer (`crate::progress`), where the engine's callers look for it.
+pub use crate::progress;
 pub mod resolution;
 pub mod scene;
 pub mod summary;

@@ -7,13 +7,14 @@
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
 use crate::equilibrium::curves;
-use crate::equilibrium::solve::Settings;
+use crate::equilibrium::solve::{Settings, SolveFailure};
 use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::QUANTITIES;
 use crate::model::results::{LoadedSweep, SceneResult};
 use crate::model::{Design, Detail, Effect, Modification, Plan, Scene};
+use crate::progress::{Progress, Silent};
 use crate::spec::Spec;
 use crate::units;
 
@@ -52,6 +53,20 @@ pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
     run_with(spec, scene, plan, &Settings::default())
 }
 
+/// A failure of a scene of the spec, with the spec key it points at: the scene's value that
+/// `run_design` named (the torque the rollers cannot carry, the bearing too soft for it), else
+/// the scene itself, so that an absurd value is found in the spec.
+pub fn at_scene(spec: &Spec, scene: &Scene, mut e: Error) -> Error {
+    let Some(i) = spec.scenes.iter().position(|s| s.name == scene.name) else {
+        return e;
+    };
+    e.key_path = Some(match e.key_path.take() {
+        Some(k) => format!("scenes[{i}].{k}"),
+        None => format!("scenes[{i}]"),
+    });
+    e
+}
+
 /// Run one scene according to its plan, with the loaded solves converged to `settings`
 /// (`run` uses the default settings; the accuracy ladder varies them).
 pub fn run_with(
@@ -61,6 +76,7 @@ pub fn run_with(
     settings: &Settings,
 ) -> Result<SceneResult> {
     run_design(&spec.design, &spec.modification, scene, plan, settings)
+        .map_err(|e| at_scene(spec, scene, e))
 }
 
 /// Run one scene of `design` with the modification `m` (an optimisation candidate, or the
@@ -72,6 +88,18 @@ pub fn run_design(
     plan: &Plan,
     settings: &Settings,
 ) -> Result<SceneResult> {
+    run_observed(design, m, (scene, plan), settings, &Silent)
+}
+
+/// `run_design`, telling `progress` of the crank angles done by each sweep the plan runs
+/// (`progress::Progress::start` is the caller's: `sweeps` says how many it will hear of).
+pub fn run_observed(
+    design: &Design,
+    m: &Modification,
+    (scene, plan): (&Scene, &Plan),
+    settings: &Settings,
+    progress: &dyn Progress,
+) -> Result<SceneResult> {
     let mesh = Mesh::new(design, m);
     let clearance = if plan.has(Effect::Clearance) {
         let scope = if plan.has_detail(Detail::Backlash) {
@@ -80,7 +108,7 @@ pub fn run_design(
             clearance::Scope::Gaps
         };
         Some(
-            clearance::sweep(&mesh, &scene.crank_rad, scope)
+            clearance::sweep_observed(&mesh, &scene.crank_rad, scope, progress)
                 .map_err(|f| Error::computation(format!("scene `{}`: {f}", scene.name)))?,
         )
     } else {
@@ -88,17 +116,17 @@ pub fn run_design(
     };
     let loaded_effects = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing];
     let loaded = if loaded_effects.iter().any(|&e| plan.has(e)) {
-        let mut model = Model::new(design, m, scene, plan);
-        model.settings = *settings;
+        let model = loaded_model(design, m, scene, plan, settings);
         let pins = plan.has(Effect::OutputPins);
         let periodic = scene.spans_whole(design.loaded_period_rad(pins));
-        curves::sweep(&model, &scene.crank_rad, periodic).map_err(|f| {
-            Error::computation(format!(
-                "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {}",
-                scene.name,
-                units::deg(f.crank_rad),
-                f.failure
-            ))
+        curves::sweep_observed(&model, &scene.crank_rad, periodic, progress).map_err(|f| {
+            let e = solve_failed(scene, f.crank_rad, &f.failure);
+            // The scene's value that a failure points at (made a spec key by `at_scene`).
+            match f.failure {
+                SolveFailure::BeyondCapacity { .. } => e.at_key("output_torque_nm"),
+                SolveFailure::OutOfMesh { .. } => e.at_key("bearing_stiffness_n_per_mm"),
+                _ => e,
+            }
         })?
     } else {
         LoadedSweep::default()
@@ -109,6 +137,39 @@ pub fn run_design(
         clearance,
         loaded,
     })
+}
+
+/// How many sweeps over its crank angles `plan` runs (clearance, loaded): the work a progress
+/// display of the scene counts, in crank angles.
+pub fn sweeps(plan: &Plan) -> usize {
+    let loaded = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
+        .iter()
+        .any(|&e| plan.has(e));
+    usize::from(plan.has(Effect::Clearance)) + usize::from(loaded)
+}
+
+/// The loaded model of a scene (roller contact, output pins, bearing as `plan` says) solved to
+/// `settings`: what the sweep of `run_design` solves at every crank angle, and what the design
+/// review's drawing solves at its one angle.
+pub fn loaded_model(
+    design: &Design,
+    m: &Modification,
+    scene: &Scene,
+    plan: &Plan,
+    settings: &Settings,
+) -> Model {
+    let mut model = Model::new(design, m, scene, plan);
+    model.settings = *settings;
+    model
+}
+
+/// The error of a loaded solve that failed: the scene and the crank angle.
+pub fn solve_failed(scene: &Scene, crank_rad: f64, failure: &impl std::fmt::Display) -> Error {
+    Error::computation(format!(
+        "scene `{}`: crank angle {:.4}°: equilibrium solve failed: {failure}",
+        scene.name,
+        units::deg(crank_rad),
+    ))
 }
 
 /// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.

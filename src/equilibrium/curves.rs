@@ -6,6 +6,7 @@ use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
 use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
 use crate::model::results::{BearingCurves, LoadedSweep, PinCurves, RollerCurves, Transmission};
+use crate::progress::{Progress, Silent};
 use rayon::prelude::*;
 
 /// Crank angles solved in sequence by one worker, warm-starting each from the previous. The
@@ -291,13 +292,25 @@ pub fn sweep(
     crank_rad: &[f64],
     periodic: bool,
 ) -> Result<LoadedSweep, SweepFailure> {
+    sweep_observed(model, crank_rad, periodic, &Silent)
+}
+
+/// `sweep`, telling `progress` of every chunk of crank angles done.
+pub fn sweep_observed(
+    model: &Model,
+    crank_rad: &[f64],
+    periodic: bool,
+    progress: &dyn Progress,
+) -> Result<LoadedSweep, SweepFailure> {
     let mut columns = Columns::new(model, crank_rad.len());
     let lean = FirstOrderSweep::new(model);
     let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
         .par_chunks(CHUNK)
         .zip(columns.chunks())
         .map_init(Scratch::default, |scratch, (c, mut chunk)| {
-            solve_chunk(model, lean.as_ref(), c, &mut chunk, scratch)
+            let done = solve_chunk(model, lean.as_ref(), c, &mut chunk, scratch);
+            progress.advance(c.len() as u64);
+            done
         })
         .collect();
     outcomes.into_iter().collect::<Result<(), _>>()?;

@@ -36,10 +36,10 @@ use super::pins::Pins;
 use super::rollers::Rollers;
 use super::solve::piecewise_linear_root_near;
 use super::sweep::{BalanceSums, Model};
+use crate::contact::hertz_line::HertzFactors;
 use crate::contact::law;
 use crate::geometry::{sin_cos, NearbySinCos, Vec2};
 use crate::model::{ContactLaw, GeometryMode};
-use std::f64::consts::PI;
 
 /// The closed-form sweep of one model, when the model is one it applies to.
 #[derive(Debug)]
@@ -49,9 +49,8 @@ pub struct FirstOrderSweep<'a> {
     pins: Option<(&'a Pins, f64)>,
     /// Linear stiffness of a roller contact, N/mm.
     roller_stiffness: f64,
-    /// E*/(π·L) and 4/(π·L·E*): p0 = sqrt(F·(1/R*)·E*/(πL)), b = sqrt(F·R*·4/(πLE*)).
-    pressure_factor: f64,
-    width_factor: f64,
+    /// The Hertz pressure and width factors of the rollers' contacts (`contact::hertz_line`).
+    hertz: HertzFactors,
     /// The roller directions u_i and the pin directions w_j as x and y columns, so that the
     /// per-angle loops over them vectorise.
     roller_units: Columns,
@@ -243,8 +242,7 @@ impl<'a> FirstOrderSweep<'a> {
             rollers: r,
             pins,
             roller_stiffness: law::paper_linear_stiffness(c),
-            pressure_factor: c.contact_modulus_mpa / (PI * c.length_mm),
-            width_factor: 4.0 / (PI * c.length_mm * c.contact_modulus_mpa),
+            hertz: HertzFactors::of(c),
             roller_units: Columns::of(&r.units),
             pin_units: pins.map_or_else(Columns::default, |(p, _)| Columns::of(&p.base)),
             pin_gaps: pins.map_or_else(Vec::new, |(p, _)| vec![p.clearance_mm; p.base.len()]),
@@ -451,7 +449,6 @@ impl<'a> FirstOrderSweep<'a> {
         let (sin_nc_lag, cos_nc_lag) =
             sin_cos(self.model.teeth as f64 * (lag + profile.rotation_rad));
         let d = &r.design;
-        let (min_inv_r, roller_inv_r) = (1.0 / d.roller_circle_radius_mm, 1.0 / d.roller_radius_mm);
         let k1_e = r.first_order.k1 * e_phi;
         let k = row.k;
         for i in bits(mask) {
@@ -462,9 +459,9 @@ impl<'a> FirstOrderSweep<'a> {
             sums.roller(point, force, -force * normal, force * scratch.arm[i]);
             let (c, s) = (scratch.cos[i], scratch.sin[i]);
             let kappa = profile.curvature_at(c * cos_nc_lag - s * sin_nc_lag);
-            let inv_r = (kappa + roller_inv_r).max(min_inv_r);
-            row.pressure_mpa[i][k] = (force * inv_r * self.pressure_factor).sqrt();
-            row.half_width_mm[i][k] = (force / inv_r * self.width_factor).sqrt();
+            let h = self.hertz.at(force, r.inverse_effective_radius(kappa));
+            row.pressure_mpa[i][k] = h.peak_pressure_mpa;
+            row.half_width_mm[i][k] = h.half_width_mm;
         }
     }
 

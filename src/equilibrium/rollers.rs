@@ -170,14 +170,21 @@ impl Rollers {
     pub fn line_contact(&self, curvature_per_mm: f64) -> LineContact {
         let d = &self.design;
         let rrp = d.roller_radius_mm;
-        let rp = d.roller_circle_radius_mm;
-        let flank = (1.0 / curvature_per_mm.abs()).min(rp);
-        let inv_r = (curvature_per_mm + 1.0 / rrp).max(1.0 / rp);
+        let flank = (1.0 / curvature_per_mm.abs()).min(d.roller_circle_radius_mm);
         LineContact {
             radii_mm: [flank, rrp],
-            effective_radius_mm: 1.0 / inv_r,
+            effective_radius_mm: 1.0 / self.inverse_effective_radius(curvature_per_mm),
             ..self.materials
         }
+    }
+
+    /// 1/R* = max(κ + 1/r_rp, 1/Rp) of a roller contact where the disc's curvature is κ
+    /// (1/mm, convex positive): floored at the roller circle's curvature, the flattest the
+    /// flank is modelled (`line_contact`).
+    #[inline(always)]
+    pub fn inverse_effective_radius(&self, curvature_per_mm: f64) -> f64 {
+        let d = &self.design;
+        (curvature_per_mm + 1.0 / d.roller_radius_mm).max(1.0 / d.roller_circle_radius_mm)
     }
 
     /// The materials and length of every roller contact (radii left to `line_contact`).

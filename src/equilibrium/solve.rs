@@ -112,7 +112,7 @@ impl std::fmt::Display for SolveFailure {
                     f,
                     "the rollers cannot balance an output torque of {} N·m: the largest moment \
                      found is {:.4} N·m, at a lag of {lag_rad:.4} rad",
-                    units::nm(*torque_nmm),
+                    input(units::nm(*torque_nmm)),
                     units::nm(*moment_nmm)
                 )?;
                 if let Some((i, depth, radius)) = deepest {

@@ -12,6 +12,7 @@ use super::profile::{ClosestPointFailure, LocusFrame, Profile};
 use super::{cross, rotate, sin_cos, wrap_pi, Vec2};
 use crate::model::results::{BacklashCurves, ClearanceSweep, MinClearance};
 use crate::model::{Design, Modification};
+use crate::progress::{Progress, Silent};
 use crate::units;
 use rayon::prelude::*;
 use std::f64::consts::{PI, TAU};
@@ -256,13 +257,13 @@ pub enum Scope {
 /// after a tooth): a uniform sweep over whole mesh periods needs only its first period.
 pub fn min_gap(mesh: &Mesh, crank_rad: &[f64]) -> Result<MinClearance, GapFailure> {
     let crank = first_period(mesh, crank_rad);
-    let columns = Tracker::new(mesh).sweep(crank, Scope::Gaps)?;
+    let columns = Tracker::new(mesh).sweep(crank, Scope::Gaps, &Silent)?;
     smallest(mesh, crank, &columns.gap_mm)
 }
 
 /// The leading mesh period of a uniform sweep that covers at least one whole period on its
 /// grid; otherwise the whole sweep.
-fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
+pub fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
     let n = crank_rad.len();
     if n < 2 {
         return crank_rad;
@@ -290,7 +291,17 @@ fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
 /// follow the same way (`Tracker::closing_lag`). Chunks of `CHUNK` angles run in parallel and
 /// write their rows in place.
 pub fn sweep(mesh: &Mesh, crank_rad: &[f64], scope: Scope) -> Result<ClearanceSweep, GapFailure> {
-    let columns = Tracker::new(mesh).sweep(crank_rad, scope)?;
+    sweep_observed(mesh, crank_rad, scope, &Silent)
+}
+
+/// `sweep`, telling `progress` of every chunk of crank angles done.
+pub fn sweep_observed(
+    mesh: &Mesh,
+    crank_rad: &[f64],
+    scope: Scope,
+    progress: &dyn Progress,
+) -> Result<ClearanceSweep, GapFailure> {
+    let columns = Tracker::new(mesh).sweep(crank_rad, scope, progress)?;
     let min = smallest(mesh, crank_rad, &columns.gap_mm)?;
     let backlash = (scope == Scope::Backlash).then(|| {
         let lost_motion_rad = columns
@@ -447,12 +458,21 @@ impl<'a> Tracker<'a> {
     }
 
     /// Every chunk of `crank_rad`, in parallel; the first failure in crank order.
-    fn sweep(&self, crank_rad: &[f64], scope: Scope) -> Result<Columns, GapFailure> {
+    fn sweep(
+        &self,
+        crank_rad: &[f64],
+        scope: Scope,
+        progress: &dyn Progress,
+    ) -> Result<Columns, GapFailure> {
         let mut columns = Columns::new(self.mesh.rollers, crank_rad.len(), scope);
         let outcomes: Vec<Result<(), GapFailure>> = crank_rad
             .par_chunks(CHUNK)
             .zip(columns.chunks(crank_rad.len()))
-            .map(|(crank, mut rows)| self.chunk(crank, &mut rows))
+            .map(|(crank, mut rows)| {
+                let done = self.chunk(crank, &mut rows);
+                progress.advance(crank.len() as u64);
+                done
+            })
             .collect();
         outcomes.into_iter().collect::<Result<(), _>>()?;
         Ok(columns)

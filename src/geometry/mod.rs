@@ -2,6 +2,7 @@
 
 pub mod clearance;
 pub mod first_order;
+pub mod polyline;
 pub mod profile;
 
 pub type Vec2 = nalgebra::Vector2<f64>;

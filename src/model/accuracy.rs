@@ -86,7 +86,8 @@ pub fn tolerance(value: f64) -> std::result::Result<f64, String> {
         Ok(value)
     } else {
         Err(format!(
-            "a tolerance must be a positive number, got {value}"
+            "a tolerance must be a positive number, got {}",
+            crate::numeric::input(value)
         ))
     }
 }

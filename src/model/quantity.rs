@@ -246,7 +246,7 @@ pub const LAG: Quantity = Quantity {
 pub const TE: Quantity = Quantity {
     key: "te_arcsec",
     unit: "arcsec",
-    label: "loaded transmission error",
+    label: "loaded TE δ = β + βo",
     effect: Effect::RollerContact,
     shape: Shape::Curve,
     period: None,
@@ -257,7 +257,7 @@ pub const TE: Quantity = Quantity {
 pub const RATIO: Quantity = Quantity {
     key: "ratio",
     unit: "",
-    label: "transmission ratio κ",
+    label: "transmission ratio κ = dφ/dφout",
     effect: Effect::RollerContact,
     shape: Shape::Curve,
     period: None,
@@ -344,7 +344,7 @@ pub const PIN_FORCE: Quantity = Quantity {
 pub const BEARING_FORCE: Quantity = Quantity {
     key: "bearing_force_n",
     unit: "N",
-    label: "crank-bearing force",
+    label: "crank-bearing force |Fb|",
     effect: Effect::Bearing,
     shape: Shape::Curve,
     period: None,
@@ -573,6 +573,10 @@ pub const SUMMARY: &[&Quantity] = &[
     &RATIO_FLUCTUATION,
     &MIN_ROLLERS_IN_CONTACT,
 ];
+
+/// The scalars that are max − min of their curve (`of`) rather than a value on it: a limit on
+/// one is the width of a band the curve must fit in, not a level.
+pub const SPREADS: &[&Quantity] = &[&TE_FLUCTUATION, &RATIO_FLUCTUATION];
 
 /// The quantity with this key.
 pub fn find(key: &str) -> Option<&'static Quantity> {

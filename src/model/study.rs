@@ -7,6 +7,45 @@ use crate::units;
 /// An optimisation objective: a scalar quantity of the registry (`quantity::OBJECTIVES`).
 pub type Objective = &'static ObjectiveDef;
 
+/// Most points of a study's global stage: the length of its Sobol sequence (2^16), about
+/// 100 s of evaluations on the paper's study scene on one core.
+pub const MAX_GLOBAL_SAMPLES: usize = 1 << 16;
+/// Most points of a study's verification grid (steps^variables), as many as the global stage.
+pub const MAX_VERIFY_POINTS: usize = MAX_GLOBAL_SAMPLES;
+/// Most evaluations of one local run.
+pub const MAX_LOCAL_EVALUATIONS: usize = 10_000;
+
+/// Default interior points of the global stage for `dims` variables: 64, 512 and 2048 for 1, 2
+/// and 3 variables (a spacing of 1/64, 1/23 and 1/13 of each range).
+pub fn default_global_samples(dims: usize) -> usize {
+    match dims {
+        0 | 1 => 64,
+        2 => 512,
+        _ => 2048,
+    }
+}
+
+/// Default points of the global stage on each face of the feasible region: 64 on a line (two
+/// variables; a spacing of 1/64 of the face), 256 on a plane (three variables, 1/16); a single
+/// variable's faces are points.
+pub fn default_boundary_samples(dims: usize) -> usize {
+    match dims {
+        0 | 1 => 1,
+        2 => 64,
+        _ => 256,
+    }
+}
+
+/// Default points per variable of the verification grid: 401 for one variable (a step of
+/// 1/400 of the range), 41 × 41 for two (1/40), 17³ = 4913 for three (1/16).
+pub fn default_verify_grid(dims: usize) -> usize {
+    match dims {
+        0 | 1 => 401,
+        2 => 41,
+        _ => 17,
+    }
+}
+
 /// A design variable of a study, bounds in engine units (mm, or rad for the rotation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VariableKind {
@@ -74,8 +113,16 @@ pub struct Study {
     pub tip_clearance_mm: Option<(f64, f64)>,
     /// Whole-mesh minimum clearance ≥ this, mm.
     pub min_clearance_mm: Option<f64>,
+    /// Largest unloaded lost motion over the scene's crank angles ≤ this, arcsec.
+    pub max_lost_motion_arcsec: Option<f64>,
     pub references: Vec<(String, Modification)>,
     pub optimum_max_objective: Option<f64>,
+    /// Interior points of the global (space-filling) stage.
     pub global_samples: usize,
+    /// Points of the global stage on each face of the feasible region (box faces, tip band).
+    pub boundary_samples: usize,
+    /// Evaluations allowed to each local run.
     pub local_evaluations: usize,
+    /// Points per variable of the verification grid (0: no verification).
+    pub verify_grid: usize,
 }

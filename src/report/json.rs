@@ -1,172 +1,619 @@
-//! The results JSON (schema 1). Arrays are [roller][angle] or [angle]; engine values are
-//! converted to the units named in the keys here. A quantity not computed is absent.
+//! The results JSON (schema 1): typed documents (`Document`, `#[derive(Serialize)]`) that
+//! borrow the results and convert them to the units named in their keys as they are
+//! serialised; no tree of values is built. Arrays are [roller][angle] or [angle]; a quantity
+//! that was not computed is absent, never zero. The keys are documented in the README
+//! ("Results JSON"); every registry quantity a scene computed is there under its key. What a
+//! study's result holds is mapped in one place, `StudyDoc::new`.
+//!
+//! No number in the file is null, NaN or infinite: serialising a non-finite number is an
+//! error and the run stops with it (the engine never produces one: a computation that fails
+//! stops the run before).
 
 use crate::engine::check::{Check, CheckKind};
 use crate::engine::golden::{sha256_hex, GoldenResult, Point};
-use crate::model::results::SceneResult;
-use crate::numeric::{extremes, max_entry};
+use crate::engine::optimise::StudyResult;
+use crate::engine::summary::{summarise, SceneSummary};
+use crate::error::Result;
+use crate::model::quantity::{Quantity, QUANTITIES};
+use crate::model::results::{ClearanceSweep, SceneResult};
+use crate::model::Study;
+use crate::numeric::extremes;
 use crate::spec::Spec;
-use serde_json::{json, Map, Value};
+use crate::units;
+use serde::ser::{Error as _, SerializeMap, SerializeSeq};
+use serde::{Serialize, Serializer};
+use std::io::{BufWriter, Write};
+use std::path::Path;
 
-/// Radians to arcseconds.
-pub const ARCSEC_PER_RAD: f64 = 180.0 * 3600.0 / std::f64::consts::PI;
+/// A number JSON can hold: serialising a non-finite one is an error.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Finite(pub f64);
 
-/// A finite number as JSON; a non-finite one becomes null (never NaN in the file).
-fn num(x: f64) -> Value {
-    serde_json::Number::from_f64(x).map_or(Value::Null, Value::Number)
+impl Serialize for Finite {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        if self.0.is_finite() {
+            s.serialize_f64(self.0)
+        } else {
+            Err(S::Error::custom(format!(
+                "a result is {}, which JSON cannot hold (a bug: please report it with the spec)",
+                self.0
+            )))
+        }
+    }
 }
 
-fn list(xs: impl IntoIterator<Item = f64>) -> Value {
-    Value::Array(xs.into_iter().map(num).collect())
+/// The unit a curve is written in, from the engine's (mm, N, MPa, rad).
+#[derive(Clone, Copy)]
+pub enum To {
+    /// The engine's own unit (mm, N, MPa, a ratio).
+    Same,
+    Deg,
+    Arcsec,
 }
 
-fn scene(r: &SceneResult) -> Value {
-    let mut s = Map::new();
-    s.insert("name".into(), json!(r.name));
-    s.insert(
-        "crank_deg".into(),
-        list(r.crank_rad.iter().map(|a| a.to_degrees())),
-    );
-    if let Some(c) = &r.clearance {
-        s.insert(
-            "clearance_mm".into(),
-            Value::Array(c.gap_mm.iter().map(|g| list(g.iter().copied())).collect()),
-        );
-        s.insert("min_clearance_mm".into(), num(c.min.gap_mm));
-        s.insert(
-            "min_clearance_at".into(),
-            json!({
-                "roller": c.min.roller,
-                "crank_deg": num(c.min.crank_rad.to_degrees()),
-                "tooth_phase": num(c.min.tooth_phase),
+impl To {
+    /// A match rather than a function pointer: the conversion inlines into the loop that
+    /// writes a curve, which is most of the file's cost.
+    #[inline]
+    fn convert(self, x: f64) -> f64 {
+        match self {
+            To::Same => x,
+            To::Deg => units::deg(x),
+            To::Arcsec => units::arcsec(x),
+        }
+    }
+}
+
+/// A curve in engine units, converted to the key's unit as it is written.
+#[derive(Clone, Copy)]
+pub struct Curve<'a> {
+    values: &'a [f64],
+    to: To,
+}
+
+impl<'a> Curve<'a> {
+    fn new(values: &'a [f64], to: To) -> Self {
+        Curve { values, to }
+    }
+
+    fn plain(values: &'a [f64]) -> Self {
+        Curve::new(values, To::Same)
+    }
+}
+
+impl Serialize for Curve<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(Some(self.values.len()))?;
+        for &v in self.values {
+            seq.serialize_element(&Finite(self.to.convert(v)))?;
+        }
+        seq.end()
+    }
+}
+
+/// Curves [part][angle] in the key's unit.
+#[derive(Clone, Copy)]
+pub struct Rows<'a>(&'a [Vec<f64>]);
+
+impl Serialize for Rows<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.collect_seq(self.0.iter().map(|row| Curve::plain(row)))
+    }
+}
+
+/// `key: value` pairs written as an object, in their order: the registry's scalars of a scene,
+/// a study's variables.
+pub struct Pairs(Vec<(&'static str, Finite)>);
+
+impl Serialize for Pairs {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut map = s.serialize_map(Some(self.0.len()))?;
+        for (key, value) in &self.0 {
+            map.serialize_entry(key, value)?;
+        }
+        map.end()
+    }
+}
+
+#[derive(Serialize)]
+pub struct MinClearanceAt {
+    roller: usize,
+    crank_deg: Finite,
+    tooth_phase: Finite,
+}
+
+/// One scene: its curves, the registry's scalars and a few extremes.
+#[derive(Serialize)]
+pub struct SceneDoc<'a> {
+    name: &'a str,
+    crank_deg: Curve<'a>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    clearance_mm: Option<Rows<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    min_clearance_at: Option<MinClearanceAt>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    backlash_arcsec: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    backlash_reverse_arcsec: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    lost_motion_arcsec: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    lag_arcsec: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    roller_force_n: Option<Rows<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    contact_pressure_mpa: Option<Rows<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    contact_half_width_mm: Option<Rows<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    contacts: Option<&'a [usize]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    output_lag_arcsec: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pin_force_n: Option<Rows<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bearing_force_n: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bearing_angle_deg: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bearing_deflection_mm: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    residual: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    te_arcsec: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    te_max_arcsec: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    te_min_arcsec: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ratio: Option<Curve<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ratio_max: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ratio_min: Option<Finite>,
+    /// The registry's scalars the scene computed (`QUANTITIES`): min_clearance_mm,
+    /// max_roller_force_n, ...
+    #[serde(flatten)]
+    scalars: Pairs,
+}
+
+/// (max, min) of a curve.
+fn max_min(values: &[f64], to: To) -> (Option<Finite>, Option<Finite>) {
+    let ((lo, _), (hi, _)) = extremes(values);
+    (Some(Finite(to.convert(hi))), Some(Finite(to.convert(lo))))
+}
+
+fn min_clearance_at(c: &ClearanceSweep) -> MinClearanceAt {
+    MinClearanceAt {
+        roller: c.min.roller,
+        crank_deg: Finite(units::deg(c.min.crank_rad)),
+        tooth_phase: Finite(c.min.tooth_phase),
+    }
+}
+
+impl<'a> SceneDoc<'a> {
+    pub fn new(r: &'a SceneResult) -> Self {
+        let c = r.clearance.as_ref();
+        let backlash = c.and_then(|c| c.backlash.as_ref());
+        let l = &r.loaded;
+        let (rollers, pins, bearing) = (l.rollers.as_ref(), l.pins.as_ref(), l.bearing.as_ref());
+        let te = l.transmission.as_ref();
+        let ratio = te.and_then(|t| t.ratio.as_deref());
+        let arcsec = |v: &'a [f64]| Curve::new(v, To::Arcsec);
+        let (te_max_arcsec, te_min_arcsec) =
+            te.map_or((None, None), |t| max_min(&t.te_rad, To::Arcsec));
+        let (ratio_max, ratio_min) = ratio.map_or((None, None), |v| max_min(v, To::Same));
+        SceneDoc {
+            name: &r.name,
+            crank_deg: Curve::new(&r.crank_rad, To::Deg),
+            clearance_mm: c.map(|c| Rows(&c.gap_mm)),
+            min_clearance_at: c.map(min_clearance_at),
+            backlash_arcsec: backlash.map(|b| arcsec(&b.forward_rad)),
+            backlash_reverse_arcsec: backlash.map(|b| arcsec(&b.reverse_rad)),
+            lost_motion_arcsec: backlash.map(|b| arcsec(&b.lost_motion_rad)),
+            lag_arcsec: rollers.map(|c| arcsec(&c.lag_rad)),
+            roller_force_n: rollers.map(|c| Rows(&c.force_n)),
+            contact_pressure_mpa: rollers.map(|c| Rows(&c.pressure_mpa)),
+            contact_half_width_mm: rollers.map(|c| Rows(&c.half_width_mm)),
+            contacts: rollers.map(|c| c.contacts.as_slice()),
+            output_lag_arcsec: pins.map(|p| arcsec(&p.output_lag_rad)),
+            pin_force_n: pins.map(|p| Rows(&p.force_n)),
+            bearing_force_n: bearing.map(|b| Curve::plain(&b.force_n)),
+            bearing_angle_deg: bearing.map(|b| Curve::new(&b.angle_rad, To::Deg)),
+            bearing_deflection_mm: bearing.map(|b| Curve::plain(&b.deflection_mm)),
+            residual: bearing.map(|b| Curve::plain(&b.residual)),
+            te_arcsec: te.map(|t| arcsec(&t.te_rad)),
+            te_max_arcsec,
+            te_min_arcsec,
+            ratio: ratio.map(Curve::plain),
+            ratio_max,
+            ratio_min,
+            scalars: Pairs(
+                QUANTITIES
+                    .iter()
+                    .filter_map(|q| Some((q.key, Finite(q.scalar(r)?.value))))
+                    .collect(),
+            ),
+        }
+    }
+}
+
+#[derive(Serialize)]
+pub struct CheckDoc<'a> {
+    id: &'a str,
+    kind: &'static str,
+    value: Finite,
+    limit: Finite,
+    unit: &'static str,
+    passed: bool,
+    at: &'a str,
+}
+
+#[derive(Serialize)]
+pub struct PointDoc<'a> {
+    column: &'a str,
+    crank_deg: Finite,
+    golden: Finite,
+    value: Finite,
+    deviation: Finite,
+    band: Finite,
+}
+
+impl<'a> From<&'a Point> for PointDoc<'a> {
+    fn from(p: &'a Point) -> Self {
+        PointDoc {
+            column: &p.column,
+            crank_deg: Finite(p.crank_deg),
+            golden: Finite(p.golden),
+            value: Finite(p.value),
+            deviation: Finite(p.deviation),
+            band: Finite(p.band),
+        }
+    }
+}
+
+#[derive(Serialize)]
+pub struct Tolerance {
+    abs: Finite,
+    rel: Finite,
+}
+
+#[derive(Serialize)]
+pub struct GoldenDoc<'a> {
+    scene: &'a str,
+    quantity: &'static str,
+    unit: &'static str,
+    file: String,
+    tolerance: Tolerance,
+    passed: bool,
+    points_compared: usize,
+    worst: PointDoc<'a>,
+    largest: PointDoc<'a>,
+}
+
+/// One headline result of a scene (`engine::summary`).
+#[derive(Serialize)]
+pub struct HeadlineDoc<'a> {
+    key: &'static str,
+    label: &'static str,
+    value: Finite,
+    unit: &'static str,
+    at: &'a str,
+}
+
+#[derive(Serialize)]
+pub struct SummaryDoc<'a> {
+    scene: &'a str,
+    headlines: Vec<HeadlineDoc<'a>>,
+}
+
+/// One term of a study's objective at the optimum, unweighted, in its own unit.
+#[derive(Serialize)]
+pub struct TermDoc {
+    name: &'static str,
+    weight: Finite,
+    unit: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    value: Option<Finite>,
+}
+
+#[derive(Serialize)]
+pub struct ConstraintDoc<'a> {
+    name: &'a str,
+    value: Finite,
+    bound: Finite,
+    /// ≥ 0 satisfied.
+    margin: Finite,
+    satisfied: bool,
+}
+
+/// What an optimisation study found.
+#[derive(Serialize)]
+pub struct StudyDoc<'a> {
+    name: &'a str,
+    scene: &'a str,
+    objective: Vec<TermDoc>,
+    /// The weighted objective at the optimum; absent when it could not be evaluated.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    objective_value: Option<Finite>,
+    /// The variables at the optimum, in the spec's units, in the study's order.
+    variables: Pairs,
+    constraints: Vec<ConstraintDoc<'a>>,
+    feasible: bool,
+    /// Why the optimum could not be evaluated.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    failure: Option<&'a str>,
+    evaluations: usize,
+    /// Where the optimum was found and why that search stopped (`optimise::Found`).
+    stop_reason: String,
+    /// What the objective alone hides: the optimum's smallest clearance over the whole mesh
+    /// (mm) and its largest unloaded lost motion (arcsec, negative under interference).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    min_clearance_mm: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    lost_motion_arcsec: Option<Finite>,
+    /// The check of the optimum against the verification grid, when it ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    verification: Option<VerificationDoc>,
+}
+
+/// The verification grid of a study (`optimise::Verification`).
+#[derive(Serialize)]
+pub struct VerificationDoc {
+    /// Grid points per variable, and in all.
+    steps: usize,
+    points: usize,
+    feasible: usize,
+    /// The best feasible grid point's objective minus the optimum's: ≥ 0 when no grid point
+    /// is better. Absent when no grid point is feasible.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    margin: Option<Finite>,
+}
+
+impl<'a> StudyDoc<'a> {
+    fn new(spec: &'a Spec, study: &'a Study, r: &'a StudyResult) -> Self {
+        let o = &r.optimum;
+        let value = |q: &Quantity| {
+            o.terms
+                .iter()
+                .find(|(t, _)| t.quantity == q)
+                .map(|(_, v)| Finite(*v))
+        };
+        StudyDoc {
+            name: &r.name,
+            scene: &spec.scenes[study.scene].name,
+            objective: study
+                .objective
+                .iter()
+                .map(|(term, weight)| TermDoc {
+                    name: term.name,
+                    weight: Finite(*weight),
+                    unit: term.quantity.unit,
+                    value: value(term.quantity),
+                })
+                .collect(),
+            objective_value: o.objective.is_finite().then_some(Finite(o.objective)),
+            variables: Pairs(
+                study
+                    .variables
+                    .iter()
+                    .map(|v| {
+                        (
+                            v.kind.key(),
+                            Finite(v.kind.to_spec_unit(v.kind.get(&o.modification))),
+                        )
+                    })
+                    .collect(),
+            ),
+            constraints: o
+                .margins
+                .iter()
+                .map(|m| ConstraintDoc {
+                    name: &m.name,
+                    value: Finite(m.value),
+                    bound: Finite(m.bound),
+                    margin: Finite(m.margin),
+                    satisfied: m.satisfied(),
+                })
+                .collect(),
+            feasible: o.feasible(),
+            failure: o.failure.as_deref(),
+            evaluations: r.evaluations,
+            stop_reason: r.found.to_string(),
+            min_clearance_mm: o.min_clearance.as_ref().map(|c| Finite(c.gap_mm)),
+            lost_motion_arcsec: o.lost_motion_arcsec.map(Finite),
+            verification: r.verification.as_ref().map(|v| VerificationDoc {
+                steps: v.steps,
+                points: v.points,
+                feasible: v.feasible,
+                margin: v.margin.filter(|m| m.is_finite()).map(Finite),
             }),
-        );
-        if let Some(b) = &c.backlash {
-            let arcsec = |v: &[f64]| list(v.iter().map(|b| b * ARCSEC_PER_RAD));
-            s.insert("backlash_arcsec".into(), arcsec(&b.forward_rad));
-            s.insert("backlash_reverse_arcsec".into(), arcsec(&b.reverse_rad));
-            s.insert("lost_motion_arcsec".into(), arcsec(&b.lost_motion_rad));
-        }
-    }
-    loaded(&mut s, r);
-    Value::Object(s)
-}
-
-fn grid(rows: &[Vec<f64>]) -> Value {
-    Value::Array(rows.iter().map(|row| list(row.iter().copied())).collect())
-}
-
-/// Curves and scalar summaries of the loaded solve (absent when not computed).
-fn loaded(s: &mut Map<String, Value>, r: &SceneResult) {
-    let l = &r.loaded;
-    let arcsec = |v: &[f64]| list(v.iter().map(|b| b * ARCSEC_PER_RAD));
-    if let Some(c) = &l.rollers {
-        s.insert("lag_arcsec".into(), arcsec(&c.lag_rad));
-        s.insert("roller_force_n".into(), grid(&c.force_n));
-        s.insert("contact_pressure_mpa".into(), grid(&c.pressure_mpa));
-        s.insert("contact_half_width_mm".into(), grid(&c.half_width_mm));
-        s.insert("contacts".into(), json!(c.contacts));
-        s.insert("max_roller_force_n".into(), num(max_entry(&c.force_n).0));
-        s.insert(
-            "max_contact_pressure_mpa".into(),
-            num(max_entry(&c.pressure_mpa).0),
-        );
-        let counts: Vec<f64> = c.contacts.iter().map(|&n| n as f64).collect();
-        s.insert("min_rollers_in_contact".into(), num(extremes(&counts).0 .0));
-    }
-    if let Some(p) = &l.pins {
-        s.insert("output_lag_arcsec".into(), arcsec(&p.output_lag_rad));
-        s.insert("pin_force_n".into(), grid(&p.force_n));
-        s.insert("max_pin_force_n".into(), num(max_entry(&p.force_n).0));
-    }
-    if let Some(b) = &l.bearing {
-        s.insert("bearing_force_n".into(), list(b.force_n.iter().copied()));
-        s.insert(
-            "bearing_angle_deg".into(),
-            list(b.angle_rad.iter().map(|a| a.to_degrees())),
-        );
-        s.insert(
-            "bearing_deflection_mm".into(),
-            list(b.deflection_mm.iter().copied()),
-        );
-        s.insert("residual".into(), list(b.residual.iter().copied()));
-        s.insert("max_residual".into(), num(extremes(&b.residual).1 .0));
-        s.insert("max_bearing_force_n".into(), num(extremes(&b.force_n).1 .0));
-    }
-    if let Some(t) = &l.transmission {
-        let ((lo, _), (hi, _)) = extremes(&t.te_rad);
-        s.insert("te_arcsec".into(), arcsec(&t.te_rad));
-        s.insert("te_max_arcsec".into(), num(hi * ARCSEC_PER_RAD));
-        s.insert("te_min_arcsec".into(), num(lo * ARCSEC_PER_RAD));
-        s.insert(
-            "te_fluctuation_arcsec".into(),
-            num((hi - lo) * ARCSEC_PER_RAD),
-        );
-        if let Some(ratio) = &t.ratio {
-            let ((lo, _), (hi, _)) = extremes(ratio);
-            s.insert("ratio".into(), list(ratio.iter().copied()));
-            s.insert("ratio_max".into(), num(hi));
-            s.insert("ratio_min".into(), num(lo));
-            s.insert("ratio_fluctuation".into(), num(hi - lo));
         }
     }
 }
 
-fn point(p: &Point) -> Value {
-    json!({
-        "column": p.column,
-        "crank_deg": num(p.crank_deg),
-        "golden": num(p.golden),
-        "value": num(p.value),
-        "deviation": num(p.deviation),
-        "band": num(p.band),
-    })
+/// The whole results document.
+#[derive(Serialize)]
+pub struct Document<'a> {
+    schema: u32,
+    name: &'a str,
+    tool_version: &'static str,
+    spec_path: &'a str,
+    /// SHA-256 of the spec file's text.
+    spec_sha256: String,
+    passed: bool,
+    checks: Vec<CheckDoc<'a>>,
+    golden: Vec<GoldenDoc<'a>>,
+    scenes: Vec<SceneDoc<'a>>,
+    summary: Vec<SummaryDoc<'a>>,
+    studies: Vec<StudyDoc<'a>>,
 }
 
-fn golden(g: &GoldenResult) -> Value {
+/// What the results document holds; `summaries` are `engine::summary::summarise(results)`.
+pub struct Contents<'a> {
+    pub spec: &'a Spec,
+    /// Limit, study and golden checks.
+    pub checks: &'a [Check],
+    pub results: &'a [SceneResult],
+    /// The golden checks' detail.
+    pub goldens: &'a [GoldenResult],
+    pub summaries: &'a [SceneSummary],
+    /// The spec's optimisation studies' results, matched to `spec.studies` by name.
+    pub studies: &'a [StudyResult],
+}
+
+impl<'a> Document<'a> {
+    pub fn new(c: &Contents<'a>) -> Self {
+        Document {
+            schema: 1,
+            name: &c.spec.name,
+            tool_version: env!("CARGO_PKG_VERSION"),
+            spec_path: &c.spec.path,
+            spec_sha256: sha256_hex(&c.spec.source),
+            passed: c.checks.iter().all(|k| k.passed),
+            checks: c.checks.iter().map(check).collect(),
+            golden: c.goldens.iter().map(golden).collect(),
+            scenes: c.results.iter().map(SceneDoc::new).collect(),
+            summary: c.summaries.iter().map(summary).collect(),
+            studies: c
+                .studies
+                .iter()
+                .filter_map(|r| {
+                    let study = c.spec.studies.iter().find(|s| s.name == r.name)?;
+                    Some(StudyDoc::new(c.spec, study, r))
+                })
+                .collect(),
+        }
+    }
+}
+
+fn check(c: &Check) -> CheckDoc<'_> {
+    CheckDoc {
+        id: &c.id,
+        kind: match c.kind {
+            CheckKind::Limit => "limit",
+            CheckKind::Golden => "golden",
+        },
+        value: Finite(c.value),
+        limit: Finite(c.limit),
+        unit: c.unit,
+        passed: c.passed,
+        at: &c.at,
+    }
+}
+
+fn golden(g: &GoldenResult) -> GoldenDoc<'_> {
     let c = &g.comparison;
-    json!({
-        "scene": g.golden.scene,
-        "quantity": g.golden.quantity.key,
-        "unit": g.unit,
-        "file": g.golden.path.display().to_string(),
-        "tolerance": {"abs": num(g.golden.tolerance.abs), "rel": num(g.golden.tolerance.rel)},
-        "passed": c.passed,
-        "points_compared": c.points,
-        "worst": point(&c.worst),
-        "largest": point(&c.largest),
+    GoldenDoc {
+        scene: &g.golden.scene,
+        quantity: g.golden.quantity.key,
+        unit: g.unit,
+        file: g.golden.path.display().to_string(),
+        tolerance: Tolerance {
+            abs: Finite(g.golden.tolerance.abs),
+            rel: Finite(g.golden.tolerance.rel),
+        },
+        passed: c.passed,
+        points_compared: c.points,
+        worst: (&c.worst).into(),
+        largest: (&c.largest).into(),
+    }
+}
+
+fn summary(s: &SceneSummary) -> SummaryDoc<'_> {
+    SummaryDoc {
+        scene: &s.scene,
+        headlines: s
+            .headlines
+            .iter()
+            .map(|h| HeadlineDoc {
+                key: h.quantity.key,
+                label: h.quantity.label,
+                value: Finite(h.value),
+                unit: h.quantity.unit,
+                at: &h.at,
+            })
+            .collect(),
+    }
+}
+
+/// The results of scenes alone (no checks, goldens or studies) as a JSON value: what a test
+/// compares with the registry.
+pub fn scenes_value(spec: &Spec, results: &[SceneResult]) -> serde_json::Result<serde_json::Value> {
+    let summaries = summarise(results);
+    serde_json::to_value(Document::new(&Contents {
+        spec,
+        checks: &[],
+        results,
+        goldens: &[],
+        summaries: &summaries,
+        studies: &[],
+    }))
+}
+
+/// serde_json's compact format, with zeros (most of the forces and pressures: a roller out of
+/// contact) written without the float formatter, which costs as much for 0.0 as for any
+/// number.
+struct Compact;
+
+impl serde_json::ser::Formatter for Compact {
+    fn write_f64<W: ?Sized + Write>(&mut self, out: &mut W, value: f64) -> std::io::Result<()> {
+        if value == 0.0 {
+            out.write_all(if value.is_sign_negative() {
+                b"-0.0"
+            } else {
+                b"0.0"
+            })
+        } else {
+            serde_json::ser::CompactFormatter.write_f64(out, value)
+        }
+    }
+}
+
+/// Write the document to `path` atomically (`files::write_atomic_with`), compact, through a
+/// buffer of 64 KiB: it stays in cache, and the writes of a few bytes per number into it
+/// inline (through the `dyn Write` below it they would be calls).
+pub fn write(path: &Path, doc: &Document) -> Result<()> {
+    crate::files::write_atomic_with(path, |out| {
+        let mut out = BufWriter::with_capacity(64 << 10, out);
+        doc.serialize(&mut serde_json::Serializer::with_formatter(
+            &mut out, Compact,
+        ))?;
+        out.flush()
     })
 }
 
-/// The whole results document, without golden curves.
-pub fn document(spec: &Spec, checks: &[Check], results: &[SceneResult]) -> Value {
-    document_with_golden(spec, checks, results, &[])
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-/// The whole results document. `checks` holds the golden checks too; `goldens` their detail.
-pub fn document_with_golden(
-    spec: &Spec,
-    checks: &[Check],
-    results: &[SceneResult],
-    goldens: &[GoldenResult],
-) -> Value {
-    json!({
-        "schema": 1,
-        "name": spec.name,
-        "tool_version": env!("CARGO_PKG_VERSION"),
-        "spec_path": spec.path,
-        "spec_sha256": sha256_hex(&spec.source),
-        "passed": checks.iter().all(|c| c.passed),
-        "checks": checks.iter().map(|c| json!({
-            "id": c.id,
-            "kind": match c.kind { CheckKind::Limit => "limit", CheckKind::Golden => "golden" },
-            "value": num(c.value),
-            "limit": num(c.limit),
-            "unit": c.unit,
-            "passed": c.passed,
-            "at": c.at,
-        })).collect::<Vec<_>>(),
-        "golden": goldens.iter().map(golden).collect::<Vec<_>>(),
-        "scenes": results.iter().map(scene).collect::<Vec<_>>(),
-    })
+    #[test]
+    fn a_non_finite_number_is_an_error_not_null() {
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(serde_json::to_string(&Finite(x)).is_err(), "{x}");
+        }
+        let curve = [0.0, -0.0, 1.5, f64::NAN];
+        assert!(serde_json::to_string(&Curve::plain(&curve)).is_err());
+        assert_eq!(
+            serde_json::to_string(&Curve::plain(&curve[..3])).unwrap(),
+            "[0.0,-0.0,1.5]"
+        );
+    }
+
+    /// The compact formatter's zeros are serde_json's (the value read back is the same).
+    #[test]
+    fn zeros_are_written_as_serde_json_writes_them() {
+        for x in [0.0, -0.0] {
+            let mut ours = Vec::new();
+            Finite(x)
+                .serialize(&mut serde_json::Serializer::with_formatter(
+                    &mut ours, Compact,
+                ))
+                .unwrap();
+            assert_eq!(
+                String::from_utf8(ours).unwrap(),
+                serde_json::to_string(&x).unwrap()
+            );
+        }
+    }
 }

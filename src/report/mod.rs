@@ -1,10 +1,13 @@
 //! Outputs: the terminal table, the results JSON, JUnit XML and the HTML design review.
 
+pub mod disc;
 pub mod export;
 pub mod fit;
 pub mod html;
 pub mod json;
 pub mod junit;
 pub mod optimisation;
+pub mod plots;
 pub mod svg;
 pub mod table;
+pub mod terminal;

@@ -45,20 +45,79 @@ fn variables(study: &Study, e: &Evaluation) -> String {
         .join(", ")
 }
 
-fn row(study: &Study, label: &str, e: &Evaluation) -> String {
-    let objective = match &e.failure {
+/// The objective of a point, or why it has none (never "inf").
+fn objective_text(e: &Evaluation) -> String {
+    match &e.failure {
         Some(why) => format!("not evaluated ({why})"),
+        None if !e.objective.is_finite() => "not evaluated".to_string(),
         None => format!("objective {}", number(e.objective)),
-    };
+    }
+}
+
+/// What the objective alone hides: the whole-mesh min clearance (µm) and the unloaded lost
+/// motion (arcsec) of a point.
+fn geometry_text(e: &Evaluation) -> String {
+    let clearance = e.min_clearance.map_or("—".to_string(), |m| {
+        format!("{} µm", number(crate::units::um(m.gap_mm)))
+    });
+    let lost = e
+        .lost_motion_arcsec
+        .map_or("—".to_string(), |a| format!("{} arcsec", number(a)));
+    format!("min clearance {clearance}, lost motion {lost}")
+}
+
+fn row(study: &Study, label: &str, e: &Evaluation) -> String {
     let verdict = if e.feasible() {
         "feasible"
     } else {
         "INFEASIBLE"
     };
     format!(
-        "  {label:<16} {}: {objective}, {verdict}\n",
-        variables(study, e)
+        "  {label:<16} {}: {}, {verdict}; {}\n",
+        variables(study, e),
+        objective_text(e),
+        geometry_text(e)
     )
+}
+
+/// How good the optimum is against the verification grid, in one sentence.
+pub fn verification_text(study: &Study, r: &StudyResult) -> Option<String> {
+    let v = r.verification.as_ref()?;
+    let grid = v.grid(study.variables.len());
+    let searched = match v.beat_search_by() {
+        Some(d) => format!(
+            "a grid point beat the search by {}, {} refinement{} from there; ",
+            number(d),
+            v.refinements.len(),
+            if v.refinements.len() == 1 { "" } else { "s" }
+        ),
+        None => String::new(),
+    };
+    Some(match (&v.best, v.margin) {
+        (None, _) => format!(
+            "verification: none of the {} points of the {grid} grid is feasible",
+            v.points
+        ),
+        (Some(_), None) => format!(
+            "verification: {searched}the optimum is infeasible, {} of the {} points of the \
+             {grid} grid are feasible",
+            v.feasible, v.points
+        ),
+        (Some(b), Some(margin)) if margin >= 0.0 => format!(
+            "verification: {searched}no point of the {grid} grid is better than the optimum: the \
+             best of its {} feasible points, {}, is higher by {}",
+            v.feasible,
+            number(b.objective),
+            number(margin)
+        ),
+        (Some(b), Some(margin)) => format!(
+            "verification: {searched}the best of the {} feasible points of the {grid} grid, {}, \
+             is better than the optimum by {}",
+            v.feasible,
+            number(b.objective),
+            number(-margin)
+        ),
+    })
 }
 
 /// Say when a point satisfies the paper's Eq. 8 (tip clearance) but not the whole-mesh check.
@@ -103,7 +162,7 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
     }
     out += &row(study, "optimum", &r.optimum);
     for (label, e) in r.references.iter().map(|(l, e)| (l.as_str(), e)) {
-        if e.failure.is_none() && r.optimum.failure.is_none() {
+        if e.objective.is_finite() && r.optimum.objective.is_finite() {
             let diff = r.optimum.objective - e.objective;
             out += &format!(
                 "  optimum vs {label}: {} ({})\n",
@@ -130,6 +189,13 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
         if let Some(note) = eq8_note(label, e, study) {
             out += &note;
         }
+    }
+    if let Some(v) = verification_text(study, r) {
+        out += &format!("  {v}\n");
+    }
+    if !r.optimum.feasible() {
+        out += "  no feasible point was found: every point evaluated violates a constraint or \
+                a design rule (the optimum above is the least infeasible)\n";
     }
     out += &format!("  {}\n", r.outcome());
     out
@@ -278,7 +344,7 @@ pub fn view(
         note
     };
     // The winning local run, from its start up to the optimum.
-    let (path, path_label, path_evaluations) = match r.winner.map(|k| (k, &r.local_runs[k])) {
+    let (path, path_label, path_evaluations) = match r.winner().map(|k| (k, &r.local_runs[k])) {
         Some((k, run)) => {
             let end = run
                 .path
@@ -320,9 +386,17 @@ pub fn view(
     let mut points = vec![point("start", &r.start)];
     points.extend(r.references.iter().map(|(l, e)| point(l, e)));
     points.push(point("optimum", &r.optimum));
-    let mut notes = Vec::new();
+    let mut notes = vec![format!(
+        "What the objective hides: {}.",
+        std::iter::once(("start", &r.start))
+            .chain(r.references.iter().map(|(l, e)| (l.as_str(), e)))
+            .chain(std::iter::once(("optimum", &r.optimum)))
+            .map(|(label, e)| format!("{label}: {}", geometry_text(e)))
+            .collect::<Vec<_>>()
+            .join("; ")
+    )];
     for (label, e) in &r.references {
-        if e.failure.is_none() && r.optimum.failure.is_none() {
+        if e.objective.is_finite() && r.optimum.objective.is_finite() {
             let diff = r.optimum.objective - e.objective;
             notes.push(format!(
                 "The optimum's objective is {} {} than the {label}'s ({} vs {}).",
@@ -396,7 +470,10 @@ pub fn view(
             .map(|v| variable_label(v.kind).to_string())
             .collect(),
         points,
-        outcome: format!("{}.", r.outcome()),
+        outcome: match verification_text(study, r) {
+            Some(v) => format!("{}; {v}.", r.outcome()),
+            None => format!("{}.", r.outcome()),
+        },
         notes,
     }
 }

@@ -49,6 +49,12 @@ pub fn render(checks: &[Check]) -> String {
     render_styled(checks, false)
 }
 
+/// ANSI styles of the verdicts: the only control sequences the tool itself prints.
+pub const FAIL_STYLE: &str = "\x1b[1;31m";
+pub const PASS_STYLE: &str = "\x1b[32m";
+pub const PLAIN_STYLE: &str = "\x1b[0m";
+pub const STYLES: [&str; 3] = [FAIL_STYLE, PASS_STYLE, PLAIN_STYLE];
+
 /// The table, one check a row, worst failures first; `color` adds ANSI colour to the verdicts.
 pub fn render_styled(checks: &[Check], color: bool) -> String {
     let rows = ordered(checks);
@@ -80,8 +86,8 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
         for (k, (cell, w)) in row.iter().zip(widths).enumerate() {
             let pad = " ".repeat(w - cell.chars().count());
             let shown = match (color, *cell) {
-                (true, "FAIL") => format!("\x1b[1;31m{cell}\x1b[0m"),
-                (true, "pass") => format!("\x1b[32m{cell}\x1b[0m"),
+                (true, "FAIL") => format!("{FAIL_STYLE}{cell}{PLAIN_STYLE}"),
+                (true, "pass") => format!("{PASS_STYLE}{cell}{PLAIN_STYLE}"),
                 _ => cell.to_string(),
             };
             if k + 1 == row.len() {
@@ -108,7 +114,7 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
 }
 
 /// A count (a whole dimensionless value, e.g. rollers in contact) as an integer, else `number`.
-fn count_or_number(x: f64, unit: &str) -> String {
+pub fn count_or_number(x: f64, unit: &str) -> String {
     if unit.is_empty() && x.fract() == 0.0 && x.abs() < 1e9 {
         format!("{x:.0}")
     } else {

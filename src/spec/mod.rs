@@ -28,6 +28,9 @@ pub struct Spec {
     pub limits: Limits,
     pub studies: Vec<Study>,
     pub golden: Vec<Golden>,
+    /// `golden_root:` resolved against the spec's directory: where goldens may be written
+    /// besides the spec's own directory tree.
+    pub golden_root: Option<std::path::PathBuf>,
     /// The accuracy ladder the design review shows (`accuracy:`), if asked for.
     pub accuracy: Option<Accuracy>,
     /// Points measured on the disc (`measured_profile:`), if given.

@@ -93,6 +93,7 @@ where
         limits: raw.limits,
         optimise: raw.optimise.map(Into::into),
         golden: raw.golden,
+        golden_root: raw.golden_root,
         accuracy: raw.accuracy,
         measured_profile: raw.measured_profile,
     })

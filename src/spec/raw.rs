@@ -25,6 +25,10 @@ pub struct RawSpecOf<O> {
     /// Reviewed reference curves the results must stay close to.
     #[serde(default)]
     pub golden: Vec<RawGolden>,
+    /// A directory, relative to the spec's, where `bless` may write goldens besides the spec's
+    /// own directory tree (`../golden` for a spec in `specs/`).
+    #[serde(default)]
+    pub golden_root: Option<String>,
     /// The accuracy ladder of one scene, shown in the design review (`check --report`).
     #[serde(default)]
     pub accuracy: Option<RawAccuracy>,
@@ -84,12 +88,18 @@ pub struct RawStudy {
     pub references: Vec<RawReference>,
     #[serde(default)]
     pub optimum_max_objective: Option<f64>,
-    /// Points of the global (low-discrepancy) stage.
+    /// Interior points of the global (space-filling) stage.
     #[serde(default)]
     pub global_samples: Option<i64>,
+    /// Points of the global stage on each face of the feasible region.
+    #[serde(default)]
+    pub boundary_samples: Option<i64>,
     /// Evaluations allowed to each local (COBYLA) run.
     #[serde(default)]
     pub local_evaluations: Option<i64>,
+    /// Points per variable of the verification grid (0: none).
+    #[serde(default)]
+    pub verify_grid: Option<i64>,
 }
 
 /// An objective name, or a map of objective names to weights (a weighted sum).
@@ -121,6 +131,7 @@ pub struct RawPoint {
 pub struct RawConstraints {
     pub tip_clearance_mm: Option<[f64; 2]>,
     pub min_clearance_mm: Option<f64>,
+    pub max_lost_motion_arcsec: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -8,8 +8,12 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
 use crate::model::quantity;
 use crate::model::scene::MAX_ROLLER_ANGLES;
+use crate::model::study::{
+    default_boundary_samples, default_global_samples, default_verify_grid, MAX_GLOBAL_SAMPLES,
+    MAX_LOCAL_EVALUATIONS, MAX_VERIFY_POINTS,
+};
 use crate::model::*;
-use crate::units;
+use crate::{numeric, units};
 
 fn invalid(key: &str, message: String) -> Error {
     Error::new(ErrorKind::InvalidValue, message).at_key(key)
@@ -28,7 +32,7 @@ fn positive(key: &str, value: f64) -> Result<f64> {
     } else {
         Err(invalid(
             key,
-            format!("must be a positive number, got {value}"),
+            format!("must be a positive number, got {}", numeric::input(value)),
         ))
     }
 }
@@ -50,7 +54,7 @@ fn angle_deg(key: &str, value: f64) -> Result<f64> {
             format!(
                 "{}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where the \
                  angle's rounding would exceed 1e-9 rad",
-                crate::numeric::input(value)
+                numeric::input(value)
             ),
         ));
     }
@@ -64,8 +68,9 @@ fn length(key: &str, value: f64) -> Result<f64> {
         return Err(invalid(
             key,
             format!(
-                "{value} mm is larger than the {MAX_LENGTH_MM} mm (100 m) this tool handles: \
-                 beyond it double precision cannot resolve micrometre gaps"
+                "{} mm is larger than the {MAX_LENGTH_MM} mm (100 m) this tool handles: \
+                 beyond it double precision cannot resolve micrometre gaps",
+                numeric::input(value)
             ),
         ));
     }
@@ -91,13 +96,26 @@ fn count(key: &str, value: i64, min: i64) -> Result<usize> {
     }
 }
 
+/// A count in [min, max]; `why` says where the cap comes from.
+fn count_capped(key: &str, value: i64, min: i64, max: usize, why: &str) -> Result<usize> {
+    let n = count(key, value, min)?;
+    if n <= max {
+        Ok(n)
+    } else {
+        Err(invalid(
+            key,
+            format!("must be at most {max} ({why}), got {value}"),
+        ))
+    }
+}
+
 fn material(key: &str, raw: RawMaterial) -> Result<Material> {
     let youngs_gpa = positive(&format!("{key}.youngs_modulus_gpa"), raw.youngs_modulus_gpa)?;
     let nu = raw.poisson_ratio;
     if !(nu.is_finite() && (0.0..0.5).contains(&nu)) {
         return Err(invalid(
             &format!("{key}.poisson_ratio"),
-            format!("must lie in [0, 0.5), got {nu}"),
+            format!("must lie in [0, 0.5), got {}", numeric::input(nu)),
         ));
     }
     Ok(Material {
@@ -126,11 +144,18 @@ fn design(raw: RawReducer) -> Result<Design> {
         None => disc_material,
     };
     let clearance = raw.output_pins.hole_clearance_mm;
+    let clearance_key = "reducer.output_pins.hole_clearance_mm";
     if !(clearance.is_finite() && clearance >= 0.0) {
         return Err(invalid(
-            "reducer.output_pins.hole_clearance_mm",
-            format!("must be zero or positive, got {clearance}"),
+            clearance_key,
+            format!(
+                "must be zero or positive, got {}",
+                numeric::input(clearance)
+            ),
         ));
+    }
+    if clearance > 0.0 {
+        length(clearance_key, clearance)?;
     }
     Ok(Design {
         teeth,
@@ -164,7 +189,8 @@ fn modification(raw: &RawModification) -> Result<Modification> {
     })
 }
 
-fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
+/// The crank angles of a scene; `used` is the rollers × steps of the scenes before it.
+fn crank(key: &str, raw: &RawCrank, rollers: usize, used: i64) -> Result<Vec<f64>> {
     let from = angle_deg(&format!("{key}.from_deg"), raw.from_deg)?;
     let to = angle_deg(&format!("{key}.to_deg"), raw.to_deg)?;
     let steps = raw.steps;
@@ -174,13 +200,18 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
             format!("a crank range needs at least 1 step, got {steps}"),
         ));
     }
-    let max_steps = MAX_ROLLER_ANGLES / rollers.max(1) as i64;
+    let max_steps = (MAX_ROLLER_ANGLES - used) / rollers.max(1) as i64;
     if steps > max_steps {
+        let others = if used > 0 {
+            format!(" over all scenes; the scenes before this one use {used}")
+        } else {
+            String::new()
+        };
         return Err(invalid(
             &format!("{key}.steps"),
             format!(
                 "at most {max_steps} steps with {rollers} rollers \
-                 (rollers × steps ≤ {MAX_ROLLER_ANGLES}), got {steps}"
+                 (rollers × steps ≤ {MAX_ROLLER_ANGLES}{others}), got {steps}"
             ),
         ));
     }
@@ -190,7 +221,22 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize) -> Result<Vec<f64>> {
             format!("the crank range is empty: to_deg = {to} must exceed from_deg = {from}"),
         ));
     }
-    Ok(crank_angles(from, to, steps as usize))
+    let angles = crank_angles(from, to, steps as usize);
+    // Each step must move the crank: a range narrower than the doubles' spacing near it
+    // repeats angles, and the ratio (a derivative over neighbours) is then undefined.
+    if let Some(k) = angles.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(invalid(
+            &format!("{key}.steps"),
+            format!(
+                "{steps} steps from {from}° to {to}° are not distinct angles (steps {k} and {} \
+                 are the same double, {} rad): the range is too narrow for double precision \
+                 there; give fewer steps or a wider range",
+                k + 1,
+                angles[k]
+            ),
+        ));
+    }
+    Ok(angles)
 }
 
 /// Crank angles of a range in rad: `from + k·(to − from)/steps` degrees, k = 0 … steps − 1.
@@ -204,7 +250,7 @@ pub fn crank_angles(from_deg: f64, to_deg: f64, steps: usize) -> Vec<f64> {
         .collect()
 }
 
-fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
+fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene> {
     let key = format!("scenes[{index}]");
     if raw.name.trim().is_empty() {
         return Err(invalid(&format!("{key}.name"), "must not be empty".into()));
@@ -245,7 +291,7 @@ fn scene(index: usize, raw: RawScene, rollers: usize) -> Result<Scene> {
             &format!("{key}.output_torque_nm"),
             raw.output_torque_nm,
         )?),
-        crank_rad: crank(&format!("{key}.crank"), &raw.crank, rollers)?,
+        crank_rad: crank(&format!("{key}.crank"), &raw.crank, rollers, used)?,
         crank_from_deg: raw.crank.from_deg,
         crank_to_deg: raw.crank.to_deg,
         name: raw.name,
@@ -293,7 +339,10 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
         if def.whole && (value.fract() != 0.0 || value < 0.0) {
             return Err(invalid(
                 &format!("limits.{}", def.key),
-                format!("must be a whole number of at least 0, got {value}"),
+                format!(
+                    "must be a whole number of at least 0, got {}",
+                    numeric::input(value)
+                ),
             ));
         }
         entries.push(Limit { def, value });
@@ -327,7 +376,10 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     }
     let mut scenes: Vec<Scene> = Vec::new();
     for (i, s) in raw.scenes.into_iter().enumerate() {
-        let s = scene(i, s, design.rollers)?;
+        // The cap on rollers × steps holds for all scenes together: they are computed, and
+        // their results held, at once.
+        let used = scenes.iter().map(|s| s.crank_rad.len()).sum::<usize>() * design.rollers;
+        let s = scene(i, s, design.rollers, used as i64)?;
         if scenes.iter().any(|other| other.name == s.name) {
             return Err(invalid(
                 &format!("scenes[{i}].name"),
@@ -375,6 +427,12 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         }
         golden.push(g);
     }
+    let golden_root = match raw.golden_root.as_deref() {
+        Some(root) if root.trim().is_empty() => {
+            return Err(invalid("golden_root", "must not be empty".into()))
+        }
+        root => root.map(|r| resolve(path, r)),
+    };
     let accuracy = raw
         .accuracy
         .map(|a| accuracy_section(a, &scenes, &design))
@@ -400,6 +458,7 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         scenes,
         limits,
         golden,
+        golden_root,
         studies,
         accuracy,
     })
@@ -519,7 +578,7 @@ fn golden_entry(path: &str, i: usize, raw: RawGolden, scenes: &[Scene]) -> Resul
         if !(v.is_finite() && v >= 0.0) {
             return Err(invalid(
                 &format!("{key}.tolerance.{name}"),
-                format!("must be zero or positive, got {v}"),
+                format!("must be zero or positive, got {}", numeric::input(v)),
             ));
         }
     }
@@ -546,7 +605,11 @@ fn bounds(key: &str, b: [f64; 2]) -> Result<(f64, f64)> {
     if !(lo.is_finite() && hi.is_finite() && lo < hi) {
         return Err(invalid(
             key,
-            format!("bounds must be two finite numbers [lower, upper] with lower < upper, got [{lo}, {hi}]"),
+            format!(
+                "bounds must be two finite numbers [lower, upper] with lower < upper, got [{}, {}]",
+                numeric::input(lo),
+                numeric::input(hi)
+            ),
         ));
     }
     Ok((lo, hi))
@@ -578,7 +641,10 @@ fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
                     if !(w.is_finite() && w > 0.0) {
                         return Err(invalid(
                             key,
-                            format!("the weight of `{name}` must be a positive number, got {w}"),
+                            format!(
+                                "the weight of `{name}` must be a positive number, got {}",
+                                numeric::input(w)
+                            ),
                         ));
                     }
                     Ok((named(&name)?, w))
@@ -586,6 +652,40 @@ fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
                 .collect()
         }
     }
+}
+
+/// Points per variable of a verification grid: 0 (none) or at least 2, with steps^dims at most
+/// `MAX_VERIFY_POINTS`.
+fn verify_grid(key: &str, value: i64, dims: usize) -> Result<usize> {
+    if value == 0 {
+        return Ok(0);
+    }
+    if value < 2 {
+        return Err(invalid(
+            key,
+            format!("must be 0 (no verification) or at least 2, got {value}"),
+        ));
+    }
+    let steps = value as usize;
+    let points = u32::try_from(dims)
+        .ok()
+        .and_then(|d| steps.checked_pow(d))
+        .unwrap_or(usize::MAX);
+    if points > MAX_VERIFY_POINTS {
+        return Err(invalid(
+            key,
+            format!(
+                "{steps} points per variable make {} grid points over {dims} variables; at most \
+                 {MAX_VERIFY_POINTS} (the cap on the verification grid), or 0 for none",
+                if points == usize::MAX {
+                    "too many".to_string()
+                } else {
+                    points.to_string()
+                }
+            ),
+        ));
+    }
+    Ok(steps)
 }
 
 fn study(
@@ -667,6 +767,7 @@ fn study(
             ));
         }
     }
+    let dims = variables.len();
     let c = &raw.constraints;
     let tip_clearance_mm = c
         .tip_clearance_mm
@@ -675,6 +776,10 @@ fn study(
     let min_clearance_mm = c
         .min_clearance_mm
         .map(|x| finite(&format!("{key}.constraints.min_clearance_mm"), x))
+        .transpose()?;
+    let max_lost_motion_arcsec = c
+        .max_lost_motion_arcsec
+        .map(|x| positive(&format!("{key}.constraints.max_lost_motion_arcsec"), x))
         .transpose()?;
     let mut references = Vec::new();
     for (j, r) in raw.references.into_iter().enumerate() {
@@ -696,20 +801,39 @@ fn study(
         start,
         tip_clearance_mm,
         min_clearance_mm,
+        max_lost_motion_arcsec,
         references,
         optimum_max_objective: raw
             .optimum_max_objective
             .map(|x| finite(&format!("{key}.optimum_max_objective"), x))
             .transpose()?,
-        global_samples: count(
+        global_samples: count_capped(
             &format!("{key}.global_samples"),
-            raw.global_samples.unwrap_or(64),
+            raw.global_samples
+                .unwrap_or(default_global_samples(dims) as i64),
             1,
+            MAX_GLOBAL_SAMPLES,
+            "the length of the global stage's Sobol sequence",
         )?,
-        local_evaluations: count(
+        boundary_samples: count_capped(
+            &format!("{key}.boundary_samples"),
+            raw.boundary_samples
+                .unwrap_or(default_boundary_samples(dims) as i64),
+            1,
+            MAX_GLOBAL_SAMPLES,
+            "the length of the global stage's Sobol sequence",
+        )?,
+        local_evaluations: count_capped(
             &format!("{key}.local_evaluations"),
             raw.local_evaluations.unwrap_or(200),
             10,
+            MAX_LOCAL_EVALUATIONS,
+            "the cap on one local run",
+        )?,
+        verify_grid: verify_grid(
+            &format!("{key}.verify_grid"),
+            raw.verify_grid.unwrap_or(default_verify_grid(dims) as i64),
+            dims,
         )?,
     })
 }

@@ -2,16 +2,15 @@
 //! port of NLopt's) in normalised coordinates z ∈ [0, 1]^n, with explicit stop tolerances.
 //!
 //! The objective (max − min of a sampled curve) is non-smooth; COBYLA needs no gradients and
-//! handles the constraints (tip clearance band, whole-mesh clearance) as g(z) ≥ 0. Objective
-//! and constraints at one point share one evaluation through a cache.
+//! handles the constraints (tip clearance band, whole-mesh clearance, lost motion) as
+//! g(z) ≥ 0, each relative to its bound so that constraints of different units weigh alike.
+//! Objective and constraints at one point share one evaluation through a cache.
 
-use super::global::scale;
 use super::problem::{Evaluation, Problem};
+use crate::engine::progress::Progress;
 use cobyla::{minimize, Func, RhoBeg, StopTols, SuccessStatus};
 use std::cell::RefCell;
 
-/// Initial trust-region radius: a tenth of each variable's range.
-pub const RHO_BEGIN: f64 = 0.1;
 /// Stop when a step changes every normalised variable by less than this (1e-6 of the range:
 /// 0.5 nm on the paper's 0.5 mm box, far below grinding accuracy).
 pub const X_TOL: f64 = 1e-6;
@@ -20,41 +19,82 @@ pub const F_TOL_REL: f64 = 1e-9;
 /// Objective returned for a candidate that cannot be evaluated.
 const PENALTY: f64 = 1e9;
 
-/// One local run.
-#[derive(Debug, Clone)]
-pub struct LocalRun {
-    pub start: Evaluation,
-    pub best: Evaluation,
-    /// Every point evaluated, in order.
-    pub path: Vec<Evaluation>,
-    pub stop_reason: String,
+/// Why a local run stopped (after argmin's termination status): the one place a stop is named.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// A step moved every normalised variable by less than `X_TOL`.
+    StepBelowTolerance,
+    /// The objective changed by less than `F_TOL_REL`, relatively.
+    ObjectiveChangeBelowTolerance,
+    /// The run used its evaluation budget (`local_evaluations`).
+    BudgetUsedUp,
+    /// COBYLA ended on a status of its own (success without a tolerance met).
+    Ended,
+    /// COBYLA gave up: round-off limited its progress.
+    RoundoffLimited,
+    /// COBYLA failed (invalid arguments, out of memory, an unexpected error).
+    Failed,
 }
 
-fn reason(status: Result<SuccessStatus, cobyla::FailStatus>) -> String {
-    match status {
-        Ok(SuccessStatus::XtolReached) => "converged: step below the variable tolerance".into(),
-        Ok(SuccessStatus::FtolReached) => "converged: objective change below the tolerance".into(),
-        Ok(SuccessStatus::MaxEvalReached) => "stopped: evaluation budget used up".into(),
-        Ok(other) => format!("stopped: {other:?}"),
-        Err(fail) => format!("COBYLA failed: {fail:?}"),
+impl StopReason {
+    fn of(status: Result<SuccessStatus, cobyla::FailStatus>) -> Self {
+        use cobyla::FailStatus;
+        match status {
+            Ok(SuccessStatus::XtolReached) => StopReason::StepBelowTolerance,
+            Ok(SuccessStatus::FtolReached) => StopReason::ObjectiveChangeBelowTolerance,
+            Ok(SuccessStatus::MaxEvalReached) => StopReason::BudgetUsedUp,
+            Ok(_) => StopReason::Ended,
+            Err(FailStatus::RoundoffLimited) => StopReason::RoundoffLimited,
+            Err(_) => StopReason::Failed,
+        }
     }
 }
 
-/// Run COBYLA from `start`.
-pub fn run(problem: &Problem, start: &Evaluation, max_evaluations: usize) -> LocalRun {
-    let vars = &problem.study.variables;
-    let z0: Vec<f64> = problem
-        .variables_of(&start.modification)
-        .iter()
-        .zip(vars)
-        .map(|(x, v)| (x - v.lower) / (v.upper - v.lower))
-        .collect();
+impl std::fmt::Display for StopReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            StopReason::StepBelowTolerance => "converged: step below the variable tolerance",
+            StopReason::ObjectiveChangeBelowTolerance => {
+                "converged: objective change below the tolerance"
+            }
+            StopReason::BudgetUsedUp => "stopped: evaluation budget used up",
+            StopReason::Ended => "stopped: COBYLA ended without a tolerance met",
+            StopReason::RoundoffLimited => "stopped: progress limited by round-off",
+            StopReason::Failed => "COBYLA failed",
+        })
+    }
+}
+
+/// One local run.
+#[derive(Debug, Clone)]
+pub struct LocalRun {
+    /// Where it started.
+    pub start: Evaluation,
+    /// The best point it evaluated (its start when it found nothing better).
+    pub best: Evaluation,
+    /// Every point evaluated, in order.
+    pub path: Vec<Evaluation>,
+    pub stop: StopReason,
+}
+
+/// Run COBYLA from `start`, with initial steps of `rho_begin` of each variable's range, telling
+/// `progress` of every evaluation.
+pub fn run(
+    problem: &Problem,
+    start: &Evaluation,
+    rho_begin: f64,
+    max_evaluations: usize,
+    progress: &dyn Progress,
+) -> LocalRun {
+    let dims = problem.study.variables.len();
+    let z0: Vec<f64> = problem.unit_of(&start.modification);
     let path: RefCell<Vec<Evaluation>> = RefCell::new(Vec::new());
     let eval = |z: &[f64]| -> Evaluation {
-        let m = problem.modification_at(&scale(problem, z));
+        let m = problem.modification_at_unit(z);
         if let Some(e) = path.borrow().iter().rev().find(|e| e.modification == m) {
             return e.clone();
         }
+        progress.advance(1);
         let e = problem.evaluate(&m);
         path.borrow_mut().push(e.clone());
         e
@@ -73,15 +113,15 @@ pub fn run(problem: &Problem, start: &Evaluation, max_evaluations: usize) -> Loc
             let eval = &eval;
             Box::new(move |z: &[f64], _: &mut ()| {
                 let e = eval(z);
-                e.margins.get(k).map_or(-PENALTY, |m| m.margin)
+                e.margins.get(k).map_or(-PENALTY, |m| m.relative())
             }) as Box<dyn Func<()> + '_>
         })
         .collect();
     let cons: Vec<&dyn Func<()>> = constraints.iter().map(|c| c.as_ref()).collect();
-    let bounds = vec![(0.0, 1.0); vars.len()];
+    let bounds = vec![(0.0, 1.0); dims];
     let stop = StopTols {
         ftol_rel: F_TOL_REL,
-        xtol_abs: vec![X_TOL; vars.len()],
+        xtol_abs: vec![X_TOL; dims],
         ..StopTols::default()
     };
     let status = minimize(
@@ -91,23 +131,19 @@ pub fn run(problem: &Problem, start: &Evaluation, max_evaluations: usize) -> Loc
         &cons,
         (),
         max_evaluations,
-        RhoBeg::All(RHO_BEGIN),
+        RhoBeg::All(rho_begin),
         Some(stop),
     );
     drop(cons);
     drop(constraints);
     let path = path.take();
-    let best = path.iter().fold(start.clone(), |best, e| {
-        if e.better_than(&best) {
-            e.clone()
-        } else {
-            best
-        }
-    });
+    let best = super::problem::best(std::iter::once(start).chain(&path))
+        .cloned()
+        .unwrap_or_else(|| start.clone());
     LocalRun {
         start: start.clone(),
         best,
         path,
-        stop_reason: reason(status.map(|s| s.0).map_err(|f| f.0)),
+        stop: StopReason::of(status.map(|s| s.0).map_err(|f| f.0)),
     }
 }

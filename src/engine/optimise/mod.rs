@@ -1,129 +1,268 @@
-//! Optimisation of the tooth-profile modification (paper §4), done more carefully than a single
-//! local search: the objectives are max − min of sampled curves, non-smooth with long flat
-//! valleys, so a deterministic global stage (Halton sample of the box, in parallel) seeds
-//! several local COBYLA runs (also in parallel), and the reported optimum is the best feasible
-//! point evaluated anywhere, with every constraint re-checked on the exact geometry.
+//! Optimisation of the tooth-profile modification (paper §4), done as a global search: the
+//! objectives are max − min of sampled curves, non-smooth, with many narrow valleys (along
+//! ΔRrp − ΔRp ≈ const near the tip-clearance bound on the paper's design), where a plain local
+//! method stops in the first valley it meets. So:
+//!
+//! 1. a dense, deterministic space-filling sample of the box (`global`, `global_samples`
+//!    points, in parallel; infeasible points are screened out before their loaded sweep);
+//! 2. COBYLA runs (`local`, in parallel) from the start and from the samples that are the best
+//!    of their neighbourhood (`seeds`), each in its own valley, with initial steps of the
+//!    sample's spacing;
+//! 3. a verification grid (`verify`, `verify_grid` points per variable): when a grid point
+//!    beats the search's optimum, local runs refine from there; the result says by how much
+//!    the best grid point is above the final optimum.
+//!
+//! The optimum is the best feasible point evaluated anywhere, with every constraint checked on
+//! the exact geometry. Everything is collected in a fixed order, so the optimum is the same bit
+//! for bit whatever the number of threads.
 
 pub mod global;
 pub mod local;
 pub mod problem;
+pub mod seeds;
+pub mod verify;
 pub mod write;
 
+use crate::engine::progress::{Progress, Silent};
 use crate::model::Study;
 use crate::spec::Spec;
-use local::LocalRun;
-use problem::{Evaluation, Problem};
+use local::{LocalRun, StopReason};
+use problem::{best, Evaluation, Problem};
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
+use verify::Verification;
 
-/// How many of the best feasible global samples seed a local run (besides the start).
-pub const LOCAL_SEEDS: usize = 3;
-
-/// The outcome of one study.
-#[derive(Debug, Clone)]
-pub struct StudyResult {
-    pub name: String,
-    pub start: Evaluation,
-    pub references: Vec<(String, Evaluation)>,
-    pub optimum: Evaluation,
-    pub global: Vec<Evaluation>,
-    pub local_runs: Vec<LocalRun>,
-    /// Index into `local_runs` of the run that found the optimum, if a local run did.
-    pub winner: Option<usize>,
-    pub evaluations: usize,
-    pub elapsed: Duration,
-    pub stop_reason: String,
+/// Where the optimum was found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Found {
+    /// The study's start is the best point evaluated.
+    Start,
+    /// A point of the global sample (index into `StudyResult::global`), better than every
+    /// local run.
+    GlobalSample(usize),
+    /// A local run of the search (index into `StudyResult::local_runs`) and why it stopped.
+    LocalRun(usize, StopReason),
+    /// A point of the verification grid, better than the search and its refinements.
+    GridPoint,
+    /// A local run from a grid point that beat the search (index into
+    /// `Verification::refinements`) and why it stopped.
+    Refinement(usize, StopReason),
 }
 
-impl StudyResult {
-    /// How the search went: evaluations, time and why it stopped.
-    pub fn outcome(&self) -> String {
-        format!(
-            "{} evaluations ({} global, {} local runs) in {:.2} s; {}",
-            self.evaluations,
-            self.global.len(),
-            self.local_runs.len(),
-            self.elapsed.as_secs_f64(),
-            self.stop_reason
-        )
+impl std::fmt::Display for Found {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Found::Start => write!(f, "the start is the best point evaluated"),
+            Found::GlobalSample(i) => write!(
+                f,
+                "the best point is global sample {}; every local run ended higher",
+                i + 1
+            ),
+            Found::LocalRun(k, stop) => write!(f, "found by local run {} ({stop})", k + 1),
+            Found::GridPoint => write!(
+                f,
+                "the best point is a point of the verification grid; its refinements ended higher"
+            ),
+            Found::Refinement(k, stop) => write!(
+                f,
+                "found by refinement {} from the verification grid ({stop})",
+                k + 1
+            ),
+        }
     }
 }
 
-fn best<'a>(candidates: impl IntoIterator<Item = &'a Evaluation>) -> Option<&'a Evaluation> {
-    candidates
-        .into_iter()
-        .fold(None, |best: Option<&Evaluation>, e| match best {
-            Some(b) if !e.better_than(b) => Some(b),
-            _ => Some(e),
-        })
+/// The outcome of one study. Every evaluation keeps its modification, objective terms and
+/// constraint margins, so the result can be written out (JSON) as it is.
+#[derive(Debug, Clone)]
+pub struct StudyResult {
+    /// The study's name.
+    pub name: String,
+    /// The study's start, with its min clearance and lost motion.
+    pub start: Evaluation,
+    /// Each reference (label, evaluation), with its min clearance and lost motion.
+    pub references: Vec<(String, Evaluation)>,
+    /// The best feasible point evaluated anywhere (the least infeasible one when none is
+    /// feasible), with its min clearance and lost motion.
+    pub optimum: Evaluation,
+    /// Where the optimum was found.
+    pub found: Found,
+    /// The global sample, in sample order (infeasible points carry no objective).
+    pub global: Vec<Evaluation>,
+    /// The local runs of the search: from the start, then from the seeds, best seed first.
+    pub local_runs: Vec<LocalRun>,
+    /// The verification grid and its refinements (None when `verify_grid` is 0).
+    pub verification: Option<Verification>,
+    /// Every evaluation of the study (start, references, global, local, verification).
+    pub evaluations: usize,
+    /// Wall-clock time of the study.
+    pub elapsed: Duration,
 }
 
-/// Seeds of the local stage: the start, then the best distinct feasible global samples.
-fn seeds(start: &Evaluation, global: &[Evaluation]) -> Vec<Evaluation> {
-    let mut ranked: Vec<&Evaluation> = global.iter().filter(|e| e.feasible()).collect();
-    ranked.sort_by(|a, b| a.objective.total_cmp(&b.objective));
-    let mut out = vec![start.clone()];
-    out.extend(ranked.into_iter().take(LOCAL_SEEDS).cloned());
-    out
+impl StudyResult {
+    /// How the search went: evaluations, time and where the optimum was found.
+    pub fn outcome(&self) -> String {
+        format!(
+            "{} evaluations ({} global, {} local run{}{}) in {:.2} s; {}",
+            self.evaluations,
+            self.global.len(),
+            self.local_runs.len(),
+            if self.local_runs.len() == 1 { "" } else { "s" },
+            self.verification
+                .as_ref()
+                .map_or(String::new(), |v| format!(
+                    ", {} grid points{}",
+                    v.points,
+                    match v.refinements.len() {
+                        0 => String::new(),
+                        n => format!(", {n} refinements"),
+                    }
+                )),
+            self.elapsed.as_secs_f64(),
+            self.found
+        )
+    }
+
+    /// Index of the local run of the search that found the optimum, if one did.
+    pub fn winner(&self) -> Option<usize> {
+        match self.found {
+            Found::LocalRun(k, _) => Some(k),
+            _ => None,
+        }
+    }
 }
 
-/// Run one study: global sample, local runs, best feasible point.
+/// Most evaluations a study can take (for a progress bar): the start and references, the
+/// global sample, every local run at its budget, the verification grid and as many
+/// refinements as local seeds. Local runs often stop early.
+pub fn most_evaluations(study: &Study) -> usize {
+    let dims = study.variables.len() as u32;
+    let grid = if study.verify_grid >= 2 {
+        study.verify_grid.pow(dims)
+    } else {
+        0
+    };
+    let runs = 1 + 2 * seeds::LOCAL_SEEDS;
+    1 + study.references.len() + global::points(study).len() + grid + runs * study.local_evaluations
+}
+
+/// Run one study: global sample, local runs, verification grid, best feasible point.
 pub fn run_study(spec: &Spec, study: &Study) -> StudyResult {
-    run_study_with(spec, study, None)
+    run_study_with(spec, study, &Silent)
 }
 
-/// `run_study`, counting evaluations on a progress bar.
-pub fn run_study_with(
-    spec: &Spec,
-    study: &Study,
-    progress: Option<&indicatif::ProgressBar>,
-) -> StudyResult {
+/// `run_study`, telling `progress` of every evaluation.
+pub fn run_study_with(spec: &Spec, study: &Study, progress: &dyn Progress) -> StudyResult {
     let clock = Instant::now();
-    let problem = Problem::new(spec, study).with_progress(progress);
+    let problem = Problem::new(spec, study);
+    let dims = study.variables.len();
+    progress.advance(1 + study.references.len() as u64);
     let start = problem.evaluate(&study.start);
     let references: Vec<(String, Evaluation)> = study
         .references
         .iter()
         .map(|(label, m)| (label.clone(), problem.evaluate(m)))
         .collect();
-    let global = global::sample(&problem);
-    let local_runs: Vec<LocalRun> = seeds(&start, &global)
-        .par_iter()
-        .map(|s| local::run(&problem, s, study.local_evaluations))
+    let zs = global::points(study);
+    let global = global::sample(&problem, &zs, progress);
+    let h = global::spacing(study);
+    let feasible: Vec<usize> = (0..global.len())
+        .filter(|&k| global[k].feasible())
         .collect();
-    let all = std::iter::once(&start)
-        .chain(&global)
-        .chain(local_runs.iter().flat_map(|r| &r.path));
-    let optimum = best(all).cloned().unwrap_or_else(|| start.clone());
-    let winner = local_runs.iter().position(|r| r.path.contains(&optimum));
-    let stop_reason = match winner {
-        Some(k) => format!("local run {} {}", k + 1, local_runs[k].stop_reason),
-        None => "the best point came from the global sample; every local run ended higher".into(),
-    };
+    let mut starts = vec![start.clone()];
+    starts.extend(
+        seeds::local_minima(&zs, &global, &feasible, seeds::radius(h, dims))
+            .into_iter()
+            .map(|k| global[k].clone()),
+    );
+    let local_runs: Vec<LocalRun> = starts
+        .par_iter()
+        .map(|s| local::run(&problem, s, h, study.local_evaluations, progress))
+        .collect();
+    let searched = best(
+        std::iter::once(&start)
+            .chain(&global)
+            .chain(local_runs.iter().map(|r| &r.best)),
+    )
+    .cloned()
+    .unwrap_or_else(|| start.clone());
+    let mut verification =
+        (study.verify_grid >= 2).then(|| verify::run(&problem, &searched, progress));
+    let refined = verification
+        .iter()
+        .flat_map(|v| v.best.iter().chain(v.refinements.iter().map(|r| &r.best)));
+    let optimum = best(std::iter::once(&searched).chain(refined))
+        .cloned()
+        .unwrap_or(searched);
+    let found = found(
+        &optimum,
+        &start,
+        &global,
+        &local_runs,
+        verification.as_ref(),
+    );
+    if let Some(v) = verification.as_mut() {
+        v.margin = match (&v.best, optimum.feasible()) {
+            (Some(b), true) => Some(b.objective - optimum.objective),
+            _ => None,
+        };
+    }
+    let evaluations = 1
+        + references.len()
+        + global.len()
+        + local_runs.iter().map(|r| r.path.len()).sum::<usize>()
+        + verification.as_ref().map_or(0, |v| {
+            v.points + v.refinements.iter().map(|r| r.path.len()).sum::<usize>()
+        });
     StudyResult {
         name: study.name.clone(),
-        evaluations: 1
-            + references.len()
-            + global.len()
-            + local_runs.iter().map(|r| r.path.len()).sum::<usize>(),
-        start,
-        references,
-        optimum,
+        start: problem.describe(start),
+        references: references
+            .into_iter()
+            .map(|(l, e)| (l, problem.describe(e)))
+            .collect(),
+        optimum: problem.describe(optimum),
+        found,
         global,
         local_runs,
-        winner,
+        verification,
+        evaluations,
         elapsed: clock.elapsed(),
-        stop_reason,
+    }
+}
+
+/// Where `optimum` came from; the earliest stage that holds it.
+fn found(
+    optimum: &Evaluation,
+    start: &Evaluation,
+    global: &[Evaluation],
+    local_runs: &[LocalRun],
+    verification: Option<&Verification>,
+) -> Found {
+    let holds = |run: &LocalRun| run.path.contains(optimum);
+    if let Some(k) = local_runs.iter().position(holds) {
+        return Found::LocalRun(k, local_runs[k].stop);
+    }
+    if optimum == start {
+        return Found::Start;
+    }
+    if let Some(i) = global.iter().position(|g| g == optimum) {
+        return Found::GlobalSample(i);
+    }
+    match verification.and_then(|v| v.refinements.iter().position(holds).map(|k| (v, k))) {
+        Some((v, k)) => Found::Refinement(k, v.refinements[k].stop),
+        None => Found::GridPoint,
     }
 }
 
 /// The objective over a `steps` × `steps` grid of the study's first two variables (the others
-/// held at `around`), evaluated in parallel; rows in grid order.
+/// held at `around`), evaluated in parallel, each cell told to `progress`; rows in grid order.
 pub fn map(
     spec: &Spec,
     study: &Study,
     steps: usize,
     around: &crate::model::Modification,
+    progress: &dyn Progress,
 ) -> Vec<Evaluation> {
     let problem = Problem::new(spec, study);
     let vars = &study.variables;
@@ -142,6 +281,7 @@ pub fn map(
             if vars.len() > 1 {
                 vars[1].kind.set(&mut m, axis(1, j));
             }
+            progress.advance(1);
             problem.evaluate(&m)
         })
         .collect()

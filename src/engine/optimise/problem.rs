@@ -2,7 +2,9 @@
 //!
 //! Only the effects the objective needs are simulated (`candidate_plan`): each objective is a
 //! scalar quantity of the registry, read from the candidate's scene run exactly as `check`
-//! reads it. The whole-mesh clearance constraint uses the light `clearance::min_gap`.
+//! reads it. The whole-mesh clearance constraint uses the light `clearance::min_gap`; the lost
+//! motion (a constraint, and a column of the study tables) the full clearance sweep over one
+//! mesh period of the scene's crank angles.
 
 use crate::engine::scene;
 use crate::equilibrium::solve::Settings;
@@ -12,20 +14,51 @@ use crate::model::results::MinClearance;
 use crate::model::{Effect, Modification, Objective, Plan, Scene, Study};
 use crate::spec::rules;
 use crate::spec::Spec;
+use crate::units;
 
-/// A constraint's value, its bound and the margin (≥ 0 satisfied).
+/// A constraint's value, its bound and the margin (≥ 0 satisfied), in the constraint's unit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Margin {
+    /// What is constrained and where the bound comes from, e.g. "min_clearance_mm (whole mesh)".
     pub name: String,
+    /// Unit of `value`, `bound` and `margin` ("mm", "arcsec").
+    pub unit: &'static str,
     pub value: f64,
     pub bound: f64,
+    /// value − bound for a lower bound, bound − value for an upper one.
     pub margin: f64,
 }
 
 impl Margin {
+    fn lower(name: &str, unit: &'static str, value: f64, bound: f64) -> Self {
+        Margin {
+            name: name.into(),
+            unit,
+            value,
+            bound,
+            margin: value - bound,
+        }
+    }
+
+    fn upper(name: &str, unit: &'static str, value: f64, bound: f64) -> Self {
+        Margin {
+            name: name.into(),
+            unit,
+            value,
+            bound,
+            margin: bound - value,
+        }
+    }
+
     /// Satisfied within the checker's comparison tolerance (`check::tolerance`).
     pub fn satisfied(&self) -> bool {
         self.margin >= -crate::engine::check::tolerance(self.bound)
+    }
+
+    /// The margin relative to the bound (a bound of 0 counts as 1 of its unit): constraints of
+    /// different units compare by this.
+    pub fn relative(&self) -> f64 {
+        self.margin / self.bound.abs().max(1.0)
     }
 }
 
@@ -33,29 +66,52 @@ impl Margin {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Evaluation {
     pub modification: Modification,
-    /// Weighted objective; +∞ when the candidate could not be evaluated.
+    /// Weighted objective; +∞ when the candidate could not be evaluated, or was not because a
+    /// constraint already failed (a screened evaluation).
     pub objective: f64,
     /// Each objective term, unweighted, in its own unit.
     pub terms: Vec<(Objective, f64)>,
+    /// Every constraint evaluated, in the order tip band, whole-mesh clearance, lost motion.
     pub margins: Vec<Margin>,
     /// Where the whole-mesh minimum clearance occurs, when computed.
     pub min_clearance: Option<MinClearance>,
+    /// Largest unloaded lost motion over the scene's crank angles, arcsec, when computed.
+    pub lost_motion_arcsec: Option<f64>,
     /// Why the candidate could not be evaluated (a design rule or a solver failure).
     pub failure: Option<String>,
 }
 
 impl Evaluation {
+    fn new(m: &Modification) -> Self {
+        Evaluation {
+            modification: *m,
+            objective: f64::INFINITY,
+            terms: Vec::new(),
+            margins: Vec::new(),
+            min_clearance: None,
+            lost_motion_arcsec: None,
+            failure: None,
+        }
+    }
+
     /// Satisfies every constraint (margins ≥ 0) and was evaluated.
     pub fn feasible(&self) -> bool {
         self.failure.is_none() && self.margins.iter().all(Margin::satisfied)
     }
 
-    /// The smallest margin (negative: the worst violation).
+    /// The smallest margin relative to its bound (negative: the worst violation).
     pub fn worst_margin(&self) -> f64 {
         self.margins
             .iter()
-            .map(|m| m.margin)
+            .map(Margin::relative)
             .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The constraint with the smallest relative margin.
+    pub fn tightest(&self) -> Option<&Margin> {
+        self.margins
+            .iter()
+            .min_by(|a, b| a.relative().total_cmp(&b.relative()))
     }
 
     /// Order for "better": feasible first, then lower objective, then larger margin.
@@ -67,6 +123,16 @@ impl Evaluation {
             (false, false) => self.worst_margin() > other.worst_margin(),
         }
     }
+}
+
+/// The best of `candidates` by `Evaluation::better_than`; the first of equals.
+pub fn best<'a>(candidates: impl IntoIterator<Item = &'a Evaluation>) -> Option<&'a Evaluation> {
+    candidates
+        .into_iter()
+        .fold(None, |best: Option<&Evaluation>, e| match best {
+            Some(b) if !e.better_than(b) => Some(b),
+            _ => Some(e),
+        })
 }
 
 /// The effects a candidate of a study simulates: those of its objectives' quantities, and the
@@ -95,7 +161,6 @@ pub struct Problem<'a> {
     pub scene: &'a Scene,
     /// What a candidate simulates: only the effects its objectives need.
     plan: Plan,
-    progress: Option<&'a indicatif::ProgressBar>,
 }
 
 impl<'a> Problem<'a> {
@@ -106,14 +171,7 @@ impl<'a> Problem<'a> {
             study,
             scene,
             plan: candidate_plan(scene, &study.objective),
-            progress: None,
         }
-    }
-
-    /// Count every evaluation on `progress`.
-    pub fn with_progress(mut self, progress: Option<&'a indicatif::ProgressBar>) -> Self {
-        self.progress = progress;
-        self
     }
 
     /// The modification at variable values x (engine units, in `study.variables` order).
@@ -125,9 +183,31 @@ impl<'a> Problem<'a> {
         m
     }
 
+    /// The modification at a point z of the unit cube of the variables (z = 0 lower bounds,
+    /// 1 upper bounds).
+    pub fn modification_at_unit(&self, z: &[f64]) -> Modification {
+        let x: Vec<f64> = self
+            .study
+            .variables
+            .iter()
+            .zip(z)
+            .map(|(v, &zi)| v.lower + zi * (v.upper - v.lower))
+            .collect();
+        self.modification_at(&x)
+    }
+
     /// Variable values of a modification.
     pub fn variables_of(&self, m: &Modification) -> Vec<f64> {
         self.study.variables.iter().map(|v| v.kind.get(m)).collect()
+    }
+
+    /// A modification's place in the unit cube of the variables.
+    pub fn unit_of(&self, m: &Modification) -> Vec<f64> {
+        self.study
+            .variables
+            .iter()
+            .map(|v| (v.kind.get(m) - v.lower) / (v.upper - v.lower))
+            .collect()
     }
 
     /// Evaluate a candidate: design rules, constraints, then the objective terms.
@@ -136,44 +216,42 @@ impl<'a> Problem<'a> {
     }
 
     /// `evaluate`, but with `screen` a candidate that violates a constraint gets no objective
-    /// (+∞): the global stage only seeds local runs from feasible points, so the loaded sweep
-    /// of an infeasible one would be wasted.
+    /// (+∞) and no further constraints: the sampling stages only need the objective of feasible
+    /// points, so the loaded sweep of an infeasible one would be wasted.
     pub fn evaluate_screened(&self, m: &Modification, screen: bool) -> Evaluation {
-        if let Some(bar) = self.progress {
-            bar.inc(1);
-        }
-        let mut e = Evaluation {
-            modification: *m,
-            objective: f64::INFINITY,
-            terms: Vec::new(),
-            margins: Vec::new(),
-            min_clearance: None,
-            failure: None,
-        };
+        let mut e = Evaluation::new(m);
         if let Some((lo, hi)) = self.study.tip_clearance_mm {
             let tip = m.tip_clearance_mm();
-            e.margins.push(Margin {
-                name: "tip_clearance_mm (lower, paper Eq. 8)".into(),
-                value: tip,
-                bound: lo,
-                margin: tip - lo,
-            });
-            e.margins.push(Margin {
-                name: "tip_clearance_mm (upper, paper Eq. 21)".into(),
-                value: tip,
-                bound: hi,
-                margin: hi - tip,
-            });
+            e.margins.push(Margin::lower(
+                "tip_clearance_mm (lower, paper Eq. 8)",
+                "mm",
+                tip,
+                lo,
+            ));
+            e.margins.push(Margin::upper(
+                "tip_clearance_mm (upper, paper Eq. 21)",
+                "mm",
+                tip,
+                hi,
+            ));
         }
         if let Err(err) = rules::check(&self.spec.design, m) {
             e.failure = Some(err.message);
             return e;
         }
-        if screen && !e.margins.iter().all(Margin::satisfied) {
+        let stop = |e: &Evaluation| screen && !e.margins.iter().all(Margin::satisfied);
+        if stop(&e) {
             return e;
         }
-        match self.terms(m, &mut e, screen) {
-            Ok(terms) if terms.is_empty() => {}
+        let mesh = Mesh::new(&self.spec.design, m);
+        if let Err(msg) = self.constraints(&mesh, &mut e, screen) {
+            e.failure = Some(msg);
+            return e;
+        }
+        if stop(&e) {
+            return e;
+        }
+        match self.terms(m) {
             Ok(terms) => {
                 e.objective = terms
                     .iter()
@@ -187,30 +265,84 @@ impl<'a> Problem<'a> {
         e
     }
 
-    fn terms(
-        &self,
-        m: &Modification,
-        e: &mut Evaluation,
-        screen: bool,
-    ) -> Result<Vec<(Objective, f64)>, String> {
-        let design = &self.spec.design;
-        let crank = &self.scene.crank_rad;
-        let mesh = Mesh::new(design, m);
+    /// The constraints on the exact geometry: whole-mesh clearance, then lost motion (the
+    /// dearer one, skipped when screening and the clearance already fails).
+    fn constraints(&self, mesh: &Mesh, e: &mut Evaluation, screen: bool) -> Result<(), String> {
         if let Some(dt) = self.study.min_clearance_mm {
-            let min = clearance::min_gap(&mesh, crank).map_err(|f| f.to_string())?;
-            e.margins.push(Margin {
-                name: "min_clearance_mm (whole mesh)".into(),
-                value: min.gap_mm,
-                bound: dt,
-                margin: min.gap_mm - dt,
-            });
+            let min = self.min_clearance(mesh)?;
+            e.margins.push(Margin::lower(
+                "min_clearance_mm (whole mesh)",
+                "mm",
+                min.gap_mm,
+                dt,
+            ));
             e.min_clearance = Some(min);
         }
         if screen && !e.margins.iter().all(Margin::satisfied) {
-            return Ok(Vec::new());
+            return Ok(());
         }
-        let r = scene::run_design(design, m, self.scene, &self.plan, &Settings::default())
-            .map_err(|err| err.message)?;
+        if let Some(limit) = self.study.max_lost_motion_arcsec {
+            let lost = self.lost_motion_arcsec(mesh)?;
+            e.margins.push(Margin::upper(
+                "max_lost_motion_arcsec (unloaded)",
+                "arcsec",
+                lost,
+                limit,
+            ));
+            e.lost_motion_arcsec = Some(lost);
+        }
+        Ok(())
+    }
+
+    fn min_clearance(&self, mesh: &Mesh) -> Result<MinClearance, String> {
+        clearance::min_gap(mesh, &self.scene.crank_rad).map_err(|f| f.to_string())
+    }
+
+    /// Largest lost motion (forward plus reverse backlash, unloaded) over the scene's crank
+    /// angles, arcsec. It repeats with the mesh period, so one period of a whole-period sweep
+    /// is enough (`clearance::first_period`).
+    fn lost_motion_arcsec(&self, mesh: &Mesh) -> Result<f64, String> {
+        let crank = clearance::first_period(mesh, &self.scene.crank_rad);
+        let sweep =
+            clearance::sweep(mesh, crank, clearance::Scope::Backlash).map_err(|f| f.to_string())?;
+        let max = sweep
+            .backlash
+            .as_ref()
+            .map_or(&[][..], |b| &b.lost_motion_rad)
+            .iter()
+            .fold(f64::NEG_INFINITY, |a, &b| a.max(b));
+        if max.is_finite() {
+            Ok(units::arcsec(max))
+        } else {
+            Err("the lost motion is unbounded: no roller closes in one direction".into())
+        }
+    }
+
+    /// `e` with the min clearance and the lost motion filled in when its evaluation did not
+    /// need them (the study tables show both for the start, the references and the optimum).
+    pub fn describe(&self, mut e: Evaluation) -> Evaluation {
+        if e.failure.is_some() || (e.min_clearance.is_some() && e.lost_motion_arcsec.is_some()) {
+            return e;
+        }
+        let mesh = Mesh::new(&self.spec.design, &e.modification);
+        if e.min_clearance.is_none() {
+            e.min_clearance = self.min_clearance(&mesh).ok();
+        }
+        if e.lost_motion_arcsec.is_none() {
+            e.lost_motion_arcsec = self.lost_motion_arcsec(&mesh).ok();
+        }
+        e
+    }
+
+    fn terms(&self, m: &Modification) -> Result<Vec<(Objective, f64)>, String> {
+        let r = scene::run_design(
+            &self.spec.design,
+            m,
+            self.scene,
+            &self.plan,
+            &Settings::default(),
+        )
+        .map_err(|err| err.message)?;
         self.study
             .objective
             .iter()

@@ -1,6 +1,8 @@
-//! Progress of long work, as an observer: the engine says how much is done (optimiser
-//! evaluations, ladder rungs, map cells, crank angles of a large scene); whoever listens decides
-//! how to show it (the command line draws a bar on a terminal and nothing otherwise).
+//! Progress of long work, as an observer: the sweeps and the engine say how much is done
+//! (crank angles of a large scene, ladder rungs, map cells, optimiser evaluations); whoever
+//! listens decides how to show it (the command line draws a bar on a terminal and nothing
+//! otherwise). At the bottom of the layers so that the geometry and equilibrium sweeps can
+//! report without knowing who listens.
 
 /// Hears of work as it is done. Called from worker threads.
 pub trait Progress: Sync {

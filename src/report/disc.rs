@@ -1,0 +1,215 @@
+//! The drawings of the disc that `engine::drawing` computed: the whole disc with its holes,
+//! the pins, the rollers and the forces at one crank angle; and a true-scale close-up of the
+//! tightest roller's gap.
+
+use super::svg::frame::{Frame, Halo};
+use super::svg::{document, px, ticks, RED};
+use crate::engine::drawing::{Disc, Part};
+use crate::geometry::Vec2;
+use crate::numeric::number;
+use crate::units;
+use maud::{html, Markup};
+
+/// Colours of the forces on the disc: rollers, output pins, crank bearing.
+const PIN_GREEN: &str = "#2ca02c";
+const BEARING_PURPLE: &str = "#9467bd";
+
+/// The longest force arrow and the shortest drawn, mm.
+const ARROW_MM: f64 = 12.0;
+const SHORTEST_ARROW_MM: f64 = 2.5;
+
+/// An arrow from `from` to `to` (world), labelled at its head.
+fn arrow(f: &Frame, from: Vec2, to: Vec2, color: &str, label: &str) -> Markup {
+    let d = to - from;
+    let len = f.len(d.norm());
+    if len < 1.0 {
+        return html! {};
+    }
+    let u = Vec2::new(d.x, -d.y) / d.norm();
+    let (hx, hy) = f.at(to);
+    let head = 9.0_f64.min(len * 0.5);
+    let (bx, by) = (hx - u.x * head, hy - u.y * head);
+    let side = Vec2::new(-u.y, u.x) * head * 0.45;
+    let (fx, fy) = f.at(from);
+    let anchor = match u.x {
+        x if x < -0.3 => "end",
+        x if x > 0.3 => "start",
+        _ => "middle",
+    };
+    let head_points = super::svg::points([
+        (hx, hy),
+        (bx + side.x, by + side.y),
+        (bx - side.x, by - side.y),
+    ]);
+    html! {
+        line x1=(px(fx)) y1=(px(fy)) x2=(px(bx)) y2=(px(by)) stroke=(color) stroke-width="2.2" {}
+        polygon points=(head_points) fill=(color) {}
+        (Halo { color, size: 11.0, bold: false }.text(hx + u.x * 6.0, hy + u.y * 6.0 + 4.0, anchor,
+            label))
+    }
+}
+
+/// The forces as arrows at one scale (the largest ARROW_MM long, none shorter than
+/// SHORTEST_ARROW_MM so that small forces stay visible). A roller's arrow ends at its contact
+/// (it starts in the roller); a pin's and the bearing's start at their point.
+fn force_arrows(f: &Frame, disc: &Disc) -> Markup {
+    let Some(loaded) = &disc.loaded else {
+        return html! {};
+    };
+    let biggest = loaded
+        .forces
+        .iter()
+        .map(|f| f.force_n.norm())
+        .fold(0.0, f64::max);
+    let k = ARROW_MM / biggest;
+    html! {
+        @for force in &loaded.forces {
+            @let n = force.force_n.norm();
+            @let drawn = force.force_n * k * (SHORTEST_ARROW_MM / (n * k)).max(1.0);
+            @let label = format!("{} N", number(n));
+            @match force.part {
+                Part::Roller(_) => (arrow(f, force.point - drawn, force.point, RED, &label)),
+                Part::Pin(_) => (arrow(f, force.point, force.point + drawn, PIN_GREEN, &label)),
+                Part::Bearing => (arrow(f, force.point, force.point + drawn, BEARING_PURPLE,
+                    &format!("Fb {label}"))),
+            }
+        }
+    }
+}
+
+/// The disc at its pose with the rollers, pins and forces: (SVG, caption).
+pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String) {
+    let outer = disc.roller_circle_radius_mm + disc.roller_radius_mm;
+    let half = outer + 7.0;
+    let (w, h) = (660.0, 700.0);
+    let f = Frame::fit((-half, half, -half, half), (10.0, 50.0, w - 20.0, h - 60.0));
+    let phi = units::deg(disc.crank_rad);
+    let tight = disc.tightest.roller;
+    // The disc with its holes cut out (even-odd fill): the profile, then a circle per hole.
+    let r = f.len(disc.hole_radius_mm);
+    let holes: String = disc
+        .holes
+        .iter()
+        .map(|&c| {
+            let (x, y) = f.at(c);
+            format!(
+                " M{},{} a{r},{r} 0 1,0 {},0 a{r},{r} 0 1,0 {},0 Z",
+                px(x - r),
+                px(y),
+                px(2.0 * r),
+                px(-2.0 * r),
+                r = px(r)
+            )
+        })
+        .collect();
+    let label_at = |c: Vec2| c.normalize() * (outer + 3.5);
+    let (cx, cy) = f.at(disc.centre);
+    let body = html! {
+        text x="14" y="24" font-size="16" font-weight="bold" { "Disc at crank φ = " (format!("{phi:.2}")) "°" }
+        text x="14" y="42" font-size="12" fill="#555" {
+            "fixed frame; disc centre e·(cos φ, sin φ), disc turned by ψ = −φ/nc"
+            @if disc.loaded.is_some() { " + β (loaded)" }
+        }
+        circle cx=(px(f.x(0.0))) cy=(px(f.y(0.0))) r=(px(f.len(disc.roller_circle_radius_mm)))
+            fill="none" stroke="#aaa" stroke-dasharray="4 4" {}
+        path d=(f.path(&disc.profile) + &holes) fill="#cfe0f1" fill-rule="evenodd" stroke="#1f4e79"
+            stroke-width="1.2" {}
+        @for (j, &p) in disc.pins.iter().enumerate() {
+            (f.circle(p, disc.pin_radius_mm, "#6b6b6b", "#333"))
+            text x=(px(f.x(p.x))) y=(px(f.y(p.y) + 4.0)) font-size="11" text-anchor="middle"
+                fill="white" { (j) }
+        }
+        @for (i, &c) in disc.rollers.iter().enumerate() {
+            @let (x, y) = f.at(c);
+            @let (lx, ly) = f.at(label_at(c));
+            circle cx=(px(x)) cy=(px(y)) r=(px(f.len(disc.roller_radius_mm))) fill="#e6e6e6"
+                stroke=(if i == tight { RED } else { "#444" })
+                stroke-width=(if i == tight { "2.5" } else { "1" }) {}
+            text x=(px(lx)) y=(px(ly + 4.5)) font-size="13" text-anchor="middle"
+                fill=(if i == tight { RED } else { "#333" }) { (i) }
+        }
+        line x1=(px(f.x(0.0))) y1=(px(f.y(0.0))) x2=(px(cx)) y2=(px(cy)) stroke=(RED)
+            stroke-width="2" {}
+        circle cx=(px(f.x(0.0))) cy=(px(f.y(0.0))) r="3" fill="#333" {}
+        circle cx=(px(cx)) cy=(px(cy)) r="3" fill=(RED) {}
+        (force_arrows(&f, disc))
+        (f.scale_bar(w - 30.0, h - 20.0, 10.0, "10 mm"))
+    };
+    let m = disc.pins.len();
+    let mut caption = format!(
+        "Blue: the modified disc ({teeth} teeth) with its {m} output-pin holes; grey circles: the \
+         {} rollers (numbered) and the {m} pins; red line: the crank from the input axis to the \
+         disc centre (e = {} mm). Roller {tight}, ringed in red, has the smallest gap at this \
+         angle: {} µm.",
+        disc.rollers.len(),
+        number(eccentricity_mm),
+        number(units::um(disc.tightest.gap_mm))
+    );
+    if let Some(l) = disc.loaded.as_ref().filter(|l| !l.forces.is_empty()) {
+        caption += &format!(
+            " Arrows: forces on the disc in scene `{}` at this angle, to one scale — red \
+             rollers, green output pins, purple the crank bearing (the largest is {ARROW_MM} mm \
+             long; none is drawn shorter than {SHORTEST_ARROW_MM} mm).",
+            l.scene
+        );
+    }
+    (document(w, h, body), caption)
+}
+
+/// The tightest roller against the disc flank, true scale, the gap along the normal:
+/// (SVG, caption). The gap, tens of µm against a disc of tens of mm, cannot be seen in the
+/// whole drawing.
+pub fn close_up(disc: &Disc) -> (String, String) {
+    let c = &disc.tightest;
+    let window = (c.gap_mm.abs() * 14.0).clamp(0.3, 3.0);
+    let (w, h) = (560.0, 560.0);
+    let f = Frame::fit(
+        (-window / 2.0, window / 2.0, -window * 0.4, window * 0.6),
+        (40.0, 60.0, w - 80.0, h - 110.0),
+    );
+    // Disc material: the flank, closed far below the window.
+    let mut wedge = c.flank.clone();
+    wedge.push(Vec2::new(0.0, -50.0));
+    let (x, y0, y1) = (f.x(0.0), f.y(0.0), f.y(c.gap_mm));
+    let (color, what) = if c.gap_mm >= 0.0 {
+        (PIN_GREEN, "gap")
+    } else {
+        (RED, "interference")
+    };
+    let (wx, wy, wl) = (f.x(-window / 2.0), f.y(window * 0.6), f.len(window));
+    let bar = ticks(0.0, window / 3.0, 1, false).step;
+    let tick = |y: f64| {
+        html! { line x1=(px(x - 8.0)) y1=(px(y)) x2=(px(x + 8.0)) y2=(px(y)) stroke=(color) {} }
+    };
+    let body = html! {
+        text x="14" y="24" font-size="16" font-weight="bold" {
+            "Roller " (c.roller) " at crank φ = " (format!("{:.2}", units::deg(disc.crank_rad)))
+            "°, close-up"
+        }
+        text x="14" y="42" font-size="12" fill="#555" {
+            "true scale, " (number(window)) " mm across; disc frame turned so the contact normal "
+            "points up"
+        }
+        clipPath id="win" { rect x=(px(wx)) y=(px(wy)) width=(px(wl)) height=(px(wl)) {} }
+        g clip-path="url(#win)" {
+            path d=(f.path(&wedge)) fill="#cfe0f1" stroke="#1f4e79" stroke-width="1.5" {}
+            circle cx=(px(f.x(c.roller_centre.x))) cy=(px(f.y(c.roller_centre.y)))
+                r=(px(f.len(c.roller_radius_mm))) fill="#e6e6e6" fill-opacity="0.85" stroke="#444"
+                stroke-width="1.5" {}
+        }
+        line x1=(px(x)) y1=(px(y0)) x2=(px(x)) y2=(px(y1)) stroke=(color) stroke-width="2" {}
+        (tick(y0))
+        (tick(y1))
+        (Halo { color, size: 14.0, bold: true }.text(x + 14.0, (y0 + y1) / 2.0 + 5.0, "start",
+            &format!("{what} {} µm", number(units::um(c.gap_mm)))))
+        rect x=(px(wx)) y=(px(wy)) width=(px(wl)) height=(px(wl)) fill="none" stroke="#333" {}
+        (f.scale_bar(f.x(window / 2.0), h - 22.0, bar, &format!("{:.0} µm", units::um(bar))))
+    };
+    let caption = format!(
+        "Roller {} (grey) against the disc flank (blue) at tooth phase {:.3} (0 root, 0.5 tip), \
+         unloaded ideal pose, true scale. The smallest gap over the whole mesh is in the checks \
+         table and the clearance plot.",
+        c.roller, c.tooth_phase
+    );
+    (document(w, h, body), caption)
+}

@@ -1,0 +1,469 @@
+//! The plots of one scene, driven by the quantity registry (`model::quantity`). Each plot
+//! names the registry's curves it draws and is left out when the scene computed none of them;
+//! axis labels, units and legend names are the registry's; the subtitle gives the registry's
+//! scalars of the drawn curves (`Quantity::of`: the smallest gap, the largest force, ... and
+//! where); and every limit of the spec on such a scalar is drawn on its curve: a level as a
+//! dashed red line, a spread (max − min, `quantity::SPREADS`) as a band of the limit's width
+//! centred on the curve. More than `MAX_CURVES` curves of one quantity (one per roller) are
+//! drawn as their envelope over the parts, with a part × crank heat map beside it.
+
+use super::svg::{LinePlot, MapCell, MapPlot, RefLine, Series, PALETTE, RED};
+use super::table::count_or_number;
+use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
+use crate::model::results::SceneResult;
+use crate::numeric::extremes;
+use crate::spec::Spec;
+use crate::units;
+
+/// One figure of the report: its file, title, caption and SVG.
+pub struct Plot {
+    pub file: String,
+    pub title: String,
+    pub caption: String,
+    pub svg: String,
+}
+
+/// More curves than this in one plot become an envelope and a heat map.
+pub const MAX_CURVES: usize = 10;
+
+/// A plot of registry curves over the crank angle.
+struct PlotDef {
+    /// The file name's last part.
+    name: &'static str,
+    title: &'static str,
+    /// The curves drawn, in legend order.
+    curves: &'static [&'static Quantity],
+    /// Keys of the curves drawn dashed.
+    dashed: &'static [&'static str],
+    /// The y axis's name when the plot shows several quantities (their unit is added), else
+    /// the first curve's label.
+    y_label: Option<&'static str>,
+    /// Values in µm rather than the registry's mm (a clearance of micrometres).
+    micrometres: bool,
+    /// Keep y = 0 inside the axis.
+    include_zero: bool,
+    /// A further reference line (the nominal ratio).
+    reference: Option<fn(&Spec) -> RefLine>,
+    caption: &'static str,
+}
+
+const PLOTS: &[PlotDef] = &[
+    PlotDef {
+        name: "clearance",
+        title: "Clearance per roller",
+        curves: &[&q::CLEARANCE],
+        dashed: &[],
+        y_label: None,
+        micrometres: true,
+        include_zero: false,
+        reference: None,
+        caption: "Normal gap of every roller to the modified profile at the ideal disc pose (no \
+                  load); negative is interference.",
+    },
+    PlotDef {
+        name: "backlash",
+        title: "Backlash and lost motion (no load)",
+        curves: &[&q::BACKLASH, &q::BACKLASH_REVERSE, &q::LOST_MOTION],
+        dashed: &[q::BACKLASH_REVERSE.key],
+        y_label: Some("angle"),
+        micrometres: false,
+        include_zero: true,
+        reference: None,
+        caption: "Disc rotation needed to close the first gap in the load direction (backlash), \
+                  in the reverse direction, and their sum (lost motion).",
+    },
+    PlotDef {
+        name: "roller-forces",
+        title: "Roller forces",
+        curves: &[&q::ROLLER_FORCE],
+        dashed: &[],
+        y_label: None,
+        micrometres: false,
+        include_zero: true,
+        reference: None,
+        caption: "Contact force of every roller on the disc.",
+    },
+    PlotDef {
+        name: "pressure",
+        title: "Hertz peak pressure",
+        curves: &[&q::CONTACT_PRESSURE],
+        dashed: &[],
+        y_label: None,
+        micrometres: false,
+        include_zero: true,
+        reference: None,
+        caption: "p0 = sqrt(F·E*/(π·L·R*)) with the profile's local curvature at the contact.",
+    },
+    PlotDef {
+        name: "contacts",
+        title: "Rollers in contact",
+        curves: &[&q::CONTACTS],
+        dashed: &[],
+        y_label: None,
+        micrometres: false,
+        include_zero: true,
+        reference: None,
+        caption: "Rollers carrying load at each crank angle.",
+    },
+    PlotDef {
+        name: "te",
+        title: "Loaded transmission error",
+        curves: &[&q::TE, &q::OUTPUT_LAG],
+        dashed: &[q::OUTPUT_LAG.key],
+        y_label: None,
+        micrometres: false,
+        include_zero: false,
+        reference: None,
+        caption: "Lag of the output behind its ideal angle φ/nc under the scene's torque: disc \
+                  lag β at the rollers plus output lag βo at the pins (dashed).",
+    },
+    PlotDef {
+        name: "ratio",
+        title: "Transmission ratio",
+        curves: &[&q::RATIO],
+        dashed: &[],
+        y_label: None,
+        micrometres: false,
+        include_zero: false,
+        reference: Some(|spec| RefLine {
+            value: spec.design.teeth as f64,
+            label: format!("nominal nc = {}", spec.design.teeth),
+            color: "#7f7f7f".into(),
+        }),
+        caption: "κ = 1/(1/nc − dδ/dφ) by central differences; its harmonic mean over whole \
+                  mesh periods is nc.",
+    },
+    PlotDef {
+        name: "bearing-force",
+        title: "Crank-bearing force",
+        curves: &[&q::BEARING_FORCE],
+        dashed: &[],
+        y_label: None,
+        micrometres: false,
+        include_zero: true,
+        reference: None,
+        caption: "Magnitude of the force of the crank bearing on the disc, −(Σ roller + Σ pin \
+                  forces).",
+    },
+    PlotDef {
+        name: "bearing-angle",
+        title: "Crank-bearing force direction",
+        curves: &[&q::BEARING_ANGLE],
+        dashed: &[],
+        y_label: None,
+        micrometres: false,
+        include_zero: false,
+        reference: None,
+        caption: "Direction of the bearing force, counter-clockwise from the eccentric \
+                  direction (cos φ, sin φ).",
+    },
+    PlotDef {
+        name: "pin-forces",
+        title: "Output-pin forces",
+        curves: &[&q::PIN_FORCE],
+        dashed: &[],
+        y_label: None,
+        micrometres: false,
+        include_zero: true,
+        reference: None,
+        caption: "Force of every output pin on its hole; pins whose moment arm is negative \
+                  carry no load.",
+    },
+];
+
+/// A quantity's values as the plot shows them: (unit, conversion from the registry's unit).
+fn shown(def: &PlotDef, unit: &'static str) -> (&'static str, fn(f64) -> f64) {
+    if def.micrometres && unit == "mm" {
+        ("µm", units::um)
+    } else {
+        (unit, |v| v)
+    }
+}
+
+/// A value with its unit for a person ("−23.41 µm", "2").
+fn with_unit(value: f64, unit: &str) -> String {
+    let v = count_or_number(value, unit);
+    if unit.is_empty() {
+        v
+    } else {
+        format!("{v} {unit}")
+    }
+}
+
+/// Tick step of the crank axis: a sixth of a mesh period over one period, half a period over
+/// a few, automatic beyond.
+fn mesh_step(spec: &Spec, x: &[f64]) -> Option<f64> {
+    let span = (x.last()? - x.first()?) * x.len() as f64 / (x.len() as f64 - 1.0).max(1.0);
+    let period = units::deg(spec.design.mesh_period_rad());
+    if span <= 1.5 * period {
+        Some(period / 6.0)
+    } else if span <= 4.5 * period {
+        Some(period / 2.0)
+    } else {
+        None
+    }
+}
+
+/// The crank axis of a scene, degrees, and its whole range (its end is not a sample: it wraps
+/// to the start).
+fn crank_axis(r: &SceneResult) -> (Vec<f64>, Option<(f64, f64)>) {
+    let x: Vec<f64> = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
+    let range = match x.as_slice() {
+        [a, b, ..] => Some((*a, a + (b - a) * x.len() as f64)),
+        _ => None,
+    };
+    (x, range)
+}
+
+/// Every plot of a scene; files are named `{prefix}-{plot}.svg`.
+pub fn scene_plots(spec: &Spec, r: &SceneResult, prefix: &str) -> Vec<Plot> {
+    PLOTS
+        .iter()
+        .flat_map(|def| plot(spec, r, def, prefix))
+        .collect()
+}
+
+/// One plot (and its heat map when the curves are too many), or nothing when the scene did not
+/// compute its curves.
+fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> {
+    let drawn: Vec<(&Quantity, Curves)> = def
+        .curves
+        .iter()
+        .filter_map(|&q| Some((q, q.curves(r)?)))
+        .collect();
+    let Some((first, _)) = drawn.first() else {
+        return Vec::new();
+    };
+    let (unit, convert) = shown(def, first.unit);
+    let name = def.y_label.unwrap_or(first.label);
+    let y_label = if unit.is_empty() {
+        name.to_string()
+    } else {
+        format!("{name} ({unit})")
+    };
+    let (x, x_range) = crank_axis(r);
+    let mut p = LinePlot::new(def.title, "crank angle φ (deg)", &y_label);
+    p.x_step = mesh_step(spec, &x);
+    p.x_range = x_range;
+    p.include_zero = def.include_zero;
+    let mut notes = vec![def.caption.to_string()];
+    let mut maps = Vec::new();
+    for (k, (q, c)) in drawn.iter().enumerate() {
+        let rows: Vec<Vec<f64>> = c
+            .values
+            .iter()
+            .map(|row| row.iter().map(|&v| convert(v)).collect())
+            .collect();
+        let dashed = def.dashed.contains(&q.key);
+        match q.shape.per() {
+            Some(part) if rows.len() > MAX_CURVES => {
+                p.series.extend(envelope(&x, &rows, part));
+                notes.push(format!(
+                    "The {} {part}s are drawn as their envelope, the largest and smallest value \
+                     over the {part}s at each angle; the heat map shows every {part}.",
+                    rows.len()
+                ));
+                maps.push(heat_map(def, &x, &rows, part, &y_label));
+            }
+            Some(part) => {
+                let (series, note) = per_part(&x, &rows, part);
+                p.series.extend(series);
+                notes.extend(note);
+            }
+            None => p.series.push(Series {
+                dashed,
+                ..Series::new(
+                    q.label,
+                    x.clone(),
+                    rows[0].clone(),
+                    PALETTE[k % PALETTE.len()],
+                )
+            }),
+        }
+    }
+    let keys: Vec<&str> = drawn.iter().map(|(q, _)| q.key).collect();
+    p.subtitle = scalars(r, &keys, def);
+    let limits = limit_lines(spec, &drawn, def);
+    if !limits.is_empty() {
+        notes.push("Dashed red: the spec's limits on these curves.".into());
+    }
+    p.ref_lines = limits;
+    p.ref_lines.extend(def.reference.map(|line| line(spec)));
+    let plot = Plot {
+        file: format!("{prefix}-{}.svg", def.name),
+        title: def.title.to_string(),
+        caption: notes.join(" "),
+        svg: p.to_svg(),
+    };
+    std::iter::once(plot)
+        .chain(maps.into_iter().map(|(title, svg)| Plot {
+            file: format!("{prefix}-{}-map.svg", def.name),
+            caption: format!(
+                "One row per {}, one column per crank angle; the colour is the {}.",
+                drawn[0].0.shape.per().unwrap_or("part"),
+                y_label
+            ),
+            title,
+            svg,
+        }))
+        .collect()
+}
+
+/// One curve per part, named `part i`; parts that are zero everywhere are left out and named
+/// in the note.
+fn per_part(x: &[f64], rows: &[Vec<f64>], part: &str) -> (Vec<Series>, Option<String>) {
+    let mut series = Vec::new();
+    let mut idle = Vec::new();
+    for (i, row) in rows.iter().enumerate() {
+        if row.iter().all(|v| *v == 0.0) {
+            idle.push(i.to_string());
+        } else {
+            let color = PALETTE[i % PALETTE.len()];
+            series.push(Series::new(
+                format!("{part} {i}"),
+                x.to_vec(),
+                row.clone(),
+                color,
+            ));
+        }
+    }
+    let note = (!idle.is_empty()).then(|| {
+        format!(
+            "{}s without load over the sweep (not drawn): {}.",
+            capitalised(part),
+            idle.join(", ")
+        )
+    });
+    (series, note)
+}
+
+fn capitalised(word: &str) -> String {
+    let mut chars = word.chars();
+    chars
+        .next()
+        .map_or(String::new(), |c| c.to_uppercase().chain(chars).collect())
+}
+
+/// The largest and the smallest value over the parts at each angle (the smallest is zero
+/// everywhere for forces when some part is always idle: drawn all the same, so that the plot
+/// says so).
+fn envelope(x: &[f64], rows: &[Vec<f64>], part: &str) -> Vec<Series> {
+    let over = |pick: fn(f64, f64) -> f64, start: f64| -> Vec<f64> {
+        (0..x.len())
+            .map(|k| rows.iter().map(|row| row[k]).fold(start, pick))
+            .collect()
+    };
+    let largest = over(f64::max, f64::NEG_INFINITY);
+    let smallest = over(f64::min, f64::INFINITY);
+    [
+        (format!("largest over the {part}s"), largest, PALETTE[0]),
+        (format!("smallest over the {part}s"), smallest, PALETTE[1]),
+    ]
+    .into_iter()
+    .map(|(name, y, color)| Series::new(name, x.to_vec(), y, color))
+    .collect()
+}
+
+/// A part × crank heat map of per-part curves: (title, SVG).
+fn heat_map(
+    def: &PlotDef,
+    x: &[f64],
+    rows: &[Vec<f64>],
+    part: &str,
+    z_label: &str,
+) -> (String, String) {
+    let cells = rows
+        .iter()
+        .enumerate()
+        .flat_map(|(i, row)| {
+            row.iter().zip(x).map(move |(&z, &x)| MapCell {
+                x,
+                y: i as f64,
+                z,
+                feasible: true,
+            })
+        })
+        .collect();
+    let title = format!("{}: every {part}", def.title);
+    let plot = MapPlot {
+        subtitle: format!("{} {part}s × {} crank angles", rows.len(), x.len()),
+        ..MapPlot::of_cells(&title, "crank angle φ (deg)", part, z_label, cells)
+    };
+    (title, plot.to_svg())
+}
+
+/// The registry's scalars of the drawn curves, with where they occur, for the subtitle.
+fn scalars(r: &SceneResult, keys: &[&str], def: &PlotDef) -> String {
+    QUANTITIES
+        .iter()
+        .filter(|s| s.of.is_some_and(|of| keys.contains(&of)))
+        .filter_map(|s| {
+            let e = s.scalar(r)?;
+            let (unit, convert) = shown(def, s.unit);
+            Some(format!(
+                "{} {}: {}",
+                s.label,
+                with_unit(convert(e.value), unit),
+                e.at
+            ))
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// The spec's limits on scalars of the drawn curves: a level as a line at the limit, a spread
+/// as a band of the limit's width centred on the curve's mid-range.
+fn limit_lines(spec: &Spec, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> Vec<RefLine> {
+    let mut lines = Vec::new();
+    for limit in &spec.limits.entries {
+        let scalar = limit.def.quantity;
+        let Some((_, curves)) = drawn.iter().find(|(c, _)| Some(c.key) == scalar.of) else {
+            continue;
+        };
+        let (unit, convert) = shown(def, scalar.unit);
+        let line = |value: f64, label: String| RefLine {
+            value,
+            label,
+            color: RED.into(),
+        };
+        let shown_limit = with_unit(convert(limit.value), unit);
+        if SPREADS.contains(&scalar) {
+            let values: Vec<f64> = curves.values.concat();
+            let ((lo, _), (hi, _)) = extremes(&values);
+            let (mid, half) = (convert((lo + hi) / 2.0), convert(limit.value) / 2.0);
+            lines.push(line(
+                mid + half,
+                format!("limit: max − min ≤ {shown_limit}"),
+            ));
+            lines.push(line(mid - half, String::new()));
+        } else {
+            lines.push(line(convert(limit.value), format!("limit {shown_limit}")));
+        }
+    }
+    lines
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The envelope of three parts, by hand: the largest and smallest at each angle.
+    #[test]
+    fn the_envelope_is_the_largest_and_smallest_over_the_parts() {
+        let rows = vec![
+            vec![1.0, 5.0, -2.0],
+            vec![3.0, 2.0, 0.0],
+            vec![0.0, 4.0, -1.0],
+        ];
+        let e = envelope(&[0.0, 1.0, 2.0], &rows, "roller");
+        assert_eq!(e.len(), 2);
+        assert_eq!(
+            (e[0].name.as_str(), &e[0].y[..]),
+            ("largest over the rollers", &[3.0, 5.0, 0.0][..])
+        );
+        assert_eq!(
+            (e[1].name.as_str(), &e[1].y[..]),
+            ("smallest over the rollers", &[0.0, 2.0, -2.0][..])
+        );
+    }
+}

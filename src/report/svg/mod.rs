@@ -1,0 +1,63 @@
+//! A small SVG plotting kit for the design-review report, written with maud (text escaped by
+//! construction): nice tick values (`ticks`), the frame every plot shares and the mapping of
+//! drawings in mm to pixels (`frame`), line plots (`line`), and maps over a grid with a colour
+//! bar (`map`: objective maps, roller × crank heat maps). Plain SVG 1.1 text, no JavaScript.
+
+pub mod frame;
+pub mod line;
+pub mod map;
+pub mod ticks;
+
+pub use frame::Frame;
+pub use line::{LinePlot, RefLine, Series};
+pub use map::{MapCell, MapPlot, Marker, Shape, LOG_SPAN};
+pub use ticks::{ticks, Ticks};
+
+use maud::{html, Markup};
+
+/// Ten colours that stay apart (the "tab10" set).
+pub const PALETTE: [&str; 10] = [
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+    "#bcbd22", "#17becf",
+];
+
+/// Red of limits, the smallest gap and roller forces.
+pub const RED: &str = "#d62728";
+
+pub const FONT: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
+
+/// A pixel coordinate with two decimals (enough for any screen, keeps files small).
+pub fn px(x: f64) -> String {
+    let s = format!("{x:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
+
+/// Rough width of text in pixels (for layout only).
+pub fn text_width(text: &str, size: f64) -> f64 {
+    text.chars().count() as f64 * size * 0.58
+}
+
+/// "x1,y1 x2,y2 ..." of pixel points, for `points` and paths.
+pub fn points(pts: impl IntoIterator<Item = (f64, f64)>) -> String {
+    pts.into_iter()
+        .map(|(x, y)| format!("{},{}", px(x), px(y)))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// A standalone SVG document, w × h pixels on a white background, around `body`.
+pub fn document(w: f64, h: f64, body: Markup) -> String {
+    let doc = html! {
+        svg xmlns="http://www.w3.org/2000/svg" width=(px(w)) height=(px(h))
+            viewBox=(format!("0 0 {} {}", px(w), px(h))) font-family=(FONT) fill="#222" {
+            rect width=(px(w)) height=(px(h)) fill="white" {}
+            (body)
+        }
+    };
+    doc.into_string() + "\n"
+}

@@ -1,0 +1,61 @@
+//! Progress on a terminal: a bar on stderr while stdout is a terminal, nothing otherwise (a
+//! pipe, a file, a CI log), so that what a script reads from stdout never carries it and a
+//! log stays clean. The engine and the sweeps report through `crate::progress::Progress`.
+
+use crate::progress::Progress;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
+
+/// Work below this many units is not worth a bar (it ends before the first redraw).
+pub const WORTH_SHOWING: u64 = 20_000;
+
+/// A progress bar of `total` units described by `what`.
+pub struct Bar {
+    bar: ProgressBar,
+}
+
+impl Bar {
+    /// Drawn only when stdout is a terminal and `total` is at least `min_total`.
+    pub fn new(what: &str, unit: &str, total: u64, min_total: u64) -> Bar {
+        let shown = std::io::stdout().is_terminal() && total >= min_total;
+        let bar = ProgressBar::with_draw_target(
+            Some(total),
+            if shown {
+                ProgressDrawTarget::stderr()
+            } else {
+                ProgressDrawTarget::hidden()
+            },
+        );
+        let template =
+            format!("{{msg}} [{{bar:30}}] {{human_pos}}/{{human_len}} {unit}, {{eta}} left");
+        bar.set_style(
+            ProgressStyle::with_template(&template)
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        bar.set_message(what.to_string());
+        Bar { bar }
+    }
+}
+
+impl Progress for Bar {
+    fn start(&self, what: &str, total: u64) {
+        self.bar.set_message(what.to_string());
+        self.bar.set_length(total);
+        self.bar.set_position(0);
+    }
+
+    fn advance(&self, n: u64) {
+        self.bar.inc(n);
+    }
+
+    fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+impl Drop for Bar {
+    fn drop(&mut self) {
+        self.bar.finish_and_clear();
+    }
+}

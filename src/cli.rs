@@ -104,6 +104,18 @@ pub enum Command {
         /// The YAML spec whose `golden` files are rewritten.
         spec: String,
     },
+    /// Identify the disc of the spec's `measured_profile` points: centre, orientation, the
+    /// fitted modifications and the form error, with uncertainties.
+    Fit {
+        /// The YAML spec with the `measured_profile` section whose points are identified.
+        spec: String,
+        /// Write the spec with the identified modification filled in.
+        #[arg(long)]
+        write: Option<String>,
+        /// Write the form-error curve (t_deg, w_um) as CSV.
+        #[arg(long)]
+        form_csv: Option<String>,
+    },
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
         /// The YAML spec whose design and modification give the profile.
@@ -254,6 +266,11 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             dxf,
             tolerance_um,
         } => run_profile(&spec, csv.as_deref(), dxf.as_deref(), tolerance_um, out),
+        Command::Fit {
+            spec,
+            write,
+            form_csv,
+        } => run_fit(&spec, write.as_deref(), form_csv.as_deref(), out),
     }
 }
 
@@ -855,4 +872,55 @@ fn run_optimise(
     } else {
         Outcome::ChecksFailed
     })
+}
+
+/// `cycloid fit`: identify the measured disc, print it, and write what was asked.
+fn run_fit(
+    path: &str,
+    write: Option<&str>,
+    form_csv: Option<&str>,
+    out: &mut dyn Write,
+) -> Result<Outcome> {
+    use crate::measure::{fit, points};
+    let spec = spec::load(path)?;
+    check::validate(&spec).map_err(|e| locate(e, &spec))?;
+    let measured = spec.measured.as_ref().ok_or_else(|| {
+        Error::new(
+            crate::ErrorKind::InvalidValue,
+            format!(
+                "{path}: the spec has no `measured_profile:` section; add \
+                 `measured_profile: {{file: points.csv, format: csv, harmonics: 0, fit: \
+                 [shift_mm, equidistant_mm]}}`"
+            ),
+        )
+    })?;
+    let read = points::read(&measured.path, measured.format)?;
+    let request = fit::Request {
+        design: &spec.design,
+        nominal: spec.modification,
+        fit: measured.fit,
+        harmonics: measured.harmonics,
+    };
+    let id = fit::identify(&request, &read).map_err(|mut e| {
+        if e.location.is_none() {
+            e.message = format!("measured profile `{}`: {}", measured.path, e.message);
+        }
+        e
+    })?;
+    print(out, &report::fit::render(&spec, &id))?;
+    if let Some(p) = form_csv {
+        crate::files::write_atomic(
+            std::path::Path::new(p),
+            report::fit::form_csv(&spec, &id).as_bytes(),
+        )?;
+    }
+    if let Some(p) = write {
+        let text = optimise::write::with_modification(p, &spec.source, &id.modification)?;
+        crate::files::write_atomic(std::path::Path::new(p), text.as_bytes())?;
+        print(
+            out,
+            &format!("wrote {p} with the identified modification\n"),
+        )?;
+    }
+    Ok(Outcome::Passed)
 }

@@ -6,7 +6,8 @@
 //! - `model`: the data model (design, scenes and plans, limits, studies, results) and the one
 //!   registry of quantities;
 //! - `spec`: YAML → raw → validated model, with located errors and the design rules;
-//! - `geometry` → `contact` → `equilibrium`: the physics;
+//! - `geometry` → `contact` → `equilibrium`: the physics (`measure`, the identification of a
+//!   measured disc, sits on `geometry`);
 //! - `engine`: runs scenes, checks limits and goldens, optimises, runs the accuracy ladder;
 //! - `report`: the terminal table, JSON, JUnit, the design review, the profile export;
 //! - `cli`: the commands.
@@ -27,6 +28,7 @@ pub mod spec;
 pub mod contact;
 pub mod equilibrium;
 pub mod geometry;
+pub mod measure;
 
 pub mod engine;
 

@@ -11,6 +11,7 @@ const LAYERS: &[&[&str]] = &[
     &["model"],
     &["spec"],
     &["geometry"],
+    &["measure"],
     &["contact"],
     &["equilibrium"],
     &["engine"],

@@ -182,7 +182,8 @@ proptest! {
 
 /// DXF (R12) structure: pairs of (group code, value) lines; a HEADER section with
 /// $INSUNITS = 4 (mm); an ENTITIES section with one POLYLINE on layer PROFILE, flag 70 = 1
-/// (closed), one VERTEX per point with its coordinates, SEQEND; ENDSEC; EOF last.
+/// (closed), one VERTEX per point with its coordinates, SEQEND; one CIRCLE per output-pin hole
+/// on layer HOLE_j; ENDSEC; EOF last.
 #[test]
 fn dxf_is_a_closed_polyline_in_mm_with_every_point() {
     let (spec, profile) = paper_profile();
@@ -239,10 +240,24 @@ fn dxf_is_a_closed_polyline_in_mm_with_every_point() {
         assert!((x - p.point.x).abs() <= 5e-10 && (y - p.point.y).abs() <= 5e-10);
     }
     let tail: Vec<(i32, &str)> = rest[3 + 5 * vertices.len()..].to_vec();
-    assert_eq!(
-        tail,
-        vec![(0, "SEQEND"), (8, "PROFILE"), (0, "ENDSEC"), (0, "EOF")]
-    );
+    assert_eq!(&tail[..2], &[(0, "SEQEND"), (8, "PROFILE")]);
+    // The paper's 6 holes: on the pin circle rw = 18 mm at 60° steps, radius pin + e + clearance.
+    let pins = &spec.design.pins;
+    let circles: Vec<&[(i32, &str)]> = tail[2..].chunks(6).take(pins.count).collect();
+    for (j, c) in circles.iter().enumerate() {
+        assert_eq!(&c[..2], &[(0, "CIRCLE"), (8, format!("HOLE_{j}").as_str())]);
+        let (x, y, r): (f64, f64, f64) = (
+            c[2].1.parse().unwrap(),
+            c[3].1.parse().unwrap(),
+            c[5].1.parse().unwrap(),
+        );
+        let a = (60.0 * j as f64).to_radians();
+        assert!((x - pins.circle_radius_mm * a.cos()).abs() <= 5e-10);
+        assert!((y - pins.circle_radius_mm * a.sin()).abs() <= 5e-10);
+        let radius = pins.pin_radius_mm + spec.design.eccentricity_mm + pins.hole_clearance_mm;
+        assert!((r - radius).abs() <= 5e-10);
+    }
+    assert_eq!(&tail[2 + 6 * pins.count..], &[(0, "ENDSEC"), (0, "EOF")]);
 }
 
 /// CSV: `#` header lines (they state the point count), the column header, one row per point

@@ -323,6 +323,14 @@ impl Profile {
         best.map_err(|failure| ClosestPointFailure { t_start, ..failure })
     }
 
+    /// Foot of `p` (disc frame) by the guarded Newton iteration of `closest_point` from
+    /// `t_start` alone, without its scan for other local minima: the nearest foot when `t_start`
+    /// is the foot of a nearby point (a warm start), at a fraction of the cost.
+    pub fn closest_point_from(&self, p: Vec2, t_start: f64) -> Result<Foot, ClosestPointFailure> {
+        let t0 = t_start.rem_euclid(std::f64::consts::TAU);
+        self.newton(self.unturned(p), t0, t0, PI / self.rollers as f64)
+    }
+
     /// Guarded Newton from `seed` for the foot of `q` (`q` in the unturned frame); the foot must
     /// stay within `reach` of `t0`.
     fn newton(&self, q: Vec2, t0: f64, seed: f64, reach: f64) -> Result<Foot, ClosestPointFailure> {

@@ -49,6 +49,7 @@ pub mod accuracy;
 pub mod design;
 pub mod golden;
 pub mod limits;
+pub mod measured;
 pub mod quantity;
 pub mod results;
 pub mod scene;

@@ -39,7 +39,10 @@ pub fn csv(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
     out
 }
 
-/// DXF (R12) text: one closed POLYLINE on layer PROFILE, units mm ($INSUNITS = 4).
+/// DXF (R12) text: one closed POLYLINE on layer PROFILE, and the output-pin holes as CIRCLE
+/// entities on layers HOLE_0 … HOLE_{M−1} (hole j at angle 2πj/M on the pin circle, its radius
+/// the pin's plus e plus the hole clearance; cut in the same set-up, they fix the rotation
+/// modification), units mm ($INSUNITS = 4).
 pub fn dxf(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
     let mut out = String::new();
     let mut pair = |code: i32, value: &str| out += &format!("{code}\n{value}\n");
@@ -68,7 +71,20 @@ pub fn dxf(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
         pair(20, &format!("{:.9}", p.point.y));
         pair(30, "0.0");
     }
-    for (code, value) in [(0, "SEQEND"), (8, "PROFILE"), (0, "ENDSEC"), (0, "EOF")] {
+    for (code, value) in [(0, "SEQEND"), (8, "PROFILE")] {
+        pair(code, value);
+    }
+    let pins = &spec.design.pins;
+    for j in 0..pins.count {
+        let a = std::f64::consts::TAU * j as f64 / pins.count as f64;
+        pair(0, "CIRCLE");
+        pair(8, &format!("HOLE_{j}"));
+        pair(10, &format!("{:.9}", pins.circle_radius_mm * a.cos()));
+        pair(20, &format!("{:.9}", pins.circle_radius_mm * a.sin()));
+        pair(30, "0.0");
+        pair(40, &format!("{:.9}", spec.design.hole_radius_mm()));
+    }
+    for (code, value) in [(0, "ENDSEC"), (0, "EOF")] {
         pair(code, value);
     }
     out

@@ -2,6 +2,7 @@
 
 pub mod disc;
 pub mod export;
+pub mod fit;
 pub mod html;
 pub mod json;
 pub mod junit;

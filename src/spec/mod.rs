@@ -4,6 +4,7 @@
 //! YAML parser (`parse`); value and design-rule errors locate their key in the text (`locate`).
 
 pub mod locate;
+pub mod measured;
 pub mod parse;
 pub mod raw;
 pub mod rules;
@@ -32,6 +33,8 @@ pub struct Spec {
     pub golden_root: Option<std::path::PathBuf>,
     /// The accuracy ladder the design review shows (`accuracy:`), if asked for.
     pub accuracy: Option<Accuracy>,
+    /// Points measured on the disc (`measured_profile:`), if given.
+    pub measured: Option<crate::model::measured::MeasuredProfile>,
 }
 
 /// `accuracy:` of a spec: which scene's ladder the design review shows, and how.

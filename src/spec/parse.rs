@@ -95,6 +95,7 @@ where
         golden: raw.golden,
         golden_root: raw.golden_root,
         accuracy: raw.accuracy,
+        measured_profile: raw.measured_profile,
     })
 }
 

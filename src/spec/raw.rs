@@ -32,6 +32,24 @@ pub struct RawSpecOf<O> {
     /// The accuracy ladder of one scene, shown in the design review (`check --report`).
     #[serde(default)]
     pub accuracy: Option<RawAccuracy>,
+    /// Points measured on the disc, to identify it (`cycloid fit`).
+    #[serde(default)]
+    pub measured_profile: Option<RawMeasuredProfile>,
+}
+
+/// `measured_profile:`: a points file and what to identify from it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMeasuredProfile {
+    /// Relative to the directory of the spec file.
+    pub file: String,
+    pub format: String,
+    /// Highest harmonic of the form-error series.
+    #[serde(default)]
+    pub harmonics: i64,
+    /// Among shift_mm, equidistant_mm, rotation_deg.
+    #[serde(default)]
+    pub fit: Vec<String>,
 }
 
 pub type RawSpec = RawSpecOf<RawOptimise>;

@@ -444,7 +444,12 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
                 .to_string(),
         ));
     }
+    let measured = raw
+        .measured_profile
+        .map(|m| super::measured::build(path, m))
+        .transpose()?;
     Ok(Spec {
+        measured,
         name: raw.name,
         path: path.to_string(),
         source: text.to_string(),

@@ -1,0 +1,1003 @@
+//! Identification of a measured disc: the centre, orientation, modifications and form error of
+//! the disc that measured points lie on, by Gauss–Newton on their normal distances to the
+//! modified profile (MODEL.md "Measured profiles").
+//!
+//! Model. A point P_m measured in the machine's frame is turned into the disc frame,
+//! Q_m = R(−θ0)·(P_m − c0), and its foot t_m on the roller-centre locus C (of R' = Rp + ΔRp,
+//! turned by Δδ) is found by the guarded closest-point search of `geometry::profile`. Its
+//! residual is the signed normal distance to the profile with form error w,
+//!   d_m = (Q_m − C(t_m))·N(t_m) + r' + w(t_m),   r' = Rrp + ΔRrp,
+//! positive outside the material (Γ = C − (r' + w)·N: w > 0 is material missing, like a
+//! positive ΔRrp). A point on the normal of C at t is at the foot t whatever w is, so d is
+//! exact for points C(t) + s·N(t); for a real point it differs from the distance to the curve
+//! Γ_w by O(d·(w'/|Γ'|)²), below 1e-6 of d for µm form errors.
+//! Points on the bore of hole j: d = |Q − h_j| − (ρ_h + Δρ), h_j = rw·(cos 2πj/M, sin 2πj/M),
+//! ρ_h the design's hole radius and Δρ one common fitted offset.
+//!
+//! Jacobian (the foot is stationary, so moving t does not change d to first order):
+//!   ∂d/∂c0 = −N_machine,  ∂d/∂θ0 = ∂d/∂Δδ = −(C × N),  ∂d/∂ΔRp = −(cos t, sin t)·N,
+//!   ∂d/∂ΔRrp = 1,  ∂d/∂a_k = cos k·t,  ∂d/∂b_k = sin k·t;
+//! for hole points with u the unit vector from h_j: ∂d/∂c0 = −R(θ0)·u, ∂d/∂θ0 = −(Q × u),
+//! ∂d/∂Δρ = −1. The w'(t)·∂t/∂p terms are dropped: they change the convergence rate, not the
+//! solution.
+//!
+//! Well posedness. The form error is w(t) = Σ a_k cos k·t + b_k sin k·t over the orders
+//! 2 ≤ k ≤ `harmonics` that are not multiples of the tooth count nc. The profile repeats after
+//! a tooth pitch, C(t + 2π/nc) = R(2π/nc)·C(t), so the normal displacements of a turn (θ0, Δδ),
+//! of ΔRp and of ΔRrp are functions of period 2π/nc: series in the orders 0, nc, 2nc, … —
+//! leaving those orders out of w leaves the modifications alone to move every tooth alike. A
+//! shift of the centre moves the profile along N·c0, whose series has the orders |1 + m·nc|,
+//! dominated by order 1: leaving order 1 out keeps the centre apart from w. Δδ and θ0 are the
+//! same motion of the profile; only points on the holes (which θ0 turns and Δδ does not) tell
+//! them apart, so `rotation_deg` is fitted only with hole points. What remains correlated
+//! (the centre with the orders nc ± 1 when points cover part of the disc, high orders on
+//! sparse points) shows in the condition number of the column-scaled Jacobian, which is
+//! computed at the solution and a fit above `MAX_CONDITION` is refused.
+//!
+//! Each Gauss–Newton step is the tall least-squares problem min ‖J·δ + d‖ solved by faer's
+//! column-pivoted Householder QR of J with unit column norms; steps are halved until the sum of
+//! squares decreases. Uncertainties: σ̂² = Σd²/(m − n), cov = σ̂²·(JᵀJ)⁻¹ = σ̂²·S⁻¹·P·R⁻¹R⁻ᵀ·Pᵀ·S⁻¹
+//! from the same factorisation (S the column norms, P the pivoting), at the solution.
+
+use super::{Feature, MeasuredPoint};
+use crate::error::{Error, ErrorKind, Result};
+use crate::geometry::profile::{ClosestPointFailure, Foot, Profile};
+use crate::geometry::{cross, rotate, wrap_pi, Vec2};
+use crate::model::measured::Fitted;
+use crate::model::{Design, Modification};
+use faer::linalg::solvers::SolveLstsq;
+use faer::Mat;
+use std::f64::consts::{PI, TAU};
+
+/// Largest condition number of the column-scaled Jacobian a fit accepts. With double precision
+/// (ε ≈ 1e-16) and residuals of ~1 µm, a condition of 1e8 still resolves the unknowns to
+/// ~1e-8 of their scale; beyond it the data cannot tell some unknowns apart.
+pub const MAX_CONDITION: f64 = 1e8;
+
+/// Largest RMS residual of an accepted fit, mm: a ground disc fits within a few µm, and 50 µm
+/// is still far below the tooth depth (2e, millimetres) — points further off are not a disc
+/// of this design, or not aligned to it.
+pub const MAX_RMS_MM: f64 = 0.05;
+
+const MAX_ITERATIONS: usize = 60;
+
+/// Below this RMS change of the residuals per step, mm, the feet of the last parameters start
+/// Newton alone (`Profile::closest_point_from`): a µm-sized move keeps every foot on its flank.
+const WARM_MM: f64 = 1e-2;
+
+/// What to identify: the design, the spec's modification (the start, and the value of what is
+/// not fitted), which modifications to fit and the highest form-error harmonic.
+#[derive(Debug, Clone, Copy)]
+pub struct Request<'a> {
+    pub design: &'a Design,
+    pub nominal: Modification,
+    pub fit: Fitted,
+    pub harmonics: usize,
+}
+
+/// An identified value with its standard uncertainty (same unit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Estimate {
+    pub value: f64,
+    pub sigma: f64,
+}
+
+/// One harmonic of the form error: w(t) ∋ cos_mm·cos(order·t) + sin_mm·sin(order·t), mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Harmonic {
+    pub order: usize,
+    pub cos_mm: Estimate,
+    pub sin_mm: Estimate,
+}
+
+impl Harmonic {
+    /// Amplitude sqrt(a² + b²), mm.
+    pub fn amplitude_mm(&self) -> f64 {
+        self.cos_mm.value.hypot(self.sin_mm.value)
+    }
+}
+
+/// The form error w(t) along the profile normal, mm (positive: material missing).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FormError {
+    pub harmonics: Vec<Harmonic>,
+}
+
+impl FormError {
+    /// The orders of a series up to `harmonics` for a disc of `teeth` teeth: 2..=harmonics
+    /// without the multiples of the tooth count (see the module comment).
+    pub fn orders(harmonics: usize, teeth: usize) -> Vec<usize> {
+        (2..=harmonics).filter(|k| k % teeth != 0).collect()
+    }
+
+    /// w(t), mm.
+    pub fn value_mm(&self, t: f64) -> f64 {
+        self.harmonics
+            .iter()
+            .map(|h| {
+                let (s, c) = (h.order as f64 * t).sin_cos();
+                h.cos_mm.value * c + h.sin_mm.value * s
+            })
+            .sum()
+    }
+}
+
+/// One flank of one tooth, as a gear inspection sheet shows it: the deviation of the points
+/// from the identified modified profile (form error plus residual), its mean line (least
+/// squares, linear in t), the profile form deviation f_f (range about the mean line) and the
+/// slope deviation f_H (rise of the mean line over the measured extent of the flank).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Flank {
+    /// Tooth i spans t ∈ [2πi/nc, 2π(i+1)/nc]: root, tip at its middle, root.
+    pub tooth: usize,
+    /// `a`: root to tip with increasing t; `b`: tip to the next root.
+    pub side: char,
+    pub points: usize,
+    /// None with fewer than 3 points.
+    pub form_mm: Option<f64>,
+    pub slope_mm: Option<f64>,
+}
+
+/// How much of the profile the points cover.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coverage {
+    /// Fraction of the bins of 1/16 tooth pitch in t that hold a point.
+    pub fraction: f64,
+    /// Teeth with at least 3 points on each flank.
+    pub teeth_measured: usize,
+}
+
+/// A profile point after the fit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FittedPoint {
+    pub t: f64,
+    pub residual_mm: f64,
+    pub line: usize,
+}
+
+/// The result of an identification.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Identification {
+    /// Disc centre in the machine frame, mm.
+    pub centre_mm: [Estimate; 2],
+    /// Turn of the disc frame in the machine frame, rad, counter-clockwise.
+    pub orientation_rad: Estimate,
+    /// The identified modification (fitted values, the spec's for the others).
+    pub modification: Modification,
+    pub shift_mm: Option<Estimate>,
+    pub equidistant_mm: Option<Estimate>,
+    pub rotation_rad: Option<Estimate>,
+    /// Common offset of the hole radii from the design's, with hole points.
+    pub hole_radius_offset_mm: Option<Estimate>,
+    pub form: FormError,
+    pub residual_rms_mm: f64,
+    pub residual_max_mm: f64,
+    /// File line of the point with the largest |residual|.
+    pub residual_max_line: usize,
+    /// Condition number of the column-scaled Jacobian at the solution.
+    pub condition: f64,
+    pub coverage: Coverage,
+    pub flanks: Vec<Flank>,
+    pub profile: Vec<FittedPoint>,
+    pub hole_points: usize,
+    pub unknowns: usize,
+    pub iterations: usize,
+}
+
+/// Where each unknown sits in the parameter vector.
+#[derive(Debug, Clone)]
+struct Layout {
+    shift: Option<usize>,
+    equidistant: Option<usize>,
+    rotation: Option<usize>,
+    hole: Option<usize>,
+    /// First column of the series; orders as `FormError::orders`.
+    form: usize,
+    orders: Vec<usize>,
+    len: usize,
+}
+
+impl Layout {
+    fn new(fit: Fitted, holes: bool, orders: Vec<usize>) -> Layout {
+        let mut next = 3;
+        let mut take = |on: bool| {
+            on.then(|| {
+                next += 1;
+                next - 1
+            })
+        };
+        let shift = take(fit.shift);
+        let equidistant = take(fit.equidistant);
+        let rotation = take(fit.rotation);
+        let hole = take(holes);
+        let form = next;
+        let len = form + 2 * orders.len();
+        Layout {
+            shift,
+            equidistant,
+            rotation,
+            hole,
+            form,
+            orders,
+            len,
+        }
+    }
+
+    /// The name of unknown `i`, for messages.
+    fn name(&self, i: usize) -> String {
+        let fixed = ["centre x0", "centre y0", "orientation θ0"];
+        if i < 3 {
+            return fixed[i].to_string();
+        }
+        for (slot, name) in [
+            (self.shift, "shift_mm"),
+            (self.equidistant, "equidistant_mm"),
+            (self.rotation, "rotation_deg"),
+            (self.hole, "hole radius"),
+        ] {
+            if slot == Some(i) {
+                return name.to_string();
+            }
+        }
+        let k = (i - self.form) / 2;
+        let part = if (i - self.form).is_multiple_of(2) {
+            "cos"
+        } else {
+            "sin"
+        };
+        format!("form harmonic {} ({part})", self.orders[k])
+    }
+}
+
+/// The state the residuals are evaluated at, unpacked from the parameter vector.
+struct State<'a> {
+    design: &'a Design,
+    profile: Profile,
+    centre: Vec2,
+    /// (sin, cos) of θ0 and of Δδ.
+    orientation: (f64, f64),
+    rotation: (f64, f64),
+    hole_offset: f64,
+    params: &'a [f64],
+    layout: &'a Layout,
+    /// The feet's starts are the feet of the previous, nearby parameters: Newton alone.
+    warm: bool,
+}
+
+impl<'a> State<'a> {
+    fn new(request: &'a Request, layout: &'a Layout, params: &'a [f64]) -> State<'a> {
+        let get = |slot: Option<usize>, nominal: f64| slot.map_or(nominal, |i| params[i]);
+        let d = request.design;
+        let m = request.nominal;
+        let profile = Profile::from_parts(
+            d.rollers,
+            d.eccentricity_mm,
+            d.roller_circle_radius_mm + get(layout.shift, m.shift_mm),
+            d.roller_radius_mm + get(layout.equidistant, m.equidistant_mm),
+            get(layout.rotation, m.rotation_within_pitch(d.teeth)),
+        );
+        State {
+            design: d,
+            profile,
+            centre: Vec2::new(params[0], params[1]),
+            orientation: params[2].sin_cos(),
+            rotation: profile.rotation_rad.sin_cos(),
+            hole_offset: get(layout.hole, 0.0),
+            params,
+            layout,
+            warm: false,
+        }
+    }
+
+    fn to_disc(&self, p: Vec2) -> Vec2 {
+        let (s, c) = self.orientation;
+        rotate(p - self.centre, c, -s)
+    }
+
+    /// w(t) and, in `basis`, (cos k·t, sin k·t) of every order of the series.
+    fn form(&self, t: f64, basis: &mut [f64]) -> f64 {
+        let l = self.layout;
+        cos_sin_orders(t, &l.orders, basis);
+        basis
+            .iter()
+            .zip(&self.params[l.form..])
+            .map(|(b, a)| b * a)
+            .sum()
+    }
+
+    /// Residual of a profile point, its foot, and (when `row` is given) its Jacobian row.
+    fn profile_residual(
+        &self,
+        point: &MeasuredPoint,
+        t_start: f64,
+        row: Option<&mut [f64]>,
+    ) -> Result<(f64, f64)> {
+        let q = self.to_disc(point.point);
+        let foot = self.foot(q, t_start).map_err(|f| {
+            Error::computation(format!(
+                "the point of line {} has no foot on the profile near t = {:.4} rad \
+                 (the closest-point search left its bracket at t = {:.4} rad)",
+                point.line, f.t_start, f.t_last
+            ))
+        })?;
+        let t = foot.t;
+        let l = self.layout;
+        let mut basis = [0.0; 2 * MAX_ORDERS];
+        let basis = &mut basis[..2 * l.orders.len()];
+        let d = foot.locus_distance_mm + self.profile.offset_mm + self.form(t, basis);
+        if let Some(row) = row {
+            let (s, c) = self.orientation;
+            let n_machine = rotate(foot.normal, c, s);
+            let locus = foot.point + self.profile.offset_mm * foot.normal;
+            let turn = -cross(locus, foot.normal);
+            row[0] = -n_machine.x;
+            row[1] = -n_machine.y;
+            row[2] = turn;
+            if let Some(i) = l.shift {
+                let (s, c) = self.rotation;
+                let radial = rotate(Vec2::new(t.cos(), t.sin()), c, s);
+                row[i] = -radial.dot(&foot.normal);
+            }
+            if let Some(i) = l.equidistant {
+                row[i] = 1.0;
+            }
+            if let Some(i) = l.rotation {
+                row[i] = turn;
+            }
+            if let Some(i) = l.hole {
+                row[i] = 0.0;
+            }
+            row[l.form..].copy_from_slice(basis);
+        }
+        Ok((d, t))
+    }
+
+    /// The foot of q on the profile: the guarded search from `t_start`, and when its bracket
+    /// (half a roller pitch) does not hold the foot — a start far off, early in the iteration —
+    /// the nearest of the searches started at every half pitch around the disc.
+    fn foot(&self, q: Vec2, t_start: f64) -> std::result::Result<Foot, ClosestPointFailure> {
+        if self.warm {
+            if let Ok(foot) = self.profile.closest_point_from(q, t_start) {
+                return Ok(foot);
+            }
+        }
+        let first = self.profile.closest_point(q, t_start);
+        if first.is_ok() {
+            return first;
+        }
+        let half = PI / self.profile.rollers as f64;
+        (1..2 * self.profile.rollers)
+            .filter_map(|k| {
+                self.profile
+                    .closest_point(q, t_start + half * k as f64)
+                    .ok()
+            })
+            .min_by(|a, b| {
+                a.signed_distance_mm
+                    .abs()
+                    .total_cmp(&b.signed_distance_mm.abs())
+            })
+            .ok_or_else(|| first.unwrap_err())
+    }
+
+    fn hole_centre(&self, j: usize) -> Vec2 {
+        let pins = &self.design.pins;
+        let a = TAU * j as f64 / pins.count as f64;
+        Vec2::new(a.cos(), a.sin()) * pins.circle_radius_mm
+    }
+
+    /// Residual of a hole point and (when `row` is given) its Jacobian row.
+    fn hole_residual(&self, point: &MeasuredPoint, j: usize, row: Option<&mut [f64]>) -> f64 {
+        let q = self.to_disc(point.point);
+        let v = q - self.hole_centre(j);
+        let r = v.norm();
+        let d = r - (self.design.hole_radius_mm() + self.hole_offset);
+        if let Some(row) = row {
+            row.fill(0.0);
+            let u = if r > 0.0 { v / r } else { Vec2::new(1.0, 0.0) };
+            let (s, c) = self.orientation;
+            let u_machine = rotate(u, c, s);
+            row[0] = -u_machine.x;
+            row[1] = -u_machine.y;
+            row[2] = -cross(q, u);
+            if let Some(i) = self.layout.hole {
+                row[i] = -1.0;
+            }
+        }
+        d
+    }
+}
+
+/// Residuals (and Jacobian when asked) of every point; `feet` are the starts of the profile
+/// points' feet (warm: the feet at nearby parameters), updated.
+fn evaluate(
+    request: &Request,
+    layout: &Layout,
+    params: &[f64],
+    points: &[MeasuredPoint],
+    (feet, warm): (&mut [f64], bool),
+    mut jacobian: Option<&mut [f64]>,
+) -> Result<Vec<f64>> {
+    let mut state = State::new(request, layout, params);
+    state.warm = warm;
+    let n = layout.len;
+    let mut residuals = Vec::with_capacity(points.len());
+    for (i, p) in points.iter().enumerate() {
+        let row = jacobian.as_deref_mut().map(|j| &mut j[i * n..(i + 1) * n]);
+        let d = match p.feature {
+            Feature::Profile => {
+                let (d, t) = state.profile_residual(p, feet[i], row)?;
+                feet[i] = t;
+                d
+            }
+            Feature::Hole(j) => state.hole_residual(p, j, row),
+        };
+        residuals.push(d);
+    }
+    Ok(residuals)
+}
+
+/// One least-squares solve: the step δ minimising ‖J·δ + d‖, the condition number of the
+/// column-scaled J, the variances diag((JᵀJ)⁻¹) and the least independent column.
+struct Step {
+    delta: Vec<f64>,
+    condition: f64,
+    variances: Vec<f64>,
+    weakest: usize,
+}
+
+/// The step, and with `statistics` the condition number and variances (at the solution only:
+/// they cost an SVD and a triangular inverse of R).
+/// `jacobian` is row-major, a row of `n` per residual.
+fn solve(jacobian: &[f64], n: usize, residuals: &[f64], statistics: bool) -> Result<Step> {
+    let m = residuals.len();
+    let mut scale = vec![0.0; n];
+    for row in jacobian.chunks_exact(n) {
+        for (s, v) in scale.iter_mut().zip(row) {
+            *s += v * v;
+        }
+    }
+    let scale: Vec<f64> = scale
+        .into_iter()
+        .map(|s| if s > 0.0 { s.sqrt() } else { 1.0 })
+        .collect();
+    let scaled = Mat::from_fn(m, n, |i, c| jacobian[i * n + c] / scale[c]);
+    let mut rhs = Mat::from_fn(m, 1, |i, _| -residuals[i]);
+    if !statistics {
+        // The steps on the way: Householder QR without pivoting (blocked, faster); the
+        // solution's statistics below pivot, to name the least independent column.
+        scaled.qr().solve_lstsq_in_place(rhs.as_mut());
+        return Ok(Step {
+            delta: (0..n).map(|c| rhs[(c, 0)] / scale[c]).collect(),
+            condition: f64::NAN,
+            variances: Vec::new(),
+            weakest: 0,
+        });
+    }
+    let qr = scaled.col_piv_qr();
+    qr.solve_lstsq_in_place(rhs.as_mut());
+    let delta = (0..n).map(|c| rhs[(c, 0)] / scale[c]).collect();
+    let (forward, _) = qr.P().arrays();
+    let r = qr.thin_R();
+    let singular = r
+        .singular_values()
+        .map_err(|e| Error::computation(format!("singular values of R: {e:?}")))?;
+    let largest = singular.iter().cloned().fold(0.0, f64::max);
+    let smallest = singular.iter().cloned().fold(f64::INFINITY, f64::min);
+    let condition = if smallest > 0.0 {
+        largest / smallest
+    } else {
+        f64::INFINITY
+    };
+    // diag((JᵀJ)⁻¹) = diag(S⁻¹·P·R⁻¹R⁻ᵀ·Pᵀ·S⁻¹): the squared row norms of R⁻¹, permuted.
+    let mut inverse = Mat::<f64>::identity(n, n);
+    faer::linalg::triangular_solve::solve_upper_triangular_in_place(
+        r,
+        inverse.as_mut(),
+        faer::Par::Seq,
+    );
+    let mut variances = vec![0.0; n];
+    for (pivoted, &original) in forward.iter().enumerate() {
+        let row_norm2: f64 = (0..n).map(|c| inverse[(pivoted, c)].powi(2)).sum();
+        variances[original] = row_norm2 / (scale[original] * scale[original]);
+    }
+    Ok(Step {
+        delta,
+        condition,
+        variances,
+        weakest: forward[n - 1],
+    })
+}
+
+fn sum_squares(r: &[f64]) -> f64 {
+    r.iter().map(|d| d * d).sum()
+}
+
+/// Identify the disc the points lie on. Errors (exit 2): too few points for the unknowns,
+/// `rotation_deg` without hole points, a fit whose Jacobian is ill-conditioned, a fit that does
+/// not converge, and points that do not fit a disc of this design.
+pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identification> {
+    let design = request.design;
+    let profile_count = points
+        .iter()
+        .filter(|p| p.feature == Feature::Profile)
+        .count();
+    let hole_points = points.len() - profile_count;
+    if let Some(bad) = points.iter().find_map(|p| match p.feature {
+        Feature::Hole(j) if j >= design.pins.count => Some((p.line, j)),
+        _ => None,
+    }) {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "line {}: hole:{} does not exist: the design has {} output-pin holes, \
+                 numbered 0 to {}",
+                bad.0,
+                bad.1,
+                design.pins.count,
+                design.pins.count - 1
+            ),
+        ));
+    }
+    if request.fit.rotation && hole_points == 0 {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            "`rotation_deg` cannot be fitted without points on the pin holes: the rotation \
+             modification is the turn of the teeth relative to the holes, and on the profile \
+             alone it is the same motion as the orientation of the disc on the machine",
+        ));
+    }
+    let layout = Layout::new(
+        request.fit,
+        hole_points > 0,
+        FormError::orders(request.harmonics, design.teeth),
+    );
+    if layout.orders.len() > MAX_ORDERS {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "{} form-error orders asked for; at most {MAX_ORDERS}",
+                layout.orders.len()
+            ),
+        ));
+    }
+    if profile_count <= layout.len {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "{profile_count} profile points for {} unknowns (centre, orientation, {} fitted \
+                 modifications, {} form-error coefficients): measure more points or ask for \
+                 fewer harmonics",
+                layout.len,
+                layout.len - 3 - 2 * layout.orders.len(),
+                2 * layout.orders.len()
+            ),
+        ));
+    }
+    let (mut params, mut feet) = initial(request, &layout, points)?;
+    let n = layout.len;
+    let mut jac = vec![0.0; points.len() * n];
+    let mut residuals = evaluate(
+        request,
+        &layout,
+        &params,
+        points,
+        (&mut feet, false),
+        Some(&mut jac),
+    )?;
+    let mut trial_jac = vec![0.0; points.len() * n];
+    let mut iterations = 0;
+    let mut warm = false;
+    let mut converged = false;
+    while iterations < MAX_ITERATIONS {
+        iterations += 1;
+        let step = solve(&jac, n, &residuals, false)?;
+        let cost = sum_squares(&residuals);
+        let mut lambda = 1.0;
+        let mut accepted = None;
+        for _ in 0..30 {
+            let trial: Vec<f64> = params
+                .iter()
+                .zip(&step.delta)
+                .map(|(p, d)| p + lambda * d)
+                .collect();
+            let mut trial_feet = feet.clone();
+            let at = (&mut trial_feet[..], warm);
+            if let Ok(r) = evaluate(request, &layout, &trial, points, at, Some(&mut trial_jac)) {
+                if sum_squares(&r) <= cost {
+                    accepted = Some((trial, trial_feet, r));
+                    break;
+                }
+            }
+            lambda *= 0.5;
+        }
+        let Some((trial, trial_feet, trial_residuals)) = accepted else {
+            // No step along the Gauss–Newton direction decreases the cost: a minimum to
+            // working precision.
+            converged = true;
+            break;
+        };
+        // Size of the step's effect on the residuals, RMS mm: ‖J·δ‖/√m.
+        let moved = jac
+            .chunks_exact(n)
+            .map(|row| {
+                let d: f64 = row.iter().zip(&step.delta).map(|(j, d)| j * d).sum();
+                (lambda * d).powi(2)
+            })
+            .sum::<f64>()
+            .sqrt()
+            / (points.len() as f64).sqrt();
+        params = trial;
+        feet = trial_feet;
+        residuals = trial_residuals;
+        std::mem::swap(&mut jac, &mut trial_jac);
+        warm = moved < WARM_MM;
+        // Converged when the step moves the residuals by less than 1e-4 of their RMS (or 1 pm):
+        // what remains changes no unknown by more than ~1e-4 of its uncertainty.
+        let rms = (sum_squares(&residuals) / points.len() as f64).sqrt();
+        if moved < (1e-4 * rms).max(1e-9) {
+            converged = true;
+            break;
+        }
+    }
+    if !converged {
+        return Err(Error::computation(format!(
+            "the identification did not converge in {MAX_ITERATIONS} Gauss–Newton steps \
+             (residual RMS {:.3} µm)",
+            1e3 * (sum_squares(&residuals) / points.len() as f64).sqrt()
+        )));
+    }
+    let last = solve(&jac, n, &residuals, true)?;
+    finish(
+        request, &layout, &params, points, &feet, &residuals, &last, iterations,
+    )
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    request: &Request,
+    layout: &Layout,
+    params: &[f64],
+    points: &[MeasuredPoint],
+    feet: &[f64],
+    residuals: &[f64],
+    last: &Step,
+    iterations: usize,
+) -> Result<Identification> {
+    let m = points.len();
+    let rms = (sum_squares(residuals) / m as f64).sqrt();
+    if last.condition > MAX_CONDITION || !last.condition.is_finite() {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "the identification is ill-posed: the condition number of its Jacobian is \
+                 {:.2e}, above {MAX_CONDITION:.0e}; the least determined unknown is the {}: \
+                 measure more of the profile, or ask for fewer harmonics or fitted \
+                 modifications",
+                last.condition,
+                layout.name(last.weakest)
+            ),
+        ));
+    }
+    if rms > MAX_RMS_MM {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "the points are not a disc of this design: after the fit their RMS distance \
+                 to the profile is {:.1} µm, more than the {:.0} µm any ground disc keeps \
+                 (check the design, the file's units (mm) and its features)",
+                rms * 1e3,
+                MAX_RMS_MM * 1e3
+            ),
+        ));
+    }
+    let dof = (m - layout.len) as f64;
+    let sigma = (sum_squares(residuals) / dof).sqrt();
+    let est = |i: usize| Estimate {
+        value: params[i],
+        sigma: sigma * last.variances[i].sqrt(),
+    };
+    let harmonics: Vec<Harmonic> = layout
+        .orders
+        .iter()
+        .enumerate()
+        .map(|(k, &order)| Harmonic {
+            order,
+            cos_mm: est(layout.form + 2 * k),
+            sin_mm: est(layout.form + 2 * k + 1),
+        })
+        .collect();
+    let form = FormError { harmonics };
+    let nominal = request.nominal;
+    let modification = Modification {
+        shift_mm: layout.shift.map_or(nominal.shift_mm, |i| params[i]),
+        equidistant_mm: layout
+            .equidistant
+            .map_or(nominal.equidistant_mm, |i| params[i]),
+        rotation_rad: layout.rotation.map_or(nominal.rotation_rad, |i| params[i]),
+    };
+    let (max_i, max) = residuals
+        .iter()
+        .enumerate()
+        .fold((0, 0.0f64), |(bi, b), (i, r)| {
+            if r.abs() > b {
+                (i, r.abs())
+            } else {
+                (bi, b)
+            }
+        });
+    let profile: Vec<FittedPoint> = points
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.feature == Feature::Profile)
+        .map(|(i, p)| FittedPoint {
+            t: feet[i],
+            residual_mm: residuals[i],
+            line: p.line,
+        })
+        .collect();
+    let teeth = request.design.teeth;
+    let flanks = flanks(&profile, &form, teeth);
+    let coverage = coverage(&profile, &flanks, teeth);
+    Ok(Identification {
+        centre_mm: [est(0), est(1)],
+        orientation_rad: est(2),
+        modification,
+        shift_mm: layout.shift.map(est),
+        equidistant_mm: layout.equidistant.map(est),
+        rotation_rad: layout.rotation.map(est),
+        hole_radius_offset_mm: layout.hole.map(est),
+        form,
+        residual_rms_mm: rms,
+        residual_max_mm: max,
+        residual_max_line: points[max_i].line,
+        condition: last.condition,
+        coverage,
+        flanks,
+        profile,
+        hole_points: m - feet
+            .iter()
+            .zip(points)
+            .filter(|(_, p)| p.feature == Feature::Profile)
+            .count(),
+        unknowns: layout.len,
+        iterations,
+    })
+}
+
+/// Most orders of a form-error series (`spec::measured::MAX_HARMONICS` = 200 and fewer).
+const MAX_ORDERS: usize = 256;
+
+/// (cos k·t, sin k·t) for the ascending `orders`, into `out` in pairs, by powers of e^{it}:
+/// one sin_cos per point instead of one per order; k products lose at most ~k·ε (2e-14 at
+/// order 200).
+fn cos_sin_orders(t: f64, orders: &[usize], out: &mut [f64]) {
+    let (s1, c1) = t.sin_cos();
+    let (mut c, mut s, mut k) = (1.0, 0.0, 0);
+    for (pair, &order) in out.chunks_exact_mut(2).zip(orders) {
+        while k < order {
+            (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
+            k += 1;
+        }
+        pair[0] = c;
+        pair[1] = s;
+    }
+}
+
+/// Flank of a locus parameter: (tooth, side).
+fn flank_of(t: f64, teeth: usize) -> (usize, usize) {
+    let half = PI / teeth as f64;
+    let k = ((t.rem_euclid(TAU) / half).floor() as usize).min(2 * teeth - 1);
+    (k / 2, k % 2)
+}
+
+fn flanks(profile: &[FittedPoint], form: &FormError, teeth: usize) -> Vec<Flank> {
+    let mut groups: Vec<Vec<(f64, f64)>> = vec![Vec::new(); 2 * teeth];
+    for p in profile {
+        let (tooth, side) = flank_of(p.t, teeth);
+        // Deviation from the identified modified profile without form error: w + residual.
+        groups[2 * tooth + side].push((p.t.rem_euclid(TAU), form.value_mm(p.t) + p.residual_mm));
+    }
+    groups
+        .iter()
+        .enumerate()
+        .map(|(g, pts)| {
+            let line = mean_line(pts);
+            Flank {
+                tooth: g / 2,
+                side: if g % 2 == 0 { 'a' } else { 'b' },
+                points: pts.len(),
+                form_mm: line.map(|l| l.0),
+                slope_mm: line.map(|l| l.1),
+            }
+        })
+        .collect()
+}
+
+/// (form, slope) of a flank's deviations: range about the least-squares line in t, and the
+/// rise of that line over the points' extent in t. None below 3 points or without extent.
+fn mean_line(pts: &[(f64, f64)]) -> Option<(f64, f64)> {
+    if pts.len() < 3 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let mt = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let md = pts.iter().map(|p| p.1).sum::<f64>() / n;
+    let stt: f64 = pts.iter().map(|p| (p.0 - mt).powi(2)).sum();
+    if stt <= 0.0 {
+        return None;
+    }
+    let slope = pts.iter().map(|p| (p.0 - mt) * (p.1 - md)).sum::<f64>() / stt;
+    let about = |p: &(f64, f64)| p.1 - md - slope * (p.0 - mt);
+    let hi = pts.iter().map(about).fold(f64::NEG_INFINITY, f64::max);
+    let lo = pts.iter().map(about).fold(f64::INFINITY, f64::min);
+    let t_lo = pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
+    let t_hi = pts.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+    Some((hi - lo, slope * (t_hi - t_lo)))
+}
+
+fn coverage(profile: &[FittedPoint], flanks: &[Flank], teeth: usize) -> Coverage {
+    let bins = 16 * teeth;
+    let mut hit = vec![false; bins];
+    for p in profile {
+        let b = ((p.t.rem_euclid(TAU) / TAU * bins as f64) as usize).min(bins - 1);
+        hit[b] = true;
+    }
+    let teeth_measured = flanks
+        .chunks(2)
+        .filter(|f| f.iter().all(|x| x.points >= 3))
+        .count();
+    Coverage {
+        fraction: hit.iter().filter(|h| **h).count() as f64 / bins as f64,
+        teeth_measured,
+    }
+}
+
+/// The start of the iteration: the centre from a circle fit to the profile points, the
+/// orientation from the holes (circular mean of each hole point's angle less its hole's) and
+/// from a scan of one tooth pitch for the profile; modifications at the spec's values, no form
+/// error. Returns the parameters and the feet's warm starts.
+fn initial(
+    request: &Request,
+    layout: &Layout,
+    points: &[MeasuredPoint],
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let design = request.design;
+    let profile: Vec<Vec2> = points
+        .iter()
+        .filter(|p| p.feature == Feature::Profile)
+        .map(|p| p.point)
+        .collect();
+    let centre = circle_centre(&profile);
+    let mut params = vec![0.0; layout.len];
+    params[0] = centre.x;
+    params[1] = centre.y;
+    let nominal = request.nominal;
+    let rotation = nominal.rotation_within_pitch(design.teeth);
+    if let Some(i) = layout.shift {
+        params[i] = nominal.shift_mm;
+    }
+    if let Some(i) = layout.equidistant {
+        params[i] = nominal.equidistant_mm;
+    }
+    if let Some(i) = layout.rotation {
+        params[i] = rotation;
+    }
+    // Profile scan: the turn of the teeth, modulo a pitch, on at most 200 points.
+    let stride = (profile.len() / 200).max(1);
+    let sample: Vec<MeasuredPoint> = points
+        .iter()
+        .filter(|p| p.feature == Feature::Profile)
+        .step_by(stride)
+        .copied()
+        .collect();
+    let pitch = TAU / design.teeth as f64;
+    const SCAN: usize = 48;
+    let mut best = (f64::INFINITY, 0.0);
+    for k in 0..SCAN {
+        let turn = pitch * k as f64 / SCAN as f64;
+        let mut trial = params.clone();
+        trial[2] = turn - rotation;
+        if let Some(i) = layout.rotation {
+            trial[i] = rotation;
+        }
+        let mut feet = start_feet(&trial, &sample);
+        if let Ok(r) = evaluate(request, layout, &trial, &sample, (&mut feet, false), None) {
+            let cost = sum_squares(&r);
+            if cost < best.0 {
+                best = (cost, turn);
+            }
+        }
+    }
+    let teeth_turn = best.1;
+    let holes: Vec<(usize, Vec2)> = points
+        .iter()
+        .filter_map(|p| match p.feature {
+            Feature::Hole(j) => Some((j, p.point)),
+            _ => None,
+        })
+        .collect();
+    params[2] = if holes.is_empty() {
+        teeth_turn - rotation
+    } else {
+        let m = design.pins.count as f64;
+        let sum = holes.iter().fold(Vec2::zeros(), |acc, (j, p)| {
+            let v = p - centre;
+            let a = v.y.atan2(v.x) - TAU * *j as f64 / m;
+            acc + Vec2::new(a.cos(), a.sin())
+        });
+        let orientation = sum.y.atan2(sum.x);
+        if let Some(i) = layout.rotation {
+            params[i] =
+                wrap_pi((teeth_turn - orientation) * design.teeth as f64) / design.teeth as f64;
+        }
+        orientation
+    };
+    let feet = start_feet(&params, points);
+    Ok((params, feet))
+}
+
+/// Warm starts of the feet: the polar angle of each point in the disc frame (the locus's polar
+/// angle is within asin(e/R') of t).
+fn start_feet(params: &[f64], points: &[MeasuredPoint]) -> Vec<f64> {
+    let centre = Vec2::new(params[0], params[1]);
+    points
+        .iter()
+        .map(|p| {
+            let v = p.point - centre;
+            v.y.atan2(v.x) - params[2]
+        })
+        .collect()
+}
+
+/// Centre of the least-squares circle through the points (Kåsa: x² + y² = 2a·x + 2b·y + c,
+/// linear in a, b, c), about their mean to keep the squares small.
+fn circle_centre(points: &[Vec2]) -> Vec2 {
+    let n = points.len().max(1) as f64;
+    let mean = points.iter().fold(Vec2::zeros(), |a, p| a + p) / n;
+    let a = Mat::from_fn(points.len(), 3, |i, c| {
+        let p = points[i] - mean;
+        [2.0 * p.x, 2.0 * p.y, 1.0][c]
+    });
+    let mut b = Mat::from_fn(points.len(), 1, |i, _| (points[i] - mean).norm_squared());
+    a.col_piv_qr().solve_lstsq_in_place(b.as_mut());
+    mean + Vec2::new(b[(0, 0)], b[(1, 0)])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The variances from the pivoted QR are diag((JᵀJ)⁻¹) computed independently by nalgebra
+    /// from the normal equations (checks the permutation's direction and the scaling).
+    #[test]
+    fn variances_are_the_diagonal_of_the_inverse_normal_matrix() {
+        let (m, n) = (40, 5);
+        // Columns of very different scales and a near-dependence, so pivoting reorders them.
+        let value = |i: usize, c: usize| {
+            let x = i as f64 / m as f64;
+            match c {
+                0 => 1e-3 * (1.0 + x),
+                1 => 1e3 * x * x,
+                2 => (7.0 * x).sin(),
+                3 => 1.0 + x + 1e-2 * (3.0 * x).cos(),
+                _ => 5.0 * (2.0 * x).cos(),
+            }
+        };
+        let j: Vec<f64> = (0..m * n).map(|k| value(k / n, k % n)).collect();
+        let r = vec![0.0; m];
+        let step = solve(&j, n, &r, true).unwrap();
+        let jn = nalgebra::DMatrix::from_fn(m, n, value);
+        let inv = (jn.transpose() * &jn).try_inverse().unwrap();
+        for c in 0..n {
+            let rel = (step.variances[c] - inv[(c, c)]).abs() / inv[(c, c)];
+            // Normal equations square the condition (~1e6 here): 1e-6 covers their round-off.
+            assert!(
+                rel < 1e-6,
+                "column {c}: {} vs {}",
+                step.variances[c],
+                inv[(c, c)]
+            );
+        }
+    }
+}

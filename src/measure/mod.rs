@@ -1,0 +1,26 @@
+//! The measured disc: points read from a CMM file or a CAD drawing (`points`), and the
+//! least-squares identification of the disc they lie on (`fit`, MODEL.md "Measured profiles").
+
+pub mod fit;
+pub mod points;
+
+use crate::geometry::Vec2;
+
+/// What a measured point lies on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Feature {
+    /// The tooth profile.
+    Profile,
+    /// The bore of output-pin hole j (0-based, at angle 2πj/M on the pin circle in the disc
+    /// frame, MODEL.md "Equilibrium").
+    Hole(usize),
+}
+
+/// One measured point, in the frame of the measuring machine (mm), with where it came from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeasuredPoint {
+    pub point: Vec2,
+    pub feature: Feature,
+    /// 1-based line of the file it was read from (0 when made in code).
+    pub line: usize,
+}

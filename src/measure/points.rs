@@ -1,0 +1,280 @@
+//! Reading measured points: CSV from a measuring machine, or a DXF drawing of the disc.
+//!
+//! CSV: `#` comment lines, then a header naming the columns, of which `x_mm` and `y_mm` are
+//! required and `feature` optional (other columns are ignored, so `cycloid profile --csv`
+//! output reads back); each row a point, `feature` `profile` (the default) or `hole:J`.
+//! DXF: the vertices of closed LWPOLYLINE and POLYLINE entities are profile points; a CIRCLE on
+//! layer `HOLE_J` is the bore of hole J, read as 72 points on it. Units mm.
+//! Errors name the file and line (exit 2).
+
+use super::{Feature, MeasuredPoint};
+use crate::error::{Error, ErrorKind, Location, Result};
+use crate::geometry::Vec2;
+use crate::model::measured::PointsFormat;
+use std::f64::consts::TAU;
+
+/// Points read from a circle of a DXF drawing.
+pub const CIRCLE_POINTS: usize = 72;
+
+/// The points of a file.
+pub fn read(path: &str, format: PointsFormat) -> Result<Vec<MeasuredPoint>> {
+    let text = crate::files::read_text(
+        std::path::Path::new(path),
+        "measured profile",
+        crate::files::MAX_INPUT_BYTES,
+    )?;
+    match format {
+        PointsFormat::Csv => parse_csv(path, &text),
+        PointsFormat::Dxf => parse_dxf(path, &text),
+    }
+}
+
+fn at(path: &str, line: usize, message: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, message).at(Location {
+        file: path.to_string(),
+        line,
+        column: 1,
+    })
+}
+
+/// `feature` of a row: `profile` or `hole:J`.
+fn feature(text: &str) -> Option<Feature> {
+    match text.trim() {
+        "" | "profile" => Some(Feature::Profile),
+        other => other
+            .strip_prefix("hole:")
+            .and_then(|j| j.trim().parse().ok())
+            .map(Feature::Hole),
+    }
+}
+
+pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
+    let mut rows = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let (header_line, header) = rows
+        .next()
+        .ok_or_else(|| at(path, 1, "the file has no header line and no points".into()))?;
+    let names: Vec<&str> = header.split(',').map(str::trim).collect();
+    let column = |name: &str| names.iter().position(|n| *n == name);
+    let (Some(x), Some(y)) = (column("x_mm"), column("y_mm")) else {
+        return Err(at(
+            path,
+            header_line,
+            format!("the header `{header}` must name the columns x_mm and y_mm (and optionally feature)"),
+        ));
+    };
+    let f = column("feature");
+    let mut points = Vec::new();
+    for (line, row) in rows {
+        let cells: Vec<&str> = row.split(',').map(str::trim).collect();
+        let number = |c: usize, name: &str| -> Result<f64> {
+            let cell = cells.get(c).copied().unwrap_or("");
+            cell.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| {
+                    at(
+                        path,
+                        line,
+                        format!("{name} `{cell}` is not a finite number"),
+                    )
+                })
+        };
+        let point = Vec2::new(number(x, "x_mm")?, number(y, "y_mm")?);
+        let cell = f.and_then(|c| cells.get(c).copied()).unwrap_or("");
+        let feature = feature(cell).ok_or_else(|| {
+            at(
+                path,
+                line,
+                format!("feature `{cell}` is neither `profile` nor `hole:J` (J the hole's number from 0)"),
+            )
+        })?;
+        points.push(MeasuredPoint {
+            point,
+            feature,
+            line,
+        });
+    }
+    Ok(points)
+}
+
+/// The group-code/value pairs of a DXF file, with the line of each code.
+fn pairs(path: &str, text: &str) -> Result<Vec<(usize, i32, String)>> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out = Vec::with_capacity(lines.len() / 2);
+    for (k, chunk) in lines.chunks(2).enumerate() {
+        let line = 2 * k + 1;
+        let code = chunk[0].trim().parse::<i32>().map_err(|_| {
+            at(
+                path,
+                line,
+                format!("`{}` is not a DXF group code", chunk[0].trim()),
+            )
+        })?;
+        let value = chunk.get(1).map_or("", |v| v.trim()).to_string();
+        out.push((line, code, value));
+    }
+    Ok(out)
+}
+
+/// One entity of the ENTITIES section: its type, first line and the pairs up to the next.
+struct Entity<'a> {
+    kind: &'a str,
+    line: usize,
+    pairs: &'a [(usize, i32, String)],
+}
+
+impl Entity<'_> {
+    fn value(&self, code: i32) -> Option<&str> {
+        self.pairs
+            .iter()
+            .find(|p| p.1 == code)
+            .map(|p| p.2.as_str())
+    }
+
+    fn number(&self, path: &str, code: i32) -> Result<f64> {
+        let (line, _, v) = self.pairs.iter().find(|p| p.1 == code).ok_or_else(|| {
+            at(
+                path,
+                self.line,
+                format!("{} without group code {code}", self.kind),
+            )
+        })?;
+        v.parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| at(path, line + 1, format!("`{v}` is not a finite number")))
+    }
+
+    fn closed(&self) -> bool {
+        self.value(70)
+            .and_then(|v| v.parse::<i32>().ok())
+            .is_some_and(|flags| flags & 1 == 1)
+    }
+
+    /// The (line, x, y) of every 10/20 pair.
+    fn vertices(&self, path: &str) -> Result<Vec<(usize, Vec2)>> {
+        let mut out = Vec::new();
+        let mut x = None;
+        for (line, code, v) in self.pairs {
+            let parse = || {
+                v.parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| at(path, line + 1, format!("`{v}` is not a finite number")))
+            };
+            match code {
+                10 => x = Some((*line, parse()?)),
+                20 => {
+                    if let Some((l, xv)) = x.take() {
+                        out.push((l, Vec2::new(xv, parse()?)));
+                    }
+                }
+                _ => {}
+            }
+        }
+        Ok(out)
+    }
+}
+
+fn entities<'a>(all: &'a [(usize, i32, String)]) -> Vec<Entity<'a>> {
+    let starts: Vec<usize> = all
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.1 == 0)
+        .map(|(i, _)| i)
+        .collect();
+    starts
+        .iter()
+        .enumerate()
+        .map(|(k, &s)| {
+            let end = starts.get(k + 1).copied().unwrap_or(all.len());
+            Entity {
+                kind: all[s].2.as_str(),
+                line: all[s].0,
+                pairs: &all[s + 1..end],
+            }
+        })
+        .collect()
+}
+
+pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
+    let all = pairs(path, text)?;
+    let list = entities(&all);
+    let mut points = Vec::new();
+    let mut closed_profiles = 0;
+    let mut i = 0;
+    while i < list.len() {
+        let e = &list[i];
+        match e.kind {
+            "LWPOLYLINE" => {
+                closed_profiles += usize::from(e.closed());
+                push_profile(&mut points, e.vertices(path)?, e.closed());
+            }
+            "POLYLINE" => {
+                let closed = e.closed();
+                closed_profiles += usize::from(closed);
+                let mut vertices = Vec::new();
+                i += 1;
+                while i < list.len() && list[i].kind == "VERTEX" {
+                    vertices.extend(list[i].vertices(path)?);
+                    i += 1;
+                }
+                push_profile(&mut points, vertices, closed);
+                continue;
+            }
+            "CIRCLE" => {
+                let layer = e.value(8).unwrap_or("");
+                let j = layer
+                    .strip_prefix("HOLE_")
+                    .and_then(|j| j.parse::<usize>().ok())
+                    .ok_or_else(|| {
+                        at(
+                            path,
+                            e.line,
+                            format!(
+                                "a CIRCLE on layer `{layer}`: circles are read as pin holes and \
+                                 must be on layer HOLE_J (J the hole's number from 0)"
+                            ),
+                        )
+                    })?;
+                let centre = Vec2::new(e.number(path, 10)?, e.number(path, 20)?);
+                let radius = e.number(path, 40)?;
+                for k in 0..CIRCLE_POINTS {
+                    let a = TAU * k as f64 / CIRCLE_POINTS as f64;
+                    points.push(MeasuredPoint {
+                        point: centre + Vec2::new(a.cos(), a.sin()) * radius,
+                        feature: Feature::Hole(j),
+                        line: e.line,
+                    });
+                }
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    if closed_profiles == 0 {
+        return Err(at(
+            path,
+            1,
+            "the drawing has no closed LWPOLYLINE or POLYLINE: the disc profile must be one \
+             closed polyline"
+                .into(),
+        ));
+    }
+    Ok(points)
+}
+
+fn push_profile(points: &mut Vec<MeasuredPoint>, vertices: Vec<(usize, Vec2)>, closed: bool) {
+    if !closed {
+        return;
+    }
+    points.extend(vertices.into_iter().map(|(line, point)| MeasuredPoint {
+        point,
+        feature: Feature::Profile,
+        line,
+    }));
+}

@@ -1,0 +1,117 @@
+//! The identification of a measured disc (`cycloid fit`) as text, and its form-error curve as
+//! CSV. Lengths in mm for values, µm for uncertainties, residuals and deviations; angles in
+//! degrees. Fixed decimals, so that a run reads the same on every machine.
+
+use crate::measure::fit::{Estimate, Identification};
+use crate::spec::Spec;
+use crate::units;
+use std::f64::consts::TAU;
+
+/// `x` with `decimals`, without the sign of a value that rounds to zero (`-0.000` → `0.000`).
+fn fixed(x: f64, decimals: usize) -> String {
+    let s = format!("{x:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
+}
+
+fn row(name: &str, e: Estimate, unit: &str) -> String {
+    let (value, sigma) = match unit {
+        "deg" => (
+            format!("{} deg", fixed(units::deg(e.value), 6)),
+            format!("{} deg", fixed(units::deg(e.sigma), 6)),
+        ),
+        _ => (
+            format!("{} mm", fixed(e.value, 6)),
+            format!("{} um", fixed(units::um(e.sigma), 3)),
+        ),
+    };
+    format!("  {name:<16} {value:>18}   ± {sigma}\n")
+}
+
+/// The text `cycloid fit` prints.
+pub fn render(spec: &Spec, id: &Identification) -> String {
+    let profile_points = id.profile.len();
+    let mut out = format!(
+        "cycloid fit `{}`: {profile_points} profile points, {} hole points, {} unknowns, \
+         {} Gauss-Newton steps\n",
+        spec.name, id.hole_points, id.unknowns, id.iterations
+    );
+    out += &format!(
+        "condition number {:.1} (column-scaled Jacobian; refused above 1e8)\n",
+        id.condition
+    );
+    out += &format!(
+        "residual: RMS {} um, max {} um (line {})\n",
+        fixed(units::um(id.residual_rms_mm), 3),
+        fixed(units::um(id.residual_max_mm), 3),
+        id.residual_max_line
+    );
+    out += &format!(
+        "coverage: {:.1} % of the profile (bins of 1/16 tooth pitch), {} of {} teeth with both \
+         flanks measured\n",
+        100.0 * id.coverage.fraction,
+        id.coverage.teeth_measured,
+        spec.design.teeth
+    );
+    out += "identified (value ± standard uncertainty):\n";
+    out += &row("centre x0", id.centre_mm[0], "mm");
+    out += &row("centre y0", id.centre_mm[1], "mm");
+    out += &row("orientation", id.orientation_rad, "deg");
+    for (name, e, unit) in [
+        ("shift_mm", id.shift_mm, "mm"),
+        ("equidistant_mm", id.equidistant_mm, "mm"),
+        ("rotation_deg", id.rotation_rad, "deg"),
+        ("hole radius +", id.hole_radius_offset_mm, "mm"),
+    ] {
+        if let Some(e) = e {
+            out += &row(name, e, unit);
+        }
+    }
+    if !id.form.harmonics.is_empty() {
+        out += "form error w(t) along the normal (w > 0: material missing), um:\n";
+        out += "  order       cos       sin   amplitude   ± (cos, sin)\n";
+        for h in &id.form.harmonics {
+            out += &format!(
+                "  {:>5} {:>9} {:>9} {:>11}   ± {}, {}\n",
+                h.order,
+                fixed(units::um(h.cos_mm.value), 3),
+                fixed(units::um(h.sin_mm.value), 3),
+                fixed(units::um(h.amplitude_mm()), 3),
+                fixed(units::um(h.cos_mm.sigma), 3),
+                fixed(units::um(h.sin_mm.sigma), 3)
+            );
+        }
+    }
+    out += "per flank (deviation from the identified modified profile; f_f profile form, \
+            f_H slope), um:\n";
+    out += "  tooth flank points     f_f     f_H\n";
+    for f in &id.flanks {
+        let show = |v: Option<f64>| v.map_or("-".to_string(), |v| fixed(units::um(v), 3));
+        out += &format!(
+            "  {:>5} {:>5} {:>6} {:>7} {:>7}\n",
+            f.tooth,
+            f.side,
+            f.points,
+            show(f.form_mm),
+            show(f.slope_mm)
+        );
+    }
+    out
+}
+
+/// The form-error curve as CSV: `t_deg,w_um` at 1/16 of a tooth pitch (nc·16 rows).
+pub fn form_csv(spec: &Spec, id: &Identification) -> String {
+    let rows = 16 * spec.design.teeth;
+    let mut out = String::from("t_deg,w_um\n");
+    for k in 0..rows {
+        let t = TAU * k as f64 / rows as f64;
+        out += &format!(
+            "{},{}\n",
+            fixed(units::deg(t), 4),
+            fixed(units::um(id.form.value_mm(t)), 4)
+        );
+    }
+    out
+}

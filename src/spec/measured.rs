@@ -1,0 +1,56 @@
+//! `measured_profile:` of a spec, validated.
+
+use super::raw::RawMeasuredProfile;
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::measured::{Fitted, MeasuredProfile, PointsFormat, FITTED_NAMES};
+
+/// Highest form-error harmonic a spec may ask for: 2·200 coefficients already need thousands of
+/// points around the whole disc.
+pub const MAX_HARMONICS: i64 = 200;
+
+fn invalid(key: &str, message: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, message).at_key(format!("measured_profile.{key}"))
+}
+
+pub fn build(spec_path: &str, raw: RawMeasuredProfile) -> Result<MeasuredProfile> {
+    if raw.file.trim().is_empty() {
+        return Err(invalid("file", "must not be empty".into()));
+    }
+    let format: PointsFormat = raw.format.parse().map_err(|m| invalid("format", m))?;
+    if !(0..=MAX_HARMONICS).contains(&raw.harmonics) {
+        return Err(invalid(
+            "harmonics",
+            format!("must be 0 to {MAX_HARMONICS}, got {}", raw.harmonics),
+        ));
+    }
+    let mut fit = Fitted::default();
+    for (i, name) in raw.fit.iter().enumerate() {
+        let flag = match name.as_str() {
+            "shift_mm" => &mut fit.shift,
+            "equidistant_mm" => &mut fit.equidistant,
+            "rotation_deg" => &mut fit.rotation,
+            other => {
+                return Err(invalid(
+                    &format!("fit[{i}]"),
+                    format!(
+                        "unknown modification `{other}`; known: {}",
+                        FITTED_NAMES.join(", ")
+                    ),
+                ))
+            }
+        };
+        if *flag {
+            return Err(invalid(
+                &format!("fit[{i}]"),
+                format!("`{name}` is listed twice"),
+            ));
+        }
+        *flag = true;
+    }
+    Ok(MeasuredProfile {
+        path: super::resolve(spec_path, &raw.file).display().to_string(),
+        format,
+        harmonics: raw.harmonics as usize,
+        fit,
+    })
+}

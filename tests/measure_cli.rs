@@ -1,0 +1,226 @@
+//! `cycloid fit` end to end (issue 16): the tool's own DXF and CSV exports identified back to
+//! the modification they were drawn with, the text a user sees, `--write`, and the exit-2
+//! errors of bad measurement files and `measured_profile:` keys.
+
+mod common;
+
+use common::{cycloid, PaperSpec, Scratch};
+
+/// The paper's spec with a rotation modification, to export the drawing from.
+fn made(rotation_deg: f64) -> PaperSpec {
+    PaperSpec::new().modification(0.125, 0.1593).edit(
+        "rotation_deg: 0.0",
+        &format!("rotation_deg: {rotation_deg:?}"),
+    )
+}
+
+/// The spec that identifies: another nominal modification (the fit's start), and the
+/// measured profile.
+fn fitting(measured: &str) -> String {
+    PaperSpec::new()
+        .modification(0.1, 0.13)
+        .with(&format!("measured_profile: {measured}\n"))
+        .text()
+        .to_string()
+}
+
+/// The drawing of a disc (ΔRp 0.125, ΔRrp 0.1593, Δδ 0.2°) with its holes, read back by
+/// `fit`: the modification it was drawn with comes back to the printed 1e-6 mm (the issue asks
+/// for 0.1 µm; the vertices lie on the profile to their 9 printed decimals and the chords do not
+/// enter a vertex fit), the centre and orientation are the drawing's origin and axes, the
+/// residual is zero to the printed nm, and `--write` fills the spec with it.
+#[test]
+fn dxf_export_round_trips_through_fit() {
+    let dir = Scratch::new("fit-dxf");
+    dir.write("made.yaml", made(0.2).text());
+    let run = cycloid(&dir.path, &["profile", "made.yaml", "--dxf", "disc.dxf"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let dxf = dir.read("disc.dxf");
+    let vertices = dxf.lines().filter(|l| l.trim() == "VERTEX").count();
+    dir.write(
+        "fit.yaml",
+        fitting(
+            "{file: disc.dxf, format: dxf, harmonics: 0, fit: [shift_mm, equidistant_mm, rotation_deg]}",
+        ),
+    );
+    let run = cycloid(&dir.path, &["fit", "fit.yaml", "--write", "out.yaml"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let lines: Vec<&str> = run.stdout.lines().collect();
+    // 6 holes of 72 points; unknowns: centre 2, orientation, 3 modifications, hole radius.
+    assert_eq!(
+        lines[0],
+        format!(
+            "cycloid fit `paper-table-1`: {vertices} profile points, 432 hole points, 7 unknowns, {} Gauss-Newton steps",
+            lines[0].split(", ").last().unwrap().split(' ').next().unwrap()
+        )
+    );
+    assert!(lines[1].starts_with("condition number "), "{}", lines[1]);
+    assert!(
+        lines[2].starts_with("residual: RMS 0.000 um, max 0.000 um (line "),
+        "{}",
+        lines[2]
+    );
+    assert_eq!(
+        lines[3],
+        "coverage: 100.0 % of the profile (bins of 1/16 tooth pitch), 9 of 9 teeth with both flanks measured"
+    );
+    let expected = [
+        "identified (value ± standard uncertainty):",
+        "  centre x0               0.000000 mm   ± 0.000 um",
+        "  centre y0               0.000000 mm   ± 0.000 um",
+        "  orientation            0.000000 deg   ± 0.000000 deg",
+        "  shift_mm                0.125000 mm   ± 0.000 um",
+        "  equidistant_mm          0.159300 mm   ± 0.000 um",
+        "  rotation_deg           0.200000 deg   ± 0.000000 deg",
+        "  hole radius +           0.000000 mm   ± 0.000 um",
+    ];
+    assert_eq!(&lines[4..12], &expected, "\n{}", run.stdout);
+    // Every flank of the exact drawing deviates by nothing: form and slope print as 0.000.
+    assert_eq!(lines[13], "  tooth flank points     f_f     f_H");
+    let flanks: Vec<&str> = lines[14..lines.len() - 1].to_vec();
+    assert_eq!(flanks.len(), 18, "two flanks of each of the 9 teeth");
+    for f in &flanks {
+        let cells: Vec<&str> = f.split_whitespace().collect();
+        assert_eq!(&cells[3..], &["0.000", "0.000"], "{f}");
+    }
+    let points: usize = flanks
+        .iter()
+        .map(|f| {
+            f.split_whitespace()
+                .nth(2)
+                .unwrap()
+                .parse::<usize>()
+                .unwrap()
+        })
+        .sum();
+    assert_eq!(points, vertices);
+    assert_eq!(
+        lines.last(),
+        Some(&"wrote out.yaml with the identified modification")
+    );
+    let written = cycloid::spec::parse("out.yaml", &dir.read("out.yaml")).unwrap();
+    let m = written.modification;
+    // 0.1 µm, the issue's round-trip bound.
+    assert!((m.shift_mm - 0.125).abs() < 1e-4 && (m.equidistant_mm - 0.1593).abs() < 1e-4);
+    assert!((m.rotation_rad - 0.2f64.to_radians()).abs() < 1e-4 / 28.0);
+}
+
+/// The CSV export has no holes: fitting `rotation_deg` from it is refused saying why; the
+/// other modifications come back.
+#[test]
+fn csv_export_fits_and_rotation_needs_holes() {
+    let dir = Scratch::new("fit-csv");
+    dir.write("made.yaml", made(0.0).text());
+    let run = cycloid(&dir.path, &["profile", "made.yaml", "--csv", "disc.csv"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    dir.write(
+        "fit.yaml",
+        fitting("{file: disc.csv, format: csv, harmonics: 0, fit: [shift_mm, equidistant_mm]}"),
+    );
+    let run = cycloid(&dir.path, &["fit", "fit.yaml"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(run
+        .stdout
+        .contains("\n  shift_mm                0.125000 mm   ± 0.000 um\n"));
+    assert!(run
+        .stdout
+        .contains("\n  equidistant_mm          0.159300 mm   ± 0.000 um\n"));
+    dir.write(
+        "rot.yaml",
+        fitting("{file: disc.csv, format: csv, harmonics: 0, fit: [rotation_deg]}"),
+    );
+    let run = cycloid(&dir.path, &["fit", "rot.yaml"]);
+    assert_eq!(run.code(), 2);
+    assert_eq!(
+        run.stderr,
+        "invalid value: measured profile `disc.csv`: `rotation_deg` cannot be fitted without \
+         points on the pin holes: the rotation modification is the turn of the teeth relative \
+         to the holes, and on the profile alone it is the same motion as the orientation of \
+         the disc on the machine\n"
+    );
+}
+
+/// A bad row is exit 2 at its file and line; so is a feature that is neither profile nor a
+/// hole, and a header without the coordinate columns.
+#[test]
+fn bad_rows_are_located() {
+    let dir = Scratch::new("fit-bad");
+    let spec = fitting("{file: points.csv, format: csv, harmonics: 0, fit: [shift_mm]}");
+    dir.write("fit.yaml", &spec);
+    for (csv, message) in [
+        (
+            "# CMM run 7\nx_mm,y_mm\n1.0,2.0\n1.5,abc\n",
+            "points.csv:4:1: invalid value: y_mm `abc` is not a finite number\n",
+        ),
+        (
+            "x_mm,y_mm,feature\n1.0,2.0,profile\n1.0,2.0,bore\n",
+            "points.csv:3:1: invalid value: feature `bore` is neither `profile` nor `hole:J` (J the hole's number from 0)\n",
+        ),
+        (
+            "x,y\n1.0,2.0\n",
+            "points.csv:1:1: invalid value: the header `x,y` must name the columns x_mm and y_mm (and optionally feature)\n",
+        ),
+        (
+            "x_mm,y_mm\n28.0,0.0\n0.0,28.0\n",
+            "invalid value: measured profile `points.csv`: 2 profile points for 4 unknowns (centre, orientation, 1 fitted modifications, 0 form-error coefficients): measure more points or ask for fewer harmonics\n",
+        ),
+    ] {
+        dir.write("points.csv", csv);
+        let run = cycloid(&dir.path, &["fit", "fit.yaml"]);
+        assert_eq!((run.code(), run.stderr.as_str()), (2, message));
+    }
+}
+
+/// `measured_profile:` keys are checked where they are written.
+#[test]
+fn bad_keys_are_located() {
+    let dir = Scratch::new("fit-keys");
+    for (measured, message) in [
+        (
+            "{file: p.csv, format: csv, harmonics: 0, fit: [shift]}",
+            "unknown modification `shift`; known: shift_mm, equidistant_mm, rotation_deg",
+        ),
+        (
+            "{file: p.csv, format: xls, harmonics: 0, fit: []}",
+            "unknown points format `xls`; known: csv, dxf",
+        ),
+        (
+            "{file: p.csv, format: csv, harmonics: -1, fit: []}",
+            "must be 0 to 200, got -1",
+        ),
+    ] {
+        dir.write("fit.yaml", fitting(measured));
+        let run = cycloid(&dir.path, &["fit", "fit.yaml"]);
+        assert_eq!(run.code(), 2, "{}", run.stderr);
+        assert!(run.stderr.starts_with("fit.yaml:"), "{}", run.stderr);
+        assert!(run.stderr.contains(message), "{}", run.stderr);
+    }
+}
+
+/// A drawing whose profile polyline is not closed has no disc outline: exit 2, saying so.
+#[test]
+fn dxf_without_a_closed_profile_is_refused() {
+    let dir = Scratch::new("fit-open");
+    dir.write("made.yaml", made(0.0).text());
+    let run = cycloid(&dir.path, &["profile", "made.yaml", "--dxf", "disc.dxf"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    // The POLYLINE's flags 66 = 1, 70 = 1 (closed) become 70 = 0.
+    let open = dir
+        .read("disc.dxf")
+        .replacen("66\n1\n70\n1\n", "66\n1\n70\n0\n", 1);
+    assert_ne!(open, dir.read("disc.dxf"));
+    dir.write("disc.dxf", open);
+    dir.write(
+        "fit.yaml",
+        fitting("{file: disc.dxf, format: dxf, harmonics: 0, fit: [shift_mm]}"),
+    );
+    let run = cycloid(&dir.path, &["fit", "fit.yaml"]);
+    assert_eq!(
+        (run.code(), run.stderr.as_str()),
+        (
+            2,
+            "disc.dxf:1:1: invalid value: the drawing has no closed LWPOLYLINE or POLYLINE: the \
+             disc profile must be one closed polyline\n"
+        )
+    );
+}

@@ -894,6 +894,16 @@ fn run_fit(
             ),
         )
     })?;
+    let mut inputs = inputs_of(path, Some(&spec));
+    inputs.push((
+        "the measured points".to_string(),
+        std::path::PathBuf::from(&measured.path),
+    ));
+    let outputs: Vec<(&str, &str)> = [("--write", write), ("--form-csv", form_csv)]
+        .into_iter()
+        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
+        .collect();
+    distinct_outputs(&inputs, &outputs)?;
     let read = points::read(&measured.path, measured.format)?;
     let request = fit::Request {
         design: &spec.design,

@@ -224,3 +224,38 @@ fn dxf_without_a_closed_profile_is_refused() {
         )
     );
 }
+
+/// `fit`'s outputs never replace an input: `--write` over the spec, `--form-csv` over the
+/// measured points, or both at one path, are refused (exit 2) and nothing is written.
+#[test]
+fn fit_refuses_an_output_that_is_an_input() {
+    let dir = Scratch::new("fit-outputs");
+    dir.write("made.yaml", made(0.0).text());
+    let run = cycloid(&dir.path, &["profile", "made.yaml", "--dxf", "disc.dxf"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    dir.write(
+        "fit.yaml",
+        fitting("{file: disc.dxf, format: dxf, harmonics: 0, fit: [shift_mm, equidistant_mm]}"),
+    );
+    let before = (dir.read("fit.yaml"), dir.read("disc.dxf"));
+    for (args, message) in [
+        (
+            &["--write", "fit.yaml"][..],
+            "--write fit.yaml would overwrite the spec",
+        ),
+        (
+            &["--form-csv", "disc.dxf"][..],
+            "--form-csv disc.dxf would overwrite the measured points",
+        ),
+        (
+            &["--write", "o.yaml", "--form-csv", "o.yaml"][..],
+            "--form-csv o.yaml would overwrite the output of --write",
+        ),
+    ] {
+        let run = cycloid(&dir.path, &[&["fit", "fit.yaml"][..], args].concat());
+        assert_eq!(run.code(), 2, "{args:?}: {}", run.stderr);
+        assert!(run.stderr.contains(message), "{args:?}: {}", run.stderr);
+        assert_eq!((dir.read("fit.yaml"), dir.read("disc.dxf")), before);
+        assert!(!dir.exists("o.yaml"));
+    }
+}

@@ -22,13 +22,7 @@ fn run(args: &[&str]) -> (i32, String, String) {
 /// and the given golden entries.
 fn spec_text(steps: usize, golden: &str) -> String {
     PaperSpec::new()
-        .scenes(&format!(
-            "  - name: rated
-    output_torque_nm: 10.0
-    crank: {{ from_deg: 0.0, to_deg: 36.0, steps: {steps} }}
-    effects: [clearance, roller_contact]
-"
-        ))
+        .rated_period(steps)
         .with(&format!("golden:\n{golden}"))
         .text()
         .to_string()

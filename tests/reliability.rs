@@ -50,13 +50,7 @@ fn refused(dir: &Scratch, args: &[&str], message: &str) -> Run {
 /// The paper's design with one scene over one mesh period (`steps` angles) and `golden`.
 fn spec_with_golden(steps: usize, golden: &str) -> String {
     PaperSpec::new()
-        .scenes(&format!(
-            "  - name: rated
-    output_torque_nm: 10.0
-    crank: {{ from_deg: 0.0, to_deg: 36.0, steps: {steps} }}
-    effects: [clearance, roller_contact]
-"
-        ))
+        .rated_period(steps)
         .with(golden)
         .text()
         .to_string()
@@ -161,8 +155,13 @@ fn profile_refuses_an_output_that_is_an_input_or_another_output() {
             "--dxf s.yaml would overwrite the spec",
         ),
     ];
+    refused_all(&dir, &["profile", "s.yaml"], &cases);
+}
+
+/// Each (options, message) case of `command` is refused.
+fn refused_all(dir: &Scratch, command: &[&str], cases: &[(&[&str], &str)]) {
     for (args, message) in cases {
-        refused(&dir, &[&["profile", "s.yaml"], args].concat(), message);
+        refused(dir, &[command, args].concat(), message);
     }
 }
 
@@ -191,9 +190,7 @@ fn optimise_refuses_an_output_that_is_an_input_or_another_output() {
             "--map o.yaml would overwrite the output of --write",
         ),
     ];
-    for (args, message) in cases {
-        refused(&dir, &[&["optimise", "s.yaml"], args].concat(), message);
-    }
+    refused_all(&dir, &["optimise", "s.yaml"], &cases);
 }
 
 // ---------------------------------------------------------------- data loss: bless

@@ -209,6 +209,16 @@ impl PaperSpec {
         self
     }
 
+    /// One scene `rated`: 10 N·m over one mesh period (0°–36°) in `steps` angles, with
+    /// clearance and roller contact (no limits).
+    pub fn rated_period(self, steps: usize) -> Self {
+        self.scenes(&format!(
+            "  - name: rated\n    output_torque_nm: 10.0\n    \
+             crank: {{ from_deg: 0.0, to_deg: 36.0, steps: {steps} }}\n    \
+             effects: [clearance, roller_contact]\n"
+        ))
+    }
+
     /// Top-level YAML appended at the end.
     pub fn with(mut self, extra: &str) -> Self {
         if !self.text.ends_with('\n') {

@@ -1161,3 +1161,21 @@ fn profile_of_an_invalid_spec_is_a_located_error() {
     );
     assert!(!dir.exists("disc.csv"));
 }
+
+/// A spec with nothing to check says so instead of an empty table, and still shows what it
+/// computed (the headline results).
+#[test]
+fn a_spec_without_checks_says_so_and_shows_its_results() {
+    let dir = Scratch::new("no-checks");
+    let spec = common::PaperSpec::new().rated_period(36);
+    dir.write("s.yaml", spec.text());
+    let run = cycloid(&dir.path, &["check", "s.yaml"]);
+    assert_eq!(run.code, Some(0), "{run:?}");
+    let lines: Vec<&str> = run.stdout.lines().collect();
+    assert_eq!(
+        lines[1],
+        "no checks: the spec sets no limits, golden curves or studies"
+    );
+    assert_eq!(lines[2], "headline results:");
+    assert!(!run.stdout.contains("check  value"), "{}", run.stdout);
+}

@@ -946,8 +946,11 @@ fn initial(
     if let Some(i) = layout.rotation {
         params[i] = rotation;
     }
-    // Profile scan: the turn of the teeth, modulo a pitch, on at most 200 points.
-    let stride = (profile.len() / 200).max(1);
+    // Profile scan: the turn of the teeth, modulo a pitch, on at most 100 points (each of the
+    // 48 turns costs a cold foot search per point; 100 points spread over the measured teeth,
+    // ~11 per tooth of the paper's 9-tooth disc, and the scan only has to rank 48 turns of which
+    // the Gauss–Newton steps refine the best).
+    let stride = (profile.len() / 100).max(1);
     let sample: Vec<MeasuredPoint> = points
         .iter()
         .filter(|p| p.feature == Feature::Profile)

@@ -645,6 +645,19 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
             None => solve(&jac, n, &residuals)?.delta,
         };
         let cost = sum_squares(&residuals);
+        // Size of the full step's effect on the residuals, RMS mm: ‖J·δ‖/√m.
+        let full_move = jac
+            .chunks_exact(n)
+            .map(|row| {
+                row.iter()
+                    .zip(&delta)
+                    .map(|(j, d)| j * d)
+                    .sum::<f64>()
+                    .powi(2)
+            })
+            .sum::<f64>()
+            .sqrt()
+            / (points.len() as f64).sqrt();
         let mut lambda = 1.0;
         let mut accepted = None;
         for _ in 0..30 {
@@ -654,7 +667,9 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
                 .map(|(p, d)| p + lambda * d)
                 .collect();
             let mut trial_feet = feet.clone();
-            let at = (&mut trial_feet[..], warm);
+            // The trial's feet start warm when this step moves the residuals by less than
+            // `WARM_MM` (as after a small previous step): the feet then move by as little.
+            let at = (&mut trial_feet[..], warm || lambda * full_move < WARM_MM);
             if let Ok(r) = evaluate(request, &layout, &trial, points, at, Some(&mut trial_jac)) {
                 if sum_squares(&r) <= cost {
                     accepted = Some((trial, trial_feet, r));
@@ -669,16 +684,7 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
             converged = true;
             break;
         };
-        // Size of the step's effect on the residuals, RMS mm: ‖J·δ‖/√m.
-        let moved = jac
-            .chunks_exact(n)
-            .map(|row| {
-                let d: f64 = row.iter().zip(&delta).map(|(j, d)| j * d).sum();
-                (lambda * d).powi(2)
-            })
-            .sum::<f64>()
-            .sqrt()
-            / (points.len() as f64).sqrt();
+        let moved = lambda * full_move;
         params = trial;
         feet = trial_feet;
         residuals = trial_residuals;

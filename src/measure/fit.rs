@@ -1101,12 +1101,9 @@ fn circle_centre(points: &[Vec2]) -> Vec2 {
 mod tests {
     use super::*;
 
-    /// The normal equations' step, condition number and variances agree with the QR's
-    /// (`solve`) on columns of scales 1e-3 to 1e3 (the next test's, less nearly dependent:
-    /// condition of the scaled J under `NORMAL_CONDITION`); on the next test's own columns
-    /// (condition 5.5e4) it declines and leaves them to the QR.
-    #[test]
-    fn normal_statistics_agree_with_the_qr() {
+    /// A 40 × 5 row-major Jacobian with columns of scales 1e-3 to 1e3; column 3 is 1 + x plus
+    /// `wobble`·cos 3x, nearly dependent on the constant and linear parts as `wobble` → 0.
+    fn test_jacobian(wobble: f64) -> (usize, usize, Vec<f64>) {
         let (m, n) = (40, 5);
         let value = |i: usize, c: usize| {
             let x = i as f64 / m as f64;
@@ -1114,11 +1111,20 @@ mod tests {
                 0 => 1e-3 * (1.0 + x),
                 1 => 1e3 * x * x,
                 2 => (7.0 * x).sin(),
-                3 => 1.0 + x + 0.3 * (3.0 * x).cos(),
+                3 => 1.0 + x + wobble * (3.0 * x).cos(),
                 _ => 5.0 * (2.0 * x).cos(),
             }
         };
-        let j: Vec<f64> = (0..m * n).map(|k| value(k / n, k % n)).collect();
+        (m, n, (0..m * n).map(|k| value(k / n, k % n)).collect())
+    }
+
+    /// The normal equations' step, condition number and variances agree with the QR's
+    /// (`solve`) on columns of scales 1e-3 to 1e3 (the next test's, less nearly dependent:
+    /// condition of the scaled J under `NORMAL_CONDITION`); on the next test's own columns
+    /// (condition 5.5e4) it declines and leaves them to the QR.
+    #[test]
+    fn normal_statistics_agree_with_the_qr() {
+        let (m, n, j) = test_jacobian(0.3);
         let r: Vec<f64> = (0..m).map(|i| (i as f64 * 0.37).cos()).collect();
         let qr = solve(&j, n, &r).unwrap();
         let normal = normal_statistics(&j, n, &r).expect("condition under NORMAL_CONDITION");
@@ -1142,26 +1148,15 @@ mod tests {
     /// from the normal equations (checks the permutation's direction and the scaling).
     #[test]
     fn variances_are_the_diagonal_of_the_inverse_normal_matrix() {
-        let (m, n) = (40, 5);
         // Columns of very different scales and a near-dependence, so pivoting reorders them.
-        let value = |i: usize, c: usize| {
-            let x = i as f64 / m as f64;
-            match c {
-                0 => 1e-3 * (1.0 + x),
-                1 => 1e3 * x * x,
-                2 => (7.0 * x).sin(),
-                3 => 1.0 + x + 1e-2 * (3.0 * x).cos(),
-                _ => 5.0 * (2.0 * x).cos(),
-            }
-        };
-        let j: Vec<f64> = (0..m * n).map(|k| value(k / n, k % n)).collect();
+        let (m, n, j) = test_jacobian(1e-2);
         let r = vec![0.0; m];
         assert!(
             normal_statistics(&j, n, &r).is_none(),
             "κ above NORMAL_CONDITION"
         );
         let step = solve(&j, n, &r).unwrap();
-        let jn = nalgebra::DMatrix::from_fn(m, n, value);
+        let jn = nalgebra::DMatrix::from_fn(m, n, |i, c| j[i * n + c]);
         let inv = (jn.transpose() * &jn).try_inverse().unwrap();
         for c in 0..n {
             let rel = (step.variances[c] - inv[(c, c)]).abs() / inv[(c, c)];

@@ -9,13 +9,11 @@
 
 mod common;
 
-use common::{cycloid, PaperSpec, Scratch};
+use common::{cycloid, scene_item, PaperSpec, Scratch};
 
 fn scene(name: &str, torque_nm: f64, crank: &str, extra: &str) -> String {
-    format!(
-        "  - name: {name}\n    output_torque_nm: {torque_nm:e}\n    crank: {crank}\n    \
-         effects: [clearance, roller_contact, output_pins, bearing]\n{extra}"
-    )
+    let effects = "clearance, roller_contact, output_pins, bearing";
+    scene_item(name, torque_nm, crank, effects) + extra
 }
 
 /// Run `check` on the paper's design with `rotation_deg` and `scenes`; the JSON's scenes.

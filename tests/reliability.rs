@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 
 mod common;
-use common::{cycloid, PaperSpec, Run, Scratch};
+use common::{cycloid, scene_item, PaperSpec, Run, Scratch};
 
 /// Every file under `dir` (relative path → content): what a run must leave as it was.
 fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
@@ -358,13 +358,12 @@ fn a_broken_golden_is_exit_2_never_a_pass() {
 fn a_crank_range_whose_steps_are_not_distinct_angles_is_refused() {
     let dir = Scratch::new("rel-narrow");
     let spec = PaperSpec::new()
-        .scenes(
-            "  - name: narrow
-    output_torque_nm: 10.0
-    crank: { from_deg: 1000.0, to_deg: 1000.000000000001, steps: 10 }
-    effects: [roller_contact]
-",
-        )
+        .scenes(&scene_item(
+            "narrow",
+            10.0,
+            "{ from_deg: 1000.0, to_deg: 1000.000000000001, steps: 10 }",
+            "roller_contact",
+        ))
         .text()
         .to_string();
     dir.write("s.yaml", spec);
@@ -385,13 +384,8 @@ fn a_crank_range_whose_steps_are_not_distinct_angles_is_refused() {
 fn the_size_cap_holds_for_all_scenes_together() {
     let dir = Scratch::new("rel-total");
     let scene = |name: &str| {
-        format!(
-            "  - name: {name}
-    output_torque_nm: 10.0
-    crank: {{ from_deg: 0.0, to_deg: 360.0, steps: 400000 }}
-    effects: [clearance]
-"
-        )
+        let crank = "{ from_deg: 0.0, to_deg: 360.0, steps: 400000 }";
+        scene_item(name, 10.0, crank, "clearance")
     };
     let two = PaperSpec::new().scenes(&(scene("a") + &scene("b")));
     dir.write("two.yaml", two.text());
@@ -564,13 +558,12 @@ fn absurd_values_give_short_numbers_and_name_their_key() {
     assert!(run.stderr.contains("got -1e300"), "{}", run.stderr);
     // A torque no disc can carry: the solver's failure points at the torque.
     let heavy = PaperSpec::new()
-        .scenes(
-            "  - name: rated
-    output_torque_nm: 1e300
-    crank: { from_deg: 0.0, to_deg: 36.0, steps: 4 }
-    effects: [roller_contact]
-",
-        )
+        .scenes(&scene_item(
+            "rated",
+            1e300,
+            "{ from_deg: 0.0, to_deg: 36.0, steps: 4 }",
+            "roller_contact",
+        ))
         .text()
         .to_string();
     dir.write("s.yaml", &heavy);

@@ -212,10 +212,12 @@ impl PaperSpec {
     /// One scene `rated`: 10 N·m over one mesh period (0°–36°) in `steps` angles, with
     /// clearance and roller contact (no limits).
     pub fn rated_period(self, steps: usize) -> Self {
-        self.scenes(&format!(
-            "  - name: rated\n    output_torque_nm: 10.0\n    \
-             crank: {{ from_deg: 0.0, to_deg: 36.0, steps: {steps} }}\n    \
-             effects: [clearance, roller_contact]\n"
+        let crank = format!("{{ from_deg: 0.0, to_deg: 36.0, steps: {steps} }}");
+        self.scenes(&scene_item(
+            "rated",
+            10.0,
+            &crank,
+            "clearance, roller_contact",
         ))
     }
 
@@ -237,6 +239,15 @@ impl PaperSpec {
         cycloid::spec::parse(path, &self.text)
             .unwrap_or_else(|e| panic!("test spec is valid: {e}\n{}", self.text))
     }
+}
+
+/// One item of a spec's `scenes:` list: `name` at `torque_nm` over `crank` (its YAML flow
+/// mapping) with `effects` (comma-separated).
+pub fn scene_item(name: &str, torque_nm: f64, crank: &str, effects: &str) -> String {
+    format!(
+        "  - name: {name}\n    output_torque_nm: {torque_nm:?}\n    crank: {crank}\n    \
+         effects: [{effects}]\n"
+    )
 }
 
 pub const STEEL: Material = Material {

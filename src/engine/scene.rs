@@ -114,8 +114,7 @@ pub fn run_observed(
     } else {
         None
     };
-    let loaded_effects = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing];
-    let loaded = if loaded_effects.iter().any(|&e| plan.has(e)) {
+    let loaded = if runs_loaded(plan) {
         let model = loaded_model(design, m, scene, plan, settings);
         let pins = plan.has(Effect::OutputPins);
         let periodic = scene.spans_whole(design.loaded_period_rad(pins));
@@ -142,10 +141,14 @@ pub fn run_observed(
 /// How many sweeps over its crank angles `plan` runs (clearance, loaded): the work a progress
 /// display of the scene counts, in crank angles.
 pub fn sweeps(plan: &Plan) -> usize {
-    let loaded = [Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
+    usize::from(plan.has(Effect::Clearance)) + usize::from(runs_loaded(plan))
+}
+
+/// Whether `plan` runs the loaded sweep (roller contact, output pins or the bearing).
+fn runs_loaded(plan: &Plan) -> bool {
+    [Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
         .iter()
-        .any(|&e| plan.has(e));
-    usize::from(plan.has(Effect::Clearance)) + usize::from(loaded)
+        .any(|&e| plan.has(e))
 }
 
 /// The loaded model of a scene (roller contact, output pins, bearing as `plan` says) solved to

@@ -6,13 +6,14 @@
 //! evaluate is an error. A detail of an effect (the closing lags of `clearance`) is computed
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
-use crate::equilibrium::curves;
+use crate::equilibrium::curves::{self, DiscSweeps};
+use crate::equilibrium::discs::Discs;
 use crate::equilibrium::solve::{Settings, SolveFailure};
 use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::QUANTITIES;
-use crate::model::results::{LoadedSweep, SceneResult};
+use crate::model::results::{ClearanceSweep, LoadedSweep, SceneResult};
 use crate::model::{Design, Detail, Effect, Modification, Plan, Scene};
 use crate::progress::{Progress, Silent};
 use crate::spec::Spec;
@@ -101,47 +102,99 @@ pub fn run_observed(
     progress: &dyn Progress,
 ) -> Result<SceneResult> {
     let mesh = Mesh::new(design, m);
-    let clearance = if plan.has(Effect::Clearance) {
+    let clearance = |shift: f64| -> Result<Option<ClearanceSweep>> {
+        if !plan.has(Effect::Clearance) {
+            return Ok(None);
+        }
         let scope = if plan.has_detail(Detail::Backlash) {
             clearance::Scope::Backlash
         } else {
             clearance::Scope::Gaps
         };
-        Some(
-            clearance::sweep_observed(&mesh, &scene.crank_rad, scope, progress)
-                .map_err(|f| Error::computation(format!("scene `{}`: {f}", scene.name)))?,
-        )
-    } else {
-        None
+        let crank: Vec<f64> = scene.crank_rad.iter().map(|c| c + shift).collect();
+        let mut c = clearance::sweep_observed(&mesh, &crank, scope, progress)
+            .map_err(|f| Error::computation(format!("scene `{}`: {f}", scene.name)))?;
+        c.min.crank_rad -= shift;
+        Ok(Some(c))
     };
-    let loaded = if runs_loaded(plan) {
-        let model = loaded_model(design, m, scene, plan, settings);
-        let pins = plan.has(Effect::OutputPins);
-        let periodic = scene.spans_whole(design.loaded_period_rad(pins));
-        curves::sweep_observed(&model, &scene.crank_rad, periodic, progress).map_err(|f| {
-            let e = solve_failed(scene, f.crank_rad, &f.failure);
-            // The scene's value that a failure points at (made a spec key by `at_scene`).
-            match f.failure {
-                SolveFailure::BeyondCapacity { .. } => e.at_key("output_torque_nm"),
-                SolveFailure::OutOfMesh { .. } => e.at_key("bearing_stiffness_n_per_mm"),
-                _ => e,
-            }
-        })?
-    } else {
-        LoadedSweep::default()
-    };
-    Ok(SceneResult {
-        name: scene.name.clone(),
+    let result = |name: String, clearance, loaded| SceneResult {
+        name,
         crank_rad: scene.crank_rad.clone(),
         clearance,
         loaded,
-    })
+        discs: Vec::new(),
+    };
+    if design.discs == 1 {
+        let loaded = loaded_sweep(design, m, (scene, plan), settings, progress)?;
+        return Ok(result(scene.name.clone(), clearance(0.0)?, loaded));
+    }
+    let sweeps = loaded_disc_sweeps(design, m, (scene, plan), settings, progress)?;
+    let mut reducer = result(scene.name.clone(), None, LoadedSweep::default());
+    for k in 0..design.discs {
+        let mut loaded = LoadedSweep::default();
+        if let Some(s) = &sweeps {
+            loaded = s.discs[k].clone();
+            loaded.torque_nmm = Some(s.torque_nmm[k].clone());
+        }
+        let name = format!("{} disc {k}", scene.name);
+        let disc = result(name, clearance(design.disc_phase_rad(k))?, loaded);
+        reducer.discs.push(disc);
+    }
+    reducer.loaded.transmission = sweeps.and_then(|s| s.transmission);
+    Ok(reducer)
 }
 
-/// How many sweeps over its crank angles `plan` runs (clearance, loaded): the work a progress
-/// display of the scene counts, in crank angles.
-pub fn sweeps(plan: &Plan) -> usize {
-    usize::from(plan.has(Effect::Clearance)) + usize::from(runs_loaded(plan))
+/// The loaded sweep of one disc, when the plan runs it.
+fn loaded_sweep(
+    design: &Design,
+    m: &Modification,
+    (scene, plan): (&Scene, &Plan),
+    settings: &Settings,
+    progress: &dyn Progress,
+) -> Result<LoadedSweep> {
+    if !runs_loaded(plan) {
+        return Ok(LoadedSweep::default());
+    }
+    let model = loaded_model(design, m, scene, plan, settings);
+    let periodic = scene.spans_whole(design.loaded_period_rad(plan.has(Effect::OutputPins)));
+    curves::sweep_observed(&model, &scene.crank_rad, periodic, progress)
+        .map_err(|f| sweep_failed(scene, f))
+}
+
+/// The coupled loaded sweep of several discs (`equilibrium::discs`), when the plan runs it.
+fn loaded_disc_sweeps(
+    design: &Design,
+    m: &Modification,
+    (scene, plan): (&Scene, &Plan),
+    settings: &Settings,
+    progress: &dyn Progress,
+) -> Result<Option<DiscSweeps>> {
+    if !runs_loaded(plan) {
+        return Ok(None);
+    }
+    let discs = Discs::new(&loaded_model(design, m, scene, plan, settings), design.discs);
+    let periodic = scene.spans_whole(design.loaded_period_rad(plan.has(Effect::OutputPins)));
+    curves::sweep_discs_observed(&discs, &scene.crank_rad, periodic, progress)
+        .map(Some)
+        .map_err(|f| sweep_failed(scene, f))
+}
+
+/// The error of a loaded sweep that failed, at the scene's value it points at (made a spec
+/// key by `at_scene`).
+fn sweep_failed(scene: &Scene, f: curves::SweepFailure) -> Error {
+    let e = solve_failed(scene, f.crank_rad, &f.failure);
+    match f.failure {
+        SolveFailure::BeyondCapacity { .. } => e.at_key("output_torque_nm"),
+        SolveFailure::OutOfMesh { .. } => e.at_key("bearing_stiffness_n_per_mm"),
+        _ => e,
+    }
+}
+
+/// How many sweeps over its crank angles `plan` runs for a reducer of `discs` discs
+/// (clearance once per disc, one loaded sweep): the work a progress display of the scene
+/// counts, in crank angles.
+pub fn sweeps(plan: &Plan, discs: usize) -> usize {
+    discs * usize::from(plan.has(Effect::Clearance)) + usize::from(runs_loaded(plan))
 }
 
 /// Whether `plan` runs the loaded sweep (roller contact, output pins or the bearing).

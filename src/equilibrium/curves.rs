@@ -1,6 +1,7 @@
 //! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
+use super::discs::{solve_coupled, CoupledWork, Discs};
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
@@ -317,6 +318,18 @@ pub fn sweep_observed(
     Ok(collect(model, crank_rad, columns, periodic))
 }
 
+/// The transmission of a sweep from its TE (rad) at `crank_rad`: κ = 1/(1/nc − dδ/dφ).
+fn transmission(te_rad: Vec<f64>, crank_rad: &[f64], teeth: usize, periodic: bool) -> Transmission {
+    let h = match crank_rad {
+        [a, b, ..] => b - a,
+        _ => 1.0,
+    };
+    let nc = teeth as f64;
+    let ratio = derivative(&te_rad, h, periodic)
+        .map(|d| d.iter().map(|dd| 1.0 / (1.0 / nc - dd)).collect());
+    Transmission { te_rad, ratio }
+}
+
 fn collect(model: &Model, crank_rad: &[f64], columns: Columns, periodic: bool) -> LoadedSweep {
     let mut out = LoadedSweep::default();
     let c = columns;
@@ -327,14 +340,7 @@ fn collect(model: &Model, crank_rad: &[f64], columns: Columns, periodic: bool) -
             .zip(&c.output_lag)
             .map(|(b, o)| b + o)
             .collect();
-        let h = match crank_rad {
-            [a, b, ..] => b - a,
-            _ => 1.0,
-        };
-        let nc = model.teeth as f64;
-        let ratio = derivative(&te_rad, h, periodic)
-            .map(|d| d.iter().map(|dd| 1.0 / (1.0 / nc - dd)).collect());
-        out.transmission = Some(Transmission { te_rad, ratio });
+        out.transmission = Some(transmission(te_rad, crank_rad, model.teeth, periodic));
     }
     if model.rollers.is_some() {
         out.rollers = Some(RollerCurves {
@@ -360,4 +366,107 @@ fn collect(model: &Model, crank_rad: &[f64], columns: Columns, periodic: bool) -
         });
     }
     out
+}
+
+/// A sweep of several discs (`discs::solve_coupled` at every crank angle): each disc's curves
+/// (its lags, forces, bearing; no transmission of its own) and torque share, and the
+/// reducer's transmission from the common output lag γ.
+#[derive(Debug, Clone)]
+pub struct DiscSweeps {
+    pub discs: Vec<LoadedSweep>,
+    /// Disc k's share of the output torque, N·mm, [disc][angle].
+    pub torque_nmm: Vec<Vec<f64>>,
+    pub transmission: Option<Transmission>,
+}
+
+/// One chunk of a several-disc sweep: each disc's rows, its torque share and γ.
+struct DiscChunk<'a> {
+    discs: Vec<Chunk<'a>>,
+    torque: Vec<&'a mut [f64]>,
+    output_lag: &'a mut [f64],
+}
+
+fn solve_disc_chunk(
+    discs: &Discs,
+    crank_rad: &[f64],
+    chunk: &mut DiscChunk<'_>,
+) -> Result<(), SweepFailure> {
+    let mut work = CoupledWork::new(discs);
+    for (k, &phi) in crank_rad.iter().enumerate() {
+        let fail = |failure| SweepFailure {
+            crank_rad: phi,
+            failure,
+        };
+        chunk.output_lag[k] = solve_coupled(discs, phi, &mut work).map_err(fail)?;
+        for (d, rows) in chunk.discs.iter_mut().enumerate() {
+            let (model, w) = (&work.models[d], &work.works[d]);
+            if !all_finite(&w.sol) {
+                return Err(fail(SolveFailure::NonFinite {
+                    x: w.sol.lag_rad.unwrap_or(0.0),
+                }));
+            }
+            rows.record(k, model, w.e_phi, &w.sol);
+            chunk.torque[d][k] = model.torque_nmm;
+        }
+    }
+    Ok(())
+}
+
+/// `sweep_observed` of several discs: chunks of `CHUNK` angles in parallel, each angle
+/// warm-started from the previous ones of its chunk (split and lags), so results do not
+/// depend on the thread count.
+pub fn sweep_discs_observed(
+    discs: &Discs,
+    crank_rad: &[f64],
+    periodic: bool,
+    progress: &dyn Progress,
+) -> Result<DiscSweeps, SweepFailure> {
+    let n = crank_rad.len();
+    let chunks = n.div_ceil(CHUNK);
+    let mut columns: Vec<Columns> = discs.models.iter().map(|m| Columns::new(m, n)).collect();
+    let mut torque = vec![vec![0.0; n]; discs.count()];
+    let mut output_lag = vec![0.0; n];
+    let mut per_chunk: Vec<DiscChunk<'_>> = piece_rows(&mut torque, chunks)
+        .into_iter()
+        .zip(pieces(&mut output_lag))
+        .map(|(torque, output_lag)| DiscChunk {
+            discs: Vec::new(),
+            torque,
+            output_lag,
+        })
+        .collect();
+    for disc_columns in &mut columns {
+        for (chunk, rows) in per_chunk.iter_mut().zip(disc_columns.chunks()) {
+            chunk.discs.push(rows);
+        }
+    }
+    let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
+        .par_chunks(CHUNK)
+        .zip(per_chunk)
+        .map(|(c, mut chunk)| {
+            let done = solve_disc_chunk(discs, c, &mut chunk);
+            progress.advance(c.len() as u64);
+            done
+        })
+        .collect();
+    outcomes.into_iter().collect::<Result<(), _>>()?;
+    let model = &discs.models[0];
+    let transmission = model
+        .rollers
+        .is_some()
+        .then(|| transmission(output_lag, crank_rad, model.teeth, periodic));
+    let discs = discs
+        .models
+        .iter()
+        .zip(columns)
+        .map(|(m, c)| LoadedSweep {
+            transmission: None,
+            ..collect(m, crank_rad, c, periodic)
+        })
+        .collect();
+    Ok(DiscSweeps {
+        discs,
+        torque_nmm: torque,
+        transmission,
+    })
 }

@@ -6,6 +6,7 @@
 
 pub mod balance;
 pub mod curves;
+pub mod discs;
 pub mod first_order_sweep;
 pub mod pins;
 pub mod rollers;

@@ -86,6 +86,18 @@ impl Pins {
         }
     }
 
+    /// The pins as disc k of several sees them (MODEL.md "Several discs"): disc k runs at the
+    /// crank phase φ + 2πk/N, so its ideal rotation is 2πk/(N·nc) behind the output flange's,
+    /// and its holes are bored that much ahead so that the pins sit centred at the ideal pose:
+    /// in the disc's own solve the pin pattern is turned by `phase_rad` = 2πk/(N·nc).
+    pub fn turned(mut self, phase_rad: f64) -> Self {
+        let (s, c) = phase_rad.sin_cos();
+        for unit in &mut self.base {
+            *unit = rotate(*unit, c, s);
+        }
+        self
+    }
+
     /// Bound on the round-off of Σ F·a at a pose whose centre is offset by `offset_mm`:
     /// each contact's force moves by its stiffness times the gap's round-off.
     pub fn moment_resolution(&self, states: &[PinState], offset_mm: f64) -> f64 {

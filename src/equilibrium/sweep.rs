@@ -161,13 +161,27 @@ impl Work {
         }
     }
 
+    /// Evaluate every roller at the next solve: the bounds that let a sweep skip a roller
+    /// out of reach hold for the small steps of lag between neighbouring angles, not for the
+    /// jumps of a disc whose torque share is changed at one angle (`discs`).
+    pub(super) fn reach_all(&mut self) {
+        self.reaches.clear();
+    }
+
     fn remember(&mut self, crank: f64) {
         let lag = self.sol.lag_rad.unwrap_or(0.0);
         self.remember_lags(crank, lag, self.sol.output_lag_rad.unwrap_or(0.0));
     }
 
-    /// Remember the lags (β, βo) solved at `crank` for the next angle's guess.
+    /// Remember the lags (β, βo) solved at `crank` for the next angle's guess. A solve of the
+    /// angle last remembered again (the several-disc balance re-solves a disc at a corrected
+    /// torque) replaces it: its lags are then the guess at that angle, and the angles before
+    /// it stay for the extrapolation to the next.
     pub(super) fn remember_lags(&mut self, crank: f64, lag: f64, output_lag: f64) {
+        if self.filled > 0 && self.history[2].0 == crank {
+            self.history[2] = (crank, lag, output_lag);
+            return;
+        }
         self.history = [self.history[1], self.history[2], (crank, lag, output_lag)];
         self.filled = (self.filled + 1).min(3);
     }

@@ -26,11 +26,14 @@ pub struct OutputPins {
     pub hole_clearance_mm: f64,
 }
 
-/// Reducer geometry (MODEL.md "Paper design"): one disc, `rollers = teeth + 1`.
+/// Reducer geometry (MODEL.md "Paper design"): `rollers = teeth + 1`, and `discs` identical
+/// discs at crank phases 2πk/discs (MODEL.md "Several discs").
 #[derive(Debug, Clone, PartialEq)]
 pub struct Design {
     pub teeth: usize,
     pub rollers: usize,
+    /// Identical discs on the crank, 1 to `MAX_DISCS`.
+    pub discs: usize,
     pub eccentricity_mm: f64,
     pub roller_circle_radius_mm: f64,
     pub roller_radius_mm: f64,
@@ -40,7 +43,15 @@ pub struct Design {
     pub roller_material: Material,
 }
 
+/// Most discs a reducer may have (`reducer.discs`): reducers are built with one to three.
+pub const MAX_DISCS: usize = 4;
+
 impl Design {
+    /// Crank phase of disc k, rad: 2πk/discs (MODEL.md "Several discs").
+    pub fn disc_phase_rad(&self, k: usize) -> f64 {
+        std::f64::consts::TAU * k as f64 / self.discs as f64
+    }
+
     /// Short-amplitude coefficient K1 = e·np/Rp (MODEL.md); a disc exists only for K1 < 1.
     pub fn k1(&self) -> f64 {
         self.eccentricity_mm * self.rollers as f64 / self.roller_circle_radius_mm

@@ -55,7 +55,7 @@ pub mod results;
 pub mod scene;
 pub mod study;
 
-pub use design::{ConvexRadius, Design, Locus, Material, Modification, OutputPins};
+pub use design::{ConvexRadius, Design, Locus, Material, Modification, OutputPins, MAX_DISCS};
 pub use golden::{Golden, Tolerance};
 pub use limits::{Limit, Limits};
 pub use scene::{

@@ -113,11 +113,35 @@ impl Quantity {
         Some(Curves { columns, values })
     }
 
-    /// The scalar's value and where it occurs; `None` when not computed, or for a curve.
+    /// The scalar's value and where it occurs; `None` when not computed, or for a curve. With
+    /// several discs, a quantity of each disc (a force, a clearance) is the worst over the
+    /// discs, and where it occurs names the disc ("disc 1: roller 3 at crank 12.30°").
     pub fn scalar(&self, r: &SceneResult) -> Option<Extreme> {
-        match self.read {
-            Read::Scalar(read) => read(r),
-            Read::Curves(_) => None,
+        let Read::Scalar(read) = self.read else {
+            return None;
+        };
+        read(r).or_else(|| {
+            r.discs
+                .iter()
+                .enumerate()
+                .filter_map(|(k, disc)| {
+                    let e = read(disc)?;
+                    Some(Extreme {
+                        at: format!("disc {k}: {}", e.at),
+                        ..e
+                    })
+                })
+                .reduce(|a, b| if self.worse(b.value, a.value) { b } else { a })
+        })
+    }
+
+    /// Whether `a` is worse than `b` for this quantity: lower for a `min_` quantity (a limit
+    /// from below), higher for every other.
+    fn worse(&self, a: f64, b: f64) -> bool {
+        if self.key.starts_with("min_") {
+            a < b
+        } else {
+            a > b
         }
     }
 
@@ -316,6 +340,20 @@ pub const CONTACTS: Quantity = Quantity {
             .rollers
             .as_ref()
             .map(|c| vec![c.contacts.iter().map(|&n| n as f64).collect()])
+    }),
+};
+
+pub const DISC_TORQUE: Quantity = Quantity {
+    key: "torque_nm",
+    unit: "N·m",
+    label: "disc torque share Tk",
+    effect: Effect::RollerContact,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| {
+        let t = r.loaded.torque_nmm.as_ref()?;
+        Some(vec![t.iter().map(|&x| units::nm(x)).collect()])
     }),
 };
 
@@ -539,6 +577,7 @@ pub const QUANTITIES: &[&Quantity] = &[
     &CONTACT_PRESSURE,
     &CONTACT_HALF_WIDTH,
     &CONTACTS,
+    &DISC_TORQUE,
     &OUTPUT_LAG,
     &PIN_FORCE,
     &BEARING_FORCE,

@@ -75,6 +75,8 @@ pub struct Transmission {
 
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct LoadedSweep {
+    /// The disc's share of the output torque, N·mm [angle]: in a disc of several only.
+    pub torque_nmm: Option<Vec<f64>>,
     pub rollers: Option<RollerCurves>,
     pub pins: Option<PinCurves>,
     pub bearing: Option<BearingCurves>,
@@ -88,4 +90,21 @@ pub struct SceneResult {
     pub crank_rad: Vec<f64>,
     pub clearance: Option<ClearanceSweep>,
     pub loaded: LoadedSweep,
+    /// With several discs (MODEL.md "Several discs"), each disc's own results, disc k at the
+    /// crank phase 2πk/N, at the scene's crank angles: its clearance and its loaded curves
+    /// (with its torque share). The scene's own `clearance` is then `None` and its `loaded`
+    /// holds the reducer's transmission alone (the common output lag γ). Empty for one disc.
+    pub discs: Vec<SceneResult>,
+}
+
+impl SceneResult {
+    /// The results that hold a disc's curves: the scene itself with one disc, else each disc,
+    /// with its number.
+    pub fn disc_results(&self) -> Vec<(Option<usize>, &SceneResult)> {
+        if self.discs.is_empty() {
+            vec![(None, self)]
+        } else {
+            self.discs.iter().enumerate().map(|(k, d)| (Some(k), d)).collect()
+        }
+    }
 }

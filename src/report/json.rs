@@ -49,6 +49,8 @@ pub enum To {
     Same,
     Deg,
     Arcsec,
+    /// N·mm to N·m.
+    Nm,
 }
 
 impl To {
@@ -60,6 +62,7 @@ impl To {
             To::Same => x,
             To::Deg => units::deg(x),
             To::Arcsec => units::arcsec(x),
+            To::Nm => units::nm(x),
         }
     }
 }
@@ -125,8 +128,14 @@ pub struct MinClearanceAt {
 /// One scene: its curves, the registry's scalars and a few extremes.
 #[derive(Serialize)]
 pub struct SceneDoc<'a> {
-    name: &'a str,
-    crank_deg: Curve<'a>,
+    /// The scene's name and crank angles; absent in a disc's document (`discs`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    name: Option<&'a str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    crank_deg: Option<Curve<'a>>,
+    /// A disc's share of the output torque (in a disc's document).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    torque_nm: Option<Curve<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     clearance_mm: Option<Rows<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -172,9 +181,12 @@ pub struct SceneDoc<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     ratio_min: Option<Finite>,
     /// The registry's scalars the scene computed (`QUANTITIES`): min_clearance_mm,
-    /// max_roller_force_n, ...
+    /// max_roller_force_n, ... (with several discs, the worst over the discs).
     #[serde(flatten)]
     scalars: Pairs,
+    /// With several discs, each disc's curves and scalars (MODEL.md "Several discs").
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    discs: Vec<SceneDoc<'a>>,
 }
 
 /// (max, min) of a curve.
@@ -204,8 +216,9 @@ impl<'a> SceneDoc<'a> {
             te.map_or((None, None), |t| max_min(&t.te_rad, To::Arcsec));
         let (ratio_max, ratio_min) = ratio.map_or((None, None), |v| max_min(v, To::Same));
         SceneDoc {
-            name: &r.name,
-            crank_deg: Curve::new(&r.crank_rad, To::Deg),
+            name: Some(&r.name),
+            crank_deg: Some(Curve::new(&r.crank_rad, To::Deg)),
+            torque_nm: l.torque_nmm.as_deref().map(|t| Curve::new(t, To::Nm)),
             clearance_mm: c.map(|c| Rows(&c.gap_mm)),
             min_clearance_at: c.map(min_clearance_at),
             backlash_arcsec: backlash.map(|b| arcsec(&b.forward_rad)),
@@ -234,6 +247,16 @@ impl<'a> SceneDoc<'a> {
                     .filter_map(|q| Some((q.key, Finite(q.scalar(r)?.value))))
                     .collect(),
             ),
+            discs: r.discs.iter().map(SceneDoc::disc).collect(),
+        }
+    }
+
+    /// A disc's document: its curves and scalars, without the scene's name and angles.
+    fn disc(r: &'a SceneResult) -> Self {
+        SceneDoc {
+            name: None,
+            crank_deg: None,
+            ..SceneDoc::new(r)
         }
     }
 }

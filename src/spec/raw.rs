@@ -154,6 +154,9 @@ pub struct RawReference {
 pub struct RawReducer {
     pub teeth: i64,
     pub rollers: i64,
+    /// Identical discs at crank phases 2πk/discs (default 1).
+    #[serde(default = "one_disc")]
+    pub discs: i64,
     pub eccentricity_mm: f64,
     pub roller_circle_radius_mm: f64,
     pub roller_radius_mm: f64,
@@ -295,4 +298,8 @@ pub struct RawAccuracyTolerance {
     pub force_n: Option<f64>,
     pub ratio: Option<f64>,
     pub clearance_um: Option<f64>,
+}
+
+fn one_disc() -> i64 {
+    1
 }

@@ -160,6 +160,13 @@ fn design(raw: RawReducer) -> Result<Design> {
     Ok(Design {
         teeth,
         rollers,
+        discs: count_capped(
+            "reducer.discs",
+            raw.discs,
+            1,
+            MAX_DISCS,
+            "reducers are built with one to three discs",
+        )?,
         eccentricity_mm: length("reducer.eccentricity_mm", raw.eccentricity_mm)?,
         roller_circle_radius_mm: length(
             "reducer.roller_circle_radius_mm",

@@ -260,6 +260,7 @@ pub fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f64) -> 
     Design {
         teeth: rollers - 1,
         rollers,
+        discs: 1,
         eccentricity_mm,
         roller_circle_radius_mm: rp_mm,
         roller_radius_mm: rrp_mm,

@@ -1,0 +1,444 @@
+//! Several identical discs on one crank, driving one output flange (MODEL.md "Several
+//! discs, torsion, bearing life").
+//!
+//! Disc k of N runs at the crank phase φk = φ + 2πk/N and meshes with the same rollers; its
+//! holes are bored so that the pins sit centred at its ideal pose (`Pins::turned`). Each disc
+//! balances its own share Tk of the output torque through its rollers and its pins, with its
+//! own crank bearing, exactly as one disc does (`sweep::solve_into`); what couples them is the
+//! output flange: the output lag γ = βk + βo,k is the same for every disc, and Σ Tk = T.
+//! Without the pins in a scene the discs are rigidly coupled: γ = βk.
+//!
+//! The split of the torque is found by Newton on the shares: disc k's lag γk(Tk) is
+//! increasing in Tk with compliance ck = dγk/dTk; the update that makes every γk equal to
+//! one γ* while keeping Σ Tk = T is Tk ← Tk + (γ* − γk)/ck, γ* = (T − ΣTk + Σ γk/ck)/Σ 1/ck.
+//! The compliance is the secant of the last two solves of the disc at this angle, or, at the
+//! first solve, the tangent of its balances (1/Σk·l² of the rollers plus that of the pins).
+
+use super::balance::moment;
+use super::solve::SolveFailure;
+use super::sweep::{solve_into, Model, Work};
+
+/// Newton steps of the torque split before the coupled solve gives up: from the split of the
+/// previous angle it takes two or three; a contact that opens or closes between two steps
+/// costs a few more.
+const MAX_STEPS: usize = 60;
+
+/// The loaded models of the discs of a scene, each at its crank phase.
+#[derive(Debug, Clone)]
+pub struct Discs {
+    /// Disc k's model: its pins turned by 2πk/(N·nc); its torque is set by the split.
+    pub models: Vec<Model>,
+    /// Crank phase of disc k, rad.
+    pub phases: Vec<f64>,
+    /// The output torque T shared by the discs, N·mm.
+    pub torque_nmm: f64,
+}
+
+impl Discs {
+    /// `count` discs of the one-disc model `model` (a scene's model of the disc at phase 0).
+    pub fn new(model: &Model, count: usize) -> Self {
+        let teeth = model.teeth as f64;
+        let phases: Vec<f64> = (0..count)
+            .map(|k| std::f64::consts::TAU * k as f64 / count as f64)
+            .collect();
+        let models = phases
+            .iter()
+            .map(|&phase| {
+                let mut m = model.clone();
+                m.pins = m.pins.map(|p| p.turned(phase / teeth));
+                m
+            })
+            .collect();
+        Discs {
+            models,
+            phases,
+            torque_nmm: model.torque_nmm,
+        }
+    }
+
+    pub fn count(&self) -> usize {
+        self.models.len()
+    }
+}
+
+/// Reusable state of a sequence of coupled solves over neighbouring crank angles: each disc's
+/// model (its torque share) and work, and the last angle's split for the next guess.
+#[derive(Debug, Clone)]
+pub struct CoupledWork {
+    pub models: Vec<Model>,
+    pub works: Vec<Work>,
+    /// Each disc's share of T (fractions summing to 1) at the last (up to three) angles
+    /// solved, oldest first: (crank, shares).
+    shares: Vec<(f64, Vec<f64>)>,
+}
+
+impl CoupledWork {
+    pub fn new(discs: &Discs) -> Self {
+        CoupledWork {
+            models: discs.models.clone(),
+            works: vec![Work::default(); discs.count()],
+            shares: Vec::new(),
+        }
+    }
+
+    /// The shares at `crank`: extrapolated from the last angles (quadratic from three, linear
+    /// from two, as the lags are: `Work::guess`), equal with no history or one too far away
+    /// (`Model::warm_reach`). They sum to 1 up to round-off, the Newton steps keep the sum.
+    fn guess(&self, crank: f64, n: usize, reach: f64) -> Vec<f64> {
+        if n == 1 {
+            // The whole torque, exactly: one disc solves as `sweep::solve_into` alone does.
+            return vec![1.0];
+        }
+        let near = self.shares.last().is_some_and(|(c, _)| (c - crank).abs() <= reach);
+        let weights: Vec<f64> = match self.shares.as_slice() {
+            _ if !near => return vec![1.0 / n as f64; n],
+            [(p0, _), (p1, _), (p2, _)] => vec![
+                (crank - p1) * (crank - p2) / ((p0 - p1) * (p0 - p2)),
+                (crank - p0) * (crank - p2) / ((p1 - p0) * (p1 - p2)),
+                (crank - p0) * (crank - p1) / ((p2 - p0) * (p2 - p1)),
+            ],
+            [(p0, _), (p1, _)] => vec![(p1 - crank) / (p1 - p0), (crank - p0) / (p1 - p0)],
+            _ => vec![1.0],
+        };
+        (0..n)
+            .map(|k| weights.iter().zip(&self.shares).map(|(w, (_, s))| w * s[k]).sum())
+            .collect()
+    }
+}
+
+/// Disc k's output lag γk = βk + βo,k (βo,k = 0 without pins: rigid coupling), rad.
+fn output_lag(work: &Work) -> f64 {
+    work.sol.lag_rad.unwrap_or(0.0) + work.sol.output_lag_rad.unwrap_or(0.0)
+}
+
+/// dγk/dTk from the balances at the disc's solution, rad/(N·mm): 1/(∂M/∂β) of the rollers
+/// plus 1/(∂M/∂βo) of the pins (geometry held fixed); `None` when a balance has no
+/// stiffness (no contact).
+fn tangent_compliance(work: &Work) -> Option<f64> {
+    let mut c = 0.0;
+    if work.sol.lag_rad.is_some() {
+        let slope = moment(&work.sol.rollers).1;
+        (slope > 0.0).then_some(())?;
+        c += 1.0 / slope;
+    }
+    if work.sol.output_lag_rad.is_some() {
+        let slope = moment(&work.sol.pins).1;
+        (slope > 0.0).then_some(())?;
+        c += 1.0 / slope;
+    }
+    (c > 0.0 && c.is_finite()).then_some(c)
+}
+
+/// Solve the discs at crank `crank` (disc k at crank + its phase) so that every disc has the
+/// same output lag and the shares sum to T. Returns the output lag γ (rad); each disc's
+/// solution and torque are in `work`. Newton on the shares first: converged when the next
+/// correction of every share is within 10·rel_tol of max(|T|, Σ|F·l| of the discs), ten times
+/// the round-off of each disc's own balance (which is what a disc's lag is known to; a
+/// preloaded disc's Σ|F·l| is far above T). When that has not converged in `NEWTON_STEPS`
+/// (a disc floating in its backlash: its lag jumps across the answer as its share changes
+/// sign), the balance is solved as a root in γ (`by_lag`).
+pub fn solve_coupled(discs: &Discs, crank: f64, work: &mut CoupledWork) -> Result<f64, SolveFailure> {
+    let n = discs.count();
+    let total = discs.torque_nmm;
+    let reach = discs.models[0].warm_reach();
+    let mut torque: Vec<f64> = work
+        .guess(crank, n, reach)
+        .iter()
+        .map(|f| f * total)
+        .collect();
+    let mut lag = vec![0.0; n];
+    let mut last: Vec<Option<(f64, f64)>> = vec![None; n];
+    let rel_tol = discs.models[0].settings.rel_tol;
+    for _ in 0..NEWTON_STEPS {
+        let mut weights = vec![0.0; n];
+        let mut scale = total.abs();
+        for k in 0..n {
+            lag[k] = solve_disc(discs, work, k, crank, torque[k])?;
+            scale += moment(&work.works[k].sol.rollers).2;
+            let secant = last[k]
+                .filter(|&(t, _)| t != torque[k])
+                .map(|(t, g)| (lag[k] - g) / (torque[k] - t))
+                .filter(|c| *c > 0.0 && c.is_finite());
+            if let Some(c) = secant.or_else(|| tangent_compliance(&work.works[k])) {
+                weights[k] = 1.0 / c;
+            }
+            last[k] = Some((torque[k], lag[k]));
+        }
+        // A disc without contact has no compliance of its own; the discs are identical, so
+        // the mean of the others' stands in: the Newton then loads it when γ has passed its
+        // nearest contact (or `by_lag` finds it floating).
+        let loaded: Vec<f64> = weights.iter().cloned().filter(|w| *w > 0.0).collect();
+        if !loaded.is_empty() && loaded.len() < n {
+            let mean = loaded.iter().sum::<f64>() / loaded.len() as f64;
+            weights.iter_mut().filter(|w| **w == 0.0).for_each(|w| *w = mean);
+        }
+        let w: f64 = weights.iter().sum();
+        if total == 0.0 || w == 0.0 {
+            // No torque (or no contact anywhere): every share is zero and the discs rest at
+            // their own lags; the reducer's is their mean.
+            return Ok(finish(work, crank, &torque, total, &lag));
+        }
+        let common = (total - torque.iter().sum::<f64>()
+            + weights.iter().zip(&lag).map(|(w, g)| w * g).sum::<f64>())
+            / w;
+        let step: Vec<f64> = (0..n).map(|k| weights[k] * (common - lag[k])).collect();
+        // The steps alone can look converged across a dead band (a secant over a disc's jump
+        // of lag is a huge compliance, so a tiny weight): every disc that carries a share
+        // must also be at the common lag.
+        let agree = (0..n).all(|k| {
+            torque[k] == 0.0 || (lag[k] - common).abs() <= 1e-7 * common.abs().max(1e-300)
+        });
+        if agree && step.iter().all(|d| d.abs() <= 10.0 * rel_tol * scale) {
+            // γ is the common lag of the discs that carry a share (a disc without contact has
+            // no weight, and its own lag is that of its nearest contact).
+            finish(work, crank, &torque, total, &lag);
+            return Ok(if n == 1 { lag[0] } else { common });
+        }
+        for (t, d) in torque.iter_mut().zip(&step) {
+            *t += d;
+        }
+    }
+    by_lag(discs, crank, work, &torque, &lag)
+}
+
+/// Newton steps on the shares before `by_lag` takes over: from the split of the previous
+/// angle the Newton converges in one or two.
+const NEWTON_STEPS: usize = 8;
+
+/// Solve disc k alone at the torque `t` (N·mm): its output lag γk.
+fn solve_disc(
+    discs: &Discs,
+    work: &mut CoupledWork,
+    k: usize,
+    crank: f64,
+    t: f64,
+) -> Result<f64, SolveFailure> {
+    // A share within the inner root's resolution of zero is zero: the disc floats, and the
+    // solve at exactly zero torque finds its nearest contact (`sweep::solve_into`) where one
+    // at 1e-16 N·m would search for a balance the size of round-off.
+    let t = if t.abs() <= 1e-12 * discs.torque_nmm.abs() { 0.0 } else { t };
+    work.models[k].torque_nmm = t;
+    let phi = crank + discs.phases[k];
+    work.works[k].reach_all();
+    match solve_into(&work.models[k], phi, &mut work.works[k]) {
+        // The first-order geometry models the loaded flanks alone: a disc cannot take a share
+        // against the output torque, it floats in its backlash instead (zero share).
+        Err(SolveFailure::NoBracket { .. }) if t * discs.torque_nmm < 0.0 => {
+            work.models[k].torque_nmm = 0.0;
+            solve_into(&work.models[k], phi, &mut work.works[k])?;
+        }
+        other => other?,
+    }
+    Ok(output_lag(&work.works[k]))
+}
+
+/// Regula falsi (Illinois) on a non-decreasing f between `lo` = (x, f(x)) below `target` and
+/// `hi` above it, until |f − target| ≤ `tol` or the bracket is within `width`.
+fn illinois(
+    mut lo: (f64, f64),
+    mut hi: (f64, f64),
+    target: f64,
+    (tol, width): (f64, f64),
+    mut f: impl FnMut(f64) -> Result<f64, SolveFailure>,
+) -> Result<f64, SolveFailure> {
+    let mut side = 0i8;
+    for _ in 0..MAX_STEPS {
+        if hi.0 - lo.0 <= width {
+            break;
+        }
+        let x = lo.0 + (target - lo.1) * (hi.0 - lo.0) / (hi.1 - lo.1);
+        let x = if x > lo.0 && x < hi.0 { x } else { 0.5 * (lo.0 + hi.0) };
+        let y = f(x)?;
+        if (y - target).abs() <= tol {
+            return Ok(x);
+        }
+        if y < target {
+            lo = (x, y);
+            if side == -1 {
+                hi.1 = target + 0.5 * (hi.1 - target);
+            }
+            side = -1;
+        } else {
+            hi = (x, y);
+            if side == 1 {
+                lo.1 = target - 0.5 * (target - lo.1);
+            }
+            side = 1;
+        }
+    }
+    Ok(if (lo.1 - target).abs() <= (hi.1 - target).abs() { lo.0 } else { hi.0 })
+}
+
+/// Expand from `from` = (x, f(x)) in steps of `step` (doubling, away from the target's side)
+/// until f passes `target`: the bracket (below, above) of the target.
+fn bracket(
+    from: (f64, f64),
+    mut step: f64,
+    target: f64,
+    mut f: impl FnMut(f64) -> Result<f64, SolveFailure>,
+) -> Result<((f64, f64), (f64, f64)), SolveFailure> {
+    let up = from.1 < target;
+    let mut near = from;
+    for _ in 0..MAX_STEPS {
+        let x = if up { near.0 + step } else { near.0 - step };
+        let far = (x, f(x)?);
+        if (far.1 >= target) == up {
+            return Ok(if up { (near, far) } else { (far, near) });
+        }
+        near = far;
+        step *= 2.0;
+    }
+    Err(SolveFailure::NoBracket {
+        lo: near.0.min(from.0),
+        hi: near.0.max(from.0),
+        nearest: Some(near),
+    })
+}
+
+/// The coupled balance as a root in the output lag γ: Σ Tk(γ) = T, where Tk(γ) is the torque
+/// at which disc k's own output lag is γ (zero while γ lies in the disc's dead band). Both
+/// are non-decreasing, so a bracket holds: at the smallest of the discs' lags of the last
+/// Newton step each disc carries at most its share of that step, at the largest at least.
+/// Slower than the Newton (an inner root per disc for every γ tried), and it cannot cycle.
+/// Each disc's torque to 1e-12 of T, the balance to 1e-10·T.
+fn by_lag(
+    discs: &Discs,
+    crank: f64,
+    work: &mut CoupledWork,
+    torque: &[f64],
+    lag: &[f64],
+) -> Result<f64, SolveFailure> {
+    let total = discs.torque_nmm;
+    let mut shares = torque.to_vec();
+    let mut sum_at = |g: f64, work: &mut CoupledWork| -> Result<f64, SolveFailure> {
+        for (k, t) in shares.iter_mut().enumerate() {
+            *t = torque_at_lag(discs, work, (k, crank), (*t, total), g)?;
+        }
+        Ok(shares.iter().sum())
+    };
+    let lo = lag.iter().cloned().fold(f64::INFINITY, f64::min);
+    let hi = lag.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let below = (lo, sum_at(lo, work)?);
+    let above = (hi, sum_at(hi, work)?);
+    let width = 4.0 * f64::EPSILON * hi.abs().max(lo.abs());
+    let tol = 1e-10 * total.abs();
+    let g = if below.1 >= total - tol {
+        lo
+    } else if above.1 <= total + tol {
+        hi
+    } else {
+        illinois(below, above, total, (tol, width), |g| sum_at(g, work))?
+    };
+    // The discs hold the solves of the last γ tried; solve them at the answer's. A disc that
+    // floats in its backlash (no share) keeps the lag of its nearest contact, not γ.
+    sum_at(g, work)?;
+    let lags: Vec<f64> = (0..discs.count()).map(|k| output_lag(&work.works[k])).collect();
+    let t: Vec<f64> = (0..discs.count()).map(|k| work.models[k].torque_nmm).collect();
+    // A guard, not the criterion: a loaded disc off γ, or shares off T, is a failure to
+    // report at the angle, never a result.
+    let off = t
+        .iter()
+        .zip(&lags)
+        .filter(|(tk, _)| tk.abs() > 1e-12 * total.abs())
+        .map(|(_, l)| (l - g).abs() / g.abs().max(f64::MIN_POSITIVE))
+        .fold(0.0, f64::max);
+    let unbalanced = (t.iter().sum::<f64>() - total).abs() / total.abs();
+    if off > 1e-7 || unbalanced > 1e-9 {
+        return Err(SolveFailure::NotConverged {
+            x: g,
+            residual: off.max(unbalanced),
+        });
+    }
+    finish(work, crank, &t, total, &lags);
+    Ok(g)
+}
+
+/// The torque at which disc k's output lag is `g`: a root of γk(Tk) = g by regula falsi from
+/// its last share `from` (N·mm), bracketed in steps of |T|/4 (`scale` = T).
+fn torque_at_lag(
+    discs: &Discs,
+    work: &mut CoupledWork,
+    (k, crank): (usize, f64),
+    (from, scale): (f64, f64),
+    g: f64,
+) -> Result<f64, SolveFailure> {
+    let start = (from, solve_disc(discs, work, k, crank, from)?);
+    if start.1 == g {
+        return Ok(from);
+    }
+    let step = 0.25 * scale.abs();
+    let solve = |t: f64, work: &mut CoupledWork| solve_disc(discs, work, k, crank, t);
+    let (lo, hi) = match bracket(start, step, g, |t| solve(t, work)) {
+        Ok(b) => b,
+        // Below the lag of a disc that cannot take a share against the torque
+        // (`solve_disc`): it floats.
+        Err(SolveFailure::NoBracket { .. }) if start.1 > g && from * scale >= 0.0 => {
+            solve(0.0, work)?;
+            return Ok(0.0);
+        }
+        Err(e) => return Err(e),
+    };
+    let width = 1e-12 * scale.abs();
+    let tol = 1e-13 * g.abs();
+    let t = illinois(lo, hi, g, (tol, width), |t| solve(t, work))?;
+    solve(t, work)?;
+    Ok(work.models[k].torque_nmm)
+}
+
+/// Remember the converged split for the next angle; the reducer's output lag is the mean of
+/// the discs' (equal to within the tolerance).
+fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, lag: &[f64]) -> f64 {
+    if total != 0.0 {
+        if work.shares.last().is_some_and(|(c, _)| *c == crank) {
+            work.shares.pop();
+        } else if work.shares.len() == 3 {
+            work.shares.remove(0);
+        }
+        work.shares
+            .push((crank, torque.iter().map(|t| t / total).collect()));
+    }
+    lag.iter().sum::<f64>() / lag.len() as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Discs;
+    use crate::equilibrium::sweep::Model;
+    use crate::geometry::Vec2;
+    use crate::model::{Effect, Plan};
+    use std::f64::consts::TAU;
+
+    /// The pins of disc k as its own solve sees them (`Pins::turned`) have the ideal arms of
+    /// MODEL.md "Several discs": rw·sin(2πj/M − φ/nc + βk − φk), φk = φ + 2πk/N, for the disc
+    /// at its own crank φk turned by ψk = −φk/nc + βk. Only rounding separates the two forms
+    /// (a few ulp of rw = 18 mm).
+    #[test]
+    fn a_disc_sees_the_pins_at_the_arms_of_the_model() {
+        let s = crate::spec::load("specs/paper.yaml").unwrap();
+        let scene = &s.scenes[0];
+        let plan = Plan::of("rated", &[Effect::Bearing]);
+        let model = Model::new(&s.design, &s.modification, scene, &plan);
+        let (nc, rw, m) = (9.0, 18.0, 6);
+        for count in 2..=4 {
+            let discs = Discs::new(&model, count);
+            for (k, disc) in discs.models.iter().enumerate() {
+                let pins = disc.pins.as_ref().unwrap();
+                for (phi, lag) in [(0.3, 1e-3), (2.0, -4e-4), (5.5, 0.0)] {
+                    let phi_k: f64 = phi + TAU * k as f64 / count as f64;
+                    let e_phi = Vec2::new(phi_k.cos(), phi_k.sin());
+                    let psi = -phi_k / nc + lag;
+                    let mut states = Vec::new();
+                    pins.first_order_at(e_phi, psi.sin_cos(), e_phi * 2.0, 0.0, &mut states);
+                    for (j, st) in states.iter().enumerate() {
+                        let arm = rw * (TAU * j as f64 / m as f64 - phi / nc + lag - phi_k).sin();
+                        assert!(
+                            (st.arm_mm - arm).abs() < 1e-12,
+                            "disc {k} of {count}, pin {j}, crank {phi}: {} vs {arm}",
+                            st.arm_mm
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,270 @@
+//! Several discs on one crank (MODEL.md "Several discs, torsion, bearing life"): the coupled
+//! balance of `equilibrium::discs` on random designs.
+
+mod common;
+
+use common::{cases, Case};
+use cycloid::engine::scene::run_design;
+use cycloid::equilibrium::curves::{self, sweep_discs_observed};
+use cycloid::equilibrium::discs::Discs;
+use cycloid::equilibrium::solve::Settings;
+use cycloid::equilibrium::sweep::{solve_angle, AngleSolution, Model};
+use cycloid::model::results::SceneResult;
+use cycloid::model::{ContactLaw, Design, Effect, GeometryMode, Plan, Scene};
+use cycloid::progress::Silent;
+use proptest::prelude::*;
+use std::f64::consts::TAU;
+
+/// A loaded scene over one mesh period in 24 angles from `phase` (a fraction of the period),
+/// at a torque that loads a random design moderately: 0.5 N·m at Rp = 30 mm, scaled with Rp².
+fn scene(design: &Design, phase: f64, law: ContactLaw, geometry: GeometryMode) -> Scene {
+    let period = design.mesh_period_rad();
+    let from = phase * period;
+    let rp = design.roller_circle_radius_mm;
+    Scene {
+        name: "loaded".to_string(),
+        output_torque_nmm: 500.0 * (rp / 30.0).powi(2),
+        crank_rad: (0..24).map(|k| from + period * k as f64 / 24.0).collect(),
+        crank_from_deg: from.to_degrees(),
+        crank_to_deg: (from + period).to_degrees(),
+        effects: vec![],
+        contact_law: law,
+        geometry,
+        bearing_stiffness_n_per_mm: None,
+    }
+}
+
+fn effects(pins: bool) -> Vec<Effect> {
+    if pins {
+        vec![Effect::Bearing]
+    } else {
+        vec![Effect::RollerContact]
+    }
+}
+
+fn run(case: &Case, discs: usize, scene: &Scene, pins: bool) -> SceneResult {
+    let mut design = case.design.clone();
+    design.discs = discs;
+    let plan = Plan::of(&scene.name, &effects(pins));
+    run_design(&design, &case.m, scene, &plan, &Settings::default())
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn torque(disc: &SceneResult, a: usize) -> f64 {
+    disc.loaded.torque_nmm.as_ref().unwrap()[a]
+}
+
+fn laws() -> impl Strategy<Value = (ContactLaw, GeometryMode)> {
+    (any::<bool>(), any::<bool>()).prop_map(|(hertz, first)| {
+        (
+            if hertz {
+                ContactLaw::HertzNonlinear
+            } else {
+                ContactLaw::PaperLinear
+            },
+            if first {
+                GeometryMode::FirstOrder
+            } else {
+                GeometryMode::Exact
+            },
+        )
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(32)
+    ))]
+
+    /// On random designs and modifications, 2–4 discs, both contact laws and geometries, a
+    /// rigid or compliant crank bearing, with the pins or rigidly coupled without them: at
+    /// every crank angle the discs' torques sum to the output torque, each disc's own balance
+    /// holds (Eqs. 12–14), and each disc has the reducer's output lag γ, checked by solving
+    /// the disc alone (the one-disc solver, cold) a hair either side of its share:
+    /// γk(Tk − h) ≤ γ ≤ γk(Tk + h).
+    ///
+    /// Tolerances: the Newton on the shares keeps their sum at T to the round-off of N
+    /// additions; the solve in γ that takes over where a disc floats stops at 1e-10·T and
+    /// refuses an answer off by more than 1e-9·T.
+    /// h = 1e-9·max(T, S), S = Σ F·(Rp + e) over the disc's rollers, a bound on its Σ|F·l|:
+    /// each solve of a disc is converged to 1e-11·max(T, Σ|F·l|) in moment, so its lag to that
+    /// moment times its compliance; h is 100 times that, and a coupling off by more than the
+    /// 1e-9 asked of a balance puts γ outside the bracket.
+    #[test]
+    fn the_shares_sum_to_the_torque_and_every_disc_has_the_output_lag(
+        case in cases(),
+        discs in 2usize..=4,
+        (law, geometry) in laws(),
+        phase in 0.0f64..1.0,
+        pins in any::<bool>(),
+        compliant in any::<bool>(),
+    ) {
+        // Known limitation: rigidly coupled discs (no pins) with backlash can leave a disc
+        // floating in its dead band or on its reverse flank at one angle and not the next;
+        // the coupled solve then may stop with "did not converge" at the angle (exit 2),
+        // which this property does not cover. With the pins every disc stays loaded here.
+        prop_assume!(pins);
+        // Known limitation: with interference (preload) the coupled solve has been seen to
+        // settle on a split the one-disc solve does not reproduce (10 rollers, modification
+        // (−0.129, −0.183) mm: disc 0 at +72.5 N·m against disc 1 at −72.2 N·m); the spec
+        // refuses several discs with a negative tip clearance, and this property keeps to
+        // clearance designs.
+        prop_assume!(case.m.tip_clearance_mm() > 0.0);
+        let mut scene = scene(&case.design, phase, law, geometry);
+        if compliant && pins {
+            scene.bearing_stiffness_n_per_mm = Some(5e5);
+        }
+        // Never a wrong answer: the solve either meets every property below or stops with
+        // the scene and the crank angle it failed at. (It stops where a disc floats in a
+        // backlash far larger than its deflection and the one-disc solve cannot find that
+        // disc's nearest contact at zero share: on 4- and 5-roller designs with 0.03–0.07 mm
+        // of backlash: 56 of 300 cases here, all with a disc floating.)
+        let mut design = case.design.clone();
+        design.discs = discs;
+        let plan = Plan::of(&scene.name, &effects(pins));
+        let r = match run_design(&design, &case.m, &scene, &plan, &Settings::default()) {
+            Ok(r) => r,
+            Err(e) => {
+                let text = e.to_string();
+                prop_assert!(text.contains("scene `loaded`: crank angle"), "{text}");
+                if std::env::var("DISCS_COUNT_FAILURES").is_ok() {
+                    eprintln!("coupled solve stopped: {text}");
+                }
+                return Ok(());
+            }
+        };
+        prop_assert_eq!(r.discs.len(), discs);
+        let te = &r.loaded.transmission.as_ref().unwrap().te_rad;
+        let model = Model::new(&case.design, &case.m, &scene, &plan);
+        let alone = Discs::new(&model, discs);
+        let d = &case.design;
+        let lever = d.roller_circle_radius_mm + d.eccentricity_mm;
+        let t = scene.output_torque_nmm;
+        for (a, &phi) in scene.crank_rad.iter().enumerate() {
+            let sum: f64 = r.discs.iter().map(|d| torque(d, a)).sum();
+            prop_assert!((sum - t).abs() <= 1e-9 * t, "angle {a}: Σ Tk = {sum}, T = {t}");
+            for (k, disc) in r.discs.iter().enumerate() {
+                // (Not with the first-order geometry on a compliant bearing: its ideal pin
+                // directions do not follow the moved centre, so Eqs. 12–14 of the exact
+                // geometry are off by the order of the deflection in one disc too.)
+                // Nor for a disc floating in its backlash (no share): its forces are round-off,
+                // and so is their balance relative to them.
+                let exact_balance = (geometry == GeometryMode::Exact || !compliant)
+                    && torque(disc, a) != 0.0;
+                if let (Some(b), true) = (&disc.loaded.bearing, exact_balance) {
+                    prop_assert!(b.residual[a] <= 1e-9, "disc {k} residual {:e}", b.residual[a]);
+                }
+                let forces = &disc.loaded.rollers.as_ref().unwrap().force_n;
+                let s: f64 = forces.iter().map(|f| f[a] * lever).sum();
+                let h = 1e-9 * t.max(s);
+                let lag_at = |tk: f64| {
+                    let mut m = alone.models[k].clone();
+                    m.torque_nmm = tk;
+                    let sol = solve_angle(&m, phi + alone.phases[k], &AngleSolution::default())
+                        .unwrap_or_else(|e| panic!("disc {k} alone: {e}"));
+                    sol.lag_rad.unwrap() + sol.output_lag_rad.unwrap_or(0.0)
+                };
+                let tk = torque(disc, a);
+                let (below, above) = (lag_at(tk - h), lag_at(tk + h));
+                prop_assert!(below <= te[a] && te[a] <= above,
+                    "angle {a}, disc {k} at {tk} N·mm: γ {:e} outside [{below:e}, {above:e}]",
+                    te[a]);
+            }
+        }
+    }
+
+    /// One disc through the coupled solve is the one-disc sweep, bit for bit (exact geometry,
+    /// where both run `sweep::solve_into` angle by angle; the first-order one-disc sweep has a
+    /// faster kernel of its own).
+    #[test]
+    fn one_disc_through_the_coupled_solve_is_todays_sweep(
+        case in cases(),
+        hertz in any::<bool>(),
+        phase in 0.0f64..1.0,
+        pins in any::<bool>(),
+    ) {
+        let law = if hertz { ContactLaw::HertzNonlinear } else { ContactLaw::PaperLinear };
+        let scene = scene(&case.design, phase, law, GeometryMode::Exact);
+        let plan = Plan::of(&scene.name, &effects(pins));
+        let model = Model::new(&case.design, &case.m, &scene, &plan);
+        // (A design the one-disc sweep itself cannot solve is not this property's case.)
+        let one = curves::sweep(&model, &scene.crank_rad, false);
+        prop_assume!(one.is_ok());
+        let one = one.unwrap();
+        let coupled =
+            sweep_discs_observed(&Discs::new(&model, 1), &scene.crank_rad, false, &Silent).unwrap();
+        let disc = &coupled.discs[0];
+        prop_assert_eq!(&one.rollers, &disc.rollers);
+        prop_assert_eq!(&one.pins, &disc.pins);
+        prop_assert_eq!(&one.bearing, &disc.bearing);
+        prop_assert_eq!(&one.transmission, &coupled.transmission);
+        prop_assert!(coupled.torque_nmm[0].iter().all(|&t| t == scene.output_torque_nmm));
+    }
+
+    /// With an even roller count, the second of two discs meshes in the same phase (half a
+    /// crank turn is np/2 roller pitches) and, with an even pin count (6 here), meets the same
+    /// pin pattern half a turn round: the discs share equally, and the reducer is one disc at
+    /// half the torque. Tolerance: the coupled solve's 1e-10·T on the shares; the lags of two
+    /// solves of the same balance agree to their 1e-11 relative tolerance, 1e-9 allowed.
+    #[test]
+    fn two_discs_in_the_same_mesh_phase_share_equally(
+        case in cases().prop_filter("even roller count", |c| c.design.rollers % 2 == 0),
+        (law, geometry) in laws(),
+        phase in 0.0f64..1.0,
+    ) {
+        let scene = scene(&case.design, phase, law, geometry);
+        let two = run(&case, 2, &scene, true);
+        let mut half = scene.clone();
+        half.output_torque_nmm /= 2.0;
+        let one = run(&case, 1, &half, true);
+        let t = scene.output_torque_nmm;
+        let (te2, te1) = (
+            &two.loaded.transmission.as_ref().unwrap().te_rad,
+            &one.loaded.transmission.as_ref().unwrap().te_rad,
+        );
+        for a in 0..scene.crank_rad.len() {
+            let (t0, t1) = (torque(&two.discs[0], a), torque(&two.discs[1], a));
+            // Each share within the coupled solve's 10·1e-11·max(T, Σ|F·l|); Σ|F·l| bounded
+            // by Σ F·(Rp + e) (a preloaded disc carries far more than T in it).
+            let forces = &two.discs[0].loaded.rollers.as_ref().unwrap().force_n;
+            let d = &case.design;
+            let s: f64 = forces.iter().map(|f| f[a] * (d.roller_circle_radius_mm + d.eccentricity_mm)).sum();
+            prop_assert!((t0 - t1).abs() <= 2e-10 * t.max(s), "angle {a}: {t0} vs {t1}");
+            // The same solve of one disc at T/2, to its own 1e-11 relative tolerance, and at
+            // the shares' offset from T/2: both solves' lags within 1e-9 of the moment scale
+            // times the compliance (γ/T bounds it from above when γ > 0).
+            let within = 1e-9 * te1[a].abs() * t.max(s) / t;
+            prop_assert!((te2[a] - te1[a]).abs() <= within.max(1e-9 * te1[a].abs()),
+                "angle {a}: two discs {:e}, one at T/2 {:e}", te2[a], te1[a]);
+        }
+    }
+}
+
+/// With an odd roller count the discs do not mesh in the same phase: on the paper's design
+/// with 11 rollers, 10 teeth and two discs the shares swing well away from half (found 19 %
+/// to 81 % of T over 108°; asserted: beyond 40/60 somewhere), while still summing to T.
+#[test]
+fn with_an_odd_roller_count_two_discs_do_not_share_equally() {
+    let spec = common::PaperSpec::new()
+        .edit("teeth: 9 ", "teeth: 10 ")
+        .edit("rollers: 10 ", "rollers: 11 ")
+        .edit("face_width_mm", "discs: 2\n  face_width_mm")
+        .scenes(&common::scene_item(
+            "rated",
+            10.0,
+            "{ from_deg: 0.0, to_deg: 108.0, steps: 216 }",
+            "bearing",
+        ))
+        .parse("odd.yaml");
+    let r = cycloid::engine::scene::run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0]))
+        .unwrap();
+    let shares: Vec<f64> = (0..216).map(|a| torque(&r.discs[0], a) / 10_000.0).collect();
+    let lowest = shares.iter().cloned().fold(f64::INFINITY, f64::min);
+    assert!(lowest < 0.4, "disc 0 never below 40 % of T: lowest {lowest}");
+    for a in 0..216 {
+        let sum = torque(&r.discs[0], a) + torque(&r.discs[1], a);
+        assert!((sum - 10_000.0).abs() <= 1e-8, "angle {a}: {sum}");
+    }
+    // A disc is at its own crank phase: disc 1 runs half a turn ahead of disc 0.
+    assert!((cycloid::model::Design::disc_phase_rad(&spec.design, 1) - TAU / 2.0).abs() < 1e-15);
+}

@@ -54,6 +54,21 @@ fn torque(disc: &SceneResult, a: usize) -> f64 {
     disc.loaded.torque_nmm.as_ref().unwrap()[a]
 }
 
+/// Whether the unloaded disc clears every roller over a mesh period (min clearance ≥ 0).
+///
+/// With interference the one-disc balance itself can have several roots: on 16 rollers with
+/// the modification (−0.088, −0.108) mm (20 µm of interference on 0.22 mm rollers) the disc
+/// solved at 111 N·mm and 0.94° of crank lags −3.44e-4 rad warm-started from the previous
+/// angle and +2.99e-4 rad from a cold start (`examples/debug_discs.rs` of the branch). A
+/// coupled split cannot be checked against a solve that is not unique, so the properties
+/// keep to interference-free designs; the spec refuses several discs with interference.
+fn interference_free(case: &Case) -> bool {
+    let scene = scene(&case.design, 0.0, ContactLaw::PaperLinear, GeometryMode::Exact);
+    let plan = Plan::of(&scene.name, &[Effect::Clearance]);
+    run_design(&case.design, &case.m, &scene, &plan, &Settings::default())
+        .is_ok_and(|r| r.clearance.is_some_and(|c| c.min.gap_mm >= 0.0))
+}
+
 fn laws() -> impl Strategy<Value = (ContactLaw, GeometryMode)> {
     (any::<bool>(), any::<bool>()).prop_map(|(hertz, first)| {
         (
@@ -99,17 +114,7 @@ proptest! {
         pins in any::<bool>(),
         compliant in any::<bool>(),
     ) {
-        // Known limitation: rigidly coupled discs (no pins) with backlash can leave a disc
-        // floating in its dead band or on its reverse flank at one angle and not the next;
-        // the coupled solve then may stop with "did not converge" at the angle (exit 2),
-        // which this property does not cover. With the pins every disc stays loaded here.
-        prop_assume!(pins);
-        // Known limitation: with interference (preload) the coupled solve has been seen to
-        // settle on a split the one-disc solve does not reproduce (10 rollers, modification
-        // (−0.129, −0.183) mm: disc 0 at +72.5 N·m against disc 1 at −72.2 N·m); the spec
-        // refuses several discs with a negative tip clearance, and this property keeps to
-        // clearance designs.
-        prop_assume!(case.m.tip_clearance_mm() > 0.0);
+        prop_assume!(interference_free(&case));
         let mut scene = scene(&case.design, phase, law, geometry);
         if compliant && pins {
             scene.bearing_stiffness_n_per_mm = Some(5e5);
@@ -128,7 +133,7 @@ proptest! {
                 let text = e.to_string();
                 prop_assert!(text.contains("scene `loaded`: crank angle"), "{text}");
                 if std::env::var("DISCS_COUNT_FAILURES").is_ok() {
-                    eprintln!("coupled solve stopped: {text}");
+                    eprintln!("coupled solve stopped: {text} :: {discs} discs {law:?} {geometry:?} phase {phase} compliant {compliant} {:?} {:?}", case.design, case.m);
                 }
                 return Ok(());
             }
@@ -208,7 +213,9 @@ proptest! {
     /// solves of the same balance agree to their 1e-11 relative tolerance, 1e-9 allowed.
     #[test]
     fn two_discs_in_the_same_mesh_phase_share_equally(
-        case in cases().prop_filter("even roller count", |c| c.design.rollers % 2 == 0),
+        case in cases().prop_filter("even roller count, no interference", |c| {
+            c.design.rollers % 2 == 0 && interference_free(c)
+        }),
         (law, geometry) in laws(),
         phase in 0.0f64..1.0,
     ) {

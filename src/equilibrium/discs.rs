@@ -182,6 +182,9 @@ pub fn solve_coupled(discs: &Discs, crank: f64, work: &mut CoupledWork) -> Resul
             + weights.iter().zip(&lag).map(|(w, g)| w * g).sum::<f64>())
             / w;
         let step: Vec<f64> = (0..n).map(|k| weights[k] * (common - lag[k])).collect();
+        if std::env::var("DEBUG_DISCS").is_ok() {
+            eprintln!("  newton torque {torque:?} lag {lag:?} w {weights:?} common {common:e}");
+        }
         // The steps alone can look converged across a dead band (a secant over a disc's jump
         // of lag is a huge compliance, so a tiny weight): every disc that carries a share
         // must also be at the common lag.
@@ -196,6 +199,11 @@ pub fn solve_coupled(discs: &Discs, crank: f64, work: &mut CoupledWork) -> Resul
         }
         for (t, d) in torque.iter_mut().zip(&step) {
             *t += d;
+        }
+        // A share against the torque sends its disc across its backlash, where its lag jumps
+        // and no compliance describes it: the solve in γ handles that.
+        if torque.iter().any(|t| t * total < 0.0) {
+            break;
         }
     }
     by_lag(discs, crank, work, &torque, &lag)
@@ -220,16 +228,37 @@ fn solve_disc(
     work.models[k].torque_nmm = t;
     let phi = crank + discs.phases[k];
     work.works[k].reach_all();
+    // A disc without a share does not load its bearing: its centre sits where a rigid one
+    // holds it (and the compliant solve need not find a balance of round-off).
+    let stiffness = work.models[k].bearing_stiffness_n_per_mm;
+    if t == 0.0 {
+        work.models[k].bearing_stiffness_n_per_mm = None;
+    }
+    let solved = solve_unloaded_or(discs, work, k, phi, t);
+    work.models[k].bearing_stiffness_n_per_mm = stiffness;
+    solved?;
+    Ok(output_lag(&work.works[k]))
+}
+
+/// `solve_into` of disc k at `t`, or at zero when the first-order geometry cannot put the
+/// disc on the flank against the output torque (`solve_disc`).
+fn solve_unloaded_or(
+    discs: &Discs,
+    work: &mut CoupledWork,
+    k: usize,
+    phi: f64,
+    t: f64,
+) -> Result<(), SolveFailure> {
     match solve_into(&work.models[k], phi, &mut work.works[k]) {
         // The first-order geometry models the loaded flanks alone: a disc cannot take a share
         // against the output torque, it floats in its backlash instead (zero share).
         Err(SolveFailure::NoBracket { .. }) if t * discs.torque_nmm < 0.0 => {
             work.models[k].torque_nmm = 0.0;
-            solve_into(&work.models[k], phi, &mut work.works[k])?;
+            work.models[k].bearing_stiffness_n_per_mm = None;
+            solve_into(&work.models[k], phi, &mut work.works[k])
         }
-        other => other?,
+        other => other,
     }
-    Ok(output_lag(&work.works[k]))
 }
 
 /// Regula falsi (Illinois) on a non-decreasing f between `lo` = (x, f(x)) below `target` and
@@ -312,7 +341,7 @@ fn by_lag(
     let mut shares = torque.to_vec();
     let mut sum_at = |g: f64, work: &mut CoupledWork| -> Result<f64, SolveFailure> {
         for (k, t) in shares.iter_mut().enumerate() {
-            *t = torque_at_lag(discs, work, (k, crank), (*t, total), g)?;
+            *t = torque_at_lag(discs, work, (k, crank), total, g)?;
         }
         Ok(shares.iter().sum())
     };
@@ -331,7 +360,20 @@ fn by_lag(
     };
     // The discs hold the solves of the last γ tried; solve them at the answer's. A disc that
     // floats in its backlash (no share) keeps the lag of its nearest contact, not γ.
-    sum_at(g, work)?;
+    let sum = sum_at(g, work)?;
+    // What the root in γ leaves of T − Σ Tk goes to the loaded discs by their stiffness, so
+    // that the shares sum to T to round-off; it moves their lags by that over Σ 1/ck.
+    let loaded: Vec<(usize, f64)> = (0..discs.count())
+        .filter(|&k| work.models[k].torque_nmm != 0.0)
+        .filter_map(|k| tangent_compliance(&work.works[k]).map(|c| (k, 1.0 / c)))
+        .collect();
+    let stiffness: f64 = loaded.iter().map(|(_, w)| w).sum();
+    if sum != total && stiffness > 0.0 {
+        for &(k, w) in &loaded {
+            let t = work.models[k].torque_nmm + (total - sum) * w / stiffness;
+            solve_disc(discs, work, k, crank, t)?;
+        }
+    }
     let lags: Vec<f64> = (0..discs.count()).map(|k| output_lag(&work.works[k])).collect();
     let t: Vec<f64> = (0..discs.count()).map(|k| work.models[k].torque_nmm).collect();
     // A guard, not the criterion: a loaded disc off γ, or shares off T, is a failure to
@@ -353,26 +395,35 @@ fn by_lag(
     Ok(g)
 }
 
-/// The torque at which disc k's output lag is `g`: a root of γk(Tk) = g by regula falsi from
-/// its last share `from` (N·mm), bracketed in steps of |T|/4 (`scale` = T).
+/// The torque at which disc k's output lag is `g`: zero when `g` lies in the disc's dead
+/// band, between its lags at ±h (h = 1e-6·|T|, `scale` = T: the smallest share a disc is
+/// told apart from floating by; a compliant bearing's solve does not converge at 1e-9·T on
+/// every design); else a root of γk(Tk) = g by regula falsi, bracketed from that side in
+/// steps of |T|/4.
 fn torque_at_lag(
     discs: &Discs,
     work: &mut CoupledWork,
     (k, crank): (usize, f64),
-    (from, scale): (f64, f64),
+    scale: f64,
     g: f64,
 ) -> Result<f64, SolveFailure> {
-    let start = (from, solve_disc(discs, work, k, crank, from)?);
-    if start.1 == g {
-        return Ok(from);
-    }
-    let step = 0.25 * scale.abs();
     let solve = |t: f64, work: &mut CoupledWork| solve_disc(discs, work, k, crank, t);
-    let (lo, hi) = match bracket(start, step, g, |t| solve(t, work)) {
+    let h = 1e-6 * scale.abs();
+    let up = (h, solve(h, work)?);
+    let down = (-h, solve(-h, work)?);
+    let start = if g > up.1 {
+        up
+    } else if g < down.1 {
+        down
+    } else {
+        solve(0.0, work)?;
+        return Ok(0.0);
+    };
+    let (lo, hi) = match bracket(start, 0.25 * scale.abs(), g, |t| solve(t, work)) {
         Ok(b) => b,
         // Below the lag of a disc that cannot take a share against the torque
         // (`solve_disc`): it floats.
-        Err(SolveFailure::NoBracket { .. }) if start.1 > g && from * scale >= 0.0 => {
+        Err(SolveFailure::NoBracket { .. }) if start.1 > g => {
             solve(0.0, work)?;
             return Ok(0.0);
         }

@@ -166,8 +166,6 @@ impl Work {
     /// jumps of a disc whose torque share is changed at one angle (`discs`).
     pub(super) fn reach_all(&mut self) {
         self.reaches.clear();
-        self.sol.rollers.clear();
-        self.sol.pins.clear();
     }
 
     fn remember(&mut self, crank: f64) {

@@ -175,6 +175,9 @@ pub struct SceneDoc<'a> {
     /// max_roller_force_n, ...
     #[serde(flatten)]
     scalars: Pairs,
+    /// A torsion scene's curves and figures (`report::torsion`).
+    #[serde(flatten)]
+    torsion: Option<super::torsion::TorsionDoc>,
 }
 
 /// (max, min) of a curve.
@@ -234,6 +237,7 @@ impl<'a> SceneDoc<'a> {
                     .filter_map(|q| Some((q.key, Finite(q.scalar(r)?.value))))
                     .collect(),
             ),
+            torsion: super::torsion::TorsionDoc::new(r),
         }
     }
 }

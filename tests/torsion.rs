@@ -449,14 +449,12 @@ fn bad_torsion_and_bearing_inputs_are_refused_with_the_rule() {
 #[test]
 fn a_rigidity_limit_fails_and_passes_as_expected() {
     let dir = Scratch::new("torsion-limit");
-    let scenes = format!(
-        "  - name: torsion\n    torque_sweep: {{ rated_nm: 20.0, steps: 4 }}\n    crank: \
-         {{ from_deg: 0.0, to_deg: 36.0, steps: 4 }}\n    effects: [bearing]\n"
-    );
+    let scenes = "  - name: torsion\n    torque_sweep: { rated_nm: 20.0, steps: 4 }\n    crank: \
+                  { from_deg: 0.0, to_deg: 36.0, steps: 4 }\n    effects: [bearing]\n";
     for (limit, code) in [(60.0, 1), (50.0, 0)] {
         let text = spec_text(
             "",
-            &scenes,
+            scenes,
             &format!("limits:\n  min_torsional_rigidity_nm_per_arcmin: {limit:?}\n"),
         );
         dir.write("spec.yaml", &text);
@@ -473,4 +471,14 @@ fn a_rigidity_limit_fails_and_passes_as_expected() {
     }
     let (code, out, _) = cycloid_here(&["check", "specs/reducer-torsion.yaml"]).parts();
     assert_eq!(code, 0, "{out}");
+    // The accuracy ladder sweeps the crank angle: a torsion scene is refused, not laddered.
+    let args = [
+        "accuracy",
+        "specs/reducer-torsion.yaml",
+        "--scene",
+        "torsion",
+    ];
+    let (code, _, err) = cycloid_here(&args).parts();
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("is a torsion scene"), "{err}");
 }

@@ -578,8 +578,8 @@ fn bearing_life_limit(limits: &Limits, design: &Design, scenes: &[Scene]) -> Res
     Ok(())
 }
 
-/// `what` (the accuracy ladder, a study) runs its scene over the crank angle: a torsion scene
-/// has no such curves.
+/// `what` (a study) runs its scene over the crank angle: a torsion scene has no such curves
+/// (the accuracy ladder refuses one in `model::accuracy::check`).
 fn not_torsion(key: &str, scene: &Scene, what: &str) -> Result<()> {
     if scene.torque_sweep.is_some() {
         return Err(invalid(
@@ -610,7 +610,6 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
                 ),
             )
         })?;
-    not_torsion("accuracy.scene", &scenes[scene], "the accuracy ladder")?;
     let steps = |key: &str, value: Option<i64>, min: usize| {
         value
             .map(|n| acc::ladder_steps(n, min).map_err(|m| invalid(&format!("accuracy.{key}"), m)))

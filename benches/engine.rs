@@ -98,6 +98,33 @@ fn loaded_sweep_3600_first_order(b: divan::Bencher) {
     loaded(b, GeometryMode::FirstOrder);
 }
 
+/// Torsion under a locked input (issue 14): the paper optimum (`specs/reducer-torsion.yaml`'s
+/// scene `torsion`, pins and a rigid bearing, exact geometry) at 4 locked crank angles × 40
+/// steps per quarter loop (161 loop solves and 8 figure solves per angle); target < 20 ms.
+#[divan::bench]
+fn torsion_4_angles_40_steps(b: divan::Bencher) {
+    let s = spec::load("specs/reducer-torsion.yaml").expect("specs/reducer-torsion.yaml");
+    let scene = s
+        .scenes
+        .iter()
+        .find(|c| c.name == "torsion")
+        .expect("torsion");
+    let plan = cycloid::model::Plan::of("torsion", &[cycloid::model::Effect::Bearing]);
+    let model = cycloid::equilibrium::sweep::Model::new(&s.design, &s.modification, scene, &plan);
+    let model = cycloid::equilibrium::discs::Discs::new(&model, s.design.discs);
+    let sweep = scene.torque_sweep.expect("a torque sweep");
+    assert_eq!((scene.crank_rad.len(), sweep.steps), (4, 40));
+    b.bench(|| {
+        cycloid::engine::torsion::run(
+            black_box(&model),
+            &sweep,
+            &scene.crank_rad,
+            &cycloid::progress::Silent,
+        )
+        .unwrap()
+    });
+}
+
 /// One full optimisation study (the paper's positive ratio study).
 #[divan::bench(sample_count = 3)]
 fn optimisation_positive_ratio(b: divan::Bencher) {

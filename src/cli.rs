@@ -396,6 +396,9 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     }
     let summaries = summary::summarise(&results);
     print(out, &report::table::render_summary(&summaries))?;
+    for note in scene::notes(&spec) {
+        print(out, &format!("note: {note}\n"))?;
+    }
     if let Some(p) = outputs.json {
         let doc = report::json::Document::new(&report::json::Contents {
             spec: &spec,

@@ -60,6 +60,12 @@ pub fn nm(nmm: f64) -> f64 {
     nmm / NMM_PER_NM
 }
 
+/// Torsional stiffness N·mm/rad → N·m/arcmin.
+#[inline]
+pub fn nm_per_arcmin(nmm_per_rad: f64) -> f64 {
+    nm(nmm_per_rad) / ARCMIN_PER_RAD
+}
+
 /// GPa → MPa.
 #[inline]
 pub fn mpa(gpa: f64) -> f64 {

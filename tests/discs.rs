@@ -31,6 +31,8 @@ fn scene(design: &Design, phase: f64, law: ContactLaw, geometry: GeometryMode) -
         contact_law: law,
         geometry,
         bearing_stiffness_n_per_mm: None,
+        torque_sweep: None,
+        input_speed_rpm: None,
     }
 }
 

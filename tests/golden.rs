@@ -358,7 +358,7 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
     let spec = cycloid::spec::parse("specs/paper.yaml", &text).unwrap();
     let mut scene = spec.scenes[1].clone();
     scene.crank_rad.truncate(12);
-    scene.effects = cycloid::model::Effect::ALL.to_vec();
+    scene.effects = cycloid::model::Effect::listed().collect();
     // The plan of a run that writes the results JSON: every quantity is read.
     let writes = cycloid::engine::scene::Writes {
         json: true,
@@ -400,6 +400,11 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
             }
         }
     }
-    let curves = QUANTITIES.iter().filter(|q| !q.is_scalar()).count();
+    // Every curve over the crank angle (a torsion scene's figures are per locked angle, of
+    // another kind of scene).
+    let curves = QUANTITIES
+        .iter()
+        .filter(|q| !q.is_scalar() && q.effect != cycloid::model::Effect::Torsion)
+        .count();
     assert_eq!(seen, curves, "the scene computes every curve");
 }

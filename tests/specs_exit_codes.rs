@@ -13,6 +13,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "paper optimum under 10 N·m, every effect, accuracy ladder for the design review",
     ),
     (
+        "reducer-torsion.yaml",
+        0,
+        "paper optimum: torsion at 4 locked angles, crank-bearing life at 20 N·m",
+    ),
+    (
         "paper.yaml",
         0,
         "paper optimum (0.125, 0.1593) with its golden curves",

@@ -107,7 +107,7 @@ pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
     limits
         .entries
         .iter()
-        .filter(|l| plan.has(l.def.quantity.effect))
+        .filter(|l| plan.computes(l.def.quantity.effect))
         .map(|l| l.def.key)
         .collect()
 }
@@ -118,7 +118,7 @@ pub fn validate(spec: &Spec) -> Result<()> {
     for g in &spec.golden {
         let q = g.quantity;
         let scene = spec.scenes.iter().find(|s| s.name == g.scene);
-        if scene.is_some_and(|s| !Plan::for_scene(s).has(q.effect)) {
+        if scene.is_some_and(|s| !Plan::for_scene(s).computes(q.effect)) {
             return Err(Error::new(
                 ErrorKind::InvalidValue,
                 format!(
@@ -134,14 +134,25 @@ pub fn validate(spec: &Spec) -> Result<()> {
     for l in &spec.limits.entries {
         let d = l.def;
         let effect = d.quantity.effect;
-        let covered = spec.scenes.iter().any(|s| Plan::for_scene(s).has(effect));
+        let covered = spec
+            .scenes
+            .iter()
+            .any(|s| Plan::for_scene(s).computes(effect));
         if !covered {
+            let how = match effect {
+                crate::model::Effect::Torsion => {
+                    "give a scene `torque_sweep: {rated_nm, steps}`".to_string()
+                }
+                e if e.is_loaded() => format!(
+                    "add the effect `{}` to a scene loaded over the crank angle (not a \
+                     `torque_sweep` scene)",
+                    e.name()
+                ),
+                e => format!("add the effect `{}` to a scene", e.name()),
+            };
             return Err(Error::new(
                 ErrorKind::InvalidValue,
-                format!(
-                    "no scene computes this limit's quantity; add the effect `{}` to a scene",
-                    effect.name()
-                ),
+                format!("no scene computes this limit's quantity; {how}"),
             )
             .at_key(format!("limits.{}", d.key)));
         }
@@ -163,7 +174,7 @@ pub fn evaluate(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Check>> {
         for l in &spec.limits.entries {
             let q = l.def.quantity;
             let Some(e) = q.scalar(r) else {
-                if plan.as_ref().is_some_and(|p| p.has(q.effect)) {
+                if plan.as_ref().is_some_and(|p| p.computes(q.effect)) {
                     return Err(Error::computation(format!(
                         "scene `{}` computes `{}` but its {} is missing: no check of `limits.{}` \
                          can pass without it",

@@ -1,9 +1,11 @@
 //! The engine: runs the scenes of a spec (`scene`), checks its limits (`check`) and golden
 //! curves (`golden`), optimises the modification (`optimise`) and runs the accuracy ladder
 //! (`accuracy`), summarises the headline results of each scene (`summary`), and computes what
-//! the design review draws of the disc (`drawing`).
+//! the design review draws of the disc (`drawing`); the torsion curve under a locked input and
+//! its catalogue figures (`torsion`); the crank bearing's rating life (`bearing_life`).
 
 pub mod accuracy;
+pub mod bearing_life;
 pub mod check;
 pub mod drawing;
 pub mod golden;
@@ -13,3 +15,4 @@ pub use crate::progress;
 pub mod resolution;
 pub mod scene;
 pub mod summary;
+pub mod torsion;

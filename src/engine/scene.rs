@@ -6,6 +6,7 @@
 //! evaluate is an error. A detail of an effect (the closing lags of `clearance`) is computed
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
+use crate::engine::{bearing_life, torsion};
 use crate::equilibrium::curves::{self, DiscSweeps};
 use crate::equilibrium::discs::Discs;
 use crate::equilibrium::solve::{Settings, SolveFailure};
@@ -13,7 +14,7 @@ use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::QUANTITIES;
-use crate::model::results::{ClearanceSweep, LoadedSweep, SceneResult};
+use crate::model::results::{BearingLife, ClearanceSweep, LoadedSweep, SceneResult};
 use crate::model::{Design, Detail, Effect, Modification, Plan, Scene};
 use crate::progress::{Progress, Silent};
 use crate::spec::Spec;
@@ -117,16 +118,21 @@ pub fn run_observed(
         c.min.crank_rad -= shift;
         Ok(Some(c))
     };
-    let result = |name: String, clearance, loaded| SceneResult {
+    let result = |name: String, clearance, loaded: LoadedSweep| SceneResult {
         name,
         crank_rad: scene.crank_rad.clone(),
+        bearing_life: bearing_life(design, scene, plan, &loaded),
         clearance,
         loaded,
+        torsion: None,
         discs: Vec::new(),
     };
+    let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     if design.discs == 1 {
         let loaded = loaded_sweep(design, m, (scene, plan), settings, progress)?;
-        return Ok(result(scene.name.clone(), clearance(0.0)?, loaded));
+        let mut one = result(scene.name.clone(), clearance(0.0)?, loaded);
+        one.torsion = torsion;
+        return Ok(one);
     }
     let sweeps = loaded_disc_sweeps(design, m, (scene, plan), settings, progress)?;
     let mut reducer = result(scene.name.clone(), None, LoadedSweep::default());
@@ -141,7 +147,36 @@ pub fn run_observed(
         reducer.discs.push(disc);
     }
     reducer.loaded.transmission = sweeps.and_then(|s| s.transmission);
+    reducer.torsion = torsion;
     Ok(reducer)
+}
+
+/// The torsion loops of a scene with a `torque_sweep` (`engine::torsion`), when planned.
+fn torsion_loops(
+    design: &Design,
+    m: &Modification,
+    (scene, plan): (&Scene, &Plan),
+    settings: &Settings,
+    progress: &dyn Progress,
+) -> Result<Option<crate::model::results::TorsionCurves>> {
+    let (Some(sweep), true) = (&scene.torque_sweep, plan.has(Effect::Torsion)) else {
+        return Ok(None);
+    };
+    let model = loaded_model(design, m, scene, plan, settings);
+    let discs = Discs::new(&model, design.discs);
+    torsion::run(&discs, sweep, &scene.crank_rad, progress)
+        .map(Some)
+        .map_err(|f| {
+            Error::computation(format!(
+                "scene `{}`: crank angle {:.4}° locked, output torque {} N·m: \
+                 equilibrium solve failed: {}",
+                scene.name,
+                units::deg(f.crank_rad),
+                crate::numeric::number(units::nm(f.torque_nmm)),
+                f.failure
+            ))
+            .at_key("torque_sweep.rated_nm")
+        })
 }
 
 /// The loaded sweep of one disc, when the plan runs it.
@@ -190,18 +225,86 @@ fn sweep_failed(scene: &Scene, f: curves::SweepFailure) -> Error {
     }
 }
 
-/// How many sweeps over its crank angles `plan` runs for a reducer of `discs` discs
-/// (clearance once per disc, one loaded sweep): the work a progress display of the scene
-/// counts, in crank angles.
-pub fn sweeps(plan: &Plan, discs: usize) -> usize {
-    discs * usize::from(plan.has(Effect::Clearance)) + usize::from(runs_loaded(plan))
+/// The crank bearing's rating life over the scene (`engine::bearing_life`): when the design
+/// has a `crank_bearing`, the scene computes the bearing force, and its sweep covers whole
+/// loaded periods (the equivalent load is a mean over the load cycle; see `notes` for the
+/// scenes left out); the life in hours needs the scene's `input_speed_rpm` too.
+fn bearing_life(
+    design: &Design,
+    scene: &Scene,
+    plan: &Plan,
+    loaded: &LoadedSweep,
+) -> Option<BearingLife> {
+    let rating = design.crank_bearing?;
+    let force = &loaded.bearing.as_ref()?.force_n;
+    if !spans_loaded_periods(design, scene, plan) {
+        return None;
+    }
+    let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
+    Some(BearingLife {
+        equivalent_load_n: bearing_life::equivalent_load(force, p),
+        life_h: scene
+            .input_speed_rpm
+            .and_then(|n| bearing_life::rating_life(force, c, p, n, design.teeth).1),
+    })
 }
 
-/// Whether `plan` runs the loaded sweep (roller contact, output pins or the bearing).
+/// Whether the scene's sweep covers whole periods of its loaded curves.
+fn spans_loaded_periods(design: &Design, scene: &Scene, plan: &Plan) -> bool {
+    scene.spans_whole(design.loaded_period_rad(plan.has(Effect::OutputPins)))
+}
+
+/// What a reader of the results must be told besides the numbers, one line each: a torsion
+/// scene's zero hysteresis, a crank bearing whose life a scene could not rate.
+pub fn notes(spec: &Spec) -> Vec<String> {
+    let mut notes = Vec::new();
+    for scene in &spec.scenes {
+        let plan = Plan::for_scene(scene);
+        if plan.has(Effect::Torsion) {
+            notes.push(format!("scene `{}`: {HYSTERESIS}", scene.name));
+        }
+        if spec.design.crank_bearing.is_some() && plan.computes(Effect::Bearing) {
+            if !spans_loaded_periods(&spec.design, scene, &plan) {
+                notes.push(format!(
+                    "scene `{}`: crank-bearing life not rated: its crank range is not a whole \
+                     number of loaded periods ({}°), and the equivalent load is a mean over \
+                     whole load cycles",
+                    scene.name,
+                    crate::numeric::number(units::deg(
+                        spec.design.loaded_period_rad(plan.has(Effect::OutputPins))
+                    ))
+                ));
+            } else if scene.input_speed_rpm.is_none() {
+                notes.push(format!(
+                    "scene `{}`: crank-bearing life in hours not rated: the scene has no \
+                     `input_speed_rpm`",
+                    scene.name
+                ));
+            }
+        }
+    }
+    notes
+}
+
+/// What every output says of a torsion scene's hysteresis.
+pub const HYSTERESIS: &str = "hysteresis loss 0: the quasi-static model has no friction, so \
+     the loading and unloading branches of the torsion loop coincide";
+
+/// How many sweeps over its crank angles `plan` runs for a reducer of `discs` discs
+/// (clearance once per disc, loaded, torsion): the work a progress display of the scene
+/// counts, in crank angles.
+pub fn sweeps(plan: &Plan, discs: usize) -> usize {
+    discs * usize::from(plan.has(Effect::Clearance))
+        + usize::from(runs_loaded(plan))
+        + usize::from(plan.has(Effect::Torsion))
+}
+
+/// Whether `plan` runs the loaded sweep over the crank angle (roller contact, output pins or
+/// the bearing, outside a torsion scene).
 fn runs_loaded(plan: &Plan) -> bool {
     [Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
         .iter()
-        .any(|&e| plan.has(e))
+        .any(|&e| plan.computes(e))
 }
 
 /// The loaded model of a scene (roller contact, output pins, bearing as `plan` says) solved to
@@ -238,11 +341,18 @@ pub fn explain(spec: &Spec, writes: Writes) -> String {
             [a, b, ..] => units::deg(b - a),
             _ => 0.0,
         };
+        let load = match &scene.torque_sweep {
+            Some(t) => format!(
+                "input locked, output torque looped ±{} N·m ({} steps per quarter)",
+                units::nm(t.rated_nmm),
+                t.steps
+            ),
+            None => format!("output torque {} N·m", units::nm(scene.output_torque_nmm)),
+        };
         out += &format!(
-            "\nscene `{}`: output torque {} N·m, {} crank angles from {:.4}° in steps of {:.4}°, \
+            "\nscene `{}`: {load}, {} crank angles from {:.4}° in steps of {:.4}°, \
              {} geometry\n",
             scene.name,
-            units::nm(scene.output_torque_nmm),
             scene.crank_rad.len(),
             first,
             step,
@@ -256,6 +366,12 @@ pub fn explain(spec: &Spec, writes: Writes) -> String {
                     Some(k) => format!("compliant ({k} N/mm)"),
                     None => "rigid".to_string(),
                 }
+            );
+        }
+        if plan.has(Effect::Torsion) {
+            out += &format!(
+                "  note    torsion: per locked crank angle the torsion curve and the catalogue \
+                 figures, no loaded curves over the crank angle; {HYSTERESIS}\n"
             );
         }
         if plan.has(Effect::RollerContact) && !plan.has(Effect::OutputPins) {
@@ -282,9 +398,8 @@ pub fn explain(spec: &Spec, writes: Writes) -> String {
                 );
             }
         }
-        let skipped: Vec<&str> = Effect::ALL
-            .iter()
-            .filter(|e| !plan.has(**e))
+        let skipped: Vec<&str> = Effect::listed()
+            .filter(|e| !plan.has(*e))
             .map(|e| e.name())
             .collect();
         if !skipped.is_empty() {

@@ -117,6 +117,16 @@ pub fn check(
             ));
         }
     }
+    if scene.torque_sweep.is_some() {
+        return Err((
+            Setting::Scene,
+            format!(
+                "scene `{}` is a torsion scene (`torque_sweep`): the ladder needs a scene loaded \
+                 over the crank angle (`output_torque_nm`)",
+                scene.name
+            ),
+        ));
+    }
     let plan = Plan::for_scene(scene);
     let compared = [Effect::Clearance, Effect::RollerContact, Effect::Bearing];
     if !compared.iter().any(|&e| plan.has(e)) {

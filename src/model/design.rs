@@ -41,6 +41,23 @@ pub struct Design {
     pub pins: OutputPins,
     pub disc_material: Material,
     pub roller_material: Material,
+    /// The crank bearing's rating (spec: `reducer.crank_bearing`), for its rating life.
+    pub crank_bearing: Option<CrankBearing>,
+}
+
+/// The rating of the crank bearing of a disc (ISO 281): its basic dynamic load rating C and
+/// the life exponent p of L10 = (C/P)^p millions of revolutions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrankBearing {
+    /// C, N (spec: `dynamic_load_rating_n`).
+    pub dynamic_load_rating_n: f64,
+    /// p: 10/3 for roller bearings (the default), 3 for ball bearings.
+    pub life_exponent: f64,
+}
+
+impl CrankBearing {
+    /// The life exponent of roller bearings (ISO 281).
+    pub const ROLLER_LIFE_EXPONENT: f64 = 10.0 / 3.0;
 }
 
 /// Most discs a reducer may have (`reducer.discs`): reducers are built with one to three.

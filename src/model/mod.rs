@@ -55,11 +55,14 @@ pub mod results;
 pub mod scene;
 pub mod study;
 
-pub use design::{ConvexRadius, Design, Locus, Material, Modification, OutputPins, MAX_DISCS};
+pub use design::{
+    ConvexRadius, CrankBearing, Design, Locus, Material, Modification, OutputPins, MAX_DISCS,
+};
 pub use golden::{Golden, Tolerance};
 pub use limits::{Limit, Limits};
 pub use scene::{
     ContactLaw, Detail, Effect, GeometryMode, Plan, PlannedDetail, PlannedEffect, Scene,
+    TorqueSweep,
 };
 pub use study::{Objective, Study, Variable, VariableKind};
 

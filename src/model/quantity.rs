@@ -7,7 +7,7 @@
 //! scalar of the whole sweep (`Shape::Scalar`: an extreme with where it occurs). Values are in
 //! the unit named by the key (arcsec, N, mm, MPa, deg).
 
-use super::results::{BacklashCurves, SceneResult};
+use super::results::{BacklashCurves, SceneResult, TorsionFigures};
 use super::scene::{Detail, Effect};
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
@@ -561,6 +561,123 @@ pub const MAX_RESIDUAL: Quantity = Quantity {
     read: Read::Scalar(|r| Some(highest(r, &r.loaded.bearing.as_ref()?.residual))),
 };
 
+/// The catalogue figures of a torsion scene, [crank], read by `figure`.
+fn torsion_figures(r: &SceneResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
+    let t = r.torsion.as_ref()?;
+    Some(vec![t.figures.iter().map(figure).collect()])
+}
+
+pub const TORSION_LOST_MOTION: Quantity = Quantity {
+    key: "lost_motion_arcmin",
+    unit: "arcmin",
+    label: "lost motion at ±3 % rated torque",
+    effect: Effect::Torsion,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| torsion_figures(r, |f| units::arcmin(f.lost_motion_rad))),
+};
+
+pub const TORSION_BACKLASH: Quantity = Quantity {
+    key: "backlash_arcmin",
+    unit: "arcmin",
+    label: "backlash (dead band at zero torque)",
+    effect: Effect::Torsion,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| torsion_figures(r, |f| units::arcmin(f.backlash_rad))),
+};
+
+pub const TORSIONAL_RIGIDITY: Quantity = Quantity {
+    key: "torsional_rigidity_nm_per_arcmin",
+    unit: "N·m/arcmin",
+    label: "torsional rigidity (50–100 % rated, smaller direction)",
+    effect: Effect::Torsion,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| torsion_figures(r, |f| units::nm_per_arcmin(f.rigidity()))),
+};
+
+/// The largest (`largest` true) or smallest value of a per-crank curve of the registry, with
+/// the crank angle where it occurs.
+fn curve_extreme(r: &SceneResult, q: &Quantity, largest: bool) -> Option<Extreme> {
+    let values = q.curves(r)?.values.pop()?;
+    let ((lo, klo), (hi, khi)) = extremes(&values);
+    let (value, k) = if largest { (hi, khi) } else { (lo, klo) };
+    Some(Extreme {
+        value,
+        at: format!("crank {:.2}° locked", crank_deg(r, k)),
+    })
+}
+
+pub const MAX_TORSION_LOST_MOTION: Quantity = Quantity {
+    key: "max_lost_motion_arcmin",
+    unit: "arcmin",
+    label: "max lost motion (±3 % rated)",
+    effect: Effect::Torsion,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("lost_motion_arcmin"),
+    read: Read::Scalar(|r| curve_extreme(r, &TORSION_LOST_MOTION, true)),
+};
+
+pub const MAX_TORSION_BACKLASH: Quantity = Quantity {
+    key: "max_backlash_arcmin",
+    unit: "arcmin",
+    label: "max backlash (torsion dead band)",
+    effect: Effect::Torsion,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("backlash_arcmin"),
+    read: Read::Scalar(|r| curve_extreme(r, &TORSION_BACKLASH, true)),
+};
+
+pub const MIN_TORSIONAL_RIGIDITY: Quantity = Quantity {
+    key: "min_torsional_rigidity_nm_per_arcmin",
+    unit: "N·m/arcmin",
+    label: "min torsional rigidity",
+    effect: Effect::Torsion,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("torsional_rigidity_nm_per_arcmin"),
+    read: Read::Scalar(|r| curve_extreme(r, &TORSIONAL_RIGIDITY, false)),
+};
+
+pub const BEARING_EQUIVALENT_LOAD: Quantity = Quantity {
+    key: "bearing_equivalent_load_n",
+    unit: "N",
+    label: "crank-bearing equivalent load P",
+    effect: Effect::Bearing,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        r.bearing_life.map(|b| Extreme {
+            value: b.equivalent_load_n,
+            at: "(mean of Fb^p over the sweep)^(1/p)".to_string(),
+        })
+    }),
+};
+
+pub const BEARING_LIFE: Quantity = Quantity {
+    key: "bearing_life_h",
+    unit: "h",
+    label: "crank-bearing rating life L10h",
+    effect: Effect::Bearing,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        let b = r.bearing_life?;
+        Some(Extreme {
+            value: b.life_h?,
+            at: format!("at P = {} N", crate::numeric::number(b.equivalent_load_n)),
+        })
+    }),
+};
+
 /// Every quantity, curves first, in the order of the results JSON.
 ///
 /// The equilibrium `residual` per angle is left out of the curves on purpose: it is solver
@@ -583,6 +700,9 @@ pub const QUANTITIES: &[&Quantity] = &[
     &BEARING_FORCE,
     &BEARING_ANGLE,
     &BEARING_DEFLECTION,
+    &TORSION_LOST_MOTION,
+    &TORSION_BACKLASH,
+    &TORSIONAL_RIGIDITY,
     &MIN_CLEARANCE,
     &MAX_LOST_MOTION,
     &MAX_ROLLER_FORCE,
@@ -593,6 +713,11 @@ pub const QUANTITIES: &[&Quantity] = &[
     &MAX_PIN_FORCE,
     &MAX_BEARING_FORCE,
     &MAX_RESIDUAL,
+    &MAX_TORSION_LOST_MOTION,
+    &MAX_TORSION_BACKLASH,
+    &MIN_TORSIONAL_RIGIDITY,
+    &BEARING_EQUIVALENT_LOAD,
+    &BEARING_LIFE,
 ];
 
 /// The quantities read from the closing lags of the rollers (`Detail::Backlash`): computed only
@@ -611,6 +736,11 @@ pub const SUMMARY: &[&Quantity] = &[
     &TE_FLUCTUATION,
     &RATIO_FLUCTUATION,
     &MIN_ROLLERS_IN_CONTACT,
+    &MAX_TORSION_LOST_MOTION,
+    &MAX_TORSION_BACKLASH,
+    &MIN_TORSIONAL_RIGIDITY,
+    &BEARING_EQUIVALENT_LOAD,
+    &BEARING_LIFE,
 ];
 
 /// The scalars that are max − min of their curve (`of`) rather than a value on it: a limit on
@@ -720,6 +850,24 @@ pub const LIMITS: &[LimitDef] = &[
         key: "max_lost_motion_arcsec",
         quantity: &MAX_LOST_MOTION,
         bound: Bound::Max,
+        whole: false,
+    },
+    LimitDef {
+        key: "max_lost_motion_arcmin",
+        quantity: &MAX_TORSION_LOST_MOTION,
+        bound: Bound::Max,
+        whole: false,
+    },
+    LimitDef {
+        key: "min_torsional_rigidity_nm_per_arcmin",
+        quantity: &MIN_TORSIONAL_RIGIDITY,
+        bound: Bound::Min,
+        whole: false,
+    },
+    LimitDef {
+        key: "min_bearing_life_h",
+        quantity: &BEARING_LIFE,
+        bound: Bound::Min,
         whole: false,
     },
 ];

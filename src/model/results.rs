@@ -83,6 +83,52 @@ pub struct LoadedSweep {
     pub transmission: Option<Transmission>,
 }
 
+/// The catalogue figures of a torsion curve γ(T) at one locked crank angle (MODEL.md "Several
+/// discs, torsion, bearing life"; the makers' definitions, see `engine::torsion::figures`).
+/// Angles in rad, torques in N·mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorsionFigures {
+    /// γ(+3 %) − γ(−3 %) of the rated torque.
+    pub lost_motion_rad: f64,
+    /// γ(0⁺) − γ(0⁻): the dead band at zero torque (0 under preload).
+    pub backlash_rad: f64,
+    /// Secant stiffness between 50 % and 100 % of rated, N·mm/rad: (forward, reverse).
+    pub rigidity_nmm_per_rad: (f64, f64),
+}
+
+impl TorsionFigures {
+    /// The torsional rigidity figure: the smaller of the two directions.
+    pub fn rigidity(&self) -> f64 {
+        self.rigidity_nmm_per_rad.0.min(self.rigidity_nmm_per_rad.1)
+    }
+}
+
+/// Torsion under a locked input: at each crank angle of the scene, the reducer's output lag γ
+/// (the torsion angle, rad, sign of T) over the torque loop, and the catalogue figures. The
+/// model is quasi-static and frictionless: the loading and unloading branches coincide and
+/// the hysteresis loss is zero.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TorsionCurves {
+    /// The loop's torques T_m, N·mm (`TorqueSweep::torques_nmm`).
+    pub torque_nmm: Vec<f64>,
+    /// γ [crank][m], rad. At T = 0 the rising branch holds γ(0⁻), the falling branch γ(0⁺).
+    pub torsion_rad: Vec<Vec<f64>>,
+    /// The figures [crank].
+    pub figures: Vec<TorsionFigures>,
+    /// γ of the figures' own solves [crank][i], rad, at the torques
+    /// `engine::torsion::FIGURE_TORQUES`[i]·rated (−100, −50, −3 %, 0⁻, 0⁺, +3, +50, +100 %).
+    pub figure_torsion_rad: Vec<[f64; 8]>,
+}
+
+/// Rating life of the crank bearing over a scene's sweep (ISO 281 with a varying load).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BearingLife {
+    /// P = (mean of Fb^p over the loaded period)^(1/p), N.
+    pub equivalent_load_n: f64,
+    /// L10h, hours; `None` without an input speed or when P = 0 (no load, no finite life).
+    pub life_h: Option<f64>,
+}
+
 /// Everything computed for one scene. A quantity that was not computed is `None`.
 #[derive(Debug, Clone)]
 pub struct SceneResult {
@@ -90,6 +136,11 @@ pub struct SceneResult {
     pub crank_rad: Vec<f64>,
     pub clearance: Option<ClearanceSweep>,
     pub loaded: LoadedSweep,
+    /// A torsion scene's curves and figures (`Effect::Torsion`).
+    pub torsion: Option<TorsionCurves>,
+    /// The crank bearing's rating life, when the design has a `crank_bearing` and the scene
+    /// computes the bearing force over whole loaded periods.
+    pub bearing_life: Option<BearingLife>,
     /// With several discs (MODEL.md "Several discs"), each disc's own results, disc k at the
     /// crank phase 2πk/N, at the scene's crank angles: its clearance and its loaded curves
     /// (with its torque share). The scene's own `clearance` is then `None` and its `loaded`

@@ -60,6 +60,38 @@ pub struct Scene {
     pub geometry: GeometryMode,
     /// Radial stiffness of the crank bearing, N/mm; `None` is a rigid bearing.
     pub bearing_stiffness_n_per_mm: Option<f64>,
+    /// Torsion under a locked input at each crank angle (spec: `torque_sweep`); such a scene
+    /// has no output torque of its own and no loaded curves over the crank angle.
+    pub torque_sweep: Option<TorqueSweep>,
+    /// Input (crank) speed, rpm (spec: `input_speed_rpm`): the speed of the crank-bearing
+    /// rating life.
+    pub input_speed_rpm: Option<f64>,
+}
+
+/// The torque loop of a torsion scene (spec: `torque_sweep: {rated_nm, steps}`): at each
+/// locked crank angle the output torque goes −rated → +rated → −rated in `steps` intervals
+/// per quarter of the loop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorqueSweep {
+    /// Rated torque, N·mm (spec: `rated_nm`).
+    pub rated_nmm: f64,
+    /// Intervals per quarter of the loop (≥ 1).
+    pub steps: usize,
+}
+
+impl TorqueSweep {
+    /// The loop's torques, N·mm: T_m for m = 0 ..= 4·steps, from −rated up to +rated (2·steps
+    /// intervals) and back down to −rated. T_steps and T_3·steps are exactly 0.
+    pub fn torques_nmm(&self) -> Vec<f64> {
+        let s = self.steps as i64;
+        (0..=4 * s)
+            .map(|m| {
+                // Distance from the loop's top, in steps: the torque is linear in it.
+                let up = if m <= 2 * s { m - s } else { 3 * s - m };
+                self.rated_nmm * up as f64 / s as f64
+            })
+            .collect()
+    }
 }
 
 impl Scene {
@@ -91,6 +123,10 @@ pub enum Effect {
     OutputPins,
     /// Crank-bearing force from the force balance, equilibrium residuals.
     Bearing,
+    /// Torsion under a locked input (a scene's `torque_sweep`): the torsion curve and the
+    /// catalogue figures at each crank angle, solved with the loaded effects the scene asks for
+    /// in place of their curves over the crank angle.
+    Torsion,
 }
 
 named!(Effect "effect" {
@@ -98,6 +134,7 @@ named!(Effect "effect" {
     RollerContact => "roller_contact",
     OutputPins => "output_pins",
     Bearing => "bearing",
+    Torsion => "torsion",
 });
 
 impl Effect {
@@ -105,8 +142,23 @@ impl Effect {
     pub fn needs(self) -> &'static [Effect] {
         match self {
             Effect::Bearing => &[Effect::RollerContact, Effect::OutputPins],
+            Effect::Torsion => &[Effect::RollerContact],
             _ => &[],
         }
+    }
+
+    /// The effects a scene's `effects` list names (`torsion` is asked for by `torque_sweep`).
+    pub fn listed() -> impl Iterator<Item = Effect> {
+        Effect::ALL.into_iter().filter(|&e| e != Effect::Torsion)
+    }
+
+    /// Whether it is solved under the scene's load at each crank angle (its curves are over
+    /// the crank angle, which a torsion scene does not produce).
+    pub fn is_loaded(self) -> bool {
+        matches!(
+            self,
+            Effect::RollerContact | Effect::OutputPins | Effect::Bearing
+        )
     }
 }
 
@@ -158,6 +210,13 @@ pub struct Plan {
 impl Plan {
     pub fn for_scene(scene: &Scene) -> Plan {
         let mut effects: Vec<PlannedEffect> = Vec::new();
+        if scene.torque_sweep.is_some() {
+            add(
+                &mut effects,
+                Effect::Torsion,
+                "asked for by torque_sweep".to_string(),
+            );
+        }
         for &asked in &scene.effects {
             add(&mut effects, asked, "asked for by the scene".to_string());
         }
@@ -186,6 +245,13 @@ impl Plan {
 
     pub fn has(&self, effect: Effect) -> bool {
         self.effects.iter().any(|p| p.effect == effect)
+    }
+
+    /// Whether the quantities of `effect` are computed: it is planned, and it is not a loaded
+    /// effect of a torsion scene (which solves the loaded model at each locked crank angle
+    /// under its torque loop, not over the crank angle).
+    pub fn computes(&self, effect: Effect) -> bool {
+        self.has(effect) && !(effect.is_loaded() && self.has(Effect::Torsion))
     }
 
     /// `quantity` is read by `by` (a limit, a golden, an objective, an output): plan the detail

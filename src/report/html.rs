@@ -124,6 +124,12 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
     for (k, (scene, r)) in input.spec.scenes.iter().zip(input.results).enumerate() {
         sections.extend(scene_section(input.spec, k, scene, r, &mut files));
     }
+    let prefix = |k: usize, s: &Scene| format!("scene-{}-{}", k + 1, slug(&s.name));
+    let more = super::torsion::sections(input.spec, input.results, prefix, figure, &mut files);
+    sections.extend(
+        more.into_iter()
+            .map(|(id, heading, body)| Section { id, heading, body }),
+    );
     if !input.optimisation.is_empty() {
         sections.push(optimisation_section(input.optimisation, &mut files));
     }

@@ -184,6 +184,9 @@ pub struct SceneDoc<'a> {
     /// max_roller_force_n, ... (with several discs, the worst over the discs).
     #[serde(flatten)]
     scalars: Pairs,
+    /// A torsion scene's curves and figures (`report::torsion`).
+    #[serde(flatten)]
+    torsion: Option<super::torsion::TorsionDoc>,
     /// With several discs, each disc's curves and scalars (MODEL.md "Several discs").
     #[serde(skip_serializing_if = "Vec::is_empty")]
     discs: Vec<SceneDoc<'a>>,
@@ -247,6 +250,7 @@ impl<'a> SceneDoc<'a> {
                     .filter_map(|q| Some((q.key, Finite(q.scalar(r)?.value))))
                     .collect(),
             ),
+            torsion: super::torsion::TorsionDoc::new(r),
             discs: r.discs.iter().map(SceneDoc::disc).collect(),
         }
     }

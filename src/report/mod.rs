@@ -11,3 +11,4 @@ pub mod plots;
 pub mod svg;
 pub mod table;
 pub mod terminal;
+pub mod torsion;

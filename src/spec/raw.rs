@@ -166,6 +166,20 @@ pub struct RawReducer {
     /// Rollers and output pins, when their material differs from the disc's.
     #[serde(default)]
     pub roller_material: Option<RawMaterial>,
+    /// The crank bearing's rating, for its rating life.
+    #[serde(default)]
+    pub crank_bearing: Option<RawCrankBearing>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the key dynamic_load_rating_n (and optionally life_exponent)"
+)]
+pub struct RawCrankBearing {
+    pub dynamic_load_rating_n: f64,
+    #[serde(default)]
+    pub life_exponent: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -213,7 +227,12 @@ pub struct RawModification {
 pub struct RawScene {
     pub name: String,
     #[serde(default)]
-    pub output_torque_nm: f64,
+    pub output_torque_nm: Option<f64>,
+    /// Torsion under a locked input: the torque loop at each crank angle.
+    #[serde(default)]
+    pub torque_sweep: Option<RawTorqueSweep>,
+    #[serde(default)]
+    pub input_speed_rpm: Option<f64>,
     pub crank: RawCrank,
     pub effects: Vec<String>,
     #[serde(default)]
@@ -222,6 +241,16 @@ pub struct RawScene {
     pub geometry: Option<String>,
     #[serde(default)]
     pub bearing_stiffness_n_per_mm: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys rated_nm, steps"
+)]
+pub struct RawTorqueSweep {
+    pub rated_nm: f64,
+    pub steps: i64,
 }
 
 #[derive(Debug, Deserialize)]

@@ -185,6 +185,42 @@ fn design(raw: RawReducer) -> Result<Design> {
         },
         disc_material,
         roller_material,
+        crank_bearing: raw.crank_bearing.map(crank_bearing).transpose()?,
+    })
+}
+
+/// `reducer.crank_bearing`: a positive rating and life exponent (10/3 by default).
+fn crank_bearing(raw: RawCrankBearing) -> Result<CrankBearing> {
+    let key = "reducer.crank_bearing";
+    Ok(CrankBearing {
+        dynamic_load_rating_n: positive(
+            &format!("{key}.dynamic_load_rating_n"),
+            raw.dynamic_load_rating_n,
+        )?,
+        life_exponent: raw
+            .life_exponent
+            .map(|p| positive(&format!("{key}.life_exponent"), p))
+            .transpose()?
+            .unwrap_or(CrankBearing::ROLLER_LIFE_EXPONENT),
+    })
+}
+
+/// `torque_sweep` of a scene with `angles` crank angles: a positive rated torque, at least one
+/// step per quarter of the loop, and angles × loop torques within the results' memory cap.
+fn torque_sweep(key: &str, raw: &RawTorqueSweep, angles: usize) -> Result<TorqueSweep> {
+    let rated = positive(&format!("{key}.rated_nm"), raw.rated_nm)?;
+    let per_loop = (MAX_ROLLER_ANGLES as usize / angles.max(1) - 1) / 4;
+    let steps = count_capped(
+        &format!("{key}.steps"),
+        raw.steps,
+        1,
+        per_loop,
+        "crank angles × loop torques (4·steps + 1) ≤ 10 000 000, so the torsion curves fit in \
+         memory",
+    )?;
+    Ok(TorqueSweep {
+        rated_nmm: units::nmm(rated),
+        steps,
     })
 }
 
@@ -264,9 +300,9 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
     }
     let mut effects = Vec::new();
     for (j, name) in raw.effects.iter().enumerate() {
-        let effect = Effect::from_name(name).ok_or_else(|| {
-            let known = Effect::ALL.map(|e| e.name());
-            let message = match did_you_mean(name, known.into_iter()) {
+        let effect = Effect::listed().find(|e| e.name() == name).ok_or_else(|| {
+            let known: Vec<&str> = Effect::listed().map(|e| e.name()).collect();
+            let message = match did_you_mean(name, known.iter().copied()) {
                 Some(close) => format!("unknown effect `{name}`; did you mean `{close}`?"),
                 None => format!(
                     "unknown effect `{name}`; known effects: {}",
@@ -293,12 +329,37 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
         .bearing_stiffness_n_per_mm
         .map(|k| positive(&format!("{key}.bearing_stiffness_n_per_mm"), k))
         .transpose()?;
+    let crank_rad = crank(&format!("{key}.crank"), &raw.crank, rollers, used)?;
+    let torque_sweep = match &raw.torque_sweep {
+        Some(t) => {
+            if raw.output_torque_nm.is_some() {
+                return Err(invalid(
+                    &format!("{key}.output_torque_nm"),
+                    "a scene with `torque_sweep` loads the output with its own torque loop; \
+                     give either `torque_sweep` or `output_torque_nm`, not both"
+                        .into(),
+                ));
+            }
+            Some(torque_sweep(
+                &format!("{key}.torque_sweep"),
+                t,
+                crank_rad.len(),
+            )?)
+        }
+        None => None,
+    };
+    let input_speed_rpm = raw
+        .input_speed_rpm
+        .map(|n| positive(&format!("{key}.input_speed_rpm"), n))
+        .transpose()?;
     Ok(Scene {
         output_torque_nmm: units::nmm(finite(
             &format!("{key}.output_torque_nm"),
-            raw.output_torque_nm,
+            raw.output_torque_nm.unwrap_or(0.0),
         )?),
-        crank_rad: crank(&format!("{key}.crank"), &raw.crank, rollers, used)?,
+        crank_rad,
+        torque_sweep,
+        input_speed_rpm,
         crank_from_deg: raw.crank.from_deg,
         crank_to_deg: raw.crank.to_deg,
         name: raw.name,
@@ -420,6 +481,7 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         None => Vec::new(),
     };
     let limits = limits(&raw.limits)?;
+    bearing_life_limit(&limits, &design, &scenes)?;
     let mut golden = Vec::new();
     for (i, g) in raw.golden.into_iter().enumerate() {
         let g = golden_entry(path, i, g, &scenes)?;
@@ -469,6 +531,74 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         studies,
         accuracy,
     })
+}
+
+/// A `min_bearing_life_h` limit needs what the life is computed from: the bearing's rating
+/// (`reducer.crank_bearing`) and, in every scene that computes the bearing force, an input
+/// speed and a sweep of whole loaded periods (ISO 281's equivalent load is a mean over the
+/// load cycle; over part of it the life would be of a load the bearing never sees).
+fn bearing_life_limit(limits: &Limits, design: &Design, scenes: &[Scene]) -> Result<()> {
+    const KEY: &str = "min_bearing_life_h";
+    if !limits.entries.iter().any(|l| l.def.key == KEY) {
+        return Ok(());
+    }
+    if design.crank_bearing.is_none() {
+        return Err(invalid(
+            &format!("limits.{KEY}"),
+            "a bearing life needs the bearing's rating: give `reducer.crank_bearing: \
+             {dynamic_load_rating_n}`"
+                .into(),
+        ));
+    }
+    for (i, s) in scenes.iter().enumerate() {
+        let plan = Plan::for_scene(s);
+        if !plan.computes(Effect::Bearing) {
+            continue;
+        }
+        if s.input_speed_rpm.is_none() {
+            return Err(invalid(
+                &format!("scenes[{i}]"),
+                format!(
+                    "limits.{KEY} applies to scene `{}`, which computes the bearing force: it \
+                     needs `input_speed_rpm` (the life in hours is at the crank's speed \
+                     relative to the disc)",
+                    s.name
+                ),
+            ));
+        }
+        let period = design.loaded_period_rad(plan.has(Effect::OutputPins));
+        if !s.spans_whole(period) {
+            return Err(invalid(
+                &format!("scenes[{i}].crank"),
+                format!(
+                    "limits.{KEY} applies to scene `{}`, whose crank range {}° to {}° is not a \
+                     whole number of loaded periods ({}°): the equivalent load is a mean over \
+                     whole load cycles (ISO 281)",
+                    s.name,
+                    numeric::input(s.crank_from_deg),
+                    numeric::input(s.crank_to_deg),
+                    numeric::number(units::deg(period))
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `what` (a study) runs its scene over the crank angle: a torsion scene has no such curves
+/// (the accuracy ladder refuses one in `model::accuracy::check`).
+fn not_torsion(key: &str, scene: &Scene, what: &str) -> Result<()> {
+    if scene.torque_sweep.is_some() {
+        return Err(invalid(
+            key,
+            format!(
+                "scene `{}` is a torsion scene (`torque_sweep`): {what} needs a scene loaded \
+                 over the crank angle (`output_torque_nm`)",
+                scene.name
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// `accuracy:`: the scene exists and computes something the ladder compares, the rungs are
@@ -715,6 +845,7 @@ fn study(
                 ),
             )
         })?;
+    not_torsion(&format!("{key}.scene"), &scenes[scene], "a study")?;
     let mut variables = Vec::new();
     let v = &raw.variables;
     for (kind, b) in [

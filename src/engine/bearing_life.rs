@@ -1,0 +1,49 @@
+//! Rating life of the crank bearing (ISO 281, MODEL.md "Several discs, torsion, bearing life").
+//!
+//! A bearing under a load that varies over the load cycle is rated for the constant load P
+//! that wears it alike: P = (mean of F^p over the cycle)^(1/p), p the life exponent (10/3 for
+//! roller bearings, 3 for ball bearings). Its basic rating life is L10 = (C/P)^p millions of
+//! revolutions, C the basic dynamic load rating. The crank bearing turns with the crank
+//! relative to the disc, which itself turns backwards at n/nc: the relative speed is
+//! n·(1 + 1/nc), so L10h = (C/P)^p · 10⁶ / (60 · n · (1 + 1/nc)) hours.
+
+/// P = (mean of F^p)^(1/p), N, over bearing forces `force_n` (N) sampled evenly over whole
+/// load cycles (the rectangle rule is then the mean of the periodic load). 0 without samples.
+pub fn equivalent_load(force_n: &[f64], exponent: f64) -> f64 {
+    if force_n.is_empty() {
+        return 0.0;
+    }
+    // Scaled by the largest force so that F^p cannot overflow for any p.
+    let largest = force_n.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    if largest == 0.0 {
+        return 0.0;
+    }
+    let mean = force_n
+        .iter()
+        .map(|f| (f.abs() / largest).powf(exponent))
+        .sum::<f64>()
+        / force_n.len() as f64;
+    largest * mean.powf(1.0 / exponent)
+}
+
+/// The relative speed of the crank and the disc, rpm: n·(1 + 1/nc) for an input speed n.
+pub fn relative_speed_rpm(input_rpm: f64, teeth: usize) -> f64 {
+    input_rpm * (1.0 + 1.0 / teeth as f64)
+}
+
+/// (P in N, L10h in hours) of a crank bearing of rating `rating_n` (C, N) and life exponent
+/// `exponent` (p) under the bearing-force curve `force_n` (N, evenly over whole load cycles),
+/// at the input speed `input_rpm` (n) of a disc with `teeth` (nc). L10h is `None` when P = 0:
+/// an unloaded bearing has no finite rating life.
+pub fn rating_life(
+    force_n: &[f64],
+    rating_n: f64,
+    exponent: f64,
+    input_rpm: f64,
+    teeth: usize,
+) -> (f64, Option<f64>) {
+    let p = equivalent_load(force_n, exponent);
+    let revolutions = (rating_n / p).powf(exponent) * 1e6;
+    let hours = revolutions / (60.0 * relative_speed_rpm(input_rpm, teeth));
+    (p, (p > 0.0 && hours.is_finite()).then_some(hours))
+}

@@ -10,7 +10,8 @@
 //! points; the accuracy ladder when one was run; the spec's source.
 
 use super::svg::{MapCell, MapPlot, Marker, Shape, FONT, RED};
-use super::{disc, plots, table};
+use super::table::{self, with_unit};
+use super::{disc, plots};
 use crate::engine::accuracy::{self as acc, Ladder, Variation};
 use crate::engine::check::Check;
 use crate::engine::drawing::Disc;
@@ -112,6 +113,11 @@ struct Section {
     body: Markup,
 }
 
+fn section(id: impl Into<String>, heading: Markup, body: Markup) -> Section {
+    let id = id.into();
+    Section { id, heading, body }
+}
+
 /// The report's files, (file name, content): the SVGs, then `index.html` last.
 pub fn render(input: &ReportInput) -> Vec<(String, String)> {
     let mut files = Vec::new();
@@ -151,15 +157,8 @@ pub fn write(dir: &Path, input: &ReportInput) -> Result<Vec<PathBuf>> {
 /// A file-name part from a name: ASCII letters, digits, `-` and `_`; anything else `_`. Not
 /// unique (`a b` and `a_b` give the same), so file names also carry an index.
 fn slug(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
+    let kept = |c: char| c.is_ascii_alphanumeric() || c == '-' || c == '_';
+    name.replace(|c: char| !kept(c), "_")
 }
 
 fn figure(file: &str, title: &str, caption: &str) -> Markup {
@@ -179,14 +178,6 @@ fn scrolling(table: Markup) -> Markup {
 /// A number with a true minus sign.
 fn signed(text: String) -> String {
     text.replace('-', "−")
-}
-
-fn with_unit(value: String, unit: &str) -> String {
-    if unit.is_empty() {
-        value
-    } else {
-        format!("{value} {unit}")
-    }
 }
 
 fn verdict(passed: bool) -> &'static str {
@@ -228,85 +219,41 @@ fn summary_section(results: &[SceneResult]) -> Section {
             }
         }))
     };
-    Section {
-        id: "summary".into(),
-        heading: html! { "Headline results" },
-        body,
-    }
+    section("summary", html! { "Headline results" }, body)
 }
 
 fn design_section(spec: &Spec) -> Section {
-    let d = &spec.design;
-    let m = &spec.modification;
+    let (d, m) = (&spec.design, &spec.modification);
     let mm = |x: f64| format!("{} mm", number(x));
-    let reducer = [
-        (
-            "teeth nc / rollers np",
-            format!("{} / {}", d.teeth, d.rollers),
-        ),
-        ("eccentricity e", mm(d.eccentricity_mm)),
-        (
-            "roller circle Rp / roller radius Rrp",
-            format!(
-                "{} / {}",
-                mm(d.roller_circle_radius_mm),
-                mm(d.roller_radius_mm)
-            ),
-        ),
-        ("face width B", mm(d.face_width_mm)),
-        (
-            "output pins",
-            format!(
-                "{} on rw {}, pin radius {}, hole radius {}",
-                d.pins.count,
-                mm(d.pins.circle_radius_mm),
-                mm(d.pins.pin_radius_mm),
-                mm(d.hole_radius_mm())
-            ),
-        ),
-        (
-            "material",
-            format!(
-                "E {} GPa, ν {} (rollers and pins: E {} GPa, ν {}); E* {} GPa",
-                number(units::gpa(d.disc_material.youngs_modulus_mpa)),
-                number(d.disc_material.poisson_ratio),
-                number(units::gpa(d.roller_material.youngs_modulus_mpa)),
-                number(d.roller_material.poisson_ratio),
-                number(units::gpa(d.contact_modulus_mpa()))
-            ),
-        ),
-        ("K1 = e·np/Rp", number(d.k1())),
-    ];
-    let modification = [
-        ("shift ΔRp", mm(m.shift_mm)),
-        ("equidistant ΔRrp", mm(m.equidistant_mm)),
-        (
-            "rotation Δδ",
-            format!("{} deg", number(units::deg(m.rotation_rad))),
-        ),
-        (
-            "tip clearance ΔRrp − ΔRp",
-            format!("{} µm", number(units::um(m.tip_clearance_mm()))),
-        ),
-    ];
-    let pairs = |head: &str, rows: &[(&str, String)]| {
-        scrolling(html! {
-            table {
-                thead { tr { th colspan="2" { (head) } } }
-                tbody { @for (k, v) in rows { tr { th { (k) } td { (v) } } } }
-            }
-        })
+    let (disc, rollers) = (&d.disc_material, &d.roller_material);
+    let pairs = |head: &str, rows: Markup| {
+        scrolling(html! { table { thead { tr { th colspan="2" { (head) } } } tbody { (rows) } } })
     };
-    Section {
-        id: "design".into(),
-        heading: html! { "Design" },
-        body: html! {
-            div.cols {
-                (pairs("reducer", &reducer))
-                (pairs("tooth-profile modification", &modification))
-            }
-        },
-    }
+    let row = |k: &str, v: String| html! { tr { th { (k) } td { (v) } } };
+    let reducer = html! {
+        (row("teeth nc / rollers np", format!("{} / {}", d.teeth, d.rollers)))
+        (row("eccentricity e", mm(d.eccentricity_mm)))
+        (row("roller circle Rp / roller radius Rrp",
+            format!("{} / {}", mm(d.roller_circle_radius_mm), mm(d.roller_radius_mm))))
+        (row("face width B", mm(d.face_width_mm)))
+        (row("output pins", format!("{} on rw {}, pin radius {}, hole radius {}", d.pins.count,
+            mm(d.pins.circle_radius_mm), mm(d.pins.pin_radius_mm), mm(d.hole_radius_mm()))))
+        (row("material", format!("E {} GPa, ν {} (rollers and pins: E {} GPa, ν {}); E* {} GPa",
+            number(units::gpa(disc.youngs_modulus_mpa)), number(disc.poisson_ratio),
+            number(units::gpa(rollers.youngs_modulus_mpa)), number(rollers.poisson_ratio),
+            number(units::gpa(d.contact_modulus_mpa())))))
+        (row("K1 = e·np/Rp", number(d.k1())))
+    };
+    let modification = html! {
+        (row("shift ΔRp", mm(m.shift_mm)))
+        (row("equidistant ΔRrp", mm(m.equidistant_mm)))
+        (row("rotation Δδ", format!("{} deg", number(units::deg(m.rotation_rad)))))
+        (row("tip clearance ΔRrp − ΔRp", format!("{} µm", number(units::um(m.tip_clearance_mm())))))
+    };
+    let body = html! {
+        div.cols { (pairs("reducer", reducer)) (pairs("tooth-profile modification", modification)) }
+    };
+    section("design", html! { "Design" }, body)
 }
 
 fn checks_section(checks: &[Check]) -> Section {
@@ -331,11 +278,7 @@ fn checks_section(checks: &[Check]) -> Section {
             }
         }))
     };
-    Section {
-        id: "checks".into(),
-        heading: html! { "Checks" },
-        body,
-    }
+    section("checks", html! { "Checks" }, body)
 }
 
 fn golden_section(goldens: &[GoldenResult]) -> Option<Section> {
@@ -366,11 +309,7 @@ fn golden_section(goldens: &[GoldenResult]) -> Option<Section> {
             }
         }))
     };
-    Some(Section {
-        id: "golden".into(),
-        heading: html! { "Golden curves" },
-        body,
-    })
+    Some(section("golden", html! { "Golden curves" }, body))
 }
 
 /// The disc at the drawing's crank angle and the close-up of its tightest roller.
@@ -381,17 +320,14 @@ fn disc_section(input: &ReportInput, files: &mut Vec<(String, String)>) -> Secti
     let (detail, detail_caption) = disc::close_up(input.disc);
     files.push(("disc.svg".into(), whole));
     files.push(("disc-detail.svg".into(), detail));
-    Section {
-        id: "disc".into(),
-        heading: html! { "The disc at crank φ = " (phi) "°" },
-        body: html! {
-            div.grid {
-                (figure("disc.svg", &format!("Disc, rollers and output pins at crank φ = {phi}°"),
-                    &whole_caption))
-                (figure("disc-detail.svg", "Close-up of the smallest gap", &detail_caption))
-            }
-        },
-    }
+    let body = html! {
+        div.grid {
+            (figure("disc.svg", &format!("Disc, rollers and output pins at crank φ = {phi}°"),
+                &whole_caption))
+            (figure("disc-detail.svg", "Close-up of the smallest gap", &detail_caption))
+        }
+    };
+    section("disc", html! { "The disc at crank φ = " (phi) "°" }, body)
 }
 
 /// A scene's plots, or nothing when it computed no curve a plot draws.
@@ -412,11 +348,8 @@ fn scene_section(
         div.grid { @for p in &plots { (figure(&p.file, &p.title, &p.caption)) } }
     };
     files.extend(plots.into_iter().map(|p| (p.file, p.svg)));
-    Some(Section {
-        id: prefix,
-        heading: html! { "Scene " code { (scene.name) } },
-        body,
-    })
+    let heading = html! { "Scene " code { (scene.name) } };
+    Some(section(prefix, heading, body))
 }
 
 fn scene_summary(spec: &Spec, scene: &Scene) -> String {
@@ -466,16 +399,13 @@ fn optimisation_section(views: &[OptimisationView], files: &mut Vec<(String, Str
         files.push((file.clone(), optimisation_svg(o)));
         studies.push(study(o, &file));
     }
-    Section {
-        id: "optimisation".into(),
-        heading: html! { "Optimisation" },
-        body: html! {
-            p.note { "Every study of the spec: the objective over its first two variables, where \
-                      the optimiser looked and what it found; the table gives the objective and \
-                      every constraint at the start, the references and the optimum." }
-            @for s in studies { (s) }
-        },
-    }
+    let body = html! {
+        p.note { "Every study of the spec: the objective over its first two variables, where the \
+                  optimiser looked and what it found; the table gives the objective and every \
+                  constraint at the start, the references and the optimum." }
+        @for s in studies { (s) }
+    };
+    section("optimisation", html! { "Optimisation" }, body)
 }
 
 fn optimisation_svg(o: &OptimisationView) -> String {
@@ -761,11 +691,11 @@ fn accuracy_section(ladder: &Ladder) -> Section {
             }))
         }
     };
-    Section {
-        id: "accuracy".into(),
-        heading: html! { "Accuracy ladder: what accuracy costs in time" },
+    section(
+        "accuracy",
+        html! { "Accuracy ladder: what accuracy costs in time" },
         body,
-    }
+    )
 }
 
 const STYLE: &str = r#"

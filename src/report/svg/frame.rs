@@ -58,11 +58,7 @@ pub fn wrap(text: &str, width: f64) -> Vec<String> {
 
 /// Top of the plot area under a title and `subtitle_lines` lines of subtitle.
 pub fn top(subtitle_lines: usize) -> f64 {
-    if subtitle_lines == 0 {
-        44.0
-    } else {
-        44.0 + 18.0 * subtitle_lines as f64
-    }
+    44.0 + 18.0 * subtitle_lines as f64
 }
 
 /// A plot's title (bold, top left at `left`) and subtitle lines (grey, below it).

@@ -37,7 +37,7 @@ pub struct RefLine {
 }
 
 /// A line plot with axes, ticks, axis labels, legend and title.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct LinePlot {
     pub title: String,
     /// A second, smaller line under the title (what is not shown, how it was computed).
@@ -73,16 +73,11 @@ impl LinePlot {
     pub fn new(title: &str, x_label: &str, y_label: &str) -> Self {
         LinePlot {
             title: title.into(),
-            subtitle: String::new(),
             x_label: x_label.into(),
             y_label: y_label.into(),
-            series: Vec::new(),
-            ref_lines: Vec::new(),
             width: 660.0,
             height: 400.0,
-            x_step: None,
-            include_zero: false,
-            x_range: None,
+            ..Default::default()
         }
     }
 

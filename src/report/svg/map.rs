@@ -19,8 +19,8 @@ pub struct MapCell {
     pub feasible: bool,
 }
 
-/// The symbol of a map marker.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The symbol of a map marker, from the smallest to the largest.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Shape {
     Circle,
     Diamond,
@@ -38,7 +38,7 @@ pub struct Marker {
 }
 
 /// A map over a grid with its markings (see the module).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct MapPlot {
     pub title: String,
     /// A second, smaller line under the title.
@@ -70,18 +70,10 @@ pub const LOG_SPAN: f64 = 20.0;
 /// than a rectangle per cell (a roller × crank heat map has tens of thousands).
 pub const RASTER_ABOVE: usize = 2500;
 
-/// Viridis colour map, t in [0, 1], as RGB.
+/// Viridis colour map, t in [0, 1], as RGB: linear between nine stops 0xRRGGBB.
 fn viridis_rgb(t: f64) -> [u8; 3] {
-    const STOPS: [[f64; 3]; 9] = [
-        [68.0, 1.0, 84.0],
-        [71.0, 44.0, 122.0],
-        [59.0, 81.0, 139.0],
-        [44.0, 113.0, 142.0],
-        [33.0, 144.0, 141.0],
-        [39.0, 173.0, 129.0],
-        [92.0, 200.0, 99.0],
-        [170.0, 220.0, 50.0],
-        [253.0, 231.0, 37.0],
+    const STOPS: [u32; 9] = [
+        0x440154, 0x472c7a, 0x3b518b, 0x2c718e, 0x21908d, 0x27ad81, 0x5cc863, 0xaadc32, 0xfde725,
     ];
     let t = if t.is_finite() {
         t.clamp(0.0, 1.0)
@@ -91,13 +83,21 @@ fn viridis_rgb(t: f64) -> [u8; 3] {
     let f = t * (STOPS.len() - 1) as f64;
     let k = (f.floor() as usize).min(STOPS.len() - 2);
     let w = f - k as f64;
-    std::array::from_fn(|c| (STOPS[k][c] + w * (STOPS[k + 1][c] - STOPS[k][c])).round() as u8)
+    let channel = |stop: u32, c: usize| f64::from((stop >> (16 - 8 * c)) & 0xff);
+    std::array::from_fn(|c| {
+        let (a, b) = (channel(STOPS[k], c), channel(STOPS[k + 1], c));
+        (a + w * (b - a)).round() as u8
+    })
+}
+
+/// "#rrggbb" of a colour.
+fn hex([r, g, b]: [u8; 3]) -> String {
+    format!("#{r:02x}{g:02x}{b:02x}")
 }
 
 /// Viridis colour map, t in [0, 1], as "#rrggbb".
 pub fn viridis(t: f64) -> String {
-    let [r, g, b] = viridis_rgb(t);
-    format!("#{r:02x}{g:02x}{b:02x}")
+    hex(viridis_rgb(t))
 }
 
 fn distinct(mut v: Vec<f64>) -> Vec<f64> {
@@ -188,16 +188,13 @@ fn symbol(shape: Shape, cx: f64, cy: f64, color: &str) -> Markup {
 
 /// A small cross for an infeasible sample, visible on dark and light cells.
 fn cross_mark(cx: f64, cy: f64, r: f64) -> Markup {
+    let at = |dx: f64, dy: f64| format!("{},{}", px(cx + dx), px(cy + dy));
     let d = format!(
-        "M{},{} L{},{} M{},{} L{},{}",
-        px(cx - r),
-        px(cy - r),
-        px(cx + r),
-        px(cy + r),
-        px(cx - r),
-        px(cy + r),
-        px(cx + r),
-        px(cy - r)
+        "M{} L{} M{} L{}",
+        at(-r, -r),
+        at(r, r),
+        at(-r, r),
+        at(r, -r)
     );
     html! {
         path d=(d) stroke="#222" stroke-width="3" {}
@@ -218,19 +215,13 @@ fn overlaps(a: &Box4, b: &Box4) -> bool {
     a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
 }
 
-/// Label positions tried around a marker, in order of preference (pixels from its centre).
-const LABEL_SPOTS: [(f64, f64); 10] = [
-    (12.0, 0.0),
-    (-12.0, 0.0),
-    (12.0, -16.0),
-    (12.0, 16.0),
-    (-12.0, -16.0),
-    (-12.0, 16.0),
-    (12.0, -32.0),
-    (12.0, 32.0),
-    (-12.0, -32.0),
-    (-12.0, 32.0),
-];
+/// Label positions tried around a marker, in order of preference (pixels from its centre):
+/// right, left, then one and two rows (16 px) up and down, right before left.
+fn label_spots() -> impl Iterator<Item = (f64, f64)> {
+    let rows = [16.0, 32.0].into_iter();
+    let off = rows.flat_map(|d| [(12.0, -d), (12.0, d), (-12.0, -d), (-12.0, d)]);
+    [(12.0, 0.0), (-12.0, 0.0)].into_iter().chain(off)
+}
 
 impl MapPlot {
     /// A map of `cells` alone (no samples, path or markers), 660 px wide, its colour range the
@@ -244,18 +235,12 @@ impl MapPlot {
     ) -> Self {
         MapPlot {
             title: title.into(),
-            subtitle: String::new(),
             x_label: x_label.into(),
             y_label: y_label.into(),
             z_label: z_label.into(),
             cells,
-            samples: Vec::new(),
-            samples_label: String::new(),
-            path: Vec::new(),
-            path_label: String::new(),
-            markers: Vec::new(),
-            z_range: None,
             width: 660.0,
+            ..Default::default()
         }
     }
 
@@ -357,8 +342,7 @@ impl MapPlot {
             .collect();
         html! {
             @for (c, (x0, y0, x1, y1)) in &placed {
-                @let [r, g, b] = self.fill(c);
-                @let fill = format!("#{r:02x}{g:02x}{b:02x}");
+                @let fill = hex(self.fill(c));
                 rect.cell x=(px(*x0)) y=(px(*y0)) width=(px(x1 - x0)) height=(px(y1 - y0))
                     fill=(fill) stroke=(fill) stroke-width="0.5" {}
             }
@@ -437,11 +421,7 @@ impl MapPlot {
     /// and the path.
     fn markers(&self, spots: &[(f64, f64)], path: &[(f64, f64)], a: &Area) -> Markup {
         let mut order: Vec<usize> = (0..self.markers.len()).collect();
-        order.sort_by_key(|&k| match self.markers[k].shape {
-            Shape::Star => 0,
-            Shape::Diamond => 1,
-            Shape::Circle => 2,
-        });
+        order.sort_by_key(|&k| std::cmp::Reverse(self.markers[k].shape));
         let mut boxes: Vec<Box4> = spots
             .iter()
             .map(|&(x, y)| (x - 9.0, y - 9.0, x + 9.0, y + 9.0))
@@ -465,9 +445,8 @@ impl MapPlot {
             };
             let inside =
                 |b: &Box4| b.0 >= a.left && b.2 <= a.right() && b.1 >= a.top && b.3 <= a.bottom();
-            // Inside the axes first, then the fewest overlaps, then the order of LABEL_SPOTS.
-            let (dx, dy) = *LABEL_SPOTS
-                .iter()
+            // Inside the axes first, then the fewest overlaps, then the order of label_spots.
+            let (dx, dy) = label_spots()
                 .min_by_key(|c| {
                     let b = place(c);
                     (
@@ -475,7 +454,7 @@ impl MapPlot {
                         boxes.iter().filter(|o| overlaps(&b, o)).count(),
                     )
                 })
-                .unwrap_or(&LABEL_SPOTS[0]);
+                .unwrap_or((12.0, 0.0));
             boxes.push(place(&(dx, dy)));
             let anchor = if dx > 0.0 { "start" } else { "end" };
             let halo = frame::Halo {

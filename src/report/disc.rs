@@ -92,14 +92,8 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
         .iter()
         .map(|&c| {
             let (x, y) = f.at(c);
-            format!(
-                " M{},{} a{r},{r} 0 1,0 {},0 a{r},{r} 0 1,0 {},0 Z",
-                px(x - r),
-                px(y),
-                px(2.0 * r),
-                px(-2.0 * r),
-                r = px(r)
-            )
+            let (x, y, d, back, r) = (px(x - r), px(y), px(2.0 * r), px(-2.0 * r), px(r));
+            format!(" M{x},{y} a{r},{r} 0 1,0 {d},0 a{r},{r} 0 1,0 {back},0 Z")
         })
         .collect();
     let label_at = |c: Vec2| c.normalize() * (outer + 3.5);

@@ -180,6 +180,11 @@ fn signed(text: String) -> String {
     text.replace('-', "−")
 }
 
+/// A table (in a `scrolling` box) with one header row of `head`'s cells above `rows`.
+fn data_table(head: Markup, rows: Markup) -> Markup {
+    scrolling(html! { table { thead { tr { (head) } } tbody { (rows) } } })
+}
+
 fn verdict(passed: bool) -> &'static str {
     if passed {
         "pass"
@@ -194,30 +199,28 @@ fn summary_section(results: &[SceneResult]) -> Section {
     let body = html! {
         p.note { "What each scene computed, at a glance: the extremes of its curves and where \
                   they occur." }
-        (scrolling(html! {
-            table {
-                thead { tr { th { "scene" } th { "result" } th { "value" } th { "where" } } }
-                tbody {
-                    @for s in &summaries {
-                        @if s.headlines.is_empty() {
-                            tr { td { code { (s.scene) } } td colspan="3" {
-                                "no headline results (the scene computes none of them)" } }
-                        }
-                        @for (k, h) in s.headlines.iter().enumerate() {
-                            tr {
-                                @if k == 0 {
-                                    td rowspan=(s.headlines.len()) { code { (s.scene) } }
-                                }
-                                td { (h.quantity.label) }
-                                td.num { (with_unit(table::count_or_number(h.value, h.quantity.unit),
-                                    h.quantity.unit)) }
-                                td { (h.at) }
+        (data_table(
+            html! { th { "scene" } th { "result" } th { "value" } th { "where" } },
+            html! {
+                @for s in &summaries {
+                    @if s.headlines.is_empty() {
+                        tr { td { code { (s.scene) } } td colspan="3" {
+                            "no headline results (the scene computes none of them)" } }
+                    }
+                    @for (k, h) in s.headlines.iter().enumerate() {
+                        tr {
+                            @if k == 0 {
+                                td rowspan=(s.headlines.len()) { code { (s.scene) } }
                             }
+                            td { (h.quantity.label) }
+                            td.num { (with_unit(table::count_or_number(h.value, h.quantity.unit),
+                                h.quantity.unit)) }
+                            td { (h.at) }
                         }
                     }
                 }
-            }
-        }))
+            },
+        ))
     };
     section("summary", html! { "Headline results" }, body)
 }
@@ -226,9 +229,7 @@ fn design_section(spec: &Spec) -> Section {
     let (d, m) = (&spec.design, &spec.modification);
     let mm = |x: f64| format!("{} mm", number(x));
     let (disc, rollers) = (&d.disc_material, &d.roller_material);
-    let pairs = |head: &str, rows: Markup| {
-        scrolling(html! { table { thead { tr { th colspan="2" { (head) } } } tbody { (rows) } } })
-    };
+    let pairs = |head: &str, rows: Markup| data_table(html! { th colspan="2" { (head) } }, rows);
     let row = |k: &str, v: String| html! { tr { th { (k) } td { (v) } } };
     let reducer = html! {
         (row("teeth nc / rollers np", format!("{} / {}", d.teeth, d.rollers)))
@@ -259,24 +260,21 @@ fn design_section(spec: &Spec) -> Section {
 fn checks_section(checks: &[Check]) -> Section {
     let body = html! {
         p.note { "Failures first, the furthest outside its limit first." }
-        (scrolling(html! {
-            table {
-                thead { tr { th { "check" } th { "value" } th { "limit" } th { "verdict" }
-                    th { "where" } } }
-                tbody {
-                    @for c in table::ordered(checks) {
-                        tr class=(verdict(c.passed)) {
-                            td { code { (c.id) } }
-                            td.num { (with_unit(number(c.value), c.unit)) }
-                            td.num { (with_unit(format!("{} {}", c.bound.symbol(),
-                                number(c.limit)), c.unit)) }
-                            td.verdict { (if c.passed { "pass" } else { "FAIL" }) }
-                            td { (c.at) }
-                        }
+        (data_table(
+            html! { th { "check" } th { "value" } th { "limit" } th { "verdict" } th { "where" } },
+            html! {
+                @for c in table::ordered(checks) {
+                    tr class=(verdict(c.passed)) {
+                        td { code { (c.id) } }
+                        td.num { (with_unit(number(c.value), c.unit)) }
+                        td.num { (with_unit(format!("{} {}", c.bound.symbol(),
+                            number(c.limit)), c.unit)) }
+                        td.verdict { (if c.passed { "pass" } else { "FAIL" }) }
+                        td { (c.at) }
                     }
                 }
-            }
-        }))
+            },
+        ))
     };
     section("checks", html! { "Checks" }, body)
 }
@@ -288,26 +286,24 @@ fn golden_section(goldens: &[GoldenResult]) -> Option<Section> {
     let body = html! {
         p.note { "Each curve compared point by point with its reviewed reference; the worst \
                   point is the one furthest outside (or least inside) its band abs + rel·|golden|." }
-        (scrolling(html! {
-            table {
-                thead { tr { th { "curve" } th { "golden file" } th { "worst |deviation|" }
-                    th { "band there" } th { "where" } th { "points" } th { "verdict" } } }
-                tbody {
-                    @for g in goldens {
-                        @let w = &g.comparison.worst;
-                        tr class=(verdict(g.comparison.passed)) {
-                            td { code { (g.golden.scene) "/" (g.golden.quantity.key) } }
-                            td { code { (g.golden.path.display()) } }
-                            td.num { (with_unit(number(w.deviation), g.unit)) }
-                            td.num { (with_unit(number(w.band), g.unit)) }
-                            td { (w.place()) }
-                            td.num { (g.comparison.points) }
-                            td.verdict { (if g.comparison.passed { "pass" } else { "FAIL" }) }
-                        }
+        (data_table(
+            html! { th { "curve" } th { "golden file" } th { "worst |deviation|" }
+                th { "band there" } th { "where" } th { "points" } th { "verdict" } },
+            html! {
+                @for g in goldens {
+                    @let w = &g.comparison.worst;
+                    tr class=(verdict(g.comparison.passed)) {
+                        td { code { (g.golden.scene) "/" (g.golden.quantity.key) } }
+                        td { code { (g.golden.path.display()) } }
+                        td.num { (with_unit(number(w.deviation), g.unit)) }
+                        td.num { (with_unit(number(w.band), g.unit)) }
+                        td { (w.place()) }
+                        td.num { (g.comparison.points) }
+                        td.verdict { (if g.comparison.passed { "pass" } else { "FAIL" }) }
                     }
                 }
-            }
-        }))
+            },
+        ))
     };
     Some(section("golden", html! { "Golden curves" }, body))
 }
@@ -416,15 +412,15 @@ fn optimisation_svg(o: &OptimisationView) -> String {
         color: color.into(),
         shape,
     };
-    let mut markers: Vec<Marker> = o
+    let start = o
         .start
-        .map(|p| marker(p, "start", "#ff7f0e", Shape::Circle))
-        .into_iter()
-        .collect();
-    for (x, y, label) in &o.references {
-        markers.push(marker((*x, *y), label, "#111111", Shape::Diamond));
-    }
-    markers.extend(o.optimum.map(|p| marker(p, "optimum", RED, Shape::Star)));
+        .map(|p| marker(p, "start", "#ff7f0e", Shape::Circle));
+    let references = o
+        .references
+        .iter()
+        .map(|(x, y, l)| marker((*x, *y), l, "#111111", Shape::Diamond));
+    let optimum = o.optimum.map(|p| marker(p, "optimum", RED, Shape::Star));
+    let markers = start.into_iter().chain(references).chain(optimum).collect();
     MapPlot {
         title: format!("Study {}: objective over the modification", o.name),
         subtitle: o.map_note.clone(),
@@ -437,7 +433,6 @@ fn optimisation_svg(o: &OptimisationView) -> String {
         path: o.path.clone(),
         path_label: o.path_label.clone(),
         markers,
-        z_range: None,
         width: 700.0,
     }
     .to_svg()
@@ -632,70 +627,62 @@ fn accuracy_section(ladder: &Ladder) -> Section {
                 None => "No rung meets every tolerance.",
             }
         }
-        (scrolling(html! {
-            table {
-                thead { tr {
-                    th { "rung" } th { "steps per mesh period" } th { "crank angles" }
-                    th { "geometry" } th { "contact law" } th { "solver rel_tol" } th { "time" }
-                    @for q in &l.quantities {
-                        th { (q.label()) @if !q.unit().is_empty() { " (" (q.unit()) ")" }
-                            br; span.note { "tol " (acc::short(q.tolerance(&l.tolerances))) } }
-                    }
-                    th { "tolerances" }
-                } }
-                tbody {
-                    @for (i, r) in ladder.rungs.iter().enumerate() {
-                        @let cheapest = ladder.cheapest == Some(i);
-                        @let (class, verdict) = r.verdict(&l.tolerances);
-                        tr class=(if cheapest { "pass cheapest" } else { class }) {
-                            td { (r.label) }
-                            td.num { (acc::steps_text(r.steps_per_period)) }
-                            td.num { (r.angles) }
-                            td { (r.geometry.name()) }
-                            td { (r.law.name()) }
-                            td.num { (format!("{:e}", r.rel_tol)) }
-                            td.num { (time(r.seconds)) }
-                            @for &q in &l.quantities {
-                                @let over = !r.is_reference && !r.model_difference
-                                    && r.error(q).is_some_and(|e| !q.within(e, &l.tolerances));
-                                td.num.over[over] {
-                                    @if r.is_reference { "—" }
-                                    @else { (r.error(q).map_or("n/a".to_string(), acc::short)) }
-                                }
+        (data_table(
+            html! {
+                th { "rung" } th { "steps per mesh period" } th { "crank angles" }
+                th { "geometry" } th { "contact law" } th { "solver rel_tol" } th { "time" }
+                @for q in &l.quantities {
+                    th { (q.label()) @if !q.unit().is_empty() { " (" (q.unit()) ")" }
+                        br; span.note { "tol " (acc::short(q.tolerance(&l.tolerances))) } }
+                }
+                th { "tolerances" }
+            },
+            html! {
+                @for (i, r) in ladder.rungs.iter().enumerate() {
+                    @let cheapest = ladder.cheapest == Some(i);
+                    @let (class, verdict) = r.verdict(&l.tolerances);
+                    tr class=(if cheapest { "pass cheapest" } else { class }) {
+                        td { (r.label) }
+                        td.num { (acc::steps_text(r.steps_per_period)) }
+                        td.num { (r.angles) }
+                        td { (r.geometry.name()) }
+                        td { (r.law.name()) }
+                        td.num { (format!("{:e}", r.rel_tol)) }
+                        td.num { (time(r.seconds)) }
+                        @for &q in &l.quantities {
+                            @let over = !r.is_reference && !r.model_difference
+                                && r.error(q).is_some_and(|e| !q.within(e, &l.tolerances));
+                            td.num.over[over] {
+                                @if r.is_reference { "—" }
+                                @else { (r.error(q).map_or("n/a".to_string(), acc::short)) }
                             }
-                            td.verdict { (verdict) @if cheapest { " — " b { "cheapest" } } }
                         }
+                        td.verdict { (verdict) @if cheapest { " — " b { "cheapest" } } }
                     }
                 }
-            }
-        }))
+            },
+        ))
         @if let Some((first, _)) = orders.first() {
             p.note { "Observed order of convergence log2(e(N)/e(2N)) of the steps rungs (— where \
                       an error is at round-off), and the least-squares fit over N = 12 … \
                       finest/4." }
-            (scrolling(html! {
-                table {
-                    thead { tr { th { "quantity" }
-                        @for (n, _) in ladder.orders(*first) { th { (n) "→" (2 * n) } }
-                        th { "fit" } } }
-                    tbody {
-                        @for (q, o) in &orders {
-                            tr {
-                                td { (q.label()) }
-                                @for (_, p) in o { td.num { (order_text(*p)) } }
-                                td.num { b { (order_text(ladder.fitted_order(*q))) } }
-                            }
+            (data_table(
+                html! { th { "quantity" }
+                    @for (n, _) in ladder.orders(*first) { th { (n) "→" (2 * n) } } th { "fit" } },
+                html! {
+                    @for (q, o) in &orders {
+                        tr {
+                            td { (q.label()) }
+                            @for (_, p) in o { td.num { (order_text(*p)) } }
+                            td.num { b { (order_text(ladder.fitted_order(*q))) } }
                         }
                     }
-                }
-            }))
+                },
+            ))
         }
     };
-    section(
-        "accuracy",
-        html! { "Accuracy ladder: what accuracy costs in time" },
-        body,
-    )
+    let heading = html! { "Accuracy ladder: what accuracy costs in time" };
+    section("accuracy", heading, body)
 }
 
 const STYLE: &str = r#"

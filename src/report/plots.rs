@@ -243,7 +243,7 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
                      over the {part}s at each angle; the heat map shows every {part}.",
                     rows.len()
                 ));
-                maps.push(heat_map(def, &x, &rows, part, &y_label));
+                maps.push(heat_map(def, &x, &rows, part, &y_label, prefix));
             }
             Some(part) => {
                 let (series, note) = per_part(&x, &rows, part);
@@ -275,18 +275,7 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
         caption: notes.join(" "),
         svg: p.to_svg(),
     };
-    std::iter::once(plot)
-        .chain(maps.into_iter().map(|(title, svg)| Plot {
-            file: format!("{prefix}-{}-map.svg", def.name),
-            caption: format!(
-                "One row per {}, one column per crank angle; the colour is the {}.",
-                drawn[0].0.shape.per().unwrap_or("part"),
-                y_label
-            ),
-            title,
-            svg,
-        }))
-        .collect()
+    std::iter::once(plot).chain(maps).collect()
 }
 
 /// One curve per part, named `part i`; parts that are zero everywhere are left out and named
@@ -344,14 +333,15 @@ fn envelope(x: &[f64], rows: &[Vec<f64>], part: &str) -> Vec<Series> {
     .collect()
 }
 
-/// A part × crank heat map of per-part curves: (title, SVG).
+/// A part × crank heat map of per-part curves, `{prefix}-{plot}-map.svg`.
 fn heat_map(
     def: &PlotDef,
     x: &[f64],
     rows: &[Vec<f64>],
     part: &str,
     z_label: &str,
-) -> (String, String) {
+    prefix: &str,
+) -> Plot {
     let cells = rows
         .iter()
         .enumerate()
@@ -369,7 +359,14 @@ fn heat_map(
         subtitle: format!("{} {part}s × {} crank angles", rows.len(), x.len()),
         ..MapPlot::of_cells(&title, "crank angle φ (deg)", part, z_label, cells)
     };
-    (title, plot.to_svg())
+    Plot {
+        file: format!("{prefix}-{}-map.svg", def.name),
+        caption: format!(
+            "One row per {part}, one column per crank angle; the colour is the {z_label}."
+        ),
+        title,
+        svg: plot.to_svg(),
+    }
 }
 
 /// The registry's scalars of the drawn curves, with where they occur, for the subtitle.

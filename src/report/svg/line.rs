@@ -3,7 +3,7 @@
 
 use super::frame::{self, Area};
 use super::ticks::{self, ticks, Ticks};
-use super::{document, points, px, text_width};
+use super::{document, points, px, span, text_width};
 use maud::html;
 
 /// One curve of a line plot.
@@ -58,16 +58,6 @@ pub struct LinePlot {
 
 /// Height of one legend entry, pixels.
 const ROW: f64 = 18.0;
-
-/// The smallest and largest finite value.
-fn span<'a>(values: impl Iterator<Item = &'a f64>) -> Option<(f64, f64)> {
-    values
-        .filter(|v| v.is_finite())
-        .fold(None, |acc, &v| match acc {
-            None => Some((v, v)),
-            Some((lo, hi)) => Some((v.min(lo), v.max(hi))),
-        })
-}
 
 impl LinePlot {
     pub fn new(title: &str, x_label: &str, y_label: &str) -> Self {
@@ -214,14 +204,9 @@ impl LinePlot {
 
 /// Split a curve into runs of finite points (a gap where a value is missing or infinite).
 fn runs(x: &[f64], y: &[f64]) -> Vec<Vec<(f64, f64)>> {
-    let mut runs = vec![Vec::new()];
-    for (&a, &b) in x.iter().zip(y) {
-        match runs.last_mut() {
-            Some(run) if a.is_finite() && b.is_finite() => run.push((a, b)),
-            Some(run) if !run.is_empty() => runs.push(Vec::new()),
-            _ => {}
-        }
-    }
-    runs.retain(|r| !r.is_empty());
-    runs
+    let points: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
+    let runs = points.split(|(a, b)| !(a.is_finite() && b.is_finite()));
+    runs.filter(|run| !run.is_empty())
+        .map(<[_]>::to_vec)
+        .collect()
 }

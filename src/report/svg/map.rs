@@ -5,7 +5,7 @@
 
 use super::frame::{self, Area};
 use super::ticks::{log_label, log_ticks, ticks};
-use super::{document, points, px, text_width, RED};
+use super::{document, points, px, span, text_width, RED};
 use base64::Engine;
 use maud::{html, Markup};
 
@@ -57,8 +57,6 @@ pub struct MapPlot {
     /// Legend text of the path.
     pub path_label: String,
     pub markers: Vec<Marker>,
-    /// Colour range; default: the feasible cells' values (every cell's when none is).
-    pub z_range: Option<(f64, f64)>,
     pub width: f64,
 }
 
@@ -189,13 +187,8 @@ fn symbol(shape: Shape, cx: f64, cy: f64, color: &str) -> Markup {
 /// A small cross for an infeasible sample, visible on dark and light cells.
 fn cross_mark(cx: f64, cy: f64, r: f64) -> Markup {
     let at = |dx: f64, dy: f64| format!("{},{}", px(cx + dx), px(cy + dy));
-    let d = format!(
-        "M{} L{} M{} L{}",
-        at(-r, -r),
-        at(r, r),
-        at(-r, r),
-        at(r, -r)
-    );
+    let (a, b, c, d) = (at(-r, -r), at(r, r), at(-r, r), at(r, -r));
+    let d = format!("M{a} L{b} M{c} L{d}");
     html! {
         path d=(d) stroke="#222" stroke-width="3" {}
         path d=(d) stroke="white" stroke-width="1.3" {}
@@ -250,23 +243,11 @@ impl MapPlot {
         lo > 0.0 && hi / lo > LOG_SPAN
     }
 
+    /// The colour range: the feasible cells' values (every cell's when none is).
     fn z_bounds(&self) -> (f64, f64) {
-        if let Some((lo, hi)) = self.z_range.filter(|(a, b)| a.is_finite() && b.is_finite()) {
-            return (lo.min(hi), lo.max(hi));
-        }
-        let finite = || self.cells.iter().filter(|c| c.z.is_finite());
-        let any_feasible = finite().any(|c| c.feasible);
-        let zs = finite()
-            .filter(|c| c.feasible || !any_feasible)
-            .map(|c| c.z);
-        let (lo, hi) = zs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| {
-            (lo.min(z), hi.max(z))
-        });
-        if lo.is_finite() {
-            (lo, hi)
-        } else {
-            (0.0, 1.0)
-        }
+        let any_feasible = self.cells.iter().any(|c| c.z.is_finite() && c.feasible);
+        let zs = self.cells.iter().filter(|c| c.feasible || !any_feasible);
+        span(zs.map(|c| &c.z)).unwrap_or((0.0, 1.0))
     }
 
     /// Position of z on the colour scale, 0 to 1.

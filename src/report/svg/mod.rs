@@ -37,6 +37,16 @@ pub fn px(x: f64) -> String {
     }
 }
 
+/// The smallest and largest finite value.
+fn span<'a>(values: impl Iterator<Item = &'a f64>) -> Option<(f64, f64)> {
+    values
+        .filter(|v| v.is_finite())
+        .fold(None, |acc, &v| match acc {
+            None => Some((v, v)),
+            Some((lo, hi)) => Some((v.min(lo), v.max(hi))),
+        })
+}
+
 /// Rough width of text in pixels (for layout only).
 pub fn text_width(text: &str, size: f64) -> f64 {
     text.chars().count() as f64 * size * 0.58

@@ -95,15 +95,11 @@ impl Ticks {
     /// at v never hides under the plot's frame.
     pub fn clear_of(&mut self, v: f64) {
         let tolerance = 0.01 * (self.hi - self.lo);
-        let (at_hi, at_lo) = (
-            (v - self.hi).abs() <= tolerance,
-            (v - self.lo).abs() <= tolerance,
-        );
-        if at_hi {
+        if (v - self.hi).abs() <= tolerance {
             self.hi += self.step;
             self.values.push(self.hi);
         }
-        if at_lo {
+        if (v - self.lo).abs() <= tolerance {
             self.lo -= self.step;
             self.values.insert(0, self.lo);
         }

@@ -444,11 +444,8 @@ fn margin_text(m: &Margin) -> String {
     if m.margin.abs() <= crate::engine::check::tolerance(m.bound) {
         "margin 0 (on the bound)".into()
     } else {
-        signed(format!(
-            "margin {}{}",
-            if m.margin > 0.0 { "+" } else { "" },
-            number(m.margin)
-        ))
+        let sign = if m.margin > 0.0 { "+" } else { "" };
+        signed(format!("margin {sign}{}", number(m.margin)))
     }
 }
 

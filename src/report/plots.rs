@@ -234,7 +234,6 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
             .iter()
             .map(|row| row.iter().map(|&v| convert(v)).collect())
             .collect();
-        let dashed = def.dashed.contains(&q.key);
         match q.shape.per() {
             Some(part) if rows.len() > MAX_CURVES => {
                 p.series.extend(envelope(&x, &rows, part));
@@ -250,15 +249,12 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
                 p.series.extend(series);
                 notes.extend(note);
             }
-            None => p.series.push(Series {
-                dashed,
-                ..Series::new(
-                    q.label,
-                    x.clone(),
-                    rows[0].clone(),
-                    PALETTE[k % PALETTE.len()],
-                )
-            }),
+            None => {
+                let color = PALETTE[k % PALETTE.len()];
+                let series = Series::new(q.label, x.clone(), rows[0].clone(), color);
+                let dashed = def.dashed.contains(&q.key);
+                p.series.push(Series { dashed, ..series });
+            }
         }
     }
     let keys: Vec<&str> = drawn.iter().map(|(q, _)| q.key).collect();
@@ -287,13 +283,8 @@ fn per_part(x: &[f64], rows: &[Vec<f64>], part: &str) -> (Vec<Series>, Option<St
         if row.iter().all(|v| *v == 0.0) {
             idle.push(i.to_string());
         } else {
-            let color = PALETTE[i % PALETTE.len()];
-            series.push(Series::new(
-                format!("{part} {i}"),
-                x.to_vec(),
-                row.clone(),
-                color,
-            ));
+            let (name, color) = (format!("{part} {i}"), PALETTE[i % PALETTE.len()]);
+            series.push(Series::new(name, x.to_vec(), row.clone(), color));
         }
     }
     let note = (!idle.is_empty()).then(|| {

@@ -155,14 +155,6 @@ impl Frame {
         format!("M{} Z", super::points(pts.iter().map(|&p| self.at(p))))
     }
 
-    /// A circle of radius r (world) at c (world).
-    pub fn circle(&self, c: crate::geometry::Vec2, r: f64, fill: &str, stroke: &str) -> Markup {
-        let (x, y) = self.at(c);
-        html! {
-            circle cx=(px(x)) cy=(px(y)) r=(px(self.len(r))) fill=(fill) stroke=(stroke) {}
-        }
-    }
-
     /// A scale bar of `length` (world) labelled `label`, its right end at (right, y) pixels.
     pub fn scale_bar(&self, right: f64, y: f64, length: f64, label: &str) -> Markup {
         let l = self.len(length);

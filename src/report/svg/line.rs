@@ -3,7 +3,7 @@
 
 use super::frame::{self, Area};
 use super::ticks::{self, ticks, Ticks};
-use super::{document, points, px, span, text_width};
+use super::{document, points, px, span, text_width, widest};
 use maud::html;
 
 /// One curve of a line plot.
@@ -81,14 +81,13 @@ impl LinePlot {
             .unwrap_or((0.0, 1.0));
         let refs = self.ref_lines.iter().map(|r| &r.value);
         let zero = self.include_zero.then_some(&0.0);
-        let (y0, y1) = span(
-            self.series
-                .iter()
-                .flat_map(|s| &s.y)
-                .chain(refs)
-                .chain(zero),
-        )
-        .unwrap_or((0.0, 1.0));
+        let ys = self
+            .series
+            .iter()
+            .flat_map(|s| &s.y)
+            .chain(refs)
+            .chain(zero);
+        let (y0, y1) = span(ys).unwrap_or((0.0, 1.0));
         let xt = match self.x_step {
             Some(step) if step > 0.0 => ticks::every(x0, x1, step),
             _ => ticks(x0, x1, 7, false),
@@ -132,11 +131,7 @@ impl LinePlot {
     /// The plot as a standalone SVG document.
     pub fn to_svg(&self) -> String {
         let (xt, yt) = self.axes();
-        let label_w = yt
-            .values
-            .iter()
-            .map(|v| text_width(&yt.label(*v), 12.0))
-            .fold(0.0, f64::max);
+        let label_w = widest(yt.values.iter().map(|&v| yt.label(v)));
         let legend = self.legend();
         let legend_w = legend
             .iter()

@@ -5,7 +5,7 @@
 
 use super::frame::{self, Area};
 use super::ticks::{log_label, log_ticks, ticks};
-use super::{document, points, px, span, text_width, RED};
+use super::{document, points, px, span, text_width, widest, RED};
 use base64::Engine;
 use maud::{html, Markup};
 
@@ -497,11 +497,8 @@ impl MapPlot {
         }
         let xt = ticks(x_lo, x_hi, 6, false);
         let yt = ticks(y_lo, y_hi, 6, false);
-        let width_of = |labels: &mut dyn Iterator<Item = String>| {
-            labels.map(|l| text_width(&l, 12.0)).fold(0.0, f64::max)
-        };
-        let label_w = width_of(&mut yt.values.iter().map(|&v| yt.label(v)));
-        let zlabel_w = width_of(&mut self.z_ticks().into_iter().map(|(_, l)| l));
+        let label_w = widest(yt.values.iter().map(|&v| yt.label(v)));
+        let zlabel_w = widest(self.z_ticks().into_iter().map(|(_, l)| l));
         let legend = self.legend();
         let w = self.width;
         // Legend entries in columns under the axes, as many columns as the widest fits.
@@ -528,12 +525,8 @@ impl MapPlot {
         let (yl, yh) = (yt.lo.min(y_lo), yt.hi.max(y_hi));
         let sx = |x: f64| a.left + (x - xl) / (xh - xl) * a.width;
         let sy = |y: f64| a.bottom() - (y - yl) / (yh - yl) * a.height;
-        let cells = if self.cells.len() > RASTER_ABOVE {
-            self.cell_image(&xs, &ys, &a)
-        } else {
-            None
-        };
-        let cells = cells.unwrap_or_else(|| {
+        let image = (self.cells.len() > RASTER_ABOVE).then(|| self.cell_image(&xs, &ys, &a));
+        let cells = image.flatten().unwrap_or_else(|| {
             self.cell_rects(&xs, &ys, |i, j| {
                 (sx(xe[i]), sy(ye[j + 1]), sx(xe[i + 1]), sy(ye[j]))
             })

@@ -52,6 +52,11 @@ pub fn text_width(text: &str, size: f64) -> f64 {
     text.chars().count() as f64 * size * 0.58
 }
 
+/// Rough width of the widest of `texts` at font size 12, pixels (0 for none).
+pub fn widest(texts: impl Iterator<Item = String>) -> f64 {
+    texts.map(|t| text_width(&t, 12.0)).fold(0.0, f64::max)
+}
+
 /// "x1,y1 x2,y2 ..." of pixel points, for `points` and paths.
 pub fn points(pts: impl IntoIterator<Item = (f64, f64)>) -> String {
     pts.into_iter()

@@ -257,8 +257,7 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
             }
         }
     }
-    let keys: Vec<&str> = drawn.iter().map(|(q, _)| q.key).collect();
-    p.subtitle = scalars(r, &keys, def);
+    p.subtitle = scalars(r, &drawn, def);
     let limits = limit_lines(spec, &drawn, def);
     if !limits.is_empty() {
         notes.push("Dashed red: the spec's limits on these curves.".into());
@@ -361,19 +360,15 @@ fn heat_map(
 }
 
 /// The registry's scalars of the drawn curves, with where they occur, for the subtitle.
-fn scalars(r: &SceneResult, keys: &[&str], def: &PlotDef) -> String {
+fn scalars(r: &SceneResult, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> String {
     QUANTITIES
         .iter()
-        .filter(|s| s.of.is_some_and(|of| keys.contains(&of)))
+        .filter(|s| drawn.iter().any(|(q, _)| s.of == Some(q.key)))
         .filter_map(|s| {
             let e = s.scalar(r)?;
             let (unit, convert) = shown(def, s.unit);
-            Some(format!(
-                "{} {}: {}",
-                s.label,
-                shown_value(convert(e.value), unit),
-                e.at
-            ))
+            let value = shown_value(convert(e.value), unit);
+            Some(format!("{} {value}: {}", s.label, e.at))
         })
         .collect::<Vec<_>>()
         .join("; ")

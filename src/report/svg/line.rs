@@ -95,10 +95,9 @@ impl LinePlot {
         let mut yt = ticks(y0, y1, 6, true);
         // No limit and no extreme of a curve on the frame, where it would hide (zero, the
         // floor of forces, may sit on it).
-        for v in self.ref_lines.iter().map(|r| r.value).chain([y1, y0]) {
-            if v != 0.0 {
-                yt.clear_of(v);
-            }
+        let levels = self.ref_lines.iter().map(|r| r.value).chain([y1, y0]);
+        for v in levels.filter(|v| *v != 0.0) {
+            yt.clear_of(v);
         }
         (xt, yt)
     }

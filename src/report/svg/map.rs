@@ -128,7 +128,6 @@ fn index(v: &[f64], a: f64) -> Option<usize> {
 const HATCH: &str = r##"<defs><pattern id="hatch" width="7" height="7" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="7" height="7" fill="white" fill-opacity="0.55"/><line x1="0" y1="0" x2="0" y2="7" stroke="white" stroke-width="2.5"/></pattern></defs>"##;
 
 /// What a legend entry shows.
-#[derive(Debug, Clone, PartialEq)]
 enum Swatch {
     Hatched,
     Blank,
@@ -277,24 +276,19 @@ impl MapPlot {
     }
 
     fn legend(&self) -> Vec<(Swatch, String)> {
-        let mut out = Vec::new();
+        let (mut out, samples) = (Vec::new(), &self.samples_label);
         if self.cells.iter().any(|c| c.z.is_finite() && !c.feasible) {
-            out.push((
-                Swatch::Hatched,
-                "infeasible: a constraint is violated".into(),
-            ));
+            let text = "infeasible: a constraint is violated";
+            out.push((Swatch::Hatched, text.into()));
         }
         if self.cells.iter().any(|c| !c.z.is_finite()) {
             out.push((Swatch::Blank, "not evaluated: breaks a design rule".into()));
         }
         if self.samples.iter().any(|s| s.2) {
-            out.push((Swatch::Dot, format!("{} (feasible)", self.samples_label)));
+            out.push((Swatch::Dot, format!("{samples} (feasible)")));
         }
         if self.samples.iter().any(|s| !s.2) {
-            out.push((
-                Swatch::Cross,
-                format!("{} (infeasible)", self.samples_label),
-            ));
+            out.push((Swatch::Cross, format!("{samples} (infeasible)")));
         }
         if self.path.len() > 1 {
             out.push((Swatch::Path, self.path_label.clone()));
@@ -426,41 +420,30 @@ impl MapPlot {
             };
             let inside =
                 |b: &Box4| b.0 >= a.left && b.2 <= a.right() && b.1 >= a.top && b.3 <= a.bottom();
+            let overlapped = |b: &Box4| boxes.iter().filter(|o| overlaps(b, o)).count();
             // Inside the axes first, then the fewest overlaps, then the order of label_spots.
             let (dx, dy) = label_spots()
-                .min_by_key(|c| {
-                    let b = place(c);
-                    (
-                        !inside(&b),
-                        boxes.iter().filter(|o| overlaps(&b, o)).count(),
-                    )
-                })
+                .min_by_key(|c| (!inside(&place(c)), overlapped(&place(c))))
                 .unwrap_or((12.0, 0.0));
             boxes.push(place(&(dx, dy)));
             let anchor = if dx > 0.0 { "start" } else { "end" };
-            let halo = frame::Halo {
-                color: &m.color,
-                size: 12.0,
-                bold: true,
-            };
-            labels.push(halo.text(cx + dx, cy + dy + 4.0, anchor, &m.label));
+            labels.push((cx + dx, cy + dy + 4.0, anchor, m));
         }
         html! {
             @for k in order {
                 (symbol(self.markers[k].shape, spots[k].0, spots[k].1, &self.markers[k].color))
             }
-            @for l in labels { (l) }
+            @for (x, y, anchor, m) in labels {
+                (frame::Halo { color: &m.color, size: 12.0, bold: true }.text(x, y, anchor, &m.label))
+            }
         }
     }
 
     /// The colour bar to the right of the axes, with its ticks and label.
     fn colour_bar(&self, a: &Area, w: f64) -> Markup {
         let (bx, bw, steps) = (a.right() + 16.0, 16.0, 48);
-        let z_label = if self.log_scale() {
-            format!("{} (log scale)", self.z_label)
-        } else {
-            self.z_label.clone()
-        };
+        let scale = if self.log_scale() { " (log scale)" } else { "" };
+        let z_label = format!("{}{scale}", self.z_label);
         html! {
             @for k in 0..steps {
                 @let t0 = k as f64 / steps as f64;
@@ -502,11 +485,8 @@ impl MapPlot {
         let legend = self.legend();
         let w = self.width;
         // Legend entries in columns under the axes, as many columns as the widest fits.
-        let widest = legend
-            .iter()
-            .map(|(_, text)| 30.0 + text_width(text, 12.0) + 16.0)
-            .fold(0.0, f64::max);
-        let columns = (((w - 28.0) / widest.max(1.0)).floor() as usize).clamp(1, 3);
+        let entry_w = 30.0 + widest(legend.iter().map(|(_, text)| text)) + 16.0;
+        let columns = (((w - 28.0) / entry_w).floor() as usize).clamp(1, 3);
         let col_w = (w - 28.0) / columns as f64;
         let rows = legend.len().div_ceil(columns);
         let left = label_w + 44.0;

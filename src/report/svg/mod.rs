@@ -53,8 +53,10 @@ pub fn text_width(text: &str, size: f64) -> f64 {
 }
 
 /// Rough width of the widest of `texts` at font size 12, pixels (0 for none).
-pub fn widest(texts: impl Iterator<Item = String>) -> f64 {
-    texts.map(|t| text_width(&t, 12.0)).fold(0.0, f64::max)
+pub fn widest<S: AsRef<str>>(texts: impl Iterator<Item = S>) -> f64 {
+    texts
+        .map(|t| text_width(t.as_ref(), 12.0))
+        .fold(0.0, f64::max)
 }
 
 /// "x1,y1 x2,y2 ..." of pixel points, for `points` and paths.

@@ -92,14 +92,8 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
         .iter()
         .map(|&c| {
             let (x, y) = f.at(c);
-            format!(
-                " M{},{} a{r},{r} 0 1,0 {},0 a{r},{r} 0 1,0 {},0 Z",
-                px(x - r),
-                px(y),
-                px(2.0 * r),
-                px(-2.0 * r),
-                r = px(r)
-            )
+            let (x, y, d, back, r) = (px(x - r), px(y), px(2.0 * r), px(-2.0 * r), px(r));
+            format!(" M{x},{y} a{r},{r} 0 1,0 {d},0 a{r},{r} 0 1,0 {back},0 Z")
         })
         .collect();
     let label_at = |c: Vec2| c.normalize() * (outer + 3.5);
@@ -115,9 +109,10 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
         path d=(f.path(&disc.profile) + &holes) fill="#cfe0f1" fill-rule="evenodd" stroke="#1f4e79"
             stroke-width="1.2" {}
         @for (j, &p) in disc.pins.iter().enumerate() {
-            (f.circle(p, disc.pin_radius_mm, "#6b6b6b", "#333"))
-            text x=(px(f.x(p.x))) y=(px(f.y(p.y) + 4.0)) font-size="11" text-anchor="middle"
-                fill="white" { (j) }
+            @let (x, y) = f.at(p);
+            circle cx=(px(x)) cy=(px(y)) r=(px(f.len(disc.pin_radius_mm))) fill="#6b6b6b"
+                stroke="#333" {}
+            text x=(px(x)) y=(px(y + 4.0)) font-size="11" text-anchor="middle" fill="white" { (j) }
         }
         @for (i, &c) in disc.rollers.iter().enumerate() {
             @let (x, y) = f.at(c);

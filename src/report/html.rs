@@ -10,7 +10,8 @@
 //! points; the accuracy ladder when one was run; the spec's source.
 
 use super::svg::{MapCell, MapPlot, Marker, Shape, FONT, RED};
-use super::{disc, plots, table};
+use super::table::{self, with_unit};
+use super::{disc, plots};
 use crate::engine::accuracy::{self as acc, Ladder, Variation};
 use crate::engine::check::Check;
 use crate::engine::drawing::Disc;
@@ -112,6 +113,11 @@ struct Section {
     body: Markup,
 }
 
+fn section(id: impl Into<String>, heading: Markup, body: Markup) -> Section {
+    let id = id.into();
+    Section { id, heading, body }
+}
+
 /// The report's files, (file name, content): the SVGs, then `index.html` last.
 pub fn render(input: &ReportInput) -> Vec<(String, String)> {
     let mut files = Vec::new();
@@ -157,15 +163,8 @@ pub fn write(dir: &Path, input: &ReportInput) -> Result<Vec<PathBuf>> {
 /// A file-name part from a name: ASCII letters, digits, `-` and `_`; anything else `_`. Not
 /// unique (`a b` and `a_b` give the same), so file names also carry an index.
 fn slug(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
+    let kept = |c: char| c.is_ascii_alphanumeric() || c == '-' || c == '_';
+    name.replace(|c: char| !kept(c), "_")
 }
 
 fn figure(file: &str, title: &str, caption: &str) -> Markup {
@@ -187,12 +186,9 @@ fn signed(text: String) -> String {
     text.replace('-', "−")
 }
 
-fn with_unit(value: String, unit: &str) -> String {
-    if unit.is_empty() {
-        value
-    } else {
-        format!("{value} {unit}")
-    }
+/// A table (in a `scrolling` box) with one header row of `head`'s cells above `rows`.
+fn data_table(head: Markup, rows: Markup) -> Markup {
+    scrolling(html! { table { thead { tr { (head) } } tbody { (rows) } } })
 }
 
 fn verdict(passed: bool) -> &'static str {
@@ -209,139 +205,84 @@ fn summary_section(results: &[SceneResult]) -> Section {
     let body = html! {
         p.note { "What each scene computed, at a glance: the extremes of its curves and where \
                   they occur." }
-        (scrolling(html! {
-            table {
-                thead { tr { th { "scene" } th { "result" } th { "value" } th { "where" } } }
-                tbody {
-                    @for s in &summaries {
-                        @if s.headlines.is_empty() {
-                            tr { td { code { (s.scene) } } td colspan="3" {
-                                "no headline results (the scene computes none of them)" } }
-                        }
-                        @for (k, h) in s.headlines.iter().enumerate() {
-                            tr {
-                                @if k == 0 {
-                                    td rowspan=(s.headlines.len()) { code { (s.scene) } }
-                                }
-                                td { (h.quantity.label) }
-                                td.num { (with_unit(table::count_or_number(h.value, h.quantity.unit),
-                                    h.quantity.unit)) }
-                                td { (h.at) }
+        (data_table(
+            html! { th { "scene" } th { "result" } th { "value" } th { "where" } },
+            html! {
+                @for s in &summaries {
+                    @if s.headlines.is_empty() {
+                        tr { td { code { (s.scene) } } td colspan="3" {
+                            "no headline results (the scene computes none of them)" } }
+                    }
+                    @for (k, h) in s.headlines.iter().enumerate() {
+                        tr {
+                            @if k == 0 {
+                                td rowspan=(s.headlines.len()) { code { (s.scene) } }
                             }
+                            td { (h.quantity.label) }
+                            td.num { (with_unit(table::count_or_number(h.value, h.quantity.unit),
+                                h.quantity.unit)) }
+                            td { (h.at) }
                         }
                     }
                 }
-            }
-        }))
+            },
+        ))
     };
-    Section {
-        id: "summary".into(),
-        heading: html! { "Headline results" },
-        body,
-    }
+    section("summary", html! { "Headline results" }, body)
 }
 
 fn design_section(spec: &Spec) -> Section {
-    let d = &spec.design;
-    let m = &spec.modification;
+    let (d, m) = (&spec.design, &spec.modification);
     let mm = |x: f64| format!("{} mm", number(x));
-    let reducer = [
-        (
-            "teeth nc / rollers np",
-            format!("{} / {}", d.teeth, d.rollers),
-        ),
-        ("eccentricity e", mm(d.eccentricity_mm)),
-        (
-            "roller circle Rp / roller radius Rrp",
-            format!(
-                "{} / {}",
-                mm(d.roller_circle_radius_mm),
-                mm(d.roller_radius_mm)
-            ),
-        ),
-        ("face width B", mm(d.face_width_mm)),
-        (
-            "output pins",
-            format!(
-                "{} on rw {}, pin radius {}, hole radius {}",
-                d.pins.count,
-                mm(d.pins.circle_radius_mm),
-                mm(d.pins.pin_radius_mm),
-                mm(d.hole_radius_mm())
-            ),
-        ),
-        (
-            "material",
-            format!(
-                "E {} GPa, ν {} (rollers and pins: E {} GPa, ν {}); E* {} GPa",
-                number(units::gpa(d.disc_material.youngs_modulus_mpa)),
-                number(d.disc_material.poisson_ratio),
-                number(units::gpa(d.roller_material.youngs_modulus_mpa)),
-                number(d.roller_material.poisson_ratio),
-                number(units::gpa(d.contact_modulus_mpa()))
-            ),
-        ),
-        ("K1 = e·np/Rp", number(d.k1())),
-    ];
-    let modification = [
-        ("shift ΔRp", mm(m.shift_mm)),
-        ("equidistant ΔRrp", mm(m.equidistant_mm)),
-        (
-            "rotation Δδ",
-            format!("{} deg", number(units::deg(m.rotation_rad))),
-        ),
-        (
-            "tip clearance ΔRrp − ΔRp",
-            format!("{} µm", number(units::um(m.tip_clearance_mm()))),
-        ),
-    ];
-    let pairs = |head: &str, rows: &[(&str, String)]| {
-        scrolling(html! {
-            table {
-                thead { tr { th colspan="2" { (head) } } }
-                tbody { @for (k, v) in rows { tr { th { (k) } td { (v) } } } }
-            }
-        })
+    let (disc, rollers) = (&d.disc_material, &d.roller_material);
+    let pairs = |head: &str, rows: Markup| data_table(html! { th colspan="2" { (head) } }, rows);
+    let row = |k: &str, v: String| html! { tr { th { (k) } td { (v) } } };
+    let reducer = html! {
+        (row("teeth nc / rollers np", format!("{} / {}", d.teeth, d.rollers)))
+        (row("eccentricity e", mm(d.eccentricity_mm)))
+        (row("roller circle Rp / roller radius Rrp",
+            format!("{} / {}", mm(d.roller_circle_radius_mm), mm(d.roller_radius_mm))))
+        (row("face width B", mm(d.face_width_mm)))
+        (row("output pins", format!("{} on rw {}, pin radius {}, hole radius {}", d.pins.count,
+            mm(d.pins.circle_radius_mm), mm(d.pins.pin_radius_mm), mm(d.hole_radius_mm()))))
+        (row("material", format!("E {} GPa, ν {} (rollers and pins: E {} GPa, ν {}); E* {} GPa",
+            number(units::gpa(disc.youngs_modulus_mpa)), number(disc.poisson_ratio),
+            number(units::gpa(rollers.youngs_modulus_mpa)), number(rollers.poisson_ratio),
+            number(units::gpa(d.contact_modulus_mpa())))))
+        (row("K1 = e·np/Rp", number(d.k1())))
     };
-    Section {
-        id: "design".into(),
-        heading: html! { "Design" },
-        body: html! {
-            div.cols {
-                (pairs("reducer", &reducer))
-                (pairs("tooth-profile modification", &modification))
-            }
-        },
-    }
+    let modification = html! {
+        (row("shift ΔRp", mm(m.shift_mm)))
+        (row("equidistant ΔRrp", mm(m.equidistant_mm)))
+        (row("rotation Δδ", format!("{} deg", number(units::deg(m.rotation_rad)))))
+        (row("tip clearance ΔRrp − ΔRp", format!("{} µm", number(units::um(m.tip_clearance_mm())))))
+    };
+    let body = html! {
+        div.cols { (pairs("reducer", reducer)) (pairs("tooth-profile modification", modification)) }
+    };
+    section("design", html! { "Design" }, body)
 }
 
 fn checks_section(checks: &[Check]) -> Section {
     let body = html! {
         p.note { "Failures first, the furthest outside its limit first." }
-        (scrolling(html! {
-            table {
-                thead { tr { th { "check" } th { "value" } th { "limit" } th { "verdict" }
-                    th { "where" } } }
-                tbody {
-                    @for c in table::ordered(checks) {
-                        tr class=(verdict(c.passed)) {
-                            td { code { (c.id) } }
-                            td.num { (with_unit(number(c.value), c.unit)) }
-                            td.num { (with_unit(format!("{} {}", c.bound.symbol(),
-                                number(c.limit)), c.unit)) }
-                            td.verdict { (if c.passed { "pass" } else { "FAIL" }) }
-                            td { (c.at) }
-                        }
+        (data_table(
+            html! { th { "check" } th { "value" } th { "limit" } th { "verdict" } th { "where" } },
+            html! {
+                @for c in table::ordered(checks) {
+                    tr class=(verdict(c.passed)) {
+                        td { code { (c.id) } }
+                        td.num { (with_unit(number(c.value), c.unit)) }
+                        td.num { (with_unit(format!("{} {}", c.bound.symbol(),
+                            number(c.limit)), c.unit)) }
+                        td.verdict { (if c.passed { "pass" } else { "FAIL" }) }
+                        td { (c.at) }
                     }
                 }
-            }
-        }))
+            },
+        ))
     };
-    Section {
-        id: "checks".into(),
-        heading: html! { "Checks" },
-        body,
-    }
+    section("checks", html! { "Checks" }, body)
 }
 
 fn golden_section(goldens: &[GoldenResult]) -> Option<Section> {
@@ -351,32 +292,26 @@ fn golden_section(goldens: &[GoldenResult]) -> Option<Section> {
     let body = html! {
         p.note { "Each curve compared point by point with its reviewed reference; the worst \
                   point is the one furthest outside (or least inside) its band abs + rel·|golden|." }
-        (scrolling(html! {
-            table {
-                thead { tr { th { "curve" } th { "golden file" } th { "worst |deviation|" }
-                    th { "band there" } th { "where" } th { "points" } th { "verdict" } } }
-                tbody {
-                    @for g in goldens {
-                        @let w = &g.comparison.worst;
-                        tr class=(verdict(g.comparison.passed)) {
-                            td { code { (g.golden.scene) "/" (g.golden.quantity.key) } }
-                            td { code { (g.golden.path.display()) } }
-                            td.num { (with_unit(number(w.deviation), g.unit)) }
-                            td.num { (with_unit(number(w.band), g.unit)) }
-                            td { (w.place()) }
-                            td.num { (g.comparison.points) }
-                            td.verdict { (if g.comparison.passed { "pass" } else { "FAIL" }) }
-                        }
+        (data_table(
+            html! { th { "curve" } th { "golden file" } th { "worst |deviation|" }
+                th { "band there" } th { "where" } th { "points" } th { "verdict" } },
+            html! {
+                @for g in goldens {
+                    @let w = &g.comparison.worst;
+                    tr class=(verdict(g.comparison.passed)) {
+                        td { code { (g.golden.scene) "/" (g.golden.quantity.key) } }
+                        td { code { (g.golden.path.display()) } }
+                        td.num { (with_unit(number(w.deviation), g.unit)) }
+                        td.num { (with_unit(number(w.band), g.unit)) }
+                        td { (w.place()) }
+                        td.num { (g.comparison.points) }
+                        td.verdict { (if g.comparison.passed { "pass" } else { "FAIL" }) }
                     }
                 }
-            }
-        }))
+            },
+        ))
     };
-    Some(Section {
-        id: "golden".into(),
-        heading: html! { "Golden curves" },
-        body,
-    })
+    Some(section("golden", html! { "Golden curves" }, body))
 }
 
 /// The disc at the drawing's crank angle and the close-up of its tightest roller.
@@ -387,17 +322,14 @@ fn disc_section(input: &ReportInput, files: &mut Vec<(String, String)>) -> Secti
     let (detail, detail_caption) = disc::close_up(input.disc);
     files.push(("disc.svg".into(), whole));
     files.push(("disc-detail.svg".into(), detail));
-    Section {
-        id: "disc".into(),
-        heading: html! { "The disc at crank φ = " (phi) "°" },
-        body: html! {
-            div.grid {
-                (figure("disc.svg", &format!("Disc, rollers and output pins at crank φ = {phi}°"),
-                    &whole_caption))
-                (figure("disc-detail.svg", "Close-up of the smallest gap", &detail_caption))
-            }
-        },
-    }
+    let body = html! {
+        div.grid {
+            (figure("disc.svg", &format!("Disc, rollers and output pins at crank φ = {phi}°"),
+                &whole_caption))
+            (figure("disc-detail.svg", "Close-up of the smallest gap", &detail_caption))
+        }
+    };
+    section("disc", html! { "The disc at crank φ = " (phi) "°" }, body)
 }
 
 /// A scene's plots, or nothing when it computed no curve a plot draws.
@@ -418,11 +350,8 @@ fn scene_section(
         div.grid { @for p in &plots { (figure(&p.file, &p.title, &p.caption)) } }
     };
     files.extend(plots.into_iter().map(|p| (p.file, p.svg)));
-    Some(Section {
-        id: prefix,
-        heading: html! { "Scene " code { (scene.name) } },
-        body,
-    })
+    let heading = html! { "Scene " code { (scene.name) } };
+    Some(section(prefix, heading, body))
 }
 
 fn scene_summary(spec: &Spec, scene: &Scene) -> String {
@@ -472,16 +401,13 @@ fn optimisation_section(views: &[OptimisationView], files: &mut Vec<(String, Str
         files.push((file.clone(), optimisation_svg(o)));
         studies.push(study(o, &file));
     }
-    Section {
-        id: "optimisation".into(),
-        heading: html! { "Optimisation" },
-        body: html! {
-            p.note { "Every study of the spec: the objective over its first two variables, where \
-                      the optimiser looked and what it found; the table gives the objective and \
-                      every constraint at the start, the references and the optimum." }
-            @for s in studies { (s) }
-        },
-    }
+    let body = html! {
+        p.note { "Every study of the spec: the objective over its first two variables, where the \
+                  optimiser looked and what it found; the table gives the objective and every \
+                  constraint at the start, the references and the optimum." }
+        @for s in studies { (s) }
+    };
+    section("optimisation", html! { "Optimisation" }, body)
 }
 
 fn optimisation_svg(o: &OptimisationView) -> String {
@@ -492,15 +418,15 @@ fn optimisation_svg(o: &OptimisationView) -> String {
         color: color.into(),
         shape,
     };
-    let mut markers: Vec<Marker> = o
+    let start = o
         .start
-        .map(|p| marker(p, "start", "#ff7f0e", Shape::Circle))
-        .into_iter()
-        .collect();
-    for (x, y, label) in &o.references {
-        markers.push(marker((*x, *y), label, "#111111", Shape::Diamond));
-    }
-    markers.extend(o.optimum.map(|p| marker(p, "optimum", RED, Shape::Star)));
+        .map(|p| marker(p, "start", "#ff7f0e", Shape::Circle));
+    let references = o
+        .references
+        .iter()
+        .map(|(x, y, l)| marker((*x, *y), l, "#111111", Shape::Diamond));
+    let optimum = o.optimum.map(|p| marker(p, "optimum", RED, Shape::Star));
+    let markers = start.into_iter().chain(references).chain(optimum).collect();
     MapPlot {
         title: format!("Study {}: objective over the modification", o.name),
         subtitle: o.map_note.clone(),
@@ -513,7 +439,6 @@ fn optimisation_svg(o: &OptimisationView) -> String {
         path: o.path.clone(),
         path_label: o.path_label.clone(),
         markers,
-        z_range: None,
         width: 700.0,
     }
     .to_svg()
@@ -525,11 +450,8 @@ fn margin_text(m: &Margin) -> String {
     if m.margin.abs() <= crate::engine::check::tolerance(m.bound) {
         "margin 0 (on the bound)".into()
     } else {
-        signed(format!(
-            "margin {}{}",
-            if m.margin > 0.0 { "+" } else { "" },
-            number(m.margin)
-        ))
+        let sign = if m.margin > 0.0 { "+" } else { "" };
+        signed(format!("margin {sign}{}", number(m.margin)))
     }
 }
 
@@ -708,70 +630,62 @@ fn accuracy_section(ladder: &Ladder) -> Section {
                 None => "No rung meets every tolerance.",
             }
         }
-        (scrolling(html! {
-            table {
-                thead { tr {
-                    th { "rung" } th { "steps per mesh period" } th { "crank angles" }
-                    th { "geometry" } th { "contact law" } th { "solver rel_tol" } th { "time" }
-                    @for q in &l.quantities {
-                        th { (q.label()) @if !q.unit().is_empty() { " (" (q.unit()) ")" }
-                            br; span.note { "tol " (acc::short(q.tolerance(&l.tolerances))) } }
-                    }
-                    th { "tolerances" }
-                } }
-                tbody {
-                    @for (i, r) in ladder.rungs.iter().enumerate() {
-                        @let cheapest = ladder.cheapest == Some(i);
-                        @let (class, verdict) = r.verdict(&l.tolerances);
-                        tr class=(if cheapest { "pass cheapest" } else { class }) {
-                            td { (r.label) }
-                            td.num { (acc::steps_text(r.steps_per_period)) }
-                            td.num { (r.angles) }
-                            td { (r.geometry.name()) }
-                            td { (r.law.name()) }
-                            td.num { (format!("{:e}", r.rel_tol)) }
-                            td.num { (time(r.seconds)) }
-                            @for &q in &l.quantities {
-                                @let over = !r.is_reference && !r.model_difference
-                                    && r.error(q).is_some_and(|e| !q.within(e, &l.tolerances));
-                                td.num.over[over] {
-                                    @if r.is_reference { "—" }
-                                    @else { (r.error(q).map_or("n/a".to_string(), acc::short)) }
-                                }
+        (data_table(
+            html! {
+                th { "rung" } th { "steps per mesh period" } th { "crank angles" }
+                th { "geometry" } th { "contact law" } th { "solver rel_tol" } th { "time" }
+                @for q in &l.quantities {
+                    th { (q.label()) @if !q.unit().is_empty() { " (" (q.unit()) ")" }
+                        br; span.note { "tol " (acc::short(q.tolerance(&l.tolerances))) } }
+                }
+                th { "tolerances" }
+            },
+            html! {
+                @for (i, r) in ladder.rungs.iter().enumerate() {
+                    @let cheapest = ladder.cheapest == Some(i);
+                    @let (class, verdict) = r.verdict(&l.tolerances);
+                    tr class=(if cheapest { "pass cheapest" } else { class }) {
+                        td { (r.label) }
+                        td.num { (acc::steps_text(r.steps_per_period)) }
+                        td.num { (r.angles) }
+                        td { (r.geometry.name()) }
+                        td { (r.law.name()) }
+                        td.num { (format!("{:e}", r.rel_tol)) }
+                        td.num { (time(r.seconds)) }
+                        @for &q in &l.quantities {
+                            @let over = !r.is_reference && !r.model_difference
+                                && r.error(q).is_some_and(|e| !q.within(e, &l.tolerances));
+                            td.num.over[over] {
+                                @if r.is_reference { "—" }
+                                @else { (r.error(q).map_or("n/a".to_string(), acc::short)) }
                             }
-                            td.verdict { (verdict) @if cheapest { " — " b { "cheapest" } } }
                         }
+                        td.verdict { (verdict) @if cheapest { " — " b { "cheapest" } } }
                     }
                 }
-            }
-        }))
+            },
+        ))
         @if let Some((first, _)) = orders.first() {
             p.note { "Observed order of convergence log2(e(N)/e(2N)) of the steps rungs (— where \
                       an error is at round-off), and the least-squares fit over N = 12 … \
                       finest/4." }
-            (scrolling(html! {
-                table {
-                    thead { tr { th { "quantity" }
-                        @for (n, _) in ladder.orders(*first) { th { (n) "→" (2 * n) } }
-                        th { "fit" } } }
-                    tbody {
-                        @for (q, o) in &orders {
-                            tr {
-                                td { (q.label()) }
-                                @for (_, p) in o { td.num { (order_text(*p)) } }
-                                td.num { b { (order_text(ladder.fitted_order(*q))) } }
-                            }
+            (data_table(
+                html! { th { "quantity" }
+                    @for (n, _) in ladder.orders(*first) { th { (n) "→" (2 * n) } } th { "fit" } },
+                html! {
+                    @for (q, o) in &orders {
+                        tr {
+                            td { (q.label()) }
+                            @for (_, p) in o { td.num { (order_text(*p)) } }
+                            td.num { b { (order_text(ladder.fitted_order(*q))) } }
                         }
                     }
-                }
-            }))
+                },
+            ))
         }
     };
-    Section {
-        id: "accuracy".into(),
-        heading: html! { "Accuracy ladder: what accuracy costs in time" },
-        body,
-    }
+    let heading = html! { "Accuracy ladder: what accuracy costs in time" };
+    section("accuracy", heading, body)
 }
 
 const STYLE: &str = r#"

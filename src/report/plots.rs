@@ -8,7 +8,7 @@
 //! drawn as their envelope over the parts, with a part × crank heat map beside it.
 
 use super::svg::{LinePlot, MapCell, MapPlot, RefLine, Series, PALETTE, RED};
-use super::table::count_or_number;
+use super::table::{count_or_number, with_unit};
 use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
 use crate::model::results::SceneResult;
 use crate::numeric::extremes;
@@ -47,18 +47,29 @@ struct PlotDef {
     caption: &'static str,
 }
 
+/// What a plot has unless it says otherwise: no dashed curve, the first curve's y label, the
+/// registry's units, y = 0 not forced in, no further reference line.
+const PLOT: PlotDef = PlotDef {
+    name: "",
+    title: "",
+    curves: &[],
+    dashed: &[],
+    y_label: None,
+    micrometres: false,
+    include_zero: false,
+    reference: None,
+    caption: "",
+};
+
 const PLOTS: &[PlotDef] = &[
     PlotDef {
         name: "clearance",
         title: "Clearance per roller",
         curves: &[&q::CLEARANCE],
-        dashed: &[],
-        y_label: None,
         micrometres: true,
-        include_zero: false,
-        reference: None,
         caption: "Normal gap of every roller to the modified profile at the ideal disc pose (no \
                   load); negative is interference.",
+        ..PLOT
     },
     PlotDef {
         name: "backlash",
@@ -66,65 +77,48 @@ const PLOTS: &[PlotDef] = &[
         curves: &[&q::BACKLASH, &q::BACKLASH_REVERSE, &q::LOST_MOTION],
         dashed: &[q::BACKLASH_REVERSE.key],
         y_label: Some("angle"),
-        micrometres: false,
         include_zero: true,
-        reference: None,
         caption: "Disc rotation needed to close the first gap in the load direction (backlash), \
                   in the reverse direction, and their sum (lost motion).",
+        ..PLOT
     },
     PlotDef {
         name: "roller-forces",
         title: "Roller forces",
         curves: &[&q::ROLLER_FORCE],
-        dashed: &[],
-        y_label: None,
-        micrometres: false,
         include_zero: true,
-        reference: None,
         caption: "Contact force of every roller on the disc.",
+        ..PLOT
     },
     PlotDef {
         name: "pressure",
         title: "Hertz peak pressure",
         curves: &[&q::CONTACT_PRESSURE],
-        dashed: &[],
-        y_label: None,
-        micrometres: false,
         include_zero: true,
-        reference: None,
         caption: "p0 = sqrt(F·E*/(π·L·R*)) with the profile's local curvature at the contact.",
+        ..PLOT
     },
     PlotDef {
         name: "contacts",
         title: "Rollers in contact",
         curves: &[&q::CONTACTS],
-        dashed: &[],
-        y_label: None,
-        micrometres: false,
         include_zero: true,
-        reference: None,
         caption: "Rollers carrying load at each crank angle.",
+        ..PLOT
     },
     PlotDef {
         name: "te",
         title: "Loaded transmission error",
         curves: &[&q::TE, &q::OUTPUT_LAG],
         dashed: &[q::OUTPUT_LAG.key],
-        y_label: None,
-        micrometres: false,
-        include_zero: false,
-        reference: None,
         caption: "Lag of the output behind its ideal angle φ/nc under the scene's torque: disc \
                   lag β at the rollers plus output lag βo at the pins (dashed).",
+        ..PLOT
     },
     PlotDef {
         name: "ratio",
         title: "Transmission ratio",
         curves: &[&q::RATIO],
-        dashed: &[],
-        y_label: None,
-        micrometres: false,
-        include_zero: false,
         reference: Some(|spec| RefLine {
             value: spec.design.teeth as f64,
             label: format!("nominal nc = {}", spec.design.teeth),
@@ -132,42 +126,33 @@ const PLOTS: &[PlotDef] = &[
         }),
         caption: "κ = 1/(1/nc − dδ/dφ) by central differences; its harmonic mean over whole \
                   mesh periods is nc.",
+        ..PLOT
     },
     PlotDef {
         name: "bearing-force",
         title: "Crank-bearing force",
         curves: &[&q::BEARING_FORCE],
-        dashed: &[],
-        y_label: None,
-        micrometres: false,
         include_zero: true,
-        reference: None,
         caption: "Magnitude of the force of the crank bearing on the disc, −(Σ roller + Σ pin \
                   forces).",
+        ..PLOT
     },
     PlotDef {
         name: "bearing-angle",
         title: "Crank-bearing force direction",
         curves: &[&q::BEARING_ANGLE],
-        dashed: &[],
-        y_label: None,
-        micrometres: false,
-        include_zero: false,
-        reference: None,
         caption: "Direction of the bearing force, counter-clockwise from the eccentric \
                   direction (cos φ, sin φ).",
+        ..PLOT
     },
     PlotDef {
         name: "pin-forces",
         title: "Output-pin forces",
         curves: &[&q::PIN_FORCE],
-        dashed: &[],
-        y_label: None,
-        micrometres: false,
         include_zero: true,
-        reference: None,
         caption: "Force of every output pin on its hole; pins whose moment arm is negative \
                   carry no load.",
+        ..PLOT
     },
 ];
 
@@ -180,14 +165,9 @@ fn shown(def: &PlotDef, unit: &'static str) -> (&'static str, fn(f64) -> f64) {
     }
 }
 
-/// A value with its unit for a person ("−23.41 µm", "2").
-fn with_unit(value: f64, unit: &str) -> String {
-    let v = count_or_number(value, unit);
-    if unit.is_empty() {
-        v
-    } else {
-        format!("{v} {unit}")
-    }
+/// A value with its unit for a person ("-23.41 µm", "2").
+fn shown_value(value: f64, unit: &str) -> String {
+    with_unit(count_or_number(value, unit), unit)
 }
 
 /// Tick step of the crank axis: a sixth of a mesh period over one period, half a period over
@@ -254,7 +234,6 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
             .iter()
             .map(|row| row.iter().map(|&v| convert(v)).collect())
             .collect();
-        let dashed = def.dashed.contains(&q.key);
         match q.shape.per() {
             Some(part) if rows.len() > MAX_CURVES => {
                 p.series.extend(envelope(&x, &rows, part));
@@ -263,26 +242,22 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
                      over the {part}s at each angle; the heat map shows every {part}.",
                     rows.len()
                 ));
-                maps.push(heat_map(def, &x, &rows, part, &y_label));
+                maps.push(heat_map(def, &x, &rows, part, &y_label, prefix));
             }
             Some(part) => {
                 let (series, note) = per_part(&x, &rows, part);
                 p.series.extend(series);
                 notes.extend(note);
             }
-            None => p.series.push(Series {
-                dashed,
-                ..Series::new(
-                    q.label,
-                    x.clone(),
-                    rows[0].clone(),
-                    PALETTE[k % PALETTE.len()],
-                )
-            }),
+            None => {
+                let color = PALETTE[k % PALETTE.len()];
+                let series = Series::new(q.label, x.clone(), rows[0].clone(), color);
+                let dashed = def.dashed.contains(&q.key);
+                p.series.push(Series { dashed, ..series });
+            }
         }
     }
-    let keys: Vec<&str> = drawn.iter().map(|(q, _)| q.key).collect();
-    p.subtitle = scalars(r, &keys, def);
+    p.subtitle = scalars(r, &drawn, def);
     let limits = limit_lines(spec, &drawn, def);
     if !limits.is_empty() {
         notes.push("Dashed red: the spec's limits on these curves.".into());
@@ -295,18 +270,7 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
         caption: notes.join(" "),
         svg: p.to_svg(),
     };
-    std::iter::once(plot)
-        .chain(maps.into_iter().map(|(title, svg)| Plot {
-            file: format!("{prefix}-{}-map.svg", def.name),
-            caption: format!(
-                "One row per {}, one column per crank angle; the colour is the {}.",
-                drawn[0].0.shape.per().unwrap_or("part"),
-                y_label
-            ),
-            title,
-            svg,
-        }))
-        .collect()
+    std::iter::once(plot).chain(maps).collect()
 }
 
 /// One curve per part, named `part i`; parts that are zero everywhere are left out and named
@@ -318,13 +282,8 @@ fn per_part(x: &[f64], rows: &[Vec<f64>], part: &str) -> (Vec<Series>, Option<St
         if row.iter().all(|v| *v == 0.0) {
             idle.push(i.to_string());
         } else {
-            let color = PALETTE[i % PALETTE.len()];
-            series.push(Series::new(
-                format!("{part} {i}"),
-                x.to_vec(),
-                row.clone(),
-                color,
-            ));
+            let (name, color) = (format!("{part} {i}"), PALETTE[i % PALETTE.len()]);
+            series.push(Series::new(name, x.to_vec(), row.clone(), color));
         }
     }
     let note = (!idle.is_empty()).then(|| {
@@ -364,14 +323,15 @@ fn envelope(x: &[f64], rows: &[Vec<f64>], part: &str) -> Vec<Series> {
     .collect()
 }
 
-/// A part × crank heat map of per-part curves: (title, SVG).
+/// A part × crank heat map of per-part curves, `{prefix}-{plot}-map.svg`.
 fn heat_map(
     def: &PlotDef,
     x: &[f64],
     rows: &[Vec<f64>],
     part: &str,
     z_label: &str,
-) -> (String, String) {
+    prefix: &str,
+) -> Plot {
     let cells = rows
         .iter()
         .enumerate()
@@ -389,23 +349,26 @@ fn heat_map(
         subtitle: format!("{} {part}s × {} crank angles", rows.len(), x.len()),
         ..MapPlot::of_cells(&title, "crank angle φ (deg)", part, z_label, cells)
     };
-    (title, plot.to_svg())
+    Plot {
+        file: format!("{prefix}-{}-map.svg", def.name),
+        caption: format!(
+            "One row per {part}, one column per crank angle; the colour is the {z_label}."
+        ),
+        title,
+        svg: plot.to_svg(),
+    }
 }
 
 /// The registry's scalars of the drawn curves, with where they occur, for the subtitle.
-fn scalars(r: &SceneResult, keys: &[&str], def: &PlotDef) -> String {
+fn scalars(r: &SceneResult, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> String {
     QUANTITIES
         .iter()
-        .filter(|s| s.of.is_some_and(|of| keys.contains(&of)))
+        .filter(|s| drawn.iter().any(|(q, _)| s.of == Some(q.key)))
         .filter_map(|s| {
             let e = s.scalar(r)?;
             let (unit, convert) = shown(def, s.unit);
-            Some(format!(
-                "{} {}: {}",
-                s.label,
-                with_unit(convert(e.value), unit),
-                e.at
-            ))
+            let value = shown_value(convert(e.value), unit);
+            Some(format!("{} {value}: {}", s.label, e.at))
         })
         .collect::<Vec<_>>()
         .join("; ")
@@ -426,7 +389,7 @@ fn limit_lines(spec: &Spec, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> Vec
             label,
             color: RED.into(),
         };
-        let shown_limit = with_unit(convert(limit.value), unit);
+        let shown_limit = shown_value(convert(limit.value), unit);
         if SPREADS.contains(&scalar) {
             let values: Vec<f64> = curves.values.concat();
             let ((lo, _), (hi, _)) = extremes(&values);

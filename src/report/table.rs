@@ -14,7 +14,8 @@ pub fn number(x: f64) -> String {
     }
 }
 
-fn with_unit(x: String, unit: &str) -> String {
+/// A value followed by its unit, if any ("2.000 mm", "3").
+pub fn with_unit(x: String, unit: &str) -> String {
     if unit.is_empty() {
         x
     } else {

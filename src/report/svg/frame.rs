@@ -58,11 +58,7 @@ pub fn wrap(text: &str, width: f64) -> Vec<String> {
 
 /// Top of the plot area under a title and `subtitle_lines` lines of subtitle.
 pub fn top(subtitle_lines: usize) -> f64 {
-    if subtitle_lines == 0 {
-        44.0
-    } else {
-        44.0 + 18.0 * subtitle_lines as f64
-    }
+    44.0 + 18.0 * subtitle_lines as f64
 }
 
 /// A plot's title (bold, top left at `left`) and subtitle lines (grey, below it).
@@ -157,14 +153,6 @@ impl Frame {
     /// A closed path through world points.
     pub fn path(&self, pts: &[crate::geometry::Vec2]) -> String {
         format!("M{} Z", super::points(pts.iter().map(|&p| self.at(p))))
-    }
-
-    /// A circle of radius r (world) at c (world).
-    pub fn circle(&self, c: crate::geometry::Vec2, r: f64, fill: &str, stroke: &str) -> Markup {
-        let (x, y) = self.at(c);
-        html! {
-            circle cx=(px(x)) cy=(px(y)) r=(px(self.len(r))) fill=(fill) stroke=(stroke) {}
-        }
     }
 
     /// A scale bar of `length` (world) labelled `label`, its right end at (right, y) pixels.

@@ -3,7 +3,7 @@
 
 use super::frame::{self, Area};
 use super::ticks::{self, ticks, Ticks};
-use super::{document, points, px, text_width};
+use super::{document, points, px, span, text_width, widest};
 use maud::html;
 
 /// One curve of a line plot.
@@ -37,7 +37,7 @@ pub struct RefLine {
 }
 
 /// A line plot with axes, ticks, axis labels, legend and title.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct LinePlot {
     pub title: String,
     /// A second, smaller line under the title (what is not shown, how it was computed).
@@ -59,30 +59,15 @@ pub struct LinePlot {
 /// Height of one legend entry, pixels.
 const ROW: f64 = 18.0;
 
-/// The smallest and largest finite value.
-fn span<'a>(values: impl Iterator<Item = &'a f64>) -> Option<(f64, f64)> {
-    values
-        .filter(|v| v.is_finite())
-        .fold(None, |acc, &v| match acc {
-            None => Some((v, v)),
-            Some((lo, hi)) => Some((v.min(lo), v.max(hi))),
-        })
-}
-
 impl LinePlot {
     pub fn new(title: &str, x_label: &str, y_label: &str) -> Self {
         LinePlot {
             title: title.into(),
-            subtitle: String::new(),
             x_label: x_label.into(),
             y_label: y_label.into(),
-            series: Vec::new(),
-            ref_lines: Vec::new(),
             width: 660.0,
             height: 400.0,
-            x_step: None,
-            include_zero: false,
-            x_range: None,
+            ..Default::default()
         }
     }
 
@@ -96,14 +81,13 @@ impl LinePlot {
             .unwrap_or((0.0, 1.0));
         let refs = self.ref_lines.iter().map(|r| &r.value);
         let zero = self.include_zero.then_some(&0.0);
-        let (y0, y1) = span(
-            self.series
-                .iter()
-                .flat_map(|s| &s.y)
-                .chain(refs)
-                .chain(zero),
-        )
-        .unwrap_or((0.0, 1.0));
+        let ys = self
+            .series
+            .iter()
+            .flat_map(|s| &s.y)
+            .chain(refs)
+            .chain(zero);
+        let (y0, y1) = span(ys).unwrap_or((0.0, 1.0));
         let xt = match self.x_step {
             Some(step) if step > 0.0 => ticks::every(x0, x1, step),
             _ => ticks(x0, x1, 7, false),
@@ -111,10 +95,9 @@ impl LinePlot {
         let mut yt = ticks(y0, y1, 6, true);
         // No limit and no extreme of a curve on the frame, where it would hide (zero, the
         // floor of forces, may sit on it).
-        for v in self.ref_lines.iter().map(|r| r.value).chain([y1, y0]) {
-            if v != 0.0 {
-                yt.clear_of(v);
-            }
+        let levels = self.ref_lines.iter().map(|r| r.value).chain([y1, y0]);
+        for v in levels.filter(|v| *v != 0.0) {
+            yt.clear_of(v);
         }
         (xt, yt)
     }
@@ -147,11 +130,7 @@ impl LinePlot {
     /// The plot as a standalone SVG document.
     pub fn to_svg(&self) -> String {
         let (xt, yt) = self.axes();
-        let label_w = yt
-            .values
-            .iter()
-            .map(|v| text_width(&yt.label(*v), 12.0))
-            .fold(0.0, f64::max);
+        let label_w = widest(yt.values.iter().map(|&v| yt.label(v)));
         let legend = self.legend();
         let legend_w = legend
             .iter()
@@ -219,14 +198,9 @@ impl LinePlot {
 
 /// Split a curve into runs of finite points (a gap where a value is missing or infinite).
 fn runs(x: &[f64], y: &[f64]) -> Vec<Vec<(f64, f64)>> {
-    let mut runs = vec![Vec::new()];
-    for (&a, &b) in x.iter().zip(y) {
-        match runs.last_mut() {
-            Some(run) if a.is_finite() && b.is_finite() => run.push((a, b)),
-            Some(run) if !run.is_empty() => runs.push(Vec::new()),
-            _ => {}
-        }
-    }
-    runs.retain(|r| !r.is_empty());
-    runs
+    let points: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
+    let runs = points.split(|(a, b)| !(a.is_finite() && b.is_finite()));
+    runs.filter(|run| !run.is_empty())
+        .map(<[_]>::to_vec)
+        .collect()
 }

@@ -5,7 +5,7 @@
 
 use super::frame::{self, Area};
 use super::ticks::{log_label, log_ticks, ticks};
-use super::{document, points, px, text_width, RED};
+use super::{document, points, px, span, text_width, widest, RED};
 use base64::Engine;
 use maud::{html, Markup};
 
@@ -19,8 +19,8 @@ pub struct MapCell {
     pub feasible: bool,
 }
 
-/// The symbol of a map marker.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The symbol of a map marker, from the smallest to the largest.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Shape {
     Circle,
     Diamond,
@@ -38,7 +38,7 @@ pub struct Marker {
 }
 
 /// A map over a grid with its markings (see the module).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct MapPlot {
     pub title: String,
     /// A second, smaller line under the title.
@@ -57,8 +57,6 @@ pub struct MapPlot {
     /// Legend text of the path.
     pub path_label: String,
     pub markers: Vec<Marker>,
-    /// Colour range; default: the feasible cells' values (every cell's when none is).
-    pub z_range: Option<(f64, f64)>,
     pub width: f64,
 }
 
@@ -70,18 +68,10 @@ pub const LOG_SPAN: f64 = 20.0;
 /// than a rectangle per cell (a roller × crank heat map has tens of thousands).
 pub const RASTER_ABOVE: usize = 2500;
 
-/// Viridis colour map, t in [0, 1], as RGB.
+/// Viridis colour map, t in [0, 1], as RGB: linear between nine stops 0xRRGGBB.
 fn viridis_rgb(t: f64) -> [u8; 3] {
-    const STOPS: [[f64; 3]; 9] = [
-        [68.0, 1.0, 84.0],
-        [71.0, 44.0, 122.0],
-        [59.0, 81.0, 139.0],
-        [44.0, 113.0, 142.0],
-        [33.0, 144.0, 141.0],
-        [39.0, 173.0, 129.0],
-        [92.0, 200.0, 99.0],
-        [170.0, 220.0, 50.0],
-        [253.0, 231.0, 37.0],
+    const STOPS: [u32; 9] = [
+        0x440154, 0x472c7a, 0x3b518b, 0x2c718e, 0x21908d, 0x27ad81, 0x5cc863, 0xaadc32, 0xfde725,
     ];
     let t = if t.is_finite() {
         t.clamp(0.0, 1.0)
@@ -91,13 +81,21 @@ fn viridis_rgb(t: f64) -> [u8; 3] {
     let f = t * (STOPS.len() - 1) as f64;
     let k = (f.floor() as usize).min(STOPS.len() - 2);
     let w = f - k as f64;
-    std::array::from_fn(|c| (STOPS[k][c] + w * (STOPS[k + 1][c] - STOPS[k][c])).round() as u8)
+    let channel = |stop: u32, c: usize| f64::from((stop >> (16 - 8 * c)) & 0xff);
+    std::array::from_fn(|c| {
+        let (a, b) = (channel(STOPS[k], c), channel(STOPS[k + 1], c));
+        (a + w * (b - a)).round() as u8
+    })
+}
+
+/// "#rrggbb" of a colour.
+fn hex([r, g, b]: [u8; 3]) -> String {
+    format!("#{r:02x}{g:02x}{b:02x}")
 }
 
 /// Viridis colour map, t in [0, 1], as "#rrggbb".
 pub fn viridis(t: f64) -> String {
-    let [r, g, b] = viridis_rgb(t);
-    format!("#{r:02x}{g:02x}{b:02x}")
+    hex(viridis_rgb(t))
 }
 
 fn distinct(mut v: Vec<f64>) -> Vec<f64> {
@@ -130,7 +128,6 @@ fn index(v: &[f64], a: f64) -> Option<usize> {
 const HATCH: &str = r##"<defs><pattern id="hatch" width="7" height="7" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="7" height="7" fill="white" fill-opacity="0.55"/><line x1="0" y1="0" x2="0" y2="7" stroke="white" stroke-width="2.5"/></pattern></defs>"##;
 
 /// What a legend entry shows.
-#[derive(Debug, Clone, PartialEq)]
 enum Swatch {
     Hatched,
     Blank,
@@ -188,17 +185,9 @@ fn symbol(shape: Shape, cx: f64, cy: f64, color: &str) -> Markup {
 
 /// A small cross for an infeasible sample, visible on dark and light cells.
 fn cross_mark(cx: f64, cy: f64, r: f64) -> Markup {
-    let d = format!(
-        "M{},{} L{},{} M{},{} L{},{}",
-        px(cx - r),
-        px(cy - r),
-        px(cx + r),
-        px(cy + r),
-        px(cx - r),
-        px(cy + r),
-        px(cx + r),
-        px(cy - r)
-    );
+    let at = |dx: f64, dy: f64| format!("{},{}", px(cx + dx), px(cy + dy));
+    let (a, b, c, d) = (at(-r, -r), at(r, r), at(-r, r), at(r, -r));
+    let d = format!("M{a} L{b} M{c} L{d}");
     html! {
         path d=(d) stroke="#222" stroke-width="3" {}
         path d=(d) stroke="white" stroke-width="1.3" {}
@@ -218,19 +207,13 @@ fn overlaps(a: &Box4, b: &Box4) -> bool {
     a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
 }
 
-/// Label positions tried around a marker, in order of preference (pixels from its centre).
-const LABEL_SPOTS: [(f64, f64); 10] = [
-    (12.0, 0.0),
-    (-12.0, 0.0),
-    (12.0, -16.0),
-    (12.0, 16.0),
-    (-12.0, -16.0),
-    (-12.0, 16.0),
-    (12.0, -32.0),
-    (12.0, 32.0),
-    (-12.0, -32.0),
-    (-12.0, 32.0),
-];
+/// Label positions tried around a marker, in order of preference (pixels from its centre):
+/// right, left, then one and two rows (16 px) up and down, right before left.
+fn label_spots() -> impl Iterator<Item = (f64, f64)> {
+    let rows = [16.0, 32.0].into_iter();
+    let off = rows.flat_map(|d| [(12.0, -d), (12.0, d), (-12.0, -d), (-12.0, d)]);
+    [(12.0, 0.0), (-12.0, 0.0)].into_iter().chain(off)
+}
 
 impl MapPlot {
     /// A map of `cells` alone (no samples, path or markers), 660 px wide, its colour range the
@@ -244,18 +227,12 @@ impl MapPlot {
     ) -> Self {
         MapPlot {
             title: title.into(),
-            subtitle: String::new(),
             x_label: x_label.into(),
             y_label: y_label.into(),
             z_label: z_label.into(),
             cells,
-            samples: Vec::new(),
-            samples_label: String::new(),
-            path: Vec::new(),
-            path_label: String::new(),
-            markers: Vec::new(),
-            z_range: None,
             width: 660.0,
+            ..Default::default()
         }
     }
 
@@ -265,23 +242,11 @@ impl MapPlot {
         lo > 0.0 && hi / lo > LOG_SPAN
     }
 
+    /// The colour range: the feasible cells' values (every cell's when none is).
     fn z_bounds(&self) -> (f64, f64) {
-        if let Some((lo, hi)) = self.z_range.filter(|(a, b)| a.is_finite() && b.is_finite()) {
-            return (lo.min(hi), lo.max(hi));
-        }
-        let finite = || self.cells.iter().filter(|c| c.z.is_finite());
-        let any_feasible = finite().any(|c| c.feasible);
-        let zs = finite()
-            .filter(|c| c.feasible || !any_feasible)
-            .map(|c| c.z);
-        let (lo, hi) = zs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| {
-            (lo.min(z), hi.max(z))
-        });
-        if lo.is_finite() {
-            (lo, hi)
-        } else {
-            (0.0, 1.0)
-        }
+        let any_feasible = self.cells.iter().any(|c| c.z.is_finite() && c.feasible);
+        let zs = self.cells.iter().filter(|c| c.feasible || !any_feasible);
+        span(zs.map(|c| &c.z)).unwrap_or((0.0, 1.0))
     }
 
     /// Position of z on the colour scale, 0 to 1.
@@ -311,24 +276,19 @@ impl MapPlot {
     }
 
     fn legend(&self) -> Vec<(Swatch, String)> {
-        let mut out = Vec::new();
+        let (mut out, samples) = (Vec::new(), &self.samples_label);
         if self.cells.iter().any(|c| c.z.is_finite() && !c.feasible) {
-            out.push((
-                Swatch::Hatched,
-                "infeasible: a constraint is violated".into(),
-            ));
+            let text = "infeasible: a constraint is violated";
+            out.push((Swatch::Hatched, text.into()));
         }
         if self.cells.iter().any(|c| !c.z.is_finite()) {
             out.push((Swatch::Blank, "not evaluated: breaks a design rule".into()));
         }
         if self.samples.iter().any(|s| s.2) {
-            out.push((Swatch::Dot, format!("{} (feasible)", self.samples_label)));
+            out.push((Swatch::Dot, format!("{samples} (feasible)")));
         }
         if self.samples.iter().any(|s| !s.2) {
-            out.push((
-                Swatch::Cross,
-                format!("{} (infeasible)", self.samples_label),
-            ));
+            out.push((Swatch::Cross, format!("{samples} (infeasible)")));
         }
         if self.path.len() > 1 {
             out.push((Swatch::Path, self.path_label.clone()));
@@ -357,8 +317,7 @@ impl MapPlot {
             .collect();
         html! {
             @for (c, (x0, y0, x1, y1)) in &placed {
-                @let [r, g, b] = self.fill(c);
-                @let fill = format!("#{r:02x}{g:02x}{b:02x}");
+                @let fill = hex(self.fill(c));
                 rect.cell x=(px(*x0)) y=(px(*y0)) width=(px(x1 - x0)) height=(px(y1 - y0))
                     fill=(fill) stroke=(fill) stroke-width="0.5" {}
             }
@@ -437,11 +396,7 @@ impl MapPlot {
     /// and the path.
     fn markers(&self, spots: &[(f64, f64)], path: &[(f64, f64)], a: &Area) -> Markup {
         let mut order: Vec<usize> = (0..self.markers.len()).collect();
-        order.sort_by_key(|&k| match self.markers[k].shape {
-            Shape::Star => 0,
-            Shape::Diamond => 1,
-            Shape::Circle => 2,
-        });
+        order.sort_by_key(|&k| std::cmp::Reverse(self.markers[k].shape));
         let mut boxes: Vec<Box4> = spots
             .iter()
             .map(|&(x, y)| (x - 9.0, y - 9.0, x + 9.0, y + 9.0))
@@ -465,42 +420,30 @@ impl MapPlot {
             };
             let inside =
                 |b: &Box4| b.0 >= a.left && b.2 <= a.right() && b.1 >= a.top && b.3 <= a.bottom();
-            // Inside the axes first, then the fewest overlaps, then the order of LABEL_SPOTS.
-            let (dx, dy) = *LABEL_SPOTS
-                .iter()
-                .min_by_key(|c| {
-                    let b = place(c);
-                    (
-                        !inside(&b),
-                        boxes.iter().filter(|o| overlaps(&b, o)).count(),
-                    )
-                })
-                .unwrap_or(&LABEL_SPOTS[0]);
+            let overlapped = |b: &Box4| boxes.iter().filter(|o| overlaps(b, o)).count();
+            // Inside the axes first, then the fewest overlaps, then the order of label_spots.
+            let (dx, dy) = label_spots()
+                .min_by_key(|c| (!inside(&place(c)), overlapped(&place(c))))
+                .unwrap_or((12.0, 0.0));
             boxes.push(place(&(dx, dy)));
             let anchor = if dx > 0.0 { "start" } else { "end" };
-            let halo = frame::Halo {
-                color: &m.color,
-                size: 12.0,
-                bold: true,
-            };
-            labels.push(halo.text(cx + dx, cy + dy + 4.0, anchor, &m.label));
+            labels.push((cx + dx, cy + dy + 4.0, anchor, m));
         }
         html! {
             @for k in order {
                 (symbol(self.markers[k].shape, spots[k].0, spots[k].1, &self.markers[k].color))
             }
-            @for l in labels { (l) }
+            @for (x, y, anchor, m) in labels {
+                (frame::Halo { color: &m.color, size: 12.0, bold: true }.text(x, y, anchor, &m.label))
+            }
         }
     }
 
     /// The colour bar to the right of the axes, with its ticks and label.
     fn colour_bar(&self, a: &Area, w: f64) -> Markup {
         let (bx, bw, steps) = (a.right() + 16.0, 16.0, 48);
-        let z_label = if self.log_scale() {
-            format!("{} (log scale)", self.z_label)
-        } else {
-            self.z_label.clone()
-        };
+        let scale = if self.log_scale() { " (log scale)" } else { "" };
+        let z_label = format!("{}{scale}", self.z_label);
         html! {
             @for k in 0..steps {
                 @let t0 = k as f64 / steps as f64;
@@ -537,19 +480,13 @@ impl MapPlot {
         }
         let xt = ticks(x_lo, x_hi, 6, false);
         let yt = ticks(y_lo, y_hi, 6, false);
-        let width_of = |labels: &mut dyn Iterator<Item = String>| {
-            labels.map(|l| text_width(&l, 12.0)).fold(0.0, f64::max)
-        };
-        let label_w = width_of(&mut yt.values.iter().map(|&v| yt.label(v)));
-        let zlabel_w = width_of(&mut self.z_ticks().into_iter().map(|(_, l)| l));
+        let label_w = widest(yt.values.iter().map(|&v| yt.label(v)));
+        let zlabel_w = widest(self.z_ticks().into_iter().map(|(_, l)| l));
         let legend = self.legend();
         let w = self.width;
         // Legend entries in columns under the axes, as many columns as the widest fits.
-        let widest = legend
-            .iter()
-            .map(|(_, text)| 30.0 + text_width(text, 12.0) + 16.0)
-            .fold(0.0, f64::max);
-        let columns = (((w - 28.0) / widest.max(1.0)).floor() as usize).clamp(1, 3);
+        let entry_w = 30.0 + widest(legend.iter().map(|(_, text)| text)) + 16.0;
+        let columns = (((w - 28.0) / entry_w).floor() as usize).clamp(1, 3);
         let col_w = (w - 28.0) / columns as f64;
         let rows = legend.len().div_ceil(columns);
         let left = label_w + 44.0;
@@ -568,12 +505,8 @@ impl MapPlot {
         let (yl, yh) = (yt.lo.min(y_lo), yt.hi.max(y_hi));
         let sx = |x: f64| a.left + (x - xl) / (xh - xl) * a.width;
         let sy = |y: f64| a.bottom() - (y - yl) / (yh - yl) * a.height;
-        let cells = if self.cells.len() > RASTER_ABOVE {
-            self.cell_image(&xs, &ys, &a)
-        } else {
-            None
-        };
-        let cells = cells.unwrap_or_else(|| {
+        let image = (self.cells.len() > RASTER_ABOVE).then(|| self.cell_image(&xs, &ys, &a));
+        let cells = image.flatten().unwrap_or_else(|| {
             self.cell_rects(&xs, &ys, |i, j| {
                 (sx(xe[i]), sy(ye[j + 1]), sx(xe[i + 1]), sy(ye[j]))
             })

@@ -37,9 +37,26 @@ pub fn px(x: f64) -> String {
     }
 }
 
+/// The smallest and largest finite value.
+fn span<'a>(values: impl Iterator<Item = &'a f64>) -> Option<(f64, f64)> {
+    values
+        .filter(|v| v.is_finite())
+        .fold(None, |acc, &v| match acc {
+            None => Some((v, v)),
+            Some((lo, hi)) => Some((v.min(lo), v.max(hi))),
+        })
+}
+
 /// Rough width of text in pixels (for layout only).
 pub fn text_width(text: &str, size: f64) -> f64 {
     text.chars().count() as f64 * size * 0.58
+}
+
+/// Rough width of the widest of `texts` at font size 12, pixels (0 for none).
+pub fn widest<S: AsRef<str>>(texts: impl Iterator<Item = S>) -> f64 {
+    texts
+        .map(|t| text_width(t.as_ref(), 12.0))
+        .fold(0.0, f64::max)
 }
 
 /// "x1,y1 x2,y2 ..." of pixel points, for `points` and paths.

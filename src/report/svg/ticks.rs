@@ -15,8 +15,7 @@ pub struct Ticks {
 /// to the outer ticks; otherwise it stays and only inner ticks are kept.
 pub fn ticks(mut lo: f64, mut hi: f64, target: usize, expand: bool) -> Ticks {
     if !(lo.is_finite() && hi.is_finite()) {
-        lo = 0.0;
-        hi = 1.0;
+        (lo, hi) = (0.0, 1.0);
     }
     if hi - lo <= f64::EPSILON * lo.abs().max(hi.abs()).max(1e-300) * 16.0 {
         // A flat curve: open a band around it.
@@ -31,13 +30,11 @@ pub fn ticks(mut lo: f64, mut hi: f64, target: usize, expand: bool) -> Ticks {
         .map(|m| m * mag)
         .find(|s| *s >= raw)
         .unwrap_or(10.0 * mag);
+    let (a, b) = (lo / step, hi / step);
     let (first, last) = if expand {
-        ((lo / step).floor() * step, (hi / step).ceil() * step)
+        (a.floor() * step, b.ceil() * step)
     } else {
-        (
-            (lo / step - 1e-9).ceil() * step,
-            (hi / step + 1e-9).floor() * step,
-        )
+        ((a - 1e-9).ceil() * step, (b + 1e-9).floor() * step)
     };
     let (lo, hi) = if expand { (first, last) } else { (lo, hi) };
     Ticks {
@@ -62,11 +59,7 @@ fn steps(first: f64, last: f64, step: f64) -> Vec<f64> {
 fn decimals(step: f64) -> usize {
     let d = (-step.log10().floor()).max(0.0) as usize;
     let scaled = step * 10f64.powi(d as i32);
-    if (scaled - scaled.round()).abs() > 1e-6 {
-        d + 1
-    } else {
-        d
-    }
+    d + usize::from((scaled - scaled.round()).abs() > 1e-6)
 }
 
 /// Ticks every `step` (e.g. 6° over a 36° mesh period) inside [lo, hi].
@@ -95,15 +88,11 @@ impl Ticks {
     /// at v never hides under the plot's frame.
     pub fn clear_of(&mut self, v: f64) {
         let tolerance = 0.01 * (self.hi - self.lo);
-        let (at_hi, at_lo) = (
-            (v - self.hi).abs() <= tolerance,
-            (v - self.lo).abs() <= tolerance,
-        );
-        if at_hi {
+        if (v - self.hi).abs() <= tolerance {
             self.hi += self.step;
             self.values.push(self.hi);
         }
-        if at_lo {
+        if (v - self.lo).abs() <= tolerance {
             self.lo -= self.step;
             self.values.insert(0, self.lo);
         }

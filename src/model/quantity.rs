@@ -135,10 +135,14 @@ impl Quantity {
         })
     }
 
-    /// Whether `a` is worse than `b` for this quantity: lower for a `min_` quantity (a limit
-    /// from below), higher for every other.
+    /// Whether `a` is worse than `b` for this quantity: lower when its limit bounds it from
+    /// below (`LIMITS`; a `min_` quantity without a limit too), higher for every other.
     fn worse(&self, a: f64, b: f64) -> bool {
-        if self.key.starts_with("min_") {
+        let from_below = LIMITS
+            .iter()
+            .find(|l| l.quantity.key == self.key)
+            .map_or(self.key.starts_with("min_"), |l| l.bound == Bound::Min);
+        if from_below {
             a < b
         } else {
             a > b

@@ -84,7 +84,10 @@ impl Check {
         let w = &g.comparison.worst;
         let num = crate::numeric::number;
         Check {
-            id: format!("{}/golden:{}", g.golden.scene, g.golden.quantity.key),
+            id: match g.golden.disc {
+                Some(k) => format!("{}/golden:{}[disc {k}]", g.golden.scene, g.golden.quantity.key),
+                None => format!("{}/golden:{}", g.golden.scene, g.golden.quantity.key),
+            },
             kind: CheckKind::Golden,
             value: w.deviation,
             limit: w.band,

@@ -13,6 +13,7 @@
 //! Fixed frame, mm, N, rad.
 
 use super::scene;
+use crate::equilibrium::discs::{solve_coupled, CoupledWork, Discs};
 use crate::equilibrium::solve::Settings;
 use crate::equilibrium::sweep::{solve_angle, AngleSolution};
 use crate::error::{Error, Result};
@@ -182,9 +183,19 @@ fn loaded_at(spec: &Spec, crank_rad: f64) -> Result<Option<(String, AngleSolutio
         &plan,
         &Settings::default(),
     );
-    let sol = solve_angle(&model, crank_rad, &AngleSolution::default())
-        .map_err(|f| scene::solve_failed(scene, crank_rad, &f))?;
-    Ok(Some((scene.name.clone(), sol)))
+    let failed = |f| scene::solve_failed(scene, crank_rad, &f);
+    if spec.design.discs == 1 {
+        let sol = solve_angle(&model, crank_rad, &AngleSolution::default()).map_err(failed)?;
+        return Ok(Some((scene.name.clone(), sol)));
+    }
+    // Several discs: disc 0 (at crank phase 0) with its share of the torque, from the coupled
+    // balance the sweep solves, every roller evaluated exactly.
+    let discs = Discs::new(&model, spec.design.discs);
+    let mut work = CoupledWork::new(&discs);
+    work.works.iter_mut().for_each(|w| w.exact_final = true);
+    solve_coupled(&discs, crank_rad, &mut work).map_err(failed)?;
+    let sol = work.works.swap_remove(0).sol;
+    Ok(Some((format!("{} (disc 0)", scene.name), sol)))
 }
 
 /// The forces on the disc that are not zero: rollers, pins, bearing.

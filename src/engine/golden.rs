@@ -406,13 +406,22 @@ pub fn computed<'a>(
         .iter()
         .find(|r| r.name == g.scene)
         .ok_or_else(|| Error::computation(format!("scene `{}` was not run", g.scene)))?;
-    let curves = q.curves(r).ok_or_else(|| {
+    let disc = match g.disc {
+        Some(k) => r.discs.get(k).unwrap_or(r),
+        None => r,
+    };
+    let curves = q.curves(disc).ok_or_else(|| {
+        let why = if !r.discs.is_empty() && g.disc.is_none() {
+            format!(
+                "with {} discs a disc's curve needs `disc: k` in the golden entry",
+                r.discs.len()
+            )
+        } else {
+            "a ratio needs at least 3 crank angles".to_string()
+        };
         Error::new(
             ErrorKind::InvalidValue,
-            format!(
-                "scene `{}` computed no `{}` (a ratio needs at least 3 crank angles)",
-                g.scene, g.quantity
-            ),
+            format!("scene `{}` computed no `{}` ({why})", g.scene, g.quantity),
         )
         .at_key(format!("{}.quantity", g.key))
     })?;

@@ -24,6 +24,8 @@ pub struct Golden {
     pub scene: String,
     /// A per-angle quantity of the registry.
     pub quantity: &'static Quantity,
+    /// With several discs, the disc whose curve it is (a disc's quantity: forces, lags).
+    pub disc: Option<usize>,
     /// The path as written in the spec.
     pub file: String,
     /// The path resolved against the spec file's directory (lexically normalised).

@@ -342,14 +342,28 @@ fn scene_section(
 ) -> Option<Section> {
     let prefix = format!("scene-{}-{}", k + 1, slug(&scene.name));
     let plots = plots::scene_plots(spec, r, &prefix);
-    if plots.is_empty() {
+    // With several discs, each disc's own curves (forces, lags, bearing, its torque share).
+    let discs: Vec<(usize, Vec<plots::Plot>)> = r
+        .discs
+        .iter()
+        .enumerate()
+        .map(|(d, disc)| (d, plots::scene_plots(spec, disc, &format!("{prefix}-disc-{d}"))))
+        .filter(|(_, p)| !p.is_empty())
+        .collect();
+    if plots.is_empty() && discs.is_empty() {
         return None;
     }
+    let phase = |d: usize| number(units::deg(spec.design.disc_phase_rad(d)));
     let body = html! {
         p.note { (scene_summary(spec, scene)) }
         div.grid { @for p in &plots { (figure(&p.file, &p.title, &p.caption)) } }
+        @for (d, disc) in &discs {
+            h3 { "Disc " (d) " (crank phase " (phase(*d)) "°)" }
+            div.grid { @for p in disc { (figure(&p.file, &p.title, &p.caption)) } }
+        }
     };
     files.extend(plots.into_iter().map(|p| (p.file, p.svg)));
+    files.extend(discs.into_iter().flat_map(|(_, p)| p).map(|p| (p.file, p.svg)));
     let heading = html! { "Scene " code { (scene.name) } };
     Some(section(prefix, heading, body))
 }

@@ -63,6 +63,16 @@ const PLOT: PlotDef = PlotDef {
 
 const PLOTS: &[PlotDef] = &[
     PlotDef {
+        name: "torque-share",
+        title: "Disc torque share",
+        curves: &[&q::DISC_TORQUE],
+        include_zero: true,
+        caption: "The disc's share Tk of the output torque (MODEL.md \"Several discs\"): the \
+                  discs' shares sum to T at every crank angle, and every disc has the \
+                  reducer's output lag.",
+        ..PLOT
+    },
+    PlotDef {
         name: "clearance",
         title: "Clearance per roller",
         curves: &[&q::CLEARANCE],

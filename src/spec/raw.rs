@@ -282,6 +282,9 @@ pub enum RawLimit {
 pub struct RawGolden {
     pub scene: String,
     pub quantity: String,
+    /// With several discs, the disc whose curve this is (0-based).
+    #[serde(default)]
+    pub disc: Option<i64>,
     /// CSV path, relative to the directory of the spec file.
     pub file: String,
     pub tolerance: RawTolerance,

@@ -484,7 +484,7 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     bearing_life_limit(&limits, &design, &scenes)?;
     let mut golden = Vec::new();
     for (i, g) in raw.golden.into_iter().enumerate() {
-        let g = golden_entry(path, i, g, &scenes)?;
+        let g = golden_entry(path, i, g, (&scenes, design.discs))?;
         if let Some(other) = golden.iter().find(|o: &&Golden| o.path == g.path) {
             return Err(invalid(
                 &format!("golden[{i}].file"),
@@ -684,8 +684,23 @@ pub fn resolve(spec_path: &str, file: &str) -> std::path::PathBuf {
     out
 }
 
-fn golden_entry(path: &str, i: usize, raw: RawGolden, scenes: &[Scene]) -> Result<Golden> {
+fn golden_entry(
+    path: &str,
+    i: usize,
+    raw: RawGolden,
+    (scenes, discs): (&[Scene], usize),
+) -> Result<Golden> {
     let key = format!("golden[{i}]");
+    let disc = match raw.disc {
+        None => None,
+        Some(k) if (0..discs as i64).contains(&k) => Some(k as usize),
+        Some(k) => {
+            return Err(invalid(
+                &format!("{key}.disc"),
+                format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
+            ))
+        }
+    };
     if !scenes.iter().any(|s| s.name == raw.scene) {
         let names: Vec<String> = scenes.iter().map(|s| format!("`{}`", s.name)).collect();
         return Err(invalid(
@@ -732,6 +747,7 @@ fn golden_entry(path: &str, i: usize, raw: RawGolden, scenes: &[Scene]) -> Resul
         key,
         scene: raw.scene,
         quantity,
+        disc,
         file: raw.file,
         tolerance: Tolerance { abs, rel },
     })

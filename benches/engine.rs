@@ -98,6 +98,30 @@ fn loaded_sweep_3600_first_order(b: divan::Bencher) {
     loaded(b, GeometryMode::FirstOrder);
 }
 
+/// Two discs (issue 14): the coupled sweep of `loaded_sweep_3600_exact`'s model and angles
+/// with the torque shared by two discs half a turn apart (target: at most 2.2× the one-disc
+/// sweep).
+#[divan::bench(sample_count = 60)]
+fn two_discs_sweep_3600_exact(b: divan::Bencher) {
+    two_discs(b, GeometryMode::Exact);
+}
+
+/// As `two_discs_sweep_3600_exact`, first-order geometry (against
+/// `loaded_sweep_3600_first_order`, whose one-disc kernel is a lean closed form).
+#[divan::bench(sample_count = 60)]
+fn two_discs_sweep_3600_first_order(b: divan::Bencher) {
+    two_discs(b, GeometryMode::FirstOrder);
+}
+
+fn two_discs(b: divan::Bencher, geometry: GeometryMode) {
+    let (model, c) = common::rated_sweep(geometry, 3600);
+    let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
+    b.bench(|| {
+        curves::sweep_discs_observed(black_box(&discs), &c, true, &cycloid::progress::Silent)
+            .unwrap()
+    });
+}
+
 /// Torsion under a locked input (issue 14): the paper optimum (`specs/reducer-torsion.yaml`'s
 /// scene `torsion`, pins and a rigid bearing, exact geometry) at 4 locked crank angles × 40
 /// steps per quarter loop (161 loop solves and 8 figure solves per angle); target < 20 ms.

@@ -533,7 +533,9 @@ fn run_scenes(
     let total: usize = spec
         .scenes
         .iter()
-        .map(|s| s.crank_rad.len() * scene::sweeps(&scene::plan(spec, s, writes), spec.design.discs))
+        .map(|s| {
+            s.crank_rad.len() * scene::sweeps(&scene::plan(spec, s, writes), spec.design.discs)
+        })
         .sum();
     let bar = report::terminal::Bar::new(
         "solving the scenes",

@@ -85,7 +85,10 @@ impl Check {
         let num = crate::numeric::number;
         Check {
             id: match g.golden.disc {
-                Some(k) => format!("{}/golden:{}[disc {k}]", g.golden.scene, g.golden.quantity.key),
+                Some(k) => format!(
+                    "{}/golden:{}[disc {k}]",
+                    g.golden.scene, g.golden.quantity.key
+                ),
                 None => format!("{}/golden:{}", g.golden.scene, g.golden.quantity.key),
             },
             kind: CheckKind::Golden,

@@ -207,7 +207,10 @@ fn loaded_disc_sweeps(
     if !runs_loaded(plan) {
         return Ok(None);
     }
-    let discs = Discs::new(&loaded_model(design, m, scene, plan, settings), design.discs);
+    let discs = Discs::new(
+        &loaded_model(design, m, scene, plan, settings),
+        design.discs,
+    );
     let periodic = scene.spans_whole(design.loaded_period_rad(plan.has(Effect::OutputPins)));
     curves::sweep_discs_observed(&discs, &scene.crank_rad, periodic, progress)
         .map(Some)

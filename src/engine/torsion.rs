@@ -28,8 +28,8 @@
 //! (0.01 arcmin = 0.6 arcsec). 1e-6 rather than smaller: at 1e-9·Trated the compliant bearing's
 //! solve no longer converges (its force merit at 2e-8 N·m stalls at 1e-6).
 
-use crate::equilibrium::solve::SolveFailure;
 use crate::equilibrium::discs::{solve_coupled, CoupledWork, Discs};
+use crate::equilibrium::solve::SolveFailure;
 use crate::model::results::{TorsionCurves, TorsionFigures};
 use crate::model::TorqueSweep;
 use crate::progress::Progress;

@@ -89,7 +89,10 @@ impl CoupledWork {
             // The whole torque, exactly: one disc solves as `sweep::solve_into` alone does.
             return vec![1.0];
         }
-        let near = self.shares.last().is_some_and(|(c, _)| (c - crank).abs() <= reach);
+        let near = self
+            .shares
+            .last()
+            .is_some_and(|(c, _)| (c - crank).abs() <= reach);
         let weights: Vec<f64> = match self.shares.as_slice() {
             _ if !near => return vec![1.0 / n as f64; n],
             [(p0, _), (p1, _), (p2, _)] => vec![
@@ -101,7 +104,13 @@ impl CoupledWork {
             _ => vec![1.0],
         };
         (0..n)
-            .map(|k| weights.iter().zip(&self.shares).map(|(w, (_, s))| w * s[k]).sum())
+            .map(|k| {
+                weights
+                    .iter()
+                    .zip(&self.shares)
+                    .map(|(w, (_, s))| w * s[k])
+                    .sum()
+            })
             .collect()
     }
 }
@@ -137,7 +146,11 @@ fn tangent_compliance(work: &Work) -> Option<f64> {
 /// preloaded disc's Σ|F·l| is far above T). When that has not converged in `NEWTON_STEPS`
 /// (a disc floating in its backlash: its lag jumps across the answer as its share changes
 /// sign), the balance is solved as a root in γ (`by_lag`).
-pub fn solve_coupled(discs: &Discs, crank: f64, work: &mut CoupledWork) -> Result<f64, SolveFailure> {
+pub fn solve_coupled(
+    discs: &Discs,
+    crank: f64,
+    work: &mut CoupledWork,
+) -> Result<f64, SolveFailure> {
     let n = discs.count();
     let total = discs.torque_nmm;
     let reach = discs.models[0].warm_reach();
@@ -170,7 +183,10 @@ pub fn solve_coupled(discs: &Discs, crank: f64, work: &mut CoupledWork) -> Resul
         let loaded: Vec<f64> = weights.iter().cloned().filter(|w| *w > 0.0).collect();
         if !loaded.is_empty() && loaded.len() < n {
             let mean = loaded.iter().sum::<f64>() / loaded.len() as f64;
-            weights.iter_mut().filter(|w| **w == 0.0).for_each(|w| *w = mean);
+            weights
+                .iter_mut()
+                .filter(|w| **w == 0.0)
+                .for_each(|w| *w = mean);
         }
         let w: f64 = weights.iter().sum();
         if total == 0.0 || w == 0.0 {
@@ -209,6 +225,9 @@ pub fn solve_coupled(discs: &Discs, crank: f64, work: &mut CoupledWork) -> Resul
     by_lag(discs, crank, work, &torque, &lag)
 }
 
+/// The share, as a fraction of T, at which a disc's dead band is probed (`torque_at_lag`).
+const PROBE: f64 = 1e-6;
+
 /// Newton steps on the shares before `by_lag` takes over: from the split of the previous
 /// angle the Newton converges in one or two.
 const NEWTON_STEPS: usize = 8;
@@ -224,14 +243,21 @@ fn solve_disc(
     // A share within the inner root's resolution of zero is zero: the disc floats, and the
     // solve at exactly zero torque finds its nearest contact (`sweep::solve_into`) where one
     // at 1e-16 N·m would search for a balance the size of round-off.
-    let t = if t.abs() <= 1e-12 * discs.torque_nmm.abs() { 0.0 } else { t };
+    let t = if t.abs() <= 1e-12 * discs.torque_nmm.abs() {
+        0.0
+    } else {
+        t
+    };
     work.models[k].torque_nmm = t;
     let phi = crank + discs.phases[k];
-    work.works[k].reach_all();
     // A disc without a share does not load its bearing: its centre sits where a rigid one
     // holds it (and the compliant solve need not find a balance of round-off).
+    // So does one whose share only probes where its dead band ends (`torque_at_lag`, at
+    // `PROBE`·T): its centre moves by that share over the bearing's stiffness, far below the
+    // probe's own resolution, and at such a share the compliant solve does not converge on
+    // every design (first-order pins at 1e-6·T).
     let stiffness = work.models[k].bearing_stiffness_n_per_mm;
-    if t == 0.0 {
+    if t.abs() <= PROBE * discs.torque_nmm.abs() {
         work.models[k].bearing_stiffness_n_per_mm = None;
     }
     let solved = solve_unloaded_or(discs, work, k, phi, t);
@@ -276,7 +302,11 @@ fn illinois(
             break;
         }
         let x = lo.0 + (target - lo.1) * (hi.0 - lo.0) / (hi.1 - lo.1);
-        let x = if x > lo.0 && x < hi.0 { x } else { 0.5 * (lo.0 + hi.0) };
+        let x = if x > lo.0 && x < hi.0 {
+            x
+        } else {
+            0.5 * (lo.0 + hi.0)
+        };
         let y = f(x)?;
         if (y - target).abs() <= tol {
             return Ok(x);
@@ -295,7 +325,11 @@ fn illinois(
             side = 1;
         }
     }
-    Ok(if (lo.1 - target).abs() <= (hi.1 - target).abs() { lo.0 } else { hi.0 })
+    Ok(if (lo.1 - target).abs() <= (hi.1 - target).abs() {
+        lo.0
+    } else {
+        hi.0
+    })
 }
 
 /// Expand from `from` = (x, f(x)) in steps of `step` (doubling, away from the target's side)
@@ -374,8 +408,12 @@ fn by_lag(
             solve_disc(discs, work, k, crank, t)?;
         }
     }
-    let lags: Vec<f64> = (0..discs.count()).map(|k| output_lag(&work.works[k])).collect();
-    let t: Vec<f64> = (0..discs.count()).map(|k| work.models[k].torque_nmm).collect();
+    let lags: Vec<f64> = (0..discs.count())
+        .map(|k| output_lag(&work.works[k]))
+        .collect();
+    let t: Vec<f64> = (0..discs.count())
+        .map(|k| work.models[k].torque_nmm)
+        .collect();
     // A guard, not the criterion: a loaded disc off γ, or shares off T, is a failure to
     // report at the angle, never a result.
     let off = t
@@ -408,7 +446,7 @@ fn torque_at_lag(
     g: f64,
 ) -> Result<f64, SolveFailure> {
     let solve = |t: f64, work: &mut CoupledWork| solve_disc(discs, work, k, crank, t);
-    let h = 1e-6 * scale.abs();
+    let h = PROBE * scale.abs();
     let up = (h, solve(h, work)?);
     let down = (-h, solve(-h, work)?);
     let start = if g > up.1 {

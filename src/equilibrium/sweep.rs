@@ -161,13 +161,6 @@ impl Work {
         }
     }
 
-    /// Evaluate every roller at the next solve: the bounds that let a sweep skip a roller
-    /// out of reach hold for the small steps of lag between neighbouring angles, not for the
-    /// jumps of a disc whose torque share is changed at one angle (`discs`).
-    pub(super) fn reach_all(&mut self) {
-        self.reaches.clear();
-    }
-
     fn remember(&mut self, crank: f64) {
         let lag = self.sol.lag_rad.unwrap_or(0.0);
         self.remember_lags(crank, lag, self.sol.output_lag_rad.unwrap_or(0.0));

@@ -155,7 +155,11 @@ impl SceneResult {
         if self.discs.is_empty() {
             vec![(None, self)]
         } else {
-            self.discs.iter().enumerate().map(|(k, d)| (Some(k), d)).collect()
+            self.discs
+                .iter()
+                .enumerate()
+                .map(|(k, d)| (Some(k), d))
+                .collect()
         }
     }
 }

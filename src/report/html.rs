@@ -347,7 +347,12 @@ fn scene_section(
         .discs
         .iter()
         .enumerate()
-        .map(|(d, disc)| (d, plots::scene_plots(spec, disc, &format!("{prefix}-disc-{d}"))))
+        .map(|(d, disc)| {
+            (
+                d,
+                plots::scene_plots(spec, disc, &format!("{prefix}-disc-{d}")),
+            )
+        })
         .filter(|(_, p)| !p.is_empty())
         .collect();
     if plots.is_empty() && discs.is_empty() {
@@ -363,7 +368,12 @@ fn scene_section(
         }
     };
     files.extend(plots.into_iter().map(|p| (p.file, p.svg)));
-    files.extend(discs.into_iter().flat_map(|(_, p)| p).map(|p| (p.file, p.svg)));
+    files.extend(
+        discs
+            .into_iter()
+            .flat_map(|(_, p)| p)
+            .map(|p| (p.file, p.svg)),
+    );
     let heading = html! { "Scene " code { (scene.name) } };
     Some(section(prefix, heading, body))
 }

@@ -287,6 +287,9 @@ fn solve_unloaded_or(
     }
 }
 
+/// (x, f(x)) of a one-dimensional root search.
+type Point = (f64, f64);
+
 /// Regula falsi (Illinois) on a non-decreasing f between `lo` = (x, f(x)) below `target` and
 /// `hi` above it, until |f − target| ≤ `tol` or the bracket is within `width`.
 fn illinois(
@@ -339,7 +342,7 @@ fn bracket(
     mut step: f64,
     target: f64,
     mut f: impl FnMut(f64) -> Result<f64, SolveFailure>,
-) -> Result<((f64, f64), (f64, f64)), SolveFailure> {
+) -> Result<(Point, Point), SolveFailure> {
     let up = from.1 < target;
     let mut near = from;
     for _ in 0..MAX_STEPS {

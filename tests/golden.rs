@@ -3,6 +3,7 @@
 
 use cycloid::engine::golden::{compare, GoldenCurves};
 use cycloid::model::quantity::{Curves, QUANTITIES};
+use cycloid::model::results::SceneResult;
 use cycloid::model::Tolerance;
 use std::path::Path;
 
@@ -352,26 +353,13 @@ fn golden_csv_reads_back_what_it_writes_and_rejects_bad_files() {
     }
 }
 
-#[test]
-fn every_golden_quantity_is_the_json_array_of_the_same_name() {
-    let text = std::fs::read_to_string("specs/paper.yaml").unwrap();
-    let spec = cycloid::spec::parse("specs/paper.yaml", &text).unwrap();
-    let mut scene = spec.scenes[1].clone();
-    scene.crank_rad.truncate(12);
-    scene.effects = cycloid::model::Effect::listed().collect();
-    // The plan of a run that writes the results JSON: every quantity is read.
-    let writes = cycloid::engine::scene::Writes {
-        json: true,
-        report: false,
-    };
-    let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
-    let r = cycloid::engine::scene::run(&spec, &scene, &plan).unwrap();
-    let doc = cycloid::report::json::scenes_value(&spec, std::slice::from_ref(&r)).unwrap();
-    let json = &doc["scenes"][0];
-    let mut seen = 0;
+/// The keys of the registry curves `r` computed, each checked equal to the JSON array of the
+/// same name in `json` (a scene's object, or a disc's).
+fn curves_in_json(json: &serde_json::Value, r: &SceneResult) -> Vec<&'static str> {
+    let mut seen = Vec::new();
     for q in QUANTITIES {
-        let Some(c) = q.curves(&r) else { continue };
-        seen += 1;
+        let Some(c) = q.curves(r) else { continue };
+        seen.push(q.key);
         let arr = &json[q.key];
         let rows: Vec<Vec<f64>> = if q.shape.per().is_some() {
             arr.as_array()
@@ -400,11 +388,51 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
             }
         }
     }
-    // Every curve over the crank angle (a torsion scene's figures are per locked angle, of
-    // another kind of scene).
-    let curves = QUANTITIES
-        .iter()
-        .filter(|q| !q.is_scalar() && q.effect != cycloid::model::Effect::Torsion)
-        .count();
-    assert_eq!(seen, curves, "the scene computes every curve");
+    seen
+}
+
+#[test]
+fn every_golden_quantity_is_the_json_array_of_the_same_name() {
+    let text = std::fs::read_to_string("specs/paper.yaml").unwrap();
+    // One disc, and two: a disc's curves then sit under `discs[k]`.
+    for (discs, text) in [
+        (1, text.clone()),
+        (
+            2,
+            text.replacen("  rollers: 10", "  discs: 2\n  rollers: 10", 1),
+        ),
+    ] {
+        let spec = cycloid::spec::parse("specs/paper.yaml", &text).unwrap();
+        assert_eq!(spec.design.discs, discs);
+        let mut scene = spec.scenes[1].clone();
+        scene.crank_rad.truncate(12);
+        scene.effects = cycloid::model::Effect::listed().collect();
+        // The plan of a run that writes the results JSON: every quantity is read.
+        let writes = cycloid::engine::scene::Writes {
+            json: true,
+            report: false,
+        };
+        let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
+        let r = cycloid::engine::scene::run(&spec, &scene, &plan).unwrap();
+        let doc = cycloid::report::json::scenes_value(&spec, std::slice::from_ref(&r)).unwrap();
+        let json = &doc["scenes"][0];
+        let mut seen = curves_in_json(json, &r);
+        for (k, disc) in r.discs.iter().enumerate() {
+            seen.extend(curves_in_json(&json["discs"][k], disc));
+        }
+        seen.sort();
+        seen.dedup();
+        // Every curve over the crank angle (a torsion scene's figures are per locked angle, of
+        // another kind of scene; a disc's torque share needs several discs).
+        let curves = QUANTITIES
+            .iter()
+            .filter(|q| !q.is_scalar() && q.effect != cycloid::model::Effect::Torsion)
+            .filter(|q| discs > 1 || q.key != "torque_nm")
+            .count();
+        assert_eq!(
+            seen.len(),
+            curves,
+            "{discs} disc(s): the scene computes every curve"
+        );
+    }
 }

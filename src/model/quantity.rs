@@ -149,6 +149,12 @@ impl Quantity {
         }
     }
 
+    /// Whether the reducer as a whole has this curve (the output's TE and ratio, the
+    /// torsion under a locked input) rather than each disc (MODEL.md "Several discs").
+    pub fn of_reducer(&self) -> bool {
+        matches!(self.key, "te_arcsec" | "ratio") || self.effect == Effect::Torsion
+    }
+
     pub fn is_scalar(&self) -> bool {
         self.shape == Shape::Scalar
     }

@@ -722,6 +722,26 @@ fn golden_entry(
             ),
         )
     })?;
+    match (discs > 1, quantity.of_reducer(), disc) {
+        (true, false, None) => {
+            return Err(invalid(
+                &format!("{key}.quantity"),
+                format!(
+                    "with {discs} discs `{}` is a curve of each disc: name the disc \
+                     (`disc: 0` to `disc: {}`)",
+                    quantity.key,
+                    discs - 1
+                ),
+            ))
+        }
+        (true, true, Some(_)) => {
+            return Err(invalid(
+                &format!("{key}.disc"),
+                format!("`{}` is the reducer's curve, not a disc's", quantity.key),
+            ))
+        }
+        _ => {}
+    }
     if raw.file.trim().is_empty() {
         return Err(invalid(&format!("{key}.file"), "must not be empty".into()));
     }

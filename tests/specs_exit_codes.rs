@@ -18,6 +18,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "paper optimum: torsion at 4 locked angles, crank-bearing life at 20 N·m",
     ),
     (
+        "reducer-two-discs.yaml",
+        0,
+        "paper optimum with two discs: equal shares, torsion, bearing life, per-disc goldens",
+    ),
+    (
         "paper.yaml",
         0,
         "paper optimum (0.125, 0.1593) with its golden curves",

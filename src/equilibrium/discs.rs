@@ -198,16 +198,17 @@ pub fn solve_coupled(
             + weights.iter().zip(&lag).map(|(w, g)| w * g).sum::<f64>())
             / w;
         let step: Vec<f64> = (0..n).map(|k| weights[k] * (common - lag[k])).collect();
-        if std::env::var("DEBUG_DISCS").is_ok() {
-            eprintln!("  newton torque {torque:?} lag {lag:?} w {weights:?} common {common:e}");
-        }
         // The steps alone can look converged across a dead band (a secant over a disc's jump
         // of lag is a huge compliance, so a tiny weight): every disc that carries a share
         // must also be at the common lag.
         let agree = (0..n).all(|k| {
             torque[k] == 0.0 || (lag[k] - common).abs() <= 1e-7 * common.abs().max(1e-300)
         });
-        if agree && step.iter().all(|d| d.abs() <= 10.0 * rel_tol * scale) {
+        // Converged when the corrections are within the discs' own tolerance, or when the
+        // discs' lags already agree to round-off (at a tiny torque, one ulp of lag times the
+        // stiffness outweighs the balance's whole tolerance).
+        let to_ulps = (0..n).all(|k| (common - lag[k]).abs() <= 8.0 * f64::EPSILON * lag[k].abs());
+        if agree && (to_ulps || step.iter().all(|d| d.abs() <= 10.0 * rel_tol * scale)) {
             // γ is the common lag of the discs that carry a share (a disc without contact has
             // no weight, and its own lag is that of its nearest contact).
             finish(work, crank, &torque, total, &lag);
@@ -300,12 +301,15 @@ fn illinois(
     mut f: impl FnMut(f64) -> Result<f64, SolveFailure>,
 ) -> Result<f64, SolveFailure> {
     let mut side = 0i8;
-    for _ in 0..MAX_STEPS {
+    for step in 0..4 * MAX_STEPS {
         if hi.0 - lo.0 <= width {
             break;
         }
+        // Every third step bisects: the coupled balance in γ is flat across a dead band and
+        // steep beside it, where the secant alone creeps; with the bisections the bracket
+        // halves at least every three steps, to round-off within the steps allowed.
         let x = lo.0 + (target - lo.1) * (hi.0 - lo.0) / (hi.1 - lo.1);
-        let x = if x > lo.0 && x < hi.0 {
+        let x = if x > lo.0 && x < hi.0 && step % 3 != 2 {
             x
         } else {
             0.5 * (lo.0 + hi.0)
@@ -388,11 +392,24 @@ fn by_lag(
     let above = (hi, sum_at(hi, work)?);
     let width = 4.0 * f64::EPSILON * hi.abs().max(lo.abs());
     let tol = 1e-10 * total.abs();
-    let g = if below.1 >= total - tol {
+    let near = |p: Point| (p.1 - total).abs() <= tol;
+    let g = if near(below) {
         lo
-    } else if above.1 <= total + tol {
+    } else if near(above) {
         hi
     } else {
+        // The Newton's lags need not enclose the answer (at a tiny torque every disc can
+        // float between them): widen from the side that misses it.
+        let step = (hi - lo)
+            .max(1e-9 * hi.abs().max(lo.abs()))
+            .max(f64::MIN_POSITIVE);
+        let (below, above) = if below.1 > total {
+            bracket(below, step, total, |g| sum_at(g, work))?
+        } else if above.1 < total {
+            bracket(above, step, total, |g| sum_at(g, work))?
+        } else {
+            (below, above)
+        };
         illinois(below, above, total, (tol, width), |g| sum_at(g, work))?
     };
     // The discs hold the solves of the last γ tried; solve them at the answer's. A disc that

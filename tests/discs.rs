@@ -10,7 +10,7 @@ use cycloid::equilibrium::discs::Discs;
 use cycloid::equilibrium::solve::Settings;
 use cycloid::equilibrium::sweep::{solve_angle, AngleSolution, Model};
 use cycloid::model::results::SceneResult;
-use cycloid::model::{ContactLaw, Design, Effect, GeometryMode, Plan, Scene};
+use cycloid::model::{ContactLaw, Design, Effect, GeometryMode, Plan, Scene, TorqueSweep};
 use cycloid::progress::Silent;
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -255,6 +255,60 @@ proptest! {
             let within = 1e-9 * te1[a].abs() * t.max(s) / t;
             prop_assert!((te2[a] - te1[a]).abs() <= within.max(1e-9 * te1[a].abs()),
                 "angle {a}: two discs {:e}, one at T/2 {:e}", te2[a], te1[a]);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(32)
+    ))]
+
+    /// Torsion under a locked input on random interference-free designs, one to three discs,
+    /// both laws and geometries, locked at crank 0: the rising branch of the loop rises
+    /// strictly, and the curve is odd, γ(−T) = −γ(T) (γ(0⁻) = −γ(0⁺) at the dead band). At
+    /// crank 0 the reducer is mirror-symmetric about the x axis: rollers at 2πi/np, the disc
+    /// centres at phases 2πk/N (a set symmetric under negation), unturned profiles, pins at
+    /// 2πj/M with ideal holes, disc k's pins turned by 2πk/(N·nc) mirrored onto disc N − k's.
+    /// Tolerance: each solve's 1e-11 of the balance and the coupling's 1e-10·T of a share are
+    /// below 1e-13 rad of γ here; 1e-12 rad + 1e-9·|γ| allows for Newton stopping short on
+    /// either side. As for the sweep, a solve may stop cleanly (scene and angle named).
+    #[test]
+    fn torsion_of_random_designs_rises_and_is_odd_at_a_symmetric_angle(
+        case in cases(),
+        discs in 1usize..=3,
+        (law, geometry) in laws(),
+    ) {
+        prop_assume!(interference_free(&case));
+        let mut scene = scene(&case.design, 0.0, law, geometry);
+        let steps = 4;
+        scene.crank_rad = vec![0.0];
+        scene.torque_sweep = Some(TorqueSweep { rated_nmm: scene.output_torque_nmm, steps });
+        scene.output_torque_nmm = 0.0;
+        scene.effects = vec![Effect::Bearing];
+        let mut design = case.design.clone();
+        design.discs = discs;
+        let plan = Plan::for_scene(&scene);
+        let r = match run_design(&design, &case.m, &scene, &plan, &Settings::default()) {
+            Ok(r) => r,
+            Err(e) => {
+                let text = e.to_string();
+                prop_assert!(text.contains("crank angle 0.0000° locked"), "{text}");
+                return Ok(());
+            }
+        };
+        let t = r.torsion.as_ref().unwrap();
+        let row = &t.torsion_rad[0];
+        let rising = &row[..=2 * steps];
+        prop_assert!(rising.windows(2).all(|w| w[1] > w[0]), "{rising:?}");
+        for m in 0..=steps {
+            let (minus, plus) = if m == steps {
+                (row[steps], row[3 * steps])
+            } else {
+                (row[m], row[2 * steps - m])
+            };
+            let tol = 1e-12 + 1e-9 * plus.abs();
+            prop_assert!((minus + plus).abs() <= tol, "m {m}: {minus:e} vs {plus:e}");
         }
     }
 }

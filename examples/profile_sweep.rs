@@ -2,7 +2,7 @@
 //! `cargo build --release --example profile_sweep && valgrind --tool=callgrind
 //! target/release/examples/profile_sweep exact 3600` (geometry `exact` or `first_order`,
 //! then the number of crank angles over one mesh period). Compare against a run with 36 angles
-//! to remove the set-up cost.
+//! to remove the set-up cost. A third argument N runs N discs through the coupled sweep.
 
 use cycloid::equilibrium::curves;
 use cycloid::model::GeometryMode;
@@ -18,7 +18,16 @@ fn main() {
     };
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(3600);
     let (model, crank) = common::rated_sweep(geometry, n);
-    let sweep = curves::sweep(&model, &crank, true).expect("sweep");
-    let te = &sweep.transmission.expect("te").te_rad;
+    // A third argument: that many discs through the coupled sweep (`equilibrium::discs`).
+    let discs: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(0);
+    let transmission = if discs > 0 {
+        let d = cycloid::equilibrium::discs::Discs::new(&model, discs);
+        curves::sweep_discs_observed(&d, &crank, true, &cycloid::progress::Silent)
+            .expect("sweep")
+            .transmission
+    } else {
+        curves::sweep(&model, &crank, true).expect("sweep").transmission
+    };
+    let te = &transmission.expect("te").te_rad;
     println!("{} angles, TE[0] = {:e} rad", te.len(), te[0]);
 }

@@ -26,7 +26,9 @@ fn main() {
             .expect("sweep")
             .transmission
     } else {
-        curves::sweep(&model, &crank, true).expect("sweep").transmission
+        curves::sweep(&model, &crank, true)
+            .expect("sweep")
+            .transmission
     };
     let te = &transmission.expect("te").te_rad;
     println!("{} angles, TE[0] = {:e} rad", te.len(), te[0]);

@@ -1,12 +1,13 @@
 //! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
-use super::discs::{solve_coupled, CoupledWork, Discs};
+use super::discs::{converged, finish, newton_step, solve_coupled, CoupledWork, Discs};
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
 use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
 use crate::model::results::{BearingCurves, LoadedSweep, PinCurves, RollerCurves, Transmission};
+use crate::model::MAX_DISCS;
 use crate::progress::{Progress, Silent};
 use rayon::prelude::*;
 
@@ -176,6 +177,20 @@ impl Columns {
 }
 
 impl<'a> Chunk<'a> {
+    /// Zero the per-roller and per-pin entries of angle k (a lean solve writes only those in
+    /// contact, into entries that must start at zero).
+    fn clear(&mut self, k: usize) {
+        let columns = [
+            &mut self.roller_force,
+            &mut self.pressure,
+            &mut self.half_width,
+            &mut self.pin_force,
+        ];
+        for column in columns {
+            column.iter_mut().for_each(|c| c[k] = 0.0);
+        }
+    }
+
     /// The per-roller and per-pin entries of angle k, for the lean sweep to write in place.
     fn row(&mut self, k: usize) -> Row<'_, 'a> {
         Row {
@@ -392,11 +407,16 @@ fn solve_disc_chunk(
     chunk: &mut DiscChunk<'_>,
 ) -> Result<(), SweepFailure> {
     let mut work = CoupledWork::new(discs);
+    let mut lean = Lean::new(discs, crank_rad);
     for (k, &phi) in crank_rad.iter().enumerate() {
         let fail = |failure| SweepFailure {
             crank_rad: phi,
             failure,
         };
+        if let Some(gamma) = lean.solve(discs, phi, k, &mut work, chunk) {
+            chunk.output_lag[k] = gamma;
+            continue;
+        }
         chunk.output_lag[k] = solve_coupled(discs, phi, &mut work).map_err(fail)?;
         for (d, rows) in chunk.discs.iter_mut().enumerate() {
             let (model, w) = (&work.models[d], &work.works[d]);
@@ -410,6 +430,112 @@ fn solve_disc_chunk(
         }
     }
     Ok(())
+}
+
+/// The lean first-order kernel of each disc (`FirstOrderSweep`), where it applies to every
+/// disc (first-order geometry, the linear law, a rigid bearing): an angle whose split of the
+/// previous angle's weights settles at once (`discs::converged`) is solved by it, each disc
+/// once, as the one-disc sweep solves its angles; any other angle by the coupled solve.
+struct Lean<'a> {
+    kernels: Vec<FirstOrderSweep<'a>>,
+    scratch: Vec<Scratch>,
+    bearing_angle: Vec<NearbyAtan2>,
+    crank_direction: Vec<NearbySinCos>,
+    /// Each disc's own crank angles over the chunk (φ + its phase), for its screen of the
+    /// rollers that may touch over the angles ahead (`FirstOrderSweep::screen`).
+    cranks: Vec<Vec<f64>>,
+}
+
+impl<'a> Lean<'a> {
+    fn new(discs: &'a Discs, crank_rad: &[f64]) -> Self {
+        let kernels: Vec<FirstOrderSweep<'a>> = discs
+            .models
+            .iter()
+            .filter_map(FirstOrderSweep::new)
+            .collect();
+        let n = if kernels.len() == discs.count() {
+            kernels.len()
+        } else {
+            0
+        };
+        Lean {
+            kernels: kernels.into_iter().take(n).collect(),
+            scratch: (0..n).map(|_| Scratch::default()).collect(),
+            bearing_angle: vec![NearbyAtan2::default(); n],
+            crank_direction: vec![NearbySinCos::default(); n],
+            cranks: discs.phases[..n]
+                .iter()
+                .map(|p| crank_rad.iter().map(|c| c + p).collect())
+                .collect(),
+        }
+    }
+
+    /// Angle k (crank `phi`) by the kernels at the shares extrapolated from the last angles,
+    /// when the previous angle's weights say that split is settled: γ, each disc recorded in
+    /// `chunk` and remembered in `work`. `None` (the chunk's entries at k cleared) leaves the
+    /// angle to the coupled solve.
+    fn solve(
+        &mut self,
+        discs: &Discs,
+        phi: f64,
+        k: usize,
+        work: &mut CoupledWork,
+        chunk: &mut DiscChunk<'_>,
+    ) -> Option<f64> {
+        if self.kernels.is_empty() {
+            return None;
+        }
+        let n = discs.count();
+        let mut weights = [0.0; MAX_DISCS];
+        weights[..n].copy_from_slice(work.weights.as_deref()?);
+        let total = discs.torque_nmm;
+        let reach = discs.models[0].warm_reach();
+        let mut torque = work.guess(phi, n, reach);
+        torque.iter_mut().for_each(|t| *t *= total);
+        let mut lag = [0.0; MAX_DISCS];
+        let mut summaries = [(Summary::default(), Vec2::zeros()); MAX_DISCS];
+        for d in 0..n {
+            let phi_d = self.cranks[d][k];
+            let (sin, cos) = self.crank_direction[d].sin_cos(phi_d);
+            let guess = || work.works[d].guess(phi_d, &discs.models[d]);
+            self.kernels[d].set_torque(torque[d]);
+            let row = &mut chunk.discs[d];
+            let s = self.kernels[d].solve(
+                phi_d,
+                (cos, sin),
+                guess,
+                &mut self.scratch[d],
+                &mut row.row(k),
+            );
+            let Some(s) = s else {
+                chunk.discs.iter_mut().for_each(|c| c.clear(k));
+                return None;
+            };
+            summaries[d] = (s, Vec2::new(cos, sin));
+            lag[d] = s.lag_rad + s.output_lag_rad;
+            if !self.scratch[d].screened() {
+                let ahead = &self.cranks[d][k + 1..];
+                self.kernels[d].screen(ahead, s.lag_rad, &mut self.scratch[d]);
+            }
+        }
+        let (torque, lag) = (&torque[..n], &lag[..n]);
+        let (common, step) = newton_step(torque, lag, &weights[..n], total);
+        // A quarter of the coupled solve's tolerance: the weights are the previous angle's,
+        // off by the change of the contact set since (a roller more or less: ±50 %).
+        let tol = 2.5 * discs.models[0].settings.rel_tol * total.abs();
+        if !converged((torque, lag), common, &step[..n], tol) {
+            chunk.discs.iter_mut().for_each(|c| c.clear(k));
+            return None;
+        }
+        for (d, (s, e_phi)) in summaries.iter().take(n).enumerate() {
+            let rows = &mut chunk.discs[d];
+            rows.record_first_order(k, *e_phi, s, &mut self.bearing_angle[d]);
+            chunk.torque[d][k] = torque[d];
+            work.works[d].remember_lags(self.cranks[d][k], s.lag_rad, s.output_lag_rad);
+        }
+        finish(work, phi, torque, total, lag);
+        Some(common)
+    }
 }
 
 /// `sweep_observed` of several discs: chunks of `CHUNK` angles in parallel, each angle

@@ -17,6 +17,7 @@
 use super::balance::moment;
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, Model, Work};
+use crate::model::MAX_DISCS;
 
 /// Newton steps of the torque split before the coupled solve gives up: from the split of the
 /// previous angle it takes two or three; a contact that opens or closes between two steps
@@ -61,6 +62,10 @@ impl Discs {
     }
 }
 
+/// One number per disc (up to `MAX_DISCS`; the entries past the disc count are zero): fixed
+/// arrays, so that an angle of the lean sweep allocates nothing.
+pub type PerDisc = [f64; MAX_DISCS];
+
 /// Reusable state of a sequence of coupled solves over neighbouring crank angles: each disc's
 /// model (its torque share) and work, and the last angle's split for the next guess.
 #[derive(Debug, Clone)]
@@ -69,49 +74,60 @@ pub struct CoupledWork {
     pub works: Vec<Work>,
     /// Each disc's share of T (fractions summing to 1) at the last (up to three) angles
     /// solved, oldest first: (crank, shares).
-    shares: Vec<(f64, Vec<f64>)>,
+    shares: Vec<(f64, PerDisc)>,
+    /// The discs' stiffnesses dTk/dγk (N·mm/rad) where the Newton on the shares last
+    /// converged: what a lean solve of the next angle checks its split with
+    /// (`curves::sweep_discs_observed`).
+    pub weights: Option<Vec<f64>>,
 }
 
 impl CoupledWork {
+    /// Empty: the discs' models are copied at the first coupled solve (`solve_coupled`), which
+    /// sets their torques; the lean sweep of the first-order geometry never needs them.
     pub fn new(discs: &Discs) -> Self {
         CoupledWork {
-            models: discs.models.clone(),
+            models: Vec::new(),
             works: vec![Work::default(); discs.count()],
             shares: Vec::new(),
+            weights: None,
         }
     }
 
     /// The shares at `crank`: extrapolated from the last angles (quadratic from three, linear
     /// from two, as the lags are: `Work::guess`), equal with no history or one too far away
     /// (`Model::warm_reach`). They sum to 1 up to round-off, the Newton steps keep the sum.
-    fn guess(&self, crank: f64, n: usize, reach: f64) -> Vec<f64> {
+    pub fn guess(&self, crank: f64, n: usize, reach: f64) -> PerDisc {
+        let mut out = [0.0; MAX_DISCS];
         if n == 1 {
             // The whole torque, exactly: one disc solves as `sweep::solve_into` alone does.
-            return vec![1.0];
+            out[0] = 1.0;
+            return out;
         }
         let near = self
             .shares
             .last()
             .is_some_and(|(c, _)| (c - crank).abs() <= reach);
-        let weights: Vec<f64> = match self.shares.as_slice() {
-            _ if !near => return vec![1.0 / n as f64; n],
-            [(p0, _), (p1, _), (p2, _)] => vec![
+        let weights: &[f64] = match self.shares.as_slice() {
+            _ if !near => {
+                out[..n].fill(1.0 / n as f64);
+                return out;
+            }
+            [(p0, _), (p1, _), (p2, _)] => &[
                 (crank - p1) * (crank - p2) / ((p0 - p1) * (p0 - p2)),
                 (crank - p0) * (crank - p2) / ((p1 - p0) * (p1 - p2)),
                 (crank - p0) * (crank - p1) / ((p2 - p0) * (p2 - p1)),
             ],
-            [(p0, _), (p1, _)] => vec![(p1 - crank) / (p1 - p0), (crank - p0) / (p1 - p0)],
-            _ => vec![1.0],
+            [(p0, _), (p1, _)] => &[(p1 - crank) / (p1 - p0), (crank - p0) / (p1 - p0)],
+            _ => &[1.0],
         };
-        (0..n)
-            .map(|k| {
-                weights
-                    .iter()
-                    .zip(&self.shares)
-                    .map(|(w, (_, s))| w * s[k])
-                    .sum()
-            })
-            .collect()
+        for (k, o) in out.iter_mut().enumerate().take(n) {
+            *o = weights
+                .iter()
+                .zip(&self.shares)
+                .map(|(w, (_, s))| w * s[k])
+                .sum();
+        }
+        out
     }
 }
 
@@ -152,10 +168,12 @@ pub fn solve_coupled(
     work: &mut CoupledWork,
 ) -> Result<f64, SolveFailure> {
     let n = discs.count();
+    if work.models.len() != n {
+        work.models = discs.models.clone();
+    }
     let total = discs.torque_nmm;
     let reach = discs.models[0].warm_reach();
-    let mut torque: Vec<f64> = work
-        .guess(crank, n, reach)
+    let mut torque: Vec<f64> = work.guess(crank, n, reach)[..n]
         .iter()
         .map(|f| f * total)
         .collect();
@@ -194,24 +212,12 @@ pub fn solve_coupled(
             // their own lags; the reducer's is their mean.
             return Ok(finish(work, crank, &torque, total, &lag));
         }
-        let common = (total - torque.iter().sum::<f64>()
-            + weights.iter().zip(&lag).map(|(w, g)| w * g).sum::<f64>())
-            / w;
-        let step: Vec<f64> = (0..n).map(|k| weights[k] * (common - lag[k])).collect();
-        // The steps alone can look converged across a dead band (a secant over a disc's jump
-        // of lag is a huge compliance, so a tiny weight): every disc that carries a share
-        // must also be at the common lag.
-        let agree = (0..n).all(|k| {
-            torque[k] == 0.0 || (lag[k] - common).abs() <= 1e-7 * common.abs().max(1e-300)
-        });
-        // Converged when the corrections are within the discs' own tolerance, or when the
-        // discs' lags already agree to round-off (at a tiny torque, one ulp of lag times the
-        // stiffness outweighs the balance's whole tolerance).
-        let to_ulps = (0..n).all(|k| (common - lag[k]).abs() <= 8.0 * f64::EPSILON * lag[k].abs());
-        if agree && (to_ulps || step.iter().all(|d| d.abs() <= 10.0 * rel_tol * scale)) {
+        let (common, step) = newton_step(&torque, &lag, &weights, total);
+        if converged((&torque, &lag), common, &step[..n], 10.0 * rel_tol * scale) {
             // γ is the common lag of the discs that carry a share (a disc without contact has
             // no weight, and its own lag is that of its nearest contact).
             finish(work, crank, &torque, total, &lag);
+            work.weights = Some(weights);
             return Ok(if n == 1 { lag[0] } else { common });
         }
         for (t, d) in torque.iter_mut().zip(&step) {
@@ -228,6 +234,34 @@ pub fn solve_coupled(
 
 /// The share, as a fraction of T, at which a disc's dead band is probed (`torque_at_lag`).
 const PROBE: f64 = 1e-6;
+
+/// The Newton update of the shares: the common lag γ* = (T − ΣTk + Σ wk·γk)/Σ wk and each
+/// share's correction wk·(γ* − γk), which keeps Σ Tk = T (`weights` wk = 1/ck, N·mm/rad).
+pub fn newton_step(torque: &[f64], lag: &[f64], weights: &[f64], total: f64) -> (f64, PerDisc) {
+    let w: f64 = weights.iter().sum();
+    let common = (total - torque.iter().sum::<f64>()
+        + weights.iter().zip(lag).map(|(w, g)| w * g).sum::<f64>())
+        / w;
+    let mut step = [0.0; MAX_DISCS];
+    for ((s, w), g) in step.iter_mut().zip(weights).zip(lag) {
+        *s = w * (common - g);
+    }
+    (common, step)
+}
+
+/// Whether the discs at `lag` (rad) under `torque` (N·mm) are settled on the common lag
+/// `common` with the corrections `step`: every correction within `tol` (N·mm), or every lag
+/// equal to γ to round-off (at a tiny torque, one ulp of lag times the stiffness outweighs the
+/// balance's whole tolerance); and, in either case, every disc that carries a share at the
+/// common lag (the steps alone can look converged across a dead band, where a secant over a
+/// disc's jump of lag is a huge compliance, so a tiny weight).
+pub fn converged((torque, lag): (&[f64], &[f64]), common: f64, step: &[f64], tol: f64) -> bool {
+    let off = |k: usize| (lag[k] - common).abs();
+    let agree =
+        (0..lag.len()).all(|k| torque[k] == 0.0 || off(k) <= 1e-7 * common.abs().max(1e-300));
+    let to_ulps = (0..lag.len()).all(|k| off(k) <= 8.0 * f64::EPSILON * lag[k].abs());
+    agree && (to_ulps || step.iter().all(|d| d.abs() <= tol))
+}
 
 /// Newton steps on the shares before `by_lag` takes over: from the split of the previous
 /// angle the Newton converges in one or two.
@@ -496,15 +530,18 @@ fn torque_at_lag(
 
 /// Remember the converged split for the next angle; the reducer's output lag is the mean of
 /// the discs' (equal to within the tolerance).
-fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, lag: &[f64]) -> f64 {
+pub fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, lag: &[f64]) -> f64 {
     if total != 0.0 {
         if work.shares.last().is_some_and(|(c, _)| *c == crank) {
             work.shares.pop();
         } else if work.shares.len() == 3 {
             work.shares.remove(0);
         }
-        work.shares
-            .push((crank, torque.iter().map(|t| t / total).collect()));
+        let mut shares = [0.0; MAX_DISCS];
+        for (s, t) in shares.iter_mut().zip(torque) {
+            *s = t / total;
+        }
+        work.shares.push((crank, shares));
     }
     lag.iter().sum::<f64>() / lag.len() as f64
 }

@@ -45,6 +45,9 @@ use crate::model::{ContactLaw, GeometryMode};
 #[derive(Debug)]
 pub struct FirstOrderSweep<'a> {
     model: &'a Model,
+    /// The torque the rollers and pins balance, N·mm: the model's, or a disc's share of it
+    /// (`set_torque`, several discs).
+    torque_nmm: f64,
     rollers: &'a Rollers,
     pins: Option<(&'a Pins, f64)>,
     /// Linear stiffness of a roller contact, N/mm.
@@ -239,6 +242,7 @@ impl<'a> FirstOrderSweep<'a> {
         let c = &r.materials;
         Some(FirstOrderSweep {
             model,
+            torque_nmm: model.torque_nmm,
             rollers: r,
             pins,
             roller_stiffness: law::paper_linear_stiffness(c),
@@ -247,6 +251,11 @@ impl<'a> FirstOrderSweep<'a> {
             pin_units: pins.map_or_else(Columns::default, |(p, _)| Columns::of(&p.base)),
             pin_gaps: pins.map_or_else(Vec::new, |(p, _)| vec![p.clearance_mm; p.base.len()]),
         })
+    }
+
+    /// Balance `torque_nmm` (a disc's share) instead of the model's torque from now on.
+    pub fn set_torque(&mut self, torque_nmm: f64) {
+        self.torque_nmm = torque_nmm;
     }
 
     /// Solve crank φ, with (cos φ, sin φ) given, writing `row`. `guess` gives the warm-start
@@ -279,7 +288,7 @@ impl<'a> FirstOrderSweep<'a> {
         scratch: &mut Scratch,
         row: &mut Row<'_, '_>,
     ) -> Option<Summary> {
-        if self.model.torque_nmm == 0.0 {
+        if self.torque_nmm == 0.0 {
             return None;
         }
         let mut sums = BalanceSums::default();
@@ -525,7 +534,7 @@ impl<'a> FirstOrderSweep<'a> {
         guess: impl FnOnce() -> f64,
         root: &mut RootScratch,
     ) -> Option<(f64, u64)> {
-        let (torque, rel_tol) = (self.model.torque_nmm, self.model.settings.rel_tol);
+        let (torque, rel_tol) = (self.torque_nmm, self.model.settings.rel_tol);
         let settled = |(moment, scale): (f64, f64)| {
             (moment - torque).abs() <= rel_tol * torque.abs().max(scale)
         };

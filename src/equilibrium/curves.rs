@@ -1,7 +1,7 @@
 //! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
-use super::discs::{converged, finish, newton_step, solve_coupled, CoupledWork, Discs};
+use super::discs::{converged, finish, newton_step, solve_coupled, CoupledWork, Discs, PerDisc};
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
@@ -444,9 +444,76 @@ struct Lean<'a> {
     /// Each disc's own crank angles over the chunk (φ + its phase), for its screen of the
     /// rollers that may touch over the angles ahead (`FirstOrderSweep::screen`).
     cranks: Vec<Vec<f64>>,
+    /// The shares of the Newton step before the last (for the secant stiffnesses).
+    last_torque: PerDisc,
 }
 
+/// Newton steps on the shares that the lean kernels take at one angle before the coupled
+/// solve takes over: one when the extrapolated split holds, two when the shares move between
+/// contact changes (the first-order balance is linear there), three with a secant update.
+const LEAN_STEPS: usize = 3;
+
 impl<'a> Lean<'a> {
+    /// Disc d at angle k by its kernel at the share `torque` (N·mm), its screen renewed when
+    /// it lapsed: the kernel's summary and the crank direction, or `None` where the kernel
+    /// leaves the angle to the general solve.
+    fn disc(
+        &mut self,
+        discs: &Discs,
+        (d, k): (usize, usize),
+        torque: f64,
+        work: &CoupledWork,
+        chunk: &mut DiscChunk<'_>,
+    ) -> Option<(Summary, Vec2)> {
+        let phi_d = self.cranks[d][k];
+        let (sin, cos) = self.crank_direction[d].sin_cos(phi_d);
+        let guess = || work.works[d].guess(phi_d, &discs.models[d]);
+        self.kernels[d].set_torque(torque);
+        let row = &mut chunk.discs[d];
+        let s = self.kernels[d].solve(
+            phi_d,
+            (cos, sin),
+            guess,
+            &mut self.scratch[d],
+            &mut row.row(k),
+        )?;
+        if !self.scratch[d].screened() {
+            let ahead = &self.cranks[d][k + 1..];
+            self.kernels[d].screen(ahead, s.lag_rad, &mut self.scratch[d]);
+        }
+        Some((s, Vec2::new(cos, sin)))
+    }
+
+    /// Each disc's stiffness dTk/dγk at angle k (the first of a chunk, where no angle before
+    /// gave one): the secant of two kernel solves at T/N and T/N·(1 + 1e-3). Exact while the
+    /// contacts stay the same (the first-order balance is linear between them); where one
+    /// changes in that step the secant is off, and the Newton check then sends the angle to
+    /// the coupled solve. The chunk's entries at k are cleared for the solve that follows.
+    fn stiffnesses(
+        &mut self,
+        discs: &Discs,
+        k: usize,
+        work: &CoupledWork,
+        chunk: &mut DiscChunk<'_>,
+    ) -> Option<Vec<f64>> {
+        let n = discs.count();
+        let t = discs.torque_nmm / n as f64;
+        let dt = 1e-3 * t;
+        let mut weights = Vec::with_capacity(n);
+        for d in 0..n {
+            let mut lag_at = |torque: f64| {
+                let s = self.disc(discs, (d, k), torque, work, chunk);
+                chunk.discs[d].clear(k);
+                s.map(|(s, _)| s.lag_rad + s.output_lag_rad)
+            };
+            let (a, b) = (lag_at(t)?, lag_at(t + dt)?);
+            let w = dt / (b - a);
+            (w > 0.0 && w.is_finite()).then_some(())?;
+            weights.push(w);
+        }
+        Some(weights)
+    }
+
     fn new(discs: &'a Discs, crank_rad: &[f64]) -> Self {
         let kernels: Vec<FirstOrderSweep<'a>> = discs
             .models
@@ -463,6 +530,7 @@ impl<'a> Lean<'a> {
             scratch: (0..n).map(|_| Scratch::default()).collect(),
             bearing_angle: vec![NearbyAtan2::default(); n],
             crank_direction: vec![NearbySinCos::default(); n],
+            last_torque: [0.0; MAX_DISCS],
             cranks: discs.phases[..n]
                 .iter()
                 .map(|p| crank_rad.iter().map(|c| c + p).collect())
@@ -486,6 +554,9 @@ impl<'a> Lean<'a> {
             return None;
         }
         let n = discs.count();
+        if work.weights.is_none() {
+            work.weights = Some(self.stiffnesses(discs, k, work, chunk)?);
+        }
         let mut weights = [0.0; MAX_DISCS];
         weights[..n].copy_from_slice(work.weights.as_deref()?);
         let total = discs.torque_nmm;
@@ -494,39 +565,51 @@ impl<'a> Lean<'a> {
         torque.iter_mut().for_each(|t| *t *= total);
         let mut lag = [0.0; MAX_DISCS];
         let mut summaries = [(Summary::default(), Vec2::zeros()); MAX_DISCS];
-        for d in 0..n {
-            let phi_d = self.cranks[d][k];
-            let (sin, cos) = self.crank_direction[d].sin_cos(phi_d);
-            let guess = || work.works[d].guess(phi_d, &discs.models[d]);
-            self.kernels[d].set_torque(torque[d]);
-            let row = &mut chunk.discs[d];
-            let s = self.kernels[d].solve(
-                phi_d,
-                (cos, sin),
-                guess,
-                &mut self.scratch[d],
-                &mut row.row(k),
-            );
-            let Some(s) = s else {
-                chunk.discs.iter_mut().for_each(|c| c.clear(k));
-                return None;
-            };
-            summaries[d] = (s, Vec2::new(cos, sin));
-            lag[d] = s.lag_rad + s.output_lag_rad;
-            if !self.scratch[d].screened() {
-                let ahead = &self.cranks[d][k + 1..];
-                self.kernels[d].screen(ahead, s.lag_rad, &mut self.scratch[d]);
-            }
-        }
-        let (torque, lag) = (&torque[..n], &lag[..n]);
-        let (common, step) = newton_step(torque, lag, &weights[..n], total);
         // A quarter of the coupled solve's tolerance: the weights are the previous angle's,
         // off by the change of the contact set since (a roller more or less: ±50 %).
         let tol = 2.5 * discs.models[0].settings.rel_tol * total.abs();
-        if !converged((torque, lag), common, &step[..n], tol) {
+        let mut common = None;
+        for step_number in 0..LEAN_STEPS {
+            if step_number > 0 {
+                chunk.discs.iter_mut().for_each(|c| c.clear(k));
+            }
+            let last = lag;
+            for d in 0..n {
+                let Some(s) = self.disc(discs, (d, k), torque[d], work, chunk) else {
+                    chunk.discs.iter_mut().for_each(|c| c.clear(k));
+                    return None;
+                };
+                summaries[d] = s;
+                lag[d] = s.0.lag_rad + s.0.output_lag_rad;
+                if step_number > 0 && lag[d] != last[d] {
+                    // The secant of the last two solves: exact between contact changes.
+                    let w = (torque[d] - self.last_torque[d]) / (lag[d] - last[d]);
+                    if w > 0.0 && w.is_finite() {
+                        weights[d] = w;
+                    }
+                }
+            }
+            let (t, g) = (&torque[..n], &lag[..n]);
+            let (c, step) = newton_step(t, g, &weights[..n], total);
+            if converged((t, g), c, &step[..n], tol) {
+                common = Some(c);
+                break;
+            }
+            self.last_torque = torque;
+            for (t, d) in torque.iter_mut().zip(&step).take(n) {
+                *t += d;
+            }
+            // A share against the torque sends its disc across its backlash: the coupled
+            // solve handles that.
+            if torque[..n].iter().any(|t| t * total < 0.0) {
+                break;
+            }
+        }
+        let Some(common) = common else {
             chunk.discs.iter_mut().for_each(|c| c.clear(k));
             return None;
-        }
+        };
+        let (torque, lag) = (&torque[..n], &lag[..n]);
         for (d, (s, e_phi)) in summaries.iter().take(n).enumerate() {
             let rows = &mut chunk.discs[d];
             rows.record_first_order(k, *e_phi, s, &mut self.bearing_angle[d]);

@@ -285,6 +285,14 @@ fn solve_disc(
     };
     work.models[k].torque_nmm = t;
     let phi = crank + discs.phases[k];
+    // Another solve of the angle the disc was solved at last (a share corrected, a torsion
+    // loop's next torque): every roller evaluated. The bounds that let a sweep skip a roller
+    // as out of reach were found to miss a contact after the lag jumped across the backlash
+    // between two solves of one angle (a disc from its reverse flank to its forward one:
+    // 34 rollers, Johnson's law, three discs), so a re-solve does not use them.
+    if work.works[k].solved_at(phi) {
+        work.works[k].reach_all();
+    }
     // A disc without a share does not load its bearing: its centre sits where a rigid one
     // holds it (and the compliant solve need not find a balance of round-off).
     // So does one whose share only probes where its dead band ends (`torque_at_lag`, at

@@ -385,9 +385,23 @@ fn scene_summary(spec: &Spec, scene: &Scene) -> String {
         _ => 0.0,
     };
     let effects: Vec<&str> = plan.effects.iter().map(|p| p.effect.name()).collect();
+    let load = match &scene.torque_sweep {
+        Some(t) => format!(
+            "Input locked; output torque swept ±{} N·m ({} steps per quarter loop)",
+            number(units::nm(t.rated_nmm)),
+            t.steps
+        ),
+        None => format!(
+            "Output torque {} N·m",
+            number(units::nm(scene.output_torque_nmm))
+        ),
+    };
+    let discs = match spec.design.discs {
+        1 => String::new(),
+        n => format!(", shared by {n} discs"),
+    };
     let mut s = format!(
-        "Output torque {} N·m; {} crank angles from {:.2}° in steps of {}°; computes {}.",
-        number(units::nm(scene.output_torque_nmm)),
+        "{load}{discs}; {} crank angles from {:.2}° in steps of {}°; computes {}.",
         scene.crank_rad.len(),
         scene.crank_rad.first().map_or(0.0, |&a| units::deg(a)),
         number(step),
@@ -408,7 +422,8 @@ fn scene_summary(spec: &Spec, scene: &Scene) -> String {
         );
     }
     let pins = plan.has(Effect::OutputPins);
-    if !scene.spans_whole(spec.design.loaded_period_rad(pins)) {
+    // (A torsion scene's crank angles are where the input is locked, not a sweep.)
+    if scene.torque_sweep.is_none() && !scene.spans_whole(spec.design.loaded_period_rad(pins)) {
         s += if pins {
             " The sweep does not cover whole periods of the loaded disc (mesh and output pins)."
         } else {

@@ -250,6 +250,15 @@ fn design_section(spec: &Spec) -> Section {
             number(units::gpa(rollers.youngs_modulus_mpa)), number(rollers.poisson_ratio),
             number(units::gpa(d.contact_modulus_mpa())))))
         (row("K1 = e·np/Rp", number(d.k1())))
+        @if d.discs > 1 {
+            (row("discs", format!("{}, at crank phases {}", d.discs,
+                (0..d.discs).map(|k| format!("{}°", number(units::deg(d.disc_phase_rad(k)))))
+                    .collect::<Vec<_>>().join(", "))))
+        }
+        @if let Some(b) = &d.crank_bearing {
+            (row("crank bearing (each disc)", format!("C {} N, life exponent p {}",
+                number(b.dynamic_load_rating_n), number(b.life_exponent))))
+        }
     };
     let modification = html! {
         (row("shift ΔRp", mm(m.shift_mm)))

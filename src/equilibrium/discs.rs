@@ -73,8 +73,9 @@ pub struct CoupledWork {
     pub models: Vec<Model>,
     pub works: Vec<Work>,
     /// Each disc's share of T (fractions summing to 1) at the last (up to three) angles
-    /// solved, oldest first: (crank, shares).
-    shares: Vec<(f64, PerDisc)>,
+    /// solved, oldest first: (crank, shares), in the last `filled` entries.
+    shares: [(f64, PerDisc); 3],
+    filled: usize,
     /// The discs' stiffnesses dTk/dγk (N·mm/rad) where the Newton on the shares last
     /// converged: what a lean solve of the next angle checks its split with
     /// (`curves::sweep_discs_observed`).
@@ -88,7 +89,8 @@ impl CoupledWork {
         CoupledWork {
             models: Vec::new(),
             works: vec![Work::default(); discs.count()],
-            shares: Vec::new(),
+            shares: [(0.0, [0.0; MAX_DISCS]); 3],
+            filled: 0,
             weights: None,
         }
     }
@@ -103,11 +105,11 @@ impl CoupledWork {
             out[0] = 1.0;
             return out;
         }
-        let near = self
-            .shares
+        let history = &self.shares[3 - self.filled..];
+        let near = history
             .last()
             .is_some_and(|(c, _)| (c - crank).abs() <= reach);
-        let weights: &[f64] = match self.shares.as_slice() {
+        let weights: &[f64] = match history {
             _ if !near => {
                 out[..n].fill(1.0 / n as f64);
                 return out;
@@ -123,7 +125,7 @@ impl CoupledWork {
         for (k, o) in out.iter_mut().enumerate().take(n) {
             *o = weights
                 .iter()
-                .zip(&self.shares)
+                .zip(history)
                 .map(|(w, (_, s))| w * s[k])
                 .sum();
         }
@@ -540,16 +542,16 @@ fn torque_at_lag(
 /// the discs' (equal to within the tolerance).
 pub fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, lag: &[f64]) -> f64 {
     if total != 0.0 {
-        if work.shares.last().is_some_and(|(c, _)| *c == crank) {
-            work.shares.pop();
-        } else if work.shares.len() == 3 {
-            work.shares.remove(0);
-        }
         let mut shares = [0.0; MAX_DISCS];
         for (s, t) in shares.iter_mut().zip(torque) {
             *s = t / total;
         }
-        work.shares.push((crank, shares));
+        // A second solve of the angle remembered last replaces it.
+        if work.filled == 0 || work.shares[2].0 != crank {
+            work.shares.rotate_left(1);
+            work.filled = (work.filled + 1).min(3);
+        }
+        work.shares[2] = (crank, shares);
     }
     lag.iter().sum::<f64>() / lag.len() as f64
 }

@@ -289,9 +289,12 @@ fn solve_disc(
     let phi = crank + discs.phases[k];
     // Another solve of the angle the disc was solved at last (a share corrected, a torsion
     // loop's next torque): every roller evaluated. The bounds that let a sweep skip a roller
-    // as out of reach were found to miss a contact after the lag jumped across the backlash
-    // between two solves of one angle (a disc from its reverse flank to its forward one:
-    // 34 rollers, Johnson's law, three discs), so a re-solve does not use them.
+    // as out of reach (`rollers::Reach`) were found to miss a contact after the lag jumped
+    // across the backlash between two solves of one angle (34 rollers, Johnson's law, three
+    // discs): a bound is only as good as the gap it starts from, and a warm-started closest
+    // point can settle on a foot that is not the nearest (a gap of 0.091 mm stored where the
+    // neighbouring lags imply ~0.03 mm), so a re-solve, whose lag may jump far, does not use
+    // them.
     if work.works[k].solved_at(phi) {
         work.works[k].reach_all();
     }

@@ -197,7 +197,8 @@ fn bad_keys_are_located() {
     }
 }
 
-/// A drawing whose profile polyline is not closed has no disc outline: exit 2, saying so.
+/// A drawing whose profile polyline is not closed has no disc outline: exit 2 at the
+/// polyline's line (its points are not skipped unseen).
 #[test]
 fn dxf_without_a_closed_profile_is_refused() {
     let dir = Scratch::new("fit-open");
@@ -215,12 +216,22 @@ fn dxf_without_a_closed_profile_is_refused() {
         fitting("{file: disc.dxf, format: dxf, harmonics: 0, fit: [shift_mm]}"),
     );
     let run = cycloid(&dir.path, &["fit", "fit.yaml"]);
+    // The entity's line is that of the group code 0 before its type.
+    let line = dir
+        .read("disc.dxf")
+        .lines()
+        .position(|l| l.trim() == "POLYLINE")
+        .expect("a POLYLINE");
     assert_eq!(
         (run.code(), run.stderr.as_str()),
         (
             2,
-            "disc.dxf:1:1: invalid value: the drawing has no closed LWPOLYLINE or POLYLINE: the \
-             disc profile must be one closed polyline\n"
+            format!(
+                "disc.dxf:{line}:1: invalid value: an open POLYLINE (group 70 without its closed \
+                 bit): profile points are read from one closed polyline; close it in the CAD \
+                 program, or delete it if it is not the disc outline\n"
+            )
+            .as_str()
         )
     );
 }

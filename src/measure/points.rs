@@ -3,7 +3,8 @@
 //! CSV: `#` comment lines, then a header naming the columns, of which `x_mm` and `y_mm` are
 //! required and `feature` optional (other columns are ignored, so `cycloid profile --csv`
 //! output reads back); each row a point, `feature` `profile` (the default) or `hole:J`.
-//! DXF: the vertices of closed LWPOLYLINE and POLYLINE entities are profile points; a CIRCLE on
+//! DXF: the vertices of closed LWPOLYLINE and POLYLINE entities are profile points (an open
+//! one is refused at its line, not skipped); a CIRCLE on
 //! layer `HOLE_J` is the bore of hole J, read as 72 points on it. Units mm.
 //! Errors name the file and line (exit 2).
 
@@ -211,12 +212,14 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
         let e = &list[i];
         match e.kind {
             "LWPOLYLINE" => {
-                closed_profiles += usize::from(e.closed());
+                refuse_open(path, e)?;
+                closed_profiles += 1;
                 push_profile(&mut points, e.vertices(path)?, e.closed());
             }
             "POLYLINE" => {
+                refuse_open(path, e)?;
                 let closed = e.closed();
-                closed_profiles += usize::from(closed);
+                closed_profiles += 1;
                 let mut vertices = Vec::new();
                 i += 1;
                 while i < list.len() && list[i].kind == "VERTEX" {
@@ -266,6 +269,24 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
         ));
     }
     Ok(points)
+}
+
+/// An open polyline is not read as profile points, and not skipped either (its points would
+/// vanish from the fit unseen): the file is refused at its line.
+fn refuse_open(path: &str, e: &Entity<'_>) -> Result<()> {
+    if e.closed() {
+        return Ok(());
+    }
+    Err(at(
+        path,
+        e.line,
+        format!(
+            "an open {} (group 70 without its closed bit): profile points are read from one \
+             closed polyline; close it in the CAD program, or delete it if it is not the disc \
+             outline",
+            e.kind
+        ),
+    ))
 }
 
 fn push_profile(points: &mut Vec<MeasuredPoint>, vertices: Vec<(usize, Vec2)>, closed: bool) {

@@ -56,7 +56,7 @@ fn dxf_export_round_trips_through_fit() {
     );
     assert!(lines[1].starts_with("condition number "), "{}", lines[1]);
     assert!(
-        lines[2].starts_with("residual: RMS 0.000 um, max 0.000 um (line "),
+        lines[2].starts_with("residual: RMS 0.000 µm, max 0.000 µm (line "),
         "{}",
         lines[2]
     );
@@ -66,13 +66,13 @@ fn dxf_export_round_trips_through_fit() {
     );
     let expected = [
         "identified (value ± standard uncertainty):",
-        "  centre x0               0.000000 mm   ± 0.000 um",
-        "  centre y0               0.000000 mm   ± 0.000 um",
+        "  centre x0               0.000000 mm   ± 0.000 µm",
+        "  centre y0               0.000000 mm   ± 0.000 µm",
         "  orientation            0.000000 deg   ± 0.000000 deg",
-        "  shift_mm                0.125000 mm   ± 0.000 um",
-        "  equidistant_mm          0.159300 mm   ± 0.000 um",
+        "  shift_mm                0.125000 mm   ± 0.000 µm",
+        "  equidistant_mm          0.159300 mm   ± 0.000 µm",
         "  rotation_deg           0.200000 deg   ± 0.000000 deg",
-        "  hole radius +           0.000000 mm   ± 0.000 um",
+        "  hole radius +           0.000000 mm   ± 0.000 µm",
     ];
     assert_eq!(&lines[4..12], &expected, "\n{}", run.stdout);
     // Every flank of the exact drawing deviates by nothing: form and slope print as 0.000.
@@ -121,10 +121,10 @@ fn csv_export_fits_and_rotation_needs_holes() {
     assert_eq!(run.code(), 0, "{}", run.stderr);
     assert!(run
         .stdout
-        .contains("\n  shift_mm                0.125000 mm   ± 0.000 um\n"));
+        .contains("\n  shift_mm                0.125000 mm   ± 0.000 µm\n"));
     assert!(run
         .stdout
-        .contains("\n  equidistant_mm          0.159300 mm   ± 0.000 um\n"));
+        .contains("\n  equidistant_mm          0.159300 mm   ± 0.000 µm\n"));
     dir.write(
         "rot.yaml",
         fitting("{file: disc.csv, format: csv, harmonics: 0, fit: [rotation_deg]}"),

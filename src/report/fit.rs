@@ -24,7 +24,7 @@ fn row(name: &str, e: Estimate, unit: &str) -> String {
         ),
         _ => (
             format!("{} mm", fixed(e.value, 6)),
-            format!("{} um", fixed(units::um(e.sigma), 3)),
+            format!("{} µm", fixed(units::um(e.sigma), 3)),
         ),
     };
     format!("  {name:<16} {value:>18}   ± {sigma}\n")
@@ -43,7 +43,7 @@ pub fn render(spec: &Spec, id: &Identification) -> String {
         id.condition
     );
     out += &format!(
-        "residual: RMS {} um, max {} um (line {})\n",
+        "residual: RMS {} µm, max {} µm (line {})\n",
         fixed(units::um(id.residual_rms_mm), 3),
         fixed(units::um(id.residual_max_mm), 3),
         id.residual_max_line
@@ -70,7 +70,7 @@ pub fn render(spec: &Spec, id: &Identification) -> String {
         }
     }
     if !id.form.harmonics.is_empty() {
-        out += "form error w(t) along the normal (w > 0: material missing), um:\n";
+        out += "form error w(t) along the normal (w > 0: material missing), µm:\n";
         out += "  order       cos       sin   amplitude   ± (cos, sin)\n";
         for h in &id.form.harmonics {
             out += &format!(
@@ -85,7 +85,7 @@ pub fn render(spec: &Spec, id: &Identification) -> String {
         }
     }
     out += "per flank (deviation from the identified modified profile; f_f profile form, \
-            f_H slope), um:\n";
+            f_H slope), µm:\n";
     out += "  tooth flank points     f_f     f_H\n";
     for f in &id.flanks {
         let show = |v: Option<f64>| v.map_or("-".to_string(), |v| fixed(units::um(v), 3));

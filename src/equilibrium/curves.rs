@@ -346,41 +346,43 @@ fn transmission(te_rad: Vec<f64>, crank_rad: &[f64], teeth: usize, periodic: boo
 }
 
 fn collect(model: &Model, crank_rad: &[f64], columns: Columns, periodic: bool) -> LoadedSweep {
-    let mut out = LoadedSweep::default();
-    let c = columns;
-    if model.rollers.is_some() {
-        let te_rad: Vec<f64> = c
-            .lag
+    let te_rad = model.rollers.is_some().then(|| {
+        let c = &columns;
+        c.lag
             .iter()
             .zip(&c.output_lag)
             .map(|(b, o)| b + o)
-            .collect();
-        out.transmission = Some(transmission(te_rad, crank_rad, model.teeth, periodic));
+            .collect()
+    });
+    LoadedSweep {
+        transmission: te_rad.map(|te| transmission(te, crank_rad, model.teeth, periodic)),
+        ..disc_curves(model, columns)
     }
-    if model.rollers.is_some() {
-        out.rollers = Some(RollerCurves {
+}
+
+/// A disc's own curves from its columns: lags, forces, bearing (no transmission: with several
+/// discs that is the reducer's, from the common output lag).
+fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
+    LoadedSweep {
+        rollers: model.rollers.as_ref().map(|_| RollerCurves {
             lag_rad: c.lag,
             force_n: c.roller_force,
             pressure_mpa: c.pressure,
             half_width_mm: c.half_width,
             contacts: c.contacts,
-        });
-    }
-    if model.pins.is_some() {
-        out.pins = Some(PinCurves {
+        }),
+        pins: model.pins.as_ref().map(|_| PinCurves {
             output_lag_rad: c.output_lag,
             force_n: c.pin_force,
-        });
-    }
-    if model.bearing {
-        out.bearing = Some(BearingCurves {
+        }),
+        bearing: model.bearing.then_some(BearingCurves {
             force_n: c.bearing_force,
             angle_rad: c.bearing_angle,
             residual: c.residual,
             deflection_mm: c.deflection,
-        });
+        }),
+        ..LoadedSweep::default()
     }
-    out
 }
 
 /// A sweep of several discs (`discs::solve_coupled` at every crank angle): each disc's curves
@@ -515,18 +517,16 @@ impl<'a> Lean<'a> {
     }
 
     fn new(discs: &'a Discs, crank_rad: &[f64]) -> Self {
+        // Every disc's kernel, or none: the lean path needs them all.
         let kernels: Vec<FirstOrderSweep<'a>> = discs
             .models
             .iter()
-            .filter_map(FirstOrderSweep::new)
-            .collect();
-        let n = if kernels.len() == discs.count() {
-            kernels.len()
-        } else {
-            0
-        };
+            .map(FirstOrderSweep::new)
+            .collect::<Option<_>>()
+            .unwrap_or_default();
+        let n = kernels.len();
         Lean {
-            kernels: kernels.into_iter().take(n).collect(),
+            kernels,
             scratch: (0..n).map(|_| Scratch::default()).collect(),
             bearing_angle: vec![NearbyAtan2::default(); n],
             crank_direction: vec![NearbySinCos::default(); n],
@@ -668,10 +668,7 @@ pub fn sweep_discs_observed(
         .models
         .iter()
         .zip(columns)
-        .map(|(m, c)| LoadedSweep {
-            transmission: None,
-            ..collect(m, crank_rad, c, periodic)
-        })
+        .map(|(m, c)| disc_curves(m, c))
         .collect();
     Ok(DiscSweeps {
         discs,

@@ -17,6 +17,7 @@
 use super::balance::moment;
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, Model, Work};
+use crate::model::design::disc_phase_rad;
 use crate::model::MAX_DISCS;
 
 /// Newton steps of the torque split before the coupled solve gives up: from the split of the
@@ -39,9 +40,7 @@ impl Discs {
     /// `count` discs of the one-disc model `model` (a scene's model of the disc at phase 0).
     pub fn new(model: &Model, count: usize) -> Self {
         let teeth = model.teeth as f64;
-        let phases: Vec<f64> = (0..count)
-            .map(|k| std::f64::consts::TAU * k as f64 / count as f64)
-            .collect();
+        let phases: Vec<f64> = (0..count).map(|k| disc_phase_rad(k, count)).collect();
         let models = phases
             .iter()
             .map(|&phase| {

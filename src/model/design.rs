@@ -63,10 +63,15 @@ impl CrankBearing {
 /// Most discs a reducer may have (`reducer.discs`): reducers are built with one to three.
 pub const MAX_DISCS: usize = 4;
 
+/// Crank phase of disc k of `count`, rad: 2πk/count (MODEL.md "Several discs").
+pub fn disc_phase_rad(k: usize, count: usize) -> f64 {
+    std::f64::consts::TAU * k as f64 / count as f64
+}
+
 impl Design {
-    /// Crank phase of disc k, rad: 2πk/discs (MODEL.md "Several discs").
+    /// Crank phase of disc k of this design, rad (`disc_phase_rad`).
     pub fn disc_phase_rad(&self, k: usize) -> f64 {
-        std::f64::consts::TAU * k as f64 / self.discs as f64
+        disc_phase_rad(k, self.discs)
     }
 
     /// Short-amplitude coefficient K1 = e·np/Rp (MODEL.md); a disc exists only for K1 < 1.

@@ -147,19 +147,3 @@ pub struct SceneResult {
     /// holds the reducer's transmission alone (the common output lag γ). Empty for one disc.
     pub discs: Vec<SceneResult>,
 }
-
-impl SceneResult {
-    /// The results that hold a disc's curves: the scene itself with one disc, else each disc,
-    /// with its number.
-    pub fn disc_results(&self) -> Vec<(Option<usize>, &SceneResult)> {
-        if self.discs.is_empty() {
-            vec![(None, self)]
-        } else {
-            self.discs
-                .iter()
-                .enumerate()
-                .map(|(k, d)| (Some(k), d))
-                .collect()
-        }
-    }
-}

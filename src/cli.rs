@@ -924,14 +924,11 @@ fn run_fit(
     })?;
     print(out, &report::fit::render(&spec, &id))?;
     if let Some(p) = form_csv {
-        crate::files::write_atomic(
-            std::path::Path::new(p),
-            report::fit::form_csv(&spec, &id).as_bytes(),
-        )?;
+        write_file(p, &report::fit::form_csv(&spec, &id))?;
     }
     if let Some(p) = write {
         let text = optimise::write::with_modification(p, &spec.source, &id.modification)?;
-        crate::files::write_atomic(std::path::Path::new(p), text.as_bytes())?;
+        write_file(p, &text)?;
         print(
             out,
             &format!("wrote {p} with the identified modification\n"),

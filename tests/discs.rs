@@ -350,3 +350,17 @@ fn with_an_odd_roller_count_two_discs_do_not_share_equally() {
     // A disc is at its own crank phase: disc 1 runs half a turn ahead of disc 0.
     assert!((cycloid::model::Design::disc_phase_rad(&spec.design, 1) - TAU / 2.0).abs() < 1e-15);
 }
+
+/// The design review draws the disc in the first scene that loads it over the crank angle:
+/// in `specs/reducer-two-discs.yaml` that is `rated` (20 N·m shared by two discs), not the
+/// torsion scene listed before it (its crank angles are locked angles, its scene torque 0).
+#[test]
+fn the_drawing_takes_a_scene_under_load_not_a_torsion_loop() {
+    let spec = cycloid::spec::load("specs/reducer-two-discs.yaml").unwrap();
+    let loaded = cycloid::engine::drawing::disc(&spec, 0.0)
+        .unwrap()
+        .loaded
+        .expect("a loaded scene");
+    assert_eq!(loaded.scene, "rated (disc 0)");
+    assert!(!loaded.forces.is_empty());
+}

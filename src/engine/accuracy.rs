@@ -433,7 +433,7 @@ pub enum Event<'a> {
 pub fn default_scene(spec: &Spec) -> usize {
     spec.scenes
         .iter()
-        .position(|s| Plan::for_scene(s).has(Effect::RollerContact))
+        .position(|s| Plan::for_scene(s).computes(Effect::RollerContact))
         .unwrap_or(0)
 }
 

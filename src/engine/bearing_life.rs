@@ -43,7 +43,20 @@ pub fn rating_life(
     teeth: usize,
 ) -> (f64, Option<f64>) {
     let p = equivalent_load(force_n, exponent);
-    let revolutions = (rating_n / p).powf(exponent) * 1e6;
+    (p, life_h(p, rating_n, exponent, input_rpm, teeth))
+}
+
+/// L10h, hours, of a bearing of rating `rating_n` (C, N) and life exponent `exponent` (p)
+/// under the equivalent load `load_n` (P, N) at the input speed `input_rpm` of a disc with
+/// `teeth`: (C/P)^p·10⁶/(60·n·(1 + 1/nc)); `None` for P = 0.
+pub fn life_h(
+    load_n: f64,
+    rating_n: f64,
+    exponent: f64,
+    input_rpm: f64,
+    teeth: usize,
+) -> Option<f64> {
+    let revolutions = (rating_n / load_n).powf(exponent) * 1e6;
     let hours = revolutions / (60.0 * relative_speed_rpm(input_rpm, teeth));
-    (p, (p > 0.0 && hours.is_finite()).then_some(hours))
+    (load_n > 0.0 && hours.is_finite()).then_some(hours)
 }

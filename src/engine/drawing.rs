@@ -171,7 +171,7 @@ fn loaded_at(spec: &Spec, crank_rad: f64) -> Result<Option<(String, AngleSolutio
     let Some(scene) = spec
         .scenes
         .iter()
-        .find(|s| Plan::for_scene(s).has(Effect::RollerContact))
+        .find(|s| Plan::for_scene(s).computes(Effect::RollerContact))
     else {
         return Ok(None);
     };

@@ -191,7 +191,7 @@ fn loaded_sweep(
         return Ok(LoadedSweep::default());
     }
     let model = loaded_model(design, m, scene, plan, settings);
-    let periodic = scene.spans_whole(design.loaded_period_rad(plan.has(Effect::OutputPins)));
+    let periodic = scene.spans_loaded_periods(design, plan);
     curves::sweep_observed(&model, &scene.crank_rad, periodic, progress)
         .map_err(|f| sweep_failed(scene, f))
 }
@@ -211,7 +211,7 @@ fn loaded_disc_sweeps(
         &loaded_model(design, m, scene, plan, settings),
         design.discs,
     );
-    let periodic = scene.spans_whole(design.loaded_period_rad(plan.has(Effect::OutputPins)));
+    let periodic = scene.spans_loaded_periods(design, plan);
     curves::sweep_discs_observed(&discs, &scene.crank_rad, periodic, progress)
         .map(Some)
         .map_err(|f| sweep_failed(scene, f))
@@ -240,21 +240,17 @@ fn bearing_life(
 ) -> Option<BearingLife> {
     let rating = design.crank_bearing?;
     let force = &loaded.bearing.as_ref()?.force_n;
-    if !spans_loaded_periods(design, scene, plan) {
+    if !scene.spans_loaded_periods(design, plan) {
         return None;
     }
     let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
+    let load = bearing_life::equivalent_load(force, p);
     Some(BearingLife {
-        equivalent_load_n: bearing_life::equivalent_load(force, p),
+        equivalent_load_n: load,
         life_h: scene
             .input_speed_rpm
-            .and_then(|n| bearing_life::rating_life(force, c, p, n, design.teeth).1),
+            .and_then(|n| bearing_life::life_h(load, c, p, n, design.teeth)),
     })
-}
-
-/// Whether the scene's sweep covers whole periods of its loaded curves.
-fn spans_loaded_periods(design: &Design, scene: &Scene, plan: &Plan) -> bool {
-    scene.spans_whole(design.loaded_period_rad(plan.has(Effect::OutputPins)))
 }
 
 /// What a reader of the results must be told besides the numbers, one line each: a torsion
@@ -267,15 +263,13 @@ pub fn notes(spec: &Spec) -> Vec<String> {
             notes.push(format!("scene `{}`: {HYSTERESIS}", scene.name));
         }
         if spec.design.crank_bearing.is_some() && plan.computes(Effect::Bearing) {
-            if !spans_loaded_periods(&spec.design, scene, &plan) {
+            if !scene.spans_loaded_periods(&spec.design, &plan) {
                 notes.push(format!(
                     "scene `{}`: crank-bearing life not rated: its crank range is not a whole \
                      number of loaded periods ({}°), and the equivalent load is a mean over \
                      whole load cycles",
                     scene.name,
-                    crate::numeric::number(units::deg(
-                        spec.design.loaded_period_rad(plan.has(Effect::OutputPins))
-                    ))
+                    crate::numeric::number(units::deg(plan.loaded_period_rad(&spec.design)))
                 ));
             } else if scene.input_speed_rpm.is_none() {
                 notes.push(format!(
@@ -305,9 +299,9 @@ pub fn sweeps(plan: &Plan, discs: usize) -> usize {
 /// Whether `plan` runs the loaded sweep over the crank angle (roller contact, output pins or
 /// the bearing, outside a torsion scene).
 fn runs_loaded(plan: &Plan) -> bool {
-    [Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
-        .iter()
-        .any(|&e| plan.computes(e))
+    Effect::ALL
+        .into_iter()
+        .any(|e| e.is_loaded() && plan.computes(e))
 }
 
 /// The loaded model of a scene (roller contact, output pins, bearing as `plan` says) solved to

@@ -100,6 +100,13 @@ impl Scene {
         self.spans_whole(design.mesh_period_rad())
     }
 
+    /// True when the sweep covers a whole number of the loaded periods of `plan`
+    /// (`Plan::loaded_period_rad`): its loaded curves wrap, and a mean over it is a mean over
+    /// whole load cycles.
+    pub fn spans_loaded_periods(&self, design: &Design, plan: &Plan) -> bool {
+        self.spans_whole(plan.loaded_period_rad(design))
+    }
+
     /// True when the sweep covers a whole number of `period_rad` (so its curves wrap around).
     pub fn spans_whole(&self, period_rad: f64) -> bool {
         let n = self.crank_rad.len();
@@ -245,6 +252,12 @@ impl Plan {
 
     pub fn has(&self, effect: Effect) -> bool {
         self.effects.iter().any(|p| p.effect == effect)
+    }
+
+    /// The period of the loaded curves of this plan, rad: the mesh period, or the longer one
+    /// of mesh and output pins when the pins are planned (`Design::loaded_period_rad`).
+    pub fn loaded_period_rad(&self, design: &Design) -> f64 {
+        design.loaded_period_rad(self.has(Effect::OutputPins))
     }
 
     /// Whether the quantities of `effect` are computed: it is planned, and it is not a loaded

@@ -432,7 +432,7 @@ fn scene_summary(spec: &Spec, scene: &Scene) -> String {
     }
     let pins = plan.has(Effect::OutputPins);
     // (A torsion scene's crank angles are where the input is locked, not a sweep.)
-    if scene.torque_sweep.is_none() && !scene.spans_whole(spec.design.loaded_period_rad(pins)) {
+    if scene.torque_sweep.is_none() && !scene.spans_loaded_periods(&spec.design, &plan) {
         s += if pins {
             " The sweep does not cover whole periods of the loaded disc (mesh and output pins)."
         } else {

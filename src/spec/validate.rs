@@ -566,7 +566,7 @@ fn bearing_life_limit(limits: &Limits, design: &Design, scenes: &[Scene]) -> Res
                 ),
             ));
         }
-        let period = design.loaded_period_rad(plan.has(Effect::OutputPins));
+        let period = plan.loaded_period_rad(design);
         if !s.spans_whole(period) {
             return Err(invalid(
                 &format!("scenes[{i}].crank"),

@@ -205,6 +205,7 @@ proptest! {
         within("ΔRrp", id.equidistant_mm.unwrap(), shift + gap)?;
         within("Δδ", id.rotation_rad.unwrap(), rotation)?;
         within("hole radius", id.hole_radius_offset_mm.unwrap(), 0.0)?;
+        prop_assert_eq!(id.form.harmonics.len(), truth.form.len());
         for (h, &(k, a, b)) in id.form.harmonics.iter().zip(&truth.form) {
             prop_assert_eq!(h.order, k);
             within(&format!("a{k}"), h.cos_mm, a)?;

@@ -866,6 +866,7 @@ fn finish(
             line: p.line,
         })
         .collect();
+    let hole_points = points.len() - profile.len();
     let teeth = request.design.teeth;
     let flanks = flanks(&profile, &form, teeth);
     let coverage = coverage(&profile, &flanks, teeth);
@@ -885,11 +886,7 @@ fn finish(
         coverage,
         flanks,
         profile,
-        hole_points: m - feet
-            .iter()
-            .zip(points)
-            .filter(|(_, p)| p.feature == Feature::Profile)
-            .count(),
+        hole_points,
         unknowns: layout.len,
         iterations,
     })
@@ -1031,9 +1028,6 @@ fn initial(
         let turn = pitch * k as f64 / SCAN as f64;
         let mut trial = params.clone();
         trial[2] = turn - rotation;
-        if let Some(i) = layout.rotation {
-            trial[i] = rotation;
-        }
         let mut feet = start_feet(&trial, &sample);
         if let Ok(r) = evaluate(request, layout, &trial, &sample, (&mut feet, false), None) {
             let cost = sum_squares(&r);

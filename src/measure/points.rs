@@ -214,11 +214,10 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
             "LWPOLYLINE" => {
                 refuse_open(path, e)?;
                 closed_profiles += 1;
-                push_profile(&mut points, e.vertices(path)?, e.closed());
+                push_profile(&mut points, e.vertices(path)?);
             }
             "POLYLINE" => {
                 refuse_open(path, e)?;
-                let closed = e.closed();
                 closed_profiles += 1;
                 let mut vertices = Vec::new();
                 i += 1;
@@ -226,7 +225,7 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                     vertices.extend(list[i].vertices(path)?);
                     i += 1;
                 }
-                push_profile(&mut points, vertices, closed);
+                push_profile(&mut points, vertices);
                 continue;
             }
             "CIRCLE" => {
@@ -289,10 +288,7 @@ fn refuse_open(path: &str, e: &Entity<'_>) -> Result<()> {
     ))
 }
 
-fn push_profile(points: &mut Vec<MeasuredPoint>, vertices: Vec<(usize, Vec2)>, closed: bool) {
-    if !closed {
-        return;
-    }
+fn push_profile(points: &mut Vec<MeasuredPoint>, vertices: Vec<(usize, Vec2)>) {
     points.extend(vertices.into_iter().map(|(line, point)| MeasuredPoint {
         point,
         feature: Feature::Profile,

@@ -84,13 +84,12 @@ impl Check {
         let w = &g.comparison.worst;
         let num = crate::numeric::number;
         Check {
-            id: match g.golden.disc {
-                Some(k) => format!(
-                    "{}/golden:{}[disc {k}]",
-                    g.golden.scene, g.golden.quantity.key
-                ),
-                None => format!("{}/golden:{}", g.golden.scene, g.golden.quantity.key),
-            },
+            id: format!(
+                "{}/golden:{}{}",
+                g.golden.scene,
+                g.golden.quantity.key,
+                g.golden.disc_suffix()
+            ),
             kind: CheckKind::Golden,
             value: w.deviation,
             limit: w.band,

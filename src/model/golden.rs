@@ -32,3 +32,10 @@ pub struct Golden {
     pub path: std::path::PathBuf,
     pub tolerance: Tolerance,
 }
+
+impl Golden {
+    /// "[disc k]" after a name when the golden holds a disc's curve, else nothing.
+    pub fn disc_suffix(&self) -> String {
+        self.disc.map_or(String::new(), |k| format!("[disc {k}]"))
+    }
+}

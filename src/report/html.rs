@@ -308,7 +308,7 @@ fn golden_section(goldens: &[GoldenResult]) -> Option<Section> {
                 @for g in goldens {
                     @let w = &g.comparison.worst;
                     tr class=(verdict(g.comparison.passed)) {
-                        td { code { (g.golden.scene) "/" (g.golden.quantity.key) } }
+                        td { code { (g.golden.scene) "/" (g.golden.quantity.key) (g.golden.disc_suffix()) } }
                         td { code { (g.golden.path.display()) } }
                         td.num { (with_unit(number(w.deviation), g.unit)) }
                         td.num { (with_unit(number(w.band), g.unit)) }

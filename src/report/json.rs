@@ -309,6 +309,9 @@ pub struct Tolerance {
 pub struct GoldenDoc<'a> {
     scene: &'a str,
     quantity: &'static str,
+    /// The disc whose curve it is, with several discs.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disc: Option<usize>,
     unit: &'static str,
     file: String,
     tolerance: Tolerance,
@@ -534,6 +537,7 @@ fn golden(g: &GoldenResult) -> GoldenDoc<'_> {
     GoldenDoc {
         scene: &g.golden.scene,
         quantity: g.golden.quantity.key,
+        disc: g.golden.disc,
         unit: g.unit,
         file: g.golden.path.display().to_string(),
         tolerance: Tolerance {

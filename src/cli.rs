@@ -146,15 +146,16 @@ fn write_file(path: &str, text: &str) -> Result<()> {
 
 /// Refuse, before anything is written, outputs that would destroy an input or one another: an
 /// empty path, an output at the path of one of `inputs` (what it is, its path), or two
-/// outputs at one path. `outputs` are (option, path); a `--report` directory also claims its
-/// `index.html`.
-fn distinct_outputs(inputs: &[(String, PathBuf)], outputs: &[(&str, &str)]) -> Result<()> {
+/// outputs at one path. `outputs` are (option, path if given); a `--report` directory also
+/// claims its `index.html`.
+fn distinct_outputs(inputs: &[(String, PathBuf)], outputs: &[(&str, Option<&str>)]) -> Result<()> {
     let usage = |m: String| Error::new(ErrorKind::Usage, format!("{m}; nothing was written"));
     let mut claimed: Vec<(String, PathBuf)> = inputs
         .iter()
         .map(|(what, p)| (what.clone(), files::identity(p)))
         .collect();
     for &(flag, path) in outputs {
+        let Some(path) = path else { continue };
         if path.is_empty() {
             return Err(usage(format!("{flag} \"\": an empty path names no file")));
         }
@@ -306,15 +307,12 @@ struct Outputs<'a> {
 
 impl Outputs<'_> {
     /// The files and directories this run writes, by option.
-    fn paths(&self) -> Vec<(&'static str, &str)> {
+    fn paths(&self) -> [(&'static str, Option<&str>); 3] {
         [
             ("--json", self.json),
             ("--junit", self.junit),
             ("--report", self.report),
         ]
-        .into_iter()
-        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
-        .collect()
     }
 }
 
@@ -529,13 +527,17 @@ fn run_scenes(
     writes: scene::Writes,
 ) -> Result<Vec<crate::model::results::SceneResult>> {
     use rayon::prelude::*;
+    let plans: Vec<_> = spec
+        .scenes
+        .iter()
+        .map(|s| scene::plan(spec, s, writes))
+        .collect();
     // A bar for large scenes only: the sweeps of every scene, in crank angles.
     let total: usize = spec
         .scenes
         .iter()
-        .map(|s| {
-            s.crank_rad.len() * scene::sweeps(&scene::plan(spec, s, writes), spec.design.discs)
-        })
+        .zip(&plans)
+        .map(|(s, plan)| s.crank_rad.len() * scene::sweeps(plan, spec.design.discs))
         .sum();
     let bar = report::terminal::Bar::new(
         "solving the scenes",
@@ -543,16 +545,12 @@ fn run_scenes(
         total as u64,
         report::terminal::WORTH_SHOWING * 10,
     );
+    let settings = crate::equilibrium::solve::Settings::default();
     let results: Vec<Result<crate::model::results::SceneResult>> = spec
         .scenes
         .par_iter()
-        .map(|s| {
-            let plan = scene::plan(spec, s, writes);
-            let settings = crate::equilibrium::solve::Settings::default();
-            let d = (&spec.design, &spec.modification);
-            scene::run_observed(d.0, d.1, (s, &plan), &settings, &bar)
-                .map_err(|e| scene::at_scene(spec, s, e))
-        })
+        .zip(&plans)
+        .map(|(s, plan)| scene::run_with_observed(spec, (s, plan), &settings, &bar))
         .collect();
     results.into_iter().collect()
 }
@@ -779,11 +777,7 @@ fn run_profile(
             ),
         ));
     }
-    let outputs: Vec<_> = [("--csv", csv), ("--dxf", dxf)]
-        .into_iter()
-        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
-        .collect();
-    distinct_outputs(&inputs_of(path, None), &outputs)?;
+    distinct_outputs(&inputs_of(path, None), &[("--csv", csv), ("--dxf", dxf)])?;
     let spec = spec::load(path)?;
     let tol = tolerance_um / 1000.0;
     let points = export::polyline(&Profile::new(&spec.design, &spec.modification), tol);
@@ -813,10 +807,7 @@ fn run_optimise(
     out: &mut dyn Write,
 ) -> Result<Outcome> {
     let spec = spec::load(path)?;
-    let outputs: Vec<(&str, &str)> = [("--write", write), ("--map", map)]
-        .into_iter()
-        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
-        .collect();
+    let outputs = [("--write", write), ("--map", map)];
     distinct_outputs(&inputs_of(path, Some(&spec)), &outputs)?;
     if spec.studies.is_empty() {
         return Err(Error::new(
@@ -904,11 +895,7 @@ fn run_fit(
         "the measured points".to_string(),
         std::path::PathBuf::from(&measured.path),
     ));
-    let outputs: Vec<(&str, &str)> = [("--write", write), ("--form-csv", form_csv)]
-        .into_iter()
-        .filter_map(|(flag, p)| p.map(|p| (flag, p)))
-        .collect();
-    distinct_outputs(&inputs, &outputs)?;
+    distinct_outputs(&inputs, &[("--write", write), ("--form-csv", form_csv)])?;
     let read = points::read(&measured.path, measured.format)?;
     let request = fit::Request {
         design: &spec.design,

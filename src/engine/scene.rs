@@ -77,8 +77,24 @@ pub fn run_with(
     plan: &Plan,
     settings: &Settings,
 ) -> Result<SceneResult> {
-    run_design(&spec.design, &spec.modification, scene, plan, settings)
-        .map_err(|e| at_scene(spec, scene, e))
+    run_with_observed(spec, (scene, plan), settings, &Silent)
+}
+
+/// `run_with`, telling `progress` of the crank angles done (`run_observed`).
+pub fn run_with_observed(
+    spec: &Spec,
+    (scene, plan): (&Scene, &Plan),
+    settings: &Settings,
+    progress: &dyn Progress,
+) -> Result<SceneResult> {
+    run_observed(
+        &spec.design,
+        &spec.modification,
+        (scene, plan),
+        settings,
+        progress,
+    )
+    .map_err(|e| at_scene(spec, scene, e))
 }
 
 /// Run one scene of `design` with the modification `m` (an optimisation candidate, or the

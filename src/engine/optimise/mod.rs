@@ -231,7 +231,10 @@ pub fn run_study_with(spec: &Spec, study: &Study, progress: &dyn Progress) -> St
     }
 }
 
-/// Where `optimum` came from; the earliest stage that holds it.
+/// Where `optimum` came from: a local run whose path holds it first (a run evaluates its own
+/// start again, so an optimum that is the start or a global sample is usually reported as the
+/// run from it), else the start, a global sample, a refinement of the verification grid, or a
+/// grid point.
 fn found(
     optimum: &Evaluation,
     start: &Evaluation,

@@ -364,3 +364,29 @@ fn the_drawing_takes_a_scene_under_load_not_a_torsion_loop() {
     assert_eq!(loaded.scene, "rated (disc 0)");
     assert!(!loaded.forces.is_empty());
 }
+
+/// The design review rates the crank bearing of each disc of a two-disc reducer (the scene
+/// itself has no bearing of its own; each disc's is under `SceneResult::discs`).
+#[test]
+fn the_review_rates_each_discs_bearing() {
+    let dir = common::Scratch::new("two-disc-review");
+    let report = dir.join("review");
+    let args = [
+        "check",
+        "specs/reducer-two-discs.yaml",
+        "--report",
+        report.to_str().unwrap(),
+    ];
+    let run = common::cycloid_here(&args);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let page = std::fs::read_to_string(report.join("index.html")).unwrap();
+    let section = &page[page
+        .find("Crank-bearing life</h2>")
+        .expect("the bearing section")..];
+    for k in 0..2 {
+        assert!(
+            section.contains(&format!("<code>rated</code> disc {k}")),
+            "disc {k}"
+        );
+    }
+}

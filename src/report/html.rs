@@ -107,13 +107,13 @@ pub struct ReportInput<'a> {
 }
 
 /// A section of the page: its anchor, its heading (in the table of contents too) and body.
-struct Section {
+pub(super) struct Section {
     id: String,
     heading: Markup,
     body: Markup,
 }
 
-fn section(id: impl Into<String>, heading: Markup, body: Markup) -> Section {
+pub(super) fn section(id: impl Into<String>, heading: Markup, body: Markup) -> Section {
     let id = id.into();
     Section { id, heading, body }
 }
@@ -131,11 +131,12 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         sections.extend(scene_section(input.spec, k, scene, r, &mut files));
     }
     let prefix = |k: usize, s: &Scene| format!("scene-{}-{}", k + 1, slug(&s.name));
-    let more = super::torsion::sections(input.spec, input.results, prefix, figure, &mut files);
-    sections.extend(
-        more.into_iter()
-            .map(|(id, heading, body)| Section { id, heading, body }),
-    );
+    sections.extend(super::torsion::sections(
+        input.spec,
+        input.results,
+        prefix,
+        &mut files,
+    ));
     if !input.optimisation.is_empty() {
         sections.push(optimisation_section(input.optimisation, &mut files));
     }
@@ -167,7 +168,7 @@ fn slug(name: &str) -> String {
     name.replace(|c: char| !kept(c), "_")
 }
 
-fn figure(file: &str, title: &str, caption: &str) -> Markup {
+pub(super) fn figure(file: &str, title: &str, caption: &str) -> Markup {
     html! {
         figure {
             img src=(file) alt=(title);
@@ -187,7 +188,7 @@ fn signed(text: String) -> String {
 }
 
 /// A table (in a `scrolling` box) with one header row of `head`'s cells above `rows`.
-fn data_table(head: Markup, rows: Markup) -> Markup {
+pub(super) fn data_table(head: Markup, rows: Markup) -> Markup {
     scrolling(html! { table { thead { tr { (head) } } tbody { (rows) } } })
 }
 

@@ -2,6 +2,7 @@
 //! torsion block of a scene in the results JSON (`TorsionDoc`), and the design review's
 //! torsion curves, table of catalogue figures and bearing-life table (`sections`).
 
+use super::html::{data_table, figure, section, Section};
 use super::json::Finite;
 use super::svg::{LinePlot, Series, PALETTE};
 use crate::engine::scene::HYSTERESIS;
@@ -68,9 +69,6 @@ impl TorsionDoc {
         })
     }
 }
-
-/// A section of the design review: anchor, heading, body.
-pub type Section = (String, Markup, Markup);
 
 /// The torsion curve of a scene as drawn: per locked angle the loop's centre line (the
 /// branches coincide), the rising branch from −rated to +rated with both one-sided values at
@@ -150,32 +148,29 @@ fn torsion_plot(scene: &Scene, r: &SceneResult, t: &TorsionCurves) -> LinePlot {
 /// The table of catalogue figures per locked angle.
 fn figures_table(r: &SceneResult, t: &TorsionCurves) -> Markup {
     let arcmin = |x: f64| number(units::arcmin(x));
-    html! {
-        table {
-            thead { tr {
-                th { "locked crank angle" }
-                th { "lost motion ±3 % (arcmin)" }
-                th { "backlash (arcmin)" }
-                th { "rigidity + (N·m/arcmin)" }
-                th { "rigidity − (N·m/arcmin)" }
-                th { "torsional rigidity (N·m/arcmin)" }
-                th { "hysteresis loss" }
-            } }
-            tbody {
-                @for (k, f) in t.figures.iter().enumerate() {
-                    tr {
-                        td { (format!("{:.2}°", units::deg(r.crank_rad[k]))) }
-                        td { (arcmin(f.lost_motion_rad)) }
-                        td { (arcmin(f.backlash_rad)) }
-                        td { (number(nm_per_arcmin(f.rigidity_nmm_per_rad.0))) }
-                        td { (number(nm_per_arcmin(f.rigidity_nmm_per_rad.1))) }
-                        td { b { (number(nm_per_arcmin(f.rigidity()))) } }
-                        td { "0 (frictionless model)" }
-                    }
-                }
+    let head = html! {
+        th { "locked crank angle" }
+        th { "lost motion ±3 % (arcmin)" }
+        th { "backlash (arcmin)" }
+        th { "rigidity + (N·m/arcmin)" }
+        th { "rigidity − (N·m/arcmin)" }
+        th { "torsional rigidity (N·m/arcmin)" }
+        th { "hysteresis loss" }
+    };
+    let rows = html! {
+        @for (k, f) in t.figures.iter().enumerate() {
+            tr {
+                td { (format!("{:.2}°", units::deg(r.crank_rad[k]))) }
+                td { (arcmin(f.lost_motion_rad)) }
+                td { (arcmin(f.backlash_rad)) }
+                td { (number(nm_per_arcmin(f.rigidity_nmm_per_rad.0))) }
+                td { (number(nm_per_arcmin(f.rigidity_nmm_per_rad.1))) }
+                td { b { (number(nm_per_arcmin(f.rigidity()))) } }
+                td { "0 (frictionless model)" }
             }
         }
-    }
+    };
+    data_table(head, rows)
 }
 
 /// The definitions the figures follow, for the reader of the table.
@@ -187,11 +182,10 @@ const DEFINITIONS: &str = "Figures as the makers of precision reducers define th
 
 /// The design review's torsion sections (one per torsion scene) and its bearing-life section
 /// (when a scene rated the crank bearing); the plots go into `files` as (name, SVG).
-pub fn sections(
+pub(super) fn sections(
     spec: &Spec,
     results: &[SceneResult],
     prefix: impl Fn(usize, &Scene) -> String,
-    figure: impl Fn(&str, &str, &str) -> Markup,
     files: &mut Vec<(String, String)>,
 ) -> Vec<Section> {
     let mut out = Vec::new();
@@ -205,9 +199,13 @@ pub fn sections(
             (figure(&file, "Torsion curve", "one line per locked crank angle; the points of \
                 the figures (±3 %, ±50 %, ±100 % of the rated torque) marked ◇; at T = 0 the \
                 dead band is the vertical step from γ(0⁻) to γ(0⁺)"))
-            div.scroll { (figures_table(r, t)) }
+            (figures_table(r, t))
         };
-        out.push((id, html! { "Torsion: scene " code { (scene.name) } }, body));
+        out.push(section(
+            id,
+            html! { "Torsion: scene " code { (scene.name) } },
+            body,
+        ));
     }
     out.extend(bearing_section(spec, results));
     out
@@ -216,11 +214,18 @@ pub fn sections(
 /// The crank bearing's rating life of every scene that rated it.
 fn bearing_section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
     let rating = spec.design.crank_bearing?;
+    // (scene, disc with several discs, its life): with several discs each disc has a bearing.
     let rated: Vec<_> = spec
         .scenes
         .iter()
         .zip(results)
-        .filter_map(|(s, r)| Some((s, r.bearing_life?)))
+        .flat_map(|(s, r)| {
+            let one = r.discs.is_empty().then_some((None, r));
+            let each = r.discs.iter().enumerate().map(|(k, d)| (Some(k), d));
+            one.into_iter()
+                .chain(each)
+                .filter_map(move |(k, d)| Some((s, k, d.bearing_life?)))
+        })
         .collect();
     let notes: Vec<String> = crate::engine::scene::notes(spec)
         .into_iter()
@@ -236,22 +241,22 @@ fn bearing_section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
              disc. C = " (number(rating.dynamic_load_rating_n)) " N, p = "
             (number(rating.life_exponent)) "."
         }
-        table {
-            thead { tr {
+        (data_table(
+            html! {
                 th { "scene" } th { "input speed (rpm)" } th { "equivalent load P (N)" }
                 th { "rating life L10h (h)" }
-            } }
-            tbody { @for (s, b) in &rated { tr {
-                td { code { (s.name) } }
+            },
+            html! { @for (s, k, b) in &rated { tr {
+                td { code { (s.name) } @if let Some(k) = k { " disc " (k) } }
                 td { (s.input_speed_rpm.map_or("—".to_string(), number)) }
                 td { (number(b.equivalent_load_n)) }
                 td { (b.life_h.map_or("not rated".to_string(), number)) }
-            } } }
-        }
+            } } },
+        ))
         @for n in &notes { p.note { (n) } }
     };
-    Some((
-        "crank-bearing-life".to_string(),
+    Some(section(
+        "crank-bearing-life",
         html! { "Crank-bearing life" },
         body,
     ))

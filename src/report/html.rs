@@ -371,7 +371,9 @@ fn scene_section(
     let phase = |d: usize| number(units::deg(spec.design.disc_phase_rad(d)));
     let body = html! {
         p.note { (scene_summary(spec, scene)) }
-        div.grid { @for p in &plots { (figure(&p.file, &p.title, &p.caption)) } }
+        @if !plots.is_empty() {
+            div.grid { @for p in &plots { (figure(&p.file, &p.title, &p.caption)) } }
+        }
         @for (d, disc) in &discs {
             h3 { "Disc " (d) " (crank phase " (phase(*d)) "°)" }
             div.grid { @for p in disc { (figure(&p.file, &p.title, &p.caption)) } }

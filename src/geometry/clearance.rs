@@ -90,9 +90,11 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// The mesh of `design` with its profile ground to `modification` plus the design's
+    /// grinding errors (`Deviations::ground`).
     pub fn new(design: &Design, modification: &Modification) -> Self {
         Mesh {
-            profile: Profile::new(design, modification),
+            profile: Profile::new(design, &design.deviations.ground(modification)),
             teeth: design.teeth,
             rollers: design.rollers,
             eccentricity_mm: design.eccentricity_mm,

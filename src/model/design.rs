@@ -43,6 +43,8 @@ pub struct Design {
     pub roller_material: Material,
     /// The crank bearing's rating (spec: `reducer.crank_bearing`), for its rating life.
     pub crank_bearing: Option<CrankBearing>,
+    /// The parts as built (`reducer.deviations`; all zero: the drawing).
+    pub deviations: super::Deviations,
 }
 
 /// The rating of the crank bearing of a disc (ISO 281): its basic dynamic load rating C and

@@ -47,6 +47,7 @@ macro_rules! named {
 
 pub mod accuracy;
 pub mod design;
+pub mod deviations;
 pub mod golden;
 pub mod limits;
 pub mod measured;
@@ -58,6 +59,7 @@ pub mod study;
 pub use design::{
     ConvexRadius, CrankBearing, Design, Locus, Material, Modification, OutputPins, MAX_DISCS,
 };
+pub use deviations::{CentreDeviation, Deviations, RollerDeviation};
 pub use golden::{Golden, Tolerance};
 pub use limits::{Limit, Limits};
 pub use scene::{

@@ -3,6 +3,7 @@
 //! Errors carry `file:line:column` and the key path. Syntax errors take their location from the
 //! YAML parser (`parse`); value and design-rule errors locate their key in the text (`locate`).
 
+pub mod deviations;
 pub mod locate;
 pub mod measured;
 pub mod parse;

@@ -169,6 +169,62 @@ pub struct RawReducer {
     /// The crank bearing's rating, for its rating life.
     #[serde(default)]
     pub crank_bearing: Option<RawCrankBearing>,
+    /// Deviations of the built parts from the drawing (one as-built state).
+    #[serde(default)]
+    pub deviations: Option<RawDeviations>,
+}
+
+/// `reducer.deviations`: every key optional (MODEL.md "Part deviations").
+#[derive(Debug, Deserialize, Default, Clone)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping of the deviation keys (eccentricity_mm, rollers, pins, holes, shift_mm, equidistant_mm)"
+)]
+pub struct RawDeviations {
+    #[serde(default)]
+    pub eccentricity_mm: f64,
+    #[serde(default)]
+    pub rollers: Vec<RawRollerDeviation>,
+    #[serde(default)]
+    pub pins: Vec<RawCentreDeviation>,
+    #[serde(default)]
+    pub holes: Vec<RawCentreDeviation>,
+    #[serde(default)]
+    pub shift_mm: f64,
+    #[serde(default)]
+    pub equidistant_mm: f64,
+}
+
+/// One roller's deviation: centre outward and counter-clockwise along its circle, radius.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the key index (and optionally radial_mm, tangential_mm, radius_mm)"
+)]
+pub struct RawRollerDeviation {
+    pub index: i64,
+    #[serde(default)]
+    pub radial_mm: f64,
+    #[serde(default)]
+    pub tangential_mm: f64,
+    #[serde(default)]
+    pub radius_mm: f64,
+}
+
+/// One pin's or hole's centre deviation; a hole names its disc when there are several.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the key index (and optionally disc, radial_mm, tangential_mm)"
+)]
+pub struct RawCentreDeviation {
+    pub index: i64,
+    #[serde(default)]
+    pub disc: Option<i64>,
+    #[serde(default)]
+    pub radial_mm: f64,
+    #[serde(default)]
+    pub tangential_mm: f64,
 }
 
 #[derive(Debug, Deserialize)]

@@ -125,6 +125,15 @@ fn material(key: &str, raw: RawMaterial) -> Result<Material> {
 }
 
 fn design(raw: RawReducer) -> Result<Design> {
+    let deviations = raw.deviations.clone();
+    let mut design = nominal_design(raw)?;
+    if let Some(d) = deviations {
+        design.deviations = super::deviations::build(&d, &design)?;
+    }
+    Ok(design)
+}
+
+fn nominal_design(raw: RawReducer) -> Result<Design> {
     let teeth = count("reducer.teeth", raw.teeth, 2)?;
     let rollers = count("reducer.rollers", raw.rollers, 3)?;
     if rollers != teeth + 1 {
@@ -186,6 +195,7 @@ fn design(raw: RawReducer) -> Result<Design> {
         disc_material,
         roller_material,
         crank_bearing: raw.crank_bearing.map(crank_bearing).transpose()?,
+        deviations: Deviations::default(),
     })
 }
 
@@ -438,7 +448,7 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     }
     let design = design(raw.reducer)?;
     let modification = modification(&raw.modification)?;
-    super::rules::check(&design, &modification)?;
+    super::deviations::check(&design, &modification)?;
     if raw.scenes.is_empty() {
         return Err(invalid("scenes", "a spec needs at least one scene".into()));
     }

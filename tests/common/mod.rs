@@ -274,6 +274,7 @@ pub fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f64) -> 
         disc_material: STEEL,
         roller_material: STEEL,
         crank_bearing: None,
+        deviations: Default::default(),
     }
 }
 

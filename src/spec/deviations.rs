@@ -1,0 +1,224 @@
+//! `reducer.deviations` → `model::Deviations`, and the rules an as-built state must keep
+//! (MODEL.md "Part deviations"): indices in range, parts that stay in their mesh, rollers that
+//! do not overlap, a ground profile that is still a disc.
+
+use super::raw::{RawCentreDeviation, RawDeviations};
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::{CentreDeviation, Design, Deviations, Modification, RollerDeviation};
+use crate::numeric;
+
+const KEY: &str = "reducer.deviations";
+
+fn invalid(key: String, message: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, message).at_key(&key)
+}
+
+fn finite(key: String, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(invalid(
+            key,
+            format!("must be a finite number, got {value}"),
+        ))
+    }
+}
+
+/// An index into `count` parts named `what`, each given once (`seen`).
+fn index(key: String, value: i64, count: usize, what: &str, seen: &mut [bool]) -> Result<usize> {
+    if !(0..count as i64).contains(&value) {
+        return Err(invalid(
+            format!("{key}.index"),
+            format!(
+                "the reducer has {count} {what}, numbered 0 to {}; got {value}",
+                count - 1
+            ),
+        ));
+    }
+    let i = value as usize;
+    if std::mem::replace(&mut seen[i], true) {
+        return Err(invalid(
+            format!("{key}.index"),
+            format!("{what} {i} is given twice"),
+        ));
+    }
+    Ok(i)
+}
+
+fn centre(key: &str, raw: &RawCentreDeviation) -> Result<CentreDeviation> {
+    Ok(CentreDeviation {
+        radial_mm: finite(format!("{key}.radial_mm"), raw.radial_mm)?,
+        tangential_mm: finite(format!("{key}.tangential_mm"), raw.tangential_mm)?,
+    })
+}
+
+/// The validated deviations of `design` (the design rules of the parts are `check`'s).
+pub fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> {
+    let mut d = Deviations {
+        eccentricity_mm: finite(format!("{KEY}.eccentricity_mm"), raw.eccentricity_mm)?,
+        shift_mm: finite(format!("{KEY}.shift_mm"), raw.shift_mm)?,
+        equidistant_mm: finite(format!("{KEY}.equidistant_mm"), raw.equidistant_mm)?,
+        ..Deviations::default()
+    };
+    let mut seen = vec![false; design.rollers];
+    if !raw.rollers.is_empty() {
+        d.rollers = vec![RollerDeviation::default(); design.rollers];
+    }
+    for (n, r) in raw.rollers.iter().enumerate() {
+        let key = format!("{KEY}.rollers[{n}]");
+        let i = index(key.clone(), r.index, design.rollers, "rollers", &mut seen)?;
+        d.rollers[i] = RollerDeviation {
+            centre: CentreDeviation {
+                radial_mm: finite(format!("{key}.radial_mm"), r.radial_mm)?,
+                tangential_mm: finite(format!("{key}.tangential_mm"), r.tangential_mm)?,
+            },
+            radius_mm: finite(format!("{key}.radius_mm"), r.radius_mm)?,
+        };
+    }
+    let pins = design.pins.count;
+    let mut seen = vec![false; pins];
+    if !raw.pins.is_empty() {
+        d.pins = vec![CentreDeviation::default(); pins];
+    }
+    for (n, p) in raw.pins.iter().enumerate() {
+        let key = format!("{KEY}.pins[{n}]");
+        if p.disc.is_some() {
+            return Err(invalid(
+                format!("{key}.disc"),
+                "the pins sit on the output flange, which all discs share: a pin names no disc"
+                    .into(),
+            ));
+        }
+        let j = index(key.clone(), p.index, pins, "output pins", &mut seen)?;
+        d.pins[j] = centre(&key, p)?;
+    }
+    let mut seen = vec![vec![false; pins]; design.discs];
+    if !raw.holes.is_empty() {
+        d.holes = vec![vec![CentreDeviation::default(); pins]; design.discs];
+    }
+    for (n, h) in raw.holes.iter().enumerate() {
+        let key = format!("{KEY}.holes[{n}]");
+        let k = match (h.disc, design.discs) {
+            (None, 1) => 0,
+            (None, discs) => {
+                return Err(invalid(
+                    format!("{key}.disc"),
+                    format!(
+                        "the reducer has {discs} discs: say whose hole this is (disc: 0 to {})",
+                        discs - 1
+                    ),
+                ))
+            }
+            (Some(k), discs) if (0..discs as i64).contains(&k) => k as usize,
+            (Some(k), discs) => {
+                return Err(invalid(
+                    format!("{key}.disc"),
+                    format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
+                ))
+            }
+        };
+        let j = index(key.clone(), h.index, pins, "holes per disc", &mut seen[k])?;
+        d.holes[k][j] = centre(&key, h)?;
+    }
+    Ok(d)
+}
+
+fn rule(key: String, message: String) -> Error {
+    Error::new(ErrorKind::ImpossibleDesign, message).at_key(&key)
+}
+
+/// The rules of an as-built state: the ground profile (modification plus grinding errors) is a
+/// disc (`rules::check`); no part moves by the eccentricity or more (the teeth are 2e deep and a
+/// pin hole is e wider than its pin: a part moved that far is out of its mesh, as a disc centre
+/// moved by e is, `SolveFailure::OutOfMesh`); and neighbouring rollers, as built, do not overlap.
+pub fn check(design: &Design, m: &Modification) -> Result<()> {
+    let d = &design.deviations;
+    super::rules::check(design, &d.ground(m)).map_err(|mut e| {
+        if d.shift_mm != 0.0 || d.equidistant_mm != 0.0 {
+            e.message = format!(
+                "as ground (with the grinding errors of {KEY}): {}",
+                e.message
+            );
+        }
+        e
+    })?;
+    let e = design.eccentricity_mm;
+    let too_far = |key: String, what: String, moved: f64| -> Result<()> {
+        if moved < e {
+            return Ok(());
+        }
+        Err(rule(
+            key,
+            format!(
+                "{what} moves by {} mm, not less than the eccentricity e = {} mm: a part moved \
+                 that far is out of its mesh (the teeth are 2e deep, a hole is e wider than its pin)",
+                numeric::number(moved),
+                numeric::input(e)
+            ),
+        ))
+    };
+    too_far(
+        format!("{KEY}.eccentricity_mm"),
+        "the crank eccentricity".into(),
+        d.eccentricity_mm.abs(),
+    )?;
+    for (i, r) in d.rollers.iter().enumerate() {
+        let moved = r.centre.radial_mm.hypot(r.centre.tangential_mm) + r.radius_mm.abs();
+        too_far(
+            format!("{KEY}.rollers"),
+            format!("roller {i} (centre and radius)"),
+            moved,
+        )?;
+    }
+    for (j, p) in d.pins.iter().enumerate() {
+        too_far(
+            format!("{KEY}.pins"),
+            format!("pin {j}"),
+            p.radial_mm.hypot(p.tangential_mm),
+        )?;
+    }
+    for (k, holes) in d.holes.iter().enumerate() {
+        for (j, h) in holes.iter().enumerate() {
+            let what = format!("hole {j} of disc {k}");
+            too_far(
+                format!("{KEY}.holes"),
+                what,
+                h.radial_mm.hypot(h.tangential_mm),
+            )?;
+        }
+    }
+    rollers_apart(design)
+}
+
+/// Neighbouring rollers as built keep apart: centre distance above the sum of their radii.
+fn rollers_apart(design: &Design) -> Result<()> {
+    let d = &design.deviations;
+    if !d.moves_rollers() {
+        return Ok(());
+    }
+    let np = design.rollers;
+    let rp = design.roller_circle_radius_mm;
+    let centre = |i: usize| {
+        let a = design.roller_angle(i);
+        let (dx, dy) = d.roller(i).centre.displacement_mm(rp, (a.cos(), a.sin()));
+        (rp * a.cos() + dx, rp * a.sin() + dy)
+    };
+    for i in 0..np {
+        let j = (i + 1) % np;
+        let ((xi, yi), (xj, yj)) = (centre(i), centre(j));
+        let apart = (xi - xj).hypot(yi - yj);
+        let radii = 2.0 * design.roller_radius_mm + d.roller(i).radius_mm + d.roller(j).radius_mm;
+        if apart <= radii {
+            return Err(rule(
+                format!("{KEY}.rollers"),
+                format!(
+                    "rollers {i} and {j} overlap as built: their centres are {} mm apart, \
+                     less than the sum of their radii {} mm",
+                    numeric::number(apart),
+                    numeric::number(radii)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -347,6 +347,18 @@ pub fn solve_failed(scene: &Scene, crank_rad: f64, failure: &impl std::fmt::Disp
 /// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.
 pub fn explain(spec: &Spec, writes: Writes) -> String {
     let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
+    let deviations = spec.design.deviations.describe();
+    if !deviations.is_empty() {
+        out += &format!(
+            "parts as built (reducer.deviations), in force in every scene, exact geometry; \
+             gaps repeat every {}°, loaded curves with the pins every {}°:\n",
+            crate::numeric::number(units::deg(spec.design.mesh_period_rad())),
+            crate::numeric::number(units::deg(spec.design.loaded_period_rad(true)))
+        );
+        for line in deviations {
+            out += &format!("  deviation {line}\n");
+        }
+    }
     for scene in &spec.scenes {
         let plan = plan(spec, scene, writes);
         let first = units::deg(scene.crank_rad.first().copied().unwrap_or(0.0));

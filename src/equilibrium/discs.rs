@@ -2,7 +2,7 @@
 //! discs, torsion, bearing life").
 //!
 //! Disc k of N runs at the crank phase φk = φ + 2πk/N and meshes with the same rollers; its
-//! holes are bored so that the pins sit centred at its ideal pose (`Pins::turned`). Each disc
+//! holes are bored so that the pins sit centred at its ideal pose (`Pins::for_disc`). Each disc
 //! balances its own share Tk of the output torque through its rollers and its pins, with its
 //! own crank bearing, exactly as one disc does (`sweep::solve_into`); what couples them is the
 //! output flange: the output lag γ = βk + βo,k is the same for every disc, and Σ Tk = T.
@@ -43,9 +43,10 @@ impl Discs {
         let phases: Vec<f64> = (0..count).map(|k| disc_phase_rad(k, count)).collect();
         let models = phases
             .iter()
-            .map(|&phase| {
+            .enumerate()
+            .map(|(k, &phase)| {
                 let mut m = model.clone();
-                m.pins = m.pins.map(|p| p.turned(phase / teeth));
+                m.pins = m.pins.map(|p| p.for_disc(k, phase / teeth));
                 m
             })
             .collect();
@@ -566,7 +567,7 @@ mod tests {
     use crate::model::{Effect, Plan};
     use std::f64::consts::TAU;
 
-    /// The pins of disc k as its own solve sees them (`Pins::turned`) have the ideal arms of
+    /// The pins of disc k as its own solve sees them (`Pins::for_disc`) have the ideal arms of
     /// MODEL.md "Several discs": rw·sin(2πj/M − φ/nc + βk − φk), φk = φ + 2πk/N, for the disc
     /// at its own crank φk turned by ψk = −φk/nc + βk. Only rounding separates the two forms
     /// (a few ulp of rw = 18 mm).

@@ -48,6 +48,16 @@ pub struct Pins {
     /// Bound on the round-off of a pin gap, mm: 16·ε·(c + e + rw), a few ulp of the largest
     /// length it is formed from.
     gap_resolution_mm: f64,
+    /// de: the crank's eccentricity minus the design's, mm (the disc centre orbits at e + de;
+    /// the holes were bored for e).
+    eccentricity_deviation_mm: f64,
+    /// Pin j's centre displacement on the flange, in the frame where pin j sits at 2πj/M, mm.
+    pin_offsets: Vec<Vec2>,
+    /// `hole_offsets[k][j]`: hole j of disc k, in the disc's frame, mm.
+    hole_offsets: Vec<Vec<Vec2>>,
+    /// (pin, hole) displacements of the disc this model solves, turned with `base`; empty when
+    /// its pins and holes are nominal.
+    parts: Vec<(Vec2, Vec2)>,
 }
 
 impl Pins {
@@ -55,14 +65,31 @@ impl Pins {
         let pin = design.pins.pin_radius_mm;
         let hole = design.hole_radius_mm();
         let m = design.pins.count;
-        Pins {
+        let base: Vec<Vec2> = (0..m)
+            .map(|j| {
+                let a = std::f64::consts::TAU * j as f64 / m as f64;
+                Vec2::new(a.cos(), a.sin())
+            })
+            .collect();
+        let d = &design.deviations;
+        let rw = design.pins.circle_radius_mm;
+        let moved = |c: crate::model::CentreDeviation, j: usize| {
+            let (x, y) = c.displacement_mm(rw, (base[j].x, base[j].y));
+            Vec2::new(x, y)
+        };
+        let (pin_offsets, hole_offsets) = if d.moves_pins() {
+            (
+                (0..m).map(|j| moved(d.pin(j), j)).collect(),
+                (0..design.discs)
+                    .map(|k| (0..m).map(|j| moved(d.hole(k, j), j)).collect())
+                    .collect(),
+            )
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        let pins = Pins {
             count: m,
-            base: (0..m)
-                .map(|j| {
-                    let a = std::f64::consts::TAU * j as f64 / m as f64;
-                    Vec2::new(a.cos(), a.sin())
-                })
-                .collect(),
+            base,
             circle_radius_mm: design.pins.circle_radius_mm,
             eccentricity_mm: design.eccentricity_mm,
             clearance_mm: design.pins.hole_clearance_mm,
@@ -83,18 +110,38 @@ impl Pins {
                 * (design.pins.hole_clearance_mm
                     + design.eccentricity_mm
                     + design.pins.circle_radius_mm),
-        }
+            eccentricity_deviation_mm: d.eccentricity_mm,
+            pin_offsets,
+            hole_offsets,
+            parts: Vec::new(),
+        };
+        pins.for_disc(0, 0.0)
     }
 
     /// The pins as disc k of several sees them (MODEL.md "Several discs"): disc k runs at the
     /// crank phase φ + 2πk/N, so its ideal rotation is 2πk/(N·nc) behind the output flange's,
     /// and its holes are bored that much ahead so that the pins sit centred at the ideal pose:
-    /// in the disc's own solve the pin pattern is turned by `phase_rad` = 2πk/(N·nc).
-    pub fn turned(mut self, phase_rad: f64) -> Self {
+    /// in the disc's own solve the pin pattern is turned by `phase_rad` = 2πk/(N·nc). The
+    /// pins as built, and disc k's holes, turn with it.
+    pub fn for_disc(mut self, disc: usize, phase_rad: f64) -> Self {
         let (s, c) = phase_rad.sin_cos();
-        for unit in &mut self.base {
-            *unit = rotate(*unit, c, s);
-        }
+        let turn = |v: &Vec2| rotate(*v, c, s);
+        let m = self.count;
+        self.base = (0..m)
+            .map(|j| {
+                let a = std::f64::consts::TAU * j as f64 / m as f64;
+                turn(&Vec2::new(a.cos(), a.sin()))
+            })
+            .collect();
+        self.parts = match self.hole_offsets.get(disc) {
+            Some(holes) => self
+                .pin_offsets
+                .iter()
+                .zip(holes)
+                .map(|(p, h)| (turn(p), turn(h)))
+                .collect(),
+            None => Vec::new(),
+        };
         self
     }
 
@@ -145,16 +192,29 @@ impl Pins {
     ) {
         out.clear();
         let e = self.eccentricity_mm;
+        // The crank's deviation de moves the disc centre off the orbit the holes were bored for,
+        // as a bearing offset does.
+        let offset = offset + ecc * self.eccentricity_deviation_mm;
         let disc_centre = ecc * e + offset;
         // e^{iβo} − 1 = (−2·sin²(βo/2), sin βo), without cancellation.
         let half = sin_cos(0.5 * output_lag).0;
         let turn = Vec2::new(-2.0 * half * half, sin_cos(output_lag).0);
         let centre_sq = 2.0 * e * ecc.dot(&offset) + offset.norm_squared();
-        for unit in &self.base {
+        for (j, unit) in self.base.iter().enumerate() {
             let (cg, sg) = (c * unit.x - s * unit.y, s * unit.x + c * unit.y);
-            let arm_vec = Vec2::new(cg, sg) * self.circle_radius_mm;
-            let w = rotate(turn, cg, sg) * self.circle_radius_mm;
-            let pin = arm_vec + w;
+            let mut arm_vec = Vec2::new(cg, sg) * self.circle_radius_mm;
+            let mut w = rotate(turn, cg, sg) * self.circle_radius_mm;
+            let mut pin = arm_vec + w;
+            if let Some(&(pin_d, hole_d)) = self.parts.get(j) {
+                // As built: the hole turns with the disc (ψ), the pin with the flange (ψ + βo);
+                // w is then the pin centre less the hole centre, both taken from the nominal
+                // hole centre, and the moment arm is that of the hole centre as built.
+                let hole = rotate(hole_d, c, s);
+                let pin_moved = rotate(rotate(pin_d, c, s), 1.0 + turn.x, turn.y);
+                w += pin_moved - hole;
+                pin += pin_moved;
+                arm_vec += hole;
+            }
             let d = w - disc_centre;
             let dist = d.norm();
             let u = d / dist;

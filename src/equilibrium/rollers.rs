@@ -116,11 +116,12 @@ impl Rollers {
     pub fn new(design: &Design, m: &Modification, law: ContactLaw, geometry: GeometryMode) -> Self {
         let mesh = Mesh::new(design, m);
         let centres: Vec<Vec2> = (0..design.rollers).map(|i| mesh.roller_centre(i)).collect();
-        let units = centres
-            .iter()
-            .map(|c| c / design.roller_circle_radius_mm)
-            .collect();
-        let reach = design.roller_circle_radius_mm + design.eccentricity_mm;
+        let units = (0..design.rollers).map(|i| mesh.roller_unit(i)).collect();
+        // The parts as built move a roller centre, or the disc centre's orbit, by micrometres.
+        let reach = design.roller_circle_radius_mm
+            + mesh.largest_roller_offset_mm()
+            + design.eccentricity_mm
+            + mesh.eccentricity_deviation_mm.abs();
         // |∂²gap/∂β²| ≤ |P| + |P|²/ρ, ρ the smallest convex radius of Γ (the distance field's
         // Hessian is bounded by 1/ρ), doubled for safety and for the crank terms.
         let convex = mesh.profile.min_convex_radius().radius_mm - mesh.profile.offset_mm;
@@ -233,8 +234,8 @@ impl Rollers {
         let dlag = (pose.lag_rad - reach.lag_rad).abs();
         let du = (pose.centre_offset_mm - reach.offset_mm).norm();
         let nc = self.design.teeth as f64;
-        let first =
-            self.reach_radius_mm * (dphi / nc + dlag) + self.design.eccentricity_mm * dphi + du;
+        let orbit = self.design.eccentricity_mm + self.mesh.eccentricity_deviation_mm.abs();
+        let first = self.reach_radius_mm * (dphi / nc + dlag) + orbit * dphi + du;
         reach.gap_mm - first - self.curvature_bound * (dphi * dphi + dlag * dlag)
     }
 
@@ -285,7 +286,8 @@ impl Rollers {
             }
         }
         let (s, c) = trig.rotation(pose.lag_rad);
-        let centre = trig.e_phi * self.design.eccentricity_mm + pose.centre_offset_mm;
+        let orbit = self.design.eccentricity_mm + self.mesh.eccentricity_deviation_mm;
+        let centre = trig.e_phi * orbit + pose.centre_offset_mm;
         for (i, st) in states.iter_mut().enumerate() {
             if let Some(reach) = reaches.get(i) {
                 let bound = self.gap_lower_bound(reach, pose);
@@ -311,8 +313,9 @@ impl Rollers {
     }
 
     /// Exact state of roller i. The roller centre is e^{−iβ}·L(t_i) + w in the disc frame
-    /// (L the unmodified locus, t_i = 2πi/np + φ/nc, w the bearing offset seen from the disc),
-    /// and the gap is formed from small quantities (`Profile::closest_point_in_frame`).
+    /// (L the unmodified locus, t_i = 2πi/np + φ/nc, w the excess of the parts as built and
+    /// the bearing offset seen from the disc, `Mesh::centre_excess`), and the gap is formed
+    /// from small quantities (`Profile::closest_point_in_frame`).
     fn exact_state(
         &self,
         i: usize,
@@ -333,7 +336,10 @@ impl Rollers {
             base,
             lobe: trig.lobe,
         };
-        let w = -rotate(pose.centre_offset_mm, c, -s);
+        let excess = self
+            .mesh
+            .centre_excess(i, trig.e_phi, pose.centre_offset_mm);
+        let w = rotate(excess, c, -s);
         let s_start = wrap_pi(t_start - t_ref);
         let foot = self
             .mesh
@@ -345,7 +351,7 @@ impl Rollers {
                 detail,
             })?;
         let gap_mm =
-            (self.mesh.profile.offset_mm - self.design.roller_radius_mm) + foot.locus_distance_mm;
+            (self.mesh.profile.offset_mm - self.mesh.roller_radius(i)) + foot.locus_distance_mm;
         let cf = self.contact_force(gap_mm, foot.t);
         let p = rotate(self.centres[i] - centre, c, -s);
         Ok(RollerState {

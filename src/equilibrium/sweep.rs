@@ -25,6 +25,7 @@ pub struct Model {
     pub bearing_stiffness_n_per_mm: Option<f64>,
     pub torque_nmm: f64,
     pub teeth: usize,
+    /// The crank's eccentricity as built, e + de, mm: the disc centre's orbit.
     pub eccentricity_mm: f64,
     pub settings: Settings,
     /// First-order geometry (also for pins when rollers are not modelled).
@@ -47,7 +48,7 @@ impl Model {
             bearing_stiffness_n_per_mm: scene.bearing_stiffness_n_per_mm.filter(|_| bearing),
             torque_nmm: scene.output_torque_nmm,
             teeth: design.teeth,
-            eccentricity_mm: design.eccentricity_mm,
+            eccentricity_mm: design.eccentricity_mm + design.deviations.eccentricity_mm,
             settings: Settings::default(),
             first_order: scene.geometry == GeometryMode::FirstOrder,
         }

@@ -16,6 +16,7 @@ use crate::progress::{Progress, Silent};
 use crate::units;
 use rayon::prelude::*;
 use std::f64::consts::{PI, TAU};
+use std::sync::Arc;
 
 /// Pose of the disc at one crank angle. Fixed frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,29 +79,101 @@ impl std::fmt::Display for GapFailure {
     }
 }
 
-/// A disc profile meshing with a fixed ring of rollers.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A disc profile meshing with a fixed ring of rollers, as built (MODEL.md "Part deviations"):
+/// roller i's centre is Rp·(cos 2πi/np, sin 2πi/np) moved by its deviation, its radius its own,
+/// and the disc centre orbits at the crank's eccentricity e + de while the profile keeps the e it
+/// was ground with.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Mesh {
     pub profile: Profile,
     pub teeth: usize,
     pub rollers: usize,
+    /// e of the profile (the design's), mm.
     pub eccentricity_mm: f64,
     pub roller_circle_radius_mm: f64,
     pub roller_radius_mm: f64,
+    /// de: the crank's eccentricity minus the profile's, mm.
+    pub eccentricity_deviation_mm: f64,
+    /// Every roller as built; empty when every roller is nominal.
+    pub parts: Arc<[RollerPart]>,
+}
+
+/// One roller as built: its centre's displacement from its nominal place (fixed frame, mm) and
+/// its radius (mm).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollerPart {
+    pub offset_mm: Vec2,
+    pub radius_mm: f64,
 }
 
 impl Mesh {
-    /// The mesh of `design` with its profile ground to `modification` plus the design's
+    /// The mesh of `design` as built, its profile ground to `modification` plus the design's
     /// grinding errors (`Deviations::ground`).
     pub fn new(design: &Design, modification: &Modification) -> Self {
+        let d = &design.deviations;
+        let rp = design.roller_circle_radius_mm;
+        let parts: Vec<RollerPart> = if d.moves_rollers() {
+            (0..design.rollers)
+                .map(|i| {
+                    let a = design.roller_angle(i);
+                    let r = d.roller(i);
+                    let (x, y) = r.centre.displacement_mm(rp, (a.cos(), a.sin()));
+                    RollerPart {
+                        offset_mm: Vec2::new(x, y),
+                        radius_mm: design.roller_radius_mm + r.radius_mm,
+                    }
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         Mesh {
-            profile: Profile::new(design, &design.deviations.ground(modification)),
+            profile: Profile::new(design, &d.ground(modification)),
             teeth: design.teeth,
             rollers: design.rollers,
             eccentricity_mm: design.eccentricity_mm,
-            roller_circle_radius_mm: design.roller_circle_radius_mm,
+            roller_circle_radius_mm: rp,
             roller_radius_mm: design.roller_radius_mm,
+            eccentricity_deviation_mm: d.eccentricity_mm,
+            parts: parts.into(),
         }
+    }
+
+    /// Roller i's displacement from its nominal centre, fixed frame, mm.
+    #[inline]
+    pub fn roller_offset(&self, i: usize) -> Vec2 {
+        self.parts.get(i).map_or(Vec2::zeros(), |p| p.offset_mm)
+    }
+
+    /// Roller i's radius as built, mm.
+    #[inline]
+    pub fn roller_radius(&self, i: usize) -> f64 {
+        self.parts
+            .get(i)
+            .map_or(self.roller_radius_mm, |p| p.radius_mm)
+    }
+
+    /// The largest distance of a roller centre from its nominal place, mm.
+    pub fn largest_roller_offset_mm(&self) -> f64 {
+        self.parts
+            .iter()
+            .map(|p| p.offset_mm.norm())
+            .fold(0.0, f64::max)
+    }
+
+    /// Every gap repeats with the mesh period (`first_period`): the rollers are alike and
+    /// evenly spaced. A roller off its place or size breaks that (the crank eccentricity and
+    /// the grinding errors do not: they act on every roller alike).
+    pub fn is_periodic(&self) -> bool {
+        self.parts.is_empty()
+    }
+
+    /// The part of roller i's centre, seen from the disc centre, that the nominal locus form
+    /// does not hold, fixed frame: the roller's displacement, less the crank eccentricity's
+    /// deviation de·e_φ and the bearing offset u.
+    #[inline]
+    pub fn centre_excess(&self, i: usize, e_phi: Vec2, offset: Vec2) -> Vec2 {
+        self.roller_offset(i) - e_phi * self.eccentricity_deviation_mm - offset
     }
 
     /// Disc rotation ψ = −φ/nc + β.
@@ -108,16 +181,28 @@ impl Mesh {
         -pose.crank_rad / self.teeth as f64 + pose.lag_rad
     }
 
-    /// Disc centre in the fixed frame.
+    /// Disc centre in the fixed frame: (e + de)·(cos φ, sin φ) + u.
     pub fn disc_centre(&self, pose: &Pose) -> Vec2 {
         let (s, c) = pose.crank_rad.sin_cos();
-        Vec2::new(c, s) * self.eccentricity_mm + pose.centre_offset_mm
+        Vec2::new(c, s) * (self.eccentricity_mm + self.eccentricity_deviation_mm)
+            + pose.centre_offset_mm
     }
 
-    /// Centre of roller i in the fixed frame: Rp·(cos 2πi/np, sin 2πi/np).
-    pub fn roller_centre(&self, i: usize) -> Vec2 {
+    /// Roller i's nominal centre, Rp·(cos 2πi/np, sin 2πi/np), fixed frame.
+    pub fn nominal_centre(&self, i: usize) -> Vec2 {
         let a = std::f64::consts::TAU * i as f64 / self.rollers as f64;
         Vec2::new(a.cos(), a.sin()) * self.roller_circle_radius_mm
+    }
+
+    /// Unit vector of roller i's nominal place: its nominal centre over Rp (so formed, the
+    /// sweeps' roller frames are the same to the last bit as before parts as built existed).
+    pub fn roller_unit(&self, i: usize) -> Vec2 {
+        self.nominal_centre(i) / self.roller_circle_radius_mm
+    }
+
+    /// Centre of roller i in the fixed frame: its nominal centre plus its displacement.
+    pub fn roller_centre(&self, i: usize) -> Vec2 {
+        self.nominal_centre(i) + self.roller_offset(i)
     }
 
     /// Centre of roller i in the disc frame: Rot(−ψ)·(roller − disc centre).
@@ -148,14 +233,17 @@ impl Mesh {
     ) -> Result<RollerGap, GapFailure> {
         let p = self.roller_in_disc(i, pose);
         let t0 = t_start.unwrap_or_else(|| self.foot_guess(i, pose));
-        // In the disc frame the roller centre is q = e^{−iβ}·C0(t_i) − e^{−iψ}·u, C0 the
-        // unmodified locus (radius Rp) and t_i = 2πi/np + φ/nc its locus parameter at β = 0
-        // (np·t_i ≡ np·φ/nc mod 2π). The closest point is found from that form, without the
+        // In the disc frame the roller centre is q = e^{−iβ}·C0(t_i) + e^{−iψ}·x, C0 the
+        // unmodified locus (radius Rp), t_i = 2πi/np + φ/nc its locus parameter at β = 0
+        // (np·t_i ≡ np·φ/nc mod 2π) and x the excess of the parts as built and the bearing
+        // offset (`centre_excess`). The closest point is found from that form, without the
         // rounding of subtracting vectors of size Rp (see `closest_point_near_locus`).
         let t_i = std::f64::consts::TAU * i as f64 / self.rollers as f64
             + pose.crank_rad / self.teeth as f64;
         let (s, c) = self.disc_rotation(pose).sin_cos();
-        let w = -rotate(pose.centre_offset_mm, c, -s);
+        let (sp, cp) = pose.crank_rad.sin_cos();
+        let excess = self.centre_excess(i, Vec2::new(cp, sp), pose.centre_offset_mm);
+        let w = rotate(excess, c, -s);
         let precise = |start: f64| {
             self.profile
                 .closest_point_near_locus(t_i, self.roller_circle_radius_mm, pose.lag_rad, w, start)
@@ -172,7 +260,7 @@ impl Mesh {
             // the precise iteration is then restarted there.
             if let Ok(scan) = self.profile.closest_point(p, t0) {
                 let nearer = scan.signed_distance_mm.abs()
-                    < foot.signed_distance_mm.abs() - 1e-9 * self.roller_radius_mm;
+                    < foot.signed_distance_mm.abs() - 1e-9 * self.roller_radius(i);
                 if nearer {
                     foot = precise(scan.t)?;
                 }
@@ -180,7 +268,7 @@ impl Mesh {
         }
         Ok(RollerGap {
             // ΔRrp + the signed distance to C (MODEL.md), summed small to small.
-            gap_mm: (self.profile.offset_mm - self.roller_radius_mm) + foot.locus_distance_mm,
+            gap_mm: (self.profile.offset_mm - self.roller_radius(i)) + foot.locus_distance_mm,
             t: foot.t,
             point: foot.point,
             normal: foot.normal,
@@ -264,10 +352,11 @@ pub fn min_gap(mesh: &Mesh, crank_rad: &[f64]) -> Result<MinClearance, GapFailur
 }
 
 /// The leading mesh period of a uniform sweep that covers at least one whole period on its
-/// grid; otherwise the whole sweep.
+/// grid; otherwise, and for rollers as built that are not alike (`Mesh::is_periodic`), the
+/// whole sweep.
 pub fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
     let n = crank_rad.len();
-    if n < 2 {
+    if n < 2 || !mesh.is_periodic() {
         return crank_rad;
     }
     let h = crank_rad[1] - crank_rad[0];
@@ -426,13 +515,20 @@ struct Warm {
     closing: Option<(f64, f64)>,
 }
 
+/// Roller i at one crank angle: its locus frame, the excess of the parts as built over the
+/// locus form in the disc frame at β = 0 (`Mesh::centre_excess` turned by −ψ), and r' − its
+/// radius (the gap is this plus its centre's distance from the locus).
+struct Seat {
+    frame: LocusFrame,
+    excess: Vec2,
+    offset_mm: f64,
+}
+
 /// The constants of a sweep of one mesh.
 struct Tracker<'a> {
     mesh: &'a Mesh,
     /// Roller i's direction e^{i·2πi/np}.
     units: Vec<Vec2>,
-    /// r' − Rrp: the gap is this plus the roller centre's distance from the locus.
-    offset_mm: f64,
     /// A foot of the normal from a roller centre closer to the locus than this is the nearest
     /// point of the locus (`Profile::locus_reach_bound_mm`, with a tenth off for its round-off)
     /// and, the centre then being outside the disc (this is also below r'), its offset is the
@@ -450,10 +546,7 @@ impl<'a> Tracker<'a> {
         let profile = &mesh.profile;
         Tracker {
             mesh,
-            units: (0..mesh.rollers)
-                .map(|i| mesh.roller_centre(i) / mesh.roller_circle_radius_mm)
-                .collect(),
-            offset_mm: profile.offset_mm - mesh.roller_radius_mm,
+            units: (0..mesh.rollers).map(|i| mesh.roller_unit(i)).collect(),
             certified_mm: 0.9 * profile.locus_reach_bound_mm().min(profile.offset_mm),
             first_s: wrap_pi(-profile.rotation_rad),
         }
@@ -492,12 +585,20 @@ impl<'a> Tracker<'a> {
             let (st, ct) = turn.sin_cos();
             let (sl, cl) = (np * turn).sin_cos();
             let (mut forward, mut reverse) = (f64::INFINITY, f64::INFINITY);
+            let (sp, cp) = phi.sin_cos();
             for (i, w) in warm.iter_mut().enumerate() {
                 let frame = LocusFrame {
                     t_ref: TAU * i as f64 / np + turn,
                     r_ref: mesh.roller_circle_radius_mm,
                     base: rotate(self.units[i], ct, st),
                     lobe: Vec2::new(cl, sl),
+                };
+                // The parts as built, in the disc frame at β = 0 (ψ = −φ/nc).
+                let excess = mesh.centre_excess(i, Vec2::new(cp, sp), Vec2::zeros());
+                let frame = Seat {
+                    frame,
+                    excess: rotate(excess, ct, st),
+                    offset_mm: mesh.profile.offset_mm - mesh.roller_radius(i),
                 };
                 let g = self.gap(i, phi, &frame, w.gap)?;
                 w.gap = Some(g.s);
@@ -527,7 +628,7 @@ impl<'a> Tracker<'a> {
         &self,
         i: usize,
         phi: f64,
-        frame: &LocusFrame,
+        frame: &Seat,
         warm: Option<f64>,
     ) -> Result<Found, GapFailure> {
         match self.follow(frame, 0.0, warm.unwrap_or(self.first_s)) {
@@ -539,33 +640,36 @@ impl<'a> Tracker<'a> {
     /// The gap at lag β from the closest point followed in `frame` from the offset `s_start`.
     fn follow(
         &self,
-        frame: &LocusFrame,
+        frame: &Seat,
         lag_rad: f64,
         s_start: f64,
     ) -> Result<Found, ClosestPointFailure> {
         let mesh = self.mesh;
+        // The roller centre in the disc frame: e^{−iβ}·(e^{i·t_ref}·Rp − e·e^{i·np·t_ref} + x),
+        // x the parts' excess at β = 0 (`Seat::excess`).
+        let (sb, cb) = sin_cos(lag_rad);
+        let w = rotate(frame.excess, cb, -sb);
         let foot = mesh
             .profile
-            .closest_point_in_frame(frame, lag_rad, Vec2::zeros(), s_start)?;
-        // The roller centre in the disc frame: e^{−iβ}·(e^{i·t_ref}·Rp − e·e^{i·np·t_ref}).
-        let (sb, cb) = sin_cos(lag_rad);
-        let centre = frame.base * frame.r_ref - frame.lobe * mesh.eccentricity_mm;
+            .closest_point_in_frame(&frame.frame, lag_rad, w, s_start)?;
+        let f = &frame.frame;
+        let centre = f.base * f.r_ref - f.lobe * mesh.eccentricity_mm + frame.excess;
         let p = rotate(centre, cb, -sb);
         Ok(Found {
-            gap_mm: self.offset_mm + foot.locus_distance_mm,
+            gap_mm: frame.offset_mm + foot.locus_distance_mm,
             arm_mm: cross(p, foot.normal),
-            s: wrap_pi(foot.t - frame.t_ref),
+            s: wrap_pi(foot.t - f.t_ref),
             nearest: foot.locus_distance_mm.abs() < self.certified_mm,
         })
     }
 
     /// The gap at β = 0 from scratch (`Mesh::roller_gap`, with its scanning search).
-    fn afresh(&self, i: usize, phi: f64, frame: &LocusFrame) -> Result<Found, GapFailure> {
+    fn afresh(&self, i: usize, phi: f64, frame: &Seat) -> Result<Found, GapFailure> {
         let g = self.mesh.roller_gap(i, &Pose::ideal(phi), None)?;
         Ok(Found {
             gap_mm: g.gap_mm,
             arm_mm: g.arm_mm,
-            s: wrap_pi(g.t - frame.t_ref),
+            s: wrap_pi(g.t - frame.frame.t_ref),
             nearest: true,
         })
     }
@@ -582,7 +686,7 @@ impl<'a> Tracker<'a> {
         &self,
         i: usize,
         phi: f64,
-        frame: &LocusFrame,
+        frame: &Seat,
         at_zero: &Found,
         warm: Option<(f64, f64)>,
     ) -> Option<(f64, f64)> {
@@ -611,7 +715,7 @@ impl<'a> Tracker<'a> {
         &self,
         i: usize,
         phi: f64,
-        frame: &LocusFrame,
+        frame: &Seat,
         mut lag: f64,
         mut g: Found,
     ) -> Option<(f64, Found)> {

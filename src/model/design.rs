@@ -91,9 +91,19 @@ impl Design {
         std::f64::consts::TAU * i as f64 / self.rollers as f64
     }
 
-    /// Mesh period in crank angle: 2π/np.
+    /// Mesh period in crank angle: 2π/np, after which every gap repeats with the roller index
+    /// shifted by one; with rollers as built that are not alike, a whole crank turn.
     pub fn mesh_period_rad(&self) -> f64 {
-        std::f64::consts::TAU / self.rollers as f64
+        std::f64::consts::TAU / self.mesh_periods_per_turn() as f64
+    }
+
+    /// Mesh periods per crank turn: np, or 1 when some roller is off its place or size.
+    fn mesh_periods_per_turn(&self) -> usize {
+        if self.deviations.moves_rollers() {
+            1
+        } else {
+            self.rollers
+        }
     }
 
     /// Period of the output-pin pattern in crank angle, 2π·nc/(np·M): a pin's arm depends on
@@ -102,18 +112,26 @@ impl Design {
         std::f64::consts::TAU * self.teeth as f64 / (self.rollers * self.pins.count) as f64
     }
 
-    /// Crank period of loaded curves: the mesh period 2π/np, or, with the output pins modelled,
-    /// the least common multiple of it and the pin period, (2π/np)·nc/gcd(nc, M) (108° for the
-    /// paper's design: TE = β + βo, pin and bearing forces repeat only after it).
+    /// Crank period of loaded curves: the mesh period, or, with the output pins modelled, the
+    /// least common multiple of it and the pin period (108° for the paper's design: TE = β + βo,
+    /// pin and bearing forces repeat only after it). In units of u = 2π/(np·M) the mesh period
+    /// is np·M/(periods per turn) and the pin period nc. Pins or holes as built repeat only
+    /// after a whole turn of the disc, nc crank turns.
     pub fn loaded_period_rad(&self, pins_modelled: bool) -> f64 {
         if !pins_modelled {
             return self.mesh_period_rad();
         }
-        let (mut a, mut b) = (self.teeth, self.pins.count);
+        let turn = std::f64::consts::TAU;
+        if self.deviations.moves_pins() {
+            return turn * self.teeth as f64;
+        }
+        let units = self.rollers * self.pins.count;
+        let mesh = units / self.mesh_periods_per_turn();
+        let (mut a, mut b) = (mesh, self.teeth);
         while b != 0 {
             (a, b) = (b, a % b);
         }
-        self.mesh_period_rad() * (self.teeth / a) as f64
+        turn / units as f64 * (mesh / a * self.teeth) as f64
     }
 
     /// Radius of an output-pin hole in the disc: pin radius + e + hole clearance.

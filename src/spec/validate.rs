@@ -466,6 +466,7 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         }
         scenes.push(s);
     }
+    exact_as_built(&design, &scenes)?;
     let studies = match raw.optimise {
         Some(o) => {
             let many = matches!(o, RawOptimise::Many(_));
@@ -541,6 +542,29 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         studies,
         accuracy,
     })
+}
+
+/// Parts as built are computed with the exact geometry: the first-order closed form holds every
+/// roller and pin on its nominal place (MODEL.md "Part deviations").
+fn exact_as_built(design: &Design, scenes: &[Scene]) -> Result<()> {
+    if design.deviations.is_nominal() {
+        return Ok(());
+    }
+    match scenes
+        .iter()
+        .position(|s| s.geometry == GeometryMode::FirstOrder)
+    {
+        Some(i) => Err(invalid(
+            &format!("scenes[{i}].geometry"),
+            format!(
+                "scene `{}` asks for the first-order geometry, but `reducer.deviations` puts parts \
+                 off their nominal places: the closed form assumes every roller and pin on its \
+                 place, so parts as built are computed with `geometry: exact`",
+                scenes[i].name
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// A `min_bearing_life_h` limit needs what the life is computed from: the bearing's rating

@@ -12,7 +12,7 @@ use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::{RATIO_FLUCTUATION, TE_FLUCTUATION};
 use crate::model::results::MinClearance;
 use crate::model::{Effect, Modification, Objective, Plan, Scene, Study};
-use crate::spec::rules;
+use crate::spec::deviations;
 use crate::spec::Spec;
 use crate::units;
 
@@ -235,7 +235,7 @@ impl<'a> Problem<'a> {
                 hi,
             ));
         }
-        if let Err(err) = rules::check(&self.spec.design, m) {
+        if let Err(err) = deviations::check(&self.spec.design, m) {
             e.failure = Some(err.message);
             return e;
         }

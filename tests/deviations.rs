@@ -1,0 +1,420 @@
+//! Parts as built (MODEL.md "Part deviations"): each deviation checked against an independent
+//! statement of the same reducer — a nominal design with a dimension moved, a rotated housing,
+//! the first-order change of a gap, or a bearing offset — and the symmetries it must break.
+
+mod common;
+
+use common::{paper_design, PaperSpec};
+use cycloid::engine::scene;
+use cycloid::equilibrium::solve::Settings;
+use cycloid::geometry::clearance::{self, Mesh, Pose};
+use cycloid::geometry::Vec2;
+use cycloid::model::results::SceneResult;
+use cycloid::model::{
+    CentreDeviation, Design, Deviations, Modification, Plan, RollerDeviation, Scene,
+};
+
+const PAPER_OPTIMUM: Modification = Modification {
+    shift_mm: 0.125,
+    equidistant_mm: 0.1593,
+    rotation_rad: 0.0,
+};
+
+/// Every roller moved alike.
+fn all_rollers(design: &Design, d: RollerDeviation) -> Deviations {
+    Deviations {
+        rollers: vec![d; design.rollers],
+        ..Deviations::default()
+    }
+}
+
+fn radial(mm: f64) -> RollerDeviation {
+    RollerDeviation {
+        centre: CentreDeviation {
+            radial_mm: mm,
+            tangential_mm: 0.0,
+        },
+        radius_mm: 0.0,
+    }
+}
+
+/// Crank angles over one full turn, off the grid points where rollers sit on a tooth tip.
+fn turn(n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|k| std::f64::consts::TAU * (k as f64 + 0.37) / n as f64)
+        .collect()
+}
+
+/// A loaded scene of the paper's design: rollers, pins and a rigid bearing, linear law (the
+/// Hertz law caps a flat flank's radius at Rp, which a test that moves Rp would feel).
+fn loaded_scene(from_deg: f64, to_deg: f64, steps: usize, effects: &str) -> Scene {
+    let text = PaperSpec::new()
+        .scenes(&common::scene_item(
+            "loaded",
+            10.0,
+            &format!("{{ from_deg: {from_deg:?}, to_deg: {to_deg:?}, steps: {steps} }}"),
+            effects,
+        ))
+        .text()
+        .to_string();
+    cycloid::spec::parse("loaded.yaml", &text)
+        .expect("valid")
+        .scenes
+        .remove(0)
+}
+
+fn run(design: &Design, m: &Modification, scene: &Scene) -> SceneResult {
+    let plan = Plan::for_scene(scene);
+    scene::run_design(design, m, scene, &plan, &Settings::default()).expect("solves")
+}
+
+fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Every roller moved outward by dr is the nominal reducer with Rp + dr, its profile ground
+/// with the shift ΔRp − dr so that the locus radius Rp + ΔRp (the disc as ground) is the same.
+/// Gaps agree to 1e-10 mm: both are exact closest-point solutions (Newton to ~1e-15 relative of
+/// Rp, ~1e-13 mm) of the same geometry formed in two ways; ignoring the deviation would be off
+/// by dr = 20 µm. Loaded forces and lags agree to 1e-7 relative: the balances are solved to
+/// 1e-9 relative, and the rest is that rounding through the solve.
+#[test]
+fn every_roller_moved_outward_is_a_larger_roller_circle() {
+    let dr = 0.02;
+    let mut moved = paper_design();
+    moved.deviations = all_rollers(&moved, radial(dr));
+    let mut larger = paper_design();
+    larger.roller_circle_radius_mm += dr;
+    let ground = Modification {
+        shift_mm: PAPER_OPTIMUM.shift_mm - dr,
+        ..PAPER_OPTIMUM
+    };
+    let (a, b) = (
+        Mesh::new(&moved, &PAPER_OPTIMUM),
+        Mesh::new(&larger, &ground),
+    );
+    let mut worst: f64 = 0.0;
+    for phi in turn(37) {
+        for i in 0..moved.rollers {
+            let ga = a.roller_gap(i, &Pose::ideal(phi), None).unwrap();
+            let gb = b.roller_gap(i, &Pose::ideal(phi), None).unwrap();
+            worst = worst.max((ga.gap_mm - gb.gap_mm).abs());
+            assert!((ga.arm_mm - gb.arm_mm).abs() < 1e-9, "arm of roller {i}");
+        }
+    }
+    assert!(worst < 1e-10, "gaps differ by {worst:e} mm");
+    // The clearance sweep follows each roller in its own frame (a second code path).
+    let crank = turn(720);
+    let (ca, cb) = (
+        clearance::sweep(&a, &crank, clearance::Scope::Backlash).unwrap(),
+        clearance::sweep(&b, &crank, clearance::Scope::Backlash).unwrap(),
+    );
+    assert!((ca.min.gap_mm - cb.min.gap_mm).abs() < 1e-10);
+    let scene = loaded_scene(0.0, 108.0, 108, "roller_contact, output_pins, bearing");
+    let (la, lb) = (
+        run(&moved, &PAPER_OPTIMUM, &scene),
+        run(&larger, &ground, &scene),
+    );
+    let (ra, rb) = (
+        la.loaded.rollers.as_ref().unwrap(),
+        lb.loaded.rollers.as_ref().unwrap(),
+    );
+    for (fa, fb) in ra.force_n.iter().zip(&rb.force_n) {
+        let scale = fb.iter().fold(1.0_f64, |m, f| m.max(f.abs()));
+        assert!(max_abs_diff(fa, fb) < 1e-7 * scale);
+    }
+    let lag_scale = rb.lag_rad.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
+    assert!(max_abs_diff(&ra.lag_rad, &rb.lag_rad) < 1e-7 * lag_scale);
+}
+
+/// Every roller moved counter-clockwise by dt along its circle is the housing turned by
+/// α = dt/Rp. Turning the whole picture back by α, the rollers are nominal, the crank is at
+/// φ − α and the disc at ψ − α: its lag behind its ideal rotation −(φ − α)/nc is
+/// β − α·np/nc. So gap(φ, β = 0) as built = nominal gap at (φ − α, −α·np/nc), roller for
+/// roller (tolerance as above; a deviation ignored would be off by ~dt·sin(pressure angle)).
+#[test]
+fn every_roller_moved_along_the_circle_is_a_turned_housing() {
+    let dt = 0.03;
+    let mut moved = paper_design();
+    moved.deviations = all_rollers(
+        &moved,
+        RollerDeviation {
+            centre: CentreDeviation {
+                radial_mm: 0.0,
+                tangential_mm: dt,
+            },
+            radius_mm: 0.0,
+        },
+    );
+    let nominal = paper_design();
+    let alpha = dt / nominal.roller_circle_radius_mm;
+    let lag = -alpha * nominal.rollers as f64 / nominal.teeth as f64;
+    let (a, b) = (
+        Mesh::new(&moved, &PAPER_OPTIMUM),
+        Mesh::new(&nominal, &PAPER_OPTIMUM),
+    );
+    let mut worst: f64 = 0.0;
+    for phi in turn(37) {
+        for i in 0..nominal.rollers {
+            let ga = a.roller_gap(i, &Pose::ideal(phi), None).unwrap();
+            let gb = b
+                .roller_gap(i, &Pose::lagging(phi - alpha, lag), None)
+                .unwrap();
+            worst = worst.max((ga.gap_mm - gb.gap_mm).abs());
+        }
+    }
+    assert!(worst < 1e-10, "gaps differ by {worst:e} mm");
+    // Loaded, rollers and a rigid bearing (no pins: they are not turned with the housing):
+    // the lag as built is the nominal lag at φ − α, plus α·np/nc.
+    let effects = "roller_contact, bearing";
+    let built = run(
+        &moved,
+        &PAPER_OPTIMUM,
+        &loaded_scene(0.0, 36.0, 36, effects),
+    );
+    let from = (0.0 - alpha).to_degrees();
+    let turned = run(
+        &nominal,
+        &PAPER_OPTIMUM,
+        &loaded_scene(from, from + 36.0, 36, effects),
+    );
+    let (ra, rb) = (
+        built.loaded.rollers.unwrap(),
+        turned.loaded.rollers.unwrap(),
+    );
+    let shifted: Vec<f64> = rb.lag_rad.iter().map(|l| l - lag).collect();
+    let scale = shifted.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
+    assert!(max_abs_diff(&ra.lag_rad, &shifted) < 1e-7 * scale);
+}
+
+/// One roller pushed by a small vector d changes its own gap by d·n to first order (n the
+/// outward normal of the profile at its contact, in the fixed frame: the gap is the signed
+/// distance of the roller centre), and no other roller's gap at all. The remainder r is the
+/// distance field's second order: |r| ≤ |d|²·κmax/2 with κmax the largest |curvature| of the
+/// roller-centre locus (its concave root, radius ~0.6 mm for the paper's design; the roller
+/// centre sits micrometres from the locus, so the field's Hessian is ~κ there), bounded here
+/// by |d|²·κmax; and r grows as |d|²: r(2d) = 4·r(d) to the third order's share, |d|·κmax
+/// ≈ 0.2 % (5 % allowed). A gap that ignored the deviation has r = −d·n, which grows as |d|.
+#[test]
+fn one_roller_pushed_in_closes_its_own_gap_by_the_push() {
+    let nominal = paper_design();
+    let roller = 4;
+    let locus = nominal.locus(&PAPER_OPTIMUM);
+    let kmax = (0..=2000)
+        .map(|k| locus.curvature_at(-1.0 + k as f64 / 1000.0).abs())
+        .fold(0.0, f64::max);
+    let mesh = |push: f64| {
+        let mut moved = paper_design();
+        moved.deviations.rollers = vec![RollerDeviation::default(); nominal.rollers];
+        moved.deviations.rollers[roller].centre = CentreDeviation {
+            radial_mm: -push * 0.6,
+            tangential_mm: push * 0.8,
+        };
+        Mesh::new(&moved, &PAPER_OPTIMUM)
+    };
+    let b = Mesh::new(&nominal, &PAPER_OPTIMUM);
+    let push = 1e-3;
+    let (a, a2) = (mesh(push), mesh(2.0 * push));
+    // |d|² = dr² + dt²·(1 + dr/Rp): the move follows the roller circle, not a chord, and |d|
+    // differs from |(dr, dt)| by dt²·|dr|/(2·Rp·|d|) ≈ 6.4e-9 mm.
+    let d = a.roller_centre(roller) - b.roller_centre(roller);
+    assert!((d.norm() - push).abs() < 1e-8);
+    let d2 = a2.roller_centre(roller) - b.roller_centre(roller);
+    for phi in turn(29) {
+        let pose = Pose::ideal(phi);
+        for i in 0..nominal.rollers {
+            let ga = a.roller_gap(i, &pose, None).unwrap();
+            let gb = b.roller_gap(i, &pose, None).unwrap();
+            if i != roller {
+                assert_eq!(ga.gap_mm, gb.gap_mm, "roller {i} at {phi}");
+                continue;
+            }
+            // The normal in the fixed frame: the disc frame's normal turned by ψ = −φ/nc.
+            let psi = -phi / nominal.teeth as f64;
+            let (s, c) = psi.sin_cos();
+            let n = Vec2::new(
+                c * gb.normal.x - s * gb.normal.y,
+                s * gb.normal.x + c * gb.normal.y,
+            );
+            let r = ga.gap_mm - gb.gap_mm - d.dot(&n);
+            let r2 = a2.roller_gap(i, &pose, None).unwrap().gap_mm - gb.gap_mm - d2.dot(&n);
+            assert!(r.abs() <= push * push * kmax, "remainder {r:e} at {phi}");
+            // 1e-12 mm: the rounding of the three gaps.
+            assert!(
+                (r2 - 4.0 * r).abs() <= 0.05 * (4.0 * r).abs() + 1e-12,
+                "remainder {r:e}, doubled push {r2:e} at {phi}"
+            );
+        }
+    }
+}
+
+/// A roller's own radius as built adds to its gap one for one (the gap is the distance to Γ
+/// less the roller's radius), exactly up to rounding.
+#[test]
+fn a_larger_roller_closes_its_gap_by_its_growth() {
+    let nominal = paper_design();
+    let mut grown = paper_design();
+    grown.deviations.rollers = vec![RollerDeviation::default(); nominal.rollers];
+    grown.deviations.rollers[7].radius_mm = 0.004;
+    let (a, b) = (
+        Mesh::new(&grown, &PAPER_OPTIMUM),
+        Mesh::new(&nominal, &PAPER_OPTIMUM),
+    );
+    for phi in turn(11) {
+        let pose = Pose::ideal(phi);
+        let (ga, gb) = (
+            a.roller_gap(7, &pose, None).unwrap(),
+            b.roller_gap(7, &pose, None).unwrap(),
+        );
+        // 1e-12 mm: the rounding of Rrp + 0.004 against 3 mm.
+        assert!((ga.gap_mm - (gb.gap_mm - 0.004)).abs() < 1e-12);
+    }
+}
+
+/// The crank's eccentricity e + de with the profile ground for e: the disc centre sits de
+/// further out along e_φ, which is a bearing offset u = de·e_φ of the nominal reducer
+/// (`Pose::centre_offset_mm`, a path the compliant bearing has long used).
+#[test]
+fn a_longer_crank_is_the_disc_centre_moved_outward() {
+    let de = 0.005;
+    let mut longer = paper_design();
+    longer.deviations.eccentricity_mm = de;
+    let nominal = paper_design();
+    let (a, b) = (
+        Mesh::new(&longer, &PAPER_OPTIMUM),
+        Mesh::new(&nominal, &PAPER_OPTIMUM),
+    );
+    for phi in turn(23) {
+        let mut offset = Pose::ideal(phi);
+        offset.centre_offset_mm = Vec2::new(phi.cos(), phi.sin()) * de;
+        for i in 0..nominal.rollers {
+            let ga = a.roller_gap(i, &Pose::ideal(phi), None).unwrap();
+            let gb = b.roller_gap(i, &offset, None).unwrap();
+            assert!((ga.gap_mm - gb.gap_mm).abs() < 1e-12);
+        }
+    }
+    // The crank's excess pushes the disc into the rollers on its eccentric side: less
+    // clearance than nominal, by up to de (the normal of the contact nearest e_φ).
+    let crank = turn(360);
+    let (ca, cb) = (
+        clearance::min_gap(&a, &crank).unwrap(),
+        clearance::min_gap(&b, &crank).unwrap(),
+    );
+    assert!(ca.gap_mm < cb.gap_mm && ca.gap_mm > cb.gap_mm - de - 1e-12);
+}
+
+/// Every pin and every hole moved outward by the same dr is the nominal reducer with the pin
+/// circle rw + dr: the pin forces, the output lag and the disc lag agree (solve tolerance).
+#[test]
+fn pins_and_holes_moved_outward_are_a_larger_pin_circle() {
+    let dr = 0.01;
+    let outward = CentreDeviation {
+        radial_mm: dr,
+        tangential_mm: 0.0,
+    };
+    let mut moved = paper_design();
+    moved.deviations.pins = vec![outward; 6];
+    moved.deviations.holes = vec![vec![outward; 6]];
+    let mut larger = paper_design();
+    larger.pins.circle_radius_mm += dr;
+    let scene = loaded_scene(0.0, 108.0, 54, "roller_contact, output_pins, bearing");
+    let (a, b) = (
+        run(&moved, &PAPER_OPTIMUM, &scene),
+        run(&larger, &PAPER_OPTIMUM, &scene),
+    );
+    let (pa, pb) = (a.loaded.pins.unwrap(), b.loaded.pins.unwrap());
+    for (fa, fb) in pa.force_n.iter().zip(&pb.force_n) {
+        let scale = fb.iter().fold(1.0_f64, |m, f| m.max(f.abs()));
+        assert!(max_abs_diff(fa, fb) < 1e-7 * scale);
+    }
+    let ta = a.loaded.transmission.unwrap().te_rad;
+    let tb = b.loaded.transmission.unwrap().te_rad;
+    let scale = tb.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
+    assert!(max_abs_diff(&ta, &tb) < 1e-7 * scale);
+}
+
+/// A pin and its hole moved by the same vector are a pin in its hole as designed, only
+/// elsewhere: at zero output lag the gap is unchanged, so a pin whose hole alone moves
+/// carries a different load — the forces change, and the balance still holds (every
+/// residual ≤ 1e-9, the documented solve tolerance).
+#[test]
+fn a_hole_moved_alone_changes_its_pins_load_and_keeps_the_balance() {
+    let mut moved = paper_design();
+    moved.deviations.holes = vec![vec![CentreDeviation::default(); 6]];
+    moved.deviations.holes[0][2] = CentreDeviation {
+        radial_mm: 0.0,
+        tangential_mm: 0.004,
+    };
+    let scene = loaded_scene(0.0, 108.0, 54, "roller_contact, output_pins, bearing");
+    let (a, b) = (
+        run(&moved, &PAPER_OPTIMUM, &scene),
+        run(&paper_design(), &PAPER_OPTIMUM, &scene),
+    );
+    let bearing = a.loaded.bearing.as_ref().unwrap();
+    assert!(bearing.residual.iter().all(|r| *r <= 1e-9));
+    let (pa, pb) = (a.loaded.pins.unwrap(), b.loaded.pins.unwrap());
+    let changed = max_abs_diff(&pa.force_n[2], &pb.force_n[2]);
+    // 4 µm of a hole against a pin stiffness of ~7e5 N/mm: hundreds of newtons.
+    assert!(changed > 10.0, "pin 2's force changed by {changed} N");
+}
+
+/// Symmetry shortcuts the parts as built break: a roller off its place makes the gaps repeat
+/// only after a whole crank turn, so the whole-mesh minimum is sought over every angle (a
+/// sweep of the first mesh period alone misses roller 6 pushed in at its worst angle).
+#[test]
+fn a_moved_roller_is_found_at_its_worst_angle_anywhere_in_the_turn() {
+    let mut moved = paper_design();
+    moved.deviations.rollers = vec![RollerDeviation::default(); 10];
+    moved.deviations.rollers[6] = radial(-0.004);
+    assert_eq!(moved.mesh_period_rad(), std::f64::consts::TAU);
+    let mesh = Mesh::new(&moved, &PAPER_OPTIMUM);
+    let crank: Vec<f64> = (0..3600).map(|k| (k as f64).to_radians() / 10.0).collect();
+    let min = clearance::min_gap(&mesh, &crank).unwrap();
+    let full = clearance::sweep(&mesh, &crank, clearance::Scope::Gaps).unwrap();
+    assert_eq!(min.roller, 6);
+    assert_eq!(min.gap_mm, full.min.gap_mm);
+    // Against the nominal minimum: pushed in by 4 µm radially, roller 6 loses at most 4 µm
+    // and, the normal being within 60° of radial where the gap is smallest, at least 2 µm.
+    let nominal = clearance::min_gap(&Mesh::new(&paper_design(), &PAPER_OPTIMUM), &crank).unwrap();
+    let lost = nominal.gap_mm - min.gap_mm;
+    assert!((0.002..=0.004 + 1e-12).contains(&lost), "lost {lost} mm");
+}
+
+/// Two discs of an even roller count share the torque equally when nominal (MODEL.md); a hole
+/// of disc 1 off its place breaks the equality, and the shares still sum to the output torque.
+#[test]
+fn a_hole_of_one_disc_unbalances_the_shares() {
+    let spec = PaperSpec::new()
+        .edit("  rollers: 10 ", "  rollers: 10\n  discs: 2 ")
+        .scenes(&common::scene_item(
+            "two",
+            10.0,
+            "{ from_deg: 0.0, to_deg: 36.0, steps: 18 }",
+            "roller_contact, output_pins, bearing",
+        ))
+        .parse("two.yaml");
+    let mut design = spec.design.clone();
+    design.deviations.holes = vec![vec![CentreDeviation::default(); 6]; 2];
+    design.deviations.holes[1][0] = CentreDeviation {
+        radial_mm: 0.003,
+        tangential_mm: -0.003,
+    };
+    let r = run(&design, &spec.modification, &spec.scenes[0]);
+    let shares: Vec<&Vec<f64>> = r
+        .discs
+        .iter()
+        .map(|d| d.loaded.torque_nmm.as_ref().unwrap())
+        .collect();
+    let mut unequal: f64 = 0.0;
+    for k in 0..shares[0].len() {
+        let sum = shares[0][k] + shares[1][k];
+        // Shares sum to T within the coupled solve's guard, 1e-9 of T.
+        assert!((sum - 10_000.0).abs() <= 1e-9 * 10_000.0);
+        unequal = unequal.max((shares[0][k] - shares[1][k]).abs());
+    }
+    assert!(unequal > 1.0, "shares differ by at most {unequal} N·mm");
+}

@@ -410,11 +410,10 @@ fn a_hole_of_one_disc_unbalances_the_shares() {
         .map(|d| d.loaded.torque_nmm.as_ref().unwrap())
         .collect();
     let mut unequal: f64 = 0.0;
-    for k in 0..shares[0].len() {
-        let sum = shares[0][k] + shares[1][k];
+    for (t0, t1) in shares[0].iter().zip(shares[1]) {
         // Shares sum to T within the coupled solve's guard, 1e-9 of T.
-        assert!((sum - 10_000.0).abs() <= 1e-9 * 10_000.0);
-        unequal = unequal.max((shares[0][k] - shares[1][k]).abs());
+        assert!((t0 + t1 - 10_000.0).abs() <= 1e-9 * 10_000.0);
+        unequal = unequal.max((t0 - t1).abs());
     }
     assert!(unequal > 1.0, "shares differ by at most {unequal} N·mm");
 }

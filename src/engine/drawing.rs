@@ -162,7 +162,7 @@ pub fn disc(spec: &Spec, crank_rad: f64) -> Result<Disc> {
             output_lag_rad: output_lag,
             forces: forces(&sol, centre),
         }),
-        tightest: close_up(&mesh, spec, crank_rad)?,
+        tightest: close_up(&mesh, crank_rad)?,
     })
 }
 
@@ -223,7 +223,7 @@ fn forces(sol: &AngleSolution, centre: Vec2) -> Vec<Force> {
 }
 
 /// The roller with the smallest gap at the ideal pose at `crank_rad`, and its close-up.
-fn close_up(mesh: &Mesh, spec: &Spec, crank_rad: f64) -> Result<CloseUp> {
+fn close_up(mesh: &Mesh, crank_rad: f64) -> Result<CloseUp> {
     let pose = Pose::ideal(crank_rad);
     let mut tightest: Option<(usize, RollerGap)> = None;
     for i in 0..mesh.rollers {
@@ -252,6 +252,6 @@ fn close_up(mesh: &Mesh, spec: &Spec, crank_rad: f64) -> Result<CloseUp> {
             .map(|k| local(mesh.profile.point(g.t - span + step * k as f64)))
             .collect(),
         roller_centre: local(mesh.roller_in_disc(i, &pose)),
-        roller_radius_mm: spec.design.roller_radius_mm,
+        roller_radius_mm: mesh.roller_radius(i),
     })
 }

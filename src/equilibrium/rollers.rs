@@ -106,6 +106,10 @@ pub struct Rollers {
     curvature_bound: f64,
     /// Linear-law stiffness (π/4)·E*·L, N/mm.
     linear_stiffness: f64,
+    /// A foot closer to the locus than this is the nearest point of Γ (`Tracker::certified_mm`
+    /// of the clearance sweep: 0.9 of the locus's reach, and of r'); a foot farther may be a
+    /// local nearest point on a flank the roller has left.
+    certified_mm: f64,
     /// Bound on the round-off of an exact gap at zero centre offset, mm: a gap is a sum of
     /// terms no larger than the positions it is measured between (Rp, e) and the
     /// modifications, so it is resolved to a few ulp of their sum, 16·ε·(Rp + e + |ΔRp| + |ΔRrp|).
@@ -137,12 +141,15 @@ impl Rollers {
             materials: Self::materials(design),
             reach_radius_mm: reach,
             curvature_bound,
+            certified_mm: 0.0,
             linear_stiffness: 0.0,
             gap_resolution_mm: 16.0
                 * f64::EPSILON
                 * (reach + m.shift_mm.abs() + m.equidistant_mm.abs()),
         };
         r.linear_stiffness = law::paper_linear_stiffness(&r.line_contact(0.0));
+        let profile = &r.mesh.profile;
+        r.certified_mm = 0.9 * profile.locus_reach_bound_mm().min(profile.offset_mm);
         r
     }
 
@@ -297,7 +304,14 @@ impl Rollers {
                 }
             }
             *st = match self.geometry {
-                GeometryMode::Exact => self.exact_state(i, pose, trig, st.t, centre, (s, c))?,
+                GeometryMode::Exact => {
+                    let (state, nearest) = self.exact_state(i, pose, trig, st.t, centre, (s, c))?;
+                    if nearest || reaches.is_empty() {
+                        state
+                    } else {
+                        self.nearest_state(i, pose, trig, state, centre, (s, c))?
+                    }
+                }
                 GeometryMode::FirstOrder => self.first_order_state(i, pose, trig.e_phi),
             };
             if let Some(reach) = reaches.get_mut(i) {
@@ -312,7 +326,30 @@ impl Rollers {
         Ok(())
     }
 
-    /// Exact state of roller i. The roller centre is e^{−iβ}·L(t_i) + w in the disc frame
+    /// A state whose foot was followed from the last evaluation but is not proven the nearest
+    /// point of Γ (`certified_mm`), checked against the scanning search from scratch
+    /// (`Mesh::roller_gap`) and followed from there when that is nearer: a gap stored as a
+    /// reach must be the roller's true gap, or its lower bound could prove a contact away.
+    fn nearest_state(
+        &self,
+        i: usize,
+        pose: &Pose,
+        trig: &AngleTrig,
+        followed: RollerState,
+        centre: Vec2,
+        rotation: (f64, f64),
+    ) -> Result<RollerState, GapFailure> {
+        let fresh = self.mesh.roller_gap(i, pose, None)?;
+        if fresh.gap_mm >= followed.gap_mm - 1e-12 * self.design.roller_circle_radius_mm {
+            return Ok(followed);
+        }
+        Ok(self
+            .exact_state(i, pose, trig, fresh.t, centre, rotation)?
+            .0)
+    }
+
+    /// Exact state of roller i, and whether its foot is proven the nearest point of Γ. The
+    /// roller centre is e^{−iβ}·L(t_i) + w in the disc frame
     /// (L the unmodified locus, t_i = 2πi/np + φ/nc, w the excess of the parts as built and
     /// the bearing offset seen from the disc, `Mesh::centre_excess`), and the gap is formed
     /// from small quantities (`Profile::closest_point_in_frame`).
@@ -324,7 +361,7 @@ impl Rollers {
         t_start: f64,
         centre: Vec2,
         (s, c): (f64, f64),
-    ) -> Result<RollerState, GapFailure> {
+    ) -> Result<(RollerState, bool), GapFailure> {
         let unit = self.units[i];
         let (s0, c0) = trig.ideal;
         // e^{i·t_i} = e^{i·2πi/np}·e^{iφ/nc}, and e^{iφ/nc} = conj(e^{−iφ/nc}).
@@ -354,7 +391,8 @@ impl Rollers {
             (self.mesh.profile.offset_mm - self.mesh.roller_radius(i)) + foot.locus_distance_mm;
         let cf = self.contact_force(gap_mm, foot.t);
         let p = rotate(self.centres[i] - centre, c, -s);
-        Ok(RollerState {
+        let nearest = foot.locus_distance_mm.abs() < self.certified_mm;
+        let state = RollerState {
             gap_mm,
             force_n: cf.force_n,
             stiffness_n_per_mm: cf.stiffness_n_per_mm,
@@ -362,7 +400,8 @@ impl Rollers {
             normal: rotate(foot.normal, c, s),
             point: centre + rotate(foot.point, c, s),
             t: foot.t,
-        })
+        };
+        Ok((state, nearest))
     }
 
     /// First-order gap at zero lag and arm of roller i (`first_order::roller`), from the unit

@@ -421,7 +421,7 @@ fn a_hole_of_one_disc_unbalances_the_shares() {
 /// The three code paths that meet a roller — the closest point from scratch
 /// (`Mesh::roller_gap`), the clearance sweep that follows each roller in its frame, and the
 /// loaded contact (`Rollers::evaluate`) — see the same parts as built: a longer crank, a roller
-/// moved and one grown. And the pins see the longer crank as the nominal pins see the disc
+/// moved and one grown, a form error on the disc. And the pins see the longer crank as the nominal pins see the disc
 /// centre moved by de·e_φ. Agreement to 1e-12 mm: the same geometry formed in different
 /// orders (a few ulp of Rp); a path that ignored any one deviation would be off by microns.
 #[test]
@@ -433,6 +433,7 @@ fn every_path_sees_the_same_parts_as_built() {
     built.deviations.rollers = vec![RollerDeviation::default(); 10];
     built.deviations.rollers[2] = radial(0.002);
     built.deviations.rollers[5].radius_mm = -0.005;
+    built.deviations.form = form();
     let mesh = Mesh::new(&built, &PAPER_OPTIMUM);
     let rollers = Rollers::new(
         &built,
@@ -523,4 +524,114 @@ fn a_spec_with_deviations_checks_the_reducer_as_built() {
          deviation roller 6: radial -4.000 µm, tangential +0.000 µm, radius +0.000 µm\n  \
          deviation disc 0 hole 2: radial +0.000 µm, tangential +3.000 µm\n";
     assert!(explain.stdout.contains(expected), "{}", explain.stdout);
+}
+
+/// A form error of three harmonics (orders 3, 11 and 40; 2, 1.5 and 0.8 µm), enough to bend
+/// the flank visibly at order 40 (w'' up to 1.3 mm/rad²).
+fn form() -> Vec<cycloid::model::FormTerm> {
+    use cycloid::model::FormTerm;
+    vec![
+        FormTerm {
+            order: 3,
+            cos_mm: 0.002,
+            sin_mm: -0.0005,
+        },
+        FormTerm {
+            order: 11,
+            cos_mm: -0.001,
+            sin_mm: 0.0011,
+        },
+        FormTerm {
+            order: 40,
+            cos_mm: 0.0006,
+            sin_mm: 0.0005,
+        },
+    ]
+}
+
+/// The formed profile's tangent and curvature (closed forms from the locus's Frenet frame)
+/// against central differences of its points: h = 1e-4 rad, truncation h²/6·|Γ'''| ≈ 1e-6
+/// of |Γ'| and h²/12·|Γ''''| for the second difference, well inside 1e-5 relative; the
+/// curvature through both differences to 1e-4 relative (a missing w'' term is 10 % off at
+/// order 40).
+#[test]
+fn the_formed_profile_has_the_tangent_and_curvature_of_its_points() {
+    use cycloid::geometry::profile::Profile;
+    let p = Profile::new(&paper_design(), &PAPER_OPTIMUM).with_form(&form());
+    let h = 1e-4;
+    for k in 0..97 {
+        let t = std::f64::consts::TAU * (k as f64 + 0.3) / 97.0;
+        let (a, b, c) = (p.point(t - h), p.point(t), p.point(t + h));
+        let d1 = (c - a) / (2.0 * h);
+        let d2 = (c - 2.0 * b + a) / (h * h);
+        let tangent = p.tangent(t);
+        assert!(
+            (tangent - d1).norm() < 1e-5 * tangent.norm(),
+            "tangent at {t}"
+        );
+        let fd_curvature = cycloid::geometry::cross(d1, d2) / d1.norm().powi(3);
+        let curvature = p.curvature(t);
+        assert!(
+            (curvature - fd_curvature).abs() < 1e-4 * curvature.abs().max(0.01),
+            "curvature at {t}: {curvature} vs {fd_curvature}"
+        );
+        let n = p.normal(t);
+        assert!(n.dot(&tangent).abs() < 1e-12 * tangent.norm() && cross_sign(tangent, n) < 0.0);
+    }
+}
+
+/// The normal is the tangent turned clockwise (outward for a counter-clockwise profile).
+fn cross_sign(a: Vec2, b: Vec2) -> f64 {
+    cycloid::geometry::cross(a, b)
+}
+
+/// A roller's gap on the disc with a form error is its distance to the formed profile, less
+/// its radius: against a search over the profile's points (golden section on |q − Γ(t)|
+/// within ±0.05 rad of the foot, to the argument's round-off), 1e-9 mm. And a form error of
+/// order 0 — a constant w, not allowed in a spec but a limit case here — is an equidistant
+/// modification of that size: gaps to 1e-12 mm.
+#[test]
+fn the_gap_with_a_form_error_is_the_distance_to_the_formed_profile() {
+    let mut built = paper_design();
+    built.deviations.form = form();
+    let mesh = Mesh::new(&built, &PAPER_OPTIMUM);
+    for phi in turn(41) {
+        let pose = Pose::lagging(phi, 1e-4);
+        for i in 0..built.rollers {
+            let g = mesh.roller_gap(i, &pose, None).unwrap();
+            let q = mesh.roller_in_disc(i, &pose);
+            let dist = |t: f64| (q - mesh.profile.point(t)).norm();
+            let t = common::golden_section_min(dist, g.t - 0.05, g.t + 0.05);
+            let expected = dist(t) - mesh.roller_radius(i);
+            assert!(
+                (g.gap_mm - expected).abs() < 1e-9,
+                "roller {i} at {phi}: {} vs {expected}",
+                g.gap_mm
+            );
+        }
+    }
+    let mut constant = paper_design();
+    constant.deviations.form = vec![cycloid::model::FormTerm {
+        order: 0,
+        cos_mm: 0.003,
+        sin_mm: 0.0,
+    }];
+    let thinner = Modification {
+        equidistant_mm: PAPER_OPTIMUM.equidistant_mm + 0.003,
+        ..PAPER_OPTIMUM
+    };
+    let (a, b) = (
+        Mesh::new(&constant, &PAPER_OPTIMUM),
+        Mesh::new(&paper_design(), &thinner),
+    );
+    for phi in turn(13) {
+        for i in 0..10 {
+            let pose = Pose::ideal(phi);
+            let (ga, gb) = (
+                a.roller_gap(i, &pose, None).unwrap(),
+                b.roller_gap(i, &pose, None).unwrap(),
+            );
+            assert!((ga.gap_mm - gb.gap_mm).abs() < 1e-12);
+        }
+    }
 }

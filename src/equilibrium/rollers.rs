@@ -128,7 +128,15 @@ impl Rollers {
             + mesh.eccentricity_deviation_mm.abs();
         // |∂²gap/∂β²| ≤ |P| + |P|²/ρ, ρ the smallest convex radius of Γ (the distance field's
         // Hessian is bounded by 1/ρ), doubled for safety and for the crank terms.
-        let convex = mesh.profile.min_convex_radius().radius_mm - mesh.profile.offset_mm;
+        // A form error bends the flank by up to |w''|/|C'|², |C'| ≥ R' − e·np.
+        let slowest = (mesh.profile.locus_radius_mm
+            - mesh.profile.eccentricity_mm * design.rollers as f64)
+            .max(1e-6);
+        let ripple = mesh.profile.form_bend_bound() / (slowest * slowest);
+        let mut convex = mesh.profile.min_convex_radius().radius_mm - mesh.profile.offset_mm;
+        if ripple > 0.0 {
+            convex = 1.0 / (1.0 / convex.max(1e-6) + ripple);
+        }
         let curvature_bound = 2.0 * (reach + reach * reach / convex.max(1e-6));
         let mut r = Rollers {
             mesh,
@@ -148,8 +156,7 @@ impl Rollers {
                 * (reach + m.shift_mm.abs() + m.equidistant_mm.abs()),
         };
         r.linear_stiffness = law::paper_linear_stiffness(&r.line_contact(0.0));
-        let profile = &r.mesh.profile;
-        r.certified_mm = 0.9 * profile.locus_reach_bound_mm().min(profile.offset_mm);
+        r.certified_mm = crate::geometry::clearance::certified_mm(&r.mesh.profile);
         r
     }
 

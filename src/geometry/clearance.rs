@@ -128,7 +128,7 @@ impl Mesh {
             Vec::new()
         };
         Mesh {
-            profile: Profile::new(design, &d.ground(modification)),
+            profile: Profile::new(design, &d.ground(modification)).with_form(&d.form),
             teeth: design.teeth,
             rollers: design.rollers,
             eccentricity_mm: design.eccentricity_mm,
@@ -162,10 +162,11 @@ impl Mesh {
     }
 
     /// Every gap repeats with the mesh period (`first_period`): the rollers are alike and
-    /// evenly spaced. A roller off its place or size breaks that (the crank eccentricity and
-    /// the grinding errors do not: they act on every roller alike).
+    /// evenly spaced, the teeth alike. A roller off its place or size, or a form error of the
+    /// disc, breaks that (the crank eccentricity and the grinding errors do not: they act on
+    /// every roller and tooth alike).
     pub fn is_periodic(&self) -> bool {
-        self.parts.is_empty()
+        self.parts.is_empty() && !self.profile.has_form()
     }
 
     /// The part of roller i's centre, seen from the disc centre, that the nominal locus form
@@ -524,6 +525,14 @@ struct Seat {
     offset_mm: f64,
 }
 
+/// How close to the locus a foot must be to be proven the nearest point of Γ
+/// (`Tracker::certified_mm`): 0.9 of the locus's reach and of r', less twice the form error's
+/// largest |w| (the formed profile is within |w| of the offset curve, so a foot of it that
+/// margin inside the reach is still the nearest).
+pub fn certified_mm(profile: &Profile) -> f64 {
+    0.9 * profile.locus_reach_bound_mm().min(profile.offset_mm) - 2.0 * profile.form_bound_mm()
+}
+
 /// The constants of a sweep of one mesh.
 struct Tracker<'a> {
     mesh: &'a Mesh,
@@ -547,7 +556,7 @@ impl<'a> Tracker<'a> {
         Tracker {
             mesh,
             units: (0..mesh.rollers).map(|i| mesh.roller_unit(i)).collect(),
-            certified_mm: 0.9 * profile.locus_reach_bound_mm().min(profile.offset_mm),
+            certified_mm: certified_mm(profile),
             first_s: wrap_pi(-profile.rotation_rad),
         }
     }

@@ -12,11 +12,13 @@
 //! r' must be smaller than the smallest convex radius of curvature of C.
 
 use super::{cmul, cross, expi_minus_one, rotate, sin_cos, Vec2};
-use crate::model::{ConvexRadius, Design, Locus, Modification};
+use crate::model::{ConvexRadius, Design, FormTerm, Locus, Modification};
 use std::f64::consts::PI;
+use std::sync::Arc;
 
-/// Disc profile of one design and modification.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Disc profile of one design and modification, and, for a disc as built, its form error
+/// (`with_form`): Γ(t) = Rot(Δδ)·(C(t) − (r' + w(t))·N(t)).
+#[derive(Debug, Clone, PartialEq)]
 pub struct Profile {
     /// Number of rollers np (lobes of the locus term).
     pub rollers: usize,
@@ -30,6 +32,8 @@ pub struct Profile {
     pub rotation_rad: f64,
     rot_cos: f64,
     rot_sin: f64,
+    /// The form error w(t), sorted by order; empty for the profile as drawn.
+    form: Arc<[FormTerm]>,
 }
 
 /// Locus value and its first two derivatives with respect to t.
@@ -135,7 +139,60 @@ impl Profile {
             rotation_rad,
             rot_cos,
             rot_sin,
+            form: Arc::from([]),
         }
+    }
+
+    /// This profile with the form error `form` along its normal (MODEL.md "Measured profiles";
+    /// positive w: material missing).
+    pub fn with_form(mut self, form: &[FormTerm]) -> Self {
+        let mut terms = form.to_vec();
+        terms.sort_by_key(|f| f.order);
+        self.form = terms.into();
+        self
+    }
+
+    /// Whether the profile carries a form error.
+    pub fn has_form(&self) -> bool {
+        !self.form.is_empty()
+    }
+
+    /// w(t), w'(t), w''(t): mm, mm/rad, mm/rad². The harmonics cos(k·t), sin(k·t) by powers of
+    /// e^{it} (one sine and cosine per call; k ≤ a few hundred, whose rounding grows as k·ε).
+    pub fn form_jet(&self, t: f64) -> (f64, f64, f64) {
+        let mut jet = (0.0, 0.0, 0.0);
+        if self.form.is_empty() {
+            return jet;
+        }
+        let (s, c) = t.sin_cos();
+        let step = Vec2::new(c, s);
+        let (mut power, mut k) = (Vec2::new(1.0, 0.0), 0usize);
+        for f in self.form.iter() {
+            while k < f.order {
+                power = cmul(power, step);
+                k += 1;
+            }
+            let kf = k as f64;
+            let value = f.cos_mm * power.x + f.sin_mm * power.y;
+            let slope = kf * (f.sin_mm * power.x - f.cos_mm * power.y);
+            jet.0 += value;
+            jet.1 += slope;
+            jet.2 -= kf * kf * value;
+        }
+        jet
+    }
+
+    /// The largest |w''| the form error can reach, mm/rad²: Σ k²·amplitude.
+    pub fn form_bend_bound(&self) -> f64 {
+        self.form
+            .iter()
+            .map(|f| (f.order * f.order) as f64 * f.amplitude_mm())
+            .sum()
+    }
+
+    /// The largest |w| the form error can reach, mm: Σ amplitude.
+    pub fn form_bound_mm(&self) -> f64 {
+        self.form.iter().map(FormTerm::amplitude_mm).sum()
     }
 
     /// C, C', C'' at t (mm, mm/rad, mm/rad²).
@@ -210,25 +267,69 @@ impl Profile {
     /// Γ(t), mm, disc frame.
     pub fn point(&self, t: f64) -> Vec2 {
         let j = self.locus_jet(t);
-        self.turned(j.c - self.offset_mm * Self::unrotated_normal(&j))
+        let w = self.form_jet(t).0;
+        self.turned(j.c - (self.offset_mm + w) * Self::unrotated_normal(&j))
     }
 
-    /// Outward unit normal of Γ (and of C) at t, disc frame.
+    /// Outward unit normal of Γ at t, disc frame (that of C when there is no form error).
     pub fn normal(&self, t: f64) -> Vec2 {
+        if self.has_form() {
+            let g = self.formed_jet(t).d1;
+            return self.turned(Vec2::new(g.y, -g.x) / g.norm());
+        }
         self.turned(Self::unrotated_normal(&self.locus_jet(t)))
     }
 
-    /// Γ'(t) = |C'|·(1 − r'κ_C)·T, mm/rad, disc frame.
+    /// Γ'(t), mm/rad, disc frame: |C'|·(1 − r'κ_C)·T without a form error.
     pub fn tangent(&self, t: f64) -> Vec2 {
+        if self.has_form() {
+            return self.turned(self.formed_jet(t).d1);
+        }
         let j = self.locus_jet(t);
         let k = cross(j.d1, j.d2) / j.d1.norm().powi(3);
         self.turned(j.d1 * (1.0 - self.offset_mm * k))
     }
 
     /// Signed curvature of Γ, κ_Γ = κ_C/(1 − r'κ_C), 1/mm; positive where the disc is convex.
-    /// Its reciprocal is ρ_C − r' (the offset shortens convex radii by r').
+    /// Its reciprocal is ρ_C − r' (the offset shortens convex radii by r'). With a form error,
+    /// (Γ' × Γ'')/|Γ'|³ of the formed profile (`formed_jet`).
     pub fn curvature(&self, t: f64) -> f64 {
+        if self.has_form() {
+            let g = self.formed_jet(t);
+            return cross(g.d1, g.d2) / g.d1.norm().powi(3);
+        }
         self.curvature_at(((self.rollers - 1) as f64 * t).cos())
+    }
+
+    /// Γ, Γ' and Γ'' of the profile with its form error, unturned, from the Frenet frame of
+    /// C: with v = |C'|, T = C'/v, N the outward normal, N' = v·κ_C·T, T' = −v·κ_C·N and
+    /// ρ = r' + w,
+    ///   Γ'  = A·T + B·N,  A = v·(1 − ρκ_C), B = −w',
+    ///   Γ'' = (A' + B·v·κ_C)·T + (B' − A·v·κ_C)·N,  A' = v'·(1 − ρκ_C) − v·(w'κ_C + ρκ_C'),
+    /// v' = C'·C''/v, B' = −w''.
+    fn formed_jet(&self, t: f64) -> LocusJet {
+        let j = self.locus_jet(t);
+        self.formed_from(&j, self.locus_d3(t), self.form_jet(t))
+    }
+
+    /// `formed_jet` from the locus jet, the third derivative of C and (w, w', w'').
+    fn formed_from(&self, j: &LocusJet, d3: Vec2, (w, w1, w2): (f64, f64, f64)) -> LocusJet {
+        let v = j.d1.norm();
+        let tangent = j.d1 / v;
+        let normal = Vec2::new(tangent.y, -tangent.x);
+        let kappa = cross(j.d1, j.d2) / (v * v * v);
+        let dv = j.d1.dot(&j.d2) / v;
+        let dkappa = cross(j.d1, d3) / (v * v * v) - 3.0 * kappa * j.d1.dot(&j.d2) / (v * v);
+        let rho = self.offset_mm + w;
+        let a = v * (1.0 - rho * kappa);
+        let b = -w1;
+        let da = dv * (1.0 - rho * kappa) - v * (w1 * kappa + rho * dkappa);
+        let db = -w2;
+        LocusJet {
+            c: j.c - rho * normal,
+            d1: tangent * a + normal * b,
+            d2: tangent * (da + b * v * kappa) + normal * (db - a * v * kappa),
+        }
     }
 
     /// κ_Γ from c = cos((n − 1)t): with κ_C = N/D (`locus_curvature_at`),
@@ -351,7 +452,7 @@ impl Profile {
             // that need not fall below 1e-13 rad, and the iteration used to run out.
             let noise = 64.0 * f64::EPSILON * (j.c.norm() + q.norm()) * j.d1.norm();
             if dh > 0.0 && h.abs() <= noise {
-                return Ok(self.foot_from(t, &j, q));
+                return self.foot_from(t, &j, q);
             }
             let step = if dh > 0.0 {
                 (-h / dh).clamp(-MAX_STEP, MAX_STEP)
@@ -359,7 +460,7 @@ impl Profile {
                 -h.signum() * MAX_STEP
             };
             if step.abs() <= 1e-13 {
-                return Ok(self.foot_from(t, &j, q));
+                return self.foot_from(t, &j, q);
             }
             trig = trig.advanced(t, step, n);
             t += step;
@@ -373,7 +474,7 @@ impl Profile {
             // Newton is quadratic here (h' > 0 and the step is tiny): the error after this step
             // is ~ (h''/2h')·step² < 1e-15 rad, so the jet at the new t is the answer.
             if dh > 0.0 && step.abs() <= 1e-8 {
-                return Ok(self.foot_from(t, &self.jet_from(&trig), q));
+                return self.foot_from(t, &self.jet_from(&trig), q);
             }
         }
         Err(ClosestPointFailure {
@@ -458,15 +559,19 @@ impl Profile {
         let foot = |s: f64, e1: Vec2, en: Vec2| {
             let (et, ent, diff, d1, _) = at(e1, en);
             let normal = Vec2::new(d1.y, -d1.x) / d1.norm();
+            if self.has_form() {
+                let at_foot = diff - self.offset_mm * normal;
+                return self.formed_foot(t_ref + s, (et, ent), at_foot);
+            }
             let point = et * rl - ent * e - self.offset_mm * normal;
             let locus_distance_mm = -diff.dot(&normal);
-            Foot {
+            Ok(Foot {
                 t: super::wrap_tau(t_ref + s),
                 point: self.turned(point),
                 normal: self.turned(normal),
                 signed_distance_mm: self.offset_mm + locus_distance_mm,
                 locus_distance_mm,
-            }
+            })
         };
         let reach = PI / self.rollers as f64;
         let mut s = s_start;
@@ -481,7 +586,7 @@ impl Profile {
                 -h.signum() * MAX_STEP
             };
             if step.abs() <= 1e-13 {
-                return Ok(foot(s, e1, en));
+                return foot(s, e1, en);
             }
             let (d_1, d_n) = (expi_minus_one(step), expi_minus_one(n * step));
             e1 += cmul(e1, d_1) + d_1;
@@ -496,7 +601,7 @@ impl Profile {
             }
             // Quadratic convergence: after a step this small the error is ~1e-16 rad.
             if dh > 0.0 && step.abs() <= 1e-8 {
-                return Ok(foot(s, e1, en));
+                return foot(s, e1, en);
             }
         }
         Err(ClosestPointFailure {
@@ -506,15 +611,91 @@ impl Profile {
         })
     }
 
-    fn foot_from(&self, t: f64, j: &LocusJet, q: Vec2) -> Foot {
+    fn foot_from(&self, t: f64, j: &LocusJet, q: Vec2) -> Result<Foot, ClosestPointFailure> {
         let n = Self::unrotated_normal(j);
         let point = j.c - self.offset_mm * n;
-        Foot {
+        if self.has_form() {
+            let n_t = self.rollers as f64 * t;
+            let trig = (Vec2::new(t.cos(), t.sin()), Vec2::new(n_t.cos(), n_t.sin()));
+            return self.formed_foot(t, trig, point - q);
+        }
+        Ok(Foot {
             t: super::wrap_tau(t),
             point: self.turned(point),
             normal: self.turned(n),
             signed_distance_mm: (q - point).dot(&n),
             locus_distance_mm: (q - j.c).dot(&n),
+        })
+    }
+
+    /// The foot on the profile with its form error, from the foot t0 on the profile without it
+    /// (`at_foot` = Γ0(t0) − q, unturned, formed from small quantities by the caller; `trig`
+    /// = (e^{i·t0}, e^{i·np·t0})): Newton on h(t) = (Γ(t) − q)·Γ'(t) with the formed jet
+    /// (`formed_from`), where Γ(t) − q = at_foot + (C(t) − C(t0)) − r'·(N(t) − N(t0)) −
+    /// w(t)·N(t), every term small. A form error of micrometres moves the foot by about
+    /// |w'|/|Γ'| rad: two or three steps.
+    fn formed_foot(
+        &self,
+        t0: f64,
+        (base, lobe): (Vec2, Vec2),
+        at_foot: Vec2,
+    ) -> Result<Foot, ClosestPointFailure> {
+        const MAX_ITER: usize = 30;
+        let n = self.rollers as f64;
+        let (e, rl, r) = (self.eccentricity_mm, self.locus_radius_mm, self.offset_mm);
+        let perp = |v: Vec2| Vec2::new(-v.y, v.x);
+        let jet_at = |e1: Vec2, en: Vec2| {
+            let et = base + cmul(base, e1);
+            let ent = lobe + cmul(lobe, en);
+            let jet = LocusJet {
+                c: et * rl - ent * e,
+                d1: perp(et * rl - ent * (e * n)),
+                d2: ent * (e * n * n) - et * rl,
+            };
+            let d3 = perp(ent * (e * n * n * n) - et * rl);
+            let moved = cmul(base, e1) * rl - cmul(lobe, en) * e;
+            (jet, d3, moved)
+        };
+        let n0 = Self::unrotated_normal(&jet_at(Vec2::zeros(), Vec2::zeros()).0);
+        let reach = PI / self.rollers as f64;
+        let mut s = 0.0;
+        for iteration in 1..=MAX_ITER {
+            let (jet, d3, moved) = jet_at(expi_minus_one(s), expi_minus_one(n * s));
+            let form = self.form_jet(t0 + s);
+            let g = self.formed_from(&jet, d3, form);
+            let normal_c = Self::unrotated_normal(&jet);
+            let d = at_foot + moved - (normal_c - n0) * r - normal_c * form.0;
+            let h = d.dot(&g.d1);
+            let dh = g.d1.norm_squared() + d.dot(&g.d2);
+            let step = if dh > 0.0 {
+                (-h / dh).clamp(-0.05, 0.05)
+            } else {
+                -h.signum() * 0.05
+            };
+            if dh > 0.0 && step.abs() <= 1e-14 {
+                let normal = Vec2::new(g.d1.y, -g.d1.x) / g.d1.norm();
+                let signed = -d.dot(&normal);
+                return Ok(Foot {
+                    t: super::wrap_tau(t0 + s),
+                    point: self.turned(g.c),
+                    normal: self.turned(normal),
+                    signed_distance_mm: signed,
+                    locus_distance_mm: signed - r,
+                });
+            }
+            s += step;
+            if s.abs() > reach || !s.is_finite() {
+                return Err(ClosestPointFailure {
+                    t_start: t0,
+                    t_last: t0 + s,
+                    iterations: iteration,
+                });
+            }
         }
+        Err(ClosestPointFailure {
+            t_start: t0,
+            t_last: t0 + s,
+            iterations: MAX_ITER,
+        })
     }
 }

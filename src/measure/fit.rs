@@ -278,12 +278,13 @@ impl<'a> State<'a> {
             d.roller_radius_mm + get(layout.equidistant, m.equidistant_mm),
             get(layout.rotation, m.rotation_within_pitch(d.teeth)),
         );
+        let rotation = profile.rotation_rad.sin_cos();
         State {
             design: d,
             profile,
             centre: Vec2::new(params[0], params[1]),
             orientation: params[2].sin_cos(),
-            rotation: profile.rotation_rad.sin_cos(),
+            rotation,
             hole_offset: get(layout.hole, 0.0),
             params,
             layout,

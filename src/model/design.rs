@@ -92,12 +92,18 @@ impl Design {
     }
 
     /// Mesh period in crank angle: 2π/np, after which every gap repeats with the roller index
-    /// shifted by one; with rollers as built that are not alike, a whole crank turn.
+    /// shifted by one; with rollers as built that are not alike, a whole crank turn; with a
+    /// form error on the disc, a whole turn of the disc (nc crank turns).
     pub fn mesh_period_rad(&self) -> f64 {
+        if !self.deviations.form.is_empty() {
+            return std::f64::consts::TAU * self.teeth as f64;
+        }
         std::f64::consts::TAU / self.mesh_periods_per_turn() as f64
     }
 
-    /// Mesh periods per crank turn: np, or 1 when some roller is off its place or size.
+    /// Mesh periods per crank turn: np, or 1 when some roller is off its place or size. A
+    /// disc with a form error meets every roller with every tooth only over a whole turn of
+    /// the disc, nc crank turns (`mesh_period_rad` then says so).
     fn mesh_periods_per_turn(&self) -> usize {
         if self.deviations.moves_rollers() {
             1
@@ -122,7 +128,7 @@ impl Design {
             return self.mesh_period_rad();
         }
         let turn = std::f64::consts::TAU;
-        if self.deviations.moves_pins() {
+        if self.deviations.moves_pins() || !self.deviations.form.is_empty() {
             return turn * self.teeth as f64;
         }
         let units = self.rollers * self.pins.count;

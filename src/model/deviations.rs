@@ -32,6 +32,23 @@ impl CentreDeviation {
     }
 }
 
+/// One harmonic of a disc's form error (MODEL.md "Measured profiles"): w(t) ∋
+/// cos_mm·cos(order·t) + sin_mm·sin(order·t), t the locus parameter, w along the profile's
+/// normal (positive: material missing, like a positive ΔRrp).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FormTerm {
+    pub order: usize,
+    pub cos_mm: f64,
+    pub sin_mm: f64,
+}
+
+impl FormTerm {
+    /// Amplitude sqrt(a² + b²), mm.
+    pub fn amplitude_mm(&self) -> f64 {
+        self.cos_mm.hypot(self.sin_mm)
+    }
+}
+
 /// Roller i as built: its centre's offset and its radius's deviation.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RollerDeviation {
@@ -64,6 +81,9 @@ pub struct Deviations {
     pub shift_mm: f64,
     /// Grinding error of the equidistant modification ΔRrp, mm (added to the spec's).
     pub equidistant_mm: f64,
+    /// The disc's form error (every disc alike; empty: none), orders ≥ 2 and not multiples of
+    /// the tooth count (those are the modification itself).
+    pub form: Vec<FormTerm>,
 }
 
 impl Deviations {
@@ -74,6 +94,23 @@ impl Deviations {
             && self.equidistant_mm == 0.0
             && !self.moves_rollers()
             && !self.moves_pins()
+            && self.form.is_empty()
+    }
+
+    /// The form error w(t), mm (positive: material missing).
+    pub fn form_mm(&self, t: f64) -> f64 {
+        self.form
+            .iter()
+            .map(|f| {
+                let (s, c) = (f.order as f64 * t).sin_cos();
+                f.cos_mm * c + f.sin_mm * s
+            })
+            .sum()
+    }
+
+    /// The largest |w| the form error can reach, mm: the sum of its amplitudes.
+    pub fn form_bound_mm(&self) -> f64 {
+        self.form.iter().map(FormTerm::amplitude_mm).sum()
     }
 
     /// Some roller is off its nominal place or size: gaps repeat only after a full crank turn.
@@ -164,6 +201,15 @@ impl Deviations {
             for (j, h) in holes.iter().enumerate().filter(|(_, h)| !h.is_zero()) {
                 lines.push(centre(format!("disc {k} hole {j}"), h));
             }
+        }
+        if !self.form.is_empty() {
+            lines.push(format!(
+                "form error: {} harmonics of orders {} to {}, |w| ≤ {:.3} µm",
+                self.form.len(),
+                self.form.iter().map(|f| f.order).min().unwrap_or(0),
+                self.form.iter().map(|f| f.order).max().unwrap_or(0),
+                self.form_bound_mm() * 1e3
+            ));
         }
         lines
     }

@@ -59,7 +59,7 @@ pub mod study;
 pub use design::{
     ConvexRadius, CrankBearing, Design, Locus, Material, Modification, OutputPins, MAX_DISCS,
 };
-pub use deviations::{CentreDeviation, Deviations, RollerDeviation};
+pub use deviations::{CentreDeviation, Deviations, FormTerm, RollerDeviation};
 pub use golden::{Golden, Tolerance};
 pub use limits::{Limit, Limits};
 pub use scene::{

@@ -4,7 +4,7 @@
 
 use super::raw::{RawCentreDeviation, RawDeviations};
 use crate::error::{Error, ErrorKind, Result};
-use crate::model::{CentreDeviation, Design, Deviations, Modification, RollerDeviation};
+use crate::model::{CentreDeviation, Design, Deviations, FormTerm, Modification, RollerDeviation};
 use crate::numeric;
 
 const KEY: &str = "reducer.deviations";
@@ -92,6 +92,7 @@ pub fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> {
         let j = index(key.clone(), p.index, pins, "output pins", &mut seen)?;
         d.pins[j] = centre(&key, p)?;
     }
+    d.form = form(&raw.form, design.teeth)?;
     let mut seen = vec![vec![false; pins]; design.discs];
     if !raw.holes.is_empty() {
         d.holes = vec![vec![CentreDeviation::default(); pins]; design.discs];
@@ -121,6 +122,39 @@ pub fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> {
         d.holes[k][j] = centre(&key, h)?;
     }
     Ok(d)
+}
+
+/// `reducer.deviations.form`: orders from 2, each once, none a multiple of the tooth count
+/// (such a harmonic moves every tooth alike: it is the modification, `shift_mm` and
+/// `equidistant_mm`, or the orientation; order 1 is the disc's centre).
+fn form(raw: &[super::raw::RawFormTerm], teeth: usize) -> Result<Vec<FormTerm>> {
+    let mut terms: Vec<FormTerm> = Vec::new();
+    for (n, f) in raw.iter().enumerate() {
+        let key = format!("{KEY}.form[{n}]");
+        let order = f.order;
+        if order < 2 || (order as usize).is_multiple_of(teeth) {
+            return Err(invalid(
+                format!("{key}.order"),
+                format!(
+                    "the form error's harmonics are of orders 2 and up that are not multiples \
+                     of the tooth count {teeth} (order 1 is the disc's centre, a multiple of \
+                     {teeth} moves every tooth alike: the modification); got {order}"
+                ),
+            ));
+        }
+        if terms.iter().any(|t| t.order == order as usize) {
+            return Err(invalid(
+                format!("{key}.order"),
+                format!("order {order} is given twice"),
+            ));
+        }
+        terms.push(FormTerm {
+            order: order as usize,
+            cos_mm: finite(format!("{key}.cos_mm"), f.cos_mm)?,
+            sin_mm: finite(format!("{key}.sin_mm"), f.sin_mm)?,
+        });
+    }
+    Ok(terms)
 }
 
 fn rule(key: String, message: String) -> Error {
@@ -187,7 +221,52 @@ pub fn check(design: &Design, m: &Modification) -> Result<()> {
             )?;
         }
     }
+    too_far(
+        format!("{KEY}.form"),
+        "the form error (the sum of its amplitudes)".into(),
+        d.form_bound_mm(),
+    )?;
+    regular_with_form(design, m)?;
     rollers_apart(design)
+}
+
+/// The ground profile with its form error stays regular: Γ' = A·T + B·N with
+/// A = |C'|·(1 − (r' + w)·κ_C) must not turn back (A > 0), sampled at 64 points per period of
+/// the highest harmonic and of the tooth; a form error that curls the flank is no disc.
+fn regular_with_form(design: &Design, m: &Modification) -> Result<()> {
+    let d = &design.deviations;
+    if d.form.is_empty() {
+        return Ok(());
+    }
+    let ground = d.ground(m);
+    let locus = design.locus(&ground);
+    let offset = design.roller_radius_mm + ground.equidistant_mm;
+    let highest = d
+        .form
+        .iter()
+        .map(|f| f.order)
+        .max()
+        .unwrap_or(1)
+        .max(design.rollers);
+    let samples = 16 * highest * 4;
+    for k in 0..samples {
+        let t = std::f64::consts::TAU * k as f64 / samples as f64;
+        let kappa = locus.curvature_at(((design.rollers - 1) as f64 * t).cos());
+        let w = d.form_mm(t);
+        if 1.0 - (offset + w) * kappa <= 0.0 {
+            return Err(rule(
+                format!("{KEY}.form"),
+                format!(
+                    "the form error undercuts the profile at t = {}°: r' + w = {} mm reaches \
+                     the locus's radius of curvature {} mm there",
+                    numeric::number(t.to_degrees()),
+                    numeric::number(offset + w),
+                    numeric::number(1.0 / kappa)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Neighbouring rollers as built keep apart: centre distance above the sum of their radii.

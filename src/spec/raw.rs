@@ -193,6 +193,24 @@ pub struct RawDeviations {
     pub shift_mm: f64,
     #[serde(default)]
     pub equidistant_mm: f64,
+    /// The disc's form error as harmonics in the locus parameter (what `cycloid fit --write`
+    /// writes).
+    #[serde(default)]
+    pub form: Vec<RawFormTerm>,
+}
+
+/// One harmonic of the form error: w(t) ∋ cos_mm·cos(order·t) + sin_mm·sin(order·t).
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the key order (and optionally cos_mm, sin_mm)"
+)]
+pub struct RawFormTerm {
+    pub order: i64,
+    #[serde(default)]
+    pub cos_mm: f64,
+    #[serde(default)]
+    pub sin_mm: f64,
 }
 
 /// One roller's deviation: centre outward and counter-clockwise along its circle, radius.

@@ -11,4 +11,5 @@ pub mod plots;
 pub mod svg;
 pub mod table;
 pub mod terminal;
+pub mod tolerance;
 pub mod torsion;

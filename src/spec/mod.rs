@@ -9,6 +9,7 @@ pub mod measured;
 pub mod parse;
 pub mod raw;
 pub mod rules;
+pub mod tolerances;
 pub mod validate;
 
 use crate::error::Result;
@@ -36,6 +37,8 @@ pub struct Spec {
     pub accuracy: Option<Accuracy>,
     /// Points measured on the disc (`measured_profile:`), if given.
     pub measured: Option<crate::model::measured::MeasuredProfile>,
+    /// Tolerance bands and the Monte Carlo study of them (`tolerances:`), if given.
+    pub tolerances: Option<crate::model::tolerances::Tolerances>,
 }
 
 /// `accuracy:` of a spec: which scene's ladder the design review shows, and how.

@@ -527,7 +527,12 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         .measured_profile
         .map(|m| super::measured::build(path, m))
         .transpose()?;
+    let tolerances = raw
+        .tolerances
+        .map(|t| super::tolerances::build(&t, &design, &modification, &scenes))
+        .transpose()?;
     Ok(Spec {
+        tolerances,
         measured,
         name: raw.name,
         path: path.to_string(),

@@ -198,7 +198,8 @@ fn finish(
         write_file(p, &report::tolerance::samples_csv(study, records))?;
     }
     if let Some(dir) = outputs.report {
-        let files = report::tolerance::review(Path::new(dir), study, &summary, records, sens)?;
+        let files =
+            report::tolerance_review::write(Path::new(dir), study, &summary, records, sens)?;
         print(
             out,
             &format!(

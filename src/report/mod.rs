@@ -12,4 +12,5 @@ pub mod svg;
 pub mod table;
 pub mod terminal;
 pub mod tolerance;
+pub mod tolerance_review;
 pub mod torsion;

@@ -43,7 +43,6 @@ fn bands(study: &Study) -> String {
 /// The terminal report.
 pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String {
     let t = &study.tolerances;
-    let discs = study.spec.design.discs;
     let mut out = format!(
         "cycloid tolerance `{}`: scene `{}`, {} samples, {} distribution{}, seed {}\n\
          toleranced (mm): {}\n\n",
@@ -104,31 +103,30 @@ pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String 
     out += &format!("quantiles: {QUANTILE_DEFINITION}\n");
     out += "\nworst samples (replay one with --write-sample K OUT):\n";
     for &(k, _) in &s.worst {
-        let values = study.draw(k);
-        // The three largest draws relative to their σ: what made this sample bad.
-        let mut parts: Vec<(usize, f64)> = values
-            .iter()
-            .enumerate()
-            .map(|(i, v)| {
-                (
-                    i,
-                    (v / study.tolerances.sigma_mm(study.params[i].kind)).abs(),
-                )
-            })
-            .collect();
-        parts.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-        let named = parts
-            .iter()
-            .take(3)
-            .map(|&(i, _)| format!("{} {:+.3} µm", study.params[i].name(discs), values[i] * 1e3))
-            .collect::<Vec<_>>()
-            .join(", ");
-        out += &format!("  sample {k}: largest draws {named}\n");
+        out += &format!(
+            "  sample {k}: largest draws {}\n",
+            largest_draws(study, k, 3)
+        );
     }
     if let Some(sens) = sens {
         out += &sensitivity_text(study, s, sens);
     }
     out
+}
+
+/// The `count` draws of sample k largest relative to their σ (what made it bad), named, µm.
+pub fn largest_draws(study: &Study, k: u64, count: usize) -> String {
+    let values = study.draw(k);
+    let z = |i: usize| (values[i] / study.tolerances.sigma_mm(study.params[i].kind)).abs();
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| z(b).total_cmp(&z(a)).then(a.cmp(&b)));
+    let discs = study.spec.design.discs;
+    order
+        .iter()
+        .take(count)
+        .map(|&i| format!("{} {:+.3} µm", study.params[i].name(discs), values[i] * 1e3))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Rows of cells in left-aligned columns.
@@ -314,16 +312,4 @@ pub fn samples_csv(study: &Study, records: &Records) -> String {
         out.push('\n');
     }
     out
-}
-
-/// The design review of a study (written in `report::tolerance_review`); the number of files.
-pub fn review(
-    dir: &std::path::Path,
-    study: &Study,
-    s: &Summary,
-    records: &Records,
-    sens: Option<&Sensitivity>,
-) -> crate::error::Result<usize> {
-    let _ = (dir, study, s, records, sens);
-    Ok(0)
 }

@@ -52,6 +52,10 @@ pub enum Command {
         /// the map costs steps² evaluations per study).
         #[arg(long, default_value_t = DEFAULT_REPORT_MAP_STEPS)]
         report_map_steps: usize,
+        /// Also run the Monte Carlo of the spec's `tolerances:` (as `cycloid tolerance`); its
+        /// failure rate against `max_failure_rate` joins the checks.
+        #[arg(long)]
+        tolerance: bool,
     },
     /// Optimise the tooth-profile modification as the spec's `optimise` section says.
     Optimise {
@@ -269,6 +273,7 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             report,
             report_crank_deg,
             report_map_steps,
+            tolerance,
         } => {
             let outputs = Outputs {
                 json: json.as_deref(),
@@ -279,7 +284,7 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
                 color,
             };
             distinct_outputs(&inputs_of(&spec, None), &outputs.paths())?;
-            let result = run_check(&spec, &outputs, explain, out);
+            let result = run_check(&spec, &outputs, (explain, tolerance), out);
             match (&result, outputs.junit) {
                 (Err(e), Some(path))
                     if !matches!(e.kind, ErrorKind::Usage | ErrorKind::OutputClosed) =>
@@ -388,7 +393,12 @@ pub const DEFAULT_REPORT_MAP_STEPS: usize = 15;
 /// Largest grid of a report map (101² = 10 201 evaluations per study).
 pub const MAX_REPORT_MAP_STEPS: usize = 101;
 
-fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) -> Result<Outcome> {
+fn run_check(
+    path: &str,
+    outputs: &Outputs,
+    (explain, tolerance): (bool, bool),
+    out: &mut dyn Write,
+) -> Result<Outcome> {
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
     distinct_outputs(&inputs_of(path, Some(&spec)), &outputs.paths())?;
@@ -440,6 +450,9 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     };
     if let (true, Some(r)) = (spec.limits.accuracy_resolved, &resolution) {
         checks.push(check::resolution(r));
+    }
+    if tolerance {
+        checks.push(tolerance::check(&spec)?);
     }
     print(out, &format!("cycloid check `{}`\n", spec.name))?;
     for (s, r) in spec.studies.iter().zip(&studies) {

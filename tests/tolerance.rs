@@ -115,12 +115,15 @@ fn clopper_pearson_meets_its_closed_forms_and_a_table() {
     assert!((hi - 0.4450).abs() < 5e-5, "{hi}");
 }
 
+/// The nominal result of a spec's first scene, by the engine.
+fn nominal_run(spec: &cycloid::spec::Spec) -> cycloid::model::results::SceneResult {
+    let s = &spec.scenes[0];
+    scene::run(spec, s, &scene::plan(spec, s, scene::Writes::default())).unwrap()
+}
+
 /// The nominal min clearance of a spec's first scene, by the engine.
 fn nominal_min_clearance(spec: &cycloid::spec::Spec) -> f64 {
-    let s = &spec.scenes[0];
-    let r = scene::run(spec, s, &scene::plan(spec, s, scene::Writes::default())).unwrap();
-    let checks = check::evaluate(spec, &[r]).unwrap();
-    checks[0].value
+    check::evaluate(spec, &[nominal_run(spec)]).unwrap()[0].value
 }
 
 /// A design whose nominal min clearance is exactly its limit, with a symmetric error in the
@@ -167,6 +170,18 @@ fn the_clearance_moves_one_for_one_with_the_equidistant_error() {
         .unwrap();
     let d = sensitivity::derivatives(&study, p, sensitivity::STEP_MM).unwrap();
     assert!((d[0] - 1.0).abs() < 1e-6, "∂q/∂ΔRrp = {}", d[0]);
+    // The paper optimum's smallest gap is at a tooth root (tooth phase 0), where the normal gap
+    // is ΔRrp − ΔRp exactly (MODEL.md "Clearance"): ∂q/∂ΔRp = −1 while the root stays the
+    // smallest gap over ±h (its margin to the next smallest is micrometres, h is 0.1 µm).
+    let at = &check::evaluate(&spec, &[nominal_run(&spec)]).unwrap()[0].at;
+    assert!(at.contains("tooth phase 0.000"), "{at}");
+    let shift = study
+        .params
+        .iter()
+        .position(|p| p.kind == Kind::Shift)
+        .unwrap();
+    let d = sensitivity::derivatives(&study, shift, sensitivity::STEP_MM).unwrap();
+    assert!((d[0] + 1.0).abs() < 1e-6, "∂q/∂ΔRp = {}", d[0]);
     // The linear stack-up of that parameter alone is its σ = band/3.
     let s = sensitivity::run(&study, &Silent).unwrap();
     let (kind, variance, _) = s
@@ -236,6 +251,35 @@ fn three_shards_merge_to_the_unsharded_study_byte_for_byte() {
         51,
         "a header and 50 rows"
     );
+    // The same study as a Slurm job array `--array=1-3`: task ids 1 to 3 are shards 0 to 2.
+    let here = dir.join("");
+    for id in ["1", "2", "3"] {
+        let env = [
+            ("SLURM_ARRAY_TASK_ID", id),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+        ];
+        let out = format!("task{id}.bin");
+        let r = common::cycloid_with(&here, &["tolerance", "t.yaml", "--out", &out], &env);
+        assert_eq!(r.code(), 0, "{r:?}");
+        assert!(r
+            .stdout
+            .contains(&format!("shard {}/3", id.parse::<u32>().unwrap() - 1)));
+    }
+    let tasks = cycloid(
+        &here,
+        &[
+            "tolerance",
+            "merge",
+            "task1.bin",
+            "task2.bin",
+            "task3.bin",
+            "--json",
+            "tasks.json",
+        ],
+    );
+    assert_eq!(tasks.code(), 0, "{tasks:?}");
+    assert_eq!(dir.read("whole.json"), dir.read("tasks.json"));
 }
 
 /// A merge refuses shards of another spec, seed or sample count, and a set with a shard
@@ -321,6 +365,15 @@ fn exit_codes_and_the_message_of_a_bad_band() {
     );
     let r = cycloid(here.as_path(), &["tolerance", "f.yaml"]);
     assert_eq!(r.code(), 1, "{r:?}");
+    // `check` runs the study only when asked; its verdict then joins the checks.
+    assert_eq!(cycloid(here.as_path(), &["check", "f.yaml"]).code(), 0);
+    let r = cycloid(here.as_path(), &["check", "f.yaml", "--tolerance"]);
+    assert_eq!(r.code(), 1, "{r:?}");
+    assert!(
+        r.stdout.contains("rated/tolerance_failure_rate"),
+        "{}",
+        r.stdout
+    );
     dir.write(
         "n.yaml",
         dir.read("t.yaml")

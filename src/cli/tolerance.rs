@@ -298,3 +298,32 @@ fn write_sample(study: &Study, k: &str, path: &str, out: &mut dyn Write) -> Resu
     )?;
     Ok(Outcome::Passed)
 }
+
+/// `check --tolerance`: the study of the spec's `tolerances:` as one check, its failure rate
+/// against `max_failure_rate`.
+pub fn check(spec: &spec::Spec) -> Result<check::Check> {
+    let study = Study::new(spec, None).map_err(|e| locate(e, spec))?;
+    let bar = Bar::with_rate("tolerance study", "samples", study.samples() as u64);
+    let records = study.run((0, 1), &bar).map_err(|e| locate(e, spec))?;
+    drop(bar);
+    let s = summary::summarise(&study, &records);
+    Ok(check::Check {
+        id: format!(
+            "{}/tolerance_failure_rate",
+            spec.scenes[study.tolerances.scene].name
+        ),
+        kind: check::CheckKind::Limit,
+        value: s.rate(),
+        limit: s.max_failure_rate,
+        unit: "",
+        bound: crate::model::quantity::Bound::Max,
+        passed: s.passed(),
+        at: format!(
+            "{} of {} samples fail some limit; 95 % Clopper–Pearson interval [{}, {}]",
+            s.failures,
+            s.samples,
+            crate::numeric::number(s.interval.0),
+            crate::numeric::number(s.interval.1)
+        ),
+    })
+}

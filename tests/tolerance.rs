@@ -201,6 +201,18 @@ fn small_study(dir: &Scratch, samples: usize) {
     dir.write("t.yaml", text.text());
 }
 
+/// `cycloid tolerance merge SHARDS --json NAME.json --samples-csv NAME.csv` in `dir`, which
+/// must pass.
+fn merge(dir: &Scratch, shards: &[&str], name: &str) -> common::Run {
+    let (json, csv) = (format!("{name}.json"), format!("{name}.csv"));
+    let mut args = vec!["tolerance", "merge"];
+    args.extend(shards);
+    args.extend(["--json", &json, "--samples-csv", &csv]);
+    let r = cycloid(dir.join("").as_path(), &args);
+    assert_eq!(r.code(), 0, "{r:?}");
+    r
+}
+
 /// Three shards computed by three processes and merged give the unsharded study's JSON and CSV
 /// byte for byte.
 #[test]
@@ -228,21 +240,7 @@ fn three_shards_merge_to_the_unsharded_study_byte_for_byte() {
         );
         assert_eq!(r.code(), 0, "{r:?}");
     }
-    let merged = cycloid(
-        dir.join("").as_path(),
-        &[
-            "tolerance",
-            "merge",
-            "s2.bin",
-            "s0.bin",
-            "s1.bin",
-            "--json",
-            "merged.json",
-            "--samples-csv",
-            "merged.csv",
-        ],
-    );
-    assert_eq!(merged.code(), 0, "{merged:?}");
+    let merged = merge(&dir, &["s2.bin", "s0.bin", "s1.bin"], "merged");
     assert_eq!(dir.read("whole.json"), dir.read("merged.json"));
     assert_eq!(dir.read("whole.csv"), dir.read("merged.csv"));
     assert_eq!(whole.stdout, merged.stdout);
@@ -266,20 +264,9 @@ fn three_shards_merge_to_the_unsharded_study_byte_for_byte() {
             .stdout
             .contains(&format!("shard {}/3", id.parse::<u32>().unwrap() - 1)));
     }
-    let tasks = cycloid(
-        &here,
-        &[
-            "tolerance",
-            "merge",
-            "task1.bin",
-            "task2.bin",
-            "task3.bin",
-            "--json",
-            "tasks.json",
-        ],
-    );
-    assert_eq!(tasks.code(), 0, "{tasks:?}");
+    merge(&dir, &["task1.bin", "task2.bin", "task3.bin"], "tasks");
     assert_eq!(dir.read("whole.json"), dir.read("tasks.json"));
+    assert_eq!(dir.read("whole.csv"), dir.read("tasks.csv"));
 }
 
 /// A merge refuses shards of another spec, seed or sample count, and a set with a shard

@@ -65,6 +65,17 @@ pub fn parse(path: &str, text: &str) -> Result<Spec> {
     validate::build(path, text, raw).map_err(|e| locate::locate_error(e, path, text))
 }
 
+/// The index of the scene named `name`; else an error at `key` that lists the scenes.
+pub fn scene_index(scenes: &[Scene], name: &str, key: &str) -> Result<usize> {
+    scenes.iter().position(|s| s.name == name).ok_or_else(|| {
+        crate::error::Error::new(
+            crate::error::ErrorKind::InvalidValue,
+            format!("no scene named `{name}`; scenes: {}", scene_names(scenes)),
+        )
+        .at_key(key)
+    })
+}
+
 /// The scenes' names, comma-separated, for messages about an unknown scene.
 pub fn scene_names(scenes: &[Scene]) -> String {
     scenes

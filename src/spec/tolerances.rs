@@ -47,19 +47,7 @@ pub fn build(
         None => Distribution::Normal,
         Some(d) => d.parse().map_err(|m| invalid("distribution", m))?,
     };
-    let scene = scenes
-        .iter()
-        .position(|s| s.name == raw.scene)
-        .ok_or_else(|| {
-            invalid(
-                "scene",
-                format!(
-                    "no scene named `{}`; scenes: {}",
-                    raw.scene,
-                    super::scene_names(scenes)
-                ),
-            )
-        })?;
+    let scene = super::scene_index(scenes, &raw.scene, &format!("{KEY}.scene"))?;
     if scenes[scene].geometry != GeometryMode::Exact {
         return Err(invalid(
             "scene",

@@ -11,6 +11,8 @@ use clap::{Parser, Subcommand};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+mod tolerance;
+
 #[derive(Debug, Parser)]
 #[command(
     name = "cycloid",
@@ -50,6 +52,10 @@ pub enum Command {
         /// the map costs steps² evaluations per study).
         #[arg(long, default_value_t = DEFAULT_REPORT_MAP_STEPS)]
         report_map_steps: usize,
+        /// Also run the Monte Carlo of the spec's `tolerances:` (as `cycloid tolerance`); its
+        /// failure rate against `max_failure_rate` joins the checks.
+        #[arg(long)]
+        tolerance: bool,
     },
     /// Optimise the tooth-profile modification as the spec's `optimise` section says.
     Optimise {
@@ -116,6 +122,10 @@ pub enum Command {
         #[arg(long)]
         form_csv: Option<String>,
     },
+    /// Monte Carlo of the spec's `tolerances:`: draw as-built reducers, run the study's scene
+    /// on each, and report the distribution of every limited quantity and the failure rate;
+    /// `tolerance merge SHARD...` joins the shards of a split run.
+    Tolerance(ToleranceArgs),
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
         /// The YAML spec whose design and modification give the profile.
@@ -129,6 +139,65 @@ pub enum Command {
         /// Largest chordal error of the exported polyline, µm (at least 0.001).
         #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
         tolerance_um: f64,
+    },
+}
+
+/// `cycloid tolerance SPEC [options]`, or `cycloid tolerance merge SHARD...`.
+#[derive(Debug, clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub struct ToleranceArgs {
+    #[command(subcommand)]
+    pub merge: Option<ToleranceCommand>,
+    /// The YAML spec with a `tolerances:` section.
+    #[arg(required = true)]
+    pub spec: Option<String>,
+    /// Samples of the study [default: the spec's `tolerances.samples`].
+    #[arg(long)]
+    pub samples: Option<usize>,
+    /// Write the study as JSON to this path.
+    #[arg(long)]
+    pub json: Option<String>,
+    /// Write one CSV row per sample (its deviations and limited quantities) to this path.
+    #[arg(long)]
+    pub samples_csv: Option<String>,
+    /// Compute only shard I of N (0-based: samples k with k mod N = I) and write it to --out;
+    /// without it, Slurm's SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT are honoured.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// The shard file a sharded run writes.
+    #[arg(long)]
+    pub out: Option<String>,
+    /// Also compute the derivative of every limited quantity by every toleranced deviation,
+    /// the linear stack-up and the Pareto of the tolerances.
+    #[arg(long)]
+    pub sensitivity: bool,
+    /// Write the spec with sample K's deviations as `reducer.deviations` to OUT (for `cycloid
+    /// check` to replay), and run nothing else.
+    #[arg(long, num_args = 2, value_names = ["K", "OUT"])]
+    pub write_sample: Option<Vec<String>>,
+    /// Write a design review of the study (index.html and SVG plots) into this directory.
+    #[arg(long)]
+    pub report: Option<String>,
+}
+
+/// Subcommands of `cycloid tolerance`.
+#[derive(Debug, Subcommand)]
+pub enum ToleranceCommand {
+    /// Join the shard files of one run into the study's report (the same, bit for bit, as the
+    /// unsharded run's).
+    Merge {
+        /// Every shard file of the run, in any order.
+        #[arg(required = true)]
+        shards: Vec<String>,
+        /// Write the study as JSON to this path.
+        #[arg(long)]
+        json: Option<String>,
+        /// Write one CSV row per sample to this path.
+        #[arg(long)]
+        samples_csv: Option<String>,
+        /// Write a design review of the study into this directory.
+        #[arg(long)]
+        report: Option<String>,
     },
 }
 
@@ -204,6 +273,7 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             report,
             report_crank_deg,
             report_map_steps,
+            tolerance,
         } => {
             let outputs = Outputs {
                 json: json.as_deref(),
@@ -214,7 +284,7 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
                 color,
             };
             distinct_outputs(&inputs_of(&spec, None), &outputs.paths())?;
-            let result = run_check(&spec, &outputs, explain, out);
+            let result = run_check(&spec, &outputs, (explain, tolerance), out);
             match (&result, outputs.junit) {
                 (Err(e), Some(path))
                     if !matches!(e.kind, ErrorKind::Usage | ErrorKind::OutputClosed) =>
@@ -272,6 +342,7 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             write,
             form_csv,
         } => run_fit(&spec, write.as_deref(), form_csv.as_deref(), out),
+        Command::Tolerance(args) => tolerance::run(args, out),
     }
 }
 
@@ -322,7 +393,12 @@ pub const DEFAULT_REPORT_MAP_STEPS: usize = 15;
 /// Largest grid of a report map (101² = 10 201 evaluations per study).
 pub const MAX_REPORT_MAP_STEPS: usize = 101;
 
-fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) -> Result<Outcome> {
+fn run_check(
+    path: &str,
+    outputs: &Outputs,
+    (explain, tolerance): (bool, bool),
+    out: &mut dyn Write,
+) -> Result<Outcome> {
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
     distinct_outputs(&inputs_of(path, Some(&spec)), &outputs.paths())?;
@@ -374,6 +450,9 @@ fn run_check(path: &str, outputs: &Outputs, explain: bool, out: &mut dyn Write) 
     };
     if let (true, Some(r)) = (spec.limits.accuracy_resolved, &resolution) {
         checks.push(check::resolution(r));
+    }
+    if tolerance {
+        checks.push(tolerance::check(&spec)?);
     }
     print(out, &format!("cycloid check `{}`\n", spec.name))?;
     for (s, r) in spec.studies.iter().zip(&studies) {

@@ -15,4 +15,5 @@ pub use crate::progress;
 pub mod resolution;
 pub mod scene;
 pub mod summary;
+pub mod tolerance;
 pub mod torsion;

@@ -55,6 +55,7 @@ pub mod quantity;
 pub mod results;
 pub mod scene;
 pub mod study;
+pub mod tolerances;
 
 pub use design::{
     ConvexRadius, CrankBearing, Design, Locus, Material, Modification, OutputPins, MAX_DISCS,

@@ -780,36 +780,44 @@ pre { background: #f7f7f7; padding: 10px; font-size: 12px; overflow-x: auto; }
 "#;
 
 fn page(input: &ReportInput, sections: &[Section]) -> String {
-    let spec = input.spec;
     let failed = input.checks.iter().filter(|c| !c.passed).count();
     let total = input.checks.len();
+    let banner = html! {
+        @if total == 0 {
+            p.banner.pass { "No checks: the spec sets no limits and no golden curves; \
+                the headline results below are what it computed" }
+        } @else if failed == 0 {
+            p.banner.pass { "PASSED: " (if total == 1 { "the one check passes".to_string() }
+                else { format!("all {total} checks pass") }) }
+        } @else {
+            p.banner.fail { "FAILED: " (failed) " of " (total) " checks fail" }
+        }
+        @if !input.warnings.is_empty() {
+            div.banner.warn { @for w in input.warnings { p { "Warning: " (w) } } }
+        }
+    };
+    shell(input.spec, "Design review", banner, sections)
+}
+
+/// A page of the report's look: `title` of the spec, its identity, the `banner`, a table of
+/// contents of `sections`, the sections and the spec's source.
+pub(super) fn shell(spec: &Spec, title: &str, banner: Markup, sections: &[Section]) -> String {
     let page = html! {
         (DOCTYPE)
         html lang="en" {
             head {
                 meta charset="utf-8";
                 meta name="viewport" content="width=device-width, initial-scale=1";
-                title { "Design review: " (spec.name) }
+                title { (title) ": " (spec.name) }
                 style { (PreEscaped(STYLE.replace("FONT", FONT))) }
             }
             body {
-                h1 { "Design review: " (spec.name) }
+                h1 { (title) ": " (spec.name) }
                 p.meta {
                     "spec " code { (spec.path) } " · SHA-256 " code { (sha256_hex(&spec.source)) }
                     " · cycloid " (env!("CARGO_PKG_VERSION")) " · generated " (today())
                 }
-                @if total == 0 {
-                    p.banner.pass { "No checks: the spec sets no limits and no golden curves; \
-                        the headline results below are what it computed" }
-                } @else if failed == 0 {
-                    p.banner.pass { "PASSED: " (if total == 1 { "the one check passes".to_string() }
-                        else { format!("all {total} checks pass") }) }
-                } @else {
-                    p.banner.fail { "FAILED: " (failed) " of " (total) " checks fail" }
-                }
-                @if !input.warnings.is_empty() {
-                    div.banner.warn { @for w in input.warnings { p { "Warning: " (w) } } }
-                }
+                (banner)
                 nav.toc {
                     b { "Contents" }
                     ol { @for s in sections { li { a href=(format!("#{}", s.id)) { (s.heading) } } } }

@@ -11,4 +11,6 @@ pub mod plots;
 pub mod svg;
 pub mod table;
 pub mod terminal;
+pub mod tolerance;
+pub mod tolerance_review;
 pub mod torsion;

@@ -17,6 +17,15 @@ pub struct Bar {
 impl Bar {
     /// Drawn only when stdout is a terminal and `total` is at least `min_total`.
     pub fn new(what: &str, unit: &str, total: u64, min_total: u64) -> Bar {
+        Self::styled(what, unit, total, min_total, "")
+    }
+
+    /// `new`, showing the rate (`unit`/s) as well: for work whose units take long each.
+    pub fn with_rate(what: &str, unit: &str, total: u64) -> Bar {
+        Self::styled(what, unit, total, 0, ", {per_sec}")
+    }
+
+    fn styled(what: &str, unit: &str, total: u64, min_total: u64, rate: &str) -> Bar {
         let shown = std::io::stdout().is_terminal() && total >= min_total;
         let bar = ProgressBar::with_draw_target(
             Some(total),
@@ -27,7 +36,7 @@ impl Bar {
             },
         );
         let template =
-            format!("{{msg}} [{{bar:30}}] {{human_pos}}/{{human_len}} {unit}, {{eta}} left");
+            format!("{{msg}} [{{bar:30}}] {{human_pos}}/{{human_len}} {unit}{rate}, {{eta}} left");
         bar.set_style(
             ProgressStyle::with_template(&template)
                 .unwrap_or_else(|_| ProgressStyle::default_bar())

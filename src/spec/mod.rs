@@ -9,6 +9,7 @@ pub mod measured;
 pub mod parse;
 pub mod raw;
 pub mod rules;
+pub mod tolerances;
 pub mod validate;
 
 use crate::error::Result;
@@ -36,6 +37,8 @@ pub struct Spec {
     pub accuracy: Option<Accuracy>,
     /// Points measured on the disc (`measured_profile:`), if given.
     pub measured: Option<crate::model::measured::MeasuredProfile>,
+    /// Tolerance bands and the Monte Carlo study of them (`tolerances:`), if given.
+    pub tolerances: Option<crate::model::tolerances::Tolerances>,
 }
 
 /// `accuracy:` of a spec: which scene's ladder the design review shows, and how.
@@ -60,6 +63,17 @@ pub fn load(path: &str) -> Result<Spec> {
 pub fn parse(path: &str, text: &str) -> Result<Spec> {
     let raw = parse::parse_raw(path, text)?;
     validate::build(path, text, raw).map_err(|e| locate::locate_error(e, path, text))
+}
+
+/// The index of the scene named `name`; else an error at `key` that lists the scenes.
+pub fn scene_index(scenes: &[Scene], name: &str, key: &str) -> Result<usize> {
+    scenes.iter().position(|s| s.name == name).ok_or_else(|| {
+        crate::error::Error::new(
+            crate::error::ErrorKind::InvalidValue,
+            format!("no scene named `{name}`; scenes: {}", scene_names(scenes)),
+        )
+        .at_key(key)
+    })
 }
 
 /// The scenes' names, comma-separated, for messages about an unknown scene.

@@ -96,6 +96,7 @@ where
         golden_root: raw.golden_root,
         accuracy: raw.accuracy,
         measured_profile: raw.measured_profile,
+        tolerances: raw.tolerances,
     })
 }
 

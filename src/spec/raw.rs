@@ -35,6 +35,66 @@ pub struct RawSpecOf<O> {
     /// Points measured on the disc, to identify it (`cycloid fit`).
     #[serde(default)]
     pub measured_profile: Option<RawMeasuredProfile>,
+    /// Tolerance bands of the parts, for the Monte Carlo study (`cycloid tolerance`).
+    #[serde(default)]
+    pub tolerances: Option<RawTolerances>,
+}
+
+/// `tolerances:`: a band ±b per deviation kind (0 or absent: not toleranced), how deviations
+/// are distributed in it, and the study (scene, samples, seed, allowed failure rate).
+#[derive(Debug, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys scene, max_failure_rate and the bands (eccentricity_mm, roller_radial_mm, ...)"
+)]
+pub struct RawTolerances {
+    #[serde(default)]
+    pub eccentricity_mm: f64,
+    #[serde(default)]
+    pub roller_radial_mm: f64,
+    #[serde(default)]
+    pub roller_tangential_mm: f64,
+    #[serde(default)]
+    pub roller_radius_mm: f64,
+    #[serde(default)]
+    pub pin_radial_mm: f64,
+    #[serde(default)]
+    pub pin_tangential_mm: f64,
+    #[serde(default)]
+    pub hole_radial_mm: f64,
+    #[serde(default)]
+    pub hole_tangential_mm: f64,
+    #[serde(default)]
+    pub shift_mm: f64,
+    #[serde(default)]
+    pub equidistant_mm: f64,
+    /// `normal` (band = 3σ) or `uniform`; default normal.
+    #[serde(default)]
+    pub distribution: Option<String>,
+    pub scene: String,
+    #[serde(default)]
+    pub samples: Option<i64>,
+    #[serde(default)]
+    pub seed: Option<i64>,
+    pub max_failure_rate: f64,
+}
+
+impl RawTolerances {
+    /// The bands in the order of `model::tolerances::Kind::ALL`.
+    pub fn bands(&self) -> [f64; 10] {
+        [
+            self.eccentricity_mm,
+            self.roller_radial_mm,
+            self.roller_tangential_mm,
+            self.roller_radius_mm,
+            self.pin_radial_mm,
+            self.pin_tangential_mm,
+            self.hole_radial_mm,
+            self.hole_tangential_mm,
+            self.shift_mm,
+            self.equidistant_mm,
+        ]
+    }
 }
 
 /// `measured_profile:`: a points file and what to identify from it.

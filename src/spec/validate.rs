@@ -3,7 +3,7 @@
 
 use super::parse::did_you_mean;
 use super::raw::*;
-use super::{scene_names, Accuracy, Spec};
+use super::{Accuracy, Spec};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
 use crate::model::quantity;
@@ -528,7 +528,12 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         .measured_profile
         .map(|m| super::measured::build(path, m))
         .transpose()?;
+    let tolerances = raw
+        .tolerances
+        .map(|t| super::tolerances::build(&t, &design, &modification, &scenes))
+        .transpose()?;
     Ok(Spec {
+        tolerances,
         measured,
         name: raw.name,
         path: path.to_string(),
@@ -638,19 +643,7 @@ fn not_torsion(key: &str, scene: &Scene, what: &str) -> Result<()> {
 /// `accuracy:`: the scene exists and computes something the ladder compares, the rungs are
 /// rungs of the ladder, the tolerances are positive.
 fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Result<Accuracy> {
-    let scene = scenes
-        .iter()
-        .position(|s| s.name == raw.scene)
-        .ok_or_else(|| {
-            invalid(
-                "accuracy.scene",
-                format!(
-                    "no scene named `{}`; scenes: {}",
-                    raw.scene,
-                    scene_names(scenes)
-                ),
-            )
-        })?;
+    let scene = super::scene_index(scenes, &raw.scene, "accuracy.scene")?;
     let steps = |key: &str, value: Option<i64>, min: usize| {
         value
             .map(|n| acc::ladder_steps(n, min).map_err(|m| invalid(&format!("accuracy.{key}"), m)))
@@ -902,19 +895,7 @@ fn study(
     scenes: &[Scene],
     modification: &Modification,
 ) -> Result<Study> {
-    let scene = scenes
-        .iter()
-        .position(|s| s.name == raw.scene)
-        .ok_or_else(|| {
-            invalid(
-                &format!("{key}.scene"),
-                format!(
-                    "no scene named `{}`; scenes: {}",
-                    raw.scene,
-                    scene_names(scenes)
-                ),
-            )
-        })?;
+    let scene = super::scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     not_torsion(&format!("{key}.scene"), &scenes[scene], "a study")?;
     let mut variables = Vec::new();
     let v = &raw.variables;

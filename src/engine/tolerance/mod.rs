@@ -1,0 +1,194 @@
+//! The tolerance Monte Carlo (`cycloid tolerance`): sample k draws every toleranced part's
+//! deviation from (seed, k) alone (`draw`), runs the study's scene on the as-built reducer
+//! with the exact engine and evaluates every limit of the spec on it (`check::evaluate`, the
+//! code path of `check`). The per-sample limit values are the study's records; what the
+//! report says of them (quantiles, failure rates with Clopper–Pearson intervals, the worst
+//! samples) is `summary`, computed the same way from one process's records or from merged
+//! shards (`shard`), so that any split of the samples gives the same report, bit for bit.
+
+pub mod draw;
+pub mod sensitivity;
+pub mod shard;
+pub mod stats;
+pub mod summary;
+pub mod write;
+
+use crate::engine::{check, scene};
+use crate::equilibrium::solve::Settings;
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::quantity::LimitDef;
+use crate::model::tolerances::{self as tol, Parameter, Tolerances};
+use crate::model::{Deviations, Plan};
+use crate::progress::Progress;
+use crate::spec::Spec;
+
+/// One tolerance study of a spec: what is drawn, what runs, what is judged.
+#[derive(Debug, Clone)]
+pub struct Study<'a> {
+    pub spec: &'a Spec,
+    pub tolerances: Tolerances,
+    /// The drawn parameters, in the draw order (`model::tolerances::parameters`).
+    pub params: Vec<Parameter>,
+    /// The spec's limits the scene evaluates, in the order of `check::evaluate`: (definition,
+    /// bound value).
+    pub limits: Vec<(&'static LimitDef, f64)>,
+    pub plan: Plan,
+}
+
+/// Per-sample records of some samples: `values[s·L + l]` is limit l's quantity in the s-th
+/// recorded sample, `passed` its verdict (L = the study's limits).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Records {
+    pub values: Vec<f64>,
+    pub passed: Vec<bool>,
+}
+
+impl<'a> Study<'a> {
+    /// The study of `spec`'s `tolerances:` with `samples` samples (the spec's unless given).
+    pub fn new(spec: &'a Spec, samples: Option<usize>) -> Result<Study<'a>> {
+        let mut tolerances = spec.tolerances.clone().ok_or_else(|| {
+            Error::new(
+                ErrorKind::InvalidValue,
+                format!(
+                    "{}: the spec has no `tolerances:` section; add `tolerances: {{scene: NAME, \
+                     max_failure_rate: 0.0027, roller_radial_mm: 0.005}}` (bands in mm)",
+                    spec.path
+                ),
+            )
+        })?;
+        if let Some(n) = samples {
+            if n == 0 || n as i64 > crate::spec::tolerances::MAX_SAMPLES {
+                return Err(Error::new(
+                    ErrorKind::InvalidValue,
+                    format!(
+                        "--samples must be 1 to {}, got {n}",
+                        crate::spec::tolerances::MAX_SAMPLES
+                    ),
+                ));
+            }
+            tolerances.samples = n;
+        }
+        let d = &spec.design;
+        let params = tol::parameters(&tolerances, d.rollers, d.pins.count, d.discs);
+        let scene = &spec.scenes[tolerances.scene];
+        let plan = scene::plan(spec, scene, scene::Writes::default());
+        let keys = check::limits_for(&spec.limits, &plan);
+        let limits: Vec<_> = spec
+            .limits
+            .entries
+            .iter()
+            .filter(|l| keys.contains(&l.def.key))
+            .map(|l| (l.def, l.value))
+            .collect();
+        if limits.is_empty() {
+            return Err(Error::new(
+                ErrorKind::InvalidValue,
+                format!(
+                    "scene `{}` evaluates none of the spec's limits: a study judges the samples by \
+                     the limits their scene computes; set a limit of what it computes or choose \
+                     another scene",
+                    scene.name
+                ),
+            )
+            .at_key("tolerances.scene"));
+        }
+        Ok(Study {
+            spec,
+            tolerances,
+            params,
+            limits,
+            plan,
+        })
+    }
+
+    pub fn samples(&self) -> usize {
+        self.tolerances.samples
+    }
+
+    /// The drawn values of sample k (`draw::sample`).
+    pub fn draw(&self, k: u64) -> Vec<f64> {
+        draw::sample(&self.tolerances, &self.params, k)
+    }
+
+    /// The as-built state of drawn (or chosen) parameter values.
+    pub fn deviations(&self, values: &[f64]) -> Deviations {
+        let d = &self.spec.design;
+        tol::deviations(&self.params, values, (d.rollers, d.pins.count, d.discs))
+    }
+
+    /// The limits' values and verdicts of the reducer built with `values`: the scene run on
+    /// the deviated design, judged by `check::evaluate`. `what` names the state in errors.
+    pub fn evaluate(&self, values: &[f64], what: &str) -> Result<(Vec<f64>, Vec<bool>)> {
+        let spec = self.spec;
+        let mut design = spec.design.clone();
+        design.deviations = self.deviations(values);
+        let context = |e: Error| Error {
+            message: format!("{what}: {}", e.message),
+            ..e
+        };
+        crate::spec::deviations::check(&design, &spec.modification).map_err(context)?;
+        let scene = &spec.scenes[self.tolerances.scene];
+        let result = scene::run_design(
+            &design,
+            &spec.modification,
+            scene,
+            &self.plan,
+            &Settings::default(),
+        )
+        .map_err(context)?;
+        let checks = check::evaluate(spec, std::slice::from_ref(&result)).map_err(context)?;
+        let mut values = Vec::with_capacity(self.limits.len());
+        let mut passed = Vec::with_capacity(self.limits.len());
+        for (def, _) in &self.limits {
+            let c = checks.iter().find(|c| c.name() == def.key).ok_or_else(|| {
+                Error::computation(format!("{what}: no value of `limits.{}`", def.key))
+            })?;
+            if !c.value.is_finite() {
+                return Err(Error::computation(format!(
+                    "{what}: `{}` is {} ({})",
+                    def.quantity.key, c.value, c.at
+                )));
+            }
+            values.push(c.value);
+            passed.push(c.passed);
+        }
+        Ok((values, passed))
+    }
+
+    /// Sample k evaluated; an error names the sample and how to replay it.
+    pub fn evaluate_sample(&self, k: u64) -> Result<(Vec<f64>, Vec<bool>)> {
+        self.evaluate(
+            &self.draw(k),
+            &format!("sample {k} (replay it with --write-sample {k} OUT)"),
+        )
+    }
+
+    /// The records of the samples k ≡ `shard.0` (mod `shard.1`), in increasing k, in parallel;
+    /// `progress` hears of each sample done. The first error (in k order) is the error.
+    pub fn run(&self, shard: (u64, u64), progress: &dyn Progress) -> Result<Records> {
+        use rayon::prelude::*;
+        let ks = shard_samples(self.samples() as u64, shard);
+        progress.start("tolerance study", ks.len() as u64);
+        let each: Vec<Result<(Vec<f64>, Vec<bool>)>> = ks
+            .into_par_iter()
+            .map(|k| {
+                let r = self.evaluate_sample(k);
+                progress.advance(1);
+                r
+            })
+            .collect();
+        progress.finish();
+        let mut records = Records::default();
+        for r in each {
+            let (v, p) = r?;
+            records.values.extend(v);
+            records.passed.extend(p);
+        }
+        Ok(records)
+    }
+}
+
+/// The samples of shard I of N: k ≡ I (mod N), k < samples, increasing (I is 0-based).
+pub fn shard_samples(samples: u64, (index, count): (u64, u64)) -> Vec<u64> {
+    (index..samples).step_by(count.max(1) as usize).collect()
+}

@@ -1,0 +1,256 @@
+//! Shard files of a study split over processes (`--shard I/N`): the records of the samples
+//! k ≡ I (mod N) and what a merge needs to check that the shards belong together and to
+//! rebuild the study (the spec's text; the deviations are drawn again from (seed, k)).
+//!
+//! Format (little-endian), version 1:
+//! `MAGIC` (16 bytes), version u32, SHA-256 of the spec text (32 bytes), seed u64, samples
+//! u64, shard index u64 (0-based), shard count u64, limits L u32, spec path (u32 length +
+//! UTF-8), spec text (u64 length + UTF-8); then per sample of the shard, in increasing k, its
+//! L limit values (f64) and L verdicts (one byte each, 1 passed).
+
+use super::{shard_samples, Records};
+use crate::error::{Error, ErrorKind, Result};
+use sha2::{Digest, Sha256};
+
+pub const MAGIC: &[u8; 16] = b"cycloid-tol-shrd";
+pub const VERSION: u32 = 1;
+
+/// What a shard says about the study it belongs to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Header {
+    pub spec_sha256: [u8; 32],
+    pub seed: u64,
+    pub samples: u64,
+    /// 0-based shard index I and shard count N.
+    pub index: u64,
+    pub count: u64,
+    pub limits: u32,
+    pub spec_path: String,
+    pub spec_text: String,
+}
+
+/// One shard read back: its header and records.
+#[derive(Debug, Clone)]
+pub struct Shard {
+    pub header: Header,
+    pub records: Records,
+}
+
+/// SHA-256 of a spec's text.
+pub fn spec_hash(text: &str) -> [u8; 32] {
+    Sha256::digest(text.as_bytes()).into()
+}
+
+/// The bytes of a shard file.
+pub fn encode(h: &Header, records: &Records) -> Vec<u8> {
+    let mut b = Vec::with_capacity(128 + h.spec_text.len() + records.values.len() * 9);
+    b.extend_from_slice(MAGIC);
+    b.extend_from_slice(&VERSION.to_le_bytes());
+    b.extend_from_slice(&h.spec_sha256);
+    for v in [h.seed, h.samples, h.index, h.count] {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    b.extend_from_slice(&h.limits.to_le_bytes());
+    b.extend_from_slice(&(h.spec_path.len() as u32).to_le_bytes());
+    b.extend_from_slice(h.spec_path.as_bytes());
+    b.extend_from_slice(&(h.spec_text.len() as u64).to_le_bytes());
+    b.extend_from_slice(h.spec_text.as_bytes());
+    let l = h.limits as usize;
+    for (v, p) in records.values.chunks(l).zip(records.passed.chunks(l)) {
+        for x in v {
+            b.extend_from_slice(&x.to_le_bytes());
+        }
+        b.extend(p.iter().map(|&p| p as u8));
+    }
+    b
+}
+
+/// Reads the fields of a shard in order; every shortfall is the same error.
+struct Reader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+    path: &'a str,
+}
+
+impl<'a> Reader<'a> {
+    fn bad(&self, why: &str) -> Error {
+        Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "{}: not a shard file of `cycloid tolerance`: {why}",
+                self.path
+            ),
+        )
+    }
+
+    fn take(&mut self, n: usize) -> Result<&'a [u8]> {
+        let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len());
+        let end = end.ok_or_else(|| self.bad("it ends early"))?;
+        let s = &self.bytes[self.at..end];
+        self.at = end;
+        Ok(s)
+    }
+
+    fn u64(&mut self) -> Result<u64> {
+        Ok(u64::from_le_bytes(
+            self.take(8)?.try_into().unwrap_or_default(),
+        ))
+    }
+
+    fn u32(&mut self) -> Result<u32> {
+        Ok(u32::from_le_bytes(
+            self.take(4)?.try_into().unwrap_or_default(),
+        ))
+    }
+
+    fn text(&mut self, n: usize) -> Result<String> {
+        let raw = self.take(n)?;
+        String::from_utf8(raw.to_vec()).map_err(|_| self.bad("its spec is not UTF-8"))
+    }
+}
+
+/// Decode the bytes of the shard file at `path`.
+pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
+    let mut r = Reader { bytes, at: 0, path };
+    if r.take(MAGIC.len())? != MAGIC {
+        return Err(r.bad("it does not start with the shard mark"));
+    }
+    let version = r.u32()?;
+    if version != VERSION {
+        return Err(r.bad(&format!(
+            "format version {version}; this cycloid reads version {VERSION}"
+        )));
+    }
+    let spec_sha256: [u8; 32] = r.take(32)?.try_into().unwrap_or_default();
+    let (seed, samples, index, count) = (r.u64()?, r.u64()?, r.u64()?, r.u64()?);
+    let limits = r.u32()?;
+    let n = r.u32()? as usize;
+    let spec_path = r.text(n)?;
+    let n = r.u64()?;
+    let spec_text = r.text(usize::try_from(n).map_err(|_| r.bad("it ends early"))?)?;
+    if count == 0 || index >= count || count > samples.max(1) || limits == 0 {
+        return Err(r.bad(&format!("shard {index}/{count} with {limits} limits")));
+    }
+    let l = limits as usize;
+    let rows = shard_samples(samples, (index, count)).len();
+    let body = &bytes[r.at..];
+    if body.len() as u128 != rows as u128 * 9 * l as u128 {
+        return Err(r.bad(&format!(
+            "{} bytes of records, not the {} of {rows} samples",
+            body.len(),
+            rows * 9 * l
+        )));
+    }
+    let mut records = Records {
+        values: Vec::with_capacity(rows * l),
+        passed: Vec::with_capacity(rows * l),
+    };
+    for row in body.chunks_exact(9 * l) {
+        let (v, p) = row.split_at(8 * l);
+        records.values.extend(
+            v.chunks_exact(8)
+                .map(|c| f64::from_le_bytes(c.try_into().unwrap_or_default())),
+        );
+        records.passed.extend(p.iter().map(|&b| b == 1));
+    }
+    Ok(Shard {
+        header: Header {
+            spec_sha256,
+            seed,
+            samples,
+            index,
+            count,
+            limits,
+            spec_path,
+            spec_text,
+        },
+        records,
+    })
+}
+
+fn refuse(message: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, message)
+}
+
+/// The records of every sample, in sample order, from a complete set of shards (`names` the
+/// shards' paths, for messages): refused when they differ in spec, seed, sample count or
+/// shard count, or when a shard is missing or given twice (named by index).
+pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
+    let Some(first) = shards.first() else {
+        return Err(refuse("merge needs at least one shard file".into()));
+    };
+    let h0 = &first.header;
+    for (name, s) in names.iter().zip(shards) {
+        let h = &s.header;
+        let differs = |what: &str, a: String, b: String| {
+            refuse(format!(
+                "{name} (shard {}) is of another study than {} (shard {}): its {what} is {a}, \
+                 not {b}; merge only the shards of one run",
+                h.index, names[0], h0.index
+            ))
+        };
+        if h.spec_sha256 != h0.spec_sha256 {
+            return Err(differs(
+                "spec",
+                format!("`{}` (sha256 {})", h.spec_path, hex(&h.spec_sha256[..6])),
+                format!("`{}` (sha256 {})", h0.spec_path, hex(&h0.spec_sha256[..6])),
+            ));
+        }
+        for (what, a, b) in [
+            ("seed", h.seed, h0.seed),
+            ("sample count", h.samples, h0.samples),
+            ("shard count", h.count, h0.count),
+        ] {
+            if a != b {
+                return Err(differs(what, a.to_string(), b.to_string()));
+            }
+        }
+    }
+    let count = h0.count;
+    let mut by_index: Vec<Option<usize>> = vec![None; count as usize];
+    for (i, s) in shards.iter().enumerate() {
+        let slot = &mut by_index[s.header.index as usize];
+        if let Some(j) = slot {
+            return Err(refuse(format!(
+                "shard {} of {count} is given twice: {} and {}",
+                s.header.index, names[*j], names[i]
+            )));
+        }
+        *slot = Some(i);
+    }
+    let missing: Vec<String> = (0..count)
+        .filter(|&i| by_index[i as usize].is_none())
+        .map(|i| i.to_string())
+        .collect();
+    if !missing.is_empty() {
+        return Err(refuse(format!(
+            "shards of {count} missing: {} (0-based indices); merge needs every shard of the run",
+            missing.join(", ")
+        )));
+    }
+    let l = h0.limits as usize;
+    let n = h0.samples as usize;
+    let mut records = Records {
+        values: vec![0.0; n * l],
+        passed: vec![false; n * l],
+    };
+    for s in shards {
+        let (i, c) = (s.header.index as usize, count as usize);
+        for (row, (v, p)) in s
+            .records
+            .values
+            .chunks_exact(l)
+            .zip(s.records.passed.chunks_exact(l))
+            .enumerate()
+        {
+            let k = i + row * c;
+            records.values[k * l..(k + 1) * l].copy_from_slice(v);
+            records.passed[k * l..(k + 1) * l].copy_from_slice(p);
+        }
+    }
+    Ok(records)
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}

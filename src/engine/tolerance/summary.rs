@@ -1,0 +1,158 @@
+//! What a study's records say: per limit the distribution of its quantity and its failure
+//! rate, the overall failure rate against `max_failure_rate`, and the worst samples. Computed
+//! from the records in sample order only, so that one process's records and merged shards give
+//! the same numbers, bit for bit.
+
+use super::stats::{clopper_pearson, quantile};
+use super::{Records, Study};
+use crate::model::quantity::Bound;
+
+/// The quantiles the report gives: ±3σ of a normal (0.135 %, 99.865 %) and the median.
+pub const QUANTILES: [f64; 3] = [0.00135, 0.5, 0.99865];
+
+/// Confidence of the failure-rate intervals.
+pub const CONFIDENCE: f64 = 0.95;
+
+/// Worst samples the report lists.
+pub const WORST: usize = 5;
+
+/// One limit over the samples.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitSummary {
+    /// The limit's key (`min_clearance_mm`).
+    pub key: &'static str,
+    /// Its quantity's results-JSON name.
+    pub quantity: &'static str,
+    pub unit: &'static str,
+    pub label: &'static str,
+    pub limit: f64,
+    pub bound: Bound,
+    pub min: f64,
+    /// At `QUANTILES`.
+    pub quantiles: [f64; 3],
+    pub max: f64,
+    pub mean: f64,
+    /// Sample standard deviation (n − 1).
+    pub std: f64,
+    pub failures: u64,
+    /// 95 % Clopper–Pearson interval of the failure rate.
+    pub interval: (f64, f64),
+}
+
+/// The study's verdict.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summary {
+    pub samples: u64,
+    pub limits: Vec<LimitSummary>,
+    /// Samples that fail some limit.
+    pub failures: u64,
+    pub interval: (f64, f64),
+    pub max_failure_rate: f64,
+    /// The worst samples, worst first: (k, its largest excess over the limits, relative to
+    /// each limit as the checks table sorts them, `check::Check::excess`).
+    pub worst: Vec<(u64, f64)>,
+}
+
+impl Summary {
+    pub fn rate(&self) -> f64 {
+        self.failures as f64 / self.samples as f64
+    }
+
+    /// The failure rate is within `max_failure_rate`.
+    pub fn passed(&self) -> bool {
+        self.rate() <= self.max_failure_rate
+    }
+}
+
+/// How far beyond `limit` a value lies, relative to |limit| (1 when the limit is 0).
+pub fn excess(value: f64, limit: f64, bound: Bound) -> f64 {
+    let scale = if limit != 0.0 { limit.abs() } else { 1.0 };
+    match bound {
+        Bound::Max => (value - limit) / scale,
+        Bound::Min => (limit - value) / scale,
+    }
+}
+
+/// The summary of `records`, which hold every sample of the study in sample order.
+pub fn summarise(study: &Study, records: &Records) -> Summary {
+    let l = study.limits.len();
+    let n = study.samples();
+    let alpha = 1.0 - CONFIDENCE;
+    let limits = study
+        .limits
+        .iter()
+        .enumerate()
+        .map(|(i, (def, limit))| {
+            let values: Vec<f64> = records.values.iter().skip(i).step_by(l).copied().collect();
+            let failures = records
+                .passed
+                .iter()
+                .skip(i)
+                .step_by(l)
+                .filter(|p| !**p)
+                .count() as u64;
+            let mean = values.iter().sum::<f64>() / n as f64;
+            let var = if n > 1 {
+                values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64
+            } else {
+                0.0
+            };
+            let mut sorted = values;
+            sorted.sort_unstable_by(f64::total_cmp);
+            LimitSummary {
+                key: def.key,
+                quantity: def.quantity.key,
+                unit: def.quantity.unit,
+                label: def.quantity.label,
+                limit: *limit,
+                bound: def.bound,
+                min: sorted[0],
+                quantiles: QUANTILES.map(|p| quantile(&sorted, p)),
+                max: sorted[n - 1],
+                mean,
+                std: var.sqrt(),
+                failures,
+                interval: clopper_pearson(failures, n as u64, alpha),
+            }
+        })
+        .collect();
+    let failures = records
+        .passed
+        .chunks(l)
+        .filter(|p| p.iter().any(|x| !x))
+        .count() as u64;
+    Summary {
+        samples: n as u64,
+        limits,
+        failures,
+        interval: clopper_pearson(failures, n as u64, alpha),
+        max_failure_rate: study.tolerances.max_failure_rate,
+        worst: worst(study, records),
+    }
+}
+
+/// The `WORST` samples by their largest excess over the limits, worst first (ties: lower k).
+fn worst(study: &Study, records: &Records) -> Vec<(u64, f64)> {
+    let l = study.limits.len();
+    let mut all: Vec<(u64, f64)> = records
+        .values
+        .chunks(l)
+        .enumerate()
+        .map(|(k, v)| {
+            let e = v
+                .iter()
+                .zip(&study.limits)
+                .map(|(&v, (def, limit))| excess(v, *limit, def.bound))
+                .fold(f64::NEG_INFINITY, f64::max);
+            (k as u64, e)
+        })
+        .collect();
+    let cmp = |a: &(u64, f64), b: &(u64, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
+    let keep = WORST.min(all.len());
+    if keep < all.len() {
+        all.select_nth_unstable_by(keep, cmp);
+        all.truncate(keep);
+    }
+    all.sort_by(cmp);
+    all
+}

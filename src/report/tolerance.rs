@@ -1,0 +1,315 @@
+//! Outputs of a tolerance study: the terminal table, the JSON document and the per-sample CSV.
+//! Every number written to a file is in Rust's shortest round-trip form (serde_json, `{:?}`),
+//! so that the files of a sharded and an unsharded run compare byte for byte.
+
+use crate::engine::tolerance::sensitivity::Sensitivity;
+use crate::engine::tolerance::summary::{Summary, QUANTILES};
+use crate::engine::tolerance::{Records, Study};
+use crate::model::quantity::Bound;
+use crate::numeric::number;
+use serde_json::{json, Map, Value};
+
+/// How the report's quantiles are defined (printed and in the JSON).
+pub const QUANTILE_DEFINITION: &str =
+    "order statistic of rank ceil(p*n) (inverse empirical distribution, Hyndman-Fan type 1)";
+
+/// The linearisation caveat of the sensitivities.
+pub const LINEAR_CAVEAT: &str = "the limited quantities are maxima or minima over rollers and \
+    crank angles: the linear stack-up holds only while the worst roller and angle stay the same \
+    over the band; the Monte Carlo spread is the answer where they do not";
+
+fn bound_sign(b: Bound) -> &'static str {
+    match b {
+        Bound::Min => ">=",
+        Bound::Max => "<=",
+    }
+}
+
+fn percent(x: f64) -> String {
+    format!("{} %", number(100.0 * x))
+}
+
+/// The bands in force, `kind ±b` (mm).
+fn bands(study: &Study) -> String {
+    let t = &study.tolerances;
+    crate::model::tolerances::Kind::ALL
+        .into_iter()
+        .filter(|&k| t.band_mm(k) > 0.0)
+        .map(|k| format!("{} ±{}", k.name(), crate::numeric::input(t.band_mm(k))))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The terminal report.
+pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String {
+    let t = &study.tolerances;
+    let mut out = format!(
+        "cycloid tolerance `{}`: scene `{}`, {} samples, {} distribution{}, seed {}\n\
+         toleranced (mm): {}\n\n",
+        study.spec.name,
+        study.spec.scenes[t.scene].name,
+        s.samples,
+        t.distribution.name(),
+        match t.distribution {
+            crate::model::tolerances::Distribution::Normal => " (band = 3σ, cut at 6σ)",
+            crate::model::tolerances::Distribution::Uniform => "",
+        },
+        t.seed,
+        bands(study),
+    );
+    let header = [
+        "limit",
+        "min",
+        "0.135 %",
+        "50 %",
+        "99.865 %",
+        "max",
+        "failures",
+        "rate [95 % CI]",
+    ];
+    let mut rows = vec![header.map(String::from).to_vec()];
+    for l in &s.limits {
+        let mut row = vec![format!(
+            "{} {} {} {}",
+            l.key,
+            bound_sign(l.bound),
+            number(l.limit),
+            l.unit
+        )];
+        row.push(number(l.min));
+        row.extend(l.quantiles.iter().map(|&q| number(q)));
+        row.push(number(l.max));
+        row.push(l.failures.to_string());
+        row.push(format!(
+            "{} [{}, {}]",
+            percent(l.failures as f64 / s.samples as f64),
+            percent(l.interval.0),
+            percent(l.interval.1)
+        ));
+        rows.push(row);
+    }
+    out += &columns(&rows);
+    out += &format!(
+        "\nfailure rate (a sample fails when any limit fails): {} of {} = {} [{}, {}] (95 % \
+         Clopper–Pearson), allowed {}: {}\n",
+        s.failures,
+        s.samples,
+        percent(s.rate()),
+        percent(s.interval.0),
+        percent(s.interval.1),
+        percent(s.max_failure_rate),
+        if s.passed() { "PASS" } else { "FAIL" }
+    );
+    out += &format!("quantiles: {QUANTILE_DEFINITION}\n");
+    out += "\nworst samples (replay one with --write-sample K OUT):\n";
+    for &(k, _) in &s.worst {
+        out += &format!(
+            "  sample {k}: largest draws {}\n",
+            largest_draws(study, k, 3)
+        );
+    }
+    if let Some(sens) = sens {
+        out += &sensitivity_text(study, s, sens);
+    }
+    out
+}
+
+/// The `count` draws of sample k largest relative to their σ (what made it bad), named, µm.
+pub fn largest_draws(study: &Study, k: u64, count: usize) -> String {
+    let values = study.draw(k);
+    let z = |i: usize| (values[i] / study.tolerances.sigma_mm(study.params[i].kind)).abs();
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| z(b).total_cmp(&z(a)).then(a.cmp(&b)));
+    let discs = study.spec.design.discs;
+    order
+        .iter()
+        .take(count)
+        .map(|&i| format!("{} {:+.3} µm", study.params[i].name(discs), values[i] * 1e3))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Rows of cells in left-aligned columns.
+fn columns(rows: &[Vec<String>]) -> String {
+    let widths: Vec<usize> = (0..rows[0].len())
+        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
+        .collect();
+    let mut out = String::new();
+    for r in rows {
+        let cells: Vec<String> = r
+            .iter()
+            .zip(&widths)
+            .map(|(cell, w)| format!("{cell:<w$}"))
+            .collect();
+        out += cells.join("  ").trim_end();
+        out.push('\n');
+    }
+    out
+}
+
+/// The sensitivities: per limit the linear σ beside the Monte Carlo σ, and the Pareto of the
+/// kinds (share of the linear variance).
+fn sensitivity_text(study: &Study, s: &Summary, sens: &Sensitivity) -> String {
+    let mut out = format!(
+        "\nsensitivities (central differences, step {} mm, about the nominal reducer)\n",
+        crate::numeric::input(crate::engine::tolerance::sensitivity::STEP_MM)
+    );
+    for (l, ls) in s.limits.iter().enumerate() {
+        out += &format!(
+            "{}: linear stack-up σ = {} {}, Monte Carlo σ = {} {}\n",
+            ls.quantity,
+            number(sens.linear_sigma(l)),
+            ls.unit,
+            number(ls.std),
+            ls.unit
+        );
+        let mut rows = vec![vec![
+            "  tolerance".to_string(),
+            "share of variance".to_string(),
+            "σ contribution".to_string(),
+        ]];
+        for (kind, var, share) in sens.pareto(study, l) {
+            rows.push(vec![
+                format!("  {}", kind.name()),
+                percent(share),
+                format!("{} {}", number(var.sqrt()), ls.unit),
+            ]);
+        }
+        out += &columns(&rows);
+    }
+    out += &format!("note: {LINEAR_CAVEAT}\n");
+    out
+}
+
+/// The drawn values of sample k by column name.
+fn draws(study: &Study, k: u64) -> Map<String, Value> {
+    let discs = study.spec.design.discs;
+    study
+        .params
+        .iter()
+        .zip(study.draw(k))
+        .map(|(p, v)| (p.name(discs), json!(v)))
+        .collect()
+}
+
+/// The JSON document of a study.
+pub fn json(study: &Study, s: &Summary, records: &Records, sens: Option<&Sensitivity>) -> String {
+    let t = &study.tolerances;
+    let l = study.limits.len();
+    let limits: Vec<Value> = s
+        .limits
+        .iter()
+        .map(|x| {
+            json!({
+                "key": x.key,
+                "quantity": x.quantity,
+                "unit": x.unit,
+                "bound": bound_sign(x.bound),
+                "limit": x.limit,
+                "min": x.min,
+                "quantiles": QUANTILES.iter().zip(x.quantiles).map(|(p, q)| json!({"p": p, "value": q})).collect::<Vec<_>>(),
+                "max": x.max,
+                "mean": x.mean,
+                "std": x.std,
+                "failures": x.failures,
+                "failure_rate": x.failures as f64 / s.samples as f64,
+                "failure_rate_ci95": [x.interval.0, x.interval.1],
+            })
+        })
+        .collect();
+    let worst: Vec<Value> = s
+        .worst
+        .iter()
+        .map(|&(k, excess)| {
+            let row = &records.values[k as usize * l..(k as usize + 1) * l];
+            let values: Map<String, Value> = study
+                .limits
+                .iter()
+                .zip(row)
+                .map(|((d, _), v)| (d.quantity.key.to_string(), json!(v)))
+                .collect();
+            json!({"sample": k, "excess": excess, "values": values, "deviations_mm": draws(study, k)})
+        })
+        .collect();
+    let bands: Map<String, Value> = crate::model::tolerances::Kind::ALL
+        .into_iter()
+        .filter(|&k| t.band_mm(k) > 0.0)
+        .map(|k| (k.name().to_string(), json!(t.band_mm(k))))
+        .collect();
+    let mut doc = json!({
+        "spec": {"name": study.spec.name, "path": study.spec.path},
+        "scene": study.spec.scenes[t.scene].name,
+        "samples": s.samples,
+        "seed": t.seed,
+        "distribution": t.distribution.name(),
+        "bands_mm": bands,
+        "quantile_definition": QUANTILE_DEFINITION,
+        "limits": limits,
+        "failures": s.failures,
+        "failure_rate": s.rate(),
+        "failure_rate_ci95": [s.interval.0, s.interval.1],
+        "max_failure_rate": s.max_failure_rate,
+        "passed": s.passed(),
+        "worst": worst,
+    });
+    if let Some(sens) = sens {
+        doc["sensitivity"] = sensitivity_json(study, s, sens);
+    }
+    let mut text = serde_json::to_string_pretty(&doc).unwrap_or_default();
+    text.push('\n');
+    text
+}
+
+fn sensitivity_json(study: &Study, s: &Summary, sens: &Sensitivity) -> Value {
+    let discs = study.spec.design.discs;
+    let per_limit: Vec<Value> = s
+        .limits
+        .iter()
+        .enumerate()
+        .map(|(l, x)| {
+            let d: Map<String, Value> = study
+                .params
+                .iter()
+                .zip(&sens.derivative[l])
+                .map(|(p, d)| (p.name(discs), json!(d)))
+                .collect();
+            let pareto: Vec<Value> = sens
+                .pareto(study, l)
+                .into_iter()
+                .map(|(k, var, share)| json!({"tolerance": k.name(), "variance": var, "share": share}))
+                .collect();
+            json!({
+                "quantity": x.quantity,
+                "derivative_per_mm": d,
+                "linear_sigma": sens.linear_sigma(l),
+                "monte_carlo_sigma": x.std,
+                "pareto": pareto,
+            })
+        })
+        .collect();
+    json!({
+        "step_mm": crate::engine::tolerance::sensitivity::STEP_MM,
+        "caveat": LINEAR_CAVEAT,
+        "limits": per_limit,
+    })
+}
+
+/// The per-sample CSV: `sample`, every drawn deviation, every limited quantity; rows in sample
+/// order. The deviations are drawn again from (seed, k).
+pub fn samples_csv(study: &Study, records: &Records) -> String {
+    let discs = study.spec.design.discs;
+    let l = study.limits.len();
+    let mut header = vec!["sample".to_string()];
+    header.extend(study.params.iter().map(|p| p.name(discs)));
+    header.extend(study.limits.iter().map(|(d, _)| d.quantity.key.to_string()));
+    let mut out = header.join(",");
+    out.push('\n');
+    for (k, row) in records.values.chunks(l).enumerate() {
+        out += &k.to_string();
+        for v in study.draw(k as u64).iter().chain(row) {
+            out += &format!(",{v:?}");
+        }
+        out.push('\n');
+    }
+    out
+}

@@ -1,0 +1,267 @@
+//! The design review of a tolerance study (`cycloid tolerance --report DIR`): the verdict of
+//! the failure rate, the bands, the failure-rate table, a histogram of every limited quantity
+//! with its limit drawn, the worst samples, and (with `--sensitivity`) the linear stack-up
+//! beside the Monte Carlo spread and the Pareto of the tolerances. The page, tables and plots
+//! are the design review's own (`html::shell`, `data_table`, `svg::LinePlot`).
+
+use super::html::{data_table, figure, section, shell, Section};
+use super::svg::{LinePlot, Series, PALETTE, RED};
+use super::table::with_unit;
+use super::tolerance::{LINEAR_CAVEAT, QUANTILE_DEFINITION};
+use crate::engine::tolerance::sensitivity::Sensitivity;
+use crate::engine::tolerance::summary::{LimitSummary, Summary};
+use crate::engine::tolerance::{Records, Study};
+use crate::error::{Error, Result};
+use crate::files::Batch;
+use crate::numeric::number;
+use maud::{html, Markup};
+use std::path::Path;
+
+fn percent(x: f64) -> String {
+    format!("{} %", number(100.0 * x))
+}
+
+/// Bins of a histogram of n values: √n, from 10 to 60.
+fn bins(n: usize) -> usize {
+    ((n as f64).sqrt().ceil() as usize).clamp(10, 60)
+}
+
+/// The histogram of limit `l`'s values as a step outline, with the limit as a dashed red
+/// vertical line; the x range holds both the values and the limit.
+fn histogram(study: &Study, records: &Records, l: usize, ls: &LimitSummary) -> String {
+    let step = study.limits.len();
+    let values: Vec<f64> = records
+        .values
+        .iter()
+        .skip(l)
+        .step_by(step)
+        .copied()
+        .collect();
+    let (lo, hi) = (ls.min, ls.max);
+    let nb = bins(values.len());
+    let width = if hi > lo { (hi - lo) / nb as f64 } else { 1.0 };
+    let mut counts = vec![0usize; nb];
+    for v in &values {
+        let b = (((v - lo) / width) as usize).min(nb - 1);
+        counts[b] += 1;
+    }
+    let (mut x, mut y) = (vec![lo], vec![0.0]);
+    for (b, &c) in counts.iter().enumerate() {
+        let left = lo + b as f64 * width;
+        x.extend([left, left + width]);
+        y.extend([c as f64, c as f64]);
+    }
+    x.push(lo + nb as f64 * width);
+    y.push(0.0);
+    let top = counts.iter().copied().max().unwrap_or(1) as f64;
+    let unit = if ls.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", ls.unit)
+    };
+    let mut plot = LinePlot::new(
+        &format!("{} over {} samples", ls.label, values.len()),
+        &format!("{}{unit}", ls.quantity),
+        "samples per bin",
+    );
+    plot.subtitle = format!(
+        "{nb} bins of {}; limit {} {}; failures {} of {}",
+        number(width),
+        if matches!(ls.bound, crate::model::quantity::Bound::Min) {
+            "≥"
+        } else {
+            "≤"
+        },
+        number(ls.limit),
+        ls.failures,
+        values.len()
+    );
+    plot.include_zero = true;
+    plot.series.push(Series::new("samples", x, y, PALETTE[0]));
+    let mut limit = Series::new(
+        format!("limit {}", number(ls.limit)),
+        vec![ls.limit, ls.limit],
+        vec![0.0, top * 1.05],
+        RED,
+    );
+    limit.dashed = true;
+    plot.series.push(limit);
+    plot.x_range = Some((lo.min(ls.limit), hi.max(ls.limit)));
+    plot.to_svg()
+}
+
+fn rates_section(s: &Summary) -> Section {
+    let body = html! {
+        p.note { "Per limit, the spread of its quantity over the samples and how many fail it; \
+                  a sample fails when it fails any limit. Quantiles: " (QUANTILE_DEFINITION)
+                  ". Intervals: 95 % Clopper–Pearson." }
+        (data_table(
+            html! { th { "limit" } th { "min" } th { "0.135 %" } th { "median" }
+                th { "99.865 %" } th { "max" } th { "failures" } th { "failure rate [95 % CI]" } },
+            html! {
+                @for l in &s.limits {
+                    tr class=(if l.failures == 0 { "pass" } else { "fail" }) {
+                        td { code { (l.key) } " " (if matches!(l.bound, crate::model::quantity::Bound::Min) { "≥ " } else { "≤ " })
+                            (with_unit(number(l.limit), l.unit)) }
+                        td.num { (number(l.min)) }
+                        @for q in l.quantiles { td.num { (number(q)) } }
+                        td.num { (number(l.max)) }
+                        td.num { (l.failures) }
+                        td.num { (percent(l.failures as f64 / s.samples as f64)) " ["
+                            (percent(l.interval.0)) ", " (percent(l.interval.1)) "]" }
+                    }
+                }
+                tr class=(if s.passed() { "pass" } else { "fail" }) {
+                    td { b { "any limit" } " (allowed " (percent(s.max_failure_rate)) ")" }
+                    td colspan="5" {}
+                    td.num { (s.failures) }
+                    td.num.verdict { (percent(s.rate())) " [" (percent(s.interval.0)) ", "
+                        (percent(s.interval.1)) "]" }
+                }
+            },
+        ))
+    };
+    section("failure-rates", html! { "Failure rates" }, body)
+}
+
+fn study_section(study: &Study) -> Section {
+    let t = &study.tolerances;
+    let body = html! {
+        p { "Scene " code { (study.spec.scenes[t.scene].name) } ", " (t.samples) " samples, seed "
+            (t.seed) ", " (t.distribution.name()) " distribution"
+            (if matches!(t.distribution, crate::model::tolerances::Distribution::Normal) {
+                " (band = 3σ, draws beyond 6σ drawn again)" } else { " over the band" })
+            ". Every part's deviation is drawn independently; sample k depends only on (seed, k)." }
+        (data_table(
+            html! { th { "tolerance" } th { "band ±b" } th { "σ" } th { "parts" } },
+            html! {
+                @for k in crate::model::tolerances::Kind::ALL.into_iter().filter(|&k| t.band_mm(k) > 0.0) {
+                    tr {
+                        td { code { (k.name()) } }
+                        td.num { (with_unit(number(t.band_mm(k)), "mm")) }
+                        td.num { (with_unit(number(t.sigma_mm(k)), "mm")) }
+                        td.num { (study.params.iter().filter(|p| p.kind == k).count()) }
+                    }
+                }
+            },
+        ))
+    };
+    section("study", html! { "The study" }, body)
+}
+
+fn worst_section(study: &Study, s: &Summary, records: &Records) -> Section {
+    let l = study.limits.len();
+    let body = html! {
+        p.note { "The samples furthest beyond (or least inside) a limit, relative to the limit. \
+                  Replay one with " code { "cycloid tolerance SPEC --write-sample K OUT" } " and "
+                  code { "cycloid check OUT" } "." }
+        (data_table(
+            html! { th { "sample" } @for (d, _) in &study.limits { th { (d.quantity.key) } }
+                th { "largest draws (by |draw|/σ)" } },
+            html! {
+                @for &(k, _) in &s.worst {
+                    tr {
+                        td.num { (k) }
+                        @for v in &records.values[k as usize * l..(k as usize + 1) * l] { td.num { (number(*v)) } }
+                        td { (super::tolerance::largest_draws(study, k, 4)) }
+                    }
+                }
+            },
+        ))
+    };
+    section("worst", html! { "Worst samples" }, body)
+}
+
+fn sensitivity_section(study: &Study, s: &Summary, sens: &Sensitivity) -> Section {
+    let body = html! {
+        p.note { "Derivatives by central differences on the exact engine about the nominal \
+                  reducer; linear stack-up σ = √Σ(∂q/∂p·σp)². Note: " (LINEAR_CAVEAT) "." }
+        @for (l, ls) in s.limits.iter().enumerate() {
+            h3 { code { (ls.quantity) } ": linear σ " (with_unit(number(sens.linear_sigma(l)), ls.unit))
+                ", Monte Carlo σ " (with_unit(number(ls.std), ls.unit)) }
+            (data_table(
+                html! { th { "tolerance (tighten first at the top)" } th { "share of the variance" }
+                    th { "σ contribution" } },
+                html! {
+                    @for (kind, var, share) in sens.pareto(study, l) {
+                        tr {
+                            td { code { (kind.name()) } }
+                            td { div style=(format!("display:inline-block;height:12px;background:{};width:{:.0}px;margin-right:8px", PALETTE[0], 240.0 * share)) {} (percent(share)) }
+                            td.num { (with_unit(number(var.sqrt()), ls.unit)) }
+                        }
+                    }
+                },
+            ))
+        }
+    };
+    section(
+        "sensitivity",
+        html! { "Sensitivities and the Pareto of the tolerances" },
+        body,
+    )
+}
+
+/// The review's files: one SVG per limit, then `index.html`.
+pub fn render(
+    study: &Study,
+    s: &Summary,
+    records: &Records,
+    sens: Option<&Sensitivity>,
+) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    let mut figures = Vec::new();
+    for (l, ls) in s.limits.iter().enumerate() {
+        let name = format!("tolerance-{}.svg", ls.key);
+        files.push((name.clone(), histogram(study, records, l, ls)));
+        figures.push(figure(
+            &name,
+            &format!("Distribution of {}", ls.quantity),
+            &format!(
+                "every sample's {}; the dashed red line is the limit; 0.135 % to 99.865 %: {} to {}",
+                ls.label,
+                number(ls.quantiles[0]),
+                number(ls.quantiles[2])
+            ),
+        ));
+    }
+    let mut sections = vec![study_section(study), rates_section(s)];
+    sections.push(section(
+        "distributions",
+        html! { "Distributions" },
+        html! { div.grid { @for f in &figures { (f) } } },
+    ));
+    sections.push(worst_section(study, s, records));
+    if let Some(sens) = sens {
+        sections.push(sensitivity_section(study, s, sens));
+    }
+    let banner: Markup = if s.passed() {
+        html! { p.banner.pass { "PASSED: failure rate " (percent(s.rate())) " within the allowed "
+        (percent(s.max_failure_rate)) } }
+    } else {
+        html! { p.banner.fail { "FAILED: failure rate " (percent(s.rate())) " above the allowed "
+        (percent(s.max_failure_rate)) } }
+    };
+    files.push((
+        "index.html".into(),
+        shell(study.spec, "Tolerance review", banner, &sections),
+    ));
+    files
+}
+
+/// Write the review into `dir` as one batch (`index.html` last); the number of files.
+pub fn write(
+    dir: &Path,
+    study: &Study,
+    s: &Summary,
+    records: &Records,
+    sens: Option<&Sensitivity>,
+) -> Result<usize> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
+    let mut batch = Batch::new();
+    let files = render(study, s, records, sens);
+    for (name, text) in &files {
+        batch.add(&dir.join(name), text.as_bytes())?;
+    }
+    batch.commit()?;
+    Ok(files.len())
+}

@@ -1,0 +1,202 @@
+//! `tolerances:` → `model::tolerances::Tolerances`: bands non-negative, a scene that exists and
+//! uses the exact geometry, a study that can run, and bands no draw of which takes a part out
+//! of its mesh (the largest draw of every part, placed where it hurts most, must pass the
+//! rules of an as-built state, `spec::deviations::check`).
+
+use super::raw::RawTolerances;
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::tolerances::{Distribution, Kind, Tolerances, NORMAL_CUT_SIGMA};
+use crate::model::{
+    CentreDeviation, Design, Deviations, GeometryMode, Modification, RollerDeviation, Scene,
+};
+use crate::numeric;
+
+const KEY: &str = "tolerances";
+
+fn invalid(key: &str, message: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, message).at_key(format!("{KEY}.{key}"))
+}
+
+/// Default number of samples: the 0.135 % quantiles are then order statistics 1 and 999.
+pub const DEFAULT_SAMPLES: usize = 1000;
+
+/// Largest study: 10⁹ samples (at ~10 ms each, 10⁷ core-seconds: a cluster's job array).
+pub const MAX_SAMPLES: i64 = 1_000_000_000;
+
+/// The validated `tolerances:` of a spec whose design, modification and scenes are `design`,
+/// `m` and `scenes`.
+pub fn build(
+    raw: &RawTolerances,
+    design: &Design,
+    m: &Modification,
+    scenes: &[Scene],
+) -> Result<Tolerances> {
+    let mut bands_mm = raw.bands();
+    for (kind, band) in Kind::ALL.into_iter().zip(&mut bands_mm) {
+        if !(band.is_finite() && *band >= 0.0) {
+            return Err(invalid(
+                kind.name(),
+                format!(
+                    "a tolerance band ±b must be zero (not toleranced) or positive, got {}",
+                    numeric::input(*band)
+                ),
+            ));
+        }
+    }
+    let distribution = match raw.distribution.as_deref() {
+        None => Distribution::Normal,
+        Some(d) => d.parse().map_err(|m| invalid("distribution", m))?,
+    };
+    let scene = super::scene_index(scenes, &raw.scene, &format!("{KEY}.scene"))?;
+    if scenes[scene].geometry != GeometryMode::Exact {
+        return Err(invalid(
+            "scene",
+            format!(
+                "scene `{}` uses the first-order geometry; part deviations are computed with the \
+                 exact geometry only: give the scene `geometry: exact` or choose another scene",
+                raw.scene
+            ),
+        ));
+    }
+    let samples = raw.samples.unwrap_or(DEFAULT_SAMPLES as i64);
+    if !(1..=MAX_SAMPLES).contains(&samples) {
+        return Err(invalid(
+            "samples",
+            format!("must be 1 to {MAX_SAMPLES}, got {samples}"),
+        ));
+    }
+    let seed = raw.seed.unwrap_or(0);
+    if seed < 0 {
+        return Err(invalid(
+            "seed",
+            format!("must be zero or positive, got {seed}"),
+        ));
+    }
+    let rate = raw.max_failure_rate;
+    if !(rate.is_finite() && (0.0..=1.0).contains(&rate)) {
+        return Err(invalid(
+            "max_failure_rate",
+            format!(
+                "a failure rate is a fraction in [0, 1], got {}",
+                numeric::input(rate)
+            ),
+        ));
+    }
+    let tol = Tolerances {
+        bands_mm,
+        distribution,
+        scene,
+        samples: samples as usize,
+        seed: seed as u64,
+        max_failure_rate: rate,
+    };
+    largest_draws_fit(&tol, design, m)?;
+    Ok(tol)
+}
+
+/// The kinds whose deviations one rule of an as-built state judges together.
+const GROUPS: [&[Kind]; 5] = [
+    &[Kind::Eccentricity],
+    &[
+        Kind::RollerRadial,
+        Kind::RollerTangential,
+        Kind::RollerRadius,
+    ],
+    &[Kind::PinRadial, Kind::PinTangential],
+    &[Kind::HoleRadial, Kind::HoleTangential],
+    &[Kind::Shift, Kind::Equidistant],
+];
+
+/// Every part at its largest draw (`Tolerances::largest_draw_mm`), placed where it hurts most,
+/// keeps the rules of an as-built state: no part moves by e or more, neighbouring rollers
+/// (moved towards each other, inward, and grown) do not overlap, and the profile ground at
+/// each corner of the grinding errors is a disc. A group of kinds that breaks a rule is named
+/// by its first toleranced key.
+fn largest_draws_fit(tol: &Tolerances, design: &Design, m: &Modification) -> Result<()> {
+    let cut = |k: Kind| tol.largest_draw_mm(k);
+    for group in GROUPS {
+        let Some(&first) = group.iter().find(|&&k| tol.band_mm(k) > 0.0) else {
+            continue;
+        };
+        for d in worst_states(group, &cut, design) {
+            let built = Design {
+                deviations: d,
+                ..design.clone()
+            };
+            super::deviations::check(&built, m).map_err(|e| {
+                let how = match tol.distribution {
+                    Distribution::Normal => format!(
+                        "the normal is cut at {NORMAL_CUT_SIGMA}σ = 2 × band, so a part can be \
+                         drawn up to twice its band"
+                    ),
+                    Distribution::Uniform => "a uniform draw reaches the band".into(),
+                };
+                invalid(
+                    first.name(),
+                    format!(
+                        "band too large: a part drawn at the edge of its band breaks a rule of \
+                         the as-built reducer ({how}): {}",
+                        e.message
+                    ),
+                )
+            })?;
+        }
+    }
+    Ok(())
+}
+
+/// The as-built states at the largest draws of the kinds of `group`.
+fn worst_states(group: &[Kind], cut: &dyn Fn(Kind) -> f64, design: &Design) -> Vec<Deviations> {
+    let one = Deviations::default();
+    match group[0] {
+        Kind::Eccentricity => vec![Deviations {
+            eccentricity_mm: cut(Kind::Eccentricity),
+            ..one
+        }],
+        // Neighbours moved towards each other (tangential signs alternate), inward, grown.
+        Kind::RollerRadial => vec![Deviations {
+            rollers: (0..design.rollers)
+                .map(|i| RollerDeviation {
+                    centre: CentreDeviation {
+                        radial_mm: -cut(Kind::RollerRadial),
+                        tangential_mm: if i % 2 == 0 { 1.0 } else { -1.0 }
+                            * cut(Kind::RollerTangential),
+                    },
+                    radius_mm: cut(Kind::RollerRadius),
+                })
+                .collect(),
+            ..one
+        }],
+        Kind::PinRadial => vec![Deviations {
+            pins: vec![
+                CentreDeviation {
+                    radial_mm: cut(Kind::PinRadial),
+                    tangential_mm: cut(Kind::PinTangential),
+                };
+                design.pins.count
+            ],
+            ..one
+        }],
+        Kind::HoleRadial => vec![Deviations {
+            holes: vec![
+                vec![
+                    CentreDeviation {
+                        radial_mm: cut(Kind::HoleRadial),
+                        tangential_mm: cut(Kind::HoleTangential),
+                    };
+                    design.pins.count
+                ];
+                design.discs
+            ],
+            ..one
+        }],
+        _ => [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)]
+            .into_iter()
+            .map(|(s, q)| Deviations {
+                shift_mm: s * cut(Kind::Shift),
+                equidistant_mm: q * cut(Kind::Equidistant),
+                ..Deviations::default()
+            })
+            .collect(),
+    }
+}

@@ -1,7 +1,9 @@
 //! Command-line interface: argument parsing and the commands. `main` only maps the outcome to
 //! an exit code (0 pass, 1 a check failed, 2 invalid input or computation).
 
-use crate::engine::{accuracy, check, drawing, golden, optimise, resolution, scene, summary};
+use crate::engine::{
+    accuracy, as_built, check, drawing, golden, optimise, resolution, scene, summary,
+};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::profile::Profile;
 use crate::report::export;
@@ -401,15 +403,31 @@ fn run_check(
 ) -> Result<Outcome> {
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
-    distinct_outputs(&inputs_of(path, Some(&spec)), &outputs.paths())?;
+    let mut inputs = inputs_of(path, Some(&spec));
+    if let Some(m) = &spec.measured {
+        inputs.push(("the measured points".to_string(), m.path.clone().into()));
+    }
+    distinct_outputs(&inputs, &outputs.paths())?;
     let writes = scene::Writes {
         json: outputs.json.is_some(),
         report: outputs.report.is_some(),
     };
     if explain {
         print(out, &scene::explain(&spec, writes))?;
+        if let Some(m) = &spec.measured {
+            let line = format!(
+                "\nas built: every scene runs on the disc identified from `{}` (its \
+                 modification and form error), exact geometry\n",
+                m.path
+            );
+            print(out, &line)?;
+        }
         return Ok(Outcome::Passed);
     }
+    let (spec, identified) = match as_built::identify(&spec).map_err(|e| locate(e, &spec))? {
+        Some((built, id)) => (built, Some(id)),
+        None => (spec, None),
+    };
     if let Some(deg) = outputs.report_crank_deg.filter(|d| !d.is_finite()) {
         return Err(Error::new(
             ErrorKind::InvalidValue,
@@ -455,6 +473,9 @@ fn run_check(
         checks.push(tolerance::check(&spec)?);
     }
     print(out, &format!("cycloid check `{}`\n", spec.name))?;
+    if let Some(id) = &identified {
+        print(out, &format!("{}\n", as_built::describe(&spec, id)))?;
+    }
     for (s, r) in spec.studies.iter().zip(&studies) {
         print(out, &report::optimisation::render(&spec, s, r))?;
     }

@@ -5,6 +5,7 @@
 //! its catalogue figures (`torsion`); the crank bearing's rating life (`bearing_life`).
 
 pub mod accuracy;
+pub mod as_built;
 pub mod bearing_life;
 pub mod check;
 pub mod drawing;

@@ -1,0 +1,84 @@
+//! The disc as built from its measured points (`measured_profile:`): identify it
+//! (`measure::fit`) and give the spec whose scenes run on it — the identified modification and
+//! the fitted form error (`reducer.deviations.form`), exact geometry (MODEL.md "Measured
+//! profiles"). `check` runs every scene and limit on that spec.
+
+use crate::error::Result;
+use crate::measure::fit::{self, Identification};
+use crate::measure::points;
+use crate::model::FormTerm;
+use crate::spec::Spec;
+
+/// The spec of the disc as built and its identification, or `None` without measured points.
+pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
+    let Some(measured) = &spec.measured else {
+        return Ok(None);
+    };
+    if let Some(i) = spec
+        .scenes
+        .iter()
+        .position(|s| s.geometry == crate::model::GeometryMode::FirstOrder)
+    {
+        return Err(crate::error::Error::new(
+            crate::error::ErrorKind::InvalidValue,
+            format!(
+                "scene `{}` asks for the first-order geometry, but with `measured_profile` the \
+                 scenes run on the disc as built, whose form error only the exact geometry \
+                 holds: use `geometry: exact`",
+                spec.scenes[i].name
+            ),
+        )
+        .at_key(format!("scenes[{i}].geometry")));
+    }
+    let read = points::read(&measured.path, measured.format)?;
+    let request = fit::Request {
+        design: &spec.design,
+        nominal: spec.modification,
+        fit: measured.fit,
+        harmonics: measured.harmonics,
+    };
+    let id = fit::identify(&request, &read).map_err(|mut e| {
+        if e.location.is_none() {
+            e.message = format!("measured profile `{}`: {}", measured.path, e.message);
+        }
+        e
+    })?;
+    let mut built = spec.clone();
+    built.modification = id.modification;
+    built.design.deviations.form = form_terms(&id);
+    crate::spec::deviations::check(&built.design, &built.modification)?;
+    Ok(Some((built, id)))
+}
+
+/// The fitted form error as the spec's harmonics (their values; the uncertainties stay with
+/// the identification).
+pub fn form_terms(id: &Identification) -> Vec<FormTerm> {
+    id.form
+        .harmonics
+        .iter()
+        .map(|h| FormTerm {
+            order: h.order,
+            cos_mm: h.cos_mm.value,
+            sin_mm: h.sin_mm.value,
+        })
+        .collect()
+}
+
+/// One line for the terminal: what the scenes run on.
+pub fn describe(spec: &Spec, id: &Identification) -> String {
+    let m = &id.modification;
+    let form = form_terms(id);
+    let bound: f64 = form.iter().map(FormTerm::amplitude_mm).sum();
+    format!(
+        "as built: the scenes run on the disc identified from `{}`: shift {:.4} mm, \
+         equidistant {:.4} mm, rotation {:.4}°, form error of {} harmonics (|w| ≤ {:.3} µm), \
+         residual RMS {:.3} µm",
+        spec.measured.as_ref().map_or("", |m| m.path.as_str()),
+        m.shift_mm,
+        m.equidistant_mm,
+        crate::units::deg(m.rotation_rad),
+        form.len(),
+        bound * 1e3,
+        id.residual_rms_mm * 1e3
+    )
+}

@@ -1015,11 +1015,20 @@ fn run_fit(
     }
     if let Some(p) = write {
         let text = optimise::write::with_modification(p, &spec.source, &id.modification)?;
+        let mut deviations = spec.design.deviations.clone();
+        deviations.form = as_built::form_terms(&id);
+        let text = if deviations.form.is_empty() {
+            text
+        } else {
+            crate::engine::tolerance::write::with_deviations(&text, path, &deviations, p)?
+        };
         write_file(p, &text)?;
-        print(
-            out,
-            &format!("wrote {p} with the identified modification\n"),
-        )?;
+        let what = if deviations.form.is_empty() {
+            "the identified modification"
+        } else {
+            "the identified modification and form error (reducer.deviations.form)"
+        };
+        print(out, &format!("wrote {p} with {what}\n"))?;
     }
     Ok(Outcome::Passed)
 }

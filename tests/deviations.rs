@@ -707,6 +707,41 @@ fn check_with_a_measured_profile_runs_on_the_disc_as_built() {
         stdout.contains("as built: the scenes run on the disc identified from `"),
         "{stdout}"
     );
+    // `fit --write` writes the identified form into `reducer.deviations.form`: the amplitudes
+    // of the three harmonics come back (their phases depend on which tooth the fit counts
+    // first, the amplitudes do not), every other order of the series is zero, to 1e-9 mm
+    // (noise-free points).
+    let run = common::cycloid(&dir.path, &["fit", "measured.yaml", "--write", "out.yaml"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(run
+        .stdout
+        .contains("wrote out.yaml with the identified modification and form error"));
+    let written = cycloid::spec::parse("out.yaml", &dir.read("out.yaml")).unwrap();
+    let amplitude = |order: usize| {
+        written
+            .design
+            .deviations
+            .form
+            .iter()
+            .find(|f| f.order == order)
+            .map_or(0.0, |f| f.amplitude_mm())
+    };
+    for f in form() {
+        assert!(
+            (amplitude(f.order) - f.amplitude_mm()).abs() < 1e-9,
+            "order {}",
+            f.order
+        );
+    }
+    let others: f64 = written
+        .design
+        .deviations
+        .form
+        .iter()
+        .filter(|f| ![3, 11, 40].contains(&f.order))
+        .map(|f| f.amplitude_mm())
+        .fold(0.0, f64::max);
+    assert!(others < 1e-9, "{others}");
     // The form error matters: the known disc without it is microns away.
     let plain = PaperSpec::new().scenes(&scene);
     dir.write("plain.yaml", plain.text());

@@ -49,6 +49,15 @@ fn block(d: &Deviations, indent: usize) -> String {
             }
         }
     }
+    if !d.form.is_empty() {
+        s += &format!("{inner}form:\n");
+        for f in &d.form {
+            s += &format!(
+                "{inner}  - {{order: {}, cos_mm: {:?}, sin_mm: {:?}}}\n",
+                f.order, f.cos_mm, f.sin_mm
+            );
+        }
+    }
     s
 }
 
@@ -81,41 +90,42 @@ fn block_end(text: &str, start: usize, column: usize) -> usize {
 pub fn sample_spec(study: &Study, k: u64, out_path: &str) -> Result<String> {
     let spec = study.spec;
     let d = study.deviations(&study.draw(k));
-    let refuse = |m: String| Error::new(ErrorKind::InvalidValue, m);
-    let mut text = spec.source.clone();
-    if let Some(at) = locate_offset(&text, "reducer.deviations") {
-        let (start, column) = line_of(&text, at);
-        let end = block_end(&text, start, column);
-        text.replace_range(start..end, "");
-    }
-    let teeth = locate_offset(&text, "reducer.teeth").ok_or_else(|| {
-        refuse(format!(
-            "{}: no `reducer.teeth` key to write beside",
-            spec.path
-        ))
-    })?;
-    let (start, column) = line_of(&text, teeth);
-    if text[start..teeth].trim() != "" {
-        return Err(refuse(format!(
-            "{}: `reducer` is written in flow style ({{...}}); write it as a block mapping to \
-             use --write-sample",
-            spec.path
-        )));
-    }
-    text.insert_str(start, &block(&d, column));
+    let text = with_deviations(&spec.source, &spec.path, &d, out_path)?;
     let t = &study.tolerances;
     let header = format!(
         "# Written by `cycloid tolerance {} --write-sample {k}`: sample {k} of {} (seed {}) as \
          reducer.deviations.\n",
         spec.path, t.samples, t.seed
     );
-    let text = header + &text;
+    Ok(header + &text)
+}
+
+/// Spec `text` (read from `path`) with `d` as its `reducer.deviations`, replacing the block
+/// there is; the result must parse back (as `out_path`) to exactly `d`.
+pub fn with_deviations(text: &str, path: &str, d: &Deviations, out_path: &str) -> Result<String> {
+    let refuse = |m: String| Error::new(ErrorKind::InvalidValue, m);
+    let mut text = text.to_string();
+    if let Some(at) = locate_offset(&text, "reducer.deviations") {
+        let (start, column) = line_of(&text, at);
+        let end = block_end(&text, start, column);
+        text.replace_range(start..end, "");
+    }
+    let teeth = locate_offset(&text, "reducer.teeth")
+        .ok_or_else(|| refuse(format!("{path}: no `reducer.teeth` key to write beside")))?;
+    let (start, column) = line_of(&text, teeth);
+    if text[start..teeth].trim() != "" {
+        return Err(refuse(format!(
+            "{path}: `reducer` is written in flow style ({{...}}); write it as a block mapping \
+             to write deviations into it"
+        )));
+    }
+    text.insert_str(start, &block(d, column));
     let back = crate::spec::parse(out_path, &text)?;
-    if back.design.deviations != d {
+    if back.design.deviations != *d {
         return Err(Error::new(
             ErrorKind::Computation,
             format!(
-                "the written spec reads back as {:?}, not sample {k}'s {d:?}",
+                "the written spec reads back as {:?}, not the deviations written, {d:?}",
                 back.design.deviations
             ),
         ));

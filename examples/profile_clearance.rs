@@ -2,7 +2,8 @@
 //! `cargo build --release --example profile_clearance && valgrind --tool=callgrind
 //! target/release/examples/profile_clearance backlash 360` (`gaps`, `backlash` or `min`, then
 //! the number of crank angles over one mesh period). Compare against a run with 36 angles to
-//! remove the set-up cost. A third argument repeats the sweep and prints the fastest time.
+//! remove the set-up cost. A third argument repeats the sweep and prints the fastest time, a
+//! fourth gives the disc a form error of that many harmonics.
 
 use cycloid::geometry::clearance::{self, Mesh, Scope};
 
@@ -12,7 +13,19 @@ fn main() {
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(360);
     let repeats: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1);
     let spec = cycloid::spec::load("specs/paper.yaml").expect("specs/paper.yaml");
-    let mesh = Mesh::new(&spec.design, &spec.modification);
+    let mut design = spec.design.clone();
+    // A fourth argument: a form error of that many harmonics (orders from 2 without the
+    // multiples of nc, 0.3 µm each), the disc as built of `benches/measure.rs`.
+    let harmonics: usize = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(0);
+    design.deviations.form = (2..=harmonics)
+        .filter(|k| k % design.teeth != 0)
+        .map(|k| cycloid::model::FormTerm {
+            order: k,
+            cos_mm: 3e-4 * (k as f64).cos(),
+            sin_mm: 3e-4 * (k as f64).sin(),
+        })
+        .collect();
+    let mesh = Mesh::new(&design, &spec.modification);
     let crank: Vec<f64> = (0..n)
         .map(|k| std::f64::consts::TAU / 10.0 * k as f64 / n as f64)
         .collect();

@@ -34,6 +34,11 @@ pub struct Profile {
     rot_sin: f64,
     /// The form error w(t), sorted by order; empty for the profile as drawn.
     form: Arc<[FormTerm]>,
+    /// The same series dense, (cos_mm, sin_mm) of every order from 1 to the highest (zeros
+    /// where there is no term), for `form_jet`'s loop without branches; its constant, the
+    /// order-0 cosine, apart.
+    dense: Arc<[(f64, f64)]>,
+    constant_mm: f64,
 }
 
 /// Locus value and its first two derivatives with respect to t.
@@ -140,6 +145,8 @@ impl Profile {
             rot_cos,
             rot_sin,
             form: Arc::from([]),
+            dense: Arc::from([]),
+            constant_mm: 0.0,
         }
     }
 
@@ -148,7 +155,20 @@ impl Profile {
     pub fn with_form(mut self, form: &[FormTerm]) -> Self {
         let mut terms = form.to_vec();
         terms.sort_by_key(|f| f.order);
+        let highest = terms.last().map_or(0, |f| f.order);
+        let mut dense = vec![(0.0, 0.0); highest];
+        self.constant_mm = 0.0;
+        for f in &terms {
+            match f.order {
+                0 => self.constant_mm += f.cos_mm,
+                k => {
+                    dense[k - 1].0 += f.cos_mm;
+                    dense[k - 1].1 += f.sin_mm;
+                }
+            }
+        }
         self.form = terms.into();
+        self.dense = dense.into();
         self
     }
 
@@ -160,26 +180,44 @@ impl Profile {
     /// w(t), w'(t), w''(t): mm, mm/rad, mm/rad². The harmonics cos(k·t), sin(k·t) by powers of
     /// e^{it} (one sine and cosine per call; k ≤ a few hundred, whose rounding grows as k·ε).
     pub fn form_jet(&self, t: f64) -> (f64, f64, f64) {
-        let mut jet = (0.0, 0.0, 0.0);
         if self.form.is_empty() {
-            return jet;
+            return (0.0, 0.0, 0.0);
         }
-        let (s, c) = t.sin_cos();
-        let step = Vec2::new(c, s);
-        let (mut power, mut k) = (Vec2::new(1.0, 0.0), 0usize);
-        for f in self.form.iter() {
-            while k < f.order {
-                power = cmul(power, step);
-                k += 1;
+        // Four lanes, e^{ikt} for k ≡ 1, 2, 3, 0 (mod 4), each with its own power, advanced by
+        // e^{4it}, and its own sums: independent products and additions the processor
+        // overlaps, where one chain waits on each result in turn.
+        let z = Vec2::new(t.cos(), t.sin());
+        let z2 = cmul(z, z);
+        let z4 = cmul(z2, z2);
+        let mut p = [z, z2, cmul(z2, z), z4];
+        let mut sums = [[0.0; 4]; 3];
+        let mut k = [1.0, 2.0, 3.0, 4.0];
+        let blocks = self.dense.chunks_exact(4);
+        let rest = blocks.remainder();
+        for c in blocks {
+            for lane in 0..4 {
+                let ((a, b), q, kl) = (c[lane], p[lane], k[lane]);
+                let v = a * q.x + b * q.y;
+                sums[0][lane] += v;
+                sums[1][lane] += kl * (b * q.x - a * q.y);
+                sums[2][lane] -= kl * kl * v;
+                p[lane] = cmul(q, z4);
+                k[lane] += 4.0;
             }
-            let kf = k as f64;
-            let value = f.cos_mm * power.x + f.sin_mm * power.y;
-            let slope = kf * (f.sin_mm * power.x - f.cos_mm * power.y);
-            jet.0 += value;
-            jet.1 += slope;
-            jet.2 -= kf * kf * value;
         }
-        jet
+        for (lane, &(a, b)) in rest.iter().enumerate() {
+            let (q, kl) = (p[lane], k[lane]);
+            let v = a * q.x + b * q.y;
+            sums[0][lane] += v;
+            sums[1][lane] += kl * (b * q.x - a * q.y);
+            sums[2][lane] -= kl * kl * v;
+        }
+        let total = |s: [f64; 4]| (s[0] + s[1]) + (s[2] + s[3]);
+        (
+            self.constant_mm + total(sums[0]),
+            total(sums[1]),
+            total(sums[2]),
+        )
     }
 
     /// The largest |w''| the form error can reach, mm/rad²: Σ k²·amplitude.

@@ -424,10 +424,19 @@ fn run_check(
         }
         return Ok(Outcome::Passed);
     }
-    let (spec, identified) = match as_built::identify(&spec).map_err(|e| locate(e, &spec))? {
-        Some((built, id)) => (built, Some(id)),
-        None => (spec, None),
-    };
+    let designed_modification = spec.measured.as_ref().map(|_| spec.modification);
+    let (spec, identified, designed) =
+        match as_built::identify(&spec).map_err(|e| locate(e, &spec))? {
+            Some((built, id)) => {
+                // The design review shows each scene as designed beside as built.
+                let designed = match outputs.report {
+                    Some(_) => Some(run_scenes(&spec, writes).map_err(|e| locate(e, &spec))?),
+                    None => None,
+                };
+                (built, Some(id), designed)
+            }
+            None => (spec, None, None),
+        };
     if let Some(deg) = outputs.report_crank_deg.filter(|d| !d.is_finite()) {
         return Err(Error::new(
             ErrorKind::InvalidValue,
@@ -548,6 +557,13 @@ fn run_check(
             optimisation: &views,
             accuracy: ladder.as_ref().map(|(l, _)| l),
             warnings: &warnings,
+            as_built: identified.as_ref().zip(designed.as_deref()).map(
+                |(identification, designed)| report::as_built::AsBuiltView {
+                    identification,
+                    designed_modification: designed_modification.unwrap_or(spec.modification),
+                    designed,
+                },
+            ),
         };
         let files = report::html::write(std::path::Path::new(dir), &input)?;
         print(

@@ -707,6 +707,26 @@ fn check_with_a_measured_profile_runs_on_the_disc_as_built() {
         stdout.contains("as built: the scenes run on the disc identified from `"),
         "{stdout}"
     );
+    // The design review puts the disc as designed beside as built: the spec's modification
+    // (tip clearance 0.15 − 0.1 = 50 µm, its min clearance) against the identified one and
+    // the min clearance as built, and the deviation figure.
+    let run = common::cycloid(&dir.path, &["check", "measured.yaml", "--report", "review"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let page = dir.read("review/index.html");
+    let section = &page[page
+        .find("Disc as built</h2>")
+        .expect("the as-built section")..];
+    let row = |label: &str| {
+        let at = section
+            .find(label)
+            .unwrap_or_else(|| panic!("{label} in {section}"));
+        section[at..section[at..].find("</tr>").unwrap() + at].to_string()
+    };
+    assert!(row("shift ΔRp").contains("0.1000 mm") && row("shift ΔRp").contains("0.1250 mm"));
+    assert!(
+        row("min clearance").contains("0.05000 mm") && row("min clearance").contains("0.03010 mm")
+    );
+    assert!(dir.exists("review/as-built-deviation.svg"));
     // `fit --write` writes the identified form into `reducer.deviations.form`: the amplitudes
     // of the three harmonics come back (their phases depend on which tooth the fit counts
     // first, the amplitudes do not), every other order of the series is zero, to 1e-9 mm

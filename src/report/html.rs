@@ -21,7 +21,7 @@ use crate::engine::summary::summarise;
 use crate::error::{Error, Result};
 use crate::files::Batch;
 use crate::model::results::SceneResult;
-use crate::model::{ContactLaw, Effect, Plan, Scene};
+use crate::model::{ContactLaw, Effect, Modification, Plan, Scene};
 use crate::numeric::number;
 use crate::spec::Spec;
 use crate::units;
@@ -104,6 +104,9 @@ pub struct ReportInput<'a> {
     /// Lines shown as a warning banner under the verdict (e.g. a crank resolution coarser
     /// than the accuracy tolerances need).
     pub warnings: &'a [String],
+    /// The disc as built (`measured_profile:`): its identification and the results as
+    /// designed, beside `results` (which are as built).
+    pub as_built: Option<super::as_built::AsBuiltView<'a>>,
 }
 
 /// A section of the page: its anchor, its heading (in the table of contents too) and body.
@@ -121,7 +124,18 @@ pub(super) fn section(id: impl Into<String>, heading: Markup, body: Markup) -> S
 /// The report's files, (file name, content): the SVGs, then `index.html` last.
 pub fn render(input: &ReportInput) -> Vec<(String, String)> {
     let mut files = Vec::new();
-    let mut sections = vec![summary_section(input.results), design_section(input.spec)];
+    let designed = input
+        .as_built
+        .as_ref()
+        .map_or(input.spec.modification, |v| v.designed_modification);
+    let mut sections = vec![
+        summary_section(input.results),
+        design_section(input.spec, &designed),
+    ];
+    if let Some(view) = &input.as_built {
+        let built = super::as_built::section_of(input.spec, view, input.results, &mut files);
+        sections.push(built);
+    }
     if !input.checks.is_empty() {
         sections.push(checks_section(input.checks));
     }
@@ -232,8 +246,10 @@ fn summary_section(results: &[SceneResult]) -> Section {
     section("summary", html! { "Headline results" }, body)
 }
 
-fn design_section(spec: &Spec) -> Section {
-    let (d, m) = (&spec.design, &spec.modification);
+/// The design as the spec gives it, with the modification `m` it was designed with (the
+/// spec's own; with a measured disc the scenes ran on the identified one, `as_built`).
+fn design_section(spec: &Spec, m: &Modification) -> Section {
+    let d = &spec.design;
     let mm = |x: f64| format!("{} mm", number(x));
     let (disc, rollers) = (&d.disc_material, &d.roller_material);
     let pairs = |head: &str, rows: Markup| data_table(html! { th colspan="2" { (head) } }, rows);

@@ -60,17 +60,7 @@ fn fit_10k_points_60_harmonics(b: divan::Bencher) {
 /// angles over one mesh period: the baseline of `clearance_sweep_as_built_3600`.
 #[divan::bench(sample_count = 20)]
 fn clearance_sweep_generated_3600(b: divan::Bencher) {
-    let s = spec::load("specs/reducer.yaml").expect("specs/reducer.yaml");
-    let mesh = cycloid::geometry::clearance::Mesh::new(&s.design, &s.modification);
-    let crank = mesh_period(3600);
-    b.bench(|| {
-        cycloid::geometry::clearance::sweep(
-            black_box(&mesh),
-            &crank,
-            cycloid::geometry::clearance::Scope::Backlash,
-        )
-        .unwrap()
-    });
+    clearance_sweep(b, Vec::new());
 }
 
 /// The same sweep on the disc as built: the paper optimum with a form error of 53 harmonics
@@ -78,9 +68,7 @@ fn clearance_sweep_generated_3600(b: divan::Bencher) {
 /// `fit` identifies with `harmonics: 60`. Issue 16's target: at most 3× the generated one.
 #[divan::bench(sample_count = 20)]
 fn clearance_sweep_as_built_3600(b: divan::Bencher) {
-    let s = spec::load("specs/reducer.yaml").expect("specs/reducer.yaml");
-    let mut design = s.design.clone();
-    design.deviations.form = (2..=60usize)
+    let form = (2..=60usize)
         .filter(|k| k % 9 != 0)
         .map(|k| cycloid::model::FormTerm {
             order: k,
@@ -88,18 +76,17 @@ fn clearance_sweep_as_built_3600(b: divan::Bencher) {
             sin_mm: 3e-4 * (k as f64).sin(),
         })
         .collect();
-    let mesh = cycloid::geometry::clearance::Mesh::new(&design, &s.modification);
-    let crank = mesh_period(3600);
-    b.bench(|| {
-        cycloid::geometry::clearance::sweep(
-            black_box(&mesh),
-            &crank,
-            cycloid::geometry::clearance::Scope::Backlash,
-        )
-        .unwrap()
-    });
+    clearance_sweep(b, form);
 }
 
-fn mesh_period(n: usize) -> Vec<f64> {
-    (0..n).map(|k| TAU / 10.0 * k as f64 / n as f64).collect()
+/// The clearance sweep with backlash of the paper optimum with the form error `form`, 3,600
+/// crank angles over one mesh period.
+fn clearance_sweep(b: divan::Bencher, form: Vec<cycloid::model::FormTerm>) {
+    use cycloid::geometry::clearance::{sweep, Mesh, Scope};
+    let s = spec::load("specs/reducer.yaml").expect("specs/reducer.yaml");
+    let mut design = s.design.clone();
+    design.deviations.form = form;
+    let mesh = Mesh::new(&design, &s.modification);
+    let crank: Vec<f64> = (0..3600).map(|k| TAU / 10.0 * k as f64 / 3600.0).collect();
+    b.bench(|| sweep(black_box(&mesh), &crank, Scope::Backlash).unwrap());
 }

@@ -993,7 +993,6 @@ fn run_fit(
     form_csv: Option<&str>,
     out: &mut dyn Write,
 ) -> Result<Outcome> {
-    use crate::measure::{fit, points};
     let spec = spec::load(path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
     let measured = spec.measured.as_ref().ok_or_else(|| {
@@ -1012,19 +1011,7 @@ fn run_fit(
         std::path::PathBuf::from(&measured.path),
     ));
     distinct_outputs(&inputs, &[("--write", write), ("--form-csv", form_csv)])?;
-    let read = points::read(&measured.path, measured.format)?;
-    let request = fit::Request {
-        design: &spec.design,
-        nominal: spec.modification,
-        fit: measured.fit,
-        harmonics: measured.harmonics,
-    };
-    let id = fit::identify(&request, &read).map_err(|mut e| {
-        if e.location.is_none() {
-            e.message = format!("measured profile `{}`: {}", measured.path, e.message);
-        }
-        e
-    })?;
+    let id = as_built::fit(&spec, measured)?;
     print(out, &report::fit::render(&spec, &id))?;
     if let Some(p) = form_csv {
         write_file(p, &report::fit::form_csv(&spec, &id))?;

@@ -6,6 +6,7 @@
 use crate::error::Result;
 use crate::measure::fit::{self, Identification};
 use crate::measure::points;
+use crate::model::measured::MeasuredProfile;
 use crate::model::FormTerm;
 use crate::spec::Spec;
 
@@ -30,6 +31,17 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
         )
         .at_key(format!("scenes[{i}].geometry")));
     }
+    let id = fit(spec, measured)?;
+    let mut built = spec.clone();
+    built.modification = id.modification;
+    built.design.deviations.form = form_terms(&id);
+    crate::spec::deviations::check(&built.design, &built.modification)?;
+    Ok(Some((built, id)))
+}
+
+/// Identify the disc of `measured`'s points against `spec`'s design (`measure::fit`), an
+/// error about the points naming their file.
+pub fn fit(spec: &Spec, measured: &MeasuredProfile) -> Result<Identification> {
     let read = points::read(&measured.path, measured.format)?;
     let request = fit::Request {
         design: &spec.design,
@@ -37,17 +49,12 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
         fit: measured.fit,
         harmonics: measured.harmonics,
     };
-    let id = fit::identify(&request, &read).map_err(|mut e| {
+    fit::identify(&request, &read).map_err(|mut e| {
         if e.location.is_none() {
             e.message = format!("measured profile `{}`: {}", measured.path, e.message);
         }
         e
-    })?;
-    let mut built = spec.clone();
-    built.modification = id.modification;
-    built.design.deviations.form = form_terms(&id);
-    crate::spec::deviations::check(&built.design, &built.modification)?;
-    Ok(Some((built, id)))
+    })
 }
 
 /// The fitted form error as the spec's harmonics (their values; the uncertainties stay with

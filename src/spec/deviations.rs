@@ -14,14 +14,7 @@ fn invalid(key: String, message: String) -> Error {
 }
 
 fn finite(key: String, value: f64) -> Result<f64> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(invalid(
-            key,
-            format!("must be a finite number, got {value}"),
-        ))
-    }
+    super::validate::finite(&key, value)
 }
 
 /// An index into `count` parts named `what`, each given once (`seen`).

@@ -77,7 +77,7 @@ fn length(key: &str, value: f64) -> Result<f64> {
     Ok(value)
 }
 
-fn finite(key: &str, value: f64) -> Result<f64> {
+pub(super) fn finite(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {

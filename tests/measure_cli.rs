@@ -263,8 +263,8 @@ fn dxf_without_a_profile_polyline_is_refused() {
         (run.code(), run.stderr.as_str()),
         (
             2,
-            "disc.dxf:1:1: invalid value: the drawing has no closed LWPOLYLINE or POLYLINE: the \
-             disc profile must be one closed polyline\n"
+            "disc.dxf:1:1: invalid value: the drawing has no closed LWPOLYLINE, POLYLINE or \
+             SPLINE: the disc profile must be one closed curve\n"
         )
     );
 }
@@ -302,4 +302,100 @@ fn fit_refuses_an_output_that_is_an_input() {
         assert_eq!((dir.read("fit.yaml"), dir.read("disc.dxf")), before);
         assert!(!dir.exists("o.yaml"));
     }
+}
+
+/// The profile as a SPLINE, as CAD programs write it, read back by `fit`. From the tool's own
+/// drawing (ΔRp 0.125, ΔRrp 0.1593, Δδ 0.2°): (1) a closed SPLINE with the polyline's vertices
+/// as fit points (on the curve): the modification comes back to the printed 1e-6 mm as from
+/// the polyline; (2) a closed degree-1 SPLINE with the vertices as control points, read as
+/// points of the curve, which for degree 1 are on the polyline's chords, within the drawing's
+/// 0.5 µm chordal tolerance of the profile: the modification comes back within that 0.5 µm.
+#[test]
+fn a_spline_profile_is_read_from_its_fit_points_or_its_curve() {
+    let dir = Scratch::new("fit-spline");
+    dir.write("made.yaml", made(0.2).text());
+    let run = cycloid(&dir.path, &["profile", "made.yaml", "--dxf", "disc.dxf"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let dxf = dir.read("disc.dxf");
+    let lines: Vec<&str> = dxf.lines().collect();
+    let mut vertices = Vec::new();
+    let mut circles = String::new();
+    for (k, w) in lines.chunks(2).enumerate() {
+        if w[1] == "VERTEX" {
+            let at = 2 * k;
+            vertices.push((lines[at + 5].to_string(), lines[at + 7].to_string()));
+        }
+        if w[1] == "CIRCLE" {
+            circles += &lines[2 * k..2 * k + 12].join("\n");
+            circles += "\n";
+        }
+    }
+    let entities =
+        |body: String| format!("0\nSECTION\n2\nENTITIES\n{body}{circles}0\nENDSEC\n0\nEOF\n");
+    let fit_points: String = vertices
+        .iter()
+        .map(|(x, y)| format!("11\n{x}\n21\n{y}\n"))
+        .collect();
+    dir.write(
+        "fit-points.dxf",
+        entities(format!("0\nSPLINE\n8\nPROFILE\n70\n1\n71\n3\n{fit_points}")),
+    );
+    let n = vertices.len();
+    let knots: String = std::iter::once(0)
+        .chain(0..=n)
+        .chain(std::iter::once(n))
+        .map(|k| format!("40\n{k}\n"))
+        .collect();
+    let control: String = vertices
+        .iter()
+        .chain(std::iter::once(&vertices[0]))
+        .map(|(x, y)| format!("10\n{x}\n20\n{y}\n"))
+        .collect();
+    dir.write(
+        "polygon.dxf",
+        entities(format!(
+            "0\nSPLINE\n8\nPROFILE\n70\n8\n71\n1\n{knots}{control}"
+        )),
+    );
+    for (file, tolerance) in [("fit-points.dxf", 1e-6), ("polygon.dxf", 5e-4)] {
+        dir.write(
+            "fit.yaml",
+            fitting(&format!(
+                "{{file: {file}, format: dxf, harmonics: 0, fit: [shift_mm, equidistant_mm, rotation_deg]}}"
+            )),
+        );
+        let run = cycloid(&dir.path, &["fit", "fit.yaml", "--write", "out.yaml"]);
+        assert_eq!(run.code(), 0, "{file}: {}", run.stderr);
+        let m = cycloid::spec::parse("out.yaml", &dir.read("out.yaml"))
+            .unwrap()
+            .modification;
+        assert!(
+            (m.shift_mm - 0.125).abs() < tolerance && (m.equidistant_mm - 0.1593).abs() < tolerance,
+            "{file}: {m:?}"
+        );
+        assert!(
+            (m.rotation_rad - 0.2f64.to_radians()).abs() < tolerance / 18.0,
+            "{file}: {m:?}"
+        );
+    }
+    // An open SPLINE is refused at its line.
+    dir.write(
+        "open.dxf",
+        entities(format!(
+            "0\nSPLINE\n8\nPROFILE\n70\n8\n71\n3\n{}",
+            &fit_points[..fit_points.len() / 2]
+        )),
+    );
+    dir.write(
+        "fit.yaml",
+        fitting("{file: open.dxf, format: dxf, harmonics: 0, fit: [shift_mm]}"),
+    );
+    let run = cycloid(&dir.path, &["fit", "fit.yaml"]);
+    assert_eq!(run.code(), 2);
+    assert!(
+        run.stderr
+            .starts_with("open.dxf:5:1: invalid value: an open SPLINE"),
+        "{}",
+        run.stderr
+    );
 }

@@ -3,6 +3,7 @@
 
 pub mod fit;
 pub mod points;
+pub mod spline;
 
 use crate::geometry::Vec2;
 

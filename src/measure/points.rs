@@ -4,7 +4,9 @@
 //! required and `feature` optional (other columns are ignored, so `cycloid profile --csv`
 //! output reads back); each row a point, `feature` `profile` (the default) or `hole:J`.
 //! DXF: the vertices of closed LWPOLYLINE and POLYLINE entities are profile points (an open
-//! one is refused at its line, not skipped); a CIRCLE on
+//! one is refused at its line, not skipped); a closed SPLINE gives its fit points when it has
+//! them (they lie on the curve), else `SPLINE_POINTS_PER_CONTROL` points per control point
+//! of the curve itself (`spline::Spline`, rational or not); a CIRCLE on
 //! layer `HOLE_J` is the bore of hole J, read as 72 points on it. Units mm.
 //! Errors name the file and line (exit 2).
 
@@ -16,6 +18,12 @@ use std::f64::consts::TAU;
 
 /// Points read from a circle of a DXF drawing.
 pub const CIRCLE_POINTS: usize = 72;
+
+/// Points read per control point of a SPLINE without fit points: a cubic span between two
+/// knots is then sampled at 32 points, its chords within (span/32)²·κ/8 of the curve — below a
+/// nanometre for the spans of a disc profile (the points lie on the curve; the chords do not
+/// enter the fit).
+pub const SPLINE_POINTS_PER_CONTROL: usize = 32;
 
 /// The points of a file.
 pub fn read(path: &str, format: PointsFormat) -> Result<Vec<MeasuredPoint>> {
@@ -158,27 +166,81 @@ impl Entity<'_> {
 
     /// The (line, x, y) of every 10/20 pair.
     fn vertices(&self, path: &str) -> Result<Vec<(usize, Vec2)>> {
+        self.pairs_of(path, (10, 20))
+    }
+
+    /// The (line, x, y) of every pair of the codes (x, y).
+    fn pairs_of(&self, path: &str, (cx, cy): (i32, i32)) -> Result<Vec<(usize, Vec2)>> {
         let mut out = Vec::new();
         let mut x = None;
         for (line, code, v) in self.pairs {
-            let parse = || {
-                v.parse::<f64>()
-                    .ok()
-                    .filter(|x| x.is_finite())
-                    .ok_or_else(|| at(path, line + 1, format!("`{v}` is not a finite number")))
-            };
-            match code {
-                10 => x = Some((*line, parse()?)),
-                20 => {
-                    if let Some((l, xv)) = x.take() {
-                        out.push((l, Vec2::new(xv, parse()?)));
-                    }
+            if *code == cx {
+                x = Some((*line, parse_number(path, *line, v)?));
+            } else if *code == cy {
+                if let Some((l, xv)) = x.take() {
+                    out.push((l, Vec2::new(xv, parse_number(path, *line, v)?)));
                 }
-                _ => {}
             }
         }
         Ok(out)
     }
+
+    /// Every value of group `code`, as numbers.
+    fn numbers(&self, path: &str, code: i32) -> Result<Vec<f64>> {
+        self.pairs
+            .iter()
+            .filter(|p| p.1 == code)
+            .map(|(line, _, v)| parse_number(path, *line, v))
+            .collect()
+    }
+
+    /// A SPLINE's profile points: its fit points, or points of the curve.
+    fn spline_points(&self, path: &str) -> Result<Vec<(usize, Vec2)>> {
+        let fit = self.pairs_of(path, (11, 21))?;
+        let refuse = |m: String| at(path, self.line, m);
+        if fit.len() >= 3 {
+            let closed = self.closed() || (fit[0].1 - fit[fit.len() - 1].1).norm() < 1e-9;
+            if !closed {
+                return Err(refuse(OPEN_SPLINE.into()));
+            }
+            return Ok(fit);
+        }
+        let control: Vec<Vec2> = self.vertices(path)?.into_iter().map(|(_, p)| p).collect();
+        let mut weights = self.numbers(path, 41)?;
+        if weights.is_empty() {
+            weights = vec![1.0; control.len()];
+        }
+        let spline = super::spline::Spline {
+            degree: self.number(path, 71)? as usize,
+            knots: self.numbers(path, 40)?,
+            control,
+            weights,
+        };
+        if let Some(problem) = spline.problem() {
+            return Err(refuse(format!("a SPLINE that is no B-spline: {problem}")));
+        }
+        if !spline.is_closed() {
+            return Err(refuse(OPEN_SPLINE.into()));
+        }
+        let count = SPLINE_POINTS_PER_CONTROL * spline.control.len();
+        Ok(spline
+            .sample(count)
+            .into_iter()
+            .map(|p| (self.line, p))
+            .collect())
+    }
+}
+
+/// What an open SPLINE is told.
+const OPEN_SPLINE: &str = "an open SPLINE (its ends apart): profile points are read from one \
+     closed curve; close it in the CAD program, or delete it if it is not the disc outline";
+
+/// The number of the value `v` of the pair whose code is at `line`, finite.
+fn parse_number(path: &str, line: usize, v: &str) -> Result<f64> {
+    v.parse::<f64>()
+        .ok()
+        .filter(|x| x.is_finite())
+        .ok_or_else(|| at(path, line + 1, format!("`{v}` is not a finite number")))
 }
 
 fn entities<'a>(all: &'a [(usize, i32, String)]) -> Vec<Entity<'a>> {
@@ -215,6 +277,10 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                 refuse_open(path, e)?;
                 closed_profiles += 1;
                 push_profile(&mut points, e.vertices(path)?);
+            }
+            "SPLINE" => {
+                closed_profiles += 1;
+                push_profile(&mut points, e.spline_points(path)?);
             }
             "POLYLINE" => {
                 refuse_open(path, e)?;
@@ -262,8 +328,8 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
         return Err(at(
             path,
             1,
-            "the drawing has no closed LWPOLYLINE or POLYLINE: the disc profile must be one \
-             closed polyline"
+            "the drawing has no closed LWPOLYLINE, POLYLINE or SPLINE: the disc profile must be \
+             one closed curve"
                 .into(),
         ));
     }

@@ -204,14 +204,19 @@ fn run_with_backlash(spec: &Spec) -> (SceneResult, Vec<f64>) {
 
 /// Solve a sequence of crank angles, warm-starting each from the previous one (as a sweep does).
 fn solve_all(model: &Model, angles: &[f64]) -> Vec<AngleSolution> {
+    try_solve_all(model, angles)
+        .unwrap_or_else(|(phi, f)| panic!("solve failed at crank {:.4}°: {f}", phi.to_degrees()))
+}
+
+/// `solve_all`, a failure returned with its crank angle.
+fn try_solve_all(model: &Model, angles: &[f64]) -> Result<Vec<AngleSolution>, (f64, SolveFailure)> {
     let mut previous = AngleSolution::default();
     angles
         .iter()
         .map(|&phi| {
-            let sol = solve_angle(model, phi, &previous)
-                .unwrap_or_else(|f| panic!("solve failed at crank {:.4}°: {f}", phi.to_degrees()));
+            let sol = solve_angle(model, phi, &previous).map_err(|f| (phi, f))?;
             previous = sol.clone();
-            sol
+            Ok(sol)
         })
         .collect()
 }
@@ -584,7 +589,23 @@ proptest! {
         let model = model(&spec, true, true, true);
         let period = TAU / r.rollers as f64;
         let angles = crank_grid(case.phase * TAU, period, 10);
-        let sols = solve_all(&model, &angles);
+        let sols = match try_solve_all(&model, &angles) {
+            Ok(sols) => sols,
+            // A known limit of the model, not a wrong answer: under interference (tip
+            // clearance ΔRrp − ΔRp < 0) a roller can be pressed into both flanks of its tooth
+            // space, and the model takes one contact per roller, its nearest flank. Where the
+            // nearer flank changes over one ulp of lag the balance jumps (by 4e-6 N·mm, 80× its
+            // round-off, in the committed regression: 6 rollers, tip clearance −21 µm, crank
+            // 179.97°) and no lag meets 1e-9: the solve says so, as `check` then does (exit 2
+            // with the scene and the angle). Only there is a failure accepted.
+            Err((phi, SolveFailure::NotConverged { x, residual }))
+                if r.equidistant < r.shift =>
+            {
+                prop_assert!(x.is_finite() && residual.is_finite() && phi.is_finite());
+                return Ok(());
+            }
+            Err((phi, f)) => panic!("solve failed at crank {:.4}°: {f}", phi.to_degrees()),
+        };
         for (&phi, sol) in angles.iter().zip(&sols) {
             assert_balance(r, model.torque_nmm, phi, sol);
             assert_contacts(&spec, &model, sol);

@@ -7,6 +7,7 @@ use super::html::{data_table, figure, section, Section};
 use super::svg::{LinePlot, Series, PALETTE};
 use super::table::{count_or_number, with_unit};
 use crate::engine::summary::{summarise, SceneSummary};
+use crate::geometry::profile::Profile;
 use crate::measure::fit::Identification;
 use crate::model::results::SceneResult;
 use crate::model::Modification;
@@ -34,7 +35,8 @@ pub(super) fn section_of(
     let id = view.identification;
     let (designed, as_built) = (summarise(view.designed), summarise(built));
     let file = "as-built-deviation.svg";
-    files.push((file.into(), deviation_plot(id).to_svg()));
+    let from_design = design_deviation_um(spec, &view.designed_modification, id);
+    files.push((file.into(), deviation_plot(id, &from_design).to_svg()));
     let um = |mm: f64| format!("{} µm", number(mm * 1e3));
     let m = (&view.designed_modification, &id.modification);
     let body = html! {
@@ -58,11 +60,13 @@ pub(super) fn section_of(
                 @for (d, b) in designed.iter().zip(&as_built) { (rows(d, b)) }
             },
         ))
-        (figure(file, "Measured deviation from the identified profile",
+        (figure(file, "Measured deviation from the profile",
             "Along the profile (locus parameter t over the whole disc), in µm normal to it, \
-             positive where material is missing: the measured points (the fitted form error \
-             plus each point's residual) and the fitted form error w(t). The disc is tens of \
-             millimetres across; these are micrometres."))
+             positive where material is missing: the measured points against the design \
+             profile (the spec's modification), the same points against the identified \
+             profile (its modification: the fitted form error plus each point's residual), \
+             and the fitted form error w(t). The disc is tens of millimetres across; these \
+             are micrometres."))
     };
     section("as-built", html! { "Disc as built" }, body)
 }
@@ -81,8 +85,33 @@ fn rows(designed: &SceneSummary, built: &SceneSummary) -> maud::Markup {
     }
 }
 
-/// The points' deviation and the form error, µm against t in degrees.
-fn deviation_plot(id: &Identification) -> LinePlot {
+/// Each measured point's deviation from the design profile, µm (positive: material missing),
+/// sorted by t: the point, placed in the disc frame as the fit left it (on the identified
+/// profile, moved inward by its deviation from it, w(t) plus its residual), measured by its
+/// signed distance to the profile of the spec's modification (exact closest point).
+fn design_deviation_um(
+    spec: &Spec,
+    designed: &Modification,
+    id: &Identification,
+) -> Vec<(f64, f64)> {
+    let identified = Profile::new(&spec.design, &id.modification);
+    let design = Profile::new(&spec.design, designed);
+    let mut out: Vec<(f64, f64)> = id
+        .profile
+        .iter()
+        .filter_map(|p| {
+            let inward = id.form.value_mm(p.t) + p.residual_mm;
+            let q = identified.point(p.t) - identified.normal(p.t) * inward;
+            let foot = design.closest_point(q, p.t).ok()?;
+            Some((p.t, -foot.signed_distance_mm * 1e3))
+        })
+        .collect();
+    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out
+}
+
+/// The points' deviations and the form error, µm against t in degrees.
+fn deviation_plot(id: &Identification, from_design: &[(f64, f64)]) -> LinePlot {
     let mut points: Vec<(f64, f64)> = id
         .profile
         .iter()
@@ -94,12 +123,18 @@ fn deviation_plot(id: &Identification) -> LinePlot {
         .map(|k| std::f64::consts::TAU * k as f64 / 720.0)
         .collect();
     let mut plot = LinePlot::new(
-        "Deviation from the identified profile",
+        "Measured deviation from the profile",
         "locus parameter t (deg)",
         "normal deviation (µm)",
     );
     plot.series.push(Series::new(
-        "measured points",
+        "points against the design",
+        from_design.iter().map(|p| degrees(p.0)).collect(),
+        from_design.iter().map(|p| p.1).collect(),
+        PALETTE[3],
+    ));
+    plot.series.push(Series::new(
+        "points against the identified profile",
         points.iter().map(|p| degrees(p.0)).collect(),
         points.iter().map(|p| p.1 * 1e3).collect(),
         PALETTE[7],

@@ -575,14 +575,13 @@ fn the_formed_profile_has_the_tangent_and_curvature_of_its_points() {
             (curvature - fd_curvature).abs() < 1e-4 * curvature.abs().max(0.01),
             "curvature at {t}: {curvature} vs {fd_curvature}"
         );
+        // The normal is the tangent turned clockwise: outward of a counter-clockwise profile.
         let n = p.normal(t);
-        assert!(n.dot(&tangent).abs() < 1e-12 * tangent.norm() && cross_sign(tangent, n) < 0.0);
+        assert!(
+            n.dot(&tangent).abs() < 1e-12 * tangent.norm()
+                && cycloid::geometry::cross(tangent, n) < 0.0
+        );
     }
-}
-
-/// The normal is the tangent turned clockwise (outward for a counter-clockwise profile).
-fn cross_sign(a: Vec2, b: Vec2) -> f64 {
-    cycloid::geometry::cross(a, b)
 }
 
 /// A roller's gap on the disc with a form error is its distance to the formed profile, less

@@ -71,11 +71,11 @@ pub fn form_terms(id: &Identification) -> Vec<FormTerm> {
         .collect()
 }
 
-/// One line for the terminal: what the scenes run on.
+/// One line for the terminal: what the scenes of `spec`, the disc as built (`identify`),
+/// run on.
 pub fn describe(spec: &Spec, id: &Identification) -> String {
     let m = &id.modification;
-    let form = form_terms(id);
-    let bound: f64 = form.iter().map(FormTerm::amplitude_mm).sum();
+    let form = &spec.design.deviations;
     format!(
         "as built: the scenes run on the disc identified from `{}`: shift {:.4} mm, \
          equidistant {:.4} mm, rotation {:.4}°, form error of {} harmonics (|w| ≤ {:.3} µm), \
@@ -84,8 +84,8 @@ pub fn describe(spec: &Spec, id: &Identification) -> String {
         m.shift_mm,
         m.equidistant_mm,
         crate::units::deg(m.rotation_rad),
-        form.len(),
-        bound * 1e3,
+        form.form.len(),
+        form.form_bound_mm() * 1e3,
         id.residual_rms_mm * 1e3
     )
 }

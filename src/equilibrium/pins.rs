@@ -60,17 +60,22 @@ pub struct Pins {
     parts: Vec<(Vec2, Vec2)>,
 }
 
+/// Unit vectors of the pins' nominal places, (cos 2πj/M, sin 2πj/M).
+fn pattern(m: usize) -> Vec<Vec2> {
+    (0..m)
+        .map(|j| {
+            let a = std::f64::consts::TAU * j as f64 / m as f64;
+            Vec2::new(a.cos(), a.sin())
+        })
+        .collect()
+}
+
 impl Pins {
     pub fn new(design: &Design, law: ContactLaw) -> Self {
         let pin = design.pins.pin_radius_mm;
         let hole = design.hole_radius_mm();
         let m = design.pins.count;
-        let base: Vec<Vec2> = (0..m)
-            .map(|j| {
-                let a = std::f64::consts::TAU * j as f64 / m as f64;
-                Vec2::new(a.cos(), a.sin())
-            })
-            .collect();
+        let base = pattern(m);
         let d = &design.deviations;
         let rw = design.pins.circle_radius_mm;
         let moved = |c: crate::model::CentreDeviation, j: usize| {
@@ -89,7 +94,7 @@ impl Pins {
         };
         let pins = Pins {
             count: m,
-            base,
+            base: Vec::new(),
             circle_radius_mm: design.pins.circle_radius_mm,
             eccentricity_mm: design.eccentricity_mm,
             clearance_mm: design.pins.hole_clearance_mm,
@@ -126,13 +131,7 @@ impl Pins {
     pub fn for_disc(mut self, disc: usize, phase_rad: f64) -> Self {
         let (s, c) = phase_rad.sin_cos();
         let turn = |v: &Vec2| rotate(*v, c, s);
-        let m = self.count;
-        self.base = (0..m)
-            .map(|j| {
-                let a = std::f64::consts::TAU * j as f64 / m as f64;
-                turn(&Vec2::new(a.cos(), a.sin()))
-            })
-            .collect();
+        self.base = pattern(self.count).iter().map(turn).collect();
         self.parts = match self.hole_offsets.get(disc) {
             Some(holes) => self
                 .pin_offsets

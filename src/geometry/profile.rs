@@ -32,11 +32,9 @@ pub struct Profile {
     pub rotation_rad: f64,
     rot_cos: f64,
     rot_sin: f64,
-    /// The form error w(t), sorted by order; empty for the profile as drawn.
-    form: Arc<[FormTerm]>,
-    /// The same series dense, (cos_mm, sin_mm) of every order from 1 to the highest (zeros
+    /// The form error w(t) dense, (cos_mm, sin_mm) of every order from 1 to the highest (zeros
     /// where there is no term), for `form_jet`'s loop without branches; its constant, the
-    /// order-0 cosine, apart.
+    /// order-0 cosine, apart. Empty and zero for the profile as drawn.
     dense: Arc<[(f64, f64)]>,
     constant_mm: f64,
 }
@@ -144,7 +142,6 @@ impl Profile {
             rotation_rad,
             rot_cos,
             rot_sin,
-            form: Arc::from([]),
             dense: Arc::from([]),
             constant_mm: 0.0,
         }
@@ -153,12 +150,10 @@ impl Profile {
     /// This profile with the form error `form` along its normal (MODEL.md "Measured profiles";
     /// positive w: material missing).
     pub fn with_form(mut self, form: &[FormTerm]) -> Self {
-        let mut terms = form.to_vec();
-        terms.sort_by_key(|f| f.order);
-        let highest = terms.last().map_or(0, |f| f.order);
+        let highest = form.iter().map(|f| f.order).max().unwrap_or(0);
         let mut dense = vec![(0.0, 0.0); highest];
         self.constant_mm = 0.0;
-        for f in &terms {
+        for f in form {
             match f.order {
                 0 => self.constant_mm += f.cos_mm,
                 k => {
@@ -167,20 +162,19 @@ impl Profile {
                 }
             }
         }
-        self.form = terms.into();
         self.dense = dense.into();
         self
     }
 
     /// Whether the profile carries a form error.
     pub fn has_form(&self) -> bool {
-        !self.form.is_empty()
+        !self.dense.is_empty() || self.constant_mm != 0.0
     }
 
     /// w(t), w'(t), w''(t): mm, mm/rad, mm/rad². The harmonics cos(k·t), sin(k·t) by powers of
     /// e^{it} (one sine and cosine per call; k ≤ a few hundred, whose rounding grows as k·ε).
     pub fn form_jet(&self, t: f64) -> (f64, f64, f64) {
-        if self.form.is_empty() {
+        if !self.has_form() {
             return (0.0, 0.0, 0.0);
         }
         // Four lanes, e^{ikt} for k ≡ 1, 2, 3, 0 (mod 4), each with its own power, advanced by
@@ -222,15 +216,17 @@ impl Profile {
 
     /// The largest |w''| the form error can reach, mm/rad²: Σ k²·amplitude.
     pub fn form_bend_bound(&self) -> f64 {
-        self.form
-            .iter()
-            .map(|f| (f.order * f.order) as f64 * f.amplitude_mm())
-            .sum()
+        self.amplitudes().map(|(k, a)| k * k * a).sum()
     }
 
     /// The largest |w| the form error can reach, mm: Σ amplitude.
     pub fn form_bound_mm(&self) -> f64 {
-        self.form.iter().map(FormTerm::amplitude_mm).sum()
+        self.constant_mm.abs() + self.amplitudes().map(|(_, a)| a).sum::<f64>()
+    }
+
+    /// (order, amplitude) of every harmonic of the form error from order 1.
+    fn amplitudes(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        (self.dense.iter().enumerate()).map(|(i, (a, b))| ((i + 1) as f64, a.hypot(*b)))
     }
 
     /// C, C', C'' at t (mm, mm/rad, mm/rad²).

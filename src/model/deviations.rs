@@ -152,14 +152,6 @@ impl Deviations {
             .unwrap_or_default()
     }
 
-    /// The largest distance any roller centre is moved, mm (bounds in the exact solve).
-    pub fn largest_roller_move_mm(&self) -> f64 {
-        self.rollers
-            .iter()
-            .map(|r| r.centre.radial_mm.hypot(r.centre.tangential_mm))
-            .fold(0.0, f64::max)
-    }
-
     /// The deviations in force, one line each, for `--explain` (empty when nominal).
     pub fn describe(&self) -> Vec<String> {
         let um = |mm: f64| format!("{:+.3} µm", mm * 1e3);

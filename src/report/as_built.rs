@@ -63,8 +63,9 @@ pub(super) fn section_of(
         (figure(file, "Measured deviation from the profile",
             "Along the profile (locus parameter t over the whole disc), in µm normal to it, \
              positive where material is missing: the measured points against the design \
-             profile (the spec's modification), the same points against the identified \
-             profile (its modification: the fitted form error plus each point's residual), \
+             profile (vs design: the spec's modification), the same points against the \
+             identified profile (vs identified: its modification; the fitted form error plus \
+             each point's residual), \
              and the fitted form error w(t). The disc is tens of millimetres across; these \
              are micrometres."))
     };
@@ -128,13 +129,13 @@ fn deviation_plot(id: &Identification, from_design: &[(f64, f64)]) -> LinePlot {
         "normal deviation (µm)",
     );
     plot.series.push(Series::new(
-        "points against the design",
+        "vs design",
         from_design.iter().map(|p| degrees(p.0)).collect(),
         from_design.iter().map(|p| p.1).collect(),
         PALETTE[3],
     ));
     plot.series.push(Series::new(
-        "points against the identified profile",
+        "vs identified",
         points.iter().map(|p| degrees(p.0)).collect(),
         points.iter().map(|p| p.1 * 1e3).collect(),
         PALETTE[7],

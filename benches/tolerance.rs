@@ -64,7 +64,7 @@ fn merge_100_shards_of_10k(b: divan::Bencher) {
     };
     let mut names = Vec::new();
     for i in 0..shards {
-        let rows = cycloid::engine::tolerance::shard_samples(count, (i, shards)).len();
+        let rows = cycloid::engine::tolerance::shard_len(count, (i, shards)) as usize;
         let mut records = Records::default();
         for _ in 0..rows {
             let (f, g) = (4000.0 + 100.0 * noise(), 900.0 + 10.0 * noise());

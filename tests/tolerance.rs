@@ -184,12 +184,11 @@ fn the_clearance_moves_one_for_one_with_the_equidistant_error() {
     assert!((d[0] + 1.0).abs() < 1e-6, "∂q/∂ΔRp = {}", d[0]);
     // The linear stack-up of that parameter alone is its σ = band/3.
     let s = sensitivity::run(&study, &Silent).unwrap();
-    let (kind, variance, _) = s
+    let (_, variance, _) = s
         .pareto(&study, 0)
         .into_iter()
         .find(|(k, _, _)| *k == Kind::Equidistant)
         .unwrap();
-    assert_eq!(kind, Kind::Equidistant);
     assert!((variance.sqrt() - 0.002 / 3.0).abs() < 1e-9, "{variance}");
 }
 
@@ -435,12 +434,14 @@ fn bad_tolerances_are_refused_where_they_are_written() {
         let key = says.split(':').next().unwrap();
         let line = e.split(':').nth(1).unwrap().parse::<usize>().unwrap();
         let at = text.text().lines().nth(line - 1).unwrap();
-        if key.starts_with("tolerances.") {
-            assert!(
-                at.contains(key.trim_start_matches("tolerances.")),
-                "{e} at `{at}`"
-            );
-        }
+        // The line of the key at fault: the key's own line, or for the band whose largest draw
+        // moves a roller by e, the band's.
+        let written = if key.starts_with("tolerances.") {
+            key.trim_start_matches("tolerances.")
+        } else {
+            "roller_radial_mm"
+        };
+        assert!(at.contains(written), "{e} at `{at}`");
     }
 }
 

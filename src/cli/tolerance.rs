@@ -224,8 +224,8 @@ fn run_shard(
     out: &mut dyn Write,
 ) -> Result<Outcome> {
     let spec = study.spec;
-    let count = crate::engine::tolerance::shard_samples(study.samples() as u64, (i, n)).len();
-    let bar = Bar::with_rate(&format!("tolerance shard {i}/{n}"), "samples", count as u64);
+    let count = crate::engine::tolerance::shard_len(study.samples() as u64, (i, n));
+    let bar = Bar::with_rate(&format!("tolerance shard {i}/{n}"), "samples", count);
     let records = study.run((i, n), &bar).map_err(|e| locate(e, spec))?;
     drop(bar);
     let header = shard::Header {

@@ -167,11 +167,12 @@ impl<'a> Study<'a> {
     /// `progress` hears of each sample done. The first error (in k order) is the error.
     pub fn run(&self, shard: (u64, u64), progress: &dyn Progress) -> Result<Records> {
         use rayon::prelude::*;
-        let ks = shard_samples(self.samples() as u64, shard);
-        progress.start("tolerance study", ks.len() as u64);
-        let each: Vec<Result<(Vec<f64>, Vec<bool>)>> = ks
+        let rows = shard_len(self.samples() as u64, shard);
+        progress.start("tolerance study", rows);
+        let each: Vec<Result<(Vec<f64>, Vec<bool>)>> = (0..rows)
             .into_par_iter()
-            .map(|k| {
+            .map(|r| {
+                let k = shard.0 + r * shard.1;
                 let r = self.evaluate_sample(k);
                 progress.advance(1);
                 r
@@ -188,7 +189,25 @@ impl<'a> Study<'a> {
     }
 }
 
-/// The samples of shard I of N: k ≡ I (mod N), k < samples, increasing (I is 0-based).
-pub fn shard_samples(samples: u64, (index, count): (u64, u64)) -> Vec<u64> {
-    (index..samples).step_by(count.max(1) as usize).collect()
+/// How many samples shard I of N holds: those k ≡ I (mod N), k < samples (I is 0-based),
+/// counted without listing them (a study may have 10⁹ samples, a shard header any number).
+pub fn shard_len(samples: u64, (index, count): (u64, u64)) -> u64 {
+    samples.saturating_sub(index).div_ceil(count.max(1))
+}
+
+#[cfg(test)]
+mod tests {
+    /// The count of a shard is the number of k ≡ I (mod N) below the sample count, listed
+    /// one by one here, for every split of up to 12 samples (an empty shard included).
+    #[test]
+    fn a_shard_holds_the_samples_of_its_residue() {
+        for samples in 0..=12u64 {
+            for count in 1..=samples.max(1) + 1 {
+                for index in 0..count {
+                    let listed = (index..samples).step_by(count as usize).count() as u64;
+                    assert_eq!(super::shard_len(samples, (index, count)), listed);
+                }
+            }
+        }
+    }
 }

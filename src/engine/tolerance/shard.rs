@@ -8,7 +8,7 @@
 //! UTF-8), spec text (u64 length + UTF-8); then per sample of the shard, in increasing k, its
 //! L limit values (f64) and L verdicts (one byte each, 1 passed).
 
-use super::{shard_samples, Records};
+use super::{shard_len, Records};
 use crate::error::{Error, ErrorKind, Result};
 use sha2::{Digest, Sha256};
 
@@ -132,18 +132,20 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         return Err(r.bad(&format!("shard {index}/{count} with {limits} limits")));
     }
     let l = limits as usize;
-    let rows = shard_samples(samples, (index, count)).len();
+    let rows = shard_len(samples, (index, count));
     let body = &bytes[r.at..];
-    if body.len() as u128 != rows as u128 * 9 * l as u128 {
+    let expected = rows as u128 * 9 * l as u128;
+    if body.len() as u128 != expected {
         return Err(r.bad(&format!(
-            "{} bytes of records, not the {} of {rows} samples",
-            body.len(),
-            rows * 9 * l
+            "{} bytes of records, not the {expected} of {rows} samples",
+            body.len()
         )));
     }
+    // The body holds them: rows·l fits in memory.
+    let cells = body.len() / 9;
     let mut records = Records {
-        values: Vec::with_capacity(rows * l),
-        passed: Vec::with_capacity(rows * l),
+        values: Vec::with_capacity(cells),
+        passed: Vec::with_capacity(cells),
     };
     for row in body.chunks_exact(9 * l) {
         let (v, p) = row.split_at(8 * l);

@@ -23,6 +23,21 @@ pub fn passes(value: f64, limit: f64, bound: Bound) -> bool {
     }
 }
 
+/// How far beyond `limit` in the direction `bound` a value lies, relative to |limit| (to 1
+/// when the limit is 0): positive outside, negative inside; a NaN is infinitely outside.
+pub fn excess(value: f64, limit: f64, bound: Bound) -> f64 {
+    let scale = if limit != 0.0 { limit.abs() } else { 1.0 };
+    let beyond = match bound {
+        Bound::Max => value - limit,
+        Bound::Min => limit - value,
+    };
+    if beyond.is_nan() {
+        f64::INFINITY
+    } else {
+        beyond / scale
+    }
+}
+
 /// What a check compares.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CheckKind {
@@ -63,20 +78,7 @@ impl Check {
     /// How far beyond the limit the value lies, relative to |limit| (to 1 when the limit is 0):
     /// positive outside, negative inside. Sorts failures worst first.
     pub fn excess(&self) -> f64 {
-        let scale = if self.limit != 0.0 {
-            self.limit.abs()
-        } else {
-            1.0
-        };
-        let beyond = match self.bound {
-            Bound::Max => self.value - self.limit,
-            Bound::Min => self.limit - self.value,
-        };
-        if beyond.is_nan() {
-            f64::INFINITY
-        } else {
-            beyond / scale
-        }
+        excess(self.value, self.limit, self.bound)
     }
 
     /// The check of a golden comparison.

@@ -25,7 +25,8 @@ fn bound_sign(b: Bound) -> &'static str {
     }
 }
 
-fn percent(x: f64) -> String {
+/// A fraction as a percentage for people.
+pub(super) fn percent(x: f64) -> String {
     format!("{} %", number(100.0 * x))
 }
 

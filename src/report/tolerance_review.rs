@@ -17,9 +17,7 @@ use crate::numeric::number;
 use maud::{html, Markup};
 use std::path::Path;
 
-fn percent(x: f64) -> String {
-    format!("{} %", number(100.0 * x))
-}
+use super::tolerance::percent;
 
 /// Bins of a histogram of n values: √n, from 10 to 60.
 fn bins(n: usize) -> usize {
@@ -67,11 +65,7 @@ fn histogram(study: &Study, records: &Records, l: usize, ls: &LimitSummary) -> S
     plot.subtitle = format!(
         "{nb} bins of {}; limit {} {}; failures {} of {}",
         number(width),
-        if matches!(ls.bound, crate::model::quantity::Bound::Min) {
-            "≥"
-        } else {
-            "≤"
-        },
+        ls.bound.symbol(),
         number(ls.limit),
         ls.failures,
         values.len()
@@ -101,7 +95,7 @@ fn rates_section(s: &Summary) -> Section {
             html! {
                 @for l in &s.limits {
                     tr class=(if l.failures == 0 { "pass" } else { "fail" }) {
-                        td { code { (l.key) } " " (if matches!(l.bound, crate::model::quantity::Bound::Min) { "≥ " } else { "≤ " })
+                        td { code { (l.key) } " " (l.bound.symbol()) " "
                             (with_unit(number(l.limit), l.unit)) }
                         td.num { (number(l.min)) }
                         @for q in l.quantiles { td.num { (number(q)) } }

@@ -64,15 +64,6 @@ impl Summary {
     }
 }
 
-/// How far beyond `limit` a value lies, relative to |limit| (1 when the limit is 0).
-pub fn excess(value: f64, limit: f64, bound: Bound) -> f64 {
-    let scale = if limit != 0.0 { limit.abs() } else { 1.0 };
-    match bound {
-        Bound::Max => (value - limit) / scale,
-        Bound::Min => (limit - value) / scale,
-    }
-}
-
 /// The summary of `records`, which hold every sample of the study in sample order.
 pub fn summarise(study: &Study, records: &Records) -> Summary {
     let l = study.limits.len();
@@ -142,7 +133,7 @@ fn worst(study: &Study, records: &Records) -> Vec<(u64, f64)> {
             let e = v
                 .iter()
                 .zip(&study.limits)
-                .map(|(&v, (def, limit))| excess(v, *limit, def.bound))
+                .map(|(&v, (def, limit))| crate::engine::check::excess(v, *limit, def.bound))
                 .fold(f64::NEG_INFINITY, f64::max);
             (k as u64, e)
         })

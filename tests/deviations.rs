@@ -585,7 +585,8 @@ fn the_formed_profile_has_the_tangent_and_curvature_of_its_points() {
 }
 
 /// A roller's gap on the disc with a form error is its distance to the formed profile, less
-/// its radius: against a search over the profile's points (golden section on |q − Γ(t)|
+/// its radius: against a search over the points of the series (golden section on |q − Γ(t)|,
+/// Γ from the offset curve and w summed from its harmonics, not the profile's table,
 /// within ±0.05 rad of the foot, to the argument's round-off), 1e-9 mm. And a form error of
 /// order 0 — a constant w, not allowed in a spec but a limit case here — is an equidistant
 /// modification of that size: gaps to 1e-12 mm.
@@ -594,12 +595,18 @@ fn the_gap_with_a_form_error_is_the_distance_to_the_formed_profile() {
     let mut built = paper_design();
     built.deviations.form = form();
     let mesh = Mesh::new(&built, &PAPER_OPTIMUM);
+    let drawn = cycloid::geometry::profile::Profile::new(&built, &PAPER_OPTIMUM);
     for phi in turn(41) {
         let pose = Pose::lagging(phi, 1e-4);
         for i in 0..built.rollers {
             let g = mesh.roller_gap(i, &pose, None).unwrap();
             let q = mesh.roller_in_disc(i, &pose);
-            let dist = |t: f64| (q - mesh.profile.point(t)).norm();
+            // The formed point from the series itself, not the profile's table: the offset
+            // curve's point moved inward by w(t) along its normal.
+            let dist = |t: f64| {
+                let w = mesh.profile.form().series_jet(t).0;
+                (q - (drawn.point(t) - drawn.normal(t) * w)).norm()
+            };
             let t = common::golden_section_min(dist, g.t - 0.05, g.t + 0.05);
             let expected = dist(t) - mesh.roller_radius(i);
             assert!(

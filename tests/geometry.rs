@@ -914,3 +914,50 @@ proptest! {
             "relative errors {fwd_err:e} / {rev_err:e}, bound {bound:e}");
     }
 }
+
+/// A random form error: orders 2..=150, each present with its cosine and sine within ±2 µm.
+fn form_errors() -> impl Strategy<Value = Vec<cycloid::model::FormTerm>> {
+    proptest::collection::btree_map(2usize..=150, (-2e-3..2e-3f64, -2e-3..2e-3f64), 1..80).prop_map(
+        |terms| {
+            terms
+                .into_iter()
+                .map(|(order, (cos_mm, sin_mm))| cycloid::model::FormTerm {
+                    order,
+                    cos_mm,
+                    sin_mm,
+                })
+                .collect()
+        },
+    )
+}
+
+proptest! {
+    /// The profile's table of the form error against the series summed directly, at random
+    /// parameters. For w: within the table's stated bound (the Hermite remainder
+    /// max|w⁽⁶⁾|·h⁶/46080, which does not depend on the code under test: Σk⁶|c_k| and h) and
+    /// within a picometre. For w′ and w″: where w⁽⁶⁾ is constant the remainder is exactly
+    /// w⁽⁶⁾h⁶s³(1−s)³/720, whose derivatives peak at 0.0481/720·h⁵ and 0.375/720·h⁴ times
+    /// max|w⁽⁶⁾|; twice those cover the variation of w⁽⁶⁾ over an interval. Each adds the
+    /// series' own rounding, k·ε per order times k^j.
+    #[test]
+    fn the_form_table_is_the_series(form in form_errors(), u in proptest::collection::vec(0.0..1.0f64, 200)) {
+        use cycloid::geometry::form_error::FormError;
+        let f = FormError::new(&form);
+        let h = TAU / f.table_intervals() as f64;
+        let m6: f64 = form.iter().map(|t| (t.order as f64).powi(6) * t.amplitude_mm()).sum();
+        let top = form.iter().map(|t| t.order).max().unwrap() as f64;
+        let sum: f64 = form.iter().map(|t| t.amplitude_mm()).sum();
+        let rounding = |j: i32| 4.0 * top * f64::EPSILON * sum * top.powi(j);
+        prop_assert!(f.table_error_bound_mm() <= 1e-12);
+        for &x in &u {
+            // Anywhere on the period and past it (the table wraps t).
+            let t = (x - 0.25) * 3.0 * TAU;
+            let (a, b) = (f.jet(t), f.series_jet(t));
+            prop_assert!((a.0 - b.0).abs() <= f.table_error_bound_mm() + rounding(0), "w at {t}");
+            let d1 = 2.0 * 0.0481 / 720.0 * m6 * h.powi(5) + rounding(1);
+            prop_assert!((a.1 - b.1).abs() <= d1, "w' at {t}: {} vs {}", a.1, b.1);
+            let d2 = 2.0 * 0.375 / 720.0 * m6 * h.powi(4) + rounding(2);
+            prop_assert!((a.2 - b.2).abs() <= d2, "w'' at {t}: {} vs {}", a.2, b.2);
+        }
+    }
+}

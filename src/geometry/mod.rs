@@ -2,6 +2,7 @@
 
 pub mod clearance;
 pub mod first_order;
+pub mod form_error;
 pub mod polyline;
 pub mod profile;
 

@@ -11,6 +11,7 @@
 //! Γ'(t) = |C'|·(1 − r'·κ_C)·T, so Γ is regular (no cusp, no undercut) iff r'·κ_C < 1 everywhere:
 //! r' must be smaller than the smallest convex radius of curvature of C.
 
+use super::form_error::FormError;
 use super::{cmul, cross, expi_minus_one, rotate, sin_cos, Vec2};
 use crate::model::{ConvexRadius, Design, FormTerm, Locus, Modification};
 use std::f64::consts::PI;
@@ -32,11 +33,9 @@ pub struct Profile {
     pub rotation_rad: f64,
     rot_cos: f64,
     rot_sin: f64,
-    /// The form error w(t) dense, (cos_mm, sin_mm) of every order from 1 to the highest (zeros
-    /// where there is no term), for `form_jet`'s loop without branches; its constant, the
-    /// order-0 cosine, apart. Empty and zero for the profile as drawn.
-    dense: Arc<[(f64, f64)]>,
-    constant_mm: f64,
+    /// The form error w(t) (`FormError::default()` for the profile as drawn); shared by the
+    /// clones a sweep hands its workers.
+    form: Arc<FormError>,
 }
 
 /// Locus value and its first two derivatives with respect to t.
@@ -142,91 +141,41 @@ impl Profile {
             rotation_rad,
             rot_cos,
             rot_sin,
-            dense: Arc::from([]),
-            constant_mm: 0.0,
+            form: Arc::new(FormError::default()),
         }
     }
 
     /// This profile with the form error `form` along its normal (MODEL.md "Measured profiles";
     /// positive w: material missing).
     pub fn with_form(mut self, form: &[FormTerm]) -> Self {
-        let highest = form.iter().map(|f| f.order).max().unwrap_or(0);
-        let mut dense = vec![(0.0, 0.0); highest];
-        self.constant_mm = 0.0;
-        for f in form {
-            match f.order {
-                0 => self.constant_mm += f.cos_mm,
-                k => {
-                    dense[k - 1].0 += f.cos_mm;
-                    dense[k - 1].1 += f.sin_mm;
-                }
-            }
-        }
-        self.dense = dense.into();
+        self.form = Arc::new(FormError::new(form));
         self
     }
 
     /// Whether the profile carries a form error.
     pub fn has_form(&self) -> bool {
-        !self.dense.is_empty() || self.constant_mm != 0.0
+        self.form.is_some()
     }
 
-    /// w(t), w'(t), w''(t): mm, mm/rad, mm/rad². The harmonics cos(k·t), sin(k·t) by powers of
-    /// e^{it} (one sine and cosine per call; k ≤ a few hundred, whose rounding grows as k·ε).
+    /// The form error the profile carries.
+    pub fn form(&self) -> &FormError {
+        &self.form
+    }
+
+    /// w(t), w'(t), w''(t): mm, mm/rad, mm/rad² (`FormError::jet`: the series' quintic table).
+    #[inline]
     pub fn form_jet(&self, t: f64) -> (f64, f64, f64) {
-        if !self.has_form() {
-            return (0.0, 0.0, 0.0);
-        }
-        // Four lanes, e^{ikt} for k ≡ 1, 2, 3, 0 (mod 4), each with its own power, advanced by
-        // e^{4it}, and its own sums: independent products and additions the processor
-        // overlaps, where one chain waits on each result in turn.
-        let z = Vec2::new(t.cos(), t.sin());
-        let z2 = cmul(z, z);
-        let z4 = cmul(z2, z2);
-        let mut p = [z, z2, cmul(z2, z), z4];
-        let mut sums = [[0.0; 4]; 3];
-        let mut k = [1.0, 2.0, 3.0, 4.0];
-        let blocks = self.dense.chunks_exact(4);
-        let rest = blocks.remainder();
-        for c in blocks {
-            for lane in 0..4 {
-                let ((a, b), q, kl) = (c[lane], p[lane], k[lane]);
-                let v = a * q.x + b * q.y;
-                sums[0][lane] += v;
-                sums[1][lane] += kl * (b * q.x - a * q.y);
-                sums[2][lane] -= kl * kl * v;
-                p[lane] = cmul(q, z4);
-                k[lane] += 4.0;
-            }
-        }
-        for (lane, &(a, b)) in rest.iter().enumerate() {
-            let (q, kl) = (p[lane], k[lane]);
-            let v = a * q.x + b * q.y;
-            sums[0][lane] += v;
-            sums[1][lane] += kl * (b * q.x - a * q.y);
-            sums[2][lane] -= kl * kl * v;
-        }
-        let total = |s: [f64; 4]| (s[0] + s[1]) + (s[2] + s[3]);
-        (
-            self.constant_mm + total(sums[0]),
-            total(sums[1]),
-            total(sums[2]),
-        )
+        self.form.jet(t)
     }
 
     /// The largest |w''| the form error can reach, mm/rad²: Σ k²·amplitude.
     pub fn form_bend_bound(&self) -> f64 {
-        self.amplitudes().map(|(k, a)| k * k * a).sum()
+        self.form.bend_bound()
     }
 
     /// The largest |w| the form error can reach, mm: Σ amplitude.
     pub fn form_bound_mm(&self) -> f64 {
-        self.constant_mm.abs() + self.amplitudes().map(|(_, a)| a).sum::<f64>()
-    }
-
-    /// (order, amplitude) of every harmonic of the form error from order 1.
-    fn amplitudes(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
-        (self.dense.iter().enumerate()).map(|(i, (a, b))| ((i + 1) as f64, a.hypot(*b)))
+        self.form.bound_mm()
     }
 
     /// C, C', C'' at t (mm, mm/rad, mm/rad²).

@@ -63,20 +63,26 @@ impl Trig {
         Trig { s, c, sn, cn }
     }
 
+    /// The trig of t + dt from that of dt (`by`), by angle addition.
+    #[inline]
+    fn turned_by(&self, by: &Trig) -> Trig {
+        Trig {
+            s: self.s * by.c + self.c * by.s,
+            c: self.c * by.c - self.s * by.s,
+            sn: self.sn * by.cn + self.cn * by.sn,
+            cn: self.cn * by.cn - self.sn * by.sn,
+        }
+    }
+
     /// The trig of t + dt by angle addition (exact libm calls when n·dt is not small).
     #[inline]
     fn advanced(&self, t: f64, dt: f64, n: f64) -> Trig {
         if (n * dt).abs() > 0.05 {
             return Trig::at(t + dt, n);
         }
-        let (ds, dc) = sin_cos(dt);
-        let (dsn, dcn) = sin_cos(n * dt);
-        Trig {
-            s: self.s * dc + self.c * ds,
-            c: self.c * dc - self.s * ds,
-            sn: self.sn * dcn + self.cn * dsn,
-            cn: self.cn * dcn - self.sn * dsn,
-        }
+        let (s, c) = sin_cos(dt);
+        let (sn, cn) = sin_cos(n * dt);
+        self.turned_by(&Trig { s, c, sn, cn })
     }
 }
 
@@ -381,17 +387,22 @@ impl Profile {
         let q = self.unturned(p);
         let t0 = t_start.rem_euclid(std::f64::consts::TAU);
         let reach = PI / self.rollers as f64;
-        let dist = |t: f64| {
-            let j = self.locus_jet(t);
-            (j.c - self.offset_mm * Self::unrotated_normal(&j) - q).norm()
-        };
-        let ts: Vec<f64> = (0..=SCAN)
-            .map(|k| t0 - reach + 2.0 * reach * k as f64 / SCAN as f64)
-            .collect();
-        let ds: Vec<f64> = ts.iter().map(|&t| dist(t)).collect();
+        let dt = 2.0 * reach / SCAN as f64;
+        let ts = |k: usize| t0 - reach + dt * k as f64;
+        // The scan's sines and cosines by turning the first by a fixed step (angle addition,
+        // ~33 roundings of ε at the end: the scan only ranks distances to seed Newton), where
+        // two libm calls per parameter were a third of a cold search.
+        let turn = Trig::at(dt, self.rollers as f64);
+        let mut trig = Trig::at(ts(0), self.rollers as f64);
+        let mut ds = [0.0; SCAN + 1];
+        for d in &mut ds {
+            let j = self.jet_from(&trig);
+            *d = (j.c - self.offset_mm * Self::unrotated_normal(&j) - q).norm();
+            trig = trig.turned_by(&turn);
+        }
         let seeds = (1..SCAN)
             .filter(|&k| ds[k] <= ds[k - 1] && ds[k] <= ds[k + 1])
-            .map(|k| ts[k]);
+            .map(ts);
         let mut best = self.newton(q, t0, t0, reach);
         for seed in seeds {
             if let Ok(foot) = self.newton(q, t0, seed, reach) {

@@ -317,3 +317,72 @@ fn sweep_is_the_same_on_one_and_on_four_threads() {
         assert_eq!(on(1), on(4), "{path}");
     }
 }
+
+/// The kernel's compliance d(β + βo)/dT (what several discs weigh their shares by) against a
+/// central difference of its own lags at T ± h, h = 1e-4·T, on the paper design with pins
+/// over a mesh period. Between contact changes each balance is linear in its lag, so the
+/// difference is exact (to the lags' round-off over 2h, ~1e-12 relative) but for the pins'
+/// arms turning with β, which the compliance leaves out: over evenly spaced pins Σk·a² and
+/// Σk·a·c of those in contact hardly change with the turn (measured: the whole difference
+/// stays below 4e-11 relative over the period). 1e-6 bounds both with room; a compliance
+/// without the pins' part or without the rollers' fails by far more. Angles where a contact
+/// opens or closes within ±h are skipped.
+#[test]
+fn the_kernel_compliance_is_the_slope_of_its_lag_in_torque() {
+    let spec = load("specs/paper.yaml");
+    let scene = spec.scenes.iter().position(|s| s.name == "rated").unwrap();
+    let model = model(&spec, scene);
+    let (nr, np) = (
+        model.rollers.as_ref().unwrap().count(),
+        model.pins.as_ref().unwrap().count,
+    );
+    let t = model.torque_nmm;
+    let h = 1e-4 * t;
+    let mut checked = 0;
+    for &phi in &grid(&spec, scene, 90) {
+        let at = |torque: f64| {
+            let mut lean = FirstOrderSweep::new(&model).unwrap();
+            lean.set_torque(torque);
+            let mut columns: Vec<Vec<Vec<f64>>> = [nr, nr, nr, np]
+                .iter()
+                .map(|&n| vec![vec![0.0; 1]; n])
+                .collect();
+            let [f, p, w, pf] = &mut columns[..] else {
+                unreachable!()
+            };
+            let (mut f, mut p, mut w, mut pf) = (slices(f), slices(p), slices(w), slices(pf));
+            let mut row = Row {
+                k: 0,
+                roller_force_n: &mut f,
+                pressure_mpa: &mut p,
+                half_width_mm: &mut w,
+                pin_force_n: &mut pf,
+            };
+            let s = lean.solve(
+                phi,
+                (phi.cos(), phi.sin()),
+                || (0.0, 0.0),
+                &mut Scratch::default(),
+                &mut row,
+            );
+            s.expect("the kernel settles the paper design")
+        };
+        let (lo, mid, hi) = (at(t - h), at(t), at(t + h));
+        if lo.contacts != hi.contacts {
+            continue;
+        }
+        let slope =
+            ((hi.lag_rad + hi.output_lag_rad) - (lo.lag_rad + lo.output_lag_rad)) / (2.0 * h);
+        let c = mid.compliance_rad_per_nmm;
+        assert!(
+            (c - slope).abs() <= 1e-6 * slope,
+            "at {:.3}°: compliance {c:e} against the lags' slope {slope:e}",
+            phi.to_degrees()
+        );
+        checked += 1;
+    }
+    assert!(
+        checked >= 60,
+        "only {checked} angles without a contact change"
+    );
+}

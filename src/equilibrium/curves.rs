@@ -1,7 +1,7 @@
 //! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
-use super::discs::{converged, finish, newton_step, solve_coupled, CoupledWork, Discs, PerDisc};
+use super::discs::{converged, finish, newton_step, solve_coupled, CoupledWork, Discs};
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
@@ -435,9 +435,10 @@ fn solve_disc_chunk(
 }
 
 /// The lean first-order kernel of each disc (`FirstOrderSweep`), where it applies to every
-/// disc (first-order geometry, the linear law, a rigid bearing): an angle whose split of the
-/// previous angle's weights settles at once (`discs::converged`) is solved by it, each disc
-/// once, as the one-disc sweep solves its angles; any other angle by the coupled solve.
+/// disc (first-order geometry, the linear law, a rigid bearing): each disc is solved at the
+/// shares extrapolated from the last angles, and the Newton on the shares, weighted by each
+/// kernel's own compliance at its solution, corrects them until the split settles
+/// (`discs::converged`); an angle it does not settle goes to the coupled solve.
 struct Lean<'a> {
     kernels: Vec<FirstOrderSweep<'a>>,
     scratch: Vec<Scratch>,
@@ -446,13 +447,12 @@ struct Lean<'a> {
     /// Each disc's own crank angles over the chunk (φ + its phase), for its screen of the
     /// rollers that may touch over the angles ahead (`FirstOrderSweep::screen`).
     cranks: Vec<Vec<f64>>,
-    /// The shares of the Newton step before the last (for the secant stiffnesses).
-    last_torque: PerDisc,
 }
 
 /// Newton steps on the shares that the lean kernels take at one angle before the coupled
-/// solve takes over: one when the extrapolated split holds, two when the shares move between
-/// contact changes (the first-order balance is linear there), three with a secant update.
+/// solve takes over: one when the extrapolated split holds, two when the shares move and no
+/// contact changes (the first-order balance is linear on a contact set, and the kernels'
+/// compliances are its slopes), three when one contact changes on the way.
 const LEAN_STEPS: usize = 3;
 
 impl<'a> Lean<'a> {
@@ -486,36 +486,6 @@ impl<'a> Lean<'a> {
         Some((s, Vec2::new(cos, sin)))
     }
 
-    /// Each disc's stiffness dTk/dγk at angle k (the first of a chunk, where no angle before
-    /// gave one): the secant of two kernel solves at T/N and T/N·(1 + 1e-3). Exact while the
-    /// contacts stay the same (the first-order balance is linear between them); where one
-    /// changes in that step the secant is off, and the Newton check then sends the angle to
-    /// the coupled solve. The chunk's entries at k are cleared for the solve that follows.
-    fn stiffnesses(
-        &mut self,
-        discs: &Discs,
-        k: usize,
-        work: &CoupledWork,
-        chunk: &mut DiscChunk<'_>,
-    ) -> Option<Vec<f64>> {
-        let n = discs.count();
-        let t = discs.torque_nmm / n as f64;
-        let dt = 1e-3 * t;
-        let mut weights = Vec::with_capacity(n);
-        for d in 0..n {
-            let mut lag_at = |torque: f64| {
-                let s = self.disc(discs, (d, k), torque, work, chunk);
-                chunk.discs[d].clear(k);
-                s.map(|(s, _)| s.lag_rad + s.output_lag_rad)
-            };
-            let (a, b) = (lag_at(t)?, lag_at(t + dt)?);
-            let w = dt / (b - a);
-            (w > 0.0 && w.is_finite()).then_some(())?;
-            weights.push(w);
-        }
-        Some(weights)
-    }
-
     fn new(discs: &'a Discs, crank_rad: &[f64]) -> Self {
         // Every disc's kernel, or none: the lean path needs them all.
         let kernels: Vec<FirstOrderSweep<'a>> = discs
@@ -530,7 +500,6 @@ impl<'a> Lean<'a> {
             scratch: (0..n).map(|_| Scratch::default()).collect(),
             bearing_angle: vec![NearbyAtan2::default(); n],
             crank_direction: vec![NearbySinCos::default(); n],
-            last_torque: [0.0; MAX_DISCS],
             cranks: discs.phases[..n]
                 .iter()
                 .map(|p| crank_rad.iter().map(|c| c + p).collect())
@@ -554,11 +523,7 @@ impl<'a> Lean<'a> {
             return None;
         }
         let n = discs.count();
-        if work.weights.is_none() {
-            work.weights = Some(self.stiffnesses(discs, k, work, chunk)?);
-        }
         let mut weights = [0.0; MAX_DISCS];
-        weights[..n].copy_from_slice(work.weights.as_deref()?);
         let total = discs.torque_nmm;
         let reach = discs.models[0].warm_reach();
         let mut torque = work.guess(phi, n, reach);
@@ -573,21 +538,17 @@ impl<'a> Lean<'a> {
             if step_number > 0 {
                 chunk.discs.iter_mut().for_each(|c| c.clear(k));
             }
-            let last = lag;
             for d in 0..n {
-                let Some(s) = self.disc(discs, (d, k), torque[d], work, chunk) else {
+                let s = self.disc(discs, (d, k), torque[d], work, chunk);
+                // The kernel's own compliance on its contact set: exact until a contact
+                // changes. A disc without contact (none) goes to the coupled solve.
+                let Some(s) = s.filter(|s| s.0.compliance_rad_per_nmm.is_finite()) else {
                     chunk.discs.iter_mut().for_each(|c| c.clear(k));
                     return None;
                 };
                 summaries[d] = s;
                 lag[d] = s.0.lag_rad + s.0.output_lag_rad;
-                if step_number > 0 && lag[d] != last[d] {
-                    // The secant of the last two solves: exact between contact changes.
-                    let w = (torque[d] - self.last_torque[d]) / (lag[d] - last[d]);
-                    if w > 0.0 && w.is_finite() {
-                        weights[d] = w;
-                    }
-                }
+                weights[d] = 1.0 / s.0.compliance_rad_per_nmm;
             }
             let (t, g) = (&torque[..n], &lag[..n]);
             let (c, step) = newton_step(t, g, &weights[..n], total);
@@ -595,7 +556,6 @@ impl<'a> Lean<'a> {
                 common = Some(c);
                 break;
             }
-            self.last_torque = torque;
             for (t, d) in torque.iter_mut().zip(&step).take(n) {
                 *t += d;
             }

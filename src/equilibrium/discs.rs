@@ -76,10 +76,6 @@ pub struct CoupledWork {
     /// solved, oldest first: (crank, shares), in the last `filled` entries.
     shares: [(f64, PerDisc); 3],
     filled: usize,
-    /// The discs' stiffnesses dTk/dγk (N·mm/rad) where the Newton on the shares last
-    /// converged: what a lean solve of the next angle checks its split with
-    /// (`curves::sweep_discs_observed`).
-    pub weights: Option<Vec<f64>>,
 }
 
 impl CoupledWork {
@@ -91,7 +87,6 @@ impl CoupledWork {
             works: vec![Work::default(); discs.count()],
             shares: [(0.0, [0.0; MAX_DISCS]); 3],
             filled: 0,
-            weights: None,
         }
     }
 
@@ -219,7 +214,6 @@ pub fn solve_coupled(
             // γ is the common lag of the discs that carry a share (a disc without contact has
             // no weight, and its own lag is that of its nearest contact).
             finish(work, crank, &torque, total, &lag);
-            work.weights = Some(weights);
             return Ok(if n == 1 { lag[0] } else { common });
         }
         for (t, d) in torque.iter_mut().zip(&step) {

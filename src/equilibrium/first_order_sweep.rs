@@ -100,6 +100,11 @@ pub struct Summary {
     pub contacts: usize,
     pub bearing_n: Vec2,
     pub residual: f64,
+    /// d(β + βo)/dT at the solution, rad/(N·mm): 1/Σk·l² over the rollers in contact plus
+    /// 1/Σk·a² over the pins in contact (each balance is linear on its contact set; the pins'
+    /// arms turning with β is left out, a change of the arms by ~β·a ≪ a). Infinite without
+    /// a contact. What several discs' Newton on their shares weighs each disc by.
+    pub compliance_rad_per_nmm: f64,
 }
 
 /// Most rollers and pins the kernel takes: it keeps an active set as a bit mask.
@@ -292,18 +297,22 @@ impl<'a> FirstOrderSweep<'a> {
             return None;
         }
         let mut sums = BalanceSums::default();
-        let (lag, mask) = self.rollers_at(e_phi, &guess, scratch)?;
+        let (lag, mask, roller_stiffness) = self.rollers_at(e_phi, &guess, scratch)?;
         scratch.last.0 = mask;
         self.roller_contacts(e_phi, lag, mask, scratch, row, &mut sums);
         let mut output_lag = 0.0;
+        let mut compliance = 1.0 / roller_stiffness;
         if let Some((p, k)) = self.pins {
             let psi = -crank_rad / self.model.teeth as f64 + lag;
-            output_lag = self.pins_at(p, k, (e_phi, psi), &guess, scratch, row, &mut sums)?;
+            let pins = self.pins_at(p, k, (e_phi, psi), &guess, scratch, row, &mut sums)?;
+            output_lag = pins.0;
+            compliance += 1.0 / pins.1;
         }
         let mut summary = Summary {
             lag_rad: lag,
             output_lag_rad: output_lag,
             contacts: mask.count_ones() as usize,
+            compliance_rad_per_nmm: compliance,
             ..Summary::default()
         };
         if self.model.bearing {
@@ -315,14 +324,14 @@ impl<'a> FirstOrderSweep<'a> {
         finite.then_some(summary)
     }
 
-    /// The rollers' lag and contacts: on the screened candidates while a screen holds (and
-    /// the lag stays in its range), else on every roller.
+    /// The rollers' lag, contacts and balance slope Σk·l² (`settle`): on the screened
+    /// candidates while a screen holds (and the lag stays in its range), else on every roller.
     fn rollers_at(
         &self,
         e_phi: Vec2,
         guess: &impl Fn() -> (f64, f64),
         scratch: &mut Scratch,
-    ) -> Option<(f64, u64)> {
+    ) -> Option<(f64, u64, f64)> {
         let n = self.roller_units.x.len();
         if let Some(screen) = scratch.screen {
             self.candidate_terms(e_phi, screen.candidates, scratch);
@@ -346,7 +355,7 @@ impl<'a> FirstOrderSweep<'a> {
         candidates: u64,
         guess: &impl Fn() -> (f64, f64),
         scratch: &mut Scratch,
-    ) -> Option<(f64, u64)> {
+    ) -> Option<(f64, u64, f64)> {
         let n = self.roller_units.x.len();
         self.settle(
             Balance {
@@ -474,8 +483,8 @@ impl<'a> FirstOrderSweep<'a> {
         }
     }
 
-    /// βo with Σ F·a = T at disc rotation ψ, the pin forces into `row` and those in contact
-    /// into `sums`.
+    /// βo with Σ F·a = T at disc rotation ψ and the pins' stiffness Σk·a² over those in
+    /// contact (N·mm/rad), the pin forces into `row` and those in contact into `sums`.
     #[allow(clippy::too_many_arguments)]
     fn pins_at(
         &self,
@@ -486,7 +495,7 @@ impl<'a> FirstOrderSweep<'a> {
         scratch: &mut Scratch,
         row: &mut Row<'_, '_>,
         sums: &mut BalanceSums,
-    ) -> Option<f64> {
+    ) -> Option<(f64, f64)> {
         let (s, c) = scratch.disc_rotation.sin_cos(psi);
         let w = &self.pin_units;
         let m = w.x.len();
@@ -497,7 +506,7 @@ impl<'a> FirstOrderSweep<'a> {
         for ((arm, &x), &y) in scratch.pin_arm[..m].iter_mut().zip(&w.x).zip(&w.y) {
             *arm = (x * sp + y * sq) * rw;
         }
-        let (lag, mask) = self.settle(
+        let (lag, mask, stiffness) = self.settle(
             Balance {
                 stiffness: k,
                 gap: &self.pin_gaps,
@@ -518,11 +527,11 @@ impl<'a> FirstOrderSweep<'a> {
             let point = wall + Vec2::new(c * w.x[j] - s * w.y[j], s * w.x[j] + c * w.y[j]) * rw;
             sums.pin(point, force, force * direction, force * scratch.pin_arm[j]);
         }
-        Some(lag)
+        Some((lag, stiffness))
     }
 
     /// The root x of the linear balance and the forces there into its force column,
-    /// with the set of contacts at x. First the Newton step on the active set `last` (see the
+    /// with the set of contacts at x and the balance's slope there, Σk·l² over that set. First the Newton step on the active set `last` (see the
     /// module documentation), then `piecewise_linear_root_near` from `guess`. `None` when the
     /// forces miss the torque by more than the solver tolerance,
     /// |Σ F·l − T| > rel_tol·max(|T|, Σ |F·l|) (the round-off of a tiny torque, left to the
@@ -533,7 +542,7 @@ impl<'a> FirstOrderSweep<'a> {
         last: u64,
         guess: impl FnOnce() -> f64,
         root: &mut RootScratch,
-    ) -> Option<(f64, u64)> {
+    ) -> Option<(f64, u64, f64)> {
         let (torque, rel_tol) = (self.torque_nmm, self.model.settings.rel_tol);
         let settled = |(moment, scale): (f64, f64)| {
             (moment - torque).abs() <= rel_tol * torque.abs().max(scale)
@@ -554,7 +563,7 @@ impl<'a> FirstOrderSweep<'a> {
             let x = (torque + b) / a;
             let (moment, scale, mask) = linear_forces(k, (gap, arm), x, force, candidates);
             if mask == last {
-                return settled((moment, scale)).then_some((x, mask));
+                return settled((moment, scale)).then_some((x, mask, a));
             }
         }
         root.terms.clear();
@@ -562,7 +571,8 @@ impl<'a> FirstOrderSweep<'a> {
             .extend(gap.iter().zip(arm).map(|(&g, &l)| (g, l)));
         let x = piecewise_linear_root_near(k, &root.terms, torque, guess(), &mut root.events)?;
         let (moment, scale, mask) = linear_forces(k, (gap, arm), x, force, candidates);
-        settled((moment, scale)).then_some((x, mask))
+        let slope = bits(mask).map(|i| k * arm[i] * arm[i]).sum();
+        settled((moment, scale)).then_some((x, mask, slope))
     }
 }
 

@@ -15,9 +15,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// paper's largest golden is 90 KiB), and a bound on what a wrong path can make the tool read.
 pub const MAX_INPUT_BYTES: u64 = 64 << 20;
 
-/// The text of a regular file of at most `max_bytes`, a leading UTF-8 byte-order mark removed.
-/// `what` names the file's role in messages ("spec", "golden file").
-pub fn read_text(path: &Path, what: &str, max_bytes: u64) -> Result<String> {
+/// The bytes of a regular file of at most `max_bytes`. `what` names the file's role in
+/// messages ("spec", "shard file").
+pub fn read_bytes(path: &Path, what: &str, max_bytes: u64) -> Result<Vec<u8>> {
     let shown = path.display().to_string();
     let meta = fs::metadata(path).map_err(|e| Error::io(&shown, e))?;
     if !meta.is_file() {
@@ -42,6 +42,14 @@ pub fn read_text(path: &Path, what: &str, max_bytes: u64) -> Result<String> {
     if bytes.len() as u64 > max_bytes {
         return Err(too_big(format!("over {max_bytes}")));
     }
+    Ok(bytes)
+}
+
+/// The text of a regular file of at most `max_bytes`, a leading UTF-8 byte-order mark removed.
+/// `what` names the file's role in messages ("spec", "golden file").
+pub fn read_text(path: &Path, what: &str, max_bytes: u64) -> Result<String> {
+    let shown = path.display().to_string();
+    let bytes = read_bytes(path, what, max_bytes)?;
     let text = String::from_utf8(bytes).map_err(|e| {
         Error::new(
             ErrorKind::Io,

@@ -329,6 +329,17 @@ fn a_merge_refuses_shards_that_do_not_belong_together() {
         "{}",
         r.stderr
     );
+    // A path that is no regular file (a directory here; a FIFO or /dev/zero would be read
+    // without end) is refused before it is read.
+    std::fs::create_dir(dir.join("e1")).unwrap();
+    let r = run(&["tolerance", "merge", "a0", "e1", "a2"]);
+    assert_eq!(r.code(), 2, "{r:?}");
+    assert!(
+        r.stderr
+            .contains("e1: the shard file is not a regular file"),
+        "{}",
+        r.stderr
+    );
 }
 
 /// Exit 0 when the failure rate is within its limit, 1 beyond it, 2 on bad input with the

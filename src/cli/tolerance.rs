@@ -6,8 +6,13 @@ use super::{ToleranceArgs, ToleranceCommand};
 use crate::engine::check;
 use crate::engine::tolerance::{sensitivity, shard, summary, write, Records, Study};
 use crate::error::{Error, ErrorKind, Result};
+use crate::files;
 use crate::report::terminal::Bar;
 use crate::{report, spec};
+
+/// Largest shard file read, bytes: 16 GiB. A shard holds 9 bytes per sample and limit (the
+/// value and its verdict), so this is 10⁹ sample-limits, far beyond a job array's task.
+const MAX_SHARD_BYTES: u64 = 16 << 30;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -261,7 +266,8 @@ fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result
     let shards = paths
         .iter()
         .map(|p| {
-            let bytes = std::fs::read(p).map_err(|e| Error::io(p, e))?;
+            // A regular file, bounded: a FIFO or a device would be read without end.
+            let bytes = files::read_bytes(Path::new(p), "shard file", MAX_SHARD_BYTES)?;
             shard::decode(p, &bytes)
         })
         .collect::<Result<Vec<_>>>()?;

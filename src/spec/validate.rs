@@ -728,17 +728,7 @@ fn golden_entry(
             ))
         }
     };
-    if !scenes.iter().any(|s| s.name == raw.scene) {
-        let names: Vec<String> = scenes.iter().map(|s| format!("`{}`", s.name)).collect();
-        return Err(invalid(
-            &format!("{key}.scene"),
-            format!(
-                "unknown scene `{}`; scenes in this spec: {}",
-                raw.scene,
-                names.join(", ")
-            ),
-        ));
-    }
+    super::scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     let quantity = quantity::find_curve(&raw.quantity).ok_or_else(|| {
         invalid(
             &format!("{key}.quantity"),

@@ -83,7 +83,7 @@ pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String 
         row.push(l.failures.to_string());
         row.push(format!(
             "{} [{}, {}]",
-            percent(l.failures as f64 / s.samples as f64),
+            percent(s.limit_rate(l)),
             percent(l.interval.0),
             percent(l.interval.1)
         ));
@@ -213,7 +213,7 @@ pub fn json(study: &Study, s: &Summary, records: &Records, sens: Option<&Sensiti
                 "mean": x.mean,
                 "std": x.std,
                 "failures": x.failures,
-                "failure_rate": x.failures as f64 / s.samples as f64,
+                "failure_rate": s.limit_rate(x),
                 "failure_rate_ci95": [x.interval.0, x.interval.1],
             })
         })

@@ -101,7 +101,7 @@ fn rates_section(s: &Summary) -> Section {
                         @for q in l.quantiles { td.num { (number(q)) } }
                         td.num { (number(l.max)) }
                         td.num { (l.failures) }
-                        td.num { (percent(l.failures as f64 / s.samples as f64)) " ["
+                        td.num { (percent(s.limit_rate(l))) " ["
                             (percent(l.interval.0)) ", " (percent(l.interval.1)) "]" }
                     }
                 }

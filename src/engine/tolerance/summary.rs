@@ -54,8 +54,14 @@ pub struct Summary {
 }
 
 impl Summary {
+    /// The fraction of the samples that fail some limit.
     pub fn rate(&self) -> f64 {
         self.failures as f64 / self.samples as f64
+    }
+
+    /// The fraction of the samples that fail limit `l`.
+    pub fn limit_rate(&self, l: &LimitSummary) -> f64 {
+        l.failures as f64 / self.samples as f64
     }
 
     /// The failure rate is within `max_failure_rate`.

@@ -10,7 +10,7 @@ use crate::units;
 use std::f64::consts::TAU;
 
 /// `x` with `decimals`, without the sign of a value that rounds to zero (`-0.000` → `0.000`).
-fn fixed(x: f64, decimals: usize) -> String {
+pub(super) fn fixed(x: f64, decimals: usize) -> String {
     let s = format!("{x:.decimals$}");
     match s.strip_prefix('-') {
         Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),

@@ -16,7 +16,9 @@
 //!   for an unmodified design profile: the design trace here is Γ itself, d = 0);
 //! - F = max d − min d, the range of the deviations themselves (the distance between two
 //!   copies of the design trace enclosing the measured trace);
-//! - f_f = the range of d about the mean line (two copies of the mean line enclosing it);
+//! - f_f = the range of d about the mean line (two copies of the mean line enclosing it); it
+//!   can exceed F when the mean line tilts against the trace's extremes (both are ranges,
+//!   about different lines);
 //! - f_H = the rise of the mean line from the root-most to the tip-most measured point:
 //!   positive when material missing grows towards the tip.
 //!

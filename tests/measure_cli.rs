@@ -83,13 +83,29 @@ fn dxf_export_round_trips_through_fit() {
         "  hole radius +           0.000000 mm   ± 0.000 µm",
     ];
     assert_eq!(&lines[4..12], &expected, "\n{}", run.stdout);
-    // Every flank of the exact drawing deviates by nothing: form and slope print as 0.000.
-    assert_eq!(lines[13], "  tooth flank points     f_f     f_H");
+    // Every flank of the exact drawing deviates by nothing: total, form and slope print as
+    // 0.000. Its vertices run from the root (s = 0) to the tip: the measured extent of each
+    // flank lies within the flank's length, stated in the heading, and covers most of it (the
+    // vertices at the root and tip belong to one flank each).
+    let length: f64 = lines[12]
+        .split("each flank ")
+        .nth(1)
+        .and_then(|r| r.split(" mm").next())
+        .expect("the flank length in the heading")
+        .parse()
+        .unwrap();
+    assert_eq!(
+        lines[13],
+        "  tooth flank points  s_from    s_to        F      f_f      f_H"
+    );
     let flanks: Vec<&str> = lines[14..lines.len() - 1].to_vec();
     assert_eq!(flanks.len(), 18, "two flanks of each of the 9 teeth");
     for f in &flanks {
         let cells: Vec<&str> = f.split_whitespace().collect();
-        assert_eq!(&cells[3..], &["0.000", "0.000"], "{f}");
+        assert_eq!(&cells[5..], &["0.000", "0.000", "0.000"], "{f}");
+        let (from, to): (f64, f64) = (cells[3].parse().unwrap(), cells[4].parse().unwrap());
+        assert!(0.0 <= from && from < to && to <= length + 5e-4, "{f}");
+        assert!(to - from > 0.9 * length, "{f} of {length} mm");
     }
     let points: usize = flanks
         .iter()

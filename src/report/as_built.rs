@@ -3,11 +3,15 @@
 //! (micrometres: the scale is stated, the profile itself is tens of millimetres), and each
 //! scene's headline results as designed beside as built.
 
+use super::disc::hole_cutouts;
+use super::fit::{fixed, flank_length_mm};
 use super::html::{data_table, figure, section, Section};
-use super::svg::{LinePlot, Series, PALETTE};
+use super::svg::frame::{titles, wrap, Frame};
+use super::svg::{self, document, px, LinePlot, Series, PALETTE, RED};
 use super::table::{count_or_number, with_unit};
 use crate::engine::summary::{summarise, SceneSummary};
 use crate::geometry::profile::Profile;
+use crate::geometry::{polyline, Vec2};
 use crate::measure::fit::Identification;
 use crate::model::results::SceneResult;
 use crate::model::Modification;
@@ -15,6 +19,7 @@ use crate::numeric::number;
 use crate::spec::Spec;
 use crate::units;
 use maud::html;
+use std::f64::consts::TAU;
 
 /// What the section shows: the identification and the results of the spec as designed (the
 /// report's own results are those as built).
@@ -35,8 +40,12 @@ pub(super) fn section_of(
     let id = view.identification;
     let (designed, as_built) = (summarise(view.designed), summarise(built));
     let file = "as-built-deviation.svg";
-    let from_design = design_deviation_um(spec, &view.designed_modification, id);
+    let from_design = against_design(spec, &view.designed_modification, id);
     files.push((file.into(), deviation_plot(id, &from_design).to_svg()));
+    let drawing_file = "as-built-disc.svg";
+    let (drawing, times) = disc_drawing(spec, &view.designed_modification, &from_design);
+    files.push((drawing_file.into(), drawing));
+    let times = round_number(times);
     let um = |mm: f64| format!("{} µm", number(mm * 1e3));
     let m = (&view.designed_modification, &id.modification);
     let body = html! {
@@ -68,6 +77,15 @@ pub(super) fn section_of(
              each point's residual), \
              and the fitted form error w(t). The disc is tens of millimetres across; these \
              are micrometres."))
+        (figure(drawing_file, &format!("The disc as built against the design, deviation ×{times}"),
+            &format!("The disc in its own frame, true scale: blue, the design profile (the \
+             spec's modification) with its pin holes, the zero-deviation reference; red, each \
+             measured point where the fit placed it, moved along the design profile's normal \
+             to {times} times its distance from it (deviation magnified ×{times}; at ×1 the \
+             points would sit on the outline), inside the outline where material is missing. \
+             The red bar at the bottom left is a deviation at that magnification, the black \
+             one 10 mm at true scale. The deviations are those of the vs design series above.")))
+        (flank_table(spec, id))
     };
     section("as-built", html! { "Disc as built" }, body)
 }
@@ -86,33 +104,61 @@ fn rows(designed: &SceneSummary, built: &SceneSummary) -> maud::Markup {
     }
 }
 
-/// Each measured point's deviation from the design profile, µm (positive: material missing),
-/// sorted by t: the point, placed in the disc frame as the fit left it (on the identified
-/// profile, moved inward by its deviation from it, w(t) plus its residual), measured by its
-/// signed distance to the profile of the spec's modification (exact closest point).
-fn design_deviation_um(
+/// A measured point against the design profile (disc frame, mm): the point where the fit left
+/// it (on the identified profile at its foot t, moved inward by its deviation from it, w(t)
+/// plus its residual), its foot on the profile of the spec's modification (exact closest
+/// point) with the outward normal there, and its deviation from it, positive where material
+/// is missing (minus the signed distance).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AgainstDesign {
+    /// The point's locus parameter on the identified profile, rad.
+    pub t: f64,
+    pub point: Vec2,
+    pub foot: Vec2,
+    pub normal: Vec2,
+    pub deviation_mm: f64,
+}
+
+impl AgainstDesign {
+    /// Where a drawing magnifying deviations `m` times puts the point: foot − m·d·N, on the
+    /// design profile's normal through the point, m times as far from the outline, on the
+    /// same side (inside where material is missing); m = 1 is the point itself.
+    pub fn magnified(&self, m: f64) -> Vec2 {
+        self.foot - self.normal * (m * self.deviation_mm)
+    }
+}
+
+/// Every measured profile point against the design profile, sorted by t (a point whose
+/// closest-point search fails is left out).
+pub fn against_design(
     spec: &Spec,
     designed: &Modification,
     id: &Identification,
-) -> Vec<(f64, f64)> {
+) -> Vec<AgainstDesign> {
     let identified = Profile::new(&spec.design, &id.modification);
     let design = Profile::new(&spec.design, designed);
-    let mut out: Vec<(f64, f64)> = id
+    let mut out: Vec<AgainstDesign> = id
         .profile
         .iter()
         .filter_map(|p| {
             let inward = id.form.value_mm(p.t) + p.residual_mm;
             let q = identified.point(p.t) - identified.normal(p.t) * inward;
             let foot = design.closest_point(q, p.t).ok()?;
-            Some((p.t, -foot.signed_distance_mm * 1e3))
+            Some(AgainstDesign {
+                t: p.t,
+                point: q,
+                foot: foot.point,
+                normal: foot.normal,
+                deviation_mm: -foot.signed_distance_mm,
+            })
         })
         .collect();
-    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out.sort_by(|a, b| a.t.total_cmp(&b.t));
     out
 }
 
 /// The points' deviations and the form error, µm against t in degrees.
-fn deviation_plot(id: &Identification, from_design: &[(f64, f64)]) -> LinePlot {
+fn deviation_plot(id: &Identification, from_design: &[AgainstDesign]) -> LinePlot {
     let mut points: Vec<(f64, f64)> = id
         .profile
         .iter()
@@ -130,8 +176,11 @@ fn deviation_plot(id: &Identification, from_design: &[(f64, f64)]) -> LinePlot {
     );
     plot.series.push(Series::new(
         "vs design",
-        from_design.iter().map(|p| degrees(p.0)).collect(),
-        from_design.iter().map(|p| p.1).collect(),
+        from_design.iter().map(|p| degrees(p.t)).collect(),
+        from_design
+            .iter()
+            .map(|p| units::um(p.deviation_mm))
+            .collect(),
         PALETTE[3],
     ));
     plot.series.push(Series::new(
@@ -151,4 +200,160 @@ fn deviation_plot(id: &Identification, from_design: &[(f64, f64)]) -> LinePlot {
     plot.series.push(form);
     plot.include_zero = true;
     plot
+}
+
+/// The largest magnified deviation drawn, as a share of the tooth height 2e.
+const MAGNIFIED_SHARE_OF_TOOTH: f64 = 0.5;
+
+/// The magnification of the drawing of the disc as built: the largest 1, 2 or 5 × 10^k that
+/// draws the largest |deviation| at most `MAGNIFIED_SHARE_OF_TOOTH` of the tooth height (so
+/// that magnified points stay on their tooth); 1 when no point deviates (nothing to magnify).
+pub fn magnification(largest_mm: f64, tooth_height_mm: f64) -> f64 {
+    let raw = MAGNIFIED_SHARE_OF_TOOTH * tooth_height_mm / largest_mm;
+    if raw.is_finite() && raw > 1.0 {
+        round_down_125(raw)
+    } else {
+        1.0
+    }
+}
+
+/// A 1, 2 or 5 × 10^k as people write it: 50, 0.2 (no trailing zeros, no binary residue).
+pub fn round_number(x: f64) -> String {
+    let decimals = (-x.log10().floor()).max(0.0) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// The largest 1, 2 or 5 × 10^k at most `x` (> 0).
+fn round_down_125(x: f64) -> f64 {
+    let decade = 10f64.powf(x.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&m| m <= x * (1.0 + 1e-12))
+        .unwrap_or(decade)
+}
+
+/// The disc in its own frame at true scale: the design profile (the zero-deviation outline)
+/// with its pin holes, and the measured points each on the design profile's normal, their
+/// deviation magnified M times (`AgainstDesign::magnified`): (SVG, M). Runs of points closer
+/// than 1/16 tooth pitch in t are joined by a line; a dot marks every point (every k-th of more
+/// than `MOST_DOTS`).
+pub fn disc_drawing(
+    spec: &Spec,
+    designed: &Modification,
+    points: &[AgainstDesign],
+) -> (String, f64) {
+    const MOST_DOTS: usize = 4000;
+    let d = &spec.design;
+    let largest = points
+        .iter()
+        .map(|p| p.deviation_mm.abs())
+        .fold(0.0, f64::max);
+    let m = magnification(largest, 2.0 * d.eccentricity_mm);
+    let design = Profile::new(d, designed);
+    // The outline is the zero of the magnified deviations: its chords stay within
+    // (Rp + Rrp)/20000 of the curve (0.02 px on this drawing), ten times closer than the disc
+    // drawing's, so that they add no visible deviation of their own.
+    let outline: Vec<Vec2> = polyline::polyline(
+        &design,
+        (d.roller_circle_radius_mm + d.roller_radius_mm) / 20000.0,
+    )
+    .iter()
+    .map(|p| p.point)
+    .collect();
+    let half = outline.iter().map(|p| p.norm()).fold(0.0, f64::max) * 1.06;
+    let (w, h) = (660.0, 720.0);
+    let f = Frame::fit(
+        (-half, half, -half, half),
+        (10.0, 70.0, w - 20.0, h - 110.0),
+    );
+    let holes: Vec<Vec2> = (0..d.pins.count)
+        .map(|j| {
+            let a = TAU * j as f64 / d.pins.count as f64;
+            Vec2::new(a.cos(), a.sin()) * d.pins.circle_radius_mm
+        })
+        .collect();
+    let gap = TAU / d.teeth as f64 / 16.0;
+    let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
+    for (k, p) in points.iter().enumerate() {
+        if k == 0 || p.t - points[k - 1].t > gap {
+            runs.push(Vec::new());
+        }
+        runs.last_mut().unwrap().push(f.at(p.magnified(m)));
+    }
+    let stride = points.len().div_ceil(MOST_DOTS).max(1);
+    let times = round_number(m);
+    let bar_um = round_down_125(units::um(largest.max(1e-6)));
+    let title = format!("Disc as built against the design: deviation ×{times}");
+    let subtitle = if largest > 0.0 {
+        format!(
+            "disc frame, true scale. Blue: the design profile, zero deviation; red: each \
+             measured point on the design profile's normal, {times} × its deviation away from \
+             it, inside where material is missing (largest deviation {} µm)",
+            number(units::um(largest))
+        )
+    } else {
+        "disc frame, true scale; the measured points lie on the design outline".to_string()
+    };
+    let lines = wrap(&subtitle, w - 28.0);
+    let body = html! {
+        (titles(14.0, &title, &lines))
+        path d=(f.path(&outline) + &hole_cutouts(&f, &holes, d.hole_radius_mm())) fill="#cfe0f1"
+            fill-rule="evenodd" stroke="#1f4e79" stroke-width="1.2" {}
+        @for run in runs.iter().filter(|r| r.len() > 1) {
+            polyline points=(svg::points(run.iter().copied())) fill="none" stroke=(RED)
+                stroke-width="1.2" {}
+        }
+        @for p in points.iter().step_by(stride) {
+            @let (x, y) = f.at(p.magnified(m));
+            circle.measured cx=(px(x)) cy=(px(y)) r="1.6" fill=(RED) {}
+        }
+        (f.scale_bar(w - 30.0, h - 20.0, 10.0, "10 mm"))
+        (deviation_bar(&f, (20.0, h - 20.0), m * bar_um * 1e-3,
+            &format!("{} µm deviation, drawn ×{times}", round_number(bar_um))))
+    };
+    (document(w, h, body), m)
+}
+
+/// A bar of `length_mm` (world) from `left` (pixels), its label to its right.
+fn deviation_bar(f: &Frame, (left, y): (f64, f64), length_mm: f64, label: &str) -> maud::Markup {
+    let right = left + f.len(length_mm);
+    html! {
+        line x1=(px(left)) y1=(px(y)) x2=(px(right)) y2=(px(y)) stroke=(RED) stroke-width="2" {}
+        line x1=(px(left)) y1=(px(y - 4.0)) x2=(px(left)) y2=(px(y + 4.0)) stroke=(RED) {}
+        line x1=(px(right)) y1=(px(y - 4.0)) x2=(px(right)) y2=(px(y + 4.0)) stroke=(RED) {}
+        text x=(px(right + 8.0)) y=(px(y + 4.0)) font-size="12" { (label) }
+    }
+}
+
+/// The per-flank summaries of the measured points (`measure::flanks`), as on an inspection
+/// sheet: arc length in mm, deviations in µm.
+fn flank_table(spec: &Spec, id: &Identification) -> maud::Markup {
+    // Fixed decimals as `cycloid fit` prints them: mm to the µm, µm to the nm.
+    let (mm, um) = (|v: f64| fixed(v, 3), |v: f64| fixed(units::um(v), 3));
+    html! {
+        p.note { "Per flank, as on a gear inspection sheet (ISO 1328-1 total F, form f_f and \
+            slope f_H deviation) over the arc length s along the profile from the flank's root \
+            (each flank " (mm(flank_length_mm(spec, id))) " mm root to tip): \
+            the deviation of the measured points from the identified profile (form error plus \
+            residual), over each flank's measured extent; f_H > 0: more material missing \
+            towards the tip. Flank a runs root to tip with increasing t, b tip to root." }
+        (data_table(
+            html! { th { "tooth" } th { "flank" } th { "points" } th { "s from (mm)" }
+                th { "s to (mm)" } th { "F (µm)" } th { "f_f (µm)" } th { "f_H (µm)" } },
+            html! {
+                @for f in &id.flanks {
+                    tr { td.num { (f.tooth) } td { (f.side) } td.num { (f.points) }
+                        @if let Some(s) = f.summary {
+                            td.num { (mm(s.from_mm)) } td.num { (mm(s.to_mm)) }
+                            td.num { (um(s.total_mm)) } td.num { (um(s.form_mm)) }
+                            td.num { (um(s.slope_mm)) }
+                        } @else {
+                            td colspan="5" { "fewer than 3 points" }
+                        }
+                    }
+                }
+            },
+        ))
+    }
 }

@@ -77,6 +77,20 @@ fn force_arrows(f: &Frame, disc: &Disc) -> Markup {
     }
 }
 
+/// Circles of `radius_mm` around `centres` as SVG subpaths, to follow the profile's path in
+/// one `path` with `fill-rule="evenodd"`: the disc with its holes cut out.
+pub(super) fn hole_cutouts(f: &Frame, centres: &[Vec2], radius_mm: f64) -> String {
+    let r = f.len(radius_mm);
+    centres
+        .iter()
+        .map(|&c| {
+            let (x, y) = f.at(c);
+            let (x, y, d, back, r) = (px(x - r), px(y), px(2.0 * r), px(-2.0 * r), px(r));
+            format!(" M{x},{y} a{r},{r} 0 1,0 {d},0 a{r},{r} 0 1,0 {back},0 Z")
+        })
+        .collect()
+}
+
 /// The disc at its pose with the rollers, pins and forces: (SVG, caption).
 pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String) {
     let outer = disc.roller_circle_radius_mm + disc.roller_radius_mm;
@@ -85,17 +99,7 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
     let f = Frame::fit((-half, half, -half, half), (10.0, 50.0, w - 20.0, h - 60.0));
     let phi = units::deg(disc.crank_rad);
     let tight = disc.tightest.roller;
-    // The disc with its holes cut out (even-odd fill): the profile, then a circle per hole.
-    let r = f.len(disc.hole_radius_mm);
-    let holes: String = disc
-        .holes
-        .iter()
-        .map(|&c| {
-            let (x, y) = f.at(c);
-            let (x, y, d, back, r) = (px(x - r), px(y), px(2.0 * r), px(-2.0 * r), px(r));
-            format!(" M{x},{y} a{r},{r} 0 1,0 {d},0 a{r},{r} 0 1,0 {back},0 Z")
-        })
-        .collect();
+    let holes = hole_cutouts(&f, &disc.holes, disc.hole_radius_mm);
     let label_at = |c: Vec2| c.normalize() * (outer + 3.5);
     let (cx, cy) = f.at(disc.centre);
     let body = html! {

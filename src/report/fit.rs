@@ -2,13 +2,15 @@
 //! CSV. Lengths in mm for values, µm for uncertainties, residuals and deviations; angles in
 //! degrees. Fixed decimals, so that a run reads the same on every machine.
 
+use crate::geometry::profile::Profile;
 use crate::measure::fit::{Estimate, Identification};
+use crate::measure::flanks::arc_length_mm;
 use crate::spec::Spec;
 use crate::units;
 use std::f64::consts::TAU;
 
 /// `x` with `decimals`, without the sign of a value that rounds to zero (`-0.000` → `0.000`).
-fn fixed(x: f64, decimals: usize) -> String {
+pub(super) fn fixed(x: f64, decimals: usize) -> String {
     let s = format!("{x:.decimals$}");
     match s.strip_prefix('-') {
         Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
@@ -84,21 +86,43 @@ pub fn render(spec: &Spec, id: &Identification) -> String {
             );
         }
     }
-    out += "per flank (deviation from the identified modified profile; f_f profile form, \
-            f_H slope), µm:\n";
-    out += "  tooth flank points     f_f     f_H\n";
+    out += &format!(
+        "per flank, as on a gear inspection sheet (ISO 1328-1 F, f_f, f_H over the arc length \
+         s along the profile from the flank's root; each flank {} mm root to tip): the \
+         deviation from the identified modified profile (form error plus residual, positive: \
+         material missing) over the measured extent s_from..s_to (mm); F total, f_f form, f_H \
+         slope (positive: more missing towards the tip), µm:\n",
+        fixed(flank_length_mm(spec, id), 3)
+    );
+    out += "  tooth flank points  s_from    s_to        F      f_f      f_H\n";
     for f in &id.flanks {
-        let show = |v: Option<f64>| v.map_or("-".to_string(), |v| fixed(units::um(v), 3));
-        out += &format!(
-            "  {:>5} {:>5} {:>6} {:>7} {:>7}\n",
-            f.tooth,
-            f.side,
-            f.points,
-            show(f.form_mm),
-            show(f.slope_mm)
+        let cells = f.summary.map_or_else(
+            || format!("{:>7} {:>7} {:>8} {:>8} {:>8}", "-", "-", "-", "-", "-"),
+            |s| {
+                let um = |v: f64| fixed(units::um(v), 3);
+                format!(
+                    "{:>7} {:>7} {:>8} {:>8} {:>8}",
+                    fixed(s.from_mm, 3),
+                    fixed(s.to_mm, 3),
+                    um(s.total_mm),
+                    um(s.form_mm),
+                    um(s.slope_mm)
+                )
+            },
         );
+        out += &format!("  {:>5} {:>5} {:>6} {cells}\n", f.tooth, f.side, f.points);
     }
     out
+}
+
+/// Arc length of a flank of the identified modified profile from root to tip, mm.
+pub fn flank_length_mm(spec: &Spec, id: &Identification) -> f64 {
+    let reference = Profile::new(&spec.design, &id.modification);
+    arc_length_mm(
+        &reference,
+        0.0,
+        std::f64::consts::PI / spec.design.teeth as f64,
+    )
 }
 
 /// The form-error curve as CSV: `t_deg,w_um` at 1/16 of a tooth pitch (nc·16 rows).

@@ -59,6 +59,35 @@ fn slices(columns: &mut [Vec<f64>]) -> Vec<&mut [f64]> {
     columns.iter_mut().map(|v| v.as_mut_slice()).collect()
 }
 
+/// The kernel alone at crank `phi`, its one-angle rows in `columns` (roller forces, pressures,
+/// half-widths, pin forces; zeroed first: the kernel writes the entries of contacts only).
+fn solve_one(
+    lean: &FirstOrderSweep,
+    phi: f64,
+    guess: (f64, f64),
+    scratch: &mut Scratch,
+    columns: &mut [Vec<Vec<f64>>; 4],
+) -> Option<cycloid::equilibrium::first_order_sweep::Summary> {
+    for c in columns.iter_mut() {
+        c.iter_mut().for_each(|v| v[0] = 0.0);
+    }
+    let [f, p, w, pf] = columns;
+    let (mut f, mut p, mut w, mut pf) = (slices(f), slices(p), slices(w), slices(pf));
+    let mut row = Row {
+        k: 0,
+        roller_force_n: &mut f,
+        pressure_mpa: &mut p,
+        half_width_mm: &mut w,
+        pin_force_n: &mut pf,
+    };
+    lean.solve(phi, (phi.cos(), phi.sin()), || guess, scratch, &mut row)
+}
+
+/// One-angle rows for `solve_one`: `rollers` and `pins` columns of one entry.
+fn one_angle_columns(rollers: usize, pins: usize) -> [Vec<Vec<f64>>; 4] {
+    [rollers, rollers, rollers, pins].map(|n| vec![vec![0.0; 1]; n])
+}
+
 /// The lean sweep's curves agree with the general solve at every angle.
 ///
 /// Tolerances: lags 1e-12 relative (two exact roots of the same piecewise-linear balance,
@@ -214,40 +243,16 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
         model.pins.as_ref().unwrap().count,
     );
     let mut scratch = Scratch::default();
-    let column = |n: usize| vec![vec![0.0; 1]; n];
-    let (mut forces, mut pressures, mut widths, mut pin_forces) =
-        (column(nr), column(nr), column(nr), column(np));
+    let mut columns = one_angle_columns(nr, np);
     let mut guess = (0.0, 0.0);
     for &phi in &angles {
-        // The kernel writes the entries of the contacts only: rows start at zero.
-        for c in [&mut forces, &mut pressures, &mut widths, &mut pin_forces] {
-            c.iter_mut().for_each(|v| v[0] = 0.0);
-        }
-        let mut f = slices(&mut forces);
-        let mut p = slices(&mut pressures);
-        let mut w = slices(&mut widths);
-        let mut pf = slices(&mut pin_forces);
-        let mut row = Row {
-            k: 0,
-            roller_force_n: &mut f,
-            pressure_mpa: &mut p,
-            half_width_mm: &mut w,
-            pin_force_n: &mut pf,
-        };
-        let s = lean
-            .solve(
-                phi,
-                (phi.cos(), phi.sin()),
-                || guess,
-                &mut scratch,
-                &mut row,
-            )
+        let s = solve_one(&lean, phi, guess, &mut scratch, &mut columns)
             .unwrap_or_else(|| panic!("fell back at {:.3}°", phi.to_degrees()));
         guess = (s.lag_rad, s.output_lag_rad);
         // Balance of the recorded forces, independently of the kernel's own residual: the
         // rollers' moment about the disc centre equals the torque (1e-9, the product bound).
         let sol = solve_angle(&model, phi, &AngleSolution::default()).unwrap();
-        let moment: f64 = forces
+        let moment: f64 = columns[0]
             .iter()
             .zip(&sol.rollers)
             .map(|(f, st)| f[0] * st.arm_mm)
@@ -343,29 +348,15 @@ fn the_kernel_compliance_is_the_slope_of_its_lag_in_torque() {
         let at = |torque: f64| {
             let mut lean = FirstOrderSweep::new(&model).unwrap();
             lean.set_torque(torque);
-            let mut columns: Vec<Vec<Vec<f64>>> = [nr, nr, nr, np]
-                .iter()
-                .map(|&n| vec![vec![0.0; 1]; n])
-                .collect();
-            let [f, p, w, pf] = &mut columns[..] else {
-                unreachable!()
-            };
-            let (mut f, mut p, mut w, mut pf) = (slices(f), slices(p), slices(w), slices(pf));
-            let mut row = Row {
-                k: 0,
-                roller_force_n: &mut f,
-                pressure_mpa: &mut p,
-                half_width_mm: &mut w,
-                pin_force_n: &mut pf,
-            };
-            let s = lean.solve(
+            let mut columns = one_angle_columns(nr, np);
+            solve_one(
+                &lean,
                 phi,
-                (phi.cos(), phi.sin()),
-                || (0.0, 0.0),
+                (0.0, 0.0),
                 &mut Scratch::default(),
-                &mut row,
-            );
-            s.expect("the kernel settles the paper design")
+                &mut columns,
+            )
+            .expect("the kernel settles the paper design")
         };
         let (lo, mid, hi) = (at(t - h), at(t), at(t + h));
         if lo.contacts != hi.contacts {

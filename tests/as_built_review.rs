@@ -269,9 +269,14 @@ fn the_review_draws_the_points_at_their_magnified_deviation() {
         (surely..=maybe).contains(&drawn_inside),
         "{drawn_inside} inside, {surely}..{maybe} expected"
     );
+    // The scene's smallest gap over the crank, designed against as built, beside the drawing.
+    assert!(page.contains("src=\"as-built-1-clearance.svg\""));
+    let compared = dir.read("review/as-built-1-clearance.svg");
+    assert!(compared.contains("mesh: smallest gap, designed and as built"));
     dir.write("plain.yaml", plain.text());
     let run = cycloid(&dir.path, &["check", "plain.yaml", "--report", "plain"]);
     assert_eq!(run.code(), 0, "{}{}", run.stdout, run.stderr);
     assert!(!dir.read("plain/index.html").contains("Disc as built"));
     assert!(!dir.exists("plain/as-built-disc.svg"));
+    assert!(!dir.exists("plain/as-built-1-clearance.svg"));
 }

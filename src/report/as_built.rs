@@ -42,6 +42,11 @@ pub(super) fn section_of(
     let file = "as-built-deviation.svg";
     let from_design = against_design(spec, &view.designed_modification, id);
     files.push((file.into(), deviation_plot(id, &from_design).to_svg()));
+    let mut comparisons = Vec::new();
+    for (name, plot, caption) in comparison_plots(view.designed, built) {
+        files.push((name.clone(), plot.to_svg()));
+        comparisons.push((name, plot.title, caption));
+    }
     let drawing_file = "as-built-disc.svg";
     let (drawing, times) = disc_drawing(spec, &view.designed_modification, &from_design);
     files.push((drawing_file.into(), drawing));
@@ -69,6 +74,9 @@ pub(super) fn section_of(
                 @for (d, b) in designed.iter().zip(&as_built) { (rows(d, b)) }
             },
         ))
+        @for (file, title, caption) in &comparisons {
+            (figure(file, title, caption))
+        }
         (figure(file, "Measured deviation from the profile",
             "Along the profile (locus parameter t over the whole disc), in µm normal to it, \
              positive where material is missing: the measured points against the design \
@@ -88,6 +96,72 @@ pub(super) fn section_of(
         (flank_table(spec, id))
     };
     section("as-built", html! { "Disc as built" }, body)
+}
+
+/// Each scene's smallest gap over the rollers and its TE over the crank, as designed (dashed)
+/// against as built: (file, plot, caption) of each scene that computes them.
+fn comparison_plots(
+    designed: &[SceneResult],
+    built: &[SceneResult],
+) -> Vec<(String, LinePlot, &'static str)> {
+    let mut out = Vec::new();
+    for (k, (d, b)) in designed.iter().zip(built).enumerate() {
+        let x: Vec<f64> = b.crank_rad.iter().map(|&c| units::deg(c)).collect();
+        let file = |what: &str| format!("as-built-{}-{what}.svg", k + 1);
+        if let (Some(dg), Some(bg)) = (smallest_gap_um(d), smallest_gap_um(b)) {
+            let title = format!("{}: smallest gap, designed and as built", b.name);
+            let plot = pair_plot(&title, "smallest gap over the rollers (µm)", &x, dg, bg);
+            out.push((file("clearance"), plot, CLEARANCE_CAPTION));
+        }
+        let te = |r: &SceneResult| {
+            let t = r.loaded.transmission.as_ref()?;
+            Some(
+                t.te_rad
+                    .iter()
+                    .map(|&v| units::arcsec(v))
+                    .collect::<Vec<_>>(),
+            )
+        };
+        if let (Some(dt), Some(bt)) = (te(d), te(b)) {
+            let title = format!("{}: TE, designed and as built", b.name);
+            let plot = pair_plot(&title, "transmission error (arcsec)", &x, dt, bt);
+            out.push((file("te"), plot, TE_CAPTION));
+        }
+    }
+    out
+}
+
+const CLEARANCE_CAPTION: &str = "At each crank angle the smallest gap of any roller to the \
+    disc, µm (negative: interference): the spec's disc dashed, the disc as identified solid.";
+const TE_CAPTION: &str = "The loaded transmission error over the crank, arcsec: the spec's \
+    disc dashed, the disc as identified solid.";
+
+/// The smallest gap over the rollers at each angle, µm (disc 0's with several discs).
+fn smallest_gap_um(r: &SceneResult) -> Option<Vec<f64>> {
+    let c = (r.clearance.as_ref()).or_else(|| r.discs.first()?.clearance.as_ref())?;
+    let smallest = |i: usize| c.gap_mm.iter().map(|g| g[i]).fold(f64::INFINITY, f64::min);
+    Some(
+        (0..r.crank_rad.len())
+            .map(|i| units::um(smallest(i)))
+            .collect(),
+    )
+}
+
+/// One quantity over the crank (degrees), designed dashed against as built.
+fn pair_plot(
+    title: &str,
+    y_label: &str,
+    x: &[f64],
+    designed: Vec<f64>,
+    built: Vec<f64>,
+) -> LinePlot {
+    let mut plot = LinePlot::new(title, "crank angle (deg)", y_label);
+    let mut d = Series::new("designed", x.to_vec(), designed, PALETTE[0]);
+    d.dashed = true;
+    plot.series.push(d);
+    plot.series
+        .push(Series::new("as built", x.to_vec(), built, PALETTE[3]));
+    plot
 }
 
 /// A scene's headline results as designed and as built.
@@ -355,5 +429,40 @@ fn flank_table(spec: &Spec, id: &Identification) -> maud::Markup {
                 }
             },
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::results::{ClearanceSweep, MinClearance};
+
+    /// The smallest gap at each angle is the least over the rollers ([roller][angle]), in µm:
+    /// roller 1 is nearest at the first angle, roller 0 at the second.
+    #[test]
+    fn the_smallest_gap_is_the_least_over_the_rollers_at_each_angle() {
+        let r = SceneResult {
+            name: "s".into(),
+            crank_rad: vec![0.0, 0.1],
+            clearance: Some(ClearanceSweep {
+                gap_mm: vec![vec![0.003, 0.001], vec![0.002, 0.005]],
+                min: MinClearance {
+                    gap_mm: 0.001,
+                    roller: 0,
+                    crank_rad: 0.1,
+                    tooth_phase: 0.0,
+                },
+                backlash: None,
+            }),
+            loaded: Default::default(),
+            torsion: None,
+            bearing_life: None,
+            discs: Vec::new(),
+        };
+        let got = smallest_gap_um(&r).unwrap();
+        assert!(
+            (got[0] - 2.0).abs() < 1e-12 && (got[1] - 1.0).abs() < 1e-12,
+            "{got:?}"
+        );
     }
 }

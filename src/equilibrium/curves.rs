@@ -447,6 +447,12 @@ struct Lean<'a> {
     /// Each disc's own crank angles over the chunk (φ + its phase), for its screen of the
     /// rollers that may touch over the angles ahead (`FirstOrderSweep::screen`).
     cranks: Vec<Vec<f64>>,
+    /// The crank distance over which the shares' history extrapolates (`Model::warm_reach`).
+    reach: f64,
+    /// The Newton's tolerance on a share's correction, N·mm: a quarter of the coupled solve's,
+    /// as the compliances are exact on each disc's contact set only (a contact that opens or
+    /// closes within the step changes a disc's slope by ±50 %).
+    tol: f64,
 }
 
 /// Newton steps on the shares that the lean kernels take at one angle before the coupled
@@ -504,11 +510,13 @@ impl<'a> Lean<'a> {
                 .iter()
                 .map(|p| crank_rad.iter().map(|c| c + p).collect())
                 .collect(),
+            reach: discs.models[0].warm_reach(),
+            tol: 2.5 * discs.models[0].settings.rel_tol * discs.torque_nmm.abs(),
         }
     }
 
     /// Angle k (crank `phi`) by the kernels at the shares extrapolated from the last angles,
-    /// when the previous angle's weights say that split is settled: γ, each disc recorded in
+    /// corrected by the Newton on the shares until the split settles: γ, each disc recorded in
     /// `chunk` and remembered in `work`. `None` (the chunk's entries at k cleared) leaves the
     /// angle to the coupled solve.
     fn solve(
@@ -524,15 +532,11 @@ impl<'a> Lean<'a> {
         }
         let n = discs.count();
         let mut weights = [0.0; MAX_DISCS];
-        let total = discs.torque_nmm;
-        let reach = discs.models[0].warm_reach();
-        let mut torque = work.guess(phi, n, reach);
+        let (total, tol) = (discs.torque_nmm, self.tol);
+        let mut torque = work.guess(phi, n, self.reach);
         torque.iter_mut().for_each(|t| *t *= total);
         let mut lag = [0.0; MAX_DISCS];
         let mut summaries = [(Summary::default(), Vec2::zeros()); MAX_DISCS];
-        // A quarter of the coupled solve's tolerance: the weights are the previous angle's,
-        // off by the change of the contact set since (a roller more or less: ±50 %).
-        let tol = 2.5 * discs.models[0].settings.rel_tol * total.abs();
         let mut common = None;
         for step_number in 0..LEAN_STEPS {
             if step_number > 0 {

@@ -163,11 +163,17 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
 /// all are renamed into place, `index.html` last, so a reader never sees a page that links
 /// figures of another run; returns the files written.
 pub fn write(dir: &Path, input: &ReportInput) -> Result<Vec<PathBuf>> {
+    write_files(dir, &render(input))
+}
+
+/// `files` (name, text) into `dir` (created if missing) as one batch, in their order: the
+/// page that links the others comes last. Returns the paths written.
+pub(super) fn write_files(dir: &Path, files: &[(String, String)]) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
     let mut batch = Batch::new();
     let mut written = Vec::new();
-    for (name, text) in render(input) {
-        let path = dir.join(&name);
+    for (name, text) in files {
+        let path = dir.join(name);
         batch.add(&path, text.as_bytes())?;
         written.push(path);
     }

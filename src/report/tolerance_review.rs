@@ -11,8 +11,7 @@ use super::tolerance::{LINEAR_CAVEAT, QUANTILE_DEFINITION};
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{LimitSummary, Summary};
 use crate::engine::tolerance::{Records, Study};
-use crate::error::{Error, Result};
-use crate::files::Batch;
+use crate::error::Result;
 use crate::numeric::number;
 use maud::{html, Markup};
 use std::path::Path;
@@ -250,12 +249,6 @@ pub fn write(
     records: &Records,
     sens: Option<&Sensitivity>,
 ) -> Result<usize> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
-    let mut batch = Batch::new();
     let files = render(study, s, records, sens);
-    for (name, text) in &files {
-        batch.add(&dir.join(name), text.as_bytes())?;
-    }
-    batch.commit()?;
-    Ok(files.len())
+    Ok(super::html::write_files(dir, &files)?.len())
 }

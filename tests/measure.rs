@@ -166,7 +166,7 @@ proptest! {
     /// a few µm each); 1 µm noise on 3000 points over the whole profile and 24 on each hole:
     /// every unknown is identified within Z of its reported uncertainty, the form series holds
     /// exactly the orders the module documents, and the residual RMS is the noise's normal
-    /// component (σ = 1 µm; 3000 samples put its RMS within 5 % at 3.5 standard errors).
+    /// component (σ = 1 µm; within 8 %, 6 standard errors of the RMS of 3000 samples).
     #[test]
     fn known_disc_is_identified_within_its_uncertainty(
         shift in -0.2f64..0.2,
@@ -211,7 +211,13 @@ proptest! {
             within(&format!("a{k}"), h.cos_mm, a)?;
             within(&format!("b{k}"), h.sin_mm, b)?;
         }
-        prop_assert!((id.residual_rms_mm / 1e-3 - 1.0).abs() < 0.05, "rms {}", id.residual_rms_mm);
+        // σ̂/σ: Σd²/σ² is χ² with m − n degrees of freedom (m ≈ 3000 points, n ≈ 30
+        // unknowns), so σ̂/σ has mean √((m − n)/m) ≈ 0.995 and standard deviation 1/√(2m) ≈
+        // 0.013. 8 % is 6 standard deviations: 24 random cases a run fail by chance less than
+        // once in 10⁷ runs. (5 %, 3.9 of them, failed once in a few hundred runs: the committed
+        // case at seed 3179311507229564268 has σ̂ = 0.946 µm, 4.2 below, the same bit for bit
+        // before this session's changes to the fit.)
+        prop_assert!((id.residual_rms_mm / 1e-3 - 1.0).abs() < 0.08, "rms {}", id.residual_rms_mm);
         // The uncertainties are those of ~3000 points with 1 µm noise, so that "within σ"
         // above is a real test: 1 µm/√3000 ≈ 0.02 µm for a lone constant offset, ~10× that for
         // ΔRp and ΔRrp, which move the profile alike but for the variation of (cos t, sin t)·N

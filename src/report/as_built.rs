@@ -53,7 +53,7 @@ pub(super) fn section_of(
     let times = round_number(times);
     // Micrometres to the nanometre, as `cycloid fit` prints them: a change at the round-off
     // of the fit reads 0.000 µm (not 6.134e-12 µm, nor −0.000).
-    let um = |mm: f64| format!("{:.3} µm", (mm * 1e6).round() / 1e3 + 0.0);
+    let um = |mm: f64| format!("{} µm", fixed(units::um(mm), 3));
     let m = (&view.designed_modification, &id.modification);
     let body = html! {
         p.note { "Every scene ran on the disc identified from "

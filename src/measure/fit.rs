@@ -912,8 +912,11 @@ fn cos_sin_orders(t: f64, orders: &[usize], out: &mut [f64]) {
     }
 }
 
+/// The bins per tooth pitch in t over which `Coverage::fraction` counts the points.
+pub const COVERAGE_BINS_PER_TOOTH: usize = 16;
+
 fn coverage(profile: &[FittedPoint], flanks: &[Flank], teeth: usize) -> Coverage {
-    let bins = 16 * teeth;
+    let bins = COVERAGE_BINS_PER_TOOTH * teeth;
     let mut hit = vec![false; bins];
     for p in profile {
         let b = ((p.t.rem_euclid(TAU) / TAU * bins as f64) as usize).min(bins - 1);

@@ -12,7 +12,7 @@ use super::table::{count_or_number, with_unit};
 use crate::engine::summary::{summarise, SceneSummary};
 use crate::geometry::profile::Profile;
 use crate::geometry::{polyline, Vec2};
-use crate::measure::fit::Identification;
+use crate::measure::fit::{Identification, COVERAGE_BINS_PER_TOOTH};
 use crate::model::results::SceneResult;
 use crate::model::Modification;
 use crate::numeric::number;
@@ -41,7 +41,10 @@ pub(super) fn section_of(
     let (designed, as_built) = (summarise(view.designed), summarise(built));
     let file = "as-built-deviation.svg";
     let from_design = against_design(spec, &view.designed_modification, id);
-    files.push((file.into(), deviation_plot(id, &from_design).to_svg()));
+    files.push((
+        file.into(),
+        deviation_plot(id, &from_design, spec.design.teeth).to_svg(),
+    ));
     let mut comparisons = Vec::new();
     for (name, plot, caption) in comparison_plots(view.designed, built) {
         files.push((name.clone(), plot.to_svg()));
@@ -234,14 +237,17 @@ pub fn against_design(
 }
 
 /// The points' deviations and the form error, µm against t in degrees.
-fn deviation_plot(id: &Identification, from_design: &[AgainstDesign]) -> LinePlot {
-    let mut points: Vec<(f64, f64)> = id
-        .profile
-        .iter()
-        .map(|p| (p.t, id.form.value_mm(p.t) + p.residual_mm))
-        .collect();
-    points.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let degrees = |t: f64| units::deg(t.rem_euclid(std::f64::consts::TAU));
+fn deviation_plot(id: &Identification, from_design: &[AgainstDesign], teeth: usize) -> LinePlot {
+    // A stretch longer than a coverage bin without a point is unmeasured: the curves break.
+    let gap = std::f64::consts::TAU / (COVERAGE_BINS_PER_TOOTH * teeth) as f64;
+    let (design_x, design_y) = with_breaks(
+        from_design.iter().map(|p| (p.t, units::um(p.deviation_mm))),
+        gap,
+    );
+    let (identified_x, identified_y) = with_breaks(
+        (id.profile.iter()).map(|p| (p.t, units::um(id.form.value_mm(p.t) + p.residual_mm))),
+        gap,
+    );
     let curve: Vec<f64> = (0..=720)
         .map(|k| std::f64::consts::TAU * k as f64 / 720.0)
         .collect();
@@ -250,19 +256,12 @@ fn deviation_plot(id: &Identification, from_design: &[AgainstDesign]) -> LinePlo
         "locus parameter t (deg)",
         "normal deviation (µm)",
     );
-    plot.series.push(Series::new(
-        "vs design",
-        from_design.iter().map(|p| degrees(p.t)).collect(),
-        from_design
-            .iter()
-            .map(|p| units::um(p.deviation_mm))
-            .collect(),
-        PALETTE[3],
-    ));
+    plot.series
+        .push(Series::new("vs design", design_x, design_y, PALETTE[3]));
     plot.series.push(Series::new(
         "vs identified",
-        points.iter().map(|p| degrees(p.0)).collect(),
-        points.iter().map(|p| p.1 * 1e3).collect(),
+        identified_x,
+        identified_y,
         PALETTE[7],
     ));
     let mut form = Series::new(
@@ -276,6 +275,26 @@ fn deviation_plot(id: &Identification, from_design: &[AgainstDesign]) -> LinePlo
     plot.series.push(form);
     plot.include_zero = true;
     plot
+}
+
+/// (t in degrees, value) of `points` sorted by t over [0, 2π), with a break (a NaN, which
+/// the plot does not join across) wherever consecutive points are more than `gap` rad apart:
+/// an unmeasured stretch is not drawn as a line across it.
+fn with_breaks(points: impl Iterator<Item = (f64, f64)>, gap: f64) -> (Vec<f64>, Vec<f64>) {
+    let mut sorted: Vec<(f64, f64)> = points
+        .map(|(t, v)| (t.rem_euclid(std::f64::consts::TAU), v))
+        .collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (mut x, mut y) = (Vec::new(), Vec::new());
+    for (k, &(t, v)) in sorted.iter().enumerate() {
+        if k > 0 && t - sorted[k - 1].0 > gap {
+            x.push(units::deg(t));
+            y.push(f64::NAN);
+        }
+        x.push(units::deg(t));
+        y.push(v);
+    }
+    (x, y)
 }
 
 /// The largest magnified deviation drawn, as a share of the tooth height 2e.
@@ -438,6 +457,33 @@ fn flank_table(spec: &Spec, id: &Identification) -> maud::Markup {
 mod tests {
     use super::*;
     use crate::model::results::{ClearanceSweep, MinClearance};
+
+    /// Points more than the gap apart are not joined: a NaN between them; the points come
+    /// sorted over [0, 2π) whatever their order and turn (2π + 0.05 is 0.05, first).
+    #[test]
+    fn an_unmeasured_stretch_breaks_the_curve() {
+        let tau = std::f64::consts::TAU;
+        let points = [(1.1, 4.0), (0.2, 2.0), (tau + 0.05, 1.0), (1.0, 3.0)];
+        let (x, y) = with_breaks(points.into_iter(), 0.5);
+        let deg = |t: f64| units::deg(t);
+        assert_eq!(x.len(), 5);
+        assert!(y[2].is_nan(), "{y:?}");
+        let kept: Vec<(f64, f64)> = x
+            .iter()
+            .zip(&y)
+            .filter(|p| !p.1.is_nan())
+            .map(|(a, b)| (*a, *b))
+            .collect();
+        let expected = [
+            (deg(0.05), 1.0),
+            (deg(0.2), 2.0),
+            (deg(1.0), 3.0),
+            (deg(1.1), 4.0),
+        ];
+        for (k, e) in kept.iter().zip(expected) {
+            assert!((k.0 - e.0).abs() < 1e-9 && k.1 == e.1, "{kept:?}");
+        }
+    }
 
     /// The smallest gap at each angle is the least over the rollers ([roller][angle]), in µm:
     /// roller 1 is nearest at the first angle, roller 0 at the second.

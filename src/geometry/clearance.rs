@@ -530,7 +530,7 @@ struct Seat {
 /// largest |w| (the formed profile is within |w| of the offset curve, so a foot of it that
 /// margin inside the reach is still the nearest).
 pub fn certified_mm(profile: &Profile) -> f64 {
-    0.9 * profile.locus_reach_bound_mm().min(profile.offset_mm) - 2.0 * profile.form_bound_mm()
+    0.9 * profile.locus_reach_bound_mm().min(profile.offset_mm) - 2.0 * profile.form().bound_mm()
 }
 
 /// The constants of a sweep of one mesh.

@@ -168,22 +168,6 @@ impl Profile {
         &self.form
     }
 
-    /// w(t), w'(t), w''(t): mm, mm/rad, mm/rad² (`FormError::jet`: the series' quintic table).
-    #[inline]
-    pub fn form_jet(&self, t: f64) -> (f64, f64, f64) {
-        self.form.jet(t)
-    }
-
-    /// The largest |w''| the form error can reach, mm/rad²: Σ k²·amplitude.
-    pub fn form_bend_bound(&self) -> f64 {
-        self.form.bend_bound()
-    }
-
-    /// The largest |w| the form error can reach, mm: Σ amplitude.
-    pub fn form_bound_mm(&self) -> f64 {
-        self.form.bound_mm()
-    }
-
     /// C, C', C'' at t (mm, mm/rad, mm/rad²).
     #[inline]
     pub fn locus_jet(&self, t: f64) -> LocusJet {
@@ -256,7 +240,7 @@ impl Profile {
     /// Γ(t), mm, disc frame.
     pub fn point(&self, t: f64) -> Vec2 {
         let j = self.locus_jet(t);
-        let w = self.form_jet(t).0;
+        let w = self.form.jet(t).0;
         self.turned(j.c - (self.offset_mm + w) * Self::unrotated_normal(&j))
     }
 
@@ -298,7 +282,7 @@ impl Profile {
     /// v' = C'·C''/v, B' = −w''.
     fn formed_jet(&self, t: f64) -> LocusJet {
         let j = self.locus_jet(t);
-        self.formed_from(&j, self.locus_d3(t), self.form_jet(t))
+        self.formed_from(&j, self.locus_d3(t), self.form.jet(t))
     }
 
     /// `formed_jet` from the locus jet, the third derivative of C and (w, w', w'').
@@ -655,7 +639,7 @@ impl Profile {
         let mut s = 0.0;
         for iteration in 1..=MAX_ITER {
             let (jet, d3, moved) = jet_at(expi_minus_one(s), expi_minus_one(n * s));
-            let form = self.form_jet(t0 + s);
+            let form = self.form.jet(t0 + s);
             let g = self.formed_from(&jet, d3, form);
             let normal_c = Self::unrotated_normal(&jet);
             let d = at_foot + moved - (normal_c - n0) * r - normal_c * form.0;

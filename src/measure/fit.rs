@@ -114,26 +114,13 @@ impl FormError {
         (2..=harmonics).filter(|k| k % teeth != 0).collect()
     }
 
-    /// w(t), mm, by powers of e^{it} as `cos_sin_orders` (one sin_cos per call, not one per
-    /// order: the per-flank summaries evaluate it at every point; k products lose at most
-    /// ~k·ε, 4e-14 of the amplitude at order 200); an order below the previous one directly.
+    /// w(t), mm, the harmonics by `cos_sin_of_orders` (one sin_cos per call: the per-flank
+    /// summaries evaluate it at every point).
     pub fn value_mm(&self, t: f64) -> f64 {
-        let (s1, c1) = t.sin_cos();
-        let (mut c, mut s, mut k) = (1.0, 0.0, 0);
-        let mut sum = 0.0;
-        for h in &self.harmonics {
-            if h.order < k {
-                let (s, c) = (h.order as f64 * t).sin_cos();
-                sum += h.cos_mm.value * c + h.sin_mm.value * s;
-                continue;
-            }
-            while k < h.order {
-                (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
-                k += 1;
-            }
-            sum += h.cos_mm.value * c + h.sin_mm.value * s;
-        }
-        sum
+        let orders = self.harmonics.iter().map(|h| h.order);
+        (self.harmonics.iter().zip(cos_sin_of_orders(t, orders)))
+            .map(|(h, (c, s))| h.cos_mm.value * c + h.sin_mm.value * s)
+            .sum()
     }
 }
 
@@ -896,20 +883,35 @@ fn finish(
 /// Most orders of a form-error series (`spec::measured::MAX_HARMONICS` = 200 and fewer).
 const MAX_ORDERS: usize = 256;
 
-/// (cos k·t, sin k·t) for the ascending `orders`, into `out` in pairs, by powers of e^{it}:
-/// one sin_cos per point instead of one per order; k products lose at most ~k·ε (2e-14 at
-/// order 200).
+/// (cos k·t, sin k·t) for the ascending `orders`, into `out` in pairs.
 fn cos_sin_orders(t: f64, orders: &[usize], out: &mut [f64]) {
+    let pairs = cos_sin_of_orders(t, orders.iter().copied());
+    for (pair, (c, s)) in out.chunks_exact_mut(2).zip(pairs) {
+        pair[0] = c;
+        pair[1] = s;
+    }
+}
+
+/// (cos k·t, sin k·t) for each of `orders`, by powers of e^{it} while they ascend: one sin_cos
+/// per call instead of one per order; k products lose at most ~k·ε (2e-14 at order 200). An
+/// order below the one before is evaluated directly.
+fn cos_sin_of_orders(
+    t: f64,
+    orders: impl IntoIterator<Item = usize>,
+) -> impl Iterator<Item = (f64, f64)> {
     let (s1, c1) = t.sin_cos();
     let (mut c, mut s, mut k) = (1.0, 0.0, 0);
-    for (pair, &order) in out.chunks_exact_mut(2).zip(orders) {
+    orders.into_iter().map(move |order| {
+        if order < k {
+            let (s, c) = (order as f64 * t).sin_cos();
+            return (c, s);
+        }
         while k < order {
             (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
             k += 1;
         }
-        pair[0] = c;
-        pair[1] = s;
-    }
+        (c, s)
+    })
 }
 
 /// The bins per tooth pitch in t over which `Coverage::fraction` counts the points.

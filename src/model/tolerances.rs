@@ -72,6 +72,11 @@ impl Tolerances {
         self.bands_mm[kind as usize]
     }
 
+    /// The kinds toleranced (a band above 0), in `Kind::ALL`'s order.
+    pub fn toleranced(&self) -> impl Iterator<Item = Kind> + '_ {
+        Kind::ALL.into_iter().filter(|&k| self.band_mm(k) > 0.0)
+    }
+
     /// Standard deviation of a draw of `kind`, mm: b/3 for the normal (ignoring its cut at 6σ,
     /// which changes σ by 10⁻⁷ relative), b/√3 for the uniform.
     pub fn sigma_mm(&self, kind: Kind) -> f64 {

@@ -33,9 +33,7 @@ pub(super) fn percent(x: f64) -> String {
 /// The bands in force, `kind ±b` (mm).
 fn bands(study: &Study) -> String {
     let t = &study.tolerances;
-    crate::model::tolerances::Kind::ALL
-        .into_iter()
-        .filter(|&k| t.band_mm(k) > 0.0)
+    t.toleranced()
         .map(|k| format!("{} ±{}", k.name(), crate::numeric::input(t.band_mm(k))))
         .collect::<Vec<_>>()
         .join(", ")
@@ -232,9 +230,8 @@ pub fn json(study: &Study, s: &Summary, records: &Records, sens: Option<&Sensiti
             json!({"sample": k, "excess": excess, "values": values, "deviations_mm": draws(study, k)})
         })
         .collect();
-    let bands: Map<String, Value> = crate::model::tolerances::Kind::ALL
-        .into_iter()
-        .filter(|&k| t.band_mm(k) > 0.0)
+    let bands: Map<String, Value> = t
+        .toleranced()
         .map(|k| (k.name().to_string(), json!(t.band_mm(k))))
         .collect();
     let mut doc = json!({

@@ -128,7 +128,7 @@ fn study_section(study: &Study) -> Section {
         (data_table(
             html! { th { "tolerance" } th { "band ±b" } th { "σ" } th { "parts" } },
             html! {
-                @for k in crate::model::tolerances::Kind::ALL.into_iter().filter(|&k| t.band_mm(k) > 0.0) {
+                @for k in t.toleranced() {
                     tr {
                         td { code { (k.name()) } }
                         td.num { (with_unit(number(t.band_mm(k)), "mm")) }

@@ -8,7 +8,7 @@ use crate::spec::{self, locate_offset};
 use crate::units;
 
 /// Replace the scalar after `key:` at `offset` with `value`.
-pub(crate) fn replace_value(text: &mut String, offset: usize, value: &str) {
+fn replace_value(text: &mut String, offset: usize, value: &str) {
     let colon = offset + text[offset..].find(':').unwrap_or(0) + 1;
     let rest = &text[colon..];
     let end = rest.find([',', '}', '#', '\n']).unwrap_or(rest.len());
@@ -23,7 +23,7 @@ fn is_key_line(line: &str, key: &str) -> bool {
 }
 
 /// The offset of the top-level line `key:`.
-pub(crate) fn key_line(text: &str, key: &str) -> Option<usize> {
+fn key_line(text: &str, key: &str) -> Option<usize> {
     let mut offset = 0;
     for line in text.split_inclusive('\n') {
         if is_key_line(line, key) {
@@ -36,7 +36,7 @@ pub(crate) fn key_line(text: &str, key: &str) -> Option<usize> {
 
 /// The byte range of a top-level section `key`: the comment lines right above its key line,
 /// and everything to the next top-level key or comment. None when there is none.
-pub(crate) fn top_level_section(text: &str, key: &str) -> Option<std::ops::Range<usize>> {
+fn top_level_section(text: &str, key: &str) -> Option<std::ops::Range<usize>> {
     let mut start = None;
     let mut comments_from = None;
     let mut offset = 0;

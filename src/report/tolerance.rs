@@ -220,7 +220,7 @@ pub fn json(study: &Study, s: &Summary, records: &Records, sens: Option<&Sensiti
         .worst
         .iter()
         .map(|&(k, excess)| {
-            let row = &records.values[k as usize * l..(k as usize + 1) * l];
+            let row = records.row(k, l);
             let values: Map<String, Value> = study
                 .limits
                 .iter()

@@ -27,13 +27,7 @@ fn bins(n: usize) -> usize {
 /// vertical line; the x range holds both the values and the limit.
 fn histogram(study: &Study, records: &Records, l: usize, ls: &LimitSummary) -> String {
     let step = study.limits.len();
-    let values: Vec<f64> = records
-        .values
-        .iter()
-        .skip(l)
-        .step_by(step)
-        .copied()
-        .collect();
+    let values: Vec<f64> = records.column(l, step).collect();
     let (lo, hi) = (ls.min, ls.max);
     let nb = bins(values.len());
     let width = if hi > lo { (hi - lo) / nb as f64 } else { 1.0 };
@@ -155,7 +149,7 @@ fn worst_section(study: &Study, s: &Summary, records: &Records) -> Section {
                 @for &(k, _) in &s.worst {
                     tr {
                         td.num { (k) }
-                        @for v in &records.values[k as usize * l..(k as usize + 1) * l] { td.num { (number(*v)) } }
+                        @for v in records.row(k, l) { td.num { (number(*v)) } }
                         td { (super::tolerance::largest_draws(study, k, 4)) }
                     }
                 }

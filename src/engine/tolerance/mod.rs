@@ -43,6 +43,19 @@ pub struct Records {
     pub passed: Vec<bool>,
 }
 
+impl Records {
+    /// Sample k's values, one per limit (`limits` of them).
+    pub fn row(&self, k: u64, limits: usize) -> &[f64] {
+        let k = k as usize;
+        &self.values[k * limits..(k + 1) * limits]
+    }
+
+    /// Limit l's values over the samples, in sample order (`limits` per sample).
+    pub fn column(&self, l: usize, limits: usize) -> impl Iterator<Item = f64> + '_ {
+        self.values.iter().skip(l).step_by(limits).copied()
+    }
+}
+
 impl<'a> Study<'a> {
     /// The study of `spec`'s `tolerances:` with `samples` samples (the spec's unless given).
     pub fn new(spec: &'a Spec, samples: Option<usize>) -> Result<Study<'a>> {

@@ -80,7 +80,7 @@ pub fn summarise(study: &Study, records: &Records) -> Summary {
         .iter()
         .enumerate()
         .map(|(i, (def, limit))| {
-            let values: Vec<f64> = records.values.iter().skip(i).step_by(l).copied().collect();
+            let values: Vec<f64> = records.column(i, l).collect();
             let failures = records
                 .passed
                 .iter()

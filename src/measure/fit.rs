@@ -368,16 +368,10 @@ impl<'a> State<'a> {
             .ok_or_else(|| first.unwrap_err())
     }
 
-    fn hole_centre(&self, j: usize) -> Vec2 {
-        let pins = &self.design.pins;
-        let a = TAU * j as f64 / pins.count as f64;
-        Vec2::new(a.cos(), a.sin()) * pins.circle_radius_mm
-    }
-
     /// Residual of a hole point and (when `row` is given) its Jacobian row.
     fn hole_residual(&self, point: &MeasuredPoint, j: usize, row: Option<&mut [f64]>) -> f64 {
         let q = self.to_disc(point.point);
-        let v = q - self.hole_centre(j);
+        let v = q - Vec2::from(self.design.pins.centre_mm(j));
         let r = v.norm();
         let d = r - (self.design.hole_radius_mm() + self.hole_offset);
         if let Some(row) = row {

@@ -26,6 +26,18 @@ pub struct OutputPins {
     pub hole_clearance_mm: f64,
 }
 
+impl OutputPins {
+    /// The nominal centre of pin (and hole) j, mm: (rw·cos 2πj/M, rw·sin 2πj/M), in the disc
+    /// frame for a hole, the flange's for a pin.
+    pub fn centre_mm(&self, j: usize) -> [f64; 2] {
+        let a = std::f64::consts::TAU * j as f64 / self.count as f64;
+        [
+            self.circle_radius_mm * a.cos(),
+            self.circle_radius_mm * a.sin(),
+        ]
+    }
+}
+
 /// Reducer geometry (MODEL.md "Paper design"): `rollers = teeth + 1`, and `discs` identical
 /// discs at crank phases 2πk/discs (MODEL.md "Several discs").
 #[derive(Debug, Clone, PartialEq)]

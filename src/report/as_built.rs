@@ -363,12 +363,9 @@ pub fn disc_drawing(
         (10.0, 70.0, w - 20.0, h - 110.0),
     );
     let holes: Vec<Vec2> = (0..d.pins.count)
-        .map(|j| {
-            let a = TAU * j as f64 / d.pins.count as f64;
-            Vec2::new(a.cos(), a.sin()) * d.pins.circle_radius_mm
-        })
+        .map(|j| Vec2::from(d.pins.centre_mm(j)))
         .collect();
-    let gap = TAU / d.teeth as f64 / 16.0;
+    let gap = TAU / (COVERAGE_BINS_PER_TOOTH * d.teeth) as f64;
     let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
     for (k, p) in points.iter().enumerate() {
         if k == 0 || p.t - points[k - 1].t > gap {

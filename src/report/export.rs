@@ -76,11 +76,11 @@ pub fn dxf(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
     }
     let pins = &spec.design.pins;
     for j in 0..pins.count {
-        let a = std::f64::consts::TAU * j as f64 / pins.count as f64;
+        let [x, y] = pins.centre_mm(j);
         pair(0, "CIRCLE");
         pair(8, &format!("HOLE_{j}"));
-        pair(10, &format!("{:.9}", pins.circle_radius_mm * a.cos()));
-        pair(20, &format!("{:.9}", pins.circle_radius_mm * a.sin()));
+        pair(10, &format!("{x:.9}"));
+        pair(20, &format!("{y:.9}"));
         pair(30, "0.0");
         pair(40, &format!("{:.9}", spec.design.hole_radius_mm()));
     }

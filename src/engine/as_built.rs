@@ -15,22 +15,11 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
     let Some(measured) = &spec.measured else {
         return Ok(None);
     };
-    if let Some(i) = spec
-        .scenes
-        .iter()
-        .position(|s| s.geometry == crate::model::GeometryMode::FirstOrder)
-    {
-        return Err(crate::error::Error::new(
-            crate::error::ErrorKind::InvalidValue,
-            format!(
-                "scene `{}` asks for the first-order geometry, but with `measured_profile` the \
-                 scenes run on the disc as built, whose form error only the exact geometry \
-                 holds: use `geometry: exact`",
-                spec.scenes[i].name
-            ),
-        )
-        .at_key(format!("scenes[{i}].geometry")));
-    }
+    crate::spec::refuse_first_order(
+        &spec.scenes,
+        "with `measured_profile` the scenes run on the disc as built, whose form error only \
+         the exact geometry holds: use `geometry: exact`",
+    )?;
     let id = fit(spec, measured)?;
     let mut built = spec.clone();
     built.modification = id.modification;

@@ -76,6 +76,22 @@ pub fn scene_index(scenes: &[Scene], name: &str, key: &str) -> Result<usize> {
     })
 }
 
+/// Refuse the first scene that asks for the first-order geometry, at its key: `why` says what
+/// needs the exact one ("…, but {why}").
+pub fn refuse_first_order(scenes: &[Scene], why: &str) -> Result<()> {
+    match (scenes.iter()).position(|s| s.geometry == crate::model::GeometryMode::FirstOrder) {
+        Some(i) => Err(crate::error::Error::new(
+            crate::error::ErrorKind::InvalidValue,
+            format!(
+                "scene `{}` asks for the first-order geometry, but {why}",
+                scenes[i].name
+            ),
+        )
+        .at_key(format!("scenes[{i}].geometry"))),
+        None => Ok(()),
+    }
+}
+
 /// The scenes' names, comma-separated, for messages about an unknown scene.
 pub fn scene_names(scenes: &[Scene]) -> String {
     scenes

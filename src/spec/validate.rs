@@ -555,21 +555,12 @@ fn exact_as_built(design: &Design, scenes: &[Scene]) -> Result<()> {
     if design.deviations.is_nominal() {
         return Ok(());
     }
-    match scenes
-        .iter()
-        .position(|s| s.geometry == GeometryMode::FirstOrder)
-    {
-        Some(i) => Err(invalid(
-            &format!("scenes[{i}].geometry"),
-            format!(
-                "scene `{}` asks for the first-order geometry, but `reducer.deviations` puts parts \
-                 off their nominal places: the closed form assumes every roller and pin on its \
-                 place, so parts as built are computed with `geometry: exact`",
-                scenes[i].name
-            ),
-        )),
-        None => Ok(()),
-    }
+    super::refuse_first_order(
+        scenes,
+        "`reducer.deviations` puts parts off their nominal places: the closed form assumes \
+         every roller and pin on its place, so parts as built are computed with \
+         `geometry: exact`",
+    )
 }
 
 /// A `min_bearing_life_h` limit needs what the life is computed from: the bearing's rating

@@ -323,6 +323,40 @@ fn sweep_is_the_same_on_one_and_on_four_threads() {
     }
 }
 
+/// The same for two discs (`curves::sweep_discs_observed`), whose lean kernels and scratch
+/// space are built once per thread and restarted at every chunk: on one thread each chunk
+/// after the first inherits the screens, active sets and followed rotations of the one
+/// before, on four each thread's first chunk starts fresh, and the curves and the shares must
+/// be the same bit for bit. At 1e-6 N·m every angle goes to the coupled solve instead.
+#[test]
+fn two_discs_sweep_the_same_on_one_and_on_four_threads() {
+    for (path, scene) in [
+        ("specs/paper.yaml", "rated"),
+        ("specs/hard/torque-1e-6.yaml", ""),
+    ] {
+        let spec = load(path);
+        let scene = spec
+            .scenes
+            .iter()
+            .position(|s| s.name == scene)
+            .unwrap_or(0);
+        let discs = cycloid::equilibrium::discs::Discs::new(&model(&spec, scene), 2);
+        let angles = grid(&spec, scene, 1000);
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let silent = &cycloid::progress::Silent;
+            pool.install(|| curves::sweep_discs_observed(&discs, &angles, true, silent).unwrap())
+        };
+        let (one, four) = (on(1), on(4));
+        assert_eq!(one.discs, four.discs, "{path}");
+        assert_eq!(one.torque_nmm, four.torque_nmm, "{path}");
+        assert_eq!(one.transmission, four.transmission, "{path}");
+    }
+}
+
 /// The kernel's compliance d(β + βo)/dT (what several discs weigh their shares by) against a
 /// central difference of its own lags at T ± h, h = 1e-4·T, on the paper design with pins
 /// over a mesh period. Between contact changes each balance is linear in its lag, so the

@@ -1,7 +1,7 @@
 //! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
-use super::discs::{converged, finish, newton_step, solve_coupled, CoupledWork, Discs};
+use super::discs::{converged, finish, newton_step, solve_coupled, CoupledWork, Discs, PerDisc};
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
@@ -407,9 +407,10 @@ fn solve_disc_chunk(
     discs: &Discs,
     crank_rad: &[f64],
     chunk: &mut DiscChunk<'_>,
+    lean: &mut Lean<'_>,
 ) -> Result<(), SweepFailure> {
     let mut work = CoupledWork::new(discs);
-    let mut lean = Lean::new(discs, crank_rad);
+    lean.restart(discs, crank_rad);
     for (k, &phi) in crank_rad.iter().enumerate() {
         let fail = |failure| SweepFailure {
             crank_rad: phi,
@@ -438,15 +439,12 @@ fn solve_disc_chunk(
 /// disc (first-order geometry, the linear law, a rigid bearing): each disc is solved at the
 /// shares extrapolated from the last angles, and the Newton on the shares, weighted by each
 /// kernel's own compliance at its solution, corrects them until the split settles
-/// (`discs::converged`); an angle it does not settle goes to the coupled solve.
+/// (`discs::converged`); an angle it does not settle goes to the coupled solve. One per
+/// worker, restarted at every chunk (`Lean::restart`): its kernels and scratch space are
+/// built once per sweep.
 struct Lean<'a> {
-    kernels: Vec<FirstOrderSweep<'a>>,
-    scratch: Vec<Scratch>,
-    bearing_angle: Vec<NearbyAtan2>,
-    crank_direction: Vec<NearbySinCos>,
-    /// Each disc's own crank angles over the chunk (φ + its phase), for its screen of the
-    /// rollers that may touch over the angles ahead (`FirstOrderSweep::screen`).
-    cranks: Vec<Vec<f64>>,
+    /// Every disc's kernel and state, or none: the lean path needs them all.
+    discs: Vec<LeanDisc<'a>>,
     /// The crank distance over which the shares' history extrapolates (`Model::warm_reach`).
     reach: f64,
     /// The Newton's tolerance on a share's correction, N·mm: a quarter of the coupled solve's,
@@ -455,64 +453,110 @@ struct Lean<'a> {
     tol: f64,
 }
 
+/// One disc's lean kernel and what it carries along a chunk.
+struct LeanDisc<'a> {
+    kernel: FirstOrderSweep<'a>,
+    scratch: Scratch,
+    bearing_angle: NearbyAtan2,
+    crank_direction: NearbySinCos,
+    /// The disc's own crank angles over the chunk (φ + its phase), for its screen of the
+    /// rollers that may touch over the angles ahead (`FirstOrderSweep::screen`).
+    cranks: Vec<f64>,
+    /// The kernel's summary and the crank direction e_φ at the angle being solved.
+    summary: Summary,
+    e_phi: Vec2,
+}
+
 /// Newton steps on the shares that the lean kernels take at one angle before the coupled
 /// solve takes over: one when the extrapolated split holds, two when the shares move and no
 /// contact changes (the first-order balance is linear on a contact set, and the kernels'
 /// compliances are its slopes), three when one contact changes on the way.
 const LEAN_STEPS: usize = 3;
 
-impl<'a> Lean<'a> {
-    /// Disc d at angle k by its kernel at the share `torque` (N·mm), its screen renewed when
-    /// it lapsed: the kernel's summary and the crank direction, or `None` where the kernel
-    /// leaves the angle to the general solve.
-    fn disc(
+impl LeanDisc<'_> {
+    /// Angle k by the kernel at the share `torque` (N·mm), its screen renewed when it lapsed:
+    /// the disc's output lag γk (rad) and stiffness 1/ck (N·mm/rad), its summary kept. `None`
+    /// where the kernel leaves the angle to the general solve, or the disc has no contact
+    /// (no compliance of its own).
+    fn solve(
         &mut self,
-        discs: &Discs,
-        (d, k): (usize, usize),
+        (model, work): (&Model, &Work),
+        k: usize,
         torque: f64,
-        work: &CoupledWork,
-        chunk: &mut DiscChunk<'_>,
-    ) -> Option<(Summary, Vec2)> {
-        let phi_d = self.cranks[d][k];
-        let (sin, cos) = self.crank_direction[d].sin_cos(phi_d);
-        let guess = || work.works[d].guess(phi_d, &discs.models[d]);
-        self.kernels[d].set_torque(torque);
-        let row = &mut chunk.discs[d];
-        let s = self.kernels[d].solve(
-            phi_d,
-            (cos, sin),
-            guess,
-            &mut self.scratch[d],
-            &mut row.row(k),
-        )?;
-        if !self.scratch[d].screened() {
-            let ahead = &self.cranks[d][k + 1..];
-            self.kernels[d].screen(ahead, s.lag_rad, &mut self.scratch[d]);
+        rows: &mut Chunk<'_>,
+    ) -> Option<(f64, f64)> {
+        let phi = self.cranks[k];
+        let (sin, cos) = self.crank_direction.sin_cos(phi);
+        let guess = || work.guess(phi, model);
+        self.kernel.set_torque(torque);
+        let s = self
+            .kernel
+            .solve(phi, (cos, sin), guess, &mut self.scratch, &mut rows.row(k))?;
+        if !self.scratch.screened() {
+            let ahead = &self.cranks[k + 1..];
+            self.kernel.screen(ahead, s.lag_rad, &mut self.scratch);
         }
-        Some((s, Vec2::new(cos, sin)))
+        // The kernel's own compliance on its contact set: exact until a contact changes.
+        let c = s.compliance_rad_per_nmm;
+        (self.summary, self.e_phi) = (s, Vec2::new(cos, sin));
+        c.is_finite()
+            .then_some((s.lag_rad + s.output_lag_rad, 1.0 / c))
     }
+}
 
-    fn new(discs: &'a Discs, crank_rad: &[f64]) -> Self {
-        // Every disc's kernel, or none: the lean path needs them all.
-        let kernels: Vec<FirstOrderSweep<'a>> = discs
-            .models
-            .iter()
-            .map(FirstOrderSweep::new)
-            .collect::<Option<_>>()
-            .unwrap_or_default();
-        let n = kernels.len();
+impl<'a> Lean<'a> {
+    fn new(discs: &'a Discs) -> Self {
+        let kernels: Option<Vec<FirstOrderSweep<'a>>> =
+            discs.models.iter().map(FirstOrderSweep::new).collect();
+        let disc = |kernel| LeanDisc {
+            kernel,
+            scratch: Scratch::default(),
+            bearing_angle: NearbyAtan2::default(),
+            crank_direction: NearbySinCos::default(),
+            cranks: Vec::with_capacity(CHUNK),
+            summary: Summary::default(),
+            e_phi: Vec2::zeros(),
+        };
         Lean {
-            kernels,
-            scratch: (0..n).map(|_| Scratch::default()).collect(),
-            bearing_angle: vec![NearbyAtan2::default(); n],
-            crank_direction: vec![NearbySinCos::default(); n],
-            cranks: discs.phases[..n]
-                .iter()
-                .map(|p| crank_rad.iter().map(|c| c + p).collect())
-                .collect(),
+            discs: kernels.unwrap_or_default().into_iter().map(disc).collect(),
             reach: discs.models[0].warm_reach(),
             tol: 2.5 * discs.models[0].settings.rel_tol * discs.torque_nmm.abs(),
         }
+    }
+
+    /// Start the chunk of crank angles `crank_rad`: each disc's angles, and every state a
+    /// previous chunk left (active sets, screens, the rotations followed) forgotten, so that
+    /// a chunk's results do not depend on which chunks its worker solved before.
+    fn restart(&mut self, discs: &Discs, crank_rad: &[f64]) {
+        for (disc, phase) in self.discs.iter_mut().zip(&discs.phases) {
+            disc.cranks.clear();
+            disc.cranks.extend(crank_rad.iter().map(|c| c + phase));
+            disc.scratch.restart();
+            disc.bearing_angle = NearbyAtan2::default();
+            disc.crank_direction = NearbySinCos::default();
+        }
+    }
+
+    /// Every disc at angle k at the shares `torque` (N·mm): each one's output lag and
+    /// stiffness, or `None` when one leaves the angle to the coupled solve.
+    fn solve_discs(
+        &mut self,
+        discs: &Discs,
+        k: usize,
+        torque: &PerDisc,
+        work: &CoupledWork,
+        chunk: &mut DiscChunk<'_>,
+    ) -> Option<(PerDisc, PerDisc)> {
+        let (mut lag, mut weights) = ([0.0; MAX_DISCS], [0.0; MAX_DISCS]);
+        let per_disc = self
+            .discs
+            .iter_mut()
+            .zip(discs.models.iter().zip(&work.works))
+            .zip(&mut chunk.discs);
+        for (d, ((disc, solver), rows)) in per_disc.enumerate() {
+            (lag[d], weights[d]) = disc.solve(solver, k, torque[d], rows)?;
+        }
+        Some((lag, weights))
     }
 
     /// Angle k (crank `phi`) by the kernels at the shares extrapolated from the last angles,
@@ -527,40 +571,30 @@ impl<'a> Lean<'a> {
         work: &mut CoupledWork,
         chunk: &mut DiscChunk<'_>,
     ) -> Option<f64> {
-        if self.kernels.is_empty() {
+        let n = self.discs.len();
+        if n == 0 {
             return None;
         }
-        let n = discs.count();
-        let mut weights = [0.0; MAX_DISCS];
         let (total, tol) = (discs.torque_nmm, self.tol);
         let mut torque = work.guess(phi, n, self.reach);
-        torque.iter_mut().for_each(|t| *t *= total);
-        let mut lag = [0.0; MAX_DISCS];
-        let mut summaries = [(Summary::default(), Vec2::zeros()); MAX_DISCS];
-        let mut common = None;
+        for t in &mut torque[..n] {
+            *t *= total;
+        }
+        let mut settled = None;
         for step_number in 0..LEAN_STEPS {
             if step_number > 0 {
                 chunk.discs.iter_mut().for_each(|c| c.clear(k));
             }
-            for d in 0..n {
-                let s = self.disc(discs, (d, k), torque[d], work, chunk);
-                // The kernel's own compliance on its contact set: exact until a contact
-                // changes. A disc without contact (none) goes to the coupled solve.
-                let Some(s) = s.filter(|s| s.0.compliance_rad_per_nmm.is_finite()) else {
-                    chunk.discs.iter_mut().for_each(|c| c.clear(k));
-                    return None;
-                };
-                summaries[d] = s;
-                lag[d] = s.0.lag_rad + s.0.output_lag_rad;
-                weights[d] = 1.0 / s.0.compliance_rad_per_nmm;
-            }
+            let Some((lag, weights)) = self.solve_discs(discs, k, &torque, work, chunk) else {
+                break;
+            };
             let (t, g) = (&torque[..n], &lag[..n]);
             let (c, step) = newton_step(t, g, &weights[..n], total);
             if converged((t, g), c, &step[..n], tol) {
-                common = Some(c);
+                settled = Some((c, lag));
                 break;
             }
-            for (t, d) in torque.iter_mut().zip(&step).take(n) {
+            for (t, d) in torque[..n].iter_mut().zip(&step) {
                 *t += d;
             }
             // A share against the torque sends its disc across its backlash: the coupled
@@ -569,18 +603,23 @@ impl<'a> Lean<'a> {
                 break;
             }
         }
-        let Some(common) = common else {
+        let Some((common, lag)) = settled else {
             chunk.discs.iter_mut().for_each(|c| c.clear(k));
             return None;
         };
-        let (torque, lag) = (&torque[..n], &lag[..n]);
-        for (d, (s, e_phi)) in summaries.iter().take(n).enumerate() {
-            let rows = &mut chunk.discs[d];
-            rows.record_first_order(k, *e_phi, s, &mut self.bearing_angle[d]);
-            chunk.torque[d][k] = torque[d];
-            work.works[d].remember_lags(self.cranks[d][k], s.lag_rad, s.output_lag_rad);
+        let per_disc = self
+            .discs
+            .iter_mut()
+            .zip(&mut chunk.discs)
+            .zip(&mut chunk.torque)
+            .zip(&mut work.works);
+        for ((((disc, rows), shares), w), t) in per_disc.zip(torque) {
+            let s = &disc.summary;
+            rows.record_first_order(k, disc.e_phi, s, &mut disc.bearing_angle);
+            shares[k] = t;
+            w.remember_lags(disc.cranks[k], s.lag_rad, s.output_lag_rad);
         }
-        finish(work, phi, torque, total, lag);
+        finish(work, phi, &torque[..n], total, &lag[..n]);
         Some(common)
     }
 }
@@ -616,11 +655,14 @@ pub fn sweep_discs_observed(
     let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
         .par_chunks(CHUNK)
         .zip(per_chunk)
-        .map(|(c, mut chunk)| {
-            let done = solve_disc_chunk(discs, c, &mut chunk);
-            progress.advance(c.len() as u64);
-            done
-        })
+        .map_init(
+            || Lean::new(discs),
+            |lean, (c, mut chunk)| {
+                let done = solve_disc_chunk(discs, c, &mut chunk, lean);
+                progress.advance(c.len() as u64);
+                done
+            },
+        )
         .collect();
     outcomes.into_iter().collect::<Result<(), _>>()?;
     let model = &discs.models[0];

@@ -100,29 +100,25 @@ impl CoupledWork {
             out[0] = 1.0;
             return out;
         }
-        let history = &self.shares[3 - self.filled..];
-        let near = history
-            .last()
-            .is_some_and(|(c, _)| (c - crank).abs() <= reach);
-        let weights: &[f64] = match history {
-            _ if !near => {
-                out[..n].fill(1.0 / n as f64);
-                return out;
-            }
-            [(p0, _), (p1, _), (p2, _)] => &[
+        let [(p0, s0), (p1, s1), (p2, s2)] = &self.shares;
+        let (p0, p1, p2) = (*p0, *p1, *p2);
+        if self.filled == 0 || (p2 - crank).abs() > reach {
+            out[..n].fill(1.0 / n as f64);
+            return out;
+        }
+        // Lagrange weights of the entries held (an entry not yet filled has weight zero), so
+        // that the sum over the fixed three entries and `MAX_DISCS` discs unrolls.
+        let weights = match self.filled {
+            1 => [0.0, 0.0, 1.0],
+            2 => [0.0, (p2 - crank) / (p2 - p1), (crank - p1) / (p2 - p1)],
+            _ => [
                 (crank - p1) * (crank - p2) / ((p0 - p1) * (p0 - p2)),
                 (crank - p0) * (crank - p2) / ((p1 - p0) * (p1 - p2)),
                 (crank - p0) * (crank - p1) / ((p2 - p0) * (p2 - p1)),
             ],
-            [(p0, _), (p1, _)] => &[(p1 - crank) / (p1 - p0), (crank - p0) / (p1 - p0)],
-            _ => &[1.0],
         };
-        for (k, o) in out.iter_mut().enumerate().take(n) {
-            *o = weights
-                .iter()
-                .zip(history)
-                .map(|(w, (_, s))| w * s[k])
-                .sum();
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = weights[0] * s0[k] + weights[1] * s1[k] + weights[2] * s2[k];
         }
         out
     }

@@ -230,10 +230,11 @@ const PROBE: f64 = 1e-6;
 /// The Newton update of the shares: the common lag γ* = (T − ΣTk + Σ wk·γk)/Σ wk and each
 /// share's correction wk·(γ* − γk), which keeps Σ Tk = T (`weights` wk = 1/ck, N·mm/rad).
 pub fn newton_step(torque: &[f64], lag: &[f64], weights: &[f64], total: f64) -> (f64, PerDisc) {
-    let w: f64 = weights.iter().sum();
-    let common = (total - torque.iter().sum::<f64>()
-        + weights.iter().zip(lag).map(|(w, g)| w * g).sum::<f64>())
-        / w;
+    let (mut w, mut t, mut wg) = (0.0, 0.0, 0.0);
+    for ((tk, gk), wk) in torque.iter().zip(lag).zip(weights) {
+        (w, t, wg) = (w + wk, t + tk, wg + wk * gk);
+    }
+    let common = (total - t + wg) / w;
     let mut step = [0.0; MAX_DISCS];
     for ((s, w), g) in step.iter_mut().zip(weights).zip(lag) {
         *s = w * (common - g);
@@ -248,11 +249,15 @@ pub fn newton_step(torque: &[f64], lag: &[f64], weights: &[f64], total: f64) -> 
 /// common lag (the steps alone can look converged across a dead band, where a secant over a
 /// disc's jump of lag is a huge compliance, so a tiny weight).
 pub fn converged((torque, lag): (&[f64], &[f64]), common: f64, step: &[f64], tol: f64) -> bool {
-    let off = |k: usize| (lag[k] - common).abs();
-    let agree =
-        (0..lag.len()).all(|k| torque[k] == 0.0 || off(k) <= 1e-7 * common.abs().max(1e-300));
-    let to_ulps = (0..lag.len()).all(|k| off(k) <= 8.0 * f64::EPSILON * lag[k].abs());
-    agree && (to_ulps || step.iter().all(|d| d.abs() <= tol))
+    let near = 1e-7 * common.abs().max(1e-300);
+    let (mut agree, mut to_ulps, mut small) = (true, true, true);
+    for ((t, g), d) in torque.iter().zip(lag).zip(step) {
+        let off = (g - common).abs();
+        agree &= *t == 0.0 || off <= near;
+        to_ulps &= off <= 8.0 * f64::EPSILON * g.abs();
+        small &= d.abs() <= tol;
+    }
+    agree && (to_ulps || small)
 }
 
 /// Newton steps on the shares before `by_lag` takes over: from the split of the previous

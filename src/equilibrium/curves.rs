@@ -1,7 +1,9 @@
 //! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
-use super::discs::{converged, finish, newton_step, solve_coupled, CoupledWork, Discs, PerDisc};
+use super::discs::{
+    converged, newton_step, remember_split, solve_coupled, CoupledWork, Discs, PerDisc,
+};
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
@@ -544,10 +546,11 @@ impl<'a> Lean<'a> {
         discs: &Discs,
         k: usize,
         torque: &PerDisc,
+        lag: &mut PerDisc,
         work: &CoupledWork,
         chunk: &mut DiscChunk<'_>,
-    ) -> Option<(PerDisc, PerDisc)> {
-        let (mut lag, mut weights) = ([0.0; MAX_DISCS], [0.0; MAX_DISCS]);
+    ) -> Option<PerDisc> {
+        let mut weights = [0.0; MAX_DISCS];
         let per_disc = self
             .discs
             .iter_mut()
@@ -556,7 +559,7 @@ impl<'a> Lean<'a> {
         for (d, ((disc, solver), rows)) in per_disc.enumerate() {
             (lag[d], weights[d]) = disc.solve(solver, k, torque[d], rows)?;
         }
-        Some((lag, weights))
+        Some(weights)
     }
 
     /// Angle k (crank `phi`) by the kernels at the shares extrapolated from the last angles,
@@ -577,33 +580,34 @@ impl<'a> Lean<'a> {
         }
         let (total, tol) = (discs.torque_nmm, self.tol);
         let mut torque = work.guess(phi, n, self.reach);
-        for t in &mut torque[..n] {
+        for t in &mut torque {
             *t *= total;
         }
-        let mut settled = None;
+        let mut lag = [0.0; MAX_DISCS];
+        let mut common = None;
         for step_number in 0..LEAN_STEPS {
             if step_number > 0 {
                 chunk.discs.iter_mut().for_each(|c| c.clear(k));
             }
-            let Some((lag, weights)) = self.solve_discs(discs, k, &torque, work, chunk) else {
+            let Some(weights) = self.solve_discs(discs, k, &torque, &mut lag, work, chunk) else {
                 break;
             };
             let (t, g) = (&torque[..n], &lag[..n]);
             let (c, step) = newton_step(t, g, &weights[..n], total);
             if converged((t, g), c, &step[..n], tol) {
-                settled = Some((c, lag));
+                common = Some(c);
                 break;
             }
-            for (t, d) in torque[..n].iter_mut().zip(&step) {
+            for (t, d) in torque.iter_mut().zip(&step) {
                 *t += d;
             }
             // A share against the torque sends its disc across its backlash: the coupled
             // solve handles that.
-            if torque[..n].iter().any(|t| t * total < 0.0) {
+            if torque.iter().any(|t| t * total < 0.0) {
                 break;
             }
         }
-        let Some((common, lag)) = settled else {
+        let Some(common) = common else {
             chunk.discs.iter_mut().for_each(|c| c.clear(k));
             return None;
         };
@@ -619,7 +623,7 @@ impl<'a> Lean<'a> {
             shares[k] = t;
             w.remember_lags(disc.cranks[k], s.lag_rad, s.output_lag_rad);
         }
-        finish(work, phi, &torque[..n], total, &lag[..n]);
+        remember_split(work, phi, &torque[..n], total);
         Some(common)
     }
 }

@@ -539,19 +539,26 @@ fn torque_at_lag(
 /// Remember the converged split for the next angle; the reducer's output lag is the mean of
 /// the discs' (equal to within the tolerance).
 pub fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, lag: &[f64]) -> f64 {
-    if total != 0.0 {
-        let mut shares = [0.0; MAX_DISCS];
-        for (s, t) in shares.iter_mut().zip(torque) {
-            *s = t / total;
-        }
-        // A second solve of the angle remembered last replaces it.
-        if work.filled == 0 || work.shares[2].0 != crank {
-            work.shares.rotate_left(1);
-            work.filled = (work.filled + 1).min(3);
-        }
-        work.shares[2] = (crank, shares);
-    }
+    remember_split(work, crank, torque, total);
     lag.iter().sum::<f64>() / lag.len() as f64
+}
+
+/// Remember the converged split `torque` (N·mm) of the output torque `total` at `crank`, for
+/// the guess at the next angle (`CoupledWork::guess`).
+pub fn remember_split(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64) {
+    if total == 0.0 {
+        return;
+    }
+    let mut shares = [0.0; MAX_DISCS];
+    for (s, t) in shares.iter_mut().zip(torque) {
+        *s = t / total;
+    }
+    // A second solve of the angle remembered last replaces it.
+    if work.filled == 0 || work.shares[2].0 != crank {
+        work.shares.rotate_left(1);
+        work.filled = (work.filled + 1).min(3);
+    }
+    work.shares[2] = (crank, shares);
 }
 
 #[cfg(test)]

@@ -425,6 +425,8 @@ fn run_check(
         return Ok(Outcome::Passed);
     }
     let designed_modification = spec.measured.as_ref().map(|_| spec.modification);
+    // The tolerance study draws from the drawing, whatever disc the other checks run on.
+    let drawing = (tolerance && spec.measured.is_some()).then(|| spec.clone());
     let (spec, identified, designed) =
         match as_built::identify(&spec).map_err(|e| locate(e, &spec))? {
             Some((built, id)) => {
@@ -479,7 +481,7 @@ fn run_check(
         checks.push(check::resolution(r));
     }
     if tolerance {
-        checks.push(tolerance::check(&spec)?);
+        checks.push(tolerance::check(drawing.as_ref().unwrap_or(&spec))?);
     }
     print(out, &format!("cycloid check `{}`\n", spec.name))?;
     if let Some(id) = &identified {

@@ -512,3 +512,61 @@ fn a_written_sample_replays_its_record() {
         assert_eq!(spec.design.deviations.rollers[4].centre.radial_mm, drawn);
     }
 }
+
+/// With `measured_profile`, `check` runs its scenes on the disc as built, but `--tolerance`
+/// studies the drawing, as `cycloid tolerance` does: every part, the disc's grinding errors
+/// among them, is drawn from the drawing, and the check's line says so. The disc here is made
+/// with more root clearance than drawn (ΔRp/ΔRrp 0.125/0.1593 mm against 0.1/0.13 mm: 34.3 µm
+/// against 30 µm), and a sample's equidistant draw (band ±60 µm, σ = 20 µm) moves that
+/// clearance by itself: a study of the disc would fail only the samples drawn below −19.3 µm
+/// where the drawing's fail below −15 µm, so the two counts differ unless no draw of the 100
+/// lands between (a chance of ~0.2 % for a seed; the first assertion holds this seed to it:
+/// 20 against 14 failures, near the 22.7 % and 16.7 % of the normal).
+#[test]
+fn check_tolerance_with_a_measured_disc_studies_the_drawing() {
+    let dir = Scratch::new("tolerance-measured");
+    let here = dir.join("");
+    let made = PaperSpec::new().modification(0.125, 0.1593);
+    dir.write("made.yaml", made.text());
+    let r = cycloid(
+        here.as_path(),
+        &["profile", "made.yaml", "--csv", "disc.csv"],
+    );
+    assert_eq!(r.code(), 0, "{r:?}");
+    let study = "tolerances:\n  scene: rated\n  max_failure_rate: 0.5\n  equidistant_mm: 0.06\n  \
+                 samples: 100\n  seed: 5\n";
+    let measured = "measured_profile: {file: disc.csv, format: csv, harmonics: 0, \
+                    fit: [shift_mm, equidistant_mm]}\n";
+    let drawing = PaperSpec::new().modification(0.1, 0.13).with(study);
+    dir.write("t.yaml", drawing.clone().with(measured).text());
+    dir.write("drawing.yaml", drawing.text());
+    dir.write("disc.yaml", made.with(study).text());
+    let failures = |spec: &str| {
+        let r = cycloid(here.as_path(), &["tolerance", spec]);
+        let line = r.stdout.lines().find(|l| l.starts_with("failure rate"));
+        let line = line.unwrap_or_else(|| panic!("{r:?}")).to_string();
+        // "failure rate (...): F of N = ..." -> "F of N"
+        let count = line.rsplit("): ").next().unwrap();
+        count.split(" =").next().unwrap().to_string()
+    };
+    let (of_drawing, of_disc) = (failures("drawing.yaml"), failures("disc.yaml"));
+    assert_ne!(
+        of_drawing, of_disc,
+        "the case must tell the two studies apart"
+    );
+    assert_eq!(failures("t.yaml"), of_drawing);
+    let r = cycloid(here.as_path(), &["check", "t.yaml", "--tolerance"]);
+    let row = r
+        .stdout
+        .lines()
+        .find(|l| l.contains("tolerance_failure_rate"));
+    let row = row.unwrap_or_else(|| panic!("{r:?}"));
+    assert!(
+        row.contains(&format!("{of_drawing} samples fail some limit")),
+        "{row}\n{of_drawing} (the disc's: {of_disc})"
+    );
+    assert!(
+        row.contains("drawn from the drawing, not the measured disc"),
+        "{row}"
+    );
+}

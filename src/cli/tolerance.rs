@@ -306,7 +306,9 @@ fn write_sample(study: &Study, k: &str, path: &str, out: &mut dyn Write) -> Resu
 }
 
 /// `check --tolerance`: the study of the spec's `tolerances:` as one check, its failure rate
-/// against `max_failure_rate`.
+/// against `max_failure_rate`. `spec` is the drawing: with `measured_profile` the caller's
+/// other checks run on the disc as built, but a study draws every part, the disc too, from
+/// the drawing (as `cycloid tolerance` does), and its line says so.
 pub fn check(spec: &spec::Spec) -> Result<check::Check> {
     let study = Study::new(spec, None).map_err(|e| locate(e, spec))?;
     let bar = Bar::with_rate("tolerance study", "samples", study.samples() as u64);
@@ -325,11 +327,16 @@ pub fn check(spec: &spec::Spec) -> Result<check::Check> {
         bound: crate::model::quantity::Bound::Max,
         passed: s.passed(),
         at: format!(
-            "{} of {} samples fail some limit; 95 % Clopper–Pearson interval [{}, {}]",
+            "{} of {} samples fail some limit; 95 % Clopper–Pearson interval [{}, {}]{}",
             s.failures,
             s.samples,
             crate::numeric::number(s.interval.0),
-            crate::numeric::number(s.interval.1)
+            crate::numeric::number(s.interval.1),
+            if spec.measured.is_some() {
+                "; drawn from the drawing, not the measured disc"
+            } else {
+                ""
+            }
         ),
     })
 }

@@ -63,13 +63,37 @@ pub fn fluctuation(values: &[f64]) -> f64 {
 /// A number for a person: 4 significant figures, no exponent for ordinary magnitudes
 /// (1e-3 ≤ |x| < 1e6), exponent form otherwise (never a 300-digit decimal).
 pub fn number(x: f64) -> String {
-    if x == 0.0 {
-        "0".to_string()
-    } else if (1e-3..1e6).contains(&x.abs()) {
-        let digits = (3 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
-        format!("{x:.digits$}")
-    } else {
-        format!("{x:.3e}")
+    match decimals(x) {
+        _ if x == 0.0 => "0".to_string(),
+        Some(digits) => format!("{x:.digits$}"),
+        None => format!("{x:.3e}"),
+    }
+}
+
+/// The decimals `number` prints `x` with (four significant digits), or `None` where it
+/// prints an exponent (|x| outside [1e-3, 1e6)).
+fn decimals(x: f64) -> Option<usize> {
+    let decimal = (1e-3..1e6).contains(&x.abs());
+    decimal.then(|| (3 - x.abs().log10().floor() as i32).clamp(0, 6) as usize)
+}
+
+/// The change from `from` to `to`, signed, to the decimals the larger of the two is printed
+/// with (`number`), so that it reads against them: a change below their last printed digit is
+/// "0", not a number in exponent form far below what the values show. Where the values
+/// print with an exponent, the change is `number`'s, signed.
+pub fn change(from: f64, to: f64) -> String {
+    let x = to - from;
+    match decimals(from.abs().max(to.abs())) {
+        Some(digits)
+            if format!("{:.digits$}", x.abs())
+                .trim_matches(['0', '.'])
+                .is_empty() =>
+        {
+            "0".to_string()
+        }
+        Some(digits) => format!("{x:+.digits$}"),
+        None if x == 0.0 => "0".to_string(),
+        None => format!("{x:+.3e}"),
     }
 }
 
@@ -87,6 +111,20 @@ pub fn input(x: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A change reads against the values it is between: to their printed decimals, signed,
+    /// and "0" below their last digit (a difference at the round-off of two 1,234.5 N forces
+    /// is not "1.418e-4"); values printed with an exponent give an exponent change.
+    #[test]
+    fn changes_are_printed_to_the_values_decimals() {
+        assert_eq!(number(1234.5678), "1235");
+        assert_eq!(change(1234.5678, 1234.5679418), "0");
+        assert_eq!(change(1234.5, 1236.4), "+2");
+        assert_eq!(change(0.03430, 0.03000), "-0.00430");
+        assert_eq!(change(12.5, 12.5), "0");
+        assert_eq!(change(2e-5, 3e-5), "+1.000e-5");
+        assert_eq!(change(2e6, 2e6), "0");
+    }
 
     /// Extremes and entries are found where they are, and empty input has defined answers.
     #[test]

@@ -8,7 +8,7 @@ use super::fit::{fixed, flank_length_mm};
 use super::html::{data_table, figure, section, Section};
 use super::svg::frame::{titles, wrap, Frame};
 use super::svg::{self, document, px, LinePlot, Series, PALETTE, RED};
-use super::table::{count_or_number, with_unit};
+use super::table::{count_or_change, count_or_number, with_unit};
 use crate::engine::summary::{summarise, SceneSummary};
 use crate::geometry::profile::Profile;
 use crate::geometry::{polyline, Vec2};
@@ -177,7 +177,7 @@ fn rows(designed: &SceneSummary, built: &SceneSummary) -> maud::Markup {
                 th { @if k == 0 { code { (designed.scene) } " " } (d.quantity.label) }
                 td.num { (with_unit(count_or_number(d.value, d.quantity.unit), d.quantity.unit)) }
                 td.num { (with_unit(count_or_number(b.value, b.quantity.unit), b.quantity.unit)) }
-                td.num { (with_unit(number(b.value - d.value), d.quantity.unit)) }
+                td.num { (with_unit(count_or_change(d.value, b.value, d.quantity.unit), d.quantity.unit)) }
             }
         }
     }

@@ -120,10 +120,24 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
 
 /// A count (a whole dimensionless value, e.g. rollers in contact) as an integer, else `number`.
 pub fn count_or_number(x: f64, unit: &str) -> String {
-    if unit.is_empty() && x.fract() == 0.0 && x.abs() < 1e9 {
+    if is_count(x, unit) {
         format!("{x:.0}")
     } else {
         number(x)
+    }
+}
+
+/// A unitless whole number (rollers in contact) prints as a count.
+fn is_count(x: f64, unit: &str) -> bool {
+    unit.is_empty() && x.fract() == 0.0 && x.abs() < 1e9
+}
+
+/// The change from `from` to `to` as those two print (`count_or_number`): a signed count
+/// between counts, else `numeric::change`.
+pub fn count_or_change(from: f64, to: f64, unit: &str) -> String {
+    match to - from {
+        x if is_count(from, unit) && is_count(to, unit) && x != 0.0 => format!("{x:+.0}"),
+        _ => crate::numeric::change(from, to),
     }
 }
 
@@ -162,4 +176,20 @@ pub fn render_summary(summaries: &[SceneSummary]) -> String {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::count_or_change;
+
+    /// Counts change by signed whole numbers; anything else as `numeric::change`, to the
+    /// decimals the values print with.
+    #[test]
+    fn count_changes_are_signed_whole_numbers() {
+        assert_eq!(count_or_change(3.0, 4.0, ""), "+1");
+        assert_eq!(count_or_change(4.0, 3.0, ""), "-1");
+        assert_eq!(count_or_change(3.0, 3.0, ""), "0");
+        assert_eq!(count_or_change(3.0, 4.0, "N"), "+1.000");
+        assert_eq!(count_or_change(9.0, 9.5, ""), "+0.500");
+    }
 }

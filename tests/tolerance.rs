@@ -354,6 +354,12 @@ fn exit_codes_and_the_message_of_a_bad_band() {
     assert!(r
         .stdout
         .contains("failure rate (a sample fails when any limit fails): 0 of 20"));
+    // The limit as every table writes it (`Bound::symbol`).
+    assert!(
+        r.stdout.contains("\nmin_clearance_mm ≥ 0.01500 mm  "),
+        "{}",
+        r.stdout
+    );
     // 0.9 mm of ΔRrp error closes the 35 µm gap in about half the samples.
     dir.write(
         "f.yaml",

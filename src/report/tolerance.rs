@@ -18,6 +18,8 @@ pub const LINEAR_CAVEAT: &str = "the limited quantities are maxima or minima ove
     crank angles: the linear stack-up holds only while the worst roller and angle stay the same \
     over the band; the Monte Carlo spread is the answer where they do not";
 
+/// The bound in the JSON, in ASCII (`<=`, `>=`): what a script compares against; the terminal
+/// and the review print `Bound::symbol` like every other table.
 fn bound_sign(b: Bound) -> &'static str {
     match b {
         Bound::Min => ">=",
@@ -71,7 +73,7 @@ pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String 
         let mut row = vec![format!(
             "{} {} {} {}",
             l.key,
-            bound_sign(l.bound),
+            l.bound.symbol(),
             number(l.limit),
             l.unit
         )];

@@ -327,9 +327,10 @@ pub fn check(spec: &spec::Spec) -> Result<check::Check> {
         bound: crate::model::quantity::Bound::Max,
         passed: s.passed(),
         at: format!(
-            "{} of {} samples fail some limit; 95 % Clopper–Pearson interval [{}, {}]{}",
+            "{} of {} samples fail some limit; {} Clopper–Pearson interval [{}, {}]{}",
             s.failures,
             s.samples,
+            summary::percent_label(summary::CONFIDENCE),
             crate::numeric::number(s.interval.0),
             crate::numeric::number(s.interval.1),
             if spec.measured.is_some() {

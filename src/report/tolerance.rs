@@ -3,7 +3,7 @@
 //! so that the files of a sharded and an unsharded run compare byte for byte.
 
 use crate::engine::tolerance::sensitivity::Sensitivity;
-use crate::engine::tolerance::summary::{Summary, QUANTILES};
+use crate::engine::tolerance::summary::{percent_label, Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, Study};
 use crate::model::quantity::Bound;
 use crate::numeric::number;
@@ -58,17 +58,14 @@ pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String 
         t.seed,
         bands(study),
     );
-    let header = [
-        "limit",
-        "min",
-        "0.135 %",
-        "50 %",
-        "99.865 %",
-        "max",
-        "failures",
-        "rate [95 % CI]",
-    ];
-    let mut rows = vec![header.map(String::from).to_vec()];
+    let mut header = vec!["limit".to_string(), "min".to_string()];
+    header.extend(QUANTILES.map(percent_label));
+    header.extend([
+        "max".to_string(),
+        "failures".to_string(),
+        format!("rate [{} CI]", percent_label(CONFIDENCE)),
+    ]);
+    let mut rows = vec![header];
     for l in &s.limits {
         let mut row = vec![format!(
             "{} {} {} {}",
@@ -91,13 +88,14 @@ pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String 
     }
     out += &columns(&rows);
     out += &format!(
-        "\nfailure rate (a sample fails when any limit fails): {} of {} = {} [{}, {}] (95 % \
+        "\nfailure rate (a sample fails when any limit fails): {} of {} = {} [{}, {}] ({} \
          Clopper–Pearson), allowed {}: {}\n",
         s.failures,
         s.samples,
         percent(s.rate()),
         percent(s.interval.0),
         percent(s.interval.1),
+        percent_label(CONFIDENCE),
         percent(s.max_failure_rate),
         if s.passed() { "PASS" } else { "FAIL" }
     );

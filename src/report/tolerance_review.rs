@@ -9,7 +9,9 @@ use super::svg::{LinePlot, Series, PALETTE, RED};
 use super::table::with_unit;
 use super::tolerance::{LINEAR_CAVEAT, QUANTILE_DEFINITION};
 use crate::engine::tolerance::sensitivity::Sensitivity;
-use crate::engine::tolerance::summary::{LimitSummary, Summary};
+use crate::engine::tolerance::summary::{
+    percent_label, LimitSummary, Summary, CONFIDENCE, QUANTILES,
+};
 use crate::engine::tolerance::{Records, Study};
 use crate::error::Result;
 use crate::numeric::number;
@@ -81,10 +83,11 @@ fn rates_section(s: &Summary) -> Section {
     let body = html! {
         p.note { "Per limit, the spread of its quantity over the samples and how many fail it; \
                   a sample fails when it fails any limit. Quantiles: " (QUANTILE_DEFINITION)
-                  ". Intervals: 95 % Clopper–Pearson." }
+                  ". Intervals: " (percent_label(CONFIDENCE)) " Clopper–Pearson." }
         (data_table(
-            html! { th { "limit" } th { "min" } th { "0.135 %" } th { "median" }
-                th { "99.865 %" } th { "max" } th { "failures" } th { "failure rate [95 % CI]" } },
+            html! { th { "limit" } th { "min" } th { (percent_label(QUANTILES[0])) } th { "median" }
+                th { (percent_label(QUANTILES[2])) } th { "max" } th { "failures" }
+                th { "failure rate [" (percent_label(CONFIDENCE)) " CI]" } },
             html! {
                 @for l in &s.limits {
                     tr class=(if l.failures == 0 { "pass" } else { "fail" }) {
@@ -204,8 +207,10 @@ pub fn render(
             &name,
             &format!("Distribution of {}", ls.quantity),
             &format!(
-                "every sample's {}; the dashed red line is the limit; 0.135 % to 99.865 %: {} to {}",
+                "every sample's {}; the dashed red line is the limit; {} to {}: {} to {}",
                 ls.label,
+                percent_label(QUANTILES[0]),
+                percent_label(QUANTILES[2]),
                 number(ls.quantiles[0]),
                 number(ls.quantiles[2])
             ),

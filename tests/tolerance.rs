@@ -354,6 +354,14 @@ fn exit_codes_and_the_message_of_a_bad_band() {
     assert!(r
         .stdout
         .contains("failure rate (a sample fails when any limit fails): 0 of 20"));
+    assert!(
+        r.stdout.starts_with(
+            "cycloid tolerance `paper-table-1`: scene `rated`, 20 samples, normal distribution \
+             (band = 3σ, draws beyond 6σ drawn again), seed 3\n"
+        ),
+        "{}",
+        r.stdout
+    );
     // The limit as every table writes it (`Bound::symbol`).
     assert!(
         r.stdout.contains("\nmin_clearance_mm ≥ 0.01500 mm  "),

@@ -45,16 +45,12 @@ fn bands(study: &Study) -> String {
 pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String {
     let t = &study.tolerances;
     let mut out = format!(
-        "cycloid tolerance `{}`: scene `{}`, {} samples, {} distribution{}, seed {}\n\
+        "cycloid tolerance `{}`: scene `{}`, {} samples, {}, seed {}\n\
          toleranced (mm): {}\n\n",
         study.spec.name,
         study.spec.scenes[t.scene].name,
         s.samples,
-        t.distribution.name(),
-        match t.distribution {
-            crate::model::tolerances::Distribution::Normal => " (band = 3σ, cut at 6σ)",
-            crate::model::tolerances::Distribution::Uniform => "",
-        },
+        t.distribution.describe(),
         t.seed,
         bands(study),
     );

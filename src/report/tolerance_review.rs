@@ -118,9 +118,7 @@ fn study_section(study: &Study) -> Section {
     let t = &study.tolerances;
     let body = html! {
         p { "Scene " code { (study.spec.scenes[t.scene].name) } ", " (t.samples) " samples, seed "
-            (t.seed) ", " (t.distribution.name()) " distribution"
-            (if matches!(t.distribution, crate::model::tolerances::Distribution::Normal) {
-                " (band = 3σ, draws beyond 6σ drawn again)" } else { " over the band" })
+            (t.seed) ", " (t.distribution.describe())
             ". Every part's deviation is drawn independently; sample k depends only on (seed, k)." }
         (data_table(
             html! { th { "tolerance" } th { "band ±b" } th { "σ" } th { "parts" } },

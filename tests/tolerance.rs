@@ -405,6 +405,13 @@ fn exit_codes_and_the_message_of_a_bad_band() {
              be zero (not toleranced) or positive, got -0.002"
         )
     );
+    // `--samples` is held to the spec's range, with the flag named.
+    let r = cycloid(here.as_path(), &["tolerance", "t.yaml", "--samples", "0"]);
+    assert_eq!(r.code(), 2);
+    assert_eq!(
+        r.stderr,
+        "invalid value: --samples must be 1 to 1000000000, got 0\n"
+    );
     let r = cycloid(
         here.as_path(),
         &["tolerance", "t.yaml", "--shard", "3/2", "--out", "x"],

@@ -23,6 +23,14 @@ pub const DEFAULT_SAMPLES: usize = 1000;
 /// Largest study: 10⁹ samples (at ~10 ms each, 10⁷ core-seconds: a cluster's job array).
 pub const MAX_SAMPLES: i64 = 1_000_000_000;
 
+/// A study's sample count (the spec's `samples` or `--samples`), or what is wrong with it.
+pub fn sample_count(n: i64) -> std::result::Result<usize, String> {
+    match usize::try_from(n) {
+        Ok(count) if (1..=MAX_SAMPLES).contains(&n) => Ok(count),
+        _ => Err(format!("must be 1 to {MAX_SAMPLES}, got {n}")),
+    }
+}
+
 /// The validated `tolerances:` of a spec whose design, modification and scenes are `design`,
 /// `m` and `scenes`.
 pub fn build(
@@ -59,12 +67,7 @@ pub fn build(
         ));
     }
     let samples = raw.samples.unwrap_or(DEFAULT_SAMPLES as i64);
-    if !(1..=MAX_SAMPLES).contains(&samples) {
-        return Err(invalid(
-            "samples",
-            format!("must be 1 to {MAX_SAMPLES}, got {samples}"),
-        ));
-    }
+    let samples = sample_count(samples).map_err(|m| invalid("samples", m))?;
     let seed = raw.seed.unwrap_or(0);
     if seed < 0 {
         return Err(invalid(
@@ -86,7 +89,7 @@ pub fn build(
         bands_mm,
         distribution,
         scene,
-        samples: samples as usize,
+        samples,
         seed: seed as u64,
         max_failure_rate: rate,
     };

@@ -70,16 +70,9 @@ impl<'a> Study<'a> {
             )
         })?;
         if let Some(n) = samples {
-            if n == 0 || n as i64 > crate::spec::tolerances::MAX_SAMPLES {
-                return Err(Error::new(
-                    ErrorKind::InvalidValue,
-                    format!(
-                        "--samples must be 1 to {}, got {n}",
-                        crate::spec::tolerances::MAX_SAMPLES
-                    ),
-                ));
-            }
-            tolerances.samples = n;
+            let n = i64::try_from(n).unwrap_or(i64::MAX);
+            tolerances.samples = crate::spec::tolerances::sample_count(n)
+                .map_err(|m| Error::new(ErrorKind::InvalidValue, format!("--samples {m}")))?;
         }
         let d = &spec.design;
         let params = tol::parameters(&tolerances, d.rollers, d.pins.count, d.discs);

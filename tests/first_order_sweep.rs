@@ -300,27 +300,36 @@ fn sweep_agrees_with_the_general_solve_on_hard_cases() {
 /// follow the chunk too.
 #[test]
 fn sweep_is_the_same_on_one_and_on_four_threads() {
-    for (path, scene) in [
+    for (path, model, angles) in thread_cases() {
+        let on = |threads| on_threads(threads, || curves::sweep(&model, &angles, true).unwrap());
+        assert_eq!(on(1), on(4), "{path}");
+    }
+}
+
+/// The thread tests' cases: the paper design at its rated torque and the design at 1e-6 N·m,
+/// each over 1000 angles of its scene: (spec path, model, angles).
+fn thread_cases() -> Vec<(&'static str, Model, Vec<f64>)> {
+    [
         ("specs/paper.yaml", "rated"),
         ("specs/hard/torque-1e-6.yaml", ""),
-    ] {
+    ]
+    .into_iter()
+    .map(|(path, scene)| {
         let spec = load(path);
         let scene = spec
             .scenes
             .iter()
             .position(|s| s.name == scene)
             .unwrap_or(0);
-        let model = model(&spec, scene);
-        let angles = grid(&spec, scene, 1000);
-        let on = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| curves::sweep(&model, &angles, true).unwrap())
-        };
-        assert_eq!(on(1), on(4), "{path}");
-    }
+        (path, model(&spec, scene), grid(&spec, scene, 1000))
+    })
+    .collect()
+}
+
+/// `f` on a pool of `threads` threads.
+fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads);
+    pool.build().unwrap().install(f)
 }
 
 /// The same for two discs (`curves::sweep_discs_observed`), whose lean kernels and scratch
@@ -330,27 +339,11 @@ fn sweep_is_the_same_on_one_and_on_four_threads() {
 /// be the same bit for bit. At 1e-6 N·m every angle goes to the coupled solve instead.
 #[test]
 fn two_discs_sweep_the_same_on_one_and_on_four_threads() {
-    for (path, scene) in [
-        ("specs/paper.yaml", "rated"),
-        ("specs/hard/torque-1e-6.yaml", ""),
-    ] {
-        let spec = load(path);
-        let scene = spec
-            .scenes
-            .iter()
-            .position(|s| s.name == scene)
-            .unwrap_or(0);
-        let discs = cycloid::equilibrium::discs::Discs::new(&model(&spec, scene), 2);
-        let angles = grid(&spec, scene, 1000);
-        let on = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            let silent = &cycloid::progress::Silent;
-            pool.install(|| curves::sweep_discs_observed(&discs, &angles, true, silent).unwrap())
-        };
-        let (one, four) = (on(1), on(4));
+    for (path, model, angles) in thread_cases() {
+        let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
+        let silent = &cycloid::progress::Silent;
+        let sweep = || curves::sweep_discs_observed(&discs, &angles, true, silent).unwrap();
+        let (one, four) = (on_threads(1, sweep), on_threads(4, sweep));
         assert_eq!(one.discs, four.discs, "{path}");
         assert_eq!(one.torque_nmm, four.torque_nmm, "{path}");
         assert_eq!(one.transmission, four.transmission, "{path}");

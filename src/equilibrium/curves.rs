@@ -539,8 +539,9 @@ impl<'a> Lean<'a> {
         }
     }
 
-    /// Every disc at angle k at the shares `torque` (N·mm): each one's output lag and
-    /// stiffness, or `None` when one leaves the angle to the coupled solve.
+    /// Every disc at angle k at the shares `torque` (N·mm): each one's output lag written to
+    /// `lag` (rad) and the stiffnesses 1/ck returned (N·mm/rad), or `None` when one leaves the
+    /// angle to the coupled solve.
     fn solve_discs(
         &mut self,
         discs: &Discs,

@@ -24,9 +24,10 @@ pub const DEFAULT_SAMPLES: usize = 1000;
 pub const MAX_SAMPLES: i64 = 1_000_000_000;
 
 /// A study's sample count (the spec's `samples` or `--samples`), or what is wrong with it.
-pub fn sample_count(n: i64) -> std::result::Result<usize, String> {
+/// (Wide enough for both: the spec's is an i64, the flag's a usize.)
+pub fn sample_count(n: i128) -> std::result::Result<usize, String> {
     match usize::try_from(n) {
-        Ok(count) if (1..=MAX_SAMPLES).contains(&n) => Ok(count),
+        Ok(count) if (1..=MAX_SAMPLES as i128).contains(&n) => Ok(count),
         _ => Err(format!("must be 1 to {MAX_SAMPLES}, got {n}")),
     }
 }
@@ -67,7 +68,7 @@ pub fn build(
         ));
     }
     let samples = raw.samples.unwrap_or(DEFAULT_SAMPLES as i64);
-    let samples = sample_count(samples).map_err(|m| invalid("samples", m))?;
+    let samples = sample_count(samples.into()).map_err(|m| invalid("samples", m))?;
     let seed = raw.seed.unwrap_or(0);
     if seed < 0 {
         return Err(invalid(

@@ -70,8 +70,7 @@ impl<'a> Study<'a> {
             )
         })?;
         if let Some(n) = samples {
-            let n = i64::try_from(n).unwrap_or(i64::MAX);
-            tolerances.samples = crate::spec::tolerances::sample_count(n)
+            tolerances.samples = crate::spec::tolerances::sample_count(n as i128)
                 .map_err(|m| Error::new(ErrorKind::InvalidValue, format!("--samples {m}")))?;
         }
         let d = &spec.design;

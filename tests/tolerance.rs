@@ -576,6 +576,18 @@ fn check_tolerance_with_a_measured_disc_studies_the_drawing() {
         "the case must tell the two studies apart"
     );
     assert_eq!(failures("t.yaml"), of_drawing);
+    let r = cycloid(here.as_path(), &["tolerance", "t.yaml", "--report", "rev"]);
+    assert!(dir
+        .read("rev/index.html")
+        .contains("Samples drawn from the drawing, not the measured disc: <code>disc.csv</code>"));
+    assert!(
+        r.stdout.contains(
+            "\nsamples drawn from the drawing, not the measured disc: `disc.csv` is one part as \
+             made, a study draws every part\n\n"
+        ),
+        "{}",
+        r.stdout
+    );
     let r = cycloid(here.as_path(), &["check", "t.yaml", "--tolerance"]);
     let row = r
         .stdout

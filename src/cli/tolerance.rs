@@ -333,10 +333,9 @@ pub fn check(spec: &spec::Spec) -> Result<check::Check> {
             summary::percent_label(summary::CONFIDENCE),
             crate::numeric::number(s.interval.0),
             crate::numeric::number(s.interval.1),
-            if spec.measured.is_some() {
-                "; drawn from the drawing, not the measured disc"
-            } else {
-                ""
+            match spec.measured {
+                Some(_) => format!("; {}", report::tolerance::MEASURED_NOTE),
+                None => String::new(),
             }
         ),
     })

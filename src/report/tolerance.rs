@@ -18,6 +18,10 @@ pub const LINEAR_CAVEAT: &str = "the limited quantities are maxima or minima ove
     crank angles: the linear stack-up holds only while the worst roller and angle stay the same \
     over the band; the Monte Carlo spread is the answer where they do not";
 
+/// What a study on a spec with `measured_profile` says of its samples (`check --tolerance`'s
+/// line too).
+pub const MEASURED_NOTE: &str = "drawn from the drawing, not the measured disc";
+
 /// The bound in the JSON, in ASCII (`<=`, `>=`): what a script compares against; the terminal
 /// and the review print `Bound::symbol` like every other table.
 fn bound_sign(b: Bound) -> &'static str {
@@ -54,6 +58,15 @@ pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String 
         t.seed,
         bands(study),
     );
+    if let Some(m) = &study.spec.measured {
+        out.insert_str(
+            out.len() - 1,
+            &format!(
+                "samples {MEASURED_NOTE}: `{}` is one part as made, a study draws every part\n",
+                m.path
+            ),
+        );
+    }
     let mut header = vec!["limit".to_string(), "min".to_string()];
     header.extend(QUANTILES.map(percent_label));
     header.extend([

@@ -7,7 +7,7 @@
 use super::html::{data_table, figure, section, shell, Section};
 use super::svg::{LinePlot, Series, PALETTE, RED};
 use super::table::with_unit;
-use super::tolerance::{LINEAR_CAVEAT, QUANTILE_DEFINITION};
+use super::tolerance::{LINEAR_CAVEAT, MEASURED_NOTE, QUANTILE_DEFINITION};
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{
     percent_label, LimitSummary, Summary, CONFIDENCE, QUANTILES,
@@ -120,6 +120,10 @@ fn study_section(study: &Study) -> Section {
         p { "Scene " code { (study.spec.scenes[t.scene].name) } ", " (t.samples) " samples, seed "
             (t.seed) ", " (t.distribution.describe())
             ". Every part's deviation is drawn independently; sample k depends only on (seed, k)." }
+        @if let Some(m) = &study.spec.measured {
+            p.note { "Samples " (MEASURED_NOTE) ": " code { (m.path) }
+                " is one part as made, a study draws every part." }
+        }
         (data_table(
             html! { th { "tolerance" } th { "band ±b" } th { "σ" } th { "parts" } },
             html! {

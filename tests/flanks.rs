@@ -225,7 +225,7 @@ fn flanks_with_fewer_than_three_points_have_no_summary() {
     assert_eq!(all.iter().map(|f| f.points).sum::<usize>(), 2);
 }
 
-/// |Γ'| in closed form (`flanks::speed`) is the norm of `Profile::tangent` (its Frenet form,
+/// |Γ'| in closed form (`Profile::speed`) is the norm of `Profile::tangent` (its Frenet form,
 /// to round-off) and of a central difference of `Profile::point` (h = 1e-5 rad: truncation
 /// ~h²·|Γ‴|/6 ~ 1e-8, round-off ~ε·30 mm/h ~ 1e-9 mm/rad; 1e-6 relative), around the profile.
 #[test]
@@ -234,7 +234,7 @@ fn speed_is_the_norm_of_the_tangent() {
     let h = 1e-5;
     for k in 0..211 {
         let t = TAU * (k as f64 + 0.37) / 211.0;
-        let v = cycloid::measure::flanks::speed(&p, t);
+        let v = p.speed(t);
         assert!((v - p.tangent(t).norm()).abs() < 1e-12 * v, "at {t}");
         let fd = (p.point(t + h) - p.point(t - h)).norm() / (2.0 * h);
         assert!((v - fd).abs() < 1e-6 * v, "at {t}: {v} vs {fd}");

@@ -263,6 +263,16 @@ impl Profile {
         self.turned(j.d1 * (1.0 - self.offset_mm * k))
     }
 
+    /// |Γ'(t)|, mm/rad, of the profile without its form error, in closed form in
+    /// c = cos((n − 1)t): with κ_C = (C' × C'')/v³ and v = |C'| (`Locus::bend_and_speed2`),
+    /// |Γ'| = v·(1 − r'κ_C) = v − r'·(C' × C'')/v². One cosine and one square root, where
+    /// `tangent` takes two sine-cosine pairs (an arc length's quadrature calls it often).
+    pub fn speed(&self, t: f64) -> f64 {
+        let c = ((self.rollers - 1) as f64 * t).cos();
+        let (bend, speed2) = self.locus().bend_and_speed2(c);
+        speed2.sqrt() - self.offset_mm * bend / speed2
+    }
+
     /// Signed curvature of Γ, κ_Γ = κ_C/(1 − r'κ_C), 1/mm; positive where the disc is convex.
     /// Its reciprocal is ρ_C − r' (the offset shortens convex radii by r'). With a form error,
     /// (Γ' × Γ'')/|Γ'|³ of the formed profile (`formed_jet`).

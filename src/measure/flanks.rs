@@ -171,20 +171,6 @@ const GAUSS_5: [(f64, f64); 5] = [
 /// (`tests/flanks.rs` checks 1e-12 mm against an extrapolated polyline).
 const PANELS_PER_FLANK: f64 = 32.0;
 
-/// |Γ'(t)|, mm/rad, of a profile without form error, in closed form in c = cos((n − 1)t)
-/// (`geometry::profile`: Γ' = |C'|·(1 − r'κ_C)·T, κ_C = (R'² + e²n³ − R'e·n(n + 1)·c)/|C'|³):
-///   |Γ'| = v − r'·(R'² + e²n³ − R'e·n(n + 1)·c)/v²,  v² = |C'|² = R'² + e²n² − 2R'e·n·c;
-/// one cosine and one square root, against `Profile::tangent`'s two sine-cosine pairs (the
-/// quadrature evaluates it five times per measured point).
-pub fn speed(profile: &Profile, t: f64) -> f64 {
-    let n = profile.rollers as f64;
-    let (r, e) = (profile.locus_radius_mm, profile.eccentricity_mm);
-    let c = ((n - 1.0) * t).cos();
-    let v2 = r * r + e * e * n * n - 2.0 * r * e * n * c;
-    let bend = r * r + e * e * n * n * n - r * e * n * (n + 1.0) * c;
-    v2.sqrt() - profile.offset_mm * bend / v2
-}
-
 /// Arc length of `profile` from t0 to t1 (negative when t1 < t0), mm: ∫ |Γ'(t)| dt by the
 /// composite 5-point Gauss–Legendre rule on equal panels of at most 1/32 of a flank in t
 /// (|Γ'| = |C'|·(1 − r'κ_C) is smooth on a regular profile: no cusp, no undercut). Between
@@ -198,7 +184,7 @@ pub fn arc_length_mm(profile: &Profile, t0: f64, t1: f64) -> f64 {
             let mid = t0 + h * (k as f64 + 0.5);
             GAUSS_5
                 .iter()
-                .map(|(x, w)| w * speed(profile, mid + 0.5 * h * x))
+                .map(|(x, w)| w * profile.speed(mid + 0.5 * h * x))
                 .sum::<f64>()
                 * 0.5
                 * h

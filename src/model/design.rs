@@ -213,12 +213,19 @@ impl Locus {
     /// (N, D) of κ_C = N/D at c = cos((np − 1)t): (C' × C'', |C'|³).
     #[inline]
     pub fn curvature_parts(&self, c: f64) -> (f64, f64) {
+        let (bend, speed2) = self.bend_and_speed2(c);
+        (bend, speed2 * speed2.sqrt())
+    }
+
+    /// (C' × C'', |C'|²) at c = cos((np − 1)t), mm²/rad² and mm²/rad²: with n = np,
+    /// C' × C'' = R'² + e²n³ − R'e·n(n + 1)·c and |C'|² = R'² + e²n² − 2R'e·n·c.
+    #[inline]
+    pub fn bend_and_speed2(&self, c: f64) -> (f64, f64) {
         let n = self.rollers as f64;
         let (r, e) = (self.radius_mm, self.eccentricity_mm);
-        let speed2 = r * r + e * e * n * n - 2.0 * r * e * n * c;
         (
             r * r + e * e * n * n * n - r * e * n * (n + 1.0) * c,
-            speed2 * speed2.sqrt(),
+            r * r + e * e * n * n - 2.0 * r * e * n * c,
         )
     }
 

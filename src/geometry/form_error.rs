@@ -7,7 +7,7 @@
 //! w″ at the nodes; N is chosen from the interpolant's error bound so that the table is the
 //! series to a picometre (`TABLE_ERROR_MM`).
 
-use super::{cmul, Vec2};
+use super::cos_sin_of_orders;
 use crate::model::FormTerm;
 use std::f64::consts::TAU;
 
@@ -83,18 +83,16 @@ impl FormError {
     }
 
     /// w, w′, w″ summed from the series: the harmonics cos(kt), sin(kt) by powers of e^{it}
-    /// (one sine and cosine per call; rounding grows as k·ε).
+    /// (`geometry::cos_sin_of_orders`: one sine and cosine per call; rounding grows as k·ε).
     pub fn series_jet(&self, t: f64) -> (f64, f64, f64) {
-        let z = Vec2::new(t.cos(), t.sin());
-        let mut p = z;
+        let harmonics = cos_sin_of_orders(t, 1..=self.dense.len());
         let (mut w, mut d1, mut d2) = (self.constant_mm, 0.0, 0.0);
-        for (k, &(a, b)) in self.dense.iter().enumerate() {
+        for (k, (&(a, b), (c, s))) in self.dense.iter().zip(harmonics).enumerate() {
             let k = (k + 1) as f64;
-            let v = a * p.x + b * p.y;
+            let v = a * c + b * s;
             w += v;
-            d1 += k * (b * p.x - a * p.y);
+            d1 += k * (b * c - a * s);
             d2 -= k * k * v;
-            p = cmul(p, z);
         }
         (w, d1, d2)
     }

@@ -187,6 +187,28 @@ pub fn expi_minus_one(x: f64) -> Vec2 {
     Vec2::new(cm1, s)
 }
 
+/// (cos k·t, sin k·t) for each of `orders`, by powers of e^{it} while they ascend: one sin_cos
+/// per call instead of one per order; k products lose at most ~k·ε (2e-14 at order 200). An
+/// order below the one before is evaluated directly.
+pub fn cos_sin_of_orders(
+    t: f64,
+    orders: impl IntoIterator<Item = usize>,
+) -> impl Iterator<Item = (f64, f64)> {
+    let (s1, c1) = t.sin_cos();
+    let (mut c, mut s, mut k) = (1.0, 0.0, 0);
+    orders.into_iter().map(move |order| {
+        if order < k {
+            let (s, c) = (order as f64 * t).sin_cos();
+            return (c, s);
+        }
+        while k < order {
+            (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
+            k += 1;
+        }
+        (c, s)
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::{sin_cos, sin_cosm1, wrap_pi, wrap_tau, NearbyAtan2, NearbySinCos};

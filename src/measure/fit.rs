@@ -46,7 +46,7 @@ pub use super::flanks::Flank;
 use super::{Feature, MeasuredPoint};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::profile::{ClosestPointFailure, Foot, Profile};
-use crate::geometry::{cross, rotate, wrap_pi, Vec2};
+use crate::geometry::{cos_sin_of_orders, cross, rotate, wrap_pi, Vec2};
 use crate::model::measured::Fitted;
 use crate::model::{Design, Modification};
 use faer::linalg::solvers::SolveLstsq;
@@ -884,28 +884,6 @@ fn cos_sin_orders(t: f64, orders: &[usize], out: &mut [f64]) {
         pair[0] = c;
         pair[1] = s;
     }
-}
-
-/// (cos k·t, sin k·t) for each of `orders`, by powers of e^{it} while they ascend: one sin_cos
-/// per call instead of one per order; k products lose at most ~k·ε (2e-14 at order 200). An
-/// order below the one before is evaluated directly.
-fn cos_sin_of_orders(
-    t: f64,
-    orders: impl IntoIterator<Item = usize>,
-) -> impl Iterator<Item = (f64, f64)> {
-    let (s1, c1) = t.sin_cos();
-    let (mut c, mut s, mut k) = (1.0, 0.0, 0);
-    orders.into_iter().map(move |order| {
-        if order < k {
-            let (s, c) = (order as f64 * t).sin_cos();
-            return (c, s);
-        }
-        while k < order {
-            (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
-            k += 1;
-        }
-        (c, s)
-    })
 }
 
 /// The bins per tooth pitch in t over which `Coverage::fraction` counts the points.

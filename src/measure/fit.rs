@@ -889,6 +889,11 @@ fn cos_sin_orders(t: f64, orders: &[usize], out: &mut [f64]) {
 /// The bins per tooth pitch in t over which `Coverage::fraction` counts the points.
 pub const COVERAGE_BINS_PER_TOOTH: usize = 16;
 
+/// The width in t of a coverage bin, rad: a stretch this long without a point is unmeasured.
+pub fn coverage_bin_rad(teeth: usize) -> f64 {
+    TAU / (COVERAGE_BINS_PER_TOOTH * teeth) as f64
+}
+
 fn coverage(profile: &[FittedPoint], flanks: &[Flank], teeth: usize) -> Coverage {
     let bins = COVERAGE_BINS_PER_TOOTH * teeth;
     let mut hit = vec![false; bins];

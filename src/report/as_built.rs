@@ -12,7 +12,7 @@ use super::table::{count_or_change, count_or_number, with_unit};
 use crate::engine::summary::{summarise, SceneSummary};
 use crate::geometry::profile::Profile;
 use crate::geometry::{polyline, Vec2};
-use crate::measure::fit::{Identification, COVERAGE_BINS_PER_TOOTH};
+use crate::measure::fit::{coverage_bin_rad, Identification};
 use crate::model::results::SceneResult;
 use crate::model::Modification;
 use crate::numeric::number;
@@ -239,7 +239,7 @@ pub fn against_design(
 /// The points' deviations and the form error, µm against t in degrees.
 fn deviation_plot(id: &Identification, from_design: &[AgainstDesign], teeth: usize) -> LinePlot {
     // A stretch longer than a coverage bin without a point is unmeasured: the curves break.
-    let gap = std::f64::consts::TAU / (COVERAGE_BINS_PER_TOOTH * teeth) as f64;
+    let gap = coverage_bin_rad(teeth);
     let (design_x, design_y) = with_breaks(
         from_design.iter().map(|p| (p.t, units::um(p.deviation_mm))),
         gap,
@@ -248,9 +248,7 @@ fn deviation_plot(id: &Identification, from_design: &[AgainstDesign], teeth: usi
         (id.profile.iter()).map(|p| (p.t, units::um(id.form.value_mm(p.t) + p.residual_mm))),
         gap,
     );
-    let curve: Vec<f64> = (0..=720)
-        .map(|k| std::f64::consts::TAU * k as f64 / 720.0)
-        .collect();
+    let curve: Vec<f64> = (0..=720).map(|k| TAU * k as f64 / 720.0).collect();
     let mut plot = LinePlot::new(
         "Measured deviation from the profile",
         "locus parameter t (deg)",
@@ -281,18 +279,16 @@ fn deviation_plot(id: &Identification, from_design: &[AgainstDesign], teeth: usi
 /// the plot does not join across) wherever consecutive points are more than `gap` rad apart:
 /// an unmeasured stretch is not drawn as a line across it.
 fn with_breaks(points: impl Iterator<Item = (f64, f64)>, gap: f64) -> (Vec<f64>, Vec<f64>) {
-    let mut sorted: Vec<(f64, f64)> = points
-        .map(|(t, v)| (t.rem_euclid(std::f64::consts::TAU), v))
-        .collect();
+    let mut sorted: Vec<(f64, f64)> = points.map(|(t, v)| (t.rem_euclid(TAU), v)).collect();
     sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
     let (mut x, mut y) = (Vec::new(), Vec::new());
-    for (k, &(t, v)) in sorted.iter().enumerate() {
-        if k > 0 && t - sorted[k - 1].0 > gap {
-            x.push(units::deg(t));
+    for run in sorted.chunk_by(|a, b| b.0 - a.0 <= gap) {
+        if !x.is_empty() {
+            x.push(units::deg(run[0].0));
             y.push(f64::NAN);
         }
-        x.push(units::deg(t));
-        y.push(v);
+        x.extend(run.iter().map(|p| units::deg(p.0)));
+        y.extend(run.iter().map(|p| p.1));
     }
     (x, y)
 }
@@ -365,14 +361,8 @@ pub fn disc_drawing(
     let holes: Vec<Vec2> = (0..d.pins.count)
         .map(|j| Vec2::from(d.pins.centre_mm(j)))
         .collect();
-    let gap = TAU / (COVERAGE_BINS_PER_TOOTH * d.teeth) as f64;
-    let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
-    for (k, p) in points.iter().enumerate() {
-        if k == 0 || p.t - points[k - 1].t > gap {
-            runs.push(Vec::new());
-        }
-        runs.last_mut().unwrap().push(f.at(p.magnified(m)));
-    }
+    let gap = coverage_bin_rad(d.teeth);
+    let runs = points.chunk_by(|a, b| b.t - a.t <= gap);
     let stride = points.len().div_ceil(MOST_DOTS).max(1);
     let times = round_number(m);
     let bar_um = round_down_125(units::um(largest.max(1e-6)));
@@ -392,9 +382,9 @@ pub fn disc_drawing(
         (titles(14.0, &title, &lines))
         path d=(f.path(&outline) + &hole_cutouts(&f, &holes, d.hole_radius_mm())) fill="#cfe0f1"
             fill-rule="evenodd" stroke="#1f4e79" stroke-width="1.2" {}
-        @for run in runs.iter().filter(|r| r.len() > 1) {
-            polyline points=(svg::points(run.iter().copied())) fill="none" stroke=(RED)
-                stroke-width="1.2" {}
+        @for run in runs.filter(|r| r.len() > 1) {
+            polyline points=(svg::points(run.iter().map(|p| f.at(p.magnified(m))))) fill="none"
+                stroke=(RED) stroke-width="1.2" {}
         }
         @for p in points.iter().step_by(stride) {
             @let (x, y) = f.at(p.magnified(m));
@@ -459,7 +449,7 @@ mod tests {
     /// sorted over [0, 2π) whatever their order and turn (2π + 0.05 is 0.05, first).
     #[test]
     fn an_unmeasured_stretch_breaks_the_curve() {
-        let tau = std::f64::consts::TAU;
+        let tau = TAU;
         let points = [(1.1, 4.0), (0.2, 2.0), (tau + 0.05, 1.0), (1.0, 3.0)];
         let (x, y) = with_breaks(points.into_iter(), 0.5);
         let deg = |t: f64| units::deg(t);

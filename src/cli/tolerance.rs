@@ -9,12 +9,12 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::files;
 use crate::report::terminal::Bar;
 use crate::{report, spec};
+use std::io::Write;
+use std::path::{Path, PathBuf};
 
 /// Largest shard file read, bytes: 16 GiB. A shard holds 9 bytes per sample and limit (the
 /// value and its verdict), so this is 10⁹ sample-limits, far beyond a job array's task.
 const MAX_SHARD_BYTES: u64 = 16 << 30;
-use std::io::Write;
-use std::path::{Path, PathBuf};
 
 fn invalid(message: String) -> Error {
     Error::new(ErrorKind::InvalidValue, message)

@@ -7,7 +7,7 @@
 use super::html::{data_table, figure, section, shell, Section};
 use super::svg::{LinePlot, Series, PALETTE, RED};
 use super::table::with_unit;
-use super::tolerance::{LINEAR_CAVEAT, MEASURED_NOTE, QUANTILE_DEFINITION};
+use super::tolerance::{percent, LINEAR_CAVEAT, MEASURED_NOTE, QUANTILE_DEFINITION};
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{
     percent_label, LimitSummary, Summary, CONFIDENCE, QUANTILES,
@@ -17,8 +17,6 @@ use crate::error::Result;
 use crate::numeric::number;
 use maud::{html, Markup};
 use std::path::Path;
-
-use super::tolerance::percent;
 
 /// Bins of a histogram of n values: √n, from 10 to 60.
 fn bins(n: usize) -> usize {

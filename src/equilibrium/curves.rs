@@ -1,15 +1,12 @@
 //! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
-use super::discs::{
-    converged, newton_step, remember_split, solve_coupled, CoupledWork, Discs, PerDisc,
-};
+use super::discs::{common_lag, converged, solve_coupled, CoupledWork, Discs, Share};
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
 use super::sweep::{solve_into, AngleSolution, Model, Work};
 use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
 use crate::model::results::{BearingCurves, LoadedSweep, PinCurves, RollerCurves, Transmission};
-use crate::model::MAX_DISCS;
 use crate::progress::{Progress, Silent};
 use rayon::prelude::*;
 
@@ -467,6 +464,8 @@ struct LeanDisc<'a> {
     /// The kernel's summary and the crank direction e_φ at the angle being solved.
     summary: Summary,
     e_phi: Vec2,
+    /// The disc's torque, output lag and stiffness there, for the Newton on the shares.
+    share: Share,
 }
 
 /// Newton steps on the shares that the lean kernels take at one angle before the coupled
@@ -476,21 +475,20 @@ struct LeanDisc<'a> {
 const LEAN_STEPS: usize = 3;
 
 impl LeanDisc<'_> {
-    /// Angle k by the kernel at the share `torque` (N·mm), its screen renewed when it lapsed:
-    /// the disc's output lag γk (rad) and stiffness 1/ck (N·mm/rad), its summary kept. `None`
+    /// Angle k by the kernel at its share's torque, its screen renewed when it lapsed: the
+    /// share's output lag γk (rad) and stiffness 1/ck (N·mm/rad) set, its summary kept. `None`
     /// where the kernel leaves the angle to the general solve, or the disc has no contact
     /// (no compliance of its own).
     fn solve(
         &mut self,
         (model, work): (&Model, &Work),
         k: usize,
-        torque: f64,
         rows: &mut Chunk<'_>,
-    ) -> Option<(f64, f64)> {
+    ) -> Option<()> {
         let phi = self.cranks[k];
         let (sin, cos) = self.crank_direction.sin_cos(phi);
         let guess = || work.guess(phi, model);
-        self.kernel.set_torque(torque);
+        self.kernel.set_torque(self.share.torque);
         let s = self
             .kernel
             .solve(phi, (cos, sin), guess, &mut self.scratch, &mut rows.row(k))?;
@@ -501,8 +499,8 @@ impl LeanDisc<'_> {
         // The kernel's own compliance on its contact set: exact until a contact changes.
         let c = s.compliance_rad_per_nmm;
         (self.summary, self.e_phi) = (s, Vec2::new(cos, sin));
-        c.is_finite()
-            .then_some((s.lag_rad + s.output_lag_rad, 1.0 / c))
+        (self.share.lag, self.share.weight) = (s.lag_rad + s.output_lag_rad, 1.0 / c);
+        c.is_finite().then_some(())
     }
 }
 
@@ -518,6 +516,7 @@ impl<'a> Lean<'a> {
             cranks: Vec::with_capacity(CHUNK),
             summary: Summary::default(),
             e_phi: Vec2::zeros(),
+            share: Share::default(),
         };
         Lean {
             discs: kernels.unwrap_or_default().into_iter().map(disc).collect(),
@@ -539,28 +538,29 @@ impl<'a> Lean<'a> {
         }
     }
 
-    /// Every disc at angle k at the shares `torque` (N·mm): each one's output lag written to
-    /// `lag` (rad) and the stiffnesses 1/ck returned (N·mm/rad), or `None` when one leaves the
-    /// angle to the coupled solve.
+    /// Every disc at angle k at its share's torque (`LeanDisc::solve`), or `None` when one
+    /// leaves the angle to the coupled solve.
     fn solve_discs(
         &mut self,
         discs: &Discs,
         k: usize,
-        torque: &PerDisc,
-        lag: &mut PerDisc,
         work: &CoupledWork,
         chunk: &mut DiscChunk<'_>,
-    ) -> Option<PerDisc> {
-        let mut weights = [0.0; MAX_DISCS];
+    ) -> Option<()> {
         let per_disc = self
             .discs
             .iter_mut()
             .zip(discs.models.iter().zip(&work.works))
             .zip(&mut chunk.discs);
-        for (d, ((disc, solver), rows)) in per_disc.enumerate() {
-            (lag[d], weights[d]) = disc.solve(solver, k, torque[d], rows)?;
+        for ((disc, solver), rows) in per_disc {
+            disc.solve(solver, k, rows)?;
         }
-        Some(weights)
+        Some(())
+    }
+
+    /// The discs' shares in the Newton.
+    fn shares(&self) -> impl Iterator<Item = Share> + '_ {
+        self.discs.iter().map(|d| d.share)
     }
 
     /// Angle k (crank `phi`) by the kernels at the shares extrapolated from the last angles,
@@ -580,31 +580,29 @@ impl<'a> Lean<'a> {
             return None;
         }
         let (total, tol) = (discs.torque_nmm, self.tol);
-        let mut torque = work.guess(phi, n, self.reach);
-        for t in &mut torque {
-            *t *= total;
+        let weights = work.extrapolation(phi, self.reach);
+        for (d, disc) in self.discs.iter_mut().enumerate() {
+            disc.share.torque = work.share_guess(d, weights, n, total);
         }
-        let mut lag = [0.0; MAX_DISCS];
         let mut common = None;
         for step_number in 0..LEAN_STEPS {
             if step_number > 0 {
                 chunk.discs.iter_mut().for_each(|c| c.clear(k));
             }
-            let Some(weights) = self.solve_discs(discs, k, &torque, &mut lag, work, chunk) else {
+            if self.solve_discs(discs, k, work, chunk).is_none() {
                 break;
-            };
-            let (t, g) = (&torque[..n], &lag[..n]);
-            let (c, step) = newton_step(t, g, &weights[..n], total);
-            if converged((t, g), c, &step[..n], tol) {
+            }
+            let c = common_lag(self.shares(), total);
+            if converged(self.shares(), c, tol) {
                 common = Some(c);
                 break;
             }
-            for (t, d) in torque.iter_mut().zip(&step) {
-                *t += d;
+            for disc in &mut self.discs {
+                disc.share.torque += disc.share.step(c);
             }
             // A share against the torque sends its disc across its backlash: the coupled
             // solve handles that.
-            if torque.iter().any(|t| t * total < 0.0) {
+            if self.shares().any(|s| s.torque * total < 0.0) {
                 break;
             }
         }
@@ -618,13 +616,13 @@ impl<'a> Lean<'a> {
             .zip(&mut chunk.discs)
             .zip(&mut chunk.torque)
             .zip(&mut work.works);
-        for ((((disc, rows), shares), w), t) in per_disc.zip(torque) {
+        for (((disc, rows), shares), w) in per_disc {
             let s = &disc.summary;
             rows.record_first_order(k, disc.e_phi, s, &mut disc.bearing_angle);
-            shares[k] = t;
+            shares[k] = disc.share.torque;
             w.remember_lags(disc.cranks[k], s.lag_rad, s.output_lag_rad);
         }
-        remember_split(work, phi, &torque[..n], total);
+        work.remember_split(phi, self.shares().map(|s| s.torque), total);
         Some(common)
     }
 }

@@ -62,19 +62,18 @@ impl Discs {
     }
 }
 
-/// One number per disc (up to `MAX_DISCS`; the entries past the disc count are zero): fixed
-/// arrays, so that an angle of the lean sweep allocates nothing.
-pub type PerDisc = [f64; MAX_DISCS];
-
 /// Reusable state of a sequence of coupled solves over neighbouring crank angles: each disc's
-/// model (its torque share) and work, and the last angle's split for the next guess.
+/// model (its torque share) and work, and the last angles' split for the next guess.
 #[derive(Debug, Clone)]
 pub struct CoupledWork {
     pub models: Vec<Model>,
     pub works: Vec<Work>,
-    /// Each disc's share of T (fractions summing to 1) at the last (up to three) angles
-    /// solved, oldest first: (crank, shares), in the last `filled` entries.
-    shares: [(f64, PerDisc); 3],
+    /// The crank angles of the last (up to three) splits solved, oldest first, in the last
+    /// `filled` entries.
+    cranks: [f64; 3],
+    /// Disc k's share of T (a fraction; the shares sum to 1) at those angles. Kept per disc as
+    /// three scalars, so that the lean sweep reads and writes each share alone (`remember_split`).
+    shares: [[f64; 3]; MAX_DISCS],
     filled: usize,
 }
 
@@ -85,30 +84,21 @@ impl CoupledWork {
         CoupledWork {
             models: Vec::new(),
             works: vec![Work::default(); discs.count()],
-            shares: [(0.0, [0.0; MAX_DISCS]); 3],
+            cranks: [0.0; 3],
+            shares: [[0.0; 3]; MAX_DISCS],
             filled: 0,
         }
     }
 
-    /// The shares at `crank`: extrapolated from the last angles (quadratic from three, linear
-    /// from two, as the lags are: `Work::guess`), equal with no history or one too far away
-    /// (`Model::warm_reach`). They sum to 1 up to round-off, the Newton steps keep the sum.
-    pub fn guess(&self, crank: f64, n: usize, reach: f64) -> PerDisc {
-        let mut out = [0.0; MAX_DISCS];
-        if n == 1 {
-            // The whole torque, exactly: one disc solves as `sweep::solve_into` alone does.
-            out[0] = 1.0;
-            return out;
-        }
-        let [(p0, s0), (p1, s1), (p2, s2)] = &self.shares;
-        let (p0, p1, p2) = (*p0, *p1, *p2);
+    /// The Lagrange weights that extrapolate the remembered shares to `crank` (quadratic from
+    /// three angles, linear from two, as the lags are: `Work::guess`; an entry not yet filled
+    /// has weight zero), or `None` with no history or one too far away (`Model::warm_reach`).
+    pub fn extrapolation(&self, crank: f64, reach: f64) -> Option<[f64; 3]> {
+        let [p0, p1, p2] = self.cranks;
         if self.filled == 0 || (p2 - crank).abs() > reach {
-            out[..n].fill(1.0 / n as f64);
-            return out;
+            return None;
         }
-        // Lagrange weights of the entries held (an entry not yet filled has weight zero), so
-        // that the sum over the fixed three entries and `MAX_DISCS` discs unrolls.
-        let weights = match self.filled {
+        Some(match self.filled {
             1 => [0.0, 0.0, 1.0],
             2 => [0.0, (p2 - crank) / (p2 - p1), (crank - p1) / (p2 - p1)],
             _ => [
@@ -116,11 +106,47 @@ impl CoupledWork {
                 (crank - p0) * (crank - p2) / ((p1 - p0) * (p1 - p2)),
                 (crank - p0) * (crank - p1) / ((p2 - p0) * (p2 - p1)),
             ],
-        };
-        for (k, o) in out.iter_mut().enumerate() {
-            *o = weights[0] * s0[k] + weights[1] * s1[k] + weights[2] * s2[k];
+        })
+    }
+
+    /// Disc k's torque (N·mm) of the `n` discs sharing `total`, by the weights `extrapolation`
+    /// gave: its remembered shares extrapolated, or an equal share without them. The guesses
+    /// sum to `total` up to round-off; the Newton steps keep the sum.
+    pub fn share_guess(&self, k: usize, weights: Option<[f64; 3]>, n: usize, total: f64) -> f64 {
+        if n == 1 {
+            // The whole torque, exactly: one disc solves as `sweep::solve_into` alone does.
+            return total;
         }
-        out
+        match weights {
+            Some(w) => {
+                let s = &self.shares[k];
+                (w[0] * s[0] + w[1] * s[1] + w[2] * s[2]) * total
+            }
+            None => 1.0 / n as f64 * total,
+        }
+    }
+
+    /// Remember the converged split `torque` (N·mm, disc by disc) of the output torque `total`
+    /// at `crank`, for the guess at the next angle. A second solve of the angle remembered last
+    /// replaces it.
+    pub fn remember_split(&mut self, crank: f64, torque: impl Iterator<Item = f64>, total: f64) {
+        if total == 0.0 {
+            return;
+        }
+        let [_, older, last] = self.cranks;
+        let new_angle = self.filled == 0 || last != crank;
+        if new_angle {
+            self.cranks = [older, last, crank];
+            self.filled = (self.filled + 1).min(3);
+        }
+        for (s, t) in self.shares.iter_mut().zip(torque) {
+            let share = t / total;
+            *s = if new_angle {
+                [s[1], s[2], share]
+            } else {
+                [s[0], s[1], share]
+            };
+        }
     }
 }
 
@@ -166,9 +192,9 @@ pub fn solve_coupled(
     }
     let total = discs.torque_nmm;
     let reach = discs.models[0].warm_reach();
-    let mut torque: Vec<f64> = work.guess(crank, n, reach)[..n]
-        .iter()
-        .map(|f| f * total)
+    let weights = work.extrapolation(crank, reach);
+    let mut torque: Vec<f64> = (0..n)
+        .map(|k| work.share_guess(k, weights, n, total))
         .collect();
     let mut lag = vec![0.0; n];
     let mut last: Vec<Option<(f64, f64)>> = vec![None; n];
@@ -205,14 +231,18 @@ pub fn solve_coupled(
             // their own lags; the reducer's is their mean.
             return Ok(finish(work, crank, &torque, total, &lag));
         }
-        let (common, step) = newton_step(&torque, &lag, &weights, total);
-        if converged((&torque, &lag), common, &step[..n], 10.0 * rel_tol * scale) {
+        let shares = Share::of(&torque, &lag, &weights);
+        let common = common_lag(shares.clone(), total);
+        if converged(shares, common, 10.0 * rel_tol * scale) {
             // γ is the common lag of the discs that carry a share (a disc without contact has
             // no weight, and its own lag is that of its nearest contact).
             finish(work, crank, &torque, total, &lag);
             return Ok(if n == 1 { lag[0] } else { common });
         }
-        for (t, d) in torque.iter_mut().zip(&step) {
+        let steps: Vec<f64> = Share::of(&torque, &lag, &weights)
+            .map(|s| s.step(common))
+            .collect();
+        for (t, d) in torque.iter_mut().zip(steps) {
             *t += d;
         }
         // A share against the torque sends its disc across its backlash, where its lag jumps
@@ -227,35 +257,61 @@ pub fn solve_coupled(
 /// The share, as a fraction of T, at which a disc's dead band is probed (`torque_at_lag`).
 const PROBE: f64 = 1e-6;
 
-/// The Newton update of the shares: the common lag γ* = (T − ΣTk + Σ wk·γk)/Σ wk and each
-/// share's correction wk·(γ* − γk), which keeps Σ Tk = T (`weights` wk = 1/ck, N·mm/rad).
-pub fn newton_step(torque: &[f64], lag: &[f64], weights: &[f64], total: f64) -> (f64, PerDisc) {
-    let (mut w, mut t, mut wg) = (0.0, 0.0, 0.0);
-    for ((tk, gk), wk) in torque.iter().zip(lag).zip(weights) {
-        (w, t, wg) = (w + wk, t + tk, wg + wk * gk);
-    }
-    let common = (total - t + wg) / w;
-    let mut step = [0.0; MAX_DISCS];
-    for ((s, w), g) in step.iter_mut().zip(weights).zip(lag) {
-        *s = w * (common - g);
-    }
-    (common, step)
+/// One disc in the Newton on the shares: its torque Tk (N·mm), its output lag γk there (rad)
+/// and its stiffness wk = 1/ck (N·mm/rad).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Share {
+    pub torque: f64,
+    pub lag: f64,
+    pub weight: f64,
 }
 
-/// Whether the discs at `lag` (rad) under `torque` (N·mm) are settled on the common lag
-/// `common` with the corrections `step`: every correction within `tol` (N·mm), or every lag
-/// equal to γ to round-off (at a tiny torque, one ulp of lag times the stiffness outweighs the
-/// balance's whole tolerance); and, in either case, every disc that carries a share at the
-/// common lag (the steps alone can look converged across a dead band, where a secant over a
-/// disc's jump of lag is a huge compliance, so a tiny weight).
-pub fn converged((torque, lag): (&[f64], &[f64]), common: f64, step: &[f64], tol: f64) -> bool {
+impl Share {
+    /// The discs' shares from columns of torques, lags and stiffnesses.
+    fn of<'s>(
+        torque: &'s [f64],
+        lag: &'s [f64],
+        weight: &'s [f64],
+    ) -> impl Iterator<Item = Share> + Clone + 's {
+        let columns = torque.iter().zip(lag).zip(weight);
+        columns.map(|((&torque, &lag), &weight)| Share {
+            torque,
+            lag,
+            weight,
+        })
+    }
+
+    /// The Newton's correction of this share towards the common lag γ*: wk·(γ* − γk), which
+    /// keeps Σ Tk = T.
+    pub fn step(&self, common: f64) -> f64 {
+        self.weight * (common - self.lag)
+    }
+}
+
+/// The Newton's common lag γ* = (T − ΣTk + Σ wk·γk)/Σ wk of the discs `shares` sharing `total`
+/// (N·mm), rad.
+pub fn common_lag(shares: impl Iterator<Item = Share>, total: f64) -> f64 {
+    let (mut w, mut t, mut wg) = (0.0, 0.0, 0.0);
+    for s in shares {
+        (w, t, wg) = (w + s.weight, t + s.torque, wg + s.weight * s.lag);
+    }
+    (total - t + wg) / w
+}
+
+/// Whether the discs `shares` are settled on the common lag `common`: every correction
+/// (`Share::step`) within `tol` (N·mm), or every lag equal to γ to round-off (at a tiny
+/// torque, one ulp of lag times the stiffness outweighs the balance's whole tolerance); and, in
+/// either case, every disc that carries a share at the common lag (the steps alone can look
+/// converged across a dead band, where a secant over a disc's jump of lag is a huge
+/// compliance, so a tiny weight).
+pub fn converged(shares: impl Iterator<Item = Share>, common: f64, tol: f64) -> bool {
     let near = 1e-7 * common.abs().max(1e-300);
     let (mut agree, mut to_ulps, mut small) = (true, true, true);
-    for ((t, g), d) in torque.iter().zip(lag).zip(step) {
-        let off = (g - common).abs();
-        agree &= *t == 0.0 || off <= near;
-        to_ulps &= off <= 8.0 * f64::EPSILON * g.abs();
-        small &= d.abs() <= tol;
+    for s in shares {
+        let off = (s.lag - common).abs();
+        agree &= s.torque == 0.0 || off <= near;
+        to_ulps &= off <= 8.0 * f64::EPSILON * s.lag.abs();
+        small &= s.step(common).abs() <= tol;
     }
     agree && (to_ulps || small)
 }
@@ -539,26 +595,8 @@ fn torque_at_lag(
 /// Remember the converged split for the next angle; the reducer's output lag is the mean of
 /// the discs' (equal to within the tolerance).
 pub fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, lag: &[f64]) -> f64 {
-    remember_split(work, crank, torque, total);
+    work.remember_split(crank, torque.iter().copied(), total);
     lag.iter().sum::<f64>() / lag.len() as f64
-}
-
-/// Remember the converged split `torque` (N·mm) of the output torque `total` at `crank`, for
-/// the guess at the next angle (`CoupledWork::guess`).
-pub fn remember_split(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64) {
-    if total == 0.0 {
-        return;
-    }
-    let mut shares = [0.0; MAX_DISCS];
-    for (s, t) in shares.iter_mut().zip(torque) {
-        *s = t / total;
-    }
-    // A second solve of the angle remembered last replaces it.
-    if work.filled == 0 || work.shares[2].0 != crank {
-        work.shares.rotate_left(1);
-        work.filled = (work.filled + 1).min(3);
-    }
-    work.shares[2] = (crank, shares);
 }
 
 #[cfg(test)]

@@ -461,9 +461,6 @@ struct LeanDisc<'a> {
     /// The disc's own crank angles over the chunk (φ + its phase), for its screen of the
     /// rollers that may touch over the angles ahead (`FirstOrderSweep::screen`).
     cranks: Vec<f64>,
-    /// The kernel's summary and the crank direction e_φ at the angle being solved.
-    summary: Summary,
-    e_phi: Vec2,
     /// The disc's torque, output lag and stiffness there, for the Newton on the shares.
     share: Share,
 }
@@ -476,9 +473,10 @@ const LEAN_STEPS: usize = 3;
 
 impl LeanDisc<'_> {
     /// Angle k by the kernel at its share's torque, its screen renewed when it lapsed: the
-    /// share's output lag γk (rad) and stiffness 1/ck (N·mm/rad) set, its summary kept. `None`
-    /// where the kernel leaves the angle to the general solve, or the disc has no contact
-    /// (no compliance of its own).
+    /// angle recorded in `rows` (a later Newton step at the angle records it again), and the
+    /// share's output lag γk (rad) and stiffness 1/ck (N·mm/rad) set. `None` where the kernel
+    /// leaves the angle to the general solve, or the disc has no contact (no compliance of its
+    /// own).
     fn solve(
         &mut self,
         (model, work): (&Model, &Work),
@@ -496,9 +494,9 @@ impl LeanDisc<'_> {
             let ahead = &self.cranks[k + 1..];
             self.kernel.screen(ahead, s.lag_rad, &mut self.scratch);
         }
+        rows.record_first_order(k, Vec2::new(cos, sin), &s, &mut self.bearing_angle);
         // The kernel's own compliance on its contact set: exact until a contact changes.
         let c = s.compliance_rad_per_nmm;
-        (self.summary, self.e_phi) = (s, Vec2::new(cos, sin));
         (self.share.lag, self.share.weight) = (s.lag_rad + s.output_lag_rad, 1.0 / c);
         c.is_finite().then_some(())
     }
@@ -514,8 +512,6 @@ impl<'a> Lean<'a> {
             bearing_angle: NearbyAtan2::default(),
             crank_direction: NearbySinCos::default(),
             cranks: Vec::with_capacity(CHUNK),
-            summary: Summary::default(),
-            e_phi: Vec2::zeros(),
             share: Share::default(),
         };
         Lean {
@@ -617,10 +613,8 @@ impl<'a> Lean<'a> {
             .zip(&mut chunk.torque)
             .zip(&mut work.works);
         for (((disc, rows), shares), w) in per_disc {
-            let s = &disc.summary;
-            rows.record_first_order(k, disc.e_phi, s, &mut disc.bearing_angle);
             shares[k] = disc.share.torque;
-            w.remember_lags(disc.cranks[k], s.lag_rad, s.output_lag_rad);
+            w.remember_lags(disc.cranks[k], rows.lag[k], rows.output_lag[k]);
         }
         work.remember_split(phi, self.shares().map(|s| s.torque), total);
         Some(common)

@@ -729,12 +729,18 @@ fn check_with_a_measured_profile_runs_on_the_disc_as_built() {
         section[at..section[at..].find("</tr>").unwrap() + at].to_string()
     };
     assert!(row("shift ΔRp").contains("0.1000 mm") && row("shift ΔRp").contains("0.1250 mm"));
-    // Changes in µm to the nanometre: 25 µm of shift; noise-free points leave a residual at
-    // the fit's round-off (~1e-12 mm), which reads as zero, not as 1e-9 µm or −0.000.
+    // Changes in µm to the nanometre, signed as the results' changes are: 25 µm more shift
+    // and 9.3 µm more equidistant (0.1593 against 0.15 mm); noise-free points leave a residual
+    // at the fit's round-off (~1e-12 mm), which reads as zero, not as 1e-9 µm or −0.000.
     assert!(
-        row("shift ΔRp").contains(">25.000 µm<"),
+        row("shift ΔRp").contains(">+25.000 µm<"),
         "{}",
         row("shift ΔRp")
+    );
+    assert!(
+        row("equidistant ΔRrp").contains(">+9.300 µm<"),
+        "{}",
+        row("equidistant ΔRrp")
     );
     let form_row = row("<th>form error");
     assert!(form_row.contains("residual RMS 0.000 µm"), "{form_row}");

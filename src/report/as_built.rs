@@ -4,7 +4,7 @@
 //! scene's headline results as designed beside as built.
 
 use super::disc::hole_cutouts;
-use super::fit::{fixed, flank_length_mm};
+use super::fit::{fixed, fixed_change, flank_length_mm};
 use super::html::{data_table, figure, section, Section};
 use super::svg::frame::{titles, wrap, Frame};
 use super::svg::{self, document, px, LinePlot, Series, PALETTE, RED};
@@ -57,6 +57,8 @@ pub(super) fn section_of(
     // Micrometres to the nanometre, as `cycloid fit` prints them: a change at the round-off
     // of the fit reads 0.000 µm (not 6.134e-12 µm, nor −0.000).
     let um = |mm: f64| format!("{} µm", fixed(units::um(mm), 3));
+    // A change is signed, as the results' changes below are (`numeric::change`).
+    let um_change = |mm: f64| format!("{} µm", fixed_change(units::um(mm), 3));
     let m = (&view.designed_modification, &id.modification);
     let body = html! {
         p.note { "Every scene ran on the disc identified from "
@@ -68,10 +70,10 @@ pub(super) fn section_of(
             html! {
                 tr { th { "shift ΔRp" } td.num { (number(m.0.shift_mm)) " mm" }
                     td.num { (number(m.1.shift_mm)) " mm" }
-                    td.num { (um(m.1.shift_mm - m.0.shift_mm)) } }
+                    td.num { (um_change(m.1.shift_mm - m.0.shift_mm)) } }
                 tr { th { "equidistant ΔRrp" } td.num { (number(m.0.equidistant_mm)) " mm" }
                     td.num { (number(m.1.equidistant_mm)) " mm" }
-                    td.num { (um(m.1.equidistant_mm - m.0.equidistant_mm)) } }
+                    td.num { (um_change(m.1.equidistant_mm - m.0.equidistant_mm)) } }
                 tr { th { "form error" } td { "none" }
                     td { (id.form.harmonics.len()) " harmonics, |w| ≤ "
                         (um(id.form.harmonics.iter().map(|h| h.amplitude_mm()).sum())) }

@@ -18,6 +18,18 @@ pub(super) fn fixed(x: f64, decimals: usize) -> String {
     }
 }
 
+/// A change `x` with `decimals`, signed as `numeric::change` signs one (`+25.000`, `-9.300`),
+/// and unsigned where it rounds to zero (`0.000`, not `+0.000` or `-0.000`).
+pub(super) fn fixed_change(x: f64, decimals: usize) -> String {
+    let s = fixed(x, decimals);
+    let zero = s.trim_matches(['0', '.']).is_empty();
+    if zero || s.starts_with('-') {
+        s
+    } else {
+        format!("+{s}")
+    }
+}
+
 fn row(name: &str, e: Estimate, unit: &str) -> String {
     let (value, sigma) = match unit {
         "deg" => (
@@ -138,4 +150,20 @@ pub fn form_csv(spec: &Spec, id: &Identification) -> String {
         );
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixed_change;
+
+    /// Signed like the headline changes beside it, and a change at the round-off of a fit
+    /// (1e-12 either way) reads as no change at all.
+    #[test]
+    fn a_change_is_signed_and_round_off_reads_zero() {
+        assert_eq!(fixed_change(25.0, 3), "+25.000");
+        assert_eq!(fixed_change(-9.3, 3), "-9.300");
+        assert_eq!(fixed_change(1e-12, 3), "0.000");
+        assert_eq!(fixed_change(-1e-12, 3), "0.000");
+        assert_eq!(fixed_change(0.0005, 3), "+0.001");
+    }
 }

@@ -616,7 +616,9 @@ impl<'a> Lean<'a> {
             shares[k] = disc.share.torque;
             w.remember_lags(disc.cranks[k], rows.lag[k], rows.output_lag[k]);
         }
-        work.remember_split(phi, self.shares().map(|s| s.torque), total);
+        // The Newton's next split (`CoupledWork::remember_split` says why).
+        let next = self.shares().map(|s| s.torque + s.step(common));
+        work.remember_split(phi, next, total);
         Some(common)
     }
 }

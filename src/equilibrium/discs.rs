@@ -126,9 +126,13 @@ impl CoupledWork {
         }
     }
 
-    /// Remember the converged split `torque` (N·mm, disc by disc) of the output torque `total`
-    /// at `crank`, for the guess at the next angle. A second solve of the angle remembered last
-    /// replaces it.
+    /// Remember the split `torque` (N·mm, disc by disc) of the output torque `total` at
+    /// `crank`, for the guess at the next angle. A second solve of the angle remembered last
+    /// replaces it. Where a Newton on the shares settled the angle, the split to remember is
+    /// its next one (each share plus `Share::step`), not the one the angle settled on: that
+    /// is only within the Newton's tolerance of the answer, and the quadratic extrapolation
+    /// magnifies the history's error up to sevenfold (Lagrange weights 1, −3, 3 on a uniform
+    /// grid), which cost an 11-roller design a second Newton step at most angles.
     pub fn remember_split(&mut self, crank: f64, torque: impl Iterator<Item = f64>, total: f64) {
         if total == 0.0 {
             return;
@@ -236,7 +240,8 @@ pub fn solve_coupled(
         if converged(shares, common, 10.0 * rel_tol * scale) {
             // γ is the common lag of the discs that carry a share (a disc without contact has
             // no weight, and its own lag is that of its nearest contact).
-            finish(work, crank, &torque, total, &lag);
+            let next = Share::of(&torque, &lag, &weights).map(|s| s.torque + s.step(common));
+            work.remember_split(crank, next, total);
             return Ok(if n == 1 { lag[0] } else { common });
         }
         let steps: Vec<f64> = Share::of(&torque, &lag, &weights)

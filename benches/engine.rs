@@ -68,7 +68,11 @@ fn check_clearance_only_360(b: divan::Bencher) {
 }
 
 fn loaded(b: divan::Bencher, geometry: GeometryMode) {
-    let (model, c) = common::rated_sweep(geometry, 3600);
+    loaded_with(b, geometry, 10);
+}
+
+fn loaded_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
+    let (model, c) = common::rated_sweep_with(geometry, 3600, rollers);
     b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
 }
 
@@ -115,8 +119,41 @@ fn two_discs_sweep_3600_first_order(b: divan::Bencher) {
     two_discs(b, GeometryMode::FirstOrder);
 }
 
+/// The one-disc baseline of `two_discs_sweep_3600_first_order_11_rollers`: the paper's design
+/// with 11 rollers and 10 teeth, 3,600 angles over its mesh period.
+#[divan::bench(sample_count = 300)]
+fn loaded_sweep_3600_first_order_11_rollers(b: divan::Bencher) {
+    loaded_with(b, GeometryMode::FirstOrder, 11);
+}
+
+/// Two discs with an odd roller count (issue 14): they do not mesh in one phase, so their
+/// split of the torque moves with the crank (19 % to 81 % of T) and the Newton on the shares
+/// works at every angle, where on the paper's even design the split is T/2 throughout.
+/// Target: at most 2.2× `loaded_sweep_3600_first_order_11_rollers`.
+#[divan::bench(sample_count = 300)]
+fn two_discs_sweep_3600_first_order_11_rollers(b: divan::Bencher) {
+    two_discs_with(b, GeometryMode::FirstOrder, 11);
+}
+
+/// The one-disc baseline of `two_discs_sweep_3600_exact_11_rollers`.
+#[divan::bench(sample_count = 60)]
+fn loaded_sweep_3600_exact_11_rollers(b: divan::Bencher) {
+    loaded_with(b, GeometryMode::Exact, 11);
+}
+
+/// As `two_discs_sweep_3600_first_order_11_rollers`, exact geometry (the general coupled
+/// solve). Target: at most 2.2× `loaded_sweep_3600_exact_11_rollers`.
+#[divan::bench(sample_count = 60)]
+fn two_discs_sweep_3600_exact_11_rollers(b: divan::Bencher) {
+    two_discs_with(b, GeometryMode::Exact, 11);
+}
+
 fn two_discs(b: divan::Bencher, geometry: GeometryMode) {
-    let (model, c) = common::rated_sweep(geometry, 3600);
+    two_discs_with(b, geometry, 10);
+}
+
+fn two_discs_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
+    let (model, c) = common::rated_sweep_with(geometry, 3600, rollers);
     let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
     b.bench(|| {
         curves::sweep_discs_observed(black_box(&discs), &c, true, &cycloid::progress::Silent)

@@ -7,7 +7,15 @@ use cycloid::spec::{self};
 /// The paper optimum's 10 N·m scene (`rated`; scene 0, `mesh`, is the unloaded one) with
 /// rollers, pins and a rigid bearing in `geometry`, and `n` crank angles over one mesh period.
 pub fn rated_sweep(geometry: GeometryMode, n: usize) -> (Model, Vec<f64>) {
-    let s = spec::load("specs/paper.yaml").expect("specs/paper.yaml");
+    rated_sweep_with(geometry, n, 10)
+}
+
+/// `rated_sweep` of the paper's design with `rollers` rollers (and one tooth fewer), over one
+/// mesh period of that design, 2π/rollers of crank. With an odd count two discs do not mesh
+/// in one phase, and their split of the torque moves with the crank.
+pub fn rated_sweep_with(geometry: GeometryMode, n: usize, rollers: usize) -> (Model, Vec<f64>) {
+    let mut s = spec::load("specs/paper.yaml").expect("specs/paper.yaml");
+    (s.design.rollers, s.design.teeth) = (rollers, rollers - 1);
     let mut scene = s
         .scenes
         .iter()
@@ -22,7 +30,7 @@ pub fn rated_sweep(geometry: GeometryMode, n: usize) -> (Model, Vec<f64>) {
         &cycloid::model::Plan::of("rated", &[cycloid::model::Effect::Bearing]),
     );
     let crank = (0..n)
-        .map(|k| std::f64::consts::TAU / 10.0 * k as f64 / n as f64)
+        .map(|k| std::f64::consts::TAU / rollers as f64 * k as f64 / n as f64)
         .collect();
     (model, crank)
 }

@@ -72,21 +72,21 @@ fn loaded(b: divan::Bencher, geometry: GeometryMode) {
 }
 
 fn loaded_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
-    let (model, c) = common::rated_sweep_with(geometry, 3600, rollers);
+    let (model, c) = common::rated_sweep(geometry, 3600, rollers);
     b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
 }
 
 /// Loaded sweep of 360 crank angles (the angles of `check_clearance_only_360`), exact geometry.
 #[divan::bench]
 fn loaded_sweep_360_exact(b: divan::Bencher) {
-    let (model, c) = common::rated_sweep(GeometryMode::Exact, 360);
+    let (model, c) = common::rated_sweep(GeometryMode::Exact, 360, 10);
     b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
 }
 
 /// Loaded sweep of 360 crank angles, first-order geometry.
 #[divan::bench]
 fn loaded_sweep_360_first_order(b: divan::Bencher) {
-    let (model, c) = common::rated_sweep(GeometryMode::FirstOrder, 360);
+    let (model, c) = common::rated_sweep(GeometryMode::FirstOrder, 360, 10);
     b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
 }
 
@@ -153,7 +153,7 @@ fn two_discs(b: divan::Bencher, geometry: GeometryMode) {
 }
 
 fn two_discs_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
-    let (model, c) = common::rated_sweep_with(geometry, 3600, rollers);
+    let (model, c) = common::rated_sweep(geometry, 3600, rollers);
     let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
     b.bench(|| {
         curves::sweep_discs_observed(black_box(&discs), &c, true, &cycloid::progress::Silent)

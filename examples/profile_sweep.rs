@@ -2,7 +2,9 @@
 //! `cargo build --release --example profile_sweep && valgrind --tool=callgrind
 //! target/release/examples/profile_sweep exact 3600` (geometry `exact` or `first_order`,
 //! then the number of crank angles over one mesh period). Compare against a run with 36 angles
-//! to remove the set-up cost. A third argument N runs N discs through the coupled sweep.
+//! to remove the set-up cost. A third argument N runs N discs through the coupled sweep (0:
+//! the one-disc sweep), a fourth the roller count (default 10, the paper's; 11 puts two discs
+//! out of phase, `common::rated_sweep`).
 
 use cycloid::equilibrium::curves;
 use cycloid::model::GeometryMode;
@@ -17,9 +19,10 @@ fn main() {
         _ => GeometryMode::Exact,
     };
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(3600);
-    let (model, crank) = common::rated_sweep(geometry, n);
     // A third argument: that many discs through the coupled sweep (`equilibrium::discs`).
     let discs: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(0);
+    let rollers: usize = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(10);
+    let (model, crank) = common::rated_sweep(geometry, n, rollers);
     let transmission = if discs > 0 {
         let d = cycloid::equilibrium::discs::Discs::new(&model, discs);
         curves::sweep_discs_observed(&d, &crank, true, &cycloid::progress::Silent)

@@ -5,15 +5,11 @@ use cycloid::model::GeometryMode;
 use cycloid::spec::{self};
 
 /// The paper optimum's 10 N·m scene (`rated`; scene 0, `mesh`, is the unloaded one) with
-/// rollers, pins and a rigid bearing in `geometry`, and `n` crank angles over one mesh period.
-pub fn rated_sweep(geometry: GeometryMode, n: usize) -> (Model, Vec<f64>) {
-    rated_sweep_with(geometry, n, 10)
-}
-
-/// `rated_sweep` of the paper's design with `rollers` rollers (and one tooth fewer), over one
-/// mesh period of that design, 2π/rollers of crank. With an odd count two discs do not mesh
-/// in one phase, and their split of the torque moves with the crank.
-pub fn rated_sweep_with(geometry: GeometryMode, n: usize, rollers: usize) -> (Model, Vec<f64>) {
+/// rollers, pins and a rigid bearing in `geometry`, on the paper's design with `rollers`
+/// rollers (10, the paper's; one tooth fewer), and `n` crank angles over one mesh period of
+/// that design, 2π/rollers of crank. With an odd count two discs do not mesh in one phase,
+/// and their split of the torque moves with the crank.
+pub fn rated_sweep(geometry: GeometryMode, n: usize, rollers: usize) -> (Model, Vec<f64>) {
     let mut s = spec::load("specs/paper.yaml").expect("specs/paper.yaml");
     (s.design.rollers, s.design.teeth) = (rollers, rollers - 1);
     let mut scene = s

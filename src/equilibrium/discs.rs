@@ -221,14 +221,16 @@ pub fn solve_coupled(
     let total = discs.torque_nmm;
     let reach = discs.models[0].warm_reach();
     let weights = work.extrapolation(crank, reach);
-    let mut torque: Vec<f64> = (0..n)
-        .map(|k| work.share_guess(k, weights, n, total))
-        .collect();
-    let mut lag = vec![0.0; n];
-    let mut last: Vec<Option<(f64, f64)>> = vec![None; n];
+    // Fixed arrays of `MAX_DISCS` (the first n used): an angle allocates nothing.
+    let mut torque = [0.0; MAX_DISCS];
+    for (k, t) in torque[..n].iter_mut().enumerate() {
+        *t = work.share_guess(k, weights, n, total);
+    }
+    let mut lag = [0.0; MAX_DISCS];
+    let mut last: [Option<(f64, f64)>; MAX_DISCS] = [None; MAX_DISCS];
     let rel_tol = discs.models[0].settings.rel_tol;
     for _ in 0..NEWTON_STEPS {
-        let mut weights = vec![0.0; n];
+        let mut weights = [0.0; MAX_DISCS];
         let mut scale = total.abs();
         for k in 0..n {
             lag[k] = solve_disc(discs, work, k, crank, torque[k])?;
@@ -242,45 +244,47 @@ pub fn solve_coupled(
             }
             last[k] = Some((torque[k], lag[k]));
         }
+        let (lag_n, weights) = (&lag[..n], &mut weights[..n]);
         // A disc without contact has no compliance of its own; the discs are identical, so
         // the mean of the others' stands in: the Newton then loads it when γ has passed its
         // nearest contact (or `by_lag` finds it floating).
-        let loaded: Vec<f64> = weights.iter().cloned().filter(|w| *w > 0.0).collect();
-        if !loaded.is_empty() && loaded.len() < n {
-            let mean = loaded.iter().sum::<f64>() / loaded.len() as f64;
+        let loaded = weights.iter().filter(|w| **w > 0.0).count();
+        if loaded > 0 && loaded < n {
+            let mean = weights.iter().sum::<f64>() / loaded as f64;
             weights
                 .iter_mut()
                 .filter(|w| **w == 0.0)
                 .for_each(|w| *w = mean);
         }
+        let (torque_n, weights) = (&mut torque[..n], &*weights);
         let w: f64 = weights.iter().sum();
         if total == 0.0 || w == 0.0 {
             // No torque (or no contact anywhere): every share is zero and the discs rest at
             // their own lags; the reducer's is their mean.
-            return Ok(finish(work, crank, &torque, total, &lag));
+            return Ok(finish(work, crank, torque_n, total, lag_n));
         }
-        let shares = Share::of(&torque, &lag, &weights);
-        let common = common_lag(shares.clone(), total);
-        if converged(shares, common, 10.0 * rel_tol * scale) {
+        let shares = || Share::of(torque_n, lag_n, weights);
+        let common = common_lag(shares(), total);
+        if converged(shares(), common, 10.0 * rel_tol * scale) {
             // γ is the common lag of the discs that carry a share (a disc without contact has
             // no weight, and its own lag is that of its nearest contact).
-            let next = Share::of(&torque, &lag, &weights).map(|s| s.torque + s.step(common));
-            work.remember_split(crank, next, total);
+            work.remember_split(crank, shares().map(|s| s.torque + s.step(common)), total);
             return Ok(if n == 1 { lag[0] } else { common });
         }
-        let steps: Vec<f64> = Share::of(&torque, &lag, &weights)
-            .map(|s| s.step(common))
-            .collect();
-        for (t, d) in torque.iter_mut().zip(steps) {
+        let mut steps = [0.0; MAX_DISCS];
+        for (d, s) in steps.iter_mut().zip(shares()) {
+            *d = s.step(common);
+        }
+        for (t, d) in torque_n.iter_mut().zip(steps) {
             *t += d;
         }
         // A share against the torque sends its disc across its backlash, where its lag jumps
         // and no compliance describes it: the solve in γ handles that.
-        if torque.iter().any(|t| t * total < 0.0) {
+        if torque_n.iter().any(|t| t * total < 0.0) {
             break;
         }
     }
-    by_lag(discs, crank, work, &torque, &lag)
+    by_lag(discs, crank, work, &torque[..n], &lag[..n])
 }
 
 /// The share, as a fraction of T, at which a disc's dead band is probed (`torque_at_lag`).

@@ -408,6 +408,50 @@ fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it(
     assert!(floated > 0, "no disc floated");
 }
 
+/// The general coupled solve (here exact geometry, 11 rollers, whose split moves with the
+/// crank) runs its chunks in two waves, each odd chunk continuing the split of the even chunk
+/// before it (`curves::solve_in_two_waves`): what a chunk starts from is fixed by the chunks'
+/// order, not by which thread ran what before, so the curves, shares and transmission must be
+/// the same bit for bit on one thread and on four. 300 angles make five chunks, two of them
+/// continued. The shares sum to T at every angle (to 1e-9 of T, the solve's guard).
+#[test]
+fn coupled_sweep_in_two_waves_is_the_same_on_one_and_on_four_threads() {
+    let scene = common::scene_item(
+        "rated",
+        20.0,
+        "{ from_deg: 0.0, to_deg: 30.0, steps: 300 }",
+        "bearing",
+    );
+    let spec = common::PaperSpec::new()
+        .edit("teeth: 9 ", "teeth: 10 ")
+        .edit("rollers: 10 ", "rollers: 11 ")
+        .edit("face_width_mm", "discs: 2\n  face_width_mm")
+        .scenes(&scene)
+        .parse("odd-exact.yaml");
+    let run = || {
+        cycloid::engine::scene::run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0]))
+            .unwrap()
+    };
+    let pool = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+    };
+    let (one, four) = (pool(1).install(run), pool(4).install(run));
+    for (a, b) in one.discs.iter().zip(&four.discs) {
+        assert_eq!(a.loaded, b.loaded);
+    }
+    assert_eq!(one.loaded.transmission, four.loaded.transmission);
+    let t = 20_000.0;
+    let angles = one.loaded.transmission.as_ref().unwrap().te_rad.len();
+    assert!(angles >= 257, "{angles} angles: fewer than five chunks");
+    for a in 0..angles {
+        let sum: f64 = one.discs.iter().map(|d| torque(d, a)).sum();
+        assert!((sum - t).abs() <= 1e-9 * t, "angle {a}: Σ Tk = {sum}");
+    }
+}
+
 /// The design review draws the disc in the first scene that loads it over the crank angle:
 /// in `specs/reducer-two-discs.yaml` that is `rated` (20 N·m shared by two discs), not the
 /// torsion scene listed before it (its crank angles are locked angles, its scene torque 0).

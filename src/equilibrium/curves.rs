@@ -411,27 +411,58 @@ fn solve_disc_chunk(
     let mut work = CoupledWork::new(discs);
     lean.restart(discs, crank_rad);
     for (k, &phi) in crank_rad.iter().enumerate() {
-        let fail = |failure| SweepFailure {
-            crank_rad: phi,
-            failure,
-        };
         if let Some(gamma) = lean.solve(discs, phi, k, &mut work, chunk) {
             chunk.output_lag[k] = gamma;
             continue;
         }
-        chunk.output_lag[k] = solve_coupled(discs, phi, &mut work).map_err(fail)?;
-        for (d, rows) in chunk.discs.iter_mut().enumerate() {
-            let (model, w) = (&work.models[d], &work.works[d]);
-            if !all_finite(&w.sol) {
-                return Err(fail(SolveFailure::NonFinite {
-                    x: w.sol.lag_rad.unwrap_or(0.0),
-                }));
-            }
-            rows.record(k, model, w.e_phi, &w.sol);
-            chunk.torque[d][k] = model.torque_nmm;
-        }
+        record_coupled(discs, (k, phi), &mut work, chunk)?;
     }
     Ok(())
+}
+
+/// Angle k (crank `phi`) by the general coupled solve (`discs::solve_coupled`), recorded in
+/// `chunk`.
+fn record_coupled(
+    discs: &Discs,
+    (k, phi): (usize, f64),
+    work: &mut CoupledWork,
+    chunk: &mut DiscChunk<'_>,
+) -> Result<(), SweepFailure> {
+    let fail = |failure| SweepFailure {
+        crank_rad: phi,
+        failure,
+    };
+    chunk.output_lag[k] = solve_coupled(discs, phi, work).map_err(fail)?;
+    for (d, rows) in chunk.discs.iter_mut().enumerate() {
+        let (model, w) = (&work.models[d], &work.works[d]);
+        if !all_finite(&w.sol) {
+            return Err(fail(SolveFailure::NonFinite {
+                x: w.sol.lag_rad.unwrap_or(0.0),
+            }));
+        }
+        rows.record(k, model, w.e_phi, &w.sol);
+        chunk.torque[d][k] = model.torque_nmm;
+    }
+    Ok(())
+}
+
+/// A chunk of angles of several discs by the general coupled solve alone, its split guessed
+/// at the first angles from `before` (the chunk before it) where given: its work, whose
+/// split the next chunk continues from.
+fn solve_coupled_chunk(
+    discs: &Discs,
+    crank_rad: &[f64],
+    chunk: &mut DiscChunk<'_>,
+    before: Option<&CoupledWork>,
+) -> Result<CoupledWork, SweepFailure> {
+    let mut work = CoupledWork::new(discs);
+    if let Some(before) = before {
+        work.continue_from(before);
+    }
+    for (k, &phi) in crank_rad.iter().enumerate() {
+        record_coupled(discs, (k, phi), &mut work, chunk)?;
+    }
+    Ok(work)
 }
 
 /// The lean first-order kernel of each disc (`FirstOrderSweep`), where it applies to every
@@ -623,6 +654,51 @@ impl<'a> Lean<'a> {
     }
 }
 
+/// The chunks of a sweep the general coupled solve takes (no lean kernels) in two waves: the
+/// even chunks from no history, then each odd chunk continuing the split of the even chunk
+/// before it. A chunk's first angles otherwise guess the split from fewer than the four
+/// angles the Newton on the shares needs to settle in one step (at the first, an equal
+/// split), and each further step there is a disc solve over every roller: on 11 rollers in
+/// exact geometry the chunk starts held 85 % of the sweep's second steps. The waves are fixed
+/// by the chunks' order, so results do not depend on the thread count. (The lean kernels'
+/// extra steps at chunk starts cost about what a second wave's bookkeeping does; they run in
+/// one wave.)
+fn solve_in_two_waves(
+    discs: &Discs,
+    crank_rad: &[f64],
+    per_chunk: Vec<DiscChunk<'_>>,
+    progress: &dyn Progress,
+) -> Result<(), SweepFailure> {
+    let (even, odd): (Vec<_>, Vec<_>) = crank_rad
+        .chunks(CHUNK)
+        .zip(per_chunk)
+        .enumerate()
+        .partition(|(i, _)| i % 2 == 0);
+    // Chunk i continues from before[i / 2] where given: the even chunk before an odd one.
+    let wave = |jobs: Vec<(usize, (&[f64], DiscChunk<'_>))>,
+                before: &[Result<CoupledWork, SweepFailure>]| {
+        let done: Vec<Result<CoupledWork, SweepFailure>> = jobs
+            .into_par_iter()
+            .map(|(i, (c, mut chunk))| {
+                let from = before.get(i / 2).and_then(|b| b.as_ref().ok());
+                let done = solve_coupled_chunk(discs, c, &mut chunk, from);
+                progress.advance(c.len() as u64);
+                done
+            })
+            .collect();
+        done
+    };
+    let first = wave(even, &[]);
+    let second = wave(odd, &first);
+    // The first failure in crank order: chunk i is first[i / 2] or second[i / 2].
+    let mut second = second.into_iter();
+    for done in first {
+        done?;
+        second.next().transpose()?;
+    }
+    Ok(())
+}
+
 /// `sweep_observed` of several discs: chunks of `CHUNK` angles in parallel, each angle
 /// warm-started from the previous ones of its chunk (split and lags), so results do not
 /// depend on the thread count.
@@ -651,19 +727,27 @@ pub fn sweep_discs_observed(
             chunk.discs.push(rows);
         }
     }
-    let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
-        .par_chunks(CHUNK)
-        .zip(per_chunk)
-        .map_init(
-            || Lean::new(discs),
-            |lean, (c, mut chunk)| {
-                let done = solve_disc_chunk(discs, c, &mut chunk, lean);
-                progress.advance(c.len() as u64);
-                done
-            },
-        )
-        .collect();
-    outcomes.into_iter().collect::<Result<(), _>>()?;
+    if discs
+        .models
+        .iter()
+        .all(|m| FirstOrderSweep::new(m).is_some())
+    {
+        let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
+            .par_chunks(CHUNK)
+            .zip(per_chunk)
+            .map_init(
+                || Lean::new(discs),
+                |lean, (c, mut chunk)| {
+                    let done = solve_disc_chunk(discs, c, &mut chunk, lean);
+                    progress.advance(c.len() as u64);
+                    done
+                },
+            )
+            .collect();
+        outcomes.into_iter().collect::<Result<(), _>>()?;
+    } else {
+        solve_in_two_waves(discs, crank_rad, per_chunk, progress)?;
+    }
     let model = &discs.models[0];
     let transmission = model
         .rollers

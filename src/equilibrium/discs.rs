@@ -97,6 +97,12 @@ impl CoupledWork {
         }
     }
 
+    /// Guess the next angles' splits from those `before` remembered: the last angles of the
+    /// chunk of angles before this one (`curves::sweep_discs_observed`).
+    pub fn continue_from(&mut self, before: &CoupledWork) {
+        (self.cranks, self.shares, self.filled) = (before.cranks, before.shares, before.filled);
+    }
+
     /// The Lagrange weights that extrapolate the remembered shares to `crank`, through as
     /// many of the last angles as are held (cubic from four; an entry not yet filled has
     /// weight zero), or `None` with no history or one too far away (`Model::warm_reach`).

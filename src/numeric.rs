@@ -84,17 +84,19 @@ fn decimals(x: f64) -> Option<usize> {
 pub fn change(from: f64, to: f64) -> String {
     let x = to - from;
     match decimals(from.abs().max(to.abs())) {
-        Some(digits)
-            if format!("{:.digits$}", x.abs())
-                .trim_matches(['0', '.'])
-                .is_empty() =>
-        {
-            "0".to_string()
-        }
-        Some(digits) => format!("{x:+.digits$}"),
+        Some(digits) => signed(x, digits).unwrap_or_else(|| "0".to_string()),
         None if x == 0.0 => "0".to_string(),
         None => format!("{x:+.3e}"),
     }
+}
+
+/// A change `x` signed, to `decimals` (`+25.000`, `-9.300`), or `None` where it rounds to zero
+/// there (not `+0.000` or `-0.000`).
+pub fn signed(x: f64, decimals: usize) -> Option<String> {
+    let zero = format!("{:.decimals$}", x.abs())
+        .trim_matches(['0', '.'])
+        .is_empty();
+    (!zero).then(|| format!("{x:+.decimals$}"))
 }
 
 /// A value as the user wrote it when that is short, else in exponent form: spec inputs in

@@ -18,16 +18,10 @@ pub(super) fn fixed(x: f64, decimals: usize) -> String {
     }
 }
 
-/// A change `x` with `decimals`, signed as `numeric::change` signs one (`+25.000`, `-9.300`),
-/// and unsigned where it rounds to zero (`0.000`, not `+0.000` or `-0.000`).
+/// A change `x` with `decimals`, signed as `numeric::change` signs one (`numeric::signed`:
+/// `+25.000`, `-9.300`), and unsigned where it rounds to zero (`0.000`).
 pub(super) fn fixed_change(x: f64, decimals: usize) -> String {
-    let s = fixed(x, decimals);
-    let zero = s.trim_matches(['0', '.']).is_empty();
-    if zero || s.starts_with('-') {
-        s
-    } else {
-        format!("+{s}")
-    }
+    crate::numeric::signed(x, decimals).unwrap_or_else(|| fixed(0.0, decimals))
 }
 
 fn row(name: &str, e: Estimate, unit: &str) -> String {

@@ -727,11 +727,7 @@ pub fn sweep_discs_observed(
             chunk.discs.push(rows);
         }
     }
-    if discs
-        .models
-        .iter()
-        .all(|m| FirstOrderSweep::new(m).is_some())
-    {
+    if discs.models.iter().all(FirstOrderSweep::applies) {
         let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
             .par_chunks(CHUNK)
             .zip(per_chunk)

@@ -227,21 +227,34 @@ struct Balance<'s> {
 }
 
 impl<'a> FirstOrderSweep<'a> {
+    /// Whether the lean sweep applies to `model` (`new` builds it): first-order geometry, the
+    /// paper's linear law, a rigid bearing, rollers, and at most 64 rollers and pins with a
+    /// linear stiffness.
+    pub fn applies(model: &Model) -> bool {
+        let Some(r) = model.rollers.as_ref() else {
+            return false;
+        };
+        let pins_apply = model
+            .pins
+            .as_ref()
+            .is_none_or(|p| p.base.len() <= MAX_TERMS && p.linear_stiffness().is_some());
+        r.geometry == GeometryMode::FirstOrder
+            && r.law == ContactLaw::PaperLinear
+            && model.bearing_stiffness_n_per_mm.is_none()
+            && r.units.len() <= MAX_TERMS
+            && pins_apply
+    }
+
     /// The lean sweep of `model`, or `None` when the model needs the general solve: exact
     /// geometry, the logarithmic law, a compliant bearing, no rollers, or more than 64 rollers
     /// or pins (the kernel keeps an active set as a bit mask).
     pub fn new(model: &'a Model) -> Option<Self> {
-        let r = model.rollers.as_ref()?;
-        let applies = r.geometry == GeometryMode::FirstOrder
-            && r.law == ContactLaw::PaperLinear
-            && model.bearing_stiffness_n_per_mm.is_none()
-            && r.units.len() <= MAX_TERMS;
-        if !applies {
+        if !Self::applies(model) {
             return None;
         }
+        let r = model.rollers.as_ref()?;
         let pins = match &model.pins {
-            Some(p) if p.base.len() <= MAX_TERMS => Some((p, p.linear_stiffness()?)),
-            Some(_) => return None,
+            Some(p) => Some((p, p.linear_stiffness()?)),
             None => None,
         };
         let c = &r.materials;

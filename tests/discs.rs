@@ -452,6 +452,62 @@ fn coupled_sweep_in_two_waves_is_the_same_on_one_and_on_four_threads() {
     }
 }
 
+/// A coupled solve that fails names the disc that failed, at its own crank angle: the crank
+/// angle of the message is the reducer's, and disc k sits at it plus k·360°/discs. On the
+/// paper's design with 11 rollers (10 teeth) one disc alone holds 106.5 kN·m at crank 0° but
+/// not at 180° (both asserted first, each by a one-disc solve; the contact model's capacity
+/// there is about 107.0 and 105.3 kN·m, far past any real load, and the only place a disc
+/// fails by itself). Two discs at 213 kN·m start from an even split: disc 0, at 0°, takes
+/// its 106.5 kN·m; disc 1, at 180°, cannot, and the message must say so, pointing at the
+/// scene's torque, with exit 2.
+#[test]
+fn a_disc_that_cannot_hold_its_share_is_named_at_its_own_crank_angle() {
+    let spec = |discs: usize, torque_nm: f64, from_deg: f64| {
+        let crank = format!(
+            "{{ from_deg: {from_deg}, to_deg: {}, steps: 1 }}",
+            from_deg + 1.0
+        );
+        common::PaperSpec::new()
+            .edit("teeth: 9 ", "teeth: 10 ")
+            .edit("rollers: 10 ", "rollers: 11 ")
+            .edit("face_width_mm", &format!("discs: {discs}\n  face_width_mm"))
+            .scenes(&common::scene_item(
+                "over",
+                torque_nm,
+                &crank,
+                "roller_contact",
+            ))
+    };
+    let one_disc = |from_deg: f64| {
+        let spec = spec(1, 106_500.0, from_deg).parse("one.yaml");
+        let scene = &spec.scenes[0];
+        cycloid::engine::scene::run(&spec, scene, &Plan::for_scene(scene)).map(|_| ())
+    };
+    one_disc(0.0).unwrap_or_else(|e| panic!("one disc at 0°: {e}"));
+    let alone = one_disc(180.0)
+        .expect_err("one disc at 180° holds 106.5 kN·m")
+        .to_string();
+    assert!(
+        alone.contains("cannot balance an output torque of 106500 N·m"),
+        "{alone}"
+    );
+    let dir = common::Scratch::new("disc-failure");
+    let text = spec(2, 213_000.0, 0.0);
+    dir.write("two.yaml", text.text());
+    let run = common::cycloid(&dir.join(""), &["check", "two.yaml"]);
+    let line = 1 + text.text()[..text.text().find("output_torque_nm: 213000").unwrap()]
+        .matches('\n')
+        .count();
+    let expected = format!(
+        "two.yaml:{line}:5: computation failed: scenes[0].output_torque_nm: scene `over`: crank \
+         angle 0.0000°: equilibrium solve failed: disc 1 of 2, at its own crank angle \
+         180.0000° and its share of the output torque: the rollers cannot balance an output \
+         torque of 106500 N·m: "
+    );
+    assert_eq!(run.code(), 2, "{}", run.stderr);
+    assert!(run.stderr.starts_with(&expected), "{}", run.stderr);
+}
+
 /// The design review draws the disc in the first scene that loads it over the crank angle:
 /// in `specs/reducer-two-discs.yaml` that is `rated` (20 N·m shared by two discs), not the
 /// torsion scene listed before it (its crank angles are locked angles, its scene torque 0).

@@ -237,7 +237,7 @@ fn loaded_disc_sweeps(
 /// key by `at_scene`).
 fn sweep_failed(scene: &Scene, f: curves::SweepFailure) -> Error {
     let e = solve_failed(scene, f.crank_rad, &f.failure);
-    match f.failure {
+    match f.failure.cause() {
         SolveFailure::BeyondCapacity { .. } => e.at_key("output_torque_nm"),
         SolveFailure::OutOfMesh { .. } => e.at_key("bearing_stiffness_n_per_mm"),
         _ => e,

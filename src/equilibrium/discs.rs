@@ -239,7 +239,8 @@ pub fn solve_coupled(
         let mut weights = [0.0; MAX_DISCS];
         let mut scale = total.abs();
         for k in 0..n {
-            lag[k] = solve_disc(discs, work, k, crank, torque[k])?;
+            lag[k] =
+                solve_disc(discs, work, k, crank, torque[k]).map_err(of_disc(discs, k, crank))?;
             scale += moment(&work.works[k].sol.rollers).2;
             let secant = last[k]
                 .filter(|&(t, _)| t != torque[k])
@@ -358,6 +359,20 @@ pub fn converged(shares: impl Iterator<Item = Share>, common: f64, tol: f64) -> 
 /// Newton steps on the shares before `by_lag` takes over: from the split of the previous
 /// angle the Newton converges in one or two.
 const NEWTON_STEPS: usize = 8;
+
+/// A failure of disc k's own solve at the reducer's crank angle `crank`, named by the disc
+/// when there are several (with one, the failure is the reducer's and reads as before).
+fn of_disc(discs: &Discs, k: usize, crank: f64) -> impl Fn(SolveFailure) -> SolveFailure + '_ {
+    move |failure| match discs.count() {
+        1 => failure,
+        n => SolveFailure::Disc {
+            disc: k,
+            discs: n,
+            crank_rad: crank + discs.phases[k],
+            failure: Box::new(failure),
+        },
+    }
+}
 
 /// Solve disc k alone at the torque `t` (N·mm): its output lag γk.
 fn solve_disc(
@@ -519,7 +534,8 @@ fn by_lag(
     let mut shares = torque.to_vec();
     let mut sum_at = |g: f64, work: &mut CoupledWork| -> Result<f64, SolveFailure> {
         for (k, t) in shares.iter_mut().enumerate() {
-            *t = torque_at_lag(discs, work, (k, crank), total, g)?;
+            *t = torque_at_lag(discs, work, (k, crank), total, g)
+                .map_err(of_disc(discs, k, crank))?;
         }
         Ok(shares.iter().sum())
     };
@@ -562,7 +578,7 @@ fn by_lag(
     if sum != total && stiffness > 0.0 {
         for &(k, w) in &loaded {
             let t = work.models[k].torque_nmm + (total - sum) * w / stiffness;
-            solve_disc(discs, work, k, crank, t)?;
+            solve_disc(discs, work, k, crank, t).map_err(of_disc(discs, k, crank))?;
         }
     }
     let lags: Vec<f64> = (0..discs.count())

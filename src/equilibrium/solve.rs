@@ -67,6 +67,25 @@ pub enum SolveFailure {
     Evaluation(String),
     /// A non-finite value appeared.
     NonFinite { x: f64 },
+    /// The solve of disc `disc` (0-based, as the results count discs) of `discs`, alone at
+    /// its own crank angle `crank_rad` (the reducer's plus its phase) and its share of the
+    /// output torque, failed: the coupled solve of several discs names the disc.
+    Disc {
+        disc: usize,
+        discs: usize,
+        crank_rad: f64,
+        failure: Box<SolveFailure>,
+    },
+}
+
+impl SolveFailure {
+    /// The failure itself, without the disc that names where it happened.
+    pub fn cause(&self) -> &SolveFailure {
+        match self {
+            SolveFailure::Disc { failure, .. } => failure.cause(),
+            other => other,
+        }
+    }
 }
 
 impl From<GapFailure> for SolveFailure {
@@ -145,6 +164,17 @@ impl std::fmt::Display for SolveFailure {
             ),
             SolveFailure::Evaluation(msg) => write!(f, "{msg}"),
             SolveFailure::NonFinite { x } => write!(f, "non-finite value at lag {x:.6e} rad"),
+            SolveFailure::Disc {
+                disc,
+                discs,
+                crank_rad,
+                failure,
+            } => write!(
+                f,
+                "disc {disc} of {discs}, at its own crank angle {:.4}° and its share of the \
+                 output torque: {failure}",
+                units::deg(*crank_rad).rem_euclid(360.0)
+            ),
         }
     }
 }

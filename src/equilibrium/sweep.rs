@@ -365,7 +365,13 @@ fn solve_rollers(
             .map_err(SolveFailure::Gap)?;
     }
     if model.torque_nmm == 0.0 {
-        if !in_contact(states.iter().map(|s| &s.force_n)) {
+        // Free in the backlash: no contact carries force, or none more than round-off. The
+        // root search meets a zero torque wherever the moment is round-off, and from a lag
+        // beyond the backlash's far side (a warm start at a share against the torque) that is
+        // the far side's edge, where a roller's force of round-off still counts as a contact:
+        // the limit T → 0⁺ is the near contact in the load direction all the same.
+        let round_off = moment(states).2 <= r.moment_resolution(states, offset_norm);
+        if round_off || !in_contact(states.iter().map(|s| &s.force_n)) {
             lag = touching(
                 |l| {
                     roller_balance(r, &pose(l), states)

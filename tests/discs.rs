@@ -418,7 +418,8 @@ fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it(
 /// one-disc limit is +753, at every floating angle: the solve at zero share started from its
 /// probe against the torque, and the root search met the zero torque at the far side's edge,
 /// where a roller's round-off force still counted as a contact. Tolerance 1e-9 of the lag:
-/// both land on the same touch, each to within a step of 1e-13 of the lag (`touching`).
+/// both land on the same touch, each to within a step of 1e-13 of the lag (`touching`). The
+/// floating disc's balance must hold too.
 #[test]
 fn a_floating_disc_in_exact_geometry_rests_where_one_disc_at_zero_torque_does() {
     let spec = |discs: usize, torque_nm: f64, from_deg: f64| {
@@ -455,6 +456,10 @@ fn a_floating_disc_in_exact_geometry_rests_where_one_disc_at_zero_torque_does() 
                 lag[a],
                 rest[a]
             );
+            // Its balance holds as every disc's must (≤ 1e-9 relative): the pins' forces of
+            // round-off, once left in against rollers without force, made it 1.
+            let residual = disc.loaded.bearing.as_ref().unwrap().residual[a];
+            assert!(residual <= 1e-9, "disc {k}, angle {a}: residual {residual}");
         }
     }
     // The case is the one it claims to be: discs do float here.

@@ -472,6 +472,18 @@ fn solve_pins(
         )?;
         evaluate(lag, states);
     }
+    if model.torque_nmm == 0.0 {
+        // As for the rollers: forces whose moments are round-off (pins that touch their holes
+        // without clearance, a disc floating in the backlash of its rollers) are zero, the
+        // limit T → 0⁺ of no load. Left in, they made the residual of such a disc 1: a
+        // moment of 1e-24 N·mm against rollers without force, on a scale of its own size.
+        let (_, _, scale) = moment(states);
+        if scale <= p.moment_resolution(states, offset.norm()) {
+            for s in states.iter_mut() {
+                (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
+            }
+        }
+    }
     Ok(lag)
 }
 

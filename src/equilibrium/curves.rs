@@ -278,7 +278,7 @@ fn solve_chunk(
                 }
                 // The lags from the recorded entries: loading them from `s` as a pair stalls
                 // on the two separate stores that wrote them.
-                work.remember_lags(phi, chunk.lag[k], chunk.output_lag[k]);
+                work.remember_lags(phi, (chunk.lag[k], chunk.output_lag[k]), model.torque_nmm);
                 continue;
             }
         }
@@ -645,7 +645,11 @@ impl<'a> Lean<'a> {
             .zip(&mut work.works);
         for (((disc, rows), shares), w) in per_disc {
             shares[k] = disc.share.torque;
-            w.remember_lags(disc.cranks[k], rows.lag[k], rows.output_lag[k]);
+            w.remember_lags(
+                disc.cranks[k],
+                (rows.lag[k], rows.output_lag[k]),
+                disc.share.torque,
+            );
         }
         // The Newton's next split (`CoupledWork::remember_split` says why).
         let next = self.shares().map(|s| s.torque + s.step(common));

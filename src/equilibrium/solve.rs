@@ -26,6 +26,9 @@ pub struct Root {
     /// caller mixes its states at `x` and near this end (`settle_straddle`). `residual` is
     /// then that of the mix as the solver saw it.
     pub straddle: Option<f64>,
+    /// The balance's slope ∂m/∂x at x as the solver last evaluated it (a caller's guess at a
+    /// nearby target, `sweep::Work::guess_at_torque`).
+    pub slope: f64,
 }
 
 use crate::geometry::clearance::GapFailure;
@@ -273,6 +276,7 @@ pub fn monotone_root<E: Into<SolveFailure>>(
                 residual,
                 iterations: calls,
                 straddle: None,
+                slope: b.slope,
             });
         }
         if b.value < target {
@@ -331,6 +335,7 @@ pub fn monotone_root<E: Into<SolveFailure>>(
                         residual: relative(&blend, target),
                         iterations: calls,
                         straddle: Some(if x == lo { hi } else { lo }),
+                        slope: blend.slope,
                     });
                 }
             }
@@ -340,6 +345,7 @@ pub fn monotone_root<E: Into<SolveFailure>>(
                     residual,
                     iterations: calls,
                     straddle: None,
+                    slope: b.slope,
                 })
             } else {
                 Err(SolveFailure::NotConverged { x, residual })

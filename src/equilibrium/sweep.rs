@@ -112,12 +112,77 @@ pub struct Work {
     /// (cos φ, sin φ) of the angle being solved.
     pub(super) e_phi: Vec2,
     reaches: Vec<Reach>,
-    /// The last (up to three) solved angles (φ, β, βo), oldest first, in the last `filled`
-    /// entries.
-    history: [(f64, f64, f64); 3],
+    /// The last (up to three) solved angles, oldest first, in the last `filled` entries.
+    history: [Solved; 3],
     filled: usize,
     terms: Vec<(f64, f64)>,
     events: Vec<(f64, f64, f64)>,
+    /// ∂M/∂β of the rollers' balance and ∂M/∂βo of the pins' at the last solution, N·mm/rad,
+    /// as the root search last evaluated them (0 where a closed form solved the balance).
+    slopes: (f64, f64),
+}
+
+/// A solved angle as the next angle's guess sees it.
+#[derive(Debug, Clone, Copy, Default)]
+struct Solved {
+    crank: f64,
+    /// β and βo, rad.
+    lag: f64,
+    output_lag: f64,
+    /// The torque it was solved at, N·mm.
+    torque: f64,
+}
+
+/// How the history extrapolates to an angle: quadratic (Lagrange weights of the last three
+/// angles), linear from the last two (the step ratio), or the last value.
+#[derive(Debug, Clone, Copy)]
+enum Fit {
+    Quadratic([f64; 3]),
+    Linear(f64),
+    Last,
+}
+
+impl Fit {
+    fn of(history: &[Solved], crank: f64) -> Option<Fit> {
+        match history {
+            [h0, h1, h2]
+                if h0.crank != h1.crank && h1.crank != h2.crank && h0.crank != h2.crank =>
+            {
+                let (p0, p1, p2) = (h0.crank, h1.crank, h2.crank);
+                let l0 = (crank - p1) * (crank - p2) / ((p0 - p1) * (p0 - p2));
+                let l1 = (crank - p0) * (crank - p2) / ((p1 - p0) * (p1 - p2));
+                let l2 = (crank - p0) * (crank - p1) / ((p2 - p0) * (p2 - p1));
+                Some(Fit::Quadratic([l0, l1, l2]))
+            }
+            [.., h0, h1] if h1.crank != h0.crank => {
+                Some(Fit::Linear((crank - h1.crank) / (h1.crank - h0.crank)))
+            }
+            [.., _] => Some(Fit::Last),
+            [] => None,
+        }
+    }
+
+    /// The extrapolated value of `value` of the history `Fit::of` was made from.
+    fn apply(self, history: &[Solved], value: impl Fn(&Solved) -> f64) -> f64 {
+        match (self, history) {
+            (Fit::Quadratic([l0, l1, l2]), [h0, h1, h2]) => {
+                l0 * value(h0) + l1 * value(h1) + l2 * value(h2)
+            }
+            (Fit::Linear(w), [.., h0, h1]) => value(h1) + w * (value(h1) - value(h0)),
+            (_, [.., h]) => value(h),
+            (_, []) => 0.0,
+        }
+    }
+}
+
+/// The change of a balance's lag (rad) for a change `dt` (N·mm) of its torque, by the slope
+/// of its moment (N·mm/rad); none where that is no slope.
+fn lag_for_torque(slope: f64, dt: f64) -> f64 {
+    if slope > 0.0 && slope.is_finite() {
+        dt / slope
+    } else {
+        0.0
+    }
 }
 
 impl Work {
@@ -126,28 +191,42 @@ impl Work {
     /// away to say anything (`Model::warm_reach`), the lag at which the disc sits without load
     /// (`Model::rest_lag`) and 0.
     pub(super) fn guess(&self, crank: f64, model: &Model) -> (f64, f64) {
-        if !self.near(crank, model) {
+        self.extrapolate(crank, model, false)
+    }
+
+    /// `guess` at the model's torque, where that is not the history's (a disc's share of
+    /// several, which moves with the crank and, within an angle, with each correction of the
+    /// split): each lag moves further by the torque's departure from its own extrapolation
+    /// over the slope of its balance at the last solution. Exact for a balance linear on its
+    /// contact set, where the lags' trend alone misses by that departure over the slope (on a
+    /// disc of 11 rollers that left the pins' balance a second evaluation at most angles).
+    /// With a rigid bearing only: a compliant one's lags move with the centre too.
+    fn guess_at_torque(&self, crank: f64, model: &Model) -> (f64, f64) {
+        self.extrapolate(crank, model, model.bearing_stiffness_n_per_mm.is_none())
+    }
+
+    fn extrapolate(&self, crank: f64, model: &Model, follow_torque: bool) -> (f64, f64) {
+        let history = &self.history[3 - self.filled..];
+        let fit = self.near(crank, model).then(|| Fit::of(history, crank));
+        let Some(fit) = fit.flatten() else {
             return (model.rest_lag(), 0.0);
+        };
+        let lag = fit.apply(history, |h| h.lag);
+        let output_lag = fit.apply(history, |h| h.output_lag);
+        let t = model.torque_nmm;
+        if !follow_torque || history.iter().all(|h| h.torque == t) {
+            return (lag, output_lag);
         }
-        match &self.history[3 - self.filled..] {
-            [(p0, b0, o0), (p1, b1, o1), (p2, b2, o2)] if p0 != p1 && p1 != p2 && p0 != p2 => {
-                let l0 = (crank - p1) * (crank - p2) / ((p0 - p1) * (p0 - p2));
-                let l1 = (crank - p0) * (crank - p2) / ((p1 - p0) * (p1 - p2));
-                let l2 = (crank - p0) * (crank - p1) / ((p2 - p0) * (p2 - p1));
-                (l0 * b0 + l1 * b1 + l2 * b2, l0 * o0 + l1 * o1 + l2 * o2)
-            }
-            [.., (p0, b0, o0), (p1, b1, o1)] if p1 != p0 => {
-                let w = (crank - p1) / (p1 - p0);
-                (b1 + w * (b1 - b0), o1 + w * (o1 - o0))
-            }
-            [.., (_, b, o)] => (*b, *o),
-            [] => (model.rest_lag(), 0.0),
-        }
+        let dt = t - fit.apply(history, |h| h.torque);
+        (
+            lag + lag_for_torque(self.slopes.0, dt),
+            output_lag + lag_for_torque(self.slopes.1, dt),
+        )
     }
 
     /// Whether the last angle solved is near enough to `crank` to warm-start it.
     fn near(&self, crank: f64, model: &Model) -> bool {
-        self.filled > 0 && (self.history[2].0 - crank).abs() <= model.warm_reach()
+        self.filled > 0 && (self.history[2].crank - crank).abs() <= model.warm_reach()
     }
 
     /// Forget the last angle's states when it is too far from `crank` to warm-start it (a
@@ -171,24 +250,31 @@ impl Work {
 
     /// Whether `crank` is the angle solved last.
     pub(super) fn solved_at(&self, crank: f64) -> bool {
-        self.filled > 0 && self.history[2].0 == crank
+        self.filled > 0 && self.history[2].crank == crank
     }
 
-    fn remember(&mut self, crank: f64) {
+    fn remember(&mut self, crank: f64, torque: f64) {
         let lag = self.sol.lag_rad.unwrap_or(0.0);
-        self.remember_lags(crank, lag, self.sol.output_lag_rad.unwrap_or(0.0));
+        let output_lag = self.sol.output_lag_rad.unwrap_or(0.0);
+        self.remember_lags(crank, (lag, output_lag), torque);
     }
 
     /// Remember the lags (β, βo) solved at `crank` for the next angle's guess. A solve of the
     /// angle last remembered again (the several-disc balance re-solves a disc at a corrected
     /// torque) replaces it: its lags are then the guess at that angle, and the angles before
     /// it stay for the extrapolation to the next.
-    pub(super) fn remember_lags(&mut self, crank: f64, lag: f64, output_lag: f64) {
-        if self.filled > 0 && self.history[2].0 == crank {
-            self.history[2] = (crank, lag, output_lag);
+    pub(super) fn remember_lags(&mut self, crank: f64, (lag, output_lag): (f64, f64), torque: f64) {
+        let solved = Solved {
+            crank,
+            lag,
+            output_lag,
+            torque,
+        };
+        if self.filled > 0 && self.history[2].crank == crank {
+            self.history[2] = solved;
             return;
         }
-        self.history = [self.history[1], self.history[2], (crank, lag, output_lag)];
+        self.history = [self.history[1], self.history[2], solved];
         self.filled = (self.filled + 1).min(3);
     }
 }
@@ -310,6 +396,7 @@ fn solve_rollers(
                 (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
             }
         }
+        work.slopes.0 = 0.0;
         return Ok(lag);
     }
     if work.reaches.len() != r.count() {
@@ -349,6 +436,7 @@ fn solve_rollers(
         } => beyond_reach(r, &pose(x), value, model.torque_nmm),
         other => other,
     })?;
+    work.slopes.0 = root.slope;
     let mut lag = root.x;
     if let Some(towards) = root.straddle {
         // The balance steps over the torque between two adjacent lags (round-off of the
@@ -426,6 +514,7 @@ fn solve_pins(
                 p.first_order_lagged(lag, states);
             },
         )?;
+        work.slopes.1 = 0.0;
         return Ok(lag);
     }
     let states = &mut work.sol.pins;
@@ -453,6 +542,7 @@ fn solve_pins(
         guess,
         &model.settings,
     )?;
+    work.slopes.1 = root.slope;
     // `states` holds the evaluation at root.x: the solver's last evaluation is at its answer.
     let mut lag = root.x;
     if let Some(towards) = root.straddle {
@@ -501,7 +591,7 @@ fn solve_rigid(
     work: &mut Work,
     offset: Vec2,
 ) -> Result<(), SolveFailure> {
-    let (guess_lag, guess_out) = work.guess(crank, model);
+    let (guess_lag, guess_out) = work.guess_at_torque(crank, model);
     work.sol.centre_offset_mm = offset;
     let mut psi = -crank / model.teeth as f64;
     let e_phi = work.e_phi;
@@ -992,7 +1082,7 @@ pub fn solve_angle(
     };
     if previous.lag_rad.is_some() || previous.output_lag_rad.is_some() {
         // One history entry at this very angle: the guess is the previous solution's lags.
-        work.remember(crank);
+        work.remember(crank, model.torque_nmm);
     }
     solve_into(model, crank, &mut work)?;
     Ok(work.sol)
@@ -1015,7 +1105,7 @@ pub fn solve_into(model: &Model, crank: f64, work: &mut Work) -> Result<(), Solv
         work.sol.bearing_force_n = Some(fb);
         work.sol.residual = Some(residual_at(model, work.e_phi, &work.sol, fb));
     }
-    work.remember(crank);
+    work.remember(crank, model.torque_nmm);
     Ok(())
 }
 

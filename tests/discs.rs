@@ -56,6 +56,26 @@ fn torque(disc: &SceneResult, a: usize) -> f64 {
     disc.loaded.torque_nmm.as_ref().unwrap()[a]
 }
 
+/// The paper's design with 11 rollers and 10 teeth (its two discs out of phase) and `discs`
+/// discs, one scene `name` at `torque_nm` over `steps` angles from `from_deg` to
+/// `from_deg + span_deg`.
+fn eleven_rollers(
+    discs: usize,
+    (name, torque_nm): (&str, f64),
+    (from_deg, span_deg, steps): (f64, f64, usize),
+    effects: &str,
+) -> common::PaperSpec {
+    let crank = format!(
+        "{{ from_deg: {from_deg}, to_deg: {}, steps: {steps} }}",
+        from_deg + span_deg
+    );
+    common::PaperSpec::new()
+        .edit("teeth: 9 ", "teeth: 10 ")
+        .edit("rollers: 10 ", "rollers: 11 ")
+        .edit("face_width_mm", &format!("discs: {discs}\n  face_width_mm"))
+        .scenes(&common::scene_item(name, torque_nm, &crank, effects))
+}
+
 /// Whether the unloaded disc clears every roller over a mesh period (min clearance ≥ 0).
 ///
 /// With interference the one-disc balance itself can have several roots: on 16 rollers with
@@ -423,15 +443,7 @@ fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it(
 #[test]
 fn a_floating_disc_in_exact_geometry_rests_where_one_disc_at_zero_torque_does() {
     let spec = |discs: usize, torque_nm: f64, from_deg: f64| {
-        let crank = format!(
-            "{{ from_deg: {from_deg}, to_deg: {}, steps: 540 }}",
-            from_deg + 54.0
-        );
-        common::PaperSpec::new()
-            .edit("teeth: 9 ", "teeth: 10 ")
-            .edit("rollers: 10 ", "rollers: 11 ")
-            .edit("face_width_mm", &format!("discs: {discs}\n  face_width_mm"))
-            .scenes(&common::scene_item("tiny", torque_nm, &crank, "bearing"))
+        eleven_rollers(discs, ("tiny", torque_nm), (from_deg, 54.0, 540), "bearing")
             .parse("tiny.yaml")
     };
     let run = |spec: &cycloid::spec::Spec| {
@@ -521,20 +533,12 @@ fn coupled_sweep_in_two_waves_is_the_same_on_one_and_on_four_threads() {
 #[test]
 fn a_disc_that_cannot_hold_its_share_is_named_at_its_own_crank_angle() {
     let spec = |discs: usize, torque_nm: f64, from_deg: f64| {
-        let crank = format!(
-            "{{ from_deg: {from_deg}, to_deg: {}, steps: 1 }}",
-            from_deg + 1.0
-        );
-        common::PaperSpec::new()
-            .edit("teeth: 9 ", "teeth: 10 ")
-            .edit("rollers: 10 ", "rollers: 11 ")
-            .edit("face_width_mm", &format!("discs: {discs}\n  face_width_mm"))
-            .scenes(&common::scene_item(
-                "over",
-                torque_nm,
-                &crank,
-                "roller_contact",
-            ))
+        eleven_rollers(
+            discs,
+            ("over", torque_nm),
+            (from_deg, 1.0, 1),
+            "roller_contact",
+        )
     };
     let one_disc = |from_deg: f64| {
         let spec = spec(1, 106_500.0, from_deg).parse("one.yaml");

@@ -16,6 +16,8 @@ pub trait Contact {
     fn gap_slope_mm(&self) -> f64;
     /// Force, stiffness and gap become w.x·self + w.y·other.
     fn mix(&mut self, other: &Self, w: Weights);
+    /// No force and no stiffness: the contact just touches, or is open.
+    fn unload(&mut self);
 }
 
 /// `Contact` for a contact state with the fields `force_n`, `stiffness_n_per_mm`, `arm_mm` and
@@ -42,6 +44,9 @@ macro_rules! impl_contact {
                 self.stiffness_n_per_mm = mix(self.stiffness_n_per_mm, other.stiffness_n_per_mm, w);
                 self.gap_mm = mix(self.gap_mm, other.gap_mm, w);
             }
+            fn unload(&mut self) {
+                (self.force_n, self.stiffness_n_per_mm) = (0.0, 0.0);
+            }
         }
     };
 }
@@ -58,6 +63,23 @@ pub fn moment<C: Contact>(states: &[C]) -> (f64, f64, f64) {
             scale + (f * a).abs(),
         )
     })
+}
+
+/// Whether the contacts' moments are round-off: their scale Σ |F·a| within `resolution` (N·mm,
+/// the balance's `moment_resolution`).
+pub fn round_off<C: Contact>(states: &[C], resolution: f64) -> bool {
+    moment(states).2 <= resolution
+}
+
+/// Forces whose moments are round-off are zero at zero torque, the limit T → 0⁺ of no load:
+/// every contact unloaded when `round_off`. (An unmodified profile touches every roller at
+/// zero torque with gaps of ±1e-17 mm; pins without clearance touch their holes; a disc
+/// floating in its backlash keeps forces of 1e-24 N, whose unbalanced moment made its residual
+/// 1.)
+pub fn unload_round_off<C: Contact>(states: &mut [C], resolution: f64) {
+    if round_off(states, resolution) {
+        states.iter_mut().for_each(C::unload);
+    }
 }
 
 /// Mix two evaluations of the contacts at neighbouring lags, `states` ← w.x·`states` +

@@ -7,7 +7,7 @@
 //! are solved together by Newton with an analytic Jacobian (nalgebra), with a bracketed
 //! fixed-point fallback.
 
-use super::balance::{closed_form, moment, settle};
+use super::balance::{closed_form, moment, round_off, settle, unload_round_off, Contact};
 use super::pins::{PinState, Pins};
 use super::rollers::{AngleTrig, Reach, RollerState, Rollers};
 use super::solve::{monotone_root, Balance, Settings, SolveFailure};
@@ -392,9 +392,7 @@ fn solve_rollers(
         // so is its force (~5e-12 N, whose unbalanced moment made the residual 1): zero, as in
         // the iterative solve.
         if t == 0.0 && scale <= r.moment_resolution(states, 0.0) {
-            for s in states.iter_mut() {
-                (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
-            }
+            states.iter_mut().for_each(RollerState::unload);
         }
         work.slopes.0 = 0.0;
         return Ok(lag);
@@ -458,8 +456,8 @@ fn solve_rollers(
         // beyond the backlash's far side (a warm start at a share against the torque) that is
         // the far side's edge, where a roller's force of round-off still counts as a contact:
         // the limit T → 0⁺ is the near contact in the load direction all the same.
-        let round_off = moment(states).2 <= r.moment_resolution(states, offset_norm);
-        if round_off || !in_contact(states.iter().map(|s| &s.force_n)) {
+        let free = round_off(states, r.moment_resolution(states, offset_norm));
+        if free || !in_contact(states.iter().map(|s| &s.force_n)) {
             lag = touching(
                 |l| {
                     roller_balance(r, &pose(l), states)
@@ -473,14 +471,8 @@ fn solve_rollers(
                 .iter_mut()
                 .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
         }
-        // Forces whose moments are round-off (an unmodified profile touches every roller at
-        // zero torque, with gaps of ±1e-17 mm) are zero: the limit T → 0⁺ of no load.
-        let (_, _, scale) = moment(states);
-        if scale <= r.moment_resolution(states, offset_norm) {
-            for s in states.iter_mut() {
-                (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
-            }
-        }
+        let resolution = r.moment_resolution(states, offset_norm);
+        unload_round_off(states, resolution);
     }
     Ok(lag)
 }
@@ -563,16 +555,8 @@ fn solve_pins(
         evaluate(lag, states);
     }
     if model.torque_nmm == 0.0 {
-        // As for the rollers: forces whose moments are round-off (pins that touch their holes
-        // without clearance, a disc floating in the backlash of its rollers) are zero, the
-        // limit T → 0⁺ of no load. Left in, they made the residual of such a disc 1: a
-        // moment of 1e-24 N·mm against rollers without force, on a scale of its own size.
-        let (_, _, scale) = moment(states);
-        if scale <= p.moment_resolution(states, offset.norm()) {
-            for s in states.iter_mut() {
-                (s.force_n, s.stiffness_n_per_mm) = (0.0, 0.0);
-            }
-        }
+        let resolution = p.moment_resolution(states, offset.norm());
+        unload_round_off(states, resolution);
     }
     Ok(lag)
 }

@@ -58,12 +58,12 @@ fn torque(disc: &SceneResult, a: usize) -> f64 {
 
 /// The paper's design with 11 rollers and 10 teeth (its two discs out of phase) and `discs`
 /// discs, one scene `name` at `torque_nm` over `steps` angles from `from_deg` to
-/// `from_deg + span_deg`.
+/// `from_deg + span_deg`, with `extra` lines appended to the scene.
 fn eleven_rollers(
     discs: usize,
     (name, torque_nm): (&str, f64),
     (from_deg, span_deg, steps): (f64, f64, usize),
-    effects: &str,
+    (effects, extra): (&str, &str),
 ) -> common::PaperSpec {
     let crank = format!(
         "{{ from_deg: {from_deg}, to_deg: {}, steps: {steps} }}",
@@ -73,7 +73,13 @@ fn eleven_rollers(
         .edit("teeth: 9 ", "teeth: 10 ")
         .edit("rollers: 10 ", "rollers: 11 ")
         .edit("face_width_mm", &format!("discs: {discs}\n  face_width_mm"))
-        .scenes(&common::scene_item(name, torque_nm, &crank, effects))
+        .scenes(&(common::scene_item(name, torque_nm, &crank, effects) + extra))
+}
+
+/// The spec's first scene, run as `check` runs it.
+fn first_scene(spec: &cycloid::spec::Spec) -> cycloid::error::Result<SceneResult> {
+    let scene = &spec.scenes[0];
+    cycloid::engine::scene::run(spec, scene, &Plan::for_scene(scene))
 }
 
 /// Whether the unloaded disc clears every roller over a mesh period (min clearance ≥ 0).
@@ -342,19 +348,9 @@ proptest! {
 /// to 81 % of T over 108°; asserted: beyond 40/60 somewhere), while still summing to T.
 #[test]
 fn with_an_odd_roller_count_two_discs_do_not_share_equally() {
-    let spec = common::PaperSpec::new()
-        .edit("teeth: 9 ", "teeth: 10 ")
-        .edit("rollers: 10 ", "rollers: 11 ")
-        .edit("face_width_mm", "discs: 2\n  face_width_mm")
-        .scenes(&common::scene_item(
-            "rated",
-            10.0,
-            "{ from_deg: 0.0, to_deg: 108.0, steps: 216 }",
-            "bearing",
-        ))
-        .parse("odd.yaml");
-    let r = cycloid::engine::scene::run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0]))
-        .unwrap();
+    let spec =
+        eleven_rollers(2, ("rated", 10.0), (0.0, 108.0, 216), ("bearing", "")).parse("odd.yaml");
+    let r = first_scene(&spec).unwrap();
     let shares: Vec<f64> = (0..216)
         .map(|a| torque(&r.discs[0], a) / 10_000.0)
         .collect();
@@ -383,20 +379,10 @@ fn with_an_odd_roller_count_two_discs_do_not_share_equally() {
 #[test]
 fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it() {
     let t_nm = 1e-6;
-    let scene = common::scene_item(
-        "tiny",
-        t_nm,
-        "{ from_deg: 0.0, to_deg: 108.0, steps: 1080 }",
-        "bearing",
-    ) + "    geometry: first_order\n";
-    let spec = common::PaperSpec::new()
-        .edit("teeth: 9 ", "teeth: 10 ")
-        .edit("rollers: 10 ", "rollers: 11 ")
-        .edit("face_width_mm", "discs: 2\n  face_width_mm")
-        .scenes(&scene)
-        .parse("tiny.yaml");
-    let r = cycloid::engine::scene::run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0]))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let first_order = ("bearing", "    geometry: first_order\n");
+    let spec =
+        eleven_rollers(2, ("tiny", t_nm), (0.0, 108.0, 1080), first_order).parse("tiny.yaml");
+    let r = first_scene(&spec).unwrap_or_else(|e| panic!("{e}"));
     let t = t_nm * 1e3;
     let te = &r.loaded.transmission.as_ref().unwrap().te_rad;
     let mut floated = 0;
@@ -443,14 +429,15 @@ fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it(
 #[test]
 fn a_floating_disc_in_exact_geometry_rests_where_one_disc_at_zero_torque_does() {
     let spec = |discs: usize, torque_nm: f64, from_deg: f64| {
-        eleven_rollers(discs, ("tiny", torque_nm), (from_deg, 54.0, 540), "bearing")
-            .parse("tiny.yaml")
+        eleven_rollers(
+            discs,
+            ("tiny", torque_nm),
+            (from_deg, 54.0, 540),
+            ("bearing", ""),
+        )
+        .parse("tiny.yaml")
     };
-    let run = |spec: &cycloid::spec::Spec| {
-        let scene = &spec.scenes[0];
-        cycloid::engine::scene::run(spec, scene, &Plan::for_scene(scene))
-            .unwrap_or_else(|e| panic!("{e}"))
-    };
+    let run = |spec: &cycloid::spec::Spec| first_scene(spec).unwrap_or_else(|e| panic!("{e}"));
     let two = run(&spec(2, 1e-6, 0.0));
     let mut floated = 0;
     for (k, disc) in two.discs.iter().enumerate() {
@@ -486,22 +473,9 @@ fn a_floating_disc_in_exact_geometry_rests_where_one_disc_at_zero_torque_does() 
 /// continued. The shares sum to T at every angle (to 1e-9 of T, the solve's guard).
 #[test]
 fn coupled_sweep_in_two_waves_is_the_same_on_one_and_on_four_threads() {
-    let scene = common::scene_item(
-        "rated",
-        20.0,
-        "{ from_deg: 0.0, to_deg: 30.0, steps: 300 }",
-        "bearing",
-    );
-    let spec = common::PaperSpec::new()
-        .edit("teeth: 9 ", "teeth: 10 ")
-        .edit("rollers: 10 ", "rollers: 11 ")
-        .edit("face_width_mm", "discs: 2\n  face_width_mm")
-        .scenes(&scene)
+    let spec = eleven_rollers(2, ("rated", 20.0), (0.0, 30.0, 300), ("bearing", ""))
         .parse("odd-exact.yaml");
-    let run = || {
-        cycloid::engine::scene::run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0]))
-            .unwrap()
-    };
+    let run = || first_scene(&spec).unwrap();
     let pool = |threads| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -537,14 +511,10 @@ fn a_disc_that_cannot_hold_its_share_is_named_at_its_own_crank_angle() {
             discs,
             ("over", torque_nm),
             (from_deg, 1.0, 1),
-            "roller_contact",
+            ("roller_contact", ""),
         )
     };
-    let one_disc = |from_deg: f64| {
-        let spec = spec(1, 106_500.0, from_deg).parse("one.yaml");
-        let scene = &spec.scenes[0];
-        cycloid::engine::scene::run(&spec, scene, &Plan::for_scene(scene)).map(|_| ())
-    };
+    let one_disc = |from_deg: f64| first_scene(&spec(1, 106_500.0, from_deg).parse("one.yaml"));
     one_disc(0.0).unwrap_or_else(|e| panic!("one disc at 0°: {e}"));
     let alone = one_disc(180.0)
         .expect_err("one disc at 180° holds 106.5 kN·m")

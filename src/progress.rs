@@ -12,6 +12,39 @@ pub trait Progress: Sync {
     fn advance(&self, _n: u64) {}
     /// The work described last is done.
     fn finish(&self) {}
+    /// A listener for one phase of a command (the scenes, the studies, a map, the ladder):
+    /// the phase ends when the listener is dropped. By default nobody listens.
+    fn phase(&self, _phase: &Phase) -> Box<dyn Progress + '_> {
+        Box::new(Silent)
+    }
+}
+
+/// One phase of a command's work, as a listener may show it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Phase {
+    /// What is done ("solving the scenes").
+    pub what: String,
+    /// What is counted ("crank angles").
+    pub unit: &'static str,
+    /// How many units the phase has.
+    pub total: u64,
+    /// Below this many units the phase ends before it is worth showing.
+    pub worth_showing: u64,
+    /// Each unit takes long: a display may show the rate.
+    pub slow_units: bool,
+}
+
+impl Phase {
+    /// A phase of `total` units worth showing however short.
+    pub fn new(what: impl Into<String>, unit: &'static str, total: u64) -> Phase {
+        Phase {
+            what: what.into(),
+            unit,
+            total,
+            worth_showing: 0,
+            slow_units: false,
+        }
+    }
 }
 
 /// Shows nothing.

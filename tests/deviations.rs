@@ -6,7 +6,6 @@ mod common;
 
 use common::{paper_design, PaperSpec};
 use cycloid::engine::scene;
-use cycloid::equilibrium::solve::Settings;
 use cycloid::geometry::clearance::{self, Mesh, Pose};
 use cycloid::geometry::Vec2;
 use cycloid::model::results::SceneResult;
@@ -65,7 +64,7 @@ fn loaded_scene(from_deg: f64, to_deg: f64, steps: usize, effects: &str) -> Scen
 
 fn run(design: &Design, m: &Modification, scene: &Scene) -> SceneResult {
     let plan = Plan::for_scene(scene);
-    scene::run_design(design, m, scene, &plan, &Settings::default()).expect("solves")
+    scene::run_design(design, m, (scene, &plan), &Default::default()).expect("solves")
 }
 
 fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {

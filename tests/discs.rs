@@ -7,7 +7,6 @@ use common::{cases, Case};
 use cycloid::engine::scene::run_design;
 use cycloid::equilibrium::curves::{self, sweep_discs_observed};
 use cycloid::equilibrium::discs::Discs;
-use cycloid::equilibrium::solve::Settings;
 use cycloid::equilibrium::sweep::{solve_angle, AngleSolution, Model};
 use cycloid::model::results::SceneResult;
 use cycloid::model::{ContactLaw, Design, Effect, GeometryMode, Plan, Scene, TorqueSweep};
@@ -48,7 +47,7 @@ fn run(case: &Case, discs: usize, scene: &Scene, pins: bool) -> SceneResult {
     let mut design = case.design.clone();
     design.discs = discs;
     let plan = Plan::of(&scene.name, &effects(pins));
-    run_design(&design, &case.m, scene, &plan, &Settings::default())
+    run_design(&design, &case.m, (scene, &plan), &Default::default())
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -79,10 +78,10 @@ fn eleven_rollers(
 /// The spec's first scene, run as `check` runs it.
 fn first_scene(spec: &cycloid::spec::Spec) -> cycloid::error::Result<SceneResult> {
     let scene = &spec.scenes[0];
-    cycloid::engine::scene::run(spec, scene, &Plan::for_scene(scene))
+    cycloid::engine::scene::run(spec, scene, &Plan::for_scene(scene), &Default::default())
 }
 
-/// Whether the unloaded disc clears every roller over a mesh period (min clearance ≥ 0).
+/// Whether the unloaded disc clears every roller over a mesh period (min clearance ≥ 0, &Default::default()).
 ///
 /// With interference the one-disc balance itself can have several roots: on 16 rollers with
 /// the modification (−0.088, −0.108) mm (20 µm of interference on 0.22 mm rollers) the disc
@@ -99,7 +98,7 @@ fn interference_free(case: &Case) -> bool {
         GeometryMode::Exact,
     );
     let plan = Plan::of(&scene.name, &[Effect::Clearance]);
-    run_design(&case.design, &case.m, &scene, &plan, &Settings::default())
+    run_design(&case.design, &case.m, (&scene, &plan), &Default::default())
         .is_ok_and(|r| r.clearance.is_some_and(|c| c.min.gap_mm >= 0.0))
 }
 
@@ -158,7 +157,7 @@ proptest! {
         let mut design = case.design.clone();
         design.discs = discs;
         let plan = Plan::of(&scene.name, &effects(pins));
-        let r = match run_design(&design, &case.m, &scene, &plan, &Settings::default()) {
+        let r = match run_design(&design, &case.m, (&scene, &plan), &Default::default()) {
             Ok(r) => r,
             Err(e) => {
                 let text = e.to_string();
@@ -319,7 +318,7 @@ proptest! {
         let mut design = case.design.clone();
         design.discs = discs;
         let plan = Plan::for_scene(&scene);
-        let r = match run_design(&design, &case.m, &scene, &plan, &Settings::default()) {
+        let r = match run_design(&design, &case.m, (&scene, &plan), &Default::default()) {
             Ok(r) => r,
             Err(e) => {
                 let text = e.to_string();

@@ -196,7 +196,7 @@ fn run_with_backlash(spec: &Spec) -> (SceneResult, Vec<f64>) {
     let scene = &spec.scenes[0];
     let mut plan = Plan::for_scene(scene);
     plan.ask(&cycloid::model::quantity::BACKLASH, "test");
-    let result = run(spec, scene, &plan).unwrap();
+    let result = run(spec, scene, &plan, &Default::default()).unwrap();
     let clearance = result.clearance.as_ref().unwrap();
     let backlash = clearance.backlash.as_ref().unwrap().forward_rad.clone();
     (result, backlash)
@@ -1293,7 +1293,13 @@ fn mean_ratio_over_whole_periods() {
         scene.steps = steps;
         let spec = r.spec(&scene);
         assert!(spec.scenes[0].spans_whole(spec.design.loaded_period_rad(true)));
-        let result = run(&spec, &spec.scenes[0], &Plan::for_scene(&spec.scenes[0])).unwrap();
+        let result = run(
+            &spec,
+            &spec.scenes[0],
+            &Plan::for_scene(&spec.scenes[0]),
+            &Default::default(),
+        )
+        .unwrap();
         let tr = result.loaded.transmission.unwrap();
         let kappa = tr.ratio.unwrap();
         let n = kappa.len() as f64;

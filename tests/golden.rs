@@ -418,7 +418,7 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
             report: false,
         };
         let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
-        let r = cycloid::engine::scene::run(&spec, &scene, &plan).unwrap();
+        let r = cycloid::engine::scene::run(&spec, &scene, &plan, &Default::default()).unwrap();
         let doc = cycloid::report::json::scenes_value(&spec, std::slice::from_ref(&r)).unwrap();
         let json = &doc["scenes"][0];
         let mut seen = curves_in_json(json, &r);

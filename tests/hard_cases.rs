@@ -122,7 +122,8 @@ fn cli_case(case: &str, code: i32) -> Run {
 
 fn run_scene(spec: &Spec, index: usize) -> SceneResult {
     let s = &spec.scenes[index];
-    scene::run(spec, s, &Plan::for_scene(s)).unwrap_or_else(|e| panic!("{}: {e}", spec.name))
+    scene::run(spec, s, &Plan::for_scene(s), &Default::default())
+        .unwrap_or_else(|e| panic!("{}: {e}", spec.name))
 }
 
 /// Roller forces [roller][angle], N.

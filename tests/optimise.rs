@@ -169,8 +169,13 @@ fn the_optimiser_objective_is_the_checkers_ratio_fluctuation() {
     let s = study(&spec, "positive-ratio");
     let e = Problem::new(&spec, s).evaluate(&spec.modification);
     let scene = &spec.scenes[s.scene];
-    let result =
-        cycloid::engine::scene::run(&spec, scene, &cycloid::model::Plan::for_scene(scene)).unwrap();
+    let result = cycloid::engine::scene::run(
+        &spec,
+        scene,
+        &cycloid::model::Plan::for_scene(scene),
+        &Default::default(),
+    )
+    .unwrap();
     let ratio = result.loaded.transmission.unwrap().ratio.unwrap();
     let fluct = cycloid::numeric::fluctuation(&ratio);
     let objective = cycloid::model::quantity::find_objective("ratio_fluctuation").unwrap();

@@ -299,8 +299,13 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
     let spec = cycloid::spec::parse("specs/reducer.yaml", &text).unwrap();
     let mut scene = spec.scenes[0].clone();
     scene.crank_rad.truncate(20);
-    let r = cycloid::engine::scene::run(&spec, &scene, &cycloid::model::Plan::for_scene(&scene))
-        .unwrap();
+    let r = cycloid::engine::scene::run(
+        &spec,
+        &scene,
+        &cycloid::model::Plan::for_scene(&scene),
+        &Default::default(),
+    )
+    .unwrap();
     // A synthetic bowl with its minimum at (0.125, 0.16), infeasible where ΔRrp − ΔRp < 0.015,
     // not evaluated (a design rule) in one corner.
     let mut map = Vec::new();
@@ -730,8 +735,13 @@ fn the_drawn_forces_are_those_of_the_sweep() {
     let text = std::fs::read_to_string("specs/paper-negative-start.yaml").unwrap();
     let spec = cycloid::spec::parse("specs/paper-negative-start.yaml", &text).unwrap();
     let scene = spec.scenes.iter().find(|s| s.name == "rated").unwrap();
-    let r =
-        cycloid::engine::scene::run(&spec, scene, &cycloid::model::Plan::for_scene(scene)).unwrap();
+    let r = cycloid::engine::scene::run(
+        &spec,
+        scene,
+        &cycloid::model::Plan::for_scene(scene),
+        &Default::default(),
+    )
+    .unwrap();
     let k = 109;
     let crank_rad = r.crank_rad[k];
     assert!((crank_rad.to_degrees() - 10.9).abs() < 1e-9);

@@ -131,8 +131,13 @@ fn colour_only_when_asked() {
     let text = std::fs::read_to_string("specs/paper-negative-start.yaml").unwrap();
     let spec = cycloid::spec::parse("x.yaml", &text).unwrap();
     let scene = &spec.scenes[0];
-    let r =
-        cycloid::engine::scene::run(&spec, scene, &cycloid::model::Plan::for_scene(scene)).unwrap();
+    let r = cycloid::engine::scene::run(
+        &spec,
+        scene,
+        &cycloid::model::Plan::for_scene(scene),
+        &Default::default(),
+    )
+    .unwrap();
     let checks = cycloid::engine::check::evaluate(&spec, &[r]).unwrap();
     let plain = cycloid::report::table::render_styled(&checks, false);
     let coloured = cycloid::report::table::render_styled(&checks, true);

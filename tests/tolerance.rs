@@ -118,7 +118,13 @@ fn clopper_pearson_meets_its_closed_forms_and_a_table() {
 /// The nominal result of a spec's first scene, by the engine.
 fn nominal_run(spec: &cycloid::spec::Spec) -> cycloid::model::results::SceneResult {
     let s = &spec.scenes[0];
-    scene::run(spec, s, &scene::plan(spec, s, scene::Writes::default())).unwrap()
+    scene::run(
+        spec,
+        s,
+        &scene::plan(spec, s, scene::Writes::default()),
+        &Default::default(),
+    )
+    .unwrap()
 }
 
 /// The nominal min clearance of a spec's first scene, by the engine.

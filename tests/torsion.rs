@@ -36,7 +36,13 @@ fn torsion_spec(modification: Option<(f64, f64)>, crank: &str, effects: &str, ex
 
 fn run(spec: &Spec) -> SceneResult {
     let s = &spec.scenes[0];
-    scene::run(spec, s, &scene::plan(spec, s, Writes::default())).unwrap()
+    scene::run(
+        spec,
+        s,
+        &scene::plan(spec, s, Writes::default()),
+        &Default::default(),
+    )
+    .unwrap()
 }
 
 fn curves(r: &SceneResult) -> &TorsionCurves {
@@ -206,7 +212,7 @@ fn slope_matches_the_loaded_te(discs: usize) {
         s.output_torque_nmm = torque_nmm;
         s.effects = vec![cycloid::model::Effect::Bearing];
         let plan = cycloid::model::Plan::for_scene(&s);
-        let r = scene::run(&spec, &s, &plan).unwrap();
+        let r = scene::run(&spec, &s, &plan, &Default::default()).unwrap();
         r.loaded.transmission.unwrap().te_rad[0]
     };
     let top = *t.torsion_rad[0]
@@ -292,7 +298,13 @@ fn the_dead_band_is_the_unloaded_lost_motion_of_the_clearance_effect() {
         json: true,
         report: false,
     };
-    let r = scene::run(&spec, s, &scene::plan(&spec, s, writes)).unwrap();
+    let r = scene::run(
+        &spec,
+        s,
+        &scene::plan(&spec, s, writes),
+        &Default::default(),
+    )
+    .unwrap();
     let lost = &r
         .clearance
         .as_ref()

@@ -1,13 +1,17 @@
 //! `cycloid tolerance`: the Monte Carlo of a spec's `tolerances:`, whole or one shard of it,
 //! and `cycloid tolerance merge`.
 
-use super::{distinct_outputs, inputs_of, locate, print, write_file, Outcome};
-use super::{ToleranceArgs, ToleranceCommand};
-use crate::engine::check;
-use crate::engine::tolerance::{sensitivity, shard, summary, write, Records, Study};
+use super::args::{ToleranceArgs, ToleranceCommand};
+use super::output::{distinct_outputs, inputs_of, print, review_line, write_file};
+use super::Outcome;
+use crate::engine::commands;
+use crate::engine::tolerance::sensitivity::Sensitivity;
+use crate::engine::tolerance::summary::Summary;
+use crate::engine::tolerance::Records;
+use crate::engine::tolerance::{write, Study};
 use crate::error::{Error, ErrorKind, Result};
 use crate::files;
-use crate::report::terminal::Bar;
+use crate::report::terminal::Terminal;
 use crate::{report, spec};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -100,8 +104,7 @@ pub fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
     }
     let path = args.spec.unwrap_or_default();
     let spec = spec::load(&path)?;
-    check::validate(&spec).map_err(|e| locate(e, &spec))?;
-    let study = Study::new(&spec, args.samples).map_err(|e| locate(e, &spec))?;
+    let study = Study::new(&spec, args.samples).map_err(|e| spec.locate(e))?;
     let samples = study.samples() as u64;
     let shard = match &args.shard {
         Some(s) => Some(parse_shard(s, samples)?),
@@ -155,16 +158,14 @@ pub fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
                 .to_string(),
         )),
         (None, None) => {
-            let bar = Bar::with_rate("tolerance study", "samples", samples);
-            let records = study.run((0, 1), &bar).map_err(|e| locate(e, &spec))?;
-            drop(bar);
-            let sens = if args.sensitivity {
-                let bar = Bar::with_rate("sensitivities", "parameters", study.params.len() as u64);
-                Some(sensitivity::run(&study, &bar).map_err(|e| locate(e, &spec))?)
-            } else {
-                None
-            };
-            finish(&study, &records, sens.as_ref(), &outputs, out)
+            let run = commands::tolerance(&spec, args.samples, args.sensitivity, &Terminal)?;
+            let whole = Whole(
+                &run.study,
+                &run.records,
+                &run.summary,
+                run.sensitivity.as_ref(),
+            );
+            finish(whole, &outputs, out)
         }
     }
 }
@@ -186,33 +187,27 @@ impl Outputs<'_> {
     }
 }
 
+/// A whole study's records, their summary and the sensitivities, if computed.
+struct Whole<'a>(
+    &'a Study<'a>,
+    &'a Records,
+    &'a Summary,
+    Option<&'a Sensitivity>,
+);
+
 /// Print and write what the records of every sample say; the verdict of the failure rate.
-fn finish(
-    study: &Study,
-    records: &Records,
-    sens: Option<&sensitivity::Sensitivity>,
-    outputs: &Outputs,
-    out: &mut dyn Write,
-) -> Result<Outcome> {
-    let summary = summary::summarise(study, records);
-    print(out, &report::tolerance::render(study, &summary, sens))?;
+fn finish(run: Whole, outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome> {
+    let Whole(study, records, summary, sens) = run;
+    print(out, &report::tolerance::render(study, summary, sens))?;
     if let Some(p) = outputs.json {
-        write_file(p, &report::tolerance::json(study, &summary, records, sens))?;
+        write_file(p, &report::tolerance::json(study, summary, records, sens))?;
     }
     if let Some(p) = outputs.csv {
         write_file(p, &report::tolerance::samples_csv(study, records))?;
     }
     if let Some(dir) = outputs.report {
-        let files =
-            report::tolerance_review::write(Path::new(dir), study, &summary, records, sens)?;
-        print(
-            out,
-            &format!(
-                "design review: {} ({} files)\n",
-                Path::new(dir).join("index.html").display(),
-                files
-            ),
-        )?;
+        let files = report::tolerance_review::write(Path::new(dir), study, summary, records, sens)?;
+        print(out, &review_line(dir, files))?;
     }
     Ok(if summary.passed() {
         Outcome::Passed
@@ -228,28 +223,15 @@ fn run_shard(
     file: &str,
     out: &mut dyn Write,
 ) -> Result<Outcome> {
-    let spec = study.spec;
+    let bytes = commands::tolerance_shard(study, (i, n), &Terminal)?;
+    files::write_atomic(Path::new(file), &bytes)?;
     let count = crate::engine::tolerance::shard_len(study.samples() as u64, (i, n));
-    let bar = Bar::with_rate(&format!("tolerance shard {i}/{n}"), "samples", count);
-    let records = study.run((i, n), &bar).map_err(|e| locate(e, spec))?;
-    drop(bar);
-    let header = shard::Header {
-        spec_sha256: shard::spec_hash(&spec.source),
-        seed: study.tolerances.seed,
-        samples: study.samples() as u64,
-        index: i,
-        count: n,
-        limits: study.limits.len() as u32,
-        spec_path: spec.path.clone(),
-        spec_text: spec.source.clone(),
-    };
-    crate::files::write_atomic(Path::new(file), &shard::encode(&header, &records))?;
     print(
         out,
         &format!(
             "cycloid tolerance `{}`: shard {i}/{n} ({count} of {} samples) written to {file}; \
              join the shards with `cycloid tolerance merge`\n",
-            spec.name,
+            study.spec.name,
             study.samples()
         ),
     )?;
@@ -263,28 +245,18 @@ fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result
         .map(|p| (format!("the shard file {p}"), PathBuf::from(p)))
         .collect();
     distinct_outputs(&inputs, &outputs.paths())?;
-    let shards = paths
+    let files = paths
         .iter()
         .map(|p| {
             // A regular file, bounded: a FIFO or a device would be read without end.
             let bytes = files::read_bytes(Path::new(p), "shard file", MAX_SHARD_BYTES)?;
-            shard::decode(p, &bytes)
+            Ok((p.clone(), bytes))
         })
         .collect::<Result<Vec<_>>>()?;
-    let records = shard::merge(paths, &shards)?;
-    let h = &shards[0].header;
-    let spec = spec::parse(&h.spec_path, &h.spec_text)?;
-    let study = Study::new(&spec, Some(h.samples as usize))?;
-    if study.limits.len() != h.limits as usize {
-        return Err(invalid(format!(
-            "{}: the shards hold {} limits, their spec evaluates {}: written by another version \
-             of cycloid",
-            paths[0],
-            h.limits,
-            study.limits.len()
-        )));
-    }
-    finish(&study, &records, None, outputs, out)
+    let merged = commands::merge_shards(&files)?;
+    let study = merged.study()?;
+    let summary = crate::engine::tolerance::summary::summarise(&study, &merged.records);
+    finish(Whole(&study, &merged.records, &summary, None), outputs, out)
 }
 
 /// `--write-sample K OUT`.
@@ -303,40 +275,4 @@ fn write_sample(study: &Study, k: &str, path: &str, out: &mut dyn Write) -> Resu
         &format!("wrote {path}: sample {k}'s deviations as reducer.deviations; replay it with `cycloid check {path}`\n"),
     )?;
     Ok(Outcome::Passed)
-}
-
-/// `check --tolerance`: the study of the spec's `tolerances:` as one check, its failure rate
-/// against `max_failure_rate`. `spec` is the drawing: with `measured_profile` the caller's
-/// other checks run on the disc as built, but a study draws every part, the disc too, from
-/// the drawing (as `cycloid tolerance` does), and its line says so.
-pub fn check(spec: &spec::Spec) -> Result<check::Check> {
-    let study = Study::new(spec, None).map_err(|e| locate(e, spec))?;
-    let bar = Bar::with_rate("tolerance study", "samples", study.samples() as u64);
-    let records = study.run((0, 1), &bar).map_err(|e| locate(e, spec))?;
-    drop(bar);
-    let s = summary::summarise(&study, &records);
-    Ok(check::Check {
-        id: format!(
-            "{}/tolerance_failure_rate",
-            spec.scenes[study.tolerances.scene].name
-        ),
-        kind: check::CheckKind::Limit,
-        value: s.rate(),
-        limit: s.max_failure_rate,
-        unit: "",
-        bound: crate::model::quantity::Bound::Max,
-        passed: s.passed(),
-        at: format!(
-            "{} of {} samples fail some limit; {} Clopper–Pearson interval [{}, {}]{}",
-            s.failures,
-            s.samples,
-            summary::percent_label(summary::CONFIDENCE),
-            crate::numeric::number(s.interval.0),
-            crate::numeric::number(s.interval.1),
-            match spec.measured {
-                Some(_) => format!("; {}", report::tolerance::MEASURED_NOTE),
-                None => String::new(),
-            }
-        ),
-    })
 }

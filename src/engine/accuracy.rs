@@ -534,7 +534,7 @@ fn timed(
     let mut first = None;
     for _ in 0..REPEATS {
         let start = Instant::now();
-        let result = scene::run_with(spec, scene, plan, settings)?;
+        let result = scene::run(spec, scene, plan, &run_options(settings))?;
         let seconds = start.elapsed().as_secs_f64();
         best = best.min(seconds);
         let done = seconds >= REPEAT_BELOW_S;
@@ -570,6 +570,14 @@ fn part(plan: &Plan, keep: impl Fn(Effect) -> bool) -> Plan {
 /// The clearance (unloaded, exact geometry) and the loaded effects are run and timed apart:
 /// the clearance depends on the crank steps only, so the settings rungs reuse the clearance of
 /// the steps rung at their resolution, its result and its measured time.
+/// A scene's run to `settings`, heard by nobody.
+fn run_options(settings: &Settings) -> scene::RunOptions<'static> {
+    scene::RunOptions {
+        settings: *settings,
+        ..Default::default()
+    }
+}
+
 pub fn run(
     spec: &Spec,
     scene_index: usize,
@@ -603,7 +611,10 @@ pub fn run(
             ..Settings::default()
         };
         let (mut result, loaded_seconds) = if loaded_plan.effects.is_empty() {
-            (scene::run_with(spec, &s, &loaded_plan, &settings)?, 0.0)
+            (
+                scene::run(spec, &s, &loaded_plan, &run_options(&settings))?,
+                0.0,
+            )
         } else {
             timed(spec, &s, &loaded_plan, &settings)?
         };

@@ -1,6 +1,6 @@
 //! Limits → checks → verdicts. A limit applies to every scene that computes its quantity.
 
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 pub use crate::model::quantity::Bound;
 
 use crate::model::results::SceneResult;
@@ -117,54 +117,6 @@ pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
         .filter(|l| plan.computes(l.def.quantity.effect))
         .map(|l| l.def.key)
         .collect()
-}
-
-/// Every limit must be evaluated by at least one scene, and every golden's scene must compute
-/// its quantity.
-pub fn validate(spec: &Spec) -> Result<()> {
-    for g in &spec.golden {
-        let q = g.quantity;
-        let scene = spec.scenes.iter().find(|s| s.name == g.scene);
-        if scene.is_some_and(|s| !Plan::for_scene(s).computes(q.effect)) {
-            return Err(Error::new(
-                ErrorKind::InvalidValue,
-                format!(
-                    "scene `{}` does not compute `{}`; add the effect `{}` to the scene",
-                    g.scene,
-                    q.key,
-                    q.effect.name()
-                ),
-            )
-            .at_key(format!("{}.quantity", g.key)));
-        }
-    }
-    for l in &spec.limits.entries {
-        let d = l.def;
-        let effect = d.quantity.effect;
-        let covered = spec
-            .scenes
-            .iter()
-            .any(|s| Plan::for_scene(s).computes(effect));
-        if !covered {
-            let how = match effect {
-                crate::model::Effect::Torsion => {
-                    "give a scene `torque_sweep: {rated_nm, steps}`".to_string()
-                }
-                e if e.is_loaded() => format!(
-                    "add the effect `{}` to a scene loaded over the crank angle (not a \
-                     `torque_sweep` scene)",
-                    e.name()
-                ),
-                e => format!("add the effect `{}` to a scene", e.name()),
-            };
-            return Err(Error::new(
-                ErrorKind::InvalidValue,
-                format!("no scene computes this limit's quantity; {how}"),
-            )
-            .at_key(format!("limits.{}", d.key)));
-        }
-    }
-    Ok(())
 }
 
 /// Evaluate the spec's limits on the results of its scenes. A limit applies to every scene
@@ -306,12 +258,18 @@ mod tests {
             .replace("limits:\n", "limits:\n  max_lost_motion_arcsec: 100000.0\n");
         let spec = crate::spec::parse("lost.yaml", &text).unwrap();
         let s = &spec.scenes[0];
-        let planned = scene::run(&spec, s, &scene::plan(&spec, s, Writes::default())).unwrap();
+        let planned = scene::run(
+            &spec,
+            s,
+            &scene::plan(&spec, s, Writes::default()),
+            &Default::default(),
+        )
+        .unwrap();
         let checks = evaluate(&spec, &[planned]).unwrap();
         assert!(checks
             .iter()
             .any(|c| c.id.ends_with("/max_lost_motion_arcsec")));
-        let bare = scene::run(&spec, s, &Plan::for_scene(s)).unwrap();
+        let bare = scene::run(&spec, s, &Plan::for_scene(s), &Default::default()).unwrap();
         let e = evaluate(&spec, &[bare]).unwrap_err();
         assert!(e.to_string().contains("max_lost_motion_arcsec"), "{e}");
     }

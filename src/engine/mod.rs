@@ -8,6 +8,7 @@ pub mod accuracy;
 pub mod as_built;
 pub mod bearing_life;
 pub mod check;
+pub mod commands;
 pub mod drawing;
 pub mod golden;
 pub mod optimise;

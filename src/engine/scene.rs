@@ -50,9 +50,30 @@ pub fn plan(spec: &Spec, scene: &Scene, writes: Writes) -> Plan {
     plan
 }
 
-/// Run one scene according to its plan.
-pub fn run(spec: &Spec, scene: &Scene, plan: &Plan) -> Result<SceneResult> {
-    run_with(spec, scene, plan, &Settings::default())
+/// How a scene runs: the loaded solves' convergence settings (the accuracy ladder varies
+/// them) and who hears of the crank angles done. `Default`: the default settings, nobody.
+#[derive(Clone, Copy)]
+pub struct RunOptions<'a> {
+    pub settings: Settings,
+    /// Hears of the crank angles done by each sweep the plan runs (`start` is the caller's:
+    /// `sweeps` says how many it will hear of).
+    pub progress: &'a dyn Progress,
+}
+
+impl Default for RunOptions<'_> {
+    fn default() -> Self {
+        RunOptions {
+            settings: Settings::default(),
+            progress: &Silent,
+        }
+    }
+}
+
+/// Run one scene of the spec, with its design and modification, according to `plan`; a
+/// failure points at the scene's key in the spec (`at_scene`).
+pub fn run(spec: &Spec, scene: &Scene, plan: &Plan, options: &RunOptions) -> Result<SceneResult> {
+    run_design(&spec.design, &spec.modification, (scene, plan), options)
+        .map_err(|e| at_scene(spec, scene, e))
 }
 
 /// A failure of a scene of the spec, with the spec key it points at: the scene's value that
@@ -69,55 +90,15 @@ pub fn at_scene(spec: &Spec, scene: &Scene, mut e: Error) -> Error {
     e
 }
 
-/// Run one scene according to its plan, with the loaded solves converged to `settings`
-/// (`run` uses the default settings; the accuracy ladder varies them).
-pub fn run_with(
-    spec: &Spec,
-    scene: &Scene,
-    plan: &Plan,
-    settings: &Settings,
-) -> Result<SceneResult> {
-    run_with_observed(spec, (scene, plan), settings, &Silent)
-}
-
-/// `run_with`, telling `progress` of the crank angles done (`run_observed`).
-pub fn run_with_observed(
-    spec: &Spec,
-    (scene, plan): (&Scene, &Plan),
-    settings: &Settings,
-    progress: &dyn Progress,
-) -> Result<SceneResult> {
-    run_observed(
-        &spec.design,
-        &spec.modification,
-        (scene, plan),
-        settings,
-        progress,
-    )
-    .map_err(|e| at_scene(spec, scene, e))
-}
-
-/// Run one scene of `design` with the modification `m` (an optimisation candidate, or the
-/// spec's own) according to `plan`.
+/// Run one scene of `design` with the modification `m` (an optimisation candidate, a part as
+/// drawn by the tolerance study, or the spec's own) according to `plan`.
 pub fn run_design(
     design: &Design,
     m: &Modification,
-    scene: &Scene,
-    plan: &Plan,
-    settings: &Settings,
-) -> Result<SceneResult> {
-    run_observed(design, m, (scene, plan), settings, &Silent)
-}
-
-/// `run_design`, telling `progress` of the crank angles done by each sweep the plan runs
-/// (`progress::Progress::start` is the caller's: `sweeps` says how many it will hear of).
-pub fn run_observed(
-    design: &Design,
-    m: &Modification,
     (scene, plan): (&Scene, &Plan),
-    settings: &Settings,
-    progress: &dyn Progress,
+    options: &RunOptions,
 ) -> Result<SceneResult> {
+    let (settings, progress) = (&options.settings, options.progress);
     let mesh = Mesh::new(design, m);
     let clearance = |shift: f64| -> Result<Option<ClearanceSweep>> {
         if !plan.has(Effect::Clearance) {

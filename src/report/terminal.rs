@@ -2,7 +2,7 @@
 //! pipe, a file, a CI log), so that what a script reads from stdout never carries it and a
 //! log stays clean. The engine and the sweeps report through `crate::progress::Progress`.
 
-use crate::progress::Progress;
+use crate::progress::{Phase, Progress};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 
@@ -15,16 +15,8 @@ pub struct Bar {
 }
 
 impl Bar {
-    /// Drawn only when stdout is a terminal and `total` is at least `min_total`.
-    pub fn new(what: &str, unit: &str, total: u64, min_total: u64) -> Bar {
-        Self::styled(what, unit, total, min_total, "")
-    }
-
-    /// `new`, showing the rate (`unit`/s) as well: for work whose units take long each.
-    pub fn with_rate(what: &str, unit: &str, total: u64) -> Bar {
-        Self::styled(what, unit, total, 0, ", {per_sec}")
-    }
-
+    /// Drawn only when stdout is a terminal and `total` is at least `min_total`; `rate` shows
+    /// the units per second, for work whose units take long each.
     fn styled(what: &str, unit: &str, total: u64, min_total: u64, rate: &str) -> Bar {
         let shown = std::io::stdout().is_terminal() && total >= min_total;
         let bar = ProgressBar::with_draw_target(
@@ -60,6 +52,18 @@ impl Progress for Bar {
 
     fn finish(&self) {
         self.bar.finish_and_clear();
+    }
+}
+
+/// The command line's listener: each phase of a command gets its own bar (`Bar`), drawn only
+/// while stdout is a terminal.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Terminal;
+
+impl Progress for Terminal {
+    fn phase(&self, p: &Phase) -> Box<dyn Progress + '_> {
+        let rate = if p.slow_units { ", {per_sec}" } else { "" };
+        Box::new(Bar::styled(&p.what, p.unit, p.total, p.worth_showing, rate))
     }
 }
 

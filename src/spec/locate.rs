@@ -23,19 +23,31 @@ pub fn locate_duplicate(text: &str, parent: &str, key: &str) -> Option<(usize, u
     }
 }
 
-/// Attach a location to a value/design error from its key path, if the key is in the text.
-pub fn locate_error(mut error: Error, path: &str, text: &str) -> Error {
+/// Attach a location to a value/design error of loading a spec: its key's, else the start of
+/// the file (an error of loading a spec always says which file).
+pub fn locate_error(error: Error, path: &str, text: &str) -> Error {
+    let mut error = locate_key(error, path, text);
     if error.location.is_none() {
-        let (line, column) = error
-            .key_path
-            .as_deref()
-            .and_then(|k| locate(text, k))
-            .unwrap_or((1, 1));
         error.location = Some(Location {
             file: path.to_string(),
-            line,
-            column,
+            line: 1,
+            column: 1,
         });
+    }
+    error
+}
+
+/// Attach the location of an error's key path, when it has none yet and the key is in the
+/// text: the one locator of errors about a spec's keys, at load and after.
+pub fn locate_key(mut error: Error, path: &str, text: &str) -> Error {
+    if error.location.is_none() {
+        if let Some((line, column)) = error.key_path.as_deref().and_then(|k| locate(text, k)) {
+            error.location = Some(Location {
+                file: path.to_string(),
+                line,
+                column,
+            });
+        }
     }
     error
 }

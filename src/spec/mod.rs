@@ -3,6 +3,7 @@
 //! Errors carry `file:line:column` and the key path. Syntax errors take their location from the
 //! YAML parser (`parse`); value and design-rule errors locate their key in the text (`locate`).
 
+pub mod coverage;
 pub mod deviations;
 pub mod locate;
 pub mod measured;
@@ -41,6 +42,13 @@ pub struct Spec {
     pub tolerances: Option<crate::model::tolerances::Tolerances>,
 }
 
+impl Spec {
+    /// Give an error about one of this spec's keys the key's location in the spec file.
+    pub fn locate(&self, e: crate::error::Error) -> crate::error::Error {
+        locate::locate_key(e, &self.path, &self.source)
+    }
+}
+
 /// `accuracy:` of a spec: which scene's ladder the design review shows, and how.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Accuracy {
@@ -62,7 +70,9 @@ pub fn load(path: &str) -> Result<Spec> {
 /// Parse and validate spec text; `path` is used in messages only.
 pub fn parse(path: &str, text: &str) -> Result<Spec> {
     let raw = parse::parse_raw(path, text)?;
-    validate::build(path, text, raw).map_err(|e| locate::locate_error(e, path, text))
+    let spec = validate::build(path, text, raw).map_err(|e| locate::locate_error(e, path, text))?;
+    coverage::check(&spec).map_err(|e| spec.locate(e))?;
+    Ok(spec)
 }
 
 /// The index of the scene named `name`; else an error at `key` that lists the scenes.

@@ -7,7 +7,6 @@
 //! mesh period of the scene's crank angles.
 
 use crate::engine::scene;
-use crate::equilibrium::solve::Settings;
 use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::{RATIO_FLUCTUATION, TE_FLUCTUATION};
 use crate::model::results::MinClearance;
@@ -338,9 +337,8 @@ impl<'a> Problem<'a> {
         let r = scene::run_design(
             &self.spec.design,
             m,
-            self.scene,
-            &self.plan,
-            &Settings::default(),
+            (self.scene, &self.plan),
+            &scene::RunOptions::default(),
         )
         .map_err(|err| err.message)?;
         self.study

@@ -14,7 +14,6 @@ pub mod summary;
 pub mod write;
 
 use crate::engine::{check, scene};
-use crate::equilibrium::solve::Settings;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::quantity::LimitDef;
 use crate::model::tolerances::{self as tol, Parameter, Tolerances};
@@ -136,9 +135,8 @@ impl<'a> Study<'a> {
         let result = scene::run_design(
             &design,
             &spec.modification,
-            scene,
-            &self.plan,
-            &Settings::default(),
+            (scene, &self.plan),
+            &scene::RunOptions::default(),
         )
         .map_err(context)?;
         let checks = check::evaluate(spec, std::slice::from_ref(&result)).map_err(context)?;

@@ -1,0 +1,103 @@
+//! `cycloid accuracy`: the options as given over the spec's `accuracy:` section, then the
+//! library's ladder, its rows printed as each rung finishes.
+
+use super::output::{print, stdout_error};
+use super::Outcome;
+use crate::engine::accuracy::{self, Setting};
+use crate::engine::commands;
+use crate::error::{Error, ErrorKind, Result};
+use crate::spec;
+use std::io::Write;
+
+/// The options of `cycloid accuracy` as given; unset ones come from the spec's `accuracy`
+/// section, else the defaults.
+pub(super) struct AccuracyArgs {
+    pub scene: Option<String>,
+    pub finest: Option<i64>,
+    pub settings_steps: Option<i64>,
+    /// TE (arcsec), force (N), ratio, clearance (µm).
+    pub tolerances: [Option<f64>; 4],
+}
+
+fn bad(flag: &str, m: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, format!("--{flag}: {m}"))
+}
+
+pub(super) fn run(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Result<Outcome> {
+    let spec = spec::load(path)?;
+    let (scene, options) = options(&spec, asked)?;
+    // Rows are printed as their runs finish: the finest run comes first and takes longest.
+    let mut written: Result<()> = Ok(());
+    let ladder = commands::accuracy(&spec, scene, &options, &mut |event| {
+        let text = match event {
+            accuracy::Event::Started(layout) => accuracy::header(layout),
+            accuracy::Event::Rung(layout, rung) => accuracy::row(layout, rung, false),
+        };
+        if written.is_ok() {
+            written = print(out, &text).and_then(|_| out.flush().map_err(stdout_error));
+        }
+    })?;
+    written?;
+    print(out, &accuracy::footer(&ladder))?;
+    Ok(Outcome::Passed)
+}
+
+/// The scene and the ladder's options: the flags given, over the spec's `accuracy:`, over the
+/// defaults; checked against the scene.
+fn options(spec: &spec::Spec, asked: &AccuracyArgs) -> Result<(usize, accuracy::Options)> {
+    let from_spec = spec.accuracy.as_ref();
+    let scene = match &asked.scene {
+        Some(name) => spec
+            .scenes
+            .iter()
+            .position(|s| &s.name == name)
+            .ok_or_else(|| {
+                bad(
+                    "scene",
+                    format!(
+                        "no scene named `{name}`; scenes: {}",
+                        spec::scene_names(&spec.scenes)
+                    ),
+                )
+            })?,
+        None => from_spec.map_or_else(|| accuracy::default_scene(spec), |a| a.scene),
+    };
+    let mut options = from_spec.map_or_else(accuracy::Options::default, |a| a.options);
+    if let Some(n) = asked.finest {
+        options.finest =
+            accuracy::ladder_steps(n, 2 * accuracy::COARSEST).map_err(|m| bad("finest", m))?;
+    }
+    if let Some(n) = asked.settings_steps {
+        options.settings_steps = Some(
+            accuracy::ladder_steps(n, accuracy::COARSEST).map_err(|m| bad("settings-steps", m))?,
+        );
+    }
+    let t = &mut options.tolerances;
+    for ((flag, value), slot) in [
+        "te-tol-arcsec",
+        "force-tol-n",
+        "ratio-tol",
+        "clearance-tol-um",
+    ]
+    .into_iter()
+    .zip(asked.tolerances)
+    .zip([
+        &mut t.te_arcsec,
+        &mut t.force_n,
+        &mut t.ratio,
+        &mut t.clearance_um,
+    ]) {
+        if let Some(v) = value {
+            *slot = accuracy::tolerance(v).map_err(|m| bad(flag, m))?;
+        }
+    }
+    accuracy::check(&spec.design, &spec.scenes[scene], &options).map_err(|(which, m)| {
+        let flag = match which {
+            Setting::Scene => "scene",
+            Setting::Finest => "finest",
+            Setting::SettingsSteps => "settings-steps",
+        };
+        bad(flag, m)
+    })?;
+    Ok((scene, options))
+}

@@ -1,0 +1,223 @@
+//! `cycloid check`: run the library's `check`, print the checks table and the headline
+//! results, and write the JSON, JUnit and design review asked for.
+
+use super::output::{distinct_outputs, inputs_of, inputs_with_measured, print, print_keeping};
+use super::output::{review_line, write_file};
+use super::Outcome;
+use crate::engine::accuracy::Ladder;
+use crate::engine::commands::{self, CheckOptions, CheckRun, Review, ReviewOptions, MAX_MAP_STEPS};
+use crate::engine::scene::Writes;
+use crate::error::{Error, ErrorKind, Result};
+use crate::report::terminal::Terminal;
+use crate::{report, spec};
+use std::io::Write;
+use std::path::Path;
+
+/// Where `check` writes its results besides the terminal, and what else it runs.
+pub(super) struct CheckArgs<'a> {
+    pub spec: &'a str,
+    pub json: Option<&'a str>,
+    pub junit: Option<&'a str>,
+    pub report: Option<&'a str>,
+    pub report_crank_deg: Option<f64>,
+    pub report_map_steps: usize,
+    pub explain: bool,
+    pub tolerance: bool,
+    pub color: bool,
+}
+
+impl CheckArgs<'_> {
+    /// The files and directories this run writes, by option.
+    fn paths(&self) -> [(&'static str, Option<&str>); 3] {
+        [
+            ("--json", self.json),
+            ("--junit", self.junit),
+            ("--report", self.report),
+        ]
+    }
+}
+
+/// `cycloid check`; a run that stops on an error still writes it as a JUnit error case.
+pub(super) fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<Outcome> {
+    distinct_outputs(&inputs_of(args.spec, None), &args.paths())?;
+    let result = checked(args, out);
+    if let (Err(e), Some(path)) = (&result, args.junit) {
+        if !matches!(e.kind, ErrorKind::Usage | ErrorKind::OutputClosed) {
+            // CI shows the error as a test case too; the error itself still goes to stderr.
+            let doc = report::junit::error_document(args.spec, &e.to_string());
+            let _ = write_file(path, &doc);
+        }
+    }
+    result
+}
+
+fn checked(args: &CheckArgs, out: &mut dyn Write) -> Result<Outcome> {
+    let spec = spec::load(args.spec)?;
+    distinct_outputs(&inputs_with_measured(args.spec, &spec), &args.paths())?;
+    let writes = Writes {
+        json: args.json.is_some(),
+        report: args.report.is_some(),
+    };
+    if args.explain {
+        print(out, &crate::engine::scene::explain(&spec, writes))?;
+        if let Some(m) = &spec.measured {
+            let line = format!(
+                "\nas built: every scene runs on the disc identified from `{}` (its \
+                 modification and form error), exact geometry\n",
+                m.path
+            );
+            print(out, &line)?;
+        }
+        return Ok(Outcome::Passed);
+    }
+    let options = CheckOptions {
+        writes,
+        tolerance: args.tolerance,
+        review: review_options(args)?,
+    };
+    let run = commands::check(&spec, &options, &Terminal)?;
+    print_run(&run, args, out)?;
+    write_outputs(&run, args, out)?;
+    Ok(if run.passed() {
+        Outcome::Passed
+    } else {
+        Outcome::ChecksFailed
+    })
+}
+
+/// The review's options from `--report-crank-deg` and `--report-map-steps`, checked.
+fn review_options(args: &CheckArgs) -> Result<Option<ReviewOptions>> {
+    let bad = |m: String| Err(Error::new(ErrorKind::InvalidValue, m));
+    if let Some(deg) = args.report_crank_deg.filter(|d| !d.is_finite()) {
+        return bad(format!(
+            "--report-crank-deg must be a finite angle, got {deg}"
+        ));
+    }
+    let steps = args.report_map_steps;
+    if args.report.is_some() && (steps == 1 || steps > MAX_MAP_STEPS) {
+        return bad(format!(
+            "--report-map-steps must be 0 (no map) or 2 to {MAX_MAP_STEPS}, got {steps}"
+        ));
+    }
+    Ok(args.report.map(|_| ReviewOptions {
+        crank_rad: args.report_crank_deg.map(crate::units::rad),
+        map_steps: steps,
+    }))
+}
+
+/// The terminal's account of a run: the disc as built, the studies, the checks table, the
+/// resolution warning, the headline results and the notes.
+fn print_run(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
+    let spec = &run.spec;
+    print(out, &format!("cycloid check `{}`\n", spec.name))?;
+    if let Some(a) = &run.as_built {
+        print(
+            out,
+            &format!(
+                "{}\n",
+                crate::engine::as_built::describe(spec, &a.identification)
+            ),
+        )?;
+    }
+    for (s, r) in spec.studies.iter().zip(&run.studies) {
+        print(out, &report::optimisation::render(spec, s, r))?;
+    }
+    let styles: &[&str] = match args.color {
+        true => &report::table::STYLES,
+        false => &[],
+    };
+    print_keeping(
+        out,
+        &report::table::render_styled(&run.checks, args.color),
+        styles,
+    )?;
+    if let Some(w) = run.resolution.as_ref().and_then(|r| r.warning()) {
+        print(out, &format!("{w}\n"))?;
+    }
+    print(out, &report::table::render_summary(&run.summaries))?;
+    for note in crate::engine::scene::notes(spec) {
+        print(out, &format!("note: {note}\n"))?;
+    }
+    Ok(())
+}
+
+/// The JSON, JUnit and design review asked for.
+fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
+    let spec = &run.spec;
+    if let Some(p) = args.json {
+        let doc = report::json::Document::new(&report::json::Contents {
+            spec,
+            checks: &run.checks,
+            results: &run.results,
+            goldens: &run.goldens,
+            summaries: &run.summaries,
+            studies: &run.studies,
+        });
+        report::json::write(Path::new(p), &doc)?;
+    }
+    if let Some(p) = args.junit {
+        write_file(
+            p,
+            &report::junit::document(&spec.name, &spec.path, &run.checks),
+        )?;
+    }
+    let Some(review) = &run.review else {
+        return Ok(());
+    };
+    if let Some((l, seconds)) = &review.ladder {
+        print(out, &ladder_line(l, *seconds))?;
+    }
+    if let Some(dir) = args.report {
+        let files = write_review(Path::new(dir), run, review)?;
+        print(out, &review_line(dir, files))?;
+    }
+    Ok(())
+}
+
+/// The line `check --report` prints about the ladder.
+fn ladder_line(ladder: &Ladder, seconds: f64) -> String {
+    format!(
+        "accuracy ladder of scene `{}`: {} rungs in {seconds:.2} s; cheapest meeting every \
+         tolerance: {}\n",
+        ladder.layout.scene,
+        ladder.rungs.len(),
+        match ladder.cheapest {
+            Some(i) => format!("`{}`", ladder.rungs[i].label),
+            None => "none".to_string(),
+        }
+    )
+}
+
+/// Write the design review of `run` into `dir`; how many files it has.
+fn write_review(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
+    let spec = &run.spec;
+    let views: Vec<_> = (spec.studies.iter().zip(&run.studies).zip(&review.maps))
+        .map(|((s, r), cells)| report::optimisation::view(spec, s, r, cells, review.map_steps))
+        .collect();
+    // The resolution warning `check` printed, as a banner under the verdict.
+    let warnings: Vec<String> = (run.resolution.as_ref())
+        .and_then(|r| r.warning())
+        .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
+        .into_iter()
+        .collect();
+    let as_built = run.as_built.as_ref().and_then(|a| {
+        let designed = a.designed.as_deref()?;
+        Some(report::as_built::AsBuiltView {
+            identification: &a.identification,
+            designed_modification: a.designed_modification,
+            designed,
+        })
+    });
+    let input = report::html::ReportInput {
+        spec,
+        checks: &run.checks,
+        results: &run.results,
+        goldens: &run.goldens,
+        disc: &review.disc,
+        optimisation: &views,
+        accuracy: review.ladder.as_ref().map(|(l, _)| l),
+        warnings: &warnings,
+        as_built,
+    };
+    Ok(report::html::write(dir, &input)?.len())
+}

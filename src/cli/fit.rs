@@ -1,0 +1,42 @@
+//! `cycloid fit`: identify the measured disc, print it, and write what was asked.
+
+use super::output::{distinct_outputs, inputs_with_measured, print, write_file};
+use super::Outcome;
+use crate::engine::{as_built, commands, optimise, tolerance};
+use crate::error::Result;
+use crate::{report, spec};
+use std::io::Write;
+
+pub(super) fn run(
+    path: &str,
+    write: Option<&str>,
+    form_csv: Option<&str>,
+    out: &mut dyn Write,
+) -> Result<Outcome> {
+    let spec = spec::load(path)?;
+    let outputs = [("--write", write), ("--form-csv", form_csv)];
+    distinct_outputs(&inputs_with_measured(path, &spec), &outputs)?;
+    let id = commands::fit(&spec)?;
+    print(out, &report::fit::render(&spec, &id))?;
+    if let Some(p) = form_csv {
+        write_file(p, &report::fit::form_csv(&spec, &id))?;
+    }
+    if let Some(p) = write {
+        let text = optimise::write::with_modification(p, &spec.source, &id.modification)?;
+        let mut deviations = spec.design.deviations.clone();
+        deviations.form = as_built::form_terms(&id);
+        let text = if deviations.form.is_empty() {
+            text
+        } else {
+            tolerance::write::with_deviations(&text, path, &deviations, p)?
+        };
+        write_file(p, &text)?;
+        let what = if deviations.form.is_empty() {
+            "the identified modification"
+        } else {
+            "the identified modification and form error (reducer.deviations.form)"
+        };
+        print(out, &format!("wrote {p} with {what}\n"))?;
+    }
+    Ok(Outcome::Passed)
+}

@@ -1,0 +1,108 @@
+//! Command-line interface: argument parsing (`args`), output paths and writing (`output`), and
+//! one file per command that calls the library's entry (`engine::commands`) and prints. `main`
+//! only maps the outcome to an exit code (0 pass, 1 a check failed, 2 invalid input or
+//! computation).
+
+mod accuracy;
+pub mod args;
+mod bless;
+mod check;
+mod fit;
+mod optimise;
+mod output;
+mod profile;
+mod tolerance;
+
+pub use args::{Cli, Command, ToleranceArgs, ToleranceCommand, DEFAULT_REPORT_MAP_STEPS};
+pub use tolerance::parse_shard;
+
+use crate::error::Result;
+use std::io::Write;
+
+/// How a command ended when it did not fail with an error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    Passed,
+    ChecksFailed,
+}
+
+/// Run a parsed command, writing the user-facing text to `out` (without colour).
+pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Outcome> {
+    run_with(cli, out, false)
+}
+
+/// Run a parsed command; `color` colours the verdicts of the checks table.
+pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
+    match cli.command {
+        Command::Check {
+            spec,
+            json,
+            explain,
+            junit,
+            report,
+            report_crank_deg,
+            report_map_steps,
+            tolerance,
+        } => {
+            let args = check::CheckArgs {
+                spec: &spec,
+                json: json.as_deref(),
+                junit: junit.as_deref(),
+                report: report.as_deref(),
+                report_crank_deg,
+                report_map_steps,
+                explain,
+                tolerance,
+                color,
+            };
+            check::run(&args, out)
+        }
+        Command::Bless { spec } => bless::run(&spec, out),
+        Command::Accuracy {
+            spec,
+            scene,
+            finest,
+            settings_steps,
+            te_tol_arcsec,
+            force_tol_n,
+            ratio_tol,
+            clearance_tol_um,
+        } => {
+            let asked = accuracy::AccuracyArgs {
+                scene,
+                finest,
+                settings_steps,
+                tolerances: [te_tol_arcsec, force_tol_n, ratio_tol, clearance_tol_um],
+            };
+            accuracy::run(&spec, &asked, out)
+        }
+        Command::Optimise {
+            spec,
+            study,
+            write,
+            map,
+            map_steps,
+        } => {
+            let args = optimise::OptimiseArgs {
+                spec: &spec,
+                study: study.as_deref(),
+                write: write.as_deref(),
+                map: map.as_deref(),
+                map_steps,
+            };
+            optimise::run(&args, out)
+        }
+        Command::Profile {
+            spec,
+            csv,
+            dxf,
+            tolerance_um,
+        } => profile::run(&spec, csv.as_deref(), dxf.as_deref(), tolerance_um, out),
+        Command::Fit {
+            spec,
+            write,
+            form_csv,
+        } => fit::run(&spec, write.as_deref(), form_csv.as_deref(), out),
+        Command::Tolerance(args) => tolerance::run(args, out),
+    }
+}

@@ -1,0 +1,106 @@
+//! `cycloid optimise`: run the spec's studies, print each, and write the optimum's spec and
+//! the objective map asked for.
+
+use super::output::{distinct_outputs, inputs_of, print, write_file};
+use super::Outcome;
+use crate::engine::commands::{self, MAX_MAP_STEPS};
+use crate::engine::optimise::{self, StudyResult};
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::Study;
+use crate::report::terminal::Terminal;
+use crate::{report, spec};
+use std::io::Write;
+
+/// The options of `cycloid optimise`.
+pub(super) struct OptimiseArgs<'a> {
+    pub spec: &'a str,
+    pub study: Option<&'a str>,
+    pub write: Option<&'a str>,
+    pub map: Option<&'a str>,
+    pub map_steps: usize,
+}
+
+pub(super) fn run(args: &OptimiseArgs, out: &mut dyn Write) -> Result<Outcome> {
+    let path = args.spec;
+    let spec = spec::load(path)?;
+    let outputs = [("--write", args.write), ("--map", args.map)];
+    distinct_outputs(&inputs_of(path, Some(&spec)), &outputs)?;
+    if args.map.is_some() && !(2..=MAX_MAP_STEPS).contains(&args.map_steps) {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "--map-steps must be 2 to {MAX_MAP_STEPS}, got {}",
+                args.map_steps
+            ),
+        ));
+    }
+    let map_steps = args.map.map(|_| args.map_steps);
+    let run = commands::optimise(&spec, args.study, map_steps, &Terminal)?;
+    for (k, (study, r)) in run.studies.iter().enumerate() {
+        print(out, &report::optimisation::render(&spec, study, r))?;
+        if k > 0 {
+            continue;
+        }
+        if let Some(p) = args.write {
+            print(out, &write_optimum(&spec, path, study, r, p)?)?;
+        }
+        if let (Some(p), Some(cells)) = (args.map, &run.map) {
+            write_file(p, &report::optimisation::map_csv(study, cells))?;
+            print(
+                out,
+                &format!("wrote the objective map of `{}` to {p}\n", r.name),
+            )?;
+        }
+    }
+    Ok(if run.feasible() {
+        Outcome::Passed
+    } else {
+        Outcome::ChecksFailed
+    })
+}
+
+/// `optimise --write OUT`: the spec of a study's optimum, written only when it is feasible;
+/// returns what to tell the user.
+fn write_optimum(
+    spec: &spec::Spec,
+    path: &str,
+    study: &Study,
+    r: &StudyResult,
+    out_path: &str,
+) -> Result<String> {
+    if !r.optimum.feasible() {
+        return Ok(format!(
+            "no feasible optimum of `{}` was found: nothing written to {out_path}\n",
+            r.name
+        ));
+    }
+    let name = format!("{}-{}-optimum", spec.name, r.name);
+    let mut header = format!(
+        "# Written by `cycloid optimise {path} --study {}`: the optimum of that study, {} = {};\n\
+         # {}.\n",
+        r.name,
+        study
+            .objective
+            .iter()
+            .map(|(o, _)| o.name)
+            .collect::<Vec<_>>()
+            .join(" + "),
+        crate::numeric::number(r.optimum.objective),
+        r.found,
+    );
+    if let Some(v) = report::optimisation::verification_text(study, r) {
+        header += &format!("# {}.\n", v.replace('\n', " "));
+    }
+    let text = optimise::write::optimum_spec(
+        out_path,
+        &spec.source,
+        &r.optimum.modification,
+        &name,
+        &header,
+    )?;
+    write_file(out_path, &text)?;
+    Ok(format!(
+        "wrote {out_path} (`{name}`) with the optimum of `{}`\n",
+        r.name
+    ))
+}

@@ -1,0 +1,98 @@
+//! Where the commands write: output paths checked against every input before anything is
+//! written, files written atomically, and text for a person printed with its control
+//! characters escaped.
+
+use crate::engine::golden;
+use crate::error::{Error, ErrorKind, Result};
+use crate::{files, spec};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Write an output file atomically (a temporary file renamed into place).
+pub(super) fn write_file(path: &str, text: &str) -> Result<()> {
+    files::write_atomic(Path::new(path), text.as_bytes())
+}
+
+/// Refuse, before anything is written, outputs that would destroy an input or one another: an
+/// empty path, an output at the path of one of `inputs` (what it is, its path), or two
+/// outputs at one path. `outputs` are (option, path if given); a `--report` directory also
+/// claims its `index.html`.
+pub(super) fn distinct_outputs(
+    inputs: &[(String, PathBuf)],
+    outputs: &[(&str, Option<&str>)],
+) -> Result<()> {
+    let usage = |m: String| Error::new(ErrorKind::Usage, format!("{m}; nothing was written"));
+    let mut claimed: Vec<(String, PathBuf)> = inputs
+        .iter()
+        .map(|(what, p)| (what.clone(), files::identity(p)))
+        .collect();
+    for &(flag, path) in outputs {
+        let Some(path) = path else { continue };
+        if path.is_empty() {
+            return Err(usage(format!("{flag} \"\": an empty path names no file")));
+        }
+        let mut ids = vec![files::identity(Path::new(path))];
+        if flag == "--report" {
+            ids.push(ids[0].join("index.html"));
+        }
+        for id in ids {
+            if let Some((what, _)) = claimed.iter().find(|(_, c)| *c == id) {
+                return Err(usage(format!(
+                    "{flag} {path} would overwrite {what}; give another path"
+                )));
+            }
+            claimed.push((format!("the output of {flag}"), id));
+        }
+    }
+    Ok(())
+}
+
+/// The files a spec's run reads or owns, which no output may replace: the spec, and each
+/// golden file with its metadata.
+pub(super) fn inputs_of(spec_path: &str, spec: Option<&spec::Spec>) -> Vec<(String, PathBuf)> {
+    let mut inputs = vec![("the spec".to_string(), PathBuf::from(spec_path))];
+    for g in spec.map_or(&[][..], |s| &s.golden) {
+        inputs.push((format!("the golden file of {}", g.key), g.path.clone()));
+        for meta in golden::meta_paths(&g.path) {
+            inputs.push((format!("the metadata of {}", g.key), meta));
+        }
+    }
+    inputs
+}
+
+/// `inputs_of`, with the spec's measured points when it has them.
+pub(super) fn inputs_with_measured(spec_path: &str, spec: &spec::Spec) -> Vec<(String, PathBuf)> {
+    let mut inputs = inputs_of(spec_path, Some(spec));
+    if let Some(m) = &spec.measured {
+        inputs.push(("the measured points".to_string(), PathBuf::from(&m.path)));
+    }
+    inputs
+}
+
+/// Print text for a person, its control characters escaped (names come from the spec).
+pub(super) fn print(out: &mut dyn Write, text: &str) -> Result<()> {
+    print_keeping(out, text, &[])
+}
+
+/// `print`, letting the sequences in `keep` (the tool's own colours) through.
+pub(super) fn print_keeping(out: &mut dyn Write, text: &str, keep: &[&str]) -> Result<()> {
+    out.write_all(crate::error::printable(text, keep).as_bytes())
+        .map_err(stdout_error)
+}
+
+/// A failed write to standard output; a reader that closed it (`| head`) is `OutputClosed`.
+pub(super) fn stdout_error(e: std::io::Error) -> Error {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        Error::new(ErrorKind::OutputClosed, "standard output was closed")
+    } else {
+        Error::io("<stdout>", e)
+    }
+}
+
+/// The line that says where a design review was written.
+pub(super) fn review_line(dir: &str, files: usize) -> String {
+    format!(
+        "design review: {} ({files} files)\n",
+        Path::new(dir).join("index.html").display()
+    )
+}

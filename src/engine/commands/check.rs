@@ -1,0 +1,308 @@
+//! `check`: every scene of a spec, its limits and golden curves, its optimisation studies, the
+//! accuracy scene's resolution, and on request the tolerance study and what the design review
+//! shows. Returns data; the terminal table, JSON, JUnit and the review are built in `report`.
+
+use super::tolerance;
+use crate::engine::accuracy::{self, Ladder};
+use crate::engine::as_built;
+use crate::engine::check::{self, Check};
+use crate::engine::drawing::{self, Disc};
+use crate::engine::golden::{self, GoldenResult};
+use crate::engine::optimise::{self, problem::Evaluation, StudyResult};
+use crate::engine::resolution::{self, Resolution};
+use crate::engine::scene::{self, Writes};
+use crate::engine::summary::{self, SceneSummary};
+use crate::error::{Error, ErrorKind, Result};
+use crate::measure::fit::Identification;
+use crate::model::results::SceneResult;
+use crate::model::{Modification, Study};
+use crate::progress::{Phase, Progress};
+use crate::spec::Spec;
+
+/// Largest grid of an objective map, per variable (101² = 10 201 evaluations per study).
+pub const MAX_MAP_STEPS: usize = 101;
+
+/// Progress phases of crank angles below this many are not worth showing (a scene that ends
+/// before a display's first redraw).
+const SCENES_WORTH_SHOWING: u64 = 200_000;
+
+/// What a `check` computes besides the scenes' limits and goldens.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CheckOptions {
+    /// The output files that read every quantity of every scene (more of each effect is
+    /// recorded for them).
+    pub writes: Writes,
+    /// Also run the Monte Carlo of the spec's `tolerances:`; its failure rate joins the checks.
+    pub tolerance: bool,
+    /// Compute what the design review shows: the disc drawing, the objective maps, the
+    /// accuracy ladder, and each scene as designed beside as built.
+    pub review: Option<ReviewOptions>,
+}
+
+/// What the design review is drawn from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReviewOptions {
+    /// Crank angle of the disc drawing, rad; `None`: where the smallest gap occurs.
+    pub crank_rad: Option<f64>,
+    /// Grid points per variable of each study's objective map: 0 (no map) or 2 to
+    /// `MAX_MAP_STEPS`.
+    pub map_steps: usize,
+}
+
+/// Everything one `check` computed.
+#[derive(Debug, Clone)]
+pub struct CheckRun {
+    /// The spec the checks ran on: with `measured_profile`, the disc as built (the identified
+    /// modification and form error in place of the drawing's).
+    pub spec: Spec,
+    /// The identified disc, when the spec has measured points.
+    pub as_built: Option<AsBuilt>,
+    /// One result per scene, in spec order.
+    pub results: Vec<SceneResult>,
+    /// Limits, studies, goldens, the resolution and the tolerance study, in that order.
+    pub checks: Vec<Check>,
+    pub goldens: Vec<GoldenResult>,
+    pub summaries: Vec<SceneSummary>,
+    /// One result per optimisation study, in spec order.
+    pub studies: Vec<StudyResult>,
+    /// The accuracy scene's crank resolution, when the spec has `accuracy:`.
+    pub resolution: Option<Resolution>,
+    /// What the design review shows, when asked for.
+    pub review: Option<Review>,
+}
+
+impl CheckRun {
+    /// Every check passed.
+    pub fn passed(&self) -> bool {
+        self.checks.iter().all(|c| c.passed)
+    }
+}
+
+/// The disc as built, beside the drawing.
+#[derive(Debug, Clone)]
+pub struct AsBuilt {
+    pub identification: Identification,
+    /// The spec's own modification, as designed.
+    pub designed_modification: Modification,
+    /// Each scene as designed, when the review shows them beside the results as built.
+    pub designed: Option<Vec<SceneResult>>,
+}
+
+/// What the design review draws besides the results.
+#[derive(Debug, Clone)]
+pub struct Review {
+    /// The disc at the drawing's crank angle.
+    pub disc: Disc,
+    /// Each study's objective map (empty without a map), in spec order.
+    pub maps: Vec<Vec<Evaluation>>,
+    /// Grid points per variable of the maps.
+    pub map_steps: usize,
+    /// The accuracy ladder of the spec's `accuracy:` scene and its wall-clock time, s.
+    pub ladder: Option<(Ladder, f64)>,
+}
+
+/// Run every scene of `spec`, check its limits and goldens, run its studies, and what
+/// `options` asks for besides. Errors about a spec key carry its location in the spec.
+pub fn check(spec: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Result<CheckRun> {
+    run(spec, options, progress).map_err(|e| spec.locate(e))
+}
+
+fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Result<CheckRun> {
+    if let Some(r) = &options.review {
+        review_options(r)?;
+    }
+    let identified = as_built::identify(drawing)?;
+    let mut as_built = None;
+    let spec = match identified {
+        Some((built, identification)) => {
+            // The design review shows each scene as designed beside as built.
+            let designed = match options.review {
+                Some(_) => Some(scenes(drawing, options.writes, progress)?),
+                None => None,
+            };
+            as_built = Some(AsBuilt {
+                identification,
+                designed_modification: drawing.modification,
+                designed,
+            });
+            built
+        }
+        None => drawing.clone(),
+    };
+    // Read the golden files before computing anything: a missing one fails fast.
+    let golden_curves = golden::load_all(&spec)?;
+    let results = scenes(&spec, options.writes, progress)?;
+    let mut checks = check::evaluate(&spec, &results)?;
+    let studies = studies(&spec, spec.studies.iter().collect(), progress);
+    checks.extend(check::optimisation(&spec, &studies));
+    let goldens = golden::evaluate(&spec, &results, &golden_curves)?;
+    checks.extend(goldens.iter().map(Check::from_golden));
+    // The full accuracy ladder runs only for the design review; `check` alone runs the steps
+    // rungs it needs to judge the accuracy scene's resolution (`engine::resolution`).
+    let ladder = match (&spec.accuracy, options.review) {
+        (Some(a), Some(_)) => Some(ladder(&spec, a, progress)?),
+        _ => None,
+    };
+    let resolution = match (&spec.accuracy, &ladder) {
+        (Some(a), Some((l, _))) => Some(resolution::of_ladder(
+            l,
+            spec.scenes[a.scene].crank_rad.len(),
+        )),
+        (Some(a), None) => Some(resolution::run(&spec, a.scene, &a.options)?),
+        _ => None,
+    };
+    if let (true, Some(r)) = (spec.limits.accuracy_resolved, &resolution) {
+        checks.push(check::resolution(r));
+    }
+    if options.tolerance {
+        // The study draws from the drawing, whatever disc the other checks run on.
+        checks.push(tolerance::failure_rate_check(drawing, progress)?);
+    }
+    let summaries = summary::summarise(&results);
+    let review = match options.review {
+        Some(r) => Some(Review {
+            disc: drawing::disc(
+                &spec,
+                r.crank_rad
+                    .unwrap_or_else(|| drawing::default_crank_rad(&results)),
+            )?,
+            maps: maps(&spec, &studies, r.map_steps, progress),
+            map_steps: r.map_steps,
+            ladder,
+        }),
+        None => None,
+    };
+    Ok(CheckRun {
+        spec,
+        as_built,
+        results,
+        checks,
+        goldens,
+        summaries,
+        studies,
+        resolution,
+        review,
+    })
+}
+
+/// The review's crank angle is finite and its maps 0 (none) or 2 to `MAX_MAP_STEPS` steps.
+fn review_options(r: &ReviewOptions) -> Result<()> {
+    let bad = |m: String| Err(Error::new(ErrorKind::InvalidValue, m));
+    if let Some(c) = r.crank_rad.filter(|c| !c.is_finite()) {
+        return bad(format!("the review's crank angle must be finite, got {c}"));
+    }
+    if r.map_steps == 1 || r.map_steps > MAX_MAP_STEPS {
+        return bad(format!(
+            "the review's map steps must be 0 (no map) or 2 to {MAX_MAP_STEPS}, got {}",
+            r.map_steps
+        ));
+    }
+    Ok(())
+}
+
+/// Every scene of `spec`, in parallel; results (and the first error) in spec order.
+pub fn scenes(spec: &Spec, writes: Writes, progress: &dyn Progress) -> Result<Vec<SceneResult>> {
+    use rayon::prelude::*;
+    let plans: Vec<_> = spec
+        .scenes
+        .iter()
+        .map(|s| scene::plan(spec, s, writes))
+        .collect();
+    // The sweeps of every scene, in crank angles.
+    let total: usize = spec
+        .scenes
+        .iter()
+        .zip(&plans)
+        .map(|(s, plan)| s.crank_rad.len() * scene::sweeps(plan, spec.design.discs))
+        .sum();
+    let phase = Phase {
+        worth_showing: SCENES_WORTH_SHOWING,
+        ..Phase::new("solving the scenes", "crank angles", total as u64)
+    };
+    let heard = progress.phase(&phase);
+    let options = scene::RunOptions {
+        progress: &*heard,
+        ..Default::default()
+    };
+    let results: Vec<Result<SceneResult>> = spec
+        .scenes
+        .par_iter()
+        .zip(&plans)
+        .map(|(s, plan)| scene::run(spec, s, plan, &options))
+        .collect();
+    results.into_iter().collect()
+}
+
+/// Studies in parallel, in the order given, their evaluations counted.
+pub fn studies(spec: &Spec, studies: Vec<&Study>, progress: &dyn Progress) -> Vec<StudyResult> {
+    use rayon::prelude::*;
+    if studies.is_empty() {
+        return Vec::new();
+    }
+    // At most this many evaluations: local runs often stop before their budget, and then the
+    // count ends short of full.
+    let most: usize = studies.iter().map(|s| optimise::most_evaluations(s)).sum();
+    let what = format!(
+        "optimising {} stud{}",
+        studies.len(),
+        if studies.len() == 1 { "y" } else { "ies" }
+    );
+    let heard = progress.phase(&Phase::new(what, "evaluations at most", most as u64));
+    studies
+        .par_iter()
+        .map(|s| optimise::run_study_with(spec, s, &*heard))
+        .collect()
+}
+
+/// The objective map of `study` over `steps` per variable around `around`, its cells counted.
+pub fn map(
+    spec: &Spec,
+    study: &Study,
+    steps: usize,
+    around: &Modification,
+    progress: &dyn Progress,
+) -> Vec<Evaluation> {
+    let cells = if study.variables.len() > 1 {
+        steps * steps
+    } else {
+        steps
+    };
+    let what = format!("objective map of `{}`", study.name);
+    let heard = progress.phase(&Phase::new(what, "cells", cells as u64));
+    optimise::map(spec, study, steps, around, &*heard)
+}
+
+/// Each study's map around its optimum (none below 2 steps).
+fn maps(
+    spec: &Spec,
+    studies: &[StudyResult],
+    steps: usize,
+    progress: &dyn Progress,
+) -> Vec<Vec<Evaluation>> {
+    spec.studies
+        .iter()
+        .zip(studies)
+        .map(|(s, r)| match steps >= 2 {
+            true => map(spec, s, steps, &r.optimum.modification, progress),
+            false => Vec::new(),
+        })
+        .collect()
+}
+
+/// The accuracy ladder of the design review and its wall-clock time, s.
+fn ladder(
+    spec: &Spec,
+    a: &crate::spec::Accuracy,
+    progress: &dyn Progress,
+) -> Result<(Ladder, f64)> {
+    let start = std::time::Instant::now();
+    // Steps rungs 12 … finest, and at most four settings rungs.
+    let rungs = (a.options.finest / accuracy::COARSEST).trailing_zeros() as u64 + 1 + 4;
+    let heard = progress.phase(&Phase::new("accuracy ladder", "rungs", rungs));
+    let ladder = accuracy::run(spec, a.scene, &a.options, &mut |event| {
+        if let accuracy::Event::Rung(..) = event {
+            heard.advance(1);
+        }
+    })?;
+    Ok((ladder, start.elapsed().as_secs_f64()))
+}

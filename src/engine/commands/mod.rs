@@ -1,0 +1,25 @@
+//! One entry per command, each returning data: `check`, `optimise`, `accuracy`, `tolerance`
+//! (whole, a shard, the merge), `fit`, `profile`, `bless`. The command line, the library's
+//! users and the tests call these; what they print or write is built in `report`.
+
+mod accuracy;
+mod bless;
+mod check;
+mod fit;
+mod optimise;
+mod profile;
+mod tolerance;
+
+pub use accuracy::accuracy;
+pub use bless::bless;
+pub use check::{
+    check, map, scenes, studies, AsBuilt, CheckOptions, CheckRun, Review, ReviewOptions,
+    MAX_MAP_STEPS,
+};
+pub use fit::fit;
+pub use optimise::{optimise, OptimiseRun};
+pub use profile::{profile, MIN_PROFILE_TOLERANCE_MM};
+pub use tolerance::{
+    failure_rate_check, merge_shards, tolerance, tolerance_shard, Merged, ToleranceRun,
+    MEASURED_NOTE,
+};

@@ -1,0 +1,172 @@
+//! `tolerance`: the Monte Carlo of a spec's `tolerances:`, whole, as one shard of a split run,
+//! or merged from the shards; and the study as one check of `check --tolerance`.
+
+use crate::engine::check::{Check, CheckKind};
+use crate::engine::tolerance::sensitivity::{self, Sensitivity};
+use crate::engine::tolerance::summary::{self, Summary};
+use crate::engine::tolerance::{shard, shard_len, Records, Study};
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::quantity::Bound;
+use crate::progress::{Phase, Progress};
+use crate::spec::Spec;
+
+/// What a study with `measured_profile` draws from, in every output that says so.
+pub const MEASURED_NOTE: &str = "drawn from the drawing, not the measured disc";
+
+/// A whole study: every sample's records, their summary, and the sensitivities if asked for.
+pub struct ToleranceRun<'a> {
+    pub study: Study<'a>,
+    pub records: Records,
+    pub summary: Summary,
+    pub sensitivity: Option<Sensitivity>,
+}
+
+/// Run the whole study of `spec` (`samples` in place of the spec's count), and the
+/// sensitivities when `sensitivity` is set.
+pub fn tolerance<'a>(
+    spec: &'a Spec,
+    samples: Option<usize>,
+    sensitivity: bool,
+    progress: &dyn Progress,
+) -> Result<ToleranceRun<'a>> {
+    let study = Study::new(spec, samples).map_err(|e| spec.locate(e))?;
+    let records = samples_of(&study, (0, 1), "tolerance study", progress)?;
+    let sensitivity = match sensitivity {
+        true => {
+            let phase = Phase {
+                slow_units: true,
+                ..Phase::new("sensitivities", "parameters", study.params.len() as u64)
+            };
+            let heard = progress.phase(&phase);
+            Some(sensitivity::run(&study, &*heard).map_err(|e| spec.locate(e))?)
+        }
+        false => None,
+    };
+    let summary = summary::summarise(&study, &records);
+    Ok(ToleranceRun {
+        study,
+        records,
+        summary,
+        sensitivity,
+    })
+}
+
+/// The samples of shard `(i, n)` of a study, heard as `what`.
+fn samples_of(
+    study: &Study,
+    (i, n): (u64, u64),
+    what: &str,
+    progress: &dyn Progress,
+) -> Result<Records> {
+    let count = shard_len(study.samples() as u64, (i, n));
+    let phase = Phase {
+        slow_units: true,
+        ..Phase::new(what, "samples", count)
+    };
+    let heard = progress.phase(&phase);
+    study.run((i, n), &*heard).map_err(|e| study.spec.locate(e))
+}
+
+/// Shard `(i, n)` of `study` (0-based: the samples k with k mod n = i), encoded as the shard
+/// file that `merge_shards` reads.
+pub fn tolerance_shard(
+    study: &Study,
+    (i, n): (u64, u64),
+    progress: &dyn Progress,
+) -> Result<Vec<u8>> {
+    let spec = study.spec;
+    let what = format!("tolerance shard {i}/{n}");
+    let records = samples_of(study, (i, n), &what, progress)?;
+    let header = shard::Header {
+        spec_sha256: shard::spec_hash(&spec.source),
+        seed: study.tolerances.seed,
+        samples: study.samples() as u64,
+        index: i,
+        count: n,
+        limits: study.limits.len() as u32,
+        spec_path: spec.path.clone(),
+        spec_text: spec.source.clone(),
+    };
+    Ok(shard::encode(&header, &records))
+}
+
+/// The shards of one run joined: the spec they carry and every sample's records.
+pub struct Merged {
+    pub spec: Spec,
+    pub records: Records,
+    samples: u64,
+    limits: usize,
+    first: String,
+}
+
+impl Merged {
+    /// The study the shards belong to, as an unsharded run of their spec sets it up.
+    pub fn study(&self) -> Result<Study<'_>> {
+        let study = Study::new(&self.spec, Some(self.samples as usize))?;
+        if study.limits.len() != self.limits {
+            return Err(Error::new(
+                ErrorKind::InvalidValue,
+                format!(
+                    "{}: the shards hold {} limits, their spec evaluates {}: written by another \
+                     version of cycloid",
+                    self.first,
+                    self.limits,
+                    study.limits.len()
+                ),
+            ));
+        }
+        Ok(study)
+    }
+}
+
+/// Check and join the shard files `(name, bytes)` of one run.
+pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
+    let shards = files
+        .iter()
+        .map(|(name, bytes)| shard::decode(name, bytes))
+        .collect::<Result<Vec<_>>>()?;
+    let names: Vec<String> = files.iter().map(|(name, _)| name.clone()).collect();
+    let records = shard::merge(&names, &shards)?;
+    let h = &shards[0].header;
+    Ok(Merged {
+        spec: crate::spec::parse(&h.spec_path, &h.spec_text)?,
+        records,
+        samples: h.samples,
+        limits: h.limits as usize,
+        first: names[0].clone(),
+    })
+}
+
+/// `check --tolerance`: the study of the spec's `tolerances:` as one check, its failure rate
+/// against `max_failure_rate`. `spec` is the drawing: with `measured_profile` the other checks
+/// run on the disc as built, but a study draws every part, the disc too, from the drawing (as
+/// `cycloid tolerance` does), and its line says so.
+pub fn failure_rate_check(spec: &Spec, progress: &dyn Progress) -> Result<Check> {
+    let study = Study::new(spec, None).map_err(|e| spec.locate(e))?;
+    let records = samples_of(&study, (0, 1), "tolerance study", progress)?;
+    let s = summary::summarise(&study, &records);
+    Ok(Check {
+        id: format!(
+            "{}/tolerance_failure_rate",
+            spec.scenes[study.tolerances.scene].name
+        ),
+        kind: CheckKind::Limit,
+        value: s.rate(),
+        limit: s.max_failure_rate,
+        unit: "",
+        bound: Bound::Max,
+        passed: s.passed(),
+        at: format!(
+            "{} of {} samples fail some limit; {} Clopper–Pearson interval [{}, {}]{}",
+            s.failures,
+            s.samples,
+            summary::percent_label(summary::CONFIDENCE),
+            crate::numeric::number(s.interval.0),
+            crate::numeric::number(s.interval.1),
+            match spec.measured {
+                Some(_) => format!("; {MEASURED_NOTE}"),
+                None => String::new(),
+            }
+        ),
+    })
+}

@@ -1,0 +1,53 @@
+//! The coverage of a spec: every limit is evaluated by some scene, and every golden's scene
+//! computes its quantity. A spec that fails it is refused at load, for every command: a limit
+//! that no scene evaluates would otherwise pass unseen.
+
+use super::Spec;
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::{Effect, Plan};
+
+/// Every limit must be evaluated by at least one scene, and every golden's scene must compute
+/// its quantity.
+pub fn check(spec: &Spec) -> Result<()> {
+    for g in &spec.golden {
+        let q = g.quantity;
+        let scene = spec.scenes.iter().find(|s| s.name == g.scene);
+        if scene.is_some_and(|s| !Plan::for_scene(s).computes(q.effect)) {
+            return Err(Error::new(
+                ErrorKind::InvalidValue,
+                format!(
+                    "scene `{}` does not compute `{}`; add the effect `{}` to the scene",
+                    g.scene,
+                    q.key,
+                    q.effect.name()
+                ),
+            )
+            .at_key(format!("{}.quantity", g.key)));
+        }
+    }
+    for l in &spec.limits.entries {
+        let d = l.def;
+        let effect = d.quantity.effect;
+        let covered = spec
+            .scenes
+            .iter()
+            .any(|s| Plan::for_scene(s).computes(effect));
+        if !covered {
+            let how = match effect {
+                Effect::Torsion => "give a scene `torque_sweep: {rated_nm, steps}`".to_string(),
+                e if e.is_loaded() => format!(
+                    "add the effect `{}` to a scene loaded over the crank angle (not a \
+                     `torque_sweep` scene)",
+                    e.name()
+                ),
+                e => format!("add the effect `{}` to a scene", e.name()),
+            };
+            return Err(Error::new(
+                ErrorKind::InvalidValue,
+                format!("no scene computes this limit's quantity; {how}"),
+            )
+            .at_key(format!("limits.{}", d.key)));
+        }
+    }
+    Ok(())
+}

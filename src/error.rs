@@ -80,6 +80,11 @@ impl Error {
         Error::new(ErrorKind::Io, format!("{path}: {err}"))
     }
 
+    /// An invalid value of the spec key `key_path` (located in the spec by `spec`).
+    pub fn invalid(key_path: impl Into<String>, message: String) -> Self {
+        Error::new(ErrorKind::InvalidValue, message).at_key(key_path)
+    }
+
     pub fn computation(message: impl Into<String>) -> Self {
         Error::new(ErrorKind::Computation, message)
     }

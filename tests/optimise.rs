@@ -191,7 +191,7 @@ fn writing_the_optimum_keeps_comments_and_reads_back_exactly() {
         equidistant_mm: 0.2292471,
         rotation_rad: 0.0,
     };
-    let out = optimise::write::with_modification("out.yaml", &text, &m).unwrap();
+    let out = cycloid::spec::edit::with_modification("out.yaml", &text, &m).unwrap();
     assert!(
         out.contains("# dRp: + makes teeth thicker"),
         "the comment survives"
@@ -202,7 +202,7 @@ fn writing_the_optimum_keeps_comments_and_reads_back_exactly() {
     let start = bare.find("modification:").unwrap();
     let end = bare.find("scenes:").unwrap();
     let bare = format!("{}{}", &bare[..start], &bare[end..]);
-    let out = optimise::write::with_modification("out.yaml", &bare, &m).unwrap();
+    let out = cycloid::spec::edit::with_modification("out.yaml", &bare, &m).unwrap();
     assert_eq!(spec::parse("out.yaml", &out).unwrap().modification, m);
 }
 

@@ -2,7 +2,7 @@
 
 use super::output::{distinct_outputs, inputs_with_measured, print, write_file};
 use super::Outcome;
-use crate::engine::{as_built, commands, optimise, tolerance};
+use crate::engine::{as_built, commands};
 use crate::error::Result;
 use crate::{report, spec};
 use std::io::Write;
@@ -22,13 +22,13 @@ pub(super) fn run(
         write_file(p, &report::fit::form_csv(&spec, &id))?;
     }
     if let Some(p) = write {
-        let text = optimise::write::with_modification(p, &spec.source, &id.modification)?;
+        let text = spec::edit::with_modification(p, &spec.source, &id.modification)?;
         let mut deviations = spec.design.deviations.clone();
         deviations.form = as_built::form_terms(&id);
         let text = if deviations.form.is_empty() {
             text
         } else {
-            tolerance::write::with_deviations(&text, path, &deviations, p)?
+            spec::edit::with_deviations(&text, path, &deviations, p)?
         };
         write_file(p, &text)?;
         let what = if deviations.form.is_empty() {

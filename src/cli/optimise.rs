@@ -4,7 +4,7 @@
 use super::output::{distinct_outputs, inputs_of, print, write_file};
 use super::Outcome;
 use crate::engine::commands::{self, MAX_MAP_STEPS};
-use crate::engine::optimise::{self, StudyResult};
+use crate::engine::optimise::StudyResult;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::Study;
 use crate::report::terminal::Terminal;
@@ -91,7 +91,7 @@ fn write_optimum(
     if let Some(v) = report::optimisation::verification_text(study, r) {
         header += &format!("# {}.\n", v.replace('\n', " "));
     }
-    let text = optimise::write::optimum_spec(
+    let text = spec::edit::optimum_spec(
         out_path,
         &spec.source,
         &r.optimum.modification,

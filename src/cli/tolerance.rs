@@ -8,7 +8,7 @@ use crate::engine::commands;
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::Summary;
 use crate::engine::tolerance::Records;
-use crate::engine::tolerance::{write, Study};
+use crate::engine::tolerance::Study;
 use crate::error::{Error, ErrorKind, Result};
 use crate::files;
 use crate::report::terminal::Terminal;
@@ -269,7 +269,10 @@ fn write_sample(study: &Study, k: &str, path: &str, out: &mut dyn Write) -> Resu
             n - 1
         ))
     })?;
-    write_file(path, &write::sample_spec(study, k, path)?)?;
+    let spec = study.spec;
+    let deviations = study.deviations(&study.draw(k));
+    let text = spec::edit::with_deviations(&spec.source, &spec.path, &deviations, path)?;
+    write_file(path, &(report::tolerance::sample_header(study, k) + &text))?;
     print(
         out,
         &format!("wrote {path}: sample {k}'s deviations as reducer.deviations; replay it with `cycloid check {path}`\n"),

@@ -318,3 +318,13 @@ pub fn samples_csv(study: &Study, records: &Records) -> String {
     }
     out
 }
+
+/// The comment on top of a spec written by `--write-sample K`: which sample of which study.
+pub fn sample_header(study: &Study, k: u64) -> String {
+    let t = &study.tolerances;
+    format!(
+        "# Written by `cycloid tolerance {} --write-sample {k}`: sample {k} of {} (seed {}) as \
+         reducer.deviations.\n",
+        study.spec.path, t.samples, t.seed
+    )
+}

@@ -9,10 +9,6 @@ use crate::numeric;
 
 const KEY: &str = "reducer.deviations";
 
-fn invalid(key: String, message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message).at_key(&key)
-}
-
 fn finite(key: String, value: f64) -> Result<f64> {
     super::validate::finite(&key, value)
 }
@@ -20,7 +16,7 @@ fn finite(key: String, value: f64) -> Result<f64> {
 /// An index into `count` parts named `what`, each given once (`seen`).
 fn index(key: String, value: i64, count: usize, what: &str, seen: &mut [bool]) -> Result<usize> {
     if !(0..count as i64).contains(&value) {
-        return Err(invalid(
+        return Err(Error::invalid(
             format!("{key}.index"),
             format!(
                 "the reducer has {count} {what}, numbered 0 to {}; got {value}",
@@ -30,7 +26,7 @@ fn index(key: String, value: i64, count: usize, what: &str, seen: &mut [bool]) -
     }
     let i = value as usize;
     if std::mem::replace(&mut seen[i], true) {
-        return Err(invalid(
+        return Err(Error::invalid(
             format!("{key}.index"),
             format!("{what} {i} is given twice"),
         ));
@@ -76,7 +72,7 @@ pub fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> {
     for (n, p) in raw.pins.iter().enumerate() {
         let key = format!("{KEY}.pins[{n}]");
         if p.disc.is_some() {
-            return Err(invalid(
+            return Err(Error::invalid(
                 format!("{key}.disc"),
                 "the pins sit on the output flange, which all discs share: a pin names no disc"
                     .into(),
@@ -95,7 +91,7 @@ pub fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> {
         let k = match (h.disc, design.discs) {
             (None, 1) => 0,
             (None, discs) => {
-                return Err(invalid(
+                return Err(Error::invalid(
                     format!("{key}.disc"),
                     format!(
                         "the reducer has {discs} discs: say whose hole this is (disc: 0 to {})",
@@ -105,7 +101,7 @@ pub fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> {
             }
             (Some(k), discs) if (0..discs as i64).contains(&k) => k as usize,
             (Some(k), discs) => {
-                return Err(invalid(
+                return Err(Error::invalid(
                     format!("{key}.disc"),
                     format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
                 ))
@@ -126,7 +122,7 @@ fn form(raw: &[super::raw::RawFormTerm], teeth: usize) -> Result<Vec<FormTerm>> 
         let key = format!("{KEY}.form[{n}]");
         let order = f.order;
         if order < 2 || (order as usize).is_multiple_of(teeth) {
-            return Err(invalid(
+            return Err(Error::invalid(
                 format!("{key}.order"),
                 format!(
                     "the form error's harmonics are of orders 2 and up that are not multiples \
@@ -136,7 +132,7 @@ fn form(raw: &[super::raw::RawFormTerm], teeth: usize) -> Result<Vec<FormTerm>> 
             ));
         }
         if terms.iter().any(|t| t.order == order as usize) {
-            return Err(invalid(
+            return Err(Error::invalid(
                 format!("{key}.order"),
                 format!("order {order} is given twice"),
             ));

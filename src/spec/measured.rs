@@ -1,7 +1,7 @@
 //! `measured_profile:` of a spec, validated.
 
 use super::raw::RawMeasuredProfile;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::model::measured::{Fitted, MeasuredProfile, PointsFormat, FITTED_NAMES};
 
 /// Highest form-error harmonic a spec may ask for: 2·200 coefficients already need thousands of
@@ -9,7 +9,7 @@ use crate::model::measured::{Fitted, MeasuredProfile, PointsFormat, FITTED_NAMES
 pub const MAX_HARMONICS: i64 = 200;
 
 fn invalid(key: &str, message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message).at_key(format!("measured_profile.{key}"))
+    Error::invalid(format!("measured_profile.{key}"), message)
 }
 
 pub fn build(spec_path: &str, raw: RawMeasuredProfile) -> Result<MeasuredProfile> {

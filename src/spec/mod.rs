@@ -5,6 +5,7 @@
 
 pub mod coverage;
 pub mod deviations;
+pub mod edit;
 pub mod locate;
 pub mod measured;
 pub mod parse;

@@ -4,7 +4,7 @@
 //! rules of an as-built state, `spec::deviations::check`).
 
 use super::raw::RawTolerances;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::model::tolerances::{Distribution, Kind, Tolerances, NORMAL_CUT_SIGMA};
 use crate::model::{
     CentreDeviation, Design, Deviations, GeometryMode, Modification, RollerDeviation, Scene,
@@ -14,7 +14,7 @@ use crate::numeric;
 const KEY: &str = "tolerances";
 
 fn invalid(key: &str, message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message).at_key(format!("{KEY}.{key}"))
+    Error::invalid(format!("{KEY}.{key}"), message)
 }
 
 /// Default number of samples: the 0.135 % quantiles are then order statistics 1 and 999.

@@ -15,14 +15,10 @@ use crate::model::study::{
 use crate::model::*;
 use crate::{numeric, units};
 
-fn invalid(key: &str, message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message).at_key(key)
-}
-
 /// A named choice (`contact_law`, `geometry`), when given.
 fn named<T: std::str::FromStr<Err = String>>(key: &str, value: Option<&str>) -> Result<Option<T>> {
     value
-        .map(|v| v.parse().map_err(|m| invalid(key, m)))
+        .map(|v| v.parse().map_err(|m| Error::invalid(key, m)))
         .transpose()
 }
 
@@ -30,7 +26,7 @@ fn positive(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(invalid(
+        Err(Error::invalid(
             key,
             format!("must be a positive number, got {}", numeric::input(value)),
         ))
@@ -49,7 +45,7 @@ const MAX_CRANK_DEG: f64 = 1e7;
 fn angle_deg(key: &str, value: f64) -> Result<f64> {
     let value = finite(key, value)?;
     if value.abs() > MAX_CRANK_DEG {
-        return Err(invalid(
+        return Err(Error::invalid(
             key,
             format!(
                 "{}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where the \
@@ -65,7 +61,7 @@ fn angle_deg(key: &str, value: f64) -> Result<f64> {
 fn length(key: &str, value: f64) -> Result<f64> {
     let value = positive(key, value)?;
     if value > MAX_LENGTH_MM {
-        return Err(invalid(
+        return Err(Error::invalid(
             key,
             format!(
                 "{} mm is larger than the {MAX_LENGTH_MM} mm (100 m) this tool handles: \
@@ -81,7 +77,7 @@ pub(super) fn finite(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(invalid(
+        Err(Error::invalid(
             key,
             format!("must be a finite number, got {value}"),
         ))
@@ -92,7 +88,10 @@ fn count(key: &str, value: i64, min: i64) -> Result<usize> {
     if value >= min {
         Ok(value as usize)
     } else {
-        Err(invalid(key, format!("must be at least {min}, got {value}")))
+        Err(Error::invalid(
+            key,
+            format!("must be at least {min}, got {value}"),
+        ))
     }
 }
 
@@ -102,7 +101,7 @@ fn count_capped(key: &str, value: i64, min: i64, max: usize, why: &str) -> Resul
     if n <= max {
         Ok(n)
     } else {
-        Err(invalid(
+        Err(Error::invalid(
             key,
             format!("must be at most {max} ({why}), got {value}"),
         ))
@@ -113,8 +112,8 @@ fn material(key: &str, raw: RawMaterial) -> Result<Material> {
     let youngs_gpa = positive(&format!("{key}.youngs_modulus_gpa"), raw.youngs_modulus_gpa)?;
     let nu = raw.poisson_ratio;
     if !(nu.is_finite() && (0.0..0.5).contains(&nu)) {
-        return Err(invalid(
-            &format!("{key}.poisson_ratio"),
+        return Err(Error::invalid(
+            format!("{key}.poisson_ratio"),
             format!("must lie in [0, 0.5), got {}", numeric::input(nu)),
         ));
     }
@@ -155,7 +154,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
     let clearance = raw.output_pins.hole_clearance_mm;
     let clearance_key = "reducer.output_pins.hole_clearance_mm";
     if !(clearance.is_finite() && clearance >= 0.0) {
-        return Err(invalid(
+        return Err(Error::invalid(
             clearance_key,
             format!(
                 "must be zero or positive, got {}",
@@ -248,8 +247,8 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize, used: i64) -> Result<Vec<f64
     let to = angle_deg(&format!("{key}.to_deg"), raw.to_deg)?;
     let steps = raw.steps;
     if steps < 1 {
-        return Err(invalid(
-            &format!("{key}.steps"),
+        return Err(Error::invalid(
+            format!("{key}.steps"),
             format!("a crank range needs at least 1 step, got {steps}"),
         ));
     }
@@ -260,8 +259,8 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize, used: i64) -> Result<Vec<f64
         } else {
             String::new()
         };
-        return Err(invalid(
-            &format!("{key}.steps"),
+        return Err(Error::invalid(
+            format!("{key}.steps"),
             format!(
                 "at most {max_steps} steps with {rollers} rollers \
                  (rollers × steps ≤ {MAX_ROLLER_ANGLES}{others}), got {steps}"
@@ -269,8 +268,8 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize, used: i64) -> Result<Vec<f64
         ));
     }
     if to <= from {
-        return Err(invalid(
-            &format!("{key}.to_deg"),
+        return Err(Error::invalid(
+            format!("{key}.to_deg"),
             format!("the crank range is empty: to_deg = {to} must exceed from_deg = {from}"),
         ));
     }
@@ -278,8 +277,8 @@ fn crank(key: &str, raw: &RawCrank, rollers: usize, used: i64) -> Result<Vec<f64
     // Each step must move the crank: a range narrower than the doubles' spacing near it
     // repeats angles, and the ratio (a derivative over neighbours) is then undefined.
     if let Some(k) = angles.windows(2).position(|w| w[1] <= w[0]) {
-        return Err(invalid(
-            &format!("{key}.steps"),
+        return Err(Error::invalid(
+            format!("{key}.steps"),
             format!(
                 "{steps} steps from {from}° to {to}° are not distinct angles (steps {k} and {} \
                  are the same double, {} rad): the range is too narrow for double precision \
@@ -306,7 +305,10 @@ pub fn crank_angles(from_deg: f64, to_deg: f64, steps: usize) -> Vec<f64> {
 fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene> {
     let key = format!("scenes[{index}]");
     if raw.name.trim().is_empty() {
-        return Err(invalid(&format!("{key}.name"), "must not be empty".into()));
+        return Err(Error::invalid(
+            format!("{key}.name"),
+            "must not be empty".into(),
+        ));
     }
     let mut effects = Vec::new();
     for (j, name) in raw.effects.iter().enumerate() {
@@ -319,15 +321,15 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
                     known.join(", ")
                 ),
             };
-            invalid(&format!("{key}.effects[{j}]"), message)
+            Error::invalid(format!("{key}.effects[{j}]"), message)
         })?;
         if !effects.contains(&effect) {
             effects.push(effect);
         }
     }
     if effects.is_empty() {
-        return Err(invalid(
-            &format!("{key}.effects"),
+        return Err(Error::invalid(
+            format!("{key}.effects"),
             "a scene must ask for at least one effect".into(),
         ));
     }
@@ -343,8 +345,8 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
     let torque_sweep = match &raw.torque_sweep {
         Some(t) => {
             if raw.output_torque_nm.is_some() {
-                return Err(invalid(
-                    &format!("{key}.output_torque_nm"),
+                return Err(Error::invalid(
+                    format!("{key}.output_torque_nm"),
                     "a scene with `torque_sweep` loads the output with its own torque loop; \
                      give either `torque_sweep` or `output_torque_nm`, not both"
                         .into(),
@@ -406,7 +408,9 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
         match raw.get(key) {
             None => Ok(None),
             Some(RawLimit::Bound(x)) => finite(&at, *x).map(Some),
-            Some(RawLimit::Flag(b)) => Err(invalid(&at, format!("must be a number, got {b}"))),
+            Some(RawLimit::Flag(b)) => {
+                Err(Error::invalid(&at, format!("must be a number, got {b}")))
+            }
         }
     };
     let mut entries = Vec::new();
@@ -415,8 +419,8 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
             continue;
         };
         if def.whole && (value.fract() != 0.0 || value < 0.0) {
-            return Err(invalid(
-                &format!("limits.{}", def.key),
+            return Err(Error::invalid(
+                format!("limits.{}", def.key),
                 format!(
                     "must be a whole number of at least 0, got {}",
                     numeric::input(value)
@@ -429,8 +433,8 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
         None => false,
         Some(RawLimit::Flag(b)) => *b,
         Some(RawLimit::Bound(x)) => {
-            return Err(invalid(
-                &format!("limits.{RESOLVED}"),
+            return Err(Error::invalid(
+                format!("limits.{RESOLVED}"),
                 format!("must be true or false, got {x}"),
             ))
         }
@@ -444,13 +448,16 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
 
 pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     if raw.name.trim().is_empty() {
-        return Err(invalid("name", "must not be empty".into()));
+        return Err(Error::invalid("name", "must not be empty".into()));
     }
     let design = design(raw.reducer)?;
     let modification = modification(&raw.modification)?;
     super::deviations::check(&design, &modification)?;
     if raw.scenes.is_empty() {
-        return Err(invalid("scenes", "a spec needs at least one scene".into()));
+        return Err(Error::invalid(
+            "scenes",
+            "a spec needs at least one scene".into(),
+        ));
     }
     let mut scenes: Vec<Scene> = Vec::new();
     for (i, s) in raw.scenes.into_iter().enumerate() {
@@ -459,8 +466,8 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         let used = scenes.iter().map(|s| s.crank_rad.len()).sum::<usize>() * design.rollers;
         let s = scene(i, s, design.rollers, used as i64)?;
         if scenes.iter().any(|other| other.name == s.name) {
-            return Err(invalid(
-                &format!("scenes[{i}].name"),
+            return Err(Error::invalid(
+                format!("scenes[{i}].name"),
                 format!("scene name `{}` is used twice", s.name),
             ));
         }
@@ -480,8 +487,8 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
                 };
                 let s = study(&key, i, r, &scenes, &modification)?;
                 if studies.iter().any(|o| o.name == s.name) {
-                    return Err(invalid(
-                        &format!("{key}.name"),
+                    return Err(Error::invalid(
+                        format!("{key}.name"),
                         format!("study name `{}` is used twice", s.name),
                     ));
                 }
@@ -497,8 +504,8 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     for (i, g) in raw.golden.into_iter().enumerate() {
         let g = golden_entry(path, i, g, (&scenes, design.discs))?;
         if let Some(other) = golden.iter().find(|o: &&Golden| o.path == g.path) {
-            return Err(invalid(
-                &format!("golden[{i}].file"),
+            return Err(Error::invalid(
+                format!("golden[{i}].file"),
                 format!(
                     "golden file `{}` is already used by {}; every golden curve needs its own file",
                     g.file, other.key
@@ -509,7 +516,7 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     }
     let golden_root = match raw.golden_root.as_deref() {
         Some(root) if root.trim().is_empty() => {
-            return Err(invalid("golden_root", "must not be empty".into()))
+            return Err(Error::invalid("golden_root", "must not be empty".into()))
         }
         root => root.map(|r| resolve(path, r)),
     };
@@ -518,7 +525,7 @@ pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         .map(|a| accuracy_section(a, &scenes, &design))
         .transpose()?;
     if limits.accuracy_resolved && accuracy.is_none() {
-        return Err(invalid(
+        return Err(Error::invalid(
             "limits.accuracy_resolved",
             "needs an `accuracy:` section: its scene and tolerances say what resolved means"
                 .to_string(),
@@ -573,8 +580,8 @@ fn bearing_life_limit(limits: &Limits, design: &Design, scenes: &[Scene]) -> Res
         return Ok(());
     }
     if design.crank_bearing.is_none() {
-        return Err(invalid(
-            &format!("limits.{KEY}"),
+        return Err(Error::invalid(
+            format!("limits.{KEY}"),
             "a bearing life needs the bearing's rating: give `reducer.crank_bearing: \
              {dynamic_load_rating_n}`"
                 .into(),
@@ -586,8 +593,8 @@ fn bearing_life_limit(limits: &Limits, design: &Design, scenes: &[Scene]) -> Res
             continue;
         }
         if s.input_speed_rpm.is_none() {
-            return Err(invalid(
-                &format!("scenes[{i}]"),
+            return Err(Error::invalid(
+                format!("scenes[{i}]"),
                 format!(
                     "limits.{KEY} applies to scene `{}`, which computes the bearing force: it \
                      needs `input_speed_rpm` (the life in hours is at the crank's speed \
@@ -598,8 +605,8 @@ fn bearing_life_limit(limits: &Limits, design: &Design, scenes: &[Scene]) -> Res
         }
         let period = plan.loaded_period_rad(design);
         if !s.spans_whole(period) {
-            return Err(invalid(
-                &format!("scenes[{i}].crank"),
+            return Err(Error::invalid(
+                format!("scenes[{i}].crank"),
                 format!(
                     "limits.{KEY} applies to scene `{}`, whose crank range {}° to {}° is not a \
                      whole number of loaded periods ({}°): the equivalent load is a mean over \
@@ -619,7 +626,7 @@ fn bearing_life_limit(limits: &Limits, design: &Design, scenes: &[Scene]) -> Res
 /// (the accuracy ladder refuses one in `model::accuracy::check`).
 fn not_torsion(key: &str, scene: &Scene, what: &str) -> Result<()> {
     if scene.torque_sweep.is_some() {
-        return Err(invalid(
+        return Err(Error::invalid(
             key,
             format!(
                 "scene `{}` is a torsion scene (`torque_sweep`): {what} needs a scene loaded \
@@ -637,7 +644,9 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
     let scene = super::scene_index(scenes, &raw.scene, "accuracy.scene")?;
     let steps = |key: &str, value: Option<i64>, min: usize| {
         value
-            .map(|n| acc::ladder_steps(n, min).map_err(|m| invalid(&format!("accuracy.{key}"), m)))
+            .map(|n| {
+                acc::ladder_steps(n, min).map_err(|m| Error::invalid(format!("accuracy.{key}"), m))
+            })
             .transpose()
     };
     let finest = steps(
@@ -655,7 +664,7 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
     let t = &raw.tolerance;
     let tol = |key: &str, value: Option<f64>, default: f64| {
         value.map_or(Ok(default), |v| {
-            acc::tolerance(v).map_err(|m| invalid(&format!("accuracy.tolerance.{key}"), m))
+            acc::tolerance(v).map_err(|m| Error::invalid(format!("accuracy.tolerance.{key}"), m))
         })
     };
     let options = acc::Options {
@@ -674,7 +683,7 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
             acc::Setting::Finest => "accuracy.finest_steps_per_period",
             acc::Setting::SettingsSteps => "accuracy.settings_steps_per_period",
         };
-        invalid(key, m)
+        Error::invalid(key, m)
     })?;
     Ok(Accuracy { scene, options })
 }
@@ -713,16 +722,16 @@ fn golden_entry(
         None => None,
         Some(k) if (0..discs as i64).contains(&k) => Some(k as usize),
         Some(k) => {
-            return Err(invalid(
-                &format!("{key}.disc"),
+            return Err(Error::invalid(
+                format!("{key}.disc"),
                 format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
             ))
         }
     };
     super::scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     let quantity = quantity::find_curve(&raw.quantity).ok_or_else(|| {
-        invalid(
-            &format!("{key}.quantity"),
+        Error::invalid(
+            format!("{key}.quantity"),
             format!(
                 "unknown quantity `{}`; known quantities: {}",
                 raw.quantity,
@@ -732,8 +741,8 @@ fn golden_entry(
     })?;
     match (discs > 1, quantity.of_reducer(), disc) {
         (true, false, None) => {
-            return Err(invalid(
-                &format!("{key}.quantity"),
+            return Err(Error::invalid(
+                format!("{key}.quantity"),
                 format!(
                     "with {discs} discs `{}` is a curve of each disc: name the disc \
                      (`disc: 0` to `disc: {}`)",
@@ -743,28 +752,31 @@ fn golden_entry(
             ))
         }
         (true, true, Some(_)) => {
-            return Err(invalid(
-                &format!("{key}.disc"),
+            return Err(Error::invalid(
+                format!("{key}.disc"),
                 format!("`{}` is the reducer's curve, not a disc's", quantity.key),
             ))
         }
         _ => {}
     }
     if raw.file.trim().is_empty() {
-        return Err(invalid(&format!("{key}.file"), "must not be empty".into()));
+        return Err(Error::invalid(
+            format!("{key}.file"),
+            "must not be empty".into(),
+        ));
     }
     let (abs, rel) = (raw.tolerance.abs, raw.tolerance.rel);
     for (name, v) in [("abs", abs), ("rel", rel)] {
         if !(v.is_finite() && v >= 0.0) {
-            return Err(invalid(
-                &format!("{key}.tolerance.{name}"),
+            return Err(Error::invalid(
+                format!("{key}.tolerance.{name}"),
                 format!("must be zero or positive, got {}", numeric::input(v)),
             ));
         }
     }
     if abs == 0.0 && rel == 0.0 {
-        return Err(invalid(
-            &format!("{key}.tolerance"),
+        return Err(Error::invalid(
+            format!("{key}.tolerance"),
             "abs and rel are both zero: no computed curve matches to the last bit on every \
              machine; give a band"
                 .into(),
@@ -784,7 +796,7 @@ fn golden_entry(
 fn bounds(key: &str, b: [f64; 2]) -> Result<(f64, f64)> {
     let [lo, hi] = b;
     if !(lo.is_finite() && hi.is_finite() && lo < hi) {
-        return Err(invalid(
+        return Err(Error::invalid(
             key,
             format!(
                 "bounds must be two finite numbers [lower, upper] with lower < upper, got [{}, {}]",
@@ -799,7 +811,7 @@ fn bounds(key: &str, b: [f64; 2]) -> Result<(f64, f64)> {
 fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
     let named = |name: &str| {
         quantity::find_objective(name).ok_or_else(|| {
-            invalid(
+            Error::invalid(
                 key,
                 format!(
                     "unknown objective `{name}`; known objectives: {}",
@@ -812,7 +824,7 @@ fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
         RawObjective::Name(name) => Ok(vec![(named(&name)?, 1.0)]),
         RawObjective::Weighted(map) => {
             if map.is_empty() {
-                return Err(invalid(
+                return Err(Error::invalid(
                     key,
                     "a weighted objective needs at least one term".into(),
                 ));
@@ -820,7 +832,7 @@ fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
             map.into_iter()
                 .map(|(name, w)| {
                     if !(w.is_finite() && w > 0.0) {
-                        return Err(invalid(
+                        return Err(Error::invalid(
                             key,
                             format!(
                                 "the weight of `{name}` must be a positive number, got {}",
@@ -842,7 +854,7 @@ fn verify_grid(key: &str, value: i64, dims: usize) -> Result<usize> {
         return Ok(0);
     }
     if value < 2 {
-        return Err(invalid(
+        return Err(Error::invalid(
             key,
             format!("must be 0 (no verification) or at least 2, got {value}"),
         ));
@@ -853,7 +865,7 @@ fn verify_grid(key: &str, value: i64, dims: usize) -> Result<usize> {
         .and_then(|d| steps.checked_pow(d))
         .unwrap_or(usize::MAX);
     if points > MAX_VERIFY_POINTS {
-        return Err(invalid(
+        return Err(Error::invalid(
             key,
             format!(
                 "{steps} points per variable make {} grid points over {dims} variables; at most \
@@ -900,8 +912,8 @@ fn study(
         }
     }
     if variables.is_empty() {
-        return Err(invalid(
-            &format!("{key}.variables"),
+        return Err(Error::invalid(
+            format!("{key}.variables"),
             "a study needs at least one variable (shift_mm, equidistant_mm, rotation_deg)".into(),
         ));
     }
@@ -924,8 +936,8 @@ fn study(
         let x = var.kind.get(&start);
         if !(var.lower..=var.upper).contains(&x) {
             let unit = |x| var.kind.to_spec_unit(x);
-            return Err(invalid(
-                &format!("{key}.start"),
+            return Err(Error::invalid(
+                format!("{key}.start"),
                 format!(
                     "the start {} = {} lies outside its bounds [{}, {}] (give a start inside \
                      the bounds; the spec's modification is the start when none is given)",

@@ -21,7 +21,6 @@ pub mod local;
 pub mod problem;
 pub mod seeds;
 pub mod verify;
-pub mod write;
 
 use crate::engine::progress::{Progress, Silent};
 use crate::model::Study;

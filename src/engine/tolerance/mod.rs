@@ -11,7 +11,6 @@ pub mod sensitivity;
 pub mod shard;
 pub mod stats;
 pub mod summary;
-pub mod write;
 
 use crate::engine::{check, scene};
 use crate::error::{Error, ErrorKind, Result};

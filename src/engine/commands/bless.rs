@@ -7,6 +7,22 @@ use crate::spec::Spec;
 
 /// Run the scenes that a golden of `spec` refers to and rewrite every golden file (each with
 /// its metadata, or none); what moved, per file. A spec without goldens blesses nothing.
+///
+/// ```
+/// // A copy of the shipped spec with a golden of its own, in a folder of its own.
+/// let dir = std::env::temp_dir().join(format!("cycloid-doc-bless-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let text = std::fs::read_to_string("specs/reducer.yaml").unwrap()
+///     + "golden:\n  - {scene: rated, quantity: clearance_mm, file: clearance.csv, tolerance: {abs: 1.0e-6}}\n";
+/// let path = dir.join("reducer.yaml");
+/// std::fs::write(&path, text).unwrap();
+/// let spec = cycloid::spec::load(path.to_str().unwrap())?;
+/// let blessed = cycloid::bless(&spec)?;
+/// assert_eq!(blessed.len(), 1);
+/// assert!(dir.join("clearance.csv").is_file());
+/// std::fs::remove_dir_all(&dir).unwrap();
+/// # Ok::<(), cycloid::Error>(())
+/// ```
 pub fn bless(spec: &Spec) -> Result<Vec<Blessed>> {
     if spec.golden.is_empty() {
         return Ok(Vec::new());

@@ -103,6 +103,16 @@ pub struct Review {
 
 /// Run every scene of `spec`, check its limits and goldens, run its studies, and what
 /// `options` asks for besides. Errors about a spec key carry its location in the spec.
+///
+/// ```
+/// use cycloid::{check, CheckOptions};
+/// let spec = cycloid::spec::load("specs/reducer.yaml")?;
+/// let run = check(&spec, &CheckOptions::default(), &cycloid::progress::Silent)?;
+/// // The paper's optimum keeps its 15 µm tip clearance over the whole mesh.
+/// let clearance = run.checks.iter().find(|c| c.id.ends_with("min_clearance_mm")).unwrap();
+/// assert!(run.passed() && clearance.value >= 0.015);
+/// # Ok::<(), cycloid::Error>(())
+/// ```
 pub fn check(spec: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Result<CheckRun> {
     run(spec, options, progress).map_err(|e| spec.locate(e))
 }

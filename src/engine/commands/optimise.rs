@@ -23,6 +23,16 @@ impl OptimiseRun<'_> {
 
 /// Run the study named `only` (else every study) of `spec`; with `map_steps`, the first
 /// study's objective over that many grid points per variable around its optimum.
+///
+/// ```
+/// let spec = cycloid::spec::load("specs/paper.yaml")?;
+/// let name = spec.studies[0].name.clone();
+/// let run = cycloid::optimise(&spec, Some(&name), Some(3), &cycloid::progress::Silent)?;
+/// assert_eq!(run.studies.len(), 1);
+/// assert!(run.feasible());
+/// assert_eq!(run.map.map(|cells| cells.len()), Some(9)); // 3 × 3 grid of two variables
+/// # Ok::<(), cycloid::Error>(())
+/// ```
 pub fn optimise<'a>(
     spec: &'a Spec,
     only: Option<&str>,

@@ -23,6 +23,15 @@ pub struct ToleranceRun<'a> {
 
 /// Run the whole study of `spec` (`samples` in place of the spec's count), and the
 /// sensitivities when `sensitivity` is set.
+///
+/// ```
+/// let text = std::fs::read_to_string("specs/reducer.yaml").unwrap()
+///     + "tolerances: {scene: rated, equidistant_mm: 0.002, max_failure_rate: 0.5}\n";
+/// let spec = cycloid::spec::parse("reducer.yaml", &text)?;
+/// let run = cycloid::tolerance(&spec, Some(50), false, &cycloid::progress::Silent)?;
+/// assert_eq!(run.summary.samples, 50);
+/// # Ok::<(), cycloid::Error>(())
+/// ```
 pub fn tolerance<'a>(
     spec: &'a Spec,
     samples: Option<usize>,
@@ -69,6 +78,23 @@ fn samples_of(
 
 /// Shard `(i, n)` of `study` (0-based: the samples k with k mod n = i), encoded as the shard
 /// file that `merge_shards` reads.
+///
+/// ```
+/// use cycloid::engine::tolerance::Study;
+/// use cycloid::progress::Silent;
+/// let text = std::fs::read_to_string("specs/reducer.yaml").unwrap()
+///     + "tolerances: {scene: rated, equidistant_mm: 0.002, samples: 20, max_failure_rate: 0.5}\n";
+/// let spec = cycloid::spec::parse("reducer.yaml", &text)?;
+/// let study = Study::new(&spec, None)?;
+/// let shards: Vec<(String, Vec<u8>)> = (0..2)
+///     .map(|i| Ok((format!("shard{i}"), cycloid::tolerance_shard(&study, (i, 2), &Silent)?)))
+///     .collect::<cycloid::Result<_>>()?;
+/// // The merged shards are the unsharded run's records, bit for bit.
+/// let merged = cycloid::merge_shards(&shards)?;
+/// let whole = cycloid::tolerance(&spec, None, false, &Silent)?;
+/// assert_eq!(merged.records.values, whole.records.values);
+/// # Ok::<(), cycloid::Error>(())
+/// ```
 pub fn tolerance_shard(
     study: &Study,
     (i, n): (u64, u64),

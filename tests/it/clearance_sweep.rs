@@ -143,7 +143,7 @@ fn crank(from: f64, n: usize) -> Vec<f64> {
 }
 
 proptest! {
-    /// Random designs with interference or clearance (tests/common `cases`), six angles per
+    /// Random designs with interference or clearance (tests/it/common `cases`), six angles per
     /// mesh period over two periods: every roller moves a sixth of a tooth between angles, far
     /// from where it was, so that warm starts meet other roots and other flanks.
     #[test]
@@ -155,7 +155,7 @@ proptest! {
         assert_matches(&format!("{c:?}"), &mesh, &crank, &s, &reference(&mesh, &crank));
     }
 
-    /// Random valid designs, modifications and profile rotations (tests/common): 70 angles
+    /// Random valid designs, modifications and profile rotations (tests/it/common): 70 angles
     /// (two chunks, the second started in the middle of a mesh period), gaps and backlash.
     #[test]
     fn sweep_matches_the_evaluation_from_scratch(c in rotated_cases(), phi0 in 0.0..TAU) {
@@ -268,7 +268,7 @@ fn turned_profiles_match_the_evaluation_from_scratch() {
 }
 
 /// A thinning shift deeper than the radius of a sharp concave root lifts the roller out of the
-/// root onto both of its sides (tests/geometry.rs, `gap_at_tip_and_root_is_equidistant_minus_shift`):
+/// root onto both of its sides (tests/it/geometry.rs, `gap_at_tip_and_root_is_equidistant_minus_shift`):
 /// two feet, equally near when the roller sits at the root, and the nearer one changes side as
 /// the roller passes it. Followed from angle to angle, a foot would stay on the side it started
 /// on; the sweep must notice (the locus distance there is beyond the reach bound) and find the
@@ -334,7 +334,7 @@ fn sweep_is_the_same_on_one_and_on_four_threads() {
 /// roller of this interfering design sits on the centreline of a tooth (arm 0 at β = 0): the
 /// evaluation from scratch says it does not close, while its closing lag followed from the
 /// angle before lands on a root of its gap at β = 0.135 rad. The sweep must say what the
-/// evaluation from scratch says (found by the mirror test of tests/geometry.rs).
+/// evaluation from scratch says (found by the mirror test of tests/it/geometry.rs).
 #[test]
 fn a_roller_on_a_tooth_centreline_closes_as_from_scratch() {
     let d = design(9, 1.8428811071417235, 20.0, 0.41553740648602533);

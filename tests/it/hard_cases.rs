@@ -20,7 +20,7 @@ use std::path::PathBuf;
 
 const ARCSEC_PER_RAD: f64 = 180.0 * 3600.0 / PI;
 
-/// Every spec under specs/hard/ and its exit code (also in tests/specs_exit_codes.rs).
+/// Every spec under specs/hard/ and its exit code (also in tests/it/specs_exit_codes.rs).
 const HARD: &[(&str, i32)] = &[
     ("zero-modification", 0),
     ("nano-modification", 0),

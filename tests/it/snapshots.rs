@@ -1,7 +1,7 @@
 //! Snapshot regression (insta): the `check` table of the shipped spec, the paper's summary
 //! numbers, and the error messages for bad specs. Numbers are rounded to 4 significant digits,
 //! far coarser than the golden tolerances, so solver noise cannot flip them. Update on purpose
-//! with `INSTA_UPDATE=always cargo test --release --test snapshots` and review the diff.
+//! with `INSTA_UPDATE=always cargo test --release --test it snapshots::` and review the diff.
 
 use crate::common;
 

@@ -47,7 +47,7 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         0,
         "this engine's positive ratio optimum (0.169641, 0.229179): 59.5 µm",
     ),
-    // Hard cases (issue 6, tests/hard_cases.rs): each spec says what it probes.
+    // Hard cases (issue 6, tests/it/hard_cases.rs): each spec says what it probes.
     ("hard/zero-modification.yaml", 0, "every roller touches"),
     ("hard/nano-modification.yaml", 0, "1e-9 mm modifications"),
     ("hard/torque-1e-6.yaml", 0, "1e-6 N·m, four scenes"),

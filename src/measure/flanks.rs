@@ -168,7 +168,7 @@ const GAUSS_5: [(f64, f64); 5] = [
 /// Panels per flank of the composite rule. |Γ'| changes fastest near the root (on the paper's
 /// disc from 19 to 63 mm/rad over a flank): against a 2000-panel reference the 5-point rule
 /// on 1/16 of a flank is off by up to 5e-10 mm over a third of a flank, on 1/32 by < 1e-13 mm
-/// (`tests/flanks.rs` checks 1e-12 mm against an extrapolated polyline).
+/// (`tests/it/flanks.rs` checks 1e-12 mm against an extrapolated polyline).
 const PANELS_PER_FLANK: f64 = 32.0;
 
 /// Arc length of `profile` from t0 to t1 (negative when t1 < t0), mm: ∫ |Γ'(t)| dt by the

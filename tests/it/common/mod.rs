@@ -1,0 +1,425 @@
+//! Helpers shared by the tests: the `cycloid` binary run in a scratch directory (`Scratch`,
+//! `cycloid`), the paper's spec with edits (`PaperSpec`), designs built directly, a closed form
+//! of the locus curvature, and the proptest strategy of valid designs.
+//!
+//! Nothing here calls the code under test to produce an expected value: the closed forms are
+//! derived below from the definition of the locus in MODEL.md.
+#![allow(dead_code)] // each test crate uses a different subset
+
+use cycloid::model::{Design, Material, Modification, OutputPins};
+use cycloid::spec::Spec;
+use proptest::prelude::*;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+/// The shipped spec: the paper's Table 1 design with its optimum modification, clearance only.
+pub const PAPER: &str = include_str!("../../../specs/reducer.yaml");
+
+/// A scratch directory, unique per call and process, removed when dropped.
+pub struct Scratch {
+    pub path: PathBuf,
+}
+
+impl Scratch {
+    pub fn new(tag: &str) -> Scratch {
+        static NEXT: AtomicUsize = AtomicUsize::new(0);
+        let path = std::env::temp_dir().join(format!(
+            "cycloid-test-{tag}-{}-{}",
+            std::process::id(),
+            NEXT.fetch_add(1, Ordering::Relaxed)
+        ));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path).unwrap();
+        Scratch { path }
+    }
+
+    /// `name` inside the directory.
+    pub fn join(&self, name: &str) -> PathBuf {
+        self.path.join(name)
+    }
+
+    /// Write `name` (creating its directories).
+    pub fn write(&self, name: &str, text: impl AsRef<[u8]>) {
+        let path = self.path.join(name);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).unwrap();
+        }
+        std::fs::write(path, text).unwrap();
+    }
+
+    pub fn read(&self, name: &str) -> String {
+        std::fs::read_to_string(self.path.join(name))
+            .unwrap_or_else(|e| panic!("{name} was not written: {e}"))
+    }
+
+    pub fn exists(&self, name: &str) -> bool {
+        self.path.join(name).exists()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.path);
+    }
+}
+
+/// What a run of the binary produced.
+#[derive(Debug)]
+pub struct Run {
+    pub code: Option<i32>,
+    pub stdout: String,
+    pub stderr: String,
+}
+
+impl Run {
+    /// The exit code (-1 when killed by a signal).
+    pub fn code(&self) -> i32 {
+        self.code.unwrap_or(-1)
+    }
+
+    /// (exit code, stdout, stderr).
+    pub fn parts(self) -> (i32, String, String) {
+        (self.code(), self.stdout, self.stderr)
+    }
+}
+
+/// Longest a single run may take before the test calls it a hang.
+const TIMEOUT: Duration = Duration::from_secs(300);
+
+/// Run `cycloid ARGS` in `dir` (no colour, the date pinned by `SOURCE_DATE_EPOCH=0`). Output
+/// goes to files (no pipe can fill up); a run longer than `TIMEOUT` is killed and fails.
+pub fn cycloid(dir: &Path, args: &[&str]) -> Run {
+    cycloid_with(dir, args, &[])
+}
+
+/// `cycloid` with extra environment variables.
+pub fn cycloid_with(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Run {
+    static NEXT: AtomicUsize = AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, Ordering::Relaxed);
+    let capture = std::env::temp_dir().join(format!("cycloid-test-out-{}-{n}", std::process::id()));
+    std::fs::create_dir_all(&capture).unwrap();
+    let (out_path, err_path) = (capture.join("stdout"), capture.join("stderr"));
+    let mut command = Command::new(env!("CARGO_BIN_EXE_cycloid"));
+    command
+        .args(args)
+        .current_dir(dir)
+        .env_remove("RUST_BACKTRACE")
+        .env("NO_COLOR", "1")
+        .env("SOURCE_DATE_EPOCH", "0")
+        .stdin(Stdio::null())
+        .stdout(std::fs::File::create(&out_path).unwrap())
+        .stderr(std::fs::File::create(&err_path).unwrap());
+    for (k, v) in env {
+        command.env(k, v);
+    }
+    let mut child = command.spawn().expect("the cycloid binary runs");
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if start.elapsed() > TIMEOUT {
+            let _ = child.kill();
+            let _ = child.wait();
+            let _ = std::fs::remove_dir_all(&capture);
+            panic!("cycloid {args:?} did not finish within {TIMEOUT:?}");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    let run = Run {
+        code: status.code(),
+        stdout: String::from_utf8_lossy(&std::fs::read(&out_path).unwrap()).into_owned(),
+        stderr: String::from_utf8_lossy(&std::fs::read(&err_path).unwrap()).into_owned(),
+    };
+    let _ = std::fs::remove_dir_all(&capture);
+    run
+}
+
+/// `cycloid ARGS` in the repository's root (shipped specs by their relative path).
+pub fn cycloid_here(args: &[&str]) -> Run {
+    cycloid(Path::new(env!("CARGO_MANIFEST_DIR")), args)
+}
+
+/// The paper's spec (`specs/reducer.yaml`) as text, edited: the modification, the scenes (its
+/// limits go with them), extra top-level sections, or any exact replacement.
+#[derive(Debug, Clone)]
+pub struct PaperSpec {
+    text: String,
+}
+
+impl Default for PaperSpec {
+    fn default() -> Self {
+        PaperSpec {
+            text: PAPER.to_string(),
+        }
+    }
+}
+
+impl PaperSpec {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Replace `from` by `to`; `from` must occur exactly once, so that an edit can never
+    /// silently do nothing.
+    pub fn edit(mut self, from: &str, to: &str) -> Self {
+        assert_eq!(
+            self.text.matches(from).count(),
+            1,
+            "`{from}` must occur once in the spec"
+        );
+        self.text = self.text.replacen(from, to, 1);
+        self
+    }
+
+    /// The modification (ΔRp, ΔRrp), mm.
+    pub fn modification(mut self, shift_mm: f64, equidistant_mm: f64) -> Self {
+        let mut replaced = 0;
+        let lines: Vec<String> = self
+            .text
+            .lines()
+            .map(|line| {
+                let key = line.trim_start();
+                if key.starts_with("shift_mm:") {
+                    replaced += 1;
+                    format!("  shift_mm: {shift_mm:?}")
+                } else if key.starts_with("equidistant_mm:") {
+                    replaced += 1;
+                    format!("  equidistant_mm: {equidistant_mm:?}")
+                } else {
+                    line.to_string()
+                }
+            })
+            .collect();
+        assert_eq!(replaced, 2, "one shift_mm and one equidistant_mm");
+        self.text = lines.join("\n") + "\n";
+        self
+    }
+
+    /// The `scenes:` section and everything after it (the limits) replaced by `scenes`, the
+    /// YAML items of the list.
+    pub fn scenes(mut self, scenes: &str) -> Self {
+        let at = self.text.find("\nscenes:").expect("the spec has scenes") + 1;
+        self.text.truncate(at);
+        self.text += "scenes:\n";
+        self.text += scenes;
+        self
+    }
+
+    /// One scene `rated`: 10 N·m over one mesh period (0°–36°) in `steps` angles, with
+    /// clearance and roller contact (no limits).
+    pub fn rated_period(self, steps: usize) -> Self {
+        let crank = format!("{{ from_deg: 0.0, to_deg: 36.0, steps: {steps} }}");
+        self.scenes(&scene_item(
+            "rated",
+            10.0,
+            &crank,
+            "clearance, roller_contact",
+        ))
+    }
+
+    /// Top-level YAML appended at the end.
+    pub fn with(mut self, extra: &str) -> Self {
+        if !self.text.ends_with('\n') {
+            self.text.push('\n');
+        }
+        self.text += extra;
+        self
+    }
+
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The spec parsed and validated (named `path` in messages).
+    pub fn parse(&self, path: &str) -> cycloid::spec::Spec {
+        cycloid::spec::parse(path, &self.text)
+            .unwrap_or_else(|e| panic!("test spec is valid: {e}\n{}", self.text))
+    }
+}
+
+/// One item of a spec's `scenes:` list: `name` at `torque_nm` over `crank` (its YAML flow
+/// mapping) with `effects` (comma-separated).
+pub fn scene_item(name: &str, torque_nm: f64, crank: &str, effects: &str) -> String {
+    format!(
+        "  - name: {name}\n    output_torque_nm: {torque_nm:?}\n    crank: {crank}\n    \
+         effects: [{effects}]\n"
+    )
+}
+
+pub const STEEL: Material = Material {
+    youngs_modulus_mpa: 206_000.0,
+    poisson_ratio: 0.3,
+};
+
+/// A design with np rollers (nc = np − 1 teeth). Pins and materials do not enter the geometry.
+pub fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f64) -> Design {
+    Design {
+        teeth: rollers - 1,
+        rollers,
+        discs: 1,
+        eccentricity_mm,
+        roller_circle_radius_mm: rp_mm,
+        roller_radius_mm: rrp_mm,
+        face_width_mm: 8.0,
+        pins: OutputPins {
+            count: 6,
+            circle_radius_mm: 0.5 * rp_mm,
+            pin_radius_mm: 0.05 * rp_mm,
+            hole_clearance_mm: 0.0,
+        },
+        disc_material: STEEL,
+        roller_material: STEEL,
+        crank_bearing: None,
+        deviations: Default::default(),
+    }
+}
+
+pub fn modification(shift_mm: f64, equidistant_mm: f64, rotation_rad: f64) -> Modification {
+    Modification {
+        shift_mm,
+        equidistant_mm,
+        rotation_rad,
+    }
+}
+
+/// The paper's design (Table 1): nc 9, np 10, e 2, Rp 30, Rrp 3 (from specs/reducer.yaml).
+pub fn paper_design() -> Design {
+    PaperSpec::new().parse("reducer.yaml").design
+}
+
+/// specs/reducer.yaml with its modification replaced, parsed and validated by `spec::parse`.
+pub fn paper_spec(shift_mm: f64, equidistant_mm: f64) -> Spec {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/specs/reducer.yaml");
+    PaperSpec::new()
+        .modification(shift_mm, equidistant_mm)
+        .parse(path)
+}
+
+/// Curvature of the locus C(t) = R(cos t, sin t) − e(cos nt, sin nt) (n = np) as a function of
+/// x = cos(nc·t), derived by hand from C' and C'':
+///   C'×C'' = R² + e²n³ − R·e·n(n+1)·x,   |C'|² = R² + e²n² − 2R·e·n·x,
+///   κ_C = (C'×C'')/|C'|³.
+pub fn locus_curvature_closed(rollers: usize, e: f64, r: f64, x: f64) -> f64 {
+    let n = rollers as f64;
+    (r * r + e * e * n.powi(3) - r * e * n * (n + 1.0) * x)
+        / (r * r + e * e * n * n - 2.0 * r * e * n * x).powf(1.5)
+}
+
+/// Smallest convex radius of curvature of the locus and the parameter t ∈ [0, π/nc] (from the
+/// root) where it occurs, in closed form. κ_C(x) = (A − Bx)/(D − Ex)^{3/2} has a single
+/// stationary point x* = (3AE − 2BD)/(BE) = (3(1 + K²n) − (n + 1)(1 + K²))/(K(n + 1)),
+/// K = e·n/R; the maximum curvature on [−1, 1] is at x* (if inside) or at an end.
+pub fn min_convex_radius_closed(rollers: usize, e: f64, r: f64) -> (f64, f64) {
+    let n = rollers as f64;
+    let k = e * n / r;
+    let x_star = (3.0 * (1.0 + k * k * n) - (n + 1.0) * (1.0 + k * k)) / (k * (n + 1.0));
+    let (x, kappa) = [x_star.clamp(-1.0, 1.0), -1.0, 1.0]
+        .into_iter()
+        .map(|x| (x, locus_curvature_closed(rollers, e, r, x)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap();
+    (1.0 / kappa, x.acos() / (n - 1.0))
+}
+
+/// A valid design and a modification that keeps it valid.
+#[derive(Debug, Clone)]
+pub struct Case {
+    pub design: Design,
+    pub m: Modification,
+}
+
+impl Case {
+    pub fn k1(&self) -> f64 {
+        self.design.k1()
+    }
+}
+
+/// Largest modification a case may carry: 0.3 mm, but small against the tooth depth (2e) and
+/// the roller, so that the gaps stay a small-modification question.
+fn modification_cap(e: f64, rrp: f64) -> f64 {
+    0.3f64.min(0.15 * e).min(0.5 * rrp)
+}
+
+/// Build a case from unit parameters; `None` if the modification cannot be kept valid.
+/// - np rollers, Rp, K1 = e·np/Rp in (0.1, 0.9);
+/// - Rrp = u·0.8·min(ρmin, Rp·sin(π/np)): below 0.8 of the smallest convex radius of curvature
+///   of the locus (no undercut) and of half the roller pitch (rollers do not overlap);
+/// - ΔRp = a·cap, ΔRrp in [−cap, min(cap, 0.9·ρmin(Rp + ΔRp) − Rrp)] (still undercut-free).
+#[allow(clippy::too_many_arguments)]
+pub fn build_case(
+    rollers: usize,
+    rp: f64,
+    k1: f64,
+    u: f64,
+    a: f64,
+    b: f64,
+    rotation_rad: f64,
+) -> Option<Case> {
+    let n = rollers as f64;
+    let e = k1 * rp / n;
+    let (rho, _) = min_convex_radius_closed(rollers, e, rp);
+    let rrp = u * 0.8 * rho.min(rp * (PI / n).sin());
+    let cap = modification_cap(e, rrp);
+    let shift = a * cap;
+    let (rho_shifted, _) = min_convex_radius_closed(rollers, e, rp + shift);
+    let hi = cap.min(0.9 * rho_shifted - rrp);
+    let lo = -cap;
+    if hi <= lo || e * n / (rp + shift) >= 0.95 {
+        return None;
+    }
+    Some(Case {
+        design: design(rollers, e, rp, rrp),
+        m: modification(shift, lo + b * (hi - lo), rotation_rad),
+    })
+}
+
+/// Random valid designs with random modifications (no profile rotation).
+pub fn cases() -> impl Strategy<Value = Case> {
+    (
+        4usize..=40,
+        20.0f64..120.0,
+        0.1f64..0.9,
+        0.1f64..1.0,
+        -1.0f64..1.0,
+        0.0f64..1.0,
+    )
+        .prop_filter_map("modification must keep the design valid", |p| {
+            build_case(p.0, p.1, p.2, p.3, p.4, p.5, 0.0)
+        })
+}
+
+/// As `cases`, with a profile rotation Δδ of up to ±0.2 mrad.
+pub fn rotated_cases() -> impl Strategy<Value = Case> {
+    (cases(), -2e-4f64..2e-4).prop_map(|(mut c, d)| {
+        c.m.rotation_rad = d;
+        c
+    })
+}
+
+/// Random valid designs with the profile unmodified.
+pub fn unmodified_cases() -> impl Strategy<Value = Case> {
+    cases().prop_map(|mut c| {
+        c.m = Modification::default();
+        c
+    })
+}
+
+/// The minimiser of a unimodal `f` on [a, b] by golden-section search (100 steps shrink the
+/// bracket by 0.618^100 ≈ 1e-21: to the round-off of the argument).
+#[allow(dead_code)]
+pub fn golden_section_min(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..100 {
+        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+        if f(x1) < f(x2) {
+            b = x2;
+        } else {
+            a = x1;
+        }
+    }
+    0.5 * (a + b)
+}

@@ -1,0 +1,45 @@
+//! The integration tests, one binary (`cargo test --release --test it`): one module per
+//! subject, the helpers in `common`. One binary links the library once instead of once per
+//! file. Run one subject with `cargo test --release --test it snapshots::`.
+//!
+//! The tests share one process: a test writes only under its own `common::Scratch` (unique
+//! per call), never to a fixed path, and sets no environment variable or working directory of
+//! the process (a child's environment goes through `common::cycloid_with`).
+//!
+//! Proptest's regressions of a module here are in `tests/proptest-regressions/MODULE.txt`
+//! (proptest's `SourceParallel` default: beside the directory of this `main.rs`).
+//! `tests/architecture.rs` stays its own binary.
+
+mod common;
+
+mod accuracy;
+mod as_built_review;
+mod clearance_sweep;
+mod cli;
+mod cli_help;
+mod contact;
+mod deviations;
+mod discs;
+mod equilibrium;
+mod export;
+mod first_order_sweep;
+mod flanks;
+mod fuzz_corpus;
+mod geometry;
+mod golden;
+mod golden_physics;
+mod hard_cases;
+mod junit;
+mod measure;
+mod measure_cli;
+mod optimise;
+mod ordinary_inputs;
+mod progress;
+mod readme;
+mod reliability;
+mod report;
+mod snapshots;
+mod spec_locate;
+mod specs_exit_codes;
+mod tolerance;
+mod torsion;

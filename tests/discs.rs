@@ -5,10 +5,10 @@ mod common;
 
 use common::{cases, Case};
 use cycloid::engine::scene::run_design;
+use cycloid::equilibrium::angle::{solve_angle, AngleSolution, Model};
 use cycloid::equilibrium::curves::{self, sweep_discs_observed};
 use cycloid::equilibrium::discs::Discs;
 use cycloid::equilibrium::solve::Settings;
-use cycloid::equilibrium::sweep::{solve_angle, AngleSolution, Model};
 use cycloid::model::results::SceneResult;
 use cycloid::model::{ContactLaw, Design, Effect, GeometryMode, Plan, Scene, TorqueSweep};
 use cycloid::progress::Silent;
@@ -221,7 +221,7 @@ proptest! {
     }
 
     /// One disc through the coupled solve is the one-disc sweep, bit for bit (exact geometry,
-    /// where both run `sweep::solve_into` angle by angle; the first-order one-disc sweep has a
+    /// where both run `angle::solve_into` angle by angle; the first-order one-disc sweep has a
     /// faster kernel of its own).
     #[test]
     fn one_disc_through_the_coupled_solve_is_todays_sweep(
@@ -415,7 +415,7 @@ fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it(
 }
 
 /// A disc that floats (no share of the torque) reports the lag of the limit T → 0⁺, as one
-/// disc at zero torque does (`sweep::touching`): the nearest contact in the load direction,
+/// disc at zero torque does (`angle::touching`): the nearest contact in the load direction,
 /// at the near side of its backlash. At 1e-6 N·m on 11 rollers in exact geometry the discs
 /// float by turns; every floating disc's β must be that of one disc alone at zero torque at
 /// the floating disc's own crank angle (a separate sweep; the rollers' balance of a rigid

@@ -9,9 +9,9 @@ mod common;
 
 use cycloid::contact::law::{self, paper_linear_stiffness};
 use cycloid::engine::scene::run;
+use cycloid::equilibrium::angle::{residual, solve_angle, AngleSolution, Model};
 use cycloid::equilibrium::curves;
 use cycloid::equilibrium::solve::{monotone_root, Balance, Settings, SolveFailure};
-use cycloid::equilibrium::sweep::{residual, solve_angle, AngleSolution, Model};
 use cycloid::geometry::clearance::Mesh;
 use cycloid::geometry::{cross, Vec2};
 use cycloid::model::results::SceneResult;

@@ -7,7 +7,7 @@
 //! (`max_residual`) ≤ 1e-9.
 
 use cycloid::engine::scene;
-use cycloid::equilibrium::sweep::{solve_angle, AngleSolution, Model};
+use cycloid::equilibrium::angle::{solve_angle, AngleSolution, Model};
 use cycloid::geometry::first_order;
 use cycloid::model::results::SceneResult;
 use cycloid::model::GeometryMode;

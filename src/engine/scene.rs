@@ -7,10 +7,10 @@
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
 use crate::engine::{bearing_life, torsion};
+use crate::equilibrium::angle::Model;
 use crate::equilibrium::curves::{self, DiscSweeps};
 use crate::equilibrium::discs::Discs;
 use crate::equilibrium::solve::{Settings, SolveFailure};
-use crate::equilibrium::sweep::Model;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::QUANTITIES;

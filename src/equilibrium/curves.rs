@@ -1,10 +1,10 @@
 //! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
+use super::angle::{solve_into, AngleSolution, Model, Work};
 use super::discs::{common_lag, converged, solve_coupled, CoupledWork, Discs, Share};
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::solve::SolveFailure;
-use super::sweep::{solve_into, AngleSolution, Model, Work};
 use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
 use crate::model::results::{BearingCurves, LoadedSweep, PinCurves, RollerCurves, Transmission};
 use crate::progress::{Progress, Silent};

@@ -4,7 +4,7 @@
 //! Disc k of N runs at the crank phase φk = φ + 2πk/N and meshes with the same rollers; its
 //! holes are bored so that the pins sit centred at its ideal pose (`Pins::for_disc`). Each disc
 //! balances its own share Tk of the output torque through its rollers and its pins, with its
-//! own crank bearing, exactly as one disc does (`sweep::solve_into`); what couples them is the
+//! own crank bearing, exactly as one disc does (`angle::solve_into`); what couples them is the
 //! output flange: the output lag γ = βk + βo,k is the same for every disc, and Σ Tk = T.
 //! Without the pins in a scene the discs are rigidly coupled: γ = βk.
 //!
@@ -14,9 +14,9 @@
 //! The compliance is the secant of the last two solves of the disc at this angle, or, at the
 //! first solve, the tangent of its balances (1/Σk·l² of the rollers plus that of the pins).
 
+use super::angle::{solve_into, Model, Work};
 use super::balance::moment;
 use super::solve::SolveFailure;
-use super::sweep::{solve_into, Model, Work};
 use crate::model::design::disc_phase_rad;
 use crate::model::MAX_DISCS;
 
@@ -143,7 +143,7 @@ impl CoupledWork {
         total: f64,
     ) -> f64 {
         if n == 1 {
-            // The whole torque, exactly: one disc solves as `sweep::solve_into` alone does.
+            // The whole torque, exactly: one disc solves as `angle::solve_into` alone does.
             return total;
         }
         match weights {
@@ -383,7 +383,7 @@ fn solve_disc(
     t: f64,
 ) -> Result<f64, SolveFailure> {
     // A share within the inner root's resolution of zero is zero: the disc floats, and the
-    // solve at exactly zero torque finds its nearest contact (`sweep::solve_into`) where one
+    // solve at exactly zero torque finds its nearest contact (`angle::solve_into`) where one
     // at 1e-16 N·m would search for a balance the size of round-off.
     let t = if t.abs() <= 1e-12 * discs.torque_nmm.abs() {
         0.0
@@ -667,7 +667,7 @@ pub fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, la
 #[cfg(test)]
 mod tests {
     use super::Discs;
-    use crate::equilibrium::sweep::Model;
+    use crate::equilibrium::angle::Model;
     use crate::geometry::Vec2;
     use crate::model::{Effect, Plan};
     use std::f64::consts::TAU;

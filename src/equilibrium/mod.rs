@@ -4,6 +4,7 @@
 //! hole walls, the crank bearing holds the disc centre. Moments are about the disc centre;
 //! the pins transmit the output torque T, the rollers balance it.
 
+pub mod angle;
 pub mod balance;
 pub mod curves;
 pub mod discs;
@@ -11,4 +12,3 @@ pub mod first_order_sweep;
 pub mod pins;
 pub mod rollers;
 pub mod solve;
-pub mod sweep;

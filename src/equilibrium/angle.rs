@@ -1,4 +1,4 @@
-//! The loaded solve at every crank angle of a scene, and the curves it produces.
+//! The loaded solve at one crank angle of a scene.
 //!
 //! Rigid bearing: the disc centre sits at e·(cos φ, sin φ); moment balance about it decouples
 //! into the roller balance Σ F_i·l_i(β) = T and the pin balance Σ F_j·a_j(βo) = T, each a

@@ -6,9 +6,9 @@
 
 pub mod angle;
 pub mod balance;
-pub mod curves;
 pub mod discs;
 pub mod first_order_sweep;
 pub mod pins;
 pub mod rollers;
 pub mod solve;
+pub mod sweep;

@@ -1,4 +1,5 @@
-//! Curves of a loaded sweep: lags, forces, pressures, bearing force, TE and ratio.
+//! The loaded sweep over the crank angles of a scene (one angle's solve is `angle`), and its
+//! curves: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
 use super::angle::{solve_into, AngleSolution, Model, Work};

@@ -173,7 +173,7 @@ fn torsion_4_angles_40_steps(b: divan::Bencher) {
         .find(|c| c.name == "torsion")
         .expect("torsion");
     let plan = cycloid::model::Plan::of("torsion", &[cycloid::model::Effect::Bearing]);
-    let model = cycloid::equilibrium::angle::Model::new(&s.design, &s.modification, scene, &plan);
+    let model = cycloid::equilibrium::loaded::Model::new(&s.design, &s.modification, scene, &plan);
     let model = cycloid::equilibrium::discs::Discs::new(&model, s.design.discs);
     let sweep = scene.torque_sweep.expect("a torque sweep");
     assert_eq!((scene.crank_rad.len(), sweep.steps), (4, 40));

@@ -5,8 +5,9 @@ mod common;
 
 use common::{cases, Case};
 use cycloid::engine::scene::run_design;
-use cycloid::equilibrium::angle::{solve_angle, AngleSolution, Model};
+use cycloid::equilibrium::angle::solve_angle;
 use cycloid::equilibrium::discs::Discs;
+use cycloid::equilibrium::loaded::{AngleSolution, Model};
 use cycloid::equilibrium::solve::Settings;
 use cycloid::equilibrium::sweep::{self, sweep_discs_observed};
 use cycloid::model::results::SceneResult;
@@ -415,7 +416,7 @@ fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it(
 }
 
 /// A disc that floats (no share of the torque) reports the lag of the limit T → 0⁺, as one
-/// disc at zero torque does (`angle::touching`): the nearest contact in the load direction,
+/// disc at zero torque does (`rigid_bearing::touching`): the nearest contact in the load direction,
 /// at the near side of its backlash. At 1e-6 N·m on 11 rollers in exact geometry the discs
 /// float by turns; every floating disc's β must be that of one disc alone at zero torque at
 /// the floating disc's own crank angle (a separate sweep; the rollers' balance of a rigid

@@ -9,7 +9,9 @@ mod common;
 
 use cycloid::contact::law::{self, paper_linear_stiffness};
 use cycloid::engine::scene::run;
-use cycloid::equilibrium::angle::{residual, solve_angle, AngleSolution, Model};
+use cycloid::equilibrium::angle::solve_angle;
+use cycloid::equilibrium::loaded::{AngleSolution, Model};
+use cycloid::equilibrium::residual::residual;
 use cycloid::equilibrium::solve::{monotone_root, Balance, Settings, SolveFailure};
 use cycloid::equilibrium::sweep;
 use cycloid::geometry::clearance::Mesh;

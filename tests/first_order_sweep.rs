@@ -1,14 +1,16 @@
 //! The lean first-order sweep (`equilibrium::first_order_sweep`) against the general solve of
 //! the same model (`angle::solve_angle`, which builds every roller and pin state, takes Hertz
-//! from `Rollers::hertz` and the residual from `angle::residual`). Both evaluate the same
+//! from `Rollers::hertz` and the residual from `residual::residual`). Both evaluate the same
 //! closed forms, so they must agree to round-off; what differs is how: the lean kernel takes
 //! the contact curvature from cos(φi + nc·β) instead of cos(nc·t), forms the normal from S
 //! instead of normalising, settles the root from its own Newton step, and records only what
 //! the curves need. Tolerances below are round-off bounds of those differences.
 
 use approx::relative_eq;
-use cycloid::equilibrium::angle::{residual, solve_angle, AngleSolution, Model};
+use cycloid::equilibrium::angle::solve_angle;
 use cycloid::equilibrium::first_order_sweep::{FirstOrderSweep, Row, Scratch};
+use cycloid::equilibrium::loaded::{AngleSolution, Model};
+use cycloid::equilibrium::residual::residual;
 use cycloid::equilibrium::sweep;
 use cycloid::model::results::LoadedSweep;
 use cycloid::model::{ContactLaw, GeometryMode};

@@ -7,7 +7,8 @@
 //! (`max_residual`) ≤ 1e-9.
 
 use cycloid::engine::scene;
-use cycloid::equilibrium::angle::{solve_angle, AngleSolution, Model};
+use cycloid::equilibrium::angle::solve_angle;
+use cycloid::equilibrium::loaded::{AngleSolution, Model};
 use cycloid::geometry::first_order;
 use cycloid::model::results::SceneResult;
 use cycloid::model::GeometryMode;

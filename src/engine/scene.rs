@@ -7,8 +7,8 @@
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
 use crate::engine::{bearing_life, torsion};
-use crate::equilibrium::angle::Model;
 use crate::equilibrium::discs::Discs;
+use crate::equilibrium::loaded::Model;
 use crate::equilibrium::solve::{Settings, SolveFailure};
 use crate::equilibrium::sweep::{self, DiscSweeps};
 use crate::error::{Error, Result};

@@ -14,9 +14,11 @@
 //! The compliance is the secant of the last two solves of the disc at this angle, or, at the
 //! first solve, the tangent of its balances (1/Σk·l² of the rollers plus that of the pins).
 
-use super::angle::{solve_into, Model, Work};
+use super::angle::solve_into;
 use super::balance::moment;
+use super::loaded::Model;
 use super::solve::SolveFailure;
+use super::work::Work;
 use crate::model::design::disc_phase_rad;
 use crate::model::MAX_DISCS;
 
@@ -667,7 +669,7 @@ pub fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, la
 #[cfg(test)]
 mod tests {
     use super::Discs;
-    use crate::equilibrium::angle::Model;
+    use crate::equilibrium::loaded::Model;
     use crate::geometry::Vec2;
     use crate::model::{Effect, Plan};
     use std::f64::consts::TAU;

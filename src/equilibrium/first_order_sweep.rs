@@ -32,8 +32,9 @@
 //! every angle, else the angle is solved again on every roller and the next angle that settles
 //! screens again, up to `SCREENS` times a chunk).
 
-use super::angle::{BalanceSums, Model};
+use super::loaded::Model;
 use super::pins::Pins;
+use super::residual::BalanceSums;
 use super::rollers::Rollers;
 use super::solve::piecewise_linear_root_near;
 use crate::contact::hertz_line::HertzFactors;
@@ -646,7 +647,7 @@ fn bits(mut mask: u64) -> impl Iterator<Item = usize> {
 #[cfg(test)]
 mod tests {
     use super::{all, bits, FirstOrderSweep, Scratch};
-    use crate::equilibrium::angle::Model;
+    use crate::equilibrium::loaded::Model;
     use crate::model::{ContactLaw, GeometryMode, Modification};
     use crate::spec::{self};
     use proptest::prelude::*;

@@ -6,9 +6,14 @@
 
 pub mod angle;
 pub mod balance;
+mod compliant_bearing;
 pub mod discs;
 pub mod first_order_sweep;
+pub mod loaded;
 pub mod pins;
+pub mod residual;
+mod rigid_bearing;
 pub mod rollers;
 pub mod solve;
 pub mod sweep;
+pub mod work;

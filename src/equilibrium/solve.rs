@@ -27,7 +27,7 @@ pub struct Root {
     /// then that of the mix as the solver saw it.
     pub straddle: Option<f64>,
     /// The balance's slope ∂m/∂x at x as the solver last evaluated it (a caller's guess at a
-    /// nearby target, `angle::Work::guess_at_torque`).
+    /// nearby target, `Work::guess_at_torque`).
     pub slope: f64,
 }
 

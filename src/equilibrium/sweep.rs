@@ -2,10 +2,12 @@
 //! curves: lags, forces, pressures, bearing force, TE and ratio.
 //! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
 
-use super::angle::{solve_into, AngleSolution, Model, Work};
+use super::angle::solve_into;
 use super::discs::{common_lag, converged, solve_coupled, CoupledWork, Discs, Share};
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
+use super::loaded::{AngleSolution, Model};
 use super::solve::SolveFailure;
+use super::work::Work;
 use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
 use crate::model::results::{BearingCurves, LoadedSweep, PinCurves, RollerCurves, Transmission};
 use crate::progress::{Progress, Silent};

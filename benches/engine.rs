@@ -1,6 +1,7 @@
 //! Engine benchmarks (divan). Run: `cargo bench --bench engine`. Numbers go in BENCHMARKS.md.
 //! Single-threaded by default (RAYON_NUM_THREADS=1 recommended for the per-core targets).
 
+use cycloid::equilibrium::discs_sweep;
 use cycloid::equilibrium::sweep;
 use cycloid::geometry::clearance::{self, Mesh, Scope};
 use cycloid::model::GeometryMode;
@@ -156,7 +157,7 @@ fn two_discs_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
     let (model, c) = common::rated_sweep(geometry, 3600, rollers);
     let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
     b.bench(|| {
-        sweep::sweep_discs_observed(black_box(&discs), &c, true, &cycloid::progress::Silent)
+        discs_sweep::sweep_discs_observed(black_box(&discs), &c, true, &cycloid::progress::Silent)
             .unwrap()
     });
 }

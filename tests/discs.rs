@@ -7,9 +7,10 @@ use common::{cases, Case};
 use cycloid::engine::scene::run_design;
 use cycloid::equilibrium::angle::solve_angle;
 use cycloid::equilibrium::discs::Discs;
+use cycloid::equilibrium::discs_sweep::sweep_discs_observed;
 use cycloid::equilibrium::loaded::{AngleSolution, Model};
 use cycloid::equilibrium::solve::Settings;
-use cycloid::equilibrium::sweep::{self, sweep_discs_observed};
+use cycloid::equilibrium::sweep;
 use cycloid::model::results::SceneResult;
 use cycloid::model::{ContactLaw, Design, Effect, GeometryMode, Plan, Scene, TorqueSweep};
 use cycloid::progress::Silent;
@@ -468,7 +469,7 @@ fn a_floating_disc_in_exact_geometry_rests_where_one_disc_at_zero_torque_does() 
 
 /// The general coupled solve (here exact geometry, 11 rollers, whose split moves with the
 /// crank) runs its chunks in two waves, each odd chunk continuing the split of the even chunk
-/// before it (`sweep::solve_in_two_waves`): what a chunk starts from is fixed by the chunks'
+/// before it (`discs_sweep::solve_in_two_waves`): what a chunk starts from is fixed by the chunks'
 /// order, not by which thread ran what before, so the curves, shares and transmission must be
 /// the same bit for bit on one thread and on four. 300 angles make five chunks, two of them
 /// continued. The shares sum to T at every angle (to 1e-9 of T, the solve's guard).

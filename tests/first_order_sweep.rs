@@ -8,6 +8,7 @@
 
 use approx::relative_eq;
 use cycloid::equilibrium::angle::solve_angle;
+use cycloid::equilibrium::discs_sweep;
 use cycloid::equilibrium::first_order_sweep::{FirstOrderSweep, Row, Scratch};
 use cycloid::equilibrium::loaded::{AngleSolution, Model};
 use cycloid::equilibrium::residual::residual;
@@ -334,7 +335,7 @@ fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
     pool.build().unwrap().install(f)
 }
 
-/// The same for two discs (`sweep::sweep_discs_observed`), whose lean kernels and scratch
+/// The same for two discs (`discs_sweep::sweep_discs_observed`), whose lean kernels and scratch
 /// space are built once per thread and restarted at every chunk: on one thread each chunk
 /// after the first inherits the screens, active sets and followed rotations of the one
 /// before, on four each thread's first chunk starts fresh, and the curves and the shares must
@@ -344,7 +345,7 @@ fn two_discs_sweep_the_same_on_one_and_on_four_threads() {
     for (path, model, angles) in thread_cases() {
         let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
         let silent = &cycloid::progress::Silent;
-        let sweep = || sweep::sweep_discs_observed(&discs, &angles, true, silent).unwrap();
+        let sweep = || discs_sweep::sweep_discs_observed(&discs, &angles, true, silent).unwrap();
         let (one, four) = (on_threads(1, sweep), on_threads(4, sweep));
         assert_eq!(one.discs, four.discs, "{path}");
         assert_eq!(one.torque_nmm, four.torque_nmm, "{path}");

@@ -8,9 +8,10 @@
 
 use crate::engine::{bearing_life, torsion};
 use crate::equilibrium::discs::Discs;
+use crate::equilibrium::discs_sweep::{self, DiscSweeps};
 use crate::equilibrium::loaded::Model;
 use crate::equilibrium::solve::{Settings, SolveFailure};
-use crate::equilibrium::sweep::{self, DiscSweeps};
+use crate::equilibrium::sweep;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::QUANTITIES;
@@ -228,7 +229,7 @@ fn loaded_disc_sweeps(
         design.discs,
     );
     let periodic = scene.spans_loaded_periods(design, plan);
-    sweep::sweep_discs_observed(&discs, &scene.crank_rad, periodic, progress)
+    discs_sweep::sweep_discs_observed(&discs, &scene.crank_rad, periodic, progress)
         .map(Some)
         .map_err(|f| sweep_failed(scene, f))
 }

@@ -8,6 +8,7 @@ pub mod angle;
 pub mod balance;
 mod compliant_bearing;
 pub mod discs;
+pub mod discs_sweep;
 pub mod first_order_sweep;
 pub mod loaded;
 pub mod pins;

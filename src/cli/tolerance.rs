@@ -4,7 +4,7 @@
 use super::{distinct_outputs, inputs_of, locate, print, write_file, Outcome};
 use super::{ToleranceArgs, ToleranceCommand};
 use crate::engine::check;
-use crate::engine::tolerance::{sensitivity, shard, summary, write, Records, Study};
+use crate::engine::tolerance::{sensitivity, shard, summary, write, Records, ToleranceStudy};
 use crate::error::{Error, ErrorKind, Result};
 use crate::files;
 use crate::report::terminal::Bar;
@@ -101,7 +101,7 @@ pub fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
     let path = args.spec.unwrap_or_default();
     let spec = spec::load(&path)?;
     check::validate(&spec).map_err(|e| locate(e, &spec))?;
-    let study = Study::new(&spec, args.samples).map_err(|e| locate(e, &spec))?;
+    let study = ToleranceStudy::new(&spec, args.samples).map_err(|e| locate(e, &spec))?;
     let samples = study.samples() as u64;
     let shard = match &args.shard {
         Some(s) => Some(parse_shard(s, samples)?),
@@ -188,7 +188,7 @@ impl Outputs<'_> {
 
 /// Print and write what the records of every sample say; the verdict of the failure rate.
 fn finish(
-    study: &Study,
+    study: &ToleranceStudy,
     records: &Records,
     sens: Option<&sensitivity::Sensitivity>,
     outputs: &Outputs,
@@ -223,7 +223,7 @@ fn finish(
 
 /// One shard: its samples' records, written to `file` for `merge`.
 fn run_shard(
-    study: &Study,
+    study: &ToleranceStudy,
     (i, n): (u64, u64),
     file: &str,
     out: &mut dyn Write,
@@ -274,7 +274,7 @@ fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result
     let records = shard::merge(paths, &shards)?;
     let h = &shards[0].header;
     let spec = spec::parse(&h.spec_path, &h.spec_text)?;
-    let study = Study::new(&spec, Some(h.samples as usize))?;
+    let study = ToleranceStudy::new(&spec, Some(h.samples as usize))?;
     if study.limits.len() != h.limits as usize {
         return Err(invalid(format!(
             "{}: the shards hold {} limits, their spec evaluates {}: written by another version \
@@ -288,7 +288,12 @@ fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result
 }
 
 /// `--write-sample K OUT`.
-fn write_sample(study: &Study, k: &str, path: &str, out: &mut dyn Write) -> Result<Outcome> {
+fn write_sample(
+    study: &ToleranceStudy,
+    k: &str,
+    path: &str,
+    out: &mut dyn Write,
+) -> Result<Outcome> {
     let n = study.samples() as u64;
     let k: u64 = k.parse().ok().filter(|&k| k < n).ok_or_else(|| {
         invalid(format!(
@@ -310,7 +315,7 @@ fn write_sample(study: &Study, k: &str, path: &str, out: &mut dyn Write) -> Resu
 /// other checks run on the disc as built, but a study draws every part, the disc too, from
 /// the drawing (as `cycloid tolerance` does), and its line says so.
 pub fn check(spec: &spec::Spec) -> Result<check::Check> {
-    let study = Study::new(spec, None).map_err(|e| locate(e, spec))?;
+    let study = ToleranceStudy::new(spec, None).map_err(|e| locate(e, spec))?;
     let bar = Bar::with_rate("tolerance study", "samples", study.samples() as u64);
     let records = study.run((0, 1), &bar).map_err(|e| locate(e, spec))?;
     drop(bar);

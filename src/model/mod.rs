@@ -61,7 +61,7 @@ pub use design::{
     ConvexRadius, CrankBearing, Design, Locus, Material, Modification, OutputPins, MAX_DISCS,
 };
 pub use deviations::{CentreDeviation, Deviations, FormTerm, RollerDeviation};
-pub use golden::{Golden, Tolerance};
+pub use golden::{Golden, GoldenTolerance};
 pub use limits::{Limit, Limits};
 pub use scene::{
     ContactLaw, Detail, Effect, GeometryMode, Plan, PlannedDetail, PlannedEffect, Scene,

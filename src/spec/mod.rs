@@ -38,7 +38,7 @@ pub struct Spec {
     /// Points measured on the disc (`measured_profile:`), if given.
     pub measured: Option<crate::model::measured::MeasuredProfile>,
     /// Tolerance bands and the Monte Carlo study of them (`tolerances:`), if given.
-    pub tolerances: Option<crate::model::tolerances::Tolerances>,
+    pub tolerances: Option<crate::model::tolerances::PartTolerances>,
 }
 
 /// `accuracy:` of a spec: which scene's ladder the design review shows, and how.

@@ -651,7 +651,7 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
         raw.settings_steps_per_period,
         acc::COARSEST,
     )?;
-    let defaults = acc::Tolerances::default();
+    let defaults = acc::LadderTolerances::default();
     let t = &raw.tolerance;
     let tol = |key: &str, value: Option<f64>, default: f64| {
         value.map_or(Ok(default), |v| {
@@ -661,7 +661,7 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
     let options = acc::Options {
         finest,
         settings_steps,
-        tolerances: acc::Tolerances {
+        tolerances: acc::LadderTolerances {
             te_arcsec: tol("te_arcsec", t.te_arcsec, defaults.te_arcsec)?,
             force_n: tol("force_n", t.force_n, defaults.force_n)?,
             ratio: tol("ratio", t.ratio, defaults.ratio)?,
@@ -777,7 +777,7 @@ fn golden_entry(
         quantity,
         disc,
         file: raw.file,
-        tolerance: Tolerance { abs, rel },
+        tolerance: GoldenTolerance { abs, rel },
     })
 }
 

@@ -3,7 +3,7 @@
 //! layout kept): an existing `reducer.deviations` block is replaced by the sample's, written in
 //! Rust's shortest round-trip form, and the result must parse back to exactly those deviations.
 
-use super::Study;
+use super::ToleranceStudy;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::Deviations;
 use crate::spec::locate_offset;
@@ -87,7 +87,7 @@ fn block_end(text: &str, start: usize, column: usize) -> usize {
 }
 
 /// The spec text of `study` with sample `k`'s deviations and a header comment saying so.
-pub fn sample_spec(study: &Study, k: u64, out_path: &str) -> Result<String> {
+pub fn sample_spec(study: &ToleranceStudy, k: u64, out_path: &str) -> Result<String> {
     let spec = study.spec;
     let d = study.deviations(&study.draw(k));
     let text = with_deviations(&spec.source, &spec.path, &d, out_path)?;

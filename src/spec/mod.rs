@@ -1,16 +1,16 @@
 //! Spec loading: YAML text → `raw` (serde) → the validated model (engine units).
 //!
 //! Errors carry `file:line:column` and the key path. Syntax errors take their location from the
-//! YAML parser (`parse`); value and design-rule errors locate their key in the text (`locate`).
+//! YAML parser (`yaml`); value and design-rule errors locate their key in the text (`locate`).
 
 pub mod deviations;
 pub mod locate;
 pub mod measured;
-pub mod parse;
 pub mod raw;
 pub mod rules;
 pub mod tolerances;
 pub mod validate;
+pub mod yaml;
 
 use crate::error::Result;
 pub use crate::model::scene::MAX_ROLLER_ANGLES;
@@ -61,7 +61,7 @@ pub fn load(path: &str) -> Result<Spec> {
 
 /// Parse and validate spec text; `path` is used in messages only.
 pub fn parse(path: &str, text: &str) -> Result<Spec> {
-    let raw = parse::parse_raw(path, text)?;
+    let raw = yaml::parse_raw(path, text)?;
     validate::build(path, text, raw).map_err(|e| locate::locate_error(e, path, text))
 }
 

@@ -1,8 +1,8 @@
 //! The raw spec → the validated model: every value checked and converted to engine units; the
 //! first broken rule is the error, with its key path.
 
-use super::parse::did_you_mean;
 use super::raw::*;
+use super::yaml::did_you_mean;
 use super::{Accuracy, Spec};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;

@@ -1,8 +1,9 @@
 //! The accuracy ladder's settings (`accuracy:` of a spec, or the command line): the rungs'
 //! resolutions and the tolerances a rung must meet (see `engine::accuracy`).
 
-use super::scene::{Effect, Plan, Scene, MAX_ROLLER_ANGLES};
-use super::Design;
+use super::design::Design;
+use super::effect::Effect;
+use super::scene::{Plan, Scene, MAX_ROLLER_ANGLES};
 use crate::units;
 
 /// Steps per mesh period of the coarsest rung.

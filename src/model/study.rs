@@ -1,6 +1,6 @@
 //! An optimisation study (paper §4): objective, variables, start, constraints.
 
-use super::design::Modification;
+use super::modification::Modification;
 use super::quantity::ObjectiveDef;
 use crate::units;
 

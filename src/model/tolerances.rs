@@ -2,7 +2,7 @@
 //! distributed in it, and the Monte Carlo study that draws as-built reducers from them
 //! (`cycloid tolerance`; MODEL.md "Part deviations"). Engine units (mm).
 
-use super::{CentreDeviation, Deviations, RollerDeviation};
+use super::deviations::{CentreDeviation, Deviations, RollerDeviation};
 
 /// A kind of deviation a tolerance band is given for; the name is the spec key.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -41,8 +41,8 @@
 //! squares decreases. Uncertainties: σ̂² = Σd²/(m − n), cov = σ̂²·(JᵀJ)⁻¹ = σ̂²·S⁻¹·P·R⁻¹R⁻ᵀ·Pᵀ·S⁻¹
 //! from the same factorisation (S the column norms, P the pivoting), at the solution.
 
-use super::flanks::flanks;
-pub use super::flanks::Flank;
+use super::fitted::{Estimate, FittedPoint, FormError, Harmonic};
+use super::flanks::{flanks, Flank};
 use super::{Feature, MeasuredPoint};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::profile::{ClosestPointFailure, Foot, Profile};
@@ -79,51 +79,6 @@ pub struct Request<'a> {
     pub harmonics: usize,
 }
 
-/// An identified value with its standard uncertainty (same unit).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Estimate {
-    pub value: f64,
-    pub sigma: f64,
-}
-
-/// One harmonic of the form error: w(t) ∋ cos_mm·cos(order·t) + sin_mm·sin(order·t), mm.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Harmonic {
-    pub order: usize,
-    pub cos_mm: Estimate,
-    pub sin_mm: Estimate,
-}
-
-impl Harmonic {
-    /// Amplitude sqrt(a² + b²), mm.
-    pub fn amplitude_mm(&self) -> f64 {
-        self.cos_mm.value.hypot(self.sin_mm.value)
-    }
-}
-
-/// The form error w(t) along the profile normal, mm (positive: material missing).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct FormError {
-    pub harmonics: Vec<Harmonic>,
-}
-
-impl FormError {
-    /// The orders of a series up to `harmonics` for a disc of `teeth` teeth: 2..=harmonics
-    /// without the multiples of the tooth count (see the module comment).
-    pub fn orders(harmonics: usize, teeth: usize) -> Vec<usize> {
-        (2..=harmonics).filter(|k| k % teeth != 0).collect()
-    }
-
-    /// w(t), mm, the harmonics by `cos_sin_of_orders` (one sin_cos per call: the per-flank
-    /// summaries evaluate it at every point).
-    pub fn value_mm(&self, t: f64) -> f64 {
-        let orders = self.harmonics.iter().map(|h| h.order);
-        (self.harmonics.iter().zip(cos_sin_of_orders(t, orders)))
-            .map(|(h, (c, s))| h.cos_mm.value * c + h.sin_mm.value * s)
-            .sum()
-    }
-}
-
 /// How much of the profile the points cover.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Coverage {
@@ -131,14 +86,6 @@ pub struct Coverage {
     pub fraction: f64,
     /// Teeth with at least 3 points on each flank.
     pub teeth_measured: usize,
-}
-
-/// A profile point after the fit.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FittedPoint {
-    pub t: f64,
-    pub residual_mm: f64,
-    pub line: usize,
 }
 
 /// The result of an identification.

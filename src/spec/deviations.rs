@@ -14,7 +14,7 @@ fn invalid(key: String, message: String) -> Error {
 }
 
 fn finite(key: String, value: f64) -> Result<f64> {
-    super::validate::finite(&key, value)
+    super::values::finite(&key, value)
 }
 
 /// An index into `count` parts named `what`, each given once (`seen`).

@@ -56,7 +56,7 @@ pub fn build(
         None => Distribution::Normal,
         Some(d) => d.parse().map_err(|m| invalid("distribution", m))?,
     };
-    let scene = super::scene_index(scenes, &raw.scene, &format!("{KEY}.scene"))?;
+    let scene = super::scenes::scene_index(scenes, &raw.scene, &format!("{KEY}.scene"))?;
     if scenes[scene].geometry != GeometryMode::Exact {
         return Err(invalid(
             "scene",

@@ -1,9 +1,12 @@
 //! The raw spec → the validated model: every value checked and converted to engine units; the
 //! first broken rule is the error, with its key path.
 
+use super::paths::resolve;
 use super::raw::*;
+use super::scenes::{refuse_first_order, scene_index};
+use super::validated::{Accuracy, Spec};
+use super::values::{finite, invalid};
 use super::yaml::did_you_mean;
-use super::{Accuracy, Spec};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
 use crate::model::quantity;
@@ -14,10 +17,6 @@ use crate::model::study::{
 };
 use crate::model::*;
 use crate::{numeric, units};
-
-fn invalid(key: &str, message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message).at_key(key)
-}
 
 /// A named choice (`contact_law`, `geometry`), when given.
 fn named<T: std::str::FromStr<Err = String>>(key: &str, value: Option<&str>) -> Result<Option<T>> {
@@ -75,17 +74,6 @@ fn length(key: &str, value: f64) -> Result<f64> {
         ));
     }
     Ok(value)
-}
-
-pub(super) fn finite(key: &str, value: f64) -> Result<f64> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(invalid(
-            key,
-            format!("must be a finite number, got {value}"),
-        ))
-    }
 }
 
 fn count(key: &str, value: i64, min: i64) -> Result<usize> {
@@ -555,7 +543,7 @@ fn exact_as_built(design: &Design, scenes: &[Scene]) -> Result<()> {
     if design.deviations.is_nominal() {
         return Ok(());
     }
-    super::refuse_first_order(
+    refuse_first_order(
         scenes,
         "`reducer.deviations` puts parts off their nominal places: the closed form assumes \
          every roller and pin on its place, so parts as built are computed with \
@@ -634,7 +622,7 @@ fn not_torsion(key: &str, scene: &Scene, what: &str) -> Result<()> {
 /// `accuracy:`: the scene exists and computes something the ladder compares, the rungs are
 /// rungs of the ladder, the tolerances are positive.
 fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Result<Accuracy> {
-    let scene = super::scene_index(scenes, &raw.scene, "accuracy.scene")?;
+    let scene = scene_index(scenes, &raw.scene, "accuracy.scene")?;
     let steps = |key: &str, value: Option<i64>, min: usize| {
         value
             .map(|n| acc::ladder_steps(n, min).map_err(|m| invalid(&format!("accuracy.{key}"), m)))
@@ -679,29 +667,6 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
     Ok(Accuracy { scene, options })
 }
 
-/// Resolve a golden path against the spec file's directory, dropping `.` and `dir/..` pairs
-/// so messages show `golden/x.csv` rather than `specs/../golden/x.csv`.
-pub fn resolve(spec_path: &str, file: &str) -> std::path::PathBuf {
-    use std::path::{Component, Path, PathBuf};
-    let base = Path::new(spec_path).parent().unwrap_or(Path::new(""));
-    let mut out = PathBuf::new();
-    for c in base.join(file).components() {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir => {
-                let last = out.components().next_back();
-                if matches!(last, Some(Component::Normal(_))) {
-                    out.pop();
-                } else {
-                    out.push("..");
-                }
-            }
-            other => out.push(other.as_os_str()),
-        }
-    }
-    out
-}
-
 fn golden_entry(
     path: &str,
     i: usize,
@@ -719,7 +684,7 @@ fn golden_entry(
             ))
         }
     };
-    super::scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
+    scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     let quantity = quantity::find_curve(&raw.quantity).ok_or_else(|| {
         invalid(
             &format!("{key}.quantity"),
@@ -876,7 +841,7 @@ fn study(
     scenes: &[Scene],
     modification: &Modification,
 ) -> Result<Study> {
-    let scene = super::scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
+    let scene = scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     not_torsion(&format!("{key}.scene"), &scenes[scene], "a study")?;
     let mut variables = Vec::new();
     let v = &raw.variables;

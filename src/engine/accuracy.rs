@@ -226,7 +226,8 @@ pub struct Rung {
     /// the clearance of the steps rung at its resolution, and its time.
     pub clearance_seconds: f64,
     pub outputs: Outputs,
-    /// |rung − reference| per quantity (index: `LadderQuantity as usize`); `None` when not computed.
+    /// |rung − reference| per quantity (index: `LadderQuantity as usize`); `None` when not
+    /// computed.
     pub errors: [Option<f64>; 6],
     /// max |δ_ref − δ_rung| at the rung's own crank angles, arcsec (solver round-off only).
     pub te_at_nodes_arcsec: Option<f64>,

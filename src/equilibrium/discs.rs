@@ -81,9 +81,8 @@ pub struct CoupledWork {
 
 /// The splits a `CoupledWork` remembers: four, for a cubic extrapolation. The Newton on the
 /// shares settles an angle in one step only when the guess is within its tolerance (~1e-9 of
-/// T); a quadratic's truncation error (third differences of the shares) was 2.4e-5 N·mm on an
-/// 11-roller design at 3,600 angles per mesh period, six times the tolerance, so that every
-/// angle took a second step.
+/// T); a quadratic's truncation error (the third differences of the shares) can exceed that
+/// even at fine crank steps, and every angle would then take a second step.
 const HISTORY: usize = 4;
 
 impl CoupledWork {
@@ -162,8 +161,8 @@ impl CoupledWork {
     /// replaces it. Where a Newton on the shares settled the angle, the split to remember is
     /// its next one (each share plus `Share::step`), not the one the angle settled on: that
     /// is only within the Newton's tolerance of the answer, and the extrapolation magnifies
-    /// the history's error (fifteenfold for a cubic on a uniform grid, weights −1, 4, −6, 4),
-    /// which cost an 11-roller design a second Newton step at most angles.
+    /// the history's error (fifteenfold for a cubic on a uniform grid, weights −1, 4, −6, 4)
+    /// past that tolerance, which would take a second Newton step.
     pub fn remember_split(&mut self, crank: f64, torque: impl Iterator<Item = f64>, total: f64) {
         if total == 0.0 {
             return;
@@ -396,12 +395,10 @@ fn solve_disc(
     let phi = crank + discs.phases[k];
     // Another solve of the angle the disc was solved at last (a share corrected, a torsion
     // loop's next torque): every roller evaluated. The bounds that let a sweep skip a roller
-    // as out of reach (`rollers::Reach`) were found to miss a contact after the lag jumped
-    // across the backlash between two solves of one angle (34 rollers, Johnson's law, three
-    // discs): a bound is only as good as the gap it starts from, and a warm-started closest
-    // point can settle on a foot that is not the nearest (a gap of 0.091 mm stored where the
-    // neighbouring lags imply ~0.03 mm), so a re-solve, whose lag may jump far, does not use
-    // them.
+    // as out of reach (`rollers::Reach`) are only as good as the gap they start from, and a
+    // warm-started closest point can settle on a foot that is not the nearest; a re-solve,
+    // whose lag may jump far (across the backlash), would carry such a bound past a contact,
+    // so it does not use them.
     if work.works[k].solved_at(phi) {
         work.works[k].reach_all();
     }

@@ -293,11 +293,10 @@ impl<'a> Lean<'a> {
 /// even chunks from no history, then each odd chunk continuing the split of the even chunk
 /// before it. A chunk's first angles otherwise guess the split from fewer than the four
 /// angles the Newton on the shares needs to settle in one step (at the first, an equal
-/// split), and each further step there is a disc solve over every roller: on 11 rollers in
-/// exact geometry the chunk starts held 85 % of the sweep's second steps. The waves are fixed
-/// by the chunks' order, so results do not depend on the thread count. (The lean kernels'
-/// extra steps at chunk starts cost about what a second wave's bookkeeping does; they run in
-/// one wave.)
+/// split), and each further step there is a disc solve over every roller. The waves are fixed
+/// by the chunks' order, so results do not depend on the thread count. The lean kernels run
+/// in one wave: their extra steps at chunk starts are no dearer than a second wave's
+/// bookkeeping.
 fn solve_in_two_waves(
     discs: &Discs,
     crank_rad: &[f64],

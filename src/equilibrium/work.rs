@@ -115,8 +115,8 @@ impl Work {
     /// several, which moves with the crank and, within an angle, with each correction of the
     /// split): each lag moves further by the torque's departure from its own extrapolation
     /// over the slope of its balance at the last solution. Exact for a balance linear on its
-    /// contact set, where the lags' trend alone misses by that departure over the slope (on a
-    /// disc of 11 rollers that left the pins' balance a second evaluation at most angles).
+    /// contact set, where the lags' trend alone misses by that departure over the slope and
+    /// the balance takes another evaluation.
     /// With a rigid bearing only: a compliant one's lags move with the centre too.
     pub(super) fn guess_at_torque(&self, crank: f64, model: &Model) -> (f64, f64) {
         self.extrapolate(crank, model, model.bearing_stiffness_n_per_mm.is_none())

@@ -241,7 +241,7 @@ impl<'a> State<'a> {
 
     /// Residual of a profile point, its foot, and (when `row` is given) its Jacobian row;
     /// `basis` holds two entries per order of the series (overwritten: a scratch the caller
-    /// keeps, where an array of the largest size zeroed per point was a fifth of the fit).
+    /// keeps, so that no array is allocated and zeroed per point).
     fn profile_residual(
         &self,
         point: &MeasuredPoint,
@@ -396,7 +396,7 @@ fn solve(jacobian: &[f64], n: usize, residuals: &[f64]) -> Result<Step> {
     // J·S⁻¹ = Q₁R₁ by the blocked Householder QR without pivoting, then R₁ = Q₂R·Pᵀ by the
     // column-pivoted QR of the small n × n R₁: Q₁Q₂ is orthogonal, so this is a pivoted QR of
     // J·S⁻¹ (the pivots depend on column norms and inner products only, which Q₁ keeps),
-    // at the cost of the unpivoted one (the pivoted QR of the tall matrix is ~40 % slower).
+    // at the cost of the unpivoted one (the pivoted QR of the tall matrix is slower).
     let qr = scaled.qr();
     qr.solve_lstsq_in_place(rhs.as_mut());
     let delta = (0..n).map(|c| rhs[(c, 0)] / scale[c]).collect();
@@ -439,13 +439,13 @@ fn solve(jacobian: &[f64], n: usize, residuals: &[f64]) -> Result<Step> {
 /// None when the factorisation fails (the normal matrix is not numerically positive definite).
 ///
 /// Why the squared condition number does no harm here: the step is only a direction. Its
-/// relative error is ~κ²·ε (κ the condition number of the scaled J; ~22 on the benchmark's
-/// 111 unknowns, so ~5e-14), and for any κ² < 1/ε the iteration is still a contraction whose
-/// fixed point is Jᵀd = 0 — computed as a plain product, as accurately as a QR would — so the
-/// solution does not depend on how accurately the normal matrix was factored, only the speed of
-/// the approach. At the solution, the step and statistics come from the normal equations only
-/// while κ ≤ `NORMAL_CONDITION` = 1e4 (errors ≤ ~2e-8), else from a Householder QR of J
-/// (`solve`), which polishes the last step to QR accuracy and rejects κ above `MAX_CONDITION`.
+/// relative error is ~κ²·ε (κ the condition number of the scaled J), and for any κ² < 1/ε the
+/// iteration is still a contraction whose fixed point is Jᵀd = 0 — computed as a plain
+/// product, as accurately as a QR would — so the solution does not depend on how accurately
+/// the normal matrix was factored, only the speed of the approach. At the solution, the step
+/// and statistics come from the normal equations only while κ ≤ `NORMAL_CONDITION` = 1e4
+/// (errors ≤ ~2e-8), else from a Householder QR of J (`solve`), which polishes the last step
+/// to QR accuracy and rejects κ above `MAX_CONDITION`.
 fn normal_step(jacobian: &[f64], n: usize, residuals: &[f64]) -> Option<Vec<f64>> {
     normal_solve(jacobian, n, residuals).map(|s| s.delta)
 }

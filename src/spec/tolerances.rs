@@ -20,7 +20,7 @@ fn invalid(key: &str, message: String) -> Error {
 /// Default number of samples: the 0.135 % quantiles are then order statistics 1 and 999.
 pub const DEFAULT_SAMPLES: usize = 1000;
 
-/// Largest study: 10⁹ samples (at ~10 ms each, 10⁷ core-seconds: a cluster's job array).
+/// Largest study: 10⁹ samples, a cluster's job array of shards.
 pub const MAX_SAMPLES: i64 = 1_000_000_000;
 
 /// A study's sample count (the spec's `samples` or `--samples`), or what is wrong with it.

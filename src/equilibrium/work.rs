@@ -7,8 +7,8 @@ use super::rollers::Reach;
 use crate::geometry::Vec2;
 
 /// Reusable state of a sequential run over neighbouring crank angles: the last solution (its
-/// buffers and warm starts), where each roller was last evaluated, and the last two lags for
-/// extrapolating the next guess.
+/// buffers and warm starts), where each roller was last evaluated, and the lags of the last
+/// three solved angles for extrapolating the next guess.
 #[derive(Debug, Clone, Default)]
 pub struct Work {
     pub sol: AngleSolution,

@@ -1,7 +1,8 @@
 //! Engine benchmarks (divan). Run: `cargo bench --bench engine`. Numbers go in BENCHMARKS.md.
 //! Single-threaded by default (RAYON_NUM_THREADS=1 recommended for the per-core targets).
 
-use cycloid::equilibrium::curves;
+use cycloid::equilibrium::discs_sweep;
+use cycloid::equilibrium::sweep;
 use cycloid::geometry::clearance::{self, Mesh, Scope};
 use cycloid::model::GeometryMode;
 use cycloid::spec::{self, Spec};
@@ -73,21 +74,21 @@ fn loaded(b: divan::Bencher, geometry: GeometryMode) {
 
 fn loaded_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
     let (model, c) = common::rated_sweep(geometry, 3600, rollers);
-    b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
+    b.bench(|| sweep::sweep(black_box(&model), &c, true).unwrap());
 }
 
 /// Loaded sweep of 360 crank angles (the angles of `check_clearance_only_360`), exact geometry.
 #[divan::bench]
 fn loaded_sweep_360_exact(b: divan::Bencher) {
     let (model, c) = common::rated_sweep(GeometryMode::Exact, 360, 10);
-    b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
+    b.bench(|| sweep::sweep(black_box(&model), &c, true).unwrap());
 }
 
 /// Loaded sweep of 360 crank angles, first-order geometry.
 #[divan::bench]
 fn loaded_sweep_360_first_order(b: divan::Bencher) {
     let (model, c) = common::rated_sweep(GeometryMode::FirstOrder, 360, 10);
-    b.bench(|| curves::sweep(black_box(&model), &c, true).unwrap());
+    b.bench(|| sweep::sweep(black_box(&model), &c, true).unwrap());
 }
 
 /// Loaded sweep of 3,600 crank angles, exact geometry (target < 10 ms on one core).
@@ -156,7 +157,7 @@ fn two_discs_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
     let (model, c) = common::rated_sweep(geometry, 3600, rollers);
     let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
     b.bench(|| {
-        curves::sweep_discs_observed(black_box(&discs), &c, true, &cycloid::progress::Silent)
+        discs_sweep::sweep_discs_observed(black_box(&discs), &c, true, &cycloid::progress::Silent)
             .unwrap()
     });
 }
@@ -173,7 +174,7 @@ fn torsion_4_angles_40_steps(b: divan::Bencher) {
         .find(|c| c.name == "torsion")
         .expect("torsion");
     let plan = cycloid::model::Plan::of("torsion", &[cycloid::model::Effect::Bearing]);
-    let model = cycloid::equilibrium::sweep::Model::new(&s.design, &s.modification, scene, &plan);
+    let model = cycloid::equilibrium::loaded::Model::new(&s.design, &s.modification, scene, &plan);
     let model = cycloid::equilibrium::discs::Discs::new(&model, s.design.discs);
     let sweep = scene.torque_sweep.expect("a torque sweep");
     assert_eq!((scene.crank_rad.len(), sweep.steps), (4, 40));

@@ -2,7 +2,7 @@
 //! tolerance`. Numbers go in BENCHMARKS.md. Targets (issue 15): 1,000 samples of the paper's
 //! 108° rated scene in under 10 s on one core; a merge of 100 shards of 10⁴ samples in under 1 s.
 
-use cycloid::engine::tolerance::{shard, summary, Records, Study};
+use cycloid::engine::tolerance::{shard, summary, Records, ToleranceStudy};
 use cycloid::progress::Silent;
 use cycloid::spec::{self, Spec};
 use std::hint::black_box;
@@ -40,7 +40,7 @@ fn study_spec(samples: usize) -> Spec {
 #[divan::bench(sample_count = 2, sample_size = 1)]
 fn study_1000_samples_108deg(b: divan::Bencher) {
     let spec = study_spec(1000);
-    let study = Study::new(&spec, None).unwrap();
+    let study = ToleranceStudy::new(&spec, None).unwrap();
     b.bench(|| study.run(black_box((0, 1)), &Silent).unwrap());
 }
 
@@ -51,7 +51,7 @@ fn study_1000_samples_108deg(b: divan::Bencher) {
 fn merge_100_shards_of_10k(b: divan::Bencher) {
     let (shards, count) = (100u64, 1_000_000u64);
     let spec = study_spec(count as usize);
-    let study = Study::new(&spec, None).unwrap();
+    let study = ToleranceStudy::new(&spec, None).unwrap();
     let dir = std::env::temp_dir().join(format!("cycloid-bench-merge-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut state = 0x9e3779b97f4a7c15u64;

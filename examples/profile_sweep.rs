@@ -6,7 +6,8 @@
 //! the one-disc sweep), a fourth the roller count (default 10, the paper's; 11 puts two discs
 //! out of phase, `common::rated_sweep`).
 
-use cycloid::equilibrium::curves;
+use cycloid::equilibrium::discs_sweep;
+use cycloid::equilibrium::sweep;
 use cycloid::model::GeometryMode;
 
 #[path = "../benches/common/mod.rs"]
@@ -25,11 +26,11 @@ fn main() {
     let (model, crank) = common::rated_sweep(geometry, n, rollers);
     let transmission = if discs > 0 {
         let d = cycloid::equilibrium::discs::Discs::new(&model, discs);
-        curves::sweep_discs_observed(&d, &crank, true, &cycloid::progress::Silent)
+        discs_sweep::sweep_discs_observed(&d, &crank, true, &cycloid::progress::Silent)
             .expect("sweep")
             .transmission
     } else {
-        curves::sweep(&model, &crank, true)
+        sweep::sweep(&model, &crank, true)
             .expect("sweep")
             .transmission
     };

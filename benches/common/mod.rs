@@ -1,6 +1,6 @@
 //! The loaded sweep the benchmarks and `examples/profile_sweep.rs` measure (shared by path).
 
-use cycloid::equilibrium::sweep::Model;
+use cycloid::equilibrium::loaded::Model;
 use cycloid::model::GeometryMode;
 use cycloid::spec::{self};
 

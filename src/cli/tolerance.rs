@@ -8,7 +8,7 @@ use crate::engine::commands;
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::Summary;
 use crate::engine::tolerance::Records;
-use crate::engine::tolerance::Study;
+use crate::engine::tolerance::ToleranceStudy;
 use crate::error::{Error, ErrorKind, Result};
 use crate::files;
 use crate::report::terminal::Terminal;
@@ -104,7 +104,7 @@ pub fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
     }
     let path = args.spec.unwrap_or_default();
     let spec = spec::load(&path)?;
-    let study = Study::new(&spec, args.samples).map_err(|e| spec.locate(e))?;
+    let study = ToleranceStudy::new(&spec, args.samples).map_err(|e| spec.locate(e))?;
     let samples = study.samples() as u64;
     let shard = match &args.shard {
         Some(s) => Some(parse_shard(s, samples)?),
@@ -189,7 +189,7 @@ impl Outputs<'_> {
 
 /// A whole study's records, their summary and the sensitivities, if computed.
 struct Whole<'a>(
-    &'a Study<'a>,
+    &'a ToleranceStudy<'a>,
     &'a Records,
     &'a Summary,
     Option<&'a Sensitivity>,
@@ -218,7 +218,7 @@ fn finish(run: Whole, outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome>
 
 /// One shard: its samples' records, written to `file` for `merge`.
 fn run_shard(
-    study: &Study,
+    study: &ToleranceStudy,
     (i, n): (u64, u64),
     file: &str,
     out: &mut dyn Write,
@@ -260,7 +260,12 @@ fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result
 }
 
 /// `--write-sample K OUT`.
-fn write_sample(study: &Study, k: &str, path: &str, out: &mut dyn Write) -> Result<Outcome> {
+fn write_sample(
+    study: &ToleranceStudy,
+    k: &str,
+    path: &str,
+    out: &mut dyn Write,
+) -> Result<Outcome> {
     let n = study.samples() as u64;
     let k: u64 = k.parse().ok().filter(|&k| k < n).ok_or_else(|| {
         invalid(format!(

@@ -35,7 +35,7 @@ use crate::engine::scene;
 use crate::equilibrium::solve::Settings;
 use crate::error::{Error, ErrorKind, Result};
 pub use crate::model::accuracy::{
-    base_angles, check, ladder_steps, tolerance, Options, Setting, Tolerances, COARSEST,
+    base_angles, check, ladder_steps, tolerance, LadderTolerances, Options, Setting, COARSEST,
     DEFAULT_FINEST, MAX_FINEST,
 };
 use crate::model::quantity::{self, TE};
@@ -59,7 +59,7 @@ pub const LOOSE_REL_TOL: [f64; 2] = [1e-6, 1e-9];
 
 /// A headline output of a scene, compared rung by rung.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Quantity {
+pub enum LadderQuantity {
     TeCurve,
     TeFluctuation,
     RatioFluctuation,
@@ -68,44 +68,46 @@ pub enum Quantity {
     MinClearance,
 }
 
-impl Quantity {
-    pub const ALL: [Quantity; 6] = [
-        Quantity::TeCurve,
-        Quantity::TeFluctuation,
-        Quantity::RatioFluctuation,
-        Quantity::MaxRollerForce,
-        Quantity::MaxBearingForce,
-        Quantity::MinClearance,
+impl LadderQuantity {
+    pub const ALL: [LadderQuantity; 6] = [
+        LadderQuantity::TeCurve,
+        LadderQuantity::TeFluctuation,
+        LadderQuantity::RatioFluctuation,
+        LadderQuantity::MaxRollerForce,
+        LadderQuantity::MaxBearingForce,
+        LadderQuantity::MinClearance,
     ];
 
     /// Short column heading.
     pub fn label(self) -> &'static str {
         match self {
-            Quantity::TeCurve => "TE curve",
-            Quantity::TeFluctuation => "TE fluct.",
-            Quantity::RatioFluctuation => "ratio fluct.",
-            Quantity::MaxRollerForce => "max roller F",
-            Quantity::MaxBearingForce => "max bearing F",
-            Quantity::MinClearance => "min clearance",
+            LadderQuantity::TeCurve => "TE curve",
+            LadderQuantity::TeFluctuation => "TE fluct.",
+            LadderQuantity::RatioFluctuation => "ratio fluct.",
+            LadderQuantity::MaxRollerForce => "max roller F",
+            LadderQuantity::MaxBearingForce => "max bearing F",
+            LadderQuantity::MinClearance => "min clearance",
         }
     }
 
     /// The quantity of the registry it is (the TE curve's is the loaded TE).
     pub fn registry(self) -> &'static quantity::Quantity {
         match self {
-            Quantity::TeCurve => &quantity::TE,
-            Quantity::TeFluctuation => &quantity::TE_FLUCTUATION,
-            Quantity::RatioFluctuation => &quantity::RATIO_FLUCTUATION,
-            Quantity::MaxRollerForce => &quantity::MAX_ROLLER_FORCE,
-            Quantity::MaxBearingForce => &quantity::MAX_BEARING_FORCE,
-            Quantity::MinClearance => &quantity::MIN_CLEARANCE,
+            LadderQuantity::TeCurve => &quantity::TE,
+            LadderQuantity::TeFluctuation => &quantity::TE_FLUCTUATION,
+            LadderQuantity::RatioFluctuation => &quantity::RATIO_FLUCTUATION,
+            LadderQuantity::MaxRollerForce => &quantity::MAX_ROLLER_FORCE,
+            LadderQuantity::MaxBearingForce => &quantity::MAX_BEARING_FORCE,
+            LadderQuantity::MinClearance => &quantity::MIN_CLEARANCE,
         }
     }
 
     /// What the error is, in words.
     pub fn description(self) -> String {
         match self {
-            Quantity::TeCurve => "loaded TE curve, max |difference| between the curves".to_string(),
+            LadderQuantity::TeCurve => {
+                "loaded TE curve, max |difference| between the curves".to_string()
+            }
             q => q.registry().label.to_string(),
         }
     }
@@ -114,7 +116,7 @@ impl Quantity {
     /// fraction of a micrometre).
     pub fn unit(self) -> &'static str {
         match self {
-            Quantity::MinClearance => "µm",
+            LadderQuantity::MinClearance => "µm",
             q => q.registry().unit,
         }
     }
@@ -122,7 +124,7 @@ impl Quantity {
     /// The registry's value in `unit`.
     fn scale(self) -> f64 {
         match self {
-            Quantity::MinClearance => units::um(1.0),
+            LadderQuantity::MinClearance => units::um(1.0),
             _ => 1.0,
         }
     }
@@ -132,17 +134,17 @@ impl Quantity {
         self.registry().effect
     }
 
-    pub fn tolerance(self, t: &Tolerances) -> f64 {
+    pub fn tolerance(self, t: &LadderTolerances) -> f64 {
         match self {
-            Quantity::TeCurve | Quantity::TeFluctuation => t.te_arcsec,
-            Quantity::RatioFluctuation => t.ratio,
-            Quantity::MaxRollerForce | Quantity::MaxBearingForce => t.force_n,
-            Quantity::MinClearance => t.clearance_um,
+            LadderQuantity::TeCurve | LadderQuantity::TeFluctuation => t.te_arcsec,
+            LadderQuantity::RatioFluctuation => t.ratio,
+            LadderQuantity::MaxRollerForce | LadderQuantity::MaxBearingForce => t.force_n,
+            LadderQuantity::MinClearance => t.clearance_um,
         }
     }
 
     /// Does an error meet this quantity's tolerance? (A NaN error does not.)
-    pub fn within(self, error: f64, t: &Tolerances) -> bool {
+    pub fn within(self, error: f64, t: &LadderTolerances) -> bool {
         error <= self.tolerance(t)
     }
 
@@ -161,7 +163,7 @@ pub struct Outputs {
     pub ratio: Option<Vec<f64>>,
     /// Rollers carrying load at every crank angle.
     pub contacts: Option<Vec<usize>>,
-    /// The scalar quantities (index: `Quantity as usize`; the TE curve's is its largest |δ|).
+    /// The scalar quantities (index: `LadderQuantity as usize`; the TE curve's is its largest |δ|).
     pub scalars: [Option<f64>; 6],
 }
 
@@ -170,9 +172,9 @@ impl Outputs {
         let curve = |q: &quantity::Quantity| q.curves(r).and_then(|c| c.values.into_iter().next());
         let te_arcsec = curve(&TE);
         let mut scalars = [None; 6];
-        for q in Quantity::ALL {
+        for q in LadderQuantity::ALL {
             scalars[q.index()] = match q {
-                Quantity::TeCurve => te_arcsec
+                LadderQuantity::TeCurve => te_arcsec
                     .as_ref()
                     .map(|v| v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))),
                 q => q.registry().scalar(r).map(|e| e.value * q.scale()),
@@ -188,7 +190,7 @@ impl Outputs {
     }
 
     /// The scalar value of a quantity (the TE curve's is its largest |δ|).
-    pub fn value(&self, q: Quantity) -> Option<f64> {
+    pub fn value(&self, q: LadderQuantity) -> Option<f64> {
         self.scalars[q.index()]
     }
 }
@@ -224,7 +226,8 @@ pub struct Rung {
     /// the clearance of the steps rung at its resolution, and its time.
     pub clearance_seconds: f64,
     pub outputs: Outputs,
-    /// |rung − reference| per quantity (index: `Quantity as usize`); `None` when not computed.
+    /// |rung − reference| per quantity (index: `LadderQuantity as usize`); `None` when not
+    /// computed.
     pub errors: [Option<f64>; 6],
     /// max |δ_ref − δ_rung| at the rung's own crank angles, arcsec (solver round-off only).
     pub te_at_nodes_arcsec: Option<f64>,
@@ -236,13 +239,13 @@ pub struct Rung {
 }
 
 impl Rung {
-    pub fn error(&self, q: Quantity) -> Option<f64> {
+    pub fn error(&self, q: LadderQuantity) -> Option<f64> {
         self.errors[q.index()]
     }
 
     /// The rung's verdict: a class (`reference`, `model`, `pass`, `fail`) and its text
     /// ("met", or "not met: …" naming the quantities over their tolerance).
-    pub fn verdict(&self, t: &Tolerances) -> (&'static str, String) {
+    pub fn verdict(&self, t: &LadderTolerances) -> (&'static str, String) {
         if self.is_reference {
             return ("reference", "reference".to_string());
         }
@@ -259,14 +262,14 @@ impl Rung {
     }
 
     /// The quantities whose error exceeds its tolerance.
-    pub fn misses(&self, t: &Tolerances) -> Vec<Quantity> {
-        Quantity::ALL
+    pub fn misses(&self, t: &LadderTolerances) -> Vec<LadderQuantity> {
+        LadderQuantity::ALL
             .into_iter()
             .filter(|&q| self.error(q).is_some_and(|e| !q.within(e, t)))
             .collect()
     }
 
-    pub fn meets(&self, t: &Tolerances) -> bool {
+    pub fn meets(&self, t: &LadderTolerances) -> bool {
         self.misses(t).is_empty()
     }
 
@@ -301,9 +304,9 @@ pub struct Layout {
     /// Crank angles per 12 steps per mesh period (the coarsest rung's angle count).
     pub base_angles: usize,
     /// The quantities the scene computes, in column order.
-    pub quantities: Vec<Quantity>,
+    pub quantities: Vec<LadderQuantity>,
     pub finest: usize,
-    pub tolerances: Tolerances,
+    pub tolerances: LadderTolerances,
     pub geometry: GeometryMode,
     pub law: ContactLaw,
     /// The TE and ratio curves wrap around (the range covers whole loaded periods).
@@ -357,21 +360,21 @@ impl Ladder {
     /// magnitude in the reference (the largest |δ| for the TE quantities, the largest κ for the
     /// ratio fluctuation). The solves converge to 1e-11 relative; central differences divide
     /// their round-off by the step.
-    pub fn noise_floor(&self, q: Quantity) -> f64 {
+    pub fn noise_floor(&self, q: LadderQuantity) -> f64 {
         let o = &self.reference().outputs;
         let scale = match q {
-            Quantity::RatioFluctuation => o
+            LadderQuantity::RatioFluctuation => o
                 .ratio
                 .as_ref()
                 .map_or(0.0, |r| r.iter().fold(0.0, |m: f64, x| m.max(x.abs()))),
-            Quantity::TeFluctuation => o.value(Quantity::TeCurve).unwrap_or(0.0),
+            LadderQuantity::TeFluctuation => o.value(LadderQuantity::TeCurve).unwrap_or(0.0),
             _ => o.value(q).map_or(0.0, f64::abs),
         };
         1e-8 * scale
     }
 
     /// An error above the noise floor, else `None`.
-    fn resolved(&self, r: &Rung, q: Quantity) -> Option<f64> {
+    fn resolved(&self, r: &Rung, q: LadderQuantity) -> Option<f64> {
         r.error(q).filter(|&e| e > self.noise_floor(q))
     }
 
@@ -379,7 +382,7 @@ impl Ladder {
     /// reference: p = log2(e(N)/e(2N)), one value per pair (N, 2N) with 2N below the finest;
     /// `None` where an error is at round-off (`noise_floor`), e.g. an extreme that falls on a
     /// crank angle every grid shares.
-    pub fn orders(&self, q: Quantity) -> Vec<(usize, Option<f64>)> {
+    pub fn orders(&self, q: LadderQuantity) -> Vec<(usize, Option<f64>)> {
         let steps: Vec<&Rung> = self.steps_rungs().filter(|r| !r.is_reference).collect();
         steps
             .windows(2)
@@ -400,7 +403,7 @@ impl Ladder {
     /// without the one just below it (its error against the reference is inflated by the
     /// reference's own error: e(N/2)/e(N) = 2^p + 1 instead of 2^p). `None` with fewer than two
     /// errors above the noise floor.
-    pub fn fitted_order(&self, q: Quantity) -> Option<f64> {
+    pub fn fitted_order(&self, q: LadderQuantity) -> Option<f64> {
         let steps: Vec<&Rung> = self.steps_rungs().filter(|r| !r.is_reference).collect();
         let points: Vec<(f64, f64)> = steps[..steps.len().saturating_sub(1)]
             .iter()
@@ -452,7 +455,7 @@ pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
         to_deg,
         periods,
         base_angles: base,
-        quantities: Quantity::ALL
+        quantities: LadderQuantity::ALL
             .into_iter()
             .filter(|q| plan.has(q.effect()))
             .collect(),
@@ -477,10 +480,10 @@ pub(crate) fn errors(
     let mut at_nodes = None;
     if let (Some(f), Some(c)) = (&reference.te_arcsec, &rung.te_arcsec) {
         let (curve, nodes) = curve_error(f, c, ratio, periodic);
-        e[Quantity::TeCurve.index()] = Some(curve);
+        e[LadderQuantity::TeCurve.index()] = Some(curve);
         at_nodes = Some(nodes);
     }
-    for q in Quantity::ALL.into_iter().skip(1) {
+    for q in LadderQuantity::ALL.into_iter().skip(1) {
         if let (Some(a), Some(b)) = (reference.value(q), rung.value(q)) {
             e[q.index()] = Some((a - b).abs());
         }
@@ -750,7 +753,7 @@ pub fn run(
         }
         for (label, variation, g, l, tol) in variants {
             let mut run = run_once(settings_steps, g, l, tol, false)?;
-            let clearance = Quantity::MinClearance.index();
+            let clearance = LadderQuantity::MinClearance.index();
             run.outputs.scalars[clearance] = base.outputs.scalars[clearance];
             run.clearance_seconds = base.clearance_seconds;
             let rung = make(label, variation, g, l, tol, run);
@@ -837,7 +840,7 @@ pub fn steps_text(x: f64) -> String {
     }
 }
 
-fn tolerance_text(q: Quantity, t: &Tolerances) -> String {
+fn tolerance_text(q: LadderQuantity, t: &LadderTolerances) -> String {
     let v = short(q.tolerance(t));
     if q.unit().is_empty() {
         v
@@ -873,7 +876,7 @@ pub fn header(l: &Layout) -> String {
         "errors are |rung − reference| in each quantity's unit; tolerances: {}\n",
         tolerances.join(", ")
     );
-    let missing: Vec<String> = Quantity::ALL
+    let missing: Vec<String> = LadderQuantity::ALL
         .into_iter()
         .filter(|q| !l.quantities.contains(q))
         .map(|q| q.description())

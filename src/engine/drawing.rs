@@ -13,9 +13,10 @@
 //! Fixed frame, mm, N, rad.
 
 use super::scene;
+use crate::equilibrium::angle::solve_angle;
 use crate::equilibrium::discs::{solve_coupled, CoupledWork, Discs};
+use crate::equilibrium::loaded::AngleSolution;
 use crate::equilibrium::solve::Settings;
-use crate::equilibrium::sweep::{solve_angle, AngleSolution};
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{Mesh, Pose, RollerGap};
 use crate::geometry::{polyline, rotate, Vec2};

@@ -21,7 +21,7 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::files;
 use crate::model::quantity::Curves;
 use crate::model::results::SceneResult;
-use crate::model::{Golden, Tolerance};
+use crate::model::{Golden, GoldenTolerance};
 use crate::spec::Spec;
 use crate::units;
 use serde::{Deserialize, Serialize};
@@ -285,7 +285,7 @@ pub fn compare(
     golden: &GoldenCurves,
     now_deg: &[f64],
     now: &Curves,
-    tolerance: Tolerance,
+    tolerance: GoldenTolerance,
     period: Option<f64>,
 ) -> std::result::Result<Comparison, String> {
     if golden.curves.columns != now.columns {

@@ -10,7 +10,7 @@
 //! Without the full ladder (`check` without `--report`), the reference and the steps rungs up
 //! to the first one that decides are run, untimed.
 
-use super::accuracy::{self, Ladder, Layout, Outputs, Quantity, Tolerances};
+use super::accuracy::{self, Ladder, LadderQuantity, LadderTolerances, Layout, Outputs};
 use crate::engine::scene;
 use crate::error::Result;
 use crate::model::Plan;
@@ -23,7 +23,7 @@ pub struct StepsRung {
     /// Crank steps per mesh period.
     pub steps: usize,
     /// (quantity, |rung − reference| in its unit) of every quantity over its tolerance.
-    pub misses: Vec<(Quantity, f64)>,
+    pub misses: Vec<(LadderQuantity, f64)>,
 }
 
 /// The verdict on a scene's crank resolution.
@@ -35,7 +35,7 @@ pub struct Resolution {
     pub scene_steps: f64,
     /// Steps per mesh period of the reference.
     pub finest: usize,
-    pub tolerances: Tolerances,
+    pub tolerances: LadderTolerances,
     /// The steps rungs compared, coarse to fine (the reference left out).
     pub rungs: Vec<StepsRung>,
 }
@@ -181,8 +181,11 @@ fn rung(layout: &Layout, reference: &Outputs, steps: usize, outputs: Outputs) ->
     }
 }
 
-fn misses(t: &Tolerances, error: impl Fn(Quantity) -> Option<f64>) -> Vec<(Quantity, f64)> {
-    Quantity::ALL
+fn misses(
+    t: &LadderTolerances,
+    error: impl Fn(LadderQuantity) -> Option<f64>,
+) -> Vec<(LadderQuantity, f64)> {
+    LadderQuantity::ALL
         .into_iter()
         .filter_map(|q| error(q).filter(|&e| !q.within(e, t)).map(|e| (q, e)))
         .collect()

@@ -7,10 +7,11 @@
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
 use crate::engine::{bearing_life, torsion};
-use crate::equilibrium::curves::{self, DiscSweeps};
 use crate::equilibrium::discs::Discs;
+use crate::equilibrium::discs_sweep::{self, DiscSweeps};
+use crate::equilibrium::loaded::Model;
 use crate::equilibrium::solve::{Settings, SolveFailure};
-use crate::equilibrium::sweep::Model;
+use crate::equilibrium::sweep;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::QUANTITIES;
@@ -189,7 +190,7 @@ fn loaded_sweep(
     }
     let model = loaded_model(design, m, scene, plan, settings);
     let periodic = scene.spans_loaded_periods(design, plan);
-    curves::sweep_observed(&model, &scene.crank_rad, periodic, progress)
+    sweep::sweep_observed(&model, &scene.crank_rad, periodic, progress)
         .map_err(|f| sweep_failed(scene, f))
 }
 
@@ -209,14 +210,14 @@ fn loaded_disc_sweeps(
         design.discs,
     );
     let periodic = scene.spans_loaded_periods(design, plan);
-    curves::sweep_discs_observed(&discs, &scene.crank_rad, periodic, progress)
+    discs_sweep::sweep_discs_observed(&discs, &scene.crank_rad, periodic, progress)
         .map(Some)
         .map_err(|f| sweep_failed(scene, f))
 }
 
 /// The error of a loaded sweep that failed, at the scene's value it points at (made a spec
 /// key by `at_scene`).
-fn sweep_failed(scene: &Scene, f: curves::SweepFailure) -> Error {
+fn sweep_failed(scene: &Scene, f: sweep::SweepFailure) -> Error {
     let e = solve_failed(scene, f.crank_rad, &f.failure);
     match f.failure.cause() {
         SolveFailure::BeyondCapacity { .. } => e.at_key("output_torque_nm"),

@@ -4,7 +4,7 @@
 //! Disc k of N runs at the crank phase φk = φ + 2πk/N and meshes with the same rollers; its
 //! holes are bored so that the pins sit centred at its ideal pose (`Pins::for_disc`). Each disc
 //! balances its own share Tk of the output torque through its rollers and its pins, with its
-//! own crank bearing, exactly as one disc does (`sweep::solve_into`); what couples them is the
+//! own crank bearing, exactly as one disc does (`angle::solve_into`); what couples them is the
 //! output flange: the output lag γ = βk + βo,k is the same for every disc, and Σ Tk = T.
 //! Without the pins in a scene the discs are rigidly coupled: γ = βk.
 //!
@@ -14,9 +14,11 @@
 //! The compliance is the secant of the last two solves of the disc at this angle, or, at the
 //! first solve, the tangent of its balances (1/Σk·l² of the rollers plus that of the pins).
 
+use super::angle::solve_into;
 use super::balance::moment;
+use super::loaded::Model;
 use super::solve::SolveFailure;
-use super::sweep::{solve_into, Model, Work};
+use super::work::Work;
 use crate::model::design::disc_phase_rad;
 use crate::model::MAX_DISCS;
 
@@ -79,9 +81,8 @@ pub struct CoupledWork {
 
 /// The splits a `CoupledWork` remembers: four, for a cubic extrapolation. The Newton on the
 /// shares settles an angle in one step only when the guess is within its tolerance (~1e-9 of
-/// T); a quadratic's truncation error (third differences of the shares) was 2.4e-5 N·mm on an
-/// 11-roller design at 3,600 angles per mesh period, six times the tolerance, so that every
-/// angle took a second step.
+/// T); a quadratic's truncation error (the third differences of the shares) can exceed that
+/// even at fine crank steps, and every angle would then take a second step.
 const HISTORY: usize = 4;
 
 impl CoupledWork {
@@ -98,7 +99,7 @@ impl CoupledWork {
     }
 
     /// Guess the next angles' splits from those `before` remembered: the last angles of the
-    /// chunk of angles before this one (`curves::sweep_discs_observed`).
+    /// chunk of angles before this one (`discs_sweep::sweep_discs_observed`).
     pub fn continue_from(&mut self, before: &CoupledWork) {
         (self.cranks, self.shares, self.filled) = (before.cranks, before.shares, before.filled);
     }
@@ -143,7 +144,7 @@ impl CoupledWork {
         total: f64,
     ) -> f64 {
         if n == 1 {
-            // The whole torque, exactly: one disc solves as `sweep::solve_into` alone does.
+            // The whole torque, exactly: one disc solves as `angle::solve_into` alone does.
             return total;
         }
         match weights {
@@ -160,8 +161,8 @@ impl CoupledWork {
     /// replaces it. Where a Newton on the shares settled the angle, the split to remember is
     /// its next one (each share plus `Share::step`), not the one the angle settled on: that
     /// is only within the Newton's tolerance of the answer, and the extrapolation magnifies
-    /// the history's error (fifteenfold for a cubic on a uniform grid, weights −1, 4, −6, 4),
-    /// which cost an 11-roller design a second Newton step at most angles.
+    /// the history's error (fifteenfold for a cubic on a uniform grid, weights −1, 4, −6, 4)
+    /// past that tolerance, which would take a second Newton step.
     pub fn remember_split(&mut self, crank: f64, torque: impl Iterator<Item = f64>, total: f64) {
         if total == 0.0 {
             return;
@@ -383,7 +384,7 @@ fn solve_disc(
     t: f64,
 ) -> Result<f64, SolveFailure> {
     // A share within the inner root's resolution of zero is zero: the disc floats, and the
-    // solve at exactly zero torque finds its nearest contact (`sweep::solve_into`) where one
+    // solve at exactly zero torque finds its nearest contact (`angle::solve_into`) where one
     // at 1e-16 N·m would search for a balance the size of round-off.
     let t = if t.abs() <= 1e-12 * discs.torque_nmm.abs() {
         0.0
@@ -394,12 +395,10 @@ fn solve_disc(
     let phi = crank + discs.phases[k];
     // Another solve of the angle the disc was solved at last (a share corrected, a torsion
     // loop's next torque): every roller evaluated. The bounds that let a sweep skip a roller
-    // as out of reach (`rollers::Reach`) were found to miss a contact after the lag jumped
-    // across the backlash between two solves of one angle (34 rollers, Johnson's law, three
-    // discs): a bound is only as good as the gap it starts from, and a warm-started closest
-    // point can settle on a foot that is not the nearest (a gap of 0.091 mm stored where the
-    // neighbouring lags imply ~0.03 mm), so a re-solve, whose lag may jump far, does not use
-    // them.
+    // as out of reach (`rollers::Reach`) are only as good as the gap they start from, and a
+    // warm-started closest point can settle on a foot that is not the nearest; a re-solve,
+    // whose lag may jump far (across the backlash), would carry such a bound past a contact,
+    // so it does not use them.
     if work.works[k].solved_at(phi) {
         work.works[k].reach_all();
     }
@@ -667,7 +666,7 @@ pub fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, la
 #[cfg(test)]
 mod tests {
     use super::Discs;
-    use crate::equilibrium::sweep::Model;
+    use crate::equilibrium::loaded::Model;
     use crate::geometry::Vec2;
     use crate::model::{Effect, Plan};
     use std::f64::consts::TAU;

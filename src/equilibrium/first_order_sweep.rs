@@ -7,7 +7,7 @@
 //! per-roller state (normal, contact point, locus parameter) is built for a roller out of
 //! contact. An angle the closed form cannot settle by itself (zero torque, where the answer is
 //! the touching limit T → 0⁺; a root whose balance steps over the torque by round-off, as at
-//! 1e-6 N·m) is left to the general `sweep::solve_into`, which handles both.
+//! 1e-6 N·m) is left to the general `angle::solve_into`, which handles both.
 //!
 //! Per roller i at crank φ (u_i its unit direction, e_φ = (cos φ, sin φ)):
 //!   cos φi = u_i·e_φ, sin φi = e_φ × u_i, (g_i, l_i, 1/S_i) from `first_order::Coefficients`,
@@ -32,10 +32,11 @@
 //! every angle, else the angle is solved again on every roller and the next angle that settles
 //! screens again, up to `SCREENS` times a chunk).
 
+use super::loaded::Model;
 use super::pins::Pins;
+use super::residual::BalanceSums;
 use super::rollers::Rollers;
 use super::solve::piecewise_linear_root_near;
-use super::sweep::{BalanceSums, Model};
 use crate::contact::hertz_line::HertzFactors;
 use crate::contact::law;
 use crate::geometry::{sin_cos, NearbySinCos, Vec2};
@@ -646,7 +647,7 @@ fn bits(mut mask: u64) -> impl Iterator<Item = usize> {
 #[cfg(test)]
 mod tests {
     use super::{all, bits, FirstOrderSweep, Scratch};
-    use crate::equilibrium::sweep::Model;
+    use crate::equilibrium::loaded::Model;
     use crate::model::{ContactLaw, GeometryMode, Modification};
     use crate::spec::{self};
     use proptest::prelude::*;

@@ -4,11 +4,17 @@
 //! hole walls, the crank bearing holds the disc centre. Moments are about the disc centre;
 //! the pins transmit the output torque T, the rollers balance it.
 
+pub mod angle;
 pub mod balance;
-pub mod curves;
+mod compliant_bearing;
 pub mod discs;
+pub mod discs_sweep;
 pub mod first_order_sweep;
+pub mod loaded;
 pub mod pins;
+pub mod residual;
+mod rigid_bearing;
 pub mod rollers;
 pub mod solve;
 pub mod sweep;
+pub mod work;

@@ -27,7 +27,7 @@ pub struct Root {
     /// then that of the mix as the solver saw it.
     pub straddle: Option<f64>,
     /// The balance's slope ∂m/∂x at x as the solver last evaluated it (a caller's guess at a
-    /// nearby target, `sweep::Work::guess_at_torque`).
+    /// nearby target, `Work::guess_at_torque`).
     pub slope: f64,
 }
 
@@ -556,9 +556,9 @@ mod tests {
 
     /// A disc on the line of centres: rollers in symmetric pairs (g, ±l), clear at lag 0.
     /// A positive torque, however tiny, is carried by the positive arms once they close at
-    /// x = g/l (the limit T → 0⁺ of the root (T + k·l·g)/(k·l²)); M ≤ 0 below it. The sweep's
-    /// running sums used to keep ~1e-7 of round-off after the negative arms opened, and put
-    /// the root of 1e-97 N·mm at 1e-97/1e-7 inside the clearance plateau.
+    /// x = g/l (the limit T → 0⁺ of the root (T + k·l·g)/(k·l²)); M ≤ 0 below it. Running
+    /// sums over the breakpoints would keep ~1e-7 of round-off after the negative arms open,
+    /// and put the root of 1e-97 N·mm at 1e-97/1e-7 inside the clearance plateau.
     #[test]
     fn a_tiny_target_closes_the_first_positive_arm() {
         let k = 7.111737215818652e5;

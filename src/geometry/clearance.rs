@@ -302,8 +302,8 @@ impl Mesh {
             };
             // Converged when the step is negligible or the gap is closed to its round-off (a few
             // ulp of Rp). The step test alone cannot be met once round-off in the gap, divided
-            // by the arm, exceeds 1e-15 + 1e-12·|β| rad: such a roller was wrongly reported as
-            // not closing, and the backlash then depended on round-off.
+            // by the arm, exceeds 1e-15 + 1e-12·|β| rad: such a roller would be reported as not
+            // closing, and the backlash would depend on round-off.
             let closed = g.gap_mm.abs() <= 32.0 * f64::EPSILON * self.roller_circle_radius_mm;
             if closed || step.abs() <= 1e-15 + 1e-12 * pose.lag_rad.abs() {
                 // The warm start follows one flank. If another part of the profile is nearer
@@ -379,7 +379,7 @@ pub fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
 /// (`Profile::closest_point_in_frame`, a Newton step or two from the foot of the angle before)
 /// and accepted when its distance from the locus proves it the nearest point of Γ
 /// (`Tracker::certified_mm`); otherwise, and at a failure, the roller is evaluated from scratch
-/// (`Mesh::roller_gap` with its scanning search), as every roller used to be. Closing lags
+/// (`Mesh::roller_gap` with its scanning search). Closing lags
 /// follow the same way (`Tracker::closing_lag`). Chunks of `CHUNK` angles run in parallel and
 /// write their rows in place.
 pub fn sweep(mesh: &Mesh, crank_rad: &[f64], scope: Scope) -> Result<ClearanceSweep, GapFailure> {

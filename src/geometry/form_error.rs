@@ -1,11 +1,11 @@
 //! The form error of a disc as built, w(t) along the profile normal (MODEL.md "Measured
 //! profiles"): its Fourier series, and the piecewise quintic table the profile evaluates.
 //!
-//! Every closest point on a formed profile needs w, w′ and w″ two or three times; summing 60
-//! harmonics each time was 69 % of an as-built clearance sweep. The table holds, on N equal
-//! intervals of the period, the quintic Hermite interpolant of w from the series' exact w, w′,
-//! w″ at the nodes; N is chosen from the interpolant's error bound so that the table is the
-//! series to a picometre (`TABLE_ERROR_MM`).
+//! Every closest point on a formed profile needs w, w′ and w″ two or three times, and summing
+//! the harmonics each time would dominate an as-built clearance sweep. The table holds, on N
+//! equal intervals of the period, the quintic Hermite interpolant of w from the series' exact
+//! w, w′, w″ at the nodes; N is chosen from the interpolant's error bound so that the table is
+//! the series to a picometre (`TABLE_ERROR_MM`).
 
 use super::cos_sin_of_orders;
 use crate::model::FormTerm;

@@ -384,8 +384,8 @@ impl Profile {
         let dt = 2.0 * reach / SCAN as f64;
         let ts = |k: usize| t0 - reach + dt * k as f64;
         // The scan's sines and cosines by turning the first by a fixed step (angle addition,
-        // ~33 roundings of ε at the end: the scan only ranks distances to seed Newton), where
-        // two libm calls per parameter were a third of a cold search.
+        // ~33 roundings of ε at the end: the scan only ranks distances to seed Newton), instead
+        // of two libm calls per parameter.
         let turn = Trig::at(dt, self.rollers as f64);
         let mut trig = Trig::at(ts(0), self.rollers as f64);
         let mut ds = [0.0; SCAN + 1];
@@ -437,7 +437,7 @@ impl Profile {
             // At a minimum whose h is down to its round-off (products of coordinates ~|C|, |p|
             // with |C'|), the foot is found: near a degenerate foot (the point close to the
             // centre of curvature of a concave flank, h' ≈ 0) the step −h/h' is round-off noise
-            // that need not fall below 1e-13 rad, and the iteration used to run out.
+            // that need not fall below 1e-13 rad, and the iteration would run out.
             let noise = 64.0 * f64::EPSILON * (j.c.norm() + q.norm()) * j.d1.norm();
             if dh > 0.0 && h.abs() <= noise {
                 return self.foot_from(t, &j, q);

@@ -41,8 +41,8 @@
 //! squares decreases. Uncertainties: σ̂² = Σd²/(m − n), cov = σ̂²·(JᵀJ)⁻¹ = σ̂²·S⁻¹·P·R⁻¹R⁻ᵀ·Pᵀ·S⁻¹
 //! from the same factorisation (S the column norms, P the pivoting), at the solution.
 
-use super::flanks::flanks;
-pub use super::flanks::Flank;
+use super::fitted::{Estimate, FittedPoint, FormError, Harmonic};
+use super::flanks::{flanks, Flank};
 use super::{Feature, MeasuredPoint};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::profile::{ClosestPointFailure, Foot, Profile};
@@ -79,51 +79,6 @@ pub struct Request<'a> {
     pub harmonics: usize,
 }
 
-/// An identified value with its standard uncertainty (same unit).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Estimate {
-    pub value: f64,
-    pub sigma: f64,
-}
-
-/// One harmonic of the form error: w(t) ∋ cos_mm·cos(order·t) + sin_mm·sin(order·t), mm.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Harmonic {
-    pub order: usize,
-    pub cos_mm: Estimate,
-    pub sin_mm: Estimate,
-}
-
-impl Harmonic {
-    /// Amplitude sqrt(a² + b²), mm.
-    pub fn amplitude_mm(&self) -> f64 {
-        self.cos_mm.value.hypot(self.sin_mm.value)
-    }
-}
-
-/// The form error w(t) along the profile normal, mm (positive: material missing).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct FormError {
-    pub harmonics: Vec<Harmonic>,
-}
-
-impl FormError {
-    /// The orders of a series up to `harmonics` for a disc of `teeth` teeth: 2..=harmonics
-    /// without the multiples of the tooth count (see the module comment).
-    pub fn orders(harmonics: usize, teeth: usize) -> Vec<usize> {
-        (2..=harmonics).filter(|k| k % teeth != 0).collect()
-    }
-
-    /// w(t), mm, the harmonics by `cos_sin_of_orders` (one sin_cos per call: the per-flank
-    /// summaries evaluate it at every point).
-    pub fn value_mm(&self, t: f64) -> f64 {
-        let orders = self.harmonics.iter().map(|h| h.order);
-        (self.harmonics.iter().zip(cos_sin_of_orders(t, orders)))
-            .map(|(h, (c, s))| h.cos_mm.value * c + h.sin_mm.value * s)
-            .sum()
-    }
-}
-
 /// How much of the profile the points cover.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Coverage {
@@ -131,14 +86,6 @@ pub struct Coverage {
     pub fraction: f64,
     /// Teeth with at least 3 points on each flank.
     pub teeth_measured: usize,
-}
-
-/// A profile point after the fit.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FittedPoint {
-    pub t: f64,
-    pub residual_mm: f64,
-    pub line: usize,
 }
 
 /// The result of an identification.
@@ -294,7 +241,7 @@ impl<'a> State<'a> {
 
     /// Residual of a profile point, its foot, and (when `row` is given) its Jacobian row;
     /// `basis` holds two entries per order of the series (overwritten: a scratch the caller
-    /// keeps, where an array of the largest size zeroed per point was a fifth of the fit).
+    /// keeps, so that no array is allocated and zeroed per point).
     fn profile_residual(
         &self,
         point: &MeasuredPoint,
@@ -449,7 +396,7 @@ fn solve(jacobian: &[f64], n: usize, residuals: &[f64]) -> Result<Step> {
     // J·S⁻¹ = Q₁R₁ by the blocked Householder QR without pivoting, then R₁ = Q₂R·Pᵀ by the
     // column-pivoted QR of the small n × n R₁: Q₁Q₂ is orthogonal, so this is a pivoted QR of
     // J·S⁻¹ (the pivots depend on column norms and inner products only, which Q₁ keeps),
-    // at the cost of the unpivoted one (the pivoted QR of the tall matrix is ~40 % slower).
+    // at the cost of the unpivoted one (the pivoted QR of the tall matrix is slower).
     let qr = scaled.qr();
     qr.solve_lstsq_in_place(rhs.as_mut());
     let delta = (0..n).map(|c| rhs[(c, 0)] / scale[c]).collect();
@@ -492,13 +439,13 @@ fn solve(jacobian: &[f64], n: usize, residuals: &[f64]) -> Result<Step> {
 /// None when the factorisation fails (the normal matrix is not numerically positive definite).
 ///
 /// Why the squared condition number does no harm here: the step is only a direction. Its
-/// relative error is ~κ²·ε (κ the condition number of the scaled J; ~22 on the benchmark's
-/// 111 unknowns, so ~5e-14), and for any κ² < 1/ε the iteration is still a contraction whose
-/// fixed point is Jᵀd = 0 — computed as a plain product, as accurately as a QR would — so the
-/// solution does not depend on how accurately the normal matrix was factored, only the speed of
-/// the approach. At the solution, the step and statistics come from the normal equations only
-/// while κ ≤ `NORMAL_CONDITION` = 1e4 (errors ≤ ~2e-8), else from a Householder QR of J
-/// (`solve`), which polishes the last step to QR accuracy and rejects κ above `MAX_CONDITION`.
+/// relative error is ~κ²·ε (κ the condition number of the scaled J), and for any κ² < 1/ε the
+/// iteration is still a contraction whose fixed point is Jᵀd = 0 — computed as a plain
+/// product, as accurately as a QR would — so the solution does not depend on how accurately
+/// the normal matrix was factored, only the speed of the approach. At the solution, the step
+/// and statistics come from the normal equations only while κ ≤ `NORMAL_CONDITION` = 1e4
+/// (errors ≤ ~2e-8), else from a Householder QR of J (`solve`), which polishes the last step
+/// to QR accuracy and rejects κ above `MAX_CONDITION`.
 fn normal_step(jacobian: &[f64], n: usize, residuals: &[f64]) -> Option<Vec<f64>> {
     normal_solve(jacobian, n, residuals).map(|s| s.delta)
 }

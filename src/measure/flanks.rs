@@ -31,7 +31,7 @@
 //! Flanks: tooth i spans t ∈ [2πi/nc, 2π(i+1)/nc], root at both ends and tip at its middle;
 //! flank `a` runs root to tip with increasing t, flank `b` tip to the next root.
 
-use super::fit::{FittedPoint, FormError};
+use super::fitted::{FittedPoint, FormError};
 use crate::geometry::profile::Profile;
 use std::f64::consts::{PI, TAU};
 

@@ -1,8 +1,9 @@
 //! The accuracy ladder's settings (`accuracy:` of a spec, or the command line): the rungs'
 //! resolutions and the tolerances a rung must meet (see `engine::accuracy`).
 
-use super::scene::{Effect, Plan, Scene, MAX_ROLLER_ANGLES};
-use super::Design;
+use super::design::Design;
+use super::effect::Effect;
+use super::scene::{Plan, Scene, MAX_ROLLER_ANGLES};
 use crate::units;
 
 /// Steps per mesh period of the coarsest rung.
@@ -13,7 +14,7 @@ pub const DEFAULT_FINEST: usize = 3072;
 pub const MAX_FINEST: usize = COARSEST << 12;
 /// What a rung must reach against the reference to count as accurate enough.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Tolerances {
+pub struct LadderTolerances {
     /// TE curve and TE fluctuation, arcsec.
     pub te_arcsec: f64,
     /// Max roller and bearing force, N.
@@ -24,9 +25,9 @@ pub struct Tolerances {
     pub clearance_um: f64,
 }
 
-impl Default for Tolerances {
+impl Default for LadderTolerances {
     fn default() -> Self {
-        Tolerances {
+        LadderTolerances {
             te_arcsec: 0.1,
             force_n: 0.5,
             ratio: 1e-4,
@@ -43,7 +44,7 @@ pub struct Options {
     /// Steps per mesh period of the settings rungs; `None`: the cheapest steps rung that meets
     /// the tolerances (the finest when none does).
     pub settings_steps: Option<usize>,
-    pub tolerances: Tolerances,
+    pub tolerances: LadderTolerances,
 }
 
 impl Default for Options {
@@ -51,7 +52,7 @@ impl Default for Options {
         Options {
             finest: DEFAULT_FINEST,
             settings_steps: None,
-            tolerances: Tolerances::default(),
+            tolerances: LadderTolerances::default(),
         }
     }
 }

@@ -1,6 +1,9 @@
-//! The reducer as designed: geometry, materials, the tooth-profile modification, and the
-//! closed forms of the roller-centre locus that the design rules need (MODEL.md "Profile").
-//! Engine units: mm, MPa, rad.
+//! The reducer as designed: geometry, materials, and the closed forms of the roller-centre
+//! locus that the design rules need (MODEL.md "Profile"); the tooth-profile modification is
+//! `modification`. Engine units: mm, MPa, rad.
+
+use super::deviations::Deviations;
+use super::modification::Modification;
 
 /// Elastic material of one body.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -56,7 +59,7 @@ pub struct Design {
     /// The crank bearing's rating (spec: `reducer.crank_bearing`), for its rating life.
     pub crank_bearing: Option<CrankBearing>,
     /// The parts as built (`reducer.deviations`; all zero: the drawing).
-    pub deviations: super::Deviations,
+    pub deviations: Deviations,
 }
 
 /// The rating of the crank bearing of a disc (ISO 281): its basic dynamic load rating C and
@@ -155,37 +158,6 @@ impl Design {
     /// Radius of an output-pin hole in the disc: pin radius + e + hole clearance.
     pub fn hole_radius_mm(&self) -> f64 {
         self.pins.pin_radius_mm + self.eccentricity_mm + self.pins.hole_clearance_mm
-    }
-}
-
-/// Tooth-profile modification (MODEL.md "Profile").
-/// `shift_mm` = ΔRp (+ thicker teeth), `equidistant_mm` = ΔRrp (+ thinner teeth),
-/// `rotation_rad` = Δδ, the profile turned counter-clockwise about the disc centre.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Modification {
-    pub shift_mm: f64,
-    pub equidistant_mm: f64,
-    pub rotation_rad: f64,
-}
-
-impl Modification {
-    /// The profile rotation Δδ reduced to the tooth pitch, into (−π/nc, π/nc]: the profile has
-    /// nc-fold symmetry (R(−2π/nc)·C(t) = C(t − 2π/nc), MODEL.md "Profile"), so a rotation by
-    /// a whole number of pitches is the same disc. Reduced, a rotation is never more than half
-    /// a pitch from the unrotated profile, which the closest-point search can follow.
-    pub fn rotation_within_pitch(&self, teeth: usize) -> f64 {
-        let pitch = std::f64::consts::TAU / teeth as f64;
-        let turns = (self.rotation_rad / pitch).round();
-        if turns == 0.0 {
-            self.rotation_rad
-        } else {
-            self.rotation_rad - turns * pitch
-        }
-    }
-
-    /// Normal gap at tooth tip and root, ΔRrp − ΔRp (paper Eq. 8's left side).
-    pub fn tip_clearance_mm(&self) -> f64 {
-        self.equidistant_mm - self.shift_mm
     }
 }
 

@@ -2,6 +2,8 @@
 //! state, given (`reducer.deviations`) or drawn from the tolerances (`cycloid tolerance`).
 //! Engine units (mm); every field zero is the nominal reducer.
 
+use super::modification::Modification;
+
 /// Offset of a part's centre from its nominal place on its circle, mm: `radial_mm` outward,
 /// `tangential_mm` a length along the circle, counter-clockwise.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -125,8 +127,8 @@ impl Deviations {
     }
 
     /// The modification as ground: the spec's plus the grinding errors.
-    pub fn ground(&self, m: &super::Modification) -> super::Modification {
-        super::Modification {
+    pub fn ground(&self, m: &Modification) -> Modification {
+        Modification {
             shift_mm: m.shift_mm + self.shift_mm,
             equidistant_mm: m.equidistant_mm + self.equidistant_mm,
             ..*m

@@ -4,12 +4,12 @@ use super::quantity::Quantity;
 
 /// Allowed deviation from a golden value g: |value − g| ≤ abs + rel·|g|.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Tolerance {
+pub struct GoldenTolerance {
     pub abs: f64,
     pub rel: f64,
 }
 
-impl Tolerance {
+impl GoldenTolerance {
     /// The band around a golden value.
     pub fn band(&self, golden: f64) -> f64 {
         self.abs + self.rel * golden.abs()
@@ -30,7 +30,7 @@ pub struct Golden {
     pub file: String,
     /// The path resolved against the spec file's directory (lexically normalised).
     pub path: std::path::PathBuf,
-    pub tolerance: Tolerance,
+    pub tolerance: GoldenTolerance,
 }
 
 impl Golden {

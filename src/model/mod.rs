@@ -4,69 +4,30 @@
 //! Plain data in engine units (mm, N, N·mm, rad, MPa); no computation beyond closed forms of
 //! the design itself.
 
-/// An enum whose variants each have one name, as the spec writes it: `ALL`, `name`,
-/// `from_name`, `names` (for messages), `Display` and `FromStr`, from one table.
-macro_rules! named {
-    ($ty:ident $what:literal { $($variant:ident => $name:literal),+ $(,)? }) => {
-        impl $ty {
-            pub const ALL: [$ty; [$($name),+].len()] = [$($ty::$variant),+];
-
-            /// The name the spec and the outputs use.
-            pub fn name(self) -> &'static str {
-                match self {
-                    $($ty::$variant => $name),+
-                }
-            }
-
-            pub fn from_name(name: &str) -> Option<$ty> {
-                Self::ALL.into_iter().find(|v| v.name() == name)
-            }
-
-            /// Every name, comma-separated, for messages.
-            pub fn names() -> String {
-                Self::ALL.map(|v| v.name()).join(", ")
-            }
-        }
-
-        impl std::fmt::Display for $ty {
-            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-                f.write_str(self.name())
-            }
-        }
-
-        impl std::str::FromStr for $ty {
-            type Err = String;
-
-            fn from_str(s: &str) -> Result<Self, String> {
-                Self::from_name(s)
-                    .ok_or_else(|| format!("unknown {} `{s}`; known: {}", $what, Self::names()))
-            }
-        }
-    };
-}
+#[macro_use]
+mod named;
 
 pub mod accuracy;
 pub mod design;
 pub mod deviations;
+pub mod effect;
 pub mod golden;
 pub mod limits;
 pub mod measured;
+pub mod modification;
 pub mod quantity;
 pub mod results;
 pub mod scene;
 pub mod study;
 pub mod tolerances;
 
-pub use design::{
-    ConvexRadius, CrankBearing, Design, Locus, Material, Modification, OutputPins, MAX_DISCS,
-};
+pub use design::{ConvexRadius, CrankBearing, Design, Locus, Material, OutputPins, MAX_DISCS};
 pub use deviations::{CentreDeviation, Deviations, FormTerm, RollerDeviation};
-pub use golden::{Golden, Tolerance};
+pub use effect::{Detail, Effect};
+pub use golden::{Golden, GoldenTolerance};
 pub use limits::{Limit, Limits};
-pub use scene::{
-    ContactLaw, Detail, Effect, GeometryMode, Plan, PlannedDetail, PlannedEffect, Scene,
-    TorqueSweep,
-};
+pub use modification::Modification;
+pub use scene::{ContactLaw, GeometryMode, Plan, PlannedDetail, PlannedEffect, Scene, TorqueSweep};
 pub use study::{Objective, Study, Variable, VariableKind};
 
 #[cfg(test)]

@@ -7,8 +7,8 @@
 //! scalar of the whole sweep (`Shape::Scalar`: an extreme with where it occurs). Values are in
 //! the unit named by the key (arcsec, N, mm, MPa, deg).
 
+use super::effect::{Detail, Effect};
 use super::results::{BacklashCurves, SceneResult, TorsionFigures};
-use super::scene::{Detail, Effect};
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 

@@ -1,14 +1,13 @@
 //! An optimisation study (paper §4): objective, variables, start, constraints.
 
-use super::design::Modification;
+use super::modification::Modification;
 use super::quantity::ObjectiveDef;
 use crate::units;
 
 /// An optimisation objective: a scalar quantity of the registry (`quantity::OBJECTIVES`).
 pub type Objective = &'static ObjectiveDef;
 
-/// Most points of a study's global stage: the length of its Sobol sequence (2^16), about
-/// 100 s of evaluations on the paper's study scene on one core.
+/// Most points of a study's global stage: the length of its Sobol sequence (2^16).
 pub const MAX_GLOBAL_SAMPLES: usize = 1 << 16;
 /// Most points of a study's verification grid (steps^variables), as many as the global stage.
 pub const MAX_VERIFY_POINTS: usize = MAX_GLOBAL_SAMPLES;

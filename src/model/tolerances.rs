@@ -2,7 +2,7 @@
 //! distributed in it, and the Monte Carlo study that draws as-built reducers from them
 //! (`cycloid tolerance`; MODEL.md "Part deviations"). Engine units (mm).
 
-use super::{CentreDeviation, Deviations, RollerDeviation};
+use super::deviations::{CentreDeviation, Deviations, RollerDeviation};
 
 /// A kind of deviation a tolerance band is given for; the name is the spec key.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -67,7 +67,7 @@ impl Distribution {
 
 /// The `tolerances:` section of a spec.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Tolerances {
+pub struct PartTolerances {
     /// Half-width b of each kind's band, mm, indexed by `Kind as usize`; 0: not toleranced.
     pub bands_mm: [f64; Kind::ALL.len()],
     pub distribution: Distribution,
@@ -79,7 +79,7 @@ pub struct Tolerances {
     pub max_failure_rate: f64,
 }
 
-impl Tolerances {
+impl PartTolerances {
     /// The band of `kind`, mm (0: not toleranced).
     pub fn band_mm(&self, kind: Kind) -> f64 {
         self.bands_mm[kind as usize]
@@ -147,7 +147,12 @@ impl Parameter {
 /// the crank eccentricity; per roller its radial, tangential and radius deviation; per pin
 /// radial and tangential; per disc, per hole radial and tangential; the shift and equidistant
 /// grinding errors. Only kinds with a band are drawn.
-pub fn parameters(tol: &Tolerances, rollers: usize, pins: usize, discs: usize) -> Vec<Parameter> {
+pub fn parameters(
+    tol: &PartTolerances,
+    rollers: usize,
+    pins: usize,
+    discs: usize,
+) -> Vec<Parameter> {
     let one = |kind| Parameter {
         kind,
         part: 0,
@@ -216,12 +221,12 @@ pub fn deviations(
 mod tests {
     use super::*;
 
-    fn tol(kinds: &[Kind]) -> Tolerances {
+    fn tol(kinds: &[Kind]) -> PartTolerances {
         let mut bands_mm = [0.0; Kind::ALL.len()];
         for &k in kinds {
             bands_mm[k as usize] = 0.01;
         }
-        Tolerances {
+        PartTolerances {
             bands_mm,
             distribution: Distribution::Normal,
             scene: 0,

@@ -3,7 +3,8 @@
 //! degrees. Fixed decimals, so that a run reads the same on every machine.
 
 use crate::geometry::profile::Profile;
-use crate::measure::fit::{Estimate, Identification};
+use crate::measure::fit::Identification;
+use crate::measure::fitted::Estimate;
 use crate::measure::flanks::arc_length_mm;
 use crate::spec::Spec;
 use crate::units;

@@ -646,7 +646,7 @@ fn constraint_row(c: &Margin, points: &[StudyPoint]) -> Markup {
 /// cheapest rung that meets every tolerance highlighted; observed orders and notes below.
 fn accuracy_section(ladder: &Ladder) -> Section {
     let l = &ladder.layout;
-    let missing: Vec<String> = acc::Quantity::ALL
+    let missing: Vec<String> = acc::LadderQuantity::ALL
         .into_iter()
         .filter(|q| !l.quantities.contains(q))
         .map(|q| q.description())

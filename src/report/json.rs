@@ -300,7 +300,7 @@ impl<'a> From<&'a Point> for PointDoc<'a> {
 }
 
 #[derive(Serialize)]
-pub struct Tolerance {
+pub struct GoldenToleranceDoc {
     abs: Finite,
     rel: Finite,
 }
@@ -314,7 +314,7 @@ pub struct GoldenDoc<'a> {
     disc: Option<usize>,
     unit: &'static str,
     file: String,
-    tolerance: Tolerance,
+    tolerance: GoldenToleranceDoc,
     passed: bool,
     points_compared: usize,
     worst: PointDoc<'a>,
@@ -540,7 +540,7 @@ fn golden(g: &GoldenResult) -> GoldenDoc<'_> {
         disc: g.golden.disc,
         unit: g.unit,
         file: g.golden.path.display().to_string(),
-        tolerance: Tolerance {
+        tolerance: GoldenToleranceDoc {
             abs: Finite(g.golden.tolerance.abs),
             rel: Finite(g.golden.tolerance.rel),
         },

@@ -4,7 +4,7 @@
 
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{percent_label, Summary, CONFIDENCE, QUANTILES};
-use crate::engine::tolerance::{Records, Study};
+use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::model::quantity::Bound;
 use crate::numeric::number;
 use serde_json::{json, Map, Value};
@@ -35,7 +35,7 @@ pub(super) fn percent(x: f64) -> String {
 }
 
 /// The bands in force, `kind ±b` (mm).
-fn bands(study: &Study) -> String {
+fn bands(study: &ToleranceStudy) -> String {
     let t = &study.tolerances;
     t.toleranced()
         .map(|k| format!("{} ±{}", k.name(), crate::numeric::input(t.band_mm(k))))
@@ -44,7 +44,7 @@ fn bands(study: &Study) -> String {
 }
 
 /// The terminal report.
-pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String {
+pub fn render(study: &ToleranceStudy, s: &Summary, sens: Option<&Sensitivity>) -> String {
     let t = &study.tolerances;
     let mut out = format!(
         "cycloid tolerance `{}`: scene `{}`, {} samples, {}, seed {}\n\
@@ -121,7 +121,7 @@ pub fn render(study: &Study, s: &Summary, sens: Option<&Sensitivity>) -> String 
 }
 
 /// The `count` draws of sample k largest relative to their σ (what made it bad), named, µm.
-pub fn largest_draws(study: &Study, k: u64, count: usize) -> String {
+pub fn largest_draws(study: &ToleranceStudy, k: u64, count: usize) -> String {
     let values = study.draw(k);
     let z = |i: usize| (values[i] / study.tolerances.sigma_mm(study.params[i].kind)).abs();
     let mut order: Vec<usize> = (0..values.len()).collect();
@@ -155,7 +155,7 @@ fn columns(rows: &[Vec<String>]) -> String {
 
 /// The sensitivities: per limit the linear σ beside the Monte Carlo σ, and the Pareto of the
 /// kinds (share of the linear variance).
-fn sensitivity_text(study: &Study, s: &Summary, sens: &Sensitivity) -> String {
+fn sensitivity_text(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> String {
     let mut out = format!(
         "\nsensitivities (central differences, step {} mm, about the nominal reducer)\n",
         crate::numeric::input(crate::engine::tolerance::sensitivity::STEP_MM)
@@ -188,7 +188,7 @@ fn sensitivity_text(study: &Study, s: &Summary, sens: &Sensitivity) -> String {
 }
 
 /// The drawn values of sample k by column name.
-fn draws(study: &Study, k: u64) -> Map<String, Value> {
+fn draws(study: &ToleranceStudy, k: u64) -> Map<String, Value> {
     let discs = study.spec.design.discs;
     study
         .params
@@ -199,7 +199,12 @@ fn draws(study: &Study, k: u64) -> Map<String, Value> {
 }
 
 /// The JSON document of a study.
-pub fn json(study: &Study, s: &Summary, records: &Records, sens: Option<&Sensitivity>) -> String {
+pub fn json(
+    study: &ToleranceStudy,
+    s: &Summary,
+    records: &Records,
+    sens: Option<&Sensitivity>,
+) -> String {
     let t = &study.tolerances;
     let l = study.limits.len();
     let limits: Vec<Value> = s
@@ -265,7 +270,7 @@ pub fn json(study: &Study, s: &Summary, records: &Records, sens: Option<&Sensiti
     text
 }
 
-fn sensitivity_json(study: &Study, s: &Summary, sens: &Sensitivity) -> Value {
+fn sensitivity_json(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> Value {
     let discs = study.spec.design.discs;
     let per_limit: Vec<Value> = s
         .limits
@@ -301,7 +306,7 @@ fn sensitivity_json(study: &Study, s: &Summary, sens: &Sensitivity) -> Value {
 
 /// The per-sample CSV: `sample`, every drawn deviation, every limited quantity; rows in sample
 /// order. The deviations are drawn again from (seed, k).
-pub fn samples_csv(study: &Study, records: &Records) -> String {
+pub fn samples_csv(study: &ToleranceStudy, records: &Records) -> String {
     let discs = study.spec.design.discs;
     let l = study.limits.len();
     let mut header = vec!["sample".to_string()];
@@ -320,7 +325,7 @@ pub fn samples_csv(study: &Study, records: &Records) -> String {
 }
 
 /// The comment on top of a spec written by `--write-sample K`: which sample of which study.
-pub fn sample_header(study: &Study, k: u64) -> String {
+pub fn sample_header(study: &ToleranceStudy, k: u64) -> String {
     let t = &study.tolerances;
     format!(
         "# Written by `cycloid tolerance {} --write-sample {k}`: sample {k} of {} (seed {}) as \

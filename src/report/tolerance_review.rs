@@ -12,7 +12,7 @@ use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{
     percent_label, LimitSummary, Summary, CONFIDENCE, QUANTILES,
 };
-use crate::engine::tolerance::{Records, Study};
+use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::Result;
 use crate::numeric::number;
 use maud::{html, Markup};
@@ -25,7 +25,7 @@ fn bins(n: usize) -> usize {
 
 /// The histogram of limit `l`'s values as a step outline, with the limit as a dashed red
 /// vertical line; the x range holds both the values and the limit.
-fn histogram(study: &Study, records: &Records, l: usize, ls: &LimitSummary) -> String {
+fn histogram(study: &ToleranceStudy, records: &Records, l: usize, ls: &LimitSummary) -> String {
     let step = study.limits.len();
     let values: Vec<f64> = records.column(l, step).collect();
     let (lo, hi) = (ls.min, ls.max);
@@ -112,7 +112,7 @@ fn rates_section(s: &Summary) -> Section {
     section("failure-rates", html! { "Failure rates" }, body)
 }
 
-fn study_section(study: &Study) -> Section {
+fn study_section(study: &ToleranceStudy) -> Section {
     let t = &study.tolerances;
     let body = html! {
         p { "Scene " code { (study.spec.scenes[t.scene].name) } ", " (t.samples) " samples, seed "
@@ -139,7 +139,7 @@ fn study_section(study: &Study) -> Section {
     section("study", html! { "The study" }, body)
 }
 
-fn worst_section(study: &Study, s: &Summary, records: &Records) -> Section {
+fn worst_section(study: &ToleranceStudy, s: &Summary, records: &Records) -> Section {
     let l = study.limits.len();
     let body = html! {
         p.note { "The samples furthest beyond (or least inside) a limit, relative to the limit. \
@@ -162,7 +162,7 @@ fn worst_section(study: &Study, s: &Summary, records: &Records) -> Section {
     section("worst", html! { "Worst samples" }, body)
 }
 
-fn sensitivity_section(study: &Study, s: &Summary, sens: &Sensitivity) -> Section {
+fn sensitivity_section(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> Section {
     let body = html! {
         p.note { "Derivatives by central differences on the exact engine about the nominal \
                   reducer; linear stack-up σ = √Σ(∂q/∂p·σp)². Note: " (LINEAR_CAVEAT) "." }
@@ -193,7 +193,7 @@ fn sensitivity_section(study: &Study, s: &Summary, sens: &Sensitivity) -> Sectio
 
 /// The review's files: one SVG per limit, then `index.html`.
 pub fn render(
-    study: &Study,
+    study: &ToleranceStudy,
     s: &Summary,
     records: &Records,
     sens: Option<&Sensitivity>,
@@ -243,7 +243,7 @@ pub fn render(
 /// Write the review into `dir` as one batch (`index.html` last); the number of files.
 pub fn write(
     dir: &Path,
-    study: &Study,
+    study: &ToleranceStudy,
     s: &Summary,
     records: &Records,
     sens: Option<&Sensitivity>,

@@ -10,7 +10,7 @@ use crate::numeric;
 const KEY: &str = "reducer.deviations";
 
 fn finite(key: String, value: f64) -> Result<f64> {
-    super::validate::finite(&key, value)
+    super::values::finite(&key, value)
 }
 
 /// An index into `count` parts named `what`, each given once (`seen`).

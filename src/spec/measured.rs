@@ -48,7 +48,9 @@ pub fn build(spec_path: &str, raw: RawMeasuredProfile) -> Result<MeasuredProfile
         *flag = true;
     }
     Ok(MeasuredProfile {
-        path: super::resolve(spec_path, &raw.file).display().to_string(),
+        path: super::paths::resolve(spec_path, &raw.file)
+            .display()
+            .to_string(),
         format,
         harmonics: raw.harmonics as usize,
         fit,

@@ -1,11 +1,11 @@
-//! `tolerances:` → `model::tolerances::Tolerances`: bands non-negative, a scene that exists and
+//! `tolerances:` → `model::tolerances::PartTolerances`: bands non-negative, a scene that exists and
 //! uses the exact geometry, a study that can run, and bands no draw of which takes a part out
 //! of its mesh (the largest draw of every part, placed where it hurts most, must pass the
 //! rules of an as-built state, `spec::deviations::check`).
 
 use super::raw::RawTolerances;
 use crate::error::{Error, Result};
-use crate::model::tolerances::{Distribution, Kind, Tolerances, NORMAL_CUT_SIGMA};
+use crate::model::tolerances::{Distribution, Kind, PartTolerances, NORMAL_CUT_SIGMA};
 use crate::model::{
     CentreDeviation, Design, Deviations, GeometryMode, Modification, RollerDeviation, Scene,
 };
@@ -20,7 +20,7 @@ fn invalid(key: &str, message: String) -> Error {
 /// Default number of samples: the 0.135 % quantiles are then order statistics 1 and 999.
 pub const DEFAULT_SAMPLES: usize = 1000;
 
-/// Largest study: 10⁹ samples (at ~10 ms each, 10⁷ core-seconds: a cluster's job array).
+/// Largest study: 10⁹ samples, a cluster's job array of shards.
 pub const MAX_SAMPLES: i64 = 1_000_000_000;
 
 /// A study's sample count (the spec's `samples` or `--samples`), or what is wrong with it.
@@ -39,7 +39,7 @@ pub fn build(
     design: &Design,
     m: &Modification,
     scenes: &[Scene],
-) -> Result<Tolerances> {
+) -> Result<PartTolerances> {
     let mut bands_mm = raw.bands();
     for (kind, band) in Kind::ALL.into_iter().zip(&mut bands_mm) {
         if !(band.is_finite() && *band >= 0.0) {
@@ -56,7 +56,7 @@ pub fn build(
         None => Distribution::Normal,
         Some(d) => d.parse().map_err(|m| invalid("distribution", m))?,
     };
-    let scene = super::scene_index(scenes, &raw.scene, &format!("{KEY}.scene"))?;
+    let scene = super::scenes::scene_index(scenes, &raw.scene, &format!("{KEY}.scene"))?;
     if scenes[scene].geometry != GeometryMode::Exact {
         return Err(invalid(
             "scene",
@@ -86,7 +86,7 @@ pub fn build(
             ),
         ));
     }
-    let tol = Tolerances {
+    let tol = PartTolerances {
         bands_mm,
         distribution,
         scene,
@@ -111,12 +111,12 @@ const GROUPS: [&[Kind]; 5] = [
     &[Kind::Shift, Kind::Equidistant],
 ];
 
-/// Every part at its largest draw (`Tolerances::largest_draw_mm`), placed where it hurts most,
+/// Every part at its largest draw (`PartTolerances::largest_draw_mm`), placed where it hurts most,
 /// keeps the rules of an as-built state: no part moves by e or more, neighbouring rollers
 /// (moved towards each other, inward, and grown) do not overlap, and the profile ground at
 /// each corner of the grinding errors is a disc. A group of kinds that breaks a rule is named
 /// by its first toleranced key.
-fn largest_draws_fit(tol: &Tolerances, design: &Design, m: &Modification) -> Result<()> {
+fn largest_draws_fit(tol: &PartTolerances, design: &Design, m: &Modification) -> Result<()> {
     let cut = |k: Kind| tol.largest_draw_mm(k);
     for group in GROUPS {
         let Some(&first) = group.iter().find(|&&k| tol.band_mm(k) > 0.0) else {

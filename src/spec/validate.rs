@@ -1,9 +1,12 @@
 //! The raw spec → the validated model: every value checked and converted to engine units; the
 //! first broken rule is the error, with its key path.
 
-use super::parse::did_you_mean;
+use super::paths::resolve;
 use super::raw::*;
-use super::{Accuracy, Spec};
+use super::scenes::{refuse_first_order, scene_index};
+use super::validated::{Accuracy, Spec};
+use super::values::finite;
+use super::yaml::did_you_mean;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
 use crate::model::quantity;
@@ -71,17 +74,6 @@ fn length(key: &str, value: f64) -> Result<f64> {
         ));
     }
     Ok(value)
-}
-
-pub(super) fn finite(key: &str, value: f64) -> Result<f64> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(Error::invalid(
-            key,
-            format!("must be a finite number, got {value}"),
-        ))
-    }
 }
 
 fn count(key: &str, value: i64, min: i64) -> Result<usize> {
@@ -562,7 +554,7 @@ fn exact_as_built(design: &Design, scenes: &[Scene]) -> Result<()> {
     if design.deviations.is_nominal() {
         return Ok(());
     }
-    super::refuse_first_order(
+    refuse_first_order(
         scenes,
         "`reducer.deviations` puts parts off their nominal places: the closed form assumes \
          every roller and pin on its place, so parts as built are computed with \
@@ -641,7 +633,7 @@ fn not_torsion(key: &str, scene: &Scene, what: &str) -> Result<()> {
 /// `accuracy:`: the scene exists and computes something the ladder compares, the rungs are
 /// rungs of the ladder, the tolerances are positive.
 fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Result<Accuracy> {
-    let scene = super::scene_index(scenes, &raw.scene, "accuracy.scene")?;
+    let scene = scene_index(scenes, &raw.scene, "accuracy.scene")?;
     let steps = |key: &str, value: Option<i64>, min: usize| {
         value
             .map(|n| {
@@ -660,7 +652,7 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
         raw.settings_steps_per_period,
         acc::COARSEST,
     )?;
-    let defaults = acc::Tolerances::default();
+    let defaults = acc::LadderTolerances::default();
     let t = &raw.tolerance;
     let tol = |key: &str, value: Option<f64>, default: f64| {
         value.map_or(Ok(default), |v| {
@@ -670,7 +662,7 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
     let options = acc::Options {
         finest,
         settings_steps,
-        tolerances: acc::Tolerances {
+        tolerances: acc::LadderTolerances {
             te_arcsec: tol("te_arcsec", t.te_arcsec, defaults.te_arcsec)?,
             force_n: tol("force_n", t.force_n, defaults.force_n)?,
             ratio: tol("ratio", t.ratio, defaults.ratio)?,
@@ -686,29 +678,6 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
         Error::invalid(key, m)
     })?;
     Ok(Accuracy { scene, options })
-}
-
-/// Resolve a golden path against the spec file's directory, dropping `.` and `dir/..` pairs
-/// so messages show `golden/x.csv` rather than `specs/../golden/x.csv`.
-pub fn resolve(spec_path: &str, file: &str) -> std::path::PathBuf {
-    use std::path::{Component, Path, PathBuf};
-    let base = Path::new(spec_path).parent().unwrap_or(Path::new(""));
-    let mut out = PathBuf::new();
-    for c in base.join(file).components() {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir => {
-                let last = out.components().next_back();
-                if matches!(last, Some(Component::Normal(_))) {
-                    out.pop();
-                } else {
-                    out.push("..");
-                }
-            }
-            other => out.push(other.as_os_str()),
-        }
-    }
-    out
 }
 
 fn golden_entry(
@@ -728,7 +697,7 @@ fn golden_entry(
             ))
         }
     };
-    super::scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
+    scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     let quantity = quantity::find_curve(&raw.quantity).ok_or_else(|| {
         Error::invalid(
             format!("{key}.quantity"),
@@ -789,7 +758,7 @@ fn golden_entry(
         quantity,
         disc,
         file: raw.file,
-        tolerance: Tolerance { abs, rel },
+        tolerance: GoldenTolerance { abs, rel },
     })
 }
 
@@ -888,7 +857,7 @@ fn study(
     scenes: &[Scene],
     modification: &Modification,
 ) -> Result<Study> {
-    let scene = super::scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
+    let scene = scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     not_torsion(&format!("{key}.scene"), &scenes[scene], "a study")?;
     let mut variables = Vec::new();
     let v = &raw.variables;

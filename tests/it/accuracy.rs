@@ -17,7 +17,9 @@
 use crate::common;
 
 use crate::common::{PaperSpec, Scratch};
-use cycloid::engine::accuracy::{self, Ladder, Options, Quantity, Tolerances, Variation};
+use cycloid::engine::accuracy::{
+    self, Ladder, LadderQuantity, LadderTolerances, Options, Variation,
+};
 use cycloid::spec::{self, Spec};
 
 /// The loaded scene of these tests.
@@ -52,12 +54,12 @@ fn ladder(spec: &Spec, finest: usize, settings_steps: Option<usize>) -> Ladder {
     let options = Options {
         finest,
         settings_steps,
-        tolerances: Tolerances::default(),
+        tolerances: LadderTolerances::default(),
     };
     accuracy::run(spec, 0, &options, &mut |_| {}).unwrap_or_else(|e| panic!("ladder runs: {e}"))
 }
 
-fn errors(l: &Ladder, q: Quantity) -> Vec<(f64, f64)> {
+fn errors(l: &Ladder, q: LadderQuantity) -> Vec<(f64, f64)> {
     l.steps_rungs()
         .filter(|r| !r.is_reference)
         .map(|r| (r.steps_per_period, r.error(q).unwrap()))
@@ -110,7 +112,7 @@ fn steps_ladder_converges_at_the_order_its_kinks_allow() {
 
     // TE curve: the error (reference against the rung's curve interpolated linearly between
     // its angles) shrinks at every rung.
-    let te = errors(&l, Quantity::TeCurve);
+    let te = errors(&l, LadderQuantity::TeCurve);
     for w in te.windows(2) {
         assert!(w[1].1 < w[0].1, "TE curve error grows from {w:?}");
     }
@@ -206,14 +208,14 @@ fn steps_ladder_converges_at_the_order_its_kinks_allow() {
     // constant (the kink's position within a step changes from rung to rung). So we assert
     // order 1, measured as the least-squares fit over 12 … 768 (the rung below the reference
     // is biased by the reference's own error: e(N/2)/e(N) = 3 instead of 2).
-    let rf = errors(&l, Quantity::RatioFluctuation);
+    let rf = errors(&l, LadderQuantity::RatioFluctuation);
     for w in rf.windows(2) {
         assert!(w[1].1 < w[0].1, "ratio fluctuation error grows from {w:?}");
     }
     let p_rf = fitted_order(&rf[..rf.len() - 1]);
     assert_eq!(
         Some(p_rf),
-        l.fitted_order(Quantity::RatioFluctuation),
+        l.fitted_order(LadderQuantity::RatioFluctuation),
         "the ladder's own fit is the same least squares"
     );
     println!(
@@ -245,8 +247,11 @@ fn first_order_geometry_differs_at_second_order_of_the_modification() {
             "first_order approximates the exact scene"
         );
         (
-            g.error(Quantity::TeCurve).unwrap(),
-            l.reference().outputs.value(Quantity::TeCurve).unwrap(),
+            g.error(LadderQuantity::TeCurve).unwrap(),
+            l.reference()
+                .outputs
+                .value(LadderQuantity::TeCurve)
+                .unwrap(),
         )
     };
     let (d1, te1) = difference(1.0);
@@ -273,8 +278,8 @@ fn solver_tolerance_rungs_stay_within_what_the_tolerance_implies() {
     let s = spec_with(0.125, 0.1593, &rated(10.0));
     let l = ladder(&s, 384, Some(384));
     let reference = &l.reference().outputs;
-    let te_max = reference.value(Quantity::TeCurve).unwrap();
-    let f_max = reference.value(Quantity::MaxRollerForce).unwrap();
+    let te_max = reference.value(LadderQuantity::TeCurve).unwrap();
+    let f_max = reference.value(LadderQuantity::MaxRollerForce).unwrap();
     let kappa_max = reference
         .ratio
         .as_ref()
@@ -293,11 +298,11 @@ fn solver_tolerance_rungs_stay_within_what_the_tolerance_implies() {
         seen.push(tau);
         let te_bound = 2.0 * tau * te_max;
         let checks = [
-            (Quantity::TeCurve, te_bound),
-            (Quantity::TeFluctuation, 2.0 * te_bound),
-            (Quantity::MaxRollerForce, 2.0 * 10.0 * tau * f_max),
+            (LadderQuantity::TeCurve, te_bound),
+            (LadderQuantity::TeFluctuation, 2.0 * te_bound),
+            (LadderQuantity::MaxRollerForce, 2.0 * 10.0 * tau * f_max),
             (
-                Quantity::RatioFluctuation,
+                LadderQuantity::RatioFluctuation,
                 2.0 * kappa_max * kappa_max * te_bound * arcsec / h,
             ),
         ];
@@ -313,7 +318,7 @@ fn solver_tolerance_rungs_stay_within_what_the_tolerance_implies() {
                 q.label()
             );
         }
-        assert!(r.meets(&Tolerances::default()));
+        assert!(r.meets(&LadderTolerances::default()));
     }
     assert_eq!(seen, accuracy::LOOSE_REL_TOL.to_vec());
 }
@@ -327,10 +332,10 @@ fn rungs_and_columns_follow_the_scene() {
     assert_eq!(
         l.layout.quantities,
         [
-            Quantity::TeCurve,
-            Quantity::TeFluctuation,
-            Quantity::RatioFluctuation,
-            Quantity::MaxRollerForce
+            LadderQuantity::TeCurve,
+            LadderQuantity::TeFluctuation,
+            LadderQuantity::RatioFluctuation,
+            LadderQuantity::MaxRollerForce
         ]
     );
     let law = l
@@ -341,8 +346,8 @@ fn rungs_and_columns_follow_the_scene() {
     assert!(law.model_difference);
     assert!(l.cheapest.is_none_or(|i| !l.rungs[i].model_difference));
     for r in &l.rungs {
-        assert_eq!(r.error(Quantity::MaxBearingForce), None);
-        assert_eq!(r.error(Quantity::MinClearance), None);
+        assert_eq!(r.error(LadderQuantity::MaxBearingForce), None);
+        assert_eq!(r.error(LadderQuantity::MinClearance), None);
     }
     let text = accuracy::render(&l);
     assert!(text.contains("not computed by this scene (no column): max crank-bearing force, min clearance over the mesh"));
@@ -354,7 +359,7 @@ fn rungs_and_columns_follow_the_scene() {
         "  - name: mesh\n    crank: { from_deg: 0.0, to_deg: 36.0, steps: 360 }\n    effects: [clearance]\n",
     );
     let l = ladder(&s, 48, None);
-    assert_eq!(l.layout.quantities, [Quantity::MinClearance]);
+    assert_eq!(l.layout.quantities, [LadderQuantity::MinClearance]);
     assert_eq!(l.rungs.len(), 3);
     assert!(l.rungs.iter().all(|r| r.variation == Variation::Steps));
     assert!(accuracy::render(&l).contains("skipped: settings rungs"));

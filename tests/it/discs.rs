@@ -5,9 +5,11 @@ use crate::common;
 
 use crate::common::{cases, Case};
 use cycloid::engine::scene::run_design;
-use cycloid::equilibrium::curves::{self, sweep_discs_observed};
+use cycloid::equilibrium::angle::solve_angle;
 use cycloid::equilibrium::discs::Discs;
-use cycloid::equilibrium::sweep::{solve_angle, AngleSolution, Model};
+use cycloid::equilibrium::discs_sweep::sweep_discs_observed;
+use cycloid::equilibrium::loaded::{AngleSolution, Model};
+use cycloid::equilibrium::sweep;
 use cycloid::model::results::SceneResult;
 use cycloid::model::{ContactLaw, Design, Effect, GeometryMode, Plan, Scene, TorqueSweep};
 use cycloid::progress::Silent;
@@ -220,7 +222,7 @@ proptest! {
     }
 
     /// One disc through the coupled solve is the one-disc sweep, bit for bit (exact geometry,
-    /// where both run `sweep::solve_into` angle by angle; the first-order one-disc sweep has a
+    /// where both run `angle::solve_into` angle by angle; the first-order one-disc sweep has a
     /// faster kernel of its own).
     #[test]
     fn one_disc_through_the_coupled_solve_is_todays_sweep(
@@ -234,7 +236,7 @@ proptest! {
         let plan = Plan::of(&scene.name, &effects(pins));
         let model = Model::new(&case.design, &case.m, &scene, &plan);
         // (A design the one-disc sweep itself cannot solve is not this property's case.)
-        let one = curves::sweep(&model, &scene.crank_rad, false);
+        let one = sweep::sweep(&model, &scene.crank_rad, false);
         prop_assume!(one.is_ok());
         let one = one.unwrap();
         let coupled =
@@ -414,7 +416,7 @@ fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it(
 }
 
 /// A disc that floats (no share of the torque) reports the lag of the limit T → 0⁺, as one
-/// disc at zero torque does (`sweep::touching`): the nearest contact in the load direction,
+/// disc at zero torque does (`rigid_bearing::touching`): the nearest contact in the load direction,
 /// at the near side of its backlash. At 1e-6 N·m on 11 rollers in exact geometry the discs
 /// float by turns; every floating disc's β must be that of one disc alone at zero torque at
 /// the floating disc's own crank angle (a separate sweep; the rollers' balance of a rigid
@@ -466,7 +468,7 @@ fn a_floating_disc_in_exact_geometry_rests_where_one_disc_at_zero_torque_does() 
 
 /// The general coupled solve (here exact geometry, 11 rollers, whose split moves with the
 /// crank) runs its chunks in two waves, each odd chunk continuing the split of the even chunk
-/// before it (`curves::solve_in_two_waves`): what a chunk starts from is fixed by the chunks'
+/// before it (`discs_sweep::solve_in_two_waves`): what a chunk starts from is fixed by the chunks'
 /// order, not by which thread ran what before, so the curves, shares and transmission must be
 /// the same bit for bit on one thread and on four. 300 angles make five chunks, two of them
 /// continued. The shares sum to T at every angle (to 1e-9 of T, the solve's guard).

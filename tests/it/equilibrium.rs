@@ -9,9 +9,11 @@ use crate::common;
 
 use cycloid::contact::law::{self, paper_linear_stiffness};
 use cycloid::engine::scene::run;
-use cycloid::equilibrium::curves;
+use cycloid::equilibrium::angle::solve_angle;
+use cycloid::equilibrium::loaded::{AngleSolution, Model};
+use cycloid::equilibrium::residual::residual;
 use cycloid::equilibrium::solve::{monotone_root, Balance, Settings, SolveFailure};
-use cycloid::equilibrium::sweep::{residual, solve_angle, AngleSolution, Model};
+use cycloid::equilibrium::sweep;
 use cycloid::geometry::clearance::Mesh;
 use cycloid::geometry::{cross, Vec2};
 use cycloid::model::results::SceneResult;
@@ -624,7 +626,7 @@ proptest! {
         // round-off (`Rollers::moment_resolution`: 16·ε·(Rp + e + |ΔRp| + |ΔRrp|) per exact gap
         // times Σ k·|l|), on which the solver settles a straddled root (`solve::Root`): two
         // warm starts may land a step apart, so that resolution over the slope is added, twice.
-        let loaded = curves::sweep(&model, &angles, false).expect("sweep");
+        let loaded = sweep::sweep(&model, &angles, false).expect("sweep");
         let rc = loaded.rollers.unwrap();
         let gap_resolution = 16.0 * f64::EPSILON * (r.rp + r.e + r.shift.abs() + r.equidistant.abs());
         for (k, sol) in sols.iter().enumerate() {
@@ -1106,7 +1108,7 @@ fn a_soft_bearing_deflects_by_its_force_over_its_stiffness_and_still_balances() 
     eprintln!("soft bearing: |Fb| / |Fb rigid| over the period: {ratio:.3?}");
     assert!(ratio.iter().all(|&q| q < 1.0));
     // The sweep reports the deflection.
-    let loaded = curves::sweep(&soft, &angles, false).unwrap();
+    let loaded = sweep::sweep(&soft, &angles, false).unwrap();
     let bearing = loaded.bearing.unwrap();
     for (k, y) in b.iter().enumerate() {
         assert!((bearing.deflection_mm[k] - y.centre_offset_mm.norm()).abs() <= 1e-12);
@@ -1527,7 +1529,7 @@ fn ratio_derivative_is_second_order() {
         let h = span / n as f64;
         let phi: Vec<f64> = (0..n).map(|k| k as f64 * h).collect();
         let te: Vec<f64> = phi.iter().map(|p| a * (np * p).sin()).collect();
-        let d = curves::derivative(&te, h, periodic).unwrap();
+        let d = sweep::derivative(&te, h, periodic).unwrap();
         let mut err_d = 0.0f64;
         let mut err_k = 0.0f64;
         for (k, p) in phi.iter().enumerate() {
@@ -1864,7 +1866,7 @@ proptest! {
         let angles: Vec<f64> = (0..steps)
             .map(|k| from + turns * TAU * k as f64 / (steps - 1) as f64)
             .collect();
-        let swept = curves::sweep(&m, &angles, false)
+        let swept = sweep::sweep(&m, &angles, false)
             .unwrap_or_else(|f| panic!("sweep over {angles:?}: {f:?}"));
         let forces = &swept.rollers.unwrap().force_n;
         for (k, phi) in angles.iter().enumerate() {

@@ -4,7 +4,7 @@
 
 use crate::common::*;
 use cycloid::geometry::profile::Profile;
-use cycloid::measure::fit::{FittedPoint, FormError};
+use cycloid::measure::fitted::{FittedPoint, FormError};
 use cycloid::measure::flanks::{arc_length_mm, flanks, FlankSummary};
 use cycloid::model::{Design, Modification};
 use std::f64::consts::{PI, TAU};
@@ -245,7 +245,7 @@ fn speed_is_the_norm_of_the_tangent() {
 /// ~3e-15 at worst, ~3e-16 as random errors).
 #[test]
 fn form_error_value_is_the_series() {
-    use cycloid::measure::fit::{Estimate, Harmonic};
+    use cycloid::measure::fitted::{Estimate, Harmonic};
     let e = |v: f64| Estimate {
         value: v,
         sigma: 0.0,

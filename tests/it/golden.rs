@@ -4,7 +4,7 @@
 use cycloid::engine::golden::{compare, GoldenCurves};
 use cycloid::model::quantity::{Curves, QUANTITIES};
 use cycloid::model::results::SceneResult;
-use cycloid::model::Tolerance;
+use cycloid::model::GoldenTolerance;
 use std::path::Path;
 
 use crate::common::{cycloid_here, cycloid_with, PaperSpec, Scratch};
@@ -245,7 +245,7 @@ fn compare_interpolates_the_finer_curve_at_the_coarser_angles() {
         columns: columns.clone(),
         values: vec![curve(&fine, f)],
     };
-    let tol = Tolerance {
+    let tol = GoldenTolerance {
         abs: 1e-3,
         rel: 0.0,
     };
@@ -286,7 +286,7 @@ fn compare_wraps_angles_and_handles_infinite_values() {
         columns: vec!["bearing_angle_deg".into()],
         values: vec![curve(&xs, |_| -179.9999)],
     };
-    let tol = Tolerance {
+    let tol = GoldenTolerance {
         abs: 1e-3,
         rel: 0.0,
     };

@@ -8,7 +8,8 @@
 
 use crate::common;
 use cycloid::engine::scene;
-use cycloid::equilibrium::sweep::{solve_angle, AngleSolution, Model};
+use cycloid::equilibrium::angle::solve_angle;
+use cycloid::equilibrium::loaded::{AngleSolution, Model};
 use cycloid::geometry::first_order;
 use cycloid::model::results::SceneResult;
 use cycloid::model::GeometryMode;

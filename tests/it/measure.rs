@@ -5,7 +5,8 @@
 use crate::common::*;
 use cycloid::geometry::profile::Profile;
 use cycloid::geometry::Vec2;
-use cycloid::measure::fit::{self, FormError, Identification, Request};
+use cycloid::measure::fit::{self, Identification, Request};
+use cycloid::measure::fitted::{Estimate, FormError};
 use cycloid::measure::{Feature, MeasuredPoint};
 use cycloid::model::measured::Fitted;
 use cycloid::model::{Design, Modification};
@@ -150,7 +151,7 @@ fn identify(d: &Design, fit: Fitted, harmonics: usize, points: &[MeasuredPoint])
 /// few per cent is the business of `reported_uncertainties_are_the_spread_of_the_estimates`.
 const Z: f64 = 6.0;
 
-fn within(what: &str, e: fit::Estimate, truth: f64) -> std::result::Result<(), TestCaseError> {
+fn within(what: &str, e: Estimate, truth: f64) -> std::result::Result<(), TestCaseError> {
     prop_assert!(
         (e.value - truth).abs() <= Z * e.sigma,
         "{what}: identified {:.6e} ± {:.2e}, truth {truth:.6e} (off by {:.1} σ)",
@@ -163,7 +164,7 @@ fn within(what: &str, e: fit::Estimate, truth: f64) -> std::result::Result<(), T
 
 /// Every unknown of a fit of `ALL` with hole points, as (name, estimate, truth). The
 /// orientation is compared modulo a turn.
-fn unknowns(truth: &Truth, id: &Identification) -> Vec<(String, fit::Estimate, f64)> {
+fn unknowns(truth: &Truth, id: &Identification) -> Vec<(String, Estimate, f64)> {
     let m = truth.modification;
     let turn =
         (id.orientation_rad.value - truth.orientation + TAU / 2.0).rem_euclid(TAU) - TAU / 2.0;
@@ -172,7 +173,7 @@ fn unknowns(truth: &Truth, id: &Identification) -> Vec<(String, fit::Estimate, f
         ("y0".to_string(), id.centre_mm[1], truth.centre.y),
         (
             "θ0".to_string(),
-            fit::Estimate {
+            Estimate {
                 value: turn,
                 ..id.orientation_rad
             },

@@ -7,7 +7,7 @@ use crate::common;
 
 use crate::common::{cycloid, PaperSpec, Scratch};
 use cycloid::engine::tolerance::stats::clopper_pearson;
-use cycloid::engine::tolerance::{sensitivity, shard, summary, Study};
+use cycloid::engine::tolerance::{sensitivity, shard, summary, ToleranceStudy};
 use cycloid::engine::{check, scene};
 use cycloid::model::tolerances::Kind;
 use cycloid::progress::Silent;
@@ -32,16 +32,16 @@ const EVERY_KIND: &str = "  eccentricity_mm: 0.002\n  roller_radial_mm: 0.003\n 
 fn a_sample_draws_the_same_whatever_else_is_drawn() {
     let text = with_tolerances(&format!("{EVERY_KIND}  seed: 7\n"));
     let spec = text.parse("t.yaml");
-    let forward = Study::new(&spec, Some(40)).unwrap();
+    let forward = ToleranceStudy::new(&spec, Some(40)).unwrap();
     let draws: Vec<Vec<f64>> = (0..40).map(|k| forward.draw(k)).collect();
-    let backward = Study::new(&spec, Some(40)).unwrap();
+    let backward = ToleranceStudy::new(&spec, Some(40)).unwrap();
     for k in (0..40).rev() {
         assert_eq!(backward.draw(k), draws[k as usize], "sample {k}");
     }
     // Every value differs between neighbouring samples and between seeds: equal values
     // would mean a shared stream (probability of a chance tie of two doubles ~1e-16).
     let other = with_tolerances(&format!("{EVERY_KIND}  seed: 8\n")).parse("t.yaml");
-    let other = Study::new(&other, Some(40)).unwrap();
+    let other = ToleranceStudy::new(&other, Some(40)).unwrap();
     for k in 0..39 {
         let (a, b, c) = (&draws[k], &draws[k + 1], other.draw(k as u64));
         assert!(
@@ -67,7 +67,7 @@ fn normal_draws_have_sigma_a_third_of_the_band_and_uniform_ones_stay_in_it() {
         let lines =
             format!("  pin_radial_mm: {band}\n  hole_radial_mm: {band}\n  distribution: {dist}\n");
         let spec = with_tolerances(&lines).parse("t.yaml");
-        let study = Study::new(&spec, Some(1000)).unwrap();
+        let study = ToleranceStudy::new(&spec, Some(1000)).unwrap();
         let values: Vec<f64> = (0..1000).flat_map(|k| study.draw(k)).collect();
         let n = values.len() as f64;
         assert_eq!(n, 12_000.0, "6 pins and 6 holes per sample");
@@ -144,7 +144,7 @@ fn a_design_on_its_limit_fails_half_the_time() {
         &format!("min_clearance_mm: {nominal:?}"),
     );
     let spec = text.parse("t.yaml");
-    let study = Study::new(&spec, None).unwrap();
+    let study = ToleranceStudy::new(&spec, None).unwrap();
     let records = study.run((0, 1), &Silent).unwrap();
     let s = summary::summarise(&study, &records);
     assert!(
@@ -168,7 +168,7 @@ fn a_design_on_its_limit_fails_half_the_time() {
 #[test]
 fn the_clearance_moves_one_for_one_with_the_equidistant_error() {
     let spec = with_tolerances("  equidistant_mm: 0.002\n  shift_mm: 0.002\n").parse("t.yaml");
-    let study = Study::new(&spec, Some(1)).unwrap();
+    let study = ToleranceStudy::new(&spec, Some(1)).unwrap();
     let p = study
         .params
         .iter()

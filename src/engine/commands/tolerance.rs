@@ -4,7 +4,7 @@
 use crate::engine::check::{Check, CheckKind};
 use crate::engine::tolerance::sensitivity::{self, Sensitivity};
 use crate::engine::tolerance::summary::{self, Summary};
-use crate::engine::tolerance::{shard, shard_len, Records, Study};
+use crate::engine::tolerance::{shard, shard_len, Records, ToleranceStudy};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::quantity::Bound;
 use crate::progress::{Phase, Progress};
@@ -15,7 +15,7 @@ pub const MEASURED_NOTE: &str = "drawn from the drawing, not the measured disc";
 
 /// A whole study: every sample's records, their summary, and the sensitivities if asked for.
 pub struct ToleranceRun<'a> {
-    pub study: Study<'a>,
+    pub study: ToleranceStudy<'a>,
     pub records: Records,
     pub summary: Summary,
     pub sensitivity: Option<Sensitivity>,
@@ -38,7 +38,7 @@ pub fn tolerance<'a>(
     sensitivity: bool,
     progress: &dyn Progress,
 ) -> Result<ToleranceRun<'a>> {
-    let study = Study::new(spec, samples).map_err(|e| spec.locate(e))?;
+    let study = ToleranceStudy::new(spec, samples).map_err(|e| spec.locate(e))?;
     let records = samples_of(&study, (0, 1), "tolerance study", progress)?;
     let sensitivity = match sensitivity {
         true => {
@@ -62,7 +62,7 @@ pub fn tolerance<'a>(
 
 /// The samples of shard `(i, n)` of a study, heard as `what`.
 fn samples_of(
-    study: &Study,
+    study: &ToleranceStudy,
     (i, n): (u64, u64),
     what: &str,
     progress: &dyn Progress,
@@ -80,12 +80,12 @@ fn samples_of(
 /// file that `merge_shards` reads.
 ///
 /// ```
-/// use cycloid::engine::tolerance::Study;
+/// use cycloid::engine::tolerance::ToleranceStudy;
 /// use cycloid::progress::Silent;
 /// let text = std::fs::read_to_string("specs/reducer.yaml").unwrap()
 ///     + "tolerances: {scene: rated, equidistant_mm: 0.002, samples: 20, max_failure_rate: 0.5}\n";
 /// let spec = cycloid::spec::parse("reducer.yaml", &text)?;
-/// let study = Study::new(&spec, None)?;
+/// let study = ToleranceStudy::new(&spec, None)?;
 /// let shards: Vec<(String, Vec<u8>)> = (0..2)
 ///     .map(|i| Ok((format!("shard{i}"), cycloid::tolerance_shard(&study, (i, 2), &Silent)?)))
 ///     .collect::<cycloid::Result<_>>()?;
@@ -96,7 +96,7 @@ fn samples_of(
 /// # Ok::<(), cycloid::Error>(())
 /// ```
 pub fn tolerance_shard(
-    study: &Study,
+    study: &ToleranceStudy,
     (i, n): (u64, u64),
     progress: &dyn Progress,
 ) -> Result<Vec<u8>> {
@@ -127,8 +127,8 @@ pub struct Merged {
 
 impl Merged {
     /// The study the shards belong to, as an unsharded run of their spec sets it up.
-    pub fn study(&self) -> Result<Study<'_>> {
-        let study = Study::new(&self.spec, Some(self.samples as usize))?;
+    pub fn study(&self) -> Result<ToleranceStudy<'_>> {
+        let study = ToleranceStudy::new(&self.spec, Some(self.samples as usize))?;
         if study.limits.len() != self.limits {
             return Err(Error::new(
                 ErrorKind::InvalidValue,
@@ -168,7 +168,7 @@ pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
 /// run on the disc as built, but a study draws every part, the disc too, from the drawing (as
 /// `cycloid tolerance` does), and its line says so.
 pub fn failure_rate_check(spec: &Spec, progress: &dyn Progress) -> Result<Check> {
-    let study = Study::new(spec, None).map_err(|e| spec.locate(e))?;
+    let study = ToleranceStudy::new(spec, None).map_err(|e| spec.locate(e))?;
     let records = samples_of(&study, (0, 1), "tolerance study", progress)?;
     let s = summary::summarise(&study, &records);
     Ok(Check {

@@ -15,16 +15,16 @@ pub mod summary;
 use crate::engine::{check, scene};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::quantity::LimitDef;
-use crate::model::tolerances::{self as tol, Parameter, Tolerances};
+use crate::model::tolerances::{self as tol, Parameter, PartTolerances};
 use crate::model::{Deviations, Plan};
 use crate::progress::Progress;
 use crate::spec::Spec;
 
 /// One tolerance study of a spec: what is drawn, what runs, what is judged.
 #[derive(Debug, Clone)]
-pub struct Study<'a> {
+pub struct ToleranceStudy<'a> {
     pub spec: &'a Spec,
-    pub tolerances: Tolerances,
+    pub tolerances: PartTolerances,
     /// The drawn parameters, in the draw order (`model::tolerances::parameters`).
     pub params: Vec<Parameter>,
     /// The spec's limits the scene evaluates, in the order of `check::evaluate`: (definition,
@@ -54,9 +54,9 @@ impl Records {
     }
 }
 
-impl<'a> Study<'a> {
+impl<'a> ToleranceStudy<'a> {
     /// The study of `spec`'s `tolerances:` with `samples` samples (the spec's unless given).
-    pub fn new(spec: &'a Spec, samples: Option<usize>) -> Result<Study<'a>> {
+    pub fn new(spec: &'a Spec, samples: Option<usize>) -> Result<ToleranceStudy<'a>> {
         let mut tolerances = spec.tolerances.clone().ok_or_else(|| {
             Error::new(
                 ErrorKind::InvalidValue,
@@ -95,7 +95,7 @@ impl<'a> Study<'a> {
             )
             .at_key("tolerances.scene"));
         }
-        Ok(Study {
+        Ok(ToleranceStudy {
             spec,
             tolerances,
             params,

@@ -7,7 +7,7 @@
 //! only while the worst roller and angle stay the same over the band; where they change, q is
 //! not differentiable and the Monte Carlo spread is the answer.
 
-use super::Study;
+use super::ToleranceStudy;
 use crate::error::Result;
 use crate::model::tolerances::Kind;
 
@@ -41,7 +41,7 @@ impl Sensitivity {
 
     /// The variance contribution of each kind to limit l, largest first: (kind, Σ over its
     /// parts of (∂q/∂p·σ_p)², share of the total).
-    pub fn pareto(&self, study: &Study, l: usize) -> Vec<(Kind, f64, f64)> {
+    pub fn pareto(&self, study: &ToleranceStudy, l: usize) -> Vec<(Kind, f64, f64)> {
         let mut by_kind: Vec<(Kind, f64)> = Vec::new();
         for ((p, d), s) in study
             .params
@@ -66,7 +66,7 @@ impl Sensitivity {
 }
 
 /// ∂q/∂p of one parameter: (q(+h) − q(−h)) / 2h, every other parameter nominal.
-pub fn derivatives(study: &Study, param: usize, step_mm: f64) -> Result<Vec<f64>> {
+pub fn derivatives(study: &ToleranceStudy, param: usize, step_mm: f64) -> Result<Vec<f64>> {
     let at = |h: f64| {
         let mut values = vec![0.0; study.params.len()];
         values[param] = h;
@@ -84,7 +84,10 @@ pub fn derivatives(study: &Study, param: usize, step_mm: f64) -> Result<Vec<f64>
 }
 
 /// Every derivative of the study, the parameters in parallel.
-pub fn run(study: &Study, progress: &dyn crate::progress::Progress) -> Result<Sensitivity> {
+pub fn run(
+    study: &ToleranceStudy,
+    progress: &dyn crate::progress::Progress,
+) -> Result<Sensitivity> {
     use rayon::prelude::*;
     let n = study.params.len();
     progress.start("sensitivities", n as u64);

@@ -4,7 +4,7 @@
 //! the same numbers, bit for bit.
 
 use super::stats::{clopper_pearson, quantile};
-use super::{Records, Study};
+use super::{Records, ToleranceStudy};
 use crate::model::quantity::Bound;
 
 /// The quantiles the report gives: ±3σ of a normal (0.135 %, 99.865 %) and the median.
@@ -78,7 +78,7 @@ impl Summary {
 }
 
 /// The summary of `records`, which hold every sample of the study in sample order.
-pub fn summarise(study: &Study, records: &Records) -> Summary {
+pub fn summarise(study: &ToleranceStudy, records: &Records) -> Summary {
     let l = study.limits.len();
     let n = study.samples();
     let alpha = 1.0 - CONFIDENCE;
@@ -136,7 +136,7 @@ pub fn summarise(study: &Study, records: &Records) -> Summary {
 }
 
 /// The `WORST` samples by their largest excess over the limits, worst first (ties: lower k).
-fn worst(study: &Study, records: &Records) -> Vec<(u64, f64)> {
+fn worst(study: &ToleranceStudy, records: &Records) -> Vec<(u64, f64)> {
     let l = study.limits.len();
     let mut all: Vec<(u64, f64)> = records
         .values

@@ -1,0 +1,397 @@
+//! The loaded sweep of several discs on one crank (`discs::solve_coupled` at every crank
+//! angle): each disc's curves and torque share, and the reducer's transmission from the common
+//! output lag. The columns, chunks and curves are those of one disc's sweep (`sweep`).
+
+use super::discs::{common_lag, converged, solve_coupled, CoupledWork, Discs, Share};
+use super::first_order_sweep::{FirstOrderSweep, Scratch};
+use super::loaded::Model;
+use super::solve::SolveFailure;
+use super::sweep::{
+    all_finite, disc_curves, piece_rows, pieces, transmission, Chunk, Columns, SweepFailure, CHUNK,
+};
+use super::work::Work;
+use crate::geometry::{NearbyAtan2, NearbySinCos, Vec2};
+use crate::model::results::{LoadedSweep, Transmission};
+use crate::progress::Progress;
+use rayon::prelude::*;
+
+/// A sweep of several discs (`discs::solve_coupled` at every crank angle): each disc's curves
+/// (its lags, forces, bearing; no transmission of its own) and torque share, and the
+/// reducer's transmission from the common output lag γ.
+#[derive(Debug, Clone)]
+pub struct DiscSweeps {
+    pub discs: Vec<LoadedSweep>,
+    /// Disc k's share of the output torque, N·mm, [disc][angle].
+    pub torque_nmm: Vec<Vec<f64>>,
+    pub transmission: Option<Transmission>,
+}
+
+/// One chunk of a several-disc sweep: each disc's rows, its torque share and γ.
+struct DiscChunk<'a> {
+    discs: Vec<Chunk<'a>>,
+    torque: Vec<&'a mut [f64]>,
+    output_lag: &'a mut [f64],
+}
+
+fn solve_disc_chunk(
+    discs: &Discs,
+    crank_rad: &[f64],
+    chunk: &mut DiscChunk<'_>,
+    lean: &mut Lean<'_>,
+) -> Result<(), SweepFailure> {
+    let mut work = CoupledWork::new(discs);
+    lean.restart(discs, crank_rad);
+    for (k, &phi) in crank_rad.iter().enumerate() {
+        if let Some(gamma) = lean.solve(discs, phi, k, &mut work, chunk) {
+            chunk.output_lag[k] = gamma;
+            continue;
+        }
+        record_coupled(discs, (k, phi), &mut work, chunk)?;
+    }
+    Ok(())
+}
+
+/// Angle k (crank `phi`) by the general coupled solve (`discs::solve_coupled`), recorded in
+/// `chunk`.
+fn record_coupled(
+    discs: &Discs,
+    (k, phi): (usize, f64),
+    work: &mut CoupledWork,
+    chunk: &mut DiscChunk<'_>,
+) -> Result<(), SweepFailure> {
+    let fail = |failure| SweepFailure {
+        crank_rad: phi,
+        failure,
+    };
+    chunk.output_lag[k] = solve_coupled(discs, phi, work).map_err(fail)?;
+    for (d, rows) in chunk.discs.iter_mut().enumerate() {
+        let (model, w) = (&work.models[d], &work.works[d]);
+        if !all_finite(&w.sol) {
+            return Err(fail(SolveFailure::NonFinite {
+                x: w.sol.lag_rad.unwrap_or(0.0),
+            }));
+        }
+        rows.record(k, model, w.e_phi, &w.sol);
+        chunk.torque[d][k] = model.torque_nmm;
+    }
+    Ok(())
+}
+
+/// A chunk of angles of several discs by the general coupled solve alone, its split guessed
+/// at the first angles from `before` (the chunk before it) where given: its work, whose
+/// split the next chunk continues from.
+fn solve_coupled_chunk(
+    discs: &Discs,
+    crank_rad: &[f64],
+    chunk: &mut DiscChunk<'_>,
+    before: Option<&CoupledWork>,
+) -> Result<CoupledWork, SweepFailure> {
+    let mut work = CoupledWork::new(discs);
+    if let Some(before) = before {
+        work.continue_from(before);
+    }
+    for (k, &phi) in crank_rad.iter().enumerate() {
+        record_coupled(discs, (k, phi), &mut work, chunk)?;
+    }
+    Ok(work)
+}
+
+/// The lean first-order kernel of each disc (`FirstOrderSweep`), where it applies to every
+/// disc (first-order geometry, the linear law, a rigid bearing): each disc is solved at the
+/// shares extrapolated from the last angles, and the Newton on the shares, weighted by each
+/// kernel's own compliance at its solution, corrects them until the split settles
+/// (`discs::converged`); an angle it does not settle goes to the coupled solve. One per
+/// worker, restarted at every chunk (`Lean::restart`): its kernels and scratch space are
+/// built once per sweep.
+struct Lean<'a> {
+    /// Every disc's kernel and state, or none: the lean path needs them all.
+    discs: Vec<LeanDisc<'a>>,
+    /// The crank distance over which the shares' history extrapolates (`Model::warm_reach`).
+    reach: f64,
+    /// The Newton's tolerance on a share's correction, N·mm: a quarter of the coupled solve's,
+    /// as the compliances are exact on each disc's contact set only (a contact that opens or
+    /// closes within the step changes a disc's slope by ±50 %).
+    tol: f64,
+}
+
+/// One disc's lean kernel and what it carries along a chunk.
+struct LeanDisc<'a> {
+    kernel: FirstOrderSweep<'a>,
+    scratch: Scratch,
+    bearing_angle: NearbyAtan2,
+    crank_direction: NearbySinCos,
+    /// The disc's own crank angles over the chunk (φ + its phase), for its screen of the
+    /// rollers that may touch over the angles ahead (`FirstOrderSweep::screen`).
+    cranks: Vec<f64>,
+    /// The disc's torque, output lag and stiffness there, for the Newton on the shares.
+    share: Share,
+}
+
+/// Newton steps on the shares that the lean kernels take at one angle before the coupled
+/// solve takes over: one when the extrapolated split holds, two when the shares move and no
+/// contact changes (the first-order balance is linear on a contact set, and the kernels'
+/// compliances are its slopes), three when one contact changes on the way.
+const LEAN_STEPS: usize = 3;
+
+impl LeanDisc<'_> {
+    /// Angle k by the kernel at its share's torque, its screen renewed when it lapsed: the
+    /// angle recorded in `rows` (a later Newton step at the angle records it again), and the
+    /// share's output lag γk (rad) and stiffness 1/ck (N·mm/rad) set. `None` where the kernel
+    /// leaves the angle to the general solve, or the disc has no contact (no compliance of its
+    /// own).
+    fn solve(
+        &mut self,
+        (model, work): (&Model, &Work),
+        k: usize,
+        rows: &mut Chunk<'_>,
+    ) -> Option<()> {
+        let phi = self.cranks[k];
+        let (sin, cos) = self.crank_direction.sin_cos(phi);
+        let guess = || work.guess(phi, model);
+        self.kernel.set_torque(self.share.torque);
+        let s = self
+            .kernel
+            .solve(phi, (cos, sin), guess, &mut self.scratch, &mut rows.row(k))?;
+        if !self.scratch.screened() {
+            let ahead = &self.cranks[k + 1..];
+            self.kernel.screen(ahead, s.lag_rad, &mut self.scratch);
+        }
+        rows.record_first_order(k, Vec2::new(cos, sin), &s, &mut self.bearing_angle);
+        // The kernel's own compliance on its contact set: exact until a contact changes.
+        let c = s.compliance_rad_per_nmm;
+        (self.share.lag, self.share.weight) = (s.lag_rad + s.output_lag_rad, 1.0 / c);
+        c.is_finite().then_some(())
+    }
+}
+
+impl<'a> Lean<'a> {
+    fn new(discs: &'a Discs) -> Self {
+        let kernels: Option<Vec<FirstOrderSweep<'a>>> =
+            discs.models.iter().map(FirstOrderSweep::new).collect();
+        let disc = |kernel| LeanDisc {
+            kernel,
+            scratch: Scratch::default(),
+            bearing_angle: NearbyAtan2::default(),
+            crank_direction: NearbySinCos::default(),
+            cranks: Vec::with_capacity(CHUNK),
+            share: Share::default(),
+        };
+        Lean {
+            discs: kernels.unwrap_or_default().into_iter().map(disc).collect(),
+            reach: discs.models[0].warm_reach(),
+            tol: 2.5 * discs.models[0].settings.rel_tol * discs.torque_nmm.abs(),
+        }
+    }
+
+    /// Start the chunk of crank angles `crank_rad`: each disc's angles, and every state a
+    /// previous chunk left (active sets, screens, the rotations followed) forgotten, so that
+    /// a chunk's results do not depend on which chunks its worker solved before.
+    fn restart(&mut self, discs: &Discs, crank_rad: &[f64]) {
+        for (disc, phase) in self.discs.iter_mut().zip(&discs.phases) {
+            disc.cranks.clear();
+            disc.cranks.extend(crank_rad.iter().map(|c| c + phase));
+            disc.scratch.restart();
+            disc.bearing_angle = NearbyAtan2::default();
+            disc.crank_direction = NearbySinCos::default();
+        }
+    }
+
+    /// Every disc at angle k at its share's torque (`LeanDisc::solve`), or `None` when one
+    /// leaves the angle to the coupled solve.
+    fn solve_discs(
+        &mut self,
+        discs: &Discs,
+        k: usize,
+        work: &CoupledWork,
+        chunk: &mut DiscChunk<'_>,
+    ) -> Option<()> {
+        let per_disc = self
+            .discs
+            .iter_mut()
+            .zip(discs.models.iter().zip(&work.works))
+            .zip(&mut chunk.discs);
+        for ((disc, solver), rows) in per_disc {
+            disc.solve(solver, k, rows)?;
+        }
+        Some(())
+    }
+
+    /// The discs' shares in the Newton.
+    fn shares(&self) -> impl Iterator<Item = Share> + '_ {
+        self.discs.iter().map(|d| d.share)
+    }
+
+    /// Angle k (crank `phi`) by the kernels at the shares extrapolated from the last angles,
+    /// corrected by the Newton on the shares until the split settles: γ, each disc recorded in
+    /// `chunk` and remembered in `work`. `None` (the chunk's entries at k cleared) leaves the
+    /// angle to the coupled solve.
+    fn solve(
+        &mut self,
+        discs: &Discs,
+        phi: f64,
+        k: usize,
+        work: &mut CoupledWork,
+        chunk: &mut DiscChunk<'_>,
+    ) -> Option<f64> {
+        let n = self.discs.len();
+        if n == 0 {
+            return None;
+        }
+        let (total, tol) = (discs.torque_nmm, self.tol);
+        let weights = work.extrapolation(phi, self.reach);
+        for (d, disc) in self.discs.iter_mut().enumerate() {
+            disc.share.torque = work.share_guess(d, weights, n, total);
+        }
+        let mut common = None;
+        for step_number in 0..LEAN_STEPS {
+            if step_number > 0 {
+                chunk.discs.iter_mut().for_each(|c| c.clear(k));
+            }
+            if self.solve_discs(discs, k, work, chunk).is_none() {
+                break;
+            }
+            let c = common_lag(self.shares(), total);
+            if converged(self.shares(), c, tol) {
+                common = Some(c);
+                break;
+            }
+            for disc in &mut self.discs {
+                disc.share.torque += disc.share.step(c);
+            }
+            // A share against the torque sends its disc across its backlash: the coupled
+            // solve handles that.
+            if self.shares().any(|s| s.torque * total < 0.0) {
+                break;
+            }
+        }
+        let Some(common) = common else {
+            chunk.discs.iter_mut().for_each(|c| c.clear(k));
+            return None;
+        };
+        let per_disc = self
+            .discs
+            .iter_mut()
+            .zip(&mut chunk.discs)
+            .zip(&mut chunk.torque)
+            .zip(&mut work.works);
+        for (((disc, rows), shares), w) in per_disc {
+            shares[k] = disc.share.torque;
+            w.remember_lags(
+                disc.cranks[k],
+                (rows.lag[k], rows.output_lag[k]),
+                disc.share.torque,
+            );
+        }
+        // The Newton's next split (`CoupledWork::remember_split` says why).
+        let next = self.shares().map(|s| s.torque + s.step(common));
+        work.remember_split(phi, next, total);
+        Some(common)
+    }
+}
+
+/// The chunks of a sweep the general coupled solve takes (no lean kernels) in two waves: the
+/// even chunks from no history, then each odd chunk continuing the split of the even chunk
+/// before it. A chunk's first angles otherwise guess the split from fewer than the four
+/// angles the Newton on the shares needs to settle in one step (at the first, an equal
+/// split), and each further step there is a disc solve over every roller. The waves are fixed
+/// by the chunks' order, so results do not depend on the thread count. The lean kernels run
+/// in one wave: their extra steps at chunk starts are no dearer than a second wave's
+/// bookkeeping.
+fn solve_in_two_waves(
+    discs: &Discs,
+    crank_rad: &[f64],
+    per_chunk: Vec<DiscChunk<'_>>,
+    progress: &dyn Progress,
+) -> Result<(), SweepFailure> {
+    let (even, odd): (Vec<_>, Vec<_>) = crank_rad
+        .chunks(CHUNK)
+        .zip(per_chunk)
+        .enumerate()
+        .partition(|(i, _)| i % 2 == 0);
+    // Chunk i continues from before[i / 2] where given: the even chunk before an odd one.
+    let wave = |jobs: Vec<(usize, (&[f64], DiscChunk<'_>))>,
+                before: &[Result<CoupledWork, SweepFailure>]| {
+        let done: Vec<Result<CoupledWork, SweepFailure>> = jobs
+            .into_par_iter()
+            .map(|(i, (c, mut chunk))| {
+                let from = before.get(i / 2).and_then(|b| b.as_ref().ok());
+                let done = solve_coupled_chunk(discs, c, &mut chunk, from);
+                progress.advance(c.len() as u64);
+                done
+            })
+            .collect();
+        done
+    };
+    let first = wave(even, &[]);
+    let second = wave(odd, &first);
+    // The first failure in crank order: chunk i is first[i / 2] or second[i / 2].
+    let mut second = second.into_iter();
+    for done in first {
+        done?;
+        second.next().transpose()?;
+    }
+    Ok(())
+}
+
+/// `sweep::sweep_observed` of several discs: chunks of `CHUNK` angles in parallel, each angle
+/// warm-started from the previous ones of its chunk (split and lags), so results do not
+/// depend on the thread count.
+pub fn sweep_discs_observed(
+    discs: &Discs,
+    crank_rad: &[f64],
+    periodic: bool,
+    progress: &dyn Progress,
+) -> Result<DiscSweeps, SweepFailure> {
+    let n = crank_rad.len();
+    let chunks = n.div_ceil(CHUNK);
+    let mut columns: Vec<Columns> = discs.models.iter().map(|m| Columns::new(m, n)).collect();
+    let mut torque = vec![vec![0.0; n]; discs.count()];
+    let mut output_lag = vec![0.0; n];
+    let mut per_chunk: Vec<DiscChunk<'_>> = piece_rows(&mut torque, chunks)
+        .into_iter()
+        .zip(pieces(&mut output_lag))
+        .map(|(torque, output_lag)| DiscChunk {
+            discs: Vec::new(),
+            torque,
+            output_lag,
+        })
+        .collect();
+    for disc_columns in &mut columns {
+        for (chunk, rows) in per_chunk.iter_mut().zip(disc_columns.chunks()) {
+            chunk.discs.push(rows);
+        }
+    }
+    if discs.models.iter().all(FirstOrderSweep::applies) {
+        let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
+            .par_chunks(CHUNK)
+            .zip(per_chunk)
+            .map_init(
+                || Lean::new(discs),
+                |lean, (c, mut chunk)| {
+                    let done = solve_disc_chunk(discs, c, &mut chunk, lean);
+                    progress.advance(c.len() as u64);
+                    done
+                },
+            )
+            .collect();
+        outcomes.into_iter().collect::<Result<(), _>>()?;
+    } else {
+        solve_in_two_waves(discs, crank_rad, per_chunk, progress)?;
+    }
+    let model = &discs.models[0];
+    let transmission = model
+        .rollers
+        .is_some()
+        .then(|| transmission(output_lag, crank_rad, model.teeth, periodic));
+    let discs = discs
+        .models
+        .iter()
+        .zip(columns)
+        .map(|(m, c)| disc_curves(m, c))
+        .collect();
+    Ok(DiscSweeps {
+        discs,
+        torque_nmm: torque,
+        transmission,
+    })
+}

@@ -1,0 +1,91 @@
+//! The loaded model of a scene (`Model`: the rollers, pins and bearing it includes, the torque,
+//! the solver's settings) and its equilibrium at one crank angle (`AngleSolution`).
+
+use super::pins::{PinState, Pins};
+use super::rollers::{RollerState, Rollers};
+use super::solve::Settings;
+use crate::geometry::Vec2;
+use crate::model::{Design, Effect, GeometryMode, Modification, Plan, Scene};
+
+/// What the loaded model of a scene includes.
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub rollers: Option<Rollers>,
+    pub pins: Option<Pins>,
+    pub bearing: bool,
+    pub bearing_stiffness_n_per_mm: Option<f64>,
+    pub torque_nmm: f64,
+    pub teeth: usize,
+    /// The crank's eccentricity as built, e + de, mm: the disc centre's orbit.
+    pub eccentricity_mm: f64,
+    pub settings: Settings,
+    /// First-order geometry (also for pins when rollers are not modelled).
+    pub first_order: bool,
+}
+
+impl Model {
+    /// The loaded model of `scene` with the loaded effects of `plan` (roller contact, output
+    /// pins, bearing); the crank bearing's compliance applies only with the bearing modelled.
+    pub fn new(design: &Design, m: &Modification, scene: &Scene, plan: &Plan) -> Self {
+        let (rollers, pins, bearing) = (
+            plan.has(Effect::RollerContact),
+            plan.has(Effect::OutputPins),
+            plan.has(Effect::Bearing),
+        );
+        Model {
+            rollers: rollers.then(|| Rollers::new(design, m, scene.contact_law, scene.geometry)),
+            pins: pins.then(|| Pins::new(design, scene.contact_law)),
+            bearing,
+            bearing_stiffness_n_per_mm: scene.bearing_stiffness_n_per_mm.filter(|_| bearing),
+            torque_nmm: scene.output_torque_nmm,
+            teeth: design.teeth,
+            eccentricity_mm: design.eccentricity_mm + design.deviations.eccentricity_mm,
+            settings: Settings::default(),
+            first_order: scene.geometry == GeometryMode::FirstOrder,
+        }
+    }
+
+    /// The lag at which the rollers sit in their mesh without load, to first order: a profile
+    /// turned by Δδ (reduced to the tooth pitch) is a disc turned by Δδ, which the lag −Δδ
+    /// undoes. The first guess of a sweep, so that a large rotation starts at its mesh.
+    pub fn rest_lag(&self) -> f64 {
+        self.rollers
+            .as_ref()
+            .map_or(0.0, |r| -r.mesh.profile.rotation_rad)
+    }
+
+    /// How far (crank angle, rad) the last solved angle may be for its lags and contact
+    /// points to warm-start the next: a quarter of a mesh period, over which a foot moves by a
+    /// fortieth of a tooth; a sweep's steps are far finer, a sweep of a few steps per turn is
+    /// not warm-started.
+    pub fn warm_reach(&self) -> f64 {
+        std::f64::consts::FRAC_PI_2 / (self.teeth + 1) as f64
+    }
+
+    /// Pins follow the rollers' geometry mode (first order: ideal directions, linear gaps).
+    pub(super) fn first_order_pins(&self) -> bool {
+        self.rollers
+            .as_ref()
+            .is_some_and(|r| r.geometry == GeometryMode::FirstOrder)
+            || self.first_order
+    }
+}
+
+/// The equilibrium at one crank angle. Fixed frame; lags in rad (positive opposes the motion).
+/// From `solve_angle` every roller state is exact; inside a sweep a roller proven out of reach
+/// has zero force, a lower bound as its gap and the geometry of its last exact evaluation.
+#[derive(Debug, Clone, Default)]
+pub struct AngleSolution {
+    /// β, when the rollers are modelled.
+    pub lag_rad: Option<f64>,
+    pub rollers: Vec<RollerState>,
+    /// βo, when the pins are modelled.
+    pub output_lag_rad: Option<f64>,
+    pub pins: Vec<PinState>,
+    /// Disc-centre displacement from e·(cos φ, sin φ) (compliant bearing), mm.
+    pub centre_offset_mm: Vec2,
+    /// Crank-bearing force on the disc, N, when `bearing` is modelled.
+    pub bearing_force_n: Option<Vec2>,
+    /// Largest relative residual of the force and moment balance (paper Eqs. 12–14).
+    pub residual: Option<f64>,
+}

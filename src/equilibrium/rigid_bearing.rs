@@ -1,0 +1,327 @@
+//! The balances at one crank angle with the disc centre held: at e·(cos φ, sin φ) for a rigid
+//! bearing, or at a given offset from it (each iterate of the compliant bearing's solve).
+//!
+//! Moment balance about the disc centre decouples into the roller balance Σ F_i·l_i(β) = T and
+//! the pin balance Σ F_j·a_j(βo) = T, each a monotone 1-D root (`solve`). The bearing force is
+//! then −(Σ roller forces + Σ pin forces).
+
+use super::balance::{closed_form, moment, round_off, settle, unload_round_off, Contact};
+use super::loaded::{AngleSolution, Model};
+use super::pins::{PinState, Pins};
+use super::rollers::{AngleTrig, Reach, RollerState, Rollers};
+use super::solve::{monotone_root, Balance, SolveFailure};
+use super::work::Work;
+use crate::geometry::clearance::{GapFailure, Pose};
+use crate::geometry::Vec2;
+use crate::model::{ContactLaw, GeometryMode};
+
+fn roller_balance(
+    r: &Rollers,
+    pose: &Pose,
+    states: &mut Vec<RollerState>,
+) -> Result<Balance, GapFailure> {
+    r.evaluate(pose, states)?;
+    let (value, slope, scale) = moment(states);
+    Ok(Balance {
+        value,
+        slope,
+        scale,
+        resolution: r.moment_resolution(states, pose.centre_offset_mm.norm()),
+    })
+}
+
+/// Zero torque with clearance leaves the disc free within its backlash; we report the limit
+/// T → 0⁺: the lag at which the nearest contact in the load direction just closes.
+/// Newton on the smallest gap, x ← x + min(gap/(−∂gap/∂x)) over contacts that close as x grows.
+fn touching<S>(
+    mut eval: impl FnMut(f64) -> Result<Vec<(f64, f64)>, S>,
+    start: f64,
+) -> Result<f64, S> {
+    let mut x = start;
+    for _ in 0..50 {
+        let step = eval(x)?
+            .into_iter()
+            .filter(|&(_, slope)| slope < 0.0)
+            .map(|(gap, slope)| gap / -slope)
+            .fold(f64::INFINITY, f64::min);
+        if !step.is_finite() {
+            break;
+        }
+        x += step;
+        if step.abs() <= 1e-16 + 1e-13 * x.abs() {
+            break;
+        }
+    }
+    // Land on the open side: in the limit the first contact just touches and carries no force.
+    // Newton may stop a rounding error past the touch (a gap of −1e-18 mm, a force of 1e-12 N),
+    // which would make the contact count at zero torque depend on rounding.
+    for _ in 0..8 {
+        let overlap = eval(x)?
+            .into_iter()
+            .filter(|&(gap, slope)| slope < 0.0 && gap < 0.0)
+            .map(|(gap, slope)| gap / slope)
+            .fold(0.0, f64::max);
+        if overlap == 0.0 {
+            break;
+        }
+        x -= overlap + f64::EPSILON * x.abs();
+    }
+    Ok(x)
+}
+
+fn in_contact<'a>(forces: impl IntoIterator<Item = &'a f64>) -> bool {
+    forces.into_iter().any(|&f| f > 0.0)
+}
+
+/// The rollers' moment never reached the torque within the lags searched: say how far it got
+/// and how deep the contacts were there. Far beyond the rated load the moment stops growing
+/// with the lag (rollers pressed millimetres into the flanks slide towards the tips, their arms
+/// shrink), so the torque is more than the disc can hold in this contact model.
+fn beyond_reach(r: &Rollers, pose: &Pose, moment_nmm: f64, torque_nmm: f64) -> SolveFailure {
+    let mut states = Vec::new();
+    let deepest = r.evaluate(pose, &mut states).ok().and_then(|()| {
+        states
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.gap_mm.total_cmp(&b.1.gap_mm))
+            .map(|(i, s)| (i, -s.gap_mm, r.mesh.roller_radius_mm))
+    });
+    SolveFailure::BeyondCapacity {
+        torque_nmm,
+        moment_nmm,
+        lag_rad: pose.lag_rad,
+        deepest,
+    }
+}
+
+/// Solve the rollers at a fixed centre offset: β with Σ F·l = T. `e_phi` = (cos φ, sin φ).
+fn solve_rollers(
+    model: &Model,
+    r: &Rollers,
+    (crank, e_phi): (f64, Vec2),
+    offset: Vec2,
+    guess: f64,
+    work: &mut Work,
+) -> Result<f64, SolveFailure> {
+    let pose = |lag| Pose {
+        crank_rad: crank,
+        lag_rad: lag,
+        centre_offset_mm: offset,
+    };
+    let linear = r.geometry == GeometryMode::FirstOrder
+        && r.law == ContactLaw::PaperLinear
+        && offset == Vec2::zeros();
+    if linear {
+        r.first_order_terms(e_phi, &mut work.terms);
+        let (k, t) = (r.linear_stiffness(), model.torque_nmm);
+        let terms = &work.terms;
+        let states = &mut work.sol.rollers;
+        let (lag, scale) = closed_form(
+            (k, terms, t, model.settings.rel_tol),
+            guess,
+            &mut work.events,
+            states,
+            |lag, states| r.first_order_states(&pose(lag), e_phi, terms, states),
+        )?;
+        // The closed form's answer at zero torque is the touching pose (T → 0⁺, or a
+        // preload's balance). The touching contact's gap g − l·x is round-off (±1e-17 mm), and
+        // so is its force (~5e-12 N, whose unbalanced moment made the residual 1): zero, as in
+        // the iterative solve.
+        if t == 0.0 && scale <= r.moment_resolution(states, 0.0) {
+            states.iter_mut().for_each(RollerState::unload);
+        }
+        work.slopes.0 = 0.0;
+        return Ok(lag);
+    }
+    if work.reaches.len() != r.count() {
+        work.reaches = vec![
+            Reach {
+                crank_rad: crank,
+                lag_rad: guess,
+                offset_mm: offset,
+                gap_mm: f64::NEG_INFINITY,
+            };
+            r.count()
+        ];
+    }
+    let exact_final = work.exact_final;
+    let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
+    let trig = AngleTrig::new(crank, model.teeth);
+    let offset_norm = offset.norm();
+    let root = monotone_root(
+        |lag| {
+            r.evaluate_at(&pose(lag), &trig, states, reaches)?;
+            let (value, slope, scale) = moment(states);
+            Ok::<_, GapFailure>(Balance {
+                value,
+                slope,
+                scale,
+                resolution: r.moment_resolution(states, offset_norm),
+            })
+        },
+        model.torque_nmm,
+        guess,
+        &model.settings,
+    )
+    .map_err(|failure| match failure {
+        SolveFailure::NoBracket {
+            nearest: Some((x, value)),
+            ..
+        } => beyond_reach(r, &pose(x), value, model.torque_nmm),
+        other => other,
+    })?;
+    work.slopes.0 = root.slope;
+    let mut lag = root.x;
+    if let Some(towards) = root.straddle {
+        // The balance steps over the torque between two adjacent lags (round-off of the
+        // gaps): every roller exact at both ends, forces mixed so that Σ F·l = T.
+        let exact = |lag: f64, states: &mut Vec<RollerState>| {
+            r.evaluate_at(&pose(lag), &trig, states, &mut [])
+                .map_err(SolveFailure::Gap)
+        };
+        exact(lag, states)?;
+        lag = settle(lag, towards, model.torque_nmm, states, exact)?;
+    } else if exact_final {
+        // Every roller exact at the answer (skipped ones carried only a gap bound).
+        r.evaluate_at(&pose(lag), &trig, states, &mut [])
+            .map_err(SolveFailure::Gap)?;
+    }
+    if model.torque_nmm == 0.0 {
+        // Free in the backlash: no contact carries force, or none more than round-off. The
+        // root search meets a zero torque wherever the moment is round-off, and from a lag
+        // beyond the backlash's far side (a warm start at a share against the torque) that is
+        // the far side's edge, where a roller's force of round-off still counts as a contact:
+        // the limit T → 0⁺ is the near contact in the load direction all the same.
+        let free = round_off(states, r.moment_resolution(states, offset_norm));
+        if free || !in_contact(states.iter().map(|s| &s.force_n)) {
+            lag = touching(
+                |l| {
+                    roller_balance(r, &pose(l), states)
+                        .map(|_| states.iter().map(|s| (s.gap_mm, -s.arm_mm)).collect())
+                },
+                lag,
+            )
+            .map_err(SolveFailure::Gap)?;
+            roller_balance(r, &pose(lag), states).map_err(SolveFailure::Gap)?;
+            reaches
+                .iter_mut()
+                .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
+        }
+        let resolution = r.moment_resolution(states, offset_norm);
+        unload_round_off(states, resolution);
+    }
+    Ok(lag)
+}
+
+/// Solve the pins at a fixed disc pose: βo with Σ F·a = T.
+fn solve_pins(
+    model: &Model,
+    p: &Pins,
+    e_phi: Vec2,
+    offset: Vec2,
+    psi: f64,
+    guess: f64,
+    work: &mut Work,
+) -> Result<f64, SolveFailure> {
+    let first_order = model.first_order_pins();
+    if let (true, Some(k), true) = (first_order, p.linear_stiffness(), offset == Vec2::zeros()) {
+        let centre = e_phi * model.eccentricity_mm;
+        p.first_order_at(e_phi, psi.sin_cos(), centre, 0.0, &mut work.sol.pins);
+        work.terms.clear();
+        work.terms
+            .extend(work.sol.pins.iter().map(|s| (s.gap_mm, s.arm_mm)));
+        // The gaps are linear in the lag: those at any lag are the ones at 0 moved by it.
+        let at_zero = work.sol.pins.clone();
+        let (lag, _) = closed_form(
+            (k, &work.terms, model.torque_nmm, model.settings.rel_tol),
+            guess,
+            &mut work.events,
+            &mut work.sol.pins,
+            |lag, states| {
+                states.clone_from(&at_zero);
+                p.first_order_lagged(lag, states);
+            },
+        )?;
+        work.slopes.1 = 0.0;
+        return Ok(lag);
+    }
+    let states = &mut work.sol.pins;
+    // The angle's trigonometry, once for every evaluation of the pin balance.
+    let ecc = e_phi;
+    let rotation = psi.sin_cos();
+    let evaluate = |lag: f64, states: &mut Vec<PinState>| {
+        if first_order {
+            let centre = ecc * model.eccentricity_mm + offset;
+            p.first_order_at(ecc, rotation, centre, lag, states);
+        } else {
+            p.evaluate_at(ecc, rotation, offset, lag, states);
+        }
+        let (value, slope, scale) = moment(states);
+        Balance {
+            value,
+            slope,
+            scale,
+            resolution: p.moment_resolution(states, offset.norm()),
+        }
+    };
+    let root = monotone_root(
+        |lag| Ok::<_, SolveFailure>(evaluate(lag, states)),
+        model.torque_nmm,
+        guess,
+        &model.settings,
+    )?;
+    work.slopes.1 = root.slope;
+    // `states` holds the evaluation at root.x: the solver's last evaluation is at its answer.
+    let mut lag = root.x;
+    if let Some(towards) = root.straddle {
+        // As for the rollers: forces mixed between two neighbouring output lags.
+        lag = settle(lag, towards, model.torque_nmm, states, |y, other| {
+            evaluate(y, other);
+            Ok(())
+        })?;
+    }
+    if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
+        lag = touching(
+            |l| {
+                evaluate(l, states);
+                Ok::<_, SolveFailure>(states.iter().map(|s| (s.gap_mm, s.gap_slope_mm)).collect())
+            },
+            lag,
+        )?;
+        evaluate(lag, states);
+    }
+    if model.torque_nmm == 0.0 {
+        let resolution = p.moment_resolution(states, offset.norm());
+        unload_round_off(states, resolution);
+    }
+    Ok(lag)
+}
+
+pub(super) fn net_force(sol: &AngleSolution) -> Vec2 {
+    let r: Vec2 = sol.rollers.iter().map(|s| s.force_vector()).sum();
+    let p: Vec2 = sol.pins.iter().map(|s| s.force_vector()).sum();
+    r + p
+}
+
+/// Solve the rigid-bearing balances at one crank angle and a fixed centre offset, into
+/// `work.sol`, warm-started from the work's history.
+pub(super) fn solve_rigid(
+    model: &Model,
+    crank: f64,
+    work: &mut Work,
+    offset: Vec2,
+) -> Result<(), SolveFailure> {
+    let (guess_lag, guess_out) = work.guess_at_torque(crank, model);
+    work.sol.centre_offset_mm = offset;
+    let mut psi = -crank / model.teeth as f64;
+    let e_phi = work.e_phi;
+    if let Some(r) = &model.rollers {
+        let lag = solve_rollers(model, r, (crank, e_phi), offset, guess_lag, work)?;
+        psi += lag;
+        work.sol.lag_rad = Some(lag);
+    }
+    if let Some(p) = &model.pins {
+        work.sol.output_lag_rad = Some(solve_pins(model, p, e_phi, offset, psi, guess_out, work)?);
+    }
+    Ok(())
+}

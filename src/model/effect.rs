@@ -1,0 +1,74 @@
+//! The physical effects a scene can ask for (`Effect`), and the costly details within them
+//! that only some quantities need (`Detail`).
+
+/// A physical effect a scene can ask for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Effect {
+    /// Unloaded gaps, backlash, unloaded TE, lost motion, minimum clearance.
+    Clearance,
+    /// Loaded lag, roller forces, contacts, Hertz pressure.
+    RollerContact,
+    /// Output-pin forces and pin deflection.
+    OutputPins,
+    /// Crank-bearing force from the force balance, equilibrium residuals.
+    Bearing,
+    /// Torsion under a locked input (a scene's `torque_sweep`): the torsion curve and the
+    /// catalogue figures at each crank angle, solved with the loaded effects the scene asks for
+    /// in place of their curves over the crank angle.
+    Torsion,
+}
+
+named!(Effect "effect" {
+    Clearance => "clearance",
+    RollerContact => "roller_contact",
+    OutputPins => "output_pins",
+    Bearing => "bearing",
+    Torsion => "torsion",
+});
+
+impl Effect {
+    /// Effects this one cannot be computed without.
+    pub fn needs(self) -> &'static [Effect] {
+        match self {
+            Effect::Bearing => &[Effect::RollerContact, Effect::OutputPins],
+            Effect::Torsion => &[Effect::RollerContact],
+            _ => &[],
+        }
+    }
+
+    /// The effects a scene's `effects` list names (`torsion` is asked for by `torque_sweep`).
+    pub fn listed() -> impl Iterator<Item = Effect> {
+        Effect::ALL.into_iter().filter(|&e| e != Effect::Torsion)
+    }
+
+    /// Whether it is solved under the scene's load at each crank angle (its curves are over
+    /// the crank angle, which a torsion scene does not produce).
+    pub fn is_loaded(self) -> bool {
+        matches!(
+            self,
+            Effect::RollerContact | Effect::OutputPins | Effect::Bearing
+        )
+    }
+}
+
+/// Work within an effect that only some of its quantities need, done only when one of them is
+/// read (by a limit, a golden, an objective or an output file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Detail {
+    /// The closing lag of every roller at every crank angle, within `clearance`: backlash both
+    /// ways and lost motion. The gaps and the smallest gap need none of it.
+    Backlash,
+}
+
+named!(Detail "detail" {
+    Backlash => "backlash",
+});
+
+impl Detail {
+    /// The effect it is part of.
+    pub fn effect(self) -> Effect {
+        match self {
+            Detail::Backlash => Effect::Clearance,
+        }
+    }
+}

@@ -1,0 +1,40 @@
+//! A spec's scenes by name, for the sections that name one and for messages.
+
+use crate::error::Result;
+use crate::model::Scene;
+
+/// The index of the scene named `name`; else an error at `key` that lists the scenes.
+pub fn scene_index(scenes: &[Scene], name: &str, key: &str) -> Result<usize> {
+    scenes.iter().position(|s| s.name == name).ok_or_else(|| {
+        crate::error::Error::new(
+            crate::error::ErrorKind::InvalidValue,
+            format!("no scene named `{name}`; scenes: {}", scene_names(scenes)),
+        )
+        .at_key(key)
+    })
+}
+
+/// Refuse the first scene that asks for the first-order geometry, at its key: `why` says what
+/// needs the exact one ("…, but {why}").
+pub fn refuse_first_order(scenes: &[Scene], why: &str) -> Result<()> {
+    match (scenes.iter()).position(|s| s.geometry == crate::model::GeometryMode::FirstOrder) {
+        Some(i) => Err(crate::error::Error::new(
+            crate::error::ErrorKind::InvalidValue,
+            format!(
+                "scene `{}` asks for the first-order geometry, but {why}",
+                scenes[i].name
+            ),
+        )
+        .at_key(format!("scenes[{i}].geometry"))),
+        None => Ok(()),
+    }
+}
+
+/// The scenes' names, comma-separated, for messages about an unknown scene.
+pub fn scene_names(scenes: &[Scene]) -> String {
+    scenes
+        .iter()
+        .map(|s| s.name.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
+}

@@ -9,7 +9,7 @@ use cycloid::spec::{self};
 /// rollers (10, the paper's; one tooth fewer), and `n` crank angles over one mesh period of
 /// that design, 2π/rollers of crank. With an odd count two discs do not mesh in one phase,
 /// and their split of the torque moves with the crank.
-pub fn rated_sweep(geometry: GeometryMode, n: usize, rollers: usize) -> (Model, Vec<f64>) {
+pub(crate) fn rated_sweep(geometry: GeometryMode, n: usize, rollers: usize) -> (Model, Vec<f64>) {
     let mut s = spec::load("specs/paper.yaml").expect("specs/paper.yaml");
     (s.design.rollers, s.design.teeth) = (rollers, rollers - 1);
     let mut scene = s

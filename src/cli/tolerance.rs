@@ -87,7 +87,7 @@ fn slurm_shard(samples: u64) -> Result<Option<(u64, u64)>> {
         })
 }
 
-pub fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
+pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
     if let Some(ToleranceCommand::Merge {
         shards,
         json,

@@ -8,7 +8,7 @@ use crate::model::{Effect, Plan};
 
 /// Every limit must be evaluated by at least one scene, and every golden's scene must compute
 /// its quantity.
-pub fn check(spec: &Spec) -> Result<()> {
+pub(crate) fn check(spec: &Spec) -> Result<()> {
     for g in &spec.golden {
         let q = g.quantity;
         let scene = spec.scenes.iter().find(|s| s.name == g.scene);

@@ -42,7 +42,7 @@ fn centre(key: &str, raw: &RawCentreDeviation) -> Result<CentreDeviation> {
 }
 
 /// The validated deviations of `design` (the design rules of the parts are `check`'s).
-pub fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> {
+pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> {
     let mut d = Deviations {
         eccentricity_mm: finite(format!("{KEY}.eccentricity_mm"), raw.eccentricity_mm)?,
         shift_mm: finite(format!("{KEY}.shift_mm"), raw.shift_mm)?,
@@ -154,7 +154,7 @@ fn rule(key: String, message: String) -> Error {
 /// disc (`rules::check`); no part moves by the eccentricity or more (the teeth are 2e deep and a
 /// pin hole is e wider than its pin: a part moved that far is out of its mesh, as a disc centre
 /// moved by e is, `SolveFailure::OutOfMesh`); and neighbouring rollers, as built, do not overlap.
-pub fn check(design: &Design, m: &Modification) -> Result<()> {
+pub(crate) fn check(design: &Design, m: &Modification) -> Result<()> {
     let d = &design.deviations;
     super::rules::check(design, &d.ground(m)).map_err(|mut e| {
         if d.shift_mm != 0.0 || d.equidistant_mm != 0.0 {

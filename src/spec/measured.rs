@@ -6,13 +6,13 @@ use crate::model::measured::{Fitted, MeasuredProfile, PointsFormat, FITTED_NAMES
 
 /// Highest form-error harmonic a spec may ask for: 2·200 coefficients already need thousands of
 /// points around the whole disc.
-pub const MAX_HARMONICS: i64 = 200;
+pub(crate) const MAX_HARMONICS: i64 = 200;
 
 fn invalid(key: &str, message: String) -> Error {
     Error::invalid(format!("measured_profile.{key}"), message)
 }
 
-pub fn build(spec_path: &str, raw: RawMeasuredProfile) -> Result<MeasuredProfile> {
+pub(crate) fn build(spec_path: &str, raw: RawMeasuredProfile) -> Result<MeasuredProfile> {
     if raw.file.trim().is_empty() {
         return Err(invalid("file", "must not be empty".into()));
     }

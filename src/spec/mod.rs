@@ -3,20 +3,22 @@
 //! Errors carry `file:line:column` and the key path. Syntax errors take their location from the
 //! YAML parser (`yaml`); value and design-rule errors locate their key in the text (`locate`).
 
-pub mod coverage;
-pub mod deviations;
+pub(crate) mod coverage;
+pub(crate) mod deviations;
 pub mod edit;
+#[doc(hidden)]
 pub mod locate;
-pub mod measured;
-pub mod paths;
-pub mod raw;
+pub(crate) mod measured;
+pub(crate) mod paths;
+pub(crate) mod raw;
+#[doc(hidden)]
 pub mod rules;
-pub mod scenes;
-pub mod tolerances;
-pub mod validate;
-pub mod validated;
+pub(crate) mod scenes;
+pub(crate) mod tolerances;
+pub(crate) mod validate;
+mod validated;
 mod values;
-pub mod yaml;
+pub(crate) mod yaml;
 
 use crate::error::Result;
 pub use crate::model::scene::MAX_ROLLER_ANGLES;

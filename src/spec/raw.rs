@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
     deny_unknown_fields,
     expecting = "a spec: a mapping with the keys name, reducer, scenes (and optionally modification, limits, optimise)"
 )]
-pub struct RawSpecOf<O> {
+pub(crate) struct RawSpecOf<O> {
     pub name: String,
     pub reducer: RawReducer,
     #[serde(default)]
@@ -47,7 +47,7 @@ pub struct RawSpecOf<O> {
     deny_unknown_fields,
     expecting = "a mapping with the keys scene, max_failure_rate and the bands (eccentricity_mm, roller_radial_mm, ...)"
 )]
-pub struct RawTolerances {
+pub(crate) struct RawTolerances {
     #[serde(default)]
     pub eccentricity_mm: f64,
     #[serde(default)]
@@ -81,7 +81,7 @@ pub struct RawTolerances {
 
 impl RawTolerances {
     /// The bands in the order of `model::tolerances::Kind::ALL`.
-    pub fn bands(&self) -> [f64; 10] {
+    pub(crate) fn bands(&self) -> [f64; 10] {
         [
             self.eccentricity_mm,
             self.roller_radial_mm,
@@ -100,7 +100,7 @@ impl RawTolerances {
 /// `measured_profile:`: a points file and what to identify from it.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct RawMeasuredProfile {
+pub(crate) struct RawMeasuredProfile {
     /// Relative to the directory of the spec file.
     pub file: String,
     pub format: String,
@@ -112,18 +112,18 @@ pub struct RawMeasuredProfile {
     pub fit: Vec<String>,
 }
 
-pub type RawSpec = RawSpecOf<RawOptimise>;
+pub(crate) type RawSpec = RawSpecOf<RawOptimise>;
 
 /// `optimise:` is one study (a mapping) or a list of studies.
 #[derive(Debug, Deserialize)]
 #[serde(untagged)]
-pub enum RawOptimise {
+pub(crate) enum RawOptimise {
     One(Box<RawStudy>),
     Many(Vec<RawStudy>),
 }
 
 impl RawOptimise {
-    pub fn into_studies(self) -> Vec<RawStudy> {
+    pub(crate) fn into_studies(self) -> Vec<RawStudy> {
         match self {
             RawOptimise::One(s) => vec![*s],
             RawOptimise::Many(v) => v,
@@ -133,7 +133,7 @@ impl RawOptimise {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct RawStudy {
+pub(crate) struct RawStudy {
     #[serde(default)]
     pub name: Option<String>,
     pub scene: String,
@@ -165,14 +165,14 @@ pub struct RawStudy {
 /// An objective name, or a map of objective names to weights (a weighted sum).
 #[derive(Debug, Deserialize)]
 #[serde(untagged)]
-pub enum RawObjective {
+pub(crate) enum RawObjective {
     Name(String),
     Weighted(BTreeMap<String, f64>),
 }
 
 #[derive(Debug, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
-pub struct RawVariables {
+pub(crate) struct RawVariables {
     pub shift_mm: Option<[f64; 2]>,
     pub equidistant_mm: Option<[f64; 2]>,
     pub rotation_deg: Option<[f64; 2]>,
@@ -180,7 +180,7 @@ pub struct RawVariables {
 
 #[derive(Debug, Deserialize, Default, Clone, Copy)]
 #[serde(deny_unknown_fields)]
-pub struct RawPoint {
+pub(crate) struct RawPoint {
     pub shift_mm: Option<f64>,
     pub equidistant_mm: Option<f64>,
     pub rotation_deg: Option<f64>,
@@ -188,7 +188,7 @@ pub struct RawPoint {
 
 #[derive(Debug, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
-pub struct RawConstraints {
+pub(crate) struct RawConstraints {
     pub tip_clearance_mm: Option<[f64; 2]>,
     pub min_clearance_mm: Option<f64>,
     pub max_lost_motion_arcsec: Option<f64>,
@@ -196,7 +196,7 @@ pub struct RawConstraints {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct RawReference {
+pub(crate) struct RawReference {
     pub label: String,
     #[serde(default)]
     pub shift_mm: f64,
@@ -211,7 +211,7 @@ pub struct RawReference {
     deny_unknown_fields,
     expecting = "a mapping of the reducer keys (teeth, rollers, eccentricity_mm, ...)"
 )]
-pub struct RawReducer {
+pub(crate) struct RawReducer {
     pub teeth: i64,
     pub rollers: i64,
     /// Identical discs at crank phases 2πk/discs (default 1).
@@ -240,7 +240,7 @@ pub struct RawReducer {
     deny_unknown_fields,
     expecting = "a mapping of the deviation keys (eccentricity_mm, rollers, pins, holes, shift_mm, equidistant_mm)"
 )]
-pub struct RawDeviations {
+pub(crate) struct RawDeviations {
     #[serde(default)]
     pub eccentricity_mm: f64,
     #[serde(default)]
@@ -265,7 +265,7 @@ pub struct RawDeviations {
     deny_unknown_fields,
     expecting = "a mapping with the key order (and optionally cos_mm, sin_mm)"
 )]
-pub struct RawFormTerm {
+pub(crate) struct RawFormTerm {
     pub order: i64,
     #[serde(default)]
     pub cos_mm: f64,
@@ -279,7 +279,7 @@ pub struct RawFormTerm {
     deny_unknown_fields,
     expecting = "a mapping with the key index (and optionally radial_mm, tangential_mm, radius_mm)"
 )]
-pub struct RawRollerDeviation {
+pub(crate) struct RawRollerDeviation {
     pub index: i64,
     #[serde(default)]
     pub radial_mm: f64,
@@ -295,7 +295,7 @@ pub struct RawRollerDeviation {
     deny_unknown_fields,
     expecting = "a mapping with the key index (and optionally disc, radial_mm, tangential_mm)"
 )]
-pub struct RawCentreDeviation {
+pub(crate) struct RawCentreDeviation {
     pub index: i64,
     #[serde(default)]
     pub disc: Option<i64>,
@@ -310,7 +310,7 @@ pub struct RawCentreDeviation {
     deny_unknown_fields,
     expecting = "a mapping with the key dynamic_load_rating_n (and optionally life_exponent)"
 )]
-pub struct RawCrankBearing {
+pub(crate) struct RawCrankBearing {
     pub dynamic_load_rating_n: f64,
     #[serde(default)]
     pub life_exponent: Option<f64>,
@@ -321,7 +321,7 @@ pub struct RawCrankBearing {
     deny_unknown_fields,
     expecting = "a mapping with the keys count, circle_radius_mm, pin_radius_mm (and optionally hole_clearance_mm)"
 )]
-pub struct RawOutputPins {
+pub(crate) struct RawOutputPins {
     pub count: i64,
     pub circle_radius_mm: f64,
     pub pin_radius_mm: f64,
@@ -334,7 +334,7 @@ pub struct RawOutputPins {
     deny_unknown_fields,
     expecting = "a mapping with the keys youngs_modulus_gpa, poisson_ratio"
 )]
-pub struct RawMaterial {
+pub(crate) struct RawMaterial {
     pub youngs_modulus_gpa: f64,
     pub poisson_ratio: f64,
 }
@@ -344,7 +344,7 @@ pub struct RawMaterial {
     deny_unknown_fields,
     expecting = "a mapping with the keys shift_mm, equidistant_mm, rotation_deg"
 )]
-pub struct RawModification {
+pub(crate) struct RawModification {
     #[serde(default)]
     pub shift_mm: f64,
     #[serde(default)]
@@ -358,7 +358,7 @@ pub struct RawModification {
     deny_unknown_fields,
     expecting = "a scene: a mapping with the keys name, crank, effects (and optionally output_torque_nm, ...)"
 )]
-pub struct RawScene {
+pub(crate) struct RawScene {
     pub name: String,
     #[serde(default)]
     pub output_torque_nm: Option<f64>,
@@ -382,7 +382,7 @@ pub struct RawScene {
     deny_unknown_fields,
     expecting = "a mapping with the keys rated_nm, steps"
 )]
-pub struct RawTorqueSweep {
+pub(crate) struct RawTorqueSweep {
     pub rated_nm: f64,
     pub steps: i64,
 }
@@ -392,7 +392,7 @@ pub struct RawTorqueSweep {
     deny_unknown_fields,
     expecting = "a mapping with the keys from_deg, to_deg, steps"
 )]
-pub struct RawCrank {
+pub(crate) struct RawCrank {
     pub from_deg: f64,
     pub to_deg: f64,
     pub steps: i64,
@@ -401,19 +401,19 @@ pub struct RawCrank {
 /// `limits:`, a mapping of limit keys (`min_clearance_mm`, ...; the registry's
 /// `quantity::LIMITS`, `optimum_max_objective` and the flag `accuracy_resolved`) to values;
 /// unknown keys are refused when the spec is validated, with the closest known key.
-pub type RawLimits = std::collections::BTreeMap<String, RawLimit>;
+pub(crate) type RawLimits = std::collections::BTreeMap<String, RawLimit>;
 
 /// A limit's value: a bound, or a flag (`accuracy_resolved: true`).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(untagged)]
-pub enum RawLimit {
+pub(crate) enum RawLimit {
     Bound(f64),
     Flag(bool),
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct RawGolden {
+pub(crate) struct RawGolden {
     pub scene: String,
     pub quantity: String,
     /// With several discs, the disc whose curve this is (0-based).
@@ -426,7 +426,7 @@ pub struct RawGolden {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct RawTolerance {
+pub(crate) struct RawTolerance {
     /// Absolute band, in the quantity's unit.
     #[serde(default)]
     pub abs: f64,
@@ -441,7 +441,7 @@ pub struct RawTolerance {
     deny_unknown_fields,
     expecting = "a mapping with the key scene (and optionally finest_steps_per_period, settings_steps_per_period, tolerance)"
 )]
-pub struct RawAccuracy {
+pub(crate) struct RawAccuracy {
     pub scene: String,
     /// Crank steps per mesh period of the reference run (12·2^k).
     #[serde(default)]
@@ -459,7 +459,7 @@ pub struct RawAccuracy {
     deny_unknown_fields,
     expecting = "a mapping with the keys te_arcsec, force_n, ratio, clearance_um"
 )]
-pub struct RawAccuracyTolerance {
+pub(crate) struct RawAccuracyTolerance {
     pub te_arcsec: Option<f64>,
     pub force_n: Option<f64>,
     pub ratio: Option<f64>,

@@ -18,14 +18,14 @@ fn invalid(key: &str, message: String) -> Error {
 }
 
 /// Default number of samples: the 0.135 % quantiles are then order statistics 1 and 999.
-pub const DEFAULT_SAMPLES: usize = 1000;
+pub(crate) const DEFAULT_SAMPLES: usize = 1000;
 
 /// Largest study: 10⁹ samples, a cluster's job array of shards.
-pub const MAX_SAMPLES: i64 = 1_000_000_000;
+pub(crate) const MAX_SAMPLES: i64 = 1_000_000_000;
 
 /// A study's sample count (the spec's `samples` or `--samples`), or what is wrong with it.
 /// (Wide enough for both: the spec's is an i64, the flag's a usize.)
-pub fn sample_count(n: i128) -> std::result::Result<usize, String> {
+pub(crate) fn sample_count(n: i128) -> std::result::Result<usize, String> {
     match usize::try_from(n) {
         Ok(count) if (1..=MAX_SAMPLES as i128).contains(&n) => Ok(count),
         _ => Err(format!("must be 1 to {MAX_SAMPLES}, got {n}")),
@@ -34,7 +34,7 @@ pub fn sample_count(n: i128) -> std::result::Result<usize, String> {
 
 /// The validated `tolerances:` of a spec whose design, modification and scenes are `design`,
 /// `m` and `scenes`.
-pub fn build(
+pub(crate) fn build(
     raw: &RawTolerances,
     design: &Design,
     m: &Modification,

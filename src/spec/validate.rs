@@ -438,7 +438,7 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
     })
 }
 
-pub fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
+pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     if raw.name.trim().is_empty() {
         return Err(Error::invalid("name", "must not be empty".into()));
     }

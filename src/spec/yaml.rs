@@ -5,7 +5,7 @@ use super::locate::locate_duplicate;
 use super::raw::*;
 use crate::error::{Error, ErrorKind, Location, Result};
 
-pub fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
+pub(crate) fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
     let at = |line: usize, column: usize| Location {
         file: path.to_string(),
         line,
@@ -214,7 +214,10 @@ fn user_message(
 }
 
 /// The closest of `known` to `unknown` when it is close enough to be a misspelling.
-pub fn did_you_mean<'a>(unknown: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+pub(crate) fn did_you_mean<'a>(
+    unknown: &str,
+    known: impl Iterator<Item = &'a str>,
+) -> Option<&'a str> {
     let limit = (unknown.chars().count() / 3).max(2);
     known
         .map(|k| (edit_distance(unknown, k), k))

@@ -16,15 +16,15 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 /// The shipped spec: the paper's Table 1 design with its optimum modification, clearance only.
-pub const PAPER: &str = include_str!("../../../specs/reducer.yaml");
+pub(crate) const PAPER: &str = include_str!("../../../specs/reducer.yaml");
 
 /// A scratch directory, unique per call and process, removed when dropped.
-pub struct Scratch {
+pub(crate) struct Scratch {
     pub path: PathBuf,
 }
 
 impl Scratch {
-    pub fn new(tag: &str) -> Scratch {
+    pub(crate) fn new(tag: &str) -> Scratch {
         static NEXT: AtomicUsize = AtomicUsize::new(0);
         let path = std::env::temp_dir().join(format!(
             "cycloid-test-{tag}-{}-{}",
@@ -37,12 +37,12 @@ impl Scratch {
     }
 
     /// `name` inside the directory.
-    pub fn join(&self, name: &str) -> PathBuf {
+    pub(crate) fn join(&self, name: &str) -> PathBuf {
         self.path.join(name)
     }
 
     /// Write `name` (creating its directories).
-    pub fn write(&self, name: &str, text: impl AsRef<[u8]>) {
+    pub(crate) fn write(&self, name: &str, text: impl AsRef<[u8]>) {
         let path = self.path.join(name);
         if let Some(dir) = path.parent() {
             std::fs::create_dir_all(dir).unwrap();
@@ -50,12 +50,12 @@ impl Scratch {
         std::fs::write(path, text).unwrap();
     }
 
-    pub fn read(&self, name: &str) -> String {
+    pub(crate) fn read(&self, name: &str) -> String {
         std::fs::read_to_string(self.path.join(name))
             .unwrap_or_else(|e| panic!("{name} was not written: {e}"))
     }
 
-    pub fn exists(&self, name: &str) -> bool {
+    pub(crate) fn exists(&self, name: &str) -> bool {
         self.path.join(name).exists()
     }
 }
@@ -68,7 +68,7 @@ impl Drop for Scratch {
 
 /// What a run of the binary produced.
 #[derive(Debug)]
-pub struct Run {
+pub(crate) struct Run {
     pub code: Option<i32>,
     pub stdout: String,
     pub stderr: String,
@@ -76,12 +76,12 @@ pub struct Run {
 
 impl Run {
     /// The exit code (-1 when killed by a signal).
-    pub fn code(&self) -> i32 {
+    pub(crate) fn code(&self) -> i32 {
         self.code.unwrap_or(-1)
     }
 
     /// (exit code, stdout, stderr).
-    pub fn parts(self) -> (i32, String, String) {
+    pub(crate) fn parts(self) -> (i32, String, String) {
         (self.code(), self.stdout, self.stderr)
     }
 }
@@ -91,12 +91,12 @@ const TIMEOUT: Duration = Duration::from_secs(300);
 
 /// Run `cycloid ARGS` in `dir` (no colour, the date pinned by `SOURCE_DATE_EPOCH=0`). Output
 /// goes to files (no pipe can fill up); a run longer than `TIMEOUT` is killed and fails.
-pub fn cycloid(dir: &Path, args: &[&str]) -> Run {
+pub(crate) fn cycloid(dir: &Path, args: &[&str]) -> Run {
     cycloid_with(dir, args, &[])
 }
 
 /// `cycloid` with extra environment variables.
-pub fn cycloid_with(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Run {
+pub(crate) fn cycloid_with(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Run {
     static NEXT: AtomicUsize = AtomicUsize::new(0);
     let n = NEXT.fetch_add(1, Ordering::Relaxed);
     let capture = std::env::temp_dir().join(format!("cycloid-test-out-{}-{n}", std::process::id()));
@@ -139,14 +139,14 @@ pub fn cycloid_with(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Run {
 }
 
 /// `cycloid ARGS` in the repository's root (shipped specs by their relative path).
-pub fn cycloid_here(args: &[&str]) -> Run {
+pub(crate) fn cycloid_here(args: &[&str]) -> Run {
     cycloid(Path::new(env!("CARGO_MANIFEST_DIR")), args)
 }
 
 /// The paper's spec (`specs/reducer.yaml`) as text, edited: the modification, the scenes (its
 /// limits go with them), extra top-level sections, or any exact replacement.
 #[derive(Debug, Clone)]
-pub struct PaperSpec {
+pub(crate) struct PaperSpec {
     text: String,
 }
 
@@ -159,13 +159,13 @@ impl Default for PaperSpec {
 }
 
 impl PaperSpec {
-    pub fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Self::default()
     }
 
     /// Replace `from` by `to`; `from` must occur exactly once, so that an edit can never
     /// silently do nothing.
-    pub fn edit(mut self, from: &str, to: &str) -> Self {
+    pub(crate) fn edit(mut self, from: &str, to: &str) -> Self {
         assert_eq!(
             self.text.matches(from).count(),
             1,
@@ -176,7 +176,7 @@ impl PaperSpec {
     }
 
     /// The modification (ΔRp, ΔRrp), mm.
-    pub fn modification(mut self, shift_mm: f64, equidistant_mm: f64) -> Self {
+    pub(crate) fn modification(mut self, shift_mm: f64, equidistant_mm: f64) -> Self {
         let mut replaced = 0;
         let lines: Vec<String> = self
             .text
@@ -201,7 +201,7 @@ impl PaperSpec {
 
     /// The `scenes:` section and everything after it (the limits) replaced by `scenes`, the
     /// YAML items of the list.
-    pub fn scenes(mut self, scenes: &str) -> Self {
+    pub(crate) fn scenes(mut self, scenes: &str) -> Self {
         let at = self.text.find("\nscenes:").expect("the spec has scenes") + 1;
         self.text.truncate(at);
         self.text += "scenes:\n";
@@ -211,7 +211,7 @@ impl PaperSpec {
 
     /// One scene `rated`: 10 N·m over one mesh period (0°–36°) in `steps` angles, with
     /// clearance and roller contact (no limits).
-    pub fn rated_period(self, steps: usize) -> Self {
+    pub(crate) fn rated_period(self, steps: usize) -> Self {
         let crank = format!("{{ from_deg: 0.0, to_deg: 36.0, steps: {steps} }}");
         self.scenes(&scene_item(
             "rated",
@@ -222,7 +222,7 @@ impl PaperSpec {
     }
 
     /// Top-level YAML appended at the end.
-    pub fn with(mut self, extra: &str) -> Self {
+    pub(crate) fn with(mut self, extra: &str) -> Self {
         if !self.text.ends_with('\n') {
             self.text.push('\n');
         }
@@ -230,12 +230,12 @@ impl PaperSpec {
         self
     }
 
-    pub fn text(&self) -> &str {
+    pub(crate) fn text(&self) -> &str {
         &self.text
     }
 
     /// The spec parsed and validated (named `path` in messages).
-    pub fn parse(&self, path: &str) -> cycloid::spec::Spec {
+    pub(crate) fn parse(&self, path: &str) -> cycloid::spec::Spec {
         cycloid::spec::parse(path, &self.text)
             .unwrap_or_else(|e| panic!("test spec is valid: {e}\n{}", self.text))
     }
@@ -243,20 +243,20 @@ impl PaperSpec {
 
 /// One item of a spec's `scenes:` list: `name` at `torque_nm` over `crank` (its YAML flow
 /// mapping) with `effects` (comma-separated).
-pub fn scene_item(name: &str, torque_nm: f64, crank: &str, effects: &str) -> String {
+pub(crate) fn scene_item(name: &str, torque_nm: f64, crank: &str, effects: &str) -> String {
     format!(
         "  - name: {name}\n    output_torque_nm: {torque_nm:?}\n    crank: {crank}\n    \
          effects: [{effects}]\n"
     )
 }
 
-pub const STEEL: Material = Material {
+pub(crate) const STEEL: Material = Material {
     youngs_modulus_mpa: 206_000.0,
     poisson_ratio: 0.3,
 };
 
 /// A design with np rollers (nc = np − 1 teeth). Pins and materials do not enter the geometry.
-pub fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f64) -> Design {
+pub(crate) fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f64) -> Design {
     Design {
         teeth: rollers - 1,
         rollers,
@@ -278,7 +278,7 @@ pub fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f64) -> 
     }
 }
 
-pub fn modification(shift_mm: f64, equidistant_mm: f64, rotation_rad: f64) -> Modification {
+pub(crate) fn modification(shift_mm: f64, equidistant_mm: f64, rotation_rad: f64) -> Modification {
     Modification {
         shift_mm,
         equidistant_mm,
@@ -287,12 +287,12 @@ pub fn modification(shift_mm: f64, equidistant_mm: f64, rotation_rad: f64) -> Mo
 }
 
 /// The paper's design (Table 1): nc 9, np 10, e 2, Rp 30, Rrp 3 (from specs/reducer.yaml).
-pub fn paper_design() -> Design {
+pub(crate) fn paper_design() -> Design {
     PaperSpec::new().parse("reducer.yaml").design
 }
 
 /// specs/reducer.yaml with its modification replaced, parsed and validated by `spec::parse`.
-pub fn paper_spec(shift_mm: f64, equidistant_mm: f64) -> Spec {
+pub(crate) fn paper_spec(shift_mm: f64, equidistant_mm: f64) -> Spec {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/specs/reducer.yaml");
     PaperSpec::new()
         .modification(shift_mm, equidistant_mm)
@@ -303,7 +303,7 @@ pub fn paper_spec(shift_mm: f64, equidistant_mm: f64) -> Spec {
 /// x = cos(nc·t), derived by hand from C' and C'':
 ///   C'×C'' = R² + e²n³ − R·e·n(n+1)·x,   |C'|² = R² + e²n² − 2R·e·n·x,
 ///   κ_C = (C'×C'')/|C'|³.
-pub fn locus_curvature_closed(rollers: usize, e: f64, r: f64, x: f64) -> f64 {
+pub(crate) fn locus_curvature_closed(rollers: usize, e: f64, r: f64, x: f64) -> f64 {
     let n = rollers as f64;
     (r * r + e * e * n.powi(3) - r * e * n * (n + 1.0) * x)
         / (r * r + e * e * n * n - 2.0 * r * e * n * x).powf(1.5)
@@ -313,7 +313,7 @@ pub fn locus_curvature_closed(rollers: usize, e: f64, r: f64, x: f64) -> f64 {
 /// root) where it occurs, in closed form. κ_C(x) = (A − Bx)/(D − Ex)^{3/2} has a single
 /// stationary point x* = (3AE − 2BD)/(BE) = (3(1 + K²n) − (n + 1)(1 + K²))/(K(n + 1)),
 /// K = e·n/R; the maximum curvature on [−1, 1] is at x* (if inside) or at an end.
-pub fn min_convex_radius_closed(rollers: usize, e: f64, r: f64) -> (f64, f64) {
+pub(crate) fn min_convex_radius_closed(rollers: usize, e: f64, r: f64) -> (f64, f64) {
     let n = rollers as f64;
     let k = e * n / r;
     let x_star = (3.0 * (1.0 + k * k * n) - (n + 1.0) * (1.0 + k * k)) / (k * (n + 1.0));
@@ -327,13 +327,13 @@ pub fn min_convex_radius_closed(rollers: usize, e: f64, r: f64) -> (f64, f64) {
 
 /// A valid design and a modification that keeps it valid.
 #[derive(Debug, Clone)]
-pub struct Case {
+pub(crate) struct Case {
     pub design: Design,
     pub m: Modification,
 }
 
 impl Case {
-    pub fn k1(&self) -> f64 {
+    pub(crate) fn k1(&self) -> f64 {
         self.design.k1()
     }
 }
@@ -350,7 +350,7 @@ fn modification_cap(e: f64, rrp: f64) -> f64 {
 ///   of the locus (no undercut) and of half the roller pitch (rollers do not overlap);
 /// - ΔRp = a·cap, ΔRrp in [−cap, min(cap, 0.9·ρmin(Rp + ΔRp) − Rrp)] (still undercut-free).
 #[allow(clippy::too_many_arguments)]
-pub fn build_case(
+pub(crate) fn build_case(
     rollers: usize,
     rp: f64,
     k1: f64,
@@ -378,7 +378,7 @@ pub fn build_case(
 }
 
 /// Random valid designs with random modifications (no profile rotation).
-pub fn cases() -> impl Strategy<Value = Case> {
+pub(crate) fn cases() -> impl Strategy<Value = Case> {
     (
         4usize..=40,
         20.0f64..120.0,
@@ -393,7 +393,7 @@ pub fn cases() -> impl Strategy<Value = Case> {
 }
 
 /// As `cases`, with a profile rotation Δδ of up to ±0.2 mrad.
-pub fn rotated_cases() -> impl Strategy<Value = Case> {
+pub(crate) fn rotated_cases() -> impl Strategy<Value = Case> {
     (cases(), -2e-4f64..2e-4).prop_map(|(mut c, d)| {
         c.m.rotation_rad = d;
         c
@@ -401,7 +401,7 @@ pub fn rotated_cases() -> impl Strategy<Value = Case> {
 }
 
 /// Random valid designs with the profile unmodified.
-pub fn unmodified_cases() -> impl Strategy<Value = Case> {
+pub(crate) fn unmodified_cases() -> impl Strategy<Value = Case> {
     cases().prop_map(|mut c| {
         c.m = Modification::default();
         c
@@ -411,7 +411,7 @@ pub fn unmodified_cases() -> impl Strategy<Value = Case> {
 /// The minimiser of a unimodal `f` on [a, b] by golden-section search (100 steps shrink the
 /// bracket by 0.618^100 ≈ 1e-21: to the round-off of the argument).
 #[allow(dead_code)]
-pub fn golden_section_min(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+pub(crate) fn golden_section_min(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
     let g = 0.5 * (5f64.sqrt() - 1.0);
     for _ in 0..100 {
         let (x1, x2) = (b - g * (b - a), a + g * (b - a));

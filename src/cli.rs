@@ -500,7 +500,10 @@ fn run_check(
         &report::table::render_styled(&checks, outputs.color),
         styles,
     )?;
-    if let Some(w) = resolution.as_ref().and_then(|r| r.warning()) {
+    if let Some(w) = resolution
+        .as_ref()
+        .and_then(report::accuracy::resolution_warning)
+    {
         print(out, &format!("{w}\n"))?;
     }
     let summaries = summary::summarise(&results);
@@ -546,7 +549,7 @@ fn run_check(
         // The resolution warning `check` printed, as a banner under the verdict.
         let warnings: Vec<String> = resolution
             .as_ref()
-            .and_then(|r| r.warning())
+            .and_then(report::accuracy::resolution_warning)
             .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
             .into_iter()
             .collect();
@@ -835,15 +838,15 @@ fn run_accuracy(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Result
     let mut written: Result<()> = Ok(());
     let ladder = accuracy::run(&spec, scene, &options, &mut |event| {
         let text = match event {
-            accuracy::Event::Started(layout) => accuracy::header(layout),
-            accuracy::Event::Rung(layout, rung) => accuracy::row(layout, rung, false),
+            accuracy::Event::Started(layout) => report::accuracy::header(layout),
+            accuracy::Event::Rung(layout, rung) => report::accuracy::row(layout, rung, false),
         };
         if written.is_ok() {
             written = print(out, &text).and_then(|_| out.flush().map_err(stdout_error));
         }
     })?;
     written?;
-    print(out, &accuracy::footer(&ladder))?;
+    print(out, &report::accuracy::footer(&ladder))?;
     Ok(Outcome::Passed)
 }
 

@@ -9,6 +9,7 @@
 //! sample, the winning local run's path, start, references and optimum, and a table of those
 //! points; the accuracy ladder when one was run; the spec's source.
 
+use super::accuracy::{self as text, description, skipped_text};
 use super::svg::{MapCell, MapPlot, Marker, Shape, FONT, RED};
 use super::table::{self, with_unit};
 use super::{disc, plots};
@@ -649,7 +650,7 @@ fn accuracy_section(ladder: &Ladder) -> Section {
     let missing: Vec<String> = acc::Quantity::ALL
         .into_iter()
         .filter(|q| !l.quantities.contains(q))
-        .map(|q| q.description())
+        .map(description)
         .collect();
     let settings_rungs = ladder.rungs.iter().any(|r| r.variation != Variation::Steps);
     let other_law = ladder
@@ -669,11 +670,11 @@ fn accuracy_section(ladder: &Ladder) -> Section {
         .map(|&q| (q, ladder.orders(q)))
         .filter(|(_, o)| !o.is_empty())
         .collect();
-    let order_text = |p: Option<f64>| p.map_or("—".to_string(), acc::order_text);
+    let order_text = |p: Option<f64>| p.map_or("—".to_string(), text::order_text);
     let body = html! {
         p.note {
             "Scene " code { (l.scene) } " over crank " (number(l.from_deg)) "° to "
-            (number(l.to_deg)) "° (" (acc::steps_text(l.periods)) " mesh periods) on a ladder of \
+            (number(l.to_deg)) "° (" (text::steps_text(l.periods)) " mesh periods) on a ladder of \
             settings. The reference is the finest rung: " (l.finest) " steps per mesh period, "
             (l.geometry.name()) " geometry, " (l.law.name()) ", solver rel_tol 1e-11. Each error \
             is |rung − reference| in the quantity's unit; the TE curve's is the largest difference \
@@ -692,14 +693,14 @@ fn accuracy_section(ladder: &Ladder) -> Section {
             @if other_law { " Another contact law is another model: its difference from the \
                 reference is a model difference, not a discretisation error, and it is never the \
                 cheapest." }
-            @for k in &ladder.skipped { " Skipped: " (k) "." }
+            @for &k in &ladder.skipped { " Skipped: " (skipped_text(k)) "." }
         }
         p {
             @match ladder.cheapest {
                 Some(i) if ladder.rungs[i].is_reference => "Only the reference meets every \
                     tolerance; its own error is not measured (no finer rung).",
                 Some(i) => { "Cheapest rung meeting every tolerance: " b { (ladder.rungs[i].label) }
-                    " (" (acc::steps_text(ladder.rungs[i].steps_per_period)) " steps per mesh period)." },
+                    " (" (text::steps_text(ladder.rungs[i].steps_per_period)) " steps per mesh period)." },
                 None => "No rung meets every tolerance.",
             }
         }
@@ -709,17 +710,17 @@ fn accuracy_section(ladder: &Ladder) -> Section {
                 th { "geometry" } th { "contact law" } th { "solver rel_tol" } th { "time" }
                 @for q in &l.quantities {
                     th { (q.label()) @if !q.unit().is_empty() { " (" (q.unit()) ")" }
-                        br; span.note { "tol " (acc::short(q.tolerance(&l.tolerances))) } }
+                        br; span.note { "tol " (text::short(q.tolerance(&l.tolerances))) } }
                 }
                 th { "tolerances" }
             },
             html! {
                 @for (i, r) in ladder.rungs.iter().enumerate() {
                     @let cheapest = ladder.cheapest == Some(i);
-                    @let (class, verdict) = r.verdict(&l.tolerances);
+                    @let (class, verdict) = text::verdict(r, &l.tolerances);
                     tr class=(if cheapest { "pass cheapest" } else { class }) {
                         td { (r.label) }
-                        td.num { (acc::steps_text(r.steps_per_period)) }
+                        td.num { (text::steps_text(r.steps_per_period)) }
                         td.num { (r.angles) }
                         td { (r.geometry.name()) }
                         td { (r.law.name()) }
@@ -730,7 +731,7 @@ fn accuracy_section(ladder: &Ladder) -> Section {
                                 && r.error(q).is_some_and(|e| !q.within(e, &l.tolerances));
                             td.num.over[over] {
                                 @if r.is_reference { "—" }
-                                @else { (r.error(q).map_or("n/a".to_string(), acc::short)) }
+                                @else { (r.error(q).map_or("n/a".to_string(), text::short)) }
                             }
                         }
                         td.verdict { (verdict) @if cheapest { " — " b { "cheapest" } } }

@@ -1,5 +1,6 @@
 //! Outputs: the terminal table, the results JSON, JUnit XML and the HTML design review.
 
+pub mod accuracy;
 pub mod as_built;
 pub mod disc;
 pub mod export;

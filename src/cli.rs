@@ -413,7 +413,7 @@ fn run_check(
         report: outputs.report.is_some(),
     };
     if explain {
-        print(out, &scene::explain(&spec, writes))?;
+        print(out, &report::explain::explain(&spec, writes))?;
         if let Some(m) = &spec.measured {
             let line = format!(
                 "\nas built: every scene runs on the disc identified from `{}` (its \
@@ -508,7 +508,7 @@ fn run_check(
     }
     let summaries = summary::summarise(&results);
     print(out, &report::table::render_summary(&summaries))?;
-    for note in scene::notes(&spec) {
+    for note in report::explain::notes(&spec) {
         print(out, &format!("note: {note}\n"))?;
     }
     if let Some(p) = outputs.json {

@@ -3,6 +3,7 @@
 pub mod accuracy;
 pub mod as_built;
 pub mod disc;
+pub mod explain;
 pub mod export;
 pub mod fit;
 pub mod html;

@@ -2,10 +2,10 @@
 //! torsion block of a scene in the results JSON (`TorsionDoc`), and the design review's
 //! torsion curves, table of catalogue figures and bearing-life table (`sections`).
 
+use super::explain::HYSTERESIS;
 use super::html::{data_table, figure, section, Section};
 use super::json::Finite;
 use super::svg::{LinePlot, Series, PALETTE};
-use crate::engine::scene::HYSTERESIS;
 use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::quantity::{self as q, Quantity};
 use crate::model::results::{SceneResult, TorsionCurves};
@@ -227,7 +227,7 @@ fn bearing_section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
                 .filter_map(move |(k, d)| Some((s, k, d.bearing_life?)))
         })
         .collect();
-    let notes: Vec<String> = crate::engine::scene::notes(spec)
+    let notes: Vec<String> = super::explain::notes(spec)
         .into_iter()
         .filter(|n| n.contains("crank-bearing"))
         .collect();

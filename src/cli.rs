@@ -485,7 +485,7 @@ fn run_check(
     }
     print(out, &format!("cycloid check `{}`\n", spec.name))?;
     if let Some(id) = &identified {
-        print(out, &format!("{}\n", as_built::describe(&spec, id)))?;
+        print(out, &format!("{}\n", report::as_built::describe(&spec, id)))?;
     }
     for (s, r) in spec.studies.iter().zip(&studies) {
         print(out, &report::optimisation::render(&spec, s, r))?;
@@ -638,7 +638,7 @@ fn run_bless(path: &str, out: &mut dyn Write) -> Result<Outcome> {
         }
     }
     let blessed = golden::bless(&spec, &results).map_err(|e| locate(e, &spec))?;
-    print(out, &golden::bless_report(&spec, &blessed))?;
+    print(out, &report::golden::bless_report(&spec, &blessed))?;
     Ok(Outcome::Passed)
 }
 

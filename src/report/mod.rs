@@ -6,6 +6,7 @@ pub mod disc;
 pub mod explain;
 pub mod export;
 pub mod fit;
+pub mod golden;
 pub mod html;
 pub mod json;
 pub mod junit;

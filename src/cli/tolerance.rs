@@ -330,7 +330,7 @@ pub fn check(spec: &spec::Spec) -> Result<check::Check> {
             "{} of {} samples fail some limit; {} Clopper–Pearson interval [{}, {}]{}",
             s.failures,
             s.samples,
-            summary::percent_label(summary::CONFIDENCE),
+            report::tolerance::percent_label(summary::CONFIDENCE),
             crate::numeric::number(s.interval.0),
             crate::numeric::number(s.interval.1),
             match spec.measured {

@@ -149,7 +149,10 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
             " Arrows: forces on the disc in scene `{}` at this angle, to one scale — red \
              rollers, green output pins, purple the crank bearing (the largest is {ARROW_MM} mm \
              long; none is drawn shorter than {SHORTEST_ARROW_MM} mm).",
-            l.scene
+            match l.disc {
+                Some(k) => format!("{} (disc {k})", l.scene),
+                None => l.scene.clone(),
+            }
         );
     }
     (document(w, h, body), caption)

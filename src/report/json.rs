@@ -449,7 +449,7 @@ impl<'a> StudyDoc<'a> {
             feasible: o.feasible(),
             failure: o.failure.as_deref(),
             evaluations: r.evaluations,
-            stop_reason: r.found.to_string(),
+            stop_reason: super::optimisation::found(r.found),
             min_clearance_mm: o.min_clearance.as_ref().map(|c| Finite(c.gap_mm)),
             lost_motion_arcsec: o.lost_motion_arcsec.map(Finite),
             verification: r.verification.as_ref().map(|v| VerificationDoc {

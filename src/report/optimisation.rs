@@ -2,8 +2,10 @@
 //! constraint's margin, evaluations, time and why it stopped; the objective map CSV; and the
 //! same study as a view for the design-review report (`view`).
 
+use crate::engine::optimise::local::StopReason;
 use crate::engine::optimise::problem::Evaluation;
-use crate::engine::optimise::StudyResult;
+use crate::engine::optimise::verify::Verification;
+use crate::engine::optimise::{Found, StudyResult};
 use crate::model::{Study, VariableKind};
 use crate::numeric::number;
 use crate::report::html::{OptimisationView, StudyPoint};
@@ -80,10 +82,71 @@ fn row(study: &Study, label: &str, e: &Evaluation) -> String {
     )
 }
 
+/// Where the optimum was found, in words ("found by local run 2 (converged: …)").
+pub fn found(f: Found) -> String {
+    match f {
+        Found::Start => "the start is the best point evaluated".to_string(),
+        Found::GlobalSample(i) => format!(
+            "the best point is global sample {}; every local run ended higher",
+            i + 1
+        ),
+        Found::LocalRun(k, stop) => format!("found by local run {} ({})", k + 1, stop_text(stop)),
+        Found::GridPoint => {
+            "the best point is a point of the verification grid; its refinements ended higher"
+                .to_string()
+        }
+        Found::Refinement(k, stop) => format!(
+            "found by refinement {} from the verification grid ({})",
+            k + 1,
+            stop_text(stop)
+        ),
+    }
+}
+
+/// Why a local run stopped.
+fn stop_text(s: StopReason) -> &'static str {
+    match s {
+        StopReason::StepBelowTolerance => "converged: step below the variable tolerance",
+        StopReason::ObjectiveChangeBelowTolerance => {
+            "converged: objective change below the tolerance"
+        }
+        StopReason::BudgetUsedUp => "stopped: evaluation budget used up",
+        StopReason::Ended => "stopped: COBYLA ended without a tolerance met",
+        StopReason::RoundoffLimited => "stopped: progress limited by round-off",
+        StopReason::Failed => "COBYLA failed",
+    }
+}
+
+/// How the search went: evaluations, time and where the optimum was found.
+pub fn outcome(r: &StudyResult) -> String {
+    format!(
+        "{} evaluations ({} global, {} local run{}{}) in {:.2} s; {}",
+        r.evaluations,
+        r.global.len(),
+        r.local_runs.len(),
+        if r.local_runs.len() == 1 { "" } else { "s" },
+        r.verification.as_ref().map_or(String::new(), |v| format!(
+            ", {} grid points{}",
+            v.points,
+            match v.refinements.len() {
+                0 => String::new(),
+                n => format!(", {n} refinements"),
+            }
+        )),
+        r.elapsed.as_secs_f64(),
+        found(r.found)
+    )
+}
+
+/// The verification grid's size: "41 × 41".
+fn grid(v: &Verification, dims: usize) -> String {
+    vec![v.steps.to_string(); dims.max(1)].join(" × ")
+}
+
 /// How good the optimum is against the verification grid, in one sentence.
 pub fn verification_text(study: &Study, r: &StudyResult) -> Option<String> {
     let v = r.verification.as_ref()?;
-    let grid = v.grid(study.variables.len());
+    let grid = grid(v, study.variables.len());
     let searched = match v.beat_search_by() {
         Some(d) => format!(
             "a grid point beat the search by {}, {} refinement{} from there; ",
@@ -197,7 +260,7 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
         out += "  no feasible point was found: every point evaluated violates a constraint or \
                 a design rule (the optimum above is the least infeasible)\n";
     }
-    out += &format!("  {}\n", r.outcome());
+    out += &format!("  {}\n", outcome(r));
     out
 }
 
@@ -471,8 +534,8 @@ pub fn view(
             .collect(),
         points,
         outcome: match verification_text(study, r) {
-            Some(v) => format!("{}; {v}.", r.outcome()),
-            None => format!("{}.", r.outcome()),
+            Some(v) => format!("{}; {v}.", outcome(r)),
+            None => format!("{}.", outcome(r)),
         },
         notes,
     }

@@ -7,11 +7,11 @@
 use super::html::{data_table, figure, section, shell, Section};
 use super::svg::{LinePlot, Series, PALETTE, RED};
 use super::table::with_unit;
-use super::tolerance::{percent, LINEAR_CAVEAT, MEASURED_NOTE, QUANTILE_DEFINITION};
-use crate::engine::tolerance::sensitivity::Sensitivity;
-use crate::engine::tolerance::summary::{
-    percent_label, LimitSummary, Summary, CONFIDENCE, QUANTILES,
+use super::tolerance::{
+    distribution_text, percent, percent_label, LINEAR_CAVEAT, MEASURED_NOTE, QUANTILE_DEFINITION,
 };
+use crate::engine::tolerance::sensitivity::Sensitivity;
+use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, Study};
 use crate::error::Result;
 use crate::numeric::number;
@@ -116,7 +116,7 @@ fn study_section(study: &Study) -> Section {
     let t = &study.tolerances;
     let body = html! {
         p { "Scene " code { (study.spec.scenes[t.scene].name) } ", " (t.samples) " samples, seed "
-            (t.seed) ", " (t.distribution.describe())
+            (t.seed) ", " (distribution_text(t.distribution))
             ". Every part's deviation is drawn independently; sample k depends only on (seed, k)." }
         @if let Some(m) = &study.spec.measured {
             p.note { "Samples " (MEASURED_NOTE) ": " code { (m.path) }

@@ -553,7 +553,7 @@ fn run_check(
             .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
             .into_iter()
             .collect();
-        let input = report::html::ReportInput {
+        let input = report::review::ReportInput {
             spec: &spec,
             checks: &checks,
             results: &results,
@@ -563,14 +563,14 @@ fn run_check(
             accuracy: ladder.as_ref().map(|(l, _)| l),
             warnings: &warnings,
             as_built: identified.as_ref().zip(designed.as_deref()).map(
-                |(identification, designed)| report::as_built::AsBuiltView {
+                |(identification, designed)| report::review::AsBuiltView {
                     identification,
                     designed_modification: designed_modification.unwrap_or(spec.modification),
                     designed,
                 },
             ),
         };
-        let files = report::html::write(std::path::Path::new(dir), &input)?;
+        let files = report::review::write(std::path::Path::new(dir), &input)?;
         print(
             out,
             &format!(

@@ -8,7 +8,7 @@ mod common;
 
 use common::{cycloid as run, PaperSpec, Scratch};
 use cycloid::engine::optimise::problem::Margin;
-use cycloid::report::html::{render, OptimisationView, ReportInput, StudyPoint};
+use cycloid::report::review::{render, OptimisationView, ReportInput, StudyPoint};
 use cycloid::report::svg::MapCell;
 use quick_xml::events::Event;
 use quick_xml::Reader;

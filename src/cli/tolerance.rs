@@ -204,7 +204,7 @@ fn finish(
     }
     if let Some(dir) = outputs.report {
         let files =
-            report::tolerance_review::write(Path::new(dir), study, &summary, records, sens)?;
+            report::review::tolerance::write(Path::new(dir), study, &summary, records, sens)?;
         print(
             out,
             &format!(

@@ -8,7 +8,7 @@ use crate::engine::optimise::verify::Verification;
 use crate::engine::optimise::{Found, StudyResult};
 use crate::model::{Study, VariableKind};
 use crate::numeric::number;
-use crate::report::html::{OptimisationView, StudyPoint};
+use crate::report::review::{OptimisationView, StudyPoint};
 use crate::report::svg::MapCell;
 use crate::spec::Spec;
 

@@ -139,7 +139,7 @@ fn worst(study: &Study, records: &Records) -> Vec<(u64, f64)> {
             let e = v
                 .iter()
                 .zip(&study.limits)
-                .map(|(&v, (def, limit))| crate::engine::check::excess(v, *limit, def.bound))
+                .map(|(&v, (def, limit))| crate::engine::limit::excess(v, *limit, def.bound))
                 .fold(f64::NEG_INFINITY, f64::max);
             (k as u64, e)
         })

@@ -320,8 +320,21 @@ pub fn objective_axis_label(study: &Study) -> String {
     }
 }
 
+/// A point of the study in the map's plane: its first two variables in the spec's units (0 for
+/// a variable the study does not have).
+fn xy(study: &Study, e: &Evaluation) -> (f64, f64) {
+    let at = |k: usize| {
+        study
+            .variables
+            .get(k)
+            .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
+    };
+    (at(0), at(1))
+}
+
 /// The design-review view of one study: `map` is `optimise::map` of the study over a
-/// `steps` × `steps` grid around the optimum (empty: no map).
+/// `steps` × `steps` grid around the optimum (empty: no map). One builder per part of the
+/// section: what the study is, its map, the search on it, its table, its notes and outcome.
 pub fn view(
     spec: &Spec,
     study: &Study,
@@ -330,13 +343,55 @@ pub fn view(
     steps: usize,
 ) -> OptimisationView {
     let vars = &study.variables;
-    let xy = |e: &Evaluation| {
-        let at = |k: usize| {
-            vars.get(k)
-                .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
-        };
-        (at(0), at(1))
-    };
+    let (path, path_label, path_evaluations) = winning_path(study, r);
+    OptimisationView {
+        name: r.name.clone(),
+        summary: summary(spec, study),
+        x_label: vars.first().map_or("", |v| variable_label(v.kind)).into(),
+        y_label: vars
+            .get(1)
+            .map_or("(one variable)", |v| variable_label(v.kind))
+            .into(),
+        objective_label: objective_axis_label(study),
+        map: map_cells(study, map),
+        map_note: map_note(study, r, map, steps),
+        global: r
+            .global
+            .iter()
+            .map(|e| {
+                let (x, y) = xy(study, e);
+                (x, y, e.feasible())
+            })
+            .collect(),
+        path,
+        path_label,
+        path_evaluations,
+        start: Some(xy(study, &r.start)),
+        optimum: Some(xy(study, &r.optimum)),
+        references: r
+            .references
+            .iter()
+            .map(|(l, e)| {
+                let (x, y) = xy(study, e);
+                (x, y, l.clone())
+            })
+            .collect(),
+        variables: vars
+            .iter()
+            .map(|v| variable_label(v.kind).to_string())
+            .collect(),
+        points: table_points(study, r),
+        outcome: match verification_text(study, r) {
+            Some(v) => format!("{}; {v}.", outcome(r)),
+            None => format!("{}.", outcome(r)),
+        },
+        notes: notes(study, r),
+    }
+}
+
+/// What the study minimises, on which scene, over which bounds, subject to what (a sentence).
+fn summary(spec: &Spec, study: &Study) -> String {
+    let vars = &study.variables;
     let scene = &spec.scenes[study.scene];
     let bounds: Vec<String> = vars
         .iter()
@@ -368,7 +423,7 @@ pub fn view(
             short(dt)
         ));
     }
-    let summary = format!(
+    format!(
         "Minimise {} on scene “{}” ({} N·m, {} crank angles) over {}{}.",
         objective_label(study),
         scene.name,
@@ -380,7 +435,31 @@ pub fn view(
         } else {
             format!(", subject to {}", constraints.join(" and "))
         }
-    );
+    )
+}
+
+/// The objective map's cells (non-finite where a design rule fails).
+fn map_cells(study: &Study, map: &[Evaluation]) -> Vec<MapCell> {
+    map.iter()
+        .map(|e| {
+            let (x, y) = xy(study, e);
+            MapCell {
+                x,
+                y,
+                z: if e.failure.is_none() {
+                    e.objective
+                } else {
+                    f64::NAN
+                },
+                feasible: e.feasible(),
+            }
+        })
+        .collect()
+}
+
+/// How the map was made: its grid, its evaluations and the variables held fixed.
+fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) -> String {
+    let vars = &study.variables;
     let held: Vec<String> = vars
         .iter()
         .skip(2)
@@ -392,7 +471,7 @@ pub fn view(
             )
         })
         .collect();
-    let map_note = if map.is_empty() {
+    if map.is_empty() {
         "no map computed".to_string()
     } else {
         let grid = if vars.len() > 1 {
@@ -405,9 +484,13 @@ pub fn view(
             note += &format!("; {h}");
         }
         note
-    };
-    // The winning local run, from its start up to the optimum.
-    let (path, path_label, path_evaluations) = match r.winner().map(|k| (k, &r.local_runs[k])) {
+    }
+}
+
+/// The winning local run, from its start up to the optimum: (its points, what it is, its
+/// evaluations up to the optimum); empty when no local run found the optimum.
+fn winning_path(study: &Study, r: &StudyResult) -> (Vec<(f64, f64)>, String, usize) {
+    match r.winner().map(|k| (k, &r.local_runs[k])) {
         Some((k, run)) => {
             let end = run
                 .path
@@ -416,9 +499,9 @@ pub fn view(
                 .map_or(run.path.len(), |i| i + 1);
             let mut points = Vec::new();
             if run.path.first() != Some(&run.start) {
-                points.push(xy(&run.start));
+                points.push(xy(study, &run.start));
             }
-            points.extend(run.path[..end].iter().map(xy));
+            points.extend(run.path[..end].iter().map(|e| xy(study, e)));
             let from = if run.start == r.start {
                 "from the start".to_string()
             } else {
@@ -434,10 +517,15 @@ pub fn view(
             )
         }
         None => (Vec::new(), String::new(), 0),
-    };
+    }
+}
+
+/// The table's columns: start, references, optimum.
+fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
     let point = |label: &str, e: &Evaluation| StudyPoint {
         label: label.to_string(),
-        variables: vars
+        variables: study
+            .variables
             .iter()
             .map(|v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
             .collect(),
@@ -449,6 +537,12 @@ pub fn view(
     let mut points = vec![point("start", &r.start)];
     points.extend(r.references.iter().map(|(l, e)| point(l, e)));
     points.push(point("optimum", &r.optimum));
+    points
+}
+
+/// The remarks under the table: what the objective hides, the optimum against each reference,
+/// a point that satisfies the paper's Eq. 8 but not the whole-mesh clearance.
+fn notes(study: &Study, r: &StudyResult) -> Vec<String> {
     let mut notes = vec![format!(
         "What the objective hides: {}.",
         std::iter::once(("start", &r.start))
@@ -481,62 +575,5 @@ pub fn view(
             notes.push(format!("{}{}.", first.unwrap_or_default(), chars.as_str()));
         }
     }
-    OptimisationView {
-        name: r.name.clone(),
-        summary,
-        x_label: vars.first().map_or("", |v| variable_label(v.kind)).into(),
-        y_label: vars
-            .get(1)
-            .map_or("(one variable)", |v| variable_label(v.kind))
-            .into(),
-        objective_label: objective_axis_label(study),
-        map: map
-            .iter()
-            .map(|e| {
-                let (x, y) = xy(e);
-                MapCell {
-                    x,
-                    y,
-                    z: if e.failure.is_none() {
-                        e.objective
-                    } else {
-                        f64::NAN
-                    },
-                    feasible: e.feasible(),
-                }
-            })
-            .collect(),
-        map_note,
-        global: r
-            .global
-            .iter()
-            .map(|e| {
-                let (x, y) = xy(e);
-                (x, y, e.feasible())
-            })
-            .collect(),
-        path,
-        path_label,
-        path_evaluations,
-        start: Some(xy(&r.start)),
-        optimum: Some(xy(&r.optimum)),
-        references: r
-            .references
-            .iter()
-            .map(|(l, e)| {
-                let (x, y) = xy(e);
-                (x, y, l.clone())
-            })
-            .collect(),
-        variables: vars
-            .iter()
-            .map(|v| variable_label(v.kind).to_string())
-            .collect(),
-        points,
-        outcome: match verification_text(study, r) {
-            Some(v) => format!("{}; {v}.", outcome(r)),
-            None => format!("{}.", outcome(r)),
-        },
-        notes,
-    }
+    notes
 }

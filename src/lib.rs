@@ -9,7 +9,8 @@
 //! - `geometry` → `contact` → `equilibrium`: the physics (`measure`, the identification of a
 //!   measured disc, sits on `geometry`);
 //! - `engine`: runs scenes, checks limits and goldens, optimises, runs the accuracy ladder;
-//! - `report`: the terminal table, JSON, JUnit, the design review, the profile export;
+//! - `report`: every text for people, built from the engine's data: the terminal table, JSON,
+//!   JUnit, the design review (`report::review`), the profile export, `--explain`;
 //! - `cli`: the commands.
 //!
 //! Units inside the engine: mm, N, N·mm, rad, MPa; every conversion is a `units` function,

@@ -3,8 +3,9 @@
 //! (`optimise`) and runs the accuracy ladder (`accuracy`), summarises the headline results of
 //! each scene (`summary`), and computes what the design review draws of the disc (`drawing`);
 //! the torsion curve under a locked input and its catalogue figures (`torsion`); the crank
-//! bearing's rating life (`bearing_life`). It returns data: every sentence and table made of
-//! it is built in `report`.
+//! bearing's rating life (`bearing_life`). It returns data: the tables, sentences and notes
+//! made of it are built in `report` (the engine's own words are its errors, the `at` labels of
+//! checks, names, and the files it writes).
 
 pub mod accuracy;
 pub mod as_built;

@@ -5,8 +5,8 @@ use crate::measure::fit::Identification;
 use crate::spec::Spec;
 use crate::units;
 
-/// One line for the terminal: what the scenes of `spec`, the disc as built (`identify`),
-/// run on.
+/// One line for the terminal: what the scenes of `spec`, the disc as built
+/// (`engine::as_built::identify`), run on.
 pub fn describe(spec: &Spec, id: &Identification) -> String {
     let m = &id.modification;
     let form = &spec.design.deviations;

@@ -31,7 +31,8 @@
 //!   measured disc, sits on `geometry`);
 //! - `engine`: runs scenes, checks limits and goldens, optimises, runs the accuracy ladder, and
 //!   `engine::commands`, the entry of each command;
-//! - `report`: every table, sentence and file a person or a script reads;
+//! - `report`: every text for people, built from the engine's data: the terminal table, JSON,
+//!   JUnit, the design review (`report::review`), the profile export, `--explain`;
 //! - `cli`: the commands' arguments and printing.
 //!
 //! Units inside the engine: mm, N, N·mm, rad, MPa; every conversion is a `units` function,

@@ -110,6 +110,13 @@ pub fn input(x: f64) -> String {
     }
 }
 
+/// A probability as the reports label it, to 0.001 %: `QUANTILES` read "0.135 %", "50 %",
+/// "99.865 %", `CONFIDENCE` "95 %".
+pub fn percent_label(p: f64) -> String {
+    let digits = format!("{:.3}", 100.0 * p);
+    format!("{} %", digits.trim_end_matches('0').trim_end_matches('.'))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

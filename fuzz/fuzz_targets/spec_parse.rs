@@ -1,6 +1,6 @@
 //! Fuzz the spec parser: any UTF-8 text either parses into a validated spec or gives an error
 //! located as `file:line:column`; a parsed spec also passes through the cheap checks that run
-//! before any computation (`check::validate`, `scene::explain`). Never a panic.
+//! before any computation (`check::validate`, `report::explain`). Never a panic.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -9,7 +9,7 @@ fuzz_target!(|text: &str| {
     match cycloid::spec::parse("fuzz.yaml", text) {
         Ok(spec) => {
             let _ = cycloid::engine::check::validate(&spec);
-            let _ = cycloid::engine::scene::explain(&spec, Default::default());
+            let _ = cycloid::report::explain::explain(&spec, Default::default());
         }
         Err(e) => {
             let rendered = e.to_string();

@@ -6,7 +6,7 @@ use super::Outcome;
 use crate::engine::accuracy::{self, Setting};
 use crate::engine::commands;
 use crate::error::{Error, ErrorKind, Result};
-use crate::spec;
+use crate::{report, spec};
 use std::io::Write;
 
 /// The options of `cycloid accuracy` as given; unset ones come from the spec's `accuracy`
@@ -30,15 +30,15 @@ pub(super) fn run(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Resu
     let mut written: Result<()> = Ok(());
     let ladder = commands::accuracy(&spec, scene, &options, &mut |event| {
         let text = match event {
-            accuracy::Event::Started(layout) => accuracy::header(layout),
-            accuracy::Event::Rung(layout, rung) => accuracy::row(layout, rung, false),
+            accuracy::Event::Started(layout) => report::accuracy::header(layout),
+            accuracy::Event::Rung(layout, rung) => report::accuracy::row(layout, rung, false),
         };
         if written.is_ok() {
             written = print(out, &text).and_then(|_| out.flush().map_err(stdout_error));
         }
     })?;
     written?;
-    print(out, &accuracy::footer(&ladder))?;
+    print(out, &report::accuracy::footer(&ladder))?;
     Ok(Outcome::Passed)
 }
 

@@ -2,7 +2,7 @@
 
 use super::output::print;
 use super::Outcome;
-use crate::engine::{commands, golden};
+use crate::engine::commands;
 use crate::error::Result;
 use crate::spec;
 use std::io::Write;
@@ -20,6 +20,6 @@ pub(super) fn run(path: &str, out: &mut dyn Write) -> Result<Outcome> {
         return Ok(Outcome::Passed);
     }
     let blessed = commands::bless(&spec)?;
-    print(out, &golden::bless_report(&spec, &blessed))?;
+    print(out, &crate::report::golden::bless_report(&spec, &blessed))?;
     Ok(Outcome::Passed)
 }

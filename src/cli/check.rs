@@ -4,8 +4,7 @@
 use super::output::{distinct_outputs, inputs_of, inputs_with_measured, print, print_keeping};
 use super::output::{review_line, write_file};
 use super::Outcome;
-use crate::engine::accuracy::Ladder;
-use crate::engine::commands::{self, CheckOptions, CheckRun, Review, ReviewOptions, MAX_MAP_STEPS};
+use crate::engine::commands::{self, CheckOptions, CheckRun, ReviewOptions, MAX_MAP_STEPS};
 use crate::engine::scene::Writes;
 use crate::error::{Error, ErrorKind, Result};
 use crate::report::terminal::Terminal;
@@ -59,7 +58,7 @@ fn checked(args: &CheckArgs, out: &mut dyn Write) -> Result<Outcome> {
         report: args.report.is_some(),
     };
     if args.explain {
-        print(out, &crate::engine::scene::explain(&spec, writes))?;
+        print(out, &report::explain::explain(&spec, writes))?;
         if let Some(m) = &spec.measured {
             let line = format!(
                 "\nas built: every scene runs on the disc identified from `{}` (its \
@@ -113,10 +112,7 @@ fn print_run(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()
     if let Some(a) = &run.as_built {
         print(
             out,
-            &format!(
-                "{}\n",
-                crate::engine::as_built::describe(spec, &a.identification)
-            ),
+            &format!("{}\n", report::as_built::describe(spec, &a.identification)),
         )?;
     }
     for (s, r) in spec.studies.iter().zip(&run.studies) {
@@ -131,11 +127,15 @@ fn print_run(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()
         &report::table::render_styled(&run.checks, args.color),
         styles,
     )?;
-    if let Some(w) = run.resolution.as_ref().and_then(|r| r.warning()) {
+    if let Some(w) = run
+        .resolution
+        .as_ref()
+        .and_then(report::accuracy::resolution_warning)
+    {
         print(out, &format!("{w}\n"))?;
     }
     print(out, &report::table::render_summary(&run.summaries))?;
-    for note in crate::engine::scene::notes(spec) {
+    for note in report::explain::notes(spec) {
         print(out, &format!("note: {note}\n"))?;
     }
     Ok(())
@@ -165,59 +165,11 @@ fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Resul
         return Ok(());
     };
     if let Some((l, seconds)) = &review.ladder {
-        print(out, &ladder_line(l, *seconds))?;
+        print(out, &report::accuracy::ladder_line(l, *seconds))?;
     }
     if let Some(dir) = args.report {
-        let files = write_review(Path::new(dir), run, review)?;
+        let files = report::review::write_check(Path::new(dir), run, review)?;
         print(out, &review_line(dir, files))?;
     }
     Ok(())
-}
-
-/// The line `check --report` prints about the ladder.
-fn ladder_line(ladder: &Ladder, seconds: f64) -> String {
-    format!(
-        "accuracy ladder of scene `{}`: {} rungs in {seconds:.2} s; cheapest meeting every \
-         tolerance: {}\n",
-        ladder.layout.scene,
-        ladder.rungs.len(),
-        match ladder.cheapest {
-            Some(i) => format!("`{}`", ladder.rungs[i].label),
-            None => "none".to_string(),
-        }
-    )
-}
-
-/// Write the design review of `run` into `dir`; how many files it has.
-fn write_review(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
-    let spec = &run.spec;
-    let views: Vec<_> = (spec.studies.iter().zip(&run.studies).zip(&review.maps))
-        .map(|((s, r), cells)| report::optimisation::view(spec, s, r, cells, review.map_steps))
-        .collect();
-    // The resolution warning `check` printed, as a banner under the verdict.
-    let warnings: Vec<String> = (run.resolution.as_ref())
-        .and_then(|r| r.warning())
-        .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
-        .into_iter()
-        .collect();
-    let as_built = run.as_built.as_ref().and_then(|a| {
-        let designed = a.designed.as_deref()?;
-        Some(report::as_built::AsBuiltView {
-            identification: &a.identification,
-            designed_modification: a.designed_modification,
-            designed,
-        })
-    });
-    let input = report::html::ReportInput {
-        spec,
-        checks: &run.checks,
-        results: &run.results,
-        goldens: &run.goldens,
-        disc: &review.disc,
-        optimisation: &views,
-        accuracy: review.ladder.as_ref().map(|(l, _)| l),
-        warnings: &warnings,
-        as_built,
-    };
-    Ok(report::html::write(dir, &input)?.len())
 }

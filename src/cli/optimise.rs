@@ -86,7 +86,7 @@ fn write_optimum(
             .collect::<Vec<_>>()
             .join(" + "),
         crate::numeric::number(r.optimum.objective),
-        r.found,
+        report::optimisation::found(r.found),
     );
     if let Some(v) = report::optimisation::verification_text(study, r) {
         header += &format!("# {}.\n", v.replace('\n', " "));

@@ -206,7 +206,8 @@ fn finish(run: Whole, outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome>
         write_file(p, &report::tolerance::samples_csv(study, records))?;
     }
     if let Some(dir) = outputs.report {
-        let files = report::tolerance_review::write(Path::new(dir), study, summary, records, sens)?;
+        let files =
+            report::review::tolerance::write(Path::new(dir), study, summary, records, sens)?;
         print(out, &review_line(dir, files))?;
     }
     Ok(if summary.passed() {

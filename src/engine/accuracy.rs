@@ -42,7 +42,6 @@ use crate::model::quantity::{self, TE};
 use crate::model::results::SceneResult;
 use crate::model::{ContactLaw, GeometryMode, Scene};
 use crate::model::{Effect, Plan};
-use crate::numeric::number;
 use crate::spec::{self, Spec};
 use crate::units;
 use std::time::Instant;
@@ -99,16 +98,6 @@ impl LadderQuantity {
             LadderQuantity::MaxRollerForce => &quantity::MAX_ROLLER_FORCE,
             LadderQuantity::MaxBearingForce => &quantity::MAX_BEARING_FORCE,
             LadderQuantity::MinClearance => &quantity::MIN_CLEARANCE,
-        }
-    }
-
-    /// What the error is, in words.
-    pub fn description(self) -> String {
-        match self {
-            LadderQuantity::TeCurve => {
-                "loaded TE curve, max |difference| between the curves".to_string()
-            }
-            q => q.registry().label.to_string(),
         }
     }
 
@@ -243,24 +232,6 @@ impl Rung {
         self.errors[q.index()]
     }
 
-    /// The rung's verdict: a class (`reference`, `model`, `pass`, `fail`) and its text
-    /// ("met", or "not met: …" naming the quantities over their tolerance).
-    pub fn verdict(&self, t: &LadderTolerances) -> (&'static str, String) {
-        if self.is_reference {
-            return ("reference", "reference".to_string());
-        }
-        if self.model_difference {
-            return ("model", "model difference".to_string());
-        }
-        let misses = self.misses(t);
-        if misses.is_empty() {
-            ("pass", "met".to_string())
-        } else {
-            let names: Vec<&str> = misses.iter().map(|q| q.label()).collect();
-            ("fail", format!("not met: {}", names.join(", ")))
-        }
-    }
-
     /// The quantities whose error exceeds its tolerance.
     pub fn misses(&self, t: &LadderTolerances) -> Vec<LadderQuantity> {
         LadderQuantity::ALL
@@ -272,18 +243,10 @@ impl Rung {
     pub fn meets(&self, t: &LadderTolerances) -> bool {
         self.misses(t).is_empty()
     }
-
-    fn settings(&self) -> String {
-        format!(
-            "{} geometry, {}, rel_tol {}",
-            self.geometry.name(),
-            self.law.name(),
-            tol_text(self.rel_tol)
-        )
-    }
 }
 
-fn tol_text(x: f64) -> String {
+/// A solver tolerance as rungs are named: "1e-6", else in exponent form.
+pub fn tol_text(x: f64) -> String {
     let e = x.log10().round();
     if (10f64.powf(e) - x).abs() <= 1e-6 * x {
         format!("1e{}", e as i32)
@@ -337,8 +300,8 @@ pub struct Ladder {
     /// Index of the cheapest (shortest time) rung that meets every tolerance, model differences
     /// excluded; the reference when nothing cheaper does.
     pub cheapest: Option<usize>,
-    /// Settings rungs left out, and why.
-    pub skipped: Vec<String>,
+    /// Settings rungs left out (each says why).
+    pub skipped: Vec<Skipped>,
 }
 
 impl Ladder {
@@ -422,6 +385,17 @@ impl Ladder {
         let sxx: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
         (sxx > 0.0).then(|| -sxy / sxx)
     }
+}
+
+/// Rungs of the ladder that were not run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Skipped {
+    /// The solver tolerance rungs: first-order geometry with the linear law is solved in
+    /// closed form, without a tolerance.
+    ToleranceRungs,
+    /// The settings rungs: the scene computes no roller contact, and the clearance depends on
+    /// the crank steps only.
+    SettingsRungs,
 }
 
 /// What the ladder reports while it runs.
@@ -735,11 +709,7 @@ pub fn run(
             ),
         ];
         if geometry == GeometryMode::FirstOrder && law == ContactLaw::PaperLinear {
-            skipped.push(
-                "solver tolerance rungs: first-order geometry with the linear law is solved in \
-                 closed form, without a tolerance"
-                    .to_string(),
-            );
+            skipped.push(Skipped::ToleranceRungs);
         } else {
             for tol in LOOSE_REL_TOL {
                 variants.push((
@@ -761,11 +731,7 @@ pub fn run(
             rungs.push(rung);
         }
     } else {
-        skipped.push(
-            "settings rungs: the scene computes no roller contact, and clearance depends on \
-             the crank steps only"
-                .to_string(),
-        );
+        skipped.push(Skipped::SettingsRungs);
     }
     // The cheapest by measured time among the rungs that meet every tolerance; the reference
     // meets them by definition and is the answer when nothing cheaper does. Rows are taken in
@@ -787,250 +753,4 @@ pub fn run(
         cheapest,
         skipped,
     })
-}
-
-// ---------------------------------------------------------------------------------------------
-// Text rendering. Columns have fixed widths so rows can be printed as they finish.
-
-const LABEL_W: usize = 26;
-const NUM_W: usize = 13;
-
-fn pad_left(s: &str, w: usize) -> String {
-    format!("{}{s}", " ".repeat(w.saturating_sub(s.chars().count())))
-}
-
-fn pad_right(s: &str, w: usize) -> String {
-    format!("{s}{}", " ".repeat(w.saturating_sub(s.chars().count())))
-}
-
-/// A number for the table: 3 significant digits, exponent form below 0.01.
-pub fn short(x: f64) -> String {
-    if x == 0.0 {
-        "0".to_string()
-    } else if (0.01..1e5).contains(&x.abs()) {
-        number(x)
-    } else {
-        format!("{x:.2e}")
-    }
-}
-
-fn seconds_text(s: f64) -> String {
-    if s < 1.0 {
-        format!("{:.1} ms", s * 1000.0)
-    } else {
-        format!("{s:.2} s")
-    }
-}
-
-/// An observed order, two decimals (no "-0.00" for an error that did not move).
-pub fn order_text(p: f64) -> String {
-    if p.abs() < 0.005 {
-        "0.00".to_string()
-    } else {
-        format!("{p:.2}")
-    }
-}
-
-/// Steps per period (or periods): an integer as such, else two decimals.
-pub fn steps_text(x: f64) -> String {
-    if (x - x.round()).abs() < 1e-9 {
-        format!("{}", x.round())
-    } else {
-        format!("{x:.2}")
-    }
-}
-
-fn tolerance_text(q: LadderQuantity, t: &LadderTolerances) -> String {
-    let v = short(q.tolerance(t));
-    if q.unit().is_empty() {
-        v
-    } else {
-        format!("{v} {}", q.unit())
-    }
-}
-
-/// The lines before the first row: scene, reference, tolerances, column headings.
-pub fn header(l: &Layout) -> String {
-    let mut s = format!(
-        "accuracy ladder of scene `{}` (spec `{}`): crank {}° to {}° ({} mesh periods)\n",
-        l.scene,
-        l.spec_name,
-        number(l.from_deg),
-        number(l.to_deg),
-        steps_text(l.periods)
-    );
-    s += &format!(
-        "reference: {} steps per mesh period ({} crank angles), {} geometry, {}, rel_tol {}\n",
-        l.finest,
-        l.angles(l.finest),
-        l.geometry.name(),
-        l.law.name(),
-        tol_text(Settings::default().rel_tol)
-    );
-    let tolerances: Vec<String> = l
-        .quantities
-        .iter()
-        .map(|&q| format!("{} {}", q.label(), tolerance_text(q, &l.tolerances)))
-        .collect();
-    s += &format!(
-        "errors are |rung − reference| in each quantity's unit; tolerances: {}\n",
-        tolerances.join(", ")
-    );
-    let missing: Vec<String> = LadderQuantity::ALL
-        .into_iter()
-        .filter(|q| !l.quantities.contains(q))
-        .map(|q| q.description())
-        .collect();
-    if !missing.is_empty() {
-        s += &format!(
-            "not computed by this scene (no column): {}\n",
-            missing.join(", ")
-        );
-    }
-    let mut h1 = format!(
-        "{}{}{}{}",
-        pad_right("rung", LABEL_W),
-        pad_left("steps/period", 13),
-        pad_left("angles", 8),
-        pad_left("time", 11)
-    );
-    let mut h2 = " ".repeat(LABEL_W + 13 + 8 + 11);
-    for q in &l.quantities {
-        h1 += &pad_left(q.label(), NUM_W + 1);
-        h2 += &pad_left(q.unit(), NUM_W + 1);
-    }
-    h1 += "  tolerances";
-    s += h1.trim_end();
-    s += "\n";
-    s += h2.trim_end();
-    s += "\n";
-    s
-}
-
-/// One row of the table; `cheapest` appends the mark.
-pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
-    let mut s = format!(
-        "{}{}{}{}",
-        pad_right(&r.label, LABEL_W),
-        pad_left(&steps_text(r.steps_per_period), 13),
-        pad_left(&r.angles.to_string(), 8),
-        pad_left(&seconds_text(r.seconds), 11)
-    );
-    for &q in &l.quantities {
-        let cell = match r.error(q) {
-            _ if r.is_reference => "—".to_string(),
-            Some(e) => short(e),
-            None => "n/a".to_string(),
-        };
-        s += &pad_left(&cell, NUM_W + 1);
-    }
-    let (_, verdict) = r.verdict(&l.tolerances);
-    s += "  ";
-    s += &verdict;
-    if cheapest {
-        s += "  <- cheapest";
-    }
-    s + "\n"
-}
-
-/// The lines after the last row: the cheapest rung, the observed orders, the notes.
-pub fn footer(ladder: &Ladder) -> String {
-    let l = &ladder.layout;
-    let reference = ladder.reference();
-    let mut s = String::new();
-    if ladder.layout.loaded && ladder.rungs.iter().any(|r| r.variation != Variation::Steps) {
-        s += &format!(
-            "settings rungs at {} steps per mesh period{}\n",
-            ladder.settings_steps,
-            if ladder.settings_steps == l.finest {
-                " (the finest: their errors are the settings' own effect)"
-            } else {
-                " (their errors include that resolution's, shown by its steps rung)"
-            }
-        );
-    }
-    match ladder.cheapest {
-        Some(i) if ladder.rungs[i].is_reference => {
-            s += "cheapest rung meeting every tolerance: only the reference, whose own error is not \
-                  measured (no finer rung): ask for looser tolerances or a finer reference\n";
-        }
-        Some(i) => {
-            let r = &ladder.rungs[i];
-            s += &format!(
-                "cheapest rung meeting every tolerance: `{}` ({} steps per mesh period, {}): {} \
-                 against {} for the reference\n",
-                r.label,
-                steps_text(r.steps_per_period),
-                r.settings(),
-                seconds_text(r.seconds),
-                seconds_text(reference.seconds)
-            );
-        }
-        None => s += "no rung meets every tolerance\n",
-    }
-    let orders: Vec<String> = l
-        .quantities
-        .iter()
-        .filter_map(|&q| {
-            let o = ladder.orders(q);
-            if o.is_empty() {
-                return None;
-            }
-            let text: Vec<String> = o
-                .iter()
-                .map(|(_, p)| p.map_or("—".to_string(), order_text))
-                .collect();
-            let fit = ladder.fitted_order(q).map_or("—".to_string(), order_text);
-            Some(format!(
-                "  {}{}   fit {fit}",
-                pad_right(q.label(), 15),
-                text.join(" ")
-            ))
-        })
-        .collect();
-    if !orders.is_empty() {
-        let ns: Vec<String> = ladder
-            .orders(l.quantities[0])
-            .iter()
-            .map(|(n, _)| n.to_string())
-            .collect();
-        s += &format!(
-            "observed order log2(e(N)/e(2N)) of the steps rungs, N = {}; fit: least squares \
-             over N = 12 … finest/4:\n",
-            ns.join(", ")
-        );
-        for o in orders {
-            s += &o;
-            s += "\n";
-        }
-    }
-    if ladder
-        .rungs
-        .iter()
-        .any(|r| r.variation == Variation::ContactLaw)
-    {
-        s += "note: another contact law is another model: its \"error\" is the difference between \
-              the models, not a discretisation error, and it is never chosen as the cheapest\n";
-    }
-    if ladder
-        .rungs
-        .iter()
-        .any(|r| r.variation == Variation::Geometry && r.model_difference)
-    {
-        s += "note: the scene asks for first_order geometry, so the reference is first_order; the \
-              exact rung's difference is the first-order model's error\n";
-    }
-    for k in &ladder.skipped {
-        s += &format!("skipped: {k}\n");
-    }
-    s
-}
-
-/// The whole table (header, rows with the cheapest marked, footer).
-pub fn render(ladder: &Ladder) -> String {
-    let mut s = header(&ladder.layout);
-    for (i, r) in ladder.rungs.iter().enumerate() {
-        s += &row(&ladder.layout, r, ladder.cheapest == Some(i));
-    }
-    s + &footer(ladder)
 }

@@ -59,22 +59,3 @@ pub fn form_terms(id: &Identification) -> Vec<FormTerm> {
         })
         .collect()
 }
-
-/// One line for the terminal: what the scenes of `spec`, the disc as built (`identify`),
-/// run on.
-pub fn describe(spec: &Spec, id: &Identification) -> String {
-    let m = &id.modification;
-    let form = &spec.design.deviations;
-    format!(
-        "as built: the scenes run on the disc identified from `{}`: shift {:.4} mm, \
-         equidistant {:.4} mm, rotation {:.4}°, form error of {} harmonics (|w| ≤ {:.3} µm), \
-         residual RMS {:.3} µm",
-        spec.measured.as_ref().map_or("", |m| m.path.as_str()),
-        m.shift_mm,
-        m.equidistant_mm,
-        crate::units::deg(m.rotation_rad),
-        form.form.len(),
-        form.form_bound_mm() * 1e3,
-        id.residual_rms_mm * 1e3
-    )
-}

@@ -1,5 +1,7 @@
 //! Limits → checks → verdicts. A limit applies to every scene that computes its quantity.
 
+/// How a value compares with a limit (`engine::limit`), where checks look for it.
+pub use super::limit::{excess, passes, tolerance};
 use crate::error::{Error, Result};
 pub use crate::model::quantity::Bound;
 
@@ -7,36 +9,6 @@ use crate::model::results::SceneResult;
 use crate::model::Limits;
 use crate::model::Plan;
 use crate::spec::Spec;
-
-/// Comparison tolerance of limits and constraints: 1e-12 of max(1, |limit|). It absorbs the
-/// binary representation of decimal inputs (0.150 − 0.135 is 0.01499999999999999 in f64) and
-/// the ~1e-14 mm round-off of the exact gap, and is a picometre on a millimetre limit.
-pub fn tolerance(limit: f64) -> f64 {
-    1e-12 * limit.abs().max(1.0)
-}
-
-/// Does `value` satisfy `limit` in the direction `bound` (within `tolerance`)?
-pub fn passes(value: f64, limit: f64, bound: Bound) -> bool {
-    match bound {
-        Bound::Max => value <= limit + tolerance(limit),
-        Bound::Min => value >= limit - tolerance(limit),
-    }
-}
-
-/// How far beyond `limit` in the direction `bound` a value lies, relative to |limit| (to 1
-/// when the limit is 0): positive outside, negative inside; a NaN is infinitely outside.
-pub fn excess(value: f64, limit: f64, bound: Bound) -> f64 {
-    let scale = if limit != 0.0 { limit.abs() } else { 1.0 };
-    let beyond = match bound {
-        Bound::Max => value - limit,
-        Bound::Min => limit - value,
-    };
-    if beyond.is_nan() {
-        f64::INFINITY
-    } else {
-        beyond / scale
-    }
-}
 
 /// What a check compares.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

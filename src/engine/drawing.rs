@@ -56,6 +56,8 @@ pub struct Disc {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Loaded {
     pub scene: String,
+    /// The disc shown, with several discs (disc 0, at crank phase 0).
+    pub disc: Option<usize>,
     /// β.
     pub lag_rad: f64,
     /// βo (0 when the pins are not modelled).
@@ -157,8 +159,9 @@ pub fn disc(spec: &Spec, crank_rad: f64) -> Result<Disc> {
         rollers: (0..d.rollers).map(|i| mesh.roller_centre(i)).collect(),
         roller_radius_mm: d.roller_radius_mm,
         roller_circle_radius_mm: d.roller_circle_radius_mm,
-        loaded: loaded.map(|(scene, sol)| Loaded {
+        loaded: loaded.map(|((scene, disc), sol)| Loaded {
             scene,
+            disc,
             lag_rad: pose.lag_rad,
             output_lag_rad: output_lag,
             forces: forces(&sol, centre),
@@ -167,8 +170,11 @@ pub fn disc(spec: &Spec, crank_rad: f64) -> Result<Disc> {
     })
 }
 
-/// The first scene with roller contact, solved at `crank_rad`: (scene name, solution).
-fn loaded_at(spec: &Spec, crank_rad: f64) -> Result<Option<(String, AngleSolution)>> {
+/// ((scene name, the disc shown with several discs), its solution at the crank angle).
+type LoadedAt = ((String, Option<usize>), AngleSolution);
+
+/// The first scene with roller contact, solved at `crank_rad`.
+fn loaded_at(spec: &Spec, crank_rad: f64) -> Result<Option<LoadedAt>> {
     let Some(scene) = spec
         .scenes
         .iter()
@@ -187,7 +193,7 @@ fn loaded_at(spec: &Spec, crank_rad: f64) -> Result<Option<(String, AngleSolutio
     let failed = |f| scene::solve_failed(scene, crank_rad, &f);
     if spec.design.discs == 1 {
         let sol = solve_angle(&model, crank_rad, &AngleSolution::default()).map_err(failed)?;
-        return Ok(Some((scene.name.clone(), sol)));
+        return Ok(Some(((scene.name.clone(), None), sol)));
     }
     // Several discs: disc 0 (at crank phase 0) with its share of the torque, from the coupled
     // balance the sweep solves, every roller evaluated exactly.
@@ -196,7 +202,7 @@ fn loaded_at(spec: &Spec, crank_rad: f64) -> Result<Option<(String, AngleSolutio
     work.works.iter_mut().for_each(|w| w.exact_final = true);
     solve_coupled(&discs, crank_rad, &mut work).map_err(failed)?;
     let sol = work.works.swap_remove(0).sol;
-    Ok(Some((format!("{} (disc 0)", scene.name), sol)))
+    Ok(Some(((scene.name.clone(), Some(0)), sol)))
 }
 
 /// The forces on the disc that are not zero: rollers, pins, bearing.

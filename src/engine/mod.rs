@@ -1,8 +1,11 @@
-//! The engine: runs the scenes of a spec (`scene`), checks its limits (`check`) and golden
-//! curves (`golden`), optimises the modification (`optimise`) and runs the accuracy ladder
-//! (`accuracy`), summarises the headline results of each scene (`summary`), and computes what
-//! the design review draws of the disc (`drawing`); the torsion curve under a locked input and
-//! its catalogue figures (`torsion`); the crank bearing's rating life (`bearing_life`).
+//! The engine: runs the scenes of a spec (`scene`), checks its limits (`check`, comparing a value
+//! with a limit in `limit`) and golden curves (`golden`), optimises the modification
+//! (`optimise`) and runs the accuracy ladder (`accuracy`), summarises the headline results of
+//! each scene (`summary`), and computes what the design review draws of the disc (`drawing`);
+//! the torsion curve under a locked input and its catalogue figures (`torsion`); the crank
+//! bearing's rating life (`bearing_life`). It returns data: the tables, sentences and notes
+//! made of it are built in `report` (the engine's own words are its errors, the `at` labels of
+//! checks, names, and the files it writes).
 
 pub mod accuracy;
 pub mod as_built;
@@ -11,6 +14,7 @@ pub mod check;
 pub mod commands;
 pub mod drawing;
 pub mod golden;
+pub mod limit;
 pub mod optimise;
 /// The progress observer (`crate::progress`), where the engine's callers look for it.
 pub use crate::progress;

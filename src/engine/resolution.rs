@@ -96,21 +96,6 @@ impl Resolution {
             .collect();
         format!("at {} steps: {}", r.steps, parts.join(", "))
     }
-
-    /// The warning `check` prints under its verdict when the scene is unresolved.
-    pub fn warning(&self) -> Option<String> {
-        (!self.resolved()).then(|| {
-            format!(
-                "warning: scene `{}` is solved at {} crank steps per mesh period; its accuracy \
-                 ladder needs {} to meet the tolerances ({}); refine the crank steps or loosen \
-                 `accuracy.tolerance`",
-                self.scene,
-                number(self.scene_steps),
-                self.needed_steps(),
-                self.misses_text()
-            )
-        })
-    }
 }
 
 /// The resolution verdict from a ladder already run (the design review's).

@@ -251,39 +251,46 @@ fn bearing_life(
     })
 }
 
-/// What a reader of the results must be told besides the numbers, one line each: a torsion
-/// scene's zero hysteresis, a crank bearing whose life a scene could not rate.
-pub fn notes(spec: &Spec) -> Vec<String> {
+/// What a reader of the results must be told besides the numbers (`report::explain` says
+/// it in words).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Note {
+    /// A torsion scene: its hysteresis loss is 0 (the quasi-static model has no friction).
+    Hysteresis { scene: String },
+    /// A scene whose crank-bearing life is not rated: its crank range is not a whole number of
+    /// loaded periods (`loaded_period_rad`), and the equivalent load is a mean over whole load
+    /// cycles.
+    LifeNotRated {
+        scene: String,
+        loaded_period_rad: f64,
+    },
+    /// A scene whose crank-bearing life in hours is not rated: it has no `input_speed_rpm`.
+    LifeHoursNotRated { scene: String },
+}
+
+/// The notes of a spec's scenes, in scene order: a torsion scene's zero hysteresis, a crank
+/// bearing whose life a scene could not rate.
+pub fn notes(spec: &Spec) -> Vec<Note> {
     let mut notes = Vec::new();
     for scene in &spec.scenes {
         let plan = Plan::for_scene(scene);
+        let name = || scene.name.clone();
         if plan.has(Effect::Torsion) {
-            notes.push(format!("scene `{}`: {HYSTERESIS}", scene.name));
+            notes.push(Note::Hysteresis { scene: name() });
         }
         if spec.design.crank_bearing.is_some() && plan.computes(Effect::Bearing) {
             if !scene.spans_loaded_periods(&spec.design, &plan) {
-                notes.push(format!(
-                    "scene `{}`: crank-bearing life not rated: its crank range is not a whole \
-                     number of loaded periods ({}°), and the equivalent load is a mean over \
-                     whole load cycles",
-                    scene.name,
-                    crate::numeric::number(units::deg(plan.loaded_period_rad(&spec.design)))
-                ));
+                notes.push(Note::LifeNotRated {
+                    scene: name(),
+                    loaded_period_rad: plan.loaded_period_rad(&spec.design),
+                });
             } else if scene.input_speed_rpm.is_none() {
-                notes.push(format!(
-                    "scene `{}`: crank-bearing life in hours not rated: the scene has no \
-                     `input_speed_rpm`",
-                    scene.name
-                ));
+                notes.push(Note::LifeHoursNotRated { scene: name() });
             }
         }
     }
     notes
 }
-
-/// What every output says of a torsion scene's hysteresis.
-pub const HYSTERESIS: &str = "hysteresis loss 0: the quasi-static model has no friction, so \
-     the loading and unloading branches of the torsion loop coincide";
 
 /// How many sweeps over its crank angles `plan` runs for a reducer of `discs` discs
 /// (clearance once per disc, loaded, torsion): the work a progress display of the scene
@@ -324,98 +331,4 @@ pub fn solve_failed(scene: &Scene, crank_rad: f64, failure: &impl std::fmt::Disp
         scene.name,
         units::deg(crank_rad),
     ))
-}
-
-/// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.
-pub fn explain(spec: &Spec, writes: Writes) -> String {
-    let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
-    let deviations = spec.design.deviations.describe();
-    if !deviations.is_empty() {
-        out += &format!(
-            "parts as built (reducer.deviations), in force in every scene, exact geometry; \
-             gaps repeat every {}°, loaded curves with the pins every {}°:\n",
-            crate::numeric::number(units::deg(spec.design.mesh_period_rad())),
-            crate::numeric::number(units::deg(spec.design.loaded_period_rad(true)))
-        );
-        for line in deviations {
-            out += &format!("  deviation {line}\n");
-        }
-    }
-    for scene in &spec.scenes {
-        let plan = plan(spec, scene, writes);
-        let first = units::deg(scene.crank_rad.first().copied().unwrap_or(0.0));
-        let step = match scene.crank_rad.as_slice() {
-            [a, b, ..] => units::deg(b - a),
-            _ => 0.0,
-        };
-        let load = match &scene.torque_sweep {
-            Some(t) => format!(
-                "input locked, output torque looped ±{} N·m ({} steps per quarter)",
-                units::nm(t.rated_nmm),
-                t.steps
-            ),
-            None => format!("output torque {} N·m", units::nm(scene.output_torque_nmm)),
-        };
-        out += &format!(
-            "\nscene `{}`: {load}, {} crank angles from {:.4}° in steps of {:.4}°, \
-             {} geometry\n",
-            scene.name,
-            scene.crank_rad.len(),
-            first,
-            step,
-            scene.geometry
-        );
-        if plan.has(Effect::RollerContact) || plan.has(Effect::OutputPins) {
-            out += &format!(
-                "  contact law {}, crank bearing {}\n",
-                scene.contact_law,
-                match scene.bearing_stiffness_n_per_mm {
-                    Some(k) => format!("compliant ({k} N/mm)"),
-                    None => "rigid".to_string(),
-                }
-            );
-        }
-        if plan.has(Effect::Torsion) {
-            out += &format!(
-                "  note    torsion: per locked crank angle the torsion curve and the catalogue \
-                 figures, no loaded curves over the crank angle; {HYSTERESIS}\n"
-            );
-        }
-        if plan.has(Effect::RollerContact) && !plan.has(Effect::OutputPins) {
-            out +=
-                "  note    output pins not modelled: loaded TE is the disc lag β alone (βo = 0)\n";
-        }
-        for p in &plan.effects {
-            out += &format!("  compute {:<15} {}\n", p.effect.name(), p.reason);
-        }
-        for p in &plan.details {
-            out += &format!(
-                "  compute {:<15} part of {}, read by {}\n",
-                p.detail.name(),
-                p.detail.effect().name(),
-                p.read_by.join(", ")
-            );
-        }
-        for d in Detail::ALL {
-            if plan.has(d.effect()) && !plan.has_detail(d) {
-                out += &format!(
-                    "  skip    {} (part of {}; no limit, golden or output file reads it)\n",
-                    d.name(),
-                    d.effect().name()
-                );
-            }
-        }
-        let skipped: Vec<&str> = Effect::listed()
-            .filter(|e| !plan.has(*e))
-            .map(|e| e.name())
-            .collect();
-        if !skipped.is_empty() {
-            out += &format!("  skip    {} (not asked for)\n", skipped.join(", "));
-        }
-        let limits = crate::engine::check::limits_for(&spec.limits, &plan);
-        if !limits.is_empty() {
-            out += &format!("  limits  {}\n", limits.join(", "));
-        }
-    }
-    out
 }

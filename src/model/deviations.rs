@@ -153,60 +153,6 @@ impl Deviations {
             .copied()
             .unwrap_or_default()
     }
-
-    /// The deviations in force, one line each, for `--explain` (empty when nominal).
-    pub fn describe(&self) -> Vec<String> {
-        let um = |mm: f64| format!("{:+.3} µm", mm * 1e3);
-        let mut lines = Vec::new();
-        if self.eccentricity_mm != 0.0 {
-            lines.push(format!("crank eccentricity {}", um(self.eccentricity_mm)));
-        }
-        if self.shift_mm != 0.0 || self.equidistant_mm != 0.0 {
-            lines.push(format!(
-                "grinding: shift {}, equidistant {}",
-                um(self.shift_mm),
-                um(self.equidistant_mm)
-            ));
-        }
-        for (i, r) in self
-            .rollers
-            .iter()
-            .enumerate()
-            .filter(|(_, r)| !r.is_zero())
-        {
-            lines.push(format!(
-                "roller {i}: radial {}, tangential {}, radius {}",
-                um(r.centre.radial_mm),
-                um(r.centre.tangential_mm),
-                um(r.radius_mm)
-            ));
-        }
-        let centre = |what: String, c: &CentreDeviation| {
-            format!(
-                "{what}: radial {}, tangential {}",
-                um(c.radial_mm),
-                um(c.tangential_mm)
-            )
-        };
-        for (j, p) in self.pins.iter().enumerate().filter(|(_, p)| !p.is_zero()) {
-            lines.push(centre(format!("pin {j}"), p));
-        }
-        for (k, holes) in self.holes.iter().enumerate() {
-            for (j, h) in holes.iter().enumerate().filter(|(_, h)| !h.is_zero()) {
-                lines.push(centre(format!("disc {k} hole {j}"), h));
-            }
-        }
-        if !self.form.is_empty() {
-            lines.push(format!(
-                "form error: {} harmonics of orders {} to {}, |w| ≤ {:.3} µm",
-                self.form.len(),
-                self.form.iter().map(|f| f.order).min().unwrap_or(0),
-                self.form.iter().map(|f| f.order).max().unwrap_or(0),
-                self.form_bound_mm() * 1e3
-            ));
-        }
-        lines
-    }
 }
 
 #[cfg(test)]

@@ -52,19 +52,6 @@ named!(Distribution "distribution" {
 /// (`largest_draw_mm`). 6σ = 2b: a part never moves by more than twice its band.
 pub const NORMAL_CUT_SIGMA: f64 = 6.0;
 
-impl Distribution {
-    /// The distribution for people, with its band and cut: "normal distribution (band = 3σ,
-    /// draws beyond 6σ drawn again)", "uniform distribution over the band".
-    pub fn describe(self) -> String {
-        match self {
-            Distribution::Normal => format!(
-                "normal distribution (band = 3σ, draws beyond {NORMAL_CUT_SIGMA}σ drawn again)"
-            ),
-            Distribution::Uniform => "uniform distribution over the band".to_string(),
-        }
-    }
-}
-
 /// The `tolerances:` section of a spec.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartTolerances {

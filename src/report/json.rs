@@ -14,12 +14,13 @@ use crate::engine::golden::{sha256_hex, GoldenResult, Point};
 use crate::engine::optimise::StudyResult;
 use crate::engine::summary::{summarise, SceneSummary};
 use crate::error::Result;
-use crate::model::quantity::{Quantity, QUANTITIES};
+use crate::model::quantity::{self as q, Quantity, QUANTITIES};
 use crate::model::results::{ClearanceSweep, SceneResult};
 use crate::model::Study;
 use crate::numeric::extremes;
+use crate::report::explain::HYSTERESIS;
 use crate::spec::Spec;
-use crate::units;
+use crate::units::{self, nm_per_arcmin};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
 use serde::{Serialize, Serializer};
 use std::io::{BufWriter, Write};
@@ -184,12 +185,67 @@ pub struct SceneDoc<'a> {
     /// max_roller_force_n, ... (with several discs, the worst over the discs).
     #[serde(flatten)]
     scalars: Pairs,
-    /// A torsion scene's curves and figures (`report::torsion`).
+    /// A torsion scene's curves and figures (`TorsionDoc`).
     #[serde(flatten)]
-    torsion: Option<super::torsion::TorsionDoc>,
+    torsion: Option<TorsionDoc>,
     /// With several discs, each disc's curves and scalars (MODEL.md "Several discs").
     #[serde(skip_serializing_if = "Vec::is_empty")]
     discs: Vec<SceneDoc<'a>>,
+}
+
+/// A torsion scene's block in the results JSON (flattened into the scene object): its loop,
+/// torsion angles and catalogue figures.
+#[derive(Serialize)]
+pub struct TorsionDoc {
+    /// The loop's torques, N·m [m].
+    torque_nm: Vec<Finite>,
+    /// γ [crank][m], arcmin.
+    torsion_arcmin: Vec<Vec<Finite>>,
+    lost_motion_arcmin: Vec<Finite>,
+    backlash_arcmin: Vec<Finite>,
+    /// The smaller direction [crank].
+    torsional_rigidity_nm_per_arcmin: Vec<Finite>,
+    torsional_rigidity_forward_nm_per_arcmin: Vec<Finite>,
+    torsional_rigidity_reverse_nm_per_arcmin: Vec<Finite>,
+    /// The model's hysteresis loss, 0, and why.
+    hysteresis: &'static str,
+}
+
+fn finite(values: impl IntoIterator<Item = f64>) -> Vec<Finite> {
+    values.into_iter().map(Finite).collect()
+}
+
+/// A per-crank curve of the registry, as written.
+fn registry(r: &SceneResult, quantity: &Quantity) -> Vec<Finite> {
+    let values = quantity.curves(r).and_then(|mut c| c.values.pop());
+    finite(values.unwrap_or_default())
+}
+
+impl TorsionDoc {
+    pub fn new(r: &SceneResult) -> Option<TorsionDoc> {
+        let t = r.torsion.as_ref()?;
+        let direction = |pick: fn((f64, f64)) -> f64| {
+            finite(
+                t.figures
+                    .iter()
+                    .map(|f| nm_per_arcmin(pick(f.rigidity_nmm_per_rad))),
+            )
+        };
+        Some(TorsionDoc {
+            torque_nm: finite(t.torque_nmm.iter().map(|&x| units::nm(x))),
+            torsion_arcmin: t
+                .torsion_rad
+                .iter()
+                .map(|row| finite(row.iter().map(|&g| units::arcmin(g))))
+                .collect(),
+            lost_motion_arcmin: registry(r, &q::TORSION_LOST_MOTION),
+            backlash_arcmin: registry(r, &q::TORSION_BACKLASH),
+            torsional_rigidity_nm_per_arcmin: registry(r, &q::TORSIONAL_RIGIDITY),
+            torsional_rigidity_forward_nm_per_arcmin: direction(|d| d.0),
+            torsional_rigidity_reverse_nm_per_arcmin: direction(|d| d.1),
+            hysteresis: HYSTERESIS,
+        })
+    }
 }
 
 /// (max, min) of a curve.
@@ -250,7 +306,7 @@ impl<'a> SceneDoc<'a> {
                     .filter_map(|q| Some((q.key, Finite(q.scalar(r)?.value))))
                     .collect(),
             ),
-            torsion: super::torsion::TorsionDoc::new(r),
+            torsion: TorsionDoc::new(r),
             discs: r.discs.iter().map(SceneDoc::disc).collect(),
         }
     }
@@ -449,7 +505,7 @@ impl<'a> StudyDoc<'a> {
             feasible: o.feasible(),
             failure: o.failure.as_deref(),
             evaluations: r.evaluations,
-            stop_reason: r.found.to_string(),
+            stop_reason: super::optimisation::found(r.found),
             min_clearance_mm: o.min_clearance.as_ref().map(|c| Finite(c.gap_mm)),
             lost_motion_arcsec: o.lost_motion_arcsec.map(Finite),
             verification: r.verification.as_ref().map(|v| VerificationDoc {

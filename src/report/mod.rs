@@ -1,17 +1,21 @@
-//! Outputs: the terminal table, the results JSON, JUnit XML and the HTML design review.
+//! Outputs, and every text the tool shows: the terminal table and summary, the results JSON,
+//! JUnit XML, the profile export, the HTML design review (`review`), and the words of every
+//! other output — the accuracy ladder's table (`accuracy`), `check --explain` and the notes of
+//! the results (`explain`), what `bless` did (`golden`), the optimiser's outcome
+//! (`optimisation`), the tolerance study (`tolerance`), the disc as built (`as_built`, `fit`).
+//! The engine returns data; this layer says it.
 
+pub mod accuracy;
 pub mod as_built;
-pub mod disc;
+pub mod explain;
 pub mod export;
 pub mod fit;
-pub mod html;
+pub mod golden;
 pub mod json;
 pub mod junit;
 pub mod optimisation;
-pub mod plots;
+pub mod review;
 pub mod svg;
 pub mod table;
 pub mod terminal;
 pub mod tolerance;
-pub mod tolerance_review;
-pub mod torsion;

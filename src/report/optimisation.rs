@@ -2,11 +2,13 @@
 //! constraint's margin, evaluations, time and why it stopped; the objective map CSV; and the
 //! same study as a view for the design-review report (`view`).
 
+use crate::engine::optimise::local::StopReason;
 use crate::engine::optimise::problem::Evaluation;
-use crate::engine::optimise::StudyResult;
+use crate::engine::optimise::verify::Verification;
+use crate::engine::optimise::{Found, StudyResult};
 use crate::model::{Study, VariableKind};
 use crate::numeric::number;
-use crate::report::html::{OptimisationView, StudyPoint};
+use crate::report::review::{OptimisationView, StudyPoint};
 use crate::report::svg::MapCell;
 use crate::spec::Spec;
 
@@ -80,10 +82,71 @@ fn row(study: &Study, label: &str, e: &Evaluation) -> String {
     )
 }
 
+/// Where the optimum was found, in words ("found by local run 2 (converged: …)").
+pub fn found(f: Found) -> String {
+    match f {
+        Found::Start => "the start is the best point evaluated".to_string(),
+        Found::GlobalSample(i) => format!(
+            "the best point is global sample {}; every local run ended higher",
+            i + 1
+        ),
+        Found::LocalRun(k, stop) => format!("found by local run {} ({})", k + 1, stop_text(stop)),
+        Found::GridPoint => {
+            "the best point is a point of the verification grid; its refinements ended higher"
+                .to_string()
+        }
+        Found::Refinement(k, stop) => format!(
+            "found by refinement {} from the verification grid ({})",
+            k + 1,
+            stop_text(stop)
+        ),
+    }
+}
+
+/// Why a local run stopped.
+fn stop_text(s: StopReason) -> &'static str {
+    match s {
+        StopReason::StepBelowTolerance => "converged: step below the variable tolerance",
+        StopReason::ObjectiveChangeBelowTolerance => {
+            "converged: objective change below the tolerance"
+        }
+        StopReason::BudgetUsedUp => "stopped: evaluation budget used up",
+        StopReason::Ended => "stopped: COBYLA ended without a tolerance met",
+        StopReason::RoundoffLimited => "stopped: progress limited by round-off",
+        StopReason::Failed => "COBYLA failed",
+    }
+}
+
+/// How the search went: evaluations, time and where the optimum was found.
+pub fn outcome(r: &StudyResult) -> String {
+    format!(
+        "{} evaluations ({} global, {} local run{}{}) in {:.2} s; {}",
+        r.evaluations,
+        r.global.len(),
+        r.local_runs.len(),
+        if r.local_runs.len() == 1 { "" } else { "s" },
+        r.verification.as_ref().map_or(String::new(), |v| format!(
+            ", {} grid points{}",
+            v.points,
+            match v.refinements.len() {
+                0 => String::new(),
+                n => format!(", {n} refinements"),
+            }
+        )),
+        r.elapsed.as_secs_f64(),
+        found(r.found)
+    )
+}
+
+/// The verification grid's size: "41 × 41".
+fn grid(v: &Verification, dims: usize) -> String {
+    vec![v.steps.to_string(); dims.max(1)].join(" × ")
+}
+
 /// How good the optimum is against the verification grid, in one sentence.
 pub fn verification_text(study: &Study, r: &StudyResult) -> Option<String> {
     let v = r.verification.as_ref()?;
-    let grid = v.grid(study.variables.len());
+    let grid = grid(v, study.variables.len());
     let searched = match v.beat_search_by() {
         Some(d) => format!(
             "a grid point beat the search by {}, {} refinement{} from there; ",
@@ -126,8 +189,8 @@ fn eq8_note(label: &str, e: &Evaluation, study: &Study) -> Option<String> {
     let min = e.min_clearance?;
     let dt = study.min_clearance_mm?;
     let tip = e.modification.tip_clearance_mm();
-    let eq8 = tip >= lo - crate::engine::check::tolerance(lo);
-    (eq8 && !crate::engine::check::passes(min.gap_mm, dt, crate::engine::check::Bound::Min)).then(
+    let eq8 = tip >= lo - crate::engine::limit::tolerance(lo);
+    (eq8 && !crate::engine::limit::passes(min.gap_mm, dt, crate::engine::check::Bound::Min)).then(
         || {
             format!(
             "  note: the {label} satisfies the paper's Eq. 8 (ΔRrp − ΔRp = {:.4} mm ≥ {lo} mm) but \
@@ -197,7 +260,7 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
         out += "  no feasible point was found: every point evaluated violates a constraint or \
                 a design rule (the optimum above is the least infeasible)\n";
     }
-    out += &format!("  {}\n", r.outcome());
+    out += &format!("  {}\n", outcome(r));
     out
 }
 
@@ -257,8 +320,21 @@ pub fn objective_axis_label(study: &Study) -> String {
     }
 }
 
+/// A point of the study in the map's plane: its first two variables in the spec's units (0 for
+/// a variable the study does not have).
+fn xy(study: &Study, e: &Evaluation) -> (f64, f64) {
+    let at = |k: usize| {
+        study
+            .variables
+            .get(k)
+            .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
+    };
+    (at(0), at(1))
+}
+
 /// The design-review view of one study: `map` is `optimise::map` of the study over a
-/// `steps` × `steps` grid around the optimum (empty: no map).
+/// `steps` × `steps` grid around the optimum (empty: no map). One builder per part of the
+/// section: what the study is, its map, the search on it, its table, its notes and outcome.
 pub fn view(
     spec: &Spec,
     study: &Study,
@@ -267,13 +343,55 @@ pub fn view(
     steps: usize,
 ) -> OptimisationView {
     let vars = &study.variables;
-    let xy = |e: &Evaluation| {
-        let at = |k: usize| {
-            vars.get(k)
-                .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
-        };
-        (at(0), at(1))
-    };
+    let (path, path_label, path_evaluations) = winning_path(study, r);
+    OptimisationView {
+        name: r.name.clone(),
+        summary: summary(spec, study),
+        x_label: vars.first().map_or("", |v| variable_label(v.kind)).into(),
+        y_label: vars
+            .get(1)
+            .map_or("(one variable)", |v| variable_label(v.kind))
+            .into(),
+        objective_label: objective_axis_label(study),
+        map: map_cells(study, map),
+        map_note: map_note(study, r, map, steps),
+        global: r
+            .global
+            .iter()
+            .map(|e| {
+                let (x, y) = xy(study, e);
+                (x, y, e.feasible())
+            })
+            .collect(),
+        path,
+        path_label,
+        path_evaluations,
+        start: Some(xy(study, &r.start)),
+        optimum: Some(xy(study, &r.optimum)),
+        references: r
+            .references
+            .iter()
+            .map(|(l, e)| {
+                let (x, y) = xy(study, e);
+                (x, y, l.clone())
+            })
+            .collect(),
+        variables: vars
+            .iter()
+            .map(|v| variable_label(v.kind).to_string())
+            .collect(),
+        points: table_points(study, r),
+        outcome: match verification_text(study, r) {
+            Some(v) => format!("{}; {v}.", outcome(r)),
+            None => format!("{}.", outcome(r)),
+        },
+        notes: notes(study, r),
+    }
+}
+
+/// What the study minimises, on which scene, over which bounds, subject to what (a sentence).
+fn summary(spec: &Spec, study: &Study) -> String {
+    let vars = &study.variables;
     let scene = &spec.scenes[study.scene];
     let bounds: Vec<String> = vars
         .iter()
@@ -305,7 +423,7 @@ pub fn view(
             short(dt)
         ));
     }
-    let summary = format!(
+    format!(
         "Minimise {} on scene “{}” ({} N·m, {} crank angles) over {}{}.",
         objective_label(study),
         scene.name,
@@ -317,7 +435,31 @@ pub fn view(
         } else {
             format!(", subject to {}", constraints.join(" and "))
         }
-    );
+    )
+}
+
+/// The objective map's cells (non-finite where a design rule fails).
+fn map_cells(study: &Study, map: &[Evaluation]) -> Vec<MapCell> {
+    map.iter()
+        .map(|e| {
+            let (x, y) = xy(study, e);
+            MapCell {
+                x,
+                y,
+                z: if e.failure.is_none() {
+                    e.objective
+                } else {
+                    f64::NAN
+                },
+                feasible: e.feasible(),
+            }
+        })
+        .collect()
+}
+
+/// How the map was made: its grid, its evaluations and the variables held fixed.
+fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) -> String {
+    let vars = &study.variables;
     let held: Vec<String> = vars
         .iter()
         .skip(2)
@@ -329,7 +471,7 @@ pub fn view(
             )
         })
         .collect();
-    let map_note = if map.is_empty() {
+    if map.is_empty() {
         "no map computed".to_string()
     } else {
         let grid = if vars.len() > 1 {
@@ -342,9 +484,13 @@ pub fn view(
             note += &format!("; {h}");
         }
         note
-    };
-    // The winning local run, from its start up to the optimum.
-    let (path, path_label, path_evaluations) = match r.winner().map(|k| (k, &r.local_runs[k])) {
+    }
+}
+
+/// The winning local run, from its start up to the optimum: (its points, what it is, its
+/// evaluations up to the optimum); empty when no local run found the optimum.
+fn winning_path(study: &Study, r: &StudyResult) -> (Vec<(f64, f64)>, String, usize) {
+    match r.winner().map(|k| (k, &r.local_runs[k])) {
         Some((k, run)) => {
             let end = run
                 .path
@@ -353,9 +499,9 @@ pub fn view(
                 .map_or(run.path.len(), |i| i + 1);
             let mut points = Vec::new();
             if run.path.first() != Some(&run.start) {
-                points.push(xy(&run.start));
+                points.push(xy(study, &run.start));
             }
-            points.extend(run.path[..end].iter().map(xy));
+            points.extend(run.path[..end].iter().map(|e| xy(study, e)));
             let from = if run.start == r.start {
                 "from the start".to_string()
             } else {
@@ -371,10 +517,15 @@ pub fn view(
             )
         }
         None => (Vec::new(), String::new(), 0),
-    };
+    }
+}
+
+/// The table's columns: start, references, optimum.
+fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
     let point = |label: &str, e: &Evaluation| StudyPoint {
         label: label.to_string(),
-        variables: vars
+        variables: study
+            .variables
             .iter()
             .map(|v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
             .collect(),
@@ -386,6 +537,12 @@ pub fn view(
     let mut points = vec![point("start", &r.start)];
     points.extend(r.references.iter().map(|(l, e)| point(l, e)));
     points.push(point("optimum", &r.optimum));
+    points
+}
+
+/// The remarks under the table: what the objective hides, the optimum against each reference,
+/// a point that satisfies the paper's Eq. 8 but not the whole-mesh clearance.
+fn notes(study: &Study, r: &StudyResult) -> Vec<String> {
     let mut notes = vec![format!(
         "What the objective hides: {}.",
         std::iter::once(("start", &r.start))
@@ -418,62 +575,5 @@ pub fn view(
             notes.push(format!("{}{}.", first.unwrap_or_default(), chars.as_str()));
         }
     }
-    OptimisationView {
-        name: r.name.clone(),
-        summary,
-        x_label: vars.first().map_or("", |v| variable_label(v.kind)).into(),
-        y_label: vars
-            .get(1)
-            .map_or("(one variable)", |v| variable_label(v.kind))
-            .into(),
-        objective_label: objective_axis_label(study),
-        map: map
-            .iter()
-            .map(|e| {
-                let (x, y) = xy(e);
-                MapCell {
-                    x,
-                    y,
-                    z: if e.failure.is_none() {
-                        e.objective
-                    } else {
-                        f64::NAN
-                    },
-                    feasible: e.feasible(),
-                }
-            })
-            .collect(),
-        map_note,
-        global: r
-            .global
-            .iter()
-            .map(|e| {
-                let (x, y) = xy(e);
-                (x, y, e.feasible())
-            })
-            .collect(),
-        path,
-        path_label,
-        path_evaluations,
-        start: Some(xy(&r.start)),
-        optimum: Some(xy(&r.optimum)),
-        references: r
-            .references
-            .iter()
-            .map(|(l, e)| {
-                let (x, y) = xy(e);
-                (x, y, l.clone())
-            })
-            .collect(),
-        variables: vars
-            .iter()
-            .map(|v| variable_label(v.kind).to_string())
-            .collect(),
-        points,
-        outcome: match verification_text(study, r) {
-            Some(v) => format!("{}; {v}.", r.outcome()),
-            None => format!("{}.", r.outcome()),
-        },
-        notes,
-    }
+    notes
 }

@@ -89,7 +89,7 @@ fn successive_orders(e: &[f64]) -> Vec<f64> {
 fn steps_ladder_converges_at_the_order_its_kinks_allow() {
     let s = spec_with(0.125, 0.1593, &rated(10.0));
     let l = ladder(&s, 3072, Some(3072));
-    println!("{}", accuracy::render(&l));
+    println!("{}", cycloid::report::accuracy::render(&l));
 
     // Every grid nests in the finest, bit for bit, and each angle is solved on its own: at
     // its own angles a rung agrees with the reference to solver round-off.
@@ -349,7 +349,7 @@ fn rungs_and_columns_follow_the_scene() {
         assert_eq!(r.error(LadderQuantity::MaxBearingForce), None);
         assert_eq!(r.error(LadderQuantity::MinClearance), None);
     }
-    let text = accuracy::render(&l);
+    let text = cycloid::report::accuracy::render(&l);
     assert!(text.contains("not computed by this scene (no column): max crank-bearing force, min clearance over the mesh"));
     assert!(text.contains("model difference"));
     // Clearance only: steps rungs alone, and the clearance column.
@@ -362,7 +362,7 @@ fn rungs_and_columns_follow_the_scene() {
     assert_eq!(l.layout.quantities, [LadderQuantity::MinClearance]);
     assert_eq!(l.rungs.len(), 3);
     assert!(l.rungs.iter().all(|r| r.variation == Variation::Steps));
-    assert!(accuracy::render(&l).contains("skipped: settings rungs"));
+    assert!(cycloid::report::accuracy::render(&l).contains("skipped: settings rungs"));
 }
 
 // ------------------------------------------------------------------------------------------

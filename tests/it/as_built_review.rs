@@ -10,7 +10,7 @@ use cycloid::measure::fit::{self, Request};
 use cycloid::measure::{Feature, MeasuredPoint};
 use cycloid::model::measured::Fitted;
 use cycloid::model::{FormTerm, Modification};
-use cycloid::report::as_built::{against_design, magnification};
+use cycloid::report::review::as_built::{against_design, magnification};
 use std::f64::consts::TAU;
 
 /// The disc as made: the paper's optimum with a form error of orders 3 and 6 (4 and 2 µm):

@@ -551,7 +551,7 @@ fn the_drawing_takes_a_scene_under_load_not_a_torsion_loop() {
         .unwrap()
         .loaded
         .expect("a loaded scene");
-    assert_eq!(loaded.scene, "rated (disc 0)");
+    assert_eq!((loaded.scene.as_str(), loaded.disc), ("rated", Some(0)));
     assert!(!loaded.forces.is_empty());
 }
 

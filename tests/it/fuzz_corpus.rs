@@ -3,7 +3,7 @@
 //! thousand deterministic mutations of the shipped specs (byte flips, truncations, duplicated,
 //! dropped and re-indented lines, swapped values, extreme and non-finite numbers, spliced
 //! lines of another spec). Every input either parses, and then passes the checks that run
-//! before any computation (`check::validate`, `scene::explain`), or gives an error rendered
+//! before any computation (`check::validate`, `report::explain`), or gives an error rendered
 //! as `file:line:column: ...` — never a panic.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -187,7 +187,7 @@ fn exercise(text: &str) -> Result<bool, String> {
     let outcome = catch_unwind(AssertUnwindSafe(|| {
         match cycloid::spec::parse("fuzz.yaml", text) {
             Ok(spec) => {
-                let _ = cycloid::engine::scene::explain(&spec, Default::default());
+                let _ = cycloid::report::explain::explain(&spec, Default::default());
                 Ok(true)
             }
             Err(e) => {

@@ -6,7 +6,7 @@
 
 use crate::common::{cycloid as run, PaperSpec, Scratch};
 use cycloid::engine::optimise::problem::Margin;
-use cycloid::report::html::{render, OptimisationView, ReportInput, StudyPoint};
+use cycloid::report::review::{render, OptimisationView, ReportInput, StudyPoint};
 use cycloid::report::svg::MapCell;
 use quick_xml::events::Event;
 use quick_xml::Reader;

@@ -186,7 +186,7 @@ pub fn failure_rate_check(spec: &Spec, progress: &dyn Progress) -> Result<Check>
             "{} of {} samples fail some limit; {} Clopper–Pearson interval [{}, {}]{}",
             s.failures,
             s.samples,
-            summary::percent_label(summary::CONFIDENCE),
+            crate::numeric::percent_label(summary::CONFIDENCE),
             crate::numeric::number(s.interval.0),
             crate::numeric::number(s.interval.1),
             match spec.measured {

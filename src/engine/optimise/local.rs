@@ -50,21 +50,6 @@ impl StopReason {
     }
 }
 
-impl std::fmt::Display for StopReason {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            StopReason::StepBelowTolerance => "converged: step below the variable tolerance",
-            StopReason::ObjectiveChangeBelowTolerance => {
-                "converged: objective change below the tolerance"
-            }
-            StopReason::BudgetUsedUp => "stopped: evaluation budget used up",
-            StopReason::Ended => "stopped: COBYLA ended without a tolerance met",
-            StopReason::RoundoffLimited => "stopped: progress limited by round-off",
-            StopReason::Failed => "COBYLA failed",
-        })
-    }
-}
-
 /// One local run.
 #[derive(Debug, Clone)]
 pub struct LocalRun {

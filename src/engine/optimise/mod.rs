@@ -48,29 +48,6 @@ pub enum Found {
     Refinement(usize, StopReason),
 }
 
-impl std::fmt::Display for Found {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Found::Start => write!(f, "the start is the best point evaluated"),
-            Found::GlobalSample(i) => write!(
-                f,
-                "the best point is global sample {}; every local run ended higher",
-                i + 1
-            ),
-            Found::LocalRun(k, stop) => write!(f, "found by local run {} ({stop})", k + 1),
-            Found::GridPoint => write!(
-                f,
-                "the best point is a point of the verification grid; its refinements ended higher"
-            ),
-            Found::Refinement(k, stop) => write!(
-                f,
-                "found by refinement {} from the verification grid ({stop})",
-                k + 1
-            ),
-        }
-    }
-}
-
 /// The outcome of one study. Every evaluation keeps its modification, objective terms and
 /// constraint margins, so the result can be written out (JSON) as it is.
 #[derive(Debug, Clone)]
@@ -99,29 +76,6 @@ pub struct StudyResult {
 }
 
 impl StudyResult {
-    /// How the search went: evaluations, time and where the optimum was found.
-    pub fn outcome(&self) -> String {
-        format!(
-            "{} evaluations ({} global, {} local run{}{}) in {:.2} s; {}",
-            self.evaluations,
-            self.global.len(),
-            self.local_runs.len(),
-            if self.local_runs.len() == 1 { "" } else { "s" },
-            self.verification
-                .as_ref()
-                .map_or(String::new(), |v| format!(
-                    ", {} grid points{}",
-                    v.points,
-                    match v.refinements.len() {
-                        0 => String::new(),
-                        n => format!(", {n} refinements"),
-                    }
-                )),
-            self.elapsed.as_secs_f64(),
-            self.found
-        )
-    }
-
     /// Index of the local run of the search that found the optimum, if one did.
     pub fn winner(&self) -> Option<usize> {
         match self.found {

@@ -49,9 +49,9 @@ impl Margin {
         }
     }
 
-    /// Satisfied within the checker's comparison tolerance (`check::tolerance`).
+    /// Satisfied within the checker's comparison tolerance (`limit::tolerance`).
     pub fn satisfied(&self) -> bool {
-        self.margin >= -crate::engine::check::tolerance(self.bound)
+        self.margin >= -crate::engine::limit::tolerance(self.bound)
     }
 
     /// The margin relative to the bound (a bound of 0 counts as 1 of its unit): constraints of

@@ -36,11 +36,6 @@ impl Verification {
         let b = self.best.as_ref()?;
         (b.objective < self.searched_objective).then_some(self.searched_objective - b.objective)
     }
-
-    /// "41 × 41".
-    pub fn grid(&self, dims: usize) -> String {
-        vec![self.steps.to_string(); dims.max(1)].join(" × ")
-    }
 }
 
 /// The grid's points in the unit cube, the first variable varying slowest.

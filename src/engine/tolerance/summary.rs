@@ -13,13 +13,6 @@ pub const QUANTILES: [f64; 3] = [0.00135, 0.5, 0.99865];
 /// Confidence of the failure-rate intervals.
 pub const CONFIDENCE: f64 = 0.95;
 
-/// A probability as the reports label it, to 0.001 %: `QUANTILES` read "0.135 %", "50 %",
-/// "99.865 %", `CONFIDENCE` "95 %".
-pub fn percent_label(p: f64) -> String {
-    let digits = format!("{:.3}", 100.0 * p);
-    format!("{} %", digits.trim_end_matches('0').trim_end_matches('.'))
-}
-
 /// Worst samples the report lists.
 pub const WORST: usize = 5;
 
@@ -146,7 +139,7 @@ fn worst(study: &ToleranceStudy, records: &Records) -> Vec<(u64, f64)> {
             let e = v
                 .iter()
                 .zip(&study.limits)
-                .map(|(&v, (def, limit))| crate::engine::check::excess(v, *limit, def.bound))
+                .map(|(&v, (def, limit))| crate::engine::limit::excess(v, *limit, def.bound))
                 .fold(f64::NEG_INFINITY, f64::max);
             (k as u64, e)
         })
@@ -159,22 +152,4 @@ fn worst(study: &ToleranceStudy, records: &Records) -> Vec<(u64, f64)> {
     }
     all.sort_by(cmp);
     all
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{percent_label, CONFIDENCE, QUANTILES};
-
-    /// The labels the reports print for the quantiles and the confidence: the numbers the
-    /// reader knows (±3σ of a normal, the median, 95 %), with no float residue (100 × 0.00135
-    /// is not 0.135 exactly) and no trailing zeros.
-    #[test]
-    fn the_labels_are_the_percentages() {
-        assert_eq!(
-            QUANTILES.map(percent_label),
-            ["0.135 %", "50 %", "99.865 %"].map(String::from)
-        );
-        assert_eq!(percent_label(CONFIDENCE), "95 %");
-        assert_eq!(percent_label(0.1), "10 %");
-    }
 }

@@ -1,7 +1,7 @@
 //! What every plot shares: the plot area in pixels with its title, axis labels and box, and
 //! the mapping of a drawing in mm (y up) into pixels (y down) at one scale.
 
-use super::px;
+use super::base::px;
 use maud::{html, Markup};
 
 /// The plot area of a figure, pixels.
@@ -46,7 +46,7 @@ pub fn wrap(text: &str, width: f64) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     for word in text.split_whitespace() {
         match lines.last_mut() {
-            Some(line) if super::text_width(&format!("{line} {word}"), 12.0) <= width => {
+            Some(line) if super::base::text_width(&format!("{line} {word}"), 12.0) <= width => {
                 line.push(' ');
                 line.push_str(word);
             }
@@ -152,7 +152,10 @@ impl Frame {
 
     /// A closed path through world points.
     pub fn path(&self, pts: &[crate::geometry::Vec2]) -> String {
-        format!("M{} Z", super::points(pts.iter().map(|&p| self.at(p))))
+        format!(
+            "M{} Z",
+            super::base::points(pts.iter().map(|&p| self.at(p)))
+        )
     }
 
     /// A scale bar of `length` (world) labelled `label`, its right end at (right, y) pixels.

@@ -1,9 +1,9 @@
 //! Line plots: curves over a shared x axis with nice ticks, grid, axis labels, dashed
 //! reference lines (limits) and a legend to the right that grows the figure rather than clip.
 
+use super::base::{document, points, px, span, text_width, widest};
 use super::frame::{self, Area};
 use super::ticks::{self, ticks, Ticks};
-use super::{document, points, px, span, text_width, widest};
 use maud::html;
 
 /// One curve of a line plot.

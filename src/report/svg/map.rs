@@ -3,9 +3,9 @@
 //! sample points, a path, labelled markers, a colour bar and a legend under the axes. Objective
 //! maps of a study use all of it; a roller × crank heat map only the cells.
 
+use super::base::{document, points, px, span, text_width, widest, RED};
 use super::frame::{self, Area};
 use super::ticks::{log_label, log_ticks, ticks};
-use super::{document, points, px, span, text_width, widest, RED};
 use base64::Engine;
 use maud::{html, Markup};
 

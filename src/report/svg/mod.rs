@@ -1,8 +1,10 @@
 //! A small SVG plotting kit for the design-review report, written with maud (text escaped by
 //! construction): nice tick values (`ticks`), the frame every plot shares and the mapping of
 //! drawings in mm to pixels (`frame`), line plots (`line`), and maps over a grid with a colour
-//! bar (`map`: objective maps, roller × crank heat maps). Plain SVG 1.1 text, no JavaScript.
+//! bar (`map`: objective maps, roller × crank heat maps), on what they all share (`base`:
+//! colours, pixels, the document). Plain SVG 1.1 text, no JavaScript.
 
+pub mod base;
 pub mod frame;
 pub mod line;
 pub mod map;
@@ -13,68 +15,4 @@ pub use line::{LinePlot, RefLine, Series};
 pub use map::{MapCell, MapPlot, Marker, Shape, LOG_SPAN};
 pub use ticks::{ticks, Ticks};
 
-use maud::{html, Markup};
-
-/// Ten colours that stay apart (the "tab10" set).
-pub const PALETTE: [&str; 10] = [
-    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
-    "#bcbd22", "#17becf",
-];
-
-/// Red of limits, the smallest gap and roller forces.
-pub const RED: &str = "#d62728";
-
-pub const FONT: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
-
-/// A pixel coordinate with two decimals (enough for any screen, keeps files small).
-pub fn px(x: f64) -> String {
-    let s = format!("{x:.2}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.to_string()
-    }
-}
-
-/// The smallest and largest finite value.
-fn span<'a>(values: impl Iterator<Item = &'a f64>) -> Option<(f64, f64)> {
-    values
-        .filter(|v| v.is_finite())
-        .fold(None, |acc, &v| match acc {
-            None => Some((v, v)),
-            Some((lo, hi)) => Some((v.min(lo), v.max(hi))),
-        })
-}
-
-/// Rough width of text in pixels (for layout only).
-pub fn text_width(text: &str, size: f64) -> f64 {
-    text.chars().count() as f64 * size * 0.58
-}
-
-/// Rough width of the widest of `texts` at font size 12, pixels (0 for none).
-pub fn widest<S: AsRef<str>>(texts: impl Iterator<Item = S>) -> f64 {
-    texts
-        .map(|t| text_width(t.as_ref(), 12.0))
-        .fold(0.0, f64::max)
-}
-
-/// "x1,y1 x2,y2 ..." of pixel points, for `points` and paths.
-pub fn points(pts: impl IntoIterator<Item = (f64, f64)>) -> String {
-    pts.into_iter()
-        .map(|(x, y)| format!("{},{}", px(x), px(y)))
-        .collect::<Vec<_>>()
-        .join(" ")
-}
-
-/// A standalone SVG document, w × h pixels on a white background, around `body`.
-pub fn document(w: f64, h: f64, body: Markup) -> String {
-    let doc = html! {
-        svg xmlns="http://www.w3.org/2000/svg" width=(px(w)) height=(px(h))
-            viewBox=(format!("0 0 {} {}", px(w), px(h))) font-family=(FONT) fill="#222" {
-            rect width=(px(w)) height=(px(h)) fill="white" {}
-            (body)
-        }
-    };
-    doc.into_string() + "\n"
-}
+pub use base::{document, points, px, text_width, widest, FONT, PALETTE, RED};

@@ -1,74 +1,16 @@
-//! What the outputs show of torsion under a locked input and of the crank bearing's life: the
-//! torsion block of a scene in the results JSON (`TorsionDoc`), and the design review's
-//! torsion curves, table of catalogue figures and bearing-life table (`sections`).
+//! The review's torsion under a locked input (`engine::torsion`): per torsion scene its curves
+//! and its table of catalogue figures (`sections`).
 
-use super::html::{data_table, figure, section, Section};
-use super::json::Finite;
-use super::svg::{LinePlot, Series, PALETTE};
-use crate::engine::scene::HYSTERESIS;
+use super::common::{data_table, figure, section, Section};
 use crate::engine::torsion::FIGURE_TORQUES;
-use crate::model::quantity::{self as q, Quantity};
 use crate::model::results::{SceneResult, TorsionCurves};
 use crate::model::Scene;
 use crate::numeric::number;
+use crate::report::explain::HYSTERESIS;
+use crate::report::svg::{LinePlot, Series, PALETTE};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
 use maud::{html, Markup};
-use serde::Serialize;
-
-/// A torsion scene's block in the results JSON (flattened into the scene object).
-#[derive(Serialize)]
-pub struct TorsionDoc {
-    /// The loop's torques, N·m [m].
-    torque_nm: Vec<Finite>,
-    /// γ [crank][m], arcmin.
-    torsion_arcmin: Vec<Vec<Finite>>,
-    lost_motion_arcmin: Vec<Finite>,
-    backlash_arcmin: Vec<Finite>,
-    /// The smaller direction [crank].
-    torsional_rigidity_nm_per_arcmin: Vec<Finite>,
-    torsional_rigidity_forward_nm_per_arcmin: Vec<Finite>,
-    torsional_rigidity_reverse_nm_per_arcmin: Vec<Finite>,
-    /// The model's hysteresis loss, 0, and why.
-    hysteresis: &'static str,
-}
-
-fn finite(values: impl IntoIterator<Item = f64>) -> Vec<Finite> {
-    values.into_iter().map(Finite).collect()
-}
-
-/// A per-crank curve of the registry, as written.
-fn registry(r: &SceneResult, quantity: &Quantity) -> Vec<Finite> {
-    let values = quantity.curves(r).and_then(|mut c| c.values.pop());
-    finite(values.unwrap_or_default())
-}
-
-impl TorsionDoc {
-    pub fn new(r: &SceneResult) -> Option<TorsionDoc> {
-        let t = r.torsion.as_ref()?;
-        let direction = |pick: fn((f64, f64)) -> f64| {
-            finite(
-                t.figures
-                    .iter()
-                    .map(|f| nm_per_arcmin(pick(f.rigidity_nmm_per_rad))),
-            )
-        };
-        Some(TorsionDoc {
-            torque_nm: finite(t.torque_nmm.iter().map(|&x| units::nm(x))),
-            torsion_arcmin: t
-                .torsion_rad
-                .iter()
-                .map(|row| finite(row.iter().map(|&g| units::arcmin(g))))
-                .collect(),
-            lost_motion_arcmin: registry(r, &q::TORSION_LOST_MOTION),
-            backlash_arcmin: registry(r, &q::TORSION_BACKLASH),
-            torsional_rigidity_nm_per_arcmin: registry(r, &q::TORSIONAL_RIGIDITY),
-            torsional_rigidity_forward_nm_per_arcmin: direction(|d| d.0),
-            torsional_rigidity_reverse_nm_per_arcmin: direction(|d| d.1),
-            hysteresis: HYSTERESIS,
-        })
-    }
-}
 
 /// The torsion curve of a scene as drawn: per locked angle the loop's centre line (the
 /// branches coincide), the rising branch from −rated to +rated with both one-sided values at
@@ -180,8 +122,8 @@ const DEFINITIONS: &str = "Figures as the makers of precision reducers define th
      torsional rigidity the secant slope b/a between 50 % and 100 % of the rated torque, each \
      direction, the figure being the smaller. Each figure is solved at its own torque.";
 
-/// The design review's torsion sections (one per torsion scene) and its bearing-life section
-/// (when a scene rated the crank bearing); the plots go into `files` as (name, SVG).
+/// The design review's torsion sections (one per torsion scene); the plots go into `files` as
+/// (name, SVG).
 pub(super) fn sections(
     spec: &Spec,
     results: &[SceneResult],
@@ -207,57 +149,5 @@ pub(super) fn sections(
             body,
         ));
     }
-    out.extend(bearing_section(spec, results));
     out
-}
-
-/// The crank bearing's rating life of every scene that rated it.
-fn bearing_section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
-    let rating = spec.design.crank_bearing?;
-    // (scene, disc with several discs, its life): with several discs each disc has a bearing.
-    let rated: Vec<_> = spec
-        .scenes
-        .iter()
-        .zip(results)
-        .flat_map(|(s, r)| {
-            let one = r.discs.is_empty().then_some((None, r));
-            let each = r.discs.iter().enumerate().map(|(k, d)| (Some(k), d));
-            one.into_iter()
-                .chain(each)
-                .filter_map(move |(k, d)| Some((s, k, d.bearing_life?)))
-        })
-        .collect();
-    let notes: Vec<String> = crate::engine::scene::notes(spec)
-        .into_iter()
-        .filter(|n| n.contains("crank-bearing"))
-        .collect();
-    if rated.is_empty() && notes.is_empty() {
-        return None;
-    }
-    let body = html! {
-        p.note {
-            "ISO 281 with a varying load: P = (mean of Fb^p over whole loaded periods)^(1/p), \
-             L10h = (C/P)^p · 10⁶ / (60 · n · (1 + 1/nc)) at the crank's speed relative to the \
-             disc. C = " (number(rating.dynamic_load_rating_n)) " N, p = "
-            (number(rating.life_exponent)) "."
-        }
-        (data_table(
-            html! {
-                th { "scene" } th { "input speed (rpm)" } th { "equivalent load P (N)" }
-                th { "rating life L10h (h)" }
-            },
-            html! { @for (s, k, b) in &rated { tr {
-                td { code { (s.name) } @if let Some(k) = k { " disc " (k) } }
-                td { (s.input_speed_rpm.map_or("—".to_string(), number)) }
-                td { (number(b.equivalent_load_n)) }
-                td { (b.life_h.map_or("not rated".to_string(), number)) }
-            } } },
-        ))
-        @for n in &notes { p.note { (n) } }
-    };
-    Some(section(
-        "crank-bearing-life",
-        html! { "Crank-bearing life" },
-        body,
-    ))
 }

@@ -7,11 +7,11 @@
 //! centred on the curve. More than `MAX_CURVES` curves of one quantity (one per roller) are
 //! drawn as their envelope over the parts, with a part × crank heat map beside it.
 
-use super::svg::{LinePlot, MapCell, MapPlot, RefLine, Series, PALETTE, RED};
-use super::table::{count_or_number, with_unit};
 use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
 use crate::model::results::SceneResult;
 use crate::numeric::extremes;
+use crate::report::svg::{LinePlot, MapCell, MapPlot, RefLine, Series, PALETTE, RED};
+use crate::report::table::{count_or_number, with_unit};
 use crate::spec::Spec;
 use crate::units;
 

@@ -2,19 +2,20 @@
 //! the failure rate, the bands, the failure-rate table, a histogram of every limited quantity
 //! with its limit drawn, the worst samples, and (with `--sensitivity`) the linear stack-up
 //! beside the Monte Carlo spread and the Pareto of the tolerances. The page, tables and plots
-//! are the design review's own (`html::shell`, `data_table`, `svg::LinePlot`).
+//! are the design review's own (`shell::shell`, `common::data_table`, `svg::LinePlot`).
 
-use super::html::{data_table, figure, section, shell, Section};
-use super::svg::{LinePlot, Series, PALETTE, RED};
-use super::table::with_unit;
-use super::tolerance::{percent, LINEAR_CAVEAT, MEASURED_NOTE, QUANTILE_DEFINITION};
+use super::common::{data_table, figure, section, Section};
+use super::shell::{shell, write_files};
 use crate::engine::tolerance::sensitivity::Sensitivity;
-use crate::engine::tolerance::summary::{
-    percent_label, LimitSummary, Summary, CONFIDENCE, QUANTILES,
-};
+use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::Result;
 use crate::numeric::number;
+use crate::report::svg::{LinePlot, Series, PALETTE, RED};
+use crate::report::table::with_unit;
+use crate::report::tolerance::{
+    distribution_text, percent, percent_label, LINEAR_CAVEAT, MEASURED_NOTE, QUANTILE_DEFINITION,
+};
 use maud::{html, Markup};
 use std::path::Path;
 
@@ -116,7 +117,7 @@ fn study_section(study: &ToleranceStudy) -> Section {
     let t = &study.tolerances;
     let body = html! {
         p { "Scene " code { (study.spec.scenes[t.scene].name) } ", " (t.samples) " samples, seed "
-            (t.seed) ", " (t.distribution.describe())
+            (t.seed) ", " (distribution_text(t.distribution))
             ". Every part's deviation is drawn independently; sample k depends only on (seed, k)." }
         @if let Some(m) = &study.spec.measured {
             p.note { "Samples " (MEASURED_NOTE) ": " code { (m.path) }
@@ -153,7 +154,7 @@ fn worst_section(study: &ToleranceStudy, s: &Summary, records: &Records) -> Sect
                     tr {
                         td.num { (k) }
                         @for v in records.row(k, l) { td.num { (number(*v)) } }
-                        td { (super::tolerance::largest_draws(study, k, 4)) }
+                        td { (crate::report::tolerance::largest_draws(study, k, 4)) }
                     }
                 }
             },
@@ -249,5 +250,5 @@ pub fn write(
     sens: Option<&Sensitivity>,
 ) -> Result<usize> {
     let files = render(study, s, records, sens);
-    Ok(super::html::write_files(dir, &files)?.len())
+    Ok(write_files(dir, &files)?.len())
 }

@@ -1,12 +1,14 @@
-//! The drawings of the disc that `engine::drawing` computed: the whole disc with its holes,
-//! the pins, the rollers and the forces at one crank angle; and a true-scale close-up of the
-//! tightest roller's gap.
+//! The review's disc at one crank angle, drawn as `engine::drawing` computed it: the whole disc
+//! with its holes, the pins, the rollers and the forces; and a true-scale close-up of the
+//! tightest roller's gap (`disc_section`).
 
-use super::svg::frame::{Frame, Halo};
-use super::svg::{document, px, ticks, RED};
+use super::common::{figure, section, Section};
 use crate::engine::drawing::{Disc, Part};
 use crate::geometry::Vec2;
 use crate::numeric::number;
+use crate::report::svg::frame::{Frame, Halo};
+use crate::report::svg::{document, px, ticks, RED};
+use crate::spec::Spec;
 use crate::units;
 use maud::{html, Markup};
 
@@ -17,6 +19,24 @@ const BEARING_PURPLE: &str = "#9467bd";
 /// The longest force arrow and the shortest drawn, mm.
 const ARROW_MM: f64 = 12.0;
 const SHORTEST_ARROW_MM: f64 = 2.5;
+
+/// The disc at the drawing's crank angle and the close-up of its tightest roller.
+pub(super) fn disc_section(spec: &Spec, disc: &Disc, files: &mut Vec<(String, String)>) -> Section {
+    let d = &spec.design;
+    let phi = format!("{:.2}", units::deg(disc.crank_rad));
+    let (whole, whole_caption) = whole(disc, d.teeth, d.eccentricity_mm);
+    let (detail, detail_caption) = close_up(disc);
+    files.push(("disc.svg".into(), whole));
+    files.push(("disc-detail.svg".into(), detail));
+    let body = html! {
+        div.grid {
+            (figure("disc.svg", &format!("Disc, rollers and output pins at crank φ = {phi}°"),
+                &whole_caption))
+            (figure("disc-detail.svg", "Close-up of the smallest gap", &detail_caption))
+        }
+    };
+    section("disc", html! { "The disc at crank φ = " (phi) "°" }, body)
+}
 
 /// An arrow from `from` to `to` (world), labelled at its head.
 fn arrow(f: &Frame, from: Vec2, to: Vec2, color: &str, label: &str) -> Markup {
@@ -36,7 +56,7 @@ fn arrow(f: &Frame, from: Vec2, to: Vec2, color: &str, label: &str) -> Markup {
         x if x > 0.3 => "start",
         _ => "middle",
     };
-    let head_points = super::svg::points([
+    let head_points = crate::report::svg::points([
         (hx, hy),
         (bx + side.x, by + side.y),
         (bx - side.x, by - side.y),
@@ -149,7 +169,10 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
             " Arrows: forces on the disc in scene `{}` at this angle, to one scale — red \
              rollers, green output pins, purple the crank bearing (the largest is {ARROW_MM} mm \
              long; none is drawn shorter than {SHORTEST_ARROW_MM} mm).",
-            l.scene
+            match l.disc {
+                Some(k) => format!("{} (disc {k})", l.scene),
+                None => l.scene.clone(),
+            }
         );
     }
     (document(w, h, body), caption)

@@ -1,0 +1,183 @@
+//! What a run will do and what its numbers leave unsaid, in words: `check --explain`'s plan of
+//! every scene (`explain`), the notes a reader of the results must be told (`notes`, from
+//! `engine::scene::notes`) and the sentence every output gives of a torsion scene's hysteresis.
+
+use crate::engine::check;
+use crate::engine::scene::{self, Note, Writes};
+use crate::model::{CentreDeviation, Detail, Deviations, Effect};
+use crate::numeric::number;
+use crate::spec::Spec;
+use crate::units;
+
+/// What every output says of a torsion scene's hysteresis.
+pub const HYSTERESIS: &str = "hysteresis loss 0: the quasi-static model has no friction, so \
+     the loading and unloading branches of the torsion loop coincide";
+
+/// A note (`engine::scene::Note`) in one line.
+pub fn note(n: &Note) -> String {
+    match n {
+        Note::Hysteresis { scene } => format!("scene `{scene}`: {HYSTERESIS}"),
+        Note::LifeNotRated {
+            scene,
+            loaded_period_rad,
+        } => format!(
+            "scene `{scene}`: crank-bearing life not rated: its crank range is not a whole \
+             number of loaded periods ({}°), and the equivalent load is a mean over \
+             whole load cycles",
+            number(units::deg(*loaded_period_rad))
+        ),
+        Note::LifeHoursNotRated { scene } => format!(
+            "scene `{scene}`: crank-bearing life in hours not rated: the scene has no \
+             `input_speed_rpm`"
+        ),
+    }
+}
+
+/// What a reader of the results of `spec` must be told besides the numbers, one line each: a
+/// torsion scene's zero hysteresis, a crank bearing whose life a scene could not rate.
+pub fn notes(spec: &Spec) -> Vec<String> {
+    scene::notes(spec).iter().map(note).collect()
+}
+
+/// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.
+pub fn explain(spec: &Spec, writes: Writes) -> String {
+    let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
+    let deviations = deviation_lines(&spec.design.deviations);
+    if !deviations.is_empty() {
+        out += &format!(
+            "parts as built (reducer.deviations), in force in every scene, exact geometry; \
+             gaps repeat every {}°, loaded curves with the pins every {}°:\n",
+            number(units::deg(spec.design.mesh_period_rad())),
+            number(units::deg(spec.design.loaded_period_rad(true)))
+        );
+        for line in deviations {
+            out += &format!("  deviation {line}\n");
+        }
+    }
+    for scene in &spec.scenes {
+        let plan = scene::plan(spec, scene, writes);
+        let first = units::deg(scene.crank_rad.first().copied().unwrap_or(0.0));
+        let step = match scene.crank_rad.as_slice() {
+            [a, b, ..] => units::deg(b - a),
+            _ => 0.0,
+        };
+        let load = match &scene.torque_sweep {
+            Some(t) => format!(
+                "input locked, output torque looped ±{} N·m ({} steps per quarter)",
+                units::nm(t.rated_nmm),
+                t.steps
+            ),
+            None => format!("output torque {} N·m", units::nm(scene.output_torque_nmm)),
+        };
+        out += &format!(
+            "\nscene `{}`: {load}, {} crank angles from {:.4}° in steps of {:.4}°, \
+             {} geometry\n",
+            scene.name,
+            scene.crank_rad.len(),
+            first,
+            step,
+            scene.geometry
+        );
+        if plan.has(Effect::RollerContact) || plan.has(Effect::OutputPins) {
+            out += &format!(
+                "  contact law {}, crank bearing {}\n",
+                scene.contact_law,
+                match scene.bearing_stiffness_n_per_mm {
+                    Some(k) => format!("compliant ({k} N/mm)"),
+                    None => "rigid".to_string(),
+                }
+            );
+        }
+        if plan.has(Effect::Torsion) {
+            out += &format!(
+                "  note    torsion: per locked crank angle the torsion curve and the catalogue \
+                 figures, no loaded curves over the crank angle; {HYSTERESIS}\n"
+            );
+        }
+        if plan.has(Effect::RollerContact) && !plan.has(Effect::OutputPins) {
+            out +=
+                "  note    output pins not modelled: loaded TE is the disc lag β alone (βo = 0)\n";
+        }
+        for p in &plan.effects {
+            out += &format!("  compute {:<15} {}\n", p.effect.name(), p.reason);
+        }
+        for p in &plan.details {
+            out += &format!(
+                "  compute {:<15} part of {}, read by {}\n",
+                p.detail.name(),
+                p.detail.effect().name(),
+                p.read_by.join(", ")
+            );
+        }
+        for d in Detail::ALL {
+            if plan.has(d.effect()) && !plan.has_detail(d) {
+                out += &format!(
+                    "  skip    {} (part of {}; no limit, golden or output file reads it)\n",
+                    d.name(),
+                    d.effect().name()
+                );
+            }
+        }
+        let skipped: Vec<&str> = Effect::listed()
+            .filter(|e| !plan.has(*e))
+            .map(|e| e.name())
+            .collect();
+        if !skipped.is_empty() {
+            out += &format!("  skip    {} (not asked for)\n", skipped.join(", "));
+        }
+        let limits = check::limits_for(&spec.limits, &plan);
+        if !limits.is_empty() {
+            out += &format!("  limits  {}\n", limits.join(", "));
+        }
+    }
+    out
+}
+
+/// The part deviations in force (`reducer.deviations`), one line each (empty when nominal).
+pub fn deviation_lines(d: &Deviations) -> Vec<String> {
+    let um = |mm: f64| format!("{:+.3} µm", mm * 1e3);
+    let mut lines = Vec::new();
+    if d.eccentricity_mm != 0.0 {
+        lines.push(format!("crank eccentricity {}", um(d.eccentricity_mm)));
+    }
+    if d.shift_mm != 0.0 || d.equidistant_mm != 0.0 {
+        lines.push(format!(
+            "grinding: shift {}, equidistant {}",
+            um(d.shift_mm),
+            um(d.equidistant_mm)
+        ));
+    }
+    for (i, r) in d.rollers.iter().enumerate().filter(|(_, r)| !r.is_zero()) {
+        lines.push(format!(
+            "roller {i}: radial {}, tangential {}, radius {}",
+            um(r.centre.radial_mm),
+            um(r.centre.tangential_mm),
+            um(r.radius_mm)
+        ));
+    }
+    let centre = |what: String, c: &CentreDeviation| {
+        format!(
+            "{what}: radial {}, tangential {}",
+            um(c.radial_mm),
+            um(c.tangential_mm)
+        )
+    };
+    for (j, p) in d.pins.iter().enumerate().filter(|(_, p)| !p.is_zero()) {
+        lines.push(centre(format!("pin {j}"), p));
+    }
+    for (k, holes) in d.holes.iter().enumerate() {
+        for (j, h) in holes.iter().enumerate().filter(|(_, h)| !h.is_zero()) {
+            lines.push(centre(format!("disc {k} hole {j}"), h));
+        }
+    }
+    if !d.form.is_empty() {
+        lines.push(format!(
+            "form error: {} harmonics of orders {} to {}, |w| ≤ {:.3} µm",
+            d.form.len(),
+            d.form.iter().map(|f| f.order).min().unwrap_or(0),
+            d.form.iter().map(|f| f.order).max().unwrap_or(0),
+            d.form_bound_mm() * 1e3
+        ));
+    }
+    lines
+}

@@ -1,0 +1,47 @@
+//! What `cycloid bless` says it did (`engine::golden::bless`): per golden file, what moved, by
+//! how much and where.
+
+use crate::engine::golden::{BlessChange, Blessed};
+use crate::numeric::number;
+use crate::spec::Spec;
+
+/// The lines `cycloid bless` prints: per golden, what moved, by how much and where.
+pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
+    let mut out = format!(
+        "cycloid bless `{}`: {} golden file(s)\n",
+        spec.name,
+        blessed.len()
+    );
+    for b in blessed {
+        let file = b.golden.path.display();
+        let cols = match b.golden.quantity.shape.per() {
+            Some(what) => format!("{what} columns"),
+            None => "1 column".into(),
+        };
+        let what = match &b.change {
+            BlessChange::New => format!("new: {} crank angles, {cols}", b.rows),
+            BlessChange::Replaced(why) => format!("replaced ({why})"),
+            BlessChange::Compared(c) if c.largest.deviation == 0.0 => {
+                "unchanged (max |change| 0)".into()
+            }
+            BlessChange::Compared(c) => format!(
+                "moved: max |change| {} {} at {} ({} → {}); {}",
+                number(c.largest.deviation),
+                b.unit,
+                c.largest.place(),
+                number(c.largest.golden),
+                number(c.largest.value),
+                if c.passed {
+                    "within tolerance"
+                } else {
+                    "OUTSIDE the old tolerance: the review is reset, review it again"
+                }
+            ),
+        };
+        out += &format!(
+            "  {file}  {}/{}: {what}\n",
+            b.golden.scene, b.golden.quantity
+        );
+    }
+    out
+}

@@ -1,0 +1,56 @@
+//! The building blocks every section of the design review (and the tolerance study's review)
+//! shares: a section with its anchor and heading, a figure, a table, a verdict's class, a file
+//! name from a name.
+
+use maud::{html, Markup};
+
+/// A section of the page: its anchor, its heading (in the table of contents too) and body.
+pub(super) struct Section {
+    pub(super) id: String,
+    pub(super) heading: Markup,
+    pub(super) body: Markup,
+}
+
+pub(super) fn section(id: impl Into<String>, heading: Markup, body: Markup) -> Section {
+    let id = id.into();
+    Section { id, heading, body }
+}
+
+pub(super) fn figure(file: &str, title: &str, caption: &str) -> Markup {
+    html! {
+        figure {
+            img src=(file) alt=(title);
+            figcaption { b { (title) } ". " (caption) }
+        }
+    }
+}
+
+/// A table that scrolls sideways instead of running off a narrow window.
+pub(super) fn scrolling(table: Markup) -> Markup {
+    html! { div.scroll { (table) } }
+}
+
+/// A number with a true minus sign.
+pub(super) fn signed(text: String) -> String {
+    text.replace('-', "−")
+}
+
+/// A table (in a `scrolling` box) with one header row of `head`'s cells above `rows`.
+pub(super) fn data_table(head: Markup, rows: Markup) -> Markup {
+    scrolling(html! { table { thead { tr { (head) } } tbody { (rows) } } })
+}
+
+pub(super) fn verdict(passed: bool) -> &'static str {
+    if passed {
+        "pass"
+    } else {
+        "fail"
+    }
+}
+
+/// A file-name part from a name: ASCII letters, digits, `-` and `_`; anything else `_`. Not
+/// unique (`a b` and `a_b` give the same), so file names also carry an index.
+pub(super) fn slug(name: &str) -> String {
+    let kept = |c: char| c.is_ascii_alphanumeric() || c == '-' || c == '_';
+    name.replace(|c: char| !kept(c), "_")
+}

@@ -1,0 +1,51 @@
+//! The review's design: the reducer as the spec gives it and its tooth-profile modification.
+
+use super::common::{data_table, section, Section};
+use crate::model::Modification;
+use crate::numeric::number;
+use crate::spec::Spec;
+use crate::units;
+use maud::{html, Markup};
+
+/// The design as the spec gives it, with the modification `m` it was designed with (the
+/// spec's own; with a measured disc the scenes ran on the identified one, `as_built`).
+pub(super) fn design_section(spec: &Spec, m: &Modification) -> Section {
+    let d = &spec.design;
+    let mm = |x: f64| format!("{} mm", number(x));
+    let (disc, rollers) = (&d.disc_material, &d.roller_material);
+    let pairs = |head: &str, rows: Markup| data_table(html! { th colspan="2" { (head) } }, rows);
+    let row = |k: &str, v: String| html! { tr { th { (k) } td { (v) } } };
+    let reducer = html! {
+        (row("teeth nc / rollers np", format!("{} / {}", d.teeth, d.rollers)))
+        (row("eccentricity e", mm(d.eccentricity_mm)))
+        (row("roller circle Rp / roller radius Rrp",
+            format!("{} / {}", mm(d.roller_circle_radius_mm), mm(d.roller_radius_mm))))
+        (row("face width B", mm(d.face_width_mm)))
+        (row("output pins", format!("{} on rw {}, pin radius {}, hole radius {}", d.pins.count,
+            mm(d.pins.circle_radius_mm), mm(d.pins.pin_radius_mm), mm(d.hole_radius_mm()))))
+        (row("material", format!("E {} GPa, ν {} (rollers and pins: E {} GPa, ν {}); E* {} GPa",
+            number(units::gpa(disc.youngs_modulus_mpa)), number(disc.poisson_ratio),
+            number(units::gpa(rollers.youngs_modulus_mpa)), number(rollers.poisson_ratio),
+            number(units::gpa(d.contact_modulus_mpa())))))
+        (row("K1 = e·np/Rp", number(d.k1())))
+        @if d.discs > 1 {
+            (row("discs", format!("{}, at crank phases {}", d.discs,
+                (0..d.discs).map(|k| format!("{}°", number(units::deg(d.disc_phase_rad(k)))))
+                    .collect::<Vec<_>>().join(", "))))
+        }
+        @if let Some(b) = &d.crank_bearing {
+            (row("crank bearing (each disc)", format!("C {} N, life exponent p {}",
+                number(b.dynamic_load_rating_n), number(b.life_exponent))))
+        }
+    };
+    let modification = html! {
+        (row("shift ΔRp", mm(m.shift_mm)))
+        (row("equidistant ΔRrp", mm(m.equidistant_mm)))
+        (row("rotation Δδ", format!("{} deg", number(units::deg(m.rotation_rad)))))
+        (row("tip clearance ΔRrp − ΔRp", format!("{} µm", number(units::um(m.tip_clearance_mm())))))
+    };
+    let body = html! {
+        div.cols { (pairs("reducer", reducer)) (pairs("tooth-profile modification", modification)) }
+    };
+    section("design", html! { "Design" }, body)
+}

@@ -1,0 +1,174 @@
+//! The design-review report (`--report DIR`): `index.html` plus one SVG per plot, for a
+//! reviewer who opens it in a browser. No JavaScript; the page links the SVGs with `<img>`.
+//! Built with maud: every text is escaped by construction.
+//!
+//! Contents: verdict and warnings, a table of contents, the headline results of every scene,
+//! the design, every check and golden curve with its verdict; the disc at a crank angle as the
+//! engine computed it (`engine::drawing`) and a close-up of the smallest gap; per scene, the
+//! plots of its curves (`plots`); per optimisation study, the objective map with the global
+//! sample, the winning local run's path, start, references and optimum, and a table of those
+//! points; the accuracy ladder when one was run; the spec's source.
+//!
+//! This module builds the page; each section is built in its own module, by what it shows:
+//! `summary` (headline results), `design`, `as_built` (a measured disc), `checks` (limits and
+//! golden curves), `disc` (the drawing), `scenes` (each scene's `plots`), `torsion`,
+//! `bearing_life`, `optimisation`, `accuracy`. `common` holds the blocks they share and `shell`
+//! the frame of a page (also the tolerance study's review, `tolerance`).
+
+pub mod accuracy;
+pub mod as_built;
+pub mod bearing_life;
+pub mod checks;
+pub mod common;
+pub mod design;
+pub mod disc;
+pub mod optimisation;
+pub mod plots;
+pub mod scenes;
+pub mod shell;
+pub mod summary;
+pub mod tolerance;
+pub mod torsion;
+
+pub use as_built::AsBuiltView;
+pub use optimisation::{OptimisationView, StudyPoint};
+
+use crate::engine::accuracy::Ladder;
+use crate::engine::check::Check;
+use crate::engine::commands::{CheckRun, Review};
+use crate::engine::drawing::Disc;
+use crate::engine::golden::GoldenResult;
+use crate::error::Result;
+use crate::model::results::SceneResult;
+use crate::model::Scene;
+use crate::spec::Spec;
+use common::{slug, Section};
+use maud::html;
+use shell::{shell, write_files};
+use std::path::{Path, PathBuf};
+
+/// Everything the report shows.
+pub struct ReportInput<'a> {
+    pub spec: &'a Spec,
+    /// Limit and golden checks.
+    pub checks: &'a [Check],
+    pub results: &'a [SceneResult],
+    pub goldens: &'a [GoldenResult],
+    /// The disc at the drawing's crank angle, as the engine computed it.
+    pub disc: &'a Disc,
+    /// Optimisation studies to draw and tabulate (none: no optimisation section).
+    pub optimisation: &'a [OptimisationView],
+    /// The accuracy ladder of a scene (`accuracy:` in the spec), when one was run.
+    pub accuracy: Option<&'a Ladder>,
+    /// Lines shown as a warning banner under the verdict (e.g. a crank resolution coarser
+    /// than the accuracy tolerances need).
+    pub warnings: &'a [String],
+    /// The disc as built (`measured_profile:`): its identification and the results as
+    /// designed, beside `results` (which are as built).
+    pub as_built: Option<AsBuiltView<'a>>,
+}
+
+/// The report's files, (file name, content): the SVGs, then `index.html` last.
+pub fn render(input: &ReportInput) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    let designed = input
+        .as_built
+        .as_ref()
+        .map_or(input.spec.modification, |v| v.designed_modification);
+    let mut sections = vec![
+        summary::summary_section(input.results),
+        design::design_section(input.spec, &designed),
+    ];
+    if let Some(view) = &input.as_built {
+        let built = as_built::section_of(input.spec, view, input.results, &mut files);
+        sections.push(built);
+    }
+    if !input.checks.is_empty() {
+        sections.push(checks::checks_section(input.checks));
+    }
+    sections.extend(checks::golden_section(input.goldens));
+    sections.push(disc::disc_section(input.spec, input.disc, &mut files));
+    for (k, (scene, r)) in input.spec.scenes.iter().zip(input.results).enumerate() {
+        sections.extend(scenes::scene_section(input.spec, k, scene, r, &mut files));
+    }
+    let prefix = |k: usize, s: &Scene| format!("scene-{}-{}", k + 1, slug(&s.name));
+    sections.extend(torsion::sections(
+        input.spec,
+        input.results,
+        prefix,
+        &mut files,
+    ));
+    sections.extend(bearing_life::section(input.spec, input.results));
+    if !input.optimisation.is_empty() {
+        sections.push(optimisation::optimisation_section(
+            input.optimisation,
+            &mut files,
+        ));
+    }
+    sections.extend(input.accuracy.map(accuracy::accuracy_section));
+    files.push(("index.html".into(), page(input, &sections)));
+    files
+}
+
+/// Write the report into `dir` (created if missing) as one batch: every file is staged, then
+/// all are renamed into place, `index.html` last, so a reader never sees a page that links
+/// figures of another run; returns the files written.
+pub fn write(dir: &Path, input: &ReportInput) -> Result<Vec<PathBuf>> {
+    write_files(dir, &render(input))
+}
+
+fn page(input: &ReportInput, sections: &[Section]) -> String {
+    let failed = input.checks.iter().filter(|c| !c.passed).count();
+    let total = input.checks.len();
+    let banner = html! {
+        @if total == 0 {
+            p.banner.pass { "No checks: the spec sets no limits and no golden curves; \
+                the headline results below are what it computed" }
+        } @else if failed == 0 {
+            p.banner.pass { "PASSED: " (if total == 1 { "the one check passes".to_string() }
+                else { format!("all {total} checks pass") }) }
+        } @else {
+            p.banner.fail { "FAILED: " (failed) " of " (total) " checks fail" }
+        }
+        @if !input.warnings.is_empty() {
+            div.banner.warn { @for w in input.warnings { p { "Warning: " (w) } } }
+        }
+    };
+    shell(input.spec, "Design review", banner, sections)
+}
+
+/// Write the design review of `run` into `dir`; how many files it has.
+pub fn write_check(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
+    let spec = &run.spec;
+    let views: Vec<_> = (spec.studies.iter().zip(&run.studies).zip(&review.maps))
+        .map(|((s, r), cells)| {
+            crate::report::optimisation::view(spec, s, r, cells, review.map_steps)
+        })
+        .collect();
+    // The resolution warning `check` printed, as a banner under the verdict.
+    let warnings: Vec<String> = (run.resolution.as_ref())
+        .and_then(crate::report::accuracy::resolution_warning)
+        .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
+        .into_iter()
+        .collect();
+    let as_built = run.as_built.as_ref().and_then(|a| {
+        let designed = a.designed.as_deref()?;
+        Some(AsBuiltView {
+            identification: &a.identification,
+            designed_modification: a.designed_modification,
+            designed,
+        })
+    });
+    let input = ReportInput {
+        spec,
+        checks: &run.checks,
+        results: &run.results,
+        goldens: &run.goldens,
+        disc: &review.disc,
+        optimisation: &views,
+        accuracy: review.ladder.as_ref().map(|(l, _)| l),
+        warnings: &warnings,
+        as_built,
+    };
+    Ok(write(dir, &input)?.len())
+}

@@ -1,0 +1,114 @@
+//! The review's section of each scene: what it computes, over which crank angles, and the plots
+//! of its curves (`plots`), each disc's own with several discs.
+
+use super::common::{figure, section, slug, Section};
+use super::plots;
+use crate::model::results::SceneResult;
+use crate::model::{ContactLaw, Effect, Plan, Scene};
+use crate::numeric::number;
+use crate::spec::Spec;
+use crate::units;
+use maud::html;
+
+/// A scene's plots, or nothing when it computed no curve a plot draws.
+pub(super) fn scene_section(
+    spec: &Spec,
+    k: usize,
+    scene: &Scene,
+    r: &SceneResult,
+    files: &mut Vec<(String, String)>,
+) -> Option<Section> {
+    let prefix = format!("scene-{}-{}", k + 1, slug(&scene.name));
+    let plots = plots::scene_plots(spec, r, &prefix);
+    // With several discs, each disc's own curves (forces, lags, bearing, its torque share).
+    let discs: Vec<(usize, Vec<plots::Plot>)> = r
+        .discs
+        .iter()
+        .enumerate()
+        .map(|(d, disc)| {
+            (
+                d,
+                plots::scene_plots(spec, disc, &format!("{prefix}-disc-{d}")),
+            )
+        })
+        .filter(|(_, p)| !p.is_empty())
+        .collect();
+    if plots.is_empty() && discs.is_empty() {
+        return None;
+    }
+    let phase = |d: usize| number(units::deg(spec.design.disc_phase_rad(d)));
+    let body = html! {
+        p.note { (scene_summary(spec, scene)) }
+        @if !plots.is_empty() {
+            div.grid { @for p in &plots { (figure(&p.file, &p.title, &p.caption)) } }
+        }
+        @for (d, disc) in &discs {
+            h3 { "Disc " (d) " (crank phase " (phase(*d)) "°)" }
+            div.grid { @for p in disc { (figure(&p.file, &p.title, &p.caption)) } }
+        }
+    };
+    files.extend(plots.into_iter().map(|p| (p.file, p.svg)));
+    files.extend(
+        discs
+            .into_iter()
+            .flat_map(|(_, p)| p)
+            .map(|p| (p.file, p.svg)),
+    );
+    let heading = html! { "Scene " code { (scene.name) } };
+    Some(section(prefix, heading, body))
+}
+
+pub(super) fn scene_summary(spec: &Spec, scene: &Scene) -> String {
+    let plan = Plan::for_scene(scene);
+    let step = match scene.crank_rad.as_slice() {
+        [a, b, ..] => units::deg(b - a),
+        _ => 0.0,
+    };
+    let effects: Vec<&str> = plan.effects.iter().map(|p| p.effect.name()).collect();
+    let load = match &scene.torque_sweep {
+        Some(t) => format!(
+            "Input locked; output torque swept ±{} N·m ({} steps per quarter loop)",
+            number(units::nm(t.rated_nmm)),
+            t.steps
+        ),
+        None => format!(
+            "Output torque {} N·m",
+            number(units::nm(scene.output_torque_nmm))
+        ),
+    };
+    let discs = match spec.design.discs {
+        1 => String::new(),
+        n => format!(", shared by {n} discs"),
+    };
+    let mut s = format!(
+        "{load}{discs}; {} crank angles from {:.2}° in steps of {}°; computes {}.",
+        scene.crank_rad.len(),
+        scene.crank_rad.first().map_or(0.0, |&a| units::deg(a)),
+        number(step),
+        effects.join(", ")
+    );
+    if plan.has(Effect::RollerContact) {
+        s += &format!(
+            " Contact law {}, {} geometry, {} crank bearing.",
+            match scene.contact_law {
+                ContactLaw::PaperLinear => "F = (π/4)·E*·L·d (paper Eq. 9)",
+                ContactLaw::HertzNonlinear => "Hertz line contact (Johnson, non-linear)",
+            },
+            scene.geometry,
+            match scene.bearing_stiffness_n_per_mm {
+                Some(k) => format!("compliant ({} N/mm)", number(k)),
+                None => "rigid".into(),
+            }
+        );
+    }
+    let pins = plan.has(Effect::OutputPins);
+    // (A torsion scene's crank angles are where the input is locked, not a sweep.)
+    if scene.torque_sweep.is_none() && !scene.spans_loaded_periods(&spec.design, &plan) {
+        s += if pins {
+            " The sweep does not cover whole periods of the loaded disc (mesh and output pins)."
+        } else {
+            " The sweep does not cover whole mesh periods."
+        };
+    }
+    s
+}

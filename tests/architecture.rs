@@ -1,7 +1,11 @@
 //! The library's layers point one way: each module imports only the layers below it
 //! (README "Architecture"). This test reads every source file and fails on an import of a
-//! higher layer, or of another module of the same layer, naming the file and the line.
+//! higher layer, or of another module of the same layer, naming the file and the line. Inside
+//! a folder, files import one way too: no circle of imports between the files (and sub-folders)
+//! of one folder. A folder's `mod.rs` is its interface, not one of its files: it declares and
+//! re-exports them, and they may use what it declares.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The layers, lowest first. A module may use the modules of lower layers only.
@@ -162,5 +166,320 @@ fn an_upward_import_is_found() {
     assert!(
         found[2].ends_with("mod.rs:3: `geometry` uses `crate::engine`"),
         "{found:?}"
+    );
+}
+
+/// A module path (`["engine", "optimise", "problem"]`) for every source file under `src`.
+fn module_files(src: &Path) -> BTreeMap<Vec<String>, PathBuf> {
+    let mut files = Vec::new();
+    sources(src, &mut files);
+    let mut modules = BTreeMap::new();
+    for file in files {
+        let rel = file.strip_prefix(src).unwrap();
+        let mut path: Vec<String> = rel
+            .components()
+            .map(|c| {
+                c.as_os_str()
+                    .to_string_lossy()
+                    .trim_end_matches(".rs")
+                    .to_string()
+            })
+            .collect();
+        if matches!(
+            path.last().map(String::as_str),
+            Some("mod" | "lib" | "main")
+        ) {
+            path.pop();
+        }
+        if rel == Path::new("main.rs") {
+            continue;
+        }
+        modules.insert(path, file);
+    }
+    modules
+}
+
+/// The code of a file without comments, string literals and its `#[cfg(test)]` tail (test
+/// modules, at the end of a file by convention, may use what the code does not).
+fn code_of(text: &str) -> String {
+    let text = match text.find("#[cfg(test)]") {
+        Some(i) => &text[..i],
+        None => text,
+    };
+    let mut code = String::new();
+    for line in text.lines() {
+        let line = line.find("//").map_or(line, |i| &line[..i]);
+        let mut in_string = false;
+        let mut prev = ' ';
+        for c in line.chars() {
+            if c == '"' && prev != '\\' {
+                in_string = !in_string;
+            } else if !in_string {
+                code.push(c);
+            }
+            prev = c;
+        }
+        code.push('\n');
+    }
+    code
+}
+
+/// Every path a piece of code names from `starts` (`crate`, `super`, `self`, or a child module
+/// of a `mod.rs`), with `{a, b::c}` groups expanded: `crate::x::{y, z::w}` gives `crate::x::y`
+/// and `crate::x::z::w`.
+fn paths_in(code: &str, starts: &BTreeSet<String>) -> Vec<Vec<String>> {
+    let chars: Vec<char> = code.chars().collect();
+    let ident_char = |c: char| c.is_alphanumeric() || c == '_';
+    let mut found = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        if !ident_char(chars[i]) || (i > 0 && (ident_char(chars[i - 1]) || chars[i - 1] == ':')) {
+            i += 1;
+            continue;
+        }
+        let (word, end) = ident_at(&chars, i);
+        if starts.contains(&word) && chars[end..].starts_with(&[':', ':']) {
+            let mut out = Vec::new();
+            tree_at(&chars, i, Vec::new(), &mut out);
+            found.extend(out);
+        }
+        i = end.max(i + 1);
+    }
+    found
+}
+
+fn ident_at(chars: &[char], mut i: usize) -> (String, usize) {
+    let start = i;
+    while i < chars.len() && (chars[i].is_alphanumeric() || chars[i] == '_') {
+        i += 1;
+    }
+    (chars[start..i].iter().collect(), i)
+}
+
+fn skip_space(chars: &[char], mut i: usize) -> usize {
+    while i < chars.len() && chars[i].is_whitespace() {
+        i += 1;
+    }
+    i
+}
+
+/// The paths of a use tree at `i` (`a::b`, `a::{b, c::d}`, nested), each prefixed by `prefix`;
+/// returns where the tree ends.
+fn tree_at(chars: &[char], i: usize, mut prefix: Vec<String>, out: &mut Vec<Vec<String>>) -> usize {
+    let mut i = skip_space(chars, i);
+    loop {
+        if chars.get(i) == Some(&'{') {
+            i += 1;
+            loop {
+                i = skip_space(chars, i);
+                match chars.get(i) {
+                    None => return i,
+                    Some('}') => return i + 1,
+                    Some(',') => i += 1,
+                    Some(_) => {
+                        let next = tree_at(chars, i, prefix.clone(), out);
+                        i = if next > i { next } else { i + 1 };
+                    }
+                }
+            }
+        }
+        let (word, end) = ident_at(chars, i);
+        if word.is_empty() {
+            out.push(prefix);
+            return i;
+        }
+        prefix.push(word);
+        i = end;
+        if chars[i..].starts_with(&[':', ':']) {
+            i = skip_space(chars, i + 2);
+        } else {
+            out.push(prefix);
+            return i;
+        }
+    }
+}
+
+/// The module a path names, as the longest prefix of it that is a file's module; `None` for
+/// paths outside the crate.
+fn target<'a>(
+    own: &[String],
+    is_mod: bool,
+    path: &[String],
+    modules: &'a BTreeMap<Vec<String>, PathBuf>,
+) -> Option<&'a Vec<String>> {
+    // Where `self` is: a `mod.rs` is its folder's module, a file its own.
+    let here: Vec<String> = own.to_vec();
+    let mut full = match path.first().map(String::as_str) {
+        Some("crate") => Vec::new(),
+        Some("self") => here.clone(),
+        Some("super") => here[..here.len().saturating_sub(1)].to_vec(),
+        // A child module named from its parent's file.
+        Some(_) if is_mod => here.clone(),
+        _ => return None,
+    };
+    let rest = match path.first().map(String::as_str) {
+        Some("crate" | "self" | "super") => &path[1..],
+        _ => path,
+    };
+    full.extend(rest.iter().cloned());
+    (0..=full.len())
+        .rev()
+        .find_map(|n| modules.get_key_value(&full[..n]).map(|(k, _)| k))
+}
+
+/// The import graph of each folder: (folder, from, to) over the folder's direct children
+/// (files and sub-folders), its `mod.rs` left out; the crate root is the layers' business.
+fn folder_edges(src: &Path) -> BTreeSet<(Vec<String>, String, String)> {
+    let modules = module_files(src);
+    let mut edges = BTreeSet::new();
+    for (own, file) in &modules {
+        let is_mod = file
+            .file_name()
+            .is_some_and(|n| n == "mod.rs" || n == "lib.rs");
+        let text = std::fs::read_to_string(file).unwrap();
+        let code = code_of(&text);
+        let mut starts: BTreeSet<String> = ["crate", "super", "self"].map(String::from).into();
+        if is_mod {
+            starts.extend(
+                modules
+                    .keys()
+                    .filter(|k| k.len() == own.len() + 1 && k.starts_with(own))
+                    .map(|k| k[own.len()].clone()),
+            );
+        }
+        for path in paths_in(&code, &starts) {
+            let Some(to) = target(own, is_mod, &path, &modules) else {
+                continue;
+            };
+            if to == own {
+                continue;
+            }
+            let common = own.iter().zip(to).take_while(|(a, b)| a == b).count();
+            let node = |m: &Vec<String>| m.get(common).cloned().unwrap_or_else(|| "mod".into());
+            let (from, to) = (node(own), node(to));
+            if common > 0 && from != "mod" && to != "mod" {
+                edges.insert((own[..common].to_vec(), from, to));
+            }
+        }
+    }
+    edges
+}
+
+/// Every circle of imports inside one folder: the folder, the files (and sub-folders) that
+/// reach each other, and their imports of each other.
+fn folder_circles(src: &Path) -> Vec<String> {
+    let edges = folder_edges(src);
+    let mut folders: BTreeMap<&Vec<String>, BTreeMap<&str, BTreeSet<&str>>> = BTreeMap::new();
+    for (folder, from, to) in &edges {
+        let graph = folders.entry(folder).or_default();
+        graph.entry(from).or_default().insert(to);
+        graph.entry(to).or_default();
+    }
+    let mut circles = Vec::new();
+    for (folder, graph) in folders {
+        let reach: BTreeMap<&str, BTreeSet<&str>> =
+            graph.keys().map(|&n| (n, reachable(n, &graph))).collect();
+        let mut placed = BTreeSet::new();
+        for &n in graph.keys() {
+            let circle: Vec<&str> = (graph.keys())
+                .copied()
+                .filter(|m| *m != n && reach[n].contains(m) && reach[m].contains(n))
+                .chain([n])
+                .collect::<BTreeSet<_>>()
+                .into_iter()
+                .collect();
+            if circle.len() < 2 || !placed.insert(circle.clone()) {
+                continue;
+            }
+            let inside: Vec<String> = (circle.iter())
+                .flat_map(|&a| graph[a].iter().map(move |&b| (a, b)))
+                .filter(|(_, b)| circle.contains(b))
+                .map(|(a, b)| format!("{a} → {b}"))
+                .collect();
+            circles.push(format!(
+                "src/{}: {} ({})",
+                folder.join("/"),
+                circle.join(", "),
+                inside.join(", ")
+            ));
+        }
+    }
+    circles
+}
+
+/// The nodes reachable from `start` by one import or more.
+fn reachable<'a>(
+    start: &'a str,
+    graph: &BTreeMap<&'a str, BTreeSet<&'a str>>,
+) -> BTreeSet<&'a str> {
+    let mut seen = BTreeSet::new();
+    let mut todo: Vec<&str> = graph[start].iter().copied().collect();
+    while let Some(n) = todo.pop() {
+        if seen.insert(n) {
+            todo.extend(graph[n].iter().copied());
+        }
+    }
+    seen
+}
+
+#[test]
+fn files_inside_a_folder_import_one_way() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let circles = folder_circles(&src);
+    assert!(
+        circles.is_empty(),
+        "import circles between the files of a folder:\n{}",
+        circles.join("\n")
+    );
+}
+
+/// The circle check can fail: two files of one folder that import each other (through a use
+/// group and a `super::` path in code), and a file and a sub-folder that do, are found; a
+/// one-way import (`a → c`, `x → y`), `mod.rs` re-exports, paths in comments and strings, and a
+/// test module's imports are not.
+#[test]
+fn a_circle_inside_a_folder_is_found() {
+    let dir = std::env::temp_dir().join(format!("cycloid-circles-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let files = [
+        ("lib.rs", "pub mod engine;\npub mod model;\n"),
+        (
+            "engine/mod.rs",
+            "pub mod a;\npub mod b;\npub mod c;\npub mod d;\npub use c::Go;\n",
+        ),
+        (
+            "engine/a.rs",
+            "use crate::engine::{b::{self, Thing}, c};\npub fn run() { c::go(); }\n",
+        ),
+        ("engine/b.rs", "pub fn f() { super::a::run() }\n"),
+        (
+            "engine/c.rs",
+            "use super::d::e;\npub struct T;\n#[cfg(test)]\nmod tests { use crate::engine::b; }\n",
+        ),
+        ("engine/d/mod.rs", "pub mod e;\n"),
+        ("engine/d/e.rs", "use crate::engine::c::T;\n"),
+        ("model/mod.rs", "pub mod x;\npub mod y;\n"),
+        (
+            "model/x.rs",
+            "// crate::model::y in a comment\nuse crate::model::y::Y;\n",
+        ),
+        (
+            "model/y.rs",
+            "pub struct Y; fn s() -> &'static str { \"crate::model::x\" }\n",
+        ),
+    ];
+    for (name, text) in files {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+    let circles = folder_circles(&dir);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(
+        circles,
+        [
+            "src/engine: a, b (a → b, b → a)",
+            "src/engine: c, d (c → d, d → c)"
+        ],
     );
 }

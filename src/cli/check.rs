@@ -168,7 +168,7 @@ fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Resul
         print(out, &report::accuracy::ladder_line(l, *seconds))?;
     }
     if let Some(dir) = args.report {
-        let files = report::review::write_check(Path::new(dir), run, review)?;
+        let files = report::check_review::write(Path::new(dir), run, review)?;
         print(out, &review_line(dir, files))?;
     }
     Ok(())

@@ -7,6 +7,7 @@
 
 pub mod accuracy;
 pub mod as_built;
+pub mod check_review;
 pub mod explain;
 pub mod export;
 pub mod fit;

@@ -35,7 +35,6 @@ pub use optimisation::{OptimisationView, StudyPoint};
 
 use crate::engine::accuracy::Ladder;
 use crate::engine::check::Check;
-use crate::engine::commands::{CheckRun, Review};
 use crate::engine::drawing::Disc;
 use crate::engine::golden::GoldenResult;
 use crate::error::Result;
@@ -135,40 +134,4 @@ fn page(input: &ReportInput, sections: &[Section]) -> String {
         }
     };
     shell(input.spec, "Design review", banner, sections)
-}
-
-/// Write the design review of `run` into `dir`; how many files it has.
-pub fn write_check(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
-    let spec = &run.spec;
-    let views: Vec<_> = (spec.studies.iter().zip(&run.studies).zip(&review.maps))
-        .map(|((s, r), cells)| {
-            crate::report::optimisation::view(spec, s, r, cells, review.map_steps)
-        })
-        .collect();
-    // The resolution warning `check` printed, as a banner under the verdict.
-    let warnings: Vec<String> = (run.resolution.as_ref())
-        .and_then(crate::report::accuracy::resolution_warning)
-        .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
-        .into_iter()
-        .collect();
-    let as_built = run.as_built.as_ref().and_then(|a| {
-        let designed = a.designed.as_deref()?;
-        Some(AsBuiltView {
-            identification: &a.identification,
-            designed_modification: a.designed_modification,
-            designed,
-        })
-    });
-    let input = ReportInput {
-        spec,
-        checks: &run.checks,
-        results: &run.results,
-        goldens: &run.goldens,
-        disc: &review.disc,
-        optimisation: &views,
-        accuracy: review.ladder.as_ref().map(|(l, _)| l),
-        warnings: &warnings,
-        as_built,
-    };
-    Ok(write(dir, &input)?.len())
 }

@@ -1,0 +1,39 @@
+//! The design review of a `check` run: the page's input built from what the run computed.
+
+use crate::engine::commands::{CheckRun, Review};
+use crate::error::Result;
+use std::path::Path;
+
+/// Write the design review of `run` into `dir`; how many files it has.
+pub fn write(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
+    let spec = &run.spec;
+    let views: Vec<_> = (spec.studies.iter().zip(&run.studies).zip(&review.maps))
+        .map(|((s, r), cells)| super::optimisation::view(spec, s, r, cells, review.map_steps))
+        .collect();
+    // The resolution warning `check` printed, as a banner under the verdict.
+    let warnings: Vec<String> = (run.resolution.as_ref())
+        .and_then(crate::report::accuracy::resolution_warning)
+        .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
+        .into_iter()
+        .collect();
+    let as_built = run.as_built.as_ref().and_then(|a| {
+        let designed = a.designed.as_deref()?;
+        Some(super::review::AsBuiltView {
+            identification: &a.identification,
+            designed_modification: a.designed_modification,
+            designed,
+        })
+    });
+    let input = super::review::ReportInput {
+        spec,
+        checks: &run.checks,
+        results: &run.results,
+        goldens: &run.goldens,
+        disc: &review.disc,
+        optimisation: &views,
+        accuracy: review.ladder.as_ref().map(|(l, _)| l),
+        warnings: &warnings,
+        as_built,
+    };
+    Ok(super::review::write(dir, &input)?.len())
+}

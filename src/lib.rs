@@ -30,9 +30,9 @@
 //! - `geometry` → `contact` → `equilibrium`: the physics (`measure`, the identification of a
 //!   measured disc, sits on `geometry`);
 //! - `engine`: runs scenes, checks limits and goldens, optimises, runs the accuracy ladder, and
-//!   `engine::commands`, the entry of each command;
+//!   [`engine::commands`], the entry of each command;
 //! - `report`: every text for people, built from the engine's data: the terminal table, JSON,
-//!   JUnit, the design review (`report::review`), the profile export, `--explain`;
+//!   JUnit, the design review ([`report::review`]), the profile export, `--explain`;
 //! - `cli`: the commands' arguments and printing.
 //!
 //! Units inside the engine: mm, N, N·mm, rad, MPa; every conversion is a `units` function,

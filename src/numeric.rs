@@ -1,7 +1,7 @@
 //! Small numeric helpers shared by every layer: extremes of sampled curves, and numbers
 //! formatted for a person.
 
-/// Largest entry of a [row][angle] array: (value, row, angle index). Empty gives (0, 0, 0).
+/// Largest entry of a \[row\]\[angle\] array: (value, row, angle index). Empty gives (0, 0, 0).
 pub fn max_entry(rows: &[Vec<f64>]) -> (f64, usize, usize) {
     let mut best = (f64::NEG_INFINITY, 0, 0);
     for (i, row) in rows.iter().enumerate() {
@@ -18,7 +18,7 @@ pub fn max_entry(rows: &[Vec<f64>]) -> (f64, usize, usize) {
     }
 }
 
-/// Smallest entry of a [row][angle] array: (value, row, angle index). Empty gives (0, 0, 0).
+/// Smallest entry of a \[row\]\[angle\] array: (value, row, angle index). Empty gives (0, 0, 0).
 pub fn min_entry(rows: &[Vec<f64>]) -> (f64, usize, usize) {
     let mut best = (f64::INFINITY, 0, 0);
     for (i, row) in rows.iter().enumerate() {

@@ -1,5 +1,5 @@
 //! Command-line interface: argument parsing (`args`), output paths and writing (`output`), and
-//! one file per command that calls the library's entry (`engine::commands`) and prints. `main`
+//! one file per command that calls the library's entry ([`engine::commands`](crate::engine::commands)) and prints. `main`
 //! only maps the outcome to an exit code (0 pass, 1 a check failed, 2 invalid input or
 //! computation).
 

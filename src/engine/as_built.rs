@@ -1,5 +1,5 @@
 //! The disc as built from its measured points (`measured_profile:`): identify it
-//! (`measure::fit`) and give the spec whose scenes run on it — the identified modification and
+//! ([`measure::fit`](crate::measure::fit)) and give the spec whose scenes run on it — the identified modification and
 //! the fitted form error (`reducer.deviations.form`), exact geometry (MODEL.md "Measured
 //! profiles"). `check` runs every scene and limit on that spec.
 
@@ -28,7 +28,7 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
     Ok(Some((built, id)))
 }
 
-/// Identify the disc of `measured`'s points against `spec`'s design (`measure::fit`), an
+/// Identify the disc of `measured`'s points against `spec`'s design ([`measure::fit`](crate::measure::fit)), an
 /// error about the points naming their file.
 pub fn fit(spec: &Spec, measured: &MeasuredProfile) -> Result<Identification> {
     let read = points::read(&measured.path, measured.format)?;

@@ -3,7 +3,7 @@
 //! section, so that a run never passes while its own accuracy table calls it too coarse.
 //!
 //! The steps rungs of the ladder (12, 24, … crank steps per mesh period, nested in the finest,
-//! `engine::accuracy`) are compared with the reference at the finest. The scene is
+//! [`engine::accuracy`](crate::engine::accuracy)) are compared with the reference at the finest. The scene is
 //! **unresolved** when the coarsest rung already misses a tolerance (so resolution matters at
 //! all) and the scene's steps per mesh period are fewer than those of the coarsest rung from
 //! which on every steps rung meets the tolerances (the reference's, when none coarser does).

@@ -149,7 +149,7 @@ pub fn run_design(
     Ok(reducer)
 }
 
-/// The torsion loops of a scene with a `torque_sweep` (`engine::torsion`), when planned.
+/// The torsion loops of a scene with a `torque_sweep` ([`engine::torsion`](crate::engine::torsion)), when planned.
 fn torsion_loops(
     design: &Design,
     m: &Modification,
@@ -194,7 +194,7 @@ fn loaded_sweep(
         .map_err(|f| sweep_failed(scene, f))
 }
 
-/// The coupled loaded sweep of several discs (`equilibrium::discs`), when the plan runs it.
+/// The coupled loaded sweep of several discs ([`equilibrium::discs`](crate::equilibrium::discs)), when the plan runs it.
 fn loaded_disc_sweeps(
     design: &Design,
     m: &Modification,
@@ -226,7 +226,7 @@ fn sweep_failed(scene: &Scene, f: sweep::SweepFailure) -> Error {
     }
 }
 
-/// The crank bearing's rating life over the scene (`engine::bearing_life`): when the design
+/// The crank bearing's rating life over the scene ([`engine::bearing_life`](crate::engine::bearing_life)): when the design
 /// has a `crank_bearing`, the scene computes the bearing force, and its sweep covers whole
 /// loaded periods (the equivalent load is a mean over the load cycle; see `notes` for the
 /// scenes left out); the life in hours needs the scene's `input_speed_rpm` too.
@@ -251,7 +251,7 @@ fn bearing_life(
     })
 }
 
-/// What a reader of the results must be told besides the numbers (`report::explain` says
+/// What a reader of the results must be told besides the numbers ([`report::explain`](crate::report::explain) says
 /// it in words).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Note {

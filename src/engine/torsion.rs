@@ -82,7 +82,7 @@ pub fn figures(rated_nmm: f64, gamma: &[f64; 8]) -> Result<TorsionFigures, Strin
 
 /// The reducer's output lag γ (rad) at a locked crank angle under the output torque
 /// `torque_nmm`, warm-started from `work` (the last solve of the same angle): the coupled
-/// balance of the discs (`equilibrium::discs`); with one disc γ = β + βo, β the disc's lag
+/// balance of the discs ([`equilibrium::discs`](crate::equilibrium::discs)); with one disc γ = β + βo, β the disc's lag
 /// (rollers) and βo the pins' deflection (0 when the pins are not modelled).
 pub fn output_lag(
     discs: &mut Discs,

@@ -21,7 +21,7 @@ use rayon::prelude::*;
 #[derive(Debug, Clone)]
 pub struct DiscSweeps {
     pub discs: Vec<LoadedSweep>,
-    /// Disc k's share of the output torque, N·mm, [disc][angle].
+    /// Disc k's share of the output torque, N·mm, \[disc\]\[angle\].
     pub torque_nmm: Vec<Vec<f64>>,
     pub transmission: Option<Transmission>,
 }

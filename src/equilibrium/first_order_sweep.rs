@@ -53,7 +53,7 @@ pub struct FirstOrderSweep<'a> {
     pins: Option<(&'a Pins, f64)>,
     /// Linear stiffness of a roller contact, N/mm.
     roller_stiffness: f64,
-    /// The Hertz pressure and width factors of the rollers' contacts (`contact::hertz_line`).
+    /// The Hertz pressure and width factors of the rollers' contacts ([`contact::hertz_line`](crate::contact::hertz_line)).
     hertz: HertzFactors,
     /// The roller directions u_i and the pin directions w_j as x and y columns, so that the
     /// per-angle loops over them vectorise.
@@ -462,7 +462,7 @@ impl<'a> FirstOrderSweep<'a> {
 
     /// The rollers in `mask` (in contact at lag β, forces in `scratch.force`): their forces
     /// into `row` and `sums`, and their Hertz peak pressure and half-width into `row`
-    /// (`contact::hertz_line`; the entries of rollers out of contact stay zero), with
+    /// ([`contact::hertz_line`](crate::contact::hertz_line); the entries of rollers out of contact stay zero), with
     /// 1/R* = max(κ + 1/r_rp, 1/Rp) as in `Rollers::line_contact` and κ the disc curvature at
     /// the roller's locus parameter.
     #[inline(always)]

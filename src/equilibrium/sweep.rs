@@ -1,7 +1,7 @@
 //! The loaded sweep over the crank angles of a scene (one angle's solve is `angle`), and its
 //! curves: lags, forces, pressures, bearing force, TE and ratio. Several discs' sweep is
 //! `discs_sweep`, on the same columns and chunks.
-//! Arrays are [angle] or [roller|pin][angle]; engine units (rad, N, MPa, mm).
+//! Arrays are \[angle\] or \[roller|pin\]\[angle\]; engine units (rad, N, MPa, mm).
 
 use super::angle::solve_into;
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
@@ -67,7 +67,7 @@ pub fn derivative(values: &[f64], h: f64, periodic: bool) -> Option<Vec<f64>> {
     Some(d)
 }
 
-/// The curves of a sweep as columns [angle] and [roller|pin][angle], allocated once and
+/// The curves of a sweep as columns \[angle\] and \[roller|pin\]\[angle\], allocated once and
 /// written in place by the chunks (`Columns::chunks`).
 pub(super) struct Columns {
     lag: Vec<f64>,
@@ -109,7 +109,7 @@ pub(super) fn pieces<T>(column: &mut [T]) -> std::slice::ChunksMut<'_, T> {
     column.chunks_mut(CHUNK)
 }
 
-/// [column][angle] cut into [chunk][column] pieces of `CHUNK` angles (`chunks` of them).
+/// \[column\]\[angle\] cut into \[chunk\]\[column\] pieces of `CHUNK` angles (`chunks` of them).
 pub(super) fn piece_rows(columns: &mut [Vec<f64>], chunks: usize) -> Vec<Vec<&mut [f64]>> {
     let width = columns.len();
     let mut rows: Vec<Vec<&mut [f64]>> = (0..chunks).map(|_| Vec::with_capacity(width)).collect();

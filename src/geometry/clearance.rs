@@ -415,7 +415,7 @@ pub fn sweep_observed(
     })
 }
 
-/// The smallest gap of the columns [roller][angle], scanned angle by angle, roller by roller,
+/// The smallest gap of the columns \[roller\]\[angle\], scanned angle by angle, roller by roller,
 /// a new minimum only when lower by more than `TIE_MM`; its place on the tooth from the
 /// roller's closest point evaluated from scratch.
 fn smallest(
@@ -446,7 +446,7 @@ fn smallest(
     Ok(min)
 }
 
-/// The curves of a sweep, [roller][angle] and [angle]; the backlash columns are empty for
+/// The curves of a sweep, \[roller\]\[angle\] and \[angle\]; the backlash columns are empty for
 /// `Scope::Gaps`.
 struct Columns {
     gap_mm: Vec<Vec<f64>>,

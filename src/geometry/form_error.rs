@@ -83,7 +83,7 @@ impl FormError {
     }
 
     /// w, w′, w″ summed from the series: the harmonics cos(kt), sin(kt) by powers of e^{it}
-    /// (`geometry::cos_sin_of_orders`: one sine and cosine per call; rounding grows as k·ε).
+    /// ([`geometry::cos_sin_of_orders`](crate::geometry::cos_sin_of_orders): one sine and cosine per call; rounding grows as k·ε).
     pub fn series_jet(&self, t: f64) -> (f64, f64, f64) {
         let harmonics = cos_sin_of_orders(t, 1..=self.dense.len());
         let (mut w, mut d1, mut d2) = (self.constant_mm, 0.0, 0.0);

@@ -323,7 +323,7 @@ impl Profile {
     }
 
     /// The smallest convex radius of curvature of C (= 1/max κ_C), in closed form
-    /// (`model::Locus::min_convex_radius`).
+    /// ([`model::Locus::min_convex_radius`](crate::model::Locus::min_convex_radius)).
     pub fn min_convex_radius(&self) -> ConvexRadius {
         self.locus().min_convex_radius()
     }

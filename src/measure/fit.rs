@@ -4,7 +4,7 @@
 //!
 //! Model. A point P_m measured in the machine's frame is turned into the disc frame,
 //! Q_m = R(−θ0)·(P_m − c0), and its foot t_m on the roller-centre locus C (of R' = Rp + ΔRp,
-//! turned by Δδ) is found by the guarded closest-point search of `geometry::profile`. Its
+//! turned by Δδ) is found by the guarded closest-point search of [`geometry::profile`](crate::geometry::profile). Its
 //! residual is the signed normal distance to the profile with form error w,
 //!   d_m = (Q_m − C(t_m))·N(t_m) + r' + w(t_m),   r' = Rrp + ΔRrp,
 //! positive outside the material (Γ = C − (r' + w)·N: w > 0 is material missing, like a
@@ -821,7 +821,7 @@ fn finish(
     })
 }
 
-/// Most orders of a form-error series (`spec::measured::MAX_HARMONICS` = 200 and fewer).
+/// Most orders of a form-error series ([`spec::measured::MAX_HARMONICS`](crate::spec::measured::MAX_HARMONICS) = 200 and fewer).
 const MAX_ORDERS: usize = 256;
 
 /// (cos k·t, sin k·t) for the ascending `orders`, into `out` in pairs.

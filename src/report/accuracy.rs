@@ -1,4 +1,4 @@
-//! The accuracy ladder (`engine::accuracy`) in words: its table for the terminal, printed row by
+//! The accuracy ladder ([`engine::accuracy`](crate::engine::accuracy)) in words: its table for the terminal, printed row by
 //! row as the rungs finish (`header`, `row`, `footer`, or `render` at once), the numbers and
 //! verdicts the design review's table shares, and the warning `check` prints when a scene's
 //! crank resolution is coarser than its tolerances need (`resolution_warning`).

@@ -1,12 +1,12 @@
 //! The disc as built in one line for the terminal: what the scenes of a spec with a
-//! `measured_profile` run on (`engine::as_built::identify`).
+//! `measured_profile` run on ([`engine::as_built::identify`](crate::engine::as_built::identify)).
 
 use crate::measure::fit::Identification;
 use crate::spec::Spec;
 use crate::units;
 
 /// One line for the terminal: what the scenes of `spec`, the disc as built
-/// (`engine::as_built::identify`), run on.
+/// ([`engine::as_built::identify`](crate::engine::as_built::identify)), run on.
 pub fn describe(spec: &Spec, id: &Identification) -> String {
     let m = &id.modification;
     let form = &spec.design.deviations;

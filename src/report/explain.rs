@@ -1,6 +1,6 @@
 //! What a run will do and what its numbers leave unsaid, in words: `check --explain`'s plan of
 //! every scene (`explain`), the notes a reader of the results must be told (`notes`, from
-//! `engine::scene::notes`) and the sentence every output gives of a torsion scene's hysteresis.
+//! [`engine::scene::notes`](crate::engine::scene::notes)) and the sentence every output gives of a torsion scene's hysteresis.
 
 use crate::engine::check;
 use crate::engine::scene::{self, Note, Writes};
@@ -13,7 +13,7 @@ use crate::units;
 pub const HYSTERESIS: &str = "hysteresis loss 0: the quasi-static model has no friction, so \
      the loading and unloading branches of the torsion loop coincide";
 
-/// A note (`engine::scene::Note`) in one line.
+/// A note ([`engine::scene::Note`](crate::engine::scene::Note)) in one line.
 pub fn note(n: &Note) -> String {
     match n {
         Note::Hysteresis { scene } => format!("scene `{scene}`: {HYSTERESIS}"),

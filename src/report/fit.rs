@@ -19,7 +19,7 @@ pub(super) fn fixed(x: f64, decimals: usize) -> String {
     }
 }
 
-/// A change `x` with `decimals`, signed as `numeric::change` signs one (`numeric::signed`:
+/// A change `x` with `decimals`, signed as [`numeric::change`](crate::numeric::change) signs one ([`numeric::signed`](crate::numeric::signed):
 /// `+25.000`, `-9.300`), and unsigned where it rounds to zero (`0.000`).
 pub(super) fn fixed_change(x: f64, decimals: usize) -> String {
     crate::numeric::signed(x, decimals).unwrap_or_else(|| fixed(0.0, decimals))

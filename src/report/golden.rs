@@ -1,4 +1,4 @@
-//! What `cycloid bless` says it did (`engine::golden::bless`): per golden file, what moved, by
+//! What `cycloid bless` says it did ([`engine::golden::bless`](crate::engine::golden::bless)): per golden file, what moved, by
 //! how much and where.
 
 use crate::engine::golden::{BlessChange, Blessed};

@@ -1,6 +1,6 @@
 //! The results JSON (schema 1): typed documents (`Document`, `#[derive(Serialize)]`) that
 //! borrow the results and convert them to the units named in their keys as they are
-//! serialised; no tree of values is built. Arrays are [roller][angle] or [angle]; a quantity
+//! serialised; no tree of values is built. Arrays are \[roller\]\[angle\] or \[angle\]; a quantity
 //! that was not computed is absent, never zero. The keys are documented in the README
 //! ("Results JSON"); every registry quantity a scene computed is there under its key. What a
 //! study's result holds is mapped in one place, `StudyDoc::new`.
@@ -95,7 +95,7 @@ impl Serialize for Curve<'_> {
     }
 }
 
-/// Curves [part][angle] in the key's unit.
+/// Curves \[part\]\[angle\] in the key's unit.
 #[derive(Clone, Copy)]
 pub struct Rows<'a>(&'a [Vec<f64>]);
 
@@ -197,13 +197,13 @@ pub struct SceneDoc<'a> {
 /// torsion angles and catalogue figures.
 #[derive(Serialize)]
 pub struct TorsionDoc {
-    /// The loop's torques, N·m [m].
+    /// The loop's torques, N·m \[m\].
     torque_nm: Vec<Finite>,
-    /// γ [crank][m], arcmin.
+    /// γ \[crank\]\[m\], arcmin.
     torsion_arcmin: Vec<Vec<Finite>>,
     lost_motion_arcmin: Vec<Finite>,
     backlash_arcmin: Vec<Finite>,
-    /// The smaller direction [crank].
+    /// The smaller direction \[crank\].
     torsional_rigidity_nm_per_arcmin: Vec<Finite>,
     torsional_rigidity_forward_nm_per_arcmin: Vec<Finite>,
     torsional_rigidity_reverse_nm_per_arcmin: Vec<Finite>,
@@ -377,7 +377,7 @@ pub struct GoldenDoc<'a> {
     largest: PointDoc<'a>,
 }
 
-/// One headline result of a scene (`engine::summary`).
+/// One headline result of a scene ([`engine::summary`](crate::engine::summary)).
 #[derive(Serialize)]
 pub struct HeadlineDoc<'a> {
     key: &'static str,
@@ -657,7 +657,7 @@ impl serde_json::ser::Formatter for Compact {
     }
 }
 
-/// Write the document to `path` atomically (`files::write_atomic_with`), compact, through a
+/// Write the document to `path` atomically ([`files::write_atomic_with`](crate::files::write_atomic_with)), compact, through a
 /// buffer of 64 KiB: it stays in cache, and the writes of a few bytes per number into it
 /// inline (through the `dyn Write` below it they would be calls).
 pub fn write(path: &Path, doc: &Document) -> Result<()> {

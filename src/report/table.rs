@@ -133,7 +133,7 @@ fn is_count(x: f64, unit: &str) -> bool {
 }
 
 /// The change from `from` to `to` as those two print (`count_or_number`): a signed count
-/// between counts, else `numeric::change`.
+/// between counts, else [`numeric::change`](crate::numeric::change).
 pub fn count_or_change(from: f64, to: f64, unit: &str) -> String {
     match to - from {
         x if is_count(from, unit) && is_count(to, unit) && x != 0.0 => format!("{x:+.0}"),
@@ -182,7 +182,7 @@ pub fn render_summary(summaries: &[SceneSummary]) -> String {
 mod tests {
     use super::count_or_change;
 
-    /// Counts change by signed whole numbers; anything else as `numeric::change`, to the
+    /// Counts change by signed whole numbers; anything else as [`numeric::change`](crate::numeric::change), to the
     /// decimals the values print with.
     #[test]
     fn count_changes_are_signed_whole_numbers() {

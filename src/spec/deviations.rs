@@ -1,4 +1,4 @@
-//! `reducer.deviations` → `model::Deviations`, and the rules an as-built state must keep
+//! `reducer.deviations` → [`model::Deviations`](crate::model::Deviations), and the rules an as-built state must keep
 //! (MODEL.md "Part deviations"): indices in range, parts that stay in their mesh, rollers that
 //! do not overlap, a ground profile that is still a disc.
 

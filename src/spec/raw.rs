@@ -6,7 +6,7 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 
 /// The whole spec, generic over the form of `optimise` so that a failed untagged match can be
-/// parsed again as the form the YAML has, for a precise error (see `spec::parse_raw`).
+/// parsed again as the form the YAML has, for a precise error (see [`spec::yaml::parse_raw`](crate::spec::yaml::parse_raw)).
 #[derive(Debug, Deserialize)]
 #[serde(
     deny_unknown_fields,
@@ -80,7 +80,7 @@ pub(crate) struct RawTolerances {
 }
 
 impl RawTolerances {
-    /// The bands in the order of `model::tolerances::Kind::ALL`.
+    /// The bands in the order of [`model::tolerances::Kind::ALL`](crate::model::tolerances::Kind::ALL).
     pub(crate) fn bands(&self) -> [f64; 10] {
         [
             self.eccentricity_mm,

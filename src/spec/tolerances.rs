@@ -1,7 +1,7 @@
-//! `tolerances:` → `model::tolerances::PartTolerances`: bands non-negative, a scene that exists and
+//! `tolerances:` → [`model::tolerances::PartTolerances`](crate::model::tolerances::PartTolerances): bands non-negative, a scene that exists and
 //! uses the exact geometry, a study that can run, and bands no draw of which takes a part out
 //! of its mesh (the largest draw of every part, placed where it hurts most, must pass the
-//! rules of an as-built state, `spec::deviations::check`).
+//! rules of an as-built state, [`spec::deviations::check`](crate::spec::deviations::check)).
 
 use super::raw::RawTolerances;
 use crate::error::{Error, Result};

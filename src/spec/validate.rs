@@ -615,7 +615,7 @@ fn bearing_life_limit(limits: &Limits, design: &Design, scenes: &[Scene]) -> Res
 }
 
 /// `what` (a study) runs its scene over the crank angle: a torsion scene has no such curves
-/// (the accuracy ladder refuses one in `model::accuracy::check`).
+/// (the accuracy ladder refuses one in [`model::accuracy::check`](crate::model::accuracy::check)).
 fn not_torsion(key: &str, scene: &Scene, what: &str) -> Result<()> {
     if scene.torque_sweep.is_some() {
         return Err(Error::invalid(

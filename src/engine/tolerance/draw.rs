@@ -4,7 +4,7 @@
 //! distinct streams of one key do not overlap (2⁶⁴ blocks each).
 //!
 //! Draw order (fixed; the samples CSV's column order): the parameters of
-//! `model::tolerances::parameters`, one draw each, every part independently.
+//! [`model::tolerances::parameters`](crate::model::tolerances::parameters), one draw each, every part independently.
 
 use crate::model::tolerances::{Distribution, Parameter, PartTolerances};
 use rand_chacha::rand_core::SeedableRng;
@@ -19,7 +19,7 @@ pub fn sample(tol: &PartTolerances, params: &[Parameter], k: u64) -> Vec<f64> {
 }
 
 /// One draw of `kind`: σ·z with z standard normal, drawn again beyond the cut at 6σ
-/// (`model::tolerances::NORMAL_CUT_SIGMA`; probability 2·10⁻⁹ per draw); or b·(2u − 1) with u
+/// ([`model::tolerances::NORMAL_CUT_SIGMA`](crate::model::tolerances::NORMAL_CUT_SIGMA); probability 2·10⁻⁹ per draw); or b·(2u − 1) with u
 /// uniform in [0, 1).
 fn one(tol: &PartTolerances, kind: crate::model::tolerances::Kind, rng: &mut ChaCha8Rng) -> f64 {
     match tol.distribution {

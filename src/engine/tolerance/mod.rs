@@ -25,7 +25,7 @@ use crate::spec::Spec;
 pub struct ToleranceStudy<'a> {
     pub spec: &'a Spec,
     pub tolerances: PartTolerances,
-    /// The drawn parameters, in the draw order (`model::tolerances::parameters`).
+    /// The drawn parameters, in the draw order ([`model::tolerances::parameters`](crate::model::tolerances::parameters)).
     pub params: Vec<Parameter>,
     /// The spec's limits the scene evaluates, in the order of `check::evaluate`: (definition,
     /// bound value).

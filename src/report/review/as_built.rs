@@ -410,7 +410,7 @@ fn deviation_bar(f: &Frame, (left, y): (f64, f64), length_mm: f64, label: &str) 
     }
 }
 
-/// The per-flank summaries of the measured points (`measure::flanks`), as on an inspection
+/// The per-flank summaries of the measured points ([`measure::flanks`](crate::measure::flanks)), as on an inspection
 /// sheet: arc length in mm, deviations in µm.
 fn flank_table(spec: &Spec, id: &Identification) -> maud::Markup {
     // Fixed decimals as `cycloid fit` prints them: mm to the µm, µm to the nm.

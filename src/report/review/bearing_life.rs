@@ -1,4 +1,4 @@
-//! The review's crank-bearing life (`engine::bearing_life`): the rating life of every scene
+//! The review's crank-bearing life ([`engine::bearing_life`](crate::engine::bearing_life)): the rating life of every scene
 //! that rated it, and why a scene could not.
 
 use super::common::{self, data_table, Section};

@@ -1,4 +1,4 @@
-//! The review's disc at one crank angle, drawn as `engine::drawing` computed it: the whole disc
+//! The review's disc at one crank angle, drawn as [`engine::drawing`](crate::engine::drawing) computed it: the whole disc
 //! with its holes, the pins, the rollers and the forces; and a true-scale close-up of the
 //! tightest roller's gap (`disc_section`).
 

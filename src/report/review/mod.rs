@@ -4,7 +4,7 @@
 //!
 //! Contents: verdict and warnings, a table of contents, the headline results of every scene,
 //! the design, every check and golden curve with its verdict; the disc at a crank angle as the
-//! engine computed it (`engine::drawing`) and a close-up of the smallest gap; per scene, the
+//! engine computed it ([`engine::drawing`](crate::engine::drawing)) and a close-up of the smallest gap; per scene, the
 //! plots of its curves (`plots`); per optimisation study, the objective map with the global
 //! sample, the winning local run's path, start, references and optimum, and a table of those
 //! points; the accuracy ladder when one was run; the spec's source.

@@ -1,7 +1,7 @@
 //! The review's optimisation studies: per study the objective map with the global sample, the
 //! winning local run's path, the start, the references and the optimum, and a table of those
 //! points with every constraint's margin. Drawn from an `OptimisationView`, which
-//! `report::optimisation::view` builds from a study's result.
+//! [`report::optimisation::view`](crate::report::optimisation::view) builds from a study's result.
 
 use super::common::{figure, scrolling, section, signed, slug, Section};
 use crate::engine::optimise::problem::Margin;
@@ -12,7 +12,7 @@ use maud::{html, Markup};
 /// One optimisation study as the report shows it: the objective map over the study's first two
 /// variables with the global sample, the winning local run's path, the start, the references
 /// and the optimum; and a table of start, references and optimum. Built from a study result by
-/// `report::optimisation::view`; the report only draws it.
+/// [`report::optimisation::view`](crate::report::optimisation::view); the report only draws it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OptimisationView {
     /// The study's name.

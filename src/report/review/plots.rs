@@ -1,4 +1,4 @@
-//! The plots of one scene, driven by the quantity registry (`model::quantity`). Each plot
+//! The plots of one scene, driven by the quantity registry ([`model::quantity`](crate::model::quantity)). Each plot
 //! names the registry's curves it draws and is left out when the scene computed none of them;
 //! axis labels, units and legend names are the registry's; the subtitle gives the registry's
 //! scalars of the drawn curves (`Quantity::of`: the smallest gap, the largest force, ... and

@@ -1,4 +1,4 @@
-//! The review's headline results of every scene (`engine::summary`).
+//! The review's headline results of every scene ([`engine::summary`](crate::engine::summary)).
 
 use super::common::{data_table, section, Section};
 use crate::engine::summary::summarise;
@@ -6,7 +6,7 @@ use crate::model::results::SceneResult;
 use crate::report::table::{self, with_unit};
 use maud::html;
 
-/// The headline results of every scene (`engine::summary`).
+/// The headline results of every scene ([`engine::summary`](crate::engine::summary)).
 pub(super) fn summary_section(results: &[SceneResult]) -> Section {
     let summaries = summarise(results);
     let body = html! {

@@ -1,4 +1,4 @@
-//! The review's torsion under a locked input (`engine::torsion`): per torsion scene its curves
+//! The review's torsion under a locked input ([`engine::torsion`](crate::engine::torsion)): per torsion scene its curves
 //! and its table of catalogue figures (`sections`).
 
 use super::common::{data_table, figure, section, Section};

@@ -28,7 +28,7 @@
 //!   force** (N), **max bearing force** (N), **min clearance** (µm): |rung − reference|.
 //!
 //! Only the quantities the scene computes are compared (a scene without `bearing` has no
-//! bearing column). Times are wall-clock measurements of `scene::run_with` for the rung, the
+//! bearing column). Times are wall-clock measurements of `scene::run` for the rung, the
 //! same work `check` does for the scene; they are printed, never asserted.
 
 use crate::engine::scene;

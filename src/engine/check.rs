@@ -32,8 +32,37 @@ pub struct Check {
     pub unit: &'static str,
     pub bound: Bound,
     pub passed: bool,
-    /// Where the value occurs (roller, crank angle, ...), for the reader.
-    pub at: String,
+    /// Where the value occurs or what it rests on, as data (`report::table::evidence` puts it
+    /// in words).
+    pub at: Evidence,
+}
+
+/// Where a check's value occurs, or what it rests on.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Evidence {
+    /// Where the registry's extreme occurs (its place label: "roller 3 at crank 12.30°").
+    Place(String),
+    /// A golden curve's worst point: where, the golden and the current value, the golden file.
+    Golden {
+        worst: crate::engine::golden::Point,
+        path: std::path::PathBuf,
+    },
+    /// An optimum's tightest constraint, by name; `None` without constraints.
+    Tightest(Option<String>),
+    /// An optimum's variables: each key and its value in the spec's unit.
+    Optimum(Vec<(&'static str, f64)>),
+    /// The accuracy scene's crank resolution.
+    Resolution(Box<crate::engine::resolution::Resolution>),
+    /// A tolerance study: samples that fail some limit, of how many, and the Clopper–Pearson
+    /// interval of the failure rate at `confidence`; `measured` when the spec has a measured
+    /// disc (the study still draws from the drawing).
+    FailureRate {
+        failures: u64,
+        samples: u64,
+        confidence: f64,
+        interval: (f64, f64),
+        measured: bool,
+    },
 }
 
 impl Check {
@@ -56,7 +85,6 @@ impl Check {
     /// The check of a golden comparison.
     pub fn from_golden(g: &crate::engine::golden::GoldenResult) -> Check {
         let w = &g.comparison.worst;
-        let num = crate::numeric::number;
         Check {
             id: format!(
                 "{}/golden:{}{}",
@@ -70,13 +98,10 @@ impl Check {
             unit: g.unit,
             bound: Bound::Max,
             passed: g.comparison.passed,
-            at: format!(
-                "worst at {}: golden {}, now {} ({})",
-                w.place(),
-                num(w.golden),
-                num(w.value),
-                g.golden.path.display()
-            ),
+            at: Evidence::Golden {
+                worst: w.clone(),
+                path: g.golden.path.clone(),
+            },
         }
     }
 }
@@ -125,7 +150,7 @@ pub fn evaluate(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Check>> {
                 limit: l.value,
                 bound: l.def.bound,
                 passed: passes(e.value, l.value, l.def.bound),
-                at: e.at,
+                at: Evidence::Place(e.at),
             });
         }
     }
@@ -140,7 +165,7 @@ pub fn optimisation(spec: &Spec, results: &[crate::engine::optimise::StudyResult
         let o = &r.optimum;
         // The tightest constraint relative to its bound; its margin in its own unit.
         let tightest = o.tightest();
-        let at = tightest.map_or(String::new(), |m| format!("tightest: {}", m.name));
+        let at = Evidence::Tightest(tightest.map(|m| m.name.clone()));
         checks.push(Check {
             kind: CheckKind::Limit,
             unit: tightest.map_or("mm", |m| m.unit),
@@ -171,18 +196,16 @@ pub fn optimisation(spec: &Spec, results: &[crate::engine::optimise::StudyResult
                 limit,
                 bound: Bound::Max,
                 passed: passes(o.objective, limit, Bound::Max),
-                at: study
-                    .variables
-                    .iter()
-                    .map(|v| {
-                        format!(
-                            "{} {:.5}",
-                            v.kind.key(),
-                            v.kind.to_spec_unit(v.kind.get(&o.modification))
-                        )
-                    })
-                    .collect::<Vec<_>>()
-                    .join(", "),
+                at: Evidence::Optimum(
+                    (study.variables.iter())
+                        .map(|v| {
+                            (
+                                v.kind.key(),
+                                v.kind.to_spec_unit(v.kind.get(&o.modification)),
+                            )
+                        })
+                        .collect(),
+                ),
             });
         }
     }
@@ -206,11 +229,7 @@ pub fn resolution(r: &crate::engine::resolution::Resolution) -> Check {
         unit: "steps/period",
         bound: Bound::Min,
         passed: r.resolved(),
-        at: if r.resolved() {
-            "crank steps per mesh period meet the accuracy tolerances".to_string()
-        } else {
-            r.misses_text()
-        },
+        at: Evidence::Resolution(Box::new(r.clone())),
     }
 }
 

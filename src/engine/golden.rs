@@ -205,16 +205,6 @@ impl Point {
             f64::INFINITY
         }
     }
-
-    /// "roller 3 at crank 12.30°" (or "crank 12.30°" for a single curve).
-    pub fn place(&self) -> String {
-        match self.column.rsplit_once('_') {
-            Some((what, i)) if i.parse::<usize>().is_ok() => {
-                format!("{what} {i} at crank {:.2}°", self.crank_deg)
-            }
-            _ => format!("crank {:.2}°", self.crank_deg),
-        }
-    }
 }
 
 /// A whole-curve comparison.

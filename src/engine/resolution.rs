@@ -14,7 +14,6 @@ use super::accuracy::{self, Ladder, LadderQuantity, LadderTolerances, Layout, Ou
 use crate::engine::scene;
 use crate::error::Result;
 use crate::model::Plan;
-use crate::numeric::number;
 use crate::spec::{self, Spec};
 
 /// A steps rung of the ladder and the tolerances it misses.
@@ -69,32 +68,6 @@ impl Resolution {
             .rev()
             .find(|r| r.steps as f64 <= self.scene_steps && !r.misses.is_empty())
             .or_else(|| self.rungs.iter().find(|r| !r.misses.is_empty()))
-    }
-
-    /// What the misses of `evidence` are, "TE curve 0.1105 > 0.1 arcsec, …".
-    pub fn misses_text(&self) -> String {
-        let Some(r) = self.evidence() else {
-            return String::new();
-        };
-        let parts: Vec<String> = r
-            .misses
-            .iter()
-            .map(|&(q, e)| {
-                let unit = q.unit();
-                let unit = if unit.is_empty() {
-                    String::new()
-                } else {
-                    format!(" {unit}")
-                };
-                format!(
-                    "{} {} > {}{unit}",
-                    q.label(),
-                    number(e),
-                    number(q.tolerance(&self.tolerances))
-                )
-            })
-            .collect();
-        format!("at {} steps: {}", r.steps, parts.join(", "))
     }
 }
 

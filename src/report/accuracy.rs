@@ -74,7 +74,7 @@ pub fn resolution_warning(r: &Resolution) -> Option<String> {
             r.scene,
             number(r.scene_steps),
             r.needed_steps(),
-            r.misses_text()
+            misses_text(r)
         )
     })
 }
@@ -334,4 +334,30 @@ pub fn ladder_line(ladder: &Ladder, seconds: f64) -> String {
             None => "none".to_string(),
         }
     )
+}
+
+/// What the misses of `evidence` are, "TE curve 0.1105 > 0.1 arcsec, …".
+pub fn misses_text(res: &Resolution) -> String {
+    let Some(r) = res.evidence() else {
+        return String::new();
+    };
+    let parts: Vec<String> = r
+        .misses
+        .iter()
+        .map(|&(q, e)| {
+            let unit = q.unit();
+            let unit = if unit.is_empty() {
+                String::new()
+            } else {
+                format!(" {unit}")
+            };
+            format!(
+                "{} {} > {}{unit}",
+                q.label(),
+                number(e),
+                number(q.tolerance(&res.tolerances))
+            )
+        })
+        .collect();
+    format!("at {} steps: {}", r.steps, parts.join(", "))
 }

@@ -28,7 +28,7 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
                 "moved: max |change| {} {} at {} ({} → {}); {}",
                 number(c.largest.deviation),
                 b.unit,
-                c.largest.place(),
+                place(&c.largest),
                 number(c.largest.golden),
                 number(c.largest.value),
                 if c.passed {
@@ -44,4 +44,15 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
         );
     }
     out
+}
+
+/// Where a golden point lies: "roller 3 at crank 12.30°" (or "crank 12.30°" for a single
+/// curve).
+pub fn place(p: &crate::engine::golden::Point) -> String {
+    match p.column.rsplit_once('_') {
+        Some((what, i)) if i.parse::<usize>().is_ok() => {
+            format!("{what} {i} at crank {:.2}°", p.crank_deg)
+        }
+        _ => format!("crank {:.2}°", p.crank_deg),
+    }
 }

@@ -329,7 +329,7 @@ pub struct CheckDoc<'a> {
     limit: Finite,
     unit: &'static str,
     passed: bool,
-    at: &'a str,
+    at: String,
 }
 
 #[derive(Serialize)]
@@ -584,7 +584,7 @@ fn check(c: &Check) -> CheckDoc<'_> {
         limit: Finite(c.limit),
         unit: c.unit,
         passed: c.passed,
-        at: &c.at,
+        at: super::table::evidence(&c.at),
     }
 }
 

@@ -52,7 +52,7 @@ pub fn message(c: &Check) -> String {
                 "value {}, limit {op} {}: {verdict}; {}",
                 with_unit(c.value, c.unit),
                 with_unit(c.limit, c.unit),
-                c.at
+                super::table::evidence(&c.at)
             )
         }
         CheckKind::Golden => format!(
@@ -65,7 +65,7 @@ pub fn message(c: &Check) -> String {
             } else {
                 f64::INFINITY
             },
-            c.at
+            super::table::evidence(&c.at)
         ),
     }
 }

@@ -1,7 +1,7 @@
 //! The terminal table of checks (check, value, limit, verdict, where) and the summary of each
 //! scene's headline results.
 
-use crate::engine::check::{Bound, Check};
+use crate::engine::check::{Bound, Check, Evidence};
 use crate::engine::summary::SceneSummary;
 
 /// Format a number for a person: 4 significant figures, no exponent for ordinary magnitudes.
@@ -76,7 +76,7 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
                 with_unit(number(c.value), c.unit),
                 with_unit(format!("{op} {}", number(c.limit)), c.unit),
                 if c.passed { "pass" } else { "FAIL" }.to_string(),
-                c.at.clone(),
+                evidence(&c.at),
             ]
         })
         .collect();
@@ -176,6 +176,49 @@ pub fn render_summary(summaries: &[SceneSummary]) -> String {
         }
     }
     out
+}
+
+/// Where a check's value occurs, or what it rests on, in words: the "where" of every view of
+/// the checks (terminal, JSON, JUnit, the review).
+pub fn evidence(e: &Evidence) -> String {
+    match e {
+        Evidence::Place(place) => place.clone(),
+        Evidence::Golden { worst, path } => format!(
+            "worst at {}: golden {}, now {} ({})",
+            super::golden::place(worst),
+            number(worst.golden),
+            number(worst.value),
+            path.display()
+        ),
+        Evidence::Tightest(name) => name
+            .as_ref()
+            .map_or(String::new(), |n| format!("tightest: {n}")),
+        Evidence::Optimum(variables) => (variables.iter())
+            .map(|(key, value)| format!("{key} {value:.5}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        Evidence::Resolution(r) if r.resolved() => {
+            "crank steps per mesh period meet the accuracy tolerances".to_string()
+        }
+        Evidence::Resolution(r) => super::accuracy::misses_text(r),
+        Evidence::FailureRate {
+            failures,
+            samples,
+            confidence,
+            interval,
+            measured,
+        } => format!(
+            "{failures} of {samples} samples fail some limit; {} Clopper–Pearson interval [{}, \
+             {}]{}",
+            crate::numeric::percent_label(*confidence),
+            number(interval.0),
+            number(interval.1),
+            match measured {
+                true => format!("; {}", super::tolerance::MEASURED_NOTE),
+                false => String::new(),
+            }
+        ),
+    }
 }
 
 #[cfg(test)]

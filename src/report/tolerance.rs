@@ -19,7 +19,9 @@ pub const LINEAR_CAVEAT: &str = "the limited quantities are maxima or minima ove
     crank angles: the linear stack-up holds only while the worst roller and angle stay the same \
     over the band; the Monte Carlo spread is the answer where they do not";
 
-pub use crate::engine::commands::MEASURED_NOTE;
+/// What a study on a spec with `measured_profile` says of its samples (`check --tolerance`'s
+/// line too).
+pub const MEASURED_NOTE: &str = "drawn from the drawing, not the measured disc";
 
 /// The bound in the JSON, in ASCII (`<=`, `>=`): what a script compares against; the terminal
 /// and the review print `Bound::symbol` like every other table.

@@ -172,7 +172,7 @@ fn failures_come_first_the_furthest_outside_first() {
             Bound::Max => value <= limit,
             Bound::Min => value >= limit,
         },
-        at: String::new(),
+        at: cycloid::engine::check::Evidence::Place(String::new()),
     };
     let checks = vec![
         check("s/passes", 1.0, 2.0, Bound::Max),

@@ -179,7 +179,9 @@ fn the_clearance_moves_one_for_one_with_the_equidistant_error() {
     // The paper optimum's smallest gap is at a tooth root (tooth phase 0), where the normal gap
     // is ΔRrp − ΔRp exactly (MODEL.md "Clearance"): ∂q/∂ΔRp = −1 while the root stays the
     // smallest gap over ±h (its margin to the next smallest is micrometres, h is 0.1 µm).
-    let at = &check::evaluate(&spec, &[nominal_run(&spec)]).unwrap()[0].at;
+    let at = cycloid::report::table::evidence(
+        &check::evaluate(&spec, &[nominal_run(&spec)]).unwrap()[0].at,
+    );
     assert!(at.contains("tooth phase 0.000"), "{at}");
     let shift = study
         .params

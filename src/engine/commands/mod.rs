@@ -21,5 +21,4 @@ pub use optimise::{optimise, OptimiseRun};
 pub use profile::{profile, MIN_PROFILE_TOLERANCE_MM};
 pub use tolerance::{
     failure_rate_check, merge_shards, tolerance, tolerance_shard, Merged, ToleranceRun,
-    MEASURED_NOTE,
 };

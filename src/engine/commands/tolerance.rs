@@ -1,7 +1,7 @@
 //! `tolerance`: the Monte Carlo of a spec's `tolerances:`, whole, as one shard of a split run,
 //! or merged from the shards; and the study as one check of `check --tolerance`.
 
-use crate::engine::check::{Check, CheckKind};
+use crate::engine::check::{Check, CheckKind, Evidence};
 use crate::engine::tolerance::sensitivity::{self, Sensitivity};
 use crate::engine::tolerance::summary::{self, Summary};
 use crate::engine::tolerance::{shard, shard_len, Records, ToleranceStudy};
@@ -9,9 +9,6 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::model::quantity::Bound;
 use crate::progress::{Phase, Progress};
 use crate::spec::Spec;
-
-/// What a study with `measured_profile` draws from, in every output that says so.
-pub const MEASURED_NOTE: &str = "drawn from the drawing, not the measured disc";
 
 /// A whole study: every sample's records, their summary, and the sensitivities if asked for.
 pub struct ToleranceRun<'a> {
@@ -182,17 +179,12 @@ pub fn failure_rate_check(spec: &Spec, progress: &dyn Progress) -> Result<Check>
         unit: "",
         bound: Bound::Max,
         passed: s.passed(),
-        at: format!(
-            "{} of {} samples fail some limit; {} Clopper–Pearson interval [{}, {}]{}",
-            s.failures,
-            s.samples,
-            crate::numeric::percent_label(summary::CONFIDENCE),
-            crate::numeric::number(s.interval.0),
-            crate::numeric::number(s.interval.1),
-            match spec.measured {
-                Some(_) => format!("; {MEASURED_NOTE}"),
-                None => String::new(),
-            }
-        ),
+        at: Evidence::FailureRate {
+            failures: s.failures,
+            samples: s.samples,
+            confidence: summary::CONFIDENCE,
+            interval: s.interval,
+            measured: spec.measured.is_some(),
+        },
     })
 }

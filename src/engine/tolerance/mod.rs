@@ -147,7 +147,7 @@ impl<'a> ToleranceStudy<'a> {
             })?;
             if !c.value.is_finite() {
                 return Err(Error::computation(format!(
-                    "{what}: `{}` is {} ({})",
+                    "{what}: `{}` is {} ({:?})",
                     def.quantity.key, c.value, c.at
                 )));
             }

@@ -21,7 +21,7 @@ pub(super) fn checks_section(checks: &[Check]) -> Section {
                         td.num { (with_unit(format!("{} {}", c.bound.symbol(),
                             number(c.limit)), c.unit)) }
                         td.verdict { (if c.passed { "pass" } else { "FAIL" }) }
-                        td { (c.at) }
+                        td { (crate::report::table::evidence(&c.at)) }
                     }
                 }
             },
@@ -48,7 +48,7 @@ pub(super) fn golden_section(goldens: &[GoldenResult]) -> Option<Section> {
                         td { code { (g.golden.path.display()) } }
                         td.num { (with_unit(number(w.deviation), g.unit)) }
                         td.num { (with_unit(number(w.band), g.unit)) }
-                        td { (w.place()) }
+                        td { (crate::report::golden::place(w)) }
                         td.num { (g.comparison.points) }
                         td.verdict { (if g.comparison.passed { "pass" } else { "FAIL" }) }
                     }

@@ -11,10 +11,11 @@ mod fit;
 mod optimise;
 mod output;
 mod profile;
+mod shard;
 mod tolerance;
 
 pub use args::{Cli, Command, ToleranceArgs, ToleranceCommand, DEFAULT_REPORT_MAP_STEPS};
-pub use tolerance::parse_shard;
+pub use shard::parse_shard;
 
 use crate::error::Result;
 use std::io::Write;

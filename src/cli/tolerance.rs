@@ -3,6 +3,7 @@
 
 use super::args::{ToleranceArgs, ToleranceCommand};
 use super::output::{distinct_outputs, inputs_of, print, review_line, write_file};
+use super::shard::{invalid, parse_shard, slurm_shard};
 use super::Outcome;
 use crate::engine::commands;
 use crate::engine::tolerance::sensitivity::Sensitivity;
@@ -19,73 +20,6 @@ use std::path::{Path, PathBuf};
 /// Largest shard file read, bytes: 16 GiB. A shard holds 9 bytes per sample and limit (the
 /// value and its verdict), so this is 10⁹ sample-limits, far beyond a job array's task.
 const MAX_SHARD_BYTES: u64 = 16 << 30;
-
-fn invalid(message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message)
-}
-
-/// `--shard I/N`: 0 ≤ I < N, 1 ≤ N ≤ samples.
-pub fn parse_shard(text: &str, samples: u64) -> Result<(u64, u64)> {
-    let rule = |why: String| {
-        invalid(format!(
-            "--shard {text}: {why}; a shard is I/N with 0 <= I < N (0-based) and N at most the \
-             {samples} samples"
-        ))
-    };
-    let (i, n) = text
-        .split_once('/')
-        .ok_or_else(|| rule("not of the form I/N".into()))?;
-    let (i, n): (u64, u64) = match (i.trim().parse(), n.trim().parse()) {
-        (Ok(i), Ok(n)) => (i, n),
-        _ => return Err(rule("I and N must be whole numbers".into())),
-    };
-    if n == 0 || n > samples {
-        return Err(rule(format!("N = {n} shards")));
-    }
-    if i >= n {
-        return Err(rule(format!("shard index {i} is not below N = {n}")));
-    }
-    Ok((i, n))
-}
-
-/// The shard of a Slurm job array task: I = SLURM_ARRAY_TASK_ID − SLURM_ARRAY_TASK_MIN (so
-/// `--array=0-99` and `--array=1-100` both give I = 0 … 99), N = SLURM_ARRAY_TASK_COUNT. The
-/// array must be contiguous (no step, no list): I must come out below N.
-fn slurm_shard(samples: u64) -> Result<Option<(u64, u64)>> {
-    let var = |name: &str| std::env::var(name).ok();
-    let (Some(id), Some(count)) = (var("SLURM_ARRAY_TASK_ID"), var("SLURM_ARRAY_TASK_COUNT"))
-    else {
-        return Ok(None);
-    };
-    let number = |name: &str, v: &str| {
-        v.trim().parse::<u64>().map_err(|_| {
-            invalid(format!(
-                "{name}={v}: not a whole number (from the Slurm job array)"
-            ))
-        })
-    };
-    let id = number("SLURM_ARRAY_TASK_ID", &id)?;
-    let min = match var("SLURM_ARRAY_TASK_MIN") {
-        Some(m) => number("SLURM_ARRAY_TASK_MIN", &m)?,
-        None => 0,
-    };
-    let count = number("SLURM_ARRAY_TASK_COUNT", &count)?;
-    let i = id.checked_sub(min).ok_or_else(|| {
-        invalid(format!(
-            "SLURM_ARRAY_TASK_ID {id} is below SLURM_ARRAY_TASK_MIN {min}"
-        ))
-    })?;
-    parse_shard(&format!("{i}/{count}"), samples)
-        .map(Some)
-        .map_err(|e| {
-            invalid(format!(
-                "from the Slurm job array (task id {id}, min {min}, count {count}): {}; give the \
-                 array as a contiguous range such as --array=0-{}",
-                e.message,
-                count.saturating_sub(1)
-            ))
-        })
-}
 
 pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
     if let Some(ToleranceCommand::Merge {

@@ -12,7 +12,7 @@ use super::results::{BacklashCurves, SceneResult, TorsionFigures};
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 
-/// Rows [column][angle] in output units.
+/// Rows `[column][angle]` in output units.
 type Rows = Vec<Vec<f64>>;
 
 /// How a quantity is laid out over a scene.
@@ -97,7 +97,7 @@ impl PartialEq for Quantity {
 pub struct Curves {
     /// Column names: the quantity key, or `roller_0`, `roller_1`, ... / `pin_0`, ...
     pub columns: Vec<String>,
-    /// [column][angle], output units.
+    /// `[column][angle]`, output units.
     pub values: Vec<Vec<f64>>,
 }
 
@@ -615,7 +615,7 @@ pub const MAX_RESIDUAL: Quantity = Quantity {
     read: Read::Scalar(|r| Some(highest(r, &r.loaded.bearing.as_ref()?.residual))),
 };
 
-/// The catalogue figures of a torsion scene, [crank], read by `figure`.
+/// The catalogue figures of a torsion scene, `[crank]`, read by `figure`.
 fn torsion_figures(r: &SceneResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
     let t = r.torsion.as_ref()?;
     Some(vec![t.figures.iter().map(figure).collect()])

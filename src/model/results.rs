@@ -1,5 +1,5 @@
 //! What the engine computes for a scene: plain data, engine units (mm, N, MPa, rad), arrays
-//! [angle] or [roller|pin][angle]. A quantity that was not computed is `None`. The quantity
+//! `[angle]` or `[roller|pin][angle]`. A quantity that was not computed is `None`. The quantity
 //! registry (`model::quantity`) reads these in the output units of its keys.
 
 /// Where the smallest gap of a sweep occurs.
@@ -16,7 +16,7 @@ pub struct MinClearance {
 }
 
 /// Clearance of every roller over a crank sweep at the ideal pose (β = 0).
-/// Arrays are indexed [roller][angle].
+/// Arrays are indexed `[roller][angle]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClearanceSweep {
     /// Gap of each roller, mm: the signed distance from its centre to the disc profile Γ minus
@@ -28,7 +28,7 @@ pub struct ClearanceSweep {
     pub backlash: Option<BacklashCurves>,
 }
 
-/// Backlash over a crank sweep, from the closing lag of every roller: lags in rad, [angle].
+/// Backlash over a crank sweep, from the closing lag of every roller: lags in rad, `[angle]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BacklashCurves {
     /// Unloaded TE: the smallest closing lag among rollers closed by a positive lag (the load
@@ -45,16 +45,16 @@ pub struct BacklashCurves {
 pub struct RollerCurves {
     /// β: lag of the disc behind −φ/nc, rad (positive opposes the motion).
     pub lag_rad: Vec<f64>,
-    /// Contact force of each roller on the disc, N, [roller][angle]: its magnitude, along the
+    /// Contact force of each roller on the disc, N, `[roller][angle]`: its magnitude, along the
     /// disc's inward normal; 0 out of contact.
     pub force_n: Vec<Vec<f64>>,
     /// Hertz peak pressure p0 = sqrt(F·E*/(π·L·R*)) of each roller's contact, MPa,
-    /// [roller][angle] (whatever the contact law; 0 out of contact).
+    /// `[roller][angle]` (whatever the contact law; 0 out of contact).
     pub pressure_mpa: Vec<Vec<f64>>,
     /// Hertz half-width b = sqrt(4·F·R*/(π·L·E*)) of each roller's contact, mm,
-    /// [roller][angle] (0 out of contact).
+    /// `[roller][angle]` (0 out of contact).
     pub half_width_mm: Vec<Vec<f64>>,
-    /// How many rollers carry a force at each angle, [angle].
+    /// How many rollers carry a force at each angle, `[angle]`.
     pub contacts: Vec<usize>,
 }
 
@@ -63,7 +63,7 @@ pub struct RollerCurves {
 pub struct PinCurves {
     /// βo: lag of the output behind the disc, rad.
     pub output_lag_rad: Vec<f64>,
-    /// Contact force of each output pin on the disc, N, [pin][angle]: its magnitude; 0 where
+    /// Contact force of each output pin on the disc, N, `[pin][angle]`: its magnitude; 0 where
     /// the pin does not touch its hole.
     pub force_n: Vec<Vec<f64>>,
 }
@@ -72,10 +72,10 @@ pub struct PinCurves {
 /// (counter-clockwise), and the relative residual of the paper's Eqs. 12–14.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BearingCurves {
-    /// |Fb|, the magnitude of the crank bearing's force on the disc, N, [angle].
+    /// |Fb|, the magnitude of the crank bearing's force on the disc, N, `[angle]`.
     pub force_n: Vec<f64>,
     /// ε, the angle of Fb from the eccentric direction (cos φ, sin φ), counter-clockwise
-    /// positive, rad, [angle].
+    /// positive, rad, `[angle]`.
     pub angle_rad: Vec<f64>,
     /// The largest relative residual of the force and moment balances (the paper's
     /// Eqs. 12–14) at each angle, dimensionless (`equilibrium::residual`).
@@ -89,9 +89,9 @@ pub struct BearingCurves {
 /// covers whole mesh periods, second-order one-sided at the ends otherwise).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Transmission {
-    /// δ, rad, [angle]; with several discs the common output lag γ (MODEL.md "Several discs").
+    /// δ, rad, `[angle]`; with several discs the common output lag γ (MODEL.md "Several discs").
     pub te_rad: Vec<f64>,
-    /// κ, dimensionless, [angle]; `None` for fewer than three crank angles.
+    /// κ, dimensionless, `[angle]`; `None` for fewer than three crank angles.
     pub ratio: Option<Vec<f64>>,
 }
 
@@ -99,7 +99,7 @@ pub struct Transmission {
 /// when its effect was not computed.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct LoadedSweep {
-    /// The disc's share of the output torque, N·mm [angle]: in a disc of several only.
+    /// The disc's share of the output torque, N·mm `[angle]`: in a disc of several only.
     pub torque_nmm: Option<Vec<f64>>,
     /// The rollers' lag, forces and contacts (`Effect::RollerContact`).
     pub rollers: Option<RollerCurves>,
@@ -140,12 +140,12 @@ impl TorsionFigures {
 pub struct TorsionCurves {
     /// The loop's torques T_m, N·mm (`TorqueSweep::torques_nmm`).
     pub torque_nmm: Vec<f64>,
-    /// γ [crank][m], rad. At T = 0 the rising branch holds γ(0⁻), the falling branch γ(0⁺).
+    /// γ `[crank][m]`, rad. At T = 0 the rising branch holds γ(0⁻), the falling branch γ(0⁺).
     pub torsion_rad: Vec<Vec<f64>>,
-    /// The figures [crank].
+    /// The figures `[crank]`.
     pub figures: Vec<TorsionFigures>,
-    /// γ of the figures' own solves [crank][i], rad, at the torques
-    /// `engine::torsion::FIGURE_TORQUES`[i]·rated (−100, −50, −3 %, 0⁻, 0⁺, +3, +50, +100 %).
+    /// γ of the figures' own solves `[crank][i]`, rad, at the torques
+    /// `engine::torsion::FIGURE_TORQUES[i]`·rated (−100, −50, −3 %, 0⁻, 0⁺, +3, +50, +100 %).
     pub figure_torsion_rad: Vec<[f64; 8]>,
 }
 

@@ -49,7 +49,8 @@ pub const MAX_ROLLER_ANGLES: i64 = 10_000_000;
 pub struct Scene {
     /// The scene's name (`scenes[].name`), unique in its spec.
     pub name: String,
-    /// Torque on the disc, N·mm (spec: `output_torque_nm`).
+    /// Output torque T, N·mm (spec: `output_torque_nm`; 0 when not given): the torque on the
+    /// disc, or shared by the discs when there are several (Σ Tk = T).
     pub output_torque_nmm: f64,
     /// Crank angles φ in rad: `from + k·(to − from)/steps`, k = 0..steps (end excluded).
     pub crank_rad: Vec<f64>,

@@ -7,8 +7,11 @@ use std::fmt;
 /// A position in a spec file, 1-based as editors show it.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
+    /// The file's path, as it was given.
     pub file: String,
+    /// Line, from 1.
     pub line: usize,
+    /// Column, from 1 (1 when only the line is known).
     pub column: usize,
 }
 
@@ -47,16 +50,23 @@ impl ErrorKind {
     }
 }
 
+/// The library's one error: what went wrong ([`ErrorKind`]), a message, and where, when it is
+/// known (a key path in the spec, a file position). `Display` writes it as
+/// `file:line:column: kind: key.path: message`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Error {
+    /// What went wrong, in the user's terms.
     pub kind: ErrorKind,
+    /// The explanation, in the user's terms (without the kind, the key path or the location).
     pub message: String,
     /// Dotted key path in the spec (`reducer.roller_radius_mm`), when the error is about a key.
     pub key_path: Option<String>,
+    /// Where in a file, when known.
     pub location: Option<Location>,
 }
 
 impl Error {
+    /// An error of `kind` with `message`, not yet located.
     pub fn new(kind: ErrorKind, message: impl Into<String>) -> Self {
         Error {
             kind,
@@ -66,16 +76,19 @@ impl Error {
         }
     }
 
+    /// The same error, about the spec key `key_path` (dotted: `scenes[0].crank.steps`).
     pub fn at_key(mut self, key_path: impl Into<String>) -> Self {
         self.key_path = Some(key_path.into());
         self
     }
 
+    /// The same error, located at `location`.
     pub fn at(mut self, location: Location) -> Self {
         self.location = Some(location);
         self
     }
 
+    /// An [`ErrorKind::Io`] error about the file at `path`.
     pub fn io(path: &str, err: std::io::Error) -> Self {
         Error::new(ErrorKind::Io, format!("{path}: {err}"))
     }
@@ -85,6 +98,7 @@ impl Error {
         Error::new(ErrorKind::InvalidValue, message).at_key(key_path)
     }
 
+    /// An [`ErrorKind::Computation`] error: a computation that could not give its result.
     pub fn computation(message: impl Into<String>) -> Self {
         Error::new(ErrorKind::Computation, message)
     }
@@ -145,6 +159,7 @@ pub fn printable<'a>(text: &'a str, keep: &[&str]) -> std::borrow::Cow<'a, str> 
 
 impl std::error::Error for Error {}
 
+/// A result whose error is the library's [`Error`].
 pub type Result<T> = std::result::Result<T, Error>;
 
 #[cfg(test)]

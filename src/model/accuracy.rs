@@ -44,6 +44,7 @@ pub struct Options {
     /// Steps per mesh period of the settings rungs; `None`: the cheapest steps rung that meets
     /// the tolerances (the finest when none does).
     pub settings_steps: Option<usize>,
+    /// What a rung must reach against the reference.
     pub tolerances: LadderTolerances,
 }
 
@@ -96,8 +97,11 @@ pub fn tolerance(value: f64) -> std::result::Result<f64, String> {
 /// The setting a problem of `check` is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Setting {
+    /// The scene the ladder runs (spec: `accuracy.scene`).
     Scene,
+    /// The reference's steps per mesh period (`accuracy.finest_steps_per_period`).
     Finest,
+    /// The settings rungs' steps per mesh period (`accuracy.settings_steps_per_period`).
     SettingsSteps,
 }
 

@@ -8,7 +8,9 @@ use super::modification::Modification;
 /// Elastic material of one body.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material {
+    /// Young's modulus E, MPa (spec: `youngs_modulus_gpa`, in GPa).
     pub youngs_modulus_mpa: f64,
+    /// Poisson's ratio ν, in [0, 0.5).
     pub poisson_ratio: f64,
 }
 
@@ -23,9 +25,13 @@ impl Material {
 /// A hole's radius is `pin_radius_mm + e + hole_clearance_mm` (ideal pin-in-hole plus clearance).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OutputPins {
+    /// M, the number of output pins (and of holes in each disc).
     pub count: usize,
+    /// rw, radius of the circle of pin centres (and of hole centres in the disc), mm.
     pub circle_radius_mm: f64,
+    /// Radius of a pin, mm.
     pub pin_radius_mm: f64,
+    /// Radial clearance of a hole beyond the ideal pin-in-hole radius, mm (≥ 0; 0: ideal).
     pub hole_clearance_mm: f64,
 }
 
@@ -45,16 +51,26 @@ impl OutputPins {
 /// discs at crank phases 2πk/discs (MODEL.md "Several discs").
 #[derive(Debug, Clone, PartialEq)]
 pub struct Design {
+    /// nc, the number of teeth of a disc.
     pub teeth: usize,
+    /// np = nc + 1, the number of rollers fixed in the housing.
     pub rollers: usize,
     /// Identical discs on the crank, 1 to `MAX_DISCS`.
     pub discs: usize,
+    /// e, the crank eccentricity, mm: at crank angle φ = 0 the disc centre is at (e, 0).
     pub eccentricity_mm: f64,
+    /// Rp, radius of the circle of roller centres, mm.
     pub roller_circle_radius_mm: f64,
+    /// Rrp, radius of a roller, mm.
     pub roller_radius_mm: f64,
+    /// B, the face width of a disc, mm: the length L of every line contact.
     pub face_width_mm: f64,
+    /// The output mechanism: pins on the output flange in holes of the disc.
     pub pins: OutputPins,
+    /// The disc's material (spec: `reducer.material`).
     pub disc_material: Material,
+    /// The rollers' material (`reducer.roller_material`; the disc's when not given); the output
+    /// pins' contacts take it for the pins too.
     pub roller_material: Material,
     /// The crank bearing's rating (spec: `reducer.crank_bearing`), for its rating life.
     pub crank_bearing: Option<CrankBearing>,
@@ -167,7 +183,9 @@ impl Design {
 ///   κ_C = N/D,  N = R'² + e²np³ − R'e·np(np + 1)·c,  D = (R'² + e²np² − 2R'e·np·c)^{3/2}.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Locus {
+    /// np, the number of rollers.
     pub rollers: usize,
+    /// e, the eccentricity, mm.
     pub eccentricity_mm: f64,
     /// R' = Rp + ΔRp, mm.
     pub radius_mm: f64,
@@ -176,6 +194,7 @@ pub struct Locus {
 /// Smallest radius of curvature on the convex part of the locus C, and where.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ConvexRadius {
+    /// The smallest radius of curvature, mm (infinite when the locus is nowhere convex).
     pub radius_mm: f64,
     /// Locus parameter from the tooth root, rad.
     pub t: f64,

@@ -8,11 +8,14 @@ use super::modification::Modification;
 /// `tangential_mm` a length along the circle, counter-clockwise.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CentreDeviation {
+    /// dr, outward along the circle's radius, mm.
     pub radial_mm: f64,
+    /// dt, along the circle, counter-clockwise, mm: a length, the angle is dt/R.
     pub tangential_mm: f64,
 }
 
 impl CentreDeviation {
+    /// Whether the centre is on its nominal place.
     pub fn is_zero(&self) -> bool {
         self.radial_mm == 0.0 && self.tangential_mm == 0.0
     }
@@ -39,8 +42,11 @@ impl CentreDeviation {
 /// normal (positive: material missing, like a positive ΔRrp).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FormTerm {
+    /// The harmonic's order k, of cos(k·t) and sin(k·t).
     pub order: usize,
+    /// The coefficient of cos(order·t), mm.
     pub cos_mm: f64,
+    /// The coefficient of sin(order·t), mm.
     pub sin_mm: f64,
 }
 
@@ -54,12 +60,14 @@ impl FormTerm {
 /// Roller i as built: its centre's offset and its radius's deviation.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RollerDeviation {
+    /// Its centre's offset from its nominal place, angle 2πi/np on the circle of radius Rp.
     pub centre: CentreDeviation,
     /// Roller radius minus the design's, mm.
     pub radius_mm: f64,
 }
 
 impl RollerDeviation {
+    /// Whether the roller is as drawn: on its place, of the design's radius.
     pub fn is_zero(&self) -> bool {
         self.centre.is_zero() && self.radius_mm == 0.0
     }
@@ -74,6 +82,7 @@ pub struct Deviations {
     /// de: the crank's eccentricity minus the design's, mm. The disc keeps the profile it was
     /// ground with (the design's e); only its centre's orbit changes.
     pub eccentricity_mm: f64,
+    /// The rollers in the housing, `rollers[i]` for roller i.
     pub rollers: Vec<RollerDeviation>,
     /// Output pins on the flange.
     pub pins: Vec<CentreDeviation>,

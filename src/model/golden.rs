@@ -5,7 +5,9 @@ use super::quantity::Quantity;
 /// Allowed deviation from a golden value g: |value − g| ≤ abs + rel·|g|.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GoldenTolerance {
+    /// The absolute part, in the unit of the quantity's key (≥ 0).
     pub abs: f64,
+    /// The relative part, a fraction of |g| (≥ 0; not both zero).
     pub rel: f64,
 }
 
@@ -21,6 +23,7 @@ impl GoldenTolerance {
 pub struct Golden {
     /// Key path of this entry in the spec (`golden[2]`), for error locations.
     pub key: String,
+    /// The name of the scene whose curve is compared.
     pub scene: String,
     /// A per-angle quantity of the registry.
     pub quantity: &'static Quantity,
@@ -30,6 +33,7 @@ pub struct Golden {
     pub file: String,
     /// The path resolved against the spec file's directory (lexically normalised).
     pub path: std::path::PathBuf,
+    /// The band every compared point must stay in (`tolerance`).
     pub tolerance: GoldenTolerance,
 }
 

@@ -6,6 +6,7 @@ use super::quantity::LimitDef;
 /// One limit set by a spec.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limit {
+    /// What it bounds: its key, quantity and side (an entry of `quantity::LIMITS`).
     pub def: &'static LimitDef,
     /// The bound, in the quantity's unit.
     pub value: f64,
@@ -16,7 +17,8 @@ pub struct Limit {
 pub struct Limits {
     /// In the registry's order (`quantity::LIMITS`).
     pub entries: Vec<Limit>,
-    /// Upper limit on every optimisation study's optimum objective.
+    /// Upper limit on the optimum objective of every optimisation study that sets none of its
+    /// own (`Study::optimum_max_objective`).
     pub optimum_max_objective: Option<f64>,
     /// `accuracy_resolved: true`: the accuracy scene's crank resolution must meet the accuracy
     /// ladder's tolerances (`engine::resolution`), a failing check otherwise.

@@ -18,8 +18,11 @@ named!(PointsFormat "points format" {
 /// The modifications a fit identifies; the others keep the spec's values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Fitted {
+    /// Identify ΔRp (`fit: [shift_mm]`).
     pub shift: bool,
+    /// Identify ΔRrp (`equidistant_mm`).
     pub equidistant: bool,
+    /// Identify Δδ (`rotation_deg`): only measured hole points tell it from the disc's turn θ0.
     pub rotation: bool,
 }
 
@@ -31,8 +34,10 @@ pub const FITTED_NAMES: [&str; 3] = ["shift_mm", "equidistant_mm", "rotation_deg
 pub struct MeasuredProfile {
     /// The points file, resolved against the spec's directory.
     pub path: String,
+    /// The points file's format (`format`).
     pub format: PointsFormat,
     /// Highest harmonic of the form-error series (0: no form error).
     pub harmonics: usize,
+    /// The modifications the fit identifies (`fit`).
     pub fit: Fitted,
 }

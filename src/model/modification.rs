@@ -6,8 +6,12 @@
 /// `rotation_rad` = Δδ, the profile turned counter-clockwise about the disc centre.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Modification {
+    /// ΔRp, the shift modification, mm: + thicker teeth (interference), − thinner.
     pub shift_mm: f64,
+    /// ΔRrp, the equidistant modification, mm: + thinner teeth, − thicker.
     pub equidistant_mm: f64,
+    /// Δδ, the rotation modification, rad: the profile turned counter-clockwise about the disc
+    /// centre (spec: `rotation_deg`).
     pub rotation_rad: f64,
 }
 

@@ -6,6 +6,7 @@
 macro_rules! named {
     ($ty:ident $what:literal { $($variant:ident => $name:literal),+ $(,)? }) => {
         impl $ty {
+            /// Every variant, in the order of the table (the order of `names`).
             pub const ALL: [$ty; [$($name),+].len()] = [$($ty::$variant),+];
 
             /// The name the spec and the outputs use.
@@ -15,6 +16,7 @@ macro_rules! named {
                 }
             }
 
+            /// The variant the spec names `name`, if any (the inverse of `name`).
             pub fn from_name(name: &str) -> Option<$ty> {
                 Self::ALL.into_iter().find(|v| v.name() == name)
             }

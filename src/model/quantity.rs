@@ -12,7 +12,7 @@ use super::results::{BacklashCurves, SceneResult, TorsionFigures};
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 
-/// Rows [column][angle] in output units.
+/// Rows `[column][angle]` in output units.
 type Rows = Vec<Vec<f64>>;
 
 /// How a quantity is laid out over a scene.
@@ -42,7 +42,9 @@ impl Shape {
 /// A scalar of a sweep and where it occurs ("roller 3 at crank 12.30°").
 #[derive(Debug, Clone, PartialEq)]
 pub struct Extreme {
+    /// The value, in the unit of the quantity's key.
     pub value: f64,
+    /// Where it occurs, for people ("roller 3 at crank 12.30°").
     pub at: String,
 }
 
@@ -63,6 +65,7 @@ pub struct Quantity {
     pub label: &'static str,
     /// The effect that computes it.
     pub effect: Effect,
+    /// How it is laid out over a scene.
     pub shape: Shape,
     /// For an angle that wraps (±180°), its period: deviations are taken modulo it.
     pub period: Option<f64>,
@@ -94,7 +97,7 @@ impl PartialEq for Quantity {
 pub struct Curves {
     /// Column names: the quantity key, or `roller_0`, `roller_1`, ... / `pin_0`, ...
     pub columns: Vec<String>,
-    /// [column][angle], output units.
+    /// `[column][angle]`, output units.
     pub values: Vec<Vec<f64>>,
 }
 
@@ -155,6 +158,7 @@ impl Quantity {
         matches!(self.key, "te_arcsec" | "ratio") || self.effect == Effect::Torsion
     }
 
+    /// Whether it is one value for the whole sweep (`Shape::Scalar`) rather than curves.
     pub fn is_scalar(&self) -> bool {
         self.shape == Shape::Scalar
     }
@@ -222,6 +226,8 @@ fn spread(r: &SceneResult, curve: &[f64], scale: f64) -> Extreme {
     }
 }
 
+/// Gap of each roller at the ideal pose (β = 0), mm, one curve per roller
+/// (`ClearanceSweep::gap_mm`); negative: interference.
 pub const CLEARANCE: Quantity = Quantity {
     key: "clearance_mm",
     unit: "mm",
@@ -233,6 +239,8 @@ pub const CLEARANCE: Quantity = Quantity {
     read: Read::Curves(|r| r.clearance.as_ref().map(|c| c.gap_mm.clone())),
 };
 
+/// Unloaded TE: the smallest closing lag of the rollers that a positive torque closes, arcsec
+/// (`BacklashCurves::forward_rad`); negative under interference (preload).
 pub const BACKLASH: Quantity = Quantity {
     key: "backlash_arcsec",
     unit: "arcsec",
@@ -244,6 +252,7 @@ pub const BACKLASH: Quantity = Quantity {
     read: Read::Curves(|r| backlash(r).map(|b| arcsec(&b.forward_rad))),
 };
 
+/// The closing lag the other way, as a magnitude, arcsec (`BacklashCurves::reverse_rad`).
 pub const BACKLASH_REVERSE: Quantity = Quantity {
     key: "backlash_reverse_arcsec",
     unit: "arcsec",
@@ -255,6 +264,7 @@ pub const BACKLASH_REVERSE: Quantity = Quantity {
     read: Read::Curves(|r| backlash(r).map(|b| arcsec(&b.reverse_rad))),
 };
 
+/// Unloaded lost motion: backlash + reverse backlash, arcsec (`BacklashCurves::lost_motion_rad`).
 pub const LOST_MOTION: Quantity = Quantity {
     key: "lost_motion_arcsec",
     unit: "arcsec",
@@ -266,6 +276,8 @@ pub const LOST_MOTION: Quantity = Quantity {
     read: Read::Curves(|r| backlash(r).map(|b| arcsec(&b.lost_motion_rad))),
 };
 
+/// β, the lag of the disc behind its ideal angle −φ/nc under load, arcsec
+/// (`RollerCurves::lag_rad`); positive opposes the motion.
 pub const LAG: Quantity = Quantity {
     key: "lag_arcsec",
     unit: "arcsec",
@@ -277,6 +289,8 @@ pub const LAG: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| arcsec(&c.lag_rad))),
 };
 
+/// Loaded TE δ = β + βo (with several discs the common output lag γ), arcsec
+/// (`Transmission::te_rad`).
 pub const TE: Quantity = Quantity {
     key: "te_arcsec",
     unit: "arcsec",
@@ -288,6 +302,8 @@ pub const TE: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.transmission.as_ref().map(|t| arcsec(&t.te_rad))),
 };
 
+/// Transmission ratio κ = dφ/dφout = 1/(1/nc − dδ/dφ), dimensionless (`Transmission::ratio`);
+/// its mean over a period is nc.
 pub const RATIO: Quantity = Quantity {
     key: "ratio",
     unit: "",
@@ -304,6 +320,7 @@ pub const RATIO: Quantity = Quantity {
     }),
 };
 
+/// Contact force of each roller on the disc, N, one curve per roller (`RollerCurves::force_n`).
 pub const ROLLER_FORCE: Quantity = Quantity {
     key: "roller_force_n",
     unit: "N",
@@ -315,6 +332,8 @@ pub const ROLLER_FORCE: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| c.force_n.clone())),
 };
 
+/// Hertz peak pressure p0 of each roller's contact, MPa, one curve per roller
+/// (`RollerCurves::pressure_mpa`).
 pub const CONTACT_PRESSURE: Quantity = Quantity {
     key: "contact_pressure_mpa",
     unit: "MPa",
@@ -326,6 +345,8 @@ pub const CONTACT_PRESSURE: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| c.pressure_mpa.clone())),
 };
 
+/// Hertz half-width b of each roller's contact, mm, one curve per roller
+/// (`RollerCurves::half_width_mm`).
 pub const CONTACT_HALF_WIDTH: Quantity = Quantity {
     key: "contact_half_width_mm",
     unit: "mm",
@@ -337,6 +358,7 @@ pub const CONTACT_HALF_WIDTH: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| c.half_width_mm.clone())),
 };
 
+/// How many rollers carry a force at each crank angle (`RollerCurves::contacts`).
 pub const CONTACTS: Quantity = Quantity {
     key: "contacts",
     unit: "",
@@ -353,6 +375,7 @@ pub const CONTACTS: Quantity = Quantity {
     }),
 };
 
+/// A disc's share Tk of the torque, N·m (`LoadedSweep::torque_nmm`): with several discs only.
 pub const DISC_TORQUE: Quantity = Quantity {
     key: "torque_nm",
     unit: "N·m",
@@ -367,6 +390,8 @@ pub const DISC_TORQUE: Quantity = Quantity {
     }),
 };
 
+/// βo, the lag of the output behind the disc from the pins' deflection, arcsec
+/// (`PinCurves::output_lag_rad`).
 pub const OUTPUT_LAG: Quantity = Quantity {
     key: "output_lag_arcsec",
     unit: "arcsec",
@@ -378,6 +403,7 @@ pub const OUTPUT_LAG: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.pins.as_ref().map(|p| arcsec(&p.output_lag_rad))),
 };
 
+/// Contact force of each output pin on the disc, N, one curve per pin (`PinCurves::force_n`).
 pub const PIN_FORCE: Quantity = Quantity {
     key: "pin_force_n",
     unit: "N",
@@ -389,6 +415,7 @@ pub const PIN_FORCE: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.pins.as_ref().map(|p| p.force_n.clone())),
 };
 
+/// |Fb|, the magnitude of the crank bearing's force on the disc, N (`BearingCurves::force_n`).
 pub const BEARING_FORCE: Quantity = Quantity {
     key: "bearing_force_n",
     unit: "N",
@@ -400,6 +427,8 @@ pub const BEARING_FORCE: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.bearing.as_ref().map(|b| one(&b.force_n))),
 };
 
+/// ε, the angle of the bearing force from the eccentric direction, counter-clockwise, degrees in
+/// [−180, 180] (`BearingCurves::angle_rad`).
 pub const BEARING_ANGLE: Quantity = Quantity {
     key: "bearing_angle_deg",
     unit: "deg",
@@ -416,6 +445,8 @@ pub const BEARING_ANGLE: Quantity = Quantity {
     }),
 };
 
+/// Displacement of the disc centre in a compliant crank bearing, mm; zero when rigid
+/// (`BearingCurves::deflection_mm`).
 pub const BEARING_DEFLECTION: Quantity = Quantity {
     key: "bearing_deflection_mm",
     unit: "mm",
@@ -427,6 +458,8 @@ pub const BEARING_DEFLECTION: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.bearing.as_ref().map(|b| one(&b.deflection_mm))),
 };
 
+/// The smallest gap over the rollers and crank angles, mm, with the roller, the crank angle and
+/// the place on the tooth (`ClearanceSweep::min`).
 pub const MIN_CLEARANCE: Quantity = Quantity {
     key: "min_clearance_mm",
     unit: "mm",
@@ -448,6 +481,7 @@ pub const MIN_CLEARANCE: Quantity = Quantity {
     }),
 };
 
+/// The largest unloaded lost motion over the crank angles, arcsec.
 pub const MAX_LOST_MOTION: Quantity = Quantity {
     key: "max_lost_motion_arcsec",
     unit: "arcsec",
@@ -463,6 +497,7 @@ pub const MAX_LOST_MOTION: Quantity = Quantity {
     }),
 };
 
+/// The largest roller force, N, with the roller and the crank angle.
 pub const MAX_ROLLER_FORCE: Quantity = Quantity {
     key: "max_roller_force_n",
     unit: "N",
@@ -474,6 +509,8 @@ pub const MAX_ROLLER_FORCE: Quantity = Quantity {
     read: Read::Scalar(|r| Some(largest(r, &r.loaded.rollers.as_ref()?.force_n, "roller"))),
 };
 
+/// The largest Hertz peak pressure of the rollers' contacts, MPa, with the roller and the crank
+/// angle.
 pub const MAX_CONTACT_PRESSURE: Quantity = Quantity {
     key: "max_contact_pressure_mpa",
     unit: "MPa",
@@ -491,6 +528,7 @@ pub const MAX_CONTACT_PRESSURE: Quantity = Quantity {
     }),
 };
 
+/// The fewest rollers in contact at any crank angle.
 pub const MIN_ROLLERS_IN_CONTACT: Quantity = Quantity {
     key: "min_rollers_in_contact",
     unit: "",
@@ -510,6 +548,7 @@ pub const MIN_ROLLERS_IN_CONTACT: Quantity = Quantity {
     }),
 };
 
+/// δmax − δmin over the crank angles, arcsec: the paper's objective fΔδ (Eqs. 22–23).
 pub const TE_FLUCTUATION: Quantity = Quantity {
     key: "te_fluctuation_arcsec",
     unit: "arcsec",
@@ -524,6 +563,7 @@ pub const TE_FLUCTUATION: Quantity = Quantity {
     }),
 };
 
+/// κmax − κmin over the crank angles, dimensionless: the paper's objective fκ (Eq. 18).
 pub const RATIO_FLUCTUATION: Quantity = Quantity {
     key: "ratio_fluctuation",
     unit: "",
@@ -538,6 +578,7 @@ pub const RATIO_FLUCTUATION: Quantity = Quantity {
     }),
 };
 
+/// The largest output-pin force, N, with the pin and the crank angle.
 pub const MAX_PIN_FORCE: Quantity = Quantity {
     key: "max_pin_force_n",
     unit: "N",
@@ -549,6 +590,7 @@ pub const MAX_PIN_FORCE: Quantity = Quantity {
     read: Read::Scalar(|r| Some(largest(r, &r.loaded.pins.as_ref()?.force_n, "pin"))),
 };
 
+/// The largest crank-bearing force |Fb|, N, with the crank angle.
 pub const MAX_BEARING_FORCE: Quantity = Quantity {
     key: "max_bearing_force_n",
     unit: "N",
@@ -560,6 +602,8 @@ pub const MAX_BEARING_FORCE: Quantity = Quantity {
     read: Read::Scalar(|r| Some(highest(r, &r.loaded.bearing.as_ref()?.force_n))),
 };
 
+/// The largest relative residual of the balances (the paper's Eqs. 12–14) over the crank angles,
+/// dimensionless (`BearingCurves::residual`).
 pub const MAX_RESIDUAL: Quantity = Quantity {
     key: "max_residual",
     unit: "",
@@ -571,12 +615,14 @@ pub const MAX_RESIDUAL: Quantity = Quantity {
     read: Read::Scalar(|r| Some(highest(r, &r.loaded.bearing.as_ref()?.residual))),
 };
 
-/// The catalogue figures of a torsion scene, [crank], read by `figure`.
+/// The catalogue figures of a torsion scene, `[crank]`, read by `figure`.
 fn torsion_figures(r: &SceneResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
     let t = r.torsion.as_ref()?;
     Some(vec![t.figures.iter().map(figure).collect()])
 }
 
+/// Torsion lost motion γ(+3 %) − γ(−3 %) of the rated torque, arcmin, at each locked crank angle
+/// (`TorsionFigures::lost_motion_rad`).
 pub const TORSION_LOST_MOTION: Quantity = Quantity {
     key: "lost_motion_arcmin",
     unit: "arcmin",
@@ -588,6 +634,8 @@ pub const TORSION_LOST_MOTION: Quantity = Quantity {
     read: Read::Curves(|r| torsion_figures(r, |f| units::arcmin(f.lost_motion_rad))),
 };
 
+/// Torsion backlash γ(0⁺) − γ(0⁻), the dead band at zero torque, arcmin, at each locked crank
+/// angle (`TorsionFigures::backlash_rad`).
 pub const TORSION_BACKLASH: Quantity = Quantity {
     key: "backlash_arcmin",
     unit: "arcmin",
@@ -599,6 +647,8 @@ pub const TORSION_BACKLASH: Quantity = Quantity {
     read: Read::Curves(|r| torsion_figures(r, |f| units::arcmin(f.backlash_rad))),
 };
 
+/// Torsional rigidity, the secant stiffness between 50 % and 100 % of the rated torque in the
+/// smaller direction, N·m/arcmin, at each locked crank angle (`TorsionFigures::rigidity`).
 pub const TORSIONAL_RIGIDITY: Quantity = Quantity {
     key: "torsional_rigidity_nm_per_arcmin",
     unit: "N·m/arcmin",
@@ -622,6 +672,7 @@ fn curve_extreme(r: &SceneResult, q: &Quantity, largest: bool) -> Option<Extreme
     })
 }
 
+/// The largest torsion lost motion over the locked crank angles, arcmin.
 pub const MAX_TORSION_LOST_MOTION: Quantity = Quantity {
     key: "max_lost_motion_arcmin",
     unit: "arcmin",
@@ -633,6 +684,7 @@ pub const MAX_TORSION_LOST_MOTION: Quantity = Quantity {
     read: Read::Scalar(|r| curve_extreme(r, &TORSION_LOST_MOTION, true)),
 };
 
+/// The largest torsion backlash over the locked crank angles, arcmin.
 pub const MAX_TORSION_BACKLASH: Quantity = Quantity {
     key: "max_backlash_arcmin",
     unit: "arcmin",
@@ -644,6 +696,7 @@ pub const MAX_TORSION_BACKLASH: Quantity = Quantity {
     read: Read::Scalar(|r| curve_extreme(r, &TORSION_BACKLASH, true)),
 };
 
+/// The smallest torsional rigidity over the locked crank angles, N·m/arcmin.
 pub const MIN_TORSIONAL_RIGIDITY: Quantity = Quantity {
     key: "min_torsional_rigidity_nm_per_arcmin",
     unit: "N·m/arcmin",
@@ -655,6 +708,8 @@ pub const MIN_TORSIONAL_RIGIDITY: Quantity = Quantity {
     read: Read::Scalar(|r| curve_extreme(r, &TORSIONAL_RIGIDITY, false)),
 };
 
+/// The crank bearing's equivalent dynamic load P = (mean of Fb^p over the sweep)^(1/p), N
+/// (`BearingLife::equivalent_load_n`).
 pub const BEARING_EQUIVALENT_LOAD: Quantity = Quantity {
     key: "bearing_equivalent_load_n",
     unit: "N",
@@ -671,6 +726,8 @@ pub const BEARING_EQUIVALENT_LOAD: Quantity = Quantity {
     }),
 };
 
+/// The crank bearing's rating life L10h = (C/P)^p·10⁶/(60·n·(1 + 1/nc)), hours, n the input
+/// speed (`BearingLife::life_h`).
 pub const BEARING_LIFE: Quantity = Quantity {
     key: "bearing_life_h",
     unit: "h",
@@ -787,6 +844,7 @@ pub enum Bound {
 }
 
 impl Bound {
+    /// The bound as a sign for tables and messages: "≤" or "≥".
     pub fn symbol(self) -> &'static str {
         match self {
             Bound::Max => "≤",
@@ -799,8 +857,12 @@ impl Bound {
 /// computes it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LimitDef {
+    /// Its key under `limits:` (not always the quantity's: `max_te_fluctuation_arcsec` bounds
+    /// `te_fluctuation_arcsec`).
     pub key: &'static str,
+    /// The scalar quantity it bounds.
     pub quantity: &'static Quantity,
+    /// Which side of the limit passes.
     pub bound: Bound,
     /// The limit is a count (a whole number).
     pub whole: bool,
@@ -892,6 +954,7 @@ pub fn find_limit(key: &str) -> Option<&'static LimitDef> {
 pub struct ObjectiveDef {
     /// Its name in a spec.
     pub name: &'static str,
+    /// The scalar quantity it minimises.
     pub quantity: &'static Quantity,
     /// Axis label of a map of it.
     pub label: &'static str,

@@ -1,28 +1,34 @@
 //! What the engine computes for a scene: plain data, engine units (mm, N, MPa, rad), arrays
-//! [angle] or [roller|pin][angle]. A quantity that was not computed is `None`. The quantity
+//! `[angle]` or `[roller|pin][angle]`. A quantity that was not computed is `None`. The quantity
 //! registry (`model::quantity`) reads these in the output units of its keys.
 
 /// Where the smallest gap of a sweep occurs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MinClearance {
+    /// The smallest gap of the sweep, mm (negative: interference).
     pub gap_mm: f64,
+    /// The roller it occurs at (index i, at angle 2πi/np).
     pub roller: usize,
+    /// The scene's crank angle φ it occurs at, rad (the first, when several tie).
     pub crank_rad: f64,
     /// Position on the tooth: 0 at the root, 0.5 at the tip, (0, 0.5) one flank, (0.5, 1) the other.
     pub tooth_phase: f64,
 }
 
 /// Clearance of every roller over a crank sweep at the ideal pose (β = 0).
-/// Arrays are indexed [roller][angle].
+/// Arrays are indexed `[roller][angle]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClearanceSweep {
+    /// Gap of each roller, mm: the signed distance from its centre to the disc profile Γ minus
+    /// its radius; positive clearance, negative interference (MODEL.md "Clearance").
     pub gap_mm: Vec<Vec<f64>>,
+    /// The smallest of the gaps, and where.
     pub min: MinClearance,
     /// `None` when nothing read it (`Detail::Backlash` not planned).
     pub backlash: Option<BacklashCurves>,
 }
 
-/// Backlash over a crank sweep, from the closing lag of every roller: lags in rad, [angle].
+/// Backlash over a crank sweep, from the closing lag of every roller: lags in rad, `[angle]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BacklashCurves {
     /// Unloaded TE: the smallest closing lag among rollers closed by a positive lag (the load
@@ -39,9 +45,16 @@ pub struct BacklashCurves {
 pub struct RollerCurves {
     /// β: lag of the disc behind −φ/nc, rad (positive opposes the motion).
     pub lag_rad: Vec<f64>,
+    /// Contact force of each roller on the disc, N, `[roller][angle]`: its magnitude, along the
+    /// disc's inward normal; 0 out of contact.
     pub force_n: Vec<Vec<f64>>,
+    /// Hertz peak pressure p0 = sqrt(F·E*/(π·L·R*)) of each roller's contact, MPa,
+    /// `[roller][angle]` (whatever the contact law; 0 out of contact).
     pub pressure_mpa: Vec<Vec<f64>>,
+    /// Hertz half-width b = sqrt(4·F·R*/(π·L·E*)) of each roller's contact, mm,
+    /// `[roller][angle]` (0 out of contact).
     pub half_width_mm: Vec<Vec<f64>>,
+    /// How many rollers carry a force at each angle, `[angle]`.
     pub contacts: Vec<usize>,
 }
 
@@ -50,6 +63,8 @@ pub struct RollerCurves {
 pub struct PinCurves {
     /// βo: lag of the output behind the disc, rad.
     pub output_lag_rad: Vec<f64>,
+    /// Contact force of each output pin on the disc, N, `[pin][angle]`: its magnitude; 0 where
+    /// the pin does not touch its hole.
     pub force_n: Vec<Vec<f64>>,
 }
 
@@ -57,8 +72,13 @@ pub struct PinCurves {
 /// (counter-clockwise), and the relative residual of the paper's Eqs. 12–14.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BearingCurves {
+    /// |Fb|, the magnitude of the crank bearing's force on the disc, N, `[angle]`.
     pub force_n: Vec<f64>,
+    /// ε, the angle of Fb from the eccentric direction (cos φ, sin φ), counter-clockwise
+    /// positive, rad, `[angle]`.
     pub angle_rad: Vec<f64>,
+    /// The largest relative residual of the force and moment balances (the paper's
+    /// Eqs. 12–14) at each angle, dimensionless (`equilibrium::residual`).
     pub residual: Vec<f64>,
     /// Disc-centre displacement magnitude (compliant bearing; zeros when rigid), mm.
     pub deflection_mm: Vec<f64>,
@@ -69,17 +89,26 @@ pub struct BearingCurves {
 /// covers whole mesh periods, second-order one-sided at the ends otherwise).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Transmission {
+    /// δ, rad, `[angle]`; with several discs the common output lag γ (MODEL.md "Several discs").
     pub te_rad: Vec<f64>,
+    /// κ, dimensionless, `[angle]`; `None` for fewer than three crank angles.
     pub ratio: Option<Vec<f64>>,
 }
 
+/// The loaded curves of a scene (or of one disc of several) over its crank angles, each `None`
+/// when its effect was not computed.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct LoadedSweep {
-    /// The disc's share of the output torque, N·mm [angle]: in a disc of several only.
+    /// The disc's share of the output torque, N·mm `[angle]`: in a disc of several only.
     pub torque_nmm: Option<Vec<f64>>,
+    /// The rollers' lag, forces and contacts (`Effect::RollerContact`).
     pub rollers: Option<RollerCurves>,
+    /// The output pins' lag and forces (`Effect::OutputPins`).
     pub pins: Option<PinCurves>,
+    /// The crank bearing's force and the balance residuals (`Effect::Bearing`).
     pub bearing: Option<BearingCurves>,
+    /// TE and ratio, with the rollers modelled; with several discs the reducer's (its own
+    /// `SceneResult::loaded`), none of a disc's.
     pub transmission: Option<Transmission>,
 }
 
@@ -111,12 +140,12 @@ impl TorsionFigures {
 pub struct TorsionCurves {
     /// The loop's torques T_m, N·mm (`TorqueSweep::torques_nmm`).
     pub torque_nmm: Vec<f64>,
-    /// γ [crank][m], rad. At T = 0 the rising branch holds γ(0⁻), the falling branch γ(0⁺).
+    /// γ `[crank][m]`, rad. At T = 0 the rising branch holds γ(0⁻), the falling branch γ(0⁺).
     pub torsion_rad: Vec<Vec<f64>>,
-    /// The figures [crank].
+    /// The figures `[crank]`.
     pub figures: Vec<TorsionFigures>,
-    /// γ of the figures' own solves [crank][i], rad, at the torques
-    /// `engine::torsion::FIGURE_TORQUES`[i]·rated (−100, −50, −3 %, 0⁻, 0⁺, +3, +50, +100 %).
+    /// γ of the figures' own solves `[crank][i]`, rad, at the torques
+    /// `engine::torsion::FIGURE_TORQUES[i]`·rated (−100, −50, −3 %, 0⁻, 0⁺, +3, +50, +100 %).
     pub figure_torsion_rad: Vec<[f64; 8]>,
 }
 
@@ -132,9 +161,13 @@ pub struct BearingLife {
 /// Everything computed for one scene. A quantity that was not computed is `None`.
 #[derive(Debug, Clone)]
 pub struct SceneResult {
+    /// The scene's name; a disc's of several is `<scene> disc k`.
     pub name: String,
+    /// The scene's crank angles φ, rad (`Scene::crank_rad`).
     pub crank_rad: Vec<f64>,
+    /// The unloaded gaps at the ideal pose (`Effect::Clearance`).
     pub clearance: Option<ClearanceSweep>,
+    /// The loaded curves (none computed: every part `None`).
     pub loaded: LoadedSweep,
     /// A torsion scene's curves and figures (`Effect::Torsion`).
     pub torsion: Option<TorsionCurves>,

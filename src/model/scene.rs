@@ -47,17 +47,22 @@ pub const MAX_ROLLER_ANGLES: i64 = 10_000_000;
 /// One load case swept over crank angle.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
+    /// The scene's name (`scenes[].name`), unique in its spec.
     pub name: String,
-    /// Torque on the disc, N·mm (spec: `output_torque_nm`).
+    /// Output torque T, N·mm (spec: `output_torque_nm`; 0 when not given): the torque on the
+    /// disc, or shared by the discs when there are several (Σ Tk = T).
     pub output_torque_nmm: f64,
     /// Crank angles φ in rad: `from + k·(to − from)/steps`, k = 0..steps (end excluded).
     pub crank_rad: Vec<f64>,
-    /// The crank range as written (`crank.from_deg`, `crank.to_deg`), degrees.
+    /// The start of the crank range as written (`crank.from_deg`), degrees.
     pub crank_from_deg: f64,
+    /// The end of the crank range as written (`crank.to_deg`, excluded), degrees.
     pub crank_to_deg: f64,
     /// Effects as the spec asks for them; `Plan` adds what they need.
     pub effects: Vec<Effect>,
+    /// The force–approach law of the contacts (`contact_law`; `paper_linear` by default).
     pub contact_law: ContactLaw,
+    /// How gaps and arms are evaluated under load (`geometry`; `exact` by default).
     pub geometry: GeometryMode,
     /// Radial stiffness of the crank bearing, N/mm; `None` is a rigid bearing.
     pub bearing_stiffness_n_per_mm: Option<f64>,
@@ -123,27 +128,35 @@ impl Scene {
 /// One effect in a plan, with the reason it is there.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct PlannedEffect {
+    /// The effect.
     pub effect: Effect,
+    /// Why it is planned ("asked for by the scene", "needed by bearing", ...).
     pub reason: String,
 }
 
 /// A detail in a plan, with what reads it ("limit max_lost_motion_arcsec", "--json").
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct PlannedDetail {
+    /// The detail.
     pub detail: Detail,
+    /// What reads it, each named once, in the order they asked.
     pub read_by: Vec<String>,
 }
 
 /// What will be computed for one scene.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Plan {
+    /// The name of the scene it is for.
     pub scene: String,
+    /// The effects computed, each once, in `Effect`'s order.
     pub effects: Vec<PlannedEffect>,
     /// The details of planned effects that something reads (none unless asked: `Plan::ask`).
     pub details: Vec<PlannedDetail>,
 }
 
 impl Plan {
+    /// The plan of `scene`: the effects it asks for (and `torsion` for a `torque_sweep`) and
+    /// what they need; no details until something asks (`Plan::ask`).
     pub fn for_scene(scene: &Scene) -> Plan {
         let mut effects: Vec<PlannedEffect> = Vec::new();
         if scene.torque_sweep.is_some() {
@@ -179,6 +192,7 @@ impl Plan {
         }
     }
 
+    /// Whether `effect` is planned (see `computes` for whether its quantities are computed).
     pub fn has(&self, effect: Effect) -> bool {
         self.effects.iter().any(|p| p.effect == effect)
     }
@@ -218,6 +232,7 @@ impl Plan {
         }
     }
 
+    /// Whether `detail` is planned: something reads a quantity that needs it.
     pub fn has_detail(&self, detail: Detail) -> bool {
         self.details.iter().any(|p| p.detail == detail)
     }

@@ -48,12 +48,16 @@ pub fn default_verify_grid(dims: usize) -> usize {
 /// A design variable of a study, bounds in engine units (mm, or rad for the rotation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VariableKind {
+    /// ΔRp, the shift modification, mm.
     Shift,
+    /// ΔRrp, the equidistant modification, mm.
     Equidistant,
+    /// Δδ, the rotation modification, rad (degrees in the spec).
     Rotation,
 }
 
 impl VariableKind {
+    /// Its key in a study (`variables.<key>`, `start.<key>`), with the spec's unit.
     pub fn key(self) -> &'static str {
         match self {
             VariableKind::Shift => "shift_mm",
@@ -71,6 +75,7 @@ impl VariableKind {
         }
     }
 
+    /// Set this variable of a modification to `value`, engine units.
     pub fn set(self, m: &mut Modification, value: f64) {
         match self {
             VariableKind::Shift => m.shift_mm = value,
@@ -88,10 +93,14 @@ impl VariableKind {
     }
 }
 
+/// A variable of a study and its bounds, engine units (mm, or rad for the rotation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Variable {
+    /// Which modification it is.
     pub kind: VariableKind,
+    /// Its lower bound.
     pub lower: f64,
+    /// Its upper bound.
     pub upper: f64,
 }
 
@@ -100,11 +109,13 @@ pub struct Variable {
 /// whole-mesh minimum clearance, checked on the exact geometry.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Study {
+    /// The study's name (`name`; `study-n` by default, n from 1), unique in the spec.
     pub name: String,
     /// Index into `Spec::scenes`.
     pub scene: usize,
     /// Weighted terms; a single objective has weight 1.
     pub objective: Vec<(Objective, f64)>,
+    /// The variables optimised, those given in the order shift, equidistant, rotation.
     pub variables: Vec<Variable>,
     /// The starting modification (variables not optimised keep the spec's values).
     pub start: Modification,
@@ -114,7 +125,10 @@ pub struct Study {
     pub min_clearance_mm: Option<f64>,
     /// Largest unloaded lost motion over the scene's crank angles ≤ this, arcsec.
     pub max_lost_motion_arcsec: Option<f64>,
+    /// Labelled modifications evaluated and reported beside the optimum (`references`).
     pub references: Vec<(String, Modification)>,
+    /// Upper limit on this study's optimum objective; `None`: the spec's
+    /// `limits.optimum_max_objective`, if set.
     pub optimum_max_objective: Option<f64>,
     /// Interior points of the global (space-filling) stage.
     pub global_samples: usize,

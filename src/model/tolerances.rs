@@ -7,15 +7,25 @@ use super::deviations::{CentreDeviation, Deviations, RollerDeviation};
 /// A kind of deviation a tolerance band is given for; the name is the spec key.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Kind {
+    /// de, the crank's eccentricity minus the design's (`eccentricity_mm`).
     Eccentricity,
+    /// A roller centre's offset outward (`roller_radial_mm`).
     RollerRadial,
+    /// A roller centre's offset along its circle, counter-clockwise (`roller_tangential_mm`).
     RollerTangential,
+    /// A roller's radius minus the design's (`roller_radius_mm`).
     RollerRadius,
+    /// An output pin centre's offset outward (`pin_radial_mm`).
     PinRadial,
+    /// An output pin centre's offset along its circle, counter-clockwise (`pin_tangential_mm`).
     PinTangential,
+    /// A pin hole centre's offset outward, in its disc (`hole_radial_mm`).
     HoleRadial,
+    /// A pin hole centre's offset along its circle, counter-clockwise (`hole_tangential_mm`).
     HoleTangential,
+    /// The grinding error of the shift modification ΔRp (`shift_mm`).
     Shift,
+    /// The grinding error of the equidistant modification ΔRrp (`equidistant_mm`).
     Equidistant,
 }
 
@@ -57,10 +67,13 @@ pub const NORMAL_CUT_SIGMA: f64 = 6.0;
 pub struct PartTolerances {
     /// Half-width b of each kind's band, mm, indexed by `Kind as usize`; 0: not toleranced.
     pub bands_mm: [f64; Kind::ALL.len()],
+    /// How the deviations are distributed in their bands (`distribution`; normal by default).
     pub distribution: Distribution,
     /// Index into the spec's scenes of the scene every sample runs.
     pub scene: usize,
+    /// How many as-built reducers are drawn, 1 to 10⁹ (`samples`; 1000 by default).
     pub samples: usize,
+    /// The seed of the draws (`seed`; 0 by default): sample k depends on (seed, k) alone.
     pub seed: u64,
     /// Largest fraction of the samples that may fail some limit.
     pub max_failure_rate: f64,
@@ -100,8 +113,11 @@ impl PartTolerances {
 /// `disc` the disc of a hole; both 0 for the crank and the grinding errors).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Parameter {
+    /// The kind of deviation drawn.
     pub kind: Kind,
+    /// The roller, pin or hole index (0 for the crank and the grinding errors).
     pub part: usize,
+    /// The disc of a hole (0 for every other part).
     pub disc: usize,
 }
 

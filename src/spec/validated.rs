@@ -6,14 +6,24 @@ use crate::model::{Design, Golden, Limits, Modification, Scene, Study};
 /// A validated spec, with the text it came from (for error locations and hashing).
 #[derive(Debug, Clone)]
 pub struct Spec {
+    /// The spec's name (`name:`).
     pub name: String,
+    /// The path it was loaded from, as given; files it names resolve against its directory.
     pub path: String,
+    /// The YAML text it was parsed from: errors are located in it, and its SHA-256 names it in
+    /// reports, golden metadata and tolerance shards.
     pub source: String,
+    /// The reducer (`reducer:`).
     pub design: Design,
+    /// The tooth-profile modification (`modification:`; zero when not given).
     pub modification: Modification,
+    /// The load scenes (`scenes:`), in the spec's order.
     pub scenes: Vec<Scene>,
+    /// The acceptance limits (`limits:`).
     pub limits: Limits,
+    /// The optimisation studies (`optimise:`, one or a list; empty when not given).
     pub studies: Vec<Study>,
+    /// The golden curves (`golden:`).
     pub golden: Vec<Golden>,
     /// `golden_root:` resolved against the spec's directory: where goldens may be written
     /// besides the spec's own directory tree.
@@ -38,5 +48,6 @@ impl Spec {
 pub struct Accuracy {
     /// Index into `Spec::scenes`.
     pub scene: usize,
+    /// The ladder's resolutions and tolerances (`accuracy:`'s other keys).
     pub options: crate::model::accuracy::Options,
 }

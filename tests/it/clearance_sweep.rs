@@ -36,10 +36,14 @@ struct Reference {
     gap_mm: Vec<Vec<f64>>,
     forward_rad: Vec<f64>,
     reverse_rad: Vec<f64>,
-    /// How far the reference's own closing lags at each angle may be from the root: the
-    /// iteration stops once |gap| is within 32 ulp of Rp, a lag error of |gap|/|arm| (rad),
-    /// which exceeds 1e-6 arcsec for a roller closing near a tip, where its arm is small.
-    stop_rad: Vec<f64>,
+    /// How far a closing lag that sets the forward (reverse) backlash at each angle may be
+    /// from the root, by the stopping rule the reference and the sweep share: the iteration
+    /// stops once |gap| is within 32·ε·Rp, a lag error of up to that gap over the roller's
+    /// arm |l| (rad), which exceeds 1e-6 arcsec for a roller closing near a tip, where its arm
+    /// is small. The bound, not the reference's own residual: the sweep may stop anywhere
+    /// within it (a case with the reference's residual near 0 and the sweep 7.7e-12 rad off,
+    /// at |l| ≈ 0.04 mm, is in the regressions).
+    stop_rad: Vec<(f64, f64)>,
 }
 
 fn reference(mesh: &Mesh, crank: &[f64]) -> Reference {
@@ -50,29 +54,46 @@ fn reference(mesh: &Mesh, crank: &[f64]) -> Reference {
         stop_rad: Vec::new(),
     };
     for &phi in crank {
-        let (mut forward, mut reverse, mut stop) = (f64::INFINITY, f64::INFINITY, 0.0f64);
+        // (closing lag, its stopping bound) of each roller, forward and reverse.
+        let (mut forward, mut reverse) = (Vec::new(), Vec::new());
+        let closed_mm = 32.0 * f64::EPSILON * mesh.roller_circle_radius_mm;
         for i in 0..mesh.rollers {
             let g = mesh
                 .roller_gap(i, &Pose::ideal(phi), None)
                 .unwrap_or_else(|f| panic!("{f}"));
             r.gap_mm[i].push(g.gap_mm);
-            let closing = mesh.closing_lag(i, phi).unwrap();
-            match closing {
-                Some(b) if g.arm_mm > 0.0 => forward = forward.min(b),
-                Some(b) if g.arm_mm < 0.0 => reverse = reverse.min(-b),
-                _ => {}
-            }
-            if let Some(b) = closing {
-                if let Ok(at) = mesh.roller_gap(i, &Pose::lagging(phi, b), None) {
-                    stop = stop.max(at.gap_mm.abs() / at.arm_mm.abs());
-                }
+            let Some(b) = mesh.closing_lag(i, phi).unwrap() else {
+                continue;
+            };
+            let stop = match mesh.roller_gap(i, &Pose::lagging(phi, b), None) {
+                Ok(at) => at.gap_mm.abs().max(closed_mm) / at.arm_mm.abs(),
+                Err(_) => 0.0,
+            };
+            if g.arm_mm > 0.0 {
+                forward.push((b, stop));
+            } else if g.arm_mm < 0.0 {
+                reverse.push((-b, stop));
             }
         }
+        let (forward, forward_stop) = smallest_lag(&forward);
+        let (reverse, reverse_stop) = smallest_lag(&reverse);
         r.forward_rad.push(forward);
         r.reverse_rad.push(reverse);
-        r.stop_rad.push(stop);
+        r.stop_rad.push((forward_stop, reverse_stop));
     }
     r
+}
+
+/// The smallest closing lag of `lags` (infinite when none) and the largest stopping bound of
+/// the rollers that may set it (their lags within 1e-9 rad of it: the sweep may pick another
+/// of them, each off its root by up to its own bound).
+fn smallest_lag(lags: &[(f64, f64)]) -> (f64, f64) {
+    let least = lags.iter().map(|l| l.0).fold(f64::INFINITY, f64::min);
+    let stop = (lags.iter())
+        .filter(|l| l.0 <= least + 1e-9)
+        .map(|l| l.1)
+        .fold(0.0, f64::max);
+    (least, stop)
 }
 
 /// Equal within `tol`, or both infinite (no roller closes that way).
@@ -114,15 +135,23 @@ fn assert_matches(what: &str, mesh: &Mesh, crank: &[f64], s: &ClearanceSweep, r:
     for (k, at) in crank.iter().enumerate() {
         // The brief's 1e-6 arcsec, plus the reference's own stopping error (twice: the sweep
         // stops by the same rule on the other side of the root).
-        let tol = BACKLASH_RAD + 2.0 * r.stop_rad[k];
+        let (forward_stop, reverse_stop) = r.stop_rad[k];
         assert!(
-            agree(b.forward_rad[k], r.forward_rad[k], tol),
+            agree(
+                b.forward_rad[k],
+                r.forward_rad[k],
+                BACKLASH_RAD + 2.0 * forward_stop
+            ),
             "{what}: backlash at crank {at}: {} rad, from scratch {} rad",
             b.forward_rad[k],
             r.forward_rad[k]
         );
         assert!(
-            agree(b.reverse_rad[k], r.reverse_rad[k], tol),
+            agree(
+                b.reverse_rad[k],
+                r.reverse_rad[k],
+                BACKLASH_RAD + 2.0 * reverse_stop
+            ),
             "{what}: reverse backlash at crank {at}: {} rad, from scratch {} rad",
             b.reverse_rad[k],
             r.reverse_rad[k]

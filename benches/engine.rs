@@ -31,7 +31,15 @@ fn clearance_sweep_360(b: divan::Bencher) {
     let s = paper();
     let mesh = Mesh::new(&s.design, &s.modification);
     let c = crank(360);
-    b.bench(|| clearance::sweep(black_box(&mesh), &c, Scope::Backlash).unwrap());
+    b.bench(|| {
+        clearance::sweep(
+            black_box(&mesh),
+            &c,
+            Scope::Backlash,
+            &cycloid::progress::Silent,
+        )
+        .unwrap()
+    });
 }
 
 /// Unloaded gaps of every roller and the smallest, one mesh period at 0.1° (what a
@@ -41,7 +49,15 @@ fn clearance_gaps_360(b: divan::Bencher) {
     let s = paper();
     let mesh = Mesh::new(&s.design, &s.modification);
     let c = crank(360);
-    b.bench(|| clearance::sweep(black_box(&mesh), &c, Scope::Gaps).unwrap());
+    b.bench(|| {
+        clearance::sweep(
+            black_box(&mesh),
+            &c,
+            Scope::Gaps,
+            &cycloid::progress::Silent,
+        )
+        .unwrap()
+    });
 }
 
 /// Whole-mesh minimum clearance (the optimiser's constraint), 360 angles.
@@ -74,21 +90,21 @@ fn loaded(b: divan::Bencher, geometry: GeometryMode) {
 
 fn loaded_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
     let (model, c) = common::rated_sweep(geometry, 3600, rollers);
-    b.bench(|| sweep::sweep(black_box(&model), &c, true).unwrap());
+    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
 }
 
 /// Loaded sweep of 360 crank angles (the angles of `check_clearance_only_360`), exact geometry.
 #[divan::bench]
 fn loaded_sweep_360_exact(b: divan::Bencher) {
     let (model, c) = common::rated_sweep(GeometryMode::Exact, 360, 10);
-    b.bench(|| sweep::sweep(black_box(&model), &c, true).unwrap());
+    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
 }
 
 /// Loaded sweep of 360 crank angles, first-order geometry.
 #[divan::bench]
 fn loaded_sweep_360_first_order(b: divan::Bencher) {
     let (model, c) = common::rated_sweep(GeometryMode::FirstOrder, 360, 10);
-    b.bench(|| sweep::sweep(black_box(&model), &c, true).unwrap());
+    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
 }
 
 /// Loaded sweep of 3,600 crank angles, exact geometry (target < 10 ms on one core).
@@ -157,8 +173,7 @@ fn two_discs_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
     let (model, c) = common::rated_sweep(geometry, 3600, rollers);
     let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
     b.bench(|| {
-        discs_sweep::sweep_discs_observed(black_box(&discs), &c, true, &cycloid::progress::Silent)
-            .unwrap()
+        discs_sweep::sweep_discs(black_box(&discs), &c, true, &cycloid::progress::Silent).unwrap()
     });
 }
 
@@ -193,7 +208,7 @@ fn torsion_4_angles_40_steps(b: divan::Bencher) {
 #[divan::bench(sample_count = 3)]
 fn optimisation_positive_ratio(b: divan::Bencher) {
     let s = paper();
-    b.bench(|| cycloid::engine::optimise::run_study(&s, &s.studies[0]));
+    b.bench(|| cycloid::engine::optimise::run_study(&s, &s.studies[0], &cycloid::progress::Silent));
 }
 
 /// `check specs/paper.yaml` end to end, all four optimisations included (target < 2 s).
@@ -219,7 +234,14 @@ fn paper_studies(b: divan::Bencher) {
     b.bench(|| {
         s.studies
             .iter()
-            .map(|study| cycloid::engine::optimise::run_study(black_box(&s), study).evaluations)
+            .map(|study| {
+                cycloid::engine::optimise::run_study(
+                    black_box(&s),
+                    study,
+                    &cycloid::progress::Silent,
+                )
+                .evaluations
+            })
             .sum::<usize>()
     });
 }

@@ -88,5 +88,13 @@ fn clearance_sweep(b: divan::Bencher, form: Vec<cycloid::model::FormTerm>) {
     design.deviations.form = form;
     let mesh = Mesh::new(&design, &s.modification);
     let crank: Vec<f64> = (0..3600).map(|k| TAU / 10.0 * k as f64 / 3600.0).collect();
-    b.bench(|| sweep(black_box(&mesh), &crank, Scope::Backlash).unwrap());
+    b.bench(|| {
+        sweep(
+            black_box(&mesh),
+            &crank,
+            Scope::Backlash,
+            &cycloid::progress::Silent,
+        )
+        .unwrap()
+    });
 }

@@ -36,13 +36,13 @@ fn main() {
         min = match what {
             "min" => clearance::min_gap(&mesh, &crank).expect("min gap").gap_mm,
             "gaps" => {
-                clearance::sweep(&mesh, &crank, Scope::Gaps)
+                clearance::sweep(&mesh, &crank, Scope::Gaps, &cycloid::progress::Silent)
                     .expect("sweep")
                     .min
                     .gap_mm
             }
             _ => {
-                clearance::sweep(&mesh, &crank, Scope::Backlash)
+                clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent)
                     .expect("sweep")
                     .min
                     .gap_mm

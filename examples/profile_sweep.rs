@@ -26,11 +26,11 @@ fn main() {
     let (model, crank) = common::rated_sweep(geometry, n, rollers);
     let transmission = if discs > 0 {
         let d = cycloid::equilibrium::discs::Discs::new(&model, discs);
-        discs_sweep::sweep_discs_observed(&d, &crank, true, &cycloid::progress::Silent)
+        discs_sweep::sweep_discs(&d, &crank, true, &cycloid::progress::Silent)
             .expect("sweep")
             .transmission
     } else {
-        sweep::sweep(&model, &crank, true)
+        sweep::sweep(&model, &crank, true, &cycloid::progress::Silent)
             .expect("sweep")
             .transmission
     };

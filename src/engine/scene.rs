@@ -111,7 +111,7 @@ pub fn run_design(
             clearance::Scope::Gaps
         };
         let crank: Vec<f64> = scene.crank_rad.iter().map(|c| c + shift).collect();
-        let mut c = clearance::sweep_observed(&mesh, &crank, scope, progress)
+        let mut c = clearance::sweep(&mesh, &crank, scope, progress)
             .map_err(|f| Error::computation(format!("scene `{}`: {f}", scene.name)))?;
         c.min.crank_rad -= shift;
         Ok(Some(c))
@@ -190,8 +190,7 @@ fn loaded_sweep(
     }
     let model = loaded_model(design, m, scene, plan, settings);
     let periodic = scene.spans_loaded_periods(design, plan);
-    sweep::sweep_observed(&model, &scene.crank_rad, periodic, progress)
-        .map_err(|f| sweep_failed(scene, f))
+    sweep::sweep(&model, &scene.crank_rad, periodic, progress).map_err(|f| sweep_failed(scene, f))
 }
 
 /// The coupled loaded sweep of several discs ([`equilibrium::discs`](crate::equilibrium::discs)), when the plan runs it.
@@ -210,7 +209,7 @@ fn loaded_disc_sweeps(
         design.discs,
     );
     let periodic = scene.spans_loaded_periods(design, plan);
-    discs_sweep::sweep_discs_observed(&discs, &scene.crank_rad, periodic, progress)
+    discs_sweep::sweep_discs(&discs, &scene.crank_rad, periodic, progress)
         .map(Some)
         .map_err(|f| sweep_failed(scene, f))
 }

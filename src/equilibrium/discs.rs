@@ -99,7 +99,7 @@ impl CoupledWork {
     }
 
     /// Guess the next angles' splits from those `before` remembered: the last angles of the
-    /// chunk of angles before this one (`discs_sweep::sweep_discs_observed`).
+    /// chunk of angles before this one (`discs_sweep::sweep_discs`).
     pub fn continue_from(&mut self, before: &CoupledWork) {
         (self.cranks, self.shares, self.filled) = (before.cranks, before.shares, before.filled);
     }

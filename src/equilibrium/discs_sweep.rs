@@ -333,10 +333,10 @@ fn solve_in_two_waves(
     Ok(())
 }
 
-/// `sweep::sweep_observed` of several discs: chunks of `CHUNK` angles in parallel, each angle
+/// `sweep::sweep` of several discs: chunks of `CHUNK` angles in parallel, each angle
 /// warm-started from the previous ones of its chunk (split and lags), so results do not
 /// depend on the thread count.
-pub fn sweep_discs_observed(
+pub fn sweep_discs(
     discs: &Discs,
     crank_rad: &[f64],
     periodic: bool,

@@ -10,7 +10,7 @@ use super::solve::SolveFailure;
 use super::work::Work;
 use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
 use crate::model::results::{BearingCurves, LoadedSweep, PinCurves, RollerCurves, Transmission};
-use crate::progress::{Progress, Silent};
+use crate::progress::Progress;
 use rayon::prelude::*;
 
 /// Crank angles solved in sequence by one worker, warm-starting each from the previous. The
@@ -305,16 +305,8 @@ fn solve_chunk(
 /// the chunk, so results do not depend on how chunks are shared out (scratch space is reused
 /// across chunks, its state restarted). A failure is reported at the first crank angle that
 /// fails.
+/// `progress` hears of every chunk of crank angles done.
 pub fn sweep(
-    model: &Model,
-    crank_rad: &[f64],
-    periodic: bool,
-) -> Result<LoadedSweep, SweepFailure> {
-    sweep_observed(model, crank_rad, periodic, &Silent)
-}
-
-/// `sweep`, telling `progress` of every chunk of crank angles done.
-pub fn sweep_observed(
     model: &Model,
     crank_rad: &[f64],
     periodic: bool,

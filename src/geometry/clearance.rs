@@ -382,12 +382,8 @@ pub fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
 /// (`Mesh::roller_gap` with its scanning search). Closing lags
 /// follow the same way (`Tracker::closing_lag`). Chunks of `CHUNK` angles run in parallel and
 /// write their rows in place.
-pub fn sweep(mesh: &Mesh, crank_rad: &[f64], scope: Scope) -> Result<ClearanceSweep, GapFailure> {
-    sweep_observed(mesh, crank_rad, scope, &Silent)
-}
-
-/// `sweep`, telling `progress` of every chunk of crank angles done.
-pub fn sweep_observed(
+/// `progress` hears of every chunk of crank angles done.
+pub fn sweep(
     mesh: &Mesh,
     crank_rad: &[f64],
     scope: Scope,

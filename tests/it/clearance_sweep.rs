@@ -180,7 +180,7 @@ proptest! {
         let mesh = Mesh::new(&c.design, &c.m);
         let period = c.design.mesh_period_rad();
         let crank: Vec<f64> = (0..12).map(|k| phi0 + k as f64 * period / 6.0).collect();
-        let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap_or_else(|f| panic!("{f}"));
+        let s = clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent).unwrap_or_else(|f| panic!("{f}"));
         assert_matches(&format!("{c:?}"), &mesh, &crank, &s, &reference(&mesh, &crank));
     }
 
@@ -190,7 +190,7 @@ proptest! {
     fn sweep_matches_the_evaluation_from_scratch(c in rotated_cases(), phi0 in 0.0..TAU) {
         let mesh = Mesh::new(&c.design, &c.m);
         let crank = crank(phi0, 70);
-        let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap_or_else(|f| panic!("{f}"));
+        let s = clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent).unwrap_or_else(|f| panic!("{f}"));
         assert_matches(&format!("{c:?}"), &mesh, &crank, &s, &reference(&mesh, &crank));
     }
 
@@ -241,9 +241,10 @@ fn paper_sweeps_match_the_evaluation_from_scratch() {
         let crank = &spec.scenes[0].crank_rad;
         let r = reference(&mesh, crank);
         let what = format!("({shift}, {equidistant})");
-        let full = clearance::sweep(&mesh, crank, Scope::Backlash).unwrap();
+        let full =
+            clearance::sweep(&mesh, crank, Scope::Backlash, &cycloid::progress::Silent).unwrap();
         assert_matches(&what, &mesh, crank, &full, &r);
-        let gaps = clearance::sweep(&mesh, crank, Scope::Gaps).unwrap();
+        let gaps = clearance::sweep(&mesh, crank, Scope::Gaps, &cycloid::progress::Silent).unwrap();
         assert_eq!(gaps.gap_mm, full.gap_mm, "{what}");
         assert_eq!(gaps.min, full.min, "{what}");
         assert!(gaps.backlash.is_none());
@@ -270,7 +271,8 @@ fn turned_profiles_match_the_evaluation_from_scratch() {
             ..spec.modification
         };
         let mesh = Mesh::new(&spec.design, &m);
-        let s = clearance::sweep(&mesh, crank, Scope::Backlash).unwrap();
+        let s =
+            clearance::sweep(&mesh, crank, Scope::Backlash, &cycloid::progress::Silent).unwrap();
         assert_matches(
             &format!("{deg}°"),
             &mesh,
@@ -318,7 +320,7 @@ fn rollers_lifted_onto_both_sides_of_a_sharp_root_match_from_scratch() {
     // Roller 0 passes the root at φ = 0: sweep through it, one chunk either side.
     let crank = crank(-(6.4f64).to_radians(), 128);
     let r = reference(&mesh, &crank);
-    let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap();
+    let s = clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent).unwrap();
     assert_matches("sharp root", &mesh, &crank, &s, &r);
     // The case is what it says: at the root, the two feet of roller 0 lie on either side.
     let at_root = crank.iter().position(|c| c.abs() < 1e-12).unwrap();
@@ -351,7 +353,8 @@ fn sweep_is_the_same_on_one_and_on_four_threads() {
             .unwrap();
         pool.install(|| {
             (
-                clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap(),
+                clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent)
+                    .unwrap(),
                 clearance::min_gap(&mesh, &crank).unwrap(),
             )
         })
@@ -377,6 +380,6 @@ fn a_roller_on_a_tooth_centreline_closes_as_from_scratch() {
     let crank: Vec<f64> = (0..6).map(|k| k as f64 * period / 6.0).collect();
     let at_centre = mesh.roller_gap(5, &Pose::ideal(crank[3]), None).unwrap();
     assert!(at_centre.arm_mm.abs() < 1e-9, "arm {}", at_centre.arm_mm);
-    let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap();
+    let s = clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent).unwrap();
     assert_matches("centreline", &mesh, &crank, &s, &reference(&mesh, &crank));
 }

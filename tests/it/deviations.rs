@@ -109,8 +109,20 @@ fn every_roller_moved_outward_is_a_larger_roller_circle() {
     // The clearance sweep follows each roller in its own frame (a second code path).
     let crank = turn(720);
     let (ca, cb) = (
-        clearance::sweep(&a, &crank, clearance::Scope::Backlash).unwrap(),
-        clearance::sweep(&b, &crank, clearance::Scope::Backlash).unwrap(),
+        clearance::sweep(
+            &a,
+            &crank,
+            clearance::Scope::Backlash,
+            &cycloid::progress::Silent,
+        )
+        .unwrap(),
+        clearance::sweep(
+            &b,
+            &crank,
+            clearance::Scope::Backlash,
+            &cycloid::progress::Silent,
+        )
+        .unwrap(),
     );
     assert!((ca.min.gap_mm - cb.min.gap_mm).abs() < 1e-10);
     let scene = loaded_scene(0.0, 108.0, 108, "roller_contact, output_pins, bearing");
@@ -373,7 +385,13 @@ fn a_moved_roller_is_found_at_its_worst_angle_anywhere_in_the_turn() {
     let mesh = Mesh::new(&moved, &PAPER_OPTIMUM);
     let crank: Vec<f64> = (0..3600).map(|k| (k as f64).to_radians() / 10.0).collect();
     let min = clearance::min_gap(&mesh, &crank).unwrap();
-    let full = clearance::sweep(&mesh, &crank, clearance::Scope::Gaps).unwrap();
+    let full = clearance::sweep(
+        &mesh,
+        &crank,
+        clearance::Scope::Gaps,
+        &cycloid::progress::Silent,
+    )
+    .unwrap();
     assert_eq!(min.roller, 6);
     assert_eq!(min.gap_mm, full.min.gap_mm);
     // Against the nominal minimum: pushed in by 4 µm radially, roller 6 loses at most 4 µm
@@ -441,7 +459,13 @@ fn every_path_sees_the_same_parts_as_built() {
         GeometryMode::Exact,
     );
     let crank = turn(64);
-    let sweep = clearance::sweep(&mesh, &crank, clearance::Scope::Gaps).unwrap();
+    let sweep = clearance::sweep(
+        &mesh,
+        &crank,
+        clearance::Scope::Gaps,
+        &cycloid::progress::Silent,
+    )
+    .unwrap();
     let mut states = Vec::new();
     for (k, &phi) in crank.iter().enumerate() {
         for lag in [0.0, 2e-4] {

@@ -7,7 +7,7 @@ use crate::common::{cases, Case};
 use cycloid::engine::scene::run_design;
 use cycloid::equilibrium::angle::solve_angle;
 use cycloid::equilibrium::discs::Discs;
-use cycloid::equilibrium::discs_sweep::sweep_discs_observed;
+use cycloid::equilibrium::discs_sweep::sweep_discs;
 use cycloid::equilibrium::loaded::{AngleSolution, Model};
 use cycloid::equilibrium::sweep;
 use cycloid::model::results::SceneResult;
@@ -236,11 +236,11 @@ proptest! {
         let plan = Plan::of(&scene.name, &effects(pins));
         let model = Model::new(&case.design, &case.m, &scene, &plan);
         // (A design the one-disc sweep itself cannot solve is not this property's case.)
-        let one = sweep::sweep(&model, &scene.crank_rad, false);
+        let one = sweep::sweep(&model, &scene.crank_rad, false, &cycloid::progress::Silent);
         prop_assume!(one.is_ok());
         let one = one.unwrap();
         let coupled =
-            sweep_discs_observed(&Discs::new(&model, 1), &scene.crank_rad, false, &Silent).unwrap();
+            sweep_discs(&Discs::new(&model, 1), &scene.crank_rad, false, &Silent).unwrap();
         let disc = &coupled.discs[0];
         prop_assert_eq!(&one.rollers, &disc.rollers);
         prop_assert_eq!(&one.pins, &disc.pins);

@@ -265,7 +265,7 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
             "moment {moment} at {phi}"
         );
     }
-    let sweep = sweep::sweep(&model, &angles, false).unwrap();
+    let sweep = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent).unwrap();
     assert_agrees("paper", &model, &angles, &sweep);
 }
 
@@ -289,7 +289,7 @@ fn sweep_agrees_with_the_general_solve_on_hard_cases() {
         let scene = 0;
         let model = model(&spec, scene);
         let angles = grid(&spec, scene, 240);
-        let sweep = sweep::sweep(&model, &angles, false)
+        let sweep = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent)
             .unwrap_or_else(|f| panic!("{case}: {:?}", f.failure));
         assert_agrees(case, &model, &angles, &sweep);
     }
@@ -304,7 +304,11 @@ fn sweep_agrees_with_the_general_solve_on_hard_cases() {
 #[test]
 fn sweep_is_the_same_on_one_and_on_four_threads() {
     for (path, model, angles) in thread_cases() {
-        let on = |threads| on_threads(threads, || sweep::sweep(&model, &angles, true).unwrap());
+        let on = |threads| {
+            on_threads(threads, || {
+                sweep::sweep(&model, &angles, true, &cycloid::progress::Silent).unwrap()
+            })
+        };
         assert_eq!(on(1), on(4), "{path}");
     }
 }
@@ -335,7 +339,7 @@ fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
     pool.build().unwrap().install(f)
 }
 
-/// The same for two discs (`discs_sweep::sweep_discs_observed`), whose lean kernels and scratch
+/// The same for two discs (`discs_sweep::sweep_discs`), whose lean kernels and scratch
 /// space are built once per thread and restarted at every chunk: on one thread each chunk
 /// after the first inherits the screens, active sets and followed rotations of the one
 /// before, on four each thread's first chunk starts fresh, and the curves and the shares must
@@ -345,7 +349,7 @@ fn two_discs_sweep_the_same_on_one_and_on_four_threads() {
     for (path, model, angles) in thread_cases() {
         let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
         let silent = &cycloid::progress::Silent;
-        let sweep = || discs_sweep::sweep_discs_observed(&discs, &angles, true, silent).unwrap();
+        let sweep = || discs_sweep::sweep_discs(&discs, &angles, true, silent).unwrap();
         let (one, four) = (on_threads(1, sweep), on_threads(4, sweep));
         assert_eq!(one.discs, four.discs, "{path}");
         assert_eq!(one.torque_nmm, four.torque_nmm, "{path}");

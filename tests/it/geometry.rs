@@ -192,7 +192,7 @@ proptest! {
         let crank: Vec<f64> = (0..2 * steps)
             .map(|k| phi0 + k as f64 * period / steps as f64)
             .collect();
-        let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap_or_else(|f| panic!("{f}"));
+        let s = clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent).unwrap_or_else(|f| panic!("{f}"));
         let b = s.backlash.as_ref().expect("backlash");
         let n = d.rollers;
         for k in 0..steps {
@@ -221,7 +221,7 @@ proptest! {
         let steps = 6;
         let period = d.mesh_period_rad();
         let crank: Vec<f64> = (0..steps).map(|k| k as f64 * period / steps as f64).collect();
-        let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap_or_else(|f| panic!("{f}"));
+        let s = clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent).unwrap_or_else(|f| panic!("{f}"));
         let b = s.backlash.as_ref().expect("backlash");
         for k in 0..steps {
             let mirrored = (steps - k) % steps;
@@ -610,7 +610,13 @@ fn paper_sweep(
     assert!((scene.crank_rad[1] - scene.crank_rad[0] - 0.1f64.to_radians()).abs() < 1e-15);
     assert!(scene.spans_whole_periods(&spec.design));
     let mesh = Mesh::new(&spec.design, &spec.modification);
-    let sweep = clearance::sweep(&mesh, &scene.crank_rad, Scope::Gaps).expect("sweep converges");
+    let sweep = clearance::sweep(
+        &mesh,
+        &scene.crank_rad,
+        Scope::Gaps,
+        &cycloid::progress::Silent,
+    )
+    .expect("sweep converges");
     (spec, sweep)
 }
 
@@ -772,7 +778,8 @@ fn backlash_errors(d: &Design, delta: f64) -> (f64, f64, Vec<f64>) {
     let mut crank: Vec<f64> = (0..24).map(|k| k as f64 * period / 24.0).collect();
     crank.push(best);
     let mesh = Mesh::new(d, &modification(0.0, delta, 0.0));
-    let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap_or_else(|f| panic!("{f}"));
+    let s = clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent)
+        .unwrap_or_else(|f| panic!("{f}"));
     let b = s.backlash.as_ref().expect("backlash");
     let (mut fwd_err, mut rev_err): (f64, f64) = (0.0, 0.0);
     for (k, &phi) in crank.iter().enumerate() {
@@ -849,7 +856,7 @@ fn paper_lost_motion_of_a_pure_equidistant_modification_is_twice_the_backlash() 
         .map(|k| k as f64 * period / steps as f64)
         .collect();
     let mesh = Mesh::new(&d, &modification(0.0, delta, 0.0));
-    let s = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap();
+    let s = clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent).unwrap();
     let lags = s.backlash.as_ref().expect("backlash");
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
     let range = |v: &[f64]| {

@@ -70,8 +70,8 @@ fn the_global_sample_fills_the_box_and_lies_on_the_faces() {
 fn the_same_spec_gives_the_same_optimum_bit_for_bit() {
     let spec = small_paper();
     let s = study(&spec, "positive-ratio");
-    let a = run_study(&spec, s);
-    let b = run_study(&spec, s);
+    let a = run_study(&spec, s, &cycloid::progress::Silent);
+    let b = run_study(&spec, s, &cycloid::progress::Silent);
     assert_eq!(a.optimum.modification, b.optimum.modification);
     assert_eq!(a.optimum.objective.to_bits(), b.optimum.objective.to_bits());
     assert_eq!(a.evaluations, b.evaluations);
@@ -94,7 +94,7 @@ fn the_progress_observer_hears_of_every_evaluation_once() {
     let spec = small_paper();
     let s = study(&spec, "positive-ratio");
     let count = Count::default();
-    let r = optimise::run_study_with(&spec, s, &count);
+    let r = optimise::run_study(&spec, s, &count);
     assert_eq!(count.0.into_inner(), r.evaluations as u64);
 }
 
@@ -102,7 +102,7 @@ fn the_progress_observer_hears_of_every_evaluation_once() {
 fn positive_ratio_optimum_is_no_worse_than_the_papers_and_satisfies_every_constraint() {
     let spec = paper();
     let s = study(&spec, "positive-ratio");
-    let r = run_study(&spec, s);
+    let r = run_study(&spec, s, &cycloid::progress::Silent);
     let (label, paper_opt) = &r.references[0];
     assert_eq!(label, "paper optimum");
     assert!(
@@ -125,6 +125,7 @@ fn positive_ratio_optimum_is_no_worse_than_the_papers_and_satisfies_every_constr
         &Mesh::new(&spec.design, &m),
         &spec.scenes[0].crank_rad,
         Scope::Backlash,
+        &cycloid::progress::Silent,
     )
     .unwrap();
     assert!(
@@ -155,7 +156,11 @@ fn the_negative_start_meets_eq8_but_not_the_whole_mesh_clearance() {
     let text = cycloid::report::optimisation::render(
         &spec,
         s,
-        &run_study(&small_paper(), study(&small_paper(), "negative-ratio")),
+        &run_study(
+            &small_paper(),
+            study(&small_paper(), "negative-ratio"),
+            &cycloid::progress::Silent,
+        ),
     );
     assert!(text.contains("satisfies the paper's Eq. 8"), "{text}");
     assert!(text.contains("interference"), "{text}");
@@ -388,7 +393,7 @@ fn no_point_of_the_verification_grid_beats_the_papers_optima() {
     // two grids' coordinates (a few ulps of 0.5 mm move the objective by far less).
     let spec = paper();
     for s in &spec.studies {
-        let r = run_study(&spec, s);
+        let r = run_study(&spec, s, &cycloid::progress::Silent);
         assert!(r.optimum.feasible(), "{}", s.name);
         let v = r.verification.as_ref().expect("verified");
         assert_eq!(v.points, 41 * 41);
@@ -489,7 +494,8 @@ fn min_gap_equals_the_smallest_gap_of_the_full_clearance_sweep() {
         };
         let mesh = Mesh::new(&spec.design, &m);
         let fast = clearance::min_gap(&mesh, &crank).unwrap();
-        let full = clearance::sweep(&mesh, &crank, Scope::Backlash).unwrap();
+        let full =
+            clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent).unwrap();
         let smallest = full
             .gap_mm
             .iter()

@@ -260,7 +260,7 @@ pub fn studies(spec: &Spec, studies: Vec<&Study>, progress: &dyn Progress) -> Ve
     let heard = progress.phase(&Phase::new(what, "evaluations at most", most as u64));
     studies
         .par_iter()
-        .map(|s| optimise::run_study_with(spec, s, &*heard))
+        .map(|s| optimise::run_study(spec, s, &*heard))
         .collect()
 }
 

@@ -22,7 +22,7 @@ pub mod problem;
 pub mod seeds;
 pub mod verify;
 
-use crate::engine::progress::{Progress, Silent};
+use crate::engine::progress::Progress;
 use crate::model::Study;
 use crate::spec::Spec;
 use local::{LocalRun, StopReason};
@@ -99,13 +99,9 @@ pub fn most_evaluations(study: &Study) -> usize {
     1 + study.references.len() + global::points(study).len() + grid + runs * study.local_evaluations
 }
 
-/// Run one study: global sample, local runs, verification grid, best feasible point.
-pub fn run_study(spec: &Spec, study: &Study) -> StudyResult {
-    run_study_with(spec, study, &Silent)
-}
-
-/// `run_study`, telling `progress` of every evaluation.
-pub fn run_study_with(spec: &Spec, study: &Study, progress: &dyn Progress) -> StudyResult {
+/// Run one study: global sample, local runs, verification grid, best feasible point;
+/// `progress` hears of every evaluation.
+pub fn run_study(spec: &Spec, study: &Study, progress: &dyn Progress) -> StudyResult {
     let clock = Instant::now();
     let problem = Problem::new(spec, study);
     let dims = study.variables.len();

@@ -302,8 +302,13 @@ impl<'a> Problem<'a> {
     /// is enough (`clearance::first_period`).
     fn lost_motion_arcsec(&self, mesh: &Mesh) -> Result<f64, String> {
         let crank = clearance::first_period(mesh, &self.scene.crank_rad);
-        let sweep =
-            clearance::sweep(mesh, crank, clearance::Scope::Backlash).map_err(|f| f.to_string())?;
+        let sweep = clearance::sweep(
+            mesh,
+            crank,
+            clearance::Scope::Backlash,
+            &crate::progress::Silent,
+        )
+        .map_err(|f| f.to_string())?;
         let max = sweep
             .backlash
             .as_ref()

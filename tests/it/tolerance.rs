@@ -611,3 +611,120 @@ fn check_tolerance_with_a_measured_disc_studies_the_drawing() {
         "{row}"
     );
 }
+
+/// The shard file `name` rewritten with its checksum made to match again: what a forger (or a
+/// tool that edits and re-saves) would produce, so that the checks behind the checksum are met.
+fn resum(mut bytes: Vec<u8>) -> Vec<u8> {
+    use sha2::Digest;
+    bytes.truncate(bytes.len() - 32);
+    let sum = sha2::Sha256::digest(&bytes);
+    bytes.extend_from_slice(&sum);
+    bytes
+}
+
+/// A shard is an input from another machine, verified whole before a merge uses it: any changed
+/// or cut byte (its checksum), a changed embedded spec (its hash), a value that is not finite,
+/// a verdict byte that is neither 0 nor 1, a verdict its value does not give against the
+/// spec's limit, and a header claiming 2⁴⁰ shards (refused without allocating for them, its
+/// missing shards counted, not listed). Each damage exits 2 with its reason, writes no output
+/// and leaves every input file as it was.
+#[test]
+fn a_shard_is_verified_whole_before_it_is_merged() {
+    let dir = Scratch::new("tolerance-damage");
+    small_study(&dir, 12);
+    let here = dir.join("");
+    let run = |args: &[&str]| cycloid(here.as_path(), args);
+    for i in 0..3 {
+        let (shard, out) = (format!("{i}/3"), format!("a{i}"));
+        let r = run(&["tolerance", "t.yaml", "--shard", &shard, "--out", &out]);
+        assert_eq!(r.code(), 0, "{r:?}");
+    }
+    merge(&dir, &["a0", "a1", "a2"], "whole");
+    let good = std::fs::read(dir.join("a1")).unwrap();
+    let parsed = shard::decode("a1", &good).unwrap();
+    let limits = parsed.header.limits as usize;
+    // Where the records start: 4 samples of shard 1, 9 bytes per limit, then the checksum.
+    let records_at = good.len() - 32 - parsed.records.values.len() * 9;
+    let verdicts_at = records_at + 8 * limits;
+    let with = |f: &dyn Fn(&mut Vec<u8>)| {
+        let mut b = good.clone();
+        f(&mut b);
+        b
+    };
+    let forged = |f: &dyn Fn(&mut shard::Shard)| {
+        let mut s = parsed.clone();
+        f(&mut s);
+        shard::encode(&s.header, &s.records)
+    };
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "a value's byte changed",
+            with(&|b| b[records_at + 3] ^= 0x10),
+            "its checksum does not match its contents",
+        ),
+        (
+            "cut short",
+            good[..good.len() - 10].to_vec(),
+            "its checksum does not match its contents",
+        ),
+        (
+            "a NaN, checksum redone",
+            resum(with(&|b| {
+                b[records_at..records_at + 8].copy_from_slice(&f64::NAN.to_le_bytes())
+            })),
+            "sample 1 holds the value NaN",
+        ),
+        (
+            "a verdict byte 7, checksum redone",
+            resum(with(&|b| b[verdicts_at] = 7)),
+            "sample 1 holds the verdict byte 7, neither 0 (failed) nor 1 (passed)",
+        ),
+        (
+            "a value of -5 mm left passed",
+            forged(&|s| (s.records.values[0], s.records.passed[0]) = (-5.0, true)),
+            "shard 1 of 3 holds sample 1 with `min_clearance_mm` = -5 marked passed",
+        ),
+        (
+            "one digit of the embedded spec",
+            forged(&|s| s.header.spec_text = s.header.spec_text.replacen("seed: 3", "seed: 4", 1)),
+            "the spec it holds does not match the spec's hash in its header",
+        ),
+    ];
+    for (what, bytes, says) in cases {
+        dir.write("x1", &bytes);
+        let inputs: Vec<Vec<u8>> = ["a0", "x1", "a2", "t.yaml"]
+            .map(|f| std::fs::read(dir.join(f)).unwrap())
+            .to_vec();
+        let r = run(&["tolerance", "merge", "a0", "x1", "a2", "--json", "out.json"]);
+        assert_eq!(r.code(), 2, "{what}: {r:?}");
+        assert!(r.stderr.contains(says), "{what}: {}", r.stderr);
+        assert!(
+            !dir.join("out.json").exists(),
+            "{what}: an output was written"
+        );
+        for (f, before) in ["a0", "x1", "a2", "t.yaml"].iter().zip(&inputs) {
+            assert_eq!(
+                &std::fs::read(dir.join(f)).unwrap(),
+                before,
+                "{what}: {f} changed"
+            );
+        }
+    }
+    // One shard of a run claiming 2⁴⁰ samples in 2⁴⁰ shards, its one sample real.
+    let huge = forged(&|s| {
+        (s.header.samples, s.header.count) = (1 << 40, 1 << 40);
+        s.records.values.truncate(limits);
+        s.records.passed.truncate(limits);
+    });
+    dir.write("h1", &huge);
+    let r = run(&["tolerance", "merge", "h1"]);
+    assert_eq!(r.code(), 2, "{r:?}");
+    assert!(
+        r.stderr.contains(
+            "shards of 1099511627776 missing: 0, 2, 3, 4, 5, 6, 7, 8, 9, 10 and 1099511627765 \
+             more (0-based indices)"
+        ),
+        "{}",
+        r.stderr
+    );
+}

@@ -2,6 +2,7 @@
 //! or merged from the shards; and the study as one check of `check --tolerance`.
 
 use crate::engine::check::{Check, CheckKind, Evidence};
+use crate::engine::limit::passes;
 use crate::engine::tolerance::sensitivity::{self, Sensitivity};
 use crate::engine::tolerance::summary::{self, Summary};
 use crate::engine::tolerance::{shard, shard_len, Records, ToleranceStudy};
@@ -119,6 +120,7 @@ pub struct Merged {
     pub records: Records,
     samples: u64,
     limits: usize,
+    count: u64,
     first: String,
 }
 
@@ -138,7 +140,34 @@ impl Merged {
                 ),
             ));
         }
+        self.verdicts_follow(&study)?;
         Ok(study)
+    }
+
+    /// Every verdict of the shards is the one its value gives against the spec's limit: a
+    /// shard altered consistently (its checksum written again) still cannot pass a value
+    /// beyond its limit.
+    fn verdicts_follow(&self, study: &ToleranceStudy) -> Result<()> {
+        let l = study.limits.len();
+        let cells = self.records.values.iter().zip(&self.records.passed);
+        for (cell, (&value, &passed)) in cells.enumerate() {
+            let (def, limit) = study.limits[cell % l];
+            if passes(value, limit, def.bound) != passed {
+                return Err(Error::new(
+                    ErrorKind::InvalidValue,
+                    format!(
+                        "shard {} of {} holds sample {} with `{}` = {value} marked {}, which its \
+                         limit {limit} does not give: the shard was altered",
+                        (cell / l) as u64 % self.count,
+                        self.count,
+                        cell / l,
+                        def.key,
+                        if passed { "passed" } else { "failed" }
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -156,6 +185,7 @@ pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
         records,
         samples: h.samples,
         limits: h.limits as usize,
+        count: h.count,
         first: names[0].clone(),
     })
 }

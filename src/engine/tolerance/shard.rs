@@ -2,18 +2,27 @@
 //! k ≡ I (mod N) and what a merge needs to check that the shards belong together and to
 //! rebuild the study (the spec's text; the deviations are drawn again from (seed, k)).
 //!
-//! Format (little-endian), version 1:
+//! Format (little-endian), version 2:
 //! `MAGIC` (16 bytes), version u32, SHA-256 of the spec text (32 bytes), seed u64, samples
 //! u64, shard index u64 (0-based), shard count u64, limits L u32, spec path (u32 length +
 //! UTF-8), spec text (u64 length + UTF-8); then per sample of the shard, in increasing k, its
-//! L limit values (f64) and L verdicts (one byte each, 1 passed).
+//! L limit values (f64) and L verdicts (one byte each, 1 passed, 0 failed); last, the SHA-256
+//! of every byte before it.
+//!
+//! A shard comes from another machine: it is read whole and trusted in nothing it could get
+//! wrong. Its checksum must match (a changed byte anywhere), the spec text its hash, every
+//! value be finite and every verdict byte 0 or 1 (`decode`); at the merge every verdict must
+//! follow from its value and the spec's limit (`Merged::study`).
 
 use super::{shard_len, Records};
 use crate::error::{Error, ErrorKind, Result};
 use sha2::{Digest, Sha256};
 
 pub const MAGIC: &[u8; 16] = b"cycloid-tol-shrd";
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
+
+/// Bytes of the checksum that ends a shard.
+const CHECKSUM: usize = 32;
 
 /// What a shard says about the study it belongs to.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,6 +71,8 @@ pub fn encode(h: &Header, records: &Records) -> Vec<u8> {
         }
         b.extend(p.iter().map(|&p| p as u8));
     }
+    let sum: [u8; CHECKSUM] = Sha256::digest(&b).into();
+    b.extend_from_slice(&sum);
     b
 }
 
@@ -121,6 +132,18 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
             "format version {version}; this cycloid reads version {VERSION}"
         )));
     }
+    let Some(content) = bytes.len().checked_sub(CHECKSUM) else {
+        return Err(r.bad("it ends early"));
+    };
+    let (content, sum) = bytes.split_at(content);
+    if Sha256::digest(content).as_slice() != sum {
+        return Err(r.bad(
+            "its checksum does not match its contents: the file was changed or cut after it \
+             was written",
+        ));
+    }
+    let bytes = content;
+    r.bytes = content;
     let spec_sha256: [u8; 32] = r.take(32)?.try_into().unwrap_or_default();
     let (seed, samples, index, count) = (r.u64()?, r.u64()?, r.u64()?, r.u64()?);
     let limits = r.u32()?;
@@ -130,6 +153,9 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
     let spec_text = r.text(usize::try_from(n).map_err(|_| r.bad("it ends early"))?)?;
     if count == 0 || index >= count || count > samples.max(1) || limits == 0 {
         return Err(r.bad(&format!("shard {index}/{count} with {limits} limits")));
+    }
+    if spec_hash(&spec_text) != spec_sha256 {
+        return Err(r.bad("the spec it holds does not match the spec's hash in its header"));
     }
     let l = limits as usize;
     let rows = shard_len(samples, (index, count));
@@ -147,13 +173,29 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         values: Vec::with_capacity(cells),
         passed: Vec::with_capacity(cells),
     };
-    for row in body.chunks_exact(9 * l) {
-        let (v, p) = row.split_at(8 * l);
-        records.values.extend(
-            v.chunks_exact(8)
-                .map(|c| f64::from_le_bytes(c.try_into().unwrap_or_default())),
-        );
-        records.passed.extend(p.iter().map(|&b| b == 1));
+    for (row, cells) in body.chunks_exact(9 * l).enumerate() {
+        let (v, p) = cells.split_at(8 * l);
+        let values = v
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or_default()));
+        for value in values {
+            if !value.is_finite() {
+                return Err(r.bad(&format!(
+                    "sample {} holds the value {value}",
+                    index + row as u64 * count
+                )));
+            }
+            records.values.push(value);
+        }
+        for &b in p {
+            if b > 1 {
+                return Err(r.bad(&format!(
+                    "sample {} holds the verdict byte {b}, neither 0 (failed) nor 1 (passed)",
+                    index + row as u64 * count
+                )));
+            }
+            records.passed.push(b == 1);
+        }
     }
     Ok(Shard {
         header: Header {
@@ -169,6 +211,9 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         records,
     })
 }
+
+/// Missing shards a message lists by index, at most.
+const MISSING_SHOWN: usize = 10;
 
 fn refuse(message: String) -> Error {
     Error::new(ErrorKind::InvalidValue, message)
@@ -209,6 +254,29 @@ pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
         }
     }
     let count = h0.count;
+    // Every shard of the run must be here: no more indices to place than shards given (a
+    // header may claim any count; nothing is allocated for it before this).
+    if (shards.len() as u64) < count {
+        let mut given: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
+        given.sort_unstable();
+        given.dedup();
+        let missing: Vec<String> = (0..count)
+            .filter(|i| given.binary_search(i).is_err())
+            .take(MISSING_SHOWN)
+            .map(|i| i.to_string())
+            .collect();
+        let more = count - given.len() as u64 - missing.len() as u64;
+        return Err(refuse(format!(
+            "shards of {count} missing: {}{} (0-based indices); merge needs every shard of the \
+             run",
+            missing.join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
+        )));
+    }
     let mut by_index: Vec<Option<usize>> = vec![None; count as usize];
     for (i, s) in shards.iter().enumerate() {
         let slot = &mut by_index[s.header.index as usize];

@@ -17,9 +17,10 @@ use crate::{report, spec};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Largest shard file read, bytes: 16 GiB. A shard holds 9 bytes per sample and limit (the
-/// value and its verdict), so this is 10⁹ sample-limits, far beyond a job array's task.
-const MAX_SHARD_BYTES: u64 = 16 << 30;
+/// Largest shard file read, bytes: the records of the most sample-limits a study holds (9
+/// bytes each) and a spec of the largest input size, with room for the header.
+const MAX_SHARD_BYTES: u64 =
+    (crate::engine::tolerance::MAX_SAMPLE_LIMITS as u64) * 9 + 2 * crate::files::MAX_INPUT_BYTES;
 
 pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
     if let Some(ToleranceCommand::Merge {

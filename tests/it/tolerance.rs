@@ -728,3 +728,47 @@ fn a_shard_is_verified_whole_before_it_is_merged() {
         r.stderr
     );
 }
+
+/// The documented maximum of samples (10⁹) is refused before anything is allocated when its
+/// records would not fit what one process holds, with the bound named: by `--samples` and in
+/// the spec (located at its key). Before, `--samples 1000000000` allocated ~96 GB and aborted.
+#[test]
+fn a_study_beyond_the_memory_bound_is_refused_before_it_runs() {
+    let dir = Scratch::new("tolerance-bound");
+    small_study(&dir, 12);
+    let here = dir.join("");
+    let r = cycloid(
+        here.as_path(),
+        &["tolerance", "t.yaml", "--samples", "1000000000"],
+    );
+    assert_eq!(r.code(), 2, "{r:?}");
+    assert!(
+        r.stderr.contains(
+            "--samples 1000000000: 1000000000 samples × 1 limits are 1000000000 sample-limits, \
+             beyond the 268435456 one study holds"
+        ),
+        "{}",
+        r.stderr
+    );
+    dir.write(
+        "big.yaml",
+        dir.read("t.yaml")
+            .replace("samples: 12", "samples: 300000000"),
+    );
+    let r = cycloid(here.as_path(), &["tolerance", "big.yaml"]);
+    assert_eq!(r.code(), 2, "{r:?}");
+    assert!(
+        r.stderr
+            .contains("tolerances.samples: 300000000 samples × 1 limits")
+            && r.stderr
+                .contains("at most 268435456 samples with these limits"),
+        "{}",
+        r.stderr
+    );
+    // At the bound's edge a study is set up (and not run here).
+    let text = dir
+        .read("t.yaml")
+        .replace("samples: 12", "samples: 268435456");
+    let spec = cycloid::spec::parse("t.yaml", &text).unwrap();
+    assert!(ToleranceStudy::new(&spec, None).is_ok());
+}

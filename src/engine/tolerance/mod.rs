@@ -95,6 +95,7 @@ impl<'a> ToleranceStudy<'a> {
             )
             .at_key("tolerances.scene"));
         }
+        held_in_memory(tolerances.samples, limits.len(), samples.is_some())?;
         Ok(ToleranceStudy {
             spec,
             tolerances,
@@ -170,25 +171,67 @@ impl<'a> ToleranceStudy<'a> {
     pub fn run(&self, shard: (u64, u64), progress: &dyn Progress) -> Result<Records> {
         use rayon::prelude::*;
         let rows = shard_len(self.samples() as u64, shard);
+        let cells = rows as usize * self.limits.len();
         progress.start("tolerance study", rows);
-        let each: Vec<Result<(Vec<f64>, Vec<bool>)>> = (0..rows)
-            .into_par_iter()
-            .map(|r| {
-                let k = shard.0 + r * shard.1;
-                let r = self.evaluate_sample(k);
-                progress.advance(1);
-                r
-            })
-            .collect();
-        progress.finish();
-        let mut records = Records::default();
-        for r in each {
-            let (v, p) = r?;
-            records.values.extend(v);
-            records.passed.extend(p);
+        let mut records = Records {
+            values: Vec::with_capacity(cells),
+            passed: Vec::with_capacity(cells),
+        };
+        // In blocks, so that what is held besides the records stays bounded whatever the
+        // sample count; within a block the samples run in parallel, and blocks in k order.
+        for block in (0..rows).step_by(RUN_BLOCK) {
+            let each: Vec<Result<(Vec<f64>, Vec<bool>)>> = (block
+                ..rows.min(block + RUN_BLOCK as u64))
+                .into_par_iter()
+                .map(|r| {
+                    let k = shard.0 + r * shard.1;
+                    let r = self.evaluate_sample(k);
+                    progress.advance(1);
+                    r
+                })
+                .collect();
+            for r in each {
+                let (v, p) = r?;
+                records.values.extend(v);
+                records.passed.extend(p);
+            }
         }
+        progress.finish();
         Ok(records)
     }
+}
+
+/// Samples evaluated in parallel at a time by `ToleranceStudy::run`.
+const RUN_BLOCK: usize = 1 << 14;
+
+/// Most sample-limits one study holds (2²⁸): its records take 9 bytes each (2.4 GB), and the
+/// summary sorts one limit's values at a time (8 bytes each) beside them. A merge holds every
+/// sample of the study, so the bound is on the whole study, sharded or not.
+pub const MAX_SAMPLE_LIMITS: usize = 1 << 28;
+
+/// A study of `samples` samples judged by `limits` limits fits the records one process holds;
+/// else the error names the bound (`flag`: the count came from `--samples`).
+fn held_in_memory(samples: usize, limits: usize, flag: bool) -> Result<()> {
+    if samples.saturating_mul(limits) <= MAX_SAMPLE_LIMITS {
+        return Ok(());
+    }
+    let e = Error::new(
+        ErrorKind::InvalidValue,
+        format!(
+            "{samples} samples × {limits} limits are {} sample-limits, beyond the \
+             {MAX_SAMPLE_LIMITS} one study holds (9 bytes each, 2.4 GB, held whole by a run \
+             and by a merge): at most {} samples with these limits",
+            samples as u128 * limits as u128,
+            MAX_SAMPLE_LIMITS / limits
+        ),
+    );
+    Err(match flag {
+        true => Error {
+            message: format!("--samples {samples}: {}", e.message),
+            ..e
+        },
+        false => e.at_key("tolerances.samples"),
+    })
 }
 
 /// How many samples shard I of N holds: those k ≡ I (mod N), k < samples (I is 0-based),

@@ -300,6 +300,13 @@ pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
     }
     let l = h0.limits as usize;
     let n = h0.samples as usize;
+    if n.saturating_mul(l) > super::MAX_SAMPLE_LIMITS {
+        return Err(refuse(format!(
+            "the shards hold {n} samples × {l} limits, beyond the {} sample-limits one study \
+             holds",
+            super::MAX_SAMPLE_LIMITS
+        )));
+    }
     let mut records = Records {
         values: vec![0.0; n * l],
         passed: vec![false; n * l],

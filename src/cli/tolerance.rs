@@ -69,12 +69,19 @@ pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
                 ("--sensitivity", args.sensitivity),
             ];
             if let Some((flag, _)) = whole.iter().find(|(_, given)| *given) {
+                // The sensitivities are derivatives about the nominal reducer, not a sum over
+                // samples: an unsharded run computes them, and a merge does not.
+                let instead = match *flag {
+                    "--sensitivity" => {
+                        "run it without --shard (`cycloid tolerance SPEC \
+                                        --sensitivity`: derivatives about the nominal reducer, \
+                                        whatever the samples)"
+                    }
+                    _ => "give it to `cycloid tolerance merge`",
+                };
                 return Err(Error::new(
                     ErrorKind::Usage,
-                    format!(
-                        "{flag} needs every sample: give it to `cycloid tolerance merge`, not to \
-                         a shard; nothing was written"
-                    ),
+                    format!("{flag} is not for a shard: {instead}; nothing was written"),
                 ));
             }
             run_shard(&study, shard, file, out)

@@ -31,7 +31,12 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
 /// Identify the disc of `measured`'s points against `spec`'s design ([`measure::fit`](crate::measure::fit)), an
 /// error about the points naming their file.
 pub fn fit(spec: &Spec, measured: &MeasuredProfile) -> Result<Identification> {
-    let read = points::read(&measured.path, measured.format)?;
+    // A file that cannot be read is an error of the spec key that names it; an error inside
+    // the file keeps its own location there.
+    let read = points::read(&measured.path, measured.format).map_err(|e| match e.location {
+        Some(_) => e,
+        None => spec.locate(e.at_key("measured_profile.file")),
+    })?;
     let request = fit::Request {
         design: &spec.design,
         nominal: spec.modification,

@@ -219,6 +219,32 @@ fn bad_keys_are_located() {
     }
 }
 
+/// A measured-points file that cannot be read is an error at the spec key that names it
+/// (`measured_profile.file`, with its line and column), for `fit` and for `check` of the disc
+/// as built; before, it was an i/o error with no place in the spec.
+#[test]
+fn a_missing_points_file_is_located_at_its_key() {
+    let dir = Scratch::new("fit-missing");
+    let text = fitting("{file: gone.csv, format: csv, harmonics: 0, fit: [shift_mm]}");
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("measured_profile:"))
+        .unwrap()
+        + 1;
+    dir.write("fit.yaml", &text);
+    for command in ["fit", "check"] {
+        let run = cycloid(&dir.path, &[command, "fit.yaml"]);
+        assert_eq!(run.code(), 2, "{command}: {}", run.stderr);
+        let at = format!("fit.yaml:{line}:");
+        assert!(run.stderr.starts_with(&at), "{command}: {}", run.stderr);
+        assert!(
+            run.stderr.contains("measured_profile.file: ") && run.stderr.contains("gone.csv"),
+            "{command}: {}",
+            run.stderr
+        );
+    }
+}
+
 /// A drawing whose profile polyline is not closed: exit 2 at the polyline's line (its points
 /// are not skipped unseen).
 #[test]

@@ -772,3 +772,33 @@ fn a_study_beyond_the_memory_bound_is_refused_before_it_runs() {
     let spec = cycloid::spec::parse("t.yaml", &text).unwrap();
     assert!(ToleranceStudy::new(&spec, None).is_ok());
 }
+
+/// `--sensitivity` with a shard says where sensitivities are computed (an unsharded run; a
+/// merge refuses the flag), not "give it to merge" as it did; nothing is written.
+#[test]
+fn sensitivities_are_not_for_a_shard() {
+    let dir = Scratch::new("tolerance-shard-sens");
+    small_study(&dir, 12);
+    let r = cycloid(
+        dir.join("").as_path(),
+        &[
+            "tolerance",
+            "t.yaml",
+            "--shard",
+            "0/2",
+            "--out",
+            "s0",
+            "--sensitivity",
+        ],
+    );
+    assert_eq!(r.code(), 2, "{r:?}");
+    assert!(
+        r.stderr.contains(
+            "--sensitivity is not for a shard: run it without --shard (`cycloid tolerance SPEC \
+             --sensitivity`"
+        ),
+        "{}",
+        r.stderr
+    );
+    assert!(!dir.join("s0").exists());
+}

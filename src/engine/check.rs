@@ -62,6 +62,8 @@ pub enum Evidence {
         confidence: f64,
         interval: (f64, f64),
         measured: bool,
+        /// The limit on the rate, for a rate within it that the samples cannot show.
+        max_failure_rate: f64,
     },
 }
 

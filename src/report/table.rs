@@ -207,12 +207,22 @@ pub fn evidence(e: &Evidence) -> String {
             confidence,
             interval,
             measured,
+            max_failure_rate,
         } => format!(
             "{failures} of {samples} samples fail some limit; {} Clopper–Pearson interval [{}, \
-             {}]{}",
+             {}]{}{}",
             crate::numeric::percent_label(*confidence),
             number(interval.0),
             number(interval.1),
+            match (*failures as f64 / *samples as f64 <= *max_failure_rate)
+                && interval.1 > *max_failure_rate
+            {
+                true => format!(
+                    "; not shown within the limit: {}",
+                    super::tolerance::not_shown_reason(interval.1, *max_failure_rate)
+                ),
+                false => String::new(),
+            },
             match measured {
                 true => format!("; {}", super::tolerance::MEASURED_NOTE),
                 false => String::new(),

@@ -120,7 +120,7 @@ pub fn render(study: &ToleranceStudy, s: &Summary, sens: Option<&Sensitivity>) -
         percent(s.interval.1),
         percent_label(CONFIDENCE),
         percent(s.max_failure_rate),
-        if s.passed() { "PASS" } else { "FAIL" }
+        verdict(s)
     );
     out += &format!("quantiles: {QUANTILE_DEFINITION}\n");
     out += "\nworst samples (replay one with --write-sample K OUT):\n";
@@ -347,6 +347,36 @@ pub fn sample_header(study: &ToleranceStudy, k: u64) -> String {
         "# Written by `cycloid tolerance {} --write-sample {k}`: sample {k} of {} (seed {}) as \
          reducer.deviations.\n",
         study.spec.path, t.samples, t.seed
+    )
+}
+
+/// The study's verdict in words: PASS, FAIL, or NOT SHOWN when the rate is within the limit
+/// but its interval is not, with the samples that would show it.
+pub fn verdict(s: &Summary) -> String {
+    if s.passed() {
+        return "PASS".to_string();
+    }
+    if !s.not_shown() {
+        return "FAIL".to_string();
+    }
+    format!(
+        "NOT SHOWN: {}",
+        not_shown_reason(s.interval.1, s.max_failure_rate)
+    )
+}
+
+/// Why a rate within its limit is no pass: its interval's upper end `upper` is above `max`,
+/// and how many samples would show it.
+pub fn not_shown_reason(upper: f64, max: f64) -> String {
+    let needed = match crate::engine::tolerance::summary::samples_to_show(max) {
+        Some(n) => format!("{n} samples with no failure would show it (more with failures)"),
+        None => "no number of samples shows a rate of 0".to_string(),
+    };
+    format!(
+        "the {} upper bound {} is above the allowed {}; {needed}",
+        percent_label(CONFIDENCE),
+        percent(upper),
+        percent(max)
     )
 }
 

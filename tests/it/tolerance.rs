@@ -16,7 +16,7 @@ use cycloid::progress::Silent;
 /// (YAML lines under `tolerances:`, indented by two).
 fn with_tolerances(lines: &str) -> PaperSpec {
     PaperSpec::new().with(&format!(
-        "tolerances:\n  scene: rated\n  max_failure_rate: 0.01\n{lines}"
+        "tolerances:\n  scene: rated\n  max_failure_rate: 0.5\n{lines}"
     ))
 }
 
@@ -801,4 +801,50 @@ fn sensitivities_are_not_for_a_shard() {
         r.stderr
     );
     assert!(!dir.join("s0").exists());
+}
+
+/// A failure rate the samples cannot show within its limit is no pass (issue 26): 200 samples
+/// without a failure against an allowed 0.27 % leave a 95 % Clopper–Pearson upper bound of
+/// 1 − 0.025^(1/200) = 1.83 %, above the limit: exit 1, NOT SHOWN, with the samples that would
+/// show it, ⌈ln 0.025 / ln(1 − 0.0027)⌉ = 1365 (1364.4 before rounding up); `check
+/// --tolerance` fails its line too. At 1365 samples without a failure it passes.
+#[test]
+fn a_rate_the_samples_cannot_show_is_no_pass() {
+    let dir = Scratch::new("tolerance-shown");
+    let here = dir.join("");
+    small_study(&dir, 200);
+    dir.write(
+        "t.yaml",
+        dir.read("t.yaml")
+            .replace("max_failure_rate: 0.5", "max_failure_rate: 0.0027"),
+    );
+    let r = cycloid(here.as_path(), &["tolerance", "t.yaml"]);
+    assert_eq!(r.code(), 1, "{r:?}");
+    assert!(
+        r.stdout.contains(
+            "0 of 200 = 0 % [0 %, 1.828 %] (95 % Clopper–Pearson), allowed 0.2700 %: NOT SHOWN: \
+             the 95 % upper bound 1.828 % is above the allowed 0.2700 %; 1365 samples with no \
+             failure would show it (more with failures)"
+        ),
+        "{}",
+        r.stdout
+    );
+    let r = cycloid(here.as_path(), &["check", "t.yaml", "--tolerance"]);
+    assert_eq!(r.code(), 1, "{r:?}");
+    assert!(
+        r.stdout.contains("not shown within the limit"),
+        "{}",
+        r.stdout
+    );
+    assert_eq!(summary::samples_to_show(0.0027), Some(1365));
+    assert!(
+        clopper_pearson(0, 1365, 0.05).1 <= 0.0027 && clopper_pearson(0, 1364, 0.05).1 > 0.0027
+    );
+    dir.write(
+        "u.yaml",
+        dir.read("t.yaml").replace("samples: 200", "samples: 1365"),
+    );
+    let r = cycloid(here.as_path(), &["tolerance", "u.yaml"]);
+    assert_eq!(r.code(), 0, "{r:?}");
+    assert!(r.stdout.contains("0 of 1365 = 0 %"), "{}", r.stdout);
 }

@@ -215,6 +215,7 @@ pub fn failure_rate_check(spec: &Spec, progress: &dyn Progress) -> Result<Check>
             confidence: summary::CONFIDENCE,
             interval: s.interval,
             measured: spec.measured.is_some(),
+            max_failure_rate: s.max_failure_rate,
         },
     })
 }

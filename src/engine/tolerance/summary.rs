@@ -64,10 +64,45 @@ impl Summary {
         l.failures as f64 / self.samples as f64
     }
 
-    /// The failure rate is within `max_failure_rate`.
+    /// The samples show the failure rate within `max_failure_rate`: the upper end of its
+    /// `CONFIDENCE` interval is within it. A rate within the limit whose interval reaches
+    /// beyond it is not a pass (`not_shown`): the samples cannot tell it from a rate above.
     pub fn passed(&self) -> bool {
-        self.rate() <= self.max_failure_rate
+        self.interval.1 <= self.max_failure_rate
     }
+
+    /// The rate is within `max_failure_rate` but the samples are too few to show it: with no
+    /// failure, `samples_to_show` would (more with failures).
+    pub fn not_shown(&self) -> bool {
+        !self.passed() && self.rate() <= self.max_failure_rate
+    }
+
+    /// The fewest samples whose interval, with no failure, lies within `max_failure_rate`:
+    /// 1 − (α/2)^(1/n) ≤ max, n = ⌈ln(α/2)/ln(1 − max)⌉ checked against the interval itself;
+    /// `None` when no count can (a max of 0).
+    pub fn samples_to_show(&self) -> Option<u64> {
+        samples_to_show(self.max_failure_rate)
+    }
+}
+
+/// `Summary::samples_to_show` of a limit `max` on the failure rate.
+pub fn samples_to_show(max: f64) -> Option<u64> {
+    if max <= 0.0 {
+        return None;
+    }
+    let alpha = 1.0 - CONFIDENCE;
+    if max >= 1.0 {
+        return Some(1);
+    }
+    let mut n = ((alpha / 2.0).ln() / (1.0 - max).ln()).ceil().max(1.0) as u64;
+    // The closed form's round-off either way: the interval decides.
+    while n > 1 && clopper_pearson(0, n - 1, alpha).1 <= max {
+        n -= 1;
+    }
+    while clopper_pearson(0, n, alpha).1 > max {
+        n += 1;
+    }
+    Some(n)
 }
 
 /// The summary of `records`, which hold every sample of the study in sample order.

@@ -230,6 +230,9 @@ pub fn render(
     let banner: Markup = if s.passed() {
         html! { p.banner.pass { "PASSED: failure rate " (percent(s.rate())) " within the allowed "
         (percent(s.max_failure_rate)) } }
+    } else if s.not_shown() {
+        html! { p.banner.fail { "NOT SHOWN: failure rate " (percent(s.rate())) ", but "
+        (crate::report::tolerance::not_shown_reason(s.interval.1, s.max_failure_rate)) } }
     } else {
         html! { p.banner.fail { "FAILED: failure rate " (percent(s.rate())) " above the allowed "
         (percent(s.max_failure_rate)) } }

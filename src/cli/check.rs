@@ -39,20 +39,48 @@ impl CheckArgs<'_> {
 /// `cycloid check`; a run that stops on an error still writes it as a JUnit error case.
 pub(super) fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<Outcome> {
     distinct_outputs(&inputs_of(args.spec, None), &args.paths())?;
-    let result = checked(args, out);
-    if let (Err(e), Some(path)) = (&result, args.junit) {
-        if !matches!(e.kind, ErrorKind::Usage | ErrorKind::OutputClosed) {
-            // CI shows the error as a test case too; the error itself still goes to stderr.
-            let doc = report::junit::error_document(args.spec, &e.to_string());
-            let _ = write_file(path, &doc);
-        }
+    let mut guarded = false;
+    let result = checked(args, out, &mut guarded);
+    let (Err(e), Some(path)) = (result.as_ref(), args.junit) else {
+        return result;
+    };
+    if matches!(e.kind, ErrorKind::Usage | ErrorKind::OutputClosed) {
+        return result;
     }
-    result
+    // CI shows the error as a test case too; the error itself still goes to stderr. A spec
+    // that did not load names files nobody knows (its goldens, its measured points): then the
+    // case replaces only a JUnit report of ours or nothing.
+    if guarded || ours_or_absent(path) {
+        let doc = report::junit::error_document(args.spec, &e.to_string());
+        let _ = write_file(path, &doc);
+        return result;
+    }
+    let mut e = result.unwrap_err();
+    e.message += &format!(
+        "\n(--junit {path}: not written: the spec did not load, so the files it names are \
+         unknown, and {path} is not a JUnit report of cycloid)"
+    );
+    Err(e)
 }
 
-fn checked(args: &CheckArgs, out: &mut dyn Write) -> Result<Outcome> {
+/// Whether `path` holds nothing yet, or a JUnit report `cycloid` wrote (its first bytes).
+fn ours_or_absent(path: &str) -> bool {
+    use std::io::Read;
+    let Ok(mut file) = std::fs::File::open(path) else {
+        return !std::path::Path::new(path).exists();
+    };
+    let mut head = [0u8; 160];
+    let n = file.read(&mut head).unwrap_or(0);
+    let head = String::from_utf8_lossy(&head[..n]);
+    head.starts_with("<?xml") && head.contains("<testsuites name=\"cycloid\"")
+}
+
+/// `check` itself; `guarded` is set once every file the spec names is known and no output
+/// replaces one of them.
+fn checked(args: &CheckArgs, out: &mut dyn Write, guarded: &mut bool) -> Result<Outcome> {
     let spec = spec::load(args.spec)?;
     distinct_outputs(&inputs_with_measured(args.spec, &spec), &args.paths())?;
+    *guarded = true;
     let writes = Writes {
         json: args.json.is_some(),
         report: args.report.is_some(),

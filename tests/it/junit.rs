@@ -130,6 +130,55 @@ fn an_invalid_spec_is_one_error_case() {
     assert!(doc.errors[0].contains("face_widht_mm"), "{}", doc.errors[0]);
 }
 
+/// A spec that does not load names files nobody knows yet (its goldens, its measured
+/// points): its JUnit error case then replaces only a JUnit report of cycloid or nothing. A
+/// points file given as `--junit` (issue 26: `check BROKEN.yaml --junit disc.csv` overwrote
+/// it) is left byte for byte, the error says why; a report of an earlier run is replaced; a
+/// spec that loads has its outputs checked against every file it names first, as before.
+#[test]
+fn a_spec_that_does_not_load_overwrites_no_input_with_its_junit_case() {
+    let dir = scratch("unloaded");
+    let spec = dir.join("bad.yaml");
+    let text = std::fs::read_to_string("specs/reducer.yaml")
+        .unwrap()
+        .replace("face_width_mm", "face_widht_mm")
+        + "measured_profile: {file: disc.csv, format: csv, harmonics: 0, fit: [shift_mm]}\n";
+    std::fs::write(&spec, text).unwrap();
+    let points = dir.join("disc.csv");
+    std::fs::write(&points, "x_mm,y_mm\n1,2\n").unwrap();
+    let args = [
+        "check",
+        spec.to_str().unwrap(),
+        "--junit",
+        points.to_str().unwrap(),
+    ];
+    let r = common::cycloid_here(&args);
+    assert_eq!(r.code(), 2, "{r:?}");
+    assert_eq!(
+        std::fs::read_to_string(&points).unwrap(),
+        "x_mm,y_mm\n1,2\n"
+    );
+    assert!(
+        r.stderr
+            .contains("disc.csv: not written: the spec did not load"),
+        "{}",
+        r.stderr
+    );
+    // An earlier report is replaced by the error case.
+    let report = dir.join("r.xml");
+    std::fs::write(
+        &report,
+        cycloid::report::junit::error_document("old.yaml", "old"),
+    )
+    .unwrap();
+    assert_eq!(check(spec.to_str().unwrap(), &report), 2);
+    let doc = std::fs::read_to_string(&report).unwrap();
+    assert!(
+        doc.contains("face_widht_mm") && !doc.contains("old.yaml"),
+        "{doc}"
+    );
+}
+
 #[test]
 fn text_is_escaped() {
     let e = cycloid::report::junit::escape("a<b & \"c\" 'd' > \u{1}");

@@ -16,6 +16,13 @@ pub(super) fn run(
     out: &mut dyn Write,
 ) -> Result<Outcome> {
     check_tolerance(tolerance_um)?;
+    if csv.is_none() && dxf.is_none() {
+        return Err(Error::new(
+            ErrorKind::Usage,
+            "profile writes the profile to --csv PATH, --dxf PATH or both; give at least one \
+             (nothing was written)",
+        ));
+    }
     distinct_outputs(&inputs_of(path, None), &[("--csv", csv), ("--dxf", dxf)])?;
     let spec = spec::load(path)?;
     let tol = units::mm_from_um(tolerance_um);

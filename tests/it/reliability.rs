@@ -157,6 +157,22 @@ fn profile_refuses_an_output_that_is_an_input_or_another_output() {
     refused_all(&dir, &["profile", "s.yaml"], &cases);
 }
 
+/// `profile` asked to write nothing exited 0 having written nothing (issue 27): a usage error
+/// now, exit 2, saying which options write.
+#[test]
+fn profile_asked_to_write_nothing_is_a_usage_error() {
+    let dir = Scratch::new("rel-profile-nothing");
+    dir.write("s.yaml", paper_with_steps(36));
+    let run = cycloid(&dir.path, &["profile", "s.yaml"]);
+    assert_eq!(run.code(), 2, "{run:?}");
+    assert_eq!(
+        run.stderr,
+        "usage error: profile writes the profile to --csv PATH, --dxf PATH or both; give at \
+         least one (nothing was written)\n"
+    );
+    assert!(run.stdout.is_empty(), "{}", run.stdout);
+}
+
 /// Each (options, message) case of `command` is refused.
 fn refused_all(dir: &Scratch, command: &[&str], cases: &[(&[&str], &str)]) {
     for (args, message) in cases {

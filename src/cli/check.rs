@@ -121,7 +121,7 @@ fn review_options(args: &CheckArgs) -> Result<Option<ReviewOptions>> {
         ));
     }
     let steps = args.report_map_steps;
-    if args.report.is_some() && (steps == 1 || steps > MAX_MAP_STEPS) {
+    if args.report.is_some() && steps != 0 && !commands::map_steps_allowed(steps) {
         return bad(format!(
             "--report-map-steps must be 0 (no map) or 2 to {MAX_MAP_STEPS}, got {steps}"
         ));

@@ -25,7 +25,7 @@ pub(super) fn run(args: &OptimiseArgs, out: &mut dyn Write) -> Result<Outcome> {
     let spec = spec::load(path)?;
     let outputs = [("--write", args.write), ("--map", args.map)];
     distinct_outputs(&inputs_of(path, Some(&spec)), &outputs)?;
-    if args.map.is_some() && !(2..=MAX_MAP_STEPS).contains(&args.map_steps) {
+    if args.map.is_some() && !commands::map_steps_allowed(args.map_steps) {
         return Err(Error::new(
             ErrorKind::InvalidValue,
             format!(

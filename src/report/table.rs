@@ -214,9 +214,12 @@ pub fn evidence(e: &Evidence) -> String {
             crate::numeric::percent_label(*confidence),
             number(interval.0),
             number(interval.1),
-            match (*failures as f64 / *samples as f64 <= *max_failure_rate)
-                && interval.1 > *max_failure_rate
-            {
+            match crate::engine::tolerance::summary::not_shown(
+                *failures,
+                *samples,
+                interval.1,
+                *max_failure_rate,
+            ) {
                 true => format!(
                     "; not shown within the limit: {}",
                     super::tolerance::not_shown_reason(interval.1, *max_failure_rate)

@@ -6,9 +6,6 @@ use crate::progress::{Phase, Progress};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 
-/// Work below this many units is not worth a bar (it ends before the first redraw).
-pub const WORTH_SHOWING: u64 = 20_000;
-
 /// A progress bar of `total` units described by `what`.
 pub struct Bar {
     bar: ProgressBar,

@@ -22,6 +22,11 @@ use crate::spec::Spec;
 /// Largest grid of an objective map, per variable (101² = 10 201 evaluations per study).
 pub const MAX_MAP_STEPS: usize = 101;
 
+/// An objective map of `steps` grid points per variable can be drawn: 2 to `MAX_MAP_STEPS`.
+pub fn map_steps_allowed(steps: usize) -> bool {
+    (2..=MAX_MAP_STEPS).contains(&steps)
+}
+
 /// Progress phases of crank angles below this many are not worth showing (a scene that ends
 /// before a display's first redraw).
 const SCENES_WORTH_SHOWING: u64 = 200_000;
@@ -201,7 +206,7 @@ fn review_options(r: &ReviewOptions) -> Result<()> {
     if let Some(c) = r.crank_rad.filter(|c| !c.is_finite()) {
         return bad(format!("the review's crank angle must be finite, got {c}"));
     }
-    if r.map_steps == 1 || r.map_steps > MAX_MAP_STEPS {
+    if r.map_steps != 0 && !map_steps_allowed(r.map_steps) {
         return bad(format!(
             "the review's map steps must be 0 (no map) or 2 to {MAX_MAP_STEPS}, got {}",
             r.map_steps

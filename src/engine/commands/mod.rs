@@ -13,8 +13,8 @@ mod tolerance;
 pub use accuracy::accuracy;
 pub use bless::bless;
 pub use check::{
-    check, map, scenes, studies, AsBuilt, CheckOptions, CheckRun, Review, ReviewOptions,
-    MAX_MAP_STEPS,
+    check, map, map_steps_allowed, scenes, studies, AsBuilt, CheckOptions, CheckRun, Review,
+    ReviewOptions, MAX_MAP_STEPS,
 };
 pub use fit::fit;
 pub use optimise::{optimise, OptimiseRun};

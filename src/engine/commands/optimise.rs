@@ -1,6 +1,6 @@
 //! `optimise`: the spec's optimisation studies, and the first one's objective map.
 
-use super::check::{map, studies};
+use super::check::{map, map_steps_allowed, studies, MAX_MAP_STEPS};
 use crate::engine::optimise::{problem::Evaluation, StudyResult};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::Study;
@@ -40,6 +40,12 @@ pub fn optimise<'a>(
     progress: &dyn Progress,
 ) -> Result<OptimiseRun<'a>> {
     let chosen = chosen(spec, only)?;
+    if let Some(steps) = map_steps.filter(|&s| !map_steps_allowed(s)) {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!("an objective map has 2 to {MAX_MAP_STEPS} steps per variable, got {steps}"),
+        ));
+    }
     let results = studies(spec, chosen.clone(), progress);
     let map = match (map_steps, results.first()) {
         (Some(steps), Some(r)) => Some(map(

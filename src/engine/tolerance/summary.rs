@@ -74,7 +74,12 @@ impl Summary {
     /// The rate is within `max_failure_rate` but the samples are too few to show it: with no
     /// failure, `samples_to_show` would (more with failures).
     pub fn not_shown(&self) -> bool {
-        !self.passed() && self.rate() <= self.max_failure_rate
+        not_shown(
+            self.failures,
+            self.samples,
+            self.interval.1,
+            self.max_failure_rate,
+        )
     }
 
     /// The fewest samples whose interval, with no failure, lies within `max_failure_rate`:
@@ -83,6 +88,12 @@ impl Summary {
     pub fn samples_to_show(&self) -> Option<u64> {
         samples_to_show(self.max_failure_rate)
     }
+}
+
+/// `Summary::not_shown` of `failures` in `samples` whose interval reaches up to `upper`,
+/// against `max`: the rate is within it, the interval is not.
+pub fn not_shown(failures: u64, samples: u64, upper: f64, max: f64) -> bool {
+    upper > max && failures as f64 / samples as f64 <= max
 }
 
 /// `Summary::samples_to_show` of a limit `max` on the failure rate.

@@ -206,22 +206,68 @@ fn code_of(text: &str) -> String {
         Some(i) => &text[..i],
         None => text,
     };
+    let chars: Vec<char> = text.chars().collect();
+    let ident = |i: usize| i < chars.len() && (chars[i].is_alphanumeric() || chars[i] == '_');
     let mut code = String::new();
-    for line in text.lines() {
-        let line = line.find("//").map_or(line, |i| &line[..i]);
-        let mut in_string = false;
-        let mut prev = ' ';
-        for c in line.chars() {
-            if c == '"' && prev != '\\' {
-                in_string = !in_string;
-            } else if !in_string {
-                code.push(c);
+    let mut i = 0;
+    while i < chars.len() {
+        let (c, next) = (chars[i], chars.get(i + 1).copied());
+        i = match c {
+            '/' if next == Some('/') => (i..chars.len())
+                .find(|&j| chars[j] == '\n')
+                .unwrap_or(chars.len()),
+            '"' => string_end(&chars, i + 1, 0),
+            'r' if !(i > 0 && ident(i - 1)) && matches!(next, Some('"' | '#')) => {
+                let hashes = chars[i + 1..].iter().take_while(|&&h| h == '#').count();
+                match chars.get(i + 1 + hashes) {
+                    Some('"') => string_end(&chars, i + 2 + hashes, hashes),
+                    _ => {
+                        code.push(c);
+                        i + 1
+                    }
+                }
             }
-            prev = c;
-        }
-        code.push('\n');
+            // A char literal ('"', '\''), not a lifetime ('a).
+            '\'' if next == Some('\\') => (i + 2..chars.len())
+                .find(|&j| chars[j] == '\'')
+                .map_or(chars.len(), |j| j + 1),
+            '\'' if chars.get(i + 2) == Some(&'\'') => i + 3,
+            _ => {
+                code.push(c);
+                i + 1
+            }
+        };
     }
     code
+}
+
+/// Where a string whose text starts at `from` ends (after its closing quote and `hashes` #s of
+/// a raw string); escapes count only in ordinary strings.
+fn string_end(chars: &[char], from: usize, hashes: usize) -> usize {
+    let mut j = from;
+    while j < chars.len() {
+        if chars[j] == '\\' && hashes == 0 && !raw_before(chars, from) {
+            j += 2;
+            continue;
+        }
+        if chars[j] == '"'
+            && chars[j + 1..]
+                .iter()
+                .take(hashes)
+                .filter(|&&h| h == '#')
+                .count()
+                == hashes
+        {
+            return j + 1 + hashes;
+        }
+        j += 1;
+    }
+    chars.len()
+}
+
+/// Whether the string starting at `from` is raw (`r"…"`).
+fn raw_before(chars: &[char], from: usize) -> bool {
+    from >= 2 && chars[from - 2] == 'r'
 }
 
 /// Every path a piece of code names from `starts` (`crate`, `super`, `self`, or a child module
@@ -434,9 +480,10 @@ fn files_inside_a_folder_import_one_way() {
 }
 
 /// The circle check can fail: two files of one folder that import each other (through a use
-/// group and a `super::` path in code), and a file and a sub-folder that do, are found; a
-/// one-way import (`a → c`, `x → y`), `mod.rs` re-exports, paths in comments and strings, and a
-/// test module's imports are not.
+/// group and a `super::` path in code), and a file and a sub-folder that do, are found, also
+/// where the import follows a string holding `//` or a char literal `'"'` on its line; a
+/// one-way import (`a → c`, `x → y`), `mod.rs` re-exports, paths in comments and strings (raw
+/// ones too), and a test module's imports are not.
 #[test]
 fn a_circle_inside_a_folder_is_found() {
     let dir = std::env::temp_dir().join(format!("cycloid-circles-{}", std::process::id()));
@@ -451,10 +498,14 @@ fn a_circle_inside_a_folder_is_found() {
             "engine/a.rs",
             "use crate::engine::{b::{self, Thing}, c};\npub fn run() { c::go(); }\n",
         ),
-        ("engine/b.rs", "pub fn f() { super::a::run() }\n"),
+        // The import after a string holding `//`, and after a char literal '"', still counts.
+        (
+            "engine/b.rs",
+            "pub fn f() { let _ = \"x//y\"; super::a::run() }\n",
+        ),
         (
             "engine/c.rs",
-            "use super::d::e;\npub struct T;\n#[cfg(test)]\nmod tests { use crate::engine::b; }\n",
+            "fn q() -> char { '\"' } use super::d::e;\npub struct T;\n#[cfg(test)]\nmod tests { use crate::engine::b; }\n",
         ),
         ("engine/d/mod.rs", "pub mod e;\n"),
         ("engine/d/e.rs", "use crate::engine::c::T;\n"),
@@ -465,7 +516,8 @@ fn a_circle_inside_a_folder_is_found() {
         ),
         (
             "model/y.rs",
-            "pub struct Y; fn s() -> &'static str { \"crate::model::x\" }\n",
+            "pub struct Y; fn s() -> &'static str { \"crate::model::x\" }\n\
+             const R: &str = r#\"a \" crate::model::x\"#;\n",
         ),
     ];
     for (name, text) in files {

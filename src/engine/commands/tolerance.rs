@@ -195,13 +195,12 @@ pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
 /// run on the disc as built, but a study draws every part, the disc too, from the drawing (as
 /// `cycloid tolerance` does), and its line says so.
 pub fn failure_rate_check(spec: &Spec, progress: &dyn Progress) -> Result<Check> {
-    let study = ToleranceStudy::new(spec, None).map_err(|e| spec.locate(e))?;
-    let records = samples_of(&study, (0, 1), "tolerance study", progress)?;
-    let s = summary::summarise(&study, &records);
+    let run = tolerance(spec, None, false, progress)?;
+    let s = &run.summary;
     Ok(Check {
         id: format!(
             "{}/tolerance_failure_rate",
-            spec.scenes[study.tolerances.scene].name
+            spec.scenes[run.study.tolerances.scene].name
         ),
         kind: CheckKind::Limit,
         value: s.rate(),

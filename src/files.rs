@@ -231,35 +231,34 @@ impl Drop for Batch {
 }
 
 /// A path as the file system resolves it, for telling whether two paths, which need not exist
-/// yet, name the same file: absolute, `.` and `..` resolved, and the symbolic links of its
-/// longest existing ancestor followed.
+/// yet, name the same file: absolute, and walked component by component as the kernel walks
+/// it: each existing prefix has its symbolic links followed before the next component, so a
+/// `..` after a link leaves the link's target (`link/../s.yaml` is the `s.yaml` beside the
+/// target, not beside the link). Past the first missing component nothing can be a link, and
+/// `.` and `..` are resolved by name.
 pub fn identity(path: &Path) -> PathBuf {
     use std::path::Component;
     let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
-    let mut lexical = PathBuf::new();
+    let mut resolved = PathBuf::new();
+    let mut exists = true;
     for c in absolute.components() {
         match c {
             Component::CurDir => {}
             Component::ParentDir => {
-                lexical.pop();
+                resolved.pop();
             }
-            other => lexical.push(other.as_os_str()),
+            other => {
+                resolved.push(other.as_os_str());
+                if exists {
+                    match fs::canonicalize(&resolved) {
+                        Ok(real) => resolved = real,
+                        Err(_) => exists = false,
+                    }
+                }
+            }
         }
     }
-    let mut tail = Vec::new();
-    let mut head = lexical.as_path();
-    loop {
-        if let Ok(real) = fs::canonicalize(head) {
-            return tail.iter().rev().fold(real, |p, name| p.join(name));
-        }
-        match (head.parent(), head.file_name()) {
-            (Some(parent), Some(name)) => {
-                tail.push(name.to_os_string());
-                head = parent;
-            }
-            _ => return lexical,
-        }
-    }
+    resolved
 }
 
 #[cfg(test)]
@@ -391,6 +390,28 @@ mod tests {
         assert_ne!(
             identity(&dir.join("s.yaml")),
             identity(&dir.join("a/s.yaml"))
+        );
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// A `..` after a symbolic link leaves the link's target, as the kernel resolves it: the
+    /// output `link/../s.yaml` with `link` → `sub/deep` is `sub/s.yaml`, the spec there.
+    #[cfg(unix)]
+    #[test]
+    fn a_parent_after_a_link_leaves_the_links_target() {
+        let dir = scratch("link-parent");
+        fs::create_dir_all(dir.join("sub/deep")).unwrap();
+        fs::write(dir.join("sub/s.yaml"), "x").unwrap();
+        std::os::unix::fs::symlink(dir.join("sub/deep"), dir.join("link")).unwrap();
+        let through_link = dir.join("link/../s.yaml");
+        // What the file system opens through that spelling: the spec in `sub`.
+        assert_eq!(fs::read_to_string(&through_link).unwrap(), "x");
+        assert_eq!(identity(&through_link), identity(&dir.join("sub/s.yaml")));
+        assert_ne!(identity(&through_link), identity(&dir.join("s.yaml")));
+        // A new file below a link, and `..` past the first missing component.
+        assert_eq!(
+            identity(&dir.join("link/new/../n.json")),
+            identity(&dir.join("sub/deep/n.json"))
         );
         let _ = fs::remove_dir_all(&dir);
     }

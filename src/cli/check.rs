@@ -1,7 +1,7 @@
 //! `cycloid check`: run the library's `check`, print the checks table and the headline
 //! results, and write the JSON, JUnit and design review asked for.
 
-use super::output::{distinct_outputs, inputs_of, inputs_with_measured, print, print_keeping};
+use super::output::{distinct_outputs, inputs_of, print, print_keeping};
 use super::output::{review_line, write_file};
 use super::Outcome;
 use crate::engine::commands::{self, CheckOptions, CheckRun, ReviewOptions, MAX_MAP_STEPS};
@@ -79,7 +79,7 @@ fn ours_or_absent(path: &str) -> bool {
 /// replaces one of them.
 fn checked(args: &CheckArgs, out: &mut dyn Write, guarded: &mut bool) -> Result<Outcome> {
     let spec = spec::load(args.spec)?;
-    distinct_outputs(&inputs_with_measured(args.spec, &spec), &args.paths())?;
+    distinct_outputs(&inputs_of(args.spec, Some(&spec)), &args.paths())?;
     *guarded = true;
     let writes = Writes {
         json: args.json.is_some(),

@@ -1,6 +1,6 @@
 //! `cycloid fit`: identify the measured disc, print it, and write what was asked.
 
-use super::output::{distinct_outputs, inputs_with_measured, print, write_file};
+use super::output::{distinct_outputs, inputs_of, print, write_file, write_spec};
 use super::Outcome;
 use crate::engine::{as_built, commands};
 use crate::error::Result;
@@ -15,7 +15,7 @@ pub(super) fn run(
 ) -> Result<Outcome> {
     let spec = spec::load(path)?;
     let outputs = [("--write", write), ("--form-csv", form_csv)];
-    distinct_outputs(&inputs_with_measured(path, &spec), &outputs)?;
+    distinct_outputs(&inputs_of(path, Some(&spec)), &outputs)?;
     let id = commands::fit(&spec)?;
     print(out, &report::fit::render(&spec, &id))?;
     if let Some(p) = form_csv {
@@ -30,7 +30,7 @@ pub(super) fn run(
         } else {
             spec::edit::with_deviations(&text, path, &deviations, p)?
         };
-        write_file(p, &text)?;
+        write_spec(path, p, &text)?;
         let what = if deviations.form.is_empty() {
             "the identified modification"
         } else {

@@ -1,7 +1,7 @@
 //! `cycloid optimise`: run the spec's studies, print each, and write the optimum's spec and
 //! the objective map asked for.
 
-use super::output::{distinct_outputs, inputs_of, print, write_file};
+use super::output::{distinct_outputs, inputs_of, print, write_file, write_spec};
 use super::Outcome;
 use crate::engine::commands::{self, MAX_MAP_STEPS};
 use crate::engine::optimise::StudyResult;
@@ -98,7 +98,7 @@ fn write_optimum(
         &name,
         &header,
     )?;
-    write_file(out_path, &text)?;
+    write_spec(path, out_path, &text)?;
     Ok(format!(
         "wrote {out_path} (`{name}`) with the optimum of `{}`\n",
         r.name

@@ -47,26 +47,28 @@ pub(super) fn distinct_outputs(
     Ok(())
 }
 
-/// The files a spec's run reads or owns, which no output may replace: the spec, and each
-/// golden file with its metadata.
+/// Every file a spec's run reads or owns, which no output may replace: the spec, each golden
+/// file with its metadata, and the measured points. Before the spec loads (`spec` None) only
+/// the spec's own path is known.
 pub(super) fn inputs_of(spec_path: &str, spec: Option<&spec::Spec>) -> Vec<(String, PathBuf)> {
     let mut inputs = vec![("the spec".to_string(), PathBuf::from(spec_path))];
-    for g in spec.map_or(&[][..], |s| &s.golden) {
+    let Some(spec) = spec else { return inputs };
+    for g in &spec.golden {
         inputs.push((format!("the golden file of {}", g.key), g.path.clone()));
         for meta in golden::meta_paths(&g.path) {
             inputs.push((format!("the metadata of {}", g.key), meta));
         }
     }
-    inputs
-}
-
-/// `inputs_of`, with the spec's measured points when it has them.
-pub(super) fn inputs_with_measured(spec_path: &str, spec: &spec::Spec) -> Vec<(String, PathBuf)> {
-    let mut inputs = inputs_of(spec_path, Some(spec));
     if let Some(m) = &spec.measured {
         inputs.push(("the measured points".to_string(), PathBuf::from(&m.path)));
     }
     inputs
+}
+
+/// Write a spec that `edit` made from the one at `from` to `path`, its relative paths (goldens,
+/// measured points, `golden_root`) rewritten so that it checks from where it is written.
+pub(super) fn write_spec(from: &str, path: &str, text: &str) -> Result<()> {
+    write_file(path, &spec::relocate::relocate(text, from, path)?)
 }
 
 /// Print text for a person, its control characters escaped (names come from the spec).

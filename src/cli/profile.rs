@@ -23,8 +23,11 @@ pub(super) fn run(
              (nothing was written)",
         ));
     }
-    distinct_outputs(&inputs_of(path, None), &[("--csv", csv), ("--dxf", dxf)])?;
     let spec = spec::load(path)?;
+    distinct_outputs(
+        &inputs_of(path, Some(&spec)),
+        &[("--csv", csv), ("--dxf", dxf)],
+    )?;
     let tol = units::mm_from_um(tolerance_um);
     let points = commands::profile(&spec, tol)?;
     if let Some(p) = csv {

@@ -2,7 +2,7 @@
 //! and `cycloid tolerance merge`.
 
 use super::args::{ToleranceArgs, ToleranceCommand};
-use super::output::{distinct_outputs, inputs_of, print, review_line, write_file};
+use super::output::{distinct_outputs, inputs_of, print, review_line, write_file, write_spec};
 use super::shard::{invalid, parse_shard, slurm_shard};
 use super::Outcome;
 use crate::engine::commands;
@@ -197,6 +197,11 @@ fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result
         })
         .collect::<Result<Vec<_>>>()?;
     let merged = commands::merge_shards(&files)?;
+    // The shards name their spec and, through it, its goldens and measured points: none of
+    // them may be replaced either.
+    let mut inputs = inputs;
+    inputs.extend(inputs_of(&merged.spec.path, Some(&merged.spec)));
+    distinct_outputs(&inputs, &outputs.paths())?;
     let study = merged.study()?;
     let summary = crate::engine::tolerance::summary::summarise(&study, &merged.records);
     finish(Whole(&study, &merged.records, &summary, None), outputs, out)
@@ -220,7 +225,8 @@ fn write_sample(
     let spec = study.spec;
     let deviations = study.deviations(&study.draw(k));
     let text = spec::edit::with_deviations(&spec.source, &spec.path, &deviations, path)?;
-    write_file(path, &(report::tolerance::sample_header(study, k) + &text))?;
+    let text = report::tolerance::sample_header(study, k) + &text;
+    write_spec(&spec.path, path, &text)?;
     print(
         out,
         &format!("wrote {path}: sample {k}'s deviations as reducer.deviations; replay it with `cycloid check {path}`\n"),

@@ -600,6 +600,12 @@ fn check_writable(spec: &Spec) -> Result<()> {
         files::identity(Path::new(&spec.path)),
         "the spec".to_string(),
     )];
+    if let Some(m) = &spec.measured {
+        claimed.push((
+            files::identity(Path::new(&m.path)),
+            "the measured points".into(),
+        ));
+    }
     for g in &spec.golden {
         let id = files::identity(&g.path);
         if !roots.iter().any(|r| id.starts_with(r)) {

@@ -11,6 +11,7 @@ pub mod locate;
 pub(crate) mod measured;
 pub(crate) mod paths;
 pub(crate) mod raw;
+pub mod relocate;
 #[doc(hidden)]
 pub mod rules;
 pub(crate) mod scenes;

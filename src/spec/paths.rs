@@ -2,7 +2,9 @@
 //! file's directory.
 
 /// Resolve a path the spec names against the spec file's directory, dropping `.` and `dir/..`
-/// pairs so messages show `golden/x.csv` rather than `specs/../golden/x.csv`.
+/// pairs so messages show `golden/x.csv` rather than `specs/../golden/x.csv`. A `dir` that is a
+/// symbolic link keeps its `..`: the kernel leaves the link's target there, not the link's
+/// directory (`link/../x.csv` is the `x.csv` beside the target).
 pub fn resolve(spec_path: &str, file: &str) -> std::path::PathBuf {
     use std::path::{Component, Path, PathBuf};
     let base = Path::new(spec_path).parent().unwrap_or(Path::new(""));
@@ -12,7 +14,8 @@ pub fn resolve(spec_path: &str, file: &str) -> std::path::PathBuf {
             Component::CurDir => {}
             Component::ParentDir => {
                 let last = out.components().next_back();
-                if matches!(last, Some(Component::Normal(_))) {
+                let link = std::fs::symlink_metadata(&out).is_ok_and(|m| m.is_symlink());
+                if matches!(last, Some(Component::Normal(_))) && !link {
                     out.pop();
                 } else {
                     out.push("..");

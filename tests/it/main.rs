@@ -22,6 +22,7 @@ mod deviations;
 mod discs;
 mod equilibrium;
 mod export;
+mod fault_injection;
 mod first_order_sweep;
 mod flanks;
 mod fuzz_corpus;

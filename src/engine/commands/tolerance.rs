@@ -122,6 +122,8 @@ pub struct Merged {
     limits: usize,
     count: u64,
     first: String,
+    /// (shard index, the file it was read from).
+    files: Vec<(u64, String)>,
 }
 
 impl Merged {
@@ -156,8 +158,9 @@ impl Merged {
                 return Err(Error::new(
                     ErrorKind::InvalidValue,
                     format!(
-                        "shard {} of {} holds sample {} with `{}` = {value} marked {}, which its \
-                         limit {limit} does not give: the shard was altered",
+                        "{}: shard {} of {} holds sample {} with `{}` = {value} marked {}, which \
+                         its limit {limit} does not give: the shard was altered",
+                        self.file_of((cell / l) as u64 % self.count),
                         (cell / l) as u64 % self.count,
                         self.count,
                         cell / l,
@@ -168,6 +171,14 @@ impl Merged {
             }
         }
         Ok(())
+    }
+
+    /// The file shard `index` was read from.
+    fn file_of(&self, index: u64) -> &str {
+        self.files
+            .iter()
+            .find(|(i, _)| *i == index)
+            .map_or("?", |(_, name)| name.as_str())
     }
 }
 
@@ -187,6 +198,11 @@ pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
         limits: h.limits as usize,
         count: h.count,
         first: names[0].clone(),
+        files: shards
+            .iter()
+            .map(|s| s.header.index)
+            .zip(names.iter().cloned())
+            .collect(),
     })
 }
 

@@ -85,20 +85,32 @@ pub fn locate_offset(text: &str, key_path: &str) -> Option<usize> {
 fn find_key(text: &str, from: usize, key: &str) -> Option<usize> {
     let mut start = from;
     while let Some(rel) = text[start..].find(key) {
-        let at = start + rel;
+        let (at, end) = quoted_key(text, start + rel, key.len());
         let before_ok = text[..at]
             .chars()
             .next_back()
             .is_none_or(|c| !(c.is_alphanumeric() || c == '_'));
-        let after = text[at + key.len()..].trim_start_matches(' ');
+        let after = text[end..].trim_start_matches(' ');
         let line_start = text[..at].rfind('\n').map_or(0, |n| n + 1);
         let in_comment = text[line_start..at].contains('#');
         if before_ok && after.starts_with(':') && !in_comment {
             return Some(at);
         }
-        start = at + key.len();
+        start = start + rel + key.len();
     }
     None
+}
+
+/// The span of a key found at `at` (`len` bytes), with the quotes around it when it is
+/// written quoted (`"teeth": 9`, `'teeth': 9`): YAML reads those as the same key.
+fn quoted_key(text: &str, at: usize, len: usize) -> (usize, usize) {
+    let end = at + len;
+    for q in ['"', '\''] {
+        if text[..at].ends_with(q) && text[end..].starts_with(q) {
+            return (at - 1, end + 1);
+        }
+    }
+    (at, end)
 }
 
 /// Item `index` of the sequence that is the value of the key (or item) at `from`.

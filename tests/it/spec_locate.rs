@@ -139,3 +139,48 @@ fn parse_places_value_errors_at_their_key() {
     let loc = err.location.unwrap();
     assert_eq!((loc.line, loc.column), (25, 43));
 }
+
+/// A quoted key is the same key to YAML (`"teeth": 8` is `teeth: 8`): its error is located at
+/// it, not at the start of the file, and a spec written back with it (`--write-sample`) finds
+/// it. Column 3 is the opening quote, where the key starts.
+#[test]
+fn quoted_keys_are_located_and_written_back() {
+    use crate::common::{cycloid, Scratch, PAPER};
+    let dir = Scratch::new("quoted-keys");
+    let quoted = PAPER
+        .replacen("  teeth: 9 ", "  \"teeth\": 8 ", 1)
+        .replacen("  rollers: 10 ", "  'rollers': 10 ", 1);
+    dir.write("q.yaml", &quoted);
+    let line = quoted
+        .lines()
+        .position(|l| l.contains("'rollers'"))
+        .unwrap()
+        + 1;
+    let run = cycloid(&dir.path, &["check", "q.yaml"]);
+    assert_eq!(run.code(), 2, "{run:?}");
+    assert!(
+        run.stderr.starts_with(&format!(
+            "q.yaml:{line}:3: impossible design: reducer.rollers"
+        )),
+        "{}",
+        run.stderr
+    );
+    let sample = PAPER.replacen("  teeth: 9 ", "  \"teeth\": 9 ", 1)
+        + "tolerances:\n  scene: rated\n  roller_radial_mm: 0.003\n  samples: 8\n  \
+           max_failure_rate: 0.5\n";
+    dir.write("s.yaml", &sample);
+    let run = cycloid(
+        &dir.path,
+        &["tolerance", "s.yaml", "--write-sample", "1", "w.yaml"],
+    );
+    assert_eq!(run.code(), 0, "{run:?}");
+    assert!(
+        dir.read("w.yaml").contains("  deviations:\n"),
+        "{}",
+        dir.read("w.yaml")
+    );
+    assert!(matches!(
+        cycloid(&dir.path, &["check", "w.yaml"]).code(),
+        0 | 1
+    ));
+}

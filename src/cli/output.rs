@@ -36,7 +36,8 @@ pub(super) fn distinct_outputs(
             ids.push(ids[0].join("index.html"));
         }
         for id in ids {
-            if let Some((what, _)) = claimed.iter().find(|(_, c)| *c == id) {
+            let clash = |c: &PathBuf| *c == id || (flag == "--report" && in_review(&id, c));
+            if let Some((what, _)) = claimed.iter().find(|(_, c)| clash(c)) {
                 return Err(usage(format!(
                     "{flag} {path} would overwrite {what}; give another path"
                 )));
@@ -45,6 +46,15 @@ pub(super) fn distinct_outputs(
         }
     }
     Ok(())
+}
+
+/// Whether `file` is one a review written to `dir` may replace: its pages and plots are
+/// `.html` and `.svg` files directly in it.
+fn in_review(dir: &Path, file: &Path) -> bool {
+    file.parent() == Some(dir)
+        && file
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg") || e.eq_ignore_ascii_case("html"))
 }
 
 /// Every file a spec's run reads or owns, which no output may replace: the spec, each golden

@@ -576,6 +576,19 @@ pub struct Blessed {
     pub unit: &'static str,
     pub rows: usize,
     pub change: BlessChange,
+    pub written: Written,
+}
+
+/// What `bless` wrote of one golden.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Written {
+    /// The curve and its metadata: new, or moved beyond its tolerance.
+    Curve,
+    /// Only the metadata: the curve stayed within its tolerance, a field of its metadata (the
+    /// spec's hash, path or the tolerance) was stale.
+    Metadata,
+    /// Nothing: the curve stayed within its tolerance and its metadata is current.
+    Nothing,
 }
 
 /// Where `bless` may write: the spec's directory tree and the `golden_root` it declares.
@@ -690,12 +703,15 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
             },
         };
         let previous = previous_meta(g);
-        // An unchanged curve keeps the date it was blessed on.
-        let unchanged = matches!(&change, BlessChange::Compared(c) if c.largest.deviation == 0.0);
-        let date = match meta_field(&previous, "date") {
-            Some(old) if unchanged => old,
-            _ => date.clone(),
+        // A curve within its tolerance of the one there is kept as it was, with its date,
+        // version and review; only a stale field of its metadata (the spec's hash, path,
+        // tolerance) is brought up to date.
+        let kept = matches!(&change, BlessChange::Compared(c) if c.passed);
+        let old = |field: &str, now: &str| match meta_field(&previous, field) {
+            Some(old) if kept => old,
+            _ => now.to_string(),
         };
+        let date = old("date", &date);
         let reviewed = match (&change, meta_field(&previous, "reviewed")) {
             (BlessChange::Compared(c), Some(old)) if c.passed => old,
             (_, Some(old)) if !old.starts_with("NOT REVIEWED") => format!(
@@ -705,7 +721,8 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
             _ => NOT_REVIEWED.to_string(),
         };
         let meta = Meta {
-            spec: spec.path.clone(),
+            // The path it was blessed by, as given then: how a later run names it is no change.
+            spec: old("spec", &spec.path),
             spec_name: spec.name.clone(),
             spec_sha256: sha256_hex(&spec.source),
             scene: g.scene.clone(),
@@ -721,7 +738,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
                 abs: g.tolerance.abs,
                 rel: g.tolerance.rel,
             },
-            tool_version: env!("CARGO_PKG_VERSION").to_string(),
+            tool_version: old("tool_version", env!("CARGO_PKG_VERSION")),
             date,
             reviewed,
         };
@@ -730,10 +747,23 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
         }
         let meta_text =
             serde_yaml::to_string(&meta).map_err(|e| Error::computation(e.to_string()))?;
-        batch.add(&g.path, csv.as_bytes())?;
-        batch.add(&meta_path(&g.path), meta_text.as_bytes())?;
+        let meta_now = meta_path(&g.path);
+        let legacy = previous.as_ref().is_some_and(|(old, _)| *old != meta_now);
+        let meta_same =
+            !legacy && std::fs::read_to_string(&meta_now).is_ok_and(|old| old == meta_text);
+        let written = match (kept, meta_same) {
+            (true, true) => Written::Nothing,
+            (true, false) => Written::Metadata,
+            (false, _) => Written::Curve,
+        };
+        if written == Written::Curve {
+            batch.add(&g.path, csv.as_bytes())?;
+        }
+        if written != Written::Nothing {
+            batch.add(&meta_now, meta_text.as_bytes())?;
+        }
         // A review under the legacy name moves to the current one.
-        if let Some((old, _)) = previous.filter(|(old, _)| *old != meta_path(&g.path)) {
+        if let Some((old, _)) = previous.filter(|(old, _)| *old != meta_now) {
             batch.remove(&old);
         }
         out.push(Blessed {
@@ -741,6 +771,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
             unit,
             rows: deg.len(),
             change,
+            written,
         });
     }
     batch.commit()?;

@@ -440,3 +440,79 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
         );
     }
 }
+
+/// Every file under `dir`: path → (bytes, modification time).
+fn snapshot(dir: &Path) -> Vec<(std::path::PathBuf, Vec<u8>, std::time::SystemTime)> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            out.extend(snapshot(&path));
+        } else {
+            let modified = std::fs::metadata(&path).unwrap().modified().unwrap();
+            out.push((path.clone(), std::fs::read(&path).unwrap(), modified));
+        }
+    }
+    out.sort();
+    out
+}
+
+/// `bless` on an unchanged engine writes nothing: the shipped goldens (of every shipped spec
+/// that has some) stay byte for byte, not even renamed in place (their modification times
+/// stay), and it says so. Their metadata is current (the spec hashes match the specs), so not
+/// even a metadata file is due. A curve moved beyond its tolerance is written, with a new date.
+#[test]
+fn bless_on_an_unchanged_engine_writes_nothing() {
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = scratch("twice");
+    for sub in ["specs", "golden"] {
+        let status = std::process::Command::new("cp")
+            .args(["-r", &here.join(sub).display().to_string()])
+            .arg(dir.join(sub))
+            .status()
+            .unwrap();
+        assert!(status.success());
+    }
+    let before = snapshot(&dir.join("golden"));
+    let mut blessed = 0;
+    for spec in [
+        "paper.yaml",
+        "reducer-two-discs.yaml",
+        "paper-negative-start.yaml",
+    ] {
+        // Named as a user at the repository's root names it, or not: no change either way.
+        let path = dir.join("specs").join(spec);
+        let run = crate::common::cycloid(&dir.path, &["bless", &path.display().to_string()]);
+        assert_eq!(run.code(), 0, "{run:?}");
+        assert!(
+            run.stdout
+                .contains("no change beyond their tolerances: nothing written"),
+            "{spec}: {}",
+            run.stdout
+        );
+        blessed += 1;
+    }
+    assert_eq!(blessed, 3);
+    assert!(
+        snapshot(&dir.join("golden")) == before,
+        "bless changed a golden"
+    );
+    // The same spec at twice the torque: its TE moves far beyond 0.01 arcsec.
+    let spec = dir.join("specs/paper.yaml");
+    let text = std::fs::read_to_string(&spec).unwrap();
+    let rated = "    output_torque_nm: 10.0\n";
+    assert_eq!(text.matches(rated).count(), 1, "{text}");
+    std::fs::write(&spec, text.replace(rated, "    output_torque_nm: 20.0\n")).unwrap();
+    let later = cycloid_with(
+        &dir.path,
+        &["bless", &spec.display().to_string()],
+        &[("SOURCE_DATE_EPOCH", "31536000")],
+    );
+    assert_eq!(later.code(), 0, "{later:?}");
+    let meta = std::fs::read_to_string(dir.join("golden/paper/te_arcsec.csv.meta.yaml")).unwrap();
+    assert!(meta.contains("date: 1971-01-01"), "{meta}");
+    // The clearance curve does not depend on the torque: kept as it was.
+    let meta =
+        std::fs::read_to_string(dir.join("golden/paper/clearance_mm.csv.meta.yaml")).unwrap();
+    assert!(!meta.contains("date: 1971-01-01"), "{meta}");
+}

@@ -73,8 +73,13 @@ pub fn number(x: f64) -> String {
 /// The decimals `number` prints `x` with (four significant digits), or `None` where it
 /// prints an exponent (|x| outside [1e-3, 1e6)).
 fn decimals(x: f64) -> Option<usize> {
-    let decimal = (1e-3..1e6).contains(&x.abs());
-    decimal.then(|| (3 - x.abs().log10().floor() as i32).clamp(0, 6) as usize)
+    // The magnitude after rounding to four significant digits: 9.99996 prints as 10.00 (four
+    // digits), not 10.000, and 999999.7 as 1.000e6.
+    let a = x.abs();
+    let unit = 10f64.powi(a.log10().floor() as i32 - 3);
+    let rounded = (a / unit).round() * unit;
+    let decimal = (1e-3..1e6).contains(&rounded);
+    decimal.then(|| (3 - (rounded.log10() + 1e-12).floor() as i32).clamp(0, 6) as usize)
 }
 
 /// The change from `from` to `to`, signed, to the decimals the larger of the two is printed
@@ -104,9 +109,35 @@ pub fn signed(x: f64, decimals: usize) -> Option<String> {
 pub fn input(x: f64) -> String {
     let plain = format!("{x}");
     if plain.len() <= 12 {
-        plain
+        return plain;
+    }
+    // A long value (360/5.5 = 65.454545…): ten significant digits, trailing zeros dropped,
+    // plain where that reads (65.45454545), an exponent beyond (1.234567891e-9).
+    let exponent = x.abs().log10().floor();
+    if (-3.0..9.0).contains(&exponent) {
+        let digits = (9 - exponent as i32).max(0) as usize;
+        let s = format!("{x:.digits$}");
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            &s
+        };
+        s.to_string()
     } else {
-        format!("{x:e}")
+        let s = format!("{x:.9e}");
+        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+        format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
+    }
+}
+
+/// A tooth phase in [0, 1) to three decimals: a phase that rounds to 1.000 is the next tooth's
+/// root, 0.000 (the phase wraps).
+pub fn phase(p: f64) -> String {
+    let s = format!("{:.3}", p.rem_euclid(1.0));
+    if s == "1.000" {
+        "0.000".to_string()
+    } else {
+        s
     }
 }
 
@@ -133,6 +164,43 @@ mod tests {
         assert_eq!(change(12.5, 12.5), "0");
         assert_eq!(change(2e-5, 3e-5), "+1.000e-5");
         assert_eq!(change(2e6, 2e6), "0");
+    }
+
+    /// Four significant digits after rounding: a value that rounds up into the next decade
+    /// prints as that decade does (10.00, not 10.000: "golden 10.00, now 10.000" read as two
+    /// precisions of one number).
+    #[test]
+    fn numbers_round_into_the_next_decade_with_its_digits() {
+        assert_eq!(number(9.99996), "10.00");
+        assert_eq!(number(10.0), "10.00");
+        assert_eq!(number(9.9994), "9.999");
+        assert_eq!(number(0.99996), "1.000");
+        assert_eq!(number(999.96), "1000");
+        assert_eq!(number(999_999.7), "1.000e6");
+        assert_eq!(number(0.0009999), "9.999e-4");
+        assert_eq!(number(0.00099996), number(0.001));
+    }
+
+    /// A phase wraps: 0.9996 is the next root, not "1.000".
+    #[test]
+    fn phases_wrap_at_one() {
+        assert_eq!(phase(0.9996), "0.000");
+        assert_eq!(phase(0.9994), "0.999");
+        assert_eq!(phase(1.25), "0.250");
+        assert_eq!(phase(-0.25), "0.750");
+        assert_eq!(phase(0.5), "0.500");
+    }
+
+    /// Inputs are shown as written when short, else to ten significant digits: 360°/5.5 is
+    /// 65.45454545, not 6.545454545454545e1.
+    #[test]
+    fn long_inputs_are_cut_to_ten_significant_digits() {
+        assert_eq!(input(0.015), "0.015");
+        assert_eq!(input(1e300), "1e300");
+        assert_eq!(input(360.0 / 5.5), "65.45454545");
+        assert_eq!(input(-1.0 / 3.0), "-0.3333333333");
+        assert_eq!(input(1.0 / 3.0 * 1e-9), "3.333333333e-10");
+        assert_eq!(input(123456789.123456), "123456789.1");
     }
 
     /// Extremes and entries are found where they are, and empty input has defined answers.

@@ -472,10 +472,10 @@ pub const MIN_CLEARANCE: Quantity = Quantity {
         r.clearance.as_ref().map(|c| Extreme {
             value: c.min.gap_mm,
             at: format!(
-                "roller {} at crank {:.2}°, tooth phase {:.3} (0 root, 0.5 tip)",
+                "roller {} at crank {:.2}°, tooth phase {} (0 root, 0.5 tip)",
                 c.min.roller,
                 units::deg(c.min.crank_rad),
-                c.min.tooth_phase
+                crate::numeric::phase(c.min.tooth_phase)
             ),
         })
     }),

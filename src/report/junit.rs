@@ -49,21 +49,24 @@ pub fn message(c: &Check) -> String {
                 format!("{} outside", with_unit(beyond, c.unit))
             };
             format!(
-                "value {}, limit {op} {}: {verdict}; {}",
-                with_unit(c.value, c.unit),
+                "value {} {}, limit {op} {}: {verdict}; {}",
+                super::table::value(c),
+                c.unit,
                 with_unit(c.limit, c.unit),
                 super::table::evidence(&c.at)
             )
         }
         CheckKind::Golden => format!(
-            "deviation {} {} tolerance band {} ({:.3}× the band); {}",
+            "deviation {} {} tolerance band {}{}; {}",
             with_unit(c.value, c.unit),
             if c.passed { "within" } else { "outside" },
             with_unit(c.limit, c.unit),
+            // The band's multiple, to four significant digits ("2.5e-7× the band", not
+            // "0.000×"); none for a zero band.
             if c.limit > 0.0 {
-                c.value / c.limit
+                format!(" ({}× the band)", crate::numeric::number(c.value / c.limit))
             } else {
-                f64::INFINITY
+                String::new()
             },
             super::table::evidence(&c.at)
         ),

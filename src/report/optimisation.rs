@@ -138,6 +138,31 @@ pub fn outcome(r: &StudyResult) -> String {
     )
 }
 
+/// A note per variable whose optimum sits on a bound of its range (within 1e-6 of the range:
+/// the local runs' step tolerance): the best point inside the box may not be the optimum the
+/// design has, which may lie beyond the bound.
+fn on_bounds(study: &Study, r: &StudyResult) -> String {
+    let mut out = String::new();
+    for v in &study.variables {
+        let x = v.kind.get(&r.optimum.modification);
+        let near = 1e-6 * (v.upper - v.lower).abs();
+        let side = if (x - v.lower).abs() <= near {
+            "lower"
+        } else if (v.upper - x).abs() <= near {
+            "upper"
+        } else {
+            continue;
+        };
+        out += &format!(
+            "  note: the optimum sits on the {side} bound of {} ({}): the best point may lie \
+             beyond it; widen the range to see\n",
+            v.kind.key(),
+            crate::numeric::input(v.kind.to_spec_unit(x))
+        );
+    }
+    out
+}
+
 /// The verification grid's size: "41 × 41".
 fn grid(v: &Verification, dims: usize) -> String {
     vec![v.steps.to_string(); dims.max(1)].join(" × ")
@@ -147,7 +172,16 @@ fn grid(v: &Verification, dims: usize) -> String {
 pub fn verification_text(study: &Study, r: &StudyResult) -> Option<String> {
     let v = r.verification.as_ref()?;
     let grid = grid(v, study.variables.len());
+    // A difference at the objective's round-off (1e-9 of it, the local runs' stop tolerance)
+    // is a tie, not a grid point beating the search.
+    let round_off = |d: f64| d <= 1e-9 * r.optimum.objective.abs();
     let searched = match v.beat_search_by() {
+        Some(d) if round_off(d) => format!(
+            "a grid point tied with the search (by {}, round-off), {} refinement{} from there; ",
+            number(d),
+            v.refinements.len(),
+            if v.refinements.len() == 1 { "" } else { "s" }
+        ),
         Some(d) => format!(
             "a grid point beat the search by {}, {} refinement{} from there; ",
             number(d),
@@ -165,6 +199,12 @@ pub fn verification_text(study: &Study, r: &StudyResult) -> Option<String> {
             "verification: {searched}the optimum is infeasible, {} of the {} points of the \
              {grid} grid are feasible",
             v.feasible, v.points
+        ),
+        (Some(b), Some(0.0)) => format!(
+            "verification: {searched}no point of the {grid} grid is better than the optimum: the \
+             best of its {} feasible points equals it, {}",
+            v.feasible,
+            number(b.objective)
         ),
         (Some(b), Some(margin)) if margin >= 0.0 => format!(
             "verification: {searched}no point of the {grid} grid is better than the optimum: the \
@@ -195,13 +235,13 @@ fn eq8_note(label: &str, e: &Evaluation, study: &Study) -> Option<String> {
             format!(
             "  note: the {label} satisfies the paper's Eq. 8 (ΔRrp − ΔRp = {:.4} mm ≥ {lo} mm) but \
              violates the whole-mesh clearance: {:.1} µm < {:.1} µm at roller {}, crank {:.2}°, \
-             tooth phase {:.3} (0 root, 0.5 tip){}\n",
+             tooth phase {} (0 root, 0.5 tip){}\n",
             tip,
             min.gap_mm * 1000.0,
             dt * 1000.0,
             min.roller,
             min.crank_rad.to_degrees(),
-            min.tooth_phase,
+            crate::numeric::phase(min.tooth_phase),
             if min.gap_mm < 0.0 { " — interference" } else { "" }
         )
         },
@@ -227,13 +267,15 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
     for (label, e) in r.references.iter().map(|(l, e)| (l.as_str(), e)) {
         if e.objective.is_finite() && r.optimum.objective.is_finite() {
             let diff = r.optimum.objective - e.objective;
-            out += &format!(
-                "  optimum vs {label}: {} ({})\n",
-                number(diff),
-                if diff <= 0.0 { "no worse" } else { "WORSE" }
-            );
+            let verdict = match diff {
+                d if d < 0.0 => "better",
+                0.0 => "equal",
+                _ => "WORSE",
+            };
+            out += &format!("  optimum vs {label}: {} ({verdict})\n", number(diff));
         }
     }
+    out += &on_bounds(study, r);
     out += "  constraints at the optimum:\n";
     for m in &r.optimum.margins {
         out += &format!(

@@ -56,6 +56,21 @@ pub const PASS_STYLE: &str = "\x1b[32m";
 pub const PLAIN_STYLE: &str = "\x1b[0m";
 pub const STYLES: [&str; 3] = [FAIL_STYLE, PASS_STYLE, PLAIN_STYLE];
 
+/// A check's value as a person reads it: a value that passes only by the comparison's
+/// round-off tolerance (−8.2e-14 mm against ≥ 0 mm) reads as the limit, said so, not as a
+/// negative clearance marked "pass". The JSON keeps the value as computed.
+pub fn value(c: &Check) -> String {
+    let wrong_side = match c.bound {
+        Bound::Max => c.value > c.limit,
+        Bound::Min => c.value < c.limit,
+    };
+    if c.passed && wrong_side {
+        format!("{} (to round-off)", number(c.limit))
+    } else {
+        number(c.value)
+    }
+}
+
 /// The table, one check a row, worst failures first; `color` adds ANSI colour to the verdicts.
 pub fn render_styled(checks: &[Check], color: bool) -> String {
     if checks.is_empty() {
@@ -73,7 +88,7 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
             };
             [
                 c.id.clone(),
-                with_unit(number(c.value), c.unit),
+                with_unit(value(c), c.unit),
                 with_unit(format!("{op} {}", number(c.limit)), c.unit),
                 if c.passed { "pass" } else { "FAIL" }.to_string(),
                 evidence(&c.at),

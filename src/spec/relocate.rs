@@ -37,10 +37,13 @@ pub fn relocate(text: &str, from: &str, to: &str) -> Result<String> {
     // From the last key to the first, so the offsets of the ones still to do stay valid.
     let mut edits: Vec<(usize, String)> = Vec::new();
     for (key, target) in &named {
-        if target.is_absolute() {
+        let offset = locate_offset(&out, key).ok_or_else(|| unwritable(key, to))?;
+        // Absolute as written: it reaches its file from anywhere. (The resolved `target` is
+        // absolute too when the spec's own path is.)
+        let written = &out[scalar_span(&out, offset)];
+        if Path::new(written.trim_matches(['"', '\''])).is_absolute() {
             continue;
         }
-        let offset = locate_offset(&out, key).ok_or_else(|| unwritable(key, to))?;
         let target = if target.as_os_str().is_empty() {
             Path::new(".")
         } else {
@@ -128,6 +131,12 @@ fn yaml_scalar(s: &str) -> String {
 /// Replace the scalar after `key:` at `offset` (plain, or in single or double quotes) with
 /// `value`.
 fn replace_scalar(text: &mut String, offset: usize, value: &str) {
+    let span = scalar_span(text, offset);
+    text.replace_range(span, value);
+}
+
+/// The byte range of the scalar after `key:` at `offset`, quotes included.
+fn scalar_span(text: &str, offset: usize) -> std::ops::Range<usize> {
     let colon = offset + text[offset..].find(':').unwrap_or(0) + 1;
     let rest = &text[colon..];
     let start = rest.len() - rest.trim_start_matches(' ').len();
@@ -140,7 +149,7 @@ fn replace_scalar(text: &mut String, offset: usize, value: &str) {
             .unwrap_or_else(|| body.find(" #").unwrap_or(body.len())),
     };
     let len = body[..len].trim_end_matches(' ').len();
-    text.replace_range(colon + start..colon + start + len, value);
+    colon + start..colon + start + len
 }
 
 /// The byte offset of the quote that closes a scalar opened by `q` at the start of `body`.

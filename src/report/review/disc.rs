@@ -228,10 +228,11 @@ pub fn close_up(disc: &Disc) -> (String, String) {
         (f.scale_bar(f.x(window / 2.0), h - 22.0, bar, &format!("{:.0} µm", units::um(bar))))
     };
     let caption = format!(
-        "Roller {} (grey) against the disc flank (blue) at tooth phase {:.3} (0 root, 0.5 tip), \
+        "Roller {} (grey) against the disc flank (blue) at tooth phase {} (0 root, 0.5 tip), \
          unloaded ideal pose, true scale. The smallest gap over the whole mesh is in the checks \
          table and the clearance plot.",
-        c.roller, c.tooth_phase
+        c.roller,
+        crate::numeric::phase(c.tooth_phase)
     );
     (document(w, h, body), caption)
 }

@@ -39,6 +39,7 @@ mod progress;
 mod readme;
 mod reliability;
 mod report;
+mod slurm_cluster;
 mod snapshots;
 mod spec_locate;
 mod specs_exit_codes;

@@ -8,6 +8,11 @@ use crate::common;
 const EXPECTED: &[(&str, i32, &str)] = &[
     ("reducer.yaml", 0, "paper optimum, clearance only"),
     (
+        "reducer-tolerance.yaml",
+        0,
+        "paper optimum, clearance only, with its drawing's tolerances (check alone ignores them)",
+    ),
+    (
         "reducer-loaded.yaml",
         0,
         "paper optimum under 10 N·m, every effect, accuracy ladder for the design review",

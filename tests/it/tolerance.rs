@@ -848,3 +848,36 @@ fn a_rate_the_samples_cannot_show_is_no_pass() {
     assert_eq!(r.code(), 0, "{r:?}");
     assert!(r.stdout.contains("0 of 1365 = 0 %"), "{}", r.stdout);
 }
+
+/// The shipped study (`specs/reducer-tolerance.yaml`, issue 26) shows its verdict: its 2000
+/// samples are more than the ⌈ln 0.025 / ln(1 − 0.0027)⌉ = 1365 that can show a rate within
+/// 0.27 %, so with no failure the 95 % upper bound is 1 − 0.025^(1/2000) = 0.1843 % (closed form
+/// of Clopper–Pearson at k = 0, to 1e-12 as above), under the allowed 0.27 %: `tolerance`
+/// passes, and `check --tolerance` joins that pass to the checks. That no sample fails is the
+/// spec's design: the linear stack-up of its bands is σ ≈ 1.4 µm (the shift's σ = 2/3 µm passes
+/// whole, ∂clearance/∂ΔRp = −1; `--sensitivity` gives 1.413 µm), and the nominal 34.30 µm is
+/// 19.3 µm, some 14σ, above the 15 µm limit.
+#[test]
+fn the_shipped_tolerance_spec_shows_its_verdict() {
+    let dir = Scratch::new("tolerance-shipped");
+    let json = dir.join("t.json");
+    let r = common::cycloid_here(&[
+        "tolerance",
+        "specs/reducer-tolerance.yaml",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code(), 0, "{r:?}");
+    let doc: serde_json::Value = serde_json::from_str(&dir.read("t.json")).unwrap();
+    assert_eq!(doc["samples"], 2000);
+    assert_eq!(doc["failures"], 0);
+    assert_eq!(doc["max_failure_rate"], 0.0027);
+    let upper = doc["failure_rate_ci95"][1].as_f64().unwrap();
+    assert!(
+        (upper - (1.0 - 0.025f64.powf(1.0 / 2000.0))).abs() < 1e-12,
+        "{upper}"
+    );
+    assert!(upper < 0.0027 && doc["passed"] == true, "{doc}");
+    let r = common::cycloid_here(&["check", "specs/reducer-tolerance.yaml", "--tolerance"]);
+    assert_eq!(r.code(), 0, "{r:?}");
+}

@@ -1,0 +1,277 @@
+//! The cluster run for real (issue 26): `examples/slurm/tolerance.sbatch` submits the shipped
+//! tolerance study as a job array of 4 shards and its merge to a Slurm cluster — the one-node
+//! cluster `tools/slurm-one-node.sh` sets up on this machine — and the merged study must be the
+//! unsharded `cycloid tolerance` run byte for byte: the JSON, the per-sample CSV, the review page
+//! and the report the merge job printed.
+//!
+//! Skipped, with the reason printed, only where the set-up script says the cluster cannot be
+//! set up here (exit 77: Slurm is missing and apt-get is unavailable or we are not root).
+
+use std::io::Write;
+use std::path::Path;
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+use crate::common::{cycloid, Scratch};
+
+/// The set-up script's exit code for "no cluster can be set up here".
+const UNAVAILABLE: i32 = 77;
+
+/// The shipped spec the README submits (2000 samples: ~1 s of one core for the whole study).
+const SPEC: &str = "reducer-tolerance.yaml";
+
+const SHARDS: usize = 4;
+
+/// How long the jobs may take once submitted. The study computes in about a second; the rest
+/// is Slurm's scheduling (a pass every few seconds, the merge waiting for the array). Generous,
+/// so that a loaded machine does not fail it, and bounded, so that a stuck job cannot hang CI.
+const JOBS_TIMEOUT: Duration = Duration::from_secs(300);
+
+/// Job states after which a job changes no more (`scontrol show job`'s JobState).
+const FINAL_STATES: &[&str] = &[
+    "COMPLETED",
+    "FAILED",
+    "CANCELLED",
+    "TIMEOUT",
+    "NODE_FAIL",
+    "OUT_OF_MEMORY",
+    "BOOT_FAIL",
+    "DEADLINE",
+    "PREEMPTED",
+];
+
+fn repo(path: &str) -> String {
+    format!("{}/{path}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Run a program to its end; its output, or a panic naming it when it cannot be started.
+fn run(program: &str, args: &[&str], dir: &Path) -> Output {
+    Command::new(program)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap_or_else(|e| panic!("{program} {args:?} did not start: {e}"))
+}
+
+/// `None` when the one-node cluster is up (set up now or before), the reason when it cannot be
+/// set up here; a panic with the script's output on any other failure.
+fn cluster() -> Option<String> {
+    let out = run("bash", &[&repo("tools/slurm-one-node.sh")], Path::new("/"));
+    match out.status.code() {
+        Some(0) => None,
+        Some(UNAVAILABLE) => Some(text(&out.stdout).trim().to_string()),
+        code => panic!(
+            "tools/slurm-one-node.sh exited {code:?}:\n{}{}",
+            text(&out.stdout),
+            text(&out.stderr)
+        ),
+    }
+}
+
+/// The array's and the merge's job ids from the script's last line,
+/// "submitted array job A (N tasks) and merge job M".
+fn job_ids(stdout: &str) -> (String, String) {
+    let line = stdout.lines().last().unwrap_or_default();
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let id = |i: usize| {
+        words
+            .get(i)
+            .filter(|w| w.bytes().all(|b| b.is_ascii_digit()))
+            .map(|w| w.to_string())
+            .unwrap_or_else(|| panic!("no job ids in the script's output: {stdout:?}"))
+    };
+    assert!(
+        line.starts_with("submitted array job") && line.contains("and merge job"),
+        "{stdout:?}"
+    );
+    (id(3), id(words.len() - 1))
+}
+
+/// `scontrol show job ID`: one record per job (per task of an array).
+fn show_job(id: &str) -> String {
+    let out = run("scontrol", &["show", "job", id], Path::new("/"));
+    text(&out.stdout) + &text(&out.stderr)
+}
+
+/// Every `KEY=value` of a `scontrol show job` output, in order (one per job of an array).
+fn fields<'a>(record: &'a str, key: &str) -> Vec<&'a str> {
+    let prefix = format!("{key}=");
+    record
+        .split_whitespace()
+        .filter_map(|w| w.strip_prefix(prefix.as_str()))
+        .collect()
+}
+
+/// What the jobs left, for a failure message: their records and their logs.
+fn evidence(dir: &Path, array: &str, merge: &str) -> String {
+    let mut s = format!(
+        "scontrol show job {array}:\n{}\nscontrol show job {merge}:\n{}\n",
+        show_job(array),
+        show_job(merge)
+    );
+    let mut logs: Vec<_> = std::fs::read_dir(dir.join("logs"))
+        .map(|d| d.map(|e| e.unwrap().path()).collect())
+        .unwrap_or_default();
+    logs.sort();
+    for log in logs {
+        let body = std::fs::read(&log).unwrap_or_default();
+        s += &format!("--- {}:\n{}\n", log.display(), text(&body));
+    }
+    s
+}
+
+/// Waits until the merge job is in a final state (or can never run); its record.
+fn wait_for_merge(dir: &Path, array: &str, merge: &str) -> String {
+    let start = Instant::now();
+    loop {
+        let record = show_job(merge);
+        let state = fields(&record, "JobState").first().map(|s| s.to_string());
+        if state.as_deref().is_some_and(|s| FINAL_STATES.contains(&s)) {
+            return record;
+        }
+        // A failed task leaves the merge pending for ever (afterok can no longer be met).
+        let never = fields(&record, "Reason").contains(&"DependencyNeverSatisfied");
+        if never || start.elapsed() > JOBS_TIMEOUT {
+            let _ = run("scancel", &[array, merge], Path::new("/"));
+            panic!(
+                "the merge job {merge} {} (state {state:?}); jobs cancelled.\n{}",
+                if never {
+                    "can never run: a task of the array failed".to_string()
+                } else {
+                    format!("did not finish within {JOBS_TIMEOUT:?}")
+                },
+                evidence(dir, array, merge)
+            );
+        }
+        std::thread::sleep(Duration::from_millis(500));
+    }
+}
+
+/// The first line where two texts differ (the files are too long to print whole).
+fn first_difference(a: &[u8], b: &[u8]) -> String {
+    let (a, b) = (text(a), text(b));
+    let (la, lb): (Vec<&str>, Vec<&str>) = (a.lines().collect(), b.lines().collect());
+    match (0..la.len().max(lb.len())).find(|&i| la.get(i) != lb.get(i)) {
+        Some(i) => format!(
+            "line {}: merged {:?}, unsharded {:?}",
+            i + 1,
+            la.get(i),
+            lb.get(i)
+        ),
+        None => format!("same lines, {} against {} bytes", a.len(), b.len()),
+    }
+}
+
+fn same_file(cluster: &Path, whole: &Path, name: &str) {
+    let read = |dir: &Path| {
+        std::fs::read(dir.join(name))
+            .unwrap_or_else(|e| panic!("{}: {e}", dir.join(name).display()))
+    };
+    let (merged, unsharded) = (read(cluster), read(whole));
+    assert!(
+        merged == unsharded,
+        "{name}: the merged study differs from the unsharded run at {}",
+        first_difference(&merged, &unsharded)
+    );
+}
+
+/// The shipped study as 4 Slurm array tasks and a dependent merge job equals the unsharded run,
+/// byte for byte: the JSON (it holds no time or host: the spec's name and path, the settings,
+/// the statistics and the worst samples), the CSV of every sample, the review page and its
+/// histogram (the page's date pinned by SOURCE_DATE_EPOCH, exported to the jobs), and the
+/// report the merge printed to its log. Both run the same spec path from their own directory.
+#[test]
+fn the_sbatch_study_on_a_one_node_cluster_equals_the_unsharded_run() {
+    if let Some(reason) = cluster() {
+        // Not through the test harness's capture: the reason must show in a passing run.
+        let _ = writeln!(std::io::stderr(), "slurm_cluster: skipped: {reason}");
+        return;
+    }
+    let dir = Scratch::new("slurm");
+    let spec = std::fs::read(repo(&format!("specs/{SPEC}"))).unwrap();
+    let (on_cluster, whole) = (dir.join("cluster"), dir.join("whole"));
+    for d in [&on_cluster, &whole] {
+        std::fs::create_dir_all(d).unwrap();
+        std::fs::write(d.join(SPEC), &spec).unwrap();
+    }
+    let submit = Command::new("bash")
+        .args([
+            &repo("examples/slurm/tolerance.sbatch"),
+            SPEC,
+            &SHARDS.to_string(),
+        ])
+        .current_dir(&on_cluster)
+        .env("CYCLOID", env!("CARGO_BIN_EXE_cycloid"))
+        .env("SOURCE_DATE_EPOCH", "0")
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let stdout = text(&submit.stdout);
+    assert!(submit.status.success(), "{stdout}{}", text(&submit.stderr));
+    let (array, merge) = job_ids(&stdout);
+
+    // The unsharded run, while the cluster computes (common::cycloid pins SOURCE_DATE_EPOCH=0).
+    let unsharded = cycloid(
+        &whole,
+        &[
+            "tolerance",
+            SPEC,
+            "--json",
+            "tolerance.json",
+            "--samples-csv",
+            "samples.csv",
+            "--report",
+            "tolerance-review",
+        ],
+    );
+    assert_eq!(unsharded.code(), 0, "{unsharded:?}");
+
+    let record = wait_for_merge(&on_cluster, &array, &merge);
+    let why = || evidence(&on_cluster, &array, &merge);
+    assert_eq!(fields(&record, "JobState"), ["COMPLETED"], "{}", why());
+    assert_eq!(fields(&record, "ExitCode"), ["0:0"], "{}", why());
+    // The array ran as SHARDS tasks, each to success, each writing its shard.
+    let tasks = show_job(&array);
+    assert_eq!(
+        fields(&tasks, "JobState"),
+        ["COMPLETED"; SHARDS],
+        "{}",
+        why()
+    );
+    for i in 0..SHARDS {
+        assert!(
+            on_cluster.join(format!("shards/shard-{i}.bin")).is_file(),
+            "{}",
+            why()
+        );
+    }
+
+    let listing = |d: &Path| {
+        let mut names: Vec<String> = std::fs::read_dir(d.join("tolerance-review"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    };
+    assert_eq!(listing(&on_cluster), listing(&whole), "the review's files");
+    for name in [
+        "tolerance.json",
+        "samples.csv",
+        "tolerance-review/index.html",
+        "tolerance-review/tolerance-min_clearance_mm.svg",
+    ] {
+        same_file(&on_cluster, &whole, name);
+    }
+    let log = std::fs::read_to_string(on_cluster.join(format!("logs/tolerance-merge-{merge}.out")))
+        .unwrap();
+    assert_eq!(
+        log,
+        unsharded.stdout + &unsharded.stderr,
+        "the merge job's log"
+    );
+}

@@ -929,7 +929,7 @@ fn json_is_not_written_for_an_invalid_spec() {
 
 /// The plan: what each scene computes and why, what it skips, which limits apply. A scene
 /// asking for `bearing` pulls in what bearing needs, and `min_clearance_mm` applies only to the
-/// scene that computes clearance.
+/// scene that computes clearance, over the whole period of the gaps (one mesh period, 36°).
 #[test]
 fn explain_prints_the_plan() {
     let spec = paper_with(&[(
@@ -945,6 +945,7 @@ fn explain_prints_the_plan() {
         "spec `paper-table-1`: 2 scene(s)
 
 scene `rated`: output torque 10 N·m, 360 crank angles from 0.0000° in steps of 0.1000°, exact geometry
+  note    min clearance over the whole period of the gaps (36.00° of crank), whatever crank angles the scene samples
   compute clearance       asked for by the scene
   skip    backlash (part of clearance; no limit, golden or output file reads it)
   skip    roller_contact, output_pins, bearing (not asked for)

@@ -14,6 +14,8 @@ use crate::equilibrium::solve::{Settings, SolveFailure};
 use crate::equilibrium::sweep;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
+use crate::geometry::mesh_minimum::{self, MeshMinimum};
+use crate::model::accuracy::LadderTolerances;
 use crate::model::quantity::QUANTITIES;
 use crate::model::results::{BearingLife, ClearanceSweep, LoadedSweep, SceneResult};
 use crate::model::{Design, Detail, Effect, Modification, Plan, Scene};
@@ -52,10 +54,15 @@ pub fn plan(spec: &Spec, scene: &Scene, writes: Writes) -> Plan {
 }
 
 /// How a scene runs: the loaded solves' convergence settings (the accuracy ladder varies
-/// them) and who hears of the crank angles done. `Default`: the default settings, nobody.
+/// them), the error bound sought for the smallest gap over the mesh, and who hears of the
+/// crank angles done. `Default`: the default settings and the accuracy ladder's default
+/// clearance tolerance (0.1 µm), nobody.
 #[derive(Clone, Copy)]
 pub struct RunOptions<'a> {
     pub settings: Settings,
+    /// The error bound sought for the smallest gap over the whole mesh, mm
+    /// (`geometry::mesh_minimum`): the spec's `accuracy.tolerance.clearance_um`.
+    pub clearance_tolerance_mm: f64,
     /// Hears of the crank angles done by each sweep the plan runs (`start` is the caller's:
     /// `sweeps` says how many it will hear of).
     pub progress: &'a dyn Progress,
@@ -65,15 +72,39 @@ impl Default for RunOptions<'_> {
     fn default() -> Self {
         RunOptions {
             settings: Settings::default(),
+            clearance_tolerance_mm: units::mm_from_um(LadderTolerances::default().clearance_um),
             progress: &Silent,
         }
     }
 }
 
-/// Run one scene of the spec, with its design and modification, according to `plan`; a
+impl RunOptions<'_> {
+    /// The defaults, with the clearance tolerance of `spec`'s `accuracy:` when it has one.
+    pub fn for_spec(spec: &Spec) -> Self {
+        RunOptions::default().with_spec(spec)
+    }
+
+    /// These options with the clearance tolerance of `spec`'s `accuracy:` when it has one.
+    fn with_spec(self, spec: &Spec) -> Self {
+        let tolerance = spec
+            .accuracy
+            .as_ref()
+            .map_or(self.clearance_tolerance_mm, |a| {
+                units::mm_from_um(a.options.tolerances.clearance_um)
+            });
+        RunOptions {
+            clearance_tolerance_mm: tolerance,
+            ..self
+        }
+    }
+}
+
+/// Run one scene of the spec, with its design and modification, according to `plan`, the
+/// smallest gap over the mesh to the spec's clearance tolerance (`RunOptions::for_spec`); a
 /// failure points at the scene's key in the spec (`at_scene`).
 pub fn run(spec: &Spec, scene: &Scene, plan: &Plan, options: &RunOptions) -> Result<SceneResult> {
-    run_design(&spec.design, &spec.modification, (scene, plan), options)
+    let options = options.with_spec(spec);
+    run_design(&spec.design, &spec.modification, (scene, plan), &options)
         .map_err(|e| at_scene(spec, scene, e))
 }
 
@@ -101,20 +132,13 @@ pub fn run_design(
 ) -> Result<SceneResult> {
     let (settings, progress) = (&options.settings, options.progress);
     let mesh = Mesh::new(design, m);
-    let clearance = |shift: f64| -> Result<Option<ClearanceSweep>> {
+    let target = mesh_minimum::Target::new(design, options.clearance_tolerance_mm);
+    let mut whole = MeshMinimum::new(&mesh, target);
+    let mut clearance = |shift: f64| -> Result<Option<ClearanceSweep>> {
         if !plan.has(Effect::Clearance) {
             return Ok(None);
         }
-        let scope = if plan.has_detail(Detail::Backlash) {
-            clearance::Scope::Backlash
-        } else {
-            clearance::Scope::Gaps
-        };
-        let crank: Vec<f64> = scene.crank_rad.iter().map(|c| c + shift).collect();
-        let mut c = clearance::sweep(&mesh, &crank, scope, progress)
-            .map_err(|f| Error::computation(format!("scene `{}`: {f}", scene.name)))?;
-        c.min.crank_rad -= shift;
-        Ok(Some(c))
+        clearance_sweep(&mut whole, (scene, plan), shift, progress).map(Some)
     };
     let result = |name: String, clearance, loaded: LoadedSweep| SceneResult {
         name,
@@ -147,6 +171,33 @@ pub fn run_design(
     reducer.loaded.transmission = sweeps.and_then(|s| s.transmission);
     reducer.torsion = torsion;
     Ok(reducer)
+}
+
+/// The clearance of a disc at crank phase `shift` over the scene's angles, with the smallest
+/// gap over the whole mesh (`MeshMinimum::cover`), its crank angle the scene's.
+fn clearance_sweep(
+    whole: &mut MeshMinimum,
+    (scene, plan): (&Scene, &Plan),
+    shift: f64,
+    progress: &dyn Progress,
+) -> Result<ClearanceSweep> {
+    let scope = if plan.has_detail(Detail::Backlash) {
+        clearance::Scope::Backlash
+    } else {
+        clearance::Scope::Gaps
+    };
+    let crank: Vec<f64> = scene.crank_rad.iter().map(|c| c + shift).collect();
+    let failed = |f| Error::computation(format!("scene `{}`: {f}", scene.name));
+    let mut c = clearance::sweep(whole.mesh(), &crank, scope, progress).map_err(failed)?;
+    let period_deg = units::deg(whole.period_rad());
+    whole.cover(&crank, shift, &mut c).map_err(|f| {
+        Error::computation(format!(
+            "scene `{}`: seeking the smallest gap over the whole period of {}° of crank: {f}",
+            scene.name,
+            crate::numeric::number(period_deg)
+        ))
+    })?;
+    Ok(c)
 }
 
 /// The torsion loops of a scene with a `torque_sweep` ([`engine::torsion`](crate::engine::torsion)), when planned.

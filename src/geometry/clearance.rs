@@ -10,7 +10,7 @@
 
 use super::profile::{ClosestPointFailure, LocusFrame, Profile};
 use super::{cross, rotate, sin_cos, wrap_pi, Vec2};
-use crate::model::results::{BacklashCurves, ClearanceSweep, MinClearance};
+use crate::model::results::{BacklashCurves, ClearanceSweep, MinClearance, MinCoverage};
 use crate::model::{Design, Modification};
 use crate::progress::{Progress, Silent};
 use crate::units;
@@ -324,7 +324,7 @@ impl Mesh {
 /// Gaps closer than this count as equal when locating the minimum, so that mirror-symmetric
 /// rollers with equal gaps report the first (lowest roller index, earliest angle) whatever the
 /// last bit of round-off says. A picometre: far below any tolerance that matters.
-const TIE_MM: f64 = 1e-9 * 1e-3;
+pub const TIE_MM: f64 = 1e-9 * 1e-3;
 
 /// Crank angles one worker sweeps in sequence, each roller warm-started from the angle before
 /// and from nothing before the chunk. Fixed (as the loaded sweep's `CHUNK`), so that the results
@@ -407,6 +407,7 @@ pub fn sweep(
     Ok(ClearanceSweep {
         gap_mm: columns.gap_mm,
         min,
+        coverage: MinCoverage::Angles(crank_rad.len()),
         backlash,
     })
 }
@@ -435,11 +436,17 @@ fn smallest(
         }
     }
     if min.gap_mm.is_finite() {
-        let tooth = TAU / mesh.teeth as f64;
-        let foot = mesh.roller_gap(min.roller, &Pose::ideal(min.crank_rad), None)?;
-        min.tooth_phase = foot.t.rem_euclid(tooth) / tooth;
+        min.tooth_phase = tooth_phase(mesh, min.roller, min.crank_rad)?;
     }
     Ok(min)
+}
+
+/// Where roller i's closest point lies on its tooth at crank φ and the ideal pose: 0 at the
+/// root, 0.5 at the tip (`MinClearance::tooth_phase`), from the closest point found afresh.
+pub fn tooth_phase(mesh: &Mesh, roller: usize, crank_rad: f64) -> Result<f64, GapFailure> {
+    let tooth = TAU / mesh.teeth as f64;
+    let foot = mesh.roller_gap(roller, &Pose::ideal(crank_rad), None)?;
+    Ok(foot.t.rem_euclid(tooth) / tooth)
 }
 
 /// The curves of a sweep, \[roller\]\[angle\] and \[angle\]; the backlash columns are empty for

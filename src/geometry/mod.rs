@@ -3,6 +3,7 @@
 pub mod clearance;
 pub mod first_order;
 pub mod form_error;
+pub mod mesh_minimum;
 pub mod polyline;
 pub mod profile;
 

@@ -132,6 +132,42 @@ impl Design {
         std::f64::consts::TAU / self.mesh_periods_per_turn() as f64
     }
 
+    /// Teeth after which the disc as built is itself again: nc/gcd(nc, k₁, k₂, …) over the
+    /// orders k of its form error (a term of order k comes back after a turn by 2π·m/nc, m
+    /// teeth, when k·m/nc is whole), 1 without one. Order 0 (a constant w) repeats every tooth.
+    pub fn form_period_teeth(&self) -> usize {
+        let nc = self.teeth;
+        let common = (self.deviations.form.iter())
+            .filter(|f| f.amplitude_mm() != 0.0)
+            .fold(nc, |g, f| gcd(g, f.order));
+        nc / common.max(1)
+    }
+
+    /// Mesh periods (2π/np of crank each) after which the gaps of all the rollers repeat as a
+    /// set, so that the smallest gap over the mesh repeats (MODEL.md "Clearance"). Crank
+    /// φ + 2π/np puts roller i where roller i − 1 was at φ, one tooth further round the disc
+    /// (its locus parameter 2πi/np + φ/nc advances by 2π/np + 2π/(np·nc) = 2π/nc); the crank
+    /// eccentricity and the grinding errors act on every roller and tooth alike. So the set
+    /// repeats after P = `form_period_teeth` mesh periods, when the disc has come back to
+    /// itself; with rollers as built that are not alike the same roller must come back too,
+    /// after lcm(np, P). Paper's design (np 10, nc 9): 1 nominal; a form error of order 3, 3
+    /// (108°); of order 2, 9 (324°); rollers as built, 10 (360°), and with a form of order 2,
+    /// 90 (3240°, where each roller's own gap repeats, `mesh_period_rad`).
+    pub fn clearance_periods(&self) -> usize {
+        let p = self.form_period_teeth();
+        if self.deviations.moves_rollers() {
+            self.rollers / gcd(self.rollers, p) * p
+        } else {
+            p
+        }
+    }
+
+    /// The crank period of the smallest gap over the mesh, rad: `clearance_periods` mesh
+    /// periods of 2π/np.
+    pub fn clearance_period_rad(&self) -> f64 {
+        std::f64::consts::TAU * self.clearance_periods() as f64 / self.rollers as f64
+    }
+
     /// Mesh periods per crank turn: np, or 1 when some roller is off its place or size. A
     /// disc with a form error meets every roller with every tooth only over a whole turn of
     /// the disc, nc crank turns (`mesh_period_rad` then says so).
@@ -256,4 +292,12 @@ impl Design {
             radius_mm: self.roller_circle_radius_mm + m.shift_mm,
         }
     }
+}
+
+/// Greatest common divisor (Euclid); gcd(a, 0) = a.
+fn gcd(mut a: usize, mut b: usize) -> usize {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
 }

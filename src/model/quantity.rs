@@ -8,8 +8,8 @@
 //! the unit named by the key (arcsec, N, mm, MPa, deg).
 
 use super::effect::{Detail, Effect};
-use super::results::{BacklashCurves, SceneResult, TorsionFigures};
-use crate::numeric::{extremes, fluctuation, max_entry};
+use super::results::{BacklashCurves, MinCoverage, SceneResult, TorsionFigures};
+use crate::numeric::{extremes, fluctuation, max_entry, number};
 use crate::units;
 
 /// Rows `[column][angle]` in output units.
@@ -458,8 +458,10 @@ pub const BEARING_DEFLECTION: Quantity = Quantity {
     read: Read::Curves(|r| r.loaded.bearing.as_ref().map(|b| one(&b.deflection_mm))),
 };
 
-/// The smallest gap over the rollers and crank angles, mm, with the roller, the crank angle and
-/// the place on the tooth (`ClearanceSweep::min`).
+/// The smallest gap over the rollers and the whole mesh (the whole crank period of the gaps,
+/// whatever angles the scene samples: `ClearanceSweep::coverage`), mm, with the roller, the
+/// crank angle, the place on the tooth, the period, its step and the error bound
+/// (`ClearanceSweep::min`).
 pub const MIN_CLEARANCE: Quantity = Quantity {
     key: "min_clearance_mm",
     unit: "mm",
@@ -472,16 +474,37 @@ pub const MIN_CLEARANCE: Quantity = Quantity {
         r.clearance.as_ref().map(|c| Extreme {
             value: c.min.gap_mm,
             at: format!(
-                "roller {} at crank {:.2}°, tooth phase {} (0 root, 0.5 tip)",
+                "roller {} at crank {:.2}°, tooth phase {} (0 root, 0.5 tip), {}",
                 c.min.roller,
                 units::deg(c.min.crank_rad),
-                crate::numeric::phase(c.min.tooth_phase)
+                crate::numeric::phase(c.min.tooth_phase),
+                over(&c.coverage)
             ),
         })
     }),
 };
 
-/// The largest unloaded lost motion over the crank angles, arcsec.
+/// What the smallest gap was sought over, for people: the whole period of the gaps, its step
+/// and the error bound, or the scene's angles alone.
+fn over(coverage: &MinCoverage) -> String {
+    match coverage {
+        MinCoverage::Period(p) => format!(
+            "over the whole period of {}° sampled every {}° (error ≤ {} µm)",
+            number(units::deg(p.period_rad)),
+            number(units::deg(p.step_rad)),
+            number(units::um(p.error_bound_mm))
+        ),
+        MinCoverage::Angles(n) => format!("over the scene's {} only", angles(*n)),
+    }
+}
+
+/// "1 crank angle", "4 crank angles".
+fn angles(n: usize) -> String {
+    format!("{n} crank angle{}", if n == 1 { "" } else { "s" })
+}
+
+/// The largest unloaded lost motion over the scene's crank angles (only those: its closing lags
+/// are not sought over the whole mesh), arcsec.
 pub const MAX_LOST_MOTION: Quantity = Quantity {
     key: "max_lost_motion_arcsec",
     unit: "arcsec",
@@ -493,6 +516,7 @@ pub const MAX_LOST_MOTION: Quantity = Quantity {
     read: Read::Scalar(|r| {
         let mut e = highest(r, &backlash(r)?.lost_motion_rad);
         e.value = units::arcsec(e.value);
+        e.at = format!("{}, over the scene's {}", e.at, angles(r.crank_rad.len()));
         Some(e)
     }),
 };

@@ -9,10 +9,33 @@ pub struct MinClearance {
     pub gap_mm: f64,
     /// The roller it occurs at (index i, at angle 2πi/np).
     pub roller: usize,
-    /// The scene's crank angle φ it occurs at, rad (the first, when several tie).
+    /// The crank angle φ it occurs at, rad (the first, when several tie): one of the scene's,
+    /// or, over the whole mesh, of the samples of its period, which start at the scene's first.
     pub crank_rad: f64,
     /// Position on the tooth: 0 at the root, 0.5 at the tip, (0, 0.5) one flank, (0.5, 1) the other.
     pub tooth_phase: f64,
+}
+
+/// Over which crank angles the smallest gap of a clearance sweep was sought.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MinCoverage {
+    /// The sweep's own crank angles only, this many (`geometry::clearance::sweep` alone).
+    Angles(usize),
+    /// A whole crank period of the gaps (`Design::clearance_period_rad`), sampled finely
+    /// enough to bound the error (`geometry::mesh_minimum`): the smallest gap over the mesh.
+    Period(SampledPeriod),
+}
+
+/// A whole crank period of the gaps as sampled for their smallest (`geometry::mesh_minimum`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SampledPeriod {
+    /// The period after which the gaps of all the rollers repeat as a set, rad.
+    pub period_rad: f64,
+    /// The largest step between the samples that cover it, rad.
+    pub step_rad: f64,
+    /// How far above the true smallest gap the smallest sample may lie, mm: h²·M/8 with h the
+    /// step and M the largest second difference of the sampled gaps (an estimate of max g″).
+    pub error_bound_mm: f64,
 }
 
 /// Clearance of every roller over a crank sweep at the ideal pose (β = 0).
@@ -22,8 +45,11 @@ pub struct ClearanceSweep {
     /// Gap of each roller, mm: the signed distance from its centre to the disc profile Γ minus
     /// its radius; positive clearance, negative interference (MODEL.md "Clearance").
     pub gap_mm: Vec<Vec<f64>>,
-    /// The smallest of the gaps, and where.
+    /// The smallest gap, and where: over the sweep's angles, or over the whole mesh
+    /// (`coverage`).
     pub min: MinClearance,
+    /// Over which crank angles `min` was sought.
+    pub coverage: MinCoverage,
     /// `None` when nothing read it (`Detail::Backlash` not planned).
     pub backlash: Option<BacklashCurves>,
 }

@@ -94,6 +94,13 @@ pub fn explain(spec: &Spec, writes: Writes) -> String {
                  figures, no loaded curves over the crank angle; {HYSTERESIS}\n"
             );
         }
+        if plan.has(Effect::Clearance) {
+            out += &format!(
+                "  note    min clearance over the whole period of the gaps ({}° of crank), \
+                 whatever crank angles the scene samples\n",
+                number(units::deg(spec.design.clearance_period_rad()))
+            );
+        }
         if plan.has(Effect::RollerContact) && !plan.has(Effect::OutputPins) {
             out +=
                 "  note    output pins not modelled: loaded TE is the disc lag β alone (βo = 0)\n";

@@ -15,7 +15,7 @@ use crate::engine::optimise::StudyResult;
 use crate::engine::summary::{summarise, SceneSummary};
 use crate::error::Result;
 use crate::model::quantity::{self as q, Quantity, QUANTITIES};
-use crate::model::results::{ClearanceSweep, SceneResult};
+use crate::model::results::{ClearanceSweep, MinCoverage, SceneResult};
 use crate::model::Study;
 use crate::numeric::extremes;
 use crate::report::explain::HYSTERESIS;
@@ -126,6 +126,20 @@ pub struct MinClearanceAt {
     tooth_phase: Finite,
 }
 
+/// What the smallest gap was sought over (`MinCoverage`): the whole period of the gaps, its
+/// step and the error bound of the sampling, or the scene's own crank angles alone.
+#[derive(Serialize)]
+pub struct MinClearanceOver {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    period_deg: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    step_deg: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    error_bound_mm: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    crank_angles: Option<usize>,
+}
+
 /// One scene: its curves, the registry's scalars and a few extremes.
 #[derive(Serialize)]
 pub struct SceneDoc<'a> {
@@ -141,6 +155,8 @@ pub struct SceneDoc<'a> {
     clearance_mm: Option<Rows<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     min_clearance_at: Option<MinClearanceAt>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    min_clearance_over: Option<MinClearanceOver>,
     #[serde(skip_serializing_if = "Option::is_none")]
     backlash_arcsec: Option<Curve<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -262,6 +278,23 @@ fn min_clearance_at(c: &ClearanceSweep) -> MinClearanceAt {
     }
 }
 
+fn min_clearance_over(c: &ClearanceSweep) -> MinClearanceOver {
+    match c.coverage {
+        MinCoverage::Period(p) => MinClearanceOver {
+            period_deg: Some(Finite(units::deg(p.period_rad))),
+            step_deg: Some(Finite(units::deg(p.step_rad))),
+            error_bound_mm: Some(Finite(p.error_bound_mm)),
+            crank_angles: None,
+        },
+        MinCoverage::Angles(n) => MinClearanceOver {
+            period_deg: None,
+            step_deg: None,
+            error_bound_mm: None,
+            crank_angles: Some(n),
+        },
+    }
+}
+
 impl<'a> SceneDoc<'a> {
     pub fn new(r: &'a SceneResult) -> Self {
         let c = r.clearance.as_ref();
@@ -280,6 +313,7 @@ impl<'a> SceneDoc<'a> {
             torque_nm: l.torque_nmm.as_deref().map(|t| Curve::new(t, To::Nm)),
             clearance_mm: c.map(|c| Rows(&c.gap_mm)),
             min_clearance_at: c.map(min_clearance_at),
+            min_clearance_over: c.map(min_clearance_over),
             backlash_arcsec: backlash.map(|b| arcsec(&b.forward_rad)),
             backlash_reverse_arcsec: backlash.map(|b| arcsec(&b.reverse_rad)),
             lost_motion_arcsec: backlash.map(|b| arcsec(&b.lost_motion_rad)),

@@ -136,7 +136,7 @@ impl<'a> ToleranceStudy<'a> {
             &design,
             &spec.modification,
             (scene, &self.plan),
-            &scene::RunOptions::default(),
+            &scene::RunOptions::for_spec(spec),
         )
         .map_err(context)?;
         let checks = check::evaluate(spec, std::slice::from_ref(&result)).map_err(context)?;

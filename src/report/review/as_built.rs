@@ -445,7 +445,7 @@ fn flank_table(spec: &Spec, id: &Identification) -> maud::Markup {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::results::{ClearanceSweep, MinClearance};
+    use crate::model::results::{ClearanceSweep, MinClearance, MinCoverage};
 
     /// Points more than the gap apart are not joined: a NaN between them; the points come
     /// sorted over [0, 2π) whatever their order and turn (2π + 0.05 is 0.05, first).
@@ -489,6 +489,7 @@ mod tests {
                     crank_rad: 0.1,
                     tooth_phase: 0.0,
                 },
+                coverage: MinCoverage::Angles(2),
                 backlash: None,
             }),
             loaded: Default::default(),

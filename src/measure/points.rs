@@ -6,10 +6,14 @@
 //! DXF: the vertices of closed LWPOLYLINE and POLYLINE entities are profile points (an open
 //! one is refused at its line, not skipped); a closed SPLINE gives its fit points when it has
 //! them (they lie on the curve), else `SPLINE_POINTS_PER_CONTROL` points per control point
-//! of the curve itself (`spline::Spline`, rational or not); a CIRCLE on
-//! layer `HOLE_J` is the bore of hole J, read as 72 points on it. Units mm.
+//! of the curve itself (`spline::Spline`, rational or not); a CIRCLE on layer `HOLE_J` is
+//! the bore of hole J, read as 72 points on it. The drawing's unit (`$INSUNITS`) must be
+//! millimetres (4) or unitless (0, or no `$INSUNITS`: the numbers are read as mm); the file
+//! ends at `EOF`, after which only whitespace may follow. Text that is not UTF-8 is decoded as
+//! `encoding` says.
 //! Errors name the file and line (exit 2).
 
+use super::encoding::{self, Fallback};
 use super::{Feature, MeasuredPoint};
 use crate::error::{Error, ErrorKind, Location, Result};
 use crate::geometry::Vec2;
@@ -27,14 +31,17 @@ pub const SPLINE_POINTS_PER_CONTROL: usize = 32;
 
 /// The points of a file.
 pub fn read(path: &str, format: PointsFormat) -> Result<Vec<MeasuredPoint>> {
-    let text = crate::files::read_text(
+    let bytes = crate::files::read_bytes(
         std::path::Path::new(path),
         "measured profile",
         crate::files::MAX_INPUT_BYTES,
     )?;
     match format {
-        PointsFormat::Csv => parse_csv(path, &text),
-        PointsFormat::Dxf => parse_dxf(path, &text),
+        PointsFormat::Csv => parse_csv(path, &encoding::decode(&bytes, Fallback::Replace)),
+        PointsFormat::Dxf => {
+            let text = encoding::decode(&bytes, encoding::dxf_fallback(&bytes));
+            parse_dxf(path, &text)
+        }
     }
 }
 
@@ -110,38 +117,120 @@ pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
     Ok(points)
 }
 
-/// The group-code/value pairs of a DXF file, with the line of each code.
-fn pairs(path: &str, text: &str) -> Result<Vec<(usize, i32, String)>> {
-    let lines: Vec<&str> = text.lines().collect();
-    let mut out = Vec::with_capacity(lines.len() / 2);
-    for (k, chunk) in lines.chunks(2).enumerate() {
-        let line = 2 * k + 1;
-        let code = chunk[0].trim().parse::<i32>().map_err(|_| {
+/// A group code, its value and the line of the code.
+type Pair<'a> = (usize, i32, &'a str);
+
+/// The group-code/value pairs of a DXF file, with the line of each code, up to the pair
+/// `0 EOF`. After it only whitespace may follow (an editor's blank line); anything else is
+/// refused at its line: a second drawing appended to the file would otherwise be dropped
+/// unseen.
+fn pairs<'a>(path: &str, text: &'a str) -> Result<Vec<Pair<'a>>> {
+    let mut lines = text.lines().enumerate();
+    let mut out = Vec::new();
+    while let Some((i, code)) = lines.next() {
+        let line = i + 1;
+        let code = code.trim().parse::<i32>().map_err(|_| {
             at(
                 path,
                 line,
-                format!("`{}` is not a DXF group code", chunk[0].trim()),
+                format!("`{}` is not a DXF group code", code.trim()),
             )
         })?;
-        let value = chunk.get(1).map_or("", |v| v.trim()).to_string();
+        let value = lines.next().map_or("", |(_, v)| v.trim());
         out.push((line, code, value));
+        if code == 0 && value == "EOF" {
+            if let Some((i, after)) = lines.find(|(_, l)| !l.trim().is_empty()) {
+                return Err(at(
+                    path,
+                    i + 1,
+                    format!(
+                        "`{}` after the end of the drawing (`EOF` at line {}): a DXF file \
+                         ends at EOF; remove what follows, or split a second drawing into its \
+                         own file",
+                        after.trim(),
+                        line + 1
+                    ),
+                ));
+            }
+            break;
+        }
     }
     Ok(out)
+}
+
+/// The names of the DXF drawing units, by their `$INSUNITS` code (AutoCAD DXF reference).
+const UNITS: [&str; 25] = [
+    "unitless",
+    "inches",
+    "feet",
+    "miles",
+    "millimetres",
+    "centimetres",
+    "metres",
+    "kilometres",
+    "microinches",
+    "mils",
+    "yards",
+    "ångströms",
+    "nanometres",
+    "microns",
+    "decimetres",
+    "decametres",
+    "hectometres",
+    "gigametres",
+    "astronomical units",
+    "light years",
+    "parsecs",
+    "US survey feet",
+    "US survey inches",
+    "US survey yards",
+    "US survey miles",
+];
+
+/// The drawing's unit (`9 $INSUNITS`, then group 70) must be millimetres (4). Unitless (0) or
+/// no `$INSUNITS` (an R12 drawing has none) leaves the numbers without a unit: they are read
+/// as mm, the unit of the measured points. Any other unit is refused at its line, naming it:
+/// the points would be read as mm and scaled by its ratio to mm.
+fn require_mm(path: &str, all: &[Pair<'_>]) -> Result<()> {
+    let Some(k) = all.iter().position(|p| p.1 == 9 && p.2 == "$INSUNITS") else {
+        return Ok(());
+    };
+    let Some(&(line, _, value)) = all.get(k + 1).filter(|p| p.1 == 70) else {
+        return Err(at(
+            path,
+            all[k].0,
+            "$INSUNITS without its group 70 value".into(),
+        ));
+    };
+    let code = value.parse::<i64>().ok();
+    if matches!(code, Some(0 | 4)) {
+        return Ok(());
+    }
+    let unit = code
+        .and_then(|c| usize::try_from(c).ok())
+        .and_then(|c| UNITS.get(c))
+        .map_or_else(|| "an unknown unit".to_string(), |u| (*u).to_string());
+    Err(at(
+        path,
+        line + 1,
+        format!(
+            "the drawing is in {unit} ($INSUNITS {value}): measured points are read in \
+             millimetres ($INSUNITS 4, or 0 for unitless numbers read as mm); export the \
+             drawing in mm"
+        ),
+    ))
 }
 
 /// One entity of the ENTITIES section: its type, first line and the pairs up to the next.
 struct Entity<'a> {
     kind: &'a str,
     line: usize,
-    pairs: &'a [(usize, i32, String)],
+    pairs: &'a [Pair<'a>],
 }
 
 impl Entity<'_> {
     fn value(&self, code: i32) -> Option<&str> {
-        self.pairs
-            .iter()
-            .find(|p| p.1 == code)
-            .map(|p| p.2.as_str())
+        self.pairs.iter().find(|p| p.1 == code).map(|p| p.2)
     }
 
     fn number(&self, path: &str, code: i32) -> Result<f64> {
@@ -243,7 +332,7 @@ fn parse_number(path: &str, line: usize, v: &str) -> Result<f64> {
         .ok_or_else(|| at(path, line + 1, format!("`{v}` is not a finite number")))
 }
 
-fn entities<'a>(all: &'a [(usize, i32, String)]) -> Vec<Entity<'a>> {
+fn entities<'a>(all: &'a [Pair<'a>]) -> Vec<Entity<'a>> {
     let starts: Vec<usize> = all
         .iter()
         .enumerate()
@@ -256,7 +345,7 @@ fn entities<'a>(all: &'a [(usize, i32, String)]) -> Vec<Entity<'a>> {
         .map(|(k, &s)| {
             let end = starts.get(k + 1).copied().unwrap_or(all.len());
             Entity {
-                kind: all[s].2.as_str(),
+                kind: all[s].2,
                 line: all[s].0,
                 pairs: &all[s + 1..end],
             }
@@ -266,6 +355,7 @@ fn entities<'a>(all: &'a [(usize, i32, String)]) -> Vec<Entity<'a>> {
 
 pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
     let all = pairs(path, text)?;
+    require_mm(path, &all)?;
     let list = entities(&all);
     let mut points = Vec::new();
     let mut closed_profiles = 0;

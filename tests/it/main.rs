@@ -32,6 +32,7 @@ mod hard_cases;
 mod junit;
 mod measure;
 mod measure_cli;
+mod measured_inputs;
 mod optimise;
 mod ordinary_inputs;
 mod progress;

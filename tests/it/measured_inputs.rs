@@ -1,0 +1,193 @@
+//! Measured-disc inputs of issue 26 ("no data lost, no false pass, no crash"), one test per
+//! case: a DXF in another unit than mm, with whitespace after EOF, or in Windows-1252. The
+//! measured files are made here from `cycloid profile` of the paper's drawing (ΔRp 0.125 mm,
+//! ΔRrp 0.1593 mm), whose points lie on that profile: a fit of them gives back the drawing's
+//! modification, printed to 1e-6 mm.
+
+use crate::common::{cycloid, PaperSpec, Scratch};
+
+/// The drawing's modification lines as `fit` prints them (6 decimals, zero uncertainty: the
+/// points are on the profile).
+const DRAWN: [&str; 2] = [
+    "\n  shift_mm                0.125000 mm   ± 0.000 µm\n",
+    "\n  equidistant_mm          0.159300 mm   ± 0.000 µm\n",
+];
+
+/// `made.yaml` (the paper's drawing) and its exports `disc.csv` and `disc.dxf` in `dir`.
+fn export(dir: &Scratch) {
+    dir.write(
+        "made.yaml",
+        PaperSpec::new().modification(0.125, 0.1593).text(),
+    );
+    let run = cycloid(
+        &dir.path,
+        &[
+            "profile",
+            "made.yaml",
+            "--csv",
+            "disc.csv",
+            "--dxf",
+            "disc.dxf",
+        ],
+    );
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+}
+
+/// The paper's spec with another nominal modification (the fit's start) identifying `file`.
+fn fitting(file: &str, format: &str) -> PaperSpec {
+    PaperSpec::new().modification(0.1, 0.13).with(&format!(
+        "measured_profile: {{file: {file}, format: {format}, harmonics: 0, fit: [shift_mm, \
+         equidistant_mm]}}\n"
+    ))
+}
+
+/// `fit fit.yaml` in `dir` of a spec identifying `file`.
+fn fit(dir: &Scratch, file: &str, format: &str) -> crate::common::Run {
+    dir.write("fit.yaml", fitting(file, format).text());
+    cycloid(&dir.path, &["fit", "fit.yaml"])
+}
+
+/// The export with `$INSUNITS` set to `code`.
+fn with_units(dxf: &str, code: u32) -> String {
+    let from = "$INSUNITS\n70\n4\n";
+    assert_eq!(dxf.matches(from).count(), 1, "the export says mm");
+    dxf.replacen(from, &format!("$INSUNITS\n70\n{code}\n"), 1)
+}
+
+/// Case 1, DXF: a drawing in inches (`$INSUNITS 1`) was read as mm and fitted. Every unit
+/// other than mm is refused at the line of its value, naming it (the AutoCAD DXF reference's
+/// codes: 1 inches, 6 metres, 13 microns); unitless (0) leaves the numbers without a unit and
+/// they are read as mm, so the drawing's own numbers give back its modification.
+#[test]
+fn a_dxf_in_another_unit_is_refused_naming_it() {
+    let dir = Scratch::new("measured-units");
+    export(&dir);
+    let dxf = dir.read("disc.dxf");
+    let value_line = dxf.lines().position(|l| l == "$INSUNITS").unwrap() + 3;
+    for (code, unit) in [(1, "inches"), (6, "metres"), (13, "microns")] {
+        dir.write("other.dxf", with_units(&dxf, code));
+        let run = fit(&dir, "other.dxf", "dxf");
+        assert_eq!(
+            (run.code(), run.stderr.as_str()),
+            (
+                2,
+                format!(
+                    "other.dxf:{value_line}:1: invalid value: the drawing is in {unit} \
+                     ($INSUNITS {code}): measured points are read in millimetres ($INSUNITS 4, \
+                     or 0 for unitless numbers read as mm); export the drawing in mm\n"
+                )
+                .as_str()
+            )
+        );
+    }
+    dir.write("unitless.dxf", with_units(&dxf, 0));
+    let run = fit(&dir, "unitless.dxf", "dxf");
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(
+        DRAWN.iter().all(|l| run.stdout.contains(l)),
+        "{}",
+        run.stdout
+    );
+}
+
+/// Case 3: a blank line after `EOF` (an editor's) made the file unreadable ("`` is not a DXF
+/// group code"). Whitespace after EOF is read past; anything else there (a second drawing
+/// appended) is refused at its line, not dropped unseen.
+#[test]
+fn a_dxf_reads_past_whitespace_after_eof_only() {
+    let dir = Scratch::new("measured-eof");
+    export(&dir);
+    let dxf = dir.read("disc.dxf");
+    assert!(dxf.ends_with("0\nEOF\n"));
+    for tail in ["\n", "\r\n  \r\n\t\n"] {
+        dir.write("tail.dxf", format!("{dxf}{tail}"));
+        let run = fit(&dir, "tail.dxf", "dxf");
+        assert_eq!(run.code(), 0, "{tail:?}: {}", run.stderr);
+        assert!(
+            DRAWN.iter().all(|l| run.stdout.contains(l)),
+            "{}",
+            run.stdout
+        );
+    }
+    dir.write("twice.dxf", format!("{dxf}\n{dxf}"));
+    let run = fit(&dir, "twice.dxf", "dxf");
+    let eof = dxf.lines().count();
+    assert_eq!(
+        (run.code(), run.stderr.as_str()),
+        (
+            2,
+            format!(
+                "twice.dxf:{}:1: invalid value: `999` after the end of the drawing (`EOF` at \
+                 line {}): a DXF file ends at EOF; remove what follows, or split a second \
+                 drawing into its own file\n",
+                eof + 2,
+                eof
+            )
+            .as_str()
+        )
+    );
+}
+
+/// The export with an R12 header naming the code page ANSI_1252 and a TEXT entity
+/// `<label>` (bytes) before the end of its ENTITIES section.
+fn ansi_1252(dxf: &str, label: &[u8]) -> Vec<u8> {
+    let header = "$INSUNITS\n70\n4\n";
+    let dxf = dxf.replacen(
+        header,
+        &format!("$ACADVER\n1\nAC1009\n9\n$DWGCODEPAGE\n3\nANSI_1252\n9\n{header}"),
+        1,
+    );
+    let end = dxf.rfind("0\nENDSEC\n").unwrap();
+    let mut bytes = dxf.as_bytes()[..end].to_vec();
+    bytes.extend_from_slice(b"0\nTEXT\n8\nNOTES\n10\n0.0\n20\n-40.0\n40\n2.5\n1\n");
+    bytes.extend_from_slice(label);
+    bytes.extend_from_slice(b"\n");
+    bytes.extend_from_slice(&dxf.as_bytes()[end..]);
+    bytes
+}
+
+/// Case 4: an R12 drawing in ANSI_1252 with `Ø 18 H7` (Ø is the byte 0xD8) in a TEXT was
+/// refused as "not UTF-8 text". It is decoded as Windows-1252 and fits as the clean drawing.
+/// A code-page byte inside a number is no number: refused at its line, decoded (0xB5 is µ in
+/// Windows-1252), never read as another value.
+#[test]
+fn an_ansi_1252_drawing_reads_and_its_numbers_stay_exact() {
+    let dir = Scratch::new("measured-ansi");
+    export(&dir);
+    let dxf = dir.read("disc.dxf");
+    let bytes = ansi_1252(&dxf, b"\xD8 18 H7");
+    assert!(std::str::from_utf8(&bytes).is_err(), "the file is no UTF-8");
+    dir.write("ansi.dxf", &bytes);
+    let run = fit(&dir, "ansi.dxf", "dxf");
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(
+        DRAWN.iter().all(|l| run.stdout.contains(l)),
+        "{}",
+        run.stdout
+    );
+    // The first vertex's x (lines VERTEX, 8, PROFILE, 10, x) with a µ appended; the header
+    // gained 8 lines above it ($ACADVER and $DWGCODEPAGE with their values and codes).
+    let x_index = dxf.lines().position(|l| l == "VERTEX").unwrap() + 4;
+    let x = dxf.lines().nth(x_index).unwrap().to_string();
+    let mut broken = ansi_1252(&dxf, b"\xD8 18 H7");
+    let vertex = format!("VERTEX\n8\nPROFILE\n10\n{x}\n");
+    broken.insert(find(&broken, vertex.as_bytes()) + vertex.len() - 1, 0xB5);
+    dir.write("broken.dxf", &broken);
+    let run = fit(&dir, "broken.dxf", "dxf");
+    assert_eq!(
+        (run.code(), run.stderr.as_str()),
+        (
+            2,
+            format!(
+                "broken.dxf:{}:1: invalid value: `{x}µ` is not a finite number\n",
+                x_index + 1 + 8
+            )
+            .as_str()
+        )
+    );
+}
+
+/// The offset of the first `needle` in `hay`.
+fn find(hay: &[u8], needle: &[u8]) -> usize {
+    hay.windows(needle.len()).position(|w| w == needle).unwrap()
+}

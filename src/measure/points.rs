@@ -1,8 +1,9 @@
 //! Reading measured points: CSV from a measuring machine, or a DXF drawing of the disc.
 //!
-//! CSV: `#` comment lines, then a header naming the columns, of which `x_mm` and `y_mm` are
-//! required and `feature` optional (other columns are ignored, so `cycloid profile --csv`
-//! output reads back); each row a point, `feature` `profile` (the default) or `hole:J`.
+//! CSV (RFC 4180 quoting, read by the `csv` crate): `#` comment lines, then a header naming the
+//! columns, of which `x_mm` and `y_mm` are required and `feature` optional (other columns are
+//! ignored, so `cycloid profile --csv` output reads back); each row a point, `feature`
+//! `profile` (the default) or `hole:J`.
 //! DXF: the vertices of closed LWPOLYLINE and POLYLINE entities are profile points (an open
 //! one is refused at its line, not skipped); a closed SPLINE gives its fit points when it has
 //! them (they lie on the curve), else `SPLINE_POINTS_PER_CONTROL` points per control point
@@ -64,18 +65,42 @@ fn feature(text: &str) -> Option<Feature> {
     }
 }
 
+/// The records of a CSV text with the line each starts on, one at a time: fields unquoted
+/// (RFC 4180) and trimmed, comment lines (`#`, after any blanks) and blank lines left out.
+fn csv_records<'t>(
+    path: &'t str,
+    text: &'t str,
+) -> impl Iterator<Item = Result<(usize, csv::StringRecord)>> + 't {
+    let reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    reader.into_records().filter_map(move |record| {
+        let record = match record {
+            Ok(record) => record,
+            Err(e) => {
+                let line = e.position().map_or(1, |p| p.line() as usize);
+                return Some(Err(at(path, line, format!("not a CSV row: {e}"))));
+            }
+        };
+        let line = record.position().map_or(1, |p| p.line() as usize);
+        let blank = record.iter().all(str::is_empty);
+        let comment = record.get(0).is_some_and(|f| f.starts_with('#'));
+        (!blank && !comment).then_some(Ok((line, record)))
+    })
+}
+
 pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
-    let mut rows = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let mut rows = csv_records(path, text);
     let (header_line, header) = rows
         .next()
+        .transpose()?
         .ok_or_else(|| at(path, 1, "the file has no header line and no points".into()))?;
-    let names: Vec<&str> = header.split(',').map(str::trim).collect();
-    let column = |name: &str| names.iter().position(|n| *n == name);
+    let column = |name: &str| header.iter().position(|n| n == name);
     let (Some(x), Some(y)) = (column("x_mm"), column("y_mm")) else {
+        let header = header.iter().collect::<Vec<_>>().join(",");
         return Err(at(
             path,
             header_line,
@@ -84,10 +109,10 @@ pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
     };
     let f = column("feature");
     let mut points = Vec::new();
-    for (line, row) in rows {
-        let cells: Vec<&str> = row.split(',').map(str::trim).collect();
+    for row in rows {
+        let (line, cells) = row?;
         let number = |c: usize, name: &str| -> Result<f64> {
-            let cell = cells.get(c).copied().unwrap_or("");
+            let cell = cells.get(c).unwrap_or("");
             cell.parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite())
@@ -100,7 +125,7 @@ pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                 })
         };
         let point = Vec2::new(number(x, "x_mm")?, number(y, "y_mm")?);
-        let cell = f.and_then(|c| cells.get(c).copied()).unwrap_or("");
+        let cell = f.and_then(|c| cells.get(c)).unwrap_or("");
         let feature = feature(cell).ok_or_else(|| {
             at(
                 path,

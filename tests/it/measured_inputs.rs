@@ -1,8 +1,8 @@
 //! Measured-disc inputs of issue 26 ("no data lost, no false pass, no crash"), one test per
-//! case: a DXF in another unit than mm, with whitespace after EOF, or in Windows-1252. The
-//! measured files are made here from `cycloid profile` of the paper's drawing (ΔRp 0.125 mm,
-//! ΔRrp 0.1593 mm), whose points lie on that profile: a fit of them gives back the drawing's
-//! modification, printed to 1e-6 mm.
+//! case: a DXF in another unit than mm, standard CSV quoting, a DXF with whitespace after EOF
+//! or in Windows-1252. The measured files are made here from `cycloid profile` of the paper's
+//! drawing (ΔRp 0.125 mm, ΔRrp 0.1593 mm), whose points lie on that profile: a fit of them
+//! gives back the drawing's modification, printed to 1e-6 mm.
 
 use crate::common::{cycloid, PaperSpec, Scratch};
 
@@ -82,6 +82,34 @@ fn a_dxf_in_another_unit_is_refused_naming_it() {
     }
     dir.write("unitless.dxf", with_units(&dxf, 0));
     let run = fit(&dir, "unitless.dxf", "dxf");
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(
+        DRAWN.iter().all(|l| run.stdout.contains(l)),
+        "{}",
+        run.stdout
+    );
+}
+
+/// Case 2: a header written with standard CSV quoting (`"x_mm","y_mm"`, as spreadsheets and
+/// many CMM programs write it) was refused. Quoted names and cells, and a quoted note holding a
+/// comma, read as their text: the drawing's modification comes back.
+#[test]
+fn a_quoted_csv_reads_as_its_text() {
+    let dir = Scratch::new("measured-quoted");
+    export(&dir);
+    let quoted: String = dir
+        .read("disc.csv")
+        .lines()
+        .map(|l| match l.split(',').collect::<Vec<_>>()[..] {
+            _ if l.starts_with('#') => format!("{l}\n"),
+            [x, y, ..] if l.starts_with('x') => format!("\"{x}\",\"{y}\",\"note\"\n"),
+            [x, y, ..] => format!("\"{x}\",\"{y}\",\"tooth, flank\"\n"),
+            _ => panic!("{l}"),
+        })
+        .collect();
+    assert!(quoted.contains("\n\"x_mm\",\"y_mm\",\"note\"\n"));
+    dir.write("quoted.csv", quoted);
+    let run = fit(&dir, "quoted.csv", "csv");
     assert_eq!(run.code(), 0, "{}", run.stderr);
     assert!(
         DRAWN.iter().all(|l| run.stdout.contains(l)),

@@ -6,13 +6,12 @@
 //! `profile` (the default) or `hole:J`.
 //! DXF: the vertices of closed LWPOLYLINE and POLYLINE entities are profile points (an open
 //! one is refused at its line, not skipped); a closed SPLINE gives its fit points when it has
-//! them (they lie on the curve), else `SPLINE_POINTS_PER_CONTROL` points per control point
-//! of the curve itself (`spline::Spline`, rational or not); a CIRCLE on layer `HOLE_J` is
-//! the bore of hole J, read as 72 points on it. The drawing's unit (`$INSUNITS`) must be
-//! millimetres (4) or unitless (0, or no `$INSUNITS`: the numbers are read as mm); the file
-//! ends at `EOF`, after which only whitespace may follow. Text that is not UTF-8 is decoded as
-//! `encoding` says.
-//! Errors name the file and line (exit 2).
+//! them (they lie on the curve), else points of the curve itself (`spline_sample_count`,
+//! `spline::Spline`, rational or not); a CIRCLE on layer `HOLE_J` is the bore of hole J, read
+//! as 72 points on it. The drawing's unit (`$INSUNITS`) must be millimetres (4) or unitless
+//! (0, or no `$INSUNITS`: the numbers are read as mm); the file ends at `EOF`, after which only
+//! whitespace may follow. Text that is not UTF-8 is decoded as `encoding` says.
+//! Errors name the file and line (exit 2). A file gives at most `MAX_POINTS` points.
 
 use super::encoding::{self, Fallback};
 use super::{Feature, MeasuredPoint};
@@ -29,6 +28,22 @@ pub const CIRCLE_POINTS: usize = 72;
 /// nanometre for the spans of a disc profile (the points lie on the curve; the chords do not
 /// enter the fit).
 pub const SPLINE_POINTS_PER_CONTROL: usize = 32;
+
+/// Most points a SPLINE without fit points is sampled at, unless it has more control points
+/// (then one per control point): 2^16 points on the curve are 3 µm apart along the paper's
+/// 191 mm profile, far denser than any fit needs, and a CAD export of thousands of control
+/// points (spans of a few µm) gains nothing from 32 points per span.
+pub const SPLINE_POINTS_MAX: usize = 1 << 16;
+
+/// Highest SPLINE degree read: de Boor's algorithm costs p² operations per point, and CAD
+/// programs write degrees 1 to 10 (AutoCAD's range); 32 leaves room and bounds the cost.
+pub const MAX_SPLINE_DEGREE: usize = 32;
+
+/// Most points a measured-points file may give (profile and holes, every CSV row, polyline
+/// vertex and spline or circle point): 2^20. A CMM scan of a disc holds thousands to tens of
+/// thousands of points; a million keeps the reader's memory to ~40 MiB and the fit's Jacobian
+/// bounded (`fit::MAX_JACOBIAN_ENTRIES` bounds it with the unknowns).
+pub const MAX_POINTS: usize = 1 << 20;
 
 /// The points of a file.
 pub fn read(path: &str, format: PointsFormat) -> Result<Vec<MeasuredPoint>> {
@@ -52,6 +67,19 @@ fn at(path: &str, line: usize, message: String) -> Error {
         line,
         column: 1,
     })
+}
+
+/// The error of one point more than `MAX_POINTS`, at the line that gave it.
+fn too_many(path: &str, line: usize) -> Error {
+    at(
+        path,
+        line,
+        format!(
+            "more than {MAX_POINTS} measured points: a fit reads at most {MAX_POINTS} (a CMM \
+             scan of a disc holds thousands to tens of thousands); thin the points, e.g. \
+             every k-th"
+        ),
+    )
 }
 
 /// `feature` of a row: `profile` or `hole:J`.
@@ -111,6 +139,9 @@ pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
     let mut points = Vec::new();
     for row in rows {
         let (line, cells) = row?;
+        if points.len() == MAX_POINTS {
+            return Err(too_many(path, line));
+        }
         let number = |c: usize, name: &str| -> Result<f64> {
             let cell = cells.get(c).unwrap_or("");
             cell.parse::<f64>()
@@ -308,8 +339,9 @@ impl Entity<'_> {
             .collect()
     }
 
-    /// A SPLINE's profile points: its fit points, or points of the curve.
-    fn spline_points(&self, path: &str) -> Result<Vec<(usize, Vec2)>> {
+    /// A SPLINE's profile points: its fit points, or points of the curve
+    /// (`spline_sample_count`); `room` is how many more points the file may give.
+    fn spline_points(&self, path: &str, room: usize) -> Result<Vec<(usize, Vec2)>> {
         let fit = self.pairs_of(path, (11, 21))?;
         let refuse = |m: String| at(path, self.line, m);
         if fit.len() >= 3 {
@@ -324,8 +356,16 @@ impl Entity<'_> {
         if weights.is_empty() {
             weights = vec![1.0; control.len()];
         }
+        let degree = self.number(path, 71)?;
+        if !(degree >= 1.0 && degree <= MAX_SPLINE_DEGREE as f64 && degree.fract() == 0.0) {
+            return Err(refuse(format!(
+                "a SPLINE of degree {degree}: the degree is a whole number 1 to \
+                 {MAX_SPLINE_DEGREE} (CAD programs write 1 to 10; each point costs degree² \
+                 operations)"
+            )));
+        }
         let spline = super::spline::Spline {
-            degree: self.number(path, 71)? as usize,
+            degree: degree as usize,
             knots: self.numbers(path, 40)?,
             control,
             weights,
@@ -336,13 +376,23 @@ impl Entity<'_> {
         if !spline.is_closed() {
             return Err(refuse(OPEN_SPLINE.into()));
         }
-        let count = SPLINE_POINTS_PER_CONTROL * spline.control.len();
+        let count = spline_sample_count(spline.control.len());
+        if count > room {
+            return Err(too_many(path, self.line));
+        }
         Ok(spline
             .sample(count)
             .into_iter()
             .map(|p| (self.line, p))
             .collect())
     }
+}
+
+/// The points a SPLINE of `control` control points (and no fit points) is read as:
+/// `SPLINE_POINTS_PER_CONTROL` per control point, at most `SPLINE_POINTS_MAX` unless the
+/// spline has more control points, then one per control point.
+pub fn spline_sample_count(control: usize) -> usize {
+    (SPLINE_POINTS_PER_CONTROL * control).min(SPLINE_POINTS_MAX.max(control))
 }
 
 /// What an open SPLINE is told.
@@ -395,7 +445,8 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
             }
             "SPLINE" => {
                 closed_profiles += 1;
-                push_profile(&mut points, e.spline_points(path)?);
+                let room = MAX_POINTS.saturating_sub(points.len());
+                push_profile(&mut points, e.spline_points(path, room)?);
             }
             "POLYLINE" => {
                 refuse_open(path, e)?;
@@ -407,6 +458,9 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                     i += 1;
                 }
                 push_profile(&mut points, vertices);
+                if points.len() > MAX_POINTS {
+                    return Err(too_many(path, e.line));
+                }
                 continue;
             }
             "CIRCLE" => {
@@ -426,6 +480,9 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                     })?;
                 let centre = Vec2::new(e.number(path, 10)?, e.number(path, 20)?);
                 let radius = e.number(path, 40)?;
+                if points.len() + CIRCLE_POINTS > MAX_POINTS {
+                    return Err(too_many(path, e.line));
+                }
                 for k in 0..CIRCLE_POINTS {
                     let a = TAU * k as f64 / CIRCLE_POINTS as f64;
                     points.push(MeasuredPoint {
@@ -436,6 +493,9 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                 }
             }
             _ => {}
+        }
+        if points.len() > MAX_POINTS {
+            return Err(too_many(path, e.line));
         }
         i += 1;
     }

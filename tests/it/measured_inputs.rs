@@ -1,10 +1,12 @@
 //! Measured-disc inputs of issue 26 ("no data lost, no false pass, no crash"), one test per
 //! case: a DXF in another unit than mm, standard CSV quoting, a DXF with whitespace after EOF
-//! or in Windows-1252. The measured files are made here from `cycloid profile` of the paper's
-//! drawing (ΔRp 0.125 mm, ΔRrp 0.1593 mm), whose points lie on that profile: a fit of them
-//! gives back the drawing's modification, printed to 1e-6 mm.
+//! or in Windows-1252, a spline of 120,000 control points and the bounds on every count. The
+//! measured files are made here from `cycloid profile` of the paper's drawing (ΔRp 0.125 mm,
+//! ΔRrp 0.1593 mm), whose points lie on that profile: a fit of them gives back the drawing's
+//! modification, printed to 1e-6 mm.
 
 use crate::common::{cycloid, PaperSpec, Scratch};
+use cycloid::measure::points::{parse_csv, parse_dxf, MAX_POINTS};
 
 /// The drawing's modification lines as `fit` prints them (6 decimals, zero uncertainty: the
 /// points are on the profile).
@@ -218,4 +220,135 @@ fn an_ansi_1252_drawing_reads_and_its_numbers_stay_exact() {
 /// The offset of the first `needle` in `hay`.
 fn find(hay: &[u8], needle: &[u8]) -> usize {
     hay.windows(needle.len()).position(|w| w == needle).unwrap()
+}
+
+/// Case 5: a closed SPLINE of 120,000 control points never returned: every one of its 32·n
+/// points searched its knot span from the first knot, n/2 steps on average (2.3e11 in all).
+/// The span is now found by bisection, and a spline is read at 32 points per control point up
+/// to 65,536 points, at one per control point beyond. The spline here is of degree 1 through
+/// 120,000 points spaced along the export's polygon (120,001 with the closing one), so its
+/// curve is that polygon, within the export's 0.5 µm chordal tolerance of the profile: the
+/// modification comes back within 0.5 µm (as from the polygon itself, `measure_cli`).
+#[test]
+fn a_spline_of_120000_control_points_is_read() {
+    let dir = Scratch::new("measured-spline");
+    export(&dir);
+    let vertices: Vec<(f64, f64)> = dir
+        .read("disc.csv")
+        .lines()
+        .filter(|l| !l.starts_with(['#', 'x']))
+        .map(|l| {
+            let mut c = l.split(',').map(|v| v.parse::<f64>().unwrap());
+            (c.next().unwrap(), c.next().unwrap())
+        })
+        .collect();
+    let (n, count) = (vertices.len(), 120_000);
+    let mut control: Vec<(f64, f64)> = (0..count)
+        .map(|k| {
+            let u = (k * n) as f64 / count as f64;
+            let (i, f) = (u.floor() as usize, u.fract());
+            let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+            (a.0 + f * (b.0 - a.0), a.1 + f * (b.1 - a.1))
+        })
+        .collect();
+    control.push(control[0]);
+    let m = control.len();
+    let mut dxf = String::from("0\nSECTION\n2\nENTITIES\n0\nSPLINE\n8\nPROFILE\n70\n8\n71\n1\n");
+    for k in std::iter::once(0).chain(0..m).chain(std::iter::once(m - 1)) {
+        dxf += &format!("40\n{k}\n");
+    }
+    for (x, y) in &control {
+        dxf += &format!("10\n{x:.9}\n20\n{y:.9}\n");
+    }
+    dxf += "0\nENDSEC\n0\nEOF\n";
+    dir.write("spline.dxf", dxf);
+    let run = fit(&dir, "spline.dxf", "dxf");
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(
+        run.stdout
+            .starts_with("cycloid fit `paper-table-1`: 120001 profile points, 0 hole points"),
+        "{}",
+        run.stdout
+    );
+    let value = |name: &str| -> f64 {
+        let line = run
+            .stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with(name))
+            .unwrap();
+        line.split_whitespace().nth(1).unwrap().parse().unwrap()
+    };
+    assert!((value("shift_mm") - 0.125).abs() < 5e-4, "{}", run.stdout);
+    assert!(
+        (value("equidistant_mm") - 0.1593).abs() < 5e-4,
+        "{}",
+        run.stdout
+    );
+}
+
+/// Case 5, every other count: a CSV of more than `MAX_POINTS` rows and a polyline of more
+/// vertices are refused at the line that goes past the bound, naming it; exactly
+/// `MAX_POINTS` rows are read. (The old reader took any count, and a fit of a million points
+/// with 200 harmonics would hold a 3 GB Jacobian three times.)
+#[test]
+fn every_count_of_the_reader_is_bounded() {
+    let rows = |n: usize| String::from("x_mm,y_mm\n") + &"1.5,2\n".repeat(n);
+    assert_eq!(
+        parse_csv("p.csv", &rows(MAX_POINTS)).unwrap().len(),
+        MAX_POINTS
+    );
+    let message = |line: usize, file: &str| {
+        format!(
+            "{file}:{line}:1: invalid value: more than {MAX_POINTS} measured points: a fit \
+             reads at most {MAX_POINTS} (a CMM scan of a disc holds thousands to tens of \
+             thousands); thin the points, e.g. every k-th"
+        )
+    };
+    let e = parse_csv("p.csv", &rows(MAX_POINTS + 1)).unwrap_err();
+    // The header is line 1, point k is line k + 1.
+    assert_eq!(e.to_string(), message(MAX_POINTS + 2, "p.csv"));
+    let mut dxf = String::from("0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\nPROFILE\n70\n1\n");
+    dxf += &"10\n1.5\n20\n2\n".repeat(MAX_POINTS + 1);
+    dxf += "0\nENDSEC\n0\nEOF\n";
+    let e = parse_dxf("p.dxf", &dxf).unwrap_err();
+    assert_eq!(e.to_string(), message(5, "p.dxf"));
+}
+
+/// Case 5, the fit: points × unknowns beyond `MAX_JACOBIAN_ENTRIES` (2^24) are refused before
+/// anything is allocated: 50,000 points with 200 harmonics on the paper's 9-tooth disc are
+/// 5 + 2·177 = 359 unknowns (orders 2..=200 without the 22 multiples of 9), 17,950,000 entries.
+#[test]
+fn a_fit_beyond_its_jacobian_bound_is_refused() {
+    use cycloid::measure::{fit, Feature, MeasuredPoint};
+    let spec = PaperSpec::new().parse("p.yaml");
+    let points: Vec<MeasuredPoint> = (0..50_000)
+        .map(|k| {
+            let a = k as f64 * 1e-4;
+            MeasuredPoint {
+                point: cycloid::geometry::Vec2::new(25.0 * a.cos(), 25.0 * a.sin()),
+                feature: Feature::Profile,
+                line: k + 2,
+            }
+        })
+        .collect();
+    let request = fit::Request {
+        design: &spec.design,
+        nominal: spec.modification,
+        fit: cycloid::model::measured::Fitted {
+            shift: true,
+            equidistant: true,
+            rotation: false,
+        },
+        harmonics: 200,
+    };
+    let e = fit::identify(&request, &points).unwrap_err();
+    assert_eq!(
+        e.message,
+        format!(
+            "50000 points × 359 unknowns = 17950000 Jacobian entries, more than the {} \
+             (128 MiB) a fit holds: thin the points (every k-th) or ask for fewer harmonics",
+            fit::MAX_JACOBIAN_ENTRIES
+        )
+    );
+    assert_eq!(fit::MAX_JACOBIAN_ENTRIES, 1 << 24);
 }

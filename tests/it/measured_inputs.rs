@@ -1,9 +1,9 @@
 //! Measured-disc inputs of issue 26 ("no data lost, no false pass, no crash"), one test per
-//! case: a DXF in another unit than mm, standard CSV quoting, a DXF with whitespace after EOF
-//! or in Windows-1252, a spline of 120,000 control points and the bounds on every count. The
-//! measured files are made here from `cycloid profile` of the paper's drawing (ΔRp 0.125 mm,
-//! ΔRrp 0.1593 mm), whose points lie on that profile: a fit of them gives back the drawing's
-//! modification, printed to 1e-6 mm.
+//! case: points in another unit, a disc the design rules refuse, standard CSV quoting, a DXF
+//! with whitespace after EOF or in Windows-1252, a spline of 120,000 control points and the
+//! bounds on every count. The measured files are made here from `cycloid profile` of the
+//! paper's drawing (ΔRp 0.125 mm, ΔRrp 0.1593 mm), whose points lie on that profile: a fit of
+//! them gives back the drawing's modification, printed to 1e-6 mm.
 
 use crate::common::{cycloid, PaperSpec, Scratch};
 use cycloid::measure::points::{parse_csv, parse_dxf, MAX_POINTS};
@@ -49,6 +49,16 @@ fn fit(dir: &Scratch, file: &str, format: &str) -> crate::common::Run {
     cycloid(&dir.path, &["fit", "fit.yaml"])
 }
 
+/// The 1-based line and column of the key `file:` in the flow mapping of `measured_profile:`.
+fn measured_file_at(text: &str) -> (usize, usize) {
+    let i = text
+        .lines()
+        .position(|l| l.starts_with("measured_profile:"))
+        .unwrap();
+    let column = text.lines().nth(i).unwrap().find("{file:").unwrap() + 2;
+    (i + 1, column)
+}
+
 /// The export with `$INSUNITS` set to `code`.
 fn with_units(dxf: &str, code: u32) -> String {
     let from = "$INSUNITS\n70\n4\n";
@@ -89,6 +99,103 @@ fn a_dxf_in_another_unit_is_refused_naming_it() {
         DRAWN.iter().all(|l| run.stdout.contains(l)),
         "{}",
         run.stdout
+    );
+}
+
+/// Case 1, CSV: the drawing's points divided by 25.4 (a CMM set to inches) fitted with a small
+/// RMS to an impossible disc, exit 0. The identified disc is now held to the bound of a part
+/// as built: its profile must lie less than e = 2 mm from the drawing's. Independently of the
+/// fit: the scaled points lie within (Rp + ΔRp + e − Rrp − ΔRrp)/25.4 = 28.97/25.4 = 1.14 mm of
+/// their centre while the drawing's root is at 24.97 mm, so any disc through them lies at
+/// least 23.8 mm from the drawing somewhere. `fit` and `check` refuse it at the key naming the
+/// file; the message's distance is the sum of the changes it lists.
+#[test]
+fn a_csv_in_inches_is_no_disc_of_this_design() {
+    let dir = Scratch::new("measured-inches");
+    export(&dir);
+    let scaled: String = dir
+        .read("disc.csv")
+        .lines()
+        .map(|l| match l.split(',').collect::<Vec<_>>()[..] {
+            [x, y, ..] if !l.starts_with(['#', 'x']) => {
+                let (x, y): (f64, f64) = (x.parse().unwrap(), y.parse().unwrap());
+                format!("{:.9},{:.9}\n", x / 25.4, y / 25.4)
+            }
+            _ => format!("{l}\n"),
+        })
+        .collect();
+    dir.write("inches.csv", scaled);
+    let text = fitting("inches.csv", "csv").text().to_string();
+    let (line, column) = measured_file_at(&text);
+    dir.write("fit.yaml", &text);
+    for command in ["fit", "check"] {
+        let run = cycloid(&dir.path, &[command, "fit.yaml"]);
+        assert_eq!(run.code(), 2, "{command}: {}", run.stderr);
+        let head = format!(
+            "fit.yaml:{line}:{column}: invalid value: measured_profile.file: the disc \
+             identified from `inches.csv` lies up to "
+        );
+        let rest = run
+            .stderr
+            .strip_prefix(&head)
+            .unwrap_or_else(|| panic!("{}", run.stderr));
+        let numbers: Vec<f64> = rest
+            .split([' ', '('])
+            .filter_map(|w| w.parse().ok())
+            .collect();
+        // lies up to D mm (shift_mm S mm and equidistant_mm Q mm ..., form error up to W mm)
+        let [moved, shift, equidistant, form, e] = numbers[..5] else {
+            panic!("{rest}")
+        };
+        assert!(moved >= 23.8, "{rest}");
+        assert_eq!(e, 2.0, "{rest}");
+        // 4 significant digits each: their sum within the rounding of the five.
+        let sum = shift.abs() + equidistant.abs() + form;
+        assert!((moved - sum).abs() <= 1e-3 * moved, "{rest}");
+        assert!(
+            rest.ends_with(
+                "not less than the eccentricity e = 2 mm that a part as built may move (the \
+                 teeth are 2e deep): the points are not a disc of this design, or not in mm\n"
+            ),
+            "{rest}"
+        );
+    }
+}
+
+/// Case 1, design rules: a disc 20 µm thinner than drawn (ΔRrp 0.1793 mm), well within the
+/// bound of a part as built, on a design whose pin holes clear the tooth root by 10 µm
+/// (rw = 19.9557 mm, hole radius 3 + e = 5 mm). Its root radius Rp + ΔRp − e − (Rrp + ΔRrp)
+/// = 30.125 − 2 − 3.1793 = 24.9457 mm is below rw + hole = 24.9557 mm: the holes cut the
+/// root. `fit` reported it (exit 0); it is refused with the rule and these closed-form numbers.
+#[test]
+fn a_disc_that_breaks_a_design_rule_is_refused_with_the_rule() {
+    let dir = Scratch::new("measured-rule");
+    let made = PaperSpec::new().modification(0.125, 0.1793);
+    dir.write("made.yaml", made.text());
+    let run = cycloid(&dir.path, &["profile", "made.yaml", "--csv", "thin.csv"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let spec = PaperSpec::new()
+        .modification(0.125, 0.1593)
+        .edit("circle_radius_mm: 18.0 ", "circle_radius_mm: 19.9557 ")
+        .with(
+            "measured_profile: {file: thin.csv, format: csv, harmonics: 0, fit: [shift_mm, \
+             equidistant_mm]}\n",
+        );
+    dir.write("fit.yaml", spec.text());
+    let run = cycloid(&dir.path, &["fit", "fit.yaml"]);
+    assert_eq!(run.code(), 2, "{}", run.stderr);
+    let (line, column) = measured_file_at(spec.text());
+    assert!(
+        run.stderr.starts_with(&format!(
+            "fit.yaml:{line}:{column}: invalid value: measured_profile.file: the disc \
+             identified from `thin.csv` (shift_mm 0.1250, equidistant_mm 0.1793) breaks a \
+             design rule, the points are not a disc of this design, or not in mm: output-pin \
+             holes cut into the tooth root: pin circle radius + hole radius = 19.9557 + 5.0000 \
+             = 24.9557 mm reaches the root radius of the profile, Rp + ΔRp − e − (Rrp + ΔRrp) \
+             = 24.9457 mm"
+        )),
+        "{}",
+        run.stderr
     );
 }
 

@@ -1,9 +1,9 @@
 //! Measured-disc inputs of issue 26 ("no data lost, no false pass, no crash"), one test per
 //! case: points in another unit, a disc the design rules refuse, standard CSV quoting, a DXF
 //! with whitespace after EOF or in Windows-1252, a spline of 120,000 control points and the
-//! bounds on every count. The measured files are made here from `cycloid profile` of the
-//! paper's drawing (ΔRp 0.125 mm, ΔRrp 0.1593 mm), whose points lie on that profile: a fit of
-//! them gives back the drawing's modification, printed to 1e-6 mm.
+//! bounds on every count, and a form-error order of 10⁹. The measured files are made here from
+//! `cycloid profile` of the paper's drawing (ΔRp 0.125 mm, ΔRrp 0.1593 mm), whose points lie
+//! on that profile: a fit of them gives back the drawing's modification, printed to 1e-6 mm.
 
 use crate::common::{cycloid, PaperSpec, Scratch};
 use cycloid::measure::points::{parse_csv, parse_dxf, MAX_POINTS};
@@ -458,4 +458,61 @@ fn a_fit_beyond_its_jacobian_bound_is_refused() {
         )
     );
     assert_eq!(fit::MAX_JACOBIAN_ENTRIES, 1 << 24);
+}
+
+/// Case 6: a form-error order of 10⁹ never returned (a series summed to order 10⁹ at every
+/// sample). Orders above 1,000 are refused at their key, with the bound and its reason; order
+/// 1,000 itself (a 0.1 µm wave, 0.19 mm long) checks.
+#[test]
+fn a_form_order_beyond_the_bound_is_refused_at_its_key() {
+    let dir = Scratch::new("measured-order");
+    let spec = |order: u64| {
+        PaperSpec::new().edit(
+            "  output_pins:\n",
+            &format!(
+                "  deviations:\n    form:\n      - {{order: {order}, cos_mm: 0.0001, sin_mm: 0.0}}\n  \
+                 output_pins:\n"
+            ),
+        )
+    };
+    let text = spec(1_000_000_000).text().to_string();
+    let line = text.lines().position(|l| l.contains("order:")).unwrap() + 1;
+    let column = text.lines().nth(line - 1).unwrap().find("order:").unwrap() + 1;
+    dir.write("s.yaml", &text);
+    let run = cycloid(&dir.path, &["check", "s.yaml"]);
+    assert_eq!(
+        (run.code(), run.stderr.as_str()),
+        (
+            2,
+            format!(
+                "s.yaml:{line}:{column}: invalid value: reducer.deviations.form[0].order: order \
+                 1000000000 is above 1000, the highest a form error may have: a wave of order k \
+                 is about 2π·Rp/k long along the disc (1.885e-7 mm here, 0.1885 mm at order \
+                 1000), and a wave shorter than a loaded roller's contact (~0.1 mm wide) is \
+                 flattened by it: the model, one contact point per roller, does not resolve it \
+                 (a fit identifies orders up to 200)\n"
+            )
+            .as_str()
+        )
+    );
+    dir.write("s.yaml", spec(1000).text());
+    let run = cycloid(&dir.path, &["check", "s.yaml"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+}
+
+/// The terminal's as-built line of a disc fitted without form error read "form error of 0
+/// harmonics (|w| ≤ -0.000 µm)": an empty sum of f64 is −0.0. The bound of no harmonic is 0.
+#[test]
+fn no_form_error_is_bounded_by_zero_not_minus_zero() {
+    let dir = Scratch::new("measured-zero");
+    export(&dir);
+    dir.write("fit.yaml", fitting("disc.csv", "csv").text());
+    let run = cycloid(&dir.path, &["check", "fit.yaml"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(
+        run.stdout
+            .contains("form error of 0 harmonics (|w| ≤ 0.000 µm)"),
+        "{}",
+        run.stdout
+    );
 }

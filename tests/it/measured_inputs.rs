@@ -1,9 +1,10 @@
 //! Measured-disc inputs of issue 26 ("no data lost, no false pass, no crash"), one test per
 //! case: points in another unit, a disc the design rules refuse, standard CSV quoting, a DXF
 //! with whitespace after EOF or in Windows-1252, a spline of 120,000 control points and the
-//! bounds on every count, and a form-error order of 10⁹. The measured files are made here from
-//! `cycloid profile` of the paper's drawing (ΔRp 0.125 mm, ΔRrp 0.1593 mm), whose points lie
-//! on that profile: a fit of them gives back the drawing's modification, printed to 1e-6 mm.
+//! bounds on every count, a form-error order of 10⁹, and `tolerance --write-sample` of a spec
+//! with a measured profile. The measured files are made here from `cycloid profile` of the
+//! paper's drawing (ΔRp 0.125 mm, ΔRrp 0.1593 mm), whose points lie on that profile: a fit of
+//! them gives back the drawing's modification, printed to 1e-6 mm.
 
 use crate::common::{cycloid, PaperSpec, Scratch};
 use cycloid::measure::points::{parse_csv, parse_dxf, MAX_POINTS};
@@ -515,4 +516,77 @@ fn no_form_error_is_bounded_by_zero_not_minus_zero() {
         "{}",
         run.stdout
     );
+}
+
+/// Case 7: `tolerance --write-sample K` of a spec with `measured_profile` wrote a spec that
+/// `check` ran on the measured disc (34.30 µm of root clearance, ΔRp/ΔRrp 0.125/0.1593 mm)
+/// plus the sample's draw, where the sample was drawn from the drawing (30 µm, 0.1/0.13 mm):
+/// a failing sample checked as a pass (sample 12 below: 13.61 µm against the limit of 15,
+/// replayed as 17.91 µm). The written spec leaves the measured profile out, and every failing
+/// sample's value is its replay's `check --json` value bit for bit, and fails there too.
+#[test]
+fn a_written_sample_of_a_measured_spec_replays_its_value() {
+    let dir = Scratch::new("measured-sample");
+    export(&dir);
+    let spec = fitting("disc.csv", "csv").with(
+        "tolerances:\n  scene: rated\n  max_failure_rate: 0.5\n  equidistant_mm: 0.06\n  \
+         samples: 20\n  seed: 5\n",
+    );
+    dir.write("t.yaml", spec.text());
+    let run = cycloid(
+        &dir.path,
+        &["tolerance", "t.yaml", "--samples-csv", "s.csv"],
+    );
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let csv = dir.read("s.csv");
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = header
+        .iter()
+        .position(|h| *h == "min_clearance_mm")
+        .unwrap();
+    let failing: Vec<(usize, f64)> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .map(|r| (r[0].parse().unwrap(), r[col].parse().unwrap()))
+        .filter(|(_, v)| *v < 0.015)
+        .collect();
+    assert!(failing.len() >= 2, "the seed draws failing samples: {csv}");
+    for (k, recorded) in failing {
+        let out = format!("sample{k}.yaml");
+        let w = cycloid(
+            &dir.path,
+            &[
+                "tolerance",
+                "t.yaml",
+                "--write-sample",
+                &k.to_string(),
+                &out,
+            ],
+        );
+        assert_eq!(w.code(), 0, "{}", w.stderr);
+        assert!(
+            w.stdout.contains("without the measured profile `disc.csv`"),
+            "{}",
+            w.stdout
+        );
+        let written = dir.read(&out);
+        assert!(!written.contains("\nmeasured_profile:"), "{written}");
+        let c = cycloid(&dir.path, &["check", &out, "--json", "c.json"]);
+        assert_eq!(c.code(), 1, "sample {k} fails its replay too: {}", c.stdout);
+        let doc: serde_json::Value = serde_json::from_str(&dir.read("c.json")).unwrap();
+        let value = doc["checks"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["id"].as_str().unwrap().ends_with("/min_clearance_mm"))
+            .unwrap()["value"]
+            .as_f64()
+            .unwrap();
+        assert_eq!(
+            value.to_bits(),
+            recorded.to_bits(),
+            "sample {k}: {value} vs {recorded}"
+        );
+    }
 }

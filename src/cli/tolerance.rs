@@ -224,12 +224,25 @@ fn write_sample(
     })?;
     let spec = study.spec;
     let deviations = study.deviations(&study.draw(k));
-    let text = spec::edit::with_deviations(&spec.source, &spec.path, &deviations, path)?;
+    // The sample is the drawing's parts as drawn: a measured disc would replace the drawing's
+    // in the replay (`check` runs on the disc as built), so the written spec has none.
+    let source = match &spec.measured {
+        Some(_) => spec::edit::without_measured_profile(&spec.source, path)?,
+        None => spec.source.clone(),
+    };
+    let text = spec::edit::with_deviations(&source, &spec.path, &deviations, path)?;
     let text = report::tolerance::sample_header(study, k) + &text;
     write_spec(&spec.path, path, &text)?;
+    let without = match &spec.measured {
+        Some(m) => format!(
+            ", without the measured profile `{}` (the sample is drawn from the drawing)",
+            m.path
+        ),
+        None => String::new(),
+    };
     print(
         out,
-        &format!("wrote {path}: sample {k}'s deviations as reducer.deviations; replay it with `cycloid check {path}`\n"),
+        &format!("wrote {path}: sample {k}'s deviations as reducer.deviations{without}; replay it with `cycloid check {path}`\n"),
     )?;
     Ok(Outcome::Passed)
 }

@@ -3,11 +3,12 @@
 //! the fitted form error (`reducer.deviations.form`), exact geometry (MODEL.md "Measured
 //! profiles"). `check` runs every scene and limit on that spec.
 
-use crate::error::Result;
+use crate::error::{Error, ErrorKind, Result};
 use crate::measure::fit::{self, Identification};
 use crate::measure::points;
 use crate::model::measured::MeasuredProfile;
-use crate::model::FormTerm;
+use crate::model::{Deviations, FormTerm};
+use crate::numeric;
 use crate::spec::Spec;
 
 /// The spec of the disc as built and its identification, or `None` without measured points.
@@ -43,11 +44,87 @@ pub fn fit(spec: &Spec, measured: &MeasuredProfile) -> Result<Identification> {
         fit: measured.fit,
         harmonics: measured.harmonics,
     };
-    fit::identify(&request, &read).map_err(|mut e| {
+    let id = fit::identify(&request, &read).map_err(|mut e| {
         if e.location.is_none() {
             e.message = format!("measured profile `{}`: {}", measured.path, e.message);
         }
         e
+    })?;
+    of_this_design(spec, measured, &id).map_err(|e| {
+        let e = Error::new(ErrorKind::InvalidValue, e.message);
+        spec.locate(e.at_key("measured_profile.file"))
+    })?;
+    Ok(id)
+}
+
+/// The identified disc is a disc of this design, else the points are not (points in inches,
+/// of another part): its profile is less than the eccentricity e from the drawing's, the same
+/// bound as a part as built (`spec::deviations::check`: the teeth are 2e deep, a hole is e
+/// wider than its pin), its hole radii too, and it keeps the design rules (K1, undercut, the
+/// pin holes below the tooth root, a form error that leaves the flank regular). The profile's
+/// distance from the drawing's is bounded by |ΔRp − ΔRp₀| + |ΔRrp − ΔRrp₀| + Σ|w_k|: a change of
+/// ΔRp moves it along the normal by (cos t, sin t)·N, at most 1, a change of ΔRrp by 1.
+fn of_this_design(spec: &Spec, measured: &MeasuredProfile, id: &Identification) -> Result<()> {
+    let (m, m0) = (id.modification, spec.modification);
+    let e = spec.design.eccentricity_mm;
+    let (shift, equidistant) = (
+        m.shift_mm - m0.shift_mm,
+        m.equidistant_mm - m0.equidistant_mm,
+    );
+    let form = form_terms(id);
+    let form_bound = form.iter().fold(0.0, |s, f| s + f.amplitude_mm());
+    let moved = shift.abs() + equidistant.abs() + form_bound;
+    let file = &measured.path;
+    let not_this = "the points are not a disc of this design, or not in mm";
+    // NaN (no finite fit) is refused too.
+    if moved.is_nan() || moved >= e {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "the disc identified from `{file}` lies up to {} mm from the drawing's profile \
+                 (shift_mm {} mm and equidistant_mm {} mm from the spec's, form error up to {} \
+                 mm), not less than the eccentricity e = {} mm that a part as built may move \
+                 (the teeth are 2e deep): {not_this}",
+                numeric::number(moved),
+                numeric::change(m0.shift_mm, m.shift_mm),
+                numeric::change(m0.equidistant_mm, m.equidistant_mm),
+                numeric::number(form_bound),
+                numeric::input(e)
+            ),
+        ));
+    }
+    if let Some(hole) = id
+        .hole_radius_offset_mm
+        .filter(|h| h.value.is_nan() || h.value.abs() >= e)
+    {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "the holes identified from `{file}` are {} mm off the design's radius {} mm, \
+                 not less than the eccentricity e = {} mm (a hole is e wider than its pin): \
+                 {not_this}",
+                numeric::number(hole.value),
+                numeric::number(spec.design.hole_radius_mm()),
+                numeric::input(e)
+            ),
+        ));
+    }
+    let mut disc = spec.design.clone();
+    disc.deviations = Deviations {
+        form,
+        ..Deviations::default()
+    };
+    crate::spec::deviations::check(&disc, &m).map_err(|r| {
+        Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "the disc identified from `{file}` (shift_mm {}, equidistant_mm {}) breaks a \
+                 design rule, {not_this}: {}",
+                numeric::number(m.shift_mm),
+                numeric::number(m.equidistant_mm),
+                r.message
+            ),
+        )
     })
 }
 

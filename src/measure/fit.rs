@@ -65,6 +65,13 @@ pub const MAX_RMS_MM: f64 = 0.05;
 
 const MAX_ITERATIONS: usize = 60;
 
+/// Most entries (points × unknowns) of the Jacobian a fit holds: 2^24, 128 MiB of f64 per copy,
+/// and the iteration holds three (the Jacobian, the trial step's and the column-scaled copy its
+/// QR factors). A million points of the 5 unknowns of a fit without form error fit in it; 200
+/// harmonics (up to 405 unknowns) leave room for 41,000 points, a point every 5 µm around the
+/// paper's disc.
+pub const MAX_JACOBIAN_ENTRIES: usize = 1 << 24;
+
 /// Below this RMS change of the residuals per step, mm, the feet of the last parameters start
 /// Newton alone (`Profile::closest_point_from`): a µm-sized move keeps every foot on its flank.
 const WARM_MM: f64 = 1e-2;
@@ -605,6 +612,19 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
                 layout.len,
                 layout.len - 3 - 2 * layout.orders.len(),
                 2 * layout.orders.len()
+            ),
+        ));
+    }
+    let entries = points.len().saturating_mul(layout.len);
+    if entries > MAX_JACOBIAN_ENTRIES {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "{} points × {} unknowns = {entries} Jacobian entries, more than the \
+                 {MAX_JACOBIAN_ENTRIES} (128 MiB) a fit holds: thin the points (every k-th) or \
+                 ask for fewer harmonics",
+                points.len(),
+                layout.len
             ),
         ));
     }

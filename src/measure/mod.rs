@@ -1,8 +1,10 @@
-//! The measured disc: points read from a CMM file or a CAD drawing (`points`), and the
+//! The measured disc: points read from a CMM file or a CAD drawing (`points`, its text decoded
+//! by `encoding`, its splines evaluated by `spline`), and the
 //! least-squares identification of the disc they lie on (`fit`, MODEL.md "Measured profiles";
 //! what it finds along the profile, `fitted`), and the per-flank summaries of its deviations
 //! over arc length (`flanks`).
 
+pub mod encoding;
 pub mod fit;
 pub mod fitted;
 pub mod flanks;

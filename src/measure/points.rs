@@ -1,15 +1,19 @@
 //! Reading measured points: CSV from a measuring machine, or a DXF drawing of the disc.
 //!
-//! CSV: `#` comment lines, then a header naming the columns, of which `x_mm` and `y_mm` are
-//! required and `feature` optional (other columns are ignored, so `cycloid profile --csv`
-//! output reads back); each row a point, `feature` `profile` (the default) or `hole:J`.
+//! CSV (RFC 4180 quoting, read by the `csv` crate): `#` comment lines, then a header naming the
+//! columns, of which `x_mm` and `y_mm` are required and `feature` optional (other columns are
+//! ignored, so `cycloid profile --csv` output reads back); each row a point, `feature`
+//! `profile` (the default) or `hole:J`.
 //! DXF: the vertices of closed LWPOLYLINE and POLYLINE entities are profile points (an open
 //! one is refused at its line, not skipped); a closed SPLINE gives its fit points when it has
-//! them (they lie on the curve), else `SPLINE_POINTS_PER_CONTROL` points per control point
-//! of the curve itself (`spline::Spline`, rational or not); a CIRCLE on
-//! layer `HOLE_J` is the bore of hole J, read as 72 points on it. Units mm.
-//! Errors name the file and line (exit 2).
+//! them (they lie on the curve), else points of the curve itself (`spline_sample_count`,
+//! `spline::Spline`, rational or not); a CIRCLE on layer `HOLE_J` is the bore of hole J, read
+//! as 72 points on it. The drawing's unit (`$INSUNITS`) must be millimetres (4) or unitless
+//! (0, or no `$INSUNITS`: the numbers are read as mm); the file ends at `EOF`, after which only
+//! whitespace may follow. Text that is not UTF-8 is decoded as `encoding` says.
+//! Errors name the file and line (exit 2). A file gives at most `MAX_POINTS` points.
 
+use super::encoding::{self, Fallback};
 use super::{Feature, MeasuredPoint};
 use crate::error::{Error, ErrorKind, Location, Result};
 use crate::geometry::Vec2;
@@ -25,16 +29,35 @@ pub const CIRCLE_POINTS: usize = 72;
 /// enter the fit).
 pub const SPLINE_POINTS_PER_CONTROL: usize = 32;
 
+/// Most points a SPLINE without fit points is sampled at, unless it has more control points
+/// (then one per control point): 2^16 points on the curve are 3 µm apart along the paper's
+/// 191 mm profile, far denser than any fit needs, and a CAD export of thousands of control
+/// points (spans of a few µm) gains nothing from 32 points per span.
+pub const SPLINE_POINTS_MAX: usize = 1 << 16;
+
+/// Highest SPLINE degree read: de Boor's algorithm costs p² operations per point, and CAD
+/// programs write degrees 1 to 10 (AutoCAD's range); 32 leaves room and bounds the cost.
+pub const MAX_SPLINE_DEGREE: usize = 32;
+
+/// Most points a measured-points file may give (profile and holes, every CSV row, polyline
+/// vertex and spline or circle point): 2^20. A CMM scan of a disc holds thousands to tens of
+/// thousands of points; a million keeps the reader's memory to ~40 MiB and the fit's Jacobian
+/// bounded (`fit::MAX_JACOBIAN_ENTRIES` bounds it with the unknowns).
+pub const MAX_POINTS: usize = 1 << 20;
+
 /// The points of a file.
 pub fn read(path: &str, format: PointsFormat) -> Result<Vec<MeasuredPoint>> {
-    let text = crate::files::read_text(
+    let bytes = crate::files::read_bytes(
         std::path::Path::new(path),
         "measured profile",
         crate::files::MAX_INPUT_BYTES,
     )?;
     match format {
-        PointsFormat::Csv => parse_csv(path, &text),
-        PointsFormat::Dxf => parse_dxf(path, &text),
+        PointsFormat::Csv => parse_csv(path, &encoding::decode(&bytes, Fallback::Replace)),
+        PointsFormat::Dxf => {
+            let text = encoding::decode(&bytes, encoding::dxf_fallback(&bytes));
+            parse_dxf(path, &text)
+        }
     }
 }
 
@@ -44,6 +67,19 @@ fn at(path: &str, line: usize, message: String) -> Error {
         line,
         column: 1,
     })
+}
+
+/// The error of one point more than `MAX_POINTS`, at the line that gave it.
+fn too_many(path: &str, line: usize) -> Error {
+    at(
+        path,
+        line,
+        format!(
+            "more than {MAX_POINTS} measured points: a fit reads at most {MAX_POINTS} (a CMM \
+             scan of a disc holds thousands to tens of thousands); thin the points, e.g. \
+             every k-th"
+        ),
+    )
 }
 
 /// `feature` of a row: `profile` or `hole:J`.
@@ -57,18 +93,42 @@ fn feature(text: &str) -> Option<Feature> {
     }
 }
 
+/// The records of a CSV text with the line each starts on, one at a time: fields unquoted
+/// (RFC 4180) and trimmed, comment lines (`#`, after any blanks) and blank lines left out.
+fn csv_records<'t>(
+    path: &'t str,
+    text: &'t str,
+) -> impl Iterator<Item = Result<(usize, csv::StringRecord)>> + 't {
+    let reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    reader.into_records().filter_map(move |record| {
+        let record = match record {
+            Ok(record) => record,
+            Err(e) => {
+                let line = e.position().map_or(1, |p| p.line() as usize);
+                return Some(Err(at(path, line, format!("not a CSV row: {e}"))));
+            }
+        };
+        let line = record.position().map_or(1, |p| p.line() as usize);
+        let blank = record.iter().all(str::is_empty);
+        let comment = record.get(0).is_some_and(|f| f.starts_with('#'));
+        (!blank && !comment).then_some(Ok((line, record)))
+    })
+}
+
 pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
-    let mut rows = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let mut rows = csv_records(path, text);
     let (header_line, header) = rows
         .next()
+        .transpose()?
         .ok_or_else(|| at(path, 1, "the file has no header line and no points".into()))?;
-    let names: Vec<&str> = header.split(',').map(str::trim).collect();
-    let column = |name: &str| names.iter().position(|n| *n == name);
+    let column = |name: &str| header.iter().position(|n| n == name);
     let (Some(x), Some(y)) = (column("x_mm"), column("y_mm")) else {
+        let header = header.iter().collect::<Vec<_>>().join(",");
         return Err(at(
             path,
             header_line,
@@ -77,10 +137,13 @@ pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
     };
     let f = column("feature");
     let mut points = Vec::new();
-    for (line, row) in rows {
-        let cells: Vec<&str> = row.split(',').map(str::trim).collect();
+    for row in rows {
+        let (line, cells) = row?;
+        if points.len() == MAX_POINTS {
+            return Err(too_many(path, line));
+        }
         let number = |c: usize, name: &str| -> Result<f64> {
-            let cell = cells.get(c).copied().unwrap_or("");
+            let cell = cells.get(c).unwrap_or("");
             cell.parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite())
@@ -93,7 +156,7 @@ pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                 })
         };
         let point = Vec2::new(number(x, "x_mm")?, number(y, "y_mm")?);
-        let cell = f.and_then(|c| cells.get(c).copied()).unwrap_or("");
+        let cell = f.and_then(|c| cells.get(c)).unwrap_or("");
         let feature = feature(cell).ok_or_else(|| {
             at(
                 path,
@@ -110,38 +173,120 @@ pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
     Ok(points)
 }
 
-/// The group-code/value pairs of a DXF file, with the line of each code.
-fn pairs(path: &str, text: &str) -> Result<Vec<(usize, i32, String)>> {
-    let lines: Vec<&str> = text.lines().collect();
-    let mut out = Vec::with_capacity(lines.len() / 2);
-    for (k, chunk) in lines.chunks(2).enumerate() {
-        let line = 2 * k + 1;
-        let code = chunk[0].trim().parse::<i32>().map_err(|_| {
+/// A group code, its value and the line of the code.
+type Pair<'a> = (usize, i32, &'a str);
+
+/// The group-code/value pairs of a DXF file, with the line of each code, up to the pair
+/// `0 EOF`. After it only whitespace may follow (an editor's blank line); anything else is
+/// refused at its line: a second drawing appended to the file would otherwise be dropped
+/// unseen.
+fn pairs<'a>(path: &str, text: &'a str) -> Result<Vec<Pair<'a>>> {
+    let mut lines = text.lines().enumerate();
+    let mut out = Vec::new();
+    while let Some((i, code)) = lines.next() {
+        let line = i + 1;
+        let code = code.trim().parse::<i32>().map_err(|_| {
             at(
                 path,
                 line,
-                format!("`{}` is not a DXF group code", chunk[0].trim()),
+                format!("`{}` is not a DXF group code", code.trim()),
             )
         })?;
-        let value = chunk.get(1).map_or("", |v| v.trim()).to_string();
+        let value = lines.next().map_or("", |(_, v)| v.trim());
         out.push((line, code, value));
+        if code == 0 && value == "EOF" {
+            if let Some((i, after)) = lines.find(|(_, l)| !l.trim().is_empty()) {
+                return Err(at(
+                    path,
+                    i + 1,
+                    format!(
+                        "`{}` after the end of the drawing (`EOF` at line {}): a DXF file \
+                         ends at EOF; remove what follows, or split a second drawing into its \
+                         own file",
+                        after.trim(),
+                        line + 1
+                    ),
+                ));
+            }
+            break;
+        }
     }
     Ok(out)
+}
+
+/// The names of the DXF drawing units, by their `$INSUNITS` code (AutoCAD DXF reference).
+const UNITS: [&str; 25] = [
+    "unitless",
+    "inches",
+    "feet",
+    "miles",
+    "millimetres",
+    "centimetres",
+    "metres",
+    "kilometres",
+    "microinches",
+    "mils",
+    "yards",
+    "ångströms",
+    "nanometres",
+    "microns",
+    "decimetres",
+    "decametres",
+    "hectometres",
+    "gigametres",
+    "astronomical units",
+    "light years",
+    "parsecs",
+    "US survey feet",
+    "US survey inches",
+    "US survey yards",
+    "US survey miles",
+];
+
+/// The drawing's unit (`9 $INSUNITS`, then group 70) must be millimetres (4). Unitless (0) or
+/// no `$INSUNITS` (an R12 drawing has none) leaves the numbers without a unit: they are read
+/// as mm, the unit of the measured points. Any other unit is refused at its line, naming it:
+/// the points would be read as mm and scaled by its ratio to mm.
+fn require_mm(path: &str, all: &[Pair<'_>]) -> Result<()> {
+    let Some(k) = all.iter().position(|p| p.1 == 9 && p.2 == "$INSUNITS") else {
+        return Ok(());
+    };
+    let Some(&(line, _, value)) = all.get(k + 1).filter(|p| p.1 == 70) else {
+        return Err(at(
+            path,
+            all[k].0,
+            "$INSUNITS without its group 70 value".into(),
+        ));
+    };
+    let code = value.parse::<i64>().ok();
+    if matches!(code, Some(0 | 4)) {
+        return Ok(());
+    }
+    let unit = code
+        .and_then(|c| usize::try_from(c).ok())
+        .and_then(|c| UNITS.get(c))
+        .map_or_else(|| "an unknown unit".to_string(), |u| (*u).to_string());
+    Err(at(
+        path,
+        line + 1,
+        format!(
+            "the drawing is in {unit} ($INSUNITS {value}): measured points are read in \
+             millimetres ($INSUNITS 4, or 0 for unitless numbers read as mm); export the \
+             drawing in mm"
+        ),
+    ))
 }
 
 /// One entity of the ENTITIES section: its type, first line and the pairs up to the next.
 struct Entity<'a> {
     kind: &'a str,
     line: usize,
-    pairs: &'a [(usize, i32, String)],
+    pairs: &'a [Pair<'a>],
 }
 
 impl Entity<'_> {
     fn value(&self, code: i32) -> Option<&str> {
-        self.pairs
-            .iter()
-            .find(|p| p.1 == code)
-            .map(|p| p.2.as_str())
+        self.pairs.iter().find(|p| p.1 == code).map(|p| p.2)
     }
 
     fn number(&self, path: &str, code: i32) -> Result<f64> {
@@ -194,8 +339,9 @@ impl Entity<'_> {
             .collect()
     }
 
-    /// A SPLINE's profile points: its fit points, or points of the curve.
-    fn spline_points(&self, path: &str) -> Result<Vec<(usize, Vec2)>> {
+    /// A SPLINE's profile points: its fit points, or points of the curve
+    /// (`spline_sample_count`); `room` is how many more points the file may give.
+    fn spline_points(&self, path: &str, room: usize) -> Result<Vec<(usize, Vec2)>> {
         let fit = self.pairs_of(path, (11, 21))?;
         let refuse = |m: String| at(path, self.line, m);
         if fit.len() >= 3 {
@@ -210,8 +356,16 @@ impl Entity<'_> {
         if weights.is_empty() {
             weights = vec![1.0; control.len()];
         }
+        let degree = self.number(path, 71)?;
+        if !(degree >= 1.0 && degree <= MAX_SPLINE_DEGREE as f64 && degree.fract() == 0.0) {
+            return Err(refuse(format!(
+                "a SPLINE of degree {degree}: the degree is a whole number 1 to \
+                 {MAX_SPLINE_DEGREE} (CAD programs write 1 to 10; each point costs degree² \
+                 operations)"
+            )));
+        }
         let spline = super::spline::Spline {
-            degree: self.number(path, 71)? as usize,
+            degree: degree as usize,
             knots: self.numbers(path, 40)?,
             control,
             weights,
@@ -222,13 +376,23 @@ impl Entity<'_> {
         if !spline.is_closed() {
             return Err(refuse(OPEN_SPLINE.into()));
         }
-        let count = SPLINE_POINTS_PER_CONTROL * spline.control.len();
+        let count = spline_sample_count(spline.control.len());
+        if count > room {
+            return Err(too_many(path, self.line));
+        }
         Ok(spline
             .sample(count)
             .into_iter()
             .map(|p| (self.line, p))
             .collect())
     }
+}
+
+/// The points a SPLINE of `control` control points (and no fit points) is read as:
+/// `SPLINE_POINTS_PER_CONTROL` per control point, at most `SPLINE_POINTS_MAX` unless the
+/// spline has more control points, then one per control point.
+pub fn spline_sample_count(control: usize) -> usize {
+    (SPLINE_POINTS_PER_CONTROL * control).min(SPLINE_POINTS_MAX.max(control))
 }
 
 /// What an open SPLINE is told.
@@ -243,7 +407,7 @@ fn parse_number(path: &str, line: usize, v: &str) -> Result<f64> {
         .ok_or_else(|| at(path, line + 1, format!("`{v}` is not a finite number")))
 }
 
-fn entities<'a>(all: &'a [(usize, i32, String)]) -> Vec<Entity<'a>> {
+fn entities<'a>(all: &'a [Pair<'a>]) -> Vec<Entity<'a>> {
     let starts: Vec<usize> = all
         .iter()
         .enumerate()
@@ -256,7 +420,7 @@ fn entities<'a>(all: &'a [(usize, i32, String)]) -> Vec<Entity<'a>> {
         .map(|(k, &s)| {
             let end = starts.get(k + 1).copied().unwrap_or(all.len());
             Entity {
-                kind: all[s].2.as_str(),
+                kind: all[s].2,
                 line: all[s].0,
                 pairs: &all[s + 1..end],
             }
@@ -266,6 +430,7 @@ fn entities<'a>(all: &'a [(usize, i32, String)]) -> Vec<Entity<'a>> {
 
 pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
     let all = pairs(path, text)?;
+    require_mm(path, &all)?;
     let list = entities(&all);
     let mut points = Vec::new();
     let mut closed_profiles = 0;
@@ -280,7 +445,8 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
             }
             "SPLINE" => {
                 closed_profiles += 1;
-                push_profile(&mut points, e.spline_points(path)?);
+                let room = MAX_POINTS.saturating_sub(points.len());
+                push_profile(&mut points, e.spline_points(path, room)?);
             }
             "POLYLINE" => {
                 refuse_open(path, e)?;
@@ -292,6 +458,9 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                     i += 1;
                 }
                 push_profile(&mut points, vertices);
+                if points.len() > MAX_POINTS {
+                    return Err(too_many(path, e.line));
+                }
                 continue;
             }
             "CIRCLE" => {
@@ -311,6 +480,9 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                     })?;
                 let centre = Vec2::new(e.number(path, 10)?, e.number(path, 20)?);
                 let radius = e.number(path, 40)?;
+                if points.len() + CIRCLE_POINTS > MAX_POINTS {
+                    return Err(too_many(path, e.line));
+                }
                 for k in 0..CIRCLE_POINTS {
                     let a = TAU * k as f64 / CIRCLE_POINTS as f64;
                     points.push(MeasuredPoint {
@@ -321,6 +493,9 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                 }
             }
             _ => {}
+        }
+        if points.len() > MAX_POINTS {
+            return Err(too_many(path, e.line));
         }
         i += 1;
     }

@@ -55,12 +55,7 @@ impl Spline {
         let p = self.degree;
         let (lo, hi) = self.domain();
         let u = u.clamp(lo, hi);
-        // The knot span k with u_k ≤ u < u_{k+1} (the last non-empty span at the end).
-        let n = self.control.len();
-        let mut k = p;
-        while k + 1 < n && self.knots[k + 1] <= u {
-            k += 1;
-        }
+        let k = self.span(u);
         // de Boor on (w·x, w·y, w).
         let mut d: Vec<[f64; 3]> = (0..=p)
             .map(|j| {
@@ -85,6 +80,14 @@ impl Spline {
             }
         }
         Vec2::new(d[p][0] / d[p][2], d[p][1] / d[p][2])
+    }
+
+    /// The knot span k of u in the domain: u_k ≤ u < u_{k+1}, the last non-empty span at the
+    /// domain's end (A2.1). By bisection of the non-decreasing knots u_{p+1} .. u_{n−1}: log n
+    /// steps, where a walk from u_p costs n per point, n² for a curve sampled along it.
+    fn span(&self, u: f64) -> usize {
+        let (p, n) = (self.degree, self.control.len());
+        p + self.knots[p + 1..n].partition_point(|&knot| knot <= u)
     }
 
     /// `count` points at equal steps of the parameter over the domain, the end left out (a
@@ -148,6 +151,32 @@ mod tests {
         assert!(spline.is_closed());
         for p in spline.sample(1000) {
             assert!(((p - c).norm() - r).abs() < 1e-12 * r, "{p}");
+        }
+    }
+
+    /// The span by bisection is the one a walk from u_p finds (the first k with u_{k+1} > u,
+    /// at most n − 1), on knots with repeats inside and at both clamped ends, at every knot,
+    /// between knots and at the domain's ends.
+    #[test]
+    fn the_span_is_the_walks() {
+        let knots = vec![0.0, 0.0, 0.0, 1.0, 1.0, 2.5, 3.0, 3.0, 3.0, 4.0, 4.0, 4.0];
+        let n = knots.len() - 3;
+        let spline = Spline {
+            degree: 2,
+            knots: knots.clone(),
+            control: vec![Vec2::zeros(); n],
+            weights: vec![1.0; n],
+        };
+        let walk = |u: f64| {
+            let mut k = 2;
+            while k + 1 < n && knots[k + 1] <= u {
+                k += 1;
+            }
+            k
+        };
+        for i in 0..=80 {
+            let u = 4.0 * i as f64 / 80.0;
+            assert_eq!(spline.span(u), walk(u), "u = {u}");
         }
     }
 

@@ -37,6 +37,16 @@ impl CentreDeviation {
     }
 }
 
+/// Highest order of a form-error harmonic (`reducer.deviations.form[].order`): 1,000. A wave
+/// of order k is about 2π·Rp/k long along the disc, 0.19 mm at order 1,000 on the paper's
+/// disc (Rp = 30 mm), already the width of a roller's Hertz contact at its rated load (2b ≈ 0.1
+/// mm): a contact flattens a shorter wave, and the model, one contact point per roller on a
+/// profile that is the series, does not resolve it (it is roughness, not form). A fit
+/// identifies orders up to 200 (`measured_profile.harmonics`). The bound also bounds the work
+/// of every order: the profile's table of w (`geometry::form_error`) evaluates the series at
+/// each of its nodes, the regularity check samples 64 points per wave of the highest order.
+pub const MAX_FORM_ORDER: usize = 1000;
+
 /// One harmonic of a disc's form error (MODEL.md "Measured profiles"): w(t) ∋
 /// cos_mm·cos(order·t) + sin_mm·sin(order·t), t the locus parameter, w along the profile's
 /// normal (positive: material missing, like a positive ΔRrp).
@@ -121,7 +131,8 @@ impl Deviations {
 
     /// The largest |w| the form error can reach, mm: the sum of its amplitudes.
     pub fn form_bound_mm(&self) -> f64 {
-        self.form.iter().map(FormTerm::amplitude_mm).sum()
+        // A fold from +0.0: an empty sum of f64 is −0.0, which prints as "-0.000".
+        self.form.iter().fold(0.0, |sum, f| sum + f.amplitude_mm())
     }
 
     /// Some roller is off its nominal place or size: gaps repeat only after a full crank turn.

@@ -22,7 +22,7 @@ pub mod study;
 pub mod tolerances;
 
 pub use design::{ConvexRadius, CrankBearing, Design, Locus, Material, OutputPins, MAX_DISCS};
-pub use deviations::{CentreDeviation, Deviations, FormTerm, RollerDeviation};
+pub use deviations::{CentreDeviation, Deviations, FormTerm, RollerDeviation, MAX_FORM_ORDER};
 pub use effect::{Detail, Effect};
 pub use golden::{Golden, GoldenTolerance};
 pub use limits::{Limit, Limits};

@@ -4,8 +4,11 @@
 
 use super::raw::{RawCentreDeviation, RawDeviations};
 use crate::error::{Error, ErrorKind, Result};
-use crate::model::{CentreDeviation, Design, Deviations, FormTerm, Modification, RollerDeviation};
+use crate::model::{
+    CentreDeviation, Design, Deviations, FormTerm, Modification, RollerDeviation, MAX_FORM_ORDER,
+};
 use crate::numeric;
+use std::f64::consts::TAU;
 
 const KEY: &str = "reducer.deviations";
 
@@ -81,7 +84,7 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
         let j = index(key.clone(), p.index, pins, "output pins", &mut seen)?;
         d.pins[j] = centre(&key, p)?;
     }
-    d.form = form(&raw.form, design.teeth)?;
+    d.form = form(&raw.form, design.teeth, design.roller_circle_radius_mm)?;
     let mut seen = vec![vec![false; pins]; design.discs];
     if !raw.holes.is_empty() {
         d.holes = vec![vec![CentreDeviation::default(); pins]; design.discs];
@@ -113,14 +116,28 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
     Ok(d)
 }
 
-/// `reducer.deviations.form`: orders from 2, each once, none a multiple of the tooth count
-/// (such a harmonic moves every tooth alike: it is the modification, `shift_mm` and
-/// `equidistant_mm`, or the orientation; order 1 is the disc's centre).
-fn form(raw: &[super::raw::RawFormTerm], teeth: usize) -> Result<Vec<FormTerm>> {
+/// `reducer.deviations.form`: orders from 2 to `MAX_FORM_ORDER`, each once, none a multiple of
+/// the tooth count (such a harmonic moves every tooth alike: it is the modification, `shift_mm`
+/// and `equidistant_mm`, or the orientation; order 1 is the disc's centre).
+fn form(raw: &[super::raw::RawFormTerm], teeth: usize, rp: f64) -> Result<Vec<FormTerm>> {
     let mut terms: Vec<FormTerm> = Vec::new();
     for (n, f) in raw.iter().enumerate() {
         let key = format!("{KEY}.form[{n}]");
         let order = f.order;
+        if order > MAX_FORM_ORDER as i64 {
+            return Err(Error::invalid(
+                format!("{key}.order"),
+                format!(
+                    "order {order} is above {MAX_FORM_ORDER}, the highest a form error may \
+                     have: a wave of order k is about 2π·Rp/k long along the disc ({} mm here, \
+                     {} mm at order {MAX_FORM_ORDER}), and a wave shorter than a loaded \
+                     roller's contact (~0.1 mm wide) is flattened by it: the model, one contact \
+                     point per roller, does not resolve it (a fit identifies orders up to 200)",
+                    numeric::number(TAU * rp / order as f64),
+                    numeric::number(TAU * rp / MAX_FORM_ORDER as f64)
+                ),
+            ));
+        }
         if order < 2 || (order as usize).is_multiple_of(teeth) {
             return Err(Error::invalid(
                 format!("{key}.order"),

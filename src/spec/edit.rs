@@ -1,7 +1,7 @@
 //! Writing a spec back with changes, editing its YAML text in place so that the user's comments
 //! and layout survive: a modification (`optimise --write`, `fit --write`), an optimum's name with
 //! its goldens removed (`optimise --write`), parts as built (`tolerance --write-sample`, `fit
-//! --write` of a form error). Values are printed in Rust's shortest round-trip form, and every
+//! --write` of a form error), a measured profile removed (`tolerance --write-sample`). Values are printed in Rust's shortest round-trip form, and every
 //! result is parsed again and must give back exactly what was written.
 
 use super::locate_offset;
@@ -144,6 +144,29 @@ pub fn optimum_spec(
                 "the written spec reads back with name `{}`, not `{name}`",
                 back.name
             ),
+        ));
+    }
+    Ok(out)
+}
+
+/// Spec `text` (to be written to `out_path`) without its `measured_profile` section, a comment
+/// in its place saying why: the spec of a tolerance sample (`tolerance --write-sample`)
+/// replays the sample, drawn from the drawing, and with a measured profile `check` would run
+/// on the disc identified from its points instead. The result parses back without one.
+pub fn without_measured_profile(text: &str, out_path: &str) -> Result<String> {
+    let mut out = text.to_string();
+    if let Some(range) = top_level_section(&out, "measured_profile") {
+        out.replace_range(
+            range,
+            "# The source spec's measured_profile was removed: the sample's deviations are \
+             drawn from the\n# drawing, and with it `cycloid check` would run on the measured \
+             disc instead.\n",
+        );
+    }
+    if super::parse(out_path, &out)?.measured.is_some() {
+        return Err(Error::new(
+            ErrorKind::Computation,
+            format!("the written spec {out_path} still reads back with a measured_profile"),
         ));
     }
     Ok(out)

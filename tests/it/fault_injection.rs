@@ -627,7 +627,16 @@ fn a_spec_written_elsewhere_names_the_same_files() {
     );
     assert_eq!(run.code(), 0, "{run:?}");
     let text = dir.read("out/deeper/s.yaml");
-    assert!(text.contains("file: ../../specs/disc.csv"), "{text}");
+    // A sample is drawn from the drawing: its spec has no measured profile to reach.
+    assert!(!text.contains("disc.csv"), "{text}");
+    let run = cycloid(
+        &dir.path,
+        &["fit", "specs/m.yaml", "--write", "out/deeper/f.yaml"],
+    );
+    assert_eq!(run.code(), 0, "{run:?}");
+    assert!(dir
+        .read("out/deeper/f.yaml")
+        .contains("file: ../../specs/disc.csv"));
     assert!(
         text.contains("file: ../../golden/m/clearance_mm.csv"),
         "{text}"
@@ -645,7 +654,12 @@ fn a_spec_written_elsewhere_names_the_same_files() {
     );
     assert_eq!(run.code(), 0, "{run:?}");
     let text = dir.read("specs/s.yaml");
-    assert!(text.contains(MEASURED_FILE_LINE), "{text}");
+    let run = cycloid(
+        &dir.path,
+        &["fit", "specs/m.yaml", "--write", "specs/f.yaml"],
+    );
+    assert_eq!(run.code(), 0, "{run:?}");
+    assert!(dir.read("specs/f.yaml").contains(MEASURED_FILE_LINE));
     assert!(
         text.contains("file: ../golden/m/clearance_mm.csv"),
         "{text}"

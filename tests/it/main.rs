@@ -33,6 +33,7 @@ mod hard_cases;
 mod junit;
 mod measure;
 mod measure_cli;
+mod measured_inputs;
 mod mesh_minimum;
 mod optimise;
 mod ordinary_inputs;

@@ -31,6 +31,19 @@ pub(super) fn distinct_outputs(
         if path.is_empty() {
             return Err(usage(format!("{flag} \"\": an empty path names no file")));
         }
+        // The kind of target each output needs, checked before any work is done.
+        let meta = std::fs::metadata(path).ok();
+        if flag == "--report" && meta.as_ref().is_some_and(|m| !m.is_dir()) {
+            return Err(usage(format!(
+                "{flag} {path} is a file; a design review is a directory: give a new or existing \
+                 directory"
+            )));
+        }
+        if flag != "--report" && meta.as_ref().is_some_and(|m| m.is_dir()) {
+            return Err(usage(format!(
+                "{flag} {path} is a directory; give a file path"
+            )));
+        }
         let mut ids = vec![files::identity(Path::new(path))];
         if flag == "--report" {
             ids.push(ids[0].join("index.html"));

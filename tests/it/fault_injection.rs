@@ -375,6 +375,26 @@ const CASES: &[Case] = &[
         writes: &[],
         then: None,
     },
+    Case {
+        class: Class::DataLoss,
+        name: "check --junit at a directory: refused before the run, not after it",
+        damage: no_damage,
+        args: &["check", "specs/m.yaml", "--junit", "golden"],
+        code: 2,
+        stderr: "--junit golden is a directory; give a file path",
+        writes: &[],
+        then: None,
+    },
+    Case {
+        class: Class::DataLoss,
+        name: "tolerance --report at a file",
+        damage: no_damage,
+        args: &["tolerance", "specs/m.yaml", "--report", "specs/disc.csv"],
+        code: 2,
+        stderr: "--report specs/disc.csv is a file",
+        writes: &[],
+        then: None,
+    },
     // Shards altered by a tool that knows the format (checksum made valid again).
     Case {
         class: Class::FalsePass,

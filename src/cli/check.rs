@@ -120,6 +120,14 @@ fn review_options(args: &CheckArgs) -> Result<Option<ReviewOptions>> {
             "--report-crank-deg must be a finite angle, got {deg}"
         ));
     }
+    let max = spec::MAX_CRANK_DEG;
+    if let Some(deg) = args.report_crank_deg.filter(|d| d.abs() > max) {
+        return bad(format!(
+            "--report-crank-deg {} is beyond ±{max}°, the crank angles a spec may give (the \
+             angle's rounding would exceed 1e-9 rad)",
+            crate::numeric::input(deg)
+        ));
+    }
     let steps = args.report_map_steps;
     if args.report.is_some() && steps != 0 && !commands::map_steps_allowed(steps) {
         return bad(format!(

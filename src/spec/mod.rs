@@ -26,7 +26,7 @@ pub use crate::model::scene::MAX_ROLLER_ANGLES;
 pub use locate::{locate, locate_offset};
 pub use paths::resolve;
 pub use scenes::{refuse_first_order, scene_index, scene_names};
-pub use validate::crank_angles;
+pub use validate::{crank_angles, MAX_CRANK_DEG};
 pub use validated::{Accuracy, Spec};
 
 /// Read and validate a spec file.

@@ -42,7 +42,7 @@ const MAX_LENGTH_MM: f64 = 1e5;
 
 /// Largest crank angle magnitude, degrees (~28,000 revolutions): an angle's rounding stays
 /// below 1e-9 rad.
-const MAX_CRANK_DEG: f64 = 1e7;
+pub const MAX_CRANK_DEG: f64 = 1e7;
 
 /// An angle in degrees within ±`MAX_CRANK_DEG` (a crank angle, a profile rotation).
 fn angle_deg(key: &str, value: f64) -> Result<f64> {

@@ -471,6 +471,23 @@ const CASES: &[Case] = &[
         writes: &[],
         then: None,
     },
+    Case {
+        class: Class::Bound,
+        name: "--report-crank-deg 1e300, beyond the crank angles a spec may give",
+        damage: no_damage,
+        args: &[
+            "check",
+            "specs/m.yaml",
+            "--report",
+            "rev",
+            "--report-crank-deg",
+            "1e300",
+        ],
+        code: 2,
+        stderr: "--report-crank-deg 1e300 is beyond ±10000000°",
+        writes: &[],
+        then: None,
+    },
     // Errors located at the key that names the file.
     Case {
         class: Class::Located,

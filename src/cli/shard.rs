@@ -54,6 +54,17 @@ pub(super) fn slurm_shard(samples: u64) -> Result<Option<(u64, u64)>> {
         None => 0,
     };
     let count = number("SLURM_ARRAY_TASK_COUNT", &count)?;
+    // A stepped array (--array=0-6:2) numbers its tasks 0, 2, 4, 6: task ids would not be the
+    // shard indices 0 … N−1, and half the shards would be refused only after the others ran.
+    if let Some(step) = var("SLURM_ARRAY_TASK_STEP") {
+        if number("SLURM_ARRAY_TASK_STEP", &step)? != 1 {
+            return Err(invalid(format!(
+                "SLURM_ARRAY_TASK_STEP={step}: the job array has a step; give it as one \
+                 contiguous range such as --array=0-{}",
+                count.saturating_sub(1)
+            )));
+        }
+    }
     let i = id.checked_sub(min).ok_or_else(|| {
         invalid(format!(
             "SLURM_ARRAY_TASK_ID {id} is below SLURM_ARRAY_TASK_MIN {min}"

@@ -274,6 +274,18 @@ fn three_shards_merge_to_the_unsharded_study_byte_for_byte() {
     merge(&dir, &["task1.bin", "task2.bin", "task3.bin"], "tasks");
     assert_eq!(dir.read("whole.json"), dir.read("tasks.json"));
     assert_eq!(dir.read("whole.csv"), dir.read("tasks.csv"));
+    // A stepped array (--array=0-4:2, tasks 0, 2, 4) is refused by its first task, not by the
+    // third after the first two ran.
+    let env = [
+        ("SLURM_ARRAY_TASK_ID", "0"),
+        ("SLURM_ARRAY_TASK_MIN", "0"),
+        ("SLURM_ARRAY_TASK_COUNT", "3"),
+        ("SLURM_ARRAY_TASK_STEP", "2"),
+    ];
+    let r = common::cycloid_with(&here, &["tolerance", "t.yaml", "--out", "step.bin"], &env);
+    assert_eq!(r.code(), 2, "{r:?}");
+    assert!(r.stderr.contains("SLURM_ARRAY_TASK_STEP=2"), "{}", r.stderr);
+    assert!(!dir.exists("step.bin"));
 }
 
 /// A merge refuses shards of another spec, seed or sample count, and a set with a shard

@@ -246,7 +246,7 @@ fn bearing_life(
         equivalent_load_n: load,
         life_h: scene
             .input_speed_rpm
-            .and_then(|n| bearing_life::life_h(load, c, p, n, design.teeth)),
+            .map(|n| bearing_life::life_h(load, c, p, n, design.teeth)),
     })
 }
 

@@ -14,6 +14,7 @@ mod common;
 
 mod accuracy;
 mod as_built_review;
+mod bearing_life;
 mod clearance_sweep;
 mod cli;
 mod cli_help;

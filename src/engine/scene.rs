@@ -265,10 +265,32 @@ pub enum Note {
     },
     /// A scene whose crank-bearing life in hours is not rated: it has no `input_speed_rpm`.
     LifeHoursNotRated { scene: String },
+    /// A scene with the output pins whose crank is longer than the holes were bored for by
+    /// more than their clearance: every pin is pressed into its hole by `interference_mm`
+    /// (de − c) at every crank angle, whatever the torque, and the crank bearing carries that
+    /// preload (MODEL.md "Part deviations": the holes keep the nominal e + c). `drawn`: the
+    /// depth is the largest a tolerance study draws, in the samples whose crank is that long.
+    PinsPreloaded {
+        /// The scene's name.
+        scene: String,
+        /// How deep every pin is pressed into its hole, mm.
+        interference_mm: f64,
+        /// The depth is the largest a tolerance study draws.
+        drawn: bool,
+    },
 }
 
-/// The notes of a spec's scenes, in scene order: a torsion scene's zero hysteresis, a crank
-/// bearing whose life a scene could not rate.
+/// How far a crank longer than the pin holes allow presses every pin into its hole, mm:
+/// de − c for an eccentricity deviation de and hole clearance c (a hole's radius is pin + e +
+/// c, the pin's centre sits e + de from the hole's), when positive.
+pub fn pin_interference_mm(design: &Design, eccentricity_deviation_mm: f64) -> Option<f64> {
+    let depth = eccentricity_deviation_mm - design.pins.hole_clearance_mm;
+    (depth > 0.0).then_some(depth)
+}
+
+/// The notes of a spec's scenes, in scene order: a torsion scene's zero hysteresis, pins
+/// preloaded by a crank longer than their holes allow, a crank bearing whose life a scene
+/// could not rate.
 pub fn notes(spec: &Spec) -> Vec<Note> {
     let mut notes = Vec::new();
     for scene in &spec.scenes {
@@ -276,6 +298,17 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
         let name = || scene.name.clone();
         if plan.has(Effect::Torsion) {
             notes.push(Note::Hysteresis { scene: name() });
+        }
+        let de = spec.design.deviations.eccentricity_mm;
+        if let (true, Some(depth)) = (
+            plan.has(Effect::OutputPins),
+            pin_interference_mm(&spec.design, de),
+        ) {
+            notes.push(Note::PinsPreloaded {
+                scene: name(),
+                interference_mm: depth,
+                drawn: false,
+            });
         }
         if spec.design.crank_bearing.is_some() && plan.computes(Effect::Bearing) {
             if !scene.spans_loaded_periods(&spec.design, &plan) {

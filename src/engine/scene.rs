@@ -14,9 +14,10 @@ use crate::equilibrium::solve::{Settings, SolveFailure};
 use crate::equilibrium::sweep;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
+use crate::geometry::first_order;
 use crate::model::quantity::QUANTITIES;
 use crate::model::results::{BearingLife, ClearanceSweep, LoadedSweep, SceneResult};
-use crate::model::{Design, Detail, Effect, Modification, Plan, Scene};
+use crate::model::{Design, Detail, Effect, GeometryMode, Modification, Plan, Scene};
 use crate::progress::{Progress, Silent};
 use crate::spec::Spec;
 use crate::units;
@@ -128,6 +129,7 @@ pub fn run_design(
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     if design.discs == 1 {
         let loaded = loaded_sweep(design, m, (scene, plan), settings, progress)?;
+        first_order_valid(design, m, scene, (&loaded, 0.0))?;
         let mut one = result(scene.name.clone(), clearance(0.0)?, loaded);
         one.torsion = torsion;
         return Ok(one);
@@ -139,6 +141,7 @@ pub fn run_design(
         if let Some(s) = &sweeps {
             loaded = s.discs[k].clone();
             loaded.torque_nmm = Some(s.torque_nmm[k].clone());
+            first_order_valid(design, m, scene, (&loaded, design.disc_phase_rad(k)))?;
         }
         let name = format!("{} disc {k}", scene.name);
         let disc = result(name, clearance(design.disc_phase_rad(k))?, loaded);
@@ -147,6 +150,62 @@ pub fn run_design(
     reducer.loaded.transmission = sweeps.and_then(|s| s.transmission);
     reducer.torsion = torsion;
     Ok(reducer)
+}
+
+/// A first-order scene's loaded sweep (of the disc at crank phase `phase_rad`) within the
+/// closed form's validity ([`first_order::LagValidity`](crate::geometry::first_order::LagValidity)):
+/// at every crank angle the rollers' arms move over the lag by less than their moment; else an
+/// error at the scene's `geometry` saying where and how far, never a result.
+fn first_order_valid(
+    design: &Design,
+    m: &Modification,
+    scene: &Scene,
+    (loaded, phase_rad): (&LoadedSweep, f64),
+) -> Result<()> {
+    let Some(rollers) = loaded.rollers.as_ref() else {
+        return Ok(());
+    };
+    if scene.geometry != GeometryMode::FirstOrder {
+        return Ok(());
+    }
+    let validity = first_order::LagValidity::new(design, m);
+    let mut forces = vec![0.0; design.rollers];
+    // The worst angle: (ε, crank, lag); a change that is not a number is the worst of all.
+    let mut worst = (0.0, 0.0, 0.0);
+    for (k, (&crank, &lag)) in scene.crank_rad.iter().zip(&rollers.lag_rad).enumerate() {
+        forces
+            .iter_mut()
+            .zip(&rollers.force_n)
+            .for_each(|(f, curve)| *f = curve[k]);
+        let change = validity.moment_change(design, crank + phase_rad, lag, &forces);
+        let change = if change.is_nan() {
+            f64::INFINITY
+        } else {
+            change
+        };
+        if change > worst.0 {
+            worst = (change, crank, lag);
+        }
+    }
+    let (change, crank, lag) = worst;
+    if change < 1.0 {
+        return Ok(());
+    }
+    let share = match change.is_finite() {
+        true => format!("{} %", crate::numeric::number(100.0 * change)),
+        false => "more than any number".to_string(),
+    };
+    Err(Error::computation(format!(
+        "scene `{}`: crank angle {:.4}°: the first-order geometry is outside its validity: \
+         its lag β = {} rad moves the rollers' moment arms, which the closed form keeps at \
+         those of the ideal pose, by {share} of their moment (|β|·Σ F·|∂²g/∂β²| / Σ F·|l|, from \
+         the locus's curvature at each contact; the closed form holds below 100 %); the exact \
+         geometry (`geometry: exact`) is the reference",
+        scene.name,
+        units::deg(crank),
+        crate::numeric::number(lag),
+    ))
+    .at_key("geometry"))
 }
 
 /// The torsion loops of a scene with a `torque_sweep` ([`engine::torsion`](crate::engine::torsion)), when planned.

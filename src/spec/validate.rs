@@ -490,6 +490,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         scenes.push(s);
     }
     exact_as_built(&design, &scenes)?;
+    first_order_torques(&design, &scenes)?;
     let studies = match raw.optimise {
         Some(o) => {
             let many = matches!(o, RawOptimise::Many(_));
@@ -585,6 +586,39 @@ fn exact_as_built(design: &Design, scenes: &[Scene]) -> Result<()> {
          every roller and pin on its place, so parts as built are computed with \
          `geometry: exact`",
     )
+}
+
+/// A first-order scene's torque (its output torque, or its loop's rated torque) within
+/// `Design::first_order_torque_bound_nmm`, where the closed form's forces are still contact
+/// forces and finite.
+fn first_order_torques(design: &Design, scenes: &[Scene]) -> Result<()> {
+    let bound = design.first_order_torque_bound_nmm();
+    for (i, s) in scenes.iter().enumerate() {
+        if s.geometry != GeometryMode::FirstOrder {
+            continue;
+        }
+        let (key, torque) = match &s.torque_sweep {
+            Some(t) => ("torque_sweep.rated_nm", t.rated_nmm),
+            None => ("output_torque_nm", s.output_torque_nmm),
+        };
+        if torque.abs() > bound {
+            return Err(Error::invalid(
+                format!("scenes[{i}].{key}"),
+                format!(
+                    "{} N·m is beyond what the first-order geometry can hold, {} N·m: that \
+                     torque presses every roller by its own radius ({} mm) at the largest \
+                     first-order arm e·nc = {} mm, on the paper's law, where no contact is \
+                     left to linearise; use `geometry: exact`, which says how much the \
+                     rollers hold",
+                    numeric::input(units::nm(torque)),
+                    numeric::number(units::nm(bound)),
+                    numeric::input(design.roller_radius_mm),
+                    numeric::number(design.eccentricity_mm * design.teeth as f64)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// `what` (a study) runs its scene over the crank angle: a torsion scene has no such curves

@@ -891,7 +891,12 @@ fn a_study_drawing_a_longer_crank_says_its_pins_are_preloaded() {
             .to_string();
         dir.write("s.yaml", &text);
         let run = common::cycloid(&dir.path, &["tolerance", "s.yaml"]);
-        assert!(run.code() == 0 || run.code() == 1, "{}{}", run.stdout, run.stderr);
+        assert!(
+            run.code() == 0 || run.code() == 1,
+            "{}{}",
+            run.stdout,
+            run.stderr
+        );
         let note = "note: scene `rated`: samples drawn with the crank longer than the pin holes \
                     were bored for (e + hole clearance): every output pin is pressed up to 4.000 \
                     µm into its hole";

@@ -24,6 +24,7 @@ mod discs;
 mod equilibrium;
 mod export;
 mod first_order_sweep;
+mod first_order_validity;
 mod flanks;
 mod fuzz_corpus;
 mod geometry;

@@ -26,6 +26,12 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
     built.modification = id.modification;
     built.design.deviations.form = form_terms(&id);
     crate::spec::deviations::check(&built.design, &built.modification)?;
+    // The fitted form error makes the loaded curves repeat only after a whole turn of the
+    // disc: a bearing life over the drawing's loaded period no longer spans whole load cycles.
+    let what = "the disc identified from `measured_profile`, whose form error repeats only \
+                after a whole turn of the disc";
+    crate::spec::bearing_life::check(&built.limits, &built.design, &built.scenes, Some(what))
+        .map_err(|e| spec.locate(e))?;
     Ok(Some((built, id)))
 }
 

@@ -7,6 +7,8 @@
 //! relative to the disc, which itself turns backwards at n/nc: the relative speed is
 //! n·(1 + 1/nc), so L10h = (C/P)^p · 10⁶ / (60 · n · (1 + 1/nc)) hours.
 
+use crate::model::results::UNBOUNDED_LIFE_H;
+
 /// P = (mean of F^p)^(1/p), N, over bearing forces `force_n` (N) sampled evenly over whole
 /// load cycles (the rectangle rule is then the mean of the periodic load). 0 without samples.
 pub fn equivalent_load(force_n: &[f64], exponent: f64) -> f64 {
@@ -33,30 +35,32 @@ pub fn relative_speed_rpm(input_rpm: f64, teeth: usize) -> f64 {
 
 /// (P in N, L10h in hours) of a crank bearing of rating `rating_n` (C, N) and life exponent
 /// `exponent` (p) under the bearing-force curve `force_n` (N, evenly over whole load cycles),
-/// at the input speed `input_rpm` (n) of a disc with `teeth` (nc). L10h is `None` when P = 0:
-/// an unloaded bearing has no finite rating life.
+/// at the input speed `input_rpm` (n) of a disc with `teeth` (nc) (`life_h`).
 pub fn rating_life(
     force_n: &[f64],
     rating_n: f64,
     exponent: f64,
     input_rpm: f64,
     teeth: usize,
-) -> (f64, Option<f64>) {
+) -> (f64, f64) {
     let p = equivalent_load(force_n, exponent);
     (p, life_h(p, rating_n, exponent, input_rpm, teeth))
 }
 
 /// L10h, hours, of a bearing of rating `rating_n` (C, N) and life exponent `exponent` (p)
 /// under the equivalent load `load_n` (P, N) at the input speed `input_rpm` of a disc with
-/// `teeth`: (C/P)^p·10⁶/(60·n·(1 + 1/nc)); `None` for P = 0.
-pub fn life_h(
-    load_n: f64,
-    rating_n: f64,
-    exponent: f64,
-    input_rpm: f64,
-    teeth: usize,
-) -> Option<f64> {
+/// `teeth`: (C/P)^p·10⁶/(60·n·(1 + 1/nc)). An unloaded bearing (P = 0) never wears, and a
+/// life beyond the largest double (P below C·1e-92 with p = 10/3: a load of round-off) has no
+/// number: both are `UNBOUNDED_LIFE_H`, never ∞.
+pub fn life_h(load_n: f64, rating_n: f64, exponent: f64, input_rpm: f64, teeth: usize) -> f64 {
+    if load_n <= 0.0 {
+        return UNBOUNDED_LIFE_H;
+    }
     let revolutions = (rating_n / load_n).powf(exponent) * 1e6;
     let hours = revolutions / (60.0 * relative_speed_rpm(input_rpm, teeth));
-    (load_n > 0.0 && hours.is_finite()).then_some(hours)
+    if hours.is_finite() {
+        hours
+    } else {
+        UNBOUNDED_LIFE_H
+    }
 }

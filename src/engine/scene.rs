@@ -14,11 +14,12 @@ use crate::equilibrium::solve::{Settings, SolveFailure};
 use crate::equilibrium::sweep;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{self, Mesh};
+use crate::geometry::first_order;
 use crate::geometry::mesh_minimum::{self, MeshMinimum};
 use crate::model::accuracy::LadderTolerances;
 use crate::model::quantity::QUANTITIES;
 use crate::model::results::{BearingLife, ClearanceSweep, LoadedSweep, SceneResult};
-use crate::model::{Design, Detail, Effect, Modification, Plan, Scene};
+use crate::model::{Design, Detail, Effect, GeometryMode, Modification, Plan, Scene};
 use crate::progress::{Progress, Silent};
 use crate::spec::Spec;
 use crate::units;
@@ -152,6 +153,7 @@ pub fn run_design(
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     if design.discs == 1 {
         let loaded = loaded_sweep(design, m, (scene, plan), settings, progress)?;
+        first_order_valid(design, m, scene, (&loaded, 0.0))?;
         let mut one = result(scene.name.clone(), clearance(0.0)?, loaded);
         one.torsion = torsion;
         return Ok(one);
@@ -163,6 +165,7 @@ pub fn run_design(
         if let Some(s) = &sweeps {
             loaded = s.discs[k].clone();
             loaded.torque_nmm = Some(s.torque_nmm[k].clone());
+            first_order_valid(design, m, scene, (&loaded, design.disc_phase_rad(k)))?;
         }
         let name = format!("{} disc {k}", scene.name);
         let disc = result(name, clearance(design.disc_phase_rad(k))?, loaded);
@@ -198,6 +201,62 @@ fn clearance_sweep(
         ))
     })?;
     Ok(c)
+}
+
+/// A first-order scene's loaded sweep (of the disc at crank phase `phase_rad`) within the
+/// closed form's validity ([`first_order::LagValidity`](crate::geometry::first_order::LagValidity)):
+/// at every crank angle the rollers' arms move over the lag by less than their moment; else an
+/// error at the scene's `geometry` saying where and how far, never a result.
+fn first_order_valid(
+    design: &Design,
+    m: &Modification,
+    scene: &Scene,
+    (loaded, phase_rad): (&LoadedSweep, f64),
+) -> Result<()> {
+    let Some(rollers) = loaded.rollers.as_ref() else {
+        return Ok(());
+    };
+    if scene.geometry != GeometryMode::FirstOrder {
+        return Ok(());
+    }
+    let validity = first_order::LagValidity::new(design, m);
+    let mut forces = vec![0.0; design.rollers];
+    // The worst angle: (ε, crank, lag); a change that is not a number is the worst of all.
+    let mut worst = (0.0, 0.0, 0.0);
+    for (k, (&crank, &lag)) in scene.crank_rad.iter().zip(&rollers.lag_rad).enumerate() {
+        forces
+            .iter_mut()
+            .zip(&rollers.force_n)
+            .for_each(|(f, curve)| *f = curve[k]);
+        let change = validity.moment_change(design, crank + phase_rad, lag, &forces);
+        let change = if change.is_nan() {
+            f64::INFINITY
+        } else {
+            change
+        };
+        if change > worst.0 {
+            worst = (change, crank, lag);
+        }
+    }
+    let (change, crank, lag) = worst;
+    if change < 1.0 {
+        return Ok(());
+    }
+    let share = match change.is_finite() {
+        true => format!("{} %", crate::numeric::number(100.0 * change)),
+        false => "more than any number".to_string(),
+    };
+    Err(Error::computation(format!(
+        "scene `{}`: crank angle {:.4}°: the first-order geometry is outside its validity: \
+         its lag β = {} rad moves the rollers' moment arms, which the closed form keeps at \
+         those of the ideal pose, by {share} of their moment (|β|·Σ F·|∂²g/∂β²| / Σ F·|l|, from \
+         the locus's curvature at each contact; the closed form holds below 100 %); the exact \
+         geometry (`geometry: exact`) is the reference",
+        scene.name,
+        units::deg(crank),
+        crate::numeric::number(lag),
+    ))
+    .at_key("geometry"))
 }
 
 /// The torsion loops of a scene with a `torque_sweep` ([`engine::torsion`](crate::engine::torsion)), when planned.
@@ -297,7 +356,7 @@ fn bearing_life(
         equivalent_load_n: load,
         life_h: scene
             .input_speed_rpm
-            .and_then(|n| bearing_life::life_h(load, c, p, n, design.teeth)),
+            .map(|n| bearing_life::life_h(load, c, p, n, design.teeth)),
     })
 }
 
@@ -316,10 +375,32 @@ pub enum Note {
     },
     /// A scene whose crank-bearing life in hours is not rated: it has no `input_speed_rpm`.
     LifeHoursNotRated { scene: String },
+    /// A scene with the output pins whose crank is longer than the holes were bored for by
+    /// more than their clearance: every pin is pressed into its hole by `interference_mm`
+    /// (de − c) at every crank angle, whatever the torque, and the crank bearing carries that
+    /// preload (MODEL.md "Part deviations": the holes keep the nominal e + c). `drawn`: the
+    /// depth is the largest a tolerance study draws, in the samples whose crank is that long.
+    PinsPreloaded {
+        /// The scene's name.
+        scene: String,
+        /// How deep every pin is pressed into its hole, mm.
+        interference_mm: f64,
+        /// The depth is the largest a tolerance study draws.
+        drawn: bool,
+    },
 }
 
-/// The notes of a spec's scenes, in scene order: a torsion scene's zero hysteresis, a crank
-/// bearing whose life a scene could not rate.
+/// How far a crank longer than the pin holes allow presses every pin into its hole, mm:
+/// de − c for an eccentricity deviation de and hole clearance c (a hole's radius is pin + e +
+/// c, the pin's centre sits e + de from the hole's), when positive.
+pub fn pin_interference_mm(design: &Design, eccentricity_deviation_mm: f64) -> Option<f64> {
+    let depth = eccentricity_deviation_mm - design.pins.hole_clearance_mm;
+    (depth > 0.0).then_some(depth)
+}
+
+/// The notes of a spec's scenes, in scene order: a torsion scene's zero hysteresis, pins
+/// preloaded by a crank longer than their holes allow, a crank bearing whose life a scene
+/// could not rate.
 pub fn notes(spec: &Spec) -> Vec<Note> {
     let mut notes = Vec::new();
     for scene in &spec.scenes {
@@ -327,6 +408,17 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
         let name = || scene.name.clone();
         if plan.has(Effect::Torsion) {
             notes.push(Note::Hysteresis { scene: name() });
+        }
+        let de = spec.design.deviations.eccentricity_mm;
+        if let (true, Some(depth)) = (
+            plan.has(Effect::OutputPins),
+            pin_interference_mm(&spec.design, de),
+        ) {
+            notes.push(Note::PinsPreloaded {
+                scene: name(),
+                interference_mm: depth,
+                drawn: false,
+            });
         }
         if spec.design.crank_bearing.is_some() && plan.computes(Effect::Bearing) {
             if !scene.spans_loaded_periods(&spec.design, &plan) {

@@ -73,8 +73,12 @@ pub struct CoupledWork {
     /// The crank angles of the last (up to `HISTORY`) splits solved, oldest first, in the last
     /// `filled` entries.
     cranks: [f64; HISTORY],
-    /// Disc k's share of T (a fraction; the shares sum to 1) at those angles. Kept per disc as
-    /// scalars, so that the lean sweep reads and writes each share alone (`remember_split`).
+    /// Disc k's departure from the equal split at those angles, Tk − T/N (N·mm; the departures
+    /// sum to 0). Kept per disc as scalars, so that the lean sweep reads and writes each share
+    /// alone (`remember_split`). A torque, not a fraction of T: preloaded discs that mesh out of
+    /// phase (np odd) hold each other with a torque that stays as T → 0, so Tk/T grows without
+    /// bound there (−2.7e6 at T = 1e-6 N·m on an 11-roller pair), and a fraction remembered at
+    /// a tiny T and applied to the next torque of a torsion loop guessed shares of 1e5 N·m.
     shares: [[f64; HISTORY]; MAX_DISCS],
     filled: usize,
 }
@@ -134,8 +138,9 @@ impl CoupledWork {
     }
 
     /// Disc k's torque (N·mm) of the `n` discs sharing `total`, by the weights `extrapolation`
-    /// gave: its remembered shares extrapolated, or an equal share without them. The guesses
-    /// sum to `total` up to round-off; the Newton steps keep the sum.
+    /// gave: the equal share T/N plus its remembered departures from it extrapolated (at the
+    /// torque of the last solve, for a torsion loop's next torque), or the equal share without
+    /// them. The guesses sum to `total` up to round-off; the Newton steps keep the sum.
     pub fn share_guess(
         &self,
         k: usize,
@@ -147,12 +152,13 @@ impl CoupledWork {
             // The whole torque, exactly: one disc solves as `angle::solve_into` alone does.
             return total;
         }
+        let equal = total / n as f64;
         match weights {
             Some(w) => {
                 let s = &self.shares[k];
-                (w[0] * s[0] + w[1] * s[1] + w[2] * s[2] + w[3] * s[3]) * total
+                equal + (w[0] * s[0] + w[1] * s[1] + w[2] * s[2] + w[3] * s[3])
             }
-            None => 1.0 / n as f64 * total,
+            None => equal,
         }
     }
 
@@ -164,9 +170,7 @@ impl CoupledWork {
     /// the history's error (fifteenfold for a cubic on a uniform grid, weights −1, 4, −6, 4)
     /// past that tolerance, which would take a second Newton step.
     pub fn remember_split(&mut self, crank: f64, torque: impl Iterator<Item = f64>, total: f64) {
-        if total == 0.0 {
-            return;
-        }
+        let n = self.works.len().max(1) as f64;
         let new_angle = self.filled == 0 || self.cranks[HISTORY - 1] != crank;
         // The shifts are written out: `rotate_left` is a call the compiler need not inline.
         let shift = |[_, a, b, c]: [f64; HISTORY], last: f64| [a, b, c, last];
@@ -175,7 +179,7 @@ impl CoupledWork {
             self.filled = (self.filled + 1).min(HISTORY);
         }
         for (s, t) in self.shares.iter_mut().zip(torque) {
-            let share = t / total;
+            let share = t - total / n;
             if new_angle {
                 *s = shift(*s, share);
             } else {

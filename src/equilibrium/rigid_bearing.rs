@@ -164,6 +164,15 @@ fn solve_rollers(
         &model.settings,
     )
     .map_err(|failure| match failure {
+        // Not one lag tried moved the rollers' moment towards the torque: nothing touches on
+        // that side, which is no overload.
+        SolveFailure::NoBracket {
+            nearest: Some((_, value)),
+            ..
+        } if value == 0.0 && model.torque_nmm != 0.0 => SolveFailure::NoContact {
+            torque_nmm: model.torque_nmm,
+            range_rad: model.settings.max_range,
+        },
         SolveFailure::NoBracket {
             nearest: Some((x, value)),
             ..

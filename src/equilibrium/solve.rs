@@ -57,6 +57,10 @@ pub enum SolveFailure {
         lag_rad: f64,
         deepest: Option<(usize, f64, f64)>,
     },
+    /// No roller touches the disc in the direction of the torque (N·mm) at any lag within
+    /// `range_rad` of the ideal pose: the disc turns freely further than the search reaches
+    /// (its clearance is large against its moment arms), so no balance can be found.
+    NoContact { torque_nmm: f64, range_rad: f64 },
     /// A compliant crank bearing (N/mm) so soft under the torque (N·mm) that the disc centre
     /// moved (mm) more than the eccentricity (mm), still out of balance by a force (N).
     OutOfMesh {
@@ -149,6 +153,18 @@ impl std::fmt::Display for SolveFailure {
                     "; the load is beyond what this disc can hold in the contact model"
                 )
             }
+            SolveFailure::NoContact {
+                torque_nmm,
+                range_rad,
+            } => write!(
+                f,
+                "no roller touches the disc in the direction of an output torque of {} N·m at \
+                 any lag within {range_rad} rad ({:.1}°) of the ideal pose: the disc turns \
+                 freely further than the model searches, its clearance too large for its \
+                 moment arms, and carries no torque there",
+                input(units::nm(*torque_nmm)),
+                units::deg(*range_rad)
+            ),
             SolveFailure::OutOfMesh {
                 bearing_n_per_mm,
                 torque_nmm,
@@ -190,7 +206,8 @@ pub struct Settings {
     pub rel_tol: f64,
     /// First bracketing step; doubled until the target is enclosed.
     pub initial_step: f64,
-    /// The bracket search gives up beyond this distance from the guess.
+    /// The bracket search gives up beyond this distance from the guess and from 0, having
+    /// evaluated the range's end (`within_range`).
     pub max_range: f64,
     pub max_iterations: usize,
 }
@@ -251,10 +268,18 @@ pub fn monotone_root<E: Into<SolveFailure>>(
     let mut last_residual = f64::INFINITY;
     let mut last_miss = f64::INFINITY;
     let mut nearest: Option<(f64, f64)> = None;
+    // Whether x is an end of the search range that a march stepped onto (`within_range`).
+    let mut at_end = false;
     for calls in 1..=settings.max_iterations {
-        let b = eval(x)?;
+        let b = match eval(x) {
+            Ok(b) => b,
+            // The range's end is an extra point beyond the march's own steps: where the balance
+            // cannot be evaluated there, the search ends as it would without it.
+            Err(_) if at_end => return Err(SolveFailure::NoBracket { lo, hi, nearest }),
+            Err(e) => return Err(e),
+        };
         let residual = relative(&b, target);
-        if nearest.is_none_or(|(_, v)| (b.value - target).abs() < (v - target).abs()) {
+        if nearest.is_none_or(|(_, v)| nearer(b.value, v, target)) {
             nearest = Some((x, b.value));
         }
         // Newton that fails to halve the miss |m − target| (a kink where a contact opens or
@@ -313,9 +338,11 @@ pub fn monotone_root<E: Into<SolveFailure>>(
                 x + wanted
             }
         };
-        if (next - guess).abs() > settings.max_range {
+        let Some(stepped) = within_range(next, x, guess, settings.max_range) else {
             return Err(SolveFailure::NoBracket { lo, hi, nearest });
-        }
+        };
+        at_end = stepped != next;
+        let next = stepped;
         if next <= lo || next >= hi || next == x {
             // The bracket is one ulp wide: this is as close as f64 gets. A step of the value
             // across it within round-off is straddled; otherwise accept x only within the
@@ -357,6 +384,34 @@ pub fn monotone_root<E: Into<SolveFailure>>(
         x,
         residual: last_residual,
     })
+}
+
+/// Whether the value `a` is nearer `target` than `b`. On one side of the target by their order,
+/// not by the differences: far below a huge target (1e300 N·m against moments of 1e5) every
+/// difference rounds to the target itself, and the largest moment found would be lost.
+fn nearer(a: f64, b: f64, target: f64) -> bool {
+    match (a < target, b < target) {
+        (true, true) => a > b,
+        (false, false) => a < b,
+        _ => (a - target).abs() < (b - target).abs(),
+    }
+}
+
+/// The next point of a bracket search from x, or `None` when x already ends the range: the
+/// range is `max_range` about the guess and about x = 0, the ideal pose every lag is measured
+/// from, so that a warm start on the far side of a dead band (a torsion loop that reverses
+/// the torque on a 3-roller disc crosses 0.21 rad of backlash) still reaches the root beyond
+/// it. A march that would step past an end evaluates the end itself: the doubling steps
+/// (1.6e-4·(2ⁿ − 1) rad) would otherwise give up at 0.164 rad of a 0.3 rad range.
+fn within_range(next: f64, x: f64, guess: f64, max_range: f64) -> Option<f64> {
+    let (first, last) = (guess.min(0.0) - max_range, guess.max(0.0) + max_range);
+    if next < first {
+        (x > first).then_some(first)
+    } else if next > last {
+        (x < last).then_some(last)
+    } else {
+        Some(next)
+    }
 }
 
 /// The weights of two states mixed to balance exactly (`settle_straddle`), each formed from the

@@ -117,6 +117,21 @@ impl Design {
         1.0 / (self.disc_material.compliance_per_mpa() + self.roller_material.compliance_per_mpa())
     }
 
+    /// The largest output torque the first-order geometry is given, N·mm: every roller of
+    /// every disc pressed by its own radius Rrp at the largest first-order arm e·nc, on the
+    /// paper's law, np·N·(π/4)·E*·L·Rrp·e·nc (3.8e5 N·m for the paper's design). The closed
+    /// form keeps the arms of the ideal pose whatever the load; a roller pressed by its own
+    /// radius has its centre on the disc's profile, where no contact is left to linearise (the
+    /// exact geometry's rollers slide off their flanks long before: the paper's design holds
+    /// ~8.5e4 N·m). Below this bound no force can overflow a double; above it the forces are
+    /// no contact's (1e300 N·m gave 2e301 N and an infinite bearing force).
+    pub fn first_order_torque_bound_nmm(&self) -> f64 {
+        let stiffness =
+            0.25 * std::f64::consts::PI * self.contact_modulus_mpa() * self.face_width_mm;
+        let arm = self.eccentricity_mm * self.teeth as f64;
+        (self.rollers * self.discs) as f64 * stiffness * self.roller_radius_mm * arm
+    }
+
     /// Angular position of roller i in the fixed frame: 2πi/np.
     pub fn roller_angle(&self, i: usize) -> f64 {
         std::f64::consts::TAU * i as f64 / self.rollers as f64

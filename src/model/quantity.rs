@@ -751,7 +751,8 @@ pub const BEARING_EQUIVALENT_LOAD: Quantity = Quantity {
 };
 
 /// The crank bearing's rating life L10h = (C/P)^p·10⁶/(60·n·(1 + 1/nc)), hours, n the input
-/// speed (`BearingLife::life_h`).
+/// speed (`BearingLife::life_h`); `results::UNBOUNDED_LIFE_H` when it has no finite bound,
+/// its place saying so.
 pub const BEARING_LIFE: Quantity = Quantity {
     key: "bearing_life_h",
     unit: "h",
@@ -762,9 +763,18 @@ pub const BEARING_LIFE: Quantity = Quantity {
     of: None,
     read: Read::Scalar(|r| {
         let b = r.bearing_life?;
+        let p = crate::numeric::number(b.equivalent_load_n);
         Some(Extreme {
             value: b.life_h?,
-            at: format!("at P = {} N", crate::numeric::number(b.equivalent_load_n)),
+            at: match (b.is_unbounded(), b.equivalent_load_n == 0.0) {
+                (false, _) => format!("at P = {p} N"),
+                (true, true) => "unbounded: P = 0 N, no load wears the bearing (written as \
+                                 1.798e308 h, the largest number)"
+                    .to_string(),
+                (true, false) => format!(
+                    "unbounded: at P = {p} N the life is beyond 1.798e308 h, the largest number"
+                ),
+            },
         })
     }),
 };

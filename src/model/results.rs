@@ -175,13 +175,28 @@ pub struct TorsionCurves {
     pub figure_torsion_rad: Vec<[f64; 8]>,
 }
 
+/// The rating life written for a bearing whose life has no finite bound: no load (P = 0 N,
+/// nothing wears it), or a life beyond the largest double (C/P above ~1e92 with p = 10/3).
+/// JSON carries no infinity, so the largest finite double, 1.7976931348623157e308 h, stands
+/// for it: it passes every `min_bearing_life_h`, and every output that shows it says
+/// "unbounded" beside it (`BearingLife::is_unbounded`).
+pub const UNBOUNDED_LIFE_H: f64 = f64::MAX;
+
 /// Rating life of the crank bearing over a scene's sweep (ISO 281 with a varying load).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BearingLife {
     /// P = (mean of Fb^p over the loaded period)^(1/p), N.
     pub equivalent_load_n: f64,
-    /// L10h, hours; `None` without an input speed or when P = 0 (no load, no finite life).
+    /// L10h, hours; `None` without an input speed; `UNBOUNDED_LIFE_H` when it has no finite
+    /// bound (P = 0, or beyond the largest double).
     pub life_h: Option<f64>,
+}
+
+impl BearingLife {
+    /// Whether the life is unbounded (`UNBOUNDED_LIFE_H`): no load, or beyond every double.
+    pub fn is_unbounded(&self) -> bool {
+        self.life_h == Some(UNBOUNDED_LIFE_H)
+    }
 }
 
 /// Everything computed for one scene. A quantity that was not computed is `None`.

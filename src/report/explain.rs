@@ -30,6 +30,24 @@ pub fn note(n: &Note) -> String {
             "scene `{scene}`: crank-bearing life in hours not rated: the scene has no \
              `input_speed_rpm`"
         ),
+        Note::PinsPreloaded {
+            scene,
+            interference_mm,
+            drawn,
+        } => format!(
+            "scene `{scene}`: {} the crank longer than the pin holes were bored for (e + hole \
+             clearance): every output pin is pressed {} µm into its hole at every crank angle, \
+             a preload the crank bearing carries whatever the torque; zero hole clearance is \
+             ideal only for a crank of the nominal eccentricity",
+            match drawn {
+                true => "samples drawn with",
+                false => "`reducer.deviations` make",
+            },
+            match drawn {
+                true => format!("up to {}", number(interference_mm * 1e3)),
+                false => number(interference_mm * 1e3),
+            }
+        ),
     }
 }
 

@@ -133,6 +133,9 @@ pub fn render(study: &ToleranceStudy, s: &Summary, sens: Option<&Sensitivity>) -
     if let Some(sens) = sens {
         out += &sensitivity_text(study, s, sens);
     }
+    for note in study.notes() {
+        out += &format!("note: {}\n", super::explain::note(&note));
+    }
     out
 }
 

@@ -3,6 +3,7 @@
 //! Errors carry `file:line:column` and the key path. Syntax errors take their location from the
 //! YAML parser (`yaml`); value and design-rule errors locate their key in the text (`locate`).
 
+pub(crate) mod bearing_life;
 pub(crate) mod coverage;
 pub(crate) mod deviations;
 pub mod edit;

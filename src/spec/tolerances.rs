@@ -7,7 +7,7 @@ use super::raw::RawTolerances;
 use crate::error::{Error, Result};
 use crate::model::tolerances::{Distribution, Kind, PartTolerances, NORMAL_CUT_SIGMA};
 use crate::model::{
-    CentreDeviation, Design, Deviations, GeometryMode, Modification, RollerDeviation, Scene,
+    CentreDeviation, Design, Deviations, GeometryMode, Limits, Modification, RollerDeviation, Scene,
 };
 use crate::numeric;
 
@@ -32,13 +32,13 @@ pub(crate) fn sample_count(n: i128) -> std::result::Result<usize, String> {
     }
 }
 
-/// The validated `tolerances:` of a spec whose design, modification and scenes are `design`,
-/// `m` and `scenes`.
+/// The validated `tolerances:` of a spec whose design, modification, scenes and limits are
+/// `design`, `m`, `scenes` and `limits`.
 pub(crate) fn build(
     raw: &RawTolerances,
-    design: &Design,
-    m: &Modification,
+    (design, m): (&Design, &Modification),
     scenes: &[Scene],
+    limits: &Limits,
 ) -> Result<PartTolerances> {
     let mut bands_mm = raw.bands();
     for (kind, band) in Kind::ALL.into_iter().zip(&mut bands_mm) {
@@ -95,7 +95,39 @@ pub(crate) fn build(
         max_failure_rate: rate,
     };
     largest_draws_fit(&tol, design, m)?;
+    drawn_periods(&tol, design, scenes, limits)?;
     Ok(tol)
+}
+
+/// The study's scene keeps the rules that hold on the reducer as drawn: a bearing life over
+/// whole loaded periods ([`spec::bearing_life`](crate::spec::bearing_life)). The draws replace
+/// the spec's deviations, and every draw moves each part of a toleranced kind (a draw of
+/// exactly zero has probability zero), so the reducer with every toleranced part at its band
+/// repeats with the period of every sample.
+fn drawn_periods(
+    tol: &PartTolerances,
+    design: &Design,
+    scenes: &[Scene],
+    limits: &Limits,
+) -> Result<()> {
+    let d = design;
+    let params = crate::model::tolerances::parameters(tol, d.rollers, d.pins.count, d.discs);
+    let bands: Vec<f64> = params.iter().map(|p| tol.band_mm(p.kind)).collect();
+    let drawn = Design {
+        deviations: crate::model::tolerances::deviations(
+            &params,
+            &bands,
+            (d.rollers, d.pins.count, d.discs),
+        ),
+        ..design.clone()
+    };
+    let kinds: Vec<String> = tol
+        .toleranced()
+        .map(|k| format!("{KEY}.{}", k.name()))
+        .collect();
+    let what = format!("the parts the tolerance study draws: {}", kinds.join(", "));
+    let scene = (tol.scene, &scenes[tol.scene]);
+    super::bearing_life::check_scene(limits, &drawn, scene, Some(&what))
 }
 
 /// The kinds whose deviations one rule of an as-built state judges together.

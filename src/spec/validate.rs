@@ -200,10 +200,34 @@ fn crank_bearing(raw: RawCrankBearing) -> Result<CrankBearing> {
         )?,
         life_exponent: raw
             .life_exponent
-            .map(|p| positive(&format!("{key}.life_exponent"), p))
+            .map(|p| life_exponent(&format!("{key}.life_exponent"), p))
             .transpose()?
             .unwrap_or(CrankBearing::ROLLER_LIFE_EXPONENT),
     })
+}
+
+/// The exponents a rating life accepts (`reducer.crank_bearing.life_exponent`): ISO 281 uses
+/// 3 for ball bearings and 10/3 for roller bearings, and rolling-contact fatigue laws in the
+/// literature stay within 1 to 10. Outside it the life (C/P)^p is no bearing's: at p = 1000
+/// a load 1 % below the rating would live (1/0.99)^1000 ≈ 2.3·10⁴ times longer than at it,
+/// and (C/P)^p overflows a double once C/P passes 2.03.
+const LIFE_EXPONENTS: (f64, f64) = (1.0, 10.0);
+
+/// A life exponent within `LIFE_EXPONENTS`.
+fn life_exponent(key: &str, p: f64) -> Result<f64> {
+    let (lo, hi) = LIFE_EXPONENTS;
+    if p.is_finite() && (lo..=hi).contains(&p) {
+        return Ok(p);
+    }
+    Err(Error::invalid(
+        key,
+        format!(
+            "must be between {lo} and {hi}, got {}: ISO 281 uses 3 for ball bearings and 10/3 \
+             for roller bearings (the default); rolling-contact fatigue laws stay within {lo} \
+             to {hi}",
+            numeric::input(p)
+        ),
+    ))
 }
 
 /// `torque_sweep` of a scene with `angles` crank angles: a positive rated torque, at least one
@@ -466,6 +490,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         scenes.push(s);
     }
     exact_as_built(&design, &scenes)?;
+    first_order_torques(&design, &scenes)?;
     let studies = match raw.optimise {
         Some(o) => {
             let many = matches!(o, RawOptimise::Many(_));
@@ -491,7 +516,8 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         None => Vec::new(),
     };
     let limits = limits(&raw.limits)?;
-    bearing_life_limit(&limits, &design, &scenes)?;
+    let built = (!design.deviations.is_nominal()).then_some("`reducer.deviations`");
+    super::bearing_life::check(&limits, &design, &scenes, built)?;
     let mut golden = Vec::new();
     for (i, g) in raw.golden.into_iter().enumerate() {
         let g = golden_entry(path, i, g, (&scenes, design.discs))?;
@@ -529,7 +555,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         .transpose()?;
     let tolerances = raw
         .tolerances
-        .map(|t| super::tolerances::build(&t, &design, &modification, &scenes))
+        .map(|t| super::tolerances::build(&t, (&design, &modification), &scenes, &limits))
         .transpose()?;
     Ok(Spec {
         tolerances,
@@ -562,51 +588,32 @@ fn exact_as_built(design: &Design, scenes: &[Scene]) -> Result<()> {
     )
 }
 
-/// A `min_bearing_life_h` limit needs what the life is computed from: the bearing's rating
-/// (`reducer.crank_bearing`) and, in every scene that computes the bearing force, an input
-/// speed and a sweep of whole loaded periods (ISO 281's equivalent load is a mean over the
-/// load cycle; over part of it the life would be of a load the bearing never sees).
-fn bearing_life_limit(limits: &Limits, design: &Design, scenes: &[Scene]) -> Result<()> {
-    const KEY: &str = "min_bearing_life_h";
-    if !limits.entries.iter().any(|l| l.def.key == KEY) {
-        return Ok(());
-    }
-    if design.crank_bearing.is_none() {
-        return Err(Error::invalid(
-            format!("limits.{KEY}"),
-            "a bearing life needs the bearing's rating: give `reducer.crank_bearing: \
-             {dynamic_load_rating_n}`"
-                .into(),
-        ));
-    }
+/// A first-order scene's torque (its output torque, or its loop's rated torque) within
+/// `Design::first_order_torque_bound_nmm`, where the closed form's forces are still contact
+/// forces and finite.
+fn first_order_torques(design: &Design, scenes: &[Scene]) -> Result<()> {
+    let bound = design.first_order_torque_bound_nmm();
     for (i, s) in scenes.iter().enumerate() {
-        let plan = Plan::for_scene(s);
-        if !plan.computes(Effect::Bearing) {
+        if s.geometry != GeometryMode::FirstOrder {
             continue;
         }
-        if s.input_speed_rpm.is_none() {
+        let (key, torque) = match &s.torque_sweep {
+            Some(t) => ("torque_sweep.rated_nm", t.rated_nmm),
+            None => ("output_torque_nm", s.output_torque_nmm),
+        };
+        if torque.abs() > bound {
             return Err(Error::invalid(
-                format!("scenes[{i}]"),
+                format!("scenes[{i}].{key}"),
                 format!(
-                    "limits.{KEY} applies to scene `{}`, which computes the bearing force: it \
-                     needs `input_speed_rpm` (the life in hours is at the crank's speed \
-                     relative to the disc)",
-                    s.name
-                ),
-            ));
-        }
-        let period = plan.loaded_period_rad(design);
-        if !s.spans_whole(period) {
-            return Err(Error::invalid(
-                format!("scenes[{i}].crank"),
-                format!(
-                    "limits.{KEY} applies to scene `{}`, whose crank range {}° to {}° is not a \
-                     whole number of loaded periods ({}°): the equivalent load is a mean over \
-                     whole load cycles (ISO 281)",
-                    s.name,
-                    numeric::input(s.crank_from_deg),
-                    numeric::input(s.crank_to_deg),
-                    numeric::number(units::deg(period))
+                    "{} N·m is beyond what the first-order geometry can hold, {} N·m: that \
+                     torque presses every roller by its own radius ({} mm) at the largest \
+                     first-order arm e·nc = {} mm, on the paper's law, where no contact is \
+                     left to linearise; use `geometry: exact`, which says how much the \
+                     rollers hold",
+                    numeric::input(units::nm(torque)),
+                    numeric::number(units::nm(bound)),
+                    numeric::input(design.roller_radius_mm),
+                    numeric::number(design.eccentricity_mm * design.teeth as f64)
                 ),
             ));
         }

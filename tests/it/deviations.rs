@@ -811,3 +811,95 @@ fn check_with_a_measured_profile_runs_on_the_disc_as_built() {
     dir.write("plain.yaml", plain.text());
     assert!((min("plain.yaml").0 - direct).abs() > 1e-3);
 }
+
+/// A crank longer than the pin holes were bored for (issue 26): a hole's radius is pin + e +
+/// c, the pin's centre sits e + de from the hole's, so with de > c every pin is pressed de − c
+/// into its hole at every crank angle. At zero torque nothing else loads the disc (its rollers
+/// sit at the touch of T → 0⁺, the pins' moments cancel by symmetry, βo = 0), and all six pins
+/// push along the eccentric direction: the crank bearing carries M·k·(de − c), k = (π/4)·E*·L
+/// = 7.1117e5 N/mm, 8534 N for de = 2 µm and c = 0 (1e-9 relative: gaps of micrometres formed
+/// to ~1e-16 mm). The run says so in a note naming the depth, and no note is given once the
+/// clearance takes the longer crank up.
+#[test]
+fn a_crank_longer_than_the_holes_allow_preloads_every_pin_and_says_so() {
+    let dir = common::Scratch::new("pin-preload");
+    let k = 0.25 * std::f64::consts::PI * 206_000.0 / (2.0 * (1.0 - 0.09)) * 8.0;
+    for (clearance, depth_um) in [(0.0, Some("2.000")), (0.0005, Some("1.500")), (0.003, None)] {
+        let text = PaperSpec::new()
+            .edit(
+                "hole_clearance_mm: 0.0 ",
+                &format!("hole_clearance_mm: {clearance:?} "),
+            )
+            .edit(
+                "modification:\n",
+                "  deviations: { eccentricity_mm: 0.002 }\nmodification:\n",
+            )
+            .scenes(
+                "  - name: idle\n    output_torque_nm: 0.0\n    crank: { from_deg: 0.0, to_deg: \
+                 36.0, steps: 6 }\n    effects: [bearing]\n",
+            )
+            .text()
+            .to_string();
+        dir.write("s.yaml", &text);
+        let run = common::cycloid(&dir.path, &["check", "s.yaml", "--json", "r.json"]);
+        assert_eq!(run.code(), 0, "{}{}", run.stdout, run.stderr);
+        let note = run.stdout.lines().find(|l| l.contains("pressed"));
+        match depth_um {
+            Some(depth) => {
+                let note = note.unwrap_or_else(|| panic!("no note in {}", run.stdout));
+                assert!(
+                    note.starts_with(
+                        "note: scene `idle`: `reducer.deviations` make the crank \
+                                      longer than the pin holes were bored for"
+                    ) && note.contains(&format!("every output pin is pressed {depth} µm")),
+                    "{note}"
+                );
+                let json: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+                let force = json["scenes"][0]["bearing_force_n"].as_array().unwrap();
+                let expected = 6.0 * k * (0.002 - clearance);
+                for f in force {
+                    let f = f.as_f64().unwrap();
+                    assert!((f - expected).abs() <= 1e-9 * expected, "{f} vs {expected}");
+                }
+            }
+            None => assert!(note.is_none(), "{}", run.stdout),
+        }
+    }
+}
+
+/// A tolerance study that draws the crank's eccentricity (band b, normal: drawn up to the cut
+/// at 6σ = 2b) with zero hole clearance says that its longest cranks press every pin by up to
+/// 2b (4 µm for b = 2 µm); with a clearance above 2b no draw reaches the pins.
+#[test]
+fn a_study_drawing_a_longer_crank_says_its_pins_are_preloaded() {
+    let dir = common::Scratch::new("pin-preload-study");
+    for (clearance, said) in [(0.0, true), (0.005, false)] {
+        let text = PaperSpec::new()
+            .edit(
+                "hole_clearance_mm: 0.0 ",
+                &format!("hole_clearance_mm: {clearance:?} "),
+            )
+            .scenes(
+                "  - name: rated\n    output_torque_nm: 10.0\n    crank: { from_deg: 0.0, to_deg: \
+                 36.0, steps: 4 }\n    effects: [bearing]\n",
+            )
+            .with(
+                "limits:\n  max_bearing_force_n: 1.0e6\ntolerances:\n  scene: rated\n  \
+                 eccentricity_mm: 0.002\n  samples: 4\n  max_failure_rate: 0.5\n",
+            )
+            .text()
+            .to_string();
+        dir.write("s.yaml", &text);
+        let run = common::cycloid(&dir.path, &["tolerance", "s.yaml"]);
+        assert!(
+            run.code() == 0 || run.code() == 1,
+            "{}{}",
+            run.stdout,
+            run.stderr
+        );
+        let note = "note: scene `rated`: samples drawn with the crank longer than the pin holes \
+                    were bored for (e + hole clearance): every output pin is pressed up to 4.000 \
+                    µm into its hole";
+        assert_eq!(run.stdout.contains(note), said, "{}", run.stdout);
+    }
+}

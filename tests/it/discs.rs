@@ -580,3 +580,64 @@ fn the_review_rates_each_discs_bearing() {
         );
     }
 }
+
+/// Two preloaded discs of an odd roller count hold each other through the output flange
+/// (issue 26): 11 rollers, ΔRp = 0.01 mm, ΔRrp = 0 (10 µm of interference). Alone at zero
+/// torque each disc rests at its own lag (−7.0e-6 and +6.3e-6 rad at 9°: the discs mesh half a
+/// pitch apart); on one flange they meet at a common γ with opposite shares of ~2.7 N·m that
+/// stay as T → 0, so Tk/T grows without bound there. The split was remembered as a fraction of
+/// T: at the loop's one-sided limit, 1e-6 of a rated 1 N·m, it was −2.67e6, and applied to the
+/// +3 % solve (30 N·mm) it guessed 8e7 N·mm; the coupled solve then searched lags of 0.23 rad
+/// and stopped on a share of −1.26e5 N·m "beyond what this disc can hold". Now the torsion
+/// loop solves at every locked angle and γ rises strictly along the loop's rising branch.
+#[test]
+fn preloaded_odd_discs_hold_each_other_through_a_torsion_loop() {
+    let crank = "{ from_deg: 0.0, to_deg: 36.0, steps: 4 }";
+    let item = format!(
+        "  - name: torsion\n    torque_sweep: {{ rated_nm: 1.0, steps: 40 }}\n    crank: \
+         {crank}\n    effects: [bearing]\n"
+    );
+    let spec = eleven_rollers(2, ("unused", 0.0), (0.0, 36.0, 4), ("bearing", ""))
+        .modification(0.01, 0.0)
+        .scenes(&item)
+        .parse("preloaded.yaml");
+    let r = first_scene(&spec).unwrap_or_else(|e| panic!("{e}"));
+    let t = r.torsion.as_ref().unwrap();
+    for row in &t.torsion_rad {
+        let rising = &row[..=80];
+        assert!(rising.windows(2).all(|w| w[1] > w[0]), "{rising:?}");
+    }
+}
+
+/// The root cause of the case above, by hand: a split remembered at one torque is guessed at
+/// the next as the equal share plus the remembered departure from it, Tk + (T' − T)/N, the
+/// discs' own hold on each other kept whatever T' (it used to be Tk·T'/T: 8e7 N·mm here).
+#[test]
+fn a_remembered_split_keeps_the_discs_hold_on_each_other() {
+    let spec = eleven_rollers(2, ("rated", 1.0), (9.0, 36.0, 1), ("bearing", ""))
+        .modification(0.01, 0.0)
+        .parse("split.yaml");
+    let scene = &spec.scenes[0];
+    let model = cycloid::engine::scene::loaded_model(
+        &spec.design,
+        &spec.modification,
+        scene,
+        &Plan::for_scene(scene),
+        &Default::default(),
+    );
+    let discs = Discs::new(&model, 2);
+    let mut work = cycloid::equilibrium::discs::CoupledWork::new(&discs);
+    let (crank, tiny, next) = (0.15707963267948966, 1e-3, 30.0);
+    let split = [-2672.562782988119, 2672.5617829881185];
+    work.remember_split(crank, split.into_iter(), tiny);
+    let weights = work.extrapolation(crank, 1.0);
+    for (k, &t) in split.iter().enumerate() {
+        let guess = work.share_guess(k, weights, 2, next);
+        let by_hand = t + (next - tiny) / 2.0;
+        // A few additions of numbers of ~3e3: 1e-9 N·mm is thousands of ulps.
+        assert!(
+            (guess - by_hand).abs() <= 1e-9,
+            "disc {k}: {guess} vs {by_hand}"
+        );
+    }
+}

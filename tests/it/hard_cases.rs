@@ -33,6 +33,7 @@ const HARD: &[(&str, i32)] = &[
     ("k1-1.0", 2),
     ("undercut-99pct", 0),
     ("undercut-101pct", 2),
+    ("rollers-3", 0),
     ("rollers-4", 0),
     ("rollers-80", 0),
     ("hole-clearance", 0),
@@ -509,6 +510,48 @@ fn four_and_eighty_rollers() {
     let s = &run.json.unwrap()["scenes"][0];
     assert!(s["min_rollers_in_contact"].as_f64().unwrap() >= 4.0);
     assert_eq!(s["roller_force_n"].as_array().unwrap().len(), 80);
+}
+
+/// 3 rollers and 2 pins: the torsion loop crosses a dead band of ~0.21 rad, beyond the
+/// 0.164 rad that the bracket search used to reach from the far side of it (its doubling steps
+/// of 1.6e-4·(2ⁿ − 1) rad stopped short of the 0.3 rad range), where the solve at +0.5 N·m
+/// said the rollers could not balance it. Now every locked angle solves, and the dead band is
+/// the clearance effect's unloaded lost motion there: two independent computations (the
+/// closing lags of the unloaded mesh, the loaded solves at ±1e-6·Trated) that differ by the
+/// elastic twist over ±1e-6·Trated = ±5e-3 N·mm. At 0°, the worst angle, one roller closes,
+/// with the arm l = e·nc·sin 120°/S = 1.64 mm (K1 = 0.1), compliance 1/(k·l²) = 5.2e-7
+/// rad/(N·mm) (k = 7.11e5 N/mm), and one pin bears, its arm only rw·sin β = 12·sin 0.104 =
+/// 1.25 mm there (the pin pattern's arms vanish at 0°), 9.0e-7 rad/(N·mm): the twist on both
+/// sides is 2·5e-3·1.4e-6 = 1.4e-8 rad = 2.9e-3 arcsec (measured 3.3e-3); 1e-2 arcsec holds
+/// it, far inside the figure's 0.01 arcmin = 0.6 arcsec.
+#[test]
+fn three_rollers_cross_their_dead_band_in_torsion() {
+    cli_case("rollers-3", 0);
+    let spec = load("rollers-3");
+    let s = &spec.scenes[1];
+    let writes = scene::Writes {
+        json: true,
+        report: false,
+    };
+    let plan = scene::plan(&spec, s, writes);
+    let r = scene::run(&spec, s, &plan, &Default::default()).unwrap();
+    let lost = &r
+        .clearance
+        .as_ref()
+        .unwrap()
+        .backlash
+        .as_ref()
+        .unwrap()
+        .lost_motion_rad;
+    let figures = &r.torsion.as_ref().unwrap().figures;
+    assert!(figures[0].backlash_rad > 0.164, "{:?}", figures[0]);
+    for (f, l) in figures.iter().zip(lost) {
+        let (band, unloaded) = (f.backlash_rad * ARCSEC_PER_RAD, l * ARCSEC_PER_RAD);
+        assert!(
+            (band - unloaded).abs() <= 1e-2,
+            "{band} vs {unloaded} arcsec"
+        );
+    }
 }
 
 /// Hole clearance larger than the roller clearance: the output takes up its free play first

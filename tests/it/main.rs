@@ -14,6 +14,7 @@ mod common;
 
 mod accuracy;
 mod as_built_review;
+mod bearing_life;
 mod clearance_sweep;
 mod cli;
 mod cli_help;
@@ -24,6 +25,7 @@ mod equilibrium;
 mod export;
 mod fault_injection;
 mod first_order_sweep;
+mod first_order_validity;
 mod flanks;
 mod fuzz_corpus;
 mod geometry;

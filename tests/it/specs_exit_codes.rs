@@ -83,6 +83,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         2,
         "undercut: impossible design",
     ),
+    (
+        "hard/rollers-3.yaml",
+        0,
+        "3 rollers, 2 pins: torsion across a 0.21 rad dead band",
+    ),
     ("hard/rollers-4.yaml", 0, "4 rollers"),
     ("hard/rollers-80.yaml", 0, "80 rollers"),
     (

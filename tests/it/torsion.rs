@@ -331,10 +331,12 @@ fn the_rating_life_of_a_constant_load_is_the_hand_value() {
     let force = vec![1000.0; 7];
     let (p, life) = rating_life(&force, 12_000.0, 10.0 / 3.0, 1500.0, 9);
     assert!((p - 1000.0).abs() <= 1e-9, "{p}");
-    let life = life.unwrap();
     assert!((life - 39_561.3).abs() <= 1e-5 * 39_561.3, "{life}");
-    // No load, no finite life: not ∞ in the outputs.
-    assert_eq!(rating_life(&[0.0; 3], 12_000.0, 3.0, 1500.0, 9).1, None);
+    // No load, no finite life: the unbounded life (the largest double), not ∞ in the outputs.
+    assert_eq!(
+        rating_life(&[0.0; 3], 12_000.0, 3.0, 1500.0, 9).1,
+        cycloid::model::results::UNBOUNDED_LIFE_H
+    );
 }
 
 /// The speed is that of the crank relative to the disc, n·(1 + 1/nc): with one tooth (nc = 1)
@@ -342,7 +344,7 @@ fn the_rating_life_of_a_constant_load_is_the_hand_value() {
 #[test]
 fn the_life_is_at_the_crank_speed_relative_to_the_disc() {
     assert_eq!(relative_speed_rpm(900.0, 9), 1000.0);
-    let life = |nc| rating_life(&[2000.0], 10_000.0, 3.0, 1000.0, nc).1.unwrap();
+    let life = |nc| rating_life(&[2000.0], 10_000.0, 3.0, 1000.0, nc).1;
     let ratio = life(1) / life(9);
     assert!((ratio - (10.0 / 9.0) / 2.0).abs() <= 1e-12, "{ratio}");
 }
@@ -419,7 +421,7 @@ fn bad_torsion_and_bearing_inputs_are_refused_with_the_rule() {
                 "",
             ),
             "reducer.crank_bearing.life_exponent",
-            "must be a positive number, got 0",
+            "must be between 1 and 10, got 0",
         ),
         (
             spec_text(

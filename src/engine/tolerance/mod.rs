@@ -105,6 +105,23 @@ impl<'a> ToleranceStudy<'a> {
         })
     }
 
+    /// What a reader of the study must be told besides its numbers: the samples whose crank
+    /// is longer than the pin holes allow preload every pin ([`scene::Note::PinsPreloaded`],
+    /// at the largest eccentricity drawn).
+    pub fn notes(&self) -> Vec<scene::Note> {
+        let scene = &self.spec.scenes[self.tolerances.scene];
+        let largest = self.tolerances.largest_draw_mm(tol::Kind::Eccentricity);
+        let preload = scene::pin_interference_mm(&self.spec.design, largest);
+        match (self.plan.has(crate::model::Effect::OutputPins), preload) {
+            (true, Some(depth)) => vec![scene::Note::PinsPreloaded {
+                scene: scene.name.clone(),
+                interference_mm: depth,
+                drawn: true,
+            }],
+            _ => Vec::new(),
+        }
+    }
+
     pub fn samples(&self) -> usize {
         self.tolerances.samples
     }

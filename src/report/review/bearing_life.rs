@@ -47,7 +47,10 @@ pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
                 td { code { (s.name) } @if let Some(k) = k { " disc " (k) } }
                 td { (s.input_speed_rpm.map_or("—".to_string(), number)) }
                 td { (number(b.equivalent_load_n)) }
-                td { (b.life_h.map_or("not rated".to_string(), number)) }
+                td { (b.life_h.map_or("not rated".to_string(), |h| match b.is_unbounded() {
+                    true => "unbounded".to_string(),
+                    false => number(h),
+                })) }
             } } },
         ))
         @for n in &notes { p.note { (n) } }

@@ -1,0 +1,160 @@
+//! What a `min_bearing_life_h` limit needs (ISO 281, MODEL.md "Several discs, torsion,
+//! bearing life"): the bearing's rating, and, in every scene that computes the bearing force,
+//! an input speed and a crank range of whole loaded periods. The equivalent load is a mean
+//! over the load cycle; over part of it the life would be that of a load the bearing never
+//! sees.
+//!
+//! The loaded period is a property of the reducer as built (`Design::loaded_period_rad`): a
+//! roller, pin or hole off its place or a form error on the disc lengthens it (to 360° or to
+//! nc crank turns). The rule is therefore checked on every reducer a run computes: the
+//! spec's own at load, the parts a tolerance study draws (`spec::tolerances`) and the disc as
+//! built from measured points (`engine::as_built`), each before anything runs, so that no
+//! scene reaches its limits without a life to check.
+
+use crate::error::{Error, Result};
+use crate::model::{Design, Effect, Limits, Plan, Scene};
+use crate::{numeric, units};
+
+/// The limit's key.
+const KEY: &str = "min_bearing_life_h";
+
+/// The rule on the spec's scenes (`scenes`, the spec's list) for the reducer `design`;
+/// `built` says what made it differ from the drawing (`None`: the spec's own reducer), for
+/// the error to name.
+pub(crate) fn check(
+    limits: &Limits,
+    design: &Design,
+    scenes: &[Scene],
+    built: Option<&str>,
+) -> Result<()> {
+    for (i, s) in scenes.iter().enumerate() {
+        check_scene(limits, design, (i, s), built)?;
+    }
+    Ok(())
+}
+
+/// The rule on scene `i` of the spec alone (the one scene a tolerance study runs).
+pub(crate) fn check_scene(
+    limits: &Limits,
+    design: &Design,
+    (i, s): (usize, &Scene),
+    built: Option<&str>,
+) -> Result<()> {
+    if !limits.entries.iter().any(|l| l.def.key == KEY) {
+        return Ok(());
+    }
+    if design.crank_bearing.is_none() {
+        return Err(Error::invalid(
+            format!("limits.{KEY}"),
+            "a bearing life needs the bearing's rating: give `reducer.crank_bearing: \
+             {dynamic_load_rating_n}`"
+                .into(),
+        ));
+    }
+    scene(design, (i, s), built)
+}
+
+/// The rule on scene `i` of the spec: when it computes the bearing force, an input speed and
+/// whole loaded periods of `design`.
+fn scene(design: &Design, (i, s): (usize, &Scene), built: Option<&str>) -> Result<()> {
+    let plan = Plan::for_scene(s);
+    if !plan.computes(Effect::Bearing) {
+        return Ok(());
+    }
+    if s.input_speed_rpm.is_none() {
+        return Err(Error::invalid(
+            format!("scenes[{i}]"),
+            format!(
+                "limits.{KEY} applies to scene `{}`, which computes the bearing force: it \
+                 needs `input_speed_rpm` (the life in hours is at the crank's speed relative \
+                 to the disc)",
+                s.name
+            ),
+        ));
+    }
+    let period = plan.loaded_period_rad(design);
+    if s.spans_whole(period) {
+        return Ok(());
+    }
+    let of = match built {
+        Some(what) => format!(" for the reducer as built, {what}"),
+        None => String::new(),
+    };
+    Err(Error::invalid(
+        format!("scenes[{i}].crank"),
+        format!(
+            "limits.{KEY} applies to scene `{}`, whose crank range {}° to {}° is not a whole \
+             number of loaded periods ({}°{of}): the equivalent load is a mean over whole \
+             load cycles (ISO 281); the nearest ranges of whole periods: {}",
+            s.name,
+            numeric::input(s.crank_from_deg),
+            numeric::input(s.crank_to_deg),
+            numeric::number(units::deg(period)),
+            nearest_ranges(s.crank_from_deg, s.crank_to_deg, units::deg(period)).join(" or ")
+        ),
+    ))
+}
+
+/// The crank ranges from `from_deg` nearest to `from_deg`..`to_deg` that are whole numbers of
+/// `period_deg` (the whole numbers of periods just below and just above its span, at least
+/// one), as "0° to 324° (3 periods)"; each end written as the shortest decimal that still
+/// spans its periods to 1e-12 (what `Scene::spans_whole` accepts, 1e-9, with room for the
+/// conversion to radians).
+pub(crate) fn nearest_ranges(from_deg: f64, to_deg: f64, period_deg: f64) -> Vec<String> {
+    let span = (to_deg - from_deg) / period_deg;
+    let below = span.floor().max(1.0);
+    let above = span.ceil().max(1.0);
+    let counts = if below == above {
+        vec![below]
+    } else {
+        vec![below, above]
+    };
+    counts
+        .into_iter()
+        .map(|k| {
+            let end = shortest(from_deg + k * period_deg, |x| {
+                ((x - from_deg) / period_deg - k).abs() <= 1e-12 * k
+            });
+            let periods = if k == 1.0 { "period" } else { "periods" };
+            format!("{}° to {end}° ({k} {periods})", numeric::input(from_deg))
+        })
+        .collect()
+}
+
+/// `x` with the fewest decimals (up to 12) whose value `ok` accepts, else in full.
+fn shortest(x: f64, ok: impl Fn(f64) -> bool) -> String {
+    (0..=12)
+        .map(|d| format!("{x:.d$}"))
+        .find(|s| s.parse::<f64>().is_ok_and(&ok))
+        .unwrap_or_else(|| format!("{x}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::nearest_ranges;
+
+    /// 360° is 3⅓ loaded periods of 108°: the whole ranges around it are 3 and 4 periods; a
+    /// range shorter than one period has only the one above; a period with no short decimal
+    /// (360°·30/66) is written to the digits that still span it.
+    #[test]
+    fn the_nearest_whole_ranges_bracket_the_span() {
+        assert_eq!(
+            nearest_ranges(0.0, 360.0, 108.0),
+            ["0° to 324° (3 periods)", "0° to 432° (4 periods)"]
+        );
+        assert_eq!(nearest_ranges(0.0, 65.45, 108.0), ["0° to 108° (1 period)"]);
+        assert_eq!(
+            nearest_ranges(10.0, 100.0, 36.0),
+            ["10° to 82° (2 periods)", "10° to 118° (3 periods)"]
+        );
+        let period = 360.0 * 30.0 / 66.0;
+        let one = &nearest_ranges(0.0, 100.0, period)[0];
+        let end: f64 = one
+            .split(" to ")
+            .nth(1)
+            .and_then(|s| s.split('°').next())
+            .and_then(|s| s.parse().ok())
+            .unwrap();
+        assert!((end / period - 1.0).abs() <= 1e-12, "{one}");
+    }
+}

@@ -172,8 +172,10 @@ pub fn optimisation(spec: &Spec, results: &[crate::engine::optimise::StudyResult
             kind: CheckKind::Limit,
             unit: tightest.map_or("mm", |m| m.unit),
             id: format!("optimise/{}/constraints", r.name),
+            // No margin when the optimum's evaluation failed: the most negative finite value
+            // (the JSON carries only finite numbers), and the check fails with it.
             value: if o.failure.is_some() {
-                f64::NEG_INFINITY
+                f64::MIN
             } else {
                 tightest.map_or(f64::MAX, |m| m.margin)
             },

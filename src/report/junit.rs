@@ -49,9 +49,8 @@ pub fn message(c: &Check) -> String {
                 format!("{} outside", with_unit(beyond, c.unit))
             };
             format!(
-                "value {} {}, limit {op} {}: {verdict}; {}",
+                "value {}, limit {op} {}: {verdict}; {}",
                 super::table::value(c),
-                c.unit,
                 with_unit(c.limit, c.unit),
                 super::table::evidence(&c.at)
             )

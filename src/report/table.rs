@@ -60,14 +60,20 @@ pub const STYLES: [&str; 3] = [FAIL_STYLE, PASS_STYLE, PLAIN_STYLE];
 /// round-off tolerance (−8.2e-14 mm against ≥ 0 mm) reads as the limit, said so, not as a
 /// negative clearance marked "pass". The JSON keeps the value as computed.
 pub fn value(c: &Check) -> String {
+    let shown = |x: f64| with_unit(number(x), c.unit);
     let wrong_side = match c.bound {
         Bound::Max => c.value > c.limit,
         Bound::Min => c.value < c.limit,
     };
     if c.passed && wrong_side {
-        format!("{} (to round-off)", number(c.limit))
+        format!("{} (to round-off)", shown(c.limit))
+    } else if c.value == f64::MAX {
+        // The engine's "no bound" (a bearing no load wears, a study with no constraint).
+        "unbounded".to_string()
+    } else if c.value == f64::MIN {
+        "none (the evaluation failed)".to_string()
     } else {
-        number(c.value)
+        shown(c.value)
     }
 }
 
@@ -88,7 +94,7 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
             };
             [
                 c.id.clone(),
-                with_unit(value(c), c.unit),
+                value(c),
                 with_unit(format!("{op} {}", number(c.limit)), c.unit),
                 if c.passed { "pass" } else { "FAIL" }.to_string(),
                 evidence(&c.at),

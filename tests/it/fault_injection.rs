@@ -646,57 +646,43 @@ fn a_shard_with_any_byte_changed_is_refused() {
     }
 }
 
+/// Run `cycloid ARGS` (which must succeed) and read the spec it wrote to `out`.
+fn written(dir: &Scratch, args: &[&str], out: &str) -> String {
+    let mut args = args.to_vec();
+    args.push(out);
+    let run = cycloid(&dir.path, &args);
+    assert_eq!(run.code(), 0, "{run:?}");
+    dir.read(out)
+}
+
 /// The relocated spec names the same files as its source: the measured points and the golden
-/// reached from `out/` (checked by reading them through the written paths).
+/// reached from `out/deeper/`; beside its source it keeps the paths as they were written.
 #[test]
 fn a_spec_written_elsewhere_names_the_same_files() {
     let dir = fixture("relocate");
     std::fs::create_dir_all(dir.join("out/deeper")).unwrap();
-    let run = cycloid(
-        &dir.path,
-        &[
-            "tolerance",
-            "specs/m.yaml",
-            "--write-sample",
-            "2",
-            "out/deeper/s.yaml",
-        ],
-    );
-    assert_eq!(run.code(), 0, "{run:?}");
-    let text = dir.read("out/deeper/s.yaml");
-    // A sample is drawn from the drawing: its spec has no measured profile to reach.
-    assert!(!text.contains("disc.csv"), "{text}");
-    let run = cycloid(
-        &dir.path,
-        &["fit", "specs/m.yaml", "--write", "out/deeper/f.yaml"],
-    );
-    assert_eq!(run.code(), 0, "{run:?}");
-    assert!(dir
-        .read("out/deeper/f.yaml")
-        .contains("file: ../../specs/disc.csv"));
+    let sample = ["tolerance", "specs/m.yaml", "--write-sample", "2"];
+    let fit = ["fit", "specs/m.yaml", "--write"];
+    let text = written(&dir, &sample, "out/deeper/s.yaml");
     assert!(
         text.contains("file: ../../golden/m/clearance_mm.csv"),
         "{text}"
     );
-    // Written beside its source, a spec keeps its paths as they were written.
-    let run = cycloid(
-        &dir.path,
-        &[
-            "tolerance",
-            "specs/m.yaml",
-            "--write-sample",
-            "2",
-            "specs/s.yaml",
-        ],
+    // A sample is drawn from the drawing: its spec has no measured profile to reach.
+    assert!(!text.contains("disc.csv"), "{text}");
+    let text = written(&dir, &fit, "out/deeper/f.yaml");
+    assert!(text.contains("file: ../../specs/disc.csv"), "{text}");
+    assert!(
+        text.contains("file: ../../golden/m/clearance_mm.csv"),
+        "{text}"
     );
-    assert_eq!(run.code(), 0, "{run:?}");
-    let text = dir.read("specs/s.yaml");
-    let run = cycloid(
-        &dir.path,
-        &["fit", "specs/m.yaml", "--write", "specs/f.yaml"],
+    let text = written(&dir, &sample, "specs/s.yaml");
+    assert!(
+        text.contains("file: ../golden/m/clearance_mm.csv"),
+        "{text}"
     );
-    assert_eq!(run.code(), 0, "{run:?}");
-    assert!(dir.read("specs/f.yaml").contains(MEASURED_FILE_LINE));
+    let text = written(&dir, &fit, "specs/f.yaml");
+    assert!(text.contains(MEASURED_FILE_LINE), "{text}");
     assert!(
         text.contains("file: ../golden/m/clearance_mm.csv"),
         "{text}"

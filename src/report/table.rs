@@ -244,7 +244,9 @@ fn preloaded(h: &Headline) -> bool {
 
 /// Where a headline occurs; a preloaded lost motion's overlap first (see `headline_value`);
 /// and, when another scene of `all` gives the same quantity, the scene's sampling, so that two
-/// values of one quantity say why they differ.
+/// values of one quantity say why they differ. Not for the min clearance: it is sought over
+/// the whole period of the gaps whatever the scene samples, and its line already says over
+/// what.
 pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> String {
     let mut at = h.at.clone();
     if preloaded(h) {
@@ -255,9 +257,10 @@ pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> Stri
         );
     }
     let others = all.iter().filter(|o| o.scene != s.scene);
-    let shared = others
-        .flat_map(|o| &o.headlines)
-        .any(|o| o.quantity.key == h.quantity.key);
+    let shared = h.quantity.key != crate::model::quantity::MIN_CLEARANCE.key
+        && others
+            .flat_map(|o| &o.headlines)
+            .any(|o| o.quantity.key == h.quantity.key);
     if shared {
         at += &format!("; {}", sampling(s));
     }

@@ -91,11 +91,22 @@ fn explain_lists_the_tolerance_study() {
 }
 
 /// One unit for failure rates: `check --tolerance`'s row reads the allowed rate in percent,
-/// as `cycloid tolerance` does (the spec's 0.0027 is 0.27 %), and its interval too.
+/// as `cycloid tolerance` does (the spec's 0.0027 is 0.27 %), and its interval too; so does
+/// its JUnit message.
 #[test]
 fn failure_rates_read_in_percent_in_check_and_tolerance() {
-    let check = cycloid_here(&["check", "specs/reducer-tolerance.yaml", "--tolerance"]);
+    let dir = Scratch::new("rate-percent");
+    let junit = dir.path.join("j.xml");
+    let check = cycloid_here(&[
+        "check",
+        "specs/reducer-tolerance.yaml",
+        "--tolerance",
+        "--junit",
+        junit.to_str().unwrap(),
+    ]);
     assert_eq!(check.code, Some(0), "{check:?}");
+    let xml = std::fs::read_to_string(&junit).unwrap();
+    assert!(xml.contains("limit ≤ 0.2700 %: 0.2700 % inside"), "{xml}");
     let row = check
         .stdout
         .lines()

@@ -157,7 +157,10 @@ pub fn worst_values(study: &ToleranceStudy, records: &Records, k: u64, excess: f
                 .is_eq()
         })
         .map(|((def, limit), &v)| {
-            let unit = |x: f64| crate::report::table::with_unit(number(x), def.quantity.unit);
+            let unit = |x: f64| match def.quantity.unit {
+                "" => number(x),
+                u => format!("{} {u}", number(x)),
+            };
             format!(
                 "{} {} ({} {})",
                 def.quantity.key,

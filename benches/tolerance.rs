@@ -92,7 +92,7 @@ fn merge_100_shards_of_10k(b: divan::Bencher) {
             .collect();
         let records = shard::merge(&names, &read).unwrap();
         let s = summary::summarise(&study, &records);
-        cycloid::report::tolerance::render(&study, &s, None)
+        cycloid::report::tolerance::render(&study, &s, &records, None)
     });
     let _ = std::fs::remove_dir_all(&dir);
 }

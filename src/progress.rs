@@ -47,6 +47,41 @@ impl Phase {
     }
 }
 
+/// Forwards to `inner` the units a piece of work reports, and on `close` the rest of the
+/// `budget` it did not use, so that work whose count is only bounded beforehand (an optimiser
+/// stops before its budget) still ends its listener's count at 100 %.
+pub struct Budget<'a> {
+    inner: &'a dyn Progress,
+    budget: u64,
+    done: std::sync::atomic::AtomicU64,
+}
+
+impl<'a> Budget<'a> {
+    /// A budget of `budget` units on `inner`.
+    pub fn new(inner: &'a dyn Progress, budget: u64) -> Budget<'a> {
+        Budget {
+            inner,
+            budget,
+            done: std::sync::atomic::AtomicU64::new(0),
+        }
+    }
+
+    /// The work is done: the units of the budget it did not report count as done.
+    pub fn close(&self) {
+        let done = self.done.load(std::sync::atomic::Ordering::Relaxed);
+        if done < self.budget {
+            self.inner.advance(self.budget - done);
+        }
+    }
+}
+
+impl Progress for Budget<'_> {
+    fn advance(&self, n: u64) {
+        self.done.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+        self.inner.advance(n);
+    }
+}
+
 /// Shows nothing.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Silent;

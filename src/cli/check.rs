@@ -86,7 +86,10 @@ fn checked(args: &CheckArgs, out: &mut dyn Write, guarded: &mut bool) -> Result<
         report: args.report.is_some(),
     };
     if args.explain {
-        print(out, &report::explain::explain(&spec, writes))?;
+        print(
+            out,
+            &report::explain::explain_check(&spec, writes, args.tolerance),
+        )?;
         if let Some(m) = &spec.measured {
             let line = format!(
                 "\nas built: every scene runs on the disc identified from `{}` (its \
@@ -105,6 +108,7 @@ fn checked(args: &CheckArgs, out: &mut dyn Write, guarded: &mut bool) -> Result<
     let run = commands::check(&spec, &options, &Terminal)?;
     print_run(&run, args, out)?;
     write_outputs(&run, args, out)?;
+    print(out, &report::table::verdict_line(&run.checks))?;
     Ok(if run.passed() {
         Outcome::Passed
     } else {

@@ -140,7 +140,10 @@ struct Whole<'a>(
 /// Print and write what the records of every sample say; the verdict of the failure rate.
 fn finish(run: Whole, outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome> {
     let Whole(study, records, summary, sens) = run;
-    print(out, &report::tolerance::render(study, summary, sens))?;
+    print(
+        out,
+        &report::tolerance::render(study, summary, records, sens),
+    )?;
     if let Some(p) = outputs.json {
         write_file(p, &report::tolerance::json(study, summary, records, sens))?;
     }

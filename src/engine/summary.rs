@@ -22,6 +22,10 @@ pub struct Headline {
 pub struct SceneSummary {
     pub scene: String,
     pub headlines: Vec<Headline>,
+    /// How many crank angles the scene samples.
+    pub angles: usize,
+    /// The step between its first two crank angles, rad (0 with one angle).
+    pub step_rad: f64,
 }
 
 /// The summary of every scene, in spec order.
@@ -41,6 +45,11 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
                     })
                 })
                 .collect(),
+            angles: r.crank_rad.len(),
+            step_rad: match r.crank_rad.as_slice() {
+                [a, b, ..] => b - a,
+                _ => 0.0,
+            },
         })
         .collect()
 }

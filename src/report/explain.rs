@@ -57,9 +57,18 @@ pub fn notes(spec: &Spec) -> Vec<String> {
     scene::notes(spec).iter().map(note).collect()
 }
 
-/// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why.
+/// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why
+/// (`check --explain` without `--tolerance`).
 pub fn explain(spec: &Spec, writes: Writes) -> String {
+    explain_check(spec, writes, false)
+}
+
+/// Human-readable plan of `check` on `spec` writing `writes`, with the tolerance study when
+/// `tolerance` (`--tolerance`): the discs, every scene, then the studies, the goldens, the
+/// accuracy ladder and the tolerance study: everything the run will compute.
+pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
     let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
+    out += &discs_line(spec);
     let deviations = deviation_lines(&spec.design.deviations);
     if !deviations.is_empty() {
         out += &format!(
@@ -155,7 +164,131 @@ pub fn explain(spec: &Spec, writes: Writes) -> String {
             out += &format!("  limits  {}\n", limits.join(", "));
         }
     }
+    out += &studies_text(spec);
+    out += &goldens_text(spec);
+    out += &ladder_text(spec, writes);
+    out += &tolerance_text(spec, tolerance);
     out
+}
+
+/// The discs on the crank: "reducer: 2 discs at crank phases 0°, 180° ..." (MODEL.md "Several
+/// discs"); with one disc, one line saying so.
+fn discs_line(spec: &Spec) -> String {
+    let n = spec.design.discs;
+    if n == 1 {
+        return "reducer: 1 disc\n".to_string();
+    }
+    // 360k/n is a whole number of degrees for every allowed count (1 to 4 discs).
+    let phases: Vec<String> = (0..n).map(|k| format!("{}°", 360 * k / n)).collect();
+    format!(
+        "reducer: {n} identical discs at crank phases {} (reducer.discs): every scene solves \
+         each disc, and the per-disc quantities are given per disc\n",
+        phases.join(", ")
+    )
+}
+
+/// The optimisation studies (`optimise:`), one line each: scene, objective, variables and the
+/// most evaluations the study may take.
+fn studies_text(spec: &Spec) -> String {
+    if spec.studies.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from("\noptimisation studies (optimise:), each with its checks:\n");
+    for s in &spec.studies {
+        let objective: Vec<String> = match s.objective.as_slice() {
+            [(o, w)] if *w == 1.0 => vec![o.name.to_string()],
+            terms => (terms.iter())
+                .map(|(o, w)| format!("{} × {}", number(*w), o.name))
+                .collect(),
+        };
+        let variables: Vec<&str> = s.variables.iter().map(|v| v.kind.key()).collect();
+        out += &format!(
+            "  study `{}` on scene `{}`: minimise {} over {}; at most {} \
+             evaluations ({} global and {} boundary samples, {} per local run, verification \
+             grid of {} points per variable)\n",
+            s.name,
+            spec.scenes[s.scene].name,
+            objective.join(" + "),
+            variables.join(", "),
+            crate::engine::optimise::most_evaluations(s),
+            s.global_samples,
+            s.boundary_samples,
+            s.local_evaluations,
+            s.verify_grid
+        );
+    }
+    out
+}
+
+/// The golden curves (`golden:`), one line each: quantity, scene, disc, file and band.
+fn goldens_text(spec: &Spec) -> String {
+    if spec.golden.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from("\ngolden curves (golden:), each a check:\n");
+    for g in &spec.golden {
+        let disc = g.disc.map_or(String::new(), |d| format!(" of disc {d}"));
+        out += &format!(
+            "  golden {}{disc} of scene `{}` against `{}`, every point within {}\n",
+            g.quantity.key,
+            g.scene,
+            g.file,
+            band(g.tolerance.abs, g.quantity.unit, g.tolerance.rel)
+        );
+    }
+    out
+}
+
+/// A golden's band abs + rel·|golden| in words, without a term that is zero.
+fn band(abs: f64, unit: &str, rel: f64) -> String {
+    let abs_text = crate::report::table::with_unit(number(abs), unit);
+    let rel_text = format!("{} of the golden value", super::tolerance::percent(rel));
+    match (abs != 0.0, rel != 0.0) {
+        (true, true) => format!("{abs_text} + {rel_text}"),
+        (false, true) => rel_text,
+        _ => abs_text,
+    }
+}
+
+/// The accuracy ladder (`accuracy:`): in full with the design review, else only the rungs that
+/// judge the scene's resolution.
+fn ladder_text(spec: &Spec, writes: Writes) -> String {
+    let Some(a) = &spec.accuracy else {
+        return String::new();
+    };
+    let scene = &spec.scenes[a.scene].name;
+    if writes.report {
+        format!(
+            "\naccuracy ladder (accuracy:) on scene `{scene}`: every rung, up to {} crank \
+             angles per mesh period, for the design review\n",
+            a.options.finest
+        )
+    } else {
+        format!(
+            "\naccuracy ladder (accuracy:) on scene `{scene}`: only the rungs that judge \
+             whether the scene's crank steps resolve the mesh (the whole ladder runs with \
+             --report)\n"
+        )
+    }
+}
+
+/// The tolerance study (`tolerances:`): run with `--tolerance`, said so either way.
+fn tolerance_text(spec: &Spec, asked: bool) -> String {
+    let Some(t) = &spec.tolerances else {
+        return String::new();
+    };
+    let head = format!(
+        "\ntolerance study (tolerances:) on scene `{}`: {} samples, seed {}, allowed failure \
+         rate {}",
+        spec.scenes[t.scene].name,
+        t.samples,
+        t.seed,
+        super::tolerance::percent(t.max_failure_rate)
+    );
+    match asked {
+        true => format!("{head}: runs (--tolerance), its failure rate one more check\n"),
+        false => format!("{head}: skipped (runs with --tolerance, or `cycloid tolerance`)\n"),
+    }
 }
 
 /// The part deviations in force (`reducer.deviations`), one line each (empty when nominal).

@@ -43,15 +43,17 @@ pub fn message(c: &Check) -> String {
     };
     match c.kind {
         CheckKind::Limit => {
+            // As the terminal reads it: a failure rate in percent (`table::shown_scale`).
+            let (scale, unit) = (super::table::shown_scale(c), super::table::shown_unit(c));
             let verdict = if c.passed {
-                format!("{} inside", with_unit(-beyond, c.unit))
+                format!("{} inside", with_unit(-beyond * scale, unit))
             } else {
-                format!("{} outside", with_unit(beyond, c.unit))
+                format!("{} outside", with_unit(beyond * scale, unit))
             };
             format!(
                 "value {}, limit {op} {}: {verdict}; {}",
                 super::table::value(c),
-                with_unit(c.limit, c.unit),
+                with_unit(c.limit * scale, unit),
                 super::table::evidence(&c.at)
             )
         }

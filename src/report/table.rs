@@ -2,7 +2,7 @@
 //! scene's headline results.
 
 use crate::engine::check::{Bound, Check, Evidence};
-use crate::engine::summary::SceneSummary;
+use crate::engine::summary::{Headline, SceneSummary};
 
 /// Format a number for a person: 4 significant figures, no exponent for ordinary magnitudes.
 pub fn number(x: f64) -> String {
@@ -60,7 +60,7 @@ pub const STYLES: [&str; 3] = [FAIL_STYLE, PASS_STYLE, PLAIN_STYLE];
 /// round-off tolerance (−8.2e-14 mm against ≥ 0 mm) reads as the limit, said so, not as a
 /// negative clearance marked "pass". The JSON keeps the value as computed.
 pub fn value(c: &Check) -> String {
-    let shown = |x: f64| with_unit(number(x), c.unit);
+    let shown = |x: f64| with_unit(number(shown_scale(c) * x), shown_unit(c));
     let wrong_side = match c.bound {
         Bound::Max => c.value > c.limit,
         Bound::Min => c.value < c.limit,
@@ -77,6 +77,35 @@ pub fn value(c: &Check) -> String {
     }
 }
 
+/// What a person reads a check's value and limit in: a failure rate (a fraction in the check,
+/// the JSON and JUnit) in percent, as `cycloid tolerance` prints every rate; else as computed.
+pub fn shown_scale(c: &Check) -> f64 {
+    match c.at {
+        Evidence::FailureRate { .. } => 100.0,
+        _ => 1.0,
+    }
+}
+
+/// The unit a person reads a check in: `%` for a failure rate (see `shown_scale`).
+pub fn shown_unit(c: &Check) -> &'static str {
+    match c.at {
+        Evidence::FailureRate { .. } => "%",
+        _ => c.unit,
+    }
+}
+
+/// A check's limit as a person reads it, with the bound's sign and the unit ("≤ 5.000 %").
+pub fn limit(c: &Check) -> String {
+    let op = match c.bound {
+        Bound::Max => "≤",
+        Bound::Min => "≥",
+    };
+    with_unit(
+        format!("{op} {}", number(shown_scale(c) * c.limit)),
+        shown_unit(c),
+    )
+}
+
 /// The table, one check a row, worst failures first; `color` adds ANSI colour to the verdicts.
 pub fn render_styled(checks: &[Check], color: bool) -> String {
     if checks.is_empty() {
@@ -88,14 +117,10 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
     let cells: Vec<[String; 5]> = rows
         .iter()
         .map(|c| {
-            let op = match c.bound {
-                Bound::Max => "≤",
-                Bound::Min => "≥",
-            };
             [
                 c.id.clone(),
                 value(c),
-                with_unit(format!("{op} {}", number(c.limit)), c.unit),
+                limit(c),
                 if c.passed { "pass" } else { "FAIL" }.to_string(),
                 evidence(&c.at),
             ]
@@ -139,6 +164,18 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
     out
 }
 
+/// The last line `check` prints: the verdict in one plain word a script or a person can find,
+/// and the counts behind it ("PASS: 7 of 7 checks passed", "FAIL: 2 of 7 checks failed").
+pub fn verdict_line(checks: &[Check]) -> String {
+    let failed = checks.iter().filter(|c| !c.passed).count();
+    let n = checks.len();
+    let noun = if n == 1 { "check" } else { "checks" };
+    match failed {
+        0 => format!("PASS: {n} of {n} {noun} passed\n"),
+        f => format!("FAIL: {f} of {n} {noun} failed\n"),
+    }
+}
+
 /// A count (a whole dimensionless value, e.g. rollers in contact) as an integer, else `number`.
 pub fn count_or_number(x: f64, unit: &str) -> String {
     if is_count(x, unit) {
@@ -178,11 +215,7 @@ pub fn render_summary(summaries: &[SceneSummary]) -> String {
             .map(|h| h.quantity.label.chars().count())
             .max()
             .unwrap_or(0);
-        let values: Vec<String> = s
-            .headlines
-            .iter()
-            .map(|h| with_unit(count_or_number(h.value, h.quantity.unit), h.quantity.unit))
-            .collect();
+        let values: Vec<String> = s.headlines.iter().map(headline_value).collect();
         let value_w = values.iter().map(|v| v.chars().count()).max().unwrap_or(0);
         for (h, v) in s.headlines.iter().zip(&values) {
             let label = h.quantity.label;
@@ -190,13 +223,64 @@ pub fn render_summary(summaries: &[SceneSummary]) -> String {
                 "  {label}{}  {}{v}  {}",
                 " ".repeat(label_w - label.chars().count()),
                 " ".repeat(value_w - v.chars().count()),
-                h.at
+                headline_at(h, s, summaries)
             );
             out += line.trim_end();
             out += "\n";
         }
     }
     out
+}
+
+/// A headline's value with its unit as a person reads it. A lost motion is a free play and
+/// never negative: the headline's value is the sum of the closing lags both ways (MODEL.md
+/// "Angular backlash"), negative when the rollers overlap the profile (a preload or an
+/// interference); then it reads 0 and `headline_at` says how far they overlap.
+pub fn headline_value(h: &Headline) -> String {
+    let unit = h.quantity.unit;
+    let x = if preloaded(h) { 0.0 } else { h.value };
+    with_unit(count_or_number(x, unit), unit)
+}
+
+/// Whether `h` is a lost motion whose closing lags overlap (no free play).
+fn preloaded(h: &Headline) -> bool {
+    h.quantity.key == crate::model::quantity::MAX_LOST_MOTION.key && h.value < 0.0
+}
+
+/// Where a headline occurs; a preloaded lost motion's overlap first (see `headline_value`);
+/// and, when another scene of `all` gives the same quantity, the scene's sampling, so that two
+/// values of one quantity say why they differ. Not for the min clearance: it is sought over
+/// the whole period of the gaps whatever the scene samples, and its line already says over
+/// what.
+pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> String {
+    let mut at = h.at.clone();
+    if preloaded(h) {
+        at = format!(
+            "preloaded: no free play, the closing lags overlap by {} {} (interference), {at}",
+            number(-h.value),
+            h.quantity.unit
+        );
+    }
+    let others = all.iter().filter(|o| o.scene != s.scene);
+    let shared = h.quantity.key != crate::model::quantity::MIN_CLEARANCE.key
+        && others
+            .flat_map(|o| &o.headlines)
+            .any(|o| o.quantity.key == h.quantity.key);
+    if shared {
+        at += &format!("; {}", sampling(s));
+    }
+    at
+}
+
+/// A scene's sampling of the crank: "sampled at 1080 crank angles, every 0.1000°".
+pub fn sampling(s: &SceneSummary) -> String {
+    match s.angles {
+        1 => "sampled at 1 crank angle".to_string(),
+        n => format!(
+            "sampled at {n} crank angles, every {}°",
+            crate::numeric::number(crate::units::deg(s.step_rad))
+        ),
+    }
 }
 
 /// Where a check's value occurs, or what it rests on, in words: the "where" of every view of
@@ -233,8 +317,8 @@ pub fn evidence(e: &Evidence) -> String {
             "{failures} of {samples} samples fail some limit; {} Clopper–Pearson interval [{}, \
              {}]{}{}",
             crate::numeric::percent_label(*confidence),
-            number(interval.0),
-            number(interval.1),
+            super::tolerance::percent(interval.0),
+            super::tolerance::percent(interval.1),
             match crate::engine::tolerance::summary::not_shown(
                 *failures,
                 *samples,

@@ -60,7 +60,12 @@ fn bands(study: &ToleranceStudy) -> String {
 }
 
 /// The terminal report.
-pub fn render(study: &ToleranceStudy, s: &Summary, sens: Option<&Sensitivity>) -> String {
+pub fn render(
+    study: &ToleranceStudy,
+    s: &Summary,
+    records: &Records,
+    sens: Option<&Sensitivity>,
+) -> String {
     let t = &study.tolerances;
     let mut out = format!(
         "cycloid tolerance `{}`: scene `{}`, {} samples, {}, seed {}\n\
@@ -124,9 +129,10 @@ pub fn render(study: &ToleranceStudy, s: &Summary, sens: Option<&Sensitivity>) -
     );
     out += &format!("quantiles: {QUANTILE_DEFINITION}\n");
     out += "\nworst samples (replay one with --write-sample K OUT):\n";
-    for &(k, _) in &s.worst {
+    for &(k, excess) in &s.worst {
         out += &format!(
-            "  sample {k}: largest draws {}\n",
+            "  sample {k}: {}; largest draws {}\n",
+            worst_values(study, records, k, excess),
             largest_draws(study, k, 3)
         );
     }
@@ -137,6 +143,37 @@ pub fn render(study: &ToleranceStudy, s: &Summary, sens: Option<&Sensitivity>) -
         out += &format!("note: {}\n", super::explain::note(&note));
     }
     out
+}
+
+/// Sample k's value of the limit(s) it is worst on (those whose excess over the limit,
+/// relative to the limit, is its largest, `excess`), with the unit and the limit:
+/// "min_clearance 0.004100 mm (≥ 0.005000 mm)".
+pub fn worst_values(study: &ToleranceStudy, records: &Records, k: u64, excess: f64) -> String {
+    let row = records.row(k, study.limits.len());
+    study
+        .limits
+        .iter()
+        .zip(row)
+        .filter(|((def, limit), &v)| {
+            crate::engine::limit::excess(v, *limit, def.bound)
+                .total_cmp(&excess)
+                .is_eq()
+        })
+        .map(|((def, limit), &v)| {
+            let unit = |x: f64| match def.quantity.unit {
+                "" => number(x),
+                u => format!("{} {u}", number(x)),
+            };
+            format!(
+                "{} {} ({} {})",
+                def.quantity.key,
+                unit(v),
+                def.bound.symbol(),
+                unit(*limit)
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The `count` draws of sample k largest relative to their σ (what made it bad), named, µm.

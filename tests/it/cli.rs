@@ -69,6 +69,7 @@ rated/min_clearance_mm  0.03430 mm  ≥ 0.01500 mm  pass     roller 0 at crank 0
 headline results:
 scene `rated`:
   min clearance over the mesh  0.03430 mm  roller 0 at crank 0.00°, tooth phase 0.000 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.1000° (error ≤ 1.538e-4 µm)
+PASS: 1 of 1 check passed
 ",
         "",
     );
@@ -94,6 +95,7 @@ headline results:
 scene `rated`:
   min clearance over the mesh   0.03430 mm  roller 0 at crank 0.00°, tooth phase 0.000 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.1000° (error ≤ 1.538e-4 µm)
   max lost motion (unloaded)   1511 arcsec  crank 18.00°, over the scene's 360 crank angles
+FAIL: 1 of 2 checks failed
 ",
         "",
     );
@@ -117,6 +119,7 @@ rated/min_clearance_mm  -0.02341 mm  ≥ 0.01500 mm  FAIL     roller 9 at crank 
 headline results:
 scene `rated`:
   min clearance over the mesh  -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.1000° (error ≤ 7.415e-5 µm)
+FAIL: 1 of 1 check failed
 ",
         "",
     );
@@ -127,7 +130,9 @@ scene `rated`:
 /// and one of the whole mesh period: both report the smallest gap over the whole mesh,
 /// −23.41 µm (crank 0° alone has −21.55 µm, which a limit of −22 µm passed before the minimum
 /// was sought over the whole period); the lost motion is the scene's own (−502.2 arcsec at
-/// crank 0°, passing ≤ −500, and −494.8 over the period, failing).
+/// crank 0°, passing ≤ −500, and −494.8 over the period, failing). The checks compare the
+/// signed sum with the limit; the headlines read no free play, 0, with the overlap, and each
+/// scene's sampling, since both scenes give the lost motion.
 #[test]
 fn failed_rows_come_first() {
     let spec = paper_with(&[
@@ -154,11 +159,12 @@ start/max_lost_motion_arcsec  -502.2 arcsec  ≤ -500.0 arcsec  pass     crank 0
 4 checks: 1 passed, 3 failed
 headline results:
 scene `start`:
-  min clearance over the mesh    -0.02341 mm  roller 9 at crank 10.88°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.3750° (error ≤ 0.001043 µm)
-  max lost motion (unloaded)   -502.2 arcsec  crank 0.00°, over the scene's 1 crank angle
+  min clearance over the mesh  -0.02341 mm  roller 9 at crank 10.88°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.3750° (error ≤ 0.001043 µm)
+  max lost motion (unloaded)      0 arcsec  preloaded: no free play, the closing lags overlap by 502.2 arcsec (interference), crank 0.00°, over the scene's 1 crank angle; sampled at 1 crank angle
 scene `rated`:
-  min clearance over the mesh    -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.1000° (error ≤ 7.415e-5 µm)
-  max lost motion (unloaded)   -494.8 arcsec  crank 31.60°, over the scene's 360 crank angles
+  min clearance over the mesh  -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.1000° (error ≤ 7.415e-5 µm)
+  max lost motion (unloaded)      0 arcsec  preloaded: no free play, the closing lags overlap by 494.8 arcsec (interference), crank 31.60°, over the scene's 360 crank angles; sampled at 360 crank angles, every 0.1000°
+FAIL: 3 of 4 checks failed
 ",
         "",
     );
@@ -943,6 +949,7 @@ fn explain_prints_the_plan() {
         &out,
         0,
         "spec `paper-table-1`: 2 scene(s)
+reducer: 1 disc
 
 scene `rated`: output torque 10 N·m, 360 crank angles from 0.0000° in steps of 0.1000°, exact geometry
   note    min clearance over the whole period of the gaps (36.00° of crank), whatever crank angles the scene samples

@@ -26,3 +26,157 @@ fn the_spec_key_table_is_whole_and_lists_every_limit() {
         assert!(table.contains(&key), "{key} is not documented");
     }
 }
+
+/// The rows of the README's spec-key table, each split into its cells.
+fn key_table() -> Vec<Vec<String>> {
+    let readme = std::fs::read_to_string("README.md").unwrap();
+    let start = readme
+        .find("| key | unit | default | meaning |")
+        .expect("the spec-key table");
+    readme[start..]
+        .lines()
+        .take_while(|l| l.starts_with('|'))
+        .skip(2)
+        .map(|l| l.split(" | ").map(str::to_string).collect())
+        .collect()
+}
+
+/// The keys `src/spec/raw.rs` accepts, with their place in a spec, read from its serde structs
+/// (every one `deny_unknown_fields`): a struct's `pub` fields are its keys; a field whose type
+/// is another spec struct is the place of that struct's keys, not a key of its own. A struct
+/// this test does not place fails it, so a new section cannot slip past the table.
+fn accepted_keys() -> Vec<String> {
+    const PLACES: &[(&str, &str)] = &[
+        ("RawSpecOf", ""),
+        ("RawTolerances", "tolerances."),
+        ("RawMeasuredProfile", "measured_profile."),
+        ("RawStudy", "optimise."),
+        ("RawVariables", "optimise.variables."),
+        ("RawPoint", "optimise.start."),
+        ("RawConstraints", "optimise.constraints."),
+        ("RawReference", "optimise.references."),
+        ("RawReducer", "reducer."),
+        ("RawDeviations", "reducer.deviations."),
+        ("RawFormTerm", "reducer.deviations.form."),
+        ("RawRollerDeviation", "reducer.deviations.rollers."),
+        ("RawCentreDeviation", "reducer.deviations.holes."),
+        ("RawCrankBearing", "reducer.crank_bearing."),
+        ("RawOutputPins", "reducer.output_pins."),
+        ("RawMaterial", "reducer.material."),
+        ("RawModification", "modification."),
+        ("RawScene", "scenes[]."),
+        ("RawTorqueSweep", "scenes[].torque_sweep."),
+        ("RawCrank", "scenes[].crank."),
+        ("RawGolden", "golden[]."),
+        ("RawTolerance", "golden[].tolerance."),
+        ("RawAccuracy", "accuracy."),
+        ("RawAccuracyTolerance", "accuracy.tolerance."),
+    ];
+    let raw = std::fs::read_to_string("src/spec/raw.rs").unwrap();
+    let mut keys = Vec::new();
+    let mut place: Option<&str> = None;
+    for line in raw.lines() {
+        if let Some(rest) = line.strip_prefix("pub(crate) struct ") {
+            let name: String = rest.chars().take_while(|c| c.is_alphanumeric()).collect();
+            let found = PLACES.iter().find(|(n, _)| *n == name);
+            place = Some(
+                found
+                    .unwrap_or_else(|| panic!("struct {name} of raw.rs has no place"))
+                    .1,
+            );
+        } else if line.starts_with('}') {
+            place = None;
+        } else if let (Some(p), Some(field)) = (place, line.trim().strip_prefix("pub ")) {
+            let (name, ty) = field.split_once(": ").unwrap();
+            // Nested sections have their own struct; `limits` are the registry's (tested above).
+            let nested = ty.contains("Raw") && !ty.contains("RawObjective");
+            if !nested {
+                keys.push(format!("{p}{name}"));
+            }
+        }
+    }
+    assert!(
+        keys.len() > 50,
+        "raw.rs read as {} keys: {keys:?}",
+        keys.len()
+    );
+    keys
+}
+
+/// Whether the table documents `key`: a row of its own (`` `scenes[].crank.from_deg` ``), a row
+/// of its section listing it (`` `scenes[].crank.from_deg`, `to_deg` ``, `` `.rel` ``), or the
+/// row of a section that spells its keys out inline (`reducer.deviations`: `form: [{order,
+/// cos_mm, sin_mm}]`).
+fn documented(key: &str, table: &[Vec<String>]) -> bool {
+    let (parent, leaf) = key.rsplit_once('.').unwrap_or(("", key));
+    let word = |text: &str| {
+        text.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .any(|w| w == leaf)
+    };
+    let ancestors: Vec<&str> = key.match_indices('.').map(|(i, _)| &key[..i]).collect();
+    table.iter().any(|row| {
+        let first = row[0].trim_start_matches('|').trim();
+        first.contains(&format!("`{key}`"))
+            || (first.contains(&format!("`{parent}."))
+                && (first.contains(&format!("`{leaf}`")) || first.contains(&format!("`.{leaf}`"))))
+            || (ancestors.iter().any(|a| first == format!("`{a}`"))
+                && row[1..].iter().any(|cell| word(cell)))
+    })
+}
+
+/// Every key the parser accepts has a row in the README's table ("keys not listed here are
+/// errors" must be true both ways): read from the serde structs, not a list kept by hand.
+#[test]
+fn every_key_the_parser_accepts_is_in_the_table() {
+    let table = key_table();
+    let missing: Vec<String> = accepted_keys()
+        .into_iter()
+        .filter(|k| !documented(k, &table))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "keys the README's table omits: {missing:?}"
+    );
+}
+
+/// Every quantity a golden may name (`quantity::curve_keys`, what the parser accepts) is in
+/// the `golden[].quantity` row.
+#[test]
+fn every_golden_quantity_is_in_the_table() {
+    let table = key_table();
+    let row = table
+        .iter()
+        .find(|r| r[0].contains("`golden[].quantity`"))
+        .expect("the golden[].quantity row")
+        .join(" | ");
+    let keys = cycloid::model::quantity::curve_keys();
+    let missing: Vec<&str> = keys
+        .split(", ")
+        .filter(|k| !row.contains(&format!("`{k}`")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "golden quantities the README omits: {missing:?}"
+    );
+}
+
+/// The README's list of shipped specs names every file of `specs/*.yaml`.
+#[test]
+fn the_shipped_specs_list_names_every_spec() {
+    let readme = std::fs::read_to_string("README.md").unwrap();
+    let start = readme
+        .find("Shipped specs:")
+        .expect("the shipped-specs list");
+    let list = &readme[start..start + readme[start..].find("\n\n").unwrap()];
+    let mut missing = Vec::new();
+    for entry in std::fs::read_dir("specs").unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        if name.ends_with(".yaml") && !list.contains(&format!("`specs/{name}`")) {
+            missing.push(name);
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "shipped specs the README's list omits: {missing:?}"
+    );
+}

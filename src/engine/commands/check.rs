@@ -16,7 +16,7 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::measure::fit::Identification;
 use crate::model::results::SceneResult;
 use crate::model::{Modification, Study};
-use crate::progress::{Phase, Progress};
+use crate::progress::{Budget, Phase, Progress};
 use crate::spec::Spec;
 
 /// Largest grid of an objective map, per variable (101² = 10 201 evaluations per study).
@@ -254,8 +254,8 @@ pub fn studies(spec: &Spec, studies: Vec<&Study>, progress: &dyn Progress) -> Ve
     if studies.is_empty() {
         return Vec::new();
     }
-    // At most this many evaluations: local runs often stop before their budget, and then the
-    // count ends short of full.
+    // At most this many evaluations: local runs often stop before their budget, so each
+    // study's unused budget counts as done when it ends, and the count ends full.
     let most: usize = studies.iter().map(|s| optimise::most_evaluations(s)).sum();
     let what = format!(
         "optimising {} stud{}",
@@ -265,7 +265,12 @@ pub fn studies(spec: &Spec, studies: Vec<&Study>, progress: &dyn Progress) -> Ve
     let heard = progress.phase(&Phase::new(what, "evaluations at most", most as u64));
     studies
         .par_iter()
-        .map(|s| optimise::run_study(spec, s, &*heard))
+        .map(|s| {
+            let budget = Budget::new(&*heard, optimise::most_evaluations(s) as u64);
+            let result = optimise::run_study(spec, s, &budget);
+            budget.close();
+            result
+        })
         .collect()
 }
 

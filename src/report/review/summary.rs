@@ -3,7 +3,7 @@
 use super::common::{data_table, section, Section};
 use crate::engine::summary::summarise;
 use crate::model::results::SceneResult;
-use crate::report::table::{self, with_unit};
+use crate::report::table;
 use maud::html;
 
 /// The headline results of every scene ([`engine::summary`](crate::engine::summary)).
@@ -26,9 +26,8 @@ pub(super) fn summary_section(results: &[SceneResult]) -> Section {
                                 td rowspan=(s.headlines.len()) { code { (s.scene) } }
                             }
                             td { (h.quantity.label) }
-                            td.num { (with_unit(table::count_or_number(h.value, h.quantity.unit),
-                                h.quantity.unit)) }
-                            td { (h.at) }
+                            td.num { (table::headline_value(h)) }
+                            td { (table::headline_at(h, s, &summaries)) }
                         }
                     }
                 }

@@ -1,0 +1,323 @@
+//! What a reviewer reads on the terminal (issue 27): `check --explain` lists everything the run
+//! computes, failure rates in one unit, the worst samples with their values, a lost motion that
+//! never reads negative, each scene's sampling where two scenes give one quantity, a plain
+//! PASS/FAIL last line, and a progress count that ends full.
+
+use crate::common::{cycloid, cycloid_here, Scratch, PAPER};
+use cycloid::progress::{Phase, Progress};
+use std::sync::Mutex;
+
+/// `check SPEC --explain ARGS` in the repository's root: its stdout, exit 0 asserted.
+fn explain(spec: &str, args: &[&str]) -> String {
+    let run = cycloid_here(&[&["check", spec, "--explain"], args].concat());
+    assert_eq!(run.code, Some(0), "{run:?}");
+    run.stdout
+}
+
+/// `reducer.discs: 2` is in the plan, with the discs' crank phases 2πk/discs (MODEL.md
+/// "Several discs": 0° and 180° for two).
+#[test]
+fn explain_lists_the_discs() {
+    let out = explain("specs/reducer-two-discs.yaml", &[]);
+    assert!(
+        out.lines()
+            .any(|l| l.starts_with("reducer: 2 identical discs at crank phases 0°, 180° ")),
+        "{out}"
+    );
+}
+
+/// Every study and every golden of `specs/paper.yaml` is in the plan, by name (the spec's own
+/// lists), and each study with the most evaluations it may take.
+#[test]
+fn explain_lists_the_studies_and_goldens() {
+    let out = explain("specs/paper.yaml", &[]);
+    let spec = cycloid::spec::load("specs/paper.yaml").unwrap();
+    assert_eq!(spec.studies.len(), 4, "the paper's four studies");
+    for s in &spec.studies {
+        let most = cycloid::engine::optimise::most_evaluations(s);
+        let head = format!(
+            "  study `{}` on scene `{}`",
+            s.name, spec.scenes[s.scene].name
+        );
+        assert!(
+            out.lines()
+                .any(|l| l.starts_with(&head) && l.contains(&format!("at most {most} evaluations"))),
+            "{head} …at most {most} evaluations\n{out}"
+        );
+    }
+    assert!(!spec.golden.is_empty());
+    for g in &spec.golden {
+        let line = format!(
+            "  golden {} of scene `{}` against `{}`",
+            g.quantity.key, g.scene, g.file
+        );
+        assert!(out.contains(&line), "{line}\n{out}");
+    }
+}
+
+/// The accuracy ladder is in the plan: only the rungs that judge the resolution with `check`
+/// alone, every rung with `--report` (which is what `engine::commands::check` runs).
+#[test]
+fn explain_lists_the_accuracy_ladder() {
+    let head = "accuracy ladder (accuracy:) on scene `rated`: ";
+    let alone = explain("specs/reducer-loaded.yaml", &[]);
+    assert!(
+        alone.contains(&format!("{head}only the rungs that judge")),
+        "{alone}"
+    );
+    let dir = Scratch::new("explain-ladder");
+    let review = dir.path.join("review");
+    let with_report = explain(
+        "specs/reducer-loaded.yaml",
+        &["--report", review.to_str().unwrap()],
+    );
+    assert!(
+        with_report.contains(&format!("{head}every rung")),
+        "{with_report}"
+    );
+    assert!(!review.exists(), "--explain writes nothing");
+}
+
+/// The tolerance study is in the plan, skipped without `--tolerance` and run with it, with its
+/// samples, seed and allowed rate as the spec gives them (2000, 1, 0.0027 = 0.27 %).
+#[test]
+fn explain_lists_the_tolerance_study() {
+    let head = "tolerance study (tolerances:) on scene `rated`: 2000 samples, seed 1, allowed \
+                failure rate 0.2700 %: ";
+    let out = explain("specs/reducer-tolerance.yaml", &[]);
+    assert!(out.contains(&format!("{head}skipped")), "{out}");
+    let out = explain("specs/reducer-tolerance.yaml", &["--tolerance"]);
+    assert!(out.contains(&format!("{head}runs (--tolerance)")), "{out}");
+}
+
+/// One unit for failure rates: `check --tolerance`'s row reads the allowed rate in percent,
+/// as `cycloid tolerance` does (the spec's 0.0027 is 0.27 %), and its interval too; so does
+/// its JUnit message.
+#[test]
+fn failure_rates_read_in_percent_in_check_and_tolerance() {
+    let dir = Scratch::new("rate-percent");
+    let junit = dir.path.join("j.xml");
+    let check = cycloid_here(&[
+        "check",
+        "specs/reducer-tolerance.yaml",
+        "--tolerance",
+        "--junit",
+        junit.to_str().unwrap(),
+    ]);
+    assert_eq!(check.code, Some(0), "{check:?}");
+    let xml = std::fs::read_to_string(&junit).unwrap();
+    assert!(xml.contains("limit ≤ 0.2700 %: 0.2700 % inside"), "{xml}");
+    let row = check
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("rated/tolerance_failure_rate"))
+        .expect("the failure-rate row");
+    let cells: Vec<&str> = row.split("  ").filter(|c| !c.is_empty()).collect();
+    assert_eq!(cells[1].trim(), "0 %", "{row}");
+    assert_eq!(cells[2].trim(), "≤ 0.2700 %", "{row}");
+    assert!(row.contains("interval [0 %, "), "{row}");
+    let study = cycloid_here(&["tolerance", "specs/reducer-tolerance.yaml"]);
+    assert!(study.stdout.contains("allowed 0.2700 %"), "{study:?}");
+}
+
+/// Each worst sample of `cycloid tolerance` shows its value of the limit it is worst on, with
+/// the unit and the limit: the value the JSON records for it, to the 4 significant digits
+/// printed (relative 5e-4 covers the rounding).
+#[test]
+fn worst_samples_show_their_values() {
+    let dir = Scratch::new("worst-values");
+    let json = dir.path.join("t.json");
+    let run = cycloid_here(&[
+        "tolerance",
+        "specs/reducer-tolerance.yaml",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(run.code, Some(0), "{run:?}");
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let worst = doc["worst"].as_array().unwrap();
+    assert!(!worst.is_empty());
+    for w in worst {
+        let k = w["sample"].as_u64().unwrap();
+        let recorded = w["values"]["min_clearance_mm"].as_f64().unwrap();
+        let line = run
+            .stdout
+            .lines()
+            .find(|l| l.starts_with(&format!("  sample {k}: ")))
+            .unwrap_or_else(|| panic!("sample {k} in\n{}", run.stdout));
+        let shown = line
+            .split("min_clearance_mm ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or_else(|| panic!("no value with unit and limit in {line}"));
+        assert!(
+            line.contains(" mm (≥ 0.01500 mm); largest draws "),
+            "{line}"
+        );
+        assert!(
+            (shown - recorded).abs() <= 5e-4 * recorded.abs(),
+            "{line}: {recorded}"
+        );
+    }
+}
+
+/// The headline of a lost motion never reads negative: the preloaded hard case (every roller
+/// overlaps the profile by 20 µm, so no lag is free) reads 0 with the overlap, which is the
+/// signed sum the results JSON keeps (printed to 4 significant digits: relative 5e-4).
+#[test]
+fn a_preloaded_lost_motion_reads_zero_with_its_overlap() {
+    let dir = Scratch::new("preload-lost-motion");
+    let json = dir.path.join("r.json");
+    let run = cycloid_here(&[
+        "check",
+        "specs/hard/preload-zero-torque.yaml",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(run.code, Some(0), "{run:?}");
+    let line = run
+        .stdout
+        .lines()
+        .find(|l| l.contains("max lost motion (unloaded)"))
+        .expect("the lost-motion headline");
+    let after = line
+        .split("max lost motion (unloaded)")
+        .nth(1)
+        .unwrap()
+        .trim_start();
+    assert!(
+        after.starts_with("0 arcsec  preloaded: no free play"),
+        "{line}"
+    );
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let signed = doc["summary"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|s| s["headlines"].as_array().unwrap())
+        .find(|h| h["key"] == "max_lost_motion_arcsec")
+        .and_then(|h| h["value"].as_f64())
+        .expect("the signed lost motion in the JSON");
+    assert!(signed < 0.0, "the hard case interferes: {signed}");
+    let overlap: f64 = line
+        .split("overlap by ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no overlap in {line}"));
+    assert!(
+        (overlap + signed).abs() <= 5e-4 * signed.abs(),
+        "{line}: {signed}"
+    );
+}
+
+/// Two scenes of `specs/paper.yaml` give the ratio fluctuation at two samplings (1080 angles
+/// every 0.1°, 540 every 0.2°): each line says its own; the min clearance, given by one scene
+/// alone, says nothing more.
+#[test]
+fn two_values_of_one_quantity_state_their_sampling() {
+    let paper = std::fs::read_to_string("specs/paper.yaml").unwrap();
+    let dir = Scratch::new("two-samplings");
+    dir.write("p.yaml", &paper[..paper.find("optimise:").unwrap()]);
+    let run = cycloid(&dir.path, &["check", "p.yaml"]);
+    assert_eq!(run.code, Some(0), "{run:?}");
+    let ratio: Vec<&str> = (run.stdout.lines())
+        .filter(|l| l.contains("ratio fluctuation κmax − κmin"))
+        .collect();
+    assert_eq!(ratio.len(), 2, "{}", run.stdout);
+    assert!(
+        ratio[0].ends_with("; sampled at 1080 crank angles, every 0.1000°"),
+        "{}",
+        ratio[0]
+    );
+    assert!(
+        ratio[1].ends_with("; sampled at 540 crank angles, every 0.2000°"),
+        "{}",
+        ratio[1]
+    );
+    let clearance = (run.stdout.lines())
+        .find(|l| l.starts_with("  min clearance over the mesh"))
+        .unwrap();
+    assert!(!clearance.contains("sampled at"), "{clearance}");
+}
+
+/// `check` ends with one plain word and the counts of its table: PASS when every check passes
+/// (exit 0), FAIL with how many did not (exit 1: a 1 mm clearance limit the paper's 34 µm
+/// cannot meet).
+#[test]
+fn check_ends_with_pass_or_fail_and_the_counts() {
+    let dir = Scratch::new("verdict-line");
+    dir.write("pass.yaml", PAPER);
+    let run = cycloid(&dir.path, &["check", "pass.yaml"]);
+    assert_eq!(run.code, Some(0), "{run:?}");
+    assert_eq!(run.stdout.lines().last(), Some("PASS: 1 of 1 check passed"));
+    let failing = PAPER.replace("min_clearance_mm: 0.015", "min_clearance_mm: 1.0");
+    assert_ne!(failing, PAPER);
+    dir.write("fail.yaml", &failing);
+    let run = cycloid(&dir.path, &["check", "fail.yaml"]);
+    assert_eq!(run.code, Some(1), "{run:?}");
+    assert_eq!(run.stdout.lines().last(), Some("FAIL: 1 of 1 check failed"));
+}
+
+/// What each phase heard: (what, total, units advanced).
+#[derive(Default)]
+struct Phases(Mutex<Vec<(String, u64, u64)>>);
+
+/// One phase's count, handed back to `Phases` when the phase ends.
+struct Heard<'a> {
+    phases: &'a Phases,
+    what: String,
+    total: u64,
+    done: std::sync::atomic::AtomicU64,
+}
+
+impl Progress for Heard<'_> {
+    fn advance(&self, n: u64) {
+        self.done.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+impl Drop for Heard<'_> {
+    fn drop(&mut self) {
+        let done = *self.done.get_mut();
+        let entry = (self.what.clone(), self.total, done);
+        self.phases.0.lock().unwrap().push(entry);
+    }
+}
+
+impl Progress for Phases {
+    fn phase(&self, p: &Phase) -> Box<dyn Progress + '_> {
+        Box::new(Heard {
+            phases: self,
+            what: p.what.clone(),
+            total: p.total,
+            done: Default::default(),
+        })
+    }
+}
+
+/// The optimiser's phase counts "evaluations at most": local runs stop before their budget, and
+/// the count must still end at 100 % of the total the phase announced (it stopped at ~63 %).
+#[test]
+fn the_optimise_count_ends_at_its_total() {
+    let paper = std::fs::read_to_string("specs/paper.yaml").unwrap();
+    let head = &paper[..paper.find("  - name: positive-te").unwrap()];
+    let text = head.replace("steps: 540", "steps: 72").replace(
+        "    scene: study\n",
+        "    scene: study\n    global_samples: 12\n    boundary_samples: 8\n    verify_grid: 0\n",
+    );
+    let spec = cycloid::spec::parse("small.yaml", &text).unwrap();
+    assert_eq!(spec.studies.len(), 1);
+    let phases = Phases::default();
+    let run = cycloid::check(&spec, &cycloid::CheckOptions::default(), &phases).unwrap();
+    assert!(run.studies[0].evaluations > 0);
+    let heard = phases.0.into_inner().unwrap();
+    let optimise = heard
+        .iter()
+        .find(|(what, ..)| what.starts_with("optimising"))
+        .expect("the optimise phase");
+    assert_eq!(optimise.2, optimise.1, "{optimise:?}");
+}

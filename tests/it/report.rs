@@ -80,6 +80,7 @@ fn check_writes_a_page_with_every_plot_it_links() {
         assert!(!svg.contains("NaN") && !svg.contains("inf"), "{f}");
     }
     let read = |f: &str| std::fs::read_to_string(dir.join(f)).unwrap();
+    te_fills_its_plot(&read("scene-2-rated-te.svg"));
     // Axis labels with units.
     for (file, labels) in [
         (
@@ -802,4 +803,29 @@ fn a_crank_resolution_coarser_than_the_ladder_needs_is_a_banner() {
         "{banner}\n{printed}"
     );
     assert!(html.find("banner warn").unwrap() < html.find("<nav").unwrap());
+}
+
+/// The TE plot is about the TE ripple (a few arcsec over a mesh period): its axis is the TE's
+/// own, not shared with the output lag βo (hundreds of arcsec), so the TE curve spans most of
+/// the plot's height. Half is the bar: a nice-tick axis around a curve wastes at most a tick
+/// step at each end (with 6 ticks, well under half); on one axis with βo the TE spanned 0.6 %.
+fn te_fills_its_plot(svg: &str) {
+    let frame = svg
+        .split("<rect ")
+        .find(|r| r.contains("fill=\"none\" stroke=\"#333\""))
+        .unwrap();
+    let height = attribute(frame, "height")[0];
+    let curve = svg.split("<polyline ").nth(1).unwrap();
+    let points = &curve[curve.find("points=\"").unwrap() + 8..];
+    let ys: Vec<f64> = points[..points.find('"').unwrap()]
+        .split_whitespace()
+        .map(|p| p.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    let span =
+        ys.iter().copied().fold(f64::MIN, f64::max) - ys.iter().copied().fold(f64::MAX, f64::min);
+    assert!(
+        span > 0.5 * height,
+        "TE spans {span} px of a {height} px plot"
+    );
+    assert_eq!(svg.matches("<polyline ").count(), 1, "TE alone on its axis");
 }

@@ -893,3 +893,58 @@ fn the_shipped_tolerance_spec_shows_its_verdict() {
     let r = common::cycloid_here(&["check", "specs/reducer-tolerance.yaml", "--tolerance"]);
     assert_eq!(r.code(), 0, "{r:?}");
 }
+
+/// README: limits are never hidden under the frame. A histogram's x range is the values and the
+/// limit grown by 5 % of its span at each end, so the limit line sits at least that far inside
+/// the frame; 2 % is the bar (a pixel rounding of a 600 px frame is far below it), and on the
+/// range without margin the limit at the range's end lay on the frame (0 %).
+#[test]
+fn a_histograms_limit_line_is_inside_its_frame() {
+    let scratch = Scratch::new("tolerance-histogram");
+    let dir = scratch.join("rev");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_cycloid"))
+        .args([
+            "tolerance",
+            "specs/reducer-tolerance.yaml",
+            "--samples",
+            "40",
+        ])
+        .arg("--report")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(out.status.code().unwrap() < 2, "{out:?}");
+    let svgs = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path());
+    let svgs: Vec<_> = svgs
+        .filter(|p| p.extension().is_some_and(|e| e == "svg"))
+        .collect();
+    assert!(!svgs.is_empty());
+    for path in svgs {
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let frame = svg
+            .split("<rect ")
+            .find(|r| r.contains("fill=\"none\" stroke=\"#333\""))
+            .unwrap();
+        let (left, width) = (number(frame, "x"), number(frame, "width"));
+        let limit = svg
+            .split("<polyline ")
+            .find(|p| p.starts_with("stroke=\"#d62728\""))
+            .unwrap_or_else(|| panic!("{path:?}: no limit line"));
+        let points = &limit[limit.find("points=\"").unwrap() + 8..];
+        let x: f64 = points.split(',').next().unwrap().parse().unwrap();
+        let inset = (x - left).min(left + width - x);
+        assert!(
+            inset > 0.02 * width,
+            "{path:?}: limit {inset} px from the frame"
+        );
+    }
+}
+
+/// The number in the first attribute `name` of `element` (its text after the tag's name).
+fn number(element: &str, name: &str) -> f64 {
+    let element = format!(" {element}");
+    let from = element.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+    element[from..from + element[from..].find('"').unwrap()]
+        .parse()
+        .unwrap()
+}

@@ -119,10 +119,19 @@ const PLOTS: &[PlotDef] = &[
     PlotDef {
         name: "te",
         title: "Loaded transmission error",
-        curves: &[&q::TE, &q::OUTPUT_LAG],
-        dashed: &[q::OUTPUT_LAG.key],
+        curves: &[&q::TE],
         caption: "Lag of the output behind its ideal angle φ/nc under the scene's torque: disc \
-                  lag β at the rollers plus output lag βo at the pins (dashed).",
+                  lag β at the rollers plus output lag βo at the pins. The axis spans the TE \
+                  alone, so that its ripple fills the plot; βo has its own plot.",
+        ..PLOT
+    },
+    // βo on its own axis: on the TE's it would stretch the axis and flatten the TE ripple.
+    PlotDef {
+        name: "output-lag",
+        title: "Output lag at the pins",
+        curves: &[&q::OUTPUT_LAG],
+        caption: "Output lag βo at the pins under the scene's torque, the part of the TE the \
+                  output pins add.",
         ..PLOT
     },
     PlotDef {

@@ -74,9 +74,20 @@ fn histogram(study: &ToleranceStudy, records: &Records, l: usize, ls: &LimitSumm
     );
     limit.dashed = true;
     plot.series.push(limit);
-    plot.x_range = Some((lo.min(ls.limit), hi.max(ls.limit)));
+    plot.x_range = Some(with_margin(lo.min(ls.limit), hi.max(ls.limit)));
     plot.to_svg()
 }
+
+/// A histogram's x range: the values and the limit, grown by `MARGIN` of its span at each
+/// end so that neither the limit line nor the outermost bin lies on the frame (README: limits
+/// are never hidden under the frame); a range of one value gets a unit's width.
+fn with_margin(lo: f64, hi: f64) -> (f64, f64) {
+    let span = if hi > lo { hi - lo } else { 1.0 };
+    (lo - MARGIN * span, hi + MARGIN * span)
+}
+
+/// Share of a histogram's range left free at each end.
+const MARGIN: f64 = 0.05;
 
 fn rates_section(s: &Summary) -> Section {
     let body = html! {

@@ -141,6 +141,11 @@ pub fn phase(p: f64) -> String {
     }
 }
 
+/// A fraction as a percentage for people, to `number`'s digits: 0.0027 is "0.2700 %".
+pub fn percent(x: f64) -> String {
+    format!("{} %", number(100.0 * x))
+}
+
 /// A probability as the reports label it, to 0.001 %: `QUANTILES` read "0.135 %", "50 %",
 /// "99.865 %", `CONFIDENCE` "95 %".
 pub fn percent_label(p: f64) -> String {

@@ -241,8 +241,13 @@ fn goldens_text(spec: &Spec) -> String {
 
 /// A golden's band abs + rel·|golden| in words, without a term that is zero.
 fn band(abs: f64, unit: &str, rel: f64) -> String {
-    let abs_text = crate::report::table::with_unit(number(abs), unit);
-    let rel_text = format!("{} of the golden value", super::tolerance::percent(rel));
+    // Formatted here, not by `table::with_unit`: table reads tolerance, which reads explain's
+    // notes, so an import of table here would close a circle.
+    let abs_text = match unit {
+        "" => number(abs),
+        _ => format!("{} {unit}", number(abs)),
+    };
+    let rel_text = format!("{} of the golden value", crate::numeric::percent(rel));
     match (abs != 0.0, rel != 0.0) {
         (true, true) => format!("{abs_text} + {rel_text}"),
         (false, true) => rel_text,
@@ -283,7 +288,7 @@ fn tolerance_text(spec: &Spec, asked: bool) -> String {
         spec.scenes[t.scene].name,
         t.samples,
         t.seed,
-        super::tolerance::percent(t.max_failure_rate)
+        crate::numeric::percent(t.max_failure_rate)
     );
     match asked {
         true => format!("{head}: runs (--tolerance), its failure rate one more check\n"),

@@ -47,7 +47,7 @@ pub fn distribution_text(d: Distribution) -> String {
 
 /// A fraction as a percentage for people.
 pub(super) fn percent(x: f64) -> String {
-    format!("{} %", number(100.0 * x))
+    crate::numeric::percent(x)
 }
 
 /// The bands in force, `kind ±b` (mm).

@@ -9,13 +9,50 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::model::{Deviations, Modification};
 use crate::units;
 
-/// Replace the scalar after `key:` at `offset` with `value`.
-fn replace_value(text: &mut String, offset: usize, value: &str) {
+/// Replace the scalar after `key:` at `offset` (plain, or in single or double quotes) with
+/// `value`.
+pub(super) fn replace_value(text: &mut String, offset: usize, value: &str) {
+    let span = scalar_span(text, offset);
+    text.replace_range(span, value);
+}
+
+/// The byte range of the scalar after `key:` at `offset`, quotes included.
+pub(super) fn scalar_span(text: &str, offset: usize) -> std::ops::Range<usize> {
     let colon = offset + text[offset..].find(':').unwrap_or(0) + 1;
     let rest = &text[colon..];
-    let end = rest.find([',', '}', '#', '\n']).unwrap_or(rest.len());
-    let trailing = if rest[..end].ends_with(' ') { " " } else { "" };
-    text.replace_range(colon..colon + end, &format!(" {value}{trailing}"));
+    let start = rest.len() - rest.trim_start_matches(' ').len();
+    let body = &rest[start..];
+    let len = match body.chars().next() {
+        Some(q @ ('"' | '\'')) => closing_quote(body, q).map_or(0, |end| end + 1),
+        _ => body
+            .find([',', '}', '\n', '\r'])
+            .map(|end| body[..end].find(" #").unwrap_or(end))
+            .unwrap_or_else(|| body.find(" #").unwrap_or(body.len())),
+    };
+    let len = body[..len].trim_end_matches(' ').len();
+    colon + start..colon + start + len
+}
+
+/// The byte offset of the quote that closes a scalar opened by `q` at the start of `body`.
+fn closing_quote(body: &str, q: char) -> Option<usize> {
+    let mut chars = body.char_indices().skip(1);
+    while let Some((i, c)) = chars.next() {
+        match c {
+            '\\' if q == '"' => {
+                chars.next();
+            }
+            c if c == q => {
+                // '' inside single quotes is an escaped quote.
+                if q == '\'' && body[i + 1..].starts_with('\'') {
+                    chars.next();
+                } else {
+                    return Some(i);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
 }
 
 /// Whether `line` starts with `key:`.

@@ -3,6 +3,7 @@
 //! `measured_profile.file`) are relative to its own directory, so each relative one is rewritten
 //! to reach the same file from the new place. Absolute paths stay as written.
 
+use super::edit::{replace_value, scalar_span};
 use super::locate_offset;
 use crate::error::{Error, ErrorKind, Result};
 use crate::files::identity;
@@ -54,7 +55,7 @@ pub fn relocate(text: &str, from: &str, to: &str) -> Result<String> {
     }
     edits.sort_by_key(|(offset, _)| std::cmp::Reverse(*offset));
     for (offset, value) in edits {
-        replace_scalar(&mut out, offset, &value);
+        replace_value(&mut out, offset, &value);
     }
     let back = super::parse(to, &out)?;
     let same = |a: &Path, b: &Path| identity(a) == identity(b);
@@ -128,52 +129,6 @@ fn yaml_scalar(s: &str) -> String {
     }
 }
 
-/// Replace the scalar after `key:` at `offset` (plain, or in single or double quotes) with
-/// `value`.
-fn replace_scalar(text: &mut String, offset: usize, value: &str) {
-    let span = scalar_span(text, offset);
-    text.replace_range(span, value);
-}
-
-/// The byte range of the scalar after `key:` at `offset`, quotes included.
-fn scalar_span(text: &str, offset: usize) -> std::ops::Range<usize> {
-    let colon = offset + text[offset..].find(':').unwrap_or(0) + 1;
-    let rest = &text[colon..];
-    let start = rest.len() - rest.trim_start_matches(' ').len();
-    let body = &rest[start..];
-    let len = match body.chars().next() {
-        Some(q @ ('"' | '\'')) => closing_quote(body, q).map_or(0, |end| end + 1),
-        _ => body
-            .find([',', '}', '\n', '\r'])
-            .map(|end| body[..end].find(" #").unwrap_or(end))
-            .unwrap_or_else(|| body.find(" #").unwrap_or(body.len())),
-    };
-    let len = body[..len].trim_end_matches(' ').len();
-    colon + start..colon + start + len
-}
-
-/// The byte offset of the quote that closes a scalar opened by `q` at the start of `body`.
-fn closing_quote(body: &str, q: char) -> Option<usize> {
-    let mut chars = body.char_indices().skip(1);
-    while let Some((i, c)) = chars.next() {
-        match c {
-            '\\' if q == '"' => {
-                chars.next();
-            }
-            c if c == q => {
-                // '' inside single quotes is an escaped quote.
-                if q == '\'' && body[i + 1..].starts_with('\'') {
-                    chars.next();
-                } else {
-                    return Some(i);
-                }
-            }
-            _ => {}
-        }
-    }
-    None
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -199,7 +154,7 @@ mod tests {
         ] {
             let mut text = line.to_string();
             let at = text.find("file").unwrap();
-            replace_scalar(&mut text, at, "NEW");
+            replace_value(&mut text, at, "NEW");
             assert_eq!(text, want, "{line:?}");
         }
         assert_eq!(yaml_scalar("../golden/te.csv"), "../golden/te.csv");

@@ -5,10 +5,8 @@
 //! code, where the message points, and every input file's bytes unchanged (only the files a
 //! row names may appear). Shards are corrupted byte by byte besides.
 
-use crate::common::{cycloid, Run, Scratch, PAPER};
+use crate::common::{cycloid, files, Run, Scratch, PAPER};
 use sha2::{Digest, Sha256};
-use std::collections::BTreeMap;
-use std::path::Path;
 
 /// The kind of fault a row injects.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,27 +96,6 @@ fn fixture(tag: &str) -> Scratch {
     #[cfg(unix)]
     std::os::unix::fs::symlink(dir.join("specs/sub"), dir.join("link")).unwrap();
     dir
-}
-
-/// Every file under `dir` (relative path → bytes); links and directories by name.
-fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<String, Vec<u8>>) {
-        for entry in std::fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            let name = path.strip_prefix(root).unwrap().display().to_string();
-            let meta = std::fs::symlink_metadata(&path).unwrap();
-            if meta.is_dir() {
-                walk(root, &path, out);
-            } else if meta.is_file() {
-                out.insert(name, std::fs::read(&path).unwrap());
-            } else {
-                out.insert(name, Vec::new());
-            }
-        }
-    }
-    let mut out = BTreeMap::new();
-    walk(dir, dir, &mut out);
-    out
 }
 
 fn no_damage(_: &Scratch) {}

@@ -2,39 +2,10 @@
 //! passes, and resources and messages stay bounded. Each test runs the binary and compares the
 //! exit code, the message and the files on disk before and after.
 
-use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use crate::common::{cycloid, scene_item, PaperSpec, Run, Scratch};
-
-/// Every file under `dir` (relative path → content): what a run must leave as it was.
-fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<String, Vec<u8>>) {
-        for entry in std::fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                out.insert(
-                    format!("{}/", path.strip_prefix(root).unwrap().display()),
-                    Vec::new(),
-                );
-                walk(root, &path, out);
-            } else {
-                let name = path.strip_prefix(root).unwrap().display().to_string();
-                // Only regular files are read (a FIFO would block); others count by name.
-                let content = if path.is_file() {
-                    std::fs::read(&path).unwrap()
-                } else {
-                    Vec::new()
-                };
-                out.insert(name, content);
-            }
-        }
-    }
-    let mut out = BTreeMap::new();
-    walk(dir, dir, &mut out);
-    out
-}
+use crate::common::{cycloid, files, scene_item, PaperSpec, Run, Scratch};
 
 /// A refused run: exit 2, `message` on stderr, nothing on disk changed.
 fn refused(dir: &Scratch, args: &[&str], message: &str) -> Run {

@@ -66,6 +66,30 @@ impl Drop for Scratch {
     }
 }
 
+/// Every file under `dir`, relative path → bytes: what a run must leave as it was. Directories
+/// are listed as `name/`; links and other non-regular files by name only (a link is not
+/// followed, a FIFO would block).
+pub(crate) fn files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    fn walk(root: &Path, dir: &Path, out: &mut std::collections::BTreeMap<String, Vec<u8>>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.strip_prefix(root).unwrap().display().to_string();
+            let meta = std::fs::symlink_metadata(&path).unwrap();
+            if meta.is_dir() {
+                out.insert(format!("{name}/"), Vec::new());
+                walk(root, &path, out);
+            } else if meta.is_file() {
+                out.insert(name, std::fs::read(&path).unwrap());
+            } else {
+                out.insert(name, Vec::new());
+            }
+        }
+    }
+    let mut out = std::collections::BTreeMap::new();
+    walk(dir, dir, &mut out);
+    out
+}
+
 /// What a run of the binary produced.
 #[derive(Debug)]
 pub(crate) struct Run {

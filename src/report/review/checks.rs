@@ -17,8 +17,7 @@ pub(super) fn checks_section(checks: &[Check]) -> Section {
                 @for c in table::ordered(checks) {
                     tr class=(verdict(c.passed)) {
                         td { code { (c.id) } }
-                        td.num { (with_unit(number(table::shown_scale(c) * c.value),
-                            table::shown_unit(c))) }
+                        td.num { (table::value(c)) }
                         td.num { (table::limit(c)) }
                         td.verdict { (if c.passed { "pass" } else { "FAIL" }) }
                         td { (crate::report::table::evidence(&c.at)) }

@@ -10,6 +10,7 @@ mod compliant_bearing;
 pub mod discs;
 pub mod discs_sweep;
 pub mod first_order_sweep;
+pub mod friction;
 pub mod loaded;
 pub mod pins;
 pub mod residual;

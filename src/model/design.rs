@@ -3,6 +3,7 @@
 //! `modification`. Engine units: mm, MPa, rad.
 
 use super::deviations::Deviations;
+use super::friction::{Friction, Thermal};
 use super::modification::Modification;
 
 /// Elastic material of one body.
@@ -76,6 +77,10 @@ pub struct Design {
     pub crank_bearing: Option<CrankBearing>,
     /// The parts as built (`reducer.deviations`; all zero: the drawing).
     pub deviations: Deviations,
+    /// Friction at the contacts (`reducer.friction`; none: the frictionless model).
+    pub friction: Option<Friction>,
+    /// The housing's heat path (`reducer.thermal`), for a steady temperature.
+    pub thermal: Option<Thermal>,
 }
 
 /// The rating of the crank bearing of a disc (ISO 281): its basic dynamic load rating C and

@@ -11,6 +11,7 @@ pub mod accuracy;
 pub mod design;
 pub mod deviations;
 pub mod effect;
+pub mod friction;
 pub mod golden;
 pub mod limits;
 pub mod measured;
@@ -24,6 +25,10 @@ pub mod tolerances;
 pub use design::{ConvexRadius, CrankBearing, Design, Locus, Material, OutputPins, MAX_DISCS};
 pub use deviations::{CentreDeviation, Deviations, FormTerm, RollerDeviation, MAX_FORM_ORDER};
 pub use effect::{Detail, Effect};
+pub use friction::{
+    BearingFriction, Friction, FrictionModel, PinFriction, PinMode, RollerFriction, RollerMode,
+    Thermal,
+};
 pub use golden::{Golden, GoldenTolerance};
 pub use limits::{Limit, Limits};
 pub use modification::Modification;

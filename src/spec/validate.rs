@@ -187,6 +187,8 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
         roller_material,
         crank_bearing: raw.crank_bearing.map(crank_bearing).transpose()?,
         deviations: Deviations::default(),
+        friction: None,
+        thermal: None,
     })
 }
 

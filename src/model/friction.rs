@@ -1,0 +1,110 @@
+//! Friction at every contact and the heat path of the housing (spec: `reducer.friction`,
+//! `reducer.thermal`; MODEL.md "Friction, efficiency and heat"). Plain data; the sliding
+//! speeds are `equilibrium::friction::sliding`, the losses and the coupled balance are built
+//! on them.
+
+/// Which friction model a scene runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrictionModel {
+    /// Forces from the frictionless balance; each loss = μ·F·sliding speed (the literature's
+    /// standard). Forces, lags and every frictionless output stay as without friction.
+    Loss,
+    /// Friction forces μ·F along every contact's tangent, against its sliding, inside the
+    /// balance; the input torque follows from the crank's balance (the default).
+    Coupled,
+}
+
+named!(FrictionModel "friction model" {
+    Loss => "loss",
+    Coupled => "coupled",
+});
+
+/// How the ring rollers move (spec: `reducer.friction.rollers.mode`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RollerMode {
+    /// Fixed in the housing: the disc slides over the roller.
+    Fixed,
+    /// Each roller turns on its pin of radius `bore_radius_mm` (< Rrp): it rolls on the disc
+    /// and slides on the pin at the disc's sliding speed × r_b / Rrp.
+    Rotating {
+        /// r_b, mm.
+        bore_radius_mm: f64,
+    },
+}
+
+/// How the output pins meet the holes (spec: `reducer.friction.output_pins.mode`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PinMode {
+    /// The hole slides over the pin at e·Ω.
+    Fixed,
+    /// A free sleeve of outer radius `output_pins.pin_radius_mm` turns on a pin of radius
+    /// `bore_radius_mm` (< the sleeve's): it rolls in the hole and slides on the pin at
+    /// e·Ω·r_bore / r_pin.
+    Sleeve {
+        /// r_bore, mm.
+        bore_radius_mm: f64,
+    },
+}
+
+/// Friction of the ring rollers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollerFriction {
+    /// Fixed or rotating.
+    pub mode: RollerMode,
+    /// μ in [0, 1): at the disc for fixed rollers, at the roller's pin for rotating ones.
+    pub mu: f64,
+}
+
+/// Friction of the output pins.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PinFriction {
+    /// Fixed pins or free sleeves.
+    pub mode: PinMode,
+    /// μ in [0, 1): in the hole for fixed pins, between sleeve and pin for sleeves.
+    pub mu: f64,
+}
+
+/// Friction of the crank bearing: a friction torque μ·Fb·d/2 at the crank's speed relative
+/// to the disc, Ω.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BearingFriction {
+    /// μ in [0, 1), referred to the bore.
+    pub mu: f64,
+    /// d, the bearing's bore, mm.
+    pub bore_diameter_mm: f64,
+}
+
+/// Friction at every contact (spec: `reducer.friction`). A path not given has no friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Friction {
+    /// Loss or coupled (the default).
+    pub model: FrictionModel,
+    /// The ring rollers, when given.
+    pub rollers: Option<RollerFriction>,
+    /// The output pins, when given.
+    pub output_pins: Option<PinFriction>,
+    /// The crank bearing, when given.
+    pub crank_bearing: Option<BearingFriction>,
+    /// A constant drag at the input (seals, churning), N·mm (spec: `no_load_torque_nmm`; 0
+    /// when not given).
+    pub no_load_torque_nmm: f64,
+}
+
+/// The housing's heat path (spec: `reducer.thermal`): the steady temperature of a scene with a
+/// speed is ambient + P_loss / (h·A).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Thermal {
+    /// A, the housing's surface that sheds heat, m².
+    pub housing_area_m2: f64,
+    /// h, the heat transfer coefficient, W/(m²·K).
+    pub heat_transfer_w_per_m2k: f64,
+    /// The ambient temperature, °C.
+    pub ambient_c: f64,
+}
+
+impl Thermal {
+    /// The steady temperature at a mean power loss `loss_w`, °C.
+    pub fn temperature_c(&self, loss_w: f64) -> f64 {
+        self.ambient_c + loss_w / (self.heat_transfer_w_per_m2k * self.housing_area_m2)
+    }
+}

@@ -299,6 +299,8 @@ pub(crate) fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f
         roller_material: STEEL,
         crank_bearing: None,
         deviations: Default::default(),
+        friction: None,
+        thermal: None,
     }
 }
 

@@ -43,6 +43,7 @@ mod progress;
 mod readme;
 mod reliability;
 mod report;
+mod review_plots;
 mod reviewer_texts;
 mod slurm_cluster;
 mod snapshots;

@@ -6,7 +6,8 @@ use super::common::{figure, section, Section};
 use crate::engine::drawing::{Disc, Part};
 use crate::geometry::Vec2;
 use crate::numeric::number;
-use crate::report::svg::frame::{Frame, Halo};
+use crate::report::svg::frame::Frame;
+use crate::report::svg::labels::{self, Bounds, Label, Layout, Obstacle};
 use crate::report::svg::{document, px, ticks, RED};
 use crate::spec::Spec;
 use crate::units;
@@ -38,12 +39,13 @@ pub(super) fn disc_section(spec: &Spec, disc: &Disc, files: &mut Vec<(String, St
     section("disc", html! { "The disc at crank φ = " (phi) "°" }, body)
 }
 
-/// An arrow from `from` to `to` (world), labelled at its head.
-fn arrow(f: &Frame, from: Vec2, to: Vec2, color: &str, label: &str) -> Markup {
+/// An arrow from `from` to `to` (world): its shaft and head, the segments a label must keep
+/// clear of, and the label to place at its head (pointing on along the arrow).
+fn arrow(f: &Frame, from: Vec2, to: Vec2, color: &str, label: &str) -> Option<Arrow> {
     let d = to - from;
     let len = f.len(d.norm());
     if len < 1.0 {
-        return html! {};
+        return None;
     }
     let u = Vec2::new(d.x, -d.y) / d.norm();
     let (hx, hy) = f.at(to);
@@ -51,30 +53,48 @@ fn arrow(f: &Frame, from: Vec2, to: Vec2, color: &str, label: &str) -> Markup {
     let (bx, by) = (hx - u.x * head, hy - u.y * head);
     let side = Vec2::new(-u.y, u.x) * head * 0.45;
     let (fx, fy) = f.at(from);
-    let anchor = match u.x {
-        x if x < -0.3 => "end",
-        x if x > 0.3 => "start",
-        _ => "middle",
-    };
-    let head_points = crate::report::svg::points([
+    let corners = [
         (hx, hy),
         (bx + side.x, by + side.y),
         (bx - side.x, by - side.y),
-    ]);
-    html! {
-        line x1=(px(fx)) y1=(px(fy)) x2=(px(bx)) y2=(px(by)) stroke=(color) stroke-width="2.2" {}
-        polygon points=(head_points) fill=(color) {}
-        (Halo { color, size: 11.0, bold: false }.text(hx + u.x * 6.0, hy + u.y * 6.0 + 4.0, anchor,
-            label))
-    }
+    ];
+    let head_points = crate::report::svg::points(corners);
+    let mut segments = vec![Obstacle::Segment((fx, fy), (bx, by))];
+    segments.extend(labels::polyline(&[
+        corners[0], corners[1], corners[2], corners[0],
+    ]));
+    Some(Arrow {
+        drawn: html! {
+            line x1=(px(fx)) y1=(px(fy)) x2=(px(bx)) y2=(px(by)) stroke=(color)
+                stroke-width="2.2" {}
+            polygon points=(head_points) fill=(color) {}
+        },
+        segments,
+        label: Label {
+            text: label.to_string(),
+            size: 11.0,
+            anchor: (hx, hy),
+            gap: 3.0,
+            toward: (u.x, u.y),
+        },
+        color: color.to_string(),
+    })
+}
+
+/// A force arrow as drawn, what labels avoid, and its label.
+struct Arrow {
+    drawn: Markup,
+    segments: Vec<Obstacle>,
+    label: Label,
+    color: String,
 }
 
 /// The forces as arrows at one scale (the largest ARROW_MM long, none shorter than
 /// SHORTEST_ARROW_MM so that small forces stay visible). A roller's arrow ends at its contact
 /// (it starts in the roller); a pin's and the bearing's start at their point.
-fn force_arrows(f: &Frame, disc: &Disc) -> Markup {
+fn force_arrows(f: &Frame, disc: &Disc) -> Vec<Arrow> {
     let Some(loaded) = &disc.loaded else {
-        return html! {};
+        return Vec::new();
     };
     let biggest = loaded
         .forces
@@ -82,19 +102,24 @@ fn force_arrows(f: &Frame, disc: &Disc) -> Markup {
         .map(|f| f.force_n.norm())
         .fold(0.0, f64::max);
     let k = ARROW_MM / biggest;
-    html! {
-        @for force in &loaded.forces {
-            @let n = force.force_n.norm();
-            @let drawn = force.force_n * k * (SHORTEST_ARROW_MM / (n * k)).max(1.0);
-            @let label = format!("{} N", number(n));
-            @match force.part {
-                Part::Roller(_) => (arrow(f, force.point - drawn, force.point, RED, &label)),
-                Part::Pin(_) => (arrow(f, force.point, force.point + drawn, PIN_GREEN, &label)),
-                Part::Bearing => (arrow(f, force.point, force.point + drawn, BEARING_PURPLE,
-                    &format!("Fb {label}"))),
-            }
-        }
+    let mut out = Vec::new();
+    for force in &loaded.forces {
+        let n = force.force_n.norm();
+        let drawn = force.force_n * k * (SHORTEST_ARROW_MM / (n * k)).max(1.0);
+        let label = format!("{} N", number(n));
+        out.extend(match force.part {
+            Part::Roller(_) => arrow(f, force.point - drawn, force.point, RED, &label),
+            Part::Pin(_) => arrow(f, force.point, force.point + drawn, PIN_GREEN, &label),
+            Part::Bearing => arrow(
+                f,
+                force.point,
+                force.point + drawn,
+                BEARING_PURPLE,
+                &format!("Fb {label}"),
+            ),
+        });
     }
+    out
 }
 
 /// Circles of `radius_mm` around `centres` as SVG subpaths, to follow the profile's path in
@@ -111,7 +136,9 @@ pub(super) fn hole_cutouts(f: &Frame, centres: &[Vec2], radius_mm: f64) -> Strin
         .collect()
 }
 
-/// The disc at its pose with the rollers, pins and forces: (SVG, caption).
+/// The disc at its pose with the rollers, pins and forces: (SVG, caption). The labels (roller
+/// numbers, forces) are placed by `svg::labels` clear of the profile, the holes, pins, rollers,
+/// the crank, the arrows and each other, inside the figure under its titles.
 pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String) {
     let outer = disc.roller_circle_radius_mm + disc.roller_radius_mm;
     let half = outer + 7.0;
@@ -120,38 +147,93 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
     let phi = units::deg(disc.crank_rad);
     let tight = disc.tightest.roller;
     let holes = hole_cutouts(&f, &disc.holes, disc.hole_radius_mm);
-    let label_at = |c: Vec2| c.normalize() * (outer + 3.5);
     let (cx, cy) = f.at(disc.centre);
+    let (ox, oy) = (f.x(0.0), f.y(0.0));
+    let arrows = force_arrows(&f, disc);
+    let scale_bar = (w - 30.0 - f.len(10.0), h - 36.0, w - 30.0, h - 18.0);
+    let mut layout = Layout::new(Bounds::new(2.0, 50.0, w - 2.0, h - 2.0));
+    let profile: Vec<(f64, f64)> = disc.profile.iter().map(|&p| f.at(p)).collect();
+    layout.obstacles.extend(labels::polyline(&profile));
+    if let (Some(&first), Some(&last)) = (profile.first(), profile.last()) {
+        layout.obstacles.push(Obstacle::Segment(last, first));
+    }
+    let r_hole = f.len(disc.hole_radius_mm);
+    let r_pin = f.len(disc.pin_radius_mm);
+    let r_roller = f.len(disc.roller_radius_mm);
+    layout
+        .obstacles
+        .extend(disc.holes.iter().map(|&c| Obstacle::Ring(f.at(c), r_hole)));
+    layout
+        .obstacles
+        .extend(disc.pins.iter().map(|&c| Obstacle::Disc(f.at(c), r_pin)));
+    // A roller's ring with its stroke (2.5 px on the tightest).
+    let rollers = disc
+        .rollers
+        .iter()
+        .map(|&c| Obstacle::Disc(f.at(c), r_roller + 1.5));
+    layout.obstacles.extend(rollers);
+    layout.obstacles.push(Obstacle::Segment((ox, oy), (cx, cy)));
+    layout.obstacles.push(Obstacle::Disc((ox, oy), 4.0));
+    layout.obstacles.push(Obstacle::Disc((cx, cy), 4.0));
+    let bar = Bounds::new(scale_bar.0 - 10.0, scale_bar.1, scale_bar.2, scale_bar.3);
+    layout.obstacles.push(Obstacle::Box(bar));
+    for a in &arrows {
+        layout.obstacles.extend(a.segments.iter().copied());
+    }
+    // The roller numbers first, outward of their roller; then the forces, on along their arrow.
+    let numbers: Vec<_> = disc
+        .rollers
+        .iter()
+        .enumerate()
+        .map(|(i, &c)| {
+            let (x, y) = f.at(c);
+            let label = Label {
+                text: i.to_string(),
+                size: 13.0,
+                anchor: (x, y),
+                gap: r_roller + 3.0,
+                toward: (x - ox, y - oy),
+            };
+            let color = if i == tight { RED } else { "#333" };
+            (layout.place(&label), label, color)
+        })
+        .collect();
+    let forces: Vec<_> = arrows
+        .iter()
+        .map(|a| (layout.place(&a.label), &a.label, a.color.as_str()))
+        .collect();
     let body = html! {
         text x="14" y="24" font-size="16" font-weight="bold" { "Disc at crank φ = " (format!("{phi:.2}")) "°" }
         text x="14" y="42" font-size="12" fill="#555" {
             "fixed frame; disc centre e·(cos φ, sin φ), disc turned by ψ = −φ/nc"
             @if disc.loaded.is_some() { " + β (loaded)" }
         }
-        circle cx=(px(f.x(0.0))) cy=(px(f.y(0.0))) r=(px(f.len(disc.roller_circle_radius_mm)))
+        circle cx=(px(ox)) cy=(px(oy)) r=(px(f.len(disc.roller_circle_radius_mm)))
             fill="none" stroke="#aaa" stroke-dasharray="4 4" {}
-        path d=(f.path(&disc.profile) + &holes) fill="#cfe0f1" fill-rule="evenodd" stroke="#1f4e79"
-            stroke-width="1.2" {}
+        path.profile d=(f.path(&disc.profile) + &holes) fill="#cfe0f1" fill-rule="evenodd"
+            stroke="#1f4e79" stroke-width="1.2" {}
         @for (j, &p) in disc.pins.iter().enumerate() {
             @let (x, y) = f.at(p);
-            circle cx=(px(x)) cy=(px(y)) r=(px(f.len(disc.pin_radius_mm))) fill="#6b6b6b"
-                stroke="#333" {}
+            circle.pin cx=(px(x)) cy=(px(y)) r=(px(r_pin)) fill="#6b6b6b" stroke="#333" {}
             text x=(px(x)) y=(px(y + 4.0)) font-size="11" text-anchor="middle" fill="white" { (j) }
         }
         @for (i, &c) in disc.rollers.iter().enumerate() {
             @let (x, y) = f.at(c);
-            @let (lx, ly) = f.at(label_at(c));
-            circle cx=(px(x)) cy=(px(y)) r=(px(f.len(disc.roller_radius_mm))) fill="#e6e6e6"
+            circle.roller cx=(px(x)) cy=(px(y)) r=(px(r_roller)) fill="#e6e6e6"
                 stroke=(if i == tight { RED } else { "#444" })
                 stroke-width=(if i == tight { "2.5" } else { "1" }) {}
-            text x=(px(lx)) y=(px(ly + 4.5)) font-size="13" text-anchor="middle"
-                fill=(if i == tight { RED } else { "#333" }) { (i) }
         }
-        line x1=(px(f.x(0.0))) y1=(px(f.y(0.0))) x2=(px(cx)) y2=(px(cy)) stroke=(RED)
+        line.crank x1=(px(ox)) y1=(px(oy)) x2=(px(cx)) y2=(px(cy)) stroke=(RED)
             stroke-width="2" {}
-        circle cx=(px(f.x(0.0))) cy=(px(f.y(0.0))) r="3" fill="#333" {}
+        circle cx=(px(ox)) cy=(px(oy)) r="3" fill="#333" {}
         circle cx=(px(cx)) cy=(px(cy)) r="3" fill=(RED) {}
-        (force_arrows(&f, disc))
+        g.arrows { @for a in &arrows { (a.drawn) } }
+        @for (placed, label, color) in &numbers {
+            (placed.draw(&label.text, label.size, color, false))
+        }
+        @for (placed, label, color) in &forces {
+            (placed.draw(&label.text, label.size, color, false))
+        }
         (f.scale_bar(w - 30.0, h - 20.0, 10.0, "10 mm"))
     };
     let m = disc.pins.len();
@@ -203,6 +285,29 @@ pub fn close_up(disc: &Disc) -> (String, String) {
     let tick = |y: f64| {
         html! { line x1=(px(x - 8.0)) y1=(px(y)) x2=(px(x + 8.0)) y2=(px(y)) stroke=(color) {} }
     };
+    // The gap's label inside the window, clear of the flank, the roller's outline and the
+    // gap's own marks.
+    let mut layout = Layout::new(Bounds::new(wx, wy, wx + wl, wy + wl));
+    let flank: Vec<(f64, f64)> = c.flank.iter().map(|&p| f.at(p)).collect();
+    layout.obstacles.extend(labels::polyline(&flank));
+    let roller = f.at(c.roller_centre);
+    layout
+        .obstacles
+        .push(Obstacle::Ring(roller, f.len(c.roller_radius_mm)));
+    layout.obstacles.push(Obstacle::Segment((x, y0), (x, y1)));
+    for y in [y0, y1] {
+        layout
+            .obstacles
+            .push(Obstacle::Segment((x - 8.0, y), (x + 8.0, y)));
+    }
+    let text = format!("{what} {} µm", number(units::um(c.gap_mm)));
+    let gap_label = layout.place(&Label {
+        text: text.clone(),
+        size: 14.0,
+        anchor: (x + 10.0, (y0 + y1) / 2.0),
+        gap: 2.0,
+        toward: (1.0, 0.0),
+    });
     let body = html! {
         text x="14" y="24" font-size="16" font-weight="bold" {
             "Roller " (c.roller) " at crank φ = " (format!("{:.2}", units::deg(disc.crank_rad)))
@@ -214,7 +319,7 @@ pub fn close_up(disc: &Disc) -> (String, String) {
         }
         clipPath id="win" { rect x=(px(wx)) y=(px(wy)) width=(px(wl)) height=(px(wl)) {} }
         g clip-path="url(#win)" {
-            path d=(f.path(&wedge)) fill="#cfe0f1" stroke="#1f4e79" stroke-width="1.5" {}
+            path.profile d=(f.path(&wedge)) fill="#cfe0f1" stroke="#1f4e79" stroke-width="1.5" {}
             circle cx=(px(f.x(c.roller_centre.x))) cy=(px(f.y(c.roller_centre.y)))
                 r=(px(f.len(c.roller_radius_mm))) fill="#e6e6e6" fill-opacity="0.85" stroke="#444"
                 stroke-width="1.5" {}
@@ -222,8 +327,7 @@ pub fn close_up(disc: &Disc) -> (String, String) {
         line x1=(px(x)) y1=(px(y0)) x2=(px(x)) y2=(px(y1)) stroke=(color) stroke-width="2" {}
         (tick(y0))
         (tick(y1))
-        (Halo { color, size: 14.0, bold: true }.text(x + 14.0, (y0 + y1) / 2.0 + 5.0, "start",
-            &format!("{what} {} µm", number(units::um(c.gap_mm)))))
+        (gap_label.draw(&text, 14.0, color, true))
         rect x=(px(wx)) y=(px(wy)) width=(px(wl)) height=(px(wl)) fill="none" stroke="#333" {}
         (f.scale_bar(f.x(window / 2.0), h - 22.0, bar, &format!("{:.0} µm", units::um(bar))))
     };

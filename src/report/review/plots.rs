@@ -10,7 +10,7 @@
 use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
 use crate::model::results::SceneResult;
 use crate::numeric::extremes;
-use crate::report::svg::{LinePlot, MapCell, MapPlot, RefLine, Series, PALETTE, RED};
+use crate::report::svg::{LinePlot, MapCell, MapPlot, Mark, RefLine, Series, PALETTE, RED};
 use crate::report::table::{count_or_number, with_unit};
 use crate::spec::Spec;
 use crate::units;
@@ -25,6 +25,13 @@ pub struct Plot {
 
 /// More curves than this in one plot become an envelope and a heat map.
 pub const MAX_CURVES: usize = 10;
+
+/// Fewer crank angles than this are drawn as a mark per angle, not a line (a line through a
+/// few locked angles would pass off as a curve over the mesh), and the title says how many.
+pub const SPARSE_ANGLES: usize = 12;
+
+/// A ripple under this fraction of the mean's magnitude is small (see `ripple_in_title`).
+pub const SMALL_RIPPLE: f64 = 0.01;
 
 /// A plot of registry curves over the crank angle.
 struct PlotDef {
@@ -44,6 +51,10 @@ struct PlotDef {
     include_zero: bool,
     /// A further reference line (the nominal ratio).
     reference: Option<fn(&Spec) -> RefLine>,
+    /// Scaled for what the curve is, not for its ripple: when the ripple (max − min) is under
+    /// `SMALL_RIPPLE` of the mean's magnitude, y = 0 is kept inside the axis, so that the curve
+    /// reads as the near-constant it is, and the title states the ripple.
+    ripple_in_title: bool,
     caption: &'static str,
 }
 
@@ -58,6 +69,7 @@ const PLOT: PlotDef = PlotDef {
     micrometres: false,
     include_zero: false,
     reference: None,
+    ripple_in_title: false,
     caption: "",
 };
 
@@ -131,7 +143,9 @@ const PLOTS: &[PlotDef] = &[
         title: "Output lag at the pins",
         curves: &[&q::OUTPUT_LAG],
         caption: "Output lag βo at the pins under the scene's torque, the part of the TE the \
-                  output pins add.",
+                  output pins add. When its ripple is under 1 % of its mean, the axis starts at \
+                  zero and the title gives the ripple.",
+        ripple_in_title: true,
         ..PLOT
     },
     PlotDef {
@@ -241,10 +255,23 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
         format!("{name} ({unit})")
     };
     let (x, x_range) = crank_axis(r);
-    let mut p = LinePlot::new(def.title, "crank angle φ (deg)", &y_label);
+    let sparse = x.len() < SPARSE_ANGLES;
+    let mut title = def.title.to_string();
+    if sparse {
+        title += &format!(
+            " at {} crank angle{}",
+            x.len(),
+            if x.len() == 1 { "" } else { "s" }
+        );
+    }
+    let small = def.ripple_in_title.then(|| small_ripple(&drawn)).flatten();
+    if let Some(ripple) = small {
+        title += &format!(" (ripple {})", shown_value(convert(ripple), unit));
+    }
+    let mut p = LinePlot::new(&title, "crank angle φ (deg)", &y_label);
     p.x_step = mesh_step(spec, &x);
     p.x_range = x_range;
-    p.include_zero = def.include_zero;
+    p.include_zero = def.include_zero || small.is_some();
     let mut notes = vec![def.caption.to_string()];
     let mut maps = Vec::new();
     for (k, (q, c)) in drawn.iter().enumerate() {
@@ -276,6 +303,15 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
             }
         }
     }
+    if sparse {
+        p.series = std::mem::take(&mut p.series)
+            .into_iter()
+            .map(|s| {
+                let mark = if s.dashed { Mark::Diamond } else { Mark::Dot };
+                s.marked(mark)
+            })
+            .collect();
+    }
     p.subtitle = scalars(r, &drawn, def);
     let limits = limit_lines(spec, &drawn, def);
     if !limits.is_empty() {
@@ -285,11 +321,27 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
     p.ref_lines.extend(def.reference.map(|line| line(spec)));
     let plot = Plot {
         file: format!("{prefix}-{}.svg", def.name),
-        title: def.title.to_string(),
+        title,
         caption: notes.join(" "),
         svg: p.to_svg(),
     };
     std::iter::once(plot).chain(maps).collect()
+}
+
+/// The ripple (max − min over every drawn value, the registry's unit) when it is under
+/// `SMALL_RIPPLE` of the mean's magnitude, else none.
+fn small_ripple(drawn: &[(&Quantity, Curves)]) -> Option<f64> {
+    let values: Vec<f64> = drawn
+        .iter()
+        .flat_map(|(_, c)| c.values.iter().flatten().copied())
+        .filter(|v| v.is_finite())
+        .collect();
+    if values.is_empty() {
+        return None;
+    }
+    let ((lo, _), (hi, _)) = extremes(&values);
+    let mean = values.iter().sum::<f64>() / values.len() as f64;
+    (hi - lo < SMALL_RIPPLE * mean.abs()).then_some(hi - lo)
 }
 
 /// One curve per part, named `part i`; parts that are zero everywhere are left out and named

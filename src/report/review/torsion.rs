@@ -7,7 +7,7 @@ use crate::model::results::{SceneResult, TorsionCurves};
 use crate::model::Scene;
 use crate::numeric::number;
 use crate::report::explain::HYSTERESIS;
-use crate::report::svg::{LinePlot, Series, PALETTE};
+use crate::report::svg::{LinePlot, Mark, Series, YCut, PALETTE};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
 use maud::{html, Markup};
@@ -31,29 +31,30 @@ fn centre_line(t: &TorsionCurves, k: usize, steps: usize) -> (Vec<f64>, Vec<f64>
     (x, y)
 }
 
-/// Small diamonds (in data units, `size` = half-widths in x and y) around points, as one
-/// series of closed outlines separated by gaps.
-fn diamonds(points: &[(f64, f64)], (dx, dy): (f64, f64)) -> (Vec<f64>, Vec<f64>) {
-    let (mut x, mut y) = (Vec::new(), Vec::new());
-    for &(px, py) in points {
-        for (ox, oy) in [(-dx, 0.0), (0.0, dy), (dx, 0.0), (0.0, -dy), (-dx, 0.0)] {
-            x.push(px + ox);
-            y.push(py + oy);
-        }
-        x.push(f64::NAN);
-        y.push(f64::NAN);
-    }
-    (x, y)
-}
+/// Fewer torques than this over −rated…+rated (fewer than 8 steps per quarter loop) are drawn
+/// as a mark per torque: a line through them would pass off as a measured smooth curve.
+pub const SPARSE_TORQUES: usize = 17;
 
-/// The torsion plot of a scene: one line per locked angle, the figures' points (±3 %, ±50 %,
-/// ±100 % of rated) marked.
+/// The y axis is cut across the dead band when the band is wider than this many times the
+/// larger twist beyond it (the span of either branch): on one axis the slope, the rigidity the
+/// figures are about, would be a flat line beside a tall step.
+pub const CUT_ABOVE: f64 = 2.0;
+
+/// The torsion plot of a scene: one curve per locked angle (marks where the torques are few),
+/// the figures' points (±3 %, ±50 %, ±100 % of rated) marked ◇, and, when the dead band dwarfs
+/// the twist beyond it, the y axis cut across the band, the cut labelled with its width.
 fn torsion_plot(scene: &Scene, r: &SceneResult, t: &TorsionCurves) -> LinePlot {
     let sweep = scene.torque_sweep.as_ref();
     let steps = sweep.map_or(1, |s| s.steps);
     let rated = units::nm(sweep.map_or(0.0, |s| s.rated_nmm));
+    let (angles, torques) = (t.torsion_rad.len(), 2 * steps + 1);
+    let sparse = torques < SPARSE_TORQUES;
     let mut plot = LinePlot::new(
-        &format!("Torsion under a locked input: scene {}", scene.name),
+        &format!(
+            "Torsion at {angles} locked crank angle{}, {torques} torques: scene {}",
+            if angles == 1 { "" } else { "s" },
+            scene.name
+        ),
         "output torque T (N·m)",
         "torsion angle γ (arcmin)",
     );
@@ -61,30 +62,64 @@ fn torsion_plot(scene: &Scene, r: &SceneResult, t: &TorsionCurves) -> LinePlot {
         "the loop −{r} → +{r} → −{r} N·m, {steps} steps per quarter; {HYSTERESIS}",
         r = number(rated)
     );
-    let lines: Vec<_> = (0..t.torsion_rad.len())
-        .map(|k| centre_line(t, k, steps))
-        .collect();
-    let ys = lines.iter().flat_map(|(_, y)| y.iter().copied());
-    let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-        (a.min(v), b.max(v))
-    });
-    let size = (0.012 * 2.0 * rated, 0.02 * (hi - lo).max(1e-9));
-    for (k, (x, y)) in lines.into_iter().enumerate() {
+    let lines: Vec<_> = (0..angles).map(|k| centre_line(t, k, steps)).collect();
+    for (k, (x, y)) in lines.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         let crank = units::deg(r.crank_rad[k]);
-        plot.series
-            .push(Series::new(format!("crank {crank:.2}°"), x, y, color));
-        let marked: Vec<(f64, f64)> = FIGURE_TORQUES
+        let curve = Series::new(format!("crank {crank:.2}°"), x.clone(), y.clone(), color);
+        plot.series.push(if sparse {
+            curve.marked(Mark::Dot)
+        } else {
+            curve
+        });
+        let (mx, my): (Vec<f64>, Vec<f64>) = FIGURE_TORQUES
             .iter()
             .zip(&t.figure_torsion_rad[k])
             .filter(|(f, _)| f.abs() >= 0.03)
             .map(|(f, &g)| (f * rated, units::arcmin(g)))
-            .collect();
-        let (mx, my) = diamonds(&marked, size);
-        plot.series.push(Series::new("", mx, my, color));
+            .unzip();
+        plot.series
+            .push(Series::new("", mx, my, color).marked(Mark::Diamond));
     }
-    plot.include_zero = true;
+    plot.y_cut = dead_band_cut(t, &lines, steps);
+    plot.include_zero = plot.y_cut.is_none();
     plot
+}
+
+/// The cut across the dead band (see `CUT_ABOVE`), or none: from the highest γ of the falling
+/// side (T ≤ 0⁻, the first `steps + 1` points of a centre line) to the lowest of the rising
+/// side, over every angle; labelled with the backlash figures' range.
+fn dead_band_cut(t: &TorsionCurves, lines: &[(Vec<f64>, Vec<f64>)], steps: usize) -> Option<YCut> {
+    let side = |range: fn(&[f64], usize) -> &[f64]| {
+        let values = lines
+            .iter()
+            .flat_map(|(_, y)| range(y, steps).iter().copied());
+        values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        })
+    };
+    let below = side(|y, s| &y[..=s]);
+    let above = side(|y, s| &y[s + 1..]);
+    let (lo, hi) = (below.1, above.0);
+    let twist = (below.1 - below.0).max(above.1 - above.0);
+    if !(hi - lo > CUT_ABOVE * twist) {
+        return None;
+    }
+    let bands = t.figures.iter().map(|f| units::arcmin(f.backlash_rad));
+    let (least, most) = bands.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
+    let band = if number(least) == number(most) {
+        number(least)
+    } else {
+        format!("{}–{}", number(least), number(most))
+    };
+    Some(YCut {
+        lo,
+        hi,
+        at_x: 0.0,
+        label: format!("dead band {band} arcmin"),
+    })
 }
 
 /// The table of catalogue figures per locked angle.
@@ -138,9 +173,12 @@ pub(super) fn sections(
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));
         let body = html! {
             p.note { (DEFINITIONS) " " b { (HYSTERESIS) "." } }
-            (figure(&file, "Torsion curve", "one line per locked crank angle; the points of \
-                the figures (±3 %, ±50 %, ±100 % of the rated torque) marked ◇; at T = 0 the \
-                dead band is the vertical step from γ(0⁻) to γ(0⁺)"))
+            (figure(&file, "Torsion curve", "one curve per locked crank angle (a dot per \
+                torque where the torques are few); the points of the figures (±3 %, ±50 %, \
+                ±100 % of the rated torque) marked ◇; at T = 0 the dead band is the vertical \
+                step from γ(0⁻) to γ(0⁺). When the band is wider than twice the twist beyond \
+                it, the y axis is cut across the band (zigzags, the band's width written in \
+                the cut), so that the slope beyond it shows"))
             (figures_table(r, t))
         };
         out.push(section(

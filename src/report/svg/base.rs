@@ -35,9 +35,24 @@ pub(super) fn span<'a>(values: impl Iterator<Item = &'a f64>) -> Option<(f64, f6
         })
 }
 
-/// Rough width of text in pixels (for layout only).
+/// Estimated width of text in pixels (for layout): per character its advance in DejaVu Sans,
+/// rounded up within classes (em): narrow punctuation and i, j, l 0.35, space 0.32, f, r, t
+/// 0.45, digits and other lower case 0.64, m and w 0.98, upper case 0.78, anything else (µ, °,
+/// −, symbols) 0.84. An overestimate keeps placed labels apart in any of the fonts of `FONT`.
 pub fn text_width(text: &str, size: f64) -> f64 {
-    text.chars().count() as f64 * size * 0.58
+    let em: f64 = text
+        .chars()
+        .map(|c| match c {
+            ' ' => 0.32,
+            '.' | ',' | ':' | ';' | '\'' | '!' | '|' | 'i' | 'j' | 'l' | '(' | ')' => 0.35,
+            'f' | 'r' | 't' | '-' => 0.45,
+            'm' | 'w' => 0.98,
+            '0'..='9' | 'a'..='z' => 0.64,
+            'A'..='Z' => 0.78,
+            _ => 0.84,
+        })
+        .sum();
+    em * size
 }
 
 /// Rough width of the widest of `texts` at font size 12, pixels (0 for none).

@@ -3,8 +3,9 @@
 //! sample points, a path, labelled markers, a colour bar and a legend under the axes. Objective
 //! maps of a study use all of it; a roller × crank heat map only the cells.
 
-use super::base::{document, points, px, span, text_width, widest, RED};
+use super::base::{document, points, px, span, widest, RED};
 use super::frame::{self, Area};
+use super::labels::{self, Bounds, Label, Layout, Obstacle};
 use super::ticks::{log_label, log_ticks, ticks};
 use base64::Engine;
 use maud::{html, Markup};
@@ -63,6 +64,11 @@ pub struct MapPlot {
 /// The colour scale turns logarithmic when the largest value exceeds the smallest (> 0) by
 /// this factor.
 pub const LOG_SPAN: f64 = 20.0;
+
+/// Half the size of a sample's mark, pixels: small against a cell (a 15 × 15 map's cell is
+/// about 30 px), so that the global sample (several per cell: ~830 on the paper's 225 cells)
+/// leaves the cells' colour readable.
+const SAMPLE_PX: f64 = 1.6;
 
 /// A grid of more cells than this is drawn as one embedded image, a pixel per cell, rather
 /// than a rectangle per cell (a roller × crank heat map has tens of thousands).
@@ -152,7 +158,7 @@ fn swatch(s: &Swatch, x: f64, y: f64) -> Markup {
         },
         Swatch::Blank => box_at("white"),
         Swatch::Dot => dot_mark(x + 11.0, y),
-        Swatch::Cross => cross_mark(x + 11.0, y, 3.5),
+        Swatch::Cross => cross_mark(x + 11.0, y, SAMPLE_PX + 0.5),
         Swatch::Path => html! {
             line x1=(px(x)) y1=(px(y)) x2=(px(x + 22.0)) y2=(px(y)) stroke=(RED)
                 stroke-width="2" {}
@@ -173,47 +179,40 @@ fn symbol(shape: Shape, cx: f64, cy: f64, color: &str) -> Markup {
     };
     html! {
         @match shape {
-            Shape::Circle => circle cx=(px(cx)) cy=(px(cy)) r="6.5" fill=(color) stroke="white"
+            Shape::Circle => circle.marker cx=(px(cx)) cy=(px(cy)) r="6.5" fill=(color) stroke="white"
                 stroke-width="2" {},
-            Shape::Diamond => path d=(format!("M{},{} l8,8 l-8,8 l-8,-8 Z", px(cx), px(cy - 8.0)))
+            Shape::Diamond => path.marker d=(format!("M{},{} l8,8 l-8,8 l-8,-8 Z", px(cx), px(cy - 8.0)))
                 fill=(color) stroke="white" stroke-width="2" {},
-            Shape::Star => polygon points=(star()) fill=(color) stroke="white" stroke-width="2"
+            Shape::Star => polygon.marker points=(star()) fill=(color) stroke="white" stroke-width="2"
                 stroke-linejoin="round" {},
         }
     }
 }
 
-/// A small cross for an infeasible sample, visible on dark and light cells.
+/// A small cross for an infeasible sample, visible on dark and light cells (a white stroke
+/// on a dark one), 2r across.
 fn cross_mark(cx: f64, cy: f64, r: f64) -> Markup {
     let at = |dx: f64, dy: f64| format!("{},{}", px(cx + dx), px(cy + dy));
     let (a, b, c, d) = (at(-r, -r), at(r, r), at(-r, r), at(r, -r));
     let d = format!("M{a} L{b} M{c} L{d}");
     html! {
-        path d=(d) stroke="#222" stroke-width="3" {}
-        path d=(d) stroke="white" stroke-width="1.3" {}
+        path d=(d) stroke="#222" stroke-width="1.6" {}
+        path d=(d) stroke="white" stroke-width="0.6" {}
     }
 }
 
+/// A feasible sample: a hollow ring, so that the cell's colour shows through it.
 fn dot_mark(cx: f64, cy: f64) -> Markup {
     html! {
-        circle cx=(px(cx)) cy=(px(cy)) r="2.8" fill="white" stroke="#222" stroke-width="1" {}
+        circle cx=(px(cx)) cy=(px(cy)) r=(px(SAMPLE_PX)) fill="none" stroke="white"
+            stroke-width="1.6" {}
+        circle cx=(px(cx)) cy=(px(cy)) r=(px(SAMPLE_PX)) fill="none" stroke="#222"
+            stroke-width="0.7" {}
     }
 }
 
 /// A pixel box (x0, y0, x1, y1).
 type Box4 = (f64, f64, f64, f64);
-
-fn overlaps(a: &Box4, b: &Box4) -> bool {
-    a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
-}
-
-/// Label positions tried around a marker, in order of preference (pixels from its centre):
-/// right, left, then one and two rows (16 px) up and down, right before left.
-fn label_spots() -> impl Iterator<Item = (f64, f64)> {
-    let rows = [16.0, 32.0].into_iter();
-    let off = rows.flat_map(|d| [(12.0, -d), (12.0, d), (-12.0, -d), (-12.0, d)]);
-    [(12.0, 0.0), (-12.0, 0.0)].into_iter().chain(off)
-}
 
 impl MapPlot {
     /// A map of `cells` alone (no samples, path or markers), 660 px wide, its colour range the
@@ -371,13 +370,15 @@ impl MapPlot {
     ) -> Markup {
         let finite = |x: f64, y: f64| x.is_finite() && y.is_finite();
         html! {
-            g clip-path="url(#area)" fill="none" {
+            g.samples clip-path="url(#area)" fill="none" {
                 @for &(x, y, feasible) in &self.samples {
                     @if finite(x, y) {
                         @let (px_, py_) = to_px(x, y);
-                        @if feasible { (dot_mark(px_, py_)) } @else { (cross_mark(px_, py_, 3.5)) }
+                        @if feasible { (dot_mark(px_, py_)) } @else { (cross_mark(px_, py_, SAMPLE_PX)) }
                     }
                 }
+            }
+            g clip-path="url(#area)" fill="none" {
                 @if path.len() > 1 {
                     polyline.path points=(points(path.iter().copied())) stroke="white"
                         stroke-width="4.5" stroke-linejoin="round" {}
@@ -392,49 +393,38 @@ impl MapPlot {
     }
 
     /// Markers (largest symbol first, so that markers on one spot all stay visible), then
-    /// their labels where they stay inside the axes and clear of the other markers, labels
-    /// and the path.
+    /// their labels placed by `labels::Layout` inside the axes, clear of the markers, the path
+    /// and each other.
     fn markers(&self, spots: &[(f64, f64)], path: &[(f64, f64)], a: &Area) -> Markup {
         let mut order: Vec<usize> = (0..self.markers.len()).collect();
         order.sort_by_key(|&k| std::cmp::Reverse(self.markers[k].shape));
-        let mut boxes: Vec<Box4> = spots
+        let frame = Bounds::new(a.left, a.top, a.right(), a.bottom());
+        let mut layout = Layout::new(frame);
+        // A symbol is at most 10 px from its centre (the star's points), 11 with its outline.
+        let symbols = spots.iter().map(|&c| Obstacle::Disc(c, 11.0));
+        layout.obstacles.extend(symbols);
+        layout.obstacles.extend(labels::polyline(path));
+        let placed: Vec<_> = self
+            .markers
             .iter()
-            .map(|&(x, y)| (x - 9.0, y - 9.0, x + 9.0, y + 9.0))
+            .zip(spots)
+            .map(|(m, &c)| {
+                let label = Label {
+                    text: m.label.clone(),
+                    size: 12.0,
+                    anchor: c,
+                    gap: 11.0,
+                    toward: (1.0, 0.0),
+                };
+                (layout.place(&label), m)
+            })
             .collect();
-        // The path too, sampled every few pixels along its segments.
-        for pair in path.windows(2) {
-            let ((ax, ay), (bx, by)) = (pair[0], pair[1]);
-            let n = ((bx - ax).hypot(by - ay) / 4.0).ceil().max(1.0) as usize;
-            for k in 0..=n {
-                let t = k as f64 / n as f64;
-                let (x, y) = (ax + t * (bx - ax), ay + t * (by - ay));
-                boxes.push((x - 2.0, y - 2.0, x + 2.0, y + 2.0));
-            }
-        }
-        let mut labels = Vec::new();
-        for (m, &(cx, cy)) in self.markers.iter().zip(spots) {
-            let tw = text_width(&m.label, 12.0) + 4.0;
-            let place = |&(dx, dy): &(f64, f64)| {
-                let x0 = if dx > 0.0 { cx + dx } else { cx + dx - tw };
-                (x0, cy + dy - 9.0, x0 + tw, cy + dy + 5.0)
-            };
-            let inside =
-                |b: &Box4| b.0 >= a.left && b.2 <= a.right() && b.1 >= a.top && b.3 <= a.bottom();
-            let overlapped = |b: &Box4| boxes.iter().filter(|o| overlaps(b, o)).count();
-            // Inside the axes first, then the fewest overlaps, then the order of label_spots.
-            let (dx, dy) = label_spots()
-                .min_by_key(|c| (!inside(&place(c)), overlapped(&place(c))))
-                .unwrap_or((12.0, 0.0));
-            boxes.push(place(&(dx, dy)));
-            let anchor = if dx > 0.0 { "start" } else { "end" };
-            labels.push((cx + dx, cy + dy + 4.0, anchor, m));
-        }
         html! {
             @for k in order {
                 (symbol(self.markers[k].shape, spots[k].0, spots[k].1, &self.markers[k].color))
             }
-            @for (x, y, anchor, m) in labels {
-                (frame::Halo { color: &m.color, size: 12.0, bold: true }.text(x, y, anchor, &m.label))
+            @for (p, m) in &placed {
+                (p.draw(&m.label, 12.0, &m.color, true))
             }
         }
     }

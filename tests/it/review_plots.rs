@@ -1,0 +1,571 @@
+//! The review's plots as a reviewer sees them, checked on the SVG files `check --report`
+//! writes (parsed with quick-xml, measured here with DejaVu Sans's own glyph widths): labels
+//! clear of each other, of the drawing (profile, holes, pins, rollers, crank, force arrows,
+//! the close-up's flank and roller, a map's path and markers) and inside their frame; a map's
+//! global samples small against its cells; the output lag βo drawn at a scale that shows its
+//! ripple as the small thing it is; the torsion curves one per locked angle with the slope
+//! beyond the dead band visible and the band labelled; few samples drawn as marks, with their
+//! count in the title.
+
+use crate::common::{cycloid as run, Scratch};
+use quick_xml::events::{BytesStart, Event};
+use quick_xml::Reader;
+use std::collections::HashMap;
+
+/// One element of an SVG: its name, attributes, the text directly inside it and the classes
+/// of the elements around it.
+#[derive(Debug, Clone)]
+struct El {
+    name: String,
+    attrs: HashMap<String, String>,
+    text: String,
+    within: Vec<String>,
+}
+
+impl El {
+    fn num(&self, key: &str) -> f64 {
+        let v = self
+            .attrs
+            .get(key)
+            .unwrap_or_else(|| panic!("{key} of {self:?}"));
+        v.parse()
+            .unwrap_or_else(|_| panic!("{key}={v} of {self:?}"))
+    }
+
+    fn attr(&self, key: &str) -> &str {
+        self.attrs.get(key).map_or("", String::as_str)
+    }
+
+    fn class(&self) -> &str {
+        self.attr("class")
+    }
+
+    fn inside(&self, class: &str) -> bool {
+        self.within.iter().any(|c| c == class)
+    }
+}
+
+fn element(e: &BytesStart, within: &[String]) -> El {
+    let attrs = e
+        .attributes()
+        .map(|a| {
+            let a = a.unwrap();
+            let key = String::from_utf8(a.key.as_ref().to_vec()).unwrap();
+            (key, a.unescape_value().unwrap().into_owned())
+        })
+        .collect();
+    El {
+        name: String::from_utf8(e.name().as_ref().to_vec()).unwrap(),
+        attrs,
+        text: String::new(),
+        within: within.to_vec(),
+    }
+}
+
+/// Every element of the document in order.
+fn elements(svg: &str) -> Vec<El> {
+    let mut reader = Reader::from_str(svg);
+    let (mut out, mut open, mut classes) = (Vec::<El>::new(), Vec::new(), Vec::new());
+    loop {
+        match reader.read_event().unwrap() {
+            Event::Start(e) => {
+                let el = element(&e, &classes);
+                classes.push(el.class().to_string());
+                open.push(out.len());
+                out.push(el);
+            }
+            Event::Empty(e) => out.push(element(&e, &classes)),
+            Event::Text(t) => {
+                if let Some(&k) = open.last() {
+                    out[k].text += &t.unescape().unwrap();
+                }
+            }
+            Event::End(_) => {
+                open.pop();
+                classes.pop();
+            }
+            Event::Eof => break,
+            _ => {}
+        }
+    }
+    out
+}
+
+/// A pixel box (x0, y0, x1, y1).
+type Box4 = (f64, f64, f64, f64);
+
+/// Advance width of a character in DejaVu Sans, the first font the SVGs ask for, em (its
+/// hmtx widths over 2048 units per em), for the characters the labels use; 0.84 em for any
+/// other, wider than every glyph of the font except M, W and m, which are listed.
+fn advance(c: char) -> f64 {
+    match c {
+        '0'..='9' | 'b' | 'd' | 'g' | 'h' | 'n' | 'p' | 'q' | 'u' | 'µ' => 0.636,
+        ' ' | '.' | ',' | ':' => 0.318,
+        'i' | 'j' | 'l' => 0.278,
+        'f' => 0.352,
+        't' => 0.392,
+        'r' => 0.411,
+        's' => 0.521,
+        'c' => 0.550,
+        'k' => 0.579,
+        'v' | 'x' | 'y' => 0.592,
+        'o' => 0.612,
+        'a' => 0.613,
+        'e' => 0.615,
+        'w' => 0.818,
+        'm' => 0.974,
+        'F' => 0.575,
+        'N' => 0.748,
+        'M' => 0.863,
+        'W' => 0.989,
+        _ => 0.84,
+    }
+}
+
+/// The box of a text element's glyphs: its width from the advances, from the cap height
+/// above the baseline to the descenders below it (DejaVu Sans: 0.73 and 0.24 em).
+fn text_box(t: &El) -> Box4 {
+    let size = t.num("font-size");
+    let w: f64 = t.text.chars().map(advance).sum::<f64>() * size;
+    let (x, y) = (t.num("x"), t.num("y"));
+    let x0 = match t.attr("text-anchor") {
+        "middle" => x - w / 2.0,
+        "end" => x - w,
+        _ => x,
+    };
+    (x0, y - 0.73 * size, x0 + w, y + 0.24 * size)
+}
+
+fn overlap(a: &Box4, b: &Box4) -> bool {
+    a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
+}
+
+/// Whether a segment passes through a box: points along it every 0.25 px, one strictly inside
+/// (a line 0.25 px from a corner may be missed: far under the stroke widths drawn).
+fn crosses(b: &Box4, p: (f64, f64), q: (f64, f64)) -> bool {
+    let n = ((q.0 - p.0).hypot(q.1 - p.1) / 0.25).ceil().max(1.0) as usize;
+    (0..=n).any(|k| {
+        let t = k as f64 / n as f64;
+        let (x, y) = (p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1));
+        x > b.0 && x < b.2 && y > b.1 && y < b.3
+    })
+}
+
+/// Distances from c to the box's nearest and farthest points.
+fn distances(b: &Box4, c: (f64, f64)) -> (f64, f64) {
+    let near = (c.0.clamp(b.0, b.2) - c.0).hypot(c.1.clamp(b.1, b.3) - c.1);
+    let far = (c.0 - b.0)
+        .abs()
+        .max((c.0 - b.2).abs())
+        .hypot((c.1 - b.1).abs().max((c.1 - b.3).abs()));
+    (near, far)
+}
+
+/// "x,y x,y ..." as points.
+fn point_list(text: &str) -> Vec<(f64, f64)> {
+    text.split_whitespace()
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect()
+}
+
+/// A path "M x,y x,y ... Z" (its first subpath) as its segments, closed; and the circles of
+/// the further subpaths "M x,y a r,r 0 1,0 2r,0 ..." (holes: the circle's left point, then
+/// arcs), as (centre, radius).
+fn path_parts(d: &str) -> (Vec<((f64, f64), (f64, f64))>, Vec<((f64, f64), f64)>) {
+    let mut subpaths = d.split('M').filter(|s| !s.trim().is_empty());
+    let outline = point_list(subpaths.next().unwrap().trim().trim_end_matches('Z'));
+    let mut segments: Vec<_> = outline.windows(2).map(|w| (w[0], w[1])).collect();
+    segments.push((outline[outline.len() - 1], outline[0]));
+    let circles = subpaths
+        .map(|s| {
+            let mut tokens = s.split_whitespace();
+            let (x, y) = point_list(tokens.next().unwrap())[0];
+            let r: f64 = tokens.next().unwrap()[1..]
+                .split(',')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            ((x + r, y), r)
+        })
+        .collect();
+    (segments, circles)
+}
+
+/// What labels must keep clear of.
+#[derive(Default)]
+struct Drawing {
+    segments: Vec<((f64, f64), (f64, f64))>,
+    /// Filled discs: no label may cover any of them.
+    discs: Vec<((f64, f64), f64)>,
+    /// Outlines: no label may lie across them.
+    rings: Vec<((f64, f64), f64)>,
+}
+
+/// The labels of an SVG (text of class `label`) pairwise apart, clear of `drawing` and inside
+/// `frame`; panics naming the first that is not.
+fn labels_clear(name: &str, els: &[El], drawing: &Drawing, frame: Box4) -> usize {
+    let labels: Vec<(&str, Box4)> = els
+        .iter()
+        .filter(|e| e.name == "text" && e.class() == "label")
+        .map(|e| (e.text.as_str(), text_box(e)))
+        .collect();
+    for (k, (text, b)) in labels.iter().enumerate() {
+        let inside = b.0 >= frame.0 && b.1 >= frame.1 && b.2 <= frame.2 && b.3 <= frame.3;
+        assert!(
+            inside,
+            "{name}: label {text:?} {b:?} outside the frame {frame:?}"
+        );
+        for (other, o) in &labels[k + 1..] {
+            assert!(
+                !overlap(b, o),
+                "{name}: labels {text:?} and {other:?} overlap"
+            );
+        }
+        for &(p, q) in &drawing.segments {
+            assert!(
+                !crosses(b, p, q),
+                "{name}: label {text:?} {b:?} crosses {p:?}–{q:?}"
+            );
+        }
+        for &(c, r) in &drawing.discs {
+            let near = distances(b, c).0;
+            assert!(
+                near >= r,
+                "{name}: label {text:?} {b:?} covers the disc at {c:?} r {r}"
+            );
+        }
+        for &(c, r) in &drawing.rings {
+            let (near, far) = distances(b, c);
+            assert!(
+                near > r || far < r,
+                "{name}: label {text:?} {b:?} lies across the circle at {c:?} r {r}"
+            );
+        }
+    }
+    labels.len()
+}
+
+fn svg_frame(els: &[El]) -> Box4 {
+    let svg = els.iter().find(|e| e.name == "svg").unwrap();
+    (0.0, 0.0, svg.num("width"), svg.num("height"))
+}
+
+/// The disc drawing: roller numbers and force labels clear of the profile, the holes, pins,
+/// rollers, crank and arrows, and of each other. Returns how many labels it has.
+fn disc_labels(name: &str, svg: &str) -> usize {
+    let els = elements(svg);
+    let mut d = Drawing::default();
+    let profile = els.iter().find(|e| e.class() == "profile").unwrap();
+    let (segments, holes) = path_parts(profile.attr("d"));
+    d.segments = segments;
+    d.rings = holes;
+    for e in &els {
+        match (e.name.as_str(), e.class()) {
+            ("circle", "roller" | "pin") => d.discs.push(((e.num("cx"), e.num("cy")), e.num("r"))),
+            ("line", "crank") => d
+                .segments
+                .push(((e.num("x1"), e.num("y1")), (e.num("x2"), e.num("y2")))),
+            ("line", _) if e.inside("arrows") => d
+                .segments
+                .push(((e.num("x1"), e.num("y1")), (e.num("x2"), e.num("y2")))),
+            ("polygon", _) if e.inside("arrows") => {
+                let p = point_list(e.attr("points"));
+                d.segments
+                    .extend((0..p.len()).map(|k| (p[k], p[(k + 1) % p.len()])));
+            }
+            _ => {}
+        }
+    }
+    assert!(
+        !d.discs.is_empty() && !d.segments.is_empty(),
+        "{name}: nothing drawn?"
+    );
+    labels_clear(name, &els, &d, svg_frame(&els))
+}
+
+/// The close-up: the gap's label clear of the flank and across neither the roller's outline
+/// nor the gap's marks, inside the window.
+fn detail_label(name: &str, svg: &str) {
+    let els = elements(svg);
+    let mut d = Drawing::default();
+    let flank = els.iter().find(|e| e.class() == "profile").unwrap();
+    d.segments = path_parts(flank.attr("d")).0;
+    let roller = els.iter().find(|e| e.name == "circle").unwrap();
+    d.rings
+        .push(((roller.num("cx"), roller.num("cy")), roller.num("r")));
+    let window = els
+        .iter()
+        .find(|e| e.name == "rect" && e.attr("fill") == "none")
+        .unwrap();
+    let (x, y) = (window.num("x"), window.num("y"));
+    let frame = (x, y, x + window.num("width"), y + window.num("height"));
+    let n = labels_clear(name, &els, &d, frame);
+    assert_eq!(n, 1, "{name}: the gap's label");
+}
+
+/// An optimisation map: marker labels apart, clear of the path and the markers, inside the
+/// axes; the global samples' marks (each counted as its whole extent, stroke included, an
+/// upper bound of its ink) cover under 10 % of the axes, so that nine tenths of the map show
+/// the cells' colour (the paper's ~830 samples on 225 cells of ~30 × 30 px; the marks drawn
+/// before this bar, 7 px crosses with a 3 px stroke and 5.6 px dots, covered 22–26 %).
+fn map_labels_and_samples(name: &str, svg: &str) {
+    let els = elements(svg);
+    let area = els
+        .iter()
+        .find(|e| e.name == "rect" && e.attr("fill") == "#f4f4f4")
+        .unwrap();
+    let (x, y, w, h) = (
+        area.num("x"),
+        area.num("y"),
+        area.num("width"),
+        area.num("height"),
+    );
+    let mut d = Drawing::default();
+    for e in &els {
+        match (e.name.as_str(), e.class()) {
+            ("polyline", "path") => {
+                let p = point_list(e.attr("points"));
+                d.segments.extend(p.windows(2).map(|w| (w[0], w[1])));
+            }
+            ("circle", "marker") => d.discs.push(((e.num("cx"), e.num("cy")), e.num("r"))),
+            ("polygon", "marker") => {
+                let p = point_list(e.attr("points"));
+                let c = p.iter().fold((0.0, 0.0), |a, q| (a.0 + q.0, a.1 + q.1));
+                let c = (c.0 / p.len() as f64, c.1 / p.len() as f64);
+                // The star's tips, 10 px from its centre.
+                d.discs.push((c, 10.0));
+            }
+            ("path", "marker") => {
+                // "M cx,cy-8 l8,8 ...": the diamond's top, 8 px above its centre.
+                let top = point_list(e.attr("d")[1..].split(' ').next().unwrap())[0];
+                d.discs.push(((top.0, top.1 + 8.0), 8.0));
+            }
+            _ => {}
+        }
+    }
+    // Markers in the legend, outside the axes, are not on the map.
+    d.discs.retain(|(c, _)| c.1 <= y + h + 12.0);
+    let n = labels_clear(name, &els, &d, (x, y, x + w, y + h));
+    assert!(n >= 2, "{name}: {n} marker labels");
+    // Each sample's spot once (a mark is drawn twice, dark under light), with the area of its
+    // mark and its widest stroke.
+    let mut spots: HashMap<(i64, i64), f64> = HashMap::new();
+    for e in els.iter().filter(|e| e.inside("samples")) {
+        let (key, area) = match e.name.as_str() {
+            "circle" => {
+                let r = e.num("r") + e.num("stroke-width") / 2.0;
+                ((e.num("cx"), e.num("cy")), std::f64::consts::PI * r * r)
+            }
+            "path" => {
+                let p: Vec<(f64, f64)> = e
+                    .attr("d")
+                    .split(['M', 'L'])
+                    .filter(|s| !s.trim().is_empty())
+                    .flat_map(|s| point_list(s.trim()))
+                    .collect();
+                let (x0, x1) = p
+                    .iter()
+                    .fold((f64::MAX, f64::MIN), |a, q| (a.0.min(q.0), a.1.max(q.0)));
+                let (y0, y1) = p
+                    .iter()
+                    .fold((f64::MAX, f64::MIN), |a, q| (a.0.min(q.1), a.1.max(q.1)));
+                let s = e.num("stroke-width");
+                (
+                    ((x0 + x1) / 2.0, (y0 + y1) / 2.0),
+                    (x1 - x0 + s) * (y1 - y0 + s),
+                )
+            }
+            _ => continue,
+        };
+        let spot = ((key.0 * 10.0).round() as i64, (key.1 * 10.0).round() as i64);
+        let seen = spots.entry(spot).or_insert(0.0);
+        *seen = seen.max(area);
+    }
+    assert!(spots.len() > 50, "{name}: {} samples", spots.len());
+    let covered: f64 = spots.values().sum::<f64>() / (w * h);
+    assert!(
+        covered < 0.10,
+        "{name}: samples cover {:.1} % of the map",
+        100.0 * covered
+    );
+}
+
+/// The first outlined rectangle: a line plot's area (x, y, width, height).
+fn plot_area(els: &[El]) -> (f64, f64, f64, f64) {
+    let r = els
+        .iter()
+        .find(|e| e.name == "rect" && e.attr("fill") == "none" && e.attr("stroke") == "#333")
+        .unwrap();
+    (r.num("x"), r.num("y"), r.num("width"), r.num("height"))
+}
+
+fn title(els: &[El]) -> &str {
+    let t = els
+        .iter()
+        .find(|e| e.name == "text" && e.attr("font-size") == "16");
+    &t.unwrap().text
+}
+
+/// The paper's βo is 5.967 arcsec with a ripple of ~5e-4 arcsec (under 1 % of the mean): the
+/// axis starts at zero, so that the curve spans under 1 % of the plot's height (ripple < 1 %
+/// of the mean, and the axis at least as tall as the mean), and the title gives the ripple.
+/// Zoomed to the ripple, as before, the curve spanned over 80 % of the height.
+fn output_lag_at_scale(svg: &str) {
+    let els = elements(svg);
+    let (_, top, _, height) = plot_area(&els);
+    let ticks: Vec<f64> = els
+        .iter()
+        .filter(|e| e.name == "text" && e.attr("text-anchor") == "end")
+        .map(|e| e.text.replace('−', "-").parse().unwrap())
+        .collect();
+    let lowest = ticks.iter().copied().fold(f64::MAX, f64::min);
+    assert!(lowest <= 0.0, "the axis starts at {lowest}: {ticks:?}");
+    let curve = els.iter().find(|e| e.name == "polyline").unwrap();
+    let ys: Vec<f64> = point_list(curve.attr("points"))
+        .iter()
+        .map(|p| p.1)
+        .collect();
+    let span =
+        ys.iter().copied().fold(f64::MIN, f64::max) - ys.iter().copied().fold(f64::MAX, f64::min);
+    assert!(span < 0.01 * height, "βo spans {span} px of {height}");
+    assert!(ys.iter().all(|&y| y > top), "βo inside the plot");
+    assert!(title(&els).contains("(ripple "), "{}", title(&els));
+}
+
+/// `specs/paper.yaml` (one run: it optimises four studies): its disc at the smallest gap with
+/// the bearing force near the crank line, the close-up, the four optimisation maps and the
+/// output lag.
+#[test]
+fn the_paper_review_keeps_labels_clear_samples_small_and_the_output_lag_to_scale() {
+    let dir = Scratch::new("review-plots-paper");
+    let spec = format!("{}/specs/paper.yaml", env!("CARGO_MANIFEST_DIR"));
+    let out = run(&dir.path, &["check", &spec, "--report", "r"]);
+    assert_eq!(out.code, Some(0), "{out:?}");
+    let n = disc_labels("paper disc.svg", &dir.read("r/disc.svg"));
+    // 10 roller numbers and at least the bearing's force.
+    assert!(n > 10, "{n} labels");
+    detail_label("paper disc-detail.svg", &dir.read("r/disc-detail.svg"));
+    let maps: Vec<String> = std::fs::read_dir(dir.join("r"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|f| f.starts_with("optimisation-"))
+        .collect();
+    assert_eq!(maps.len(), 4, "{maps:?}");
+    for m in &maps {
+        map_labels_and_samples(m, &dir.read(&format!("r/{m}")));
+    }
+    output_lag_at_scale(&dir.read("r/scene-2-rated-output-lag.svg"));
+}
+
+/// The disc drawings of the other shipped specs: unloaded (`reducer`, roller numbers only),
+/// two discs, and the loaded negative start whose forces (a 17298 N roller force beside its
+/// roller, the 4667 N bearing force on the crank line) crowded their labels onto rings and
+/// lines.
+#[test]
+fn disc_labels_clear_the_drawing_on_the_shipped_specs() {
+    for (spec, labels) in [
+        ("reducer", 10),
+        ("reducer-two-discs", 10),
+        ("paper-negative-start", 10 + 1),
+    ] {
+        let dir = Scratch::new("review-plots-disc");
+        let path = format!("{}/specs/{spec}.yaml", env!("CARGO_MANIFEST_DIR"));
+        let out = run(&dir.path, &["check", &path, "--report", "r"]);
+        assert!(matches!(out.code, Some(0 | 1)), "{spec}: {out:?}");
+        let n = disc_labels(spec, &dir.read("r/disc.svg"));
+        assert!(n >= labels, "{spec}: {n} labels");
+        detail_label(spec, &dir.read("r/disc-detail.svg"));
+    }
+}
+
+/// `specs/reducer-torsion.yaml` locks 4 crank angles: 4 curves named by their angle, the
+/// title says so; its dead band (~25 arcmin) dwarfs the twist beyond it (~0.4 arcmin each
+/// way), so the axis is cut across the band and the cut says "dead band … arcmin"; beyond the
+/// band the twist from +3 % to +100 % of rated spans a visible part of the plot (over 15 % of
+/// its height: a panel is under half of it and the branch spans most of its panel; on one
+/// axis with the band it spanned ~1 %).
+#[test]
+fn torsion_draws_a_curve_per_angle_and_cuts_its_axis_across_the_dead_band() {
+    let dir = Scratch::new("review-plots-torsion");
+    let spec = format!("{}/specs/reducer-torsion.yaml", env!("CARGO_MANIFEST_DIR"));
+    let out = run(&dir.path, &["check", &spec, "--report", "r"]);
+    assert_eq!(out.code, Some(0), "{out:?}");
+    let els = elements(&dir.read("r/scene-1-torsion-torsion.svg"));
+    let curves: Vec<&El> = els
+        .iter()
+        .filter(|e| e.class() == "series" && e.attr("aria-label").starts_with("crank "))
+        .collect();
+    let names: Vec<&str> = curves.iter().map(|e| e.attr("aria-label")).collect();
+    assert_eq!(
+        names,
+        ["crank 0.00°", "crank 9.00°", "crank 18.00°", "crank 27.00°"]
+    );
+    assert!(
+        title(&els).contains("at 4 locked crank angles"),
+        "{}",
+        title(&els)
+    );
+    let cut = els
+        .iter()
+        .find(|e| e.class() == "cut-label")
+        .expect("a cut");
+    assert!(
+        cut.text.starts_with("dead band ") && cut.text.ends_with(" arcmin"),
+        "{}",
+        cut.text
+    );
+    let (_, _, _, height) = plot_area(&els);
+    // The first curve: its points right of T = 0, the step's top to +rated.
+    let curve = els
+        .iter()
+        .find(|e| e.name == "polyline" && e.inside("series"))
+        .unwrap();
+    let p = point_list(curve.attr("points"));
+    let x0 = p[p.len() / 2].0;
+    let right: Vec<f64> = p.iter().filter(|q| q.0 > x0 + 1.0).map(|q| q.1).collect();
+    let span = right.iter().copied().fold(f64::MIN, f64::max)
+        - right.iter().copied().fold(f64::MAX, f64::min);
+    assert!(
+        span > 0.15 * height,
+        "the twist beyond the band spans {span} px of {height}"
+    );
+}
+
+/// Few samples are marks, not a line: the torsion loop at 2 steps per quarter (5 torques) is
+/// a dot per torque, and the 4 locked angles' backlash plot a dot per angle, both titles
+/// stating the count.
+#[test]
+fn sparse_samples_are_marks_and_their_titles_count_them() {
+    let dir = Scratch::new("review-plots-sparse");
+    let text = std::fs::read_to_string(format!(
+        "{}/specs/reducer-torsion.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let edited = text.replace("steps: 40 }", "steps: 2 }");
+    assert_ne!(edited, text);
+    dir.write("spec.yaml", edited);
+    let out = run(&dir.path, &["check", "spec.yaml", "--report", "r"]);
+    assert!(matches!(out.code, Some(0 | 1)), "{out:?}");
+    for (file, count) in [
+        ("r/scene-1-torsion-torsion.svg", "5 torques"),
+        ("r/scene-1-torsion-backlash.svg", "at 4 crank angles"),
+    ] {
+        let els = elements(&dir.read(file));
+        assert!(title(&els).contains(count), "{file}: {}", title(&els));
+        let series: Vec<&El> = els.iter().filter(|e| e.class() == "series").collect();
+        assert!(!series.is_empty(), "{file}");
+        let lines = els
+            .iter()
+            .filter(|e| e.name == "polyline" && e.inside("series"));
+        assert_eq!(lines.count(), 0, "{file}: a line through few samples");
+        let marks = els
+            .iter()
+            .filter(|e| e.class() == "mark" && e.inside("series"));
+        assert!(marks.count() >= 4, "{file}: marks");
+    }
+}

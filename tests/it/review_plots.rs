@@ -94,13 +94,19 @@ fn elements(svg: &str) -> Vec<El> {
 /// A pixel box (x0, y0, x1, y1).
 type Box4 = (f64, f64, f64, f64);
 
+/// A segment between two pixel points.
+type Segment = ((f64, f64), (f64, f64));
+
+/// A circle: centre and radius, pixels.
+type Circle = ((f64, f64), f64);
+
 /// Advance width of a character in DejaVu Sans, the first font the SVGs ask for, em (its
 /// hmtx widths over 2048 units per em), for the characters the labels use; 0.84 em for any
 /// other, wider than every glyph of the font except M, W and m, which are listed.
 fn advance(c: char) -> f64 {
     match c {
         '0'..='9' | 'b' | 'd' | 'g' | 'h' | 'n' | 'p' | 'q' | 'u' | 'µ' => 0.636,
-        ' ' | '.' | ',' | ':' => 0.318,
+        ' ' | '.' | ',' | ':' => 651.0 / 2048.0,
         'i' | 'j' | 'l' => 0.278,
         'f' => 0.352,
         't' => 0.392,
@@ -174,7 +180,7 @@ fn point_list(text: &str) -> Vec<(f64, f64)> {
 /// A path "M x,y x,y ... Z" (its first subpath) as its segments, closed; and the circles of
 /// the further subpaths "M x,y a r,r 0 1,0 2r,0 ..." (holes: the circle's left point, then
 /// arcs), as (centre, radius).
-fn path_parts(d: &str) -> (Vec<((f64, f64), (f64, f64))>, Vec<((f64, f64), f64)>) {
+fn path_parts(d: &str) -> (Vec<Segment>, Vec<Circle>) {
     let mut subpaths = d.split('M').filter(|s| !s.trim().is_empty());
     let outline = point_list(subpaths.next().unwrap().trim().trim_end_matches('Z'));
     let mut segments: Vec<_> = outline.windows(2).map(|w| (w[0], w[1])).collect();
@@ -198,11 +204,11 @@ fn path_parts(d: &str) -> (Vec<((f64, f64), (f64, f64))>, Vec<((f64, f64), f64)>
 /// What labels must keep clear of.
 #[derive(Default)]
 struct Drawing {
-    segments: Vec<((f64, f64), (f64, f64))>,
+    segments: Vec<Segment>,
     /// Filled discs: no label may cover any of them.
-    discs: Vec<((f64, f64), f64)>,
+    discs: Vec<Circle>,
     /// Outlines: no label may lie across them.
-    rings: Vec<((f64, f64), f64)>,
+    rings: Vec<Circle>,
 }
 
 /// The labels of an SVG (text of class `label`) pairwise apart, clear of `drawing` and inside

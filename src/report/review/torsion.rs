@@ -102,7 +102,9 @@ fn dead_band_cut(t: &TorsionCurves, lines: &[(Vec<f64>, Vec<f64>)], steps: usize
     let above = side(|y, s| &y[s + 1..]);
     let (lo, hi) = (below.1, above.0);
     let twist = (below.1 - below.0).max(above.1 - above.0);
-    if !(hi - lo > CUT_ABOVE * twist) {
+    // A band not wider (or not finite: no curve) is drawn on one axis.
+    let wide = (hi - lo).partial_cmp(&(CUT_ABOVE * twist)) == Some(std::cmp::Ordering::Greater);
+    if !wide {
         return None;
     }
     let bands = t.figures.iter().map(|f| units::arcmin(f.backlash_rad));

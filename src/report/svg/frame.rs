@@ -89,25 +89,6 @@ pub fn rotated(x: f64, y: f64, text: &str) -> Markup {
     }
 }
 
-/// Text with a white halo, so that it reads on any background.
-pub struct Halo<'a> {
-    pub color: &'a str,
-    pub size: f64,
-    pub bold: bool,
-}
-
-impl Halo<'_> {
-    /// The text at (x, y), anchored `anchor` ("start", "middle", "end").
-    pub fn text(&self, x: f64, y: f64, anchor: &str, text: &str) -> Markup {
-        html! {
-            text x=(px(x)) y=(px(y)) font-size=(self.size)
-                font-weight=[self.bold.then_some("bold")] text-anchor=(anchor) fill=(self.color)
-                stroke="white" stroke-width=(self.size * 0.28) stroke-linejoin="round"
-                paint-order="stroke" { (text) }
-        }
-    }
-}
-
 /// Maps world coordinates (mm, y up) into a pixel box (y down), same scale on both axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame {

@@ -16,7 +16,9 @@ pub(crate) const INTERVAL: Duration = Duration::from_millis(250);
 /// The listener of one run; silent without a callable.
 pub(crate) struct Sink {
     callback: Option<Py<PyAny>>,
-    /// When the callable was last called.
+    /// When a call was last found due, before taking the GIL.
+    looked: Mutex<Option<Instant>>,
+    /// When the callable was last called (the GIL held).
     last: Mutex<Option<Instant>>,
     /// The first exception the callable raised.
     error: Mutex<Option<PyErr>>,
@@ -26,26 +28,35 @@ impl Sink {
     pub(crate) fn new(callback: Option<Py<PyAny>>) -> Sink {
         Sink {
             callback,
+            looked: Mutex::new(None),
             last: Mutex::new(None),
             error: Mutex::new(None),
         }
     }
 
     /// Call the callable with (`fraction`, `what`) unless it was called less than
-    /// [`INTERVAL`] ago.
+    /// [`INTERVAL`] ago: a cheap look without the GIL, then again once it is held (a thread
+    /// may wait for the GIL while another calls), so that the calls themselves are spaced.
     fn report(&self, fraction: f64, what: &str) {
         let Some(callback) = &self.callback else {
             return;
         };
-        {
-            let mut last = self.last.lock().unwrap_or_else(|p| p.into_inner());
+        let due = |last: &Mutex<Option<Instant>>| {
+            let mut last = last.lock().unwrap_or_else(|p| p.into_inner());
             let now = Instant::now();
             if last.is_some_and(|t| now.duration_since(t) < INTERVAL) {
-                return;
+                return false;
             }
             *last = Some(now);
+            true
+        };
+        if !due(&self.looked) {
+            return;
         }
         Python::attach(|py| {
+            if !due(&self.last) {
+                return;
+            }
             if let Err(e) = callback.call1(py, (fraction.clamp(0.0, 1.0), what)) {
                 let mut error = self.error.lock().unwrap_or_else(|p| p.into_inner());
                 error.get_or_insert(e);

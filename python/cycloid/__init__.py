@@ -19,6 +19,7 @@ import json
 import math
 import numbers
 import os
+import dataclasses
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Mapping, Optional, Union
 
@@ -175,7 +176,8 @@ class CheckRun:
         self.document: Dict[str, Any] = doc
         self.name: str = doc["name"]
         self.passed: bool = bool(doc["passed"])
-        self.checks: List[Check] = [Check(**c) for c in doc["checks"]]
+        known = [f.name for f in dataclasses.fields(Check)]
+        self.checks: List[Check] = [Check(**{k: c[k] for k in known}) for c in doc["checks"]]
         self.scenes: Dict[str, Dict[str, Any]] = {s["name"]: s for s in doc["scenes"]}
         self.summary: List[Dict[str, Any]] = doc["summary"]
         self.golden: List[Dict[str, Any]] = doc["golden"]

@@ -337,3 +337,21 @@ def test_a_failed_solve_is_a_computation_error_naming_scene_and_angle(cli):
     assert e.key == "scenes[0].output_torque_nm" and e.line == 22
     assert str(e) == run_cli(cli, "check", spec).stderr.strip()
     assert not isinstance(e, cycloid.SpecError)
+
+
+def test_check_with_the_tolerance_study_equals_the_cli(cli, tmp_path):
+    d = cycloid.load("specs/reducer-tolerance.yaml").to_dict()
+    d["tolerances"]["samples"] = 100
+    spec = cycloid.Spec.from_dict(d)
+    written = tmp_path / "tolerance.yaml"
+    written.write_text(spec.to_yaml())
+    out = tmp_path / "tolerance.json"
+    done = run_cli(cli, "check", str(written), "--tolerance", "--json", str(out))
+    assert done.returncode in (0, 1), done.stderr
+    run = cycloid.check(spec, tolerance=True)
+    assert any(c.id.endswith("/tolerance_failure_rate") for c in run.checks)
+    assert not any(c.id.endswith("/tolerance_failure_rate") for c in cycloid.check(spec).checks)
+    got, expected = json.loads(run.to_json()), json.loads(out.read_text())
+    assert got.pop("spec_path") == "<dict>"
+    expected.pop("spec_path")
+    assert got == expected

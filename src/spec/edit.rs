@@ -146,6 +146,51 @@ pub fn with_modification(path: &str, text: &str, m: &Modification) -> Result<Str
     Ok(out)
 }
 
+/// Spec `text` (read from `path`) with the scalar value of each dotted key
+/// (`modification.shift_mm`, `scenes[0].crank.steps`, as in the README's spec table) replaced
+/// by its YAML text, comments and layout kept; a `modification` key the text lacks is added.
+/// The result is parsed and validated again, so a bad value is an error located in the edited
+/// text. A key the text does not have (outside `modification`) is an error at that key.
+///
+/// ```
+/// let text = std::fs::read_to_string("specs/reducer.yaml").unwrap();
+/// let (edited, spec) =
+///     cycloid::spec::edit::with_values("reducer.yaml", &text, &[("modification.shift_mm", "-0.01")])?;
+/// assert_eq!(spec.modification.shift_mm, -0.01);
+/// assert_eq!(edited.lines().count(), text.lines().count()); // edited in place
+/// # Ok::<(), cycloid::Error>(())
+/// ```
+pub fn with_values(
+    path: &str,
+    text: &str,
+    values: &[(&str, &str)],
+) -> Result<(String, super::Spec)> {
+    let mut out = text.to_string();
+    for &(key, value) in values {
+        match (locate_offset(&out, key), key.strip_prefix("modification.")) {
+            (Some(offset), _) => replace_value(&mut out, offset, value),
+            (None, Some(name)) if !name.is_empty() && !name.contains(['.', '[']) => {
+                insert_value(&mut out, name, value)
+            }
+            (None, _) => {
+                return Err(Error::invalid(
+                    key,
+                    "is not in the spec text: only values the spec has (and the \
+                     `modification` keys) can be replaced; write the key into the spec first"
+                        .to_string(),
+                )
+                .at(crate::error::Location {
+                    file: path.to_string(),
+                    line: 1,
+                    column: 1,
+                }))
+            }
+        }
+    }
+    let spec = super::parse(path, &out)?;
+    Ok((out, spec))
+}
+
 /// The spec of an optimum, to be written to `out_path`: the source spec text with `m` as its
 /// modification, `name` as its name and `header` (comment lines) on top. Its `golden` section
 /// is removed with a comment saying why: the goldens are curves of the old design, which the

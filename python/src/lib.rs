@@ -1,0 +1,406 @@
+//! `cycloid._cycloid`: the extension module under the Python package `cycloid`
+//! (python/cycloid/), which gives it its public API, docstrings and stub. Everything here is
+//! private to that package.
+//!
+//! The results reach Python through the results JSON's own typed documents
+//! (`cycloid::report::json`): they are serialised by [`tree::Ser`] straight into Python
+//! objects, every list of numbers a numpy array, so the keys, units and shapes are those of
+//! `cycloid check --json` and no JSON text is written or read. Every computation runs with
+//! the GIL released; a Rust panic becomes a Python `RuntimeError`.
+
+mod progress;
+mod tree;
+
+use cycloid::error::{Error, ErrorKind};
+use cycloid::report::json::{Contents, Document};
+use numpy::PyArray1;
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Arc;
+
+/// A validated spec (the Python `cycloid.Spec` holds one).
+#[pyclass(frozen, module = "cycloid._cycloid", name = "Spec")]
+struct PySpec {
+    spec: Arc<cycloid::spec::Spec>,
+}
+
+#[pymethods]
+impl PySpec {
+    /// The YAML text the spec was read from.
+    #[getter]
+    fn source(&self) -> &str {
+        &self.spec.source
+    }
+
+    /// The path the spec was read from (errors name it; files resolve against its folder).
+    #[getter]
+    fn path(&self) -> &str {
+        &self.spec.path
+    }
+
+    /// The spec's `name`.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.spec.name
+    }
+
+    /// The scenes' names, in spec order.
+    #[getter]
+    fn scene_names(&self) -> Vec<String> {
+        self.spec.scenes.iter().map(|s| s.name.clone()).collect()
+    }
+}
+
+/// The Python exception for `e`: `cycloid.SpecError` or `cycloid.ComputationError` (defined in
+/// `cycloid._errors`), with the CLI's text of the error as its `str()`.
+fn py_error(py: Python<'_>, e: &Error) -> PyErr {
+    let class = match e.kind {
+        ErrorKind::Computation => "ComputationError",
+        _ => "SpecError",
+    };
+    let kind = match e.kind {
+        ErrorKind::Io => "io",
+        ErrorKind::Syntax => "syntax",
+        ErrorKind::InvalidValue => "invalid_value",
+        ErrorKind::ImpossibleDesign => "impossible_design",
+        ErrorKind::Computation => "computation",
+        ErrorKind::Usage => "usage",
+        ErrorKind::OutputClosed => "output_closed",
+    };
+    let made = (|| -> PyResult<PyErr> {
+        let errors = py.import("cycloid._errors")?;
+        let loc = e.location.as_ref();
+        let value = errors.getattr(class)?.call1((
+            e.to_string(),
+            kind,
+            e.message.as_str(),
+            e.key_path.as_deref(),
+            loc.map(|l| l.file.as_str()),
+            loc.map(|l| l.line),
+            loc.map(|l| l.column),
+        ))?;
+        Ok(PyErr::from_value(value))
+    })();
+    made.unwrap_or_else(|err| err)
+}
+
+/// Run `work` without the GIL; its error becomes the Python exception, a panic a
+/// `RuntimeError`.
+fn detached<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce() -> cycloid::Result<T> + Send,
+) -> PyResult<T> {
+    let outcome = py.detach(|| catch_unwind(AssertUnwindSafe(work)));
+    match outcome {
+        Ok(Ok(value)) => Ok(value),
+        Ok(Err(e)) => Err(py_error(py, &e)),
+        Err(panic) => {
+            let what = panic
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| panic.downcast_ref::<&str>().copied())
+                .unwrap_or("a panic");
+            Err(PyRuntimeError::new_err(format!(
+                "cycloid: internal error (a bug: please report it with the spec): {what}"
+            )))
+        }
+    }
+}
+
+/// Read and validate the spec file at `path`.
+#[pyfunction]
+fn load(py: Python<'_>, path: &str) -> PyResult<PySpec> {
+    let path = path.to_string();
+    let spec = detached(py, move || cycloid::spec::load(&path))?;
+    Ok(PySpec {
+        spec: Arc::new(spec),
+    })
+}
+
+/// Parse and validate spec `text`; `path` names it in errors, and the files it names resolve
+/// against its folder.
+#[pyfunction]
+fn parse(py: Python<'_>, path: &str, text: &str) -> PyResult<PySpec> {
+    let (path, text) = (path.to_string(), text.to_string());
+    let spec = detached(py, move || cycloid::spec::parse(&path, &text))?;
+    Ok(PySpec {
+        spec: Arc::new(spec),
+    })
+}
+
+/// The spec with the scalars at dotted keys replaced by YAML texts, edited in place in its
+/// text and validated again.
+#[pyfunction]
+fn with_values(py: Python<'_>, spec: &PySpec, values: Vec<(String, String)>) -> PyResult<PySpec> {
+    let spec = spec.spec.clone();
+    let edited = detached(py, move || {
+        let pairs: Vec<(&str, &str)> = values
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.as_str()))
+            .collect();
+        cycloid::spec::edit::with_values(&spec.path, &spec.source, &pairs)
+    })?;
+    Ok(PySpec {
+        spec: Arc::new(edited.1),
+    })
+}
+
+/// The YAML text `text` as Python objects (dicts, lists, numbers, strings).
+#[pyfunction]
+fn yaml_to_py(py: Python<'_>, text: &str) -> PyResult<Py<PyAny>> {
+    let value: serde_yaml::Value = serde_yaml::from_str(text)
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    tree::to_plain_py(py, &value)
+}
+
+/// YAML text of a JSON text (the Python layer's `from_dict` writes its dict as JSON).
+#[pyfunction]
+fn json_to_yaml(text: &str) -> PyResult<String> {
+    let value: serde_yaml::Value = serde_json::from_str(text)
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    serde_yaml::to_string(&value).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// One `check` run: the engine's data, kept for `to_json`.
+#[pyclass(frozen, module = "cycloid._cycloid", name = "Run")]
+struct PyRun {
+    run: cycloid::CheckRun,
+}
+
+impl PyRun {
+    fn document(&self) -> Document<'_> {
+        let r = &self.run;
+        Document::new(&Contents {
+            spec: &r.spec,
+            checks: &r.checks,
+            results: &r.results,
+            goldens: &r.goldens,
+            summaries: &r.summaries,
+            studies: &r.studies,
+        })
+    }
+}
+
+#[pymethods]
+impl PyRun {
+    /// The results JSON, as `cycloid check --json` writes it.
+    fn to_json(&self, py: Python<'_>) -> PyResult<String> {
+        detached(py, || {
+            serde_json::to_string(&self.document()).map_err(|e| Error::computation(e.to_string()))
+        })
+    }
+
+    /// The results document as Python objects: numbers lists as numpy arrays.
+    fn to_py(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        tree::to_py(py, &self.document())
+    }
+
+    /// Every check passed.
+    #[getter]
+    fn passed(&self) -> bool {
+        self.run.passed()
+    }
+}
+
+/// Run `cycloid check` on `spec`: every scene, the limits, the goldens and studies; with
+/// `tolerance` the tolerance study too. `progress(fraction, phase)` is called now and then.
+#[pyfunction]
+#[pyo3(signature = (spec, tolerance=false, progress=None))]
+fn check(
+    py: Python<'_>,
+    spec: &PySpec,
+    tolerance: bool,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<PyRun> {
+    let spec = spec.spec.clone();
+    let sink = progress::Sink::new(progress);
+    let run = detached(py, || {
+        let options = cycloid::CheckOptions {
+            writes: cycloid::engine::scene::Writes {
+                json: true,
+                report: false,
+            },
+            tolerance,
+            review: None,
+        };
+        cycloid::check(&spec, &options, &sink)
+    });
+    sink.finish(py)?;
+    Ok(PyRun { run: run? })
+}
+
+/// The spec's optimisation studies (the one named `study`, else all), as the results JSON's
+/// `studies` records.
+#[pyfunction]
+#[pyo3(signature = (spec, study=None, progress=None))]
+fn optimise(
+    py: Python<'_>,
+    spec: &PySpec,
+    study: Option<String>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Py<PyAny>> {
+    let spec = spec.spec.clone();
+    let sink = progress::Sink::new(progress);
+    let results = detached(py, || {
+        let run = cycloid::optimise(&spec, study.as_deref(), None, &sink)?;
+        Ok(run.studies.into_iter().map(|(_, r)| r).collect::<Vec<_>>())
+    });
+    sink.finish(py)?;
+    let results = results?;
+    let doc = Document::new(&Contents {
+        spec: &spec,
+        checks: &[],
+        results: &[],
+        goldens: &[],
+        summaries: &[],
+        studies: &results,
+    });
+    let tree = tree::to_py(py, &doc)?;
+    Ok(tree.bind(py).get_item("studies")?.unbind())
+}
+
+/// The spec's tolerance study (`samples` and `seed` in place of the spec's): the columns of
+/// `--samples-csv` by name, each a numpy array, and the JSON report of `--json` as text.
+#[pyfunction]
+#[pyo3(signature = (spec, samples=None, seed=None, progress=None))]
+fn tolerance(
+    py: Python<'_>,
+    spec: &PySpec,
+    samples: Option<usize>,
+    seed: Option<u64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(Py<PyAny>, String)> {
+    let mut spec = (*spec.spec).clone();
+    if let (Some(seed), Some(t)) = (seed, spec.tolerances.as_mut()) {
+        t.seed = seed;
+    }
+    let sink = progress::Sink::new(progress);
+    let table = detached(py, || {
+        let run = cycloid::tolerance(&spec, samples, false, &sink)?;
+        let report = &cycloid::report::tolerance::json;
+        let json = report(&run.study, &run.summary, &run.records, None);
+        let csv = cycloid::report::tolerance::samples_csv(&run.study, &run.records);
+        Ok((csv, json))
+    });
+    sink.finish(py)?;
+    let (csv, json) = table?;
+    Ok((csv_columns(py, &csv)?, json))
+}
+
+/// The columns of a CSV table of numbers (a header line, then rows) as numpy arrays by name.
+fn csv_columns(py: Python<'_>, csv: &str) -> PyResult<Py<PyAny>> {
+    let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
+    let names: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let mut columns: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
+    for line in lines.filter(|l| !l.is_empty()) {
+        for (column, cell) in columns.iter_mut().zip(line.split(',')) {
+            column.push(
+                cell.parse::<f64>().map_err(|e| {
+                    PyRuntimeError::new_err(format!("samples table: `{cell}`: {e}"))
+                })?,
+            );
+        }
+    }
+    let dict = PyDict::new(py);
+    for (name, column) in names.into_iter().zip(columns) {
+        dict.set_item(name, PyArray1::from_vec(py, column))?;
+    }
+    Ok(dict.into_any().unbind())
+}
+
+/// The spec's whole modified profile, chords within `tolerance_mm`: the columns of `cycloid
+/// profile --csv` (x_mm, y_mm, normal_x, normal_y, curvature_per_mm) as numpy arrays, and the
+/// output-pin holes of its DXF (`holes_x_mm`, `holes_y_mm`, `hole_radius_mm`).
+#[pyfunction]
+fn profile(py: Python<'_>, spec: &PySpec, tolerance_mm: f64) -> PyResult<Py<PyAny>> {
+    let spec = spec.spec.clone();
+    let points = {
+        let spec = spec.clone();
+        detached(py, move || cycloid::profile(&spec, tolerance_mm))?
+    };
+    type Point = cycloid::geometry::polyline::ProfilePoint;
+    let column = |f: fn(&Point) -> f64| PyArray1::from_vec(py, points.iter().map(f).collect());
+    let dict = PyDict::new(py);
+    dict.set_item("x_mm", column(|p| p.point.x))?;
+    dict.set_item("y_mm", column(|p| p.point.y))?;
+    dict.set_item("normal_x", column(|p| p.normal.x))?;
+    dict.set_item("normal_y", column(|p| p.normal.y))?;
+    dict.set_item("curvature_per_mm", column(|p| p.curvature_per_mm))?;
+    let pins = &spec.design.pins;
+    let centres: Vec<[f64; 2]> = (0..pins.count).map(|j| pins.centre_mm(j)).collect();
+    dict.set_item(
+        "holes_x_mm",
+        PyArray1::from_vec(py, centres.iter().map(|c| c[0]).collect()),
+    )?;
+    dict.set_item(
+        "holes_y_mm",
+        PyArray1::from_vec(py, centres.iter().map(|c| c[1]).collect()),
+    )?;
+    dict.set_item("hole_radius_mm", spec.design.hole_radius_mm())?;
+    Ok(dict.into_any().unbind())
+}
+
+/// Identify the disc of the spec's `measured_profile`: the estimates (value, standard
+/// uncertainty) in the spec's units, the residuals, the report `cycloid fit` prints and the
+/// form-error curve of `--form-csv` as numpy columns.
+#[pyfunction]
+fn fit(py: Python<'_>, spec: &PySpec) -> PyResult<Py<PyAny>> {
+    let spec = spec.spec.clone();
+    let (id, text, form) = {
+        let spec = spec.clone();
+        detached(py, move || {
+            let id = cycloid::fit(&spec)?;
+            let text = cycloid::report::fit::render(&spec, &id);
+            let form = cycloid::report::fit::form_csv(&spec, &id);
+            Ok((id, text, form))
+        })?
+    };
+    type Estimate = cycloid::measure::fitted::Estimate;
+    let pair = |e: &Estimate, scale: f64| (e.value * scale, e.sigma * scale);
+    let deg = cycloid::units::deg(1.0);
+    let dict = PyDict::new(py);
+    dict.set_item("centre_x_mm", pair(&id.centre_mm[0], 1.0))?;
+    dict.set_item("centre_y_mm", pair(&id.centre_mm[1], 1.0))?;
+    dict.set_item("orientation_deg", pair(&id.orientation_rad, deg))?;
+    dict.set_item("shift_mm", id.shift_mm.as_ref().map(|e| pair(e, 1.0)))?;
+    dict.set_item(
+        "equidistant_mm",
+        id.equidistant_mm.as_ref().map(|e| pair(e, 1.0)),
+    )?;
+    dict.set_item(
+        "rotation_deg",
+        id.rotation_rad.as_ref().map(|e| pair(e, deg)),
+    )?;
+    let m = &id.modification;
+    let modification = PyDict::new(py);
+    modification.set_item("shift_mm", m.shift_mm)?;
+    modification.set_item("equidistant_mm", m.equidistant_mm)?;
+    modification.set_item("rotation_deg", cycloid::units::deg(m.rotation_rad))?;
+    dict.set_item("modification", modification)?;
+    dict.set_item("residual_rms_mm", id.residual_rms_mm)?;
+    dict.set_item("residual_max_mm", id.residual_max_mm)?;
+    dict.set_item("condition", id.condition)?;
+    dict.set_item("report", text)?;
+    dict.set_item("form", csv_columns(py, &form)?)?;
+    Ok(dict.into_any().unbind())
+}
+
+#[pymodule]
+fn _cycloid(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PySpec>()?;
+    m.add_class::<PyRun>()?;
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(parse, m)?)?;
+    m.add_function(wrap_pyfunction!(with_values, m)?)?;
+    m.add_function(wrap_pyfunction!(yaml_to_py, m)?)?;
+    m.add_function(wrap_pyfunction!(json_to_yaml, m)?)?;
+    m.add_function(wrap_pyfunction!(check, m)?)?;
+    m.add_function(wrap_pyfunction!(optimise, m)?)?;
+    m.add_function(wrap_pyfunction!(tolerance, m)?)?;
+    m.add_function(wrap_pyfunction!(profile, m)?)?;
+    m.add_function(wrap_pyfunction!(fit, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -6,14 +6,10 @@ use crate::engine::plausibility::{Basis, Beyond};
 use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
 use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE, ONLY_ANGLE};
 
-/// Format a number for a person: 4 significant figures, no exponent for ordinary magnitudes.
+/// Format a number for a person: [`numeric::number`](crate::numeric::number), the one
+/// formatter (4 significant figures after rounding: 9.99999998 reads 10.00, not 10.000).
 pub fn number(x: f64) -> String {
-    if x == 0.0 || (1e-3..1e6).contains(&x.abs()) {
-        let digits = (3 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
-        format!("{x:.digits$}")
-    } else {
-        format!("{x:.3e}")
-    }
+    crate::numeric::number(x)
 }
 
 /// A value followed by its unit, if any ("2.000 mm", "3").

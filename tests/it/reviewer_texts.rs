@@ -509,3 +509,34 @@ fn shipped_specs_have_no_implausible_headline() {
         start.stdout
     );
 }
+
+/// The bands themselves (`engine::plausibility`): steel (E 206 GPa, the paper's) gets ISO 76's
+/// 4,000 MPa; a disc of E 70 GPa (aluminium) is no steel, so the conservative 1,500 MPa; the
+/// roller force's band is 5 × T/(e·nc) = 5 × 10,000 N·mm / (2 mm × 9) = 2,777.8 N and the pins'
+/// 5 × T/rw = 5 × 10,000 / 18 = 2,777.8 N too on this design (rw = e·nc = 18 mm); a scene
+/// without torque has no force band; a limit on the quantity leaves no band.
+#[test]
+fn plausibility_bands_follow_the_material_and_the_torque() {
+    use cycloid::engine::plausibility::{band, Basis};
+    use cycloid::model::quantity::{MAX_CONTACT_PRESSURE, MAX_PIN_FORCE, MAX_ROLLER_FORCE};
+    let spec = crate::common::PaperSpec::new().parse("paper.yaml");
+    let pressure = band(&spec.design, &spec.limits, &MAX_CONTACT_PRESSURE, 1e4).unwrap();
+    assert_eq!(pressure.band, 4000.0);
+    assert!(matches!(pressure.basis, Basis::Steel { .. }));
+    let mut aluminium = spec.design.clone();
+    aluminium.disc_material.youngs_modulus_mpa = 70e3;
+    let soft = band(&aluminium, &spec.limits, &MAX_CONTACT_PRESSURE, 1e4).unwrap();
+    assert_eq!(soft.band, 1500.0);
+    assert!(matches!(soft.basis, Basis::UnknownMaterial { .. }));
+    // 5 × 10,000/18 N; the division's round-off only.
+    for q in [&MAX_ROLLER_FORCE, &MAX_PIN_FORCE] {
+        let f = band(&spec.design, &spec.limits, q, 1e4).unwrap();
+        assert!((f.band - 2777.777_777_8).abs() < 1e-6, "{q:?}: {f:?}");
+        assert!(band(&spec.design, &spec.limits, q, 0.0).is_none());
+    }
+    let limited = crate::common::PaperSpec::new()
+        .rated_period(36)
+        .with("limits:\n  max_contact_pressure_mpa: 2000.0\n")
+        .parse("limited.yaml");
+    assert!(band(&limited.design, &limited.limits, &MAX_CONTACT_PRESSURE, 1e4).is_none());
+}

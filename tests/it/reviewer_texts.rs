@@ -531,7 +531,7 @@ fn plausibility_bands_follow_the_material_and_the_torque() {
     // 5 × 10,000/18 N; the division's round-off only.
     for q in [&MAX_ROLLER_FORCE, &MAX_PIN_FORCE] {
         let f = band(&spec.design, &spec.limits, q, 1e4).unwrap();
-        assert!((f.band - 2777.777_777_8).abs() < 1e-6, "{q:?}: {f:?}");
+        assert!((f.band - 5.0 * 1e4 / 18.0).abs() < 1e-9, "{q:?}: {f:?}");
         assert!(band(&spec.design, &spec.limits, q, 0.0).is_none());
     }
     let limited = crate::common::PaperSpec::new()

@@ -447,7 +447,7 @@ fn cli_prints_the_ladder_and_rejects_bad_input_with_exit_2() {
         assert!(out.contains(label), "no `{label}` row:\n{out}");
     }
     assert!(
-        out.contains("cheapest rung meeting every tolerance: `"),
+        out.contains("cheapest rung meeting every tolerance (the least work: "),
         "{out}"
     );
     let (code, out, _) = cycloid(

@@ -419,6 +419,10 @@ pub struct HeadlineDoc<'a> {
     value: Finite,
     unit: &'static str,
     at: &'a str,
+    /// The plausible band's upper end the value lies beyond (`engine::plausibility`), in the
+    /// quantity's unit; only on a marked headline.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    beyond_plausible: Option<Finite>,
 }
 
 #[derive(Serialize)]
@@ -653,6 +657,7 @@ fn summary(s: &SceneSummary) -> SummaryDoc<'_> {
                 value: Finite(h.value),
                 unit: h.quantity.unit,
                 at: &h.at,
+                beyond_plausible: h.beyond.map(|b| Finite(b.band)),
             })
             .collect(),
     }

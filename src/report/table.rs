@@ -443,7 +443,7 @@ pub fn beyond_text(h: &Headline, b: &Beyond) -> String {
         ),
     };
     format!(
-        "IMPLAUSIBLE (not a failed check): {why}; set `limits.{}` to judge it",
+        "IMPLAUSIBLE (not a failed check): {why}; set limits.{} to judge it",
         h.quantity.key
     )
 }

@@ -432,14 +432,23 @@ fn implausible_headlines_are_marked_without_failing() {
             "bearing",
         ));
     dir.write("start.yaml", start.text());
-    let run = cycloid(&dir.path, &["check", "start.yaml"]);
+    let run = cycloid(&dir.path, &["check", "start.yaml", "--json", "out.json"]);
     assert_eq!(run.code, Some(0), "{run:?}");
+    // The results JSON carries the band of a marked headline, and only of a marked one.
+    let json: serde_json::Value = serde_json::from_str(&dir.read("out.json")).unwrap();
+    let headlines = json["summary"][0]["headlines"].as_array().unwrap();
+    let band = |key: &str| {
+        let h = headlines.iter().find(|h| h["key"] == key).unwrap();
+        h.get("beyond_plausible").and_then(|b| b.as_f64())
+    };
+    assert_eq!(band("max_contact_pressure_mpa"), Some(4000.0));
+    assert_eq!(band("max_pin_force_n"), None);
     let marked: Vec<&str> = run.stdout.lines().filter(|l| l.starts_with("! ")).collect();
     let starts = |l: &&str, what: &str| l.starts_with(&format!("! {what} "));
     assert!(
         marked.iter().any(|l| starts(l, "max Hertz pressure")
             && l.contains("4000 MPa (ISO 76's static limit")
-            && l.contains("set `limits.max_contact_pressure_mpa`")),
+            && l.contains("set limits.max_contact_pressure_mpa to judge it")),
         "{marked:?}"
     );
     assert!(

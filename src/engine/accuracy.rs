@@ -49,9 +49,6 @@ use std::time::Instant;
 /// Runs shorter than this (s) are repeated, and the fastest of `REPEATS` runs is the time.
 pub const REPEAT_BELOW_S: f64 = 0.05;
 pub const REPEATS: usize = 5;
-/// A rung is cheaper than an earlier row of the table only when its time is below this
-/// fraction of that row's.
-pub const CLEARLY_FASTER: f64 = 0.95;
 /// Solver tolerances of the tolerance rungs (the default, `Settings::default().rel_tol`, is the
 /// steps rung at the same resolution).
 pub const LOOSE_REL_TOL: [f64; 2] = [1e-6, 1e-9];
@@ -228,6 +225,25 @@ pub struct Rung {
 }
 
 impl Rung {
+    /// The rung's work, as an order (smaller is cheaper): its crank angles first (each angle is
+    /// one solve of the scene's model, so the work grows with them), then at equal angles its
+    /// settings, coarsest first: first-order geometry (closed-form gaps and arms, no
+    /// closest-point search per roller) before exact, then the looser solver tolerance (fewer
+    /// Newton iterations per angle) before the tighter. Known before anything runs, so that the
+    /// cheapest rung never depends on the scheduler; the measured `seconds` are information.
+    pub fn work(&self) -> (usize, u8, std::cmp::Reverse<u64>) {
+        let geometry = match self.geometry {
+            GeometryMode::FirstOrder => 0,
+            GeometryMode::Exact => 1,
+        };
+        // A positive double's bits order as the double does.
+        (
+            self.angles,
+            geometry,
+            std::cmp::Reverse(self.rel_tol.to_bits()),
+        )
+    }
+
     pub fn error(&self, q: LadderQuantity) -> Option<f64> {
         self.errors[q.index()]
     }
@@ -243,6 +259,21 @@ impl Rung {
     pub fn meets(&self, t: &LadderTolerances) -> bool {
         self.misses(t).is_empty()
     }
+}
+
+/// The cheapest of `rungs` that meets every tolerance: the least work (`Rung::work`) among
+/// those that meet `tolerances`, model differences excluded (another model is no
+/// approximation of the reference); the reference meets them by definition (its own error is
+/// unmeasured) and is the answer when nothing cheaper does. Earlier rows win ties. Decided by
+/// work alone, never by the measured times, so that `cycloid accuracy` and the report's ladder
+/// name the same rung for the same spec; the one choice both use.
+pub fn cheapest(rungs: &[Rung], tolerances: &LadderTolerances) -> Option<usize> {
+    rungs
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.is_reference || (!r.model_difference && r.meets(tolerances)))
+        .min_by(|(i, a), (j, b)| a.work().cmp(&b.work()).then(i.cmp(j)))
+        .map(|(i, _)| i)
 }
 
 /// A solver tolerance as rungs are named: "1e-6", else in exponent form.
@@ -297,8 +328,8 @@ pub struct Ladder {
     pub rungs: Vec<Rung>,
     /// Steps per mesh period of the settings rungs.
     pub settings_steps: usize,
-    /// Index of the cheapest (shortest time) rung that meets every tolerance, model differences
-    /// excluded; the reference when nothing cheaper does.
+    /// Index of the cheapest rung that meets every tolerance (`cheapest`: by work, not by the
+    /// measured times), model differences excluded; the reference when nothing cheaper does.
     pub cheapest: Option<usize>,
     /// Settings rungs left out (each says why).
     pub skipped: Vec<Skipped>,
@@ -499,8 +530,8 @@ struct Run {
 }
 
 /// Run `plan` for `scene` with `settings`, timed. A short run is timed again (up to `REPEATS`
-/// runs in all) and the fastest time kept: milliseconds are at the mercy of the scheduler, and
-/// the cheapest rung is chosen by time.
+/// runs in all) and the fastest time kept: milliseconds are at the mercy of the scheduler (the
+/// cheapest rung is chosen by work, `cheapest`; the times are information).
 fn timed(
     spec: &Spec,
     scene: &Scene,
@@ -733,19 +764,7 @@ pub fn run(
     } else {
         skipped.push(Skipped::SettingsRungs);
     }
-    // The cheapest by measured time among the rungs that meet every tolerance; the reference
-    // meets them by definition and is the answer when nothing cheaper does. Rows are taken in
-    // table order and a later one wins only when it is clearly faster (`CLEARLY_FASTER`), so
-    // that scheduler noise between runs of equal work does not pick the answer.
-    let mut cheapest: Option<usize> = None;
-    for (i, r) in rungs.iter().enumerate() {
-        if r.model_difference || !r.meets(&options.tolerances) {
-            continue;
-        }
-        if cheapest.is_none_or(|c| r.seconds < CLEARLY_FASTER * rungs[c].seconds) {
-            cheapest = Some(i);
-        }
-    }
+    let cheapest = cheapest(&rungs, &options.tolerances);
     Ok(Ladder {
         layout,
         rungs,

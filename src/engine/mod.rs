@@ -3,7 +3,8 @@
 //! (`optimise`) and runs the accuracy ladder (`accuracy`), summarises the headline results of
 //! each scene (`summary`), and computes what the design review draws of the disc (`drawing`);
 //! the torsion curve under a locked input and its catalogue figures (`torsion`); the crank
-//! bearing's rating life (`bearing_life`). It returns data: the tables, sentences and notes
+//! bearing's rating life (`bearing_life`); the plausibility bands of the headlines
+//! (`plausibility`). It returns data: the tables, sentences and notes
 //! made of it are built in `report` (the engine's own words are its errors, the `at` labels of
 //! checks, names, and the files it writes).
 
@@ -16,6 +17,7 @@ pub mod drawing;
 pub mod golden;
 pub mod limit;
 pub mod optimise;
+pub mod plausibility;
 /// The progress observer (`crate::progress`), where the engine's callers look for it.
 pub use crate::progress;
 pub mod resolution;

@@ -4,8 +4,10 @@
 //! it after the checks table, the results JSON carries it as `summary`, and the design review
 //! puts it at the top.
 
-use crate::model::quantity::{Quantity, SUMMARY};
+use crate::engine::plausibility::{self, Beyond};
+use crate::model::quantity::{Quantity, DISC_TORQUE, SUMMARY};
 use crate::model::results::SceneResult;
+use crate::spec::Spec;
 
 /// One headline result of one scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -15,6 +17,21 @@ pub struct Headline {
     pub value: f64,
     /// Where it occurs.
     pub at: String,
+    /// Beyond its plausible band, no limit judging it (`engine::plausibility`): a mark for
+    /// the reader, not a failed check. `None` from `summarise`; `marked` sets it.
+    pub beyond: Option<Beyond>,
+}
+
+/// One disc's share Tk of the scene's torque over its crank angles, N·m (with several discs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TorqueShare {
+    pub disc: usize,
+    pub mean_nm: f64,
+    pub min_nm: f64,
+    pub max_nm: f64,
+    /// The scene's torque, the sum of the shares at every angle (MODEL.md "Several discs"),
+    /// N·m: the shares' sum at the first angle.
+    pub scene_nm: f64,
 }
 
 /// The headline results a scene computed (those it did not compute are left out).
@@ -26,6 +43,12 @@ pub struct SceneSummary {
     pub angles: usize,
     /// The step between its first two crank angles, rad (0 with one angle).
     pub step_rad: f64,
+    /// Its first crank angle, rad (its only one, with one angle).
+    pub first_rad: f64,
+    /// The reducer's discs (1, or `reducer.discs`).
+    pub discs: usize,
+    /// Each disc's torque share, with several discs that carry load (else empty).
+    pub shares: Vec<TorqueShare>,
 }
 
 /// The summary of every scene, in spec order.
@@ -42,6 +65,7 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
                         quantity: q,
                         value: e.value,
                         at: e.at,
+                        beyond: None,
                     })
                 })
                 .collect(),
@@ -50,6 +74,53 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
                 [a, b, ..] => b - a,
                 _ => 0.0,
             },
+            first_rad: r.crank_rad.first().copied().unwrap_or(0.0),
+            discs: r.discs.len().max(1),
+            shares: shares(r),
         })
         .collect()
+}
+
+/// Each disc's torque share over the crank angles (`DISC_TORQUE`): the mean, the range and the
+/// scene's torque; empty for one disc or a scene without loaded discs.
+fn shares(r: &SceneResult) -> Vec<TorqueShare> {
+    let curves: Vec<Vec<f64>> = r
+        .discs
+        .iter()
+        .filter_map(|d| DISC_TORQUE.curves(d)?.values.pop())
+        .filter(|c| !c.is_empty())
+        .collect();
+    if curves.len() != r.discs.len() || curves.len() < 2 {
+        return Vec::new();
+    }
+    let scene_nm: f64 = curves.iter().map(|c| c[0]).sum();
+    curves
+        .iter()
+        .enumerate()
+        .map(|(disc, c)| TorqueShare {
+            disc,
+            mean_nm: c.iter().sum::<f64>() / c.len() as f64,
+            min_nm: c.iter().copied().fold(f64::INFINITY, f64::min),
+            max_nm: c.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            scene_nm,
+        })
+        .collect()
+}
+
+/// `summarise`, each headline marked when it lies beyond its plausible band and no limit of
+/// `spec` judges it (`engine::plausibility`). Scenes are matched to `results` by position
+/// (results are in spec order).
+pub fn marked(spec: &Spec, results: &[SceneResult]) -> Vec<SceneSummary> {
+    let mut summaries = summarise(results);
+    for (s, scene) in summaries.iter_mut().zip(&spec.scenes) {
+        let torque_nmm = match &scene.torque_sweep {
+            Some(_) => 0.0, // a torsion scene has no loaded headline of force or pressure
+            None => scene.output_torque_nmm,
+        };
+        for h in &mut s.headlines {
+            h.beyond =
+                plausibility::beyond(&spec.design, &spec.limits, h.quantity, torque_nmm, h.value);
+        }
+    }
+    summaries
 }

@@ -503,6 +503,10 @@ fn angles(n: usize) -> String {
     format!("{n} crank angle{}", if n == 1 { "" } else { "s" })
 }
 
+/// How a one-angle scene's extreme says where it was sought: its place already names the
+/// angle ("crank 0.00°, the scene's only crank angle"), said once.
+pub const ONLY_ANGLE: &str = "the scene's only crank angle";
+
 /// The largest unloaded lost motion over the scene's crank angles (only those: its closing lags
 /// are not sought over the whole mesh), arcsec.
 pub const MAX_LOST_MOTION: Quantity = Quantity {
@@ -516,7 +520,10 @@ pub const MAX_LOST_MOTION: Quantity = Quantity {
     read: Read::Scalar(|r| {
         let mut e = highest(r, &backlash(r)?.lost_motion_rad);
         e.value = units::arcsec(e.value);
-        e.at = format!("{}, over the scene's {}", e.at, angles(r.crank_rad.len()));
+        e.at = match r.crank_rad.len() {
+            1 => format!("{}, {ONLY_ANGLE}", e.at),
+            n => format!("{}, over the scene's {}", e.at, angles(n)),
+        };
         Some(e)
     }),
 };
@@ -700,7 +707,7 @@ fn curve_extreme(r: &SceneResult, q: &Quantity, largest: bool) -> Option<Extreme
 pub const MAX_TORSION_LOST_MOTION: Quantity = Quantity {
     key: "max_lost_motion_arcmin",
     unit: "arcmin",
-    label: "max lost motion (±3 % rated)",
+    label: "max lost motion of the reducer (±3 % of rated torque)",
     effect: Effect::Torsion,
     shape: Shape::Scalar,
     period: None,
@@ -712,7 +719,7 @@ pub const MAX_TORSION_LOST_MOTION: Quantity = Quantity {
 pub const MAX_TORSION_BACKLASH: Quantity = Quantity {
     key: "max_backlash_arcmin",
     unit: "arcmin",
-    label: "max backlash (torsion dead band)",
+    label: "max backlash of the reducer (torsion dead band)",
     effect: Effect::Torsion,
     shape: Shape::Scalar,
     period: None,

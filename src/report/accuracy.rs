@@ -244,8 +244,10 @@ pub fn footer(ladder: &Ladder) -> String {
         Some(i) => {
             let r = &ladder.rungs[i];
             s += &format!(
-                "cheapest rung meeting every tolerance: `{}` ({} steps per mesh period, {}): {} \
-                 against {} for the reference\n",
+                "cheapest rung meeting every tolerance (the least work: {} crank angles, then the \
+                 coarsest settings): `{}` ({} steps per mesh period, {}): {} against {} for the \
+                 reference (times for information)\n",
+                r.angles,
                 r.label,
                 steps_text(r.steps_per_period),
                 settings(r),

@@ -12,7 +12,7 @@
 use crate::engine::check::{Check, CheckKind};
 use crate::engine::golden::{sha256_hex, GoldenResult, Point};
 use crate::engine::optimise::StudyResult;
-use crate::engine::summary::{summarise, SceneSummary};
+use crate::engine::summary::SceneSummary;
 use crate::error::Result;
 use crate::model::quantity::{self as q, Quantity, QUANTITIES};
 use crate::model::results::{ClearanceSweep, MinCoverage, SceneResult};
@@ -419,6 +419,10 @@ pub struct HeadlineDoc<'a> {
     value: Finite,
     unit: &'static str,
     at: &'a str,
+    /// The plausible band's upper end the value lies beyond (`engine::plausibility`), in the
+    /// quantity's unit; only on a marked headline.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    beyond_plausible: Option<Finite>,
 }
 
 #[derive(Serialize)]
@@ -653,6 +657,7 @@ fn summary(s: &SceneSummary) -> SummaryDoc<'_> {
                 value: Finite(h.value),
                 unit: h.quantity.unit,
                 at: &h.at,
+                beyond_plausible: h.beyond.map(|b| Finite(b.band)),
             })
             .collect(),
     }
@@ -661,7 +666,7 @@ fn summary(s: &SceneSummary) -> SummaryDoc<'_> {
 /// The results of scenes alone (no checks, goldens or studies) as a JSON value: what a test
 /// compares with the registry.
 pub fn scenes_value(spec: &Spec, results: &[SceneResult]) -> serde_json::Result<serde_json::Value> {
-    let summaries = summarise(results);
+    let summaries = crate::engine::summary::marked(spec, results);
     serde_json::to_value(Document::new(&Contents {
         spec,
         checks: &[],

@@ -64,7 +64,11 @@ fn geometry_text(e: &Evaluation) -> String {
     });
     let lost = e
         .lost_motion_arcsec
-        .map_or("—".to_string(), |a| format!("{} arcsec", number(a)));
+        .map_or("—".to_string(), |a| match a < 0.0 {
+            // A free play is never negative: overlapping closing lags are a preload.
+            true => format!("0 arcsec (preloaded: overlap {} arcsec)", number(-a)),
+            false => format!("{} arcsec", number(a)),
+        });
     format!("min clearance {clearance}, lost motion {lost}")
 }
 

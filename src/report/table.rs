@@ -1,17 +1,15 @@
 //! The terminal table of checks (check, value, limit, verdict, where) and the summary of each
 //! scene's headline results.
 
-use crate::engine::check::{Bound, Check, Evidence};
-use crate::engine::summary::{Headline, SceneSummary};
+use crate::engine::check::{Bound, Check, CheckKind, Evidence};
+use crate::engine::plausibility::{Basis, Beyond};
+use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
+use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE, ONLY_ANGLE};
 
-/// Format a number for a person: 4 significant figures, no exponent for ordinary magnitudes.
+/// Format a number for a person: [`numeric::number`](crate::numeric::number), the one
+/// formatter (4 significant figures after rounding: 9.99999998 reads 10.00, not 10.000).
 pub fn number(x: f64) -> String {
-    if x == 0.0 || (1e-3..1e6).contains(&x.abs()) {
-        let digits = (3 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
-        format!("{x:.digits$}")
-    } else {
-        format!("{x:.3e}")
-    }
+    crate::numeric::number(x)
 }
 
 /// A value followed by its unit, if any ("2.000 mm", "3").
@@ -67,6 +65,13 @@ pub fn value(c: &Check) -> String {
     };
     if c.passed && wrong_side {
         format!("{} (to round-off)", shown(c.limit))
+    } else if is_lost_motion(c) && c.value < 0.0 {
+        format!(
+            "0 {} (preloaded: overlap {} {})",
+            c.unit,
+            number(-c.value),
+            c.unit
+        )
     } else if c.value == f64::MAX {
         // The engine's "no bound" (a bearing no load wears, a study with no constraint).
         "unbounded".to_string()
@@ -94,8 +99,20 @@ pub fn shown_unit(c: &Check) -> &'static str {
     }
 }
 
-/// A check's limit as a person reads it, with the bound's sign and the unit ("≤ 5.000 %").
+/// Whether `c` is a limit on the unloaded lost motion (`limits.max_lost_motion_arcsec`): a
+/// signed sum of the closing lags, negative when they overlap (a preload), which a person
+/// reads as a free play of 0 and an overlap (`headline_value`'s convention).
+fn is_lost_motion(c: &Check) -> bool {
+    c.kind == CheckKind::Limit && c.id.rsplit('/').next() == Some(MAX_LOST_MOTION.key)
+}
+
+/// A check's limit as a person reads it, with the bound's sign and the unit ("≤ 5.000 %"). A
+/// negative limit on the lost motion asks for an overlap (a preload) of at least its
+/// magnitude, and reads so ("overlap ≥ 500.0 arcsec"), never as a negative lost motion.
 pub fn limit(c: &Check) -> String {
+    if is_lost_motion(c) && c.limit < 0.0 {
+        return format!("overlap ≥ {} {}", number(-c.limit), c.unit);
+    }
     let op = match c.bound {
         Bound::Max => "≤",
         Bound::Min => "≥",
@@ -199,8 +216,75 @@ pub fn count_or_change(from: f64, to: f64, unit: &str) -> String {
     }
 }
 
+/// One row of a scene's headline results as a person reads it (`summary_rows`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SummaryRow {
+    /// What the value is ("max roller force", "torque share, disc 1").
+    pub label: String,
+    /// The value with its unit.
+    pub value: String,
+    /// Where it occurs, with what a reader must know beside it (a preload, a mark).
+    pub at: String,
+    /// Beyond its plausible band (`engine::plausibility`): marked, not failed.
+    pub marked: bool,
+}
+
+/// A scene's headline results, one row each, then (with several discs) each disc's torque
+/// share: what the terminal and the review both show.
+pub fn summary_rows(s: &SceneSummary, all: &[SceneSummary]) -> Vec<SummaryRow> {
+    let mut rows: Vec<SummaryRow> = s
+        .headlines
+        .iter()
+        .map(|h| SummaryRow {
+            label: headline_label(h, s),
+            value: headline_value(h),
+            at: headline_at(h, s, all),
+            marked: h.beyond.is_some(),
+        })
+        .collect();
+    rows.extend(s.shares.iter().map(|t| share_row(t, s)));
+    rows
+}
+
+/// A disc's torque share: its mean over the scene's crank angles, N·m, with its percentage of
+/// the scene's torque and its range.
+fn share_row(t: &TorqueShare, s: &SceneSummary) -> SummaryRow {
+    use crate::numeric::{number, percent};
+    let of = |x: f64| match t.scene_nm {
+        0.0 => String::new(),
+        total => percent(x / total),
+    };
+    let mean = match t.scene_nm {
+        0.0 => format!("of the scene's {} N·m", number(t.scene_nm)),
+        _ => format!(
+            "{} of the scene's {} N·m",
+            of(t.mean_nm),
+            number(t.scene_nm)
+        ),
+    };
+    let over = match s.angles {
+        1 => format!("{mean}, at {ONLY_ANGLE}"),
+        n => format!(
+            "{mean}, mean over its {n} crank angles; range {}–{} N·m{}",
+            number(t.min_nm),
+            number(t.max_nm),
+            match t.scene_nm {
+                0.0 => String::new(),
+                _ => format!(" ({}–{})", of(t.min_nm), of(t.max_nm)),
+            }
+        ),
+    };
+    SummaryRow {
+        label: format!("torque share, disc {}", t.disc),
+        value: with_unit(number(t.mean_nm), "N·m"),
+        at: over,
+        marked: false,
+    }
+}
+
 /// The headline results of each scene, one block per scene: quantity, value with its unit,
-/// where it occurs. A scene that computed none of them says so.
+/// where it occurs. A scene that computed none of them says so. A value beyond its plausible
+/// band starts its line with `!` instead of the indent.
 pub fn render_summary(summaries: &[SceneSummary]) -> String {
     let mut out = String::from("headline results:\n");
     for s in summaries {
@@ -209,27 +293,35 @@ pub fn render_summary(summaries: &[SceneSummary]) -> String {
             out += "  no headline results (the scene computes none of them)\n";
             continue;
         }
-        let label_w = s
-            .headlines
-            .iter()
-            .map(|h| h.quantity.label.chars().count())
-            .max()
-            .unwrap_or(0);
-        let values: Vec<String> = s.headlines.iter().map(headline_value).collect();
-        let value_w = values.iter().map(|v| v.chars().count()).max().unwrap_or(0);
-        for (h, v) in s.headlines.iter().zip(&values) {
-            let label = h.quantity.label;
+        let rows = summary_rows(s, summaries);
+        let label_w = rows.iter().map(|r| r.label.chars().count()).max();
+        let value_w = rows.iter().map(|r| r.value.chars().count()).max();
+        let (label_w, value_w) = (label_w.unwrap_or(0), value_w.unwrap_or(0));
+        for r in &rows {
             let line = format!(
-                "  {label}{}  {}{v}  {}",
-                " ".repeat(label_w - label.chars().count()),
-                " ".repeat(value_w - v.chars().count()),
-                headline_at(h, s, summaries)
+                "{}{}{}  {}{}  {}",
+                if r.marked { "! " } else { "  " },
+                r.label,
+                " ".repeat(label_w - r.label.chars().count()),
+                " ".repeat(value_w - r.value.chars().count()),
+                r.value,
+                r.at
             );
             out += line.trim_end();
             out += "\n";
         }
     }
     out
+}
+
+/// What a headline is, as its line labels it: a lost motion with several discs is one
+/// disc's (each disc's closing lags at its own phase), beside the reducer's torsion figures.
+pub fn headline_label(h: &Headline, s: &SceneSummary) -> String {
+    if h.quantity.key == MAX_LOST_MOTION.key && s.discs > 1 {
+        "max lost motion per disc (unloaded)".to_string()
+    } else {
+        h.quantity.label.to_string()
+    }
 }
 
 /// A headline's value with its unit as a person reads it. A lost motion is a free play and
@@ -244,14 +336,16 @@ pub fn headline_value(h: &Headline) -> String {
 
 /// Whether `h` is a lost motion whose closing lags overlap (no free play).
 fn preloaded(h: &Headline) -> bool {
-    h.quantity.key == crate::model::quantity::MAX_LOST_MOTION.key && h.value < 0.0
+    h.quantity.key == MAX_LOST_MOTION.key && h.value < 0.0
 }
 
 /// Where a headline occurs; a preloaded lost motion's overlap first (see `headline_value`);
-/// and, when another scene of `all` gives the same quantity, the scene's sampling, so that two
-/// values of one quantity say why they differ. Not for the min clearance: it is sought over
-/// the whole period of the gaps whatever the scene samples, and its line already says over
-/// what.
+/// a mark when the value is beyond its plausible band first of all; and, when another scene
+/// of `all` gives the same quantity, the scene's sampling, so that two values of one quantity
+/// say why they differ (a one-angle scene's headline names its angle once). Not for the min
+/// clearance: it is sought over the whole period of the gaps whatever the scene samples, and
+/// its line already says over what. An unloaded lost motion beside the reducer's ±3 % figure
+/// of the same scene says why the two differ.
 pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> String {
     let mut at = h.at.clone();
     if preloaded(h) {
@@ -262,25 +356,110 @@ pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> Stri
         );
     }
     let others = all.iter().filter(|o| o.scene != s.scene);
-    let shared = h.quantity.key != crate::model::quantity::MIN_CLEARANCE.key
+    let shared = h.quantity.key != MIN_CLEARANCE.key
         && others
             .flat_map(|o| &o.headlines)
             .any(|o| o.quantity.key == h.quantity.key);
-    if shared {
-        at += &format!("; {}", sampling(s));
+    if shared && !at.contains(ONLY_ANGLE) {
+        // A place that counts the scene's angles already gets their step alone.
+        at += &match at.contains(", over the scene's ") {
+            true => format!(", every {}°", step_deg(s)),
+            false => format!("; {}", sampling(s)),
+        };
+    }
+    let torsion = s
+        .headlines
+        .iter()
+        .find(|o| o.quantity.key == MAX_TORSION_LOST_MOTION.key);
+    if let (true, Some(t)) = (h.quantity.key == MAX_LOST_MOTION.key, torsion) {
+        at += &format!(
+            "; {} arcmin against the reducer's {} arcmin at ±3 % of rated torque: this is {} \
+             free play with no load (the closing lags at the ideal pose), the other the \
+             catalogue's figure, the torsion angle of the reducer between ±3 % of rated torque: \
+             that free play plus the elastic twist of the contacts at 3 % of rated{}",
+            number(crate::units::arcmin(crate::units::rad_from_arcsec(
+                h.value.max(0.0)
+            ))),
+            number(t.value),
+            if s.discs > 1 {
+                "one disc's"
+            } else {
+                "the disc's"
+            },
+            if s.discs > 1 {
+                ", the discs coupled on one output (the first disc to touch ends the dead band)"
+            } else {
+                ""
+            }
+        );
+    }
+    if let Some(b) = &h.beyond {
+        at = format!("{}; {at}", beyond_text(h, b));
     }
     at
 }
 
-/// A scene's sampling of the crank: "sampled at 1080 crank angles, every 0.1000°".
+/// Why a headline is marked: its band and what the band rests on (`engine::plausibility`),
+/// and the limit that would judge it.
+pub fn beyond_text(h: &Headline, b: &Beyond) -> String {
+    let gpa = |mpa: f64| number(mpa / 1e3);
+    let why = match b.basis {
+        Basis::Steel {
+            disc_e_mpa,
+            roller_e_mpa,
+        } => format!(
+            "beyond the plausible range of hardened steel contacts, {} MPa (ISO 76's static \
+             limit of bearing steel in line contact; steel assumed from E {} GPa of the disc, {} \
+             GPa of the rollers)",
+            number(b.band),
+            gpa(disc_e_mpa),
+            gpa(roller_e_mpa)
+        ),
+        Basis::UnknownMaterial {
+            disc_e_mpa,
+            roller_e_mpa,
+        } => format!(
+            "beyond {} MPa: E {} GPa of the disc, {} GPa of the rollers is not steel's \
+             (190–230 GPa) and the material is unknown to the tool, so the band is the \
+             conservative ISO 6336-5 contact endurance limit of case-hardened steel",
+            number(b.band),
+            gpa(disc_e_mpa),
+            gpa(roller_e_mpa)
+        ),
+        Basis::TorqueScale {
+            torque_nmm,
+            arm_mm,
+            pin_circle,
+        } => format!(
+            "{} × the {} N the torque needs at the largest arm ({} = {} N·m / {} mm), beyond \
+             {} ×: forces this large are balanced by forces against the torque (a preload or \
+             an interference), not by the torque",
+            number(h.value / (torque_nmm / arm_mm)),
+            number(torque_nmm / arm_mm),
+            if pin_circle { "T/rw" } else { "T/(e·nc)" },
+            number(crate::units::nm(torque_nmm)),
+            number(arm_mm),
+            crate::engine::plausibility::FORCE_FACTOR
+        ),
+    };
+    format!(
+        "IMPLAUSIBLE (not a failed check): {why}; set limits.{} to judge it",
+        h.quantity.key
+    )
+}
+
+/// A scene's sampling of the crank: "sampled at 1080 crank angles, every 0.1000°", or "the
+/// scene's only crank angle" (every headline's place names that angle already).
 pub fn sampling(s: &SceneSummary) -> String {
     match s.angles {
-        1 => "sampled at 1 crank angle".to_string(),
-        n => format!(
-            "sampled at {n} crank angles, every {}°",
-            crate::numeric::number(crate::units::deg(s.step_rad))
-        ),
+        1 => ONLY_ANGLE.to_string(),
+        n => format!("sampled at {n} crank angles, every {}°", step_deg(s)),
     }
+}
+
+/// A scene's crank step, degrees, as people read it.
+fn step_deg(s: &SceneSummary) -> String {
+    crate::numeric::number(crate::units::deg(s.step_rad))
 }
 
 /// Where a check's value occurs, or what it rests on, in words: the "where" of every view of

@@ -365,6 +365,49 @@ fn rungs_and_columns_follow_the_scene() {
     assert!(cycloid::report::accuracy::render(&l).contains("skipped: settings rungs"));
 }
 
+/// The cheapest rung is decided by work (crank angles, then the coarsest settings), never by the
+/// measured times: the same rungs with their times permuted, or the chosen rung made the
+/// slowest, choose the same rung; every other rung that meets the tolerances solves at least as
+/// many crank angles; and the ladder's own choice is the shared function's.
+#[test]
+fn cheapest_rung_is_chosen_by_work_not_by_timing() {
+    let s = spec_with(0.125, 0.1593, &rated(10.0));
+    let l = ladder(&s, 48, None);
+    let tol = LadderTolerances::default();
+    let chosen = accuracy::cheapest(&l.rungs, &tol).expect("the reference always qualifies");
+    assert_eq!(l.cheapest, Some(chosen));
+    let admissible: Vec<usize> = (0..l.rungs.len())
+        .filter(|&i| {
+            let r = &l.rungs[i];
+            r.is_reference || (!r.model_difference && r.meets(&tol))
+        })
+        .collect();
+    assert!(admissible.contains(&chosen));
+    for &i in &admissible {
+        assert!(
+            l.rungs[i].angles >= l.rungs[chosen].angles,
+            "rung `{}` meets the tolerances with fewer crank angles than `{}`",
+            l.rungs[i].label,
+            l.rungs[chosen].label
+        );
+    }
+    // Timing noise: reversed times, and the chosen rung a thousand times slower than any.
+    let mut rungs = l.rungs.clone();
+    let times: Vec<f64> = rungs.iter().rev().map(|r| r.seconds).collect();
+    for (r, t) in rungs.iter_mut().zip(times) {
+        r.seconds = t;
+    }
+    assert_eq!(accuracy::cheapest(&rungs, &tol), Some(chosen));
+    let slowest = rungs.iter().map(|r| r.seconds).fold(0.0, f64::max);
+    rungs[chosen].seconds = 1000.0 * slowest.max(1.0);
+    for (i, r) in rungs.iter_mut().enumerate() {
+        if i != chosen {
+            r.seconds = 1e-6;
+        }
+    }
+    assert_eq!(accuracy::cheapest(&rungs, &tol), Some(chosen));
+}
+
 // ------------------------------------------------------------------------------------------
 // CLI, spec key, design review.
 
@@ -404,7 +447,7 @@ fn cli_prints_the_ladder_and_rejects_bad_input_with_exit_2() {
         assert!(out.contains(label), "no `{label}` row:\n{out}");
     }
     assert!(
-        out.contains("cheapest rung meeting every tolerance: `"),
+        out.contains("cheapest rung meeting every tolerance (the least work: "),
         "{out}"
     );
     let (code, out, _) = cycloid(
@@ -470,9 +513,23 @@ fn spec_key_puts_the_ladder_in_the_design_review() {
     assert!(html.contains("<section id=\"accuracy\">"));
     assert!(html.contains("steps 96 (reference)"));
     assert!(html.contains("<b>cheapest</b>"));
+    // The rung the report names, by its label between backquotes.
+    let named = |text: &str, after: &str| -> String {
+        let tail = &text[text
+            .find(after)
+            .unwrap_or_else(|| panic!("no `{after}` in {text}"))..];
+        tail.split('`').nth(1).unwrap_or_default().to_string()
+    };
+    let by_report = named(&out, "cheapest meeting every tolerance: ");
     // `cycloid accuracy` takes the spec's section as its defaults.
     let (code, out, _) = cycloid(&dir, &["accuracy", "spec.yaml"]);
     assert_eq!(code, 0);
+    // Two runs, two sets of timings, one choice: the cheapest is decided by work.
+    assert_eq!(
+        named(&out, "cheapest rung meeting every tolerance"),
+        by_report,
+        "{out}"
+    );
     assert!(
         out.contains("reference: 96 steps per mesh period (288 crank angles)"),
         "{out}"

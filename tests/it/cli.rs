@@ -131,8 +131,10 @@ FAIL: 1 of 1 check failed
 /// −23.41 µm (crank 0° alone has −21.55 µm, which a limit of −22 µm passed before the minimum
 /// was sought over the whole period); the lost motion is the scene's own (−502.2 arcsec at
 /// crank 0°, passing ≤ −500, and −494.8 over the period, failing). The checks compare the
-/// signed sum with the limit; the headlines read no free play, 0, with the overlap, and each
-/// scene's sampling, since both scenes give the lost motion.
+/// signed sum with the limit, but no line reads a negative lost motion: a negative sum is a
+/// free play of 0 with an overlap, and the limit −500 an overlap of at least 500; the
+/// headlines say each scene's sampling, since both scenes give the lost motion, the one-angle
+/// scene naming its angle once.
 #[test]
 fn failed_rows_come_first() {
     let spec = paper_with(&[
@@ -151,19 +153,19 @@ fn failed_rows_come_first() {
         &check(&spec),
         1,
         "cycloid check `paper-table-1`
-check                         value          limit            verdict  where
-rated/min_clearance_mm        -0.02341 mm    ≥ -0.02200 mm    FAIL     roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.1000° (error ≤ 7.415e-5 µm)
-start/min_clearance_mm        -0.02341 mm    ≥ -0.02200 mm    FAIL     roller 9 at crank 10.88°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.3750° (error ≤ 0.001043 µm)
-rated/max_lost_motion_arcsec  -494.8 arcsec  ≤ -500.0 arcsec  FAIL     crank 31.60°, over the scene's 360 crank angles
-start/max_lost_motion_arcsec  -502.2 arcsec  ≤ -500.0 arcsec  pass     crank 0.00°, over the scene's 1 crank angle
+check                         value                                       limit                   verdict  where
+rated/min_clearance_mm        -0.02341 mm                                 ≥ -0.02200 mm           FAIL     roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.1000° (error ≤ 7.415e-5 µm)
+start/min_clearance_mm        -0.02341 mm                                 ≥ -0.02200 mm           FAIL     roller 9 at crank 10.88°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.3750° (error ≤ 0.001043 µm)
+rated/max_lost_motion_arcsec  0 arcsec (preloaded: overlap 494.8 arcsec)  overlap ≥ 500.0 arcsec  FAIL     crank 31.60°, over the scene's 360 crank angles
+start/max_lost_motion_arcsec  0 arcsec (preloaded: overlap 502.2 arcsec)  overlap ≥ 500.0 arcsec  pass     crank 0.00°, the scene's only crank angle
 4 checks: 1 passed, 3 failed
 headline results:
 scene `start`:
   min clearance over the mesh  -0.02341 mm  roller 9 at crank 10.88°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.3750° (error ≤ 0.001043 µm)
-  max lost motion (unloaded)      0 arcsec  preloaded: no free play, the closing lags overlap by 502.2 arcsec (interference), crank 0.00°, over the scene's 1 crank angle; sampled at 1 crank angle
+  max lost motion (unloaded)      0 arcsec  preloaded: no free play, the closing lags overlap by 502.2 arcsec (interference), crank 0.00°, the scene's only crank angle
 scene `rated`:
   min clearance over the mesh  -0.02341 mm  roller 9 at crank 10.90°, tooth phase 0.137 (0 root, 0.5 tip), over the whole period of 36.00° sampled every 0.1000° (error ≤ 7.415e-5 µm)
-  max lost motion (unloaded)      0 arcsec  preloaded: no free play, the closing lags overlap by 494.8 arcsec (interference), crank 31.60°, over the scene's 360 crank angles; sampled at 360 crank angles, every 0.1000°
+  max lost motion (unloaded)      0 arcsec  preloaded: no free play, the closing lags overlap by 494.8 arcsec (interference), crank 31.60°, over the scene's 360 crank angles, every 0.1000°
 FAIL: 3 of 4 checks failed
 ",
         "",

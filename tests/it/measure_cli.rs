@@ -439,3 +439,66 @@ fn a_spline_profile_is_read_from_its_fit_points_or_its_curve() {
         run.stderr
     );
 }
+
+/// `specs/reducer-measured.yaml` ships points made by `tools/make-measured.py`: the drawing of
+/// `specs/reducer.yaml` plus a KNOWN form error w = 4 µm·cos 2t along the normal, turned 7° and
+/// shifted (0.3, −0.2) mm. `fit` must find what was planted: 4 µm at order 2 and nothing at
+/// orders 3 and 4, within 0.002 µm (the points are written to 1 nm, so each lies within
+/// 0.5 nm of its exact place, and the table prints µm to 3 decimals: 0.0005 µm of rounding
+/// more), the placement and the drawing's modification to the printed digits. `check` passes
+/// on the disc as built, with the min clearance of the same form error written as
+/// `reducer.deviations` on the drawing (the same disc by another road), within 0.01 µm
+/// (two samplings of the same period, each bounded by 0.0022 µm, printed to 0.01 µm).
+#[test]
+fn shipped_measured_spec_recovers_its_planted_form_error() {
+    let fit = crate::common::cycloid_here(&["fit", "specs/reducer-measured.yaml"]);
+    assert_eq!(fit.code, Some(0), "{fit:?}");
+    let out = &fit.stdout;
+    let amplitude = |order: &str| -> f64 {
+        let row = out
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(order) && l.contains('±'))
+            .unwrap_or_else(|| panic!("no order {order} row:\n{out}"));
+        row.split_whitespace().nth(3).unwrap().parse().unwrap()
+    };
+    assert!((amplitude("2") - 4.0).abs() <= 0.002, "{out}");
+    assert!(amplitude("3").abs() <= 0.002, "{out}");
+    assert!(amplitude("4").abs() <= 0.002, "{out}");
+    for line in [
+        "centre x0               0.300000 mm",
+        "centre y0              -0.200000 mm",
+        "orientation            7.000000 deg",
+        "shift_mm                0.125000 mm",
+        "equidistant_mm          0.159300 mm",
+    ] {
+        assert!(out.contains(line), "{line}\n{out}");
+    }
+    let clearance = |stdout: &str| -> f64 {
+        let row = stdout
+            .lines()
+            .find(|l| l.starts_with("rated/min_clearance_mm"))
+            .unwrap_or_else(|| panic!("{stdout}"));
+        row.split_whitespace()
+            .nth(1)
+            .unwrap()
+            .parse::<f64>()
+            .unwrap()
+            * 1e3
+    };
+    let built = crate::common::cycloid_here(&["check", "specs/reducer-measured.yaml"]);
+    assert_eq!(built.code, Some(0), "{built:?}");
+    let dir = Scratch::new("planted-form");
+    let deviations = PaperSpec::new().edit(
+        "modification:\n",
+        "  deviations:\n    form: [{ order: 2, cos_mm: 0.004, sin_mm: 0.0 }]\nmodification:\n",
+    );
+    dir.write("formed.yaml", deviations.text());
+    let drawn = cycloid(&dir.path, &["check", "formed.yaml"]);
+    assert_eq!(drawn.code, Some(0), "{drawn:?}");
+    assert!(
+        (clearance(&built.stdout) - clearance(&drawn.stdout)).abs() <= 0.01,
+        "{}\n{}",
+        built.stdout,
+        drawn.stdout
+    );
+}

@@ -180,3 +180,44 @@ fn the_shipped_specs_list_names_every_spec() {
         "shipped specs the README's list omits: {missing:?}"
     );
 }
+
+/// Every file the README names under `specs/`, `golden/`, `tools/` or `docs/` exists: its
+/// examples point at shipped files (a reader can run each as written).
+#[test]
+fn every_path_the_readme_names_exists() {
+    let readme = std::fs::read_to_string("README.md").unwrap();
+    let mut missing = Vec::new();
+    let mut named = 0;
+    for root in ["specs/", "golden/", "tools/", "docs/"] {
+        for (at, _) in readme.match_indices(root) {
+            // A path starts the word: not `tests/bad-specs/` or `cmm/specs/`.
+            let before = readme[..at].chars().next_back();
+            if before.is_some_and(|c| c.is_alphanumeric() || "-_/.".contains(c)) {
+                continue;
+            }
+            let path: String = readme[at..]
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || "._-/".contains(*c))
+                .collect();
+            let path = path.trim_end_matches(['.', '/']);
+            // A pattern (`specs/*.yaml`) or a folder named as such is no file to run.
+            if readme[at + path.len()..].starts_with('*') || path == root.trim_end_matches('/') {
+                continue;
+            }
+            named += 1;
+            if !std::path::Path::new(path).exists() {
+                missing.push(path.to_string());
+            }
+        }
+    }
+    missing.sort();
+    missing.dedup();
+    assert!(
+        named > 20,
+        "the README names the shipped files ({named} found)"
+    );
+    assert!(
+        missing.is_empty(),
+        "the README names files that do not exist: {missing:?}"
+    );
+}

@@ -321,3 +321,231 @@ fn the_optimise_count_ends_at_its_total() {
         .expect("the optimise phase");
     assert_eq!(optimise.2, optimise.1, "{optimise:?}");
 }
+
+/// The review's headline text of `specs/reducer-two-discs.yaml` (its `--report`), tags
+/// stripped: what a reviewer reads in the headline table.
+fn two_disc_review(tag: &str) -> (String, String) {
+    let dir = Scratch::new(tag);
+    let review = dir.path.join("review");
+    let run = cycloid_here(&[
+        "check",
+        "specs/reducer-two-discs.yaml",
+        "--report",
+        review.to_str().unwrap(),
+    ]);
+    assert_eq!(run.code, Some(0), "{run:?}");
+    let html = std::fs::read_to_string(review.join("index.html")).unwrap();
+    let start = html
+        .find("<section id=\"summary\">")
+        .expect("the headline section");
+    let end = start + html[start..].find("</section>").unwrap();
+    let mut text = String::new();
+    let mut inside = false;
+    for c in html[start..end].chars() {
+        match c {
+            '<' => inside = true,
+            '>' => {
+                inside = false;
+                text.push(' ');
+            }
+            _ if !inside => text.push(c),
+            _ => {}
+        }
+    }
+    (run.stdout, text)
+}
+
+/// One meaning per line (issue 27): with two discs the unloaded lost motion is one disc's
+/// (each disc's closing lags at its own phase) and the torsion figure the reducer's at ±3 % of
+/// rated torque; each line says which, and the unloaded one says why the two differ. The
+/// unloaded figure in arcmin is the arcsec one / 60 (1511.2 arcsec at crank 18° on this design,
+/// README "Torsion": 1505.7–1511.2 arcsec over the locked angles; 25.19 arcmin).
+#[test]
+fn two_disc_lost_motions_say_per_disc_or_reducer_and_why_they_differ() {
+    let (_, text) = two_disc_review("two-disc-labels");
+    assert!(
+        text.contains("max lost motion per disc (unloaded)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("max lost motion of the reducer (±3 % of rated torque)"),
+        "{text}"
+    );
+    assert!(!text.contains("max lost motion (unloaded)"), "{text}");
+    let why = text
+        .split("max lost motion per disc (unloaded)")
+        .nth(1)
+        .unwrap();
+    assert!(
+        why.contains("arcmin against the reducer's 25.20 arcmin at ±3 % of rated torque: this is one disc's free play with no load"),
+        "{why}"
+    );
+    assert!(why.contains("; 25.19 arcmin against"), "{why}");
+}
+
+/// Each disc's torque share is in the terminal's headline results and in the review: with 10
+/// rollers (even) the second disc meshes in the first one's phase and the two share equally
+/// (MODEL.md "Several discs"), so each carries T/2 = 10 N·m of the scene's 20 N·m, 50 %, at
+/// every crank angle (range of one value).
+#[test]
+fn disc_torque_shares_are_headlines() {
+    let (stdout, text) = two_disc_review("two-disc-shares");
+    for disc in 0..2 {
+        let line = format!(
+            "  torque share, disc {disc}  10.00 N·m  50.00 % of the scene's 20.00 N·m, mean over \
+             its 1080 crank angles; range 10.00–10.00 N·m (50.00 %–50.00 %)"
+        );
+        // Columns are padded to the scene's widest cell: compare words.
+        let words = |l: &str| l.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert!(
+            stdout
+                .lines()
+                .any(|l| l.starts_with("  ") && words(l) == words(&line)),
+            "{line}\n{stdout}"
+        );
+        assert!(
+            text.contains(&format!("torque share, disc {disc}")),
+            "{text}"
+        );
+    }
+    assert!(
+        text.contains("50.00 % of the scene's 20.00 N·m, mean over its 1080 crank angles"),
+        "{text}"
+    );
+}
+
+/// The paper's negative start without limits (−0.15/−0.135 mm at 10 N·m): a preload makes
+/// 17.6 kN on a roller and 5.7 GPa of Hertz pressure. Steel (E 206 GPa) is marked beyond ISO
+/// 76's 4,000 MPa, the roller force beyond 5 × T/(e·nc) = 5 × 10 N·m / 18 mm = 2,778 N, and
+/// so is the crank bearing (5,429 N); the pins are not (370 N < 5 × T/rw = 2,778 N). A mark
+/// is not a failed check: with no limits the run passes, exit 0. A limit on a quantity takes
+/// over its judgement: no mark.
+#[test]
+fn implausible_headlines_are_marked_without_failing() {
+    let dir = Scratch::new("plausible");
+    let start = crate::common::PaperSpec::new()
+        .modification(-0.15, -0.135)
+        .scenes(&crate::common::scene_item(
+            "rated",
+            10.0,
+            "{ from_deg: 0.0, to_deg: 108.0, steps: 1080 }",
+            "bearing",
+        ));
+    dir.write("start.yaml", start.text());
+    let run = cycloid(&dir.path, &["check", "start.yaml", "--json", "out.json"]);
+    assert_eq!(run.code, Some(0), "{run:?}");
+    // The results JSON carries the band of a marked headline, and only of a marked one.
+    let json: serde_json::Value = serde_json::from_str(&dir.read("out.json")).unwrap();
+    let headlines = json["summary"][0]["headlines"].as_array().unwrap();
+    let band = |key: &str| {
+        let h = headlines.iter().find(|h| h["key"] == key).unwrap();
+        h.get("beyond_plausible").and_then(|b| b.as_f64())
+    };
+    assert_eq!(band("max_contact_pressure_mpa"), Some(4000.0));
+    assert_eq!(band("max_pin_force_n"), None);
+    let marked: Vec<&str> = run.stdout.lines().filter(|l| l.starts_with("! ")).collect();
+    let starts = |l: &&str, what: &str| l.starts_with(&format!("! {what} "));
+    assert!(
+        marked.iter().any(|l| starts(l, "max Hertz pressure")
+            && l.contains("4000 MPa (ISO 76's static limit")
+            && l.contains("set limits.max_contact_pressure_mpa to judge it")),
+        "{marked:?}"
+    );
+    assert!(
+        marked.iter().any(|l| starts(l, "max roller force")
+            && l.contains(
+                "the 555.6 N the torque needs at the largest arm (T/(e·nc) = 10.00 N·m / 18.00 mm)"
+            )),
+        "{marked:?}"
+    );
+    assert!(
+        marked.iter().any(|l| starts(l, "max crank-bearing force")),
+        "{marked:?}"
+    );
+    assert!(!run.stdout.contains("! max pin force"), "{}", run.stdout);
+    assert_eq!(marked.len(), 3, "{marked:?}");
+    // A limit judges the pressure instead of the band.
+    dir.write(
+        "limited.yaml",
+        start
+            .with("limits:\n  max_contact_pressure_mpa: 6000\n")
+            .text(),
+    );
+    let run = cycloid(&dir.path, &["check", "limited.yaml"]);
+    assert_eq!(run.code, Some(0), "{run:?}");
+    assert!(
+        !run.stdout.contains("! max Hertz pressure"),
+        "{}",
+        run.stdout
+    );
+    assert!(
+        run.stdout.contains("rated/max_contact_pressure_mpa"),
+        "{}",
+        run.stdout
+    );
+}
+
+/// The shipped specs' ordinary designs carry no mark: every headline of theirs lies within its
+/// band (the largest force at most 1.8 × its scale). `specs/paper-negative-start.yaml` is the
+/// preloaded design above (marked on purpose); `specs/paper.yaml` runs four studies (slow) on
+/// the design and scenes of `specs/reducer-loaded.yaml`, covered here.
+#[test]
+fn shipped_specs_have_no_implausible_headline() {
+    let mut names: Vec<String> = std::fs::read_dir("specs")
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".yaml"))
+        .filter(|n| n != "paper-negative-start.yaml" && n != "paper.yaml")
+        .collect();
+    names.sort();
+    assert!(names.len() >= 8, "{names:?}");
+    for name in names {
+        let run = cycloid_here(&["check", &format!("specs/{name}")]);
+        assert!(
+            run.code == Some(0) || run.code == Some(1),
+            "{name}: {run:?}"
+        );
+        assert!(
+            !run.stdout.lines().any(|l| l.starts_with("! ")),
+            "{name}:\n{}",
+            run.stdout
+        );
+    }
+    let start = cycloid_here(&["check", "specs/paper-negative-start.yaml"]);
+    assert!(
+        start.stdout.contains("! max Hertz pressure"),
+        "{}",
+        start.stdout
+    );
+}
+
+/// The bands themselves (`engine::plausibility`): steel (E 206 GPa, the paper's) gets ISO 76's
+/// 4,000 MPa; a disc of E 70 GPa (aluminium) is no steel, so the conservative 1,500 MPa; the
+/// roller force's band is 5 × T/(e·nc) = 5 × 10,000 N·mm / (2 mm × 9) = 2,777.8 N and the pins'
+/// 5 × T/rw = 5 × 10,000 / 18 = 2,777.8 N too on this design (rw = e·nc = 18 mm); a scene
+/// without torque has no force band; a limit on the quantity leaves no band.
+#[test]
+fn plausibility_bands_follow_the_material_and_the_torque() {
+    use cycloid::engine::plausibility::{band, Basis};
+    use cycloid::model::quantity::{MAX_CONTACT_PRESSURE, MAX_PIN_FORCE, MAX_ROLLER_FORCE};
+    let spec = crate::common::PaperSpec::new().parse("paper.yaml");
+    let pressure = band(&spec.design, &spec.limits, &MAX_CONTACT_PRESSURE, 1e4).unwrap();
+    assert_eq!(pressure.band, 4000.0);
+    assert!(matches!(pressure.basis, Basis::Steel { .. }));
+    let mut aluminium = spec.design.clone();
+    aluminium.disc_material.youngs_modulus_mpa = 70e3;
+    let soft = band(&aluminium, &spec.limits, &MAX_CONTACT_PRESSURE, 1e4).unwrap();
+    assert_eq!(soft.band, 1500.0);
+    assert!(matches!(soft.basis, Basis::UnknownMaterial { .. }));
+    // 5 × 10,000/18 N; the division's round-off only.
+    for q in [&MAX_ROLLER_FORCE, &MAX_PIN_FORCE] {
+        let f = band(&spec.design, &spec.limits, q, 1e4).unwrap();
+        assert!((f.band - 5.0 * 1e4 / 18.0).abs() < 1e-9, "{q:?}: {f:?}");
+        assert!(band(&spec.design, &spec.limits, q, 0.0).is_none());
+    }
+    let limited = crate::common::PaperSpec::new()
+        .rated_period(36)
+        .with("limits:\n  max_contact_pressure_mpa: 2000.0\n")
+        .parse("limited.yaml");
+    assert!(band(&limited.design, &limited.limits, &MAX_CONTACT_PRESSURE, 1e4).is_none());
+}

@@ -8,6 +8,11 @@ use crate::common;
 const EXPECTED: &[(&str, i32, &str)] = &[
     ("reducer.yaml", 0, "paper optimum, clearance only"),
     (
+        "reducer-measured.yaml",
+        0,
+        "paper optimum as built: points with a planted 4 µm form error",
+    ),
+    (
         "reducer-tolerance.yaml",
         0,
         "paper optimum, clearance only, with its drawing's tolerances (check alone ignores them)",

@@ -173,7 +173,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
         // The study draws from the drawing, whatever disc the other checks run on.
         checks.push(tolerance::failure_rate_check(drawing, progress)?);
     }
-    let summaries = summary::summarise(&results);
+    let summaries = summary::marked(&spec, &results);
     let review = match options.review {
         Some(r) => Some(Review {
             disc: drawing::disc(

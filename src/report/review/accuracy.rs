@@ -64,7 +64,10 @@ pub(super) fn accuracy_section(ladder: &Ladder) -> Section {
                 Some(i) if ladder.rungs[i].is_reference => "Only the reference meets every \
                     tolerance; its own error is not measured (no finer rung).",
                 Some(i) => { "Cheapest rung meeting every tolerance: " b { (ladder.rungs[i].label) }
-                    " (" (text::steps_text(ladder.rungs[i].steps_per_period)) " steps per mesh period)." },
+                    " (" (text::steps_text(ladder.rungs[i].steps_per_period)) " steps per mesh period, "
+                    (ladder.rungs[i].angles) " crank angles): the least work (fewest crank \
+                    angles, then the coarsest settings) among the rungs that meet them; the times \
+                    are information, not the choice." },
                 None => "No rung meets every tolerance.",
             }
         }

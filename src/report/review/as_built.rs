@@ -138,8 +138,11 @@ fn comparison_plots(
     out
 }
 
-const CLEARANCE_CAPTION: &str = "At each crank angle the smallest gap of any roller to the \
-    disc, µm (negative: interference): the spec's disc dashed, the disc as identified solid.";
+const CLEARANCE_CAPTION: &str = "At each of the scene's crank angles the smallest gap of any \
+    roller to the disc, µm (negative: interference): the spec's disc dashed, the disc as \
+    identified solid. A form error makes the gaps repeat only after several mesh periods: the \
+    min clearance in the table above is sought over that whole period, so it can lie outside \
+    a scene that covers less.";
 const TE_CAPTION: &str = "The loaded transmission error over the crank, arcsec: the spec's \
     disc dashed, the disc as identified solid.";
 

@@ -75,7 +75,7 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         .as_ref()
         .map_or(input.spec.modification, |v| v.designed_modification);
     let mut sections = vec![
-        summary::summary_section(input.results),
+        summary::summary_section(input.spec, input.results),
         design::design_section(input.spec, &designed),
     ];
     if let Some(view) = &input.as_built {

@@ -49,6 +49,8 @@ tr.fail td.verdict { color: #b00; font-weight: bold; }
 tr.pass td.verdict { color: #1d6b1a; }
 tr.fail { background: #fff3f3; }
 tr.cheapest { background: #e3f4e1; font-weight: bold; }
+tr.implausible td { background: #fdecc8; }
+tr.implausible td[rowspan] { background: none; }
 tr.reference { background: #f3f3f3; }
 td.over { color: #b00; }
 table.study th { font-weight: normal; }

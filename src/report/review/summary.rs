@@ -1,14 +1,16 @@
 //! The review's headline results of every scene ([`engine::summary`](crate::engine::summary)).
 
 use super::common::{data_table, section, Section};
-use crate::engine::summary::summarise;
+use crate::engine::summary::marked;
 use crate::model::results::SceneResult;
 use crate::report::table;
+use crate::spec::Spec;
 use maud::html;
 
 /// The headline results of every scene ([`engine::summary`](crate::engine::summary)).
-pub(super) fn summary_section(results: &[SceneResult]) -> Section {
-    let summaries = summarise(results);
+/// A value beyond its plausible band (`engine::plausibility`) is marked in its row, not failed.
+pub(super) fn summary_section(spec: &Spec, results: &[SceneResult]) -> Section {
+    let summaries = marked(spec, results);
     let body = html! {
         p.note { "What each scene computed, at a glance: the extremes of its curves and where \
                   they occur." }
@@ -20,14 +22,15 @@ pub(super) fn summary_section(results: &[SceneResult]) -> Section {
                         tr { td { code { (s.scene) } } td colspan="3" {
                             "no headline results (the scene computes none of them)" } }
                     }
-                    @for (k, h) in s.headlines.iter().enumerate() {
-                        tr {
+                    @let rows = table::summary_rows(s, &summaries);
+                    @for (k, row) in rows.iter().enumerate() {
+                        tr.implausible[row.marked] {
                             @if k == 0 {
-                                td rowspan=(s.headlines.len()) { code { (s.scene) } }
+                                td rowspan=(rows.len()) { code { (s.scene) } }
                             }
-                            td { (h.quantity.label) }
-                            td.num { (table::headline_value(h)) }
-                            td { (table::headline_at(h, s, &summaries)) }
+                            td { (row.label) }
+                            td.num { (row.value) }
+                            td { (row.at) }
                         }
                     }
                 }

@@ -13,6 +13,7 @@ pub mod bearing_life;
 pub mod check;
 pub mod commands;
 pub mod drawing;
+pub mod efficiency;
 pub mod golden;
 pub mod limit;
 pub mod optimise;

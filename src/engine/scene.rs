@@ -6,7 +6,7 @@
 //! evaluate is an error. A detail of an effect (the closing lags of `clearance`) is computed
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
-use crate::engine::{bearing_life, torsion};
+use crate::engine::{bearing_life, efficiency, torsion};
 use crate::equilibrium::discs::Discs;
 use crate::equilibrium::discs_sweep::{self, DiscSweeps};
 use crate::equilibrium::loaded::Model;
@@ -148,14 +148,18 @@ pub fn run_design(
         clearance,
         loaded,
         torsion: None,
+        efficiency: None,
         discs: Vec::new(),
     };
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     if design.discs == 1 {
         let loaded = loaded_sweep(design, m, (scene, plan), settings, progress)?;
         first_order_valid(design, m, scene, (&loaded, 0.0))?;
+        let model = loaded_model(design, m, scene, plan, settings);
+        let efficiency = efficiency::efficiency(design, &model, (scene, plan), &[&loaded])?;
         let mut one = result(scene.name.clone(), clearance(0.0)?, loaded);
         one.torsion = torsion;
+        one.efficiency = efficiency.map(|e| e.0);
         return Ok(one);
     }
     let sweeps = loaded_disc_sweeps(design, m, (scene, plan), settings, progress)?;
@@ -170,6 +174,16 @@ pub fn run_design(
         let name = format!("{} disc {k}", scene.name);
         let disc = result(name, clearance(design.disc_phase_rad(k))?, loaded);
         reducer.discs.push(disc);
+    }
+    if let Some(s) = &sweeps {
+        let model = loaded_model(design, m, scene, plan, settings);
+        let discs: Vec<&LoadedSweep> = s.discs.iter().collect();
+        if let Some((all, each)) = efficiency::efficiency(design, &model, (scene, plan), &discs)? {
+            reducer.efficiency = Some(all);
+            for (disc, e) in reducer.discs.iter_mut().zip(each) {
+                disc.efficiency = Some(e);
+            }
+        }
     }
     reducer.loaded.transmission = sweeps.and_then(|s| s.transmission);
     reducer.torsion = torsion;

@@ -3,4 +3,5 @@
 //! coupled balance are built.
 
 pub mod coupled;
+pub mod loss;
 pub mod sliding;

@@ -15,6 +15,7 @@
 //! losses × ω × 1e-3 and exist only with `input_speed_rpm`, the temperature ambient +
 //! P/(h·A) only with `reducer.thermal` too.
 
+use crate::equilibrium::friction::coupled::Coupling;
 use crate::equilibrium::friction::loss::{disc_losses as contact_losses, PathLosses};
 use crate::equilibrium::loaded::{AngleSolution, Model};
 use crate::equilibrium::pins::PinState;
@@ -66,7 +67,11 @@ pub fn efficiency(
             }
         })
         .collect();
-    let reducer = reducer_figures(design, scene, &total, speed);
+    let input = match friction.model {
+        FrictionModel::Loss => None,
+        FrictionModel::Coupled => Some(crank_input_torque(&friction, design, scene, discs)),
+    };
+    let reducer = reducer_figures(design, scene, &total, speed, input);
     let disc_curves = if per_disc.len() > 1 {
         per_disc.into_iter().map(|d| curves(d, None)).collect()
     } else {
@@ -90,6 +95,7 @@ fn reducer_figures(
     scene: &Scene,
     loss: &[PathLosses],
     speed_rad_s: Option<f64>,
+    coupled_input_nmm: Option<Vec<f64>>,
 ) -> ReducerEfficiency {
     let nc = design.teeth as f64;
     let torque = scene.output_torque_nmm;
@@ -99,6 +105,11 @@ fn reducer_figures(
         .thermal
         .zip(speed_rad_s)
         .map(|(t, w)| t.temperature_c(units::w(mean_loss * w)));
+    let input_torque_nmm: Vec<f64> = coupled_input_nmm.unwrap_or_else(|| {
+        // The loss model's input torque from the energy balance P_in = P_out + Σ losses per
+        // unit input speed: T/nc + loss(φ).
+        loss.iter().map(|l| torque / nc + l.total()).collect()
+    });
     ReducerEfficiency {
         output_power_nmm: output_power,
         efficiency: loss
@@ -106,11 +117,52 @@ fn reducer_figures(
             .map(|l| efficiency_of(output_power, l.total()))
             .collect(),
         mean_efficiency: efficiency_of(output_power, mean_loss),
-        // The loss model's input torque from the energy balance P_in = P_out + Σ losses per
-        // unit input speed: T/nc + loss(φ).
-        input_torque_nmm: loss.iter().map(|l| torque / nc + l.total()).collect(),
+        self_locking_crank_rad: self_locking(scene, &input_torque_nmm),
+        input_torque_nmm,
         temperature_c,
     }
+}
+
+/// Where the output drives (T < 0 at the forward kinematics: back-driving) and the input must
+/// still push (T_in ≥ 0): the friction holds more than the output's torque can drive, the
+/// reducer self-locks at those crank angles (rad). Empty for a driving output torque.
+fn self_locking(scene: &Scene, input_torque_nmm: &[f64]) -> Vec<f64> {
+    if scene.output_torque_nmm >= 0.0 {
+        return Vec::new();
+    }
+    scene
+        .crank_rad
+        .iter()
+        .zip(input_torque_nmm)
+        .filter(|(_, t)| **t >= 0.0)
+        .map(|(phi, _)| *phi)
+        .collect()
+}
+
+/// The coupled model's input torque at each crank angle, N·mm, from the crank's balance about
+/// the axis (`equilibrium::friction::coupled`): T_in = Σ_k (E_k × Fb_k + c_b·|Fb_k|) + T0, with
+/// E_k = (e + de)·e_φk the eccentric of disc k and Fb_k its bearing's force on the disc (at
+/// the angle ε_k from e_φk: E_k × Fb_k = (e + de)·|Fb_k|·sin ε_k).
+fn crank_input_torque(
+    friction: &Friction,
+    design: &Design,
+    scene: &Scene,
+    discs: &[&LoadedSweep],
+) -> Vec<f64> {
+    let c = Coupling::new(friction, design);
+    (0..scene.crank_rad.len())
+        .map(|i| {
+            let discs: f64 = discs
+                .iter()
+                .filter_map(|d| d.bearing.as_ref())
+                .map(|b| {
+                    let (force, angle) = (b.force_n[i], b.angle_rad[i]);
+                    c.eccentricity_mm * force * angle.sin() + c.bearing_arm_mm * force
+                })
+                .sum();
+            discs + friction.no_load_torque_nmm
+        })
+        .collect()
 }
 
 /// The mean of each path over the angles.
@@ -129,7 +181,9 @@ fn disc_losses(
     discs: &[&LoadedSweep],
 ) -> Result<Vec<Vec<PathLosses>>> {
     match friction.model {
-        FrictionModel::Loss => discs
+        // The coupled model's sweep is already the coupled balance (`scene::loaded_model`
+        // put the friction in it): its forces and contact points give its losses the same way.
+        FrictionModel::Loss | FrictionModel::Coupled => discs
             .iter()
             .enumerate()
             .map(|(k, d)| {
@@ -142,10 +196,6 @@ fn disc_losses(
                 )
             })
             .collect(),
-        FrictionModel::Coupled => Err(Error::invalid(
-            "reducer.friction",
-            "the coupled model is not available yet: give `model: loss`".into(),
-        )),
     }
 }
 

@@ -19,7 +19,9 @@ use crate::geometry::mesh_minimum::{self, MeshMinimum};
 use crate::model::accuracy::LadderTolerances;
 use crate::model::quantity::QUANTITIES;
 use crate::model::results::{BearingLife, ClearanceSweep, LoadedSweep, SceneResult};
-use crate::model::{Design, Detail, Effect, GeometryMode, Modification, Plan, Scene};
+use crate::model::{
+    Design, Detail, Effect, FrictionModel, GeometryMode, Modification, Plan, Scene,
+};
 use crate::progress::{Progress, Silent};
 use crate::spec::Spec;
 use crate::units;
@@ -477,7 +479,19 @@ pub fn loaded_model(
 ) -> Model {
     let mut model = Model::new(design, m, scene, plan);
     model.settings = *settings;
-    model
+    // The coupled friction model puts friction inside the balance of a crank sweep that asks
+    // for `efficiency`: its loaded outputs are then the coupled ones (a torsion loop's input is
+    // locked: the sweep's kinematics do not apply there).
+    match design.friction {
+        Some(f)
+            if f.model == FrictionModel::Coupled
+                && plan.computes(Effect::Efficiency)
+                && scene.torque_sweep.is_none() =>
+        {
+            model.with_friction(&f, design)
+        }
+        _ => model,
+    }
 }
 
 /// The error of a loaded solve that failed: the scene and the crank angle.

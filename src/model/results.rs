@@ -230,8 +230,12 @@ pub struct ReducerEfficiency {
     pub efficiency: Vec<f64>,
     /// P_out/(P_out + mean loss): the mean of the losses, not of η.
     pub mean_efficiency: f64,
-    /// The input torque at each crank angle, N·mm, `[angle]`.
+    /// The input torque at each crank angle, N·mm, `[angle]`: the loss model's T/nc + loss,
+    /// the coupled model's from the crank's balance (with its ripple).
     pub input_torque_nmm: Vec<f64>,
+    /// The crank angles (rad) where the output drives (T < 0) and the input must still push
+    /// (T_in ≥ 0): the friction holds the reducer, it self-locks there; empty when T ≥ 0.
+    pub self_locking_crank_rad: Vec<f64>,
     /// The steady temperature ambient + P/(h·A), °C, with `reducer.thermal` and a speed.
     pub temperature_c: Option<f64>,
 }

@@ -203,6 +203,10 @@ pub struct SceneDoc<'a> {
     /// The input torque at each crank angle, N·m.
     #[serde(skip_serializing_if = "Option::is_none")]
     input_torque_nm: Option<Curve<'a>>,
+    /// The crank angles where the reducer self-locks (the output drives, T < 0, and the input
+    /// must still push), degrees; empty when it back-drives everywhere or T ≥ 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    self_locking_deg: Option<Curve<'a>>,
     /// The mean power lost on each path, W (with a speed; a disc's: its contacts').
     #[serde(skip_serializing_if = "Option::is_none")]
     power_loss_w: Option<PowerLossDoc>,
@@ -376,6 +380,7 @@ impl<'a> SceneDoc<'a> {
             ratio_min,
             efficiency: reducer_eff.map(|e| Curve::plain(&e.efficiency)),
             input_torque_nm: reducer_eff.map(|e| Curve::new(&e.input_torque_nmm, To::Nm)),
+            self_locking_deg: reducer_eff.map(|e| Curve::new(&e.self_locking_crank_rad, To::Deg)),
             power_loss_w: r.efficiency.as_ref().and_then(PowerLossDoc::new),
             power_loss_note: r
                 .efficiency

@@ -212,9 +212,8 @@ pub(super) fn thermal(raw: &RawThermal) -> Result<Thermal> {
     })
 }
 
-/// A scene that asks for `efficiency` needs `reducer.friction`; and until the coupled model
-/// is built into the engine, a friction model other than `loss` is refused at its key (never
-/// run silently with the loss model).
+/// A scene that asks for `efficiency` needs `reducer.friction`; the coupled model needs a rigid
+/// crank bearing in such a scene (refused at the scene's bearing stiffness).
 pub(super) fn check_scenes(design: &Design, scenes: &[Scene]) -> Result<()> {
     if let Some(i) = scenes
         .iter()
@@ -229,13 +228,20 @@ pub(super) fn check_scenes(design: &Design, scenes: &[Scene]) -> Result<()> {
                         .into(),
                 ))
             }
+            // The coupled model balances with a rigid crank bearing only (its friction
+            // moment in a compliant bearing's centre search is not built).
             Some(f) if f.model == FrictionModel::Coupled => {
-                return Err(Error::invalid(
-                    KEY,
-                    "the coupled model is not available yet: give `model: loss` (forces of \
-                     the frictionless balance, losses μ·F·sliding speed)"
-                        .into(),
-                ))
+                if let Some(k) = scenes.iter().position(|s| {
+                    s.effects.contains(&Effect::Efficiency)
+                        && s.bearing_stiffness_n_per_mm.is_some()
+                }) {
+                    return Err(Error::invalid(
+                        format!("scenes[{k}].bearing_stiffness_n_per_mm"),
+                        "the coupled friction model needs a rigid crank bearing: leave out \
+                         bearing_stiffness_n_per_mm, or give `reducer.friction.model: loss`"
+                            .into(),
+                    ));
+                }
             }
             Some(_) => {}
         }

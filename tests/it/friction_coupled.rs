@@ -290,3 +290,105 @@ fn loss_and_coupled_models_differ_as_mu_squared() {
     assert!(d1.abs() > 1e-6, "the models differ: {d1:e}");
     assert!((3.5..=4.5).contains(&ratio), "{d1:e} / {d2:e} = {ratio}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Through the engine: the shipped efficiency spec with the coupled model.
+// ---------------------------------------------------------------------------------------------
+
+/// specs/reducer-efficiency.yaml with the coupled model, its text edited by `edits` (each
+/// `from` must occur once).
+fn efficiency_spec(edits: &[(&str, &str)]) -> String {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/specs/reducer-efficiency.yaml");
+    let mut text = std::fs::read_to_string(path).unwrap();
+    let model = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("model:"))
+        .unwrap()
+        .to_string();
+    text = text.replacen(&model, "    model: coupled", 1);
+    for (from, to) in edits {
+        assert_eq!(text.matches(from).count(), 1, "`{from}` once");
+        text = text.replacen(from, to, 1);
+    }
+    text
+}
+
+fn run_efficiency(text: &str) -> cycloid::model::results::SceneResult {
+    let spec = cycloid::spec::parse("coupled.yaml", text).unwrap_or_else(|e| panic!("{e}"));
+    let scene = &spec.scenes[0];
+    let plan = Plan::for_scene(scene);
+    cycloid::engine::scene::run(&spec, scene, &plan, &Default::default())
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Through the engine, in first-order geometry (where the normal forces do no work:
+/// `first_order_input_power_is_output_plus_losses`), one and two discs: the input torque from
+/// the crank's balance, T_in = Σ E × Fb + μ_b·|Fb|·d/2 + T0, equals T/nc + the losses that the
+/// loss function (`friction::loss`, shared with the loss model) measures on the coupled forces,
+/// at every angle. Two independent routes: the crank's moment and the contacts' Σ μ·F·v.
+/// Tolerance 1e-8 of the input torque: the balances' 1e-11, and the bearing force passing
+/// through the sweep's magnitude and angle columns (a few ulp each).
+#[test]
+fn engine_input_torque_is_output_plus_losses_in_first_order_geometry() {
+    for discs in ["", "  discs: 2\n"] {
+        let text = efficiency_spec(&[
+            (
+                "effects: [efficiency]",
+                "effects: [efficiency]\n    geometry: first_order",
+            ),
+            ("  face_width_mm:", &format!("{discs}  face_width_mm:")),
+            ("steps: 1080", "steps: 108"),
+        ]);
+        let r = run_efficiency(&text);
+        let e = r.efficiency.as_ref().unwrap();
+        let reducer = e.reducer.as_ref().unwrap();
+        let torque_per_nc = 20_000.0 / 9.0;
+        for (t_in, loss) in reducer.input_torque_nmm.iter().zip(&e.loss_nmm) {
+            let expected = torque_per_nc + loss.total();
+            assert!(
+                (t_in - expected).abs() <= 1e-8 * t_in,
+                "discs `{discs}`: {t_in} against {expected}"
+            );
+        }
+        assert!(reducer.self_locking_crank_rad.is_empty());
+    }
+}
+
+/// A negative output torque (the output drives): with moderate friction the reducer back-drives
+/// (the input torque is negative at every angle, no self-locking); with μ = 0.9 on the rollers'
+/// pins and the sleeves the friction holds more than the output can drive: the input must
+/// still push, and every angle is reported as self-locking, not a solver failure.
+#[test]
+fn back_driving_and_self_locking_are_reported() {
+    let back = run_efficiency(&efficiency_spec(&[
+        ("output_torque_nm: 20.0", "output_torque_nm: -20.0"),
+        ("steps: 1080", "steps: 108"),
+    ]));
+    let reducer = back.efficiency.unwrap().reducer.unwrap();
+    assert!(reducer.input_torque_nmm.iter().all(|t| *t < 0.0));
+    assert!(reducer.self_locking_crank_rad.is_empty());
+    let text = efficiency_spec(&[
+        ("output_torque_nm: 20.0", "output_torque_nm: -20.0"),
+        ("steps: 1080", "steps: 108"),
+    ])
+    .replace("mu: 0.06 ", "mu: 0.9 ");
+    let locked = run_efficiency(&text).efficiency.unwrap().reducer.unwrap();
+    assert!(locked.input_torque_nmm.iter().all(|t| *t > 0.0));
+    assert_eq!(locked.self_locking_crank_rad.len(), 108);
+}
+
+/// The coupled model with a compliant crank bearing is refused at the scene's key (exit 2), not
+/// run silently with another model.
+#[test]
+fn coupled_with_a_compliant_bearing_is_refused_at_its_key() {
+    let text = efficiency_spec(&[(
+        "effects: [efficiency]",
+        "effects: [efficiency]\n    bearing_stiffness_n_per_mm: 1.0e5",
+    )]);
+    let e = cycloid::spec::parse("coupled.yaml", &text).unwrap_err();
+    let message = e.to_string();
+    assert!(
+        message.contains("scenes[0].bearing_stiffness_n_per_mm") && message.contains("rigid"),
+        "{message}"
+    );
+}

@@ -170,32 +170,37 @@ fn tiny_friction_moves_the_balance_by_little() {
     }
 }
 
-/// The energy identity of the coupled balance at every angle, for random designs,
-/// modifications, μ ∈ [0, 0.2], torques of both signs and every roller/pin mode:
-/// P_in − P_out − Σ losses − W_n − W_c = 0, each term recomputed from the forces as vectors at
-/// their points and the rigid-body velocities (`Coupling::energy`). P_in comes from the crank's
-/// balance (T_in = E × Fb + M_b) and Fb from the disc's force balance, so the identity holds
-/// exactly only if the disc's moment balance carries every friction moment, with the losses'
-/// signs (the disc's virtual power is zero only in equilibrium).
-/// Tolerance: the balances converge to 1e-11 of their moment scale (`Settings::rel_tol`), the
-/// pins' pass to the same; the identity's error is that residual moment times the disc's speed
-/// 1/nc, well below 1e-9 of the largest term.
-#[test]
-fn energy_identity_at_every_angle() {
-    let config = ProptestConfig {
-        failure_persistence: None,
-        ..ProptestConfig::default()
-    };
-    proptest!(config, |(
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(64)
+    ))]
+
+    /// The energy identity of the coupled balance at every angle, for random designs,
+    /// modifications, μ ∈ [0, 0.2], torques of both signs and every roller/pin mode, in two parts
+    /// (`Energy`): the disc's virtual power P_in = P_flange + Σ losses + W_n + W_b and the flange's
+    /// P_flange = T/nc + W_p, every term recomputed from the forces as vectors at their points and
+    /// the rigid-body velocities (`Coupling::energy`). P_in comes from the crank's balance
+    /// (T_in = E × Fb + M_b) and Fb from the disc's force balance, so the first holds only if the
+    /// disc's moment balance carries every friction moment with the losses' signs (the disc's
+    /// virtual power is zero only in equilibrium); the second only if the pins' balance carries
+    /// their friction's moment about the axis.
+    /// Tolerance: the balances converge to 1e-11 of their moment scale (`Settings::rel_tol`): the
+    /// rollers' Σ|F·l̃| + c_b·|Fb|, which with friction arms of both signs and a bearing friction that
+    /// dominates (a bore of 0.4·Rp at μ 0.2 under a light torque) is up to ~100× the largest power
+    /// term; the identity's error is that residual moment times the disc's speed 1/nc. 1e-8 of the
+    /// largest term keeps a margin of ~10 over the worst case seen (1.0e-9) and is 1e6 below what a
+    /// friction moment missing from a balance leaves (O(μ) of the powers).
+    #[test]
+    fn energy_identity_at_every_angle(
         case in cases(),
         mu in 0.0f64..0.2,
         load in -1.0f64..1.0,
         rotating in any::<bool>(),
         sleeves in any::<bool>(),
         first_order in any::<bool>(),
-    )| {
+    ) {
         identity_holds(&case, mu, load, rotating, sleeves, first_order)?;
-    });
+    }
 }
 
 fn identity_holds(
@@ -231,10 +236,16 @@ fn identity_holds(
         };
         let e = c.energy(phi, &last, torque);
         prop_assert!(
-            e.imbalance().abs() <= 1e-9 * e.scale(),
+            e.imbalance().abs() <= 1e-8 * e.scale(),
             "φ {}°: {e:?}, imbalance {:e}",
             phi.to_degrees(),
             e.imbalance()
+        );
+        prop_assert!(
+            e.flange_imbalance().abs() <= 1e-8 * e.scale(),
+            "φ {}°: {e:?}, flange {:e}",
+            phi.to_degrees(),
+            e.flange_imbalance()
         );
     }
     Ok(())
@@ -254,7 +265,9 @@ fn first_order_input_power_is_output_plus_losses() {
         let coupling = c.coupling.unwrap();
         for e in energies(&coupling, &s, &solutions(&c, &s)) {
             assert!(e.normal_work.abs() <= 1e-9 * e.input, "{e:?}");
-            assert!(e.convention.abs() <= 1e-9 * e.input, "{e:?}");
+            assert!(e.bearing_offset.abs() <= 1e-9 * e.input, "{e:?}");
+            assert!(e.pin_convention.abs() <= 1e-9 * e.input, "{e:?}");
+            assert!(e.flange_imbalance().abs() <= 1e-9 * e.input, "{e:?}");
             assert!(
                 (e.input - e.output - losses(&e)).abs() <= 1e-9 * e.input,
                 "{e:?}"

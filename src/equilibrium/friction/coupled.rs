@@ -26,13 +26,14 @@
 //! (the bearing pushes the crank's eccentric E = (e + de)·e_φ with −Fb and the moment −M_b):
 //!   T_in = E × Fb + M_b.
 //! Energy (the disc's virtual power under the rigid field v_disc, the crank's under its
-//! rotation): P_in = P_out + Σ losses + W_n + W_c, with W_n the work of the normal forces on
-//! the relative normal velocities of their contacts under the nominal kinematics (zero when
-//! every contact normal passes through the pitch point and every pin force is along −e_φ: the
-//! first-order geometry; of the order of the lag otherwise, the TE ripple's work) and W_c the
-//! bearing's offset term Fb·(ω ẑ × E − v_disc(O_d)) (zero with the rigid bearing of the nominal
-//! eccentricity) plus the pins' normal forces' moment about the axis beyond the paper's
-//! (ω/nc)·Σ F_j·(O_d × û_j) (zero when every pin force is along −e_φ). `energy` evaluates them.
+//! rotation, the flange's under its): P_in = P_out + Σ losses + W_n + W_b + W_p, with W_n the
+//! work of the normal forces on the relative normal velocities of their contacts under the
+//! nominal kinematics (zero when every contact normal passes through the pitch point and every
+//! pin force is along −e_φ: the first-order geometry; of the order of the lag otherwise, the
+//! TE ripple's work), W_b the bearing's offset term Fb·(ω ẑ × E − v_disc(O_d)) (zero with the
+//! rigid bearing on the nominal orbit) and W_p the pins' normal forces' moment about the axis
+//! beyond the paper's, (ω/nc)·Σ F_j·(O_d × û_j) (zero when every pin force is along −e_φ).
+//! `energy` evaluates them.
 //!
 //! Units: mm, N, N·mm, rad; powers per unit input speed (N·mm per rad of crank).
 
@@ -240,7 +241,8 @@ impl Coupling {
     }
 
     /// The powers of one disc's coupled solution at crank angle `crank_rad`, per unit input
-    /// speed (N·mm/rad): the terms of P_in = P_out + Σ losses + W_n + W_c.
+    /// speed (N·mm/rad): the terms of P_in = P_flange + Σ losses + W_n + W_b and
+    /// P_flange = P_out + W_p (`Energy`).
     pub fn energy(&self, crank_rad: f64, sol: &AngleSolution, output_torque_nmm: f64) -> Energy {
         let e_phi = unit(crank_rad);
         let (nc, ecc) = (self.teeth, self.eccentricity_mm);
@@ -262,13 +264,17 @@ impl Coupling {
             // The hole's material relative to the pin: v_disc(X) − ωd ẑ × X.
             let x = p.point;
             let relative = disc_velocity(crank_rad, ecc, nc, x) - Vec2::new(-x.y, x.x) * wd;
-            e.output_pins -= self.pin_friction(e_phi, p).dot(&relative);
+            let friction = self.pin_friction(e_phi, p);
+            e.output_pins -= friction.dot(&relative);
             e.normal_work -= p.force_n * p.direction.dot(&relative);
-            e.convention += p.force_n * cross(centre, p.direction) / nc as f64;
+            // The power the pins take from the disc, −f·(ωd ẑ × X) = (1/nc)·X × f.
+            e.flange += cross(x, p.force_vector() + friction) / nc as f64;
+            e.pin_convention += p.force_n * cross(centre, p.direction) / nc as f64;
         }
         // The crank pushes at E with velocity ω ẑ × E; the disc's field at its centre.
         let eccentric_velocity = Vec2::new(-e_phi.y, e_phi.x) * ecc;
-        e.convention += fb.dot(&(eccentric_velocity - disc_velocity(crank_rad, ecc, nc, centre)));
+        e.bearing_offset =
+            fb.dot(&(eccentric_velocity - disc_velocity(crank_rad, ecc, nc, centre)));
         e
     }
 }
@@ -280,14 +286,19 @@ fn unit(crank_rad: f64) -> Vec2 {
 }
 
 /// The power terms of one disc at one crank angle, per unit input speed, N·mm/rad
-/// (`Coupling::energy`): P_in = P_out + rollers + output_pins + crank_bearing + normal_work +
-/// convention, to round-off, when the disc is in the coupled balance.
+/// (`Coupling::energy`). Two identities hold to round-off in the coupled balance:
+/// - the disc's virtual power: P_in = P_flange + Σ losses + W_n + W_b (`imbalance`), which
+///   fails where the disc's moment balance misses a friction moment;
+/// - the flange's torque: P_flange = P_out + W_p (`flange_imbalance`), P_out = T/nc with T the
+///   scene's torque, which fails where the pins' balance misses one.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Energy {
     /// P_in/ω = T_in (this disc's share).
     pub input: f64,
-    /// P_out/ω = T/nc.
+    /// P_out/ω = T/nc, T the torque this disc balances.
     pub output: f64,
+    /// The power the pins take from the disc, (1/nc)·Σ X_j × f_j, measured from the forces.
+    pub flange: f64,
     /// −Σ f_t·v_rel over the rollers: the rollers' loss.
     pub rollers: f64,
     /// −Σ f_t·v_rel over the pins: the pins' loss.
@@ -296,20 +307,28 @@ pub struct Energy {
     pub crank_bearing: f64,
     /// W_n: Σ F·(relative normal velocity) of the contacts (approach positive).
     pub normal_work: f64,
-    /// W_c: the bearing offset's and the paper's pin-moment convention's terms.
-    pub convention: f64,
+    /// W_b = Fb·(ω ẑ × E − v_disc(O_d)): the bearing's offset from the nominal orbit.
+    pub bearing_offset: f64,
+    /// W_p = (1/nc)·Σ F_j·(O_d × û_j): the pins' normal forces' moment about the axis beyond
+    /// the paper's (about the disc centre).
+    pub pin_convention: f64,
 }
 
 impl Energy {
-    /// P_in − P_out − Σ losses − W_n − W_c: zero to round-off in the coupled balance.
+    /// P_in − P_flange − Σ losses − W_n − W_b: zero to round-off when the disc balances.
     pub fn imbalance(&self) -> f64 {
         self.input
-            - self.output
+            - self.flange
             - self.rollers
             - self.output_pins
             - self.crank_bearing
             - self.normal_work
-            - self.convention
+            - self.bearing_offset
+    }
+
+    /// P_flange − P_out − W_p: zero to round-off when the pins balance the torque.
+    pub fn flange_imbalance(&self) -> f64 {
+        self.flange - self.output - self.pin_convention
     }
 
     /// The scale of the terms, for a relative imbalance.
@@ -317,11 +336,13 @@ impl Energy {
         [
             self.input,
             self.output,
+            self.flange,
             self.rollers,
             self.output_pins,
             self.crank_bearing,
             self.normal_work,
-            self.convention,
+            self.bearing_offset,
+            self.pin_convention,
         ]
         .iter()
         .map(|x| x.abs())

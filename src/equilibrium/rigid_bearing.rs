@@ -475,9 +475,7 @@ fn solve_pins_coupled(
     model: &Model,
     c: &Coupling,
     p: &Pins,
-    e_phi: Vec2,
-    offset: Vec2,
-    psi: f64,
+    (e_phi, offset, psi): (Vec2, Vec2, f64),
     guess: f64,
     work: &mut Work,
 ) -> Result<f64, SolveFailure> {
@@ -532,7 +530,7 @@ fn solve_rigid_coupled(
     let psi = |lag: f64| ideal + if model.rollers.is_some() { lag } else { 0.0 };
     let mut totals = PinTotals::default();
     if let Some(p) = &model.pins {
-        out = solve_pins_coupled(model, c, p, e_phi, offset, psi(lag), out, work)?;
+        out = solve_pins_coupled(model, c, p, (e_phi, offset, psi(lag)), out, work)?;
         work.sol.output_lag_rad = Some(out);
         totals = PinTotals::of(c, e_phi, centre, &work.sol.pins);
     }
@@ -546,7 +544,7 @@ fn solve_rigid_coupled(
         let Some(p) = &model.pins else {
             return Ok(());
         };
-        out = solve_pins_coupled(model, c, p, e_phi, offset, psi(lag), out, work)?;
+        out = solve_pins_coupled(model, c, p, (e_phi, offset, psi(lag)), out, work)?;
         work.sol.output_lag_rad = Some(out);
         let moved = PinTotals::of(c, e_phi, centre, &work.sol.pins);
         let before = coupled_roller_moment(c, crank, centre, &work.sol.rollers, &totals);

@@ -35,12 +35,13 @@ fn no_limits(text: &str) -> String {
     text[..text.find("\nlimits:").unwrap() + 1].to_string()
 }
 
-/// The scene `rated` of `check --json` on `text`.
+/// The scene `rated` of `check --json` on `text` (whether its limits pass or not).
 fn rated(text: &str) -> Value {
     let dir = Scratch::new("friction");
     dir.write("s.yaml", text);
     let (code, out, err) = cycloid(&dir.path, &["check", "s.yaml", "--json", "r.json"]).parts();
-    assert_eq!(code, 0, "{out}{err}");
+    // 1: a limit failed; the results are written all the same.
+    assert!(code == 0 || code == 1, "{out}{err}");
     let doc: Value = serde_json::from_str(&dir.read("r.json")).unwrap();
     doc["scenes"]
         .as_array()

@@ -337,3 +337,31 @@ fn check_json_3600_memory(b: divan::Bencher) {
     let (spec, _, json) = json_scene();
     b.bench(|| check(&["cycloid", "check", &spec, "--json", &json]));
 }
+
+/// `specs/reducer-efficiency.yaml`'s scene over 3,600 crank angles (one mesh period at 0.01°)
+/// with the plan `effects` (the one scene's run, in-process).
+fn efficiency_scene(b: divan::Bencher, effects: &[cycloid::model::Effect]) {
+    let spec = spec::load("specs/reducer-efficiency.yaml").expect("specs/reducer-efficiency.yaml");
+    let scene = cycloid::model::Scene {
+        crank_rad: crank(3600),
+        ..spec.scenes[0].clone()
+    };
+    let plan = cycloid::model::Plan::of(&scene.name, effects);
+    b.bench(|| {
+        cycloid::engine::scene::run(&spec, black_box(&scene), &plan, &Default::default()).unwrap()
+    });
+}
+
+/// Issue 28: the effect `efficiency` with the loss model, 3,600 crank angles, exact geometry
+/// (target: at most 1.3× `efficiency_base_3600_exact`, the loaded sweep it builds on).
+#[divan::bench(sample_count = 30)]
+fn efficiency_loss_3600_exact(b: divan::Bencher) {
+    efficiency_scene(b, &[cycloid::model::Effect::Efficiency]);
+}
+
+/// The loaded sweep `efficiency_loss_3600_exact` builds on: the same scene with `bearing`
+/// (roller contact, output pins and the bearing) and no efficiency.
+#[divan::bench(sample_count = 30)]
+fn efficiency_base_3600_exact(b: divan::Bencher) {
+    efficiency_scene(b, &[cycloid::model::Effect::Bearing]);
+}

@@ -15,15 +15,18 @@
 //! losses × ω × 1e-3 and exist only with `input_speed_rpm`, the temperature ambient +
 //! P/(h·A) only with `reducer.thermal` too.
 
+use crate::engine::scene;
 use crate::equilibrium::friction::coupled::Coupling;
 use crate::equilibrium::friction::loss::{disc_losses as contact_losses, PathLosses};
 use crate::equilibrium::loaded::{AngleSolution, Model};
 use crate::equilibrium::pins::PinState;
+use crate::equilibrium::rollers::Reach;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::Pose;
 use crate::geometry::Vec2;
-use crate::model::results::{EfficiencyCurves, LoadedSweep, ReducerEfficiency};
+use crate::model::results::{EfficiencyCurves, LoadedSweep, ReducerEfficiency, TorqueCurve};
 use crate::model::{Design, Effect, Friction, FrictionModel, Plan, Scene};
+use crate::spec::Spec;
 use crate::units;
 use rayon::prelude::*;
 
@@ -200,9 +203,10 @@ fn disc_losses(
 }
 
 /// The loss model: disc's contact losses at each of the scene's crank angles from its
-/// frictionless loaded curves `sweep` (disc at crank phase `phase`). The rollers are evaluated
-/// again at each angle's loaded pose (crank φ + phase, lag β, and the centre's offset −Fb/kb
-/// in a compliant bearing) for their contact points and normals; the forces are the sweep's.
+/// frictionless loaded curves `sweep` (disc at crank phase `phase`). The rollers that carry a
+/// force are evaluated again at each angle's loaded pose (crank φ + phase, lag β, and the
+/// centre's offset −Fb/kb in a compliant bearing) for their contact points and normals; the
+/// forces are the sweep's.
 fn loss_model(
     friction: &Friction,
     design: &Design,
@@ -216,11 +220,12 @@ fn loss_model(
         .par_chunks(PIECE)
         .map(|piece| {
             let mut sol = AngleSolution::default();
+            let mut reaches = Vec::new();
             piece
                 .iter()
                 .map(|&i| {
                     let phi = crank[i] + phase;
-                    solution_at(model, sweep, (i, phi), &mut sol)?;
+                    solution_at(model, sweep, (i, phi), &mut sol, &mut reaches)?;
                     Ok(contact_losses(friction, design, phi, &sol))
                 })
                 .collect()
@@ -229,14 +234,20 @@ fn loss_model(
     Ok(pieces?.into_iter().flatten().collect())
 }
 
+/// A gap that proves a roller out of contact at the very pose it is evaluated at (so that
+/// `Rollers::evaluate_within` skips it), or that proves nothing (so that it is evaluated), mm.
+const SKIP_MM: f64 = 1e9;
+
 /// The solution of angle `i` (crank `phi`, the disc's phase included) rebuilt from the sweep's
-/// curves into `sol` (its previous rollers warm-start the feet): the rollers' states at the
-/// loaded pose with the sweep's forces, the pins' forces, the bearing's force.
+/// curves into `sol` (its previous rollers warm-start the feet): the states of the rollers
+/// that carry a force at the loaded pose, with the sweep's forces (the others keep zero force
+/// and are skipped: they lose nothing), the pins' forces, the bearing's force.
 fn solution_at(
     model: &Model,
     sweep: &LoadedSweep,
     (i, phi): (usize, f64),
     sol: &mut AngleSolution,
+    reaches: &mut Vec<Reach>,
 ) -> Result<()> {
     let bearing = sweep.bearing.as_ref().map(|b| {
         let angle = phi + b.angle_rad[i];
@@ -253,12 +264,31 @@ fn solution_at(
             lag_rad: curves.lag_rad[i],
             centre_offset_mm: offset,
         };
-        rollers.evaluate(&pose, &mut sol.rollers).map_err(|e| {
-            Error::computation(format!(
-                "crank angle {:.4}°: the rollers' contact points for the friction losses: {e}",
-                units::deg(phi)
-            ))
-        })?;
+        let first = sol.rollers.is_empty();
+        reaches.clear();
+        for (r, f) in curves.force_n.iter().enumerate() {
+            let loaded = f[i] > 0.0;
+            // A roller that comes into contact starts its foot from its guess, not from where
+            // it was last evaluated (possibly many angles ago).
+            let was_loaded = sol.rollers.get(r).is_some_and(|s| s.force_n > 0.0);
+            if loaded && !was_loaded && !first {
+                sol.rollers[r].t = rollers.mesh.foot_guess(r, &pose);
+            }
+            reaches.push(Reach {
+                crank_rad: pose.crank_rad,
+                lag_rad: pose.lag_rad,
+                offset_mm: pose.centre_offset_mm,
+                gap_mm: if loaded { -SKIP_MM } else { SKIP_MM },
+            });
+        }
+        rollers
+            .evaluate_within(&pose, &mut sol.rollers, reaches)
+            .map_err(|e| {
+                Error::computation(format!(
+                    "crank angle {:.4}°: the rollers' contact points for the friction losses: {e}",
+                    units::deg(phi)
+                ))
+            })?;
         for (s, f) in sol.rollers.iter_mut().zip(&curves.force_n) {
             s.force_n = f[i];
         }
@@ -276,4 +306,40 @@ fn solution_at(
         }));
     }
     Ok(())
+}
+
+/// Output torques of the review's efficiency curve, as fractions of the scene's: 5 % to 150 %,
+/// denser at light load where the drag and any preload make the efficiency fall.
+pub const CURVE_FRACTIONS: [f64; 12] = [
+    0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.65, 0.8, 1.0, 1.25, 1.5,
+];
+
+/// The mean efficiency of `scene` of `spec` at each torque of `CURVE_FRACTIONS` × its own
+/// (its loaded model and friction solved again at each), for the review; `None` when the scene
+/// does not compute the efficiency or has no torque.
+pub fn torque_curve(spec: &Spec, at_scene: &Scene) -> Result<Option<TorqueCurve>> {
+    let plan = Plan::for_scene(at_scene);
+    if !plan.computes(Effect::Efficiency) || at_scene.output_torque_nmm == 0.0 {
+        return Ok(None);
+    }
+    let points: Result<Vec<(f64, f64)>> = CURVE_FRACTIONS
+        .par_iter()
+        .map(|f| {
+            let at = Scene {
+                output_torque_nmm: at_scene.output_torque_nmm.abs() * f,
+                ..at_scene.clone()
+            };
+            let r = scene::run(spec, &at, &plan, &Default::default())?;
+            let mean = r
+                .efficiency
+                .and_then(|e| e.reducer)
+                .map_or(1.0, |e| e.mean_efficiency);
+            Ok((at.output_torque_nmm, mean))
+        })
+        .collect();
+    let (torque_nmm, mean_efficiency) = points?.into_iter().unzip();
+    Ok(Some(TorqueCurve {
+        torque_nmm,
+        mean_efficiency,
+    }))
 }

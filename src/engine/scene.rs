@@ -155,16 +155,21 @@ pub fn run_design(
     };
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     if design.discs == 1 {
-        let loaded = loaded_sweep(design, m, (scene, plan), settings, progress)?;
+        // Built once, for the sweep and the efficiency's contact points; none without a sweep.
+        let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
+        let loaded = loaded_sweep(design, model.as_ref(), (scene, plan), progress)?;
         first_order_valid(design, m, scene, (&loaded, 0.0))?;
-        let model = loaded_model(design, m, scene, plan, settings);
-        let efficiency = efficiency::efficiency(design, &model, (scene, plan), &[&loaded])?;
+        let efficiency = match &model {
+            Some(model) => efficiency::efficiency(design, model, (scene, plan), &[&loaded])?,
+            None => None,
+        };
         let mut one = result(scene.name.clone(), clearance(0.0)?, loaded);
         one.torsion = torsion;
         one.efficiency = efficiency.map(|e| e.0);
         return Ok(one);
     }
-    let sweeps = loaded_disc_sweeps(design, m, (scene, plan), settings, progress)?;
+    let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
+    let sweeps = loaded_disc_sweeps(design, model.as_ref(), (scene, plan), progress)?;
     let mut reducer = result(scene.name.clone(), None, LoadedSweep::default());
     for k in 0..design.discs {
         let mut loaded = LoadedSweep::default();
@@ -177,8 +182,7 @@ pub fn run_design(
         let disc = result(name, clearance(design.disc_phase_rad(k))?, loaded);
         reducer.discs.push(disc);
     }
-    if let Some(s) = &sweeps {
-        let model = loaded_model(design, m, scene, plan, settings);
+    if let (Some(s), Some(model)) = (&sweeps, &model) {
         let discs: Vec<&LoadedSweep> = s.discs.iter().collect();
         if let Some((all, each)) = efficiency::efficiency(design, &model, (scene, plan), &discs)? {
             reducer.efficiency = Some(all);
@@ -303,37 +307,31 @@ fn torsion_loops(
         })
 }
 
-/// The loaded sweep of one disc, when the plan runs it.
+/// The loaded sweep of one disc of `model` (the scene's loaded model), when the plan runs it.
 fn loaded_sweep(
     design: &Design,
-    m: &Modification,
+    model: Option<&Model>,
     (scene, plan): (&Scene, &Plan),
-    settings: &Settings,
     progress: &dyn Progress,
 ) -> Result<LoadedSweep> {
-    if !runs_loaded(plan) {
+    let Some(model) = model else {
         return Ok(LoadedSweep::default());
-    }
-    let model = loaded_model(design, m, scene, plan, settings);
+    };
     let periodic = scene.spans_loaded_periods(design, plan);
-    sweep::sweep(&model, &scene.crank_rad, periodic, progress).map_err(|f| sweep_failed(scene, f))
+    sweep::sweep(model, &scene.crank_rad, periodic, progress).map_err(|f| sweep_failed(scene, f))
 }
 
 /// The coupled loaded sweep of several discs ([`equilibrium::discs`](crate::equilibrium::discs)), when the plan runs it.
 fn loaded_disc_sweeps(
     design: &Design,
-    m: &Modification,
+    model: Option<&Model>,
     (scene, plan): (&Scene, &Plan),
-    settings: &Settings,
     progress: &dyn Progress,
 ) -> Result<Option<DiscSweeps>> {
-    if !runs_loaded(plan) {
+    let Some(model) = model else {
         return Ok(None);
-    }
-    let discs = Discs::new(
-        &loaded_model(design, m, scene, plan, settings),
-        design.discs,
-    );
+    };
+    let discs = Discs::new(model, design.discs);
     let periodic = scene.spans_loaded_periods(design, plan);
     discs_sweep::sweep_discs(&discs, &scene.crank_rad, periodic, progress)
         .map(Some)

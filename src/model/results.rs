@@ -248,6 +248,16 @@ impl EfficiencyCurves {
     }
 }
 
+/// The mean efficiency of a scene solved again at other output torques (the review's curve,
+/// `engine::efficiency::torque_curve`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TorqueCurve {
+    /// The output torques, N·mm, rising.
+    pub torque_nmm: Vec<f64>,
+    /// The mean efficiency at each.
+    pub mean_efficiency: Vec<f64>,
+}
+
 /// Everything computed for one scene. A quantity that was not computed is `None`.
 #[derive(Debug, Clone)]
 pub struct SceneResult {

@@ -7,8 +7,8 @@ use super::raw::{RawBearingFriction, RawFriction, RawPinFriction, RawRollerFrict
 use super::values::{finite, length};
 use crate::error::{Error, Result};
 use crate::model::{
-    BearingFriction, Design, Effect, Friction, FrictionModel, PinFriction, PinMode, RollerFriction,
-    RollerMode, Scene, Thermal,
+    BearingFriction, Design, Effect, Friction, FrictionModel, Limits, PinFriction, PinMode, Plan,
+    RollerFriction, RollerMode, Scene, Thermal,
 };
 use crate::numeric;
 
@@ -244,6 +244,40 @@ pub(super) fn check_scenes(design: &Design, scenes: &[Scene]) -> Result<()> {
                 }
             }
             Some(_) => {}
+        }
+    }
+    Ok(())
+}
+
+/// The limits in watts and degrees need what makes them: a speed in every scene that computes
+/// the efficiency (the losses in watts are the losses × ω), and `reducer.thermal` for a
+/// temperature. Refused before anything runs, at the scene or the limit.
+pub(super) fn check_limits(limits: &Limits, design: &Design, scenes: &[Scene]) -> Result<()> {
+    let set = |key: &str| limits.entries.iter().any(|l| l.def.key == key);
+    for key in ["max_power_loss_w", "max_temperature_c"] {
+        if !set(key) {
+            continue;
+        }
+        if key == "max_temperature_c" && design.thermal.is_none() {
+            return Err(Error::invalid(
+                format!("limits.{key}"),
+                "a temperature needs the housing's heat path: give `reducer.thermal: \
+                 {housing_area_m2, heat_transfer_w_per_m2k, ambient_c}`"
+                    .into(),
+            ));
+        }
+        for (i, s) in scenes.iter().enumerate() {
+            if Plan::for_scene(s).computes(Effect::Efficiency) && s.input_speed_rpm.is_none() {
+                return Err(Error::invalid(
+                    format!("scenes[{i}]"),
+                    format!(
+                        "limits.{key} applies to scene `{}`, which computes the efficiency: it \
+                         needs `input_speed_rpm` (the losses in watts are the losses per unit \
+                         speed × ω)",
+                        s.name
+                    ),
+                ));
+            }
         }
     }
     Ok(())

@@ -498,6 +498,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     let limits = limits(&raw.limits)?;
     let built = (!design.deviations.is_nominal()).then_some("`reducer.deviations`");
     super::bearing_life::check(&limits, &design, &scenes, built)?;
+    super::friction::check_limits(&limits, &design, &scenes)?;
     let mut golden = Vec::new();
     for (i, g) in raw.golden.into_iter().enumerate() {
         let g = golden_entry(path, i, g, (&scenes, design.discs))?;

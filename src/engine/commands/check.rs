@@ -7,6 +7,7 @@ use crate::engine::accuracy::{self, Ladder};
 use crate::engine::as_built;
 use crate::engine::check::{self, Check};
 use crate::engine::drawing::{self, Disc};
+use crate::engine::efficiency;
 use crate::engine::golden::{self, GoldenResult};
 use crate::engine::optimise::{self, problem::Evaluation, StudyResult};
 use crate::engine::resolution::{self, Resolution};
@@ -14,7 +15,7 @@ use crate::engine::scene::{self, Writes};
 use crate::engine::summary::{self, SceneSummary};
 use crate::error::{Error, ErrorKind, Result};
 use crate::measure::fit::Identification;
-use crate::model::results::SceneResult;
+use crate::model::results::{SceneResult, TorqueCurve};
 use crate::model::{Modification, Study};
 use crate::progress::{Budget, Phase, Progress};
 use crate::spec::Spec;
@@ -104,6 +105,8 @@ pub struct Review {
     pub map_steps: usize,
     /// The accuracy ladder of the spec's `accuracy:` scene and its wall-clock time, s.
     pub ladder: Option<(Ladder, f64)>,
+    /// Each scene's mean efficiency against its output torque (`None`: no efficiency).
+    pub efficiency: Vec<Option<TorqueCurve>>,
 }
 
 /// Run every scene of `spec`, check its limits and goldens, run its studies, and what
@@ -184,6 +187,11 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
             maps: maps(&spec, &studies, r.map_steps, progress),
             map_steps: r.map_steps,
             ladder,
+            efficiency: spec
+                .scenes
+                .iter()
+                .map(|s| efficiency::torque_curve(&spec, s))
+                .collect::<Result<_>>()?,
         }),
         None => None,
     };

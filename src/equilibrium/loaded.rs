@@ -1,7 +1,7 @@
 //! The loaded model of a scene (`Model`: the rollers, pins and bearing it includes, the torque,
 //! the solver's settings) and its equilibrium at one crank angle (`AngleSolution`).
 
-use super::friction::coupled::Coupling;
+use super::coupling::Coupling;
 use super::pins::{PinState, Pins};
 use super::rollers::{RollerState, Rollers};
 use super::solve::Settings;

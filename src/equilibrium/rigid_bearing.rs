@@ -6,7 +6,7 @@
 //! then −(Σ roller forces + Σ pin forces).
 
 use super::balance::{closed_form, moment, round_off, settle, unload_round_off, Contact};
-use super::friction::coupled::Coupling;
+use super::coupling::Coupling;
 use super::loaded::{AngleSolution, Model};
 use super::pins::{PinState, Pins};
 use super::rollers::{AngleTrig, Reach, RollerState, Rollers};

@@ -182,7 +182,7 @@ pub fn run_design(
     }
     if let (Some(s), Some(model)) = (&sweeps, &model) {
         let discs: Vec<&LoadedSweep> = s.discs.iter().collect();
-        if let Some((all, each)) = efficiency::efficiency(design, &model, (scene, plan), &discs)? {
+        if let Some((all, each)) = efficiency::efficiency(design, model, (scene, plan), &discs)? {
             reducer.efficiency = Some(all);
             for (disc, e) in reducer.discs.iter_mut().zip(each) {
                 disc.efficiency = Some(e);

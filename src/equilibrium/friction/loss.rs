@@ -261,7 +261,7 @@ mod tests {
         let solution = AngleSolution {
             rollers,
             pins: vec![
-                pin.clone(),
+                pin,
                 PinState {
                     force_n: 15.0,
                     ..pin

@@ -430,7 +430,6 @@ fn bad_values_are_refused_at_their_keys() {
         );
     }
     let text = EFF.replace("  friction:", "  friction_off:");
-    let text = text.replace("effects: [efficiency]", "effects: [efficiency]");
     let start = text.find("  friction_off:").unwrap();
     let end = text.find("  thermal:").unwrap();
     let text = format!("{}{}", &text[..start], &text[end..]);

@@ -23,4 +23,5 @@ pub mod resolution;
 pub mod scene;
 pub mod summary;
 pub mod tolerance;
+pub mod torque_curve;
 pub mod torsion;

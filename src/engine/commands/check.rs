@@ -7,12 +7,12 @@ use crate::engine::accuracy::{self, Ladder};
 use crate::engine::as_built;
 use crate::engine::check::{self, Check};
 use crate::engine::drawing::{self, Disc};
-use crate::engine::efficiency;
 use crate::engine::golden::{self, GoldenResult};
 use crate::engine::optimise::{self, problem::Evaluation, StudyResult};
 use crate::engine::resolution::{self, Resolution};
 use crate::engine::scene::{self, Writes};
 use crate::engine::summary::{self, SceneSummary};
+use crate::engine::torque_curve;
 use crate::error::{Error, ErrorKind, Result};
 use crate::measure::fit::Identification;
 use crate::model::results::{SceneResult, TorqueCurve};
@@ -190,7 +190,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
             efficiency: spec
                 .scenes
                 .iter()
-                .map(|s| efficiency::torque_curve(&spec, s))
+                .map(|s| torque_curve::torque_curve(&spec, s))
                 .collect::<Result<_>>()?,
         }),
         None => None,

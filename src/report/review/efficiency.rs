@@ -1,6 +1,6 @@
 //! The review's friction, efficiency and heat ([`engine::efficiency`](crate::engine::efficiency)):
 //! per scene with `efficiency`, the mean efficiency against the output torque from 5 % to 150 %
-//! of the scene's (`TorqueCurve`, solved by the engine), and with a speed the mean power lost
+//! of the scene's (`TorqueCurve`, solved by [`engine::torque_curve`](crate::engine::torque_curve)), and with a speed the mean power lost
 //! on each path as a stacked bar.
 
 use super::common::{data_table, figure, section, Section};

@@ -119,6 +119,41 @@ fn loaded_sweep_3600_first_order(b: divan::Bencher) {
     loaded(b, GeometryMode::FirstOrder);
 }
 
+/// The coupled friction model (issue 28): `loaded_sweep_3600_exact`'s model and angles with
+/// friction inside every balance (rotating rollers μ 0.06 on pins of r_b 1.5 mm, sleeves μ 0.06
+/// on pins of 2 mm, a crank bearing μ 0.0025 of bore 20 mm: the shipped
+/// specs/reducer-efficiency.yaml's) (target: at most 2× the frictionless sweep).
+#[divan::bench(sample_count = 60)]
+fn coupled_sweep_3600_exact(b: divan::Bencher) {
+    use cycloid::model::{
+        BearingFriction, Friction, FrictionModel, PinFriction, PinMode, RollerFriction, RollerMode,
+    };
+    let (model, c) = common::rated_sweep(GeometryMode::Exact, 3600, 10);
+    let design = paper().design;
+    let friction = Friction {
+        model: FrictionModel::Coupled,
+        rollers: Some(RollerFriction {
+            mode: RollerMode::Rotating {
+                bore_radius_mm: 1.5,
+            },
+            mu: 0.06,
+        }),
+        output_pins: Some(PinFriction {
+            mode: PinMode::Sleeve {
+                bore_radius_mm: 2.0,
+            },
+            mu: 0.06,
+        }),
+        crank_bearing: Some(BearingFriction {
+            mu: 0.0025,
+            bore_diameter_mm: 20.0,
+        }),
+        no_load_torque_nmm: 0.0,
+    };
+    let model = model.with_friction(&friction, &design);
+    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
+}
+
 /// Two discs (issue 14): the coupled sweep of `loaded_sweep_3600_exact`'s model and angles
 /// with the torque shared by two discs half a turn apart (target: at most 2.2× the one-disc
 /// sweep).
@@ -301,4 +336,32 @@ fn check_json_3600(b: divan::Bencher) {
 fn check_json_3600_memory(b: divan::Bencher) {
     let (spec, _, json) = json_scene();
     b.bench(|| check(&["cycloid", "check", &spec, "--json", &json]));
+}
+
+/// `specs/reducer-efficiency.yaml`'s scene over 3,600 crank angles (one mesh period at 0.01°)
+/// with the plan `effects` (the one scene's run, in-process).
+fn efficiency_scene(b: divan::Bencher, effects: &[cycloid::model::Effect]) {
+    let spec = spec::load("specs/reducer-efficiency.yaml").expect("specs/reducer-efficiency.yaml");
+    let scene = cycloid::model::Scene {
+        crank_rad: crank(3600),
+        ..spec.scenes[0].clone()
+    };
+    let plan = cycloid::model::Plan::of(&scene.name, effects);
+    b.bench(|| {
+        cycloid::engine::scene::run(&spec, black_box(&scene), &plan, &Default::default()).unwrap()
+    });
+}
+
+/// Issue 28: the effect `efficiency` with the loss model, 3,600 crank angles, exact geometry
+/// (target: at most 1.3× `efficiency_base_3600_exact`, the loaded sweep it builds on).
+#[divan::bench(sample_count = 30)]
+fn efficiency_loss_3600_exact(b: divan::Bencher) {
+    efficiency_scene(b, &[cycloid::model::Effect::Efficiency]);
+}
+
+/// The loaded sweep `efficiency_loss_3600_exact` builds on: the same scene with `bearing`
+/// (roller contact, output pins and the bearing) and no efficiency.
+#[divan::bench(sample_count = 30)]
+fn efficiency_base_3600_exact(b: divan::Bencher) {
+    efficiency_scene(b, &[cycloid::model::Effect::Bearing]);
 }

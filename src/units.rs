@@ -90,6 +90,21 @@ pub fn mm_from_um(um: f64) -> f64 {
     um / UM_PER_MM
 }
 
+/// W in a N·mm/s.
+pub const W_PER_NMM_PER_S: f64 = 1e-3;
+
+/// rpm → rad/s: n·2π/60.
+#[inline]
+pub fn rad_per_s(rpm: f64) -> f64 {
+    rpm * std::f64::consts::TAU / 60.0
+}
+
+/// N·mm/s → W.
+#[inline]
+pub fn w(nmm_per_s: f64) -> f64 {
+    nmm_per_s * W_PER_NMM_PER_S
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

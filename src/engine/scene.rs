@@ -6,7 +6,7 @@
 //! evaluate is an error. A detail of an effect (the closing lags of `clearance`) is computed
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
-use crate::engine::{bearing_life, torsion};
+use crate::engine::{bearing_life, efficiency, torsion};
 use crate::equilibrium::discs::Discs;
 use crate::equilibrium::discs_sweep::{self, DiscSweeps};
 use crate::equilibrium::loaded::Model;
@@ -19,7 +19,9 @@ use crate::geometry::mesh_minimum::{self, MeshMinimum};
 use crate::model::accuracy::LadderTolerances;
 use crate::model::quantity::QUANTITIES;
 use crate::model::results::{BearingLife, ClearanceSweep, LoadedSweep, SceneResult};
-use crate::model::{Design, Detail, Effect, GeometryMode, Modification, Plan, Scene};
+use crate::model::{
+    Design, Detail, Effect, FrictionModel, GeometryMode, Modification, Plan, Scene,
+};
 use crate::progress::{Progress, Silent};
 use crate::spec::Spec;
 use crate::units;
@@ -148,17 +150,26 @@ pub fn run_design(
         clearance,
         loaded,
         torsion: None,
+        efficiency: None,
         discs: Vec::new(),
     };
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     if design.discs == 1 {
-        let loaded = loaded_sweep(design, m, (scene, plan), settings, progress)?;
+        // Built once, for the sweep and the efficiency's contact points; none without a sweep.
+        let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
+        let loaded = loaded_sweep(design, model.as_ref(), (scene, plan), progress)?;
         first_order_valid(design, m, scene, (&loaded, 0.0))?;
+        let efficiency = match &model {
+            Some(model) => efficiency::efficiency(design, model, (scene, plan), &[&loaded])?,
+            None => None,
+        };
         let mut one = result(scene.name.clone(), clearance(0.0)?, loaded);
         one.torsion = torsion;
+        one.efficiency = efficiency.map(|e| e.0);
         return Ok(one);
     }
-    let sweeps = loaded_disc_sweeps(design, m, (scene, plan), settings, progress)?;
+    let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
+    let sweeps = loaded_disc_sweeps(design, model.as_ref(), (scene, plan), progress)?;
     let mut reducer = result(scene.name.clone(), None, LoadedSweep::default());
     for k in 0..design.discs {
         let mut loaded = LoadedSweep::default();
@@ -170,6 +181,15 @@ pub fn run_design(
         let name = format!("{} disc {k}", scene.name);
         let disc = result(name, clearance(design.disc_phase_rad(k))?, loaded);
         reducer.discs.push(disc);
+    }
+    if let (Some(s), Some(model)) = (&sweeps, &model) {
+        let discs: Vec<&LoadedSweep> = s.discs.iter().collect();
+        if let Some((all, each)) = efficiency::efficiency(design, model, (scene, plan), &discs)? {
+            reducer.efficiency = Some(all);
+            for (disc, e) in reducer.discs.iter_mut().zip(each) {
+                disc.efficiency = Some(e);
+            }
+        }
     }
     reducer.loaded.transmission = sweeps.and_then(|s| s.transmission);
     reducer.torsion = torsion;
@@ -287,37 +307,31 @@ fn torsion_loops(
         })
 }
 
-/// The loaded sweep of one disc, when the plan runs it.
+/// The loaded sweep of one disc of `model` (the scene's loaded model), when the plan runs it.
 fn loaded_sweep(
     design: &Design,
-    m: &Modification,
+    model: Option<&Model>,
     (scene, plan): (&Scene, &Plan),
-    settings: &Settings,
     progress: &dyn Progress,
 ) -> Result<LoadedSweep> {
-    if !runs_loaded(plan) {
+    let Some(model) = model else {
         return Ok(LoadedSweep::default());
-    }
-    let model = loaded_model(design, m, scene, plan, settings);
+    };
     let periodic = scene.spans_loaded_periods(design, plan);
-    sweep::sweep(&model, &scene.crank_rad, periodic, progress).map_err(|f| sweep_failed(scene, f))
+    sweep::sweep(model, &scene.crank_rad, periodic, progress).map_err(|f| sweep_failed(scene, f))
 }
 
 /// The coupled loaded sweep of several discs ([`equilibrium::discs`](crate::equilibrium::discs)), when the plan runs it.
 fn loaded_disc_sweeps(
     design: &Design,
-    m: &Modification,
+    model: Option<&Model>,
     (scene, plan): (&Scene, &Plan),
-    settings: &Settings,
     progress: &dyn Progress,
 ) -> Result<Option<DiscSweeps>> {
-    if !runs_loaded(plan) {
+    let Some(model) = model else {
         return Ok(None);
-    }
-    let discs = Discs::new(
-        &loaded_model(design, m, scene, plan, settings),
-        design.discs,
-    );
+    };
+    let discs = Discs::new(model, design.discs);
     let periodic = scene.spans_loaded_periods(design, plan);
     discs_sweep::sweep_discs(&discs, &scene.crank_rad, periodic, progress)
         .map(Some)
@@ -463,7 +477,19 @@ pub fn loaded_model(
 ) -> Model {
     let mut model = Model::new(design, m, scene, plan);
     model.settings = *settings;
-    model
+    // The coupled friction model puts friction inside the balance of a crank sweep that asks
+    // for `efficiency`: its loaded outputs are then the coupled ones (a torsion loop's input is
+    // locked: the sweep's kinematics do not apply there).
+    match design.friction {
+        Some(f)
+            if f.model == FrictionModel::Coupled
+                && plan.computes(Effect::Efficiency)
+                && scene.torque_sweep.is_none() =>
+        {
+            model.with_friction(&f, design)
+        }
+        _ => model,
+    }
 }
 
 /// The error of a loaded solve that failed: the scene and the crank angle.

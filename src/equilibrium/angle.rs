@@ -31,16 +31,29 @@ pub fn solve_into(model: &Model, crank: f64, work: &mut Work) -> Result<(), Solv
     let (sin, cos) = crank.sin_cos();
     work.e_phi = Vec2::new(cos, sin);
     match model.bearing_stiffness_n_per_mm {
+        Some(_) if model.coupled().is_some() => {
+            return Err(SolveFailure::Evaluation(
+                "the coupled friction model needs a rigid crank bearing (no \
+                 bearing_stiffness_n_per_mm); use `friction.model: loss` with a compliant one"
+                    .into(),
+            ))
+        }
         Some(kb) => work.sol = solve_compliant(model, kb, crank, work)?,
         None => solve_rigid(model, crank, work, Vec2::zeros())?,
     }
     if model.bearing {
         let fb = match model.bearing_stiffness_n_per_mm {
             Some(kb) => -kb * work.sol.centre_offset_mm,
-            None => -net_force(&work.sol),
+            None => match model.coupled() {
+                Some(c) => -c.net_force(crank, &work.sol),
+                None => -net_force(&work.sol),
+            },
         };
         work.sol.bearing_force_n = Some(fb);
-        work.sol.residual = Some(residual_at(model, work.e_phi, &work.sol, fb));
+        work.sol.residual = Some(match model.coupled() {
+            Some(c) => c.residual(crank, &work.sol, model.torque_nmm),
+            None => residual_at(model, work.e_phi, &work.sol, fb),
+        });
     }
     work.remember(crank, model.torque_nmm);
     Ok(())

@@ -242,6 +242,7 @@ impl<'a> FirstOrderSweep<'a> {
         r.geometry == GeometryMode::FirstOrder
             && r.law == ContactLaw::PaperLinear
             && model.bearing_stiffness_n_per_mm.is_none()
+            && model.coupled().is_none()
             && r.units.len() <= MAX_TERMS
             && pins_apply
     }

@@ -1,11 +1,12 @@
 //! The loaded model of a scene (`Model`: the rollers, pins and bearing it includes, the torque,
 //! the solver's settings) and its equilibrium at one crank angle (`AngleSolution`).
 
+use super::coupling::Coupling;
 use super::pins::{PinState, Pins};
 use super::rollers::{RollerState, Rollers};
 use super::solve::Settings;
 use crate::geometry::Vec2;
-use crate::model::{Design, Effect, GeometryMode, Modification, Plan, Scene};
+use crate::model::{Design, Effect, Friction, GeometryMode, Modification, Plan, Scene};
 
 /// What the loaded model of a scene includes.
 #[derive(Debug, Clone)]
@@ -21,6 +22,8 @@ pub struct Model {
     pub settings: Settings,
     /// First-order geometry (also for pins when rollers are not modelled).
     pub first_order: bool,
+    /// Friction inside the balance (the coupled model), when active; none: frictionless.
+    pub coupling: Option<Coupling>,
 }
 
 impl Model {
@@ -42,7 +45,15 @@ impl Model {
             eccentricity_mm: design.eccentricity_mm + design.deviations.eccentricity_mm,
             settings: Settings::default(),
             first_order: scene.geometry == GeometryMode::FirstOrder,
+            coupling: None,
         }
+    }
+
+    /// This model with `friction` inside its balance (the coupled model,
+    /// `friction::coupled`); a friction whose every coefficient is zero leaves it frictionless.
+    pub fn with_friction(mut self, friction: &Friction, design: &Design) -> Self {
+        self.coupling = Some(Coupling::new(friction, design)).filter(Coupling::active);
+        self
     }
 
     /// The lag at which the rollers sit in their mesh without load, to first order: a profile
@@ -60,6 +71,14 @@ impl Model {
     /// not warm-started.
     pub fn warm_reach(&self) -> f64 {
         std::f64::consts::FRAC_PI_2 / (self.teeth + 1) as f64
+    }
+
+    /// The friction inside the balance at this model's torque: none without friction, and none
+    /// at zero torque, where only a preload loads the contacts and the frictionless balance
+    /// answers (the disc does not move under no load in the torsion loop, and an efficiency
+    /// scene at zero torque transmits nothing).
+    pub fn coupled(&self) -> Option<&Coupling> {
+        self.coupling.as_ref().filter(|_| self.torque_nmm != 0.0)
     }
 
     /// Pins follow the rollers' geometry mode (first order: ideal directions, linear gaps).

@@ -7,6 +7,7 @@
 pub mod angle;
 pub mod balance;
 mod compliant_bearing;
+pub mod coupling;
 pub mod discs;
 pub mod discs_sweep;
 pub mod first_order_sweep;

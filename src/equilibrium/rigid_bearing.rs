@@ -6,6 +6,7 @@
 //! then −(Σ roller forces + Σ pin forces).
 
 use super::balance::{closed_form, moment, round_off, settle, unload_round_off, Contact};
+use super::coupling::Coupling;
 use super::loaded::{AngleSolution, Model};
 use super::pins::{PinState, Pins};
 use super::rollers::{AngleTrig, Reach, RollerState, Rollers};
@@ -320,6 +321,9 @@ pub(super) fn solve_rigid(
     work: &mut Work,
     offset: Vec2,
 ) -> Result<(), SolveFailure> {
+    if let Some(c) = model.coupled() {
+        return solve_rigid_coupled(model, c, crank, work, offset);
+    }
     let (guess_lag, guess_out) = work.guess_at_torque(crank, model);
     work.sol.centre_offset_mm = offset;
     let mut psi = -crank / model.teeth as f64;
@@ -333,4 +337,228 @@ pub(super) fn solve_rigid(
         work.sol.output_lag_rad = Some(solve_pins(model, p, e_phi, offset, psi, guess_out, work)?);
     }
     Ok(())
+}
+
+// The coupled friction model (`friction::coupled`): the same balances with every contact's
+// friction inside them. Roller and pin friction are linear in their normal forces (kinematic
+// sliding directions: adjusted arms l̃, ã); the bearing's friction moment c_b·|Fb| couples the
+// rollers to the pins' total force, which depends on the rollers only through the disc's
+// rotation ψ = −φ/nc + β (a change of β of 1e-4 rad moves it by ~1e-4 of itself). So: the pins
+// at the guessed ψ, the rollers with those pins' totals, the pins again at the solved ψ, until
+// the pins' totals move the rollers' balance by no more than its tolerance (a fixed point that
+// contracts like μ·∂P/∂β, 2–3 passes; `COUPLED_PASSES` at most, then "did not converge").
+
+/// The most passes of the coupled rollers–pins iteration at one angle before it reports that
+/// it did not converge (each pass contracts the error by ~μ·1e-4; 3 passes are the rule).
+const COUPLED_PASSES: usize = 30;
+
+/// The pins' totals that the rollers' coupled balance needs: Σ of their forces on the disc
+/// (friction included), N, and the pins' friction moment moved from the axis to the disc centre,
+/// c_p·(Σ F_j)·(O_d × τ), N·mm.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct PinTotals {
+    force: Vec2,
+    shift: f64,
+}
+
+impl PinTotals {
+    fn of(c: &Coupling, e_phi: Vec2, centre: Vec2, pins: &[PinState]) -> Self {
+        PinTotals {
+            force: c.pin_total(e_phi, pins),
+            shift: c.pin_shift(e_phi, centre, pins),
+        }
+    }
+}
+
+/// The rollers' coupled balance at their states: (Σ F·l̃ − c_b·|Fb|, its slope ∂/∂β with the
+/// geometry held, its scale), with Fb = −(Σ roller forces + the pins' total).
+fn coupled_roller_moment(
+    c: &Coupling,
+    crank: f64,
+    centre: Vec2,
+    states: &[RollerState],
+    pins: &PinTotals,
+) -> (f64, f64, f64) {
+    let (mut m, mut dm, mut scale) = (0.0, 0.0, 0.0);
+    let (mut force, mut dforce) = (Vec2::zeros(), Vec2::zeros());
+    for s in states
+        .iter()
+        .filter(|s| s.force_n != 0.0 || s.stiffness_n_per_mm != 0.0)
+    {
+        let arm = c.roller_arm(crank, centre, s);
+        m += s.force_n * arm;
+        // ∂F/∂β = k·l (∂gap/∂β = −l).
+        let df = s.stiffness_n_per_mm * s.arm_mm;
+        dm += df * arm;
+        scale += (s.force_n * arm).abs();
+        let t = Vec2::new(-s.normal.y, s.normal.x);
+        let unit = -s.normal - t * (c.roller * c.roller_sign(crank, s));
+        force += unit * s.force_n;
+        dforce += unit * df;
+    }
+    let fb = -(force + pins.force);
+    let norm = fb.norm();
+    let moment = c.bearing_arm_mm * norm;
+    if norm > 0.0 {
+        dm -= c.bearing_arm_mm * fb.dot(&-dforce) / norm;
+    }
+    (m - moment, dm, scale + moment)
+}
+
+/// The rollers' coupled balance: β with Σ F·l̃ − c_b·|Fb| = T + the pins' shift.
+#[allow(clippy::too_many_arguments)]
+fn solve_rollers_coupled(
+    model: &Model,
+    c: &Coupling,
+    r: &Rollers,
+    (crank, e_phi): (f64, Vec2),
+    offset: Vec2,
+    guess: f64,
+    pins: &PinTotals,
+    work: &mut Work,
+) -> Result<f64, SolveFailure> {
+    let pose = |lag| Pose {
+        crank_rad: crank,
+        lag_rad: lag,
+        centre_offset_mm: offset,
+    };
+    let centre = e_phi * model.eccentricity_mm + offset;
+    let target = model.torque_nmm + pins.shift;
+    if work.reaches.len() != r.count() {
+        work.reaches = vec![
+            Reach {
+                crank_rad: crank,
+                lag_rad: guess,
+                offset_mm: offset,
+                gap_mm: f64::NEG_INFINITY,
+            };
+            r.count()
+        ];
+    }
+    let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
+    let trig = AngleTrig::new(crank, model.teeth);
+    let offset_norm = offset.norm();
+    let root = monotone_root(
+        |lag| {
+            r.evaluate_at(&pose(lag), &trig, states, reaches)?;
+            let (value, slope, scale) = coupled_roller_moment(c, crank, centre, states, pins);
+            Ok::<_, GapFailure>(Balance {
+                value,
+                slope,
+                scale,
+                resolution: r.moment_resolution(states, offset_norm),
+            })
+        },
+        target,
+        guess,
+        &model.settings,
+    )
+    .map_err(|failure| match failure {
+        SolveFailure::NoBracket {
+            nearest: Some((x, value)),
+            ..
+        } if value != 0.0 => beyond_reach(r, &pose(x), value, target),
+        other => other,
+    })?;
+    work.slopes.0 = root.slope;
+    // A straddled root (round-off of the gaps) is taken at its end: its balance is within the
+    // round-off of the gaps, which the tolerance of the pins' pass below accepts.
+    if root.straddle.is_some() || work.exact_final {
+        r.evaluate_at(&pose(root.x), &trig, states, &mut [])
+            .map_err(SolveFailure::Gap)?;
+    }
+    Ok(root.x)
+}
+
+/// The pins' coupled balance: βo with Σ F_j·ã_j = T (the flange's torque, friction included).
+fn solve_pins_coupled(
+    model: &Model,
+    c: &Coupling,
+    p: &Pins,
+    (e_phi, offset, psi): (Vec2, Vec2, f64),
+    guess: f64,
+    work: &mut Work,
+) -> Result<f64, SolveFailure> {
+    let first_order = model.first_order_pins();
+    let states = &mut work.sol.pins;
+    let rotation = psi.sin_cos();
+    let evaluate = |lag: f64, states: &mut Vec<PinState>| {
+        if first_order {
+            let centre = e_phi * model.eccentricity_mm + offset;
+            p.first_order_at(e_phi, rotation, centre, lag, states);
+        } else {
+            p.evaluate_at(e_phi, rotation, offset, lag, states);
+        }
+        let (mut value, mut slope, mut scale) = (0.0, 0.0, 0.0);
+        for s in states.iter() {
+            let arm = c.pin_arm(e_phi, s);
+            value += s.force_n * arm;
+            slope -= s.stiffness_n_per_mm * arm * s.gap_slope_mm;
+            scale += (s.force_n * arm).abs();
+        }
+        Balance {
+            value,
+            slope,
+            scale,
+            resolution: p.moment_resolution(states, offset.norm()),
+        }
+    };
+    let root = monotone_root(
+        |lag| Ok::<_, SolveFailure>(evaluate(lag, states)),
+        model.torque_nmm,
+        guess,
+        &model.settings,
+    )?;
+    work.slopes.1 = root.slope;
+    Ok(root.x)
+}
+
+/// `solve_rigid` with the coupled friction `c` (a torque that is not zero; at zero torque
+/// nothing slides under load but a preload, which the frictionless balance answers).
+fn solve_rigid_coupled(
+    model: &Model,
+    c: &Coupling,
+    crank: f64,
+    work: &mut Work,
+    offset: Vec2,
+) -> Result<(), SolveFailure> {
+    let (mut lag, mut out) = work.guess_at_torque(crank, model);
+    work.sol.centre_offset_mm = offset;
+    let ideal = -crank / model.teeth as f64;
+    let e_phi = work.e_phi;
+    let centre = e_phi * model.eccentricity_mm + offset;
+    let psi = |lag: f64| ideal + if model.rollers.is_some() { lag } else { 0.0 };
+    let mut totals = PinTotals::default();
+    if let Some(p) = &model.pins {
+        out = solve_pins_coupled(model, c, p, (e_phi, offset, psi(lag)), out, work)?;
+        work.sol.output_lag_rad = Some(out);
+        totals = PinTotals::of(c, e_phi, centre, &work.sol.pins);
+    }
+    let Some(r) = &model.rollers else {
+        return Ok(());
+    };
+    let mut relative_change = f64::INFINITY;
+    for _ in 0..COUPLED_PASSES {
+        lag = solve_rollers_coupled(model, c, r, (crank, e_phi), offset, lag, &totals, work)?;
+        work.sol.lag_rad = Some(lag);
+        let Some(p) = &model.pins else {
+            return Ok(());
+        };
+        out = solve_pins_coupled(model, c, p, (e_phi, offset, psi(lag)), out, work)?;
+        work.sol.output_lag_rad = Some(out);
+        let moved = PinTotals::of(c, e_phi, centre, &work.sol.pins);
+        let before = coupled_roller_moment(c, crank, centre, &work.sol.rollers, &totals);
+        let after = coupled_roller_moment(c, crank, centre, &work.sol.rollers, &moved);
+        // How far the pins' new totals move the rollers' balance from where it was solved.
+        let change = ((after.0 - moved.shift) - (before.0 - totals.shift)).abs();
+        totals = moved;
+        relative_change = change / model.torque_nmm.abs().max(after.2);
+        if relative_change <= model.settings.rel_tol {
+            return Ok(());
+        }
+    }
+    Err(SolveFailure::NotConverged {
+        x: lag,
+        residual: relative_change,
+    })
 }

@@ -16,6 +16,10 @@ pub enum Effect {
     /// catalogue figures at each crank angle, solved with the loaded effects the scene asks for
     /// in place of their curves over the crank angle.
     Torsion,
+    /// Friction losses path by path, efficiency, input torque and the steady temperature
+    /// (`reducer.friction`, MODEL.md "Friction, efficiency and heat"), from the loaded
+    /// sweep's contact forces.
+    Efficiency,
 }
 
 named!(Effect "effect" {
@@ -24,6 +28,7 @@ named!(Effect "effect" {
     OutputPins => "output_pins",
     Bearing => "bearing",
     Torsion => "torsion",
+    Efficiency => "efficiency",
 });
 
 impl Effect {
@@ -32,6 +37,7 @@ impl Effect {
         match self {
             Effect::Bearing => &[Effect::RollerContact, Effect::OutputPins],
             Effect::Torsion => &[Effect::RollerContact],
+            Effect::Efficiency => &[Effect::RollerContact, Effect::OutputPins, Effect::Bearing],
             _ => &[],
         }
     }
@@ -46,7 +52,7 @@ impl Effect {
     pub fn is_loaded(self) -> bool {
         matches!(
             self,
-            Effect::RollerContact | Effect::OutputPins | Effect::Bearing
+            Effect::RollerContact | Effect::OutputPins | Effect::Bearing | Effect::Efficiency
         )
     }
 }

@@ -108,3 +108,44 @@ impl Thermal {
         self.ambient_c + loss_w / (self.heat_transfer_w_per_m2k * self.housing_area_m2)
     }
 }
+
+/// The loss power of each path per unit input speed, N·mm/rad (MODEL.md "Friction, efficiency
+/// and heat"): the power at ω = 1 rad/s in N·mm/s.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PathLosses {
+    /// Σ over the ring rollers: μ·F_i·|v_t,i| (fixed), × r_b/Rrp (rotating on their pins).
+    pub rollers: f64,
+    /// Σ over the output pins: μ·F_j·e·Ω/ω (fixed), × r_bore/r_pin (free sleeves).
+    pub output_pins: f64,
+    /// The crank bearing: μ·|Fb|·(d/2)·Ω/ω.
+    pub crank_bearing: f64,
+    /// The input's constant drag T0 (seals, churning): T0·ω/ω = T0, once per reducer.
+    pub no_load: f64,
+}
+
+impl PathLosses {
+    /// The sum of every path, N·mm/rad.
+    pub fn total(&self) -> f64 {
+        self.rollers + self.output_pins + self.crank_bearing + self.no_load
+    }
+
+    /// The path-by-path sum of `self` and `other` (the discs of one reducer).
+    pub fn plus(&self, other: &PathLosses) -> PathLosses {
+        PathLosses {
+            rollers: self.rollers + other.rollers,
+            output_pins: self.output_pins + other.output_pins,
+            crank_bearing: self.crank_bearing + other.crank_bearing,
+            no_load: self.no_load + other.no_load,
+        }
+    }
+
+    /// Every path times `factor` (ω for N·mm/s, a mean's 1/n).
+    pub fn scaled(&self, factor: f64) -> PathLosses {
+        PathLosses {
+            rollers: self.rollers * factor,
+            output_pins: self.output_pins * factor,
+            crank_bearing: self.crank_bearing * factor,
+            no_load: self.no_load * factor,
+        }
+    }
+}

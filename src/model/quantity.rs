@@ -8,7 +8,7 @@
 //! the unit named by the key (arcsec, N, mm, MPa, deg).
 
 use super::effect::{Detail, Effect};
-use super::results::{BacklashCurves, MinCoverage, SceneResult, TorsionFigures};
+use super::results::{BacklashCurves, MinCoverage, ReducerEfficiency, SceneResult, TorsionFigures};
 use crate::numeric::{extremes, fluctuation, max_entry, number};
 use crate::units;
 
@@ -155,7 +155,9 @@ impl Quantity {
     /// Whether the reducer as a whole has this curve (the output's TE and ratio, the
     /// torsion under a locked input) rather than each disc (MODEL.md "Several discs").
     pub fn of_reducer(&self) -> bool {
-        matches!(self.key, "te_arcsec" | "ratio") || self.effect == Effect::Torsion
+        matches!(self.key, "te_arcsec" | "ratio")
+            || self.effect == Effect::Torsion
+            || self.effect == Effect::Efficiency
     }
 
     /// Whether it is one value for the whole sweep (`Shape::Scalar`) rather than curves.
@@ -786,6 +788,99 @@ pub const BEARING_LIFE: Quantity = Quantity {
     }),
 };
 
+/// The reducer's efficiency figures of a scene, when computed.
+fn reducer_efficiency(r: &SceneResult) -> Option<&ReducerEfficiency> {
+    r.efficiency.as_ref()?.reducer.as_ref()
+}
+
+/// η(φ) = P_out/(P_out + loss(φ)), dimensionless, at each crank angle
+/// (`ReducerEfficiency::efficiency`, MODEL.md "Friction, efficiency and heat").
+pub const EFFICIENCY: Quantity = Quantity {
+    key: "efficiency",
+    unit: "",
+    label: "efficiency η",
+    effect: Effect::Efficiency,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| reducer_efficiency(r).map(|e| one(&e.efficiency))),
+};
+
+/// The input torque at each crank angle, N·m (`ReducerEfficiency::input_torque_nmm`).
+pub const INPUT_TORQUE: Quantity = Quantity {
+    key: "input_torque_nm",
+    unit: "N·m",
+    label: "input torque",
+    effect: Effect::Efficiency,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| {
+        reducer_efficiency(r)
+            .map(|e| vec![e.input_torque_nmm.iter().map(|&t| units::nm(t)).collect()])
+    }),
+};
+
+/// P_out/(P_out + mean loss), dimensionless (`ReducerEfficiency::mean_efficiency`).
+pub const MEAN_EFFICIENCY: Quantity = Quantity {
+    key: "mean_efficiency",
+    unit: "",
+    label: "mean efficiency",
+    effect: Effect::Efficiency,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("efficiency"),
+    read: Read::Scalar(|r| {
+        reducer_efficiency(r).map(|e| Extreme {
+            value: e.mean_efficiency,
+            at: "P_out/(P_out + mean loss) over the scene's crank angles".to_string(),
+        })
+    }),
+};
+
+/// The mean power lost to friction on every path, W, with a speed (`EfficiencyCurves::
+/// power_loss_w`; a disc's: its contacts').
+pub const TOTAL_POWER_LOSS: Quantity = Quantity {
+    key: "total_power_loss_w",
+    unit: "W",
+    label: "power loss",
+    effect: Effect::Efficiency,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        let p = r.efficiency.as_ref()?.power_loss_w()?;
+        Some(Extreme {
+            value: p.total(),
+            at: format!(
+                "mean over the crank angles: rollers {} W, output pins {} W, crank bearing {} W, \
+                 no-load {} W",
+                number(p.rollers),
+                number(p.output_pins),
+                number(p.crank_bearing),
+                number(p.no_load)
+            ),
+        })
+    }),
+};
+
+/// The steady temperature ambient + P/(h·A), °C (`ReducerEfficiency::temperature_c`).
+pub const TEMPERATURE: Quantity = Quantity {
+    key: "temperature_c",
+    unit: "°C",
+    label: "steady temperature",
+    effect: Effect::Efficiency,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        reducer_efficiency(r)?.temperature_c.map(|t| Extreme {
+            value: t,
+            at: "ambient + mean power loss/(h·A)".to_string(),
+        })
+    }),
+};
+
 /// Every quantity, curves first, in the order of the results JSON.
 ///
 /// The equilibrium `residual` per angle is left out of the curves on purpose: it is solver
@@ -811,6 +906,8 @@ pub const QUANTITIES: &[&Quantity] = &[
     &TORSION_LOST_MOTION,
     &TORSION_BACKLASH,
     &TORSIONAL_RIGIDITY,
+    &EFFICIENCY,
+    &INPUT_TORQUE,
     &MIN_CLEARANCE,
     &MAX_LOST_MOTION,
     &MAX_ROLLER_FORCE,
@@ -826,6 +923,9 @@ pub const QUANTITIES: &[&Quantity] = &[
     &MIN_TORSIONAL_RIGIDITY,
     &BEARING_EQUIVALENT_LOAD,
     &BEARING_LIFE,
+    &MEAN_EFFICIENCY,
+    &TOTAL_POWER_LOSS,
+    &TEMPERATURE,
 ];
 
 /// The quantities read from the closing lags of the rollers (`Detail::Backlash`): computed only
@@ -849,6 +949,9 @@ pub const SUMMARY: &[&Quantity] = &[
     &MIN_TORSIONAL_RIGIDITY,
     &BEARING_EQUIVALENT_LOAD,
     &BEARING_LIFE,
+    &MEAN_EFFICIENCY,
+    &TOTAL_POWER_LOSS,
+    &TEMPERATURE,
 ];
 
 /// The scalars that are max − min of their curve (`of`) rather than a value on it: a limit on
@@ -981,6 +1084,24 @@ pub const LIMITS: &[LimitDef] = &[
         key: "min_bearing_life_h",
         quantity: &BEARING_LIFE,
         bound: Bound::Min,
+        whole: false,
+    },
+    LimitDef {
+        key: "min_mean_efficiency",
+        quantity: &MEAN_EFFICIENCY,
+        bound: Bound::Min,
+        whole: false,
+    },
+    LimitDef {
+        key: "max_power_loss_w",
+        quantity: &TOTAL_POWER_LOSS,
+        bound: Bound::Max,
+        whole: false,
+    },
+    LimitDef {
+        key: "max_temperature_c",
+        quantity: &TEMPERATURE,
+        bound: Bound::Max,
         whole: false,
     },
 ];

@@ -2,6 +2,8 @@
 //! `[angle]` or `[roller|pin][angle]`. A quantity that was not computed is `None`. The quantity
 //! registry (`model::quantity`) reads these in the output units of its keys.
 
+use super::friction::{FrictionModel, PathLosses};
+
 /// Where the smallest gap of a sweep occurs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MinClearance {
@@ -199,6 +201,63 @@ impl BearingLife {
     }
 }
 
+/// Friction losses, efficiency and heat over a scene's crank angles (`Effect::Efficiency`,
+/// MODEL.md "Friction, efficiency and heat"). Losses are per unit input speed, N·mm/rad (the
+/// power at ω = 1 rad/s, N·mm/s): the scene's are the reducer's (every disc's contacts and the
+/// input's drag once), a disc's its own contacts' (no drag).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EfficiencyCurves {
+    /// The model whose forces the losses are computed from.
+    pub model: FrictionModel,
+    /// Each path's loss at each crank angle, N·mm/rad, `[angle]`.
+    pub loss_nmm: Vec<PathLosses>,
+    /// Their means over the crank angles, N·mm/rad.
+    pub mean_loss_nmm: PathLosses,
+    /// ω, the input speed, rad/s (`input_speed_rpm`·2π/60), when the scene has one: the losses
+    /// in watts are `mean_loss_nmm`·ω·1e-3.
+    pub input_speed_rad_s: Option<f64>,
+    /// The reducer's figures; `None` in a disc's curves.
+    pub reducer: Option<ReducerEfficiency>,
+}
+
+/// The reducer's efficiency, input torque and temperature over a scene (MODEL.md "Friction,
+/// efficiency and heat").
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReducerEfficiency {
+    /// P_out per unit input speed, |T|/nc, N·mm/rad (T the scene's output torque).
+    pub output_power_nmm: f64,
+    /// η(φ) = P_out/(P_out + loss(φ)) at each crank angle, `[angle]`.
+    pub efficiency: Vec<f64>,
+    /// P_out/(P_out + mean loss): the mean of the losses, not of η.
+    pub mean_efficiency: f64,
+    /// The input torque at each crank angle, N·mm, `[angle]`: the loss model's T/nc + loss,
+    /// the coupled model's from the crank's balance (with its ripple).
+    pub input_torque_nmm: Vec<f64>,
+    /// The crank angles (rad) where the output drives (T < 0) and the input must still push
+    /// (T_in ≥ 0): the friction holds the reducer, it self-locks there; empty when T ≥ 0.
+    pub self_locking_crank_rad: Vec<f64>,
+    /// The steady temperature ambient + P/(h·A), °C, with `reducer.thermal` and a speed.
+    pub temperature_c: Option<f64>,
+}
+
+impl EfficiencyCurves {
+    /// The mean power lost on each path, W, with a speed: `mean_loss_nmm`·ω·1e-3.
+    pub fn power_loss_w(&self) -> Option<PathLosses> {
+        self.input_speed_rad_s
+            .map(|w| self.mean_loss_nmm.scaled(crate::units::w(w)))
+    }
+}
+
+/// The mean efficiency of a scene solved again at other output torques (the review's curve,
+/// `engine::efficiency::torque_curve`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TorqueCurve {
+    /// The output torques, N·mm, rising.
+    pub torque_nmm: Vec<f64>,
+    /// The mean efficiency at each.
+    pub mean_efficiency: Vec<f64>,
+}
+
 /// Everything computed for one scene. A quantity that was not computed is `None`.
 #[derive(Debug, Clone)]
 pub struct SceneResult {
@@ -215,6 +274,9 @@ pub struct SceneResult {
     /// The crank bearing's rating life, when the design has a `crank_bearing` and the scene
     /// computes the bearing force over whole loaded periods.
     pub bearing_life: Option<BearingLife>,
+    /// Friction losses, efficiency and heat (`Effect::Efficiency`); with several discs, each
+    /// disc's own losses in its `discs` entry.
+    pub efficiency: Option<EfficiencyCurves>,
     /// With several discs (MODEL.md "Several discs"), each disc's own results, disc k at the
     /// crank phase 2πk/N, at the scene's crank angles: its clearance and its loaded curves
     /// (with its torque share). The scene's own `clearance` is then `None` and its `loaded`

@@ -34,6 +34,7 @@ pub fn write(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
         accuracy: review.ladder.as_ref().map(|(l, _)| l),
         warnings: &warnings,
         as_built,
+        efficiency: &review.efficiency,
     };
     Ok(super::review::write(dir, &input)?.len())
 }

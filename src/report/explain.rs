@@ -4,7 +4,10 @@
 
 use crate::engine::check;
 use crate::engine::scene::{self, Note, Writes};
-use crate::model::{CentreDeviation, Detail, Deviations, Effect};
+use crate::model::{
+    CentreDeviation, Detail, Deviations, Effect, FrictionModel, PinFriction, PinMode,
+    RollerFriction, RollerMode,
+};
 use crate::numeric::number;
 use crate::spec::Spec;
 use crate::units;
@@ -69,6 +72,7 @@ pub fn explain(spec: &Spec, writes: Writes) -> String {
 pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
     let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
     out += &discs_line(spec);
+    out += &friction_lines(spec);
     let deviations = deviation_lines(&spec.design.deviations);
     if !deviations.is_empty() {
         out += &format!(
@@ -152,8 +156,10 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
                 );
             }
         }
+        // Without friction there is no efficiency to skip: the plan reads as before it existed.
         let skipped: Vec<&str> = Effect::listed()
             .filter(|e| !plan.has(*e))
+            .filter(|e| *e != Effect::Efficiency || spec.design.friction.is_some())
             .map(|e| e.name())
             .collect();
         if !skipped.is_empty() {
@@ -185,6 +191,76 @@ fn discs_line(spec: &Spec) -> String {
          each disc, and the per-disc quantities are given per disc\n",
         phases.join(", ")
     )
+}
+
+/// The friction model and what each path assumes (`reducer.friction`, MODEL.md "Friction,
+/// efficiency and heat"); nothing without friction.
+fn friction_lines(spec: &Spec) -> String {
+    let Some(f) = &spec.design.friction else {
+        return String::new();
+    };
+    let mut out = format!(
+        "friction (reducer.friction): the {} model, {}
+",
+        f.model,
+        match f.model {
+            FrictionModel::Loss => {
+                "forces of the frictionless balance, each path's loss μ·F·sliding speed \
+                 (forces, lags and the other outputs as without friction)"
+            }
+            FrictionModel::Coupled => {
+                "friction μ·F along every contact's tangent inside its balance, the input \
+                 torque from the crank's"
+            }
+        }
+    );
+    match f.rollers {
+        Some(RollerFriction { mode, mu }) => {
+            out += &match mode {
+                RollerMode::Fixed => format!(
+                    "  rollers      fixed, μ {mu}: the disc slides over each roller at the \
+                     tangential speed of its contact point, (|P_i − I| − Rrp)·ω/nc unmodified\n"
+                ),
+                RollerMode::Rotating { bore_radius_mm } => format!(
+                    "  rollers      rotating on pins of radius {bore_radius_mm} mm, μ {mu}: they \
+                     roll on the disc and slide on their pins at the disc's sliding speed × \
+                     r_b/Rrp\n"
+                ),
+            }
+        }
+        None => out += "  rollers      no friction (not given)\n",
+    }
+    match f.output_pins {
+        Some(PinFriction { mode, mu }) => {
+            out += &match mode {
+                PinMode::Fixed => format!(
+                    "  output pins  fixed, μ {mu}: each hole slides over its pin at e·Ω, \
+                     Ω = ω(1 + 1/nc)\n"
+                ),
+                PinMode::Sleeve { bore_radius_mm } => format!(
+                    "  output pins  free sleeves on pins of radius {bore_radius_mm} mm, μ {mu}: \
+                     they roll in the holes and slide on their pins at e·Ω·r_bore/r_pin\n"
+                ),
+            }
+        }
+        None => out += "  output pins  no friction (not given)\n",
+    }
+    match f.crank_bearing {
+        Some(b) => {
+            out += &format!(
+                "  crank bearing μ {} at its bore of {} mm: friction torque μ·|Fb|·d/2 at Ω\n",
+                b.mu, b.bore_diameter_mm
+            )
+        }
+        None => out += "  crank bearing no friction (not given)\n",
+    }
+    if f.no_load_torque_nmm > 0.0 {
+        out += &format!(
+            "  no-load      a drag of {} N·mm at the input\n",
+            number(f.no_load_torque_nmm)
+        );
+    }
+    out
 }
 
 /// The optimisation studies (`optimise:`), one line each: scene, objective, variables and the

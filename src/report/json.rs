@@ -15,7 +15,7 @@ use crate::engine::optimise::StudyResult;
 use crate::engine::summary::SceneSummary;
 use crate::error::Result;
 use crate::model::quantity::{self as q, Quantity, QUANTITIES};
-use crate::model::results::{ClearanceSweep, MinCoverage, SceneResult};
+use crate::model::results::{ClearanceSweep, EfficiencyCurves, MinCoverage, SceneResult};
 use crate::model::Study;
 use crate::numeric::extremes;
 use crate::report::explain::HYSTERESIS;
@@ -197,6 +197,22 @@ pub struct SceneDoc<'a> {
     ratio_max: Option<Finite>,
     #[serde(skip_serializing_if = "Option::is_none")]
     ratio_min: Option<Finite>,
+    /// η at each crank angle (`efficiency`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    efficiency: Option<Curve<'a>>,
+    /// The input torque at each crank angle, N·m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    input_torque_nm: Option<Curve<'a>>,
+    /// The crank angles where the reducer self-locks (the output drives, T < 0, and the input
+    /// must still push), degrees; empty when it back-drives everywhere or T ≥ 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    self_locking_deg: Option<Curve<'a>>,
+    /// The mean power lost on each path, W (with a speed; a disc's: its contacts').
+    #[serde(skip_serializing_if = "Option::is_none")]
+    power_loss_w: Option<PowerLossDoc>,
+    /// Why the losses in watts are absent (no speed), with `efficiency`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    power_loss_note: Option<&'static str>,
     /// The registry's scalars the scene computed (`QUANTITIES`): min_clearance_mm,
     /// max_roller_force_n, ... (with several discs, the worst over the discs).
     #[serde(flatten)]
@@ -230,6 +246,33 @@ pub struct TorsionDoc {
 fn finite(values: impl IntoIterator<Item = f64>) -> Vec<Finite> {
     values.into_iter().map(Finite).collect()
 }
+
+/// The mean power lost on each path, W (`EfficiencyCurves::power_loss_w`).
+#[derive(Serialize)]
+pub struct PowerLossDoc {
+    rollers: Finite,
+    output_pins: Finite,
+    crank_bearing: Finite,
+    no_load: Finite,
+    total: Finite,
+}
+
+impl PowerLossDoc {
+    fn new(e: &EfficiencyCurves) -> Option<PowerLossDoc> {
+        let p = e.power_loss_w()?;
+        Some(PowerLossDoc {
+            rollers: Finite(p.rollers),
+            output_pins: Finite(p.output_pins),
+            crank_bearing: Finite(p.crank_bearing),
+            no_load: Finite(p.no_load),
+            total: Finite(p.total()),
+        })
+    }
+}
+
+/// Why a scene's losses have no watts.
+pub const NO_SPEED: &str = "no input_speed_rpm: the efficiency does not depend on the speed \
+     (Coulomb friction), the losses in watts and the temperature need one";
 
 /// A per-crank curve of the registry, as written.
 fn registry(r: &SceneResult, quantity: &Quantity) -> Vec<Finite> {
@@ -307,6 +350,7 @@ impl<'a> SceneDoc<'a> {
         let (te_max_arcsec, te_min_arcsec) =
             te.map_or((None, None), |t| max_min(&t.te_rad, To::Arcsec));
         let (ratio_max, ratio_min) = ratio.map_or((None, None), |v| max_min(v, To::Same));
+        let reducer_eff = r.efficiency.as_ref().and_then(|e| e.reducer.as_ref());
         SceneDoc {
             name: Some(&r.name),
             crank_deg: Some(Curve::new(&r.crank_rad, To::Deg)),
@@ -334,6 +378,15 @@ impl<'a> SceneDoc<'a> {
             ratio: ratio.map(Curve::plain),
             ratio_max,
             ratio_min,
+            efficiency: reducer_eff.map(|e| Curve::plain(&e.efficiency)),
+            input_torque_nm: reducer_eff.map(|e| Curve::new(&e.input_torque_nmm, To::Nm)),
+            self_locking_deg: reducer_eff.map(|e| Curve::new(&e.self_locking_crank_rad, To::Deg)),
+            power_loss_w: r.efficiency.as_ref().and_then(PowerLossDoc::new),
+            power_loss_note: r
+                .efficiency
+                .as_ref()
+                .filter(|e| e.input_speed_rad_s.is_none())
+                .map(|_| NO_SPEED),
             scalars: Pairs(
                 QUANTITIES
                     .iter()

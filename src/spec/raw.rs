@@ -232,6 +232,84 @@ pub(crate) struct RawReducer {
     /// Deviations of the built parts from the drawing (one as-built state).
     #[serde(default)]
     pub deviations: Option<RawDeviations>,
+    /// Friction at every contact (absent: the frictionless model).
+    #[serde(default)]
+    pub friction: Option<RawFriction>,
+    /// The housing's heat path, for a steady temperature.
+    #[serde(default)]
+    pub thermal: Option<RawThermal>,
+}
+
+/// `reducer.friction` (MODEL.md "Friction, efficiency and heat"): a path not given has no
+/// friction.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping of the friction keys (model, rollers, output_pins, crank_bearing, no_load_torque_nmm)"
+)]
+pub(crate) struct RawFriction {
+    /// `loss` or `coupled` (the default).
+    #[serde(default)]
+    pub model: Option<String>,
+    #[serde(default)]
+    pub rollers: Option<RawRollerFriction>,
+    #[serde(default)]
+    pub output_pins: Option<RawPinFriction>,
+    #[serde(default)]
+    pub crank_bearing: Option<RawBearingFriction>,
+    /// A constant drag at the input, N·mm.
+    #[serde(default)]
+    pub no_load_torque_nmm: Option<f64>,
+}
+
+/// `reducer.friction.rollers`: `fixed` or `rotating` (on a pin of `bore_radius_mm`).
+#[derive(Debug, Deserialize, Clone)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys mode, mu (and bore_radius_mm with mode rotating)"
+)]
+pub(crate) struct RawRollerFriction {
+    pub mode: String,
+    pub mu: f64,
+    #[serde(default)]
+    pub bore_radius_mm: Option<f64>,
+}
+
+/// `reducer.friction.output_pins`: `fixed` or `sleeve` (a free sleeve on a pin of
+/// `bore_radius_mm`).
+#[derive(Debug, Deserialize, Clone)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys mode, mu (and bore_radius_mm with mode sleeve)"
+)]
+pub(crate) struct RawPinFriction {
+    pub mode: String,
+    pub mu: f64,
+    #[serde(default)]
+    pub bore_radius_mm: Option<f64>,
+}
+
+/// `reducer.friction.crank_bearing`: friction torque μ·Fb·d/2.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys mu, bore_diameter_mm"
+)]
+pub(crate) struct RawBearingFriction {
+    pub mu: f64,
+    pub bore_diameter_mm: f64,
+}
+
+/// `reducer.thermal`: the steady temperature ambient + P/(h·A).
+#[derive(Debug, Deserialize, Clone)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys housing_area_m2, heat_transfer_w_per_m2k, ambient_c"
+)]
+pub(crate) struct RawThermal {
+    pub housing_area_m2: f64,
+    pub heat_transfer_w_per_m2k: f64,
+    pub ambient_c: f64,
 }
 
 /// `reducer.deviations`: every key optional (MODEL.md "Part deviations").

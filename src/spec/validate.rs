@@ -5,7 +5,7 @@ use super::paths::resolve;
 use super::raw::*;
 use super::scenes::{refuse_first_order, scene_index};
 use super::validated::{Accuracy, Spec};
-use super::values::finite;
+use super::values::{finite, length, positive};
 use super::yaml::did_you_mean;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
@@ -25,21 +25,6 @@ fn named<T: std::str::FromStr<Err = String>>(key: &str, value: Option<&str>) -> 
         .transpose()
 }
 
-fn positive(key: &str, value: f64) -> Result<f64> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::invalid(
-            key,
-            format!("must be a positive number, got {}", numeric::input(value)),
-        ))
-    }
-}
-
-/// Largest length the engine accepts, mm. Beyond 100 m a double's ~1e-16 relative precision
-/// no longer resolves the micrometre gaps this tool exists to check.
-const MAX_LENGTH_MM: f64 = 1e5;
-
 /// Largest crank angle magnitude, degrees (~28,000 revolutions): an angle's rounding stays
 /// below 1e-9 rad.
 pub const MAX_CRANK_DEG: f64 = 1e7;
@@ -53,22 +38,6 @@ fn angle_deg(key: &str, value: f64) -> Result<f64> {
             format!(
                 "{}° is beyond ±{MAX_CRANK_DEG}° (about 28,000 revolutions), where the \
                  angle's rounding would exceed 1e-9 rad",
-                numeric::input(value)
-            ),
-        ));
-    }
-    Ok(value)
-}
-
-/// A positive length no larger than `MAX_LENGTH_MM`.
-fn length(key: &str, value: f64) -> Result<f64> {
-    let value = positive(key, value)?;
-    if value > MAX_LENGTH_MM {
-        return Err(Error::invalid(
-            key,
-            format!(
-                "{} mm is larger than the {MAX_LENGTH_MM} mm (100 m) this tool handles: \
-                 beyond it double precision cannot resolve micrometre gaps",
                 numeric::input(value)
             ),
         ));
@@ -117,7 +86,11 @@ fn material(key: &str, raw: RawMaterial) -> Result<Material> {
 
 fn design(raw: RawReducer) -> Result<Design> {
     let deviations = raw.deviations.clone();
+    let friction = raw.friction.clone();
     let mut design = nominal_design(raw)?;
+    design.friction = friction
+        .map(|f| super::friction::friction(&f, &design))
+        .transpose()?;
     if let Some(d) = deviations {
         design.deviations = super::deviations::build(&d, &design)?;
     }
@@ -188,7 +161,11 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
         crank_bearing: raw.crank_bearing.map(crank_bearing).transpose()?,
         deviations: Deviations::default(),
         friction: None,
-        thermal: None,
+        thermal: raw
+            .thermal
+            .as_ref()
+            .map(super::friction::thermal)
+            .transpose()?,
     })
 }
 
@@ -492,6 +469,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         scenes.push(s);
     }
     exact_as_built(&design, &scenes)?;
+    super::friction::check_scenes(&design, &scenes)?;
     first_order_torques(&design, &scenes)?;
     let studies = match raw.optimise {
         Some(o) => {
@@ -520,6 +498,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     let limits = limits(&raw.limits)?;
     let built = (!design.deviations.is_nominal()).then_some("`reducer.deviations`");
     super::bearing_life::check(&limits, &design, &scenes, built)?;
+    super::friction::check_limits(&limits, &design, &scenes)?;
     let mut golden = Vec::new();
     for (i, g) in raw.golden.into_iter().enumerate() {
         let g = golden_entry(path, i, g, (&scenes, design.discs))?;

@@ -27,6 +27,8 @@ mod fault_injection;
 mod first_order_sweep;
 mod first_order_validity;
 mod flanks;
+mod friction;
+mod friction_coupled;
 mod fuzz_corpus;
 mod geometry;
 mod golden;

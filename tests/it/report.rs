@@ -383,6 +383,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         accuracy: None,
         warnings: &["crank steps <coarser> than the ladder's & more".into()],
         as_built: None,
+        efficiency: &[],
     });
     // CYCLOID_KEEP_REPORT=DIR keeps the synthetic report to look at.
     if let Some(dir) = std::env::var_os("CYCLOID_KEEP_REPORT") {
@@ -447,6 +448,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         accuracy: None,
         warnings: &[],
         as_built: None,
+        efficiency: &[],
     });
     assert!(!files.iter().any(|(n, _)| n.starts_with("optimisation")));
     assert!(!page(&files).contains("<h2>Optimisation</h2>"));

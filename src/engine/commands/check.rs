@@ -12,9 +12,10 @@ use crate::engine::optimise::{self, problem::Evaluation, StudyResult};
 use crate::engine::resolution::{self, Resolution};
 use crate::engine::scene::{self, Writes};
 use crate::engine::summary::{self, SceneSummary};
+use crate::engine::torque_curve;
 use crate::error::{Error, ErrorKind, Result};
 use crate::measure::fit::Identification;
-use crate::model::results::SceneResult;
+use crate::model::results::{SceneResult, TorqueCurve};
 use crate::model::{Modification, Study};
 use crate::progress::{Budget, Phase, Progress};
 use crate::spec::Spec;
@@ -104,6 +105,8 @@ pub struct Review {
     pub map_steps: usize,
     /// The accuracy ladder of the spec's `accuracy:` scene and its wall-clock time, s.
     pub ladder: Option<(Ladder, f64)>,
+    /// Each scene's mean efficiency against its output torque (`None`: no efficiency).
+    pub efficiency: Vec<Option<TorqueCurve>>,
 }
 
 /// Run every scene of `spec`, check its limits and goldens, run its studies, and what
@@ -184,6 +187,11 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
             maps: maps(&spec, &studies, r.map_steps, progress),
             map_steps: r.map_steps,
             ladder,
+            efficiency: spec
+                .scenes
+                .iter()
+                .map(|s| torque_curve::torque_curve(&spec, s))
+                .collect::<Result<_>>()?,
         }),
         None => None,
     };

@@ -483,6 +483,7 @@ mod tests {
     fn the_smallest_gap_is_the_least_over_the_rollers_at_each_angle() {
         let r = SceneResult {
             name: "s".into(),
+            efficiency: None,
             crank_rad: vec![0.0, 0.1],
             clearance: Some(ClearanceSweep {
                 gap_mm: vec![vec![0.003, 0.001], vec![0.002, 0.005]],

@@ -22,6 +22,7 @@ pub mod checks;
 pub mod common;
 pub mod design;
 pub mod disc;
+mod efficiency;
 pub mod optimisation;
 pub mod plots;
 pub mod scenes;
@@ -65,6 +66,8 @@ pub struct ReportInput<'a> {
     /// The disc as built (`measured_profile:`): its identification and the results as
     /// designed, beside `results` (which are as built).
     pub as_built: Option<AsBuiltView<'a>>,
+    /// Each scene's mean efficiency against its output torque (`None`: no efficiency).
+    pub efficiency: &'a [Option<crate::model::results::TorqueCurve>],
 }
 
 /// The report's files, (file name, content): the SVGs, then `index.html` last.
@@ -98,6 +101,12 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         &mut files,
     ));
     sections.extend(bearing_life::section(input.spec, input.results));
+    sections.extend(efficiency::section_of(
+        input.spec,
+        input.results,
+        input.efficiency,
+        &mut files,
+    ));
     if !input.optimisation.is_empty() {
         sections.push(optimisation::optimisation_section(
             input.optimisation,

@@ -1,0 +1,307 @@
+//! The effect `efficiency` of a scene (MODEL.md "Friction, efficiency and heat"): the loss of
+//! every friction path at every crank angle, the efficiency, the input torque and the steady
+//! temperature, from the contact forces of the scene's friction model.
+//!
+//! `disc_losses` is the one place that dispatches on the friction model: the loss model reads
+//! the frictionless loaded sweep the scene already solved; the coupled model (friction inside
+//! every balance) is not built into the engine yet and is refused here, as the spec refuses it
+//! at its key (`spec::friction::check_scenes`).
+//!
+//! Powers per unit input speed (N·mm/rad, the power at ω = 1 rad/s in N·mm/s):
+//! P_out = |T|/nc with T the scene's output torque (all discs), η(φ) = P_out/(P_out + loss(φ)),
+//! mean η = P_out/(P_out + mean loss) (the mean of the losses, not of η). With no output
+//! torque η is 0 where anything is lost and 1 where nothing is (no NaN). Coulomb friction
+//! makes every loss proportional to ω, so η does not depend on the speed; the watts are the
+//! losses × ω × 1e-3 and exist only with `input_speed_rpm`, the temperature ambient +
+//! P/(h·A) only with `reducer.thermal` too.
+
+use crate::equilibrium::friction::coupled::Coupling;
+use crate::equilibrium::friction::loss::{disc_losses as contact_losses, PathLosses};
+use crate::equilibrium::loaded::{AngleSolution, Model};
+use crate::equilibrium::pins::PinState;
+use crate::equilibrium::rollers::Reach;
+use crate::error::{Error, Result};
+use crate::geometry::clearance::Pose;
+use crate::geometry::Vec2;
+use crate::model::results::{EfficiencyCurves, LoadedSweep, ReducerEfficiency};
+use crate::model::{Design, Effect, Friction, FrictionModel, Plan, Scene};
+use crate::units;
+use rayon::prelude::*;
+
+/// Crank angles re-evaluated in one piece: each piece warm-starts its rollers' feet from its
+/// previous angle, as a sweep's chunk does.
+const PIECE: usize = 64;
+
+/// The efficiency of a scene whose loaded sweep is done (`discs`: each disc's curves, one for
+/// a one-disc reducer, with `model` the loaded model of the disc at phase 0): the reducer's
+/// curves and each disc's (empty for one disc). `None` when the plan does not compute it.
+pub fn efficiency(
+    design: &Design,
+    model: &Model,
+    (scene, plan): (&Scene, &Plan),
+    discs: &[&LoadedSweep],
+) -> Result<Option<(EfficiencyCurves, Vec<EfficiencyCurves>)>> {
+    let Some(friction) = design
+        .friction
+        .filter(|_| plan.computes(Effect::Efficiency))
+    else {
+        return Ok(None);
+    };
+    let per_disc = disc_losses(&friction, design, model, scene, discs)?;
+    let speed = scene.input_speed_rpm.map(units::rad_per_s);
+    let curves = |loss_nmm: Vec<PathLosses>, reducer| EfficiencyCurves {
+        model: friction.model,
+        mean_loss_nmm: mean(&loss_nmm),
+        loss_nmm,
+        input_speed_rad_s: speed,
+        reducer,
+    };
+    let n = scene.crank_rad.len();
+    let total: Vec<PathLosses> = (0..n)
+        .map(|i| {
+            let contacts = per_disc
+                .iter()
+                .fold(PathLosses::default(), |a, d| a.plus(&d[i]));
+            PathLosses {
+                no_load: friction.no_load_torque_nmm,
+                ..contacts
+            }
+        })
+        .collect();
+    let input = match friction.model {
+        FrictionModel::Loss => None,
+        FrictionModel::Coupled => Some(crank_input_torque(&friction, design, scene, discs)),
+    };
+    let reducer = reducer_figures(design, scene, &total, speed, input);
+    let disc_curves = if per_disc.len() > 1 {
+        per_disc.into_iter().map(|d| curves(d, None)).collect()
+    } else {
+        Vec::new()
+    };
+    Ok(Some((curves(total, Some(reducer)), disc_curves)))
+}
+
+/// η = P_out/(P_out + loss): 1 when nothing is lost, 0 when only loss (no output torque).
+pub fn efficiency_of(output_power: f64, loss: f64) -> f64 {
+    if output_power + loss > 0.0 {
+        output_power / (output_power + loss)
+    } else {
+        1.0
+    }
+}
+
+/// The reducer's efficiency, input torque and temperature from its losses `[angle]`.
+fn reducer_figures(
+    design: &Design,
+    scene: &Scene,
+    loss: &[PathLosses],
+    speed_rad_s: Option<f64>,
+    coupled_input_nmm: Option<Vec<f64>>,
+) -> ReducerEfficiency {
+    let nc = design.teeth as f64;
+    let torque = scene.output_torque_nmm;
+    let output_power = torque.abs() / nc;
+    let mean_loss = mean(loss).total();
+    let temperature_c = design
+        .thermal
+        .zip(speed_rad_s)
+        .map(|(t, w)| t.temperature_c(units::w(mean_loss * w)));
+    let input_torque_nmm: Vec<f64> = coupled_input_nmm.unwrap_or_else(|| {
+        // The loss model's input torque from the energy balance P_in = P_out + Σ losses per
+        // unit input speed: T/nc + loss(φ).
+        loss.iter().map(|l| torque / nc + l.total()).collect()
+    });
+    ReducerEfficiency {
+        output_power_nmm: output_power,
+        efficiency: loss
+            .iter()
+            .map(|l| efficiency_of(output_power, l.total()))
+            .collect(),
+        mean_efficiency: efficiency_of(output_power, mean_loss),
+        self_locking_crank_rad: self_locking(scene, &input_torque_nmm),
+        input_torque_nmm,
+        temperature_c,
+    }
+}
+
+/// Where the output drives (T < 0 at the forward kinematics: back-driving) and the input must
+/// still push (T_in ≥ 0): the friction holds more than the output's torque can drive, the
+/// reducer self-locks at those crank angles (rad). Empty for a driving output torque.
+fn self_locking(scene: &Scene, input_torque_nmm: &[f64]) -> Vec<f64> {
+    if scene.output_torque_nmm >= 0.0 {
+        return Vec::new();
+    }
+    scene
+        .crank_rad
+        .iter()
+        .zip(input_torque_nmm)
+        .filter(|(_, t)| **t >= 0.0)
+        .map(|(phi, _)| *phi)
+        .collect()
+}
+
+/// The coupled model's input torque at each crank angle, N·mm, from the crank's balance about
+/// the axis (`equilibrium::friction::coupled`): T_in = Σ_k (E_k × Fb_k + c_b·|Fb_k|) + T0, with
+/// E_k = (e + de)·e_φk the eccentric of disc k and Fb_k its bearing's force on the disc (at
+/// the angle ε_k from e_φk: E_k × Fb_k = (e + de)·|Fb_k|·sin ε_k).
+fn crank_input_torque(
+    friction: &Friction,
+    design: &Design,
+    scene: &Scene,
+    discs: &[&LoadedSweep],
+) -> Vec<f64> {
+    let c = Coupling::new(friction, design);
+    (0..scene.crank_rad.len())
+        .map(|i| {
+            let discs: f64 = discs
+                .iter()
+                .filter_map(|d| d.bearing.as_ref())
+                .map(|b| {
+                    let (force, angle) = (b.force_n[i], b.angle_rad[i]);
+                    c.eccentricity_mm * force * angle.sin() + c.bearing_arm_mm * force
+                })
+                .sum();
+            discs + friction.no_load_torque_nmm
+        })
+        .collect()
+}
+
+/// The mean of each path over the angles.
+fn mean(loss: &[PathLosses]) -> PathLosses {
+    let sum = loss.iter().fold(PathLosses::default(), |a, b| a.plus(b));
+    sum.scaled(1.0 / loss.len().max(1) as f64)
+}
+
+/// Each disc's contact losses `[disc][angle]` under the scene's friction model: the one
+/// dispatch point of the models.
+fn disc_losses(
+    friction: &Friction,
+    design: &Design,
+    model: &Model,
+    scene: &Scene,
+    discs: &[&LoadedSweep],
+) -> Result<Vec<Vec<PathLosses>>> {
+    match friction.model {
+        // The coupled model's sweep is already the coupled balance (`scene::loaded_model`
+        // put the friction in it): its forces and contact points give its losses the same way.
+        FrictionModel::Loss | FrictionModel::Coupled => discs
+            .iter()
+            .enumerate()
+            .map(|(k, d)| {
+                loss_model(
+                    friction,
+                    design,
+                    model,
+                    scene,
+                    (design.disc_phase_rad(k), d),
+                )
+            })
+            .collect(),
+    }
+}
+
+/// The loss model: disc's contact losses at each of the scene's crank angles from its
+/// frictionless loaded curves `sweep` (disc at crank phase `phase`). The rollers that carry a
+/// force are evaluated again at each angle's loaded pose (crank φ + phase, lag β, and the
+/// centre's offset −Fb/kb in a compliant bearing) for their contact points and normals; the
+/// forces are the sweep's.
+fn loss_model(
+    friction: &Friction,
+    design: &Design,
+    model: &Model,
+    scene: &Scene,
+    (phase, sweep): (f64, &LoadedSweep),
+) -> Result<Vec<PathLosses>> {
+    let crank = &scene.crank_rad;
+    let indices: Vec<usize> = (0..crank.len()).collect();
+    let pieces: Result<Vec<Vec<PathLosses>>> = indices
+        .par_chunks(PIECE)
+        .map(|piece| {
+            let mut sol = AngleSolution::default();
+            let mut reaches = Vec::new();
+            piece
+                .iter()
+                .map(|&i| {
+                    let phi = crank[i] + phase;
+                    solution_at(model, sweep, (i, phi), &mut sol, &mut reaches)?;
+                    Ok(contact_losses(friction, design, phi, &sol))
+                })
+                .collect()
+        })
+        .collect();
+    Ok(pieces?.into_iter().flatten().collect())
+}
+
+/// A gap that proves a roller out of contact at the very pose it is evaluated at (so that
+/// `Rollers::evaluate_within` skips it), or that proves nothing (so that it is evaluated), mm.
+const SKIP_MM: f64 = 1e9;
+
+/// The solution of angle `i` (crank `phi`, the disc's phase included) rebuilt from the sweep's
+/// curves into `sol` (its previous rollers warm-start the feet): the states of the rollers
+/// that carry a force at the loaded pose, with the sweep's forces (the others keep zero force
+/// and are skipped: they lose nothing), the pins' forces, the bearing's force.
+fn solution_at(
+    model: &Model,
+    sweep: &LoadedSweep,
+    (i, phi): (usize, f64),
+    sol: &mut AngleSolution,
+    reaches: &mut Vec<Reach>,
+) -> Result<()> {
+    let bearing = sweep.bearing.as_ref().map(|b| {
+        let angle = phi + b.angle_rad[i];
+        Vec2::new(angle.cos(), angle.sin()) * b.force_n[i]
+    });
+    sol.bearing_force_n = bearing;
+    if let (Some(rollers), Some(curves)) = (&model.rollers, &sweep.rollers) {
+        let offset = match (model.bearing_stiffness_n_per_mm, bearing) {
+            (Some(kb), Some(fb)) => -fb / kb,
+            _ => Vec2::zeros(),
+        };
+        let pose = Pose {
+            crank_rad: phi,
+            lag_rad: curves.lag_rad[i],
+            centre_offset_mm: offset,
+        };
+        let first = sol.rollers.is_empty();
+        reaches.clear();
+        for (r, f) in curves.force_n.iter().enumerate() {
+            let loaded = f[i] > 0.0;
+            // A roller that comes into contact starts its foot from its guess, not from where
+            // it was last evaluated (possibly many angles ago).
+            let was_loaded = sol.rollers.get(r).is_some_and(|s| s.force_n > 0.0);
+            if loaded && !was_loaded && !first {
+                sol.rollers[r].t = rollers.mesh.foot_guess(r, &pose);
+            }
+            reaches.push(Reach {
+                crank_rad: pose.crank_rad,
+                lag_rad: pose.lag_rad,
+                offset_mm: pose.centre_offset_mm,
+                gap_mm: if loaded { -SKIP_MM } else { SKIP_MM },
+            });
+        }
+        rollers
+            .evaluate_within(&pose, &mut sol.rollers, reaches)
+            .map_err(|e| {
+                Error::computation(format!(
+                    "crank angle {:.4}°: the rollers' contact points for the friction losses: {e}",
+                    units::deg(phi)
+                ))
+            })?;
+        for (s, f) in sol.rollers.iter_mut().zip(&curves.force_n) {
+            s.force_n = f[i];
+        }
+    }
+    if let Some(pins) = &sweep.pins {
+        sol.pins.clear();
+        sol.pins.extend(pins.force_n.iter().map(|f| PinState {
+            gap_mm: 0.0,
+            force_n: f[i],
+            stiffness_n_per_mm: 0.0,
+            arm_mm: 0.0,
+            direction: Vec2::zeros(),
+            point: Vec2::zeros(),
+            gap_slope_mm: 0.0,
+        }));
+    }
+    Ok(())
+}

@@ -1,0 +1,202 @@
+//! The review's friction, efficiency and heat ([`engine::efficiency`](crate::engine::efficiency)):
+//! per scene with `efficiency`, the mean efficiency against the output torque from 5 % to 150 %
+//! of the scene's (`TorqueCurve`, solved by [`engine::torque_curve`](crate::engine::torque_curve)), and with a speed the mean power lost
+//! on each path as a stacked bar.
+
+use super::common::{data_table, figure, section, Section};
+use crate::model::friction::PathLosses;
+use crate::model::results::{EfficiencyCurves, SceneResult, TorqueCurve};
+use crate::model::Scene;
+use crate::numeric::number;
+use crate::report::svg::{document, px, ticks, LinePlot, RefLine, Series, PALETTE, RED};
+use crate::spec::Spec;
+use crate::units;
+use maud::html;
+
+/// The paths in the order a bar stacks them, with their colours.
+const PATHS: [(&str, usize); 4] = [
+    ("rollers", 0),
+    ("output pins", 1),
+    ("crank bearing", 2),
+    ("no-load drag", 7),
+];
+
+fn path_values(p: &PathLosses) -> [f64; 4] {
+    [p.rollers, p.output_pins, p.crank_bearing, p.no_load]
+}
+
+/// The efficiency-against-torque plot of a scene: the mean efficiency at each torque of the
+/// curve, the scene's own torque marked.
+fn torque_plot(scene: &Scene, c: &TorqueCurve, mean: f64) -> LinePlot {
+    let mut plot = LinePlot::new(
+        &format!("Efficiency against output torque: scene {}", scene.name),
+        "output torque T (N·m)",
+        "mean efficiency",
+    );
+    plot.subtitle = "P_out/(P_out + mean loss) over the scene's crank angles, the scene solved \
+                     again at each torque; the drag and any preload lose whatever the torque, \
+                     so the efficiency falls at light load"
+        .into();
+    let x: Vec<f64> = c.torque_nmm.iter().map(|&t| units::nm(t)).collect();
+    plot.series.push(Series::new(
+        "mean efficiency",
+        x,
+        c.mean_efficiency.clone(),
+        PALETTE[0],
+    ));
+    let at = units::nm(scene.output_torque_nmm.abs());
+    plot.series.push(Series::new(
+        format!("the scene: {} N·m, {}", number(at), number(mean)),
+        vec![at, at],
+        vec![mean - 0.02, mean + 0.02],
+        RED,
+    ));
+    plot.ref_lines.push(RefLine {
+        value: mean,
+        label: String::new(),
+        color: RED.into(),
+    });
+    plot
+}
+
+/// A stacked bar per scene of the mean power lost on each path, W.
+fn loss_bars(bars: &[(&str, PathLosses)]) -> String {
+    let (w, h, left, top, bottom): (f64, f64, f64, f64, f64) = (660.0, 400.0, 70.0, 40.0, 60.0);
+    let legend_w = 150.0;
+    let plot_w = w - left - legend_w - 20.0;
+    let most = bars
+        .iter()
+        .map(|(_, p)| p.total())
+        .fold(0.0_f64, f64::max)
+        .max(1e-12);
+    let yt = ticks(0.0, most, 6, true);
+    let y_max = yt.values.last().copied().unwrap_or(most).max(most);
+    let y = |v: f64| top + (h - top - bottom) * (1.0 - v / y_max);
+    let slot = plot_w / bars.len().max(1) as f64;
+    let bar_w = (slot * 0.5).min(90.0);
+    let body = html! {
+        text x=(px(left)) y="22" font-size="15" font-weight="bold" {
+            "Mean power lost on each path (W)"
+        }
+        @for &v in &yt.values {
+            line x1=(px(left)) x2=(px(left + plot_w)) y1=(px(y(v))) y2=(px(y(v)))
+                stroke="#ddd" {}
+            text x=(px(left - 6.0)) y=(px(y(v) + 4.0)) font-size="12" text-anchor="end" {
+                (yt.label(v))
+            }
+        }
+        line x1=(px(left)) x2=(px(left)) y1=(px(top)) y2=(px(h - bottom)) stroke="#222" {}
+        line x1=(px(left)) x2=(px(left + plot_w)) y1=(px(h - bottom)) y2=(px(h - bottom))
+            stroke="#222" {}
+        @for (i, (name, p)) in bars.iter().enumerate() {
+            @let x = left + slot * (i as f64 + 0.5) - bar_w / 2.0;
+            @let values = path_values(p);
+            @for (j, (_, colour)) in PATHS.iter().enumerate() {
+                @let below: f64 = values[..j].iter().sum();
+                @if values[j] > 0.0 {
+                    rect x=(px(x)) width=(px(bar_w)) y=(px(y(below + values[j])))
+                        height=(px(y(below) - y(below + values[j])))
+                        fill=(PALETTE[*colour]) {}
+                }
+            }
+            text x=(px(x + bar_w / 2.0)) y=(px(y(p.total()) - 6.0)) font-size="12"
+                text-anchor="middle" { (number(p.total())) " W" }
+            text x=(px(x + bar_w / 2.0)) y=(px(h - bottom + 18.0)) font-size="12"
+                text-anchor="middle" { (name) }
+        }
+        text x="16" y=(px((top + h - bottom) / 2.0)) font-size="12" text-anchor="middle"
+            transform=(format!("rotate(-90 16 {})", px((top + h - bottom) / 2.0))) {
+            "power loss (W)"
+        }
+        @for (j, (label, colour)) in PATHS.iter().enumerate().rev() {
+            @let ly = top + 20.0 * (PATHS.len() - 1 - j) as f64;
+            rect x=(px(w - legend_w)) y=(px(ly)) width="14" height="14" fill=(PALETTE[*colour]) {}
+            text x=(px(w - legend_w + 20.0)) y=(px(ly + 11.0)) font-size="12" { (label) }
+        }
+    };
+    document(w, h, body)
+}
+
+/// The section: per scene with `efficiency` its torque curve, the losses per path in a table,
+/// and with a speed the stacked bars of every such scene.
+pub(super) fn section_of(
+    spec: &Spec,
+    results: &[SceneResult],
+    curves: &[Option<TorqueCurve>],
+    files: &mut Vec<(String, String)>,
+) -> Option<Section> {
+    let scenes: Vec<(usize, &Scene, &EfficiencyCurves)> = spec
+        .scenes
+        .iter()
+        .zip(results)
+        .enumerate()
+        .filter_map(|(k, (s, r))| Some((k, s, r.efficiency.as_ref()?)))
+        .collect();
+    if scenes.is_empty() {
+        return None;
+    }
+    let mut figures = Vec::new();
+    for &(k, s, e) in &scenes {
+        let (Some(Some(c)), Some(r)) = (curves.get(k), &e.reducer) else {
+            continue;
+        };
+        let file = format!("efficiency-{}.svg", k + 1);
+        files.push((file.clone(), torque_plot(s, c, r.mean_efficiency).to_svg()));
+        figures.push((
+            file,
+            format!("Efficiency against torque, scene {}", s.name),
+            format!(
+                "{} torques from {} to {} N·m; the scene's {} N·m marked",
+                c.torque_nmm.len(),
+                number(units::nm(c.torque_nmm.first().copied().unwrap_or(0.0))),
+                number(units::nm(c.torque_nmm.last().copied().unwrap_or(0.0))),
+                number(units::nm(s.output_torque_nmm.abs()))
+            ),
+        ));
+    }
+    let bars: Vec<(&str, PathLosses)> = scenes
+        .iter()
+        .filter_map(|(_, s, e)| Some((s.name.as_str(), e.power_loss_w()?)))
+        .collect();
+    if !bars.is_empty() {
+        files.push(("efficiency-losses.svg".into(), loss_bars(&bars)));
+        figures.push((
+            "efficiency-losses.svg".into(),
+            "Power lost on each path".into(),
+            "the mean over each scene's crank angles at its input speed".into(),
+        ));
+    }
+    let model = spec.design.friction.map_or("none", |f| f.model.name());
+    let body = html! {
+        p.note {
+            "Each loss is a Coulomb force μ·F times the speed its surfaces slide at (README \
+             \"Friction, efficiency and heat\"); the " (model) " model. η = P_out/(P_out + loss), \
+             the mean efficiency P_out/(P_out + mean loss)."
+        }
+        (data_table(
+            html! {
+                th { "scene" } th { "mean efficiency" } th { "rollers (W)" }
+                th { "output pins (W)" } th { "crank bearing (W)" } th { "no-load (W)" }
+                th { "total (W)" } th { "temperature (°C)" }
+            },
+            html! { @for (_, s, e) in &scenes { tr {
+                td { code { (s.name) } }
+                td { (e.reducer.as_ref().map_or("—".into(), |r| number(r.mean_efficiency))) }
+                @match e.power_loss_w() {
+                    Some(p) => {
+                        @for v in path_values(&p) { td { (number(v)) } }
+                        td { (number(p.total())) }
+                    }
+                    None => { @for _ in 0..5 { td { "— (no speed)" } } }
+                }
+                td { (e.reducer.as_ref().and_then(|r| r.temperature_c).map_or("—".into(), number)) }
+            } } },
+        ))
+        div.grid { @for (f, t, c) in &figures { (figure(f, t, c)) } }
+    };
+    Some(section(
+        "efficiency",
+        html! { "Friction, efficiency and heat" },
+        body,
+    ))
+}

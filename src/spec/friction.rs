@@ -1,0 +1,284 @@
+//! `reducer.friction` and `reducer.thermal` (MODEL.md "Friction, efficiency and heat"): every
+//! value checked at its key, so that no friction path is silently changed or ignored: μ in
+//! [0, 1), every radius positive and physically possible (a bore inside its roller or its
+//! sleeve), a bore given exactly when its mode has one.
+
+use super::raw::{RawBearingFriction, RawFriction, RawPinFriction, RawRollerFriction, RawThermal};
+use super::values::{finite, length};
+use crate::error::{Error, Result};
+use crate::model::{
+    BearingFriction, Design, Effect, Friction, FrictionModel, Limits, PinFriction, PinMode, Plan,
+    RollerFriction, RollerMode, Scene, Thermal,
+};
+use crate::numeric;
+
+const KEY: &str = "reducer.friction";
+
+/// Absolute zero, °C: an ambient temperature must lie above it.
+const ABSOLUTE_ZERO_C: f64 = -273.15;
+
+/// A friction coefficient in [0, 1): 0 is no friction; at 1 and above a contact holds by
+/// friction alone whatever pushes it (no lubricated or dry engineering pair reaches it).
+fn mu(key: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && (0.0..1.0).contains(&value) {
+        return Ok(value);
+    }
+    Err(Error::invalid(
+        key,
+        format!(
+            "must lie in [0, 1), got {}: a friction coefficient of 1 or more is no \
+             engineering contact's (lubricated steel ~0.001–0.1, dry polymer on steel ~0.2–0.5)",
+            numeric::input(value)
+        ),
+    ))
+}
+
+/// The bore of a mode that has one (`with` names the mode), or an error at the mode's key.
+fn bore(key: &str, mode: &str, bore: Option<f64>, below: (f64, &str)) -> Result<f64> {
+    let Some(b) = bore else {
+        return Err(Error::invalid(
+            format!("{key}.mode"),
+            format!("mode `{mode}` needs `bore_radius_mm`, the radius of the pin it turns on"),
+        ));
+    };
+    let b = length(&format!("{key}.bore_radius_mm"), b)?;
+    let (outer, what) = below;
+    if b >= outer {
+        return Err(Error::invalid(
+            format!("{key}.bore_radius_mm"),
+            format!(
+                "{} mm must be smaller than {what} ({} mm): the pin turns inside it",
+                numeric::input(b),
+                numeric::input(outer)
+            ),
+        ));
+    }
+    Ok(b)
+}
+
+/// A `fixed` mode's bore is refused: it would be silently ignored.
+fn no_bore(key: &str, bore: Option<f64>) -> Result<()> {
+    match bore {
+        None => Ok(()),
+        Some(_) => Err(Error::invalid(
+            format!("{key}.bore_radius_mm"),
+            "is only read with a turning mode (`rotating` rollers, `sleeve` pins); with `fixed` \
+             it would be ignored: remove it or change the mode"
+                .into(),
+        )),
+    }
+}
+
+fn rollers(raw: &RawRollerFriction, design: &Design) -> Result<RollerFriction> {
+    let key = &format!("{KEY}.rollers");
+    let mode = match raw.mode.as_str() {
+        "fixed" => {
+            no_bore(key, raw.bore_radius_mm)?;
+            RollerMode::Fixed
+        }
+        "rotating" => RollerMode::Rotating {
+            bore_radius_mm: bore(
+                key,
+                "rotating",
+                raw.bore_radius_mm,
+                (
+                    design.roller_radius_mm,
+                    "the roller's radius, reducer.roller_radius_mm",
+                ),
+            )?,
+        },
+        other => {
+            return Err(Error::invalid(
+                format!("{key}.mode"),
+                format!("unknown roller mode `{other}`; known: fixed, rotating"),
+            ))
+        }
+    };
+    Ok(RollerFriction {
+        mode,
+        mu: mu(&format!("{key}.mu"), raw.mu)?,
+    })
+}
+
+fn output_pins(raw: &RawPinFriction, design: &Design) -> Result<PinFriction> {
+    let key = &format!("{KEY}.output_pins");
+    let mode = match raw.mode.as_str() {
+        "fixed" => {
+            no_bore(key, raw.bore_radius_mm)?;
+            PinMode::Fixed
+        }
+        "sleeve" => PinMode::Sleeve {
+            bore_radius_mm: bore(
+                key,
+                "sleeve",
+                raw.bore_radius_mm,
+                (
+                    design.pins.pin_radius_mm,
+                    "the sleeve's outer radius, reducer.output_pins.pin_radius_mm",
+                ),
+            )?,
+        },
+        other => {
+            return Err(Error::invalid(
+                format!("{key}.mode"),
+                format!("unknown output-pin mode `{other}`; known: fixed, sleeve"),
+            ))
+        }
+    };
+    Ok(PinFriction {
+        mode,
+        mu: mu(&format!("{key}.mu"), raw.mu)?,
+    })
+}
+
+fn crank_bearing(raw: &RawBearingFriction) -> Result<BearingFriction> {
+    let key = format!("{KEY}.crank_bearing");
+    Ok(BearingFriction {
+        mu: mu(&format!("{key}.mu"), raw.mu)?,
+        bore_diameter_mm: length(&format!("{key}.bore_diameter_mm"), raw.bore_diameter_mm)?,
+    })
+}
+
+/// `reducer.friction` of `design` (its radii bound the bores).
+pub(super) fn friction(raw: &RawFriction, design: &Design) -> Result<Friction> {
+    let model = match raw.model.as_deref() {
+        None => FrictionModel::Coupled,
+        Some(name) => name
+            .parse()
+            .map_err(|m| Error::invalid(format!("{KEY}.model"), m))?,
+    };
+    let no_load = match raw.no_load_torque_nmm {
+        None => 0.0,
+        Some(t) => {
+            let key = format!("{KEY}.no_load_torque_nmm");
+            let t = finite(&key, t)?;
+            if t < 0.0 {
+                return Err(Error::invalid(
+                    key,
+                    format!(
+                        "must be zero or positive, got {}: a drag resists the input's turn",
+                        numeric::input(t)
+                    ),
+                ));
+            }
+            t
+        }
+    };
+    Ok(Friction {
+        model,
+        rollers: raw
+            .rollers
+            .as_ref()
+            .map(|r| rollers(r, design))
+            .transpose()?,
+        output_pins: raw
+            .output_pins
+            .as_ref()
+            .map(|p| output_pins(p, design))
+            .transpose()?,
+        crank_bearing: raw.crank_bearing.as_ref().map(crank_bearing).transpose()?,
+        no_load_torque_nmm: no_load,
+    })
+}
+
+/// `reducer.thermal`: a positive area and heat-transfer coefficient, an ambient above absolute
+/// zero.
+pub(super) fn thermal(raw: &RawThermal) -> Result<Thermal> {
+    let key = "reducer.thermal";
+    let positive = |name: &str, v: f64| -> Result<f64> {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(Error::invalid(
+                format!("{key}.{name}"),
+                format!("must be a positive number, got {}", numeric::input(v)),
+            ))
+        }
+    };
+    let ambient = finite(&format!("{key}.ambient_c"), raw.ambient_c)?;
+    if ambient <= ABSOLUTE_ZERO_C {
+        return Err(Error::invalid(
+            format!("{key}.ambient_c"),
+            format!(
+                "{} °C is at or below absolute zero ({ABSOLUTE_ZERO_C} °C)",
+                numeric::input(ambient)
+            ),
+        ));
+    }
+    Ok(Thermal {
+        housing_area_m2: positive("housing_area_m2", raw.housing_area_m2)?,
+        heat_transfer_w_per_m2k: positive("heat_transfer_w_per_m2k", raw.heat_transfer_w_per_m2k)?,
+        ambient_c: ambient,
+    })
+}
+
+/// A scene that asks for `efficiency` needs `reducer.friction`; the coupled model needs a rigid
+/// crank bearing in such a scene (refused at the scene's bearing stiffness).
+pub(super) fn check_scenes(design: &Design, scenes: &[Scene]) -> Result<()> {
+    if let Some(i) = scenes
+        .iter()
+        .position(|s| s.effects.contains(&Effect::Efficiency))
+    {
+        match design.friction {
+            None => {
+                return Err(Error::invalid(
+                    format!("scenes[{i}].effects"),
+                    "`efficiency` needs the friction of the contacts: give `reducer.friction` \
+                     (see the README's friction section)"
+                        .into(),
+                ))
+            }
+            // The coupled model balances with a rigid crank bearing only (its friction
+            // moment in a compliant bearing's centre search is not built).
+            Some(f) if f.model == FrictionModel::Coupled => {
+                if let Some(k) = scenes.iter().position(|s| {
+                    s.effects.contains(&Effect::Efficiency)
+                        && s.bearing_stiffness_n_per_mm.is_some()
+                }) {
+                    return Err(Error::invalid(
+                        format!("scenes[{k}].bearing_stiffness_n_per_mm"),
+                        "the coupled friction model needs a rigid crank bearing: leave out \
+                         bearing_stiffness_n_per_mm, or give `reducer.friction.model: loss`"
+                            .into(),
+                    ));
+                }
+            }
+            Some(_) => {}
+        }
+    }
+    Ok(())
+}
+
+/// The limits in watts and degrees need what makes them: a speed in every scene that computes
+/// the efficiency (the losses in watts are the losses × ω), and `reducer.thermal` for a
+/// temperature. Refused before anything runs, at the scene or the limit.
+pub(super) fn check_limits(limits: &Limits, design: &Design, scenes: &[Scene]) -> Result<()> {
+    let set = |key: &str| limits.entries.iter().any(|l| l.def.key == key);
+    for key in ["max_power_loss_w", "max_temperature_c"] {
+        if !set(key) {
+            continue;
+        }
+        if key == "max_temperature_c" && design.thermal.is_none() {
+            return Err(Error::invalid(
+                format!("limits.{key}"),
+                "a temperature needs the housing's heat path: give `reducer.thermal: \
+                 {housing_area_m2, heat_transfer_w_per_m2k, ambient_c}`"
+                    .into(),
+            ));
+        }
+        for (i, s) in scenes.iter().enumerate() {
+            if Plan::for_scene(s).computes(Effect::Efficiency) && s.input_speed_rpm.is_none() {
+                return Err(Error::invalid(
+                    format!("scenes[{i}]"),
+                    format!(
+                        "limits.{key} applies to scene `{}`, which computes the efficiency: it \
+                         needs `input_speed_rpm` (the losses in watts are the losses per unit \
+                         speed × ω)",
+                        s.name
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}

@@ -293,7 +293,12 @@ fn torsion_loops(
     let model = loaded_model(design, m, scene, plan, settings);
     let discs = Discs::new(&model, design.discs);
     torsion::run(&discs, sweep, &scene.crank_rad, progress)
-        .map(Some)
+        .map(|t| {
+            Some(crate::model::results::TorsionCurves {
+                friction_given: design.friction.is_some(),
+                ..t
+            })
+        })
         .map_err(|f| {
             Error::computation(format!(
                 "scene `{}`: crank angle {:.4}° locked, output torque {} N·m: \
@@ -378,8 +383,9 @@ fn bearing_life(
 /// it in words).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Note {
-    /// A torsion scene: its hysteresis loss is 0 (the quasi-static model has no friction).
-    Hysteresis { scene: String },
+    /// A torsion scene: its hysteresis loss is 0 (its loop is solved without friction, also
+    /// where `reducer.friction` is given: `friction_given`).
+    Hysteresis { scene: String, friction_given: bool },
     /// A scene whose crank-bearing life is not rated: its crank range is not a whole number of
     /// loaded periods (`loaded_period_rad`), and the equivalent load is a mean over whole load
     /// cycles.
@@ -421,7 +427,10 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
         let plan = Plan::for_scene(scene);
         let name = || scene.name.clone();
         if plan.has(Effect::Torsion) {
-            notes.push(Note::Hysteresis { scene: name() });
+            notes.push(Note::Hysteresis {
+                scene: name(),
+                friction_given: spec.design.friction.is_some(),
+            });
         }
         let de = spec.design.deviations.eccentricity_mm;
         if let (true, Some(depth)) = (

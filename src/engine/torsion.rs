@@ -165,6 +165,7 @@ pub fn run(
         torsion_rad: Vec::with_capacity(crank_rad.len()),
         figures: Vec::with_capacity(crank_rad.len()),
         figure_torsion_rad: Vec::with_capacity(crank_rad.len()),
+        friction_given: false,
     };
     for angle in per_angle {
         let (curve, gamma, figures) = angle?;

@@ -175,6 +175,9 @@ pub struct TorsionCurves {
     /// γ of the figures' own solves `[crank][i]`, rad, at the torques
     /// `engine::torsion::FIGURE_TORQUES[i]`·rated (−100, −50, −3 %, 0⁻, 0⁺, +3, +50, +100 %).
     pub figure_torsion_rad: Vec<[f64; 8]>,
+    /// `reducer.friction` is given: the loop is still solved without friction (friction in
+    /// the torsion loop is not modelled), which every text about its hysteresis must say.
+    pub friction_given: bool,
 }
 
 /// The rating life written for a bearing whose life has no finite bound: no load (P = 0 N,

@@ -16,10 +16,29 @@ use crate::units;
 pub const HYSTERESIS: &str = "hysteresis loss 0: the quasi-static model has no friction, so \
      the loading and unloading branches of the torsion loop coincide";
 
+/// What a torsion scene's reader is told of its hysteresis loss where `reducer.friction` is
+/// given: the friction of the efficiency effect does not act in the torsion loop.
+pub const HYSTERESIS_NOT_MODELLED: &str = "hysteresis loss not computed: `reducer.friction` acts \
+     in the efficiency effect only; the torsion loop is solved without friction, so its loading \
+     and unloading branches coincide and its figures are the frictionless model's";
+
+/// The hysteresis text of a torsion scene (`HYSTERESIS`, or `HYSTERESIS_NOT_MODELLED` where
+/// friction is given).
+pub fn hysteresis(friction_given: bool) -> &'static str {
+    if friction_given {
+        HYSTERESIS_NOT_MODELLED
+    } else {
+        HYSTERESIS
+    }
+}
+
 /// A note ([`engine::scene::Note`](crate::engine::scene::Note)) in one line.
 pub fn note(n: &Note) -> String {
     match n {
-        Note::Hysteresis { scene } => format!("scene `{scene}`: {HYSTERESIS}"),
+        Note::Hysteresis {
+            scene,
+            friction_given,
+        } => format!("scene `{scene}`: {}", hysteresis(*friction_given)),
         Note::LifeNotRated {
             scene,
             loaded_period_rad,
@@ -122,7 +141,8 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
         if plan.has(Effect::Torsion) {
             out += &format!(
                 "  note    torsion: per locked crank angle the torsion curve and the catalogue \
-                 figures, no loaded curves over the crank angle; {HYSTERESIS}\n"
+                 figures, no loaded curves over the crank angle; {}\n",
+                hysteresis(spec.design.friction.is_some())
             );
         }
         if plan.has(Effect::Clearance) {

@@ -18,7 +18,7 @@ use crate::model::quantity::{self as q, Quantity, QUANTITIES};
 use crate::model::results::{ClearanceSweep, EfficiencyCurves, MinCoverage, SceneResult};
 use crate::model::Study;
 use crate::numeric::extremes;
-use crate::report::explain::HYSTERESIS;
+use crate::report::explain::hysteresis;
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
@@ -239,7 +239,7 @@ pub struct TorsionDoc {
     torsional_rigidity_nm_per_arcmin: Vec<Finite>,
     torsional_rigidity_forward_nm_per_arcmin: Vec<Finite>,
     torsional_rigidity_reverse_nm_per_arcmin: Vec<Finite>,
-    /// The model's hysteresis loss, 0, and why.
+    /// The model's hysteresis loss (0, or not computed where friction is given), and why.
     hysteresis: &'static str,
 }
 
@@ -302,7 +302,7 @@ impl TorsionDoc {
             torsional_rigidity_nm_per_arcmin: registry(r, &q::TORSIONAL_RIGIDITY),
             torsional_rigidity_forward_nm_per_arcmin: direction(|d| d.0),
             torsional_rigidity_reverse_nm_per_arcmin: direction(|d| d.1),
-            hysteresis: HYSTERESIS,
+            hysteresis: hysteresis(t.friction_given),
         })
     }
 }

@@ -442,3 +442,43 @@ fn bad_values_are_refused_at_their_keys() {
         "{err}"
     );
 }
+
+/// Friction acts in the efficiency effect only: a torsion scene of a design with
+/// `reducer.friction` must not claim the frictionless "hysteresis loss 0" as a result, in
+/// the terminal's notes, the JSON or `--explain`.
+#[test]
+fn a_torsion_loop_with_friction_given_says_it_is_solved_without_it() {
+    let friction = &EFF[EFF.find("  friction:").unwrap()..EFF.find("  thermal:").unwrap()];
+    let torsion = include_str!("../../specs/reducer-torsion.yaml");
+    let text = edited(
+        &no_limits(torsion),
+        &[
+            ("modification:", &format!("{}modification:", friction)),
+            (
+                "{ from_deg: 0.0, to_deg: 36.0, steps: 4 }",
+                "{ from_deg: 0.0, to_deg: 36.0, steps: 1 }",
+            ),
+            ("steps: 1080", "steps: 10"),
+        ],
+    );
+    let dir = Scratch::new("friction-torsion");
+    dir.write("s.yaml", &text);
+    let (code, out, err) = cycloid(&dir.path, &["check", "s.yaml", "--json", "r.json"]).parts();
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains("scene `torsion`: hysteresis loss not computed"),
+        "{out}"
+    );
+    assert!(!out.contains("hysteresis loss 0"), "{out}");
+    let doc: Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    let note = doc["scenes"][0]["hysteresis"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(note.starts_with("hysteresis loss not computed"), "{note}");
+    let (_, explain, _) = cycloid(&dir.path, &["check", "s.yaml", "--explain"]).parts();
+    assert!(
+        explain.contains("hysteresis loss not computed"),
+        "{explain}"
+    );
+}

@@ -6,7 +6,7 @@ use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
 use crate::model::Scene;
 use crate::numeric::number;
-use crate::report::explain::HYSTERESIS;
+use crate::report::explain::hysteresis;
 use crate::report::svg::{LinePlot, Mark, Series, YCut, PALETTE};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
@@ -59,7 +59,8 @@ fn torsion_plot(scene: &Scene, r: &SceneResult, t: &TorsionCurves) -> LinePlot {
         "torsion angle γ (arcmin)",
     );
     plot.subtitle = format!(
-        "the loop −{r} → +{r} → −{r} N·m, {steps} steps per quarter; {HYSTERESIS}",
+        "the loop −{r} → +{r} → −{r} N·m, {steps} steps per quarter; {}",
+        hysteresis(t.friction_given),
         r = number(rated)
     );
     let lines: Vec<_> = (0..angles).map(|k| centre_line(t, k, steps)).collect();
@@ -145,7 +146,7 @@ fn figures_table(r: &SceneResult, t: &TorsionCurves) -> Markup {
                 td { (number(nm_per_arcmin(f.rigidity_nmm_per_rad.0))) }
                 td { (number(nm_per_arcmin(f.rigidity_nmm_per_rad.1))) }
                 td { b { (number(nm_per_arcmin(f.rigidity()))) } }
-                td { "0 (frictionless model)" }
+                td { (if t.friction_given { "not computed (loop without friction)" } else { "0 (frictionless model)" }) }
             }
         }
     };
@@ -174,7 +175,7 @@ pub(super) fn sections(
         let file = format!("{id}.svg");
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));
         let body = html! {
-            p.note { (DEFINITIONS) " " b { (HYSTERESIS) "." } }
+            p.note { (DEFINITIONS) " " b { (hysteresis(t.friction_given)) "." } }
             (figure(&file, "Torsion curve", "one curve per locked crank angle (a dot per \
                 torque where the torques are few); the points of the figures (±3 %, ±50 %, \
                 ±100 % of the rated torque) marked ◇; at T = 0 the dead band is the vertical \

@@ -471,10 +471,7 @@ fn a_torsion_loop_with_friction_given_says_it_is_solved_without_it() {
     );
     assert!(!out.contains("hysteresis loss 0"), "{out}");
     let doc: Value = serde_json::from_str(&dir.read("r.json")).unwrap();
-    let note = doc["scenes"][0]["hysteresis"]
-        .as_str()
-        .unwrap()
-        .to_string();
+    let note = doc["scenes"][0]["hysteresis"].as_str().unwrap().to_string();
     assert!(note.starts_with("hysteresis loss not computed"), "{note}");
     let (_, explain, _) = cycloid(&dir.path, &["check", "s.yaml", "--explain"]).parts();
     assert!(

@@ -28,6 +28,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "paper optimum: torsion at 4 locked angles, crank-bearing life at 20 N·m",
     ),
     (
+        "reducer-efficiency.yaml",
+        0,
+        "paper optimum with friction: efficiency, losses and temperature at 20 N·m, 1500 rpm",
+    ),
+    (
         "reducer-two-discs.yaml",
         0,
         "paper optimum with two discs: equal shares, torsion, bearing life, per-disc goldens",

@@ -201,10 +201,11 @@ fn disc_losses(
 }
 
 /// The loss model: disc's contact losses at each of the scene's crank angles from its
-/// frictionless loaded curves `sweep` (disc at crank phase `phase`). The rollers that carry a
-/// force are evaluated again at each angle's loaded pose (crank φ + phase, lag β, and the
-/// centre's offset −Fb/kb in a compliant bearing) for their contact points and normals; the
-/// forces are the sweep's.
+/// frictionless loaded curves `sweep` (disc at crank phase `phase`). The contact points and
+/// normals of the rollers that carry a force are the ones the sweep recorded
+/// (`LoadedSweep::roller_contacts`); at an angle it recorded none for (the lean first-order
+/// sweep's) they are evaluated again at the angle's loaded pose (crank φ + phase, lag β, and the
+/// centre's offset −Fb/kb in a compliant bearing); the forces are the sweep's.
 fn loss_model(
     friction: &Friction,
     design: &Design,

@@ -19,11 +19,11 @@ use crate::equilibrium::friction::coupled::Coupling;
 use crate::equilibrium::friction::loss::{disc_losses as contact_losses, PathLosses};
 use crate::equilibrium::loaded::{AngleSolution, Model};
 use crate::equilibrium::pins::PinState;
-use crate::equilibrium::rollers::Reach;
+use crate::equilibrium::rollers::{Reach, RollerState};
 use crate::error::{Error, Result};
 use crate::geometry::clearance::Pose;
 use crate::geometry::Vec2;
-use crate::model::results::{EfficiencyCurves, LoadedSweep, ReducerEfficiency};
+use crate::model::results::{EfficiencyCurves, LoadedSweep, ReducerEfficiency, RollerCurves};
 use crate::model::{Design, Effect, Friction, FrictionModel, Plan, Scene};
 use crate::units;
 use rayon::prelude::*;
@@ -201,10 +201,11 @@ fn disc_losses(
 }
 
 /// The loss model: disc's contact losses at each of the scene's crank angles from its
-/// frictionless loaded curves `sweep` (disc at crank phase `phase`). The rollers that carry a
-/// force are evaluated again at each angle's loaded pose (crank φ + phase, lag β, and the
-/// centre's offset −Fb/kb in a compliant bearing) for their contact points and normals; the
-/// forces are the sweep's.
+/// frictionless loaded curves `sweep` (disc at crank phase `phase`). The contact points and
+/// normals of the rollers that carry a force are the ones the sweep recorded
+/// (`LoadedSweep::roller_contacts`); at an angle it recorded none for (the lean first-order
+/// sweep's) they are evaluated again at the angle's loaded pose (crank φ + phase, lag β, and the
+/// centre's offset −Fb/kb in a compliant bearing); the forces are the sweep's.
 fn loss_model(
     friction: &Friction,
     design: &Design,
@@ -253,6 +254,9 @@ fn solution_at(
     });
     sol.bearing_force_n = bearing;
     if let (Some(rollers), Some(curves)) = (&model.rollers, &sweep.rollers) {
+        if recorded_contacts(sweep, curves, i, sol) {
+            return Ok(());
+        }
         let offset = match (model.bearing_stiffness_n_per_mm, bearing) {
             (Some(kb), Some(fb)) => -fb / kb,
             _ => Vec2::zeros(),
@@ -268,7 +272,10 @@ fn solution_at(
             let loaded = f[i] > 0.0;
             // A roller that comes into contact starts its foot from its guess, not from where
             // it was last evaluated (possibly many angles ago).
-            let was_loaded = sol.rollers.get(r).is_some_and(|s| s.force_n > 0.0);
+            let was_loaded = sol
+                .rollers
+                .get(r)
+                .is_some_and(|s| s.force_n > 0.0 && !s.t.is_nan());
             if loaded && !was_loaded && !first {
                 sol.rollers[r].t = rollers.mesh.foot_guess(r, &pose);
             }
@@ -291,6 +298,12 @@ fn solution_at(
             s.force_n = f[i];
         }
     }
+    pins_at(sweep, i, sol);
+    Ok(())
+}
+
+/// The pins' forces of angle `i` into `sol` (their geometry plays no part in the losses).
+fn pins_at(sweep: &LoadedSweep, i: usize, sol: &mut AngleSolution) {
     if let Some(pins) = &sweep.pins {
         sol.pins.clear();
         sol.pins.extend(pins.force_n.iter().map(|f| PinState {
@@ -303,5 +316,40 @@ fn solution_at(
             gap_slope_mm: 0.0,
         }));
     }
-    Ok(())
+}
+
+/// The loaded rollers of angle `i` from the contacts the sweep recorded (`roller_contacts`)
+/// into `sol`, with the pins' forces: false (nothing written) where the sweep recorded none
+/// for a roller that carries a force (the lean first-order sweep's angles), which are then
+/// evaluated again.
+fn recorded_contacts(
+    sweep: &LoadedSweep,
+    curves: &RollerCurves,
+    i: usize,
+    sol: &mut AngleSolution,
+) -> bool {
+    let Some(contacts) = &sweep.roller_contacts else {
+        return false;
+    };
+    let recorded = |r: usize| contacts[r][i][2] != 0.0 || contacts[r][i][3] != 0.0;
+    if (0..curves.force_n.len()).any(|r| curves.force_n[r][i] > 0.0 && !recorded(r)) {
+        return false;
+    }
+    sol.rollers.clear();
+    sol.rollers
+        .extend(curves.force_n.iter().zip(contacts).map(|(f, c)| {
+            let [x, y, nx, ny] = c[i];
+            RollerState {
+                gap_mm: 0.0,
+                force_n: f[i],
+                stiffness_n_per_mm: 0.0,
+                arm_mm: 0.0,
+                normal: Vec2::new(nx, ny),
+                point: Vec2::new(x, y),
+                // No foot to warm-start from: an angle evaluated again starts from its guess.
+                t: f64::NAN,
+            }
+        }));
+    pins_at(sweep, i, sol);
+    true
 }

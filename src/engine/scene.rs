@@ -486,6 +486,8 @@ pub fn loaded_model(
 ) -> Model {
     let mut model = Model::new(design, m, scene, plan);
     model.settings = *settings;
+    // The friction losses of `efficiency` read the loaded rollers' contacts the sweep solved.
+    model.keep_contacts = design.friction.is_some() && plan.computes(Effect::Efficiency);
     // The coupled friction model puts friction inside the balance of a crank sweep that asks
     // for `efficiency`: its loaded outputs are then the coupled ones (a torsion loop's input is
     // locked: the sweep's kinematics do not apply there).

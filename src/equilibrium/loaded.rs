@@ -24,6 +24,9 @@ pub struct Model {
     pub first_order: bool,
     /// Friction inside the balance (the coupled model), when active; none: frictionless.
     pub coupling: Option<Coupling>,
+    /// Record the loaded rollers' contact points and normals (`LoadedSweep::roller_contacts`),
+    /// for the friction losses of `efficiency`; off: other scenes pay nothing.
+    pub keep_contacts: bool,
 }
 
 impl Model {
@@ -46,6 +49,7 @@ impl Model {
             settings: Settings::default(),
             first_order: scene.geometry == GeometryMode::FirstOrder,
             coupling: None,
+            keep_contacts: false,
         }
     }
 

@@ -82,6 +82,8 @@ pub(super) struct Columns {
     bearing_angle: Vec<f64>,
     residual: Vec<f64>,
     deflection: Vec<f64>,
+    /// The loaded rollers' contacts, with `Model::keep_contacts` (else no columns).
+    roller_contact: Vec<Vec<[f64; 4]>>,
 }
 
 /// One chunk's rows of every column: `Columns` cut at the same angles.
@@ -97,6 +99,7 @@ pub(super) struct Chunk<'a> {
     bearing_angle: &'a mut [f64],
     residual: &'a mut [f64],
     deflection: &'a mut [f64],
+    roller_contact: Vec<&'a mut [[f64; 4]]>,
 }
 
 /// Angle of a force from the eccentric direction e_φ, counter-clockwise, rad.
@@ -110,9 +113,9 @@ pub(super) fn pieces<T>(column: &mut [T]) -> std::slice::ChunksMut<'_, T> {
 }
 
 /// \[column\]\[angle\] cut into \[chunk\]\[column\] pieces of `CHUNK` angles (`chunks` of them).
-pub(super) fn piece_rows(columns: &mut [Vec<f64>], chunks: usize) -> Vec<Vec<&mut [f64]>> {
+pub(super) fn piece_rows<T>(columns: &mut [Vec<T>], chunks: usize) -> Vec<Vec<&mut [T]>> {
     let width = columns.len();
-    let mut rows: Vec<Vec<&mut [f64]>> = (0..chunks).map(|_| Vec::with_capacity(width)).collect();
+    let mut rows: Vec<Vec<&mut [T]>> = (0..chunks).map(|_| Vec::with_capacity(width)).collect();
     for column in columns {
         for (row, piece) in rows.iter_mut().zip(pieces(column)) {
             row.push(piece);
@@ -138,6 +141,9 @@ impl Columns {
             bearing_angle: column(),
             residual: column(),
             deflection: column(),
+            roller_contact: (0..if model.keep_contacts { rollers } else { 0 })
+                .map(|_| vec![[0.0; 4]; angles])
+                .collect(),
         }
     }
 
@@ -148,6 +154,7 @@ impl Columns {
         let mut pressure = piece_rows(&mut self.pressure, n).into_iter();
         let mut half_width = piece_rows(&mut self.half_width, n).into_iter();
         let mut pin_force = piece_rows(&mut self.pin_force, n).into_iter();
+        let mut roller_contact = piece_rows(&mut self.roller_contact, n).into_iter();
         let scalars = pieces(&mut self.lag)
             .zip(pieces(&mut self.output_lag))
             .zip(pieces(&mut self.contacts))
@@ -172,6 +179,7 @@ impl Columns {
                     bearing_angle,
                     residual,
                     deflection,
+                    roller_contact: roller_contact.next().unwrap_or_default(),
                 },
             )
             .collect()
@@ -245,6 +253,13 @@ impl<'a> Chunk<'a> {
                 };
                 self.pressure[i][k] = p;
                 self.half_width[i][k] = b;
+                if let Some(c) = self.roller_contact.get_mut(i) {
+                    c[k] = if s.force_n > 0.0 {
+                        [s.point.x, s.point.y, s.normal.x, s.normal.y]
+                    } else {
+                        [0.0; 4]
+                    };
+                }
             }
             self.contacts[k] = contacts;
         }
@@ -380,6 +395,8 @@ pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
             residual: c.residual,
             deflection_mm: c.deflection,
         }),
+        roller_contacts: (model.keep_contacts && model.rollers.is_some())
+            .then_some(c.roller_contact),
         ..LoadedSweep::default()
     }
 }

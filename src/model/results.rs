@@ -138,6 +138,11 @@ pub struct LoadedSweep {
     /// TE and ratio, with the rollers modelled; with several discs the reducer's (its own
     /// `SceneResult::loaded`), none of a disc's.
     pub transmission: Option<Transmission>,
+    /// The contact point and outward disc normal (fixed frame, mm: `[x, y, nx, ny]`) of every
+    /// roller that carries a force, `[roller][angle]`, as the sweep solved them: recorded only
+    /// for the friction losses of `efficiency` (`Model::keep_contacts`), zeros where a roller
+    /// carries no force or the angle was solved by the lean first-order sweep.
+    pub roller_contacts: Option<Vec<Vec<[f64; 4]>>>,
 }
 
 /// The catalogue figures of a torsion curve γ(T) at one locked crank angle (MODEL.md "Several

@@ -189,7 +189,9 @@ proptest! {
     /// dominates (a bore of 0.4·Rp at μ 0.2 under a light torque) is up to ~100× the largest power
     /// term; the identity's error is that residual moment times the disc's speed 1/nc. 1e-8 of the
     /// largest term keeps a margin of ~10 over the worst case seen (1.0e-9) and is 1e6 below what a
-    /// friction moment missing from a balance leaves (O(μ) of the powers).
+    /// friction moment missing from a balance leaves (O(μ) of the powers). Under a strong preload
+    /// the rollers' normal moments, which cancel, dwarf every power term: the scale is then their
+    /// sum Σ|F·l| over nc (a committed regression: nc 3, ΔRrp −0.3 mm, μ 4.7e-5, 11 N·mm).
     #[test]
     fn energy_identity_at_every_angle(
         case in cases(),
@@ -235,14 +237,28 @@ fn identity_holds(
             return Ok(());
         };
         let e = c.energy(phi, &last, torque);
+        // The balances' residual moment is 1e-11 of their moment scale, which a strong preload
+        // (interference) makes far larger than the torque's power: that scale times the disc's
+        // speed 1/nc bounds the identity's round-off too.
+        let moments: f64 = last
+            .rollers
+            .iter()
+            .map(|r| (r.force_n * r.arm_mm).abs())
+            .sum::<f64>()
+            + last
+                .pins
+                .iter()
+                .map(|p| (p.force_n * p.arm_mm).abs())
+                .sum::<f64>();
+        let scale = e.scale().max(moments / design.teeth as f64);
         prop_assert!(
-            e.imbalance().abs() <= 1e-8 * e.scale(),
+            e.imbalance().abs() <= 1e-8 * scale,
             "φ {}°: {e:?}, imbalance {:e}",
             phi.to_degrees(),
             e.imbalance()
         );
         prop_assert!(
-            e.flange_imbalance().abs() <= 1e-8 * e.scale(),
+            e.flange_imbalance().abs() <= 1e-8 * scale,
             "φ {}°: {e:?}, flange {:e}",
             phi.to_degrees(),
             e.flange_imbalance()

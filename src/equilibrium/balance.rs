@@ -55,8 +55,13 @@ pub(crate) use impl_contact;
 /// Σ F·a (N·mm), its slope ∂/∂x = Σ k·a·(−∂gap/∂x) (geometry held fixed), and its scale Σ |F·a|
 /// (for relative residuals).
 pub fn moment<C: Contact>(states: &[C]) -> (f64, f64, f64) {
+    moment_by(states, C::arm_mm)
+}
+
+/// `moment` with each contact's arm given by `arm` (a friction model's corrected arm).
+pub fn moment_by<C: Contact>(states: &[C], arm: impl Fn(&C) -> f64) -> (f64, f64, f64) {
     states.iter().fold((0.0, 0.0, 0.0), |(m, dm, scale), s| {
-        let (f, a) = (s.force_n(), s.arm_mm());
+        let (f, a) = (s.force_n(), arm(s));
         (
             m + f * a,
             dm - s.stiffness_n_per_mm() * a * s.gap_slope_mm(),

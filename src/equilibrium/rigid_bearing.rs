@@ -5,7 +5,9 @@
 //! the pin balance Σ F_j·a_j(βo) = T, each a monotone 1-D root (`solve`). The bearing force is
 //! then −(Σ roller forces + Σ pin forces).
 
-use super::balance::{closed_form, moment, round_off, settle, unload_round_off, Contact};
+use super::balance::{
+    closed_form, moment, moment_by, round_off, settle, unload_round_off, Contact,
+};
 use super::coupling::Coupling;
 use super::loaded::{AngleSolution, Model};
 use super::pins::{PinState, Pins};
@@ -223,6 +225,24 @@ fn solve_rollers(
     Ok(lag)
 }
 
+/// The pins' states at output lag `lag` for the disc at crank direction `e_phi`, turned by
+/// `rotation` (sin, cos), its centre moved by `offset` from e·e_φ: first order where the model's
+/// geometry asks for it.
+fn pins_at(
+    model: &Model,
+    p: &Pins,
+    (e_phi, rotation, offset): (Vec2, (f64, f64), Vec2),
+    lag: f64,
+    states: &mut Vec<PinState>,
+) {
+    if model.first_order_pins() {
+        let centre = e_phi * model.eccentricity_mm + offset;
+        p.first_order_at(e_phi, rotation, centre, lag, states);
+    } else {
+        p.evaluate_at(e_phi, rotation, offset, lag, states);
+    }
+}
+
 /// Solve the pins at a fixed disc pose: βo with Σ F·a = T.
 fn solve_pins(
     model: &Model,
@@ -257,15 +277,9 @@ fn solve_pins(
     }
     let states = &mut work.sol.pins;
     // The angle's trigonometry, once for every evaluation of the pin balance.
-    let ecc = e_phi;
     let rotation = psi.sin_cos();
     let evaluate = |lag: f64, states: &mut Vec<PinState>| {
-        if first_order {
-            let centre = ecc * model.eccentricity_mm + offset;
-            p.first_order_at(ecc, rotation, centre, lag, states);
-        } else {
-            p.evaluate_at(ecc, rotation, offset, lag, states);
-        }
+        pins_at(model, p, (e_phi, rotation, offset), lag, states);
         let (value, slope, scale) = moment(states);
         Balance {
             value,
@@ -479,23 +493,11 @@ fn solve_pins_coupled(
     guess: f64,
     work: &mut Work,
 ) -> Result<f64, SolveFailure> {
-    let first_order = model.first_order_pins();
     let states = &mut work.sol.pins;
     let rotation = psi.sin_cos();
     let evaluate = |lag: f64, states: &mut Vec<PinState>| {
-        if first_order {
-            let centre = e_phi * model.eccentricity_mm + offset;
-            p.first_order_at(e_phi, rotation, centre, lag, states);
-        } else {
-            p.evaluate_at(e_phi, rotation, offset, lag, states);
-        }
-        let (mut value, mut slope, mut scale) = (0.0, 0.0, 0.0);
-        for s in states.iter() {
-            let arm = c.pin_arm(e_phi, s);
-            value += s.force_n * arm;
-            slope -= s.stiffness_n_per_mm * arm * s.gap_slope_mm;
-            scale += (s.force_n * arm).abs();
-        }
+        pins_at(model, p, (e_phi, rotation, offset), lag, states);
+        let (value, slope, scale) = moment_by(states, |s| c.pin_arm(e_phi, s));
         Balance {
             value,
             slope,

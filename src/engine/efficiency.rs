@@ -2,10 +2,10 @@
 //! every friction path at every crank angle, the efficiency, the input torque and the steady
 //! temperature, from the contact forces of the scene's friction model.
 //!
-//! `disc_losses` is the one place that dispatches on the friction model: the loss model reads
-//! the frictionless loaded sweep the scene already solved; the coupled model (friction inside
-//! every balance) is not built into the engine yet and is refused here, as the spec refuses it
-//! at its key (`spec::friction::check_scenes`).
+//! The friction model is chosen where the sweep is solved (`scene::loaded_model`): the loss
+//! model's sweep is the frictionless balance, the coupled model's has friction inside every
+//! balance; here both measure the losses from their sweep with `equilibrium::friction::loss`. The input torque is the loss model's energy balance or the
+//! coupled model's crank balance (`crank_input_torque`).
 //!
 //! Powers per unit input speed (N·mm/rad, the power at ω = 1 rad/s in N·mm/s):
 //! P_out = |T|/nc with T the scene's output torque (all discs), η(φ) = P_out/(P_out + loss(φ)),
@@ -16,7 +16,9 @@
 //! P/(h·A) only with `reducer.thermal` too.
 
 use crate::equilibrium::friction::coupled::Coupling;
-use crate::equilibrium::friction::loss::{disc_losses as contact_losses, PathLosses};
+use crate::equilibrium::friction::loss::{
+    disc_losses as contact_losses, reducer_losses, PathLosses,
+};
 use crate::equilibrium::loaded::{AngleSolution, Model};
 use crate::equilibrium::pins::PinState;
 use crate::equilibrium::rollers::{Reach, RollerState};
@@ -58,15 +60,7 @@ pub fn efficiency(
     };
     let n = scene.crank_rad.len();
     let total: Vec<PathLosses> = (0..n)
-        .map(|i| {
-            let contacts = per_disc
-                .iter()
-                .fold(PathLosses::default(), |a, d| a.plus(&d[i]));
-            PathLosses {
-                no_load: friction.no_load_torque_nmm,
-                ..contacts
-            }
-        })
+        .map(|i| reducer_losses(&friction, per_disc.iter().map(|d| &d[i])))
         .collect();
     let input = match friction.model {
         FrictionModel::Loss => None,
@@ -172,8 +166,9 @@ fn mean(loss: &[PathLosses]) -> PathLosses {
     sum.scaled(1.0 / loss.len().max(1) as f64)
 }
 
-/// Each disc's contact losses `[disc][angle]` under the scene's friction model: the one
-/// dispatch point of the models.
+/// Each disc's contact losses `[disc][angle]` from its loaded sweep: the loss model's sweep is
+/// the frictionless balance, the coupled model's already carries the friction
+/// (`scene::loaded_model`), so both read their forces and contact points the same way.
 fn disc_losses(
     friction: &Friction,
     design: &Design,
@@ -181,32 +176,28 @@ fn disc_losses(
     scene: &Scene,
     discs: &[&LoadedSweep],
 ) -> Result<Vec<Vec<PathLosses>>> {
-    match friction.model {
-        // The coupled model's sweep is already the coupled balance (`scene::loaded_model`
-        // put the friction in it): its forces and contact points give its losses the same way.
-        FrictionModel::Loss | FrictionModel::Coupled => discs
-            .iter()
-            .enumerate()
-            .map(|(k, d)| {
-                loss_model(
-                    friction,
-                    design,
-                    model,
-                    scene,
-                    (design.disc_phase_rad(k), d),
-                )
-            })
-            .collect(),
-    }
+    discs
+        .iter()
+        .enumerate()
+        .map(|(k, d)| {
+            sweep_losses(
+                friction,
+                design,
+                model,
+                scene,
+                (design.disc_phase_rad(k), d),
+            )
+        })
+        .collect()
 }
 
-/// The loss model: disc's contact losses at each of the scene's crank angles from its
-/// frictionless loaded curves `sweep` (disc at crank phase `phase`). The contact points and
+/// A disc's contact losses at each of the scene's crank angles from its loaded curves `sweep`
+/// (disc at crank phase `phase`; frictionless for the loss model, coupled for the coupled). The contact points and
 /// normals of the rollers that carry a force are the ones the sweep recorded
 /// (`LoadedSweep::roller_contacts`); at an angle it recorded none for (the lean first-order
 /// sweep's) they are evaluated again at the angle's loaded pose (crank φ + phase, lag β, and the
 /// centre's offset −Fb/kb in a compliant bearing); the forces are the sweep's.
-fn loss_model(
+fn sweep_losses(
     friction: &Friction,
     design: &Design,
     model: &Model,

@@ -110,33 +110,16 @@ pub fn disc_losses(
     }
 }
 
-/// The losses of a one-disc reducer at crank angle `crank_rad` from its solved equilibrium
-/// `solution`, per unit input speed, N·mm/rad: the disc's contacts (`disc_losses`) and the
-/// input's drag T0 (`no_load_torque_nmm`, times ω/ω = 1).
-pub fn angle_losses(
-    friction: &Friction,
-    design: &Design,
-    crank_rad: f64,
-    solution: &AngleSolution,
-) -> PathLosses {
-    PathLosses {
-        no_load: friction.no_load_torque_nmm,
-        ..disc_losses(friction, design, crank_rad, solution)
-    }
-}
-
-/// The losses of a reducer of several discs at one crank angle, per unit input speed,
-/// N·mm/rad: the sum of every disc's (`disc_losses`, each at its own crank angle φ + 2πk/N,
-/// given with its solution) and the input's drag once.
+/// The losses of a reducer at one crank angle, per unit input speed, N·mm/rad, from its discs'
+/// contact losses (`disc_losses`, each at its own crank angle φ + 2πk/N): their sum and the
+/// input's drag T0 (`no_load_torque_nmm`, times ω/ω = 1) once.
 pub fn reducer_losses<'a>(
     friction: &Friction,
-    design: &Design,
-    discs: impl IntoIterator<Item = (f64, &'a AngleSolution)>,
+    discs: impl IntoIterator<Item = &'a PathLosses>,
 ) -> PathLosses {
     let contacts = discs
         .into_iter()
-        .map(|(crank, s)| disc_losses(friction, design, crank, s))
-        .fold(PathLosses::default(), |a, b| a.plus(&b));
+        .fold(PathLosses::default(), |a, b| a.plus(b));
     PathLosses {
         no_load: friction.no_load_torque_nmm,
         ..contacts
@@ -301,7 +284,8 @@ mod tests {
                 }),
                 no_load_torque_nmm: 7.0,
             };
-            let l = angle_losses(&f, &d, phi, &solution);
+            let disc = disc_losses(&f, &d, phi, &solution);
+            let l = reducer_losses(&f, [&disc]);
             let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
             assert!(
                 close(l.rollers, rotating_rollers),
@@ -326,7 +310,7 @@ mod tests {
                 rotating_rollers + pins_hand + bearing_hand + 7.0
             ));
             // Two discs: the contacts' losses twice, the drag once.
-            let two = reducer_losses(&f, &d, [(phi, &solution), (phi, &solution)]);
+            let two = reducer_losses(&f, [&disc, &disc]);
             assert!(close(two.rollers, 2.0 * rotating_rollers));
             assert_eq!(two.no_load, 7.0);
         }

@@ -1010,7 +1010,14 @@ pub struct LimitDef {
     pub bound: Bound,
     /// The limit is a count (a whole number).
     pub whole: bool,
+    /// The values the bounded quantity can physically take, (lowest, highest) in the
+    /// limit's unit: a limit outside them is refused at its key (it could never be met, or
+    /// never fail). Unbounded (−∞, ∞) where the registry states no range.
+    pub range: (f64, f64),
 }
+
+/// The range of a quantity the registry states nothing about.
+const ANY: (f64, f64) = (f64::NEG_INFINITY, f64::INFINITY);
 
 /// Every limit, in the order the checks table lists them.
 pub const LIMITS: &[LimitDef] = &[
@@ -1019,90 +1026,105 @@ pub const LIMITS: &[LimitDef] = &[
         quantity: &MIN_CLEARANCE,
         bound: Bound::Min,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "max_roller_force_n",
         quantity: &MAX_ROLLER_FORCE,
         bound: Bound::Max,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "max_contact_pressure_mpa",
         quantity: &MAX_CONTACT_PRESSURE,
         bound: Bound::Max,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "min_rollers_in_contact",
         quantity: &MIN_ROLLERS_IN_CONTACT,
         bound: Bound::Min,
         whole: true,
+        range: ANY,
     },
     LimitDef {
         key: "max_te_fluctuation_arcsec",
         quantity: &TE_FLUCTUATION,
         bound: Bound::Max,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "max_ratio_fluctuation",
         quantity: &RATIO_FLUCTUATION,
         bound: Bound::Max,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "max_pin_force_n",
         quantity: &MAX_PIN_FORCE,
         bound: Bound::Max,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "max_bearing_force_n",
         quantity: &MAX_BEARING_FORCE,
         bound: Bound::Max,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "max_lost_motion_arcsec",
         quantity: &MAX_LOST_MOTION,
         bound: Bound::Max,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "max_lost_motion_arcmin",
         quantity: &MAX_TORSION_LOST_MOTION,
         bound: Bound::Max,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "min_torsional_rigidity_nm_per_arcmin",
         quantity: &MIN_TORSIONAL_RIGIDITY,
         bound: Bound::Min,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "min_bearing_life_h",
         quantity: &BEARING_LIFE,
         bound: Bound::Min,
         whole: false,
+        range: ANY,
     },
     LimitDef {
         key: "min_mean_efficiency",
         quantity: &MEAN_EFFICIENCY,
         bound: Bound::Min,
         whole: false,
+        range: (0.0, 1.0),
     },
     LimitDef {
         key: "max_power_loss_w",
         quantity: &TOTAL_POWER_LOSS,
         bound: Bound::Max,
         whole: false,
+        range: (0.0, f64::INFINITY),
     },
     LimitDef {
         key: "max_temperature_c",
         quantity: &TEMPERATURE,
         bound: Bound::Max,
         whole: false,
+        range: (-273.15, f64::INFINITY),
     },
 ];
 

@@ -422,6 +422,26 @@ fn limits(raw: &RawLimits) -> Result<Limits> {
                 ),
             ));
         }
+        let (lowest, highest) = def.range;
+        if !(lowest..=highest).contains(&value) {
+            return Err(Error::invalid(
+                format!("limits.{}", def.key),
+                format!(
+                    "must be {}: {} takes no other value, got {}",
+                    if highest.is_finite() {
+                        format!(
+                            "in [{}, {}]",
+                            numeric::input(lowest),
+                            numeric::input(highest)
+                        )
+                    } else {
+                        format!("at least {}", numeric::input(lowest))
+                    },
+                    def.quantity.key,
+                    numeric::input(value)
+                ),
+            ));
+        }
         entries.push(Limit { def, value });
     }
     let accuracy_resolved = match raw.get(RESOLVED) {

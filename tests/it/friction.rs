@@ -345,6 +345,22 @@ fn no_torque_is_no_efficiency() {
 #[test]
 fn bad_values_are_refused_at_their_keys() {
     let cases: &[(&str, &str, &str)] = &[
+        // Limits no value of their quantity can meet (η ≤ 1, a loss ≥ 0, above absolute zero).
+        (
+            "min_mean_efficiency: 0.85",
+            "min_mean_efficiency: 1.5",
+            "limits.min_mean_efficiency",
+        ),
+        (
+            "max_power_loss_w: 60.0",
+            "max_power_loss_w: -3.0",
+            "limits.max_power_loss_w",
+        ),
+        (
+            "max_temperature_c: 80.0",
+            "max_temperature_c: -300.0",
+            "limits.max_temperature_c",
+        ),
         ("mu: 0.0025", "mu: 1.0", "reducer.friction.crank_bearing.mu"),
         (
             "mu: 0.0025",

@@ -239,6 +239,41 @@ fn torsion_4_angles_40_steps(b: divan::Bencher) {
     });
 }
 
+/// The same torsion scene with friction in the loop (issue 28): `specs/reducer-efficiency.yaml`'s
+/// friction (rotating rollers, sleeved pins, crank bearing) on both branches, each through the
+/// loop's and the figures' torques (2 × 84 solves per angle, a point solved again where ρ turns
+/// a pin's sliding).
+#[divan::bench]
+fn torsion_4_angles_40_steps_friction(b: divan::Bencher) {
+    let s = spec::load("specs/reducer-torsion.yaml").expect("specs/reducer-torsion.yaml");
+    let friction = spec::load("specs/reducer-efficiency.yaml")
+        .expect("specs/reducer-efficiency.yaml")
+        .design
+        .friction
+        .expect("friction");
+    let scene = s
+        .scenes
+        .iter()
+        .find(|c| c.name == "torsion")
+        .expect("torsion");
+    let plan = cycloid::model::Plan::of("torsion", &[cycloid::model::Effect::Bearing]);
+    let mut model =
+        cycloid::equilibrium::loaded::Model::new(&s.design, &s.modification, scene, &plan)
+            .with_friction(&friction, &s.design);
+    model.coupling = model.coupling.map(|c| c.in_torsion(1.0));
+    let model = cycloid::equilibrium::discs::Discs::new(&model, s.design.discs);
+    let sweep = scene.torque_sweep.expect("a torque sweep");
+    b.bench(|| {
+        cycloid::engine::torsion::run(
+            black_box(&model),
+            &sweep,
+            &scene.crank_rad,
+            &cycloid::progress::Silent,
+        )
+        .unwrap()
+    });
+}
+
 /// One full optimisation study (the paper's positive ratio study).
 #[divan::bench(sample_count = 3)]
 fn optimisation_positive_ratio(b: divan::Bencher) {

@@ -7,6 +7,7 @@
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
 use crate::engine::{bearing_life, efficiency, torsion};
+use crate::equilibrium::coupling::Coupling;
 use crate::equilibrium::discs::Discs;
 use crate::equilibrium::discs_sweep::{self, DiscSweeps};
 use crate::equilibrium::loaded::Model;
@@ -293,16 +294,10 @@ fn torsion_loops(
     let model = loaded_model(design, m, scene, plan, settings);
     let discs = Discs::new(&model, design.discs);
     torsion::run(&discs, sweep, &scene.crank_rad, progress)
-        .map(|t| {
-            Some(crate::model::results::TorsionCurves {
-                friction_given: design.friction.is_some(),
-                ..t
-            })
-        })
+        .map(Some)
         .map_err(|f| {
             Error::computation(format!(
-                "scene `{}`: crank angle {:.4}° locked, output torque {} N·m: \
-                 equilibrium solve failed: {}",
+                "scene `{}`: crank angle {:.4}° locked, output torque {} N·m: {}",
                 scene.name,
                 units::deg(f.crank_rad),
                 crate::numeric::number(units::nm(f.torque_nmm)),
@@ -383,9 +378,9 @@ fn bearing_life(
 /// it in words).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Note {
-    /// A torsion scene: its hysteresis loss is 0 (its loop is solved without friction, also
-    /// where `reducer.friction` is given: `friction_given`).
-    Hysteresis { scene: String, friction_given: bool },
+    /// A torsion scene: its hysteresis loss is 0 (its loop is solved without friction), or it
+    /// comes from the friction of `reducer.friction` in the loop's balance (`friction`).
+    Hysteresis { scene: String, friction: bool },
     /// A scene whose crank-bearing life is not rated: its crank range is not a whole number of
     /// loaded periods (`loaded_period_rad`), and the equivalent load is a mean over whole load
     /// cycles.
@@ -429,7 +424,10 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
         if plan.has(Effect::Torsion) {
             notes.push(Note::Hysteresis {
                 scene: name(),
-                friction_given: spec.design.friction.is_some(),
+                friction: spec
+                    .design
+                    .friction
+                    .is_some_and(|f| Coupling::new(&f, &spec.design).active()),
             });
         }
         let de = spec.design.deviations.eccentricity_mm;
@@ -489,14 +487,17 @@ pub fn loaded_model(
     // The friction losses of `efficiency` read the loaded rollers' contacts the sweep solved.
     model.keep_contacts = design.friction.is_some() && plan.computes(Effect::Efficiency);
     // The coupled friction model puts friction inside the balance of a crank sweep that asks
-    // for `efficiency`: its loaded outputs are then the coupled ones (a torsion loop's input is
-    // locked: the sweep's kinematics do not apply there).
+    // for `efficiency`: its loaded outputs are then the coupled ones. A torsion loop always
+    // balances with its friction, whichever model the efficiency uses (friction that is not
+    // in the balance opens no loop); its sliding is the disc's turn under the locked input,
+    // the loading branch's until `engine::torsion` sets the branch.
     match design.friction {
-        Some(f)
-            if f.model == FrictionModel::Coupled
-                && plan.computes(Effect::Efficiency)
-                && scene.torque_sweep.is_none() =>
-        {
+        Some(f) if scene.torque_sweep.is_some() && plan.has(Effect::Torsion) => {
+            let mut model = model.with_friction(&f, design);
+            model.coupling = model.coupling.map(|c| c.in_torsion(1.0));
+            model
+        }
+        Some(f) if f.model == FrictionModel::Coupled && plan.computes(Effect::Efficiency) => {
             model.with_friction(&f, design)
         }
         _ => model,

@@ -13,9 +13,20 @@
 //! - **torsional rigidity**: the secant slope b/a between 50 % and 100 % of the rated torque,
 //!   ΔT/Δγ with ΔT = Trated/2, in each direction; the figure is the smaller one (N·m/arcmin).
 //!
-//! The catalogue loop is a hysteresis loop because real reducers have friction. This model is
-//! quasi-static and frictionless: the loading and unloading branches coincide and the
-//! hysteresis loss is zero. Nothing here estimates one.
+//! The catalogue loop is a hysteresis loop because real reducers have friction. Without
+//! `reducer.friction` this model is quasi-static and frictionless: the loading and unloading
+//! branches coincide and the hysteresis loss is zero. With it (`friction_loop`) every contact's
+//! Coulomb friction resists the disc's turn (`equilibrium::friction::torsion`): the loading
+//! branch (−Trated → +Trated, σ = +1) and the unloading one (back, σ = −1) part, and
+//! - **hysteresis loss** = γ_unloading − γ_loading at T = 0, the mean of its values at 0⁺ and
+//!   0⁻ (without preload both are zero: at either edge of the dead band no contact is loaded,
+//!   so none carries friction — MODEL.md);
+//! - the lost motion, backlash and rigidity are read on the loop's **centre line**, the mean
+//!   of the two branches at the same torque (the catalogue's definition);
+//! - the loop's **area** ∮ T dγ is the energy friction takes per cycle;
+//! - the curve is the real loop: after each reversal the disc sticks until the torque has
+//!   changed enough for the other branch to reach it (γ is held, Masing's rule for Coulomb
+//!   friction), which the branches in full sliding alone would not show.
 //!
 //! The figures come from their own solves at exactly ±3 %, ±50 %, ±100 % of the rated torque
 //! (the loop's samples need not land on them), and the one-sided limits T → 0± from solves at
@@ -29,6 +40,7 @@
 //! solve no longer converges (its force merit at 2e-8 N·m stalls at 1e-6).
 
 use crate::equilibrium::discs::{solve_coupled, CoupledWork, Discs};
+use crate::equilibrium::friction::torsion::{set_branch, solve_point};
 use crate::equilibrium::solve::SolveFailure;
 use crate::model::results::{TorsionCurves, TorsionFigures};
 use crate::model::TorqueSweep;
@@ -77,6 +89,8 @@ pub fn figures(rated_nmm: f64, gamma: &[f64; 8]) -> Result<TorsionFigures, Strin
         lost_motion_rad: p3 - m3,
         backlash_rad: p0 - m0,
         rigidity_nmm_per_rad: (secant(p50, p100, "forward")?, secant(m100, m50, "reverse")?),
+        hysteresis_rad: 0.0,
+        loop_energy_nmm: 0.0,
     })
 }
 
@@ -103,13 +117,17 @@ pub struct TorsionFailure {
     pub failure: String,
 }
 
-/// The torsion curve γ over the loop and the figures at one locked crank angle.
+/// The torsion curve γ over the loop and the figures at one locked crank angle (with the
+/// discs' friction, when they carry it: `friction_loop`).
 pub fn at_angle(
     discs: &Discs,
     sweep: &TorqueSweep,
     torques_nmm: &[f64],
     crank_rad: f64,
 ) -> Result<(Vec<f64>, [f64; 8], TorsionFigures), TorsionFailure> {
+    if discs.models.iter().any(|m| m.coupling.is_some()) {
+        return friction_loop(discs, sweep, torques_nmm, crank_rad);
+    }
     let mut discs = discs.clone();
     let mut work = CoupledWork::new(&discs);
     let fail = |torque_nmm: f64, failure: String| TorsionFailure {
@@ -118,7 +136,7 @@ pub fn at_angle(
         failure,
     };
     let mut solve = |t: f64, work: &mut CoupledWork| {
-        output_lag(&mut discs, crank_rad, t, work).map_err(|f| fail(t, f.to_string()))
+        output_lag(&mut discs, crank_rad, t, work).map_err(|f| fail(t, solve_failed(f)))
     };
     // The loop; at T = 0 the rising branch (m = steps) comes from below and holds γ(0⁻), the
     // falling one γ(0⁺), so the dead band is a vertical step of the loop.
@@ -140,6 +158,111 @@ pub fn at_angle(
     }
     let figures = figures(sweep.rated_nmm, &gamma).map_err(|m| fail(sweep.rated_nmm, m))?;
     Ok((curve, gamma, figures))
+}
+
+/// The loop with friction at one locked crank angle: the loading branch (σ = +1) from
+/// −Trated up to +Trated, then the unloading branch (σ = −1) back down, each one monotone path
+/// through the loop's torques (its zero as 0⁻ and 0⁺) and the figures', every point
+/// warm-started from the last. The figures on the centre line, the hysteresis at T = 0, the
+/// area of the loop as drawn (held after each reversal).
+fn friction_loop(
+    discs: &Discs,
+    sweep: &TorqueSweep,
+    torques_nmm: &[f64],
+    crank_rad: f64,
+) -> Result<(Vec<f64>, [f64; 8], TorsionFigures), TorsionFailure> {
+    let rated = sweep.rated_nmm;
+    let zero = ZERO_SIDE * rated;
+    // The branches' torques, ascending.
+    let mut up: Vec<f64> = torques_nmm
+        .iter()
+        .flat_map(|&t| if t == 0.0 { vec![-zero, zero] } else { vec![t] })
+        .chain(FIGURE_TORQUES.iter().map(|f| f * rated))
+        .collect();
+    up.sort_by(f64::total_cmp);
+    up.dedup();
+    let mut discs = discs.clone();
+    let mut work = CoupledWork::new(&discs);
+    let fail = |torque_nmm: f64, failure: String| TorsionFailure {
+        crank_rad,
+        torque_nmm,
+        failure,
+    };
+    let mut branch = |sigma: f64, torques: &mut dyn Iterator<Item = f64>| {
+        set_branch(&mut discs, &mut work, sigma);
+        torques
+            .map(|t| {
+                solve_point(&mut discs, crank_rad, t, &mut work)
+                    .map_err(|f| fail(t, solve_failed(f)))
+            })
+            .collect::<Result<Vec<f64>, _>>()
+    };
+    let loading = branch(1.0, &mut up.iter().copied())?;
+    let mut unloading = branch(-1.0, &mut up.iter().rev().copied())?;
+    unloading.reverse();
+    // γ of a branch at a torque of `up` (every torque read is one of them).
+    let at = |branch: &[f64], t: f64| {
+        let i = up
+            .binary_search_by(|x| x.total_cmp(&t))
+            .unwrap_or_else(|i| i);
+        branch[i.min(branch.len() - 1)]
+    };
+    // The loop as drawn: after the reversal at +Trated the disc holds its γ until the
+    // unloading branch comes down to it, after the one at −Trated until loading rises to it.
+    let (top, bottom) = (at(&loading, rated), at(&unloading, -rated));
+    if bottom >= top {
+        return Err(fail(rated, held_throughout(top, bottom)));
+    }
+    let held_loading = |t: f64| at(&loading, t).max(bottom);
+    let held_unloading = |t: f64| at(&unloading, t).min(top);
+    let curve = torques_nmm
+        .iter()
+        .enumerate()
+        .map(|(m, &t)| {
+            if m <= 2 * sweep.steps {
+                held_loading(if t == 0.0 { -zero } else { t })
+            } else {
+                held_unloading(if t == 0.0 { zero } else { t })
+            }
+        })
+        .collect();
+    let mut centre = [0.0; 8];
+    let mut width = [0.0; 8];
+    for ((c, w), f) in centre.iter_mut().zip(&mut width).zip(FIGURE_TORQUES) {
+        let (l, u) = (at(&loading, f * rated), at(&unloading, f * rated));
+        *c = 0.5 * (l + u);
+        *w = u - l;
+    }
+    let mut figures = figures(rated, &centre).map_err(|m| fail(rated, m))?;
+    // FIGURE_TORQUES[3] and [4] are 0⁻ and 0⁺.
+    figures.hysteresis_rad = 0.5 * (width[3] + width[4]);
+    figures.loop_energy_nmm = up
+        .windows(2)
+        .map(|w| {
+            let gap = |t: f64| held_unloading(t) - held_loading(t);
+            0.5 * (gap(w[0]) + gap(w[1])) * (w[1] - w[0])
+        })
+        .sum();
+    Ok((curve, centre, figures))
+}
+
+/// The message of a solve of the loop that failed.
+fn solve_failed(f: SolveFailure) -> String {
+    format!("equilibrium solve failed: {f}")
+}
+
+/// The message of a loop whose friction never lets the disc slide: the unloading branch at
+/// −Trated (`bottom`, rad) is not below the loading branch at +Trated (`top`), so after the
+/// first reversal the disc stays where it is over the whole loop.
+fn held_throughout(top: f64, bottom: f64) -> String {
+    format!(
+        "friction holds the disc over the whole torsion loop: the unloading branch at −rated \
+         (γ = {} arcmin) is not below the loading branch at +rated (γ = {} arcmin), so the \
+         friction moment exceeds the rated torque and the disc never slides back; the loop has \
+         no catalogue figures. Raise torque_sweep.rated_nm, or lower μ or the preload",
+        crate::numeric::number(crate::units::arcmin(bottom)),
+        crate::numeric::number(crate::units::arcmin(top)),
+    )
 }
 
 /// The torsion curves and figures at every crank angle of a scene (in parallel, each angle on
@@ -165,7 +288,7 @@ pub fn run(
         torsion_rad: Vec::with_capacity(crank_rad.len()),
         figures: Vec::with_capacity(crank_rad.len()),
         figure_torsion_rad: Vec::with_capacity(crank_rad.len()),
-        friction_given: false,
+        friction: discs.models.iter().any(|m| m.coupling.is_some()),
     };
     for angle in per_angle {
         let (curve, gamma, figures) = angle?;

@@ -21,6 +21,21 @@ pub struct Coupling {
     pub eccentricity_mm: f64,
     /// nc, the disc's teeth.
     pub teeth: usize,
+    /// How the contacts slide: the running reducer's kinematics, or a torsion loop's turn.
+    pub sliding: Sliding,
+}
+
+/// How the contacts slide, which sets every friction force's direction (MODEL.md "Friction,
+/// efficiency and heat").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Sliding {
+    /// The input turns at the nominal ratio: the rigid-body kinematics (`friction::sliding`).
+    Running,
+    /// Torsion under a locked input: the disc turns about its own centre O_d by dβ of the sign
+    /// `sigma` (+1 on the loading branch, −1 unloading), the flange about the axis by
+    /// dβ + dβo with dβo = `pin_ratio`·dβ (the pins' deflection per unit turn of the disc,
+    /// ≥ 0; it sets the pins' sliding directions).
+    Torsion { sigma: f64, pin_ratio: f64 },
 }
 
 impl Coupling {
@@ -44,7 +59,25 @@ impl Coupling {
                 .map_or(0.0, |b| b.mu * 0.5 * b.bore_diameter_mm),
             eccentricity_mm: design.eccentricity_mm + design.deviations.eccentricity_mm,
             teeth: design.teeth,
+            sliding: Sliding::Running,
         }
+    }
+
+    /// This coupling in a torsion loop's branch `sigma` (+1 loading, −1 unloading), the pins'
+    /// ratio starting at 0 (`Sliding::Torsion`).
+    pub fn in_torsion(self, sigma: f64) -> Self {
+        Coupling {
+            sliding: Sliding::Torsion {
+                sigma,
+                pin_ratio: 0.0,
+            },
+            ..self
+        }
+    }
+
+    /// Whether this is a torsion loop's friction (`Sliding::Torsion`).
+    pub fn is_torsion(&self) -> bool {
+        matches!(self.sliding, Sliding::Torsion { .. })
     }
 
     /// Whether any contact has friction (with none, the balance is the frictionless one).

@@ -78,11 +78,14 @@ impl Model {
     }
 
     /// The friction inside the balance at this model's torque: none without friction, and none
-    /// at zero torque, where only a preload loads the contacts and the frictionless balance
-    /// answers (the disc does not move under no load in the torsion loop, and an efficiency
-    /// scene at zero torque transmits nothing).
+    /// at zero torque in a running reducer, where only a preload loads the contacts and the
+    /// frictionless balance answers (an efficiency scene at zero torque transmits nothing). A
+    /// torsion loop's branch keeps its friction at every torque: a preload's contacts hold the
+    /// disc there too.
     pub fn coupled(&self) -> Option<&Coupling> {
-        self.coupling.as_ref().filter(|_| self.torque_nmm != 0.0)
+        self.coupling
+            .as_ref()
+            .filter(|c| self.torque_nmm != 0.0 || c.is_torsion())
     }
 
     /// Pins follow the rollers' geometry mode (first order: ideal directions, linear gaps).

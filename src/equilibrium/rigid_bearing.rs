@@ -378,7 +378,7 @@ struct PinTotals {
 impl PinTotals {
     fn of(c: &Coupling, e_phi: Vec2, centre: Vec2, pins: &[PinState]) -> Self {
         PinTotals {
-            force: c.pin_total(e_phi, pins),
+            force: c.pin_total(e_phi, centre, pins),
             shift: c.pin_shift(e_phi, centre, pins),
         }
     }
@@ -406,17 +406,18 @@ fn coupled_roller_moment(
         dm += df * arm;
         scale += (s.force_n * arm).abs();
         let t = Vec2::new(-s.normal.y, s.normal.x);
-        let unit = -s.normal - t * (c.roller * c.roller_sign(crank, s));
+        let unit = -s.normal - t * (c.roller * c.roller_sign(crank, centre, s));
         force += unit * s.force_n;
         dforce += unit * df;
     }
     let fb = -(force + pins.force);
     let norm = fb.norm();
-    let moment = c.bearing_arm_mm * norm;
+    let arm = c.bearing_sign() * c.bearing_arm_mm;
+    let moment = arm * norm;
     if norm > 0.0 {
-        dm -= c.bearing_arm_mm * fb.dot(&-dforce) / norm;
+        dm -= arm * fb.dot(&-dforce) / norm;
     }
-    (m - moment, dm, scale + moment)
+    (m - moment, dm, scale + moment.abs())
 }
 
 /// The rollers' coupled balance: β with Σ F·l̃ − c_b·|Fb| = T + the pins' shift.
@@ -497,7 +498,8 @@ fn solve_pins_coupled(
     let rotation = psi.sin_cos();
     let evaluate = |lag: f64, states: &mut Vec<PinState>| {
         pins_at(model, p, (e_phi, rotation, offset), lag, states);
-        let (value, slope, scale) = moment_by(states, |s| c.pin_arm(e_phi, s));
+        let centre = e_phi * model.eccentricity_mm + offset;
+        let (value, slope, scale) = moment_by(states, |s| c.pin_arm(e_phi, centre, s));
         Balance {
             value,
             slope,

@@ -693,6 +693,39 @@ pub const TORSIONAL_RIGIDITY: Quantity = Quantity {
     read: Read::Curves(|r| torsion_figures(r, |f| units::nm_per_arcmin(f.rigidity()))),
 };
 
+/// The figures of a torsion scene whose loop carries friction, `[crank]`, read by `figure`
+/// (none without friction: the frictionless loop has no hysteresis to read).
+fn friction_figures(r: &SceneResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
+    r.torsion.as_ref().filter(|t| t.friction)?;
+    torsion_figures(r, figure)
+}
+
+/// Hysteresis loss γ_unloading − γ_loading at T = 0 of a torsion loop with friction, arcmin,
+/// at each locked crank angle (`TorsionFigures::hysteresis_rad`).
+pub const HYSTERESIS_LOSS: Quantity = Quantity {
+    key: "hysteresis_loss_arcmin",
+    unit: "arcmin",
+    label: "hysteresis loss (friction, at zero torque)",
+    effect: Effect::Torsion,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| friction_figures(r, |f| units::arcmin(f.hysteresis_rad))),
+};
+
+/// The energy friction takes per cycle of a torsion loop, its area ∮ T dγ, J, at each locked
+/// crank angle (`TorsionFigures::loop_energy_nmm`).
+pub const HYSTERESIS_ENERGY: Quantity = Quantity {
+    key: "hysteresis_energy_j",
+    unit: "J",
+    label: "energy per cycle of the torsion loop",
+    effect: Effect::Torsion,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| friction_figures(r, |f| 1e-3 * f.loop_energy_nmm)),
+};
+
 /// The largest (`largest` true) or smallest value of a per-crank curve of the registry, with
 /// the crank angle where it occurs.
 fn curve_extreme(r: &SceneResult, q: &Quantity, largest: bool) -> Option<Extreme> {
@@ -739,6 +772,18 @@ pub const MIN_TORSIONAL_RIGIDITY: Quantity = Quantity {
     period: None,
     of: Some("torsional_rigidity_nm_per_arcmin"),
     read: Read::Scalar(|r| curve_extreme(r, &TORSIONAL_RIGIDITY, false)),
+};
+
+/// The largest hysteresis loss over the locked crank angles, arcmin.
+pub const MAX_HYSTERESIS_LOSS: Quantity = Quantity {
+    key: "max_hysteresis_loss_arcmin",
+    unit: "arcmin",
+    label: "max hysteresis loss of the reducer (friction)",
+    effect: Effect::Torsion,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("hysteresis_loss_arcmin"),
+    read: Read::Scalar(|r| curve_extreme(r, &HYSTERESIS_LOSS, true)),
 };
 
 /// The crank bearing's equivalent dynamic load P = (mean of Fb^p over the sweep)^(1/p), N
@@ -906,6 +951,8 @@ pub const QUANTITIES: &[&Quantity] = &[
     &TORSION_LOST_MOTION,
     &TORSION_BACKLASH,
     &TORSIONAL_RIGIDITY,
+    &HYSTERESIS_LOSS,
+    &HYSTERESIS_ENERGY,
     &EFFICIENCY,
     &INPUT_TORQUE,
     &MIN_CLEARANCE,
@@ -921,6 +968,7 @@ pub const QUANTITIES: &[&Quantity] = &[
     &MAX_TORSION_LOST_MOTION,
     &MAX_TORSION_BACKLASH,
     &MIN_TORSIONAL_RIGIDITY,
+    &MAX_HYSTERESIS_LOSS,
     &BEARING_EQUIVALENT_LOAD,
     &BEARING_LIFE,
     &MEAN_EFFICIENCY,
@@ -947,6 +995,7 @@ pub const SUMMARY: &[&Quantity] = &[
     &MAX_TORSION_LOST_MOTION,
     &MAX_TORSION_BACKLASH,
     &MIN_TORSIONAL_RIGIDITY,
+    &MAX_HYSTERESIS_LOSS,
     &BEARING_EQUIVALENT_LOAD,
     &BEARING_LIFE,
     &MEAN_EFFICIENCY,
@@ -1097,6 +1146,13 @@ pub const LIMITS: &[LimitDef] = &[
         bound: Bound::Min,
         whole: false,
         range: ANY,
+    },
+    LimitDef {
+        key: "max_hysteresis_loss_arcmin",
+        quantity: &MAX_HYSTERESIS_LOSS,
+        bound: Bound::Max,
+        whole: false,
+        range: (0.0, f64::INFINITY),
     },
     LimitDef {
         key: "min_bearing_life_h",

@@ -156,6 +156,12 @@ pub struct TorsionFigures {
     pub backlash_rad: f64,
     /// Secant stiffness between 50 % and 100 % of rated, N·mm/rad: (forward, reverse).
     pub rigidity_nmm_per_rad: (f64, f64),
+    /// Hysteresis loss: γ on the unloading branch minus γ on the loading branch at T = 0, the
+    /// mean of its values at 0⁺ and 0⁻ (each side of a dead band), rad; 0 without friction.
+    pub hysteresis_rad: f64,
+    /// The loop's area ∮ T dγ = ∫ (γ_unloading − γ_loading) dT over −Trated…Trated: the energy
+    /// friction takes per cycle of the loop, N·mm (= mJ); 0 without friction.
+    pub loop_energy_nmm: f64,
 }
 
 impl TorsionFigures {
@@ -167,22 +173,26 @@ impl TorsionFigures {
 
 /// Torsion under a locked input: at each crank angle of the scene, the reducer's output lag γ
 /// (the torsion angle, rad, sign of T) over the torque loop, and the catalogue figures. The
-/// model is quasi-static and frictionless: the loading and unloading branches coincide and
-/// the hysteresis loss is zero.
+/// model is quasi-static: without friction the loading and unloading branches coincide and the
+/// hysteresis loss is zero; with `reducer.friction` every contact's friction resists the
+/// disc's turn and the branches part (`engine::torsion`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TorsionCurves {
     /// The loop's torques T_m, N·mm (`TorqueSweep::torques_nmm`).
     pub torque_nmm: Vec<f64>,
     /// γ `[crank][m]`, rad. At T = 0 the rising branch holds γ(0⁻), the falling branch γ(0⁺).
+    /// With friction the rising points lie on the loading branch, the falling ones on the
+    /// unloading branch, each held where the disc sticks after the loop's reversal.
     pub torsion_rad: Vec<Vec<f64>>,
     /// The figures `[crank]`.
     pub figures: Vec<TorsionFigures>,
     /// γ of the figures' own solves `[crank][i]`, rad, at the torques
-    /// `engine::torsion::FIGURE_TORQUES[i]`·rated (−100, −50, −3 %, 0⁻, 0⁺, +3, +50, +100 %).
+    /// `engine::torsion::FIGURE_TORQUES[i]`·rated (−100, −50, −3 %, 0⁻, 0⁺, +3, +50, +100 %):
+    /// with friction on the loop's centre line, the mean of its two branches.
     pub figure_torsion_rad: Vec<[f64; 8]>,
-    /// `reducer.friction` is given: the loop is still solved without friction (friction in
-    /// the torsion loop is not modelled), which every text about its hysteresis must say.
-    pub friction_given: bool,
+    /// `reducer.friction` is given: the loop is solved with friction in the balance and the
+    /// figures carry its hysteresis.
+    pub friction: bool,
 }
 
 /// The rating life written for a bearing whose life has no finite bound: no load (P = 0 N,

@@ -16,17 +16,20 @@ use crate::units;
 pub const HYSTERESIS: &str = "hysteresis loss 0: the quasi-static model has no friction, so \
      the loading and unloading branches of the torsion loop coincide";
 
-/// What a torsion scene's reader is told of its hysteresis loss where `reducer.friction` is
-/// given: the friction of the efficiency effect does not act in the torsion loop.
-pub const HYSTERESIS_NOT_MODELLED: &str = "hysteresis loss not computed: `reducer.friction` acts \
-     in the efficiency effect only; the torsion loop is solved without friction, so its loading \
-     and unloading branches coincide and its figures are the frictionless model's";
+/// What a torsion scene's reader is told of its hysteresis loss where its loop carries the
+/// friction of `reducer.friction` (`engine::torsion`).
+pub const HYSTERESIS_FROM_FRICTION: &str = "hysteresis loss from friction: every contact's \
+     Coulomb friction (`reducer.friction`, in the balance whichever model the efficiency uses) \
+     resists the disc's turn, so the loop's loading and unloading branches part; the branches \
+     are in full sliding, the disc held after each reversal until the other branch reaches it; \
+     lost motion, backlash and rigidity are read on the loop's centre line, the hysteresis \
+     loss is the unloading minus the loading branch at zero torque";
 
-/// The hysteresis text of a torsion scene (`HYSTERESIS`, or `HYSTERESIS_NOT_MODELLED` where
-/// friction is given).
-pub fn hysteresis(friction_given: bool) -> &'static str {
-    if friction_given {
-        HYSTERESIS_NOT_MODELLED
+/// The hysteresis text of a torsion scene (`HYSTERESIS`, or `HYSTERESIS_FROM_FRICTION` where
+/// its loop carries friction).
+pub fn hysteresis(friction: bool) -> &'static str {
+    if friction {
+        HYSTERESIS_FROM_FRICTION
     } else {
         HYSTERESIS
     }
@@ -35,10 +38,9 @@ pub fn hysteresis(friction_given: bool) -> &'static str {
 /// A note ([`engine::scene::Note`](crate::engine::scene::Note)) in one line.
 pub fn note(n: &Note) -> String {
     match n {
-        Note::Hysteresis {
-            scene,
-            friction_given,
-        } => format!("scene `{scene}`: {}", hysteresis(*friction_given)),
+        Note::Hysteresis { scene, friction } => {
+            format!("scene `{scene}`: {}", hysteresis(*friction))
+        }
         Note::LifeNotRated {
             scene,
             loaded_period_rad,

@@ -239,7 +239,13 @@ pub struct TorsionDoc {
     torsional_rigidity_nm_per_arcmin: Vec<Finite>,
     torsional_rigidity_forward_nm_per_arcmin: Vec<Finite>,
     torsional_rigidity_reverse_nm_per_arcmin: Vec<Finite>,
-    /// The model's hysteresis loss (0, or not computed where friction is given), and why.
+    /// With friction in the loop: γ_unloading − γ_loading at T = 0 \[crank\], arcmin.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    hysteresis_loss_arcmin: Option<Vec<Finite>>,
+    /// With friction in the loop: its area, the energy per cycle \[crank\], J.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    hysteresis_energy_j: Option<Vec<Finite>>,
+    /// Where the hysteresis loss comes from (0 without friction), and how it is read.
     hysteresis: &'static str,
 }
 
@@ -302,7 +308,9 @@ impl TorsionDoc {
             torsional_rigidity_nm_per_arcmin: registry(r, &q::TORSIONAL_RIGIDITY),
             torsional_rigidity_forward_nm_per_arcmin: direction(|d| d.0),
             torsional_rigidity_reverse_nm_per_arcmin: direction(|d| d.1),
-            hysteresis: hysteresis(t.friction_given),
+            hysteresis_loss_arcmin: t.friction.then(|| registry(r, &q::HYSTERESIS_LOSS)),
+            hysteresis_energy_j: t.friction.then(|| registry(r, &q::HYSTERESIS_ENERGY)),
+            hysteresis: hysteresis(t.friction),
         })
     }
 }

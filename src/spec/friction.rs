@@ -215,6 +215,21 @@ pub(super) fn thermal(raw: &RawThermal) -> Result<Thermal> {
 /// A scene that asks for `efficiency` needs `reducer.friction`; the coupled model needs a rigid
 /// crank bearing in such a scene (refused at the scene's bearing stiffness).
 pub(super) fn check_scenes(design: &Design, scenes: &[Scene]) -> Result<()> {
+    // A torsion loop balances with its friction, which a compliant bearing's centre search
+    // does not carry.
+    if design.friction.is_some() {
+        if let Some(k) = scenes
+            .iter()
+            .position(|s| s.torque_sweep.is_some() && s.bearing_stiffness_n_per_mm.is_some())
+        {
+            return Err(Error::invalid(
+                format!("scenes[{k}].bearing_stiffness_n_per_mm"),
+                "a torsion loop with `reducer.friction` balances its friction with a rigid crank \
+                 bearing: leave out bearing_stiffness_n_per_mm in this torque_sweep scene"
+                    .into(),
+            ));
+        }
+    }
     if let Some(i) = scenes
         .iter()
         .position(|s| s.effects.contains(&Effect::Efficiency))
@@ -254,6 +269,15 @@ pub(super) fn check_scenes(design: &Design, scenes: &[Scene]) -> Result<()> {
 /// temperature. Refused before anything runs, at the scene or the limit.
 pub(super) fn check_limits(limits: &Limits, design: &Design, scenes: &[Scene]) -> Result<()> {
     let set = |key: &str| limits.entries.iter().any(|l| l.def.key == key);
+    if set("max_hysteresis_loss_arcmin") && design.friction.is_none() {
+        return Err(Error::invalid(
+            "limits.max_hysteresis_loss_arcmin",
+            "a hysteresis loss needs friction in the torsion loop: give `reducer.friction` \
+             (without it the loop's branches coincide and the loss is 0 by the model, not by \
+             the design)"
+                .into(),
+        ));
+    }
     for key in ["max_power_loss_w", "max_temperature_c"] {
         if !set(key) {
             continue;

@@ -459,11 +459,11 @@ fn bad_values_are_refused_at_their_keys() {
     );
 }
 
-/// Friction acts in the efficiency effect only: a torsion scene of a design with
-/// `reducer.friction` must not claim the frictionless "hysteresis loss 0" as a result, in
-/// the terminal's notes, the JSON or `--explain`.
+/// With `reducer.friction` a torsion scene's loop carries it: the terminal's note, the JSON and
+/// `--explain` say where its hysteresis comes from, and none claims the frictionless
+/// "hysteresis loss 0" (the values themselves: `friction_torsion`).
 #[test]
-fn a_torsion_loop_with_friction_given_says_it_is_solved_without_it() {
+fn a_torsion_loop_with_friction_says_its_hysteresis_comes_from_it() {
     let friction = &EFF[EFF.find("  friction:").unwrap()..EFF.find("  thermal:").unwrap()];
     let torsion = include_str!("../../specs/reducer-torsion.yaml");
     let text = edited(
@@ -482,16 +482,16 @@ fn a_torsion_loop_with_friction_given_says_it_is_solved_without_it() {
     let (code, out, err) = cycloid(&dir.path, &["check", "s.yaml", "--json", "r.json"]).parts();
     assert_eq!(code, 0, "{out}{err}");
     assert!(
-        out.contains("scene `torsion`: hysteresis loss not computed"),
+        out.contains("scene `torsion`: hysteresis loss from friction"),
         "{out}"
     );
     assert!(!out.contains("hysteresis loss 0"), "{out}");
     let doc: Value = serde_json::from_str(&dir.read("r.json")).unwrap();
     let note = doc["scenes"][0]["hysteresis"].as_str().unwrap().to_string();
-    assert!(note.starts_with("hysteresis loss not computed"), "{note}");
+    assert!(note.starts_with("hysteresis loss from friction"), "{note}");
     let (_, explain, _) = cycloid(&dir.path, &["check", "s.yaml", "--explain"]).parts();
     assert!(
-        explain.contains("hysteresis loss not computed"),
+        explain.contains("hysteresis loss from friction"),
         "{explain}"
     );
 }

@@ -29,6 +29,7 @@ mod first_order_validity;
 mod flanks;
 mod friction;
 mod friction_coupled;
+mod friction_torsion;
 mod fuzz_corpus;
 mod geometry;
 mod golden;

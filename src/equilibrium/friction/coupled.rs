@@ -38,7 +38,7 @@
 //! Units: mm, N, N·mm, rad; powers per unit input speed (N·mm per rad of crank).
 
 use super::sliding::{disc_speed_ratio, disc_velocity, relative_crank_speed_ratio};
-pub use crate::equilibrium::coupling::Coupling;
+pub use crate::equilibrium::coupling::{Coupling, Sliding};
 use crate::equilibrium::loaded::AngleSolution;
 use crate::equilibrium::pins::PinState;
 use crate::equilibrium::rollers::RollerState;
@@ -50,89 +50,140 @@ impl Coupling {
         e_phi * self.eccentricity_mm
     }
 
-    /// s_i: the sign of the disc's sliding over roller `s` along t = ẑ × n (−1, 0 or 1) at crank
-    /// angle `crank_rad` (the disc's own).
-    pub fn roller_sign(&self, crank_rad: f64, s: &RollerState) -> f64 {
-        let v = super::sliding::roller_sliding(
-            crank_rad,
-            self.eccentricity_mm,
-            self.teeth,
-            s.point,
-            s.normal,
-        );
-        if v > 0.0 {
-            1.0
-        } else if v < 0.0 {
-            -1.0
-        } else {
-            0.0
-        }
+    /// s_i: the sign of the disc's sliding over roller `s` along t = ẑ × n (−1, 0 or 1): at
+    /// crank angle `crank_rad` (the disc's own) under the running kinematics; in a torsion
+    /// loop the disc turns about its centre `centre` by dβ of sign σ, so the contact slides at
+    /// σ·(C − O_d)·n (`sliding::torsion_roller_sliding`).
+    pub fn roller_sign(&self, crank_rad: f64, centre: Vec2, s: &RollerState) -> f64 {
+        let v = match self.sliding {
+            Sliding::Running => super::sliding::roller_sliding(
+                crank_rad,
+                self.eccentricity_mm,
+                self.teeth,
+                s.point,
+                s.normal,
+            ),
+            Sliding::Torsion { sigma, .. } => {
+                sigma * super::sliding::torsion_roller_sliding(centre, s.point, s.normal)
+            }
+        };
+        sign(v)
     }
 
     /// l̃ = l + c_r·s·(C − O_d)·n, mm: the arm of roller `s`'s normal force that carries its
     /// friction's moment about the disc centre `centre` too (moment on the disc −F·l̃).
     pub fn roller_arm(&self, crank_rad: f64, centre: Vec2, s: &RollerState) -> f64 {
-        s.arm_mm + self.roller * self.roller_sign(crank_rad, s) * (s.point - centre).dot(&s.normal)
+        s.arm_mm
+            + self.roller
+                * self.roller_sign(crank_rad, centre, s)
+                * (s.point - centre).dot(&s.normal)
     }
 
     /// The friction force of roller `s` on the disc, N: −c_r·F·s·t, t = ẑ × n.
-    pub fn roller_friction(&self, crank_rad: f64, s: &RollerState) -> Vec2 {
+    pub fn roller_friction(&self, crank_rad: f64, centre: Vec2, s: &RollerState) -> Vec2 {
         let t = Vec2::new(-s.normal.y, s.normal.x);
-        t * (-self.roller * s.force_n * self.roller_sign(crank_rad, s))
+        t * (-self.roller * s.force_n * self.roller_sign(crank_rad, centre, s))
     }
 
-    /// τ = ẑ × e_φ: the direction in which every hole slides over its pin (at e·Ω).
-    pub fn pin_sliding_direction(e_phi: Vec2) -> Vec2 {
-        Vec2::new(-e_phi.y, e_phi.x)
+    /// The direction in which the hole of pin `p` slides over its pin (its friction on the
+    /// disc is −c_p·F times it): running, τ = ẑ × e_φ for every hole (each orbits its pin at
+    /// e·Ω); in a torsion loop, s_j·(ẑ × u_j), u_j the pin's contact direction and s_j the sign
+    /// of σ·(−O_d·u_j − ρ·X_j·u_j) (`sliding::torsion_pin_sliding`), or zero where it vanishes.
+    pub fn pin_direction(&self, e_phi: Vec2, centre: Vec2, p: &PinState) -> Vec2 {
+        match self.sliding {
+            Sliding::Running => Vec2::new(-e_phi.y, e_phi.x),
+            Sliding::Torsion { sigma, pin_ratio } => {
+                let v =
+                    super::sliding::torsion_pin_sliding(centre, p.point, p.direction, pin_ratio);
+                Vec2::new(-p.direction.y, p.direction.x) * sign(sigma * v)
+            }
+        }
     }
 
-    /// ã = a − c_p·X·e_φ, mm: the arm of pin `p`'s normal force that carries its friction's
-    /// moment about the axis too (the output torque is Σ F_j·ã_j).
-    pub fn pin_arm(&self, e_phi: Vec2, p: &PinState) -> f64 {
-        p.arm_mm - self.pin * p.point.dot(&e_phi)
+    /// ã = a − c_p·X × d, mm (d = `pin_direction`): the arm of pin `p`'s normal force that
+    /// carries its friction's moment about the axis too (the output torque is Σ F_j·ã_j);
+    /// running, X × τ = X·e_φ.
+    pub fn pin_arm(&self, e_phi: Vec2, centre: Vec2, p: &PinState) -> f64 {
+        p.arm_mm - self.pin * cross(p.point, self.pin_direction(e_phi, centre, p))
     }
 
-    /// The friction force of pin `p` on the disc, N: −c_p·F·τ.
-    pub fn pin_friction(&self, e_phi: Vec2, p: &PinState) -> Vec2 {
-        Self::pin_sliding_direction(e_phi) * (-self.pin * p.force_n)
+    /// The friction force of pin `p` on the disc, N: −c_p·F·d.
+    pub fn pin_friction(&self, e_phi: Vec2, centre: Vec2, p: &PinState) -> Vec2 {
+        self.pin_direction(e_phi, centre, p) * (-self.pin * p.force_n)
     }
 
-    /// M_b = c_b·|Fb|: the bearing's friction moment on the disc (counter-clockwise), N·mm.
+    /// The sign of the bearing's friction moment on the disc: +1 running (the disc turns at
+    /// −Ω relative to the crank), −σ in a torsion loop (the disc turns by σ·dβ against the
+    /// locked eccentric, its friction resists).
+    pub fn bearing_sign(&self) -> f64 {
+        match self.sliding {
+            Sliding::Running => 1.0,
+            Sliding::Torsion { sigma, .. } => -sigma,
+        }
+    }
+
+    /// M_b = ±c_b·|Fb|: the bearing's friction moment on the disc (counter-clockwise
+    /// positive; `bearing_sign`), N·mm.
     pub fn bearing_moment(&self, bearing_force_n: Vec2) -> f64 {
-        self.bearing_arm_mm * bearing_force_n.norm()
+        self.bearing_sign() * self.bearing_arm_mm * bearing_force_n.norm()
     }
 
     /// Σ of every contact force on the disc (normal and friction) at crank angle `crank_rad`,
     /// N; the bearing force is its negative.
     pub fn net_force(&self, crank_rad: f64, sol: &AngleSolution) -> Vec2 {
-        self.roller_total(crank_rad, &sol.rollers) + self.pin_total(unit(crank_rad), &sol.pins)
+        let e_phi = unit(crank_rad);
+        let centre = e_phi * self.eccentricity_mm + sol.centre_offset_mm;
+        self.roller_total(crank_rad, centre, &sol.rollers)
+            + self.pin_total(e_phi, centre, &sol.pins)
     }
 
     /// Σ of the rollers' forces on the disc, normal and friction, N.
-    pub fn roller_total(&self, crank_rad: f64, rollers: &[RollerState]) -> Vec2 {
+    pub fn roller_total(&self, crank_rad: f64, centre: Vec2, rollers: &[RollerState]) -> Vec2 {
         rollers
             .iter()
             .filter(|s| s.force_n != 0.0)
-            .map(|s| s.force_vector() + self.roller_friction(crank_rad, s))
+            .map(|s| s.force_vector() + self.roller_friction(crank_rad, centre, s))
             .sum()
     }
 
     /// Σ of the pins' forces on the disc, normal and friction, N.
-    pub fn pin_total(&self, e_phi: Vec2, pins: &[PinState]) -> Vec2 {
+    pub fn pin_total(&self, e_phi: Vec2, centre: Vec2, pins: &[PinState]) -> Vec2 {
         pins.iter()
             .filter(|p| p.force_n != 0.0)
-            .map(|p| p.force_vector() + self.pin_friction(e_phi, p))
+            .map(|p| p.force_vector() + self.pin_friction(e_phi, centre, p))
             .sum()
     }
 
-    /// The rollers' share of the pins' friction: c_p·(Σ F_j)·(O_d × τ), N·mm (the disc's
+    /// The rollers' share of the pins' friction: Σ c_p·F_j·(O_d × d_j), N·mm (the disc's
     /// moment balance about its centre moves the pins' friction moment from the axis to O_d).
     pub fn pin_shift(&self, e_phi: Vec2, centre: Vec2, pins: &[PinState]) -> f64 {
         if self.pin == 0.0 {
             return 0.0;
         }
-        let force: f64 = pins.iter().map(|p| p.force_n).sum();
-        self.pin * force * cross(centre, Self::pin_sliding_direction(e_phi))
+        pins.iter()
+            .map(|p| self.pin * p.force_n * cross(centre, self.pin_direction(e_phi, centre, p)))
+            .sum()
+    }
+
+    /// Whether the pins' sliding signs in a torsion loop change when the pins' ratio ρ becomes
+    /// `pin_ratio` (their friction then acts the other way): false running.
+    pub fn pin_signs_change(
+        &self,
+        e_phi: Vec2,
+        centre: Vec2,
+        pins: &[PinState],
+        pin_ratio: f64,
+    ) -> bool {
+        let Sliding::Torsion { sigma, .. } = self.sliding else {
+            return false;
+        };
+        let moved = Coupling {
+            sliding: Sliding::Torsion { sigma, pin_ratio },
+            ..*self
+        };
+        pins.iter()
+            .filter(|p| p.force_n != 0.0)
+            .any(|p| self.pin_direction(e_phi, centre, p) != moved.pin_direction(e_phi, centre, p))
     }
 
     /// T_in = E × Fb + M_b: one disc's share of the input torque from the crank's balance about
@@ -162,13 +213,16 @@ impl Coupling {
         for s in sol.rollers.iter().filter(|s| s.force_n != 0.0) {
             add(
                 s.point,
-                s.force_vector() + self.roller_friction(crank_rad, s),
+                s.force_vector() + self.roller_friction(crank_rad, centre, s),
             );
         }
         let (mut torque, mut torque_scale) = (0.0, output_torque_nmm.abs());
         for p in sol.pins.iter().filter(|p| p.force_n != 0.0) {
-            add(p.point, p.force_vector() + self.pin_friction(e_phi, p));
-            let t = p.force_n * self.pin_arm(e_phi, p);
+            add(
+                p.point,
+                p.force_vector() + self.pin_friction(e_phi, centre, p),
+            );
+            let t = p.force_n * self.pin_arm(e_phi, centre, p);
             torque += t;
             torque_scale += t.abs();
         }
@@ -211,14 +265,14 @@ impl Coupling {
         };
         for s in sol.rollers.iter().filter(|s| s.force_n != 0.0) {
             let v = disc_velocity(crank_rad, ecc, nc, s.point);
-            e.rollers -= self.roller_friction(crank_rad, s).dot(&v);
+            e.rollers -= self.roller_friction(crank_rad, centre, s).dot(&v);
             e.normal_work += s.force_n * s.normal.dot(&v);
         }
         for p in sol.pins.iter().filter(|p| p.force_n != 0.0) {
             // The hole's material relative to the pin: v_disc(X) − ωd ẑ × X.
             let x = p.point;
             let relative = disc_velocity(crank_rad, ecc, nc, x) - Vec2::new(-x.y, x.x) * wd;
-            let friction = self.pin_friction(e_phi, p);
+            let friction = self.pin_friction(e_phi, centre, p);
             e.output_pins -= friction.dot(&relative);
             e.normal_work -= p.force_n * p.direction.dot(&relative);
             // The power the pins take from the disc, −f·(ωd ẑ × X) = (1/nc)·X × f.
@@ -230,6 +284,17 @@ impl Coupling {
         e.bearing_offset =
             fb.dot(&(eccentric_velocity - disc_velocity(crank_rad, ecc, nc, centre)));
         e
+    }
+}
+
+/// −1, 0 or 1.
+fn sign(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
     }
 }
 

@@ -5,3 +5,4 @@
 pub mod coupled;
 pub mod loss;
 pub mod sliding;
+pub mod torsion;

@@ -52,3 +52,24 @@ pub fn roller_sliding(
 pub fn pin_sliding(eccentricity_mm: f64, teeth: usize) -> f64 {
     eccentricity_mm * relative_crank_speed_ratio(teeth)
 }
+
+/// Torsion under a locked input: the sliding of the disc over a fixed roller at `point_mm`
+/// along t = ẑ × n per unit turn dβ of the disc about its centre `centre_mm`, mm/rad:
+/// (ẑ × (C − O_d))·(ẑ × n) = (C − O_d)·n.
+pub fn torsion_roller_sliding(centre_mm: Vec2, point_mm: Vec2, normal: Vec2) -> f64 {
+    (point_mm - centre_mm).dot(&normal)
+}
+
+/// Torsion under a locked input: the sliding of a hole over its pin at the contact point
+/// `point_mm` (X) along ẑ × u (u the unit contact direction `direction`) per unit turn dβ of
+/// the disc about its centre `centre_mm` (O_d), the flange turning about the axis by
+/// dβ + ρ·dβ (ρ = `pin_ratio`), mm/rad. The disc's material at X moves by dβ·ẑ × (X − O_d),
+/// the pin's by (1 + ρ)·dβ·ẑ × X; their difference along ẑ × u is −O_d·u − ρ·X·u.
+pub fn torsion_pin_sliding(
+    centre_mm: Vec2,
+    point_mm: Vec2,
+    direction: Vec2,
+    pin_ratio: f64,
+) -> f64 {
+    -centre_mm.dot(&direction) - pin_ratio * point_mm.dot(&direction)
+}

@@ -31,6 +31,15 @@ fn centre_line(t: &TorsionCurves, k: usize, steps: usize) -> (Vec<f64>, Vec<f64>
     (x, y)
 }
 
+/// The whole loop of a locked angle as solved, −rated → +rated → −rated, in (N·m, arcmin):
+/// with friction its branches part.
+fn whole_loop(t: &TorsionCurves, k: usize) -> (Vec<f64>, Vec<f64>) {
+    (
+        t.torque_nmm.iter().map(|&v| units::nm(v)).collect(),
+        t.torsion_rad[k].iter().map(|&g| units::arcmin(g)).collect(),
+    )
+}
+
 /// Fewer torques than this over −rated…+rated (fewer than 8 steps per quarter loop) are drawn
 /// as a mark per torque: a line through them would pass off as a measured smooth curve.
 pub const SPARSE_TORQUES: usize = 17;
@@ -60,11 +69,17 @@ fn torsion_plot(scene: &Scene, r: &SceneResult, t: &TorsionCurves) -> LinePlot {
     );
     plot.subtitle = format!(
         "the loop −{r} → +{r} → −{r} N·m, {steps} steps per quarter; {}",
-        hysteresis(t.friction_given),
+        hysteresis(t.friction),
         r = number(rated)
     );
     let lines: Vec<_> = (0..angles).map(|k| centre_line(t, k, steps)).collect();
-    for (k, (x, y)) in lines.iter().enumerate() {
+    // With friction the branches part: the whole loop is drawn.
+    let drawn: Vec<_> = if t.friction {
+        (0..angles).map(|k| whole_loop(t, k)).collect()
+    } else {
+        lines.clone()
+    };
+    for (k, (x, y)) in drawn.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         let crank = units::deg(r.crank_rad[k]);
         let curve = Series::new(format!("crank {crank:.2}°"), x.clone(), y.clone(), color);
@@ -136,6 +151,7 @@ fn figures_table(r: &SceneResult, t: &TorsionCurves) -> Markup {
         th { "rigidity − (N·m/arcmin)" }
         th { "torsional rigidity (N·m/arcmin)" }
         th { "hysteresis loss" }
+        @if t.friction { th { "loop energy per cycle (J)" } }
     };
     let rows = html! {
         @for (k, f) in t.figures.iter().enumerate() {
@@ -146,7 +162,12 @@ fn figures_table(r: &SceneResult, t: &TorsionCurves) -> Markup {
                 td { (number(nm_per_arcmin(f.rigidity_nmm_per_rad.0))) }
                 td { (number(nm_per_arcmin(f.rigidity_nmm_per_rad.1))) }
                 td { b { (number(nm_per_arcmin(f.rigidity()))) } }
-                td { (if t.friction_given { "not computed (loop without friction)" } else { "0 (frictionless model)" }) }
+                @if t.friction {
+                    td { b { (arcmin(f.hysteresis_rad)) " arcmin" } }
+                    td { (number(1e-3 * f.loop_energy_nmm)) }
+                } @else {
+                    td { "0 (frictionless model)" }
+                }
             }
         }
     };
@@ -175,7 +196,7 @@ pub(super) fn sections(
         let file = format!("{id}.svg");
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));
         let body = html! {
-            p.note { (DEFINITIONS) " " b { (hysteresis(t.friction_given)) "." } }
+            p.note { (DEFINITIONS) " " b { (hysteresis(t.friction)) "." } }
             (figure(&file, "Torsion curve", "one curve per locked crank angle (a dot per \
                 torque where the torques are few); the points of the figures (±3 %, ±50 %, \
                 ±100 % of the rated torque) marked ◇; at T = 0 the dead band is the vertical \

@@ -1,0 +1,79 @@
+//! Friction in a torsion loop (MODEL.md "Friction, efficiency and heat"): the input is locked,
+//! the disc turns about its own centre, and every contact's Coulomb friction resists that
+//! turn. On the loading branch (σ = +1) the disc's lag grows, unloading (σ = −1) it shrinks;
+//! each branch is a sequence of quasi-static balances in full sliding with the coupled
+//! friction of `coupled` (`Sliding::Torsion`).
+//!
+//! The rollers' and the bearing's sliding signs follow from σ and the geometry alone. A hole
+//! slides over its pin at −O_d·u − ρ·X·u per unit turn (`sliding::torsion_pin_sliding`), with
+//! ρ = dβo/dβ the pins' deflection per unit turn of the disc: on a branch both lags follow the
+//! torque, so ρ = (∂T/∂β)/(∂T/∂βo), the ratio of the rollers' and the pins' balance slopes at
+//! the solution. Each point is solved with the ρ of the last one and solved again while the
+//! new ρ turns a pin's sliding the other way (`RATIO_PASSES` at most: a pin whose sliding
+//! changes sign with ρ sits where it does not slide, and either sign of its friction is then
+//! within the model's resolution of that point).
+
+use crate::equilibrium::coupling::Sliding;
+use crate::equilibrium::discs::{solve_coupled, CoupledWork, Discs};
+use crate::equilibrium::solve::SolveFailure;
+
+/// The most solves of one point of a branch while ρ turns a pin's sliding.
+const RATIO_PASSES: usize = 4;
+
+/// Put every disc of `discs` (and of `work`, once it holds their models) on the branch σ
+/// (`sigma`, +1 loading, −1 unloading), each keeping its ρ.
+pub fn set_branch(discs: &mut Discs, work: &mut CoupledWork, sigma: f64) {
+    for m in discs.models.iter_mut().chain(work.models.iter_mut()) {
+        if let Some(c) = m.coupling.as_mut() {
+            if let Sliding::Torsion { pin_ratio, .. } = c.sliding {
+                c.sliding = Sliding::Torsion { sigma, pin_ratio };
+            }
+        }
+    }
+}
+
+/// γ (rad) at the output torque `torque_nmm` on the branch the discs are on, at the locked
+/// crank angle `crank_rad`, warm-started from `work`; every disc's ρ is then that of this
+/// point, for the next.
+pub fn solve_point(
+    discs: &mut Discs,
+    crank_rad: f64,
+    torque_nmm: f64,
+    work: &mut CoupledWork,
+) -> Result<f64, SolveFailure> {
+    discs.torque_nmm = torque_nmm;
+    let mut pass = 0;
+    loop {
+        let gamma = solve_coupled(discs, crank_rad, work)?;
+        pass += 1;
+        if !update_pin_ratios(work) || pass == RATIO_PASSES {
+            return Ok(gamma);
+        }
+    }
+}
+
+/// Set each disc's ρ to the ratio of its balances' slopes at its last solution; whether a
+/// loaded pin's sliding sign changed with it (the point must be solved again).
+fn update_pin_ratios(work: &mut CoupledWork) -> bool {
+    let mut changed = false;
+    for (m, w) in work.models.iter_mut().zip(&work.works) {
+        let Some(c) = m.coupling.as_mut() else {
+            continue;
+        };
+        let Sliding::Torsion { sigma, .. } = c.sliding else {
+            continue;
+        };
+        let (rollers, pins) = w.slopes;
+        let ratio = rollers / pins;
+        if !(ratio.is_finite() && ratio >= 0.0) {
+            continue;
+        }
+        let centre = w.e_phi * c.eccentricity_mm + w.sol.centre_offset_mm;
+        changed |= c.pin_signs_change(w.e_phi, centre, &w.sol.pins, ratio);
+        c.sliding = Sliding::Torsion {
+            sigma,
+            pin_ratio: ratio,
+        };
+    }
+    changed
+}

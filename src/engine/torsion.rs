@@ -21,8 +21,9 @@
 //! - **hysteresis loss** = γ_unloading − γ_loading at T = 0, the mean of its values at 0⁺ and
 //!   0⁻ (without preload both are zero: at either edge of the dead band no contact is loaded,
 //!   so none carries friction — MODEL.md);
-//! - the lost motion, backlash and rigidity are read on the loop's **centre line**, the mean
-//!   of the two branches at the same torque (the catalogue's definition);
+//! - the lost motion and backlash are read on the loop's **centre line**, the mean of the two
+//!   branches at the same torque (the catalogue's definition), the rigidity on the branch
+//!   that loads in its direction (+50 → +100 % loading, −50 → −100 % unloading);
 //! - the loop's **area** ∮ T dγ is the energy friction takes per cycle;
 //! - the curve is the real loop: after each reversal the disc sticks until the torque has
 //!   changed enough for the other branch to reach it (γ is held, Masing's rule for Coulomb
@@ -163,8 +164,9 @@ pub fn at_angle(
 /// The loop with friction at one locked crank angle: the loading branch (σ = +1) from
 /// −Trated up to +Trated, then the unloading branch (σ = −1) back down, each one monotone path
 /// through the loop's torques (its zero as 0⁻ and 0⁺) and the figures', every point
-/// warm-started from the last. The figures on the centre line, the hysteresis at T = 0, the
-/// area of the loop as drawn (held after each reversal).
+/// warm-started from the last. The figures (lost motion and backlash on the centre line, the
+/// rigidity on the branch loading its way), the hysteresis at T = 0, the area of the loop as
+/// drawn (held after each reversal).
 fn friction_loop(
     discs: &Discs,
     sweep: &TorqueSweep,
@@ -226,14 +228,23 @@ fn friction_loop(
             }
         })
         .collect();
-    let mut centre = [0.0; 8];
+    // The figures' γ: lost motion and backlash on the centre line; the rigidity on the branch
+    // that loads in its direction (loading from +50 % to +100 %, unloading from −50 % to
+    // −100 %), as a catalogue measures it and where the drawn loop runs.
+    let mut read = [0.0; 8];
     let mut width = [0.0; 8];
-    for ((c, w), f) in centre.iter_mut().zip(&mut width).zip(FIGURE_TORQUES) {
+    for (i, f) in FIGURE_TORQUES.into_iter().enumerate() {
         let (l, u) = (at(&loading, f * rated), at(&unloading, f * rated));
-        *c = 0.5 * (l + u);
-        *w = u - l;
+        width[i] = u - l;
+        read[i] = if f.abs() < 0.5 {
+            0.5 * (l + u)
+        } else if f > 0.0 {
+            l
+        } else {
+            u
+        };
     }
-    let mut figures = figures(rated, &centre).map_err(|m| fail(rated, m))?;
+    let mut figures = figures(rated, &read).map_err(|m| fail(rated, m))?;
     // FIGURE_TORQUES[3] and [4] are 0⁻ and 0⁺.
     figures.hysteresis_rad = 0.5 * (width[3] + width[4]);
     figures.loop_energy_nmm = up
@@ -243,7 +254,7 @@ fn friction_loop(
             0.5 * (gap(w[0]) + gap(w[1])) * (w[1] - w[0])
         })
         .sum();
-    Ok((curve, centre, figures))
+    Ok((curve, read, figures))
 }
 
 /// The message of a solve of the loop that failed.

@@ -188,7 +188,8 @@ pub struct TorsionCurves {
     pub figures: Vec<TorsionFigures>,
     /// γ of the figures' own solves `[crank][i]`, rad, at the torques
     /// `engine::torsion::FIGURE_TORQUES[i]`·rated (−100, −50, −3 %, 0⁻, 0⁺, +3, +50, +100 %):
-    /// with friction on the loop's centre line, the mean of its two branches.
+    /// with friction, at ±3 % and 0± on the loop's centre line (the mean of its two branches),
+    /// at ±50 % and ±100 % on the branch loading that way (unloading below zero).
     pub figure_torsion_rad: Vec<[f64; 8]>,
     /// `reducer.friction` is given: the loop is solved with friction in the balance and the
     /// figures carry its hysteresis.

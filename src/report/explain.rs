@@ -22,8 +22,19 @@ pub const HYSTERESIS_FROM_FRICTION: &str = "hysteresis loss from friction: every
      Coulomb friction (`reducer.friction`, in the balance whichever model the efficiency uses) \
      resists the disc's turn, so the loop's loading and unloading branches part; the branches \
      are in full sliding, the disc held after each reversal until the other branch reaches it; \
-     lost motion, backlash and rigidity are read on the loop's centre line, the hysteresis \
-     loss is the unloading minus the loading branch at zero torque";
+     lost motion and backlash are read on the loop's centre line, the rigidity on the branch \
+     loading its way, the hysteresis loss is the unloading minus the loading branch at zero \
+     torque";
+
+/// The torsion plot's word on its hysteresis: with friction a short one (the whole sentence
+/// is in the section's text).
+pub fn hysteresis_in_plot(friction: bool) -> &'static str {
+    if friction {
+        "with friction: loading branch below, unloading above, held after each reversal"
+    } else {
+        HYSTERESIS
+    }
+}
 
 /// The hysteresis text of a torsion scene (`HYSTERESIS`, or `HYSTERESIS_FROM_FRICTION` where
 /// its loop carries friction).

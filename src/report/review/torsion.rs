@@ -6,7 +6,7 @@ use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
 use crate::model::Scene;
 use crate::numeric::number;
-use crate::report::explain::hysteresis;
+use crate::report::explain::{hysteresis, hysteresis_in_plot};
 use crate::report::svg::{LinePlot, Mark, Series, YCut, PALETTE};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
@@ -69,7 +69,7 @@ fn torsion_plot(scene: &Scene, r: &SceneResult, t: &TorsionCurves) -> LinePlot {
     );
     plot.subtitle = format!(
         "the loop −{r} → +{r} → −{r} N·m, {steps} steps per quarter; {}",
-        hysteresis(t.friction),
+        hysteresis_in_plot(t.friction),
         r = number(rated)
     );
     let lines: Vec<_> = (0..angles).map(|k| centre_line(t, k, steps)).collect();

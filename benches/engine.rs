@@ -225,12 +225,22 @@ fn torsion_4_angles_40_steps(b: divan::Bencher) {
         .expect("torsion");
     let plan = cycloid::model::Plan::of("torsion", &[cycloid::model::Effect::Bearing]);
     let model = cycloid::equilibrium::loaded::Model::new(&s.design, &s.modification, scene, &plan);
-    let model = cycloid::equilibrium::discs::Discs::new(&model, s.design.discs);
+    torsion_loops(b, &model, scene, s.design.discs);
+}
+
+/// Bench the torsion loops of `scene` on `count` discs of `model`.
+fn torsion_loops(
+    b: divan::Bencher,
+    model: &cycloid::equilibrium::loaded::Model,
+    scene: &cycloid::model::Scene,
+    count: usize,
+) {
+    let discs = cycloid::equilibrium::discs::Discs::new(model, count);
     let sweep = scene.torque_sweep.expect("a torque sweep");
     assert_eq!((scene.crank_rad.len(), sweep.steps), (4, 40));
     b.bench(|| {
         cycloid::engine::torsion::run(
-            black_box(&model),
+            black_box(&discs),
             &sweep,
             &scene.crank_rad,
             &cycloid::progress::Silent,
@@ -261,17 +271,7 @@ fn torsion_4_angles_40_steps_friction(b: divan::Bencher) {
         cycloid::equilibrium::loaded::Model::new(&s.design, &s.modification, scene, &plan)
             .with_friction(&friction, &s.design);
     model.coupling = model.coupling.map(|c| c.in_torsion(1.0));
-    let model = cycloid::equilibrium::discs::Discs::new(&model, s.design.discs);
-    let sweep = scene.torque_sweep.expect("a torque sweep");
-    b.bench(|| {
-        cycloid::engine::torsion::run(
-            black_box(&model),
-            &sweep,
-            &scene.crank_rad,
-            &cycloid::progress::Silent,
-        )
-        .unwrap()
-    });
+    torsion_loops(b, &model, scene, s.design.discs);
 }
 
 /// One full optimisation study (the paper's positive ratio study).

@@ -118,6 +118,16 @@ pub struct TorsionFailure {
     pub failure: String,
 }
 
+impl TorsionFailure {
+    fn new(crank_rad: f64, torque_nmm: f64, failure: String) -> Self {
+        TorsionFailure {
+            crank_rad,
+            torque_nmm,
+            failure,
+        }
+    }
+}
+
 /// The torsion curve γ over the loop and the figures at one locked crank angle (with the
 /// discs' friction, when they carry it: `friction_loop`).
 pub fn at_angle(
@@ -131,11 +141,7 @@ pub fn at_angle(
     }
     let mut discs = discs.clone();
     let mut work = CoupledWork::new(&discs);
-    let fail = |torque_nmm: f64, failure: String| TorsionFailure {
-        crank_rad,
-        torque_nmm,
-        failure,
-    };
+    let fail = |torque_nmm, failure| TorsionFailure::new(crank_rad, torque_nmm, failure);
     let mut solve = |t: f64, work: &mut CoupledWork| {
         output_lag(&mut discs, crank_rad, t, work).map_err(|f| fail(t, solve_failed(f)))
     };
@@ -185,11 +191,7 @@ fn friction_loop(
     up.dedup();
     let mut discs = discs.clone();
     let mut work = CoupledWork::new(&discs);
-    let fail = |torque_nmm: f64, failure: String| TorsionFailure {
-        crank_rad,
-        torque_nmm,
-        failure,
-    };
+    let fail = |torque_nmm, failure| TorsionFailure::new(crank_rad, torque_nmm, failure);
     let mut branch = |sigma: f64, torques: &mut dyn Iterator<Item = f64>| {
         set_branch(&mut discs, &mut work, sigma);
         torques

@@ -57,6 +57,14 @@ const ALL_PATHS: &str =
     "{ rollers: { mode: fixed, mu: MU }, output_pins: { mode: fixed, mu: MU }, \
      crank_bearing: { mu: 0.005, bore_diameter_mm: 20.0 } }";
 
+/// The loop of the paper's design preloaded by a shift of 3 µm, every path's friction at μ 0.05
+/// (the crank bearing's 0.005), rollers, pins and bearing modelled.
+fn preloaded_loop() -> Value {
+    let friction = ALL_PATHS.replace("MU", "0.05");
+    let effects = "roller_contact, output_pins, bearing";
+    torsion(&torsion_spec(0.003, Some(&friction), effects))
+}
+
 /// The first-order closed form (one disc, rollers only, linear law, preloaded by a shift of
 /// 2 µm): at T = 0 each branch balances Σ F_i·(l_i ± μ·|(C_i − O_d)·n_i|) = 0, so to first
 /// order in μ the lag moves by ∓M_f/K from the frictionless one, M_f = μ·Σ F_i·|(C_i − O_d)·n_i|
@@ -111,12 +119,7 @@ fn hysteresis_matches_the_first_order_closed_form() {
 /// bearing's or the pins' friction wrong on one branch breaks it).
 #[test]
 fn the_loop_is_point_symmetric_at_a_mirror_symmetric_angle() {
-    let friction = ALL_PATHS.replace("MU", "0.05");
-    let s = torsion(&torsion_spec(
-        0.003,
-        Some(&friction),
-        "roller_contact, output_pins, bearing",
-    ));
+    let s = preloaded_loop();
     let t = numbers(&s["torque_nm"]);
     let g = numbers(&s["torsion_arcmin"][0]);
     let steps = (t.len() - 1) / 4;
@@ -147,12 +150,7 @@ fn the_loop_is_point_symmetric_at_a_mirror_symmetric_angle() {
 /// the loop's points: 1e-4.
 #[test]
 fn the_loop_energy_is_the_area_of_the_drawn_loop() {
-    let friction = ALL_PATHS.replace("MU", "0.05");
-    let s = torsion(&torsion_spec(
-        0.003,
-        Some(&friction),
-        "roller_contact, output_pins, bearing",
-    ));
+    let s = preloaded_loop();
     let t = numbers(&s["torque_nm"]);
     let g: Vec<f64> = numbers(&s["torsion_arcmin"][0])
         .iter()

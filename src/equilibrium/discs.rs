@@ -226,8 +226,8 @@ fn tangent_compliance(work: &Work) -> Option<f64> {
 /// a positive definite system of two blocks converges (its iteration matrix has the spectral
 /// radius |c12|/sqrt((1/k1 + c11)(1/k2 + c22)) < 1); two discs in opposite phases moreover
 /// load opposite halves of the pin circle, so a pin carries one disc at a time but near the
-/// arms' zero crossings and the coupling is weak. With three or four discs block Jacobi is not
-/// proven: a pass whose change does not shrink (to 0.9 of the last) is relaxed by ½, and
+/// arms' zero crossings and the coupling is weak. The passes are accelerated by a secant
+/// (Anderson) step (`secant_step`). With three or four discs block Jacobi is not proven, and
 /// `MAX_BEAM_PASSES` without convergence is "did not converge", a status (exit 2 at the scene
 /// and angle), never a result.
 pub fn solve_coupled(
@@ -253,46 +253,69 @@ pub fn solve_coupled(
         .expect("coupled pins are beams");
     let c = &beam.coefficients_mm_per_n;
     let pins = discs.models[0].pins.as_ref().map_or(0, |p| p.count);
-    let mut last_change = f64::INFINITY;
-    let mut relax = 1.0;
-    let mut gaps = vec![vec![0.0; pins]; n];
+    let mut last = (0.0, f64::INFINITY);
+    // The last pass's gaps x and their image G(x), for the secant (Anderson) step.
+    let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;
     for _ in 0..MAX_BEAM_PASSES {
         let gamma = solve_shares(discs, crank, work)?;
-        let (mut change, mut largest) = (0.0f64, 0.0f64);
-        for (j, row) in gaps.iter_mut().enumerate() {
-            for (p, g) in row.iter_mut().enumerate() {
+        let mut x = Vec::with_capacity(n * pins);
+        let mut image = Vec::with_capacity(n * pins);
+        for j in 0..n {
+            x.extend_from_slice(work.models[j].pins.as_ref().map_or(&[][..], |p| p.beam_gaps_mm()));
+            for p in 0..pins {
                 let own = &work.works[j].sol.pins[p];
                 let mut sum = 0.0;
                 for k in (0..n).filter(|&k| k != j) {
                     let other = &work.works[k].sol.pins[p];
                     sum += c[j][k] * other.force_n * own.direction.dot(&other.direction);
                 }
-                *g = sum;
-            }
-            let old = work.models[j].pins.as_ref().map_or(&[][..], |p| p.beam_gaps_mm());
-            for (g, o) in row.iter_mut().zip(old) {
-                change = change.max((*g - o).abs());
-                largest = largest.max(g.abs());
-                *g = o + relax * (*g - o);
+                image.push(sum);
             }
         }
+        let change = x.iter().zip(&image).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let largest = image.iter().map(|g| g.abs()).fold(0.0, f64::max);
         if change <= 1e-9 * largest + BEAM_GAP_FLOOR_MM {
             return Ok(gamma);
         }
-        if change > 0.9 * last_change {
-            relax = 0.5;
-        }
-        last_change = change;
-        for (model, row) in work.models.iter_mut().zip(&gaps) {
+        last = (gamma, change);
+        let next = secant_step(previous.as_ref(), &x, &image);
+        for (model, row) in work.models.iter_mut().zip(next.chunks(pins)) {
             if let Some(p) = model.pins.as_mut() {
                 p.set_beam_gaps(row);
             }
         }
+        previous = Some((x, image));
     }
     Err(SolveFailure::NotConverged {
-        x: crank,
-        residual: last_change,
+        x: last.0,
+        residual: last.1,
     })
+}
+
+/// The next gaps of the fixed point x = G(x) after the pass (x, G(x)): Anderson's step of
+/// depth one, G(x) − θ·(G(x) − G(x′)) with θ = f·(f − f′)/|f − f′|², f = G(x) − x and the
+/// primes the pass before (Walker & Ni, SIAM J. Numer. Anal. 49 (2011)); the plain step G(x)
+/// at the first pass or where θ is not finite. On a linear map whose slowest mode dominates
+/// (two discs: the Jacobi ratio |c12|/sqrt((1/k1 + c11)(1/k2 + c22)), 0.7 for discs 6 and
+/// 16 mm along a 6 mm cantilever pin), the secant removes that mode, where the plain step
+/// takes ~70 passes to 1e-9.
+fn secant_step(previous: Option<&(Vec<f64>, Vec<f64>)>, x: &[f64], image: &[f64]) -> Vec<f64> {
+    let Some((xp, gp)) = previous else {
+        return image.to_vec();
+    };
+    let (mut num, mut den) = (0.0, 0.0);
+    for i in 0..x.len() {
+        let df = (image[i] - x[i]) - (gp[i] - xp[i]);
+        num += (image[i] - x[i]) * df;
+        den += df * df;
+    }
+    let theta = num / den;
+    if !theta.is_finite() {
+        return image.to_vec();
+    }
+    (0..x.len())
+        .map(|i| image[i] - theta * (image[i] - gp[i]))
+        .collect()
 }
 
 /// Passes of the fixed point over the gaps bending pins couple the discs by: two or three

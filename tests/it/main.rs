@@ -40,6 +40,7 @@ mod measure_cli;
 mod measured_inputs;
 mod mesh_minimum;
 mod optimise;
+mod pin_beam;
 mod ordinary_inputs;
 mod progress;
 mod readme;

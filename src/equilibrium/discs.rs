@@ -260,19 +260,28 @@ pub fn solve_coupled(
         let gamma = solve_shares(discs, crank, work)?;
         let mut x = Vec::with_capacity(n * pins);
         let mut image = Vec::with_capacity(n * pins);
-        for j in 0..n {
-            x.extend_from_slice(work.models[j].pins.as_ref().map_or(&[][..], |p| p.beam_gaps_mm()));
+        for (j, row) in c.iter().enumerate().take(n) {
+            x.extend_from_slice(
+                work.models[j]
+                    .pins
+                    .as_ref()
+                    .map_or(&[][..], |p| p.beam_gaps_mm()),
+            );
             for p in 0..pins {
                 let own = &work.works[j].sol.pins[p];
                 let mut sum = 0.0;
                 for k in (0..n).filter(|&k| k != j) {
                     let other = &work.works[k].sol.pins[p];
-                    sum += c[j][k] * other.force_n * own.direction.dot(&other.direction);
+                    sum += row[k] * other.force_n * own.direction.dot(&other.direction);
                 }
                 image.push(sum);
             }
         }
-        let change = x.iter().zip(&image).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let change = x
+            .iter()
+            .zip(&image)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
         let largest = image.iter().map(|g| g.abs()).fold(0.0, f64::max);
         if change <= 1e-9 * largest + BEAM_GAP_FLOOR_MM {
             return Ok(gamma);
@@ -332,11 +341,7 @@ const BEAM_GAP_FLOOR_MM: f64 = 1e-13;
 /// preloaded disc's Σ|F·l| is far above T). When that has not converged in `NEWTON_STEPS`
 /// (a disc floating in its backlash: its lag jumps across the answer as its share changes
 /// sign), the balance is solved as a root in γ (`by_lag`).
-fn solve_shares(
-    discs: &Discs,
-    crank: f64,
-    work: &mut CoupledWork,
-) -> Result<f64, SolveFailure> {
+fn solve_shares(discs: &Discs, crank: f64, work: &mut CoupledWork) -> Result<f64, SolveFailure> {
     let n = discs.count();
     if work.models.len() != n {
         work.models = discs.models.clone();

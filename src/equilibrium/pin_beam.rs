@@ -91,7 +91,9 @@ impl PinBeam {
             for k in 0..design.discs {
                 c[j][k] = match support.kind {
                     PinSupportKind::Cantilever => cantilever_influence(a[j], a[k], ei),
-                    PinSupportKind::BothEnds => propped_influence(a[j], a[k], support.length_mm, ei),
+                    PinSupportKind::BothEnds => {
+                        propped_influence(a[j], a[k], support.length_mm, ei)
+                    }
                 };
             }
         }
@@ -173,13 +175,15 @@ mod tests {
     /// symmetric (Maxwell–Betti); both to round-off.
     #[test]
     fn the_propped_cantilever_matches_roark() {
-        let (l, ei) = (30.0, 2.06e5 * second_moment_mm4(10.0));
-        for a in [3.0, 10.0, 17.5, 29.0] {
+        let (l, ei): (f64, f64) = (30.0, 2.06e5 * second_moment_mm4(10.0));
+        for a in [3.0f64, 10.0, 17.5, 29.0] {
             let roark = a.powi(3) * (l - a).powi(2) * (4.0 * l - a) / (12.0 * ei * l.powi(3));
             let c = propped_influence(a, a, l, ei);
             assert!((c - roark).abs() <= 1e-12 * roark, "a {a}: {c} vs {roark}");
             let other = propped_influence(a, 20.0, l, ei);
-            assert!((other - propped_influence(20.0, a, l, ei)).abs() <= 1e-15 * c.abs().max(1e-12));
+            assert!(
+                (other - propped_influence(20.0, a, l, ei)).abs() <= 1e-15 * c.abs().max(1e-12)
+            );
         }
     }
 }

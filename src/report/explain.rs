@@ -58,7 +58,8 @@ pub fn torsion_compliances(c: &TorsionCompliances) -> (Vec<String>, Vec<String>)
             "pin bending ({}, {} mm long, disc mid-planes at {} mm from the flange)",
             match s.kind {
                 PinSupportKind::Cantilever => "cantilever clamped in the flange",
-                PinSupportKind::BothEnds => "clamped in the flange, simply supported at the far end",
+                PinSupportKind::BothEnds =>
+                    "clamped in the flange, simply supported at the far end",
             },
             number(s.length_mm),
             discs.join(", ")

@@ -151,7 +151,10 @@ fn with_johnsons_law_the_closing_is_the_contacts_approach_plus_the_bending() {
         for (j, f) in pins.force_n.iter().enumerate() {
             let closing = pins.output_lag_rad[i] * arm(j, phi, 0, 1, beta[i]);
             if f[i] == 0.0 {
-                assert!(closing <= 1e-12, "pin {j} closed by {closing} without force");
+                assert!(
+                    closing <= 1e-12,
+                    "pin {j} closed by {closing} without force"
+                );
                 continue;
             }
             loaded += 1;
@@ -402,7 +405,10 @@ fn bad_values_are_refused_at_their_key() {
     for (discs, support, line, token, message) in cases {
         let text = PaperSpec::new()
             .edit("\n  material:", &format!("\n    {support}\n  material:"))
-            .edit("  output_pins:\n", &format!("  discs: {discs}\n  output_pins:\n"))
+            .edit(
+                "  output_pins:\n",
+                &format!("  discs: {discs}\n  output_pins:\n"),
+            )
             .scenes(scenes);
         let err = cycloid::spec::parse("pins.yaml", text.text())
             .expect_err(support)

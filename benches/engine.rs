@@ -212,6 +212,56 @@ fn two_discs_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
     });
 }
 
+/// The paper's design with its pins as cantilevers (issue 29), `discs` discs: one disc 10 mm
+/// from the flange on a 14 mm pin (`specs/reducer-pin-beams.yaml`'s), two at 6 and 16 mm on a
+/// 20 mm pin (`tests/it/pin_beam.rs`'s, where the pins carry both discs).
+fn pin_beams(b: divan::Bencher, geometry: GeometryMode, discs: usize) {
+    use cycloid::model::{PinSupport, PinSupportKind};
+    let (length_mm, disc_positions_mm) = match discs {
+        1 => (14.0, [10.0, 0.0, 0.0, 0.0]),
+        _ => (20.0, [6.0, 16.0, 0.0, 0.0]),
+    };
+    let (model, c) = common::rated_sweep_of(geometry, 3600, 10, |d| {
+        d.discs = discs;
+        d.pins.support = Some(PinSupport {
+            kind: PinSupportKind::Cantilever,
+            length_mm,
+            disc_positions_mm,
+        });
+    });
+    let discs = cycloid::equilibrium::discs::Discs::new(&model, discs);
+    b.bench(|| {
+        discs_sweep::sweep_discs(black_box(&discs), &c, true, &cycloid::progress::Silent).unwrap()
+    });
+}
+
+/// Pins as beams, one disc, against `loaded_sweep_3600_exact` (the bending is a series spring
+/// in each pin's law).
+#[divan::bench(sample_count = 60)]
+fn pin_beams_sweep_3600_exact(b: divan::Bencher) {
+    pin_beams(b, GeometryMode::Exact, 1);
+}
+
+/// Pins as beams, one disc, first order, against `loaded_sweep_3600_first_order`.
+#[divan::bench(sample_count = 300)]
+fn pin_beams_sweep_3600_first_order(b: divan::Bencher) {
+    pin_beams(b, GeometryMode::FirstOrder, 1);
+}
+
+/// Pins as beams carrying two discs, against `two_discs_sweep_3600_exact` (the fixed point
+/// on the gaps the discs open at each other's planes).
+#[divan::bench(sample_count = 60)]
+fn pin_beams_two_discs_sweep_3600_exact(b: divan::Bencher) {
+    pin_beams(b, GeometryMode::Exact, 2);
+}
+
+/// As `pin_beams_two_discs_sweep_3600_exact`, first order, against
+/// `two_discs_sweep_3600_first_order` (the lean kernel does not take coupled pins).
+#[divan::bench(sample_count = 60)]
+fn pin_beams_two_discs_sweep_3600_first_order(b: divan::Bencher) {
+    pin_beams(b, GeometryMode::FirstOrder, 2);
+}
+
 /// Torsion under a locked input (issue 14): the paper optimum (`specs/reducer-torsion.yaml`'s
 /// scene `torsion`, pins and a rigid bearing, exact geometry) at 4 locked crank angles × 40
 /// steps per quarter loop (161 loop solves and 8 figure solves per angle); target < 20 ms.
@@ -238,11 +288,20 @@ fn torsion_loops(
     let discs = cycloid::equilibrium::discs::Discs::new(model, count);
     let sweep = scene.torque_sweep.expect("a torque sweep");
     assert_eq!((scene.crank_rad.len(), sweep.steps), (4, 40));
+    let compliances = cycloid::model::results::TorsionCompliances {
+        contact_law: scene.contact_law,
+        geometry: scene.geometry,
+        pin_contacts: true,
+        bearing_stiffness_n_per_mm: None,
+        pin_bending: None,
+        structure_rad_per_nmm: 0.0,
+    };
     b.bench(|| {
         cycloid::engine::torsion::run(
             black_box(&discs),
             &sweep,
             &scene.crank_rad,
+            compliances,
             &cycloid::progress::Silent,
         )
         .unwrap()

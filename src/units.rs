@@ -60,6 +60,17 @@ pub fn nm(nmm: f64) -> f64 {
     nmm / NMM_PER_NM
 }
 
+/// A torsional compliance in arcmin/(kN·m) as rad/(N·mm).
+#[inline]
+pub fn rad_per_nmm_from_arcmin_per_knm(arcmin_per_knm: f64) -> f64 {
+    arcmin_per_knm / ARCMIN_PER_RAD / (1e3 * NMM_PER_NM)
+}
+
+/// A torsional compliance in rad/(N·mm) as arcmin/(kN·m).
+pub fn arcmin_per_knm(rad_per_nmm: f64) -> f64 {
+    rad_per_nmm * ARCMIN_PER_RAD * (1e3 * NMM_PER_NM)
+}
+
 /// Torsional stiffness N·mm/rad → N·m/arcmin.
 #[inline]
 pub fn nm_per_arcmin(nmm_per_rad: f64) -> f64 {

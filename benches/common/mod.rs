@@ -10,8 +10,19 @@ use cycloid::spec::{self};
 /// that design, 2π/rollers of crank. With an odd count two discs do not mesh in one phase,
 /// and their split of the torque moves with the crank.
 pub(crate) fn rated_sweep(geometry: GeometryMode, n: usize, rollers: usize) -> (Model, Vec<f64>) {
+    rated_sweep_of(geometry, n, rollers, |_| ())
+}
+
+/// `rated_sweep` of the paper's design changed by `change` first (pins that bend, discs).
+pub(crate) fn rated_sweep_of(
+    geometry: GeometryMode,
+    n: usize,
+    rollers: usize,
+    change: impl Fn(&mut cycloid::model::Design),
+) -> (Model, Vec<f64>) {
     let mut s = spec::load("specs/paper.yaml").expect("specs/paper.yaml");
     (s.design.rollers, s.design.teeth) = (rollers, rollers - 1);
+    change(&mut s.design);
     let mut scene = s
         .scenes
         .iter()

@@ -293,7 +293,16 @@ fn torsion_loops(
     };
     let model = loaded_model(design, m, scene, plan, settings);
     let discs = Discs::new(&model, design.discs);
-    torsion::run(&discs, sweep, &scene.crank_rad, progress)
+    let pins = plan.has(Effect::OutputPins);
+    let compliances = crate::model::results::TorsionCompliances {
+        contact_law: scene.contact_law,
+        geometry: scene.geometry,
+        pin_contacts: pins,
+        bearing_stiffness_n_per_mm: model.bearing_stiffness_n_per_mm,
+        pin_bending: design.pins.support.filter(|_| pins),
+        structure_rad_per_nmm: design.structure_compliance_rad_per_nmm,
+    };
+    torsion::run(&discs, sweep, &scene.crank_rad, compliances, progress)
         .map(Some)
         .map_err(|f| {
             Error::computation(format!(

@@ -43,7 +43,7 @@
 use crate::equilibrium::discs::{solve_coupled, CoupledWork, Discs};
 use crate::equilibrium::friction::torsion::{set_branch, solve_point};
 use crate::equilibrium::solve::SolveFailure;
-use crate::model::results::{TorsionCurves, TorsionFigures};
+use crate::model::results::{TorsionCompliances, TorsionCurves, TorsionFigures};
 use crate::model::TorqueSweep;
 use crate::progress::Progress;
 use rayon::prelude::*;
@@ -128,22 +128,28 @@ impl TorsionFailure {
     }
 }
 
-/// The torsion curve γ over the loop and the figures at one locked crank angle (with the
-/// discs' friction, when they carry it: `friction_loop`).
+/// The torsion curve over the loop and the figures at one locked crank angle: the torsion
+/// angle γ(T) + c_s·T, γ the loaded model's output lag and c_s (`structure_rad_per_nmm`,
+/// rad/(N·mm)) the rest of the reducer's torsional compliance, in series (a spring in series
+/// twists by its own compliance times the torque it carries, the whole T). With the discs'
+/// friction, when they carry it: `friction_loop`.
 pub fn at_angle(
     discs: &Discs,
     sweep: &TorqueSweep,
     torques_nmm: &[f64],
     crank_rad: f64,
+    structure_rad_per_nmm: f64,
 ) -> Result<(Vec<f64>, [f64; 8], TorsionFigures), TorsionFailure> {
     if discs.models.iter().any(|m| m.coupling.is_some()) {
-        return friction_loop(discs, sweep, torques_nmm, crank_rad);
+        return friction_loop(discs, sweep, torques_nmm, crank_rad, structure_rad_per_nmm);
     }
     let mut discs = discs.clone();
     let mut work = CoupledWork::new(&discs);
     let fail = |torque_nmm, failure| TorsionFailure::new(crank_rad, torque_nmm, failure);
     let mut solve = |t: f64, work: &mut CoupledWork| {
-        output_lag(&mut discs, crank_rad, t, work).map_err(|f| fail(t, solve_failed(f)))
+        output_lag(&mut discs, crank_rad, t, work)
+            .map(|g| g + structure_rad_per_nmm * t)
+            .map_err(|f| fail(t, solve_failed(f)))
     };
     // The loop; at T = 0 the rising branch (m = steps) comes from below and holds γ(0⁻), the
     // falling one γ(0⁺), so the dead band is a vertical step of the loop.
@@ -178,6 +184,7 @@ fn friction_loop(
     sweep: &TorqueSweep,
     torques_nmm: &[f64],
     crank_rad: f64,
+    structure_rad_per_nmm: f64,
 ) -> Result<(Vec<f64>, [f64; 8], TorsionFigures), TorsionFailure> {
     let rated = sweep.rated_nmm;
     let zero = ZERO_SIDE * rated;
@@ -197,6 +204,7 @@ fn friction_loop(
         torques
             .map(|t| {
                 solve_point(&mut discs, crank_rad, t, &mut work)
+                    .map(|g| g + structure_rad_per_nmm * t)
                     .map_err(|f| fail(t, solve_failed(f)))
             })
             .collect::<Result<Vec<f64>, _>>()
@@ -280,18 +288,22 @@ fn held_throughout(top: f64, bottom: f64) -> String {
 
 /// The torsion curves and figures at every crank angle of a scene (in parallel, each angle on
 /// its own: results do not depend on the thread count), telling `progress` of each angle done.
-/// A failure names the first crank angle (in the scene's order) that failed.
+/// A failure names the first crank angle (in the scene's order) that failed. `compliances`
+/// says what the loaded model `discs` includes, and gives the structure's compliance that
+/// `at_angle` adds.
 pub fn run(
     discs: &Discs,
     sweep: &TorqueSweep,
     crank_rad: &[f64],
+    compliances: TorsionCompliances,
     progress: &dyn Progress,
 ) -> Result<TorsionCurves, TorsionFailure> {
     let torque_nmm = sweep.torques_nmm();
+    let structure = compliances.structure_rad_per_nmm;
     let per_angle: Vec<_> = crank_rad
         .par_iter()
         .map(|&c| {
-            let done = at_angle(discs, sweep, &torque_nmm, c);
+            let done = at_angle(discs, sweep, &torque_nmm, c, structure);
             progress.advance(1);
             done
         })
@@ -302,6 +314,7 @@ pub fn run(
         figures: Vec::with_capacity(crank_rad.len()),
         figure_torsion_rad: Vec::with_capacity(crank_rad.len()),
         friction: discs.models.iter().any(|m| m.coupling.is_some()),
+        compliances,
     };
     for angle in per_angle {
         let (curve, gamma, figures) = angle?;

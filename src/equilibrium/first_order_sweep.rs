@@ -235,10 +235,9 @@ impl<'a> FirstOrderSweep<'a> {
         let Some(r) = model.rollers.as_ref() else {
             return false;
         };
-        let pins_apply = model
-            .pins
-            .as_ref()
-            .is_none_or(|p| p.base.len() <= MAX_TERMS && p.linear_stiffness().is_some());
+        let pins_apply = model.pins.as_ref().is_none_or(|p| {
+            p.base.len() <= MAX_TERMS && p.linear_stiffness().is_some() && !p.couples_discs()
+        });
         r.geometry == GeometryMode::FirstOrder
             && r.law == ContactLaw::PaperLinear
             && model.bearing_stiffness_n_per_mm.is_none()

@@ -13,6 +13,7 @@ pub mod discs_sweep;
 pub mod first_order_sweep;
 pub mod friction;
 pub mod loaded;
+pub mod pin_beam;
 pub mod pins;
 pub mod residual;
 mod rigid_bearing;

@@ -8,6 +8,7 @@
 //! carry a positive output torque. Exact derivatives: ∂gap/∂βo = −(Q − O) × û and ∂gap/∂u = û.
 
 use super::balance::impl_contact;
+use super::pin_beam::{series_force, PinBeam};
 use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::{cross, rotate, sin_cos, Vec2};
 use crate::model::{ContactLaw, Design};
@@ -58,6 +59,14 @@ pub struct Pins {
     /// (pin, hole) displacements of the disc this model solves, turned with `base`; empty when
     /// its pins and holes are nominal.
     parts: Vec<(Vec2, Vec2)>,
+    /// The pins as beams (`reducer.output_pins.support`); none: rigid pins.
+    beam: Option<PinBeam>,
+    /// c_kk, the pin's bending compliance at this disc's mid-plane, mm/N, in series with the
+    /// contact (0: rigid pins).
+    beam_compliance_mm_per_n: f64,
+    /// The gap that the other discs' pin forces open at this disc's plane, pin by pin, mm:
+    /// Σ_{k≠j} c_jk·F_k·(û_j·û_k) (`pin_beam`); empty with one disc or rigid pins.
+    beam_gaps_mm: Vec<f64>,
 }
 
 /// Unit vectors of the pins' nominal places, (cos 2πj/M, sin 2πj/M).
@@ -119,6 +128,9 @@ impl Pins {
             pin_offsets,
             hole_offsets,
             parts: Vec::new(),
+            beam: PinBeam::of(design),
+            beam_compliance_mm_per_n: 0.0,
+            beam_gaps_mm: Vec::new(),
         };
         pins.for_disc(0, 0.0)
     }
@@ -132,6 +144,14 @@ impl Pins {
         let (s, c) = phase_rad.sin_cos();
         let turn = |v: &Vec2| rotate(*v, c, s);
         self.base = pattern(self.count).iter().map(turn).collect();
+        if let Some(beam) = &self.beam {
+            self.beam_compliance_mm_per_n = beam.own_compliance_mm_per_n(disc);
+            self.beam_gaps_mm = if beam.couples() {
+                vec![0.0; self.count]
+            } else {
+                Vec::new()
+            };
+        }
         self.parts = match self.hole_offsets.get(disc) {
             Some(holes) => self
                 .pin_offsets
@@ -156,6 +176,32 @@ impl Pins {
 
     pub fn line_contact(&self) -> &LineContact {
         &self.contact
+    }
+
+    /// The pins as beams, when they bend.
+    pub fn beam(&self) -> Option<&PinBeam> {
+        self.beam.as_ref()
+    }
+
+    /// Whether the pins' bending couples this disc to others (`discs::solve_coupled` then
+    /// iterates the gaps the other discs open, `set_beam_gaps`).
+    pub fn couples_discs(&self) -> bool {
+        !self.beam_gaps_mm.is_empty()
+    }
+
+    /// The gaps (mm, pin by pin) that the other discs' forces open at this disc's plane.
+    pub fn beam_gaps_mm(&self) -> &[f64] {
+        &self.beam_gaps_mm
+    }
+
+    /// Set the gaps the other discs' forces open, pin by pin, mm (`pin_beam`).
+    pub fn set_beam_gaps(&mut self, gaps_mm: &[f64]) {
+        self.beam_gaps_mm.copy_from_slice(gaps_mm);
+    }
+
+    /// The extra gap of pin j from the other discs' forces, mm (0 without coupling).
+    fn beam_gap(&self, j: usize) -> f64 {
+        self.beam_gaps_mm.get(j).copied().unwrap_or(0.0)
     }
 
     /// Evaluate every pin at crank φ with the disc centre at e·(cos φ, sin φ) + `offset`;
@@ -218,7 +264,7 @@ impl Pins {
             let dist = d.norm();
             let u = d / dist;
             let excess = centre_sq - 2.0 * disc_centre.dot(&w) + w.norm_squared();
-            let gap_mm = self.clearance_mm - excess / (dist + e);
+            let gap_mm = self.clearance_mm - excess / (dist + e) + self.beam_gap(j);
             out.push(self.state(
                 gap_mm,
                 cross(arm_vec, u),
@@ -243,10 +289,11 @@ impl Pins {
         out.clear();
         let u = -e_phi;
         let offset = disc_centre - e_phi * self.eccentricity_mm;
-        for w in &self.base {
+        for (j, w) in self.base.iter().enumerate() {
             let arm_vec = rotate(*w, c, s) * self.circle_radius_mm;
             let arm = cross(arm_vec, u);
-            let gap_mm = self.clearance_mm - output_lag * arm - e_phi.dot(&offset);
+            let gap_mm =
+                self.clearance_mm - output_lag * arm - e_phi.dot(&offset) + self.beam_gap(j);
             out.push(self.state(gap_mm, arm, u, disc_centre + arm_vec, -arm));
         }
     }
@@ -268,8 +315,15 @@ impl Pins {
         hole: Vec2,
         gap_slope_mm: f64,
     ) -> PinState {
+        // With bending pins `gap_mm` is the gap of the undeflected pin: its closing is shared
+        // by the contact's approach and the pin's own bending, in series.
         let cf = if gap_mm < 0.0 {
-            law::force(self.law, &self.contact, -gap_mm)
+            series_force(
+                self.law,
+                &self.contact,
+                self.beam_compliance_mm_per_n,
+                -gap_mm,
+            )
         } else {
             ContactForce::NONE
         };
@@ -284,9 +338,17 @@ impl Pins {
         }
     }
 
-    /// Linear-law stiffness, N/mm, when the law is linear.
+    /// Linear-law stiffness, N/mm, when the law is linear: with bending pins the contact's
+    /// and the pin's in series, 1/(1/k + c_kk) (`pin_beam::series_force`).
     pub fn linear_stiffness(&self) -> Option<f64> {
-        (self.law == ContactLaw::PaperLinear).then(|| law::paper_linear_stiffness(&self.contact))
+        (self.law == ContactLaw::PaperLinear).then(|| {
+            let k = law::paper_linear_stiffness(&self.contact);
+            if self.beam_compliance_mm_per_n == 0.0 {
+                k
+            } else {
+                1.0 / (1.0 / k + self.beam_compliance_mm_per_n)
+            }
+        })
     }
 }
 

@@ -34,6 +34,38 @@ pub struct OutputPins {
     pub pin_radius_mm: f64,
     /// Radial clearance of a hole beyond the ideal pin-in-hole radius, mm (≥ 0; 0: ideal).
     pub hole_clearance_mm: f64,
+    /// How the pins are carried by the output flange, when they bend (spec:
+    /// `reducer.output_pins.support`); none: rigid pins (the paper's model).
+    pub support: Option<PinSupport>,
+}
+
+/// How an output pin is held, for its bending (`equilibrium::pin_beam`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PinSupportKind {
+    /// Clamped in the flange at z = 0, free at z = length.
+    Cantilever,
+    /// Clamped in the flange at z = 0 and simply supported at z = length (a propped
+    /// cantilever: the pin's far end in a second flange or a support ring that holds it
+    /// radially but not in slope).
+    BothEnds,
+}
+
+named!(PinSupportKind "pin support" {
+    Cantilever => "cantilever",
+    BothEnds => "both_ends",
+});
+
+/// An output pin as a beam (spec: `reducer.output_pins.support`): its support, its length
+/// from the flange and where each disc's mid-plane sits along it, mm from the flange.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PinSupport {
+    /// Cantilever or both ends held.
+    pub kind: PinSupportKind,
+    /// L, the pin's length from the flange face to its free or supported end, mm.
+    pub length_mm: f64,
+    /// a_k, disc k's mid-plane along the pin from the flange, mm, in (0, L]; the first
+    /// `Design::discs` entries are the discs', the rest 0.
+    pub disc_positions_mm: [f64; MAX_DISCS],
 }
 
 impl OutputPins {
@@ -81,6 +113,11 @@ pub struct Design {
     pub friction: Option<Friction>,
     /// The housing's heat path (`reducer.thermal`), for a steady temperature.
     pub thermal: Option<Thermal>,
+    /// The torsional compliance of the rest of the reducer (carrier, housing, shafts), in
+    /// series with the contacts and pins, rad/(N·mm) (spec:
+    /// `reducer.structure_compliance_arcmin_per_knm`); 0: none given. It adds c·T to the
+    /// torsion angle of a torsion scene only.
+    pub structure_compliance_rad_per_nmm: f64,
 }
 
 /// The rating of the crank bearing of a disc (ISO 281): its basic dynamic load rating C and

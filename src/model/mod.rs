@@ -22,7 +22,10 @@ pub mod scene;
 pub mod study;
 pub mod tolerances;
 
-pub use design::{ConvexRadius, CrankBearing, Design, Locus, Material, OutputPins, MAX_DISCS};
+pub use design::{
+    ConvexRadius, CrankBearing, Design, Locus, Material, OutputPins, PinSupport, PinSupportKind,
+    MAX_DISCS,
+};
 pub use deviations::{CentreDeviation, Deviations, FormTerm, RollerDeviation, MAX_FORM_ORDER};
 pub use effect::{Detail, Effect};
 pub use friction::{

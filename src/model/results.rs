@@ -194,6 +194,29 @@ pub struct TorsionCurves {
     /// `reducer.friction` is given: the loop is solved with friction in the balance and the
     /// figures carry its hysteresis.
     pub friction: bool,
+    /// What the torsion angle is made of: the contact law and the compliances modelled or
+    /// given, which every text about the rigidity must say.
+    pub compliances: TorsionCompliances,
+}
+
+/// The compliances in a torsion curve: the loaded model's (computed) and the structure's
+/// (given). The torsion angle is γ(T) + c_s·T, γ the loaded model's output lag and c_s the
+/// structure's compliance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorsionCompliances {
+    /// The contacts' force–approach law.
+    pub contact_law: crate::model::ContactLaw,
+    /// The geometry of the contacts (exact or first order).
+    pub geometry: crate::model::GeometryMode,
+    /// The output pins' contacts are modelled (`output_pins` in the scene).
+    pub pin_contacts: bool,
+    /// The crank bearing's radial stiffness, N/mm, when compliant; none: rigid (or not
+    /// modelled).
+    pub bearing_stiffness_n_per_mm: Option<f64>,
+    /// The pins bend (`reducer.output_pins.support`), with the pin contacts modelled.
+    pub pin_bending: Option<crate::model::PinSupport>,
+    /// c_s, the rest of the reducer's torsional compliance, given, rad/(N·mm) (0: none).
+    pub structure_rad_per_nmm: f64,
 }
 
 /// The rating life written for a bearing whose life has no finite bound: no load (P = 0 N,

@@ -18,7 +18,7 @@ use crate::model::quantity::{self as q, Quantity, QUANTITIES};
 use crate::model::results::{ClearanceSweep, EfficiencyCurves, MinCoverage, SceneResult};
 use crate::model::Study;
 use crate::numeric::extremes;
-use crate::report::explain::hysteresis;
+use crate::report::explain::{hysteresis, torsion_compliances, torsion_law_note};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
@@ -247,6 +247,22 @@ pub struct TorsionDoc {
     hysteresis_energy_j: Option<Vec<Finite>>,
     /// Where the hysteresis loss comes from (0 without friction), and how it is read.
     hysteresis: &'static str,
+    /// What the torsion angle is made of.
+    compliances: CompliancesDoc,
+}
+
+/// The contact law and compliances of a torsion curve (`explain::torsion_compliances`).
+#[derive(Serialize)]
+pub struct CompliancesDoc {
+    contact_law: &'static str,
+    /// Computed by the loaded model.
+    modelled: Vec<String>,
+    /// Given in the spec and added (the structure's c·T).
+    given: Vec<String>,
+    /// The rest of the reducer's torsional compliance, arcmin per kN·m (0: none given).
+    structure_arcmin_per_knm: Finite,
+    /// Where the law puts the rigidity against a catalogue's.
+    note: &'static str,
 }
 
 fn finite(values: impl IntoIterator<Item = f64>) -> Vec<Finite> {
@@ -311,6 +327,19 @@ impl TorsionDoc {
             hysteresis_loss_arcmin: t.friction.then(|| registry(r, &q::HYSTERESIS_LOSS)),
             hysteresis_energy_j: t.friction.then(|| registry(r, &q::HYSTERESIS_ENERGY)),
             hysteresis: hysteresis(t.friction),
+            compliances: {
+                let c = &t.compliances;
+                let (modelled, given) = torsion_compliances(c);
+                CompliancesDoc {
+                    contact_law: c.contact_law.name(),
+                    modelled,
+                    given,
+                    structure_arcmin_per_knm: Finite(units::arcmin_per_knm(
+                        c.structure_rad_per_nmm,
+                    )),
+                    note: torsion_law_note(c.contact_law),
+                }
+            },
         })
     }
 }

@@ -238,6 +238,9 @@ pub(crate) struct RawReducer {
     /// The housing's heat path, for a steady temperature.
     #[serde(default)]
     pub thermal: Option<RawThermal>,
+    /// The torsional compliance of the rest of the reducer, in series (absent: 0).
+    #[serde(default)]
+    pub structure_compliance_arcmin_per_knm: Option<f64>,
 }
 
 /// `reducer.friction` (MODEL.md "Friction, efficiency and heat"): a path not given has no
@@ -397,7 +400,7 @@ pub(crate) struct RawCrankBearing {
 #[derive(Debug, Deserialize)]
 #[serde(
     deny_unknown_fields,
-    expecting = "a mapping with the keys count, circle_radius_mm, pin_radius_mm (and optionally hole_clearance_mm)"
+    expecting = "a mapping with the keys count, circle_radius_mm, pin_radius_mm (and optionally hole_clearance_mm, support)"
 )]
 pub(crate) struct RawOutputPins {
     pub count: i64,
@@ -405,6 +408,21 @@ pub(crate) struct RawOutputPins {
     pub pin_radius_mm: f64,
     #[serde(default)]
     pub hole_clearance_mm: f64,
+    /// The pins as beams (absent: rigid pins).
+    #[serde(default)]
+    pub support: Option<RawPinSupport>,
+}
+
+/// `reducer.output_pins.support`: how the pins are held, for their bending.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys kind, length_mm, disc_positions_mm"
+)]
+pub(crate) struct RawPinSupport {
+    pub kind: String,
+    pub length_mm: f64,
+    pub disc_positions_mm: Vec<f64>,
 }
 
 #[derive(Debug, Deserialize, Clone, Copy)]

@@ -130,23 +130,35 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
     if clearance > 0.0 {
         length(clearance_key, clearance)?;
     }
+    let discs = count_capped(
+        "reducer.discs",
+        raw.discs,
+        1,
+        MAX_DISCS,
+        "reducers are built with one to three discs",
+    )?;
+    let face_width_mm = length("reducer.face_width_mm", raw.face_width_mm)?;
+    let support = pins
+        .support
+        .as_ref()
+        .map(|s| pin_support(s, discs, face_width_mm))
+        .transpose()?;
+    let structure_compliance_rad_per_nmm = raw
+        .structure_compliance_arcmin_per_knm
+        .map(structure_compliance)
+        .transpose()?
+        .unwrap_or(0.0);
     Ok(Design {
         teeth,
         rollers,
-        discs: count_capped(
-            "reducer.discs",
-            raw.discs,
-            1,
-            MAX_DISCS,
-            "reducers are built with one to three discs",
-        )?,
+        discs,
         eccentricity_mm: length("reducer.eccentricity_mm", raw.eccentricity_mm)?,
         roller_circle_radius_mm: length(
             "reducer.roller_circle_radius_mm",
             raw.roller_circle_radius_mm,
         )?,
         roller_radius_mm: length("reducer.roller_radius_mm", raw.roller_radius_mm)?,
-        face_width_mm: length("reducer.face_width_mm", raw.face_width_mm)?,
+        face_width_mm,
         pins: OutputPins {
             count: count("reducer.output_pins.count", pins.count, 2)?,
             circle_radius_mm: length(
@@ -155,6 +167,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
             )?,
             pin_radius_mm: length("reducer.output_pins.pin_radius_mm", pins.pin_radius_mm)?,
             hole_clearance_mm: clearance,
+            support,
         },
         disc_material,
         roller_material,
@@ -166,7 +179,81 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
             .as_ref()
             .map(super::friction::thermal)
             .transpose()?,
+        structure_compliance_rad_per_nmm,
     })
+}
+
+/// `reducer.output_pins.support`: a known kind, a length within the lengths the tool takes,
+/// one position per disc, each in (0, length], and the discs' mid-planes at least a face
+/// width B apart (two discs cannot overlap along the pin).
+fn pin_support(raw: &RawPinSupport, discs: usize, face_width_mm: f64) -> Result<PinSupport> {
+    let key = "reducer.output_pins.support";
+    let kind = named::<PinSupportKind>(&format!("{key}.kind"), Some(&raw.kind))?
+        .expect("a kind was given");
+    let length_mm = length(&format!("{key}.length_mm"), raw.length_mm)?;
+    let positions_key = format!("{key}.disc_positions_mm");
+    if raw.disc_positions_mm.len() != discs {
+        return Err(Error::invalid(
+            positions_key,
+            format!(
+                "gives {} position(s) for {discs} disc(s) (`reducer.discs`): one mid-plane per \
+                 disc, mm from the flange",
+                raw.disc_positions_mm.len()
+            ),
+        ));
+    }
+    for (k, &a) in raw.disc_positions_mm.iter().enumerate() {
+        let at = format!("{positions_key}[{k}]");
+        let a = finite(&at, a)?;
+        if !(a > 0.0 && a <= length_mm) {
+            return Err(Error::invalid(
+                at,
+                format!(
+                    "disc {k}'s mid-plane at {} mm is outside the pin, (0, {}] mm from the flange \
+                     (`length_mm`)",
+                    numeric::input(a),
+                    numeric::input(length_mm)
+                ),
+            ));
+        }
+        for (m, &b) in raw.disc_positions_mm[..k].iter().enumerate() {
+            if (a - b).abs() < face_width_mm {
+                return Err(Error::invalid(
+                    at,
+                    format!(
+                        "disc {k}'s mid-plane at {} mm is {} mm from disc {m}'s, less than the \
+                         face width {} mm: the discs would overlap along the pin",
+                        numeric::input(a),
+                        numeric::input((a - b).abs()),
+                        numeric::input(face_width_mm)
+                    ),
+                ));
+            }
+        }
+    }
+    let mut disc_positions_mm = [0.0; MAX_DISCS];
+    disc_positions_mm[..discs].copy_from_slice(&raw.disc_positions_mm);
+    Ok(PinSupport {
+        kind,
+        length_mm,
+        disc_positions_mm,
+    })
+}
+
+/// `reducer.structure_compliance_arcmin_per_knm` (≥ 0, finite) in rad/(N·mm): arcmin/(kN·m)
+/// × (π/10800 rad/arcmin) / (10⁶ N·mm/(kN·m)).
+fn structure_compliance(arcmin_per_knm: f64) -> Result<f64> {
+    let key = "reducer.structure_compliance_arcmin_per_knm";
+    if !(arcmin_per_knm.is_finite() && arcmin_per_knm >= 0.0) {
+        return Err(Error::invalid(
+            key,
+            format!(
+                "must be zero or positive (a compliance, arcmin per kN·m), got {}",
+                numeric::input(arcmin_per_knm)
+            ),
+        ));
+    }
+    Ok(units::rad_per_nmm_from_arcmin_per_knm(arcmin_per_knm))
 }
 
 /// `reducer.crank_bearing`: a positive rating and life exponent (10/3 by default).

@@ -42,6 +42,7 @@ mod measured_inputs;
 mod mesh_minimum;
 mod optimise;
 mod ordinary_inputs;
+mod pin_beam;
 mod progress;
 mod readme;
 mod reliability;

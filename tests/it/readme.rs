@@ -67,6 +67,7 @@ fn accepted_keys() -> Vec<String> {
         ("RawBearingFriction", "reducer.friction.crank_bearing."),
         ("RawThermal", "reducer.thermal."),
         ("RawOutputPins", "reducer.output_pins."),
+        ("RawPinSupport", "reducer.output_pins.support."),
         ("RawMaterial", "reducer.material."),
         ("RawModification", "modification."),
         ("RawScene", "scenes[]."),

@@ -28,6 +28,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "paper optimum: torsion at 4 locked angles, crank-bearing life at 20 N·m",
     ),
     (
+        "reducer-pin-beams.yaml",
+        0,
+        "paper optimum with cantilever output pins and a structure compliance: torsion, life",
+    ),
+    (
         "reducer-efficiency.yaml",
         0,
         "paper optimum with friction: efficiency, losses and temperature at 20 N·m, 1500 rpm",

@@ -157,6 +157,7 @@ mod tests {
                 circle_radius_mm: 0.5 * rp,
                 pin_radius_mm: 0.05 * rp,
                 hole_clearance_mm: 0.0,
+                support: None,
             },
             disc_material: STEEL,
             roller_material: STEEL,
@@ -164,6 +165,7 @@ mod tests {
             deviations: Default::default(),
             friction: None,
             thermal: None,
+            structure_compliance_rad_per_nmm: 0.0,
         }
     }
 

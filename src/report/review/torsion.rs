@@ -6,7 +6,9 @@ use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
 use crate::model::Scene;
 use crate::numeric::number;
-use crate::report::explain::{hysteresis, hysteresis_in_plot};
+use crate::report::explain::{
+    hysteresis, hysteresis_in_plot, torsion_compliances, torsion_law_note,
+};
 use crate::report::svg::{LinePlot, Mark, Series, YCut, PALETTE};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
@@ -195,8 +197,13 @@ pub(super) fn sections(
         let id = format!("{}-torsion", prefix(k, scene));
         let file = format!("{id}.svg");
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));
+        let (modelled, given) = torsion_compliances(&t.compliances);
         let body = html! {
             p.note { (DEFINITIONS) " " b { (hysteresis(t.friction)) "." } }
+            p.note {
+                "Compliances modelled: " (modelled.join("; ")) ". Given: " (given.join("; "))
+                ". " (torsion_law_note(t.compliances.contact_law)) "."
+            }
             (figure(&file, "Torsion curve", "one curve per locked crank angle (a dot per \
                 torque where the torques are few); the points of the figures (±3 %, ±50 %, \
                 ±100 % of the rated torque) marked ◇; at T = 0 the dead band is the vertical \

@@ -294,6 +294,7 @@ pub(crate) fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f
             circle_radius_mm: 0.5 * rp_mm,
             pin_radius_mm: 0.05 * rp_mm,
             hole_clearance_mm: 0.0,
+            support: None,
         },
         disc_material: STEEL,
         roller_material: STEEL,
@@ -301,6 +302,7 @@ pub(crate) fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f
         deviations: Default::default(),
         friction: None,
         thermal: None,
+        structure_compliance_rad_per_nmm: 0.0,
     }
 }
 

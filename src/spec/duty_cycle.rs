@@ -93,7 +93,7 @@ pub(super) fn duty_cycle(key: &str, raw: &RawScene, effects: &[Effect]) -> Resul
         return Err(Error::invalid(
             &at,
             format!(
-                "the time shares sum to {}, not 1 (within {SHARE_SUM_TOLERANCE})",
+                "the time shares sum to {}, not 1 (within {SHARE_SUM_TOLERANCE:e})",
                 numeric::input(sum)
             ),
         ));

@@ -78,14 +78,19 @@ pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
     let equivalent_torque_nmm = weighted_power_mean(&torques, 3.0);
     let life = match design.crank_bearing {
         Some(rating) => {
-            let loads: Option<Vec<Vec<f64>>> =
-                bins.iter().map(|b| bin_equivalent_loads(&b.result)).collect();
+            let loads: Option<Vec<Vec<f64>>> = bins
+                .iter()
+                .map(|b| bin_equivalent_loads(&b.result))
+                .collect();
             loads.map_or_else(Vec::new, |loads| {
                 let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
                 (0..design.discs)
                     .map(|k| {
-                        let pairs: Vec<(f64, f64)> =
-                            weights.iter().zip(&loads).map(|(&w, l)| (w, l[k])).collect();
+                        let pairs: Vec<(f64, f64)> = weights
+                            .iter()
+                            .zip(&loads)
+                            .map(|(&w, l)| (w, l[k]))
+                            .collect();
                         let load = weighted_power_mean(&pairs, p);
                         BearingLife {
                             equivalent_load_n: load,
@@ -135,7 +140,10 @@ mod tests {
     /// cube mean of (1, 2) with equal weights is (9/2)^(1/3); huge values do not overflow.
     #[test]
     fn the_weighted_power_mean_is_a_mean() {
-        assert_eq!(weighted_power_mean(&[(0.3, 5.0), (0.7, 5.0)], 10.0 / 3.0), 5.0);
+        assert_eq!(
+            weighted_power_mean(&[(0.3, 5.0), (0.7, 5.0)], 10.0 / 3.0),
+            5.0
+        );
         assert_eq!(weighted_power_mean(&[(0.0, 9.0), (2.0, 4.0)], 3.0), 4.0);
         let m = weighted_power_mean(&[(1.0, 1.0), (1.0, 2.0)], 3.0);
         assert!((m - 4.5f64.cbrt()).abs() < 1e-15, "{m}");

@@ -18,9 +18,7 @@ use crate::geometry::first_order;
 use crate::geometry::mesh_minimum::{self, MeshMinimum};
 use crate::model::accuracy::LadderTolerances;
 use crate::model::quantity::QUANTITIES;
-use crate::model::results::{
-    BearingLife, ClearanceSweep, DutyBinResult, LoadedSweep, SceneResult,
-};
+use crate::model::results::{BearingLife, ClearanceSweep, DutyBinResult, LoadedSweep, SceneResult};
 use crate::model::{
     Design, Detail, Effect, FrictionModel, GeometryMode, Modification, Plan, Scene,
 };

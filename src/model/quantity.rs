@@ -886,11 +886,13 @@ pub const DUTY_EQUIVALENT_LOAD: Quantity = Quantity {
     of: None,
     read: Read::Scalar(|r| {
         let d = duty(r)?;
-        let (k, b) = d
-            .life
-            .iter()
-            .enumerate()
-            .reduce(|a, b| if b.1.equivalent_load_n > a.1.equivalent_load_n { b } else { a })?;
+        let (k, b) = d.life.iter().enumerate().reduce(|a, b| {
+            if b.1.equivalent_load_n > a.1.equivalent_load_n {
+                b
+            } else {
+                a
+            }
+        })?;
         Some(Extreme {
             value: b.equivalent_load_n,
             at: format!(

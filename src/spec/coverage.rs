@@ -34,10 +34,9 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
             .any(|s| Plan::for_scene(s).computes_quantity(d.quantity));
         if !covered {
             let how = match effect {
-                _ if d.quantity.for_duty() == Some(true) => format!(
-                    "give a scene computing `{}` a `duty_cycle`",
-                    effect.name()
-                ),
+                _ if d.quantity.for_duty() == Some(true) => {
+                    format!("give a scene computing `{}` a `duty_cycle`", effect.name())
+                }
                 _ if d.quantity.for_duty() == Some(false)
                     && spec.scenes.iter().any(|s| s.duty_cycle.is_some()) =>
                 {

@@ -18,7 +18,11 @@ pub const SHARE_SUM_TOLERANCE: f64 = 1e-9;
 
 /// The duty cycle of the raw scene at `key` (`scenes[i]`) asking for `effects`, validated;
 /// `None` without one.
-pub(super) fn duty_cycle(key: &str, raw: &RawScene, effects: &[Effect]) -> Result<Option<Vec<DutyBin>>> {
+pub(super) fn duty_cycle(
+    key: &str,
+    raw: &RawScene,
+    effects: &[Effect],
+) -> Result<Option<Vec<DutyBin>>> {
     let Some(bins) = &raw.duty_cycle else {
         return Ok(None);
     };
@@ -98,7 +102,10 @@ pub(super) fn duty_cycle(key: &str, raw: &RawScene, effects: &[Effect]) -> Resul
             ),
         ));
     }
-    if cycle.iter().all(|b| b.time_share * b.input_speed_rpm == 0.0) {
+    if cycle
+        .iter()
+        .all(|b| b.time_share * b.input_speed_rpm == 0.0)
+    {
         return Err(Error::invalid(
             &at,
             "no bin turns the crank (every bin with a share has speed 0): a cycle at a \

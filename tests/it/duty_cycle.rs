@@ -6,8 +6,8 @@
 
 use crate::common::{cycloid, Scratch};
 use cycloid::model::quantity::{
-    Quantity, BEARING_LIFE, DUTY_LIFE, EQUIVALENT_TORQUE, MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY,
-    MEAN_SPEED, DUTY_MEAN_EFFICIENCY,
+    Quantity, BEARING_LIFE, DUTY_LIFE, DUTY_MEAN_EFFICIENCY, EQUIVALENT_TORQUE,
+    MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY, MEAN_SPEED,
 };
 use cycloid::model::results::SceneResult;
 
@@ -23,6 +23,9 @@ const EFFICIENCY: &str = include_str!("../../specs/reducer-efficiency.yaml");
 fn design_of(spec: &str) -> &str {
     &spec[..spec.find("scenes:").unwrap()]
 }
+
+/// The loaded period of the paper's design with pins, 108°, at 0.1°.
+const LOADED_PERIOD: &str = "{ from_deg: 0.0, to_deg: 108.0, steps: 1080 }";
 
 /// A bin (torque N·m, speed rpm, time share).
 type Bin = (f64, f64, f64);
@@ -44,9 +47,7 @@ fn duty_spec(head: &str, bins: &[Bin], effects: &str) -> String {
             "      - {{ output_torque_nm: {t:?}, input_speed_rpm: {n:?}, time_share: {s:?} }}\n"
         );
     }
-    text + &format!(
-        "    crank: {{ from_deg: 0.0, to_deg: 108.0, steps: 1080 }}\n    effects: [{effects}]\n"
-    )
+    text + &format!("    crank: {LOADED_PERIOD}\n    effects: [{effects}]\n")
 }
 
 /// A spec of `head`'s design with one ordinary scene at torque `t` and speed `n` (none at a
@@ -57,8 +58,8 @@ fn ordinary_spec(head: &str, (t, n, _): Bin, effects: &str) -> String {
         false => String::new(),
     };
     format!(
-        "{head}scenes:\n  - name: one\n    output_torque_nm: {t:?}\n{speed}    crank: {{ from_deg: \
-         0.0, to_deg: 108.0, steps: 1080 }}\n    effects: [{effects}]\n"
+        "{head}scenes:\n  - name: one\n    output_torque_nm: {t:?}\n{speed}    crank: \
+         {LOADED_PERIOD}\n    effects: [{effects}]\n"
     )
 }
 
@@ -97,7 +98,10 @@ fn one_bin_is_the_ordinary_scene() {
     let (life, ordinary) = (value(&DUTY_LIFE, &duty), value(&BEARING_LIFE, &one));
     assert!(rel(life, ordinary) < 1e-12, "{life} h against {ordinary} h");
     assert!(
-        rel(value(&MAX_CONTACT_PRESSURE, &duty), value(&MAX_CONTACT_PRESSURE, &one)) < 1e-12
+        rel(
+            value(&MAX_CONTACT_PRESSURE, &duty),
+            value(&MAX_CONTACT_PRESSURE, &one)
+        ) < 1e-12
     );
     assert!(rel(value(&EQUIVALENT_TORQUE, &duty), 20.0) < 1e-12);
     assert!(rel(value(&MEAN_SPEED, &duty), 1500.0) < 1e-12);
@@ -108,12 +112,17 @@ fn one_bin_is_the_ordinary_scene() {
 /// scene's life at that bin's load and speed); the bearing lasts 1/Σ sᵢ/L10h,i hours. A
 /// standstill turns no revolution and uses none. Per disc (`bearing_life` of each disc with
 /// several).
-fn miner_hours(head: &str, bins: &[Bin], disc: Option<usize>) -> f64 {
+fn miner_hours(
+    head: &str,
+    bins: &[Bin],
+    disc: Option<usize>,
+    edit: impl Fn(String) -> String,
+) -> f64 {
     let damage_per_hour: f64 = bins
         .iter()
         .filter(|b| b.1 > 0.0)
         .map(|&b| {
-            let r = run(&ordinary_spec(head, b, "bearing"));
+            let r = run(&edit(ordinary_spec(head, b, "bearing")));
             let own = match disc {
                 Some(k) => r.discs[k].bearing_life.unwrap().life_h.unwrap(),
                 None => value(&BEARING_LIFE, &r),
@@ -132,25 +141,43 @@ fn the_duty_life_is_miners_rule_over_the_bins() {
     let head = design_of(SHIPPED);
     let duty = run(SHIPPED);
     let life = value(&DUTY_LIFE, &duty);
-    let miner = miner_hours(head, &ROBOT, None);
+    let miner = miner_hours(head, &ROBOT, None, |t| t);
     eprintln!("shipped duty cycle: duty_life_h {life}, Palmgren–Miner {miner}");
-    assert!(rel(life, miner) < 1e-9, "{life} h against Miner's {miner} h");
+    assert!(
+        rel(life, miner) < 1e-9,
+        "{life} h against Miner's {miner} h"
+    );
     assert!(rel(life, miner) < 5e-3);
 }
 
 /// With two discs each disc has its own bearing and its own Miner sum; the reducer's duty
-/// life is the shorter (as `bearing_life_h` with several discs). Round-off as above.
+/// life is the shorter (as `bearing_life_h` with several discs). A hole of disc 0 moved by
+/// 3 µm makes the discs' loads differ (two identical discs of an even roller count share
+/// equally) and the loaded period a whole turn of the disc, 3240°. Round-off as above.
 #[test]
 fn with_two_discs_each_disc_has_its_miner_life() {
     let head = design_of(SHIPPED).replace(
         "  crank_bearing:",
-        "  discs: 2\n  crank_bearing:",
+        "  discs: 2\n  deviations: { holes: [{ index: 2, disc: 0, tangential_mm: 0.003 }] }\n  crank_bearing:",
     );
+    let turn = |text: String| {
+        text.replace(
+            LOADED_PERIOD,
+            "{ from_deg: 0.0, to_deg: 3240.0, steps: 3240 }",
+        )
+    };
+    let head = head.as_str();
     let bins = [(25.0, 1200.0, 0.5), (10.0, 3000.0, 0.5)];
-    let duty = run(&duty_spec(&head, &bins, "bearing"));
+    let duty = run(&turn(duty_spec(head, &bins, "bearing")));
     let cycle = duty.duty.as_ref().unwrap();
     assert_eq!(cycle.life.len(), 2);
-    let each: Vec<f64> = (0..2).map(|k| miner_hours(&head, &bins, Some(k))).collect();
+    let each: Vec<f64> = (0..2)
+        .map(|k| miner_hours(head, &bins, Some(k), turn))
+        .collect();
+    assert!(
+        rel(each[0], each[1]) > 1e-3,
+        "the discs' lives {each:?} should differ"
+    );
     for (k, m) in each.iter().enumerate() {
         let life = cycle.life[k].life_h.unwrap();
         assert!(rel(life, *m) < 1e-9, "disc {k}: {life} h against {m} h");
@@ -169,7 +196,12 @@ fn doubling_every_speed_halves_the_hours() {
     let (slow, fast) = (run(SHIPPED), run(&duty_spec(head, &twice, "bearing")));
     let (a, b) = (value(&DUTY_LIFE, &slow), value(&DUTY_LIFE, &fast));
     assert!(rel(b, a / 2.0) < 1e-12, "{a} h, then {b} h");
-    assert!(rel(value(&EQUIVALENT_TORQUE, &fast), value(&EQUIVALENT_TORQUE, &slow)) < 1e-12);
+    assert!(
+        rel(
+            value(&EQUIVALENT_TORQUE, &fast),
+            value(&EQUIVALENT_TORQUE, &slow)
+        ) < 1e-12
+    );
     assert!(rel(value(&MEAN_SPEED, &fast), 2.0 * value(&MEAN_SPEED, &slow)) < 1e-12);
 }
 
@@ -218,13 +250,20 @@ fn the_mean_efficiency_is_weighted_by_energy() {
     let duty = run(&duty_spec(head, &bins, "efficiency"));
     let (mut out, mut input) = (0.0, 0.0);
     for &b in bins.iter().filter(|b| b.1 > 0.0) {
-        let eta = value(&MEAN_EFFICIENCY, &run(&ordinary_spec(head, b, "efficiency")));
+        let eta = value(
+            &MEAN_EFFICIENCY,
+            &run(&ordinary_spec(head, b, "efficiency")),
+        );
         let p = b.2 * b.0.abs() * b.1;
         out += p;
         input += p / eta;
     }
     let eta = value(&DUTY_MEAN_EFFICIENCY, &duty);
-    assert!(rel(eta, out / input) < 1e-12, "{eta} against {}", out / input);
+    assert!(
+        rel(eta, out / input) < 1e-12,
+        "{eta} against {}",
+        out / input
+    );
 }
 
 /// (exit code, stdout, stderr) of `cycloid check s.yaml` on `text`.
@@ -334,13 +373,19 @@ fn bad_duty_cycles_are_located() {
             "s.yaml:30:5: invalid value: scenes[0].duty_cycle: a duty cycle needs at least one bin",
         ),
         (
-            format!("    duty_cycle:\n      - {}\n", bin0.replace("1000.0", "0.0").replace("0.2 }", "1.0 }")),
+            format!(
+                "    duty_cycle:\n      - {}\n",
+                bin0.replace("1000.0", "0.0").replace("0.2 }", "1.0 }")
+            ),
             "s.yaml:30:5: invalid value: scenes[0].duty_cycle: no bin turns the crank",
         ),
     ] {
         let text = format!("{}{cycle}{}", &SHIPPED[..start], &SHIPPED[end..]);
         let (code, out, err) = check(&dir, &text);
         assert_eq!(code, 2, "{cycle}: {out}{err}");
-        assert!(err.contains(expected), "{cycle}:\n{err}\nexpected: {expected}");
+        assert!(
+            err.contains(expected),
+            "{cycle}:\n{err}\nexpected: {expected}"
+        );
     }
 }

@@ -389,3 +389,57 @@ fn bad_duty_cycles_are_located() {
         );
     }
 }
+
+/// The JSON and the design review of the shipped cycle: every number finite (no null, NaN or
+/// ∞), one record per bin with its time share as given, revolution shares sᵢ·nᵢ/Σ sⱼ·nⱼ that
+/// sum to 1 (1e-12: four rounded quotients) and are 0 at the standstill, the cycle's figures
+/// among the scene's keys, and a "Duty cycle" section with one table row per bin.
+#[test]
+fn the_json_and_the_review_show_every_bin() {
+    let dir = Scratch::new("duty-outputs");
+    dir.write("s.yaml", SHIPPED);
+    let (code, out, err) = cycloid(
+        &dir.path,
+        &["check", "s.yaml", "--json", "r.json", "--report", "rep"],
+    )
+    .parts();
+    assert_eq!(code, 0, "{out}{err}");
+    let json: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    fn finite(v: &serde_json::Value) -> bool {
+        match v {
+            serde_json::Value::Null => false,
+            serde_json::Value::Number(n) => n.as_f64().is_some_and(f64::is_finite),
+            serde_json::Value::Array(a) => a.iter().all(finite),
+            serde_json::Value::Object(o) => o.values().all(finite),
+            _ => true,
+        }
+    }
+    assert!(finite(&json), "a number is not finite or null");
+    let scene = &json["scenes"][0];
+    for key in [
+        "duty_life_h",
+        "equivalent_torque_nm",
+        "mean_speed_rpm",
+        "duty_equivalent_load_n",
+    ] {
+        assert!(scene[key].is_number(), "{key} missing");
+    }
+    let bins = scene["duty_cycle"]["bins"].as_array().unwrap();
+    assert_eq!(bins.len(), ROBOT.len());
+    let mut total = 0.0;
+    for (b, &(t, n, s)) in bins.iter().zip(&ROBOT) {
+        assert_eq!(b["output_torque_nm"].as_f64(), Some(t));
+        assert_eq!(b["time_share"].as_f64(), Some(s));
+        let share = b["revolution_share"].as_f64().unwrap();
+        assert_eq!(share == 0.0, n == 0.0, "{b}");
+        total += share;
+        assert!(b["results"]["bearing_force_n"].is_array());
+    }
+    assert!((total - 1.0).abs() < 1e-12, "{total}");
+    let html = dir.read("rep/index.html");
+    let section = &html[html
+        .find("id=\"duty-cycle\"")
+        .expect("a Duty cycle section")..];
+    let table = &section[..section.find("</table>").unwrap()];
+    assert_eq!(table.matches("<tr>").count(), 1 + ROBOT.len(), "{table}");
+}

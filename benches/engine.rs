@@ -459,3 +459,30 @@ fn efficiency_loss_3600_exact(b: divan::Bencher) {
 fn efficiency_base_3600_exact(b: divan::Bencher) {
     efficiency_scene(b, &[cycloid::model::Effect::Bearing]);
 }
+
+/// Issue 31: a 4-bin duty cycle (`specs/reducer-duty-cycle.yaml`: bearing over the loaded
+/// period 0°–108°, 1080 angles, exact geometry) against one loaded scene of the same plan at
+/// its first bin's torque and speed: the cycle is four such runs (in parallel on more than one
+/// thread) and their combination.
+fn duty_scene(b: divan::Bencher, single: bool) {
+    let spec = spec::load("specs/reducer-duty-cycle.yaml").expect("specs/reducer-duty-cycle.yaml");
+    let duty = spec.scenes[0].clone();
+    let scene = match single {
+        true => duty.duty_cycle.as_ref().unwrap()[0].scene(&duty),
+        false => duty,
+    };
+    let plan = cycloid::model::Plan::for_scene(&scene);
+    b.bench(|| {
+        cycloid::engine::scene::run(&spec, black_box(&scene), &plan, &Default::default()).unwrap()
+    });
+}
+
+#[divan::bench(sample_count = 60)]
+fn duty_cycle_4_bins_1080_exact(b: divan::Bencher) {
+    duty_scene(b, false);
+}
+
+#[divan::bench(sample_count = 60)]
+fn duty_cycle_one_bin_scene_1080_exact(b: divan::Bencher) {
+    duty_scene(b, true);
+}

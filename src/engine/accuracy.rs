@@ -437,11 +437,12 @@ pub enum Event<'a> {
     Rung(&'a Layout, &'a Rung),
 }
 
-/// The scene a ladder runs by default: the first that computes roller contact, else the first.
+/// The scene a ladder runs by default: the first that computes roller contact (not a duty
+/// cycle's, which runs once per bin), else the first.
 pub fn default_scene(spec: &Spec) -> usize {
     spec.scenes
         .iter()
-        .position(|s| Plan::for_scene(s).computes(Effect::RollerContact))
+        .position(|s| Plan::for_scene(s).computes(Effect::RollerContact) && s.duty_cycle.is_none())
         .unwrap_or(0)
 }
 
@@ -557,6 +558,7 @@ fn timed(
 /// The plan with only the effects `keep` accepts.
 fn part(plan: &Plan, keep: impl Fn(Effect) -> bool) -> Plan {
     Plan {
+        duty: plan.duty,
         scene: plan.scene.clone(),
         effects: plan
             .effects

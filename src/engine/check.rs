@@ -113,7 +113,7 @@ pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
     limits
         .entries
         .iter()
-        .filter(|l| plan.computes(l.def.quantity.effect))
+        .filter(|l| plan.computes_quantity(l.def.quantity))
         .map(|l| l.def.key)
         .collect()
 }
@@ -131,8 +131,11 @@ pub fn evaluate(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Check>> {
             .map(Plan::for_scene);
         for l in &spec.limits.entries {
             let q = l.def.quantity;
+            if plan.as_ref().is_some_and(|p| !p.computes_quantity(q)) {
+                continue;
+            }
             let Some(e) = q.scalar(r) else {
-                if plan.as_ref().is_some_and(|p| p.computes(q.effect)) {
+                if plan.as_ref().is_some_and(|p| p.computes_quantity(q)) {
                     return Err(Error::computation(format!(
                         "scene `{}` computes `{}` but its {} is missing: no check of `limits.{}` \
                          can pass without it",

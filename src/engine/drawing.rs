@@ -173,12 +173,13 @@ pub fn disc(spec: &Spec, crank_rad: f64) -> Result<Disc> {
 /// ((scene name, the disc shown with several discs), its solution at the crank angle).
 type LoadedAt = ((String, Option<usize>), AngleSolution);
 
-/// The first scene with roller contact, solved at `crank_rad`.
+/// The first scene with roller contact (not a duty cycle's, which has no one torque), solved
+/// at `crank_rad`.
 fn loaded_at(spec: &Spec, crank_rad: f64) -> Result<Option<LoadedAt>> {
     let Some(scene) = spec
         .scenes
         .iter()
-        .find(|s| Plan::for_scene(s).computes(Effect::RollerContact))
+        .find(|s| Plan::for_scene(s).computes(Effect::RollerContact) && s.duty_cycle.is_none())
     else {
         return Ok(None);
     };

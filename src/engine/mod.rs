@@ -14,6 +14,7 @@ pub mod bearing_life;
 pub mod check;
 pub mod commands;
 pub mod drawing;
+pub mod duty_cycle;
 pub mod efficiency;
 pub mod golden;
 pub mod limit;

@@ -6,7 +6,7 @@
 //! evaluate is an error. A detail of an effect (the closing lags of `clearance`) is computed
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
-use crate::engine::{bearing_life, efficiency, torsion};
+use crate::engine::{bearing_life, duty_cycle, efficiency, torsion};
 use crate::equilibrium::coupling::Coupling;
 use crate::equilibrium::discs::Discs;
 use crate::equilibrium::discs_sweep::{self, DiscSweeps};
@@ -19,7 +19,7 @@ use crate::geometry::first_order;
 use crate::geometry::mesh_minimum::{self, MeshMinimum};
 use crate::model::accuracy::LadderTolerances;
 use crate::model::quantity::QUANTITIES;
-use crate::model::results::{BearingLife, ClearanceSweep, LoadedSweep, SceneResult};
+use crate::model::results::{BearingLife, ClearanceSweep, DutyBinResult, LoadedSweep, SceneResult};
 use crate::model::{
     Design, Detail, Effect, FrictionModel, GeometryMode, Modification, Plan, Scene,
 };
@@ -134,6 +134,9 @@ pub fn run_design(
     (scene, plan): (&Scene, &Plan),
     options: &RunOptions,
 ) -> Result<SceneResult> {
+    if let Some(bins) = &scene.duty_cycle {
+        return run_duty_cycle(design, m, (scene, plan, bins), options);
+    }
     let (settings, progress) = (&options.settings, options.progress);
     let mesh = Mesh::new(design, m);
     let target = mesh_minimum::Target::new(design, options.clearance_tolerance_mm);
@@ -153,6 +156,7 @@ pub fn run_design(
         torsion: None,
         efficiency: None,
         discs: Vec::new(),
+        duty: None,
     };
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     if design.discs == 1 {
@@ -195,6 +199,52 @@ pub fn run_design(
     reducer.loaded.transmission = sweeps.and_then(|s| s.transmission);
     reducer.torsion = torsion;
     Ok(reducer)
+}
+
+/// A duty-cycle scene ([`engine::duty_cycle`](crate::engine::duty_cycle)): each bin run as
+/// the scene at the bin's torque and speed (in parallel, results in the bins' order whatever
+/// the thread count), combined. A bin's failure points at its key (`duty_cycle[j]…`).
+fn run_duty_cycle(
+    design: &Design,
+    m: &Modification,
+    (scene, plan, bins): (&Scene, &Plan, &[crate::model::DutyBin]),
+    options: &RunOptions,
+) -> Result<SceneResult> {
+    use rayon::prelude::*;
+    let runs: Vec<Result<SceneResult>> = bins
+        .par_iter()
+        .enumerate()
+        .map(|(j, bin)| {
+            let at = crate::model::Scene {
+                name: format!("{} bin {j}", scene.name),
+                ..bin.scene(scene)
+            };
+            run_design(design, m, (&at, plan), options).map_err(|mut e| {
+                e.key_path = Some(match e.key_path.take().as_deref() {
+                    Some("output_torque_nm") => format!("duty_cycle[{j}].output_torque_nm"),
+                    None => format!("duty_cycle[{j}]"),
+                    Some(k) => k.to_string(),
+                });
+                e
+            })
+        })
+        .collect();
+    let runs = bins
+        .iter()
+        .zip(runs)
+        .map(|(&bin, r)| r.map(|result| DutyBinResult { bin, result }))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(SceneResult {
+        name: scene.name.clone(),
+        crank_rad: scene.crank_rad.clone(),
+        clearance: None,
+        loaded: LoadedSweep::default(),
+        torsion: None,
+        bearing_life: None,
+        efficiency: None,
+        discs: Vec::new(),
+        duty: Some(Box::new(duty_cycle::combine(design, runs))),
+    })
 }
 
 /// The clearance of a disc at crank phase `shift` over the scene's angles, with the smallest
@@ -456,7 +506,7 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
                     scene: name(),
                     loaded_period_rad: plan.loaded_period_rad(&spec.design),
                 });
-            } else if scene.input_speed_rpm.is_none() {
+            } else if scene.input_speed_rpm.is_none() && scene.duty_cycle.is_none() {
                 notes.push(Note::LifeHoursNotRated { scene: name() });
             }
         }
@@ -471,6 +521,11 @@ pub fn sweeps(plan: &Plan, discs: usize) -> usize {
     discs * usize::from(plan.has(Effect::Clearance))
         + usize::from(runs_loaded(plan))
         + usize::from(plan.has(Effect::Torsion))
+}
+
+/// `sweeps` of `scene`: those of its plan, once per bin of a duty cycle.
+pub fn scene_sweeps(scene: &Scene, plan: &Plan, discs: usize) -> usize {
+    sweeps(plan, discs) * scene.duty_cycle.as_ref().map_or(1, Vec::len)
 }
 
 /// Whether `plan` runs the loaded sweep over the crank angle (roller contact, output pins or

@@ -113,9 +113,13 @@ fn shares(r: &SceneResult) -> Vec<TorqueShare> {
 pub fn marked(spec: &Spec, results: &[SceneResult]) -> Vec<SceneSummary> {
     let mut summaries = summarise(results);
     for (s, scene) in summaries.iter_mut().zip(&spec.scenes) {
-        let torque_nmm = match &scene.torque_sweep {
-            Some(_) => 0.0, // a torsion scene has no loaded headline of force or pressure
-            None => scene.output_torque_nmm,
+        let torque_nmm = match (&scene.torque_sweep, &scene.duty_cycle) {
+            (Some(_), _) => 0.0, // a torsion scene has no loaded headline of force or pressure
+            // A duty cycle's headlines are the worst over its bins: the largest bin torque.
+            (_, Some(bins)) => bins
+                .iter()
+                .fold(0.0f64, |m, b| m.max(b.output_torque_nmm.abs())),
+            _ => scene.output_torque_nmm,
         };
         for h in &mut s.headlines {
             h.beyond =

@@ -132,6 +132,16 @@ pub fn check(
             ),
         ));
     }
+    if scene.duty_cycle.is_some() {
+        return Err((
+            Setting::Scene,
+            format!(
+                "scene `{}` runs a duty cycle (one run per bin): the ladder needs one run of a \
+                 scene; name a scene with its own `output_torque_nm`",
+                scene.name
+            ),
+        ));
+    }
     let plan = Plan::for_scene(scene);
     let compared = [Effect::Clearance, Effect::RollerContact, Effect::Bearing];
     if !compared.iter().any(|&e| plan.has(e)) {

@@ -35,7 +35,9 @@ pub use friction::{
 pub use golden::{Golden, GoldenTolerance};
 pub use limits::{Limit, Limits};
 pub use modification::Modification;
-pub use scene::{ContactLaw, GeometryMode, Plan, PlannedDetail, PlannedEffect, Scene, TorqueSweep};
+pub use scene::{
+    ContactLaw, DutyBin, GeometryMode, Plan, PlannedDetail, PlannedEffect, Scene, TorqueSweep,
+};
 pub use study::{Objective, Study, Variable, VariableKind};
 
 #[cfg(test)]

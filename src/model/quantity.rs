@@ -8,7 +8,9 @@
 //! the unit named by the key (arcsec, N, mm, MPa, deg).
 
 use super::effect::{Detail, Effect};
-use super::results::{BacklashCurves, MinCoverage, ReducerEfficiency, SceneResult, TorsionFigures};
+use super::results::{
+    BacklashCurves, DutyCycle, MinCoverage, ReducerEfficiency, SceneResult, TorsionFigures,
+};
 use crate::numeric::{extremes, fluctuation, max_entry, number};
 use crate::units;
 
@@ -123,7 +125,10 @@ impl Quantity {
         let Read::Scalar(read) = self.read else {
             return None;
         };
-        read(r).or_else(|| {
+        if r.duty.is_some() && self.for_duty() == Some(false) {
+            return None;
+        }
+        read(r).or_else(|| self.worst_bin(r)).or_else(|| {
             r.discs
                 .iter()
                 .enumerate()
@@ -136,6 +141,42 @@ impl Quantity {
                 })
                 .reduce(|a, b| if self.worse(b.value, a.value) { b } else { a })
         })
+    }
+
+    /// In a duty-cycle scene (`SceneResult::duty`), the worst value over its bins' runs, named
+    /// by its bin ("bin 2 (40 N·m, 1500 rpm): roller 3 at crank 12.30°"); `None` otherwise.
+    fn worst_bin(&self, r: &SceneResult) -> Option<Extreme> {
+        let duty = r.duty.as_ref()?;
+        duty.bins
+            .iter()
+            .enumerate()
+            .filter_map(|(j, b)| {
+                let e = self.scalar(&b.result)?;
+                Some(Extreme {
+                    at: format!(
+                        "bin {j} ({} N·m, {} rpm): {}",
+                        number(units::nm(b.bin.output_torque_nmm)),
+                        number(b.bin.input_speed_rpm),
+                        e.at
+                    ),
+                    ..e
+                })
+            })
+            .reduce(|a, b| if self.worse(b.value, a.value) { b } else { a })
+    }
+
+    /// Which scenes have this quantity: `Some(true)` a duty cycle's figure (`DUTY`), only in
+    /// a duty-cycle scene; `Some(false)` one run's figure at one speed (`SINGLE_RUN`: a bin's
+    /// bearing life and efficiency, in its own run), not a duty-cycle scene's; `None` every
+    /// scene (in a duty-cycle scene the worst over its bins).
+    pub fn for_duty(&self) -> Option<bool> {
+        if DUTY.contains(&self) {
+            Some(true)
+        } else if SINGLE_RUN.contains(&self) {
+            Some(false)
+        } else {
+            None
+        }
     }
 
     /// Whether `a` is worse than `b` for this quantity: lower when its limit bounds it from
@@ -833,6 +874,135 @@ pub const BEARING_LIFE: Quantity = Quantity {
     }),
 };
 
+/// A duty cycle's results, when the scene runs one.
+fn duty(r: &SceneResult) -> Option<&DutyCycle> {
+    r.duty.as_deref()
+}
+
+/// "disc k: " with several discs, nothing with one.
+fn disc_prefix(r: &SceneResult, k: usize) -> String {
+    match duty(r).map_or(0, |d| d.life.len()) {
+        0 | 1 => String::new(),
+        _ => format!("disc {k}: "),
+    }
+}
+
+/// The crank bearing's rating life under a duty cycle, hours (ISO 281 with Palmgren–Miner,
+/// `engine::duty_cycle`): L10h = (C/P)^p·10⁶ / (60·Σ sᵢ·nᵢ·(1 + 1/nc)) with
+/// P = (Σ sᵢ·nᵢ·Pᵢ^p / Σ sᵢ·nᵢ)^(1/p); with several discs the shortest disc's
+/// (`DutyCycle::shortest_life`); `results::UNBOUNDED_LIFE_H` when it has no finite bound.
+pub const DUTY_LIFE: Quantity = Quantity {
+    key: "duty_life_h",
+    unit: "h",
+    label: "crank-bearing life under the duty cycle L10h",
+    effect: Effect::Bearing,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        let d = duty(r)?;
+        let (k, b) = d.shortest_life()?;
+        let at = match b.is_unbounded() {
+            true => "unbounded: no bin loads the bearing enough to wear it (written as \
+                     1.798e308 h, the largest number)"
+                .to_string(),
+            false => format!(
+                "at P = {} N, mean speed {} rpm",
+                number(b.equivalent_load_n),
+                number(d.mean_speed_rpm)
+            ),
+        };
+        Some(Extreme {
+            value: b.life_h?,
+            at: format!("{}{at}", disc_prefix(r, k)),
+        })
+    }),
+};
+
+/// The crank bearing's equivalent load under a duty cycle, P = (Σ sᵢ·nᵢ·Pᵢ^p / Σ sᵢ·nᵢ)^(1/p),
+/// N; with several discs the largest disc's.
+pub const DUTY_EQUIVALENT_LOAD: Quantity = Quantity {
+    key: "duty_equivalent_load_n",
+    unit: "N",
+    label: "crank-bearing equivalent load under the duty cycle P",
+    effect: Effect::Bearing,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        let d = duty(r)?;
+        let (k, b) = d.life.iter().enumerate().reduce(|a, b| {
+            if b.1.equivalent_load_n > a.1.equivalent_load_n {
+                b
+            } else {
+                a
+            }
+        })?;
+        Some(Extreme {
+            value: b.equivalent_load_n,
+            at: format!(
+                "{}(Σ share·n·P^p / Σ share·n)^(1/p) over the bins",
+                disc_prefix(r, k)
+            ),
+        })
+    }),
+};
+
+/// The root-mean-cube output torque of a duty cycle weighted by revolutions,
+/// T_eq = (Σ sᵢ·nᵢ·|Tᵢ|³ / Σ sᵢ·nᵢ)^(1/3), N·m (`DutyCycle::equivalent_torque_nmm`).
+pub const EQUIVALENT_TORQUE: Quantity = Quantity {
+    key: "equivalent_torque_nm",
+    unit: "N·m",
+    label: "equivalent output torque (root-mean-cube)",
+    effect: Effect::Bearing,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        let d = duty(r)?;
+        Some(Extreme {
+            value: units::nm(d.equivalent_torque_nmm),
+            at: "(Σ share·n·|T|³ / Σ share·n)^(1/3) over the bins".to_string(),
+        })
+    }),
+};
+
+/// The time-weighted mean input speed of a duty cycle, n_m = Σ sᵢ·nᵢ, rpm.
+pub const MEAN_SPEED: Quantity = Quantity {
+    key: "mean_speed_rpm",
+    unit: "rpm",
+    label: "mean input speed",
+    effect: Effect::Bearing,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        let d = duty(r)?;
+        Some(Extreme {
+            value: d.mean_speed_rpm,
+            at: "Σ share·n over the bins".to_string(),
+        })
+    }),
+};
+
+/// The mean efficiency of a duty cycle weighted by energy, Σ sᵢ·P_out,i / Σ sᵢ·(P_out,i +
+/// lossᵢ), dimensionless (`DutyCycle::mean_efficiency`).
+pub const DUTY_MEAN_EFFICIENCY: Quantity = Quantity {
+    key: "duty_mean_efficiency",
+    unit: "",
+    label: "mean efficiency over the duty cycle (by energy)",
+    effect: Effect::Efficiency,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        Some(Extreme {
+            value: duty(r)?.mean_efficiency?,
+            at: "output energy / input energy over the bins".to_string(),
+        })
+    }),
+};
+
 /// The reducer's efficiency figures of a scene, when computed.
 fn reducer_efficiency(r: &SceneResult) -> Option<&ReducerEfficiency> {
     r.efficiency.as_ref()?.reducer.as_ref()
@@ -974,6 +1144,31 @@ pub const QUANTITIES: &[&Quantity] = &[
     &MEAN_EFFICIENCY,
     &TOTAL_POWER_LOSS,
     &TEMPERATURE,
+    &EQUIVALENT_TORQUE,
+    &MEAN_SPEED,
+    &DUTY_EQUIVALENT_LOAD,
+    &DUTY_LIFE,
+    &DUTY_MEAN_EFFICIENCY,
+];
+
+/// A duty cycle's own figures: only a duty-cycle scene has them (`Quantity::for_duty`).
+pub const DUTY: &[&Quantity] = &[
+    &EQUIVALENT_TORQUE,
+    &MEAN_SPEED,
+    &DUTY_EQUIVALENT_LOAD,
+    &DUTY_LIFE,
+    &DUTY_MEAN_EFFICIENCY,
+];
+
+/// The figures of one run at one speed and torque that a duty cycle replaces by its own
+/// (`DUTY`): a duty-cycle scene has them in each bin's run only, never as the worst bin's (a
+/// bin's life or efficiency is not the cycle's).
+pub const SINGLE_RUN: &[&Quantity] = &[
+    &BEARING_EQUIVALENT_LOAD,
+    &BEARING_LIFE,
+    &MEAN_EFFICIENCY,
+    &TOTAL_POWER_LOSS,
+    &TEMPERATURE,
 ];
 
 /// The quantities read from the closing lags of the rollers (`Detail::Backlash`): computed only
@@ -1001,6 +1196,11 @@ pub const SUMMARY: &[&Quantity] = &[
     &MEAN_EFFICIENCY,
     &TOTAL_POWER_LOSS,
     &TEMPERATURE,
+    &DUTY_LIFE,
+    &EQUIVALENT_TORQUE,
+    &MEAN_SPEED,
+    &DUTY_EQUIVALENT_LOAD,
+    &DUTY_MEAN_EFFICIENCY,
 ];
 
 /// The scalars that are max − min of their curve (`of`) rather than a value on it: a limit on
@@ -1157,6 +1357,13 @@ pub const LIMITS: &[LimitDef] = &[
     LimitDef {
         key: "min_bearing_life_h",
         quantity: &BEARING_LIFE,
+        bound: Bound::Min,
+        whole: false,
+        range: ANY,
+    },
+    LimitDef {
+        key: "min_duty_life_h",
+        quantity: &DUTY_LIFE,
         bound: Bound::Min,
         whole: false,
         range: ANY,

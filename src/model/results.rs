@@ -324,4 +324,48 @@ pub struct SceneResult {
     /// (with its torque share). The scene's own `clearance` is then `None` and its `loaded`
     /// holds the reducer's transmission alone (the common output lag γ). Empty for one disc.
     pub discs: Vec<SceneResult>,
+    /// A duty-cycle scene's bins and what the cycle gives (`engine::duty_cycle`); the scene's
+    /// own curves are then empty (each bin has its own), and a scalar of the registry is the
+    /// worst over the bins (`Quantity::scalar`). `None` for an ordinary scene.
+    pub duty: Option<Box<DutyCycle>>,
+}
+
+/// A duty cycle's results (`engine::duty_cycle`, ISO 281 with the Palmgren–Miner rule).
+#[derive(Debug, Clone)]
+pub struct DutyCycle {
+    /// Each bin as given and its run as a loaded scene, in the spec's order.
+    pub bins: Vec<DutyBinResult>,
+    /// T_eq = (Σ sᵢ·nᵢ·|Tᵢ|³ / Σ sᵢ·nᵢ)^(1/3), N·mm: the root-mean-cube output torque weighted
+    /// by the revolutions each bin turns (sᵢ the time share, nᵢ the input speed).
+    pub equivalent_torque_nmm: f64,
+    /// n_m = Σ sᵢ·nᵢ, rpm: the time-weighted mean input speed.
+    pub mean_speed_rpm: f64,
+    /// Each disc's crank bearing under the cycle (one entry per disc), when the design has a
+    /// `crank_bearing` and the crank range spans whole loaded periods; else empty.
+    pub life: Vec<BearingLife>,
+    /// Σ sᵢ·P_out,i / Σ sᵢ·(P_out,i + lossᵢ): the mean efficiency weighted by energy, with
+    /// `efficiency` (P_out,i and lossᵢ the bin's output power and mean loss at its speed).
+    pub mean_efficiency: Option<f64>,
+}
+
+/// One bin of a duty cycle and its run.
+#[derive(Debug, Clone)]
+pub struct DutyBinResult {
+    /// The bin as given.
+    pub bin: crate::model::DutyBin,
+    /// The scene run at the bin's torque and speed (named `<scene> bin i`).
+    pub result: SceneResult,
+}
+
+impl DutyCycle {
+    /// The reducer's life under the cycle: the shortest of its discs' (each disc has its own
+    /// crank bearing), with the disc; `None` when not rated.
+    pub fn shortest_life(&self) -> Option<(usize, BearingLife)> {
+        self.life
+            .iter()
+            .copied()
+            .enumerate()
+            .filter(|(_, b)| b.life_h.is_some())
+            .min_by(|a, b| a.1.life_h.partial_cmp(&b.1.life_h).unwrap())
+    }
 }

@@ -72,6 +72,36 @@ pub struct Scene {
     /// Input (crank) speed, rpm (spec: `input_speed_rpm`): the speed of the crank-bearing
     /// rating life.
     pub input_speed_rpm: Option<f64>,
+    /// A duty cycle (spec: `duty_cycle`) in place of the scene's own torque and speed: each
+    /// bin runs as this scene loaded at its torque and speed (`engine::duty_cycle`); `None`
+    /// for an ordinary scene.
+    pub duty_cycle: Option<Vec<DutyBin>>,
+}
+
+/// One bin of a duty cycle (spec: `scenes[].duty_cycle[]`): the reducer runs at this output
+/// torque and input speed for this share of the time. The shares of a cycle sum to 1.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DutyBin {
+    /// Output torque T_i, N·mm (spec: `output_torque_nm`), as a scene's `output_torque_nmm`.
+    pub output_torque_nmm: f64,
+    /// Input (crank) speed n_i, rpm (spec: `input_speed_rpm`), ≥ 0; 0 is a standstill,
+    /// which turns nothing and wears the bearing by no revolution.
+    pub input_speed_rpm: f64,
+    /// The share of the time spent in this bin, in [0, 1] (spec: `time_share`).
+    pub time_share: f64,
+}
+
+impl DutyBin {
+    /// The scene one bin runs as: `scene` at the bin's torque and speed (no speed at a
+    /// standstill: no life in hours, no watts), without the cycle.
+    pub fn scene(&self, scene: &Scene) -> Scene {
+        Scene {
+            output_torque_nmm: self.output_torque_nmm,
+            input_speed_rpm: (self.input_speed_rpm > 0.0).then_some(self.input_speed_rpm),
+            duty_cycle: None,
+            ..scene.clone()
+        }
+    }
 }
 
 /// The torque loop of a torsion scene (spec: `torque_sweep: {rated_nm, steps}`): at each
@@ -152,6 +182,9 @@ pub struct Plan {
     pub effects: Vec<PlannedEffect>,
     /// The details of planned effects that something reads (none unless asked: `Plan::ask`).
     pub details: Vec<PlannedDetail>,
+    /// The scene runs a duty cycle (`Scene::duty_cycle`): its quantities are the cycle's
+    /// (`Quantity::for_duty`), each bin's in its own result.
+    pub duty: bool,
 }
 
 impl Plan {
@@ -174,6 +207,7 @@ impl Plan {
             scene: scene.name.clone(),
             effects,
             details: Vec::new(),
+            duty: scene.duty_cycle.is_some(),
         }
     }
 
@@ -189,6 +223,7 @@ impl Plan {
             scene: scene.to_string(),
             effects: planned,
             details: Vec::new(),
+            duty: false,
         }
     }
 
@@ -208,6 +243,13 @@ impl Plan {
     /// under its torque loop, not over the crank angle).
     pub fn computes(&self, effect: Effect) -> bool {
         self.has(effect) && !(effect.is_loaded() && self.has(Effect::Torsion))
+    }
+
+    /// Whether this plan computes `quantity`: its effect is computed, and the quantity is one
+    /// that a scene of its kind has (a duty cycle's figures only in a duty-cycle scene, a
+    /// single run's bearing life only outside one: `Quantity::for_duty`).
+    pub fn computes_quantity(&self, quantity: &Quantity) -> bool {
+        self.computes(quantity.effect) && quantity.for_duty().is_none_or(|d| d == self.duty)
     }
 
     /// `quantity` is read by `by` (a limit, a golden, an objective, an output): plan the detail

@@ -223,6 +223,78 @@ pub struct SceneDoc<'a> {
     /// With several discs, each disc's curves and scalars (MODEL.md "Several discs").
     #[serde(skip_serializing_if = "Vec::is_empty")]
     discs: Vec<SceneDoc<'a>>,
+    /// A duty-cycle scene's bins and each disc's life under the cycle (`DutyDoc`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    duty_cycle: Option<DutyDoc<'a>>,
+}
+
+/// A duty-cycle scene's block (`engine::duty_cycle`): each disc's crank bearing under the
+/// cycle and each bin with its run. The cycle's figures (`duty_life_h`,
+/// `equivalent_torque_nm`, `mean_speed_rpm`, …) are the scene's scalars.
+#[derive(Serialize)]
+pub struct DutyDoc<'a> {
+    /// Each disc's equivalent load and life under the cycle (rated only).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    discs: Vec<DutyLifeDoc>,
+    bins: Vec<DutyBinDoc<'a>>,
+}
+
+/// One disc's crank bearing under a duty cycle.
+#[derive(Serialize)]
+pub struct DutyLifeDoc {
+    equivalent_load_n: Finite,
+    life_h: Option<Finite>,
+}
+
+/// One bin of a duty cycle: as given, its share of the revolutions sᵢ·nᵢ/Σ sⱼ·nⱼ, its own
+/// equivalent load of each disc's bearing, peak pressure and mean efficiency, and its whole
+/// run (the curves and scalars of a scene).
+#[derive(Serialize)]
+pub struct DutyBinDoc<'a> {
+    output_torque_nm: Finite,
+    input_speed_rpm: Finite,
+    time_share: Finite,
+    revolution_share: Finite,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    equivalent_load_n: Option<Vec<Finite>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_contact_pressure_mpa: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mean_efficiency: Option<Finite>,
+    results: SceneDoc<'a>,
+}
+
+impl<'a> DutyDoc<'a> {
+    fn new(r: &'a SceneResult) -> Option<Self> {
+        let d = r.duty.as_deref()?;
+        Some(DutyDoc {
+            discs: (d.life.iter())
+                .map(|b| DutyLifeDoc {
+                    equivalent_load_n: Finite(b.equivalent_load_n),
+                    life_h: b.life_h.map(Finite),
+                })
+                .collect(),
+            bins: (d.bins.iter())
+                .map(|b| DutyBinDoc {
+                    output_torque_nm: Finite(units::nm(b.bin.output_torque_nmm)),
+                    input_speed_rpm: Finite(b.bin.input_speed_rpm),
+                    time_share: Finite(b.bin.time_share),
+                    revolution_share: Finite(
+                        b.bin.time_share * b.bin.input_speed_rpm / d.mean_speed_rpm,
+                    ),
+                    equivalent_load_n: crate::engine::duty_cycle::bin_equivalent_loads(&b.result)
+                        .map(finite),
+                    max_contact_pressure_mpa: q::MAX_CONTACT_PRESSURE
+                        .scalar(&b.result)
+                        .map(|e| Finite(e.value)),
+                    mean_efficiency: q::MEAN_EFFICIENCY
+                        .scalar(&b.result)
+                        .map(|e| Finite(e.value)),
+                    results: SceneDoc::disc(&b.result),
+                })
+                .collect(),
+        })
+    }
 }
 
 /// A torsion scene's block in the results JSON (flattened into the scene object): its loop,
@@ -432,6 +504,7 @@ impl<'a> SceneDoc<'a> {
             ),
             torsion: TorsionDoc::new(r),
             discs: r.discs.iter().map(SceneDoc::disc).collect(),
+            duty_cycle: DutyDoc::new(r),
         }
     }
 

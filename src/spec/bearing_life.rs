@@ -18,6 +18,9 @@ use crate::{numeric, units};
 /// The limit's key.
 const KEY: &str = "min_bearing_life_h";
 
+/// The duty cycle's limit (`scenes[].duty_cycle`): the same rules, the speeds the bins'.
+const DUTY_KEY: &str = "min_duty_life_h";
+
 /// The rule on the spec's scenes (`scenes`, the spec's list) for the reducer `design`;
 /// `built` says what made it differ from the drawing (`None`: the spec's own reducer), for
 /// the error to name.
@@ -40,32 +43,38 @@ pub(crate) fn check_scene(
     (i, s): (usize, &Scene),
     built: Option<&str>,
 ) -> Result<()> {
-    if !limits.entries.iter().any(|l| l.def.key == KEY) {
-        return Ok(());
+    for key in [KEY, DUTY_KEY] {
+        let Some(limit) = limits.entries.iter().find(|l| l.def.key == key) else {
+            continue;
+        };
+        if design.crank_bearing.is_none() {
+            return Err(Error::invalid(
+                format!("limits.{key}"),
+                "a bearing life needs the bearing's rating: give `reducer.crank_bearing: \
+                 {dynamic_load_rating_n}`"
+                    .into(),
+            ));
+        }
+        if Plan::for_scene(s).computes_quantity(limit.def.quantity) {
+            scene(design, (i, s), built, key)?;
+        }
     }
-    if design.crank_bearing.is_none() {
-        return Err(Error::invalid(
-            format!("limits.{KEY}"),
-            "a bearing life needs the bearing's rating: give `reducer.crank_bearing: \
-             {dynamic_load_rating_n}`"
-                .into(),
-        ));
-    }
-    scene(design, (i, s), built)
+    Ok(())
 }
 
-/// The rule on scene `i` of the spec: when it computes the bearing force, an input speed and
+/// The rule of the limit `KEY` (`min_bearing_life_h` or `min_duty_life_h`) on scene `i` of
+/// the spec, which computes its life: an input speed (a duty cycle's bins have theirs) and
 /// whole loaded periods of `design`.
-fn scene(design: &Design, (i, s): (usize, &Scene), built: Option<&str>) -> Result<()> {
+fn scene(design: &Design, (i, s): (usize, &Scene), built: Option<&str>, key: &str) -> Result<()> {
     let plan = Plan::for_scene(s);
     if !plan.computes(Effect::Bearing) {
         return Ok(());
     }
-    if s.input_speed_rpm.is_none() {
+    if s.input_speed_rpm.is_none() && s.duty_cycle.is_none() {
         return Err(Error::invalid(
             format!("scenes[{i}]"),
             format!(
-                "limits.{KEY} applies to scene `{}`, which computes the bearing force: it \
+                "limits.{key} applies to scene `{}`, which computes the bearing force: it \
                  needs `input_speed_rpm` (the life in hours is at the crank's speed relative \
                  to the disc)",
                 s.name
@@ -83,7 +92,7 @@ fn scene(design: &Design, (i, s): (usize, &Scene), built: Option<&str>) -> Resul
     Err(Error::invalid(
         format!("scenes[{i}].crank"),
         format!(
-            "limits.{KEY} applies to scene `{}`, whose crank range {}° to {}° is not a whole \
+            "limits.{key} applies to scene `{}`, whose crank range {}° to {}° is not a whole \
              number of loaded periods ({}°{of}): the equivalent load is a mean over whole \
              load cycles (ISO 281); the nearest ranges of whole periods: {}",
             s.name,

@@ -31,9 +31,23 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
         let covered = spec
             .scenes
             .iter()
-            .any(|s| Plan::for_scene(s).computes(effect));
+            .any(|s| Plan::for_scene(s).computes_quantity(d.quantity));
         if !covered {
             let how = match effect {
+                _ if d.quantity.for_duty() == Some(true) => {
+                    format!("give a scene computing `{}` a `duty_cycle`", effect.name())
+                }
+                _ if d.quantity.for_duty() == Some(false)
+                    && spec.scenes.iter().any(|s| s.duty_cycle.is_some()) =>
+                {
+                    format!(
+                        "a scene with a `duty_cycle` has its own figures (`duty_life_h`, \
+                         `duty_mean_efficiency`: limits.min_duty_life_h), each bin's `{}` in \
+                         its run; add the effect `{}` to a scene without a duty cycle",
+                        d.quantity.key,
+                        effect.name()
+                    )
+                }
                 Effect::Torsion => "give a scene `torque_sweep: {rated_nm, steps}`".to_string(),
                 e if e.is_loaded() => format!(
                     "add the effect `{}` to a scene loaded over the crank angle (not a \

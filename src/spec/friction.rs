@@ -291,7 +291,10 @@ pub(super) fn check_limits(limits: &Limits, design: &Design, scenes: &[Scene]) -
             ));
         }
         for (i, s) in scenes.iter().enumerate() {
-            if Plan::for_scene(s).computes(Effect::Efficiency) && s.input_speed_rpm.is_none() {
+            let plan = Plan::for_scene(s);
+            if plan.computes_quantity(&crate::model::quantity::TOTAL_POWER_LOSS)
+                && s.input_speed_rpm.is_none()
+            {
                 return Err(Error::invalid(
                     format!("scenes[{i}]"),
                     format!(

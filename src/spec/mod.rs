@@ -6,6 +6,7 @@
 pub(crate) mod bearing_life;
 pub(crate) mod coverage;
 pub(crate) mod deviations;
+pub mod duty_cycle;
 pub mod edit;
 pub(crate) mod friction;
 #[doc(hidden)]

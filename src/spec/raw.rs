@@ -471,6 +471,21 @@ pub(crate) struct RawScene {
     pub geometry: Option<String>,
     #[serde(default)]
     pub bearing_stiffness_n_per_mm: Option<f64>,
+    /// A duty cycle in place of the scene's own torque and speed.
+    #[serde(default)]
+    pub duty_cycle: Option<Vec<RawDutyBin>>,
+}
+
+/// One bin of `scenes[].duty_cycle`.
+#[derive(Debug, Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a duty-cycle bin: a mapping with the keys output_torque_nm, input_speed_rpm, time_share"
+)]
+pub(crate) struct RawDutyBin {
+    pub output_torque_nm: f64,
+    pub input_speed_rpm: f64,
+    pub time_share: f64,
 }
 
 #[derive(Debug, Deserialize)]

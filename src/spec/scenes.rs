@@ -38,3 +38,23 @@ pub fn scene_names(scenes: &[Scene]) -> String {
         .collect::<Vec<_>>()
         .join(", ")
 }
+
+/// Refuse scene `index` at `key` when it runs a duty cycle: `what` (a golden curve, a study,
+/// the accuracy ladder, a tolerance study) reads one run of a scene over its crank angles, and
+/// a duty-cycle scene runs one per bin.
+pub(crate) fn refuse_duty(scenes: &[Scene], index: usize, key: &str, what: &str) -> Result<()> {
+    let scene = &scenes[index];
+    match &scene.duty_cycle {
+        Some(bins) => Err(crate::error::Error::new(
+            crate::error::ErrorKind::InvalidValue,
+            format!(
+                "scene `{}` runs a duty cycle ({} bins, one run each): {what} needs one run of \
+                 a scene; name a scene with its own `output_torque_nm`",
+                scene.name,
+                bins.len()
+            ),
+        )
+        .at_key(key)),
+        None => Ok(()),
+    }
+}

@@ -57,6 +57,7 @@ pub(crate) fn build(
         Some(d) => d.parse().map_err(|m| invalid("distribution", m))?,
     };
     let scene = super::scenes::scene_index(scenes, &raw.scene, &format!("{KEY}.scene"))?;
+    super::scenes::refuse_duty(scenes, scene, &format!("{KEY}.scene"), "a tolerance study")?;
     if scenes[scene].geometry != GeometryMode::Exact {
         return Err(invalid(
             "scene",

@@ -3,7 +3,7 @@
 
 use super::paths::resolve;
 use super::raw::*;
-use super::scenes::{refuse_first_order, scene_index};
+use super::scenes::{refuse_duty, refuse_first_order, scene_index};
 use super::validated::{Accuracy, Spec};
 use super::values::{finite, length, positive};
 use super::yaml::did_you_mean;
@@ -424,6 +424,7 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
         .map(|k| positive(&format!("{key}.bearing_stiffness_n_per_mm"), k))
         .transpose()?;
     let crank_rad = crank(&format!("{key}.crank"), &raw.crank, rollers, used)?;
+    let duty_cycle = super::duty_cycle::duty_cycle(&key, &raw, &effects)?;
     let torque_sweep = match &raw.torque_sweep {
         Some(t) => {
             if raw.output_torque_nm.is_some() {
@@ -461,6 +462,7 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
         contact_law,
         geometry,
         bearing_stiffness_n_per_mm,
+        duty_cycle,
     })
 }
 
@@ -729,6 +731,7 @@ fn not_torsion(key: &str, scene: &Scene, what: &str) -> Result<()> {
 /// rungs of the ladder, the tolerances are positive.
 fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Result<Accuracy> {
     let scene = scene_index(scenes, &raw.scene, "accuracy.scene")?;
+    refuse_duty(scenes, scene, "accuracy.scene", "the accuracy ladder")?;
     let steps = |key: &str, value: Option<i64>, min: usize| {
         value
             .map(|n| {
@@ -792,7 +795,8 @@ fn golden_entry(
             ))
         }
     };
-    scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
+    let index = scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
+    refuse_duty(scenes, index, &format!("{key}.scene"), "a golden curve")?;
     let quantity = quantity::find_curve(&raw.quantity).ok_or_else(|| {
         Error::invalid(
             format!("{key}.quantity"),
@@ -954,6 +958,7 @@ fn study(
 ) -> Result<Study> {
     let scene = scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     not_torsion(&format!("{key}.scene"), &scenes[scene], "a study")?;
+    refuse_duty(scenes, scene, &format!("{key}.scene"), "a study")?;
     let mut variables = Vec::new();
     let v = &raw.variables;
     for (kind, b) in [

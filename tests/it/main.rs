@@ -21,6 +21,7 @@ mod cli_help;
 mod contact;
 mod deviations;
 mod discs;
+mod duty_cycle;
 mod equilibrium;
 mod export;
 mod fault_injection;

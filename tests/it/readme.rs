@@ -73,6 +73,7 @@ fn accepted_keys() -> Vec<String> {
         ("RawScene", "scenes[]."),
         ("RawTorqueSweep", "scenes[].torque_sweep."),
         ("RawCrank", "scenes[].crank."),
+        ("RawDutyBin", "scenes[].duty_cycle."),
         ("RawGolden", "golden[]."),
         ("RawTolerance", "golden[].tolerance."),
         ("RawAccuracy", "accuracy."),

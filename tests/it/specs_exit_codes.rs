@@ -38,6 +38,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "paper optimum with friction: efficiency, losses and temperature at 20 N·m, 1500 rpm",
     ),
     (
+        "reducer-duty-cycle.yaml",
+        0,
+        "paper optimum through a robot joint's 4-bin duty cycle: Palmgren–Miner life 7571 h",
+    ),
+    (
         "reducer-two-discs.yaml",
         0,
         "paper optimum with two discs: equal shares, torsion, bearing life, per-disc goldens",

@@ -236,7 +236,7 @@ pub fn scenes(spec: &Spec, writes: Writes, progress: &dyn Progress) -> Result<Ve
         .scenes
         .iter()
         .zip(&plans)
-        .map(|(s, plan)| s.crank_rad.len() * scene::sweeps(plan, spec.design.discs))
+        .map(|(s, plan)| s.crank_rad.len() * scene::scene_sweeps(s, plan, spec.design.discs))
         .sum();
     let phase = Phase {
         worth_showing: SCENES_WORTH_SHOWING,

@@ -500,6 +500,7 @@ mod tests {
             torsion: None,
             bearing_life: None,
             discs: Vec::new(),
+            duty: None,
         };
         let got = smallest_gap_um(&r).unwrap();
         assert!(

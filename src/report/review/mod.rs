@@ -12,7 +12,7 @@
 //! This module builds the page; each section is built in its own module, by what it shows:
 //! `summary` (headline results), `design`, `as_built` (a measured disc), `checks` (limits and
 //! golden curves), `disc` (the drawing), `scenes` (each scene's `plots`), `torsion`,
-//! `bearing_life`, `optimisation`, `accuracy`. `common` holds the blocks they share and `shell`
+//! `bearing_life`, `duty_cycle`, `optimisation`, `accuracy`. `common` holds the blocks they share and `shell`
 //! the frame of a page (also the tolerance study's review, `tolerance`).
 
 pub mod accuracy;
@@ -22,6 +22,7 @@ pub mod checks;
 pub mod common;
 pub mod design;
 pub mod disc;
+mod duty_cycle;
 mod efficiency;
 pub mod optimisation;
 pub mod plots;
@@ -101,6 +102,7 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         &mut files,
     ));
     sections.extend(bearing_life::section(input.spec, input.results));
+    sections.extend(duty_cycle::section(input.spec, input.results));
     sections.extend(efficiency::section_of(
         input.spec,
         input.results,

@@ -1,0 +1,154 @@
+//! A duty cycle (issue 31): a scene's bins of output torque Tᵢ, input speed nᵢ and time share
+//! sᵢ (Σ sᵢ = 1), each run as the scene loaded at its torque and speed over the scene's crank
+//! range (`engine::scene` runs them), combined here.
+//!
+//! - Crank-bearing life (ISO 281 with the Palmgren–Miner rule; MODEL.md "Several discs,
+//!   torsion, bearing life"): bin i wears the bearing of disc k with its own equivalent load
+//!   P_ik = (mean of Fb^p over its loaded period)^(1/p) at its revolutions, which are in
+//!   proportion to sᵢ·nᵢ. Miner's sum of damage fractions gives the constant load that wears
+//!   alike, P_k = (Σ sᵢ·nᵢ·P_ik^p / Σ sᵢ·nᵢ)^(1/p), and L10 = (C/P_k)^p·10⁶ revolutions of the
+//!   crank relative to the disc, turned at Σ sᵢ·nᵢ·(1 + 1/nc) on the time mean:
+//!   L10h = L10 / (60·Σ sᵢ·nᵢ·(1 + 1/nc)) hours. A bin at a standstill (nᵢ = 0) turns no
+//!   revolution and adds no damage, whatever its load. Each disc has its own bearing; the
+//!   reducer's life is the shortest disc's (as `bearing_life_h` with several discs).
+//! - Equivalent output torque: T_eq = (Σ sᵢ·nᵢ·|Tᵢ|³ / Σ sᵢ·nᵢ)^(1/3), the root-mean-cube
+//!   weighted by the revolutions each bin turns: the "average load torque" of the makers'
+//!   selection procedures (Harmonic Drive's catalogues, cube law; Nabtesco's RV catalogue
+//!   writes the same mean with the exponent 10/3 of its bearings).
+//! - Mean speed n_m = Σ sᵢ·nᵢ, rpm (the time mean of the input speed).
+//! - Mean efficiency weighted by energy, with `efficiency`: η = Σ sᵢ·P_out,i / Σ sᵢ·(P_out,i +
+//!   lossᵢ), P_out,i = |Tᵢ|·ωᵢ/nc and lossᵢ the bin's mean loss at ωᵢ (its losses per unit
+//!   speed × ωᵢ, ωᵢ ∝ nᵢ): the output energy over the input energy of one cycle. A bin at a
+//!   standstill moves no energy. With no energy moved at all it is 1 (nothing lost).
+
+use crate::engine::bearing_life;
+use crate::model::results::{BearingLife, DutyBinResult, DutyCycle, SceneResult};
+use crate::model::Design;
+
+/// The weighted power mean (Σ wᵢ·xᵢ^p / Σ wᵢ)^(1/p) of magnitudes `x` (≥ 0) with weights
+/// `w` (≥ 0, not all 0), scaled by the largest x so that x^p cannot overflow; 0 when every
+/// weighted x is 0.
+pub fn weighted_power_mean(pairs: &[(f64, f64)], p: f64) -> f64 {
+    let largest = pairs
+        .iter()
+        .filter(|(w, _)| *w > 0.0)
+        .fold(0.0f64, |m, (_, x)| m.max(x.abs()));
+    let weight: f64 = pairs.iter().map(|(w, _)| w).sum();
+    if largest == 0.0 || weight <= 0.0 {
+        return 0.0;
+    }
+    // A zero weight leaves its value out (its x may exceed the largest weighted one).
+    let sum: f64 = pairs
+        .iter()
+        .filter(|(w, _)| *w > 0.0)
+        .map(|(w, x)| w * (x.abs() / largest).powf(p))
+        .sum();
+    largest * (sum / weight).powf(1.0 / p)
+}
+
+/// Each bin's revolution weight sᵢ·nᵢ (rpm), in the bins' order.
+fn revolution_weights(bins: &[DutyBinResult]) -> Vec<f64> {
+    bins.iter()
+        .map(|b| b.bin.time_share * b.bin.input_speed_rpm)
+        .collect()
+}
+
+/// The crank-bearing equivalent load of each disc in one bin's run, N (one entry per disc);
+/// `None` when the bin's run did not rate it (no `crank_bearing`, or not whole loaded periods).
+pub fn bin_equivalent_loads(r: &SceneResult) -> Option<Vec<f64>> {
+    if r.discs.is_empty() {
+        return r.bearing_life.map(|b| vec![b.equivalent_load_n]);
+    }
+    r.discs
+        .iter()
+        .map(|d| d.bearing_life.map(|b| b.equivalent_load_n))
+        .collect()
+}
+
+/// The cycle's results from its bins' runs: the lives of `design`'s discs, the equivalent
+/// torque, the mean speed and the energy-weighted efficiency (see the module's formulas).
+pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
+    let weights = revolution_weights(&bins);
+    let mean_speed_rpm: f64 = weights.iter().sum();
+    let torques: Vec<(f64, f64)> = weights
+        .iter()
+        .zip(&bins)
+        .map(|(&w, b)| (w, b.bin.output_torque_nmm))
+        .collect();
+    let equivalent_torque_nmm = weighted_power_mean(&torques, 3.0);
+    let life = match design.crank_bearing {
+        Some(rating) => {
+            let loads: Option<Vec<Vec<f64>>> = bins
+                .iter()
+                .map(|b| bin_equivalent_loads(&b.result))
+                .collect();
+            loads.map_or_else(Vec::new, |loads| {
+                let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
+                (0..design.discs)
+                    .map(|k| {
+                        let pairs: Vec<(f64, f64)> = weights
+                            .iter()
+                            .zip(&loads)
+                            .map(|(&w, l)| (w, l[k]))
+                            .collect();
+                        let load = weighted_power_mean(&pairs, p);
+                        BearingLife {
+                            equivalent_load_n: load,
+                            life_h: Some(bearing_life::life_h(
+                                load,
+                                c,
+                                p,
+                                mean_speed_rpm,
+                                design.teeth,
+                            )),
+                        }
+                    })
+                    .collect()
+            })
+        }
+        None => Vec::new(),
+    };
+    DutyCycle {
+        mean_efficiency: energy_efficiency(&bins),
+        bins,
+        equivalent_torque_nmm,
+        mean_speed_rpm,
+        life,
+    }
+}
+
+/// Σ sᵢ·nᵢ·P_out,i / Σ sᵢ·nᵢ·(P_out,i + lossᵢ), the powers per unit speed (`ReducerEfficiency::
+/// output_power_nmm`, `EfficiencyCurves::mean_loss_nmm`) times nᵢ (∝ ωᵢ); `None` unless every
+/// bin computed the efficiency; 1 when no energy moves.
+fn energy_efficiency(bins: &[DutyBinResult]) -> Option<f64> {
+    let (mut out, mut input) = (0.0, 0.0);
+    for b in bins {
+        let e = b.result.efficiency.as_ref()?;
+        let reducer = e.reducer.as_ref()?;
+        let w = b.bin.time_share * b.bin.input_speed_rpm;
+        out += w * reducer.output_power_nmm;
+        input += w * (reducer.output_power_nmm + e.mean_loss_nmm.total());
+    }
+    Some(if input > 0.0 { out / input } else { 1.0 })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::weighted_power_mean;
+
+    /// Equal values give that value whatever the weights; zero weights leave a value out; the
+    /// cube mean of (1, 2) with equal weights is (9/2)^(1/3); huge values do not overflow.
+    #[test]
+    fn the_weighted_power_mean_is_a_mean() {
+        assert_eq!(
+            weighted_power_mean(&[(0.3, 5.0), (0.7, 5.0)], 10.0 / 3.0),
+            5.0
+        );
+        assert_eq!(weighted_power_mean(&[(0.0, 9.0), (2.0, 4.0)], 3.0), 4.0);
+        let m = weighted_power_mean(&[(1.0, 1.0), (1.0, 2.0)], 3.0);
+        assert!((m - 4.5f64.cbrt()).abs() < 1e-15, "{m}");
+        let big = weighted_power_mean(&[(1.0, 1e300), (1.0, 1e300)], 10.0);
+        assert!((big / 1e300 - 1.0).abs() < 1e-15, "{big}");
+        assert_eq!(weighted_power_mean(&[(1.0, 0.0)], 3.0), 0.0);
+    }
+}

@@ -1,0 +1,83 @@
+//! The review's duty cycles ([`engine::duty_cycle`](crate::engine::duty_cycle)): per duty-cycle
+//! scene the cycle's figures (crank-bearing life by Palmgren–Miner, equivalent torque, mean
+//! speed, energy-weighted efficiency) and a table of its bins.
+
+use super::common::{self, data_table, signed, Section};
+use crate::engine::duty_cycle::bin_equivalent_loads;
+use crate::model::quantity::{MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY};
+use crate::model::results::SceneResult;
+use crate::numeric::number;
+use crate::spec::Spec;
+use crate::units;
+use maud::html;
+
+/// The duty cycles of the spec's scenes, one block per duty-cycle scene; `None` without one.
+pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
+    let cycles: Vec<_> = spec
+        .scenes
+        .iter()
+        .zip(results)
+        .filter_map(|(s, r)| Some((s, r.duty.as_deref()?)))
+        .collect();
+    if cycles.is_empty() {
+        return None;
+    }
+    let optional = |x: Option<f64>| x.map_or("—".to_string(), number);
+    let body = html! {
+        p.note {
+            "Each bin runs as its scene loaded at the bin's torque and speed over the scene's \
+             crank range. ISO 281 with the Palmgren–Miner rule: P = (Σ sᵢ·nᵢ·Pᵢ^p / \
+             Σ sᵢ·nᵢ)^(1/p), Pᵢ each bin's equivalent load over its loaded period, \
+             L10h = (C/P)^p · 10⁶ / (60 · Σ sᵢ·nᵢ · (1 + 1/nc)); a bin at a standstill turns no \
+             revolution. Equivalent torque T_eq = (Σ sᵢ·nᵢ·|Tᵢ|³ / Σ sᵢ·nᵢ)^(1/3) (weighted by \
+             revolutions), mean speed Σ sᵢ·nᵢ; mean efficiency by energy \
+             Σ sᵢ·P_out,i / Σ sᵢ·(P_out,i + lossᵢ)."
+        }
+        @for (s, d) in &cycles {
+            h3 { "Scene " code { (s.name) } }
+            ul {
+                @for (k, b) in d.life.iter().enumerate() {
+                    li {
+                        @if d.life.len() > 1 { "disc " (k) ": " }
+                        "crank-bearing life L10h "
+                        (b.life_h.map_or("not rated".to_string(), |h| match b.is_unbounded() {
+                            true => "unbounded".to_string(),
+                            false => format!("{} h", number(h)),
+                        }))
+                        " at P = " (number(b.equivalent_load_n)) " N"
+                    }
+                }
+                @if d.life.is_empty() {
+                    li { "crank-bearing life not rated (no `reducer.crank_bearing`, or the crank \
+                          range is not whole loaded periods)" }
+                }
+                li { "equivalent output torque " (signed(number(units::nm(d.equivalent_torque_nmm)))) " N·m" }
+                li { "mean input speed " (number(d.mean_speed_rpm)) " rpm" }
+                @if let Some(e) = d.mean_efficiency {
+                    li { "mean efficiency by energy " (number(e)) }
+                }
+            }
+            (data_table(
+                html! {
+                    th { "bin" } th { "output torque (N·m)" } th { "input speed (rpm)" }
+                    th { "time share" } th { "share of revolutions" }
+                    th { "equivalent load Pᵢ (N)" } th { "peak pressure (MPa)" }
+                    th { "mean efficiency" }
+                },
+                html! { @for (j, b) in d.bins.iter().enumerate() { tr {
+                    td { (j) }
+                    td { (signed(number(units::nm(b.bin.output_torque_nmm)))) }
+                    td { (number(b.bin.input_speed_rpm)) }
+                    td { (number(b.bin.time_share)) }
+                    td { (number(b.bin.time_share * b.bin.input_speed_rpm / d.mean_speed_rpm)) }
+                    td { (bin_equivalent_loads(&b.result).map_or("—".to_string(), |p| {
+                        p.iter().map(|&x| number(x)).collect::<Vec<_>>().join(", ")
+                    })) }
+                    td { (optional(MAX_CONTACT_PRESSURE.scalar(&b.result).map(|e| e.value))) }
+                    td { (optional(MEAN_EFFICIENCY.scalar(&b.result).map(|e| e.value))) }
+                } } },
+            ))
+        }
+    };
+    Some(common::section("duty-cycle", html! { "Duty cycle" }, body))
+}

@@ -8,9 +8,10 @@
 //! carry a positive output torque. Exact derivatives: ∂gap/∂βo = −(Q − O) × û and ∂gap/∂u = û.
 
 use super::balance::impl_contact;
+use crate::contact::face_width::FaceWidth;
 use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::{cross, rotate, sin_cos, Vec2};
-use crate::model::{ContactLaw, Design};
+use crate::model::{ContactLaw, Design, Face};
 
 /// One pin's contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,6 +59,9 @@ pub struct Pins {
     /// (pin, hole) displacements of the disc this model solves, turned with `base`; empty when
     /// its pins and holes are nominal.
     parts: Vec<(Vec2, Vec2)>,
+    /// The pins' contact along the face width when the disc is tilted (`with_face`; the holes
+    /// are not crowned); `None`: the 2-D contact.
+    face: Option<FaceWidth>,
 }
 
 /// Unit vectors of the pins' nominal places, (cos 2πj/M, sin 2πj/M).
@@ -119,6 +123,7 @@ impl Pins {
             pin_offsets,
             hole_offsets,
             parts: Vec::new(),
+            face: None,
         };
         pins.for_disc(0, 0.0)
     }
@@ -141,6 +146,21 @@ impl Pins {
                 .collect(),
             None => Vec::new(),
         };
+        self
+    }
+
+    /// These pins with their contacts along the face `face`: a tilt of the disc against the
+    /// housing (and the output flange) varies each pin's approach along the face
+    /// (`contact::face_width`); the disc's crowning is of its flanks, not its holes.
+    pub fn with_face(mut self, face: &Face) -> Self {
+        self.face = (!face.misalignment.is_zero()).then(|| {
+            FaceWidth::new(
+                face,
+                self.contact.length_mm,
+                self.contact.contact_modulus_mpa,
+                false,
+            )
+        });
         self
     }
 
@@ -268,7 +288,11 @@ impl Pins {
         hole: Vec2,
         gap_slope_mm: f64,
     ) -> PinState {
-        let cf = if gap_mm < 0.0 {
+        let cf = if let Some(face) = &self.face {
+            // The pin pushes the disc along `direction`.
+            let t = face.approach_slope((direction.x, direction.y));
+            face.force(self.law, &self.contact, -gap_mm, t)
+        } else if gap_mm < 0.0 {
             law::force(self.law, &self.contact, -gap_mm)
         } else {
             ContactForce::NONE
@@ -284,9 +308,11 @@ impl Pins {
         }
     }
 
-    /// Linear-law stiffness, N/mm, when the law is linear.
+    /// Linear-law stiffness, N/mm, when the law is linear and the face uniform (a constant
+    /// stiffness: a tilted face's grows with the loaded length).
     pub fn linear_stiffness(&self) -> Option<f64> {
-        (self.law == ContactLaw::PaperLinear).then(|| law::paper_linear_stiffness(&self.contact))
+        (self.law == ContactLaw::PaperLinear && self.face.is_none())
+            .then(|| law::paper_linear_stiffness(&self.contact))
     }
 }
 

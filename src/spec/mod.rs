@@ -7,6 +7,7 @@ pub(crate) mod bearing_life;
 pub(crate) mod coverage;
 pub(crate) mod deviations;
 pub mod edit;
+pub(crate) mod face;
 pub(crate) mod friction;
 #[doc(hidden)]
 pub mod locate;

@@ -34,6 +34,7 @@ fn scene(design: &Design, phase: f64, law: ContactLaw, geometry: GeometryMode) -
         bearing_stiffness_n_per_mm: None,
         torque_sweep: None,
         input_speed_rpm: None,
+        face: Default::default(),
     }
 }
 

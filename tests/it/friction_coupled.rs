@@ -67,6 +67,7 @@ fn scene(design: &Design, torque_nmm: f64, steps: usize, geometry: GeometryMode)
         bearing_stiffness_n_per_mm: None,
         torque_sweep: None,
         input_speed_rpm: None,
+        face: Default::default(),
     }
 }
 

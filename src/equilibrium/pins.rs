@@ -164,6 +164,14 @@ impl Pins {
         self
     }
 
+    /// `with_face`, summed over the slices even where the closed form holds (the Winkler
+    /// reference, `FaceWidth::by_slices`).
+    pub fn with_face_by_slices(self, face: &Face) -> Self {
+        let mut p = self.with_face(face);
+        p.face = p.face.map(FaceWidth::by_slices);
+        p
+    }
+
     /// Bound on the round-off of Σ F·a at a pose whose centre is offset by `offset_mm`:
     /// each contact's force moves by its stiffness times the gap's round-off.
     pub fn moment_resolution(&self, states: &[PinState], offset_mm: f64) -> f64 {

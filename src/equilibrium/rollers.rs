@@ -189,6 +189,15 @@ impl Rollers {
         self
     }
 
+    /// These rollers with the face summed over its slices even where the closed form holds
+    /// (`FaceWidth::by_slices`): the Winkler reference of the closed form, for tests and
+    /// benchmarks.
+    pub fn with_face_by_slices(self, face: &Face) -> Self {
+        let mut r = self.with_face(face);
+        r.face = r.face.map(FaceWidth::by_slices);
+        r
+    }
+
     /// The face along which the contacts vary, when it is not uniform.
     pub fn face(&self) -> Option<&FaceWidth> {
         self.face.as_ref()

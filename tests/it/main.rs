@@ -23,6 +23,7 @@ mod deviations;
 mod discs;
 mod equilibrium;
 mod export;
+mod face_width;
 mod fault_injection;
 mod first_order_sweep;
 mod first_order_validity;

@@ -15,6 +15,7 @@ pub mod check;
 pub mod commands;
 pub mod drawing;
 pub mod efficiency;
+pub mod face_profile;
 pub mod golden;
 pub mod limit;
 pub mod optimise;

@@ -69,6 +69,8 @@ fn accepted_keys() -> Vec<String> {
         ("RawOutputPins", "reducer.output_pins."),
         ("RawMaterial", "reducer.material."),
         ("RawModification", "modification."),
+        ("RawCrowning", "modification.crowning."),
+        ("RawMisalignment", "scenes[].misalignment."),
         ("RawScene", "scenes[]."),
         ("RawTorqueSweep", "scenes[].torque_sweep."),
         ("RawCrank", "scenes[].crank."),

@@ -62,18 +62,42 @@ fn main() {
         println!(
             "  max roller force      {:.2} N; largest force difference {:.3e} N ({:.4} % of it)",
             peak,
-            max(&mut rc.force_n.iter().flatten().zip(rs.force_n.iter().flatten()).map(|(a, b)| (a - b).abs())),
-            100.0 * max(&mut rc.force_n.iter().flatten().zip(rs.force_n.iter().flatten()).map(|(a, b)| (a - b).abs())) / peak
+            max(&mut rc
+                .force_n
+                .iter()
+                .flatten()
+                .zip(rs.force_n.iter().flatten())
+                .map(|(a, b)| (a - b).abs())),
+            100.0
+                * max(&mut rc
+                    .force_n
+                    .iter()
+                    .flatten()
+                    .zip(rs.force_n.iter().flatten())
+                    .map(|(a, b)| (a - b).abs()))
+                / peak
         );
         println!(
             "  lag: max {:.3} arcsec; largest difference {:.2e} arcsec",
             max(&mut rc.lag_rad.iter().map(|l| l.abs() * arcsec)),
-            max(&mut rc.lag_rad.iter().zip(&rs.lag_rad).map(|(a, b)| (a - b).abs() * arcsec))
+            max(&mut rc
+                .lag_rad
+                .iter()
+                .zip(&rs.lag_rad)
+                .map(|(a, b)| (a - b).abs() * arcsec))
         );
         println!(
             "  largest face-load-factor difference {:.3e} (relative {:.3e})",
-            max(&mut fc.face_load_factor.iter().zip(&fs.face_load_factor).map(|(a, b)| (a - b).abs())),
-            max(&mut fc.face_load_factor.iter().zip(&fs.face_load_factor).map(|(a, b)| (a - b).abs() / b.max(1e-300)))
+            max(&mut fc
+                .face_load_factor
+                .iter()
+                .zip(&fs.face_load_factor)
+                .map(|(a, b)| (a - b).abs())),
+            max(&mut fc
+                .face_load_factor
+                .iter()
+                .zip(&fs.face_load_factor)
+                .map(|(a, b)| (a - b).abs() / b.max(1e-300)))
         );
         println!("  sweep time: closed form {tc:.3} s, 200 slices {ts:.3} s");
     }

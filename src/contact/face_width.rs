@@ -8,7 +8,7 @@
 //! coupling between its sections, each carrying the contact law per unit length.
 //!
 //! - The paper's linear law, straight or circularly crowned: the closed form
-//!     F = (k/B)·∫ max(0, a(z)) dz over [−B/2, B/2],   ∂F/∂d = (k/B)·(loaded length),
+//!   F = (k/B)·∫ max(0, a(z)) dz over [−B/2, B/2], ∂F/∂d = (k/B)·(loaded length),
 //!   k = (π/4)·E*·B (paper Eq. 9). a(z) is linear over the flat middle and a concave parabola
 //!   over each crowned end, so its positive part on each piece is one interval whose ends are
 //!   the roots of a linear or quadratic, and the integral a polynomial's.
@@ -197,10 +197,29 @@ impl FaceWidth {
             let a = d - self.crown_mm(z) + t * z;
             *q = match law {
                 ContactLaw::PaperLinear => per_mm * a.max(0.0),
-                ContactLaw::HertzNonlinear => {
-                    law::force(law, &slice, a).force_n / slice.length_mm
-                }
+                ContactLaw::HertzNonlinear => law::force(law, &slice, a).force_n / slice.length_mm,
             };
+        }
+    }
+
+    /// The largest line load at the slice centres (N/mm), as `line_loads` gives them, without
+    /// storing them.
+    pub fn peak_line_load(&self, law: ContactLaw, c: &LineContact, d: f64, t: f64) -> f64 {
+        let slice = self.slice_contact(c);
+        let per_mm = law::paper_linear_stiffness(c) / self.width_mm;
+        let approach = |s: usize| {
+            let z = self.slice_centre_mm(s);
+            d - self.crown_mm(z) + t * z
+        };
+        let deepest = (0..self.slices)
+            .map(approach)
+            .fold(f64::NEG_INFINITY, f64::max);
+        // Every law's line load grows with the approach: the deepest slice carries the peak.
+        match law {
+            ContactLaw::PaperLinear => per_mm * deepest.max(0.0),
+            ContactLaw::HertzNonlinear => {
+                law::force(law, &slice, deepest).force_n / slice.length_mm
+            }
         }
     }
 

@@ -50,8 +50,14 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
             continue;
         };
         // The roller that carries the peak line load at that angle.
-        let peak = |i: usize| face.line_load_n_per_mm[i][k].iter().copied().fold(0.0, f64::max);
-        let Some(roller) = (0..face.line_load_n_per_mm.len()).max_by(|&a, &b| peak(a).total_cmp(&peak(b)))
+        let peak = |i: usize| {
+            face.line_load_n_per_mm[i][k]
+                .iter()
+                .copied()
+                .fold(0.0, f64::max)
+        };
+        let Some(roller) =
+            (0..face.line_load_n_per_mm.len()).max_by(|&a, &b| peak(a).total_cmp(&peak(b)))
         else {
             continue;
         };
@@ -68,7 +74,10 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
             crank_rad,
             roller,
             z_mm: (0..s.face.slices)
-                .map(|j| -0.5 * spec.design.face_width_mm + (j as f64 + 0.5) * spec.design.face_width_mm / s.face.slices as f64)
+                .map(|j| {
+                    -0.5 * spec.design.face_width_mm
+                        + (j as f64 + 0.5) * spec.design.face_width_mm / s.face.slices as f64
+                })
                 .collect(),
             tilted_n_per_mm: face.line_load_n_per_mm[roller][k].clone(),
             designed_n_per_mm: line_loads_at(spec, &designed, crank_rad, roller),

@@ -292,10 +292,9 @@ impl Rollers {
     /// length: p0 = sqrt(q·E*/(π·R*)), b = sqrt(4·q·R*/(π·E*))).
     pub fn hertz(&self, s: &RollerState) -> HertzLine {
         let c = self.line_contact(self.curvature(s));
-        if self.face.is_some() && s.force_n > 0.0 {
-            let mut q = vec![0.0; self.slices];
-            self.line_loads(s, &mut q);
-            let peak = q.iter().copied().fold(0.0, f64::max);
+        if let (Some(face), true) = (&self.face, s.force_n > 0.0) {
+            let t = face.approach_slope((-s.normal.x, -s.normal.y));
+            let peak = face.peak_line_load(self.law, &c, -s.gap_mm, t);
             let unit = LineContact {
                 length_mm: 1.0,
                 ..c

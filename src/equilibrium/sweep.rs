@@ -6,10 +6,10 @@
 use super::angle::solve_into;
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::loaded::{AngleSolution, Model};
+use super::rollers::Rollers;
 use super::solve::SolveFailure;
 use super::work::Work;
 use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
-use super::rollers::Rollers;
 use crate::model::results::{
     BearingCurves, FaceLoads, LoadedSweep, PinCurves, RollerCurves, Transmission,
 };
@@ -450,7 +450,12 @@ pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
 /// divided by the mean line load F_i/B of the roller that carries it; 0 where no roller
 /// carries a force). On a uniform face (no crown, no tilt; the lean first-order sweep writes
 /// no line loads) every slice carries F_i/B.
-fn face_loads(r: &Rollers, force_n: &[Vec<f64>], line_load: Vec<Vec<f64>>, slices: usize) -> FaceLoads {
+fn face_loads(
+    r: &Rollers,
+    force_n: &[Vec<f64>],
+    line_load: Vec<Vec<f64>>,
+    slices: usize,
+) -> FaceLoads {
     let width = r.face_width_mm();
     let angles = force_n.first().map_or(0, Vec::len);
     let line_load_n_per_mm: Vec<Vec<Vec<f64>>> = line_load

@@ -388,7 +388,15 @@ pub const FACE_LOAD_FACTOR: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| Some(one(&r.loaded.rollers.as_ref()?.face.as_ref()?.face_load_factor))),
+    read: Read::Curves(|r| {
+        Some(one(&r
+            .loaded
+            .rollers
+            .as_ref()?
+            .face
+            .as_ref()?
+            .face_load_factor))
+    }),
 };
 
 /// A disc's share Tk of the torque, N·m (`LoadedSweep::torque_nmm`): with several discs only.

@@ -375,7 +375,12 @@ impl<'a> SceneDoc<'a> {
             contacts: rollers.map(|c| c.contacts.as_slice()),
             line_load_n_per_mm: rollers
                 .and_then(|c| c.face.as_ref())
-                .filter(|f| f.line_load_n_per_mm.first().and_then(|r| r.first()).is_some_and(|q| q.len() > 1))
+                .filter(|f| {
+                    f.line_load_n_per_mm
+                        .first()
+                        .and_then(|r| r.first())
+                        .is_some_and(|q| q.len() > 1)
+                })
                 .map(|f| f.line_load_n_per_mm.iter().map(|r| Rows(r)).collect()),
             face_load_factor: rollers
                 .and_then(|c| c.face.as_ref())

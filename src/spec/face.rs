@@ -122,8 +122,10 @@ pub(crate) fn scene_face(
 ) -> Result<Face> {
     let misalignment = match misalignment {
         Some(m) => Misalignment {
-            about_x_rad: 1e-3 * finite(&format!("{key}.misalignment.about_x_mrad"), m.about_x_mrad)?,
-            about_y_rad: 1e-3 * finite(&format!("{key}.misalignment.about_y_mrad"), m.about_y_mrad)?,
+            about_x_rad: 1e-3
+                * finite(&format!("{key}.misalignment.about_x_mrad"), m.about_x_mrad)?,
+            about_y_rad: 1e-3
+                * finite(&format!("{key}.misalignment.about_y_mrad"), m.about_y_mrad)?,
         },
         None => Misalignment::default(),
     };

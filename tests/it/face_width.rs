@@ -68,14 +68,20 @@ fn slices_without_crown_or_tilt_equal_the_2d_model() {
         assert_eq!(ra.lag_rad, rb.lag_rad, "{law}");
         assert_eq!(ra.force_n, rb.force_n, "{law}");
         assert_eq!(ra.pressure_mpa, rb.pressure_mpa, "{law}");
-        assert_eq!(a.pins.as_ref().unwrap().force_n, b.pins.as_ref().unwrap().force_n);
+        assert_eq!(
+            a.pins.as_ref().unwrap().force_n,
+            b.pins.as_ref().unwrap().force_n
+        );
         assert!(ra.face.is_none());
         let face = face_of(&b);
         for (i, roller) in face.line_load_n_per_mm.iter().enumerate() {
             for (k, q) in roller.iter().enumerate() {
                 assert_eq!(q.len(), 8);
                 let mean = rb.force_n[i][k] / 8.0;
-                assert!(q.iter().all(|&v| v == mean), "{law} roller {i} angle {k}: {q:?}");
+                assert!(
+                    q.iter().all(|&v| v == mean),
+                    "{law} roller {i} angle {k}: {q:?}"
+                );
             }
         }
         for (k, &f) in face.face_load_factor.iter().enumerate() {
@@ -128,7 +134,8 @@ fn a_pure_tilt_gives_a_line_load_linear_in_z() {
             let n_y = ny / nx.hypot(ny);
             let predicted = k_per_mm() * (-theta_x * n_y);
             assert!(
-                (slope - predicted).abs() <= 0.05 * predicted.abs().max(1e-3 * k_per_mm() * theta_x),
+                (slope - predicted).abs()
+                    <= 0.05 * predicted.abs().max(1e-3 * k_per_mm() * theta_x),
                 "roller {i} angle {k}: slope {slope} N/mm², predicted {predicted}"
             );
             checked += 1;
@@ -193,7 +200,13 @@ fn the_closed_form_equals_fine_slices_and_its_stiffness_the_derivative() {
         let closed = fw.force(ContactLaw::PaperLinear, &c, d, t);
         let n = 100_000;
         let h = width / n as f64;
-        let crowned = |z: f64| if radius.is_finite() { crown(z, radius, start) } else { 0.0 };
+        let crowned = |z: f64| {
+            if radius.is_finite() {
+                crown(z, radius, start)
+            } else {
+                0.0
+            }
+        };
         let sum: f64 = (0..n)
             .map(|s| {
                 let z = -0.5 * width + (s as f64 + 0.5) * h;
@@ -349,7 +362,9 @@ fn the_closed_form_balance_matches_200_winkler_slices() {
         sliced_model.rollers = sliced_model
             .rollers
             .map(|r| r.with_face_by_slices(&scene.face));
-        sliced_model.pins = sliced_model.pins.map(|p| p.with_face_by_slices(&scene.face));
+        sliced_model.pins = sliced_model
+            .pins
+            .map(|p| p.with_face_by_slices(&scene.face));
         let go = |m: &Model| {
             sweep::sweep(m, &scene.crank_rad, true, &cycloid::progress::Silent)
                 .unwrap_or_else(|f| panic!("{f:?}"))
@@ -363,13 +378,19 @@ fn the_closed_form_balance_matches_200_winkler_slices() {
             assert!(lag <= 0.05, "{tilt} angle {k}: lags differ by {lag} arcsec");
             for i in 0..10 {
                 let df = (rc.force_n[i][k] - rs.force_n[i][k]).abs();
-                assert!(df <= 2e-3 * peak, "{tilt} roller {i} angle {k}: {df} N of {peak}");
+                assert!(
+                    df <= 2e-3 * peak,
+                    "{tilt} roller {i} angle {k}: {df} N of {peak}"
+                );
             }
             let (fc, fs) = (
                 rc.face.as_ref().unwrap().face_load_factor[k],
                 rs.face.as_ref().unwrap().face_load_factor[k],
             );
-            assert!((fc - fs).abs() <= 0.01 * fs, "{tilt} angle {k}: factor {fc} vs {fs}");
+            assert!(
+                (fc - fs).abs() <= 0.01 * fs,
+                "{tilt} angle {k}: factor {fc} vs {fs}"
+            );
         }
     }
 }
@@ -405,14 +426,25 @@ fn the_balance_holds_with_a_tilt() {
         "    misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }\n    face_slices: 10\n",
         24,
     )
-    .replace("  face_width_mm: 8.0\n", "  face_width_mm: 8.0\n  discs: 2\n");
+    .replace(
+        "  face_width_mm: 8.0\n",
+        "  face_width_mm: 8.0\n  discs: 2\n",
+    );
     let s = parse(&two);
     let plan = Plan::for_scene(&s.scenes[0]);
     let r = cycloid::engine::scene::run(&s, &s.scenes[0], &plan, &Default::default())
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(r.discs.len(), 2);
     for disc in &r.discs {
-        let worst = disc.loaded.bearing.as_ref().unwrap().residual.iter().copied().fold(0.0, f64::max);
+        let worst = disc
+            .loaded
+            .bearing
+            .as_ref()
+            .unwrap()
+            .residual
+            .iter()
+            .copied()
+            .fold(0.0, f64::max);
         assert!(worst <= 1e-9, "two discs: residual {worst:e}");
         assert!(disc.loaded.rollers.as_ref().unwrap().face.is_some());
     }
@@ -483,7 +515,10 @@ fn bad_face_values_are_refused_where_they_are_written() {
         let text = spec(modification, scene, 12);
         let e = cycloid::spec::parse("face.yaml", &text).expect_err(key);
         let shown = e.to_string();
-        assert!(shown.contains(key) && shown.contains(rule), "{key}: {shown}");
+        assert!(
+            shown.contains(key) && shown.contains(rule),
+            "{key}: {shown}"
+        );
         // file:line:column of the key as written.
         let (line, column) = locate(&text, key);
         assert!(
@@ -533,7 +568,11 @@ fn the_sweep_matches_each_angle_solved_alone_on_a_tilted_face() {
     for (k, &phi) in scene.crank_rad.iter().enumerate() {
         let alone = solve_angle(&model, phi, &AngleSolution::default()).unwrap();
         let lag = alone.lag_rad.unwrap();
-        assert!((lag - r.lag_rad[k]).abs() <= 1e-12, "angle {k}: {lag} vs {}", r.lag_rad[k]);
+        assert!(
+            (lag - r.lag_rad[k]).abs() <= 1e-12,
+            "angle {k}: {lag} vs {}",
+            r.lag_rad[k]
+        );
         for (i, st) in alone.rollers.iter().enumerate() {
             assert!(
                 (st.force_n - r.force_n[i][k]).abs() <= 1e-6 * peak,

@@ -49,7 +49,12 @@ pub(super) fn section_of(
             PALETTE[0],
         ));
         if let Some(designed) = &p.designed_n_per_mm {
-            let mut s = Series::new("designed (no tilt)", p.z_mm.clone(), designed.clone(), PALETTE[1]);
+            let mut s = Series::new(
+                "designed (no tilt)",
+                p.z_mm.clone(),
+                designed.clone(),
+                PALETTE[1],
+            );
             s.dashed = true;
             plot.series.push(s);
         }

@@ -486,3 +486,106 @@ fn duty_cycle_4_bins_1080_exact(b: divan::Bencher) {
 fn duty_cycle_one_bin_scene_1080_exact(b: divan::Bencher) {
     duty_scene(b, true);
 }
+
+/// Issue 29: the loaded sweep of `loaded_sweep_360_exact` (rollers, pins, rigid bearing, 360
+/// crank angles) with `face` (20 slices unless said), by the linear law's closed form or, with
+/// `by_slices`, summed slice by slice as the Winkler reference; `law` the contact law.
+fn face_sweep(
+    b: divan::Bencher,
+    face: cycloid::model::Face,
+    law: cycloid::model::ContactLaw,
+    by_slices: bool,
+) {
+    let s = paper();
+    let mut scene = s
+        .scenes
+        .iter()
+        .find(|c| c.name == "rated")
+        .expect("rated")
+        .clone();
+    scene.contact_law = law;
+    scene.face = face;
+    let plan = cycloid::model::Plan::of("rated", &[cycloid::model::Effect::Bearing]);
+    let mut model =
+        cycloid::equilibrium::loaded::Model::new(&s.design, &s.modification, &scene, &plan);
+    if by_slices {
+        model.rollers = model.rollers.map(|r| r.with_face_by_slices(&face));
+        model.pins = model.pins.map(|p| p.with_face_by_slices(&face));
+    }
+    let c = crank(360);
+    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
+}
+
+/// A crowned disc (Rc 1 m, flat over 4 mm) tilted 0.3 mrad about x and y, cut into `slices`.
+fn tilted(slices: usize) -> cycloid::model::Face {
+    cycloid::model::Face {
+        crowning: cycloid::model::Crowning::Circular {
+            radius_mm: 1000.0,
+            start_mm: 2.0,
+        },
+        misalignment: cycloid::model::Misalignment {
+            about_x_rad: 0.3e-3,
+            about_y_rad: 0.3e-3,
+        },
+        slices,
+    }
+}
+
+/// The 2-D scene the face benchmarks compare with (`face_sweep` with the default face).
+#[divan::bench(sample_count = 30)]
+fn face_2d_360_exact(b: divan::Bencher) {
+    face_sweep(
+        b,
+        cycloid::model::Face::default(),
+        cycloid::model::ContactLaw::PaperLinear,
+        false,
+    );
+}
+
+/// Crowned and tilted, 20 slices, the linear law's closed form (target: ≤ 1.5× `face_2d_360_exact`).
+#[divan::bench(sample_count = 30)]
+fn face_closed_form_20_360_exact(b: divan::Bencher) {
+    face_sweep(
+        b,
+        tilted(20),
+        cycloid::model::ContactLaw::PaperLinear,
+        false,
+    );
+}
+
+/// The same summed over 20 Winkler slices (the reference the closed form is the limit of).
+#[divan::bench(sample_count = 30)]
+fn face_winkler_20_360_exact(b: divan::Bencher) {
+    face_sweep(b, tilted(20), cycloid::model::ContactLaw::PaperLinear, true);
+}
+
+/// Johnson's law in 2-D, and crowned and tilted over 5 and 20 slices (the cost per slice).
+#[divan::bench(sample_count = 10)]
+fn face_johnson_2d_360_exact(b: divan::Bencher) {
+    face_sweep(
+        b,
+        cycloid::model::Face::default(),
+        cycloid::model::ContactLaw::HertzNonlinear,
+        false,
+    );
+}
+
+#[divan::bench(sample_count = 10)]
+fn face_johnson_5_360_exact(b: divan::Bencher) {
+    face_sweep(
+        b,
+        tilted(5),
+        cycloid::model::ContactLaw::HertzNonlinear,
+        false,
+    );
+}
+
+#[divan::bench(sample_count = 10)]
+fn face_johnson_20_360_exact(b: divan::Bencher) {
+    face_sweep(
+        b,
+        tilted(20),
+        cycloid::model::ContactLaw::HertzNonlinear,
+        false,
+    );
+}

@@ -124,18 +124,18 @@ pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
 pub fn evaluate(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Check>> {
     let mut checks = Vec::new();
     for r in results {
-        let plan = spec
-            .scenes
-            .iter()
-            .find(|s| s.name == r.name)
-            .map(Plan::for_scene);
+        let scene = spec.scenes.iter().find(|s| s.name == r.name);
+        let plan = scene.map(Plan::for_scene);
+        // The quantities along the face width are those of a scene that resolves the face.
+        let face = scene.is_some_and(|s| s.face.is_resolved());
         for l in &spec.limits.entries {
             let q = l.def.quantity;
             if plan.as_ref().is_some_and(|p| !p.computes_quantity(q)) {
                 continue;
             }
             let Some(e) = q.scalar(r) else {
-                if plan.as_ref().is_some_and(|p| p.computes_quantity(q)) {
+                let expected = face || !crate::model::quantity::NEEDS_FACE.contains(&q);
+                if expected && plan.as_ref().is_some_and(|p| p.computes_quantity(q)) {
                     return Err(Error::computation(format!(
                         "scene `{}` computes `{}` but its {} is missing: no check of `limits.{}` \
                          can pass without it",

@@ -16,6 +16,7 @@ pub mod commands;
 pub mod drawing;
 pub mod duty_cycle;
 pub mod efficiency;
+pub mod face_profile;
 pub mod golden;
 pub mod limit;
 pub mod optimise;

@@ -39,8 +39,10 @@ impl Model {
             plan.has(Effect::Bearing),
         );
         Model {
-            rollers: rollers.then(|| Rollers::new(design, m, scene.contact_law, scene.geometry)),
-            pins: pins.then(|| Pins::new(design, scene.contact_law)),
+            rollers: rollers.then(|| {
+                Rollers::new(design, m, scene.contact_law, scene.geometry).with_face(&scene.face)
+            }),
+            pins: pins.then(|| Pins::new(design, scene.contact_law).with_face(&scene.face)),
             bearing,
             bearing_stiffness_n_per_mm: scene.bearing_stiffness_n_per_mm.filter(|_| bearing),
             torque_nmm: scene.output_torque_nmm,

@@ -166,6 +166,48 @@ pub fn series_force(
     }
 }
 
+/// A contact of any force law `force` (a tilted face's, `contact::face_width`) in series with
+/// the pin's bending compliance c (mm/N): the force F with d + c·F(d) = `approach_mm`, d the
+/// contact's own approach, and the series stiffness k/(1 + c·k), k = dF/dd at d. F is
+/// non-decreasing in d, so the root is unique and lies in [a − c·F(a), a] (a the approach):
+/// bisection safeguards Newton there. c = 0 is the contact alone, bit for bit.
+pub fn series_with(
+    force: impl Fn(f64) -> ContactForce,
+    compliance_mm_per_n: f64,
+    approach_mm: f64,
+) -> ContactForce {
+    let c = compliance_mm_per_n;
+    let at_full = force(approach_mm);
+    if c == 0.0 || at_full.force_n == 0.0 {
+        return at_full;
+    }
+    let (mut lo, mut hi) = (approach_mm - c * at_full.force_n, approach_mm);
+    let mut d = lo;
+    for _ in 0..200 {
+        let f = force(d);
+        let g = d + c * f.force_n - approach_mm;
+        if g > 0.0 {
+            hi = d;
+        } else {
+            lo = d;
+        }
+        let newton = d - g / (1.0 + c * f.stiffness_n_per_mm);
+        d = if newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        if (hi - lo).abs() <= 1e-15 * approach_mm.abs().max(1e-9) || g == 0.0 {
+            break;
+        }
+    }
+    let f = force(d);
+    ContactForce {
+        force_n: f.force_n,
+        stiffness_n_per_mm: f.stiffness_n_per_mm / (1.0 + c * f.stiffness_n_per_mm),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -111,8 +111,10 @@ fn solve_rollers(
         lag_rad: lag,
         centre_offset_mm: offset,
     };
+    // The closed form needs a constant stiffness: not along a crowned or tilted face.
     let linear = r.geometry == GeometryMode::FirstOrder
         && r.law == ContactLaw::PaperLinear
+        && r.face().is_none()
         && offset == Vec2::zeros();
     if linear {
         r.first_order_terms(e_phi, &mut work.terms);

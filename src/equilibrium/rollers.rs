@@ -10,13 +10,14 @@
 //! roller that provably cannot touch (`Reach`) is not evaluated at all.
 
 use super::balance::impl_contact;
+use crate::contact::face_width::FaceWidth;
 use crate::contact::hertz_line::{hertz, HertzLine};
 use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::clearance::{GapFailure, Mesh, Pose};
 use crate::geometry::first_order;
 use crate::geometry::profile::LocusFrame;
 use crate::geometry::{cross, rotate, sin_cos, wrap_pi, Vec2};
-use crate::model::{ContactLaw, Design, GeometryMode, Modification};
+use crate::model::{ContactLaw, Design, Face, GeometryMode, Modification};
 
 /// One roller's contact at one pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -114,6 +115,11 @@ pub struct Rollers {
     /// terms no larger than the positions it is measured between (Rp, e) and the
     /// modifications, so it is resolved to a few ulp of their sum, 16·ε·(Rp + e + |ΔRp| + |ΔRrp|).
     gap_resolution_mm: f64,
+    /// The contact along the face width when it is not uniform (a crown or a tilt,
+    /// `with_face`); `None`: the 2-D contact of length B.
+    face: Option<FaceWidth>,
+    /// Slices the line load is reported at (`Face::slices`).
+    slices: usize,
 }
 
 impl Rollers {
@@ -154,6 +160,8 @@ impl Rollers {
             gap_resolution_mm: 16.0
                 * f64::EPSILON
                 * (reach + m.shift_mm.abs() + m.equidistant_mm.abs()),
+            face: None,
+            slices: 1,
         };
         r.linear_stiffness = law::paper_linear_stiffness(&r.line_contact(0.0));
         r.certified_mm = crate::geometry::clearance::certified_mm(&r.mesh.profile);
@@ -162,6 +170,64 @@ impl Rollers {
 
     pub fn count(&self) -> usize {
         self.design.rollers
+    }
+
+    /// These rollers with their contacts along the face `face` (MODEL.md "Along the face
+    /// width"): each roller's force the sum over the face of the contact law per unit length
+    /// (`contact::face_width`). A uniform face (no crown, no tilt) keeps the 2-D contact, bit
+    /// for bit, whatever its slices.
+    pub fn with_face(mut self, face: &Face) -> Self {
+        self.slices = face.slices.max(1);
+        self.face = (!face.is_uniform()).then(|| {
+            FaceWidth::new(
+                face,
+                self.design.face_width_mm,
+                self.materials.contact_modulus_mpa,
+                true,
+            )
+        });
+        self
+    }
+
+    /// These rollers with the face summed over its slices even where the closed form holds
+    /// (`FaceWidth::by_slices`): the Winkler reference of the closed form, for tests and
+    /// benchmarks.
+    pub fn with_face_by_slices(self, face: &Face) -> Self {
+        let mut r = self.with_face(face);
+        r.face = r.face.map(FaceWidth::by_slices);
+        r
+    }
+
+    /// The face along which the contacts vary, when it is not uniform.
+    pub fn face(&self) -> Option<&FaceWidth> {
+        self.face.as_ref()
+    }
+
+    /// The face width B, mm.
+    pub fn face_width_mm(&self) -> f64 {
+        self.design.face_width_mm
+    }
+
+    /// Slices the line load is reported at.
+    pub fn slices(&self) -> usize {
+        self.slices
+    }
+
+    /// The line load (N/mm) of roller state `s` at each slice centre, into `out` (`slices`
+    /// entries): F/B on a uniform face; 0 out of contact.
+    pub fn line_loads(&self, s: &RollerState, out: &mut [f64]) {
+        if s.force_n <= 0.0 {
+            out.fill(0.0);
+            return;
+        }
+        match &self.face {
+            None => out.fill(s.force_n / self.design.face_width_mm),
+            Some(face) => {
+                let c = self.line_contact(self.curvature(s));
+                let t = face.approach_slope((-s.normal.x, -s.normal.y));
+                face.line_loads(self.law, &c, -s.gap_mm, t, out);
+            }
+        }
     }
 
     /// The linear law's stiffness k = (π/4)·E*·L, N/mm.
@@ -222,11 +288,34 @@ impl Rollers {
     }
 
     /// Hertz pressure and half-width of a roller state.
+    /// On a face that is not uniform, those of the peak slice's line load q (Hertz per unit
+    /// length: p0 = sqrt(q·E*/(π·R*)), b = sqrt(4·q·R*/(π·E*))).
     pub fn hertz(&self, s: &RollerState) -> HertzLine {
-        hertz(&self.line_contact(self.curvature(s)), s.force_n)
+        let c = self.line_contact(self.curvature(s));
+        if let (Some(face), true) = (&self.face, s.force_n > 0.0) {
+            let t = face.approach_slope((-s.normal.x, -s.normal.y));
+            let peak = face.peak_line_load(self.law, &c, -s.gap_mm, t);
+            let unit = LineContact {
+                length_mm: 1.0,
+                ..c
+            };
+            return hertz(&unit, peak);
+        }
+        hertz(&c, s.force_n)
     }
 
-    fn contact_force(&self, gap_mm: f64, t: f64) -> ContactForce {
+    /// The force of a roller at `gap_mm` whose contact is at locus parameter `t` with outward
+    /// disc normal `normal` (fixed frame: the tilt's slope along the face, t = n·(θy, −θx)).
+    fn contact_force(&self, gap_mm: f64, t: f64, normal: Vec2) -> ContactForce {
+        if let Some(face) = &self.face {
+            let c = match self.law {
+                // The linear law reads E* and the length alone.
+                ContactLaw::PaperLinear => self.materials,
+                ContactLaw::HertzNonlinear => self.line_contact(self.mesh.profile.curvature(t)),
+            };
+            let slope = face.approach_slope((-normal.x, -normal.y));
+            return face.force(self.law, &c, -gap_mm, slope);
+        }
         if gap_mm >= 0.0 {
             return ContactForce::NONE;
         }
@@ -305,7 +394,8 @@ impl Rollers {
         for (i, st) in states.iter_mut().enumerate() {
             if let Some(reach) = reaches.get(i) {
                 let bound = self.gap_lower_bound(reach, pose);
-                if bound > 0.0 {
+                // A tilt closes a section by up to |θ|·B/2 beyond the 2-D gap.
+                if bound > self.face.as_ref().map_or(0.0, |f| f.reach_mm) {
                     (st.gap_mm, st.force_n, st.stiffness_n_per_mm) = (bound, 0.0, 0.0);
                     continue;
                 }
@@ -396,7 +486,8 @@ impl Rollers {
             })?;
         let gap_mm =
             (self.mesh.profile.offset_mm - self.mesh.roller_radius(i)) + foot.locus_distance_mm;
-        let cf = self.contact_force(gap_mm, foot.t);
+        let normal = rotate(foot.normal, c, s);
+        let cf = self.contact_force(gap_mm, foot.t, normal);
         let p = rotate(self.centres[i] - centre, c, -s);
         let nearest = foot.locus_distance_mm.abs() < self.certified_mm;
         let state = RollerState {
@@ -404,7 +495,7 @@ impl Rollers {
             force_n: cf.force_n,
             stiffness_n_per_mm: cf.stiffness_n_per_mm,
             arm_mm: cross(p, foot.normal),
-            normal: rotate(foot.normal, c, s),
+            normal,
             point: centre + rotate(foot.point, c, s),
             t: foot.t,
         };
@@ -434,7 +525,7 @@ impl Rollers {
         let normal = towards / towards.norm();
         let gap_mm = gap0 - arm * pose.lag_rad - normal.dot(&pose.centre_offset_mm);
         let t = self.mesh.foot_guess(i, pose);
-        let cf = self.contact_force(gap_mm, t);
+        let cf = self.contact_force(gap_mm, t, normal);
         RollerState {
             gap_mm,
             force_n: cf.force_n,

@@ -6,10 +6,13 @@
 use super::angle::solve_into;
 use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
 use super::loaded::{AngleSolution, Model};
+use super::rollers::Rollers;
 use super::solve::SolveFailure;
 use super::work::Work;
 use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
-use crate::model::results::{BearingCurves, LoadedSweep, PinCurves, RollerCurves, Transmission};
+use crate::model::results::{
+    BearingCurves, FaceLoads, LoadedSweep, PinCurves, RollerCurves, Transmission,
+};
 use crate::progress::Progress;
 use rayon::prelude::*;
 
@@ -84,6 +87,11 @@ pub(super) struct Columns {
     deflection: Vec<f64>,
     /// The loaded rollers' contacts, with `Model::keep_contacts` (else no columns).
     roller_contact: Vec<Vec<[f64; 4]>>,
+    /// Each roller's line loads, \[angle·slices + slice\], N/mm, when the face is resolved
+    /// (`Face::is_resolved`; else no columns).
+    line_load: Vec<Vec<f64>>,
+    /// Slices per angle of `line_load`.
+    slices: usize,
 }
 
 /// One chunk's rows of every column: `Columns` cut at the same angles.
@@ -100,6 +108,8 @@ pub(super) struct Chunk<'a> {
     residual: &'a mut [f64],
     deflection: &'a mut [f64],
     roller_contact: Vec<&'a mut [[f64; 4]]>,
+    line_load: Vec<&'a mut [f64]>,
+    slices: usize,
 }
 
 /// Angle of a force from the eccentric direction e_φ, counter-clockwise, rad.
@@ -124,9 +134,25 @@ pub(super) fn piece_rows<T>(columns: &mut [Vec<T>], chunks: usize) -> Vec<Vec<&m
     rows
 }
 
+/// \[column\]\[angle·width\] cut into \[chunk\]\[column\] pieces of `CHUNK` angles.
+fn piece_rows_of<T>(columns: &mut [Vec<T>], chunks: usize, width: usize) -> Vec<Vec<&mut [T]>> {
+    let mut rows: Vec<Vec<&mut [T]>> = (0..chunks).map(|_| Vec::new()).collect();
+    for column in columns {
+        for (row, piece) in rows.iter_mut().zip(column.chunks_mut(CHUNK * width)) {
+            row.push(piece);
+        }
+    }
+    rows
+}
+
 impl Columns {
     pub(super) fn new(model: &Model, angles: usize) -> Self {
         let rollers = model.rollers.as_ref().map_or(0, |r| r.count());
+        let slices = model.rollers.as_ref().map_or(1, |r| r.slices());
+        let resolved = model
+            .rollers
+            .as_ref()
+            .is_some_and(|r| r.slices() > 1 || r.face().is_some());
         let pins = model.pins.as_ref().map_or(0, |p| p.count);
         let column = || vec![0.0; angles];
         Columns {
@@ -144,6 +170,10 @@ impl Columns {
             roller_contact: (0..if model.keep_contacts { rollers } else { 0 })
                 .map(|_| vec![[0.0; 4]; angles])
                 .collect(),
+            line_load: (0..if resolved { rollers } else { 0 })
+                .map(|_| vec![0.0; angles * slices])
+                .collect(),
+            slices,
         }
     }
 
@@ -155,6 +185,8 @@ impl Columns {
         let mut half_width = piece_rows(&mut self.half_width, n).into_iter();
         let mut pin_force = piece_rows(&mut self.pin_force, n).into_iter();
         let mut roller_contact = piece_rows(&mut self.roller_contact, n).into_iter();
+        let slices = self.slices;
+        let mut line_load = piece_rows_of(&mut self.line_load, n, slices).into_iter();
         let scalars = pieces(&mut self.lag)
             .zip(pieces(&mut self.output_lag))
             .zip(pieces(&mut self.contacts))
@@ -180,6 +212,8 @@ impl Columns {
                     residual,
                     deflection,
                     roller_contact: roller_contact.next().unwrap_or_default(),
+                    line_load: line_load.next().unwrap_or_default(),
+                    slices,
                 },
             )
             .collect()
@@ -259,6 +293,10 @@ impl<'a> Chunk<'a> {
                     } else {
                         [0.0; 4]
                     };
+                }
+                if let Some(q) = self.line_load.get_mut(i) {
+                    let n = self.slices;
+                    r.line_loads(s, &mut q[k * n..(k + 1) * n]);
                 }
             }
             self.contacts[k] = contacts;
@@ -377,6 +415,11 @@ fn collect(model: &Model, crank_rad: &[f64], columns: Columns, periodic: bool) -
 /// A disc's own curves from its columns: lags, forces, bearing (no transmission: with several
 /// discs that is the reducer's, from the common output lag).
 pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
+    let face = model
+        .rollers
+        .as_ref()
+        .filter(|_| !c.line_load.is_empty())
+        .map(|r| face_loads(r, &c.roller_force, c.line_load, c.slices));
     LoadedSweep {
         rollers: model.rollers.as_ref().map(|_| RollerCurves {
             lag_rad: c.lag,
@@ -384,6 +427,7 @@ pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
             pressure_mpa: c.pressure,
             half_width_mm: c.half_width,
             contacts: c.contacts,
+            face,
         }),
         pins: model.pins.as_ref().map(|_| PinCurves {
             output_lag_rad: c.output_lag,
@@ -398,5 +442,53 @@ pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
         roller_contacts: (model.keep_contacts && model.rollers.is_some())
             .then_some(c.roller_contact),
         ..LoadedSweep::default()
+    }
+}
+
+/// The line loads of every roller `[roller][angle][slice]` and the face load factor of every
+/// angle (MODEL.md "Along the face width": the peak line load over the rollers and slices
+/// divided by the mean line load F_i/B of the roller that carries it; 0 where no roller
+/// carries a force). On a uniform face (no crown, no tilt; the lean first-order sweep writes
+/// no line loads) every slice carries F_i/B.
+fn face_loads(
+    r: &Rollers,
+    force_n: &[Vec<f64>],
+    line_load: Vec<Vec<f64>>,
+    slices: usize,
+) -> FaceLoads {
+    let width = r.face_width_mm();
+    let angles = force_n.first().map_or(0, Vec::len);
+    let line_load_n_per_mm: Vec<Vec<Vec<f64>>> = line_load
+        .into_iter()
+        .zip(force_n)
+        .map(|(q, f)| {
+            (0..angles)
+                .map(|k| match r.face() {
+                    Some(_) => q[k * slices..(k + 1) * slices].to_vec(),
+                    None => vec![f[k] / width; slices],
+                })
+                .collect()
+        })
+        .collect();
+    let face_load_factor = (0..angles)
+        .map(|k| {
+            let mut peak = (0.0, 0.0);
+            for (i, q) in line_load_n_per_mm.iter().enumerate() {
+                for &v in &q[k] {
+                    if v > peak.0 {
+                        peak = (v, force_n[i][k]);
+                    }
+                }
+            }
+            if peak.1 > 0.0 {
+                peak.0 / (peak.1 / width)
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    FaceLoads {
+        line_load_n_per_mm,
+        face_load_factor,
     }
 }

@@ -11,6 +11,7 @@ pub mod accuracy;
 pub mod design;
 pub mod deviations;
 pub mod effect;
+pub mod face;
 pub mod friction;
 pub mod golden;
 pub mod limits;
@@ -28,6 +29,7 @@ pub use design::{
 };
 pub use deviations::{CentreDeviation, Deviations, FormTerm, RollerDeviation, MAX_FORM_ORDER};
 pub use effect::{Detail, Effect};
+pub use face::{Crowning, Face, Misalignment};
 pub use friction::{
     BearingFriction, Friction, FrictionModel, PinFriction, PinMode, RollerFriction, RollerMode,
     Thermal,

@@ -418,6 +418,28 @@ pub const CONTACTS: Quantity = Quantity {
     }),
 };
 
+/// The face load factor at each crank angle (`FaceLoads::face_load_factor`): the peak line
+/// load along the face over the rollers divided by the mean line load F_i/B of the roller that
+/// carries it (MODEL.md "Along the face width"); only where the scene resolves the face.
+pub const FACE_LOAD_FACTOR: Quantity = Quantity {
+    key: "face_load_factor",
+    unit: "",
+    label: "face load factor",
+    effect: Effect::RollerContact,
+    shape: Shape::Curve,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| {
+        Some(one(&r
+            .loaded
+            .rollers
+            .as_ref()?
+            .face
+            .as_ref()?
+            .face_load_factor))
+    }),
+};
+
 /// A disc's share Tk of the torque, N·m (`LoadedSweep::torque_nmm`): with several discs only.
 pub const DISC_TORQUE: Quantity = Quantity {
     key: "torque_nm",
@@ -599,6 +621,55 @@ pub const MAX_CONTACT_PRESSURE: Quantity = Quantity {
             &r.loaded.rollers.as_ref()?.pressure_mpa,
             "roller",
         ))
+    }),
+};
+
+/// The largest face load factor over the crank angles, with the angle (`FACE_LOAD_FACTOR`).
+pub const MAX_FACE_LOAD_FACTOR: Quantity = Quantity {
+    key: "max_face_load_factor",
+    unit: "",
+    label: "max face load factor",
+    effect: Effect::RollerContact,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("face_load_factor"),
+    read: Read::Scalar(|r| {
+        let face = r.loaded.rollers.as_ref()?.face.as_ref()?;
+        Some(highest(r, &face.face_load_factor))
+    }),
+};
+
+/// The largest line load along the face, N/mm, with the roller, the crank angle and the slice
+/// (`FaceLoads::line_load_n_per_mm`).
+pub const MAX_LINE_LOAD: Quantity = Quantity {
+    key: "max_line_load_n_per_mm",
+    unit: "N/mm",
+    label: "max line load",
+    effect: Effect::RollerContact,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        let face = r.loaded.rollers.as_ref()?.face.as_ref()?;
+        let mut best = (0.0, 0, 0, 0);
+        for (i, roller) in face.line_load_n_per_mm.iter().enumerate() {
+            for (k, slices) in roller.iter().enumerate() {
+                for (s, &q) in slices.iter().enumerate() {
+                    if q > best.0 {
+                        best = (q, i, k, s);
+                    }
+                }
+            }
+        }
+        let (value, i, k, s) = best;
+        let n = face.line_load_n_per_mm.first()?.first()?.len();
+        Some(Extreme {
+            value,
+            at: format!(
+                "roller {i} at crank {:.2}°, slice {s} of {n} (slice 0 at z = −B/2)",
+                crank_deg(r, k)
+            ),
+        })
     }),
 };
 
@@ -1112,6 +1183,7 @@ pub const QUANTITIES: &[&Quantity] = &[
     &CONTACT_PRESSURE,
     &CONTACT_HALF_WIDTH,
     &CONTACTS,
+    &FACE_LOAD_FACTOR,
     &DISC_TORQUE,
     &OUTPUT_LAG,
     &PIN_FORCE,
@@ -1135,6 +1207,8 @@ pub const QUANTITIES: &[&Quantity] = &[
     &MAX_PIN_FORCE,
     &MAX_BEARING_FORCE,
     &MAX_RESIDUAL,
+    &MAX_FACE_LOAD_FACTOR,
+    &MAX_LINE_LOAD,
     &MAX_TORSION_LOST_MOTION,
     &MAX_TORSION_BACKLASH,
     &MIN_TORSIONAL_RIGIDITY,
@@ -1171,6 +1245,10 @@ pub const SINGLE_RUN: &[&Quantity] = &[
     &TEMPERATURE,
 ];
 
+/// The quantities along the face width: read only from a scene that resolves the face
+/// (`Face::is_resolved`); a limit on one needs such a scene.
+pub const NEEDS_FACE: &[&Quantity] = &[&FACE_LOAD_FACTOR, &MAX_FACE_LOAD_FACTOR, &MAX_LINE_LOAD];
+
 /// The quantities read from the closing lags of the rollers (`Detail::Backlash`): computed only
 /// when one of them is read.
 pub const NEEDS_BACKLASH: &[&Quantity] =
@@ -1182,6 +1260,8 @@ pub const SUMMARY: &[&Quantity] = &[
     &MAX_LOST_MOTION,
     &MAX_ROLLER_FORCE,
     &MAX_CONTACT_PRESSURE,
+    &MAX_FACE_LOAD_FACTOR,
+    &MAX_LINE_LOAD,
     &MAX_PIN_FORCE,
     &MAX_BEARING_FORCE,
     &TE_FLUCTUATION,
@@ -1290,6 +1370,22 @@ pub const LIMITS: &[LimitDef] = &[
         bound: Bound::Max,
         whole: false,
         range: ANY,
+    },
+    LimitDef {
+        key: "max_face_load_factor",
+        quantity: &MAX_FACE_LOAD_FACTOR,
+        bound: Bound::Max,
+        whole: false,
+        // The peak line load is at least the mean of its roller's (a limit below 1 could
+        // never pass).
+        range: (1.0, f64::INFINITY),
+    },
+    LimitDef {
+        key: "max_line_load_n_per_mm",
+        quantity: &MAX_LINE_LOAD,
+        bound: Bound::Max,
+        whole: false,
+        range: (0.0, f64::INFINITY),
     },
     LimitDef {
         key: "min_rollers_in_contact",

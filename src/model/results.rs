@@ -84,6 +84,22 @@ pub struct RollerCurves {
     pub half_width_mm: Vec<Vec<f64>>,
     /// How many rollers carry a force at each angle, `[angle]`.
     pub contacts: Vec<usize>,
+    /// The line loads along the face width, when the scene resolves them (`face_slices` > 1,
+    /// or a crowned or tilted face; MODEL.md "Along the face width").
+    pub face: Option<FaceLoads>,
+}
+
+/// The rollers' loads along the face width over the sweep (MODEL.md "Along the face width").
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceLoads {
+    /// The line load of each roller at each slice centre z_s = −B/2 + (s + ½)·B/n, N/mm,
+    /// `[roller][angle][slice]`: the force per unit length there (slice 0 at z = −B/2, the
+    /// end of negative z); 0 out of contact.
+    pub line_load_n_per_mm: Vec<Vec<Vec<f64>>>,
+    /// The face load factor of each angle, `[angle]`: the peak line load over rollers and
+    /// slices divided by the mean line load F_i/B of the roller that carries it (1 on a
+    /// uniform face; 0 where no roller carries a force).
+    pub face_load_factor: Vec<f64>,
 }
 
 /// Output pins over the sweep.

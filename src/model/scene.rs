@@ -72,6 +72,10 @@ pub struct Scene {
     /// Input (crank) speed, rpm (spec: `input_speed_rpm`): the speed of the crank-bearing
     /// rating life.
     pub input_speed_rpm: Option<f64>,
+    /// The contacts along the face width: the disc's crowning (the design's
+    /// `modification.crowning`), this scene's tilt (`misalignment`) and slices
+    /// (`face_slices`); the default is the 2-D model.
+    pub face: super::face::Face,
     /// A duty cycle (spec: `duty_cycle`) in place of the scene's own torque and speed: each
     /// bin runs as this scene loaded at its torque and speed (`engine::duty_cycle`); `None`
     /// for an ordinary scene.

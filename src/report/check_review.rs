@@ -35,6 +35,7 @@ pub fn write(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
         warnings: &warnings,
         as_built,
         efficiency: &review.efficiency,
+        face: &review.face,
     };
     Ok(super::review::write(dir, &input)?.len())
 }

@@ -173,6 +173,13 @@ pub struct SceneDoc<'a> {
     contact_half_width_mm: Option<Rows<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     contacts: Option<&'a [usize]>,
+    /// The line load of every roller along the face, N/mm \[roller\]\[crank\]\[slice\], with
+    /// more than one slice (MODEL.md "Along the face width").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    line_load_n_per_mm: Option<Vec<Rows<'a>>>,
+    /// The face load factor at each crank angle, where the scene resolves the face.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    face_load_factor: Option<Curve<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     output_lag_arcsec: Option<Curve<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -475,6 +482,18 @@ impl<'a> SceneDoc<'a> {
             contact_pressure_mpa: rollers.map(|c| Rows(&c.pressure_mpa)),
             contact_half_width_mm: rollers.map(|c| Rows(&c.half_width_mm)),
             contacts: rollers.map(|c| c.contacts.as_slice()),
+            line_load_n_per_mm: rollers
+                .and_then(|c| c.face.as_ref())
+                .filter(|f| {
+                    f.line_load_n_per_mm
+                        .first()
+                        .and_then(|r| r.first())
+                        .is_some_and(|q| q.len() > 1)
+                })
+                .map(|f| f.line_load_n_per_mm.iter().map(|r| Rows(r)).collect()),
+            face_load_factor: rollers
+                .and_then(|c| c.face.as_ref())
+                .map(|f| Curve::plain(&f.face_load_factor)),
             output_lag_arcsec: pins.map(|p| arcsec(&p.output_lag_rad)),
             pin_force_n: pins.map(|p| Rows(&p.force_n)),
             bearing_force_n: bearing.map(|b| Curve::plain(&b.force_n)),

@@ -4,6 +4,7 @@
 
 use super::Spec;
 use crate::error::{Error, ErrorKind, Result};
+use crate::model::quantity::NEEDS_FACE;
 use crate::model::{Effect, Plan};
 
 /// Every limit must be evaluated by at least one scene, and every golden's scene must compute
@@ -12,6 +13,16 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
     for g in &spec.golden {
         let q = g.quantity;
         let scene = spec.scenes.iter().find(|s| s.name == g.scene);
+        if scene.is_some_and(|s| NEEDS_FACE.contains(&q) && !s.face.is_resolved()) {
+            return Err(Error::new(
+                ErrorKind::InvalidValue,
+                format!(
+                    "scene `{}` does not resolve the load along the face width; give it                      `face_slices: 2` or more",
+                    g.scene
+                ),
+            )
+            .at_key(format!("{}.quantity", g.key)));
+        }
         if scene.is_some_and(|s| !Plan::for_scene(s).computes(q.effect)) {
             return Err(Error::new(
                 ErrorKind::InvalidValue,
@@ -28,10 +39,19 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
     for l in &spec.limits.entries {
         let d = l.def;
         let effect = d.quantity.effect;
-        let covered = spec
-            .scenes
-            .iter()
-            .any(|s| Plan::for_scene(s).computes_quantity(d.quantity));
+        let face = NEEDS_FACE.contains(&d.quantity);
+        let covered = spec.scenes.iter().any(|s| {
+            Plan::for_scene(s).computes_quantity(d.quantity) && (!face || s.face.is_resolved())
+        });
+        if face && !covered {
+            return Err(Error::new(
+                ErrorKind::InvalidValue,
+                "no scene resolves the load along the face width; give a scene with \
+                 `roller_contact` and `face_slices: 2` or more"
+                    .to_string(),
+            )
+            .at_key(format!("limits.{}", d.key)));
+        }
         if !covered {
             let how = match effect {
                 _ if d.quantity.for_duty() == Some(true) => {

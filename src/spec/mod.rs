@@ -8,6 +8,7 @@ pub(crate) mod coverage;
 pub(crate) mod deviations;
 pub mod duty_cycle;
 pub mod edit;
+pub(crate) mod face;
 pub(crate) mod friction;
 #[doc(hidden)]
 pub mod locate;

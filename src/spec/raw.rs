@@ -438,7 +438,7 @@ pub(crate) struct RawMaterial {
 #[derive(Debug, Deserialize, Default)]
 #[serde(
     deny_unknown_fields,
-    expecting = "a mapping with the keys shift_mm, equidistant_mm, rotation_deg"
+    expecting = "a mapping with the keys shift_mm, equidistant_mm, rotation_deg, crowning"
 )]
 pub(crate) struct RawModification {
     #[serde(default)]
@@ -447,6 +447,45 @@ pub(crate) struct RawModification {
     pub equidistant_mm: f64,
     #[serde(default)]
     pub rotation_deg: f64,
+    /// The disc's crowning along the face width.
+    #[serde(default)]
+    pub crowning: Option<RawCrowning>,
+}
+
+/// `modification.crowning`: `kind` and the keys of its profile (checked against the kind in
+/// `spec::validate`).
+#[derive(Debug, Deserialize, Clone)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys kind (circular: radius_mm, start_mm; logarithmic: design_load_n, end_drop_mm, load_coefficient, crowned_fraction)"
+)]
+pub(crate) struct RawCrowning {
+    pub kind: String,
+    #[serde(default)]
+    pub radius_mm: Option<f64>,
+    #[serde(default)]
+    pub start_mm: Option<f64>,
+    #[serde(default)]
+    pub design_load_n: Option<f64>,
+    #[serde(default)]
+    pub end_drop_mm: Option<f64>,
+    #[serde(default)]
+    pub load_coefficient: Option<f64>,
+    #[serde(default)]
+    pub crowned_fraction: Option<f64>,
+}
+
+/// `scenes[].misalignment`: the disc's tilt against the housing, mrad.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys about_x_mrad, about_y_mrad"
+)]
+pub(crate) struct RawMisalignment {
+    #[serde(default)]
+    pub about_x_mrad: f64,
+    #[serde(default)]
+    pub about_y_mrad: f64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -471,6 +510,10 @@ pub(crate) struct RawScene {
     pub geometry: Option<String>,
     #[serde(default)]
     pub bearing_stiffness_n_per_mm: Option<f64>,
+    #[serde(default)]
+    pub misalignment: Option<RawMisalignment>,
+    #[serde(default)]
+    pub face_slices: Option<i64>,
     /// A duty cycle in place of the scene's own torque and speed.
     #[serde(default)]
     pub duty_cycle: Option<Vec<RawDutyBin>>,

@@ -447,6 +447,7 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
         .input_speed_rpm
         .map(|n| positive(&format!("{key}.input_speed_rpm"), n))
         .transpose()?;
+    let face = super::face::scene_face(&key, raw.misalignment, raw.face_slices)?;
     Ok(Scene {
         output_torque_nmm: units::nmm(finite(
             &format!("{key}.output_torque_nm"),
@@ -463,6 +464,7 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
         geometry,
         bearing_stiffness_n_per_mm,
         duty_cycle,
+        face,
     })
 }
 
@@ -563,6 +565,10 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
             "a spec needs at least one scene".into(),
         ));
     }
+    let crowning = super::face::crowning(raw.modification.crowning.as_ref(), &design)?;
+    let written: Vec<(bool, bool)> = (raw.scenes.iter())
+        .map(|s| (s.misalignment.is_some(), s.face_slices.is_some()))
+        .collect();
     let mut scenes: Vec<Scene> = Vec::new();
     for (i, s) in raw.scenes.into_iter().enumerate() {
         // The cap on rollers × steps holds for all scenes together: they are computed, and
@@ -577,6 +583,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         }
         scenes.push(s);
     }
+    super::face::apply(crowning, &design, &mut scenes, &written)?;
     exact_as_built(&design, &scenes)?;
     super::friction::check_scenes(&design, &scenes)?;
     first_order_torques(&design, &scenes)?;

@@ -35,6 +35,7 @@ fn scene(design: &Design, phase: f64, law: ContactLaw, geometry: GeometryMode) -
         torque_sweep: None,
         input_speed_rpm: None,
         duty_cycle: None,
+        face: Default::default(),
     }
 }
 

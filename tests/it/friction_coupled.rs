@@ -68,6 +68,7 @@ fn scene(design: &Design, torque_nmm: f64, steps: usize, geometry: GeometryMode)
         torque_sweep: None,
         input_speed_rpm: None,
         duty_cycle: None,
+        face: Default::default(),
     }
 }
 

@@ -24,6 +24,7 @@ mod discs;
 mod duty_cycle;
 mod equilibrium;
 mod export;
+mod face_width;
 mod fault_injection;
 mod first_order_sweep;
 mod first_order_validity;

@@ -70,6 +70,8 @@ fn accepted_keys() -> Vec<String> {
         ("RawPinSupport", "reducer.output_pins.support."),
         ("RawMaterial", "reducer.material."),
         ("RawModification", "modification."),
+        ("RawCrowning", "modification.crowning."),
+        ("RawMisalignment", "scenes[].misalignment."),
         ("RawScene", "scenes[]."),
         ("RawTorqueSweep", "scenes[].torque_sweep."),
         ("RawCrank", "scenes[].crank."),

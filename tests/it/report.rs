@@ -384,6 +384,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         warnings: &["crank steps <coarser> than the ladder's & more".into()],
         as_built: None,
         efficiency: &[],
+        face: &[],
     });
     // CYCLOID_KEEP_REPORT=DIR keeps the synthetic report to look at.
     if let Some(dir) = std::env::var_os("CYCLOID_KEEP_REPORT") {
@@ -449,6 +450,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         warnings: &[],
         as_built: None,
         efficiency: &[],
+        face: &[],
     });
     assert!(!files.iter().any(|(n, _)| n.starts_with("optimisation")));
     assert!(!page(&files).contains("<h2>Optimisation</h2>"));

@@ -23,6 +23,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "paper optimum under 10 N·m, every effect, accuracy ladder for the design review",
     ),
     (
+        "reducer-misaligned.yaml",
+        0,
+        "paper optimum crowned, aligned and tilted 0.3 mrad about x and y: the face load limits",
+    ),
+    (
         "reducer-torsion.yaml",
         0,
         "paper optimum: torsion at 4 locked angles, crank-bearing life at 20 N·m",

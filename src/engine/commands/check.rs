@@ -107,6 +107,8 @@ pub struct Review {
     pub ladder: Option<(Ladder, f64)>,
     /// Each scene's mean efficiency against its output torque (`None`: no efficiency).
     pub efficiency: Vec<Option<TorqueCurve>>,
+    /// Each tilted scene's line load along the face, tilted and as designed.
+    pub face: Vec<crate::engine::face_profile::FaceProfile>,
 }
 
 /// Run every scene of `spec`, check its limits and goldens, run its studies, and what
@@ -192,6 +194,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
                 .iter()
                 .map(|s| torque_curve::torque_curve(&spec, s))
                 .collect::<Result<_>>()?,
+            face: crate::engine::face_profile::face_profiles(&spec, &results)?,
         }),
         None => None,
     };

@@ -24,6 +24,7 @@ pub mod design;
 pub mod disc;
 mod duty_cycle;
 mod efficiency;
+mod face;
 pub mod optimisation;
 pub mod plots;
 pub mod scenes;
@@ -69,6 +70,8 @@ pub struct ReportInput<'a> {
     pub as_built: Option<AsBuiltView<'a>>,
     /// Each scene's mean efficiency against its output torque (`None`: no efficiency).
     pub efficiency: &'a [Option<crate::model::results::TorqueCurve>],
+    /// Each tilted scene's line load along the face, tilted and as designed.
+    pub face: &'a [crate::engine::face_profile::FaceProfile],
 }
 
 /// The report's files, (file name, content): the SVGs, then `index.html` last.
@@ -94,6 +97,7 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
     for (k, (scene, r)) in input.spec.scenes.iter().zip(input.results).enumerate() {
         sections.extend(scenes::scene_section(input.spec, k, scene, r, &mut files));
     }
+    sections.extend(face::section_of(input.spec, input.face, &mut files));
     let prefix = |k: usize, s: &Scene| format!("scene-{}-{}", k + 1, slug(&s.name));
     sections.extend(torsion::sections(
         input.spec,

@@ -1,0 +1,80 @@
+//! The review's load along the face width ([`engine::face_profile`](crate::engine::face_profile)):
+//! for each tilted scene, the line load of the most loaded roller at its worst crank angle,
+//! tilted against designed (the same disc without the tilt).
+
+use super::common::{figure, section, slug, Section};
+use crate::engine::face_profile::FaceProfile;
+use crate::numeric::number;
+use crate::report::svg::{LinePlot, Series, PALETTE};
+use crate::spec::Spec;
+use crate::units;
+use maud::html;
+
+/// The section, or nothing without a tilted scene.
+pub(super) fn section_of(
+    spec: &Spec,
+    profiles: &[FaceProfile],
+    files: &mut Vec<(String, String)>,
+) -> Option<Section> {
+    if profiles.is_empty() {
+        return None;
+    }
+    let mut figures = Vec::new();
+    for p in profiles {
+        let scene = &spec.scenes[p.scene];
+        let m = scene.face.misalignment;
+        let mut plot = LinePlot::new(
+            &format!(
+                "Line load along the face: scene {}, roller {} at crank {}°",
+                scene.name,
+                p.roller,
+                number(units::deg(p.crank_rad))
+            ),
+            "z from the middle of the face (mm)",
+            "line load (N/mm)",
+        );
+        plot.subtitle = format!(
+            "at the slice centres ({} slices); the scene's worst face load factor",
+            p.z_mm.len()
+        );
+        plot.include_zero = true;
+        plot.series.push(Series::new(
+            format!(
+                "tilted θx {} mrad, θy {} mrad",
+                number(1e3 * m.about_x_rad),
+                number(1e3 * m.about_y_rad)
+            ),
+            p.z_mm.clone(),
+            p.tilted_n_per_mm.clone(),
+            PALETTE[0],
+        ));
+        if let Some(designed) = &p.designed_n_per_mm {
+            let mut s = Series::new(
+                "designed (no tilt)",
+                p.z_mm.clone(),
+                designed.clone(),
+                PALETTE[1],
+            );
+            s.dashed = true;
+            plot.series.push(s);
+        }
+        let file = format!("face-{}-{}.svg", p.scene + 1, slug(&scene.name));
+        files.push((file.clone(), plot.to_svg()));
+        figures.push((
+            file,
+            format!("Line load along the face, scene {}", scene.name),
+            "The most loaded roller at the crank angle of the largest face load factor: the line \
+             load at each slice centre as the scene runs it (tilted) and for the same disc and \
+             angle without the tilt (designed, solved alike)"
+                .to_string(),
+        ));
+    }
+    let body = html! {
+        div.grid { @for (f, t, c) in &figures { (figure(f, t, c)) } }
+    };
+    Some(section(
+        "face-width",
+        html! { "Along the face width" },
+        body,
+    ))
+}

@@ -1,0 +1,288 @@
+//! A candidate through the three stages: the rules (no physics), the screen (the spec's scenes
+//! at a quarter of the crank angles, judged only on the limits that sampling cannot make
+//! easier) and the full check of the spec a front design is written as.
+
+use super::candidate::Candidate;
+use crate::engine::commands::{check, CheckOptions};
+use crate::engine::limit::excess;
+use crate::error::{ErrorKind, Result};
+use crate::model::quantity::{self, Bound, Quantity};
+use crate::model::requirements::{ObjectiveKind, Requirements};
+use crate::progress::Silent;
+
+/// A requirement a design does not meet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    /// The requirement's key (`envelope.max_outer_diameter_mm`, `limits.max_contact_pressure_mpa`,
+    /// `rules`: a rule of the spec, `torque`: the contact model cannot hold the torque).
+    pub requirement: String,
+    /// The design's value and the limit, when the requirement is a bound.
+    pub bound: Option<(f64, f64, Bound)>,
+    pub unit: &'static str,
+    /// What the engine said, for a rule of the spec or a torque the contacts cannot hold.
+    pub message: Option<String>,
+}
+
+impl Failure {
+    /// A bound broken: `value` beyond `limit` (`upper`: an upper limit).
+    pub fn bound(key: &str, value: f64, limit: f64, unit: &'static str, upper: bool) -> Failure {
+        let b = if upper { Bound::Max } else { Bound::Min };
+        Failure {
+            requirement: key.to_string(),
+            bound: Some((value, limit, b)),
+            unit,
+            message: None,
+        }
+    }
+
+    /// How far beyond its limit, relative (`engine::limit::excess`); a failure without a
+    /// number ranks beyond every bound.
+    pub fn excess(&self) -> f64 {
+        self.bound.map_or(f64::MAX, |(v, l, b)| excess(v, l, b))
+    }
+}
+
+/// The stage a candidate reached.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Stage {
+    /// Stopped by a rule or the envelope.
+    Rules,
+    /// Stopped by the screen.
+    Screen,
+    /// Fully checked (feasible when it has no failure).
+    Full,
+}
+
+/// A candidate and what became of it.
+#[derive(Debug, Clone)]
+pub struct Evaluation {
+    pub candidate: Candidate,
+    pub stage: Stage,
+    /// Every requirement it did not meet at its last stage (empty: feasible).
+    pub failures: Vec<Failure>,
+    /// The objectives' values in the requirements' order and units, after a full check.
+    pub objectives: Vec<f64>,
+}
+
+impl Evaluation {
+    /// Fully checked and meets every requirement.
+    pub fn feasible(&self) -> bool {
+        self.stage == Stage::Full && self.failures.is_empty()
+    }
+
+    /// The objectives to minimise (a maximised one negated).
+    pub fn minimised(&self, req: &Requirements) -> Vec<f64> {
+        req.objectives
+            .iter()
+            .zip(&self.objectives)
+            .map(|(k, &v)| if k.maximise() { -v } else { v })
+            .collect()
+    }
+
+    /// The worst failure's relative excess (negative infinity when feasible).
+    pub fn worst_excess(&self) -> f64 {
+        self.failures
+            .iter()
+            .map(Failure::excess)
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+/// Limits whose scene extreme over a subset of the crank angles can only be less extreme than
+/// over all of them (a minimum or maximum over angles, a range): a screen that breaks one
+/// breaks it in the full check too, so it rejects no design the full check would accept.
+const SCREEN_LIMITS: [&str; 9] = [
+    "min_clearance_mm",
+    "max_roller_force_n",
+    "max_contact_pressure_mpa",
+    "min_rollers_in_contact",
+    "max_te_fluctuation_arcsec",
+    "max_ratio_fluctuation",
+    "max_pin_force_n",
+    "max_bearing_force_n",
+    "max_lost_motion_arcsec",
+];
+
+/// Counts of what the stages did, for the report.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Tally {
+    pub generated: u64,
+    pub rule_rejected: u64,
+    pub screened: u64,
+    pub screen_rejected: u64,
+    pub fully_checked: u64,
+    pub feasible: u64,
+}
+
+impl Tally {
+    /// Count one evaluation.
+    pub fn add(&mut self, e: &Evaluation) {
+        self.generated += 1;
+        match e.stage {
+            Stage::Rules => self.rule_rejected += 1,
+            Stage::Screen => {
+                self.screened += 1;
+                self.screen_rejected += 1;
+            }
+            Stage::Full => {
+                self.screened += 1;
+                self.fully_checked += 1;
+                self.feasible += u64::from(e.failures.is_empty());
+            }
+        }
+    }
+}
+
+/// The spec name of a candidate while it is searched.
+const WORKING_NAME: &str = "candidate";
+
+/// Take `c` through the rules, the screen and the full check, as far as it goes.
+pub fn evaluate(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
+    let stop = |stage, failures| {
+        Ok(Evaluation {
+            candidate: *c,
+            stage,
+            failures,
+            objectives: Vec::new(),
+        })
+    };
+    let failures = super::rules::failures(req, c);
+    if !failures.is_empty() {
+        return stop(Stage::Rules, failures);
+    }
+    let steps = req.search.steps_per_mesh_period;
+    let screen = super::candidate::spec_text(req, c, WORKING_NAME, steps / 4, "");
+    let spec = match crate::spec::parse("candidate.yaml", &screen) {
+        Ok(s) => s,
+        Err(e) if e.kind == ErrorKind::ImpossibleDesign => {
+            return stop(
+                Stage::Rules,
+                vec![Failure {
+                    requirement: format!("rules ({})", e.key_path.as_deref().unwrap_or("")),
+                    bound: None,
+                    unit: "",
+                    message: Some(e.message),
+                }],
+            )
+        }
+        Err(e) => return Err(e),
+    };
+    let run = match check(&spec, &CheckOptions::default(), &Silent) {
+        Ok(r) => r,
+        Err(e) if e.kind == ErrorKind::Computation => return stop(Stage::Screen, vec![torque(e)]),
+        Err(e) => return Err(e),
+    };
+    let failures: Vec<_> = failed(&run.checks)
+        .into_iter()
+        .filter(|f| {
+            SCREEN_LIMITS
+                .iter()
+                .any(|k| f.requirement == format!("limits.{k}"))
+        })
+        .collect();
+    if !failures.is_empty() {
+        return stop(Stage::Screen, failures);
+    }
+    full(req, c)
+}
+
+/// The full check of `c` (its rules already passed).
+fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
+    let text =
+        super::candidate::spec_text(req, c, WORKING_NAME, req.search.steps_per_mesh_period, "");
+    let spec = crate::spec::parse("candidate.yaml", &text)?;
+    let run = match check(&spec, &CheckOptions::default(), &Silent) {
+        Ok(r) => r,
+        Err(e) if e.kind == ErrorKind::Computation => {
+            return Ok(Evaluation {
+                candidate: *c,
+                stage: Stage::Full,
+                failures: vec![torque(e)],
+                objectives: Vec::new(),
+            })
+        }
+        Err(e) => return Err(e),
+    };
+    let failures = failed(&run.checks);
+    let objectives = if failures.is_empty() {
+        objectives(req, c, &run.results)?
+    } else {
+        Vec::new()
+    };
+    Ok(Evaluation {
+        candidate: *c,
+        stage: Stage::Full,
+        failures,
+        objectives,
+    })
+}
+
+/// A torque the contact model cannot hold (a computation error of the check).
+fn torque(e: crate::error::Error) -> Failure {
+    Failure {
+        requirement: "torque".to_string(),
+        bound: None,
+        unit: "",
+        message: Some(e.message),
+    }
+}
+
+/// The failed checks as failures, the worst per limit key (over the scenes).
+fn failed(checks: &[crate::engine::check::Check]) -> Vec<Failure> {
+    let mut out: Vec<Failure> = Vec::new();
+    for c in checks.iter().filter(|c| !c.passed) {
+        let f = Failure {
+            requirement: format!("limits.{}", c.name()),
+            bound: Some((c.value, c.limit, c.bound)),
+            unit: c.unit,
+            message: None,
+        };
+        match out.iter_mut().find(|o| o.requirement == f.requirement) {
+            Some(o) if f.excess() > o.excess() => *o = f,
+            Some(_) => {}
+            None => out.push(f),
+        }
+    }
+    out
+}
+
+/// The objectives of a fully checked candidate, in the requirements' order.
+fn objectives(
+    req: &Requirements,
+    c: &Candidate,
+    results: &[crate::model::results::SceneResult],
+) -> Result<Vec<f64>> {
+    // The worst over the scenes that compute the quantity, by the way it is better.
+    let worst = |q: &Quantity, maximise: bool| -> Result<f64> {
+        let values: Vec<f64> = results
+            .iter()
+            .filter_map(|r| q.scalar(r).map(|e| e.value))
+            .collect();
+        let v = if maximise {
+            values.iter().copied().fold(f64::INFINITY, f64::min)
+        } else {
+            values.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        };
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(crate::error::Error::computation(format!(
+                "no scene of the candidate's spec gave a finite {} for its objective",
+                q.label
+            )))
+        }
+    };
+    req.objectives
+        .iter()
+        .map(|k| match k {
+            ObjectiveKind::OuterDiameter => Ok(c.outer_diameter_mm(req)),
+            ObjectiveKind::AxialLength => Ok(c.axial_length_mm(req)),
+            ObjectiveKind::Mass => Ok(c.mass_kg(req)),
+            ObjectiveKind::ContactPressure => worst(&quantity::MAX_CONTACT_PRESSURE, false),
+            ObjectiveKind::TeFluctuation => worst(&quantity::TE_FLUCTUATION, false),
+            ObjectiveKind::LostMotion => worst(&quantity::MAX_LOST_MOTION, false),
+            ObjectiveKind::BearingLife => worst(&quantity::BEARING_LIFE, true),
+            ObjectiveKind::Rigidity => worst(&quantity::MIN_TORSIONAL_RIGIDITY, true),
+        })
+        .collect()
+}

@@ -138,13 +138,21 @@ const WORKING_NAME: &str = "candidate";
 
 /// Take `c` through the rules, the screen and the full check, as far as it goes.
 pub fn evaluate(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
+    match screen(req, c)? {
+        Some(stopped) => Ok(stopped),
+        None => full(req, c),
+    }
+}
+
+/// The rules and the screen of `c`: where it stopped, or `None` when it passed both.
+pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
     let stop = |stage, failures| {
-        Ok(Evaluation {
+        Ok(Some(Evaluation {
             candidate: *c,
             stage,
             failures,
             objectives: Vec::new(),
-        })
+        }))
     };
     let failures = super::rules::failures(req, c);
     if !failures.is_empty() {
@@ -183,11 +191,11 @@ pub fn evaluate(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
     if !failures.is_empty() {
         return stop(Stage::Screen, failures);
     }
-    full(req, c)
+    Ok(None)
 }
 
 /// The full check of `c` (its rules already passed).
-fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
+pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
     let text =
         super::candidate::spec_text(req, c, WORKING_NAME, req.search.steps_per_mesh_period, "");
     let spec = crate::spec::parse("candidate.yaml", &text)?;

@@ -9,9 +9,12 @@ use crate::report::svg::base::{document, px};
 use maud::{html, Markup, DOCTYPE};
 use std::fmt::Write;
 
-/// The columns of the table, CSV and page: (header, unit, value of a front design).
-fn columns(req: &Requirements) -> Vec<(String, Box<dyn Fn(&Evaluation) -> f64 + '_>)> {
-    let mut cols: Vec<(String, Box<dyn Fn(&Evaluation) -> f64 + '_>)> = vec![
+/// A column: its header and the value of a front design.
+type Column<'a> = (String, Box<dyn Fn(&Evaluation) -> f64 + 'a>);
+
+/// The columns of the table, CSV and page.
+fn columns(req: &Requirements) -> Vec<Column<'_>> {
+    let mut cols: Vec<Column<'_>> = vec![
         (
             "ratio".into(),
             Box::new(|e: &Evaluation| e.candidate.choice.teeth as f64),

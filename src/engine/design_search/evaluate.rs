@@ -3,43 +3,30 @@
 //! easier) and the full check of the spec a front design is written as.
 
 use super::candidate::Candidate;
-use crate::engine::commands::{check, CheckOptions};
-use crate::engine::limit::excess;
+pub use super::failure::Failure;
+use crate::engine::check::Check;
+use crate::engine::scene::{self, RunOptions, Writes};
 use crate::error::{ErrorKind, Result};
-use crate::model::quantity::{self, Bound, Quantity};
+use crate::model::quantity::{self, Quantity};
 use crate::model::requirements::{ObjectiveKind, Requirements};
-use crate::progress::Silent;
+use crate::model::results::SceneResult;
+use crate::spec::Spec;
+use rayon::prelude::*;
 
-/// A requirement a design does not meet.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Failure {
-    /// The requirement's key (`envelope.max_outer_diameter_mm`, `limits.max_contact_pressure_mpa`,
-    /// `rules`: a rule of the spec, `torque`: the contact model cannot hold the torque).
-    pub requirement: String,
-    /// The design's value and the limit, when the requirement is a bound.
-    pub bound: Option<(f64, f64, Bound)>,
-    pub unit: &'static str,
-    /// What the engine said, for a rule of the spec or a torque the contacts cannot hold.
-    pub message: Option<String>,
-}
-
-impl Failure {
-    /// A bound broken: `value` beyond `limit` (`upper`: an upper limit).
-    pub fn bound(key: &str, value: f64, limit: f64, unit: &'static str, upper: bool) -> Failure {
-        let b = if upper { Bound::Max } else { Bound::Min };
-        Failure {
-            requirement: key.to_string(),
-            bound: Some((value, limit, b)),
-            unit,
-            message: None,
-        }
-    }
-
-    /// How far beyond its limit, relative (`engine::limit::excess`); a failure without a
-    /// number ranks beyond every bound.
-    pub fn excess(&self) -> f64 {
-        self.bound.map_or(f64::MAX, |(v, l, b)| excess(v, l, b))
-    }
+/// The scenes of a candidate's spec and the checks of its limits: what `check` computes for a
+/// spec without goldens, studies, an accuracy scene or measured points (the only specs a
+/// search writes; `tests/it/design_search.rs` runs `check` itself on the front's specs).
+fn check(spec: &Spec) -> Result<(Vec<SceneResult>, Vec<Check>)> {
+    let results = spec
+        .scenes
+        .par_iter()
+        .map(|s| {
+            let plan = scene::plan(spec, s, Writes::default());
+            scene::run(spec, s, &plan, &RunOptions::default())
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let checks = crate::engine::check::evaluate(spec, &results)?;
+    Ok((results, checks))
 }
 
 /// The stage a candidate reached.
@@ -175,12 +162,12 @@ pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
         }
         Err(e) => return Err(e),
     };
-    let run = match check(&spec, &CheckOptions::default(), &Silent) {
+    let (_, checks) = match check(&spec) {
         Ok(r) => r,
         Err(e) if e.kind == ErrorKind::Computation => return stop(Stage::Screen, vec![torque(e)]),
         Err(e) => return Err(e),
     };
-    let failures: Vec<_> = failed(&run.checks)
+    let failures: Vec<_> = failed(&checks)
         .into_iter()
         .filter(|f| {
             SCREEN_LIMITS
@@ -199,7 +186,7 @@ pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
     let text =
         super::candidate::spec_text(req, c, WORKING_NAME, req.search.steps_per_mesh_period, "");
     let spec = crate::spec::parse("candidate.yaml", &text)?;
-    let run = match check(&spec, &CheckOptions::default(), &Silent) {
+    let (results, checks) = match check(&spec) {
         Ok(r) => r,
         Err(e) if e.kind == ErrorKind::Computation => {
             return Ok(Evaluation {
@@ -211,9 +198,9 @@ pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
         }
         Err(e) => return Err(e),
     };
-    let failures = failed(&run.checks);
+    let failures = failed(&checks);
     let objectives = if failures.is_empty() {
-        objectives(req, c, &run.results)?
+        objectives(req, c, &results)?
     } else {
         Vec::new()
     };
@@ -236,7 +223,7 @@ fn torque(e: crate::error::Error) -> Failure {
 }
 
 /// The failed checks as failures, the worst per limit key (over the scenes).
-fn failed(checks: &[crate::engine::check::Check]) -> Vec<Failure> {
+fn failed(checks: &[Check]) -> Vec<Failure> {
     let mut out: Vec<Failure> = Vec::new();
     for c in checks.iter().filter(|c| !c.passed) {
         let f = Failure {
@@ -255,11 +242,7 @@ fn failed(checks: &[crate::engine::check::Check]) -> Vec<Failure> {
 }
 
 /// The objectives of a fully checked candidate, in the requirements' order.
-fn objectives(
-    req: &Requirements,
-    c: &Candidate,
-    results: &[crate::model::results::SceneResult],
-) -> Result<Vec<f64>> {
+fn objectives(req: &Requirements, c: &Candidate, results: &[SceneResult]) -> Result<Vec<f64>> {
     // The worst over the scenes that compute the quantity, by the way it is better.
     let worst = |q: &Quantity, maximise: bool| -> Result<f64> {
         let values: Vec<f64> = results

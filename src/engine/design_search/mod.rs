@@ -14,6 +14,7 @@
 
 pub mod candidate;
 pub mod evaluate;
+pub mod failure;
 pub mod pareto;
 pub mod refine;
 pub mod rules;

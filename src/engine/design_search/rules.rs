@@ -3,7 +3,7 @@
 //! (`spec::rules`: K1 < 1, undercut, rollers overlapping, holes) run when its spec is parsed.
 
 use super::candidate::*;
-use super::evaluate::Failure;
+use super::failure::Failure;
 use crate::model::requirements::Requirements;
 use std::f64::consts::PI;
 

@@ -343,3 +343,54 @@ fn a_bad_requirements_file_is_refused_at_its_file_line_and_column() {
         assert!(!out.stderr.contains("panicked"), "{}", out.stderr);
     }
 }
+
+#[test]
+fn the_screen_rejects_no_design_the_full_check_accepts() {
+    // The screen runs every fourth of the full check's crank angles: an extreme over a subset
+    // of the angles is no more extreme than over all of them, so a limit the screen finds
+    // broken is broken in the full check, by at least as much (1e-9 relative: the solver's
+    // round-off between two runs of the same angle, far below any margin here).
+    use rand_chacha::rand_core::SeedableRng;
+    let req = small();
+    let choice = design_search::choices(&req)[0];
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
+    let mut rejected = 0;
+    for _ in 0..400 {
+        let mut u = [0.0; 8];
+        u.iter_mut().for_each(|x| *x = uniform(&mut rng));
+        let c = Candidate::at(choice, &req.search.continuous, &u);
+        let Some(stop) = evaluate::screen(&req, &c).unwrap() else {
+            continue;
+        };
+        if stop.stage != evaluate::Stage::Screen {
+            continue;
+        }
+        rejected += 1;
+        let full = evaluate::full(&req, &c).unwrap();
+        assert!(
+            !full.feasible(),
+            "the screen rejected {:?}, the full check accepts it",
+            c.x
+        );
+        for f in &stop.failures {
+            let g = full
+                .failures
+                .iter()
+                .find(|g| g.requirement == f.requirement)
+                .unwrap_or_else(|| {
+                    panic!("{} fails the screen, not the full check", f.requirement)
+                });
+            assert!(
+                g.excess() >= f.excess() - 1e-9,
+                "{}: {} < {}",
+                f.requirement,
+                g.excess(),
+                f.excess()
+            );
+        }
+    }
+    assert!(
+        rejected >= 5,
+        "only {rejected} designs reached and failed the screen"
+    );
+}

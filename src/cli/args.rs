@@ -120,6 +120,16 @@ pub enum Command {
     /// on each, and report the distribution of every limited quantity and the failure rate;
     /// `tolerance merge SHARD...` joins the shards of a split run.
     Tolerance(ToleranceArgs),
+    /// Search a requirements file's design space for the Pareto front of checked designs.
+    Design {
+        /// The YAML requirements file (ratio, torques, envelope, limits, objectives, the
+        /// search's space).
+        requirements: String,
+        /// Write each front design's spec, front.csv and the review page index.html into this
+        /// directory.
+        #[arg(long)]
+        out: Option<String>,
+    },
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
         /// The YAML spec whose design and modification give the profile.

@@ -7,6 +7,7 @@ mod accuracy;
 pub mod args;
 mod bless;
 mod check;
+mod design;
 mod fit;
 mod optimise;
 mod output;
@@ -105,5 +106,9 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             form_csv,
         } => fit::run(&spec, write.as_deref(), form_csv.as_deref(), out),
         Command::Tolerance(args) => tolerance::run(args, out),
+        Command::Design {
+            requirements,
+            out: dir,
+        } => design::run(&requirements, dir.as_deref(), out),
     }
 }

@@ -13,6 +13,7 @@ pub mod as_built;
 pub mod bearing_life;
 pub mod check;
 pub mod commands;
+pub mod design_search;
 pub mod drawing;
 pub mod duty_cycle;
 pub mod efficiency;

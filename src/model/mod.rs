@@ -18,6 +18,7 @@ pub mod limits;
 pub mod measured;
 pub mod modification;
 pub mod quantity;
+pub mod requirements;
 pub mod results;
 pub mod scene;
 pub mod study;

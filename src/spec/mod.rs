@@ -16,6 +16,8 @@ pub(crate) mod measured;
 pub(crate) mod paths;
 pub(crate) mod raw;
 pub mod relocate;
+pub mod requirements;
+pub(crate) mod requirements_raw;
 #[doc(hidden)]
 pub mod rules;
 pub(crate) mod scenes;

@@ -69,7 +69,7 @@ fn count_capped(key: &str, value: i64, min: i64, max: usize, why: &str) -> Resul
     }
 }
 
-fn material(key: &str, raw: RawMaterial) -> Result<Material> {
+pub(super) fn material(key: &str, raw: RawMaterial) -> Result<Material> {
     let youngs_gpa = positive(&format!("{key}.youngs_modulus_gpa"), raw.youngs_modulus_gpa)?;
     let nu = raw.poisson_ratio;
     if !(nu.is_finite() && (0.0..0.5).contains(&nu)) {
@@ -280,7 +280,7 @@ fn crank_bearing(raw: RawCrankBearing) -> Result<CrankBearing> {
 const LIFE_EXPONENTS: (f64, f64) = (1.0, 10.0);
 
 /// A life exponent within `LIFE_EXPONENTS`.
-fn life_exponent(key: &str, p: f64) -> Result<f64> {
+pub(super) fn life_exponent(key: &str, p: f64) -> Result<f64> {
     let (lo, hi) = LIFE_EXPONENTS;
     if p.is_finite() && (lo..=hi).contains(&p) {
         return Ok(p);
@@ -470,7 +470,7 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
 
 /// The limits a spec sets, in the registry's order; an unknown key is an error naming the
 /// closest known one.
-fn limits(raw: &RawLimits) -> Result<Limits> {
+pub(super) fn limits(raw: &RawLimits) -> Result<Limits> {
     const OPTIMUM: &str = "optimum_max_objective";
     const RESOLVED: &str = "accuracy_resolved";
     let known = || {

@@ -61,13 +61,59 @@ fn deserialize<O>(path: &str, text: &str) -> Result<RawSpecOf<RawOptimise>>
 where
     O: serde::de::DeserializeOwned + Into<RawOptimise>,
 {
+    let raw: RawSpecOf<O> = typed(path, text)?;
+    Ok(RawSpecOf {
+        name: raw.name,
+        reducer: raw.reducer,
+        modification: raw.modification,
+        scenes: raw.scenes,
+        limits: raw.limits,
+        optimise: raw.optimise.map(Into::into),
+        golden: raw.golden,
+        golden_root: raw.golden_root,
+        accuracy: raw.accuracy,
+        measured_profile: raw.measured_profile,
+        tolerances: raw.tolerances,
+    })
+}
+
+/// A YAML document of another kind than a spec (a requirements file), with the spec's located
+/// errors: syntax first (no key path), then the typed pass (its key path); `what` names the
+/// document in the error of an empty file.
+pub(crate) fn parse_document<T: serde::de::DeserializeOwned>(
+    path: &str,
+    text: &str,
+    what: &str,
+) -> Result<T> {
+    let at = |line: usize, column: usize| Location {
+        file: path.to_string(),
+        line,
+        column,
+    };
+    match serde_yaml::from_str::<serde_yaml::Value>(text) {
+        Ok(serde_yaml::Value::Null) => {
+            return Err(Error::new(ErrorKind::Syntax, format!("the {what} is empty")).at(at(1, 1)))
+        }
+        Err(err) if !err.to_string().contains("duplicate entry with key") => {
+            let (line, column) = err.location().map_or((1, 1), |l| (l.line(), l.column()));
+            return Err(
+                Error::new(ErrorKind::Syntax, yaml_message(&err.to_string())).at(at(line, column)),
+            );
+        }
+        _ => {}
+    }
+    typed(path, text)
+}
+
+/// The typed pass: serde's error turned into the spec's words, at its key and location.
+fn typed<T: serde::de::DeserializeOwned>(path: &str, text: &str) -> Result<T> {
     let at = |line: usize, column: usize| Location {
         file: path.to_string(),
         line,
         column,
     };
     let de = serde_yaml::Deserializer::from_str(text);
-    let raw: RawSpecOf<O> = serde_path_to_error::deserialize(de).map_err(|err| {
+    serde_path_to_error::deserialize(de).map_err(|err| {
         let key_path = err.path().to_string();
         let key_path = if key_path == "." {
             String::new()
@@ -84,19 +130,6 @@ where
             error = error.at_key(key_path);
         }
         error
-    })?;
-    Ok(RawSpecOf {
-        name: raw.name,
-        reducer: raw.reducer,
-        modification: raw.modification,
-        scenes: raw.scenes,
-        limits: raw.limits,
-        optimise: raw.optimise.map(Into::into),
-        golden: raw.golden,
-        golden_root: raw.golden_root,
-        accuracy: raw.accuracy,
-        measured_profile: raw.measured_profile,
-        tolerances: raw.tolerances,
     })
 }
 

@@ -19,6 +19,7 @@ mod clearance_sweep;
 mod cli;
 mod cli_help;
 mod contact;
+mod design_search;
 mod deviations;
 mod discs;
 mod duty_cycle;

@@ -8,6 +8,11 @@ use crate::common;
 const EXPECTED: &[(&str, i32, &str)] = &[
     ("reducer.yaml", 0, "paper optimum, clearance only"),
     (
+        "requirements-robot-joint.yaml",
+        2,
+        "a requirements file for `cycloid design`, not a spec: `check` refuses its keys",
+    ),
+    (
         "reducer-measured.yaml",
         0,
         "paper optimum as built: points with a planted 4 µm form error",

@@ -5,6 +5,7 @@
 mod accuracy;
 mod bless;
 mod check;
+mod design;
 mod fit;
 mod optimise;
 mod profile;
@@ -16,6 +17,7 @@ pub use check::{
     check, map, map_steps_allowed, scenes, studies, AsBuilt, CheckOptions, CheckRun, Review,
     ReviewOptions, MAX_MAP_STEPS,
 };
+pub use design::{design, design_file, front_spec, DesignRun};
 pub use fit::fit;
 pub use optimise::{optimise, OptimiseRun};
 pub use profile::{profile, MIN_PROFILE_TOLERANCE_MM};

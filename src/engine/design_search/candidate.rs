@@ -1,0 +1,212 @@
+//! One point of the design space: its discrete choices and continuous values, the figures that
+//! follow from its geometry alone (envelope, mass) and the spec that checks it.
+
+use crate::model::requirements::{Continuous, Requirements};
+use std::fmt::Write;
+
+/// A discrete choice: the disc's teeth nc (the ratio), the output pins M and the discs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Choice {
+    pub teeth: usize,
+    pub pins: usize,
+    pub discs: usize,
+}
+
+/// A design of the search: a choice and the eight continuous values, mm, in the order of
+/// [`Continuous::KEYS`] (e, Rp, Rrp, B, rw, pin radius, ΔRp, ΔRrp).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Candidate {
+    pub choice: Choice,
+    pub x: [f64; 8],
+}
+
+/// Indices into `Candidate::x`.
+pub const E: usize = 0;
+pub const RP: usize = 1;
+pub const RRP: usize = 2;
+pub const B: usize = 3;
+pub const RW: usize = 4;
+pub const RPIN: usize = 5;
+pub const SHIFT: usize = 6;
+pub const EQUIDISTANT: usize = 7;
+
+impl Candidate {
+    /// The design at `u` (eight numbers in [0, 1]) of the requirements' ranges.
+    pub fn at(choice: Choice, space: &Continuous, u: &[f64; 8]) -> Candidate {
+        let ranges = space.ranges();
+        let mut x = [0.0; 8];
+        for k in 0..8 {
+            x[k] = ranges[k].at(u[k]);
+        }
+        Candidate { choice, x }
+    }
+
+    /// np = nc + 1.
+    pub fn rollers(&self) -> usize {
+        self.choice.teeth + 1
+    }
+
+    /// Outer diameter, mm: 2·(Rp + Rrp + w), w the housing wall beyond the rollers.
+    pub fn outer_diameter_mm(&self, req: &Requirements) -> f64 {
+        2.0 * (self.x[RP] + self.x[RRP] + req.envelope.housing_wall_mm)
+    }
+
+    /// Axial length, mm: discs·B + the axial allowance (bearings, covers).
+    pub fn axial_length_mm(&self, req: &Requirements) -> f64 {
+        self.choice.discs as f64 * self.x[B] + req.envelope.axial_allowance_mm
+    }
+
+    /// Mass estimate of the parts that carry the torque, kg:
+    /// ρ·B·discs·[π(Rp − Rrp)² − M·π·rh² + np·π·Rrp² + M·π·rpin²], each disc taken as a
+    /// plate of the mean profile radius Rp − Rrp (the profile swings ±e about it) less its M
+    /// holes of radius rh = rpin + e + hole clearance, the np rollers and M pins as cylinders
+    /// as long as the discs' stack; ρ the requirements' density (steel 7,850 kg/m³ by default).
+    pub fn mass_kg(&self, req: &Requirements) -> f64 {
+        use std::f64::consts::PI;
+        let x = &self.x;
+        let m = self.choice.pins as f64;
+        let hole = x[RPIN] + x[E] + req.search.hole_clearance_mm;
+        let disc = PI * (x[RP] - x[RRP]).powi(2) - m * PI * hole * hole;
+        let rollers = self.rollers() as f64 * PI * x[RRP] * x[RRP];
+        let pins = m * PI * x[RPIN] * x[RPIN];
+        req.density_kg_per_mm3 * x[B] * self.choice.discs as f64 * (disc + rollers + pins)
+    }
+
+    /// Crank period of the loaded curves, in mesh periods: nc/gcd(nc, M) (the least common
+    /// multiple of the mesh period 2π/np and the pin period 2π·nc/(np·M),
+    /// `Design::loaded_period_rad`).
+    pub fn loaded_mesh_periods(&self) -> usize {
+        let (mut a, mut b) = (self.choice.teeth, self.choice.pins);
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        self.choice.teeth / a
+    }
+}
+
+/// A number as YAML that reads back as the same double (Rust's shortest round-trip form).
+fn num(x: f64) -> String {
+    format!("{x:?}")
+}
+
+/// The spec of `c` under `req`: its reducer, the scenes the requirements need and their
+/// limits; `steps` crank angles per mesh period (the screen runs a quarter of the full
+/// check's, every fourth of its angles). `header` is written first as comments.
+///
+/// Scenes: `mesh` (unloaded, one mesh period: clearance and lost motion), `rated` (the rated
+/// torque and speed over the loaded period: forces, pressure, TE, bearing life), `peak` (the
+/// peak torque, when above the rated: forces and pressure; no bearing, whose life is the
+/// rated scene's) and `torsion` (the catalogue loop at the rated torque, when a rigidity or
+/// torsional lost motion is asked for).
+pub fn spec_text(
+    req: &Requirements,
+    c: &Candidate,
+    name: &str,
+    steps: usize,
+    header: &str,
+) -> String {
+    let x = &c.x;
+    let np = c.rollers();
+    let mesh_deg = 360.0 / np as f64;
+    let periods = c.loaded_mesh_periods();
+    let mut s = String::new();
+    for line in header.lines() {
+        let _ = writeln!(s, "# {line}");
+    }
+    let _ = writeln!(
+        s,
+        "name: {}",
+        serde_json::to_string(name).unwrap_or_default()
+    );
+    let _ = writeln!(s, "reducer:");
+    let _ = writeln!(s, "  teeth: {}", c.choice.teeth);
+    let _ = writeln!(s, "  rollers: {np}");
+    let _ = writeln!(s, "  eccentricity_mm: {}", num(x[E]));
+    let _ = writeln!(s, "  roller_circle_radius_mm: {}", num(x[RP]));
+    let _ = writeln!(s, "  roller_radius_mm: {}", num(x[RRP]));
+    let _ = writeln!(s, "  face_width_mm: {}", num(x[B]));
+    let _ = writeln!(s, "  discs: {}", c.choice.discs);
+    let _ = writeln!(s, "  output_pins:");
+    let _ = writeln!(s, "    count: {}", c.choice.pins);
+    let _ = writeln!(s, "    circle_radius_mm: {}", num(x[RW]));
+    let _ = writeln!(s, "    pin_radius_mm: {}", num(x[RPIN]));
+    let _ = writeln!(
+        s,
+        "    hole_clearance_mm: {}",
+        num(req.search.hole_clearance_mm)
+    );
+    let _ = writeln!(s, "  material:");
+    let _ = writeln!(
+        s,
+        "    youngs_modulus_gpa: {}",
+        num(crate::units::gpa(req.material.youngs_modulus_mpa))
+    );
+    let _ = writeln!(s, "    poisson_ratio: {}", num(req.material.poisson_ratio));
+    if let Some(b) = &req.crank_bearing {
+        let _ = writeln!(s, "  crank_bearing:");
+        let _ = writeln!(
+            s,
+            "    dynamic_load_rating_n: {}",
+            num(b.dynamic_load_rating_n)
+        );
+        let _ = writeln!(s, "    life_exponent: {}", num(b.life_exponent));
+    }
+    let _ = writeln!(s, "modification:");
+    let _ = writeln!(s, "  shift_mm: {}", num(x[SHIFT]));
+    let _ = writeln!(s, "  equidistant_mm: {}", num(x[EQUIDISTANT]));
+    let _ = writeln!(s, "scenes:");
+    let _ = writeln!(s, "  - name: mesh");
+    let _ = writeln!(
+        s,
+        "    crank: {{ from_deg: 0.0, to_deg: {}, steps: {steps} }}",
+        num(mesh_deg)
+    );
+    let _ = writeln!(s, "    effects: [clearance]");
+    let loaded = format!(
+        "    crank: {{ from_deg: 0.0, to_deg: {}, steps: {} }}",
+        num(mesh_deg * periods as f64),
+        steps * periods
+    );
+    let _ = writeln!(s, "  - name: rated");
+    let _ = writeln!(
+        s,
+        "    output_torque_nm: {}",
+        num(crate::units::nm(req.rated_torque_nmm))
+    );
+    if let Some(n) = req.input_speed_rpm {
+        let _ = writeln!(s, "    input_speed_rpm: {}", num(n));
+    }
+    let _ = writeln!(s, "{loaded}");
+    let _ = writeln!(s, "    effects: [bearing]");
+    if req.peak_torque_nmm > req.rated_torque_nmm {
+        let _ = writeln!(s, "  - name: peak");
+        let _ = writeln!(
+            s,
+            "    output_torque_nm: {}",
+            num(crate::units::nm(req.peak_torque_nmm))
+        );
+        let _ = writeln!(s, "{loaded}");
+        let _ = writeln!(s, "    effects: [output_pins]");
+    }
+    if req.needs_torsion() {
+        let _ = writeln!(s, "  - name: torsion");
+        let _ = writeln!(
+            s,
+            "    torque_sweep: {{ rated_nm: {}, steps: 8 }}",
+            num(crate::units::nm(req.rated_torque_nmm))
+        );
+        let _ = writeln!(
+            s,
+            "    crank: {{ from_deg: 0.0, to_deg: {}, steps: 4 }}",
+            num(mesh_deg)
+        );
+        let _ = writeln!(s, "    effects: [output_pins]");
+    }
+    if !req.limits.entries.is_empty() {
+        let _ = writeln!(s, "limits:");
+        for l in &req.limits.entries {
+            let _ = writeln!(s, "  {}: {}", l.def.key, num(l.value));
+        }
+    }
+    s
+}

@@ -1,0 +1,279 @@
+//! A candidate through the three stages: the rules (no physics), the screen (the spec's scenes
+//! at a quarter of the crank angles, judged only on the limits that sampling cannot make
+//! easier) and the full check of the spec a front design is written as.
+
+use super::candidate::Candidate;
+pub use super::failure::Failure;
+use crate::engine::check::Check;
+use crate::engine::scene::{self, RunOptions, Writes};
+use crate::error::{ErrorKind, Result};
+use crate::model::quantity::{self, Quantity};
+use crate::model::requirements::{ObjectiveKind, Requirements};
+use crate::model::results::SceneResult;
+use crate::spec::Spec;
+use rayon::prelude::*;
+
+/// The scenes of a candidate's spec and the checks of its limits: what `check` computes for a
+/// spec without goldens, studies, an accuracy scene or measured points (the only specs a
+/// search writes; `tests/it/design_search.rs` runs `check` itself on the front's specs).
+fn check(spec: &Spec) -> Result<(Vec<SceneResult>, Vec<Check>)> {
+    let results = spec
+        .scenes
+        .par_iter()
+        .map(|s| {
+            let plan = scene::plan(spec, s, Writes::default());
+            scene::run(spec, s, &plan, &RunOptions::default())
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let checks = crate::engine::check::evaluate(spec, &results)?;
+    Ok((results, checks))
+}
+
+/// The stage a candidate reached.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Stage {
+    /// Stopped by a rule or the envelope.
+    Rules,
+    /// Stopped by the screen.
+    Screen,
+    /// Fully checked (feasible when it has no failure).
+    Full,
+}
+
+/// A candidate and what became of it.
+#[derive(Debug, Clone)]
+pub struct Evaluation {
+    pub candidate: Candidate,
+    pub stage: Stage,
+    /// Every requirement it did not meet at its last stage (empty: feasible).
+    pub failures: Vec<Failure>,
+    /// The objectives' values in the requirements' order and units, after a full check.
+    pub objectives: Vec<f64>,
+}
+
+impl Evaluation {
+    /// Fully checked and meets every requirement.
+    pub fn feasible(&self) -> bool {
+        self.stage == Stage::Full && self.failures.is_empty()
+    }
+
+    /// The objectives to minimise (a maximised one negated).
+    pub fn minimised(&self, req: &Requirements) -> Vec<f64> {
+        req.objectives
+            .iter()
+            .zip(&self.objectives)
+            .map(|(k, &v)| if k.maximise() { -v } else { v })
+            .collect()
+    }
+
+    /// The worst failure's relative excess (negative infinity when feasible).
+    pub fn worst_excess(&self) -> f64 {
+        self.failures
+            .iter()
+            .map(Failure::excess)
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+/// Limits whose scene extreme over a subset of the crank angles can only be less extreme than
+/// over all of them (a minimum or maximum over angles, a range): a screen that breaks one
+/// breaks it in the full check too, so it rejects no design the full check would accept.
+const SCREEN_LIMITS: [&str; 9] = [
+    "min_clearance_mm",
+    "max_roller_force_n",
+    "max_contact_pressure_mpa",
+    "min_rollers_in_contact",
+    "max_te_fluctuation_arcsec",
+    "max_ratio_fluctuation",
+    "max_pin_force_n",
+    "max_bearing_force_n",
+    "max_lost_motion_arcsec",
+];
+
+/// Counts of what the stages did, for the report.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Tally {
+    pub generated: u64,
+    pub rule_rejected: u64,
+    pub screened: u64,
+    pub screen_rejected: u64,
+    pub fully_checked: u64,
+    pub feasible: u64,
+}
+
+impl Tally {
+    /// Count one evaluation.
+    pub fn add(&mut self, e: &Evaluation) {
+        self.generated += 1;
+        match e.stage {
+            Stage::Rules => self.rule_rejected += 1,
+            Stage::Screen => {
+                self.screened += 1;
+                self.screen_rejected += 1;
+            }
+            Stage::Full => {
+                self.screened += 1;
+                self.fully_checked += 1;
+                self.feasible += u64::from(e.failures.is_empty());
+            }
+        }
+    }
+}
+
+/// The spec name of a candidate while it is searched.
+const WORKING_NAME: &str = "candidate";
+
+/// Take `c` through the rules, the screen and the full check, as far as it goes.
+pub fn evaluate(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
+    match screen(req, c)? {
+        Some(stopped) => Ok(stopped),
+        None => full(req, c),
+    }
+}
+
+/// The rules and the screen of `c`: where it stopped, or `None` when it passed both.
+pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
+    let stop = |stage, failures| {
+        Ok(Some(Evaluation {
+            candidate: *c,
+            stage,
+            failures,
+            objectives: Vec::new(),
+        }))
+    };
+    let failures = super::rules::failures(req, c);
+    if !failures.is_empty() {
+        return stop(Stage::Rules, failures);
+    }
+    let steps = req.search.steps_per_mesh_period;
+    let screen = super::candidate::spec_text(req, c, WORKING_NAME, steps / 4, "");
+    let spec = match crate::spec::parse("candidate.yaml", &screen) {
+        Ok(s) => s,
+        Err(e) if e.kind == ErrorKind::ImpossibleDesign => {
+            return stop(
+                Stage::Rules,
+                vec![Failure {
+                    requirement: format!("rules ({})", e.key_path.as_deref().unwrap_or("")),
+                    bound: None,
+                    unit: "",
+                    message: Some(e.message),
+                }],
+            )
+        }
+        Err(e) => return Err(e),
+    };
+    let (_, checks) = match check(&spec) {
+        Ok(r) => r,
+        Err(e) if e.kind == ErrorKind::Computation => return stop(Stage::Screen, vec![torque(e)]),
+        Err(e) => return Err(e),
+    };
+    let failures: Vec<_> = failed(&checks)
+        .into_iter()
+        .filter(|f| {
+            SCREEN_LIMITS
+                .iter()
+                .any(|k| f.requirement == format!("limits.{k}"))
+        })
+        .collect();
+    if !failures.is_empty() {
+        return stop(Stage::Screen, failures);
+    }
+    Ok(None)
+}
+
+/// The full check of `c` (its rules already passed).
+pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
+    let text =
+        super::candidate::spec_text(req, c, WORKING_NAME, req.search.steps_per_mesh_period, "");
+    let spec = crate::spec::parse("candidate.yaml", &text)?;
+    let (results, checks) = match check(&spec) {
+        Ok(r) => r,
+        Err(e) if e.kind == ErrorKind::Computation => {
+            return Ok(Evaluation {
+                candidate: *c,
+                stage: Stage::Full,
+                failures: vec![torque(e)],
+                objectives: Vec::new(),
+            })
+        }
+        Err(e) => return Err(e),
+    };
+    let failures = failed(&checks);
+    let objectives = if failures.is_empty() {
+        objectives(req, c, &results)?
+    } else {
+        Vec::new()
+    };
+    Ok(Evaluation {
+        candidate: *c,
+        stage: Stage::Full,
+        failures,
+        objectives,
+    })
+}
+
+/// A torque the contact model cannot hold (a computation error of the check).
+fn torque(e: crate::error::Error) -> Failure {
+    Failure {
+        requirement: "torque".to_string(),
+        bound: None,
+        unit: "",
+        message: Some(e.message),
+    }
+}
+
+/// The failed checks as failures, the worst per limit key (over the scenes).
+fn failed(checks: &[Check]) -> Vec<Failure> {
+    let mut out: Vec<Failure> = Vec::new();
+    for c in checks.iter().filter(|c| !c.passed) {
+        let f = Failure {
+            requirement: format!("limits.{}", c.name()),
+            bound: Some((c.value, c.limit, c.bound)),
+            unit: c.unit,
+            message: None,
+        };
+        match out.iter_mut().find(|o| o.requirement == f.requirement) {
+            Some(o) if f.excess() > o.excess() => *o = f,
+            Some(_) => {}
+            None => out.push(f),
+        }
+    }
+    out
+}
+
+/// The objectives of a fully checked candidate, in the requirements' order.
+fn objectives(req: &Requirements, c: &Candidate, results: &[SceneResult]) -> Result<Vec<f64>> {
+    // The worst over the scenes that compute the quantity, by the way it is better.
+    let worst = |q: &Quantity, maximise: bool| -> Result<f64> {
+        let values: Vec<f64> = results
+            .iter()
+            .filter_map(|r| q.scalar(r).map(|e| e.value))
+            .collect();
+        let v = if maximise {
+            values.iter().copied().fold(f64::INFINITY, f64::min)
+        } else {
+            values.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        };
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(crate::error::Error::computation(format!(
+                "no scene of the candidate's spec gave a finite {} for its objective",
+                q.label
+            )))
+        }
+    };
+    req.objectives
+        .iter()
+        .map(|k| match k {
+            ObjectiveKind::OuterDiameter => Ok(c.outer_diameter_mm(req)),
+            ObjectiveKind::AxialLength => Ok(c.axial_length_mm(req)),
+            ObjectiveKind::Mass => Ok(c.mass_kg(req)),
+            ObjectiveKind::ContactPressure => worst(&quantity::MAX_CONTACT_PRESSURE, false),
+            ObjectiveKind::TeFluctuation => worst(&quantity::TE_FLUCTUATION, false),
+            ObjectiveKind::LostMotion => worst(&quantity::MAX_LOST_MOTION, false),
+            ObjectiveKind::BearingLife => worst(&quantity::BEARING_LIFE, true),
+            ObjectiveKind::Rigidity => worst(&quantity::MIN_TORSIONAL_RIGIDITY, true),
+        })
+        .collect()
+}

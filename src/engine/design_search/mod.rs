@@ -1,0 +1,243 @@
+//! `cycloid design`: the search of a requirements file's design space for its Pareto front.
+//!
+//! Stages, cheapest first (`evaluate`): the envelope and design rules (no physics, `rules`, and
+//! the spec's own `spec::rules` when the candidate's spec is parsed), a screen (the scenes at
+//! every fourth crank angle, judged on the limits that fewer angles can only make easier) and
+//! the full check of the spec a front design is written as (`candidate::spec_text`).
+//!
+//! Global stage: per discrete choice (ratio × pin count × discs) an Owen-scrambled Sobol
+//! sample (`sobol_burley`) of the continuous box, the seed and the choice's index making its
+//! scrambling. Local stage (`refine`): from each front design a pattern search that accepts
+//! a move only to a feasible design dominating it, then the front of everything feasible again
+//! (two rounds). Everything runs in parallel and is collected in a fixed order, so a seed gives
+//! the same front on any number of threads.
+
+pub mod candidate;
+pub mod evaluate;
+pub mod failure;
+pub mod pareto;
+pub mod refine;
+pub mod rules;
+
+pub use candidate::{Candidate, Choice};
+pub use evaluate::{Evaluation, Failure, Stage, Tally};
+
+use crate::error::Result;
+use crate::model::requirements::Requirements;
+use crate::progress::{Phase, Progress};
+use rayon::prelude::*;
+
+/// Rounds of local refinement (each refines the front designs not refined yet).
+const REFINE_ROUNDS: usize = 2;
+
+/// The outcome of a search.
+#[derive(Debug, Clone)]
+pub struct SearchRun {
+    /// The front, sorted by the first objective: non-dominated feasible designs.
+    pub front: Vec<Evaluation>,
+    /// What the global stage did.
+    pub global: Tally,
+    /// What the local refinement did.
+    pub local: Tally,
+    /// When no design is feasible: what was closest.
+    pub infeasible: Option<Infeasible>,
+}
+
+/// Why no design was feasible.
+#[derive(Debug, Clone)]
+pub struct Infeasible {
+    /// The requirement closest to being met among those no design met (or, when each was met
+    /// by some design, the worst failure of the design closest to feasible), with the best
+    /// value any design reached.
+    pub closest: Failure,
+    /// Every requirement no design met, each with its best value.
+    pub never_met: Vec<Failure>,
+}
+
+/// The discrete choices in a fixed order: ratio, then pin count, then discs.
+pub fn choices(req: &Requirements) -> Vec<Choice> {
+    let s = &req.search;
+    let mut out = Vec::new();
+    for &teeth in &req.ratios {
+        for &pins in &s.pin_counts {
+            for &discs in &s.discs {
+                out.push(Choice { teeth, pins, discs });
+            }
+        }
+    }
+    out
+}
+
+/// The global stage's candidates: `samples` scrambled Sobol points of the box per choice.
+pub fn global_candidates(req: &Requirements) -> Vec<Candidate> {
+    let space = &req.search.continuous;
+    let mut out = Vec::new();
+    for (i, choice) in choices(req).into_iter().enumerate() {
+        let seed = req
+            .search
+            .seed
+            .wrapping_mul(0x9E37_79B9)
+            .wrapping_add(i as u32);
+        for k in 0..req.search.samples as u32 {
+            let mut u = [0.0; 8];
+            for (d, ud) in u.iter_mut().enumerate() {
+                *ud = f64::from(sobol_burley::sample(k, d as u32, seed));
+            }
+            out.push(Candidate::at(choice, space, &u));
+        }
+    }
+    out
+}
+
+/// Evaluate candidates in parallel, results in their order; each reports one unit.
+pub fn evaluate_all(
+    req: &Requirements,
+    candidates: &[Candidate],
+    progress: &dyn Progress,
+) -> Result<Vec<Evaluation>> {
+    candidates
+        .par_iter()
+        .map(|c| {
+            let e = evaluate::evaluate(req, c);
+            progress.advance(1);
+            e
+        })
+        .collect()
+}
+
+/// The front of the feasible evaluations: indices into `all`.
+pub fn front_of(req: &Requirements, all: &[Evaluation]) -> Vec<usize> {
+    let feasible: Vec<usize> = (0..all.len()).filter(|&i| all[i].feasible()).collect();
+    let points: Vec<Vec<f64>> = feasible.iter().map(|&i| all[i].minimised(req)).collect();
+    let refs: Vec<&[f64]> = points.iter().map(Vec::as_slice).collect();
+    pareto::front(&refs)
+        .into_iter()
+        .map(|k| feasible[k])
+        .collect()
+}
+
+/// Search the requirements' design space for its Pareto front.
+pub fn search(req: &Requirements, progress: &dyn Progress) -> Result<SearchRun> {
+    let candidates = global_candidates(req);
+    let phase = progress.phase(&Phase {
+        slow_units: true,
+        ..Phase::new(
+            "global stage: rules, screen, full check",
+            "designs",
+            candidates.len() as u64,
+        )
+    });
+    let mut all = evaluate_all(req, &candidates, &*phase)?;
+    phase.finish();
+    drop(phase);
+    let mut global = Tally::default();
+    all.iter().for_each(|e| global.add(e));
+    let mut local = Tally::default();
+    let mut refined: Vec<Candidate> = Vec::new();
+    for _ in 0..REFINE_ROUNDS {
+        let starts: Vec<Evaluation> = front_of(req, &all)
+            .into_iter()
+            .map(|i| all[i].clone())
+            .filter(|e| !refined.contains(&e.candidate))
+            .collect();
+        if starts.is_empty() || req.search.refine_budget == 0 {
+            break;
+        }
+        refined.extend(starts.iter().map(|e| e.candidate));
+        let phase = progress.phase(&Phase {
+            slow_units: true,
+            ..Phase::new(
+                "local refinement of the front",
+                "designs",
+                (starts.len() * req.search.refine_budget) as u64,
+            )
+        });
+        let runs: Vec<Vec<Evaluation>> = starts
+            .par_iter()
+            .map(|s| refine::refine(req, s, &*phase))
+            .collect::<Result<_>>()?;
+        phase.finish();
+        for e in runs.into_iter().flatten() {
+            local.add(&e);
+            all.push(e);
+        }
+    }
+    let mut front: Vec<Evaluation> = front_of(req, &all)
+        .into_iter()
+        .map(|i| all[i].clone())
+        .collect();
+    front.sort_by(|a, b| {
+        a.minimised(req)
+            .partial_cmp(&b.minimised(req))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let infeasible = if front.is_empty() {
+        Some(diagnose(&all))
+    } else {
+        None
+    };
+    Ok(SearchRun {
+        front,
+        global,
+        local,
+        infeasible,
+    })
+}
+
+/// What no design met: per requirement the failure of least excess over the designs that
+/// broke it, kept when no design evaluated on it met it.
+fn diagnose(all: &[Evaluation]) -> Infeasible {
+    // Requirements some design met: those a design passed at a stage that judges them. A
+    // design that reached the full check met every rule and envelope requirement and every
+    // limit it does not list; one stopped by the screen met the rules.
+    let mut best: Vec<Failure> = Vec::new();
+    for e in all {
+        for f in &e.failures {
+            match best.iter_mut().find(|b| b.requirement == f.requirement) {
+                Some(b) if f.excess() < b.excess() => *b = f.clone(),
+                Some(_) => {}
+                None => best.push(f.clone()),
+            }
+        }
+    }
+    let met = |f: &Failure| {
+        all.iter().any(|e| {
+            let judged = match e.stage {
+                Stage::Rules => false,
+                Stage::Screen => {
+                    f.requirement.starts_with("envelope") || f.requirement.starts_with("rules")
+                }
+                Stage::Full => true,
+            };
+            judged && !e.failures.iter().any(|g| g.requirement == f.requirement)
+        })
+    };
+    let mut never_met: Vec<Failure> = best.into_iter().filter(|f| !met(f)).collect();
+    never_met.sort_by(|a, b| a.excess().total_cmp(&b.excess()));
+    let closest = match never_met.first() {
+        Some(f) => f.clone(),
+        None => {
+            // Each requirement was met by some design, never all by one: the worst failure
+            // of the design closest to feasible.
+            let e = all
+                .iter()
+                .filter(|e| !e.failures.is_empty())
+                .min_by(|a, b| {
+                    (b.stage.cmp(&a.stage)).then(a.worst_excess().total_cmp(&b.worst_excess()))
+                });
+            e.and_then(|e| {
+                e.failures
+                    .iter()
+                    .max_by(|a, b| a.excess().total_cmp(&b.excess()))
+                    .cloned()
+            })
+            .unwrap_or(Failure {
+                requirement: "search".into(),
+                bound: None,
+                unit: "",
+                message: Some("no design was generated".into()),
+            })
+        }
+    };
+    Infeasible { closest, never_met }
+}

@@ -1,0 +1,216 @@
+//! What a reducer must do, for `cycloid design`: the ratio, torques and speed, the envelope, the
+//! materials, the design rules, the limits of a spec, the objectives to trade and the space the
+//! search covers. Plain data in engine units (mm, N, N·mm); `spec::requirements` builds it.
+
+use super::design::{CrankBearing, Material};
+use super::limits::Limits;
+
+/// A continuous variable of the search: its spec key and its closed range, mm (lower = upper
+/// fixes it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// Lower end, in the variable's unit.
+    pub lower: f64,
+    /// Upper end, in the variable's unit.
+    pub upper: f64,
+}
+
+impl Range {
+    /// The value at `u` in [0, 1]: lower + u·(upper − lower).
+    pub fn at(&self, u: f64) -> f64 {
+        self.lower + u * (self.upper - self.lower)
+    }
+
+    /// The range is a single value.
+    pub fn fixed(&self) -> bool {
+        self.lower == self.upper
+    }
+}
+
+/// The continuous variables of the search, in this order (`Continuous::KEYS`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Continuous {
+    /// e, mm.
+    pub eccentricity_mm: Range,
+    /// Rp, mm.
+    pub roller_circle_radius_mm: Range,
+    /// Rrp, mm.
+    pub roller_radius_mm: Range,
+    /// B, mm.
+    pub face_width_mm: Range,
+    /// rw, mm.
+    pub pin_circle_radius_mm: Range,
+    /// The output pins' radius, mm.
+    pub pin_radius_mm: Range,
+    /// ΔRp, mm.
+    pub shift_mm: Range,
+    /// ΔRrp, mm.
+    pub equidistant_mm: Range,
+}
+
+impl Continuous {
+    /// The keys under `search:`, in the order of `ranges`.
+    pub const KEYS: [&'static str; 8] = [
+        "eccentricity_mm",
+        "roller_circle_radius_mm",
+        "roller_radius_mm",
+        "face_width_mm",
+        "pin_circle_radius_mm",
+        "pin_radius_mm",
+        "shift_mm",
+        "equidistant_mm",
+    ];
+
+    /// The ranges in the order of `KEYS`.
+    pub fn ranges(&self) -> [Range; 8] {
+        [
+            self.eccentricity_mm,
+            self.roller_circle_radius_mm,
+            self.roller_radius_mm,
+            self.face_width_mm,
+            self.pin_circle_radius_mm,
+            self.pin_radius_mm,
+            self.shift_mm,
+            self.equidistant_mm,
+        ]
+    }
+}
+
+/// The design space and how it is searched.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Search {
+    /// The continuous variables' ranges.
+    pub continuous: Continuous,
+    /// Output-pin counts M tried.
+    pub pin_counts: Vec<usize>,
+    /// Numbers of discs tried.
+    pub discs: Vec<usize>,
+    /// Hole clearance of every design, mm.
+    pub hole_clearance_mm: f64,
+    /// Scrambled-Sobol points per discrete choice (ratio × pin count × discs).
+    pub samples: usize,
+    /// Scrambling seed: the same seed gives the same front.
+    pub seed: u32,
+    /// Full checks each front design may spend on its local refinement.
+    pub refine_budget: usize,
+    /// Crank angles per mesh period (360°/np) of the scenes of a full check; the screen uses a
+    /// quarter of them (a subset).
+    pub steps_per_mesh_period: usize,
+}
+
+/// Design rules beyond the spec's own (`spec::rules`), checked before any physics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DesignRules {
+    /// K1 = e·np/Rp must not exceed this (the spec's rule: below 1).
+    pub max_k1: f64,
+    /// Smallest ligament, mm: between neighbouring pin holes (2·rw·sin(π/M) − 2·rh), between a
+    /// hole and the tooth root (Rp + ΔRp − e − (Rrp + ΔRrp) − rw − rh) and between a hole and the
+    /// disc centre (rw − rh); rh = pin radius + e + hole clearance.
+    pub min_ligament_mm: f64,
+    /// Smallest gap between neighbouring rollers, mm: 2·Rp·sin(π/np) − 2·Rrp.
+    pub min_roller_gap_mm: f64,
+}
+
+/// The envelope: what the reducer may occupy.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Envelope {
+    /// Largest outer diameter, mm: 2·(Rp + Rrp + housing wall).
+    pub max_outer_diameter_mm: f64,
+    /// Largest axial length, mm: discs·B + axial allowance.
+    pub max_axial_length_mm: f64,
+    /// The housing's wall beyond the rollers, mm.
+    pub housing_wall_mm: f64,
+    /// Axial length besides the discs (bearings, covers), mm.
+    pub axial_allowance_mm: f64,
+}
+
+/// An objective to trade: what it measures and which way is better.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ObjectiveKind {
+    /// 2·(Rp + Rrp + housing wall), mm (smaller).
+    OuterDiameter,
+    /// discs·B + axial allowance, mm (smaller).
+    AxialLength,
+    /// The mass estimate, kg (smaller): see `engine::design_search::figures::mass_kg`.
+    Mass,
+    /// The largest Hertz pressure over the rated and peak scenes, MPa (smaller).
+    ContactPressure,
+    /// The TE fluctuation of the rated scene, arcsec (smaller).
+    TeFluctuation,
+    /// The unloaded lost motion of the mesh scene, arcsec (smaller).
+    LostMotion,
+    /// The crank-bearing rating life at rated torque and speed, h (larger).
+    BearingLife,
+    /// The torsional rigidity of the torsion scene, N·m/arcmin (larger).
+    Rigidity,
+}
+
+impl ObjectiveKind {
+    /// Every objective with its key under `objectives:`.
+    pub const ALL: [(&'static str, ObjectiveKind); 8] = [
+        ("outer_diameter_mm", ObjectiveKind::OuterDiameter),
+        ("axial_length_mm", ObjectiveKind::AxialLength),
+        ("mass_kg", ObjectiveKind::Mass),
+        ("max_contact_pressure_mpa", ObjectiveKind::ContactPressure),
+        ("te_fluctuation_arcsec", ObjectiveKind::TeFluctuation),
+        ("max_lost_motion_arcsec", ObjectiveKind::LostMotion),
+        ("bearing_life_h", ObjectiveKind::BearingLife),
+        ("torsional_rigidity_nm_per_arcmin", ObjectiveKind::Rigidity),
+    ];
+
+    /// Its key.
+    pub fn key(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(_, k)| *k == self)
+            .map_or("", |(n, _)| n)
+    }
+
+    /// Larger is better.
+    pub fn maximise(self) -> bool {
+        matches!(self, ObjectiveKind::BearingLife | ObjectiveKind::Rigidity)
+    }
+}
+
+/// A requirements file, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Requirements {
+    /// Name of the requirements, the front's specs are named after it.
+    pub name: String,
+    /// Acceptable ratios: the disc's teeth nc (rollers nc + 1, output from the disc's pins).
+    pub ratios: Vec<usize>,
+    /// Rated output torque, N·mm.
+    pub rated_torque_nmm: f64,
+    /// Peak output torque, N·mm (≥ rated).
+    pub peak_torque_nmm: f64,
+    /// Input speed of the rated scene, rpm.
+    pub input_speed_rpm: Option<f64>,
+    /// What the reducer may occupy.
+    pub envelope: Envelope,
+    /// Disc, rollers and pins.
+    pub material: Material,
+    /// Density of every part, kg/mm³.
+    pub density_kg_per_mm3: f64,
+    /// The crank bearing, when its life is asked for.
+    pub crank_bearing: Option<CrankBearing>,
+    /// Rules checked before any physics.
+    pub rules: DesignRules,
+    /// The acceptance limits of a spec.
+    pub limits: Limits,
+    /// Two or three objectives.
+    pub objectives: Vec<ObjectiveKind>,
+    /// The design space and how it is searched.
+    pub search: Search,
+}
+
+impl Requirements {
+    /// The torsion scene is needed (a rigidity or torsional lost-motion limit or objective).
+    pub fn needs_torsion(&self) -> bool {
+        self.objectives.contains(&ObjectiveKind::Rigidity)
+            || self
+                .limits
+                .get("min_torsional_rigidity_nm_per_arcmin")
+                .is_some()
+            || self.limits.get("max_lost_motion_arcmin").is_some()
+    }
+}

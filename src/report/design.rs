@@ -1,0 +1,307 @@
+//! What `cycloid design` shows: the search's counts and the front as a terminal table, a CSV
+//! and a review page with the front plotted.
+
+use crate::engine::design_search::{candidate::*, Evaluation, Failure, SearchRun, Tally};
+use crate::model::quantity::Bound;
+use crate::model::requirements::Requirements;
+use crate::numeric::number;
+use crate::report::svg::base::{document, px};
+use maud::{html, Markup, DOCTYPE};
+use std::fmt::Write;
+
+/// A column: its header and the value of a front design.
+type Column<'a> = (String, Box<dyn Fn(&Evaluation) -> f64 + 'a>);
+
+/// The columns of the table, CSV and page.
+fn columns(req: &Requirements) -> Vec<Column<'_>> {
+    let mut cols: Vec<Column<'_>> = vec![
+        (
+            "ratio".into(),
+            Box::new(|e: &Evaluation| e.candidate.choice.teeth as f64),
+        ),
+        (
+            "pins".into(),
+            Box::new(|e: &Evaluation| e.candidate.choice.pins as f64),
+        ),
+        (
+            "discs".into(),
+            Box::new(|e: &Evaluation| e.candidate.choice.discs as f64),
+        ),
+    ];
+    for (k, key) in [E, RP, RRP, B, RW, RPIN, SHIFT, EQUIDISTANT]
+        .into_iter()
+        .zip(crate::model::requirements::Continuous::KEYS)
+    {
+        cols.push((
+            key.to_string(),
+            Box::new(move |e: &Evaluation| e.candidate.x[k]),
+        ));
+    }
+    cols.push((
+        "outer_diameter_mm".into(),
+        Box::new(|e: &Evaluation| e.candidate.outer_diameter_mm(req)),
+    ));
+    cols.push((
+        "axial_length_mm".into(),
+        Box::new(|e: &Evaluation| e.candidate.axial_length_mm(req)),
+    ));
+    cols.push((
+        "mass_kg".into(),
+        Box::new(|e: &Evaluation| e.candidate.mass_kg(req)),
+    ));
+    for (i, o) in req.objectives.iter().enumerate() {
+        if !cols.iter().any(|(h, _)| h == o.key()) {
+            cols.push((
+                o.key().to_string(),
+                Box::new(move |e: &Evaluation| e.objectives[i]),
+            ));
+        }
+    }
+    cols
+}
+
+fn tally_line(what: &str, t: &Tally) -> String {
+    format!(
+        "{what}: {} designs generated, {} rejected by the rules and the envelope, {} screened \
+         ({} rejected), {} fully checked, {} feasible\n",
+        t.generated, t.rule_rejected, t.screened, t.screen_rejected, t.fully_checked, t.feasible
+    )
+}
+
+/// A failure in words: the requirement, the best value and its limit.
+pub fn failure_text(f: &Failure) -> String {
+    match (f.bound, &f.message) {
+        (Some((v, l, b)), _) => {
+            let unit = if f.unit.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", f.unit)
+            };
+            let sign = match b {
+                Bound::Max => "≤",
+                Bound::Min => "≥",
+            };
+            format!(
+                "{}: best {}{unit}, required {sign} {}{unit}",
+                f.requirement,
+                number(v),
+                number(l)
+            )
+        }
+        (None, Some(m)) => format!("{}: {m}", f.requirement),
+        (None, None) => f.requirement.clone(),
+    }
+}
+
+/// A cell: whole numbers (counts) as integers, the rest to four significant digits.
+fn cell(v: f64) -> String {
+    if v.fract() == 0.0 && v.abs() < 1e6 {
+        format!("{v}")
+    } else {
+        number(v)
+    }
+}
+
+/// The terminal text: the counts, the front's table (or why there is none) and the verdict.
+pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, seconds: f64) -> String {
+    let mut s = String::new();
+    let objectives: Vec<String> = req
+        .objectives
+        .iter()
+        .map(|o| format!("{} ({})", o.key(), if o.maximise() { "max" } else { "min" }))
+        .collect();
+    let _ = writeln!(
+        s,
+        "design search of `{}`: ratios {:?}, objectives {}",
+        crate::error::printable(&req.name, &[]),
+        req.ratios,
+        objectives.join(", ")
+    );
+    s.push_str(&tally_line("global stage", &run.global));
+    s.push_str(&tally_line("local refinement", &run.local));
+    let _ = writeln!(s, "wall time {seconds:.1} s");
+    if let Some(inf) = &run.infeasible {
+        let _ = writeln!(s, "no design meets every requirement");
+        for f in &inf.never_met {
+            let _ = writeln!(s, "  never met: {}", failure_text(f));
+        }
+        let _ = writeln!(
+            s,
+            "FAIL: closest to being met: {}",
+            failure_text(&inf.closest)
+        );
+        return s;
+    }
+    let cols = columns(req);
+    let _ = writeln!(s, "\nPareto front, {} designs:", run.front.len());
+    let mut header = vec!["#".to_string()];
+    header.extend(cols.iter().map(|(h, _)| h.clone()));
+    let rows: Vec<Vec<String>> = run
+        .front
+        .iter()
+        .enumerate()
+        .map(|(k, e)| {
+            let mut r = vec![format!("{}", k + 1)];
+            r.extend(cols.iter().map(|(_, f)| cell(f(e))));
+            r
+        })
+        .collect();
+    let widths: Vec<usize> = (0..header.len())
+        .map(|c| {
+            rows.iter()
+                .map(|r| r[c].chars().count())
+                .chain([header[c].chars().count()])
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |cells: &[String]| -> String {
+        cells
+            .iter()
+            .zip(&widths)
+            .map(|(c, w)| format!("{c:>w$}"))
+            .collect::<Vec<_>>()
+            .join("  ")
+    };
+    let _ = writeln!(s, "{}", line(&header));
+    for r in &rows {
+        let _ = writeln!(s, "{}", line(r));
+    }
+    if let Some(dir) = out_dir {
+        let _ = writeln!(
+            s,
+            "\nwrote {} specs (design-01.yaml …), front.csv and index.html to {dir}",
+            run.front.len()
+        );
+    }
+    let _ = writeln!(
+        s,
+        "PASS: {} designs on the front, each meets every requirement",
+        run.front.len()
+    );
+    s
+}
+
+/// The front as CSV: one row per design, its spec file, variables, figures and objectives.
+pub fn csv(req: &Requirements, run: &SearchRun) -> String {
+    let cols = columns(req);
+    let mut s = String::from("spec");
+    for (h, _) in &cols {
+        let _ = write!(s, ",{h}");
+    }
+    s.push('\n');
+    for (k, e) in run.front.iter().enumerate() {
+        s.push_str(&crate::engine::commands::design_file(k));
+        for (_, f) in &cols {
+            let _ = write!(s, ",{}", f(e));
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// Ticks at 0, ¼, ½, ¾ and 1 of [lo, hi].
+fn ticks(lo: f64, hi: f64) -> Vec<f64> {
+    (0..5).map(|k| lo + (hi - lo) * k as f64 / 4.0).collect()
+}
+
+/// A scatter plot of the front on objectives `i` (x) and `j` (y), each point labelled by its
+/// design number, as an SVG document.
+pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> String {
+    let (w, h) = (640.0, 440.0);
+    let (left, right, top, bottom) = (80.0, 620.0, 30.0, 380.0);
+    let xs: Vec<f64> = run.front.iter().map(|e| e.objectives[i]).collect();
+    let ys: Vec<f64> = run.front.iter().map(|e| e.objectives[j]).collect();
+    let span = |v: &[f64]| {
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let pad = if hi > lo {
+            0.05 * (hi - lo)
+        } else {
+            0.05 * lo.abs().max(1.0)
+        };
+        (lo - pad, hi + pad)
+    };
+    let (x0, x1) = span(&xs);
+    let (y0, y1) = span(&ys);
+    let fx = |x: f64| left + (x - x0) / (x1 - x0) * (right - left);
+    let fy = |y: f64| bottom - (y - y0) / (y1 - y0) * (bottom - top);
+    let body: Markup = html! {
+        rect x=(px(left)) y=(px(top)) width=(px(right - left)) height=(px(bottom - top))
+            fill="none" stroke="#999" {}
+        @for t in ticks(x0, x1) {
+            line x1=(px(fx(t))) x2=(px(fx(t))) y1=(px(bottom)) y2=(px(bottom + 5.0)) stroke="#999" {}
+            text x=(px(fx(t))) y=(px(bottom + 18.0)) font-size="11" text-anchor="middle" { (number(t)) }
+        }
+        @for t in ticks(y0, y1) {
+            line x1=(px(left - 5.0)) x2=(px(left)) y1=(px(fy(t))) y2=(px(fy(t))) stroke="#999" {}
+            text x=(px(left - 8.0)) y=(px(fy(t) + 4.0)) font-size="11" text-anchor="end" { (number(t)) }
+        }
+        text x=(px((left + right) / 2.0)) y=(px(bottom + 40.0)) font-size="13" text-anchor="middle" {
+            (req.objectives[i].key())
+        }
+        text x="16" y=(px((top + bottom) / 2.0)) font-size="13" text-anchor="middle"
+            transform=(format!("rotate(-90 16 {})", px((top + bottom) / 2.0))) {
+            (req.objectives[j].key())
+        }
+        @for (k, (x, y)) in xs.iter().zip(&ys).enumerate() {
+            circle cx=(px(fx(*x))) cy=(px(fy(*y))) r="4" fill="#1f77b4" {}
+            text x=(px(fx(*x) + 6.0)) y=(px(fy(*y) - 6.0)) font-size="10" { (k + 1) }
+        }
+    };
+    document(w, h, body)
+}
+
+/// The plots of the page: (file name, SVG), objective 1 against each other objective.
+pub fn plots(req: &Requirements, run: &SearchRun) -> Vec<(String, String)> {
+    if run.front.is_empty() {
+        return Vec::new();
+    }
+    (1..req.objectives.len())
+        .map(|j| (format!("front-{}.svg", j), front_plot(req, run, 0, j)))
+        .collect()
+}
+
+/// The review page: the counts, the plots and the front's table with links to its specs.
+pub fn page(req: &Requirements, run: &SearchRun, seconds: f64) -> String {
+    let cols = columns(req);
+    let plots = plots(req, run);
+    let markup = html! {
+        (DOCTYPE)
+        html lang="en" {
+            head {
+                meta charset="utf-8";
+                title { "Design search: " (req.name) }
+                style { "body{font-family:sans-serif;margin:24px auto;max-width:1360px;padding:0 16px}\
+                         table{border-collapse:collapse;font-size:13px}\
+                         th,td{padding:3px 8px;border-bottom:1px solid #eee;text-align:right}\
+                         .fail{color:#a11212;font-weight:bold}.pass{color:#1d6b1a;font-weight:bold}" }
+            }
+            body {
+                h1 { "Design search: " (req.name) }
+                p { (tally_line("global stage", &run.global)) br; (tally_line("local refinement", &run.local))
+                    br; "wall time " (format!("{seconds:.1}")) " s" }
+                @if let Some(inf) = &run.infeasible {
+                    p.fail { "No design meets every requirement; closest to being met: " (failure_text(&inf.closest)) }
+                    ul { @for f in &inf.never_met { li { "never met: " (failure_text(f)) } } }
+                } @else {
+                    p.pass { (run.front.len()) " designs on the Pareto front; each meets every requirement and passes `cycloid check`." }
+                    @for (name, _) in &plots { img src=(name) alt="the front"; }
+                    h2 { "The front" }
+                    table {
+                        thead { tr { th { "spec" } @for (h, _) in &cols { th { (h) } } } }
+                        tbody {
+                            @for (k, e) in run.front.iter().enumerate() {
+                                tr {
+                                    td { a href=(crate::engine::commands::design_file(k)) { (crate::engine::commands::design_file(k)) } }
+                                    @for (_, f) in &cols { td { (cell(f(e))) } }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    };
+    markup.into_string()
+}

@@ -1,0 +1,362 @@
+//! A requirements file (`cycloid design`): YAML → `requirements_raw` → the validated
+//! [`Requirements`]. Errors are located as a spec's: `file:line:column: kind: key: message`.
+
+use super::raw::RawMaterial;
+use super::requirements_raw::*;
+use super::validate::{life_exponent, limits, material};
+use super::values::{finite, positive};
+use crate::error::{Error, Result};
+use crate::model::design::MAX_DISCS;
+use crate::model::requirements::*;
+use crate::model::CrankBearing;
+use crate::numeric;
+
+/// Most ratios, pin counts or disc counts a search tries (each multiplies the work).
+pub const MAX_CHOICES: usize = 16;
+/// Largest Sobol sample per discrete choice (the sequence's length in `sobol_burley` is 2^16).
+pub const MAX_SAMPLES: usize = 1 << 16;
+/// Largest ratio: a disc of 200 teeth.
+pub const MAX_RATIO: i64 = 200;
+/// Default density of every part: steel, 7,850 kg/m³.
+pub const STEEL_DENSITY_KG_PER_M3: f64 = 7850.0;
+
+/// Read and validate a requirements file.
+pub fn load(path: &str) -> Result<Requirements> {
+    let text = crate::files::read_text(
+        std::path::Path::new(path),
+        "requirements",
+        crate::files::MAX_INPUT_BYTES,
+    )?;
+    parse(path, &text)
+}
+
+/// Parse and validate requirements text; `path` is used in messages only.
+pub fn parse(path: &str, text: &str) -> Result<Requirements> {
+    let raw: RawRequirements = super::yaml::parse_document(path, text, "requirements file")?;
+    build(raw).map_err(|e| super::locate::locate_error(e, path, text))
+}
+
+fn non_negative(key: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(
+            key,
+            format!("must be a number ≥ 0, got {}", numeric::input(value)),
+        ))
+    }
+}
+
+/// A `[lower, upper]` range of finite numbers, lower ≤ upper; `positive`: lower > 0.
+fn range(key: &str, raw: &[f64], positive_only: bool) -> Result<Range> {
+    let &[lower, upper] = raw else {
+        return Err(Error::invalid(
+            key,
+            format!(
+                "must be a range [lower, upper] (the same number twice fixes it), got {} numbers",
+                raw.len()
+            ),
+        ));
+    };
+    finite(&format!("{key}[0]"), lower)?;
+    finite(&format!("{key}[1]"), upper)?;
+    if lower > upper {
+        return Err(Error::invalid(
+            key,
+            format!(
+                "lower {} exceeds upper {}",
+                numeric::input(lower),
+                numeric::input(upper)
+            ),
+        ));
+    }
+    if positive_only && lower <= 0.0 {
+        return Err(Error::invalid(
+            format!("{key}[0]"),
+            format!("must be positive, got {}", numeric::input(lower)),
+        ));
+    }
+    Ok(Range { lower, upper })
+}
+
+/// A non-empty list of distinct integers in [min, max].
+fn choices(key: &str, raw: &[i64], min: i64, max: i64) -> Result<Vec<usize>> {
+    if raw.is_empty() || raw.len() > MAX_CHOICES {
+        return Err(Error::invalid(
+            key,
+            format!("must list 1 to {MAX_CHOICES} values, got {}", raw.len()),
+        ));
+    }
+    let mut out = Vec::new();
+    for (i, &v) in raw.iter().enumerate() {
+        if !(min..=max).contains(&v) {
+            return Err(Error::invalid(
+                format!("{key}[{i}]"),
+                format!("must be in [{min}, {max}], got {v}"),
+            ));
+        }
+        if out.contains(&(v as usize)) {
+            return Err(Error::invalid(
+                format!("{key}[{i}]"),
+                format!("{v} is listed twice"),
+            ));
+        }
+        out.push(v as usize);
+    }
+    Ok(out)
+}
+
+/// `ratio`: one integer or a list of them.
+fn ratios(raw: &serde_yaml::Value) -> Result<Vec<usize>> {
+    let bad = |key: String, what: String| {
+        Error::invalid(
+            key,
+            format!(
+                "must be a whole ratio (the disc's teeth, 2 to {MAX_RATIO}) or a list of them, \
+                 got {what}"
+            ),
+        )
+    };
+    let one = |key: String, v: &serde_yaml::Value| -> Result<i64> {
+        v.as_i64().ok_or_else(|| {
+            bad(
+                key,
+                serde_yaml::to_string(v).unwrap_or_default().trim().into(),
+            )
+        })
+    };
+    let list = match raw {
+        serde_yaml::Value::Sequence(items) => items
+            .iter()
+            .enumerate()
+            .map(|(i, v)| one(format!("ratio[{i}]"), v))
+            .collect::<Result<Vec<_>>>()?,
+        v => vec![one("ratio".into(), v)?],
+    };
+    choices("ratio", &list, 2, MAX_RATIO)
+}
+
+fn build(raw: RawRequirements) -> Result<Requirements> {
+    let rated = positive("rated_torque_nm", raw.rated_torque_nm)?;
+    let peak = match raw.peak_torque_nm {
+        Some(p) => positive("peak_torque_nm", p)?,
+        None => rated,
+    };
+    if peak < rated {
+        return Err(Error::invalid(
+            "peak_torque_nm",
+            format!(
+                "the peak torque {} N·m is below the rated {} N·m",
+                numeric::input(peak),
+                numeric::input(rated)
+            ),
+        ));
+    }
+    let input_speed_rpm = raw
+        .input_speed_rpm
+        .map(|n| positive("input_speed_rpm", n))
+        .transpose()?;
+    let e = &raw.envelope;
+    let envelope = Envelope {
+        max_outer_diameter_mm: positive("envelope.max_outer_diameter_mm", e.max_outer_diameter_mm)?,
+        max_axial_length_mm: positive("envelope.max_axial_length_mm", e.max_axial_length_mm)?,
+        housing_wall_mm: non_negative(
+            "envelope.housing_wall_mm",
+            e.housing_wall_mm.unwrap_or(5.0),
+        )?,
+        axial_allowance_mm: non_negative(
+            "envelope.axial_allowance_mm",
+            e.axial_allowance_mm.unwrap_or(10.0),
+        )?,
+    };
+    let m = &raw.material;
+    let material = material(
+        "material",
+        RawMaterial {
+            youngs_modulus_gpa: m.youngs_modulus_gpa,
+            poisson_ratio: m.poisson_ratio,
+        },
+    )?;
+    let density = positive(
+        "material.density_kg_per_m3",
+        m.density_kg_per_m3.unwrap_or(STEEL_DENSITY_KG_PER_M3),
+    )?;
+    let crank_bearing = raw
+        .crank_bearing
+        .as_ref()
+        .map(|b| -> Result<CrankBearing> {
+            Ok(CrankBearing {
+                dynamic_load_rating_n: positive(
+                    "crank_bearing.dynamic_load_rating_n",
+                    b.dynamic_load_rating_n,
+                )?,
+                life_exponent: b
+                    .life_exponent
+                    .map(|p| life_exponent("crank_bearing.life_exponent", p))
+                    .transpose()?
+                    .unwrap_or(CrankBearing::ROLLER_LIFE_EXPONENT),
+            })
+        })
+        .transpose()?;
+    let r = &raw.rules;
+    let max_k1 = r.max_k1.unwrap_or(1.0);
+    if !(max_k1 > 0.0 && max_k1 <= 1.0) {
+        return Err(Error::invalid(
+            "rules.max_k1",
+            format!("must be in (0, 1], got {}", numeric::input(max_k1)),
+        ));
+    }
+    let rules = DesignRules {
+        max_k1,
+        min_ligament_mm: non_negative("rules.min_ligament_mm", r.min_ligament_mm.unwrap_or(0.0))?,
+        min_roller_gap_mm: non_negative(
+            "rules.min_roller_gap_mm",
+            r.min_roller_gap_mm.unwrap_or(0.0),
+        )?,
+    };
+    let limits = limits(&raw.limits)?;
+    for key in [
+        "optimum_max_objective",
+        "accuracy_resolved",
+        "min_mean_efficiency",
+        "max_power_loss_w",
+        "max_temperature_c",
+    ] {
+        if raw.limits.contains_key(key) {
+            return Err(Error::invalid(
+                format!("limits.{key}"),
+                "is not a limit a design search can set (its designs have no optimisation \
+                 study, accuracy scene or friction)"
+                    .to_string(),
+            ));
+        }
+    }
+    let life_needs = |key: String| -> Result<()> {
+        match (&crank_bearing, input_speed_rpm) {
+            (Some(_), Some(_)) => Ok(()),
+            _ => Err(Error::invalid(
+                key,
+                "needs `crank_bearing` (its rating) and `input_speed_rpm`".to_string(),
+            )),
+        }
+    };
+    if raw.limits.contains_key("min_bearing_life_h") {
+        life_needs("limits.min_bearing_life_h".into())?;
+    }
+    if raw.objectives.len() < 2 || raw.objectives.len() > 3 {
+        return Err(Error::invalid(
+            "objectives",
+            format!(
+                "must list two or three objectives to trade, got {}",
+                raw.objectives.len()
+            ),
+        ));
+    }
+    let mut objectives = Vec::new();
+    for (i, name) in raw.objectives.iter().enumerate() {
+        let key = format!("objectives[{i}]");
+        let Some((_, kind)) = ObjectiveKind::ALL.iter().find(|(k, _)| k == name) else {
+            let known: Vec<_> = ObjectiveKind::ALL.iter().map(|(k, _)| *k).collect();
+            return Err(Error::invalid(
+                key,
+                format!(
+                    "unknown objective `{name}`; the objectives are {}",
+                    known.join(", ")
+                ),
+            ));
+        };
+        if objectives.contains(kind) {
+            return Err(Error::invalid(key, format!("`{name}` is listed twice")));
+        }
+        if *kind == ObjectiveKind::BearingLife {
+            life_needs(key)?;
+        }
+        objectives.push(*kind);
+    }
+    let s = &raw.search;
+    let zero = [0.0, 0.0];
+    let continuous = Continuous {
+        eccentricity_mm: range("search.eccentricity_mm", &s.eccentricity_mm, true)?,
+        roller_circle_radius_mm: range(
+            "search.roller_circle_radius_mm",
+            &s.roller_circle_radius_mm,
+            true,
+        )?,
+        roller_radius_mm: range("search.roller_radius_mm", &s.roller_radius_mm, true)?,
+        face_width_mm: range("search.face_width_mm", &s.face_width_mm, true)?,
+        pin_circle_radius_mm: range("search.pin_circle_radius_mm", &s.pin_circle_radius_mm, true)?,
+        pin_radius_mm: range("search.pin_radius_mm", &s.pin_radius_mm, true)?,
+        shift_mm: range(
+            "search.shift_mm",
+            s.shift_mm.as_deref().unwrap_or(&zero),
+            false,
+        )?,
+        equidistant_mm: range(
+            "search.equidistant_mm",
+            s.equidistant_mm.as_deref().unwrap_or(&zero),
+            false,
+        )?,
+    };
+    let whole = |key: &str, v: Option<i64>, default: i64, min: i64, max: i64| -> Result<i64> {
+        let v = v.unwrap_or(default);
+        if (min..=max).contains(&v) {
+            Ok(v)
+        } else {
+            Err(Error::invalid(
+                key,
+                format!("must be in [{min}, {max}], got {v}"),
+            ))
+        }
+    };
+    let steps = whole(
+        "search.steps_per_mesh_period",
+        s.steps_per_mesh_period,
+        48,
+        4,
+        3600,
+    )?;
+    if steps % 4 != 0 {
+        return Err(Error::invalid(
+            "search.steps_per_mesh_period",
+            format!(
+                "must be a multiple of 4 (the screen runs every fourth crank angle), got {steps}"
+            ),
+        ));
+    }
+    let search = Search {
+        continuous,
+        pin_counts: choices("search.pin_counts", &s.pin_counts, 2, 64)?,
+        discs: choices(
+            "search.discs",
+            s.discs.as_deref().unwrap_or(&[1]),
+            1,
+            MAX_DISCS as i64,
+        )?,
+        hole_clearance_mm: non_negative(
+            "search.hole_clearance_mm",
+            s.hole_clearance_mm.unwrap_or(0.0),
+        )?,
+        samples: whole("search.samples", s.samples, 256, 1, MAX_SAMPLES as i64)? as usize,
+        seed: whole("search.seed", s.seed, 1, 0, u32::MAX as i64)? as u32,
+        refine_budget: whole("search.refine_budget", s.refine_budget, 48, 0, 100_000)? as usize,
+        steps_per_mesh_period: steps as usize,
+    };
+    if raw.name.trim().is_empty() {
+        return Err(Error::invalid("name", "must not be empty".to_string()));
+    }
+    Ok(Requirements {
+        name: raw.name,
+        ratios: ratios(&raw.ratio)?,
+        rated_torque_nmm: crate::units::nmm(rated),
+        peak_torque_nmm: crate::units::nmm(peak),
+        input_speed_rpm,
+        envelope,
+        material,
+        density_kg_per_mm3: density * 1e-9,
+        crank_bearing,
+        rules,
+        limits,
+        objectives,
+        search,
+    })
+}

@@ -1,0 +1,95 @@
+//! A requirements file as written (serde), kept apart from the validated
+//! [`Requirements`](crate::model::requirements::Requirements); `spec::requirements` checks it.
+
+use super::raw::RawLimits;
+use serde::Deserialize;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawRequirements {
+    pub name: String,
+    /// One ratio or a list of acceptable ratios (integers: the disc's teeth).
+    pub ratio: serde_yaml::Value,
+    pub rated_torque_nm: f64,
+    #[serde(default)]
+    pub peak_torque_nm: Option<f64>,
+    #[serde(default)]
+    pub input_speed_rpm: Option<f64>,
+    pub envelope: RawEnvelope,
+    pub material: RawRequirementsMaterial,
+    #[serde(default)]
+    pub crank_bearing: Option<RawBearing>,
+    #[serde(default)]
+    pub rules: RawRules,
+    #[serde(default)]
+    pub limits: RawLimits,
+    pub objectives: Vec<String>,
+    pub search: RawSearch,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawEnvelope {
+    pub max_outer_diameter_mm: f64,
+    pub max_axial_length_mm: f64,
+    #[serde(default)]
+    pub housing_wall_mm: Option<f64>,
+    #[serde(default)]
+    pub axial_allowance_mm: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawRequirementsMaterial {
+    pub youngs_modulus_gpa: f64,
+    pub poisson_ratio: f64,
+    #[serde(default)]
+    pub density_kg_per_m3: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawBearing {
+    pub dynamic_load_rating_n: f64,
+    #[serde(default)]
+    pub life_exponent: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawRules {
+    #[serde(default)]
+    pub max_k1: Option<f64>,
+    #[serde(default)]
+    pub min_ligament_mm: Option<f64>,
+    #[serde(default)]
+    pub min_roller_gap_mm: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSearch {
+    pub eccentricity_mm: Vec<f64>,
+    pub roller_circle_radius_mm: Vec<f64>,
+    pub roller_radius_mm: Vec<f64>,
+    pub face_width_mm: Vec<f64>,
+    pub pin_circle_radius_mm: Vec<f64>,
+    pub pin_radius_mm: Vec<f64>,
+    #[serde(default)]
+    pub shift_mm: Option<Vec<f64>>,
+    #[serde(default)]
+    pub equidistant_mm: Option<Vec<f64>>,
+    pub pin_counts: Vec<i64>,
+    #[serde(default)]
+    pub discs: Option<Vec<i64>>,
+    #[serde(default)]
+    pub hole_clearance_mm: Option<f64>,
+    #[serde(default)]
+    pub samples: Option<i64>,
+    #[serde(default)]
+    pub seed: Option<i64>,
+    #[serde(default)]
+    pub refine_budget: Option<i64>,
+    #[serde(default)]
+    pub steps_per_mesh_period: Option<i64>,
+}

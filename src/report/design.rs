@@ -6,6 +6,8 @@ use crate::model::quantity::Bound;
 use crate::model::requirements::Requirements;
 use crate::numeric::number;
 use crate::report::svg::base::{document, px};
+use crate::report::svg::labels::{Bounds, Label, Layout, Obstacle};
+use crate::report::svg::ticks;
 use maud::{html, Markup, DOCTYPE};
 use std::fmt::Write;
 
@@ -200,13 +202,9 @@ pub fn csv(req: &Requirements, run: &SearchRun) -> String {
     s
 }
 
-/// Ticks at 0, ¼, ½, ¾ and 1 of [lo, hi].
-fn ticks(lo: f64, hi: f64) -> Vec<f64> {
-    (0..5).map(|k| lo + (hi - lo) * k as f64 / 4.0).collect()
-}
-
 /// A scatter plot of the front on objectives `i` (x) and `j` (y), each point labelled by its
-/// design number, as an SVG document.
+/// design number, as an SVG document: round ticks (`svg::ticks`) and labels placed clear of
+/// the points and of each other (`svg::labels::Layout`, with a leader where moved far).
 pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> String {
     let (w, h) = (640.0, 440.0);
     let (left, right, top, bottom) = (80.0, 620.0, 30.0, 380.0);
@@ -215,27 +213,41 @@ pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> St
     let span = |v: &[f64]| {
         let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let pad = if hi > lo {
-            0.05 * (hi - lo)
-        } else {
-            0.05 * lo.abs().max(1.0)
-        };
-        (lo - pad, hi + pad)
+        ticks(lo, hi, 5, true)
     };
-    let (x0, x1) = span(&xs);
-    let (y0, y1) = span(&ys);
-    let fx = |x: f64| left + (x - x0) / (x1 - x0) * (right - left);
-    let fy = |y: f64| bottom - (y - y0) / (y1 - y0) * (bottom - top);
+    let (tx, ty) = (span(&xs), span(&ys));
+    let fx = |x: f64| left + (x - tx.lo) / (tx.hi - tx.lo) * (right - left);
+    let fy = |y: f64| bottom - (y - ty.lo) / (ty.hi - ty.lo) * (bottom - top);
+    let spots: Vec<(f64, f64)> = xs.iter().zip(&ys).map(|(&x, &y)| (fx(x), fy(y))).collect();
+    let mut layout = Layout::new(Bounds::new(left, top, right, bottom));
+    layout
+        .obstacles
+        .extend(spots.iter().map(|&c| Obstacle::Disc(c, 5.0)));
+    let placed: Vec<_> = spots
+        .iter()
+        .enumerate()
+        .map(|(k, &c)| {
+            let text = (k + 1).to_string();
+            let label = Label {
+                text: text.clone(),
+                size: 10.0,
+                anchor: c,
+                gap: 5.0,
+                toward: (1.0, -1.0),
+            };
+            (layout.place(&label), text)
+        })
+        .collect();
     let body: Markup = html! {
         rect x=(px(left)) y=(px(top)) width=(px(right - left)) height=(px(bottom - top))
             fill="none" stroke="#999" {}
-        @for t in ticks(x0, x1) {
+        @for &t in &tx.values {
             line x1=(px(fx(t))) x2=(px(fx(t))) y1=(px(bottom)) y2=(px(bottom + 5.0)) stroke="#999" {}
-            text x=(px(fx(t))) y=(px(bottom + 18.0)) font-size="11" text-anchor="middle" { (number(t)) }
+            text x=(px(fx(t))) y=(px(bottom + 18.0)) font-size="11" text-anchor="middle" { (tx.label(t)) }
         }
-        @for t in ticks(y0, y1) {
+        @for &t in &ty.values {
             line x1=(px(left - 5.0)) x2=(px(left)) y1=(px(fy(t))) y2=(px(fy(t))) stroke="#999" {}
-            text x=(px(left - 8.0)) y=(px(fy(t) + 4.0)) font-size="11" text-anchor="end" { (number(t)) }
+            text x=(px(left - 8.0)) y=(px(fy(t) + 4.0)) font-size="11" text-anchor="end" { (ty.label(t)) }
         }
         text x=(px((left + right) / 2.0)) y=(px(bottom + 40.0)) font-size="13" text-anchor="middle" {
             (req.objectives[i].key())
@@ -244,9 +256,11 @@ pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> St
             transform=(format!("rotate(-90 16 {})", px((top + bottom) / 2.0))) {
             (req.objectives[j].key())
         }
-        @for (k, (x, y)) in xs.iter().zip(&ys).enumerate() {
-            circle cx=(px(fx(*x))) cy=(px(fy(*y))) r="4" fill="#1f77b4" {}
-            text x=(px(fx(*x) + 6.0)) y=(px(fy(*y) - 6.0)) font-size="10" { (k + 1) }
+        @for &(x, y) in &spots {
+            circle cx=(px(x)) cy=(px(y)) r="4" fill="#1f77b4" {}
+        }
+        @for (p, text) in &placed {
+            (p.draw(text, 10.0, "#333", true))
         }
     };
     document(w, h, body)

@@ -24,17 +24,15 @@ pub(super) fn section_of(
         let scene = &spec.scenes[p.scene];
         let m = scene.face.misalignment;
         let mut plot = LinePlot::new(
-            &format!(
-                "Line load along the face: scene {}, roller {} at crank {}°",
-                scene.name,
-                p.roller,
-                number(units::deg(p.crank_rad))
-            ),
+            &format!("Line load along the face: scene {}", scene.name),
             "z from the middle of the face (mm)",
             "line load (N/mm)",
         );
         plot.subtitle = format!(
-            "at the slice centres ({} slices); the scene's worst face load factor",
+            "roller {} at crank {}°, the scene's worst face load factor; at the slice centres \
+             ({} slices)",
+            p.roller,
+            number(units::deg(p.crank_rad)),
             p.z_mm.len()
         );
         plot.include_zero = true;

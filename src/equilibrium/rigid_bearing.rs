@@ -12,7 +12,7 @@ use super::coupling::Coupling;
 use super::loaded::{AngleSolution, Model};
 use super::pins::{PinState, Pins};
 use super::rollers::{AngleTrig, Reach, RollerState, Rollers};
-use super::solve::{monotone_root, Balance, SolveFailure};
+use super::solve::{monotone_root, Balance, Root, SolveFailure};
 use super::work::Work;
 use crate::geometry::clearance::{GapFailure, Pose};
 use crate::geometry::Vec2;
@@ -277,26 +277,12 @@ fn solve_pins(
         work.slopes.1 = 0.0;
         return Ok(lag);
     }
+    let root = pins_root(model, p, (e_phi, offset, psi), guess, work, |s| s.arm_mm)?;
     let states = &mut work.sol.pins;
-    // The angle's trigonometry, once for every evaluation of the pin balance.
     let rotation = psi.sin_cos();
     let evaluate = |lag: f64, states: &mut Vec<PinState>| {
         pins_at(model, p, (e_phi, rotation, offset), lag, states);
-        let (value, slope, scale) = moment(states);
-        Balance {
-            value,
-            slope,
-            scale,
-            resolution: p.moment_resolution(states, offset.norm()),
-        }
     };
-    let root = monotone_root(
-        |lag| Ok::<_, SolveFailure>(evaluate(lag, states)),
-        model.torque_nmm,
-        guess,
-        &model.settings,
-    )?;
-    work.slopes.1 = root.slope;
     // `states` holds the evaluation at root.x: the solver's last evaluation is at its answer.
     let mut lag = root.x;
     if let Some(towards) = root.straddle {
@@ -496,27 +482,42 @@ fn solve_pins_coupled(
     guess: f64,
     work: &mut Work,
 ) -> Result<f64, SolveFailure> {
+    let centre = e_phi * model.eccentricity_mm + offset;
+    let arm = |s: &PinState| c.pin_arm(e_phi, centre, s);
+    Ok(pins_root(model, p, (e_phi, offset, psi), guess, work, arm)?.x)
+}
+
+/// The root βo of the pins' balance Σ F_j·arm_j = T at the disc rotation ψ (the search of
+/// both the frictionless balance, arm = a_j, and the coupled one, arm = ã_j), the pins' states
+/// left at the root and its slope kept in `work.slopes.1`.
+fn pins_root(
+    model: &Model,
+    p: &Pins,
+    (e_phi, offset, psi): (Vec2, Vec2, f64),
+    guess: f64,
+    work: &mut Work,
+    arm: impl Fn(&PinState) -> f64,
+) -> Result<Root, SolveFailure> {
     let states = &mut work.sol.pins;
+    // The angle's trigonometry, once for every evaluation of the pin balance.
     let rotation = psi.sin_cos();
-    let evaluate = |lag: f64, states: &mut Vec<PinState>| {
-        pins_at(model, p, (e_phi, rotation, offset), lag, states);
-        let centre = e_phi * model.eccentricity_mm + offset;
-        let (value, slope, scale) = moment_by(states, |s| c.pin_arm(e_phi, centre, s));
-        Balance {
-            value,
-            slope,
-            scale,
-            resolution: p.moment_resolution(states, offset.norm()),
-        }
-    };
     let root = monotone_root(
-        |lag| Ok::<_, SolveFailure>(evaluate(lag, states)),
+        |lag| {
+            pins_at(model, p, (e_phi, rotation, offset), lag, states);
+            let (value, slope, scale) = moment_by(states, &arm);
+            Ok::<_, SolveFailure>(Balance {
+                value,
+                slope,
+                scale,
+                resolution: p.moment_resolution(states, offset.norm()),
+            })
+        },
         model.torque_nmm,
         guess,
         &model.settings,
     )?;
     work.slopes.1 = root.slope;
-    Ok(root.x)
+    Ok(root)
 }
 
 /// `solve_rigid` with the coupled friction `c` (a torque that is not zero; at zero torque

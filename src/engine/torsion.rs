@@ -40,7 +40,7 @@
 //! (0.01 arcmin = 0.6 arcsec). 1e-6 rather than smaller: at 1e-9·Trated the compliant bearing's
 //! solve no longer converges (its force merit at 2e-8 N·m stalls at 1e-6).
 
-use crate::equilibrium::discs::{solve_coupled, CoupledWork, Discs};
+use crate::equilibrium::discs::{CoupledWork, Discs};
 use crate::equilibrium::friction::torsion::{set_branch, solve_point};
 use crate::equilibrium::solve::SolveFailure;
 use crate::model::results::{TorsionCompliances, TorsionCurves, TorsionFigures};
@@ -98,15 +98,15 @@ pub fn figures(rated_nmm: f64, gamma: &[f64; 8]) -> Result<TorsionFigures, Strin
 /// The reducer's output lag γ (rad) at a locked crank angle under the output torque
 /// `torque_nmm`, warm-started from `work` (the last solve of the same angle): the coupled
 /// balance of the discs ([`equilibrium::discs`](crate::equilibrium::discs)); with one disc γ = β + βo, β the disc's lag
-/// (rollers) and βo the pins' deflection (0 when the pins are not modelled).
+/// (rollers) and βo the pins' deflection (0 when the pins are not modelled). With friction, on
+/// the branch the discs are on (`equilibrium::friction::torsion::solve_point`).
 pub fn output_lag(
     discs: &mut Discs,
     crank_rad: f64,
     torque_nmm: f64,
     work: &mut CoupledWork,
 ) -> Result<f64, SolveFailure> {
-    discs.torque_nmm = torque_nmm;
-    solve_coupled(discs, crank_rad, work)
+    solve_point(discs, crank_rad, torque_nmm, work)
 }
 
 /// A solve of the torsion loop that failed: where, and why.
@@ -203,7 +203,7 @@ fn friction_loop(
         set_branch(&mut discs, &mut work, sigma);
         torques
             .map(|t| {
-                solve_point(&mut discs, crank_rad, t, &mut work)
+                output_lag(&mut discs, crank_rad, t, &mut work)
                     .map(|g| g + structure_rad_per_nmm * t)
                     .map_err(|f| fail(t, solve_failed(f)))
             })

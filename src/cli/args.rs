@@ -120,16 +120,9 @@ pub enum Command {
     /// on each, and report the distribution of every limited quantity and the failure rate;
     /// `tolerance merge SHARD...` joins the shards of a split run.
     Tolerance(ToleranceArgs),
-    /// Search a requirements file's design space for the Pareto front of checked designs.
-    Design {
-        /// The YAML requirements file (ratio, torques, envelope, limits, objectives, the
-        /// search's space).
-        requirements: String,
-        /// Write each front design's spec, front.csv and the review page index.html into this
-        /// directory.
-        #[arg(long)]
-        out: Option<String>,
-    },
+    /// Search a requirements file's design space for the Pareto front of checked designs;
+    /// `design merge SHARD...` finishes a search split over processes.
+    Design(DesignArgs),
     /// Export the modified disc profile as CSV points and a DXF polyline.
     Profile {
         /// The YAML spec whose design and modification give the profile.
@@ -202,5 +195,42 @@ pub enum ToleranceCommand {
         /// Write a design review of the study into this directory.
         #[arg(long)]
         report: Option<String>,
+    },
+}
+
+/// `cycloid design REQUIREMENTS [options]`, or `cycloid design merge SHARD...`.
+#[derive(Debug, clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub struct DesignArgs {
+    #[command(subcommand)]
+    pub merge: Option<DesignCommand>,
+    /// The YAML requirements file (ratio, torques, envelope, limits, objectives, the search's
+    /// space).
+    #[arg(required = true)]
+    pub requirements: Option<String>,
+    /// Write each front design's spec, front.csv and the review page index.html into this
+    /// directory; with --shard, the shard file.
+    #[arg(long)]
+    pub out: Option<String>,
+    /// Compute only shard I of N of the global stage (0-based: the candidates j with
+    /// j mod N = I) and write it to --out; without it, Slurm's SLURM_ARRAY_TASK_ID and
+    /// SLURM_ARRAY_TASK_COUNT are honoured.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+}
+
+/// Subcommands of `cycloid design`.
+#[derive(Debug, Subcommand)]
+pub enum DesignCommand {
+    /// Join the shard files of one search, run its local refinement and write what the
+    /// unsharded run writes (the same front, bit for bit).
+    Merge {
+        /// Every shard file of the run, in any order.
+        #[arg(required = true)]
+        shards: Vec<String>,
+        /// Write each front design's spec, front.csv and the review page index.html into this
+        /// directory.
+        #[arg(long)]
+        out: Option<String>,
     },
 }

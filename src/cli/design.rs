@@ -1,20 +1,67 @@
 //! `cycloid design REQUIREMENTS [--out DIR]`: search the design space, print the front, and
-//! write its specs, CSV and review page into DIR as one batch.
+//! write its specs, CSV and review page into DIR as one batch; with `--shard I/N --out FILE`
+//! (or in a Slurm job array) one shard of the global stage; `cycloid design merge --out DIR
+//! SHARD...` the rest of the search from the shards, written as the unsharded run writes it.
 
-use super::output::print;
+use super::args::{DesignArgs, DesignCommand};
+use super::output::{distinct_outputs, print};
+use super::shard::{parse_shard_of, slurm_shard_of};
 use super::Outcome;
-use crate::engine::commands;
+use crate::engine::commands::{self, DesignRun};
 use crate::error::{Error, ErrorKind, Result};
-use crate::files::{identity, Batch};
+use crate::files::{self, identity, Batch};
+use crate::model::requirements::Requirements;
+use crate::report::design::Timing;
 use crate::report::terminal::Terminal;
 use crate::{report, spec};
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-pub(super) fn run(path: &str, out_dir: Option<&str>, out: &mut dyn Write) -> Result<Outcome> {
-    let req = spec::requirements::load(path)?;
-    let usage = |m: String| Error::new(ErrorKind::Usage, format!("{m}; nothing was written"));
-    if let Some(dir) = out_dir {
+/// Largest shard file read, bytes: 64 MiB of requirements text and 1 GiB of evaluations (a
+/// million candidates at under 1 KiB each), a bound on what a wrong path makes the merge read.
+const MAX_SHARD_BYTES: u64 = files::MAX_INPUT_BYTES + (1 << 30);
+
+fn usage(m: String) -> Error {
+    Error::new(ErrorKind::Usage, format!("{m}; nothing was written"))
+}
+
+pub(super) fn run(args: DesignArgs, out: &mut dyn Write) -> Result<Outcome> {
+    if let Some(DesignCommand::Merge { shards, out: dir }) = args.merge {
+        return run_merge(&shards, dir.as_deref(), out);
+    }
+    let path = args.requirements.unwrap_or_default();
+    // As `spec::requirements::load`, keeping the text for a shard's header.
+    let text = files::read_text(Path::new(&path), "requirements", files::MAX_INPUT_BYTES)?;
+    let req = spec::requirements::parse(&path, &text)?;
+    let candidates = commands::design_candidates(&req);
+    let noun = "candidates of the global stage";
+    let shard = match &args.shard {
+        Some(s) => Some(parse_shard_of(s, candidates, noun)?),
+        None => slurm_shard_of(candidates, noun)?,
+    };
+    match (shard, args.out.as_deref()) {
+        (Some(shard), Some(file)) => run_shard(&req, &path, &text, shard, file, out),
+        (Some((i, n)), None) => Err(usage(format!(
+            "shard {i}/{n} (from --shard or the Slurm job array) needs --out SHARD_FILE, the \
+             file it writes for `cycloid design merge`"
+        ))),
+        (None, dir) => {
+            check_out_dir(dir)?;
+            let started = std::time::Instant::now();
+            let run = commands::design(&req, &path, &Terminal)?;
+            let time = Timing::Whole(started.elapsed().as_secs_f64());
+            let inputs = [(
+                format!("the requirements file {path}"),
+                PathBuf::from(&path),
+            )];
+            finish(&req, &run, dir, &time, &inputs, out)
+        }
+    }
+}
+
+/// `--out DIR` names a directory or nothing yet.
+fn check_out_dir(dir: Option<&str>) -> Result<()> {
+    if let Some(dir) = dir {
         if dir.is_empty() {
             return Err(usage("--out \"\": an empty path names no directory".into()));
         }
@@ -24,24 +71,35 @@ pub(super) fn run(path: &str, out_dir: Option<&str>, out: &mut dyn Write) -> Res
             )));
         }
     }
-    let started = std::time::Instant::now();
-    let run = commands::design(&req, path, &Terminal)?;
-    let seconds = started.elapsed().as_secs_f64();
+    Ok(())
+}
+
+/// Write the front's files into `out_dir` (never over one of `inputs`) and print the report.
+fn finish(
+    req: &Requirements,
+    run: &DesignRun,
+    out_dir: Option<&str>,
+    time: &Timing,
+    inputs: &[(String, PathBuf)],
+    out: &mut dyn Write,
+) -> Result<Outcome> {
     if let Some(dir) = out_dir {
         let dir = Path::new(dir);
         let mut files: Vec<(String, String)> = run.specs.clone();
-        files.push(("front.csv".into(), report::design::csv(&req, &run.search)));
-        files.extend(report::design::plots(&req, &run.search));
+        files.push(("front.csv".into(), report::design::csv(req, &run.search)));
+        files.extend(report::design::plots(req, &run.search));
         files.push((
             "index.html".into(),
-            report::design::page(&req, &run.search, seconds),
+            report::design::page(req, &run.search, time),
         ));
-        let input = identity(Path::new(path));
-        if let Some((name, _)) = files.iter().find(|(n, _)| identity(&dir.join(n)) == input) {
-            return Err(usage(format!(
-                "--out {} would overwrite the requirements file with {name}; give another directory",
-                dir.display()
-            )));
+        for (what, input) in inputs {
+            let input = identity(input);
+            if let Some((name, _)) = files.iter().find(|(n, _)| identity(&dir.join(n)) == input) {
+                return Err(usage(format!(
+                    "--out {} would overwrite {what} with {name}; give another directory",
+                    dir.display()
+                )));
+            }
         }
         std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
         let mut batch = Batch::new();
@@ -52,11 +110,70 @@ pub(super) fn run(path: &str, out_dir: Option<&str>, out: &mut dyn Write) -> Res
     }
     print(
         out,
-        &report::design::render(&req, &run.search, out_dir, seconds),
+        &report::design::render(req, &run.search, out_dir, time),
     )?;
     Ok(if run.feasible() {
         Outcome::Passed
     } else {
         Outcome::ChecksFailed
     })
+}
+
+/// One shard of the global stage, written to `file` for `merge`.
+fn run_shard(
+    req: &Requirements,
+    path: &str,
+    text: &str,
+    (i, n): (u64, u64),
+    file: &str,
+    out: &mut dyn Write,
+) -> Result<Outcome> {
+    let inputs = [(format!("the requirements file {path}"), PathBuf::from(path))];
+    distinct_outputs(&inputs, &[("--out", Some(file))])?;
+    let bytes = commands::design_shard(req, path, text, (i, n), &Terminal)?;
+    files::write_atomic(Path::new(file), &bytes)?;
+    let all = commands::design_candidates(req);
+    let count = crate::engine::design_search::shard::shard_len(all, (i, n));
+    print(
+        out,
+        &format!(
+            "cycloid design `{}`: shard {i}/{n} ({count} of the global stage's {all} \
+             candidates) written to {file}; finish the search with `cycloid design merge`\n",
+            crate::error::printable(&req.name, &[]),
+        ),
+    )?;
+    Ok(Outcome::Passed)
+}
+
+/// `merge`: read, check and join the shards, finish the search, and report and write as the
+/// unsharded run would.
+fn run_merge(paths: &[String], out_dir: Option<&str>, out: &mut dyn Write) -> Result<Outcome> {
+    check_out_dir(out_dir)?;
+    let started = std::time::Instant::now();
+    let files = paths
+        .iter()
+        .map(|p| {
+            // A regular file, bounded: a FIFO or a device would be read without end.
+            let bytes = files::read_bytes(Path::new(p), "shard file", MAX_SHARD_BYTES)?;
+            Ok((p.clone(), bytes))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let merged = commands::merge_design_shards(&files)?;
+    let mut inputs: Vec<(String, PathBuf)> = paths
+        .iter()
+        .map(|p| (format!("the shard file {p}"), PathBuf::from(p)))
+        .collect();
+    inputs.push((
+        format!(
+            "the requirements file {} the shards name",
+            merged.requirements_path
+        ),
+        PathBuf::from(&merged.requirements_path),
+    ));
+    let run = commands::design_from_shards(&merged, &Terminal)?;
+    let time = Timing::Merged {
+        seconds: started.elapsed().as_secs_f64(),
+        shards: merged.shards,
+    };
+    finish(&merged.requirements, &run, out_dir, &time, &inputs, out)
 }

@@ -15,7 +15,10 @@ mod profile;
 mod shard;
 mod tolerance;
 
-pub use args::{Cli, Command, ToleranceArgs, ToleranceCommand, DEFAULT_REPORT_MAP_STEPS};
+pub use args::{
+    Cli, Command, DesignArgs, DesignCommand, ToleranceArgs, ToleranceCommand,
+    DEFAULT_REPORT_MAP_STEPS,
+};
 pub use shard::parse_shard;
 
 use crate::error::Result;
@@ -106,9 +109,6 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             form_csv,
         } => fit::run(&spec, write.as_deref(), form_csv.as_deref(), out),
         Command::Tolerance(args) => tolerance::run(args, out),
-        Command::Design {
-            requirements,
-            out: dir,
-        } => design::run(&requirements, dir.as_deref(), out),
+        Command::Design(args) => design::run(args, out),
     }
 }

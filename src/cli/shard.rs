@@ -1,4 +1,4 @@
-//! Which shard of a tolerance study a run computes: `--shard I/N`, or the task of a Slurm job
+//! Which shard of a tolerance study or a design search a run computes: `--shard I/N`, or the task of a Slurm job
 //! array.
 
 use crate::error::{Error, ErrorKind, Result};
@@ -10,10 +10,15 @@ pub(super) fn invalid(message: String) -> Error {
 
 /// `--shard I/N`: 0 ≤ I < N, 1 ≤ N ≤ samples.
 pub fn parse_shard(text: &str, samples: u64) -> Result<(u64, u64)> {
+    parse_shard_of(text, samples, "samples")
+}
+
+/// `--shard I/N`: 0 ≤ I < N, 1 ≤ N ≤ `units` (what is split, named `noun`).
+pub(super) fn parse_shard_of(text: &str, samples: u64, noun: &str) -> Result<(u64, u64)> {
     let rule = |why: String| {
         invalid(format!(
             "--shard {text}: {why}; a shard is I/N with 0 <= I < N (0-based) and N at most the \
-             {samples} samples"
+             {samples} {noun}"
         ))
     };
     let (i, n) = text
@@ -36,6 +41,11 @@ pub fn parse_shard(text: &str, samples: u64) -> Result<(u64, u64)> {
 /// `--array=0-99` and `--array=1-100` both give I = 0 … 99), N = SLURM_ARRAY_TASK_COUNT. The
 /// array must be contiguous (no step, no list): I must come out below N.
 pub(super) fn slurm_shard(samples: u64) -> Result<Option<(u64, u64)>> {
+    slurm_shard_of(samples, "samples")
+}
+
+/// The shard of a Slurm job array task (`slurm_shard`), of `samples` units named `noun`.
+pub(super) fn slurm_shard_of(samples: u64, noun: &str) -> Result<Option<(u64, u64)>> {
     let var = |name: &str| std::env::var(name).ok();
     let (Some(id), Some(count)) = (var("SLURM_ARRAY_TASK_ID"), var("SLURM_ARRAY_TASK_COUNT"))
     else {
@@ -70,7 +80,7 @@ pub(super) fn slurm_shard(samples: u64) -> Result<Option<(u64, u64)>> {
             "SLURM_ARRAY_TASK_ID {id} is below SLURM_ARRAY_TASK_MIN {min}"
         ))
     })?;
-    parse_shard(&format!("{i}/{count}"), samples)
+    parse_shard_of(&format!("{i}/{count}"), samples, noun)
         .map(Some)
         .map_err(|e| {
             invalid(format!(

@@ -62,6 +62,29 @@ fn columns(req: &Requirements) -> Vec<Column<'_>> {
     cols
 }
 
+/// How long the run took, for the report.
+#[derive(Debug, Clone, Copy)]
+pub enum Timing {
+    /// An unsharded search: its wall time, s.
+    Whole(f64),
+    /// A merge of `shards` shards: its own wall time, s (the local refinement and the front;
+    /// the global stage's time is the shards').
+    Merged { seconds: f64, shards: u64 },
+}
+
+impl Timing {
+    /// `wall time 12.3 s`, and for a merge what that time covers.
+    pub fn text(&self) -> String {
+        match *self {
+            Timing::Whole(seconds) => format!("wall time {seconds:.1} s"),
+            Timing::Merged { seconds, shards } => format!(
+                "wall time {seconds:.1} s (the merge of {shards} shards: the local refinement; \
+                 the global stage ran in the shards)"
+            ),
+        }
+    }
+}
+
 fn tally_line(what: &str, t: &Tally) -> String {
     format!(
         "{what}: {} designs generated, {} rejected by the rules and the envelope, {} screened \
@@ -105,7 +128,7 @@ fn cell(v: f64) -> String {
 }
 
 /// The terminal text: the counts, the front's table (or why there is none) and the verdict.
-pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, seconds: f64) -> String {
+pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: &Timing) -> String {
     let mut s = String::new();
     let objectives: Vec<String> = req
         .objectives
@@ -121,7 +144,7 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, second
     );
     s.push_str(&tally_line("global stage", &run.global));
     s.push_str(&tally_line("local refinement", &run.local));
-    let _ = writeln!(s, "wall time {seconds:.1} s");
+    let _ = writeln!(s, "{}", time.text());
     if let Some(inf) = &run.infeasible {
         let _ = writeln!(s, "no design meets every requirement");
         for f in &inf.never_met {
@@ -277,7 +300,7 @@ pub fn plots(req: &Requirements, run: &SearchRun) -> Vec<(String, String)> {
 }
 
 /// The review page: the counts, the plots and the front's table with links to its specs.
-pub fn page(req: &Requirements, run: &SearchRun, seconds: f64) -> String {
+pub fn page(req: &Requirements, run: &SearchRun, time: &Timing) -> String {
     let cols = columns(req);
     let plots = plots(req, run);
     let markup = html! {
@@ -294,7 +317,7 @@ pub fn page(req: &Requirements, run: &SearchRun, seconds: f64) -> String {
             body {
                 h1 { "Design search: " (req.name) }
                 p { (tally_line("global stage", &run.global)) br; (tally_line("local refinement", &run.local))
-                    br; "wall time " (format!("{seconds:.1}")) " s" }
+                    br; (time.text()) }
                 @if let Some(inf) = &run.infeasible {
                     p.fail { "No design meets every requirement; closest to being met: " (failure_text(&inf.closest)) }
                     ul { @for f in &inf.never_met { li { "never met: " (failure_text(f)) } } }

@@ -11,7 +11,7 @@ use cycloid::progress::Silent;
 use std::f64::consts::PI;
 
 /// A small search (np 10, three mesh periods loaded) that runs in seconds.
-const SMALL: &str = "\
+pub(crate) const SMALL: &str = "\
 name: small
 ratio: [9]
 rated_torque_nm: 10.0

@@ -20,6 +20,7 @@ mod cli;
 mod cli_help;
 mod contact;
 mod design_search;
+mod design_shard;
 mod deviations;
 mod discs;
 mod duty_cycle;

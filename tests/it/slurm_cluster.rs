@@ -2,7 +2,9 @@
 //! tolerance study as a job array of 4 shards and its merge to a Slurm cluster — the one-node
 //! cluster `tools/slurm-one-node.sh` sets up on this machine — and the merged study must be the
 //! unsharded `cycloid tolerance` run byte for byte: the JSON, the per-sample CSV, the review page
-//! and the report the merge job printed.
+//! and the report the merge job printed. Likewise (issue 31) `examples/slurm/design.sbatch`: a
+//! design search as 3 array tasks and a merge job gives the unsharded `cycloid design`'s front,
+//! byte for byte but for the wall time. The two run one after the other (`SERIAL`).
 //!
 //! Skipped, with the reason printed, only where the set-up script says the cluster cannot be
 //! set up here (exit 77: Slurm is missing and apt-get is unavailable or we are not root).
@@ -10,6 +12,7 @@
 use std::io::Write;
 use std::path::Path;
 use std::process::{Command, Output};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use crate::common::{cycloid, Scratch};
@@ -21,6 +24,9 @@ const UNAVAILABLE: i32 = 77;
 const SPEC: &str = "reducer-tolerance.yaml";
 
 const SHARDS: usize = 4;
+
+/// Held by each test for its whole run: one sets the cluster up and uses it at a time.
+static SERIAL: Mutex<()> = Mutex::new(());
 
 /// How long the jobs may take once submitted. The study computes in about a second; the rest
 /// is Slurm's scheduling (a pass every few seconds, the merge waiting for the array). Generous,
@@ -186,6 +192,7 @@ fn same_file(cluster: &Path, whole: &Path, name: &str) {
 /// report the merge printed to its log. Both run the same spec path from their own directory.
 #[test]
 fn the_sbatch_study_on_a_one_node_cluster_equals_the_unsharded_run() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     if let Some(reason) = cluster() {
         // Not through the test harness's capture: the reason must show in a passing run.
         let _ = writeln!(std::io::stderr(), "slurm_cluster: skipped: {reason}");
@@ -272,6 +279,90 @@ fn the_sbatch_study_on_a_one_node_cluster_equals_the_unsharded_run() {
     assert_eq!(
         log,
         unsharded.stdout + &unsharded.stderr,
+        "the merge job's log"
+    );
+}
+
+/// Design shards on the cluster.
+const DESIGN_SHARDS: usize = 3;
+
+/// The small search of `design_search` (64 Sobol points, a 32-design front, under a second) as
+/// 3 Slurm array tasks and a dependent merge job equals the unsharded `cycloid design --out
+/// front`: every spec of the front, front.csv and the plot byte for byte, the page and the
+/// report the merge printed to its log but for the wall time (which differs between any two
+/// runs).
+#[test]
+fn the_sbatch_design_search_on_a_one_node_cluster_equals_the_unsharded_run() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(reason) = cluster() {
+        let _ = writeln!(std::io::stderr(), "slurm_cluster: skipped: {reason}");
+        return;
+    }
+    let dir = Scratch::new("slurm-design");
+    let (on_cluster, whole) = (dir.join("cluster"), dir.join("whole"));
+    for d in [&on_cluster, &whole] {
+        std::fs::create_dir_all(d).unwrap();
+        std::fs::write(d.join("small.yaml"), crate::design_search::SMALL).unwrap();
+    }
+    let submit = Command::new("bash")
+        .args([
+            &repo("examples/slurm/design.sbatch"),
+            "small.yaml",
+            &DESIGN_SHARDS.to_string(),
+        ])
+        .current_dir(&on_cluster)
+        .env("CYCLOID", env!("CARGO_BIN_EXE_cycloid"))
+        .env("SOURCE_DATE_EPOCH", "0")
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let stdout = text(&submit.stdout);
+    assert!(submit.status.success(), "{stdout}{}", text(&submit.stderr));
+    let (array, merge) = job_ids(&stdout);
+
+    let unsharded = cycloid(&whole, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(unsharded.code(), 0, "{unsharded:?}");
+
+    let record = wait_for_merge(&on_cluster, &array, &merge);
+    let why = || evidence(&on_cluster, &array, &merge);
+    assert_eq!(fields(&record, "JobState"), ["COMPLETED"], "{}", why());
+    assert_eq!(fields(&record, "ExitCode"), ["0:0"], "{}", why());
+    let tasks = show_job(&array);
+    assert_eq!(
+        fields(&tasks, "JobState"),
+        ["COMPLETED"; DESIGN_SHARDS],
+        "{}",
+        why()
+    );
+    for i in 0..DESIGN_SHARDS {
+        assert!(
+            on_cluster.join(format!("shards/design-{i}.bin")).is_file(),
+            "{}",
+            why()
+        );
+    }
+    let merged = crate::common::files(&on_cluster.join("front"));
+    let unsharded_files = crate::common::files(&whole.join("front"));
+    assert_eq!(
+        merged.keys().collect::<Vec<_>>(),
+        unsharded_files.keys().collect::<Vec<_>>(),
+        "the front's files"
+    );
+    assert!(merged.len() >= 5, "{:?}", merged.keys());
+    for name in merged.keys().filter(|n| *n != "index.html") {
+        same_file(&on_cluster.join("front"), &whole.join("front"), name);
+    }
+    let page = |d: &Path| {
+        crate::design_shard::without_wall_time(
+            &std::fs::read_to_string(d.join("front/index.html")).unwrap(),
+        )
+    };
+    assert_eq!(page(&on_cluster), page(&whole), "index.html");
+    let log =
+        std::fs::read_to_string(on_cluster.join(format!("logs/design-merge-{merge}.out"))).unwrap();
+    assert_eq!(
+        crate::design_shard::without_wall_time(&log),
+        crate::design_shard::without_wall_time(&(unsharded.stdout + &unsharded.stderr)),
         "the merge job's log"
     );
 }

@@ -1,8 +1,9 @@
 //! `design`: search a requirements file's design space for its Pareto front and return the
-//! front with the spec of each of its designs.
+//! front with the spec of each of its designs; `design_shard` computes one shard of the
+//! global stage, `merge_design_shards` and `design_from_shards` finish the search from them.
 
-use crate::engine::design_search::{self, candidate, Evaluation, SearchRun};
-use crate::error::Result;
+use crate::engine::design_search::{self, candidate, shard, Evaluation, SearchRun};
+use crate::error::{Error, ErrorKind, Result};
 use crate::model::requirements::Requirements;
 use crate::progress::Progress;
 
@@ -67,11 +68,118 @@ pub fn design(
     progress: &dyn Progress,
 ) -> Result<DesignRun> {
     let search = design_search::search(req, progress)?;
+    Ok(with_specs(req, requirements_path, search))
+}
+
+/// A search with the spec text of each front design.
+fn with_specs(req: &Requirements, requirements_path: &str, search: SearchRun) -> DesignRun {
     let specs = search
         .front
         .iter()
         .enumerate()
         .map(|(k, e)| (design_file(k), front_spec(req, requirements_path, k, e)))
         .collect();
-    Ok(DesignRun { search, specs })
+    DesignRun { search, specs }
+}
+
+/// The global stage's candidates of a search in all (`--shard I/N` takes N at most this).
+pub fn design_candidates(req: &Requirements) -> u64 {
+    design_search::global_candidates(req).len() as u64
+}
+
+/// Shard `(i, n)` of the search of `req` (read as `text` from `requirements_path`): the
+/// global stage's evaluations of the candidates j ≡ i (mod n), encoded as the shard file
+/// that `merge_design_shards` reads.
+///
+/// ```
+/// use cycloid::engine::commands::{design, design_from_shards, design_shard, merge_design_shards};
+/// use cycloid::progress::Silent;
+/// let path = "specs/requirements-robot-joint.yaml";
+/// let text = std::fs::read_to_string(path).unwrap()
+///     .replace("samples: 128", "samples: 2")
+///     .replace("refine_budget: 20", "refine_budget: 0");
+/// let req = cycloid::spec::requirements::parse(path, &text)?;
+/// let shards: Vec<(String, Vec<u8>)> = (0..2)
+///     .map(|i| Ok((format!("shard{i}"), design_shard(&req, path, &text, (i, 2), &Silent)?)))
+///     .collect::<cycloid::Result<_>>()?;
+/// // The merged shards give the unsharded run's front, bit for bit.
+/// let merged = design_from_shards(&merge_design_shards(&shards)?, &Silent)?;
+/// let whole = design(&req, path, &Silent)?;
+/// assert_eq!(merged.specs, whole.specs);
+/// assert_eq!(merged.search.global, whole.search.global);
+/// # Ok::<(), cycloid::Error>(())
+/// ```
+pub fn design_shard(
+    req: &Requirements,
+    requirements_path: &str,
+    text: &str,
+    (i, n): (u64, u64),
+    progress: &dyn Progress,
+) -> Result<Vec<u8>> {
+    let all = design_search::global_candidates(req);
+    let mine = shard::share(&all, (i, n));
+    let what = format!("global stage, shard {i}/{n}: rules, screen, full check");
+    let evaluations = design_search::global_stage(req, &mine, &what, progress)?;
+    let header = shard::Header {
+        requirements_sha256: shard::requirements_hash(text),
+        seed: u64::from(req.search.seed),
+        candidates: all.len() as u64,
+        index: i,
+        count: n,
+        requirements_path: requirements_path.to_string(),
+        requirements_text: text.to_string(),
+    };
+    Ok(shard::encode(&header, &evaluations))
+}
+
+/// The shards of one search joined: the requirements they carry and the global stage's
+/// evaluations of every candidate, in the unsharded run's order.
+#[derive(Debug, Clone)]
+pub struct MergedDesign {
+    pub requirements: Requirements,
+    /// The requirements file's path as the shards were given it (the front's specs name it).
+    pub requirements_path: String,
+    pub evaluations: Vec<Evaluation>,
+    /// Shards merged.
+    pub shards: u64,
+}
+
+/// Check and join the shard files `(name, bytes)` of one search.
+pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> {
+    let shards = files
+        .iter()
+        .map(|(name, bytes)| shard::decode(name, bytes))
+        .collect::<Result<Vec<_>>>()?;
+    let names: Vec<String> = files.iter().map(|(name, _)| name.clone()).collect();
+    shard::check_set(&names, &shards)?;
+    let h = &shards[0].header;
+    let requirements = crate::spec::requirements::parse(&h.requirements_path, &h.requirements_text)
+        .map_err(|e| {
+            Error::new(
+                ErrorKind::InvalidValue,
+                format!(
+                    "{}: the requirements the shards hold do not load in this cycloid: {}",
+                    names[0], e.message
+                ),
+            )
+        })?;
+    let evaluations = shard::merge(&requirements, &names, &shards)?;
+    Ok(MergedDesign {
+        requirements_path: h.requirements_path.clone(),
+        shards: h.count,
+        requirements,
+        evaluations,
+    })
+}
+
+/// The search finished from merged shards: the local refinement of the front (it starts from
+/// the front of every shard's evaluations, so it runs here, after the merge) and the front,
+/// as the unsharded `design` gives it from the same evaluations.
+pub fn design_from_shards(merged: &MergedDesign, progress: &dyn Progress) -> Result<DesignRun> {
+    let search = design_search::finish(&merged.requirements, merged.evaluations.clone(), progress)?;
+    Ok(with_specs(
+        &merged.requirements,
+        &merged.requirements_path,
+        search,
+    ))
 }

@@ -1,5 +1,5 @@
 //! One entry per command, each returning data: `check`, `optimise`, `accuracy`, `tolerance`
-//! (whole, a shard, the merge), `fit`, `profile`, `bless`. The command line, the library's
+//! and `design` (whole, a shard, the merge), `fit`, `profile`, `bless`. The command line, the library's
 //! users and the tests call these; what they print or write is built in `report`.
 
 mod accuracy;
@@ -17,7 +17,10 @@ pub use check::{
     check, map, map_steps_allowed, scenes, studies, AsBuilt, CheckOptions, CheckRun, Review,
     ReviewOptions, MAX_MAP_STEPS,
 };
-pub use design::{design, design_file, front_spec, DesignRun};
+pub use design::{
+    design, design_candidates, design_file, design_from_shards, design_shard, front_spec,
+    merge_design_shards, DesignRun, MergedDesign,
+};
 pub use fit::fit;
 pub use optimise::{optimise, OptimiseRun};
 pub use profile::{profile, MIN_PROFILE_TOLERANCE_MM};

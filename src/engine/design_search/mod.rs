@@ -10,7 +10,8 @@
 //! scrambling. Local stage (`refine`): from each front design a pattern search that accepts
 //! a move only to a feasible design dominating it, then the front of everything feasible again
 //! (two rounds). Everything runs in parallel and is collected in a fixed order, so a seed gives
-//! the same front on any number of threads.
+//! the same front on any number of threads, and on any number of processes (`shard`: each
+//! computes a share of the global stage, a merge the rest from their evaluations).
 
 pub mod candidate;
 pub mod evaluate;
@@ -18,6 +19,7 @@ pub mod failure;
 pub mod pareto;
 pub mod refine;
 pub mod rules;
+pub mod shard;
 
 pub use candidate::{Candidate, Choice};
 pub use evaluate::{Evaluation, Failure, Stage, Tally};
@@ -119,17 +121,40 @@ pub fn front_of(req: &Requirements, all: &[Evaluation]) -> Vec<usize> {
 /// Search the requirements' design space for its Pareto front.
 pub fn search(req: &Requirements, progress: &dyn Progress) -> Result<SearchRun> {
     let candidates = global_candidates(req);
+    let all = global_stage(
+        req,
+        &candidates,
+        "global stage: rules, screen, full check",
+        progress,
+    )?;
+    finish(req, all, progress)
+}
+
+/// The global stage's evaluations of `candidates`, in their order, heard as `what`.
+pub fn global_stage(
+    req: &Requirements,
+    candidates: &[Candidate],
+    what: &str,
+    progress: &dyn Progress,
+) -> Result<Vec<Evaluation>> {
     let phase = progress.phase(&Phase {
         slow_units: true,
-        ..Phase::new(
-            "global stage: rules, screen, full check",
-            "designs",
-            candidates.len() as u64,
-        )
+        ..Phase::new(what, "designs", candidates.len() as u64)
     });
-    let mut all = evaluate_all(req, &candidates, &*phase)?;
+    let all = evaluate_all(req, candidates, &*phase)?;
     phase.finish();
-    drop(phase);
+    Ok(all)
+}
+
+/// The search from the global stage's evaluations of every candidate (`all`, in the order of
+/// `global_candidates`): the local refinement of the front, the front of everything feasible,
+/// and what no design met when nothing is feasible. An unsharded search and a merge of shards
+/// both end here, so from the same evaluations they give the same run.
+pub fn finish(
+    req: &Requirements,
+    mut all: Vec<Evaluation>,
+    progress: &dyn Progress,
+) -> Result<SearchRun> {
     let mut global = Tally::default();
     all.iter().for_each(|e| global.add(e));
     let mut local = Tally::default();

@@ -1,0 +1,586 @@
+//! Shard files of a design search split over processes (`cycloid design REQ --shard I/N`):
+//! the global stage's evaluations of the candidates j ≡ I (mod N), j the index into
+//! `global_candidates` (choice by choice, Sobol point by point, so every shard holds about
+//! 1/N of every discrete choice and the shards take about the same time), and what a merge
+//! needs to check that the shards belong together and to finish the search (the requirements'
+//! text; the local refinement runs at the merge, `super::finish`).
+//!
+//! Format (little-endian), version 1:
+//! `MAGIC` (16 bytes), version u32, SHA-256 of the requirements text (32 bytes), seed u64,
+//! candidates u64 (of the whole global stage), shard index u64 (0-based), shard count u64,
+//! requirements path (u32 length + UTF-8), requirements text (u64 length + UTF-8); then per
+//! candidate of the shard, in increasing j: its choice (teeth, pins, discs: u32 each), its
+//! eight variables (f64), its stage (u8: 0 rules, 1 screen, 2 full check), its objectives
+//! (u32 count + f64 each), its failures (u32 count; each the requirement and the unit as
+//! u32 length + UTF-8, a bound flag u8 with, when 1, the value and the limit as f64 and the
+//! side as u8, 0 max 1 min, and a message flag u8 with, when 1, the message as u32 length +
+//! UTF-8); last, the SHA-256 of every byte before it. Numbers are their IEEE-754 bits: the
+//! merge finishes from the very evaluations the shards made.
+//!
+//! A shard comes from another machine: it is read whole and trusted in nothing it could get
+//! wrong. Its checksum must match (a changed or cut byte anywhere), the requirements text its
+//! hash, and it must hold exactly the candidates of its share (`decode`); at the merge every
+//! candidate must be the one the requirements generate at its index, bit for bit, and every
+//! evaluation be consistent (objectives exactly when feasible) (`merge`).
+
+use super::candidate::{Candidate, Choice};
+use super::evaluate::{Evaluation, Stage};
+use super::failure::Failure;
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::quantity::{Bound, LIMITS};
+use crate::model::requirements::Requirements;
+use sha2::{Digest, Sha256};
+
+pub const MAGIC: &[u8; 16] = b"cycloid-dsg-shrd";
+pub const VERSION: u32 = 1;
+
+/// Bytes of the checksum that ends a shard.
+const CHECKSUM: usize = 32;
+
+/// What a shard says about the search it belongs to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Header {
+    pub requirements_sha256: [u8; 32],
+    pub seed: u64,
+    /// Candidates of the whole global stage.
+    pub candidates: u64,
+    /// 0-based shard index I and shard count N.
+    pub index: u64,
+    pub count: u64,
+    pub requirements_path: String,
+    pub requirements_text: String,
+}
+
+/// One shard read back: its header and its evaluations, in increasing candidate index.
+#[derive(Debug, Clone)]
+pub struct Shard {
+    pub header: Header,
+    pub evaluations: Vec<Evaluation>,
+}
+
+/// SHA-256 of a requirements file's text.
+pub fn requirements_hash(text: &str) -> [u8; 32] {
+    Sha256::digest(text.as_bytes()).into()
+}
+
+/// How many candidates shard I of N holds: those j ≡ I (mod N), j < candidates (I 0-based).
+pub fn shard_len(candidates: u64, (index, count): (u64, u64)) -> u64 {
+    candidates.saturating_sub(index).div_ceil(count.max(1))
+}
+
+/// The candidates of shard `(i, n)`: those of `all` whose index j ≡ i (mod n), in order.
+pub fn share(all: &[Candidate], (i, n): (u64, u64)) -> Vec<Candidate> {
+    all.iter()
+        .enumerate()
+        .filter(|(j, _)| *j as u64 % n.max(1) == i)
+        .map(|(_, c)| *c)
+        .collect()
+}
+
+fn text_u32(b: &mut Vec<u8>, s: &str) {
+    b.extend_from_slice(&(s.len() as u32).to_le_bytes());
+    b.extend_from_slice(s.as_bytes());
+}
+
+/// The bytes of a shard file.
+pub fn encode(h: &Header, evaluations: &[Evaluation]) -> Vec<u8> {
+    let mut b = Vec::with_capacity(256 + h.requirements_text.len() + evaluations.len() * 128);
+    b.extend_from_slice(MAGIC);
+    b.extend_from_slice(&VERSION.to_le_bytes());
+    b.extend_from_slice(&h.requirements_sha256);
+    for v in [h.seed, h.candidates, h.index, h.count] {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    text_u32(&mut b, &h.requirements_path);
+    b.extend_from_slice(&(h.requirements_text.len() as u64).to_le_bytes());
+    b.extend_from_slice(h.requirements_text.as_bytes());
+    for e in evaluations {
+        let c = e.candidate.choice;
+        for n in [c.teeth, c.pins, c.discs] {
+            b.extend_from_slice(&(n as u32).to_le_bytes());
+        }
+        for x in e.candidate.x {
+            b.extend_from_slice(&x.to_le_bytes());
+        }
+        b.push(match e.stage {
+            Stage::Rules => 0,
+            Stage::Screen => 1,
+            Stage::Full => 2,
+        });
+        b.extend_from_slice(&(e.objectives.len() as u32).to_le_bytes());
+        for v in &e.objectives {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        b.extend_from_slice(&(e.failures.len() as u32).to_le_bytes());
+        for f in &e.failures {
+            text_u32(&mut b, &f.requirement);
+            text_u32(&mut b, f.unit);
+            match f.bound {
+                Some((value, limit, side)) => {
+                    b.push(1);
+                    b.extend_from_slice(&value.to_le_bytes());
+                    b.extend_from_slice(&limit.to_le_bytes());
+                    b.push(match side {
+                        Bound::Max => 0,
+                        Bound::Min => 1,
+                    });
+                }
+                None => b.push(0),
+            }
+            match &f.message {
+                Some(m) => {
+                    b.push(1);
+                    text_u32(&mut b, m);
+                }
+                None => b.push(0),
+            }
+        }
+    }
+    let sum: [u8; CHECKSUM] = Sha256::digest(&b).into();
+    b.extend_from_slice(&sum);
+    b
+}
+
+/// Reads the fields of a shard in order; every shortfall is the same error.
+struct Reader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+    path: &'a str,
+}
+
+impl<'a> Reader<'a> {
+    fn bad(&self, why: &str) -> Error {
+        Error::new(
+            ErrorKind::InvalidValue,
+            format!("{}: not a shard file of `cycloid design`: {why}", self.path),
+        )
+    }
+
+    fn take(&mut self, n: usize) -> Result<&'a [u8]> {
+        let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len());
+        let end = end.ok_or_else(|| self.bad("it ends early"))?;
+        let s = &self.bytes[self.at..end];
+        self.at = end;
+        Ok(s)
+    }
+
+    fn u8(&mut self) -> Result<u8> {
+        Ok(self.take(1)?[0])
+    }
+
+    fn u32(&mut self) -> Result<u32> {
+        Ok(u32::from_le_bytes(
+            self.take(4)?.try_into().unwrap_or_default(),
+        ))
+    }
+
+    fn u64(&mut self) -> Result<u64> {
+        Ok(u64::from_le_bytes(
+            self.take(8)?.try_into().unwrap_or_default(),
+        ))
+    }
+
+    fn f64(&mut self) -> Result<f64> {
+        Ok(f64::from_le_bytes(
+            self.take(8)?.try_into().unwrap_or_default(),
+        ))
+    }
+
+    fn text(&mut self, n: usize, what: &str) -> Result<String> {
+        let raw = self.take(n)?;
+        String::from_utf8(raw.to_vec()).map_err(|_| self.bad(&format!("its {what} is not UTF-8")))
+    }
+
+    fn short_text(&mut self, what: &str) -> Result<String> {
+        let n = self.u32()? as usize;
+        self.text(n, what)
+    }
+
+    /// A count of items of at least `least` bytes each: no more than the bytes left hold.
+    fn count(&mut self, least: usize) -> Result<usize> {
+        let n = self.u32()? as usize;
+        if n.saturating_mul(least) > self.bytes.len() - self.at {
+            return Err(self.bad("it ends early"));
+        }
+        Ok(n)
+    }
+
+    fn evaluation(&mut self, j: u64) -> Result<Evaluation> {
+        let mut choice = [0usize; 3];
+        for n in &mut choice {
+            *n = self.u32()? as usize;
+        }
+        let mut x = [0.0; 8];
+        for v in &mut x {
+            *v = self.f64()?;
+        }
+        let stage = match self.u8()? {
+            0 => Stage::Rules,
+            1 => Stage::Screen,
+            2 => Stage::Full,
+            s => return Err(self.bad(&format!("candidate {j} holds the stage byte {s}"))),
+        };
+        let n = self.count(8)?;
+        let mut objectives = Vec::with_capacity(n);
+        for _ in 0..n {
+            let v = self.f64()?;
+            if !v.is_finite() {
+                return Err(self.bad(&format!("candidate {j} holds the objective {v}")));
+            }
+            objectives.push(v);
+        }
+        let n = self.count(10)?;
+        let mut failures = Vec::with_capacity(n);
+        for _ in 0..n {
+            let requirement = self.short_text("requirement")?;
+            let unit = self.short_text("unit")?;
+            let unit = known_unit(&unit).ok_or_else(|| {
+                self.bad(&format!(
+                    "candidate {j} holds the unit `{unit}`, which this cycloid does not know: \
+                     written by another version"
+                ))
+            })?;
+            let bound = match self.u8()? {
+                0 => None,
+                1 => {
+                    let (value, limit) = (self.f64()?, self.f64()?);
+                    let side = match self.u8()? {
+                        0 => Bound::Max,
+                        1 => Bound::Min,
+                        s => {
+                            return Err(self.bad(&format!("candidate {j} holds the side byte {s}")))
+                        }
+                    };
+                    Some((value, limit, side))
+                }
+                f => return Err(self.bad(&format!("candidate {j} holds the bound flag {f}"))),
+            };
+            let message = match self.u8()? {
+                0 => None,
+                1 => Some(self.short_text("message")?),
+                f => return Err(self.bad(&format!("candidate {j} holds the message flag {f}"))),
+            };
+            failures.push(Failure {
+                requirement,
+                bound,
+                unit,
+                message,
+            });
+        }
+        Ok(Evaluation {
+            candidate: Candidate {
+                choice: Choice {
+                    teeth: choice[0],
+                    pins: choice[1],
+                    discs: choice[2],
+                },
+                x,
+            },
+            stage,
+            failures,
+            objectives,
+        })
+    }
+}
+
+/// The unit of a failure as the evaluation names it: the unit of a limit's quantity, or the
+/// rules' mm, or none.
+fn known_unit(unit: &str) -> Option<&'static str> {
+    ["", "mm"]
+        .into_iter()
+        .chain(LIMITS.iter().map(|l| l.quantity.unit))
+        .find(|u| *u == unit)
+}
+
+/// Decode the bytes of the shard file at `path`.
+pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
+    let mut r = Reader { bytes, at: 0, path };
+    if r.take(MAGIC.len())? != MAGIC {
+        return Err(r.bad("it does not start with the design shard mark"));
+    }
+    let version = r.u32()?;
+    if version != VERSION {
+        return Err(r.bad(&format!(
+            "format version {version}; this cycloid reads version {VERSION}"
+        )));
+    }
+    let Some(content) = bytes.len().checked_sub(CHECKSUM) else {
+        return Err(r.bad("it ends early"));
+    };
+    let (content, sum) = bytes.split_at(content);
+    if Sha256::digest(content).as_slice() != sum {
+        return Err(r.bad(
+            "its checksum does not match its contents: the file was changed or cut after it \
+             was written",
+        ));
+    }
+    r.bytes = content;
+    let requirements_sha256: [u8; 32] = r.take(32)?.try_into().unwrap_or_default();
+    let (seed, candidates, index, count) = (r.u64()?, r.u64()?, r.u64()?, r.u64()?);
+    let requirements_path = r.short_text("requirements path")?;
+    let n = r.u64()?;
+    let n = usize::try_from(n).map_err(|_| r.bad("it ends early"))?;
+    let requirements_text = r.text(n, "requirements text")?;
+    if count == 0 || index >= count || count > candidates.max(1) {
+        return Err(r.bad(&format!("shard {index}/{count} of {candidates} candidates")));
+    }
+    if requirements_hash(&requirements_text) != requirements_sha256 {
+        return Err(
+            r.bad("the requirements it holds do not match the requirements' hash in its header")
+        );
+    }
+    let rows = shard_len(candidates, (index, count));
+    // Each evaluation takes at least 85 bytes: no more rows than the file holds are read.
+    if rows.saturating_mul(85) > (content.len() - r.at) as u64 {
+        return Err(r.bad(&format!("it ends before its {rows} candidates")));
+    }
+    let evaluations = (0..rows)
+        .map(|row| r.evaluation(index + row * count))
+        .collect::<Result<Vec<_>>>()?;
+    if r.at != content.len() {
+        return Err(r.bad(&format!(
+            "{} bytes follow its {rows} candidates",
+            content.len() - r.at
+        )));
+    }
+    Ok(Shard {
+        header: Header {
+            requirements_sha256,
+            seed,
+            candidates,
+            index,
+            count,
+            requirements_path,
+            requirements_text,
+        },
+        evaluations,
+    })
+}
+
+/// Missing shards a message lists by index, at most.
+const MISSING_SHOWN: usize = 10;
+
+fn refuse(message: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, message)
+}
+
+/// Check that a complete set of shards (`names` their paths, for messages) belongs to one
+/// search: refused when they differ in requirements, seed, candidate count or shard count, or
+/// when a shard is missing or given twice (named by index). The shards in index order.
+pub fn check_set<'a>(
+    names: &'a [String],
+    shards: &'a [Shard],
+) -> Result<Vec<(&'a str, &'a Shard)>> {
+    let Some(first) = shards.first() else {
+        return Err(refuse("merge needs at least one shard file".into()));
+    };
+    let h0 = &first.header;
+    for (name, s) in names.iter().zip(shards) {
+        let h = &s.header;
+        let differs = |what: &str, a: String, b: String| {
+            refuse(format!(
+                "{name} (shard {}) is of another design search than {} (shard {}): its {what} \
+                 is {a}, not {b}; merge only the shards of one run",
+                h.index, names[0], h0.index
+            ))
+        };
+        if h.requirements_sha256 != h0.requirements_sha256 {
+            return Err(differs(
+                "requirements file",
+                format!(
+                    "`{}` (sha256 {})",
+                    h.requirements_path,
+                    hex(&h.requirements_sha256[..6])
+                ),
+                format!(
+                    "`{}` (sha256 {})",
+                    h0.requirements_path,
+                    hex(&h0.requirements_sha256[..6])
+                ),
+            ));
+        }
+        if h.requirements_path != h0.requirements_path {
+            // The front's specs name the requirements path: one run, one path.
+            return Err(differs(
+                "requirements path",
+                format!("`{}`", h.requirements_path),
+                format!("`{}`", h0.requirements_path),
+            ));
+        }
+        for (what, a, b) in [
+            ("seed", h.seed, h0.seed),
+            ("candidate count", h.candidates, h0.candidates),
+            ("shard count", h.count, h0.count),
+        ] {
+            if a != b {
+                return Err(differs(what, a.to_string(), b.to_string()));
+            }
+        }
+    }
+    let count = h0.count;
+    let missing_text = |given: &[u64]| {
+        let missing: Vec<String> = (0..count)
+            .filter(|i| given.binary_search(i).is_err())
+            .take(MISSING_SHOWN)
+            .map(|i| i.to_string())
+            .collect();
+        let more = count - given.len() as u64 - missing.len() as u64;
+        refuse(format!(
+            "shards of {count} missing: {}{} (0-based indices); merge needs every shard of the \
+             run",
+            missing.join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
+        ))
+    };
+    // Every shard of the run must be here: no more indices to place than shards given (a
+    // header may claim any count; nothing is allocated for it before this).
+    if (shards.len() as u64) < count {
+        let mut given: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
+        given.sort_unstable();
+        given.dedup();
+        return Err(missing_text(&given));
+    }
+    let mut by_index: Vec<Option<usize>> = vec![None; count as usize];
+    for (i, s) in shards.iter().enumerate() {
+        let slot = &mut by_index[s.header.index as usize];
+        if let Some(j) = slot {
+            return Err(refuse(format!(
+                "shard {} of {count} is given twice: {} and {}",
+                s.header.index, names[*j], names[i]
+            )));
+        }
+        *slot = Some(i);
+    }
+    let given: Vec<u64> = (0..count)
+        .filter(|&i| by_index[i as usize].is_some())
+        .collect();
+    if given.len() as u64 != count {
+        return Err(missing_text(&given));
+    }
+    Ok(by_index
+        .into_iter()
+        .flatten()
+        .map(|i| (names[i].as_str(), &shards[i]))
+        .collect())
+}
+
+/// The global stage's evaluations of every candidate, in the order of `global_candidates`,
+/// from the shards of one run (`check_set`) and their requirements `req`: refused when a
+/// shard's candidate is not the one `req` generates at its index (bit for bit: another
+/// version of cycloid, or an altered shard) or an evaluation is not consistent.
+pub fn merge(req: &Requirements, names: &[String], shards: &[Shard]) -> Result<Vec<Evaluation>> {
+    let ordered = check_set(names, shards)?;
+    let candidates = super::global_candidates(req);
+    let h0 = &ordered[0].1.header;
+    let from_here = |what: &str, a: u64, b: u64| {
+        refuse(format!(
+            "{}: the shards hold {a} {what}, their requirements `{}` give {b}: written by \
+             another version of cycloid",
+            ordered[0].0, h0.requirements_path
+        ))
+    };
+    if h0.seed != u64::from(req.search.seed) {
+        return Err(from_here("as seed", h0.seed, u64::from(req.search.seed)));
+    }
+    if h0.candidates != candidates.len() as u64 {
+        return Err(from_here(
+            "candidates",
+            h0.candidates,
+            candidates.len() as u64,
+        ));
+    }
+    let count = h0.count as usize;
+    let mut all: Vec<Option<Evaluation>> = vec![None; candidates.len()];
+    for (i, (name, s)) in ordered.iter().enumerate() {
+        for (row, e) in s.evaluations.iter().enumerate() {
+            let j = i + row * count;
+            let c = &candidates[j];
+            let bad = |why: &str| {
+                refuse(format!(
+                    "{name}: shard {i} of {count} holds candidate {j} {why}: written by another \
+                     version of cycloid, or altered"
+                ))
+            };
+            let same = c.choice == e.candidate.choice
+                && c.x
+                    .iter()
+                    .zip(&e.candidate.x)
+                    .all(|(a, b)| a.to_bits() == b.to_bits());
+            if !same {
+                return Err(bad("other than its requirements generate"));
+            }
+            let objectives = if e.feasible() {
+                req.objectives.len()
+            } else {
+                0
+            };
+            if e.objectives.len() != objectives {
+                return Err(bad(&format!(
+                    "with {} objectives, not the {objectives} of its {}",
+                    e.objectives.len(),
+                    if e.feasible() {
+                        "requirements"
+                    } else {
+                        "failed check"
+                    }
+                )));
+            }
+            if e.stage != Stage::Full && e.failures.is_empty() {
+                return Err(bad("stopped before the full check without a failure"));
+            }
+            all[j] = Some(e.clone());
+        }
+    }
+    all.into_iter()
+        .enumerate()
+        .map(|(j, e)| e.ok_or_else(|| refuse(format!("no shard holds candidate {j}"))))
+        .collect()
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every split of up to 12 candidates gives each candidate to exactly one shard, and a
+    /// shard's count is that of its residue, listed one by one.
+    #[test]
+    fn the_shares_cover_every_candidate_once() {
+        let c = Candidate {
+            choice: Choice {
+                teeth: 9,
+                pins: 6,
+                discs: 1,
+            },
+            x: [0.0; 8],
+        };
+        for total in 0..=12u64 {
+            let all: Vec<Candidate> = (0..total)
+                .map(|j| Candidate {
+                    x: [j as f64; 8],
+                    ..c
+                })
+                .collect();
+            for n in 1..=total.max(1) {
+                let mut seen = vec![0; total as usize];
+                for i in 0..n {
+                    let s = share(&all, (i, n));
+                    let residue = (0..total).filter(|j| j % n == i).count() as u64;
+                    assert_eq!(s.len() as u64, residue);
+                    assert_eq!(shard_len(total, (i, n)), residue);
+                    for c in s {
+                        seen[c.x[0] as usize] += 1;
+                    }
+                }
+                assert!(seen.iter().all(|&k| k == 1), "{total}/{n}: {seen:?}");
+            }
+        }
+    }
+}

@@ -260,8 +260,8 @@ fn tangent_compliance(work: &Work) -> Option<f64> {
 /// (Anderson) step (`secant_step`) and start from the gaps of the last angles extrapolated
 /// (`CoupledWork::beam_gaps_guess`); a disc the split lets float is checked against its dead
 /// band once, at the last pass. On the paper's design with two discs on 20 mm cantilever
-/// pins (6 and 16 mm from the flange, 10 N·m, 3,600 angles a mesh period) an angle takes 4.3
-/// passes of 3.9 disc solves on average, where the last angle's gaps and a solve in γ
+/// pins (6 and 16 mm from the flange, 10 N·m, 3,600 angles a mesh period) an angle takes 4.4
+/// passes of 3.8 disc solves on average, where the last angle's gaps and a solve in γ
 /// (`by_lag`) at every pass for the floating disc took 7.1 passes of 7.1. With three or four discs block Jacobi is not proven, and
 /// `MAX_BEAM_PASSES` without convergence is "did not converge", a status (exit 2 at the scene
 /// and angle), never a result.

@@ -46,7 +46,7 @@ fn main() {
         let max = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0, f64::max);
         let peak = max(&mut rc.force_n.iter().flatten().copied());
         let line = |f: &cycloid::model::results::FaceLoads| {
-            max(&mut f.line_load_n_per_mm.iter().flatten().flatten().copied())
+            max(&mut f.line_load_n_per_mm.iter().flatten().copied())
         };
         println!("{label}, tilted 0.3 mrad about x and y, 200 slices:");
         println!(

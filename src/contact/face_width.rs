@@ -10,13 +10,17 @@
 //! - The paper's linear law, straight or circularly crowned: the closed form
 //!   F = (k/B)·∫ max(0, a(z)) dz over [−B/2, B/2], ∂F/∂d = (k/B)·(loaded length),
 //!   k = (π/4)·E*·B (paper Eq. 9). a(z) is linear over the flat middle and a concave parabola
-//!   over each crowned end, so its positive part on each piece is one interval whose ends are
-//!   the roots of a linear or quadratic, and the integral a polynomial's.
+//!   over each crowned end, concave over the whole face: its positive part is one interval
+//!   [p, q] whose ends are roots of a linear or quadratic (`loaded`), and
+//!   ∫ a dz over [p, q] = (q − p)·(d + t·(p + q)/2) − ∫ crown dz, the crown's integral
+//!   sign(z)·c·(|z| − z0)₊³/3 (`integral`).
 //! - Otherwise (Johnson's law, or the logarithmic crown): n slices of width B/n at their centres
 //!   z_s = −B/2 + (s + ½)·B/n, each the law with length B/n at its approach a(z_s).
 //!
-//! The line load at z is the force per unit length there, N/mm: (k/B)·max(0, a(z)) for the
-//! linear law, a slice's force/(B/n) otherwise. Units: mm, N, N/mm.
+//! The line load of slice s is its force/(B/n), N/mm, whatever the law: with the closed form
+//! the slice's force is (k/B)·∫ max(0, a(z)) dz over the slice (its mean line load), so the
+//! slices' line loads times B/n sum to the contact's force and the largest is at least the mean
+//! F/B. Units: mm, N, N/mm.
 
 use super::law::{self, ContactForce, LineContact};
 use crate::model::face::{Crowning, Face};
@@ -36,6 +40,15 @@ pub struct FaceWidth {
     slope: (f64, f64),
     /// Sum the slices even where the closed form holds (`by_slices`).
     by_slices: bool,
+    /// The closed form's pieces: the flat middle |z| ≤ z0 (`flat_mm`, z0 clamped to B/2) and
+    /// the crowned ends, where a = d ± t·z − c·(|z| − z0)² (`curvature` c = 1/(2·Rc), 1/mm;
+    /// 0 without a circular crown).
+    flat_mm: f64,
+    curvature: f64,
+    /// The crown's depth at the face's ends, c·(B/2 − z0)², mm.
+    end_drop_mm: f64,
+    /// ∫ crown dz over the face, 2·c·(B/2 − z0)³/3, mm².
+    crown_area_mm2: f64,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -91,6 +104,13 @@ impl FaceWidth {
             }
         };
         let (ux, uy) = face.misalignment.slope();
+        let (curvature, flat_mm) = match crown {
+            Crown::Circular {
+                curvature,
+                start_mm,
+            } => (curvature, start_mm.min(half)),
+            _ => (0.0, half),
+        };
         FaceWidth {
             width_mm,
             slices: face.slices.max(1),
@@ -98,6 +118,10 @@ impl FaceWidth {
             reach_mm: ux.hypot(uy) * half,
             slope: (ux, uy),
             by_slices: false,
+            flat_mm,
+            curvature,
+            end_drop_mm: curvature * (half - flat_mm).powi(2),
+            crown_area_mm2: 2.0 * curvature * (half - flat_mm).powi(3) / 3.0,
         }
     }
 
@@ -170,10 +194,30 @@ impl FaceWidth {
         }
         if self.closed_form(law) {
             let per_mm = law::paper_linear_stiffness(c) / self.width_mm;
-            let (integral, length) = self.linear_integral(d, t);
+            let reach = t.abs() * 0.5 * self.width_mm;
+            if d - self.end_drop_mm - reach > 0.0 {
+                // Positive at both ends, so everywhere (a is concave): ∫ a dz = d·B − ∫ crown dz
+                // (t·z integrates to 0 over the face).
+                return ContactForce {
+                    force_n: per_mm * (d * self.width_mm - self.crown_area_mm2),
+                    stiffness_n_per_mm: per_mm * self.width_mm,
+                };
+            }
+            if self.curvature == 0.0 {
+                // Straight, |d| < |t|·B/2: a = d + t·z is positive over L = B/2 + d/|t| from
+                // the end it closes at, rising to |t|·L there: ∫ a dz = |t|·L²/2.
+                let length = 0.5 * self.width_mm + d / t.abs();
+                return ContactForce {
+                    force_n: per_mm * 0.5 * t.abs() * length * length,
+                    stiffness_n_per_mm: per_mm * length,
+                };
+            }
+            let Some((p, q)) = self.loaded(d, t) else {
+                return ContactForce::NONE;
+            };
             return ContactForce {
-                force_n: per_mm * integral,
-                stiffness_n_per_mm: per_mm * length,
+                force_n: per_mm * self.integral(d, t, p, q),
+                stiffness_n_per_mm: per_mm * (q - p),
             };
         }
         let slice = self.slice_contact(c);
@@ -187,39 +231,82 @@ impl FaceWidth {
         total
     }
 
-    /// Line load at each slice centre (N/mm) of the contact at approach d with slope t, into
-    /// `out` (`slices` entries).
+    /// The line load of each slice (N/mm), its force/(B/n), of the contact at approach d with
+    /// slope t, into `out` (`slices` entries). With the closed form the slice's force is the
+    /// face's integral over the slice, (k/B)·∫ max(0, a) dz over [z_s − B/2n, z_s + B/2n], so
+    /// the line loads times B/n sum to `force` (to round-off); summed slices: the law with
+    /// length B/n at the slice centre's approach.
     pub fn line_loads(&self, law: ContactLaw, c: &LineContact, d: f64, t: f64, out: &mut [f64]) {
-        let slice = self.slice_contact(c);
-        let per_mm = law::paper_linear_stiffness(c) / self.width_mm;
-        for (s, q) in out.iter_mut().enumerate().take(self.slices) {
-            let z = self.slice_centre_mm(s);
-            let a = d - self.crown_mm(z) + t * z;
-            *q = match law {
-                ContactLaw::PaperLinear => per_mm * a.max(0.0),
-                ContactLaw::HertzNonlinear => law::force(law, &slice, a).force_n / slice.length_mm,
-            };
-        }
+        let out = &mut out[..self.slices];
+        self.each_line_load(law, c, d, t, |s, q| out[s] = q);
     }
 
-    /// The largest line load at the slice centres (N/mm), as `line_loads` gives them, without
+    /// The largest of the slices' line loads (N/mm), as `line_loads` gives them, without
     /// storing them.
     pub fn peak_line_load(&self, law: ContactLaw, c: &LineContact, d: f64, t: f64) -> f64 {
-        let slice = self.slice_contact(c);
+        let mut peak = 0.0_f64;
+        self.each_line_load(law, c, d, t, |_, q| peak = peak.max(q));
+        peak
+    }
+
+    /// `line_loads`, slice by slice: `f(s, q_s)`.
+    fn each_line_load(
+        &self,
+        law: ContactLaw,
+        c: &LineContact,
+        d: f64,
+        t: f64,
+        mut f: impl FnMut(usize, f64),
+    ) {
+        let h = self.width_mm / self.slices as f64;
         let per_mm = law::paper_linear_stiffness(c) / self.width_mm;
-        let approach = |s: usize| {
-            let z = self.slice_centre_mm(s);
-            d - self.crown_mm(z) + t * z
-        };
-        let deepest = (0..self.slices)
-            .map(approach)
-            .fold(f64::NEG_INFINITY, f64::max);
-        // Every law's line load grows with the approach: the deepest slice carries the peak.
-        match law {
-            ContactLaw::PaperLinear => per_mm * deepest.max(0.0),
-            ContactLaw::HertzNonlinear => {
-                law::force(law, &slice, deepest).force_n / slice.length_mm
+        if self.closed_form(law) {
+            let Some((p, q)) = self.loaded(d, t) else {
+                (0..self.slices).for_each(|s| f(s, 0.0));
+                return;
+            };
+            let half = 0.5 * self.width_mm;
+            // The slices [z_s − h/2, z_s + h/2] that meet (p, q), and the load on each, from
+            // its loaded part: (∫ a dz over it)·(k/B)/h; the crown's integral carried from
+            // one edge to the next.
+            let first = (((p + half) / h) as usize).min(self.slices - 1);
+            let last = (((q + half) / h).ceil() as usize).clamp(first + 1, self.slices);
+            (0..first).for_each(|s| f(s, 0.0));
+            let scale = per_mm / h;
+            let mut lo = (-half + first as f64 * h).max(p);
+            let mut crown_lo = self.crown_integral(lo);
+            for s in first..last {
+                let hi = if s + 1 == self.slices {
+                    half
+                } else {
+                    -half + (s + 1) as f64 * h
+                }
+                .min(q);
+                let crown_hi = if self.curvature == 0.0 {
+                    0.0
+                } else {
+                    self.crown_integral(hi)
+                };
+                let linear = (hi - lo) * (d + 0.5 * t * (lo + hi));
+                f(s, scale * (linear - (crown_hi - crown_lo)).max(0.0));
+                (lo, crown_lo) = (hi, crown_hi);
             }
+            (last..self.slices).for_each(|s| f(s, 0.0));
+            return;
+        }
+        let slice = self.slice_contact(c);
+        for s in 0..self.slices {
+            let z = self.slice_centre_mm(s);
+            let a = d - self.crown_mm(z) + t * z;
+            f(
+                s,
+                match law {
+                    ContactLaw::PaperLinear => per_mm * a.max(0.0),
+                    ContactLaw::HertzNonlinear => {
+                        law::force(law, &slice, a).force_n / slice.length_mm
+                    }
+                },
+            );
         }
     }
 
@@ -231,105 +318,89 @@ impl FaceWidth {
         }
     }
 
-    /// ∫ max(0, a(z)) dz over the face (mm²) and the length where a > 0 (mm), for the
-    /// straight or circularly crowned face.
-    fn linear_integral(&self, d: f64, t: f64) -> (f64, f64) {
+    /// The approach at z on a straight or circularly crowned face, a(z) = d + t·z − crown(z),
+    /// mm: concave (crown is convex), linear over the flat middle |z| ≤ z0 and a parabola over
+    /// each crowned end.
+    #[inline]
+    fn approach(&self, d: f64, t: f64, z: f64) -> f64 {
+        let w = (z.abs() - self.flat_mm).max(0.0);
+        d + t * z - self.curvature * w * w
+    }
+
+    /// ∫ crown dz from 0 to z, mm²: sign(z)·c·(|z| − z0)₊³/3.
+    #[inline]
+    fn crown_integral(&self, z: f64) -> f64 {
+        let w = (z.abs() - self.flat_mm).max(0.0);
+        (self.curvature * w * w * w / 3.0).copysign(z)
+    }
+
+    /// ∫ a dz over [lo, hi] where a > 0 throughout (a part of `loaded`), mm²:
+    /// (hi − lo)·(d + t·(lo + hi)/2) − (∫ crown from lo to hi), never below 0 (round-off).
+    #[inline]
+    fn integral(&self, d: f64, t: f64, lo: f64, hi: f64) -> f64 {
+        let linear = (hi - lo) * (d + 0.5 * t * (lo + hi));
+        (linear - (self.crown_integral(hi) - self.crown_integral(lo))).max(0.0)
+    }
+
+    /// The loaded interval [p, q] of the face, where a(z) > 0 (one interval: a is concave),
+    /// mm; `None` where a ≤ 0 everywhere. For the straight or circularly crowned face.
+    #[inline]
+    fn loaded(&self, d: f64, t: f64) -> Option<(f64, f64)> {
         let half = 0.5 * self.width_mm;
-        let (curvature, start) = match self.crown {
-            Crown::Circular {
-                curvature,
-                start_mm,
-            } => (curvature, start_mm.min(half)),
-            _ => (0.0, half),
-        };
-        // Flat middle: a = d + t·z over [−z0, z0].
-        let (mut integral, mut length) = clipped_quadratic(d, t, 0.0, -start, start);
-        if start < half {
-            // Crowned ends, in w = |z| − z0 ∈ [0, B/2 − z0]: a = (d ± t·z0) ± t·w − w²/(2Rc).
-            for sign in [1.0, -1.0] {
-                let (i, l) =
-                    clipped_quadratic(d + sign * t * start, sign * t, curvature, 0.0, half - start);
-                integral += i;
-                length += l;
-            }
-        }
-        (integral, length)
-    }
-}
-
-/// ∫ max(0, h) over [lo, hi] and the length where h > 0, for h(w) = a + b·w − c·w², c ≥ 0
-/// (concave: its positive part is one interval, between the roots of h).
-fn clipped_quadratic(a: f64, b: f64, c: f64, lo: f64, hi: f64) -> (f64, f64) {
-    if hi <= lo {
-        return (0.0, 0.0);
-    }
-    let (p, q) = if c == 0.0 {
-        if b == 0.0 {
-            if a > 0.0 {
-                (lo, hi)
-            } else {
-                return (0.0, 0.0);
-            }
+        // Where a peaks: a' = t − crown'(z), crown'(z) = ±2c·(|z| − z0) over the ends.
+        let peak = if t == 0.0 {
+            0.0
+        } else if self.curvature > 0.0 {
+            (t.signum() * self.flat_mm + t / (2.0 * self.curvature)).clamp(-half, half)
         } else {
-            let root = -a / b;
-            if b > 0.0 {
-                (root.max(lo), hi)
-            } else {
-                (lo, root.min(hi))
-            }
-        }
-    } else {
-        // c·w² − b·w − a = 0, the stable form of the roots.
-        let disc = b * b + 4.0 * a * c;
-        if disc <= 0.0 {
-            return (0.0, 0.0);
-        }
-        let root = disc.sqrt();
-        let qq = 0.5 * (b + b.signum() * root);
-        let (r1, r2) = if qq == 0.0 {
-            (-root / (2.0 * c), root / (2.0 * c))
-        } else {
-            let (x, y) = (qq / c, -a / qq);
-            (x.min(y), x.max(y))
+            t.signum() * half
         };
-        (r1.max(lo), r2.min(hi))
-    };
-    if q <= p {
-        return (0.0, 0.0);
-    }
-    let mean = a + 0.5 * b * (p + q) - c * (p * p + p * q + q * q) / 3.0;
-    ((q - p) * mean.max(0.0), q - p)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::clipped_quadratic;
-
-    /// The clipped integral against a fine midpoint sum, for a parabola crossing zero inside
-    /// the interval on both sides, one side, and a straight line.
-    #[test]
-    fn clipped_integral_matches_a_fine_sum() {
-        for &(a, b, c, lo, hi) in &[
-            (1.0, 0.5, 2.0, -2.0, 2.0),
-            (0.2, -1.0, 0.0, -1.0, 1.0),
-            (-0.1, 0.3, 0.05, 0.0, 3.0),
-            (0.5, 0.0, 0.0, -1.0, 1.0),
-        ] {
-            let n = 200_000;
-            let h = (hi - lo) / n as f64;
-            let (mut sum, mut len) = (0.0, 0.0);
-            for k in 0..n {
-                let w = lo + (k as f64 + 0.5) * h;
-                let v: f64 = a + b * w - c * w * w;
-                if v > 0.0 {
-                    sum += v * h;
-                    len += h;
-                }
-            }
-            let (i, l) = clipped_quadratic(a, b, c, lo, hi);
-            // Midpoint rule: O(h²) on the smooth part, O(h) at the clip's corner.
-            assert!((i - sum).abs() < 1e-6, "{i} {sum}");
-            assert!((l - len).abs() < 2.0 * h, "{l} {len}");
+        if self.approach(d, t, peak) <= 0.0 {
+            return None;
         }
+        // The left root is the right root of the face mirrored, a(−z) with slope −t.
+        Some((
+            -self.root_beyond(d, -t, -peak),
+            self.root_beyond(d, t, peak),
+        ))
+    }
+
+    /// The end of the loaded interval on the +z side of `from` (where a > 0): B/2 if a > 0
+    /// there, else the root of a in (from, B/2), in the first piece whose far end is not
+    /// loaded: the −z crowned end (a = A + t·w − c·w² in w = −z − z0 ≥ 0, A = d − t·z0, the
+    /// smaller root in w: z grows as w shrinks), the flat middle (a linear) or the +z crowned
+    /// end (a = A + t·w − c·w², w = z − z0, A = d + t·z0, the larger root). Roots of
+    /// c·w² − b·w − A in the stable form.
+    #[inline]
+    fn root_beyond(&self, d: f64, t: f64, from: f64) -> f64 {
+        let half = 0.5 * self.width_mm;
+        let (z0, c) = (self.flat_mm, self.curvature);
+        if self.approach(d, t, half) > 0.0 {
+            return half;
+        }
+        let root = if from < -z0 && d - t * z0 <= 0.0 {
+            // a(from) > 0 ≥ a(−z0): the root is on the −z crowned end, where b = −t.
+            let (a, b) = (d - t * z0, -t);
+            let disc = (b * b + 4.0 * c * a).max(0.0).sqrt();
+            let w = if b <= 0.0 {
+                (b - disc) / (2.0 * c)
+            } else {
+                -2.0 * a / (b + disc)
+            };
+            -z0 - w
+        } else if from < z0 && d + t * z0 <= 0.0 {
+            // a > 0 before the flat middle's +z end, ≤ 0 there, on a line: t < 0.
+            -d / t
+        } else {
+            let (a, b) = (d + t * z0, t);
+            let disc = (b * b + 4.0 * c * a).max(0.0).sqrt();
+            let w = if b >= 0.0 {
+                (b + disc) / (2.0 * c)
+            } else {
+                2.0 * a / (disc - b)
+            };
+            z0 + w
+        };
+        root.clamp(from, half)
     }
 }

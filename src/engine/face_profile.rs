@@ -50,12 +50,7 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
             continue;
         };
         // The roller that carries the peak line load at that angle.
-        let peak = |i: usize| {
-            face.line_load_n_per_mm[i][k]
-                .iter()
-                .copied()
-                .fold(0.0, f64::max)
-        };
+        let peak = |i: usize| face.at(i, k).iter().copied().fold(0.0, f64::max);
         let Some(roller) =
             (0..face.line_load_n_per_mm.len()).max_by(|&a, &b| peak(a).total_cmp(&peak(b)))
         else {
@@ -79,7 +74,7 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
                         + (j as f64 + 0.5) * spec.design.face_width_mm / s.face.slices as f64
                 })
                 .collect(),
-            tilted_n_per_mm: face.line_load_n_per_mm[roller][k].clone(),
+            tilted_n_per_mm: face.at(roller, k).to_vec(),
             designed_n_per_mm: line_loads_at(spec, &designed, crank_rad, roller),
         });
     }

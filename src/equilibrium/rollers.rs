@@ -213,8 +213,8 @@ impl Rollers {
         self.slices
     }
 
-    /// The line load (N/mm) of roller state `s` at each slice centre, into `out` (`slices`
-    /// entries): F/B on a uniform face; 0 out of contact.
+    /// The line load (N/mm) of roller state `s` in each slice, its force/(B/n), into `out`
+    /// (`slices` entries; `FaceWidth::line_loads`): F/B on a uniform face; 0 out of contact.
     pub fn line_loads(&self, s: &RollerState, out: &mut [f64]) {
         if s.force_n <= 0.0 {
             out.fill(0.0);
@@ -302,6 +302,24 @@ impl Rollers {
             return hertz(&unit, peak);
         }
         hertz(&c, s.force_n)
+    }
+
+    /// `line_loads` of roller state `s` into `out` and its Hertz pressure and half-width
+    /// (`hertz`), the peak slice's taken from `out` rather than computed again.
+    pub fn hertz_and_line_loads(&self, s: &RollerState, out: &mut [f64]) -> HertzLine {
+        if let (Some(face), true) = (&self.face, s.force_n > 0.0) {
+            let c = self.line_contact(self.curvature(s));
+            let t = face.approach_slope((-s.normal.x, -s.normal.y));
+            face.line_loads(self.law, &c, -s.gap_mm, t, out);
+            let peak = out.iter().copied().fold(0.0, f64::max);
+            let unit = LineContact {
+                length_mm: 1.0,
+                ..c
+            };
+            return hertz(&unit, peak);
+        }
+        self.line_loads(s, out);
+        self.hertz(s)
     }
 
     /// The force of a roller at `gap_mm` whose contact is at locus parameter `t` with outward

@@ -92,6 +92,9 @@ pub(super) struct Columns {
     line_load: Vec<Vec<f64>>,
     /// Slices per angle of `line_load`.
     slices: usize,
+    /// The face load factor of each angle, one column when the face is not uniform (the
+    /// general solve's `record` writes it from the line loads it has at hand), else none.
+    face_factor: Vec<Vec<f64>>,
 }
 
 /// One chunk's rows of every column: `Columns` cut at the same angles.
@@ -110,6 +113,7 @@ pub(super) struct Chunk<'a> {
     roller_contact: Vec<&'a mut [[f64; 4]]>,
     line_load: Vec<&'a mut [f64]>,
     slices: usize,
+    face_factor: Vec<&'a mut [f64]>,
 }
 
 /// Angle of a force from the eccentric direction e_φ, counter-clockwise, rad.
@@ -174,6 +178,11 @@ impl Columns {
                 .map(|_| vec![0.0; angles * slices])
                 .collect(),
             slices,
+            face_factor: (0..usize::from(
+                model.rollers.as_ref().is_some_and(|r| r.face().is_some()),
+            ))
+                .map(|_| column())
+                .collect(),
         }
     }
 
@@ -187,6 +196,7 @@ impl Columns {
         let mut roller_contact = piece_rows(&mut self.roller_contact, n).into_iter();
         let slices = self.slices;
         let mut line_load = piece_rows_of(&mut self.line_load, n, slices).into_iter();
+        let mut face_factor = piece_rows(&mut self.face_factor, n).into_iter();
         let scalars = pieces(&mut self.lag)
             .zip(pieces(&mut self.output_lag))
             .zip(pieces(&mut self.contacts))
@@ -214,6 +224,7 @@ impl Columns {
                     roller_contact: roller_contact.next().unwrap_or_default(),
                     line_load: line_load.next().unwrap_or_default(),
                     slices,
+                    face_factor: face_factor.next().unwrap_or_default(),
                 },
             )
             .collect()
@@ -276,13 +287,34 @@ impl<'a> Chunk<'a> {
         self.output_lag[k] = sol.output_lag_rad.unwrap_or(0.0);
         if let Some(r) = &model.rollers {
             let mut contacts = 0;
+            let n = self.slices;
+            // The face load factor's peak line load and the force of its roller.
+            let mut peak = (0.0, 0.0);
             for (i, s) in sol.rollers.iter().enumerate() {
                 self.roller_force[i][k] = s.force_n;
+                // The line loads once the angle is solved; the peak slice's Hertz from them.
+                let q = self
+                    .line_load
+                    .get_mut(i)
+                    .map(|q| &mut q[k * n..(k + 1) * n]);
                 let (p, b) = if s.force_n > 0.0 {
                     contacts += 1;
-                    let h = r.hertz(s);
+                    let h = match q {
+                        Some(q) => {
+                            let h = r.hertz_and_line_loads(s, q);
+                            let top = q.iter().fold(0.0, |m: f64, &v| m.max(v));
+                            if top > peak.0 {
+                                peak = (top, s.force_n);
+                            }
+                            h
+                        }
+                        None => r.hertz(s),
+                    };
                     (h.peak_pressure_mpa, h.half_width_mm)
                 } else {
+                    if let Some(q) = q {
+                        q.fill(0.0);
+                    }
                     (0.0, 0.0)
                 };
                 self.pressure[i][k] = p;
@@ -294,12 +326,11 @@ impl<'a> Chunk<'a> {
                         [0.0; 4]
                     };
                 }
-                if let Some(q) = self.line_load.get_mut(i) {
-                    let n = self.slices;
-                    r.line_loads(s, &mut q[k * n..(k + 1) * n]);
-                }
             }
             self.contacts[k] = contacts;
+            if let Some(f) = self.face_factor.first_mut() {
+                f[k] = face_load_factor(peak, r.face_width_mm());
+            }
         }
         for (j, p) in sol.pins.iter().enumerate() {
             self.pin_force[j][k] = p.force_n;
@@ -419,7 +450,7 @@ pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
         .rollers
         .as_ref()
         .filter(|_| !c.line_load.is_empty())
-        .map(|r| face_loads(r, &c.roller_force, c.line_load, c.slices));
+        .map(|r| face_loads(r, &c.roller_force, c.line_load, c.slices, c.face_factor));
     LoadedSweep {
         rollers: model.rollers.as_ref().map(|_| RollerCurves {
             lag_rad: c.lag,
@@ -445,50 +476,57 @@ pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
     }
 }
 
-/// The line loads of every roller `[roller][angle][slice]` and the face load factor of every
-/// angle (MODEL.md "Along the face width": the peak line load over the rollers and slices
+/// The face load factor of an angle from the peak line load (N/mm) and the force (N) of the
+/// roller that carries it: peak/(F/B), 0 where no roller carries a force.
+fn face_load_factor((peak, force_n): (f64, f64), width_mm: f64) -> f64 {
+    if force_n > 0.0 {
+        peak / (force_n / width_mm)
+    } else {
+        0.0
+    }
+}
+
+/// The line loads of every roller `[roller][angle·slices + slice]` and the face load factor of
+/// every angle (MODEL.md "Along the face width": the peak line load over the rollers and slices
 /// divided by the mean line load F_i/B of the roller that carries it; 0 where no roller
 /// carries a force). On a uniform face (no crown, no tilt; the lean first-order sweep writes
 /// no line loads) every slice carries F_i/B.
 fn face_loads(
     r: &Rollers,
     force_n: &[Vec<f64>],
-    line_load: Vec<Vec<f64>>,
+    mut line_load: Vec<Vec<f64>>,
     slices: usize,
+    face_factor: Vec<Vec<f64>>,
 ) -> FaceLoads {
     let width = r.face_width_mm();
     let angles = force_n.first().map_or(0, Vec::len);
-    let line_load_n_per_mm: Vec<Vec<Vec<f64>>> = line_load
-        .into_iter()
-        .zip(force_n)
-        .map(|(q, f)| {
-            (0..angles)
-                .map(|k| match r.face() {
-                    Some(_) => q[k * slices..(k + 1) * slices].to_vec(),
-                    None => vec![f[k] / width; slices],
-                })
-                .collect()
-        })
-        .collect();
-    let face_load_factor = (0..angles)
-        .map(|k| {
-            let mut peak = (0.0, 0.0);
-            for (i, q) in line_load_n_per_mm.iter().enumerate() {
-                for &v in &q[k] {
+    if r.face().is_none() {
+        for (q, f) in line_load.iter_mut().zip(force_n) {
+            for (row, &f) in q.chunks_exact_mut(slices).zip(f) {
+                row.fill(f / width);
+            }
+        }
+    }
+    // Written by `Chunk::record` on a face that is not uniform.
+    let face_load_factor = face_factor.into_iter().next().unwrap_or_else(|| {
+        (0..angles)
+            .map(|k| {
+                let mut peak = (0.0, 0.0);
+                for (q, f) in line_load.iter().zip(force_n) {
+                    let v = q[k * slices..(k + 1) * slices]
+                        .iter()
+                        .fold(0.0, |m: f64, &v| m.max(v));
                     if v > peak.0 {
-                        peak = (v, force_n[i][k]);
+                        peak = (v, f[k]);
                     }
                 }
-            }
-            if peak.1 > 0.0 {
-                peak.0 / (peak.1 / width)
-            } else {
-                0.0
-            }
-        })
-        .collect();
+                face_load_factor(peak, width)
+            })
+            .collect()
+    });
     FaceLoads {
-        line_load_n_per_mm,
+        line_load_n_per_mm: line_load,
+        slices,
         face_load_factor,
     }
 }

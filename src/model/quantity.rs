@@ -652,8 +652,8 @@ pub const MAX_LINE_LOAD: Quantity = Quantity {
     read: Read::Scalar(|r| {
         let face = r.loaded.rollers.as_ref()?.face.as_ref()?;
         let mut best = (0.0, 0, 0, 0);
-        for (i, roller) in face.line_load_n_per_mm.iter().enumerate() {
-            for (k, slices) in roller.iter().enumerate() {
+        for i in 0..face.line_load_n_per_mm.len() {
+            for (k, slices) in face.angles(i).enumerate() {
                 for (s, &q) in slices.iter().enumerate() {
                     if q > best.0 {
                         best = (q, i, k, s);
@@ -662,7 +662,8 @@ pub const MAX_LINE_LOAD: Quantity = Quantity {
             }
         }
         let (value, i, k, s) = best;
-        let n = face.line_load_n_per_mm.first()?.first()?.len();
+        face.line_load_n_per_mm.first()?.first()?;
+        let n = face.slices;
         Some(Extreme {
             value,
             at: format!(

@@ -92,14 +92,28 @@ pub struct RollerCurves {
 /// The rollers' loads along the face width over the sweep (MODEL.md "Along the face width").
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceLoads {
-    /// The line load of each roller at each slice centre z_s = −B/2 + (s + ½)·B/n, N/mm,
-    /// `[roller][angle][slice]`: the force per unit length there (slice 0 at z = −B/2, the
-    /// end of negative z); 0 out of contact.
-    pub line_load_n_per_mm: Vec<Vec<Vec<f64>>>,
+    /// The line load of each roller in each slice s (centred at z_s = −B/2 + (s + ½)·B/n),
+    /// N/mm, `[roller][angle·slices + slice]` (`at`): the slice's force/(B/n) (slice 0 at
+    /// z = −B/2, the end of negative z); 0 out of contact.
+    pub line_load_n_per_mm: Vec<Vec<f64>>,
+    /// Slices per angle of `line_load_n_per_mm`.
+    pub slices: usize,
     /// The face load factor of each angle, `[angle]`: the peak line load over rollers and
     /// slices divided by the mean line load F_i/B of the roller that carries it (1 on a
     /// uniform face; 0 where no roller carries a force).
     pub face_load_factor: Vec<f64>,
+}
+
+impl FaceLoads {
+    /// Roller `roller`'s line loads at angle `angle`, N/mm, slice by slice.
+    pub fn at(&self, roller: usize, angle: usize) -> &[f64] {
+        &self.line_load_n_per_mm[roller][angle * self.slices..(angle + 1) * self.slices]
+    }
+
+    /// Roller `roller`'s line loads, angle by angle.
+    pub fn angles(&self, roller: usize) -> std::slice::ChunksExact<'_, f64> {
+        self.line_load_n_per_mm[roller].chunks_exact(self.slices)
+    }
 }
 
 /// Output pins over the sweep.

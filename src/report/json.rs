@@ -105,6 +105,15 @@ impl Serialize for Rows<'_> {
     }
 }
 
+/// Rows of a flat table (`FaceLoads::angles`), written as `Rows` writes its rows.
+pub struct FlatRows<'a>(std::slice::ChunksExact<'a, f64>);
+
+impl Serialize for FlatRows<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.collect_seq(self.0.clone().map(Curve::plain))
+    }
+}
+
 /// `key: value` pairs written as an object, in their order: the registry's scalars of a scene,
 /// a study's variables.
 pub struct Pairs(Vec<(&'static str, Finite)>);
@@ -176,7 +185,7 @@ pub struct SceneDoc<'a> {
     /// The line load of every roller along the face, N/mm \[roller\]\[crank\]\[slice\], with
     /// more than one slice (MODEL.md "Along the face width").
     #[serde(skip_serializing_if = "Option::is_none")]
-    line_load_n_per_mm: Option<Vec<Rows<'a>>>,
+    line_load_n_per_mm: Option<Vec<FlatRows<'a>>>,
     /// The face load factor at each crank angle, where the scene resolves the face.
     #[serde(skip_serializing_if = "Option::is_none")]
     face_load_factor: Option<Curve<'a>>,
@@ -485,12 +494,13 @@ impl<'a> SceneDoc<'a> {
             line_load_n_per_mm: rollers
                 .and_then(|c| c.face.as_ref())
                 .filter(|f| {
-                    f.line_load_n_per_mm
-                        .first()
-                        .and_then(|r| r.first())
-                        .is_some_and(|q| q.len() > 1)
+                    f.slices > 1 && f.line_load_n_per_mm.first().is_some_and(|r| !r.is_empty())
                 })
-                .map(|f| f.line_load_n_per_mm.iter().map(|r| Rows(r)).collect()),
+                .map(|f| {
+                    (0..f.line_load_n_per_mm.len())
+                        .map(|i| FlatRows(f.angles(i)))
+                        .collect()
+                }),
             face_load_factor: rollers
                 .and_then(|c| c.face.as_ref())
                 .map(|f| Curve::plain(&f.face_load_factor)),

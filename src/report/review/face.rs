@@ -29,7 +29,7 @@ pub(super) fn section_of(
             "line load (N/mm)",
         );
         plot.subtitle = format!(
-            "roller {} at crank {}°, the scene's worst face load factor; at the slice centres \
+            "roller {} at crank {}°, the scene's worst face load factor; slice means \
              ({} slices)",
             p.roller,
             number(units::deg(p.crank_rad)),
@@ -62,8 +62,8 @@ pub(super) fn section_of(
             file,
             format!("Line load along the face, scene {}", scene.name),
             "The most loaded roller at the crank angle of the largest face load factor: the line \
-             load at each slice centre as the scene runs it (tilted) and for the same disc and \
-             angle without the tilt (designed, solved alike)"
+             load of each slice (its mean, drawn at its centre) as the scene runs it (tilted) \
+             and for the same disc and angle without the tilt (designed, solved alike)"
                 .to_string(),
         ));
     }

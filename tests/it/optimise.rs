@@ -534,8 +534,12 @@ fn pure_tilt(study: &str) -> String {
             "misalignment: { about_x_mrad: 0.4, about_y_mrad: 0.0 }",
         )
         .replace("steps: 360", "steps: 72")
-        .replace("effects: [bearing]", "effects: [roller_contact]");
+        .replace(
+            "effects: [bearing]           # bearing brings roller_contact and output_pins",
+            "effects: [roller_contact]    # the rollers alone",
+        );
     assert!(head.contains("about_x_mrad: 0.4") && head.contains("start_mm: 0.0 }"));
+    assert!(head.contains("steps: 72") && head.contains("[roller_contact]"));
     format!("{head}{study}")
 }
 

@@ -157,6 +157,12 @@ fn on_bounds(study: &Study, r: &StudyResult) -> String {
         } else {
             continue;
         };
+        if v.kind == VariableKind::CrownStart && side == "lower" && v.lower == 0.0 {
+            // Nothing lies beyond: a flat middle of no length is a crown over the whole face.
+            out += "  note: the optimum is crowned over the whole face (crown_start_mm at 0, \
+                    its least)\n";
+            continue;
+        }
         out += &format!(
             "  note: the optimum sits on the {side} bound of {} ({}): the best point may lie \
              beyond it; widen the range to see\n",
@@ -470,6 +476,13 @@ fn summary(spec: &Spec, study: &Study) -> String {
             "whole-mesh clearance ≥ {} mm on the exact geometry",
             short(dt)
         ));
+    }
+    for (o, bound) in &study.objective_limits {
+        let unit = match o.quantity.unit {
+            "" => String::new(),
+            u => format!(" {u}"),
+        };
+        constraints.push(format!("{} ≤ {}{unit}", o.name, short(*bound)));
     }
     format!(
         "Minimise {} on scene “{}” ({} N·m, {} crank angles) over {}{}.",

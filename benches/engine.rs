@@ -375,6 +375,22 @@ fn paper_studies(b: divan::Bencher) {
     });
 }
 
+/// The crown study of `specs/reducer-crown-study.yaml`: the circular crown's radius and start
+/// for a 0.3 mrad tilt, 360 crank angles with 20 slices each, global sample, local runs and the
+/// 21 × 21 verification grid (run with RAYON_NUM_THREADS=1).
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn crown_study(b: divan::Bencher) {
+    let s = cycloid::spec::load("specs/reducer-crown-study.yaml").expect("crown study spec");
+    b.bench(|| {
+        cycloid::engine::optimise::run_study(
+            black_box(&s),
+            &s.studies[0],
+            &cycloid::progress::Silent,
+        )
+        .evaluations
+    });
+}
+
 /// The spec of the JSON benchmarks: the paper optimum at 10 N·m (`specs/reducer-loaded.yaml`)
 /// with rollers, pins and a rigid bearing over 3,600 crank angles (one mesh period at 0.01°),
 /// no clearance sweep, no accuracy section, written into a scratch directory (the same one at every run, so that

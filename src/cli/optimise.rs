@@ -95,6 +95,11 @@ fn write_optimum(
         out_path,
         &spec.source,
         &r.optimum.modification,
+        study
+            .variables
+            .iter()
+            .any(|v| v.kind.of_crown())
+            .then_some(&r.optimum.crowning),
         &name,
         &header,
     )?;

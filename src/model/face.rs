@@ -26,7 +26,8 @@ pub enum Crowning {
     /// for |z| > (1 − K2)·a, 0 inside; A = 2·K1·Q/(π·B·E'), E' = 2·E* (Johns & Gohar's
     /// E', 2/E' = (1−ν1²)/E1 + (1−ν2²)/E2). The drop at the face's ends is z_m, and K2 = 1, z_m →
     /// ∞ gives Johns & Gohar's A·ln(1/(1 − (2z/B)²)). Q is the load the profile is designed for,
-    /// N; K1 a load coefficient (1: Lundberg's).
+    /// N; K1 a load coefficient (1: Lundberg's). Checked against the formula worked by hand
+    /// (tests/it/face_width.rs, `the_logarithmic_crown_is_fujiwara_and_kawases_profile_by_hand`).
     Logarithmic {
         /// Q, N.
         design_load_n: f64,

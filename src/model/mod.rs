@@ -41,7 +41,7 @@ pub use modification::Modification;
 pub use scene::{
     ContactLaw, DutyBin, GeometryMode, Plan, PlannedDetail, PlannedEffect, Scene, TorqueSweep,
 };
-pub use study::{Objective, Study, Variable, VariableKind};
+pub use study::{Objective, Point, Study, Variable, VariableKind};
 
 #[cfg(test)]
 mod tests {

@@ -1531,6 +1531,16 @@ pub const OBJECTIVES: &[ObjectiveDef] = &[
         quantity: &MAX_BEARING_FORCE,
         label: "largest bearing force (N)",
     },
+    ObjectiveDef {
+        name: "max_face_load_factor",
+        quantity: &MAX_FACE_LOAD_FACTOR,
+        label: "largest face load factor (peak / mean line load)",
+    },
+    ObjectiveDef {
+        name: "max_contact_pressure",
+        quantity: &MAX_CONTACT_PRESSURE,
+        label: "largest Hertz pressure (MPa)",
+    },
 ];
 
 /// The objective with this name.

@@ -1,5 +1,6 @@
 //! An optimisation study (paper §4): objective, variables, start, constraints.
 
+use super::face::Crowning;
 use super::modification::Modification;
 use super::quantity::ObjectiveDef;
 use crate::units;
@@ -45,6 +46,18 @@ pub fn default_verify_grid(dims: usize) -> usize {
     }
 }
 
+/// A point of a study: the tooth-profile modification and the disc's crowning along the face
+/// width (`modification.crowning`; a circular crown's radius and start can be variables). The
+/// crowning is the one every scene of the spec carries (`Face::crowning`) unless the study
+/// varies it.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Point {
+    /// The tooth-profile modification.
+    pub modification: Modification,
+    /// The disc's crowning along the face width.
+    pub crowning: Crowning,
+}
+
 /// A design variable of a study, bounds in engine units (mm, or rad for the rotation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VariableKind {
@@ -54,6 +67,12 @@ pub enum VariableKind {
     Equidistant,
     /// Δδ, the rotation modification, rad (degrees in the spec).
     Rotation,
+    /// Rc, the radius of the disc's circular crown, mm (`modification.crowning.radius_mm`).
+    /// Searched in log(Rc) (`Variable::at_unit`): a useful range spans decades.
+    CrownRadius,
+    /// z0, the half-length of the circular crown's flat middle, mm
+    /// (`modification.crowning.start_mm`), in [0, B/2).
+    CrownStart,
 }
 
 impl VariableKind {
@@ -63,24 +82,41 @@ impl VariableKind {
             VariableKind::Shift => "shift_mm",
             VariableKind::Equidistant => "equidistant_mm",
             VariableKind::Rotation => "rotation_deg",
+            VariableKind::CrownRadius => "crown_radius_mm",
+            VariableKind::CrownStart => "crown_start_mm",
         }
     }
 
-    /// The value of this variable in a modification, engine units.
-    pub fn get(self, m: &Modification) -> f64 {
-        match self {
-            VariableKind::Shift => m.shift_mm,
-            VariableKind::Equidistant => m.equidistant_mm,
-            VariableKind::Rotation => m.rotation_rad,
+    /// Whether it is a variable of the crowning (which needs a circular crowning).
+    pub fn of_crown(self) -> bool {
+        matches!(self, VariableKind::CrownRadius | VariableKind::CrownStart)
+    }
+
+    /// The value of this variable at a point, engine units (NaN for a crown variable of a
+    /// point without a circular crown, which validation refuses).
+    pub fn get(self, p: &Point) -> f64 {
+        let m = &p.modification;
+        match (self, p.crowning) {
+            (VariableKind::Shift, _) => m.shift_mm,
+            (VariableKind::Equidistant, _) => m.equidistant_mm,
+            (VariableKind::Rotation, _) => m.rotation_rad,
+            (VariableKind::CrownRadius, Crowning::Circular { radius_mm, .. }) => radius_mm,
+            (VariableKind::CrownStart, Crowning::Circular { start_mm, .. }) => start_mm,
+            _ => f64::NAN,
         }
     }
 
-    /// Set this variable of a modification to `value`, engine units.
-    pub fn set(self, m: &mut Modification, value: f64) {
-        match self {
-            VariableKind::Shift => m.shift_mm = value,
-            VariableKind::Equidistant => m.equidistant_mm = value,
-            VariableKind::Rotation => m.rotation_rad = value,
+    /// Set this variable of a point to `value`, engine units (a crown variable only changes a
+    /// circular crown).
+    pub fn set(self, p: &mut Point, value: f64) {
+        let m = &mut p.modification;
+        match (self, &mut p.crowning) {
+            (VariableKind::Shift, _) => m.shift_mm = value,
+            (VariableKind::Equidistant, _) => m.equidistant_mm = value,
+            (VariableKind::Rotation, _) => m.rotation_rad = value,
+            (VariableKind::CrownRadius, Crowning::Circular { radius_mm, .. }) => *radius_mm = value,
+            (VariableKind::CrownStart, Crowning::Circular { start_mm, .. }) => *start_mm = value,
+            _ => {}
         }
     }
 
@@ -104,9 +140,43 @@ pub struct Variable {
     pub upper: f64,
 }
 
+impl Variable {
+    /// Whether the search runs in log(x): the crown radius, whose bounds are positive and
+    /// whose useful range spans decades (a flat and a round crown differ by 100×); on a linear
+    /// scale the global sample would leave the lowest decade almost empty.
+    pub fn logarithmic(&self) -> bool {
+        self.kind == VariableKind::CrownRadius
+    }
+
+    /// The value at z ∈ [0, 1] of the search's unit interval: lower + z·(upper − lower), or
+    /// lower·(upper/lower)^z for a logarithmic variable (whose z = 0 and 1 give the bounds
+    /// exactly, not to the round-off of exp and ln).
+    pub fn at_unit(&self, z: f64) -> f64 {
+        if !self.logarithmic() {
+            self.lower + z * (self.upper - self.lower)
+        } else if z == 0.0 {
+            self.lower
+        } else if z == 1.0 {
+            self.upper
+        } else {
+            (self.lower.ln() + z * (self.upper / self.lower).ln()).exp()
+        }
+    }
+
+    /// The place of the value x in the search's unit interval (the inverse of `at_unit`).
+    pub fn unit_of(&self, x: f64) -> f64 {
+        if self.logarithmic() {
+            (x / self.lower).ln() / (self.upper / self.lower).ln()
+        } else {
+            (x - self.lower) / (self.upper - self.lower)
+        }
+    }
+}
+
 /// One optimisation study (paper §4): minimise a (weighted) objective of one scene over the
-/// modification variables, subject to the tip clearance band (paper Eqs. 8, 21) and the
-/// whole-mesh minimum clearance, checked on the exact geometry.
+/// modification variables (and the circular crown's radius and start), subject to the tip
+/// clearance band (paper Eqs. 8, 21), the whole-mesh minimum clearance, checked on the exact
+/// geometry, and upper bounds on other objectives of the scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Study {
     /// The study's name (`name`; `study-n` by default, n from 1), unique in the spec.
@@ -119,12 +189,17 @@ pub struct Study {
     pub variables: Vec<Variable>,
     /// The starting modification (variables not optimised keep the spec's values).
     pub start: Modification,
+    /// The starting crowning: the spec's, with the study's `start` crown values.
+    pub crowning: Crowning,
     /// ΔRrp − ΔRp ∈ [lower, upper], mm.
     pub tip_clearance_mm: Option<(f64, f64)>,
     /// Whole-mesh minimum clearance ≥ this, mm.
     pub min_clearance_mm: Option<f64>,
     /// Largest unloaded lost motion over the scene's crank angles ≤ this, arcsec.
     pub max_lost_motion_arcsec: Option<f64>,
+    /// Objectives bounded above on the study's scene (`constraints.objectives`), each ≤ its
+    /// bound in the objective's unit: e.g. the TE fluctuation of a crown study.
+    pub objective_limits: Vec<(Objective, f64)>,
     /// Labelled modifications evaluated and reported beside the optimum (`references`).
     pub references: Vec<(String, Modification)>,
     /// Upper limit on this study's optimum objective; `None`: the spec's
@@ -138,4 +213,14 @@ pub struct Study {
     pub local_evaluations: usize,
     /// Points per variable of the verification grid (0: no verification).
     pub verify_grid: usize,
+}
+
+impl Study {
+    /// The study's start as a point: its modification and crowning.
+    pub fn start_point(&self) -> Point {
+        Point {
+            modification: self.start,
+            crowning: self.crowning,
+        }
+    }
 }

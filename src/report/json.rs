@@ -716,7 +716,7 @@ impl<'a> StudyDoc<'a> {
                     .map(|v| {
                         (
                             v.kind.key(),
-                            Finite(v.kind.to_spec_unit(v.kind.get(&o.modification))),
+                            Finite(v.kind.to_spec_unit(v.kind.get(&o.point()))),
                         )
                     })
                     .collect(),

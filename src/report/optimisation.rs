@@ -40,7 +40,7 @@ fn variables(study: &Study, e: &Evaluation) -> String {
             format!(
                 "{} {:.6}",
                 v.kind.key(),
-                v.kind.to_spec_unit(v.kind.get(&e.modification))
+                v.kind.to_spec_unit(v.kind.get(&e.point()))
             )
         })
         .collect::<Vec<_>>()
@@ -148,7 +148,7 @@ pub fn outcome(r: &StudyResult) -> String {
 fn on_bounds(study: &Study, r: &StudyResult) -> String {
     let mut out = String::new();
     for v in &study.variables {
-        let x = v.kind.get(&r.optimum.modification);
+        let x = v.kind.get(&r.optimum.point());
         let near = 1e-6 * (v.upper - v.lower).abs();
         let side = if (x - v.lower).abs() <= near {
             "lower"
@@ -157,6 +157,12 @@ fn on_bounds(study: &Study, r: &StudyResult) -> String {
         } else {
             continue;
         };
+        if v.kind == VariableKind::CrownStart && side == "lower" && v.lower == 0.0 {
+            // Nothing lies beyond: a flat middle of no length is a crown over the whole face.
+            out += "  note: the optimum is crowned over the whole face (crown_start_mm at 0, \
+                    its least)\n";
+            continue;
+        }
         out += &format!(
             "  note: the optimum sits on the {side} bound of {} ({}): the best point may lie \
              beyond it; widen the range to see\n",
@@ -320,7 +326,7 @@ pub fn map_csv(study: &Study, cells: &[Evaluation]) -> String {
     out += "objective,feasible,min_clearance_mm,tip_clearance_mm\n";
     for e in cells {
         for v in vars.iter().take(2) {
-            out += &format!("{},", v.kind.to_spec_unit(v.kind.get(&e.modification)));
+            out += &format!("{},", v.kind.to_spec_unit(v.kind.get(&e.point())));
         }
         let objective = if e.objective.is_finite() {
             format!("{}", e.objective)
@@ -355,6 +361,8 @@ pub fn variable_label(kind: VariableKind) -> &'static str {
         VariableKind::Shift => "shift ΔRp (mm)",
         VariableKind::Equidistant => "equidistant ΔRrp (mm)",
         VariableKind::Rotation => "rotation Δδ (deg)",
+        VariableKind::CrownRadius => "crown radius Rc (mm)",
+        VariableKind::CrownStart => "crown start z0 (mm)",
     }
 }
 
@@ -373,7 +381,7 @@ fn xy(study: &Study, e: &Evaluation) -> (f64, f64) {
         study
             .variables
             .get(k)
-            .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
+            .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.point())))
     };
     (at(0), at(1))
 }
@@ -469,6 +477,13 @@ fn summary(spec: &Spec, study: &Study) -> String {
             short(dt)
         ));
     }
+    for (o, bound) in &study.objective_limits {
+        let unit = match o.quantity.unit {
+            "" => String::new(),
+            u => format!(" {u}"),
+        };
+        constraints.push(format!("{} ≤ {}{unit}", o.name, short(*bound)));
+    }
     format!(
         "Minimise {} on scene “{}” ({} N·m, {} crank angles) over {}{}.",
         objective_label(study),
@@ -513,7 +528,7 @@ fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) ->
             format!(
                 "{} held at the optimum's {}",
                 v.kind.key(),
-                number(v.kind.to_spec_unit(v.kind.get(&r.optimum.modification)))
+                number(v.kind.to_spec_unit(v.kind.get(&r.optimum.point())))
             )
         })
         .collect();
@@ -573,7 +588,7 @@ fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
         variables: study
             .variables
             .iter()
-            .map(|v| v.kind.to_spec_unit(v.kind.get(&e.modification)))
+            .map(|v| v.kind.to_spec_unit(v.kind.get(&e.point())))
             .collect(),
         objective: e.failure.is_none().then_some(e.objective),
         failure: e.failure.clone(),

@@ -6,7 +6,7 @@
 
 use super::locate_offset;
 use crate::error::{Error, ErrorKind, Result};
-use crate::model::{Deviations, Modification};
+use crate::model::{Crowning, Deviations, Modification};
 use crate::units;
 
 /// Replace the scalar after `key:` at `offset` (plain, or in single or double quotes) with
@@ -93,21 +93,24 @@ fn top_level_section(text: &str, key: &str) -> Option<std::ops::Range<usize>> {
     start.map(|from| from..text.len())
 }
 
+/// Insert `key: value` into the mapping whose key is at `at` (block or flow style).
+fn insert_under(text: &mut String, at: usize, key: &str, value: &str) {
+    let line_end = text[at..].find('\n').map_or(text.len(), |n| at + n);
+    if let Some(brace) = text[at..line_end].find('{') {
+        text.insert_str(at + brace + 1, &format!(" {key}: {value},"));
+    } else {
+        let line_start = text[..at].rfind('\n').map_or(0, |n| n + 1);
+        let indent = at - line_start + 2;
+        let insert = format!("\n{}{key}: {value}", " ".repeat(indent));
+        text.insert_str(line_end, &insert);
+    }
+}
+
 /// Insert `key: value` into the `modification` mapping (block or flow style), or add the mapping
 /// where it usually stands: before `scenes`.
 fn insert_value(text: &mut String, key: &str, value: &str) {
     match locate_offset(text, "modification") {
-        Some(at) => {
-            let line_end = text[at..].find('\n').map_or(text.len(), |n| at + n);
-            if let Some(brace) = text[at..line_end].find('{') {
-                text.insert_str(at + brace + 1, &format!(" {key}: {value},"));
-            } else {
-                let line_start = text[..at].rfind('\n').map_or(0, |n| n + 1);
-                let indent = at - line_start + 2;
-                let insert = format!("\n{}{key}: {value}", " ".repeat(indent));
-                text.insert_str(line_end, &insert);
-            }
-        }
+        Some(at) => insert_under(text, at, key, value),
         None => {
             if !text.ends_with('\n') {
                 text.push('\n');
@@ -141,6 +144,47 @@ pub fn with_modification(path: &str, text: &str, m: &Modification) -> Result<Str
         return Err(Error::new(
             ErrorKind::Computation,
             format!("the written spec reads back as {back:?}, not the optimum {m:?}"),
+        ));
+    }
+    Ok(out)
+}
+
+/// The spec text with `crowning`'s circular crown as its `modification.crowning` (its
+/// `radius_mm` and `start_mm` replaced, or added to the mapping), comments kept: what a study
+/// of the crown (`crown_radius_mm`, `crown_start_mm`) writes back. The spec must have a
+/// circular crowning, and the result must read back as exactly `crowning`.
+pub fn with_crowning(path: &str, text: &str, crowning: &Crowning) -> Result<String> {
+    let refuse = |m: String| Error::new(ErrorKind::InvalidValue, m);
+    let Crowning::Circular {
+        radius_mm,
+        start_mm,
+    } = *crowning
+    else {
+        return Err(refuse(format!(
+            "{path}: only a circular crowning is written back, not {crowning:?}"
+        )));
+    };
+    let mut out = text.to_string();
+    for (key, value) in [("radius_mm", radius_mm), ("start_mm", start_mm)] {
+        let value = format!("{value:?}");
+        match locate_offset(&out, &format!("modification.crowning.{key}")) {
+            Some(offset) => replace_value(&mut out, offset, &value),
+            None => {
+                let at = locate_offset(&out, "modification.crowning").ok_or_else(|| {
+                    refuse(format!(
+                        "{path}: no `modification.crowning` to write the crown into"
+                    ))
+                })?;
+                insert_under(&mut out, at, key, &value)
+            }
+        }
+    }
+    let written = super::parse(path, &out)?;
+    let back = written.scenes.first().map(|s| s.face.crowning);
+    if back != Some(*crowning) {
+        return Err(Error::new(
+            ErrorKind::Computation,
+            format!("the written spec reads back with the crowning {back:?}, not {crowning:?}"),
         ));
     }
     Ok(out)
@@ -192,7 +236,8 @@ pub fn with_values(
 }
 
 /// The spec of an optimum, to be written to `out_path`: the source spec text with `m` as its
-/// modification, `name` as its name and `header` (comment lines) on top. Its `golden` section
+/// modification (and `crowning` as its crowning, when the study varied it), `name` as its
+/// name and `header` (comment lines) on top. Its `golden` section
 /// is removed with a comment saying why: the goldens are curves of the old design, which the
 /// optimum's no longer match (and their paths are relative to the old spec's folder). The
 /// result parses and reads back as `m`.
@@ -200,6 +245,7 @@ pub fn optimum_spec(
     out_path: &str,
     text: &str,
     m: &Modification,
+    crowning: Option<&Crowning>,
     name: &str,
     header: &str,
 ) -> Result<String> {
@@ -216,6 +262,9 @@ pub fn optimum_spec(
     match key_line(&out, "name") {
         Some(at) => replace_value(&mut out, at, &quoted),
         None => out.insert_str(0, &format!("name: {quoted}\n")),
+    }
+    if let Some(c) = crowning {
+        out = with_crowning(out_path, &out, c)?;
     }
     let out = format!("{header}{}", with_modification(out_path, &out, m)?);
     let back = super::parse(out_path, &out)?;

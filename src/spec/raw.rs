@@ -176,6 +176,10 @@ pub(crate) struct RawVariables {
     pub shift_mm: Option<[f64; 2]>,
     pub equidistant_mm: Option<[f64; 2]>,
     pub rotation_deg: Option<[f64; 2]>,
+    /// The circular crown's radius, mm.
+    pub crown_radius_mm: Option<[f64; 2]>,
+    /// The circular crown's flat half-length, mm.
+    pub crown_start_mm: Option<[f64; 2]>,
 }
 
 #[derive(Debug, Deserialize, Default, Clone, Copy)]
@@ -184,6 +188,8 @@ pub(crate) struct RawPoint {
     pub shift_mm: Option<f64>,
     pub equidistant_mm: Option<f64>,
     pub rotation_deg: Option<f64>,
+    pub crown_radius_mm: Option<f64>,
+    pub crown_start_mm: Option<f64>,
 }
 
 #[derive(Debug, Deserialize, Default)]
@@ -192,6 +198,9 @@ pub(crate) struct RawConstraints {
     pub tip_clearance_mm: Option<[f64; 2]>,
     pub min_clearance_mm: Option<f64>,
     pub max_lost_motion_arcsec: Option<f64>,
+    /// Upper bounds on objectives of the study's scene, by objective name.
+    #[serde(default)]
+    pub objectives: BTreeMap<String, f64>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -17,6 +17,7 @@ use crate::model::study::{
 };
 use crate::model::*;
 use crate::{numeric, units};
+use std::collections::BTreeMap;
 
 /// A named choice (`contact_law`, `geometry`), when given.
 fn named<T: std::str::FromStr<Err = String>>(key: &str, value: Option<&str>) -> Result<Option<T>> {
@@ -598,7 +599,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
                 } else {
                     "optimise".to_string()
                 };
-                let s = study(&key, i, r, &scenes, &modification)?;
+                let s = study(&key, i, r, &scenes, (&modification, crowning, &design))?;
                 if studies.iter().any(|o| o.name == s.name) {
                     return Err(Error::invalid(
                         format!("{key}.name"),
@@ -956,12 +957,99 @@ fn verify_grid(key: &str, value: i64, dims: usize) -> Result<usize> {
     Ok(steps)
 }
 
+/// A crown variable's bounds: a circular crowning to vary, a radius range of positive lengths,
+/// a start range in [0, B/2) (the flat middle's half-length, as `modification.crowning`).
+fn crown_bounds(
+    key: &str,
+    kind: VariableKind,
+    (lo, hi): (f64, f64),
+    crowning: Crowning,
+    design: &Design,
+) -> Result<()> {
+    let Crowning::Circular { .. } = crowning else {
+        let has = match crowning {
+            Crowning::None => "has no crowning",
+            _ => "has a logarithmic crowning",
+        };
+        return Err(Error::invalid(
+            key,
+            format!(
+                "`{}` varies a circular crown, and the spec {has}: give \
+                 `modification.crowning: {{kind: circular, radius_mm: ..., start_mm: ...}}` \
+                 (its values are the study's start)",
+                kind.key()
+            ),
+        ));
+    };
+    let half = 0.5 * design.face_width_mm;
+    match kind {
+        VariableKind::CrownRadius if lo <= 0.0 => Err(Error::invalid(
+            key,
+            format!(
+                "the crown radius's bounds must be positive lengths, got [{}, {}]",
+                numeric::input(lo),
+                numeric::input(hi)
+            ),
+        )),
+        VariableKind::CrownStart if lo < 0.0 || hi >= half => Err(Error::invalid(
+            key,
+            format!(
+                "the flat middle's half-length must lie in [0, B/2) = [0, {} mm), got bounds \
+                 [{}, {}]",
+                numeric::input(half),
+                numeric::input(lo),
+                numeric::input(hi)
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// `constraints.objectives`: objective names with upper bounds (finite), in name order.
+fn objective_limits(key: &str, raw: &BTreeMap<String, f64>) -> Result<Vec<(Objective, f64)>> {
+    raw.iter()
+        .map(|(name, &bound)| {
+            let at = format!("{key}.{name}");
+            let o = quantity::find_objective(name).ok_or_else(|| {
+                Error::invalid(
+                    &at,
+                    format!(
+                        "unknown objective `{name}`; known objectives: {}",
+                        quantity::objective_names()
+                    ),
+                )
+            })?;
+            Ok((o, finite(&at, bound)?))
+        })
+        .collect()
+}
+
+/// An objective read from the face loads needs a scene that resolves them (`face_slices` ≥ 2,
+/// or a crown or tilt, which need slices).
+fn face_objectives(key: &str, list: &[(Objective, f64)], scene: &Scene) -> Result<()> {
+    match list
+        .iter()
+        .find(|(o, _)| o.quantity.key == quantity::MAX_FACE_LOAD_FACTOR.key)
+    {
+        Some((o, _)) if !scene.face.is_resolved() => Err(Error::invalid(
+            key,
+            format!(
+                "`{}` is read from the line load along the face, and scene `{}` does not \
+                 resolve it: give the scene `face_slices: 2` or more (and a misalignment or a \
+                 crowning to study)",
+                o.name, scene.name
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
 fn study(
     key: &str,
     index: usize,
     raw: RawStudy,
     scenes: &[Scene],
-    modification: &Modification,
+    (modification, crowning, design): (&Modification, Crowning, &Design),
 ) -> Result<Study> {
     let scene = scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     not_torsion(&format!("{key}.scene"), &scenes[scene], "a study")?;
@@ -972,9 +1060,15 @@ fn study(
         (VariableKind::Shift, v.shift_mm),
         (VariableKind::Equidistant, v.equidistant_mm),
         (VariableKind::Rotation, v.rotation_deg),
+        (VariableKind::CrownRadius, v.crown_radius_mm),
+        (VariableKind::CrownStart, v.crown_start_mm),
     ] {
         if let Some(b) = b {
-            let (lo, hi) = bounds(&format!("{key}.variables.{}", kind.key()), b)?;
+            let at = format!("{key}.variables.{}", kind.key());
+            let (lo, hi) = bounds(&at, b)?;
+            if kind.of_crown() {
+                crown_bounds(&at, kind, (lo, hi), crowning, design)?;
+            }
             let scale = if kind == VariableKind::Rotation {
                 units::rad(1.0)
             } else {
@@ -990,17 +1084,34 @@ fn study(
     if variables.is_empty() {
         return Err(Error::invalid(
             format!("{key}.variables"),
-            "a study needs at least one variable (shift_mm, equidistant_mm, rotation_deg)".into(),
+            "a study needs at least one variable (shift_mm, equidistant_mm, rotation_deg, \
+             crown_radius_mm, crown_start_mm)"
+                .into(),
         ));
     }
-    let mut start = *modification;
+    let mut start = Point {
+        modification: *modification,
+        crowning,
+    };
     if let Some(p) = raw.start {
         for (kind, value) in [
             (VariableKind::Shift, p.shift_mm),
             (VariableKind::Equidistant, p.equidistant_mm),
             (VariableKind::Rotation, p.rotation_deg.map(units::rad)),
+            (VariableKind::CrownRadius, p.crown_radius_mm),
+            (VariableKind::CrownStart, p.crown_start_mm),
         ] {
             if let Some(x) = value {
+                if kind.of_crown() && !variables.iter().any(|v: &Variable| v.kind == kind) {
+                    return Err(Error::invalid(
+                        format!("{key}.start.{}", kind.key()),
+                        format!(
+                            "is the start of a variable the study does not vary: give \
+                             `variables.{}` bounds, or set `modification.crowning` instead",
+                            kind.key()
+                        ),
+                    ));
+                }
                 kind.set(
                     &mut start,
                     finite(&format!("{key}.start.{}", kind.key()), x)?,
@@ -1027,6 +1138,15 @@ fn study(
     }
     let dims = variables.len();
     let c = &raw.constraints;
+    let objective_limits =
+        objective_limits(&format!("{key}.constraints.objectives"), &c.objectives)?;
+    let objective = objective(&format!("{key}.objective"), raw.objective)?;
+    face_objectives(&format!("{key}.objective"), &objective, &scenes[scene])?;
+    face_objectives(
+        &format!("{key}.constraints.objectives"),
+        &objective_limits,
+        &scenes[scene],
+    )?;
     let tip_clearance_mm = c
         .tip_clearance_mm
         .map(|b| bounds(&format!("{key}.constraints.tip_clearance_mm"), b))
@@ -1054,12 +1174,14 @@ fn study(
     Ok(Study {
         name: raw.name.unwrap_or_else(|| format!("study-{}", index + 1)),
         scene,
-        objective: objective(&format!("{key}.objective"), raw.objective)?,
+        objective,
         variables,
-        start,
+        start: start.modification,
+        crowning: start.crowning,
         tip_clearance_mm,
         min_clearance_mm,
         max_lost_motion_arcsec,
+        objective_limits,
         references,
         optimum_max_objective: raw
             .optimum_max_objective

@@ -693,3 +693,61 @@ fn face_crown(face: &Face, z: f64) -> f64 {
         _ => 0.0,
     }
 }
+
+/// The logarithmic crown is Fujiwara & Kawase's profile (NTN Technical Review 75, 2007; Trans.
+/// JSME C 72, 2006), with a = B/2 and y = |z|:
+///   crown(y) = A·ln(1 / (1 − (1 − e^{−z_m/A})·((y − (1 − K2)·a)/(K2·a))²)), y > (1 − K2)·a,
+///   A = 2·K1·Q/(π·B·E'), 2/E' = (1 − ν1²)/E1 + (1 − ν2²)/E2 (E' = 2·E*),
+/// and K2 = 1, z_m → ∞ is Johns & Gohar's A·ln(1/(1 − (2z/B)²)). Values worked by hand for
+/// Q = 1000 N, K1 = 1, B = 8 mm, E* = 100 000 MPa: A = 2000/(π·8·200 000) mm
+/// = 3.978873577297384e-4 mm.
+/// - K2 = 0.5, z_m = 5 µm: flat for |z| ≤ 2 mm; z_m/A = 12.566, so 1 − e^{−z_m/A}
+///   = 0.9999965126576438; at z = ±3 mm the ratio is ½, ln(1/(1 − 0.99999651·¼)) = 0.28768
+///   and the crown 1.144645971511779e-4 mm; at z = 3.5 mm (ratio ¾) 3.289231691623118e-4 mm;
+///   at the face's ends exactly z_m.
+/// - K2 = 1, z_m = 1 mm (e^{−2513} = 0): Johns & Gohar's A·ln(4/3) = 1.1446505967405424e-4 mm at
+///   z = 2 mm.
+///
+/// Tolerance 1e-13 mm (1e-10 µm): the round-off of 1 − (1 − e^{−z_m/A}) at the face's ends,
+/// ε·A/e^{−z_m/A} ≈ 1.3e-14 mm; inside, the logarithm's argument is near ¾ and the round-off
+/// is ε·A ≈ 1e-19 mm.
+#[test]
+fn the_logarithmic_crown_is_fujiwara_and_kawases_profile_by_hand() {
+    let crown = |k2: f64, end_drop_mm: f64| {
+        let face = Face {
+            crowning: Crowning::Logarithmic {
+                design_load_n: 1000.0,
+                end_drop_mm,
+                load_coefficient: 1.0,
+                crowned_fraction: k2,
+            },
+            misalignment: Misalignment::default(),
+            slices: 20,
+        };
+        FaceWidth::new(&face, 8.0, 100_000.0, true)
+    };
+    let fk = crown(0.5, 0.005);
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-13;
+    for z in [0.0, 1.0, -2.0, 2.0] {
+        assert_eq!(fk.crown_mm(z), 0.0, "flat middle at z = {z}");
+    }
+    for (z, expected) in [
+        (3.0, 1.144645971511779e-4),
+        (-3.0, 1.144645971511779e-4),
+        (3.5, 3.289231691623118e-4),
+        (4.0, 0.005),
+        (-4.0, 0.005),
+    ] {
+        let got = fk.crown_mm(z);
+        assert!(
+            near(got, expected),
+            "z = {z}: {got:e} mm, by hand {expected:e} mm"
+        );
+    }
+    let jg = crown(1.0, 1.0);
+    let got = jg.crown_mm(2.0);
+    assert!(
+        near(got, 1.1446505967405424e-4),
+        "Johns & Gohar at z = 2: {got:e}"
+    );
+}

@@ -6,7 +6,7 @@ use cycloid::engine::optimise::global;
 use cycloid::engine::optimise::problem::Problem;
 use cycloid::engine::optimise::{self, run_study};
 use cycloid::geometry::clearance::{self, Mesh, Scope};
-use cycloid::model::Modification;
+use cycloid::model::{Crowning, Modification};
 use cycloid::spec::{self, Spec};
 
 fn paper() -> Spec {
@@ -215,7 +215,13 @@ fn writing_the_optimum_keeps_comments_and_reads_back_exactly() {
 fn the_map_covers_the_grid_and_marks_the_tip_constraint() {
     let spec = small_paper();
     let s = study(&spec, "positive-ratio");
-    let cells = optimise::map(&spec, s, 4, &s.start, &cycloid::engine::progress::Silent);
+    let cells = optimise::map(
+        &spec,
+        s,
+        4,
+        &s.start_point(),
+        &cycloid::engine::progress::Silent,
+    );
     assert_eq!(cells.len(), 16);
     for c in &cells {
         let tip = c.modification.equidistant_mm - c.modification.shift_mm;
@@ -398,7 +404,13 @@ fn no_point_of_the_verification_grid_beats_the_papers_optima() {
         let v = r.verification.as_ref().expect("verified");
         assert_eq!(v.points, 41 * 41);
         let stated = v.margin.expect("a feasible grid and optimum");
-        let cells = optimise::map(&spec, s, 41, &s.start, &cycloid::engine::progress::Silent);
+        let cells = optimise::map(
+            &spec,
+            s,
+            41,
+            &s.start_point(),
+            &cycloid::engine::progress::Silent,
+        );
         let best = cells
             .iter()
             .filter(|c| c.feasible())
@@ -507,4 +519,232 @@ fn min_gap_equals_the_smallest_gap_of_the_full_clearance_sweep() {
             fast.gap_mm
         );
     }
+}
+
+/// The shipped crown study's design with a pure tilt θx = 0.4 mrad about one axis, no crown
+/// flat (start 0), rollers only (no pins, rigid crank bearing), 72 crank angles, and `study`
+/// as its `optimise` section.
+fn pure_tilt(study: &str) -> String {
+    let text = std::fs::read_to_string("specs/reducer-crown-study.yaml").unwrap();
+    let head = &text[..text.find("optimise:").unwrap()];
+    let head = head
+        .replace("start_mm: 2.0 }", "start_mm: 0.0 }")
+        .replace(
+            "misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }",
+            "misalignment: { about_x_mrad: 0.4, about_y_mrad: 0.0 }",
+        )
+        .replace("steps: 360", "steps: 72")
+        .replace(
+            "effects: [bearing]           # bearing brings roller_contact and output_pins",
+            "effects: [roller_contact]    # the rollers alone",
+        );
+    assert!(head.contains("about_x_mrad: 0.4") && head.contains("start_mm: 0.0 }"));
+    assert!(head.contains("steps: 72") && head.contains("[roller_contact]"));
+    format!("{head}{study}")
+}
+
+const RADIUS_STUDY: &str = "optimise:
+  name: radius
+  scene: misaligned
+  objective: max_face_load_factor
+  variables:
+    crown_radius_mm: [100.0, 100000.0]
+  global_samples: 16
+  local_evaluations: 60
+  verify_grid: 61
+";
+
+/// With a pure tilt and nothing else, the best circular crown for the face load factor has an
+/// interior radius: too flat a crown (Rc → ∞) leaves the tilt's load at one end of the face,
+/// too round a crown (Rc → 0) carries the load on a short middle, both far above the optimum.
+/// The study's optimum is no worse than a scan of 60 log-spaced radii done here through the
+/// library (the same evaluation, so the optimum, a minimum to the local run's tolerance with
+/// the 61-point grid behind it, may not lie above the best scanned point: 1e-12 covers the
+/// round-off of summing the same loads); and it lies within two scan steps of the scan's best
+/// radius (the factor is unimodal in log Rc: a steeper crown only moves the peak inwards).
+#[test]
+fn a_pure_tilt_has_an_interior_best_crown_no_worse_than_a_fine_scan() {
+    let spec = spec::parse("tilt.yaml", &pure_tilt(RADIUS_STUDY)).unwrap();
+    let s = study(&spec, "radius");
+    let r = run_study(&spec, s, &cycloid::progress::Silent);
+    assert!(r.optimum.feasible());
+    let problem = Problem::new(&spec, s);
+    let n = 60;
+    let (lo, hi) = (100.0_f64, 100_000.0_f64);
+    let scan: Vec<(f64, f64)> = (0..n)
+        .map(|k| {
+            let radius = lo * (hi / lo).powf(k as f64 / (n - 1) as f64);
+            let point = cycloid::model::Point {
+                modification: spec.modification,
+                crowning: Crowning::Circular {
+                    radius_mm: radius,
+                    start_mm: 0.0,
+                },
+            };
+            (radius, problem.evaluate_point(&point).objective)
+        })
+        .collect();
+    let (best_k, &(best_radius, best)) = scan
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
+        .unwrap();
+    assert!(best.is_finite());
+    let Crowning::Circular { radius_mm, .. } = r.optimum.crowning else {
+        panic!(
+            "the optimum keeps a circular crown: {:?}",
+            r.optimum.crowning
+        )
+    };
+    assert!((lo..=hi).contains(&radius_mm), "{radius_mm}");
+    assert!(
+        r.optimum.objective <= best * (1.0 + 1e-12),
+        "optimum {} at Rc {radius_mm} mm above the scan's {best} at {best_radius} mm",
+        r.optimum.objective
+    );
+    // Interior: the scan's best is not at either end, and both ends are clearly worse (the
+    // flat end carries the tilt's edge load, the round end the centre peak).
+    assert!(0 < best_k && best_k < n - 1, "scan best at index {best_k}");
+    let (round, flat) = (scan[0].1, scan[n - 1].1);
+    assert!(round > 1.2 * r.optimum.objective, "round end {round}");
+    assert!(flat > 1.2 * r.optimum.objective, "flat end {flat}");
+    let step = (hi / lo).ln() / (n - 1) as f64;
+    assert!(
+        (radius_mm / best_radius).ln().abs() <= 2.0 * step,
+        "optimum Rc {radius_mm} mm, scan's best {best_radius} mm"
+    );
+}
+
+/// `optimise --write` of a crown study writes the optimum's crown into
+/// `modification.crowning`, comments kept; the written spec reads back with exactly that crown
+/// and, run again, gives the optimum's objective to the last bit (the same scene on the same
+/// crown), and `cycloid check` passes it.
+#[test]
+fn the_written_spec_carries_the_crown_found_and_checks() {
+    let study_text = "optimise:
+  name: crown
+  scene: misaligned
+  objective: max_face_load_factor
+  variables:
+    crown_radius_mm: [100.0, 100000.0]
+    crown_start_mm: [0.0, 3.0]
+  constraints:
+    objectives:
+      te_fluctuation: 100.0
+  global_samples: 16
+  boundary_samples: 4
+  local_evaluations: 40
+  verify_grid: 0
+";
+    let text = pure_tilt(study_text);
+    let dir = crate::common::Scratch::new("crown-write");
+    dir.write("tilt.yaml", &text);
+    let run = crate::common::cycloid(
+        &dir.path,
+        &["optimise", "tilt.yaml", "--write", "best.yaml"],
+    );
+    assert_eq!(run.code(), 0, "{}{}", run.stdout, run.stderr);
+    let written = std::fs::read_to_string(dir.path.join("best.yaml")).unwrap();
+    assert!(
+        written.contains("# the tilt the crown is found for"),
+        "the comments survive"
+    );
+    let spec = spec::parse("tilt.yaml", &text).unwrap();
+    let r = run_study(&spec, study(&spec, "crown"), &cycloid::progress::Silent);
+    let back = spec::parse("best.yaml", &written).unwrap();
+    assert_eq!(back.scenes[0].face.crowning, r.optimum.crowning);
+    assert_ne!(back.scenes[0].face.crowning, spec.scenes[0].face.crowning);
+    let scene = &back.scenes[0];
+    let result = cycloid::engine::scene::run(
+        &back,
+        scene,
+        &cycloid::model::Plan::for_scene(scene),
+        &Default::default(),
+    )
+    .unwrap();
+    let factor = cycloid::model::quantity::MAX_FACE_LOAD_FACTOR
+        .scalar(&result)
+        .unwrap()
+        .value;
+    assert_eq!(factor.to_bits(), r.optimum.objective.to_bits());
+    let check = crate::common::cycloid(&dir.path, &["check", "best.yaml"]);
+    assert_eq!(check.code(), 0, "{}{}", check.stdout, check.stderr);
+}
+
+/// A crown variable is refused, at its key's file:line:column with exit 2, without a circular
+/// crowning to vary, with a radius range that is not positive, or a start range outside
+/// [0, B/2); and so is an objective bounded that does not exist.
+#[test]
+fn bad_crown_variables_are_refused_where_they_are_written() {
+    let study_with = |variables: &str| {
+        format!(
+            "optimise:\n  scene: misaligned\n  objective: max_face_load_factor\n  variables:\n{variables}"
+        )
+    };
+    let base = pure_tilt(&study_with("    crown_radius_mm: [100.0, 1000.0]\n"));
+    let crown = "crowning: { kind: circular, radius_mm: 1000.0, start_mm: 0.0 }";
+    assert!(base.contains(crown));
+    let cases = [
+        (
+            base.replace(crown, "crowning: { kind: logarithmic, design_load_n: 400.0, end_drop_mm: 0.004 }"),
+            "optimise.variables.crown_radius_mm",
+            "logarithmic",
+        ),
+        (
+            base.replace(&format!("  {crown}\n"), ""),
+            "optimise.variables.crown_radius_mm",
+            "has no crowning",
+        ),
+        (
+            pure_tilt(&study_with("    crown_radius_mm: [0.0, 1000.0]\n")),
+            "optimise.variables.crown_radius_mm",
+            "positive",
+        ),
+        (
+            pure_tilt(&study_with("    crown_start_mm: [0.0, 4.0]\n")),
+            "optimise.variables.crown_start_mm",
+            "[0, B/2)",
+        ),
+        (
+            pure_tilt(&study_with("    crown_start_mm: [-1.0, 2.0]\n")),
+            "optimise.variables.crown_start_mm",
+            "[0, B/2)",
+        ),
+        (
+            base.replace(
+                "    crown_radius_mm: [100.0, 1000.0]\n",
+                "    crown_radius_mm: [100.0, 1000.0]\n  constraints:\n    objectives:\n      te_flutter: 8.0\n",
+            ),
+            "optimise.constraints.objectives.te_flutter",
+            "unknown objective",
+        ),
+    ];
+    let dir = crate::common::Scratch::new("crown-bad");
+    for (text, key, rule) in cases {
+        let e = spec::parse("crown.yaml", &text).expect_err(key);
+        let shown = e.to_string();
+        assert!(
+            shown.contains(key) && shown.contains(rule),
+            "{key}: {shown}"
+        );
+        let (line, column) = key_position(&text, key);
+        assert!(
+            shown.starts_with(&format!("crown.yaml:{line}:{column}:")),
+            "{key} at {line}:{column}: {shown}"
+        );
+        dir.write("bad.yaml", &text);
+        let run = crate::common::cycloid(&dir.path, &["check", "bad.yaml"]);
+        assert_eq!(run.code(), 2, "{key}: {}", run.stderr);
+    }
+}
+
+/// The line and column (1-based) of the block key that ends `key`, found in the text after
+/// `optimise:` (written out here from the text, not by the parser).
+fn key_position(text: &str, key: &str) -> (usize, usize) {
+    let last = key.rsplit('.').next().unwrap();
+    let start = text.find("optimise:").unwrap();
+    let offset = start + text[start..].find(&format!("{last}:")).unwrap();
+    let line = text[..offset].matches('\n').count() + 1;
+    let column = offset - text[..offset].rfind('\n').map_or(0, |p| p + 1) + 1;
+    (line, column)
 }

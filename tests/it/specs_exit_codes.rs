@@ -33,6 +33,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "paper optimum crowned, aligned and tilted 0.3 mrad about x and y: the face load limits",
     ),
     (
+        "reducer-crown-study.yaml",
+        0,
+        "paper optimum tilted 0.3 mrad about x and y: the crown study's optimum face load factor",
+    ),
+    (
         "reducer-torsion.yaml",
         0,
         "paper optimum: torsion at 4 locked angles, crank-bearing life at 20 N·m",

@@ -290,7 +290,7 @@ pub fn map(
     spec: &Spec,
     study: &Study,
     steps: usize,
-    around: &Modification,
+    around: &crate::model::Point,
     progress: &dyn Progress,
 ) -> Vec<Evaluation> {
     let cells = if study.variables.len() > 1 {
@@ -314,7 +314,7 @@ fn maps(
         .iter()
         .zip(studies)
         .map(|(s, r)| match steps >= 2 {
-            true => map(spec, s, steps, &r.optimum.modification, progress),
+            true => map(spec, s, steps, &r.optimum.point(), progress),
             false => Vec::new(),
         })
         .collect()

@@ -73,16 +73,17 @@ fn on_face(study: &Study, face: Face, u: &[f64]) -> Option<Vec<f64>> {
         Face::Box { upper, .. } => f64::from(u8::from(upper)),
         Face::Tip { tip_mm, .. } => {
             let vars = &study.variables;
-            let mut m = study.start;
+            let mut p = study.start_point();
             for (v, &zi) in vars.iter().zip(&z) {
-                v.kind.set(&mut m, v.lower + zi * (v.upper - v.lower));
+                v.kind.set(&mut p, v.at_unit(zi));
             }
+            let m = p.modification;
             let v = &vars[index];
             let value = match v.kind {
                 VariableKind::Equidistant => m.shift_mm + tip_mm,
                 _ => m.equidistant_mm - tip_mm,
             };
-            let zi = (value - v.lower) / (v.upper - v.lower);
+            let zi = v.unit_of(value);
             (0.0..=1.0).contains(&zi).then_some(zi)?
         }
     };
@@ -114,7 +115,7 @@ pub fn sample(problem: &Problem, zs: &[Vec<f64>], progress: &dyn Progress) -> Ve
     zs.par_iter()
         .map(|z| {
             progress.advance(1);
-            problem.evaluate_screened(&problem.modification_at_unit(z), true)
+            problem.evaluate_screened(&problem.point_at_unit(z), true)
         })
         .collect()
 }

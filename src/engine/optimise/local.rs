@@ -72,15 +72,15 @@ pub fn run(
     progress: &dyn Progress,
 ) -> LocalRun {
     let dims = problem.study.variables.len();
-    let z0: Vec<f64> = problem.unit_of(&start.modification);
+    let z0: Vec<f64> = problem.unit_of(&start.point());
     let path: RefCell<Vec<Evaluation>> = RefCell::new(Vec::new());
     let eval = |z: &[f64]| -> Evaluation {
-        let m = problem.modification_at_unit(z);
-        if let Some(e) = path.borrow().iter().rev().find(|e| e.modification == m) {
+        let p = problem.point_at_unit(z);
+        if let Some(e) = path.borrow().iter().rev().find(|e| e.point() == p) {
             return e.clone();
         }
         progress.advance(1);
-        let e = problem.evaluate(&m);
+        let e = problem.evaluate_point(&p);
         path.borrow_mut().push(e.clone());
         e
     };

@@ -106,7 +106,7 @@ pub fn run_study(spec: &Spec, study: &Study, progress: &dyn Progress) -> StudyRe
     let problem = Problem::new(spec, study);
     let dims = study.variables.len();
     progress.advance(1 + study.references.len() as u64);
-    let start = problem.evaluate(&study.start);
+    let start = problem.evaluate_point(&study.start_point());
     let references: Vec<(String, Evaluation)> = study
         .references
         .iter()
@@ -213,14 +213,18 @@ pub fn map(
     spec: &Spec,
     study: &Study,
     steps: usize,
-    around: &crate::model::Modification,
+    around: &crate::model::Point,
     progress: &dyn Progress,
 ) -> Vec<Evaluation> {
     let problem = Problem::new(spec, study);
     let vars = &study.variables;
     let axis = |k: usize, i: usize| {
         let v = &vars[k];
-        v.lower + (v.upper - v.lower) * i as f64 / (steps - 1).max(1) as f64
+        if v.logarithmic() {
+            v.at_unit(i as f64 / (steps - 1).max(1) as f64)
+        } else {
+            v.lower + (v.upper - v.lower) * i as f64 / (steps - 1).max(1) as f64
+        }
     };
     let cells: Vec<(usize, usize)> = (0..steps)
         .flat_map(|i| (0..if vars.len() > 1 { steps } else { 1 }).map(move |j| (i, j)))
@@ -234,7 +238,7 @@ pub fn map(
                 vars[1].kind.set(&mut m, axis(1, j));
             }
             progress.advance(1);
-            problem.evaluate(&m)
+            problem.evaluate_point(&m)
         })
         .collect()
 }

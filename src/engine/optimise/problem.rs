@@ -2,7 +2,8 @@
 //!
 //! Only the effects the objective needs are simulated (`candidate_plan`): each objective is a
 //! scalar quantity of the registry, read from the candidate's scene run exactly as `check`
-//! reads it. The whole-mesh clearance constraint uses the light `clearance::min_gap`; the lost
+//! reads it, and so is each objective bounded by `constraints.objectives`. A candidate is a
+//! `Point`: the modification and the disc's crowning, which the scene runs with. The whole-mesh clearance constraint uses the light `clearance::min_gap`; the lost
 //! motion (a constraint, and a column of the study tables) the full clearance sweep over one
 //! mesh period of the scene's crank angles.
 
@@ -10,7 +11,7 @@ use crate::engine::scene;
 use crate::geometry::clearance::{self, Mesh};
 use crate::model::quantity::{RATIO_FLUCTUATION, TE_FLUCTUATION};
 use crate::model::results::MinClearance;
-use crate::model::{Effect, Modification, Objective, Plan, Scene, Study};
+use crate::model::{Effect, Modification, Objective, Plan, Point, Scene, Study};
 use crate::spec::deviations;
 use crate::spec::Spec;
 use crate::units;
@@ -65,12 +66,15 @@ impl Margin {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Evaluation {
     pub modification: Modification,
+    /// The candidate's crowning (the spec's unless the study varies the crown).
+    pub crowning: crate::model::Crowning,
     /// Weighted objective; +∞ when the candidate could not be evaluated, or was not because a
     /// constraint already failed (a screened evaluation).
     pub objective: f64,
     /// Each objective term, unweighted, in its own unit.
     pub terms: Vec<(Objective, f64)>,
-    /// Every constraint evaluated, in the order tip band, whole-mesh clearance, lost motion.
+    /// Every constraint evaluated, in the order tip band, whole-mesh clearance, lost motion,
+    /// bounded objectives.
     pub margins: Vec<Margin>,
     /// Where the whole-mesh minimum clearance occurs, when computed.
     pub min_clearance: Option<MinClearance>,
@@ -81,15 +85,24 @@ pub struct Evaluation {
 }
 
 impl Evaluation {
-    fn new(m: &Modification) -> Self {
+    fn new(p: &Point) -> Self {
         Evaluation {
-            modification: *m,
+            modification: p.modification,
+            crowning: p.crowning,
             objective: f64::INFINITY,
             terms: Vec::new(),
             margins: Vec::new(),
             min_clearance: None,
             lost_motion_arcsec: None,
             failure: None,
+        }
+    }
+
+    /// The candidate: its modification and crowning.
+    pub fn point(&self) -> Point {
+        Point {
+            modification: self.modification,
+            crowning: self.crowning,
         }
     }
 
@@ -134,9 +147,10 @@ pub fn best<'a>(candidates: impl IntoIterator<Item = &'a Evaluation>) -> Option<
         })
 }
 
-/// The effects a candidate of a study simulates: those of its objectives' quantities, and the
-/// output pins when the scene models them and an objective is of the transmission (TE and
-/// ratio are β + βo: with the pins in the scene its TE includes their deflection).
+/// The effects a candidate of a study simulates: those of its objectives' quantities (the
+/// minimised and the bounded ones), and the output pins when the scene models them and an
+/// objective is of the transmission (TE and ratio are β + βo: with the pins in the scene its
+/// TE includes their deflection).
 fn candidate_plan(scene: &Scene, objectives: &[(Objective, f64)]) -> Plan {
     let mut effects: Vec<Effect> = objectives.iter().map(|(o, _)| o.quantity.effect).collect();
     let transmission = objectives
@@ -169,56 +183,74 @@ impl<'a> Problem<'a> {
             spec,
             study,
             scene,
-            plan: candidate_plan(scene, &study.objective),
+            plan: candidate_plan(
+                scene,
+                &[&study.objective[..], &study.objective_limits[..]].concat(),
+            ),
         }
     }
 
-    /// The modification at variable values x (engine units, in `study.variables` order).
-    pub fn modification_at(&self, x: &[f64]) -> Modification {
-        let mut m = self.study.start;
+    /// The point at variable values x (engine units, in `study.variables` order).
+    pub fn point_at(&self, x: &[f64]) -> Point {
+        let mut p = self.study.start_point();
         for (v, &value) in self.study.variables.iter().zip(x) {
-            v.kind.set(&mut m, value);
+            v.kind.set(&mut p, value);
         }
-        m
+        p
     }
 
-    /// The modification at a point z of the unit cube of the variables (z = 0 lower bounds,
-    /// 1 upper bounds).
-    pub fn modification_at_unit(&self, z: &[f64]) -> Modification {
+    /// The point at z of the unit cube of the variables (z = 0 lower bounds, 1 upper bounds;
+    /// `Variable::at_unit`, logarithmic for the crown radius).
+    pub fn point_at_unit(&self, z: &[f64]) -> Point {
         let x: Vec<f64> = self
             .study
             .variables
             .iter()
             .zip(z)
-            .map(|(v, &zi)| v.lower + zi * (v.upper - v.lower))
+            .map(|(v, &zi)| v.at_unit(zi))
             .collect();
-        self.modification_at(&x)
+        self.point_at(&x)
     }
 
-    /// Variable values of a modification.
-    pub fn variables_of(&self, m: &Modification) -> Vec<f64> {
-        self.study.variables.iter().map(|v| v.kind.get(m)).collect()
+    /// The modification at z of the unit cube of the variables (`point_at_unit`).
+    pub fn modification_at_unit(&self, z: &[f64]) -> Modification {
+        self.point_at_unit(z).modification
     }
 
-    /// A modification's place in the unit cube of the variables.
-    pub fn unit_of(&self, m: &Modification) -> Vec<f64> {
+    /// Variable values of a point.
+    pub fn variables_of(&self, p: &Point) -> Vec<f64> {
+        self.study.variables.iter().map(|v| v.kind.get(p)).collect()
+    }
+
+    /// A point's place in the unit cube of the variables.
+    pub fn unit_of(&self, p: &Point) -> Vec<f64> {
         self.study
             .variables
             .iter()
-            .map(|v| (v.kind.get(m) - v.lower) / (v.upper - v.lower))
+            .map(|v| v.unit_of(v.kind.get(p)))
             .collect()
     }
 
-    /// Evaluate a candidate: design rules, constraints, then the objective terms.
+    /// Evaluate the modification `m` with the spec's crowning (`evaluate_point`).
     pub fn evaluate(&self, m: &Modification) -> Evaluation {
-        self.evaluate_screened(m, false)
+        self.evaluate_point(&Point {
+            modification: *m,
+            crowning: self.scene.face.crowning,
+        })
     }
 
-    /// `evaluate`, but with `screen` a candidate that violates a constraint gets no objective
-    /// (+∞) and no further constraints: the sampling stages only need the objective of feasible
-    /// points, so the loaded sweep of an infeasible one would be wasted.
-    pub fn evaluate_screened(&self, m: &Modification, screen: bool) -> Evaluation {
-        let mut e = Evaluation::new(m);
+    /// Evaluate a candidate: design rules, constraints, then the objective terms and the
+    /// bounded objectives.
+    pub fn evaluate_point(&self, p: &Point) -> Evaluation {
+        self.evaluate_screened(p, false)
+    }
+
+    /// `evaluate_point`, but with `screen` a candidate that violates a constraint gets no
+    /// objective (+∞) and no further constraints: the sampling stages only need the objective
+    /// of feasible points, so the loaded sweep of an infeasible one would be wasted.
+    pub fn evaluate_screened(&self, p: &Point, screen: bool) -> Evaluation {
+        let m = &p.modification;
+        let mut e = Evaluation::new(p);
         if let Some((lo, hi)) = self.study.tip_clearance_mm {
             let tip = m.tip_clearance_mm();
             e.margins.push(Margin::lower(
@@ -250,14 +282,24 @@ impl<'a> Problem<'a> {
         if stop(&e) {
             return e;
         }
-        match self.terms(m) {
-            Ok(terms) => {
+        match self.terms(p) {
+            Ok((terms, bounded)) => {
                 e.objective = terms
                     .iter()
                     .zip(&self.study.objective)
                     .map(|((_, value), (_, w))| w * value)
                     .sum();
                 e.terms = terms;
+                for ((o, value), (_, bound)) in
+                    bounded.into_iter().zip(&self.study.objective_limits)
+                {
+                    e.margins.push(Margin::upper(
+                        &format!("{} (at most)", o.name),
+                        o.quantity.unit,
+                        value,
+                        *bound,
+                    ));
+                }
             }
             Err(msg) => e.failure = Some(msg),
         }
@@ -338,30 +380,50 @@ impl<'a> Problem<'a> {
         e
     }
 
-    fn terms(&self, m: &Modification) -> Result<Vec<(Objective, f64)>, String> {
+    /// The objective terms and the bounded objectives' values of the candidate's scene run
+    /// (the scene with the candidate's crowning).
+    #[allow(clippy::type_complexity)]
+    fn terms(&self, p: &Point) -> Result<(Vec<(Objective, f64)>, Vec<(Objective, f64)>), String> {
+        let crowned;
+        let scene = if p.crowning == self.scene.face.crowning {
+            self.scene
+        } else {
+            let mut s = self.scene.clone();
+            s.face.crowning = p.crowning;
+            crowned = s;
+            &crowned
+        };
         let r = scene::run_design(
             &self.spec.design,
-            m,
-            (self.scene, &self.plan),
+            &p.modification,
+            (scene, &self.plan),
             &scene::RunOptions::default(),
         )
         .map_err(|err| err.message)?;
-        self.study
-            .objective
-            .iter()
-            .map(|&(o, _)| {
-                let value = o.quantity.scalar(&r).map(|x| x.value).ok_or_else(|| {
-                    format!(
-                        "{} was not computed (a ratio needs at least 3 crank angles)",
-                        o.quantity.label
-                    )
-                })?;
-                if value.is_finite() {
-                    Ok((o, value))
-                } else {
-                    Err(format!("objective {} is not finite", o.name))
-                }
-            })
-            .collect()
+        let read = |list: &[(Objective, f64)]| -> Result<Vec<(Objective, f64)>, String> {
+            list.iter().map(|&(o, _)| read_objective(o, &r)).collect()
+        };
+        Ok((
+            read(&self.study.objective)?,
+            read(&self.study.objective_limits)?,
+        ))
+    }
+}
+
+/// The value of objective `o` in a scene's results.
+fn read_objective(
+    o: Objective,
+    r: &crate::model::results::SceneResult,
+) -> Result<(Objective, f64), String> {
+    let value = o.quantity.scalar(r).map(|x| x.value).ok_or_else(|| {
+        format!(
+            "{} was not computed (a ratio needs at least 3 crank angles)",
+            o.quantity.label
+        )
+    })?;
+    if value.is_finite() {
+        Ok((o, value))
+    } else {
+        Err(format!("objective {} is not finite", o.name))
     }
 }

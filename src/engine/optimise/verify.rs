@@ -64,7 +64,7 @@ pub fn run(problem: &Problem, searched: &Evaluation, progress: &dyn Progress) ->
         .par_iter()
         .map(|z| {
             progress.advance(1);
-            problem.evaluate_screened(&problem.modification_at_unit(z), true)
+            problem.evaluate_screened(&problem.point_at_unit(z), true)
         })
         .collect();
     let feasible = grid.iter().filter(|e| e.feasible()).count();

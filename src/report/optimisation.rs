@@ -406,6 +406,10 @@ pub fn view(
             .get(1)
             .map_or("(one variable)", |v| variable_label(v.kind))
             .into(),
+        log_axes: (
+            vars.first().is_some_and(|v| v.logarithmic()),
+            vars.get(1).is_some_and(|v| v.logarithmic()),
+        ),
         objective_label: objective_axis_label(study),
         map: map_cells(study, map),
         map_note: map_note(study, r, map, steps),

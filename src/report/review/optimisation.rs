@@ -23,6 +23,9 @@ pub struct OptimisationView {
     pub x_label: String,
     /// E.g. "equidistant ΔRrp (mm)".
     pub y_label: String,
+    /// Whether the first (x) and second (y) variables are searched, and so drawn, on a log
+    /// scale (the crown radius: the map's cells are spaced evenly in its logarithm).
+    pub log_axes: (bool, bool),
     /// E.g. "ratio fluctuation κmax − κmin".
     pub objective_label: String,
     /// The objective on a grid (`MapCell::z` non-finite where a design rule fails); empty when
@@ -110,6 +113,7 @@ pub(super) fn optimisation_svg(o: &OptimisationView) -> String {
         subtitle: o.map_note.clone(),
         x_label: o.x_label.clone(),
         y_label: o.y_label.clone(),
+        log_axes: o.log_axes,
         z_label: o.objective_label.clone(),
         cells: o.map.clone(),
         samples: o.global.clone(),

@@ -46,6 +46,9 @@ pub struct MapPlot {
     pub subtitle: String,
     pub x_label: String,
     pub y_label: String,
+    /// Whether the x and y axes are logarithmic (every x, or y, then > 0): the cells, samples,
+    /// path and markers are placed by the logarithm of their value, the ticks at 1-2-5 steps.
+    pub log_axes: (bool, bool),
     pub z_label: String,
     /// Samples on a grid; drawn as cells through the distinct x and y values.
     pub cells: Vec<MapCell>,
@@ -208,6 +211,36 @@ fn dot_mark(cx: f64, cy: f64) -> Markup {
             stroke-width="1.6" {}
         circle cx=(px(cx)) cy=(px(cy)) r=(px(SAMPLE_PX)) fill="none" stroke="#222"
             stroke-width="0.7" {}
+    }
+}
+
+/// An axis's ticks: positions on the drawn scale, their labels, and the range they span.
+struct AxisTicks {
+    lo: f64,
+    hi: f64,
+    values: Vec<f64>,
+    labels: Vec<String>,
+}
+
+/// Ticks over [lo, hi] of a linear axis, or of a logarithmic one whose drawn values are the
+/// logarithms (`MapPlot::in_log_space`): 1-2-5 steps of the values, placed at their logarithms.
+fn axis_ticks(lo: f64, hi: f64, log: bool) -> AxisTicks {
+    let (from, to) = (lo.exp(), hi.exp());
+    if log && from > 0.0 && to.is_finite() {
+        let values = log_ticks(from, to);
+        return AxisTicks {
+            lo,
+            hi,
+            labels: values.iter().map(|&v| log_label(v)).collect(),
+            values: values.iter().map(|v| v.ln()).collect(),
+        };
+    }
+    let t = ticks(lo, hi, 6, false);
+    AxisTicks {
+        labels: t.values.iter().map(|&v| t.label(v)).collect(),
+        lo: t.lo,
+        hi: t.hi,
+        values: t.values,
     }
 }
 
@@ -453,6 +486,44 @@ impl MapPlot {
     }
 
     pub fn to_svg(&self) -> String {
+        match self.log_axes {
+            (false, false) => self.draw(),
+            _ => self.in_log_space().draw(),
+        }
+    }
+
+    /// This map with every value of a logarithmic axis replaced by its natural logarithm (a
+    /// value ≤ 0, which no log axis holds, turns NaN and is left out as non-finite), to be
+    /// drawn on linear pixels with `axis_ticks` labelling the logarithms by their values.
+    fn in_log_space(&self) -> MapPlot {
+        let (lx, ly) = self.log_axes;
+        let f = |v: f64, log: bool| {
+            if !log {
+                v
+            } else if v > 0.0 {
+                v.ln()
+            } else {
+                f64::NAN
+            }
+        };
+        let mut m = self.clone();
+        for c in &mut m.cells {
+            (c.x, c.y) = (f(c.x, lx), f(c.y, ly));
+        }
+        for s in &mut m.samples {
+            (s.0, s.1) = (f(s.0, lx), f(s.1, ly));
+        }
+        for p in &mut m.path {
+            *p = (f(p.0, lx), f(p.1, ly));
+        }
+        for k in &mut m.markers {
+            (k.x, k.y) = (f(k.x, lx), f(k.y, ly));
+        }
+        m.cells.retain(|c| c.x.is_finite() && c.y.is_finite());
+        m
+    }
+
+    fn draw(&self) -> String {
         let xs = distinct(self.cells.iter().map(|c| c.x).collect());
         let ys = distinct(self.cells.iter().map(|c| c.y).collect());
         let (xe, ye) = (edges(&xs), edges(&ys));
@@ -468,9 +539,9 @@ impl MapPlot {
             (x_lo, x_hi) = (x_lo.min(x), x_hi.max(x));
             (y_lo, y_hi) = (y_lo.min(y), y_hi.max(y));
         }
-        let xt = ticks(x_lo, x_hi, 6, false);
-        let yt = ticks(y_lo, y_hi, 6, false);
-        let label_w = widest(yt.values.iter().map(|&v| yt.label(v)));
+        let xt = axis_ticks(x_lo, x_hi, self.log_axes.0);
+        let yt = axis_ticks(y_lo, y_hi, self.log_axes.1);
+        let label_w = widest(yt.labels.iter());
         let zlabel_w = widest(self.z_ticks().into_iter().map(|(_, l)| l));
         let legend = self.legend();
         let w = self.width;
@@ -514,16 +585,16 @@ impl MapPlot {
             rect x=(px(a.left)) y=(px(a.top)) width=(px(a.width)) height=(px(a.height))
                 fill="#f4f4f4" {}
             (cells)
-            @for &v in &yt.values {
+            @for (&v, label) in yt.values.iter().zip(&yt.labels) {
                 text x=(px(a.left - 8.0)) y=(px(sy(v) + 4.0)) font-size="12" text-anchor="end" {
-                    (yt.label(v))
+                    (label)
                 }
                 line x1=(px(a.left - 5.0)) y1=(px(sy(v))) x2=(px(a.left)) y2=(px(sy(v)))
                     stroke="#333" {}
             }
-            @for &v in &xt.values {
+            @for (&v, label) in xt.values.iter().zip(&xt.labels) {
                 text x=(px(sx(v))) y=(px(a.bottom() + 19.0)) font-size="12" text-anchor="middle" {
-                    (xt.label(v))
+                    (label)
                 }
                 line x1=(px(sx(v))) y1=(px(a.bottom())) x2=(px(sx(v))) y2=(px(a.bottom() + 5.0))
                     stroke="#333" {}
@@ -541,5 +612,67 @@ impl MapPlot {
             }
         };
         document(w, h, body)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{MapCell, MapPlot};
+
+    /// The x of every `<text>` whose content is `label` in `svg`.
+    fn text_x(svg: &str, label: &str) -> Vec<f64> {
+        svg.split("<text")
+            .skip(1)
+            .filter(|t| t.split('>').nth(1).and_then(|c| c.split('<').next()) == Some(label))
+            .filter_map(|t| t.split("x=\"").nth(1)?.split('"').next()?.parse().ok())
+            .collect()
+    }
+
+    /// A crown radius searched from 100 mm to 10 m in its logarithm: the decades' ticks sit
+    /// equally far apart (a log axis), and the cells span the axis evenly (log-spaced cells of
+    /// one width). On the linear axis the crown study's map drew, 100 to 1000 mm took a tenth of
+    /// the width of 1000 to 10,000 mm. Pixel positions are written to 0.01 px.
+    #[test]
+    fn a_log_axis_puts_decades_equally_apart() {
+        let xs: Vec<f64> = (0..9).map(|i| 100.0 * 10f64.powf(i as f64 / 4.0)).collect();
+        let cells = xs
+            .iter()
+            .flat_map(|&x| {
+                (0..3).map(move |j| MapCell {
+                    x,
+                    y: j as f64,
+                    z: x.ln() + j as f64,
+                    feasible: true,
+                })
+            })
+            .collect();
+        let plot = MapPlot {
+            log_axes: (true, false),
+            ..MapPlot::of_cells("t", "crown radius Rc (mm)", "start (mm)", "z", cells)
+        };
+        let svg = plot.to_svg();
+        let at = |l: &str| {
+            let x = text_x(&svg, l);
+            assert_eq!(x.len(), 1, "one tick labelled {l}: {x:?}");
+            x[0]
+        };
+        let (a, b, c) = (at("100"), at("1000"), at("10000"));
+        assert!(a < b && b < c, "{a} {b} {c}");
+        assert!(
+            ((b - a) - (c - b)).abs() <= 0.02,
+            "decades {} and {} px",
+            b - a,
+            c - b
+        );
+        let widths: Vec<f64> = svg
+            .split("<rect class=\"cell\"")
+            .skip(1)
+            .filter_map(|t| t.split("width=\"").nth(1)?.split('"').next()?.parse().ok())
+            .collect();
+        assert_eq!(widths.len(), 27);
+        let (lo, hi) = widths
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(l, h), w| (l.min(*w), h.max(*w)));
+        assert!(hi - lo <= 0.02, "cell widths {lo}..{hi} px");
     }
 }

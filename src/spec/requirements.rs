@@ -218,30 +218,133 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
     for key in [
         "optimum_max_objective",
         "accuracy_resolved",
-        "min_mean_efficiency",
-        "max_power_loss_w",
         "max_temperature_c",
     ] {
         if raw.limits.contains_key(key) {
             return Err(Error::invalid(
                 format!("limits.{key}"),
                 "is not a limit a design search can set (its designs have no optimisation \
-                 study, accuracy scene or friction)"
+                 study, accuracy scene or housing heat path)"
                     .to_string(),
             ));
         }
     }
+    let s = &raw.search;
+    let zero = [0.0, 0.0];
+    let continuous = Continuous {
+        eccentricity_mm: range("search.eccentricity_mm", &s.eccentricity_mm, true)?,
+        roller_circle_radius_mm: range(
+            "search.roller_circle_radius_mm",
+            &s.roller_circle_radius_mm,
+            true,
+        )?,
+        roller_radius_mm: range("search.roller_radius_mm", &s.roller_radius_mm, true)?,
+        face_width_mm: range("search.face_width_mm", &s.face_width_mm, true)?,
+        pin_circle_radius_mm: range("search.pin_circle_radius_mm", &s.pin_circle_radius_mm, true)?,
+        pin_radius_mm: range("search.pin_radius_mm", &s.pin_radius_mm, true)?,
+        shift_mm: range(
+            "search.shift_mm",
+            s.shift_mm.as_deref().unwrap_or(&zero),
+            false,
+        )?,
+        equidistant_mm: range(
+            "search.equidistant_mm",
+            s.equidistant_mm.as_deref().unwrap_or(&zero),
+            false,
+        )?,
+    };
+    let duty_cycle = raw
+        .duty_cycle
+        .as_deref()
+        .map(|bins| super::duty_cycle::bins_at("duty_cycle", bins))
+        .transpose()?;
+    if duty_cycle.is_some() && input_speed_rpm.is_some() {
+        return Err(Error::invalid(
+            "input_speed_rpm",
+            "a duty cycle runs each bin at its own torque and speed: give either \
+             `duty_cycle` or `input_speed_rpm`, not both"
+                .to_string(),
+        ));
+    }
+    // A bore must fit every design of the search: below the smallest roller and pin radius.
+    let friction = raw
+        .friction
+        .as_ref()
+        .map(|f| {
+            super::friction::friction_at(
+                "friction",
+                f,
+                (
+                    continuous.roller_radius_mm.lower,
+                    "the smallest roller radius of the search, search.roller_radius_mm[0]",
+                ),
+                (
+                    continuous.pin_radius_mm.lower,
+                    "the smallest pin radius of the search, search.pin_radius_mm[0]",
+                ),
+            )
+        })
+        .transpose()?;
+    let needs_friction = |key: String| -> Result<()> {
+        match friction {
+            Some(_) => Ok(()),
+            None => Err(Error::invalid(
+                key,
+                "needs the friction of the contacts: give `friction` (the keys of a spec's \
+                 `reducer.friction`); without it nothing is lost and the efficiency is 1 by \
+                 the model, not by the design"
+                    .to_string(),
+            )),
+        }
+    };
+    for key in [
+        "min_mean_efficiency",
+        "max_power_loss_w",
+        "max_hysteresis_loss_arcmin",
+    ] {
+        if raw.limits.contains_key(key) {
+            needs_friction(format!("limits.{key}"))?;
+        }
+    }
+    if raw.limits.contains_key("max_power_loss_w") && input_speed_rpm.is_none() {
+        return Err(Error::invalid(
+            "limits.max_power_loss_w",
+            "needs `input_speed_rpm` (the losses in watts are the rated scene's losses × its \
+             speed; a duty cycle's bins are not judged on it)"
+                .to_string(),
+        ));
+    }
     let life_needs = |key: String| -> Result<()> {
-        match (&crank_bearing, input_speed_rpm) {
-            (Some(_), Some(_)) => Ok(()),
+        match (&crank_bearing, input_speed_rpm.is_some() || duty_cycle.is_some()) {
+            (Some(_), true) => Ok(()),
             _ => Err(Error::invalid(
                 key,
-                "needs `crank_bearing` (its rating) and `input_speed_rpm`".to_string(),
+                "needs `crank_bearing` (its rating) and `input_speed_rpm` or `duty_cycle`"
+                    .to_string(),
             )),
         }
     };
     if raw.limits.contains_key("min_bearing_life_h") {
+        if duty_cycle.is_some() {
+            return Err(Error::invalid(
+                "limits.min_bearing_life_h",
+                "with a duty cycle the life is the cycle's (Palmgren–Miner over the bins): \
+                 bound it with `limits.min_duty_life_h`"
+                    .to_string(),
+            ));
+        }
         life_needs("limits.min_bearing_life_h".into())?;
+    }
+    if raw.limits.contains_key("min_duty_life_h") {
+        if duty_cycle.is_none() {
+            return Err(Error::invalid(
+                "limits.min_duty_life_h",
+                "needs `duty_cycle` (without one, bound the life at the rated torque with \
+                 `limits.min_bearing_life_h`)"
+                    .to_string(),
+            ));
+        }
+        life_needs("limits.min_duty_life_h".into())?;
     }
     if raw.objectives.len() < 2 || raw.objectives.len() > 3 {
         return Err(Error::invalid(
@@ -270,33 +373,11 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         }
         if *kind == ObjectiveKind::BearingLife {
             life_needs(key)?;
+        } else if *kind == ObjectiveKind::Efficiency {
+            needs_friction(key)?;
         }
         objectives.push(*kind);
     }
-    let s = &raw.search;
-    let zero = [0.0, 0.0];
-    let continuous = Continuous {
-        eccentricity_mm: range("search.eccentricity_mm", &s.eccentricity_mm, true)?,
-        roller_circle_radius_mm: range(
-            "search.roller_circle_radius_mm",
-            &s.roller_circle_radius_mm,
-            true,
-        )?,
-        roller_radius_mm: range("search.roller_radius_mm", &s.roller_radius_mm, true)?,
-        face_width_mm: range("search.face_width_mm", &s.face_width_mm, true)?,
-        pin_circle_radius_mm: range("search.pin_circle_radius_mm", &s.pin_circle_radius_mm, true)?,
-        pin_radius_mm: range("search.pin_radius_mm", &s.pin_radius_mm, true)?,
-        shift_mm: range(
-            "search.shift_mm",
-            s.shift_mm.as_deref().unwrap_or(&zero),
-            false,
-        )?,
-        equidistant_mm: range(
-            "search.equidistant_mm",
-            s.equidistant_mm.as_deref().unwrap_or(&zero),
-            false,
-        )?,
-    };
     let whole = |key: &str, v: Option<i64>, default: i64, min: i64, max: i64| -> Result<i64> {
         let v = v.unwrap_or(default);
         if (min..=max).contains(&v) {
@@ -350,6 +431,8 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         rated_torque_nmm: crate::units::nmm(rated),
         peak_torque_nmm: crate::units::nmm(peak),
         input_speed_rpm,
+        duty_cycle,
+        friction,
         envelope,
         material,
         density_kg_per_mm3: density * 1e-9,

@@ -272,7 +272,14 @@ fn objectives(req: &Requirements, c: &Candidate, results: &[SceneResult]) -> Res
             ObjectiveKind::ContactPressure => worst(&quantity::MAX_CONTACT_PRESSURE, false),
             ObjectiveKind::TeFluctuation => worst(&quantity::TE_FLUCTUATION, false),
             ObjectiveKind::LostMotion => worst(&quantity::MAX_LOST_MOTION, false),
+            ObjectiveKind::BearingLife if req.duty_cycle.is_some() => {
+                worst(&quantity::DUTY_LIFE, true)
+            }
             ObjectiveKind::BearingLife => worst(&quantity::BEARING_LIFE, true),
+            ObjectiveKind::Efficiency if req.duty_cycle.is_some() => {
+                worst(&quantity::DUTY_MEAN_EFFICIENCY, true)
+            }
+            ObjectiveKind::Efficiency => worst(&quantity::MEAN_EFFICIENCY, true),
             ObjectiveKind::Rigidity => worst(&quantity::MIN_TORSIONAL_RIGIDITY, true),
         })
         .collect()

@@ -4,7 +4,7 @@
 
 use super::design::{CrankBearing, Material};
 use super::limits::Limits;
-use super::{DutyBin, Friction};
+use super::{DutyBin, Friction, Misalignment};
 
 /// A continuous variable of the search: its spec key and its closed range, mm (lower = upper
 /// fixes it).
@@ -201,6 +201,12 @@ pub struct Requirements {
     /// Friction of every candidate (the keys of a spec's `reducer.friction`): its rated scene
     /// (and duty scene) computes the efficiency.
     pub friction: Option<Friction>,
+    /// The disc's tilt against the housing in the loaded running scenes (rated, peak, duty),
+    /// rad (`misalignment`, mrad; zero when not given).
+    pub misalignment: Misalignment,
+    /// Slices of the face width of every loaded scene (`face_slices`; 1, the 2-D model, when not
+    /// given).
+    pub face_slices: usize,
     /// What the reducer may occupy.
     pub envelope: Envelope,
     /// Disc, rollers and pins.

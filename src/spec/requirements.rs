@@ -8,7 +8,9 @@ use super::values::{finite, positive};
 use crate::error::{Error, Result};
 use crate::model::design::MAX_DISCS;
 use crate::model::requirements::*;
-use crate::model::CrankBearing;
+use crate::model::scene::MAX_ROLLER_ANGLES;
+use crate::model::{CrankBearing, Misalignment};
+use super::face::MAX_FACE_SLICES;
 use crate::numeric;
 
 /// Most ratios, pin counts or disc counts a search tries (each multiplies the work).
@@ -134,6 +136,84 @@ fn ratios(raw: &serde_yaml::Value) -> Result<Vec<usize>> {
         v => vec![one("ratio".into(), v)?],
     };
     choices("ratio", &list, 2, MAX_RATIO)
+}
+
+/// `misalignment` (finite, mrad → rad) and `face_slices` (1 to `MAX_FACE_SLICES`), with the
+/// spec's rules: a tilted face needs 2 slices or more, so does a limit on the load along the
+/// face, and the line loads of a scene (contacts × crank angles × slices) must fit in
+/// memory for every ratio and pin count of the search.
+fn face(
+    raw: &RawRequirements,
+    ratios: &[usize],
+    search: &RawSearch,
+) -> Result<(Misalignment, usize)> {
+    let misalignment = match &raw.misalignment {
+        Some(m) => Misalignment {
+            about_x_rad: 1e-3 * finite("misalignment.about_x_mrad", m.about_x_mrad)?,
+            about_y_rad: 1e-3 * finite("misalignment.about_y_mrad", m.about_y_mrad)?,
+        },
+        None => Misalignment::default(),
+    };
+    let slices = match raw.face_slices {
+        None => 1,
+        Some(n) if (1..=MAX_FACE_SLICES as i64).contains(&n) => n as usize,
+        Some(n) => {
+            return Err(Error::invalid(
+                "face_slices",
+                format!("must be an integer from 1 to {MAX_FACE_SLICES}, got {n}"),
+            ))
+        }
+    };
+    let slices_key = if raw.face_slices.is_some() {
+        "face_slices"
+    } else {
+        "misalignment"
+    };
+    if !misalignment.is_zero() && slices < 2 {
+        return Err(Error::invalid(
+            slices_key,
+            "a tilted face needs `face_slices: 2` or more (20 is a good start), the slices \
+             the line load is reported at"
+                .to_string(),
+        ));
+    }
+    for key in ["max_face_load_factor", "max_line_load_n_per_mm"] {
+        if raw.limits.contains_key(key) && slices < 2 {
+            return Err(Error::invalid(
+                format!("limits.{key}"),
+                "needs the load along the face width resolved: give `face_slices: 2` or more \
+                 (and `misalignment`, without which the face is loaded evenly)"
+                    .to_string(),
+            ));
+        }
+    }
+    if slices > 1 {
+        let steps = search.steps_per_mesh_period.unwrap_or(48).max(0) as i64;
+        for &nc in ratios {
+            for &m in &search.pin_counts {
+                let m = m.max(0) as usize;
+                let (mut a, mut b) = (nc, m);
+                while b != 0 {
+                    (a, b) = (b, a % b);
+                }
+                let periods = (nc / a.max(1)) as i64;
+                let cells = (nc + 1).max(m) as i64 * steps * periods * slices as i64;
+                if cells > MAX_ROLLER_ANGLES {
+                    return Err(Error::invalid(
+                        "face_slices",
+                        format!(
+                            "{slices} slices × {} contacts × {} crank angles (ratio {nc}, {m} \
+                             pins) is {cells} line loads, more than the {MAX_ROLLER_ANGLES} a \
+                             scene may hold; give fewer slices or steps",
+                            (nc + 1).max(m),
+                            steps * periods
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok((misalignment, slices))
 }
 
 fn build(raw: RawRequirements) -> Result<Requirements> {
@@ -314,6 +394,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
                 .to_string(),
         ));
     }
+    let (misalignment, face_slices) = face(&raw, &ratios(&raw.ratio)?, &raw.search)?;
     let life_needs = |key: String| -> Result<()> {
         match (&crank_bearing, input_speed_rpm.is_some() || duty_cycle.is_some()) {
             (Some(_), true) => Ok(()),
@@ -433,6 +514,8 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         input_speed_rpm,
         duty_cycle,
         friction,
+        misalignment,
+        face_slices,
         envelope,
         material,
         density_kg_per_mm3: density * 1e-9,

@@ -1,7 +1,7 @@
 //! A requirements file as written (serde), kept apart from the validated
 //! [`Requirements`](crate::model::requirements::Requirements); `spec::requirements` checks it.
 
-use super::raw::{RawDutyBin, RawFriction, RawLimits};
+use super::raw::{RawDutyBin, RawFriction, RawLimits, RawMisalignment};
 use serde::Deserialize;
 
 #[derive(Debug, Deserialize)]
@@ -25,6 +25,12 @@ pub(crate) struct RawRequirements {
     /// The keys of a spec's `reducer.friction`.
     #[serde(default)]
     pub friction: Option<RawFriction>,
+    /// The disc's tilt in the loaded running scenes, mrad.
+    #[serde(default)]
+    pub misalignment: Option<RawMisalignment>,
+    /// Slices of the face width of every loaded scene.
+    #[serde(default)]
+    pub face_slices: Option<i64>,
     #[serde(default)]
     pub rules: RawRules,
     #[serde(default)]

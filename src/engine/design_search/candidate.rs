@@ -90,6 +90,23 @@ fn num(x: f64) -> String {
     format!("{x:?}")
 }
 
+/// A running scene's (rated, peak, duty) `misalignment` and `face_slices`, each when the
+/// requirements give it (the torsion scene stays aligned: its face is uniform, one slice).
+fn face_text(s: &mut String, req: &Requirements) {
+    let m = &req.misalignment;
+    if !m.is_zero() {
+        let _ = writeln!(
+            s,
+            "    misalignment: {{ about_x_mrad: {}, about_y_mrad: {} }}",
+            num(1e3 * m.about_x_rad),
+            num(1e3 * m.about_y_rad)
+        );
+    }
+    if req.face_slices > 1 {
+        let _ = writeln!(s, "    face_slices: {}", req.face_slices);
+    }
+}
+
 /// `reducer.friction` of the requirements' friction: the same keys and values.
 fn friction_text(s: &mut String, f: &Friction) {
     let _ = writeln!(s, "  friction:");
@@ -224,6 +241,7 @@ pub fn spec_text(
         let _ = writeln!(s, "    input_speed_rpm: {}", num(n));
     }
     let _ = writeln!(s, "{loaded}");
+    face_text(&mut s, req);
     let running = match req.friction {
         Some(_) => "    effects: [bearing, efficiency]",
         None => "    effects: [bearing]",
@@ -237,6 +255,7 @@ pub fn spec_text(
             num(crate::units::nm(req.peak_torque_nmm))
         );
         let _ = writeln!(s, "{loaded}");
+        face_text(&mut s, req);
         let _ = writeln!(s, "    effects: [output_pins]");
     }
     if let Some(bins) = &req.duty_cycle {
@@ -252,6 +271,7 @@ pub fn spec_text(
             );
         }
         let _ = writeln!(s, "{loaded}");
+        face_text(&mut s, req);
         let _ = writeln!(s, "{running}");
     }
     if req.needs_torsion() {

@@ -350,23 +350,46 @@ fn the_screen_rejects_no_design_the_full_check_accepts() {
     // of the angles is no more extreme than over all of them, so a limit the screen finds
     // broken is broken in the full check, by at least as much (1e-9 relative: the solver's
     // round-off between two runs of the same angle, far below any margin here).
+    screen_rejects_nothing_the_full_check_accepts(&small());
+}
+
+/// SMALL tilted, its face in 10 slices and its face load factor bounded: the screen judges
+/// the largest factor and line load over a quarter of the angles, which can only be smaller.
+const TILTED: &str = "\
+misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }
+face_slices: 10
+";
+
+#[test]
+fn the_screen_of_a_tilted_face_rejects_no_design_the_full_check_accepts() {
+    let text = SMALL
+        .replace("peak_torque_nm: 15.0\n", &format!("peak_torque_nm: 15.0\n{TILTED}"))
+        .replace(
+            "  max_contact_pressure_mpa: 1500.0\n",
+            "  max_contact_pressure_mpa: 2500.0\n  max_face_load_factor: 2.2\n  \
+             max_line_load_n_per_mm: 250.0\n",
+        );
+    let req = cycloid::spec::requirements::parse("tilted.yaml", &text).unwrap();
+    screen_rejects_nothing_the_full_check_accepts(&req);
+}
+
+fn screen_rejects_nothing_the_full_check_accepts(req: &Requirements) {
     use rand_chacha::rand_core::SeedableRng;
-    let req = small();
-    let choice = design_search::choices(&req)[0];
+    let choice = design_search::choices(req)[0];
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
     let mut rejected = 0;
     for _ in 0..400 {
         let mut u = [0.0; 8];
         u.iter_mut().for_each(|x| *x = uniform(&mut rng));
         let c = Candidate::at(choice, &req.search.continuous, &u);
-        let Some(stop) = evaluate::screen(&req, &c).unwrap() else {
+        let Some(stop) = evaluate::screen(req, &c).unwrap() else {
             continue;
         };
         if stop.stage != evaluate::Stage::Screen {
             continue;
         }
         rejected += 1;
-        let full = evaluate::full(&req, &c).unwrap();
+        let full = evaluate::full(req, &c).unwrap();
         assert!(
             !full.feasible(),
             "the screen rejected {:?}, the full check accepts it",
@@ -641,4 +664,65 @@ fn a_bad_duty_cycle_or_an_efficiency_without_friction_is_refused_at_its_key() {
         assert!(out.stderr.contains(says), "{says}: {}", out.stderr);
         assert!(!out.stderr.contains("panicked") && !out.stderr.contains("NaN"));
     }
+}
+
+#[test]
+fn a_tilted_face_is_judged_on_its_face_limits_in_every_running_scene() {
+    // SMALL tilted by 0.3 mrad about x and y in 10 slices: with a face load factor of at most
+    // 2.5 every front design's running scenes resolve the face and meet it in check.
+    let text = SMALL
+        .replace(
+            "peak_torque_nm: 15.0\n",
+            "peak_torque_nm: 15.0\nmisalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }\n\
+             face_slices: 10\n",
+        )
+        .replace(
+            "  max_contact_pressure_mpa: 1500.0\n",
+            "  max_contact_pressure_mpa: 2500.0\n  max_face_load_factor: 2.5\n",
+        );
+    let dir = Scratch::new("design-face");
+    dir.write("small.yaml", &text);
+    let out = common::cycloid(&dir.path, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    for row in front_rows(&dir) {
+        let name = &row["spec"];
+        let spec = cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap())
+            .unwrap();
+        let run = cycloid::check(&spec, &cycloid::CheckOptions::default(), &Silent).unwrap();
+        assert!(run.passed(), "{name}");
+        // Both running scenes are tilted (the peak scene's pins too); the rated scene, which
+        // computes the rollers' contact, reports the face (the peak scene: pin forces only).
+        for scene in ["rated", "peak"] {
+            let s = spec.scenes.iter().find(|s| s.name == scene).unwrap();
+            assert_eq!(s.face.slices, 10);
+            // 1e-15 rad: 0.3 mrad written in mrad and read back × 1e-3.
+            assert!((s.face.misalignment.about_x_rad - 3e-4).abs() < 1e-15);
+            assert!((s.face.misalignment.about_y_rad - 3e-4).abs() < 1e-15);
+        }
+        // A tilted face loads its slices unevenly: the factor exceeds 1 (a uniform face's).
+        let f = scalar(&run, "rated", &cycloid::model::quantity::MAX_FACE_LOAD_FACTOR);
+        assert!(f > 1.0 && f <= 2.5, "{name}: {f}");
+    }
+    // Without slices the face limit is refused at its key, before any design is made.
+    let flat = text.replace("face_slices: 10\n", "");
+    dir.write("flat.yaml", &flat);
+    let out = common::cycloid(&dir.path, &["design", "flat.yaml"]);
+    assert_eq!(out.code, Some(2));
+    assert!(
+        out.stderr
+            .contains("flat.yaml:5:1: invalid value: misalignment: a tilted face needs"),
+        "{}",
+        out.stderr
+    );
+    let aligned = flat.replace("misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }\n", "");
+    dir.write("aligned.yaml", &aligned);
+    let out = common::cycloid(&dir.path, &["design", "aligned.yaml"]);
+    assert_eq!(out.code, Some(2));
+    assert!(
+        out.stderr.contains(
+            "aligned.yaml:20:3: invalid value: limits.max_face_load_factor: needs the load along"
+        ),
+        "{}",
+        out.stderr
+    );
 }

@@ -77,12 +77,7 @@ fn rollers(base: &str, raw: &RawRollerFriction, radius: (f64, &str)) -> Result<R
             RollerMode::Fixed
         }
         "rotating" => RollerMode::Rotating {
-            bore_radius_mm: bore(
-                key,
-                "rotating",
-                raw.bore_radius_mm,
-                radius,
-            )?,
+            bore_radius_mm: bore(key, "rotating", raw.bore_radius_mm, radius)?,
         },
         other => {
             return Err(Error::invalid(
@@ -105,12 +100,7 @@ fn output_pins(base: &str, raw: &RawPinFriction, radius: (f64, &str)) -> Result<
             PinMode::Fixed
         }
         "sleeve" => PinMode::Sleeve {
-            bore_radius_mm: bore(
-                key,
-                "sleeve",
-                raw.bore_radius_mm,
-                radius,
-            )?,
+            bore_radius_mm: bore(key, "sleeve", raw.bore_radius_mm, radius)?,
         },
         other => {
             return Err(Error::invalid(

@@ -1,6 +1,7 @@
 //! A requirements file (`cycloid design`): YAML → `requirements_raw` → the validated
 //! [`Requirements`]. Errors are located as a spec's: `file:line:column: kind: key: message`.
 
+use super::face::MAX_FACE_SLICES;
 use super::raw::RawMaterial;
 use super::requirements_raw::*;
 use super::validate::{life_exponent, limits, material};
@@ -10,7 +11,6 @@ use crate::model::design::MAX_DISCS;
 use crate::model::requirements::*;
 use crate::model::scene::MAX_ROLLER_ANGLES;
 use crate::model::{CrankBearing, Misalignment};
-use super::face::MAX_FACE_SLICES;
 use crate::numeric;
 
 /// Most ratios, pin counts or disc counts a search tries (each multiplies the work).
@@ -188,7 +188,7 @@ fn face(
         }
     }
     if slices > 1 {
-        let steps = search.steps_per_mesh_period.unwrap_or(48).max(0) as i64;
+        let steps = search.steps_per_mesh_period.unwrap_or(48).max(0);
         for &nc in ratios {
             for &m in &search.pin_counts {
                 let m = m.max(0) as usize;
@@ -396,7 +396,10 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
     }
     let (misalignment, face_slices) = face(&raw, &ratios(&raw.ratio)?, &raw.search)?;
     let life_needs = |key: String| -> Result<()> {
-        match (&crank_bearing, input_speed_rpm.is_some() || duty_cycle.is_some()) {
+        match (
+            &crank_bearing,
+            input_speed_rpm.is_some() || duty_cycle.is_some(),
+        ) {
             (Some(_), true) => Ok(()),
             _ => Err(Error::invalid(
                 key,

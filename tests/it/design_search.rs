@@ -363,7 +363,10 @@ face_slices: 10
 #[test]
 fn the_screen_of_a_tilted_face_rejects_no_design_the_full_check_accepts() {
     let text = SMALL
-        .replace("peak_torque_nm: 15.0\n", &format!("peak_torque_nm: 15.0\n{TILTED}"))
+        .replace(
+            "peak_torque_nm: 15.0\n",
+            &format!("peak_torque_nm: 15.0\n{TILTED}"),
+        )
         .replace(
             "  max_contact_pressure_mpa: 1500.0\n",
             "  max_contact_pressure_mpa: 2500.0\n  max_face_load_factor: 2.2\n  \
@@ -475,16 +478,18 @@ fn front_rows(dir: &Scratch) -> Vec<std::collections::HashMap<String, String>> {
     let mut lines = csv.lines();
     let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
     lines
-        .map(|l| header.iter().cloned().zip(l.split(',').map(String::from)).collect())
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
         .collect()
 }
 
 /// A run's value of a scalar quantity in its scene `name`.
-fn scalar(
-    run: &cycloid::CheckRun,
-    name: &str,
-    q: &cycloid::model::quantity::Quantity,
-) -> f64 {
+fn scalar(run: &cycloid::CheckRun, name: &str, q: &cycloid::model::quantity::Quantity) -> f64 {
     let r = run.results.iter().find(|r| r.name == name).unwrap();
     q.scalar(r).unwrap().value
 }
@@ -500,8 +505,8 @@ fn a_duty_cycle_front_lives_its_duty_life_by_miners_rule_and_its_efficiency_is_c
     assert!(!rows.is_empty());
     for row in &rows {
         let name = &row["spec"];
-        let spec = cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap())
-            .unwrap();
+        let spec =
+            cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap()).unwrap();
         let run = cycloid::check(&spec, &cycloid::CheckOptions::default(), &Silent).unwrap();
         assert!(run.passed(), "{name} fails its check");
         // The spec's duty scene runs the requirements' bins, as written.
@@ -528,15 +533,26 @@ fn a_duty_cycle_front_lives_its_duty_life_by_miners_rule_and_its_efficiency_is_c
         for b in &d.bins {
             let sn = b.bin.time_share * b.bin.input_speed_rpm;
             if sn > 0.0 {
-                wp += sn * q::BEARING_EQUIVALENT_LOAD.scalar(&b.result).unwrap().value.powf(p);
+                wp += sn
+                    * q::BEARING_EQUIVALENT_LOAD
+                        .scalar(&b.result)
+                        .unwrap()
+                        .value
+                        .powf(p);
                 w += sn;
             }
         }
         let load = (wp / w).powf(1.0 / p);
         let miner = (12000.0 / load).powf(p) * 1e6 / (60.0 * w * (1.0 + 1.0 / 9.0));
         let life = scalar(&run, "duty", &q::DUTY_LIFE);
-        assert!((life - miner).abs() <= 1e-9 * miner, "{name}: {life} vs {miner}");
-        assert!(life >= 40000.0, "{name}: duty life {life} h below the 40,000 h required");
+        assert!(
+            (life - miner).abs() <= 1e-9 * miner,
+            "{name}: {life} vs {miner}"
+        );
+        assert!(
+            life >= 40000.0,
+            "{name}: duty life {life} h below the 40,000 h required"
+        );
         // The front's objectives are check's figures of the written spec: the same spec run
         // by the same code, its bins combined in a fixed order (1e-12 relative: a summation
         // order would be the only difference).
@@ -553,7 +569,10 @@ fn a_duty_cycle_front_lives_its_duty_life_by_miners_rule_and_its_efficiency_is_c
             .collect();
         let lo = bin_eta.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = bin_eta.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        assert!(lo <= eta && eta <= hi && eta < 1.0, "{name}: {eta} not in [{lo}, {hi}]");
+        assert!(
+            lo <= eta && eta <= hi && eta < 1.0,
+            "{name}: {eta} not in [{lo}, {hi}]"
+        );
     }
 }
 
@@ -578,14 +597,17 @@ fn the_efficiency_objective_is_the_rated_scenes_mean_efficiency() {
     assert!(rows.len() >= 2, "a trade of mass and efficiency: {rows:?}");
     for row in &rows {
         let name = &row["spec"];
-        let spec = cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap())
-            .unwrap();
+        let spec =
+            cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap()).unwrap();
         let run = cycloid::check(&spec, &cycloid::CheckOptions::default(), &Silent).unwrap();
         assert!(run.passed());
         let eta = scalar(&run, "rated", &cycloid::model::quantity::MEAN_EFFICIENCY);
         let front: f64 = row["efficiency"].parse().unwrap();
         // The same spec by the same code (1e-12 relative: summation order only).
-        assert!((front - eta).abs() <= 1e-12 * eta, "{name}: {front} vs {eta}");
+        assert!(
+            (front - eta).abs() <= 1e-12 * eta,
+            "{name}: {front} vs {eta}"
+        );
         // Sliding friction of μ 0.05 loses something and not everything.
         assert!(eta > 0.5 && eta < 1.0, "{name}: {eta}");
     }
@@ -648,7 +670,10 @@ fn a_bad_duty_cycle_or_an_efficiency_without_friction_is_refused_at_its_key() {
             "duty.yaml:7:30: invalid value: duty_cycle[1].input_speed_rpm: must be a finite speed",
         ),
         (
-            DUTY.replace("peak_torque_nm: 15.0\n", "peak_torque_nm: 15.0\ninput_speed_rpm: 9.0\n"),
+            DUTY.replace(
+                "peak_torque_nm: 15.0\n",
+                "peak_torque_nm: 15.0\ninput_speed_rpm: 9.0\n",
+            ),
             "duty.yaml:5:1: invalid value: input_speed_rpm: a duty cycle runs each bin",
         ),
         (
@@ -686,8 +711,8 @@ fn a_tilted_face_is_judged_on_its_face_limits_in_every_running_scene() {
     assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
     for row in front_rows(&dir) {
         let name = &row["spec"];
-        let spec = cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap())
-            .unwrap();
+        let spec =
+            cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap()).unwrap();
         let run = cycloid::check(&spec, &cycloid::CheckOptions::default(), &Silent).unwrap();
         assert!(run.passed(), "{name}");
         // Both running scenes are tilted (the peak scene's pins too); the rated scene, which
@@ -700,7 +725,11 @@ fn a_tilted_face_is_judged_on_its_face_limits_in_every_running_scene() {
             assert!((s.face.misalignment.about_y_rad - 3e-4).abs() < 1e-15);
         }
         // A tilted face loads its slices unevenly: the factor exceeds 1 (a uniform face's).
-        let f = scalar(&run, "rated", &cycloid::model::quantity::MAX_FACE_LOAD_FACTOR);
+        let f = scalar(
+            &run,
+            "rated",
+            &cycloid::model::quantity::MAX_FACE_LOAD_FACTOR,
+        );
         assert!(f > 1.0 && f <= 2.5, "{name}: {f}");
     }
     // Without slices the face limit is refused at its key, before any design is made.
@@ -714,7 +743,10 @@ fn a_tilted_face_is_judged_on_its_face_limits_in_every_running_scene() {
         "{}",
         out.stderr
     );
-    let aligned = flat.replace("misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }\n", "");
+    let aligned = flat.replace(
+        "misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }\n",
+        "",
+    );
     dir.write("aligned.yaml", &aligned);
     let out = common::cycloid(&dir.path, &["design", "aligned.yaml"]);
     assert_eq!(out.code, Some(2));

@@ -141,11 +141,7 @@ fn friction_text(s: &mut String, f: &Friction) {
             num(b.bore_diameter_mm)
         );
     }
-    let _ = writeln!(
-        s,
-        "    no_load_torque_nmm: {}",
-        num(f.no_load_torque_nmm)
-    );
+    let _ = writeln!(s, "    no_load_torque_nmm: {}", num(f.no_load_torque_nmm));
 }
 
 /// The spec of `c` under `req`: its reducer, the scenes the requirements need and their

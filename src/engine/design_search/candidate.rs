@@ -252,7 +252,7 @@ pub fn spec_text(
         );
         let _ = writeln!(s, "{loaded}");
         face_text(&mut s, req);
-        let _ = writeln!(s, "    effects: [output_pins]");
+        let _ = writeln!(s, "    effects: [roller_contact, output_pins]");
     }
     if let Some(bins) = &req.duty_cycle {
         let _ = writeln!(s, "  - name: duty");

@@ -4,6 +4,7 @@
 
 use super::design::{CrankBearing, Material};
 use super::limits::Limits;
+use super::{DutyBin, Friction, Misalignment};
 
 /// A continuous variable of the search: its spec key and its closed range, mm (lower = upper
 /// fixes it).
@@ -139,15 +140,20 @@ pub enum ObjectiveKind {
     TeFluctuation,
     /// The unloaded lost motion of the mesh scene, arcsec (smaller).
     LostMotion,
-    /// The crank-bearing rating life at rated torque and speed, h (larger).
+    /// The crank-bearing rating life at rated torque and speed, or with a duty cycle the
+    /// cycle's (Palmgren–Miner, `engine::duty_cycle`), h (larger).
     BearingLife,
     /// The torsional rigidity of the torsion scene, N·m/arcmin (larger).
     Rigidity,
+    /// The mean efficiency P_out/(P_out + mean loss) of the rated scene, or with a duty cycle
+    /// the cycle's, weighted by energy Σ sᵢ·P_out,i / Σ sᵢ·(P_out,i + lossᵢ) (larger; needs
+    /// `friction`).
+    Efficiency,
 }
 
 impl ObjectiveKind {
     /// Every objective with its key under `objectives:`.
-    pub const ALL: [(&'static str, ObjectiveKind); 8] = [
+    pub const ALL: [(&'static str, ObjectiveKind); 9] = [
         ("outer_diameter_mm", ObjectiveKind::OuterDiameter),
         ("axial_length_mm", ObjectiveKind::AxialLength),
         ("mass_kg", ObjectiveKind::Mass),
@@ -156,6 +162,7 @@ impl ObjectiveKind {
         ("max_lost_motion_arcsec", ObjectiveKind::LostMotion),
         ("bearing_life_h", ObjectiveKind::BearingLife),
         ("torsional_rigidity_nm_per_arcmin", ObjectiveKind::Rigidity),
+        ("efficiency", ObjectiveKind::Efficiency),
     ];
 
     /// Its key.
@@ -168,7 +175,10 @@ impl ObjectiveKind {
 
     /// Larger is better.
     pub fn maximise(self) -> bool {
-        matches!(self, ObjectiveKind::BearingLife | ObjectiveKind::Rigidity)
+        matches!(
+            self,
+            ObjectiveKind::BearingLife | ObjectiveKind::Rigidity | ObjectiveKind::Efficiency
+        )
     }
 }
 
@@ -185,6 +195,18 @@ pub struct Requirements {
     pub peak_torque_nmm: f64,
     /// Input speed of the rated scene, rpm.
     pub input_speed_rpm: Option<f64>,
+    /// A duty cycle in place of the input speed: the bins of the candidates' `duty` scene
+    /// (torques N·mm, speeds rpm, shares summing to 1).
+    pub duty_cycle: Option<Vec<DutyBin>>,
+    /// Friction of every candidate (the keys of a spec's `reducer.friction`): its rated scene
+    /// (and duty scene) computes the efficiency.
+    pub friction: Option<Friction>,
+    /// The disc's tilt against the housing in the loaded running scenes (rated, peak, duty),
+    /// rad (`misalignment`, mrad; zero when not given).
+    pub misalignment: Misalignment,
+    /// Slices of the face width of every loaded scene (`face_slices`; 1, the 2-D model, when not
+    /// given).
+    pub face_slices: usize,
     /// What the reducer may occupy.
     pub envelope: Envelope,
     /// Disc, rollers and pins.
@@ -212,5 +234,6 @@ impl Requirements {
                 .get("min_torsional_rigidity_nm_per_arcmin")
                 .is_some()
             || self.limits.get("max_lost_motion_arcmin").is_some()
+            || self.limits.get("max_hysteresis_loss_arcmin").is_some()
     }
 }

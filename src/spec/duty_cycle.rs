@@ -6,7 +6,7 @@
 //! would otherwise ignore), and a scene that computes the crank-bearing force (what the cycle
 //! rates).
 
-use super::raw::RawScene;
+use super::raw::{RawDutyBin, RawScene};
 use super::values::finite;
 use crate::error::{Error, Result};
 use crate::model::{DutyBin, Effect};
@@ -43,17 +43,12 @@ pub(super) fn duty_cycle(
             ));
         }
     }
-    if bins.is_empty() {
-        return Err(Error::invalid(
-            &at,
-            "a duty cycle needs at least one bin `{output_torque_nm, input_speed_rpm, \
-             time_share}`"
-                .into(),
-        ));
-    }
     let bearing = effects
         .iter()
         .any(|&e| e == Effect::Bearing || e.needs().contains(&Effect::Bearing));
+    if bins.is_empty() {
+        return Err(empty(&at));
+    }
     if !bearing {
         return Err(Error::invalid(
             format!("{key}.effects"),
@@ -61,6 +56,26 @@ pub(super) fn duty_cycle(
              compute the bearing force (add the effect `bearing`)"
                 .into(),
         ));
+    }
+    bins_at(&at, bins).map(Some)
+}
+
+fn empty(at: &str) -> Error {
+    Error::invalid(
+        at,
+        "a duty cycle needs at least one bin `{output_torque_nm, input_speed_rpm, \
+         time_share}`"
+            .into(),
+    )
+}
+
+/// The bins of a duty cycle at `at` (`scenes[i].duty_cycle`, or a requirements file's
+/// `duty_cycle`), validated by the rules of the module's doc: at least one bin, each torque
+/// finite, each speed finite and ≥ 0, each share in [0, 1], the shares summing to 1 within
+/// [`SHARE_SUM_TOLERANCE`], some bin turning.
+pub(crate) fn bins_at(at: &str, bins: &[RawDutyBin]) -> Result<Vec<DutyBin>> {
+    if bins.is_empty() {
+        return Err(empty(at));
     }
     let mut cycle = Vec::with_capacity(bins.len());
     for (j, b) in bins.iter().enumerate() {
@@ -95,7 +110,7 @@ pub(super) fn duty_cycle(
     let sum: f64 = cycle.iter().map(|b| b.time_share).sum();
     if (sum - 1.0).abs() > SHARE_SUM_TOLERANCE {
         return Err(Error::invalid(
-            &at,
+            at,
             format!(
                 "the time shares sum to {}, not 1 (within {SHARE_SUM_TOLERANCE:e})",
                 numeric::input(sum)
@@ -107,11 +122,11 @@ pub(super) fn duty_cycle(
         .all(|b| b.time_share * b.input_speed_rpm == 0.0)
     {
         return Err(Error::invalid(
-            &at,
+            at,
             "no bin turns the crank (every bin with a share has speed 0): a cycle at a \
              standstill has no revolutions to rate a life or weight a torque by"
                 .into(),
         ));
     }
-    Ok(Some(cycle))
+    Ok(cycle)
 }

@@ -69,23 +69,15 @@ fn no_bore(key: &str, bore: Option<f64>) -> Result<()> {
     }
 }
 
-fn rollers(raw: &RawRollerFriction, design: &Design) -> Result<RollerFriction> {
-    let key = &format!("{KEY}.rollers");
+fn rollers(base: &str, raw: &RawRollerFriction, radius: (f64, &str)) -> Result<RollerFriction> {
+    let key = &format!("{base}.rollers");
     let mode = match raw.mode.as_str() {
         "fixed" => {
             no_bore(key, raw.bore_radius_mm)?;
             RollerMode::Fixed
         }
         "rotating" => RollerMode::Rotating {
-            bore_radius_mm: bore(
-                key,
-                "rotating",
-                raw.bore_radius_mm,
-                (
-                    design.roller_radius_mm,
-                    "the roller's radius, reducer.roller_radius_mm",
-                ),
-            )?,
+            bore_radius_mm: bore(key, "rotating", raw.bore_radius_mm, radius)?,
         },
         other => {
             return Err(Error::invalid(
@@ -100,23 +92,15 @@ fn rollers(raw: &RawRollerFriction, design: &Design) -> Result<RollerFriction> {
     })
 }
 
-fn output_pins(raw: &RawPinFriction, design: &Design) -> Result<PinFriction> {
-    let key = &format!("{KEY}.output_pins");
+fn output_pins(base: &str, raw: &RawPinFriction, radius: (f64, &str)) -> Result<PinFriction> {
+    let key = &format!("{base}.output_pins");
     let mode = match raw.mode.as_str() {
         "fixed" => {
             no_bore(key, raw.bore_radius_mm)?;
             PinMode::Fixed
         }
         "sleeve" => PinMode::Sleeve {
-            bore_radius_mm: bore(
-                key,
-                "sleeve",
-                raw.bore_radius_mm,
-                (
-                    design.pins.pin_radius_mm,
-                    "the sleeve's outer radius, reducer.output_pins.pin_radius_mm",
-                ),
-            )?,
+            bore_radius_mm: bore(key, "sleeve", raw.bore_radius_mm, radius)?,
         },
         other => {
             return Err(Error::invalid(
@@ -131,8 +115,8 @@ fn output_pins(raw: &RawPinFriction, design: &Design) -> Result<PinFriction> {
     })
 }
 
-fn crank_bearing(raw: &RawBearingFriction) -> Result<BearingFriction> {
-    let key = format!("{KEY}.crank_bearing");
+fn crank_bearing(base: &str, raw: &RawBearingFriction) -> Result<BearingFriction> {
+    let key = format!("{base}.crank_bearing");
     Ok(BearingFriction {
         mu: mu(&format!("{key}.mu"), raw.mu)?,
         bore_diameter_mm: length(&format!("{key}.bore_diameter_mm"), raw.bore_diameter_mm)?,
@@ -141,16 +125,39 @@ fn crank_bearing(raw: &RawBearingFriction) -> Result<BearingFriction> {
 
 /// `reducer.friction` of `design` (its radii bound the bores).
 pub(super) fn friction(raw: &RawFriction, design: &Design) -> Result<Friction> {
+    friction_at(
+        KEY,
+        raw,
+        (
+            design.roller_radius_mm,
+            "the roller's radius, reducer.roller_radius_mm",
+        ),
+        (
+            design.pins.pin_radius_mm,
+            "the sleeve's outer radius, reducer.output_pins.pin_radius_mm",
+        ),
+    )
+}
+
+/// A friction block at `base` (`reducer.friction`, or a requirements file's `friction`):
+/// the bores bounded by `roller` and `pin`, each the radius a bore must stay below and its
+/// name for the message.
+pub(crate) fn friction_at(
+    base: &str,
+    raw: &RawFriction,
+    roller: (f64, &str),
+    pin: (f64, &str),
+) -> Result<Friction> {
     let model = match raw.model.as_deref() {
         None => FrictionModel::Coupled,
         Some(name) => name
             .parse()
-            .map_err(|m| Error::invalid(format!("{KEY}.model"), m))?,
+            .map_err(|m| Error::invalid(format!("{base}.model"), m))?,
     };
     let no_load = match raw.no_load_torque_nmm {
         None => 0.0,
         Some(t) => {
-            let key = format!("{KEY}.no_load_torque_nmm");
+            let key = format!("{base}.no_load_torque_nmm");
             let t = finite(&key, t)?;
             if t < 0.0 {
                 return Err(Error::invalid(
@@ -169,14 +176,18 @@ pub(super) fn friction(raw: &RawFriction, design: &Design) -> Result<Friction> {
         rollers: raw
             .rollers
             .as_ref()
-            .map(|r| rollers(r, design))
+            .map(|r| rollers(base, r, roller))
             .transpose()?,
         output_pins: raw
             .output_pins
             .as_ref()
-            .map(|p| output_pins(p, design))
+            .map(|p| output_pins(base, p, pin))
             .transpose()?,
-        crank_bearing: raw.crank_bearing.as_ref().map(crank_bearing).transpose()?,
+        crank_bearing: raw
+            .crank_bearing
+            .as_ref()
+            .map(|b| crank_bearing(base, b))
+            .transpose()?,
         no_load_torque_nmm: no_load,
     })
 }

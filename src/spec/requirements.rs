@@ -1,6 +1,7 @@
 //! A requirements file (`cycloid design`): YAML → `requirements_raw` → the validated
 //! [`Requirements`]. Errors are located as a spec's: `file:line:column: kind: key: message`.
 
+use super::face::MAX_FACE_SLICES;
 use super::raw::RawMaterial;
 use super::requirements_raw::*;
 use super::validate::{life_exponent, limits, material};
@@ -8,7 +9,8 @@ use super::values::{finite, positive};
 use crate::error::{Error, Result};
 use crate::model::design::MAX_DISCS;
 use crate::model::requirements::*;
-use crate::model::CrankBearing;
+use crate::model::scene::MAX_ROLLER_ANGLES;
+use crate::model::{CrankBearing, Misalignment};
 use crate::numeric;
 
 /// Most ratios, pin counts or disc counts a search tries (each multiplies the work).
@@ -136,6 +138,84 @@ fn ratios(raw: &serde_yaml::Value) -> Result<Vec<usize>> {
     choices("ratio", &list, 2, MAX_RATIO)
 }
 
+/// `misalignment` (finite, mrad → rad) and `face_slices` (1 to `MAX_FACE_SLICES`), with the
+/// spec's rules: a tilted face needs 2 slices or more, so does a limit on the load along the
+/// face, and the line loads of a scene (contacts × crank angles × slices) must fit in
+/// memory for every ratio and pin count of the search.
+fn face(
+    raw: &RawRequirements,
+    ratios: &[usize],
+    search: &RawSearch,
+) -> Result<(Misalignment, usize)> {
+    let misalignment = match &raw.misalignment {
+        Some(m) => Misalignment {
+            about_x_rad: 1e-3 * finite("misalignment.about_x_mrad", m.about_x_mrad)?,
+            about_y_rad: 1e-3 * finite("misalignment.about_y_mrad", m.about_y_mrad)?,
+        },
+        None => Misalignment::default(),
+    };
+    let slices = match raw.face_slices {
+        None => 1,
+        Some(n) if (1..=MAX_FACE_SLICES as i64).contains(&n) => n as usize,
+        Some(n) => {
+            return Err(Error::invalid(
+                "face_slices",
+                format!("must be an integer from 1 to {MAX_FACE_SLICES}, got {n}"),
+            ))
+        }
+    };
+    let slices_key = if raw.face_slices.is_some() {
+        "face_slices"
+    } else {
+        "misalignment"
+    };
+    if !misalignment.is_zero() && slices < 2 {
+        return Err(Error::invalid(
+            slices_key,
+            "a tilted face needs `face_slices: 2` or more (20 is a good start), the slices \
+             the line load is reported at"
+                .to_string(),
+        ));
+    }
+    for key in ["max_face_load_factor", "max_line_load_n_per_mm"] {
+        if raw.limits.contains_key(key) && slices < 2 {
+            return Err(Error::invalid(
+                format!("limits.{key}"),
+                "needs the load along the face width resolved: give `face_slices: 2` or more \
+                 (and `misalignment`, without which the face is loaded evenly)"
+                    .to_string(),
+            ));
+        }
+    }
+    if slices > 1 {
+        let steps = search.steps_per_mesh_period.unwrap_or(48).max(0);
+        for &nc in ratios {
+            for &m in &search.pin_counts {
+                let m = m.max(0) as usize;
+                let (mut a, mut b) = (nc, m);
+                while b != 0 {
+                    (a, b) = (b, a % b);
+                }
+                let periods = (nc / a.max(1)) as i64;
+                let cells = (nc + 1).max(m) as i64 * steps * periods * slices as i64;
+                if cells > MAX_ROLLER_ANGLES {
+                    return Err(Error::invalid(
+                        "face_slices",
+                        format!(
+                            "{slices} slices × {} contacts × {} crank angles (ratio {nc}, {m} \
+                             pins) is {cells} line loads, more than the {MAX_ROLLER_ANGLES} a \
+                             scene may hold; give fewer slices or steps",
+                            (nc + 1).max(m),
+                            steps * periods
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok((misalignment, slices))
+}
+
 fn build(raw: RawRequirements) -> Result<Requirements> {
     let rated = positive("rated_torque_nm", raw.rated_torque_nm)?;
     let peak = match raw.peak_torque_nm {
@@ -218,30 +298,137 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
     for key in [
         "optimum_max_objective",
         "accuracy_resolved",
-        "min_mean_efficiency",
-        "max_power_loss_w",
         "max_temperature_c",
     ] {
         if raw.limits.contains_key(key) {
             return Err(Error::invalid(
                 format!("limits.{key}"),
                 "is not a limit a design search can set (its designs have no optimisation \
-                 study, accuracy scene or friction)"
+                 study, accuracy scene or housing heat path)"
                     .to_string(),
             ));
         }
     }
+    let s = &raw.search;
+    let zero = [0.0, 0.0];
+    let continuous = Continuous {
+        eccentricity_mm: range("search.eccentricity_mm", &s.eccentricity_mm, true)?,
+        roller_circle_radius_mm: range(
+            "search.roller_circle_radius_mm",
+            &s.roller_circle_radius_mm,
+            true,
+        )?,
+        roller_radius_mm: range("search.roller_radius_mm", &s.roller_radius_mm, true)?,
+        face_width_mm: range("search.face_width_mm", &s.face_width_mm, true)?,
+        pin_circle_radius_mm: range("search.pin_circle_radius_mm", &s.pin_circle_radius_mm, true)?,
+        pin_radius_mm: range("search.pin_radius_mm", &s.pin_radius_mm, true)?,
+        shift_mm: range(
+            "search.shift_mm",
+            s.shift_mm.as_deref().unwrap_or(&zero),
+            false,
+        )?,
+        equidistant_mm: range(
+            "search.equidistant_mm",
+            s.equidistant_mm.as_deref().unwrap_or(&zero),
+            false,
+        )?,
+    };
+    let duty_cycle = raw
+        .duty_cycle
+        .as_deref()
+        .map(|bins| super::duty_cycle::bins_at("duty_cycle", bins))
+        .transpose()?;
+    if duty_cycle.is_some() && input_speed_rpm.is_some() {
+        return Err(Error::invalid(
+            "input_speed_rpm",
+            "a duty cycle runs each bin at its own torque and speed: give either \
+             `duty_cycle` or `input_speed_rpm`, not both"
+                .to_string(),
+        ));
+    }
+    // A bore must fit every design of the search: below the smallest roller and pin radius.
+    let friction = raw
+        .friction
+        .as_ref()
+        .map(|f| {
+            super::friction::friction_at(
+                "friction",
+                f,
+                (
+                    continuous.roller_radius_mm.lower,
+                    "the smallest roller radius of the search, search.roller_radius_mm[0]",
+                ),
+                (
+                    continuous.pin_radius_mm.lower,
+                    "the smallest pin radius of the search, search.pin_radius_mm[0]",
+                ),
+            )
+        })
+        .transpose()?;
+    let needs_friction = |key: String| -> Result<()> {
+        match friction {
+            Some(_) => Ok(()),
+            None => Err(Error::invalid(
+                key,
+                "needs the friction of the contacts: give `friction` (the keys of a spec's \
+                 `reducer.friction`); without it nothing is lost and the efficiency is 1 by \
+                 the model, not by the design"
+                    .to_string(),
+            )),
+        }
+    };
+    for key in [
+        "min_mean_efficiency",
+        "max_power_loss_w",
+        "max_hysteresis_loss_arcmin",
+    ] {
+        if raw.limits.contains_key(key) {
+            needs_friction(format!("limits.{key}"))?;
+        }
+    }
+    if raw.limits.contains_key("max_power_loss_w") && input_speed_rpm.is_none() {
+        return Err(Error::invalid(
+            "limits.max_power_loss_w",
+            "needs `input_speed_rpm` (the losses in watts are the rated scene's losses × its \
+             speed; a duty cycle's bins are not judged on it)"
+                .to_string(),
+        ));
+    }
+    let (misalignment, face_slices) = face(&raw, &ratios(&raw.ratio)?, &raw.search)?;
     let life_needs = |key: String| -> Result<()> {
-        match (&crank_bearing, input_speed_rpm) {
-            (Some(_), Some(_)) => Ok(()),
+        match (
+            &crank_bearing,
+            input_speed_rpm.is_some() || duty_cycle.is_some(),
+        ) {
+            (Some(_), true) => Ok(()),
             _ => Err(Error::invalid(
                 key,
-                "needs `crank_bearing` (its rating) and `input_speed_rpm`".to_string(),
+                "needs `crank_bearing` (its rating) and `input_speed_rpm` or `duty_cycle`"
+                    .to_string(),
             )),
         }
     };
     if raw.limits.contains_key("min_bearing_life_h") {
+        if duty_cycle.is_some() {
+            return Err(Error::invalid(
+                "limits.min_bearing_life_h",
+                "with a duty cycle the life is the cycle's (Palmgren–Miner over the bins): \
+                 bound it with `limits.min_duty_life_h`"
+                    .to_string(),
+            ));
+        }
         life_needs("limits.min_bearing_life_h".into())?;
+    }
+    if raw.limits.contains_key("min_duty_life_h") {
+        if duty_cycle.is_none() {
+            return Err(Error::invalid(
+                "limits.min_duty_life_h",
+                "needs `duty_cycle` (without one, bound the life at the rated torque with \
+                 `limits.min_bearing_life_h`)"
+                    .to_string(),
+            ));
+        }
+        life_needs("limits.min_duty_life_h".into())?;
     }
     if raw.objectives.len() < 2 || raw.objectives.len() > 3 {
         return Err(Error::invalid(
@@ -270,33 +457,11 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         }
         if *kind == ObjectiveKind::BearingLife {
             life_needs(key)?;
+        } else if *kind == ObjectiveKind::Efficiency {
+            needs_friction(key)?;
         }
         objectives.push(*kind);
     }
-    let s = &raw.search;
-    let zero = [0.0, 0.0];
-    let continuous = Continuous {
-        eccentricity_mm: range("search.eccentricity_mm", &s.eccentricity_mm, true)?,
-        roller_circle_radius_mm: range(
-            "search.roller_circle_radius_mm",
-            &s.roller_circle_radius_mm,
-            true,
-        )?,
-        roller_radius_mm: range("search.roller_radius_mm", &s.roller_radius_mm, true)?,
-        face_width_mm: range("search.face_width_mm", &s.face_width_mm, true)?,
-        pin_circle_radius_mm: range("search.pin_circle_radius_mm", &s.pin_circle_radius_mm, true)?,
-        pin_radius_mm: range("search.pin_radius_mm", &s.pin_radius_mm, true)?,
-        shift_mm: range(
-            "search.shift_mm",
-            s.shift_mm.as_deref().unwrap_or(&zero),
-            false,
-        )?,
-        equidistant_mm: range(
-            "search.equidistant_mm",
-            s.equidistant_mm.as_deref().unwrap_or(&zero),
-            false,
-        )?,
-    };
     let whole = |key: &str, v: Option<i64>, default: i64, min: i64, max: i64| -> Result<i64> {
         let v = v.unwrap_or(default);
         if (min..=max).contains(&v) {
@@ -350,6 +515,10 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         rated_torque_nmm: crate::units::nmm(rated),
         peak_torque_nmm: crate::units::nmm(peak),
         input_speed_rpm,
+        duty_cycle,
+        friction,
+        misalignment,
+        face_slices,
         envelope,
         material,
         density_kg_per_mm3: density * 1e-9,

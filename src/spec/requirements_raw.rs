@@ -1,7 +1,7 @@
 //! A requirements file as written (serde), kept apart from the validated
 //! [`Requirements`](crate::model::requirements::Requirements); `spec::requirements` checks it.
 
-use super::raw::RawLimits;
+use super::raw::{RawDutyBin, RawFriction, RawLimits, RawMisalignment};
 use serde::Deserialize;
 
 #[derive(Debug, Deserialize)]
@@ -15,10 +15,22 @@ pub(crate) struct RawRequirements {
     pub peak_torque_nm: Option<f64>,
     #[serde(default)]
     pub input_speed_rpm: Option<f64>,
+    /// Bins `{output_torque_nm, input_speed_rpm, time_share}` in place of `input_speed_rpm`.
+    #[serde(default)]
+    pub duty_cycle: Option<Vec<RawDutyBin>>,
     pub envelope: RawEnvelope,
     pub material: RawRequirementsMaterial,
     #[serde(default)]
     pub crank_bearing: Option<RawBearing>,
+    /// The keys of a spec's `reducer.friction`.
+    #[serde(default)]
+    pub friction: Option<RawFriction>,
+    /// The disc's tilt in the loaded running scenes, mrad.
+    #[serde(default)]
+    pub misalignment: Option<RawMisalignment>,
+    /// Slices of the face width of every loaded scene.
+    #[serde(default)]
+    pub face_slices: Option<i64>,
     #[serde(default)]
     pub rules: RawRules,
     #[serde(default)]

@@ -350,23 +350,49 @@ fn the_screen_rejects_no_design_the_full_check_accepts() {
     // of the angles is no more extreme than over all of them, so a limit the screen finds
     // broken is broken in the full check, by at least as much (1e-9 relative: the solver's
     // round-off between two runs of the same angle, far below any margin here).
+    screen_rejects_nothing_the_full_check_accepts(&small());
+}
+
+/// SMALL tilted, its face in 10 slices and its face load factor bounded: the screen judges
+/// the largest factor and line load over a quarter of the angles, which can only be smaller.
+const TILTED: &str = "\
+misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }
+face_slices: 10
+";
+
+#[test]
+fn the_screen_of_a_tilted_face_rejects_no_design_the_full_check_accepts() {
+    let text = SMALL
+        .replace(
+            "peak_torque_nm: 15.0\n",
+            &format!("peak_torque_nm: 15.0\n{TILTED}"),
+        )
+        .replace(
+            "  max_contact_pressure_mpa: 1500.0\n",
+            "  max_contact_pressure_mpa: 2500.0\n  max_face_load_factor: 2.2\n  \
+             max_line_load_n_per_mm: 250.0\n",
+        );
+    let req = cycloid::spec::requirements::parse("tilted.yaml", &text).unwrap();
+    screen_rejects_nothing_the_full_check_accepts(&req);
+}
+
+fn screen_rejects_nothing_the_full_check_accepts(req: &Requirements) {
     use rand_chacha::rand_core::SeedableRng;
-    let req = small();
-    let choice = design_search::choices(&req)[0];
+    let choice = design_search::choices(req)[0];
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
     let mut rejected = 0;
     for _ in 0..400 {
         let mut u = [0.0; 8];
         u.iter_mut().for_each(|x| *x = uniform(&mut rng));
         let c = Candidate::at(choice, &req.search.continuous, &u);
-        let Some(stop) = evaluate::screen(&req, &c).unwrap() else {
+        let Some(stop) = evaluate::screen(req, &c).unwrap() else {
             continue;
         };
         if stop.stage != evaluate::Stage::Screen {
             continue;
         }
         rejected += 1;
-        let full = evaluate::full(&req, &c).unwrap();
+        let full = evaluate::full(req, &c).unwrap();
         assert!(
             !full.feasible(),
             "the screen rejected {:?}, the full check accepts it",
@@ -392,5 +418,343 @@ fn the_screen_rejects_no_design_the_full_check_accepts() {
     assert!(
         rejected >= 5,
         "only {rejected} designs reached and failed the screen"
+    );
+}
+
+/// SMALL with a robot joint's duty cycle in place of a speed (accelerate, run, brake, dwell),
+/// a crank bearing, friction on every path and a duty life that binds: the designs of the box
+/// live from about 4·10⁴ h to 6·10⁴ h under this cycle, so the limit of 40,000 h removes some.
+const DUTY: &str = "\
+name: duty
+ratio: [9]
+rated_torque_nm: 10.0
+peak_torque_nm: 15.0
+duty_cycle:
+  - { output_torque_nm: 15.0, input_speed_rpm: 1000.0, time_share: 0.2 }
+  - { output_torque_nm: 8.0, input_speed_rpm: 2000.0, time_share: 0.4 }
+  - { output_torque_nm: -10.0, input_speed_rpm: 1000.0, time_share: 0.2 }
+  - { output_torque_nm: 5.0, input_speed_rpm: 0.0, time_share: 0.2 }
+envelope:
+  max_outer_diameter_mm: 76.0
+  max_axial_length_mm: 19.0
+material:
+  youngs_modulus_gpa: 206.0
+  poisson_ratio: 0.3
+crank_bearing:
+  dynamic_load_rating_n: 12000.0
+friction:
+  model: loss
+  rollers: { mode: fixed, mu: 0.05 }
+  output_pins: { mode: fixed, mu: 0.05 }
+  crank_bearing: { mu: 0.002, bore_diameter_mm: 20.0 }
+rules:
+  max_k1: 0.8
+  min_ligament_mm: 1.0
+  min_roller_gap_mm: 0.5
+limits:
+  min_clearance_mm: 0.005
+  max_contact_pressure_mpa: 2000.0
+  min_duty_life_h: 40000.0
+objectives: [mass_kg, bearing_life_h, efficiency]
+search:
+  eccentricity_mm: [1.0, 2.0]
+  roller_circle_radius_mm: [24.0, 34.0]
+  roller_radius_mm: [2.0, 3.5]
+  face_width_mm: [5.0, 10.0]
+  pin_circle_radius_mm: [12.0, 20.0]
+  pin_radius_mm: [2.0, 3.5]
+  shift_mm: [-0.02, 0.0]
+  equidistant_mm: [0.0, 0.02]
+  pin_counts: [6]
+  samples: 256
+  seed: 3
+  refine_budget: 12
+  steps_per_mesh_period: 12
+";
+
+/// The front's rows of `front.csv` in `dir`: each design's spec name and its columns by name.
+fn front_rows(dir: &Scratch) -> Vec<std::collections::HashMap<String, String>> {
+    let csv = dir.read("front/front.csv");
+    let mut lines = csv.lines();
+    let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+    lines
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+/// A run's value of a scalar quantity in its scene `name`.
+fn scalar(run: &cycloid::CheckRun, name: &str, q: &cycloid::model::quantity::Quantity) -> f64 {
+    let r = run.results.iter().find(|r| r.name == name).unwrap();
+    q.scalar(r).unwrap().value
+}
+
+#[test]
+fn a_duty_cycle_front_lives_its_duty_life_by_miners_rule_and_its_efficiency_is_checks() {
+    use cycloid::model::quantity as q;
+    let dir = Scratch::new("design-duty");
+    dir.write("duty.yaml", DUTY);
+    let out = common::cycloid(&dir.path, &["design", "duty.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let rows = front_rows(&dir);
+    assert!(!rows.is_empty());
+    for row in &rows {
+        let name = &row["spec"];
+        let spec =
+            cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap()).unwrap();
+        let run = cycloid::check(&spec, &cycloid::CheckOptions::default(), &Silent).unwrap();
+        assert!(run.passed(), "{name} fails its check");
+        // The spec's duty scene runs the requirements' bins, as written.
+        let duty = spec.scenes.iter().find(|s| s.name == "duty").unwrap();
+        let bins: Vec<(f64, f64, f64)> = (duty.duty_cycle.as_ref().unwrap().iter())
+            .map(|b| (b.output_torque_nmm, b.input_speed_rpm, b.time_share))
+            .collect();
+        assert_eq!(
+            bins,
+            [
+                (15e3, 1000.0, 0.2),
+                (8e3, 2000.0, 0.4),
+                (-10e3, 1000.0, 0.2),
+                (5e3, 0.0, 0.2)
+            ]
+        );
+        // The duty life by Miner's rule over the bins' own equivalent loads (README "Duty
+        // cycle"): P = (Σ s·n·P_i^p / Σ s·n)^(1/p), L10h = (C/P)^p·10⁶ / (60·Σ s·n·(1 + 1/nc)),
+        // C 12 kN, p 10/3, nc 9; 1e-9 relative covers the round-off of the powers.
+        let r = run.results.iter().find(|r| r.name == "duty").unwrap();
+        let d = r.duty.as_ref().unwrap();
+        let p = 10.0 / 3.0;
+        let (mut wp, mut w) = (0.0, 0.0);
+        for b in &d.bins {
+            let sn = b.bin.time_share * b.bin.input_speed_rpm;
+            if sn > 0.0 {
+                wp += sn
+                    * q::BEARING_EQUIVALENT_LOAD
+                        .scalar(&b.result)
+                        .unwrap()
+                        .value
+                        .powf(p);
+                w += sn;
+            }
+        }
+        let load = (wp / w).powf(1.0 / p);
+        let miner = (12000.0 / load).powf(p) * 1e6 / (60.0 * w * (1.0 + 1.0 / 9.0));
+        let life = scalar(&run, "duty", &q::DUTY_LIFE);
+        assert!(
+            (life - miner).abs() <= 1e-9 * miner,
+            "{name}: {life} vs {miner}"
+        );
+        assert!(
+            life >= 40000.0,
+            "{name}: duty life {life} h below the 40,000 h required"
+        );
+        // The front's objectives are check's figures of the written spec: the same spec run
+        // by the same code, its bins combined in a fixed order (1e-12 relative: a summation
+        // order would be the only difference).
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+        let front_life: f64 = row["bearing_life_h"].parse().unwrap();
+        assert!(close(front_life, life), "{name}: {front_life} vs {life}");
+        let eta = scalar(&run, "duty", &q::DUTY_MEAN_EFFICIENCY);
+        let front_eta: f64 = row["efficiency"].parse().unwrap();
+        assert!(close(front_eta, eta), "{name}: {front_eta} vs {eta}");
+        // Energy-weighted over the moving bins, the cycle's efficiency lies between theirs.
+        let bin_eta: Vec<f64> = (d.bins.iter())
+            .filter(|b| b.bin.input_speed_rpm > 0.0)
+            .map(|b| q::MEAN_EFFICIENCY.scalar(&b.result).unwrap().value)
+            .collect();
+        let lo = bin_eta.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = bin_eta.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            lo <= eta && eta <= hi && eta < 1.0,
+            "{name}: {eta} not in [{lo}, {hi}]"
+        );
+    }
+}
+
+/// SMALL with friction and a speed: the efficiency objective is the rated scene's.
+#[test]
+fn the_efficiency_objective_is_the_rated_scenes_mean_efficiency() {
+    let text = SMALL
+        .replace(
+            "peak_torque_nm: 15.0\n",
+            "peak_torque_nm: 15.0\ninput_speed_rpm: 1500.0\nfriction:\n  rollers: { mode: \
+             fixed, mu: 0.05 }\n  output_pins: { mode: fixed, mu: 0.05 }\n",
+        )
+        .replace(
+            "objectives: [mass_kg, max_contact_pressure_mpa]",
+            "objectives: [mass_kg, efficiency]",
+        );
+    let dir = Scratch::new("design-efficiency");
+    dir.write("small.yaml", &text);
+    let out = common::cycloid(&dir.path, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let rows = front_rows(&dir);
+    assert!(rows.len() >= 2, "a trade of mass and efficiency: {rows:?}");
+    for row in &rows {
+        let name = &row["spec"];
+        let spec =
+            cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap()).unwrap();
+        let run = cycloid::check(&spec, &cycloid::CheckOptions::default(), &Silent).unwrap();
+        assert!(run.passed());
+        let eta = scalar(&run, "rated", &cycloid::model::quantity::MEAN_EFFICIENCY);
+        let front: f64 = row["efficiency"].parse().unwrap();
+        // The same spec by the same code (1e-12 relative: summation order only).
+        assert!(
+            (front - eta).abs() <= 1e-12 * eta,
+            "{name}: {front} vs {eta}"
+        );
+        // Sliding friction of μ 0.05 loses something and not everything.
+        assert!(eta > 0.5 && eta < 1.0, "{name}: {eta}");
+    }
+}
+
+#[test]
+fn an_efficiency_limit_no_design_reaches_exits_1_naming_it() {
+    // Fixed rollers and pins sliding at μ 0.05 lose about an eighth of the power in this box
+    // (the front of the test above: η 0.87–0.88); 0.95 is beyond every design, while the
+    // clearance, pressure and life are met by many.
+    let text = DUTY.replace(
+        "  min_duty_life_h: 40000.0\n",
+        "  min_duty_life_h: 40000.0\n  min_mean_efficiency: 0.95\n",
+    );
+    let dir = Scratch::new("design-efficiency-limit");
+    dir.write("duty.yaml", &text);
+    let out = common::cycloid(&dir.path, &["design", "duty.yaml"]);
+    assert_eq!(out.code, Some(1), "{}{}", out.stdout, out.stderr);
+    let best: f64 = out
+        .stdout
+        .split("FAIL: closest to being met: limits.min_mean_efficiency: best ")
+        .nth(1)
+        .and_then(|s| s.split(',').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{}", out.stdout));
+    assert!(best > 0.5 && best < 0.95, "{best}");
+}
+
+#[test]
+fn a_bad_duty_cycle_or_an_efficiency_without_friction_is_refused_at_its_key() {
+    let no_friction = DUTY.replace(
+        "friction:\n  model: loss\n  rollers: { mode: fixed, mu: 0.05 }\n  output_pins: { mode: \
+         fixed, mu: 0.05 }\n  crank_bearing: { mu: 0.002, bore_diameter_mm: 20.0 }\n",
+        "",
+    );
+    assert_ne!(no_friction, DUTY);
+    let cases = [
+        (
+            no_friction.clone(),
+            "duty.yaml:26:39: invalid value: objectives[2]: needs the friction of the contacts",
+        ),
+        (
+            no_friction.replace(
+                "  min_duty_life_h: 40000.0\n",
+                "  min_duty_life_h: 40000.0\n  min_mean_efficiency: 0.5\n",
+            ),
+            "duty.yaml:26:3: invalid value: limits.min_mean_efficiency: needs the friction",
+        ),
+        (
+            DUTY.replace("time_share: 0.4 }", "time_share: 0.3 }"),
+            "duty.yaml:5:1: invalid value: duty_cycle: the time shares sum to 0.9, not 1",
+        ),
+        (
+            DUTY.replace("time_share: 0.4 }", "time_share: -0.4 }"),
+            "duty.yaml:7:55: invalid value: duty_cycle[1].time_share: must be a share of the \
+             time in [0, 1], got -0.4",
+        ),
+        (
+            DUTY.replace("input_speed_rpm: 2000.0", "input_speed_rpm: -2000.0"),
+            "duty.yaml:7:30: invalid value: duty_cycle[1].input_speed_rpm: must be a finite speed",
+        ),
+        (
+            DUTY.replace(
+                "peak_torque_nm: 15.0\n",
+                "peak_torque_nm: 15.0\ninput_speed_rpm: 9.0\n",
+            ),
+            "duty.yaml:5:1: invalid value: input_speed_rpm: a duty cycle runs each bin",
+        ),
+        (
+            DUTY.replace("min_duty_life_h", "min_bearing_life_h"),
+            "duty.yaml:30:3: invalid value: limits.min_bearing_life_h: with a duty cycle",
+        ),
+    ];
+    for (text, says) in cases {
+        let dir = Scratch::new("design-bad-duty");
+        dir.write("duty.yaml", &text);
+        let out = common::cycloid(&dir.path, &["design", "duty.yaml"]);
+        assert_eq!(out.code, Some(2), "{says}: {}{}", out.stdout, out.stderr);
+        assert!(out.stderr.contains(says), "{says}: {}", out.stderr);
+        assert!(!out.stderr.contains("panicked") && !out.stderr.contains("NaN"));
+    }
+}
+
+#[test]
+fn a_tilted_face_is_judged_on_its_face_limits_in_every_running_scene() {
+    // SMALL tilted by 0.3 mrad about x and y in 10 slices: with a face load factor of at most
+    // 2.5 every front design's running scenes resolve the face and meet it in check.
+    let text = SMALL
+        .replace(
+            "peak_torque_nm: 15.0\n",
+            "peak_torque_nm: 15.0\nmisalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }\n\
+             face_slices: 10\n",
+        )
+        .replace(
+            "  max_contact_pressure_mpa: 1500.0\n",
+            "  max_contact_pressure_mpa: 2500.0\n  max_face_load_factor: 2.5\n",
+        );
+    let dir = Scratch::new("design-face");
+    dir.write("small.yaml", &text);
+    let out = common::cycloid(&dir.path, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    for row in front_rows(&dir) {
+        let name = &row["spec"];
+        let spec =
+            cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap()).unwrap();
+        let run = cycloid::check(&spec, &cycloid::CheckOptions::default(), &Silent).unwrap();
+        assert!(run.passed(), "{name}");
+        // Both running scenes are tilted and both compute the rollers' contact.
+        for scene in ["rated", "peak"] {
+            let s = spec.scenes.iter().find(|s| s.name == scene).unwrap();
+            assert_eq!(s.face.slices, 10);
+            // 1e-15 rad: 0.3 mrad written in mrad and read back × 1e-3.
+            assert!((s.face.misalignment.about_x_rad - 3e-4).abs() < 1e-15);
+            assert!((s.face.misalignment.about_y_rad - 3e-4).abs() < 1e-15);
+            // A tilted face loads its slices unevenly: the factor exceeds 1 (a uniform face's).
+            let f = scalar(&run, scene, &cycloid::model::quantity::MAX_FACE_LOAD_FACTOR);
+            assert!(f > 1.0 && f <= 2.5, "{name} {scene}: {f}");
+        }
+        // The peak torque's pressure is judged too.
+        assert!(run
+            .checks
+            .iter()
+            .any(|c| c.id == "peak/max_contact_pressure_mpa"));
+    }
+    // Without slices the face limit is refused at its key, before any design is made.
+    let flat = text.replace("face_slices: 10\n", "");
+    dir.write("flat.yaml", &flat);
+    let out = common::cycloid(&dir.path, &["design", "flat.yaml"]);
+    assert_eq!(out.code, Some(2));
+    assert!(
+        out.stderr
+            .contains("flat.yaml:5:1: invalid value: misalignment: a tilted face needs"),
+        "{}",
+        out.stderr
+    );
+    let aligned = flat.replace(
+        "misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }\n",
+        "",
+    );
+    dir.write("aligned.yaml", &aligned);
+    let out = common::cycloid(&dir.path, &["design", "aligned.yaml"]);
+    assert_eq!(out.code, Some(2));
+    assert!(
+        out.stderr.contains(
+            "aligned.yaml:20:3: invalid value: limits.max_face_load_factor: needs the load along"
+        ),
+        "{}",
+        out.stderr
     );
 }

@@ -13,6 +13,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "a requirements file for `cycloid design`, not a spec: `check` refuses its keys",
     ),
     (
+        "requirements-duty-cycle.yaml",
+        2,
+        "a requirements file for `cycloid design` (a duty cycle, friction), not a spec",
+    ),
+    (
         "reducer-measured.yaml",
         0,
         "paper optimum as built: points with a planted 4 µm form error",

@@ -2,6 +2,7 @@
 //! follow from its geometry alone (envelope, mass) and the spec that checks it.
 
 use crate::model::requirements::{Continuous, Requirements};
+use crate::model::{Friction, PinMode, RollerMode};
 use std::fmt::Write;
 
 /// A discrete choice: the disc's teeth nc (the ratio), the output pins M and the discs.
@@ -89,15 +90,71 @@ fn num(x: f64) -> String {
     format!("{x:?}")
 }
 
+/// A running scene's (rated, peak, duty) `misalignment` and `face_slices`, each when the
+/// requirements give it (the torsion scene stays aligned: its face is uniform, one slice).
+fn face_text(s: &mut String, req: &Requirements) {
+    let m = &req.misalignment;
+    if !m.is_zero() {
+        let _ = writeln!(
+            s,
+            "    misalignment: {{ about_x_mrad: {}, about_y_mrad: {} }}",
+            num(1e3 * m.about_x_rad),
+            num(1e3 * m.about_y_rad)
+        );
+    }
+    if req.face_slices > 1 {
+        let _ = writeln!(s, "    face_slices: {}", req.face_slices);
+    }
+}
+
+/// `reducer.friction` of the requirements' friction: the same keys and values.
+fn friction_text(s: &mut String, f: &Friction) {
+    let _ = writeln!(s, "  friction:");
+    let _ = writeln!(s, "    model: {}", f.model.name());
+    if let Some(r) = &f.rollers {
+        let _ = match r.mode {
+            RollerMode::Fixed => writeln!(s, "    rollers: {{ mode: fixed, mu: {} }}", num(r.mu)),
+            RollerMode::Rotating { bore_radius_mm } => writeln!(
+                s,
+                "    rollers: {{ mode: rotating, mu: {}, bore_radius_mm: {} }}",
+                num(r.mu),
+                num(bore_radius_mm)
+            ),
+        };
+    }
+    if let Some(p) = &f.output_pins {
+        let _ = match p.mode {
+            PinMode::Fixed => writeln!(s, "    output_pins: {{ mode: fixed, mu: {} }}", num(p.mu)),
+            PinMode::Sleeve { bore_radius_mm } => writeln!(
+                s,
+                "    output_pins: {{ mode: sleeve, mu: {}, bore_radius_mm: {} }}",
+                num(p.mu),
+                num(bore_radius_mm)
+            ),
+        };
+    }
+    if let Some(b) = &f.crank_bearing {
+        let _ = writeln!(
+            s,
+            "    crank_bearing: {{ mu: {}, bore_diameter_mm: {} }}",
+            num(b.mu),
+            num(b.bore_diameter_mm)
+        );
+    }
+    let _ = writeln!(s, "    no_load_torque_nmm: {}", num(f.no_load_torque_nmm));
+}
+
 /// The spec of `c` under `req`: its reducer, the scenes the requirements need and their
 /// limits; `steps` crank angles per mesh period (the screen runs a quarter of the full
 /// check's, every fourth of its angles). `header` is written first as comments.
 ///
 /// Scenes: `mesh` (unloaded, one mesh period: clearance and lost motion), `rated` (the rated
-/// torque and speed over the loaded period: forces, pressure, TE, bearing life), `peak` (the
-/// peak torque, when above the rated: forces and pressure; no bearing, whose life is the
-/// rated scene's) and `torsion` (the catalogue loop at the rated torque, when a rigidity or
-/// torsional lost motion is asked for).
+/// torque and speed over the loaded period: forces, pressure, TE, bearing life; with
+/// `friction` the efficiency), `peak` (the peak torque, when above the rated: forces and
+/// pressure; no bearing, whose life is the rated scene's), `duty` (the duty cycle's bins over
+/// the loaded period, when one is given: its life and, with friction, its efficiency by
+/// energy; every bin judged on the forces and pressure) and `torsion` (the catalogue loop at
+/// the rated torque, when a rigidity, torsional lost motion or hysteresis is asked for).
 pub fn spec_text(
     req: &Requirements,
     c: &Candidate,
@@ -151,6 +208,9 @@ pub fn spec_text(
         );
         let _ = writeln!(s, "    life_exponent: {}", num(b.life_exponent));
     }
+    if let Some(f) = &req.friction {
+        friction_text(&mut s, f);
+    }
     let _ = writeln!(s, "modification:");
     let _ = writeln!(s, "  shift_mm: {}", num(x[SHIFT]));
     let _ = writeln!(s, "  equidistant_mm: {}", num(x[EQUIDISTANT]));
@@ -177,7 +237,12 @@ pub fn spec_text(
         let _ = writeln!(s, "    input_speed_rpm: {}", num(n));
     }
     let _ = writeln!(s, "{loaded}");
-    let _ = writeln!(s, "    effects: [bearing]");
+    face_text(&mut s, req);
+    let running = match req.friction {
+        Some(_) => "    effects: [bearing, efficiency]",
+        None => "    effects: [bearing]",
+    };
+    let _ = writeln!(s, "{running}");
     if req.peak_torque_nmm > req.rated_torque_nmm {
         let _ = writeln!(s, "  - name: peak");
         let _ = writeln!(
@@ -186,7 +251,24 @@ pub fn spec_text(
             num(crate::units::nm(req.peak_torque_nmm))
         );
         let _ = writeln!(s, "{loaded}");
-        let _ = writeln!(s, "    effects: [output_pins]");
+        face_text(&mut s, req);
+        let _ = writeln!(s, "    effects: [roller_contact, output_pins]");
+    }
+    if let Some(bins) = &req.duty_cycle {
+        let _ = writeln!(s, "  - name: duty");
+        let _ = writeln!(s, "    duty_cycle:");
+        for b in bins {
+            let _ = writeln!(
+                s,
+                "      - {{ output_torque_nm: {}, input_speed_rpm: {}, time_share: {} }}",
+                num(crate::units::nm(b.output_torque_nmm)),
+                num(b.input_speed_rpm),
+                num(b.time_share)
+            );
+        }
+        let _ = writeln!(s, "{loaded}");
+        face_text(&mut s, req);
+        let _ = writeln!(s, "{running}");
     }
     if req.needs_torsion() {
         let _ = writeln!(s, "  - name: torsion");

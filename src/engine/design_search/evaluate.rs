@@ -78,7 +78,7 @@ impl Evaluation {
 /// Limits whose scene extreme over a subset of the crank angles can only be less extreme than
 /// over all of them (a minimum or maximum over angles, a range): a screen that breaks one
 /// breaks it in the full check too, so it rejects no design the full check would accept.
-const SCREEN_LIMITS: [&str; 9] = [
+const SCREEN_LIMITS: [&str; 11] = [
     "min_clearance_mm",
     "max_roller_force_n",
     "max_contact_pressure_mpa",
@@ -88,6 +88,8 @@ const SCREEN_LIMITS: [&str; 9] = [
     "max_pin_force_n",
     "max_bearing_force_n",
     "max_lost_motion_arcsec",
+    "max_face_load_factor",
+    "max_line_load_n_per_mm",
 ];
 
 /// Counts of what the stages did, for the report.
@@ -272,7 +274,14 @@ fn objectives(req: &Requirements, c: &Candidate, results: &[SceneResult]) -> Res
             ObjectiveKind::ContactPressure => worst(&quantity::MAX_CONTACT_PRESSURE, false),
             ObjectiveKind::TeFluctuation => worst(&quantity::TE_FLUCTUATION, false),
             ObjectiveKind::LostMotion => worst(&quantity::MAX_LOST_MOTION, false),
+            ObjectiveKind::BearingLife if req.duty_cycle.is_some() => {
+                worst(&quantity::DUTY_LIFE, true)
+            }
             ObjectiveKind::BearingLife => worst(&quantity::BEARING_LIFE, true),
+            ObjectiveKind::Efficiency if req.duty_cycle.is_some() => {
+                worst(&quantity::DUTY_MEAN_EFFICIENCY, true)
+            }
+            ObjectiveKind::Efficiency => worst(&quantity::MEAN_EFFICIENCY, true),
             ObjectiveKind::Rigidity => worst(&quantity::MIN_TORSIONAL_RIGIDITY, true),
         })
         .collect()

@@ -39,8 +39,8 @@ pub(super) fn section_of(
         plot.series.push(Series::new(
             format!(
                 "tilted θx {} mrad, θy {} mrad",
-                number(1e3 * m.about_x_rad),
-                number(1e3 * m.about_y_rad)
+                crate::numeric::input(1e3 * m.about_x_rad),
+                crate::numeric::input(1e3 * m.about_y_rad)
             ),
             p.z_mm.clone(),
             p.tilted_n_per_mm.clone(),

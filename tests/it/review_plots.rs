@@ -621,3 +621,35 @@ fn the_face_plot_legend_gives_the_tilt_as_the_spec_writes_it() {
         .collect();
     assert_eq!(legend, ["tilted θx 0.3 mrad, θy 0.3 mrad"]);
 }
+
+/// The face-width plot is drawn at the worst face load factor's crank angle, whose peak need
+/// not be the scene's max line load: on `reducer-misaligned.yaml` the plotted peak is well
+/// under the check's max line load. The plot says where that max is, with the same value and
+/// place the terminal's check table prints (one number, the same in every output).
+#[test]
+fn the_face_plot_names_the_scenes_max_line_load_as_the_table_does() {
+    let dir = Scratch::new("face-max");
+    let spec = format!(
+        "{}/specs/reducer-misaligned.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = run(&dir.path, &["check", &spec, "--report", "review"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let row = out
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("misaligned/max_line_load_n_per_mm"))
+        .unwrap();
+    let cells: Vec<&str> = row.split("  ").filter(|c| !c.trim().is_empty()).collect();
+    let (value, place) = (cells[1].trim(), cells[4].trim());
+    let svg = dir.read("review/face-2-misaligned.svg");
+    let text: String = elements(&svg)
+        .iter()
+        .filter(|e| e.name == "text")
+        .map(|e| e.text.clone())
+        .collect::<Vec<_>>()
+        .join(" ");
+    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let want = format!("the scene's max line load, {value}, is at {place}");
+    assert!(text.contains(&want), "{want:?} not in {text:?}");
+}

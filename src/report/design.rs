@@ -3,7 +3,7 @@
 
 use crate::engine::design_search::{candidate::*, Evaluation, Failure, SearchRun, Tally};
 use crate::model::quantity::Bound;
-use crate::model::requirements::Requirements;
+use crate::model::requirements::{ObjectiveKind, Requirements};
 use crate::numeric::number;
 use crate::report::svg::base::{document, px};
 use crate::report::svg::labels::{Bounds, Label, Layout, Obstacle};
@@ -225,6 +225,22 @@ pub fn csv(req: &Requirements, run: &SearchRun) -> String {
     s
 }
 
+/// An objective as a plot axis names it for a person: the quantity in words and its unit in
+/// parentheses ("mass (kg)", "max contact pressure (MPa)"), not the YAML key (`mass_kg`).
+pub fn axis_label(kind: ObjectiveKind) -> String {
+    let (what, unit) = match kind {
+        ObjectiveKind::OuterDiameter => ("outer diameter", "mm"),
+        ObjectiveKind::AxialLength => ("axial length", "mm"),
+        ObjectiveKind::Mass => ("mass", "kg"),
+        ObjectiveKind::ContactPressure => ("max contact pressure", "MPa"),
+        ObjectiveKind::TeFluctuation => ("TE fluctuation", "arcsec"),
+        ObjectiveKind::LostMotion => ("max unloaded lost motion", "arcsec"),
+        ObjectiveKind::BearingLife => ("crank-bearing life L10h", "h"),
+        ObjectiveKind::Rigidity => ("torsional rigidity", "N·m/arcmin"),
+    };
+    format!("{what} ({unit})")
+}
+
 /// A scatter plot of the front on objectives `i` (x) and `j` (y), each point labelled by its
 /// design number, as an SVG document: round ticks (`svg::ticks`) and labels placed clear of
 /// the points and of each other (`svg::labels::Layout`, with a leader where moved far).
@@ -273,11 +289,11 @@ pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> St
             text x=(px(left - 8.0)) y=(px(fy(t) + 4.0)) font-size="11" text-anchor="end" { (ty.label(t)) }
         }
         text x=(px((left + right) / 2.0)) y=(px(bottom + 40.0)) font-size="13" text-anchor="middle" {
-            (req.objectives[i].key())
+            (axis_label(req.objectives[i]))
         }
         text x="16" y=(px((top + bottom) / 2.0)) font-size="13" text-anchor="middle"
             transform=(format!("rotate(-90 16 {})", px((top + bottom) / 2.0))) {
-            (req.objectives[j].key())
+            (axis_label(req.objectives[j]))
         }
         @for &(x, y) in &spots {
             circle cx=(px(x)) cy=(px(y)) r="4" fill="#1f77b4" {}

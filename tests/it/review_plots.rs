@@ -575,3 +575,81 @@ fn sparse_samples_are_marks_and_their_titles_count_them() {
         assert!(marks.count() >= 4, "{file}: marks");
     }
 }
+
+/// `cycloid design`'s front plot names its axes as a reader says them, with their units
+/// ("mass (kg)"), not by the YAML keys (`mass_kg`): the small search of `design_search.rs`
+/// minimises mass and contact pressure, so the x axis is the mass in kg and the y axis the
+/// contact pressure in MPa (the units README gives these objectives), and no text of the plot
+/// is a key with underscores.
+#[test]
+fn the_front_plot_names_its_axes_in_words_with_units() {
+    let dir = Scratch::new("front-axes");
+    dir.write("small.yaml", crate::design_search::SMALL);
+    let out = run(&dir.path, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let els = elements(&dir.read("front/front-1.svg"));
+    let texts: Vec<&str> = els
+        .iter()
+        .filter(|e| e.name == "text")
+        .map(|e| e.text.as_str())
+        .collect();
+    assert!(texts.contains(&"mass (kg)"), "x axis: {texts:?}");
+    assert!(
+        texts.contains(&"max contact pressure (MPa)"),
+        "y axis: {texts:?}"
+    );
+    assert!(!texts.iter().any(|t| t.contains('_')), "a key: {texts:?}");
+}
+
+/// The face-width plot's legend gives the tilt as the spec writes it: `reducer-misaligned.yaml`
+/// tilts by 0.3 mrad about x and y, which reads "0.3 mrad", not "0.3000 mrad" (four
+/// significant figures claim a precision the input never had).
+#[test]
+fn the_face_plot_legend_gives_the_tilt_as_the_spec_writes_it() {
+    let dir = Scratch::new("face-legend");
+    let spec = format!(
+        "{}/specs/reducer-misaligned.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = run(&dir.path, &["check", &spec, "--report", "review"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let els = elements(&dir.read("review/face-2-misaligned.svg"));
+    let legend: Vec<&str> = els
+        .iter()
+        .filter(|e| e.name == "text" && e.text.starts_with("tilted"))
+        .map(|e| e.text.as_str())
+        .collect();
+    assert_eq!(legend, ["tilted θx 0.3 mrad, θy 0.3 mrad"]);
+}
+
+/// The face-width plot is drawn at the worst face load factor's crank angle, whose peak need
+/// not be the scene's max line load: on `reducer-misaligned.yaml` the plotted peak is well
+/// under the check's max line load. The plot says where that max is, with the same value and
+/// place the terminal's check table prints (one number, the same in every output).
+#[test]
+fn the_face_plot_names_the_scenes_max_line_load_as_the_table_does() {
+    let dir = Scratch::new("face-max");
+    let spec = format!(
+        "{}/specs/reducer-misaligned.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = run(&dir.path, &["check", &spec, "--report", "review"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let row = out
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("misaligned/max_line_load_n_per_mm"))
+        .unwrap();
+    let cells: Vec<&str> = row.split("  ").filter(|c| !c.trim().is_empty()).collect();
+    let (value, place) = (cells[1].trim(), cells[4].trim());
+    let svg = dir.read("review/face-2-misaligned.svg");
+    let text: String = elements(&svg)
+        .iter()
+        .filter(|e| e.name == "text")
+        .map(|e| e.text.clone())
+        .collect::<Vec<_>>()
+        .join(" ");
+    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let want = format!("the scene's max line load, {value}, is at {place}");
+    assert!(text.contains(&want), "{want:?} not in {text:?}");
+}

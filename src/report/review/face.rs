@@ -4,6 +4,8 @@
 
 use super::common::{figure, section, slug, Section};
 use crate::engine::face_profile::FaceProfile;
+use crate::model::quantity::MAX_LINE_LOAD;
+use crate::model::results::SceneResult;
 use crate::numeric::number;
 use crate::report::svg::{LinePlot, Series, PALETTE};
 use crate::spec::Spec;
@@ -14,6 +16,7 @@ use maud::html;
 pub(super) fn section_of(
     spec: &Spec,
     profiles: &[FaceProfile],
+    results: &[SceneResult],
     files: &mut Vec<(String, String)>,
 ) -> Option<Section> {
     if profiles.is_empty() {
@@ -28,9 +31,23 @@ pub(super) fn section_of(
             "z from the middle of the face (mm)",
             "line load (N/mm)",
         );
+        // The plotted angle is the worst face load factor's, which need not be the max line
+        // load's: the subtitle gives the latter (the check table's figure) so that the peak of
+        // the plot is not read as it.
+        let peak = results
+            .get(p.scene)
+            .and_then(|r| MAX_LINE_LOAD.scalar(r))
+            .map(|e| {
+                format!(
+                    "; the scene's max line load, {} N/mm, is at {}",
+                    number(e.value),
+                    e.at
+                )
+            })
+            .unwrap_or_default();
         plot.subtitle = format!(
             "roller {} at crank {}°, the scene's worst face load factor; slice means \
-             ({} slices)",
+             ({} slices){peak}",
             p.roller,
             number(units::deg(p.crank_rad)),
             p.z_mm.len()
@@ -39,8 +56,8 @@ pub(super) fn section_of(
         plot.series.push(Series::new(
             format!(
                 "tilted θx {} mrad, θy {} mrad",
-                number(1e3 * m.about_x_rad),
-                number(1e3 * m.about_y_rad)
+                crate::numeric::input(1e3 * m.about_x_rad),
+                crate::numeric::input(1e3 * m.about_y_rad)
             ),
             p.z_mm.clone(),
             p.tilted_n_per_mm.clone(),

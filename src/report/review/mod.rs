@@ -97,7 +97,12 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
     for (k, (scene, r)) in input.spec.scenes.iter().zip(input.results).enumerate() {
         sections.extend(scenes::scene_section(input.spec, k, scene, r, &mut files));
     }
-    sections.extend(face::section_of(input.spec, input.face, &mut files));
+    sections.extend(face::section_of(
+        input.spec,
+        input.face,
+        input.results,
+        &mut files,
+    ));
     let prefix = |k: usize, s: &Scene| format!("scene-{}-{}", k + 1, slug(&s.name));
     sections.extend(torsion::sections(
         input.spec,

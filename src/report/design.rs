@@ -237,8 +237,12 @@ pub fn axis_label(kind: ObjectiveKind) -> String {
         ObjectiveKind::LostMotion => ("max unloaded lost motion", "arcsec"),
         ObjectiveKind::BearingLife => ("crank-bearing life L10h", "h"),
         ObjectiveKind::Rigidity => ("torsional rigidity", "N·m/arcmin"),
+        ObjectiveKind::Efficiency => ("mean efficiency", ""),
     };
-    format!("{what} ({unit})")
+    match unit {
+        "" => what.to_string(),
+        _ => format!("{what} ({unit})"),
+    }
 }
 
 /// A scatter plot of the front on objectives `i` (x) and `j` (y), each point labelled by its

@@ -348,6 +348,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         summary: "Minimise a bowl.".into(),
         x_label: "shift ΔRp (mm)".into(),
         y_label: "equidistant ΔRrp (mm)".into(),
+        log_axes: (false, false),
         objective_label: "ratio fluctuation κmax − κmin".into(),
         map,
         map_note: "21 × 21 grid".into(),

@@ -36,7 +36,7 @@ use crate::equilibrium::solve::Settings;
 use crate::error::{Error, ErrorKind, Result};
 pub use crate::model::accuracy::{
     base_angles, check, ladder_steps, tolerance, LadderTolerances, Options, Setting, COARSEST,
-    DEFAULT_FINEST, MAX_FINEST,
+    DEFAULT_FINEST, FACE_SLICES, MAX_FINEST,
 };
 use crate::model::quantity::{self, TE};
 use crate::model::results::SceneResult;
@@ -62,17 +62,36 @@ pub enum LadderQuantity {
     MaxRollerForce,
     MaxBearingForce,
     MinClearance,
+    /// The largest face load factor (peak line load over its roller's mean F/B): only for a
+    /// resolved face (crowned or tilted).
+    MaxFaceLoadFactor,
+    /// The largest line load along the face, N/mm: only for a resolved face.
+    MaxLineLoad,
 }
 
+/// How many quantities the ladder watches (the length of its per-quantity arrays).
+pub const QUANTITIES: usize = 8;
+
 impl LadderQuantity {
-    pub const ALL: [LadderQuantity; 6] = [
+    pub const ALL: [LadderQuantity; QUANTITIES] = [
         LadderQuantity::TeCurve,
         LadderQuantity::TeFluctuation,
         LadderQuantity::RatioFluctuation,
         LadderQuantity::MaxRollerForce,
         LadderQuantity::MaxBearingForce,
         LadderQuantity::MinClearance,
+        LadderQuantity::MaxFaceLoadFactor,
+        LadderQuantity::MaxLineLoad,
     ];
+
+    /// A quantity along the face width: watched only where the scene's face is crowned or
+    /// tilted (a 2-D scene has none, and its ladder names none of them).
+    pub fn is_face(self) -> bool {
+        matches!(
+            self,
+            LadderQuantity::MaxFaceLoadFactor | LadderQuantity::MaxLineLoad
+        )
+    }
 
     /// Short column heading.
     pub fn label(self) -> &'static str {
@@ -83,6 +102,8 @@ impl LadderQuantity {
             LadderQuantity::MaxRollerForce => "max roller F",
             LadderQuantity::MaxBearingForce => "max bearing F",
             LadderQuantity::MinClearance => "min clearance",
+            LadderQuantity::MaxFaceLoadFactor => "face factor",
+            LadderQuantity::MaxLineLoad => "max line load",
         }
     }
 
@@ -95,6 +116,8 @@ impl LadderQuantity {
             LadderQuantity::MaxRollerForce => &quantity::MAX_ROLLER_FORCE,
             LadderQuantity::MaxBearingForce => &quantity::MAX_BEARING_FORCE,
             LadderQuantity::MinClearance => &quantity::MIN_CLEARANCE,
+            LadderQuantity::MaxFaceLoadFactor => &quantity::MAX_FACE_LOAD_FACTOR,
+            LadderQuantity::MaxLineLoad => &quantity::MAX_LINE_LOAD,
         }
     }
 
@@ -126,6 +149,8 @@ impl LadderQuantity {
             LadderQuantity::RatioFluctuation => t.ratio,
             LadderQuantity::MaxRollerForce | LadderQuantity::MaxBearingForce => t.force_n,
             LadderQuantity::MinClearance => t.clearance_um,
+            LadderQuantity::MaxFaceLoadFactor => t.face_load_factor,
+            LadderQuantity::MaxLineLoad => t.line_load_n_per_mm,
         }
     }
 
@@ -150,16 +175,19 @@ pub struct Outputs {
     /// Rollers carrying load at every crank angle.
     pub contacts: Option<Vec<usize>>,
     /// The scalar quantities (index: `LadderQuantity as usize`; the TE curve's is its largest |δ|).
-    pub scalars: [Option<f64>; 6],
+    pub scalars: [Option<f64>; QUANTITIES],
 }
 
 impl Outputs {
-    pub fn of(r: &SceneResult) -> Outputs {
+    /// The ladder's outputs of a run; the face quantities only when `face` (the ladder watches
+    /// them: the scene's face is crowned or tilted, `Layout::face`).
+    pub fn of(r: &SceneResult, face: bool) -> Outputs {
         let curve = |q: &quantity::Quantity| q.curves(r).and_then(|c| c.values.into_iter().next());
         let te_arcsec = curve(&TE);
-        let mut scalars = [None; 6];
+        let mut scalars = [None; QUANTITIES];
         for q in LadderQuantity::ALL {
             scalars[q.index()] = match q {
+                q if q.is_face() && !face => None,
                 LadderQuantity::TeCurve => te_arcsec
                     .as_ref()
                     .map(|v| v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))),
@@ -192,6 +220,9 @@ pub enum Variation {
     ContactLaw,
     /// A looser solver tolerance.
     SolverTolerance,
+    /// Another number of face slices (`FACE_SLICES`), at the scene's own crank angles; compared
+    /// with the finest slice count, their own reference (only for a crowned or tilted face).
+    FaceSlices,
 }
 
 /// One run of the ladder.
@@ -206,6 +237,8 @@ pub struct Rung {
     pub geometry: GeometryMode,
     pub law: ContactLaw,
     pub rel_tol: f64,
+    /// Slices the face is cut into (the scene's own but for a face-slices rung).
+    pub slices: usize,
     /// Wall-clock time of the run, s: loaded effects plus clearance.
     pub seconds: f64,
     /// The part of `seconds` spent on the clearance (unloaded) sweep; a settings rung reuses
@@ -213,11 +246,12 @@ pub struct Rung {
     pub clearance_seconds: f64,
     pub outputs: Outputs,
     /// |rung − reference| per quantity (index: `LadderQuantity as usize`); `None` when not
-    /// computed.
-    pub errors: [Option<f64>; 6],
+    /// computed. A face-slices rung's reference is the finest slice count.
+    pub errors: [Option<f64>; QUANTITIES],
     /// max |δ_ref − δ_rung| at the rung's own crank angles, arcsec (solver round-off only).
     pub te_at_nodes_arcsec: Option<f64>,
-    /// This rung is the reference.
+    /// This rung is the reference: of the ladder (the finest steps rung), or of the
+    /// face-slices rungs (the finest slice count).
     pub is_reference: bool,
     /// The rung is another model, not an approximation of the reference (its error is a model
     /// difference): never chosen as the cheapest.
@@ -267,12 +301,29 @@ impl Rung {
 /// unmeasured) and is the answer when nothing cheaper does. Earlier rows win ties. Decided by
 /// work alone, never by the measured times, so that `cycloid accuracy` and the report's ladder
 /// name the same rung for the same spec; the one choice both use.
+///
+/// The face-slices rungs have their own reference (`cheapest_slices`) and take no part.
 pub fn cheapest(rungs: &[Rung], tolerances: &LadderTolerances) -> Option<usize> {
     rungs
         .iter()
         .enumerate()
+        .filter(|(_, r)| r.variation != Variation::FaceSlices)
         .filter(|(_, r)| r.is_reference || (!r.model_difference && r.meets(tolerances)))
         .min_by(|(i, a), (j, b)| a.work().cmp(&b.work()).then(i.cmp(j)))
+        .map(|(i, _)| i)
+}
+
+/// The fewest face slices that meet every tolerance against the finest slice count: among the
+/// face-slices rungs, the one with the fewest slices that meets `tolerances` (each slice is one
+/// more evaluation of the contact law per contact and angle, so the work grows with them), the
+/// finest when none does; `None` without face-slices rungs.
+pub fn cheapest_slices(rungs: &[Rung], tolerances: &LadderTolerances) -> Option<usize> {
+    rungs
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.variation == Variation::FaceSlices)
+        .filter(|(_, r)| r.is_reference || r.meets(tolerances))
+        .min_by_key(|(_, r)| r.slices)
         .map(|(i, _)| i)
 }
 
@@ -308,6 +359,11 @@ pub struct Layout {
     /// The scene computes roller contact, so the loaded outputs exist and the settings rungs
     /// run (output pins alone give none of the ladder's quantities).
     pub loaded: bool,
+    /// The scene loads a crowned or tilted face: the face quantities are watched and the
+    /// face-slices rungs run, at the scene's own `angles_own` crank angles.
+    pub face: bool,
+    /// The scene's own crank angles (the face-slices rungs run them).
+    pub angles_own: usize,
 }
 
 impl Layout {
@@ -331,6 +387,9 @@ pub struct Ladder {
     /// Index of the cheapest rung that meets every tolerance (`cheapest`: by work, not by the
     /// measured times), model differences excluded; the reference when nothing cheaper does.
     pub cheapest: Option<usize>,
+    /// Index of the fewest face slices that meet every tolerance (`cheapest_slices`); `None`
+    /// without face-slices rungs.
+    pub cheapest_slices: Option<usize>,
     /// Settings rungs left out (each says why).
     pub skipped: Vec<Skipped>,
 }
@@ -339,7 +398,7 @@ impl Ladder {
     pub fn reference(&self) -> &Rung {
         self.rungs
             .iter()
-            .find(|r| r.is_reference)
+            .find(|r| r.is_reference && r.variation == Variation::Steps)
             .expect("a ladder has a reference")
     }
 
@@ -433,7 +492,8 @@ pub enum Skipped {
 pub enum Event<'a> {
     /// Before the first run.
     Started(&'a Layout),
-    /// A rung finished (in table order: steps rungs coarse to fine, then settings rungs).
+    /// A rung finished (in table order: steps rungs coarse to fine, then settings rungs, then
+    /// face-slices rungs coarse to fine).
     Rung(&'a Layout, &'a Rung),
 }
 
@@ -452,6 +512,7 @@ pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
     let periods = units::rad(to_deg - from_deg) / spec.design.mesh_period_rad();
     let pins = plan.has(Effect::OutputPins) || plan.has(Effect::Bearing);
     let base = base_angles(periods);
+    let face = plan.has(Effect::RollerContact) && !scene.face.is_uniform();
     let mut probe = scene.clone();
     probe.crank_rad = spec::crank_angles(from_deg, to_deg, base);
     Layout {
@@ -463,7 +524,7 @@ pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
         base_angles: base,
         quantities: LadderQuantity::ALL
             .into_iter()
-            .filter(|q| plan.has(q.effect()))
+            .filter(|q| plan.has(q.effect()) && (face || !q.is_face()))
             .collect(),
         finest: options.finest,
         tolerances: options.tolerances,
@@ -471,6 +532,8 @@ pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
         law: scene.contact_law,
         periodic: probe.spans_whole(spec.design.loaded_period_rad(pins)),
         loaded: plan.has(Effect::RollerContact),
+        face,
+        angles_own: scene.crank_rad.len(),
     }
 }
 
@@ -481,8 +544,8 @@ pub(crate) fn errors(
     rung: &Outputs,
     ratio: usize,
     periodic: bool,
-) -> ([Option<f64>; 6], Option<f64>) {
-    let mut e = [None; 6];
+) -> ([Option<f64>; QUANTITIES], Option<f64>) {
+    let mut e = [None; QUANTITIES];
     let mut at_nodes = None;
     if let (Some(f), Some(c)) = (&reference.te_arcsec, &rung.te_arcsec) {
         let (curve, nodes) = curve_error(f, c, ratio, periodic);
@@ -524,6 +587,7 @@ pub fn curve_error(fine: &[f64], coarse: &[f64], ratio: usize, periodic: bool) -
 }
 
 /// A rung's run: its outputs and the measured times of its loaded effects and its clearance.
+#[derive(Clone)]
 struct Run {
     outputs: Outputs,
     loaded_seconds: f64,
@@ -602,24 +666,14 @@ pub fn run(
     let clearance_plan = part(&plan, |e| e == Effect::Clearance);
     let loaded_plan = part(&plan, |e| e != Effect::Clearance);
     let default_tol = Settings::default().rel_tol;
-    let run_once = |steps_per_period: usize,
-                    geometry: GeometryMode,
-                    law: ContactLaw,
-                    rel_tol: f64,
-                    clearance: bool|
-     -> Result<Run> {
-        let mut s = scene.clone();
-        s.crank_rad = spec::crank_angles(
-            layout.from_deg,
-            layout.to_deg,
-            layout.angles(steps_per_period),
-        );
-        s.geometry = geometry;
-        s.contact_law = law;
+    // One run of `s` at `rel_tol`, its loaded effects and (with `clearance`) its clearance
+    // timed apart.
+    let run_scene = |s: &Scene, rel_tol: f64, clearance: bool| -> Result<Run> {
         let settings = Settings {
             rel_tol,
             ..Settings::default()
         };
+        let s = s.clone();
         let (mut result, loaded_seconds) = if loaded_plan.effects.is_empty() {
             (
                 scene::run(spec, &s, &loaded_plan, &run_options(&settings))?,
@@ -635,10 +689,26 @@ pub fn run(
             clearance_seconds = seconds;
         }
         Ok(Run {
-            outputs: Outputs::of(&result),
+            outputs: Outputs::of(&result, layout.face),
             loaded_seconds,
             clearance_seconds,
         })
+    };
+    let run_once = |steps_per_period: usize,
+                    geometry: GeometryMode,
+                    law: ContactLaw,
+                    rel_tol: f64,
+                    clearance: bool|
+     -> Result<Run> {
+        let mut s = scene.clone();
+        s.crank_rad = spec::crank_angles(
+            layout.from_deg,
+            layout.to_deg,
+            layout.angles(steps_per_period),
+        );
+        s.geometry = geometry;
+        s.contact_law = law;
+        run_scene(&s, rel_tol, clearance)
     };
     let (geometry, law) = (scene.geometry, scene.contact_law);
     // Warm-up, untimed: the first run of a process starts the thread pool and touches fresh
@@ -663,6 +733,7 @@ pub fn run(
             geometry,
             law,
             rel_tol,
+            slices: scene.face.slices,
             seconds: run.loaded_seconds + run.clearance_seconds,
             clearance_seconds: run.clearance_seconds,
             outputs: run.outputs,
@@ -766,12 +837,60 @@ pub fn run(
     } else {
         skipped.push(Skipped::SettingsRungs);
     }
+    if layout.face {
+        // The face-slices rungs: the scene as it is (its crank angles, geometry, law), cut into
+        // each of `FACE_SLICES`, compared with the finest (run first, shown last). Every angle
+        // is the same in every rung (`ratio` 1): the TE curve's error needs no interpolation.
+        let run_slices = |n: usize| -> Result<Run> {
+            let mut s = scene.clone();
+            s.face.slices = n;
+            run_scene(&s, default_tol, true)
+        };
+        let finest_slices = FACE_SLICES[FACE_SLICES.len() - 1];
+        let slices_reference = run_slices(finest_slices)?;
+        let slice_rung = |n: usize, run: Run| {
+            let (errors, te_at_nodes_arcsec) =
+                errors(&slices_reference.outputs, &run.outputs, 1, layout.periodic);
+            let angles = run.outputs.crank_rad.len();
+            Rung {
+                label: if n == finest_slices {
+                    format!("face slices {n} (reference)")
+                } else {
+                    format!("face slices {n}")
+                },
+                variation: Variation::FaceSlices,
+                steps_per_period: layout.steps_per_period(angles),
+                angles,
+                geometry,
+                law,
+                rel_tol: default_tol,
+                slices: n,
+                seconds: run.loaded_seconds + run.clearance_seconds,
+                clearance_seconds: run.clearance_seconds,
+                outputs: run.outputs,
+                errors,
+                te_at_nodes_arcsec,
+                is_reference: n == finest_slices,
+                model_difference: false,
+            }
+        };
+        for &n in &FACE_SLICES[..FACE_SLICES.len() - 1] {
+            let rung = slice_rung(n, run_slices(n)?);
+            progress(Event::Rung(&layout, &rung));
+            rungs.push(rung);
+        }
+        let top = slice_rung(finest_slices, slices_reference.clone());
+        progress(Event::Rung(&layout, &top));
+        rungs.push(top);
+    }
+    let cheapest_slices = cheapest_slices(&rungs, &options.tolerances);
     let cheapest = cheapest(&rungs, &options.tolerances);
     Ok(Ladder {
         layout,
         rungs,
         settings_steps,
         cheapest,
+        cheapest_slices,
         skipped,
     })
 }

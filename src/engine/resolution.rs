@@ -99,12 +99,10 @@ pub fn run(spec: &Spec, scene_index: usize, options: &accuracy::Options) -> Resu
     let outputs = |steps: usize| -> Result<Outputs> {
         let mut s = scene.clone();
         s.crank_rad = spec::crank_angles(layout.from_deg, layout.to_deg, layout.angles(steps));
-        Ok(Outputs::of(&scene::run(
-            spec,
-            &s,
-            &Plan::for_scene(&s),
-            &Default::default(),
-        )?))
+        Ok(Outputs::of(
+            &scene::run(spec, &s, &Plan::for_scene(&s), &Default::default())?,
+            layout.face,
+        ))
     };
     let reference = outputs(options.finest)?;
     let mut resolution = Resolution {

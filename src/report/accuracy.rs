@@ -7,6 +7,7 @@
 
 use crate::engine::accuracy::{
     tol_text, Ladder, LadderQuantity, LadderTolerances, Layout, Rung, Skipped, Variation,
+    FACE_SLICES,
 };
 use crate::engine::resolution::Resolution;
 use crate::equilibrium::solve::Settings;
@@ -163,9 +164,20 @@ pub fn header(l: &Layout) -> String {
         "errors are |rung − reference| in each quantity's unit; tolerances: {}\n",
         tolerances.join(", ")
     );
+    if l.face {
+        s += &format!(
+            "face-slices rungs: the scene's own {} crank angles with the face cut into {} \
+             slices; their reference is {} slices\n",
+            l.angles_own,
+            FACE_SLICES.map(|n| n.to_string()).join(", "),
+            FACE_SLICES[FACE_SLICES.len() - 1]
+        );
+    }
+    // The face quantities exist only for a crowned or tilted face: a 2-D scene's ladder does
+    // not name them.
     let missing: Vec<String> = LadderQuantity::ALL
         .into_iter()
-        .filter(|q| !l.quantities.contains(q))
+        .filter(|q| !q.is_face() && !l.quantities.contains(q))
         .map(description)
         .collect();
     if !missing.is_empty() {
@@ -225,7 +237,12 @@ pub fn footer(ladder: &Ladder) -> String {
     let l = &ladder.layout;
     let reference = ladder.reference();
     let mut s = String::new();
-    if ladder.layout.loaded && ladder.rungs.iter().any(|r| r.variation != Variation::Steps) {
+    if ladder.layout.loaded
+        && ladder
+            .rungs
+            .iter()
+            .any(|r| !matches!(r.variation, Variation::Steps | Variation::FaceSlices))
+    {
         s += &format!(
             "settings rungs at {} steps per mesh period{}\n",
             ladder.settings_steps,
@@ -256,6 +273,29 @@ pub fn footer(ladder: &Ladder) -> String {
             );
         }
         None => s += "no rung meets every tolerance\n",
+    }
+    if let Some(i) = ladder.cheapest_slices {
+        let r = &ladder.rungs[i];
+        if r.is_reference {
+            s += &format!(
+                "fewest face slices meeting every tolerance: only the reference, {} slices, \
+                 whose own error is not measured (no finer count)\n",
+                r.slices
+            );
+        } else {
+            let finest = ladder
+                .rungs
+                .iter()
+                .find(|f| f.variation == Variation::FaceSlices && f.is_reference)
+                .map_or(0.0, |f| f.seconds);
+            s += &format!(
+                "fewest face slices meeting every tolerance: `{}`: {} against {} for the \
+                 reference (times for information)\n",
+                r.label,
+                seconds_text(r.seconds),
+                seconds_text(finest)
+            );
+        }
     }
     let orders: Vec<String> = l
         .quantities
@@ -319,7 +359,11 @@ pub fn footer(ladder: &Ladder) -> String {
 pub fn render(ladder: &Ladder) -> String {
     let mut s = header(&ladder.layout);
     for (i, r) in ladder.rungs.iter().enumerate() {
-        s += &row(&ladder.layout, r, ladder.cheapest == Some(i));
+        s += &row(
+            &ladder.layout,
+            r,
+            ladder.cheapest == Some(i) || ladder.cheapest_slices == Some(i),
+        );
     }
     s + &footer(ladder)
 }

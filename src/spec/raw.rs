@@ -620,13 +620,16 @@ pub(crate) struct RawAccuracy {
 #[derive(Debug, Deserialize, Default)]
 #[serde(
     deny_unknown_fields,
-    expecting = "a mapping with the keys te_arcsec, force_n, ratio, clearance_um"
+    expecting = "a mapping with the keys te_arcsec, force_n, ratio, clearance_um, \
+                 face_load_factor, line_load_n_per_mm"
 )]
 pub(crate) struct RawAccuracyTolerance {
     pub te_arcsec: Option<f64>,
     pub force_n: Option<f64>,
     pub ratio: Option<f64>,
     pub clearance_um: Option<f64>,
+    pub face_load_factor: Option<f64>,
+    pub line_load_n_per_mm: Option<f64>,
 }
 
 fn one_disc() -> i64 {

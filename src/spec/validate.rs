@@ -773,6 +773,16 @@ fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Resu
             force_n: tol("force_n", t.force_n, defaults.force_n)?,
             ratio: tol("ratio", t.ratio, defaults.ratio)?,
             clearance_um: tol("clearance_um", t.clearance_um, defaults.clearance_um)?,
+            face_load_factor: tol(
+                "face_load_factor",
+                t.face_load_factor,
+                defaults.face_load_factor,
+            )?,
+            line_load_n_per_mm: tol(
+                "line_load_n_per_mm",
+                t.line_load_n_per_mm,
+                defaults.line_load_n_per_mm,
+            )?,
         },
     };
     acc::check(design, &scenes[scene], &options).map_err(|(which, m)| {

@@ -656,3 +656,133 @@ fn accuracy_resolved_is_a_located_flag() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("needs an `accuracy:` section"), "{err}");
 }
+
+/// The face-slices rungs of a crowned, tilted face: specs/reducer-misaligned.yaml's
+/// `misaligned` scene (circular crown Rc = 1000 mm flat over |z| ≤ 2 mm of B = 8 mm, tilted
+/// 0.3 mrad about x and y, 10 N·m, 1080 crank angles over 108°, the paper's linear law).
+///
+/// What is asserted, and why it must hold:
+/// - The closed form of the linear law integrates the approach over the whole face, whatever
+///   the slices: the slices only split the reported line load. So the solve, and with it every
+///   2-D quantity (TE, ratio, forces), is the same at every slice count.
+/// - Line loads are slice means. Every count divides 80, so each coarse slice is a union of
+///   reference slices and its mean is the average of theirs: max line load and face load
+///   factor (same F_i/B per roller and angle) never exceed the reference's, and for nested
+///   counts n | m, M(n) ≤ M(m): the error M(80) − M(n) never grows from 2 or 5 to 10, 20, 40.
+/// - The envelope is 1/n²: the approach a(z) = d + t·z − c·(|z| − z0)₊² is concave with
+///   a(z) ≥ a* − c·(z − z*)² about its peak z* (the tangent of the parabola at z0 lies above
+///   it on the flat side), and the peak is inside the face (z* = z0 + |t|/(2c) ≤ 2 + 0.42 mm <
+///   B/2, |t| ≤ |θ| = 0.42 mrad). The mean of (z − z*)² over the slice holding z* is at most
+///   h²/3 (h = B/n), so the reference's and every rung's peak slice mean lie within
+///   (π/4)·E*·c·h²/3 below the peak line load: M(80) − M(n) ≤ (π/4)·E*·c·(B/n)²/3. Where a
+///   contact's peak sits at the face's end instead (a straight tilted face) the slice mean
+///   misses it by |q′|·h/2, a 1/n law; not this scene.
+#[test]
+fn face_slices_rungs_converge_within_the_slice_mean_bound() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/specs/reducer-misaligned.yaml");
+    let s = spec::load(path).unwrap_or_else(|e| panic!("spec loads: {e}"));
+    let scene = s
+        .scenes
+        .iter()
+        .position(|s| s.name == "misaligned")
+        .unwrap();
+    let options = Options {
+        finest: 24,
+        settings_steps: Some(24),
+        tolerances: LadderTolerances::default(),
+    };
+    let l = accuracy::run(&s, scene, &options, &mut |_| {}).unwrap();
+    println!("{}", cycloid::report::accuracy::render(&l));
+    assert!(l.layout.face);
+    let rungs: Vec<_> = l
+        .rungs
+        .iter()
+        .filter(|r| r.variation == Variation::FaceSlices)
+        .collect();
+    let counts: Vec<usize> = rungs.iter().map(|r| r.slices).collect();
+    assert_eq!(counts, accuracy::FACE_SLICES);
+    let reference = rungs.last().unwrap();
+    assert!(reference.is_reference);
+    assert_eq!(reference.angles, s.scenes[scene].crank_rad.len());
+
+    // E* of steel on steel: 1/E* = 2·(1 − ν²)/E; c = 1/(2·Rc).
+    let e_star = 206_000.0 / (2.0 * (1.0 - 0.3 * 0.3));
+    let (width, curvature) = (8.0, 0.5 / 1000.0);
+    let value = |r: &accuracy::Rung, q| r.outputs.value(q).unwrap();
+    let line = LadderQuantity::MaxLineLoad;
+    let factor = LadderQuantity::MaxFaceLoadFactor;
+    let m80 = value(reference, line);
+    let f80 = value(reference, factor);
+    let mut error = Vec::new();
+    for r in &rungs {
+        // The same solve: the 2-D quantities agree to round-off (1e-9 of a force of ~440 N
+        // or a TE of ~760 arcsec would be far above it; they are in fact equal).
+        for q in [
+            LadderQuantity::TeCurve,
+            LadderQuantity::TeFluctuation,
+            LadderQuantity::RatioFluctuation,
+            LadderQuantity::MaxRollerForce,
+            LadderQuantity::MaxBearingForce,
+        ] {
+            if !r.is_reference {
+                assert!(r.error(q).unwrap() <= 1e-9, "{} {:?}", r.label, q);
+            }
+        }
+        // Nested means: never above the reference (1e-12 relative: the sums' round-off).
+        let (m, f) = (value(r, line), value(r, factor));
+        assert!(m <= m80 * (1.0 + 1e-12), "{}: {m} > {m80}", r.label);
+        assert!(f <= f80 * (1.0 + 1e-12), "{}: {f} > {f80}", r.label);
+        let h = width / r.slices as f64;
+        let bound = 0.25 * std::f64::consts::PI * e_star * curvature * h * h / 3.0;
+        assert!(
+            m80 - m <= bound,
+            "{}: max line load {m} is {} N/mm below the reference, over the bound {bound}",
+            r.label,
+            m80 - m
+        );
+        error.push((r.slices, m80 - m, f80 - f));
+    }
+    // Nested counts: 2 | 10, 5 | 10, 10 | 20 | 40.
+    let e = |n: usize| *error.iter().find(|x| x.0 == n).unwrap();
+    for (coarse, fine) in [(2, 10), (5, 10), (10, 20), (20, 40)] {
+        assert!(e(fine).1 <= e(coarse).1, "line load {coarse} → {fine}");
+        assert!(e(fine).2 <= e(coarse).2, "face factor {coarse} → {fine}");
+    }
+    // The fewest slices within the tolerances is a face-slices rung, and it meets them.
+    let i = l.cheapest_slices.unwrap();
+    assert_eq!(l.rungs[i].variation, Variation::FaceSlices);
+    assert!(l.rungs[i].is_reference || l.rungs[i].meets(&l.layout.tolerances));
+    // The face-slices rungs have their own reference: the ladder's cheapest is none of them.
+    assert_ne!(
+        l.rungs[l.cheapest.unwrap()].variation,
+        Variation::FaceSlices
+    );
+}
+
+/// A 2-D scene (no crown, no tilt) has no face-slices rungs and no face columns; a crowned
+/// aligned scene (the same spec's `designed`) has both.
+#[test]
+fn face_slices_rungs_only_for_a_crowned_or_tilted_face() {
+    let flat = spec_with(0.125, 0.1593, &rated(10.0));
+    let l = ladder(&flat, 24, Some(24));
+    assert!(!l.layout.face);
+    assert!(l.rungs.iter().all(|r| r.variation != Variation::FaceSlices));
+    assert!(l.layout.quantities.iter().all(|q| !q.is_face()));
+    assert_eq!(l.cheapest_slices, None);
+    let text = cycloid::report::accuracy::render(&l);
+    assert!(!text.contains("face"), "{text}");
+
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/specs/reducer-misaligned.yaml");
+    let s = spec::load(path).unwrap();
+    let l = ladder(&s, 24, Some(24));
+    assert_eq!(l.layout.scene, "designed");
+    assert!(l.layout.face);
+    assert!(l.layout.quantities.contains(&LadderQuantity::MaxLineLoad));
+    assert_eq!(
+        l.rungs
+            .iter()
+            .filter(|r| r.variation == Variation::FaceSlices)
+            .count(),
+        accuracy::FACE_SLICES.len()
+    );
+}

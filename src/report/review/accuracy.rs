@@ -13,10 +13,13 @@ pub(super) fn accuracy_section(ladder: &Ladder) -> Section {
     let l = &ladder.layout;
     let missing: Vec<String> = acc::LadderQuantity::ALL
         .into_iter()
-        .filter(|q| !l.quantities.contains(q))
+        .filter(|q| !q.is_face() && !l.quantities.contains(q))
         .map(description)
         .collect();
-    let settings_rungs = ladder.rungs.iter().any(|r| r.variation != Variation::Steps);
+    let settings_rungs = ladder
+        .rungs
+        .iter()
+        .any(|r| !matches!(r.variation, Variation::Steps | Variation::FaceSlices));
     let other_law = ladder
         .rungs
         .iter()
@@ -70,6 +73,11 @@ pub(super) fn accuracy_section(ladder: &Ladder) -> Section {
                     are information, not the choice." },
                 None => "No rung meets every tolerance.",
             }
+            @if let Some(i) = ladder.cheapest_slices {
+                " The face-slices rungs run the scene's own " (l.angles_own) " crank angles with \
+                the face cut into more and more slices and compare with the finest. Fewest \
+                slices meeting every tolerance: " b { (ladder.rungs[i].label) } "."
+            }
         }
         (data_table(
             html! {
@@ -83,7 +91,7 @@ pub(super) fn accuracy_section(ladder: &Ladder) -> Section {
             },
             html! {
                 @for (i, r) in ladder.rungs.iter().enumerate() {
-                    @let cheapest = ladder.cheapest == Some(i);
+                    @let cheapest = ladder.cheapest == Some(i) || ladder.cheapest_slices == Some(i);
                     @let (class, verdict) = text::verdict(r, &l.tolerances);
                     tr class=(if cheapest { "pass cheapest" } else { class }) {
                         td { (r.label) }

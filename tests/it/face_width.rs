@@ -848,3 +848,43 @@ fn a_bad_tilt_as_built_is_refused_where_it_is_written() {
     let clearance = spec("", "", 12).replace("effects: [bearing]", "effects: [clearance]");
     parse(&built_with_tilt(&clearance, "{ about_x_mrad: 0.3 }"));
 }
+
+/// The review's face-width figure of a scene tilted only as built (`reducer.deviations`) is
+/// that of the scene tilted by the same θ in its own `misalignment`: the same roller, angle and
+/// tilted curve, and "designed" without either tilt, so the same untilted curve bit for bit
+/// (the same numbers enter the same solve).
+#[test]
+fn the_review_draws_a_tilt_as_built_against_the_untilted_design() {
+    use cycloid::engine::face_profile::face_profiles;
+    use cycloid::engine::scene::{self, RunOptions};
+    let tilt = "{ about_x_mrad: 0.3, about_y_mrad: -0.2 }";
+    let slices = "    face_slices: 10\n";
+    let profiles = |text: &str| {
+        let spec = parse(text);
+        let s = &spec.scenes[0];
+        let plan = scene::plan(&spec, s, Default::default());
+        let result = scene::run(&spec, s, &plan, &RunOptions::for_spec(&spec)).unwrap();
+        face_profiles(&spec, &[result]).unwrap()
+    };
+    let in_scene = profiles(&spec(
+        "",
+        &format!("    misalignment: {tilt}\n{slices}"),
+        12,
+    ));
+    let as_built = profiles(&built_with_tilt(&spec("", slices, 12), tilt));
+    assert_eq!(
+        in_scene.len(),
+        1,
+        "the scene tilted in its misalignment is drawn"
+    );
+    assert_eq!(
+        as_built, in_scene,
+        "the tilt as built is drawn as the scene's"
+    );
+    let p = &as_built[0];
+    assert!(
+        p.designed_n_per_mm.is_some(),
+        "the untilted solve converges"
+    );
+    assert_ne!(p.designed_n_per_mm.as_ref(), Some(&p.tilted_n_per_mm));
+}

@@ -127,7 +127,7 @@ pub fn evaluate(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Check>> {
         let scene = spec.scenes.iter().find(|s| s.name == r.name);
         let plan = scene.map(Plan::for_scene);
         // The quantities along the face width are those of a scene that resolves the face.
-        let face = scene.is_some_and(|s| s.face.is_resolved());
+        let face = scene.is_some_and(|s| spec.design.deviations.face(&s.face).is_resolved());
         for l in &spec.limits.entries {
             let q = l.def.quantity;
             if plan.as_ref().is_some_and(|p| !p.computes_quantity(q)) {

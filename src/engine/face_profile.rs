@@ -1,7 +1,8 @@
 //! What the design review draws of the load along the face width (MODEL.md "Along the face
-//! width"): for each scene whose disc is tilted, the line load of the most loaded roller at the
+//! width"): for each scene whose disc is tilted (by the scene's `misalignment`, by
+//! `reducer.deviations.misalignment`, or both, added), the line load of the most loaded roller at the
 //! scene's worst crank angle (its largest face load factor), tilted as the scene runs it and as
-//! designed (the same scene and angle without the tilt, solved by the same model).
+//! designed (the same scene and angle without either tilt, solved by the same model).
 //! mm, N/mm, rad.
 
 use super::scene;
@@ -11,7 +12,7 @@ use crate::equilibrium::solve::Settings;
 use crate::error::Result;
 use crate::model::face::Misalignment;
 use crate::model::results::SceneResult;
-use crate::model::{Plan, Scene};
+use crate::model::{Design, Plan, Scene};
 use crate::spec::Spec;
 
 /// One roller's line load along the face at one crank angle, tilted and as designed.
@@ -35,7 +36,8 @@ pub struct FaceProfile {
 pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FaceProfile>> {
     let mut out = Vec::new();
     for (index, (s, r)) in spec.scenes.iter().zip(results).enumerate() {
-        if s.face.misalignment.is_zero() || !r.discs.is_empty() {
+        // The tilt as run: the scene's plus the one as built (`reducer.deviations`).
+        if spec.design.deviations.face(&s.face).misalignment.is_zero() || !r.discs.is_empty() {
             continue;
         }
         let Some(face) = r.loaded.rollers.as_ref().and_then(|c| c.face.as_ref()) else {
@@ -57,6 +59,9 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
             continue;
         };
         let crank_rad = s.crank_rad[k];
+        // Designed: neither the scene's tilt nor the one as built.
+        let mut untilted = spec.design.clone();
+        untilted.deviations.misalignment = Misalignment::default();
         let designed = Scene {
             face: crate::model::Face {
                 misalignment: Misalignment::default(),
@@ -75,17 +80,23 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
                 })
                 .collect(),
             tilted_n_per_mm: face.at(roller, k).to_vec(),
-            designed_n_per_mm: line_loads_at(spec, &designed, crank_rad, roller),
+            designed_n_per_mm: line_loads_at(spec, &untilted, &designed, crank_rad, roller),
         });
     }
     Ok(out)
 }
 
 /// Roller `roller`'s line loads in `scene` at `crank_rad`, solved as the scene's sweep is.
-fn line_loads_at(spec: &Spec, scene: &Scene, crank_rad: f64, roller: usize) -> Option<Vec<f64>> {
+fn line_loads_at(
+    spec: &Spec,
+    design: &Design,
+    scene: &Scene,
+    crank_rad: f64,
+    roller: usize,
+) -> Option<Vec<f64>> {
     let plan = Plan::for_scene(scene);
     let model = scene::loaded_model(
-        &spec.design,
+        design,
         &spec.modification,
         scene,
         &plan,

@@ -38,11 +38,13 @@ impl Model {
             plan.has(Effect::OutputPins),
             plan.has(Effect::Bearing),
         );
+        // The scene's face with the tilt as built (`reducer.deviations.misalignment`) added.
+        let face = design.deviations.face(&scene.face);
         Model {
             rollers: rollers.then(|| {
-                Rollers::new(design, m, scene.contact_law, scene.geometry).with_face(&scene.face)
+                Rollers::new(design, m, scene.contact_law, scene.geometry).with_face(&face)
             }),
-            pins: pins.then(|| Pins::new(design, scene.contact_law).with_face(&scene.face)),
+            pins: pins.then(|| Pins::new(design, scene.contact_law).with_face(&face)),
             bearing,
             bearing_stiffness_n_per_mm: scene.bearing_stiffness_n_per_mm.filter(|_| bearing),
             torque_nmm: scene.output_torque_nmm,

@@ -2,6 +2,7 @@
 //! state, given (`reducer.deviations`) or drawn from the tolerances (`cycloid tolerance`).
 //! Engine units (mm); every field zero is the nominal reducer.
 
+use super::face::{Face, Misalignment};
 use super::modification::Modification;
 
 /// Offset of a part's centre from its nominal place on its circle, mm: `radial_mm` outward,
@@ -105,6 +106,10 @@ pub struct Deviations {
     /// The disc's form error (every disc alike; empty: none), orders ≥ 2 and not multiples of
     /// the tooth count (those are the modification itself).
     pub form: Vec<FormTerm>,
+    /// The disc's tilt against the housing as built (spec: `reducer.deviations.misalignment`,
+    /// mrad), added to every scene's own tilt (`Deviations::face`). Not a part off its place:
+    /// `is_nominal` does not look at it (a scene's tilt is allowed wherever this is).
+    pub misalignment: Misalignment,
 }
 
 impl Deviations {
@@ -116,6 +121,20 @@ impl Deviations {
             && !self.moves_rollers()
             && !self.moves_pins()
             && self.form.is_empty()
+    }
+
+    /// The face a scene's contacts see on this reducer as built: the scene's face `scene`
+    /// with its tilt plus this tilt, θ = θ_scene + θ_dev for each axis, rad (MODEL.md "Along
+    /// the face width": the section at z moves by u(z) = z·(θy, −θx), linear in θ, so two
+    /// small tilts add). With no deviation tilt the scene's face itself, bit for bit.
+    pub fn face(&self, scene: &Face) -> Face {
+        if self.misalignment.is_zero() {
+            return *scene;
+        }
+        Face {
+            misalignment: scene.misalignment.plus(&self.misalignment),
+            ..*scene
+        }
     }
 
     /// The form error w(t), mm (positive: material missing).

@@ -64,6 +64,16 @@ impl Misalignment {
         self.about_x_rad == 0.0 && self.about_y_rad == 0.0
     }
 
+    /// This tilt followed by `other`: θx and θy add, rad. Exact to first order in θ (small
+    /// rotations commute and add; the neglected term is of order θ², 1e-6 at 1 mrad), the
+    /// order to which the model's u(z) = z·(θy, −θx) holds at all.
+    pub fn plus(&self, other: &Misalignment) -> Misalignment {
+        Misalignment {
+            about_x_rad: self.about_x_rad + other.about_x_rad,
+            about_y_rad: self.about_y_rad + other.about_y_rad,
+        }
+    }
+
     /// The in-plane displacement of the section at z per unit z, (θy, −θx), rad.
     pub fn slope(&self) -> (f64, f64) {
         (self.about_y_rad, -self.about_x_rad)

@@ -13,7 +13,9 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
     for g in &spec.golden {
         let q = g.quantity;
         let scene = spec.scenes.iter().find(|s| s.name == g.scene);
-        if scene.is_some_and(|s| NEEDS_FACE.contains(&q) && !s.face.is_resolved()) {
+        if scene.is_some_and(|s| {
+            NEEDS_FACE.contains(&q) && !spec.design.deviations.face(&s.face).is_resolved()
+        }) {
             return Err(Error::new(
                 ErrorKind::InvalidValue,
                 format!(
@@ -41,7 +43,8 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
         let effect = d.quantity.effect;
         let face = NEEDS_FACE.contains(&d.quantity);
         let covered = spec.scenes.iter().any(|s| {
-            Plan::for_scene(s).computes_quantity(d.quantity) && (!face || s.face.is_resolved())
+            Plan::for_scene(s).computes_quantity(d.quantity)
+                && (!face || spec.design.deviations.face(&s.face).is_resolved())
         });
         if face && !covered {
             return Err(Error::new(

@@ -5,7 +5,8 @@
 use super::raw::{RawCentreDeviation, RawDeviations};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::{
-    CentreDeviation, Design, Deviations, FormTerm, Modification, RollerDeviation, MAX_FORM_ORDER,
+    CentreDeviation, Design, Deviations, FormTerm, Misalignment, Modification, RollerDeviation,
+    MAX_FORM_ORDER,
 };
 use crate::numeric;
 use std::f64::consts::TAU;
@@ -50,6 +51,16 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
         eccentricity_mm: finite(format!("{KEY}.eccentricity_mm"), raw.eccentricity_mm)?,
         shift_mm: finite(format!("{KEY}.shift_mm"), raw.shift_mm)?,
         equidistant_mm: finite(format!("{KEY}.equidistant_mm"), raw.equidistant_mm)?,
+        misalignment: match raw.misalignment {
+            // mrad → rad, as a scene's (`spec::face::scene_face`).
+            Some(m) => Misalignment {
+                about_x_rad: 1e-3
+                    * finite(format!("{KEY}.misalignment.about_x_mrad"), m.about_x_mrad)?,
+                about_y_rad: 1e-3
+                    * finite(format!("{KEY}.misalignment.about_y_mrad"), m.about_y_mrad)?,
+            },
+            None => Misalignment::default(),
+        },
         ..Deviations::default()
     };
     let mut seen = vec![false; design.rollers];

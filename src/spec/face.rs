@@ -149,7 +149,8 @@ pub(crate) fn scene_face(
 /// Give every scene the design's crowning and hold the rule of slices: a scene that loads the
 /// contacts of a crowned or tilted face must cut it into 2 slices or more (the line load is
 /// reported at the slices' centres; one slice would report none of its variation), refused at
-/// its `face_slices` (or its `misalignment`, or the crowning, whichever it wrote); and its
+/// its `face_slices` (or its `misalignment`, or the crowning, whichever it wrote; or at
+/// `reducer.deviations.misalignment` when that tilt alone makes the face uneven); and its
 /// line loads, rollers × crank angles × slices, must fit in memory.
 pub(crate) fn apply(
     crowning: Crowning,
@@ -159,9 +160,27 @@ pub(crate) fn apply(
 ) -> Result<()> {
     for (i, (scene, &(tilt_given, slices_given))) in scenes.iter_mut().zip(written).enumerate() {
         scene.face.crowning = crowning;
-        let face = scene.face;
+        // The face as run: with the tilt as built (`reducer.deviations.misalignment`).
+        let face = design.deviations.face(&scene.face);
         let loads = scene.effects.iter().any(|e| *e != Effect::Clearance);
         if loads && !face.is_uniform() && face.slices < 2 {
+            let tilt = design.deviations.misalignment;
+            if scene.face.is_uniform() {
+                // Only the tilt as built makes this face uneven: refused at that tilt.
+                return Err(Error::invalid(
+                    "reducer.deviations.misalignment",
+                    format!(
+                        "tilts every scene's face by θx {} mrad, θy {} mrad, and scene `{}` \
+                         (scenes[{i}]) loads its contacts with face_slices {}: a scene that \
+                         loads a tilted face needs `face_slices: 2` or more (20 is a good \
+                         start), the slices the line load is reported at",
+                        numeric::number(1e3 * tilt.about_x_rad),
+                        numeric::number(1e3 * tilt.about_y_rad),
+                        scene.name,
+                        face.slices
+                    ),
+                ));
+            }
             let at = if slices_given {
                 format!("scenes[{i}].face_slices")
             } else if tilt_given && !face.misalignment.is_zero() {

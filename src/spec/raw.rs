@@ -328,7 +328,7 @@ pub(crate) struct RawThermal {
 #[derive(Debug, Deserialize, Default, Clone)]
 #[serde(
     deny_unknown_fields,
-    expecting = "a mapping of the deviation keys (eccentricity_mm, rollers, pins, holes, shift_mm, equidistant_mm)"
+    expecting = "a mapping of the deviation keys (eccentricity_mm, rollers, pins, holes, shift_mm, equidistant_mm, form, misalignment)"
 )]
 pub(crate) struct RawDeviations {
     #[serde(default)]
@@ -347,6 +347,9 @@ pub(crate) struct RawDeviations {
     /// writes).
     #[serde(default)]
     pub form: Vec<RawFormTerm>,
+    /// The disc's tilt against the housing as built, added to every scene's.
+    #[serde(default)]
+    pub misalignment: Option<RawMisalignment>,
 }
 
 /// One harmonic of the form error: w(t) ∋ cos_mm·cos(order·t) + sin_mm·sin(order·t).

@@ -751,3 +751,198 @@ fn the_logarithmic_crown_is_fujiwara_and_kawases_profile_by_hand() {
         "Johns & Gohar at z = 2: {got:e}"
     );
 }
+
+/// The face-width spec with `reducer.deviations.misalignment: {tilt}` (the tilt as built).
+fn built_with_tilt(text: &str, tilt: &str) -> String {
+    let with = text.replacen(
+        "modification:\n",
+        &format!("  deviations:\n    misalignment: {tilt}\nmodification:\n"),
+        1,
+    );
+    assert_ne!(with, text, "the tilt as built is in the spec");
+    with
+}
+
+/// `cycloid check --json` of `text`: the results JSON, checked free of NaN and infinities,
+/// without `spec_sha256` (the hash of the spec's text, which differs by construction).
+fn results_json(name: &str, text: &str) -> String {
+    let dir = crate::common::Scratch::new(name);
+    dir.write("spec.yaml", text);
+    let run = crate::common::cycloid(&dir.path, &["check", "spec.yaml", "--json", "r.json"]);
+    assert!(run.code() == 0 || run.code() == 1, "{name}: {}", run.stderr);
+    let json = dir.read("r.json");
+    assert!(
+        !json.contains("NaN") && !json.contains("Infinity"),
+        "{json}"
+    );
+    let mut doc: serde_json::Value = serde_json::from_str(&json).expect("results.json is JSON");
+    doc.as_object_mut()
+        .unwrap()
+        .remove("spec_sha256")
+        .expect("spec_sha256");
+    doc.to_string()
+}
+
+/// The first place where two JSON texts differ (a short message, not the whole documents).
+fn same_json(a: &str, b: &str, what: &str) {
+    if a != b {
+        let at = a.bytes().zip(b.bytes()).take_while(|(x, y)| x == y).count();
+        let from = at.saturating_sub(120);
+        panic!(
+            "{what}: differ at byte {at}:\n  {}\n  {}",
+            &a[from..(at + 80).min(a.len())],
+            &b[from..(at + 80).min(b.len())]
+        );
+    }
+}
+
+/// A tilt as built θ (`reducer.deviations.misalignment`) on an aligned scene is that scene
+/// tilted by θ (`scenes[].misalignment`): the same numbers enter the model (θ_scene + θ_dev with
+/// θ_scene = 0 is θ_dev exactly, and both are 1e-3·mrad of the same value), so every output
+/// of the results JSON is the same, bit for bit. The tilt is not a no-op: the tilted results
+/// differ from the aligned scene's.
+#[test]
+fn a_tilt_as_built_is_the_scene_tilted_by_it() {
+    let tilt = "{ about_x_mrad: 0.3, about_y_mrad: -0.2 }";
+    let slices = "    face_slices: 10\n";
+    let aligned = spec("", slices, 12);
+    let in_scene = spec("", &format!("    misalignment: {tilt}\n{slices}"), 12);
+    let as_built = built_with_tilt(&aligned, tilt);
+    let scene_json = results_json("tilt-scene", &in_scene);
+    let built_json = results_json("tilt-built", &as_built);
+    same_json(&scene_json, &built_json, "the tilt as built is the scene's");
+    assert_ne!(
+        results_json("tilt-none", &aligned),
+        built_json,
+        "the tilt as built changes the results"
+    );
+    // The model itself: the same face, line loads bit for bit.
+    let (a, b) = (run(&parse(&in_scene)), run(&parse(&as_built)));
+    assert_eq!(
+        face_of(&a).line_load_n_per_mm,
+        face_of(&b).line_load_n_per_mm
+    );
+}
+
+/// The scene's tilt θ1 and the tilt as built θ2 add: the scene tilted by θ1 + θ2 (small tilts
+/// add, u(z) = z·(θy, −θx) is linear in θ). The values are chosen so the sum is exact in
+/// floating point: 1e-3·θ for θ a power of two is 1e-3 scaled exactly, and the sum of two such
+/// is the exact product 1e-3·(θ1 + θ2) before the one rounding both sides share; so the same
+/// number enters the model, and the JSON is the same bit for bit.
+#[test]
+fn the_scene_tilt_and_the_tilt_as_built_add() {
+    let slices = "    face_slices: 10\n";
+    let split = built_with_tilt(
+        &spec(
+            "",
+            &format!("    misalignment: {{ about_x_mrad: 0.25, about_y_mrad: -0.5 }}\n{slices}"),
+            12,
+        ),
+        "{ about_x_mrad: 0.5, about_y_mrad: 0.25 }",
+    );
+    let summed = spec(
+        "",
+        &format!("    misalignment: {{ about_x_mrad: 0.75, about_y_mrad: -0.25 }}\n{slices}"),
+        12,
+    );
+    same_json(
+        &results_json("tilt-split", &split),
+        &results_json("tilt-summed", &summed),
+        "θ1 in the scene + θ2 as built = the scene tilted by θ1 + θ2",
+    );
+}
+
+/// A tilt as built is validated as a scene's (finite, at its key) and, with a scene that loads
+/// its contacts on one slice, refused at `reducer.deviations.misalignment` with the rule and
+/// the number of slices; file:line:column of the key as written, exit 2. A scene that loads
+/// nothing (clearance only) may keep one slice.
+#[test]
+fn a_bad_tilt_as_built_is_refused_where_it_is_written() {
+    let cases = [
+        (
+            "{ about_x_mrad: .nan }",
+            "    face_slices: 4\n",
+            "reducer.deviations.misalignment.about_x_mrad",
+            "finite",
+        ),
+        (
+            "{ about_y_mrad: .inf }",
+            "    face_slices: 4\n",
+            "reducer.deviations.misalignment.about_y_mrad",
+            "finite",
+        ),
+        (
+            "{ about_x_mrad: 0.3 }",
+            "",
+            "reducer.deviations.misalignment",
+            "face_slices 1",
+        ),
+        (
+            "{ about_y_mrad: 0.3 }",
+            "    face_slices: 1\n",
+            "reducer.deviations.misalignment",
+            "face_slices: 2",
+        ),
+    ];
+    let dir = crate::common::Scratch::new("tilt-bad");
+    for (tilt, scene, key, rule) in cases {
+        let text = built_with_tilt(&spec("", scene, 12), tilt);
+        let e = cycloid::spec::parse("face.yaml", &text).expect_err(key);
+        let shown = e.to_string();
+        assert!(
+            shown.contains(key) && shown.contains(rule),
+            "{key}: {shown}"
+        );
+        let (line, column) = locate(&text, key);
+        assert!(
+            shown.starts_with(&format!("face.yaml:{line}:{column}:")),
+            "{key} at {line}:{column}: {shown}"
+        );
+        dir.write("bad.yaml", &text);
+        let run = crate::common::cycloid(&dir.path, &["check", "bad.yaml"]);
+        assert_eq!(run.code(), 2, "{key}: {}", run.stderr);
+    }
+    // Clearance only: no contact is loaded, one slice is allowed.
+    let clearance = spec("", "", 12).replace("effects: [bearing]", "effects: [clearance]");
+    parse(&built_with_tilt(&clearance, "{ about_x_mrad: 0.3 }"));
+}
+
+/// The review's face-width figure of a scene tilted only as built (`reducer.deviations`) is
+/// that of the scene tilted by the same θ in its own `misalignment`: the same roller, angle and
+/// tilted curve, and "designed" without either tilt, so the same untilted curve bit for bit
+/// (the same numbers enter the same solve).
+#[test]
+fn the_review_draws_a_tilt_as_built_against_the_untilted_design() {
+    use cycloid::engine::face_profile::face_profiles;
+    use cycloid::engine::scene::{self, RunOptions};
+    let tilt = "{ about_x_mrad: 0.3, about_y_mrad: -0.2 }";
+    let slices = "    face_slices: 10\n";
+    let profiles = |text: &str| {
+        let spec = parse(text);
+        let s = &spec.scenes[0];
+        let plan = scene::plan(&spec, s, Default::default());
+        let result = scene::run(&spec, s, &plan, &RunOptions::for_spec(&spec)).unwrap();
+        face_profiles(&spec, &[result]).unwrap()
+    };
+    let in_scene = profiles(&spec(
+        "",
+        &format!("    misalignment: {tilt}\n{slices}"),
+        12,
+    ));
+    let as_built = profiles(&built_with_tilt(&spec("", slices, 12), tilt));
+    assert_eq!(
+        in_scene.len(),
+        1,
+        "the scene tilted in its misalignment is drawn"
+    );
+    assert_eq!(
+        as_built, in_scene,
+        "the tilt as built is drawn as the scene's"
+    );
+    let p = &as_built[0];
+    assert!(
+        p.designed_n_per_mm.is_some(),
+        "the untilted solve converges"
+    );
+    assert_ne!(p.designed_n_per_mm.as_ref(), Some(&p.tilted_n_per_mm));
+}

@@ -72,6 +72,7 @@ fn accepted_keys() -> Vec<String> {
         ("RawModification", "modification."),
         ("RawCrowning", "modification.crowning."),
         ("RawMisalignment", "scenes[].misalignment."),
+        ("RawMisalignment", "reducer.deviations.misalignment."),
         ("RawScene", "scenes[]."),
         ("RawTorqueSweep", "scenes[].torque_sweep."),
         ("RawCrank", "scenes[].crank."),
@@ -83,24 +84,25 @@ fn accepted_keys() -> Vec<String> {
     ];
     let raw = std::fs::read_to_string("src/spec/raw.rs").unwrap();
     let mut keys = Vec::new();
-    let mut place: Option<&str> = None;
+    // A struct used at several places (`RawMisalignment`) has its keys at each.
+    let mut places: Vec<&str> = Vec::new();
     for line in raw.lines() {
         if let Some(rest) = line.strip_prefix("pub(crate) struct ") {
             let name: String = rest.chars().take_while(|c| c.is_alphanumeric()).collect();
-            let found = PLACES.iter().find(|(n, _)| *n == name);
-            place = Some(
-                found
-                    .unwrap_or_else(|| panic!("struct {name} of raw.rs has no place"))
-                    .1,
-            );
+            places = PLACES
+                .iter()
+                .filter(|(n, _)| *n == name)
+                .map(|(_, p)| *p)
+                .collect();
+            assert!(!places.is_empty(), "struct {name} of raw.rs has no place");
         } else if line.starts_with('}') {
-            place = None;
-        } else if let (Some(p), Some(field)) = (place, line.trim().strip_prefix("pub ")) {
+            places.clear();
+        } else if let (false, Some(field)) = (places.is_empty(), line.trim().strip_prefix("pub ")) {
             let (name, ty) = field.split_once(": ").unwrap();
             // Nested sections have their own struct; `limits` are the registry's (tested above).
             let nested = ty.contains("Raw") && !ty.contains("RawObjective");
             if !nested {
-                keys.push(format!("{p}{name}"));
+                keys.extend(places.iter().map(|p| format!("{p}{name}")));
             }
         }
     }

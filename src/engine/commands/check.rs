@@ -137,7 +137,13 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
         Some((built, identification)) => {
             // The design review shows each scene as designed beside as built.
             let designed = match options.review {
-                Some(_) => Some(scenes(drawing, options.writes, progress)?),
+                // As designed: without the tilt as built (`reducer.deviations.misalignment`),
+                // which the disc as built runs with.
+                Some(_) => {
+                    let mut designed = drawing.clone();
+                    designed.design.deviations.misalignment = Default::default();
+                    Some(scenes(&designed, options.writes, progress)?)
+                }
                 None => None,
             };
             as_built = Some(AsBuilt {

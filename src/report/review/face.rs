@@ -25,7 +25,8 @@ pub(super) fn section_of(
     let mut figures = Vec::new();
     for p in profiles {
         let scene = &spec.scenes[p.scene];
-        let m = scene.face.misalignment;
+        // The tilt as run: the scene's plus the one as built.
+        let m = spec.design.deviations.face(&scene.face).misalignment;
         let mut plot = LinePlot::new(
             &format!("Line load along the face: scene {}", scene.name),
             "z from the middle of the face (mm)",

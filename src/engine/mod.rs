@@ -26,6 +26,7 @@ pub mod plausibility;
 pub use crate::progress;
 pub mod resolution;
 pub mod scene;
+pub mod shard_file;
 pub mod summary;
 pub mod tolerance;
 pub mod torque_curve;

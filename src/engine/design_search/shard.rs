@@ -26,6 +26,7 @@
 use super::candidate::{Candidate, Choice};
 use super::evaluate::{Evaluation, Stage};
 use super::failure::Failure;
+use crate::engine::shard_file::{seal, Reader};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::quantity::{Bound, LIMITS};
 use crate::model::requirements::Requirements;
@@ -33,9 +34,6 @@ use sha2::{Digest, Sha256};
 
 pub const MAGIC: &[u8; 16] = b"cycloid-dsg-shrd";
 pub const VERSION: u32 = 1;
-
-/// Bytes of the checksum that ends a shard.
-const CHECKSUM: usize = 32;
 
 /// What a shard says about the search it belongs to.
 #[derive(Debug, Clone, PartialEq)]
@@ -136,151 +134,83 @@ pub fn encode(h: &Header, evaluations: &[Evaluation]) -> Vec<u8> {
             }
         }
     }
-    let sum: [u8; CHECKSUM] = Sha256::digest(&b).into();
-    b.extend_from_slice(&sum);
-    b
+    seal(b)
 }
 
-/// Reads the fields of a shard in order; every shortfall is the same error.
-struct Reader<'a> {
-    bytes: &'a [u8],
-    at: usize,
-    path: &'a str,
-}
-
-impl<'a> Reader<'a> {
-    fn bad(&self, why: &str) -> Error {
-        Error::new(
-            ErrorKind::InvalidValue,
-            format!("{}: not a shard file of `cycloid design`: {why}", self.path),
-        )
+/// The evaluation of candidate j, as `encode` wrote it.
+fn evaluation(r: &mut Reader, j: u64) -> Result<Evaluation> {
+    let mut choice = [0usize; 3];
+    for n in &mut choice {
+        *n = r.u32()? as usize;
     }
-
-    fn take(&mut self, n: usize) -> Result<&'a [u8]> {
-        let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len());
-        let end = end.ok_or_else(|| self.bad("it ends early"))?;
-        let s = &self.bytes[self.at..end];
-        self.at = end;
-        Ok(s)
+    let mut x = [0.0; 8];
+    for v in &mut x {
+        *v = r.f64()?;
     }
-
-    fn u8(&mut self) -> Result<u8> {
-        Ok(self.take(1)?[0])
-    }
-
-    fn u32(&mut self) -> Result<u32> {
-        Ok(u32::from_le_bytes(
-            self.take(4)?.try_into().unwrap_or_default(),
-        ))
-    }
-
-    fn u64(&mut self) -> Result<u64> {
-        Ok(u64::from_le_bytes(
-            self.take(8)?.try_into().unwrap_or_default(),
-        ))
-    }
-
-    fn f64(&mut self) -> Result<f64> {
-        Ok(f64::from_le_bytes(
-            self.take(8)?.try_into().unwrap_or_default(),
-        ))
-    }
-
-    fn text(&mut self, n: usize, what: &str) -> Result<String> {
-        let raw = self.take(n)?;
-        String::from_utf8(raw.to_vec()).map_err(|_| self.bad(&format!("its {what} is not UTF-8")))
-    }
-
-    fn short_text(&mut self, what: &str) -> Result<String> {
-        let n = self.u32()? as usize;
-        self.text(n, what)
-    }
-
-    /// A count of items of at least `least` bytes each: no more than the bytes left hold.
-    fn count(&mut self, least: usize) -> Result<usize> {
-        let n = self.u32()? as usize;
-        if n.saturating_mul(least) > self.bytes.len() - self.at {
-            return Err(self.bad("it ends early"));
+    let stage = match r.u8()? {
+        0 => Stage::Rules,
+        1 => Stage::Screen,
+        2 => Stage::Full,
+        s => return Err(r.bad(&format!("candidate {j} holds the stage byte {s}"))),
+    };
+    let n = r.count(8)?;
+    let mut objectives = Vec::with_capacity(n);
+    for _ in 0..n {
+        let v = r.f64()?;
+        if !v.is_finite() {
+            return Err(r.bad(&format!("candidate {j} holds the objective {v}")));
         }
-        Ok(n)
+        objectives.push(v);
     }
-
-    fn evaluation(&mut self, j: u64) -> Result<Evaluation> {
-        let mut choice = [0usize; 3];
-        for n in &mut choice {
-            *n = self.u32()? as usize;
-        }
-        let mut x = [0.0; 8];
-        for v in &mut x {
-            *v = self.f64()?;
-        }
-        let stage = match self.u8()? {
-            0 => Stage::Rules,
-            1 => Stage::Screen,
-            2 => Stage::Full,
-            s => return Err(self.bad(&format!("candidate {j} holds the stage byte {s}"))),
-        };
-        let n = self.count(8)?;
-        let mut objectives = Vec::with_capacity(n);
-        for _ in 0..n {
-            let v = self.f64()?;
-            if !v.is_finite() {
-                return Err(self.bad(&format!("candidate {j} holds the objective {v}")));
+    let n = r.count(10)?;
+    let mut failures = Vec::with_capacity(n);
+    for _ in 0..n {
+        let requirement = r.short_text("requirement")?;
+        let unit = r.short_text("unit")?;
+        let unit = known_unit(&unit).ok_or_else(|| {
+            r.bad(&format!(
+                "candidate {j} holds the unit `{unit}`, which this cycloid does not know: \
+                 written by another version"
+            ))
+        })?;
+        let bound = match r.u8()? {
+            0 => None,
+            1 => {
+                let (value, limit) = (r.f64()?, r.f64()?);
+                let side = match r.u8()? {
+                    0 => Bound::Max,
+                    1 => Bound::Min,
+                    s => return Err(r.bad(&format!("candidate {j} holds the side byte {s}"))),
+                };
+                Some((value, limit, side))
             }
-            objectives.push(v);
-        }
-        let n = self.count(10)?;
-        let mut failures = Vec::with_capacity(n);
-        for _ in 0..n {
-            let requirement = self.short_text("requirement")?;
-            let unit = self.short_text("unit")?;
-            let unit = known_unit(&unit).ok_or_else(|| {
-                self.bad(&format!(
-                    "candidate {j} holds the unit `{unit}`, which this cycloid does not know: \
-                     written by another version"
-                ))
-            })?;
-            let bound = match self.u8()? {
-                0 => None,
-                1 => {
-                    let (value, limit) = (self.f64()?, self.f64()?);
-                    let side = match self.u8()? {
-                        0 => Bound::Max,
-                        1 => Bound::Min,
-                        s => {
-                            return Err(self.bad(&format!("candidate {j} holds the side byte {s}")))
-                        }
-                    };
-                    Some((value, limit, side))
-                }
-                f => return Err(self.bad(&format!("candidate {j} holds the bound flag {f}"))),
-            };
-            let message = match self.u8()? {
-                0 => None,
-                1 => Some(self.short_text("message")?),
-                f => return Err(self.bad(&format!("candidate {j} holds the message flag {f}"))),
-            };
-            failures.push(Failure {
-                requirement,
-                bound,
-                unit,
-                message,
-            });
-        }
-        Ok(Evaluation {
-            candidate: Candidate {
-                choice: Choice {
-                    teeth: choice[0],
-                    pins: choice[1],
-                    discs: choice[2],
-                },
-                x,
-            },
-            stage,
-            failures,
-            objectives,
-        })
+            f => return Err(r.bad(&format!("candidate {j} holds the bound flag {f}"))),
+        };
+        let message = match r.u8()? {
+            0 => None,
+            1 => Some(r.short_text("message")?),
+            f => return Err(r.bad(&format!("candidate {j} holds the message flag {f}"))),
+        };
+        failures.push(Failure {
+            requirement,
+            bound,
+            unit,
+            message,
+        });
     }
+    Ok(Evaluation {
+        candidate: Candidate {
+            choice: Choice {
+                teeth: choice[0],
+                pins: choice[1],
+                discs: choice[2],
+            },
+            x,
+        },
+        stage,
+        failures,
+        objectives,
+    })
 }
 
 /// The unit of a failure as the evaluation names it: the unit of a limit's quantity, or the
@@ -294,27 +224,14 @@ fn known_unit(unit: &str) -> Option<&'static str> {
 
 /// Decode the bytes of the shard file at `path`.
 pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
-    let mut r = Reader { bytes, at: 0, path };
-    if r.take(MAGIC.len())? != MAGIC {
-        return Err(r.bad("it does not start with the design shard mark"));
-    }
-    let version = r.u32()?;
-    if version != VERSION {
-        return Err(r.bad(&format!(
-            "format version {version}; this cycloid reads version {VERSION}"
-        )));
-    }
-    let Some(content) = bytes.len().checked_sub(CHECKSUM) else {
-        return Err(r.bad("it ends early"));
-    };
-    let (content, sum) = bytes.split_at(content);
-    if Sha256::digest(content).as_slice() != sum {
-        return Err(r.bad(
-            "its checksum does not match its contents: the file was changed or cut after it \
-             was written",
-        ));
-    }
-    r.bytes = content;
+    let mut r = Reader::open(
+        path,
+        bytes,
+        "cycloid design",
+        (MAGIC, "design shard mark"),
+        VERSION,
+    )?;
+    let content = r.bytes;
     let requirements_sha256: [u8; 32] = r.take(32)?.try_into().unwrap_or_default();
     let (seed, candidates, index, count) = (r.u64()?, r.u64()?, r.u64()?, r.u64()?);
     let requirements_path = r.short_text("requirements path")?;
@@ -335,7 +252,7 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         return Err(r.bad(&format!("it ends before its {rows} candidates")));
     }
     let evaluations = (0..rows)
-        .map(|row| r.evaluation(index + row * count))
+        .map(|row| evaluation(&mut r, index + row * count))
         .collect::<Result<Vec<_>>>()?;
     if r.at != content.len() {
         return Err(r.bad(&format!(

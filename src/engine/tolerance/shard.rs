@@ -15,14 +15,12 @@
 //! follow from its value and the spec's limit (`Merged::study`).
 
 use super::{shard_len, Records};
+use crate::engine::shard_file::{seal, Reader};
 use crate::error::{Error, ErrorKind, Result};
 use sha2::{Digest, Sha256};
 
 pub const MAGIC: &[u8; 16] = b"cycloid-tol-shrd";
 pub const VERSION: u32 = 2;
-
-/// Bytes of the checksum that ends a shard.
-const CHECKSUM: usize = 32;
 
 /// What a shard says about the study it belongs to.
 #[derive(Debug, Clone, PartialEq)]
@@ -71,86 +69,29 @@ pub fn encode(h: &Header, records: &Records) -> Vec<u8> {
         }
         b.extend(p.iter().map(|&p| p as u8));
     }
-    let sum: [u8; CHECKSUM] = Sha256::digest(&b).into();
-    b.extend_from_slice(&sum);
-    b
-}
-
-/// Reads the fields of a shard in order; every shortfall is the same error.
-struct Reader<'a> {
-    bytes: &'a [u8],
-    at: usize,
-    path: &'a str,
-}
-
-impl<'a> Reader<'a> {
-    fn bad(&self, why: &str) -> Error {
-        Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "{}: not a shard file of `cycloid tolerance`: {why}",
-                self.path
-            ),
-        )
-    }
-
-    fn take(&mut self, n: usize) -> Result<&'a [u8]> {
-        let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len());
-        let end = end.ok_or_else(|| self.bad("it ends early"))?;
-        let s = &self.bytes[self.at..end];
-        self.at = end;
-        Ok(s)
-    }
-
-    fn u64(&mut self) -> Result<u64> {
-        Ok(u64::from_le_bytes(
-            self.take(8)?.try_into().unwrap_or_default(),
-        ))
-    }
-
-    fn u32(&mut self) -> Result<u32> {
-        Ok(u32::from_le_bytes(
-            self.take(4)?.try_into().unwrap_or_default(),
-        ))
-    }
-
-    fn text(&mut self, n: usize) -> Result<String> {
-        let raw = self.take(n)?;
-        String::from_utf8(raw.to_vec()).map_err(|_| self.bad("its spec is not UTF-8"))
-    }
+    seal(b)
 }
 
 /// Decode the bytes of the shard file at `path`.
 pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
-    let mut r = Reader { bytes, at: 0, path };
-    if r.take(MAGIC.len())? != MAGIC {
-        return Err(r.bad("it does not start with the shard mark"));
-    }
-    let version = r.u32()?;
-    if version != VERSION {
-        return Err(r.bad(&format!(
-            "format version {version}; this cycloid reads version {VERSION}"
-        )));
-    }
-    let Some(content) = bytes.len().checked_sub(CHECKSUM) else {
-        return Err(r.bad("it ends early"));
-    };
-    let (content, sum) = bytes.split_at(content);
-    if Sha256::digest(content).as_slice() != sum {
-        return Err(r.bad(
-            "its checksum does not match its contents: the file was changed or cut after it \
-             was written",
-        ));
-    }
-    let bytes = content;
-    r.bytes = content;
+    let mut r = Reader::open(
+        path,
+        bytes,
+        "cycloid tolerance",
+        (MAGIC, "shard mark"),
+        VERSION,
+    )?;
+    let bytes = r.bytes;
     let spec_sha256: [u8; 32] = r.take(32)?.try_into().unwrap_or_default();
     let (seed, samples, index, count) = (r.u64()?, r.u64()?, r.u64()?, r.u64()?);
     let limits = r.u32()?;
     let n = r.u32()? as usize;
-    let spec_path = r.text(n)?;
+    let spec_path = r.text(n, "spec")?;
     let n = r.u64()?;
-    let spec_text = r.text(usize::try_from(n).map_err(|_| r.bad("it ends early"))?)?;
+    let spec_text = r.text(
+        usize::try_from(n).map_err(|_| r.bad("it ends early"))?,
+        "spec",
+    )?;
     if count == 0 || index >= count || count > samples.max(1) || limits == 0 {
         return Err(r.bad(&format!("shard {index}/{count} with {limits} limits")));
     }

@@ -1,0 +1,131 @@
+//! The frame every shard file shares (`tolerance::shard`, `design_search::shard`): a 16-byte
+//! mark, a format version (u32), the content, and last a SHA-256 of everything before it; and
+//! a reader of its little-endian fields whose every refusal names the file and the command
+//! that writes it.
+
+use crate::error::{Error, ErrorKind, Result};
+use sha2::{Digest, Sha256};
+
+/// Bytes of the SHA-256 at the end of a shard file.
+pub const CHECKSUM: usize = 32;
+
+/// `b` (mark, version, content) with its SHA-256 appended: the file's bytes.
+pub fn seal(mut b: Vec<u8>) -> Vec<u8> {
+    let sum: [u8; CHECKSUM] = Sha256::digest(&b).into();
+    b.extend_from_slice(&sum);
+    b
+}
+
+/// Reads the fields of a shard in order; every shortfall is the same error.
+pub struct Reader<'a> {
+    /// The content (the checksum cut off once `open` has checked it).
+    pub bytes: &'a [u8],
+    /// The next field's offset in `bytes`.
+    pub at: usize,
+    path: &'a str,
+    /// The command whose shards these are, e.g. "cycloid tolerance".
+    command: &'static str,
+}
+
+impl<'a> Reader<'a> {
+    /// Check the frame of the file `path` (`bytes`, written by `command`): its mark `magic`
+    /// (named `mark` in the refusal), its format `version` and its checksum. The reader is
+    /// left on the content after the version, the checksum cut off.
+    pub fn open(
+        path: &'a str,
+        bytes: &'a [u8],
+        command: &'static str,
+        (magic, mark): (&[u8], &str),
+        version: u32,
+    ) -> Result<Self> {
+        let mut r = Reader {
+            bytes,
+            at: 0,
+            path,
+            command,
+        };
+        if r.take(magic.len())? != magic {
+            return Err(r.bad(&format!("it does not start with the {mark}")));
+        }
+        let found = r.u32()?;
+        if found != version {
+            return Err(r.bad(&format!(
+                "format version {found}; this cycloid reads version {version}"
+            )));
+        }
+        let Some(content) = bytes.len().checked_sub(CHECKSUM) else {
+            return Err(r.bad("it ends early"));
+        };
+        let (content, sum) = bytes.split_at(content);
+        if Sha256::digest(content).as_slice() != sum {
+            return Err(r.bad(
+                "its checksum does not match its contents: the file was changed or cut after it \
+                 was written",
+            ));
+        }
+        r.bytes = content;
+        Ok(r)
+    }
+
+    /// The refusal of this file for `why`.
+    pub fn bad(&self, why: &str) -> Error {
+        Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "{}: not a shard file of `{}`: {why}",
+                self.path, self.command
+            ),
+        )
+    }
+
+    pub fn take(&mut self, n: usize) -> Result<&'a [u8]> {
+        let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len());
+        let end = end.ok_or_else(|| self.bad("it ends early"))?;
+        let s = &self.bytes[self.at..end];
+        self.at = end;
+        Ok(s)
+    }
+
+    pub fn u8(&mut self) -> Result<u8> {
+        Ok(self.take(1)?[0])
+    }
+
+    pub fn u32(&mut self) -> Result<u32> {
+        Ok(u32::from_le_bytes(
+            self.take(4)?.try_into().unwrap_or_default(),
+        ))
+    }
+
+    pub fn u64(&mut self) -> Result<u64> {
+        Ok(u64::from_le_bytes(
+            self.take(8)?.try_into().unwrap_or_default(),
+        ))
+    }
+
+    pub fn f64(&mut self) -> Result<f64> {
+        Ok(f64::from_le_bytes(
+            self.take(8)?.try_into().unwrap_or_default(),
+        ))
+    }
+
+    /// `n` bytes of UTF-8, the file's `what`.
+    pub fn text(&mut self, n: usize, what: &str) -> Result<String> {
+        let raw = self.take(n)?;
+        String::from_utf8(raw.to_vec()).map_err(|_| self.bad(&format!("its {what} is not UTF-8")))
+    }
+
+    /// A u32 length, then that many bytes of UTF-8.
+    pub fn short_text(&mut self, what: &str) -> Result<String> {
+        let n = self.u32()? as usize;
+        self.text(n, what)
+    }
+
+    /// A count of items of at least `least` bytes each: no more than the bytes left hold.
+    pub fn count(&mut self, least: usize) -> Result<usize> {
+        let n = self.u32()? as usize;
+        if n.saturating_mul(least) > self.bytes.len() - self.at {
+            return Err(self.bad("it ends early"));
+        }
+        Ok(n)
+    }
+}

@@ -552,3 +552,30 @@ fn plausibility_bands_follow_the_material_and_the_torque() {
         .parse("limited.yaml");
     assert!(band(&limited.design, &limited.limits, &MAX_CONTACT_PRESSURE, 1e4).is_none());
 }
+
+/// The review's design table states the disc's crowning as the spec writes it
+/// (`specs/reducer-misaligned.yaml`: `{ kind: circular, radius_mm: 1000.0, start_mm: 2.0 }`):
+/// a reviewer reading the line-load plot must see which crown made it. A straight disc's
+/// table (`specs/paper.yaml`) has no crowning row.
+#[test]
+fn the_design_table_states_the_crowning() {
+    let design_section = |spec: &str, tag: &str| {
+        let dir = Scratch::new(tag);
+        let review = dir.path.join("review");
+        let run = cycloid_here(&["check", spec, "--report", review.to_str().unwrap()]);
+        assert_eq!(run.code, Some(0), "{run:?}");
+        let html = std::fs::read_to_string(review.join("index.html")).unwrap();
+        let start = html
+            .find("<section id=\"design\">")
+            .expect("the design section");
+        let end = start + html[start..].find("</section>").unwrap();
+        html[start..end].to_string()
+    };
+    let crowned = design_section("specs/reducer-misaligned.yaml", "crowning-row");
+    assert!(
+        crowned.contains("circular, Rc 1000 mm, flat over |z| ≤ 2.000 mm"),
+        "{crowned}"
+    );
+    let straight = design_section("specs/paper.yaml", "no-crowning-row");
+    assert!(!straight.contains("crowning"), "{straight}");
+}

@@ -1,7 +1,7 @@
 //! The review's design: the reducer as the spec gives it and its tooth-profile modification.
 
 use super::common::{data_table, section, Section};
-use crate::model::Modification;
+use crate::model::{Crowning, Modification};
 use crate::numeric::number;
 use crate::spec::Spec;
 use crate::units;
@@ -43,9 +43,41 @@ pub(super) fn design_section(spec: &Spec, m: &Modification) -> Section {
         (row("equidistant ΔRrp", mm(m.equidistant_mm)))
         (row("rotation Δδ", format!("{} deg", number(units::deg(m.rotation_rad)))))
         (row("tip clearance ΔRrp − ΔRp", format!("{} µm", number(units::um(m.tip_clearance_mm())))))
+        @if let Some(c) = spec.scenes.first().and_then(|s| crowning(&s.face.crowning)) {
+            (row("crowning", c))
+        }
     };
     let body = html! {
         div.cols { (pairs("reducer", reducer)) (pairs("tooth-profile modification", modification)) }
     };
     section("design", html! { "Design" }, body)
+}
+
+/// The disc's crowning along the face (`modification.crowning`, every scene's alike) as the
+/// design table states it; `None` for a straight disc.
+fn crowning(c: &Crowning) -> Option<String> {
+    let mm = |x: f64| format!("{} mm", number(x));
+    match *c {
+        Crowning::None => None,
+        Crowning::Circular {
+            radius_mm,
+            start_mm,
+        } => Some(format!(
+            "circular, Rc {}, flat over |z| ≤ {}",
+            mm(radius_mm),
+            mm(start_mm)
+        )),
+        Crowning::Logarithmic {
+            design_load_n,
+            end_drop_mm,
+            load_coefficient,
+            crowned_fraction,
+        } => Some(format!(
+            "logarithmic (Fujiwara & Kawase), Q {} N, end drop {}, K1 {}, K2 {}",
+            number(design_load_n),
+            mm(end_drop_mm),
+            number(load_coefficient),
+            number(crowned_fraction)
+        )),
+    }
 }

@@ -512,7 +512,8 @@ pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
     let periods = units::rad(to_deg - from_deg) / spec.design.mesh_period_rad();
     let pins = plan.has(Effect::OutputPins) || plan.has(Effect::Bearing);
     let base = base_angles(periods);
-    let face = plan.has(Effect::RollerContact) && !scene.face.is_uniform();
+    let face =
+        plan.has(Effect::RollerContact) && !spec.design.deviations.face(&scene.face).is_uniform();
     let mut probe = scene.clone();
     probe.crank_rad = spec::crank_angles(from_deg, to_deg, base);
     Layout {

@@ -185,7 +185,7 @@ pub fn check(
     let finest_slices = FACE_SLICES[FACE_SLICES.len() - 1];
     let cells = design.rollers.max(design.pins.count) * scene.crank_rad.len() * finest_slices;
     if plan.has(Effect::RollerContact)
-        && !scene.face.is_uniform()
+        && !design.deviations.face(&scene.face).is_uniform()
         && cells as i64 > MAX_ROLLER_ANGLES
     {
         return Err((

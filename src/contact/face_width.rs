@@ -132,15 +132,6 @@ impl FaceWidth {
         self
     }
 
-    /// Whether every section of the face sees the same approach (no crown, no tilt).
-    pub fn is_uniform(&self) -> bool {
-        self.crown == Crown::None && self.slope == (0.0, 0.0)
-    }
-
-    pub fn slices(&self) -> usize {
-        self.slices
-    }
-
     /// The slope t of a contact's approach along z, rad, for a contact whose force on the disc
     /// is along the unit vector `force_direction`: t = −f·(θy, −θx) (`Misalignment`).
     #[inline]

@@ -293,11 +293,7 @@ pub fn solve_coupled(
     let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;
     let guess = work.extrapolation(crank, discs.models[0].warm_reach());
     if let Some(gaps) = work.beam_gaps_guess(guess, n * pins) {
-        for (model, row) in work.models.iter_mut().zip(gaps.chunks(pins)) {
-            if let Some(p) = model.pins.as_mut() {
-                p.set_beam_gaps(row);
-            }
-        }
+        set_beam_gaps(&mut work.models, &gaps, pins);
     }
     // The passes leave a floating disc's dead band unprobed until the gaps have settled: only
     // the last pass's split is the answer.
@@ -343,17 +339,22 @@ pub fn solve_coupled(
         }
         last = (gamma, change);
         let next = secant_step(previous.as_ref(), &x, &image);
-        for (model, row) in work.models.iter_mut().zip(next.chunks(pins)) {
-            if let Some(p) = model.pins.as_mut() {
-                p.set_beam_gaps(row);
-            }
-        }
+        set_beam_gaps(&mut work.models, &next, pins);
         previous = Some((x, image));
     }
     Err(SolveFailure::NotConverged {
         x: last.0,
         residual: last.1,
     })
+}
+
+/// Give each disc's pins their beam gaps, `pins` of them a disc in `gaps` (mm).
+fn set_beam_gaps(models: &mut [Model], gaps: &[f64], pins: usize) {
+    for (model, row) in models.iter_mut().zip(gaps.chunks(pins)) {
+        if let Some(p) = model.pins.as_mut() {
+            p.set_beam_gaps(row);
+        }
+    }
 }
 
 /// The next gaps of the fixed point x = G(x) after the pass (x, G(x)): Anderson's step of
@@ -390,12 +391,6 @@ const MAX_BEAM_PASSES: usize = 100;
 /// lengths (a gap is resolved to 16·ε·(c + e + rw), ~7e-14 mm on the paper's design).
 const BEAM_GAP_FLOOR_MM: f64 = 1e-13;
 
-/// Newton on the shares first: converged when the next
-/// correction of every share is within 10·rel_tol of max(|T|, Σ|F·l| of the discs), ten times
-/// the round-off of each disc's own balance (which is what a disc's lag is known to; a
-/// preloaded disc's Σ|F·l| is far above T). When that has not converged in `NEWTON_STEPS`
-/// (a disc floating in its backlash: its lag jumps across the answer as its share changes
-/// sign), the balance is solved as a root in γ (`by_lag`).
 /// Whether `solve_shares` checks that a disc it let float holds the others' lag in its dead
 /// band (`all_float_at`) before it returns the split.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -406,6 +401,12 @@ enum Verify {
     Deferred,
 }
 
+/// Newton on the shares first: converged when the next
+/// correction of every share is within 10·rel_tol of max(|T|, Σ|F·l| of the discs), ten times
+/// the round-off of each disc's own balance (which is what a disc's lag is known to; a
+/// preloaded disc's Σ|F·l| is far above T). When that has not converged in `NEWTON_STEPS`
+/// (a disc floating in its backlash: its lag jumps across the answer as its share changes
+/// sign), the balance is solved as a root in γ (`by_lag`).
 fn solve_shares(
     discs: &Discs,
     crank: f64,

@@ -304,9 +304,10 @@ impl Rollers {
         hertz(&c, s.force_n)
     }
 
-    /// `line_loads` of roller state `s` into `out` and its Hertz pressure and half-width
-    /// (`hertz`), the peak slice's taken from `out` rather than computed again.
-    pub fn hertz_and_line_loads(&self, s: &RollerState, out: &mut [f64]) -> HertzLine {
+    /// `line_loads` of roller state `s` into `out`, with its Hertz pressure and half-width
+    /// (`hertz`) and the peak line load (N/mm), the peak slice's Hertz taken from `out` rather
+    /// than computed again.
+    pub fn hertz_and_line_loads(&self, s: &RollerState, out: &mut [f64]) -> (HertzLine, f64) {
         if let (Some(face), true) = (&self.face, s.force_n > 0.0) {
             let c = self.line_contact(self.curvature(s));
             let t = face.approach_slope((-s.normal.x, -s.normal.y));
@@ -316,10 +317,10 @@ impl Rollers {
                 length_mm: 1.0,
                 ..c
             };
-            return hertz(&unit, peak);
+            return (hertz(&unit, peak), peak);
         }
         self.line_loads(s, out);
-        self.hertz(s)
+        (self.hertz(s), out.iter().copied().fold(0.0, f64::max))
     }
 
     /// The force of a roller at `gap_mm` whose contact is at locus parameter `t` with outward

@@ -301,8 +301,7 @@ impl<'a> Chunk<'a> {
                     contacts += 1;
                     let h = match q {
                         Some(q) => {
-                            let h = r.hertz_and_line_loads(s, q);
-                            let top = q.iter().fold(0.0, |m: f64, &v| m.max(v));
+                            let (h, top) = r.hertz_and_line_loads(s, q);
                             if top > peak.0 {
                                 peak = (top, s.force_n);
                             }

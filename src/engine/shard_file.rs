@@ -6,6 +6,25 @@
 use crate::error::{Error, ErrorKind, Result};
 use sha2::{Digest, Sha256};
 
+/// Missing shards a merge's refusal lists by index, at most.
+pub const MISSING_SHOWN: usize = 10;
+
+/// How many items shard I of N holds: those k ≡ I (mod N), k < `items` (I is 0-based),
+/// counted without listing them (a study may have 10⁹ samples, a shard header any number).
+pub fn shard_len(items: u64, (index, count): (u64, u64)) -> u64 {
+    items.saturating_sub(index).div_ceil(count.max(1))
+}
+
+/// A merge's refusal of its set of shards.
+pub fn refuse(message: String) -> Error {
+    Error::new(ErrorKind::InvalidValue, message)
+}
+
+/// Bytes as lower-case hex (a hash in a message).
+pub fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
 /// Bytes of the SHA-256 at the end of a shard file.
 pub const CHECKSUM: usize = 32;
 

@@ -151,7 +151,7 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
         .map(|(name, bytes)| shard::decode(name, bytes))
         .collect::<Result<Vec<_>>>()?;
     let names: Vec<String> = files.iter().map(|(name, _)| name.clone()).collect();
-    shard::check_set(&names, &shards)?;
+    let ordered = shard::check_set(&names, &shards)?;
     let h = &shards[0].header;
     let requirements = crate::spec::requirements::parse(&h.requirements_path, &h.requirements_text)
         .map_err(|e| {
@@ -163,7 +163,7 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
                 ),
             )
         })?;
-    let evaluations = shard::merge(&requirements, &names, &shards)?;
+    let evaluations = shard::merge(&requirements, &ordered)?;
     Ok(MergedDesign {
         requirements_path: h.requirements_path.clone(),
         shards: h.count,

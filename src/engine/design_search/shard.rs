@@ -26,8 +26,8 @@
 use super::candidate::{Candidate, Choice};
 use super::evaluate::{Evaluation, Stage};
 use super::failure::Failure;
-use crate::engine::shard_file::{seal, Reader};
-use crate::error::{Error, ErrorKind, Result};
+use crate::engine::shard_file::{hex, refuse, seal, Reader, MISSING_SHOWN};
+use crate::error::Result;
 use crate::model::quantity::{Bound, LIMITS};
 use crate::model::requirements::Requirements;
 use sha2::{Digest, Sha256};
@@ -61,10 +61,7 @@ pub fn requirements_hash(text: &str) -> [u8; 32] {
     Sha256::digest(text.as_bytes()).into()
 }
 
-/// How many candidates shard I of N holds: those j ≡ I (mod N), j < candidates (I 0-based).
-pub fn shard_len(candidates: u64, (index, count): (u64, u64)) -> u64 {
-    candidates.saturating_sub(index).div_ceil(count.max(1))
-}
+pub use crate::engine::shard_file::shard_len;
 
 /// The candidates of shard `(i, n)`: those of `all` whose index j ≡ i (mod n), in order.
 pub fn share(all: &[Candidate], (i, n): (u64, u64)) -> Vec<Candidate> {
@@ -274,13 +271,6 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
     })
 }
 
-/// Missing shards a message lists by index, at most.
-const MISSING_SHOWN: usize = 10;
-
-fn refuse(message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message)
-}
-
 /// Check that a complete set of shards (`names` their paths, for messages) belongs to one
 /// search: refused when they differ in requirements, seed, candidate count or shard count, or
 /// when a shard is missing or given twice (named by index). The shards in index order.
@@ -386,11 +376,11 @@ pub fn check_set<'a>(
 }
 
 /// The global stage's evaluations of every candidate, in the order of `global_candidates`,
-/// from the shards of one run (`check_set`) and their requirements `req`: refused when a
+/// from the shards of one run in index order (as `check_set` gives them) and their
+/// requirements `req`: refused when a
 /// shard's candidate is not the one `req` generates at its index (bit for bit: another
 /// version of cycloid, or an altered shard) or an evaluation is not consistent.
-pub fn merge(req: &Requirements, names: &[String], shards: &[Shard]) -> Result<Vec<Evaluation>> {
-    let ordered = check_set(names, shards)?;
+pub fn merge(req: &Requirements, ordered: &[(&str, &Shard)]) -> Result<Vec<Evaluation>> {
     let candidates = super::global_candidates(req);
     let h0 = &ordered[0].1.header;
     let from_here = |what: &str, a: u64, b: u64| {
@@ -456,10 +446,6 @@ pub fn merge(req: &Requirements, names: &[String], shards: &[Shard]) -> Result<V
         .enumerate()
         .map(|(j, e)| e.ok_or_else(|| refuse(format!("no shard holds candidate {j}"))))
         .collect()
-}
-
-fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
 #[cfg(test)]

@@ -251,11 +251,7 @@ fn held_in_memory(samples: usize, limits: usize, flag: bool) -> Result<()> {
     })
 }
 
-/// How many samples shard I of N holds: those k ≡ I (mod N), k < samples (I is 0-based),
-/// counted without listing them (a study may have 10⁹ samples, a shard header any number).
-pub fn shard_len(samples: u64, (index, count): (u64, u64)) -> u64 {
-    samples.saturating_sub(index).div_ceil(count.max(1))
-}
+pub use super::shard_file::shard_len;
 
 #[cfg(test)]
 mod tests {

@@ -15,8 +15,8 @@
 //! follow from its value and the spec's limit (`Merged::study`).
 
 use super::{shard_len, Records};
-use crate::engine::shard_file::{seal, Reader};
-use crate::error::{Error, ErrorKind, Result};
+use crate::engine::shard_file::{hex, refuse, seal, Reader, MISSING_SHOWN};
+use crate::error::Result;
 use sha2::{Digest, Sha256};
 
 pub const MAGIC: &[u8; 16] = b"cycloid-tol-shrd";
@@ -153,13 +153,6 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
     })
 }
 
-/// Missing shards a message lists by index, at most.
-const MISSING_SHOWN: usize = 10;
-
-fn refuse(message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message)
-}
-
 /// The records of every sample, in sample order, from a complete set of shards (`names` the
 /// shards' paths, for messages): refused when they differ in spec, seed, sample count or
 /// shard count, or when a shard is missing or given twice (named by index).
@@ -267,8 +260,4 @@ pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
         }
     }
     Ok(records)
-}
-
-fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
 }

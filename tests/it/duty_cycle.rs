@@ -147,7 +147,6 @@ fn the_duty_life_is_miners_rule_over_the_bins() {
         rel(life, miner) < 1e-9,
         "{life} h against Miner's {miner} h"
     );
-    assert!(rel(life, miner) < 5e-3);
 }
 
 /// With two discs each disc has its own bearing and its own Miner sum; the reducer's duty

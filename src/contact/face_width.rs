@@ -33,8 +33,8 @@ pub struct FaceWidth {
     width_mm: f64,
     slices: usize,
     crown: Crown,
-    /// The largest closing a tilt can add to the 2-D approach anywhere on the face,
-    /// |θ|·B/2, mm (|t| ≤ |θ| for every contact; the crown only opens).
+    /// The largest closing a tilt can add to the 2-D approach anywhere on the face, mm:
+    /// max over z of |θ|·|z| − crown(z) (|t| ≤ |θ| for every contact; `reach`).
     pub reach_mm: f64,
     /// The tilt (θy, −θx), rad.
     slope: (f64, f64),
@@ -49,6 +49,10 @@ pub struct FaceWidth {
     end_drop_mm: f64,
     /// ∫ crown dz over the face, 2·c·(B/2 − z0)³/3, mm².
     crown_area_mm2: f64,
+    /// The circular crown's mean depth over each slice, (∫ crown dz over it)/(B/n), mm (0
+    /// without a circular crown): a slice loaded whole carries the mean of a over it,
+    /// d + t·z_s − this, without the crown's integral at its edges each time.
+    slice_crown_mm: Vec<f64>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -111,18 +115,40 @@ impl FaceWidth {
             } => (curvature, start_mm.min(half)),
             _ => (0.0, half),
         };
-        FaceWidth {
+        let mut f = FaceWidth {
             width_mm,
             slices: face.slices.max(1),
             crown,
-            reach_mm: ux.hypot(uy) * half,
+            reach_mm: 0.0,
             slope: (ux, uy),
             by_slices: false,
             flat_mm,
             curvature,
             end_drop_mm: curvature * (half - flat_mm).powi(2),
             crown_area_mm2: 2.0 * curvature * (half - flat_mm).powi(3) / 3.0,
+            slice_crown_mm: Vec::new(),
+        };
+        f.reach_mm = f.reach(ux.hypot(uy));
+        let h = width_mm / f.slices as f64;
+        f.slice_crown_mm = (0..f.slices)
+            .map(|s| {
+                (f.crown_integral(f.slice_edge_mm(s + 1)) - f.crown_integral(f.slice_edge_mm(s)))
+                    / h
+            })
+            .collect();
+        f
+    }
+
+    /// The largest of θ·z − crown(z) over 0 ≤ z ≤ B/2 (θ ≥ 0, mm): with a circular crown,
+    /// θ·z* − c·(z* − z0)² at z* = min(z0 + θ/(2c), B/2), where its slope θ − 2c·(z − z0)
+    /// vanishes or the face ends; otherwise θ·B/2 (the crown ≥ 0 only lowers it).
+    fn reach(&self, theta: f64) -> f64 {
+        let half = 0.5 * self.width_mm;
+        if self.curvature == 0.0 {
+            return theta * half;
         }
+        let z = (self.flat_mm + theta / (2.0 * self.curvature)).min(half);
+        theta * z - self.curvature * (z - self.flat_mm).powi(2)
     }
 
     /// This face summed over its slices whatever the law: the Winkler model of n slices the
@@ -167,6 +193,17 @@ impl FaceWidth {
     pub fn slice_centre_mm(&self, s: usize) -> f64 {
         let h = self.width_mm / self.slices as f64;
         -0.5 * self.width_mm + (s as f64 + 0.5) * h
+    }
+
+    /// Edge s of the slices (s = 0..=n), mm from the middle of the face: −B/2 + s·B/n, the
+    /// last exactly B/2.
+    fn slice_edge_mm(&self, s: usize) -> f64 {
+        let half = 0.5 * self.width_mm;
+        if s == self.slices {
+            half
+        } else {
+            -half + s as f64 * (self.width_mm / self.slices as f64)
+        }
     }
 
     /// Whether the closed form holds: the linear law over a straight or circularly crowned face.
@@ -223,13 +260,25 @@ impl FaceWidth {
     }
 
     /// The line load of each slice (N/mm), its force/(B/n), of the contact at approach d with
-    /// slope t, into `out` (`slices` entries). With the closed form the slice's force is the
-    /// face's integral over the slice, (k/B)·∫ max(0, a) dz over [z_s − B/2n, z_s + B/2n], so
-    /// the line loads times B/n sum to `force` (to round-off); summed slices: the law with
-    /// length B/n at the slice centre's approach.
-    pub fn line_loads(&self, law: ContactLaw, c: &LineContact, d: f64, t: f64, out: &mut [f64]) {
+    /// slope t, into `out` (`slices` entries), and the largest of them. With the closed form
+    /// the slice's force is the face's integral over the slice, (k/B)·∫ max(0, a) dz over
+    /// [z_s − B/2n, z_s + B/2n], so the line loads times B/n sum to `force` (to round-off);
+    /// summed slices: the law with length B/n at the slice centre's approach.
+    pub fn line_loads(
+        &self,
+        law: ContactLaw,
+        c: &LineContact,
+        d: f64,
+        t: f64,
+        out: &mut [f64],
+    ) -> f64 {
         let out = &mut out[..self.slices];
-        self.each_line_load(law, c, d, t, |s, q| out[s] = q);
+        let mut peak = 0.0_f64;
+        self.each_line_load(law, c, d, t, |s, q| {
+            out[s] = q;
+            peak = peak.max(q);
+        });
+        peak
     }
 
     /// The largest of the slices' line loads (N/mm), as `line_loads` gives them, without
@@ -249,44 +298,39 @@ impl FaceWidth {
         t: f64,
         mut f: impl FnMut(usize, f64),
     ) {
-        let h = self.width_mm / self.slices as f64;
+        let n = self.slices;
+        let h = self.width_mm / n as f64;
         let per_mm = law::paper_linear_stiffness(c) / self.width_mm;
         if self.closed_form(law) {
             let Some((p, q)) = self.loaded(d, t) else {
-                (0..self.slices).for_each(|s| f(s, 0.0));
+                (0..n).for_each(|s| f(s, 0.0));
                 return;
             };
             let half = 0.5 * self.width_mm;
-            // The slices [z_s − h/2, z_s + h/2] that meet (p, q), and the load on each, from
-            // its loaded part: (∫ a dz over it)·(k/B)/h; the crown's integral carried from
-            // one edge to the next.
-            let first = (((p + half) / h) as usize).min(self.slices - 1);
-            let last = (((q + half) / h).ceil() as usize).clamp(first + 1, self.slices);
+            // The slices that meet (p, q): those holding p and q carry
+            // (∫ a dz over their loaded part)·(k/B)/h; those between, loaded whole, the mean
+            // of a over the slice, d + t·z_s − (the crown's mean depth over it).
+            let first = (((p + half) / h) as usize).min(n - 1);
+            let last = ((((q + half) / h) as usize) + 1).clamp(first + 1, n);
             (0..first).for_each(|s| f(s, 0.0));
-            let scale = per_mm / h;
-            let mut lo = (-half + first as f64 * h).max(p);
-            let mut crown_lo = self.crown_integral(lo);
-            for s in first..last {
-                let hi = if s + 1 == self.slices {
-                    half
-                } else {
-                    -half + (s + 1) as f64 * h
+            let end = |s: usize| {
+                let (lo, hi) = (self.slice_edge_mm(s), self.slice_edge_mm(s + 1));
+                (per_mm / h * self.integral(d, t, lo.max(p), hi.min(q))).max(0.0)
+            };
+            f(first, end(first));
+            if last > first + 1 {
+                let whole = first + 1..last - 1;
+                for (s, crown) in whole.clone().zip(&self.slice_crown_mm[whole]) {
+                    let z = (s as f64 + 0.5) * h - half;
+                    f(s, (per_mm * (d + t * z - crown)).max(0.0));
                 }
-                .min(q);
-                let crown_hi = if self.curvature == 0.0 {
-                    0.0
-                } else {
-                    self.crown_integral(hi)
-                };
-                let linear = (hi - lo) * (d + 0.5 * t * (lo + hi));
-                f(s, scale * (linear - (crown_hi - crown_lo)).max(0.0));
-                (lo, crown_lo) = (hi, crown_hi);
+                f(last - 1, end(last - 1));
             }
-            (last..self.slices).for_each(|s| f(s, 0.0));
+            (last..n).for_each(|s| f(s, 0.0));
             return;
         }
         let slice = self.slice_contact(c);
-        for s in 0..self.slices {
+        for s in 0..n {
             let z = self.slice_centre_mm(s);
             let a = d - self.crown_mm(z) + t * z;
             f(
@@ -335,7 +379,7 @@ impl FaceWidth {
 
     /// The loaded interval [p, q] of the face, where a(z) > 0 (one interval: a is concave),
     /// mm; `None` where a ≤ 0 everywhere. For the straight or circularly crowned face.
-    #[inline]
+    #[inline(always)]
     fn loaded(&self, d: f64, t: f64) -> Option<(f64, f64)> {
         let half = 0.5 * self.width_mm;
         // Where a peaks: a' = t − crown'(z), crown'(z) = ±2c·(|z| − z0) over the ends.
@@ -362,7 +406,7 @@ impl FaceWidth {
     /// smaller root in w: z grows as w shrinks), the flat middle (a linear) or the +z crowned
     /// end (a = A + t·w − c·w², w = z − z0, A = d + t·z0, the larger root). Roots of
     /// c·w² − b·w − A in the stable form.
-    #[inline]
+    #[inline(always)]
     fn root_beyond(&self, d: f64, t: f64, from: f64) -> f64 {
         let half = 0.5 * self.width_mm;
         let (z0, c) = (self.flat_mm, self.curvature);

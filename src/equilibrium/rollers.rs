@@ -311,8 +311,7 @@ impl Rollers {
         if let (Some(face), true) = (&self.face, s.force_n > 0.0) {
             let c = self.line_contact(self.curvature(s));
             let t = face.approach_slope((-s.normal.x, -s.normal.y));
-            face.line_loads(self.law, &c, -s.gap_mm, t, out);
-            let peak = out.iter().copied().fold(0.0, f64::max);
+            let peak = face.line_loads(self.law, &c, -s.gap_mm, t, out);
             let unit = LineContact {
                 length_mm: 1.0,
                 ..c

@@ -311,9 +311,8 @@ impl<'a> Chunk<'a> {
                     };
                     (h.peak_pressure_mpa, h.half_width_mm)
                 } else {
-                    if let Some(q) = q {
-                        q.fill(0.0);
-                    }
+                    // Out of contact: its line loads stay the column's zeros (`Columns::new`;
+                    // an angle is recorded once).
                     (0.0, 0.0)
                 };
                 self.pressure[i][k] = p;

@@ -593,14 +593,7 @@ fn the_face_load_factor_is_at_least_one() {
     let width = 8.0;
     let c = contact(width);
     let k = law::paper_linear_stiffness(&c);
-    // xorshift64: a fixed sequence of uniform numbers in [0, 1).
-    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = uniform_sequence(0x9e37_79b9_7f4a_7c15);
     let mut slivers = 0;
     for case in 0..3000 {
         let radius = 100.0 + 2000.0 * uniform();
@@ -715,13 +708,7 @@ fn the_face_load_factor_is_at_least_one() {
 #[test]
 fn the_reach_of_a_tilt_is_the_largest_closing_over_the_face() {
     let width = 8.0;
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = uniform_sequence(0x2545_f491_4f6c_dd1d);
     let m = 40_000;
     let dz = width / m as f64;
     for _ in 0..2000 {
@@ -754,6 +741,17 @@ fn the_reach_of_a_tilt_is_the_largest_closing_over_the_face() {
             reach >= sampled - 1e-15 && reach <= sampled + theta * dz + 1e-15,
             "{crowning:?} θ {theta}: reach {reach} vs the sampled largest closing {sampled}"
         );
+    }
+}
+
+/// xorshift64 from `seed`: a fixed sequence of uniform numbers in [0, 1).
+fn uniform_sequence(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
     }
 }
 

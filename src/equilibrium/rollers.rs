@@ -305,8 +305,8 @@ impl Rollers {
     }
 
     /// `line_loads` of roller state `s` into `out`, with its Hertz pressure and half-width
-    /// (`hertz`) and the peak line load (N/mm), the peak slice's Hertz taken from `out` rather
-    /// than computed again.
+    /// (`hertz`) and the peak line load (N/mm): on a face that is not uniform the peak slice's
+    /// Hertz, from the peak returned with the line loads rather than computed again.
     pub fn hertz_and_line_loads(&self, s: &RollerState, out: &mut [f64]) -> (HertzLine, f64) {
         if let (Some(face), true) = (&self.face, s.force_n > 0.0) {
             let c = self.line_contact(self.curvature(s));
@@ -412,7 +412,8 @@ impl Rollers {
         for (i, st) in states.iter_mut().enumerate() {
             if let Some(reach) = reaches.get(i) {
                 let bound = self.gap_lower_bound(reach, pose);
-                // A tilt closes a section by up to |θ|·B/2 beyond the 2-D gap.
+                // A tilt closes a section by up to `reach_mm` beyond the 2-D gap, the largest
+                // |θ|·|z| − crown(z) over the face.
                 if bound > self.face.as_ref().map_or(0.0, |f| f.reach_mm) {
                     (st.gap_mm, st.force_n, st.stiffness_n_per_mm) = (bound, 0.0, 0.0);
                     continue;

@@ -169,6 +169,47 @@ fn contact(length_mm: f64) -> LineContact {
     }
 }
 
+/// The slices' line loads where the loaded interval ends exactly on a slice edge, inside a
+/// slice, and with one slice, against their means worked by hand: a straight face B = 8 mm,
+/// t = 1e-3, a(z) = d + t·z. With d = 0 the contact opens at z = 0 (an edge of 4 slices of
+/// 2 mm): slices [0, 2] and [2, 4] carry the means t·1 and t·3, the others nothing; with d = 2t
+/// at z = −2 (an edge): t, 3t, 5t over the three slices from −2; with d = t at z = −1 (inside
+/// a slice): ∫ t·(z + 1) dz over [−1, 0] / 2 = t/4, then 2t and 4t; one slice: the face's mean
+/// (t/B)·∫ (z + 4) dz over [−4, 4] = 4t with d = 4t (loaded end to end but for z = −4).
+/// Each times k/B. Round-off of a few terms of size t·B: 1e-12 relative.
+#[test]
+fn line_loads_where_the_contact_opens_on_a_slice_edge_inside_one_and_with_one_slice() {
+    let c = contact(8.0);
+    let per_mm = law::paper_linear_stiffness(&c) / 8.0;
+    let t = 1e-3;
+    for (d, slices, expected) in [
+        (0.0, 4, vec![0.0, 0.0, 1.0, 3.0]),
+        (2.0 * t, 4, vec![0.0, 1.0, 3.0, 5.0]),
+        (t, 4, vec![0.0, 0.25, 2.0, 4.0]),
+        (4.0 * t, 1, vec![4.0]),
+    ] {
+        let face = Face {
+            slices,
+            ..Face::default()
+        };
+        let fw = FaceWidth::new(&face, 8.0, c.contact_modulus_mpa, true);
+        let mut q = vec![f64::NAN; slices];
+        let peak = fw.line_loads(ContactLaw::PaperLinear, &c, d, t, &mut q);
+        for (s, (&got, want)) in q.iter().zip(&expected).enumerate() {
+            let want = want * t * per_mm;
+            assert!(
+                (got - want).abs() <= 1e-12 * per_mm * t * 8.0,
+                "d {d} n {slices} slice {s}: {got} vs {want}"
+            );
+        }
+        let top = expected.iter().copied().fold(0.0, f64::max) * t * per_mm;
+        assert!(
+            (peak - top).abs() <= 1e-12 * per_mm * t * 8.0,
+            "peak {peak} vs {top}"
+        );
+    }
+}
+
 /// With the linear law the closed form is the limit of fine Winkler slices: the force equals a
 /// midpoint sum over 100,000 slices written out here (the sum's error is O(h²) on each smooth
 /// piece and at the clip's two corners, h = 8e-5 mm: below 1e-7 of the force), for straight,
@@ -703,8 +744,9 @@ fn the_face_load_factor_is_at_least_one() {
 /// |θ|·|z| − crown(z) over the face: not below it (a roller touching at one end would be
 /// skipped) and above it by no more than sampling misses (a looser bound evaluates rollers
 /// that cannot touch). On 2,000 random circular crowns (some starting beyond the face's end),
-/// straight faces and tilts, against 40,001 points of the face: a concave closing sampled at
-/// spacing Δz misses its peak by at most |θ|·Δz; 1e-15 mm covers round-off.
+/// straight faces and tilts, against 40,001 points of the face: the closing's slope is at most
+/// |θ| (crown' ≥ 0 for z ≥ 0), so the sample just below its peak is within |θ|·Δz of it;
+/// 1e-15 mm covers round-off.
 #[test]
 fn the_reach_of_a_tilt_is_the_largest_closing_over_the_face() {
     let width = 8.0;

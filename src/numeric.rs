@@ -82,6 +82,39 @@ fn decimals(x: f64) -> Option<usize> {
     decimal.then(|| (3 - (rounded.log10() + 1e-12).floor() as i32).clamp(0, 6) as usize)
 }
 
+/// The cells of one column of numbers, by one rule for the whole column: whole numbers (a
+/// column of counts, |x| < 1e6) as integers; otherwise every cell to four significant digits
+/// (as `number`), all in decimals where every non-zero value rounds into [1e-4, 1e6)
+/// (`-0.0005314` beside `-0.002242`), else all with an exponent (`-5.314e-4`, `1.200e1`), so
+/// that no column switches between the two forms. Zero is "0".
+pub fn column(values: &[f64]) -> Vec<String> {
+    let counts = values.iter().all(|x| x.fract() == 0.0 && x.abs() < 1e6);
+    let decimal = values
+        .iter()
+        .filter(|&&x| x != 0.0)
+        .all(|&x| column_decimals(x).is_some());
+    values
+        .iter()
+        .map(|&x| match column_decimals(x) {
+            _ if x == 0.0 => "0".to_string(),
+            _ if counts => format!("{x:.0}"),
+            Some(digits) if decimal => format!("{x:.digits$}"),
+            _ => format!("{x:.3e}"),
+        })
+        .collect()
+}
+
+/// The decimals that give `x` four significant digits where it rounds into [1e-4, 1e6) (one
+/// decade further down than `number`'s decimals: a column may need it), else `None`.
+fn column_decimals(x: f64) -> Option<usize> {
+    let a = x.abs();
+    let unit = 10f64.powi(a.log10().floor() as i32 - 3);
+    let rounded = (a / unit).round() * unit;
+    (1e-4..1e6)
+        .contains(&rounded)
+        .then(|| (3 - (rounded.log10() + 1e-12).floor() as i32).max(0) as usize)
+}
+
 /// The change from `from` to `to`, signed, to the decimals the larger of the two is printed
 /// with (`number`), so that it reads against them: a change below their last printed digit is
 /// "0", not a number in exponent form far below what the values show. Where the values
@@ -169,6 +202,20 @@ mod tests {
         assert_eq!(change(12.5, 12.5), "0");
         assert_eq!(change(2e-5, 3e-5), "+1.000e-5");
         assert_eq!(change(2e6, 2e6), "0");
+    }
+
+    /// A column reads by one rule (`column`): the review's example, -5.314e-4 beside
+    /// -0.002242, reads in decimals, four significant digits each; a whole value beside
+    /// fractions reads to four digits too ("3.000", not "3"); counts as integers; a column
+    /// spanning more decades than decimals can show (1e-6 beside 2) wholly with exponents.
+    #[test]
+    fn a_column_reads_by_one_rule() {
+        assert_eq!(column(&[-5.314e-4, -0.002242]), ["-0.0005314", "-0.002242"]);
+        assert_eq!(column(&[3.0, 2.942]), ["3.000", "2.942"]);
+        assert_eq!(column(&[29.0, 31.0]), ["29", "31"]);
+        assert_eq!(column(&[1e-6, 2.0, 0.0]), ["1.000e-6", "2.000e0", "0"]);
+        assert_eq!(column(&[942.7, 1002.25]), ["942.7", "1002"]);
+        assert_eq!(column(&[0.99996, 0.5]), ["1.000", "0.5000"]);
     }
 
     /// Four significant digits after rounding: a value that rounds up into the next decade

@@ -118,13 +118,17 @@ pub fn failure_text(f: &Failure) -> String {
     }
 }
 
-/// A cell: whole numbers (counts) as integers, the rest to four significant digits.
-fn cell(v: f64) -> String {
-    if v.fract() == 0.0 && v.abs() < 1e6 {
-        format!("{v}")
-    } else {
-        number(v)
-    }
+/// The front's cells, `[design][column]`: each column by one rule (`numeric::column`: counts
+/// as integers, the rest to four significant digits, in decimals or, where the column's
+/// magnitudes need it, all with an exponent).
+fn cells(cols: &[Column<'_>], front: &[Evaluation]) -> Vec<Vec<String>> {
+    let by_column: Vec<Vec<String>> = cols
+        .iter()
+        .map(|(_, f)| crate::numeric::column(&front.iter().map(f).collect::<Vec<_>>()))
+        .collect();
+    (0..front.len())
+        .map(|k| by_column.iter().map(|c| c[k].clone()).collect())
+        .collect()
 }
 
 /// The terminal text: the counts, the front's table (or why there is none) and the verdict.
@@ -161,13 +165,12 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
     let _ = writeln!(s, "\nPareto front, {} designs:", run.front.len());
     let mut header = vec!["#".to_string()];
     header.extend(cols.iter().map(|(h, _)| h.clone()));
-    let rows: Vec<Vec<String>> = run
-        .front
-        .iter()
+    let rows: Vec<Vec<String>> = cells(&cols, &run.front)
+        .into_iter()
         .enumerate()
-        .map(|(k, e)| {
+        .map(|(k, c)| {
             let mut r = vec![format!("{}", k + 1)];
-            r.extend(cols.iter().map(|(_, f)| cell(f(e))));
+            r.extend(c);
             r
         })
         .collect();
@@ -228,7 +231,25 @@ pub fn csv(req: &Requirements, run: &SearchRun) -> String {
 /// An objective as a plot axis names it for a person: the quantity in words and its unit in
 /// parentheses ("mass (kg)", "max contact pressure (MPa)"), not the YAML key (`mass_kg`).
 pub fn axis_label(kind: ObjectiveKind) -> String {
-    let (what, unit) = match kind {
+    match unit(kind) {
+        "" => what(kind).to_string(),
+        u => format!("{} ({u})", what(kind)),
+    }
+}
+
+/// An objective's quantity in words ("mass", "max contact pressure").
+fn what(kind: ObjectiveKind) -> &'static str {
+    words(kind).0
+}
+
+/// An objective's unit ("kg"; "" for a ratio).
+fn unit(kind: ObjectiveKind) -> &'static str {
+    words(kind).1
+}
+
+/// An objective's (quantity in words, unit).
+fn words(kind: ObjectiveKind) -> (&'static str, &'static str) {
+    match kind {
         ObjectiveKind::OuterDiameter => ("outer diameter", "mm"),
         ObjectiveKind::AxialLength => ("axial length", "mm"),
         ObjectiveKind::Mass => ("mass", "kg"),
@@ -238,10 +259,6 @@ pub fn axis_label(kind: ObjectiveKind) -> String {
         ObjectiveKind::BearingLife => ("crank-bearing life L10h", "h"),
         ObjectiveKind::Rigidity => ("torsional rigidity", "N·m/arcmin"),
         ObjectiveKind::Efficiency => ("mean efficiency", ""),
-    };
-    match unit {
-        "" => what.to_string(),
-        _ => format!("{what} ({unit})"),
     }
 }
 
@@ -249,8 +266,33 @@ pub fn axis_label(kind: ObjectiveKind) -> String {
 /// design number, as an SVG document: round ticks (`svg::ticks`) and labels placed clear of
 /// the points and of each other (`svg::labels::Layout`, with a leader where moved far).
 pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> String {
-    let (w, h) = (640.0, 440.0);
-    let (left, right, top, bottom) = (80.0, 620.0, 30.0, 380.0);
+    let (x_obj, y_obj) = (req.objectives[i], req.objectives[j]);
+    let title = format!(
+        "Pareto front: {} against {}",
+        axis_label(y_obj),
+        axis_label(x_obj)
+    );
+    let aim = |o: ObjectiveKind| {
+        format!(
+            "{} {}",
+            what(o),
+            if o.maximise() {
+                "maximised"
+            } else {
+                "minimised"
+            }
+        )
+    };
+    let subtitle = format!(
+        "{} designs, numbered as in the table; {}, {}",
+        run.front.len(),
+        aim(x_obj),
+        aim(y_obj)
+    );
+    let (left, right) = (80.0, 620.0);
+    let top = crate::report::svg::frame::top(1);
+    let bottom = top + 350.0;
+    let (w, h) = (640.0, bottom + 60.0);
     let xs: Vec<f64> = run.front.iter().map(|e| e.objectives[i]).collect();
     let ys: Vec<f64> = run.front.iter().map(|e| e.objectives[j]).collect();
     let span = |v: &[f64]| {
@@ -282,6 +324,7 @@ pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> St
         })
         .collect();
     let body: Markup = html! {
+        (crate::report::svg::frame::titles(left, &title, &[subtitle]))
         rect x=(px(left)) y=(px(top)) width=(px(right - left)) height=(px(bottom - top))
             fill="none" stroke="#999" {}
         @for &t in &tx.values {
@@ -293,11 +336,11 @@ pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> St
             text x=(px(left - 8.0)) y=(px(fy(t) + 4.0)) font-size="11" text-anchor="end" { (ty.label(t)) }
         }
         text x=(px((left + right) / 2.0)) y=(px(bottom + 40.0)) font-size="13" text-anchor="middle" {
-            (axis_label(req.objectives[i]))
+            (axis_label(x_obj))
         }
         text x="16" y=(px((top + bottom) / 2.0)) font-size="13" text-anchor="middle"
             transform=(format!("rotate(-90 16 {})", px((top + bottom) / 2.0))) {
-            (axis_label(req.objectives[j]))
+            (axis_label(y_obj))
         }
         @for &(x, y) in &spots {
             circle cx=(px(x)) cy=(px(y)) r="4" fill="#1f77b4" {}
@@ -322,6 +365,7 @@ pub fn plots(req: &Requirements, run: &SearchRun) -> Vec<(String, String)> {
 /// The review page: the counts, the plots and the front's table with links to its specs.
 pub fn page(req: &Requirements, run: &SearchRun, time: &Timing) -> String {
     let cols = columns(req);
+    let table = cells(&cols, &run.front);
     let plots = plots(req, run);
     let markup = html! {
         (DOCTYPE)
@@ -348,10 +392,10 @@ pub fn page(req: &Requirements, run: &SearchRun, time: &Timing) -> String {
                     table {
                         thead { tr { th { "spec" } @for (h, _) in &cols { th { (h) } } } }
                         tbody {
-                            @for (k, e) in run.front.iter().enumerate() {
+                            @for (k, row) in table.iter().enumerate() {
                                 tr {
                                     td { a href=(crate::engine::commands::design_file(k)) { (crate::engine::commands::design_file(k)) } }
-                                    @for (_, f) in &cols { td { (cell(f(e))) } }
+                                    @for c in row { td { (c) } }
                                 }
                             }
                         }

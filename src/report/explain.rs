@@ -47,19 +47,30 @@ pub fn hysteresis(friction: bool) -> &'static str {
     }
 }
 
-/// The compliances a torsion curve is made of, modelled (computed by the loaded model) and
-/// given (the structure's, added as c·T), in words, e.g. "modelled: roller contacts
-/// (paper_linear, exact geometry), output-pin contacts, cantilever pins (bending, 14 mm, discs
-/// at 10 mm), rigid crank bearing; given: structure 0.5 arcmin/kN·m".
-pub fn torsion_compliances(c: &TorsionCompliances) -> (Vec<String>, Vec<String>) {
+/// The compliances of a torsion curve in words, in three lists: those `modelled` (computed
+/// by the loaded model), those `not_modelled` (a part the model holds rigid: it adds no twist)
+/// and those `given` (the structure's, added as c·T), e.g. modelled "roller contacts
+/// (paper_linear law, exact geometry)", "output-pin contacts (paper_linear law)"; not modelled
+/// "pin bending (pins rigid)", "crank bearing (rigid)"; given "none (carrier, housing and
+/// shafts rigid)".
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompliancesText {
+    pub modelled: Vec<String>,
+    pub not_modelled: Vec<String>,
+    pub given: Vec<String>,
+}
+
+/// The compliances a torsion curve is made of (`CompliancesText`).
+pub fn torsion_compliances(c: &TorsionCompliances) -> CompliancesText {
     let mut modelled = vec![format!(
         "roller contacts ({} law, {} geometry)",
         c.contact_law, c.geometry
     )];
+    let mut not_modelled = Vec::new();
     if c.pin_contacts {
         modelled.push(format!("output-pin contacts ({} law)", c.contact_law));
     } else {
-        modelled.push("output pins not modelled (rigid output)".into());
+        not_modelled.push("output pins (rigid output)".into());
     }
     if let Some(s) = &c.pin_bending {
         let discs: Vec<String> = s
@@ -79,12 +90,12 @@ pub fn torsion_compliances(c: &TorsionCompliances) -> (Vec<String>, Vec<String>)
             discs.join(", ")
         ));
     } else if c.pin_contacts {
-        modelled.push("pins rigid (no bending)".into());
+        not_modelled.push("pin bending (pins rigid)".into());
     }
-    modelled.push(match c.bearing_stiffness_n_per_mm {
-        Some(k) => format!("crank bearing {} N/mm", number(k)),
-        None => "crank bearing rigid".into(),
-    });
+    match c.bearing_stiffness_n_per_mm {
+        Some(k) => modelled.push(format!("crank bearing {} N/mm", number(k))),
+        None => not_modelled.push("crank bearing (rigid)".into()),
+    }
     let given = if c.structure_rad_per_nmm > 0.0 {
         vec![format!(
             "structure (carrier, housing, shafts) {} arcmin per kN·m, added as c·T",
@@ -93,7 +104,11 @@ pub fn torsion_compliances(c: &TorsionCompliances) -> (Vec<String>, Vec<String>)
     } else {
         vec!["none (carrier, housing and shafts rigid)".into()]
     };
-    (modelled, given)
+    CompliancesText {
+        modelled,
+        not_modelled,
+        given,
+    }
 }
 
 /// What a torsion scene's reader is told of its contact law: the catalogue figures are

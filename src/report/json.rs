@@ -345,6 +345,8 @@ pub struct CompliancesDoc {
     contact_law: &'static str,
     /// Computed by the loaded model.
     modelled: Vec<String>,
+    /// Held rigid by the model (a rigid crank bearing, rigid pins): no twist of theirs.
+    not_modelled: Vec<String>,
     /// Given in the spec and added (the structure's c·T).
     given: Vec<String>,
     /// The rest of the reducer's torsional compliance, arcmin per kN·m (0: none given).
@@ -417,11 +419,12 @@ impl TorsionDoc {
             hysteresis: hysteresis(t.friction),
             compliances: {
                 let c = &t.compliances;
-                let (modelled, given) = torsion_compliances(c);
+                let text = torsion_compliances(c);
                 CompliancesDoc {
                     contact_law: c.contact_law.name(),
-                    modelled,
-                    given,
+                    modelled: text.modelled,
+                    not_modelled: text.not_modelled,
+                    given: text.given,
                     structure_arcmin_per_knm: Finite(units::arcmin_per_knm(
                         c.structure_rad_per_nmm,
                     )),

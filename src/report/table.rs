@@ -237,7 +237,7 @@ pub fn summary_rows(s: &SceneSummary, all: &[SceneSummary]) -> Vec<SummaryRow> {
         .iter()
         .map(|h| SummaryRow {
             label: headline_label(h, s),
-            value: headline_value(h),
+            value: scene_headline_value(h, s),
             at: headline_at(h, s, all),
             marked: h.beyond.is_some(),
         })
@@ -334,6 +334,35 @@ pub fn headline_value(h: &Headline) -> String {
     with_unit(count_or_number(x, unit), unit)
 }
 
+/// A headline's value as its scene's line reads it: `headline_value`, but in a scene with the
+/// reducer's torsion figures (in arcmin, the catalogues' unit) the unloaded lost motion reads
+/// in arcmin too (`in_arcmin`), so that its line, which compares the two, holds one unit.
+pub fn scene_headline_value(h: &Headline, s: &SceneSummary) -> String {
+    if !in_arcmin(h, s) {
+        return headline_value(h);
+    }
+    let x = if preloaded(h) { 0.0 } else { h.value };
+    with_unit(number(arcsec_to_arcmin(x)), "arcmin")
+}
+
+/// Whether `h` is the unloaded lost motion (arcsec, as every TE figure) of a scene that also
+/// gives the reducer's torsion lost motion (arcmin): its line then reads in arcmin.
+fn in_arcmin(h: &Headline, s: &SceneSummary) -> bool {
+    h.quantity.key == MAX_LOST_MOTION.key && torsion_lost_motion(s).is_some()
+}
+
+/// The reducer's lost motion at ±3 % of rated torque of a torsion scene, arcmin.
+fn torsion_lost_motion(s: &SceneSummary) -> Option<&Headline> {
+    s.headlines
+        .iter()
+        .find(|o| o.quantity.key == MAX_TORSION_LOST_MOTION.key)
+}
+
+/// An angle in arcsec as arcmin (1 arcmin = 60 arcsec).
+fn arcsec_to_arcmin(x: f64) -> f64 {
+    crate::units::arcmin(crate::units::rad_from_arcsec(x))
+}
+
 /// Whether `h` is a lost motion whose closing lags overlap (no free play).
 fn preloaded(h: &Headline) -> bool {
     h.quantity.key == MAX_LOST_MOTION.key && h.value < 0.0
@@ -349,10 +378,13 @@ fn preloaded(h: &Headline) -> bool {
 pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> String {
     let mut at = h.at.clone();
     if preloaded(h) {
+        let (overlap, unit) = match in_arcmin(h, s) {
+            true => (arcsec_to_arcmin(-h.value), "arcmin"),
+            false => (-h.value, h.quantity.unit),
+        };
         at = format!(
-            "preloaded: no free play, the closing lags overlap by {} {} (interference), {at}",
-            number(-h.value),
-            h.quantity.unit
+            "preloaded: no free play, the closing lags overlap by {} {unit} (interference), {at}",
+            number(overlap),
         );
     }
     let others = all.iter().filter(|o| o.scene != s.scene);
@@ -367,19 +399,13 @@ pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> Stri
             false => format!("; {}", sampling(s)),
         };
     }
-    let torsion = s
-        .headlines
-        .iter()
-        .find(|o| o.quantity.key == MAX_TORSION_LOST_MOTION.key);
-    if let (true, Some(t)) = (h.quantity.key == MAX_LOST_MOTION.key, torsion) {
+    if let (true, Some(t)) = (in_arcmin(h, s), torsion_lost_motion(s)) {
+        // The value beside it is in arcmin already (`scene_headline_value`).
         at += &format!(
-            "; {} arcmin against the reducer's {} arcmin at ±3 % of rated torque: this is {} \
+            "; against the reducer's {} arcmin at ±3 % of rated torque: this is {} \
              free play with no load (the closing lags at the ideal pose), the other the \
              catalogue's figure, the torsion angle of the reducer between ±3 % of rated torque: \
              that free play plus the elastic twist of the contacts at 3 % of rated{}",
-            number(crate::units::arcmin(crate::units::rad_from_arcsec(
-                h.value.max(0.0)
-            ))),
             number(t.value),
             if s.discs > 1 {
                 "one disc's"

@@ -758,3 +758,74 @@ fn a_tilted_face_is_judged_on_its_face_limits_in_every_running_scene() {
         out.stderr
     );
 }
+
+/// Significant digits of a number as printed: "-0.0005314" 4, "2.000" 4, "1.200e1" 4.
+fn significant(cell: &str) -> usize {
+    let mantissa = cell.split('e').next().unwrap().trim_start_matches('-');
+    let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+    digits.trim_start_matches('0').len()
+}
+
+/// The front's table prints each column by one rule (review of the outputs, item 4), in the
+/// terminal and on the page alike: the counts (ratio, pins, discs) as integers, every other
+/// cell to four significant digits, a column either wholly in decimals or wholly with an
+/// exponent. On the small search the eccentricity reaches its range's end, 2 mm, beside
+/// 1.875 mm: both read to four digits ("2.000", not "2").
+#[test]
+fn the_front_table_prints_each_column_by_one_rule() {
+    let dir = Scratch::new("design-columns");
+    dir.write("small.yaml", SMALL);
+    let out = common::cycloid(&dir.path, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let lines: Vec<&str> = out.stdout.lines().collect();
+    let head = lines
+        .iter()
+        .position(|l| l.trim_start().starts_with("# "))
+        .unwrap();
+    let header: Vec<&str> = lines[head].split_whitespace().collect();
+    let rows: Vec<Vec<&str>> = lines[head + 1..]
+        .iter()
+        .take_while(|l| !l.trim().is_empty())
+        .map(|l| l.split_whitespace().collect())
+        .collect();
+    assert!(rows.len() >= 2, "{}", out.stdout);
+    // The page's table: the same cells, after each row's spec link.
+    let html = dir.read("front/index.html");
+    let body = &html[html.find("<tbody>").unwrap()..html.find("</tbody>").unwrap()];
+    let page: Vec<Vec<String>> = body
+        .split("<tr>")
+        .skip(1)
+        .map(|row| {
+            row.split("<td>")
+                .skip(2)
+                .map(|c| c[..c.find("</td>").unwrap()].to_string())
+                .collect()
+        })
+        .collect();
+    assert_eq!(page.len(), rows.len());
+    for (c, name) in header.iter().enumerate().skip(1) {
+        let cells: Vec<&str> = rows.iter().map(|r| r[c]).collect();
+        let on_page: Vec<&str> = page.iter().map(|r| r[c - 1].as_str()).collect();
+        assert_eq!(on_page, cells, "{name}: page and terminal");
+        if ["ratio", "pins", "discs"].contains(name) {
+            assert!(
+                cells.iter().all(|v| v.parse::<u32>().is_ok()),
+                "{name}: {cells:?}"
+            );
+            continue;
+        }
+        let exponents = cells.iter().filter(|v| v.contains('e')).count();
+        assert!(
+            exponents == 0 || exponents == cells.len(),
+            "{name}: decimals and exponents mixed: {cells:?}"
+        );
+        for v in cells.iter().filter(|v| **v != "0") {
+            assert_eq!(significant(v), 4, "{name}: {v} in {cells:?}");
+        }
+    }
+    let e = header.iter().position(|h| *h == "eccentricity_mm").unwrap();
+    let mut values: Vec<&str> = rows.iter().map(|r| r[e]).collect();
+    values.sort_unstable();
+    values.dedup();
+    assert_eq!(values, ["1.875", "2.000"]);
+}

@@ -653,3 +653,82 @@ fn the_face_plot_names_the_scenes_max_line_load_as_the_table_does() {
     let want = format!("the scene's max line load, {value}, is at {place}");
     assert!(text.contains(&want), "{want:?} not in {text:?}");
 }
+
+/// The face-width plot draws the whole face (review of the outputs, item 3): on
+/// `reducer-misaligned.yaml` (B = 8 mm, 20 slices) the x axis spans −B/2…B/2 with round ticks
+/// every 2 mm (−4, −2, 0, 2, 4), and each curve is a step per slice: its 20 line loads (each the
+/// mean over its slice) held over their slices' widths, B/20 each, from the face's one end to
+/// the other. Points are written to 0.01 px: 0.02 px covers the rounding of both ends.
+#[test]
+fn the_face_plot_spans_the_face_with_a_step_per_slice() {
+    let dir = Scratch::new("face-steps");
+    let spec = format!(
+        "{}/specs/reducer-misaligned.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = run(&dir.path, &["check", &spec, "--report", "review"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let els = elements(&dir.read("review/face-2-misaligned.svg"));
+    let (left, top, width, height) = plot_area(&els);
+    let bottom = top + height;
+    let ticks: Vec<&str> = els
+        .iter()
+        .filter(|e| {
+            e.name == "text"
+                && e.attr("text-anchor") == "middle"
+                && e.attr("font-size") == "12"
+                && e.num("y") > bottom
+                && e.num("y") < bottom + 25.0
+        })
+        .map(|e| e.text.as_str())
+        .collect();
+    assert_eq!(ticks, ["−4", "−2", "0", "2", "4"]);
+    let curves: Vec<Vec<(f64, f64)>> = els
+        .iter()
+        .filter(|e| e.name == "polyline" && e.inside("series"))
+        .map(|e| point_list(e.attr("points")))
+        .collect();
+    assert_eq!(curves.len(), 2, "tilted and designed");
+    let slice = width / 20.0;
+    for c in &curves {
+        assert_eq!(c.len(), 40, "two points per slice");
+        assert!((c[0].0 - left).abs() <= 0.02, "{:?} from {left}", c[0]);
+        assert!((c[39].0 - (left + width)).abs() <= 0.02, "{:?}", c[39]);
+        for s in 0..20 {
+            let (a, b) = (c[2 * s], c[2 * s + 1]);
+            assert_eq!(a.1, b.1, "slice {s}: one line load across it");
+            assert!((b.0 - a.0 - slice).abs() <= 0.02, "slice {s}: {a:?} {b:?}");
+            assert!((a.0 - (left + s as f64 * slice)).abs() <= 0.02, "slice {s}");
+        }
+    }
+}
+
+/// `cycloid design`'s front plot has a title naming what it plots, in words with units, and
+/// a line saying what its points are and which way each objective is better (review of the
+/// outputs, item 4): the small search of `design_search.rs` minimises mass and contact
+/// pressure over 11 designs.
+#[test]
+fn the_front_plot_has_a_title() {
+    let dir = Scratch::new("front-title");
+    dir.write("small.yaml", crate::design_search::SMALL);
+    let out = run(&dir.path, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let els = elements(&dir.read("front/front-1.svg"));
+    assert_eq!(
+        title(&els),
+        "Pareto front: max contact pressure (MPa) against mass (kg)"
+    );
+    let n = out
+        .stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("Pareto front, "))
+        .and_then(|l| l.split(' ').next())
+        .expect("the front's count");
+    let subtitle = format!(
+        "{n} designs, numbered as in the table; mass minimised, max contact pressure minimised"
+    );
+    assert!(
+        els.iter().any(|e| e.name == "text" && e.text == subtitle),
+        "{subtitle}"
+    );
+}

@@ -358,8 +358,9 @@ fn two_disc_review(tag: &str) -> (String, String) {
 /// One meaning per line (issue 27): with two discs the unloaded lost motion is one disc's
 /// (each disc's closing lags at its own phase) and the torsion figure the reducer's at ±3 % of
 /// rated torque; each line says which, and the unloaded one says why the two differ. The
-/// unloaded figure in arcmin is the arcsec one / 60 (1511.2 arcsec at crank 18° on this design,
-/// README "Torsion": 1505.7–1511.2 arcsec over the locked angles; 25.19 arcmin).
+/// unloaded figure reads in arcmin, as the torsion figures beside it, the arcsec one / 60
+/// (1511.2 arcsec at crank 18° on this design, README "Torsion": 1505.7–1511.2 arcsec over the
+/// locked angles; 25.19 arcmin).
 #[test]
 fn two_disc_lost_motions_say_per_disc_or_reducer_and_why_they_differ() {
     let (_, text) = two_disc_review("two-disc-labels");
@@ -377,10 +378,10 @@ fn two_disc_lost_motions_say_per_disc_or_reducer_and_why_they_differ() {
         .nth(1)
         .unwrap();
     assert!(
-        why.contains("arcmin against the reducer's 25.20 arcmin at ±3 % of rated torque: this is one disc's free play with no load"),
+        why.contains("; against the reducer's 25.20 arcmin at ±3 % of rated torque: this is one disc's free play with no load"),
         "{why}"
     );
-    assert!(why.contains("; 25.19 arcmin against"), "{why}");
+    assert!(why.trim_start().starts_with("25.19 arcmin "), "{why}");
 }
 
 /// Each disc's torque share is in the terminal's headline results and in the review: with 10
@@ -578,4 +579,199 @@ fn the_design_table_states_the_crowning() {
     );
     let straight = design_section("specs/paper.yaml", "no-crowning-row");
     assert!(!straight.contains("crowning"), "{straight}");
+}
+
+/// Words of a text, one space apart: the terminal pads its columns.
+fn words(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// The text of a review's section (tags stripped, words one space apart).
+fn section_text(html: &str, id: &str) -> String {
+    let start = html
+        .find(&format!("<section id=\"{id}\">"))
+        .unwrap_or_else(|| panic!("no section {id}"));
+    let end = start + html[start..].find("</section>").unwrap();
+    let mut text = String::new();
+    let mut inside = false;
+    for c in html[start..end].chars() {
+        match c {
+            '<' => inside = true,
+            '>' => {
+                inside = false;
+                text.push(' ');
+            }
+            _ if !inside => text.push(c),
+            _ => {}
+        }
+    }
+    words(&text.replace("&#39;", "'").replace("&amp;", "&"))
+}
+
+/// One unit per line (review of the outputs, item 1): on `specs/reducer-torsion.yaml` the
+/// unloaded lost motion's line compares it with the reducer's ±3 % figure in arcmin, so it
+/// reads in arcmin too, in the terminal and in the review alike, and no figure of that line is
+/// in arcsec. 25.19 arcmin is README "Torsion"'s 1511.2 arcsec at crank 18° over 60; 25.22
+/// arcmin the largest of the ±3 % figures README gives (25.13–25.22 arcmin).
+#[test]
+fn a_torsion_scenes_unloaded_lost_motion_reads_in_arcmin() {
+    let dir = Scratch::new("torsion-lost-motion-unit");
+    let review = dir.path.join("review");
+    let run = cycloid_here(&[
+        "check",
+        "specs/reducer-torsion.yaml",
+        "--report",
+        review.to_str().unwrap(),
+    ]);
+    assert_eq!(run.code, Some(0), "{run:?}");
+    let want = "max lost motion (unloaded) 25.19 arcmin crank 18.00°, over the scene's 4 crank \
+                angles; against the reducer's 25.22 arcmin at ±3 % of rated torque: this is the \
+                disc's free play with no load (the closing lags at the ideal pose), the other \
+                the catalogue's figure, the torsion angle of the reducer between ±3 % of rated \
+                torque: that free play plus the elastic twist of the contacts at 3 % of rated";
+    let line = run
+        .stdout
+        .lines()
+        .find(|l| l.contains("max lost motion (unloaded)"))
+        .expect("the unloaded lost motion's line");
+    assert_eq!(words(line), want);
+    let html = std::fs::read_to_string(review.join("index.html")).unwrap();
+    let text = section_text(&html, "summary");
+    assert!(text.contains(want), "{text}");
+    let row = text.split("max lost motion (unloaded)").nth(1).unwrap();
+    let row = &row[..row.find("max lost motion of the reducer").unwrap()];
+    assert!(!row.contains("arcsec"), "{row}");
+}
+
+/// A preloaded lost motion beside the reducer's torsion figures reads 0 arcmin with its
+/// overlap in arcmin too (`report::table::summary_rows`): −494.8 arcsec is 8.247 arcmin (÷ 60).
+/// Without the torsion figure the same headline stays in arcsec, the unit of the TE.
+#[test]
+fn a_preloaded_lost_motion_beside_torsion_figures_reads_in_arcmin() {
+    use cycloid::engine::summary::{Headline, SceneSummary};
+    use cycloid::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION};
+    let headline = |quantity, value: f64| Headline {
+        quantity,
+        value,
+        at: "crank 0.00°".to_string(),
+        beyond: None,
+    };
+    let scene = |headlines| SceneSummary {
+        scene: "torsion".into(),
+        headlines,
+        angles: 1,
+        step_rad: 0.0,
+        first_rad: 0.0,
+        discs: 1,
+        shares: Vec::new(),
+    };
+    let with_torsion = scene(vec![
+        headline(&MAX_LOST_MOTION, -494.8),
+        headline(&MAX_TORSION_LOST_MOTION, 2.5),
+    ]);
+    let rows = cycloid::report::table::summary_rows(&with_torsion, &[]);
+    assert_eq!(rows[0].value, "0 arcmin");
+    assert!(
+        rows[0].at.starts_with(
+            "preloaded: no free play, the closing lags overlap by 8.247 arcmin (interference), \
+             crank 0.00°; against the reducer's 2.500 arcmin at ±3 % of rated torque"
+        ),
+        "{}",
+        rows[0].at
+    );
+    let alone = scene(vec![headline(&MAX_LOST_MOTION, -494.8)]);
+    let rows = cycloid::report::table::summary_rows(&alone, &[]);
+    assert_eq!(rows[0].value, "0 arcsec");
+    assert_eq!(
+        rows[0].at,
+        "preloaded: no free play, the closing lags overlap by 494.8 arcsec (interference), \
+         crank 0.00°"
+    );
+}
+
+/// A rigid part is a compliance not modelled (review of the outputs, item 2; issue 29 item
+/// 5): `specs/reducer-torsion.yaml` gives no crank-bearing stiffness and no pin support, so
+/// its bearing and pins are rigid and listed as not modelled; `specs/reducer-pin-beams.yaml`
+/// bends its cantilever pins, so only its bearing is rigid (and gives the structure's 2
+/// arcmin per kN·m). The review and the JSON say the same.
+#[test]
+fn torsion_compliances_list_rigid_parts_as_not_modelled() {
+    let cases = [
+        (
+            "specs/reducer-torsion.yaml",
+            vec![
+                "roller contacts (paper_linear law, exact geometry)",
+                "output-pin contacts (paper_linear law)",
+            ],
+            vec!["pin bending (pins rigid)", "crank bearing (rigid)"],
+            "none (carrier, housing and shafts rigid)",
+        ),
+        (
+            "specs/reducer-pin-beams.yaml",
+            vec![
+                "roller contacts (paper_linear law, exact geometry)",
+                "output-pin contacts (paper_linear law)",
+                "pin bending (cantilever clamped in the flange, 14.00 mm long, disc mid-planes \
+                 at 10.00 mm from the flange)",
+            ],
+            vec!["crank bearing (rigid)"],
+            "structure (carrier, housing, shafts) 2.000 arcmin per kN·m, added as c·T",
+        ),
+    ];
+    for (k, (spec, modelled, not_modelled, given)) in cases.iter().enumerate() {
+        let dir = Scratch::new(&format!("torsion-compliances-{k}"));
+        let (review, json) = (dir.path.join("review"), dir.path.join("r.json"));
+        let run = cycloid_here(&[
+            "check",
+            spec,
+            "--report",
+            review.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert_eq!(run.code, Some(0), "{run:?}");
+        let html = std::fs::read_to_string(review.join("index.html")).unwrap();
+        let text = section_text(&html, "scene-1-torsion-torsion");
+        let want = format!(
+            "Compliances modelled: {}. Not modelled: {}. Given: {given}.",
+            modelled.join("; "),
+            not_modelled.join("; ")
+        );
+        assert!(text.contains(&want), "{spec}: {want}\nnot in {text}");
+        let doc: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let c = &doc["scenes"][0]["compliances"];
+        assert_eq!(c["modelled"], serde_json::json!(modelled), "{spec}");
+        assert_eq!(c["not_modelled"], serde_json::json!(not_modelled), "{spec}");
+    }
+}
+
+/// The review's design table states the friction and heat inputs as the spec writes them,
+/// with units (review of the outputs, item 5): `specs/reducer-efficiency.yaml` gives the loss
+/// model, rotating rollers on 1.5 mm pins at μ 0.06, sleeves on 2 mm pins at μ 0.06, the
+/// bearing at μ 0.0025 on a 20 mm bore, 30 N·mm of drag and a housing of 0.06 m² at 20
+/// W/(m²·K) in 20 °C air. A spec without friction (`specs/paper.yaml`) has none of these rows.
+#[test]
+fn the_design_table_states_the_friction_inputs() {
+    let design = |spec: &str, tag: &str| {
+        let dir = Scratch::new(tag);
+        let review = dir.path.join("review");
+        let run = cycloid_here(&["check", spec, "--report", review.to_str().unwrap()]);
+        assert_eq!(run.code, Some(0), "{run:?}");
+        section_text(
+            &std::fs::read_to_string(review.join("index.html")).unwrap(),
+            "design",
+        )
+    };
+    let text = design("specs/reducer-efficiency.yaml", "friction-rows");
+    let want = "friction model loss (the frictionless balance's forces, each path's loss \
+                μ·F·sliding speed) friction, rollers rotating on pins of radius r_b 1.5 mm, μ \
+                0.06 (at the roller's pin) friction, output pins free sleeves on pins of radius \
+                r_bore 2 mm, μ 0.06 (between sleeve and pin) friction, crank bearing μ 0.0025 at \
+                its bore d 20 mm no-load torque at the input 30 N·mm housing's heat path area A \
+                0.06 m², heat transfer h 20 W/(m²·K), ambient 20 °C";
+    assert!(text.contains(want), "{want}\nnot in {text}");
+    let plain = design("specs/paper.yaml", "no-friction-rows");
+    assert!(!plain.contains("friction"), "{plain}");
+    assert!(!plain.contains("heat"), "{plain}");
 }

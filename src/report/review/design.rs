@@ -1,8 +1,11 @@
 //! The review's design: the reducer as the spec gives it and its tooth-profile modification.
 
 use super::common::{data_table, section, Section};
-use crate::model::{Crowning, Modification};
-use crate::numeric::number;
+use crate::model::{
+    Crowning, Friction, FrictionModel, Modification, PinFriction, PinMode, RollerFriction,
+    RollerMode, Thermal,
+};
+use crate::numeric::{input, number};
 use crate::spec::Spec;
 use crate::units;
 use maud::{html, Markup};
@@ -37,6 +40,9 @@ pub(super) fn design_section(spec: &Spec, m: &Modification) -> Section {
             (row("crank bearing (each disc)", format!("C {} N, life exponent p {}",
                 number(b.dynamic_load_rating_n), number(b.life_exponent))))
         }
+        @for (k, v) in friction_rows(d.friction.as_ref(), d.thermal.as_ref()) {
+            (row(k, v))
+        }
     };
     let modification = html! {
         (row("shift ΔRp", mm(m.shift_mm)))
@@ -51,6 +57,98 @@ pub(super) fn design_section(spec: &Spec, m: &Modification) -> Section {
         div.cols { (pairs("reducer", reducer)) (pairs("tooth-profile modification", modification)) }
     };
     section("design", html! { "Design" }, body)
+}
+
+/// The friction and heat inputs (`reducer.friction`, `reducer.thermal`) as the design table
+/// states them, (what, value with its unit), each value as the spec writes it; none without
+/// them. A path the spec gives no friction says so.
+fn friction_rows(f: Option<&Friction>, t: Option<&Thermal>) -> Vec<(&'static str, String)> {
+    let mut rows = Vec::new();
+    if let Some(f) = f {
+        rows.push((
+            "friction model",
+            match f.model {
+                FrictionModel::Loss => {
+                    "loss (the frictionless balance's forces, each path's \
+                                        loss μ·F·sliding speed)"
+                }
+                FrictionModel::Coupled => "coupled (friction μ·F inside every contact's balance)",
+            }
+            .to_string(),
+        ));
+        let none = || "no friction (not given)".to_string();
+        rows.push((
+            "friction, rollers",
+            match f.rollers {
+                Some(RollerFriction {
+                    mode: RollerMode::Fixed,
+                    mu,
+                }) => {
+                    format!("fixed, μ {} (the disc slides over the roller)", input(mu))
+                }
+                Some(RollerFriction {
+                    mode: RollerMode::Rotating { bore_radius_mm },
+                    mu,
+                }) => {
+                    format!(
+                        "rotating on pins of radius r_b {} mm, μ {} (at the roller's pin)",
+                        input(bore_radius_mm),
+                        input(mu)
+                    )
+                }
+                None => none(),
+            },
+        ));
+        rows.push((
+            "friction, output pins",
+            match f.output_pins {
+                Some(PinFriction {
+                    mode: PinMode::Fixed,
+                    mu,
+                }) => {
+                    format!("fixed, μ {} (the hole slides over the pin)", input(mu))
+                }
+                Some(PinFriction {
+                    mode: PinMode::Sleeve { bore_radius_mm },
+                    mu,
+                }) => format!(
+                    "free sleeves on pins of radius r_bore {} mm, μ {} (between sleeve and pin)",
+                    input(bore_radius_mm),
+                    input(mu)
+                ),
+                None => none(),
+            },
+        ));
+        rows.push((
+            "friction, crank bearing",
+            match f.crank_bearing {
+                Some(b) => format!(
+                    "μ {} at its bore d {} mm",
+                    input(b.mu),
+                    input(b.bore_diameter_mm)
+                ),
+                None => none(),
+            },
+        ));
+        if f.no_load_torque_nmm > 0.0 {
+            rows.push((
+                "no-load torque at the input",
+                format!("{} N·mm", input(f.no_load_torque_nmm)),
+            ));
+        }
+    }
+    if let Some(t) = t {
+        rows.push((
+            "housing's heat path",
+            format!(
+                "area A {} m², heat transfer h {} W/(m²·K), ambient {} °C",
+                input(t.housing_area_m2),
+                input(t.heat_transfer_w_per_m2k),
+                input(t.ambient_c)
+            ),
+        ));
+    }
+    rows
 }
 
 /// The disc's crowning along the face (`modification.crowning`, every scene's alike) as the

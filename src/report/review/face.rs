@@ -12,6 +12,18 @@ use crate::spec::Spec;
 use crate::units;
 use maud::html;
 
+/// The line loads `q` of the slices centred at `z_mm` on a face `width_mm` wide (n equal
+/// slices, each B/n wide) as a step curve, mm and N/mm: each slice's mean held over
+/// [z_s − B/2n, z_s + B/2n], so that the curve spans the whole face, −B/2…B/2, and shows each
+/// value as what it is, a mean over its slice (not a sample at its centre).
+fn steps(z_mm: &[f64], width_mm: f64, q: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let half = 0.5 * width_mm / z_mm.len().max(1) as f64;
+    z_mm.iter()
+        .zip(q)
+        .flat_map(|(&z, &v)| [(z - half, v), (z + half, v)])
+        .unzip()
+}
+
 /// The section, or nothing without a tilted scene.
 pub(super) fn section_of(
     spec: &Spec,
@@ -54,23 +66,23 @@ pub(super) fn section_of(
             p.z_mm.len()
         );
         plot.include_zero = true;
+        // The whole face, −B/2…B/2, with round ticks inside it.
+        let half = 0.5 * spec.design.face_width_mm;
+        plot.x_range = Some((-half, half));
+        let (x, y) = steps(&p.z_mm, 2.0 * half, &p.tilted_n_per_mm);
         plot.series.push(Series::new(
             format!(
                 "tilted θx {} mrad, θy {} mrad",
                 crate::numeric::input(1e3 * m.about_x_rad),
                 crate::numeric::input(1e3 * m.about_y_rad)
             ),
-            p.z_mm.clone(),
-            p.tilted_n_per_mm.clone(),
+            x,
+            y,
             PALETTE[0],
         ));
         if let Some(designed) = &p.designed_n_per_mm {
-            let mut s = Series::new(
-                "designed (no tilt)",
-                p.z_mm.clone(),
-                designed.clone(),
-                PALETTE[1],
-            );
+            let (x, y) = steps(&p.z_mm, 2.0 * half, designed);
+            let mut s = Series::new("designed (no tilt)", x, y, PALETTE[1]);
             s.dashed = true;
             plot.series.push(s);
         }
@@ -79,9 +91,10 @@ pub(super) fn section_of(
         figures.push((
             file,
             format!("Line load along the face, scene {}", scene.name),
-            "The most loaded roller at the crank angle of the largest face load factor: the line \
-             load of each slice (its mean, drawn at its centre) as the scene runs it (tilted) \
-             and for the same disc and angle without the tilt (designed, solved alike)"
+            "The most loaded roller at the crank angle of the largest face load factor, over \
+             the whole face width: the line load of each slice (its mean over the slice, drawn \
+             as a step across the slice's width) as the scene runs it (tilted) and for the same \
+             disc and angle without the tilt (designed, solved alike)"
                 .to_string(),
         ));
     }

@@ -183,6 +183,14 @@ const DEFINITIONS: &str = "Figures as the makers of precision reducers define th
      torsional rigidity the secant slope b/a between 50 % and 100 % of the rated torque, each \
      direction, the figure being the smaller. Each figure is solved at its own torque.";
 
+/// The parts held rigid, or "none (every part's compliance is modelled)".
+fn not_modelled(parts: &[String]) -> String {
+    match parts {
+        [] => "none (every part's compliance is modelled)".to_string(),
+        _ => parts.join("; "),
+    }
+}
+
 /// The design review's torsion sections (one per torsion scene); the plots go into `files` as
 /// (name, SVG).
 pub(super) fn sections(
@@ -197,11 +205,12 @@ pub(super) fn sections(
         let id = format!("{}-torsion", prefix(k, scene));
         let file = format!("{id}.svg");
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));
-        let (modelled, given) = torsion_compliances(&t.compliances);
+        let c = torsion_compliances(&t.compliances);
         let body = html! {
             p.note { (DEFINITIONS) " " b { (hysteresis(t.friction)) "." } }
             p.note {
-                "Compliances modelled: " (modelled.join("; ")) ". Given: " (given.join("; "))
+                "Compliances modelled: " (c.modelled.join("; ")) ". Not modelled: "
+                (not_modelled(&c.not_modelled)) ". Given: " (c.given.join("; "))
                 ". " (torsion_law_note(t.compliances.contact_law)) "."
             }
             (figure(&file, "Torsion curve", "one curve per locked crank angle (a dot per \

@@ -23,7 +23,7 @@ use crate::model::results::{BearingLife, ClearanceSweep, DutyBinResult, LoadedSw
 use crate::model::{
     Design, Detail, Effect, FrictionModel, GeometryMode, Modification, Plan, Scene,
 };
-use crate::progress::{Progress, Silent};
+use crate::progress::{Phase, Progress, Silent};
 use crate::spec::Spec;
 use crate::units;
 
@@ -34,6 +34,39 @@ pub struct Writes {
     pub json: bool,
     /// The design review (`--report`).
     pub report: bool,
+}
+
+/// Progress phases of crank angles below this many are not worth showing (a scene that ends
+/// before a display's first redraw).
+const SCENES_WORTH_SHOWING: u64 = 200_000;
+
+/// Every scene of `spec`, in parallel; results (and the first error) in spec order.
+pub fn run_all(spec: &Spec, writes: Writes, progress: &dyn Progress) -> Result<Vec<SceneResult>> {
+    use rayon::prelude::*;
+    let plans: Vec<_> = spec.scenes.iter().map(|s| plan(spec, s, writes)).collect();
+    // The sweeps of every scene, in crank angles.
+    let total: usize = spec
+        .scenes
+        .iter()
+        .zip(&plans)
+        .map(|(s, plan)| s.crank_rad.len() * scene_sweeps(s, plan, spec.design.discs))
+        .sum();
+    let phase = Phase {
+        worth_showing: SCENES_WORTH_SHOWING,
+        ..Phase::new("solving the scenes", "crank angles", total as u64)
+    };
+    let heard = progress.phase(&phase);
+    let options = RunOptions {
+        progress: &*heard,
+        ..Default::default()
+    };
+    let results: Vec<Result<SceneResult>> = spec
+        .scenes
+        .par_iter()
+        .zip(&plans)
+        .map(|(s, plan)| run(spec, s, plan, &options))
+        .collect();
+    results.into_iter().collect()
 }
 
 /// The plan of `scene` in a run of `spec` that writes `writes`: the scene's effects, and the

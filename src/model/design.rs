@@ -352,7 +352,7 @@ impl Design {
 }
 
 /// Greatest common divisor (Euclid); gcd(a, 0) = a.
-fn gcd(mut a: usize, mut b: usize) -> usize {
+pub(crate) fn gcd(mut a: usize, mut b: usize) -> usize {
     while b != 0 {
         (a, b) = (b, a % b);
     }

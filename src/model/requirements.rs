@@ -4,7 +4,14 @@
 
 use super::design::{CrankBearing, Material};
 use super::limits::Limits;
-use super::{DutyBin, Friction, Misalignment};
+use super::{Crowning, DutyBin, Friction, Misalignment, Thermal};
+
+/// Crank period of the loaded curves of a search's design with `teeth` nc and `pins` M, in mesh
+/// periods: nc/gcd(nc, M) (the least common multiple of the mesh period 2π/np and the pin period
+/// 2π·nc/(np·M), `Design::loaded_period_rad`; M ≥ 1).
+pub fn loaded_mesh_periods(teeth: usize, pins: usize) -> usize {
+    teeth / super::design::gcd(teeth, pins)
+}
 
 /// A continuous variable of the search: its spec key and its closed range, mm (lower = upper
 /// fixes it).
@@ -201,6 +208,14 @@ pub struct Requirements {
     /// Friction of every candidate (the keys of a spec's `reducer.friction`): its rated scene
     /// (and duty scene) computes the efficiency.
     pub friction: Option<Friction>,
+    /// The housing's heat path of every candidate (the keys of a spec's `reducer.thermal`):
+    /// with `friction` and `input_speed_rpm` its rated scene computes the steady temperature
+    /// ambient + P_loss/(h·A), °C.
+    pub thermal: Option<Thermal>,
+    /// The crowning of every candidate's discs (the keys of a spec's `modification.crowning`;
+    /// `Crowning::None` when not given). A circular crown's flat middle must lie inside each
+    /// candidate's face, start < B/2: a design rule (`design_search::rules`).
+    pub crowning: Crowning,
     /// The disc's tilt against the housing in the loaded running scenes (rated, peak, duty),
     /// rad (`misalignment`, mrad; zero when not given).
     pub misalignment: Misalignment,

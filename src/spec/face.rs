@@ -18,11 +18,17 @@ pub(crate) const MAX_FACE_SLICES: usize = 1000;
 /// and its flat half-length in [0, B/2); a logarithmic profile's load, end drop and load
 /// coefficient > 0 and its crowned fraction in (0, 1]. A key of the other kind is refused.
 pub(crate) fn crowning(raw: Option<&RawCrowning>, design: &Design) -> Result<Crowning> {
-    const KEY: &str = "modification.crowning";
-    let Some(raw) = raw else {
-        return Ok(Crowning::None);
-    };
-    let key = |k: &str| format!("{KEY}.{k}");
+    match raw {
+        Some(raw) => crowning_at("modification.crowning", raw, (design.face_width_mm, "")),
+        None => Ok(Crowning::None),
+    }
+}
+
+/// A crowning at `at` (`modification.crowning`, or a requirements file's `crowning`) by the
+/// rules of [`crowning`], its flat middle checked against the face width `face.0`, mm; `face.1`
+/// says which face width that is when it is not the design's own (empty: the design's).
+pub(crate) fn crowning_at(at: &str, raw: &RawCrowning, face: (f64, &str)) -> Result<Crowning> {
+    let key = |k: &str| format!("{at}.{k}");
     let refuse_foreign = |names: &[(&str, bool)], kind: &str| -> Result<()> {
         match names.iter().find(|(_, given)| *given) {
             Some((name, _)) => Err(Error::invalid(
@@ -32,7 +38,12 @@ pub(crate) fn crowning(raw: Option<&RawCrowning>, design: &Design) -> Result<Cro
             None => Ok(()),
         }
     };
-    let half = 0.5 * design.face_width_mm;
+    let half = 0.5 * face.0;
+    let which = if face.1.is_empty() {
+        String::new()
+    } else {
+        format!(" (B {})", face.1)
+    };
     match raw.kind.as_str() {
         "circular" => {
             refuse_foreign(
@@ -45,7 +56,7 @@ pub(crate) fn crowning(raw: Option<&RawCrowning>, design: &Design) -> Result<Cro
                 "circular",
             )?;
             let radius = raw.radius_mm.ok_or_else(|| {
-                Error::invalid(KEY, "a `circular` crowning needs `radius_mm`".into())
+                Error::invalid(at, "a `circular` crowning needs `radius_mm`".into())
             })?;
             let radius_mm = length(&key("radius_mm"), radius)?;
             let start_mm = finite(&key("start_mm"), raw.start_mm.unwrap_or(0.0))?;
@@ -53,7 +64,8 @@ pub(crate) fn crowning(raw: Option<&RawCrowning>, design: &Design) -> Result<Cro
                 return Err(Error::invalid(
                     key("start_mm"),
                     format!(
-                        "the flat middle's half-length must lie in [0, B/2) = [0, {} mm), got {}",
+                        "the flat middle's half-length must lie in [0, B/2) = [0, {} mm){which}, \
+                         got {}",
                         numeric::input(half),
                         numeric::input(start_mm)
                     ),
@@ -73,9 +85,7 @@ pub(crate) fn crowning(raw: Option<&RawCrowning>, design: &Design) -> Result<Cro
                 "logarithmic",
             )?;
             let needed = |k: &str, v: Option<f64>| {
-                v.ok_or_else(|| {
-                    Error::invalid(KEY, format!("a `logarithmic` crowning needs `{k}`"))
-                })
+                v.ok_or_else(|| Error::invalid(at, format!("a `logarithmic` crowning needs `{k}`")))
             };
             let design_load_n = positive(
                 &key("design_load_n"),

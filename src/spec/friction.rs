@@ -192,10 +192,9 @@ pub(crate) fn friction_at(
     })
 }
 
-/// `reducer.thermal`: a positive area and heat-transfer coefficient, an ambient above absolute
-/// zero.
-pub(super) fn thermal(raw: &RawThermal) -> Result<Thermal> {
-    let key = "reducer.thermal";
+/// `reducer.thermal` (or a requirements file's `thermal`, at `key`): a positive area and
+/// heat-transfer coefficient, an ambient above absolute zero.
+pub(super) fn thermal_at(key: &str, raw: &RawThermal) -> Result<Thermal> {
     let positive = |name: &str, v: f64| -> Result<f64> {
         if v.is_finite() && v > 0.0 {
             Ok(v)

@@ -8,6 +8,7 @@ use super::validate::{life_exponent, limits, material};
 use super::values::{finite, positive};
 use crate::error::{Error, Result};
 use crate::model::design::MAX_DISCS;
+use crate::model::requirements::loaded_mesh_periods;
 use crate::model::requirements::*;
 use crate::model::scene::MAX_ROLLER_ANGLES;
 use crate::model::{CrankBearing, Misalignment};
@@ -139,13 +140,15 @@ fn ratios(raw: &serde_yaml::Value) -> Result<Vec<usize>> {
 }
 
 /// `misalignment` (finite, mrad → rad) and `face_slices` (1 to `MAX_FACE_SLICES`), with the
-/// spec's rules: a tilted face needs 2 slices or more, so does a limit on the load along the
-/// face, and the line loads of a scene (contacts × crank angles × slices) must fit in
-/// memory for every ratio and pin count of the search.
+/// spec's rules: a tilted or crowned face needs 2 slices or more, so does a limit on the load
+/// along the face, and the line loads of a scene (contacts × crank angles × slices) must fit in
+/// memory for every ratio and pin count of the search (`ratios`, `pin_counts` and `steps` per
+/// mesh period as validated).
 fn face(
     raw: &RawRequirements,
     ratios: &[usize],
-    search: &RawSearch,
+    pin_counts: &[usize],
+    steps: usize,
 ) -> Result<(Misalignment, usize)> {
     let misalignment = match &raw.misalignment {
         Some(m) => Misalignment {
@@ -164,15 +167,25 @@ fn face(
             ))
         }
     };
-    let slices_key = if raw.face_slices.is_some() {
-        "face_slices"
-    } else {
-        "misalignment"
+    let slices_key = |other: &str| {
+        if raw.face_slices.is_some() {
+            "face_slices".to_string()
+        } else {
+            other.to_string()
+        }
     };
     if !misalignment.is_zero() && slices < 2 {
         return Err(Error::invalid(
-            slices_key,
+            slices_key("misalignment"),
             "a tilted face needs `face_slices: 2` or more (20 is a good start), the slices \
+             the line load is reported at"
+                .to_string(),
+        ));
+    }
+    if raw.crowning.is_some() && slices < 2 {
+        return Err(Error::invalid(
+            slices_key("crowning"),
+            "a crowned face needs `face_slices: 2` or more (20 is a good start), the slices \
              the line load is reported at"
                 .to_string(),
         ));
@@ -188,25 +201,18 @@ fn face(
         }
     }
     if slices > 1 {
-        let steps = search.steps_per_mesh_period.unwrap_or(48).max(0);
         for &nc in ratios {
-            for &m in &search.pin_counts {
-                let m = m.max(0) as usize;
-                let (mut a, mut b) = (nc, m);
-                while b != 0 {
-                    (a, b) = (b, a % b);
-                }
-                let periods = (nc / a.max(1)) as i64;
-                let cells = (nc + 1).max(m) as i64 * steps * periods * slices as i64;
+            for &m in pin_counts {
+                let angles = steps * loaded_mesh_periods(nc, m);
+                let contacts = (nc + 1).max(m);
+                let cells = (contacts * angles * slices) as i64;
                 if cells > MAX_ROLLER_ANGLES {
                     return Err(Error::invalid(
                         "face_slices",
                         format!(
-                            "{slices} slices × {} contacts × {} crank angles (ratio {nc}, {m} \
-                             pins) is {cells} line loads, more than the {MAX_ROLLER_ANGLES} a \
-                             scene may hold; give fewer slices or steps",
-                            (nc + 1).max(m),
-                            steps * periods
+                            "{slices} slices × {contacts} contacts × {angles} crank angles (ratio \
+                             {nc}, {m} pins) is {cells} line loads, more than the \
+                             {MAX_ROLLER_ANGLES} a scene may hold; give fewer slices or steps"
                         ),
                     ));
                 }
@@ -295,16 +301,12 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         )?,
     };
     let limits = limits(&raw.limits)?;
-    for key in [
-        "optimum_max_objective",
-        "accuracy_resolved",
-        "max_temperature_c",
-    ] {
+    for key in ["optimum_max_objective", "accuracy_resolved"] {
         if raw.limits.contains_key(key) {
             return Err(Error::invalid(
                 format!("limits.{key}"),
                 "is not a limit a design search can set (its designs have no optimisation \
-                 study, accuracy scene or housing heat path)"
+                 study or accuracy scene)"
                     .to_string(),
             ));
         }
@@ -338,6 +340,27 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         .as_deref()
         .map(|bins| super::duty_cycle::bins_at("duty_cycle", bins))
         .transpose()?;
+    // The peak scene carries the largest torque the reducer sees; a bin beyond it (driving or
+    // braking, |T|) would be judged on forces the peak does not bound.
+    if let Some(j) = raw
+        .duty_cycle
+        .as_deref()
+        .unwrap_or_default()
+        .iter()
+        .position(|b| b.output_torque_nm.abs() > peak)
+    {
+        let torque = raw.duty_cycle.as_deref().unwrap_or_default()[j].output_torque_nm;
+        return Err(Error::invalid(
+            format!("duty_cycle[{j}].output_torque_nm"),
+            format!(
+                "the bin's torque {} N·m is beyond the peak torque {} N·m (peak_torque_nm, or \
+                 the rated torque when no peak is given): the peak bounds every torque the \
+                 reducer carries, driving or braking",
+                numeric::input(torque),
+                numeric::input(peak)
+            ),
+        ));
+    }
     if duty_cycle.is_some() && input_speed_rpm.is_some() {
         return Err(Error::invalid(
             "input_speed_rpm",
@@ -394,7 +417,81 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
                 .to_string(),
         ));
     }
-    let (misalignment, face_slices) = face(&raw, &ratios(&raw.ratio)?, &raw.search)?;
+    let whole = |key: &str, v: Option<i64>, default: i64, min: i64, max: i64| -> Result<i64> {
+        let v = v.unwrap_or(default);
+        if (min..=max).contains(&v) {
+            Ok(v)
+        } else {
+            Err(Error::invalid(
+                key,
+                format!("must be in [{min}, {max}], got {v}"),
+            ))
+        }
+    };
+    let steps = whole(
+        "search.steps_per_mesh_period",
+        s.steps_per_mesh_period,
+        48,
+        4,
+        3600,
+    )?;
+    if steps % 4 != 0 {
+        return Err(Error::invalid(
+            "search.steps_per_mesh_period",
+            format!(
+                "must be a multiple of 4 (the screen runs every fourth crank angle), got {steps}"
+            ),
+        ));
+    }
+    let ratios = ratios(&raw.ratio)?;
+    let pin_counts = choices("search.pin_counts", &s.pin_counts, 2, 64)?;
+    let (misalignment, face_slices) = face(&raw, &ratios, &pin_counts, steps as usize)?;
+    let thermal = raw
+        .thermal
+        .as_ref()
+        .map(|t| super::friction::thermal_at("thermal", t))
+        .transpose()?;
+    // The temperature is the rated scene's (the one scene with friction and a speed): its
+    // mean loss in watts needs the speed, the heat path and the friction.
+    if raw.limits.contains_key("max_temperature_c") {
+        let missing = [
+            (thermal.is_none(), "`thermal` (the housing's heat path)"),
+            (
+                friction.is_none(),
+                "`friction` (without it nothing is lost)",
+            ),
+            (
+                input_speed_rpm.is_none(),
+                "`input_speed_rpm` (the losses in watts are the rated scene's losses × its \
+                 speed; a duty cycle's bins are not judged on it)",
+            ),
+        ];
+        if let Some((_, what)) = missing.iter().find(|(m, _)| *m) {
+            return Err(Error::invalid(
+                "limits.max_temperature_c",
+                format!(
+                    "the steady temperature ambient + P_loss/(h·A) of the rated scene needs {what}"
+                ),
+            ));
+        }
+    }
+    // Checked against the largest face width of the search; a design of a smaller face that
+    // cannot hold the crown is rejected by a design rule (`design_search::rules`).
+    let crowning = raw
+        .crowning
+        .as_ref()
+        .map(|c| {
+            super::face::crowning_at(
+                "crowning",
+                c,
+                (
+                    continuous.face_width_mm.upper,
+                    "the largest face width of the search, search.face_width_mm[1]",
+                ),
+            )
+        })
+        .transpose()?
+        .unwrap_or_default();
     let life_needs = |key: String| -> Result<()> {
         match (
             &crank_bearing,
@@ -462,35 +559,9 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         }
         objectives.push(*kind);
     }
-    let whole = |key: &str, v: Option<i64>, default: i64, min: i64, max: i64| -> Result<i64> {
-        let v = v.unwrap_or(default);
-        if (min..=max).contains(&v) {
-            Ok(v)
-        } else {
-            Err(Error::invalid(
-                key,
-                format!("must be in [{min}, {max}], got {v}"),
-            ))
-        }
-    };
-    let steps = whole(
-        "search.steps_per_mesh_period",
-        s.steps_per_mesh_period,
-        48,
-        4,
-        3600,
-    )?;
-    if steps % 4 != 0 {
-        return Err(Error::invalid(
-            "search.steps_per_mesh_period",
-            format!(
-                "must be a multiple of 4 (the screen runs every fourth crank angle), got {steps}"
-            ),
-        ));
-    }
     let search = Search {
         continuous,
-        pin_counts: choices("search.pin_counts", &s.pin_counts, 2, 64)?,
+        pin_counts,
         discs: choices(
             "search.discs",
             s.discs.as_deref().unwrap_or(&[1]),
@@ -511,12 +582,14 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
     }
     Ok(Requirements {
         name: raw.name,
-        ratios: ratios(&raw.ratio)?,
+        ratios,
         rated_torque_nmm: crate::units::nmm(rated),
         peak_torque_nmm: crate::units::nmm(peak),
         input_speed_rpm,
         duty_cycle,
         friction,
+        thermal,
+        crowning,
         misalignment,
         face_slices,
         envelope,

@@ -1,7 +1,7 @@
 //! A requirements file as written (serde), kept apart from the validated
 //! [`Requirements`](crate::model::requirements::Requirements); `spec::requirements` checks it.
 
-use super::raw::{RawDutyBin, RawFriction, RawLimits, RawMisalignment};
+use super::raw::{RawCrowning, RawDutyBin, RawFriction, RawLimits, RawMisalignment, RawThermal};
 use serde::Deserialize;
 
 #[derive(Debug, Deserialize)]
@@ -25,6 +25,12 @@ pub(crate) struct RawRequirements {
     /// The keys of a spec's `reducer.friction`.
     #[serde(default)]
     pub friction: Option<RawFriction>,
+    /// The keys of a spec's `reducer.thermal`.
+    #[serde(default)]
+    pub thermal: Option<RawThermal>,
+    /// The keys of a spec's `modification.crowning`.
+    #[serde(default)]
+    pub crowning: Option<RawCrowning>,
     /// The disc's tilt in the loaded running scenes, mrad.
     #[serde(default)]
     pub misalignment: Option<RawMisalignment>,

@@ -178,7 +178,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
         thermal: raw
             .thermal
             .as_ref()
-            .map(super::friction::thermal)
+            .map(|t| super::friction::thermal_at("reducer.thermal", t))
             .transpose()?,
         structure_compliance_rad_per_nmm,
     })

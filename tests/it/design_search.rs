@@ -677,6 +677,25 @@ fn a_bad_duty_cycle_or_an_efficiency_without_friction_is_refused_at_its_key() {
             "duty.yaml:5:1: invalid value: input_speed_rpm: a duty cycle runs each bin",
         ),
         (
+            DUTY.replace("output_torque_nm: 15.0,", "output_torque_nm: 15.5,"),
+            "duty.yaml:6:7: invalid value: duty_cycle[0].output_torque_nm: the bin's torque \
+             15.5 N·m is beyond the peak torque 15 N·m (peak_torque_nm, or the rated torque \
+             when no peak is given): the peak bounds every torque the reducer carries, driving \
+             or braking",
+        ),
+        (
+            // Braking beyond the peak is beyond it too: |−16| > 15.
+            DUTY.replace("output_torque_nm: -10.0,", "output_torque_nm: -16.0,"),
+            "duty.yaml:8:7: invalid value: duty_cycle[2].output_torque_nm: the bin's torque \
+             -16 N·m is beyond the peak torque 15 N·m",
+        ),
+        (
+            // Exactly the peak is carried by the peak scene: the next error is the one shown.
+            DUTY.replace("output_torque_nm: -10.0,", "output_torque_nm: -15.0,")
+                .replace("time_share: 0.4 }", "time_share: 0.3 }"),
+            "duty.yaml:5:1: invalid value: duty_cycle: the time shares sum to 0.9, not 1",
+        ),
+        (
             DUTY.replace("min_duty_life_h", "min_bearing_life_h"),
             "duty.yaml:30:3: invalid value: limits.min_bearing_life_h: with a duty cycle",
         ),
@@ -828,4 +847,195 @@ fn the_front_table_prints_each_column_by_one_rule() {
     values.sort_unstable();
     values.dedup();
     assert_eq!(values, ["1.875", "2.000"]);
+}
+
+/// SMALL with friction, a speed, the housing's heat path and a circular crown (flat 3 mm each
+/// side of the middle, so faces of B ≤ 6 mm cannot hold it) cut into 4 slices.
+fn thermal_crowned(max_temperature_c: f64) -> String {
+    SMALL
+        .replace(
+            "peak_torque_nm: 15.0\n",
+            "peak_torque_nm: 15.0\ninput_speed_rpm: 1500.0\nfriction:\n  rollers: { mode: \
+             fixed, mu: 0.05 }\n  output_pins: { mode: fixed, mu: 0.05 }\nthermal: { \
+             housing_area_m2: 0.05, heat_transfer_w_per_m2k: 20.0, ambient_c: 25.0 }\n\
+             crowning: { kind: circular, radius_mm: 500.0, start_mm: 3.0 }\nface_slices: 4\n",
+        )
+        .replace(
+            "  max_contact_pressure_mpa: 1500.0\n",
+            &format!(
+                "  max_contact_pressure_mpa: 2500.0\n  max_temperature_c: {max_temperature_c:?}\n"
+            ),
+        )
+}
+
+#[test]
+fn a_temperature_limit_is_judged_on_the_rated_scene_by_the_heat_path_and_the_crown_carried() {
+    use cycloid::model::quantity as q;
+    // 49 °C bites: of the 15 fully checked designs of the global stage 14 run hotter (all 15
+    // meet 60 °C), and what is left must meet it.
+    let dir = Scratch::new("design-thermal");
+    dir.write("small.yaml", thermal_crowned(49.0));
+    let out = common::cycloid(&dir.path, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let rows = front_rows(&dir);
+    assert!(!rows.is_empty());
+    for row in &rows {
+        let name = &row["spec"];
+        let path = dir.join(&format!("front/{name}"));
+        let checked = common::cycloid(&dir.path, &["check", path.to_str().unwrap()]);
+        assert_eq!(checked.code, Some(0), "{name}: {}", checked.stdout);
+        let spec = cycloid::spec::load(path.to_str().unwrap()).unwrap();
+        let run = cycloid::check(&spec, &cycloid::CheckOptions::default(), &Silent).unwrap();
+        assert!(run.passed(), "{name}");
+        // The limit is judged, on the rated scene: the one scene with friction and a speed.
+        let judged: Vec<&str> = (run.checks.iter())
+            .filter(|c| c.name() == "max_temperature_c")
+            .map(|c| c.id.as_str())
+            .collect();
+        assert_eq!(judged, ["rated/max_temperature_c"], "{name}");
+        // MODEL.md: T = ambient + P_loss/(h·A), from the rated scene's own mean loss in W and
+        // the requirements' 25 °C, 20 W/(m²·K), 0.05 m² (1 W/K); 1e-12 relative covers the
+        // one division and addition.
+        let loss_w = scalar(&run, "rated", &q::TOTAL_POWER_LOSS);
+        let t = scalar(&run, "rated", &q::TEMPERATURE);
+        let by_hand = 25.0 + loss_w / (20.0 * 0.05);
+        assert!(
+            (t - by_hand).abs() <= 1e-12 * by_hand,
+            "{name}: {t} vs {by_hand}"
+        );
+        assert!(loss_w > 0.0 && t <= 49.0 * (1.0 + 1e-9), "{name}: {t} °C");
+        // Every scene that loads the face carries the requirements' crown; B/2 holds its flat.
+        let crown = cycloid::model::Crowning::Circular {
+            radius_mm: 500.0,
+            start_mm: 3.0,
+        };
+        for s in &spec.scenes {
+            assert_eq!(s.face.crowning, crown, "{name} {}", s.name);
+        }
+        assert!(spec.design.face_width_mm > 6.0, "{name}");
+    }
+    // Below every design: with μ 0.05 every design loses power, so every temperature exceeds
+    // the 25 °C ambient, and a 25 °C limit is met by none.
+    dir.write("cold.yaml", thermal_crowned(25.0));
+    let out = common::cycloid(&dir.path, &["design", "cold.yaml"]);
+    assert_eq!(out.code, Some(1), "{}{}", out.stdout, out.stderr);
+    let best: f64 = out
+        .stdout
+        .split("FAIL: closest to being met: limits.max_temperature_c: best ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{}", out.stdout));
+    assert!(best > 25.0, "{best}");
+}
+
+#[test]
+fn a_crown_a_face_cannot_hold_is_a_rule_rejection_where_the_spec_would_refuse_it() {
+    let text = thermal_crowned(60.0);
+    let req = cycloid::spec::requirements::parse("small.yaml", &text).unwrap();
+    // A design that meets the envelope and every rule of SMALL (OD 73 ≤ 76 mm, K1 0.52 ≤
+    // 0.8, roller gap 12.9 mm, smallest ligament 4.98 mm ≥ 1 mm), its face width B varied
+    // about 2·start = 6 mm.
+    let at = |b: f64| Candidate {
+        choice: design_search::Choice {
+            teeth: 9,
+            pins: 6,
+            discs: 1,
+        },
+        x: [1.5, 29.0, 2.5, b, 16.0, 2.5, -0.01, 0.01],
+    };
+    for (b, holds) in [(5.8, false), (6.0, false), (6.2, true)] {
+        let c = at(b);
+        let failures = design_search::rules::failures(&req, &c);
+        let spec = design_search::candidate::spec_text(&req, &c, "hand", 12, "");
+        let parsed = cycloid::spec::parse("hand.yaml", &spec);
+        if holds {
+            assert!(failures.is_empty(), "B {b}: {failures:?}");
+            assert!(parsed.is_ok(), "B {b}: {:?}", parsed.err());
+        } else {
+            // The crown's start 3 mm against B/2, as the spec's own rule refuses it.
+            assert_eq!(
+                failures,
+                [design_search::Failure::bound(
+                    "crowning.start_mm",
+                    3.0,
+                    b / 2.0,
+                    "mm",
+                    true
+                )],
+                "B {b}"
+            );
+            let e = parsed.unwrap_err();
+            assert_eq!(
+                e.key_path.as_deref(),
+                Some("modification.crowning.start_mm"),
+                "B {b}"
+            );
+            // Never a spec error at evaluation: the candidate stops at the rules.
+            let e = evaluate::evaluate(&req, &c).unwrap();
+            assert_eq!(e.stage, evaluate::Stage::Rules, "B {b}");
+        }
+    }
+}
+
+#[test]
+fn a_temperature_crown_or_duty_bin_the_requirements_cannot_carry_is_refused_at_its_key() {
+    let text = thermal_crowned(60.0);
+    let limit = text
+        .lines()
+        .position(|l| l.contains("max_temperature_c"))
+        .unwrap()
+        + 1;
+    let cases = [
+        (
+            text.replace(
+                "thermal: { housing_area_m2: 0.05, heat_transfer_w_per_m2k: 20.0, ambient_c: \
+                 25.0 }\n",
+                "",
+            ),
+            format!(
+                "small.yaml:{}:3: invalid value: limits.max_temperature_c: the steady \
+                 temperature ambient + P_loss/(h·A) of the rated scene needs `thermal`",
+                limit - 1
+            ),
+        ),
+        (
+            text.replace("input_speed_rpm: 1500.0\n", ""),
+            format!(
+                "small.yaml:{}:3: invalid value: limits.max_temperature_c: the steady \
+                 temperature ambient + P_loss/(h·A) of the rated scene needs `input_speed_rpm`",
+                limit - 1
+            ),
+        ),
+        (
+            text.replace("ambient_c: 25.0", "ambient_c: -300.0"),
+            "small.yaml:9:66: invalid value: thermal.ambient_c: -300 °C is at or below \
+             absolute zero"
+                .to_string(),
+        ),
+        (
+            text.replace("face_slices: 4\n", ""),
+            "small.yaml:10:1: invalid value: crowning: a crowned face needs `face_slices: 2`"
+                .to_string(),
+        ),
+        (
+            text.replace("start_mm: 3.0", "start_mm: 5.0"),
+            "small.yaml:10:47: invalid value: crowning.start_mm: the flat middle's half-length \
+             must lie in [0, B/2) = [0, 5 mm) (B the largest face width of the search, \
+             search.face_width_mm[1]), got 5"
+                .to_string(),
+        ),
+        (
+            text.replace("radius_mm: 500.0", "radius_mm: -1.0"),
+            "small.yaml:10:29: invalid value: crowning.radius_mm".to_string(),
+        ),
+    ];
+    for (text, says) in cases {
+        let dir = Scratch::new("design-bad-thermal");
+        dir.write("small.yaml", &text);
+        let out = common::cycloid(&dir.path, &["design", "small.yaml"]);
+        assert_eq!(out.code, Some(2), "{says}: {}{}", out.stdout, out.stderr);
+        assert!(out.stderr.contains(&says), "{says}: {}", out.stderr);
+        assert!(!out.stderr.contains("panicked") && !out.stderr.contains("NaN"));
+    }
 }

@@ -28,10 +28,6 @@ pub fn map_steps_allowed(steps: usize) -> bool {
     (2..=MAX_MAP_STEPS).contains(&steps)
 }
 
-/// Progress phases of crank angles below this many are not worth showing (a scene that ends
-/// before a display's first redraw).
-const SCENES_WORTH_SHOWING: u64 = 200_000;
-
 /// What a `check` computes besides the scenes' limits and goldens.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct CheckOptions {
@@ -232,37 +228,10 @@ fn review_options(r: &ReviewOptions) -> Result<()> {
     Ok(())
 }
 
-/// Every scene of `spec`, in parallel; results (and the first error) in spec order.
+/// Every scene of `spec`, in parallel; results (and the first error) in spec order
+/// (`scene::run_all`).
 pub fn scenes(spec: &Spec, writes: Writes, progress: &dyn Progress) -> Result<Vec<SceneResult>> {
-    use rayon::prelude::*;
-    let plans: Vec<_> = spec
-        .scenes
-        .iter()
-        .map(|s| scene::plan(spec, s, writes))
-        .collect();
-    // The sweeps of every scene, in crank angles.
-    let total: usize = spec
-        .scenes
-        .iter()
-        .zip(&plans)
-        .map(|(s, plan)| s.crank_rad.len() * scene::scene_sweeps(s, plan, spec.design.discs))
-        .sum();
-    let phase = Phase {
-        worth_showing: SCENES_WORTH_SHOWING,
-        ..Phase::new("solving the scenes", "crank angles", total as u64)
-    };
-    let heard = progress.phase(&phase);
-    let options = scene::RunOptions {
-        progress: &*heard,
-        ..Default::default()
-    };
-    let results: Vec<Result<SceneResult>> = spec
-        .scenes
-        .par_iter()
-        .zip(&plans)
-        .map(|(s, plan)| scene::run(spec, s, plan, &options))
-        .collect();
-    results.into_iter().collect()
+    scene::run_all(spec, writes, progress)
 }
 
 /// Studies in parallel, in the order given, their evaluations counted.

@@ -2,7 +2,7 @@
 //! follow from its geometry alone (envelope, mass) and the spec that checks it.
 
 use crate::model::requirements::{Continuous, Requirements};
-use crate::model::{Friction, PinMode, RollerMode};
+use crate::model::{Crowning, Friction, PinMode, RollerMode};
 use std::fmt::Write;
 
 /// A discrete choice: the disc's teeth nc (the ratio), the output pins M and the discs.
@@ -73,15 +73,10 @@ impl Candidate {
         req.density_kg_per_mm3 * x[B] * self.choice.discs as f64 * (disc + rollers + pins)
     }
 
-    /// Crank period of the loaded curves, in mesh periods: nc/gcd(nc, M) (the least common
-    /// multiple of the mesh period 2π/np and the pin period 2π·nc/(np·M),
-    /// `Design::loaded_period_rad`).
+    /// Crank period of the loaded curves, in mesh periods: nc/gcd(nc, M)
+    /// (`model::requirements::loaded_mesh_periods`).
     pub fn loaded_mesh_periods(&self) -> usize {
-        let (mut a, mut b) = (self.choice.teeth, self.choice.pins);
-        while b != 0 {
-            (a, b) = (b, a % b);
-        }
-        self.choice.teeth / a
+        crate::model::requirements::loaded_mesh_periods(self.choice.teeth, self.choice.pins)
     }
 }
 
@@ -91,7 +86,8 @@ fn num(x: f64) -> String {
 }
 
 /// A running scene's (rated, peak, duty) `misalignment` and `face_slices`, each when the
-/// requirements give it (the torsion scene stays aligned: its face is uniform, one slice).
+/// requirements give it (the torsion scene stays aligned: its face is uniform, one slice,
+/// unless crowned).
 fn face_text(s: &mut String, req: &Requirements) {
     let m = &req.misalignment;
     if !m.is_zero() {
@@ -105,6 +101,37 @@ fn face_text(s: &mut String, req: &Requirements) {
     if req.face_slices > 1 {
         let _ = writeln!(s, "    face_slices: {}", req.face_slices);
     }
+}
+
+/// `modification.crowning` of the requirements' crowning: the same keys and values (nothing
+/// for `Crowning::None`).
+fn crowning_text(s: &mut String, c: &Crowning) {
+    let _ = match *c {
+        Crowning::None => Ok(()),
+        Crowning::Circular {
+            radius_mm,
+            start_mm,
+        } => writeln!(
+            s,
+            "  crowning: {{ kind: circular, radius_mm: {}, start_mm: {} }}",
+            num(radius_mm),
+            num(start_mm)
+        ),
+        Crowning::Logarithmic {
+            design_load_n,
+            end_drop_mm,
+            load_coefficient,
+            crowned_fraction,
+        } => writeln!(
+            s,
+            "  crowning: {{ kind: logarithmic, design_load_n: {}, end_drop_mm: {}, \
+             load_coefficient: {}, crowned_fraction: {} }}",
+            num(design_load_n),
+            num(end_drop_mm),
+            num(load_coefficient),
+            num(crowned_fraction)
+        ),
+    };
 }
 
 /// `reducer.friction` of the requirements' friction: the same keys and values.
@@ -211,9 +238,19 @@ pub fn spec_text(
     if let Some(f) = &req.friction {
         friction_text(&mut s, f);
     }
+    if let Some(t) = &req.thermal {
+        let _ = writeln!(
+            s,
+            "  thermal: {{ housing_area_m2: {}, heat_transfer_w_per_m2k: {}, ambient_c: {} }}",
+            num(t.housing_area_m2),
+            num(t.heat_transfer_w_per_m2k),
+            num(t.ambient_c)
+        );
+    }
     let _ = writeln!(s, "modification:");
     let _ = writeln!(s, "  shift_mm: {}", num(x[SHIFT]));
     let _ = writeln!(s, "  equidistant_mm: {}", num(x[EQUIDISTANT]));
+    crowning_text(&mut s, &req.crowning);
     let _ = writeln!(s, "scenes:");
     let _ = writeln!(s, "  - name: mesh");
     let _ = writeln!(
@@ -282,6 +319,11 @@ pub fn spec_text(
             "    crank: {{ from_deg: 0.0, to_deg: {}, steps: 4 }}",
             num(mesh_deg)
         );
+        // A crowned face is uneven even untilted: the loop cuts it into the requirements'
+        // slices (the spec's rule for every scene that loads a crowned face).
+        if req.crowning != Crowning::None {
+            let _ = writeln!(s, "    face_slices: {}", req.face_slices);
+        }
         let _ = writeln!(s, "    effects: [output_pins]");
     }
     if !req.limits.entries.is_empty() {

@@ -5,26 +5,19 @@
 use super::candidate::Candidate;
 pub use super::failure::Failure;
 use crate::engine::check::Check;
-use crate::engine::scene::{self, RunOptions, Writes};
+use crate::engine::scene::{self, Writes};
 use crate::error::{ErrorKind, Result};
 use crate::model::quantity::{self, Quantity};
 use crate::model::requirements::{ObjectiveKind, Requirements};
 use crate::model::results::SceneResult;
+use crate::progress::Silent;
 use crate::spec::Spec;
-use rayon::prelude::*;
 
 /// The scenes of a candidate's spec and the checks of its limits: what `check` computes for a
 /// spec without goldens, studies, an accuracy scene or measured points (the only specs a
 /// search writes; `tests/it/design_search.rs` runs `check` itself on the front's specs).
 fn check(spec: &Spec) -> Result<(Vec<SceneResult>, Vec<Check>)> {
-    let results = spec
-        .scenes
-        .par_iter()
-        .map(|s| {
-            let plan = scene::plan(spec, s, Writes::default());
-            scene::run(spec, s, &plan, &RunOptions::default())
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let results = scene::run_all(spec, Writes::default(), &Silent)?;
     let checks = crate::engine::check::evaluate(spec, &results)?;
     Ok((results, checks))
 }

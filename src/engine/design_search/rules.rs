@@ -1,10 +1,12 @@
-//! The requirements' constraints on a candidate that need no physics: the envelope and the
-//! requirements' design rules (K1, roller gap, pin-hole ligaments). The spec's own rules
+//! The requirements' constraints on a candidate that need no physics: the envelope, the
+//! requirements' design rules (K1, roller gap, pin-hole ligaments) and a circular crown's flat
+//! middle inside the candidate's face. The spec's own rules
 //! (`spec::rules`: K1 < 1, undercut, rollers overlapping, holes) run when its spec is parsed.
 
 use super::candidate::*;
 use super::failure::Failure;
 use crate::model::requirements::Requirements;
+use crate::model::Crowning;
 use std::f64::consts::PI;
 
 /// Every requirement that `c` breaks before any physics, each with its value and limit.
@@ -58,5 +60,18 @@ pub fn failures(req: &Requirements, c: &Candidate) -> Vec<Failure> {
         .min(root - x[RW] - hole)
         .min(x[RW] - hole);
     min("rules.min_ligament_mm", ligament, req.rules.min_ligament_mm);
+    // A circular crown's flat middle inside the face: start z0 < B/2 (the spec refuses
+    // z0 ≥ B/2 at `modification.crowning.start_mm`); recorded as z0 against B/2.
+    if let Crowning::Circular { start_mm, .. } = req.crowning {
+        if start_mm >= 0.5 * x[B] {
+            out.push(Failure::bound(
+                "crowning.start_mm",
+                start_mm,
+                0.5 * x[B],
+                "mm",
+                true,
+            ));
+        }
+    }
     out
 }

@@ -123,14 +123,14 @@ pub fn torsion_law_note(law: ContactLaw) -> &'static str {
 /// See `torsion_law_note`. The ratio is measured on `specs/reducer-torsion.yaml` (the paper's
 /// design and optimum, 20 N·m rated, locked at 0°, 9°, 18°, 27°), the scene solved under both
 /// laws: 53.14 against 22.15 N·m/arcmin, the smallest rigidity of the angles under each.
-pub const TORSION_LINEAR_NOTE: &str = "contact law paper_linear (the paper's Eq. 9, a \
+pub const TORSION_LINEAR_NOTE: &str = "Contact law paper_linear (the paper's Eq. 9, a \
      constant stiffness): on the paper's design it gives 2.4 times the torsional rigidity of \
      Johnson's Hertz law (hertz_nonlinear), 53.14 against 22.15 N·m/arcmin \
      (specs/reducer-torsion.yaml); before comparing a rigidity with a catalogue's, solve it \
      with hertz_nonlinear";
 
 /// See `torsion_law_note`.
-pub const TORSION_JOHNSON_NOTE: &str = "contact law hertz_nonlinear (Johnson's logarithmic \
+pub const TORSION_JOHNSON_NOTE: &str = "Contact law hertz_nonlinear (Johnson's logarithmic \
      line-contact law): the paper's linear law would give about 2.4 times this rigidity on \
      the paper's design";
 

@@ -94,7 +94,7 @@ pub(super) fn section_of(
             "The most loaded roller at the crank angle of the largest face load factor, over \
              the whole face width: the line load of each slice (its mean over the slice, drawn \
              as a step across the slice's width) as the scene runs it (tilted) and for the same \
-             disc and angle without the tilt (designed, solved alike)"
+             disc and angle without the tilt (designed, solved alike)."
                 .to_string(),
         ));
     }

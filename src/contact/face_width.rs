@@ -4,7 +4,7 @@
 //! At z (mm from the middle of the face, |z| ≤ B/2) the contact's approach is
 //!   a(z) = d − crown(z) + t·z,
 //! d the 2-D approach (−gap, mm), crown(z) ≥ 0 the material removed (`model::face::Crowning`) and
-//! t the tilt's slope (rad, `Misalignment::approach_slope`). The face is a Winkler bed: no
+//! t the tilt's slope (rad, `FaceWidth::approach_slope`). The face is a Winkler bed: no
 //! coupling between its sections, each carrying the contact law per unit length.
 //!
 //! - The paper's linear law, straight or circularly crowned: the closed form
@@ -158,8 +158,12 @@ impl FaceWidth {
         self
     }
 
-    /// The slope t of a contact's approach along z, rad, for a contact whose force on the disc
-    /// is along the unit vector `force_direction`: t = −f·(θy, −θx) (`Misalignment`).
+    /// The tilt's slope t of a contact's approach along z, rad, for a contact whose force on the
+    /// disc is along the unit vector f (`force_direction`): t = −f·(θy, −θx). The section at z
+    /// moves by u(z) = z·(θy, −θx) (`Misalignment::slope`), which closes a contact pushing the
+    /// disc along f by −f·u(z), so its approach there is d + t·z. For a roller f = −n_i (n_i
+    /// from the disc towards roller i): t = n_i·(θy, −θx); for a pin, f its push on the disc.
+    /// The one place rollers and pins take t from.
     #[inline]
     pub fn approach_slope(&self, force_direction: (f64, f64)) -> f64 {
         -(force_direction.0 * self.slope.0 + force_direction.1 * self.slope.1)

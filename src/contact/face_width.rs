@@ -285,14 +285,6 @@ impl FaceWidth {
         peak
     }
 
-    /// The largest of the slices' line loads (N/mm), as `line_loads` gives them, without
-    /// storing them.
-    pub fn peak_line_load(&self, law: ContactLaw, c: &LineContact, d: f64, t: f64) -> f64 {
-        let mut peak = 0.0_f64;
-        self.each_line_load(law, c, d, t, |_, q| peak = peak.max(q));
-        peak
-    }
-
     /// `line_loads`, slice by slice: `f(s, q_s)`.
     fn each_line_load(
         &self,

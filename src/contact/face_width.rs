@@ -27,6 +27,14 @@ use crate::model::face::{Crowning, Face};
 use crate::model::ContactLaw;
 use std::f64::consts::PI;
 
+/// Centre of slice s of a face of width B = `width_mm` cut into n = `slices`, mm from the
+/// middle of the face: z_s = −B/2 + (s + ½)·B/n. The one formula the slices' forces are
+/// evaluated at and the review draws their line loads at.
+pub fn slice_centre_mm(width_mm: f64, slices: usize, s: usize) -> f64 {
+    let h = width_mm / slices as f64;
+    -0.5 * width_mm + (s as f64 + 0.5) * h
+}
+
 /// The face of one kind of contact (the rollers', the pins'), ready to evaluate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceWidth {
@@ -193,10 +201,9 @@ impl FaceWidth {
         }
     }
 
-    /// Centre of slice s, mm from the middle of the face.
-    pub fn slice_centre_mm(&self, s: usize) -> f64 {
-        let h = self.width_mm / self.slices as f64;
-        -0.5 * self.width_mm + (s as f64 + 0.5) * h
+    /// Centre of slice s, mm from the middle of the face (`slice_centre_mm`).
+    fn slice_centre_mm(&self, s: usize) -> f64 {
+        slice_centre_mm(self.width_mm, self.slices, s)
     }
 
     /// Edge s of the slices (s = 0..=n), mm from the middle of the face: −B/2 + s·B/n, the

@@ -170,10 +170,12 @@ fn run_merge(paths: &[String], out_dir: Option<&str>, out: &mut dyn Write) -> Re
         ),
         PathBuf::from(&merged.requirements_path),
     ));
-    let run = commands::design_from_shards(&merged, &Terminal)?;
+    // The requirements outlive the merge the evaluations are moved into.
+    let (requirements, shards) = (merged.requirements.clone(), merged.shards);
+    let run = commands::design_from_shards(merged, &Terminal)?;
     let time = Timing::Merged {
         seconds: started.elapsed().as_secs_f64(),
-        shards: merged.shards,
+        shards,
     };
-    finish(&merged.requirements, &run, out_dir, &time, &inputs, out)
+    finish(&requirements, &run, out_dir, &time, &inputs, out)
 }

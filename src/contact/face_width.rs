@@ -4,7 +4,7 @@
 //! At z (mm from the middle of the face, |z| ≤ B/2) the contact's approach is
 //!   a(z) = d − crown(z) + t·z,
 //! d the 2-D approach (−gap, mm), crown(z) ≥ 0 the material removed (`model::face::Crowning`) and
-//! t the tilt's slope (rad, `Misalignment::approach_slope`). The face is a Winkler bed: no
+//! t the tilt's slope (rad, `FaceWidth::approach_slope`). The face is a Winkler bed: no
 //! coupling between its sections, each carrying the contact law per unit length.
 //!
 //! - The paper's linear law, straight or circularly crowned: the closed form
@@ -26,6 +26,14 @@ use super::law::{self, ContactForce, LineContact};
 use crate::model::face::{Crowning, Face};
 use crate::model::ContactLaw;
 use std::f64::consts::PI;
+
+/// Centre of slice s of a face of width B = `width_mm` cut into n = `slices`, mm from the
+/// middle of the face: z_s = −B/2 + (s + ½)·B/n. The one formula the slices' forces are
+/// evaluated at and the review draws their line loads at.
+pub fn slice_centre_mm(width_mm: f64, slices: usize, s: usize) -> f64 {
+    let h = width_mm / slices as f64;
+    -0.5 * width_mm + (s as f64 + 0.5) * h
+}
 
 /// The face of one kind of contact (the rollers', the pins'), ready to evaluate.
 #[derive(Debug, Clone, PartialEq)]
@@ -158,8 +166,12 @@ impl FaceWidth {
         self
     }
 
-    /// The slope t of a contact's approach along z, rad, for a contact whose force on the disc
-    /// is along the unit vector `force_direction`: t = −f·(θy, −θx) (`Misalignment`).
+    /// The tilt's slope t of a contact's approach along z, rad, for a contact whose force on the
+    /// disc is along the unit vector f (`force_direction`): t = −f·(θy, −θx). The section at z
+    /// moves by u(z) = z·(θy, −θx) (`Misalignment::slope`), which closes a contact pushing the
+    /// disc along f by −f·u(z), so its approach there is d + t·z. For a roller f = −n_i (n_i
+    /// from the disc towards roller i): t = n_i·(θy, −θx); for a pin, f its push on the disc.
+    /// The one place rollers and pins take t from.
     #[inline]
     pub fn approach_slope(&self, force_direction: (f64, f64)) -> f64 {
         -(force_direction.0 * self.slope.0 + force_direction.1 * self.slope.1)
@@ -189,10 +201,9 @@ impl FaceWidth {
         }
     }
 
-    /// Centre of slice s, mm from the middle of the face.
-    pub fn slice_centre_mm(&self, s: usize) -> f64 {
-        let h = self.width_mm / self.slices as f64;
-        -0.5 * self.width_mm + (s as f64 + 0.5) * h
+    /// Centre of slice s, mm from the middle of the face (`slice_centre_mm`).
+    fn slice_centre_mm(&self, s: usize) -> f64 {
+        slice_centre_mm(self.width_mm, self.slices, s)
     }
 
     /// Edge s of the slices (s = 0..=n), mm from the middle of the face: −B/2 + s·B/n, the
@@ -278,14 +289,6 @@ impl FaceWidth {
             out[s] = q;
             peak = peak.max(q);
         });
-        peak
-    }
-
-    /// The largest of the slices' line loads (N/mm), as `line_loads` gives them, without
-    /// storing them.
-    pub fn peak_line_load(&self, law: ContactLaw, c: &LineContact, d: f64, t: f64) -> f64 {
-        let mut peak = 0.0_f64;
-        self.each_line_load(law, c, d, t, |_, q| peak = peak.max(q));
         peak
     }
 

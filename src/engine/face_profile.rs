@@ -6,6 +6,7 @@
 //! mm, N/mm, rad.
 
 use super::scene;
+use crate::contact::face_width::slice_centre_mm;
 use crate::equilibrium::angle::solve_angle;
 use crate::equilibrium::loaded::AngleSolution;
 use crate::equilibrium::solve::Settings;
@@ -74,10 +75,7 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
             crank_rad,
             roller,
             z_mm: (0..s.face.slices)
-                .map(|j| {
-                    -0.5 * spec.design.face_width_mm
-                        + (j as f64 + 0.5) * spec.design.face_width_mm / s.face.slices as f64
-                })
+                .map(|j| slice_centre_mm(spec.design.face_width_mm, s.face.slices, j))
                 .collect(),
             tilted_n_per_mm: face.at(roller, k).to_vec(),
             designed_n_per_mm: line_loads_at(spec, &untilted, &designed, crank_rad, roller),

@@ -170,13 +170,29 @@ pub fn run_design(
     if let Some(bins) = &scene.duty_cycle {
         return run_duty_cycle(design, m, (scene, plan, bins), options);
     }
+    run_one(design, m, (scene, plan), options, None)
+}
+
+/// `run_design` of a scene without a duty cycle; `shared`: the clearance of each disc when it
+/// is already computed (`run_duty_cycle`: the same for every bin), else computed here.
+fn run_one(
+    design: &Design,
+    m: &Modification,
+    (scene, plan): (&Scene, &Plan),
+    options: &RunOptions,
+    shared: Option<&[ClearanceSweep]>,
+) -> Result<SceneResult> {
     let (settings, progress) = (&options.settings, options.progress);
     let mesh = Mesh::new(design, m);
     let target = mesh_minimum::Target::new(design, options.clearance_tolerance_mm);
     let mut whole = MeshMinimum::new(&mesh, target);
-    let mut clearance = |shift: f64| -> Result<Option<ClearanceSweep>> {
+    // Disc k's clearance, its crank phase `shift`.
+    let mut clearance = |k: usize, shift: f64| -> Result<Option<ClearanceSweep>> {
         if !plan.has(Effect::Clearance) {
             return Ok(None);
+        }
+        if let Some(c) = shared {
+            return Ok(Some(c[k].clone()));
         }
         clearance_sweep(&mut whole, (scene, plan), shift, progress).map(Some)
     };
@@ -201,7 +217,7 @@ pub fn run_design(
             Some(model) => efficiency::efficiency(design, model, (scene, plan), &[&loaded])?,
             None => None,
         };
-        let mut one = result(scene.name.clone(), clearance(0.0)?, loaded);
+        let mut one = result(scene.name.clone(), clearance(0, 0.0)?, loaded);
         one.torsion = torsion;
         one.efficiency = efficiency.map(|e| e.0);
         return Ok(one);
@@ -217,7 +233,7 @@ pub fn run_design(
             first_order_valid(design, m, scene, (&loaded, design.disc_phase_rad(k)))?;
         }
         let name = format!("{} disc {k}", scene.name);
-        let disc = result(name, clearance(design.disc_phase_rad(k))?, loaded);
+        let disc = result(name, clearance(k, design.disc_phase_rad(k))?, loaded);
         reducer.discs.push(disc);
     }
     if let (Some(s), Some(model)) = (&sweeps, &model) {
@@ -237,6 +253,12 @@ pub fn run_design(
 /// A duty-cycle scene ([`engine::duty_cycle`](crate::engine::duty_cycle)): each bin run as
 /// the scene at the bin's torque and speed (in parallel, results in the bins' order whatever
 /// the thread count), combined. A bin's failure points at its key (`duty_cycle[j]…`).
+///
+/// The clearance does not depend on the load: the bins differ in torque and speed alone, so
+/// each disc's clearance over the scene's crank angles is the same in every bin. It is
+/// computed once, before the bins, and each bin's result carries it (the same bytes as the
+/// bin's own). Should it fail, each bin computes its own as a scene alone does, so the error
+/// and the key it points at are the ones a bin gives.
 fn run_duty_cycle(
     design: &Design,
     m: &Modification,
@@ -244,15 +266,22 @@ fn run_duty_cycle(
     options: &RunOptions,
 ) -> Result<SceneResult> {
     use rayon::prelude::*;
+    let bin_scene = |j: usize, bin: &crate::model::DutyBin| crate::model::Scene {
+        name: format!("{} bin {j}", scene.name),
+        ..bin.scene(scene)
+    };
+    let shared = match bins.first() {
+        Some(bin) if plan.has(Effect::Clearance) => {
+            clearances(design, m, (&bin_scene(0, bin), plan), options).ok()
+        }
+        _ => None,
+    };
     let runs: Vec<Result<SceneResult>> = bins
         .par_iter()
         .enumerate()
         .map(|(j, bin)| {
-            let at = crate::model::Scene {
-                name: format!("{} bin {j}", scene.name),
-                ..bin.scene(scene)
-            };
-            run_design(design, m, (&at, plan), options).map_err(|mut e| {
+            let at = bin_scene(j, bin);
+            run_one(design, m, (&at, plan), options, shared.as_deref()).map_err(|mut e| {
                 e.key_path = Some(match e.key_path.take().as_deref() {
                     Some("output_torque_nm") => format!("duty_cycle[{j}].output_torque_nm"),
                     None => format!("duty_cycle[{j}]"),
@@ -278,6 +307,30 @@ fn run_duty_cycle(
         discs: Vec::new(),
         duty: Some(Box::new(duty_cycle::combine(design, runs))),
     })
+}
+
+/// The clearance of each disc of `design` over the scene's angles, in disc order, as
+/// `run_one` computes them (one mesh minimum for all, disc k at its crank phase, disc 0's
+/// exactly 0).
+fn clearances(
+    design: &Design,
+    m: &Modification,
+    (scene, plan): (&Scene, &Plan),
+    options: &RunOptions,
+) -> Result<Vec<ClearanceSweep>> {
+    let mesh = Mesh::new(design, m);
+    let target = mesh_minimum::Target::new(design, options.clearance_tolerance_mm);
+    let mut whole = MeshMinimum::new(&mesh, target);
+    (0..design.discs)
+        .map(|k| {
+            clearance_sweep(
+                &mut whole,
+                (scene, plan),
+                design.disc_phase_rad(k),
+                options.progress,
+            )
+        })
+        .collect()
 }
 
 /// The clearance of a disc at crank phase `shift` over the scene's angles, with the smallest
@@ -551,14 +604,23 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
 /// (clearance once per disc, loaded, torsion): the work a progress display of the scene
 /// counts, in crank angles.
 pub fn sweeps(plan: &Plan, discs: usize) -> usize {
-    discs * usize::from(plan.has(Effect::Clearance))
+    clearance_sweeps(plan, discs)
         + usize::from(runs_loaded(plan))
         + usize::from(plan.has(Effect::Torsion))
 }
 
-/// `sweeps` of `scene`: those of its plan, once per bin of a duty cycle.
+/// The clearance's sweeps of `plan`: one per disc.
+fn clearance_sweeps(plan: &Plan, discs: usize) -> usize {
+    discs * usize::from(plan.has(Effect::Clearance))
+}
+
+/// `sweeps` of `scene`: those of its plan; with a duty cycle the clearance's once (the bins
+/// share it, `run_duty_cycle`) and the others once per bin.
 pub fn scene_sweeps(scene: &Scene, plan: &Plan, discs: usize) -> usize {
-    sweeps(plan, discs) * scene.duty_cycle.as_ref().map_or(1, Vec::len)
+    // A duty cycle has at least one bin (the spec refuses an empty one).
+    let bins = scene.duty_cycle.as_ref().map_or(1, Vec::len);
+    let clearance = clearance_sweeps(plan, discs);
+    clearance + bins * (sweeps(plan, discs) - clearance)
 }
 
 /// Whether `plan` runs the loaded sweep over the crank angle (roller contact, output pins or

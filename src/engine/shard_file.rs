@@ -15,6 +15,48 @@ pub fn shard_len(items: u64, (index, count): (u64, u64)) -> u64 {
     items.saturating_sub(index).div_ceil(count.max(1))
 }
 
+/// Where each shard of a run of `count` shards is among those given: `indices` their headers'
+/// indices (each < `count`, as the readers check), `names` their files, for messages.
+/// Position k of the result is the position among those given of shard k. Refused when fewer
+/// shards than `count` are given (the missing indices named, `MISSING_SHOWN` at most; nothing
+/// is allocated for a header's count before this) or one is given twice. No fewer than
+/// `count` indices below `count`, none twice, are every index: none is missing past this.
+pub fn place(names: &[String], indices: &[u64], count: u64) -> Result<Vec<usize>> {
+    if (indices.len() as u64) < count {
+        let mut given = indices.to_vec();
+        given.sort_unstable();
+        given.dedup();
+        let missing: Vec<String> = (0..count)
+            .filter(|i| given.binary_search(i).is_err())
+            .take(MISSING_SHOWN)
+            .map(|i| i.to_string())
+            .collect();
+        let more = count - given.len() as u64 - missing.len() as u64;
+        return Err(refuse(format!(
+            "shards of {count} missing: {}{} (0-based indices); merge needs every shard of the \
+             run",
+            missing.join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
+        )));
+    }
+    let mut by_index: Vec<Option<usize>> = vec![None; count as usize];
+    for (i, &index) in indices.iter().enumerate() {
+        let slot = &mut by_index[index as usize];
+        if let Some(j) = slot {
+            return Err(refuse(format!(
+                "shard {index} of {count} is given twice: {} and {}",
+                names[*j], names[i]
+            )));
+        }
+        *slot = Some(i);
+    }
+    Ok(by_index.into_iter().flatten().collect())
+}
+
 /// A merge's refusal of its set of shards.
 pub fn refuse(message: String) -> Error {
     Error::new(ErrorKind::InvalidValue, message)

@@ -287,26 +287,17 @@ impl Rollers {
         self.mesh.profile.curvature(s.t)
     }
 
-    /// Hertz pressure and half-width of a roller state.
-    /// On a face that is not uniform, those of the peak slice's line load q (Hertz per unit
-    /// length: p0 = sqrt(q·E*/(π·R*)), b = sqrt(4·q·R*/(π·E*))).
+    /// Hertz pressure and half-width of a roller state over the whole face (p0 = sqrt(F·E*/
+    /// (π·L·R*)), b = sqrt(4·F·R*/(π·L·E*))): the 2-D model's, a uniform face's. A face that is
+    /// not uniform takes the peak slice's from `hertz_and_line_loads`, the one the sweep calls.
     pub fn hertz(&self, s: &RollerState) -> HertzLine {
-        let c = self.line_contact(self.curvature(s));
-        if let (Some(face), true) = (&self.face, s.force_n > 0.0) {
-            let t = face.approach_slope((-s.normal.x, -s.normal.y));
-            let peak = face.peak_line_load(self.law, &c, -s.gap_mm, t);
-            let unit = LineContact {
-                length_mm: 1.0,
-                ..c
-            };
-            return hertz(&unit, peak);
-        }
-        hertz(&c, s.force_n)
+        hertz(&self.line_contact(self.curvature(s)), s.force_n)
     }
 
-    /// `line_loads` of roller state `s` into `out`, with its Hertz pressure and half-width
-    /// (`hertz`) and the peak line load (N/mm): on a face that is not uniform the peak slice's
-    /// Hertz, from the peak returned with the line loads rather than computed again.
+    /// `line_loads` of roller state `s` into `out`, with its Hertz pressure and half-width and
+    /// the peak line load (N/mm): on a face that is not uniform, those of the peak slice's line
+    /// load q, returned with the line loads rather than computed again (Hertz per unit length:
+    /// p0 = sqrt(q·E*/(π·R*)), b = sqrt(4·q·R*/(π·E*))); else `hertz`.
     pub fn hertz_and_line_loads(&self, s: &RollerState, out: &mut [f64]) -> (HertzLine, f64) {
         if let (Some(face), true) = (&self.face, s.force_n > 0.0) {
             let c = self.line_contact(self.curvature(s));

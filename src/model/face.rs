@@ -78,15 +78,6 @@ impl Misalignment {
     pub fn slope(&self) -> (f64, f64) {
         (self.about_y_rad, -self.about_x_rad)
     }
-
-    /// The tilt's slope of a contact's approach along z, t = −f·(θy, −θx), rad, for a contact
-    /// whose force on the disc is along the unit vector f: the section at z moves by u(z), which
-    /// closes a contact pushing the disc along f by −f·u(z), so its approach there is d + t·z.
-    /// For a roller f = −n_i (n_i from the disc towards roller i): t = n_i·(θy, −θx).
-    pub fn approach_slope(&self, force_direction: (f64, f64)) -> f64 {
-        let (ux, uy) = self.slope();
-        -(force_direction.0 * ux + force_direction.1 * uy)
-    }
 }
 
 /// The face of a scene's contacts: the disc's crowning (the design's, `modification.crowning`),

@@ -442,3 +442,87 @@ fn the_json_and_the_review_show_every_bin() {
     let table = &section[..section.find("</table>").unwrap()];
     assert_eq!(table.matches("<tr>").count(), 1 + ROBOT.len(), "{table}");
 }
+
+/// The unloaded clearance does not depend on the torque or speed a bin changes: every bin of a
+/// duty cycle asking for `clearance` carries exactly the clearance of the scene run alone (any
+/// torque: the ordinary scene at the first bin's), disc by disc with two discs at their crank
+/// phases. Exact equality: the same computation on the same mesh and crank angles.
+#[test]
+fn every_bin_carries_the_clearance_of_the_scene_alone() {
+    let head = design_of(SHIPPED);
+    for discs in [1, 2] {
+        let head = match discs {
+            1 => head.to_string(),
+            _ => head.replacen("  face_width_mm:", "  discs: 2\n  face_width_mm:", 1),
+        };
+        let duty = run(&duty_spec(&head, &ROBOT, "bearing, clearance"));
+        let alone = run(&ordinary_spec(&head, ROBOT[0], "bearing, clearance"));
+        let of = |r: &SceneResult| match discs {
+            1 => vec![r.clearance.clone().expect("clearance")],
+            _ => r
+                .discs
+                .iter()
+                .map(|d| d.clearance.clone().unwrap())
+                .collect(),
+        };
+        let expected = of(&alone);
+        assert_eq!(expected.len(), discs);
+        let bins = &duty.duty.as_ref().expect("duty cycle").bins;
+        assert_eq!(bins.len(), ROBOT.len());
+        for (j, b) in bins.iter().enumerate() {
+            assert!(of(&b.result) == expected, "{discs} discs: bin {j}");
+        }
+    }
+}
+
+/// Counts the crank angles the scenes' phase hears, and the total it announced.
+#[derive(Default)]
+struct Angles {
+    total: std::sync::atomic::AtomicU64,
+    done: std::sync::atomic::AtomicU64,
+}
+
+struct Heard<'a>(&'a Angles);
+
+impl cycloid::progress::Progress for Heard<'_> {
+    fn advance(&self, n: u64) {
+        self.0
+            .done
+            .fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+impl cycloid::progress::Progress for Angles {
+    fn phase(&self, p: &cycloid::progress::Phase) -> Box<dyn cycloid::progress::Progress + '_> {
+        if p.what != "solving the scenes" {
+            return Box::new(cycloid::progress::Silent);
+        }
+        self.total
+            .fetch_add(p.total, std::sync::atomic::Ordering::Relaxed);
+        Box::new(Heard(self))
+    }
+}
+
+/// The clearance of a duty cycle is computed once, not once per bin: the crank angles swept
+/// are those of each disc's clearance once (D·N) and of one loaded sweep per bin (B·N), N the
+/// scene's crank angles; per bin it would be B·(D + 1)·N. The scenes' phase announces as many
+/// as it hears.
+#[test]
+fn a_duty_cycle_sweeps_its_clearance_once() {
+    let head = design_of(SHIPPED);
+    for discs in [1u64, 2] {
+        let head = match discs {
+            1 => head.to_string(),
+            _ => head.replacen("  face_width_mm:", "  discs: 2\n  face_width_mm:", 1),
+        };
+        let text = duty_spec(&head, &ROBOT, "bearing, clearance");
+        let spec = cycloid::spec::parse("s.yaml", &text).unwrap();
+        let n = spec.scenes[0].crank_rad.len() as u64;
+        let bins = ROBOT.len() as u64;
+        let heard = Angles::default();
+        cycloid::check(&spec, &cycloid::CheckOptions::default(), &heard).unwrap();
+        let done = heard.done.into_inner();
+        assert_eq!(done, (discs + bins) * n, "{discs} discs: angles swept");
+        assert_eq!(heard.total.into_inner(), done, "{discs} discs: announced");
+    }
+}

@@ -84,7 +84,7 @@ fn with_specs(req: &Requirements, requirements_path: &str, search: SearchRun) ->
 
 /// The global stage's candidates of a search in all (`--shard I/N` takes N at most this).
 pub fn design_candidates(req: &Requirements) -> u64 {
-    design_search::global_candidates(req).len() as u64
+    design_search::global_candidate_count(req)
 }
 
 /// Shard `(i, n)` of the search of `req` (read as `text` from `requirements_path`): the
@@ -103,7 +103,7 @@ pub fn design_candidates(req: &Requirements) -> u64 {
 ///     .map(|i| Ok((format!("shard{i}"), design_shard(&req, path, &text, (i, 2), &Silent)?)))
 ///     .collect::<cycloid::Result<_>>()?;
 /// // The merged shards give the unsharded run's front, bit for bit.
-/// let merged = design_from_shards(&merge_design_shards(&shards)?, &Silent)?;
+/// let merged = design_from_shards(merge_design_shards(&shards)?, &Silent)?;
 /// let whole = design(&req, path, &Silent)?;
 /// assert_eq!(merged.specs, whole.specs);
 /// assert_eq!(merged.search.global, whole.search.global);
@@ -174,9 +174,10 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
 
 /// The search finished from merged shards: the local refinement of the front (it starts from
 /// the front of every shard's evaluations, so it runs here, after the merge) and the front,
-/// as the unsharded `design` gives it from the same evaluations.
-pub fn design_from_shards(merged: &MergedDesign, progress: &dyn Progress) -> Result<DesignRun> {
-    let search = design_search::finish(&merged.requirements, merged.evaluations.clone(), progress)?;
+/// as the unsharded `design` gives it from the same evaluations (moved into the search, not
+/// copied).
+pub fn design_from_shards(merged: MergedDesign, progress: &dyn Progress) -> Result<DesignRun> {
+    let search = design_search::finish(&merged.requirements, merged.evaluations, progress)?;
     Ok(with_specs(
         &merged.requirements,
         &merged.requirements_path,

@@ -70,6 +70,11 @@ pub fn choices(req: &Requirements) -> Vec<Choice> {
     out
 }
 
+/// How many candidates `global_candidates` gives: choices × samples, without building them.
+pub fn global_candidate_count(req: &Requirements) -> u64 {
+    choices(req).len() as u64 * req.search.samples as u64
+}
+
 /// The global stage's candidates: `samples` scrambled Sobol points of the box per choice.
 pub fn global_candidates(req: &Requirements) -> Vec<Candidate> {
     let space = &req.search.continuous;

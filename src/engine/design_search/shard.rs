@@ -26,7 +26,7 @@
 use super::candidate::{Candidate, Choice};
 use super::evaluate::{Evaluation, Stage};
 use super::failure::Failure;
-use crate::engine::shard_file::{hex, refuse, seal, Reader, MISSING_SHOWN};
+use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
 use crate::error::Result;
 use crate::model::quantity::{Bound, LIMITS};
 use crate::model::requirements::Requirements;
@@ -324,53 +324,9 @@ pub fn check_set<'a>(
             }
         }
     }
-    let count = h0.count;
-    let missing_text = |given: &[u64]| {
-        let missing: Vec<String> = (0..count)
-            .filter(|i| given.binary_search(i).is_err())
-            .take(MISSING_SHOWN)
-            .map(|i| i.to_string())
-            .collect();
-        let more = count - given.len() as u64 - missing.len() as u64;
-        refuse(format!(
-            "shards of {count} missing: {}{} (0-based indices); merge needs every shard of the \
-             run",
-            missing.join(", "),
-            if more > 0 {
-                format!(" and {more} more")
-            } else {
-                String::new()
-            }
-        ))
-    };
-    // Every shard of the run must be here: no more indices to place than shards given (a
-    // header may claim any count; nothing is allocated for it before this).
-    if (shards.len() as u64) < count {
-        let mut given: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
-        given.sort_unstable();
-        given.dedup();
-        return Err(missing_text(&given));
-    }
-    let mut by_index: Vec<Option<usize>> = vec![None; count as usize];
-    for (i, s) in shards.iter().enumerate() {
-        let slot = &mut by_index[s.header.index as usize];
-        if let Some(j) = slot {
-            return Err(refuse(format!(
-                "shard {} of {count} is given twice: {} and {}",
-                s.header.index, names[*j], names[i]
-            )));
-        }
-        *slot = Some(i);
-    }
-    let given: Vec<u64> = (0..count)
-        .filter(|&i| by_index[i as usize].is_some())
-        .collect();
-    if given.len() as u64 != count {
-        return Err(missing_text(&given));
-    }
-    Ok(by_index
+    let indices: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
+    Ok(place(names, &indices, h0.count)?
         .into_iter()
-        .flatten()
         .map(|i| (names[i].as_str(), &shards[i]))
         .collect())
 }

@@ -15,7 +15,7 @@
 //! follow from its value and the spec's limit (`Merged::study`).
 
 use super::{shard_len, Records};
-use crate::engine::shard_file::{hex, refuse, seal, Reader, MISSING_SHOWN};
+use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
 use crate::error::Result;
 use sha2::{Digest, Sha256};
 
@@ -188,50 +188,8 @@ pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
         }
     }
     let count = h0.count;
-    // Every shard of the run must be here: no more indices to place than shards given (a
-    // header may claim any count; nothing is allocated for it before this).
-    if (shards.len() as u64) < count {
-        let mut given: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
-        given.sort_unstable();
-        given.dedup();
-        let missing: Vec<String> = (0..count)
-            .filter(|i| given.binary_search(i).is_err())
-            .take(MISSING_SHOWN)
-            .map(|i| i.to_string())
-            .collect();
-        let more = count - given.len() as u64 - missing.len() as u64;
-        return Err(refuse(format!(
-            "shards of {count} missing: {}{} (0-based indices); merge needs every shard of the \
-             run",
-            missing.join(", "),
-            if more > 0 {
-                format!(" and {more} more")
-            } else {
-                String::new()
-            }
-        )));
-    }
-    let mut by_index: Vec<Option<usize>> = vec![None; count as usize];
-    for (i, s) in shards.iter().enumerate() {
-        let slot = &mut by_index[s.header.index as usize];
-        if let Some(j) = slot {
-            return Err(refuse(format!(
-                "shard {} of {count} is given twice: {} and {}",
-                s.header.index, names[*j], names[i]
-            )));
-        }
-        *slot = Some(i);
-    }
-    let missing: Vec<String> = (0..count)
-        .filter(|&i| by_index[i as usize].is_none())
-        .map(|i| i.to_string())
-        .collect();
-    if !missing.is_empty() {
-        return Err(refuse(format!(
-            "shards of {count} missing: {} (0-based indices); merge needs every shard of the run",
-            missing.join(", ")
-        )));
-    }
+    let indices: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
+    place(names, &indices, count)?;
     let l = h0.limits as usize;
     let n = h0.samples as usize;
     if n.saturating_mul(l) > super::MAX_SAMPLE_LIMITS {

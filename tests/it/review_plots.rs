@@ -601,18 +601,25 @@ fn the_front_plot_names_its_axes_in_words_with_units() {
     assert!(!texts.iter().any(|t| t.contains('_')), "a key: {texts:?}");
 }
 
-/// The face-width plot's legend gives the tilt as the spec writes it: `reducer-misaligned.yaml`
-/// tilts by 0.3 mrad about x and y, which reads "0.3 mrad", not "0.3000 mrad" (four
-/// significant figures claim a precision the input never had).
-#[test]
-fn the_face_plot_legend_gives_the_tilt_as_the_spec_writes_it() {
-    let dir = Scratch::new("face-legend");
+/// `cycloid check specs/reducer-misaligned.yaml --report review` in a scratch directory named
+/// after `tag`: the directory and the run (exit 0 asserted).
+fn misaligned_review(tag: &str) -> (Scratch, crate::common::Run) {
+    let dir = Scratch::new(tag);
     let spec = format!(
         "{}/specs/reducer-misaligned.yaml",
         env!("CARGO_MANIFEST_DIR")
     );
     let out = run(&dir.path, &["check", &spec, "--report", "review"]);
     assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    (dir, out)
+}
+
+/// The face-width plot's legend gives the tilt as the spec writes it: `reducer-misaligned.yaml`
+/// tilts by 0.3 mrad about x and y, which reads "0.3 mrad", not "0.3000 mrad" (four
+/// significant figures claim a precision the input never had).
+#[test]
+fn the_face_plot_legend_gives_the_tilt_as_the_spec_writes_it() {
+    let (dir, _) = misaligned_review("face-legend");
     let els = elements(&dir.read("review/face-2-misaligned.svg"));
     let legend: Vec<&str> = els
         .iter()
@@ -628,13 +635,7 @@ fn the_face_plot_legend_gives_the_tilt_as_the_spec_writes_it() {
 /// place the terminal's check table prints (one number, the same in every output).
 #[test]
 fn the_face_plot_names_the_scenes_max_line_load_as_the_table_does() {
-    let dir = Scratch::new("face-max");
-    let spec = format!(
-        "{}/specs/reducer-misaligned.yaml",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let out = run(&dir.path, &["check", &spec, "--report", "review"]);
-    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let (dir, out) = misaligned_review("face-max");
     let row = out
         .stdout
         .lines()
@@ -661,13 +662,7 @@ fn the_face_plot_names_the_scenes_max_line_load_as_the_table_does() {
 /// the other. Points are written to 0.01 px: 0.02 px covers the rounding of both ends.
 #[test]
 fn the_face_plot_spans_the_face_with_a_step_per_slice() {
-    let dir = Scratch::new("face-steps");
-    let spec = format!(
-        "{}/specs/reducer-misaligned.yaml",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let out = run(&dir.path, &["check", &spec, "--report", "review"]);
-    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let (dir, _) = misaligned_review("face-steps");
     let els = elements(&dir.read("review/face-2-misaligned.svg"));
     let (left, top, width, height) = plot_area(&els);
     let bottom = top + height;

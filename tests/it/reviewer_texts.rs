@@ -339,20 +339,7 @@ fn two_disc_review(tag: &str) -> (String, String) {
         .find("<section id=\"summary\">")
         .expect("the headline section");
     let end = start + html[start..].find("</section>").unwrap();
-    let mut text = String::new();
-    let mut inside = false;
-    for c in html[start..end].chars() {
-        match c {
-            '<' => inside = true,
-            '>' => {
-                inside = false;
-                text.push(' ');
-            }
-            _ if !inside => text.push(c),
-            _ => {}
-        }
-    }
-    (run.stdout, text)
+    (run.stdout, untagged(&html[start..end]))
 }
 
 /// One meaning per line (issue 27): with two discs the unloaded lost motion is one disc's
@@ -586,15 +573,11 @@ fn words(text: &str) -> String {
     text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
-/// The text of a review's section (tags stripped, words one space apart).
-fn section_text(html: &str, id: &str) -> String {
-    let start = html
-        .find(&format!("<section id=\"{id}\">"))
-        .unwrap_or_else(|| panic!("no section {id}"));
-    let end = start + html[start..].find("</section>").unwrap();
+/// `html` with its tags dropped, each tag read as a space.
+fn untagged(html: &str) -> String {
     let mut text = String::new();
     let mut inside = false;
-    for c in html[start..end].chars() {
+    for c in html.chars() {
         match c {
             '<' => inside = true,
             '>' => {
@@ -605,7 +588,20 @@ fn section_text(html: &str, id: &str) -> String {
             _ => {}
         }
     }
-    words(&text.replace("&#39;", "'").replace("&amp;", "&"))
+    text
+}
+
+/// The text of a review's section (tags stripped, words one space apart).
+fn section_text(html: &str, id: &str) -> String {
+    let start = html
+        .find(&format!("<section id=\"{id}\">"))
+        .unwrap_or_else(|| panic!("no section {id}"));
+    let end = start + html[start..].find("</section>").unwrap();
+    words(
+        &untagged(&html[start..end])
+            .replace("&#39;", "'")
+            .replace("&amp;", "&"),
+    )
 }
 
 /// One unit per line (review of the outputs, item 1): on `specs/reducer-torsion.yaml` the

@@ -375,7 +375,7 @@ pub fn page(req: &Requirements, run: &SearchRun, time: &Timing) -> String {
                 title { "Design search: " (req.name) }
                 style { "body{font-family:sans-serif;margin:24px auto;max-width:1360px;padding:0 16px}\
                          table{border-collapse:collapse;font-size:13px}\
-                         th,td{padding:3px 8px;border-bottom:1px solid #eee;text-align:right}\
+                         th,td{padding:3px 8px;border-bottom:1px solid #eee;text-align:right}td a{white-space:nowrap}\
                          .fail{color:#a11212;font-weight:bold}.pass{color:#1d6b1a;font-weight:bold}" }
             }
             body {

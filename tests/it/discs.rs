@@ -47,12 +47,24 @@ fn effects(pins: bool) -> Vec<Effect> {
     }
 }
 
-fn run(case: &Case, discs: usize, scene: &Scene, pins: bool) -> SceneResult {
+/// The scene on `case` with `discs` discs, or `None` where the first-order geometry refuses it
+/// as outside its validity (`engine::scene`: an answer the closed form cannot stand behind, a
+/// status of that geometry on a random design, not a failure of the split); any other error
+/// fails the test.
+fn run(case: &Case, discs: usize, scene: &Scene, pins: bool) -> Option<SceneResult> {
     let mut design = case.design.clone();
     design.discs = discs;
     let plan = Plan::of(&scene.name, &effects(pins));
-    run_design(&design, &case.m, (scene, &plan), &Default::default())
-        .unwrap_or_else(|e| panic!("{e}"))
+    match run_design(&design, &case.m, (scene, &plan), &Default::default()) {
+        Ok(r) => Some(r),
+        Err(e)
+            if e.to_string()
+                .contains("the first-order geometry is outside its validity") =>
+        {
+            None
+        }
+        Err(e) => panic!("{e}"),
+    }
 }
 
 fn torque(disc: &SceneResult, a: usize) -> f64 {
@@ -265,10 +277,14 @@ proptest! {
         phase in 0.0f64..1.0,
     ) {
         let scene = scene(&case.design, phase, law, geometry);
-        let two = run(&case, 2, &scene, true);
         let mut half = scene.clone();
         half.output_torque_nmm /= 2.0;
-        let one = run(&case, 1, &half, true);
+        let (two, one) = (run(&case, 2, &scene, true), run(&case, 1, &half, true));
+        prop_assume!(
+            two.is_some() && one.is_some(),
+            "the first-order geometry outside its validity"
+        );
+        let (two, one) = (two.unwrap(), one.unwrap());
         let t = scene.output_torque_nmm;
         let (te2, te1) = (
             &two.loaded.transmission.as_ref().unwrap().te_rad,

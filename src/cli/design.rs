@@ -5,7 +5,7 @@
 
 use super::args::{DesignArgs, DesignCommand};
 use super::output::{distinct_outputs, print};
-use super::shard::{parse_shard_of, slurm_shard_of};
+use super::shard::{parse_shard_of, read_shard_files, shard_inputs, slurm_shard_of};
 use super::Outcome;
 use crate::engine::commands::{self, DesignRun};
 use crate::error::{Error, ErrorKind, Result};
@@ -150,19 +150,9 @@ fn run_shard(
 fn run_merge(paths: &[String], out_dir: Option<&str>, out: &mut dyn Write) -> Result<Outcome> {
     check_out_dir(out_dir)?;
     let started = std::time::Instant::now();
-    let files = paths
-        .iter()
-        .map(|p| {
-            // A regular file, bounded: a FIFO or a device would be read without end.
-            let bytes = files::read_bytes(Path::new(p), "shard file", MAX_SHARD_BYTES)?;
-            Ok((p.clone(), bytes))
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let files = read_shard_files(paths, MAX_SHARD_BYTES)?;
     let merged = commands::merge_design_shards(&files)?;
-    let mut inputs: Vec<(String, PathBuf)> = paths
-        .iter()
-        .map(|p| (format!("the shard file {p}"), PathBuf::from(p)))
-        .collect();
+    let mut inputs = shard_inputs(paths);
     inputs.push((
         format!(
             "the requirements file {} the shards name",

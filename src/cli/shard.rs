@@ -2,6 +2,30 @@
 //! array.
 
 use crate::error::{Error, ErrorKind, Result};
+use crate::files;
+use std::path::{Path, PathBuf};
+
+/// The shard files `paths` read whole, each a regular file of at most `max_bytes` (a FIFO or a
+/// device would be read without end): (path, bytes).
+pub(super) fn read_shard_files(paths: &[String], max_bytes: u64) -> Result<Vec<(String, Vec<u8>)>> {
+    paths
+        .iter()
+        .map(|p| {
+            Ok((
+                p.clone(),
+                files::read_bytes(Path::new(p), "shard file", max_bytes)?,
+            ))
+        })
+        .collect()
+}
+
+/// The shard files as inputs no output may replace: ("the shard file P", P).
+pub(super) fn shard_inputs(paths: &[String]) -> Vec<(String, PathBuf)> {
+    paths
+        .iter()
+        .map(|p| (format!("the shard file {p}"), PathBuf::from(p)))
+        .collect()
+}
 
 /// A bad shard value (from `--shard`, `--write-sample` or the Slurm job array).
 pub(super) fn invalid(message: String) -> Error {

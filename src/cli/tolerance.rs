@@ -3,7 +3,7 @@
 
 use super::args::{ToleranceArgs, ToleranceCommand};
 use super::output::{distinct_outputs, inputs_of, print, review_line, write_file, write_spec};
-use super::shard::{invalid, parse_shard, slurm_shard};
+use super::shard::{invalid, parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands;
 use crate::engine::tolerance::sensitivity::Sensitivity;
@@ -15,7 +15,7 @@ use crate::files;
 use crate::report::terminal::Terminal;
 use crate::{report, spec};
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Largest shard file read, bytes: the records of the most sample-limits a study holds (9
 /// bytes each) and a spec of the largest input size, with room for the header.
@@ -186,19 +186,9 @@ fn run_shard(
 
 /// `merge`: read, check and join the shards, then report as an unsharded run would.
 fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome> {
-    let inputs: Vec<(String, PathBuf)> = paths
-        .iter()
-        .map(|p| (format!("the shard file {p}"), PathBuf::from(p)))
-        .collect();
+    let inputs = shard_inputs(paths);
     distinct_outputs(&inputs, &outputs.paths())?;
-    let files = paths
-        .iter()
-        .map(|p| {
-            // A regular file, bounded: a FIFO or a device would be read without end.
-            let bytes = files::read_bytes(Path::new(p), "shard file", MAX_SHARD_BYTES)?;
-            Ok((p.clone(), bytes))
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let files = read_shard_files(paths, MAX_SHARD_BYTES)?;
     let merged = commands::merge_shards(&files)?;
     // The shards name their spec and, through it, its goldens and measured points: none of
     // them may be replaced either.

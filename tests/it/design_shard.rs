@@ -30,6 +30,17 @@ pub(crate) fn without_wall_time(text: &str) -> String {
     out
 }
 
+/// `cycloid design small.yaml --shard I/N --out OUT` in `dir`, asserted to succeed.
+fn write_shard(dir: &std::path::Path, (i, n): (usize, usize), out: &str) -> common::Run {
+    let shard = format!("{i}/{n}");
+    let r = cycloid(
+        dir,
+        &["design", "small.yaml", "--shard", &shard, "--out", out],
+    );
+    assert_eq!(r.code(), 0, "{r:?}");
+    r
+}
+
 /// `SMALL` run whole into `whole/front` and as `n` shards merged into `sharded/front` (the
 /// shards given to the merge in reverse order); the two runs' (exit code, stdout).
 fn whole_and_merged(dir: &Scratch, text: &str, n: usize) -> ((i32, String), (i32, String)) {
@@ -44,12 +55,8 @@ fn whole_and_merged(dir: &Scratch, text: &str, n: usize) -> ((i32, String), (i32
     let sharded = dir.join("sharded");
     let mut shards = Vec::new();
     for i in 0..n {
-        let (shard, out) = (format!("{i}/{n}"), format!("shard-{i}.bin"));
-        let r = cycloid(
-            &sharded,
-            &["design", "small.yaml", "--shard", &shard, "--out", &out],
-        );
-        assert_eq!(r.code(), 0, "{r:?}");
+        let out = format!("shard-{i}.bin");
+        let r = write_shard(&sharded, (i, n), &out);
         assert!(r.stdout.contains(&format!("shard {i}/{n}")), "{r:?}");
         shards.push(out);
     }
@@ -140,18 +147,7 @@ fn the_tasks_of_a_slurm_job_array_are_the_shards() {
     dir.write("small.yaml", &text);
     for id in 1..=3 {
         let i = id - 1;
-        let r = cycloid(
-            &dir.path,
-            &[
-                "design",
-                "small.yaml",
-                "--shard",
-                &format!("{i}/3"),
-                "--out",
-                &format!("s{i}.bin"),
-            ],
-        );
-        assert_eq!(r.code(), 0, "{r:?}");
+        write_shard(&dir.path, (i, 3), &format!("s{i}.bin"));
         let id = id.to_string();
         let env = [
             ("SLURM_ARRAY_TASK_ID", id.as_str()),
@@ -193,18 +189,7 @@ fn a_merge_refuses_a_set_that_is_not_one_whole_run() {
     dir.write("small.yaml", &text);
     dir.write("other/small.yaml", &other);
     let shard = |sub: &Scratch, at: &str, i: usize| {
-        let r = cycloid(
-            &sub.join(at),
-            &[
-                "design",
-                "small.yaml",
-                "--shard",
-                &format!("{i}/3"),
-                "--out",
-                &format!("s{i}.bin"),
-            ],
-        );
-        assert_eq!(r.code(), 0, "{r:?}");
+        write_shard(&sub.join(at), (i, 3), &format!("s{i}.bin"));
     };
     for i in 0..3 {
         shard(&dir, "", i);

@@ -548,22 +548,28 @@ fn bad_face_values_are_refused_where_they_are_written() {
     let dir = crate::common::Scratch::new("face-bad");
     for (modification, scene, key, rule) in cases {
         let text = spec(modification, scene, 12);
-        let e = cycloid::spec::parse("face.yaml", &text).expect_err(key);
-        let shown = e.to_string();
-        assert!(
-            shown.contains(key) && shown.contains(rule),
-            "{key}: {shown}"
-        );
-        // file:line:column of the key as written.
-        let (line, column) = locate(&text, key);
-        assert!(
-            shown.starts_with(&format!("face.yaml:{line}:{column}:")),
-            "{key} at {line}:{column}: {shown}"
-        );
-        dir.write("bad.yaml", &text);
-        let run = crate::common::cycloid(&dir.path, &["check", "bad.yaml"]);
-        assert_eq!(run.code(), 2, "{key}: {}", run.stderr);
+        assert_refused_at(&dir, &text, key, rule);
     }
+}
+
+/// `text` is refused naming `key` and `rule`, at the file:line:column of `key` as written,
+/// and `cycloid check` on it exits 2.
+fn assert_refused_at(dir: &crate::common::Scratch, text: &str, key: &str, rule: &str) {
+    let shown = cycloid::spec::parse("face.yaml", text)
+        .expect_err(key)
+        .to_string();
+    assert!(
+        shown.contains(key) && shown.contains(rule),
+        "{key}: {shown}"
+    );
+    let (line, column) = locate(text, key);
+    assert!(
+        shown.starts_with(&format!("face.yaml:{line}:{column}:")),
+        "{key} at {line}:{column}: {shown}"
+    );
+    dir.write("bad.yaml", text);
+    let run = crate::common::cycloid(&dir.path, &["check", "bad.yaml"]);
+    assert_eq!(run.code(), 2, "{key}: {}", run.stderr);
 }
 
 /// The line and column (1-based) where `key`'s last segment is written in `text`: the value of
@@ -1002,20 +1008,7 @@ fn a_bad_tilt_as_built_is_refused_where_it_is_written() {
     let dir = crate::common::Scratch::new("tilt-bad");
     for (tilt, scene, key, rule) in cases {
         let text = built_with_tilt(&spec("", scene, 12), tilt);
-        let e = cycloid::spec::parse("face.yaml", &text).expect_err(key);
-        let shown = e.to_string();
-        assert!(
-            shown.contains(key) && shown.contains(rule),
-            "{key}: {shown}"
-        );
-        let (line, column) = locate(&text, key);
-        assert!(
-            shown.starts_with(&format!("face.yaml:{line}:{column}:")),
-            "{key} at {line}:{column}: {shown}"
-        );
-        dir.write("bad.yaml", &text);
-        let run = crate::common::cycloid(&dir.path, &["check", "bad.yaml"]);
-        assert_eq!(run.code(), 2, "{key}: {}", run.stderr);
+        assert_refused_at(&dir, &text, key, rule);
     }
     // Clearance only: no contact is loaded, one slice is allowed.
     let clearance = spec("", "", 12).replace("effects: [bearing]", "effects: [clearance]");

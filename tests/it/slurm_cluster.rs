@@ -130,6 +130,35 @@ fn evidence(dir: &Path, array: &str, merge: &str) -> String {
     s
 }
 
+/// The merge job `merge` completed with exit 0 after the array `array` ran as `shards` tasks,
+/// each to success and each writing `shards/{stem}-I.bin` in `dir` (the jobs' evidence in
+/// every failure's message).
+fn assert_array_and_merge_completed(
+    dir: &Path,
+    (array, merge): (&str, &str),
+    shards: usize,
+    stem: &str,
+) {
+    let record = wait_for_merge(dir, array, merge);
+    let why = || evidence(dir, array, merge);
+    assert_eq!(fields(&record, "JobState"), ["COMPLETED"], "{}", why());
+    assert_eq!(fields(&record, "ExitCode"), ["0:0"], "{}", why());
+    let tasks = show_job(array);
+    assert_eq!(
+        fields(&tasks, "JobState"),
+        vec!["COMPLETED"; shards],
+        "{}",
+        why()
+    );
+    for i in 0..shards {
+        assert!(
+            dir.join(format!("shards/{stem}-{i}.bin")).is_file(),
+            "{}",
+            why()
+        );
+    }
+}
+
 /// Waits until the merge job is in a final state (or can never run); its record.
 fn wait_for_merge(dir: &Path, array: &str, merge: &str) -> String {
     let start = Instant::now();
@@ -237,25 +266,8 @@ fn the_sbatch_study_on_a_one_node_cluster_equals_the_unsharded_run() {
     );
     assert_eq!(unsharded.code(), 0, "{unsharded:?}");
 
-    let record = wait_for_merge(&on_cluster, &array, &merge);
-    let why = || evidence(&on_cluster, &array, &merge);
-    assert_eq!(fields(&record, "JobState"), ["COMPLETED"], "{}", why());
-    assert_eq!(fields(&record, "ExitCode"), ["0:0"], "{}", why());
     // The array ran as SHARDS tasks, each to success, each writing its shard.
-    let tasks = show_job(&array);
-    assert_eq!(
-        fields(&tasks, "JobState"),
-        ["COMPLETED"; SHARDS],
-        "{}",
-        why()
-    );
-    for i in 0..SHARDS {
-        assert!(
-            on_cluster.join(format!("shards/shard-{i}.bin")).is_file(),
-            "{}",
-            why()
-        );
-    }
+    assert_array_and_merge_completed(&on_cluster, (&array, &merge), SHARDS, "shard");
 
     let listing = |d: &Path| {
         let mut names: Vec<String> = std::fs::read_dir(d.join("tolerance-review"))
@@ -323,24 +335,7 @@ fn the_sbatch_design_search_on_a_one_node_cluster_equals_the_unsharded_run() {
     let unsharded = cycloid(&whole, &["design", "small.yaml", "--out", "front"]);
     assert_eq!(unsharded.code(), 0, "{unsharded:?}");
 
-    let record = wait_for_merge(&on_cluster, &array, &merge);
-    let why = || evidence(&on_cluster, &array, &merge);
-    assert_eq!(fields(&record, "JobState"), ["COMPLETED"], "{}", why());
-    assert_eq!(fields(&record, "ExitCode"), ["0:0"], "{}", why());
-    let tasks = show_job(&array);
-    assert_eq!(
-        fields(&tasks, "JobState"),
-        ["COMPLETED"; DESIGN_SHARDS],
-        "{}",
-        why()
-    );
-    for i in 0..DESIGN_SHARDS {
-        assert!(
-            on_cluster.join(format!("shards/design-{i}.bin")).is_file(),
-            "{}",
-            why()
-        );
-    }
+    assert_array_and_merge_completed(&on_cluster, (&array, &merge), DESIGN_SHARDS, "design");
     let merged = crate::common::files(&on_cluster.join("front"));
     let unsharded_files = crate::common::files(&whole.join("front"));
     assert_eq!(

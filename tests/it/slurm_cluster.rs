@@ -159,6 +159,22 @@ fn assert_array_and_merge_completed(
     }
 }
 
+/// `bash SCRIPT INPUT SHARDS` in `dir` (an sbatch script of examples/slurm/ submitting an
+/// array and its merge), asserted to succeed: the array's and the merge's job ids.
+fn submit(dir: &Path, script: &str, input: &str, shards: &str) -> (String, String) {
+    let submit = Command::new("bash")
+        .args([&repo(script), input, shards])
+        .current_dir(dir)
+        .env("CYCLOID", env!("CARGO_BIN_EXE_cycloid"))
+        .env("SOURCE_DATE_EPOCH", "0")
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let stdout = text(&submit.stdout);
+    assert!(submit.status.success(), "{stdout}{}", text(&submit.stderr));
+    job_ids(&stdout)
+}
+
 /// Waits until the merge job is in a final state (or can never run); its record.
 fn wait_for_merge(dir: &Path, array: &str, merge: &str) -> String {
     let start = Instant::now();
@@ -234,21 +250,12 @@ fn the_sbatch_study_on_a_one_node_cluster_equals_the_unsharded_run() {
         std::fs::create_dir_all(d).unwrap();
         std::fs::write(d.join(SPEC), &spec).unwrap();
     }
-    let submit = Command::new("bash")
-        .args([
-            &repo("examples/slurm/tolerance.sbatch"),
-            SPEC,
-            &SHARDS.to_string(),
-        ])
-        .current_dir(&on_cluster)
-        .env("CYCLOID", env!("CARGO_BIN_EXE_cycloid"))
-        .env("SOURCE_DATE_EPOCH", "0")
-        .env("NO_COLOR", "1")
-        .output()
-        .unwrap();
-    let stdout = text(&submit.stdout);
-    assert!(submit.status.success(), "{stdout}{}", text(&submit.stderr));
-    let (array, merge) = job_ids(&stdout);
+    let (array, merge) = submit(
+        &on_cluster,
+        "examples/slurm/tolerance.sbatch",
+        SPEC,
+        &SHARDS.to_string(),
+    );
 
     // The unsharded run, while the cluster computes (common::cycloid pins SOURCE_DATE_EPOCH=0).
     let unsharded = cycloid(
@@ -316,21 +323,12 @@ fn the_sbatch_design_search_on_a_one_node_cluster_equals_the_unsharded_run() {
         std::fs::create_dir_all(d).unwrap();
         std::fs::write(d.join("small.yaml"), crate::design_search::SMALL).unwrap();
     }
-    let submit = Command::new("bash")
-        .args([
-            &repo("examples/slurm/design.sbatch"),
-            "small.yaml",
-            &DESIGN_SHARDS.to_string(),
-        ])
-        .current_dir(&on_cluster)
-        .env("CYCLOID", env!("CARGO_BIN_EXE_cycloid"))
-        .env("SOURCE_DATE_EPOCH", "0")
-        .env("NO_COLOR", "1")
-        .output()
-        .unwrap();
-    let stdout = text(&submit.stdout);
-    assert!(submit.status.success(), "{stdout}{}", text(&submit.stderr));
-    let (array, merge) = job_ids(&stdout);
+    let (array, merge) = submit(
+        &on_cluster,
+        "examples/slurm/design.sbatch",
+        "small.yaml",
+        &DESIGN_SHARDS.to_string(),
+    );
 
     let unsharded = cycloid(&whole, &["design", "small.yaml", "--out", "front"]);
     assert_eq!(unsharded.code(), 0, "{unsharded:?}");

@@ -548,42 +548,8 @@ fn bad_face_values_are_refused_where_they_are_written() {
     let dir = crate::common::Scratch::new("face-bad");
     for (modification, scene, key, rule) in cases {
         let text = spec(modification, scene, 12);
-        assert_refused_at(&dir, &text, key, rule);
+        crate::common::assert_refused_at(&dir, "face.yaml", &text, key, rule);
     }
-}
-
-/// `text` is refused naming `key` and `rule`, at the file:line:column of `key` as written,
-/// and `cycloid check` on it exits 2.
-fn assert_refused_at(dir: &crate::common::Scratch, text: &str, key: &str, rule: &str) {
-    let shown = cycloid::spec::parse("face.yaml", text)
-        .expect_err(key)
-        .to_string();
-    assert!(
-        shown.contains(key) && shown.contains(rule),
-        "{key}: {shown}"
-    );
-    let (line, column) = locate(text, key);
-    assert!(
-        shown.starts_with(&format!("face.yaml:{line}:{column}:")),
-        "{key} at {line}:{column}: {shown}"
-    );
-    dir.write("bad.yaml", text);
-    let run = crate::common::cycloid(&dir.path, &["check", "bad.yaml"]);
-    assert_eq!(run.code(), 2, "{key}: {}", run.stderr);
-}
-
-/// The line and column (1-based) where `key`'s last segment is written in `text`: the value of
-/// a flow mapping's key, or a block key. Written out here from the text, not by the parser.
-fn locate(text: &str, key: &str) -> (usize, usize) {
-    let last = key.rsplit('.').next().unwrap();
-    let last = last.split('[').next().unwrap();
-    let (section, _) = key.split_once('.').unwrap();
-    let section = section.split('[').next().unwrap();
-    let start = text.find(&format!("{section}:")).unwrap();
-    let offset = start + text[start..].find(&format!("{last}:")).unwrap();
-    let line = text[..offset].matches('\n').count() + 1;
-    let column = offset - text[..offset].rfind('\n').map_or(0, |p| p + 1) + 1;
-    (line, column)
 }
 
 /// The sweep's shortcuts (warm starts, rollers proven out of reach and not evaluated) give
@@ -1008,7 +974,7 @@ fn a_bad_tilt_as_built_is_refused_where_it_is_written() {
     let dir = crate::common::Scratch::new("tilt-bad");
     for (tilt, scene, key, rule) in cases {
         let text = built_with_tilt(&spec("", scene, 12), tilt);
-        assert_refused_at(&dir, &text, key, rule);
+        crate::common::assert_refused_at(&dir, "face.yaml", &text, key, rule);
     }
     // Clearance only: no contact is loaded, one slice is allowed.
     let clearance = spec("", "", 12).replace("effects: [bearing]", "effects: [clearance]");

@@ -721,30 +721,6 @@ fn bad_crown_variables_are_refused_where_they_are_written() {
     ];
     let dir = crate::common::Scratch::new("crown-bad");
     for (text, key, rule) in cases {
-        let e = spec::parse("crown.yaml", &text).expect_err(key);
-        let shown = e.to_string();
-        assert!(
-            shown.contains(key) && shown.contains(rule),
-            "{key}: {shown}"
-        );
-        let (line, column) = key_position(&text, key);
-        assert!(
-            shown.starts_with(&format!("crown.yaml:{line}:{column}:")),
-            "{key} at {line}:{column}: {shown}"
-        );
-        dir.write("bad.yaml", &text);
-        let run = crate::common::cycloid(&dir.path, &["check", "bad.yaml"]);
-        assert_eq!(run.code(), 2, "{key}: {}", run.stderr);
+        crate::common::assert_refused_at(&dir, "crown.yaml", &text, key, rule);
     }
-}
-
-/// The line and column (1-based) of the block key that ends `key`, found in the text after
-/// `optimise:` (written out here from the text, not by the parser).
-fn key_position(text: &str, key: &str) -> (usize, usize) {
-    let last = key.rsplit('.').next().unwrap();
-    let start = text.find("optimise:").unwrap();
-    let offset = start + text[start..].find(&format!("{last}:")).unwrap();
-    let line = text[..offset].matches('\n').count() + 1;
-    let column = offset - text[..offset].rfind('\n').map_or(0, |p| p + 1) + 1;
-    (line, column)
 }

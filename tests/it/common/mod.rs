@@ -451,3 +451,36 @@ pub(crate) fn golden_section_min(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64)
     }
     0.5 * (a + b)
 }
+
+/// `text` (named `file`) is refused naming `key` and `rule`, at the file:line:column of `key`
+/// as written (`locate`), and `cycloid check` on it exits 2.
+pub(crate) fn assert_refused_at(dir: &Scratch, file: &str, text: &str, key: &str, rule: &str) {
+    let shown = cycloid::spec::parse(file, text).expect_err(key).to_string();
+    assert!(
+        shown.contains(key) && shown.contains(rule),
+        "{key}: {shown}"
+    );
+    let (line, column) = locate(text, key);
+    assert!(
+        shown.starts_with(&format!("{file}:{line}:{column}:")),
+        "{key} at {line}:{column}: {shown}"
+    );
+    dir.write("bad.yaml", text);
+    let run = cycloid(&dir.path, &["check", "bad.yaml"]);
+    assert_eq!(run.code(), 2, "{key}: {}", run.stderr);
+}
+
+/// The line and column (1-based) where `key`'s last segment is written in `text`, searched
+/// after its first segment (`section:`): the value of a flow mapping's key, or a block key.
+/// Written out here from the text, not by the parser.
+pub(crate) fn locate(text: &str, key: &str) -> (usize, usize) {
+    let last = key.rsplit('.').next().unwrap();
+    let last = last.split('[').next().unwrap();
+    let (section, _) = key.split_once('.').unwrap();
+    let section = section.split('[').next().unwrap();
+    let start = text.find(&format!("{section}:")).unwrap();
+    let offset = start + text[start..].find(&format!("{last}:")).unwrap();
+    let line = text[..offset].matches('\n').count() + 1;
+    let column = offset - text[..offset].rfind('\n').map_or(0, |p| p + 1) + 1;
+    (line, column)
+}

@@ -40,7 +40,9 @@ pub(super) fn run(args: DesignArgs, out: &mut dyn Write) -> Result<Outcome> {
         None => slurm_shard_of(candidates, noun)?,
     };
     match (shard, args.out.as_deref()) {
-        (Some(shard), Some(file)) => run_shard(&req, &path, &text, shard, file, out),
+        (Some(shard), Some(file)) => {
+            run_shard(&req, (&path, &text), (shard, candidates), file, out)
+        }
         (Some((i, n)), None) => Err(usage(format!(
             "shard {i}/{n} (from --shard or the Slurm job array) needs --out SHARD_FILE, the \
              file it writes for `cycloid design merge`"
@@ -119,12 +121,11 @@ fn finish(
     })
 }
 
-/// One shard of the global stage, written to `file` for `merge`.
+/// One shard `(i, n)` of the global stage's `all` candidates, written to `file` for `merge`.
 fn run_shard(
     req: &Requirements,
-    path: &str,
-    text: &str,
-    (i, n): (u64, u64),
+    (path, text): (&str, &str),
+    ((i, n), all): ((u64, u64), u64),
     file: &str,
     out: &mut dyn Write,
 ) -> Result<Outcome> {
@@ -132,7 +133,6 @@ fn run_shard(
     distinct_outputs(&inputs, &[("--out", Some(file))])?;
     let bytes = commands::design_shard(req, path, text, (i, n), &Terminal)?;
     files::write_atomic(Path::new(file), &bytes)?;
-    let all = commands::design_candidates(req);
     let count = crate::engine::design_search::shard::shard_len(all, (i, n));
     print(
         out,

@@ -62,6 +62,12 @@ pub fn refuse(message: String) -> Error {
     Error::new(ErrorKind::InvalidValue, message)
 }
 
+/// SHA-256 of the text a shard names its run by (a spec's, a requirements file's).
+pub fn text_hash(text: &str) -> [u8; 32] {
+    use sha2::Digest;
+    sha2::Sha256::digest(text.as_bytes()).into()
+}
+
 /// Bytes as lower-case hex (a hash in a message).
 pub fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()

@@ -30,7 +30,6 @@ use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
 use crate::error::Result;
 use crate::model::quantity::{Bound, LIMITS};
 use crate::model::requirements::Requirements;
-use sha2::{Digest, Sha256};
 
 pub const MAGIC: &[u8; 16] = b"cycloid-dsg-shrd";
 pub const VERSION: u32 = 1;
@@ -57,9 +56,7 @@ pub struct Shard {
 }
 
 /// SHA-256 of a requirements file's text.
-pub fn requirements_hash(text: &str) -> [u8; 32] {
-    Sha256::digest(text.as_bytes()).into()
-}
+pub use crate::engine::shard_file::text_hash as requirements_hash;
 
 pub use crate::engine::shard_file::shard_len;
 

@@ -17,7 +17,6 @@
 use super::{shard_len, Records};
 use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
 use crate::error::Result;
-use sha2::{Digest, Sha256};
 
 pub const MAGIC: &[u8; 16] = b"cycloid-tol-shrd";
 pub const VERSION: u32 = 2;
@@ -44,9 +43,7 @@ pub struct Shard {
 }
 
 /// SHA-256 of a spec's text.
-pub fn spec_hash(text: &str) -> [u8; 32] {
-    Sha256::digest(text.as_bytes()).into()
-}
+pub use crate::engine::shard_file::text_hash as spec_hash;
 
 /// The bytes of a shard file.
 pub fn encode(h: &Header, records: &Records) -> Vec<u8> {

@@ -227,13 +227,14 @@ impl FaceWidth {
     /// Force and stiffness ∂F/∂d of the contact `c` (its length B) at 2-D approach d (mm)
     /// with slope t (rad) along the face.
     pub fn force(&self, law: ContactLaw, c: &LineContact, d: f64, t: f64) -> ContactForce {
-        if d + t.abs() * 0.5 * self.width_mm <= 0.0 {
+        // The most the tilt closes a section, at the end it closes.
+        let reach = t.abs() * 0.5 * self.width_mm;
+        if d + reach <= 0.0 {
             // The crown only opens: no section reaches.
             return ContactForce::NONE;
         }
         if self.closed_form(law) {
             let per_mm = law::paper_linear_stiffness(c) / self.width_mm;
-            let reach = t.abs() * 0.5 * self.width_mm;
             if d - self.end_drop_mm - reach > 0.0 {
                 // Positive at both ends, so everywhere (a is concave): ∫ a dz = d·B − ∫ crown dz
                 // (t·z integrates to 0 over the face).

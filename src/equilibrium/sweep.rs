@@ -505,20 +505,13 @@ fn face_loads(
             }
         }
     }
-    // Written by `Chunk::record` on a face that is not uniform.
+    // Written by `Chunk::record` on a face that is not uniform; on a uniform one every slice
+    // carries its roller's mean F/B, a factor of 1 wherever a roller carries a force.
     let face_load_factor = face_factor.into_iter().next().unwrap_or_else(|| {
         (0..angles)
-            .map(|k| {
-                let mut peak = (0.0, 0.0);
-                for (q, f) in line_load.iter().zip(force_n) {
-                    let v = q[k * slices..(k + 1) * slices]
-                        .iter()
-                        .fold(0.0, |m: f64, &v| m.max(v));
-                    if v > peak.0 {
-                        peak = (v, f[k]);
-                    }
-                }
-                face_load_factor(peak, width)
+            .map(|k| match force_n.iter().any(|f| f[k] > 0.0) {
+                true => 1.0,
+                false => 0.0,
             })
             .collect()
     });

@@ -151,8 +151,8 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
         .map(|(name, bytes)| shard::decode(name, bytes))
         .collect::<Result<Vec<_>>>()?;
     let names: Vec<String> = files.iter().map(|(name, _)| name.clone()).collect();
-    let ordered = shard::check_set(&names, &shards)?;
-    let h = &shards[0].header;
+    let order = shard::check_set(&names, &shards)?;
+    let h = shards[0].header.clone();
     let requirements = crate::spec::requirements::parse(&h.requirements_path, &h.requirements_text)
         .map_err(|e| {
             Error::new(
@@ -163,9 +163,22 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
                 ),
             )
         })?;
-    let evaluations = shard::merge(&requirements, &ordered)?;
+    // The shards in index order, moved (their evaluations move on into the search).
+    let mut rank = vec![0; order.len()];
+    for (k, &i) in order.iter().enumerate() {
+        rank[i] = k;
+    }
+    let mut ordered: Vec<(usize, (&str, shard::Shard))> = names
+        .iter()
+        .map(String::as_str)
+        .zip(shards)
+        .enumerate()
+        .map(|(i, s)| (rank[i], s))
+        .collect();
+    ordered.sort_unstable_by_key(|(k, _)| *k);
+    let evaluations = shard::merge(&requirements, ordered.into_iter().map(|(_, s)| s).collect())?;
     Ok(MergedDesign {
-        requirements_path: h.requirements_path.clone(),
+        requirements_path: h.requirements_path,
         shards: h.count,
         requirements,
         evaluations,

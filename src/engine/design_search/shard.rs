@@ -270,11 +270,9 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
 
 /// Check that a complete set of shards (`names` their paths, for messages) belongs to one
 /// search: refused when they differ in requirements, seed, candidate count or shard count, or
-/// when a shard is missing or given twice (named by index). The shards in index order.
-pub fn check_set<'a>(
-    names: &'a [String],
-    shards: &'a [Shard],
-) -> Result<Vec<(&'a str, &'a Shard)>> {
+/// when a shard is missing or given twice (named by index). The positions in `shards` of the
+/// shards in index order.
+pub fn check_set(names: &[String], shards: &[Shard]) -> Result<Vec<usize>> {
     let Some(first) = shards.first() else {
         return Err(refuse("merge needs at least one shard file".into()));
     };
@@ -322,10 +320,7 @@ pub fn check_set<'a>(
         }
     }
     let indices: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
-    Ok(place(names, &indices, h0.count)?
-        .into_iter()
-        .map(|i| (names[i].as_str(), &shards[i]))
-        .collect())
+    place(names, &indices, h0.count)
 }
 
 /// The global stage's evaluations of every candidate, in the order of `global_candidates`,
@@ -333,7 +328,8 @@ pub fn check_set<'a>(
 /// requirements `req`: refused when a
 /// shard's candidate is not the one `req` generates at its index (bit for bit: another
 /// version of cycloid, or an altered shard) or an evaluation is not consistent.
-pub fn merge(req: &Requirements, ordered: &[(&str, &Shard)]) -> Result<Vec<Evaluation>> {
+/// The shards are consumed: their evaluations move into the result.
+pub fn merge(req: &Requirements, ordered: Vec<(&str, Shard)>) -> Result<Vec<Evaluation>> {
     let candidates = super::global_candidates(req);
     let h0 = &ordered[0].1.header;
     let from_here = |what: &str, a: u64, b: u64| {
@@ -355,8 +351,8 @@ pub fn merge(req: &Requirements, ordered: &[(&str, &Shard)]) -> Result<Vec<Evalu
     }
     let count = h0.count as usize;
     let mut all: Vec<Option<Evaluation>> = vec![None; candidates.len()];
-    for (i, (name, s)) in ordered.iter().enumerate() {
-        for (row, e) in s.evaluations.iter().enumerate() {
+    for (i, (name, s)) in ordered.into_iter().enumerate() {
+        for (row, e) in s.evaluations.into_iter().enumerate() {
             let j = i + row * count;
             let c = &candidates[j];
             let bad = |why: &str| {
@@ -392,7 +388,7 @@ pub fn merge(req: &Requirements, ordered: &[(&str, &Shard)]) -> Result<Vec<Evalu
             if e.stage != Stage::Full && e.failures.is_empty() {
                 return Err(bad("stopped before the full check without a failure"));
             }
-            all[j] = Some(e.clone());
+            all[j] = Some(e);
         }
     }
     all.into_iter()

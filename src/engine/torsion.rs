@@ -18,16 +18,22 @@
 //! branches coincide and the hysteresis loss is zero. With it (`friction_loop`) every contact's
 //! Coulomb friction resists the disc's turn (`equilibrium::friction::torsion`): the loading
 //! branch (−Trated → +Trated, σ = +1) and the unloading one (back, σ = −1) part, and
-//! - **hysteresis loss** = γ_unloading − γ_loading at T = 0, the mean of its values at 0⁺ and
-//!   0⁻ (without preload both are zero: at either edge of the dead band no contact is loaded,
-//!   so none carries friction — MODEL.md);
+//! - **hysteresis loss** = the width at T = 0 of the loop the disc traverses (`Traversed`),
+//!   falling minus rising half, the mean of its values at 0⁺ and 0⁻: the branches' width
+//!   (2·M_f/K to first order, M_f the friction moment at zero torque) while M_f ≤ Trated/2;
+//!   beyond, the disc held after each reversal never reaches the branches at T = 0, and the
+//!   width is that of the held segments, 2·(Trated − M_f)/K (without preload zero: at either
+//!   edge of the dead band no contact is loaded, so none carries friction — MODEL.md);
 //! - the lost motion and backlash are read on the loop's **centre line**, the mean of the two
 //!   branches at the same torque (the catalogue's definition), the rigidity on the branch
 //!   that loads in its direction (+50 → +100 % loading, −50 → −100 % unloading);
-//! - the loop's **area** ∮ T dγ is the energy friction takes per cycle;
-//! - the curve is the real loop: after each reversal the disc sticks until the torque has
-//!   changed enough for the other branch to reach it (γ is held, Masing's rule for Coulomb
-//!   friction), which the branches in full sliding alone would not show.
+//! - the loop's **area** ∮ T dγ, of the same traversed loop, is the energy friction takes per
+//!   cycle;
+//! - the curve is that loop: after each reversal the disc sticks until the torque has changed
+//!   enough for the other branch to reach it (its own lag β is held, Masing's rule for
+//!   Coulomb friction, while what is in series, the pins and the structure, keeps twisting
+//!   with the torque and stores and returns its energy), which the branches in full sliding
+//!   alone would not show.
 //!
 //! The figures come from their own solves at exactly ±3 %, ±50 %, ±100 % of the rated torque
 //! (the loop's samples need not land on them), and the one-sided limits T → 0± from solves at
@@ -177,8 +183,8 @@ pub fn at_angle(
 /// −Trated up to +Trated, then the unloading branch (σ = −1) back down, each one monotone path
 /// through the loop's torques (its zero as 0⁻ and 0⁺) and the figures', every point
 /// warm-started from the last. The figures (lost motion and backlash on the centre line, the
-/// rigidity on the branch loading its way), the hysteresis at T = 0, the area of the loop as
-/// drawn (held after each reversal).
+/// rigidity on the branch loading its way); the hysteresis and the loop's energy are read off
+/// the loop the disc traverses (`Traversed`), the one the curve draws.
 fn friction_loop(
     discs: &Discs,
     sweep: &TorqueSweep,
@@ -203,38 +209,28 @@ fn friction_loop(
         set_branch(&mut discs, &mut work, sigma);
         torques
             .map(|t| {
-                output_lag(&mut discs, crank_rad, t, &mut work)
-                    .map(|g| g + structure_rad_per_nmm * t)
-                    .map_err(|f| fail(t, solve_failed(f)))
+                let gamma = output_lag(&mut discs, crank_rad, t, &mut work)
+                    .map_err(|f| fail(t, solve_failed(f)))?;
+                Ok(BranchPoint {
+                    torsion_rad: gamma + structure_rad_per_nmm * t,
+                    disc_rad: disc_lag(&work),
+                })
             })
-            .collect::<Result<Vec<f64>, _>>()
+            .collect::<Result<Vec<BranchPoint>, _>>()
     };
     let loading = branch(1.0, &mut up.iter().copied())?;
     let mut unloading = branch(-1.0, &mut up.iter().rev().copied())?;
     unloading.reverse();
-    // γ of a branch at a torque of `up` (every torque read is one of them).
-    let at = |branch: &[f64], t: f64| {
-        let i = up
-            .binary_search_by(|x| x.total_cmp(&t))
-            .unwrap_or_else(|i| i);
-        branch[i.min(branch.len() - 1)]
-    };
-    // The loop as drawn: after the reversal at +Trated the disc holds its γ until the
-    // unloading branch comes down to it, after the one at −Trated until loading rises to it.
-    let (top, bottom) = (at(&loading, rated), at(&unloading, -rated));
-    if bottom >= top {
-        return Err(fail(rated, held_throughout(top, bottom)));
-    }
-    let held_loading = |t: f64| at(&loading, t).max(bottom);
-    let held_unloading = |t: f64| at(&unloading, t).min(top);
+    let traversed = Traversed::new(&up, loading, unloading)
+        .map_err(|(top, bottom)| fail(rated, held_throughout(top, bottom)))?;
     let curve = torques_nmm
         .iter()
         .enumerate()
         .map(|(m, &t)| {
             if m <= 2 * sweep.steps {
-                held_loading(if t == 0.0 { -zero } else { t })
+                traversed.rising(if t == 0.0 { -zero } else { t })
             } else {
-                held_unloading(if t == 0.0 { zero } else { t })
+                traversed.falling(if t == 0.0 { zero } else { t })
             }
         })
         .collect();
@@ -242,10 +238,8 @@ fn friction_loop(
     // that loads in its direction (loading from +50 % to +100 %, unloading from −50 % to
     // −100 %), as a catalogue measures it and where the drawn loop runs.
     let mut read = [0.0; 8];
-    let mut width = [0.0; 8];
     for (i, f) in FIGURE_TORQUES.into_iter().enumerate() {
-        let (l, u) = (at(&loading, f * rated), at(&unloading, f * rated));
-        width[i] = u - l;
+        let (l, u) = traversed.branches(f * rated);
         read[i] = if f.abs() < 0.5 {
             0.5 * (l + u)
         } else if f > 0.0 {
@@ -255,16 +249,152 @@ fn friction_loop(
         };
     }
     let mut figures = figures(rated, &read).map_err(|m| fail(rated, m))?;
-    // FIGURE_TORQUES[3] and [4] are 0⁻ and 0⁺.
-    figures.hysteresis_rad = 0.5 * (width[3] + width[4]);
-    figures.loop_energy_nmm = up
-        .windows(2)
-        .map(|w| {
-            let gap = |t: f64| held_unloading(t) - held_loading(t);
-            0.5 * (gap(w[0]) + gap(w[1])) * (w[1] - w[0])
-        })
-        .sum();
+    figures.hysteresis_rad = traversed.width_at_zero(zero);
+    figures.loop_energy_nmm = traversed.area();
     Ok((curve, read, figures))
+}
+
+/// A point of a branch in full sliding: the torsion angle γ (rad, the twist of whatever is in
+/// series with the discs included) and the discs' own lag β (rad), the turn that the rollers'
+/// and the bearing's friction resist and, when they stick, hold.
+#[derive(Debug, Clone, Copy)]
+struct BranchPoint {
+    torsion_rad: f64,
+    disc_rad: f64,
+}
+
+impl BranchPoint {
+    /// The elastic twist in series with the discs at this point, γ − β (rad): the pins'
+    /// deflection βo and the structure's c_s·T. It follows the torque whether the discs slide
+    /// or stick: a spring in series stores and returns its energy, it opens no loop.
+    fn series_rad(self) -> f64 {
+        self.torsion_rad - self.disc_rad
+    }
+}
+
+/// The discs' own lag β (rad) at the last solve of `work`: the disc's roller lag (with several
+/// discs, their mean: each one's γ = β_k + βo_k, and they stick and slide together).
+fn disc_lag(work: &CoupledWork) -> f64 {
+    let lags: Vec<f64> = work.works.iter().filter_map(|w| w.sol.lag_rad).collect();
+    lags.iter().sum::<f64>() / lags.len().max(1) as f64
+}
+
+/// The loop the disc traverses (Masing's rule for Coulomb friction): after the reversal at
+/// +Trated the discs hold their lag β_top = β_loading(+Trated) until the unloading branch's β
+/// comes down to it, after the one at −Trated they hold β_bottom = β_unloading(−Trated) until
+/// the loading branch's β rises to it; while held, γ = β_held + the series' twist at that
+/// torque (taken from the branch the torque moves along: exact for frictionless pins, whose
+/// deflection is a function of the torque; with pins' friction, their deflection on that
+/// branch, the pins' own sticking not modelled: at a reversal the loop steps from one
+/// branch's deflection to the other's). The stick test and the held segments read the discs' lag β, not γ: a twist in
+/// series neither holds the discs nor lets them go. The curve, the hysteresis and the energy
+/// are all read from here.
+struct Traversed<'a> {
+    /// The branches' torques, ascending, N·mm.
+    up: &'a [f64],
+    loading: Vec<BranchPoint>,
+    unloading: Vec<BranchPoint>,
+    /// β_loading(+Trated) and β_unloading(−Trated), rad.
+    top_rad: f64,
+    bottom_rad: f64,
+}
+
+impl<'a> Traversed<'a> {
+    /// The loop over `up` from its branches in full sliding; `Err((β_top, β_bottom))` when
+    /// friction holds the discs over the whole loop (β_bottom ≥ β_top: the friction moment is
+    /// at least the rated torque, and after the first reversal the discs never slide again).
+    fn new(
+        up: &'a [f64],
+        loading: Vec<BranchPoint>,
+        unloading: Vec<BranchPoint>,
+    ) -> Result<Self, (f64, f64)> {
+        let top_rad = loading[loading.len() - 1].disc_rad;
+        let bottom_rad = unloading[0].disc_rad;
+        if bottom_rad >= top_rad {
+            return Err((top_rad, bottom_rad));
+        }
+        Ok(Traversed {
+            up,
+            loading,
+            unloading,
+            top_rad,
+            bottom_rad,
+        })
+    }
+
+    /// The index in `up` of the torque `t` (N·mm; every torque read is one of them).
+    fn index(&self, t: f64) -> usize {
+        let i = self
+            .up
+            .binary_search_by(|x| x.total_cmp(&t))
+            .unwrap_or_else(|i| i);
+        i.min(self.up.len() - 1)
+    }
+
+    /// γ (rad) of the loading and the unloading branch in full sliding at `t`.
+    fn branches(&self, t: f64) -> (f64, f64) {
+        let i = self.index(t);
+        (self.loading[i].torsion_rad, self.unloading[i].torsion_rad)
+    }
+
+    /// γ (rad) on the rising half of the loop at `t`: the loading branch once its β has risen
+    /// to β_bottom, held there before; at −Trated itself, where the falling half left it.
+    fn rising(&self, t: f64) -> f64 {
+        match self.index(t) {
+            0 => self.held_falling(0),
+            i => self.held_rising(i),
+        }
+    }
+
+    /// γ (rad) on the falling half of the loop at `t`: the unloading branch once its β has
+    /// come down to β_top, held there before; at +Trated itself, where the rising half left it.
+    fn falling(&self, t: f64) -> f64 {
+        match self.index(t) {
+            i if i == self.up.len() - 1 => self.held_rising(i),
+            i => self.held_falling(i),
+        }
+    }
+
+    /// γ (rad) at `up[i]` after the reversal at −Trated: β held at β_bottom until the loading
+    /// branch's β reaches it.
+    fn held_rising(&self, i: usize) -> f64 {
+        let p = self.loading[i];
+        if p.disc_rad >= self.bottom_rad {
+            p.torsion_rad
+        } else {
+            self.bottom_rad + p.series_rad()
+        }
+    }
+
+    /// γ (rad) at `up[i]` after the reversal at +Trated: β held at β_top until the unloading
+    /// branch's β comes down to it.
+    fn held_falling(&self, i: usize) -> f64 {
+        let p = self.unloading[i];
+        if p.disc_rad <= self.top_rad {
+            p.torsion_rad
+        } else {
+            self.top_rad + p.series_rad()
+        }
+    }
+
+    /// The hysteresis loss (rad): the loop's width falling − rising at T = 0, the mean of its
+    /// values at 0⁻ and 0⁺ (±`zero_nmm`, each side of a dead band).
+    fn width_at_zero(&self, zero_nmm: f64) -> f64 {
+        let width = |t: f64| self.falling(t) - self.rising(t);
+        0.5 * (width(-zero_nmm) + width(zero_nmm))
+    }
+
+    /// The loop's area ∮ T dγ = ∫ (γ_falling − γ_rising) dT over −Trated…Trated (N·mm = mJ):
+    /// the energy friction takes per cycle, by trapezoids over `up`.
+    fn area(&self) -> f64 {
+        self.up
+            .windows(2)
+            .map(|w| {
+                let width = |t: f64| self.falling(t) - self.rising(t);
+                0.5 * (width(w[0]) + width(w[1])) * (w[1] - w[0])
+            })
+            .sum()
+    }
 }
 
 /// The message of a solve of the loop that failed.
@@ -272,15 +402,16 @@ fn solve_failed(f: SolveFailure) -> String {
     format!("equilibrium solve failed: {f}")
 }
 
-/// The message of a loop whose friction never lets the disc slide: the unloading branch at
-/// −Trated (`bottom`, rad) is not below the loading branch at +Trated (`top`), so after the
-/// first reversal the disc stays where it is over the whole loop.
+/// The message of a loop whose friction never lets the disc slide: the disc's own lag on the
+/// unloading branch at −Trated (`bottom`, rad) is not below its lag on the loading branch at
+/// +Trated (`top`), so after the first reversal the disc stays where it is over the whole loop.
 fn held_throughout(top: f64, bottom: f64) -> String {
     format!(
-        "friction holds the disc over the whole torsion loop: the unloading branch at −rated \
-         (γ = {} arcmin) is not below the loading branch at +rated (γ = {} arcmin), so the \
-         friction moment exceeds the rated torque and the disc never slides back; the loop has \
-         no catalogue figures. Raise torque_sweep.rated_nm, or lower μ or the preload",
+        "friction holds the disc over the whole torsion loop: the disc's own lag on the \
+         unloading branch at −rated (β = {} arcmin) is not below its lag on the loading branch \
+         at +rated (β = {} arcmin), so the friction moment exceeds the rated torque and the \
+         disc never slides back; the loop has no catalogue figures. Raise \
+         torque_sweep.rated_nm, or lower μ or the preload",
         crate::numeric::number(crate::units::arcmin(bottom)),
         crate::numeric::number(crate::units::arcmin(top)),
     )

@@ -460,7 +460,11 @@ fn solve_rollers_coupled(
         SolveFailure::NoBracket {
             nearest: Some((x, value)),
             ..
-        } if value != 0.0 => beyond_reach(r, &pose(x), value, target),
+        } if value != 0.0 => {
+            let at = (crank, centre, &pose(x));
+            self_locking(c, r, at, pins, model.torque_nmm)
+                .unwrap_or_else(|| beyond_reach(r, &pose(x), value, target))
+        }
         other => other,
     })?;
     work.slopes.0 = root.slope;
@@ -471,6 +475,33 @@ fn solve_rollers_coupled(
             .map_err(SolveFailure::Gap)?;
     }
     Ok(root.x)
+}
+
+/// Whether friction is what kept the coupled rollers' balance from the output torque
+/// `torque_nmm` at the pose `pose` (crank angle, disc centre) where the search came nearest:
+/// self-locking when the friction moment against the turn, M_f = Σ F·l − (Σ F·l̃ − c_b·|Fb| −
+/// the pins' shift) (so that Σ F·l − M_f = T balances), takes all of the normal forces' moment
+/// Σ F·l in the torque's direction, or when Σ F·l alone passed the torque there (without
+/// friction a smaller lag balances it). None otherwise (an overload of the contacts).
+fn self_locking(
+    c: &Coupling,
+    r: &Rollers,
+    (crank, centre, pose): (f64, Vec2, &Pose),
+    pins: &PinTotals,
+    torque_nmm: f64,
+) -> Option<SolveFailure> {
+    let mut states = Vec::new();
+    r.evaluate(pose, &mut states).ok()?;
+    let normal = moment(&states).0;
+    let net = coupled_roller_moment(c, crank, centre, &states, pins).0 - pins.shift;
+    let friction = normal - net;
+    let s = torque_nmm.signum();
+    (s * net <= 0.0 || s * normal >= s * torque_nmm).then_some(SolveFailure::SelfLocking {
+        torque_nmm,
+        friction_moment_nmm: friction,
+        normal_moment_nmm: normal,
+        lag_rad: pose.lag_rad,
+    })
 }
 
 /// The pins' coupled balance: βo with Σ F_j·ã_j = T (the flange's torque, friction included).

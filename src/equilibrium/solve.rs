@@ -57,6 +57,16 @@ pub enum SolveFailure {
         lag_rad: f64,
         deepest: Option<(usize, f64, f64)>,
     },
+    /// Self-locking: with friction in the balance, the rollers' coupled moment never reached
+    /// the output torque (N·mm) because the friction moment against the disc's turn (N·mm, in
+    /// the torque's direction: rollers, pins and crank bearing) took the whole normal forces'
+    /// moment (N·mm), or all of it the torque did not need, at that lag (rad).
+    SelfLocking {
+        torque_nmm: f64,
+        friction_moment_nmm: f64,
+        normal_moment_nmm: f64,
+        lag_rad: f64,
+    },
     /// No roller touches the disc in the direction of the torque (N·mm) at any lag within
     /// `range_rad` of the ideal pose: the disc turns freely further than the search reaches
     /// (its clearance is large against its moment arms), so no balance can be found.
@@ -153,6 +163,22 @@ impl std::fmt::Display for SolveFailure {
                     "; the load is beyond what this disc can hold in the contact model"
                 )
             }
+            SolveFailure::SelfLocking {
+                torque_nmm,
+                friction_moment_nmm,
+                normal_moment_nmm,
+                lag_rad,
+            } => write!(
+                f,
+                "self-locking: friction holds the disc against an output torque of {} N·m: no \
+                 lag turns the rollers' moment towards it, the friction moment against the \
+                 disc's turn (rollers, pins and crank bearing) growing with the load as fast as \
+                 the normal forces' moment; nearest, at a lag of {lag_rad:.4} rad, the friction \
+                 moment is {} N·m against the normal forces' {} N·m. Lower μ",
+                input(units::nm(*torque_nmm)),
+                crate::numeric::number(units::nm(*friction_moment_nmm)),
+                crate::numeric::number(units::nm(*normal_moment_nmm)),
+            ),
             SolveFailure::NoContact {
                 torque_nmm,
                 range_rad,

@@ -22,10 +22,11 @@ pub const HYSTERESIS: &str = "hysteresis loss 0: the quasi-static model has no f
 pub const HYSTERESIS_FROM_FRICTION: &str = "hysteresis loss from friction: every contact's \
      Coulomb friction (`reducer.friction`, in the balance whichever model the efficiency uses) \
      resists the disc's turn, so the loop's loading and unloading branches part; the branches \
-     are in full sliding, the disc held after each reversal until the other branch reaches it; \
-     lost motion and backlash are read on the loop's centre line, the rigidity on the branch \
-     loading its way, the hysteresis loss is the unloading minus the loading branch at zero \
-     torque";
+     are in full sliding, the disc held after each reversal until the other branch reaches it \
+     (its own lag held, what is in series still twisting); lost motion and backlash are read on \
+     the loop's centre line, the rigidity on the branch loading its way, the hysteresis loss and \
+     the energy per cycle off the loop the disc traverses: its width at zero torque and its \
+     area";
 
 /// The torsion plot's word on its hysteresis: with friction a short one (the whole sentence
 /// is in the section's text).

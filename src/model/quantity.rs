@@ -813,7 +813,7 @@ fn friction_figures(r: &SceneResult, figure: impl Fn(&TorsionFigures) -> f64) ->
     torsion_figures(r, figure)
 }
 
-/// Hysteresis loss γ_unloading − γ_loading at T = 0 of a torsion loop with friction, arcmin,
+/// Hysteresis loss of a torsion loop with friction, the traversed loop's width at T = 0, arcmin,
 /// at each locked crank angle (`TorsionFigures::hysteresis_rad`).
 pub const HYSTERESIS_LOSS: Quantity = Quantity {
     key: "hysteresis_loss_arcmin",

@@ -186,11 +186,12 @@ pub struct TorsionFigures {
     pub backlash_rad: f64,
     /// Secant stiffness between 50 % and 100 % of rated, N·mm/rad: (forward, reverse).
     pub rigidity_nmm_per_rad: (f64, f64),
-    /// Hysteresis loss: γ on the unloading branch minus γ on the loading branch at T = 0, the
-    /// mean of its values at 0⁺ and 0⁻ (each side of a dead band), rad; 0 without friction.
+    /// Hysteresis loss: the width at T = 0 of the loop the disc traverses (the drawn curve),
+    /// its falling half minus its rising half, the mean of its values at 0⁺ and 0⁻ (each side
+    /// of a dead band), rad; 0 without friction.
     pub hysteresis_rad: f64,
-    /// The loop's area ∮ T dγ = ∫ (γ_unloading − γ_loading) dT over −Trated…Trated: the energy
-    /// friction takes per cycle of the loop, N·mm (= mJ); 0 without friction.
+    /// The traversed loop's area ∮ T dγ = ∫ (γ_falling − γ_rising) dT over −Trated…Trated: the
+    /// energy friction takes per cycle of the loop, N·mm (= mJ); 0 without friction.
     pub loop_energy_nmm: f64,
 }
 

@@ -16,12 +16,16 @@
 //!   selection procedures (Harmonic Drive's catalogues, cube law; Nabtesco's RV catalogue
 //!   writes the same mean with the exponent 10/3 of its bearings).
 //! - Mean speed n_m = Σ sᵢ·nᵢ, rpm (the time mean of the input speed).
-//! - Mean efficiency weighted by energy, with `efficiency`: η = Σ sᵢ·P_out,i / Σ sᵢ·(P_out,i +
-//!   lossᵢ), P_out,i = |Tᵢ|·ωᵢ/nc and lossᵢ the bin's mean loss at ωᵢ (its losses per unit
-//!   speed × ωᵢ, ωᵢ ∝ nᵢ): the output energy over the input energy of one cycle. A bin at a
-//!   standstill moves no energy. With no energy moved at all it is 1 (nothing lost).
+//! - Mean efficiency weighted by energy, with `efficiency`: η = Σ sᵢ·Dᵢ / Σ sᵢ·Eᵢ, each bin's
+//!   energy delivered Dᵢ and entering Eᵢ from its power flow at its mean loss
+//!   (`engine::power_flow`, Pᵢ = |Tᵢ|·ωᵢ/nc, lossᵢ its losses per unit speed × ωᵢ, ωᵢ ∝ nᵢ):
+//!   the input driving, Eᵢ = Pᵢ + lossᵢ and Dᵢ = Pᵢ; the output driving (Tᵢ < 0), Eᵢ = Pᵢ and
+//!   Dᵢ = Pᵢ − lossᵢ; self-locked, Eᵢ = lossᵢ and Dᵢ = 0. The energy delivered over the energy
+//!   entering in one cycle. A bin at a standstill moves no power: it has no efficiency (its run
+//!   keeps none, `combine`) and adds nothing. With no energy moved at all it is 1.
 
 use crate::engine::bearing_life;
+use crate::engine::power_flow::PowerFlow;
 use crate::model::results::{BearingLife, DutyBinResult, DutyCycle, SceneResult};
 use crate::model::Design;
 
@@ -68,6 +72,10 @@ pub fn bin_equivalent_loads(r: &SceneResult) -> Option<Vec<f64>> {
 /// The cycle's results from its bins' runs: the lives of `design`'s discs, the equivalent
 /// torque, the mean speed and the energy-weighted efficiency (see the module's formulas).
 pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
+    let bins: Vec<DutyBinResult> = bins
+        .into_iter()
+        .map(standstill_without_efficiency)
+        .collect();
     let weights = revolution_weights(&bins);
     let mean_speed_rpm: f64 = weights.iter().sum();
     let torques: Vec<(f64, f64)> = weights
@@ -117,19 +125,36 @@ pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
     }
 }
 
-/// Σ sᵢ·nᵢ·P_out,i / Σ sᵢ·nᵢ·(P_out,i + lossᵢ), the powers per unit speed (`ReducerEfficiency::
-/// output_power_nmm`, `EfficiencyCurves::mean_loss_nmm`) times nᵢ (∝ ωᵢ); `None` unless every
-/// bin computed the efficiency; 1 when no energy moves.
-fn energy_efficiency(bins: &[DutyBinResult]) -> Option<f64> {
-    let (mut out, mut input) = (0.0, 0.0);
-    for b in bins {
-        let e = b.result.efficiency.as_ref()?;
-        let reducer = e.reducer.as_ref()?;
-        let w = b.bin.time_share * b.bin.input_speed_rpm;
-        out += w * reducer.output_power_nmm;
-        input += w * (reducer.output_power_nmm + e.mean_loss_nmm.total());
+/// A bin at a standstill moves no power, so it has no efficiency: its run's efficiency (computed
+/// as a scene without a speed would be, where η does not depend on the speed) is dropped, with
+/// each disc's.
+fn standstill_without_efficiency(mut b: DutyBinResult) -> DutyBinResult {
+    if b.bin.input_speed_rpm == 0.0 {
+        b.result.efficiency = None;
+        for d in &mut b.result.discs {
+            d.efficiency = None;
+        }
     }
-    Some(if input > 0.0 { out / input } else { 1.0 })
+    b
+}
+
+/// Σ sᵢ·nᵢ·Dᵢ / Σ sᵢ·nᵢ·Eᵢ, each bin's energy delivered and entering per unit speed from its
+/// power flow at its mean loss (`engine::power_flow`, `EfficiencyCurves::mean_loss_nmm`) times
+/// nᵢ (∝ ωᵢ); `None` unless every turning bin computed the efficiency; 1 when no energy moves.
+fn energy_efficiency(bins: &[DutyBinResult]) -> Option<f64> {
+    let (mut delivered, mut entering) = (0.0, 0.0);
+    for b in bins.iter().filter(|b| b.bin.input_speed_rpm > 0.0) {
+        let e = b.result.efficiency.as_ref()?;
+        let energy = PowerFlow::of(e.reducer.as_ref()?).energy(e.mean_loss_nmm.total());
+        let w = b.bin.time_share * b.bin.input_speed_rpm;
+        delivered += w * energy.delivered_nmm;
+        entering += w * energy.entering_nmm;
+    }
+    Some(if entering > 0.0 {
+        delivered / entering
+    } else {
+        1.0
+    })
 }
 
 #[cfg(test)]

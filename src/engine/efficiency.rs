@@ -8,13 +8,16 @@
 //! coupled model's crank balance (`crank_input_torque`).
 //!
 //! Powers per unit input speed (N·mm/rad, the power at ω = 1 rad/s in N·mm/s):
-//! P_out = |T|/nc with T the scene's output torque (all discs), η(φ) = P_out/(P_out + loss(φ)),
-//! mean η = P_out/(P_out + mean loss) (the mean of the losses, not of η). With no output
-//! torque η is 0 where anything is lost and 1 where nothing is (no NaN). Coulomb friction
+//! P = |T|/nc with T the scene's output torque (all discs); η(φ) is the efficiency of the power
+//! that flows at loss(φ) (`engine::power_flow`: P/(P + loss) with the input driving, (P −
+//! loss)/P with the output driving, T < 0), mean η the same at the mean loss (the mean of the
+//! losses, not of η). With no output torque η is 0 where anything is lost and 1 where nothing
+//! is (no NaN). Coulomb friction
 //! makes every loss proportional to ω, so η does not depend on the speed; the watts are the
 //! losses × ω × 1e-3 and exist only with `input_speed_rpm`, the temperature ambient +
 //! P/(h·A) only with `reducer.thermal` too.
 
+use crate::engine::power_flow::PowerFlow;
 use crate::equilibrium::friction::coupled::Coupling;
 use crate::equilibrium::friction::loss::{
     disc_losses as contact_losses, reducer_losses, PathLosses,
@@ -75,15 +78,6 @@ pub fn efficiency(
     Ok(Some((curves(total, Some(reducer)), disc_curves)))
 }
 
-/// η = P_out/(P_out + loss): 1 when nothing is lost, 0 when only loss (no output torque).
-pub fn efficiency_of(output_power: f64, loss: f64) -> f64 {
-    if output_power + loss > 0.0 {
-        output_power / (output_power + loss)
-    } else {
-        1.0
-    }
-}
-
 /// The reducer's efficiency, input torque and temperature from its losses `[angle]`.
 fn reducer_figures(
     design: &Design,
@@ -94,7 +88,7 @@ fn reducer_figures(
 ) -> ReducerEfficiency {
     let nc = design.teeth as f64;
     let torque = scene.output_torque_nmm;
-    let output_power = torque.abs() / nc;
+    let flow = PowerFlow::new(torque, design.teeth);
     let mean_loss = mean(loss).total();
     let temperature_c = design
         .thermal
@@ -106,12 +100,11 @@ fn reducer_figures(
         loss.iter().map(|l| torque / nc + l.total()).collect()
     });
     ReducerEfficiency {
-        output_power_nmm: output_power,
-        efficiency: loss
-            .iter()
-            .map(|l| efficiency_of(output_power, l.total()))
-            .collect(),
-        mean_efficiency: efficiency_of(output_power, mean_loss),
+        driver: flow.driver,
+        output_power_nmm: flow.output_power_nmm,
+        efficiency: loss.iter().map(|l| flow.efficiency(l.total())).collect(),
+        mean_efficiency: flow.efficiency(mean_loss),
+        self_locks: flow.self_locks(mean_loss),
         self_locking_crank_rad: self_locking(scene, &input_torque_nmm),
         input_torque_nmm,
         temperature_c,

@@ -22,6 +22,7 @@ pub mod golden;
 pub mod limit;
 pub mod optimise;
 pub mod plausibility;
+pub mod power_flow;
 /// The progress observer (`crate::progress`), where the engine's callers look for it.
 pub use crate::progress;
 pub mod resolution;

@@ -15,8 +15,8 @@ pub const CURVE_FRACTIONS: [f64; 12] = [
     0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.65, 0.8, 1.0, 1.25, 1.5,
 ];
 
-/// The mean efficiency of `scene` of `spec` at each torque of `CURVE_FRACTIONS` × its own
-/// (its loaded model and friction solved again at each), for the review; `None` when the scene
+/// The mean efficiency of `scene` of `spec` at each torque of `CURVE_FRACTIONS` × its own, with
+/// its sign (its loaded model and friction solved again at each), rising, for the review; `None` when the scene
 /// does not compute the efficiency or has no torque.
 pub fn torque_curve(spec: &Spec, at_scene: &Scene) -> Result<Option<TorqueCurve>> {
     let plan = Plan::for_scene(at_scene);
@@ -26,8 +26,10 @@ pub fn torque_curve(spec: &Spec, at_scene: &Scene) -> Result<Option<TorqueCurve>
     let points: Result<Vec<(f64, f64)>> = CURVE_FRACTIONS
         .par_iter()
         .map(|f| {
+            // The scene's own sign: a back-driven scene's curve is back-driven too, each
+            // point's efficiency that of its power flow (`engine::power_flow`).
             let at = Scene {
-                output_torque_nmm: at_scene.output_torque_nmm.abs() * f,
+                output_torque_nmm: at_scene.output_torque_nmm * f,
                 ..at_scene.clone()
             };
             let r = scene::run(spec, &at, &plan, &Default::default())?;
@@ -38,7 +40,9 @@ pub fn torque_curve(spec: &Spec, at_scene: &Scene) -> Result<Option<TorqueCurve>
             Ok((at.output_torque_nmm, mean))
         })
         .collect();
-    let (torque_nmm, mean_efficiency) = points?.into_iter().unzip();
+    let mut points = points?;
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (torque_nmm, mean_efficiency) = points.into_iter().unzip();
     Ok(Some(TorqueCurve {
         torque_nmm,
         mean_efficiency,

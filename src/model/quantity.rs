@@ -9,7 +9,7 @@
 
 use super::effect::{Detail, Effect};
 use super::results::{
-    BacklashCurves, DutyCycle, MinCoverage, ReducerEfficiency, SceneResult, TorsionFigures,
+    BacklashCurves, Driver, DutyCycle, MinCoverage, ReducerEfficiency, SceneResult, TorsionFigures,
 };
 use crate::numeric::{extremes, fluctuation, max_entry, number};
 use crate::units;
@@ -1057,8 +1057,9 @@ pub const MEAN_SPEED: Quantity = Quantity {
     }),
 };
 
-/// The mean efficiency of a duty cycle weighted by energy, Σ sᵢ·P_out,i / Σ sᵢ·(P_out,i +
-/// lossᵢ), dimensionless (`DutyCycle::mean_efficiency`).
+/// The mean efficiency of a duty cycle weighted by energy, Σ sᵢ·Dᵢ / Σ sᵢ·Eᵢ (each bin's
+/// energy delivered and entering, `engine::duty_cycle`), dimensionless
+/// (`DutyCycle::mean_efficiency`).
 pub const DUTY_MEAN_EFFICIENCY: Quantity = Quantity {
     key: "duty_mean_efficiency",
     unit: "",
@@ -1070,7 +1071,8 @@ pub const DUTY_MEAN_EFFICIENCY: Quantity = Quantity {
     read: Read::Scalar(|r| {
         Some(Extreme {
             value: duty(r)?.mean_efficiency?,
-            at: "output energy / input energy over the bins".to_string(),
+            at: "energy delivered / energy entering over the bins, each as its power flows"
+                .to_string(),
         })
     }),
 };
@@ -1108,7 +1110,8 @@ pub const INPUT_TORQUE: Quantity = Quantity {
     }),
 };
 
-/// P_out/(P_out + mean loss), dimensionless (`ReducerEfficiency::mean_efficiency`).
+/// The mean efficiency of the power that flows, dimensionless (`ReducerEfficiency::
+/// mean_efficiency`): P_out/(P_out + mean loss), back-driven (P − mean loss)/P.
 pub const MEAN_EFFICIENCY: Quantity = Quantity {
     key: "mean_efficiency",
     unit: "",
@@ -1120,10 +1123,38 @@ pub const MEAN_EFFICIENCY: Quantity = Quantity {
     read: Read::Scalar(|r| {
         reducer_efficiency(r).map(|e| Extreme {
             value: e.mean_efficiency,
-            at: "P_out/(P_out + mean loss) over the scene's crank angles".to_string(),
+            at: efficiency_basis(e, r.crank_rad.len()),
         })
     }),
 };
+
+/// What a scene's mean efficiency is of, where it is read (the headline, a limit's row, the
+/// review): with the input driving P_out/(P_out + mean loss); with the output driving (T < 0)
+/// the back-driven (P − mean loss)/P, the crank angles where the input must still push, and,
+/// when the mean loss takes all of P, that the scene self-locks (`engine::power_flow`).
+fn efficiency_basis(e: &ReducerEfficiency, angles: usize) -> String {
+    const OVER: &str = "over the scene's crank angles";
+    const BACK: &str = "back-driven (the output drives, T < 0)";
+    let locked = e.self_locking_crank_rad.len();
+    match (e.driver, e.self_locks) {
+        (Driver::Input, _) => format!("P_out/(P_out + mean loss) {OVER}"),
+        (Driver::Output, true) => format!(
+            "SELF-LOCKS: {BACK}, the mean loss exceeds the power P = |T|·ω_out entering at the \
+             output, (P − mean loss)/P ≤ 0 {OVER}; the input must push at {locked} of {angles} \
+             crank angles (self_locking_deg)"
+        ),
+        (Driver::Output, false) => {
+            let at =
+                format!("{BACK}: (P − mean loss)/P, P = |T|·ω_out entering at the output, {OVER}");
+            match locked {
+                0 => at,
+                _ => format!(
+                    "{at}; self-locks at {locked} of {angles} crank angles (self_locking_deg)"
+                ),
+            }
+        }
+    }
+}
 
 /// The mean power lost to friction on every path, W, with a speed (`EfficiencyCurves::
 /// power_loss_w`; a disc's: its contacts').

@@ -293,16 +293,33 @@ pub struct EfficiencyCurves {
     pub reducer: Option<ReducerEfficiency>,
 }
 
+/// The side of the reducer whose power enters it (`engine::power_flow`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Driver {
+    /// The input drives, the output torque resists the motion (T ≥ 0).
+    Input,
+    /// The output drives, its torque pushes along the motion (T < 0): back-driven.
+    Output,
+}
+
 /// The reducer's efficiency, input torque and temperature over a scene (MODEL.md "Friction,
 /// efficiency and heat").
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReducerEfficiency {
-    /// P_out per unit input speed, |T|/nc, N·mm/rad (T the scene's output torque).
+    /// The side that drives, from the sign of T (`engine::power_flow`).
+    pub driver: Driver,
+    /// P per unit input speed, |T|/nc, N·mm/rad (T the scene's output torque): the power
+    /// through the output flange, leaving it with the input driving, entering with the output.
     pub output_power_nmm: f64,
-    /// η(φ) = P_out/(P_out + loss(φ)) at each crank angle, `[angle]`.
+    /// η(φ) of the power that flows at each crank angle, `[angle]` (`engine::power_flow`):
+    /// P/(P + loss(φ)) with the input driving, (P − loss(φ))/P with the output.
     pub efficiency: Vec<f64>,
-    /// P_out/(P_out + mean loss): the mean of the losses, not of η.
+    /// The same at the mean loss: the mean of the losses, not of η; ≤ 0 where the output
+    /// drives and the mean loss takes all it brings (the reducer self-locks).
     pub mean_efficiency: f64,
+    /// Whether the output drives and the mean loss takes all the power it brings: the scene
+    /// self-locks (`engine::power_flow::PowerFlow::self_locks`).
+    pub self_locks: bool,
     /// The input torque at each crank angle, N·mm, `[angle]`: the loss model's T/nc + loss,
     /// the coupled model's from the crank's balance (with its ripple).
     pub input_torque_nmm: Vec<f64>,
@@ -374,8 +391,8 @@ pub struct DutyCycle {
     /// Each disc's crank bearing under the cycle (one entry per disc), when the design has a
     /// `crank_bearing` and the crank range spans whole loaded periods; else empty.
     pub life: Vec<BearingLife>,
-    /// Σ sᵢ·P_out,i / Σ sᵢ·(P_out,i + lossᵢ): the mean efficiency weighted by energy, with
-    /// `efficiency` (P_out,i and lossᵢ the bin's output power and mean loss at its speed).
+    /// Σ sᵢ·Dᵢ / Σ sᵢ·Eᵢ: the mean efficiency weighted by energy, with `efficiency` (Dᵢ and
+    /// Eᵢ the bin's energy delivered and entering as its power flows, `engine::duty_cycle`).
     pub mean_efficiency: Option<f64>,
 }
 

@@ -7,7 +7,7 @@
 use crate::common::{cycloid, Scratch};
 use cycloid::model::quantity::{
     Quantity, BEARING_LIFE, DUTY_LIFE, DUTY_MEAN_EFFICIENCY, EQUIVALENT_TORQUE,
-    MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY, MEAN_SPEED,
+    MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY, MEAN_SPEED, TOTAL_POWER_LOSS,
 };
 use cycloid::model::results::SceneResult;
 
@@ -263,6 +263,50 @@ fn the_mean_efficiency_is_weighted_by_energy() {
         "{eta} against {}",
         out / input
     );
+}
+
+/// The cycle's energy as each bin's power flows (issue 39 §3), worked by hand from each turning
+/// bin's ordinary run: its power P = |T|·ω/nc and its mean loss L (`total_power_loss_w`), in W:
+/// a forward bin takes P + L in and delivers P; a back-driven bin (T < 0, a deceleration) takes
+/// P in at the output and delivers P − L to the input; one whose loss exceeds P self-locks,
+/// takes L (P at the output, L − P from the input) and delivers nothing. η = Σ s·D / Σ s·E.
+/// At μ 0.3 the back-driven bin runs, at μ 0.9 it self-locks. A bin at a standstill moves no
+/// power and has no efficiency (not the run's speed-free 0.87). 1e-12: round-off of the sums.
+#[test]
+fn the_cycle_efficiency_follows_each_bins_power_flow() {
+    let bins = [(20.0, 1500.0, 0.5), (-20.0, 1000.0, 0.3), (12.0, 0.0, 0.2)];
+    for (mu, locks) in [("0.3", false), ("0.9", true)] {
+        let head = design_of(EFFICIENCY).replace("mu: 0.06 ", &format!("mu: {mu} "));
+        let duty = run(&duty_spec(&head, &bins, "efficiency"));
+        let (mut delivered, mut entering) = (0.0, 0.0);
+        for &b in bins.iter().filter(|b| b.1 > 0.0) {
+            let loss = value(
+                &TOTAL_POWER_LOSS,
+                &run(&ordinary_spec(&head, b, "efficiency")),
+            );
+            let p = b.0.abs() * (b.1 * std::f64::consts::TAU / 60.0) / 9.0; // N·m × rad/s
+            let (e, d) = match (b.0 < 0.0, loss > p) {
+                (false, _) => (p + loss, p),
+                (true, false) => (p, p - loss),
+                (true, true) => (loss, 0.0),
+            };
+            assert_eq!(
+                b.0 < 0.0 && loss > p,
+                b.0 < 0.0 && locks,
+                "μ {mu}: {loss} W of {p} W"
+            );
+            delivered += b.2 * d;
+            entering += b.2 * e;
+        }
+        let eta = value(&DUTY_MEAN_EFFICIENCY, &duty);
+        let expected = delivered / entering;
+        assert!(
+            rel(eta, expected) < 1e-12,
+            "μ {mu}: {eta} against {expected}"
+        );
+        let standstill = &duty.duty.as_ref().unwrap().bins[2].result;
+        assert!(MEAN_EFFICIENCY.scalar(standstill).is_none());
+    }
 }
 
 /// (exit code, stdout, stderr) of `cycloid check s.yaml` on `text`.

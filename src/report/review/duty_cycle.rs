@@ -30,8 +30,9 @@ pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
              Σ sᵢ·nᵢ)^(1/p), Pᵢ each bin's equivalent load over its loaded period, \
              L10h = (C/P)^p · 10⁶ / (60 · Σ sᵢ·nᵢ · (1 + 1/nc)); a bin at a standstill turns no \
              revolution. Equivalent torque T_eq = (Σ sᵢ·nᵢ·|Tᵢ|³ / Σ sᵢ·nᵢ)^(1/3) (weighted by \
-             revolutions), mean speed Σ sᵢ·nᵢ; mean efficiency by energy \
-             Σ sᵢ·P_out,i / Σ sᵢ·(P_out,i + lossᵢ)."
+             revolutions), mean speed Σ sᵢ·nᵢ; mean efficiency by energy Σ sᵢ·nᵢ·Dᵢ / \
+             Σ sᵢ·nᵢ·Eᵢ, each bin's power delivered Dᵢ and entering Eᵢ as its power flows (the \
+             output driving a bin of negative torque; a bin at a standstill has no efficiency)."
         }
         @for (s, d) in &cycles {
             h3 { "Scene " code { (s.name) } }

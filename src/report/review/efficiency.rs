@@ -5,7 +5,9 @@
 
 use super::common::{data_table, figure, section, Section};
 use crate::model::friction::PathLosses;
-use crate::model::results::{EfficiencyCurves, SceneResult, TorqueCurve};
+use crate::model::results::{
+    Driver, EfficiencyCurves, ReducerEfficiency, SceneResult, TorqueCurve,
+};
 use crate::model::Scene;
 use crate::numeric::number;
 use crate::report::svg::{document, px, ticks, LinePlot, RefLine, Series, PALETTE, RED};
@@ -27,16 +29,18 @@ fn path_values(p: &PathLosses) -> [f64; 4] {
 
 /// The efficiency-against-torque plot of a scene: the mean efficiency at each torque of the
 /// curve, the scene's own torque marked.
-fn torque_plot(scene: &Scene, c: &TorqueCurve, mean: f64) -> LinePlot {
+fn torque_plot(scene: &Scene, c: &TorqueCurve, r: &ReducerEfficiency) -> LinePlot {
+    let mean = r.mean_efficiency;
     let mut plot = LinePlot::new(
         &format!("Efficiency against output torque: scene {}", scene.name),
         "output torque T (N·m)",
         "mean efficiency",
     );
-    plot.subtitle = "P_out/(P_out + mean loss) over the scene's crank angles, the scene solved \
-                     again at each torque; the drag and any preload lose whatever the torque, \
-                     so the efficiency falls at light load"
-        .into();
+    plot.subtitle = format!(
+        "{} over the scene's crank angles, the scene solved again at each torque; the drag and \
+         any preload lose whatever the torque, so the efficiency falls at light load",
+        flow_formula(r.driver)
+    );
     let x: Vec<f64> = c.torque_nmm.iter().map(|&t| units::nm(t)).collect();
     plot.series.push(Series::new(
         "mean efficiency",
@@ -44,7 +48,7 @@ fn torque_plot(scene: &Scene, c: &TorqueCurve, mean: f64) -> LinePlot {
         c.mean_efficiency.clone(),
         PALETTE[0],
     ));
-    let at = units::nm(scene.output_torque_nmm.abs());
+    let at = units::nm(scene.output_torque_nmm);
     plot.series.push(Series::new(
         format!("the scene: {} N·m, {}", number(at), number(mean)),
         vec![at, at],
@@ -57,6 +61,27 @@ fn torque_plot(scene: &Scene, c: &TorqueCurve, mean: f64) -> LinePlot {
         color: RED.into(),
     });
     plot
+}
+
+/// The mean efficiency of the power that flows (`engine::power_flow`): P_out/(P_out + mean
+/// loss) with the input driving, (P − mean loss)/P with the output driving.
+fn flow_formula(driver: Driver) -> &'static str {
+    match driver {
+        Driver::Input => "P_out/(P_out + mean loss)",
+        Driver::Output => {
+            "back-driven, (P − mean loss)/P with P = |T|·ω_out entering at the output,"
+        }
+    }
+}
+
+/// A scene's mean efficiency as its row reads it: back-driven and self-locking scenes say so.
+fn mean_cell(r: &ReducerEfficiency) -> String {
+    let value = number(r.mean_efficiency);
+    match (r.driver, r.self_locks) {
+        (Driver::Input, _) => value,
+        (Driver::Output, false) => format!("{value} (back-driven)"),
+        (Driver::Output, true) => format!("{value} (back-driven: SELF-LOCKS)"),
+    }
 }
 
 /// A stacked bar per scene of the mean power lost on each path, W.
@@ -141,7 +166,7 @@ pub(super) fn section_of(
             continue;
         };
         let file = format!("efficiency-{}.svg", k + 1);
-        files.push((file.clone(), torque_plot(s, c, r.mean_efficiency).to_svg()));
+        files.push((file.clone(), torque_plot(s, c, r).to_svg()));
         figures.push((
             file,
             format!("Efficiency against torque, scene {}", s.name),
@@ -150,7 +175,7 @@ pub(super) fn section_of(
                 c.torque_nmm.len(),
                 number(units::nm(c.torque_nmm.first().copied().unwrap_or(0.0))),
                 number(units::nm(c.torque_nmm.last().copied().unwrap_or(0.0))),
-                number(units::nm(s.output_torque_nmm.abs()))
+                number(units::nm(s.output_torque_nmm))
             ),
         ));
     }
@@ -167,11 +192,19 @@ pub(super) fn section_of(
         ));
     }
     let model = spec.design.friction.map_or("none", |f| f.model.name());
+    let back_driven = (scenes.iter())
+        .filter_map(|(_, _, e)| e.reducer.as_ref())
+        .any(|r| r.driver == Driver::Output);
     let body = html! {
         p.note {
             "Each loss is a Coulomb force μ·F times the speed its surfaces slide at (README \
              \"Friction, efficiency and heat\"); the " (model) " model. η = P_out/(P_out + loss), \
              the mean efficiency P_out/(P_out + mean loss)."
+            @if back_driven {
+                " Where the output drives (a negative output torque) the power P = |T|·ω_out \
+                 enters at the output and η = (P − loss)/P reaches the input; where the losses \
+                 take all of it (η ≤ 0) the reducer self-locks."
+            }
         }
         (data_table(
             html! {
@@ -181,7 +214,7 @@ pub(super) fn section_of(
             },
             html! { @for (_, s, e) in &scenes { tr {
                 td { code { (s.name) } }
-                td { (e.reducer.as_ref().map_or("—".into(), |r| number(r.mean_efficiency))) }
+                td { (e.reducer.as_ref().map_or("—".into(), mean_cell)) }
                 @match e.power_loss_w() {
                     Some(p) => {
                         @for v in path_values(&p) { td { (number(v)) } }

@@ -84,6 +84,13 @@ fn stage(path: &Path, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> R
             format!("`{shown}` names no file"),
         ));
     }
+    // A rename would move a directory aside (a batch) or fail late: refuse it before writing.
+    if fs::metadata(path).is_ok_and(|m| m.is_dir()) {
+        return Err(Error::new(
+            ErrorKind::Io,
+            format!("{shown} is a directory, not a file: it is left as it is and nothing was written; remove it or write elsewhere"),
+        ));
+    }
     let temp = temporary(path);
     let result = File::options()
         .write(true)
@@ -299,6 +306,27 @@ mod tests {
         write_atomic(&path, b"new content\n").unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap(), "new content\n");
         assert_eq!(entries(&dir), ["spec.yaml"]);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// An output whose path is an existing directory is refused before anything is written:
+    /// neither a single write nor a batch moves the directory aside or writes a file.
+    #[test]
+    fn a_directory_at_an_output_path_is_refused_and_left_alone() {
+        let dir = scratch("dir");
+        fs::create_dir_all(dir.join("front.csv")).unwrap();
+        fs::write(dir.join("front.csv/keep"), "mine").unwrap();
+        let err = write_atomic(&dir.join("front.csv"), b"x").unwrap_err();
+        assert!(err.to_string().contains("is a directory"), "{err}");
+        let mut batch = Batch::new();
+        batch.add(&dir.join("a.csv"), b"a").unwrap();
+        assert!(batch.add(&dir.join("front.csv"), b"x").is_err());
+        drop(batch);
+        assert_eq!(entries(&dir), ["front.csv"]);
+        assert_eq!(
+            fs::read_to_string(dir.join("front.csv/keep")).unwrap(),
+            "mine"
+        );
         let _ = fs::remove_dir_all(&dir);
     }
 

@@ -56,7 +56,7 @@ pub(super) fn run(args: DesignArgs, out: &mut dyn Write) -> Result<Outcome> {
                 format!("the requirements file {path}"),
                 PathBuf::from(&path),
             )];
-            finish(&req, &run, dir, &time, &inputs, out)
+            finish(&req, &run, dir, &time, (&inputs, None), out)
         }
     }
 }
@@ -76,13 +76,17 @@ fn check_out_dir(dir: Option<&str>) -> Result<()> {
     Ok(())
 }
 
+/// Inputs no output may replace: files by their path, and the requirements text by its SHA-256
+/// (a merge's requirements file, whose recorded path is relative to an unknown directory).
+type Inputs<'a> = (&'a [(String, PathBuf)], Option<&'a [u8; 32]>);
+
 /// Write the front's files into `out_dir` (never over one of `inputs`) and print the report.
 fn finish(
     req: &Requirements,
     run: &DesignRun,
     out_dir: Option<&str>,
     time: &Timing,
-    inputs: &[(String, PathBuf)],
+    (inputs, requirements_sha256): Inputs,
     out: &mut dyn Write,
 ) -> Result<Outcome> {
     if let Some(dir) = out_dir {
@@ -99,6 +103,19 @@ fn finish(
             if let Some((name, _)) = files.iter().find(|(n, _)| identity(&dir.join(n)) == input) {
                 return Err(usage(format!(
                     "--out {} would overwrite {what} with {name}; give another directory",
+                    dir.display()
+                )));
+            }
+        }
+        if let Some(hash) = requirements_sha256 {
+            let holds_it = |name: &str| {
+                files::read_text(&dir.join(name), "output", files::MAX_INPUT_BYTES)
+                    .is_ok_and(|t| crate::engine::shard_file::text_hash(&t) == *hash)
+            };
+            if let Some((name, _)) = files.iter().find(|(n, _)| holds_it(n)) {
+                return Err(usage(format!(
+                    "--out {} would overwrite {name}, which holds the requirements the shards \
+                     were made from; give another directory",
                     dir.display()
                 )));
             }
@@ -160,12 +177,31 @@ fn run_merge(paths: &[String], out_dir: Option<&str>, out: &mut dyn Write) -> Re
         ),
         PathBuf::from(&merged.requirements_path),
     ));
+    // The recorded path is relative to where the shards ran: also beside each shard.
+    for p in paths {
+        let beside = Path::new(p).parent().unwrap_or(Path::new(""));
+        inputs.push((
+            format!(
+                "the requirements file {} the shards name",
+                merged.requirements_path
+            ),
+            beside.join(&merged.requirements_path),
+        ));
+    }
     // The requirements outlive the merge the evaluations are moved into.
     let (requirements, shards) = (merged.requirements.clone(), merged.shards);
+    let hash = merged.requirements_sha256;
     let run = commands::design_from_shards(merged, &Terminal)?;
     let time = Timing::Merged {
         seconds: started.elapsed().as_secs_f64(),
         shards,
     };
-    finish(&requirements, &run, out_dir, &time, &inputs, out)
+    finish(
+        &requirements,
+        &run,
+        out_dir,
+        &time,
+        (&inputs, Some(&hash)),
+        out,
+    )
 }

@@ -68,9 +68,24 @@ pub(super) fn slurm_shard(samples: u64) -> Result<Option<(u64, u64)>> {
     slurm_shard_of(samples, "samples")
 }
 
-/// The shard of a Slurm job array task (`slurm_shard`), of `samples` units named `noun`.
+/// The environment variable that declines a job array's shard: `0` runs the whole study or
+/// search in a task (an array whose tasks run several specs), `1` or unset takes the shard.
+pub(super) const DECLINE_VAR: &str = "CYCLOID_SLURM_SHARD";
+
+/// The shard of a Slurm job array task (`slurm_shard`), of `samples` units named `noun`; none
+/// when `DECLINE_VAR` is `0`.
 pub(super) fn slurm_shard_of(samples: u64, noun: &str) -> Result<Option<(u64, u64)>> {
     let var = |name: &str| std::env::var(name).ok();
+    match var(DECLINE_VAR).as_deref().map(str::trim) {
+        None | Some("1") => {}
+        Some("0") => return Ok(None),
+        Some(other) => {
+            return Err(invalid(format!(
+                "{DECLINE_VAR}={other}: give 0 (run the whole study in each task) or 1 (a task \
+                 of a Slurm job array computes its shard, the default)"
+            )))
+        }
+    }
     let (Some(id), Some(count)) = (var("SLURM_ARRAY_TASK_ID"), var("SLURM_ARRAY_TASK_COUNT"))
     else {
         return Ok(None);

@@ -615,6 +615,26 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
             ),
         ));
     }
+    // Points repeated (one point measured over and over) fix no more unknowns than one: the
+    // circle through them, and every foot after it, would be NaN.
+    let mut distinct: Vec<(u64, u64)> = points
+        .iter()
+        .filter(|p| p.feature == Feature::Profile)
+        .map(|p| (p.point.x.to_bits(), p.point.y.to_bits()))
+        .collect();
+    distinct.sort_unstable();
+    distinct.dedup();
+    if distinct.len() <= layout.len {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "{} distinct profile points (of {profile_count}; the others repeat them) for {} \
+                 unknowns: measure points spread along the profile",
+                distinct.len(),
+                layout.len
+            ),
+        ));
+    }
     let entries = points.len().saturating_mul(layout.len);
     if entries > MAX_JACOBIAN_ENTRIES {
         return Err(Error::new(

@@ -54,10 +54,14 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
         misalignment: match raw.misalignment {
             // mrad → rad, as a scene's (`spec::face::scene_face`).
             Some(m) => Misalignment {
-                about_x_rad: 1e-3
-                    * finite(format!("{KEY}.misalignment.about_x_mrad"), m.about_x_mrad)?,
-                about_y_rad: 1e-3
-                    * finite(format!("{KEY}.misalignment.about_y_mrad"), m.about_y_mrad)?,
+                about_x_rad: super::values::tilt_rad(
+                    &format!("{KEY}.misalignment.about_x_mrad"),
+                    m.about_x_mrad,
+                )?,
+                about_y_rad: super::values::tilt_rad(
+                    &format!("{KEY}.misalignment.about_y_mrad"),
+                    m.about_y_mrad,
+                )?,
             },
             None => Misalignment::default(),
         },

@@ -91,6 +91,7 @@ pub(crate) fn bins_at(at: &str, bins: &[RawDutyBin]) -> Result<Vec<DutyBin>> {
                 ),
             ));
         }
+        let speed = super::values::speed_rpm(&format!("{bin}.input_speed_rpm"), speed)?;
         let share = b.time_share;
         if !(share.is_finite() && (0.0..=1.0).contains(&share)) {
             return Err(Error::invalid(

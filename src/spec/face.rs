@@ -3,7 +3,7 @@
 //! crowned or tilted face is cut into slices where the scene loads it.
 
 use super::raw::{RawCrowning, RawMisalignment};
-use super::values::{finite, length, positive};
+use super::values::{finite, length, positive, tilt_rad};
 use crate::error::{Error, Result};
 use crate::model::face::{Crowning, Face, Misalignment};
 use crate::model::scene::MAX_ROLLER_ANGLES;
@@ -123,7 +123,7 @@ pub(crate) fn crowning_at(at: &str, raw: &RawCrowning, face: (f64, &str)) -> Res
     }
 }
 
-/// A scene's `misalignment` (finite, mrad → rad) and `face_slices` (1 to `MAX_FACE_SLICES`),
+/// A scene's `misalignment` (within ±`values::MAX_TILT_MRAD`, mrad → rad) and `face_slices` (1 to `MAX_FACE_SLICES`),
 /// with no crowning yet (`apply` adds the design's).
 pub(crate) fn scene_face(
     key: &str,
@@ -132,10 +132,8 @@ pub(crate) fn scene_face(
 ) -> Result<Face> {
     let misalignment = match misalignment {
         Some(m) => Misalignment {
-            about_x_rad: 1e-3
-                * finite(&format!("{key}.misalignment.about_x_mrad"), m.about_x_mrad)?,
-            about_y_rad: 1e-3
-                * finite(&format!("{key}.misalignment.about_y_mrad"), m.about_y_mrad)?,
+            about_x_rad: tilt_rad(&format!("{key}.misalignment.about_x_mrad"), m.about_x_mrad)?,
+            about_y_rad: tilt_rad(&format!("{key}.misalignment.about_y_mrad"), m.about_y_mrad)?,
         },
         None => Misalignment::default(),
     };

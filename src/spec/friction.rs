@@ -4,7 +4,7 @@
 //! sleeve), a bore given exactly when its mode has one.
 
 use super::raw::{RawBearingFriction, RawFriction, RawPinFriction, RawRollerFriction, RawThermal};
-use super::values::{finite, length};
+use super::values::{finite, length, within, HEAT_TRANSFER_W_PER_M2K, HOUSING_AREA_M2};
 use crate::error::{Error, Result};
 use crate::model::{
     BearingFriction, Design, Effect, Friction, FrictionModel, Limits, PinFriction, PinMode, Plan,
@@ -22,6 +22,17 @@ const ABSOLUTE_ZERO_C: f64 = -273.15;
 fn mu(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() && (0.0..1.0).contains(&value) {
         return Ok(value);
+    }
+    // Below 0 (or no number) is another mistake than a coefficient too large.
+    if value.is_nan() || value < 0.0 {
+        return Err(Error::invalid(
+            key,
+            format!(
+                "must lie in [0, 1), got {}: a friction coefficient is a ratio of forces, 0 \
+                 (no friction) or more",
+                numeric::input(value)
+            ),
+        ));
     }
     Err(Error::invalid(
         key,
@@ -192,19 +203,10 @@ pub(crate) fn friction_at(
     })
 }
 
-/// `reducer.thermal` (or a requirements file's `thermal`, at `key`): a positive area and
-/// heat-transfer coefficient, an ambient above absolute zero.
+/// `reducer.thermal` (or a requirements file's `thermal`, at `key`): an area and a
+/// heat-transfer coefficient within a housing's bounds (`values::HOUSING_AREA_M2`,
+/// `HEAT_TRANSFER_W_PER_M2K`), an ambient above absolute zero.
 pub(super) fn thermal_at(key: &str, raw: &RawThermal) -> Result<Thermal> {
-    let positive = |name: &str, v: f64| -> Result<f64> {
-        if v.is_finite() && v > 0.0 {
-            Ok(v)
-        } else {
-            Err(Error::invalid(
-                format!("{key}.{name}"),
-                format!("must be a positive number, got {}", numeric::input(v)),
-            ))
-        }
-    };
     let ambient = finite(&format!("{key}.ambient_c"), raw.ambient_c)?;
     if ambient <= ABSOLUTE_ZERO_C {
         return Err(Error::invalid(
@@ -216,8 +218,20 @@ pub(super) fn thermal_at(key: &str, raw: &RawThermal) -> Result<Thermal> {
         ));
     }
     Ok(Thermal {
-        housing_area_m2: positive("housing_area_m2", raw.housing_area_m2)?,
-        heat_transfer_w_per_m2k: positive("heat_transfer_w_per_m2k", raw.heat_transfer_w_per_m2k)?,
+        housing_area_m2: within(
+            &format!("{key}.housing_area_m2"),
+            raw.housing_area_m2,
+            HOUSING_AREA_M2,
+            "m²",
+            "a housing's outer area, from a thumbnail's to a room's",
+        )?,
+        heat_transfer_w_per_m2k: within(
+            &format!("{key}.heat_transfer_w_per_m2k"),
+            raw.heat_transfer_w_per_m2k,
+            HEAT_TRANSFER_W_PER_M2K,
+            "W/(m²·K)",
+            "still air is ~5–25, forced liquid cooling up to ~10⁴",
+        )?,
         ambient_c: ambient,
     })
 }

@@ -134,12 +134,19 @@ fn ratios(raw: &serde_yaml::Value) -> Result<Vec<usize>> {
             .enumerate()
             .map(|(i, v)| one(format!("ratio[{i}]"), v))
             .collect::<Result<Vec<_>>>()?,
-        v => vec![one("ratio".into(), v)?],
+        v => {
+            // One ratio, not a list: its errors are at `ratio` itself, not at an item.
+            let ratio = one("ratio".into(), v)?;
+            return choices("ratio", &[ratio], 2, MAX_RATIO).map_err(|mut e| {
+                e.key_path = Some("ratio".into());
+                e
+            });
+        }
     };
     choices("ratio", &list, 2, MAX_RATIO)
 }
 
-/// `misalignment` (finite, mrad → rad) and `face_slices` (1 to `MAX_FACE_SLICES`), with the
+/// `misalignment` (within ±`values::MAX_TILT_MRAD`, mrad → rad) and `face_slices` (1 to `MAX_FACE_SLICES`), with the
 /// spec's rules: a tilted or crowned face needs 2 slices or more, so does a limit on the load
 /// along the face, and the line loads of a scene (contacts × crank angles × slices) must fit in
 /// memory for every ratio and pin count of the search (`ratios`, `pin_counts` and `steps` per
@@ -152,8 +159,8 @@ fn face(
 ) -> Result<(Misalignment, usize)> {
     let misalignment = match &raw.misalignment {
         Some(m) => Misalignment {
-            about_x_rad: 1e-3 * finite("misalignment.about_x_mrad", m.about_x_mrad)?,
-            about_y_rad: 1e-3 * finite("misalignment.about_y_mrad", m.about_y_mrad)?,
+            about_x_rad: super::values::tilt_rad("misalignment.about_x_mrad", m.about_x_mrad)?,
+            about_y_rad: super::values::tilt_rad("misalignment.about_y_mrad", m.about_y_mrad)?,
         },
         None => Misalignment::default(),
     };
@@ -240,7 +247,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
     }
     let input_speed_rpm = raw
         .input_speed_rpm
-        .map(|n| positive("input_speed_rpm", n))
+        .map(|n| super::values::speed_rpm("input_speed_rpm", positive("input_speed_rpm", n)?))
         .transpose()?;
     let e = &raw.envelope;
     let envelope = Envelope {

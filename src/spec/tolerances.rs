@@ -95,6 +95,17 @@ pub(crate) fn build(
         seed: seed as u64,
         max_failure_rate: rate,
     };
+    // With every band 0 each sample is the nominal reducer: a rate of 0 or 1 that no sample
+    // count could make more certain; `check` judges the nominal.
+    if tol.toleranced().next().is_none() {
+        return Err(Error::invalid(
+            KEY,
+            "every band is 0: nothing is toleranced, and every sample would be the nominal \
+             reducer; give a band > 0 (e.g. roller_radial_mm), or judge the nominal with \
+             `cycloid check`"
+                .into(),
+        ));
+    }
     largest_draws_fit(&tol, design, m)?;
     drawn_periods(&tol, design, scenes, limits)?;
     Ok(tol)

@@ -446,7 +446,10 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
     };
     let input_speed_rpm = raw
         .input_speed_rpm
-        .map(|n| positive(&format!("{key}.input_speed_rpm"), n))
+        .map(|n| {
+            let key = format!("{key}.input_speed_rpm");
+            super::values::speed_rpm(&key, positive(&key, n)?)
+        })
         .transpose()?;
     let face = super::face::scene_face(&key, raw.misalignment, raw.face_slices)?;
     Ok(Scene {

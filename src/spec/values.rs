@@ -46,3 +46,75 @@ pub(super) fn length(key: &str, value: f64) -> Result<f64> {
     }
     Ok(value)
 }
+
+/// Largest tilt of the disc about either axis, mrad. The face model is first order in the tilt
+/// (a point at z along the face moves by θ·z); the dropped term θ²/2 of the radii is 1.25e-5 of
+/// them at 5 mrad (0.3 µm on a 25 mm roller circle), below the gaps the tool resolves. Measured
+/// misalignments of a reducer's disc are tenths of a milliradian.
+pub(super) const MAX_TILT_MRAD: f64 = 5.0;
+
+/// A tilt in mrad, finite and within ±`MAX_TILT_MRAD`; in rad.
+pub(super) fn tilt_rad(key: &str, value_mrad: f64) -> Result<f64> {
+    let value = finite(key, value_mrad)?;
+    if value.abs() > MAX_TILT_MRAD {
+        return Err(Error::invalid(
+            key,
+            format!(
+                "{} mrad is beyond the ±{MAX_TILT_MRAD} mrad the first-order face model \
+                 represents (a reducer's disc tilts by tenths of a milliradian)",
+                numeric::input(value)
+            ),
+        ));
+    }
+    Ok(1e-3 * value)
+}
+
+/// Largest input speed, rpm: 10⁵ rpm is beyond any cycloidal reducer's input (they run at up
+/// to a few thousand rpm), a bound at which speeds, lives and losses stay finite numbers.
+pub(super) const MAX_SPEED_RPM: f64 = 1e5;
+
+/// `value` (rpm, already checked finite and not negative) when it is at most `MAX_SPEED_RPM`.
+pub(super) fn speed_rpm(key: &str, value: f64) -> Result<f64> {
+    if value <= MAX_SPEED_RPM {
+        return Ok(value);
+    }
+    Err(Error::invalid(
+        key,
+        format!(
+            "{} rpm is above the {MAX_SPEED_RPM} rpm this tool takes (a cycloidal reducer's \
+             input turns at a few thousand rpm at most)",
+            numeric::input(value)
+        ),
+    ))
+}
+
+/// Smallest and largest heat-transfer coefficient h, W/(m²·K): still air with radiation is
+/// ~5–25, forced oil or water cooling up to ~10⁴; below 0.1 a housing would be a vacuum flask,
+/// and P/(h·A) no temperature at all.
+pub(super) const HEAT_TRANSFER_W_PER_M2K: (f64, f64) = (0.1, 1e5);
+
+/// Smallest and largest housing area A, m²: 1 cm² (a housing smaller than a thumbnail) to
+/// 100 m² (a reducer larger than this tool's 100 m bound on sizes allows is no housing).
+pub(super) const HOUSING_AREA_M2: (f64, f64) = (1e-4, 100.0);
+
+/// `value` of `unit` when finite and within `(low, high)` inclusive; `why` says why there.
+pub(super) fn within(
+    key: &str,
+    value: f64,
+    (low, high): (f64, f64),
+    unit: &str,
+    why: &str,
+) -> Result<f64> {
+    if value.is_finite() && (low..=high).contains(&value) {
+        return Ok(value);
+    }
+    Err(Error::invalid(
+        key,
+        format!(
+            "must lie in [{}, {}] {unit}, got {}: {why}",
+            numeric::input(low),
+            numeric::input(high),
+            numeric::input(value)
+        ),
+    ))
+}

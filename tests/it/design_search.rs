@@ -316,6 +316,8 @@ fn a_bad_requirements_file_is_refused_at_its_file_line_and_column() {
             "multiple of 4",
         ),
         ("ratio: [9]", "ratio: [1]", "small.yaml:2:9", "ratio[0]"),
+        // One ratio, not a list: located at its value, not at 1:1 (issue 39 §5).
+        ("ratio: [9]", "ratio: 201", "small.yaml:2:", "got 201"),
         (
             "  seed: 3",
             "  sed: 3",

@@ -259,3 +259,71 @@ fn a_merge_refuses_a_set_that_is_not_one_whole_run() {
     assert!(r.code() == 0 || r.code() == 1, "{r:?}");
     assert!(dir.exists("front/index.html"));
 }
+
+/// Issue 39 §5: a merge run from another directory than its shards never writes over the
+/// requirements file they were made from, named `design-01.yaml` like the front's first spec:
+/// found beside the shard (the recorded path is relative to where the shards ran) and, with
+/// the shard elsewhere, by its text. Exit 2, the file as it was, nothing written.
+#[test]
+fn a_merge_from_another_directory_keeps_the_requirements_file() {
+    // SMALL's front is not empty (`shards_merge_bit_for_bit`): it writes `design-01.yaml`.
+    let text = SMALL.replace("refine_budget: 12", "refine_budget: 0");
+    let dir = Scratch::new("design-merge-requirements");
+    dir.write("design-01.yaml", &text);
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    let r = cycloid(
+        &dir.path,
+        &[
+            "design",
+            "design-01.yaml",
+            "--shard",
+            "0/1",
+            "--out",
+            "s.bin",
+        ],
+    );
+    assert_eq!(r.code(), 0, "{r:?}");
+    dir.write("shards/s.bin", std::fs::read(dir.join("s.bin")).unwrap());
+    for (shard, why) in [
+        (
+            "../s.bin",
+            "would overwrite the requirements file design-01.yaml",
+        ),
+        (
+            "../shards/s.bin",
+            "would overwrite design-01.yaml, which holds the requirements",
+        ),
+    ] {
+        let before = files(&dir.path);
+        let r = cycloid(&dir.join("sub"), &["design", "merge", shard, "--out", ".."]);
+        assert_eq!(r.code(), 2, "{shard}: {r:?}");
+        assert!(r.stderr.contains(why), "{shard}: {}", r.stderr);
+        assert_eq!(files(&dir.path), before, "{shard}: a file changed");
+    }
+}
+
+/// Issue 39 §5: an output file whose path is a directory of the user's (`front/front.csv/`)
+/// is refused, exit 2, the directory and its content left where they were, nothing written.
+#[test]
+fn a_directory_at_an_output_file_path_is_left_alone() {
+    let text = SMALL
+        .replace("samples: 64", "samples: 8")
+        .replace("refine_budget: 12", "refine_budget: 0");
+    let dir = Scratch::new("design-out-dir");
+    dir.write("small.yaml", &text);
+    dir.write("front/front.csv/mine.txt", "the user's");
+    let before = files(&dir.path);
+    let r = cycloid(&dir.path, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(r.code(), 2, "{r:?}");
+    assert!(
+        r.stderr
+            .contains("front/front.csv is a directory, not a file"),
+        "{}",
+        r.stderr
+    );
+    assert_eq!(
+        files(&dir.path),
+        before,
+        "a file changed, appeared or vanished"
+    );
+}

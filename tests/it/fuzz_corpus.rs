@@ -8,13 +8,9 @@
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
-use std::time::{Duration, Instant};
 
 /// Mutations generated per seed file (the seeds are ~45 files: ~4,500 inputs).
 const PER_SEED: usize = 100;
-
-/// Upper bound on the whole run; the inputs take ~1 s in release.
-const BUDGET: Duration = Duration::from_secs(30);
 
 /// Deterministic xorshift64* generator: the same inputs on every run and machine.
 struct Rng(u64);
@@ -249,7 +245,6 @@ fn the_corpus_never_panics_and_errors_are_located() {
 
 #[test]
 fn mutations_of_the_specs_never_panic_and_errors_are_located() {
-    let start = Instant::now();
     let files = corpus();
     let seeds: Vec<&(String, String)> = files.iter().filter(|(_, t)| t.len() > 50).collect();
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
@@ -268,10 +263,6 @@ fn mutations_of_the_specs_never_panic_and_errors_are_located() {
                 Err(e) => failures.push(format!("{name} mutation {k}: {e}\n--- input\n{input}")),
             }
         }
-        assert!(
-            start.elapsed() < BUDGET,
-            "over the time budget after {name}"
-        );
     }
     assert!(
         failures.is_empty(),

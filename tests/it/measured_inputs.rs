@@ -590,3 +590,27 @@ fn a_written_sample_of_a_measured_spec_replays_its_value() {
         );
     }
 }
+
+/// Issue 39 §5: a file of one point measured over and over fixes no disc: it is refused as
+/// such (exit 2, the count of distinct points), not fitted into "t = NaN".
+#[test]
+fn a_file_of_one_repeated_point_is_refused_naming_it() {
+    let dir = Scratch::new("measured-repeated");
+    export(&dir);
+    let exported = dir.read("disc.csv");
+    let mut lines = exported.lines().filter(|l| !l.starts_with('#'));
+    let (header, point) = (lines.next().unwrap(), lines.nth(10).unwrap());
+    dir.write(
+        "one.csv",
+        format!("{header}\n{}", format!("{point}\n").repeat(200)),
+    );
+    let run = fit(&dir, "one.csv", "csv");
+    assert_eq!(run.code(), 2, "{run:?}");
+    assert!(
+        run.stderr
+            .contains("1 distinct profile points (of 200; the others repeat them)"),
+        "{}",
+        run.stderr
+    );
+    assert!(!run.stderr.contains("NaN"), "{}", run.stderr);
+}

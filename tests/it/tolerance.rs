@@ -286,6 +286,42 @@ fn three_shards_merge_to_the_unsharded_study_byte_for_byte() {
     assert_eq!(r.code(), 2, "{r:?}");
     assert!(r.stderr.contains("SLURM_ARRAY_TASK_STEP=2"), "{}", r.stderr);
     assert!(!dir.exists("step.bin"));
+    // Issue 39 §5: a task of an array that runs several specs declines its shard with
+    // CYCLOID_SLURM_SHARD=0 and runs the whole study, as without the array; any other value
+    // than 0 or 1 is refused, naming it.
+    let task = [
+        ("SLURM_ARRAY_TASK_ID", "2"),
+        ("SLURM_ARRAY_TASK_MIN", "1"),
+        ("SLURM_ARRAY_TASK_COUNT", "3"),
+    ];
+    let args = [
+        "tolerance",
+        "t.yaml",
+        "--json",
+        "declined.json",
+        "--samples-csv",
+        "declined.csv",
+    ];
+    let declined = common::cycloid_with(
+        &here,
+        &args,
+        &[&task[..], &[("CYCLOID_SLURM_SHARD", "0")]].concat(),
+    );
+    assert_eq!(declined.code(), 0, "{declined:?}");
+    assert_eq!(declined.stdout, whole.stdout);
+    assert_eq!(dir.read("whole.json"), dir.read("declined.json"));
+    assert_eq!(dir.read("whole.csv"), dir.read("declined.csv"));
+    let r = common::cycloid_with(
+        &here,
+        &args,
+        &[&task[..], &[("CYCLOID_SLURM_SHARD", "no")]].concat(),
+    );
+    assert_eq!(r.code(), 2, "{r:?}");
+    assert!(
+        r.stderr.contains("CYCLOID_SLURM_SHARD=no: give 0"),
+        "{}",
+        r.stderr
+    );
 }
 
 /// A merge refuses shards of another spec, seed or sample count, and a set with a shard
@@ -947,4 +983,33 @@ fn number(element: &str, name: &str) -> f64 {
     element[from..from + element[from..].find('"').unwrap()]
         .parse()
         .unwrap()
+}
+
+/// Issue 39 §5: a study with no band (every band 0 or none given) draws the nominal reducer in
+/// every sample; it is refused at `tolerances` (exit 2), not run into "NOT SHOWN … N samples
+/// would show it", which no sample count could change.
+#[test]
+fn a_study_with_no_band_is_refused_at_its_key() {
+    let dir = Scratch::new("tolerance-no-band");
+    for lines in [
+        "  samples: 20\n",
+        "  samples: 20\n  roller_radial_mm: 0.0\n",
+    ] {
+        let text = with_tolerances(lines);
+        let e = cycloid::spec::parse("t.yaml", text.text())
+            .unwrap_err()
+            .to_string();
+        let line = text
+            .text()
+            .lines()
+            .position(|l| l == "tolerances:")
+            .unwrap()
+            + 1;
+        assert!(e.starts_with(&format!("t.yaml:{line}:1:")), "{e}");
+        assert!(e.contains("nothing is toleranced"), "{e}");
+        dir.write("t.yaml", text.text());
+        let r = cycloid(dir.join("").as_path(), &["tolerance", "t.yaml"]);
+        assert_eq!(r.code(), 2, "{r:?}");
+        assert!(!r.stdout.contains("NOT SHOWN"), "{r:?}");
+    }
 }

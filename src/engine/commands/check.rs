@@ -154,6 +154,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec)?;
     let results = scenes(&spec, options.writes, progress)?;
+    all_finite(&spec, &results)?;
     let mut checks = check::evaluate(&spec, &results)?;
     let studies = studies(&spec, spec.studies.iter().collect(), progress);
     checks.extend(check::optimisation(&spec, &studies));
@@ -224,6 +225,29 @@ fn review_options(r: &ReviewOptions) -> Result<()> {
             "the review's map steps must be 0 (no map) or 2 to {MAX_MAP_STEPS}, got {}",
             r.map_steps
         ));
+    }
+    Ok(())
+}
+
+/// The last guard against a false pass: a scalar of the registry that is not a finite number
+/// (an input the spec's bounds let through, a computation that overflowed) is an error naming
+/// the scene and the quantity, never a figure a limit compares or a page shows. A rating life
+/// is the exception: infinite where nothing loads the bearing (an unbounded life).
+fn all_finite(spec: &Spec, results: &[SceneResult]) -> Result<()> {
+    use crate::model::quantity::{BEARING_LIFE, DUTY_LIFE, QUANTITIES};
+    for (scene, r) in spec.scenes.iter().zip(results) {
+        for q in QUANTITIES
+            .iter()
+            .filter(|q| ![BEARING_LIFE.key, DUTY_LIFE.key].contains(&q.key))
+        {
+            if let Some(x) = q.scalar(r).filter(|x| !x.value.is_finite()) {
+                return Err(Error::computation(format!(
+                    "scene `{}`: {} is {} ({}), not a finite number: the inputs are beyond what \
+                     the model computes; nothing is judged",
+                    scene.name, q.key, x.value, x.at
+                )));
+            }
+        }
     }
     Ok(())
 }

@@ -139,6 +139,9 @@ pub struct MergedDesign {
     pub requirements: Requirements,
     /// The requirements file's path as the shards were given it (the front's specs name it).
     pub requirements_path: String,
+    /// SHA-256 of the requirements text the shards hold: the file they were made from, found
+    /// by its content wherever it is (its recorded path is relative to an unknown directory).
+    pub requirements_sha256: [u8; 32],
     pub evaluations: Vec<Evaluation>,
     /// Shards merged.
     pub shards: u64,
@@ -179,6 +182,7 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
     let evaluations = shard::merge(&requirements, ordered.into_iter().map(|(_, s)| s).collect())?;
     Ok(MergedDesign {
         requirements_path: h.requirements_path,
+        requirements_sha256: h.requirements_sha256,
         shards: h.count,
         requirements,
         evaluations,

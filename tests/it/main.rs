@@ -46,6 +46,7 @@ mod measured_inputs;
 mod mesh_minimum;
 mod optimise;
 mod ordinary_inputs;
+mod period;
 mod pin_beam;
 mod progress;
 mod readme;

@@ -95,7 +95,8 @@ fn a_limit_over_part_of_a_tilted_period_is_refused_at_the_crank() {
     // Over the whole period the same limits are judged; a limit on the unloaded gaps is not
     // a loaded figure (the minimum clearance is sought over its own period) and stays allowed.
     parse(&paper_tilted("{ from_deg: 0.0, to_deg: 1080.0, steps: 1080 }", limits));
-    parse(&paper_tilted(crank, "limits:\n  min_clearance_mm: 0.001\n"));
+    let clearance = paper_tilted(crank, "limits:\n  min_clearance_mm: 0.001\n");
+    parse(&clearance.replace("effects: [bearing]", "effects: [clearance, bearing]"));
 }
 
 /// An optimisation study whose objective is a loaded figure is refused on a scene over part

@@ -526,7 +526,6 @@ fn face_sweep(
         cycloid::equilibrium::loaded::Model::new(&s.design, &s.modification, &scene, &plan);
     if by_slices {
         model.rollers = model.rollers.map(|r| r.with_face_by_slices(&face));
-        model.pins = model.pins.map(|p| p.with_face_by_slices(&face));
     }
     let c = crank(360);
     b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());

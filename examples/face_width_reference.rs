@@ -33,7 +33,6 @@ fn main() {
         let closed = Model::new(&spec.design, &spec.modification, &scene, &plan);
         let mut sliced = closed.clone();
         sliced.rollers = sliced.rollers.map(|r| r.with_face_by_slices(&scene.face));
-        sliced.pins = sliced.pins.map(|p| p.with_face_by_slices(&scene.face));
         let go = |m: &Model| {
             let t = std::time::Instant::now();
             let s = sweep::sweep(m, &scene.crank_rad, true, &cycloid::progress::Silent).unwrap();

@@ -510,7 +510,6 @@ pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
     let plan = Plan::for_scene(scene);
     let (from_deg, to_deg) = (scene.crank_from_deg, scene.crank_to_deg);
     let periods = units::rad(to_deg - from_deg) / spec.design.mesh_period_rad();
-    let pins = plan.has(Effect::OutputPins) || plan.has(Effect::Bearing);
     let base = base_angles(periods);
     let face =
         plan.has(Effect::RollerContact) && !spec.design.deviations.face(&scene.face).is_uniform();
@@ -531,7 +530,7 @@ pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
         tolerances: options.tolerances,
         geometry: scene.geometry,
         law: scene.contact_law,
-        periodic: probe.spans_whole(spec.design.loaded_period_rad(pins)),
+        periodic: probe.spans_loaded_periods(&spec.design, &plan),
         loaded: plan.has(Effect::RollerContact),
         face,
         angles_own: scene.crank_rad.len(),

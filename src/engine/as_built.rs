@@ -31,6 +31,9 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
     let what = "the disc identified from `measured_profile`, whose form error repeats only \
                 after a whole turn of the disc";
     crate::spec::bearing_life::check(&built.limits, &built.design, &built.scenes, Some(what))
+        .and_then(|()| {
+            crate::spec::periods::check(&built.limits, &built.design, &built.scenes, Some(what))
+        })
         .map_err(|e| spec.locate(e))?;
     Ok(Some((built, id)))
 }

@@ -23,6 +23,7 @@ use crate::model::results::{BearingLife, ClearanceSweep, DutyBinResult, LoadedSw
 use crate::model::{
     Design, Detail, Effect, FrictionModel, GeometryMode, Modification, Plan, Scene,
 };
+use crate::model::period;
 use crate::progress::{Phase, Progress, Silent};
 use crate::spec::Spec;
 use crate::units;
@@ -590,7 +591,7 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
             if !scene.spans_loaded_periods(&spec.design, &plan) {
                 notes.push(Note::LifeNotRated {
                     scene: name(),
-                    loaded_period_rad: plan.loaded_period_rad(&spec.design),
+                    loaded_period_rad: period::run_period_rad(&spec.design, scene, &plan),
                 });
             } else if scene.input_speed_rpm.is_none() && scene.duty_cycle.is_none() {
                 notes.push(Note::LifeHoursNotRated { scene: name() });

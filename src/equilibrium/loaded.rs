@@ -44,7 +44,7 @@ impl Model {
             rollers: rollers.then(|| {
                 Rollers::new(design, m, scene.contact_law, scene.geometry).with_face(&face)
             }),
-            pins: pins.then(|| Pins::new(design, scene.contact_law).with_face(&face)),
+            pins: pins.then(|| Pins::new(design, scene.contact_law)),
             bearing,
             bearing_stiffness_n_per_mm: scene.bearing_stiffness_n_per_mm.filter(|_| bearing),
             torque_nmm: scene.output_torque_nmm,

@@ -8,11 +8,10 @@
 //! carry a positive output torque. Exact derivatives: ∂gap/∂βo = −(Q − O) × û and ∂gap/∂u = û.
 
 use super::balance::impl_contact;
-use super::pin_beam::{series_force, series_with, PinBeam};
-use crate::contact::face_width::FaceWidth;
+use super::pin_beam::{series_force, PinBeam};
 use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::{cross, rotate, sin_cos, Vec2};
-use crate::model::{ContactLaw, Design, Face};
+use crate::model::{ContactLaw, Design};
 
 /// One pin's contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,9 +67,6 @@ pub struct Pins {
     /// The gap that the other discs' pin forces open at this disc's plane, pin by pin, mm:
     /// Σ_{k≠j} c_jk·F_k·(û_j·û_k) (`pin_beam`); empty with one disc or rigid pins.
     beam_gaps_mm: Vec<f64>,
-    /// The pins' contact along the face width when the disc is tilted (`with_face`; the holes
-    /// are not crowned); `None`: the 2-D contact.
-    face: Option<FaceWidth>,
 }
 
 /// Unit vectors of the pins' nominal places, (cos 2πj/M, sin 2πj/M).
@@ -135,7 +131,6 @@ impl Pins {
             beam: PinBeam::of(design),
             beam_compliance_mm_per_n: 0.0,
             beam_gaps_mm: Vec::new(),
-            face: None,
         };
         pins.for_disc(0, 0.0)
     }
@@ -167,29 +162,6 @@ impl Pins {
             None => Vec::new(),
         };
         self
-    }
-
-    /// These pins with their contacts along the face `face`: a tilt of the disc against the
-    /// housing (and the output flange) varies each pin's approach along the face
-    /// (`contact::face_width`); the disc's crowning is of its flanks, not its holes.
-    pub fn with_face(mut self, face: &Face) -> Self {
-        self.face = (!face.misalignment.is_zero()).then(|| {
-            FaceWidth::new(
-                face,
-                self.contact.length_mm,
-                self.contact.contact_modulus_mpa,
-                false,
-            )
-        });
-        self
-    }
-
-    /// `with_face`, summed over the slices even where the closed form holds (the Winkler
-    /// reference, `FaceWidth::by_slices`).
-    pub fn with_face_by_slices(self, face: &Face) -> Self {
-        let mut p = self.with_face(face);
-        p.face = p.face.map(FaceWidth::by_slices);
-        p
     }
 
     /// Bound on the round-off of Σ F·a at a pose whose centre is offset by `offset_mm`:
@@ -346,11 +318,9 @@ impl Pins {
         // With bending pins `gap_mm` is the gap of the undeflected pin: its closing is shared
         // by the contact's approach and the pin's own bending, in series.
         let c = self.beam_compliance_mm_per_n;
-        let cf = if let Some(face) = &self.face {
-            // The pin pushes the disc along `direction`.
-            let t = face.approach_slope((direction.x, direction.y));
-            series_with(|d| face.force(self.law, &self.contact, d, t), c, -gap_mm)
-        } else if gap_mm < 0.0 {
+        // The output flange tilts with the disc (README "Along the face width"): a pin sees no
+        // tilt against its hole, and its contact stays 2-D whatever the scene's tilt.
+        let cf = if gap_mm < 0.0 {
             series_force(self.law, &self.contact, c, -gap_mm)
         } else {
             ContactForce::NONE
@@ -366,11 +336,10 @@ impl Pins {
         }
     }
 
-    /// Linear-law stiffness, N/mm, when the law is linear and the face uniform (a constant
-    /// stiffness: a tilted face's grows with the loaded length); with bending pins the
+    /// Linear-law stiffness, N/mm, when the law is linear; with bending pins the
     /// contact's and the pin's in series, 1/(1/k + c_kk) (`pin_beam::series_force`).
     pub fn linear_stiffness(&self) -> Option<f64> {
-        (self.law == ContactLaw::PaperLinear && self.face.is_none()).then(|| {
+        (self.law == ContactLaw::PaperLinear).then(|| {
             let k = law::paper_linear_stiffness(&self.contact);
             if self.beam_compliance_mm_per_n == 0.0 {
                 k

@@ -246,17 +246,29 @@ impl Design {
     /// least common multiple of it and the pin period (108° for the paper's design: TE = β + βo,
     /// pin and bearing forces repeat only after it). In units of u = 2π/(np·M) the mesh period
     /// is np·M/(periods per turn) and the pin period nc. Pins or holes as built repeat only
-    /// after a whole turn of the disc, nc crank turns.
-    pub fn loaded_period_rad(&self, pins_modelled: bool) -> f64 {
-        if !pins_modelled {
-            return self.mesh_period_rad();
-        }
+    /// after a whole turn of the disc, nc crank turns. `tilted`: the disc is tilted against
+    /// the housing (a scene's or the as-built tilt), which, fixed in the housing, gives each
+    /// roller its own closing by its fixed place, so that, like rollers not alike, the mesh
+    /// repeats only after a whole crank turn (1080° for the paper's design with its 6 pins).
+    /// Callers go through `model::period`, which knows the scene's tilt.
+    pub fn loaded_period_rad(&self, pins_modelled: bool, tilted: bool) -> f64 {
         let turn = std::f64::consts::TAU;
-        if self.deviations.moves_pins() || !self.deviations.form.is_empty() {
+        let per_turn = if tilted {
+            1
+        } else {
+            self.mesh_periods_per_turn()
+        };
+        if !self.deviations.form.is_empty() {
+            return turn * self.teeth as f64;
+        }
+        if !pins_modelled {
+            return turn / per_turn as f64;
+        }
+        if self.deviations.moves_pins() {
             return turn * self.teeth as f64;
         }
         let units = self.rollers * self.pins.count;
-        let mesh = units / self.mesh_periods_per_turn();
+        let mesh = units / per_turn;
         let (mut a, mut b) = (mesh, self.teeth);
         while b != 0 {
             (a, b) = (b, a % b);

@@ -17,6 +17,7 @@ pub mod golden;
 pub mod limits;
 pub mod measured;
 pub mod modification;
+pub mod period;
 pub mod quantity;
 pub mod requirements;
 pub mod results;

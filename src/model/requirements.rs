@@ -6,11 +6,18 @@ use super::design::{CrankBearing, Material};
 use super::limits::Limits;
 use super::{Crowning, DutyBin, Friction, Misalignment, Thermal};
 
-/// Crank period of the loaded curves of a search's design with `teeth` nc and `pins` M, in mesh
-/// periods: nc/gcd(nc, M) (the least common multiple of the mesh period 2π/np and the pin period
-/// 2π·nc/(np·M), `Design::loaded_period_rad`; M ≥ 1).
-pub fn loaded_mesh_periods(teeth: usize, pins: usize) -> usize {
-    teeth / super::design::gcd(teeth, pins)
+/// Crank period of the loaded curves of a search's design with `teeth` nc, np = nc + 1 rollers
+/// and `pins` M, in mesh periods of 2π/np: nc/gcd(nc, M) (the least common multiple of the mesh
+/// period and the pin period 2π·nc/(np·M), `Design::loaded_period_rad`; M ≥ 1); `tilted` (the
+/// requirements' `misalignment`), np times that (the mesh then repeats only after a whole
+/// crank turn, `model::period`).
+pub fn loaded_mesh_periods(teeth: usize, pins: usize, tilted: bool) -> usize {
+    let periods = teeth / super::design::gcd(teeth, pins);
+    if tilted {
+        periods * (teeth + 1)
+    } else {
+        periods
+    }
 }
 
 /// A continuous variable of the search: its spec key and its closed range, mm (lower = upper

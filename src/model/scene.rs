@@ -140,11 +140,11 @@ impl Scene {
         self.spans_whole(design.mesh_period_rad())
     }
 
-    /// True when the sweep covers a whole number of the loaded periods of `plan`
-    /// (`Plan::loaded_period_rad`): its loaded curves wrap, and a mean over it is a mean over
-    /// whole load cycles.
+    /// True when the sweep covers a whole number of the periods of the reducer as run
+    /// (`period::run_period_rad`, this scene's tilt included): its loaded curves wrap, and a
+    /// mean or an extreme over it is one over whole load cycles.
     pub fn spans_loaded_periods(&self, design: &Design, plan: &Plan) -> bool {
-        self.spans_whole(plan.loaded_period_rad(design))
+        self.spans_whole(super::period::run_period_rad(design, self, plan))
     }
 
     /// True when the sweep covers a whole number of `period_rad` (so its curves wrap around).
@@ -234,12 +234,6 @@ impl Plan {
     /// Whether `effect` is planned (see `computes` for whether its quantities are computed).
     pub fn has(&self, effect: Effect) -> bool {
         self.effects.iter().any(|p| p.effect == effect)
-    }
-
-    /// The period of the loaded curves of this plan, rad: the mesh period, or the longer one
-    /// of mesh and output pins when the pins are planned (`Design::loaded_period_rad`).
-    pub fn loaded_period_rad(&self, design: &Design) -> f64 {
-        design.loaded_period_rad(self.has(Effect::OutputPins))
     }
 
     /// Whether the quantities of `effect` are computed: it is planned, and it is not a loaded

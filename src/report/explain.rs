@@ -6,9 +6,10 @@ use crate::engine::check;
 use crate::engine::scene::{self, Note, Writes};
 use crate::model::results::TorsionCompliances;
 use crate::model::{
-    CentreDeviation, ContactLaw, Detail, Deviations, Effect, FrictionModel, PinFriction, PinMode,
-    PinSupportKind, RollerFriction, RollerMode,
+    CentreDeviation, ContactLaw, Detail, Deviations, Effect, Face, FrictionModel, PinFriction,
+    PinMode, PinSupportKind, RollerFriction, RollerMode,
 };
+use crate::model::period;
 use crate::numeric::number;
 use crate::spec::Spec;
 use crate::units;
@@ -200,7 +201,11 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
             "parts as built (reducer.deviations), in force in every scene, exact geometry; \
              gaps repeat every {}°, loaded curves with the pins every {}°:\n",
             number(units::deg(spec.design.mesh_period_rad())),
-            number(units::deg(spec.design.loaded_period_rad(true)))
+            number(units::deg(period::loaded_period_rad(
+                &spec.design,
+                &Face::default(),
+                true
+            )))
         );
         for line in deviations {
             out += &format!("  deviation {line}\n");

@@ -13,7 +13,6 @@
 
 use crate::error::{Error, Result};
 use crate::model::{Design, Effect, Limits, Plan, Scene};
-use crate::{numeric, units};
 
 /// The limit's key.
 const KEY: &str = "min_bearing_life_h";
@@ -81,66 +80,13 @@ fn scene(design: &Design, (i, s): (usize, &Scene), built: Option<&str>, key: &st
             ),
         ));
     }
-    let period = plan.loaded_period_rad(design);
-    if s.spans_whole(period) {
-        return Ok(());
-    }
-    let of = match built {
-        Some(what) => format!(" for the reducer as built, {what}"),
-        None => String::new(),
-    };
-    Err(Error::invalid(
-        format!("scenes[{i}].crank"),
-        format!(
-            "limits.{key} applies to scene `{}`, whose crank range {}° to {}° is not a whole \
-             number of loaded periods ({}°{of}): the equivalent load is a mean over whole \
-             load cycles (ISO 281); the nearest ranges of whole periods: {}",
-            s.name,
-            numeric::input(s.crank_from_deg),
-            numeric::input(s.crank_to_deg),
-            numeric::number(units::deg(period)),
-            nearest_ranges(s.crank_from_deg, s.crank_to_deg, units::deg(period)).join(" or ")
-        ),
-    ))
-}
-
-/// The crank ranges from `from_deg` nearest to `from_deg`..`to_deg` that are whole numbers of
-/// `period_deg` (the whole numbers of periods just below and just above its span, at least
-/// one), as "0° to 324° (3 periods)"; each end written as the shortest decimal that still
-/// spans its periods to 1e-12 (what `Scene::spans_whole` accepts, 1e-9, with room for the
-/// conversion to radians).
-pub(crate) fn nearest_ranges(from_deg: f64, to_deg: f64, period_deg: f64) -> Vec<String> {
-    let span = (to_deg - from_deg) / period_deg;
-    let below = span.floor().max(1.0);
-    let above = span.ceil().max(1.0);
-    let counts = if below == above {
-        vec![below]
-    } else {
-        vec![below, above]
-    };
-    counts
-        .into_iter()
-        .map(|k| {
-            let end = shortest(from_deg + k * period_deg, |x| {
-                ((x - from_deg) / period_deg - k).abs() <= 1e-12 * k
-            });
-            let periods = if k == 1.0 { "period" } else { "periods" };
-            format!("{}° to {end}° ({k} {periods})", numeric::input(from_deg))
-        })
-        .collect()
-}
-
-/// `x` with the fewest decimals (up to 12) whose value `ok` accepts, else in full.
-fn shortest(x: f64, ok: impl Fn(f64) -> bool) -> String {
-    (0..=12)
-        .map(|d| format!("{x:.d$}"))
-        .find(|s| s.parse::<f64>().is_ok_and(&ok))
-        .unwrap_or_else(|| format!("{x}"))
+    let why = "the equivalent load is a mean over whole load cycles (ISO 281)";
+    super::periods::whole(design, (i, s), built, &format!("limits.{key}"), why)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::nearest_ranges;
+    use super::super::periods::nearest_ranges;
 
     /// 360° is 3⅓ loaded periods of 108°: the whole ranges around it are 3 and 4 periods; a
     /// range shorter than one period has only the one above; a period with no short decimal

@@ -210,7 +210,7 @@ fn face(
     if slices > 1 {
         for &nc in ratios {
             for &m in pin_counts {
-                let angles = steps * loaded_mesh_periods(nc, m);
+                let angles = steps * loaded_mesh_periods(nc, m, !misalignment.is_zero());
                 let contacts = (nc + 1).max(m);
                 let cells = (contacts * angles * slices) as i64;
                 if cells > MAX_ROLLER_ANGLES {

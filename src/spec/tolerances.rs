@@ -139,7 +139,8 @@ fn drawn_periods(
         .collect();
     let what = format!("the parts the tolerance study draws: {}", kinds.join(", "));
     let scene = (tol.scene, &scenes[tol.scene]);
-    super::bearing_life::check_scene(limits, &drawn, scene, Some(&what))
+    super::bearing_life::check_scene(limits, &drawn, scene, Some(&what))?;
+    super::periods::check_scene(limits, &drawn, scene, Some(&what))
 }
 
 /// The kinds whose deviations one rule of an as-built state judges together.

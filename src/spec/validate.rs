@@ -603,6 +603,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
                     "optimise".to_string()
                 };
                 let s = study(&key, i, r, &scenes, (&modification, crowning, &design))?;
+                super::periods::check_study(&s, &key, &design, &scenes)?;
                 if studies.iter().any(|o| o.name == s.name) {
                     return Err(Error::invalid(
                         format!("{key}.name"),
@@ -618,6 +619,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     let limits = limits(&raw.limits)?;
     let built = (!design.deviations.is_nominal()).then_some("`reducer.deviations`");
     super::bearing_life::check(&limits, &design, &scenes, built)?;
+    super::periods::check(&limits, &design, &scenes, built)?;
     super::friction::check_limits(&limits, &design, &scenes)?;
     let mut golden = Vec::new();
     for (i, g) in raw.golden.into_iter().enumerate() {

@@ -1294,7 +1294,7 @@ fn mean_ratio_over_whole_periods() {
         scene.to_deg = to_deg;
         scene.steps = steps;
         let spec = r.spec(&scene);
-        assert!(spec.scenes[0].spans_whole(spec.design.loaded_period_rad(true)));
+        assert!(spec.scenes[0].spans_whole(spec.design.loaded_period_rad(true, false)));
         let result = run(
             &spec,
             &spec.scenes[0],

@@ -611,7 +611,7 @@ fn multi_revolution_curves_repeat_with_the_loaded_period() {
     let json = run.json.unwrap();
     let s = &json["scenes"][0];
     let spec = load("multi-revolution");
-    let period = spec.design.loaded_period_rad(true);
+    let period = spec.design.loaded_period_rad(true, false);
     assert!((period.to_degrees() - 108.0).abs() < 1e-9);
     let step = spec.scenes[0].crank_rad[1] - spec.scenes[0].crank_rad[0];
     let shift = (period / step).round() as usize;

@@ -47,6 +47,7 @@ mod mesh_minimum;
 mod optimise;
 mod ordinary_inputs;
 mod physical_bounds;
+mod period;
 mod pin_beam;
 mod progress;
 mod readme;

@@ -522,8 +522,9 @@ fn min_gap_equals_the_smallest_gap_of_the_full_clearance_sweep() {
 }
 
 /// The shipped crown study's design with a pure tilt θx = 0.4 mrad about one axis, no crown
-/// flat (start 0), rollers only (no pins, rigid crank bearing), 72 crank angles, and `study`
-/// as its `optimise` section.
+/// flat (start 0), rollers only (no pins, rigid crank bearing), 240 crank angles over the
+/// tilted rollers' period of a whole crank turn (1.5° steps), and `study` as its `optimise`
+/// section.
 fn pure_tilt(study: &str) -> String {
     let text = std::fs::read_to_string("specs/reducer-crown-study.yaml").unwrap();
     let head = &text[..text.find("optimise:").unwrap()];
@@ -533,13 +534,13 @@ fn pure_tilt(study: &str) -> String {
             "misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }",
             "misalignment: { about_x_mrad: 0.4, about_y_mrad: 0.0 }",
         )
-        .replace("steps: 360", "steps: 72")
+        .replace("to_deg: 1080.0, steps: 3600", "to_deg: 360.0, steps: 240")
         .replace(
             "effects: [bearing]           # bearing brings roller_contact and output_pins",
             "effects: [roller_contact]    # the rollers alone",
         );
     assert!(head.contains("about_x_mrad: 0.4") && head.contains("start_mm: 0.0 }"));
-    assert!(head.contains("steps: 72") && head.contains("[roller_contact]"));
+    assert!(head.contains("steps: 240") && head.contains("[roller_contact]"));
     format!("{head}{study}")
 }
 

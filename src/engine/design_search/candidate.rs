@@ -73,10 +73,14 @@ impl Candidate {
         req.density_kg_per_mm3 * x[B] * self.choice.discs as f64 * (disc + rollers + pins)
     }
 
-    /// Crank period of the loaded curves, in mesh periods: nc/gcd(nc, M)
+    /// Crank period of the loaded curves under the requirements' tilt, in mesh periods
     /// (`model::requirements::loaded_mesh_periods`).
-    pub fn loaded_mesh_periods(&self) -> usize {
-        crate::model::requirements::loaded_mesh_periods(self.choice.teeth, self.choice.pins)
+    pub fn loaded_mesh_periods(&self, req: &Requirements) -> usize {
+        crate::model::requirements::loaded_mesh_periods(
+            self.choice.teeth,
+            self.choice.pins,
+            !req.misalignment.is_zero(),
+        )
     }
 }
 
@@ -192,7 +196,7 @@ pub fn spec_text(
     let x = &c.x;
     let np = c.rollers();
     let mesh_deg = 360.0 / np as f64;
-    let periods = c.loaded_mesh_periods();
+    let periods = c.loaded_mesh_periods(req);
     let mut s = String::new();
     for line in header.lines() {
         let _ = writeln!(s, "# {line}");

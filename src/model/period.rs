@@ -1,0 +1,42 @@
+//! The crank period of the reducer as run: after how much crank angle a scene's loaded curves
+//! (roller, pin and bearing forces, TE, the ratio, the line loads along the face) repeat. One
+//! home for every symmetry a reducer as run may break, so that each consumer (the limits, the
+//! ratio's differencing, the bearing life, optimise, the design search, tolerance studies,
+//! the accuracy ladder and the review) reads the same period:
+//!
+//! - the mesh, 2π/np of crank (MODEL.md "Clearance"); a whole crank turn when the rollers are
+//!   not alike: off their places or sizes as built, or tilted against the disc by a tilt fixed
+//!   in the housing (the scene's `misalignment` plus `reducer.deviations.misalignment`, each
+//!   roller closing by its own fixed place);
+//! - the output pins, 2π·nc/(np·M), when planned; a whole turn of the disc (nc crank turns)
+//!   with a pin or hole off its place;
+//! - a form error on the disc (measured or drawn): a whole turn of the disc;
+//! - several discs: each runs the one disc's curves at its own phase, so the set repeats with
+//!   the one disc's period.
+//!
+//! The arithmetic is `Design::loaded_period_rad`; this module decides which symmetries the
+//! scene breaks.
+
+use super::design::Design;
+use super::effect::Effect;
+use super::face::Face;
+use super::scene::{Plan, Scene};
+
+/// The crank period of `scene`'s loaded curves under `plan` on the reducer `design` as built,
+/// rad: `loaded_period_rad` with the pins when the plan models them.
+pub fn run_period_rad(design: &Design, scene: &Scene, plan: &Plan) -> f64 {
+    loaded_period_rad(design, &scene.face, plan.has(Effect::OutputPins))
+}
+
+/// The crank period of the loaded curves of a scene whose face is `face` (its crowning, tilt
+/// and slices) on `design` as built, with or without the output pins, rad: whole crank turns
+/// when the face the contacts see (`Deviations::face`: the scene's tilt plus the tilt as
+/// built) is tilted.
+pub fn loaded_period_rad(design: &Design, face: &Face, pins_modelled: bool) -> f64 {
+    design.loaded_period_rad(pins_modelled, tilted(design, face))
+}
+
+/// Whether the contacts of a scene with `face` on `design` see a tilt (θ_scene + θ_dev ≠ 0).
+pub fn tilted(design: &Design, face: &Face) -> bool {
+    !design.deviations.face(face).misalignment.is_zero()
+}

@@ -1,7 +1,6 @@
 //! A requirement of a design search, and a design's miss of it: a typed value (which
 //! requirement, and the design's value against its limit, or what the engine said).
 
-use super::evaluate::Stage;
 use crate::engine::limit::excess;
 use crate::model::quantity::{Bound, LimitDef, LIMITS};
 
@@ -67,19 +66,6 @@ impl Requirement {
             Requirement::MinRollerGap | Requirement::MinLigament => Bound::Min,
             Requirement::Limit(def) => def.bound,
             _ => Bound::Max,
-        }
-    }
-
-    /// The stages at whose end a design can be stopped having missed it: the rules (no
-    /// physics) at the first; the torque and the limits the screen judges (extremes over the
-    /// crank angles, `evaluate::screened`) at the screen or the full check; the other limits
-    /// (means, lives, the torsion loop) at the full check only.
-    pub fn missed_at(&self, stage: Stage) -> bool {
-        match self {
-            Requirement::Torque => stage != Stage::Rules,
-            Requirement::Limit(def) if super::evaluate::screened(def) => stage != Stage::Rules,
-            Requirement::Limit(_) => stage == Stage::Full,
-            _ => stage == Stage::Rules,
         }
     }
 }

@@ -23,8 +23,21 @@ pub enum Verdict {
     NotJudged,
 }
 
+/// A design stopped at the end of `stage` can have missed `r` there: the rules (no physics)
+/// at the first; the torque and the limits the screen judges (extremes over the crank angles,
+/// `evaluate::screened`) at the screen or the full check; the other limits (means, lives, the
+/// torsion loop) at the full check only.
+pub fn missed_at(r: &Requirement, stage: Stage) -> bool {
+    match r {
+        Requirement::Torque => stage != Stage::Rules,
+        Requirement::Limit(def) if super::evaluate::screened(def) => stage != Stage::Rules,
+        Requirement::Limit(_) => stage == Stage::Full,
+        _ => stage == Stage::Rules,
+    }
+}
+
 /// The verdict on `r` of the design `e`: its failures list every requirement it missed at
-/// the last stage it reached (`Requirement::missed_at`), so one not listed was met when that
+/// the last stage it reached (`missed_at`), so one not listed was met when that
 /// stage decides it.
 pub fn verdict(e: &Evaluation, r: &Requirement) -> Verdict {
     if e.failures.iter().any(|f| &f.requirement == r) {

@@ -405,7 +405,7 @@ pub fn merge(req: &Requirements, ordered: Vec<(&str, Shard)>) -> Result<Vec<Eval
             if let Some(f) = e
                 .failures
                 .iter()
-                .find(|f| !f.requirement.missed_at(e.stage))
+                .find(|f| !super::missed::missed_at(&f.requirement, e.stage))
             {
                 return Err(bad(&format!(
                     "stopped at the {:?} stage having missed `{}`, which that stage does not \

@@ -11,7 +11,9 @@
 //! a move only to a feasible design dominating it, then the front of everything feasible again
 //! (two rounds). Everything runs in parallel and is collected in a fixed order, so a seed gives
 //! the same front on any number of threads, and on any number of processes (`shard`: each
-//! computes a share of the global stage, a merge the rest from their evaluations).
+//! computes a share of the global stage, a merge the rest from their evaluations). With no
+//! feasible design, `missed` counts per requirement what the designs met and names the cause
+//! from every requirement each design missed (`failure`).
 
 pub mod candidate;
 pub mod evaluate;

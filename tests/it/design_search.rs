@@ -404,12 +404,15 @@ fn screen_rejects_nothing_the_full_check_accepts(req: &Requirements) {
                 .iter()
                 .find(|g| g.requirement == f.requirement)
                 .unwrap_or_else(|| {
-                    panic!("{} fails the screen, not the full check", f.requirement)
+                    panic!(
+                        "{} fails the screen, not the full check",
+                        f.requirement.key()
+                    )
                 });
             assert!(
                 g.excess() >= f.excess() - 1e-9,
                 "{}: {} < {}",
-                f.requirement,
+                f.requirement.key(),
                 g.excess(),
                 f.excess()
             );

@@ -117,7 +117,8 @@ impl<'a> Reader<'a> {
         let found = r.u32()?;
         if found != version {
             return Err(r.bad(&format!(
-                "format version {found}; this cycloid reads version {version}"
+                "format version {found}; this cycloid reads version {version}: write it again \
+                 with this cycloid"
             )));
         }
         let Some(content) = bytes.len().checked_sub(CHECKSUM) else {

@@ -1,8 +1,9 @@
 //! What `cycloid design` shows: the search's counts and the front as a terminal table, a CSV
 //! and a review page with the front plotted.
 
-use crate::engine::design_search::{candidate::*, Evaluation, Failure, SearchRun, Tally};
-use crate::model::quantity::Bound;
+use crate::engine::design_search::failure::{Failure, Miss, Requirement};
+use crate::engine::design_search::missed::{Cause, Count, Infeasible};
+use crate::engine::design_search::{candidate::*, Evaluation, SearchRun, Tally};
 use crate::model::requirements::{ObjectiveKind, Requirements};
 use crate::numeric::number;
 use crate::report::svg::base::{document, px};
@@ -93,28 +94,87 @@ fn tally_line(what: &str, t: &Tally) -> String {
     )
 }
 
-/// A failure in words: the requirement, the best value and its limit.
-pub fn failure_text(f: &Failure) -> String {
-    match (f.bound, &f.message) {
-        (Some((v, l, b)), _) => {
-            let unit = if f.unit.is_empty() {
-                String::new()
-            } else {
-                format!(" {}", f.unit)
-            };
-            let sign = match b {
-                Bound::Max => "≤",
-                Bound::Min => "≥",
+/// A miss in words: the design's value and the limit (`best 731.2 MPa, required ≤ 300.0
+/// MPa`), or what the engine said.
+pub fn miss_text(f: &Failure) -> String {
+    match &f.miss {
+        Miss::Bound { value, limit } => {
+            let unit = match f.requirement.unit() {
+                "" => String::new(),
+                u => format!(" {u}"),
             };
             format!(
-                "{}: best {}{unit}, required {sign} {}{unit}",
-                f.requirement,
-                number(v),
-                number(l)
+                "best {}{unit}, required {} {}{unit}",
+                number(*value),
+                f.requirement.bound().symbol(),
+                number(*limit)
             )
         }
-        (None, Some(m)) => format!("{}: {m}", f.requirement),
-        (None, None) => f.requirement.clone(),
+        Miss::Said(m) => crate::error::printable(m, &[]).into_owned(),
+    }
+}
+
+/// A requirement's key for people (a rule of the spec's key escaped: it comes from the
+/// spec's refusal).
+fn key_text(r: &Requirement) -> String {
+    crate::error::printable(&r.key(), &[]).into_owned()
+}
+
+/// One requirement over the designs evaluated: `limits.max_lost_motion_arcsec: met by 0,
+/// passed at the screen by 700, missed by 205 (best 300.5 arcsec, required ≤ 300.0 arcsec),
+/// not reached by 631`.
+fn count_text(c: &Count) -> String {
+    let mut parts = vec![format!("met by {}", c.met)];
+    if c.passed_screen > 0 {
+        parts.push(format!("passed at the screen by {}", c.passed_screen));
+    }
+    if let (true, Some(f)) = (c.missed > 0, &c.closest) {
+        parts.push(format!("missed by {} ({})", c.missed, miss_text(f)));
+    }
+    if c.not_judged > 0 {
+        parts.push(format!("not reached by {}", c.not_judged));
+    }
+    format!("{}: {}", key_text(&c.requirement), parts.join(", "))
+}
+
+/// Why no design is feasible, in words: the requirements no design met, each with its best
+/// miss, or the smallest combinations no design met together.
+fn cause_text(inf: &Infeasible) -> String {
+    let closest = |r: &Requirement| {
+        inf.counts
+            .iter()
+            .find(|c| &c.requirement == r)
+            .and_then(|c| c.closest.as_ref())
+            .map_or(String::new(), |f| format!(" ({})", miss_text(f)))
+    };
+    match &inf.cause {
+        Cause::NeverMet(rs) => {
+            let each: Vec<String> = rs
+                .iter()
+                .map(|r| format!("{}{}", key_text(r), closest(r)))
+                .collect();
+            format!("no design meets {}", each.join(", nor "))
+        }
+        Cause::Together(sets) => {
+            let each: Vec<String> = sets
+                .iter()
+                .map(|set| {
+                    let keys: Vec<String> = set.iter().map(key_text).collect();
+                    match keys.split_last() {
+                        Some((last, rest)) if !rest.is_empty() => {
+                            format!("{} and {last}", rest.join(", "))
+                        }
+                        _ => keys.join(""),
+                    }
+                })
+                .collect();
+            format!(
+                "each requirement is met by some design, never all by one: no design meets {} \
+                 together",
+                each.join(" together, nor ")
+            )
+        }
+        Cause::NoDesign => "no design was generated".into(),
     }
 }
 
@@ -150,15 +210,15 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
     s.push_str(&tally_line("local refinement", &run.local));
     let _ = writeln!(s, "{}", time.text());
     if let Some(inf) = &run.infeasible {
-        let _ = writeln!(s, "no design meets every requirement");
-        for f in &inf.never_met {
-            let _ = writeln!(s, "  never met: {}", failure_text(f));
-        }
         let _ = writeln!(
             s,
-            "FAIL: closest to being met: {}",
-            failure_text(&inf.closest)
+            "no design meets every requirement; of the {} designs evaluated:",
+            inf.evaluated
         );
+        for c in &inf.counts {
+            let _ = writeln!(s, "  {}", count_text(c));
+        }
+        let _ = writeln!(s, "FAIL: {}", cause_text(inf));
         return s;
     }
     let cols = columns(req);
@@ -383,8 +443,9 @@ pub fn page(req: &Requirements, run: &SearchRun, time: &Timing) -> String {
                 p { (tally_line("global stage", &run.global)) br; (tally_line("local refinement", &run.local))
                     br; (time.text()) }
                 @if let Some(inf) = &run.infeasible {
-                    p.fail { "No design meets every requirement; closest to being met: " (failure_text(&inf.closest)) }
-                    ul { @for f in &inf.never_met { li { "never met: " (failure_text(f)) } } }
+                    p.fail { "No design meets every requirement: " (cause_text(inf)) "." }
+                    p { "Of the " (inf.evaluated) " designs evaluated, per requirement:" }
+                    ul { @for c in &inf.counts { li { (count_text(c)) } } }
                 } @else {
                     p.pass { (run.front.len()) " designs on the Pareto front; each meets every requirement and passes `cycloid check`." }
                     @for (name, _) in &plots { img src=(name) alt="the front"; }

@@ -19,6 +19,7 @@ mod clearance_sweep;
 mod cli;
 mod cli_help;
 mod contact;
+mod design_missed;
 mod design_search;
 mod design_shard;
 mod deviations;

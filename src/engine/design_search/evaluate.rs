@@ -3,11 +3,11 @@
 //! easier) and the full check of the spec a front design is written as.
 
 use super::candidate::Candidate;
-pub use super::failure::Failure;
+pub use super::failure::{Failure, Miss, Requirement};
 use crate::engine::check::Check;
 use crate::engine::scene::{self, Writes};
 use crate::error::{ErrorKind, Result};
-use crate::model::quantity::{self, Quantity};
+use crate::model::quantity::{self, LimitDef, Quantity};
 use crate::model::requirements::{ObjectiveKind, Requirements};
 use crate::model::results::SceneResult;
 use crate::progress::Silent;
@@ -85,6 +85,11 @@ const SCREEN_LIMITS: [&str; 11] = [
     "max_line_load_n_per_mm",
 ];
 
+/// The screen judges this limit (one of `SCREEN_LIMITS`).
+pub fn screened(def: &LimitDef) -> bool {
+    SCREEN_LIMITS.contains(&def.key)
+}
+
 /// Counts of what the stages did, for the report.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Tally {
@@ -148,10 +153,8 @@ pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
             return stop(
                 Stage::Rules,
                 vec![Failure {
-                    requirement: format!("rules ({})", e.key_path.as_deref().unwrap_or("")),
-                    bound: None,
-                    unit: "",
-                    message: Some(e.message),
+                    requirement: Requirement::SpecRule(e.key_path.unwrap_or_default()),
+                    miss: Miss::Said(e.message),
                 }],
             )
         }
@@ -162,13 +165,9 @@ pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
         Err(e) if e.kind == ErrorKind::Computation => return stop(Stage::Screen, vec![torque(e)]),
         Err(e) => return Err(e),
     };
-    let failures: Vec<_> = failed(&checks)
+    let failures: Vec<_> = failed(&checks)?
         .into_iter()
-        .filter(|f| {
-            SCREEN_LIMITS
-                .iter()
-                .any(|k| f.requirement == format!("limits.{k}"))
-        })
+        .filter(|f| matches!(f.requirement, Requirement::Limit(d) if screened(d)))
         .collect();
     if !failures.is_empty() {
         return stop(Stage::Screen, failures);
@@ -193,7 +192,7 @@ pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
         }
         Err(e) => return Err(e),
     };
-    let failures = failed(&checks);
+    let failures = failed(&checks)?;
     let objectives = if failures.is_empty() {
         objectives(req, c, &results)?
     } else {
@@ -210,30 +209,29 @@ pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
 /// A torque the contact model cannot hold (a computation error of the check).
 fn torque(e: crate::error::Error) -> Failure {
     Failure {
-        requirement: "torque".to_string(),
-        bound: None,
-        unit: "",
-        message: Some(e.message),
+        requirement: Requirement::Torque,
+        miss: Miss::Said(e.message),
     }
 }
 
 /// The failed checks as failures, the worst per limit key (over the scenes).
-fn failed(checks: &[Check]) -> Vec<Failure> {
+fn failed(checks: &[Check]) -> Result<Vec<Failure>> {
     let mut out: Vec<Failure> = Vec::new();
     for c in checks.iter().filter(|c| !c.passed) {
-        let f = Failure {
-            requirement: format!("limits.{}", c.name()),
-            bound: Some((c.value, c.limit, c.bound)),
-            unit: c.unit,
-            message: None,
-        };
+        let requirement = Requirement::limit(c.name()).ok_or_else(|| {
+            crate::error::Error::computation(format!(
+                "the candidate's check `{}` bounds no limit of the requirements",
+                c.id
+            ))
+        })?;
+        let f = Failure::bound(requirement, c.value, c.limit);
         match out.iter_mut().find(|o| o.requirement == f.requirement) {
             Some(o) if f.excess() > o.excess() => *o = f,
             Some(_) => {}
             None => out.push(f),
         }
     }
-    out
+    Ok(out)
 }
 
 /// The objectives of a fully checked candidate, in the requirements' order.

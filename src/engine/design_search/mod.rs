@@ -11,11 +11,14 @@
 //! a move only to a feasible design dominating it, then the front of everything feasible again
 //! (two rounds). Everything runs in parallel and is collected in a fixed order, so a seed gives
 //! the same front on any number of threads, and on any number of processes (`shard`: each
-//! computes a share of the global stage, a merge the rest from their evaluations).
+//! computes a share of the global stage, a merge the rest from their evaluations). With no
+//! feasible design, `missed` counts per requirement what the designs met and names the cause
+//! from every requirement each design missed (`failure`).
 
 pub mod candidate;
 pub mod evaluate;
 pub mod failure;
+pub mod missed;
 pub mod pareto;
 pub mod refine;
 pub mod rules;
@@ -23,6 +26,7 @@ pub mod shard;
 
 pub use candidate::{Candidate, Choice};
 pub use evaluate::{Evaluation, Failure, Stage, Tally};
+pub use missed::Infeasible;
 
 use crate::error::Result;
 use crate::model::requirements::Requirements;
@@ -43,17 +47,6 @@ pub struct SearchRun {
     pub local: Tally,
     /// When no design is feasible: what was closest.
     pub infeasible: Option<Infeasible>,
-}
-
-/// Why no design was feasible.
-#[derive(Debug, Clone)]
-pub struct Infeasible {
-    /// The requirement closest to being met among those no design met (or, when each was met
-    /// by some design, the worst failure of the design closest to feasible), with the best
-    /// value any design reached.
-    pub closest: Failure,
-    /// Every requirement no design met, each with its best value.
-    pub never_met: Vec<Failure>,
 }
 
 /// The discrete choices in a fixed order: ratio, then pin count, then discs.
@@ -202,7 +195,7 @@ pub fn finish(
             .unwrap_or(std::cmp::Ordering::Equal)
     });
     let infeasible = if front.is_empty() {
-        Some(diagnose(&all))
+        Some(missed::diagnose(req, &all))
     } else {
         None
     };
@@ -212,62 +205,4 @@ pub fn finish(
         local,
         infeasible,
     })
-}
-
-/// What no design met: per requirement the failure of least excess over the designs that
-/// broke it, kept when no design evaluated on it met it.
-fn diagnose(all: &[Evaluation]) -> Infeasible {
-    // Requirements some design met: those a design passed at a stage that judges them. A
-    // design that reached the full check met every rule and envelope requirement and every
-    // limit it does not list; one stopped by the screen met the rules.
-    let mut best: Vec<Failure> = Vec::new();
-    for e in all {
-        for f in &e.failures {
-            match best.iter_mut().find(|b| b.requirement == f.requirement) {
-                Some(b) if f.excess() < b.excess() => *b = f.clone(),
-                Some(_) => {}
-                None => best.push(f.clone()),
-            }
-        }
-    }
-    let met = |f: &Failure| {
-        all.iter().any(|e| {
-            let judged = match e.stage {
-                Stage::Rules => false,
-                Stage::Screen => {
-                    f.requirement.starts_with("envelope") || f.requirement.starts_with("rules")
-                }
-                Stage::Full => true,
-            };
-            judged && !e.failures.iter().any(|g| g.requirement == f.requirement)
-        })
-    };
-    let mut never_met: Vec<Failure> = best.into_iter().filter(|f| !met(f)).collect();
-    never_met.sort_by(|a, b| a.excess().total_cmp(&b.excess()));
-    let closest = match never_met.first() {
-        Some(f) => f.clone(),
-        None => {
-            // Each requirement was met by some design, never all by one: the worst failure
-            // of the design closest to feasible.
-            let e = all
-                .iter()
-                .filter(|e| !e.failures.is_empty())
-                .min_by(|a, b| {
-                    (b.stage.cmp(&a.stage)).then(a.worst_excess().total_cmp(&b.worst_excess()))
-                });
-            e.and_then(|e| {
-                e.failures
-                    .iter()
-                    .max_by(|a, b| a.excess().total_cmp(&b.excess()))
-                    .cloned()
-            })
-            .unwrap_or(Failure {
-                requirement: "search".into(),
-                bound: None,
-                unit: "",
-                message: Some("no design was generated".into()),
-            })
-        }
-    };
-    Infeasible { closest, never_met }
 }

@@ -4,7 +4,7 @@
 //! (`spec::rules`: K1 < 1, undercut, rollers overlapping, holes) run when its spec is parsed.
 
 use super::candidate::*;
-use super::failure::Failure;
+use super::failure::{Failure, Requirement};
 use crate::model::requirements::Requirements;
 use crate::model::Crowning;
 use std::f64::consts::PI;
@@ -15,42 +15,34 @@ pub fn failures(req: &Requirements, c: &Candidate) -> Vec<Failure> {
     let np = c.rollers() as f64;
     let m = c.choice.pins as f64;
     let mut out = Vec::new();
-    let mut max = |key: &'static str, value: f64, limit: f64, unit: &'static str| {
+    let mut max = |requirement: Requirement, value: f64, limit: f64| {
         if value > limit {
-            out.push(Failure::bound(key, value, limit, unit, true));
+            out.push(Failure::bound(requirement, value, limit));
         }
     };
     max(
-        "envelope.max_outer_diameter_mm",
+        Requirement::OuterDiameter,
         c.outer_diameter_mm(req),
         req.envelope.max_outer_diameter_mm,
-        "mm",
     );
     max(
-        "envelope.max_axial_length_mm",
+        Requirement::AxialLength,
         c.axial_length_mm(req),
         req.envelope.max_axial_length_mm,
-        "mm",
     );
     // K1 = e·np/Rp (the spec refuses K1 ≥ 1 whatever the requirements say).
     let k1 = x[E] * np / x[RP];
     if k1 > req.rules.max_k1 || (req.rules.max_k1 >= 1.0 && k1 >= 1.0) {
-        out.push(Failure::bound(
-            "rules.max_k1",
-            k1,
-            req.rules.max_k1,
-            "",
-            true,
-        ));
+        out.push(Failure::bound(Requirement::MaxK1, k1, req.rules.max_k1));
     }
-    let mut min = |key: &'static str, value: f64, limit: f64| {
+    let mut min = |requirement: Requirement, value: f64, limit: f64| {
         if value < limit {
-            out.push(Failure::bound(key, value, limit, "mm", false));
+            out.push(Failure::bound(requirement, value, limit));
         }
     };
     // Gap between neighbouring rollers: 2·Rp·sin(π/np) − 2·Rrp.
     let gap = 2.0 * x[RP] * (PI / np).sin() - 2.0 * x[RRP];
-    min("rules.min_roller_gap_mm", gap, req.rules.min_roller_gap_mm);
+    min(Requirement::MinRollerGap, gap, req.rules.min_roller_gap_mm);
     // Pin-hole ligaments (rh = rpin + e + hole clearance): hole to hole
     // 2·rw·sin(π/M) − 2·rh, hole to tooth root Rp + ΔRp − e − (Rrp + ΔRrp) − rw − rh, hole
     // to the disc centre rw − rh; the smallest of the three.
@@ -59,17 +51,19 @@ pub fn failures(req: &Requirements, c: &Candidate) -> Vec<Failure> {
     let ligament = (2.0 * x[RW] * (PI / m).sin() - 2.0 * hole)
         .min(root - x[RW] - hole)
         .min(x[RW] - hole);
-    min("rules.min_ligament_mm", ligament, req.rules.min_ligament_mm);
+    min(
+        Requirement::MinLigament,
+        ligament,
+        req.rules.min_ligament_mm,
+    );
     // A circular crown's flat middle inside the face: start z0 < B/2 (the spec refuses
     // z0 ≥ B/2 at `modification.crowning.start_mm`); recorded as z0 against B/2.
     if let Crowning::Circular { start_mm, .. } = req.crowning {
         if start_mm >= 0.5 * x[B] {
             out.push(Failure::bound(
-                "crowning.start_mm",
+                Requirement::CrownStart,
                 start_mm,
                 0.5 * x[B],
-                "mm",
-                true,
             ));
         }
     }

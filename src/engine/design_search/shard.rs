@@ -5,34 +5,37 @@
 //! needs to check that the shards belong together and to finish the search (the requirements'
 //! text; the local refinement runs at the merge, `super::finish`).
 //!
-//! Format (little-endian), version 1:
+//! Format (little-endian), version 2 (version 1, refused, named each failure's requirement
+//! in free text):
 //! `MAGIC` (16 bytes), version u32, SHA-256 of the requirements text (32 bytes), seed u64,
 //! candidates u64 (of the whole global stage), shard index u64 (0-based), shard count u64,
 //! requirements path (u32 length + UTF-8), requirements text (u64 length + UTF-8); then per
 //! candidate of the shard, in increasing j: its choice (teeth, pins, discs: u32 each), its
 //! eight variables (f64), its stage (u8: 0 rules, 1 screen, 2 full check), its objectives
-//! (u32 count + f64 each), its failures (u32 count; each the requirement and the unit as
-//! u32 length + UTF-8, a bound flag u8 with, when 1, the value and the limit as f64 and the
-//! side as u8, 0 max 1 min, and a message flag u8 with, when 1, the message as u32 length +
-//! UTF-8); last, the SHA-256 of every byte before it. Numbers are their IEEE-754 bits: the
-//! merge finishes from the very evaluations the shards made.
+//! (u32 count + f64 each), its failures: every requirement it missed at that stage (u32
+//! count; each the requirement's tag u8, 0 outer diameter, 1 axial length, 2 K1, 3 roller
+//! gap, 4 ligament, 5 crown start, 6 a rule of the spec and 8 a limit, each followed by its
+//! key as u32 length + UTF-8, 7 the torque; then the miss, u8 0 with the value and the limit
+//! as f64, or 1 with what the engine said as u32 length + UTF-8); last, the SHA-256 of every
+//! byte before it. Numbers are their IEEE-754 bits: the merge finishes from the very
+//! evaluations the shards made, and counts what each design met from them.
 //!
 //! A shard comes from another machine: it is read whole and trusted in nothing it could get
 //! wrong. Its checksum must match (a changed or cut byte anywhere), the requirements text its
 //! hash, and it must hold exactly the candidates of its share (`decode`); at the merge every
 //! candidate must be the one the requirements generate at its index, bit for bit, and every
-//! evaluation be consistent (objectives exactly when feasible) (`merge`).
+//! evaluation be consistent (objectives exactly when feasible, a failure only of a requirement
+//! its stage judges) (`merge`).
 
 use super::candidate::{Candidate, Choice};
 use super::evaluate::{Evaluation, Stage};
-use super::failure::Failure;
+use super::failure::{Failure, Miss, Requirement};
 use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
 use crate::error::Result;
-use crate::model::quantity::{Bound, LIMITS};
 use crate::model::requirements::Requirements;
 
 pub const MAGIC: &[u8; 16] = b"cycloid-dsg-shrd";
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// What a shard says about the search it belongs to.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,30 +108,80 @@ pub fn encode(h: &Header, evaluations: &[Evaluation]) -> Vec<u8> {
         }
         b.extend_from_slice(&(e.failures.len() as u32).to_le_bytes());
         for f in &e.failures {
-            text_u32(&mut b, &f.requirement);
-            text_u32(&mut b, f.unit);
-            match f.bound {
-                Some((value, limit, side)) => {
-                    b.push(1);
-                    b.extend_from_slice(&value.to_le_bytes());
-                    b.extend_from_slice(&limit.to_le_bytes());
-                    b.push(match side {
-                        Bound::Max => 0,
-                        Bound::Min => 1,
-                    });
-                }
-                None => b.push(0),
-            }
-            match &f.message {
-                Some(m) => {
-                    b.push(1);
-                    text_u32(&mut b, m);
-                }
-                None => b.push(0),
-            }
+            failure(&mut b, f);
         }
     }
     seal(b)
+}
+
+/// A failure's bytes: the requirement's tag (`tag`) with, for a rule of the spec or a
+/// limit, its key; then the miss: 0 and the value and limit, or 1 and what the engine said.
+fn failure(b: &mut Vec<u8>, f: &Failure) {
+    b.push(tag(&f.requirement));
+    match &f.requirement {
+        Requirement::SpecRule(at) => text_u32(b, at),
+        Requirement::Limit(def) => text_u32(b, def.key),
+        _ => {}
+    }
+    match &f.miss {
+        Miss::Bound { value, limit } => {
+            b.push(0);
+            b.extend_from_slice(&value.to_le_bytes());
+            b.extend_from_slice(&limit.to_le_bytes());
+        }
+        Miss::Said(m) => {
+            b.push(1);
+            text_u32(b, m);
+        }
+    }
+}
+
+/// A requirement's tag in a shard.
+fn tag(r: &Requirement) -> u8 {
+    match r {
+        Requirement::OuterDiameter => 0,
+        Requirement::AxialLength => 1,
+        Requirement::MaxK1 => 2,
+        Requirement::MinRollerGap => 3,
+        Requirement::MinLigament => 4,
+        Requirement::CrownStart => 5,
+        Requirement::SpecRule(_) => 6,
+        Requirement::Torque => 7,
+        Requirement::Limit(_) => 8,
+    }
+}
+
+/// A failure of candidate `j`, as `failure` wrote it.
+fn read_failure(r: &mut Reader, j: u64) -> Result<Failure> {
+    let requirement = match r.u8()? {
+        0 => Requirement::OuterDiameter,
+        1 => Requirement::AxialLength,
+        2 => Requirement::MaxK1,
+        3 => Requirement::MinRollerGap,
+        4 => Requirement::MinLigament,
+        5 => Requirement::CrownStart,
+        6 => Requirement::SpecRule(r.short_text("rule key")?),
+        7 => Requirement::Torque,
+        8 => {
+            let key = r.short_text("limit key")?;
+            Requirement::limit(&key).ok_or_else(|| {
+                r.bad(&format!(
+                    "candidate {j} misses the limit `{key}`, which this cycloid does not know: \
+                     written by another version"
+                ))
+            })?
+        }
+        t => return Err(r.bad(&format!("candidate {j} holds the requirement tag {t}"))),
+    };
+    let miss = match r.u8()? {
+        0 => Miss::Bound {
+            value: r.f64()?,
+            limit: r.f64()?,
+        },
+        1 => Miss::Said(r.short_text("message")?),
+        f => return Err(r.bad(&format!("candidate {j} holds the miss flag {f}"))),
+    };
+    Ok(Failure { requirement, miss })
 }
 
 /// The evaluation of candidate j, as `encode` wrote it.
@@ -156,42 +209,11 @@ fn evaluation(r: &mut Reader, j: u64) -> Result<Evaluation> {
         }
         objectives.push(v);
     }
-    let n = r.count(10)?;
-    let mut failures = Vec::with_capacity(n);
-    for _ in 0..n {
-        let requirement = r.short_text("requirement")?;
-        let unit = r.short_text("unit")?;
-        let unit = known_unit(&unit).ok_or_else(|| {
-            r.bad(&format!(
-                "candidate {j} holds the unit `{unit}`, which this cycloid does not know: \
-                 written by another version"
-            ))
-        })?;
-        let bound = match r.u8()? {
-            0 => None,
-            1 => {
-                let (value, limit) = (r.f64()?, r.f64()?);
-                let side = match r.u8()? {
-                    0 => Bound::Max,
-                    1 => Bound::Min,
-                    s => return Err(r.bad(&format!("candidate {j} holds the side byte {s}"))),
-                };
-                Some((value, limit, side))
-            }
-            f => return Err(r.bad(&format!("candidate {j} holds the bound flag {f}"))),
-        };
-        let message = match r.u8()? {
-            0 => None,
-            1 => Some(r.short_text("message")?),
-            f => return Err(r.bad(&format!("candidate {j} holds the message flag {f}"))),
-        };
-        failures.push(Failure {
-            requirement,
-            bound,
-            unit,
-            message,
-        });
-    }
+    // A failure takes at least 6 bytes (its tag, the miss flag and a length).
+    let n = r.count(6)?;
+    let failures = (0..n)
+        .map(|_| read_failure(r, j))
+        .collect::<Result<Vec<_>>>()?;
     Ok(Evaluation {
         candidate: Candidate {
             choice: Choice {
@@ -205,15 +227,6 @@ fn evaluation(r: &mut Reader, j: u64) -> Result<Evaluation> {
         failures,
         objectives,
     })
-}
-
-/// The unit of a failure as the evaluation names it: the unit of a limit's quantity, or the
-/// rules' mm, or none.
-fn known_unit(unit: &str) -> Option<&'static str> {
-    ["", "mm"]
-        .into_iter()
-        .chain(LIMITS.iter().map(|l| l.quantity.unit))
-        .find(|u| *u == unit)
 }
 
 /// Decode the bytes of the shard file at `path`.
@@ -387,6 +400,19 @@ pub fn merge(req: &Requirements, ordered: Vec<(&str, Shard)>) -> Result<Vec<Eval
             }
             if e.stage != Stage::Full && e.failures.is_empty() {
                 return Err(bad("stopped before the full check without a failure"));
+            }
+            // The counts of what no design met read each failure as missed at its stage.
+            if let Some(f) = e
+                .failures
+                .iter()
+                .find(|f| !super::missed::missed_at(&f.requirement, e.stage))
+            {
+                return Err(bad(&format!(
+                    "stopped at the {:?} stage having missed `{}`, which that stage does not \
+                     judge",
+                    e.stage,
+                    f.requirement.key()
+                )));
             }
             all[j] = Some(e);
         }

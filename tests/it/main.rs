@@ -47,6 +47,7 @@ mod mesh_minimum;
 mod optimise;
 mod ordinary_inputs;
 mod pin_beam;
+mod printed_figures;
 mod progress;
 mod readme;
 mod reliability;

@@ -6,8 +6,13 @@ The same engine as the ``cycloid`` command line (a Rust extension, ``cycloid._cy
     run = cycloid.check(cycloid.load("specs/reducer.yaml"))
     print(run.passed, run.scenes["rated"]["min_clearance_mm"])
 
-Units are in the names, as in the spec and the results JSON: ``_mm``, ``_n`` (newtons),
-``_nm`` (newton metres), ``_mpa``, ``_deg``, ``_arcsec``, ``_arcmin``; a ratio has none.
+Units are in the names, as in the spec, the results JSON and the design front: ``_mm``,
+``_m2`` (square metres), ``_n`` (newtons), ``_n_per_mm`` (newtons per millimetre: a line
+load along the face, a stiffness), ``_nm`` (newton metres), ``_nmm`` (newton millimetres),
+``_nm_per_arcmin``, ``_arcmin_per_knm``, ``_mpa``, ``_gpa``, ``_deg``, ``_rad``, ``_mrad``,
+``_arcsec``, ``_arcmin``, ``_rpm``, ``_w`` (watts), ``_j`` (joules), ``_c`` (degrees
+Celsius), ``_w_per_m2k``, ``_h`` (hours), ``_kg``, ``_kg_per_m3``; a ratio, a count and an
+efficiency have none.
 Every computation releases the GIL, so threads run designs in parallel. Errors are
 exceptions: :class:`SpecError` (located in the spec, ``str()`` as the command line prints
 it) and :class:`ComputationError`.
@@ -39,6 +44,8 @@ __all__ = [
     "tolerance",
     "fit",
     "profile",
+    "design",
+    "Design",
     "CycloidError",
     "SpecError",
     "ComputationError",
@@ -87,9 +94,12 @@ class Spec:
         """A new, validated spec with the values at dotted keys replaced, e.g.
         ``spec.replace(**{"modification.shift_mm": -0.01, "scenes[0].crank.steps": 90})``
         (keys as in the README's spec table, in the spec's units). The YAML text is edited in
-        place (comments and layout kept); a ``modification`` key the spec lacks is added, any
-        other key must be in the spec already. A bad value raises :class:`SpecError` located
-        in the edited text."""
+        place (comments and layout kept); a key the spec lacks is added, e.g.
+        ``spec.replace(**{"reducer.friction.rollers.mode": "fixed",
+        "reducer.friction.rollers.mu": 0.05})`` (under the deepest mapping of its path the
+        spec has; a list item must be there already). The edited spec is validated as the
+        command line validates a spec: an unknown key or a bad value raises
+        :class:`SpecError` located in the edited text."""
         items = dict(changes or {}, **values)
         pairs = [(key, _yaml_scalar(key, value)) for key, value in items.items()]
         return Spec(_cycloid.with_values(self._inner, pairs))
@@ -164,7 +174,8 @@ class CheckRun:
     - ``passed``: every check passed;
     - ``checks``: a list of :class:`Check`, in the checks table's data order;
     - ``scenes[name][quantity]``: the scene's curves as numpy arrays in the JSON's shapes and
-      units (``[angle]`` or ``[roller][angle]``, float64; ``contacts`` int64) and its scalars
+      units (``[angle]`` or ``[roller][angle]``, float64; ``line_load_n_per_mm`` one 3-D
+      array ``[roller][crank][slice]``; ``contacts`` int64) and its scalars
       (``min_clearance_mm``, ``max_roller_force_n``, ...), under the JSON's keys;
     - ``summary``, ``golden``, ``studies``: as in the JSON;
     - ``to_json()``: the text ``cycloid check --json`` writes.
@@ -268,3 +279,41 @@ def profile(spec: SpecLike, tolerance_um: float = 0.5) -> Dict[str, Any]:
     if not (math.isfinite(tol) and tol > 0):
         raise ValueError(f"tolerance_um must be a positive number, got {tolerance_um}")
     return _cycloid.profile(_spec(spec), tol / 1000.0)
+
+
+@dataclass(frozen=True)
+class Design:
+    """One design of the front :func:`design` found: ``file`` is its spec's file name as
+    ``cycloid design --out DIR`` writes it (``design-01.yaml``, ...), ``spec`` the spec
+    (a :class:`Spec`: the full check's scenes and limits), ``figures`` its row of
+    ``front.csv`` by column name (its variables, figures and objectives, units in the names;
+    floats)."""
+
+    file: str
+    spec: Spec
+    figures: Dict[str, float]
+
+
+def design(
+    requirements: Union[str, "os.PathLike[str]"], *, progress: Optional[Progress] = None
+) -> List[Design]:
+    """Run ``cycloid design`` on the requirements file at ``requirements``: the requirements
+    search (README "Design search"), the Pareto front of the designs that meet every
+    requirement, sorted by the first objective, as a list of :class:`Design` (empty when no
+    design is feasible). Each spec is named after its file in the requirements' folder.
+    Raises :class:`SpecError` for a bad requirements file."""
+    path = os.fspath(requirements)
+    specs, csv = _cycloid.design(path, progress)
+    _done(progress)
+    lines = [line for line in csv.splitlines() if line]
+    names = lines[0].split(",")[1:]
+    rows = {cells[0]: cells[1:] for cells in (line.split(",") for line in lines[1:])}
+    folder = os.path.dirname(path)
+    return [
+        Design(
+            file=file,
+            spec=Spec(_cycloid.parse(os.path.join(folder, file), text)),
+            figures={n: float(v) for n, v in zip(names, rows[file])},
+        )
+        for file, text in specs
+    ]

@@ -289,6 +289,28 @@ fn tolerance(
     Ok((csv_columns(py, &csv)?, json))
 }
 
+/// The requirements search of `cycloid design` on the requirements file at `path`: the front,
+/// per design its file name and spec text (as `--out` writes them), and `front.csv` (each
+/// design's variables, figures and objectives).
+#[pyfunction]
+#[pyo3(signature = (path, progress=None))]
+fn design(
+    py: Python<'_>,
+    path: &str,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(Vec<(String, String)>, String)> {
+    let path = path.to_string();
+    let sink = progress::Sink::new(progress);
+    let front = detached(py, || {
+        let req = cycloid::spec::requirements::load(&path)?;
+        let run = cycloid::engine::commands::design(&req, &path, &sink)?;
+        let csv = cycloid::report::design::csv(&req, &run.search);
+        Ok((run.specs, csv))
+    });
+    sink.finish(py)?;
+    front
+}
+
 /// The columns of a CSV table of numbers (a header line, then rows) as numpy arrays by name.
 fn csv_columns(py: Python<'_>, csv: &str) -> PyResult<Py<PyAny>> {
     let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
@@ -401,6 +423,7 @@ fn _cycloid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tolerance, m)?)?;
     m.add_function(wrap_pyfunction!(profile, m)?)?;
     m.add_function(wrap_pyfunction!(fit, m)?)?;
+    m.add_function(wrap_pyfunction!(design, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -1,7 +1,8 @@
 //! A serde serializer into Python objects: maps and structs become dicts, strings and numbers
 //! their Python types, and a list of numbers a numpy array (`float64`, or `int64` for counts);
-//! a list of equal-length lists of floats a 2-D `float64` array. Each array owns its data
-//! (copied out of the document), so it outlives the run it came from.
+//! a list of equal-shape float arrays one array of one more dimension (a `[roller][angle]`
+//! curve 2-D, a `[roller][crank][slice]` line load 3-D). Each array owns its data (copied out
+//! of the document), so it outlives the run it came from.
 //!
 //! The typed documents of the results JSON go through it unchanged, so the keys, units and
 //! shapes are the JSON's, with no text in between.
@@ -36,6 +37,8 @@ pub(crate) enum Node<'py> {
     Float(f64),
     Int(i64),
     Floats(Vec<f64>),
+    /// A `float64` array of 2 or more dimensions: its shape and its values in C order.
+    Array(Vec<usize>, Vec<f64>),
     Obj(Bound<'py, PyAny>),
 }
 
@@ -69,6 +72,10 @@ impl<'py> Node<'py> {
                 .unwrap_or_else(|e| match e {})
                 .into_any(),
             Node::Floats(v) => PyArray1::from_vec(py, v).into_any(),
+            Node::Array(shape, v) => PyArray1::from_vec(py, v)
+                .reshape(shape)
+                .map_err(py_err)?
+                .into_any(),
             Node::Obj(o) => o,
         })
     }
@@ -106,32 +113,37 @@ fn list<'py>(py: Python<'py>, items: Vec<Node<'py>>, arrays: bool) -> Result<Nod
             .collect();
         return Ok(Node::Obj(PyArray1::from_vec(py, v).into_any()));
     }
-    let columns = match &items[0] {
-        Node::Floats(first) => Some(first.len()),
-        _ => None,
-    };
-    if let Some(n) = columns.filter(|_| {
-        items
-            .iter()
-            .all(|i| matches!(i, Node::Floats(v) if Some(v.len()) == columns))
-    }) {
-        let rows = items.len();
-        let mut flat = Vec::with_capacity(rows * n);
-        for item in items {
-            if let Node::Floats(v) = item {
-                flat.extend_from_slice(&v);
+    if let Some(shape) = common_shape(&items) {
+        let mut flat = Vec::with_capacity(items.len() * shape.iter().product::<usize>());
+        for item in &items {
+            match item {
+                Node::Floats(v) | Node::Array(_, v) => flat.extend_from_slice(v),
+                _ => unreachable!("all arrays"),
             }
         }
-        let array = PyArray1::from_vec(py, flat)
-            .reshape([rows, n])
-            .map_err(py_err)?;
-        return Ok(Node::Obj(array.into_any()));
+        let mut dims = vec![items.len()];
+        dims.extend(shape);
+        return Ok(Node::Array(dims, flat));
     }
     let out = PyList::empty(py);
     for item in items {
         out.append(item.into_py(py)?).map_err(py_err)?;
     }
     Ok(Node::Obj(out.into_any()))
+}
+
+/// The shape every item shares when all are float arrays of one shape (none else).
+fn common_shape(items: &[Node<'_>]) -> Option<Vec<usize>> {
+    let shape = |n: &Node<'_>| match n {
+        Node::Floats(v) => Some(vec![v.len()]),
+        Node::Array(shape, _) => Some(shape.clone()),
+        _ => None,
+    };
+    let first = shape(items.first()?)?;
+    items
+        .iter()
+        .all(|n| shape(n).as_ref() == Some(&first))
+        .then_some(first)
 }
 
 /// The serializer: each value becomes a [`Node`].

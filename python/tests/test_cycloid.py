@@ -30,17 +30,24 @@ def py_check(spec: str):
         return None, e
 
 
+def float_shape(js):
+    """The shape of a non-empty JSON list of floats, or of equal-shape such lists; None else."""
+    if not isinstance(js, list) or not js:
+        return None
+    if all(isinstance(x, float) for x in js):
+        return (len(js),)
+    shapes = {float_shape(r) for r in js}
+    if len(shapes) == 1 and None not in shapes:
+        return (len(js),) + shapes.pop()
+    return None
+
+
 def numbers(js) -> bool:
-    """A non-empty JSON list of numbers, or of equal-length lists of floats."""
+    """A non-empty JSON list of numbers, or a rectangular array of floats of any dimension."""
     if not isinstance(js, list) or not js:
         return False
     scalar = lambda x: isinstance(x, (int, float)) and not isinstance(x, bool)
-    if all(scalar(x) for x in js):
-        return True
-    return all(
-        isinstance(r, list) and r and len(r) == len(js[0]) and all(isinstance(x, float) for x in r)
-        for r in js
-    )
+    return all(scalar(x) for x in js) or float_shape(js) is not None
 
 
 def assert_arrays_are_the_json(py, js, where=""):
@@ -53,8 +60,7 @@ def assert_arrays_are_the_json(py, js, where=""):
     elif numbers(js):
         assert isinstance(py, np.ndarray), where
         assert py.shape == np.shape(js), where
-        flat = [x for row in js for x in row] if isinstance(js[0], list) else js
-        ints = all(isinstance(x, int) for x in flat)
+        ints = all(isinstance(x, int) for x in np.array(js, dtype=object).flat)
         assert py.dtype == (np.int64 if ints else np.float64), where
         assert np.array_equal(py, np.array(js, dtype=py.dtype)), where
     elif isinstance(js, list):
@@ -366,3 +372,122 @@ def test_check_with_the_tolerance_study_equals_the_cli(cli, tmp_path):
     assert got.pop("spec_path") == "<dict>"
     expected.pop("spec_path")
     assert got == expected
+
+
+def test_line_load_is_one_3d_array_of_roller_crank_slice():
+    """`line_load_n_per_mm` is `[roller][crank][slice]` in the JSON: one float64 array of
+    that shape, not a list of 2-D arrays."""
+    spec = cycloid.load("specs/reducer-misaligned.yaml")
+    run = cycloid.check(spec)
+    loaded = [s for s in run.scenes.values() if "line_load_n_per_mm" in s]
+    assert loaded, "a scene that resolves the face"
+    doc = json.loads(run.to_json())
+    for scene in loaded:
+        js = next(s for s in doc["scenes"] if s["name"] == scene["name"])["line_load_n_per_mm"]
+        load = scene["line_load_n_per_mm"]
+        assert isinstance(load, np.ndarray) and load.dtype == np.float64
+        rollers = spec.to_dict()["reducer"]["rollers"]
+        assert load.ndim == 3 and load.shape[:2] == (rollers, scene["crank_deg"].shape[0])
+        assert load.shape == (len(js), len(js[0]), len(js[0][0]))
+        assert np.array_equal(load, np.array(js))
+
+
+def test_replace_adds_a_key_the_spec_lacks_and_validates_it():
+    """`replace` adds keys the spec does not have (here a whole `reducer.friction`), and the
+    edited spec is validated as the command line validates a file with that text."""
+    spec = cycloid.load("specs/reducer.yaml")
+    assert "friction" not in spec.to_dict()["reducer"]
+    keys = {"reducer.friction.rollers.mode": "fixed", "reducer.friction.rollers.mu": 0.05}
+    added = spec.replace(**keys)
+    assert added.to_dict()["reducer"]["friction"] == {"rollers": {"mode": "fixed", "mu": 0.05}}
+    assert cycloid.check(added).passed
+    with pytest.raises(cycloid.SpecError) as caught:
+        spec.replace(**dict(keys, **{"reducer.friction.rollers.mu": 1.5}))
+    e = caught.value
+    assert e.key == "reducer.friction.rollers.mu" and e.kind == "invalid_value"
+    assert e.file == "specs/reducer.yaml"
+    assert "must lie in [0, 1), got 1.5" in str(e)
+    with pytest.raises(cycloid.SpecError) as caught:
+        spec.replace(**{"reducer.friction.rollers.mu": 0.05})
+    assert caught.value.key == "reducer.friction.rollers" and "mode" in str(caught.value)
+
+
+def test_design_equals_the_cli_front(cli, tmp_path, monkeypatch):
+    """`cycloid.design` finds the front `cycloid design --out` writes: the same spec files,
+    text for text, and each design's figures the row of front.csv."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "small.yaml").write_text(SMALL_REQUIREMENTS)
+    done = run_cli(cli, "design", "small.yaml", "--out", "front", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    front = cycloid.design("small.yaml")
+    files = sorted(p.name for p in (tmp_path / "front").glob("design-*.yaml"))
+    assert [d.file for d in front] == files and files
+    lines = (tmp_path / "front" / "front.csv").read_text().splitlines()
+    names = lines[0].split(",")[1:]
+    rows = {cells[0]: [float(x) for x in cells[1:]] for cells in (l.split(",") for l in lines[1:])}
+    for d in front:
+        assert d.spec.to_yaml() == (tmp_path / "front" / d.file).read_text()
+        assert list(d.figures) == names and list(d.figures.values()) == rows[d.file]
+    with pytest.raises(cycloid.SpecError):
+        cycloid.design(str(ROOT / "specs" / "reducer.yaml"))
+
+
+# The small search of tests/it/design_search.rs (64 Sobol points, under a second).
+SMALL_REQUIREMENTS = """\
+name: small
+ratio: [9]
+rated_torque_nm: 10.0
+peak_torque_nm: 15.0
+envelope:
+  max_outer_diameter_mm: 76.0
+  max_axial_length_mm: 19.0
+  housing_wall_mm: 5.0
+  axial_allowance_mm: 10.0
+material:
+  youngs_modulus_gpa: 206.0
+  poisson_ratio: 0.3
+rules:
+  max_k1: 0.8
+  min_ligament_mm: 1.0
+  min_roller_gap_mm: 0.5
+limits:
+  min_clearance_mm: 0.005
+  max_contact_pressure_mpa: 1500.0
+objectives: [mass_kg, max_contact_pressure_mpa]
+search:
+  eccentricity_mm: [1.0, 2.0]
+  roller_circle_radius_mm: [24.0, 34.0]
+  roller_radius_mm: [2.0, 3.5]
+  face_width_mm: [5.0, 10.0]
+  pin_circle_radius_mm: [12.0, 20.0]
+  pin_radius_mm: [2.0, 3.5]
+  shift_mm: [-0.02, 0.0]
+  equidistant_mm: [0.0, 0.02]
+  pin_counts: [6]
+  discs: [1]
+  samples: 64
+  seed: 3
+  refine_budget: 12
+  steps_per_mesh_period: 12
+"""
+
+
+def test_the_docstring_names_every_unit_of_the_results():
+    """Every unit suffix of a quantity the results carry is in the module docstring's list:
+    each numeric key of the shipped specs' scenes ends in a listed unit or is unitless."""
+    listed = set(re.findall(r"``(_[a-z0-9_]+)``", cycloid.__doc__))
+    unitless = {
+        "ratio", "contacts", "efficiency", "mean_efficiency", "face_load_factor",
+        "max_face_load_factor", "ratio_fluctuation", "ratio_min", "ratio_max",
+        "min_rollers_in_contact", "max_residual", "tooth_phase", "revolution_share",
+        "time_share", "duty_mean_efficiency", "steps", "discs", "rollers", "disc", "roller",
+    }
+    missing = set()
+    for spec in ["specs/reducer-efficiency.yaml", "specs/reducer-misaligned.yaml",
+                 "specs/reducer-torsion.yaml", "specs/reducer-duty-cycle.yaml"]:
+        for scene in cycloid.check(spec).scenes.values():
+            for key, value in scene.items():
+                numeric = isinstance(value, (float, np.ndarray)) and not isinstance(value, bool)
+                if numeric and key not in unitless and not any(key.endswith(u) for u in listed):
+                    missing.add(key)
+    assert not missing, f"keys whose unit the docstring does not list: {sorted(missing)}"

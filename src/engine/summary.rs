@@ -5,7 +5,7 @@
 //! puts it at the top.
 
 use crate::engine::plausibility::{self, Beyond};
-use crate::model::quantity::{Quantity, DISC_TORQUE, SUMMARY};
+use crate::model::quantity::{Quantity, DISC_TORQUE, MAX_HYSTERESIS_LOSS, SUMMARY};
 use crate::model::results::SceneResult;
 use crate::spec::Spec;
 
@@ -20,6 +20,10 @@ pub struct Headline {
     /// Beyond its plausible band, no limit judging it (`engine::plausibility`): a mark for
     /// the reader, not a failed check. `None` from `summarise`; `marked` sets it.
     pub beyond: Option<Beyond>,
+    /// The smallest magnitude the computation resolves, in the quantity's unit: a value below
+    /// it is not distinguished from 0 (a torsion loop's hysteresis loss: `resolution`); 0
+    /// where the value is resolved to its printed digits.
+    pub resolution: f64,
 }
 
 /// One disc's share Tk of the scene's torque over its crank angles, N·m (with several discs).
@@ -66,6 +70,7 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
                         value: e.value,
                         at: e.at,
                         beyond: None,
+                        resolution: resolution(q, r),
                     })
                 })
                 .collect(),
@@ -79,6 +84,19 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
             shares: shares(r),
         })
         .collect()
+}
+
+/// What a headline of `q` resolves in `r` (`Headline::resolution`): for the max hysteresis loss
+/// of a torsion loop, the finest of its locked angles' resolutions
+/// (`TorsionCurves::hysteresis_resolution_rad`), arcmin; else 0.
+fn resolution(q: &Quantity, r: &SceneResult) -> f64 {
+    match &r.torsion {
+        Some(t) if q.key == MAX_HYSTERESIS_LOSS.key => (0..t.figures.len())
+            .map(|k| crate::units::arcmin(t.hysteresis_resolution_rad(k)))
+            .reduce(f64::min)
+            .unwrap_or(0.0),
+        _ => 0.0,
+    }
 }
 
 /// Each disc's torque share over the crank angles (`DISC_TORQUE`): the mean, the range and the

@@ -1319,6 +1319,10 @@ pub const SUMMARY: &[&Quantity] = &[
 /// one is the width of a band the curve must fit in, not a level.
 pub const SPREADS: &[&Quantity] = &[&TE_FLUCTUATION, &RATIO_FLUCTUATION];
 
+/// The quantities whose values count rollers: every output prints them as whole numbers, any
+/// other quantity to four significant digits (`report::table::figure`).
+pub const COUNTS: &[&Quantity] = &[&CONTACTS, &MIN_ROLLERS_IN_CONTACT];
+
 /// The quantity with this key.
 pub fn find(key: &str) -> Option<&'static Quantity> {
     QUANTITIES.iter().copied().find(|q| q.key == key)

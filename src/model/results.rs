@@ -230,6 +230,31 @@ pub struct TorsionCurves {
     pub compliances: TorsionCompliances,
 }
 
+impl TorsionCurves {
+    /// The smallest hysteresis width the loop resolves at locked angle `k`, rad: the lag
+    /// change of one torque step of the loop at the reducer's torsional rigidity, ΔT/K (ΔT =
+    /// rated/steps, the step between the loop's torques, N·mm; K = `TorsionFigures::rigidity`,
+    /// N·mm/rad). Coulomb friction holds the disc after a reversal until the torque has changed
+    /// by 2·M_f = K·width (README "Torsion under a locked input"): a narrower loop is held for
+    /// less than one step, which the loop's samples cannot show. Without preload the width at
+    /// T = 0 is zero (no contact is loaded at either edge of the dead band) and what is
+    /// computed is friction at the one-sided torques ±1e-6·rated, some 1e-8 arcmin, far below
+    /// this (0.0077 arcmin on the paper's design at 20 N·m, 20 steps). 0 where the loop has no
+    /// step or no stiffness (nothing is hidden then).
+    pub fn hysteresis_resolution_rad(&self, k: usize) -> f64 {
+        let step_nmm = match self.torque_nmm.as_slice() {
+            [a, b, ..] => (b - a).abs(),
+            _ => 0.0,
+        };
+        let rigidity = self.figures.get(k).map_or(0.0, TorsionFigures::rigidity);
+        if step_nmm > 0.0 && rigidity.is_finite() && rigidity > 0.0 {
+            step_nmm / rigidity
+        } else {
+            0.0
+        }
+    }
+}
+
 /// The compliances in a torsion curve: the loaded model's (computed) and the structure's
 /// (given). The torsion angle is γ(T) + c_s·T, γ the loaded model's output lag and c_s the
 /// structure's compliance.

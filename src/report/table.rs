@@ -4,12 +4,43 @@
 use crate::engine::check::{Bound, Check, CheckKind, Evidence};
 use crate::engine::plausibility::{Basis, Beyond};
 use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
+use crate::model::quantity::{find_limit, Quantity, COUNTS};
 use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE, ONLY_ANGLE};
 
 /// Format a number for a person: [`numeric::number`](crate::numeric::number), the one
 /// formatter (4 significant figures after rounding: 9.99999998 reads 10.00, not 10.000).
 pub fn number(x: f64) -> String {
     crate::numeric::number(x)
+}
+
+/// A value of `q` (in its unit) as every output prints it — headline, checks table, review,
+/// plots: a count (`quantity::COUNTS`) as a whole number, any other value as `number` (four
+/// significant digits), so that one quantity reads alike everywhere (an efficiency of 1 is
+/// "1.000", never "1" in one place and "1.000" in another).
+pub fn figure(q: &Quantity, x: f64) -> String {
+    let count = COUNTS.iter().any(|c| c.key == q.key);
+    if count && x.fract() == 0.0 && x.abs() < 1e9 {
+        format!("{x:.0}")
+    } else {
+        number(x)
+    }
+}
+
+/// The quantity a check bounds, when it is a limit of the registry (`limits.KEY`).
+fn checked_quantity(c: &Check) -> Option<&'static Quantity> {
+    let key = c.id.rsplit('/').next()?;
+    (c.kind == CheckKind::Limit)
+        .then(|| find_limit(key))
+        .flatten()
+        .map(|l| l.quantity)
+}
+
+/// A check's value or limit `x` as a person reads it (`shown_scale`): its quantity's `figure`.
+fn check_figure(c: &Check, x: f64) -> String {
+    match checked_quantity(c) {
+        Some(q) if shown_scale(c) == 1.0 => figure(q, x),
+        _ => number(shown_scale(c) * x),
+    }
 }
 
 /// A value followed by its unit, if any ("2.000 mm", "3").
@@ -58,7 +89,7 @@ pub const STYLES: [&str; 3] = [FAIL_STYLE, PASS_STYLE, PLAIN_STYLE];
 /// round-off tolerance (−8.2e-14 mm against ≥ 0 mm) reads as the limit, said so, not as a
 /// negative clearance marked "pass". The JSON keeps the value as computed.
 pub fn value(c: &Check) -> String {
-    let shown = |x: f64| with_unit(number(shown_scale(c) * x), shown_unit(c));
+    let shown = |x: f64| with_unit(check_figure(c, x), shown_unit(c));
     let wrong_side = match c.bound {
         Bound::Max => c.value > c.limit,
         Bound::Min => c.value < c.limit,
@@ -117,10 +148,7 @@ pub fn limit(c: &Check) -> String {
         Bound::Max => "≤",
         Bound::Min => "≥",
     };
-    with_unit(
-        format!("{op} {}", number(shown_scale(c) * c.limit)),
-        shown_unit(c),
-    )
+    with_unit(format!("{op} {}", check_figure(c, c.limit)), shown_unit(c))
 }
 
 /// The table, one check a row, worst failures first; `color` adds ANSI colour to the verdicts.
@@ -181,6 +209,9 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
     out
 }
 
+/// The verdict line of a run with no check: nothing was judged.
+pub const NOTHING_JUDGED: &str = "NOTHING JUDGED: 0 checks, so neither PASS nor FAIL\n";
+
 /// The last line `check` prints: the verdict in one plain word a script or a person can find,
 /// and the counts behind it ("PASS: 7 of 7 checks passed", "FAIL: 2 of 7 checks failed").
 pub fn verdict_line(checks: &[Check]) -> String {
@@ -188,30 +219,20 @@ pub fn verdict_line(checks: &[Check]) -> String {
     let n = checks.len();
     let noun = if n == 1 { "check" } else { "checks" };
     match failed {
+        // Exit 0 all the same: nothing failed, but "PASS: 0 of 0" would read as a verdict.
+        _ if n == 0 => NOTHING_JUDGED.to_string(),
         0 => format!("PASS: {n} of {n} {noun} passed\n"),
         f => format!("FAIL: {f} of {n} {noun} failed\n"),
     }
 }
 
-/// A count (a whole dimensionless value, e.g. rollers in contact) as an integer, else `number`.
-pub fn count_or_number(x: f64, unit: &str) -> String {
-    if is_count(x, unit) {
-        format!("{x:.0}")
-    } else {
-        number(x)
-    }
-}
-
-/// A unitless whole number (rollers in contact) prints as a count.
-fn is_count(x: f64, unit: &str) -> bool {
-    unit.is_empty() && x.fract() == 0.0 && x.abs() < 1e9
-}
-
-/// The change from `from` to `to` as those two print (`count_or_number`): a signed count
+/// The change from `from` to `to` of `q` as those two print (`figure`): a signed count
 /// between counts, else [`numeric::change`](crate::numeric::change).
-pub fn count_or_change(from: f64, to: f64, unit: &str) -> String {
+pub fn figure_change(q: &Quantity, from: f64, to: f64) -> String {
+    let whole = |x: f64| x.fract() == 0.0 && x.abs() < 1e9;
+    let counts = COUNTS.iter().any(|c| c.key == q.key) && whole(from) && whole(to);
     match to - from {
-        x if is_count(from, unit) && is_count(to, unit) && x != 0.0 => format!("{x:+.0}"),
+        x if counts && x != 0.0 => format!("{x:+.0}"),
         _ => crate::numeric::change(from, to),
     }
 }
@@ -329,9 +350,12 @@ pub fn headline_label(h: &Headline, s: &SceneSummary) -> String {
 /// "Angular backlash"), negative when the rollers overlap the profile (a preload or an
 /// interference); then it reads 0 and `headline_at` says how far they overlap.
 pub fn headline_value(h: &Headline) -> String {
-    let unit = h.quantity.unit;
-    let x = if preloaded(h) { 0.0 } else { h.value };
-    with_unit(count_or_number(x, unit), unit)
+    let x = if preloaded(h) || unresolved(h) {
+        0.0
+    } else {
+        h.value
+    };
+    with_unit(figure(h.quantity, x), h.quantity.unit)
 }
 
 /// A headline's value as its scene's line reads it: `headline_value`, but in a scene with the
@@ -363,6 +387,12 @@ fn arcsec_to_arcmin(x: f64) -> f64 {
     crate::units::arcmin(crate::units::rad_from_arcsec(x))
 }
 
+/// Whether `h` is below what its computation resolves (`Headline::resolution`): it reads 0,
+/// and `headline_at` says to what resolution.
+fn unresolved(h: &Headline) -> bool {
+    h.value.abs() < h.resolution
+}
+
 /// Whether `h` is a lost motion whose closing lags overlap (no free play).
 fn preloaded(h: &Headline) -> bool {
     h.quantity.key == MAX_LOST_MOTION.key && h.value < 0.0
@@ -385,6 +415,13 @@ pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> Stri
         at = format!(
             "preloaded: no free play, the closing lags overlap by {} {unit} (interference), {at}",
             number(overlap),
+        );
+    }
+    if unresolved(h) {
+        at += &format!(
+            "; 0 to the loop's resolution, {} (the lag change of one torque step at the \
+             torsional rigidity)",
+            with_unit(number(h.resolution), h.quantity.unit)
         );
     }
     let others = all.iter().filter(|o| o.scene != s.scene);
@@ -546,16 +583,26 @@ pub fn evidence(e: &Evidence) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::count_or_change;
+    use super::{figure, figure_change};
+    use crate::model::quantity::{CONTACTS, MEAN_EFFICIENCY, MIN_ROLLERS_IN_CONTACT};
 
     /// Counts change by signed whole numbers; anything else as [`numeric::change`](crate::numeric::change), to the
     /// decimals the values print with.
     #[test]
     fn count_changes_are_signed_whole_numbers() {
-        assert_eq!(count_or_change(3.0, 4.0, ""), "+1");
-        assert_eq!(count_or_change(4.0, 3.0, ""), "-1");
-        assert_eq!(count_or_change(3.0, 3.0, ""), "0");
-        assert_eq!(count_or_change(3.0, 4.0, "N"), "+1.000");
-        assert_eq!(count_or_change(9.0, 9.5, ""), "+0.500");
+        assert_eq!(figure_change(&CONTACTS, 3.0, 4.0), "+1");
+        assert_eq!(figure_change(&CONTACTS, 4.0, 3.0), "-1");
+        assert_eq!(figure_change(&CONTACTS, 3.0, 3.0), "0");
+        assert_eq!(figure_change(&MEAN_EFFICIENCY, 3.0, 4.0), "+1.000");
+        assert_eq!(figure_change(&CONTACTS, 9.0, 9.5), "+0.500");
+    }
+
+    /// One formatter per quantity: a unitless ratio that happens to be whole (an efficiency of
+    /// 1) prints to four significant digits like its other values; only counts print whole.
+    #[test]
+    fn a_whole_efficiency_is_not_a_count() {
+        assert_eq!(figure(&MEAN_EFFICIENCY, 1.0), "1.000");
+        assert_eq!(figure(&MEAN_EFFICIENCY, 0.8843), "0.8843");
+        assert_eq!(figure(&MIN_ROLLERS_IN_CONTACT, 2.0), "2");
     }
 }

@@ -100,7 +100,15 @@ fn insert_under(text: &mut String, at: usize, key: &str, value: &str) {
         text.insert_str(at + brace + 1, &format!(" {key}: {value},"));
     } else {
         let line_start = text[..at].rfind('\n').map_or(0, |n| n + 1);
-        let indent = at - line_start + 2;
+        let column = at - line_start;
+        // The indent of the mapping's own keys where it has any (a spec may indent by 4).
+        let child = text[line_end..]
+            .lines()
+            .map(|l| (l.len() - l.trim_start_matches(' ').len(), l.trim_start()))
+            .find(|(_, l)| !l.is_empty() && !l.starts_with('#'))
+            .map(|(indent, _)| indent)
+            .filter(|&indent| indent > column);
+        let indent = child.unwrap_or(column + 2);
         let insert = format!("\n{}{key}: {value}", " ".repeat(indent));
         text.insert_str(line_end, &insert);
     }
@@ -192,9 +200,10 @@ pub fn with_crowning(path: &str, text: &str, crowning: &Crowning) -> Result<Stri
 
 /// Spec `text` (read from `path`) with the scalar value of each dotted key
 /// (`modification.shift_mm`, `scenes[0].crank.steps`, as in the README's spec table) replaced
-/// by its YAML text, comments and layout kept; a `modification` key the text lacks is added.
-/// The result is parsed and validated again, so a bad value is an error located in the edited
-/// text. A key the text does not have (outside `modification`) is an error at that key.
+/// by its YAML text, comments and layout kept; a key the text lacks is added (`add_key`; a
+/// `modification` key into the mapping where it usually stands). The result is parsed and
+/// validated again, as the command line validates a spec, so an unknown key or a bad value is
+/// an error located in the edited text.
 ///
 /// ```
 /// let text = std::fs::read_to_string("specs/reducer.yaml").unwrap();
@@ -216,23 +225,56 @@ pub fn with_values(
             (None, Some(name)) if !name.is_empty() && !name.contains(['.', '[']) => {
                 insert_value(&mut out, name, value)
             }
-            (None, _) => {
-                return Err(Error::invalid(
-                    key,
-                    "is not in the spec text: only values the spec has (and the \
-                     `modification` keys) can be replaced; write the key into the spec first"
-                        .to_string(),
-                )
-                .at(crate::error::Location {
+            (None, _) => add_key(&mut out, key, value).map_err(|e| {
+                e.at(crate::error::Location {
                     file: path.to_string(),
                     line: 1,
                     column: 1,
-                }))
-            }
+                })
+            })?,
         }
     }
     let spec = super::parse(path, &out)?;
     Ok((out, spec))
+}
+
+/// Add the dotted `key` the text lacks, with `value`: under the deepest mapping of its path the
+/// text has, the missing keys as nested flow mappings on one line (`friction: { rollers: { mu:
+/// 0.05 } }` under `reducer`), or at the end as a top-level key. Whether the key exists and its
+/// value is valid is the parse's to say, as for any spec; a key under a list item that is not
+/// there (an index) cannot be added.
+fn add_key(text: &mut String, key: &str, value: &str) -> Result<()> {
+    let parts: Vec<&str> = key.split('.').collect();
+    let missing = |from: usize| &parts[from..];
+    let refuse = || {
+        Error::invalid(
+            key,
+            "is not in the spec text and cannot be added: a list item (`[i]`) must be in the \
+             spec first"
+                .to_string(),
+        )
+    };
+    let found = (1..parts.len())
+        .rev()
+        .find_map(|n| locate_offset(text, &parts[..n].join(".")).map(|at| (n, at)));
+    let (n, at) = found.unwrap_or((0, text.len()));
+    let rest = missing(n);
+    if rest.iter().any(|k| k.is_empty() || k.contains(['[', ']'])) {
+        return Err(refuse());
+    }
+    let nested = rest[1..]
+        .iter()
+        .rev()
+        .fold(value.to_string(), |inner, k| format!("{{ {k}: {inner} }}"));
+    if n == 0 {
+        if !text.ends_with('\n') {
+            text.push('\n');
+        }
+        text.push_str(&format!("{}: {nested}\n", rest[0]));
+    } else {
+        insert_under(text, at, rest[0], &nested);
+    }
+    Ok(())
 }
 
 /// The spec of an optimum, to be written to `out_path`: the source spec text with `m` as its

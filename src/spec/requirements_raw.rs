@@ -4,6 +4,16 @@
 use super::raw::{RawCrowning, RawDutyBin, RawFriction, RawLimits, RawMisalignment, RawThermal};
 use serde::Deserialize;
 
+/// Top-level keys every requirements file has and no spec has: a document with one of them and
+/// no `reducer` is a requirements file given where a spec is read.
+pub(crate) const REQUIREMENTS_KEYS: [&str; 5] = [
+    "ratio",
+    "rated_torque_nm",
+    "envelope",
+    "objectives",
+    "search",
+];
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawRequirements {

@@ -38,6 +38,7 @@ pub(crate) fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
                 Error::new(ErrorKind::Syntax, yaml_message(&err.to_string())).at(at(line, column)),
             );
         }
+        Ok(value) => requirements_file(path, text, &value)?,
         _ => {}
     }
     match deserialize::<RawOptimise>(path, text) {
@@ -55,6 +56,31 @@ pub(crate) fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
         }
         other => other,
     }
+}
+
+/// A requirements file where a spec is read (a top-level key of a requirements file and no
+/// `reducer`): refused at that key, pointing to `cycloid design`, rather than as an unknown key.
+fn requirements_file(path: &str, text: &str, value: &serde_yaml::Value) -> Result<()> {
+    use super::requirements_raw::REQUIREMENTS_KEYS;
+    if value.get("reducer").is_some() {
+        return Ok(());
+    }
+    let Some(key) = REQUIREMENTS_KEYS.iter().find(|k| value.get(**k).is_some()) else {
+        return Ok(());
+    };
+    let (line, column) = super::locate::locate(text, key).unwrap_or((1, 1));
+    Err(Error::new(
+        ErrorKind::Syntax,
+        format!(
+            "this is a requirements file (top-level `{key}`, no `reducer`), not a spec: \
+             `cycloid design {path}` searches the designs that meet it"
+        ),
+    )
+    .at(Location {
+        file: path.to_string(),
+        line,
+        column,
+    }))
 }
 
 fn deserialize<O>(path: &str, text: &str) -> Result<RawSpecOf<RawOptimise>>

@@ -1218,3 +1218,45 @@ fn a_spec_without_checks_says_so_and_shows_its_results() {
     assert_eq!(lines[2], "headline results:");
     assert!(!run.stdout.contains("check  value"), "{}", run.stdout);
 }
+
+/// A spec that sets no limits, golden curves or studies judges nothing: the run ends saying so
+/// (exit 0), not "PASS: 0 of 0 checks passed" (issue 44 item 4).
+#[test]
+fn a_spec_without_limits_says_nothing_was_judged() {
+    let spec = common::PaperSpec::new().rated_period(4);
+    let out = check(spec.text());
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    assert_eq!(
+        out.stdout.lines().last(),
+        Some("NOTHING JUDGED: 0 checks, so neither PASS nor FAIL"),
+        "{}",
+        out.stdout
+    );
+}
+
+/// `cycloid check` given a requirements file says what it is and which command reads it, at
+/// its first key a spec lacks (issue 44 item 3), instead of "ratio: unknown key".
+#[test]
+fn a_requirements_file_given_to_check_points_to_design() {
+    let text = std::fs::read_to_string(format!(
+        "{}/specs/requirements-robot-joint.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    // The `ratio` key's line, counted here: the comment lines and `name` before it.
+    let line = 1 + text[..text.find("\nratio:").unwrap() + 1]
+        .matches('\n')
+        .count();
+    let dir = Scratch::new("check-requirements");
+    dir.write("joint.yaml", &text);
+    assert_output(
+        &cycloid(&dir.path, &["check", "joint.yaml"]),
+        2,
+        "",
+        &format!(
+            "joint.yaml:{line}:1: spec error: this is a requirements file (top-level `ratio`, no \
+             `reducer`), not a spec: `cycloid design joint.yaml` searches the designs that meet \
+             it\n"
+        ),
+    );
+}

@@ -50,6 +50,7 @@ mod ordinary_inputs;
 mod physical_bounds;
 mod period;
 mod pin_beam;
+mod printed_figures;
 mod progress;
 mod readme;
 mod reliability;

@@ -651,6 +651,7 @@ fn a_preloaded_lost_motion_beside_torsion_figures_reads_in_arcmin() {
         value,
         at: "crank 0.00°".to_string(),
         beyond: None,
+        resolution: 0.0,
     };
     let scene = |headlines| SceneSummary {
         scene: "torsion".into(),

@@ -6,8 +6,9 @@
 //! design search as 3 array tasks and a merge job gives the unsharded `cycloid design`'s front,
 //! byte for byte but for the wall time. The two run one after the other (`SERIAL`).
 //!
-//! Skipped, with the reason printed, only where the set-up script says the cluster cannot be
-//! set up here (exit 77: Slurm is missing and apt-get is unavailable or we are not root).
+//! The tests change nothing on the machine: they install nothing and start no daemon. They run
+//! where a cluster answers (`sinfo` lists a node up: `.ci/run` starts one with
+//! `tools/slurm-one-node.sh` before the tests) and are skipped otherwise, printing why.
 
 use std::io::Write;
 use std::path::Path;
@@ -16,9 +17,6 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use crate::common::{cycloid, Scratch};
-
-/// The set-up script's exit code for "no cluster can be set up here".
-const UNAVAILABLE: i32 = 77;
 
 /// The shipped spec the README submits (2000 samples: ~1 s of one core for the whole study).
 const SPEC: &str = "reducer-tolerance.yaml";
@@ -63,19 +61,52 @@ fn run(program: &str, args: &[&str], dir: &Path) -> Output {
         .unwrap_or_else(|e| panic!("{program} {args:?} did not start: {e}"))
 }
 
-/// `None` when the one-node cluster is up (set up now or before), the reason when it cannot be
-/// set up here; a panic with the script's output on any other failure.
+/// `None` when a Slurm cluster answers, else why the tests skip (`answering` on this PATH).
 fn cluster() -> Option<String> {
-    let out = run("bash", &[&repo("tools/slurm-one-node.sh")], Path::new("/"));
-    match out.status.code() {
-        Some(0) => None,
-        Some(UNAVAILABLE) => Some(text(&out.stdout).trim().to_string()),
-        code => panic!(
-            "tools/slurm-one-node.sh exited {code:?}:\n{}{}",
-            text(&out.stdout),
-            text(&out.stderr)
-        ),
+    answering(&std::env::var_os("PATH").unwrap_or_default())
+}
+
+/// `None` when `sinfo`, looked up on `path`, lists a node idle, mixed or allocated (as
+/// tools/slurm-one-node.sh waits for); else why no cluster answers. Nothing is set up here.
+fn answering(path: &std::ffi::OsStr) -> Option<String> {
+    const START: &str = "start one with `bash tools/slurm-one-node.sh` (as root), as .ci/run does";
+    let out = Command::new("sinfo")
+        .args(["--noheader", "--Node", "--format=%t"])
+        .env("PATH", path)
+        .output();
+    let out = match out {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Some(format!(
+                "no Slurm cluster answers: `sinfo` is not on PATH; {START}"
+            ))
+        }
+        Err(e) => {
+            return Some(format!(
+                "no Slurm cluster answers: `sinfo` did not run ({e}); {START}"
+            ))
+        }
+        Ok(out) => out,
+    };
+    let stdout = text(&out.stdout);
+    let states: Vec<&str> = stdout.split_whitespace().collect();
+    if !out.status.success() {
+        let err = text(&out.stderr);
+        let why = err.lines().next().unwrap_or("no message").trim();
+        return Some(format!(
+            "no Slurm cluster answers: `sinfo` failed ({}: {why}); {START}",
+            out.status
+        ));
     }
+    if states.iter().any(|s| ["idle", "mix", "alloc"].contains(s)) {
+        return None;
+    }
+    Some(format!(
+        "no Slurm node is up: `sinfo` lists {}; {START}",
+        match states.is_empty() {
+            true => "no node".to_string(),
+            false => format!("the states {}", states.join(", ")),
+        }
+    ))
 }
 
 /// The array's and the merge's job ids from the script's last line,
@@ -358,4 +389,53 @@ fn the_sbatch_design_search_on_a_one_node_cluster_equals_the_unsharded_run() {
         crate::design_shard::without_wall_time(&(unsharded.stdout + &unsharded.stderr)),
         "the merge job's log"
     );
+}
+
+/// What the tests say when they skip, from a PATH whose `sinfo` is missing or a stand-in
+/// script: nothing is installed or started to make a cluster answer (issue 44 item 2).
+#[test]
+fn without_a_cluster_the_tests_skip_and_say_why() {
+    let start = "start one with `bash tools/slurm-one-node.sh` (as root), as .ci/run does";
+    let dir = Scratch::new("slurm-skip");
+    let bin = |name: &str, script: &str| {
+        use std::os::unix::fs::PermissionsExt;
+        let d = dir.join(name);
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::write(d.join("sinfo"), format!("#!/bin/sh\n{script}\n")).unwrap();
+        std::fs::set_permissions(d.join("sinfo"), std::fs::Permissions::from_mode(0o755)).unwrap();
+        d.into_os_string()
+    };
+    std::fs::create_dir_all(dir.join("empty")).unwrap();
+    assert_eq!(
+        answering(dir.join("empty").as_os_str()),
+        Some(format!(
+            "no Slurm cluster answers: `sinfo` is not on PATH; {start}"
+        ))
+    );
+    let down = bin("down", "echo down; echo drain");
+    assert_eq!(
+        answering(&down),
+        Some(format!(
+            "no Slurm node is up: `sinfo` lists the states down, drain; {start}"
+        ))
+    );
+    let none = bin("none", "exit 0");
+    assert_eq!(
+        answering(&none),
+        Some(format!(
+            "no Slurm node is up: `sinfo` lists no node; {start}"
+        ))
+    );
+    let refused = bin(
+        "refused",
+        "echo 'slurm_load_node: Unable to contact slurm controller' >&2; exit 1",
+    );
+    assert_eq!(
+        answering(&refused),
+        Some(format!(
+            "no Slurm cluster answers: `sinfo` failed (exit status: 1: slurm_load_node: Unable \
+             to contact slurm controller); {start}"
+        ))
+    );
+    assert_eq!(answering(&bin("up", "echo mix")), None);
 }

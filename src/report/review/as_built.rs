@@ -15,7 +15,7 @@ use crate::numeric::number;
 use crate::report::fit::{fixed, fixed_change, flank_length_mm};
 use crate::report::svg::frame::{titles, wrap, Frame};
 use crate::report::svg::{self, document, px, LinePlot, Series, PALETTE, RED};
-use crate::report::table::{count_or_change, with_unit};
+use crate::report::table::{figure_change, with_unit};
 use crate::spec::Spec;
 use crate::units;
 use maud::html;
@@ -182,7 +182,7 @@ fn rows(designed: &SceneSummary, built: &SceneSummary) -> maud::Markup {
                 th { @if k == 0 { code { (designed.scene) } " " } (d.quantity.label) }
                 td.num { (crate::report::table::headline_value(d)) }
                 td.num { (crate::report::table::headline_value(b)) }
-                td.num { (with_unit(count_or_change(d.value, b.value, d.quantity.unit), d.quantity.unit)) }
+                td.num { (with_unit(figure_change(d.quantity, d.value, b.value), d.quantity.unit)) }
             }
         }
     }

@@ -11,7 +11,7 @@ use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
 use crate::model::results::SceneResult;
 use crate::numeric::extremes;
 use crate::report::svg::{LinePlot, MapCell, MapPlot, Mark, RefLine, Series, PALETTE, RED};
-use crate::report::table::{count_or_number, with_unit};
+use crate::report::table::{figure, with_unit};
 use crate::spec::Spec;
 use crate::units;
 
@@ -198,9 +198,9 @@ fn shown(def: &PlotDef, unit: &'static str) -> (&'static str, fn(f64) -> f64) {
     }
 }
 
-/// A value with its unit for a person ("-23.41 µm", "2").
-fn shown_value(value: f64, unit: &str) -> String {
-    with_unit(count_or_number(value, unit), unit)
+/// A value of `q` with its unit as shown (`unit`, converted) for a person ("-23.41 µm", "2").
+fn shown_value(q: &Quantity, value: f64, unit: &str) -> String {
+    with_unit(figure(q, value), unit)
 }
 
 /// Tick step of the crank axis: a sixth of a mesh period over one period, half a period over
@@ -266,7 +266,7 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
     }
     let small = def.ripple_in_title.then(|| small_ripple(&drawn)).flatten();
     if let Some(ripple) = small {
-        title += &format!(" (ripple {})", shown_value(convert(ripple), unit));
+        title += &format!(" (ripple {})", shown_value(first, convert(ripple), unit));
     }
     let mut p = LinePlot::new(&title, "crank angle φ (deg)", &y_label);
     p.x_step = mesh_step(spec, &x);
@@ -438,7 +438,7 @@ fn scalars(r: &SceneResult, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> Str
         .filter_map(|s| {
             let e = s.scalar(r)?;
             let (unit, convert) = shown(def, s.unit);
-            let value = shown_value(convert(e.value), unit);
+            let value = shown_value(s, convert(e.value), unit);
             Some(format!("{} {value}: {}", s.label, e.at))
         })
         .collect::<Vec<_>>()
@@ -460,7 +460,7 @@ fn limit_lines(spec: &Spec, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> Vec
             label,
             color: RED.into(),
         };
-        let shown_limit = shown_value(convert(limit.value), unit);
+        let shown_limit = shown_value(scalar, convert(limit.value), unit);
         if SPREADS.contains(&scalar) {
             let values: Vec<f64> = curves.values.concat();
             let ((lo, _), (hi, _)) = extremes(&values);

@@ -152,7 +152,7 @@ fn figures_table(r: &SceneResult, t: &TorsionCurves) -> Markup {
         th { "rigidity + (N·m/arcmin)" }
         th { "rigidity − (N·m/arcmin)" }
         th { "torsional rigidity (N·m/arcmin)" }
-        th { "hysteresis loss" }
+        th { "hysteresis loss (arcmin)" }
         @if t.friction { th { "loop energy per cycle (J)" } }
     };
     let rows = html! {
@@ -165,7 +165,7 @@ fn figures_table(r: &SceneResult, t: &TorsionCurves) -> Markup {
                 td { (number(nm_per_arcmin(f.rigidity_nmm_per_rad.1))) }
                 td { b { (number(nm_per_arcmin(f.rigidity()))) } }
                 @if t.friction {
-                    td { b { (arcmin(f.hysteresis_rad)) " arcmin" } }
+                    td { b { (hysteresis_cell(t, k)) } }
                     td { (number(1e-3 * f.loop_energy_nmm)) }
                 } @else {
                     td { "0 (frictionless model)" }
@@ -174,6 +174,16 @@ fn figures_table(r: &SceneResult, t: &TorsionCurves) -> Markup {
         }
     };
     data_table(head, rows)
+}
+
+/// The hysteresis loss at locked angle `k`, arcmin, to the loop's resolution
+/// (`TorsionCurves::hysteresis_resolution_rad`): narrower reads 0.
+fn hysteresis_cell(t: &TorsionCurves, k: usize) -> String {
+    let width = t.figures[k].hysteresis_rad;
+    match width.abs() < t.hysteresis_resolution_rad(k) {
+        true => "0".to_string(),
+        false => number(units::arcmin(width)),
+    }
 }
 
 /// The definitions the figures follow, for the reader of the table.

@@ -3,12 +3,14 @@
 //! of the scene's (`TorqueCurve`, solved by [`engine::torque_curve`](crate::engine::torque_curve)), and with a speed the mean power lost
 //! on each path as a stacked bar.
 
-use super::common::{data_table, figure, section, Section};
+use super::common::{data_table, figure, section, signed, Section};
+use crate::engine::torque_curve::CURVE_FRACTIONS;
+use crate::model::quantity::MEAN_EFFICIENCY;
 use crate::model::friction::PathLosses;
 use crate::model::results::{EfficiencyCurves, SceneResult, TorqueCurve};
 use crate::model::Scene;
 use crate::numeric::number;
-use crate::report::svg::{document, px, ticks, LinePlot, RefLine, Series, PALETTE, RED};
+use crate::report::svg::{document, px, ticks, LinePlot, Mark, RefLine, Series, PALETTE, RED};
 use crate::spec::Spec;
 use crate::units;
 use maud::html;
@@ -26,8 +28,9 @@ fn path_values(p: &PathLosses) -> [f64; 4] {
 }
 
 /// The efficiency-against-torque plot of a scene: the mean efficiency at each torque of the
-/// curve, the scene's own torque marked.
-fn torque_plot(scene: &Scene, c: &TorqueCurve, mean: f64) -> LinePlot {
+/// curve, the scene's own torque marked (a diamond on the curve, not a dashed red line: dashed
+/// red is a limit), and the spec's `min_mean_efficiency` as the limit line.
+fn torque_plot(spec: &Spec, scene: &Scene, c: &TorqueCurve, mean: f64) -> LinePlot {
     let mut plot = LinePlot::new(
         &format!("Efficiency against output torque: scene {}", scene.name),
         "output torque T (N·m)",
@@ -38,25 +41,50 @@ fn torque_plot(scene: &Scene, c: &TorqueCurve, mean: f64) -> LinePlot {
                      so the efficiency falls at light load"
         .into();
     let x: Vec<f64> = c.torque_nmm.iter().map(|&t| units::nm(t)).collect();
+    // The scene's own point is the curve's at the fraction 1 of its torque.
+    let own = CURVE_FRACTIONS.iter().position(|&f| f == 1.0);
+    let at = own.and_then(|k| x.get(k).copied());
     plot.series.push(Series::new(
         "mean efficiency",
         x,
         c.mean_efficiency.clone(),
         PALETTE[0],
     ));
-    let at = units::nm(scene.output_torque_nmm.abs());
-    plot.series.push(Series::new(
-        format!("the scene: {} N·m, {}", number(at), number(mean)),
-        vec![at, at],
-        vec![mean - 0.02, mean + 0.02],
-        RED,
-    ));
-    plot.ref_lines.push(RefLine {
-        value: mean,
-        label: String::new(),
-        color: RED.into(),
-    });
+    if let Some(at) = at {
+        let torque = signed(number(units::nm(scene.output_torque_nmm)));
+        plot.series.push(
+            Series::new(
+                format!("the scene: {torque} N·m, {}", number(mean)),
+                vec![at],
+                vec![mean],
+                "#222",
+            )
+            .marked(Mark::Diamond),
+        );
+    }
+    let limit = spec
+        .limits
+        .entries
+        .iter()
+        .find(|l| l.def.quantity.key == MEAN_EFFICIENCY.key);
+    if let Some(l) = limit {
+        plot.ref_lines.push(RefLine {
+            value: l.value,
+            label: format!("limit {}", number(l.value)),
+            color: RED.into(),
+        });
+    }
     plot
+}
+
+/// The caption's word on the dashed red line, when the spec sets `min_mean_efficiency`.
+fn limit_note(spec: &Spec) -> &'static str {
+    let limited = (spec.limits.entries.iter()).any(|l| l.def.quantity.key == MEAN_EFFICIENCY.key);
+    if limited {
+        "; dashed red: the spec's limit min_mean_efficiency"
+    } else {
+        ""
+    }
 }
 
 /// A stacked bar per scene of the mean power lost on each path, W.
@@ -141,16 +169,17 @@ pub(super) fn section_of(
             continue;
         };
         let file = format!("efficiency-{}.svg", k + 1);
-        files.push((file.clone(), torque_plot(s, c, r.mean_efficiency).to_svg()));
+        files.push((file.clone(), torque_plot(spec, s, c, r.mean_efficiency).to_svg()));
         figures.push((
             file,
             format!("Efficiency against torque, scene {}", s.name),
             format!(
-                "{} torques from {} to {} N·m; the scene's {} N·m marked",
+                "{} torques from {} to {} N·m; the scene's {} N·m marked (diamond){}",
                 c.torque_nmm.len(),
-                number(units::nm(c.torque_nmm.first().copied().unwrap_or(0.0))),
-                number(units::nm(c.torque_nmm.last().copied().unwrap_or(0.0))),
-                number(units::nm(s.output_torque_nmm.abs()))
+                signed(number(units::nm(c.torque_nmm.first().copied().unwrap_or(0.0)))),
+                signed(number(units::nm(c.torque_nmm.last().copied().unwrap_or(0.0)))),
+                signed(number(units::nm(s.output_torque_nmm))),
+                limit_note(spec)
             ),
         ));
     }

@@ -6,7 +6,9 @@ use std::path::Path;
 
 /// Write the design review of `run` into `dir`; how many files it has.
 pub fn write(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
-    with_input(run, review, |input| Ok(super::review::write(dir, input)?.len()))
+    with_input(run, review, |input| {
+        Ok(super::review::write(dir, input)?.len())
+    })
 }
 
 /// The design review of `run` as files (name, text), `index.html` last.

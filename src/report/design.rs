@@ -366,7 +366,7 @@ pub fn plots(req: &Requirements, run: &SearchRun) -> Vec<(String, String)> {
 }
 
 /// Size of a front design's disc drawing in the table, px.
-const THUMBNAIL_PX: f64 = 96.0;
+const THUMBNAIL_PX: f64 = 64.0;
 
 /// The file of front design `k`'s small disc drawing, in its review's folder.
 fn thumbnail_file(k: usize) -> String {
@@ -386,7 +386,11 @@ pub fn front_reviews(checks: &[CheckRun]) -> Vec<(String, String)> {
         };
         files.push((thumbnail_file(k), thumbnail(&review.disc, THUMBNAIL_PX)));
         let pages = crate::report::check_review::render(run, review);
-        files.extend(pages.into_iter().map(|(name, text)| (format!("{dir}/{name}"), text)));
+        files.extend(
+            pages
+                .into_iter()
+                .map(|(name, text)| (format!("{dir}/{name}"), text)),
+        );
     }
     files
 }

@@ -48,7 +48,11 @@ pub fn front(points: &[&[f64]]) -> Vec<usize> {
         })
         .collect();
     let within: Vec<usize> = (exact.iter().copied())
-        .filter(|&i| !exact.iter().any(|&j| dominates_within(points[j], points[i])))
+        .filter(|&i| {
+            !exact
+                .iter()
+                .any(|&j| dominates_within(points[j], points[i]))
+        })
         .collect();
     if within.is_empty() {
         exact

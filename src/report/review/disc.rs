@@ -264,7 +264,10 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
 /// rollers and the pins at the drawing's crank angle, as in `whole`; for a list of designs.
 pub fn thumbnail(disc: &Disc, size: f64) -> String {
     let half = disc.roller_circle_radius_mm + disc.roller_radius_mm;
-    let f = Frame::fit((-half, half, -half, half), (2.0, 2.0, size - 2.0, size - 2.0));
+    let f = Frame::fit(
+        (-half, half, -half, half),
+        (2.0, 2.0, size - 2.0, size - 2.0),
+    );
     let holes = hole_cutouts(&f, &disc.holes, disc.hole_radius_mm);
     let circles = |centres: &[Vec2], radius_mm: f64, fill: &'static str| {
         let r = px(f.len(radius_mm));

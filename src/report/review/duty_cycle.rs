@@ -34,7 +34,10 @@ pub(super) fn section(
     for &(k, s, d) in &cycles {
         let prefix = format!("duty-{}-{}", k + 1, slug(&s.name));
         let damage = damage_shares(&spec.design, &d.bins);
-        let (spectrum, shares) = (format!("{prefix}-spectrum.svg"), format!("{prefix}-shares.svg"));
+        let (spectrum, shares) = (
+            format!("{prefix}-spectrum.svg"),
+            format!("{prefix}-shares.svg"),
+        );
         files.push((spectrum.clone(), duty_spectrum::spectrum(&s.name, d)));
         files.push((
             shares.clone(),

@@ -159,8 +159,7 @@ pub(super) fn shares(scene: &str, d: &DutyCycle, damage: Option<&[Vec<f64>]>) ->
     let legend_y = bottom + 46.0;
     let body = html! {
         (titles(LEFT, &format!("Shares of the cycle per bin: scene {scene}"),
-            &["each bin's share of the cycle's time, of its revolutions and of the crank \
-               bearing's damage (Palmgren–Miner)".to_string()]))
+            &["time, revolutions and crank-bearing damage (Miner's rule)".to_string()]))
         (panel(top, height, "share (%)", &bars))
         @for i in 0..n {
             text.bin x=(px(LEFT + slot * (i as f64 + 0.5))) y=(px(bottom + 18.0)) font-size="12"
@@ -174,5 +173,9 @@ pub(super) fn shares(scene: &str, d: &DutyCycle, damage: Option<&[Vec<f64>]>) ->
             text.legend x=(px(lx + 20.0)) y=(px(ly)) font-size="12" { (name) }
         }
     };
-    document(W, legend_y + 20.0 * groups.len().div_ceil(3) as f64 + 10.0, body)
+    document(
+        W,
+        legend_y + 20.0 * groups.len().div_ceil(3) as f64 + 10.0,
+        body,
+    )
 }

@@ -5,8 +5,8 @@
 
 use super::common::{data_table, figure, section, signed, Section};
 use crate::engine::torque_curve::CURVE_FRACTIONS;
-use crate::model::quantity::MEAN_EFFICIENCY;
 use crate::model::friction::PathLosses;
+use crate::model::quantity::MEAN_EFFICIENCY;
 use crate::model::results::{EfficiencyCurves, SceneResult, TorqueCurve};
 use crate::model::Scene;
 use crate::numeric::number;
@@ -169,15 +169,22 @@ pub(super) fn section_of(
             continue;
         };
         let file = format!("efficiency-{}.svg", k + 1);
-        files.push((file.clone(), torque_plot(spec, s, c, r.mean_efficiency).to_svg()));
+        files.push((
+            file.clone(),
+            torque_plot(spec, s, c, r.mean_efficiency).to_svg(),
+        ));
         figures.push((
             file,
             format!("Efficiency against torque, scene {}", s.name),
             format!(
                 "{} torques from {} to {} N·m; the scene's {} N·m marked (diamond){}",
                 c.torque_nmm.len(),
-                signed(number(units::nm(c.torque_nmm.first().copied().unwrap_or(0.0)))),
-                signed(number(units::nm(c.torque_nmm.last().copied().unwrap_or(0.0)))),
+                signed(number(units::nm(
+                    c.torque_nmm.first().copied().unwrap_or(0.0)
+                ))),
+                signed(number(units::nm(
+                    c.torque_nmm.last().copied().unwrap_or(0.0)
+                ))),
                 signed(number(units::nm(s.output_torque_nmm))),
                 limit_note(spec)
             ),

@@ -46,10 +46,7 @@ pub(super) fn section_of(
             FaceAngle::LargestLineLoad => "largest line load",
         };
         let mut plot = LinePlot::new(
-            &format!(
-                "Line load along the face: scene {}, {crank} ({why})",
-                scene.name
-            ),
+            &format!("Line load along the face: scene {}", scene.name),
             "z from the middle of the face (mm)",
             "line load (N/mm)",
         );
@@ -69,7 +66,7 @@ pub(super) fn section_of(
             })
             .unwrap_or_default();
         plot.subtitle = format!(
-            "roller {} at {crank}, the scene's {why}; slice means ({} slices){peak}",
+            "at {crank}, the scene's {why}: roller {}; slice means ({} slices){peak}",
             p.roller,
             p.z_mm.len()
         );

@@ -112,11 +112,7 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         &mut files,
     ));
     sections.extend(bearing_life::section(input.spec, input.results));
-    sections.extend(duty_cycle::section(
-        input.spec,
-        input.results,
-        &mut files,
-    ));
+    sections.extend(duty_cycle::section(input.spec, input.results, &mut files));
     sections.extend(efficiency::section_of(
         input.spec,
         input.results,

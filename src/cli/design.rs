@@ -91,7 +91,9 @@ fn finish(
 ) -> Result<Outcome> {
     if let Some(dir) = out_dir {
         let dir = Path::new(dir);
+        let checks = commands::front_checks(run, &Terminal)?;
         let mut files: Vec<(String, String)> = run.specs.clone();
+        files.extend(report::design::front_reviews(&checks));
         files.push(("front.csv".into(), report::design::csv(req, &run.search)));
         files.extend(report::design::plots(req, &run.search));
         files.push((
@@ -120,7 +122,11 @@ fn finish(
                 )));
             }
         }
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
+        // The output directory and each design's review folder.
+        let folders = (0..run.specs.len()).map(|k| dir.join(commands::design_name(k)));
+        for d in std::iter::once(dir.to_path_buf()).chain(folders) {
+            std::fs::create_dir_all(&d).map_err(|e| Error::io(&d.display().to_string(), e))?;
+        }
         let mut batch = Batch::new();
         for (name, text) in &files {
             batch.add(&dir.join(name), text.as_bytes())?;

@@ -125,6 +125,30 @@ pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
     }
 }
 
+/// Each bin's share of each disc's crank-bearing damage under the cycle, `[disc][bin]`, each
+/// disc's summing to 1: by Miner's rule bin i uses up the bearing of disc k in proportion to
+/// its revolutions and its load's damage per revolution, sᵢ·nᵢ·P_ik^p (p the bearing's life
+/// exponent; a standstill none). `None` when the bearing is not rated or no bin wears it.
+pub fn damage_shares(design: &Design, bins: &[DutyBinResult]) -> Option<Vec<Vec<f64>>> {
+    let p = design.crank_bearing?.life_exponent;
+    let loads: Vec<Vec<f64>> = bins
+        .iter()
+        .map(|b| bin_equivalent_loads(&b.result))
+        .collect::<Option<_>>()?;
+    let weights = revolution_weights(bins);
+    (0..design.discs)
+        .map(|k| {
+            // Loads scaled by the largest so that P^p cannot overflow.
+            let largest = loads.iter().fold(0.0f64, |m, l| m.max(l[k]));
+            let damage: Vec<f64> = (weights.iter().zip(&loads))
+                .map(|(&w, l)| w * (l[k] / largest).powf(p))
+                .collect();
+            let total: f64 = damage.iter().sum();
+            (total > 0.0).then(|| damage.iter().map(|d| d / total).collect())
+        })
+        .collect()
+}
+
 /// A bin at a standstill moves no power, so it has no efficiency: its run's efficiency (computed
 /// as a scene without a speed would be, where η does not depend on the speed) is dropped, with
 /// each disc's.

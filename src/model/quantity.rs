@@ -651,17 +651,7 @@ pub const MAX_LINE_LOAD: Quantity = Quantity {
     of: None,
     read: Read::Scalar(|r| {
         let face = r.loaded.rollers.as_ref()?.face.as_ref()?;
-        let mut best = (0.0, 0, 0, 0);
-        for i in 0..face.line_load_n_per_mm.len() {
-            for (k, slices) in face.angles(i).enumerate() {
-                for (s, &q) in slices.iter().enumerate() {
-                    if q > best.0 {
-                        best = (q, i, k, s);
-                    }
-                }
-            }
-        }
-        let (value, i, k, s) = best;
+        let (value, i, k, s) = face.peak_line_load();
         face.line_load_n_per_mm.first()?.first()?;
         let n = face.slices;
         Some(Extreme {

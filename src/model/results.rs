@@ -114,6 +114,22 @@ impl FaceLoads {
     pub fn angles(&self, roller: usize) -> std::slice::ChunksExact<'_, f64> {
         self.line_load_n_per_mm[roller].chunks_exact(self.slices)
     }
+
+    /// The largest line load over rollers, angles and slices, N/mm, and where: (value, roller,
+    /// angle, slice), the first in that order; (0, 0, 0, 0) when nothing is loaded.
+    pub fn peak_line_load(&self) -> (f64, usize, usize, usize) {
+        let mut best = (0.0, 0, 0, 0);
+        for i in 0..self.line_load_n_per_mm.len() {
+            for (k, slices) in self.angles(i).enumerate() {
+                for (s, &q) in slices.iter().enumerate() {
+                    if q > best.0 {
+                        best = (q, i, k, s);
+                    }
+                }
+            }
+        }
+        best
+    }
 }
 
 /// Output pins over the sweep.

@@ -6,6 +6,22 @@ use std::path::Path;
 
 /// Write the design review of `run` into `dir`; how many files it has.
 pub fn write(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
+    with_input(run, review, |input| {
+        Ok(super::review::write(dir, input)?.len())
+    })
+}
+
+/// The design review of `run` as files (name, text), `index.html` last.
+pub fn render(run: &CheckRun, review: &Review) -> Vec<(String, String)> {
+    with_input(run, review, super::review::render)
+}
+
+/// `f` of the review's input built from `run` and `review`.
+fn with_input<T>(
+    run: &CheckRun,
+    review: &Review,
+    f: impl FnOnce(&super::review::ReportInput) -> T,
+) -> T {
     let spec = &run.spec;
     let views: Vec<_> = (spec.studies.iter().zip(&run.studies).zip(&review.maps))
         .map(|((s, r), cells)| super::optimisation::view(spec, s, r, cells, review.map_steps))
@@ -37,5 +53,5 @@ pub fn write(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
         efficiency: &review.efficiency,
         face: &review.face,
     };
-    Ok(super::review::write(dir, &input)?.len())
+    f(&input)
 }

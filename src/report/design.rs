@@ -1,11 +1,14 @@
 //! What `cycloid design` shows: the search's counts and the front as a terminal table, a CSV
 //! and a review page with the front plotted.
 
+use crate::engine::commands::{self, CheckRun};
 use crate::engine::design_search::failure::{Failure, Miss, Requirement};
 use crate::engine::design_search::missed::{Cause, Count, Infeasible};
 use crate::engine::design_search::{candidate::*, Evaluation, SearchRun, Tally};
+use crate::model::quantity::Bound;
 use crate::model::requirements::{ObjectiveKind, Requirements};
 use crate::numeric::number;
+use crate::report::review::disc::thumbnail;
 use crate::report::svg::base::{document, px};
 use crate::report::svg::labels::{Bounds, Label, Layout, Obstacle};
 use crate::report::svg::ticks;
@@ -258,7 +261,8 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
     if let Some(dir) = out_dir {
         let _ = writeln!(
             s,
-            "\nwrote {} specs (design-01.yaml …), front.csv and index.html to {dir}",
+            "\nwrote {} specs (design-01.yaml …), their reviews (design-01/index.html …), \
+             front.csv and index.html to {dir}",
             run.front.len()
         );
     }
@@ -422,7 +426,38 @@ pub fn plots(req: &Requirements, run: &SearchRun) -> Vec<(String, String)> {
         .collect()
 }
 
-/// The review page: the counts, the plots and the front's table with links to its specs.
+/// Size of a front design's disc drawing in the table, px.
+const THUMBNAIL_PX: f64 = 64.0;
+
+/// The file of front design `k`'s small disc drawing, in its review's folder.
+fn thumbnail_file(k: usize) -> String {
+    format!("{}/disc-small.svg", commands::design_name(k))
+}
+
+/// Each front design's own review (the review `check --report` writes of its spec, from
+/// `checks`, in the front's order) in its folder `design-01/`, …, with a small drawing of its
+/// disc for the front's table: (path under the output directory, text), each folder's
+/// `index.html` after its figures.
+pub fn front_reviews(checks: &[CheckRun]) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    for (k, run) in checks.iter().enumerate() {
+        let dir = commands::design_name(k);
+        let Some(review) = &run.review else {
+            continue;
+        };
+        files.push((thumbnail_file(k), thumbnail(&review.disc, THUMBNAIL_PX)));
+        let pages = crate::report::check_review::render(run, review);
+        files.extend(
+            pages
+                .into_iter()
+                .map(|(name, text)| (format!("{dir}/{name}"), text)),
+        );
+    }
+    files
+}
+
+/// The review page: the counts, the plots and the front's table, each design with its disc
+/// drawn small and linked to its own review and its spec.
 pub fn page(req: &Requirements, run: &SearchRun, time: &Timing) -> String {
     let cols = columns(req);
     let table = cells(&cols, &run.front);
@@ -434,8 +469,10 @@ pub fn page(req: &Requirements, run: &SearchRun, time: &Timing) -> String {
                 meta charset="utf-8";
                 title { "Design search: " (req.name) }
                 style { "body{font-family:sans-serif;margin:24px auto;max-width:1360px;padding:0 16px}\
+                         .scroll{overflow-x:auto;max-width:100%}\
                          table{border-collapse:collapse;font-size:13px}\
-                         th,td{padding:3px 8px;border-bottom:1px solid #eee;text-align:right}td a{white-space:nowrap}\
+                         th,td{padding:3px 8px;border-bottom:1px solid #eee;text-align:right;vertical-align:middle}td a{white-space:nowrap}\
+                         td.design{text-align:center}td.design img{display:block;margin:0 auto}\
                          .fail{color:#a11212;font-weight:bold}.pass{color:#1d6b1a;font-weight:bold}" }
             }
             body {
@@ -447,20 +484,28 @@ pub fn page(req: &Requirements, run: &SearchRun, time: &Timing) -> String {
                     p { "Of the " (inf.evaluated) " designs evaluated, per requirement:" }
                     ul { @for c in &inf.counts { li { (count_text(c)) } } }
                 } @else {
-                    p.pass { (run.front.len()) " designs on the Pareto front; each meets every requirement and passes `cycloid check`." }
+                    p.pass { (run.front.len()) " designs on the Pareto front; each meets every requirement and passes " code { "cycloid check" } "." }
                     @for (name, _) in &plots { img src=(name) alt="the front"; }
                     h2 { "The front" }
-                    table {
-                        thead { tr { th { "spec" } @for (h, _) in &cols { th { (h) } } } }
+                    p { "Each design links to its own review (the one " code { "cycloid check SPEC --report DIR" }
+                        " writes) and to its spec; the table scrolls sideways." }
+                    div.scroll { table {
+                        thead { tr { th { "design" } th { "spec" } @for (h, _) in &cols { th { (h) } } } }
                         tbody {
                             @for (k, row) in table.iter().enumerate() {
+                                @let review = format!("{}/index.html", commands::design_name(k));
                                 tr {
-                                    td { a href=(crate::engine::commands::design_file(k)) { (crate::engine::commands::design_file(k)) } }
+                                    td.design { a href=(review) {
+                                        img src=(thumbnail_file(k)) width=(THUMBNAIL_PX) height=(THUMBNAIL_PX)
+                                            alt=(format!("disc of design {}", k + 1));
+                                        (commands::design_name(k))
+                                    } }
+                                    td { a href=(commands::design_file(k)) { (commands::design_file(k)) } }
                                     @for c in row { td { (c) } }
                                 }
                             }
                         }
-                    }
+                    } }
                 }
             }
         }

@@ -8,6 +8,7 @@
 //! count in the title.
 
 use crate::common::{cycloid as run, Scratch};
+use cycloid::progress::Silent;
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 use std::collections::HashMap;
@@ -726,4 +727,335 @@ fn the_front_plot_has_a_title() {
         els.iter().any(|e| e.name == "text" && e.text == subtitle),
         "{subtitle}"
     );
+}
+
+/// The y pixel of `value` on a line plot's y axis, read from its tick labels (right-aligned
+/// text left of the plot area, each 4 px under its tick's line): the axis is linear, so the
+/// two outer ticks fix it.
+fn y_of(els: &[El], value: f64) -> f64 {
+    let (left, ..) = plot_area(els);
+    let ticks: Vec<(f64, f64)> = els
+        .iter()
+        .filter(|e| e.name == "text" && e.attr("text-anchor") == "end" && e.num("x") < left)
+        .map(|e| (e.text.replace('−', "-").parse().unwrap(), e.num("y") - 4.0))
+        .collect();
+    let (a, b) = (ticks[0], ticks[ticks.len() - 1]);
+    a.1 + (value - a.0) * (b.1 - a.1) / (b.0 - a.0)
+}
+
+/// The dashed reference lines drawn across a line plot's area (not the legend's swatches,
+/// which start right of it): (colour, y pixel).
+fn reference_lines(els: &[El]) -> Vec<(String, f64)> {
+    let (left, ..) = plot_area(els);
+    els.iter()
+        .filter(|e| e.name == "line" && e.attr("stroke-dasharray") == "7 4")
+        .filter(|e| (e.num("x1") - left).abs() < 0.01)
+        .map(|e| (e.attr("stroke").to_string(), e.num("y1")))
+        .collect()
+}
+
+/// Dashed red is a limit everywhere in the review, the efficiency plot included (issue 44,
+/// item 6): on `reducer-efficiency.yaml` driven backwards (−20 N·m) the one red dashed line is
+/// `min_mean_efficiency: 0.85`, at 0.85 on the axis (0.02 px: two decimals of each pixel
+/// written), and the scene's own point is a mark, not red, whose legend keeps the torque's
+/// sign: "the scene: −20.00 N·m". Before, a red dashed line sat at the scene's own efficiency
+/// and the torque read "20.00 N·m".
+#[test]
+fn the_efficiency_plot_draws_its_limit_and_the_scene_with_its_signed_torque() {
+    let dir = Scratch::new("review-efficiency-limit");
+    let text = std::fs::read_to_string(format!(
+        "{}/specs/reducer-efficiency.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let edited = text.replace("output_torque_nm: 20.0 ", "output_torque_nm: -20.0 ");
+    assert_ne!(edited, text);
+    assert!(text.contains("min_mean_efficiency: 0.85"));
+    dir.write("spec.yaml", edited);
+    let out = run(&dir.path, &["check", "spec.yaml", "--report", "r"]);
+    assert!(matches!(out.code, Some(0 | 1)), "{out:?}");
+    let els = elements(&dir.read("r/efficiency-1.svg"));
+    let lines = reference_lines(&els);
+    assert_eq!(lines.len(), 1, "{lines:?}");
+    assert_eq!(lines[0].0, "#d62728");
+    let at = y_of(&els, 0.85);
+    assert!((lines[0].1 - at).abs() <= 0.02, "{lines:?}: 0.85 at {at}");
+    let scene = els
+        .iter()
+        .find(|e| e.class() == "series" && e.attr("aria-label").starts_with("the scene: "))
+        .expect("the scene's point");
+    assert!(
+        scene
+            .attr("aria-label")
+            .starts_with("the scene: −20.00 N·m, "),
+        "{}",
+        scene.attr("aria-label")
+    );
+    let marks: Vec<&El> = els
+        .iter()
+        .filter(|e| e.class() == "mark" && e.within.iter().any(|c| c == "series"))
+        .collect();
+    assert_eq!(marks.len(), 1, "one mark, the scene's");
+    assert!(
+        !marks[0].attrs.values().any(|v| v == "#d62728"),
+        "{:?}",
+        marks[0]
+    );
+}
+
+/// The face load factor against the crank angle (issue 44, item 8): `reducer-misaligned.yaml`'s
+/// tilted scene draws one curve over its 1080 crank angles whose largest value is the check
+/// table's `max_face_load_factor` (to the table's 4 digits and 0.02 px of drawing), with the
+/// spec's limit 3.5 dashed red and the uniform face's 1 dashed grey.
+#[test]
+fn the_face_load_factor_is_plotted_against_the_crank_angle() {
+    let (dir, out) = misaligned_review("face-factor");
+    let row = out
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("misaligned/max_face_load_factor"))
+        .unwrap();
+    let cells: Vec<&str> = row.split("  ").filter(|c| !c.trim().is_empty()).collect();
+    let table: f64 = cells[1].trim().parse().unwrap();
+    let els = elements(&dir.read("review/scene-2-misaligned-face-load-factor.svg"));
+    assert!(
+        title(&els).starts_with("Face load factor"),
+        "{}",
+        title(&els)
+    );
+    let curve = els
+        .iter()
+        .find(|e| e.name == "polyline" && e.inside("series"))
+        .unwrap();
+    let points = point_list(curve.attr("points"));
+    assert_eq!(points.len(), 1080);
+    let top = points.iter().map(|p| p.1).fold(f64::MAX, f64::min);
+    // The table rounds to 4 digits (±5e-4 at 3.0); a pixel is written to 0.01.
+    let slack = (y_of(&els, table + 5e-4) - y_of(&els, table)).abs() + 0.02;
+    assert!(
+        (top - y_of(&els, table)).abs() <= slack,
+        "{top} against {table}"
+    );
+    let lines = reference_lines(&els);
+    let red: Vec<f64> = lines
+        .iter()
+        .filter(|l| l.0 == "#d62728")
+        .map(|l| l.1)
+        .collect();
+    let grey: Vec<f64> = lines
+        .iter()
+        .filter(|l| l.0 != "#d62728")
+        .map(|l| l.1)
+        .collect();
+    assert_eq!(red.len(), 1, "{lines:?}");
+    assert!((red[0] - y_of(&els, 3.5)).abs() <= 0.02, "{lines:?}");
+    assert_eq!(grey.len(), 1, "{lines:?}");
+    assert!((grey[0] - y_of(&els, 1.0)).abs() <= 0.02, "{lines:?}");
+}
+
+/// A crowned, aligned scene gets its face plot too, at the angle of its largest line load,
+/// and each face plot names its angle and why, first thing under its title (issue 44, item 8): `reducer-misaligned.yaml`'s
+/// `designed` scene (crowned, aligned) draws one curve whose peak is the check table's
+/// `max_line_load_n_per_mm` of that scene, at the roller and angle the table names; the tilted
+/// scene's title names the largest face load factor.
+#[test]
+fn a_crowned_aligned_scene_draws_its_face_at_its_largest_line_load() {
+    let (dir, out) = misaligned_review("face-crowned");
+    let row = out
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("designed/max_line_load_n_per_mm"))
+        .unwrap();
+    let cells: Vec<&str> = row.split("  ").filter(|c| !c.trim().is_empty()).collect();
+    let (value, place) = (cells[1].trim(), cells[4].trim());
+    let value: f64 = value.trim_end_matches(" N/mm").parse().unwrap();
+    // "roller 3 at crank 12.30°, slice …": the roller and the angle.
+    let (roller, rest) = place.split_once(" at ").unwrap();
+    let crank = rest.split(',').next().unwrap();
+    let els = elements(&dir.read("review/face-1-designed.svg"));
+    let subtitle = |els: &[El]| -> String {
+        let lines = els
+            .iter()
+            .filter(|e| e.name == "text" && e.attr("fill") == "#555");
+        lines.map(|e| e.text.clone()).collect::<Vec<_>>().join(" ")
+    };
+    let want = format!("at {crank}, the scene's largest line load: {roller}; ");
+    assert!(
+        subtitle(&els).starts_with(&want),
+        "{want:?} / {:?}",
+        subtitle(&els)
+    );
+    let curves: Vec<Vec<(f64, f64)>> = els
+        .iter()
+        .filter(|e| e.name == "polyline" && e.inside("series"))
+        .map(|e| point_list(e.attr("points")))
+        .collect();
+    assert_eq!(curves.len(), 1, "aligned: no designed curve beside it");
+    let top = curves[0].iter().map(|p| p.1).fold(f64::MAX, f64::min);
+    // The table rounds to 4 digits; a pixel is written to 0.01.
+    let slack = (y_of(&els, value * (1.0 + 5e-4)) - y_of(&els, value)).abs() + 0.02;
+    assert!(
+        (top - y_of(&els, value)).abs() <= slack,
+        "{top} against {value}"
+    );
+    let tilted = elements(&dir.read("review/face-2-misaligned.svg"));
+    let names = subtitle(&tilted);
+    // The angle the check table gives the tilted scene's largest factor at.
+    let factor = out
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("misaligned/max_face_load_factor"))
+        .unwrap();
+    let at = factor
+        .split("  ")
+        .filter(|c| !c.trim().is_empty())
+        .nth(4)
+        .unwrap();
+    let want = format!(
+        "at {}, the scene's largest face load factor: roller ",
+        at.trim()
+    );
+    assert!(names.starts_with(&want), "{want:?} / {names:?}");
+}
+
+/// The duty cycle's pictures (issue 44, item 7) on `reducer-duty-cycle.yaml` (30 N·m at
+/// 1000 rpm 20 %, 15 N·m at 2000 rpm 40 %, −20 N·m at 1000 rpm 20 %, 8 N·m standing 20 %):
+/// the load spectrum's bars are as wide as the time shares (0.2, 0.4, 0.2, 0.2 of the axis),
+/// as tall as the torques (30 : 15 : 20 : 8, the braking bin below the zero line) and speeds
+/// (1 : 2 : 1 : 0); the shares' bars are the time shares, the revolution shares sᵢ·nᵢ/Σ sⱼ·nⱼ
+/// (0.2·1000/1200, 0.4·2000/1200, …) and the bearing damage shares by Miner's rule
+/// sᵢ·nᵢ·Pᵢ^p/Σ sⱼ·nⱼ·Pⱼ^p, computed here from each bin's own equivalent load Pᵢ (its run's
+/// ordinary bearing life) with p = 10/3. Pixels are written to 0.01: 0.03 px covers a bar's
+/// two rounded ends.
+#[test]
+fn the_duty_cycle_is_drawn_as_its_spectrum_and_each_bins_shares() {
+    let dir = Scratch::new("review-duty");
+    let path = format!(
+        "{}/specs/reducer-duty-cycle.yaml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = run(&dir.path, &["check", &path, "--report", "r"]);
+    assert_eq!(out.code, Some(0), "{out:?}");
+    let bins = [
+        (30.0, 1000.0, 0.2),
+        (15.0, 2000.0, 0.4),
+        (-20.0, 1000.0, 0.2),
+        (8.0, 0.0, 0.2),
+    ];
+    let spectrum = elements(&dir.read("r/duty-1-robot-joint-spectrum.svg"));
+    let (left, _, width, _) = plot_area(&spectrum);
+    let bars = |els: &[El], class: &str| -> Vec<(f64, f64, f64, f64)> {
+        els.iter()
+            .filter(|e| e.name == "rect" && e.class() == class)
+            .map(|e| (e.num("x"), e.num("y"), e.num("width"), e.num("height")))
+            .collect()
+    };
+    let torque = bars(&spectrum, "torque");
+    let speed = bars(&spectrum, "speed");
+    assert_eq!((torque.len(), speed.len()), (4, 4));
+    let mut start = 0.0;
+    for (i, &(t, n, share)) in bins.iter().enumerate() {
+        for b in [torque[i], speed[i]] {
+            assert!(
+                (b.0 - (left + start * width)).abs() <= 0.03,
+                "bin {i}: {b:?}"
+            );
+            assert!((b.2 - share * width).abs() <= 0.03, "bin {i}: {b:?}");
+        }
+        start += share;
+        // Heights in proportion to |T| and n, against the first bin's.
+        let (h0, s0) = (torque[0].3, speed[0].3);
+        assert!(
+            (torque[i].3 - h0 * f64::abs(t) / 30.0).abs() <= 0.03,
+            "bin {i}"
+        );
+        assert!((speed[i].3 - s0 * n / 1000.0).abs() <= 0.03, "bin {i}");
+    }
+    // The braking bin hangs from the zero line, where the others stand.
+    let zero = torque[0].1 + torque[0].3;
+    assert!((torque[2].1 - zero).abs() <= 0.03, "{torque:?}");
+
+    let spec = cycloid::spec::load(&path).unwrap();
+    let result = cycloid::check(&spec, &cycloid::CheckOptions::default(), &Silent).unwrap();
+    let duty = result.results[0].duty.as_ref().unwrap();
+    let p = 10.0 / 3.0;
+    let loads: Vec<f64> = (duty.bins.iter())
+        .map(|b| b.result.bearing_life.unwrap().equivalent_load_n)
+        .collect();
+    let damage: Vec<f64> = (bins.iter().zip(&loads))
+        .map(|(&(_, n, s), &l)| s * n * l.powf(p))
+        .collect();
+    let total: f64 = damage.iter().sum();
+    let revolutions: f64 = bins.iter().map(|b| b.2 * b.1).sum();
+    let shares = elements(&dir.read("r/duty-1-robot-joint-shares.svg"));
+    let (_, top, _, height) = plot_area(&shares);
+    let zero = y_of(&shares, 0.0);
+    assert!((zero - (top + height)).abs() <= 0.03, "shares start at 0 %");
+    let per_percent = (zero - y_of(&shares, 100.0)) / 100.0;
+    for (class, want) in [
+        ("time-share", bins.map(|b| b.2).to_vec()),
+        (
+            "revolution-share",
+            bins.map(|b| b.2 * b.1 / revolutions).to_vec(),
+        ),
+        ("damage-share", damage.iter().map(|d| d / total).collect()),
+    ] {
+        let got = bars(&shares, class);
+        assert_eq!(got.len(), 4, "{class}");
+        for (i, (b, w)) in got.iter().zip(&want).enumerate() {
+            assert!(
+                (b.3 - 100.0 * w * per_percent).abs() <= 0.03,
+                "{class} bin {i}: {b:?} {w}"
+            );
+        }
+    }
+}
+
+/// Each front design has its own review page (issue 44, item 5): `DIR/design-01/index.html`
+/// and its figures are, byte for byte, what `cycloid check design-01.yaml --report DIR` writes
+/// beside the spec (the same function; the date pinned), and the front's table links it from
+/// the design's row with a small drawing of its disc: the profile with its holes, the 10
+/// rollers and the 6 pins of the small search's designs. The table scrolls sideways (the
+/// objective columns were off a 1280 px window with no way to reach them) and no raw Markdown
+/// backtick shows.
+#[test]
+fn each_front_design_has_its_own_review_linked_from_its_row() {
+    let dir = Scratch::new("front-reviews");
+    dir.write("small.yaml", crate::design_search::SMALL);
+    let out = run(&dir.path, &["design", "small.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let page = dir.read("front/index.html");
+    assert!(!page.contains('`'), "a raw backtick on the page");
+    assert!(
+        page.contains("<div class=\"scroll\"><table>"),
+        "the table scrolls"
+    );
+    assert!(
+        page.contains(".scroll{overflow-x:auto"),
+        "the table scrolls"
+    );
+    let designs = dir.read("front/front.csv").lines().count() - 1;
+    assert!(designs >= 2);
+    for k in [1, designs] {
+        let name = format!("design-{k:02}");
+        let row = format!("<a href=\"{name}/index.html\"><img src=\"{name}/disc-small.svg\"");
+        assert!(page.contains(&row), "{row}");
+        let check = run(
+            &dir.join("front"),
+            &["check", &format!("{name}.yaml"), "--report", "alone"],
+        );
+        assert_eq!(check.code, Some(0), "{check:?}");
+        let mut written = crate::common::files(&dir.join(&format!("front/{name}")));
+        let thumbnail = written.remove("disc-small.svg").expect("a small disc");
+        assert_eq!(
+            written,
+            crate::common::files(&dir.join("front/alone")),
+            "{name}"
+        );
+        std::fs::remove_dir_all(dir.join("front/alone")).unwrap();
+        let els = elements(std::str::from_utf8(&thumbnail).unwrap());
+        assert_eq!(els.iter().filter(|e| e.class() == "profile").count(), 1);
+        let circles = els.iter().filter(|e| e.name == "circle").count();
+        assert_eq!(circles, 10 + 6, "{name}: rollers and pins");
+    }
 }

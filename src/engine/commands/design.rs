@@ -2,7 +2,9 @@
 //! front with the spec of each of its designs; `design_shard` computes one shard of the
 //! global stage, `merge_design_shards` and `design_from_shards` finish the search from them.
 
+use super::check::{check, CheckOptions, CheckRun, ReviewOptions};
 use crate::engine::design_search::{self, candidate, shard, Evaluation, SearchRun};
+use crate::engine::scene::Writes;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::requirements::Requirements;
 use crate::progress::Progress;
@@ -22,9 +24,15 @@ impl DesignRun {
     }
 }
 
+/// The name of front design `k` (0-based): `design-01`, …; its review page is
+/// `design-01/index.html`.
+pub fn design_name(k: usize) -> String {
+    format!("design-{:02}", k + 1)
+}
+
 /// The file name of front design `k` (0-based): `design-01.yaml`, …
 pub fn design_file(k: usize) -> String {
-    format!("design-{:02}.yaml", k + 1)
+    format!("{}.yaml", design_name(k))
 }
 
 /// The spec of front design `k` as written: the full check's scenes and limits, named after
@@ -80,6 +88,26 @@ fn with_specs(req: &Requirements, requirements_path: &str, search: SearchRun) ->
         .map(|(k, e)| (design_file(k), front_spec(req, requirements_path, k, e)))
         .collect();
     DesignRun { search, specs }
+}
+
+/// The check of each front design's spec, in the front's order, as `check SPEC --report DIR`
+/// runs it (the disc drawn where its smallest gap occurs, no objective maps): what each
+/// design's own review page shows. The spec is read as `design_file(k)`.
+pub fn front_checks(run: &DesignRun, progress: &dyn Progress) -> Result<Vec<CheckRun>> {
+    let options = CheckOptions {
+        writes: Writes {
+            json: false,
+            report: true,
+        },
+        tolerance: false,
+        review: Some(ReviewOptions {
+            crank_rad: None,
+            map_steps: 0,
+        }),
+    };
+    (run.specs.iter())
+        .map(|(file, text)| check(&crate::spec::parse(file, text)?, &options, progress))
+        .collect()
 }
 
 /// The global stage's candidates of a search in all (`--shard I/N` takes N at most this).

@@ -18,8 +18,8 @@ pub use check::{
     ReviewOptions, MAX_MAP_STEPS,
 };
 pub use design::{
-    design, design_candidates, design_file, design_from_shards, design_shard, front_spec,
-    merge_design_shards, DesignRun, MergedDesign,
+    design, design_candidates, design_file, design_from_shards, design_name, design_shard,
+    front_checks, front_spec, merge_design_shards, DesignRun, MergedDesign,
 };
 pub use fit::fit;
 pub use optimise::{optimise, OptimiseRun};

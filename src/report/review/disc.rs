@@ -260,6 +260,31 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
     (document(w, h, body), caption)
 }
 
+/// A small drawing of the disc (`size` px square, no text): its profile with the holes, the
+/// rollers and the pins at the drawing's crank angle, as in `whole`; for a list of designs.
+pub fn thumbnail(disc: &Disc, size: f64) -> String {
+    let half = disc.roller_circle_radius_mm + disc.roller_radius_mm;
+    let f = Frame::fit(
+        (-half, half, -half, half),
+        (2.0, 2.0, size - 2.0, size - 2.0),
+    );
+    let holes = hole_cutouts(&f, &disc.holes, disc.hole_radius_mm);
+    let circles = |centres: &[Vec2], radius_mm: f64, fill: &'static str| {
+        let r = px(f.len(radius_mm));
+        html! { @for &c in centres {
+            @let (x, y) = f.at(c);
+            circle cx=(px(x)) cy=(px(y)) r=(r) fill=(fill) stroke="#444" stroke-width="0.5" {}
+        } }
+    };
+    let body = html! {
+        path.profile d=(f.path(&disc.profile) + &holes) fill="#cfe0f1" fill-rule="evenodd"
+            stroke="#1f4e79" stroke-width="0.8" {}
+        (circles(&disc.rollers, disc.roller_radius_mm, "#e6e6e6"))
+        (circles(&disc.pins, disc.pin_radius_mm, "#6b6b6b"))
+    };
+    document(size, size, body)
+}
+
 /// The tightest roller against the disc flank, true scale, the gap along the normal:
 /// (SVG, caption). The gap, tens of µm against a disc of tens of mm, cannot be seen in the
 /// whole drawing.

@@ -1,9 +1,11 @@
 //! The review's duty cycles ([`engine::duty_cycle`](crate::engine::duty_cycle)): per duty-cycle
 //! scene the cycle's figures (crank-bearing life by Palmgren–Miner, equivalent torque, mean
-//! speed, energy-weighted efficiency) and a table of its bins.
+//! speed, energy-weighted efficiency), a table of its bins and their pictures (`duty_spectrum`:
+//! the load spectrum, and each bin's shares of time, revolutions and bearing damage).
 
-use super::common::{self, data_table, signed, Section};
-use crate::engine::duty_cycle::bin_equivalent_loads;
+use super::common::{self, data_table, figure, signed, slug, Section};
+use super::duty_spectrum;
+use crate::engine::duty_cycle::{bin_equivalent_loads, damage_shares};
 use crate::model::quantity::{MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY};
 use crate::model::results::SceneResult;
 use crate::numeric::number;
@@ -11,16 +13,37 @@ use crate::spec::Spec;
 use crate::units;
 use maud::html;
 
-/// The duty cycles of the spec's scenes, one block per duty-cycle scene; `None` without one.
-pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
+/// The duty cycles of the spec's scenes, one block per duty-cycle scene with its pictures
+/// (pushed to `files`); `None` without one.
+pub(super) fn section(
+    spec: &Spec,
+    results: &[SceneResult],
+    files: &mut Vec<(String, String)>,
+) -> Option<Section> {
     let cycles: Vec<_> = spec
         .scenes
         .iter()
         .zip(results)
-        .filter_map(|(s, r)| Some((s, r.duty.as_deref()?)))
+        .enumerate()
+        .filter_map(|(k, (s, r))| Some((k, s, r.duty.as_deref()?)))
         .collect();
     if cycles.is_empty() {
         return None;
+    }
+    let mut pictures = Vec::new();
+    for &(k, s, d) in &cycles {
+        let prefix = format!("duty-{}-{}", k + 1, slug(&s.name));
+        let damage = damage_shares(&spec.design, &d.bins);
+        let (spectrum, shares) = (
+            format!("{prefix}-spectrum.svg"),
+            format!("{prefix}-shares.svg"),
+        );
+        files.push((spectrum.clone(), duty_spectrum::spectrum(&s.name, d)));
+        files.push((
+            shares.clone(),
+            duty_spectrum::shares(&s.name, d, damage.as_deref()),
+        ));
+        pictures.push((spectrum, shares, damage.is_some()));
     }
     let optional = |x: Option<f64>| x.map_or("—".to_string(), number);
     let body = html! {
@@ -34,7 +57,7 @@ pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
              Σ sᵢ·nᵢ·Eᵢ, each bin's power delivered Dᵢ and entering Eᵢ as its power flows (the \
              output driving a bin of negative torque; a bin at a standstill has no efficiency)."
         }
-        @for (s, d) in &cycles {
+        @for ((_, s, d), (spectrum, shares, damage)) in cycles.iter().zip(&pictures) {
             h3 { "Scene " code { (s.name) } }
             ul {
                 @for (k, b) in d.life.iter().enumerate() {
@@ -78,6 +101,20 @@ pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
                     td { (optional(MEAN_EFFICIENCY.scalar(&b.result).map(|e| e.value))) }
                 } } },
             ))
+            div.grid {
+                (figure(spectrum, &format!("Load spectrum, scene {}", s.name),
+                    "Each bin's output torque (signed: negative brakes) and input speed, as wide \
+                     as its share of the cycle's time."))
+                (figure(shares, &format!("Shares of the cycle, scene {}", s.name),
+                    if *damage {
+                        "Each bin's share of the time, of the revolutions (sᵢ·nᵢ / Σ sⱼ·nⱼ) \
+                         and of the crank bearing's damage by Miner's rule (sᵢ·nᵢ·Pᵢ^p / \
+                         Σ sⱼ·nⱼ·Pⱼ^p); a standstill turns and wears nothing."
+                    } else {
+                        "Each bin's share of the time and of the revolutions (sᵢ·nᵢ / \
+                         Σ sⱼ·nⱼ); the crank bearing is not rated, so no damage is shown."
+                    }))
+            }
         }
     };
     Some(common::section("duty-cycle", html! { "Duty cycle" }, body))

@@ -3,14 +3,15 @@
 //! of the scene's (`TorqueCurve`, solved by [`engine::torque_curve`](crate::engine::torque_curve)), and with a speed the mean power lost
 //! on each path as a stacked bar.
 
-use super::common::{data_table, figure, section, Section};
+use super::common::{data_table, figure, section, signed, Section};
 use crate::model::friction::PathLosses;
+use crate::model::quantity::MEAN_EFFICIENCY;
 use crate::model::results::{
     Driver, EfficiencyCurves, ReducerEfficiency, SceneResult, TorqueCurve,
 };
 use crate::model::Scene;
 use crate::numeric::number;
-use crate::report::svg::{document, px, ticks, LinePlot, RefLine, Series, PALETTE, RED};
+use crate::report::svg::{document, px, ticks, LinePlot, Mark, RefLine, Series, PALETTE, RED};
 use crate::spec::Spec;
 use crate::units;
 use maud::html;
@@ -28,8 +29,9 @@ fn path_values(p: &PathLosses) -> [f64; 4] {
 }
 
 /// The efficiency-against-torque plot of a scene: the mean efficiency at each torque of the
-/// curve, the scene's own torque marked.
-fn torque_plot(scene: &Scene, c: &TorqueCurve, r: &ReducerEfficiency) -> LinePlot {
+/// curve, the scene's own torque marked (a diamond on the curve, not a dashed red line: dashed
+/// red is a limit), and the spec's `min_mean_efficiency` as the limit line.
+fn torque_plot(spec: &Spec, scene: &Scene, c: &TorqueCurve, r: &ReducerEfficiency) -> LinePlot {
     let mean = r.mean_efficiency;
     let mut plot = LinePlot::new(
         &format!("Efficiency against output torque: scene {}", scene.name),
@@ -49,17 +51,27 @@ fn torque_plot(scene: &Scene, c: &TorqueCurve, r: &ReducerEfficiency) -> LinePlo
         PALETTE[0],
     ));
     let at = units::nm(scene.output_torque_nmm);
-    plot.series.push(Series::new(
-        format!("the scene: {} N·m, {}", number(at), number(mean)),
-        vec![at, at],
-        vec![mean - 0.02, mean + 0.02],
-        RED,
-    ));
-    plot.ref_lines.push(RefLine {
-        value: mean,
-        label: String::new(),
-        color: RED.into(),
-    });
+    plot.series.push(
+        Series::new(
+            format!("the scene: {} N·m, {}", signed(number(at)), number(mean)),
+            vec![at],
+            vec![mean],
+            "#222",
+        )
+        .marked(Mark::Diamond),
+    );
+    let limit = spec
+        .limits
+        .entries
+        .iter()
+        .find(|l| l.def.quantity.key == MEAN_EFFICIENCY.key);
+    if let Some(l) = limit {
+        plot.ref_lines.push(RefLine {
+            value: l.value,
+            label: format!("limit {}", number(l.value)),
+            color: RED.into(),
+        });
+    }
     plot
 }
 
@@ -81,6 +93,16 @@ fn mean_cell(r: &ReducerEfficiency) -> String {
         (Driver::Input, _) => value,
         (Driver::Output, false) => format!("{value} (back-driven)"),
         (Driver::Output, true) => format!("{value} (back-driven: SELF-LOCKS)"),
+    }
+}
+
+/// The caption's word on the dashed red line, when the spec sets `min_mean_efficiency`.
+fn limit_note(spec: &Spec) -> &'static str {
+    let limited = (spec.limits.entries.iter()).any(|l| l.def.quantity.key == MEAN_EFFICIENCY.key);
+    if limited {
+        "; dashed red: the spec's limit min_mean_efficiency"
+    } else {
+        ""
     }
 }
 
@@ -166,16 +188,24 @@ pub(super) fn section_of(
             continue;
         };
         let file = format!("efficiency-{}.svg", k + 1);
-        files.push((file.clone(), torque_plot(s, c, r).to_svg()));
+        files.push((
+            file.clone(),
+            torque_plot(spec, s, c, r).to_svg(),
+        ));
         figures.push((
             file,
             format!("Efficiency against torque, scene {}", s.name),
             format!(
-                "{} torques from {} to {} N·m; the scene's {} N·m marked",
+                "{} torques from {} to {} N·m; the scene's {} N·m marked (diamond){}",
                 c.torque_nmm.len(),
-                number(units::nm(c.torque_nmm.first().copied().unwrap_or(0.0))),
-                number(units::nm(c.torque_nmm.last().copied().unwrap_or(0.0))),
-                number(units::nm(s.output_torque_nmm))
+                signed(number(units::nm(
+                    c.torque_nmm.first().copied().unwrap_or(0.0)
+                ))),
+                signed(number(units::nm(
+                    c.torque_nmm.last().copied().unwrap_or(0.0)
+                ))),
+                signed(number(units::nm(s.output_torque_nmm))),
+                limit_note(spec)
             ),
         ));
     }

@@ -1,9 +1,10 @@
 //! The review's load along the face width ([`engine::face_profile`](crate::engine::face_profile)):
-//! for each tilted scene, the line load of the most loaded roller at its worst crank angle,
-//! tilted against designed (the same disc without the tilt).
+//! for each tilted or crowned scene, the line load of the most loaded roller at one crank
+//! angle (a tilted scene's worst face load factor, a crowned, aligned scene's largest line
+//! load; the plot's title names it), tilted against designed (the same disc without the tilt).
 
 use super::common::{figure, section, slug, Section};
-use crate::engine::face_profile::FaceProfile;
+use crate::engine::face_profile::{FaceAngle, FaceProfile};
 use crate::model::quantity::MAX_LINE_LOAD;
 use crate::model::results::SceneResult;
 use crate::numeric::number;
@@ -39,17 +40,23 @@ pub(super) fn section_of(
         let scene = &spec.scenes[p.scene];
         // The tilt as run: the scene's plus the one as built.
         let m = spec.design.deviations.face(&scene.face).misalignment;
+        let crank = format!("crank {}°", number(units::deg(p.crank_rad)));
+        let why = match p.angle {
+            FaceAngle::WorstFactor => "largest face load factor",
+            FaceAngle::LargestLineLoad => "largest line load",
+        };
         let mut plot = LinePlot::new(
             &format!("Line load along the face: scene {}", scene.name),
             "z from the middle of the face (mm)",
             "line load (N/mm)",
         );
-        // The plotted angle is the worst face load factor's, which need not be the max line
-        // load's: the subtitle gives the latter (the check table's figure) so that the peak of
-        // the plot is not read as it.
+        // At the worst face load factor's angle the peak need not be the max line load: the
+        // subtitle gives the latter (the check table's figure) so that the plot's peak is not
+        // read as it.
         let peak = results
             .get(p.scene)
             .and_then(|r| MAX_LINE_LOAD.scalar(r))
+            .filter(|_| p.angle == FaceAngle::WorstFactor)
             .map(|e| {
                 format!(
                     "; the scene's max line load, {} N/mm, is at {}",
@@ -59,10 +66,8 @@ pub(super) fn section_of(
             })
             .unwrap_or_default();
         plot.subtitle = format!(
-            "roller {} at crank {}°, the scene's worst face load factor; slice means \
-             ({} slices){peak}",
+            "at {crank}, the scene's {why}: roller {}; slice means ({} slices){peak}",
             p.roller,
-            number(units::deg(p.crank_rad)),
             p.z_mm.len()
         );
         plot.include_zero = true;
@@ -70,16 +75,16 @@ pub(super) fn section_of(
         let half = 0.5 * spec.design.face_width_mm;
         plot.x_range = Some((-half, half));
         let (x, y) = steps(&p.z_mm, 2.0 * half, &p.tilted_n_per_mm);
-        plot.series.push(Series::new(
+        let name = if m.is_zero() {
+            "crowned, aligned".to_string()
+        } else {
             format!(
                 "tilted θx {} mrad, θy {} mrad",
                 crate::numeric::input(1e3 * m.about_x_rad),
                 crate::numeric::input(1e3 * m.about_y_rad)
-            ),
-            x,
-            y,
-            PALETTE[0],
-        ));
+            )
+        };
+        plot.series.push(Series::new(name, x, y, PALETTE[0]));
         if let Some(designed) = &p.designed_n_per_mm {
             let (x, y) = steps(&p.z_mm, 2.0 * half, designed);
             let mut s = Series::new("designed (no tilt)", x, y, PALETTE[1]);
@@ -91,11 +96,17 @@ pub(super) fn section_of(
         figures.push((
             file,
             format!("Line load along the face, scene {}", scene.name),
-            "The most loaded roller at the crank angle of the largest face load factor, over \
-             the whole face width: the line load of each slice (its mean over the slice, drawn \
-             as a step across the slice's width) as the scene runs it (tilted) and for the same \
-             disc and angle without the tilt (designed, solved alike)."
-                .to_string(),
+            format!(
+                "The most loaded roller at the crank angle of the {why}, over the whole face \
+                 width: the line load of each slice (its mean over the slice, drawn as a step \
+                 across the slice's width) as the scene runs it{}.",
+                if m.is_zero() {
+                    ""
+                } else {
+                    " (tilted) and for the same disc and angle without the tilt (designed, \
+                     solved alike)"
+                }
+            ),
         ));
     }
     let body = html! {

@@ -23,6 +23,7 @@ pub mod common;
 pub mod design;
 pub mod disc;
 mod duty_cycle;
+mod duty_spectrum;
 mod efficiency;
 mod face;
 pub mod optimisation;
@@ -111,7 +112,7 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         &mut files,
     ));
     sections.extend(bearing_life::section(input.spec, input.results));
-    sections.extend(duty_cycle::section(input.spec, input.results));
+    sections.extend(duty_cycle::section(input.spec, input.results, &mut files));
     sections.extend(efficiency::section_of(
         input.spec,
         input.results,

@@ -121,6 +121,20 @@ const PLOTS: &[PlotDef] = &[
         ..PLOT
     },
     PlotDef {
+        name: "face-load-factor",
+        title: "Face load factor",
+        curves: &[&q::FACE_LOAD_FACTOR],
+        reference: Some(|_| RefLine {
+            value: 1.0,
+            label: "uniform face = 1".into(),
+            color: "#7f7f7f".into(),
+        }),
+        caption: "Peak line load along the face over the rollers divided by the mean line load \
+                  F/B of the roller that carries it, at each crank angle (1 on a uniform face; \
+                  0 where no roller carries a force).",
+        ..PLOT
+    },
+    PlotDef {
         name: "contacts",
         title: "Rollers in contact",
         curves: &[&q::CONTACTS],

@@ -22,6 +22,7 @@ mod contact;
 mod design_search;
 mod design_shard;
 mod deviations;
+mod disc_solid;
 mod discs;
 mod duty_cycle;
 mod equilibrium;

@@ -89,6 +89,7 @@ pub(super) fn run(
             holes: d.holes.len(),
             bore_diameter_mm: d.bore.map(|c| 2.0 * c.radius_mm),
             as_built: d.as_built,
+            discs: spec.design.discs,
         };
         print(out, &export::solid_lines(&shape, tolerance_um))?;
     }

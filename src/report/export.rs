@@ -100,6 +100,8 @@ pub struct SolidShape {
     pub bore_diameter_mm: Option<f64>,
     /// Whether the profile is the disc identified from `measured_profile`.
     pub as_built: bool,
+    /// The reducer's identical discs.
+    pub discs: usize,
 }
 
 /// The lines `profile` prints about the STEP solid and the STL mesh: what they hold and what
@@ -125,5 +127,12 @@ pub fn solid_lines(shape: &SolidShape, tolerance_um: f64) -> String {
         Some(d) => format!("bore {} mm\n", crate::numeric::input(d)),
         None => "no bore (give reducer.crank_bearing.outer_diameter_mm to cut one)\n".to_string(),
     };
+    if shape.discs > 1 {
+        out += &format!(
+            "discs: the {} discs are this one solid, each in its own frame at its crank phase \
+             2πk/{}; the file holds one\n",
+            shape.discs, shape.discs
+        );
+    }
     out
 }

@@ -51,7 +51,7 @@ fn entities(text: &str) -> HashMap<usize, String> {
         .filter_map(|l| {
             let rest = l.strip_prefix('#')?;
             let (id, body) = rest.split_once('=')?;
-            Some((id.parse().ok()?, body.to_string()))
+            Some((id.parse().ok()?, body.trim_end_matches(';').to_string()))
         })
         .collect()
 }

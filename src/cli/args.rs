@@ -123,7 +123,8 @@ pub enum Command {
     /// Search a requirements file's design space for the Pareto front of checked designs;
     /// `design merge SHARD...` finishes a search split over processes.
     Design(DesignArgs),
-    /// Export the modified disc profile as CSV points and a DXF polyline.
+    /// Export the modified disc profile as CSV points and a DXF polyline, and the disc as a
+    /// STEP solid and an STL mesh.
     Profile {
         /// The YAML spec whose design and modification give the profile.
         spec: String,
@@ -133,7 +134,14 @@ pub enum Command {
         /// Write the profile as a closed DXF polyline to this path (optional).
         #[arg(long)]
         dxf: Option<String>,
-        /// Largest chordal error of the exported polyline, µm (at least 0.001).
+        /// Write the disc as one STEP (AP214) solid to this path (optional).
+        #[arg(long)]
+        step: Option<String>,
+        /// Write the disc as a closed ASCII STL mesh to this path (optional).
+        #[arg(long)]
+        stl: Option<String>,
+        /// Largest chordal error of the exported polyline, µm (at least 0.001); also the
+        /// largest distance of the STEP solid's and the STL mesh's surface from the disc.
         #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
         tolerance_um: f64,
     },

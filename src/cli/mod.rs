@@ -101,8 +101,18 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             spec,
             csv,
             dxf,
+            step,
+            stl,
             tolerance_um,
-        } => profile::run(&spec, csv.as_deref(), dxf.as_deref(), tolerance_um, out),
+        } => {
+            let outputs = profile::Outputs {
+                csv: csv.as_deref(),
+                dxf: dxf.as_deref(),
+                step: step.as_deref(),
+                stl: stl.as_deref(),
+            };
+            profile::run(&spec, &outputs, tolerance_um, out)
+        }
         Command::Fit {
             spec,
             write,

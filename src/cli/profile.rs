@@ -1,40 +1,78 @@
-//! `cycloid profile`: export the modified profile as CSV points and a DXF polyline.
+//! `cycloid profile`: export the modified profile as CSV points and a DXF polyline, and the
+//! disc as a STEP solid and an STL mesh.
 
 use super::output::{distinct_outputs, inputs_of, print, write_file};
 use super::Outcome;
 use crate::engine::commands::{self, MIN_PROFILE_TOLERANCE_MM};
 use crate::error::{Error, ErrorKind, Result};
-use crate::report::export;
+use crate::report::{export, step, stl};
 use crate::{numeric, spec, units};
 use std::io::Write;
 
+/// The files `profile` writes (each optional, at least one).
+pub(super) struct Outputs<'a> {
+    pub(super) csv: Option<&'a str>,
+    pub(super) dxf: Option<&'a str>,
+    pub(super) step: Option<&'a str>,
+    pub(super) stl: Option<&'a str>,
+}
+
 pub(super) fn run(
     path: &str,
-    csv: Option<&str>,
-    dxf: Option<&str>,
+    outputs: &Outputs,
     tolerance_um: f64,
     out: &mut dyn Write,
 ) -> Result<Outcome> {
     check_tolerance(tolerance_um)?;
-    if csv.is_none() && dxf.is_none() {
+    let Outputs {
+        csv,
+        dxf,
+        step: step_path,
+        stl: stl_path,
+    } = *outputs;
+    if [csv, dxf, step_path, stl_path].iter().all(Option::is_none) {
         return Err(Error::new(
             ErrorKind::Usage,
-            "profile writes the profile to --csv PATH, --dxf PATH or both; give at least one \
-             (nothing was written)",
+            "profile writes the profile to --csv PATH, --dxf PATH, --step PATH, --stl PATH or \
+             several; give at least one (nothing was written)",
         ));
     }
     let spec = spec::load(path)?;
     distinct_outputs(
         &inputs_of(path, Some(&spec)),
-        &[("--csv", csv), ("--dxf", dxf)],
+        &[
+            ("--csv", csv),
+            ("--dxf", dxf),
+            ("--step", step_path),
+            ("--stl", stl_path),
+        ],
     )?;
     let tol = units::mm_from_um(tolerance_um);
     let points = commands::profile(&spec, tol)?;
+    // The solids are built before any file is written: a refused disc writes nothing.
+    let disc = match (step_path, stl_path) {
+        (None, None) => None,
+        _ => Some(commands::disc(&spec)?),
+    };
+    let solid = match (&disc, step_path) {
+        (Some(d), Some(_)) => Some(d.solid(tol)?),
+        _ => None,
+    };
+    let mesh = match (&disc, stl_path) {
+        (Some(d), Some(_)) => Some(d.mesh(tol)?),
+        _ => None,
+    };
     if let Some(p) = csv {
         write_file(p, &export::csv(&spec, &points, tol))?;
     }
     if let Some(p) = dxf {
         write_file(p, &export::dxf(&spec, &points, tol))?;
+    }
+    if let (Some(p), Some(s)) = (step_path, &solid) {
+        write_file(p, &step::step(&spec, s))?;
+    }
+    if let (Some(p), Some(m)) = (stl_path, &mesh) {
+        write_file(p, &stl::stl(&spec, m))?;
     }
     print(
         out,
@@ -44,6 +82,17 @@ pub(super) fn run(
             points.len()
         ),
     )?;
+    if let Some(d) = &disc {
+        let shape = export::SolidShape {
+            pieces: solid.as_ref().map(|s| s.piece_count()),
+            triangles: mesh.as_ref().map(|m| m.triangles.len()),
+            holes: d.holes.len(),
+            bore_diameter_mm: d.bore.map(|c| 2.0 * c.radius_mm),
+            as_built: d.as_built,
+            discs: spec.design.discs,
+        };
+        print(out, &export::solid_lines(&shape, tolerance_um))?;
+    }
     Ok(Outcome::Passed)
 }
 

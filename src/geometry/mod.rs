@@ -1,6 +1,8 @@
 //! Geometry of the disc and the rollers: exact profile, clearance, design-rule checks.
 
 pub mod clearance;
+pub mod disc_mesh;
+pub mod disc_solid;
 pub mod first_order;
 pub mod form_error;
 pub mod mesh_minimum;

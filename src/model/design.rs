@@ -128,6 +128,9 @@ pub struct CrankBearing {
     pub dynamic_load_rating_n: f64,
     /// p: 10/3 for roller bearings (the default), 3 for ball bearings.
     pub life_exponent: f64,
+    /// The bearing's outer diameter, mm: the disc's bore (spec: `outer_diameter_mm`); only the
+    /// exported solid (`profile --step`, `--stl`) cuts it.
+    pub outer_diameter_mm: Option<f64>,
 }
 
 impl CrankBearing {

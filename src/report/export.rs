@@ -89,3 +89,50 @@ pub fn dxf(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
     }
     out
 }
+
+/// What the solid exports hold, for the lines `profile` prints about them.
+pub struct SolidShape {
+    /// Cubic pieces of the STEP solid's profile, when it was written.
+    pub pieces: Option<usize>,
+    /// Triangles of the STL mesh, when it was written.
+    pub triangles: Option<usize>,
+    pub holes: usize,
+    pub bore_diameter_mm: Option<f64>,
+    /// Whether the profile is the disc identified from `measured_profile`.
+    pub as_built: bool,
+    /// The reducer's identical discs.
+    pub discs: usize,
+}
+
+/// The lines `profile` prints about the STEP solid and the STL mesh: what they hold and what
+/// they do not (no bore without the bearing's outer diameter).
+pub fn solid_lines(shape: &SolidShape, tolerance_um: f64) -> String {
+    let mut out = String::new();
+    let profile = if shape.as_built {
+        "the disc as built (identified from `measured_profile`)"
+    } else {
+        "the drawing's profile"
+    };
+    if let Some(n) = shape.pieces {
+        out += &format!(
+            "STEP solid: {profile} as {n} cubic B-spline pieces within {tolerance_um} um, \
+             extruded over the face width\n"
+        );
+    }
+    if let Some(n) = shape.triangles {
+        out += &format!("STL mesh: {profile}, {n} triangles within {tolerance_um} um, closed\n");
+    }
+    out += &format!("holes: {} output-pin holes; ", shape.holes);
+    out += &match shape.bore_diameter_mm {
+        Some(d) => format!("bore {} mm\n", crate::numeric::input(d)),
+        None => "no bore (give reducer.crank_bearing.outer_diameter_mm to cut one)\n".to_string(),
+    };
+    if shape.discs > 1 {
+        out += &format!(
+            "discs: the {} discs are this one solid, each in its own frame at its crank phase \
+             2πk/{}; the file holds one\n",
+            shape.discs, shape.discs
+        );
+    }
+    out
+}

@@ -17,6 +17,8 @@ pub mod json;
 pub mod junit;
 pub mod optimisation;
 pub mod review;
+pub mod step;
+pub mod stl;
 pub mod svg;
 pub mod table;
 pub mod terminal;

@@ -401,12 +401,14 @@ pub(crate) struct RawCentreDeviation {
 #[derive(Debug, Deserialize)]
 #[serde(
     deny_unknown_fields,
-    expecting = "a mapping with the key dynamic_load_rating_n (and optionally life_exponent)"
+    expecting = "a mapping with the key dynamic_load_rating_n (and optionally life_exponent, outer_diameter_mm)"
 )]
 pub(crate) struct RawCrankBearing {
     pub dynamic_load_rating_n: f64,
     #[serde(default)]
     pub life_exponent: Option<f64>,
+    #[serde(default)]
+    pub outer_diameter_mm: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -288,6 +288,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
                     .map(|p| life_exponent("crank_bearing.life_exponent", p))
                     .transpose()?
                     .unwrap_or(CrankBearing::ROLLER_LIFE_EXPONENT),
+                outer_diameter_mm: None,
             })
         })
         .transpose()?;

@@ -89,6 +89,7 @@ fn design(raw: RawReducer) -> Result<Design> {
     let deviations = raw.deviations.clone();
     let friction = raw.friction.clone();
     let mut design = nominal_design(raw)?;
+    bore_fits(&design)?;
     design.friction = friction
         .map(|f| super::friction::friction(&f, &design))
         .transpose()?;
@@ -270,7 +271,37 @@ fn crank_bearing(raw: RawCrankBearing) -> Result<CrankBearing> {
             .map(|p| life_exponent(&format!("{key}.life_exponent"), p))
             .transpose()?
             .unwrap_or(CrankBearing::ROLLER_LIFE_EXPONENT),
+        outer_diameter_mm: raw
+            .outer_diameter_mm
+            .map(|d| length(&format!("{key}.outer_diameter_mm"), d))
+            .transpose()?,
     })
+}
+
+/// `reducer.crank_bearing.outer_diameter_mm`: the bore it cuts stays clear of the output-pin
+/// holes, whose edges come within rw − (rrp + e + c) of the disc centre (the profile's root lies
+/// farther out: the holes are inside the disc).
+fn bore_fits(design: &Design) -> Result<()> {
+    let Some(d) = design.crank_bearing.and_then(|b| b.outer_diameter_mm) else {
+        return Ok(());
+    };
+    let inner_edge = design.pins.circle_radius_mm - design.hole_radius_mm();
+    if 0.5 * d < inner_edge {
+        return Ok(());
+    }
+    Err(Error::new(
+        ErrorKind::ImpossibleDesign,
+        format!(
+            "the bore of the crank bearing (radius {} mm) reaches the output-pin holes, whose \
+             edges come within rw − (pin radius + e + hole clearance) = {} − {} = {} mm of the \
+             disc centre: the bore's radius must be smaller",
+            numeric::input(0.5 * d),
+            numeric::input(design.pins.circle_radius_mm),
+            numeric::input(design.hole_radius_mm()),
+            numeric::input(inner_edge)
+        ),
+    )
+    .at_key("reducer.crank_bearing.outer_diameter_mm"))
 }
 
 /// The exponents a rating life accepts (`reducer.crank_bearing.life_exponent`): ISO 281 uses

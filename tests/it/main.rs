@@ -23,6 +23,7 @@ mod design_missed;
 mod design_search;
 mod design_shard;
 mod deviations;
+mod disc_solid;
 mod discs;
 mod duty_cycle;
 mod equilibrium;

@@ -138,8 +138,8 @@ fn profile_asked_to_write_nothing_is_a_usage_error() {
     assert_eq!(run.code(), 2, "{run:?}");
     assert_eq!(
         run.stderr,
-        "usage error: profile writes the profile to --csv PATH, --dxf PATH or both; give at \
-         least one (nothing was written)\n"
+        "usage error: profile writes the profile to --csv PATH, --dxf PATH, --step PATH, --stl \
+         PATH or several; give at least one (nothing was written)\n"
     );
     assert!(run.stdout.is_empty(), "{}", run.stdout);
 }

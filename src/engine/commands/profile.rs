@@ -1,8 +1,11 @@
 //! `profile`: the modified disc profile as a polyline within a chordal tolerance.
 
 use crate::error::{Error, ErrorKind, Result};
+use crate::geometry::disc_mesh::{disc_mesh, TriangleMesh};
+use crate::geometry::disc_solid::{Circle, DiscSolid};
 use crate::geometry::polyline::{polyline, ProfilePoint};
 use crate::geometry::profile::Profile;
+use crate::geometry::Vec2;
 use crate::spec::Spec;
 
 /// Finest chordal tolerance of an exported profile, mm (1 nm): below it the point count
@@ -21,6 +24,12 @@ pub const MIN_PROFILE_TOLERANCE_MM: f64 = 1e-6;
 /// # Ok::<(), cycloid::Error>(())
 /// ```
 pub fn profile(spec: &Spec, tolerance_mm: f64) -> Result<Vec<ProfilePoint>> {
+    check_tolerance(tolerance_mm)?;
+    let profile = Profile::new(&spec.design, &spec.modification);
+    Ok(polyline(&profile, tolerance_mm))
+}
+
+fn check_tolerance(tolerance_mm: f64) -> Result<()> {
     // NaN fails too.
     if tolerance_mm.is_nan() || tolerance_mm < MIN_PROFILE_TOLERANCE_MM {
         return Err(Error::new(
@@ -31,6 +40,91 @@ pub fn profile(spec: &Spec, tolerance_mm: f64) -> Result<Vec<ProfilePoint>> {
             ),
         ));
     }
-    let profile = Profile::new(&spec.design, &spec.modification);
-    Ok(polyline(&profile, tolerance_mm))
+    Ok(())
+}
+
+/// The disc the solid exports are made of: the profile (as built, with its identified
+/// modification and form error, when the spec has `measured_profile`), the output-pin holes,
+/// the bore when the crank bearing's outer diameter is given, and the face width.
+pub struct Disc {
+    pub profile: Profile,
+    pub teeth: usize,
+    pub holes: Vec<Circle>,
+    pub bore: Option<Circle>,
+    pub face_width_mm: f64,
+    /// Whether the profile is the one identified from `measured_profile`.
+    pub as_built: bool,
+}
+
+/// The disc of `spec` for `profile --step`/`--stl`. A crowned disc is refused: its flanks are
+/// not the straight extrusion these exports build.
+pub fn disc(spec: &Spec) -> Result<Disc> {
+    if spec.scenes.iter().any(|s| !s.face.crowning.is_none()) {
+        return Err(Error::new(
+            ErrorKind::InvalidValue,
+            "the disc is crowned (`modification.crowning`): the STEP and STL exports build a \
+             straight flank extruded over the face width and would not be this disc; export a \
+             section with --csv or --dxf instead",
+        ));
+    }
+    let built = crate::engine::as_built::identify(spec)?.map(|(s, _)| s);
+    let (d, m) = match &built {
+        Some(b) => (&b.design, &b.modification),
+        None => (&spec.design, &spec.modification),
+    };
+    let profile = Profile::new(d, m).with_form(&d.deviations.form);
+    let design = &spec.design;
+    let holes = (0..design.pins.count)
+        .map(|j| {
+            let [x, y] = design.pins.centre_mm(j);
+            Circle {
+                centre: Vec2::new(x, y),
+                radius_mm: design.hole_radius_mm(),
+            }
+        })
+        .collect();
+    let bore = (design.crank_bearing.and_then(|b| b.outer_diameter_mm)).map(|d| Circle {
+        centre: Vec2::zeros(),
+        radius_mm: 0.5 * d,
+    });
+    Ok(Disc {
+        profile,
+        teeth: design.teeth,
+        holes,
+        bore,
+        face_width_mm: design.face_width_mm,
+        as_built: built.is_some(),
+    })
+}
+
+impl Disc {
+    /// The solid: the profile as cubic B-spline pieces within `tolerance_mm`, extruded.
+    pub fn solid(&self, tolerance_mm: f64) -> Result<DiscSolid> {
+        check_tolerance(tolerance_mm)?;
+        Ok(DiscSolid::new(
+            &self.profile,
+            self.teeth,
+            self.holes.clone(),
+            self.bore,
+            self.face_width_mm,
+            tolerance_mm,
+        ))
+    }
+
+    /// The closed triangle mesh: the profile's polyline and the circles' polygons within
+    /// `tolerance_mm`.
+    pub fn mesh(&self, tolerance_mm: f64) -> Result<TriangleMesh> {
+        check_tolerance(tolerance_mm)?;
+        let outline: Vec<Vec2> = (polyline(&self.profile, tolerance_mm).iter())
+            .map(|p| p.point)
+            .collect();
+        let circles: Vec<Circle> = self.holes.iter().chain(self.bore.iter()).copied().collect();
+        disc_mesh(&outline, &circles, self.face_width_mm, tolerance_mm).ok_or_else(|| {
+            Error::new(
+                ErrorKind::Computation,
+                "the disc's face could not be triangulated (its outline touches itself or a \
+                 hole): no STL was written",
+            )
+        })
+    }
 }

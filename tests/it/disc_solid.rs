@@ -1,0 +1,236 @@
+//! The disc as a solid (issue 43): the STEP solid's B-spline pieces lie within the tolerance of
+//! the exact profile, its faces form one closed shell, the STL mesh is closed and holds the
+//! disc's volume, and what cannot be exported (a crowned disc, a bore through the holes) is
+//! refused with exit 2. Open CASCADE reads both files back in python/tests/test_disc_solid.py.
+
+use crate::common::*;
+use cycloid::engine::commands;
+use std::collections::HashMap;
+use std::f64::consts::{PI, TAU};
+
+/// specs/reducer.yaml with a crank bearing whose 16 mm outer diameter is the bore.
+fn spec_with_bore() -> PaperSpec {
+    PaperSpec::new().edit(
+        "reducer:\n",
+        "reducer:\n  crank_bearing: {dynamic_load_rating_n: 12000.0, outer_diameter_mm: 16.0}\n",
+    )
+}
+
+#[test]
+fn every_piece_of_the_step_profile_lies_within_the_tolerance_of_the_exact_profile() {
+    let spec = paper_spec(0.125, 0.1593);
+    let disc = commands::disc(&spec).unwrap();
+    for tol in [0.5e-3, 1e-5] {
+        let solid = disc.solid(tol).unwrap();
+        assert_eq!(solid.teeth.len(), spec.design.teeth);
+        let mut end = 0.0;
+        for pieces in &solid.teeth {
+            for b in pieces {
+                // The pieces follow each other in t without gap, each starting where the last
+                // ended (one curve per tooth, a closed profile over all).
+                assert_eq!(b.t[0], end);
+                end = b.t[1];
+                // 64 samples per piece, four times the exporter's own 15 and at other points:
+                // the distance from the point of the exact profile at the same t bounds the
+                // distance between the curves.
+                for i in 0..=64 {
+                    let u = i as f64 / 64.0;
+                    let exact = disc.profile.point(b.t[0] + u * (b.t[1] - b.t[0]));
+                    let d = (b.at(u) - exact).norm();
+                    assert!(d <= tol, "{d} mm from the profile at t = {}", b.t[0]);
+                }
+            }
+        }
+        assert!((end - TAU).abs() < 1e-12);
+    }
+}
+
+/// Every `#n=NAME(...)` of a STEP text, by n.
+fn entities(text: &str) -> HashMap<usize, String> {
+    text.lines()
+        .filter_map(|l| {
+            let rest = l.strip_prefix('#')?;
+            let (id, body) = rest.split_once('=')?;
+            Some((id.parse().ok()?, body.trim_end_matches(';').to_string()))
+        })
+        .collect()
+}
+
+/// The `#n` references inside an entity's text.
+fn refs(body: &str) -> Vec<usize> {
+    body.split('#')
+        .skip(1)
+        .map(|s| {
+            s.chars()
+                .take_while(char::is_ascii_digit)
+                .collect::<String>()
+        })
+        .map(|s| s.parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn the_step_file_is_one_solid_whose_shell_is_closed() {
+    let dir = Scratch::new("disc-step");
+    dir.write("disc.yaml", spec_with_bore().text());
+    let run = cycloid(&dir.path, &["profile", "disc.yaml", "--step", "disc.step"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(run.stdout.contains("bore 16 mm"), "{}", run.stdout);
+    let text = dir.read("disc.step");
+    assert!(text.starts_with("ISO-10303-21;") && text.ends_with("END-ISO-10303-21;\n"));
+    let all = entities(&text);
+    let count = |name: &str| all.values().filter(|b| b.starts_with(name)).count();
+    assert_eq!(count("MANIFOLD_SOLID_BREP("), 1);
+    // Faces: one flank per tooth (9), two half-cylinders per hole (6) and for the bore, two
+    // planes.
+    assert_eq!(count("ADVANCED_FACE("), 9 + 2 * 7 + 2);
+    // Closed shell: every edge is used by exactly two oriented edges, in opposite directions.
+    let mut uses: HashMap<usize, Vec<bool>> = HashMap::new();
+    for body in all.values().filter(|b| b.starts_with("ORIENTED_EDGE(")) {
+        let edge = refs(body)[0];
+        uses.entry(edge).or_default().push(body.ends_with(".T.)"));
+    }
+    assert_eq!(uses.len(), count("EDGE_CURVE("));
+    for (edge, senses) in &uses {
+        assert!(
+            senses.len() == 2 && senses[0] != senses[1],
+            "edge #{edge}: {senses:?}"
+        );
+    }
+}
+
+/// The STL's triangles, three vertices each.
+fn stl_triangles(text: &str) -> Vec<[[f64; 3]; 3]> {
+    let v: Vec<[f64; 3]> = text
+        .lines()
+        .filter_map(|l| l.trim_start().strip_prefix("vertex "))
+        .map(|l| {
+            let c: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            [c[0], c[1], c[2]]
+        })
+        .collect();
+    v.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect()
+}
+
+#[test]
+fn the_stl_mesh_is_closed_and_holds_the_discs_volume() {
+    let dir = Scratch::new("disc-stl");
+    dir.write("disc.yaml", spec_with_bore().text());
+    let tol_um = 0.5;
+    let run = cycloid(&dir.path, &["profile", "disc.yaml", "--stl", "disc.stl"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let triangles = stl_triangles(&dir.read("disc.stl"));
+    // Closed and consistently oriented: each directed edge once, its reverse once.
+    let key = |p: [f64; 3]| p.map(f64::to_bits);
+    let mut directed = HashMap::new();
+    for t in &triangles {
+        for i in 0..3 {
+            *directed
+                .entry((key(t[i]), key(t[(i + 1) % 3])))
+                .or_insert(0) += 1;
+        }
+    }
+    assert!(directed.values().all(|&n| n == 1));
+    assert!(directed
+        .keys()
+        .all(|(a, b)| directed.contains_key(&(*b, *a))));
+    // Divergence theorem: V = Σ v0 · (v1 × v2) / 6 over outward triangles.
+    let volume: f64 = (triangles.iter())
+        .map(|[a, b, c]| {
+            let x = [
+                b[1] * c[2] - b[2] * c[1],
+                b[2] * c[0] - b[0] * c[2],
+                b[0] * c[1] - b[1] * c[0],
+            ];
+            (a[0] * x[0] + a[1] * x[1] + a[2] * x[2]) / 6.0
+        })
+        .sum();
+    // The exact face: the profile's area ½∮(x·y' − y·x') dt by the trapezoid rule, which
+    // converges geometrically for a smooth periodic integrand (20,000 points: round-off),
+    // less 6 holes of radius 5 mm and the 8 mm bore, times B = 8 mm.
+    let spec = spec_with_bore().parse("disc.yaml");
+    let profile = commands::disc(&spec).unwrap().profile;
+    let n = 20_000;
+    let (mut area, mut length) = (0.0, 0.0);
+    for i in 0..n {
+        let t = TAU * i as f64 / n as f64;
+        let (p, d) = (profile.point(t), profile.tangent(t));
+        area += 0.5 * (p.x * d.y - p.y * d.x) * TAU / n as f64;
+        length += d.norm() * TAU / n as f64;
+    }
+    let holes = 6.0 * PI * 25.0 + PI * 64.0;
+    let expected = (area - holes) * 8.0;
+    // Each chord or polygon side lies within the tolerance of its curve, so the face moves by
+    // at most tol × (the outline's length + the circles' circumferences).
+    let outline = length + 2.0 * PI * (6.0 * 5.0 + 8.0);
+    let bound = tol_um * 1e-3 * outline * 8.0;
+    assert!(
+        (volume - expected).abs() <= bound,
+        "mesh {volume} mm³, exact {expected} mm³, bound {bound}"
+    );
+}
+
+#[test]
+fn a_crowned_disc_is_refused_and_nothing_is_written() {
+    let dir = Scratch::new("disc-crowned");
+    let spec = concat!(env!("CARGO_MANIFEST_DIR"), "/specs/reducer-misaligned.yaml");
+    let run = cycloid(
+        &dir.path,
+        &["profile", spec, "--step", "d.step", "--csv", "d.csv"],
+    );
+    assert_eq!(run.code(), 2);
+    assert!(run.stderr.contains("crowned"), "{}", run.stderr);
+    assert!(!dir.exists("d.step") && !dir.exists("d.csv"));
+}
+
+#[test]
+fn a_bad_path_for_a_solid_is_exit_2() {
+    let dir = Scratch::new("disc-paths");
+    dir.write("disc.yaml", spec_with_bore().text());
+    for args in [
+        ["--step", "missing/d.step"],
+        ["--stl", "missing/d.stl"],
+        ["--stl", "disc.yaml"],
+        ["--step", "."],
+    ] {
+        let run = cycloid(&dir.path, &["profile", "disc.yaml", args[0], args[1]]);
+        assert_eq!(run.code(), 2, "{args:?}: {}", run.stderr);
+    }
+    assert_eq!(dir.read("disc.yaml"), spec_with_bore().text());
+}
+
+#[test]
+fn the_bore_is_refused_where_it_is_no_bore_of_this_disc() {
+    let dir = Scratch::new("disc-bore");
+    let key = "reducer.crank_bearing.outer_diameter_mm";
+    let with = |d: &str| {
+        PaperSpec::new()
+            .edit(
+                "reducer:\n",
+                &format!("reducer:\n  crank_bearing: {{dynamic_load_rating_n: 1.0e4, outer_diameter_mm: {d}}}\n"),
+            )
+            .text()
+            .to_string()
+    };
+    assert_refused_at(&dir, "bad.yaml", &with("-16.0"), key, "positive");
+    // The holes' inner edges are 18 − 5 = 13 mm from the centre: a 26 mm bore touches them.
+    assert_refused_at(
+        &dir,
+        "bad.yaml",
+        &with("26.0"),
+        key,
+        "reaches the output-pin holes",
+    );
+    assert!(cycloid::spec::parse("ok.yaml", &with("25.9")).is_ok());
+}
+
+#[test]
+fn a_measured_disc_exports_the_disc_as_built() {
+    let dir = Scratch::new("disc-measured");
+    let spec = concat!(env!("CARGO_MANIFEST_DIR"), "/specs/reducer-measured.yaml");
+    let run = cycloid(&dir.path, &["profile", spec, "--stl", "d.stl"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(run.stdout.contains("as built"), "{}", run.stdout);
+    let built = commands::disc(&cycloid::spec::load(spec).unwrap()).unwrap();
+    assert!(built.as_built && built.profile.has_form());
+}

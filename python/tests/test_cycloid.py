@@ -479,7 +479,7 @@ def test_the_docstring_names_every_unit_of_the_results():
     unitless = {
         "ratio", "contacts", "efficiency", "mean_efficiency", "face_load_factor",
         "max_face_load_factor", "ratio_fluctuation", "ratio_min", "ratio_max",
-        "min_rollers_in_contact", "max_residual", "tooth_phase", "revolution_share",
+        "min_rollers_in_contact", "max_residual", "residual", "tooth_phase", "revolution_share",
         "time_share", "duty_mean_efficiency", "steps", "discs", "rollers", "disc", "roller",
     }
     missing = set()

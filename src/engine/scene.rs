@@ -18,12 +18,12 @@ use crate::geometry::clearance::{self, Mesh};
 use crate::geometry::first_order;
 use crate::geometry::mesh_minimum::{self, MeshMinimum};
 use crate::model::accuracy::LadderTolerances;
+use crate::model::period;
 use crate::model::quantity::QUANTITIES;
 use crate::model::results::{BearingLife, ClearanceSweep, DutyBinResult, LoadedSweep, SceneResult};
 use crate::model::{
     Design, Detail, Effect, FrictionModel, GeometryMode, Modification, Plan, Scene,
 };
-use crate::model::period;
 use crate::progress::{Phase, Progress, Silent};
 use crate::spec::Spec;
 use crate::units;

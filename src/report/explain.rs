@@ -4,12 +4,12 @@
 
 use crate::engine::check;
 use crate::engine::scene::{self, Note, Writes};
+use crate::model::period;
 use crate::model::results::TorsionCompliances;
 use crate::model::{
     CentreDeviation, ContactLaw, Detail, Deviations, Effect, Face, FrictionModel, PinFriction,
     PinMode, PinSupportKind, RollerFriction, RollerMode,
 };
-use crate::model::period;
 use crate::numeric::number;
 use crate::spec::Spec;
 use crate::units;

@@ -10,11 +10,11 @@ pub mod duty_cycle;
 pub mod edit;
 pub(crate) mod face;
 pub(crate) mod friction;
-pub(crate) mod periods;
 #[doc(hidden)]
 pub mod locate;
 pub(crate) mod measured;
 pub(crate) mod paths;
+pub(crate) mod periods;
 pub(crate) mod raw;
 pub mod relocate;
 pub mod requirements;

@@ -38,14 +38,21 @@ pub(crate) fn check_scene(
     built: Option<&str>,
 ) -> Result<()> {
     let plan = Plan::for_scene(s);
-    let judged = limits.entries.iter().find(|l| {
-        l.def.quantity.effect.is_loaded() && plan.computes_quantity(l.def.quantity)
-    });
+    let judged = limits
+        .entries
+        .iter()
+        .find(|l| l.def.quantity.effect.is_loaded() && plan.computes_quantity(l.def.quantity));
     let Some(limit) = judged else {
         return Ok(());
     };
     let why = "a fluctuation, an extreme or a mean over part of a period is not the reducer's";
-    whole(design, (i, s), built, &format!("limits.{}", limit.def.key), why)
+    whole(
+        design,
+        (i, s),
+        built,
+        &format!("limits.{}", limit.def.key),
+        why,
+    )
 }
 
 /// Scene `i` spans whole periods of the reducer as run, else the refusal at its `crank` for
@@ -114,14 +121,20 @@ fn shortest(x: f64, ok: impl Fn(f64) -> bool) -> String {
         .unwrap_or_else(|| format!("{x}"))
 }
 
-
 /// The rule on an optimisation study (`key`, its spec key, for the message): an objective or
 /// a bounded objective on a loaded figure needs the study's scene to span whole periods of the
 /// reducer as run, as a limit does; a study that searches over part of a period optimises
 /// what the reducer does not do.
-pub(crate) fn check_study(study: &Study, key: &str, design: &Design, scenes: &[Scene]) -> Result<()> {
+pub(crate) fn check_study(
+    study: &Study,
+    key: &str,
+    design: &Design,
+    scenes: &[Scene],
+) -> Result<()> {
     let terms = study.objective.iter().chain(&study.objective_limits);
-    let Some((objective, _)) = terms.into_iter().find(|(o, _)| o.quantity.effect.is_loaded())
+    let Some((objective, _)) = terms
+        .into_iter()
+        .find(|(o, _)| o.quantity.effect.is_loaded())
     else {
         return Ok(());
     };

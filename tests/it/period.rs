@@ -19,7 +19,14 @@ use proptest::prelude::*;
 /// 0.5), Rrp 3, B 8, pins on rw 18 of radius 3, with `reducer` extra keys (deviations), one
 /// scene `rated` at 10 N·m over `crank` (its YAML flow mapping) with `scene` extra keys, and
 /// `rest` (limits) after it.
-fn text(rollers: usize, pins: usize, reducer: &str, crank: &str, scene: &str, rest: &str) -> String {
+fn text(
+    rollers: usize,
+    pins: usize,
+    reducer: &str,
+    crank: &str,
+    scene: &str,
+    rest: &str,
+) -> String {
     format!(
         "name: period\n\
          reducer:\n  teeth: {}\n  rollers: {rollers}\n  eccentricity_mm: {}\n  \
@@ -30,7 +37,11 @@ fn text(rollers: usize, pins: usize, reducer: &str, crank: &str, scene: &str, re
          scenes:\n  - name: rated\n    output_torque_nm: 10.0\n    crank: {crank}\n    \
          effects: [bearing]\n{scene}{rest}",
         rollers - 1,
-        if rollers == 10 { 2.0 } else { 15.0 / rollers as f64 },
+        if rollers == 10 {
+            2.0
+        } else {
+            15.0 / rollers as f64
+        },
     )
 }
 
@@ -82,7 +93,13 @@ fn a_limit_over_part_of_a_tilted_period_is_refused_at_the_crank() {
     let rule = "not a whole number of loaded periods (1080°): a fluctuation, an extreme or a \
                 mean over part of a period is not the reducer's; the nearest ranges of whole \
                 periods: 0° to 1080° (1 period)";
-    assert_refused_at(&dir, "period.yaml", &paper_tilted(crank, limits), "scenes[0].crank", rule);
+    assert_refused_at(
+        &dir,
+        "period.yaml",
+        &paper_tilted(crank, limits),
+        "scenes[0].crank",
+        rule,
+    );
     let built = text(
         10,
         6,
@@ -94,7 +111,10 @@ fn a_limit_over_part_of_a_tilted_period_is_refused_at_the_crank() {
     assert_refused_at(&dir, "period.yaml", &built, "scenes[0].crank", rule);
     // Over the whole period the same limits are judged; a limit on the unloaded gaps is not
     // a loaded figure (the minimum clearance is sought over its own period) and stays allowed.
-    parse(&paper_tilted("{ from_deg: 0.0, to_deg: 1080.0, steps: 1080 }", limits));
+    parse(&paper_tilted(
+        "{ from_deg: 0.0, to_deg: 1080.0, steps: 1080 }",
+        limits,
+    ));
     let clearance = paper_tilted(crank, "limits:\n  min_clearance_mm: 0.001\n");
     parse(&clearance.replace("effects: [bearing]", "effects: [clearance, bearing]"));
 }
@@ -109,7 +129,13 @@ fn a_study_over_part_of_a_tilted_period_is_refused_at_the_crank() {
     let crank = "{ from_deg: 0.0, to_deg: 108.0, steps: 108 }";
     let rule = "objective max_face_load_factor applies to scene `rated`, whose crank range 0° to \
                 108° is not a whole number of loaded periods (1080°)";
-    assert_refused_at(&dir, "period.yaml", &paper_tilted(crank, study), "scenes[0].crank", rule);
+    assert_refused_at(
+        &dir,
+        "period.yaml",
+        &paper_tilted(crank, study),
+        "scenes[0].crank",
+        rule,
+    );
 }
 
 /// The engine's curves of `spec`'s one scene (its own plan and settings).
@@ -124,7 +150,9 @@ fn run(spec: &Spec) -> LoadedSweep {
 fn fluctuation(values: &[f64]) -> f64 {
     let (lo, hi) = values
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
     hi - lo
 }
 
@@ -139,7 +167,10 @@ fn fluctuation(values: &[f64]) -> f64 {
 fn the_ratio_wraps_only_over_whole_periods() {
     let tilt = "    misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }\n    face_slices: 20\n";
     let ratio = |to_deg: usize| {
-        let crank = format!("{{ from_deg: 0.0, to_deg: {to_deg}.0, steps: {} }}", 10 * to_deg);
+        let crank = format!(
+            "{{ from_deg: 0.0, to_deg: {to_deg}.0, steps: {} }}",
+            10 * to_deg
+        );
         let spec = parse(&text(10, 6, "", &crank, tilt, ""));
         run(&spec).transmission.unwrap().ratio.unwrap()
     };
@@ -162,7 +193,14 @@ fn the_ratio_wraps_only_over_whole_periods() {
 #[test]
 fn pins_see_no_tilt_against_their_holes() {
     let tilt = "    misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.3 }\n    face_slices: 20\n";
-    let spec = parse(&text(10, 6, "", "{ from_deg: 0.0, to_deg: 54.0, steps: 6 }", tilt, ""));
+    let spec = parse(&text(
+        10,
+        6,
+        "",
+        "{ from_deg: 0.0, to_deg: 54.0, steps: 6 }",
+        tilt,
+        "",
+    ));
     let tilted = run(&spec);
     let forces = &tilted.pins.as_ref().unwrap().force_n;
     for (j, f) in forces.iter().enumerate() {
@@ -187,7 +225,14 @@ fn solve_at(spec: &Spec, crank_rad: &[f64]) -> LoadedSweep {
 fn forces(l: &LoadedSweep, k: usize) -> Vec<f64> {
     let r = l.rollers.as_ref().unwrap();
     let mut rollers: Vec<f64> = r.force_n.iter().map(|f| f[k]).collect();
-    let mut pins: Vec<f64> = l.pins.as_ref().unwrap().force_n.iter().map(|f| f[k]).collect();
+    let mut pins: Vec<f64> = l
+        .pins
+        .as_ref()
+        .unwrap()
+        .force_n
+        .iter()
+        .map(|f| f[k])
+        .collect();
     rollers.sort_by(f64::total_cmp);
     pins.sort_by(f64::total_cmp);
     let mut out = vec![l.bearing.as_ref().unwrap().force_n[k]];

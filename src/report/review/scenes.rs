@@ -104,7 +104,11 @@ pub(super) fn scene_summary(spec: &Spec, scene: &Scene) -> String {
     let pins = plan.has(Effect::OutputPins);
     // (A torsion scene's crank angles are where the input is locked, not a sweep.)
     if scene.torque_sweep.is_none() && !scene.spans_loaded_periods(&spec.design, &plan) {
-        let period = number(units::deg(period::run_period_rad(&spec.design, scene, &plan)));
+        let period = number(units::deg(period::run_period_rad(
+            &spec.design,
+            scene,
+            &plan,
+        )));
         s += &if pins {
             format!(
                 " The sweep does not cover whole periods of the loaded disc ({period}°: mesh \

@@ -156,7 +156,7 @@ fn the_hysteresis_loss_prints_to_the_loops_resolution() {
         .unwrap_or_else(|| panic!("{value}"));
     let shown_loss: f64 = shown.parse().unwrap();
     assert!(
-        (shown_loss - loss).abs() <= 5e-4 * loss && loss > 10.0 * resolution_arcmin,
+        (shown_loss - loss).abs() <= 5e-4 * loss && loss > resolution_arcmin,
         "{value} against {loss}"
     );
     let page = dir.read("prev/index.html");

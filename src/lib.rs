@@ -36,7 +36,7 @@
 //! - `cli`: the commands' arguments and printing.
 //!
 //! Units inside the engine: mm, N, N·mm, rad, MPa; every conversion is a `units` function,
-//! called at the edges. Conventions are those of `shared/MODEL.md`, restated on the types.
+//! called at the edges. Conventions are those of `docs/MODEL.md`, restated on the types.
 
 pub mod error;
 #[doc(hidden)]

@@ -263,7 +263,7 @@ pub(super) fn check_scenes(design: &Design, scenes: &[Scene]) -> Result<()> {
                 return Err(Error::invalid(
                     format!("scenes[{i}].effects"),
                     "`efficiency` needs the friction of the contacts: give `reducer.friction` \
-                     (see the README's friction section)"
+                     (see docs/effects/friction.md)"
                         .into(),
                 ))
             }

@@ -1,9 +1,40 @@
-//! The README's spec-key table is one table (a blank line once cut it, and 26 keys rendered as
-//! raw text), and it documents every limit of the registry.
+//! The guide: the README (the landing page) and the pages of `docs/`. The spec-key table
+//! (`docs/spec.md`) is one table (a blank line once cut it, and 26 keys rendered as raw text)
+//! and documents every key and limit; the shipped specs are all listed; every file the pages
+//! name exists and every link between them lands on a heading.
+
+/// The spec reference, which holds the key table.
+const SPEC_PAGE: &str = "docs/spec.md";
+
+/// The Markdown files of the guide: the README and every page under `docs/`, sorted.
+fn guide_files() -> Vec<std::path::PathBuf> {
+    fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "md") {
+                out.push(path);
+            }
+        }
+    }
+    let mut files = vec![std::path::PathBuf::from("README.md")];
+    walk(std::path::Path::new("docs"), &mut files);
+    files.sort();
+    files
+}
+
+/// The whole guide's text, its files one after the other.
+fn guide() -> String {
+    (guide_files().iter())
+        .map(|f| std::fs::read_to_string(f).unwrap())
+        .collect::<Vec<_>>()
+        .join("\n\n")
+}
 
 #[test]
 fn the_spec_key_table_is_whole_and_lists_every_limit() {
-    let readme = std::fs::read_to_string("README.md").unwrap();
+    let readme = std::fs::read_to_string(SPEC_PAGE).unwrap();
     let start = readme
         .find("| key | unit | default | meaning |")
         .expect("the spec-key table");
@@ -29,7 +60,7 @@ fn the_spec_key_table_is_whole_and_lists_every_limit() {
 
 /// The rows of the README's spec-key table, each split into its cells.
 fn key_table() -> Vec<Vec<String>> {
-    let readme = std::fs::read_to_string("README.md").unwrap();
+    let readme = std::fs::read_to_string(SPEC_PAGE).unwrap();
     let start = readme
         .find("| key | unit | default | meaning |")
         .expect("the spec-key table");
@@ -171,10 +202,10 @@ fn every_golden_quantity_is_in_the_table() {
     );
 }
 
-/// The README's list of shipped specs names every file of `specs/*.yaml`.
+/// The guide's list of shipped specs names every file of `specs/*.yaml`.
 #[test]
 fn the_shipped_specs_list_names_every_spec() {
-    let readme = std::fs::read_to_string("README.md").unwrap();
+    let readme = guide();
     let start = readme
         .find("Shipped specs:")
         .expect("the shipped-specs list");
@@ -192,11 +223,12 @@ fn the_shipped_specs_list_names_every_spec() {
     );
 }
 
-/// Every file the README names under `specs/`, `golden/`, `tools/` or `docs/` exists: its
-/// examples point at shipped files (a reader can run each as written).
+/// Every file the guide names under `specs/`, `golden/`, `tools/` or `docs/` exists: its
+/// examples point at shipped files (a reader can run each as written from the repository's
+/// root).
 #[test]
 fn every_path_the_readme_names_exists() {
-    let readme = std::fs::read_to_string("README.md").unwrap();
+    let readme = guide();
     let mut missing = Vec::new();
     let mut named = 0;
     for root in ["specs/", "golden/", "tools/", "docs/"] {
@@ -231,4 +263,74 @@ fn every_path_the_readme_names_exists() {
         missing.is_empty(),
         "the README names files that do not exist: {missing:?}"
     );
+}
+
+/// GitHub's anchor of a heading: lower case, punctuation but `-` and `_` dropped, spaces as `-`.
+fn anchor(heading: &str) -> String {
+    (heading.trim().to_lowercase().chars())
+        .filter(|c| c.is_alphanumeric() || "-_ ".contains(*c))
+        .map(|c| if c == ' ' { '-' } else { c })
+        .collect()
+}
+
+/// The anchors of a Markdown file's headings (outside code blocks).
+fn anchors(text: &str) -> Vec<String> {
+    let mut code = false;
+    let mut out = Vec::new();
+    for line in text.lines() {
+        if line.starts_with("```") {
+            code = !code;
+        } else if !code && line.starts_with('#') {
+            out.push(anchor(line.trim_start_matches('#')));
+        }
+    }
+    out
+}
+
+/// Every relative link of the guide (`[text](page.md#heading)`, `[text](#heading)`,
+/// `[text](../specs/x.yaml)`) reaches a file that exists and, with an anchor, a heading of it:
+/// the README's split into pages left no link pointing into the old single page.
+#[test]
+fn every_link_between_the_pages_lands() {
+    let mut broken = Vec::new();
+    let mut links = 0;
+    for file in guide_files() {
+        let text = std::fs::read_to_string(&file).unwrap();
+        let dir = file.parent().unwrap();
+        for (at, _) in text.match_indices("](") {
+            let target: String = text[at + 2..].chars().take_while(|&c| c != ')').collect();
+            if target.contains("://") || target.contains(' ') {
+                continue;
+            }
+            links += 1;
+            let (path, heading) = target.split_once('#').unwrap_or((&target, ""));
+            let page = if path.is_empty() { file.clone() } else { dir.join(path) };
+            if !page.exists() {
+                broken.push(format!("{}: {target} (no such file)", file.display()));
+                continue;
+            }
+            if !heading.is_empty() {
+                let page_text = std::fs::read_to_string(&page).unwrap_or_default();
+                if !anchors(&page_text).iter().any(|a| a == heading) {
+                    broken.push(format!("{}: {target} (no such heading)", file.display()));
+                }
+            }
+        }
+    }
+    assert!(links > 50, "the guide's links were not read ({links} found)");
+    assert!(broken.is_empty(), "links that land nowhere: {broken:#?}");
+}
+
+/// The README is the landing page (at most 400 lines); the guide lives in `docs/`.
+#[test]
+fn the_readme_is_a_landing_page() {
+    let readme = std::fs::read_to_string("README.md").unwrap();
+    let lines = readme.lines().count();
+    assert!(lines <= 400, "README.md has {lines} lines");
+    for command in ["check", "optimise", "accuracy", "bless", "profile", "tolerance", "fit", "design"] {
+        assert!(
+            readme.contains(&format!("`cycloid {command} ")),
+            "the README shows no example of `cycloid {command}`"
+        );
+    }
 }

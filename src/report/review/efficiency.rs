@@ -227,7 +227,7 @@ pub(super) fn section_of(
         .any(|r| r.driver == Driver::Output);
     let body = html! {
         p.note {
-            "Each loss is a Coulomb force μ·F times the speed its surfaces slide at (README \
+            "Each loss is a Coulomb force μ·F times the speed its surfaces slide at (docs/effects/friction.md, \
              \"Friction, efficiency and heat\"); the " (model) " model. η = P_out/(P_out + loss), \
              the mean efficiency P_out/(P_out + mean loss)."
             @if back_driven {

@@ -59,4 +59,5 @@ def paper(cli, tmp_path_factory):
         cycloid.load("specs/paper.yaml"),
         progress=lambda f, phase: calls.append((time.perf_counter() - started, f, phase)),
     )
-    return {"code": code, "cli": doc, "stderr": err, "run": run, "calls": calls}
+    wall_s = time.perf_counter() - started
+    return {"code": code, "cli": doc, "stderr": err, "run": run, "calls": calls, "wall_s": wall_s}

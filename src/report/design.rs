@@ -5,7 +5,6 @@ use crate::engine::commands::{self, CheckRun};
 use crate::engine::design_search::failure::{Failure, Miss, Requirement};
 use crate::engine::design_search::missed::{Cause, Count, Infeasible};
 use crate::engine::design_search::{candidate::*, Evaluation, SearchRun, Tally};
-use crate::model::quantity::Bound;
 use crate::model::requirements::{ObjectiveKind, Requirements};
 use crate::numeric::number;
 use crate::report::review::disc::thumbnail;

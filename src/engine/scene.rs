@@ -18,7 +18,6 @@ use crate::geometry::clearance::{self, Mesh};
 use crate::geometry::first_order;
 use crate::geometry::mesh_minimum::{self, MeshMinimum};
 use crate::model::accuracy::LadderTolerances;
-use crate::model::period;
 use crate::model::quantity::QUANTITIES;
 use crate::model::results::{BearingLife, ClearanceSweep, DutyBinResult, LoadedSweep, SceneResult};
 use crate::model::{
@@ -591,7 +590,7 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
             if !scene.spans_loaded_periods(&spec.design, &plan) {
                 notes.push(Note::LifeNotRated {
                     scene: name(),
-                    loaded_period_rad: period::run_period_rad(&spec.design, scene, &plan),
+                    loaded_period_rad: scene.run_period_rad(&spec.design, &plan),
                 });
             } else if scene.input_speed_rpm.is_none() && scene.duty_cycle.is_none() {
                 notes.push(Note::LifeHoursNotRated { scene: name() });

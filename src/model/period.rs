@@ -15,18 +15,10 @@
 //!   the one disc's period.
 //!
 //! The arithmetic is `Design::loaded_period_rad`; this module decides which symmetries the
-//! scene breaks.
+//! scene breaks, and `Scene::run_period_rad` is the period of a scene under its plan.
 
 use super::design::Design;
-use super::effect::Effect;
 use super::face::Face;
-use super::scene::{Plan, Scene};
-
-/// The crank period of `scene`'s loaded curves under `plan` on the reducer `design` as built,
-/// rad: `loaded_period_rad` with the pins when the plan models them.
-pub fn run_period_rad(design: &Design, scene: &Scene, plan: &Plan) -> f64 {
-    loaded_period_rad(design, &scene.face, plan.has(Effect::OutputPins))
-}
 
 /// The crank period of the loaded curves of a scene whose face is `face` (its crowning, tilt
 /// and slices) on `design` as built, with or without the output pins, rad: whole crank turns

@@ -141,10 +141,17 @@ impl Scene {
     }
 
     /// True when the sweep covers a whole number of the periods of the reducer as run
-    /// (`period::run_period_rad`, this scene's tilt included): its loaded curves wrap, and a
+    /// (`Scene::run_period_rad`, this scene's tilt included): its loaded curves wrap, and a
     /// mean or an extreme over it is one over whole load cycles.
     pub fn spans_loaded_periods(&self, design: &Design, plan: &Plan) -> bool {
-        self.spans_whole(super::period::run_period_rad(design, self, plan))
+        self.spans_whole(self.run_period_rad(design, plan))
+    }
+
+    /// The crank period of this scene's loaded curves under `plan` on the reducer `design` as
+    /// built, rad (`period::loaded_period_rad`, with the pins when the plan models them): the
+    /// one period of the reducer as run that every consumer reads.
+    pub fn run_period_rad(&self, design: &Design, plan: &Plan) -> f64 {
+        super::period::loaded_period_rad(design, &self.face, plan.has(Effect::OutputPins))
     }
 
     /// True when the sweep covers a whole number of `period_rad` (so its curves wrap around).

@@ -1,4 +1,4 @@
-//! Whole periods of the reducer as run (`model::period::run_period_rad`): a limit judged on a
+//! Whole periods of the reducer as run (`Scene::run_period_rad`): a limit judged on a
 //! loaded figure (TE and ratio fluctuation, the largest roller, pin and bearing forces, contact
 //! pressure, face load factor and line load, rollers in contact, efficiency, bearing life) is
 //! refused on a scene whose crank range is not a whole number of those periods, at the
@@ -65,7 +65,7 @@ pub(crate) fn whole(
     why: &str,
 ) -> Result<()> {
     let plan = Plan::for_scene(s);
-    let period = crate::model::period::run_period_rad(design, s, &plan);
+    let period = s.run_period_rad(design, &plan);
     if s.spans_whole(period) {
         return Ok(());
     }

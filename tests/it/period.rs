@@ -1,4 +1,4 @@
-//! The period of the reducer as run (`model::period::run_period_rad`, issue 39 §1): one
+//! The period of the reducer as run (`Scene::run_period_rad`, issue 39 §1): one
 //! function for every consumer, which a tilt fixed in the housing lengthens to whole crank
 //! turns, and the output flange that tilts with the disc.
 //!
@@ -281,7 +281,7 @@ proptest! {
             Err(_) => return Err(TestCaseError::reject("not a valid design")),
         };
         let s = &spec.scenes[0];
-        let p = period::run_period_rad(&spec.design, s, &Plan::for_scene(s));
+        let p = s.run_period_rad(&spec.design, &Plan::for_scene(s));
         if where_tilt > 0 && !moved {
             prop_assert!((p.to_degrees() - tilted_period_deg(rollers, pins)).abs() < 1e-9);
         }

@@ -4,7 +4,7 @@
 use super::common::{figure, section, slug, Section};
 use super::plots;
 use crate::model::results::SceneResult;
-use crate::model::{period, ContactLaw, Effect, Plan, Scene};
+use crate::model::{ContactLaw, Effect, Plan, Scene};
 use crate::numeric::number;
 use crate::spec::Spec;
 use crate::units;
@@ -104,11 +104,7 @@ pub(super) fn scene_summary(spec: &Spec, scene: &Scene) -> String {
     let pins = plan.has(Effect::OutputPins);
     // (A torsion scene's crank angles are where the input is locked, not a sweep.)
     if scene.torque_sweep.is_none() && !scene.spans_loaded_periods(&spec.design, &plan) {
-        let period = number(units::deg(period::run_period_rad(
-            &spec.design,
-            scene,
-            &plan,
-        )));
+        let period = number(units::deg(scene.run_period_rad(&spec.design, &plan)));
         s += &if pins {
             format!(
                 " The sweep does not cover whole periods of the loaded disc ({period}°: mesh \

@@ -881,7 +881,7 @@ fn a_study_drawing_a_longer_crank_says_its_pins_are_preloaded() {
             )
             .scenes(
                 "  - name: rated\n    output_torque_nm: 10.0\n    crank: { from_deg: 0.0, to_deg: \
-                 36.0, steps: 4 }\n    effects: [bearing]\n",
+                 108.0, steps: 12 }\n    effects: [bearing]\n",
             )
             .with(
                 "limits:\n  max_bearing_force_n: 1.0e6\ntolerances:\n  scene: rated\n  \

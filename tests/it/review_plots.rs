@@ -804,7 +804,8 @@ fn the_efficiency_plot_draws_its_limit_and_the_scene_with_its_signed_torque() {
 }
 
 /// The face load factor against the crank angle (issue 44, item 8): `reducer-misaligned.yaml`'s
-/// tilted scene draws one curve over its 1080 crank angles whose largest value is the check
+/// tilted scene draws one curve over its 10800 crank angles (0–1080° at 0.1°: whole periods of
+/// the tilted reducer as run, which the spec gives) whose largest value is the check
 /// table's `max_face_load_factor` (to the table's 4 digits and 0.02 px of drawing), with the
 /// spec's limit 3.5 dashed red and the uniform face's 1 dashed grey.
 #[test]
@@ -828,7 +829,7 @@ fn the_face_load_factor_is_plotted_against_the_crank_angle() {
         .find(|e| e.name == "polyline" && e.inside("series"))
         .unwrap();
     let points = point_list(curve.attr("points"));
-    assert_eq!(points.len(), 1080);
+    assert_eq!(points.len(), 10800);
     let top = points.iter().map(|p| p.1).fold(f64::MAX, f64::min);
     // The table rounds to 4 digits (±5e-4 at 3.0); a pixel is written to 0.01.
     let slack = (y_of(&els, table + 5e-4) - y_of(&els, table)).abs() + 0.02;

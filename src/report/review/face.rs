@@ -40,7 +40,9 @@ pub(super) fn section_of(
         let scene = &spec.scenes[p.scene];
         // The tilt as run: the scene's plus the one as built.
         let m = spec.design.deviations.face(&scene.face).misalignment;
-        let crank = format!("crank {}°", number(units::deg(p.crank_rad)));
+        // As the check table locates an extreme (`quantity`'s locations: two decimals), so that
+        // the plot names the same angle the table does.
+        let crank = format!("crank {:.2}°", units::deg(p.crank_rad));
         let why = match p.angle {
             FaceAngle::WorstFactor => "largest face load factor",
             FaceAngle::LargestLineLoad => "largest line load",

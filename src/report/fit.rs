@@ -47,6 +47,9 @@ pub fn render(spec: &Spec, id: &Identification) -> String {
          {} Gauss-Newton steps\n",
         spec.name, id.hole_points, id.unknowns, id.iterations
     );
+    if let Some(line) = thinned(id) {
+        out += &line;
+    }
     out += &format!(
         "condition number {:.1} (column-scaled Jacobian; refused above 1e8)\n",
         id.condition
@@ -120,6 +123,17 @@ pub fn render(spec: &Spec, id: &Identification) -> String {
         out += &format!("  {:>5} {:>5} {:>6} {cells}\n", f.tooth, f.side, f.points);
     }
     out
+}
+
+/// The line naming the thinning of a scan denser than the fit holds, if it was thinned.
+pub fn thinned(id: &Identification) -> Option<String> {
+    id.thinning.map(|t| {
+        format!(
+            "thinned: every {}-th of {} profile points ({} used; hole points all kept; the \
+             residuals, coverage and flanks below are those of the points used)\n",
+            t.every, t.of, t.used
+        )
+    })
 }
 
 /// Arc length of a flank of the identified modified profile from root to tip, mm.

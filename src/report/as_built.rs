@@ -12,8 +12,10 @@ pub fn describe(spec: &Spec, id: &Identification) -> String {
     let form = &spec.design.deviations;
     let thinned = id.thinning.map_or(String::new(), |t| {
         format!(
-            "; thinned: every {}-th of {} profile points ({} used)",
-            t.every, t.of, t.used
+            "; thinned: every {} of {} profile points ({} used)",
+            super::fit::ordinal(t.every),
+            t.of,
+            t.used
         )
     });
     format!(

@@ -66,7 +66,7 @@ pub(super) fn section_of(
             ": its modification and form error, exact geometry. Beside each result, the same \
              scene on the disc as designed." }
         @if let Some(t) = id.thinning {
-            p { "Thinned: every " (t.every) "-th of " (t.of) " profile points (" (t.used)
+            p { "Thinned: every " (crate::report::fit::ordinal(t.every)) " of " (t.of) " profile points (" (t.used)
                 " used, hole points all kept): the scan is denser than the fit holds; the \
                  residuals and plots are those of the points used." }
         }

@@ -7,9 +7,7 @@
 //! them gives back the drawing's modification, printed to 1e-6 mm.
 
 use crate::common::{cycloid, PaperSpec, Scratch};
-use cycloid::measure::points::{
-    parse_csv, parse_csv_at_most, parse_dxf, parse_dxf_at_most, MAX_FILE_BYTES, MAX_POINTS,
-};
+use cycloid::measure::points::{parse_csv_at_most, parse_dxf_at_most, MAX_FILE_BYTES, MAX_POINTS};
 
 /// The drawing's modification lines as `fit` prints them (6 decimals, zero uncertainty: the
 /// points are on the profile).

@@ -43,6 +43,7 @@
 
 use super::fitted::{Estimate, FittedPoint, FormError, Harmonic};
 use super::flanks::{flanks, Flank};
+use super::thinning::{self, Thinning};
 use super::{Feature, MeasuredPoint};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::profile::{ClosestPointFailure, Foot, Profile};
@@ -69,7 +70,7 @@ const MAX_ITERATIONS: usize = 60;
 /// and the iteration holds three (the Jacobian, the trial step's and the column-scaled copy its
 /// QR factors). A million points of the 5 unknowns of a fit without form error fit in it; 200
 /// harmonics (up to 405 unknowns) leave room for 41,000 points, a point every 5 µm around the
-/// paper's disc.
+/// paper's disc. A denser profile is thinned to fit (`thinning`).
 pub const MAX_JACOBIAN_ENTRIES: usize = 1 << 24;
 
 /// Below this RMS change of the residuals per step, mm, the feet of the last parameters start
@@ -122,6 +123,8 @@ pub struct Identification {
     pub hole_points: usize,
     pub unknowns: usize,
     pub iterations: usize,
+    /// Every k-th profile point was used, the scan being denser than the Jacobian holds.
+    pub thinning: Option<Thinning>,
 }
 
 /// Where each unknown sits in the parameter vector.
@@ -556,7 +559,9 @@ fn sum_squares(r: &[f64]) -> f64 {
 
 /// Identify the disc the points lie on. Errors (exit 2): too few points for the unknowns,
 /// `rotation_deg` without hole points, a fit whose Jacobian is ill-conditioned, a fit that does
-/// not converge, and points that do not fit a disc of this design.
+/// not converge, and points that do not fit a disc of this design. A profile denser than
+/// `MAX_JACOBIAN_ENTRIES` holds is thinned first (`thinning`, every k-th point; the residuals,
+/// coverage and flanks are those of the points used), and the identification says so.
 pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identification> {
     let design = request.design;
     let profile_count = points
@@ -635,6 +640,15 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
             ),
         ));
     }
+    let thinning = thinning::needed(profile_count, hole_points, layout.len, MAX_JACOBIAN_ENTRIES);
+    let thinned;
+    let points = match thinning {
+        Some(t) => {
+            thinned = thinning::thin(points, t.every);
+            &thinned[..]
+        }
+        None => points,
+    };
     let entries = points.len().saturating_mul(layout.len);
     if entries > MAX_JACOBIAN_ENTRIES {
         return Err(Error::new(
@@ -746,9 +760,10 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
             (params, feet, residuals) = (polished, polished_feet, r);
         }
     }
-    finish(
+    let id = finish(
         request, &layout, &params, points, &feet, &residuals, &last, iterations,
-    )
+    )?;
+    Ok(Identification { thinning, ..id })
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -858,6 +873,7 @@ fn finish(
         hole_points,
         unknowns: layout.len,
         iterations,
+        thinning: None,
     })
 }
 

@@ -2,7 +2,7 @@
 //! by `encoding`, its splines evaluated by `spline`), and the
 //! least-squares identification of the disc they lie on (`fit`, MODEL.md "Measured profiles";
 //! what it finds along the profile, `fitted`), and the per-flank summaries of its deviations
-//! over arc length (`flanks`).
+//! over arc length (`flanks`); a scan too dense for the fit is thinned (`thinning`).
 
 pub mod encoding;
 pub mod fit;
@@ -10,6 +10,7 @@ pub mod fitted;
 pub mod flanks;
 pub mod points;
 pub mod spline;
+pub mod thinning;
 
 use crate::geometry::Vec2;
 

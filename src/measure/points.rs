@@ -40,17 +40,23 @@ pub const SPLINE_POINTS_MAX: usize = 1 << 16;
 pub const MAX_SPLINE_DEGREE: usize = 32;
 
 /// Most points a measured-points file may give (profile and holes, every CSV row, polyline
-/// vertex and spline or circle point): 2^20. A CMM scan of a disc holds thousands to tens of
-/// thousands of points; a million keeps the reader's memory to ~40 MiB and the fit's Jacobian
-/// bounded (`fit::MAX_JACOBIAN_ENTRIES` bounds it with the unknowns).
-pub const MAX_POINTS: usize = 1 << 20;
+/// vertex and spline or circle point): 10^7. A CMM scan of a disc holds thousands to tens of
+/// thousands of points, an optical scan millions; 10^7 points take 400 MB (40 bytes each) beside
+/// the file's text (`MAX_FILE_BYTES`), and the fit thins a denser profile to what its Jacobian
+/// holds (`thinning`, `fit::MAX_JACOBIAN_ENTRIES`).
+pub const MAX_POINTS: usize = 10_000_000;
+
+/// Largest measured-points file read, bytes: `MAX_POINTS` CSV rows of 48 bytes (two
+/// coordinates of ~20 characters, a comma, a line end and room for a short `feature`), 480 MB.
+/// Other inputs keep `files::MAX_INPUT_BYTES`.
+pub const MAX_FILE_BYTES: u64 = 48 * MAX_POINTS as u64;
 
 /// The points of a file.
 pub fn read(path: &str, format: PointsFormat) -> Result<Vec<MeasuredPoint>> {
     let bytes = crate::files::read_bytes(
         std::path::Path::new(path),
         "measured profile",
-        crate::files::MAX_INPUT_BYTES,
+        MAX_FILE_BYTES,
     )?;
     match format {
         PointsFormat::Csv => parse_csv(path, &encoding::decode(&bytes, Fallback::Replace)),
@@ -69,15 +75,15 @@ fn at(path: &str, line: usize, message: String) -> Error {
     })
 }
 
-/// The error of one point more than `MAX_POINTS`, at the line that gave it.
-fn too_many(path: &str, line: usize) -> Error {
+/// The error of one point more than `max` (`MAX_POINTS`), at the line that gave it.
+fn too_many(path: &str, line: usize, max: usize) -> Error {
     at(
         path,
         line,
         format!(
-            "more than {MAX_POINTS} measured points: a fit reads at most {MAX_POINTS} (a CMM \
-             scan of a disc holds thousands to tens of thousands); thin the points, e.g. \
-             every k-th"
+            "more than {max} measured points: a file gives at most {max} (a CMM scan of a \
+             disc holds thousands to tens of thousands, an optical scan millions; the fit \
+             thins a denser profile itself); thin the points, e.g. every k-th"
         ),
     )
 }
@@ -121,6 +127,12 @@ fn csv_records<'t>(
 }
 
 pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
+    parse_csv_at_most(path, text, MAX_POINTS)
+}
+
+/// `parse_csv` refusing more than `max` points (`MAX_POINTS`; a parameter so that the bound is
+/// tested without a file of 10^7 rows).
+pub fn parse_csv_at_most(path: &str, text: &str, max: usize) -> Result<Vec<MeasuredPoint>> {
     let mut rows = csv_records(path, text);
     let (header_line, header) = rows
         .next()
@@ -139,8 +151,8 @@ pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
     let mut points = Vec::new();
     for row in rows {
         let (line, cells) = row?;
-        if points.len() == MAX_POINTS {
-            return Err(too_many(path, line));
+        if points.len() == max {
+            return Err(too_many(path, line, max));
         }
         let number = |c: usize, name: &str| -> Result<f64> {
             let cell = cells.get(c).unwrap_or("");
@@ -341,7 +353,7 @@ impl Entity<'_> {
 
     /// A SPLINE's profile points: its fit points, or points of the curve
     /// (`spline_sample_count`); `room` is how many more points the file may give.
-    fn spline_points(&self, path: &str, room: usize) -> Result<Vec<(usize, Vec2)>> {
+    fn spline_points(&self, path: &str, room: usize, max: usize) -> Result<Vec<(usize, Vec2)>> {
         let fit = self.pairs_of(path, (11, 21))?;
         let refuse = |m: String| at(path, self.line, m);
         if fit.len() >= 3 {
@@ -378,7 +390,7 @@ impl Entity<'_> {
         }
         let count = spline_sample_count(spline.control.len());
         if count > room {
-            return Err(too_many(path, self.line));
+            return Err(too_many(path, self.line, max));
         }
         Ok(spline
             .sample(count)
@@ -429,6 +441,11 @@ fn entities<'a>(all: &'a [Pair<'a>]) -> Vec<Entity<'a>> {
 }
 
 pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
+    parse_dxf_at_most(path, text, MAX_POINTS)
+}
+
+/// `parse_dxf` refusing more than `max` points (`MAX_POINTS`), as `parse_csv_at_most`.
+pub fn parse_dxf_at_most(path: &str, text: &str, max: usize) -> Result<Vec<MeasuredPoint>> {
     let all = pairs(path, text)?;
     require_mm(path, &all)?;
     let list = entities(&all);
@@ -445,8 +462,8 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
             }
             "SPLINE" => {
                 closed_profiles += 1;
-                let room = MAX_POINTS.saturating_sub(points.len());
-                push_profile(&mut points, e.spline_points(path, room)?);
+                let room = max.saturating_sub(points.len());
+                push_profile(&mut points, e.spline_points(path, room, max)?);
             }
             "POLYLINE" => {
                 refuse_open(path, e)?;
@@ -458,8 +475,8 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                     i += 1;
                 }
                 push_profile(&mut points, vertices);
-                if points.len() > MAX_POINTS {
-                    return Err(too_many(path, e.line));
+                if points.len() > max {
+                    return Err(too_many(path, e.line, max));
                 }
                 continue;
             }
@@ -480,8 +497,8 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
                     })?;
                 let centre = Vec2::new(e.number(path, 10)?, e.number(path, 20)?);
                 let radius = e.number(path, 40)?;
-                if points.len() + CIRCLE_POINTS > MAX_POINTS {
-                    return Err(too_many(path, e.line));
+                if points.len() + CIRCLE_POINTS > max {
+                    return Err(too_many(path, e.line, max));
                 }
                 for k in 0..CIRCLE_POINTS {
                     let a = TAU * k as f64 / CIRCLE_POINTS as f64;
@@ -494,8 +511,8 @@ pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
             }
             _ => {}
         }
-        if points.len() > MAX_POINTS {
-            return Err(too_many(path, e.line));
+        if points.len() > max {
+            return Err(too_many(path, e.line, max));
         }
         i += 1;
     }

@@ -47,6 +47,9 @@ pub fn render(spec: &Spec, id: &Identification) -> String {
          {} Gauss-Newton steps\n",
         spec.name, id.hole_points, id.unknowns, id.iterations
     );
+    if let Some(line) = thinned(id) {
+        out += &line;
+    }
     out += &format!(
         "condition number {:.1} (column-scaled Jacobian; refused above 1e8)\n",
         id.condition
@@ -122,6 +125,31 @@ pub fn render(spec: &Spec, id: &Identification) -> String {
     out
 }
 
+/// The line naming the thinning of a scan denser than the fit holds, if it was thinned.
+pub fn thinned(id: &Identification) -> Option<String> {
+    id.thinning.map(|t| {
+        format!(
+            "thinned: every {} of {} profile points ({} used; hole points all kept; the \
+             residuals, coverage and flanks below are those of the points used)\n",
+            ordinal(t.every),
+            t.of,
+            t.used
+        )
+    })
+}
+
+/// `k` as an English ordinal: 2nd, 3rd, 4th, 11th, 21st.
+pub fn ordinal(k: usize) -> String {
+    let suffix = match (k % 10, k % 100) {
+        (_, 11..=13) => "th",
+        (1, _) => "st",
+        (2, _) => "nd",
+        (3, _) => "rd",
+        _ => "th",
+    };
+    format!("{k}{suffix}")
+}
+
 /// Arc length of a flank of the identified modified profile from root to tip, mm.
 pub fn flank_length_mm(spec: &Spec, id: &Identification) -> f64 {
     let reference = Profile::new(&spec.design, &id.modification);
@@ -160,5 +188,16 @@ mod tests {
         assert_eq!(fixed_change(1e-12, 3), "0.000");
         assert_eq!(fixed_change(-1e-12, 3), "0.000");
         assert_eq!(fixed_change(0.0005, 3), "+0.001");
+    }
+
+    #[test]
+    fn ordinals_read_as_english() {
+        let read: Vec<String> = [1, 2, 3, 4, 11, 12, 13, 21, 102, 111]
+            .map(super::ordinal)
+            .into();
+        assert_eq!(
+            read,
+            ["1st", "2nd", "3rd", "4th", "11th", "12th", "13th", "21st", "102nd", "111th"]
+        );
     }
 }

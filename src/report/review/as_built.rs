@@ -65,6 +65,11 @@ pub(super) fn section_of(
             code { (spec.measured.as_ref().map_or("", |m| m.path.as_str())) }
             ": its modification and form error, exact geometry. Beside each result, the same \
              scene on the disc as designed." }
+        @if let Some(t) = id.thinning {
+            p { "Thinned: every " (crate::report::fit::ordinal(t.every)) " of " (t.of) " profile points (" (t.used)
+                " used, hole points all kept): the scan is denser than the fit holds; the \
+                 residuals and plots are those of the points used." }
+        }
         (data_table(
             html! { th { "" } th { "designed" } th { "as built" } th { "change" } },
             html! {

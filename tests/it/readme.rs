@@ -304,7 +304,11 @@ fn every_link_between_the_pages_lands() {
             }
             links += 1;
             let (path, heading) = target.split_once('#').unwrap_or((&target, ""));
-            let page = if path.is_empty() { file.clone() } else { dir.join(path) };
+            let page = if path.is_empty() {
+                file.clone()
+            } else {
+                dir.join(path)
+            };
             if !page.exists() {
                 broken.push(format!("{}: {target} (no such file)", file.display()));
                 continue;
@@ -317,7 +321,10 @@ fn every_link_between_the_pages_lands() {
             }
         }
     }
-    assert!(links > 50, "the guide's links were not read ({links} found)");
+    assert!(
+        links > 50,
+        "the guide's links were not read ({links} found)"
+    );
     assert!(broken.is_empty(), "links that land nowhere: {broken:#?}");
 }
 
@@ -327,7 +334,16 @@ fn the_readme_is_a_landing_page() {
     let readme = std::fs::read_to_string("README.md").unwrap();
     let lines = readme.lines().count();
     assert!(lines <= 400, "README.md has {lines} lines");
-    for command in ["check", "optimise", "accuracy", "bless", "profile", "tolerance", "fit", "design"] {
+    for command in [
+        "check",
+        "optimise",
+        "accuracy",
+        "bless",
+        "profile",
+        "tolerance",
+        "fit",
+        "design",
+    ] {
         assert!(
             readme.contains(&format!("`cycloid {command} ")),
             "the README shows no example of `cycloid {command}`"

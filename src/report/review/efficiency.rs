@@ -188,10 +188,7 @@ pub(super) fn section_of(
             continue;
         };
         let file = format!("efficiency-{}.svg", k + 1);
-        files.push((
-            file.clone(),
-            torque_plot(spec, s, c, r).to_svg(),
-        ));
+        files.push((file.clone(), torque_plot(spec, s, c, r).to_svg()));
         figures.push((
             file,
             format!("Efficiency against torque, scene {}", s.name),

@@ -128,7 +128,7 @@ pub fn picture(solid: &SolidPicture) -> (String, usize) {
             "The disc as a solid (isometric view of the STL mesh)"
         }
         g.solid transform=(format!("translate({},{}) scale({})", px(tx), px(ty), format!("{scale:.6}")))
-            stroke-width=(format!("{:.4}", 0.4 / scale)) stroke-linejoin="round" {
+            stroke-width=(format!("{:.4}", 0.8 / scale)) stroke-linejoin="round" {
             (PreEscaped(polygons))
         }
     };

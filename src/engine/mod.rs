@@ -1,7 +1,8 @@
 //! The engine: runs the scenes of a spec (`scene`), checks its limits (`check`, comparing a value
 //! with a limit in `limit`) and golden curves (`golden`), optimises the modification
 //! (`optimise`) and runs the accuracy ladder (`accuracy`), summarises the headline results of
-//! each scene (`summary`), and computes what the design review draws of the disc (`drawing`);
+//! each scene (`summary`), and computes what the design review draws of the disc (`drawing`) and of its solid
+//! (`solid_picture`);
 //! the torsion curve under a locked input and its catalogue figures (`torsion`); the crank
 //! bearing's rating life (`bearing_life`); the plausibility bands of the headlines
 //! (`plausibility`). It returns data: the tables, sentences and notes
@@ -28,6 +29,7 @@ pub use crate::progress;
 pub mod resolution;
 pub mod scene;
 pub mod shard_file;
+pub mod solid_picture;
 pub mod summary;
 pub mod tolerance;
 pub mod torque_curve;

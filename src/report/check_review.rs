@@ -52,6 +52,7 @@ fn with_input<T>(
         as_built,
         efficiency: &review.efficiency,
         face: &review.face,
+        solid: review.solid.as_ref(),
     };
     f(&input)
 }

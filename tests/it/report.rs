@@ -386,6 +386,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         as_built: None,
         efficiency: &[],
         face: &[],
+        solid: None,
     });
     // CYCLOID_KEEP_REPORT=DIR keeps the synthetic report to look at.
     if let Some(dir) = std::env::var_os("CYCLOID_KEEP_REPORT") {
@@ -452,6 +453,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         as_built: None,
         efficiency: &[],
         face: &[],
+        solid: None,
     });
     assert!(!files.iter().any(|(n, _)| n.starts_with("optimisation")));
     assert!(!page(&files).contains("<h2>Optimisation</h2>"));

@@ -1060,3 +1060,97 @@ fn each_front_design_has_its_own_review_linked_from_its_row() {
         assert_eq!(circles, 10 + 6, "{name}: rollers and pins");
     }
 }
+
+/// The solid beside the disc drawing (issue 43, item 6), read back from `disc-solid.svg`: the
+/// paper's disc with a 16 mm bore, seen isometrically from the +x, −y side above (the caption's
+/// view), every polygon a facet facing the viewer and inside the disc's bounding cylinder, the
+/// top face a whole triangulation of a face with 7 holes.
+#[test]
+fn the_solid_picture_draws_the_facets_facing_the_viewer_inside_the_discs_cylinder() {
+    use crate::common::PaperSpec;
+    let dir = Scratch::new("review-solid");
+    let bore =
+        "reducer:\n  crank_bearing: {dynamic_load_rating_n: 12000.0, outer_diameter_mm: 16.0}\n";
+    dir.write(
+        "disc.yaml",
+        PaperSpec::new().edit("reducer:\n", bore).text(),
+    );
+    let out = run(&dir.path, &["check", "disc.yaml", "--report", "r"]);
+    assert_eq!(out.code, Some(0), "{out:?}");
+    let html = dir.read("r/index.html");
+    assert!(html.contains("src=\"disc-solid.svg\""));
+    for named in [
+        "Isometric view",
+        "Face width B = 8.000 mm",
+        "bore ⌀ 16.00 mm",
+    ] {
+        assert!(html.contains(named), "the caption lacks `{named}`");
+    }
+    let svg = dir.read("r/disc-solid.svg");
+    assert!(svg.len() < 1_000_000, "{} bytes", svg.len());
+    let els = elements(&svg);
+    let group = els.iter().find(|e| e.class() == "solid").unwrap();
+    assert!(group.attr("transform").starts_with("translate("));
+    // Isometric from v = (1, −1, 1)/√3: screen right r = ẑ × v = (1, 1, 0)/√2, up u = v × r =
+    // (−1, 1, 2)/√6; a point (x, y, z) is drawn at X = p·r, Y = −p·u (mm, y down). Inverted at
+    // height z: x = a + z, y = b − z with a, b below.
+    let (s2, s6) = (2f64.sqrt(), 6f64.sqrt());
+    let (b_mm, bore_mm) = (8.0, 8.0);
+    // The modified profile's largest radius, at the tooth tip where its normal is radial:
+    // (Rp + ΔRp) + e − (Rrp + ΔRrp) (MODEL.md's profile with the paper's optimum).
+    let tip_mm = 30.0 + 0.125 + 2.0 - (3.0 + 0.1593);
+    // The nearest a point drawn at (X, Y) comes to the axis over z in [0, B], and at z = B.
+    let radius_at = |(x, y): (f64, f64), z: f64| {
+        let (a, b) = ((s2 * x + s6 * y) / 2.0, (s2 * x - s6 * y) / 2.0);
+        ((a + z).powi(2) + (b - z).powi(2)).sqrt()
+    };
+    let nearest = |p: (f64, f64)| radius_at(p, (-s6 * p.1 / 2.0).clamp(0.0, b_mm));
+    // Coordinates are written to 1 µm (0.5 µm rounding each): 2 µm covers a point's error.
+    let rounding = 2e-3;
+    let (mut faces, mut walls, mut widest) = (Vec::new(), 0, 0.0f64);
+    for p in els
+        .iter()
+        .filter(|e| e.name == "polygon" && e.inside("solid"))
+    {
+        let pts = point_list(p.attr("points"));
+        assert_eq!(pts.len(), 3);
+        for &q in &pts {
+            let r = nearest(q);
+            assert!(r <= tip_mm + rounding, "{q:?} is {r} mm from the axis");
+            widest = widest.max(r);
+        }
+        // Shoelace area with y down: a facet counter-clockwise seen from outside (its normal
+        // toward the viewer) is clockwise on the screen, negative. The rounding moves a wall
+        // strip's (B = 8 mm tall) area by at most 8 mm · 2 µm.
+        let area = 0.5
+            * (0..3)
+                .map(|i| {
+                    let (p, q) = (pts[i], pts[(i + 1) % 3]);
+                    p.0 * q.1 - q.0 * p.1
+                })
+                .sum::<f64>();
+        assert!(area < b_mm * rounding, "a back-facing facet drawn: {pts:?}");
+        match p.class() {
+            "face" => {
+                // On the top face z = B, and outside the bore.
+                for &q in &pts {
+                    let r = radius_at(q, b_mm);
+                    assert!(r <= tip_mm + rounding && r >= bore_mm - 0.1, "{q:?}: {r}");
+                }
+                faces.push(pts);
+            }
+            "wall" => walls += 1,
+            c => panic!("polygon of class {c}"),
+        }
+    }
+    // The silhouette reaches the tips (within a chord's sag and the rounding).
+    assert!(widest > tip_mm - 0.05, "widest {widest} mm");
+    // The top face is whole: a triangulated face of V vertices and H = 6 + 1 holes has
+    // V + 2H − 2 triangles (Euler's formula).
+    let vertices: std::collections::HashSet<String> = (faces.iter().flatten())
+        .map(|(x, y)| format!("{x},{y}"))
+        .collect();
+    assert_eq!(faces.len(), vertices.len() + 2 * 7 - 2);
+    // Walls facing the viewer: about half of the outline's and the holes' facets, and some.
+    assert!(walls > 100, "{walls} walls");
+}

@@ -59,7 +59,7 @@ pub struct Disc {
 /// The disc of `spec` for `profile --step`/`--stl`. A crowned disc is refused: its flanks are
 /// not the straight extrusion these exports build.
 pub fn disc(spec: &Spec) -> Result<Disc> {
-    if spec.scenes.iter().any(|s| !s.face.crowning.is_none()) {
+    if crowned(spec) {
         return Err(Error::new(
             ErrorKind::InvalidValue,
             "the disc is crowned (`modification.crowning`): the STEP and STL exports build a \
@@ -95,6 +95,11 @@ pub fn disc(spec: &Spec) -> Result<Disc> {
         face_width_mm: design.face_width_mm,
         as_built: built.is_some(),
     })
+}
+
+/// Whether any scene crowns the disc (`modification.crowning`), which `disc` refuses.
+pub fn crowned(spec: &Spec) -> bool {
+    spec.scenes.iter().any(|s| !s.face.crowning.is_none())
 }
 
 impl Disc {

@@ -4,6 +4,7 @@
 
 use super::common::{figure, section, Section};
 use crate::engine::drawing::{Disc, Part};
+use crate::engine::solid_picture::SolidPicture;
 use crate::geometry::Vec2;
 use crate::numeric::number;
 use crate::report::svg::frame::Frame;
@@ -22,21 +23,57 @@ const ARROW_MM: f64 = 12.0;
 const SHORTEST_ARROW_MM: f64 = 2.5;
 
 /// The disc at the drawing's crank angle and the close-up of its tightest roller.
-pub(super) fn disc_section(spec: &Spec, disc: &Disc, files: &mut Vec<(String, String)>) -> Section {
+pub(super) fn disc_section(
+    spec: &Spec,
+    disc: &Disc,
+    solid: Option<&SolidPicture>,
+    files: &mut Vec<(String, String)>,
+) -> Section {
     let d = &spec.design;
     let phi = format!("{:.2}", units::deg(disc.crank_rad));
     let (whole, whole_caption) = whole(disc, d.teeth, d.eccentricity_mm);
     let (detail, detail_caption) = close_up(disc);
     files.push(("disc.svg".into(), whole));
     files.push(("disc-detail.svg".into(), detail));
+    let solid = solid.map(|s| {
+        let (svg, drawn) = super::solid::picture(s);
+        files.push(("disc-solid.svg".into(), svg));
+        solid_caption(s, d.pins.count, drawn)
+    });
     let body = html! {
         div.grid {
             (figure("disc.svg", &format!("Disc, rollers and output pins at crank φ = {phi}°"),
                 &whole_caption))
+            @if let Some(caption) = &solid {
+                (figure("disc-solid.svg", "The disc as a solid", caption))
+            }
             (figure("disc-detail.svg", "Close-up of the smallest gap", &detail_caption))
         }
     };
     section("disc", html! { "The disc at crank φ = " (phi) "°" }, body)
+}
+
+/// The solid's caption: the view, what the mesh is, its tolerance, the face width and bore.
+fn solid_caption(s: &SolidPicture, holes: usize, drawn: usize) -> String {
+    let bore = match s.bore_diameter_mm {
+        Some(d) => format!("the crank bearing's bore ⌀ {} mm", number(d)),
+        None => "no bore (reducer.crank_bearing.outer_diameter_mm not given)".into(),
+    };
+    let built = if s.as_built {
+        " as built (identified from the measured profile)"
+    } else {
+        ""
+    };
+    format!(
+        "Isometric view, from the +x, −y side above the face z = B, of the closed triangle \
+         mesh that profile --stl writes{built}, here at a chordal tolerance of {} µm (the \
+         export's default is 0.5 µm) to keep the picture small: {} triangles, of which the \
+         {drawn} facing the viewer are drawn, flat-shaded by their normals, far to near. Face \
+         width B = {} mm; {holes} output-pin holes; {bore}.",
+        number(units::um(s.tolerance_mm)),
+        s.mesh.triangles.len(),
+        number(s.face_width_mm),
+    )
 }
 
 /// An arrow from `from` to `to` (world): its shaft and head, the segments a label must keep

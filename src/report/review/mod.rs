@@ -4,7 +4,8 @@
 //!
 //! Contents: verdict and warnings, a table of contents, the headline results of every scene,
 //! the design, every check and golden curve with its verdict; the disc at a crank angle as the
-//! engine computed it ([`engine::drawing`](crate::engine::drawing)) and a close-up of the smallest gap; per scene, the
+//! engine computed it ([`engine::drawing`](crate::engine::drawing)), the disc as a solid (`solid`)
+//! and a close-up of the smallest gap; per scene, the
 //! plots of its curves (`plots`); per optimisation study, the objective map with the global
 //! sample, the winning local run's path, start, references and optimum, and a table of those
 //! points; the accuracy ladder when one was run; the spec's source.
@@ -30,6 +31,7 @@ pub mod optimisation;
 pub mod plots;
 pub mod scenes;
 pub mod shell;
+pub mod solid;
 pub mod summary;
 pub mod tolerance;
 pub mod torsion;
@@ -73,6 +75,8 @@ pub struct ReportInput<'a> {
     pub efficiency: &'a [Option<crate::model::results::TorqueCurve>],
     /// Each tilted scene's line load along the face, tilted and as designed.
     pub face: &'a [crate::engine::face_profile::FaceProfile],
+    /// The disc as a solid, pictured beside the drawing (`None`: no picture).
+    pub solid: Option<&'a crate::engine::solid_picture::SolidPicture>,
 }
 
 /// The report's files, (file name, content): the SVGs, then `index.html` last.
@@ -94,7 +98,12 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         sections.push(checks::checks_section(input.checks));
     }
     sections.extend(checks::golden_section(input.goldens));
-    sections.push(disc::disc_section(input.spec, input.disc, &mut files));
+    sections.push(disc::disc_section(
+        input.spec,
+        input.disc,
+        input.solid,
+        &mut files,
+    ));
     for (k, (scene, r)) in input.spec.scenes.iter().zip(input.results).enumerate() {
         sections.extend(scenes::scene_section(input.spec, k, scene, r, &mut files));
     }

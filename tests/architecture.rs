@@ -535,3 +535,167 @@ fn a_circle_inside_a_folder_is_found() {
         ],
     );
 }
+
+/// The inherent `impl` blocks of a piece of code: the name of each type implemented (the last
+/// segment of its path, generics left out); trait impls (`impl X for Y`) are not inherent.
+fn inherent_impls(code: &str) -> Vec<String> {
+    let chars: Vec<char> = code.chars().collect();
+    let ident_char = |c: char| c.is_alphanumeric() || c == '_';
+    let mut found = Vec::new();
+    for (i, _) in code.match_indices("impl") {
+        let i = code[..i].chars().count();
+        let before = i.checked_sub(1).map(|j| chars[j]);
+        let after = chars.get(i + 4).copied();
+        // An item starts its line; `impl Trait` in an argument's or a result's type does not.
+        let line = code[..code.char_indices().nth(i).map_or(code.len(), |(b, _)| b)]
+            .rsplit('\n')
+            .next()
+            .unwrap_or_default()
+            .trim();
+        let item = matches!(line, "" | "unsafe");
+        if !item || before.is_some_and(ident_char) || after.is_some_and(ident_char) {
+            continue;
+        }
+        // The header, up to the block: `impl<T> a::Ty<T> where … {`.
+        let end = (i..chars.len())
+            .find(|&j| matches!(chars[j], '{' | ';'))
+            .unwrap_or(chars.len());
+        let mut header: String = chars[i + 4..end].iter().collect();
+        if header.trim_start().starts_with('<') {
+            header = skip_generics(header.trim_start());
+        }
+        let header = header.split(" where").next().unwrap_or_default();
+        if header.split_whitespace().any(|w| w == "for") {
+            continue;
+        }
+        let ty = header.trim().split('<').next().unwrap_or_default();
+        let name = ty.rsplit("::").next().unwrap_or_default().trim();
+        if !name.is_empty() && name.chars().all(ident_char) {
+            found.push(name.to_string());
+        }
+    }
+    found
+}
+
+/// The text after a leading `<…>` (nested brackets counted).
+fn skip_generics(text: &str) -> String {
+    let mut depth = 0;
+    for (i, c) in text.char_indices() {
+        match c {
+            '<' => depth += 1,
+            '>' => depth -= 1,
+            _ => {}
+        }
+        if depth == 0 {
+            return text[i + 1..].to_string();
+        }
+    }
+    String::new()
+}
+
+/// The types a piece of code defines (`struct`, `enum`, `union`, `type`).
+fn defined_types(code: &str) -> BTreeSet<String> {
+    let words: Vec<&str> = code
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .filter(|w| !w.is_empty())
+        .collect();
+    words
+        .windows(2)
+        .filter(|w| matches!(w[0], "struct" | "enum" | "union" | "type"))
+        .map(|w| w[1].to_string())
+        .collect()
+}
+
+/// Every inherent `impl` of a type that its module does not define, outside the defining module
+/// and its children: a type's methods live with its data, so a caller that names the type
+/// depends (in the imports the layer checks see) on every module its methods come from.
+fn scattered_impls(src: &Path) -> Vec<String> {
+    let modules = module_files(src);
+    let mut codes = BTreeMap::new();
+    let mut defined: BTreeMap<String, Vec<&Vec<String>>> = BTreeMap::new();
+    for (module, file) in &modules {
+        let code = code_of(&std::fs::read_to_string(file).unwrap());
+        for ty in defined_types(&code) {
+            defined.entry(ty).or_default().push(module);
+        }
+        codes.insert(module, code);
+    }
+    let mut found = Vec::new();
+    for (module, code) in &codes {
+        for ty in inherent_impls(code) {
+            let Some(homes) = defined.get(&ty) else {
+                continue;
+            };
+            if homes.iter().any(|home| module.starts_with(home)) {
+                continue;
+            }
+            let homes: Vec<String> = homes.iter().map(|h| h.join("::")).collect();
+            found.push(format!(
+                "src/{}: `impl {ty}` away from its type in {}",
+                module.join("/"),
+                homes.join(", ")
+            ));
+        }
+    }
+    found
+}
+
+#[test]
+fn methods_live_with_their_type() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let found = scattered_impls(&src);
+    assert!(
+        found.is_empty(),
+        "inherent impls away from their type's module:\n{}",
+        found.join("\n")
+    );
+}
+
+/// The check can fail: a type's data in one file and its methods in a sibling folder's file
+/// (the old `Coupling` split: `equilibrium/coupling.rs` and `equilibrium/friction/coupled.rs`)
+/// is found; methods in the defining file, in a child of its module, generic impls, and trait
+/// impls elsewhere (or in a comment, or a string) are not.
+#[test]
+fn methods_away_from_their_type_are_found() {
+    let dir = std::env::temp_dir().join(format!("cycloid-impls-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let files = [
+        ("lib.rs", "pub mod equilibrium;\n"),
+        (
+            "equilibrium/mod.rs",
+            "pub mod coupling;\npub mod friction;\npub mod wrap;\n",
+        ),
+        (
+            "equilibrium/coupling.rs",
+            "pub struct Coupling { pub roller: f64 }\npub enum Sliding { Running }\n\
+             impl Coupling { pub fn active(&self) -> bool { true } }\n\
+             pub struct Wrap<T>(T);\nimpl<T: Copy> Wrap<T> where T: Clone { fn get(&self) {} }\n",
+        ),
+        ("equilibrium/friction/mod.rs", "pub mod coupled;\n"),
+        (
+            "equilibrium/friction/coupled.rs",
+            "pub use crate::equilibrium::coupling::Coupling;\n\
+             // impl Sliding in a comment\nconst S: &str = \"impl Sliding {\";\n\
+             impl Coupling {\n    pub fn roller_arm(&self) -> f64 { self.roller }\n}\n\
+             impl std::fmt::Debug for Coupling { }\nfn implied(f: impl Fn() -> Coupling) {}\n",
+        ),
+        (
+            "equilibrium/wrap/mod.rs",
+            "impl<T> crate::equilibrium::coupling::Wrap<T> { fn f(&self) {} }\n",
+        ),
+    ];
+    for (name, text) in files {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+    let found = scattered_impls(&dir);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(
+        found,
+        [
+            "src/equilibrium/friction/coupled: `impl Coupling` away from its type in equilibrium::coupling",
+            "src/equilibrium/wrap: `impl Wrap` away from its type in equilibrium::coupling",
+        ],
+    );
+}

@@ -18,7 +18,7 @@
 //! P/(h·A) only with `reducer.thermal` too.
 
 use crate::engine::power_flow::PowerFlow;
-use crate::equilibrium::friction::coupled::Coupling;
+use crate::equilibrium::coupling::Coupling;
 use crate::equilibrium::friction::loss::{
     disc_losses as contact_losses, reducer_losses, PathLosses,
 };
@@ -128,7 +128,7 @@ fn self_locking(scene: &Scene, input_torque_nmm: &[f64]) -> Vec<f64> {
 }
 
 /// The coupled model's input torque at each crank angle, N·mm, from the crank's balance about
-/// the axis (`equilibrium::friction::coupled`): T_in = Σ_k (E_k × Fb_k + c_b·|Fb_k|) + T0, with
+/// the axis (`equilibrium::coupling`): T_in = Σ_k (E_k × Fb_k + c_b·|Fb_k|) + T0, with
 /// E_k = (e + de)·e_φk the eccentric of disc k and Fb_k its bearing's force on the disc (at
 /// the angle ε_k from e_φk: E_k × Fb_k = (e + de)·|Fb_k|·sin ε_k).
 fn crank_input_torque(

@@ -16,7 +16,7 @@
 //! The catalogue loop is a hysteresis loop because real reducers have friction. Without
 //! `reducer.friction` this model is quasi-static and frictionless: the loading and unloading
 //! branches coincide and the hysteresis loss is zero. With it (`friction_loop`) every contact's
-//! Coulomb friction resists the disc's turn (`equilibrium::friction::torsion`): the loading
+//! Coulomb friction resists the disc's turn (`equilibrium::torsion`): the loading
 //! branch (−Trated → +Trated, σ = +1) and the unloading one (back, σ = −1) part, and
 //! - **hysteresis loss** = the width at T = 0 of the loop the disc traverses (`Traversed`),
 //!   falling minus rising half, the mean of its values at 0⁺ and 0⁻: the branches' width
@@ -47,8 +47,8 @@
 //! solve no longer converges (its force merit at 2e-8 N·m stalls at 1e-6).
 
 use crate::equilibrium::discs::{CoupledWork, Discs};
-use crate::equilibrium::friction::torsion::{set_branch, solve_point};
 use crate::equilibrium::solve::SolveFailure;
+use crate::equilibrium::torsion::{set_branch, solve_point};
 use crate::model::results::{TorsionCompliances, TorsionCurves, TorsionFigures};
 use crate::model::TorqueSweep;
 use crate::progress::Progress;
@@ -105,7 +105,7 @@ pub fn figures(rated_nmm: f64, gamma: &[f64; 8]) -> Result<TorsionFigures, Strin
 /// `torque_nmm`, warm-started from `work` (the last solve of the same angle): the coupled
 /// balance of the discs ([`equilibrium::discs`](crate::equilibrium::discs)); with one disc γ = β + βo, β the disc's lag
 /// (rollers) and βo the pins' deflection (0 when the pins are not modelled). With friction, on
-/// the branch the discs are on (`equilibrium::friction::torsion::solve_point`).
+/// the branch the discs are on (`equilibrium::torsion::solve_point`).
 pub fn output_lag(
     discs: &mut Discs,
     crank_rad: f64,

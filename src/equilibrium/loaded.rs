@@ -1,11 +1,11 @@
 //! The loaded model of a scene (`Model`: the rollers, pins and bearing it includes, the torque,
 //! the solver's settings) and its equilibrium at one crank angle (`AngleSolution`).
 
+pub use super::angle_solution::AngleSolution;
 use super::coupling::Coupling;
-use super::pins::{PinState, Pins};
-use super::rollers::{RollerState, Rollers};
+use super::pins::Pins;
+use super::rollers::Rollers;
 use super::solve::Settings;
-use crate::geometry::Vec2;
 use crate::model::{Design, Effect, Friction, GeometryMode, Modification, Plan, Scene};
 
 /// What the loaded model of a scene includes.
@@ -58,7 +58,7 @@ impl Model {
     }
 
     /// This model with `friction` inside its balance (the coupled model,
-    /// `friction::coupled`); a friction whose every coefficient is zero leaves it frictionless.
+    /// `coupling`); a friction whose every coefficient is zero leaves it frictionless.
     pub fn with_friction(mut self, friction: &Friction, design: &Design) -> Self {
         self.coupling = Some(Coupling::new(friction, design)).filter(Coupling::active);
         self
@@ -99,23 +99,4 @@ impl Model {
             .is_some_and(|r| r.geometry == GeometryMode::FirstOrder)
             || self.first_order
     }
-}
-
-/// The equilibrium at one crank angle. Fixed frame; lags in rad (positive opposes the motion).
-/// From `solve_angle` every roller state is exact; inside a sweep a roller proven out of reach
-/// has zero force, a lower bound as its gap and the geometry of its last exact evaluation.
-#[derive(Debug, Clone, Default)]
-pub struct AngleSolution {
-    /// β, when the rollers are modelled.
-    pub lag_rad: Option<f64>,
-    pub rollers: Vec<RollerState>,
-    /// βo, when the pins are modelled.
-    pub output_lag_rad: Option<f64>,
-    pub pins: Vec<PinState>,
-    /// Disc-centre displacement from e·(cos φ, sin φ) (compliant bearing), mm.
-    pub centre_offset_mm: Vec2,
-    /// Crank-bearing force on the disc, N, when `bearing` is modelled.
-    pub bearing_force_n: Option<Vec2>,
-    /// Largest relative residual of the force and moment balance (paper Eqs. 12–14).
-    pub residual: Option<f64>,
 }

@@ -5,6 +5,7 @@
 //! the pins transmit the output torque T, the rollers balance it.
 
 pub mod angle;
+mod angle_solution;
 pub mod balance;
 mod compliant_bearing;
 pub mod coupling;
@@ -20,4 +21,5 @@ mod rigid_bearing;
 pub mod rollers;
 pub mod solve;
 pub mod sweep;
+pub mod torsion;
 pub mod work;

@@ -341,7 +341,7 @@ pub(super) fn solve_rigid(
     Ok(())
 }
 
-// The coupled friction model (`friction::coupled`): the same balances with every contact's
+// The coupled friction model (`coupling`): the same balances with every contact's
 // friction inside them. Roller and pin friction are linear in their normal forces (kinematic
 // sliding directions: adjusted arms l̃, ã); the bearing's friction moment c_b·|Fb| couples the
 // rollers to the pins' total force, which depends on the rollers only through the disc's

@@ -1,5 +1,5 @@
 //! The coupled friction model (MODEL.md "Friction, efficiency and heat";
-//! `equilibrium::friction::coupled`): friction inside the disc's balance, the input torque from
+//! `equilibrium::coupling`): friction inside the disc's balance, the input torque from
 //! the crank's balance.
 //!
 //! What is checked comes from outside the solver: the energy identity of the disc's virtual
@@ -9,7 +9,7 @@
 
 use crate::common::{self, cases, Case};
 use cycloid::equilibrium::angle::solve_angle;
-use cycloid::equilibrium::friction::coupled::{Coupling, Energy};
+use cycloid::equilibrium::coupling::{Coupling, Energy};
 use cycloid::equilibrium::loaded::{AngleSolution, Model};
 use cycloid::model::{
     BearingFriction, ContactLaw, Design, Effect, Friction, FrictionModel, GeometryMode,

@@ -528,7 +528,7 @@ fn a_compliant_bearing_in_a_loop_with_friction_is_refused() {
 #[test]
 fn every_pins_friction_opposes_its_sliding_along_the_branch() {
     use cycloid::equilibrium::discs::{CoupledWork, Discs};
-    use cycloid::equilibrium::friction::torsion::{set_branch, solve_point};
+    use cycloid::equilibrium::torsion::{set_branch, solve_point};
     let spec = paper_spec(0.125, 0.1593);
     let friction = cycloid::spec::parse(
         "s.yaml",

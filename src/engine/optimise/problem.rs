@@ -55,10 +55,11 @@ impl Margin {
         self.margin >= -crate::engine::limit::tolerance(self.bound)
     }
 
-    /// The margin relative to the bound (a bound of 0 counts as 1 of its unit): constraints of
-    /// different units compare by this.
+    /// The margin relative to the bound, at least 1 of its unit (`limit::Scale::LimitOrUnit`):
+    /// constraints of different units compare by this.
     pub fn relative(&self) -> f64 {
-        self.margin / self.bound.abs().max(1.0)
+        use crate::engine::limit::{relative, Scale};
+        relative(self.margin, self.bound, Scale::LimitOrUnit)
     }
 }
 

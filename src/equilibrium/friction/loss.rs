@@ -8,7 +8,7 @@
 //! N·mm/s). Multiply by ω in rad/s for N·mm/s, and by 1e-3 for W.
 
 use super::sliding::{pin_sliding, relative_crank_speed_ratio, roller_sliding};
-use crate::equilibrium::loaded::AngleSolution;
+use crate::equilibrium::angle_solution::AngleSolution;
 use crate::equilibrium::pins::PinState;
 use crate::equilibrium::rollers::RollerState;
 pub use crate::model::friction::PathLosses;

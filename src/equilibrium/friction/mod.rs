@@ -2,7 +2,5 @@
 //! rigid-body sliding speeds at the nominal ratio (`sliding`), on which the losses and the
 //! coupled balance are built.
 
-pub mod coupled;
 pub mod loss;
 pub mod sliding;
-pub mod torsion;

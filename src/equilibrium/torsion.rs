@@ -2,10 +2,10 @@
 //! the disc turns about its own centre, and every contact's Coulomb friction resists that
 //! turn. On the loading branch (σ = +1) the disc's lag grows, unloading (σ = −1) it shrinks;
 //! each branch is a sequence of quasi-static balances in full sliding with the coupled
-//! friction of `coupled` (`Sliding::Torsion`).
+//! friction of `coupling` (`Sliding::Torsion`).
 //!
 //! The rollers' and the bearing's sliding signs follow from σ and the geometry alone. A hole
-//! slides over its pin at −O_d·u − ρ·X·u per unit turn (`sliding::torsion_pin_sliding`), with
+//! slides over its pin at −O_d·u − ρ·X·u per unit turn (`friction::sliding::torsion_pin_sliding`), with
 //! ρ = dβo/dβ the pins' deflection per unit turn of the disc: on a branch both lags follow the
 //! torque, so ρ = (∂T/∂β)/(∂T/∂βo), the ratio of the rollers' and the pins' balance slopes at
 //! the solution. Each point is solved with the ρ of the last one and solved again while the

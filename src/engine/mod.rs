@@ -2,7 +2,7 @@
 //! with a limit in `limit`) and golden curves (`golden`), optimises the modification
 //! (`optimise`) and runs the accuracy ladder (`accuracy`), summarises the headline results of
 //! each scene (`summary`), and computes what the design review draws of the disc (`drawing`) and of its solid
-//! (`solid_picture`);
+//! (`commands::solid_picture`, beside the export it draws);
 //! the torsion curve under a locked input and its catalogue figures (`torsion`); the crank
 //! bearing's rating life (`bearing_life`); the plausibility bands of the headlines
 //! (`plausibility`). It returns data: the tables, sentences and notes
@@ -29,7 +29,6 @@ pub use crate::progress;
 pub mod resolution;
 pub mod scene;
 pub mod shard_file;
-pub mod solid_picture;
 pub mod summary;
 pub mod tolerance;
 pub mod torque_curve;

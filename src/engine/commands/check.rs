@@ -107,7 +107,7 @@ pub struct Review {
     pub face: Vec<crate::engine::face_profile::FaceProfile>,
     /// The disc as a solid, to picture beside the drawing (`None`: `profile` would not
     /// export it).
-    pub solid: Option<crate::engine::solid_picture::SolidPicture>,
+    pub solid: Option<super::solid_picture::SolidPicture>,
 }
 
 /// Run every scene of `spec`, check its limits and goldens, run its studies, and what
@@ -201,7 +201,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
                 .map(|s| torque_curve::torque_curve(&spec, s))
                 .collect::<Result<_>>()?,
             face: crate::engine::face_profile::face_profiles(&spec, &results)?,
-            solid: crate::engine::solid_picture::solid_picture(drawing)?,
+            solid: super::solid_picture::solid_picture(drawing)?,
         }),
         None => None,
     };

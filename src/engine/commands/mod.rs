@@ -9,6 +9,7 @@ mod design;
 mod fit;
 mod optimise;
 mod profile;
+pub mod solid_picture;
 mod tolerance;
 
 pub use accuracy::accuracy;

@@ -3,8 +3,8 @@
 //! tightest roller's gap (`disc_section`).
 
 use super::common::{figure, section, Section};
+use crate::engine::commands::solid_picture::SolidPicture;
 use crate::engine::drawing::{Disc, Part};
-use crate::engine::solid_picture::SolidPicture;
 use crate::geometry::Vec2;
 use crate::numeric::number;
 use crate::report::svg::frame::Frame;

@@ -76,7 +76,7 @@ pub struct ReportInput<'a> {
     /// Each tilted scene's line load along the face, tilted and as designed.
     pub face: &'a [crate::engine::face_profile::FaceProfile],
     /// The disc as a solid, pictured beside the drawing (`None`: no picture).
-    pub solid: Option<&'a crate::engine::solid_picture::SolidPicture>,
+    pub solid: Option<&'a crate::engine::commands::solid_picture::SolidPicture>,
 }
 
 /// The report's files, (file name, content): the SVGs, then `index.html` last.

@@ -1,5 +1,5 @@
 //! The disc as a solid, pictured beside the drawing: the triangle mesh the engine built
-//! ([`engine::solid_picture`](crate::engine::solid_picture)) in an isometric view, each facet
+//! ([`engine::commands::solid_picture`](crate::engine::commands::solid_picture)) in an isometric view, each facet
 //! facing the viewer flat-shaded by its normal against a fixed light, drawn far to near
 //! (the painter's algorithm).
 //!
@@ -8,7 +8,7 @@
 //! leaves an outer wall toward the viewer runs outward, away from the face, and one that leaves
 //! a hole's wall runs up through the hole. The bottom face never faces the viewer.
 
-use crate::engine::solid_picture::SolidPicture;
+use crate::engine::commands::solid_picture::SolidPicture;
 use crate::report::svg::{document, px};
 use maud::{html, PreEscaped};
 

@@ -2,7 +2,7 @@
 //! `profile --stl` writes (`commands::profile::Disc::mesh`), built at a coarser chordal
 //! tolerance so that the picture stays small. Disc frame, mm.
 
-use crate::engine::commands::{crowned, disc};
+use super::profile::{crowned, disc};
 use crate::error::Result;
 use crate::geometry::disc_mesh::TriangleMesh;
 use crate::spec::Spec;

@@ -11,7 +11,7 @@ use crate::common::{assert_refused_at, Scratch};
 use cycloid::equilibrium::loaded::Model;
 use cycloid::equilibrium::sweep;
 use cycloid::model::results::LoadedSweep;
-use cycloid::model::{period, Plan};
+use cycloid::model::Plan;
 use cycloid::spec::Spec;
 use proptest::prelude::*;
 

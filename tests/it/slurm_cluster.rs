@@ -373,7 +373,9 @@ fn the_sbatch_design_search_on_a_one_node_cluster_equals_the_unsharded_run() {
         "the front's files"
     );
     assert!(merged.len() >= 5, "{:?}", merged.keys());
-    for name in merged.keys().filter(|n| *n != "index.html") {
+    // Each front design's review folder (`design-01/`, its files compared under their own
+    // names) is listed with a trailing `/` and holds no bytes of its own.
+    for name in (merged.keys()).filter(|n| *n != "index.html" && !n.ends_with('/')) {
         same_file(&on_cluster.join("front"), &whole.join("front"), name);
     }
     let page = |d: &Path| {

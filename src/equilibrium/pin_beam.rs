@@ -166,86 +166,9 @@ pub fn series_force(
     }
 }
 
-/// A contact of any force law `force` (a tilted face's, `contact::face_width`) in series with
-/// the pin's bending compliance c (mm/N): the force F with d + c·F(d) = `approach_mm`, d the
-/// contact's own approach, and the series stiffness k/(1 + c·k), k = dF/dd at d. F is
-/// non-decreasing in d, so the root is unique and lies in [a − c·F(a), a] (a the approach):
-/// bisection safeguards Newton there. c = 0 is the contact alone, bit for bit.
-pub fn series_with(
-    force: impl Fn(f64) -> ContactForce,
-    compliance_mm_per_n: f64,
-    approach_mm: f64,
-) -> ContactForce {
-    let c = compliance_mm_per_n;
-    let at_full = force(approach_mm);
-    if c == 0.0 || at_full.force_n == 0.0 {
-        return at_full;
-    }
-    let (mut lo, mut hi) = (approach_mm - c * at_full.force_n, approach_mm);
-    let mut d = lo;
-    for _ in 0..200 {
-        let f = force(d);
-        let g = d + c * f.force_n - approach_mm;
-        if g == 0.0 {
-            break;
-        } else if g > 0.0 {
-            hi = d;
-        } else {
-            lo = d;
-        }
-        let newton = d - g / (1.0 + c * f.stiffness_n_per_mm);
-        d = if newton >= lo && newton <= hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
-        if (hi - lo).abs() <= 1e-15 * approach_mm.abs().max(1e-9) || newton == d && g.abs() < 1e-18
-        {
-            break;
-        }
-    }
-    let f = force(d);
-    ContactForce {
-        force_n: f.force_n,
-        stiffness_n_per_mm: f.stiffness_n_per_mm / (1.0 + c * f.stiffness_n_per_mm),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A contact whose force is linear beyond an offset (a tilted face's edge: F = k·(d + a)
-    /// for d > −a) in series with a compliance c: the closing δ = d + c·F gives F = (δ + a)/(1/k
-    /// + c) and the series stiffness 1/(1/k + c), by hand; and c = 0 is the contact itself.
-    #[test]
-    fn series_with_matches_the_hand_solved_series_spring() {
-        let (k, a) = (2.0e5, 0.004);
-        let contact = |d: f64| {
-            if d + a > 0.0 {
-                ContactForce {
-                    force_n: k * (d + a),
-                    stiffness_n_per_mm: k,
-                }
-            } else {
-                ContactForce::NONE
-            }
-        };
-        for (c, delta) in [(2.5e-5, 0.01), (2.5e-5, -0.002), (1e-6, 0.0)] {
-            let f = series_with(contact, c, delta);
-            let hand = (delta + a) / (1.0 / k + c);
-            // The bisection-safeguarded Newton stops at 1e-15 of the approach: round-off.
-            assert!(
-                (f.force_n - hand).abs() <= 1e-9 * hand,
-                "c {c}: {f:?} vs {hand}"
-            );
-            let stiffness = 1.0 / (1.0 / k + c);
-            assert!((f.stiffness_n_per_mm - stiffness).abs() <= 1e-12 * stiffness);
-        }
-        assert_eq!(series_with(contact, 0.0, 0.01), contact(0.01));
-        // Beyond the edge nothing touches, with or without the beam.
-        assert_eq!(series_with(contact, 2.5e-5, -0.005).force_n, 0.0);
-    }
 
     /// The propped cantilever's coefficient at the load point equals Roark's closed form
     /// P·a³·(L − a)²·(4L − a)/(12·EI·L³) (Table 8.1 case 1c), and the coefficients are

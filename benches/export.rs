@@ -19,8 +19,8 @@ fn paper() -> Spec {
 fn step_solid_0_5um(b: divan::Bencher) {
     let spec = paper();
     b.bench(|| {
-        let solid = commands::disc(&spec).unwrap().solid(0.5e-3).unwrap();
-        black_box(step::step(&spec, &solid))
+        let solids = commands::disc(&spec).unwrap().solids(0.5e-3).unwrap();
+        black_box(step::step(&spec, &solids))
     });
 }
 
@@ -30,7 +30,7 @@ fn step_solid_0_5um(b: divan::Bencher) {
 fn stl_mesh_0_5um(b: divan::Bencher) {
     let spec = paper();
     b.bench(|| {
-        let mesh = commands::disc(&spec).unwrap().mesh(0.5e-3).unwrap();
+        let mesh = commands::disc(&spec).unwrap().placed_mesh(0.5e-3).unwrap();
         black_box(stl::stl(&spec, &mesh))
     });
 }

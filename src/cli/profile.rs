@@ -55,11 +55,11 @@ pub(super) fn run(
         _ => Some(commands::disc(&spec)?),
     };
     let solid = match (&disc, step_path) {
-        (Some(d), Some(_)) => Some(d.solid(tol)?),
+        (Some(d), Some(_)) => Some(d.solids(tol)?),
         _ => None,
     };
     let mesh = match (&disc, stl_path) {
-        (Some(d), Some(_)) => Some(d.mesh(tol)?),
+        (Some(d), Some(_)) => Some(d.placed_mesh(tol)?),
         _ => None,
     };
     if let Some(p) = csv {
@@ -84,12 +84,13 @@ pub(super) fn run(
     )?;
     if let Some(d) = &disc {
         let shape = export::SolidShape {
-            pieces: solid.as_ref().map(|s| s.piece_count()),
+            pieces: solid.as_ref().map(|s| s[0].0.piece_count()),
             triangles: mesh.as_ref().map(|m| m.triangles.len()),
             holes: d.holes.len(),
             bore_diameter_mm: d.bore.map(|c| 2.0 * c.radius_mm),
             as_built: d.as_built,
-            discs: spec.design.discs,
+            bodies: d.bodies.clone(),
+            face_width_mm: d.face_width_mm,
         };
         print(out, &export::solid_lines(&shape, tolerance_um))?;
     }

@@ -98,7 +98,7 @@ impl Coupling {
             bearing_arm_mm: friction
                 .crank_bearing
                 .map_or(0.0, |b| b.mu * 0.5 * b.bore_diameter_mm),
-            eccentricity_mm: design.eccentricity_mm + design.deviations.eccentricity_mm,
+            eccentricity_mm: design.built_eccentricity_mm(),
             teeth: design.teeth,
             sliding: Sliding::Running,
         }

@@ -49,7 +49,7 @@ impl Model {
             bearing_stiffness_n_per_mm: scene.bearing_stiffness_n_per_mm.filter(|_| bearing),
             torque_nmm: scene.output_torque_nmm,
             teeth: design.teeth,
-            eccentricity_mm: design.eccentricity_mm + design.deviations.eccentricity_mm,
+            eccentricity_mm: design.built_eccentricity_mm(),
             settings: Settings::default(),
             first_order: scene.geometry == GeometryMode::FirstOrder,
             coupling: None,

@@ -6,6 +6,7 @@ pub mod disc_solid;
 pub mod first_order;
 pub mod form_error;
 pub mod mesh_minimum;
+pub mod placement;
 pub mod polyline;
 pub mod profile;
 

@@ -152,6 +152,12 @@ impl Design {
         disc_phase_rad(k, self.discs)
     }
 
+    /// The crank's eccentricity as built, e + de, mm: the orbit of every disc centre
+    /// (`reducer.deviations.eccentricity_mm` the deviation de; MODEL.md "Part deviations").
+    pub fn built_eccentricity_mm(&self) -> f64 {
+        self.eccentricity_mm + self.deviations.eccentricity_mm
+    }
+
     /// Short-amplitude coefficient K1 = e·np/Rp (MODEL.md); a disc exists only for K1 < 1.
     pub fn k1(&self) -> f64 {
         self.eccentricity_mm * self.rollers as f64 / self.roller_circle_radius_mm

@@ -2,8 +2,12 @@
 //! spaced so that the chordal error (distance of the true profile from each chord) stays
 //! under a tolerance.
 
+use super::fit::fixed;
+use crate::geometry::placement::Body;
 pub use crate::geometry::polyline::{polyline, ProfilePoint};
+use crate::model::design::disc_phase_rad;
 use crate::spec::Spec;
+use crate::units;
 
 fn header_lines(spec: &Spec, tolerance_mm: f64, count: usize) -> Vec<String> {
     let m = &spec.modification;
@@ -100,8 +104,10 @@ pub struct SolidShape {
     pub bore_diameter_mm: Option<f64>,
     /// Whether the profile is the disc identified from `measured_profile`.
     pub as_built: bool,
-    /// The reducer's identical discs.
-    pub discs: usize,
+    /// Each disc as a body of the files (one: its own frame).
+    pub bodies: Vec<Body>,
+    /// B, mm.
+    pub face_width_mm: f64,
 }
 
 /// The lines `profile` prints about the STEP solid and the STL mesh: what they hold and what
@@ -127,11 +133,33 @@ pub fn solid_lines(shape: &SolidShape, tolerance_um: f64) -> String {
         Some(d) => format!("bore {} mm\n", crate::numeric::input(d)),
         None => "no bore (give reducer.crank_bearing.outer_diameter_mm to cut one)\n".to_string(),
     };
-    if shape.discs > 1 {
+    let n = shape.bodies.len();
+    if n > 1 {
         out += &format!(
-            "discs: the {} discs are this one solid, each in its own frame at its crank phase \
-             2πk/{}; the file holds one\n",
-            shape.discs, shape.discs
+            "discs: {n} bodies, each disc where the reducer puts it at crank angle 0 (the \
+             reducer's frame: origin on the input axis, roller 0 on +x):\n"
+        );
+    }
+    for (k, body) in shape.bodies.iter().enumerate().filter(|_| n > 1) {
+        let p = &body.placement;
+        let part = if body.hole_turn_rad == 0.0 {
+            "disc 1's part".to_string()
+        } else {
+            format!(
+                "a part of its own: its holes turned {} deg from disc 1's about its teeth",
+                fixed(units::deg(body.hole_turn_rad), 4)
+            )
+        };
+        out += &format!(
+            "  disc {}: crank phase {} deg, centre ({}, {}) mm, turned {} deg, z {} to {} mm; \
+             {part}\n",
+            k + 1,
+            fixed(units::deg(disc_phase_rad(k, n)), 1),
+            fixed(p.centre.x, 4),
+            fixed(p.centre.y, 4),
+            fixed(units::deg(p.turn_rad), 4),
+            fixed(p.z_mm, 3),
+            fixed(p.z_mm + shape.face_width_mm, 3),
         );
     }
     out

@@ -1,18 +1,22 @@
 //! The disc as a STEP solid (ISO 10303-21, AP214 `AUTOMOTIVE_DESIGN`): one
-//! `MANIFOLD_SOLID_BREP` whose faces are the profile's flanks (one face per tooth, a
-//! `B_SPLINE_SURFACE_WITH_KNOTS` extruding the tooth's cubic `B_SPLINE_CURVE_WITH_KNOTS`), each hole
-//! and the bore (two half-cylinders each) and the two planes z = 0 and z = B, in mm.
+//! `MANIFOLD_SOLID_BREP` per disc (each of several where the reducer puts it), whose faces are
+//! the profile's flanks (one face per tooth, a `B_SPLINE_SURFACE_WITH_KNOTS` extruding the
+//! tooth's cubic `B_SPLINE_CURVE_WITH_KNOTS`), each hole and the bore (two half-cylinders
+//! each) and the two planes z = 0 and z = B of the disc frame, in mm.
 //!
 //! Orientation (ISO 10303-42): a face's normal points out of the material, and each of its
 //! loops runs counter-clockwise about that normal for the outer bound, clockwise for an inner
 //! one; every edge is used by two faces in opposite directions (a closed shell).
 
 use crate::geometry::disc_solid::{Bezier, Circle, DiscSolid};
+use crate::geometry::placement::Placement;
 use crate::spec::Spec;
 
-/// Entity instances, numbered from #1 in the order they are added.
+/// Entity instances, numbered from #1 in the order they are added; every point and direction
+/// moved by `at` from the disc frame (the disc being written).
 struct Data {
     entities: Vec<String>,
+    at: Placement,
 }
 
 type Id = usize;
@@ -28,6 +32,7 @@ impl Data {
     }
 
     fn point(&mut self, p: Point) -> Id {
+        let p = self.at.point(p);
         self.add(format!(
             "CARTESIAN_POINT('',({},{},{}))",
             real(p[0]),
@@ -37,6 +42,7 @@ impl Data {
     }
 
     fn direction(&mut self, d: Point) -> Id {
+        let d = self.at.direction(d);
         self.add(format!(
             "DIRECTION('',({},{},{}))",
             real(d[0]),
@@ -252,18 +258,45 @@ fn circle_faces(data: &mut Data, c: &Circle, b: f64, faces: &mut Vec<Id>) -> (Id
     (bottom, top)
 }
 
-/// The STEP text of `solid`, the disc of `spec`.
-pub fn step(spec: &Spec, solid: &DiscSolid) -> String {
+/// The STEP text of the discs of `spec`: one `MANIFOLD_SOLID_BREP` per body, each solid
+/// moved by its placement (one disc in its frame, or each disc of several where the reducer
+/// puts it), all in one shape representation.
+pub fn step(spec: &Spec, bodies: &[(DiscSolid, Placement)]) -> String {
     let mut data = Data {
         entities: Vec::new(),
+        at: Placement::IDENTITY,
     };
     let name = string(&spec.name);
     let context = product_context(&mut data, &name);
+    let mut items = Vec::new();
+    for (k, (solid, at)) in bodies.iter().enumerate() {
+        data.at = *at;
+        let body = match bodies.len() {
+            1 => name.clone(),
+            _ => format!("{name} disc {}", k + 1),
+        };
+        items.push(format!("#{}", brep(&mut data, solid, &body)));
+    }
+    data.at = Placement::IDENTITY;
+    let origin = data.placement([0.0; 3], Z);
+    let units = units(&mut data);
+    let shape = data.add(format!(
+        "ADVANCED_BREP_SHAPE_REPRESENTATION('{name}',(#{origin},{}),#{units})",
+        items.join(",")
+    ));
+    data.add(format!(
+        "SHAPE_DEFINITION_REPRESENTATION(#{context},#{shape})"
+    ));
+    file(&data, &name)
+}
+
+/// One disc's closed shell and solid, placed by `data.at`.
+fn brep(data: &mut Data, solid: &DiscSolid, name: &str) -> Id {
     let mut faces = Vec::new();
-    let (bottom_e, top_e) = profile_faces(&mut data, solid, &mut faces);
+    let (bottom_e, top_e) = profile_faces(data, solid, &mut faces);
     let (mut bottom_inner, mut top_inner) = (Vec::new(), Vec::new());
     for c in solid.circles() {
-        let (lb, lt) = circle_faces(&mut data, c, solid.face_width_mm, &mut faces);
+        let (lb, lt) = circle_faces(data, c, solid.face_width_mm, &mut faces);
         bottom_inner.push(lb);
         top_inner.push(lt);
     }
@@ -280,16 +313,7 @@ pub fn step(spec: &Spec, solid: &DiscSolid) -> String {
     faces.push(data.face(plane_t, true, outer, &top_inner));
     let faces: Vec<String> = faces.iter().map(|f| format!("#{f}")).collect();
     let shell = data.add(format!("CLOSED_SHELL('',({}))", faces.join(",")));
-    let brep = data.add(format!("MANIFOLD_SOLID_BREP('{name}',#{shell})"));
-    let origin = data.placement([0.0; 3], Z);
-    let units = units(&mut data);
-    let shape = data.add(format!(
-        "ADVANCED_BREP_SHAPE_REPRESENTATION('{name}',(#{origin},#{brep}),#{units})"
-    ));
-    data.add(format!(
-        "SHAPE_DEFINITION_REPRESENTATION(#{context},#{shape})"
-    ));
-    file(&data, &name)
+    data.add(format!("MANIFOLD_SOLID_BREP('{name}',#{shell})"))
 }
 
 /// The product structure a CAD system files a part under; returns its shape definition.

@@ -234,3 +234,107 @@ fn a_measured_disc_exports_the_disc_as_built() {
     let built = commands::disc(&cycloid::spec::load(spec).unwrap()).unwrap();
     assert!(built.as_built && built.profile.has_form());
 }
+
+/// Every disc of `specs/reducer-two-discs.yaml` (the paper's disc, twice, at crank phases 0
+/// and 180°) as a body of its own, where the reducer puts it at crank angle 0. With M = 6 pins
+/// the second disc is the first one's part turned: it meshes at a turn of −20° mod 40° (its
+/// teeth, nc = 9) and keeps its holes on the pins at a turn of 0 mod 60°, and 60° is both.
+#[test]
+fn several_discs_are_exported_each_where_the_reducer_puts_it() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/specs/reducer-two-discs.yaml");
+    let out = assert_bodies_mesh("disc-two", &std::fs::read_to_string(path).unwrap());
+    assert!(out.contains("disc 2: crank phase 180.0 deg"), "{out}");
+    assert!(!out.contains("a part of its own"), "{out}");
+}
+
+/// With M = 5 pins no turn of the first disc fits the second: its teeth ask −20° mod 40°, its
+/// holes 0 mod 72°, and the turns of the one differ from those of the other by multiples of
+/// gcd(40°, 72°) = 8° plus 20° − 16° = 4°: the second disc's holes sit ±4° round its teeth
+/// from the first's, a part of its own, which the output names.
+#[test]
+fn a_second_disc_whose_holes_cannot_be_the_firsts_is_a_part_of_its_own() {
+    let text = PaperSpec::new()
+        .edit("reducer:\n", "reducer:\n  discs: 2\n")
+        .edit("count: 6 ", "count: 5 ");
+    let out = assert_bodies_mesh("disc-five", text.text());
+    assert!(
+        out.contains("a part of its own: its holes turned 4.0000 deg"),
+        "{out}"
+    );
+}
+
+/// Runs `profile --step --stl` on `spec_text` and checks the bodies: as many solids as discs;
+/// in the STL, each disc's face z = k·B meshing with the rollers and holding the pins as
+/// MODEL.md's ideal pose has them, which a body left in the disc frame, turned by a wrong
+/// fraction of a tooth or moved to the wrong side would not do. Returns the output.
+fn assert_bodies_mesh(name: &str, spec_text: &str) -> String {
+    let dir = Scratch::new(name);
+    dir.write("d.yaml", spec_text);
+    let run = cycloid(
+        &dir.path,
+        &["profile", "d.yaml", "--step", "d.step", "--stl", "d.stl"],
+    );
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    assert!(run.stdout.contains("discs: 2 bodies"), "{}", run.stdout);
+    let all = entities(&dir.read("d.step"));
+    let breps = (all.values())
+        .filter(|b| b.starts_with("MANIFOLD_SOLID_BREP("))
+        .count();
+    assert_eq!(breps, 2);
+    let triangles = stl_triangles(&dir.read("d.stl"));
+    let spec = cycloid::spec::parse("d.yaml", spec_text).unwrap();
+    let d = &spec.design;
+    let (e, b) = (d.eccentricity_mm, d.face_width_mm);
+    let (rp, rrp) = (d.roller_circle_radius_mm, d.roller_radius_mm);
+    let (rw, r_pin) = (d.pins.circle_radius_mm, d.pins.pin_radius_mm);
+    for k in 0..2 {
+        // Disc k's face z = k·B (the discs side by side, no pin support given), its centre
+        // at e·(cos πk, sin πk) (MODEL.md "Several discs": crank phase 2πk/N).
+        let centre = [e * (PI * k as f64).cos(), e * (PI * k as f64).sin()];
+        let face: Vec<[f64; 2]> = (triangles.iter().flatten())
+            .filter(|v| v[2] == k as f64 * b)
+            .map(|v| [v[0] - centre[0], v[1] - centre[1]])
+            .collect();
+        assert!(!face.is_empty(), "no face at z = {}", k as f64 * b);
+        let r = |p: &[f64; 2]| p[0].hypot(p[1]);
+        // The profile's points lie beyond its root circle (Rp − Rrp − e less the
+        // modification, ~24.9 mm), the holes' within rw + pin + e = 23 mm of the disc centre.
+        let (outline, holes): (Vec<[f64; 2]>, Vec<[f64; 2]>) =
+            face.into_iter().partition(|p| r(p) > 24.0);
+        // The rollers, fixed in the housing: none inside the disc (every profile point at
+        // least Rrp from every roller centre: the modified disc keeps a clearance at every
+        // roller), and the nearest within 50 µm (the disc meshes: one turned by a wrong
+        // fraction of a tooth pitch would cut rollers by millimetres). 1e-9 mm: the
+        // coordinates' nine decimals.
+        let gap = |c: [f64; 2]| {
+            (outline.iter())
+                .map(|p| (p[0] + centre[0] - c[0]).hypot(p[1] + centre[1] - c[1]) - rrp)
+                .fold(f64::INFINITY, f64::min)
+        };
+        let gaps: Vec<f64> = (0..d.rollers)
+            .map(|i| {
+                let a = TAU * i as f64 / d.rollers as f64;
+                gap([rp * a.cos(), rp * a.sin()])
+            })
+            .collect();
+        let smallest = gaps.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(smallest >= -1e-9 && smallest < 0.05, "disc {k}: {gaps:?}");
+        // The pins, on the output flange at rw·(cos 2πj/M, sin 2πj/M): each inside its hole
+        // (radius pin + e) and touching it, the hole centred at the pin + the disc centre's
+        // offset, so every hole point is at least the pin's radius from the pin's centre and
+        // the nearest polygon vertex within r_h·e·θ²/(2·r_pin) ≤ 0.33 µm of it (θ ≤
+        // √(2·0.5 µm / r_h) = 0.014 rad the polygon's half step, r_h = 5 mm).
+        for j in 0..d.pins.count {
+            let a = TAU * j as f64 / d.pins.count as f64;
+            let pin = [rw * a.cos(), rw * a.sin()];
+            let nearest = (holes.iter())
+                .map(|p| (p[0] + centre[0] - pin[0]).hypot(p[1] + centre[1] - pin[1]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                nearest >= r_pin - 1e-9 && nearest <= r_pin + 0.4e-3,
+                "disc {k}, pin {j}: {nearest} mm"
+            );
+        }
+    }
+    run.stdout
+}

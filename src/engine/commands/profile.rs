@@ -3,6 +3,7 @@
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::disc_mesh::{disc_mesh, TriangleMesh};
 use crate::geometry::disc_solid::{Circle, DiscSolid};
+use crate::geometry::placement::{self, disc_body, Body, Placement};
 use crate::geometry::polyline::{polyline, ProfilePoint};
 use crate::geometry::profile::Profile;
 use crate::geometry::Vec2;
@@ -54,6 +55,9 @@ pub struct Disc {
     pub face_width_mm: f64,
     /// Whether the profile is the one identified from `measured_profile`.
     pub as_built: bool,
+    /// Each disc of the reducer as a body of the exports (`placement::disc_body`): one disc
+    /// in its own frame, several each where the reducer puts it.
+    pub bodies: Vec<Body>,
 }
 
 /// The disc of `spec` for `profile --step`/`--stl`. A crowned disc is refused: its flanks are
@@ -94,8 +98,10 @@ pub fn disc(spec: &Spec) -> Result<Disc> {
         bore,
         face_width_mm: design.face_width_mm,
         as_built: built.is_some(),
+        bodies: (0..design.discs).map(|k| disc_body(design, k)).collect(),
     })
 }
+
 
 /// Whether any scene crowns the disc (`modification.crowning`), which `disc` refuses.
 pub fn crowned(spec: &Spec) -> bool {
@@ -103,7 +109,8 @@ pub fn crowned(spec: &Spec) -> bool {
 }
 
 impl Disc {
-    /// The solid: the profile as cubic B-spline pieces within `tolerance_mm`, extruded.
+    /// The solid of disc 0 in its frame: the profile as cubic B-spline pieces within
+    /// `tolerance_mm`, extruded.
     pub fn solid(&self, tolerance_mm: f64) -> Result<DiscSolid> {
         check_tolerance(tolerance_mm)?;
         Ok(DiscSolid::new(
@@ -116,14 +123,57 @@ impl Disc {
         ))
     }
 
-    /// The closed triangle mesh: the profile's polyline and the circles' polygons within
-    /// `tolerance_mm`.
+    /// Every disc's solid in its own frame (its holes turned as its body says) and where it
+    /// goes: what `--step` writes.
+    pub fn solids(&self, tolerance_mm: f64) -> Result<Vec<(DiscSolid, Placement)>> {
+        let first = self.solid(tolerance_mm)?;
+        Ok((self.bodies.iter())
+            .map(|b| {
+                let solid = DiscSolid {
+                    holes: self.holes_of(b),
+                    ..first.clone()
+                };
+                (solid, b.placement)
+            })
+            .collect())
+    }
+
+    /// The closed triangle mesh of disc 0 in its frame: the profile's polyline and the
+    /// circles' polygons within `tolerance_mm`.
     pub fn mesh(&self, tolerance_mm: f64) -> Result<TriangleMesh> {
+        self.mesh_with(&self.holes, tolerance_mm)
+    }
+
+    /// Every disc's mesh, each moved where it goes: what `--stl` writes.
+    pub fn placed_mesh(&self, tolerance_mm: f64) -> Result<TriangleMesh> {
+        let mut out = TriangleMesh {
+            vertices: Vec::new(),
+            triangles: Vec::new(),
+        };
+        for b in &self.bodies {
+            let mesh = self.mesh_with(&self.holes_of(b), tolerance_mm)?;
+            placement::append(&mut out, &mesh, &b.placement);
+        }
+        Ok(out)
+    }
+
+    /// The holes of a body's disc: disc 0's turned by its `hole_turn_rad`.
+    fn holes_of(&self, body: &Body) -> Vec<Circle> {
+        let turn = nalgebra::Rotation2::new(body.hole_turn_rad);
+        (self.holes.iter())
+            .map(|c| Circle {
+                centre: turn * c.centre,
+                ..*c
+            })
+            .collect()
+    }
+
+    fn mesh_with(&self, holes: &[Circle], tolerance_mm: f64) -> Result<TriangleMesh> {
         check_tolerance(tolerance_mm)?;
         let outline: Vec<Vec2> = (polyline(&self.profile, tolerance_mm).iter())
             .map(|p| p.point)
             .collect();
-        let circles: Vec<Circle> = self.holes.iter().chain(self.bore.iter()).copied().collect();
+        let circles: Vec<Circle> = holes.iter().chain(self.bore.iter()).copied().collect();
         disc_mesh(&outline, &circles, self.face_width_mm, tolerance_mm).ok_or_else(|| {
             Error::new(
                 ErrorKind::Computation,

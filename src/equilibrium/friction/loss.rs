@@ -29,7 +29,7 @@ pub fn roller_slip_speed(
 ) -> f64 {
     let v = roller_sliding(
         crank_rad,
-        built_eccentricity_mm(design),
+        design.built_eccentricity_mm(),
         design.teeth,
         state.point,
         state.normal,
@@ -45,17 +45,11 @@ pub fn roller_slip_speed(
 /// the hole over the pin at e·Ω/ω; a free sleeve rolls in the hole and slides on its pin at
 /// e·Ω/ω·r_bore/r_pin (r_pin = `output_pins.pin_radius_mm`, the sleeve's outer radius).
 pub fn pin_slip_speed(mode: PinMode, design: &Design) -> f64 {
-    let v = pin_sliding(built_eccentricity_mm(design), design.teeth);
+    let v = pin_sliding(design.built_eccentricity_mm(), design.teeth);
     match mode {
         PinMode::Fixed => v,
         PinMode::Sleeve { bore_radius_mm } => v * bore_radius_mm / design.pins.pin_radius_mm,
     }
-}
-
-/// The crank's eccentricity as built, e + de, mm: the disc centre's orbit (as the loaded
-/// model's).
-fn built_eccentricity_mm(design: &Design) -> f64 {
-    design.eccentricity_mm + design.deviations.eccentricity_mm
 }
 
 /// Σ μ·F_i·slip_i over the rollers of one disc, N·mm/rad.

@@ -4,9 +4,9 @@
 use super::output::{distinct_outputs, inputs_of, print, print_keeping};
 use super::output::{review_line, write_file};
 use super::Outcome;
-use crate::engine::commands::{self, CheckOptions, CheckRun, ReviewOptions, MAX_MAP_STEPS};
+use crate::engine::commands::{self, CheckOptions, CheckRun, ReviewOptions};
 use crate::engine::scene::Writes;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{ErrorKind, Result};
 use crate::report::terminal::Terminal;
 use crate::{report, spec};
 use std::io::Write;
@@ -116,32 +116,16 @@ fn checked(args: &CheckArgs, out: &mut dyn Write, guarded: &mut bool) -> Result<
     })
 }
 
-/// The review's options from `--report-crank-deg` and `--report-map-steps`, checked.
+/// The review's options from `--report-crank-deg` and `--report-map-steps` (the angle checked
+/// even without `--report`, the maps only with it).
 fn review_options(args: &CheckArgs) -> Result<Option<ReviewOptions>> {
-    let bad = |m: String| Err(Error::new(ErrorKind::InvalidValue, m));
-    if let Some(deg) = args.report_crank_deg.filter(|d| !d.is_finite()) {
-        return bad(format!(
-            "--report-crank-deg must be a finite angle, got {deg}"
-        ));
-    }
-    let max = spec::MAX_CRANK_DEG;
-    if let Some(deg) = args.report_crank_deg.filter(|d| d.abs() > max) {
-        return bad(format!(
-            "--report-crank-deg {} is beyond ±{max}°, the crank angles a spec may give (the \
-             angle's rounding would exceed 1e-9 rad)",
-            crate::numeric::input(deg)
-        ));
-    }
-    let steps = args.report_map_steps;
-    if args.report.is_some() && steps != 0 && !commands::map_steps_allowed(steps) {
-        return bad(format!(
-            "--report-map-steps must be 0 (no map) or 2 to {MAX_MAP_STEPS}, got {steps}"
-        ));
-    }
-    Ok(args.report.map(|_| ReviewOptions {
-        crank_rad: args.report_crank_deg.map(crate::units::rad),
-        map_steps: steps,
-    }))
+    let steps = if args.report.is_some() {
+        args.report_map_steps
+    } else {
+        0
+    };
+    let review = ReviewOptions::new(args.report_crank_deg, steps)?;
+    Ok(args.report.map(|_| review))
 }
 
 /// The terminal's account of a run: the disc as built, the studies, the checks table, the

@@ -44,7 +44,7 @@ use super::friction::sliding::{self, disc_speed_ratio, disc_velocity, relative_c
 use super::pins::PinState;
 use super::rollers::RollerState;
 use crate::geometry::{cross, Vec2};
-use crate::model::{Design, Friction, PinMode, RollerMode};
+use crate::model::{Design, Friction};
 
 /// The friction of the coupled balance, per unit normal force (`Friction` reduced to what the
 /// balance needs).
@@ -82,16 +82,10 @@ pub enum Sliding {
 impl Coupling {
     /// The coupling of `friction` on `design`; a path not given has no friction.
     pub fn new(friction: &Friction, design: &Design) -> Self {
-        let roller = friction.rollers.map_or(0.0, |f| match f.mode {
-            RollerMode::Fixed => f.mu,
-            RollerMode::Rotating { bore_radius_mm } => {
-                f.mu * bore_radius_mm / design.roller_radius_mm
-            }
-        });
-        let pin = friction.output_pins.map_or(0.0, |f| match f.mode {
-            PinMode::Fixed => f.mu,
-            PinMode::Sleeve { bore_radius_mm } => f.mu * bore_radius_mm / design.pins.pin_radius_mm,
-        });
+        let roller = (friction.rollers)
+            .map_or(0.0, |f| f.mode.slip_scaled(f.mu, design.roller_radius_mm));
+        let pin = (friction.output_pins)
+            .map_or(0.0, |f| f.mode.slip_scaled(f.mu, design.pins.pin_radius_mm));
         Coupling {
             roller,
             pin,

@@ -46,6 +46,31 @@ pub enum PinMode {
     },
 }
 
+impl RollerMode {
+    /// `x` (a sliding speed, or a friction coefficient) scaled by this mode's slip factor: the
+    /// ratio of the speed at which the friction slides to the disc's sliding speed at the
+    /// roller, 1 (fixed) or r_b/Rrp (rotating: the roller rolls on the disc and its bore slides
+    /// on its pin), `roller_radius_mm` = Rrp. Computed as x·r_b/Rrp, in that order.
+    pub fn slip_scaled(&self, x: f64, roller_radius_mm: f64) -> f64 {
+        match *self {
+            RollerMode::Fixed => x,
+            RollerMode::Rotating { bore_radius_mm } => x * bore_radius_mm / roller_radius_mm,
+        }
+    }
+}
+
+impl PinMode {
+    /// `x` scaled by this mode's slip factor: 1 (fixed: the hole slides over the pin) or
+    /// r_bore/r_pin (a free sleeve rolls in the hole and slides on its pin), `pin_radius_mm` =
+    /// r_pin, the sleeve's outer radius. Computed as x·r_bore/r_pin, in that order.
+    pub fn slip_scaled(&self, x: f64, pin_radius_mm: f64) -> f64 {
+        match *self {
+            PinMode::Fixed => x,
+            PinMode::Sleeve { bore_radius_mm } => x * bore_radius_mm / pin_radius_mm,
+        }
+    }
+}
+
 /// Friction of the ring rollers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RollerFriction {

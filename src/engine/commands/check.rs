@@ -41,14 +41,51 @@ pub struct CheckOptions {
     pub review: Option<ReviewOptions>,
 }
 
-/// What the design review is drawn from.
+/// What the design review is drawn from, checked where it is made (`ReviewOptions::new`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ReviewOptions {
     /// Crank angle of the disc drawing, rad; `None`: where the smallest gap occurs.
-    pub crank_rad: Option<f64>,
+    crank_rad: Option<f64>,
     /// Grid points per variable of each study's objective map: 0 (no map) or 2 to
     /// `MAX_MAP_STEPS`.
-    pub map_steps: usize,
+    map_steps: usize,
+}
+
+impl ReviewOptions {
+    /// The disc drawn where the smallest gap occurs, no objective maps.
+    pub const PLAIN: ReviewOptions = ReviewOptions {
+        crank_rad: None,
+        map_steps: 0,
+    };
+
+    /// The review's options as `check --report` takes them (`--report-crank-deg`,
+    /// `--report-map-steps`): the drawing's crank angle, degrees, finite and within the crank
+    /// angles a spec may give; the maps 0 (none) or 2 to `MAX_MAP_STEPS` steps.
+    pub fn new(crank_deg: Option<f64>, map_steps: usize) -> Result<Self> {
+        let bad = |m: String| Err(Error::new(ErrorKind::InvalidValue, m));
+        if let Some(deg) = crank_deg.filter(|d| !d.is_finite()) {
+            return bad(format!(
+                "--report-crank-deg must be a finite angle, got {deg}"
+            ));
+        }
+        let max = crate::spec::MAX_CRANK_DEG;
+        if let Some(deg) = crank_deg.filter(|d| d.abs() > max) {
+            return bad(format!(
+                "--report-crank-deg {} is beyond ±{max}°, the crank angles a spec may give (the \
+                 angle's rounding would exceed 1e-9 rad)",
+                crate::numeric::input(deg)
+            ));
+        }
+        if map_steps != 0 && !map_steps_allowed(map_steps) {
+            return bad(format!(
+                "--report-map-steps must be 0 (no map) or 2 to {MAX_MAP_STEPS}, got {map_steps}"
+            ));
+        }
+        Ok(ReviewOptions {
+            crank_rad: crank_deg.map(crate::units::rad),
+            map_steps,
+        })
+    }
 }
 
 /// Everything one `check` computed.
@@ -127,9 +164,6 @@ pub fn check(spec: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Re
 }
 
 fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Result<CheckRun> {
-    if let Some(r) = &options.review {
-        review_options(r)?;
-    }
     let identified = as_built::identify(drawing)?;
     let mut as_built = None;
     let spec = match identified {
@@ -216,21 +250,6 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
         resolution,
         review,
     })
-}
-
-/// The review's crank angle is finite and its maps 0 (none) or 2 to `MAX_MAP_STEPS` steps.
-fn review_options(r: &ReviewOptions) -> Result<()> {
-    let bad = |m: String| Err(Error::new(ErrorKind::InvalidValue, m));
-    if let Some(c) = r.crank_rad.filter(|c| !c.is_finite()) {
-        return bad(format!("the review's crank angle must be finite, got {c}"));
-    }
-    if r.map_steps != 0 && !map_steps_allowed(r.map_steps) {
-        return bad(format!(
-            "the review's map steps must be 0 (no map) or 2 to {MAX_MAP_STEPS}, got {}",
-            r.map_steps
-        ));
-    }
-    Ok(())
 }
 
 /// The last guard against a false pass: a scalar of the registry that is not a finite number

@@ -100,10 +100,7 @@ pub fn front_checks(run: &DesignRun, progress: &dyn Progress) -> Result<Vec<Chec
             report: true,
         },
         tolerance: false,
-        review: Some(ReviewOptions {
-            crank_rad: None,
-            map_steps: 0,
-        }),
+        review: Some(ReviewOptions::PLAIN),
     };
     (run.specs.iter())
         .map(|(file, text)| check(&crate::spec::parse(file, text)?, &options, progress))

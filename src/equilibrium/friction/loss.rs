@@ -35,10 +35,7 @@ pub fn roller_slip_speed(
         state.normal,
     )
     .abs();
-    match mode {
-        RollerMode::Fixed => v,
-        RollerMode::Rotating { bore_radius_mm } => v * bore_radius_mm / design.roller_radius_mm,
-    }
+    mode.slip_scaled(v, design.roller_radius_mm)
 }
 
 /// The speed at which an output pin's friction slides, per unit input speed, mm/rad: fixed,
@@ -46,10 +43,7 @@ pub fn roller_slip_speed(
 /// e·Ω/ω·r_bore/r_pin (r_pin = `output_pins.pin_radius_mm`, the sleeve's outer radius).
 pub fn pin_slip_speed(mode: PinMode, design: &Design) -> f64 {
     let v = pin_sliding(design.built_eccentricity_mm(), design.teeth);
-    match mode {
-        PinMode::Fixed => v,
-        PinMode::Sleeve { bore_radius_mm } => v * bore_radius_mm / design.pins.pin_radius_mm,
-    }
+    mode.slip_scaled(v, design.pins.pin_radius_mm)
 }
 
 /// Σ μ·F_i·slip_i over the rollers of one disc, N·mm/rad.

@@ -2,8 +2,8 @@
 # Byte-identity of every shipped spec's outputs between two builds of cycloid, the check a
 # refactor is held to (issue 40): `check SPEC --json --report` for each spec under specs/
 # (requirements files aside), terminal text, results JSON and every file of the review,
-# compared file by file. Wall-clock figures ("in 15.44 s") and the output directory's path are
-# the only parts masked.
+# compared file by file. Wall-clock figures ("in 15.44 s", the accuracy ladder's "0.6 ms"
+# cells) and the output directory's path are the only parts masked.
 #
 #   tools/same-outputs.sh BIN_BEFORE BIN_AFTER [OUT_DIR]
 #
@@ -29,7 +29,8 @@ record() {
   done
   # Mask what no two runs share: the directory written to and the wall-clock times.
   find "$dir" -type f \( -name '*.txt' -o -name '*.err' -o -name '*.html' \) -print0 |
-    xargs -0 sed -i -E -e "s#$dir/##g" -e 's/in [0-9]+\.[0-9]+ s\b/in <time> s/g'
+    xargs -0 sed -i -E -e "s#$dir/##g" -e 's/in [0-9]+\.[0-9]+ s\b/in <time> s/g' \
+      -e 's/>[0-9]+(\.[0-9]+)? m?s</><time></g'
 }
 record "$before" "$out/before"
 record "$after" "$out/after"

@@ -48,7 +48,7 @@
 
 use crate::equilibrium::discs::{CoupledWork, Discs};
 use crate::equilibrium::solve::SolveFailure;
-use crate::equilibrium::torsion::{set_branch, solve_point};
+use crate::equilibrium::torsion::{branches, solve_point, BranchPoint};
 use crate::model::results::{TorsionCompliances, TorsionCurves, TorsionFigures};
 use crate::model::TorqueSweep;
 use crate::progress::Progress;
@@ -202,25 +202,9 @@ fn friction_loop(
         .collect();
     up.sort_by(f64::total_cmp);
     up.dedup();
-    let mut discs = discs.clone();
-    let mut work = CoupledWork::new(&discs);
     let fail = |torque_nmm, failure| TorsionFailure::new(crank_rad, torque_nmm, failure);
-    let mut branch = |sigma: f64, torques: &mut dyn Iterator<Item = f64>| {
-        set_branch(&mut discs, &mut work, sigma);
-        torques
-            .map(|t| {
-                let gamma = output_lag(&mut discs, crank_rad, t, &mut work)
-                    .map_err(|f| fail(t, solve_failed(f)))?;
-                Ok(BranchPoint {
-                    torsion_rad: gamma + structure_rad_per_nmm * t,
-                    disc_rad: disc_lag(&work),
-                })
-            })
-            .collect::<Result<Vec<BranchPoint>, _>>()
-    };
-    let loading = branch(1.0, &mut up.iter().copied())?;
-    let mut unloading = branch(-1.0, &mut up.iter().rev().copied())?;
-    unloading.reverse();
+    let (loading, unloading) = branches(discs, crank_rad, &up, structure_rad_per_nmm)
+        .map_err(|(t, f)| fail(t, solve_failed(f)))?;
     let traversed = Traversed::new(&up, loading, unloading)
         .map_err(|(top, bottom)| fail(rated, held_throughout(top, bottom)))?;
     let curve = torques_nmm
@@ -252,31 +236,6 @@ fn friction_loop(
     figures.hysteresis_rad = traversed.width_at_zero(zero);
     figures.loop_energy_nmm = traversed.area();
     Ok((curve, read, figures))
-}
-
-/// A point of a branch in full sliding: the torsion angle γ (rad, the twist of whatever is in
-/// series with the discs included) and the discs' own lag β (rad), the turn that the rollers'
-/// and the bearing's friction resist and, when they stick, hold.
-#[derive(Debug, Clone, Copy)]
-struct BranchPoint {
-    torsion_rad: f64,
-    disc_rad: f64,
-}
-
-impl BranchPoint {
-    /// The elastic twist in series with the discs at this point, γ − β (rad): the pins'
-    /// deflection βo and the structure's c_s·T. It follows the torque whether the discs slide
-    /// or stick: a spring in series stores and returns its energy, it opens no loop.
-    fn series_rad(self) -> f64 {
-        self.torsion_rad - self.disc_rad
-    }
-}
-
-/// The discs' own lag β (rad) at the last solve of `work`: the disc's roller lag (with several
-/// discs, their mean: each one's γ = β_k + βo_k, and they stick and slide together).
-fn disc_lag(work: &CoupledWork) -> f64 {
-    let lags: Vec<f64> = work.works.iter().filter_map(|w| w.sol.lag_rad).collect();
-    lags.iter().sum::<f64>() / lags.len().max(1) as f64
 }
 
 /// The loop the disc traverses (Masing's rule for Coulomb friction): after the reversal at

@@ -82,8 +82,8 @@ pub enum Sliding {
 impl Coupling {
     /// The coupling of `friction` on `design`; a path not given has no friction.
     pub fn new(friction: &Friction, design: &Design) -> Self {
-        let roller = (friction.rollers)
-            .map_or(0.0, |f| f.mode.slip_scaled(f.mu, design.roller_radius_mm));
+        let roller =
+            (friction.rollers).map_or(0.0, |f| f.mode.slip_scaled(f.mu, design.roller_radius_mm));
         let pin = (friction.output_pins)
             .map_or(0.0, |f| f.mode.slip_scaled(f.mu, design.pins.pin_radius_mm));
         Coupling {

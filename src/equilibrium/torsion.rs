@@ -20,6 +20,62 @@ use crate::equilibrium::solve::SolveFailure;
 /// The most solves of one point of a branch while ρ turns a pin's sliding.
 const RATIO_PASSES: usize = 4;
 
+/// A point of a branch in full sliding: the torsion angle γ (rad, the twist of whatever is in
+/// series with the discs included) and the discs' own lag β (rad), the turn that the rollers'
+/// and the bearing's friction resist and, when they stick, hold.
+#[derive(Debug, Clone, Copy)]
+pub struct BranchPoint {
+    pub torsion_rad: f64,
+    pub disc_rad: f64,
+}
+
+impl BranchPoint {
+    /// The elastic twist in series with the discs at this point, γ − β (rad): the pins'
+    /// deflection βo and the structure's c_s·T. It follows the torque whether the discs slide
+    /// or stick: a spring in series stores and returns its energy, it opens no loop.
+    pub fn series_rad(self) -> f64 {
+        self.torsion_rad - self.disc_rad
+    }
+}
+
+/// The discs' own lag β (rad) at the last solve of `work`: the disc's roller lag (with several
+/// discs, their mean: each one's γ = β_k + βo_k, and they stick and slide together).
+fn disc_lag(work: &CoupledWork) -> f64 {
+    let lags: Vec<f64> = work.works.iter().filter_map(|w| w.sol.lag_rad).collect();
+    lags.iter().sum::<f64>() / lags.len().max(1) as f64
+}
+
+/// The torsion loop's two branches in full sliding at the locked crank angle `crank_rad`:
+/// loading (σ = +1) up through `up` (the torques, ascending, N·mm), then unloading (σ = −1)
+/// back down, each point warm-started from the last; both returned in `up`'s order. A point's
+/// torsion angle is γ + c_s·T (`structure_rad_per_nmm` = c_s, the rest of the reducer in
+/// series). A failed solve: its torque and why.
+pub fn branches(
+    discs: &Discs,
+    crank_rad: f64,
+    up: &[f64],
+    structure_rad_per_nmm: f64,
+) -> Result<(Vec<BranchPoint>, Vec<BranchPoint>), (f64, SolveFailure)> {
+    let mut discs = discs.clone();
+    let mut work = CoupledWork::new(&discs);
+    let mut branch = |sigma: f64, torques: &mut dyn Iterator<Item = f64>| {
+        set_branch(&mut discs, &mut work, sigma);
+        torques
+            .map(|t| {
+                let gamma = solve_point(&mut discs, crank_rad, t, &mut work).map_err(|f| (t, f))?;
+                Ok(BranchPoint {
+                    torsion_rad: gamma + structure_rad_per_nmm * t,
+                    disc_rad: disc_lag(&work),
+                })
+            })
+            .collect::<Result<Vec<BranchPoint>, _>>()
+    };
+    let loading = branch(1.0, &mut up.iter().copied())?;
+    let mut unloading = branch(-1.0, &mut up.iter().rev().copied())?;
+    unloading.reverse();
+    Ok((loading, unloading))
+}
+
 /// Put every disc of `discs` (and of `work`, once it holds their models) on the branch σ
 /// (`sigma`, +1 loading, −1 unloading), each keeping its ρ.
 pub fn set_branch(discs: &mut Discs, work: &mut CoupledWork, sigma: f64) {

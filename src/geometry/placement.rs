@@ -52,7 +52,11 @@ pub fn disc_body(design: &Design, k: usize) -> Body {
     // δ in (−step/2, step/2]: the holes' least turn that puts them on the pins.
     let hole_turn = |tau: f64| {
         let d = (-tau).rem_euclid(hole_step);
-        let d = if d > 0.5 * hole_step { d - hole_step } else { d };
+        let d = if d > 0.5 * hole_step {
+            d - hole_step
+        } else {
+            d
+        };
         // Round-off of the sums above (≤ 1e-15 rad) is no turn of the holes.
         if d.abs() < 1e-12 {
             0.0
@@ -64,9 +68,7 @@ pub fn disc_body(design: &Design, k: usize) -> Body {
     // nrad so that round-off does not pick between equals.
     let nrad = |x: f64| (x * 1e9).round() as i64;
     let key = |tau: f64| (nrad(hole_turn(tau).abs()), nrad(tau.abs()), -nrad(tau));
-    let turn_rad = turns
-        .min_by_key(|&tau| key(tau))
-        .expect("a disc has teeth");
+    let turn_rad = turns.min_by_key(|&tau| key(tau)).expect("a disc has teeth");
     let e = design.built_eccentricity_mm();
     let b = design.face_width_mm;
     let z_mm = match &design.pins.support {
@@ -112,6 +114,7 @@ impl Placement {
 /// mesh appended stays closed on its own).
 pub fn append(out: &mut TriangleMesh, mesh: &TriangleMesh, at: &Placement) {
     let n = out.vertices.len();
-    out.vertices.extend(mesh.vertices.iter().map(|&v| at.point(v)));
+    out.vertices
+        .extend(mesh.vertices.iter().map(|&v| at.point(v)));
     (out.triangles).extend(mesh.triangles.iter().map(|t| t.map(|i| i + n)));
 }

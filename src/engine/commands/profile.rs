@@ -102,7 +102,6 @@ pub fn disc(spec: &Spec) -> Result<Disc> {
     })
 }
 
-
 /// Whether any scene crowns the disc (`modification.crowning`), which `disc` refuses.
 pub fn crowned(spec: &Spec) -> bool {
     spec.scenes.iter().any(|s| !s.face.crowning.is_none())

@@ -28,7 +28,9 @@ pub const ROLLER_PASSES_PER_CRANK_TURN: f64 = 1.0;
 /// N(p) = cycles·(pressure_mpa/p)^exponent, the cycles to failure under the Hertz pressure
 /// `pressure_mpa` (p, MPa); infinite at p = 0 or at or below the endurance pressure.
 pub fn cycles_to_failure(law: &ContactFatigue, pressure_mpa: f64) -> f64 {
-    let endured = law.endurance_pressure_mpa.is_some_and(|e| pressure_mpa <= e);
+    let endured = law
+        .endurance_pressure_mpa
+        .is_some_and(|e| pressure_mpa <= e);
     if pressure_mpa <= 0.0 || endured {
         return f64::INFINITY;
     }
@@ -38,7 +40,12 @@ pub fn cycles_to_failure(law: &ContactFatigue, pressure_mpa: f64) -> f64 {
 /// The life in hours of a surface whose points are loaded `passes_per_turn` times per crank
 /// turn at `pressure_mpa`, at the input speed `input_rpm`: N(p)/(passes·n·60).
 /// `UNBOUNDED_LIFE_H` when it takes no damage or its life is beyond the largest double.
-pub fn life_h(law: &ContactFatigue, pressure_mpa: f64, passes_per_turn: f64, input_rpm: f64) -> f64 {
+pub fn life_h(
+    law: &ContactFatigue,
+    pressure_mpa: f64,
+    passes_per_turn: f64,
+    input_rpm: f64,
+) -> f64 {
     let hours = cycles_to_failure(law, pressure_mpa) / (passes_per_turn * input_rpm * 60.0);
     if hours.is_finite() {
         hours

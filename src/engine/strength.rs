@@ -38,7 +38,10 @@ pub fn pin_stress(design: &Design, crank_rad: &[f64], discs: &[&LoadedSweep]) ->
             let loads: Vec<(f64, Vec2)> = (0..discs.len())
                 .map(|k| {
                     let (s, c) = (phi + design.disc_phase_rad(k)).sin_cos();
-                    (support.disc_positions_mm[k], forces[k][j][a] * Vec2::new(c, s))
+                    (
+                        support.disc_positions_mm[k],
+                        forces[k][j][a] * Vec2::new(c, s),
+                    )
                 })
                 .collect();
             let (m, v) = beam.largest(&loads);

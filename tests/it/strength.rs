@@ -392,7 +392,7 @@ fn bad_values_are_refused_at_their_key() {
             loaded(4, speed).replace("to_deg: 108.0", "to_deg: 36.0")
                 + "limits:\n  min_contact_fatigue_life_h: 2000.0\n",
             "crank: { from_deg: 0.0, to_deg: 36.0, steps: 4 }",
-            "{",
+            "crank",
             "whole number of loaded periods",
         ),
     ];

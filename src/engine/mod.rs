@@ -18,6 +18,7 @@ pub mod commands;
 pub mod design_search;
 pub mod drawing;
 pub mod duty_cycle;
+pub mod duty_fatigue;
 pub mod efficiency;
 pub mod face_profile;
 pub mod golden;

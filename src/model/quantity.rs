@@ -1028,6 +1028,9 @@ pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
     period: None,
     of: None,
     read: Read::Scalar(|r| {
+        if let Some(d) = duty(r) {
+            return duty_fatigue(d);
+        }
         let f = disc_strength(r)?.fatigue?;
         let (value, part) = f.shorter()?;
         let p = number(f.pressure_mpa);
@@ -1069,6 +1072,27 @@ pub const STATIC_SAFETY: Quantity = Quantity {
         })
     }),
 };
+
+/// The shortest contact fatigue life under a duty cycle (Palmgren–Miner, the flanks apart,
+/// `engine::duty_fatigue`) over its discs and parts, naming them; `None` when not computed.
+fn duty_fatigue(d: &DutyCycle) -> Option<Extreme> {
+    let several = d.contact_fatigue.len() > 1;
+    (d.contact_fatigue.iter().enumerate())
+        .flat_map(|(k, f)| [(f.disc_h, "disc", k), (f.rollers_h, "rollers", k)])
+        .filter_map(|(h, part, k)| Some((h?, part, k)))
+        .reduce(|a, b| if b.0 < a.0 { b } else { a })
+        .map(|(value, part, k)| Extreme {
+            value,
+            at: match (several, value == super::results::UNBOUNDED_LIFE_H) {
+                (false, false) => format!("{part} under the cycle (Miner, flanks apart)"),
+                (true, false) => format!("disc {k}: {part} under the cycle (Miner, flanks apart)"),
+                (_, true) => format!(
+                    "unbounded: no bin wears the {part} (written as 1.798e308 h, the largest \
+                     number)"
+                ),
+            },
+        })
+}
 
 /// A duty cycle's results, when the scene runs one.
 fn duty(r: &SceneResult) -> Option<&DutyCycle> {

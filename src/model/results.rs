@@ -441,6 +441,9 @@ pub struct DutyCycle {
     /// Σ sᵢ·Dᵢ / Σ sᵢ·Eᵢ: the mean efficiency weighted by energy, with `efficiency` (Dᵢ and
     /// Eᵢ the bin's energy delivered and entering as its power flows, `engine::duty_cycle`).
     pub mean_efficiency: Option<f64>,
+    /// Each disc's and its rollers' contact fatigue under the cycle (`engine::duty_fatigue`),
+    /// with an S–N law and whole periods in every bin; else empty.
+    pub contact_fatigue: Vec<super::strength::DutyFatigue>,
 }
 
 /// One bin of a duty cycle and its run.

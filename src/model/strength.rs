@@ -94,3 +94,18 @@ pub struct DiscStrength {
     /// With `crank_bearing.static_load_rating_n`.
     pub static_safety: Option<StaticSafety>,
 }
+
+/// One disc's and its rollers' contact fatigue under a duty cycle (`engine::duty_fatigue`,
+/// Palmgren–Miner over the bins, the drive and the coast flanks apart).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DutyFatigue {
+    /// The disc's life under the cycle, h, when its S–N law is given.
+    pub disc_h: Option<f64>,
+    /// The rollers' life on this disc's track under the cycle, h, with their law.
+    pub rollers_h: Option<f64>,
+    /// Each bin's share of the disc's damage on the flank it loads, `[bin]` (each flank's
+    /// shares sum to 1, a flank without damage's are 0); empty without the disc's law.
+    pub disc_shares: Vec<f64>,
+    /// The same for the rollers.
+    pub rollers_shares: Vec<f64>,
+}

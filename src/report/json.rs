@@ -290,6 +290,23 @@ pub struct DutyDoc<'a> {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     discs: Vec<DutyLifeDoc>,
     bins: Vec<DutyBinDoc<'a>>,
+    /// Each disc's and its rollers' contact fatigue under the cycle (Miner, flanks apart).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    duty_contact_fatigue_life_h: Vec<DutyFatigueDoc>,
+}
+
+/// One disc's contact fatigue under a duty cycle: the lives, h, and each bin's share of the
+/// damage of the flank it loads.
+#[derive(Serialize)]
+pub struct DutyFatigueDoc {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disc: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rollers: Option<Finite>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    disc_damage_share: Vec<Finite>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    rollers_damage_share: Vec<Finite>,
 }
 
 /// One disc's crank bearing under a duty cycle.
@@ -321,6 +338,14 @@ impl<'a> DutyDoc<'a> {
     fn new(r: &'a SceneResult) -> Option<Self> {
         let d = r.duty.as_deref()?;
         Some(DutyDoc {
+            duty_contact_fatigue_life_h: (d.contact_fatigue.iter())
+                .map(|f| DutyFatigueDoc {
+                    disc: f.disc_h.map(Finite),
+                    rollers: f.rollers_h.map(Finite),
+                    disc_damage_share: finite(f.disc_shares.iter().copied()),
+                    rollers_damage_share: finite(f.rollers_shares.iter().copied()),
+                })
+                .collect(),
             discs: (d.life.iter())
                 .map(|b| DutyLifeDoc {
                     equivalent_load_n: Finite(b.equivalent_load_n),

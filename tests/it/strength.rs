@@ -100,8 +100,8 @@ fn one_disc_pin_stress_is_the_beams_closed_form_for_both_supports() {
         };
         let area = PI * PIN_DIAMETER_MM * PIN_DIAMETER_MM / 4.0;
         let mut loaded_pins = 0;
-        for j in 0..PINS {
-            for (k, &f) in forces[j].iter().enumerate() {
+        for (j, pin) in forces.iter().enumerate() {
+            for (k, &f) in pin.iter().enumerate() {
                 let want = sigma(f * moment_arm);
                 let got = stress.bending_stress_mpa[j][k];
                 assert!(
@@ -236,7 +236,7 @@ fn the_passes_per_crank_turn_are_counted_on_a_simulation() {
             let phi = r.crank_rad[k];
             (0..np).filter(|&i| forces[i][k] > 0.0).any(|i| {
                 let alpha = (TAU * i as f64 / np as f64 + phi / TEETH as f64).rem_euclid(TAU);
-                (alpha * TEETH as f64 / TAU).floor() as usize % TEETH == 0
+                ((alpha * TEETH as f64 / TAU).floor() as usize).is_multiple_of(TEETH)
             })
         })
         .collect();
@@ -313,6 +313,10 @@ fn place(text: &str, key_line: &str, token: &str) -> (usize, usize) {
     (i + 1, line.find(token).unwrap() + 1)
 }
 
+/// A bad-input case: the pin support, the material's lines, the scenes, the line the error
+/// points at, the token it points at on that line, and what the message says.
+type Case<'a> = (Option<&'a str>, String, String, &'a str, &'a str, &'a str);
+
 /// Bad values are refused at their key with the rule and the value: an exponent ≤ 0 or above
 /// 30, a pressure or cycles ≤ 0, a stress limit without a pin support, a safety without a yield
 /// strength, a life without a speed, a static safety without C0, a life over part of a period.
@@ -321,7 +325,7 @@ fn bad_values_are_refused_at_their_key() {
     let support = "{ kind: cantilever, length_mm: 14.0, disc_positions_mm: [10.0] }";
     let law = |body: &str| format!("    contact_fatigue: {{ {body} }}\n");
     let speed = "    input_speed_rpm: 1500.0\n";
-    let cases: Vec<(Option<&str>, String, String, &str, &str, &str)> = vec![
+    let cases: Vec<Case> = vec![
         (
             Some(support),
             law("pressure_mpa: 1500.0, cycles: 1.0e8, exponent: 0.0"),
@@ -407,4 +411,48 @@ fn bad_values_are_refused_at_their_key() {
             "{line}: {err} (expected at {l}:{c}, saying `{message}`)"
         );
     }
+}
+
+/// Miner over a duty cycle with the flanks apart: +10 N·m and −10 N·m at 1500 rpm for 40 % of
+/// the time each, and a standstill under 5 N·m for the rest. Each loaded bin uses up
+/// dᵢ = sᵢ·nᵢ·60·c/N(pᵢ) of a part per hour (c = 10/9 on the disc, 1 on a roller; pᵢ the bin's
+/// largest pressure, read from its own pressure curves); the two bins load different flanks,
+/// so the life is 1/max(d₊, d₋), about twice the 1/(d₊ + d₋) a single flank would give; the
+/// standstill adds nothing. Each flank's shares: the loaded bin's 1, the standstill's 0.
+/// Tolerance 1e-12 relative: one powf and a few products on each side.
+#[test]
+fn miner_over_a_duty_cycle_keeps_the_flanks_apart() {
+    let material = "    contact_fatigue: { pressure_mpa: 1500.0, cycles: 1.0e8, exponent: 8.0 }\n";
+    let scenes = "  - name: duty\n    duty_cycle:\n      \
+        - { output_torque_nm: 10.0, input_speed_rpm: 1500.0, time_share: 0.4 }\n      \
+        - { output_torque_nm: -10.0, input_speed_rpm: 1500.0, time_share: 0.4 }\n      \
+        - { output_torque_nm: 5.0, input_speed_rpm: 0.0, time_share: 0.2 }\n    \
+        crank: { from_deg: 0.0, to_deg: 108.0, steps: 108 }\n    \
+        geometry: first_order\n    effects: [bearing, strength]\n\
+        limits:\n  min_contact_fatigue_life_h: 1.0\n";
+    let r = run(&parse(&spec_text(1, None, (material, ""), scenes)));
+    let d = r.duty.as_ref().unwrap();
+    let p = |j: usize| {
+        let rollers = d.bins[j].result.loaded.rollers.as_ref().unwrap();
+        rollers
+            .pressure_mpa
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, &x| m.max(x))
+    };
+    let n = |p: f64| 1e8 * (1500.0 / p).powi(8);
+    let rate = |j: usize, c: f64| 0.4 * 1500.0 * 60.0 * c / n(p(j));
+    let f = &d.contact_fatigue[0];
+    for (got, c, shares) in [
+        (f.disc_h.unwrap(), 10.0 / 9.0, &f.disc_shares),
+        (f.rollers_h.unwrap(), 1.0, &f.rollers_shares),
+    ] {
+        let (drive, coast) = (rate(0, c), rate(1, c));
+        let want = 1.0 / drive.max(coast);
+        assert!((got / want - 1.0).abs() <= 1e-12, "{got} vs {want}");
+        assert!(got > 1.5 / (drive + coast), "the flanks wear apart");
+        assert_eq!(shares, &vec![1.0, 1.0, 0.0]);
+    }
+    let q = cycloid::model::quantity::find("min_contact_fatigue_life_h").unwrap();
+    assert_eq!(q.scalar(&r).unwrap().value, f.disc_h.unwrap());
 }

@@ -2,5 +2,6 @@
 //! line-contact pressure.
 
 pub mod face_width;
+pub mod fatigue;
 pub mod hertz_line;
 pub mod law;

@@ -117,6 +117,7 @@ pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
         None => Vec::new(),
     };
     DutyCycle {
+        contact_fatigue: crate::engine::duty_fatigue::lives(design, &bins),
         mean_efficiency: energy_efficiency(&bins),
         bins,
         equivalent_torque_nmm,

@@ -4,7 +4,8 @@
 //! each scene (`summary`), and computes what the design review draws of the disc (`drawing`) and of its solid
 //! (`commands::solid_picture`, beside the export it draws);
 //! the torsion curve under a locked input and its catalogue figures (`torsion`); the crank
-//! bearing's rating life (`bearing_life`); the plausibility bands of the headlines
+//! bearing's rating life (`bearing_life`); the pins' stresses, the contact fatigue lives and the
+//! bearing's static safety (`strength`); the plausibility bands of the headlines
 //! (`plausibility`). It returns data: the tables, sentences and notes
 //! made of it are built in `report` (the engine's own words are its errors, the `at` labels of
 //! checks, names, and the files it writes).
@@ -17,6 +18,7 @@ pub mod commands;
 pub mod design_search;
 pub mod drawing;
 pub mod duty_cycle;
+pub mod duty_fatigue;
 pub mod efficiency;
 pub mod face_profile;
 pub mod golden;
@@ -29,6 +31,7 @@ pub use crate::progress;
 pub mod resolution;
 pub mod scene;
 pub mod shard_file;
+pub mod strength;
 pub mod summary;
 pub mod tolerance;
 pub mod torque_curve;

@@ -6,7 +6,7 @@
 //! evaluate is an error. A detail of an effect (the closing lags of `clearance`) is computed
 //! when a limit, a golden or an output file of the run reads a quantity that needs it (`plan`).
 
-use crate::engine::{bearing_life, duty_cycle, efficiency, torsion};
+use crate::engine::{bearing_life, duty_cycle, efficiency, strength, torsion};
 use crate::equilibrium::coupling::Coupling;
 use crate::equilibrium::discs::Discs;
 use crate::equilibrium::discs_sweep::{self, DiscSweeps};
@@ -211,8 +211,12 @@ fn run_one(
     if design.discs == 1 {
         // Built once, for the sweep and the efficiency's contact points; none without a sweep.
         let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
-        let loaded = loaded_sweep(design, model.as_ref(), (scene, plan), progress)?;
+        let mut loaded = loaded_sweep(design, model.as_ref(), (scene, plan), progress)?;
         first_order_valid(design, m, scene, (&loaded, 0.0))?;
+        if plan.computes(Effect::Strength) {
+            loaded.pin_stress = strength::pin_stress(design, &scene.crank_rad, &[&loaded]);
+            loaded.strength = strength::disc_strength(design, (scene, plan), &loaded);
+        }
         let efficiency = match &model {
             Some(model) => efficiency::efficiency(design, model, (scene, plan), &[&loaded])?,
             None => None,
@@ -231,6 +235,7 @@ fn run_one(
             loaded = s.discs[k].clone();
             loaded.torque_nmm = Some(s.torque_nmm[k].clone());
             first_order_valid(design, m, scene, (&loaded, design.disc_phase_rad(k)))?;
+            loaded.strength = strength::disc_strength(design, (scene, plan), &loaded);
         }
         let name = format!("{} disc {k}", scene.name);
         let disc = result(name, clearance(k, design.disc_phase_rad(k))?, loaded);
@@ -244,6 +249,10 @@ fn run_one(
                 disc.efficiency = Some(e);
             }
         }
+    }
+    if let Some(s) = sweeps.as_ref().filter(|_| plan.computes(Effect::Strength)) {
+        let discs: Vec<&LoadedSweep> = s.discs.iter().collect();
+        reducer.loaded.pin_stress = strength::pin_stress(design, &scene.crank_rad, &discs);
     }
     reducer.loaded.transmission = sweeps.and_then(|s| s.transmission);
     reducer.torsion = torsion;

@@ -15,6 +15,7 @@ pub mod first_order_sweep;
 pub mod friction;
 pub mod loaded;
 pub mod pin_beam;
+pub mod pin_stress;
 pub mod pins;
 pub mod residual;
 mod rigid_bearing;

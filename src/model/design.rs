@@ -105,6 +105,9 @@ pub struct Design {
     /// The rollers' material (`reducer.roller_material`; the disc's when not given); the output
     /// pins' contacts take it for the pins too.
     pub roller_material: Material,
+    /// What the disc's and the rollers' materials bear (`yield_strength_mpa`,
+    /// `contact_fatigue` of `reducer.material` and `reducer.roller_material`).
+    pub strength: super::strength::Strength,
     /// The crank bearing's rating (spec: `reducer.crank_bearing`), for its rating life.
     pub crank_bearing: Option<CrankBearing>,
     /// The parts as built (`reducer.deviations`; all zero: the drawing).
@@ -131,6 +134,9 @@ pub struct CrankBearing {
     /// The bearing's outer diameter, mm: the disc's bore (spec: `outer_diameter_mm`); only the
     /// exported solid (`profile --step`, `--stl`) cuts it.
     pub outer_diameter_mm: Option<f64>,
+    /// C0, the basic static load rating (ISO 76), N (spec: `static_load_rating_n`), for the
+    /// static safety s0 = C0/the largest bearing force.
+    pub static_load_rating_n: Option<f64>,
 }
 
 impl CrankBearing {

@@ -20,6 +20,10 @@ pub enum Effect {
     /// (`reducer.friction`, MODEL.md "Friction, efficiency and heat"), from the loaded
     /// sweep's contact forces.
     Efficiency,
+    /// The output pins' bending and shear stresses, the disc's and the rollers' contact
+    /// fatigue lives and the crank bearing's static safety (issue 41,
+    /// `docs/effects/strength.md`), from the loaded sweep's forces and pressures.
+    Strength,
 }
 
 named!(Effect "effect" {
@@ -29,6 +33,7 @@ named!(Effect "effect" {
     Bearing => "bearing",
     Torsion => "torsion",
     Efficiency => "efficiency",
+    Strength => "strength",
 });
 
 impl Effect {
@@ -37,7 +42,9 @@ impl Effect {
         match self {
             Effect::Bearing => &[Effect::RollerContact, Effect::OutputPins],
             Effect::Torsion => &[Effect::RollerContact],
-            Effect::Efficiency => &[Effect::RollerContact, Effect::OutputPins, Effect::Bearing],
+            Effect::Efficiency | Effect::Strength => {
+                &[Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
+            }
             _ => &[],
         }
     }
@@ -52,7 +59,11 @@ impl Effect {
     pub fn is_loaded(self) -> bool {
         matches!(
             self,
-            Effect::RollerContact | Effect::OutputPins | Effect::Bearing | Effect::Efficiency
+            Effect::RollerContact
+                | Effect::OutputPins
+                | Effect::Bearing
+                | Effect::Efficiency
+                | Effect::Strength
         )
     }
 }

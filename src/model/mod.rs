@@ -22,6 +22,7 @@ pub mod quantity;
 pub mod requirements;
 pub mod results;
 pub mod scene;
+pub mod strength;
 pub mod study;
 pub mod tolerances;
 

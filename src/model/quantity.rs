@@ -199,6 +199,7 @@ impl Quantity {
         matches!(self.key, "te_arcsec" | "ratio")
             || self.effect == Effect::Torsion
             || self.effect == Effect::Efficiency
+            || self.key == PIN_BENDING_STRESS.key
     }
 
     /// Whether it is one value for the whole sweep (`Shape::Scalar`) rather than curves.
@@ -936,6 +937,163 @@ pub const BEARING_LIFE: Quantity = Quantity {
     }),
 };
 
+/// The output pins' stresses, when the scene computes them (`Effect::Strength`).
+fn pin_stress(r: &SceneResult) -> Option<&super::strength::PinStress> {
+    r.loaded.pin_stress.as_ref()
+}
+
+/// A disc's strength figures, when the scene computes them (`Effect::Strength`).
+fn disc_strength(r: &SceneResult) -> Option<super::strength::DiscStrength> {
+    r.loaded.strength
+}
+
+/// σ_b = 32·M/(π·d³) of each output pin at its most loaded section, MPa, one curve per pin
+/// (`PinStress::bending_stress_mpa`; `equilibrium::pin_stress`): every disc's force on the pin
+/// summed as vectors, on the pin that bends (the pin, or the pin inside a free sleeve).
+pub const PIN_BENDING_STRESS: Quantity = Quantity {
+    key: "pin_bending_stress_mpa",
+    unit: "MPa",
+    label: "output-pin bending stress",
+    effect: Effect::Strength,
+    shape: Shape::PerPin,
+    period: None,
+    of: None,
+    read: Read::Curves(|r| Some(pin_stress(r)?.bending_stress_mpa.clone())),
+};
+
+/// The largest output-pin bending stress, MPa, with the pin and the crank angle.
+pub const MAX_PIN_BENDING_STRESS: Quantity = Quantity {
+    key: "max_pin_bending_stress_mpa",
+    unit: "MPa",
+    label: "max pin bending stress",
+    effect: Effect::Strength,
+    shape: Shape::Scalar,
+    period: None,
+    of: Some("pin_bending_stress_mpa"),
+    read: Read::Scalar(|r| Some(largest(r, &pin_stress(r)?.bending_stress_mpa, "pin"))),
+};
+
+/// The largest peak shear stress 4·V/(3·A) of an output pin, MPa, with the pin and the crank
+/// angle (`PinStress::shear_stress_mpa`).
+pub const MAX_PIN_SHEAR_STRESS: Quantity = Quantity {
+    key: "max_pin_shear_stress_mpa",
+    unit: "MPa",
+    label: "max pin shear stress",
+    effect: Effect::Strength,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| Some(largest(r, &pin_stress(r)?.shear_stress_mpa, "pin"))),
+};
+
+/// The pins' safety against yield in bending: yield strength / the largest bending stress,
+/// with the pins' yield strength (`roller_material.yield_strength_mpa`); the largest double,
+/// said "unbounded", when no pin is loaded.
+pub const PIN_BENDING_SAFETY: Quantity = Quantity {
+    key: "pin_bending_safety",
+    unit: "",
+    label: "pin bending safety (yield / stress)",
+    effect: Effect::Strength,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        let p = pin_stress(r)?;
+        let yield_mpa = p.yield_strength_mpa?;
+        let most = largest(r, &p.bending_stress_mpa, "pin");
+        let safety = yield_mpa / most.value;
+        Some(match safety.is_finite() {
+            true => Extreme {
+                value: safety,
+                at: most.at,
+            },
+            false => Extreme {
+                value: f64::MAX,
+                at: "unbounded: no pin is bent (written as 1.798e308, the largest number)"
+                    .to_string(),
+            },
+        })
+    }),
+};
+
+/// The shorter of the disc's and the rollers' rolling-contact fatigue lives, hours
+/// (`FatigueLives::shorter`, `contact::fatigue`), naming the part and the pressure;
+/// `results::UNBOUNDED_LIFE_H` when neither takes damage.
+pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
+    key: "min_contact_fatigue_life_h",
+    unit: "h",
+    label: "contact fatigue life (shorter of disc and rollers)",
+    effect: Effect::Strength,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        if let Some(d) = duty(r) {
+            return duty_fatigue(d);
+        }
+        let f = disc_strength(r)?.fatigue?;
+        let (value, part) = f.shorter()?;
+        let p = number(f.pressure_mpa);
+        Some(Extreme {
+            value,
+            at: match value == super::results::UNBOUNDED_LIFE_H {
+                false => format!("{part} at {p} MPa"),
+                true => format!(
+                    "unbounded: the {part} take no damage at {p} MPa (written as 1.798e308 h, \
+                     the largest number)"
+                ),
+            },
+        })
+    }),
+};
+
+/// The crank bearing's static safety s0 = C0 / the largest bearing force (ISO 76), with
+/// `crank_bearing.static_load_rating_n`; the largest double, said "unbounded", when the
+/// bearing carries nothing.
+pub const STATIC_SAFETY: Quantity = Quantity {
+    key: "static_safety",
+    unit: "",
+    label: "crank-bearing static safety s0",
+    effect: Effect::Strength,
+    shape: Shape::Scalar,
+    period: None,
+    of: None,
+    read: Read::Scalar(|r| {
+        let s = disc_strength(r)?.static_safety?;
+        let f = number(s.largest_force_n);
+        Some(Extreme {
+            value: s.safety,
+            at: match s.safety == f64::MAX {
+                false => format!("C0 / {f} N"),
+                true => "unbounded: the bearing carries no force (written as 1.798e308, the \
+                         largest number)"
+                    .to_string(),
+            },
+        })
+    }),
+};
+
+/// The shortest contact fatigue life under a duty cycle (Palmgren–Miner, the flanks apart,
+/// `engine::duty_fatigue`) over its discs and parts, naming them; `None` when not computed.
+fn duty_fatigue(d: &DutyCycle) -> Option<Extreme> {
+    let several = d.contact_fatigue.len() > 1;
+    (d.contact_fatigue.iter().enumerate())
+        .flat_map(|(k, f)| [(f.disc_h, "disc", k), (f.rollers_h, "rollers", k)])
+        .filter_map(|(h, part, k)| Some((h?, part, k)))
+        .reduce(|a, b| if b.0 < a.0 { b } else { a })
+        .map(|(value, part, k)| Extreme {
+            value,
+            at: match (several, value == super::results::UNBOUNDED_LIFE_H) {
+                (false, false) => format!("{part} under the cycle (Miner, flanks apart)"),
+                (true, false) => format!("disc {k}: {part} under the cycle (Miner, flanks apart)"),
+                (_, true) => format!(
+                    "unbounded: no bin wears the {part} (written as 1.798e308 h, the largest \
+                     number)"
+                ),
+            },
+        })
+}
+
 /// A duty cycle's results, when the scene runs one.
 fn duty(r: &SceneResult) -> Option<&DutyCycle> {
     r.duty.as_deref()
@@ -1245,6 +1403,12 @@ pub const QUANTITIES: &[&Quantity] = &[
     &DUTY_EQUIVALENT_LOAD,
     &DUTY_LIFE,
     &DUTY_MEAN_EFFICIENCY,
+    &PIN_BENDING_STRESS,
+    &MAX_PIN_BENDING_STRESS,
+    &MAX_PIN_SHEAR_STRESS,
+    &PIN_BENDING_SAFETY,
+    &MIN_CONTACT_FATIGUE_LIFE,
+    &STATIC_SAFETY,
 ];
 
 /// A duty cycle's own figures: only a duty-cycle scene has them (`Quantity::for_duty`).
@@ -1303,6 +1467,10 @@ pub const SUMMARY: &[&Quantity] = &[
     &MEAN_SPEED,
     &DUTY_EQUIVALENT_LOAD,
     &DUTY_MEAN_EFFICIENCY,
+    &MAX_PIN_BENDING_STRESS,
+    &PIN_BENDING_SAFETY,
+    &MIN_CONTACT_FATIGUE_LIFE,
+    &STATIC_SAFETY,
 ];
 
 /// The scalars that are max − min of their curve (`of`) rather than a value on it: a limit on
@@ -1510,6 +1678,34 @@ pub const LIMITS: &[LimitDef] = &[
         bound: Bound::Max,
         whole: false,
         range: (-273.15, f64::INFINITY),
+    },
+    LimitDef {
+        key: "max_pin_bending_stress_mpa",
+        quantity: &MAX_PIN_BENDING_STRESS,
+        bound: Bound::Max,
+        whole: false,
+        range: (0.0, f64::INFINITY),
+    },
+    LimitDef {
+        key: "min_pin_bending_safety",
+        quantity: &PIN_BENDING_SAFETY,
+        bound: Bound::Min,
+        whole: false,
+        range: (0.0, f64::INFINITY),
+    },
+    LimitDef {
+        key: "min_contact_fatigue_life_h",
+        quantity: &MIN_CONTACT_FATIGUE_LIFE,
+        bound: Bound::Min,
+        whole: false,
+        range: (0.0, f64::INFINITY),
+    },
+    LimitDef {
+        key: "min_static_safety",
+        quantity: &STATIC_SAFETY,
+        bound: Bound::Min,
+        whole: false,
+        range: (0.0, f64::INFINITY),
     },
 ];
 

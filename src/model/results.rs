@@ -189,6 +189,12 @@ pub struct LoadedSweep {
     /// for the friction losses of `efficiency` (`Model::keep_contacts`), zeros where a roller
     /// carries no force or the angle was solved by the lean first-order sweep.
     pub roller_contacts: Option<Vec<Vec<[f64; 4]>>>,
+    /// The output pins' stresses (`Effect::Strength` with a pin support): the reducer's, on a
+    /// single disc's sweep or with several discs on the scene's own (`SceneResult::loaded`),
+    /// none of a disc's.
+    pub pin_stress: Option<super::strength::PinStress>,
+    /// A disc's contact fatigue and crank bearing's static safety (`Effect::Strength`).
+    pub strength: Option<super::strength::DiscStrength>,
 }
 
 /// The catalogue figures of a torsion curve γ(T) at one locked crank angle (MODEL.md "Several
@@ -435,6 +441,9 @@ pub struct DutyCycle {
     /// Σ sᵢ·Dᵢ / Σ sᵢ·Eᵢ: the mean efficiency weighted by energy, with `efficiency` (Dᵢ and
     /// Eᵢ the bin's energy delivered and entering as its power flows, `engine::duty_cycle`).
     pub mean_efficiency: Option<f64>,
+    /// Each disc's and its rollers' contact fatigue under the cycle (`engine::duty_fatigue`),
+    /// with an S–N law and whole periods in every bin; else empty.
+    pub contact_fatigue: Vec<super::strength::DutyFatigue>,
 }
 
 /// One bin of a duty cycle and its run.

@@ -283,10 +283,17 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
                 );
             }
         }
-        // Without friction there is no efficiency to skip: the plan reads as before it existed.
+        // Without friction there is no efficiency to skip, without a strength figure of the
+        // materials or the bearing no strength: the plan reads as before they existed.
+        let strength_given = spec.design.strength != Default::default()
+            || spec
+                .design
+                .crank_bearing
+                .is_some_and(|b| b.static_load_rating_n.is_some());
         let skipped: Vec<&str> = Effect::listed()
             .filter(|e| !plan.has(*e))
             .filter(|e| *e != Effect::Efficiency || spec.design.friction.is_some())
+            .filter(|e| *e != Effect::Strength || strength_given)
             .map(|e| e.name())
             .collect();
         if !skipped.is_empty() {

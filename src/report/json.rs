@@ -242,6 +242,43 @@ pub struct SceneDoc<'a> {
     /// A duty-cycle scene's bins and each disc's life under the cycle (`DutyDoc`).
     #[serde(skip_serializing_if = "Option::is_none")]
     duty_cycle: Option<DutyDoc<'a>>,
+    /// The `strength` effect's pin stresses and contact fatigue lives (`StrengthDoc`).
+    #[serde(flatten)]
+    strength: StrengthDoc<'a>,
+}
+
+/// The `strength` effect's curves and lives beside the registry's scalars (`engine::strength`).
+#[derive(Serialize)]
+pub struct StrengthDoc<'a> {
+    /// σ_b of each output pin, MPa \[pin\]\[crank\] (the reducer's, every disc's force summed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pin_bending_stress_mpa: Option<Rows<'a>>,
+    /// The disc's and the rollers' contact fatigue lives, h (a disc's own with several).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    contact_fatigue_life_h: Option<FatigueDoc>,
+}
+
+/// The two lives of `StrengthDoc`, each when its S–N law is given.
+#[derive(Serialize)]
+pub struct FatigueDoc {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disc: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rollers: Option<Finite>,
+}
+
+impl<'a> StrengthDoc<'a> {
+    fn new(r: &'a SceneResult) -> Self {
+        let fatigue = r.loaded.strength.and_then(|s| s.fatigue);
+        StrengthDoc {
+            pin_bending_stress_mpa: (r.loaded.pin_stress.as_ref())
+                .map(|p| Rows(&p.bending_stress_mpa)),
+            contact_fatigue_life_h: fatigue.map(|f| FatigueDoc {
+                disc: f.disc_h.map(Finite),
+                rollers: f.rollers_h.map(Finite),
+            }),
+        }
+    }
 }
 
 /// A duty-cycle scene's block (`engine::duty_cycle`): each disc's crank bearing under the
@@ -253,6 +290,23 @@ pub struct DutyDoc<'a> {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     discs: Vec<DutyLifeDoc>,
     bins: Vec<DutyBinDoc<'a>>,
+    /// Each disc's and its rollers' contact fatigue under the cycle (Miner, flanks apart).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    duty_contact_fatigue_life_h: Vec<DutyFatigueDoc>,
+}
+
+/// One disc's contact fatigue under a duty cycle: the lives, h, and each bin's share of the
+/// damage of the flank it loads.
+#[derive(Serialize)]
+pub struct DutyFatigueDoc {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disc: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rollers: Option<Finite>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    disc_damage_share: Vec<Finite>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    rollers_damage_share: Vec<Finite>,
 }
 
 /// One disc's crank bearing under a duty cycle.
@@ -284,6 +338,14 @@ impl<'a> DutyDoc<'a> {
     fn new(r: &'a SceneResult) -> Option<Self> {
         let d = r.duty.as_deref()?;
         Some(DutyDoc {
+            duty_contact_fatigue_life_h: (d.contact_fatigue.iter())
+                .map(|f| DutyFatigueDoc {
+                    disc: f.disc_h.map(Finite),
+                    rollers: f.rollers_h.map(Finite),
+                    disc_damage_share: finite(f.disc_shares.iter().copied()),
+                    rollers_damage_share: finite(f.rollers_shares.iter().copied()),
+                })
+                .collect(),
             discs: (d.life.iter())
                 .map(|b| DutyLifeDoc {
                     equivalent_load_n: Finite(b.equivalent_load_n),
@@ -537,6 +599,7 @@ impl<'a> SceneDoc<'a> {
             torsion: TorsionDoc::new(r),
             discs: r.discs.iter().map(SceneDoc::disc).collect(),
             duty_cycle: DutyDoc::new(r),
+            strength: StrengthDoc::new(r),
         }
     }
 

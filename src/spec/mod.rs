@@ -22,6 +22,7 @@ pub(crate) mod requirements_raw;
 #[doc(hidden)]
 pub mod rules;
 pub(crate) mod scenes;
+pub(crate) mod strength;
 pub(crate) mod tolerances;
 pub(crate) mod validate;
 mod validated;

@@ -401,7 +401,7 @@ pub(crate) struct RawCentreDeviation {
 #[derive(Debug, Deserialize)]
 #[serde(
     deny_unknown_fields,
-    expecting = "a mapping with the key dynamic_load_rating_n (and optionally life_exponent, outer_diameter_mm)"
+    expecting = "a mapping with the key dynamic_load_rating_n (and optionally life_exponent, outer_diameter_mm, static_load_rating_n)"
 )]
 pub(crate) struct RawCrankBearing {
     pub dynamic_load_rating_n: f64,
@@ -409,6 +409,8 @@ pub(crate) struct RawCrankBearing {
     pub life_exponent: Option<f64>,
     #[serde(default)]
     pub outer_diameter_mm: Option<f64>,
+    #[serde(default)]
+    pub static_load_rating_n: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -442,11 +444,31 @@ pub(crate) struct RawPinSupport {
 #[derive(Debug, Deserialize, Clone, Copy)]
 #[serde(
     deny_unknown_fields,
-    expecting = "a mapping with the keys youngs_modulus_gpa, poisson_ratio"
+    expecting = "a mapping with the keys youngs_modulus_gpa, poisson_ratio (and optionally yield_strength_mpa, contact_fatigue)"
 )]
 pub(crate) struct RawMaterial {
     pub youngs_modulus_gpa: f64,
     pub poisson_ratio: f64,
+    /// The yield strength, for the output pins' bending safety.
+    #[serde(default)]
+    pub yield_strength_mpa: Option<f64>,
+    /// The running surface's S–N law of rolling-contact fatigue.
+    #[serde(default)]
+    pub contact_fatigue: Option<RawContactFatigue>,
+}
+
+/// `contact_fatigue` of a material: N(p) = cycles·(pressure_mpa/p)^exponent.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mapping with the keys pressure_mpa, cycles, exponent (and optionally endurance_pressure_mpa)"
+)]
+pub(crate) struct RawContactFatigue {
+    pub pressure_mpa: f64,
+    pub cycles: f64,
+    pub exponent: f64,
+    #[serde(default)]
+    pub endurance_pressure_mpa: Option<f64>,
 }
 
 #[derive(Debug, Deserialize, Default)]

@@ -268,6 +268,8 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         RawMaterial {
             youngs_modulus_gpa: m.youngs_modulus_gpa,
             poisson_ratio: m.poisson_ratio,
+            yield_strength_mpa: None,
+            contact_fatigue: None,
         },
     )?;
     let density = positive(
@@ -289,6 +291,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
                     .transpose()?
                     .unwrap_or(CrankBearing::ROLLER_LIFE_EXPONENT),
                 outer_diameter_mm: None,
+                static_load_rating_n: None,
             })
         })
         .transpose()?;

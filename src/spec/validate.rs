@@ -113,6 +113,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
         .at_key("reducer.rollers"));
     }
     let pins = &raw.output_pins;
+    let strength = super::strength::materials(&raw.material, raw.roller_material.as_ref())?;
     let disc_material = material("reducer.material", raw.material)?;
     let roller_material = match raw.roller_material {
         Some(m) => material("reducer.roller_material", m)?,
@@ -173,6 +174,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
         },
         disc_material,
         roller_material,
+        strength,
         crank_bearing: raw.crank_bearing.map(crank_bearing).transpose()?,
         deviations: Deviations::default(),
         friction: None,
@@ -274,6 +276,10 @@ fn crank_bearing(raw: RawCrankBearing) -> Result<CrankBearing> {
         outer_diameter_mm: raw
             .outer_diameter_mm
             .map(|d| length(&format!("{key}.outer_diameter_mm"), d))
+            .transpose()?,
+        static_load_rating_n: raw
+            .static_load_rating_n
+            .map(|c| positive(&format!("{key}.static_load_rating_n"), c))
             .transpose()?,
     })
 }
@@ -650,6 +656,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     let limits = limits(&raw.limits)?;
     let built = (!design.deviations.is_nominal()).then_some("`reducer.deviations`");
     super::bearing_life::check(&limits, &design, &scenes, built)?;
+    super::strength::check(&limits, &design, &scenes)?;
     super::periods::check(&limits, &design, &scenes, built)?;
     super::friction::check_limits(&limits, &design, &scenes)?;
     let mut golden = Vec::new();

@@ -62,5 +62,6 @@ mod slurm_cluster;
 mod snapshots;
 mod spec_locate;
 mod specs_exit_codes;
+mod strength;
 mod tolerance;
 mod torsion;

@@ -100,6 +100,7 @@ fn accepted_keys() -> Vec<String> {
         ("RawOutputPins", "reducer.output_pins."),
         ("RawPinSupport", "reducer.output_pins.support."),
         ("RawMaterial", "reducer.material."),
+        ("RawContactFatigue", "reducer.material.contact_fatigue."),
         ("RawModification", "modification."),
         ("RawCrowning", "modification.crowning."),
         ("RawMisalignment", "scenes[].misalignment."),

@@ -53,6 +53,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "paper optimum with cantilever output pins and a structure compliance: torsion, life",
     ),
     (
+        "reducer-strength.yaml",
+        0,
+        "paper optimum with cantilever pins: pin stress, contact fatigue, static safety",
+    ),
+    (
         "reducer-efficiency.yaml",
         0,
         "paper optimum with friction: efficiency, losses and temperature at 20 N·m, 1500 rpm",

@@ -149,6 +149,7 @@ mod tests {
             },
             disc_material: STEEL,
             roller_material: STEEL,
+            strength: Default::default(),
             crank_bearing: None,
             deviations: Default::default(),
             friction: None,

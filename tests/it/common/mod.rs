@@ -298,6 +298,7 @@ pub(crate) fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f
         },
         disc_material: STEEL,
         roller_material: STEEL,
+        strength: Default::default(),
         crank_bearing: None,
         deviations: Default::default(),
         friction: None,

@@ -250,6 +250,10 @@ pub(crate) struct RawReducer {
     /// The torsional compliance of the rest of the reducer, in series (absent: 0).
     #[serde(default)]
     pub structure_compliance_arcmin_per_knm: Option<f64>,
+    /// The inertia of the output (flange, pins, load) about its axis, kg·m², for the inertia at
+    /// the input (absent: 0).
+    #[serde(default)]
+    pub output_inertia_kgm2: Option<f64>,
 }
 
 /// `reducer.friction` (MODEL.md "Friction, efficiency and heat"): a path not given has no
@@ -442,11 +446,14 @@ pub(crate) struct RawPinSupport {
 #[derive(Debug, Deserialize, Clone, Copy)]
 #[serde(
     deny_unknown_fields,
-    expecting = "a mapping with the keys youngs_modulus_gpa, poisson_ratio"
+    expecting = "a mapping with the keys youngs_modulus_gpa, poisson_ratio (and optionally density_kg_per_m3)"
 )]
 pub(crate) struct RawMaterial {
     pub youngs_modulus_gpa: f64,
     pub poisson_ratio: f64,
+    /// The disc's density, kg/m³ (default steel's), for its mass and inertia.
+    #[serde(default)]
+    pub density_kg_per_m3: Option<f64>,
 }
 
 #[derive(Debug, Deserialize, Default)]

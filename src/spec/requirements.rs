@@ -268,6 +268,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         RawMaterial {
             youngs_modulus_gpa: m.youngs_modulus_gpa,
             poisson_ratio: m.poisson_ratio,
+            density_kg_per_m3: None,
         },
     )?;
     let density = positive(
@@ -602,7 +603,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         face_slices,
         envelope,
         material,
-        density_kg_per_mm3: density * 1e-9,
+        density_kg_per_mm3: crate::units::kg_per_mm3(density),
         crank_bearing,
         rules,
         limits,

@@ -113,6 +113,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
         .at_key("reducer.rollers"));
     }
     let pins = &raw.output_pins;
+    let mass = super::mass::inputs(&raw)?;
     let disc_material = material("reducer.material", raw.material)?;
     let roller_material = match raw.roller_material {
         Some(m) => material("reducer.roller_material", m)?,
@@ -182,6 +183,8 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
             .map(|t| super::friction::thermal_at("reducer.thermal", t))
             .transpose()?,
         structure_compliance_rad_per_nmm,
+        density_kg_per_mm3: mass.density_kg_per_mm3,
+        output_inertia_kgmm2: mass.output_inertia_kgmm2,
     })
 }
 

@@ -166,6 +166,8 @@ mod tests {
             friction: None,
             thermal: None,
             structure_compliance_rad_per_nmm: 0.0,
+            density_kg_per_mm3: 7.85e-6,
+            output_inertia_kgmm2: 0.0,
         }
     }
 

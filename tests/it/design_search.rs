@@ -54,15 +54,15 @@ fn small() -> Requirements {
     cycloid::spec::requirements::parse("small.yaml", SMALL).unwrap()
 }
 
-/// Mass estimate of README's formula, from a spec's design: steel 7,850 kg/m³ × B × discs ×
-/// (π(Rp − Rrp)² − M·π·rh² + np·π·Rrp² + M·π·rpin²), mm³ → m³.
-fn mass_kg(d: &cycloid::model::Design) -> f64 {
+/// The search's mass (docs/design-search.md), from a checked spec: the check's own mass of a
+/// disc times the discs, plus rollers and pins as steel cylinders as long as the discs' stack,
+/// 7,850 kg/m³ × B × discs × (np·π·Rrp² + M·π·rpin²), mm³ → m³.
+fn mass_kg(run: &cycloid::CheckRun) -> f64 {
+    let d = &run.spec.design;
     let m = d.pins.count as f64;
-    let rh = d.hole_radius_mm();
-    let area = PI * (d.roller_circle_radius_mm - d.roller_radius_mm).powi(2) - m * PI * rh * rh
-        + d.rollers as f64 * PI * d.roller_radius_mm.powi(2)
-        + m * PI * d.pins.pin_radius_mm.powi(2);
-    7850.0e-9 * d.face_width_mm * d.discs as f64 * area
+    let area =
+        d.rollers as f64 * PI * d.roller_radius_mm.powi(2) + m * PI * d.pins.pin_radius_mm.powi(2);
+    d.discs as f64 * (run.mass.disc.mass_kg + 7850.0e-9 * d.face_width_mm * area)
 }
 
 #[test]
@@ -130,7 +130,7 @@ fn front_designs_pass_check_meet_every_requirement_and_none_dominates_another() 
             .filter(|c| c.name() == "max_contact_pressure_mpa")
             .map(|c| c.value)
             .fold(f64::NEG_INFINITY, f64::max);
-        points.push([mass_kg(d), pressure]);
+        points.push([mass_kg(&run), pressure]);
     }
     for (i, a) in points.iter().enumerate() {
         for (j, b) in points.iter().enumerate() {

@@ -42,6 +42,7 @@ mod golden;
 mod golden_physics;
 mod hard_cases;
 mod junit;
+mod mass_properties;
 mod measure;
 mod measure_cli;
 mod measured_inputs;

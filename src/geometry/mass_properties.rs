@@ -118,9 +118,9 @@ impl DiscMass {
 
     /// The disc's share of the inertia at the input, kg·mm²: m·e² + J_c/nc². The disc's centre
     /// orbits at the crank's ω on a circle of radius e and the disc turns at −ω/nc (MODEL.md
-    /// "Conventions": ψ0 = −φ/nc), so its kinetic energy is ½·(m·e² + J_c/nc²)·ω² (taken about its centre;
-    /// a centroid off the centre by d adds a term m·e·d·ω²/nc·cos(…) that averages to zero
-    /// over a turn).
+    /// "Conventions": ψ0 = −φ/nc), so its kinetic energy is ½·(m·e² + J_c/nc²)·ω², taken
+    /// about its centre; a centroid off the centre by d adds a term m·e·d·ω²/nc·cos(…) that
+    /// averages to zero over a turn.
     pub fn input_inertia_kgmm2(&self, eccentricity_mm: f64, teeth: usize) -> f64 {
         let nc = teeth as f64;
         self.mass_kg * eccentricity_mm * eccentricity_mm + self.inertia_kgmm2 / (nc * nc)

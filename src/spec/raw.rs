@@ -273,9 +273,21 @@ pub(crate) struct RawFriction {
     pub output_pins: Option<RawPinFriction>,
     #[serde(default)]
     pub crank_bearing: Option<RawBearingFriction>,
-    /// A constant drag at the input, N·mm.
+    /// A drag at the input, N·mm: a number, or a table of [input_rpm, N·mm] pairs.
     #[serde(default)]
-    pub no_load_torque_nmm: Option<f64>,
+    pub no_load_torque_nmm: Option<RawNoLoad>,
+}
+
+/// `reducer.friction.no_load_torque_nmm`: one number, or a catalogue's no-load running torque
+/// curve as [input_rpm, N·mm] pairs.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(
+    untagged,
+    expecting = "a number (N·mm) or a list of [input_rpm, N·mm] pairs"
+)]
+pub(crate) enum RawNoLoad {
+    Constant(f64),
+    Table(Vec<[f64; 2]>),
 }
 
 /// `reducer.friction.rollers`: `fixed` or `rotating` (on a pin of `bore_radius_mm`).

@@ -47,6 +47,7 @@ mod measure;
 mod measure_cli;
 mod measured_inputs;
 mod mesh_minimum;
+mod no_load_table;
 mod optimise;
 mod ordinary_inputs;
 mod period;

@@ -200,7 +200,16 @@ fn friction_text(s: &mut String, f: &Friction) {
             num(b.bore_diameter_mm)
         );
     }
-    let _ = writeln!(s, "    no_load_torque_nmm: {}", num(f.no_load_torque_nmm));
+    let t0 = &f.no_load_torque_nmm;
+    let t0 = if t0.is_constant() {
+        num(t0.max_nmm())
+    } else {
+        let pairs: Vec<String> = (t0.points().iter())
+            .map(|[n, t]| format!("[{}, {}]", num(*n), num(*t)))
+            .collect();
+        format!("[{}]", pairs.join(", "))
+    };
+    let _ = writeln!(s, "    no_load_torque_nmm: {t0}");
 }
 
 /// The spec of `c` under `req`: its reducer, the scenes the requirements need and their

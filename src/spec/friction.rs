@@ -187,7 +187,7 @@ fn no_load(key: &str, raw: &RawNoLoad) -> Result<NoLoadTorque> {
     for (i, &[n, t]) in points.iter().enumerate() {
         let n = finite(key, n)?;
         drag(t, &format!("the torque of pair {i} "))?;
-        if n < 0.0 || n > MAX_SPEED_RPM {
+        if !(0.0..=MAX_SPEED_RPM).contains(&n) {
             return Err(Error::invalid(
                 key,
                 format!(
@@ -339,7 +339,7 @@ pub(super) fn check_scenes(design: &Design, scenes: &[Scene]) -> Result<()> {
 /// scene that computes the efficiency without `input_speed_rpm` or a duty cycle is refused at
 /// the scene (no silent choice of a speed).
 fn no_load_speeds(design: &Design, scenes: &[Scene]) -> Result<()> {
-    if !(design.friction).is_some_and(|f| !f.no_load_torque_nmm.is_constant()) {
+    if (design.friction).is_none_or(|f| f.no_load_torque_nmm.is_constant()) {
         return Ok(());
     }
     match scenes.iter().position(|s| {

@@ -84,7 +84,7 @@ fn a_bad_table_is_refused_where_written() {
     ];
     let dir = Scratch::new("no-load-bad");
     for (t0, key, says) in cases {
-        dir.write("s.yaml", &spec(t0, "1500.0"));
+        dir.write("s.yaml", spec(t0, "1500.0"));
         let (code, out, err) = cycloid(&dir.path, &["check", "s.yaml"]).parts();
         assert_eq!(code, 2, "{t0}: {out}{err}");
         let at = format!("s.yaml:{}:", line(t0));

@@ -148,7 +148,7 @@ fn coupled_sweep_3600_exact(b: divan::Bencher) {
             mu: 0.0025,
             bore_diameter_mm: 20.0,
         }),
-        no_load_torque_nmm: 0.0,
+        no_load_torque_nmm: cycloid::model::NoLoadTorque::constant(0.0),
     };
     let model = model.with_friction(&friction, &design);
     b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());

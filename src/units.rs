@@ -116,6 +116,33 @@ pub fn w(nmm_per_s: f64) -> f64 {
     nmm_per_s * W_PER_NMM_PER_S
 }
 
+/// mm² in a m².
+pub const MM2_PER_M2: f64 = 1e6;
+
+/// A density in kg/m³ as kg/mm³.
+#[inline]
+pub fn kg_per_mm3(kg_per_m3: f64) -> f64 {
+    kg_per_m3 * 1e-9
+}
+
+/// A density in kg/mm³ as kg/m³.
+#[inline]
+pub fn kg_per_m3(kg_per_mm3: f64) -> f64 {
+    kg_per_mm3 * 1e9
+}
+
+/// A moment of inertia in kg·m² as kg·mm².
+#[inline]
+pub fn kgmm2(kgm2: f64) -> f64 {
+    kgm2 * MM2_PER_M2
+}
+
+/// A moment of inertia in kg·mm² as kg·m².
+#[inline]
+pub fn kgm2(kgmm2: f64) -> f64 {
+    kgmm2 / MM2_PER_M2
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -133,5 +160,7 @@ mod tests {
         assert_eq!(nm(nmm(2.5)), 2.5);
         assert_eq!(gpa(mpa(206.0)), 206.0);
         assert_eq!(mm_from_um(um(0.015)), 0.015);
+        assert!((kg_per_m3(kg_per_mm3(7850.0)) - 7850.0).abs() < 1e-9);
+        assert_eq!(kgm2(kgmm2(0.25)), 0.25);
     }
 }

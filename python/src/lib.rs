@@ -179,6 +179,7 @@ impl PyRun {
             goldens: &r.goldens,
             summaries: &r.summaries,
             studies: &r.studies,
+            mass: Some(&r.mass),
         })
     }
 }
@@ -256,6 +257,7 @@ fn optimise(
         goldens: &[],
         summaries: &[],
         studies: &results,
+        mass: None,
     });
     let tree = tree::to_py(py, &doc)?;
     Ok(tree.bind(py).get_item("studies")?.unbind())

@@ -176,6 +176,7 @@ fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Resul
             goldens: &run.goldens,
             summaries: &run.summaries,
             studies: &run.studies,
+            mass: Some(&run.mass),
         });
         report::json::write(Path::new(p), &doc)?;
     }

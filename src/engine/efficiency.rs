@@ -63,7 +63,10 @@ pub fn efficiency(
     };
     let n = scene.crank_rad.len();
     let total: Vec<PathLosses> = (0..n)
-        .map(|i| reducer_losses(&friction, per_disc.iter().map(|d| &d[i])))
+        .map(|i| {
+            let discs = per_disc.iter().map(|d| &d[i]);
+            reducer_losses(&friction, scene.input_speed_rpm, discs)
+        })
         .collect();
     let input = match friction.model {
         FrictionModel::Loss => None,
@@ -128,7 +131,8 @@ fn self_locking(scene: &Scene, input_torque_nmm: &[f64]) -> Vec<f64> {
 }
 
 /// The coupled model's input torque at each crank angle, N·mm, from the crank's balance about
-/// the axis (`equilibrium::coupling`): T_in = Σ_k (E_k × Fb_k + c_b·|Fb_k|) + T0, with
+/// the axis (`equilibrium::coupling`): T_in = Σ_k (E_k × Fb_k + c_b·|Fb_k|) + T0 (at the
+/// scene's speed), with
 /// E_k = (e + de)·e_φk the eccentric of disc k and Fb_k its bearing's force on the disc (at
 /// the angle ε_k from e_φk: E_k × Fb_k = (e + de)·|Fb_k|·sin ε_k).
 fn crank_input_torque(
@@ -148,7 +152,7 @@ fn crank_input_torque(
                     c.eccentricity_mm * force * angle.sin() + c.bearing_arm_mm * force
                 })
                 .sum();
-            discs + friction.no_load_torque_nmm
+            discs + friction.no_load_torque_nmm.at_rpm(scene.input_speed_rpm)
         })
         .collect()
 }

@@ -4,6 +4,7 @@
 
 use super::profile::Profile;
 use super::Vec2;
+use crate::model::{Design, OutputPins};
 use std::f64::consts::TAU;
 
 /// One cubic Bézier piece of the profile over t in [t0, t1]: the Hermite cubic through Γ(t0)
@@ -54,6 +55,29 @@ impl Bezier {
 pub struct Circle {
     pub centre: Vec2,
     pub radius_mm: f64,
+}
+
+/// The output-pin holes of a disc: hole j at the nominal centre of pin j
+/// (`OutputPins::centre_mm`), radius `hole_radius_mm` (pin + e + hole clearance,
+/// `Design::hole_radius_mm`).
+pub fn pin_holes(pins: &OutputPins, hole_radius_mm: f64) -> Vec<Circle> {
+    (0..pins.count)
+        .map(|j| {
+            let [x, y] = pins.centre_mm(j);
+            Circle {
+                centre: Vec2::new(x, y),
+                radius_mm: hole_radius_mm,
+            }
+        })
+        .collect()
+}
+
+/// The bore of the crank bearing, centred on the disc, when its outer diameter is given.
+pub fn bore(design: &Design) -> Option<Circle> {
+    (design.crank_bearing.and_then(|b| b.outer_diameter_mm)).map(|d| Circle {
+        centre: Vec2::zeros(),
+        radius_mm: 0.5 * d,
+    })
 }
 
 /// The disc as a prism: the region inside the profile, less the holes and the bore, from z = 0

@@ -5,6 +5,7 @@ pub mod disc_mesh;
 pub mod disc_solid;
 pub mod first_order;
 pub mod form_error;
+pub mod mass_properties;
 pub mod mesh_minimum;
 pub mod placement;
 pub mod polyline;

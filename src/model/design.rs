@@ -121,6 +121,12 @@ pub struct Design {
     /// `reducer.structure_compliance_arcmin_per_knm`); 0: none given. It adds c·T to the
     /// torsion angle of a torsion scene only.
     pub structure_compliance_rad_per_nmm: f64,
+    /// ρ, the discs' density, kg/mm³ (spec: `reducer.material.density_kg_per_m3`, kg/m³;
+    /// steel's 7,850 by default), for their mass and inertia.
+    pub density_kg_per_mm3: f64,
+    /// The output's inertia about its axis, kg·mm² (spec: `reducer.output_inertia_kgm2`, in
+    /// kg·m²; 0: not given), for the inertia at the input.
+    pub output_inertia_kgmm2: f64,
 }
 
 /// The rating of the crank bearing of a disc (ISO 281): its basic dynamic load rating C and

@@ -110,9 +110,72 @@ pub struct Friction {
     pub output_pins: Option<PinFriction>,
     /// The crank bearing, when given.
     pub crank_bearing: Option<BearingFriction>,
-    /// A constant drag at the input (seals, churning), N·mm (spec: `no_load_torque_nmm`; 0
-    /// when not given).
-    pub no_load_torque_nmm: f64,
+    /// The drag at the input (seals, churning), N·mm, one number or a table over the input
+    /// speed (spec: `no_load_torque_nmm`; 0 when not given).
+    pub no_load_torque_nmm: NoLoadTorque,
+}
+
+/// Most points of a no-load torque table: a catalogue's running-torque curve has a handful.
+pub const MAX_NO_LOAD_POINTS: usize = 32;
+
+/// The no-load running torque T0 at the input against the input speed, N·mm: points
+/// (n_rpm, T0) increasing in speed, linear between them and held beyond the ends; one point is
+/// a constant drag. Fixed storage, so `Friction` stays `Copy`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NoLoadTorque {
+    points: [[f64; 2]; MAX_NO_LOAD_POINTS],
+    len: usize,
+}
+
+impl NoLoadTorque {
+    /// The same drag at every speed, N·mm.
+    pub fn constant(torque_nmm: f64) -> Self {
+        Self::table(&[[0.0, torque_nmm]])
+    }
+
+    /// The table of `points` [rpm, N·mm] (1 to `MAX_NO_LOAD_POINTS`, increasing in speed, as
+    /// `spec::friction` checks); more points are cut to the first `MAX_NO_LOAD_POINTS`.
+    pub fn table(points: &[[f64; 2]]) -> Self {
+        let mut t = NoLoadTorque {
+            points: [[0.0; 2]; MAX_NO_LOAD_POINTS],
+            len: points.len().min(MAX_NO_LOAD_POINTS),
+        };
+        t.points[..t.len].copy_from_slice(&points[..t.len]);
+        t
+    }
+
+    /// The table's points [rpm, N·mm].
+    pub fn points(&self) -> &[[f64; 2]] {
+        &self.points[..self.len]
+    }
+
+    /// One point: the same drag at every speed.
+    pub fn is_constant(&self) -> bool {
+        self.len <= 1
+    }
+
+    /// The largest drag of the table, N·mm (0 for none).
+    pub fn max_nmm(&self) -> f64 {
+        self.points().iter().map(|p| p[1]).fold(0.0, f64::max)
+    }
+
+    /// T0 at `rpm`, N·mm: linear between the neighbouring points, held beyond the ends.
+    /// Without a speed (`None`: a duty cycle's standstill bin) T0 at 0 rpm, the first point's
+    /// (`spec::friction` refuses a table where a scene computes the efficiency without one).
+    pub fn at_rpm(&self, rpm: Option<f64>) -> f64 {
+        let p = self.points();
+        let Some(n) = rpm else {
+            return p.first().map_or(0.0, |q| q[1]);
+        };
+        match p.iter().position(|q| q[0] > n) {
+            None => p.last().map_or(0.0, |q| q[1]),
+            Some(0) => p[0][1],
+            Some(k) => {
+                let ([n0, t0], [n1, t1]) = (p[k - 1], p[k]);
+                t0 + (t1 - t0) * (n - n0) / (n1 - n0)
+            }
+        }
+    }
 }
 
 /// The housing's heat path (spec: `reducer.thermal`): the steady temperature of a scene with a

@@ -34,8 +34,8 @@ pub use deviations::{CentreDeviation, Deviations, FormTerm, RollerDeviation, MAX
 pub use effect::{Detail, Effect};
 pub use face::{Crowning, Face, Misalignment};
 pub use friction::{
-    BearingFriction, Friction, FrictionModel, PinFriction, PinMode, RollerFriction, RollerMode,
-    Thermal,
+    BearingFriction, Friction, FrictionModel, NoLoadTorque, PinFriction, PinMode, RollerFriction,
+    RollerMode, Thermal, MAX_NO_LOAD_POINTS,
 };
 pub use golden::{Golden, GoldenTolerance};
 pub use limits::{Limit, Limits};

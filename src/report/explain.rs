@@ -388,13 +388,28 @@ fn friction_lines(spec: &Spec) -> String {
         }
         None => out += "  crank bearing no friction (not given)\n",
     }
-    if f.no_load_torque_nmm > 0.0 {
+    let t0 = &f.no_load_torque_nmm;
+    if !t0.is_constant() {
+        out += &format!(
+            "  no-load      a drag at the input over its speed: {} (linear between, held \
+             beyond)\n",
+            no_load_table(t0)
+        );
+    } else if t0.max_nmm() > 0.0 {
         out += &format!(
             "  no-load      a drag of {} N·mm at the input\n",
-            number(f.no_load_torque_nmm)
+            number(t0.max_nmm())
         );
     }
     out
+}
+
+/// A no-load torque table as "0 rpm 20 N·mm, 3000 rpm 60 N·mm".
+pub fn no_load_table(t0: &crate::model::NoLoadTorque) -> String {
+    (t0.points().iter())
+        .map(|[n, t]| format!("{} rpm {} N·mm", number(*n), number(*t)))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The optimisation studies (`optimise:`), one line each: scene, objective, variables and the

@@ -11,6 +11,7 @@
 
 use crate::engine::check::{Check, CheckKind};
 use crate::engine::golden::{sha256_hex, GoldenResult, Point};
+use crate::engine::mass_properties::MassProperties;
 use crate::engine::optimise::StudyResult;
 use crate::engine::summary::SceneSummary;
 use crate::error::Result;
@@ -824,6 +825,16 @@ pub struct Document<'a> {
     /// SHA-256 of the spec file's text.
     spec_sha256: String,
     passed: bool,
+    /// One disc's mass, its inertia about its centre and its centroid's offset from it, and
+    /// the reducer's inertia at the input (a check's document; absent from a study's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disc_mass_kg: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disc_inertia_kgm2: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disc_centroid_offset_mm: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    input_inertia_kgm2: Option<Finite>,
     checks: Vec<CheckDoc<'a>>,
     golden: Vec<GoldenDoc<'a>>,
     scenes: Vec<SceneDoc<'a>>,
@@ -842,6 +853,8 @@ pub struct Contents<'a> {
     pub summaries: &'a [SceneSummary],
     /// The spec's optimisation studies' results, matched to `spec.studies` by name.
     pub studies: &'a [StudyResult],
+    /// The discs' mass properties (a check's).
+    pub mass: Option<&'a MassProperties>,
 }
 
 impl<'a> Document<'a> {
@@ -853,6 +866,10 @@ impl<'a> Document<'a> {
             spec_path: &c.spec.path,
             spec_sha256: sha256_hex(&c.spec.source),
             passed: c.checks.iter().all(|k| k.passed),
+            disc_mass_kg: c.mass.map(|m| Finite(m.disc.mass_kg)),
+            disc_inertia_kgm2: c.mass.map(|m| Finite(units::kgm2(m.disc.inertia_kgmm2))),
+            disc_centroid_offset_mm: c.mass.map(|m| Finite(m.disc.centroid_offset_mm)),
+            input_inertia_kgm2: c.mass.map(|m| Finite(units::kgm2(m.input_inertia_kgmm2))),
             checks: c.checks.iter().map(check).collect(),
             golden: c.goldens.iter().map(golden).collect(),
             scenes: c.results.iter().map(SceneDoc::new).collect(),
@@ -932,6 +949,7 @@ pub fn scenes_value(spec: &Spec, results: &[SceneResult]) -> serde_json::Result<
         goldens: &[],
         summaries: &summaries,
         studies: &[],
+        mass: None,
     }))
 }
 

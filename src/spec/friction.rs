@@ -3,12 +3,16 @@
 //! [0, 1), every radius positive and physically possible (a bore inside its roller or its
 //! sleeve), a bore given exactly when its mode has one.
 
-use super::raw::{RawBearingFriction, RawFriction, RawPinFriction, RawRollerFriction, RawThermal};
-use super::values::{finite, length, within, HEAT_TRANSFER_W_PER_M2K, HOUSING_AREA_M2};
+use super::raw::{
+    RawBearingFriction, RawFriction, RawNoLoad, RawPinFriction, RawRollerFriction, RawThermal,
+};
+use super::values::{
+    finite, length, within, HEAT_TRANSFER_W_PER_M2K, HOUSING_AREA_M2, MAX_SPEED_RPM,
+};
 use crate::error::{Error, Result};
 use crate::model::{
-    BearingFriction, Design, Effect, Friction, FrictionModel, Limits, PinFriction, PinMode, Plan,
-    RollerFriction, RollerMode, Scene, Thermal,
+    BearingFriction, Design, Effect, Friction, FrictionModel, Limits, NoLoadTorque, PinFriction,
+    PinMode, Plan, RollerFriction, RollerMode, Scene, Thermal, MAX_NO_LOAD_POINTS,
 };
 use crate::numeric;
 
@@ -150,6 +154,62 @@ pub(super) fn friction(raw: &RawFriction, design: &Design) -> Result<Friction> {
     )
 }
 
+/// A no-load torque at `key`: a drag ≥ 0, or a table of 1 to `MAX_NO_LOAD_POINTS` pairs
+/// [input_rpm, N·mm], speeds ≥ 0 strictly increasing, torques ≥ 0.
+fn no_load(key: &str, raw: &RawNoLoad) -> Result<NoLoadTorque> {
+    // `what`: which torque, before "must be" ("" for the one number).
+    let drag = |t: f64, what: &str| -> Result<f64> {
+        let t = finite(key, t)?;
+        if t < 0.0 {
+            return Err(Error::invalid(
+                key,
+                format!(
+                    "{what}must be zero or positive, got {}: a drag resists the input's turn",
+                    numeric::input(t)
+                ),
+            ));
+        }
+        Ok(t)
+    };
+    let points = match raw {
+        RawNoLoad::Constant(t) => return Ok(NoLoadTorque::constant(drag(*t, "")?)),
+        RawNoLoad::Table(points) => points,
+    };
+    if points.is_empty() || points.len() > MAX_NO_LOAD_POINTS {
+        return Err(Error::invalid(
+            key,
+            format!(
+                "a table of [input_rpm, N·mm] pairs has 1 to {MAX_NO_LOAD_POINTS} pairs, got {}",
+                points.len()
+            ),
+        ));
+    }
+    for (i, &[n, t]) in points.iter().enumerate() {
+        let n = finite(key, n)?;
+        drag(t, &format!("the torque of pair {i} "))?;
+        if !(0.0..=MAX_SPEED_RPM).contains(&n) {
+            return Err(Error::invalid(
+                key,
+                format!(
+                    "the speed of pair {i} must lie in [0, {MAX_SPEED_RPM}] rpm, got {}",
+                    numeric::input(n)
+                ),
+            ));
+        }
+        if i > 0 && n <= points[i - 1][0] {
+            return Err(Error::invalid(
+                key,
+                format!(
+                    "the speeds must increase: pair {i} at {} rpm follows {} rpm",
+                    numeric::input(n),
+                    numeric::input(points[i - 1][0])
+                ),
+            ));
+        }
+    }
+    Ok(NoLoadTorque::table(points))
+}
+
 /// A friction block at `base` (`reducer.friction`, or a requirements file's `friction`):
 /// the bores bounded by `roller` and `pin`, each the radius a bore must stay below and its
 /// name for the message.
@@ -165,22 +225,9 @@ pub(crate) fn friction_at(
             .parse()
             .map_err(|m| Error::invalid(format!("{base}.model"), m))?,
     };
-    let no_load = match raw.no_load_torque_nmm {
-        None => 0.0,
-        Some(t) => {
-            let key = format!("{base}.no_load_torque_nmm");
-            let t = finite(&key, t)?;
-            if t < 0.0 {
-                return Err(Error::invalid(
-                    key,
-                    format!(
-                        "must be zero or positive, got {}: a drag resists the input's turn",
-                        numeric::input(t)
-                    ),
-                ));
-            }
-            t
-        }
+    let no_load = match &raw.no_load_torque_nmm {
+        None => NoLoadTorque::constant(0.0),
+        Some(t) => no_load(&format!("{base}.no_load_torque_nmm"), t)?,
     };
     Ok(Friction {
         model,
@@ -285,7 +332,32 @@ pub(super) fn check_scenes(design: &Design, scenes: &[Scene]) -> Result<()> {
             Some(_) => {}
         }
     }
-    Ok(())
+    no_load_speeds(design, scenes)
+}
+
+/// A no-load torque table is read at each scene's speed (a duty cycle's bins at theirs): a
+/// scene that computes the efficiency without `input_speed_rpm` or a duty cycle is refused at
+/// the scene (no silent choice of a speed).
+fn no_load_speeds(design: &Design, scenes: &[Scene]) -> Result<()> {
+    if (design.friction).is_none_or(|f| f.no_load_torque_nmm.is_constant()) {
+        return Ok(());
+    }
+    match scenes.iter().position(|s| {
+        Plan::for_scene(s).computes(Effect::Efficiency)
+            && s.input_speed_rpm.is_none()
+            && s.duty_cycle.is_none()
+    }) {
+        Some(i) => Err(Error::invalid(
+            format!("scenes[{i}]"),
+            format!(
+                "`reducer.friction.no_load_torque_nmm` is a table over the input speed, and \
+                 scene `{}` computes the efficiency without `input_speed_rpm`: give the scene \
+                 its speed, or the no-load torque as one number",
+                scenes[i].name
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The limits in watts and degrees need what makes them: a speed in every scene that computes

@@ -12,6 +12,7 @@ pub(crate) mod face;
 pub(crate) mod friction;
 #[doc(hidden)]
 pub mod locate;
+pub(crate) mod mass;
 pub(crate) mod measured;
 pub(crate) mod paths;
 pub(crate) mod periods;

@@ -250,6 +250,10 @@ pub(crate) struct RawReducer {
     /// The torsional compliance of the rest of the reducer, in series (absent: 0).
     #[serde(default)]
     pub structure_compliance_arcmin_per_knm: Option<f64>,
+    /// The inertia of the output (flange, pins, load) about its axis, kg·m², for the inertia at
+    /// the input (absent: 0).
+    #[serde(default)]
+    pub output_inertia_kgm2: Option<f64>,
 }
 
 /// `reducer.friction` (MODEL.md "Friction, efficiency and heat"): a path not given has no
@@ -269,9 +273,21 @@ pub(crate) struct RawFriction {
     pub output_pins: Option<RawPinFriction>,
     #[serde(default)]
     pub crank_bearing: Option<RawBearingFriction>,
-    /// A constant drag at the input, N·mm.
+    /// A drag at the input, N·mm: a number, or a table of [input_rpm, N·mm] pairs.
     #[serde(default)]
-    pub no_load_torque_nmm: Option<f64>,
+    pub no_load_torque_nmm: Option<RawNoLoad>,
+}
+
+/// `reducer.friction.no_load_torque_nmm`: one number, or a catalogue's no-load running torque
+/// curve as [input_rpm, N·mm] pairs.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(
+    untagged,
+    expecting = "a number (N·mm) or a list of [input_rpm, N·mm] pairs"
+)]
+pub(crate) enum RawNoLoad {
+    Constant(f64),
+    Table(Vec<[f64; 2]>),
 }
 
 /// `reducer.friction.rollers`: `fixed` or `rotating` (on a pin of `bore_radius_mm`).
@@ -444,11 +460,14 @@ pub(crate) struct RawPinSupport {
 #[derive(Debug, Deserialize, Clone, Copy)]
 #[serde(
     deny_unknown_fields,
-    expecting = "a mapping with the keys youngs_modulus_gpa, poisson_ratio (and optionally yield_strength_mpa, contact_fatigue)"
+    expecting = "a mapping with the keys youngs_modulus_gpa, poisson_ratio (and optionally yield_strength_mpa, contact_fatigue, density_kg_per_m3)"
 )]
 pub(crate) struct RawMaterial {
     pub youngs_modulus_gpa: f64,
     pub poisson_ratio: f64,
+    /// The disc's density, kg/m³ (default steel's), for its mass and inertia.
+    #[serde(default)]
+    pub density_kg_per_m3: Option<f64>,
     /// The yield strength, for the output pins' bending safety.
     #[serde(default)]
     pub yield_strength_mpa: Option<f64>,

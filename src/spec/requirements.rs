@@ -270,6 +270,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
             poisson_ratio: m.poisson_ratio,
             yield_strength_mpa: None,
             contact_fatigue: None,
+            density_kg_per_m3: None,
         },
     )?;
     let density = positive(
@@ -605,7 +606,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         face_slices,
         envelope,
         material,
-        density_kg_per_mm3: density * 1e-9,
+        density_kg_per_mm3: crate::units::kg_per_mm3(density),
         crank_bearing,
         rules,
         limits,

@@ -114,6 +114,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
     }
     let pins = &raw.output_pins;
     let strength = super::strength::materials(&raw.material, raw.roller_material.as_ref())?;
+    let mass = super::mass::inputs(&raw)?;
     let disc_material = material("reducer.material", raw.material)?;
     let roller_material = match raw.roller_material {
         Some(m) => material("reducer.roller_material", m)?,
@@ -184,6 +185,8 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
             .map(|t| super::friction::thermal_at("reducer.thermal", t))
             .transpose()?,
         structure_compliance_rad_per_nmm,
+        density_kg_per_mm3: mass.density_kg_per_mm3,
+        output_inertia_kgmm2: mass.output_inertia_kgmm2,
     })
 }
 

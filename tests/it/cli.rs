@@ -669,7 +669,11 @@ fn json_has_schema_1_sized_arrays_and_consistent_minimum() {
         keys(&doc),
         [
             "checks",
+            "disc_centroid_offset_mm",
+            "disc_inertia_kgm2",
+            "disc_mass_kg",
             "golden",
+            "input_inertia_kgm2",
             "name",
             "passed",
             "scenes",

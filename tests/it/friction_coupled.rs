@@ -46,7 +46,7 @@ fn friction(design: &Design, mu: f64, rotating: bool, sleeves: bool) -> Friction
             mu,
             bore_diameter_mm: 0.4 * design.roller_circle_radius_mm,
         }),
-        no_load_torque_nmm: 0.0,
+        no_load_torque_nmm: cycloid::model::NoLoadTorque::constant(0.0),
     }
 }
 

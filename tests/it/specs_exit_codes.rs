@@ -68,6 +68,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         "paper optimum through a robot joint's 4-bin duty cycle: Palmgren–Miner life 7571 h",
     ),
     (
+        "reducer-at-speed.yaml",
+        0,
+        "two discs with a bore, density and output inertia: mass and inertia at the input",
+    ),
+    (
         "reducer-two-discs.yaml",
         0,
         "paper optimum with two discs: equal shares, torsion, bearing life, per-disc goldens",

@@ -8,6 +8,7 @@ use crate::engine::as_built;
 use crate::engine::check::{self, Check};
 use crate::engine::drawing::{self, Disc};
 use crate::engine::golden::{self, GoldenResult};
+use crate::engine::mass_properties::{mass_properties, MassProperties};
 use crate::engine::optimise::{self, problem::Evaluation, StudyResult};
 use crate::engine::resolution::{self, Resolution};
 use crate::engine::scene::{self, Writes};
@@ -108,6 +109,9 @@ pub struct CheckRun {
     pub resolution: Option<Resolution>,
     /// What the design review shows, when asked for.
     pub review: Option<Review>,
+    /// The discs' mass properties and the inertia at the input (of the disc as built, when
+    /// measured).
+    pub mass: MassProperties,
 }
 
 impl CheckRun {
@@ -239,7 +243,9 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
         }),
         None => None,
     };
+    let mass = mass_properties(&spec.design, &spec.modification);
     Ok(CheckRun {
+        mass,
         spec,
         as_built,
         results,

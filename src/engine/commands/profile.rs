@@ -2,7 +2,7 @@
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::disc_mesh::{disc_mesh, TriangleMesh};
-use crate::geometry::disc_solid::{Circle, DiscSolid};
+use crate::geometry::disc_solid::{self, Circle, DiscSolid};
 use crate::geometry::placement::{self, disc_body, Body, Placement};
 use crate::geometry::polyline::{polyline, ProfilePoint};
 use crate::geometry::profile::Profile;
@@ -78,19 +78,8 @@ pub fn disc(spec: &Spec) -> Result<Disc> {
     };
     let profile = Profile::new(d, m).with_form(&d.deviations.form);
     let design = &spec.design;
-    let holes = (0..design.pins.count)
-        .map(|j| {
-            let [x, y] = design.pins.centre_mm(j);
-            Circle {
-                centre: Vec2::new(x, y),
-                radius_mm: design.hole_radius_mm(),
-            }
-        })
-        .collect();
-    let bore = (design.crank_bearing.and_then(|b| b.outer_diameter_mm)).map(|d| Circle {
-        centre: Vec2::zeros(),
-        radius_mm: 0.5 * d,
-    });
+    let holes = disc_solid::pin_holes(&design.pins, design.hole_radius_mm());
+    let bore = disc_solid::bore(design);
     Ok(Disc {
         profile,
         teeth: design.teeth,

@@ -1,8 +1,12 @@
 //! One point of the design space: its discrete choices and continuous values, the figures that
 //! follow from its geometry alone (envelope, mass) and the spec that checks it.
 
+use crate::geometry::disc_solid;
+use crate::geometry::mass_properties::{face_moments, DiscMass, SECTION_TOLERANCE_MM};
+use crate::geometry::profile::Profile;
 use crate::model::requirements::{Continuous, Requirements};
-use crate::model::{Crowning, Friction, PinMode, RollerMode};
+use crate::model::{Crowning, Friction, OutputPins, PinMode, RollerMode};
+use crate::spec::requirements::STEEL_DENSITY_KG_PER_M3;
 use std::fmt::Write;
 
 /// A discrete choice: the disc's teeth nc (the ratio), the output pins M and the discs.
@@ -57,20 +61,44 @@ impl Candidate {
         self.choice.discs as f64 * self.x[B] + req.envelope.axial_allowance_mm
     }
 
-    /// Mass estimate of the parts that carry the torque, kg:
-    /// ρ·B·discs·[π(Rp − Rrp)² − M·π·rh² + np·π·Rrp² + M·π·rpin²], each disc taken as a
-    /// plate of the mean profile radius Rp − Rrp (the profile swings ±e about it) less its M
-    /// holes of radius rh = rpin + e + hole clearance, the np rollers and M pins as cylinders
-    /// as long as the discs' stack; ρ the requirements' density (steel 7,850 kg/m³ by default).
+    /// Mass of the parts that carry the torque, kg: discs × the disc's mass from its exact
+    /// modified profile less its M holes of radius rh = rpin + e + hole clearance (the check's
+    /// own `geometry::mass_properties`, with no bore: the requirements give none), plus the np
+    /// rollers and M pins as cylinders as long as the discs' stack,
+    /// ρ·B·discs·(np·π·Rrp² + M·π·rpin²); ρ the requirements' density (steel 7,850 kg/m³ by
+    /// default).
     pub fn mass_kg(&self, req: &Requirements) -> f64 {
         use std::f64::consts::PI;
         let x = &self.x;
         let m = self.choice.pins as f64;
-        let hole = x[RPIN] + x[E] + req.search.hole_clearance_mm;
-        let disc = PI * (x[RP] - x[RRP]).powi(2) - m * PI * hole * hole;
+        let discs = self.choice.discs as f64;
         let rollers = self.rollers() as f64 * PI * x[RRP] * x[RRP];
         let pins = m * PI * x[RPIN] * x[RPIN];
-        req.density_kg_per_mm3 * x[B] * self.choice.discs as f64 * (disc + rollers + pins)
+        discs * self.disc_mass(req).mass_kg
+            + req.density_kg_per_mm3 * x[B] * discs * (rollers + pins)
+    }
+
+    /// One disc's mass properties (`geometry::mass_properties`), as `check` computes them.
+    fn disc_mass(&self, req: &Requirements) -> DiscMass {
+        let x = &self.x;
+        let profile = Profile::from_parts(
+            self.rollers(),
+            x[E],
+            x[RP] + x[SHIFT],
+            x[RRP] + x[EQUIDISTANT],
+            0.0,
+        );
+        let pins = OutputPins {
+            count: self.choice.pins,
+            circle_radius_mm: x[RW],
+            pin_radius_mm: x[RPIN],
+            hole_clearance_mm: req.search.hole_clearance_mm,
+            support: None,
+        };
+        let hole = x[RPIN] + x[E] + req.search.hole_clearance_mm;
+        let holes = disc_solid::pin_holes(&pins, hole);
+        let face = face_moments(&profile, &holes, None, SECTION_TOLERANCE_MM);
+        DiscMass::new(face, x[B], req.density_kg_per_mm3)
     }
 
     /// Crank period of the loaded curves under the requirements' tilt, in mesh periods
@@ -172,7 +200,16 @@ fn friction_text(s: &mut String, f: &Friction) {
             num(b.bore_diameter_mm)
         );
     }
-    let _ = writeln!(s, "    no_load_torque_nmm: {}", num(f.no_load_torque_nmm));
+    let t0 = &f.no_load_torque_nmm;
+    let t0 = if t0.is_constant() {
+        num(t0.max_nmm())
+    } else {
+        let pairs: Vec<String> = (t0.points().iter())
+            .map(|[n, t]| format!("[{}, {}]", num(*n), num(*t)))
+            .collect();
+        format!("[{}]", pairs.join(", "))
+    };
+    let _ = writeln!(s, "    no_load_torque_nmm: {t0}");
 }
 
 /// The spec of `c` under `req`: its reducer, the scenes the requirements need and their
@@ -230,6 +267,11 @@ pub fn spec_text(
         num(crate::units::gpa(req.material.youngs_modulus_mpa))
     );
     let _ = writeln!(s, "    poisson_ratio: {}", num(req.material.poisson_ratio));
+    // The density only when it is not the check's default, so the check's mass is the search's.
+    let density = crate::units::kg_per_m3(req.density_kg_per_mm3);
+    if (density / STEEL_DENSITY_KG_PER_M3 - 1.0).abs() > 1e-12 {
+        let _ = writeln!(s, "    density_kg_per_m3: {}", num(density));
+    }
     if let Some(b) = &req.crank_bearing {
         let _ = writeln!(s, "  crank_bearing:");
         let _ = writeln!(

@@ -100,16 +100,17 @@ pub fn disc_losses(
 
 /// The losses of a reducer at one crank angle, per unit input speed, N·mm/rad, from its discs'
 /// contact losses (`disc_losses`, each at its own crank angle φ + 2πk/N): their sum and the
-/// input's drag T0 (`no_load_torque_nmm`, times ω/ω = 1) once.
+/// input's drag T0 at the input speed `input_rpm` (`no_load_torque_nmm`, times ω/ω = 1) once.
 pub fn reducer_losses<'a>(
     friction: &Friction,
+    input_rpm: Option<f64>,
     discs: impl IntoIterator<Item = &'a PathLosses>,
 ) -> PathLosses {
     let contacts = discs
         .into_iter()
         .fold(PathLosses::default(), |a, b| a.plus(b));
     PathLosses {
-        no_load: friction.no_load_torque_nmm,
+        no_load: friction.no_load_torque_nmm.at_rpm(input_rpm),
         ..contacts
     }
 }
@@ -155,6 +156,8 @@ mod tests {
             friction: None,
             thermal: None,
             structure_compliance_rad_per_nmm: 0.0,
+            density_kg_per_mm3: 7.85e-6,
+            output_inertia_kgmm2: 0.0,
         }
     }
 
@@ -273,10 +276,10 @@ mod tests {
                     mu: 0.002,
                     bore_diameter_mm: 12.0,
                 }),
-                no_load_torque_nmm: 7.0,
+                no_load_torque_nmm: crate::model::NoLoadTorque::constant(7.0),
             };
             let disc = disc_losses(&f, &d, phi, &solution);
-            let l = reducer_losses(&f, [&disc]);
+            let l = reducer_losses(&f, None, [&disc]);
             let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
             assert!(
                 close(l.rollers, rotating_rollers),
@@ -301,7 +304,7 @@ mod tests {
                 rotating_rollers + pins_hand + bearing_hand + 7.0
             ));
             // Two discs: the contacts' losses twice, the drag once.
-            let two = reducer_losses(&f, [&disc, &disc]);
+            let two = reducer_losses(&f, None, [&disc, &disc]);
             assert!(close(two.rollers, 2.0 * rotating_rollers));
             assert_eq!(two.no_load, 7.0);
         }

@@ -130,10 +130,16 @@ fn friction_rows(f: Option<&Friction>, t: Option<&Thermal>) -> Vec<(&'static str
                 None => none(),
             },
         ));
-        if f.no_load_torque_nmm > 0.0 {
+        let t0 = &f.no_load_torque_nmm;
+        if !t0.is_constant() {
             rows.push((
                 "no-load torque at the input",
-                format!("{} N·mm", input(f.no_load_torque_nmm)),
+                crate::report::explain::no_load_table(t0),
+            ));
+        } else if t0.max_nmm() > 0.0 {
+            rows.push((
+                "no-load torque at the input",
+                format!("{} N·mm", input(t0.max_nmm())),
             ));
         }
     }

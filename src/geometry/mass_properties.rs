@@ -1,0 +1,154 @@
+//! Area properties of the disc's face: the region inside the exact modified profile less the
+//! output-pin holes and the bore (the outline, holes and bore of `disc_solid`), integrated
+//! exactly over the profile's polygon within a chordal tolerance and over the circles in
+//! closed form. Disc frame (origin at the disc centre), mm.
+
+use super::disc_solid::Circle;
+use super::polyline::polyline;
+use super::profile::Profile;
+use super::{cross, Vec2};
+use std::f64::consts::PI;
+
+/// Chordal tolerance of the profile's polygon, mm (0.1 µm). An inscribed chord leaves out at
+/// most tolerance × its length of area, so the area is low by at most tol·perimeter: 2e-5 mm²
+/// of a 2,500 mm² face for the shipped designs, a relative 1e-8, far below the density's own
+/// uncertainty.
+pub const SECTION_TOLERANCE_MM: f64 = 1e-4;
+
+/// The area moments of a plane region about the disc centre: A = ∫dA (mm²), the first moment
+/// S = ∫(x, y) dA (mm³) and the polar second moment J = ∫(x² + y²) dA (mm⁴).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AreaMoments {
+    pub area_mm2: f64,
+    pub first_mm3: Vec2,
+    pub polar_mm4: f64,
+}
+
+impl AreaMoments {
+    /// The centroid S/A, mm.
+    pub fn centroid_mm(&self) -> Vec2 {
+        self.first_mm3 / self.area_mm2
+    }
+
+    /// This region less `other` (which lies inside it).
+    pub fn less(self, other: AreaMoments) -> AreaMoments {
+        AreaMoments {
+            area_mm2: self.area_mm2 - other.area_mm2,
+            first_mm3: self.first_mm3 - other.first_mm3,
+            polar_mm4: self.polar_mm4 - other.polar_mm4,
+        }
+    }
+}
+
+/// The moments of the polygon through `points` (closed, counter-clockwise; clockwise gives
+/// them negated), exact by Green's theorem over each edge (pᵢ, pᵢ₊₁) with cᵢ = pᵢ × pᵢ₊₁:
+///   A = ½·Σ cᵢ,  S = ⅙·Σ cᵢ·(pᵢ + pᵢ₊₁),
+///   J = (1/12)·Σ cᵢ·(|pᵢ|² + pᵢ·pᵢ₊₁ + |pᵢ₊₁|²).
+pub fn polygon_moments(points: &[Vec2]) -> AreaMoments {
+    let mut m = AreaMoments {
+        area_mm2: 0.0,
+        first_mm3: Vec2::zeros(),
+        polar_mm4: 0.0,
+    };
+    for (i, &a) in points.iter().enumerate() {
+        let b = points[(i + 1) % points.len()];
+        let c = cross(a, b);
+        m.area_mm2 += c;
+        m.first_mm3 += (a + b) * c;
+        m.polar_mm4 += c * (a.norm_squared() + a.dot(&b) + b.norm_squared());
+    }
+    m.area_mm2 *= 0.5;
+    m.first_mm3 /= 6.0;
+    m.polar_mm4 /= 12.0;
+    m
+}
+
+/// The moments of a full circle of radius r about the disc centre, the circle's own
+/// πr⁴/2 moved to the disc centre by the parallel-axis theorem:
+///   A = πr²,  S = A·c,  J = A·(r²/2 + |c|²).
+pub fn circle_moments(circle: &Circle) -> AreaMoments {
+    let r = circle.radius_mm;
+    let area = PI * r * r;
+    AreaMoments {
+        area_mm2: area,
+        first_mm3: circle.centre * area,
+        polar_mm4: area * (0.5 * r * r + circle.centre.norm_squared()),
+    }
+}
+
+/// The disc's face: inside `profile` (its polygon within `tolerance_mm`), less `holes` and
+/// the `bore`, which the design rules keep inside the profile and apart.
+pub fn face_moments(
+    profile: &Profile,
+    holes: &[Circle],
+    bore: Option<&Circle>,
+    tolerance_mm: f64,
+) -> AreaMoments {
+    let outline: Vec<Vec2> = (polyline(profile, tolerance_mm).iter())
+        .map(|p| p.point)
+        .collect();
+    holes
+        .iter()
+        .chain(bore)
+        .fold(polygon_moments(&outline), |m, c| m.less(circle_moments(c)))
+}
+
+/// Mass properties of one disc, a prism of its face over the face width B: m = ρ·B·A (kg),
+/// J_c = ρ·B·J (kg·mm², about the disc centre, the axis of its own turning) and the centroid's
+/// distance from the disc centre (mm; zero for a disc as drawn, by its symmetry).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DiscMass {
+    pub face: AreaMoments,
+    pub mass_kg: f64,
+    pub inertia_kgmm2: f64,
+    pub centroid_offset_mm: f64,
+}
+
+impl DiscMass {
+    /// The prism of `face` over `face_width_mm` at `density_kg_per_mm3`.
+    pub fn new(face: AreaMoments, face_width_mm: f64, density_kg_per_mm3: f64) -> Self {
+        let per_mm2 = density_kg_per_mm3 * face_width_mm;
+        DiscMass {
+            face,
+            mass_kg: per_mm2 * face.area_mm2,
+            inertia_kgmm2: per_mm2 * face.polar_mm4,
+            centroid_offset_mm: face.centroid_mm().norm(),
+        }
+    }
+
+    /// The disc's share of the inertia at the input, kg·mm²: m·e² + J_c/nc². The disc's centre
+    /// orbits at the crank's ω on a circle of radius e and the disc turns at −ω/nc (MODEL.md
+    /// "Conventions": ψ0 = −φ/nc), so its kinetic energy is ½·(m·e² + J_c/nc²)·ω², taken
+    /// about its centre; a centroid off the centre by d adds a term m·e·d·ω²/nc·cos(…) that
+    /// averages to zero over a turn.
+    pub fn input_inertia_kgmm2(&self, eccentricity_mm: f64, teeth: usize) -> f64 {
+        let nc = teeth as f64;
+        self.mass_kg * eccentricity_mm * eccentricity_mm + self.inertia_kgmm2 / (nc * nc)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::disc_solid::circle_polygon;
+
+    /// A regular n-gon inscribed in a circle of radius r has A = (n/2)·r²·sin(2π/n) and
+    /// J = (n/12)·r⁴·sin(2π/n)·(2 + cos(2π/n)) (each triangle from the centre); the
+    /// polygon integration must give them to round-off (1e-12 relative: a sum of n terms of
+    /// size r⁴).
+    #[test]
+    fn regular_polygon_matches_its_closed_form() {
+        let circle = Circle {
+            centre: Vec2::zeros(),
+            radius_mm: 7.0,
+        };
+        let points = circle_polygon(&circle, 1e-3, false);
+        let n = points.len() as f64;
+        let (s, c) = (std::f64::consts::TAU / n).sin_cos();
+        let m = polygon_moments(&points);
+        let r: f64 = 7.0;
+        assert!((m.area_mm2 / (0.5 * n * r * r * s) - 1.0).abs() < 1e-12);
+        assert!((m.polar_mm4 / (n / 12.0 * r.powi(4) * s * (2.0 + c)) - 1.0).abs() < 1e-12);
+        assert!(m.first_mm3.norm() < 1e-9);
+    }
+}

@@ -1,0 +1,48 @@
+//! `reducer.material.density_kg_per_m3` and `reducer.output_inertia_kgm2`: what the discs'
+//! mass and the inertia at the input are computed from.
+
+use super::raw::RawReducer;
+use super::requirements::STEEL_DENSITY_KG_PER_M3;
+use super::values::{finite, positive};
+use crate::error::{Error, Result};
+use crate::{numeric, units};
+
+/// The mass inputs of a reducer, engine units.
+pub(super) struct MassInputs {
+    pub density_kg_per_mm3: f64,
+    pub output_inertia_kgmm2: f64,
+}
+
+/// The disc's density (> 0, steel's by default) and the output's inertia (≥ 0, 0 by
+/// default). A density under `roller_material` is refused: only the discs' mass is computed,
+/// and a value that changes nothing would mislead.
+pub(super) fn inputs(raw: &RawReducer) -> Result<MassInputs> {
+    if let Some(d) = raw.roller_material.and_then(|m| m.density_kg_per_m3) {
+        return Err(Error::invalid(
+            "reducer.roller_material.density_kg_per_m3",
+            format!(
+                "the rollers' and pins' mass is not computed (only the discs', from \
+                 `reducer.material.density_kg_per_m3`), so {} kg/m³ would change nothing: \
+                 remove it",
+                numeric::input(d)
+            ),
+        ));
+    }
+    let density = raw
+        .material
+        .density_kg_per_m3
+        .unwrap_or(STEEL_DENSITY_KG_PER_M3);
+    let density = positive("reducer.material.density_kg_per_m3", density)?;
+    let key = "reducer.output_inertia_kgm2";
+    let output = finite(key, raw.output_inertia_kgm2.unwrap_or(0.0))?;
+    if output < 0.0 {
+        return Err(Error::invalid(
+            key,
+            format!("must be zero or positive, got {}", numeric::input(output)),
+        ));
+    }
+    Ok(MassInputs {
+        density_kg_per_mm3: units::kg_per_mm3(density),
+        output_inertia_kgmm2: units::kgmm2(output),
+    })
+}

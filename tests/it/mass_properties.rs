@@ -1,0 +1,191 @@
+//! The disc's mass properties and the inertia at the input (issue 42) against closed forms: the
+//! polygon integration on a polygonal circle (πr², πr⁴/2), a hole by the parallel-axis theorem,
+//! the face of the shipped disc by Steiner's formula for the area inside an offset curve, and
+//! the e → 0 limit of a whole spec (a plain annulus with holes), its inertia at the input.
+
+use cycloid::geometry::disc_solid::{circle_polygon, Circle};
+use cycloid::geometry::mass_properties::{circle_moments, polygon_moments};
+use cycloid::geometry::Vec2;
+use cycloid::{check, progress::Silent, CheckOptions};
+use std::f64::consts::PI;
+
+/// The circle of radius 12 mm as a polygon whose chords stay within 1 µm of it has A and J of
+/// the circle, low by at most the sliver between chord and arc: at most tol × perimeter of
+/// area, and that area at most r² from the centre, so ΔA ≤ 2πr·tol and ΔJ ≤ r²·2πr·tol.
+#[test]
+fn a_polygonal_circle_has_the_circles_area_and_polar_moment() {
+    let (r, tol) = (12.0_f64, 1e-3);
+    let points = circle_polygon(
+        &Circle {
+            centre: Vec2::zeros(),
+            radius_mm: r,
+        },
+        tol,
+        false,
+    );
+    let m = polygon_moments(&points);
+    let (area, polar) = (PI * r * r, 0.5 * PI * r.powi(4));
+    let sliver = 2.0 * PI * r * tol;
+    assert!(m.area_mm2 <= area && area - m.area_mm2 <= sliver, "{m:?}");
+    assert!(
+        m.polar_mm4 <= polar && polar - m.polar_mm4 <= r * r * sliver,
+        "{m:?}"
+    );
+    // Clockwise, the same moments negated.
+    let cw = polygon_moments(&circle_polygon(
+        &Circle {
+            centre: Vec2::zeros(),
+            radius_mm: r,
+        },
+        tol,
+        true,
+    ));
+    assert!((cw.area_mm2 + m.area_mm2).abs() < 1e-9 * area);
+}
+
+/// A hole of radius 5 mm centred 18 mm off the disc centre, integrated as a fine polygon about
+/// the disc centre, has the closed form of the parallel-axis theorem the disc subtracts its
+/// holes by: A = πr², S = A·c, J = A·(r²/2 + |c|²). The polygon is low by the sliver of
+/// 2πr·tol of area lying at most |c| + r from the disc centre.
+#[test]
+fn a_hole_off_centre_follows_the_parallel_axis_theorem() {
+    let (r, tol) = (5.0_f64, 1e-5);
+    let hole = Circle {
+        centre: Vec2::new(18.0 * 0.6, 18.0 * 0.8),
+        radius_mm: r,
+    };
+    let polygon = polygon_moments(&circle_polygon(&hole, tol, false));
+    let closed = circle_moments(&hole);
+    let sliver = 2.0 * PI * r * tol;
+    let far = 18.0 + r;
+    assert!((closed.area_mm2 - polygon.area_mm2).abs() <= sliver);
+    assert!((closed.first_mm3 - polygon.first_mm3).norm() <= far * sliver);
+    assert!((closed.polar_mm4 - polygon.polar_mm4).abs() <= far * far * sliver);
+    let expected = PI * r * r * (0.5 * r * r + 18.0 * 18.0);
+    assert!((closed.polar_mm4 / expected - 1.0).abs() < 1e-14);
+}
+
+/// The shipped disc (specs/reducer.yaml: R' = 30.125, r' = 3.1593, e = 2, np = 10, six holes of
+/// radius 5 on an 18 mm circle, B = 8, steel). The profile is the inward parallel curve at r' of
+/// the locus C(t) = R'·e^{it} − e·e^{i·np·t}, regular (no undercut), so Steiner's formula gives
+/// the area inside it: A_C − r'·L_C + π·r'², with A_C = ½∮ C × C' = π(R'² + np·e²) and L_C the
+/// locus's length ∫|C'| (|C'|² = R'² + np²e² − 2·np·R'·e·cos((np − 1)t)), here by the periodic
+/// trapezoid rule on 20,000 points (exponentially convergent: round-off). The disc's face is
+/// that less six πr²; its mass ρ·B times it. The check's polygon at 0.1 µm is
+/// off by at most tol × perimeter (~170 mm): 0.02 mm², 1e-5 of the face.
+#[test]
+fn the_shipped_discs_area_is_steiners_formula_for_its_offset_profile() {
+    let spec = cycloid::spec::load("specs/reducer.yaml").unwrap();
+    let run = check(&spec, &CheckOptions::default(), &Silent).unwrap();
+    let (rp, rr, e, np) = (30.125_f64, 3.1593_f64, 2.0_f64, 10.0_f64);
+    let n = 20_000;
+    let length: f64 = (0..n)
+        .map(|k| {
+            let t = 2.0 * PI * k as f64 / n as f64;
+            (rp * rp + np * np * e * e - 2.0 * np * rp * e * ((np - 1.0) * t).cos()).sqrt()
+        })
+        .sum::<f64>()
+        * (2.0 * PI / n as f64);
+    let inside = PI * (rp * rp + np * e * e) - rr * length + PI * rr * rr;
+    let face = inside - 6.0 * PI * 25.0;
+    let got = run.mass.disc.face.area_mm2;
+    // Chords cut the convex flanks and bridge the concave roots: either sign, at most
+    // tol × perimeter.
+    assert!((face - got).abs() <= 1e-4 * 170.0, "{got} vs {face}");
+    let mass = 7850e-9 * 8.0 * face;
+    assert!((run.mass.disc.mass_kg / mass - 1.0).abs() < 1e-5);
+    // By its symmetry the disc's centroid is its centre, to the polygon's sampling.
+    assert!(run.mass.disc.centroid_offset_mm < 1e-4);
+}
+
+/// A spec at e = 1e-7 mm: its profile is the circle of radius R' − r' (the lobes are e·np
+/// deep; their area and moment change by O(e), 1e-9 of the face), with M holes of radius
+/// pin + e, a bore, a density and an output inertia given. Mass and J_c are the annulus's,
+/// πR² less the holes' πrh² and the bore's by the parallel-axis theorem, times ρ·B; the inertia
+/// at the input is discs·(m·e² + J_c/nc²) + J_out/nc² (the m·e² term is 1e-14 of it here).
+/// Tolerances: the 0.1 µm polygon's sliver, tol·2πR of area (1e-6 relative), at radius R.
+const NEAR_CIRCLE: &str = "\
+name: near-circle
+reducer:
+  teeth: 11
+  rollers: 12
+  discs: 2
+  eccentricity_mm: 1.0e-7
+  roller_circle_radius_mm: 40.0
+  roller_radius_mm: 4.0
+  face_width_mm: 10.0
+  output_pins: { count: 8, circle_radius_mm: 22.0, pin_radius_mm: 4.0, hole_clearance_mm: 0.0 }
+  material: { youngs_modulus_gpa: 206.0, poisson_ratio: 0.3, density_kg_per_m3: 2700.0 }
+  crank_bearing: { dynamic_load_rating_n: 12000.0, outer_diameter_mm: 20.0 }
+  output_inertia_kgm2: 0.002
+scenes:
+  - name: geometry
+    crank: { from_deg: 0.0, to_deg: 30.0, steps: 4 }
+    effects: [clearance]
+";
+
+#[test]
+fn the_e_to_zero_limit_is_an_annulus_with_holes() {
+    let spec = cycloid::spec::parse("near-circle.yaml", NEAR_CIRCLE).unwrap();
+    let run = check(&spec, &CheckOptions::default(), &Silent).unwrap();
+    let (r, rh, rw, bore) = (36.0_f64, 4.0 + 1e-7, 22.0_f64, 10.0_f64);
+    let area = PI * r * r - 8.0 * PI * rh * rh - PI * bore * bore;
+    let polar = 0.5 * PI * r.powi(4)
+        - 8.0 * PI * rh * rh * (0.5 * rh * rh + rw * rw)
+        - 0.5 * PI * bore.powi(4);
+    let per_mm2 = 2700e-9 * 10.0;
+    let (mass, jc) = (per_mm2 * area, per_mm2 * polar * 1e-6);
+    let sliver = 1e-4 * 2.0 * PI * r;
+    let m = &run.mass;
+    assert!((m.disc.mass_kg / mass - 1.0).abs() < sliver / area, "{m:?}");
+    assert!((m.disc.inertia_kgmm2 * 1e-6 / jc - 1.0).abs() < r * r * sliver / polar);
+    let j_in = 2.0 * (mass * 1e-20 + jc / 121.0) + 0.002 / 121.0;
+    let got = m.input_inertia_kgmm2 * 1e-6;
+    assert!(
+        (got / j_in - 1.0).abs() < r * r * sliver / polar,
+        "{got} vs {j_in}"
+    );
+}
+
+/// The results JSON carries the mass properties at the top level, in kg and kg·m², equal to the
+/// engine's (`--json` of the spec above).
+#[test]
+fn the_results_json_has_the_mass_properties() {
+    let dir = crate::common::Scratch::new("mass-json");
+    dir.write("s.yaml", NEAR_CIRCLE);
+    let out = crate::common::cycloid(&dir.path, &["check", "s.yaml", "--json", "r.json"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let doc: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    let spec = cycloid::spec::parse("near-circle.yaml", NEAR_CIRCLE).unwrap();
+    let run = check(&spec, &CheckOptions::default(), &Silent).unwrap();
+    assert_eq!(doc["disc_mass_kg"].as_f64(), Some(run.mass.disc.mass_kg));
+    let j = doc["input_inertia_kgm2"].as_f64().unwrap();
+    assert!((j / (run.mass.input_inertia_kgmm2 * 1e-6) - 1.0).abs() < 1e-15);
+    assert!(doc["disc_inertia_kgm2"].as_f64().unwrap() > 0.0);
+    assert!(doc["disc_centroid_offset_mm"].as_f64().unwrap() >= 0.0);
+}
+
+/// A density of zero or less, and a negative output inertia, are refused where written.
+#[test]
+fn bad_mass_inputs_are_refused_where_written() {
+    let cases = [
+        (
+            "density_kg_per_m3: 2700.0",
+            "density_kg_per_m3: 0.0",
+            "near-circle.yaml:11:",
+            "reducer.material.density_kg_per_m3",
+        ),
+        (
+            "output_inertia_kgm2: 0.002",
+            "output_inertia_kgm2: -0.002",
+            "near-circle.yaml:13:3:",
+            "reducer.output_inertia_kgm2",
+        ),
+    ];
+    for (from, to, at, key) in cases {
+        let text = NEAR_CIRCLE.replacen(from, to, 1);
+        let e = cycloid::spec::parse("near-circle.yaml", &text).unwrap_err();
+        let shown = e.to_string();
+        assert!(shown.starts_with(at) && shown.contains(key), "{shown}");
+    }
+}

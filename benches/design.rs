@@ -53,7 +53,7 @@ fn full_check(b: divan::Bencher) {
 fn rules(b: divan::Bencher) {
     let req = requirements();
     let mut c = feasible();
-    c.x[1] = 60.0;
+    c.x.roller_circle_radius_mm = 60.0;
     assert!(!evaluate::evaluate(&req, &c).unwrap().feasible());
     b.bench(|| evaluate::evaluate(black_box(&req), black_box(&c)).unwrap());
 }

@@ -25,7 +25,9 @@ fn feasible() -> Candidate {
             pins: 8,
             discs: 1,
         },
-        x: [1.163, 41.02, 2.333, 7.129, 25.53, 4.5, -0.0022, 0.0157],
+        x: cycloid::model::requirements::Variables::from_array([
+            1.163, 41.02, 2.333, 7.129, 25.53, 4.5, -0.0022, 0.0157,
+        ]),
     }
 }
 

@@ -247,10 +247,8 @@ fn a_seed_gives_the_same_front_bit_for_bit_on_any_number_of_threads() {
         r.front
             .iter()
             .flat_map(|e| {
-                e.candidate
-                    .x
-                    .iter()
-                    .chain(&e.objectives)
+                (e.candidate.x.to_array().into_iter())
+                    .chain(e.objectives.iter().copied())
                     .map(|v| v.to_bits())
             })
             .collect()

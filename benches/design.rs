@@ -25,7 +25,9 @@ fn feasible() -> Candidate {
             pins: 8,
             discs: 1,
         },
-        x: [1.163, 41.02, 2.333, 7.129, 25.53, 4.5, -0.0022, 0.0157],
+        x: cycloid::model::requirements::Variables::from_array([
+            1.163, 41.02, 2.333, 7.129, 25.53, 4.5, -0.0022, 0.0157,
+        ]),
     }
 }
 
@@ -53,7 +55,7 @@ fn full_check(b: divan::Bencher) {
 fn rules(b: divan::Bencher) {
     let req = requirements();
     let mut c = feasible();
-    c.x[1] = 60.0;
+    c.x.roller_circle_radius_mm = 60.0;
     assert!(!evaluate::evaluate(&req, &c).unwrap().feasible());
     b.bench(|| evaluate::evaluate(black_box(&req), black_box(&c)).unwrap());
 }

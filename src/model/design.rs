@@ -158,6 +158,51 @@ pub fn disc_phase_rad(k: usize, count: usize) -> f64 {
     std::f64::consts::TAU * k as f64 / count as f64
 }
 
+/// Short-amplitude coefficient K1 = e·np/Rp (MODEL.md): the spec refuses K1 ≥ 1 (the locus
+/// would loop), a design search's `rules.max_k1` bounds it.
+pub fn k1(eccentricity_mm: f64, rollers: usize, roller_circle_radius_mm: f64) -> f64 {
+    eccentricity_mm * rollers as f64 / roller_circle_radius_mm
+}
+
+/// Gap between neighbouring rollers, mm: 2·Rp·sin(π/np) − 2·Rrp (the rollers overlap at
+/// ≤ 0): the spec's rule (`spec::rules`) and a design search's `rules.min_roller_gap_mm`.
+pub fn roller_gap_mm(roller_circle_radius_mm: f64, roller_radius_mm: f64, rollers: usize) -> f64 {
+    let pitch = 2.0 * roller_circle_radius_mm * (std::f64::consts::PI / rollers as f64).sin();
+    pitch - 2.0 * roller_radius_mm
+}
+
+/// The material around the output-pin holes, mm (the spec refuses a disc with one ≤ 0, a
+/// design search's `rules.min_ligament_mm` bounds the smallest).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ligaments {
+    /// Between a hole and the tooth root: root − rw − rh.
+    pub to_root_mm: f64,
+    /// Between neighbouring holes: 2·rw·sin(π/M) − 2·rh.
+    pub between_holes_mm: f64,
+    /// Between a hole and the disc centre: rw − rh.
+    pub to_centre_mm: f64,
+}
+
+impl Ligaments {
+    /// Of M holes of radius rh on the circle rw, the tooth root at `root_mm`
+    /// (Rp + ΔRp − e − (Rrp + ΔRrp)).
+    pub fn of(circle_radius_mm: f64, hole_radius_mm: f64, count: usize, root_mm: f64) -> Self {
+        let (rw, rh) = (circle_radius_mm, hole_radius_mm);
+        Ligaments {
+            to_root_mm: root_mm - rw - rh,
+            between_holes_mm: 2.0 * rw * (std::f64::consts::PI / count as f64).sin() - 2.0 * rh,
+            to_centre_mm: rw - rh,
+        }
+    }
+
+    /// The smallest of the three, mm.
+    pub fn smallest_mm(&self) -> f64 {
+        self.between_holes_mm
+            .min(self.to_root_mm)
+            .min(self.to_centre_mm)
+    }
+}
+
 impl Design {
     /// Crank phase of disc k of this design, rad (`disc_phase_rad`).
     pub fn disc_phase_rad(&self, k: usize) -> f64 {
@@ -172,7 +217,11 @@ impl Design {
 
     /// Short-amplitude coefficient K1 = e·np/Rp (MODEL.md); a disc exists only for K1 < 1.
     pub fn k1(&self) -> f64 {
-        self.eccentricity_mm * self.rollers as f64 / self.roller_circle_radius_mm
+        k1(
+            self.eccentricity_mm,
+            self.rollers,
+            self.roller_circle_radius_mm,
+        )
     }
 
     /// Contact modulus E* = 1 / ((1−ν1²)/E1 + (1−ν2²)/E2) in MPa (paper Eq. 10).

@@ -42,29 +42,33 @@ impl Range {
     }
 }
 
-/// The continuous variables of the search, in this order (`Continuous::KEYS`).
+/// The eight continuous variables of the search, in this order (`KEYS`): a design's values
+/// (`Variables<f64>`, mm) or the search's ranges of them (`Continuous`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Continuous {
+pub struct Variables<T> {
     /// e, mm.
-    pub eccentricity_mm: Range,
+    pub eccentricity_mm: T,
     /// Rp, mm.
-    pub roller_circle_radius_mm: Range,
+    pub roller_circle_radius_mm: T,
     /// Rrp, mm.
-    pub roller_radius_mm: Range,
+    pub roller_radius_mm: T,
     /// B, mm.
-    pub face_width_mm: Range,
+    pub face_width_mm: T,
     /// rw, mm.
-    pub pin_circle_radius_mm: Range,
+    pub pin_circle_radius_mm: T,
     /// The output pins' radius, mm.
-    pub pin_radius_mm: Range,
+    pub pin_radius_mm: T,
     /// ΔRp, mm.
-    pub shift_mm: Range,
+    pub shift_mm: T,
     /// ΔRrp, mm.
-    pub equidistant_mm: Range,
+    pub equidistant_mm: T,
 }
 
-impl Continuous {
-    /// The keys under `search:`, in the order of `ranges`.
+/// The ranges of the search's continuous variables (`search:`).
+pub type Continuous = Variables<Range>;
+
+impl<T: Copy> Variables<T> {
+    /// The keys under `search:`, in the order of `to_array`.
     pub const KEYS: [&'static str; 8] = [
         "eccentricity_mm",
         "roller_circle_radius_mm",
@@ -76,8 +80,25 @@ impl Continuous {
         "equidistant_mm",
     ];
 
-    /// The ranges in the order of `KEYS`.
-    pub fn ranges(&self) -> [Range; 8] {
+    /// From a vector in the order of `KEYS` (the Sobol points, the pattern search and the
+    /// shard files see the variables as one vector, through this and `to_array` only).
+    pub fn from_array(x: [T; 8]) -> Self {
+        let [eccentricity_mm, roller_circle_radius_mm, roller_radius_mm, face_width_mm, pin_circle_radius_mm, pin_radius_mm, shift_mm, equidistant_mm] =
+            x;
+        Variables {
+            eccentricity_mm,
+            roller_circle_radius_mm,
+            roller_radius_mm,
+            face_width_mm,
+            pin_circle_radius_mm,
+            pin_radius_mm,
+            shift_mm,
+            equidistant_mm,
+        }
+    }
+
+    /// The vector in the order of `KEYS`.
+    pub fn to_array(&self) -> [T; 8] {
         [
             self.eccentricity_mm,
             self.roller_circle_radius_mm,

@@ -4,7 +4,7 @@
 use crate::engine::commands::{self, CheckRun};
 use crate::engine::design_search::failure::{Failure, Miss, Requirement};
 use crate::engine::design_search::missed::{Cause, Count, Infeasible};
-use crate::engine::design_search::{candidate::*, Evaluation, SearchRun, Tally};
+use crate::engine::design_search::{Evaluation, SearchRun, Tally};
 use crate::model::requirements::{ObjectiveKind, Requirements};
 use crate::numeric::number;
 use crate::report::review::disc::thumbnail;
@@ -33,13 +33,13 @@ fn columns(req: &Requirements) -> Vec<Column<'_>> {
             Box::new(|e: &Evaluation| e.candidate.choice.discs as f64),
         ),
     ];
-    for (k, key) in [E, RP, RRP, B, RW, RPIN, SHIFT, EQUIDISTANT]
+    for (k, key) in crate::model::requirements::Continuous::KEYS
         .into_iter()
-        .zip(crate::model::requirements::Continuous::KEYS)
+        .enumerate()
     {
         cols.push((
             key.to_string(),
-            Box::new(move |e: &Evaluation| e.candidate.x[k]),
+            Box::new(move |e: &Evaluation| e.candidate.x.to_array()[k]),
         ));
     }
     cols.push((

@@ -124,7 +124,8 @@ pub(crate) fn crowning_at(at: &str, raw: &RawCrowning, face: (f64, &str)) -> Res
 }
 
 /// A scene's `misalignment` (within ±`values::MAX_TILT_MRAD`, mrad → rad) and `face_slices` (1 to `MAX_FACE_SLICES`),
-/// with no crowning yet (`apply` adds the design's).
+/// with no crowning yet (`apply` adds the design's); `key` the keys' prefix (`scenes[0].`, or
+/// nothing for a requirements file's).
 pub(crate) fn scene_face(
     key: &str,
     misalignment: Option<RawMisalignment>,
@@ -132,8 +133,8 @@ pub(crate) fn scene_face(
 ) -> Result<Face> {
     let misalignment = match misalignment {
         Some(m) => Misalignment {
-            about_x_rad: tilt_rad(&format!("{key}.misalignment.about_x_mrad"), m.about_x_mrad)?,
-            about_y_rad: tilt_rad(&format!("{key}.misalignment.about_y_mrad"), m.about_y_mrad)?,
+            about_x_rad: tilt_rad(&format!("{key}misalignment.about_x_mrad"), m.about_x_mrad)?,
+            about_y_rad: tilt_rad(&format!("{key}misalignment.about_y_mrad"), m.about_y_mrad)?,
         },
         None => Misalignment::default(),
     };
@@ -142,7 +143,7 @@ pub(crate) fn scene_face(
         Some(n) if (1..=MAX_FACE_SLICES as i64).contains(&n) => n as usize,
         Some(n) => {
             return Err(Error::invalid(
-                format!("{key}.face_slices"),
+                format!("{key}face_slices"),
                 format!("must be an integer from 1 to {MAX_FACE_SLICES}, got {n}"),
             ))
         }

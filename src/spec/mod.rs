@@ -55,3 +55,12 @@ pub fn parse(path: &str, text: &str) -> Result<Spec> {
     coverage::check(&spec).map_err(|e| spec.locate(e))?;
     Ok(spec)
 }
+
+/// Validate a spec built in code in the spec's raw form (a design search's candidate,
+/// `engine::design_search::candidate::raw_spec`): the checks `parse` makes once the YAML is
+/// read, with no text (an error names its key path, no line).
+pub(crate) fn from_raw(path: &str, raw: raw::RawSpec) -> Result<Spec> {
+    let spec = validate::build(path, "", raw)?;
+    coverage::check(&spec)?;
+    Ok(spec)
+}

@@ -215,7 +215,7 @@ pub(crate) struct RawReference {
     pub rotation_deg: f64,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Default)]
 #[serde(
     deny_unknown_fields,
     expecting = "a mapping of the reducer keys (teeth, rollers, eccentricity_mm, ...)"
@@ -429,7 +429,7 @@ pub(crate) struct RawCrankBearing {
     pub static_load_rating_n: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Default)]
 #[serde(
     deny_unknown_fields,
     expecting = "a mapping with the keys count, circle_radius_mm, pin_radius_mm (and optionally hole_clearance_mm, support)"
@@ -457,7 +457,7 @@ pub(crate) struct RawPinSupport {
     pub disc_positions_mm: Vec<f64>,
 }
 
-#[derive(Debug, Deserialize, Clone, Copy)]
+#[derive(Debug, Deserialize, Clone, Copy, Default)]
 #[serde(
     deny_unknown_fields,
     expecting = "a mapping with the keys youngs_modulus_gpa, poisson_ratio (and optionally yield_strength_mpa, contact_fatigue, density_kg_per_m3)"
@@ -509,7 +509,7 @@ pub(crate) struct RawModification {
 
 /// `modification.crowning`: `kind` and the keys of its profile (checked against the kind in
 /// `spec::validate`).
-#[derive(Debug, Deserialize, Clone)]
+#[derive(Debug, Deserialize, Clone, Default)]
 #[serde(
     deny_unknown_fields,
     expecting = "a mapping with the keys kind (circular: radius_mm, start_mm; logarithmic: design_load_n, end_drop_mm, load_coefficient, crowned_fraction)"
@@ -543,7 +543,7 @@ pub(crate) struct RawMisalignment {
     pub about_y_mrad: f64,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Default)]
 #[serde(
     deny_unknown_fields,
     expecting = "a scene: a mapping with the keys name, crank, effects (and optionally output_torque_nm, ...)"
@@ -596,7 +596,7 @@ pub(crate) struct RawTorqueSweep {
     pub steps: i64,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Default)]
 #[serde(
     deny_unknown_fields,
     expecting = "a mapping with the keys from_deg, to_deg, steps"

@@ -1,17 +1,16 @@
 //! A requirements file (`cycloid design`): YAML → `requirements_raw` → the validated
 //! [`Requirements`]. Errors are located as a spec's: `file:line:column: kind: key: message`.
 
-use super::face::MAX_FACE_SLICES;
-use super::raw::RawMaterial;
+use super::raw::{RawCrankBearing, RawMaterial};
 use super::requirements_raw::*;
-use super::validate::{life_exponent, limits, material};
+use super::validate::{limits, material};
 use super::values::{finite, positive};
 use crate::error::{Error, Result};
 use crate::model::design::MAX_DISCS;
 use crate::model::requirements::loaded_mesh_periods;
 use crate::model::requirements::*;
 use crate::model::scene::MAX_ROLLER_ANGLES;
-use crate::model::{CrankBearing, Misalignment};
+use crate::model::Misalignment;
 use crate::numeric;
 
 /// Most ratios, pin counts or disc counts a search tries (each multiplies the work).
@@ -157,23 +156,8 @@ fn face(
     pin_counts: &[usize],
     steps: usize,
 ) -> Result<(Misalignment, usize)> {
-    let misalignment = match &raw.misalignment {
-        Some(m) => Misalignment {
-            about_x_rad: super::values::tilt_rad("misalignment.about_x_mrad", m.about_x_mrad)?,
-            about_y_rad: super::values::tilt_rad("misalignment.about_y_mrad", m.about_y_mrad)?,
-        },
-        None => Misalignment::default(),
-    };
-    let slices = match raw.face_slices {
-        None => 1,
-        Some(n) if (1..=MAX_FACE_SLICES as i64).contains(&n) => n as usize,
-        Some(n) => {
-            return Err(Error::invalid(
-                "face_slices",
-                format!("must be an integer from 1 to {MAX_FACE_SLICES}, got {n}"),
-            ))
-        }
-    };
+    let face = super::face::scene_face("", raw.misalignment, raw.face_slices)?;
+    let (misalignment, slices) = (face.misalignment, face.slices);
     let slices_key = |other: &str| {
         if raw.face_slices.is_some() {
             "face_slices".to_string()
@@ -280,20 +264,14 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
     let crank_bearing = raw
         .crank_bearing
         .as_ref()
-        .map(|b| -> Result<CrankBearing> {
-            Ok(CrankBearing {
-                dynamic_load_rating_n: positive(
-                    "crank_bearing.dynamic_load_rating_n",
-                    b.dynamic_load_rating_n,
-                )?,
-                life_exponent: b
-                    .life_exponent
-                    .map(|p| life_exponent("crank_bearing.life_exponent", p))
-                    .transpose()?
-                    .unwrap_or(CrankBearing::ROLLER_LIFE_EXPONENT),
+        .map(|b| {
+            let b = RawCrankBearing {
+                dynamic_load_rating_n: b.dynamic_load_rating_n,
+                life_exponent: b.life_exponent,
                 outer_diameter_mm: None,
                 static_load_rating_n: None,
-            })
+            };
+            super::validate::crank_bearing("crank_bearing", &b)
         })
         .transpose()?;
     let r = &raw.rules;

@@ -2,9 +2,9 @@
 //! the numbers and the spec key to change.
 
 use crate::error::{Error, ErrorKind, Result};
+use crate::model::design::{roller_gap_mm, Ligaments};
 use crate::model::{Design, Modification};
 use crate::units;
-use std::f64::consts::PI;
 
 fn rule(key: &str, message: String) -> Error {
     Error::new(ErrorKind::ImpossibleDesign, message).at_key(key)
@@ -56,13 +56,14 @@ pub fn check(design: &Design, m: &Modification) -> Result<()> {
             ),
         ));
     }
-    let pitch = 2.0 * rp * (PI / np).sin();
-    if pitch <= 2.0 * design.roller_radius_mm {
+    let gap = roller_gap_mm(rp, design.roller_radius_mm, design.rollers);
+    if gap <= 0.0 {
         return Err(rule(
             "reducer.roller_radius_mm",
             format!(
                 "rollers overlap: the distance between neighbouring roller centres, \
-                 2·Rp·sin(π/np) = {pitch:.4} mm, must exceed the roller diameter {:.4} mm",
+                 2·Rp·sin(π/np) = {:.4} mm, must exceed the roller diameter {:.4} mm",
+                gap + 2.0 * design.roller_radius_mm,
                 2.0 * design.roller_radius_mm
             ),
         ));
@@ -73,8 +74,8 @@ pub fn check(design: &Design, m: &Modification) -> Result<()> {
 fn check_holes(design: &Design, root_radius: f64) -> Result<()> {
     let rw = design.pins.circle_radius_mm;
     let hole = design.hole_radius_mm();
-    let m = design.pins.count as f64;
-    if rw + hole >= root_radius {
+    let ligaments = Ligaments::of(rw, hole, design.pins.count, root_radius);
+    if ligaments.to_root_mm <= 0.0 {
         return Err(rule(
             "reducer.output_pins.circle_radius_mm",
             format!(
@@ -86,18 +87,18 @@ fn check_holes(design: &Design, root_radius: f64) -> Result<()> {
             ),
         ));
     }
-    let spacing = 2.0 * rw * (PI / m).sin();
-    if spacing <= 2.0 * hole {
+    if ligaments.between_holes_mm <= 0.0 {
         return Err(rule(
             "reducer.output_pins.count",
             format!(
-                "output-pin holes overlap: neighbouring hole centres are {spacing:.4} mm apart, \
+                "output-pin holes overlap: neighbouring hole centres are {:.4} mm apart, \
                  less than the hole diameter {:.4} mm",
+                ligaments.between_holes_mm + 2.0 * hole,
                 2.0 * hole
             ),
         ));
     }
-    if rw <= hole {
+    if ligaments.to_centre_mm <= 0.0 {
         return Err(rule(
             "reducer.output_pins.circle_radius_mm",
             format!(

@@ -176,7 +176,9 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
         disc_material,
         roller_material,
         strength,
-        crank_bearing: raw.crank_bearing.map(crank_bearing).transpose()?,
+        crank_bearing: (raw.crank_bearing.as_ref())
+            .map(|b| crank_bearing("reducer.crank_bearing", b))
+            .transpose()?,
         deviations: Deviations::default(),
         friction: None,
         thermal: raw
@@ -263,9 +265,9 @@ fn structure_compliance(arcmin_per_knm: f64) -> Result<f64> {
     Ok(units::rad_per_nmm_from_arcmin_per_knm(arcmin_per_knm))
 }
 
-/// `reducer.crank_bearing`: a positive rating and life exponent (10/3 by default).
-fn crank_bearing(raw: RawCrankBearing) -> Result<CrankBearing> {
-    let key = "reducer.crank_bearing";
+/// `reducer.crank_bearing` (or a requirements file's `crank_bearing`, at `key`): a positive
+/// rating and life exponent (10/3 by default).
+pub(super) fn crank_bearing(key: &str, raw: &RawCrankBearing) -> Result<CrankBearing> {
     Ok(CrankBearing {
         dynamic_load_rating_n: positive(
             &format!("{key}.dynamic_load_rating_n"),
@@ -491,7 +493,7 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
             super::values::speed_rpm(&key, positive(&key, n)?)
         })
         .transpose()?;
-    let face = super::face::scene_face(&key, raw.misalignment, raw.face_slices)?;
+    let face = super::face::scene_face(&format!("{key}."), raw.misalignment, raw.face_slices)?;
     Ok(Scene {
         output_torque_nmm: units::nmm(finite(
             &format!("{key}.output_torque_nm"),

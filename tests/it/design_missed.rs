@@ -178,12 +178,14 @@ fn an_envelope_no_design_fits_is_the_cause_with_its_smallest_diameter() {
     let candidates = design_search::global_candidates(&req);
     let smallest = candidates
         .iter()
-        .map(|c| 2.0 * (c.x[1] + c.x[2] + 6.0))
+        .map(|c| 2.0 * (c.x.roller_circle_radius_mm + c.x.roller_radius_mm + 6.0))
         .fold(f64::INFINITY, f64::min);
     assert!((79.0..80.0).contains(&smallest), "{smallest}");
     let k1_met = candidates
         .iter()
-        .filter(|c| c.x[0] * (c.choice.teeth + 1) as f64 / c.x[1] <= 0.9)
+        .filter(|c| {
+            c.x.eccentricity_mm * (c.choice.teeth + 1) as f64 / c.x.roller_circle_radius_mm <= 0.9
+        })
         .count();
     assert!(k1_met > 0);
     assert_eq!(
@@ -231,8 +233,12 @@ fn requirements_each_met_but_never_together_are_named_as_a_combination() {
     assert_eq!(out.code(), 1, "{out:?}");
     let req = cycloid::spec::requirements::parse("small.yaml", &text).unwrap();
     let candidates = design_search::global_candidates(&req);
-    let fits = |c: &design_search::Candidate| 2.0 * (c.x[1] + c.x[2] + 5.0) <= 68.0;
-    let k1 = |c: &design_search::Candidate| 10.0 * c.x[0] / c.x[1] <= 0.7;
+    let fits = |c: &design_search::Candidate| {
+        2.0 * (c.x.roller_circle_radius_mm + c.x.roller_radius_mm + 5.0) <= 68.0
+    };
+    let k1 = |c: &design_search::Candidate| {
+        10.0 * c.x.eccentricity_mm / c.x.roller_circle_radius_mm <= 0.7
+    };
     let n_fits = candidates.iter().filter(|c| fits(c)).count();
     let n_k1 = candidates.iter().filter(|c| k1(c)).count();
     assert!(n_fits > 0 && n_k1 > 0);

@@ -243,7 +243,7 @@ fn the_paper_table_1_is_found_as_the_known_answer() {
     assert_eq!((c.teeth, c.pins, c.discs), (9, 6, 1));
     // Exactly Table 1: the refinement's steps clamp to the box's bounds.
     assert_eq!(
-        f.candidate.x,
+        f.candidate.x.to_array(),
         [2.0, 30.0, 3.0, 8.0, 18.0, 3.0, 0.125, 0.1593]
     );
     // None of the global stage's points was it.
@@ -263,10 +263,8 @@ fn a_seed_gives_the_same_front_bit_for_bit_on_any_number_of_threads() {
         r.front
             .iter()
             .flat_map(|e| {
-                e.candidate
-                    .x
-                    .iter()
-                    .chain(&e.objectives)
+                (e.candidate.x.to_array().into_iter())
+                    .chain(e.objectives.iter().copied())
                     .map(|v| v.to_bits())
             })
             .collect()
@@ -963,13 +961,12 @@ fn a_crown_a_face_cannot_hold_is_a_rule_rejection_where_the_spec_would_refuse_it
             pins: 6,
             discs: 1,
         },
-        x: [1.5, 29.0, 2.5, b, 16.0, 2.5, -0.01, 0.01],
+        x: design_search::Variables::from_array([1.5, 29.0, 2.5, b, 16.0, 2.5, -0.01, 0.01]),
     };
     for (b, holds) in [(5.8, false), (6.0, false), (6.2, true)] {
         let c = at(b);
         let failures = design_search::rules::failures(&req, &c);
-        let spec = design_search::candidate::spec_text(&req, &c, "hand", 12, "");
-        let parsed = cycloid::spec::parse("hand.yaml", &spec);
+        let parsed = design_search::candidate::spec(&req, &c, "hand", 12);
         if holds {
             assert!(failures.is_empty(), "B {b}: {failures:?}");
             assert!(parsed.is_ok(), "B {b}: {:?}", parsed.err());
@@ -1056,5 +1053,56 @@ fn a_temperature_crown_or_duty_bin_the_requirements_cannot_carry_is_refused_at_i
         assert_eq!(out.code, Some(2), "{says}: {}{}", out.stdout, out.stderr);
         assert!(out.stderr.contains(&says), "{says}: {}", out.stderr);
         assert!(!out.stderr.contains("panicked") && !out.stderr.contains("NaN"));
+    }
+}
+
+/// A candidate is searched as the spec's model built directly (`candidate::spec`, no text) and
+/// its front file is written from that model once: the written file must read back as the
+/// very spec that was searched (design, modification, every scene, limits), for requirements
+/// that use each block the writer carries (friction, duty cycle, crank bearing, thermal,
+/// crowning, tilt and slices). Exact equality: every number is written in its shortest form
+/// that reads back as the same double.
+#[test]
+fn a_front_design_s_file_reads_back_as_the_spec_that_was_searched() {
+    let tilted = SMALL.replace(
+        "peak_torque_nm: 15.0\n",
+        "peak_torque_nm: 15.0\nmisalignment: { about_x_mrad: 0.3, about_y_mrad: -0.1 }\nface_slices: 5\n",
+    );
+    for text in [
+        SMALL.to_string(),
+        DUTY.to_string(),
+        thermal_crowned(60.0),
+        tilted,
+    ] {
+        let req = cycloid::spec::requirements::parse("req.yaml", &text).unwrap();
+        let mut checked = 0;
+        for c in design_search::global_candidates(&req) {
+            if !design_search::rules::failures(&req, &c).is_empty() {
+                continue;
+            }
+            let name = format!("{}-design-01", req.name);
+            let steps = req.search.steps_per_mesh_period;
+            let Ok(built) = design_search::candidate::spec(&req, &c, &name, steps) else {
+                continue;
+            };
+            let e = evaluate::Evaluation {
+                candidate: c,
+                stage: evaluate::Stage::Full,
+                failures: Vec::new(),
+                objectives: vec![1.0; req.objectives.len()],
+            };
+            let written = cycloid::engine::commands::front_spec(&req, "req.yaml", 0, &e);
+            let read = cycloid::spec::parse("design-01.yaml", &written).unwrap();
+            assert_eq!(read.name, built.name);
+            assert_eq!(read.design, built.design, "{written}");
+            assert_eq!(read.modification, built.modification, "{written}");
+            assert_eq!(read.scenes, built.scenes, "{written}");
+            assert_eq!(read.limits, built.limits, "{written}");
+            checked += 1;
+            if checked == 3 {
+                break;
+            }
+        }
+        assert_eq!(checked, 3, "{text}");
     }
 }

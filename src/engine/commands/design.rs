@@ -52,13 +52,9 @@ pub fn front_spec(req: &Requirements, requirements_path: &str, k: usize, e: &Eva
         req.name,
         objectives.join(", ")
     );
-    candidate::spec_text(
-        req,
-        &e.candidate,
-        &format!("{}-design-{:02}", req.name, k + 1),
-        req.search.steps_per_mesh_period,
-        &header,
-    )
+    let name = format!("{}-design-{:02}", req.name, k + 1);
+    let raw = candidate::raw_spec(req, &e.candidate, &name, req.search.steps_per_mesh_period);
+    super::spec_text::spec_text(&raw, &header)
 }
 
 /// Search `req`'s design space (read from `requirements_path`, named in the specs' headers).

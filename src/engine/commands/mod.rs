@@ -10,6 +10,7 @@ mod fit;
 mod optimise;
 mod profile;
 pub mod solid_picture;
+mod spec_text;
 mod tolerance;
 
 pub use accuracy::accuracy;

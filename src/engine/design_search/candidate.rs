@@ -1,13 +1,17 @@
 //! One point of the design space: its discrete choices and continuous values, the figures that
-//! follow from its geometry alone (envelope, mass) and the spec that checks it.
+//! follow from its geometry alone (envelope, mass) and the spec that checks it, built as the
+//! spec's raw form (no text).
 
+use crate::error::Result;
 use crate::geometry::disc_solid;
 use crate::geometry::mass_properties::{face_moments, DiscMass, SECTION_TOLERANCE_MM};
 use crate::geometry::profile::Profile;
-use crate::model::requirements::{Continuous, Requirements};
+use crate::model::requirements::{Continuous, Requirements, Variables};
 use crate::model::{Crowning, Friction, OutputPins, PinMode, RollerMode};
 use crate::spec::requirements::STEEL_DENSITY_KG_PER_M3;
-use std::fmt::Write;
+use crate::spec::raw::*;
+use crate::spec::Spec;
+use crate::units;
 
 /// A discrete choice: the disc's teeth nc (the ratio), the output pins M and the discs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -17,33 +21,22 @@ pub struct Choice {
     pub discs: usize,
 }
 
-/// A design of the search: a choice and the eight continuous values, mm, in the order of
-/// [`Continuous::KEYS`] (e, Rp, Rrp, B, rw, pin radius, ΔRp, ΔRrp).
+/// A design of the search: a choice and the eight continuous values.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Candidate {
     pub choice: Choice,
-    pub x: [f64; 8],
+    pub x: Variables<f64>,
 }
-
-/// Indices into `Candidate::x`.
-pub const E: usize = 0;
-pub const RP: usize = 1;
-pub const RRP: usize = 2;
-pub const B: usize = 3;
-pub const RW: usize = 4;
-pub const RPIN: usize = 5;
-pub const SHIFT: usize = 6;
-pub const EQUIDISTANT: usize = 7;
 
 impl Candidate {
     /// The design at `u` (eight numbers in [0, 1]) of the requirements' ranges.
     pub fn at(choice: Choice, space: &Continuous, u: &[f64; 8]) -> Candidate {
-        let ranges = space.ranges();
-        let mut x = [0.0; 8];
-        for k in 0..8 {
-            x[k] = ranges[k].at(u[k]);
+        let ranges = space.to_array();
+        let x = std::array::from_fn(|k| ranges[k].at(u[k]));
+        Candidate {
+            choice,
+            x: Variables::from_array(x),
         }
-        Candidate { choice, x }
     }
 
     /// np = nc + 1.
@@ -53,12 +46,19 @@ impl Candidate {
 
     /// Outer diameter, mm: 2·(Rp + Rrp + w), w the housing wall beyond the rollers.
     pub fn outer_diameter_mm(&self, req: &Requirements) -> f64 {
-        2.0 * (self.x[RP] + self.x[RRP] + req.envelope.housing_wall_mm)
+        2.0 * (self.x.roller_circle_radius_mm
+            + self.x.roller_radius_mm
+            + req.envelope.housing_wall_mm)
     }
 
     /// Axial length, mm: discs·B + the axial allowance (bearings, covers).
     pub fn axial_length_mm(&self, req: &Requirements) -> f64 {
-        self.choice.discs as f64 * self.x[B] + req.envelope.axial_allowance_mm
+        self.choice.discs as f64 * self.x.face_width_mm + req.envelope.axial_allowance_mm
+    }
+
+    /// Hole radius rh = rpin + e + hole clearance, mm (`Design::hole_radius_mm`).
+    pub fn hole_radius_mm(&self, req: &Requirements) -> f64 {
+        self.x.pin_radius_mm + self.x.eccentricity_mm + req.search.hole_clearance_mm
     }
 
     /// Mass of the parts that carry the torque, kg: discs × the disc's mass from its exact
@@ -72,10 +72,10 @@ impl Candidate {
         let x = &self.x;
         let m = self.choice.pins as f64;
         let discs = self.choice.discs as f64;
-        let rollers = self.rollers() as f64 * PI * x[RRP] * x[RRP];
-        let pins = m * PI * x[RPIN] * x[RPIN];
+        let rollers = self.rollers() as f64 * PI * x.roller_radius_mm * x.roller_radius_mm;
+        let pins = m * PI * x.pin_radius_mm * x.pin_radius_mm;
         discs * self.disc_mass(req).mass_kg
-            + req.density_kg_per_mm3 * x[B] * discs * (rollers + pins)
+            + req.density_kg_per_mm3 * x.face_width_mm * discs * (rollers + pins)
     }
 
     /// One disc's mass properties (`geometry::mass_properties`), as `check` computes them.
@@ -83,22 +83,21 @@ impl Candidate {
         let x = &self.x;
         let profile = Profile::from_parts(
             self.rollers(),
-            x[E],
-            x[RP] + x[SHIFT],
-            x[RRP] + x[EQUIDISTANT],
+            x.eccentricity_mm,
+            x.roller_circle_radius_mm + x.shift_mm,
+            x.roller_radius_mm + x.equidistant_mm,
             0.0,
         );
         let pins = OutputPins {
             count: self.choice.pins,
-            circle_radius_mm: x[RW],
-            pin_radius_mm: x[RPIN],
+            circle_radius_mm: x.pin_circle_radius_mm,
+            pin_radius_mm: x.pin_radius_mm,
             hole_clearance_mm: req.search.hole_clearance_mm,
             support: None,
         };
-        let hole = x[RPIN] + x[E] + req.search.hole_clearance_mm;
-        let holes = disc_solid::pin_holes(&pins, hole);
+        let holes = disc_solid::pin_holes(&pins, self.hole_radius_mm(req));
         let face = face_moments(&profile, &holes, None, SECTION_TOLERANCE_MM);
-        DiscMass::new(face, x[B], req.density_kg_per_mm3)
+        DiscMass::new(face, x.face_width_mm, req.density_kg_per_mm3)
     }
 
     /// Crank period of the loaded curves under the requirements' tilt, in mesh periods
@@ -112,109 +111,16 @@ impl Candidate {
     }
 }
 
-/// A number as YAML that reads back as the same double (Rust's shortest round-trip form).
-fn num(x: f64) -> String {
-    format!("{x:?}")
+/// The validated spec of `c` under `req` (`raw_spec`, checked as any spec is: the same rules,
+/// face and bearing checks), named `name`, with no text; an error names its key path.
+pub fn spec(req: &Requirements, c: &Candidate, name: &str, steps: usize) -> Result<Spec> {
+    crate::spec::from_raw(&format!("{name}.yaml"), raw_spec(req, c, name, steps))
 }
 
-/// A running scene's (rated, peak, duty) `misalignment` and `face_slices`, each when the
-/// requirements give it (the torsion scene stays aligned: its face is uniform, one slice,
-/// unless crowned).
-fn face_text(s: &mut String, req: &Requirements) {
-    let m = &req.misalignment;
-    if !m.is_zero() {
-        let _ = writeln!(
-            s,
-            "    misalignment: {{ about_x_mrad: {}, about_y_mrad: {} }}",
-            num(1e3 * m.about_x_rad),
-            num(1e3 * m.about_y_rad)
-        );
-    }
-    if req.face_slices > 1 {
-        let _ = writeln!(s, "    face_slices: {}", req.face_slices);
-    }
-}
-
-/// `modification.crowning` of the requirements' crowning: the same keys and values (nothing
-/// for `Crowning::None`).
-fn crowning_text(s: &mut String, c: &Crowning) {
-    let _ = match *c {
-        Crowning::None => Ok(()),
-        Crowning::Circular {
-            radius_mm,
-            start_mm,
-        } => writeln!(
-            s,
-            "  crowning: {{ kind: circular, radius_mm: {}, start_mm: {} }}",
-            num(radius_mm),
-            num(start_mm)
-        ),
-        Crowning::Logarithmic {
-            design_load_n,
-            end_drop_mm,
-            load_coefficient,
-            crowned_fraction,
-        } => writeln!(
-            s,
-            "  crowning: {{ kind: logarithmic, design_load_n: {}, end_drop_mm: {}, \
-             load_coefficient: {}, crowned_fraction: {} }}",
-            num(design_load_n),
-            num(end_drop_mm),
-            num(load_coefficient),
-            num(crowned_fraction)
-        ),
-    };
-}
-
-/// `reducer.friction` of the requirements' friction: the same keys and values.
-fn friction_text(s: &mut String, f: &Friction) {
-    let _ = writeln!(s, "  friction:");
-    let _ = writeln!(s, "    model: {}", f.model.name());
-    if let Some(r) = &f.rollers {
-        let _ = match r.mode {
-            RollerMode::Fixed => writeln!(s, "    rollers: {{ mode: fixed, mu: {} }}", num(r.mu)),
-            RollerMode::Rotating { bore_radius_mm } => writeln!(
-                s,
-                "    rollers: {{ mode: rotating, mu: {}, bore_radius_mm: {} }}",
-                num(r.mu),
-                num(bore_radius_mm)
-            ),
-        };
-    }
-    if let Some(p) = &f.output_pins {
-        let _ = match p.mode {
-            PinMode::Fixed => writeln!(s, "    output_pins: {{ mode: fixed, mu: {} }}", num(p.mu)),
-            PinMode::Sleeve { bore_radius_mm } => writeln!(
-                s,
-                "    output_pins: {{ mode: sleeve, mu: {}, bore_radius_mm: {} }}",
-                num(p.mu),
-                num(bore_radius_mm)
-            ),
-        };
-    }
-    if let Some(b) = &f.crank_bearing {
-        let _ = writeln!(
-            s,
-            "    crank_bearing: {{ mu: {}, bore_diameter_mm: {} }}",
-            num(b.mu),
-            num(b.bore_diameter_mm)
-        );
-    }
-    let t0 = &f.no_load_torque_nmm;
-    let t0 = if t0.is_constant() {
-        num(t0.max_nmm())
-    } else {
-        let pairs: Vec<String> = (t0.points().iter())
-            .map(|[n, t]| format!("[{}, {}]", num(*n), num(*t)))
-            .collect();
-        format!("[{}]", pairs.join(", "))
-    };
-    let _ = writeln!(s, "    no_load_torque_nmm: {t0}");
-}
-
-/// The spec of `c` under `req`: its reducer, the scenes the requirements need and their
-/// limits; `steps` crank angles per mesh period (the screen runs a quarter of the full
-/// check's, every fourth of its angles). `header` is written first as comments.
+/// The spec of `c` under `req` in the spec's own raw form (what its YAML reads as), named
+/// `name`, with `steps` crank angles per mesh period (the screen runs a quarter of the full
+/// check's, every fourth of its angles): its reducer, the scenes the requirements need and
+/// their limits. [`spec`] validates it; the front's designs are written from it (`engine::commands::spec_text`).
 ///
 /// Scenes: `mesh` (unloaded, one mesh period: clearance and lost motion), `rated` (the rated
 /// torque and speed over the loaded period: forces, pressure, TE, bearing life; with
@@ -223,160 +129,206 @@ fn friction_text(s: &mut String, f: &Friction) {
 /// the loaded period, when one is given: its life and, with friction, its efficiency by
 /// energy; every bin judged on the forces and pressure) and `torsion` (the catalogue loop at
 /// the rated torque, when a rigidity, torsional lost motion or hysteresis is asked for).
-pub fn spec_text(
-    req: &Requirements,
-    c: &Candidate,
-    name: &str,
-    steps: usize,
-    header: &str,
-) -> String {
+pub(crate) fn raw_spec(req: &Requirements, c: &Candidate, name: &str, steps: usize) -> RawSpec {
     let x = &c.x;
-    let np = c.rollers();
-    let mesh_deg = 360.0 / np as f64;
+    RawSpecOf {
+        name: name.to_string(),
+        reducer: RawReducer {
+            teeth: c.choice.teeth as i64,
+            rollers: c.rollers() as i64,
+            discs: c.choice.discs as i64,
+            eccentricity_mm: x.eccentricity_mm,
+            roller_circle_radius_mm: x.roller_circle_radius_mm,
+            roller_radius_mm: x.roller_radius_mm,
+            face_width_mm: x.face_width_mm,
+            output_pins: RawOutputPins {
+                count: c.choice.pins as i64,
+                circle_radius_mm: x.pin_circle_radius_mm,
+                pin_radius_mm: x.pin_radius_mm,
+                hole_clearance_mm: req.search.hole_clearance_mm,
+                support: None,
+            },
+            material: RawMaterial {
+                youngs_modulus_gpa: units::gpa(req.material.youngs_modulus_mpa),
+                poisson_ratio: req.material.poisson_ratio,
+                density_kg_per_m3: density_unless_steel(req),
+                ..Default::default()
+            },
+            crank_bearing: req.crank_bearing.map(|b| RawCrankBearing {
+                dynamic_load_rating_n: b.dynamic_load_rating_n,
+                life_exponent: Some(b.life_exponent),
+                outer_diameter_mm: None,
+                static_load_rating_n: None,
+            }),
+            friction: req.friction.as_ref().map(raw_friction),
+            thermal: req.thermal.as_ref().map(|t| RawThermal {
+                housing_area_m2: t.housing_area_m2,
+                heat_transfer_w_per_m2k: t.heat_transfer_w_per_m2k,
+                ambient_c: t.ambient_c,
+            }),
+            ..RawReducer::default()
+        },
+        modification: RawModification {
+            shift_mm: x.shift_mm,
+            equidistant_mm: x.equidistant_mm,
+            rotation_deg: 0.0,
+            crowning: raw_crowning(&req.crowning),
+        },
+        scenes: raw_scenes(req, c, steps),
+        limits: (req.limits.entries.iter())
+            .map(|l| (l.def.key.to_string(), RawLimit::Bound(l.value)))
+            .collect(),
+        optimise: None,
+        golden: Vec::new(),
+        golden_root: None,
+        accuracy: None,
+        measured_profile: None,
+        tolerances: None,
+    }
+}
+
+/// The scenes of [`raw_spec`]; the torsion scene stays aligned (its face is uniform, one
+/// slice, unless crowned: then the spec's rule cuts every loaded crowned face into slices).
+fn raw_scenes(req: &Requirements, c: &Candidate, steps: usize) -> Vec<RawScene> {
+    let mesh_deg = 360.0 / c.rollers() as f64;
     let periods = c.loaded_mesh_periods(req);
-    let mut s = String::new();
-    for line in header.lines() {
-        let _ = writeln!(s, "# {line}");
-    }
-    let _ = writeln!(
-        s,
-        "name: {}",
-        serde_json::to_string(name).unwrap_or_default()
-    );
-    let _ = writeln!(s, "reducer:");
-    let _ = writeln!(s, "  teeth: {}", c.choice.teeth);
-    let _ = writeln!(s, "  rollers: {np}");
-    let _ = writeln!(s, "  eccentricity_mm: {}", num(x[E]));
-    let _ = writeln!(s, "  roller_circle_radius_mm: {}", num(x[RP]));
-    let _ = writeln!(s, "  roller_radius_mm: {}", num(x[RRP]));
-    let _ = writeln!(s, "  face_width_mm: {}", num(x[B]));
-    let _ = writeln!(s, "  discs: {}", c.choice.discs);
-    let _ = writeln!(s, "  output_pins:");
-    let _ = writeln!(s, "    count: {}", c.choice.pins);
-    let _ = writeln!(s, "    circle_radius_mm: {}", num(x[RW]));
-    let _ = writeln!(s, "    pin_radius_mm: {}", num(x[RPIN]));
-    let _ = writeln!(
-        s,
-        "    hole_clearance_mm: {}",
-        num(req.search.hole_clearance_mm)
-    );
-    let _ = writeln!(s, "  material:");
-    let _ = writeln!(
-        s,
-        "    youngs_modulus_gpa: {}",
-        num(crate::units::gpa(req.material.youngs_modulus_mpa))
-    );
-    let _ = writeln!(s, "    poisson_ratio: {}", num(req.material.poisson_ratio));
-    // The density only when it is not the check's default, so the check's mass is the search's.
-    let density = crate::units::kg_per_m3(req.density_kg_per_mm3);
-    if (density / STEEL_DENSITY_KG_PER_M3 - 1.0).abs() > 1e-12 {
-        let _ = writeln!(s, "    density_kg_per_m3: {}", num(density));
-    }
-    if let Some(b) = &req.crank_bearing {
-        let _ = writeln!(s, "  crank_bearing:");
-        let _ = writeln!(
-            s,
-            "    dynamic_load_rating_n: {}",
-            num(b.dynamic_load_rating_n)
-        );
-        let _ = writeln!(s, "    life_exponent: {}", num(b.life_exponent));
-    }
-    if let Some(f) = &req.friction {
-        friction_text(&mut s, f);
-    }
-    if let Some(t) = &req.thermal {
-        let _ = writeln!(
-            s,
-            "  thermal: {{ housing_area_m2: {}, heat_transfer_w_per_m2k: {}, ambient_c: {} }}",
-            num(t.housing_area_m2),
-            num(t.heat_transfer_w_per_m2k),
-            num(t.ambient_c)
-        );
-    }
-    let _ = writeln!(s, "modification:");
-    let _ = writeln!(s, "  shift_mm: {}", num(x[SHIFT]));
-    let _ = writeln!(s, "  equidistant_mm: {}", num(x[EQUIDISTANT]));
-    crowning_text(&mut s, &req.crowning);
-    let _ = writeln!(s, "scenes:");
-    let _ = writeln!(s, "  - name: mesh");
-    let _ = writeln!(
-        s,
-        "    crank: {{ from_deg: 0.0, to_deg: {}, steps: {steps} }}",
-        num(mesh_deg)
-    );
-    let _ = writeln!(s, "    effects: [clearance]");
-    let loaded = format!(
-        "    crank: {{ from_deg: 0.0, to_deg: {}, steps: {} }}",
-        num(mesh_deg * periods as f64),
-        steps * periods
-    );
-    let _ = writeln!(s, "  - name: rated");
-    let _ = writeln!(
-        s,
-        "    output_torque_nm: {}",
-        num(crate::units::nm(req.rated_torque_nmm))
-    );
-    if let Some(n) = req.input_speed_rpm {
-        let _ = writeln!(s, "    input_speed_rpm: {}", num(n));
-    }
-    let _ = writeln!(s, "{loaded}");
-    face_text(&mut s, req);
-    let running = match req.friction {
-        Some(_) => "    effects: [bearing, efficiency]",
-        None => "    effects: [bearing]",
+    let crank = |to_deg: f64, steps: usize| RawCrank {
+        from_deg: 0.0,
+        to_deg,
+        steps: steps as i64,
     };
-    let _ = writeln!(s, "{running}");
+    let scene = |name: &str, effects: &[&str]| RawScene {
+        name: name.to_string(),
+        crank: crank(mesh_deg, steps),
+        effects: effects.iter().map(|e| e.to_string()).collect(),
+        ..RawScene::default()
+    };
+    let m = &req.misalignment;
+    // A running scene (rated, peak, duty): the loaded period, the requirements' tilt and slices.
+    let loaded = |name: &str, effects: &[&str]| RawScene {
+        crank: crank(mesh_deg * periods as f64, steps * periods),
+        misalignment: (!m.is_zero()).then_some(RawMisalignment {
+            about_x_mrad: 1e3 * m.about_x_rad,
+            about_y_mrad: 1e3 * m.about_y_rad,
+        }),
+        face_slices: (req.face_slices > 1).then_some(req.face_slices as i64),
+        ..scene(name, effects)
+    };
+    let running: &[&str] = match req.friction {
+        Some(_) => &["bearing", "efficiency"],
+        None => &["bearing"],
+    };
+    let mut scenes = vec![scene("mesh", &["clearance"])];
+    scenes.push(RawScene {
+        output_torque_nm: Some(units::nm(req.rated_torque_nmm)),
+        input_speed_rpm: req.input_speed_rpm,
+        ..loaded("rated", running)
+    });
     if req.peak_torque_nmm > req.rated_torque_nmm {
-        let _ = writeln!(s, "  - name: peak");
-        let _ = writeln!(
-            s,
-            "    output_torque_nm: {}",
-            num(crate::units::nm(req.peak_torque_nmm))
-        );
-        let _ = writeln!(s, "{loaded}");
-        face_text(&mut s, req);
-        let _ = writeln!(s, "    effects: [roller_contact, output_pins]");
+        scenes.push(RawScene {
+            output_torque_nm: Some(units::nm(req.peak_torque_nmm)),
+            ..loaded("peak", &["roller_contact", "output_pins"])
+        });
     }
     if let Some(bins) = &req.duty_cycle {
-        let _ = writeln!(s, "  - name: duty");
-        let _ = writeln!(s, "    duty_cycle:");
-        for b in bins {
-            let _ = writeln!(
-                s,
-                "      - {{ output_torque_nm: {}, input_speed_rpm: {}, time_share: {} }}",
-                num(crate::units::nm(b.output_torque_nmm)),
-                num(b.input_speed_rpm),
-                num(b.time_share)
-            );
-        }
-        let _ = writeln!(s, "{loaded}");
-        face_text(&mut s, req);
-        let _ = writeln!(s, "{running}");
+        let bins = (bins.iter())
+            .map(|b| RawDutyBin {
+                output_torque_nm: units::nm(b.output_torque_nmm),
+                input_speed_rpm: b.input_speed_rpm,
+                time_share: b.time_share,
+            })
+            .collect();
+        scenes.push(RawScene {
+            duty_cycle: Some(bins),
+            ..loaded("duty", running)
+        });
     }
     if req.needs_torsion() {
-        let _ = writeln!(s, "  - name: torsion");
-        let _ = writeln!(
-            s,
-            "    torque_sweep: {{ rated_nm: {}, steps: 8 }}",
-            num(crate::units::nm(req.rated_torque_nmm))
-        );
-        let _ = writeln!(
-            s,
-            "    crank: {{ from_deg: 0.0, to_deg: {}, steps: 4 }}",
-            num(mesh_deg)
-        );
-        // A crowned face is uneven even untilted: the loop cuts it into the requirements'
-        // slices (the spec's rule for every scene that loads a crowned face).
-        if req.crowning != Crowning::None {
-            let _ = writeln!(s, "    face_slices: {}", req.face_slices);
-        }
-        let _ = writeln!(s, "    effects: [output_pins]");
+        scenes.push(RawScene {
+            torque_sweep: Some(RawTorqueSweep {
+                rated_nm: units::nm(req.rated_torque_nmm),
+                steps: 8,
+            }),
+            crank: crank(mesh_deg, 4),
+            face_slices: (req.crowning != Crowning::None).then_some(req.face_slices as i64),
+            ..scene("torsion", &["output_pins"])
+        });
     }
-    if !req.limits.entries.is_empty() {
-        let _ = writeln!(s, "limits:");
-        for l in &req.limits.entries {
-            let _ = writeln!(s, "  {}: {}", l.def.key, num(l.value));
-        }
+    scenes
+}
+
+/// `modification.crowning` of the requirements' crowning: the same keys and values.
+fn raw_crowning(c: &Crowning) -> Option<RawCrowning> {
+    let kind = |kind: &str| RawCrowning {
+        kind: kind.to_string(),
+        ..RawCrowning::default()
+    };
+    match *c {
+        Crowning::None => None,
+        Crowning::Circular {
+            radius_mm,
+            start_mm,
+        } => Some(RawCrowning {
+            radius_mm: Some(radius_mm),
+            start_mm: Some(start_mm),
+            ..kind("circular")
+        }),
+        Crowning::Logarithmic {
+            design_load_n,
+            end_drop_mm,
+            load_coefficient,
+            crowned_fraction,
+        } => Some(RawCrowning {
+            design_load_n: Some(design_load_n),
+            end_drop_mm: Some(end_drop_mm),
+            load_coefficient: Some(load_coefficient),
+            crowned_fraction: Some(crowned_fraction),
+            ..kind("logarithmic")
+        }),
     }
-    s
+}
+
+/// `reducer.friction` of the requirements' friction: the same keys and values.
+fn raw_friction(f: &Friction) -> RawFriction {
+    RawFriction {
+        model: Some(f.model.name().to_string()),
+        rollers: f.rollers.as_ref().map(|r| {
+            let (mode, bore_radius_mm) = match r.mode {
+                RollerMode::Fixed => ("fixed", None),
+                RollerMode::Rotating { bore_radius_mm } => ("rotating", Some(bore_radius_mm)),
+            };
+            RawRollerFriction {
+                mode: mode.to_string(),
+                mu: r.mu,
+                bore_radius_mm,
+            }
+        }),
+        output_pins: f.output_pins.as_ref().map(|p| {
+            let (mode, bore_radius_mm) = match p.mode {
+                PinMode::Fixed => ("fixed", None),
+                PinMode::Sleeve { bore_radius_mm } => ("sleeve", Some(bore_radius_mm)),
+            };
+            RawPinFriction {
+                mode: mode.to_string(),
+                mu: p.mu,
+                bore_radius_mm,
+            }
+        }),
+        crank_bearing: f.crank_bearing.as_ref().map(|b| RawBearingFriction {
+            mu: b.mu,
+            bore_diameter_mm: b.bore_diameter_mm,
+        }),
+        no_load_torque_nmm: Some(if f.no_load_torque_nmm.is_constant() {
+            RawNoLoad::Constant(f.no_load_torque_nmm.max_nmm())
+        } else {
+            RawNoLoad::Table(f.no_load_torque_nmm.points().to_vec())
+        }),
+    }
+}
+
+/// The requirements' density, kg/m³, only when it is not the check's default (steel's), so
+/// that the check's mass is the search's.
+fn density_unless_steel(req: &Requirements) -> Option<f64> {
+    let density = units::kg_per_m3(req.density_kg_per_mm3);
+    ((density / STEEL_DENSITY_KG_PER_M3 - 1.0).abs() > 1e-12).then_some(density)
 }

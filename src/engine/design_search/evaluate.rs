@@ -120,8 +120,11 @@ impl Tally {
     }
 }
 
-/// The spec name of a candidate while it is searched.
-const WORKING_NAME: &str = "candidate";
+/// The validated spec of `c` with `steps` crank angles per mesh period, named `candidate`
+/// while it is searched.
+fn candidate_spec(req: &Requirements, c: &Candidate, steps: usize) -> Result<Spec> {
+    super::candidate::spec(req, c, "candidate", steps)
+}
 
 /// Take `c` through the rules, the screen and the full check, as far as it goes.
 pub fn evaluate(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
@@ -146,8 +149,7 @@ pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
         return stop(Stage::Rules, failures);
     }
     let steps = req.search.steps_per_mesh_period;
-    let screen = super::candidate::spec_text(req, c, WORKING_NAME, steps / 4, "");
-    let spec = match crate::spec::parse("candidate.yaml", &screen) {
+    let spec = match candidate_spec(req, c, steps / 4) {
         Ok(s) => s,
         Err(e) if e.kind == ErrorKind::ImpossibleDesign => {
             return stop(
@@ -177,9 +179,7 @@ pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
 
 /// The full check of `c` (its rules already passed).
 pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
-    let text =
-        super::candidate::spec_text(req, c, WORKING_NAME, req.search.steps_per_mesh_period, "");
-    let spec = crate::spec::parse("candidate.yaml", &text)?;
+    let spec = candidate_spec(req, c, req.search.steps_per_mesh_period)?;
     let (results, checks) = match check(&spec) {
         Ok(r) => r,
         Err(e) if e.kind == ErrorKind::Computation => {

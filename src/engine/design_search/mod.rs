@@ -3,7 +3,8 @@
 //! Stages, cheapest first (`evaluate`): the envelope and design rules (no physics, `rules`, and
 //! the spec's own `spec::rules` when the candidate's spec is parsed), a screen (the scenes at
 //! every fourth crank angle, judged on the limits that fewer angles can only make easier) and
-//! the full check of the spec a front design is written as (`candidate::spec_text`).
+//! the full check of the spec a front design is written as (`candidate::raw_spec`, validated
+//! as any spec by `spec::from_raw`: no text is written or parsed while searching).
 //!
 //! Global stage: per discrete choice (ratio × pin count × discs) an Owen-scrambled Sobol
 //! sample (`sobol_burley`) of the continuous box, the seed and the choice's index making its
@@ -24,6 +25,7 @@ pub mod refine;
 pub mod rules;
 pub mod shard;
 
+pub use crate::model::requirements::Variables;
 pub use candidate::{Candidate, Choice};
 pub use evaluate::{Evaluation, Failure, Stage, Tally};
 pub use missed::Infeasible;

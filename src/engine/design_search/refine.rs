@@ -8,6 +8,7 @@ use super::evaluate::{evaluate, Evaluation};
 use super::pareto::dominates;
 use crate::error::Result;
 use crate::model::requirements::Requirements;
+use crate::model::requirements::Variables;
 use crate::progress::Progress;
 
 /// First step, a fraction of each variable's range.
@@ -21,12 +22,13 @@ pub fn refine(
     start: &Evaluation,
     progress: &dyn Progress,
 ) -> Result<Vec<Evaluation>> {
-    let ranges = req.search.continuous.ranges();
+    let ranges = req.search.continuous.to_array();
     let free: Vec<usize> = (0..8).filter(|&k| !ranges[k].fixed()).collect();
     let to_unit = |c: &Candidate| -> [f64; 8] {
+        let x = c.x.to_array();
         let mut u = [0.0; 8];
         for &k in &free {
-            u[k] = (c.x[k] - ranges[k].lower) / (ranges[k].upper - ranges[k].lower);
+            u[k] = (x[k] - ranges[k].lower) / (ranges[k].upper - ranges[k].lower);
         }
         u
     };
@@ -48,9 +50,11 @@ pub fn refine(
                 }
                 let mut c = Candidate::at(current.candidate.choice, &req.search.continuous, &v);
                 // Fixed variables keep their value exactly.
+                let (mut x, kept) = (c.x.to_array(), current.candidate.x.to_array());
                 for j in (0..8).filter(|j| !free.contains(j)) {
-                    c.x[j] = current.candidate.x[j];
+                    x[j] = kept[j];
                 }
+                c.x = Variables::from_array(x);
                 let e = evaluate(req, &c)?;
                 progress.advance(1);
                 let better = e.feasible() && dominates(&e.minimised(req), &current.minimised(req));

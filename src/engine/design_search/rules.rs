@@ -3,17 +3,15 @@
 //! middle inside the candidate's face. The spec's own rules
 //! (`spec::rules`: K1 < 1, undercut, rollers overlapping, holes) run when its spec is parsed.
 
-use super::candidate::*;
+use super::candidate::Candidate;
 use super::failure::{Failure, Requirement};
+use crate::model::design::{k1, roller_gap_mm, Ligaments};
 use crate::model::requirements::Requirements;
 use crate::model::Crowning;
-use std::f64::consts::PI;
 
 /// Every requirement that `c` breaks before any physics, each with its value and limit.
 pub fn failures(req: &Requirements, c: &Candidate) -> Vec<Failure> {
     let x = &c.x;
-    let np = c.rollers() as f64;
-    let m = c.choice.pins as f64;
     let mut out = Vec::new();
     let mut max = |requirement: Requirement, value: f64, limit: f64| {
         if value > limit {
@@ -31,7 +29,7 @@ pub fn failures(req: &Requirements, c: &Candidate) -> Vec<Failure> {
         req.envelope.max_axial_length_mm,
     );
     // K1 = e·np/Rp (the spec refuses K1 ≥ 1 whatever the requirements say).
-    let k1 = x[E] * np / x[RP];
+    let k1 = k1(x.eccentricity_mm, c.rollers(), x.roller_circle_radius_mm);
     if k1 > req.rules.max_k1 || (req.rules.max_k1 >= 1.0 && k1 >= 1.0) {
         out.push(Failure::bound(Requirement::MaxK1, k1, req.rules.max_k1));
     }
@@ -40,30 +38,34 @@ pub fn failures(req: &Requirements, c: &Candidate) -> Vec<Failure> {
             out.push(Failure::bound(requirement, value, limit));
         }
     };
-    // Gap between neighbouring rollers: 2·Rp·sin(π/np) − 2·Rrp.
-    let gap = 2.0 * x[RP] * (PI / np).sin() - 2.0 * x[RRP];
-    min(Requirement::MinRollerGap, gap, req.rules.min_roller_gap_mm);
-    // Pin-hole ligaments (rh = rpin + e + hole clearance): hole to hole
-    // 2·rw·sin(π/M) − 2·rh, hole to tooth root Rp + ΔRp − e − (Rrp + ΔRrp) − rw − rh, hole
-    // to the disc centre rw − rh; the smallest of the three.
-    let hole = x[RPIN] + x[E] + req.search.hole_clearance_mm;
-    let root = x[RP] + x[SHIFT] - x[E] - (x[RRP] + x[EQUIDISTANT]);
-    let ligament = (2.0 * x[RW] * (PI / m).sin() - 2.0 * hole)
-        .min(root - x[RW] - hole)
-        .min(x[RW] - hole);
+    // The spec's own formulas (`model::design`), bounded by the requirements' rules.
+    min(
+        Requirement::MinRollerGap,
+        roller_gap_mm(x.roller_circle_radius_mm, x.roller_radius_mm, c.rollers()),
+        req.rules.min_roller_gap_mm,
+    );
+    let root = x.roller_circle_radius_mm + x.shift_mm
+        - x.eccentricity_mm
+        - (x.roller_radius_mm + x.equidistant_mm);
+    let ligaments = Ligaments::of(
+        x.pin_circle_radius_mm,
+        c.hole_radius_mm(req),
+        c.choice.pins,
+        root,
+    );
     min(
         Requirement::MinLigament,
-        ligament,
+        ligaments.smallest_mm(),
         req.rules.min_ligament_mm,
     );
     // A circular crown's flat middle inside the face: start z0 < B/2 (the spec refuses
     // z0 ≥ B/2 at `modification.crowning.start_mm`); recorded as z0 against B/2.
     if let Crowning::Circular { start_mm, .. } = req.crowning {
-        if start_mm >= 0.5 * x[B] {
+        if start_mm >= 0.5 * x.face_width_mm {
             out.push(Failure::bound(
                 Requirement::CrownStart,
                 start_mm,
-                0.5 * x[B],
+                0.5 * x.face_width_mm,
             ));
         }
     }

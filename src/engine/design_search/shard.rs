@@ -33,6 +33,7 @@ use super::failure::{Failure, Miss, Requirement};
 use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
 use crate::error::Result;
 use crate::model::requirements::Requirements;
+use crate::model::requirements::Variables;
 
 pub const MAGIC: &[u8; 16] = b"cycloid-dsg-shrd";
 pub const VERSION: u32 = 2;
@@ -94,7 +95,7 @@ pub fn encode(h: &Header, evaluations: &[Evaluation]) -> Vec<u8> {
         for n in [c.teeth, c.pins, c.discs] {
             b.extend_from_slice(&(n as u32).to_le_bytes());
         }
-        for x in e.candidate.x {
+        for x in e.candidate.x.to_array() {
             b.extend_from_slice(&x.to_le_bytes());
         }
         b.push(match e.stage {
@@ -221,7 +222,7 @@ fn evaluation(r: &mut Reader, j: u64) -> Result<Evaluation> {
                 pins: choice[1],
                 discs: choice[2],
             },
-            x,
+            x: Variables::from_array(x),
         },
         stage,
         failures,
@@ -375,9 +376,8 @@ pub fn merge(req: &Requirements, ordered: Vec<(&str, Shard)>) -> Result<Vec<Eval
                 ))
             };
             let same = c.choice == e.candidate.choice
-                && c.x
-                    .iter()
-                    .zip(&e.candidate.x)
+                && (c.x.to_array().iter())
+                    .zip(&e.candidate.x.to_array())
                     .all(|(a, b)| a.to_bits() == b.to_bits());
             if !same {
                 return Err(bad("other than its requirements generate"));
@@ -437,12 +437,12 @@ mod tests {
                 pins: 6,
                 discs: 1,
             },
-            x: [0.0; 8],
+            x: Variables::from_array([0.0; 8]),
         };
         for total in 0..=12u64 {
             let all: Vec<Candidate> = (0..total)
                 .map(|j| Candidate {
-                    x: [j as f64; 8],
+                    x: Variables::from_array([j as f64; 8]),
                     ..c
                 })
                 .collect();
@@ -454,7 +454,7 @@ mod tests {
                     assert_eq!(s.len() as u64, residue);
                     assert_eq!(shard_len(total, (i, n)), residue);
                     for c in s {
-                        seen[c.x[0] as usize] += 1;
+                        seen[c.x.eccentricity_mm as usize] += 1;
                     }
                 }
                 assert!(seen.iter().all(|&k| k == 1), "{total}/{n}: {seen:?}");

@@ -2,10 +2,12 @@
 //! mass and the inertia at the input are computed from.
 
 use super::raw::RawReducer;
-use super::requirements::STEEL_DENSITY_KG_PER_M3;
 use super::values::{finite, positive};
 use crate::error::{Error, Result};
 use crate::{numeric, units};
+
+/// Default density of every part (a spec's and the requirements'): steel, 7,850 kg/m³.
+pub const STEEL_DENSITY_KG_PER_M3: f64 = 7850.0;
 
 /// The mass inputs of a reducer, engine units.
 pub(super) struct MassInputs {

@@ -19,8 +19,7 @@ pub const MAX_CHOICES: usize = 16;
 pub const MAX_SAMPLES: usize = 1 << 16;
 /// Largest ratio: a disc of 200 teeth.
 pub const MAX_RATIO: i64 = 200;
-/// Default density of every part: steel, 7,850 kg/m³.
-pub const STEEL_DENSITY_KG_PER_M3: f64 = 7850.0;
+pub use super::mass::STEEL_DENSITY_KG_PER_M3;
 
 /// Read and validate a requirements file.
 pub fn load(path: &str) -> Result<Requirements> {

@@ -104,6 +104,12 @@ pub fn mm_from_um(um: f64) -> f64 {
 /// W in a N·mm/s.
 pub const W_PER_NMM_PER_S: f64 = 1e-3;
 
+/// mm → m.
+#[inline]
+pub fn m_from_mm(mm: f64) -> f64 {
+    mm * 1e-3
+}
+
 /// rpm → rad/s: n·2π/60.
 #[inline]
 pub fn rad_per_s(rpm: f64) -> f64 {

@@ -180,6 +180,7 @@ impl PyRun {
             summaries: &r.summaries,
             studies: &r.studies,
             mass: Some(&r.mass),
+            unbalance: &r.unbalance,
         })
     }
 }
@@ -258,6 +259,7 @@ fn optimise(
         summaries: &[],
         studies: &results,
         mass: None,
+        unbalance: &[],
     });
     let tree = tree::to_py(py, &doc)?;
     Ok(tree.bind(py).get_item("studies")?.unbind())

@@ -177,6 +177,7 @@ fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Resul
             summaries: &run.summaries,
             studies: &run.studies,
             mass: Some(&run.mass),
+            unbalance: &run.unbalance,
         });
         report::json::write(Path::new(p), &doc)?;
     }

@@ -1,10 +1,13 @@
 //! The reducer's mass properties: each disc's mass and inertia from its exact modified profile
 //! (the disc as built when the spec was measured), and the inertia at the input.
 
-use crate::geometry::disc_solid;
-use crate::geometry::mass_properties::{face_moments, DiscMass, SECTION_TOLERANCE_MM};
-use crate::geometry::profile::Profile;
+use crate::geometry::mass_properties::{disc_mass, DiscMass};
+use crate::geometry::placement::disc_body;
+use crate::geometry::Vec2;
 use crate::model::{Design, Modification};
+use crate::model::{Effect, Plan};
+use crate::spec::Spec;
+use crate::units;
 
 /// The discs' mass properties and the reducer's inertia at the input.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,11 +23,7 @@ pub struct MassProperties {
 /// when it has one: the face inside the profile's polygon within `SECTION_TOLERANCE_MM`, less
 /// the output-pin holes and the bore of `disc_solid`, over the face width at the density.
 pub fn mass_properties(design: &Design, modification: &Modification) -> MassProperties {
-    let profile = Profile::new(design, modification).with_form(&design.deviations.form);
-    let holes = disc_solid::pin_holes(&design.pins, design.hole_radius_mm());
-    let bore = disc_solid::bore(design);
-    let face = face_moments(&profile, &holes, bore.as_ref(), SECTION_TOLERANCE_MM);
-    let disc = DiscMass::new(face, design.face_width_mm, design.density_kg_per_mm3);
+    let disc = disc_mass(design, modification);
     let nc = design.teeth as f64;
     let discs =
         design.discs as f64 * disc.input_inertia_kgmm2(design.eccentricity_mm, design.teeth);
@@ -32,4 +31,56 @@ pub fn mass_properties(design: &Design, modification: &Modification) -> MassProp
         disc,
         input_inertia_kgmm2: discs + design.output_inertia_kgmm2 / (nc * nc),
     }
+}
+
+/// What the discs' centripetal forces leave on the crank at speed in a scene that computes
+/// `inertia` (`Effect::Inertia`): disc k is pulled in by F_c·(−e_φk) by its bearing, so the
+/// crank carries F_c·e_φk at its mid-plane z_k; their sum and their couple about the mean
+/// mid-plane z̄. Both turn with the crank and keep their size (the discs' phases are fixed
+/// apart), so one crank angle gives them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Unbalance {
+    /// The scene's index in the spec.
+    pub scene: usize,
+    /// The speed it is at, rpm: the scene's, or a duty cycle's fastest bin's.
+    pub input_speed_rpm: f64,
+    /// F_c = m·(e + de)·ω², N: each disc's.
+    pub disc_force_n: f64,
+    /// |Σ F_c·e_φk|, N: zero for two or more discs evenly phased.
+    pub force_n: f64,
+    /// |Σ (z_k − z̄)·F_c·e_φk|, N·mm: two discs at 180° a face width B apart: F_c·B.
+    pub moment_nmm: f64,
+}
+
+/// The unbalance of every scene of `spec` that computes `inertia`, from the disc's mass
+/// (`disc`) and the discs' places along the axis (`geometry::placement::disc_body`, as the
+/// solid export places them: `output_pins.support.disc_positions_mm`, or side by side).
+pub fn unbalances(spec: &Spec, disc: &DiscMass) -> Vec<Unbalance> {
+    let design = &spec.design;
+    let bodies: Vec<(Vec2, f64)> = (0..design.discs)
+        .map(|k| {
+            let phase = design.disc_phase_rad(k);
+            let z = disc_body(design, k).placement.z_mm + 0.5 * design.face_width_mm;
+            (Vec2::new(phase.cos(), phase.sin()), z)
+        })
+        .collect();
+    let mean_z = bodies.iter().map(|b| b.1).sum::<f64>() / bodies.len() as f64;
+    let force: Vec2 = bodies.iter().map(|b| b.0).sum();
+    let couple: Vec2 = bodies.iter().map(|(u, z)| u * (z - mean_z)).sum();
+    (spec.scenes.iter().enumerate())
+        .filter(|(_, s)| Plan::for_scene(s).computes(Effect::Inertia))
+        .filter_map(|(i, s)| {
+            let bins = s.duty_cycle.iter().flatten().map(|b| b.input_speed_rpm);
+            let speed = s.input_speed_rpm.into_iter().chain(bins).reduce(f64::max)?;
+            let f =
+                disc.centripetal_force_n(design.built_eccentricity_mm(), units::rad_per_s(speed));
+            Some(Unbalance {
+                scene: i,
+                input_speed_rpm: speed,
+                disc_force_n: f,
+                force_n: f * force.norm(),
+                moment_nmm: f * couple.norm(),
+            })
+        })
+        .collect()
 }

@@ -46,13 +46,20 @@ pub fn solve_into(model: &Model, crank: f64, work: &mut Work) -> Result<(), Solv
             Some(kb) => -kb * work.sol.centre_offset_mm,
             None => match model.coupled() {
                 Some(c) => -c.net_force(crank, &work.sol),
-                None => -net_force(&work.sol),
+                // The contacts' and the disc's centrifugal reaction (`Effect::Inertia`).
+                None => -net_force(&work.sol) - model.centrifugal_n(work.e_phi),
             },
         };
         work.sol.bearing_force_n = Some(fb);
         work.sol.residual = Some(match model.coupled() {
             Some(c) => c.residual(crank, &work.sol, model.torque_nmm),
-            None => residual_at(model, work.e_phi, &work.sol, fb),
+            // The forces at the disc centre: the bearing's and the centrifugal reaction.
+            None => residual_at(
+                model,
+                work.e_phi,
+                &work.sol,
+                fb + model.centrifugal_n(work.e_phi),
+            ),
         });
     }
     work.remember(crank, model.torque_nmm);

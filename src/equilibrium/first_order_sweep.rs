@@ -331,9 +331,11 @@ impl<'a> FirstOrderSweep<'a> {
             ..Summary::default()
         };
         if self.model.bearing {
-            summary.bearing_n = -sums.net_force();
+            // The contacts' and the disc's centrifugal reaction (`Effect::Inertia`).
+            let centrifugal = self.model.centrifugal_n(e_phi);
+            summary.bearing_n = -sums.net_force() - centrifugal;
             let centre = e_phi * self.model.eccentricity_mm;
-            summary.residual = sums.relative(self.model, centre, summary.bearing_n);
+            summary.residual = sums.relative(self.model, centre, summary.bearing_n + centrifugal);
         }
         let finite = lag.is_finite() && output_lag.is_finite() && summary.residual.is_finite();
         finite.then_some(summary)

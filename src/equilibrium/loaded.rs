@@ -6,6 +6,8 @@ use super::coupling::Coupling;
 use super::pins::Pins;
 use super::rollers::Rollers;
 use super::solve::Settings;
+use crate::geometry::mass_properties::disc_mass;
+use crate::geometry::Vec2;
 use crate::model::{Design, Effect, Friction, GeometryMode, Modification, Plan, Scene};
 
 /// What the loaded model of a scene includes.
@@ -24,6 +26,11 @@ pub struct Model {
     pub first_order: bool,
     /// Friction inside the balance (the coupled model), when active; none: frictionless.
     pub coupling: Option<Coupling>,
+    /// F_c = m·(e + de)·ω², N: the disc's centripetal force at the scene's speed
+    /// (`Effect::Inertia`), which the crank bearing supplies along −e_φ on top of the
+    /// contacts' (its centrifugal reaction, +F_c·e_φ, acts at the disc centre, so it moves no
+    /// moment about it); 0 without the effect.
+    pub centripetal_n: f64,
     /// Record the loaded rollers' contact points and normals (`LoadedSweep::roller_contacts`),
     /// for the friction losses of `efficiency`; off: other scenes pay nothing.
     pub keep_contacts: bool,
@@ -53,8 +60,15 @@ impl Model {
             settings: Settings::default(),
             first_order: scene.geometry == GeometryMode::FirstOrder,
             coupling: None,
+            centripetal_n: centripetal_n(design, m, scene, plan),
             keep_contacts: false,
         }
+    }
+
+    /// The force the disc's inertia asks of its crank bearing at `e_phi`, N: the centrifugal
+    /// reaction +F_c·e_φ, which the bearing's force balances with −F_c·e_φ.
+    pub fn centrifugal_n(&self, e_phi: Vec2) -> Vec2 {
+        e_phi * self.centripetal_n
     }
 
     /// This model with `friction` inside its balance (the coupled model,
@@ -98,5 +112,16 @@ impl Model {
             .as_ref()
             .is_some_and(|r| r.geometry == GeometryMode::FirstOrder)
             || self.first_order
+    }
+}
+
+/// F_c of `Effect::Inertia` for `scene` (`DiscMass::centripetal_force_n` of the exact disc at
+/// the crank's e + de and the scene's speed); 0 without the effect or without a speed (the
+/// spec refuses `inertia` without one).
+fn centripetal_n(design: &Design, m: &Modification, scene: &Scene, plan: &Plan) -> f64 {
+    match scene.input_speed_rpm {
+        Some(n) if plan.has(Effect::Inertia) => disc_mass(design, m)
+            .centripetal_force_n(design.built_eccentricity_mm(), crate::units::rad_per_s(n)),
+        _ => 0.0,
     }
 }

@@ -7,6 +7,8 @@ use super::disc_solid::Circle;
 use super::polyline::polyline;
 use super::profile::Profile;
 use super::{cross, Vec2};
+use crate::model::{Design, Modification};
+use crate::units;
 use std::f64::consts::PI;
 
 /// Chordal tolerance of the profile's polygon, mm (0.1 µm). An inscribed chord leaves out at
@@ -124,6 +126,28 @@ impl DiscMass {
     pub fn input_inertia_kgmm2(&self, eccentricity_mm: f64, teeth: usize) -> f64 {
         let nc = teeth as f64;
         self.mass_kg * eccentricity_mm * eccentricity_mm + self.inertia_kgmm2 / (nc * nc)
+    }
+}
+
+/// One disc of `design` under `modification` (with the disc's form error when it has one):
+/// the face inside the profile's polygon within `SECTION_TOLERANCE_MM`, less the output-pin
+/// holes and the bore of `disc_solid`, over the face width at the design's density. The one
+/// home of a disc's mass: the results' mass properties, the design search's mass objective and
+/// the centripetal force of `Effect::Inertia` read it.
+pub fn disc_mass(design: &Design, modification: &Modification) -> DiscMass {
+    let profile = Profile::new(design, modification).with_form(&design.deviations.form);
+    let holes = super::disc_solid::pin_holes(&design.pins, design.hole_radius_mm());
+    let bore = super::disc_solid::bore(design);
+    let face = face_moments(&profile, &holes, bore.as_ref(), SECTION_TOLERANCE_MM);
+    DiscMass::new(face, design.face_width_mm, design.density_kg_per_mm3)
+}
+
+impl DiscMass {
+    /// F = m·e·ω², N: the centripetal force that keeps this disc's centre on its orbit of
+    /// radius `eccentricity_mm` at the crank speed `crank_rad_per_s` (kg · mm · 1e-3 m/mm ·
+    /// rad²/s²), the force the crank bearing carries at zero torque.
+    pub fn centripetal_force_n(&self, eccentricity_mm: f64, crank_rad_per_s: f64) -> f64 {
+        self.mass_kg * units::m_from_mm(eccentricity_mm) * crank_rad_per_s * crank_rad_per_s
     }
 }
 

@@ -24,6 +24,11 @@ pub enum Effect {
     /// fatigue lives and the crank bearing's static safety (issue 41,
     /// `docs/effects/strength.md`), from the loaded sweep's forces and pressures.
     Strength,
+    /// The discs' centripetal force at speed, m·(e + de)·ω² along the eccentric, in each
+    /// disc's force balance, so that the crank-bearing force is the one at speed (issue 42,
+    /// `docs/effects/inertia.md`); with several discs the unbalance they leave (force and
+    /// couple).
+    Inertia,
 }
 
 named!(Effect "effect" {
@@ -34,6 +39,7 @@ named!(Effect "effect" {
     Torsion => "torsion",
     Efficiency => "efficiency",
     Strength => "strength",
+    Inertia => "inertia",
 });
 
 impl Effect {
@@ -42,7 +48,7 @@ impl Effect {
         match self {
             Effect::Bearing => &[Effect::RollerContact, Effect::OutputPins],
             Effect::Torsion => &[Effect::RollerContact],
-            Effect::Efficiency | Effect::Strength => {
+            Effect::Efficiency | Effect::Strength | Effect::Inertia => {
                 &[Effect::RollerContact, Effect::OutputPins, Effect::Bearing]
             }
             _ => &[],
@@ -64,6 +70,7 @@ impl Effect {
                 | Effect::Bearing
                 | Effect::Efficiency
                 | Effect::Strength
+                | Effect::Inertia
         )
     }
 }

@@ -11,7 +11,7 @@
 
 use crate::engine::check::{Check, CheckKind};
 use crate::engine::golden::{sha256_hex, GoldenResult, Point};
-use crate::engine::mass_properties::MassProperties;
+use crate::engine::mass_properties::{MassProperties, Unbalance};
 use crate::engine::optimise::StudyResult;
 use crate::engine::summary::SceneSummary;
 use crate::error::Result;
@@ -835,6 +835,9 @@ pub struct Document<'a> {
     disc_centroid_offset_mm: Option<Finite>,
     #[serde(skip_serializing_if = "Option::is_none")]
     input_inertia_kgm2: Option<Finite>,
+    /// Per scene that computes `inertia`: the unbalance the discs leave on the crank.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    unbalance: Vec<UnbalanceDoc<'a>>,
     checks: Vec<CheckDoc<'a>>,
     golden: Vec<GoldenDoc<'a>>,
     scenes: Vec<SceneDoc<'a>>,
@@ -855,6 +858,19 @@ pub struct Contents<'a> {
     pub studies: &'a [StudyResult],
     /// The discs' mass properties (a check's).
     pub mass: Option<&'a MassProperties>,
+    /// The unbalance of each scene that computes `inertia` (a check's).
+    pub unbalance: &'a [Unbalance],
+}
+
+/// One scene's unbalance at speed (`engine::mass_properties::Unbalance`).
+#[derive(Serialize)]
+struct UnbalanceDoc<'a> {
+    scene: &'a str,
+    input_speed_rpm: Finite,
+    /// F_c = m·(e + de)·ω² of one disc.
+    disc_centripetal_force_n: Finite,
+    unbalance_force_n: Finite,
+    unbalance_moment_nm: Finite,
 }
 
 impl<'a> Document<'a> {
@@ -870,6 +886,15 @@ impl<'a> Document<'a> {
             disc_inertia_kgm2: c.mass.map(|m| Finite(units::kgm2(m.disc.inertia_kgmm2))),
             disc_centroid_offset_mm: c.mass.map(|m| Finite(m.disc.centroid_offset_mm)),
             input_inertia_kgm2: c.mass.map(|m| Finite(units::kgm2(m.input_inertia_kgmm2))),
+            unbalance: (c.unbalance.iter())
+                .map(|u| UnbalanceDoc {
+                    scene: &c.spec.scenes[u.scene].name,
+                    input_speed_rpm: Finite(u.input_speed_rpm),
+                    disc_centripetal_force_n: Finite(u.disc_force_n),
+                    unbalance_force_n: Finite(u.force_n),
+                    unbalance_moment_nm: Finite(units::nm(u.moment_nmm)),
+                })
+                .collect(),
             checks: c.checks.iter().map(check).collect(),
             golden: c.goldens.iter().map(golden).collect(),
             scenes: c.results.iter().map(SceneDoc::new).collect(),
@@ -950,6 +975,7 @@ pub fn scenes_value(spec: &Spec, results: &[SceneResult]) -> serde_json::Result<
         summaries: &summaries,
         studies: &[],
         mass: None,
+        unbalance: &[],
     }))
 }
 

@@ -10,6 +10,7 @@ pub mod duty_cycle;
 pub mod edit;
 pub(crate) mod face;
 pub(crate) mod friction;
+pub(crate) mod inertia;
 #[doc(hidden)]
 pub mod locate;
 pub(crate) mod mass;

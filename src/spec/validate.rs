@@ -662,6 +662,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     let built = (!design.deviations.is_nominal()).then_some("`reducer.deviations`");
     super::bearing_life::check(&limits, &design, &scenes, built)?;
     super::strength::check(&limits, &design, &scenes)?;
+    super::inertia::check(&design, &scenes)?;
     super::periods::check(&limits, &design, &scenes, built)?;
     super::friction::check_limits(&limits, &design, &scenes)?;
     let mut golden = Vec::new();

@@ -338,7 +338,7 @@ fn unknown_effect_points_at_the_entry() {
     assert_rejected(
         &paper_with(&[("effects: [clearance]", "effects: [clearance, stress]")]),
         "spec.yaml:26:26: invalid value: scenes[0].effects[1]: unknown effect `stress`; known \
-         effects: clearance, roller_contact, output_pins, bearing, efficiency, strength",
+         effects: clearance, roller_contact, output_pins, bearing, efficiency, strength, inertia",
     );
     assert_rejected(
         &paper_with(&[(

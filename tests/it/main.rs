@@ -41,6 +41,7 @@ mod geometry;
 mod golden;
 mod golden_physics;
 mod hard_cases;
+mod inertia;
 mod junit;
 mod mass_properties;
 mod measure;

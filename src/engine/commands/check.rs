@@ -8,7 +8,7 @@ use crate::engine::as_built;
 use crate::engine::check::{self, Check};
 use crate::engine::drawing::{self, Disc};
 use crate::engine::golden::{self, GoldenResult};
-use crate::engine::mass_properties::{mass_properties, MassProperties};
+use crate::engine::mass_properties::{mass_properties, unbalances, MassProperties, Unbalance};
 use crate::engine::optimise::{self, problem::Evaluation, StudyResult};
 use crate::engine::resolution::{self, Resolution};
 use crate::engine::scene::{self, Writes};
@@ -112,6 +112,9 @@ pub struct CheckRun {
     /// The discs' mass properties and the inertia at the input (of the disc as built, when
     /// measured).
     pub mass: MassProperties,
+    /// What the discs' centripetal forces leave on the crank, per scene that computes
+    /// `inertia`.
+    pub unbalance: Vec<Unbalance>,
 }
 
 impl CheckRun {
@@ -245,6 +248,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
     };
     let mass = mass_properties(&spec.design, &spec.modification);
     Ok(CheckRun {
+        unbalance: unbalances(&spec, &mass.disc),
         mass,
         spec,
         as_built,

@@ -8,8 +8,8 @@ use crate::geometry::mass_properties::{face_moments, DiscMass, SECTION_TOLERANCE
 use crate::geometry::profile::Profile;
 use crate::model::requirements::{Continuous, Requirements, Variables};
 use crate::model::{Crowning, Friction, OutputPins, PinMode, RollerMode};
-use crate::spec::requirements::STEEL_DENSITY_KG_PER_M3;
 use crate::spec::raw::*;
+use crate::spec::requirements::STEEL_DENSITY_KG_PER_M3;
 use crate::spec::Spec;
 use crate::units;
 

@@ -284,7 +284,8 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
             }
         }
         // Without friction there is no efficiency to skip, without a strength figure of the
-        // materials or the bearing no strength: the plan reads as before they existed.
+        // materials or the bearing no strength, without a speed no inertia: the plan reads as
+        // before they existed.
         let strength_given = spec.design.strength != Default::default()
             || spec
                 .design
@@ -294,6 +295,7 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
             .filter(|e| !plan.has(*e))
             .filter(|e| *e != Effect::Efficiency || spec.design.friction.is_some())
             .filter(|e| *e != Effect::Strength || strength_given)
+            .filter(|e| *e != Effect::Inertia || scene.input_speed_rpm.is_some())
             .map(|e| e.name())
             .collect();
         if !skipped.is_empty() {

@@ -318,7 +318,7 @@ fn assert_bodies_mesh(name: &str, spec_text: &str) -> String {
             })
             .collect();
         let smallest = gaps.iter().copied().fold(f64::INFINITY, f64::min);
-        assert!(smallest >= -1e-9 && smallest < 0.05, "disc {k}: {gaps:?}");
+        assert!((-1e-9..0.05).contains(&smallest), "disc {k}: {gaps:?}");
         // The pins, on the output flange at rw·(cos 2πj/M, sin 2πj/M): each inside its hole
         // (radius pin + e) and touching it, the hole centred at the pin + the disc centre's
         // offset, so every hole point is at least the pin's radius from the pin's centre and

@@ -9,9 +9,9 @@
 //! (Roark's *Formulas for Stress and Strain*, Table 8.1 cases 1a and 1c; Gere & Goodno,
 //! *Mechanics of Materials*):
 //!
-//! - `cantilever`: m(z) = (a − z)⁺, v(z) = [z < a];
+//! - `cantilever`: m(z) = (a − z)⁺, v(z) = 1 for z < a, else 0;
 //! - `both_ends` (a propped cantilever): the prop at L carries R = a²·(3L − a)/(2L³) of the
-//!   load, so m(z) = (a − z)⁺ − R·(L − z) and v(z) = [z < a] − R. At the clamp
+//!   load, so m(z) = (a − z)⁺ − R·(L − z) and v(z) = (1 for z < a, else 0) − R. At the clamp
 //!   m(0) = a·(L − a)·(2L − a)/(2L²), under the load m(a) = −R·(L − a).
 //!
 //! Several discs superpose (linear statics): M(z) = Σ_k F_k·m_k(z), a vector. M is linear in z

@@ -64,6 +64,14 @@ pub fn cantilever_influence(a_mm: f64, b_mm: f64, ei_nmm2: f64) -> f64 {
     x * x * (3.0 * y - x) / (6.0 * ei_nmm2)
 }
 
+/// The share of a force at z = `load_mm` that the prop of a propped cantilever of length
+/// `length_mm` carries: the cantilever's deflection at L under the load over its deflection
+/// at L under the prop's own unit force, c0(L, a)/c0(L, L) = a²·(3L − a)/(2L³) (Roark, Table
+/// 8.1 case 1c).
+pub fn prop_share(load_mm: f64, length_mm: f64) -> f64 {
+    cantilever_influence(length_mm, load_mm, 1.0) / cantilever_influence(length_mm, length_mm, 1.0)
+}
+
 /// A beam clamped at z = 0 and simply supported at z = `length_mm`: the cantilever's
 /// coefficient less the prop's, c0(a, b) − c0(a, L)·c0(L, b)/c0(L, L), mm/N.
 pub fn propped_influence(a_mm: f64, b_mm: f64, length_mm: f64, ei_nmm2: f64) -> f64 {

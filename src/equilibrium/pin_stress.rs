@@ -37,12 +37,11 @@ pub struct Beam {
 
 impl Beam {
     /// The share of a unit load at `a_mm` that the far support carries: 0 for a cantilever,
-    /// R = a²·(3L − a)/(2L³) for a propped one.
+    /// `pin_beam::prop_share` (R = a²·(3L − a)/(2L³)) for a propped one.
     fn prop_share(&self, a_mm: f64) -> f64 {
-        let l = self.length_mm;
         match self.kind {
             PinSupportKind::Cantilever => 0.0,
-            PinSupportKind::BothEnds => a_mm * a_mm * (3.0 * l - a_mm) / (2.0 * l * l * l),
+            PinSupportKind::BothEnds => super::pin_beam::prop_share(a_mm, self.length_mm),
         }
     }
 

@@ -101,10 +101,6 @@ impl Placement {
 
     /// A direction of the disc frame in the reducer's frame (turned, not moved).
     pub fn direction(&self, [x, y, z]: [f64; 3]) -> [f64; 3] {
-        if *self == Self::IDENTITY {
-            // Bit for bit the disc frame: a one-disc export is unchanged by the placement.
-            return [x, y, z];
-        }
         let (s, c) = self.turn_rad.sin_cos();
         [c * x - s * y, s * x + c * y, z]
     }

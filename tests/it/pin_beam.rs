@@ -6,7 +6,6 @@
 
 use crate::common::{scene_item, PaperSpec};
 use cycloid::contact::law::{johnson_approach_mm, LineContact};
-use cycloid::engine::scene::{self, Writes};
 use cycloid::model::results::SceneResult;
 use cycloid::spec::Spec;
 use std::f64::consts::{PI, TAU};
@@ -60,16 +59,7 @@ fn spec(discs: usize, support: Option<&str>, extra: &str, scenes: &str) -> Spec 
     s.scenes(scenes).parse("pins.yaml")
 }
 
-fn run(spec: &Spec) -> SceneResult {
-    let s = &spec.scenes[0];
-    scene::run(
-        spec,
-        s,
-        &scene::plan(spec, s, Writes::default()),
-        &Default::default(),
-    )
-    .unwrap()
-}
+use crate::common::run_first_scene as run;
 
 /// A loaded scene of 10 N·m over `steps` angles of 0°–108° with `effects` and `law`, first-
 /// order geometry (the pin gaps −βo·a_j of MODEL.md "Equilibrium", exact in it).

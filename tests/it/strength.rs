@@ -5,8 +5,7 @@
 
 use crate::common::{scene_item, PaperSpec};
 use cycloid::contact::fatigue;
-use cycloid::engine::scene::{self, Writes};
-use cycloid::model::results::{SceneResult, UNBOUNDED_LIFE_H};
+use cycloid::model::results::UNBOUNDED_LIFE_H;
 use cycloid::model::strength::ContactFatigue;
 use cycloid::spec::Spec;
 use std::f64::consts::{PI, TAU};
@@ -43,16 +42,7 @@ fn parse(text: &str) -> Spec {
     cycloid::spec::parse("strength.yaml", text).unwrap()
 }
 
-fn run(spec: &Spec) -> SceneResult {
-    let s = &spec.scenes[0];
-    scene::run(
-        spec,
-        s,
-        &scene::plan(spec, s, Writes::default()),
-        &Default::default(),
-    )
-    .unwrap()
-}
+use crate::common::run_first_scene as run;
 
 /// A first-order scene of 10 N·m over 0°–108° (the loaded period) in `steps` angles, with the
 /// strength effect (which brings the rollers, the pins and the bearing) and `more` lines.

@@ -34,16 +34,7 @@ fn torsion_spec(modification: Option<(f64, f64)>, crank: &str, effects: &str, ex
         .parse("torsion.yaml")
 }
 
-fn run(spec: &Spec) -> SceneResult {
-    let s = &spec.scenes[0];
-    scene::run(
-        spec,
-        s,
-        &scene::plan(spec, s, Writes::default()),
-        &Default::default(),
-    )
-    .unwrap()
-}
+use crate::common::run_first_scene as run;
 
 fn curves(r: &SceneResult) -> &TorsionCurves {
     r.torsion

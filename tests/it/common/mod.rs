@@ -487,3 +487,17 @@ pub(crate) fn locate(text: &str, key: &str) -> (usize, usize) {
     let column = offset - text[..offset].rfind('\n').map_or(0, |p| p + 1) + 1;
     (line, column)
 }
+
+/// The spec's first scene run as `check` runs it (its plan, no files written); a failure
+/// panics with the error.
+pub(crate) fn run_first_scene(spec: &Spec) -> cycloid::model::results::SceneResult {
+    use cycloid::engine::scene;
+    let s = &spec.scenes[0];
+    scene::run(
+        spec,
+        s,
+        &scene::plan(spec, s, scene::Writes::default()),
+        &Default::default(),
+    )
+    .unwrap()
+}

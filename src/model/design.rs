@@ -338,12 +338,8 @@ impl Design {
             return turn * self.teeth as f64;
         }
         let units = self.rollers * self.pins.count;
-        let mesh = units / per_turn;
-        let (mut a, mut b) = (mesh, self.teeth);
-        while b != 0 {
-            (a, b) = (b, a % b);
-        }
-        turn / units as f64 * (mesh / a * self.teeth) as f64
+        let period = pinned_period_units(self.rollers, self.pins.count, self.teeth, per_turn);
+        turn / units as f64 * period as f64
     }
 
     /// Radius of an output-pin hole in the disc: pin radius + e + hole clearance.
@@ -439,4 +435,15 @@ pub(crate) fn gcd(mut a: usize, mut b: usize) -> usize {
         (a, b) = (b, a % b);
     }
     a
+}
+
+/// The crank period of loaded curves with the output pins modelled, in units u = 2π/(np·M):
+/// the least common multiple of the mesh period, np·M/`per_turn` units (`per_turn` mesh
+/// periods in a crank turn: np, or 1 when the mesh repeats only after a whole turn), and the
+/// pin period, nc units (`Design::pin_period_rad`). 36 units (108°) for the paper's design
+/// (np 10, M 6, nc 9). The one home of the arithmetic of `Design::loaded_period_rad` and of a
+/// design search's scenes, which need it before their design exists.
+pub fn pinned_period_units(rollers: usize, pins: usize, teeth: usize, per_turn: usize) -> usize {
+    let mesh = rollers * pins / per_turn;
+    mesh / gcd(mesh, teeth) * teeth
 }

@@ -7,17 +7,14 @@ use super::limits::Limits;
 use super::{Crowning, DutyBin, Friction, Misalignment, Thermal};
 
 /// Crank period of the loaded curves of a search's design with `teeth` nc, np = nc + 1 rollers
-/// and `pins` M, in mesh periods of 2π/np: nc/gcd(nc, M) (the least common multiple of the mesh
-/// period and the pin period 2π·nc/(np·M), `Design::loaded_period_rad`; M ≥ 1); `tilted` (the
-/// requirements' `misalignment`), np times that (the mesh then repeats only after a whole
-/// crank turn, `model::period`).
+/// and `pins` M, in mesh periods of 2π/np (M units of `design::pinned_period_units`):
+/// nc/gcd(nc, M), the least common multiple of the mesh and pin periods as
+/// `Design::loaded_period_rad` has it (M ≥ 1); `tilted` (the requirements' `misalignment`),
+/// np times that (the mesh then repeats only after a whole crank turn, `model::period`).
 pub fn loaded_mesh_periods(teeth: usize, pins: usize, tilted: bool) -> usize {
-    let periods = teeth / super::design::gcd(teeth, pins);
-    if tilted {
-        periods * (teeth + 1)
-    } else {
-        periods
-    }
+    let rollers = teeth + 1;
+    let per_turn = if tilted { 1 } else { rollers };
+    super::design::pinned_period_units(rollers, pins, teeth, per_turn) / pins
 }
 
 /// A continuous variable of the search: its spec key and its closed range, mm (lower = upper

@@ -303,3 +303,46 @@ proptest! {
         }
     }
 }
+
+/// A design search writes its scenes before its design exists, so it counts the period in
+/// mesh periods (`model::requirements::loaded_mesh_periods`); the count must be the same
+/// period as the design's own (`Design::loaded_period_rad`, what a spec's scene is judged
+/// over). Counted here by stepping: the first whole number of mesh periods (2π/np, or a whole
+/// turn when tilted) that is also a whole number of pin periods (2π·nc/(np·M)), in units of
+/// 2π/(np·M) where both are integers, for every nc 2..=40 and M 1..=12.
+#[test]
+fn a_searchs_period_counts_the_least_common_multiple_of_mesh_and_pins() {
+    use cycloid::model::requirements::loaded_mesh_periods;
+    for teeth in 2..=40 {
+        for pins in 1..=12 {
+            let rollers = teeth + 1;
+            for tilted in [false, true] {
+                let mesh_units = if tilted { rollers * pins } else { pins };
+                let periods = (1..)
+                    .find(|k| (k * mesh_units) % teeth == 0)
+                    .expect("k = nc is a common multiple");
+                let tilt_factor = if tilted { rollers } else { 1 };
+                assert_eq!(
+                    loaded_mesh_periods(teeth, pins, tilted),
+                    periods * tilt_factor,
+                    "nc {teeth}, M {pins}, tilted {tilted}"
+                );
+            }
+            // The design's own period, for designs `text` can build (its pins fit on rw 18).
+            if (6..=12).contains(&teeth) && (3..=6).contains(&pins) {
+                let spec = parse(&text(
+                    teeth + 1,
+                    pins,
+                    "",
+                    "{ from_deg: 0, to_deg: 1, steps: 1 }",
+                    "",
+                    "",
+                ));
+                let mesh_rad = std::f64::consts::TAU / rollers as f64;
+                let counted = loaded_mesh_periods(teeth, pins, false) as f64 * mesh_rad;
+                // Both are a few float operations on small integers: 1e-12 rad.
+                assert!((spec.design.loaded_period_rad(true, false) - counted).abs() < 1e-12);
+            }
+        }
+    }
+}

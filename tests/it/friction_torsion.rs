@@ -587,3 +587,50 @@ fn every_pins_friction_opposes_its_sliding_along_the_branch() {
     }
     assert!(checked >= 8, "{checked} loaded pins checked");
 }
+
+/// Several discs with friction: the paper's two discs half a crank turn apart mesh alike (π is
+/// five of np = 10 mesh periods, and without the pins nothing else breaks the symmetry), so
+/// they share the output torque equally and each turns its own loop at T/2. The reducer's loop
+/// at ±20 N·m must then be the one disc's loop at ±10 N·m, point by point (torques halved,
+/// the same twist): the same hysteresis width, twice the rigidity and twice the energy per
+/// cycle. A model that split the friction lag wrongly between the discs, held one disc and
+/// not the other, or summed their lags, fails it.
+#[test]
+fn two_discs_half_a_turn_apart_turn_the_loop_of_one_disc_at_half_the_torque() {
+    let spec = |discs: usize, rated_nm: f64| {
+        let text = torsion_spec(0.002, Some(&rollers_only(0.02)), "roller_contact");
+        assert_eq!(text.matches("\nreducer:\n").count(), 1);
+        text.replace(
+            &format!("rated_nm: {RATED_NM:?}"),
+            &format!("rated_nm: {rated_nm:?}"),
+        )
+        .replace("\nreducer:\n", &format!("\nreducer:\n  discs: {discs}\n"))
+    };
+    let one = torsion(&spec(1, RATED_NM / 2.0));
+    let two = torsion(&spec(2, RATED_NM));
+    let (t1, g1) = drawn_loop(&one);
+    let (t2, g2) = drawn_loop(&two);
+    assert_eq!(t1.len(), t2.len());
+    // The loop must be open, or equal widths say nothing.
+    let width = width_at_zero(&t1, &g1);
+    assert!(width > 1e-3, "hysteresis {width} arcmin");
+    let scale = g1.iter().fold(0.0f64, |m, g| m.max(g.abs()));
+    for i in 0..t1.len() {
+        assert_eq!(t2[i], 2.0 * t1[i], "the torque steps scale exactly");
+        // The two runs solve the same contacts in another order of the rollers: solver
+        // round-off, 1e-9 of the loop's largest twist.
+        assert!(
+            (g2[i] - g1[i]).abs() <= 1e-9 * scale,
+            "T {}: {} vs {}",
+            t2[i],
+            g2[i],
+            g1[i]
+        );
+    }
+    let first = |s: &Value, key: &str| numbers(&s[key])[0];
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    let rigidity = "torsional_rigidity_nm_per_arcmin";
+    assert!(rel(first(&two, rigidity), 2.0 * first(&one, rigidity)) < 1e-9);
+    let energy = "hysteresis_energy_j";
+    assert!(rel(first(&two, energy), 2.0 * first(&one, energy)) < 1e-9);
+}

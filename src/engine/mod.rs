@@ -13,7 +13,7 @@
 pub mod accuracy;
 pub mod as_built;
 pub mod bearing_life;
-pub mod check;
+pub mod verdict;
 pub mod commands;
 pub mod design_search;
 pub mod drawing;

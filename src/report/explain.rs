@@ -2,7 +2,7 @@
 //! every scene (`explain`), the notes a reader of the results must be told (`notes`, from
 //! [`engine::scene::notes`](crate::engine::scene::notes)) and the sentence every output gives of a torsion scene's hysteresis.
 
-use crate::engine::check;
+use crate::engine::verdict;
 use crate::engine::scene::{self, Note, Writes};
 use crate::model::period;
 use crate::model::results::TorsionCompliances;
@@ -301,7 +301,7 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
         if !skipped.is_empty() {
             out += &format!("  skip    {} (not asked for)\n", skipped.join(", "));
         }
-        let limits = check::limits_for(&spec.limits, &plan);
+        let limits = verdict::limits_for(&spec.limits, &plan);
         if !limits.is_empty() {
             out += &format!("  limits  {}\n", limits.join(", "));
         }

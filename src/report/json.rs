@@ -9,7 +9,7 @@
 //! error and the run stops with it (the engine never produces one: a computation that fails
 //! stops the run before).
 
-use crate::engine::check::{Check, CheckKind};
+use crate::engine::verdict::{Check, CheckKind};
 use crate::engine::golden::{sha256_hex, GoldenResult, Point};
 use crate::engine::mass_properties::{MassProperties, Unbalance};
 use crate::engine::optimise::StudyResult;

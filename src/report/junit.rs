@@ -2,7 +2,7 @@
 //! suite per spec. A failed check is a `<failure>` whose message carries the value, the limit
 //! and how far outside it lies; an invalid spec or a failed computation is one `<error>` case.
 
-use crate::engine::check::{Bound, Check, CheckKind};
+use crate::engine::verdict::{Bound, Check, CheckKind};
 use crate::numeric::number;
 
 /// Escape text for XML attributes and character data.

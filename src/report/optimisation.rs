@@ -240,7 +240,7 @@ fn eq8_note(label: &str, e: &Evaluation, study: &Study) -> Option<String> {
     let dt = study.min_clearance_mm?;
     let tip = e.modification.tip_clearance_mm();
     let eq8 = tip >= lo - crate::engine::limit::tolerance(lo);
-    (eq8 && !crate::engine::limit::passes(min.gap_mm, dt, crate::engine::check::Bound::Min)).then(
+    (eq8 && !crate::engine::limit::passes(min.gap_mm, dt, crate::engine::verdict::Bound::Min)).then(
         || {
             format!(
             "  note: the {label} satisfies the paper's Eq. 8 (ΔRrp − ΔRp = {:.4} mm ≥ {lo} mm) but \

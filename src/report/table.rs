@@ -1,7 +1,7 @@
 //! The terminal table of checks (check, value, limit, verdict, where) and the summary of each
 //! scene's headline results.
 
-use crate::engine::check::{Bound, Check, CheckKind, Evidence};
+use crate::engine::verdict::{Bound, Check, CheckKind, Evidence};
 use crate::engine::plausibility::{Basis, Beyond};
 use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
 use crate::model::quantity::{find_limit, Quantity, COUNTS};

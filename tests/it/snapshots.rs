@@ -137,7 +137,7 @@ fn colour_only_when_asked() {
         &Default::default(),
     )
     .unwrap();
-    let checks = cycloid::engine::check::evaluate(&spec, &[r]).unwrap();
+    let checks = cycloid::engine::verdict::evaluate(&spec, &[r]).unwrap();
     let plain = cycloid::report::table::render_styled(&checks, false);
     let coloured = cycloid::report::table::render_styled(&checks, true);
     assert!(!plain.contains('\x1b'));
@@ -160,7 +160,7 @@ fn colour_only_when_asked() {
 
 #[test]
 fn failures_come_first_the_furthest_outside_first() {
-    use cycloid::engine::check::{Bound, Check, CheckKind};
+    use cycloid::engine::verdict::{Bound, Check, CheckKind};
     let check = |id: &str, value: f64, limit: f64, bound: Bound| Check {
         id: id.into(),
         kind: CheckKind::Limit,
@@ -172,7 +172,7 @@ fn failures_come_first_the_furthest_outside_first() {
             Bound::Max => value <= limit,
             Bound::Min => value >= limit,
         },
-        at: cycloid::engine::check::Evidence::Place(String::new()),
+        at: cycloid::engine::verdict::Evidence::Place(String::new()),
     };
     let checks = vec![
         check("s/passes", 1.0, 2.0, Bound::Max),

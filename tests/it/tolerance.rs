@@ -8,7 +8,7 @@ use crate::common;
 use crate::common::{cycloid, PaperSpec, Scratch};
 use cycloid::engine::tolerance::stats::clopper_pearson;
 use cycloid::engine::tolerance::{sensitivity, shard, summary, ToleranceStudy};
-use cycloid::engine::{check, scene};
+use cycloid::engine::{scene, verdict};
 use cycloid::model::tolerances::Kind;
 use cycloid::progress::Silent;
 
@@ -129,7 +129,7 @@ fn nominal_run(spec: &cycloid::spec::Spec) -> cycloid::model::results::SceneResu
 
 /// The nominal min clearance of a spec's first scene, by the engine.
 fn nominal_min_clearance(spec: &cycloid::spec::Spec) -> f64 {
-    check::evaluate(spec, &[nominal_run(spec)]).unwrap()[0].value
+    verdict::evaluate(spec, &[nominal_run(spec)]).unwrap()[0].value
 }
 
 /// A design whose nominal min clearance is exactly its limit, with a symmetric error in the
@@ -180,7 +180,7 @@ fn the_clearance_moves_one_for_one_with_the_equidistant_error() {
     // is ΔRrp − ΔRp exactly (MODEL.md "Clearance"): ∂q/∂ΔRp = −1 while the root stays the
     // smallest gap over ±h (its margin to the next smallest is micrometres, h is 0.1 µm).
     let at = cycloid::report::table::evidence(
-        &check::evaluate(&spec, &[nominal_run(&spec)]).unwrap()[0].at,
+        &verdict::evaluate(&spec, &[nominal_run(&spec)]).unwrap()[0].at,
     );
     assert!(at.contains("tooth phase 0.000"), "{at}");
     let shift = study

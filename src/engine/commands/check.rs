@@ -5,7 +5,7 @@
 use super::tolerance;
 use crate::engine::accuracy::{self, Ladder};
 use crate::engine::as_built;
-use crate::engine::check::{self, Check};
+use crate::engine::verdict::{self, Check};
 use crate::engine::drawing::{self, Disc};
 use crate::engine::golden::{self, GoldenResult};
 use crate::engine::mass_properties::{mass_properties, unbalances, MassProperties, Unbalance};
@@ -199,9 +199,9 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
     let golden_curves = golden::load_all(&spec)?;
     let results = scenes(&spec, options.writes, progress)?;
     all_finite(&spec, &results)?;
-    let mut checks = check::evaluate(&spec, &results)?;
+    let mut checks = verdict::evaluate(&spec, &results)?;
     let studies = studies(&spec, spec.studies.iter().collect(), progress);
-    checks.extend(check::optimisation(&spec, &studies));
+    checks.extend(verdict::optimisation(&spec, &studies));
     let goldens = golden::evaluate(&spec, &results, &golden_curves)?;
     checks.extend(goldens.iter().map(Check::from_golden));
     // The full accuracy ladder runs only for the design review; `check` alone runs the steps
@@ -219,7 +219,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
         _ => None,
     };
     if let (true, Some(r)) = (spec.limits.accuracy_resolved, &resolution) {
-        checks.push(check::resolution(r));
+        checks.push(verdict::resolution(r));
     }
     if options.tolerance {
         // The study draws from the drawing, whatever disc the other checks run on.

@@ -1,7 +1,7 @@
 //! `tolerance`: the Monte Carlo of a spec's `tolerances:`, whole, as one shard of a split run,
 //! or merged from the shards; and the study as one check of `check --tolerance`.
 
-use crate::engine::check::{Check, CheckKind, Evidence};
+use crate::engine::verdict::{Check, CheckKind, Evidence};
 use crate::engine::limit::passes;
 use crate::engine::tolerance::sensitivity::{self, Sensitivity};
 use crate::engine::tolerance::summary::{self, Summary};

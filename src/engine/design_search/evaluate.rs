@@ -4,7 +4,7 @@
 
 use super::candidate::Candidate;
 pub use super::failure::{Failure, Miss, Requirement};
-use crate::engine::check::Check;
+use crate::engine::verdict::Check;
 use crate::engine::scene::{self, Writes};
 use crate::error::{ErrorKind, Result};
 use crate::model::quantity::{self, LimitDef, Quantity};
@@ -18,7 +18,7 @@ use crate::spec::Spec;
 /// search writes; `tests/it/design_search.rs` runs `check` itself on the front's specs).
 fn check(spec: &Spec) -> Result<(Vec<SceneResult>, Vec<Check>)> {
     let results = scene::run_all(spec, Writes::default(), &Silent)?;
-    let checks = crate::engine::check::evaluate(spec, &results)?;
+    let checks = crate::engine::verdict::evaluate(spec, &results)?;
     Ok((results, checks))
 }
 

@@ -1,6 +1,6 @@
 //! The tolerance Monte Carlo (`cycloid tolerance`): sample k draws every toleranced part's
 //! deviation from (seed, k) alone (`draw`), runs the study's scene on the as-built reducer
-//! with the exact engine and evaluates every limit of the spec on it (`check::evaluate`, the
+//! with the exact engine and evaluates every limit of the spec on it (`verdict::evaluate`, the
 //! code path of `check`). The per-sample limit values are the study's records; what the
 //! report says of them (quantiles, failure rates with Clopper–Pearson intervals, the worst
 //! samples) is `summary`, computed the same way from one process's records or from merged
@@ -12,7 +12,7 @@ pub mod shard;
 pub mod stats;
 pub mod summary;
 
-use crate::engine::{check, scene};
+use crate::engine::{scene, verdict};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::quantity::LimitDef;
 use crate::model::tolerances::{self as tol, Parameter, PartTolerances};
@@ -27,7 +27,7 @@ pub struct ToleranceStudy<'a> {
     pub tolerances: PartTolerances,
     /// The drawn parameters, in the draw order ([`model::tolerances::parameters`](crate::model::tolerances::parameters)).
     pub params: Vec<Parameter>,
-    /// The spec's limits the scene evaluates, in the order of `check::evaluate`: (definition,
+    /// The spec's limits the scene evaluates, in the order of `verdict::evaluate`: (definition,
     /// bound value).
     pub limits: Vec<(&'static LimitDef, f64)>,
     pub plan: Plan,
@@ -75,7 +75,7 @@ impl<'a> ToleranceStudy<'a> {
         let params = tol::parameters(&tolerances, d.rollers, d.pins.count, d.discs);
         let scene = &spec.scenes[tolerances.scene];
         let plan = scene::plan(spec, scene, scene::Writes::default());
-        let keys = check::limits_for(&spec.limits, &plan);
+        let keys = verdict::limits_for(&spec.limits, &plan);
         let limits: Vec<_> = spec
             .limits
             .entries
@@ -138,7 +138,7 @@ impl<'a> ToleranceStudy<'a> {
     }
 
     /// The limits' values and verdicts of the reducer built with `values`: the scene run on
-    /// the deviated design, judged by `check::evaluate`. `what` names the state in errors.
+    /// the deviated design, judged by `verdict::evaluate`. `what` names the state in errors.
     pub fn evaluate(&self, values: &[f64], what: &str) -> Result<(Vec<f64>, Vec<bool>)> {
         let spec = self.spec;
         let mut design = spec.design.clone();
@@ -156,7 +156,7 @@ impl<'a> ToleranceStudy<'a> {
             &scene::RunOptions::for_spec(spec),
         )
         .map_err(context)?;
-        let checks = check::evaluate(spec, std::slice::from_ref(&result)).map_err(context)?;
+        let checks = verdict::evaluate(spec, std::slice::from_ref(&result)).map_err(context)?;
         let mut values = Vec::with_capacity(self.limits.len());
         let mut passed = Vec::with_capacity(self.limits.len());
         for (def, _) in &self.limits {

@@ -49,7 +49,7 @@ pub struct Summary {
     pub interval: (f64, f64),
     pub max_failure_rate: f64,
     /// The worst samples, worst first: (k, its largest excess over the limits, relative to
-    /// each limit as the checks table sorts them, `check::Check::excess`).
+    /// each limit as the checks table sorts them, `verdict::Check::excess`).
     pub worst: Vec<(u64, f64)>,
 }
 

@@ -1,7 +1,7 @@
 //! The review's accuracy ladder: one row per rung, its errors against the reference and its
 //! time, the cheapest rung that meets every tolerance highlighted; observed orders below.
 
-use super::common::{data_table, section, Section};
+use super::common::{data_table, Section};
 use crate::engine::accuracy::{self as acc, Ladder, Variation};
 use crate::numeric::number;
 use crate::report::accuracy::{self as text, description, skipped_text};
@@ -9,7 +9,7 @@ use maud::html;
 
 /// The accuracy ladder as a table: one row per rung, errors against the reference, times, the
 /// cheapest rung that meets every tolerance highlighted; observed orders and notes below.
-pub(super) fn accuracy_section(ladder: &Ladder) -> Section {
+pub(super) fn section(ladder: &Ladder) -> Section {
     let l = &ladder.layout;
     let missing: Vec<String> = acc::LadderQuantity::ALL
         .into_iter()
@@ -134,5 +134,5 @@ pub(super) fn accuracy_section(ladder: &Ladder) -> Section {
         }
     };
     let heading = html! { "Accuracy ladder: what accuracy costs in time" };
-    section("accuracy", heading, body)
+    Section::new("accuracy", heading, body)
 }

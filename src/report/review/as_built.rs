@@ -3,7 +3,7 @@
 //! (micrometres: the scale is stated, the profile itself is tens of millimetres), and each
 //! scene's headline results as designed beside as built.
 
-use super::common::{data_table, figure, section, Section};
+use super::common::{data_table, figure, Section};
 use super::disc::hole_cutouts;
 use crate::engine::summary::{summarise, SceneSummary};
 use crate::geometry::profile::Profile;
@@ -31,7 +31,7 @@ pub struct AsBuiltView<'a> {
 }
 
 /// The section, its figure added to `files`.
-pub(super) fn section_of(
+pub(super) fn section(
     spec: &Spec,
     view: &AsBuiltView,
     built: &[SceneResult],
@@ -107,7 +107,7 @@ pub(super) fn section_of(
              one 10 mm at true scale. The deviations are those of the vs design series above.")))
         (flank_table(spec, id))
     };
-    section("as-built", html! { "Disc as built" }, body)
+    Section::new("as-built", html! { "Disc as built" }, body)
 }
 
 /// Each scene's smallest gap over the rollers and its TE over the crank, as designed (dashed)

@@ -1,7 +1,7 @@
 //! The review's crank-bearing life ([`engine::bearing_life`](crate::engine::bearing_life)): the rating life of every scene
 //! that rated it, and why a scene could not.
 
-use super::common::{self, data_table, Section};
+use super::common::{data_table, Section};
 use crate::model::results::SceneResult;
 use crate::numeric::number;
 use crate::report::explain;
@@ -55,7 +55,7 @@ pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
         ))
         @for n in &notes { p.note { (n) } }
     };
-    Some(common::section(
+    Some(Section::new(
         "crank-bearing-life",
         html! { "Crank-bearing life" },
         body,

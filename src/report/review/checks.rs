@@ -1,14 +1,11 @@
-//! The review's verdicts: every check of a limit with its value and where, and every golden
-//! curve compared with its reviewed reference.
+//! The review's verdicts: every check of a limit with its value and where.
 
-use super::common::{data_table, section, verdict, Section};
-use crate::engine::check::Check;
-use crate::engine::golden::GoldenResult;
-use crate::numeric::number;
-use crate::report::table::{self, with_unit};
+use super::common::{data_table, verdict, Section};
+use crate::engine::verdict::Check;
+use crate::report::table;
 use maud::html;
 
-pub(super) fn checks_section(checks: &[Check]) -> Section {
+pub(super) fn section(checks: &[Check]) -> Section {
     let body = html! {
         p.note { "Failures first, the furthest outside its limit first." }
         (data_table(
@@ -26,34 +23,5 @@ pub(super) fn checks_section(checks: &[Check]) -> Section {
             },
         ))
     };
-    section("checks", html! { "Checks" }, body)
-}
-
-pub(super) fn golden_section(goldens: &[GoldenResult]) -> Option<Section> {
-    if goldens.is_empty() {
-        return None;
-    }
-    let body = html! {
-        p.note { "Each curve compared point by point with its reviewed reference; the worst \
-                  point is the one furthest outside (or least inside) its band abs + rel·|golden|." }
-        (data_table(
-            html! { th { "curve" } th { "golden file" } th { "worst |deviation|" }
-                th { "band there" } th { "where" } th { "points" } th { "verdict" } },
-            html! {
-                @for g in goldens {
-                    @let w = &g.comparison.worst;
-                    tr class=(verdict(g.comparison.passed)) {
-                        td { code { (g.golden.scene) "/" (g.golden.quantity.key) (g.golden.disc_suffix()) } }
-                        td { code { (g.golden.path.display()) } }
-                        td.num { (with_unit(number(w.deviation), g.unit)) }
-                        td.num { (with_unit(number(w.band), g.unit)) }
-                        td { (crate::report::golden::place(w)) }
-                        td.num { (g.comparison.points) }
-                        td.verdict { (if g.comparison.passed { "pass" } else { "FAIL" }) }
-                    }
-                }
-            },
-        ))
-    };
-    Some(section("golden", html! { "Golden curves" }, body))
+    Section::new("checks", html! { "Checks" }, body)
 }

@@ -11,9 +11,11 @@ pub(super) struct Section {
     pub(super) body: Markup,
 }
 
-pub(super) fn section(id: impl Into<String>, heading: Markup, body: Markup) -> Section {
-    let id = id.into();
-    Section { id, heading, body }
+impl Section {
+    pub(super) fn new(id: impl Into<String>, heading: Markup, body: Markup) -> Section {
+        let id = id.into();
+        Section { id, heading, body }
+    }
 }
 
 pub(super) fn figure(file: &str, title: &str, caption: &str) -> Markup {

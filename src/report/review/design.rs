@@ -1,6 +1,6 @@
 //! The review's design: the reducer as the spec gives it and its tooth-profile modification.
 
-use super::common::{data_table, section, Section};
+use super::common::{data_table, Section};
 use crate::model::{
     Crowning, Friction, FrictionModel, Modification, PinFriction, PinMode, RollerFriction,
     RollerMode, Thermal,
@@ -12,7 +12,7 @@ use maud::{html, Markup};
 
 /// The design as the spec gives it, with the modification `m` it was designed with (the
 /// spec's own; with a measured disc the scenes ran on the identified one, `as_built`).
-pub(super) fn design_section(spec: &Spec, m: &Modification) -> Section {
+pub(super) fn section(spec: &Spec, m: &Modification) -> Section {
     let d = &spec.design;
     let mm = |x: f64| format!("{} mm", number(x));
     let (disc, rollers) = (&d.disc_material, &d.roller_material);
@@ -56,7 +56,7 @@ pub(super) fn design_section(spec: &Spec, m: &Modification) -> Section {
     let body = html! {
         div.cols { (pairs("reducer", reducer)) (pairs("tooth-profile modification", modification)) }
     };
-    section("design", html! { "Design" }, body)
+    Section::new("design", html! { "Design" }, body)
 }
 
 /// The friction and heat inputs (`reducer.friction`, `reducer.thermal`) as the design table

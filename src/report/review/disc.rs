@@ -1,8 +1,8 @@
 //! The review's disc at one crank angle, drawn as [`engine::drawing`](crate::engine::drawing) computed it: the whole disc
 //! with its holes, the pins, the rollers and the forces; and a true-scale close-up of the
-//! tightest roller's gap (`disc_section`).
+//! tightest roller's gap (`disc::section`).
 
-use super::common::{figure, section, Section};
+use super::common::{figure, Section};
 use crate::engine::commands::solid_picture::SolidPicture;
 use crate::engine::drawing::{Disc, Part};
 use crate::geometry::Vec2;
@@ -23,7 +23,7 @@ const ARROW_MM: f64 = 12.0;
 const SHORTEST_ARROW_MM: f64 = 2.5;
 
 /// The disc at the drawing's crank angle and the close-up of its tightest roller.
-pub(super) fn disc_section(
+pub(super) fn section(
     spec: &Spec,
     disc: &Disc,
     solid: Option<&SolidPicture>,
@@ -50,7 +50,7 @@ pub(super) fn disc_section(
             (figure("disc-detail.svg", "Close-up of the smallest gap", &detail_caption))
         }
     };
-    section("disc", html! { "The disc at crank φ = " (phi) "°" }, body)
+    Section::new("disc", html! { "The disc at crank φ = " (phi) "°" }, body)
 }
 
 /// The solid's caption: the view, what the mesh is, its tolerance, the face width and bore.

@@ -3,7 +3,7 @@
 //! speed, energy-weighted efficiency), a table of its bins and their pictures (`duty_spectrum`:
 //! the load spectrum, and each bin's shares of time, revolutions and bearing damage).
 
-use super::common::{self, data_table, figure, signed, slug, Section};
+use super::common::{data_table, figure, signed, slug, Section};
 use super::duty_spectrum;
 use crate::engine::duty_cycle::{bin_equivalent_loads, damage_shares};
 use crate::model::quantity::{MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY};
@@ -117,5 +117,5 @@ pub(super) fn section(
             }
         }
     };
-    Some(common::section("duty-cycle", html! { "Duty cycle" }, body))
+    Some(Section::new("duty-cycle", html! { "Duty cycle" }, body))
 }

@@ -3,7 +3,7 @@
 //! of the scene's (`TorqueCurve`, solved by [`engine::torque_curve`](crate::engine::torque_curve)), and with a speed the mean power lost
 //! on each path as a stacked bar.
 
-use super::common::{data_table, figure, section, signed, Section};
+use super::common::{data_table, figure, signed, Section};
 use crate::model::friction::PathLosses;
 use crate::model::quantity::MEAN_EFFICIENCY;
 use crate::model::results::{
@@ -166,7 +166,7 @@ fn loss_bars(bars: &[(&str, PathLosses)]) -> String {
 
 /// The section: per scene with `efficiency` its torque curve, the losses per path in a table,
 /// and with a speed the stacked bars of every such scene.
-pub(super) fn section_of(
+pub(super) fn section(
     spec: &Spec,
     results: &[SceneResult],
     curves: &[Option<TorqueCurve>],
@@ -254,7 +254,7 @@ pub(super) fn section_of(
         ))
         div.grid { @for (f, t, c) in &figures { (figure(f, t, c)) } }
     };
-    Some(section(
+    Some(Section::new(
         "efficiency",
         html! { "Friction, efficiency and heat" },
         body,

@@ -3,7 +3,7 @@
 //! angle (a tilted scene's worst face load factor, a crowned, aligned scene's largest line
 //! load; the plot's title names it), tilted against designed (the same disc without the tilt).
 
-use super::common::{figure, section, slug, Section};
+use super::common::{figure, slug, Section};
 use crate::engine::face_profile::{FaceAngle, FaceProfile};
 use crate::model::quantity::MAX_LINE_LOAD;
 use crate::model::results::SceneResult;
@@ -26,7 +26,7 @@ fn steps(z_mm: &[f64], width_mm: f64, q: &[f64]) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// The section, or nothing without a tilted scene.
-pub(super) fn section_of(
+pub(super) fn section(
     spec: &Spec,
     profiles: &[FaceProfile],
     results: &[SceneResult],
@@ -114,7 +114,7 @@ pub(super) fn section_of(
     let body = html! {
         div.grid { @for (f, t, c) in &figures { (figure(f, t, c)) } }
     };
-    Some(section(
+    Some(Section::new(
         "face-width",
         html! { "Along the face width" },
         body,

@@ -27,6 +27,7 @@ mod duty_cycle;
 mod duty_spectrum;
 mod efficiency;
 mod face;
+mod golden;
 pub mod optimisation;
 pub mod plots;
 pub mod scenes;
@@ -40,7 +41,7 @@ pub use as_built::AsBuiltView;
 pub use optimisation::{OptimisationView, StudyPoint};
 
 use crate::engine::accuracy::Ladder;
-use crate::engine::check::Check;
+use crate::engine::verdict::Check;
 use crate::engine::drawing::Disc;
 use crate::engine::golden::GoldenResult;
 use crate::error::Result;
@@ -87,34 +88,34 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         .as_ref()
         .map_or(input.spec.modification, |v| v.designed_modification);
     let mut sections = vec![
-        summary::summary_section(input.spec, input.results),
-        design::design_section(input.spec, &designed),
+        summary::section(input.spec, input.results),
+        design::section(input.spec, &designed),
     ];
     if let Some(view) = &input.as_built {
-        let built = as_built::section_of(input.spec, view, input.results, &mut files);
+        let built = as_built::section(input.spec, view, input.results, &mut files);
         sections.push(built);
     }
     if !input.checks.is_empty() {
-        sections.push(checks::checks_section(input.checks));
+        sections.push(checks::section(input.checks));
     }
-    sections.extend(checks::golden_section(input.goldens));
-    sections.push(disc::disc_section(
+    sections.extend(golden::section(input.goldens));
+    sections.push(disc::section(
         input.spec,
         input.disc,
         input.solid,
         &mut files,
     ));
     for (k, (scene, r)) in input.spec.scenes.iter().zip(input.results).enumerate() {
-        sections.extend(scenes::scene_section(input.spec, k, scene, r, &mut files));
+        sections.extend(scenes::section(input.spec, k, scene, r, &mut files));
     }
-    sections.extend(face::section_of(
+    sections.extend(face::section(
         input.spec,
         input.face,
         input.results,
         &mut files,
     ));
     let prefix = |k: usize, s: &Scene| format!("scene-{}-{}", k + 1, slug(&s.name));
-    sections.extend(torsion::sections(
+    sections.extend(torsion::section(
         input.spec,
         input.results,
         prefix,
@@ -122,19 +123,16 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
     ));
     sections.extend(bearing_life::section(input.spec, input.results));
     sections.extend(duty_cycle::section(input.spec, input.results, &mut files));
-    sections.extend(efficiency::section_of(
+    sections.extend(efficiency::section(
         input.spec,
         input.results,
         input.efficiency,
         &mut files,
     ));
     if !input.optimisation.is_empty() {
-        sections.push(optimisation::optimisation_section(
-            input.optimisation,
-            &mut files,
-        ));
+        sections.push(optimisation::section(input.optimisation, &mut files));
     }
-    sections.extend(input.accuracy.map(accuracy::accuracy_section));
+    sections.extend(input.accuracy.map(accuracy::section));
     files.push(("index.html".into(), page(input, &sections)));
     files
 }

@@ -3,7 +3,7 @@
 //! points with every constraint's margin. Drawn from an `OptimisationView`, which
 //! [`report::optimisation::view`](crate::report::optimisation::view) builds from a study's result.
 
-use super::common::{figure, scrolling, section, signed, slug, Section};
+use super::common::{figure, scrolling, signed, slug, Section};
 use crate::engine::optimise::problem::Margin;
 use crate::numeric::number;
 use crate::report::svg::{MapCell, MapPlot, Marker, Shape, RED};
@@ -72,10 +72,7 @@ pub struct StudyPoint {
     pub margins: Vec<Margin>,
 }
 
-pub(super) fn optimisation_section(
-    views: &[OptimisationView],
-    files: &mut Vec<(String, String)>,
-) -> Section {
+pub(super) fn section(views: &[OptimisationView], files: &mut Vec<(String, String)>) -> Section {
     let mut studies = Vec::new();
     for (k, o) in views.iter().enumerate() {
         let file = format!("optimisation-{}-{}.svg", k + 1, slug(&o.name));
@@ -88,7 +85,7 @@ pub(super) fn optimisation_section(
                   constraint at the start, the references and the optimum." }
         @for s in studies { (s) }
     };
-    section("optimisation", html! { "Optimisation" }, body)
+    Section::new("optimisation", html! { "Optimisation" }, body)
 }
 
 pub(super) fn optimisation_svg(o: &OptimisationView) -> String {

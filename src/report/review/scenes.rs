@@ -1,7 +1,7 @@
 //! The review's section of each scene: what it computes, over which crank angles, and the plots
 //! of its curves (`plots`), each disc's own with several discs.
 
-use super::common::{figure, section, slug, Section};
+use super::common::{figure, slug, Section};
 use super::plots;
 use crate::model::results::SceneResult;
 use crate::model::{ContactLaw, Effect, Plan, Scene};
@@ -11,7 +11,7 @@ use crate::units;
 use maud::html;
 
 /// A scene's plots, or nothing when it computed no curve a plot draws.
-pub(super) fn scene_section(
+pub(super) fn section(
     spec: &Spec,
     k: usize,
     scene: &Scene,
@@ -55,7 +55,7 @@ pub(super) fn scene_section(
             .map(|p| (p.file, p.svg)),
     );
     let heading = html! { "Scene " code { (scene.name) } };
-    Some(section(prefix, heading, body))
+    Some(Section::new(prefix, heading, body))
 }
 
 pub(super) fn scene_summary(spec: &Spec, scene: &Scene) -> String {

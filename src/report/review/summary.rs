@@ -1,6 +1,6 @@
 //! The review's headline results of every scene ([`engine::summary`](crate::engine::summary)).
 
-use super::common::{data_table, section, Section};
+use super::common::{data_table, Section};
 use crate::engine::summary::marked;
 use crate::model::results::SceneResult;
 use crate::report::table;
@@ -9,7 +9,7 @@ use maud::html;
 
 /// The headline results of every scene ([`engine::summary`](crate::engine::summary)).
 /// A value beyond its plausible band (`engine::plausibility`) is marked in its row, not failed.
-pub(super) fn summary_section(spec: &Spec, results: &[SceneResult]) -> Section {
+pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Section {
     let summaries = marked(spec, results);
     let body = html! {
         p.note { "What each scene computed, at a glance: the extremes of its curves and where \
@@ -37,5 +37,5 @@ pub(super) fn summary_section(spec: &Spec, results: &[SceneResult]) -> Section {
             },
         ))
     };
-    section("summary", html! { "Headline results" }, body)
+    Section::new("summary", html! { "Headline results" }, body)
 }

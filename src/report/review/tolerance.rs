@@ -4,7 +4,7 @@
 //! beside the Monte Carlo spread and the Pareto of the tolerances. The page, tables and plots
 //! are the design review's own (`shell::shell`, `common::data_table`, `svg::LinePlot`).
 
-use super::common::{data_table, figure, section, Section};
+use super::common::{data_table, figure, Section};
 use super::shell::{shell, write_files};
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANTILES};
@@ -121,7 +121,7 @@ fn rates_section(s: &Summary) -> Section {
             },
         ))
     };
-    section("failure-rates", html! { "Failure rates" }, body)
+    Section::new("failure-rates", html! { "Failure rates" }, body)
 }
 
 fn study_section(study: &ToleranceStudy) -> Section {
@@ -148,7 +148,7 @@ fn study_section(study: &ToleranceStudy) -> Section {
             },
         ))
     };
-    section("study", html! { "The study" }, body)
+    Section::new("study", html! { "The study" }, body)
 }
 
 fn worst_section(study: &ToleranceStudy, s: &Summary, records: &Records) -> Section {
@@ -171,7 +171,7 @@ fn worst_section(study: &ToleranceStudy, s: &Summary, records: &Records) -> Sect
             },
         ))
     };
-    section("worst", html! { "Worst samples" }, body)
+    Section::new("worst", html! { "Worst samples" }, body)
 }
 
 fn sensitivity_section(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> Section {
@@ -196,7 +196,7 @@ fn sensitivity_section(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) 
             ))
         }
     };
-    section(
+    Section::new(
         "sensitivity",
         html! { "Sensitivities and the Pareto of the tolerances" },
         body,
@@ -229,7 +229,7 @@ pub fn render(
         ));
     }
     let mut sections = vec![study_section(study), rates_section(s)];
-    sections.push(section(
+    sections.push(Section::new(
         "distributions",
         html! { "Distributions" },
         html! { div.grid { @for f in &figures { (f) } } },

@@ -1,7 +1,7 @@
 //! The review's torsion under a locked input ([`engine::torsion`](crate::engine::torsion)): per torsion scene its curves
 //! and its table of catalogue figures (`sections`).
 
-use super::common::{data_table, figure, section, Section};
+use super::common::{data_table, figure, Section};
 use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
 use crate::model::Scene;
@@ -203,7 +203,7 @@ fn not_modelled(parts: &[String]) -> String {
 
 /// The design review's torsion sections (one per torsion scene); the plots go into `files` as
 /// (name, SVG).
-pub(super) fn sections(
+pub(super) fn section(
     spec: &Spec,
     results: &[SceneResult],
     prefix: impl Fn(usize, &Scene) -> String,
@@ -231,7 +231,7 @@ pub(super) fn sections(
                 the cut), so that the slope beyond it shows"))
             (figures_table(r, t))
         };
-        out.push(section(
+        out.push(Section::new(
             id,
             html! { "Torsion: scene " code { (scene.name) } },
             body,

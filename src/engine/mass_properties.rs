@@ -17,6 +17,10 @@ pub struct MassProperties {
     /// J_in, kg·mm²: Σ over the discs of m·e² + J_c/nc², plus the output's J_out/nc² (the
     /// output turns at ω/nc); the rollers, pins, crank shaft and its bearings are not in it.
     pub input_inertia_kgmm2: f64,
+    /// The discs' share of J_in, Σ (m·e² + J_c/nc²), kg·mm².
+    pub discs_kgmm2: f64,
+    /// The output's share of J_in, J_out/nc², kg·mm².
+    pub output_kgmm2: f64,
 }
 
 /// The mass properties of `design`'s discs under `modification`, with the disc's form error
@@ -27,9 +31,12 @@ pub fn mass_properties(design: &Design, modification: &Modification) -> MassProp
     let nc = design.teeth as f64;
     let discs =
         design.discs as f64 * disc.input_inertia_kgmm2(design.eccentricity_mm, design.teeth);
+    let output = design.output_inertia_kgmm2 / (nc * nc);
     MassProperties {
         disc,
-        input_inertia_kgmm2: discs + design.output_inertia_kgmm2 / (nc * nc),
+        input_inertia_kgmm2: discs + output,
+        discs_kgmm2: discs,
+        output_kgmm2: output,
     }
 }
 

@@ -189,3 +189,69 @@ fn bad_mass_inputs_are_refused_where_written() {
         assert!(shown.starts_with(at) && shown.contains(key), "{shown}");
     }
 }
+
+/// The annulus's closed forms of `NEAR_CIRCLE` (above): one disc's mass and J_c, and J_in, kg
+/// and kg·m², as numbers for a person (`numeric::number`, four significant digits). The
+/// polygon's 1e-6 relative sliver is far from moving a fourth digit here (the closed forms
+/// are 0.0905910, 6.54691e-5, 5.41067e-7, 1.761106e-5).
+fn near_circle_figures() -> [String; 6] {
+    let (r, rh, rw, bore) = (36.0_f64, 4.0 + 1e-7, 22.0_f64, 10.0_f64);
+    let area = PI * r * r - 8.0 * PI * rh * rh - PI * bore * bore;
+    let polar = 0.5 * PI * r.powi(4)
+        - 8.0 * PI * rh * rh * (0.5 * rh * rh + rw * rw)
+        - 0.5 * PI * bore.powi(4);
+    let per_mm2 = 2700e-9 * 10.0;
+    let (mass, jc) = (per_mm2 * area, per_mm2 * polar * 1e-6);
+    let orbit = mass * 1e-20;
+    let j_in = 2.0 * (orbit + jc / 121.0) + 0.002 / 121.0;
+    [mass, jc, j_in, orbit, jc / 121.0, 0.002 / 121.0].map(cycloid::numeric::number)
+}
+
+/// The terminal states each disc's mass and J_c and the inertia at the input after the
+/// headline results, and what J_in includes; `--explain` gives J_in's formula with its
+/// numbers: the annulus's closed forms.
+#[test]
+fn the_terminal_and_explain_state_the_mass_and_the_inertia_at_the_input() {
+    let dir = crate::common::Scratch::new("mass-text");
+    dir.write("s.yaml", NEAR_CIRCLE);
+    let [mass, jc, j_in, orbit, turning, output] = near_circle_figures();
+    let out = crate::common::cycloid(&dir.path, &["check", "s.yaml"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let line = format!(
+        "mass: each disc {mass} kg, J_c {jc} kg·m²; inertia at the input J_in {j_in} kg·m² (the \
+         discs' orbit and turning and the output; not the crank shaft, its bearings or the \
+         rollers)\n"
+    );
+    assert!(out.stdout.contains(&line), "{}", out.stdout);
+    let out = crate::common::cycloid(&dir.path, &["check", "s.yaml", "--explain"]);
+    let formula = format!(
+        "  inertia at the input J_in = Σ(m·e² + J_c/nc²) + J_out/i² = 2 × ({orbit} + {turning}) \
+         + {output} = {j_in} kg·m² (m·e² at e 1.000e-7 mm, nc = i = 11, J_out 0.002000 kg·m²)"
+    );
+    assert!(out.stdout.contains(&formula), "{}", out.stdout);
+    assert!(out.stdout.contains(&format!(
+        "mass (density ρ 2700 kg/m³): each disc {mass} kg from its exact profile less the pin \
+         holes and the bore, J_c {jc} kg·m² about its centre\n"
+    )));
+}
+
+/// The review's design table has the mass-properties row (mass, density, J_c, centroid offset)
+/// and J_in with what it includes: the annulus's closed forms.
+#[test]
+fn the_reviews_design_table_has_the_mass_properties() {
+    let dir = crate::common::Scratch::new("mass-review");
+    dir.write("s.yaml", NEAR_CIRCLE);
+    let out = crate::common::cycloid(&dir.path, &["check", "s.yaml", "--report", "review"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let html = dir.read("review/index.html");
+    let [mass, jc, j_in, ..] = near_circle_figures();
+    let row = format!(
+        "<tr><th>mass properties (each disc)</th><td>mass {mass} kg at density ρ 2700 kg/m³, \
+         polar inertia J_c {jc} kg·m² about its centre, centroid "
+    );
+    assert!(html.contains(&row), "{html}");
+    assert!(html.contains(&format!(
+        "<tr><th>inertia at the input J_in</th><td>{j_in} kg·m²: the discs' orbit and turning \
+         and the output; not the crank shaft, its bearings or the rollers</td></tr>"
+    )));
+}

@@ -10,13 +10,25 @@ use crate::spec::Spec;
 use crate::units;
 
 /// What J_in includes, as the design table and the terminal say it.
-fn included(m: &MassProperties) -> &'static str {
+fn included(m: &MassProperties) -> String {
+    let mut parts = vec!["the discs' orbit and turning"];
     if m.output_kgmm2 > 0.0 {
-        "the discs' orbit and turning and the output; not the crank shaft, its bearings or \
-         the rollers"
-    } else {
-        "the discs' orbit and turning; no output inertia given (reducer.output_inertia_kgm2); \
-         not the crank shaft, its bearings or the rollers"
+        parts.push("the output");
+    }
+    let mut left_out = vec!["the crank shaft", "its bearings"];
+    match m.rollers_kgmm2 > 0.0 {
+        true => parts.push("the rollers' spin"),
+        false => left_out.push("the rollers"),
+    }
+    format!("{}; not {}", listed(&parts, "and"), listed(&left_out, "or"))
+}
+
+/// "a", "a and b", "a, b and c" (`word` "and" or "or").
+fn listed(items: &[&str], word: &str) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [rest @ .., last] => format!("{} {word} {last}", rest.join(", ")),
     }
 }
 
@@ -110,13 +122,22 @@ pub fn scene_note(spec: &Spec, u: &Unbalance) -> String {
 /// J_in = Σ(m·e² + J_c/nc²) + J_out/i² with its numbers (i = nc, the output turning at ω/nc).
 pub fn explain_design(spec: &Spec) -> String {
     let d = &spec.design;
-    let m = mass_properties(d, &spec.modification);
+    let m = mass_properties(spec);
     let kgm2 = |x: f64| number(units::kgm2(x));
+    let rollers = match m.rollers_kgmm2 > 0.0 {
+        true => format!(
+            " + J_r·⟨Σ(Ωᵢ/ω)²⟩ {} (the rollers' spin, J_r {} kg·m² each, rolling on the disc at \
+             Ωᵢ = (ω/nc)·(|Cᵢ − I| − Rrp)/Rrp)",
+            kgm2(m.rollers_kgmm2),
+            kgm2(spec.roller_inertia_kgmm2)
+        ),
+        false => String::new(),
+    };
     format!(
         "mass (density ρ {} kg/m³): each disc {} kg from its exact profile less the pin holes \
          and the bore, J_c {} kg·m² about its centre\n  inertia at the input \
-         J_in = Σ(m·e² + J_c/nc²) + J_out/i² = {} × ({} + {}) + {} = {} kg·m² (m·e² at e {} mm, \
-         nc = i = {}, J_out {} kg·m²); {}\n",
+         J_in = Σ(m·e² + J_c/nc²) + J_out/i² = {} × ({} + {}) + {}{rollers} = {} kg·m² (m·e² at \
+         e {} mm, nc = i = {}, J_out {} kg·m²); {}\n",
         number(units::kg_per_m3(d.density_kg_per_mm3)),
         number(m.disc.mass_kg),
         kgm2(m.disc.inertia_kgmm2),
@@ -137,7 +158,7 @@ pub fn explain_design(spec: &Spec) -> String {
 /// discs' unbalance on the crank.
 pub fn explain_scene(spec: &Spec, k: usize, scene: &Scene) -> String {
     let d = &spec.design;
-    let disc = mass_properties(d, &spec.modification).disc;
+    let disc = mass_properties(spec).disc;
     let e = d.built_eccentricity_mm();
     let bins = scene.duty_cycle.iter().flatten().map(|b| b.input_speed_rpm);
     let forces: Vec<String> = (scene.input_speed_rpm.into_iter().chain(bins))

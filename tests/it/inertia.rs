@@ -174,9 +174,17 @@ fn the_terminal_explain_and_review_say_the_force_at_speed_and_the_unbalance() {
          crank "
     );
     assert!(line.starts_with(&head), "{line}");
-    assert!(line.ends_with(&format!(" N, couple {couple} N·m")), "{line}");
+    assert!(
+        line.ends_with(&format!(" N, couple {couple} N·m")),
+        "{line}"
+    );
     // The residual force is round-off of F_c (cos π = −1 to an ulp).
-    let residual: f64 = line[head.len()..].split(' ').next().unwrap().parse().unwrap();
+    let residual: f64 = line[head.len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
     assert!(residual.abs() <= 1e-12 * fc, "{line}");
 
     let explain = cycloid(&dir.path, &["check", "s.yaml", "--explain"]).stdout;
@@ -190,7 +198,9 @@ fn the_terminal_explain_and_review_say_the_force_at_speed_and_the_unbalance() {
         shown(w)
     );
     assert!(explain.contains(&formula), "{explain}");
-    assert!(explain.contains(&format!("a couple of {couple} N·m about their mean mid-plane")));
+    assert!(explain.contains(&format!(
+        "a couple of {couple} N·m about their mean mid-plane"
+    )));
 
     let html = dir.read("review/index.html");
     let title = format!("Crank-bearing force at 3000 rpm, includes m·(e+de)·ω² = {force} N");

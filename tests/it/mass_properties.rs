@@ -255,3 +255,115 @@ fn the_reviews_design_table_has_the_mass_properties() {
          and the output; not the crank shaft, its bearings or the rollers</td></tr>"
     )));
 }
+
+/// `NEAR_CIRCLE` at eccentricity `e_mm` with rollers that turn on their pins and the given
+/// `reducer.roller_inertia_kgm2` line (`""`: none).
+fn spinning(e_mm: &str, inertia: &str) -> String {
+    NEAR_CIRCLE
+        .replacen(
+            "eccentricity_mm: 1.0e-7",
+            &format!("eccentricity_mm: {e_mm}"),
+            1,
+        )
+        .replacen(
+            "  output_inertia_kgm2: 0.002\n",
+            &format!(
+                "  output_inertia_kgm2: 0.002\n  friction:\n    rollers: {{ mode: rotating, \
+                 bore_radius_mm: 2.0, mu: 0.05 }}\n{inertia}"
+            ),
+            1,
+        )
+}
+
+/// The complete elliptic integral of the second kind E(k) by the arithmetic-geometric mean:
+/// a₀ = 1, b₀ = √(1 − k²), c₀ = k; E = K·(1 − Σ 2ⁿ⁻¹·cₙ²), K = π/(2·a_N) (Abramowitz & Stegun
+/// 17.6), to round-off.
+fn elliptic_e(k: f64) -> f64 {
+    let (mut a, mut b, mut c) = (1.0_f64, (1.0 - k * k).sqrt(), k);
+    let (mut sum, mut weight) = (0.5 * c * c, 0.5);
+    while c.abs() > 1e-17 {
+        let next = (0.5 * (a + b), (a * b).sqrt(), 0.5 * (a - b));
+        (a, b, c) = next;
+        weight *= 2.0;
+        sum += weight * c * c;
+    }
+    PI / (2.0 * a) * (1.0 - sum)
+}
+
+/// The rollers' spin in the inertia at the input: each roller rolls on the disc at
+/// Ωᵢ = (ω/nc)·(dᵢ − Rrp)/Rrp, dᵢ its centre's distance from the pitch point e·np
+/// (`geometry::roller_spin`), so J_r·Σ(Ωᵢ/ω)² averaged over a turn is
+/// J_r·np·⟨(d − Rrp)²⟩/(nc·Rrp)², with ⟨d²⟩ = Rp² + (e·np)² and ⟨d⟩ = (2(a + b)/π)·E(k),
+/// a = Rp, b = e·np, k = 2√(ab)/(a + b): at e = 1 mm (K1 = 0.3) against that closed form, and
+/// in the e → 0 limit against np·J_r·((Rp − Rrp)/(nc·Rrp))² (every roller spins alike).
+/// Tolerance 1e-12: the engine's trapezoid rule on a periodic analytic integrand is exact to
+/// round-off, as is the AGM.
+#[test]
+fn the_rollers_spin_adds_its_closed_form_to_the_inertia_at_the_input() {
+    let (rp, rr, np, nc, jr) = (40.0_f64, 4.0_f64, 12.0_f64, 11.0_f64, 2.0e-8);
+    let rollers_kgm2 = |e_mm: &str| {
+        let with =
+            cycloid::spec::parse("s.yaml", &spinning(e_mm, "  roller_inertia_kgm2: 2.0e-8\n"));
+        let without = cycloid::spec::parse("s.yaml", &spinning(e_mm, ""));
+        let j = |spec: cycloid::spec::Spec| {
+            let run = check(&spec, &CheckOptions::default(), &Silent).unwrap();
+            (
+                run.mass.input_inertia_kgmm2 * 1e-6,
+                run.mass.rollers_kgmm2 * 1e-6,
+            )
+        };
+        let ((with, share), (without, none)) = (j(with.unwrap()), j(without.unwrap()));
+        assert_eq!(none, 0.0);
+        assert!((with - without - share).abs() <= 1e-15 * with);
+        share
+    };
+    let (a, b) = (rp, 1.0 * np);
+    let mean_d = 2.0 * (a + b) / PI * elliptic_e(2.0 * (a * b).sqrt() / (a + b));
+    let mean_square = a * a + b * b + rr * rr - 2.0 * rr * mean_d;
+    let closed = jr * np * mean_square / (nc * rr).powi(2);
+    let got = rollers_kgm2("1.0");
+    assert!((got / closed - 1.0).abs() < 1e-12, "{got} vs {closed}");
+    let limit = jr * np * ((rp - rr) / (nc * rr)).powi(2);
+    let got = rollers_kgm2("1.0e-7");
+    // The limit is off by O(e²·np²/Rp²) = 1e-14 at e = 1e-7 mm.
+    assert!((got / limit - 1.0).abs() < 1e-12, "{got} vs {limit}");
+}
+
+/// `reducer.roller_inertia_kgm2` is refused where written for rollers that do not turn (fixed,
+/// or no friction mode given) and when negative.
+#[test]
+fn a_roller_inertia_for_rollers_that_do_not_turn_is_refused_where_written() {
+    let given = spinning("1.0", "  roller_inertia_kgm2: 2.0e-8\n");
+    let cases = [
+        (
+            given.replace("mode: rotating, bore_radius_mm: 2.0,", "mode: fixed,"),
+            "are fixed",
+        ),
+        (
+            given.replace(
+                "  friction:\n    rollers: { mode: rotating, bore_radius_mm: 2.0, mu: 0.05 }\n",
+                "",
+            ),
+            "have no friction mode given",
+        ),
+        (
+            given.replace("2.0e-8", "-2.0e-8"),
+            "must be zero or positive",
+        ),
+    ];
+    for (text, rule) in cases {
+        let line = 1 + text
+            .lines()
+            .position(|l| l.starts_with("  roller_inertia_kgm2:"))
+            .unwrap();
+        let shown = cycloid::spec::parse("s.yaml", &text)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            shown.starts_with(&format!("s.yaml:{line}:3:"))
+                && shown.contains("reducer.roller_inertia_kgm2")
+                && shown.contains(rule),
+            "{shown}"
+        );
+    }
+}

@@ -159,6 +159,10 @@ fn print_run(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()
         print(out, &format!("{w}\n"))?;
     }
     print(out, &report::table::render_summary(&run.summaries))?;
+    print(
+        out,
+        &report::mass_properties::headlines(spec, &run.mass, &run.unbalance),
+    )?;
     for note in report::explain::notes(spec) {
         print(out, &format!("note: {note}\n"))?;
     }

@@ -3,8 +3,8 @@
 
 use crate::geometry::mass_properties::{disc_mass, DiscMass};
 use crate::geometry::placement::disc_body;
+use crate::geometry::roller_spin::mean_square_spin_ratio;
 use crate::geometry::Vec2;
-use crate::model::{Design, Modification};
 use crate::model::{Effect, Plan};
 use crate::spec::Spec;
 use crate::units;
@@ -15,21 +15,37 @@ pub struct MassProperties {
     /// One disc (the discs are identical).
     pub disc: DiscMass,
     /// J_in, kg·mm²: Σ over the discs of m·e² + J_c/nc², plus the output's J_out/nc² (the
-    /// output turns at ω/nc); the rollers, pins, crank shaft and its bearings are not in it.
+    /// output turns at ω/nc), plus the rollers' spin when they turn and their inertia is given;
+    /// the pins, crank shaft and its bearings are not in it.
     pub input_inertia_kgmm2: f64,
+    /// The discs' share of J_in, Σ (m·e² + J_c/nc²), kg·mm².
+    pub discs_kgmm2: f64,
+    /// The output's share of J_in, J_out/nc², kg·mm².
+    pub output_kgmm2: f64,
+    /// The rollers' spin's share of J_in, J_r·⟨Σ(Ωᵢ/ω)²⟩ (`geometry::roller_spin`), kg·mm²: 0
+    /// unless they turn and `reducer.roller_inertia_kgm2` is given.
+    pub rollers_kgmm2: f64,
 }
 
-/// The mass properties of `design`'s discs under `modification`, with the disc's form error
+/// The mass properties of `spec`'s discs under its modification, with the disc's form error
 /// when it has one: the face inside the profile's polygon within `SECTION_TOLERANCE_MM`, less
-/// the output-pin holes and the bore of `disc_solid`, over the face width at the density.
-pub fn mass_properties(design: &Design, modification: &Modification) -> MassProperties {
-    let disc = disc_mass(design, modification);
+/// the output-pin holes and the bore of `disc_solid`, over the face width at the density; and
+/// the inertia at the input, with the rollers' spin when the spec gives their inertia (only
+/// for rollers that turn).
+pub fn mass_properties(spec: &Spec) -> MassProperties {
+    let design = &spec.design;
+    let disc = disc_mass(design, &spec.modification);
     let nc = design.teeth as f64;
     let discs =
         design.discs as f64 * disc.input_inertia_kgmm2(design.eccentricity_mm, design.teeth);
+    let output = design.output_inertia_kgmm2 / (nc * nc);
+    let rollers = spec.roller_inertia_kgmm2 * mean_square_spin_ratio(design);
     MassProperties {
         disc,
-        input_inertia_kgmm2: discs + design.output_inertia_kgmm2 / (nc * nc),
+        input_inertia_kgmm2: discs + output + rollers,
+        discs_kgmm2: discs,
+        output_kgmm2: output,
+        rollers_kgmm2: rollers,
     }
 }
 

@@ -124,8 +124,18 @@ impl DiscMass {
     /// about its centre; a centroid off the centre by d adds a term m·e·d·ω²/nc·cos(…) that
     /// averages to zero over a turn.
     pub fn input_inertia_kgmm2(&self, eccentricity_mm: f64, teeth: usize) -> f64 {
+        self.orbit_inertia_kgmm2(eccentricity_mm) + self.turning_inertia_kgmm2(teeth)
+    }
+
+    /// m·e², kg·mm²: the orbit's share of `input_inertia_kgmm2`.
+    pub fn orbit_inertia_kgmm2(&self, eccentricity_mm: f64) -> f64 {
+        self.mass_kg * eccentricity_mm * eccentricity_mm
+    }
+
+    /// J_c/nc², kg·mm²: the disc's own turning at −ω/nc, its share of `input_inertia_kgmm2`.
+    pub fn turning_inertia_kgmm2(&self, teeth: usize) -> f64 {
         let nc = teeth as f64;
-        self.mass_kg * eccentricity_mm * eccentricity_mm + self.inertia_kgmm2 / (nc * nc)
+        self.inertia_kgmm2 / (nc * nc)
     }
 }
 

@@ -10,6 +10,7 @@ pub mod mesh_minimum;
 pub mod placement;
 pub mod polyline;
 pub mod profile;
+pub mod roller_spin;
 
 pub type Vec2 = nalgebra::Vector2<f64>;
 

@@ -53,6 +53,8 @@ fn with_input<T>(
         efficiency: &review.efficiency,
         face: &review.face,
         solid: review.solid.as_ref(),
+        mass: Some(&run.mass),
+        unbalance: &run.unbalance,
     };
     f(&input)
 }

@@ -195,6 +195,7 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
     let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
     out += &discs_line(spec);
     out += &friction_lines(spec);
+    out += &super::mass_properties::explain_design(spec);
     let deviations = deviation_lines(&spec.design.deviations);
     if !deviations.is_empty() {
         out += &format!(
@@ -211,7 +212,7 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
             out += &format!("  deviation {line}\n");
         }
     }
-    for scene in &spec.scenes {
+    for (k, scene) in spec.scenes.iter().enumerate() {
         let plan = scene::plan(spec, scene, writes);
         let first = units::deg(scene.crank_rad.first().copied().unwrap_or(0.0));
         let step = match scene.crank_rad.as_slice() {
@@ -262,6 +263,9 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
         if plan.has(Effect::RollerContact) && !plan.has(Effect::OutputPins) {
             out +=
                 "  note    output pins not modelled: loaded TE is the disc lag β alone (βo = 0)\n";
+        }
+        if plan.has(Effect::Inertia) {
+            out += &super::mass_properties::explain_scene(spec, k, scene);
         }
         for p in &plan.effects {
             out += &format!("  compute {:<15} {}\n", p.effect.name(), p.reason);

@@ -15,6 +15,7 @@ pub mod fit;
 pub mod golden;
 pub mod json;
 pub mod junit;
+pub mod mass_properties;
 pub mod optimisation;
 pub mod review;
 pub mod step;

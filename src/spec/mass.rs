@@ -1,9 +1,11 @@
-//! `reducer.material.density_kg_per_m3` and `reducer.output_inertia_kgm2`: what the discs'
-//! mass and the inertia at the input are computed from.
+//! `reducer.material.density_kg_per_m3`, `reducer.output_inertia_kgm2` and
+//! `reducer.roller_inertia_kgm2`: what the discs' mass and the inertia at the input are
+//! computed from.
 
 use super::raw::RawReducer;
 use super::values::{finite, positive};
 use crate::error::{Error, Result};
+use crate::model::{Design, RollerMode};
 use crate::{numeric, units};
 
 /// Default density of every part (a spec's and the requirements'): steel, 7,850 kg/m³.
@@ -47,4 +49,38 @@ pub(super) fn inputs(raw: &RawReducer) -> Result<MassInputs> {
         density_kg_per_mm3: units::kg_per_mm3(density),
         output_inertia_kgmm2: units::kgmm2(output),
     })
+}
+
+/// `reducer.roller_inertia_kgm2`, kg·mm² (0 when not given): ≥ 0, and only for rollers that
+/// turn on their pins (`reducer.friction.rollers.mode: rotating`): a fixed roller does not
+/// spin, and a value that changes nothing would mislead.
+pub(super) fn roller_inertia(kgm2: Option<f64>, design: &Design) -> Result<f64> {
+    let key = "reducer.roller_inertia_kgm2";
+    let Some(j) = kgm2 else {
+        return Ok(0.0);
+    };
+    let j = finite(key, j)?;
+    if j < 0.0 {
+        return Err(Error::invalid(
+            key,
+            format!("must be zero or positive, got {}", numeric::input(j)),
+        ));
+    }
+    let rollers = design.friction.and_then(|f| f.rollers).map(|r| r.mode);
+    if !matches!(rollers, Some(RollerMode::Rotating { .. })) {
+        return Err(Error::invalid(
+            key,
+            format!(
+                "the rollers spin only when they turn on their pins \
+                 (`reducer.friction.rollers.mode: rotating`); here they {}, so {} kg·m² would \
+                 change nothing: remove it or give rotating rollers",
+                match rollers {
+                    Some(_) => "are fixed",
+                    None => "have no friction mode given",
+                },
+                numeric::input(j)
+            ),
+        ));
+    }
+    Ok(units::kgmm2(j))
 }

@@ -254,6 +254,10 @@ pub(crate) struct RawReducer {
     /// the input (absent: 0).
     #[serde(default)]
     pub output_inertia_kgm2: Option<f64>,
+    /// Each roller's inertia about its own axis, kg·m², for the rollers' spin in the inertia
+    /// at the input when they turn (absent: not counted).
+    #[serde(default)]
+    pub roller_inertia_kgm2: Option<f64>,
 }
 
 /// `reducer.friction` (MODEL.md "Friction, efficiency and heat"): a path not given has no

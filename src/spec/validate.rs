@@ -602,7 +602,9 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     if raw.name.trim().is_empty() {
         return Err(Error::invalid("name", "must not be empty".into()));
     }
+    let roller_inertia_kgm2 = raw.reducer.roller_inertia_kgm2;
     let design = design(raw.reducer)?;
+    let roller_inertia_kgmm2 = super::mass::roller_inertia(roller_inertia_kgm2, &design)?;
     let modification = modification(&raw.modification)?;
     super::deviations::check(&design, &modification)?;
     if raw.scenes.is_empty() {
@@ -718,6 +720,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         golden_root,
         studies,
         accuracy,
+        roller_inertia_kgmm2,
     })
 }
 

@@ -142,3 +142,81 @@ fn inertia_is_refused_where_it_is_not_built_or_has_no_speed() {
         assert_eq!(cycloid(&dir.path, &["check", "bad.yaml"]).code(), 2, "{name}");
     }
 }
+
+/// F_c = m·e·ω² as a person reads it (four significant digits, `numeric::number`), from the
+/// JSON's disc mass and worked out here.
+fn shown(x: f64) -> String {
+    cycloid::numeric::number(x)
+}
+
+/// What a person reads of the scene at speed: the terminal's unbalance line, `--explain`'s
+/// formula with its numbers and where the force enters, the review's crank-bearing plot
+/// ("at 3000 rpm, includes m·(e+de)·ω² = …") and the scene's note with the couple F_c·B
+/// (B = 8 mm between the mid-planes of the two discs side by side).
+#[test]
+fn the_terminal_explain_and_review_say_the_force_at_speed_and_the_unbalance() {
+    let dir = Scratch::new("inertia-text");
+    dir.write("s.yaml", SPEC);
+    let run = cycloid(
+        &dir.path,
+        &["check", "s.yaml", "--json", "r.json", "--report", "review"],
+    );
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let json: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    let fc = centripetal_n(&json);
+    let m = json["disc_mass_kg"].as_f64().unwrap();
+    let (force, couple) = (shown(fc), shown(fc * 8e-3));
+    let line = (run.stdout.lines())
+        .find(|l| l.starts_with("scene `fast` at 3000 rpm"))
+        .unwrap_or_else(|| panic!("{}", run.stdout));
+    let head = format!(
+        "scene `fast` at 3000 rpm: each disc's centripetal force {force} N; unbalance on the \
+         crank "
+    );
+    assert!(line.starts_with(&head), "{line}");
+    assert!(
+        line.ends_with(&format!(" N, couple {couple} N·m")),
+        "{line}"
+    );
+    // The residual force is round-off of F_c (cos π = −1 to an ulp).
+    let residual: f64 = line[head.len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(residual.abs() <= 1e-12 * fc, "{line}");
+
+    let explain = cycloid(&dir.path, &["check", "s.yaml", "--explain"]).stdout;
+    let w = 3000.0 * TAU / 60.0;
+    let formula = format!(
+        "  note    inertia: each disc's centripetal force F_c = m·(e+de)·ω² = {} kg × 0.002000 m \
+         × ({} rad/s)² = {force} N at 3000 rpm, pulled by its crank bearing toward the crank \
+         (−e_φ): in the crank bearing's force at every angle, its life and (with strength) its \
+         static safety",
+        shown(m),
+        shown(w)
+    );
+    assert!(explain.contains(&formula), "{explain}");
+    assert!(explain.contains(&format!(
+        "a couple of {couple} N·m about their mean mid-plane"
+    )));
+
+    let html = dir.read("review/index.html");
+    let title = format!("Crank-bearing force at 3000 rpm, includes m·(e+de)·ω² = {force} N");
+    for k in 0..2 {
+        let svg = dir.read(&format!("review/scene-2-fast-disc-{k}-bearing-force.svg"));
+        assert!(svg.contains(&title), "disc {k}");
+    }
+    assert!(html.contains(&format!("<b>{title}</b>")));
+    assert!(html.contains(&format!(
+        "F_c = m·(e+de)·ω² = {force} N (effect inertia): in the bearing's force at every \
+         angle, its life and static safety; the contacts are those without it. The 2 discs \
+         leave on the crank an unbalance force of "
+    )));
+    assert!(html.contains(&format!("N and a couple of {couple} N·m.</p>")));
+    // The scene without `inertia` says nothing of speed.
+    assert!(!dir
+        .read("review/scene-1-rated-disc-0-clearance.svg")
+        .contains("rpm"));
+}

@@ -189,3 +189,181 @@ fn bad_mass_inputs_are_refused_where_written() {
         assert!(shown.starts_with(at) && shown.contains(key), "{shown}");
     }
 }
+
+/// The annulus's closed forms of `NEAR_CIRCLE` (above): one disc's mass and J_c, and J_in, kg
+/// and kg·m², as numbers for a person (`numeric::number`, four significant digits). The
+/// polygon's 1e-6 relative sliver is far from moving a fourth digit here (the closed forms
+/// are 0.0905910, 6.54691e-5, 5.41067e-7, 1.761106e-5).
+fn near_circle_figures() -> [String; 6] {
+    let (r, rh, rw, bore) = (36.0_f64, 4.0 + 1e-7, 22.0_f64, 10.0_f64);
+    let area = PI * r * r - 8.0 * PI * rh * rh - PI * bore * bore;
+    let polar = 0.5 * PI * r.powi(4)
+        - 8.0 * PI * rh * rh * (0.5 * rh * rh + rw * rw)
+        - 0.5 * PI * bore.powi(4);
+    let per_mm2 = 2700e-9 * 10.0;
+    let (mass, jc) = (per_mm2 * area, per_mm2 * polar * 1e-6);
+    let orbit = mass * 1e-20;
+    let j_in = 2.0 * (orbit + jc / 121.0) + 0.002 / 121.0;
+    [mass, jc, j_in, orbit, jc / 121.0, 0.002 / 121.0].map(cycloid::numeric::number)
+}
+
+/// The terminal states each disc's mass and J_c and the inertia at the input after the
+/// headline results, and what J_in includes; `--explain` gives J_in's formula with its
+/// numbers: the annulus's closed forms.
+#[test]
+fn the_terminal_and_explain_state_the_mass_and_the_inertia_at_the_input() {
+    let dir = crate::common::Scratch::new("mass-text");
+    dir.write("s.yaml", NEAR_CIRCLE);
+    let [mass, jc, j_in, orbit, turning, output] = near_circle_figures();
+    let out = crate::common::cycloid(&dir.path, &["check", "s.yaml"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let line = format!(
+        "mass: each disc {mass} kg, J_c {jc} kg·m²; inertia at the input J_in {j_in} kg·m² (the \
+         discs' orbit and turning and the output; not the crank shaft, its bearings or the \
+         rollers)\n"
+    );
+    assert!(out.stdout.contains(&line), "{}", out.stdout);
+    let out = crate::common::cycloid(&dir.path, &["check", "s.yaml", "--explain"]);
+    let formula = format!(
+        "  inertia at the input J_in = Σ(m·e² + J_c/nc²) + J_out/i² = 2 × ({orbit} + {turning}) \
+         + {output} = {j_in} kg·m² (m·e² at e 1.000e-7 mm, nc = i = 11, J_out 0.002000 kg·m²)"
+    );
+    assert!(out.stdout.contains(&formula), "{}", out.stdout);
+    assert!(out.stdout.contains(&format!(
+        "mass (density ρ 2700 kg/m³): each disc {mass} kg from its exact profile less the pin \
+         holes and the bore, J_c {jc} kg·m² about its centre\n"
+    )));
+}
+
+/// The review's design table has the mass-properties row (mass, density, J_c, centroid offset)
+/// and J_in with what it includes: the annulus's closed forms.
+#[test]
+fn the_reviews_design_table_has_the_mass_properties() {
+    let dir = crate::common::Scratch::new("mass-review");
+    dir.write("s.yaml", NEAR_CIRCLE);
+    let out = crate::common::cycloid(&dir.path, &["check", "s.yaml", "--report", "review"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let html = dir.read("review/index.html");
+    let [mass, jc, j_in, ..] = near_circle_figures();
+    let row = format!(
+        "<tr><th>mass properties (each disc)</th><td>mass {mass} kg at density ρ 2700 kg/m³, \
+         polar inertia J_c {jc} kg·m² about its centre, centroid "
+    );
+    assert!(html.contains(&row), "{html}");
+    assert!(html.contains(&format!(
+        "<tr><th>inertia at the input J_in</th><td>{j_in} kg·m²: the discs' orbit and turning \
+         and the output; not the crank shaft, its bearings or the rollers</td></tr>"
+    )));
+}
+
+/// `NEAR_CIRCLE` at eccentricity `e_mm` with rollers that turn on their pins and the given
+/// `reducer.roller_inertia_kgm2` line (`""`: none).
+fn spinning(e_mm: &str, inertia: &str) -> String {
+    NEAR_CIRCLE
+        .replacen(
+            "eccentricity_mm: 1.0e-7",
+            &format!("eccentricity_mm: {e_mm}"),
+            1,
+        )
+        .replacen(
+            "  output_inertia_kgm2: 0.002\n",
+            &format!(
+                "  output_inertia_kgm2: 0.002\n  friction:\n    rollers: {{ mode: rotating, \
+                 bore_radius_mm: 2.0, mu: 0.05 }}\n{inertia}"
+            ),
+            1,
+        )
+}
+
+/// The complete elliptic integral of the second kind E(k) by the arithmetic-geometric mean:
+/// a₀ = 1, b₀ = √(1 − k²), c₀ = k; E = K·(1 − Σ 2ⁿ⁻¹·cₙ²), K = π/(2·a_N) (Abramowitz & Stegun
+/// 17.6), to round-off.
+fn elliptic_e(k: f64) -> f64 {
+    let (mut a, mut b, mut c) = (1.0_f64, (1.0 - k * k).sqrt(), k);
+    let (mut sum, mut weight) = (0.5 * c * c, 0.5);
+    while c.abs() > 1e-17 {
+        let next = (0.5 * (a + b), (a * b).sqrt(), 0.5 * (a - b));
+        (a, b, c) = next;
+        weight *= 2.0;
+        sum += weight * c * c;
+    }
+    PI / (2.0 * a) * (1.0 - sum)
+}
+
+/// The rollers' spin in the inertia at the input: each roller rolls on the disc at
+/// Ωᵢ = (ω/nc)·(dᵢ − Rrp)/Rrp, dᵢ its centre's distance from the pitch point e·np
+/// (`geometry::roller_spin`), so J_r·Σ(Ωᵢ/ω)² averaged over a turn is
+/// J_r·np·⟨(d − Rrp)²⟩/(nc·Rrp)², with ⟨d²⟩ = Rp² + (e·np)² and ⟨d⟩ = (2(a + b)/π)·E(k),
+/// a = Rp, b = e·np, k = 2√(ab)/(a + b): at e = 1 mm (K1 = 0.3) against that closed form, and
+/// in the e → 0 limit against np·J_r·((Rp − Rrp)/(nc·Rrp))² (every roller spins alike).
+/// Tolerance 1e-12: the engine's trapezoid rule on a periodic analytic integrand is exact to
+/// round-off, as is the AGM.
+#[test]
+fn the_rollers_spin_adds_its_closed_form_to_the_inertia_at_the_input() {
+    let (rp, rr, np, nc, jr) = (40.0_f64, 4.0_f64, 12.0_f64, 11.0_f64, 2.0e-8);
+    let rollers_kgm2 = |e_mm: &str| {
+        let with =
+            cycloid::spec::parse("s.yaml", &spinning(e_mm, "  roller_inertia_kgm2: 2.0e-8\n"));
+        let without = cycloid::spec::parse("s.yaml", &spinning(e_mm, ""));
+        let j = |spec: cycloid::spec::Spec| {
+            let run = check(&spec, &CheckOptions::default(), &Silent).unwrap();
+            (
+                run.mass.input_inertia_kgmm2 * 1e-6,
+                run.mass.rollers_kgmm2 * 1e-6,
+            )
+        };
+        let ((with, share), (without, none)) = (j(with.unwrap()), j(without.unwrap()));
+        assert_eq!(none, 0.0);
+        assert!((with - without - share).abs() <= 1e-15 * with);
+        share
+    };
+    let (a, b) = (rp, 1.0 * np);
+    let mean_d = 2.0 * (a + b) / PI * elliptic_e(2.0 * (a * b).sqrt() / (a + b));
+    let mean_square = a * a + b * b + rr * rr - 2.0 * rr * mean_d;
+    let closed = jr * np * mean_square / (nc * rr).powi(2);
+    let got = rollers_kgm2("1.0");
+    assert!((got / closed - 1.0).abs() < 1e-12, "{got} vs {closed}");
+    let limit = jr * np * ((rp - rr) / (nc * rr)).powi(2);
+    let got = rollers_kgm2("1.0e-7");
+    // The limit is off by O(e²·np²/Rp²) = 1e-14 at e = 1e-7 mm.
+    assert!((got / limit - 1.0).abs() < 1e-12, "{got} vs {limit}");
+}
+
+/// `reducer.roller_inertia_kgm2` is refused where written for rollers that do not turn (fixed,
+/// or no friction mode given) and when negative.
+#[test]
+fn a_roller_inertia_for_rollers_that_do_not_turn_is_refused_where_written() {
+    let given = spinning("1.0", "  roller_inertia_kgm2: 2.0e-8\n");
+    let cases = [
+        (
+            given.replace("mode: rotating, bore_radius_mm: 2.0,", "mode: fixed,"),
+            "are fixed",
+        ),
+        (
+            given.replace(
+                "  friction:\n    rollers: { mode: rotating, bore_radius_mm: 2.0, mu: 0.05 }\n",
+                "",
+            ),
+            "have no friction mode given",
+        ),
+        (
+            given.replace("2.0e-8", "-2.0e-8"),
+            "must be zero or positive",
+        ),
+    ];
+    for (text, rule) in cases {
+        let line = 1 + text
+            .lines()
+            .position(|l| l.starts_with("  roller_inertia_kgm2:"))
+            .unwrap();
+        let shown = cycloid::spec::parse("s.yaml", &text)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            shown.starts_with(&format!("s.yaml:{line}:3:"))
+                && shown.contains("reducer.roller_inertia_kgm2")
+                && shown.contains(rule),
+            "{shown}"
+        );
+    }
+}

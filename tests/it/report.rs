@@ -387,6 +387,8 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         efficiency: &[],
         face: &[],
         solid: None,
+        mass: None,
+        unbalance: &[],
     });
     // CYCLOID_KEEP_REPORT=DIR keeps the synthetic report to look at.
     if let Some(dir) = std::env::var_os("CYCLOID_KEEP_REPORT") {
@@ -454,6 +456,8 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         efficiency: &[],
         face: &[],
         solid: None,
+        mass: None,
+        unbalance: &[],
     });
     assert!(!files.iter().any(|(n, _)| n.starts_with("optimisation")));
     assert!(!page(&files).contains("<h2>Optimisation</h2>"));

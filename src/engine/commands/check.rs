@@ -246,7 +246,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
         }),
         None => None,
     };
-    let mass = mass_properties(&spec.design, &spec.modification);
+    let mass = mass_properties(&spec);
     Ok(CheckRun {
         unbalance: unbalances(&spec, &mass.disc),
         mass,

@@ -12,7 +12,11 @@ use maud::{html, Markup};
 
 /// The design as the spec gives it, with the modification `m` it was designed with (the
 /// spec's own; with a measured disc the scenes ran on the identified one, `as_built`).
-pub(super) fn section(spec: &Spec, m: &Modification) -> Section {
+pub(super) fn section(
+    spec: &Spec,
+    m: &Modification,
+    mass: Option<&crate::engine::mass_properties::MassProperties>,
+) -> Section {
     let d = &spec.design;
     let mm = |x: f64| format!("{} mm", number(x));
     let (disc, rollers) = (&d.disc_material, &d.roller_material);
@@ -41,6 +45,10 @@ pub(super) fn section(spec: &Spec, m: &Modification) -> Section {
                 number(b.dynamic_load_rating_n), number(b.life_exponent))))
         }
         @for (k, v) in friction_rows(d.friction.as_ref(), d.thermal.as_ref()) {
+            (row(k, v))
+        }
+        @for (k, v) in mass.map(|m| crate::report::mass_properties::design_rows(spec, m))
+            .into_iter().flatten() {
             (row(k, v))
         }
     };

@@ -78,6 +78,11 @@ pub struct ReportInput<'a> {
     pub face: &'a [crate::engine::face_profile::FaceProfile],
     /// The disc as a solid, pictured beside the drawing (`None`: no picture).
     pub solid: Option<&'a crate::engine::commands::solid_picture::SolidPicture>,
+    /// The discs' mass properties, for the design table (`None`: no row).
+    pub mass: Option<&'a crate::engine::mass_properties::MassProperties>,
+    /// The unbalance of each scene that computes `inertia`, for its section and its crank
+    /// bearing's plot.
+    pub unbalance: &'a [crate::engine::mass_properties::Unbalance],
 }
 
 /// The report's files, (file name, content): the SVGs, then `index.html` last.
@@ -89,7 +94,7 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         .map_or(input.spec.modification, |v| v.designed_modification);
     let mut sections = vec![
         summary::section(input.spec, input.results),
-        design::section(input.spec, &designed),
+        design::section(input.spec, &designed, input.mass),
     ];
     if let Some(view) = &input.as_built {
         let built = as_built::section(input.spec, view, input.results, &mut files);
@@ -106,7 +111,13 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         &mut files,
     ));
     for (k, (scene, r)) in input.spec.scenes.iter().zip(input.results).enumerate() {
-        sections.extend(scenes::section(input.spec, k, scene, r, &mut files));
+        let unbalance = input.unbalance.iter().find(|u| u.scene == k);
+        sections.extend(scenes::section(
+            input.spec,
+            (k, scene, r),
+            unbalance,
+            &mut files,
+        ));
     }
     sections.extend(face::section(
         input.spec,

@@ -55,6 +55,9 @@ struct PlotDef {
     /// `SMALL_RIPPLE` of the mean's magnitude, y = 0 is kept inside the axis, so that the curve
     /// reads as the near-constant it is, and the title states the ripple.
     ripple_in_title: bool,
+    /// A scene at speed (`inertia`) says so in the title: the speed and the centripetal
+    /// force the curve includes.
+    speed_in_title: bool,
     caption: &'static str,
 }
 
@@ -70,6 +73,7 @@ const PLOT: PlotDef = PlotDef {
     include_zero: false,
     reference: None,
     ripple_in_title: false,
+    speed_in_title: false,
     caption: "",
 };
 
@@ -180,8 +184,10 @@ const PLOTS: &[PlotDef] = &[
         title: "Crank-bearing force",
         curves: &[&q::BEARING_FORCE],
         include_zero: true,
+        speed_in_title: true,
         caption: "Magnitude of the force of the crank bearing on the disc, −(Σ roller + Σ pin \
-                  forces).",
+                  forces), and at speed (effect inertia) the pull m·(e+de)·ω² that keeps the \
+                  disc's centre on its orbit.",
         ..PLOT
     },
     PlotDef {
@@ -242,17 +248,30 @@ fn crank_axis(r: &SceneResult) -> (Vec<f64>, Option<(f64, f64)>) {
     (x, range)
 }
 
-/// Every plot of a scene; files are named `{prefix}-{plot}.svg`.
-pub fn scene_plots(spec: &Spec, r: &SceneResult, prefix: &str) -> Vec<Plot> {
+/// Every plot of a scene; files are named `{prefix}-{plot}.svg`. `at_speed`: what a scene at
+/// speed adds to the title of the plots that include the centripetal force
+/// (`report::mass_properties::bearing_plot_note`).
+pub fn scene_plots(
+    spec: &Spec,
+    r: &SceneResult,
+    prefix: &str,
+    at_speed: Option<&str>,
+) -> Vec<Plot> {
     PLOTS
         .iter()
-        .flat_map(|def| plot(spec, r, def, prefix))
+        .flat_map(|def| plot(spec, r, def, prefix, at_speed))
         .collect()
 }
 
 /// One plot (and its heat map when the curves are too many), or nothing when the scene did not
 /// compute its curves.
-fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> {
+fn plot(
+    spec: &Spec,
+    r: &SceneResult,
+    def: &PlotDef,
+    prefix: &str,
+    at_speed: Option<&str>,
+) -> Vec<Plot> {
     let drawn: Vec<(&Quantity, Curves)> = def
         .curves
         .iter()
@@ -277,6 +296,9 @@ fn plot(spec: &Spec, r: &SceneResult, def: &PlotDef, prefix: &str) -> Vec<Plot> 
             x.len(),
             if x.len() == 1 { "" } else { "s" }
         );
+    }
+    if let (true, Some(note)) = (def.speed_in_title, at_speed) {
+        title += &format!(" {note}");
     }
     let small = def.ripple_in_title.then(|| small_ripple(&drawn)).flatten();
     if let Some(ripple) = small {

@@ -3,6 +3,7 @@
 
 use super::common::{figure, slug, Section};
 use super::plots;
+use crate::engine::mass_properties::Unbalance;
 use crate::model::results::SceneResult;
 use crate::model::{ContactLaw, Effect, Plan, Scene};
 use crate::numeric::number;
@@ -11,15 +12,18 @@ use crate::units;
 use maud::html;
 
 /// A scene's plots, or nothing when it computed no curve a plot draws.
+/// `unbalance`: the scene's at speed, when it computes `inertia`.
 pub(super) fn section(
     spec: &Spec,
-    k: usize,
-    scene: &Scene,
-    r: &SceneResult,
+    (k, scene, r): (usize, &Scene, &SceneResult),
+    unbalance: Option<&Unbalance>,
     files: &mut Vec<(String, String)>,
 ) -> Option<Section> {
     let prefix = format!("scene-{}-{}", k + 1, slug(&scene.name));
-    let plots = plots::scene_plots(spec, r, &prefix);
+    // A duty cycle's curves are its bins', each at its own speed: no one speed to name.
+    let at_speed = (unbalance.filter(|_| scene.duty_cycle.is_none()))
+        .map(crate::report::mass_properties::bearing_plot_note);
+    let plots = plots::scene_plots(spec, r, &prefix, at_speed.as_deref());
     // With several discs, each disc's own curves (forces, lags, bearing, its torque share).
     let discs: Vec<(usize, Vec<plots::Plot>)> = r
         .discs
@@ -28,7 +32,12 @@ pub(super) fn section(
         .map(|(d, disc)| {
             (
                 d,
-                plots::scene_plots(spec, disc, &format!("{prefix}-disc-{d}")),
+                plots::scene_plots(
+                    spec,
+                    disc,
+                    &format!("{prefix}-disc-{d}"),
+                    at_speed.as_deref(),
+                ),
             )
         })
         .filter(|(_, p)| !p.is_empty())
@@ -39,6 +48,9 @@ pub(super) fn section(
     let phase = |d: usize| number(units::deg(spec.design.disc_phase_rad(d)));
     let body = html! {
         p.note { (scene_summary(spec, scene)) }
+        @if let Some(u) = unbalance {
+            p.note { (crate::report::mass_properties::scene_note(spec, u)) }
+        }
         @if !plots.is_empty() {
             div.grid { @for p in &plots { (figure(&p.file, &p.title, &p.caption)) } }
         }

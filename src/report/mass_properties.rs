@@ -1,0 +1,196 @@
+//! The reducer's mass properties and the discs at speed in words (issue 42,
+//! [`engine::mass_properties`](crate::engine::mass_properties)): the design table's rows, the
+//! terminal's lines after the headline results, `check --explain`'s lines and the crank
+//! bearing's plot at speed.
+
+use crate::engine::mass_properties::{mass_properties, unbalances, MassProperties, Unbalance};
+use crate::model::Scene;
+use crate::numeric::number;
+use crate::spec::Spec;
+use crate::units;
+
+/// What J_in includes, as the design table and the terminal say it.
+fn included(m: &MassProperties) -> String {
+    let mut parts = vec!["the discs' orbit and turning"];
+    if m.output_kgmm2 > 0.0 {
+        parts.push("the output");
+    }
+    let mut left_out = vec!["the crank shaft", "its bearings"];
+    match m.rollers_kgmm2 > 0.0 {
+        true => parts.push("the rollers' spin"),
+        false => left_out.push("the rollers"),
+    }
+    format!("{}; not {}", listed(&parts, "and"), listed(&left_out, "or"))
+}
+
+/// "a", "a and b", "a, b and c" (`word` "and" or "or").
+fn listed(items: &[&str], word: &str) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [rest @ .., last] => format!("{} {word} {last}", rest.join(", ")),
+    }
+}
+
+/// The design table's rows (what, value): one disc's mass properties and the inertia at the
+/// input.
+pub fn design_rows(spec: &Spec, m: &MassProperties) -> Vec<(&'static str, String)> {
+    let d = &m.disc;
+    vec![
+        (
+            "mass properties (each disc)",
+            format!(
+                "mass {} kg at density ρ {} kg/m³, polar inertia J_c {} kg·m² about its \
+                 centre, centroid {} mm off it",
+                number(d.mass_kg),
+                number(units::kg_per_m3(spec.design.density_kg_per_mm3)),
+                number(units::kgm2(d.inertia_kgmm2)),
+                number(d.centroid_offset_mm)
+            ),
+        ),
+        (
+            "inertia at the input J_in",
+            format!(
+                "{} kg·m²: {}",
+                number(units::kgm2(m.input_inertia_kgmm2)),
+                included(m)
+            ),
+        ),
+    ]
+}
+
+/// The terminal's lines after the headline results: the mass and inertia at the input, and
+/// each scene's unbalance at speed.
+pub fn headlines(spec: &Spec, m: &MassProperties, unbalance: &[Unbalance]) -> String {
+    let mut out = format!(
+        "mass: each disc {} kg, J_c {} kg·m²; inertia at the input J_in {} kg·m² ({})\n",
+        number(m.disc.mass_kg),
+        number(units::kgm2(m.disc.inertia_kgmm2)),
+        number(units::kgm2(m.input_inertia_kgmm2)),
+        included(m)
+    );
+    for u in unbalance {
+        out += &format!(
+            "scene `{}` at {} rpm: each disc's centripetal force {} N; unbalance on the crank \
+             {} N, couple {} N·m\n",
+            spec.scenes[u.scene].name,
+            number(u.input_speed_rpm),
+            number(u.disc_force_n),
+            number(u.force_n),
+            number(units::nm(u.moment_nmm))
+        );
+    }
+    out
+}
+
+/// The title's addition to the crank-bearing force plot of a scene at speed: "at 3000 rpm,
+/// includes m·(e+de)·ω² = 17.58 N".
+pub fn bearing_plot_note(u: &Unbalance) -> String {
+    format!(
+        "at {} rpm, includes m·(e+de)·ω² = {} N",
+        number(u.input_speed_rpm),
+        number(u.disc_force_n)
+    )
+}
+
+/// The scene section's note on a scene at speed: the centripetal force in the crank bearing
+/// and the unbalance the discs leave on the crank (a duty cycle's at its fastest bin).
+pub fn scene_note(spec: &Spec, u: &Unbalance) -> String {
+    let fastest = match spec.scenes[u.scene].duty_cycle {
+        Some(_) => "the fastest bin's ",
+        None => "",
+    };
+    let mut s = format!(
+        "At {fastest}{} rpm each disc's crank bearing also pulls the disc's centre onto its orbit with \
+         F_c = m·(e+de)·ω² = {} N (effect inertia): in the bearing's force at every angle, its \
+         life and static safety; the contacts are those without it.",
+        number(u.input_speed_rpm),
+        number(u.disc_force_n)
+    );
+    if spec.design.discs > 1 {
+        s += &format!(
+            " The {} discs leave on the crank an unbalance force of {} N and a couple of {} N·m.",
+            spec.design.discs,
+            number(u.force_n),
+            number(units::nm(u.moment_nmm))
+        );
+    }
+    s
+}
+
+/// `check --explain`'s lines on the design's mass: the disc's mass properties and
+/// J_in = Σ(m·e² + J_c/nc²) + J_out/i² with its numbers (i = nc, the output turning at ω/nc).
+pub fn explain_design(spec: &Spec) -> String {
+    let d = &spec.design;
+    let m = mass_properties(spec);
+    let kgm2 = |x: f64| number(units::kgm2(x));
+    let rollers = match m.rollers_kgmm2 > 0.0 {
+        true => format!(
+            " + J_r·⟨Σ(Ωᵢ/ω)²⟩ {} (the rollers' spin, J_r {} kg·m² each, rolling on the disc at \
+             Ωᵢ = (ω/nc)·(|Cᵢ − I| − Rrp)/Rrp)",
+            kgm2(m.rollers_kgmm2),
+            kgm2(spec.roller_inertia_kgmm2)
+        ),
+        false => String::new(),
+    };
+    format!(
+        "mass (density ρ {} kg/m³): each disc {} kg from its exact profile less the pin holes \
+         and the bore, J_c {} kg·m² about its centre\n  inertia at the input \
+         J_in = Σ(m·e² + J_c/nc²) + J_out/i² = {} × ({} + {}) + {}{rollers} = {} kg·m² (m·e² at \
+         e {} mm, nc = i = {}, J_out {} kg·m²); {}\n",
+        number(units::kg_per_m3(d.density_kg_per_mm3)),
+        number(m.disc.mass_kg),
+        kgm2(m.disc.inertia_kgmm2),
+        d.discs,
+        kgm2(m.disc.orbit_inertia_kgmm2(d.eccentricity_mm)),
+        kgm2(m.disc.turning_inertia_kgmm2(d.teeth)),
+        kgm2(m.output_kgmm2),
+        kgm2(m.input_inertia_kgmm2),
+        number(d.eccentricity_mm),
+        d.teeth,
+        kgm2(d.output_inertia_kgmm2),
+        included(&m)
+    )
+}
+
+/// `check --explain`'s lines on scene `k` (`scene`) computing `inertia`: F_c = m·(e+de)·ω² with
+/// its numbers at the scene's speed (each duty bin at its own), where it enters, and the
+/// discs' unbalance on the crank.
+pub fn explain_scene(spec: &Spec, k: usize, scene: &Scene) -> String {
+    let d = &spec.design;
+    let disc = mass_properties(spec).disc;
+    let e = d.built_eccentricity_mm();
+    let bins = scene.duty_cycle.iter().flatten().map(|b| b.input_speed_rpm);
+    let forces: Vec<String> = (scene.input_speed_rpm.into_iter().chain(bins))
+        .map(|rpm| {
+            let w = units::rad_per_s(rpm);
+            format!(
+                "{} kg × {} m × ({} rad/s)² = {} N at {} rpm",
+                number(disc.mass_kg),
+                number(units::m_from_mm(e)),
+                number(w),
+                number(disc.centripetal_force_n(e, w)),
+                number(rpm)
+            )
+        })
+        .collect();
+    let mut out = format!(
+        "  note    inertia: each disc's centripetal force F_c = m·(e+de)·ω² = {}, pulled by \
+         its crank bearing toward the crank (−e_φ): in the crank bearing's force at every \
+         angle, its life and (with strength) its static safety; the contacts, lags and TE are \
+         those without it\n",
+        forces.join("; ")
+    );
+    let unbalance = unbalances(spec, &disc).into_iter().find(|u| u.scene == k);
+    if let (true, Some(u)) = (d.discs > 1, unbalance) {
+        out += &format!(
+            "  note    unbalance at {} rpm: the {} discs leave on the crank a force of {} N and \
+             a couple of {} N·m about their mean mid-plane\n",
+            number(u.input_speed_rpm),
+            d.discs,
+            number(u.force_n),
+            number(units::nm(u.moment_nmm))
+        );
+    }
+    out
+}

@@ -446,3 +446,123 @@ fn miner_over_a_duty_cycle_keeps_the_flanks_apart() {
     let q = cycloid::model::quantity::find("min_contact_fatigue_life_h").unwrap();
     assert_eq!(q.scalar(&r).unwrap().value, f.disc_h.unwrap());
 }
+
+/// The shipped `specs/reducer-strength.yaml` with its static safety bound raised to 8 (its s0
+/// is ~7.2), so that one strength check fails.
+pub(crate) fn strength_failing() -> String {
+    let text = include_str!("../../specs/reducer-strength.yaml");
+    let from = "min_static_safety: 2.0 ";
+    assert_eq!(text.matches(from).count(), 1);
+    text.replace(from, "min_static_safety: 8.0 ")
+}
+
+/// The largest entry of a `[row][crank]` array of the results JSON: (value, row, crank).
+fn json_max_entry(rows: &serde_json::Value) -> (f64, usize, usize) {
+    let mut best = (f64::NEG_INFINITY, 0, 0);
+    for (i, row) in rows.as_array().unwrap().iter().enumerate() {
+        for (k, x) in row.as_array().unwrap().iter().enumerate() {
+            let x = x.as_f64().unwrap();
+            if x > best.0 {
+                best = (x, i, k);
+            }
+        }
+    }
+    best
+}
+
+/// The strength figures of `strength_failing`'s scene and where each is governed, as the
+/// reports must say them, recomputed from the forces and pressures of its results JSON (not its
+/// strength figures): a cantilever pin of d = 6 mm loaded at a = 10 mm, σ = 32·F·a/(π·d³);
+/// yield 1400 MPa; ISO 6336-2's N(p) = 5e7·(1500/p)^13.2 over np/nc = 10/9 passes per turn at
+/// 1500 rpm (the disc's, the shorter); s0 = 14000 N / max |Fb|. `(key, value, where)`.
+pub(crate) fn strength_places(results: &serde_json::Value) -> Vec<(&'static str, String, String)> {
+    use cycloid::numeric::number;
+    let scene = &results["scenes"][0];
+    let crank = |k: usize| scene["crank_deg"][k].as_f64().unwrap();
+    let (force, pin, k) = json_max_entry(&scene["pin_force_n"]);
+    let sigma = 32.0 * force * 10.0 / (PI * 6f64.powi(3));
+    let pin_at = format!("pin {pin} at crank {:.2}°", crank(k));
+    let (p, roller, kp) = json_max_entry(&scene["contact_pressure_mpa"]);
+    let life = 5e7 * (1500.0 / p).powf(13.2) / (10.0 / 9.0 * 1500.0 * 60.0);
+    let bearing = serde_json::json!([scene["bearing_force_n"].clone()]);
+    let (fb, _, kb) = json_max_entry(&bearing);
+    vec![
+        (
+            "max_pin_bending_stress_mpa",
+            format!("{} MPa", number(sigma)),
+            pin_at.clone(),
+        ),
+        ("min_pin_bending_safety", number(1400.0 / sigma), pin_at),
+        (
+            "min_contact_fatigue_life_h",
+            format!("{} h", number(life)),
+            format!(
+                "disc at {} MPa, roller {roller} at crank {:.2}°",
+                number(p),
+                crank(kp)
+            ),
+        ),
+        (
+            "min_static_safety",
+            number(14000.0 / fb),
+            format!("C0 / {} N at crank {:.2}°", number(fb), crank(kb)),
+        ),
+    ]
+}
+
+/// The terminal's check table and headlines and the design review's check table give each
+/// strength figure with its governing part and place (`strength_places`, recomputed from the
+/// results JSON's forces and pressures).
+#[test]
+fn the_headlines_and_the_check_tables_name_the_governing_part_and_place() {
+    let dir = crate::common::Scratch::new("strength-places");
+    dir.write("spec.yaml", strength_failing());
+    let out = crate::common::cycloid(
+        &dir.path,
+        &[
+            "check",
+            "spec.yaml",
+            "--json",
+            "r.json",
+            "--report",
+            "review",
+        ],
+    );
+    assert_eq!(out.code, Some(1), "{}{}", out.stdout, out.stderr);
+    let results: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    let review = dir.read("review/index.html");
+    let labels = [
+        "max pin bending stress",
+        "pin bending safety (yield / stress)",
+        "contact fatigue life (shorter of disc and rollers)",
+        "crank-bearing static safety s0",
+    ];
+    for ((key, value, at), label) in strength_places(&results).into_iter().zip(labels) {
+        let check = (out.stdout.lines())
+            .find(|l| l.starts_with(&format!("rated/{key} ")))
+            .unwrap_or_else(|| panic!("no check {key}:\n{}", out.stdout));
+        let words: Vec<&str> = check.split_whitespace().collect();
+        assert!(check.ends_with(&format!("  {at}")), "{check}\n{at}");
+        assert_eq!(words[1], value.split(' ').next().unwrap(), "{check}");
+        let verdict = if key == "min_static_safety" {
+            "FAIL"
+        } else {
+            "pass"
+        };
+        assert!(words.contains(&verdict), "{check}");
+        let headline = (out.stdout.lines())
+            .find(|l| l.starts_with(&format!("  {label} ")))
+            .unwrap_or_else(|| panic!("no headline {label}:\n{}", out.stdout));
+        assert!(
+            headline.ends_with(&format!("{value}  {at}")),
+            "{headline}\n{value}  {at}"
+        );
+        let cell = format!("<td><code>rated/{key}</code></td>");
+        let row = review
+            .split(cell.as_str())
+            .nth(1)
+            .unwrap_or_else(|| panic!("{key}"));
+        let row = row.split("</tr>").next().unwrap();
+        assert!(row.contains(&format!("<td>{at}</td>")), "{key}: {row}");
+    }
+}

@@ -566,3 +566,104 @@ fn the_headlines_and_the_check_tables_name_the_governing_part_and_place() {
         assert!(row.contains(&format!("<td>{at}</td>")), "{key}: {row}");
     }
 }
+
+/// `cycloid tolerance` judges the strength limits on every sample: each sample's recorded
+/// figures are those `check` finds on the sample written back (`--write-sample`), its static
+/// safety C0 over the largest bearing force of that check's curves, and the failures
+/// counted are the samples whose figures miss a limit.
+#[test]
+fn a_tolerance_study_judges_the_strength_limits_per_sample() {
+    // The loaded period of parts as drawn is 3240° of crank (nine turns: the drawn pins and
+    // holes break the pin period); 2° steps keep the study short.
+    let mut text = include_str!("../../specs/reducer-strength.yaml")
+        .replace("to_deg: 108.0, steps: 1080", "to_deg: 3240.0, steps: 1620");
+    text += "tolerances:\n  scene: rated\n  distribution: normal\n  eccentricity_mm: 0.003\n  \
+             roller_radial_mm: 0.003\n  pin_radial_mm: 0.003\n  hole_radial_mm: 0.003\n  \
+             samples: 3\n  seed: 1\n  max_failure_rate: 0.0027\n";
+    let dir = crate::common::Scratch::new("strength-tolerance");
+    dir.write("t.yaml", &text);
+    let run = |args: &[&str]| crate::common::cycloid(&dir.path, args);
+    let study = run(&[
+        "tolerance",
+        "t.yaml",
+        "--samples-csv",
+        "s.csv",
+        "--json",
+        "t.json",
+    ]);
+    assert!(study.code() <= 1, "{study:?}");
+    let csv = dir.read("s.csv");
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    // (limit, its quantity's column, bound, an upper bound)
+    let limits = [
+        (
+            "max_pin_bending_stress_mpa",
+            "max_pin_bending_stress_mpa",
+            600.0,
+            true,
+        ),
+        ("min_pin_bending_safety", "pin_bending_safety", 2.0, false),
+        (
+            "min_contact_fatigue_life_h",
+            "min_contact_fatigue_life_h",
+            2000.0,
+            false,
+        ),
+        ("min_static_safety", "static_safety", 2.0, false),
+    ];
+    let mut failures = 0;
+    for k in 0..3 {
+        let row: Vec<f64> = (csv.lines().nth(k + 1).unwrap().split(','))
+            .map(|x| x.parse().unwrap_or(f64::NAN))
+            .collect();
+        let out = format!("sample{k}.yaml");
+        let w = run(&[
+            "tolerance",
+            "t.yaml",
+            "--write-sample",
+            &k.to_string(),
+            &out,
+        ]);
+        assert_eq!(w.code(), 0, "{w:?}");
+        let c = run(&["check", &out, "--json", "c.json"]);
+        assert!(c.code() <= 1, "{c:?}");
+        let doc: serde_json::Value = serde_json::from_str(&dir.read("c.json")).unwrap();
+        let checked = |key: &str| {
+            let checks = doc["checks"].as_array().unwrap();
+            let c = checks
+                .iter()
+                .find(|c| c["id"] == format!("rated/{key}"))
+                .unwrap();
+            c["value"].as_f64().unwrap()
+        };
+        let mut fails = false;
+        for (key, column, bound, max) in limits {
+            let recorded = row[header.iter().position(|h| *h == column).unwrap()];
+            // 1e-12 relative: the life has been seen one ulp apart between the study and the
+            // replayed check (a ulp of the pressure is 13.2 ulps of the life); the others
+            // agree to the bit.
+            let replayed = checked(key);
+            let close = (recorded / replayed - 1.0).abs() < 1e-12;
+            assert!(close, "sample {k} {key}: {recorded} against {replayed}");
+            fails |= if max {
+                recorded > bound
+            } else {
+                recorded < bound
+            };
+        }
+        failures += usize::from(fails);
+        let fb = doc["scenes"][0]["bearing_force_n"]
+            .as_array()
+            .unwrap()
+            .iter();
+        let fb = fb.map(|x| x.as_f64().unwrap()).fold(0.0, f64::max);
+        // 1e-12 relative: one division, against the check's own.
+        let s0 = checked("min_static_safety");
+        assert!(
+            (s0 / (14000.0 / fb) - 1.0).abs() < 1e-12,
+            "sample {k}: {s0}"
+        );
+    }
+    let study: serde_json::Value = serde_json::from_str(&dir.read("t.json")).unwrap();
+    assert_eq!(study["failures"].as_u64(), Some(failures as u64));
+}

@@ -384,7 +384,7 @@ fn pin_formulas(design: &Design, support: &PinSupport, d_mm: f64) -> Vec<String>
     let at: Vec<String> = discs.iter().map(|&a| input(a)).collect();
     let moment = match support.kind {
         PinSupportKind::Cantilever => {
-            format!("M = |Σ F_k·a_k| at the clamp (cantilever, Roark Table 8.1 case 1a)")
+            "M = |Σ F_k·a_k| at the clamp (cantilever, Roark Table 8.1 case 1a)".to_string()
         }
         PinSupportKind::BothEnds => format!(
             "M the larger of the moment at the clamp, F·a·(L − a)·(2L − a)/(2L²) for one \

@@ -1034,10 +1034,15 @@ pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
         let f = disc_strength(r)?.fatigue?;
         let (value, part) = f.shorter()?;
         let p = number(f.pressure_mpa);
+        // Where the largest pressure is (the one the life is at), when the curves hold it.
+        let place = (r.loaded.rollers.as_ref())
+            .map(|c| largest(r, &c.pressure_mpa, "roller"))
+            .filter(|e| e.value == f.pressure_mpa)
+            .map_or(String::new(), |e| format!(", {}", e.at));
         Some(Extreme {
             value,
             at: match value == super::results::UNBOUNDED_LIFE_H {
-                false => format!("{part} at {p} MPa"),
+                false => format!("{part} at {p} MPa{place}"),
                 true => format!(
                     "unbounded: the {part} take no damage at {p} MPa (written as 1.798e308 h, \
                      the largest number)"
@@ -1061,10 +1066,15 @@ pub const STATIC_SAFETY: Quantity = Quantity {
     read: Read::Scalar(|r| {
         let s = disc_strength(r)?.static_safety?;
         let f = number(s.largest_force_n);
+        // Where the largest bearing force is, when the curve holds it.
+        let place = (r.loaded.bearing.as_ref())
+            .map(|b| highest(r, &b.force_n))
+            .filter(|e| e.value == s.largest_force_n)
+            .map_or(String::new(), |e| format!(" at {}", e.at));
         Some(Extreme {
             value: s.safety,
             at: match s.safety == f64::MAX {
-                false => format!("C0 / {f} N"),
+                false => format!("C0 / {f} N{place}"),
                 true => "unbounded: the bearing carries no force (written as 1.798e308, the \
                          largest number)"
                     .to_string(),

@@ -2,8 +2,9 @@
 //! materials, the design rules, the limits of a spec, the objectives to trade and the space the
 //! search covers. Plain data in engine units (mm, N, N·mm); `spec::requirements` builds it.
 
-use super::design::{CrankBearing, Material};
+use super::design::{CrankBearing, Material, PinSupport};
 use super::limits::Limits;
+use super::strength::Strength;
 use super::{Crowning, DutyBin, Friction, Misalignment, Thermal};
 
 /// Crank period of the loaded curves of a search's design with `teeth` nc, np = nc + 1 rollers
@@ -253,7 +254,15 @@ pub struct Requirements {
     pub material: Material,
     /// Density of every part, kg/mm³.
     pub density_kg_per_mm3: f64,
-    /// The crank bearing, when its life is asked for.
+    /// The rollers' and pins' material (`roller_material`), when not the disc's.
+    pub roller_material: Option<Material>,
+    /// What the disc's and the rollers' materials bear (`material`, `roller_material`: yield
+    /// strength, contact fatigue), for the strength limits.
+    pub strength: Strength,
+    /// The output pins as beams of every candidate (`output_pins.support`), for their bending
+    /// and its stress; none: rigid pins.
+    pub pin_support: Option<PinSupport>,
+    /// The crank bearing, when its life or static safety is asked for.
     pub crank_bearing: Option<CrankBearing>,
     /// Rules checked before any physics.
     pub rules: DesignRules,
@@ -266,6 +275,11 @@ pub struct Requirements {
 }
 
 impl Requirements {
+    /// A strength limit is set: the running scenes compute `strength` (issue 41).
+    pub fn needs_strength(&self) -> bool {
+        (self.limits.entries.iter()).any(|l| l.def.quantity.effect == super::Effect::Strength)
+    }
+
     /// The torsion scene is needed (a rigidity or torsional lost-motion limit or objective).
     pub fn needs_torsion(&self) -> bool {
         self.objectives.contains(&ObjectiveKind::Rigidity)

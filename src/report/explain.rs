@@ -2,15 +2,18 @@
 //! every scene (`explain`), the notes a reader of the results must be told (`notes`, from
 //! [`engine::scene::notes`](crate::engine::scene::notes)) and the sentence every output gives of a torsion scene's hysteresis.
 
+use crate::contact::fatigue;
 use crate::engine::verdict;
 use crate::engine::scene::{self, Note, Writes};
+use crate::equilibrium::pin_beam::PinBeam;
 use crate::model::period;
 use crate::model::results::TorsionCompliances;
+use crate::model::strength::ContactFatigue;
 use crate::model::{
-    CentreDeviation, ContactLaw, Detail, Deviations, Effect, Face, FrictionModel, PinFriction,
-    PinMode, PinSupportKind, RollerFriction, RollerMode,
+    CentreDeviation, ContactLaw, Design, Detail, Deviations, Effect, Face, FrictionModel,
+    PinFriction, PinMode, PinSupport, PinSupportKind, Plan, RollerFriction, RollerMode, Scene,
 };
-use crate::numeric::number;
+use crate::numeric::{input, number};
 use crate::spec::Spec;
 use crate::units;
 
@@ -295,6 +298,9 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
                 .design
                 .crank_bearing
                 .is_some_and(|b| b.static_load_rating_n.is_some());
+        if plan.has(Effect::Strength) {
+            out += &strength_lines(spec, scene, &plan);
+        }
         let skipped: Vec<&str> = Effect::listed()
             .filter(|e| !plan.has(*e))
             .filter(|e| *e != Effect::Efficiency || spec.design.friction.is_some())
@@ -315,6 +321,188 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
     out += &ladder_text(spec, writes);
     out += &tolerance_text(spec, tolerance);
     out
+}
+
+/// The formulas a scene that computes `strength` will use, one `formula` line each with its
+/// source and this design's numbers, and one `skip` line for each figure the spec gives no input
+/// for (`docs/effects/strength.md`).
+fn strength_lines(spec: &Spec, scene: &Scene, plan: &Plan) -> String {
+    let (formulas, unjudged) = strength_plan(spec, scene, plan);
+    let mut out = String::new();
+    for f in formulas {
+        out += &format!("  formula {f}\n");
+    }
+    for u in unjudged {
+        out += &format!("  skip    {u}\n");
+    }
+    out
+}
+
+/// The strength formulas of `scene` and what it cannot judge, as two lists of sentences.
+fn strength_plan(spec: &Spec, scene: &Scene, plan: &Plan) -> (Vec<String>, Vec<String>) {
+    let design = &spec.design;
+    let (mut formulas, mut unjudged) = (Vec::new(), Vec::new());
+    match (design.pins.support, PinBeam::of(design)) {
+        (Some(support), Some(beam)) => {
+            formulas.extend(pin_formulas(design, &support, 2.0 * beam.bending_radius_mm));
+        }
+        _ => unjudged.push(
+            "pin bending stress and safety: reducer.output_pins.support not given (the pins \
+             are rigid, no bending moment is computed)"
+                .to_string(),
+        ),
+    }
+    if design.pins.support.is_some() && design.strength.rollers.yield_strength_mpa.is_none() {
+        unjudged.push(
+            "pin bending safety: yield_strength_mpa not given (reducer.roller_material, or \
+             reducer.material without it)"
+                .to_string(),
+        );
+    }
+    match fatigue_unjudged(design, scene, plan) {
+        Some(why) => unjudged.push(format!("contact fatigue life: {why}")),
+        None => formulas.extend(fatigue_formulas(design, scene)),
+    }
+    match design.crank_bearing.and_then(|b| b.static_load_rating_n) {
+        Some(c0) => formulas.push(format!(
+            "static safety of the crank bearing s0 = C0/max |Fb|, C0 = {} N, max |Fb| the \
+             largest crank-bearing force of the scene{} (ISO 76)",
+            input(c0),
+            if scene.duty_cycle.is_some() {
+                " (of the duty cycle: its peak bin)"
+            } else {
+                ""
+            }
+        )),
+        None => unjudged.push(
+            "static safety: reducer.crank_bearing.static_load_rating_n not given".to_string(),
+        ),
+    }
+    (formulas, unjudged)
+}
+
+/// The pins' bending, shear and safety formulas for the pin of diameter `d_mm` held by
+/// `support` (Roark, Table 8.1 cases 1a and 1c).
+fn pin_formulas(design: &Design, support: &PinSupport, d_mm: f64) -> Vec<String> {
+    let discs = &support.disc_positions_mm[..design.discs];
+    let at: Vec<String> = discs.iter().map(|&a| input(a)).collect();
+    let moment = match support.kind {
+        PinSupportKind::Cantilever => {
+            "M = |Σ F_k·a_k| at the clamp (cantilever, Roark Table 8.1 case 1a)".to_string()
+        }
+        PinSupportKind::BothEnds => format!(
+            "M the larger of the moment at the clamp, F·a·(L − a)·(2L − a)/(2L²) for one \
+             load, and the moment under each load, R·F·(L − a) with the prop's share \
+             R = a²·(3L − a)/(2L³), L = {} mm (propped cantilever, Roark Table 8.1 case 1c)",
+            input(support.length_mm)
+        ),
+    };
+    let mut lines = vec![
+        format!(
+            "pin bending σ_b = 32·M/(π·d³), d = {} mm (the pin that bends), {moment}; F_k \
+             disc k's pin force at a_k = {} mm from the flange{}",
+            input(d_mm),
+            at.join(", "),
+            if discs.len() > 1 {
+                ", the discs' moments summed as vectors"
+            } else {
+                ""
+            }
+        ),
+        "pin shear τ = 4·V/(3·A), A = π·d²/4, at the largest shear force V along the pin \
+         (the peak of the round section, Jourawski)"
+            .to_string(),
+    ];
+    if let Some(y) = design.strength.rollers.yield_strength_mpa {
+        lines.push(format!(
+            "pin bending safety = yield/σ_b, yield {} MPa (the rollers' material)",
+            input(y)
+        ));
+    }
+    lines
+}
+
+/// Why `scene` gets no contact fatigue life, or none when it does.
+fn fatigue_unjudged(design: &Design, scene: &Scene, plan: &Plan) -> Option<String> {
+    let s = &design.strength;
+    if s.disc.contact_fatigue.is_none() && s.rollers.contact_fatigue.is_none() {
+        return Some(
+            "no contact_fatigue law given (reducer.material or reducer.roller_material)".into(),
+        );
+    }
+    if scene.input_speed_rpm.is_none() && scene.duty_cycle.is_none() {
+        return Some("the scene has no input_speed_rpm (a life in hours is at a speed)".into());
+    }
+    if !scene.spans_loaded_periods(design, plan) {
+        return Some(format!(
+            "the crank range is not a whole number of periods of the reducer as run ({}°): \
+             the largest pressure of part of a period is not the reducer's",
+            number(units::deg(scene.run_period_rad(design, plan)))
+        ));
+    }
+    None
+}
+
+/// The S–N law of each part, the passes per crank turn and the life (or Miner's sum).
+fn fatigue_formulas(design: &Design, scene: &Scene) -> Vec<String> {
+    let s = &design.strength;
+    let law = |f: &ContactFatigue| {
+        let endurance = f.endurance_pressure_mpa.map_or(String::new(), |e| {
+            format!(", no damage at p ≤ {} MPa", input(e))
+        });
+        format!(
+            "N(p) = {:e}·({} MPa/p)^{}{endurance}",
+            f.cycles,
+            input(f.pressure_mpa),
+            input(f.exponent)
+        )
+    };
+    let mut lines = Vec::new();
+    let parts = [
+        ("disc", s.disc.contact_fatigue),
+        ("rollers", s.rollers.contact_fatigue),
+    ];
+    match parts {
+        [(_, Some(d)), (_, Some(r))] if d == r => lines.push(format!(
+            "contact fatigue of disc and rollers {} cycles to failure at the Hertz pressure p \
+             (Basquin's form)",
+            law(&d)
+        )),
+        _ => {
+            for (part, f) in parts {
+                if let Some(f) = f {
+                    lines.push(format!(
+                        "contact fatigue of the {part} {} cycles to failure at the Hertz \
+                         pressure p (Basquin's form)",
+                        law(&f)
+                    ));
+                }
+            }
+        }
+    }
+    let disc_passes = fatigue::disc_passes_per_crank_turn(design.teeth);
+    lines.push(format!(
+        "passes per crank turn: each disc lobe np/nc = {}/{} = {} (the load turns 1 + 1/nc \
+         times in the disc), each roller {} per disc track",
+        design.teeth + 1,
+        design.teeth,
+        number(disc_passes),
+        input(fatigue::ROLLER_PASSES_PER_CRANK_TURN)
+    ));
+    lines.push(match (scene.duty_cycle.as_ref(), scene.input_speed_rpm) {
+        (Some(bins), _) => format!(
+            "duty cycle of {} bins: Palmgren–Miner, bin i uses up sᵢ·nᵢ·60·passes/N(pᵢ) of a \
+             part per hour at its largest pressure pᵢ, the drive flanks (T ≥ 0) and the coast \
+             flanks (T < 0) apart, life = 1/max(D_drive, D_coast) h",
+            bins.len()
+        ),
+        (None, rpm) => format!(
+            "life = N(p)/(passes·n·60) h at n = {} rpm, p the largest Hertz pressure over the \
+             scene's whole periods",
+            input(rpm.unwrap_or(0.0))
+        ),
+    });
+    lines
 }
 
 /// The discs on the crank: "reducer: 2 discs at crank phases 0°, 180° ..." (MODEL.md "Several

@@ -1,7 +1,7 @@
 //! A requirements file (`cycloid design`): YAML → `requirements_raw` → the validated
 //! [`Requirements`]. Errors are located as a spec's: `file:line:column: kind: key: message`.
 
-use super::raw::{RawCrankBearing, RawMaterial};
+use super::raw::{RawCrankBearing, RawMaterial, RawPinSupport};
 use super::requirements_raw::*;
 use super::validate::{limits, material};
 use super::values::{finite, positive};
@@ -10,7 +10,8 @@ use crate::model::design::MAX_DISCS;
 use crate::model::requirements::loaded_mesh_periods;
 use crate::model::requirements::*;
 use crate::model::scene::MAX_ROLLER_ANGLES;
-use crate::model::Misalignment;
+use crate::model::strength::Strength;
+use crate::model::{Misalignment, PinSupport};
 use crate::numeric;
 
 /// Most ratios, pin counts or disc counts a search tries (each multiplies the work).
@@ -212,6 +213,61 @@ fn face(
     Ok((misalignment, slices))
 }
 
+/// The strength limits' inputs (`spec::strength::missing_input`, the spec's rules with the
+/// requirements' keys), and a speed for a contact fatigue life in hours.
+fn strength_limits(
+    raw: &RawRequirements,
+    strength: &Strength,
+    bearing: Option<&crate::model::CrankBearing>,
+) -> Result<()> {
+    let inputs = super::strength::Inputs {
+        support: raw.output_pins.is_some(),
+        pins_yield: strength.rollers.yield_strength_mpa.is_some(),
+        fatigue_law: strength.disc.contact_fatigue.is_some()
+            || strength.rollers.contact_fatigue.is_some(),
+        static_rating: bearing.and_then(|b| b.static_load_rating_n).is_some(),
+    };
+    for key in raw.limits.keys() {
+        let at = format!("limits.{key}");
+        if let Some(why) = super::strength::missing_input(key, &inputs, "") {
+            return Err(Error::invalid(at, why));
+        }
+        let speed = raw.input_speed_rpm.is_some() || raw.duty_cycle.is_some();
+        if key == "min_contact_fatigue_life_h" && !speed {
+            return Err(Error::invalid(
+                at,
+                "needs `input_speed_rpm` or `duty_cycle`: a life in hours is the cycles to \
+                 failure over the cycles per hour"
+                    .to_string(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `output_pins.support`, as a spec's `reducer.output_pins.support` (`validate::pin_support`)
+/// for every design of `search`: one mid-plane per disc for each number of discs searched, the
+/// mid-planes a face width apart at the largest face width searched.
+fn pin_support(raw: &RawPinSupport, search: &Search) -> Result<PinSupport> {
+    let positions = raw.disc_positions_mm.len();
+    if let Some(&discs) = search.discs.iter().find(|&&d| d != positions) {
+        return Err(Error::invalid(
+            "output_pins.support.disc_positions_mm",
+            format!(
+                "gives {positions} position(s), but the search tries {discs} disc(s) \
+                 (`search.discs`): one mid-plane per disc, mm from the flange; with a pin \
+                 support search one number of discs"
+            ),
+        ));
+    }
+    super::validate::pin_support(
+        "output_pins.support",
+        raw,
+        positions,
+        search.continuous.face_width_mm.upper,
+    )
+}
+
 fn build(raw: RawRequirements) -> Result<Requirements> {
     let rated = positive("rated_torque_nm", raw.rated_torque_nm)?;
     let peak = match raw.peak_torque_nm {
@@ -246,16 +302,19 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         )?,
     };
     let m = &raw.material;
-    let material = material(
-        "material",
-        RawMaterial {
-            youngs_modulus_gpa: m.youngs_modulus_gpa,
-            poisson_ratio: m.poisson_ratio,
-            yield_strength_mpa: None,
-            contact_fatigue: None,
-            density_kg_per_m3: None,
-        },
-    )?;
+    let disc_material = RawMaterial {
+        youngs_modulus_gpa: m.youngs_modulus_gpa,
+        poisson_ratio: m.poisson_ratio,
+        yield_strength_mpa: m.yield_strength_mpa,
+        contact_fatigue: m.contact_fatigue,
+        density_kg_per_m3: None,
+    };
+    let roller_material = raw
+        .roller_material
+        .map(|r| material("roller_material", r))
+        .transpose()?;
+    let material = material("material", disc_material)?;
+    let strength = super::strength::materials_at("", &disc_material, raw.roller_material.as_ref())?;
     let density = positive(
         "material.density_kg_per_m3",
         m.density_kg_per_m3.unwrap_or(STEEL_DENSITY_KG_PER_M3),
@@ -268,7 +327,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
                 dynamic_load_rating_n: b.dynamic_load_rating_n,
                 life_exponent: b.life_exponent,
                 outer_diameter_mm: None,
-                static_load_rating_n: None,
+                static_load_rating_n: b.static_load_rating_n,
             };
             super::validate::crank_bearing("crank_bearing", &b)
         })
@@ -516,6 +575,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         }
         life_needs("limits.min_duty_life_h".into())?;
     }
+    strength_limits(&raw, &strength, crank_bearing.as_ref())?;
     if raw.objectives.len() < 2 || raw.objectives.len() > 3 {
         return Err(Error::invalid(
             "objectives",
@@ -566,6 +626,11 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         refine_budget: whole("search.refine_budget", s.refine_budget, 48, 0, 100_000)? as usize,
         steps_per_mesh_period: steps as usize,
     };
+    let pin_support = raw
+        .output_pins
+        .as_ref()
+        .map(|p| pin_support(&p.support, &search))
+        .transpose()?;
     if raw.name.trim().is_empty() {
         return Err(Error::invalid("name", "must not be empty".to_string()));
     }
@@ -584,6 +649,9 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         envelope,
         material,
         density_kg_per_mm3: crate::units::kg_per_mm3(density),
+        roller_material,
+        strength,
+        pin_support,
         crank_bearing,
         rules,
         limits,

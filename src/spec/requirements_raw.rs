@@ -1,7 +1,10 @@
 //! A requirements file as written (serde), kept apart from the validated
 //! [`Requirements`](crate::model::requirements::Requirements); `spec::requirements` checks it.
 
-use super::raw::{RawCrowning, RawDutyBin, RawFriction, RawLimits, RawMisalignment, RawThermal};
+use super::raw::{
+    RawContactFatigue, RawCrowning, RawDutyBin, RawFriction, RawLimits, RawMaterial,
+    RawMisalignment, RawPinSupport, RawThermal,
+};
 use serde::Deserialize;
 
 /// Top-level keys every requirements file has and no spec has: a document with one of them and
@@ -30,6 +33,14 @@ pub(crate) struct RawRequirements {
     pub duty_cycle: Option<Vec<RawDutyBin>>,
     pub envelope: RawEnvelope,
     pub material: RawRequirementsMaterial,
+    /// The rollers' and the output pins' material: the keys of a spec's
+    /// `reducer.roller_material`.
+    #[serde(default)]
+    pub roller_material: Option<RawMaterial>,
+    /// The output pins as beams: the keys of a spec's `reducer.output_pins` that no search
+    /// varies (its `support`).
+    #[serde(default)]
+    pub output_pins: Option<RawRequirementsPins>,
     #[serde(default)]
     pub crank_bearing: Option<RawBearing>,
     /// The keys of a spec's `reducer.friction`.
@@ -73,6 +84,16 @@ pub(crate) struct RawRequirementsMaterial {
     pub poisson_ratio: f64,
     #[serde(default)]
     pub density_kg_per_m3: Option<f64>,
+    #[serde(default)]
+    pub yield_strength_mpa: Option<f64>,
+    #[serde(default)]
+    pub contact_fatigue: Option<RawContactFatigue>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawRequirementsPins {
+    pub support: RawPinSupport,
 }
 
 #[derive(Debug, Deserialize)]
@@ -81,6 +102,8 @@ pub(crate) struct RawBearing {
     pub dynamic_load_rating_n: f64,
     #[serde(default)]
     pub life_exponent: Option<f64>,
+    #[serde(default)]
+    pub static_load_rating_n: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize)]

@@ -18,9 +18,19 @@ pub(crate) const MAX_EXPONENT: f64 = 30.0;
 /// The disc's (`reducer.material`) and the rollers' (`reducer.roller_material`, the disc's
 /// when not given) strength.
 pub(crate) fn materials(disc: &RawMaterial, rollers: Option<&RawMaterial>) -> Result<Strength> {
-    let disc_strength = part("reducer.material", disc)?;
+    materials_at("reducer.", disc, rollers)
+}
+
+/// `materials` with its keys under `prefix` (`reducer.` in a spec, none in a requirements
+/// file).
+pub(crate) fn materials_at(
+    prefix: &str,
+    disc: &RawMaterial,
+    rollers: Option<&RawMaterial>,
+) -> Result<Strength> {
+    let disc_strength = part(&format!("{prefix}material"), disc)?;
     let rollers = match rollers {
-        Some(r) => part("reducer.roller_material", r)?,
+        Some(r) => part(&format!("{prefix}roller_material"), r)?,
         None => disc_strength,
     };
     Ok(Strength {
@@ -70,53 +80,68 @@ fn contact_fatigue(key: &str, raw: &RawContactFatigue) -> Result<ContactFatigue>
     })
 }
 
+/// What the strength limits may need, as given: a pin support, the pins' yield strength, an
+/// S–N law of the disc or the rollers, C0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Inputs {
+    pub support: bool,
+    pub pins_yield: bool,
+    pub fatigue_law: bool,
+    pub static_rating: bool,
+}
+
+impl Inputs {
+    /// What `design` gives.
+    pub(crate) fn of(design: &Design) -> Inputs {
+        Inputs {
+            support: design.pins.support.is_some(),
+            pins_yield: design.strength.rollers.yield_strength_mpa.is_some(),
+            fatigue_law: design.strength.disc.contact_fatigue.is_some()
+                || design.strength.rollers.contact_fatigue.is_some(),
+            static_rating: design
+                .crank_bearing
+                .and_then(|b| b.static_load_rating_n)
+                .is_some(),
+        }
+    }
+}
+
+/// Why the limit `key` cannot be judged with `inputs`, the keys named under `prefix`
+/// (`reducer.` in a spec, none in a requirements file); none when it can (or is no strength
+/// limit).
+pub(crate) fn missing_input(key: &str, inputs: &Inputs, prefix: &str) -> Option<String> {
+    let why = match key {
+        "max_pin_bending_stress_mpa" | "min_pin_bending_safety" if !inputs.support => format!(
+            "the pins' bending needs how they are held: give \
+             `{prefix}output_pins.support: {{kind, length_mm, disc_positions_mm}}` (without it \
+             the pins are rigid and no bending moment is computed)"
+        ),
+        "min_pin_bending_safety" if !inputs.pins_yield => format!(
+            "the pins' safety is their yield strength over their bending stress: give \
+             `yield_strength_mpa` to `{prefix}roller_material` (the pins' material; the disc's \
+             `{prefix}material` without it)"
+        ),
+        "min_contact_fatigue_life_h" if !inputs.fatigue_law => format!(
+            "a contact fatigue life needs an S–N law: give `contact_fatigue: {{pressure_mpa, \
+             cycles, exponent}}` to `{prefix}material` (the disc) or `{prefix}roller_material` \
+             (the rollers)"
+        ),
+        "min_static_safety" if !inputs.static_rating => format!(
+            "a static safety needs the bearing's basic static load rating C0 (ISO 76): give \
+             `{prefix}crank_bearing.static_load_rating_n`"
+        ),
+        _ => return None,
+    };
+    Some(why)
+}
+
 /// What each strength limit needs of the design and of the scenes that compute it.
 pub(crate) fn check(limits: &Limits, design: &Design, scenes: &[Scene]) -> Result<()> {
+    let inputs = Inputs::of(design);
     for limit in &limits.entries {
         let key = limit.def.key;
-        let at = format!("limits.{key}");
-        let missing = match key {
-            "max_pin_bending_stress_mpa" | "min_pin_bending_safety"
-                if design.pins.support.is_none() =>
-            {
-                Some(
-                    "the pins' bending needs how they are held: give \
-                     `reducer.output_pins.support: {kind, length_mm, disc_positions_mm}` (without \
-                     it the pins are rigid and no bending moment is computed)",
-                )
-            }
-            "min_pin_bending_safety" if design.strength.rollers.yield_strength_mpa.is_none() => {
-                Some(
-                    "the pins' safety is their yield strength over their bending stress: give \
-                     `yield_strength_mpa` to `reducer.roller_material` (the pins' material; the \
-                     disc's `reducer.material` without it)",
-                )
-            }
-            "min_contact_fatigue_life_h"
-                if design.strength.disc.contact_fatigue.is_none()
-                    && design.strength.rollers.contact_fatigue.is_none() =>
-            {
-                Some(
-                    "a contact fatigue life needs an S–N law: give `contact_fatigue: \
-                     {pressure_mpa, cycles, exponent}` to `reducer.material` (the disc) or \
-                     `reducer.roller_material` (the rollers)",
-                )
-            }
-            "min_static_safety"
-                if design
-                    .crank_bearing
-                    .and_then(|b| b.static_load_rating_n)
-                    .is_none() =>
-            {
-                Some(
-                    "a static safety needs the bearing's basic static load rating C0 (ISO 76): \
-                     give `reducer.crank_bearing.static_load_rating_n`",
-                )
-            }
-            _ => None,
-        };
-        if let Some(why) = missing {
-            return Err(Error::invalid(at, why.to_string()));
+        if let Some(why) = missing_input(key, &inputs, "reducer.") {
+            return Err(Error::invalid(format!("limits.{key}"), why));
         }
         if key == "min_contact_fatigue_life_h" {
             speeds(scenes, key)?;

@@ -145,7 +145,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
     let support = pins
         .support
         .as_ref()
-        .map(|s| pin_support(s, discs, face_width_mm))
+        .map(|s| pin_support("reducer.output_pins.support", s, discs, face_width_mm))
         .transpose()?;
     let structure_compliance_rad_per_nmm = raw
         .structure_compliance_arcmin_per_knm
@@ -192,11 +192,15 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
     })
 }
 
-/// `reducer.output_pins.support`: a known kind, a length within the lengths the tool takes,
-/// one position per disc, each in (0, length], and the discs' mid-planes at least a face
-/// width B apart (two discs cannot overlap along the pin).
-fn pin_support(raw: &RawPinSupport, discs: usize, face_width_mm: f64) -> Result<PinSupport> {
-    let key = "reducer.output_pins.support";
+/// `reducer.output_pins.support` (at `key`): a known kind, a length within the lengths the
+/// tool takes, one position per disc, each in (0, length], and the discs' mid-planes at least a
+/// face width B apart (two discs cannot overlap along the pin).
+pub(super) fn pin_support(
+    key: &str,
+    raw: &RawPinSupport,
+    discs: usize,
+    face_width_mm: f64,
+) -> Result<PinSupport> {
     let kind = named::<PinSupportKind>(&format!("{key}.kind"), Some(&raw.kind))?
         .expect("a kind was given");
     let length_mm = length(&format!("{key}.length_mm"), raw.length_mm)?;

@@ -991,6 +991,72 @@ scene `loaded`: output torque 25 N·m, 4 crank angles from 0.0000° in steps of 
     );
 }
 
+/// A scene that computes `strength` lists, in its plan, each formula it will use with its
+/// source and this design's numbers (the passes per crank turn np/nc = 10/9 of the paper's
+/// nc = 9), and skips, saying why, each figure the spec gives no input for.
+#[test]
+fn explain_lists_the_strength_formulas() {
+    let shipped = include_str!("../../specs/reducer-strength.yaml");
+    let dir = Scratch::new("explain-strength");
+    let plan = |text: &str| {
+        dir.write("spec.yaml", text);
+        let out = cycloid(&dir.path, &["check", "spec.yaml", "--explain"]);
+        assert_eq!((out.code, out.stderr.as_str()), (Some(0), ""), "{out:?}");
+        out.stdout
+    };
+    let head = |crank: &str| {
+        format!(
+            "spec `paper-table-1-strength`: 1 scene(s)
+reducer: 1 disc
+
+scene `rated`: output torque 20 N·m, {crank}, exact geometry
+  contact law paper_linear, crank bearing rigid
+  compute roller_contact  needed by strength
+  compute output_pins     needed by strength
+  compute bearing         needed by strength
+  compute strength        asked for by the scene
+"
+        )
+    };
+    assert_eq!(
+        plan(shipped),
+        head("1080 crank angles from 0.0000° in steps of 0.1000°")
+            + "  formula pin bending σ_b = 32·M/(π·d³), d = 6 mm (the pin that bends), M = |Σ F_k·a_k| at the clamp (cantilever, Roark Table 8.1 case 1a); F_k disc k's pin force at a_k = 10 mm from the flange
+  formula pin shear τ = 4·V/(3·A), A = π·d²/4, at the largest shear force V along the pin (the peak of the round section, Jourawski)
+  formula pin bending safety = yield/σ_b, yield 1400 MPa (the rollers' material)
+  formula contact fatigue of disc and rollers N(p) = 5e7·(1500 MPa/p)^13.2 cycles to failure at the Hertz pressure p (Basquin's form)
+  formula passes per crank turn: each disc lobe np/nc = 10/9 = 1.111 (the load turns 1 + 1/nc times in the disc), each roller 1 per disc track
+  formula life = N(p)/(passes·n·60) h at n = 1500 rpm, p the largest Hertz pressure over the scene's whole periods
+  formula static safety of the crank bearing s0 = C0/max |Fb|, C0 = 14000 N, max |Fb| the largest crank-bearing force of the scene (ISO 76)
+  skip    clearance, inertia (not asked for)
+  limits  max_pin_bending_stress_mpa, min_pin_bending_safety, min_contact_fatigue_life_h, min_static_safety
+"
+    );
+    // A propped pin, no yield strength, no C0, part of a period: no limits, so the spec is
+    // valid, and the plan says what it cannot judge.
+    let mut text = shipped.split("limits:").next().unwrap_or("").to_string();
+    for (from, to) in [
+        ("kind: cantilever", "kind: both_ends"),
+        ("    yield_strength_mpa: 1400.0\n", ""),
+        ("    static_load_rating_n: 14000.0", "    # no C0"),
+        ("to_deg: 108.0, steps: 1080", "to_deg: 50.0, steps: 500"),
+    ] {
+        assert_eq!(text.matches(from).count(), 1, "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    assert_eq!(
+        plan(&text),
+        head("500 crank angles from 0.0000° in steps of 0.1000°")
+            + "  formula pin bending σ_b = 32·M/(π·d³), d = 6 mm (the pin that bends), M the larger of the moment at the clamp, F·a·(L − a)·(2L − a)/(2L²) for one load, and the moment under each load, R·F·(L − a) with the prop's share R = a²·(3L − a)/(2L³), L = 14 mm (propped cantilever, Roark Table 8.1 case 1c); F_k disc k's pin force at a_k = 10 mm from the flange
+  formula pin shear τ = 4·V/(3·A), A = π·d²/4, at the largest shear force V along the pin (the peak of the round section, Jourawski)
+  skip    pin bending safety: yield_strength_mpa not given (reducer.roller_material, or reducer.material without it)
+  skip    contact fatigue life: the crank range is not a whole number of periods of the reducer as run (108.0°): the largest pressure of part of a period is not the reducer's
+  skip    static safety: reducer.crank_bearing.static_load_rating_n not given
+  skip    clearance, inertia (not asked for)
+"
+    );
+}
+
 /// The backlash (the closing lags of every roller) is computed when something reads it, and
 /// `--explain` says what: a limit, a golden of the scene, the results JSON or the design review
 /// (which read every quantity). A golden of another scene does not ask for it here.

@@ -1106,3 +1106,177 @@ fn a_front_design_s_file_reads_back_as_the_spec_that_was_searched() {
         assert_eq!(checked, 3, "{text}");
     }
 }
+
+/// SMALL at 1500 rpm with cantilever pins 12 mm long (the disc's mid-plane 8 mm from the
+/// flange), a yield strength and a crank bearing of C0 4000 N, bounded by `limits` (appended
+/// to SMALL's).
+fn small_strength(limits: &str) -> String {
+    let mut text = SMALL.to_string();
+    for (from, to) in [
+        (
+            "peak_torque_nm: 15.0\n",
+            "peak_torque_nm: 15.0\ninput_speed_rpm: 1500.0\n",
+        ),
+        (
+            "  poisson_ratio: 0.3\n",
+            "  poisson_ratio: 0.3\n  yield_strength_mpa: 1400.0\noutput_pins:\n  support: { kind: \
+             cantilever, length_mm: 12.0, disc_positions_mm: [8.0] }\ncrank_bearing:\n  \
+             dynamic_load_rating_n: 12000.0\n  static_load_rating_n: 4000.0\n",
+        ),
+        (
+            "  max_contact_pressure_mpa: 1500.0\n",
+            &format!("  max_contact_pressure_mpa: 1500.0\n{limits}"),
+        ),
+    ] {
+        assert_eq!(text.matches(from).count(), 1, "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    text
+}
+
+/// The largest pin bending stress and the smallest static safety of each front design's rated
+/// scene, recomputed from the forces in its results JSON (`check --json`): a cantilever pin of
+/// diameter d loaded at a = 8 mm by the pin force F, σ = 32·F·a/(π·d³) at the flange; s0 =
+/// C0/max |Fb| (ISO 76).
+fn front_strength(dir: &Scratch) -> Vec<(f64, f64)> {
+    let names: Vec<String> = front_rows(dir).iter().map(|r| r["spec"].clone()).collect();
+    assert!(!names.is_empty());
+    let largest = |v: &serde_json::Value| -> f64 {
+        let rows = v.as_array().unwrap();
+        let all = rows
+            .iter()
+            .flat_map(|r| r.as_array().cloned().unwrap_or(vec![r.clone()]));
+        all.map(|x| x.as_f64().unwrap()).fold(0.0, f64::max)
+    };
+    names
+        .iter()
+        .map(|name| {
+            let json = format!("{name}.json");
+            let out = common::cycloid(
+                &dir.path,
+                &["check", &format!("front/{name}"), "--json", &json],
+            );
+            assert_eq!(out.code, Some(0), "{name}: {}{}", out.stdout, out.stderr);
+            let results: serde_json::Value = serde_json::from_str(&dir.read(&json)).unwrap();
+            let rated = &results["scenes"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|s| s["name"] == "rated")
+                .unwrap();
+            let spec =
+                cycloid::spec::load(dir.join(&format!("front/{name}")).to_str().unwrap()).unwrap();
+            let d = 2.0 * spec.design.pins.pin_radius_mm;
+            let sigma = 32.0 * largest(&rated["pin_force_n"]) * 8.0 / (PI * d.powi(3));
+            (sigma, 4000.0 / largest(&rated["bearing_force_n"]))
+        })
+        .collect()
+}
+
+#[test]
+fn strength_limits_bound_every_front_design_and_one_no_design_meets_is_named() {
+    // Loosely bounded, the front's designs carry pins of ~2.8 mm radius at up to 212 MPa and
+    // static safeties of 3.25–3.35 (measured); bounded at 210 MPa and 3.3 (with more samples,
+    // the 64 of SMALL finding no design that meets both), every front design meets both in
+    // its own check.
+    let dir = Scratch::new("design-strength");
+    dir.write("free.yaml", small_strength("  min_static_safety: 1.0\n"));
+    let out = common::cycloid(&dir.path, &["design", "free.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let free = front_strength(&dir);
+    assert!(free.iter().any(|f| f.0 > 210.0), "{free:?}");
+    assert!(free.iter().any(|f| f.1 < 3.3), "{free:?}");
+    let dir = Scratch::new("design-strength-bound");
+    let bounds = "  max_pin_bending_stress_mpa: 210.0\n  min_static_safety: 3.3\n";
+    let text = small_strength(bounds).replace("samples: 64", "samples: 256");
+    dir.write("bound.yaml", text);
+    let out = common::cycloid(&dir.path, &["design", "bound.yaml", "--out", "front"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    // 1e-9 relative covers the round-off of the recomputed stress and safety against the
+    // check's (the same forces, the products taken in another order).
+    for (sigma, s0) in front_strength(&dir) {
+        assert!(sigma <= 210.0 * (1.0 + 1e-9), "{sigma}");
+        assert!(s0 >= 3.3 * (1.0 - 1e-9), "{s0}");
+    }
+    // C0 4000 N over a bearing force above 1000 N: no design reaches a static safety of 100.
+    let dir = Scratch::new("design-strength-missed");
+    dir.write(
+        "missed.yaml",
+        small_strength("  min_static_safety: 100.0\n"),
+    );
+    let out = common::cycloid(&dir.path, &["design", "missed.yaml"]);
+    assert_eq!(out.code, Some(1), "{}{}", out.stdout, out.stderr);
+    assert!(
+        out.stdout.contains("  limits.min_static_safety: met by 0,"),
+        "{}",
+        out.stdout
+    );
+    let verdict = out.stdout.lines().last().unwrap_or("");
+    assert!(
+        verdict.starts_with("FAIL: no design meets limits.min_static_safety (best "),
+        "{verdict}"
+    );
+}
+
+#[test]
+fn a_strength_limit_without_its_input_is_refused_at_its_key() {
+    let with = small_strength("");
+    let support = "output_pins:\n  support: { kind: cantilever, length_mm: 12.0, \
+                   disc_positions_mm: [8.0] }\n";
+    let law = "  yield_strength_mpa: 1400.0\n  contact_fatigue: { pressure_mpa: 1500.0, cycles: \
+               5.0e7, exponent: 13.2 }\n";
+    let cases = [
+        (
+            with.replace(support, ""),
+            "max_pin_bending_stress_mpa: 300.0",
+            "limits.max_pin_bending_stress_mpa",
+            "the pins' bending needs how they are held: give `output_pins.support: {kind, \
+             length_mm, disc_positions_mm}`",
+        ),
+        (
+            with.replace("  yield_strength_mpa: 1400.0\n", ""),
+            "min_pin_bending_safety: 2.0",
+            "limits.min_pin_bending_safety",
+            "the pins' safety is their yield strength over their bending stress: give \
+             `yield_strength_mpa` to `roller_material`",
+        ),
+        (
+            with.clone(),
+            "min_contact_fatigue_life_h: 2000.0",
+            "limits.min_contact_fatigue_life_h",
+            "a contact fatigue life needs an S–N law: give `contact_fatigue: {pressure_mpa, \
+             cycles, exponent}` to `material`",
+        ),
+        (
+            (with.replace("input_speed_rpm: 1500.0\n", ""))
+                .replace("  yield_strength_mpa: 1400.0\n", law),
+            "min_contact_fatigue_life_h: 2000.0",
+            "limits.min_contact_fatigue_life_h",
+            "needs `input_speed_rpm` or `duty_cycle`",
+        ),
+        (
+            with.replace("  static_load_rating_n: 4000.0\n", ""),
+            "min_static_safety: 2.0",
+            "limits.min_static_safety",
+            "a static safety needs the bearing's basic static load rating C0 (ISO 76): give \
+             `crank_bearing.static_load_rating_n`",
+        ),
+        (
+            (with.replace("  discs: [1]\n", "  discs: [1, 2]\n"))
+                .replace("axial_length_mm: 19.0", "axial_length_mm: 40.0"),
+            "min_static_safety: 2.0",
+            "output_pins.support.disc_positions_mm",
+            "gives 1 position(s), but the search tries 2 disc(s)",
+        ),
+    ];
+    for (text, limit, key, rule) in cases {
+        let text = text.replace("limits:\n", &format!("limits:\n  {limit}\n"));
+        let (line, column) = common::locate(&text, key);
+        let says = format!("small.yaml:{line}:{column}: invalid value: {key}: {rule}");
+        let dir = Scratch::new("design-strength-refused");
+        dir.write("small.yaml", &text);
+        let out = common::cycloid(&dir.path, &["design", "small.yaml"]);
+        assert_eq!(out.code, Some(2), "{says}: {}{}", out.stdout, out.stderr);
+        assert!(out.stderr.contains(&says), "{says}\n{}", out.stderr);
+    }
+}

@@ -187,3 +187,36 @@ fn text_is_escaped() {
     let parsed = parse(&doc);
     assert_eq!(parsed.errors, vec!["bad \"thing\" <here>".to_string()]);
 }
+
+/// The strength checks are test cases of the scene's limits; the failing static safety's
+/// failure names its value, its bound and where it is governed (the largest bearing force
+/// and its crank angle, recomputed from the results JSON by `strength::strength_places`).
+#[test]
+fn the_strength_checks_are_cases_and_a_failing_one_says_its_part_and_place() {
+    let dir = scratch("strength");
+    dir.write("spec.yaml", crate::strength::strength_failing());
+    let out = common::cycloid(
+        &dir.path,
+        &["check", "spec.yaml", "--json", "r.json", "--junit", "r.xml"],
+    );
+    assert_eq!(out.code, Some(1), "{}{}", out.stdout, out.stderr);
+    let parsed = parse(&dir.read("r.xml"));
+    let results: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    let places = crate::strength::strength_places(&results);
+    let class = "cycloid.paper-table-1-strength.rated.limits".to_string();
+    let cases: Vec<(String, String)> = (places.iter())
+        .map(|(key, _, _)| (class.clone(), key.to_string()))
+        .collect();
+    assert_eq!(parsed.testcases, cases);
+    let (_, s0, at) = &places[3];
+    assert_eq!(parsed.failures.len(), 1, "{:?}", parsed.failures);
+    let failure = &parsed.failures[0];
+    assert!(
+        failure.starts_with(&format!("value {s0}, limit ≥ 8.000: ")),
+        "{failure}"
+    );
+    assert!(
+        failure.ends_with(&format!(" outside; {at}")),
+        "{failure}\n{at}"
+    );
+}

@@ -446,3 +446,224 @@ fn miner_over_a_duty_cycle_keeps_the_flanks_apart() {
     let q = cycloid::model::quantity::find("min_contact_fatigue_life_h").unwrap();
     assert_eq!(q.scalar(&r).unwrap().value, f.disc_h.unwrap());
 }
+
+/// The shipped `specs/reducer-strength.yaml` with its static safety bound raised to 8 (its s0
+/// is ~7.2), so that one strength check fails.
+pub(crate) fn strength_failing() -> String {
+    let text = include_str!("../../specs/reducer-strength.yaml");
+    let from = "min_static_safety: 2.0 ";
+    assert_eq!(text.matches(from).count(), 1);
+    text.replace(from, "min_static_safety: 8.0 ")
+}
+
+/// The largest entry of a `[row][crank]` array of the results JSON: (value, row, crank).
+fn json_max_entry(rows: &serde_json::Value) -> (f64, usize, usize) {
+    let mut best = (f64::NEG_INFINITY, 0, 0);
+    for (i, row) in rows.as_array().unwrap().iter().enumerate() {
+        for (k, x) in row.as_array().unwrap().iter().enumerate() {
+            let x = x.as_f64().unwrap();
+            if x > best.0 {
+                best = (x, i, k);
+            }
+        }
+    }
+    best
+}
+
+/// The strength figures of `strength_failing`'s scene and where each is governed, as the
+/// reports must say them, recomputed from the forces and pressures of its results JSON (not its
+/// strength figures): a cantilever pin of d = 6 mm loaded at a = 10 mm, σ = 32·F·a/(π·d³);
+/// yield 1400 MPa; ISO 6336-2's N(p) = 5e7·(1500/p)^13.2 over np/nc = 10/9 passes per turn at
+/// 1500 rpm (the disc's, the shorter); s0 = 14000 N / max |Fb|. `(key, value, where)`.
+pub(crate) fn strength_places(results: &serde_json::Value) -> Vec<(&'static str, String, String)> {
+    use cycloid::numeric::number;
+    let scene = &results["scenes"][0];
+    let crank = |k: usize| scene["crank_deg"][k].as_f64().unwrap();
+    let (force, pin, k) = json_max_entry(&scene["pin_force_n"]);
+    let sigma = 32.0 * force * 10.0 / (PI * 6f64.powi(3));
+    let pin_at = format!("pin {pin} at crank {:.2}°", crank(k));
+    let (p, roller, kp) = json_max_entry(&scene["contact_pressure_mpa"]);
+    let life = 5e7 * (1500.0 / p).powf(13.2) / (10.0 / 9.0 * 1500.0 * 60.0);
+    let bearing = serde_json::json!([scene["bearing_force_n"].clone()]);
+    let (fb, _, kb) = json_max_entry(&bearing);
+    vec![
+        (
+            "max_pin_bending_stress_mpa",
+            format!("{} MPa", number(sigma)),
+            pin_at.clone(),
+        ),
+        ("min_pin_bending_safety", number(1400.0 / sigma), pin_at),
+        (
+            "min_contact_fatigue_life_h",
+            format!("{} h", number(life)),
+            format!(
+                "disc at {} MPa, roller {roller} at crank {:.2}°",
+                number(p),
+                crank(kp)
+            ),
+        ),
+        (
+            "min_static_safety",
+            number(14000.0 / fb),
+            format!("C0 / {} N at crank {:.2}°", number(fb), crank(kb)),
+        ),
+    ]
+}
+
+/// The terminal's check table and headlines and the design review's check table give each
+/// strength figure with its governing part and place (`strength_places`, recomputed from the
+/// results JSON's forces and pressures).
+#[test]
+fn the_headlines_and_the_check_tables_name_the_governing_part_and_place() {
+    let dir = crate::common::Scratch::new("strength-places");
+    dir.write("spec.yaml", strength_failing());
+    let out = crate::common::cycloid(
+        &dir.path,
+        &[
+            "check",
+            "spec.yaml",
+            "--json",
+            "r.json",
+            "--report",
+            "review",
+        ],
+    );
+    assert_eq!(out.code, Some(1), "{}{}", out.stdout, out.stderr);
+    let results: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    let review = dir.read("review/index.html");
+    let labels = [
+        "max pin bending stress",
+        "pin bending safety (yield / stress)",
+        "contact fatigue life (shorter of disc and rollers)",
+        "crank-bearing static safety s0",
+    ];
+    for ((key, value, at), label) in strength_places(&results).into_iter().zip(labels) {
+        let check = (out.stdout.lines())
+            .find(|l| l.starts_with(&format!("rated/{key} ")))
+            .unwrap_or_else(|| panic!("no check {key}:\n{}", out.stdout));
+        let words: Vec<&str> = check.split_whitespace().collect();
+        assert!(check.ends_with(&format!("  {at}")), "{check}\n{at}");
+        assert_eq!(words[1], value.split(' ').next().unwrap(), "{check}");
+        let verdict = if key == "min_static_safety" {
+            "FAIL"
+        } else {
+            "pass"
+        };
+        assert!(words.contains(&verdict), "{check}");
+        let headline = (out.stdout.lines())
+            .find(|l| l.starts_with(&format!("  {label} ")))
+            .unwrap_or_else(|| panic!("no headline {label}:\n{}", out.stdout));
+        assert!(
+            headline.ends_with(&format!("{value}  {at}")),
+            "{headline}\n{value}  {at}"
+        );
+        let cell = format!("<td><code>rated/{key}</code></td>");
+        let row = review
+            .split(cell.as_str())
+            .nth(1)
+            .unwrap_or_else(|| panic!("{key}"));
+        let row = row.split("</tr>").next().unwrap();
+        assert!(row.contains(&format!("<td>{at}</td>")), "{key}: {row}");
+    }
+}
+
+/// `cycloid tolerance` judges the strength limits on every sample: each sample's recorded
+/// figures are those `check` finds on the sample written back (`--write-sample`), its static
+/// safety C0 over the largest bearing force of that check's curves, and the failures
+/// counted are the samples whose figures miss a limit.
+#[test]
+fn a_tolerance_study_judges_the_strength_limits_per_sample() {
+    // The loaded period of parts as drawn is 3240° of crank (nine turns: the drawn pins and
+    // holes break the pin period); 2° steps keep the study short.
+    let mut text = include_str!("../../specs/reducer-strength.yaml")
+        .replace("to_deg: 108.0, steps: 1080", "to_deg: 3240.0, steps: 1620");
+    text += "tolerances:\n  scene: rated\n  distribution: normal\n  eccentricity_mm: 0.003\n  \
+             roller_radial_mm: 0.003\n  pin_radial_mm: 0.003\n  hole_radial_mm: 0.003\n  \
+             samples: 3\n  seed: 1\n  max_failure_rate: 0.0027\n";
+    let dir = crate::common::Scratch::new("strength-tolerance");
+    dir.write("t.yaml", &text);
+    let run = |args: &[&str]| crate::common::cycloid(&dir.path, args);
+    let study = run(&[
+        "tolerance",
+        "t.yaml",
+        "--samples-csv",
+        "s.csv",
+        "--json",
+        "t.json",
+    ]);
+    assert!(study.code() <= 1, "{study:?}");
+    let csv = dir.read("s.csv");
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    // (limit, its quantity's column, bound, an upper bound)
+    let limits = [
+        (
+            "max_pin_bending_stress_mpa",
+            "max_pin_bending_stress_mpa",
+            600.0,
+            true,
+        ),
+        ("min_pin_bending_safety", "pin_bending_safety", 2.0, false),
+        (
+            "min_contact_fatigue_life_h",
+            "min_contact_fatigue_life_h",
+            2000.0,
+            false,
+        ),
+        ("min_static_safety", "static_safety", 2.0, false),
+    ];
+    let mut failures = 0;
+    for k in 0..3 {
+        let row: Vec<f64> = (csv.lines().nth(k + 1).unwrap().split(','))
+            .map(|x| x.parse().unwrap_or(f64::NAN))
+            .collect();
+        let out = format!("sample{k}.yaml");
+        let w = run(&[
+            "tolerance",
+            "t.yaml",
+            "--write-sample",
+            &k.to_string(),
+            &out,
+        ]);
+        assert_eq!(w.code(), 0, "{w:?}");
+        let c = run(&["check", &out, "--json", "c.json"]);
+        assert!(c.code() <= 1, "{c:?}");
+        let doc: serde_json::Value = serde_json::from_str(&dir.read("c.json")).unwrap();
+        let checked = |key: &str| {
+            let checks = doc["checks"].as_array().unwrap();
+            let c = checks
+                .iter()
+                .find(|c| c["id"] == format!("rated/{key}"))
+                .unwrap();
+            c["value"].as_f64().unwrap()
+        };
+        let mut fails = false;
+        for (key, column, bound, max) in limits {
+            let recorded = row[header.iter().position(|h| *h == column).unwrap()];
+            // 1e-12 relative: the life has been seen one ulp apart between the study and the
+            // replayed check (a ulp of the pressure is 13.2 ulps of the life); the others
+            // agree to the bit.
+            let replayed = checked(key);
+            let close = (recorded / replayed - 1.0).abs() < 1e-12;
+            assert!(close, "sample {k} {key}: {recorded} against {replayed}");
+            fails |= if max {
+                recorded > bound
+            } else {
+                recorded < bound
+            };
+        }
+        failures += usize::from(fails);
+        let fb = doc["scenes"][0]["bearing_force_n"]
+            .as_array()
+            .unwrap()
+            .iter();
+        let fb = fb.map(|x| x.as_f64().unwrap()).fold(0.0, f64::max);
+        // 1e-12 relative: one division, against the check's own.
+        let s0 = checked("min_static_safety");
+        assert!(
+            (s0 / (14000.0 / fb) - 1.0).abs() < 1e-12,
+            "sample {k}: {s0}"
+        );
+    }
+    let study: serde_json::Value = serde_json::from_str(&dir.read("t.json")).unwrap();
+    assert_eq!(study["failures"].as_u64(), Some(failures as u64));
+}

@@ -69,15 +69,21 @@ fn reducer(s: &mut String, r: &RawReducer) {
     let _ = writeln!(s, "    circle_radius_mm: {}", num(p.circle_radius_mm));
     let _ = writeln!(s, "    pin_radius_mm: {}", num(p.pin_radius_mm));
     let _ = writeln!(s, "    hole_clearance_mm: {}", num(p.hole_clearance_mm));
-    let _ = writeln!(s, "  material:");
-    let _ = writeln!(
-        s,
-        "    youngs_modulus_gpa: {}",
-        num(r.material.youngs_modulus_gpa)
-    );
-    let _ = writeln!(s, "    poisson_ratio: {}", num(r.material.poisson_ratio));
-    if let Some(d) = r.material.density_kg_per_m3 {
-        let _ = writeln!(s, "    density_kg_per_m3: {}", num(d));
+    if let Some(support) = &p.support {
+        let positions: Vec<String> = support.disc_positions_mm.iter().map(|&a| num(a)).collect();
+        let support = flow(&[
+            ("kind", Some(support.kind.clone())),
+            ("length_mm", Some(num(support.length_mm))),
+            (
+                "disc_positions_mm",
+                Some(format!("[{}]", positions.join(", "))),
+            ),
+        ]);
+        let _ = writeln!(s, "    support: {support}");
+    }
+    material(s, "material", &r.material);
+    if let Some(m) = &r.roller_material {
+        material(s, "roller_material", m);
     }
     if let Some(b) = &r.crank_bearing {
         let _ = writeln!(s, "  crank_bearing:");
@@ -88,6 +94,9 @@ fn reducer(s: &mut String, r: &RawReducer) {
         );
         if let Some(p) = b.life_exponent {
             let _ = writeln!(s, "    life_exponent: {}", num(p));
+        }
+        if let Some(c0) = b.static_load_rating_n {
+            let _ = writeln!(s, "    static_load_rating_n: {}", num(c0));
         }
     }
     if let Some(f) = &r.friction {
@@ -103,6 +112,28 @@ fn reducer(s: &mut String, r: &RawReducer) {
             ("ambient_c", Some(num(t.ambient_c))),
         ]);
         let _ = writeln!(s, "  thermal: {thermal}");
+    }
+}
+
+/// `reducer.material` or `reducer.roller_material` (`key`): elasticity, density, strength.
+fn material(s: &mut String, key: &str, m: &RawMaterial) {
+    let _ = writeln!(s, "  {key}:");
+    let _ = writeln!(s, "    youngs_modulus_gpa: {}", num(m.youngs_modulus_gpa));
+    let _ = writeln!(s, "    poisson_ratio: {}", num(m.poisson_ratio));
+    if let Some(d) = m.density_kg_per_m3 {
+        let _ = writeln!(s, "    density_kg_per_m3: {}", num(d));
+    }
+    if let Some(y) = m.yield_strength_mpa {
+        let _ = writeln!(s, "    yield_strength_mpa: {}", num(y));
+    }
+    if let Some(f) = &m.contact_fatigue {
+        let law = flow(&[
+            ("pressure_mpa", Some(num(f.pressure_mpa))),
+            ("cycles", Some(num(f.cycles))),
+            ("exponent", Some(num(f.exponent))),
+            ("endurance_pressure_mpa", f.endurance_pressure_mpa.map(num)),
+        ]);
+        let _ = writeln!(s, "    contact_fatigue: {law}");
     }
 }
 

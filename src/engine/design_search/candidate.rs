@@ -7,7 +7,8 @@ use crate::geometry::disc_solid;
 use crate::geometry::mass_properties::{face_moments, DiscMass, SECTION_TOLERANCE_MM};
 use crate::geometry::profile::Profile;
 use crate::model::requirements::{Continuous, Requirements, Variables};
-use crate::model::{Crowning, Friction, OutputPins, PinMode, RollerMode};
+use crate::model::strength::PartStrength;
+use crate::model::{Crowning, Friction, Material, OutputPins, PinMode, RollerMode};
 use crate::spec::raw::*;
 use crate::spec::requirements::STEEL_DENSITY_KG_PER_M3;
 use crate::spec::Spec;
@@ -146,19 +147,22 @@ pub(crate) fn raw_spec(req: &Requirements, c: &Candidate, name: &str, steps: usi
                 circle_radius_mm: x.pin_circle_radius_mm,
                 pin_radius_mm: x.pin_radius_mm,
                 hole_clearance_mm: req.search.hole_clearance_mm,
-                support: None,
+                support: req.pin_support.map(|s| RawPinSupport {
+                    kind: s.kind.name().to_string(),
+                    length_mm: s.length_mm,
+                    disc_positions_mm: s.disc_positions_mm[..c.choice.discs].to_vec(),
+                }),
             },
             material: RawMaterial {
-                youngs_modulus_gpa: units::gpa(req.material.youngs_modulus_mpa),
-                poisson_ratio: req.material.poisson_ratio,
                 density_kg_per_m3: density_unless_steel(req),
-                ..Default::default()
+                ..raw_material(&req.material, &req.strength.disc)
             },
+            roller_material: (req.roller_material).map(|m| raw_material(&m, &req.strength.rollers)),
             crank_bearing: req.crank_bearing.map(|b| RawCrankBearing {
                 dynamic_load_rating_n: b.dynamic_load_rating_n,
                 life_exponent: Some(b.life_exponent),
                 outer_diameter_mm: None,
-                static_load_rating_n: None,
+                static_load_rating_n: b.static_load_rating_n,
             }),
             friction: req.friction.as_ref().map(raw_friction),
             thermal: req.thermal.as_ref().map(|t| RawThermal {
@@ -218,11 +222,20 @@ fn raw_scenes(req: &Requirements, c: &Candidate, steps: usize) -> Vec<RawScene> 
         Some(_) => &["bearing", "efficiency"],
         None => &["bearing"],
     };
+    // The strength limits are judged in the scene at speed: the rated one, or the duty cycle's
+    // (its bins carry the speeds; the rated scene then has none).
+    let running_with_strength = |here: bool| {
+        let strength: &[&str] = match here && req.needs_strength() {
+            true => &["strength"],
+            false => &[],
+        };
+        [running, strength].concat()
+    };
     let mut scenes = vec![scene("mesh", &["clearance"])];
     scenes.push(RawScene {
         output_torque_nm: Some(units::nm(req.rated_torque_nmm)),
         input_speed_rpm: req.input_speed_rpm,
-        ..loaded("rated", running)
+        ..loaded("rated", &running_with_strength(req.duty_cycle.is_none()))
     });
     if req.peak_torque_nmm > req.rated_torque_nmm {
         scenes.push(RawScene {
@@ -240,7 +253,7 @@ fn raw_scenes(req: &Requirements, c: &Candidate, steps: usize) -> Vec<RawScene> 
             .collect();
         scenes.push(RawScene {
             duty_cycle: Some(bins),
-            ..loaded("duty", running)
+            ..loaded("duty", &running_with_strength(true))
         });
     }
     if req.needs_torsion() {
@@ -255,6 +268,22 @@ fn raw_scenes(req: &Requirements, c: &Candidate, steps: usize) -> Vec<RawScene> 
         });
     }
     scenes
+}
+
+/// A spec's material of `m` with the strength `s` (its yield strength and S–N law).
+fn raw_material(m: &Material, s: &PartStrength) -> RawMaterial {
+    RawMaterial {
+        youngs_modulus_gpa: units::gpa(m.youngs_modulus_mpa),
+        poisson_ratio: m.poisson_ratio,
+        yield_strength_mpa: s.yield_strength_mpa,
+        contact_fatigue: s.contact_fatigue.map(|f| RawContactFatigue {
+            pressure_mpa: f.pressure_mpa,
+            cycles: f.cycles,
+            exponent: f.exponent,
+            endurance_pressure_mpa: f.endurance_pressure_mpa,
+        }),
+        density_kg_per_m3: None,
+    }
 }
 
 /// `modification.crowning` of the requirements' crowning: the same keys and values.

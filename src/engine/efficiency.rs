@@ -131,10 +131,8 @@ fn self_locking(scene: &Scene, input_torque_nmm: &[f64]) -> Vec<f64> {
 }
 
 /// The coupled model's input torque at each crank angle, N·mm, from the crank's balance about
-/// the axis (`equilibrium::coupling`): T_in = Σ_k (E_k × Fb_k + c_b·|Fb_k|) + T0 (at the
-/// scene's speed), with
-/// E_k = (e + de)·e_φk the eccentric of disc k and Fb_k its bearing's force on the disc (at
-/// the angle ε_k from e_φk: E_k × Fb_k = (e + de)·|Fb_k|·sin ε_k).
+/// the axis: T_in = Σ_k T_in,k + T0 (at the scene's speed), T_in,k disc k's share from its
+/// bearing's recorded force (`Coupling::input_torque`).
 fn crank_input_torque(
     friction: &Friction,
     design: &Design,
@@ -147,10 +145,7 @@ fn crank_input_torque(
             let discs: f64 = discs
                 .iter()
                 .filter_map(|d| d.bearing.as_ref())
-                .map(|b| {
-                    let (force, angle) = (b.force_n[i], b.angle_rad[i]);
-                    c.eccentricity_mm * force * angle.sin() + c.bearing_arm_mm * force
-                })
+                .map(|b| c.input_torque(b.force_n[i], b.angle_rad[i]))
                 .sum();
             discs + friction.no_load_torque_nmm.at_rpm(scene.input_speed_rpm)
         })

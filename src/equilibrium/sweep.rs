@@ -9,7 +9,7 @@ use super::loaded::{AngleSolution, Model};
 use super::rollers::Rollers;
 use super::solve::SolveFailure;
 use super::work::Work;
-use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
+use crate::geometry::{angle_from, cross, NearbyAtan2, NearbySinCos, Vec2};
 use crate::model::results::{
     BearingCurves, FaceLoads, LoadedSweep, PinCurves, RollerCurves, Transmission,
 };
@@ -114,11 +114,6 @@ pub(super) struct Chunk<'a> {
     line_load: Vec<&'a mut [f64]>,
     slices: usize,
     face_factor: Vec<&'a mut [f64]>,
-}
-
-/// Angle of a force from the eccentric direction e_φ, counter-clockwise, rad.
-fn angle_from(e_phi: Vec2, f: Vec2) -> f64 {
-    cross(e_phi, f).atan2(e_phi.dot(&f))
 }
 
 /// `column` cut into pieces of `CHUNK` angles.

@@ -80,6 +80,8 @@ pub(super) struct Columns {
     half_width: Vec<Vec<f64>>,
     contacts: Vec<usize>,
     pin_force: Vec<Vec<f64>>,
+    /// Angle of each pin's force on the pin from e_φ (`PinCurves::direction_rad`), rad.
+    pin_direction: Vec<Vec<f64>>,
     bearing_force: Vec<f64>,
     /// Angle of the bearing force from the eccentric direction, rad.
     bearing_angle: Vec<f64>,
@@ -106,6 +108,7 @@ pub(super) struct Chunk<'a> {
     half_width: Vec<&'a mut [f64]>,
     contacts: &'a mut [usize],
     pin_force: Vec<&'a mut [f64]>,
+    pin_direction: Vec<&'a mut [f64]>,
     bearing_force: &'a mut [f64],
     bearing_angle: &'a mut [f64],
     residual: &'a mut [f64],
@@ -162,6 +165,7 @@ impl Columns {
             half_width: (0..rollers).map(|_| column()).collect(),
             contacts: vec![0; angles],
             pin_force: (0..pins).map(|_| column()).collect(),
+            pin_direction: (0..pins).map(|_| column()).collect(),
             bearing_force: column(),
             bearing_angle: column(),
             residual: column(),
@@ -188,6 +192,7 @@ impl Columns {
         let mut pressure = piece_rows(&mut self.pressure, n).into_iter();
         let mut half_width = piece_rows(&mut self.half_width, n).into_iter();
         let mut pin_force = piece_rows(&mut self.pin_force, n).into_iter();
+        let mut pin_direction = piece_rows(&mut self.pin_direction, n).into_iter();
         let mut roller_contact = piece_rows(&mut self.roller_contact, n).into_iter();
         let slices = self.slices;
         let mut line_load = piece_rows_of(&mut self.line_load, n, slices).into_iter();
@@ -212,6 +217,7 @@ impl Columns {
                     half_width: half_width.next().unwrap_or_default(),
                     contacts,
                     pin_force: pin_force.next().unwrap_or_default(),
+                    pin_direction: pin_direction.next().unwrap_or_default(),
                     bearing_force,
                     bearing_angle,
                     residual,
@@ -235,6 +241,7 @@ impl<'a> Chunk<'a> {
             &mut self.pressure,
             &mut self.half_width,
             &mut self.pin_force,
+            &mut self.pin_direction,
         ];
         for column in columns {
             column.iter_mut().for_each(|c| c[k] = 0.0);
@@ -327,6 +334,13 @@ impl<'a> Chunk<'a> {
         }
         for (j, p) in sol.pins.iter().enumerate() {
             self.pin_force[j][k] = p.force_n;
+            // The force on the pin is −F·û; in the first-order geometry û = −e_φ exactly and
+            // this is 0 (a lean angle's entry stays the column's zero).
+            self.pin_direction[j][k] = if p.force_n != 0.0 {
+                angle_from(e_phi, -p.direction)
+            } else {
+                0.0
+            };
         }
         let bearing = sol.bearing_force_n.unwrap_or_default();
         let angle = angle_from(e_phi, bearing);
@@ -456,6 +470,7 @@ pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
         pins: model.pins.as_ref().map(|_| PinCurves {
             output_lag_rad: c.output_lag,
             force_n: c.pin_force,
+            direction_rad: c.pin_direction,
         }),
         bearing: model.bearing.then_some(BearingCurves {
             force_n: c.bearing_force,

@@ -140,6 +140,11 @@ pub struct PinCurves {
     /// Contact force of each output pin on the disc, N, `[pin][angle]`: its magnitude; 0 where
     /// the pin does not touch its hole.
     pub force_n: Vec<Vec<f64>>,
+    /// The direction of each pin's force, `[pin][angle]`: the angle of the force on the pin
+    /// (the hole's push, −F·û) from the eccentric direction e_φ, counter-clockwise, rad. 0 in
+    /// the first-order geometry (û = −e_φ) and where the pin carries no force; of the order
+    /// of rw·βo/e in the exact geometry (the output lag turns the pin about its hole).
+    pub direction_rad: Vec<Vec<f64>>,
 }
 
 /// Crank bearing over the sweep: force magnitude, its angle ε from the eccentric direction

@@ -189,11 +189,15 @@ pub struct LoadedSweep {
     /// TE and ratio, with the rollers modelled; with several discs the reducer's (its own
     /// `SceneResult::loaded`), none of a disc's.
     pub transmission: Option<Transmission>,
-    /// The contact point and outward disc normal (fixed frame, mm: `[x, y, nx, ny]`) of every
-    /// roller that carries a force, `[roller][angle]`, as the sweep solved them: recorded only
-    /// for the friction losses of `efficiency` (`Model::keep_contacts`), zeros where a roller
-    /// carries no force or the angle was solved by the lean first-order sweep.
-    pub roller_contacts: Option<Vec<Vec<[f64; 4]>>>,
+    /// The friction losses of the disc's contacts at each angle, per unit input speed,
+    /// N·mm/rad `[angle]` (the input's drag aside: that is the reducer's), from each angle's
+    /// solution as the sweep solved it: recorded for the effect `efficiency` only
+    /// (`loaded::Model::losses`).
+    pub losses: Option<Vec<PathLosses>>,
+    /// The disc's share of the input torque at each angle, N·mm `[angle]`, from the crank's
+    /// balance (`Coupling::input_torque`): recorded with `losses` for the coupled friction
+    /// model only.
+    pub input_torque_nmm: Option<Vec<f64>>,
     /// The output pins' stresses (`Effect::Strength` with a pin support): the reducer's, on a
     /// single disc's sweep or with several discs on the scene's own (`SceneResult::loaded`),
     /// none of a disc's.

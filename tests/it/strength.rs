@@ -172,7 +172,11 @@ fn two_discs_in_the_exact_geometry_sum_the_recorded_directions() {
     let crank = "{ from_deg: 0.0, to_deg: 108.0, steps: 36 }";
     let scene = scene_item("rated", 10.0, crank, "strength") + "    contact_law: paper_linear\n";
     let r = run(&parse(&spec_text(2, Some(support), ("", ""), &scene)));
-    let stress = r.loaded.pin_stress.as_ref().expect("the reducer's pin stress");
+    let stress = r
+        .loaded
+        .pin_stress
+        .as_ref()
+        .expect("the reducer's pin stress");
     let (e, rw, nc) = (2.0, 18.0, TEETH as f64);
     // Disc d's force on pin j at angle k, N, as a vector: along its hole's offset from the pin.
     let load = |d: usize, j: usize, k: usize| {

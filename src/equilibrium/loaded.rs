@@ -3,7 +3,7 @@
 
 pub use super::angle_solution::AngleSolution;
 use super::coupling::Coupling;
-use super::friction::loss::LossModel;
+use super::losses::LossModel;
 use super::pins::Pins;
 use super::rollers::Rollers;
 use super::solve::Settings;

@@ -9,7 +9,6 @@
 
 use super::sliding::{pin_sliding, relative_crank_speed_ratio, roller_sliding};
 use crate::equilibrium::angle_solution::AngleSolution;
-use crate::equilibrium::coupling::Coupling;
 use crate::equilibrium::pins::PinState;
 use crate::equilibrium::rollers::RollerState;
 pub use crate::model::friction::PathLosses;
@@ -96,37 +95,6 @@ pub fn disc_losses(
             _ => 0.0,
         },
         no_load: 0.0,
-    }
-}
-
-/// What a sweep records of the friction at each solved angle, for the effect `efficiency`
-/// (`loaded::Model::losses`): the disc's contact losses (`disc_losses`) and, with the coupled
-/// model, its share of the input torque (`Coupling::input_torque`), each from the solution at
-/// hand.
-#[derive(Debug, Clone)]
-pub struct LossModel {
-    pub friction: Friction,
-    pub design: Design,
-    /// The coupled model's friction coefficients, for the input torque; none for the loss
-    /// model (whose input torque is the reducer's energy balance, `engine::efficiency`).
-    pub input: Option<Coupling>,
-}
-
-impl LossModel {
-    /// The losses of `friction` on `design`.
-    pub fn new(friction: Friction, design: &Design) -> Self {
-        let coupled = friction.model == crate::model::FrictionModel::Coupled;
-        LossModel {
-            friction,
-            design: design.clone(),
-            input: coupled.then(|| Coupling::new(&friction, design)),
-        }
-    }
-
-    /// The disc's contact losses at its crank angle `crank_rad` (its phase included) from its
-    /// solution, N·mm/rad (`disc_losses`).
-    pub fn disc(&self, crank_rad: f64, solution: &AngleSolution) -> PathLosses {
-        disc_losses(&self.friction, &self.design, crank_rad, solution)
     }
 }
 

@@ -2,17 +2,15 @@
 //! width"): for each scene whose disc is tilted (by the scene's `misalignment`, by
 //! `reducer.deviations.misalignment`, or both, added) or crowned, the line load of the most
 //! loaded roller at one crank angle, as the scene runs it and, when tilted, as designed (the
-//! same scene and angle without either tilt, solved by the same model). The angle of a tilted
+//! same scene at that one angle without either tilt, run through the run path as any scene
+//! is, `scene::run_design`, whose failure is the review's). The angle of a tilted
 //! scene is its worst (its largest face load factor); that of a crowned, aligned scene the
 //! angle of its largest line load (there the factor is largest on the lightest-loaded
 //! roller, whose load matters least). mm, N/mm, rad.
 
-use super::scene;
+use super::scene::{self, RunOptions};
 use crate::contact::face_width::slice_centre_mm;
-use crate::equilibrium::angle::solve_angle;
-use crate::equilibrium::loaded::AngleSolution;
-use crate::equilibrium::solve::Settings;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::face::Misalignment;
 use crate::model::results::{FaceLoads, SceneResult};
 use crate::model::{Design, Plan, Scene};
@@ -41,8 +39,7 @@ pub struct FaceProfile {
     /// The line loads of the scene as run (tilted), N/mm.
     pub tilted_n_per_mm: Vec<f64>,
     /// The line loads of the same scene and angle without the tilt, N/mm (none for an aligned
-    /// scene, or when the solve without the tilt fails: the review then draws the tilted curve
-    /// alone).
+    /// scene: the review then draws the tilted curve alone).
     pub designed_n_per_mm: Option<Vec<f64>>,
 }
 
@@ -87,9 +84,12 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
                 .map(|j| slice_centre_mm(spec.design.face_width_mm, s.face.slices, j))
                 .collect(),
             tilted_n_per_mm: face.at(roller, k).to_vec(),
-            designed_n_per_mm: tilted
-                .then(|| line_loads_at(spec, &untilted, &designed, crank_rad, roller))
-                .flatten(),
+            designed_n_per_mm: match tilted {
+                true => Some(line_loads_at(
+                    spec, &untilted, &designed, crank_rad, roller,
+                )?),
+                false => None,
+            },
         });
     }
     Ok(out)
@@ -112,25 +112,39 @@ fn largest_line_load(face: &FaceLoads) -> Option<(usize, usize)> {
     Some((k, roller))
 }
 
-/// Roller `roller`'s line loads in `scene` at `crank_rad`, solved as the scene's sweep is.
+/// Roller `roller`'s line loads in `scene` of `design` at `crank_rad`, N/mm: the scene's loaded
+/// effects run at that one angle (no duty cycle: the scene's own torque) through the run path
+/// (`scene::run_design`, with the spec's options), read from what its sweep recorded.
 fn line_loads_at(
     spec: &Spec,
     design: &Design,
     scene: &Scene,
     crank_rad: f64,
     roller: usize,
-) -> Option<Vec<f64>> {
-    let plan = Plan::for_scene(scene);
-    let model = scene::loaded_model(
-        design,
-        &spec.modification,
-        scene,
-        &plan,
-        &Settings::default(),
-    );
-    let sol = solve_angle(&model, crank_rad, &AngleSolution::default()).ok()?;
-    let rollers = model.rollers.as_ref()?;
-    let mut q = vec![0.0; rollers.slices()];
-    rollers.line_loads(sol.rollers.get(roller)?, &mut q);
-    Some(q)
+) -> Result<Vec<f64>> {
+    let at = Scene {
+        crank_rad: vec![crank_rad],
+        effects: scene
+            .effects
+            .iter()
+            .copied()
+            .filter(|e| e.is_loaded())
+            .collect(),
+        duty_cycle: None,
+        ..scene.clone()
+    };
+    let plan = Plan::for_scene(&at);
+    let options = RunOptions::for_spec(spec);
+    let r = scene::run_design(design, &spec.modification, (&at, &plan), &options)
+        .map_err(|e| scene::at_scene(spec, scene, e))?;
+    let face = r.loaded.rollers.as_ref().and_then(|c| c.face.as_ref());
+    face.filter(|f| roller < f.line_load_n_per_mm.len())
+        .map(|f| f.at(roller, 0).to_vec())
+        .ok_or_else(|| {
+            Error::computation(format!(
+                "scene `{}`: the load along the face without the tilt: no line loads of roller \
+                 {roller} recorded",
+                scene.name
+            ))
+        })
 }

@@ -11,6 +11,7 @@ use crate::equilibrium::coupling::Coupling;
 use crate::equilibrium::discs::Discs;
 use crate::equilibrium::discs_sweep::{self, DiscSweeps};
 use crate::equilibrium::loaded::Model;
+use crate::equilibrium::losses::LossModel;
 use crate::equilibrium::solve::{Settings, SolveFailure};
 use crate::equilibrium::sweep;
 use crate::error::{Error, Result};
@@ -209,7 +210,7 @@ fn run_one(
     };
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     if design.discs == 1 {
-        // Built once, for the sweep and the efficiency's contact points; none without a sweep.
+        // None without a sweep.
         let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
         let mut loaded = loaded_sweep(design, model.as_ref(), (scene, plan), progress)?;
         first_order_valid(design, m, scene, (&loaded, 0.0))?;
@@ -218,7 +219,7 @@ fn run_one(
             loaded.strength = strength::disc_strength(design, (scene, plan), &loaded);
         }
         let efficiency = match &model {
-            Some(model) => efficiency::efficiency(design, model, (scene, plan), &[&loaded])?,
+            Some(_) => efficiency::efficiency(design, (scene, plan), &[&loaded])?,
             None => None,
         };
         let mut one = result(scene.name.clone(), clearance(0, 0.0)?, loaded);
@@ -241,9 +242,9 @@ fn run_one(
         let disc = result(name, clearance(k, design.disc_phase_rad(k))?, loaded);
         reducer.discs.push(disc);
     }
-    if let (Some(s), Some(model)) = (&sweeps, &model) {
+    if let Some(s) = &sweeps {
         let discs: Vec<&LoadedSweep> = s.discs.iter().collect();
-        if let Some((all, each)) = efficiency::efficiency(design, model, (scene, plan), &discs)? {
+        if let Some((all, each)) = efficiency::efficiency(design, (scene, plan), &discs)? {
             reducer.efficiency = Some(all);
             for (disc, e) in reducer.discs.iter_mut().zip(each) {
                 disc.efficiency = Some(e);
@@ -652,8 +653,10 @@ pub fn loaded_model(
 ) -> Model {
     let mut model = Model::new(design, m, scene, plan);
     model.settings = *settings;
-    // The friction losses of `efficiency` read the loaded rollers' contacts the sweep solved.
-    model.keep_contacts = design.friction.is_some() && plan.computes(Effect::Efficiency);
+    // The sweep records the friction losses and input torque of `efficiency` at each angle.
+    model.losses = (design.friction)
+        .filter(|_| plan.computes(Effect::Efficiency))
+        .map(|f| LossModel::new(f, design));
     // The coupled friction model puts friction inside the balance of a crank sweep that asks
     // for `efficiency`: its loaded outputs are then the coupled ones. A torsion loop always
     // balances with its friction, whichever model the efficiency uses (friction that is not

@@ -6,42 +6,40 @@
 use crate::contact::fatigue;
 use crate::equilibrium::pin_beam::PinBeam;
 use crate::equilibrium::pin_stress::{self, Beam};
-use crate::geometry::Vec2;
-use crate::model::results::{LoadedSweep, UNBOUNDED_LIFE_H};
+use crate::geometry::{rotate, Vec2};
+use crate::model::results::{LoadedSweep, PinCurves, UNBOUNDED_LIFE_H};
 use crate::model::strength::{DiscStrength, FatigueLives, PinStress, StaticSafety};
 use crate::model::{Design, Effect, Plan, Scene};
 
 /// The pins' stresses over the scene's crank angles `crank_rad` from each disc's sweep
 /// (`discs[k]`, disc k at its crank phase), when the pins bend (`support`) and carry forces.
 ///
-/// Disc k's pin pushes its hole along the disc's eccentric direction (cos(φ + 2πk/N),
-/// sin(φ + 2πk/N)) in the ideal geometry (`equilibrium::pins`: Q − H = −e·(cos φ, sin φ)); the
-/// hole pushes the pin back along it, each disc's force at its own mid-plane. The exact
-/// direction differs by the output lag's turn of the pin about its hole, rw·βo/e (~1e-3 rad at
-/// the rated torque of the paper's design), which moves the vector sum by as little.
+/// Disc k's hole pushes pin j with the force F_kj (its magnitude from the sweep) along the
+/// direction the sweep recorded (`PinCurves::direction_rad`: the angle δ_kj from disc k's
+/// eccentric direction e_φk = (cos(φ + 2πk/N), sin(φ + 2πk/N))), each disc's force at its own
+/// mid-plane; the vectors are summed along the pin (`pin_stress::Beam::largest`).
 pub fn pin_stress(design: &Design, crank_rad: &[f64], discs: &[&LoadedSweep]) -> Option<PinStress> {
     let support = design.pins.support?;
-    let forces: Vec<&Vec<Vec<f64>>> = discs
+    let pins: Vec<&PinCurves> = discs
         .iter()
-        .map(|d| d.pins.as_ref().map(|p| &p.force_n))
+        .map(|d| d.pins.as_ref())
         .collect::<Option<_>>()?;
     let diameter = 2.0 * PinBeam::of(design)?.bending_radius_mm;
     let beam = Beam {
         kind: support.kind,
         length_mm: support.length_mm,
     };
-    let pins = design.pins.count;
-    let mut bending = vec![vec![0.0; crank_rad.len()]; pins];
+    let count = design.pins.count;
+    let mut bending = vec![vec![0.0; crank_rad.len()]; count];
     let mut shear = bending.clone();
     for (a, &phi) in crank_rad.iter().enumerate() {
-        for j in 0..pins {
+        for j in 0..count {
             let loads: Vec<(f64, Vec2)> = (0..discs.len())
                 .map(|k| {
                     let (s, c) = (phi + design.disc_phase_rad(k)).sin_cos();
-                    (
-                        support.disc_positions_mm[k],
-                        forces[k][j][a] * Vec2::new(c, s),
-                    )
+                    let (sd, cd) = pins[k].direction_rad[j][a].sin_cos();
+                    let along = rotate(Vec2::new(c, s), cd, sd);
+                    (support.disc_positions_mm[k], pins[k].force_n[j][a] * along)
                 })
                 .collect();
             let (m, v) = beam.largest(&loads);

@@ -43,7 +43,7 @@ use super::angle_solution::AngleSolution;
 use super::friction::sliding::{self, disc_speed_ratio, disc_velocity, relative_crank_speed_ratio};
 use super::pins::PinState;
 use super::rollers::RollerState;
-use crate::geometry::{cross, Vec2};
+use crate::geometry::{angle_from, cross, Vec2};
 use crate::model::{Design, Friction};
 
 /// The friction of the coupled balance, per unit normal force (`Friction` reduced to what the
@@ -122,11 +122,6 @@ impl Coupling {
 }
 
 impl Coupling {
-    /// The eccentric's centre E = (e + de)·e_φ, mm.
-    pub fn eccentric(&self, e_phi: Vec2) -> Vec2 {
-        e_phi * self.eccentricity_mm
-    }
-
     /// s_i: the sign of the disc's sliding over roller `s` along t = ẑ × n (−1, 0 or 1): at
     /// crank angle `crank_rad` (the disc's own) under the running kinematics; in a torsion
     /// loop the disc turns about its centre `centre` by dβ of sign σ, so the contact slides at
@@ -263,9 +258,13 @@ impl Coupling {
     }
 
     /// T_in = E × Fb + M_b: one disc's share of the input torque from the crank's balance about
-    /// the axis, N·mm (`bearing_force_n` the bearing's force on the disc).
-    pub fn input_torque(&self, e_phi: Vec2, bearing_force_n: Vec2) -> f64 {
-        cross(self.eccentric(e_phi), bearing_force_n) + self.bearing_moment(bearing_force_n)
+    /// the axis, N·mm, with the bearing's force on the disc given as the sweep records it: its
+    /// magnitude |Fb| = `bearing_force_n` (N) at the angle ε = `angle_rad` from e_φ, so
+    /// E × Fb = (e + de)·|Fb|·sin ε and M_b = ±c_b·|Fb| (`bearing_sign`). The one home of the
+    /// formula: the coupled balance's energy and the efficiency's input torque call it.
+    pub fn input_torque(&self, bearing_force_n: f64, angle_rad: f64) -> f64 {
+        self.eccentricity_mm * bearing_force_n * angle_rad.sin()
+            + self.bearing_sign() * self.bearing_arm_mm * bearing_force_n
     }
 
     /// The largest relative residual of one disc's coupled balance at crank angle `crank_rad`,
@@ -334,7 +333,7 @@ impl Coupling {
         let centre = e_phi * ecc + sol.centre_offset_mm;
         let fb = sol.bearing_force_n.unwrap_or_default();
         let mut e = Energy {
-            input: self.input_torque(e_phi, fb),
+            input: self.input_torque(fb.norm(), angle_from(e_phi, fb)),
             output: output_torque_nmm / nc as f64,
             crank_bearing: self.bearing_moment(fb) * relative_crank_speed_ratio(nc),
             ..Energy::default()

@@ -71,7 +71,7 @@ fn record_coupled(
                 x: w.sol.lag_rad.unwrap_or(0.0),
             }));
         }
-        rows.record(k, model, w.e_phi, &w.sol);
+        rows.record(k, model, (phi + discs.phases[d], w.e_phi), &w.sol);
         chunk.torque[d][k] = model.torque_nmm;
     }
     Ok(())

@@ -230,7 +230,9 @@ struct Balance<'s> {
 impl<'a> FirstOrderSweep<'a> {
     /// Whether the lean sweep applies to `model` (`new` builds it): first-order geometry, the
     /// paper's linear law, a rigid bearing, rollers, and at most 64 rollers and pins with a
-    /// linear stiffness; a uniform face (a crowned or tilted one's stiffness varies).
+    /// linear stiffness; a uniform face (a crowned or tilted one's stiffness varies); no
+    /// friction losses to record (`Model::losses`: they need each contact's point, which the
+    /// kernel does not keep).
     pub fn applies(model: &Model) -> bool {
         let Some(r) = model.rollers.as_ref() else {
             return false;
@@ -243,6 +245,7 @@ impl<'a> FirstOrderSweep<'a> {
             && r.face().is_none()
             && model.bearing_stiffness_n_per_mm.is_none()
             && model.coupled().is_none()
+            && model.losses.is_none()
             && r.units.len() <= MAX_TERMS
             && pins_apply
     }

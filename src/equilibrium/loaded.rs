@@ -3,6 +3,7 @@
 
 pub use super::angle_solution::AngleSolution;
 use super::coupling::Coupling;
+use super::losses::LossModel;
 use super::pins::Pins;
 use super::rollers::Rollers;
 use super::solve::Settings;
@@ -31,9 +32,9 @@ pub struct Model {
     /// contacts' (its centrifugal reaction, +F_c·e_φ, acts at the disc centre, so it moves no
     /// moment about it); 0 without the effect.
     pub centripetal_n: f64,
-    /// Record the loaded rollers' contact points and normals (`LoadedSweep::roller_contacts`),
-    /// for the friction losses of `efficiency`; off: other scenes pay nothing.
-    pub keep_contacts: bool,
+    /// Record each angle's friction losses and input torque (`LoadedSweep::losses`) for the
+    /// effect `efficiency`; none: other scenes pay nothing.
+    pub losses: Option<LossModel>,
 }
 
 impl Model {
@@ -61,7 +62,7 @@ impl Model {
             first_order: scene.geometry == GeometryMode::FirstOrder,
             coupling: None,
             centripetal_n: centripetal_n(design, m, scene, plan),
-            keep_contacts: false,
+            losses: None,
         }
     }
 

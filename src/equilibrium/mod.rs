@@ -14,6 +14,7 @@ pub mod discs_sweep;
 pub mod first_order_sweep;
 pub mod friction;
 pub mod loaded;
+pub mod losses;
 pub mod pin_beam;
 pub mod pin_stress;
 pub mod pins;

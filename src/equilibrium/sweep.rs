@@ -9,7 +9,8 @@ use super::loaded::{AngleSolution, Model};
 use super::rollers::Rollers;
 use super::solve::SolveFailure;
 use super::work::Work;
-use crate::geometry::{cross, NearbyAtan2, NearbySinCos, Vec2};
+use crate::geometry::{angle_from, cross, NearbyAtan2, NearbySinCos, Vec2};
+use crate::model::friction::PathLosses;
 use crate::model::results::{
     BearingCurves, FaceLoads, LoadedSweep, PinCurves, RollerCurves, Transmission,
 };
@@ -80,13 +81,18 @@ pub(super) struct Columns {
     half_width: Vec<Vec<f64>>,
     contacts: Vec<usize>,
     pin_force: Vec<Vec<f64>>,
+    /// Angle of each pin's force on the pin from e_φ (`PinCurves::direction_rad`), rad.
+    pin_direction: Vec<Vec<f64>>,
     bearing_force: Vec<f64>,
     /// Angle of the bearing force from the eccentric direction, rad.
     bearing_angle: Vec<f64>,
     residual: Vec<f64>,
     deflection: Vec<f64>,
-    /// The loaded rollers' contacts, with `Model::keep_contacts` (else no columns).
-    roller_contact: Vec<Vec<[f64; 4]>>,
+    /// Each angle's friction losses, one column with `Model::losses`, else none.
+    loss: Vec<Vec<PathLosses>>,
+    /// Each angle's input torque, one column with `Model::losses` of the coupled model, else
+    /// none.
+    input_torque: Vec<Vec<f64>>,
     /// Each roller's line loads, \[angle·slices + slice\], N/mm, when the face is resolved
     /// (`Face::is_resolved`; else no columns).
     line_load: Vec<Vec<f64>>,
@@ -106,19 +112,16 @@ pub(super) struct Chunk<'a> {
     half_width: Vec<&'a mut [f64]>,
     contacts: &'a mut [usize],
     pin_force: Vec<&'a mut [f64]>,
+    pin_direction: Vec<&'a mut [f64]>,
     bearing_force: &'a mut [f64],
     bearing_angle: &'a mut [f64],
     residual: &'a mut [f64],
     deflection: &'a mut [f64],
-    roller_contact: Vec<&'a mut [[f64; 4]]>,
+    loss: Vec<&'a mut [PathLosses]>,
+    input_torque: Vec<&'a mut [f64]>,
     line_load: Vec<&'a mut [f64]>,
     slices: usize,
     face_factor: Vec<&'a mut [f64]>,
-}
-
-/// Angle of a force from the eccentric direction e_φ, counter-clockwise, rad.
-fn angle_from(e_phi: Vec2, f: Vec2) -> f64 {
-    cross(e_phi, f).atan2(e_phi.dot(&f))
 }
 
 /// `column` cut into pieces of `CHUNK` angles.
@@ -167,12 +170,18 @@ impl Columns {
             half_width: (0..rollers).map(|_| column()).collect(),
             contacts: vec![0; angles],
             pin_force: (0..pins).map(|_| column()).collect(),
+            pin_direction: (0..pins).map(|_| column()).collect(),
             bearing_force: column(),
             bearing_angle: column(),
             residual: column(),
             deflection: column(),
-            roller_contact: (0..if model.keep_contacts { rollers } else { 0 })
-                .map(|_| vec![[0.0; 4]; angles])
+            loss: (0..usize::from(model.losses.is_some()))
+                .map(|_| vec![PathLosses::default(); angles])
+                .collect(),
+            input_torque: (0..usize::from(
+                model.losses.as_ref().is_some_and(|l| l.input.is_some()),
+            ))
+                .map(|_| column())
                 .collect(),
             line_load: (0..if resolved { rollers } else { 0 })
                 .map(|_| vec![0.0; angles * slices])
@@ -193,7 +202,9 @@ impl Columns {
         let mut pressure = piece_rows(&mut self.pressure, n).into_iter();
         let mut half_width = piece_rows(&mut self.half_width, n).into_iter();
         let mut pin_force = piece_rows(&mut self.pin_force, n).into_iter();
-        let mut roller_contact = piece_rows(&mut self.roller_contact, n).into_iter();
+        let mut pin_direction = piece_rows(&mut self.pin_direction, n).into_iter();
+        let mut loss = piece_rows(&mut self.loss, n).into_iter();
+        let mut input_torque = piece_rows(&mut self.input_torque, n).into_iter();
         let slices = self.slices;
         let mut line_load = piece_rows_of(&mut self.line_load, n, slices).into_iter();
         let mut face_factor = piece_rows(&mut self.face_factor, n).into_iter();
@@ -217,11 +228,13 @@ impl Columns {
                     half_width: half_width.next().unwrap_or_default(),
                     contacts,
                     pin_force: pin_force.next().unwrap_or_default(),
+                    pin_direction: pin_direction.next().unwrap_or_default(),
                     bearing_force,
                     bearing_angle,
                     residual,
                     deflection,
-                    roller_contact: roller_contact.next().unwrap_or_default(),
+                    loss: loss.next().unwrap_or_default(),
+                    input_torque: input_torque.next().unwrap_or_default(),
                     line_load: line_load.next().unwrap_or_default(),
                     slices,
                     face_factor: face_factor.next().unwrap_or_default(),
@@ -240,6 +253,7 @@ impl<'a> Chunk<'a> {
             &mut self.pressure,
             &mut self.half_width,
             &mut self.pin_force,
+            &mut self.pin_direction,
         ];
         for column in columns {
             column.iter_mut().for_each(|c| c[k] = 0.0);
@@ -281,8 +295,15 @@ impl<'a> Chunk<'a> {
         self.record_bearing(k, f, angle, s.residual);
     }
 
-    /// Record angle k of the general solve.
-    pub(super) fn record(&mut self, k: usize, model: &Model, e_phi: Vec2, sol: &AngleSolution) {
+    /// Record angle k of the general solve, at the disc's crank angle `crank_rad` (its phase
+    /// included) with its direction e_φ.
+    pub(super) fn record(
+        &mut self,
+        k: usize,
+        model: &Model,
+        (crank_rad, e_phi): (f64, Vec2),
+        sol: &AngleSolution,
+    ) {
         self.lag[k] = sol.lag_rad.unwrap_or(0.0);
         self.output_lag[k] = sol.output_lag_rad.unwrap_or(0.0);
         if let Some(r) = &model.rollers {
@@ -317,13 +338,6 @@ impl<'a> Chunk<'a> {
                 };
                 self.pressure[i][k] = p;
                 self.half_width[i][k] = b;
-                if let Some(c) = self.roller_contact.get_mut(i) {
-                    c[k] = if s.force_n > 0.0 {
-                        [s.point.x, s.point.y, s.normal.x, s.normal.y]
-                    } else {
-                        [0.0; 4]
-                    };
-                }
             }
             self.contacts[k] = contacts;
             if let Some(f) = self.face_factor.first_mut() {
@@ -332,11 +346,33 @@ impl<'a> Chunk<'a> {
         }
         for (j, p) in sol.pins.iter().enumerate() {
             self.pin_force[j][k] = p.force_n;
+            // The force on the pin is −F·û; in the first-order geometry û = −e_φ exactly and
+            // this is 0 (a lean angle's entry stays the column's zero).
+            self.pin_direction[j][k] = if p.force_n != 0.0 {
+                angle_from(e_phi, -p.direction)
+            } else {
+                0.0
+            };
         }
         let bearing = sol.bearing_force_n.unwrap_or_default();
         let angle = angle_from(e_phi, bearing);
         self.record_bearing(k, bearing, angle, sol.residual.unwrap_or(0.0));
         self.deflection[k] = sol.centre_offset_mm.norm();
+        self.record_friction(k, model, crank_rad, sol);
+    }
+
+    /// Record angle k's friction losses and input torque (`Model::losses`), from its solution
+    /// and the bearing force just recorded.
+    fn record_friction(&mut self, k: usize, model: &Model, crank_rad: f64, sol: &AngleSolution) {
+        let Some(losses) = &model.losses else {
+            return;
+        };
+        if let Some(l) = self.loss.first_mut() {
+            l[k] = losses.disc(crank_rad, sol);
+        }
+        if let (Some(t), Some(c)) = (self.input_torque.first_mut(), &losses.input) {
+            t[k] = c.input_torque(self.bearing_force[k], self.bearing_angle[k]);
+        }
     }
 }
 
@@ -377,7 +413,7 @@ fn solve_chunk(
                 x: work.sol.lag_rad.unwrap_or(0.0),
             }));
         }
-        chunk.record(k, model, work.e_phi, &work.sol);
+        chunk.record(k, model, (phi, work.e_phi), &work.sol);
     }
     Ok(())
 }
@@ -461,6 +497,7 @@ pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
         pins: model.pins.as_ref().map(|_| PinCurves {
             output_lag_rad: c.output_lag,
             force_n: c.pin_force,
+            direction_rad: c.pin_direction,
         }),
         bearing: model.bearing.then_some(BearingCurves {
             force_n: c.bearing_force,
@@ -468,8 +505,8 @@ pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
             residual: c.residual,
             deflection_mm: c.deflection,
         }),
-        roller_contacts: (model.keep_contacts && model.rollers.is_some())
-            .then_some(c.roller_contact),
+        losses: c.loss.into_iter().next(),
+        input_torque_nmm: c.input_torque.into_iter().next(),
         ..LoadedSweep::default()
     }
 }

@@ -20,6 +20,13 @@ pub fn cross(a: Vec2, b: Vec2) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// The angle of `v` from the unit direction `from`, counter-clockwise, in [−π, π], rad:
+/// atan2(from × v, from·v).
+#[inline]
+pub fn angle_from(from: Vec2, v: Vec2) -> f64 {
+    cross(from, v).atan2(from.dot(&v))
+}
+
 /// x reduced to [−π, π): x itself when it is in range (the common case of a warm start next
 /// to its reference, without the cost of a floating-point remainder).
 #[inline]

@@ -140,6 +140,11 @@ pub struct PinCurves {
     /// Contact force of each output pin on the disc, N, `[pin][angle]`: its magnitude; 0 where
     /// the pin does not touch its hole.
     pub force_n: Vec<Vec<f64>>,
+    /// The direction of each pin's force, `[pin][angle]`: the angle of the force on the pin
+    /// (the hole's push, −F·û) from the eccentric direction e_φ, counter-clockwise, rad. 0 in
+    /// the first-order geometry (û = −e_φ) and where the pin carries no force; of the order
+    /// of rw·βo/e in the exact geometry (the output lag turns the pin about its hole).
+    pub direction_rad: Vec<Vec<f64>>,
 }
 
 /// Crank bearing over the sweep: force magnitude, its angle ε from the eccentric direction
@@ -184,11 +189,15 @@ pub struct LoadedSweep {
     /// TE and ratio, with the rollers modelled; with several discs the reducer's (its own
     /// `SceneResult::loaded`), none of a disc's.
     pub transmission: Option<Transmission>,
-    /// The contact point and outward disc normal (fixed frame, mm: `[x, y, nx, ny]`) of every
-    /// roller that carries a force, `[roller][angle]`, as the sweep solved them: recorded only
-    /// for the friction losses of `efficiency` (`Model::keep_contacts`), zeros where a roller
-    /// carries no force or the angle was solved by the lean first-order sweep.
-    pub roller_contacts: Option<Vec<Vec<[f64; 4]>>>,
+    /// The friction losses of the disc's contacts at each angle, per unit input speed,
+    /// N·mm/rad `[angle]` (the input's drag aside: that is the reducer's), from each angle's
+    /// solution as the sweep solved it: recorded for the effect `efficiency` only
+    /// (`loaded::Model::losses`).
+    pub losses: Option<Vec<PathLosses>>,
+    /// The disc's share of the input torque at each angle, N·mm `[angle]`, from the crank's
+    /// balance (`Coupling::input_torque`): recorded with `losses` for the coupled friction
+    /// model only.
+    pub input_torque_nmm: Option<Vec<f64>>,
     /// The output pins' stresses (`Effect::Strength` with a pin support): the reducer's, on a
     /// single disc's sweep or with several discs on the scene's own (`SceneResult::loaded`),
     /// none of a disc's.

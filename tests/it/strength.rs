@@ -156,6 +156,65 @@ fn two_discs_on_one_pin_superpose_as_vectors() {
     );
 }
 
+/// Two discs as above in the exact geometry, where a hole no longer pushes its pin along the
+/// disc's eccentric direction: the hole's centre H sits off its pin's centre Q by d = H − Q,
+/// written here from MODEL.md ("Equilibrium", "Several discs"): H = e·e_φk + rw·e^{iγj},
+/// Q = rw·e^{i(γj + βo,k)}, γj = 2πj/M − φ/nc + βk (disc k's holes are bored so that the pins
+/// sit centred at its ideal pose, its arms rw·sin(γj − φk)), with disc k's recorded lags;
+/// the hole pushes the pin with F·d/|d| (ideally d = e·e_φk). The stress is the beam's sum of
+/// these vectors. Along e_φk instead, the sum differs
+/// by the output lag's turn rw·βo/e (~1e-4 rad here) wherever both discs load a pin (the
+/// test requires one). Tolerance 1e-10 of the larger term's stress: d is formed from lengths
+/// of rw = 18 mm to a few ulp, |d| = e = 2 mm, a direction error of ~1e-14 rad on each term.
+#[test]
+fn two_discs_in_the_exact_geometry_sum_the_recorded_directions() {
+    let support = "{ kind: cantilever, length_mm: 20.0, disc_positions_mm: [6.0, 16.0] }";
+    let crank = "{ from_deg: 0.0, to_deg: 108.0, steps: 36 }";
+    let scene = scene_item("rated", 10.0, crank, "strength") + "    contact_law: paper_linear\n";
+    let r = run(&parse(&spec_text(2, Some(support), ("", ""), &scene)));
+    let stress = r
+        .loaded
+        .pin_stress
+        .as_ref()
+        .expect("the reducer's pin stress");
+    let (e, rw, nc) = (2.0, 18.0, TEETH as f64);
+    // Disc d's force on pin j at angle k, N, as a vector: along its hole's offset from the pin.
+    let load = |d: usize, j: usize, k: usize| {
+        let disc = &r.discs[d].loaded;
+        let pins = disc.pins.as_ref().unwrap();
+        let phi = r.crank_rad[k] + PI * d as f64;
+        let lag = disc.rollers.as_ref().unwrap().lag_rad[k];
+        let gamma = TAU * j as f64 / PINS as f64 - r.crank_rad[k] / nc + lag;
+        let beta_o = pins.output_lag_rad[k];
+        let hole = [
+            e * phi.cos() + rw * gamma.cos(),
+            e * phi.sin() + rw * gamma.sin(),
+        ];
+        let pin = [rw * (gamma + beta_o).cos(), rw * (gamma + beta_o).sin()];
+        let d = [hole[0] - pin[0], hole[1] - pin[1]];
+        let f = pins.force_n[j][k] / d[0].hypot(d[1]);
+        [f * d[0], f * d[1]]
+    };
+    let norm = |v: [f64; 2]| v[0].hypot(v[1]);
+    let mut shared = 0;
+    for j in 0..PINS {
+        for k in 0..r.crank_rad.len() {
+            let (f0, f1) = (load(0, j, k), load(1, j, k));
+            // Cantilever, loads at 6 and 16 mm: M(0) = 6·F0 + 16·F1, M(6) = 10·F1, M(16) = 0.
+            let clamp = [6.0 * f0[0] + 16.0 * f1[0], 6.0 * f0[1] + 16.0 * f1[1]];
+            let want = sigma(norm(clamp).max(10.0 * norm(f1)));
+            let scale = sigma(6.0 * norm(f0) + 16.0 * norm(f1));
+            let got = stress.bending_stress_mpa[j][k];
+            assert!(
+                (got - want).abs() <= 1e-10 * scale.max(1.0),
+                "pin {j} at {k}: {got} vs {want}"
+            );
+            shared += usize::from(norm(f0) > 0.0 && norm(f1) > 0.0);
+        }
+    }
+    assert!(shared > 0, "some pin carries both discs");
+}
+
 /// N(p) = cycles·(p_ref/p)^k by hand: the law (1500 MPa, 1e8 cycles, k = 8) at 750 MPa gives
 /// 1e8·2⁸ = 2.56e10 cycles; at 1500 rpm a lobe of a disc of nc = 9 is loaded 10/9 times per
 /// crank turn, 1e5 times an hour: 2.56e5 h; a roller once per turn, 9e4 times an hour:

@@ -13,7 +13,6 @@
 pub mod accuracy;
 pub mod as_built;
 pub mod bearing_life;
-pub mod verdict;
 pub mod commands;
 pub mod design_search;
 pub mod drawing;
@@ -27,6 +26,7 @@ pub mod mass_properties;
 pub mod optimise;
 pub mod plausibility;
 pub mod power_flow;
+pub mod verdict;
 /// The progress observer (`crate::progress`), where the engine's callers look for it.
 pub use crate::progress;
 pub mod resolution;

@@ -148,11 +148,31 @@ pub fn disc_mass(design: &Design, modification: &Modification) -> DiscMass {
     let profile = Profile::new(design, modification).with_form(&design.deviations.form);
     let holes = super::disc_solid::pin_holes(&design.pins, design.hole_radius_mm());
     let bore = super::disc_solid::bore(design);
-    let face = face_moments(&profile, &holes, bore.as_ref(), SECTION_TOLERANCE_MM);
-    DiscMass::new(face, design.face_width_mm, design.density_kg_per_mm3)
+    DiscMass::of_face(
+        &profile,
+        &holes,
+        bore.as_ref(),
+        design.face_width_mm,
+        design.density_kg_per_mm3,
+    )
 }
 
 impl DiscMass {
+    /// The disc whose face lies inside `profile` less `holes` and `bore`, `face_width_mm`
+    /// thick, at `density_kg_per_mm3`: the face's moments within `SECTION_TOLERANCE_MM`
+    /// (`face_moments`) over the face width. Every disc mass is this call: `disc_mass` for a
+    /// spec's design, the design search's candidate before its design exists.
+    pub fn of_face(
+        profile: &Profile,
+        holes: &[Circle],
+        bore: Option<&Circle>,
+        face_width_mm: f64,
+        density_kg_per_mm3: f64,
+    ) -> DiscMass {
+        let face = face_moments(profile, holes, bore, SECTION_TOLERANCE_MM);
+        DiscMass::new(face, face_width_mm, density_kg_per_mm3)
+    }
+
     /// F = m·e·ω², N: the centripetal force that keeps this disc's centre on its orbit of
     /// radius `eccentricity_mm` at the crank speed `crank_rad_per_s` (kg · mm · 1e-3 m/mm ·
     /// rad²/s²), the force the crank bearing carries at zero torque.

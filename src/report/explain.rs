@@ -3,8 +3,8 @@
 //! [`engine::scene::notes`](crate::engine::scene::notes)) and the sentence every output gives of a torsion scene's hysteresis.
 
 use crate::contact::fatigue;
-use crate::engine::verdict;
 use crate::engine::scene::{self, Note, Writes};
+use crate::engine::verdict;
 use crate::equilibrium::pin_beam::PinBeam;
 use crate::model::period;
 use crate::model::results::TorsionCompliances;

@@ -9,11 +9,11 @@
 //! error and the run stops with it (the engine never produces one: a computation that fails
 //! stops the run before).
 
-use crate::engine::verdict::{Check, CheckKind};
 use crate::engine::golden::{sha256_hex, GoldenResult, Point};
 use crate::engine::mass_properties::{MassProperties, Unbalance};
 use crate::engine::optimise::StudyResult;
 use crate::engine::summary::SceneSummary;
+use crate::engine::verdict::{Check, CheckKind};
 use crate::error::Result;
 use crate::model::quantity::{self as q, Quantity, QUANTITIES};
 use crate::model::results::{ClearanceSweep, EfficiencyCurves, MinCoverage, SceneResult};

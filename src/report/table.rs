@@ -1,9 +1,9 @@
 //! The terminal table of checks (check, value, limit, verdict, where) and the summary of each
 //! scene's headline results.
 
-use crate::engine::verdict::{Bound, Check, CheckKind, Evidence};
 use crate::engine::plausibility::{Basis, Beyond};
 use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
+use crate::engine::verdict::{Bound, Check, CheckKind, Evidence};
 use crate::model::quantity::{find_limit, Quantity, COUNTS};
 use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE, ONLY_ANGLE};
 

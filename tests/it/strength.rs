@@ -624,6 +624,17 @@ fn the_headlines_and_the_check_tables_name_the_governing_part_and_place() {
         let row = row.split("</tr>").next().unwrap();
         assert!(row.contains(&format!("<td>{at}</td>")), "{key}: {row}");
     }
+    // The static safety's C0 is in the review's design table beside the bearing's C, as the
+    // spec gives it (read off the spec's text, not the code's figures).
+    let spec = strength_failing();
+    let c0 = (spec.lines())
+        .find_map(|l| l.trim().strip_prefix("static_load_rating_n:"))
+        .map(|v| v.split('#').next().unwrap().trim().parse::<f64>().unwrap())
+        .expect("the spec gives C0");
+    let row = (review.split("crank bearing (each disc)").nth(1))
+        .and_then(|r| r.split("</tr>").next())
+        .expect("the design table's bearing row");
+    assert!(row.contains(&format!(", C0 {c0} N")), "{row}");
 }
 
 /// `cycloid tolerance` judges the strength limits on every sample: each sample's recorded

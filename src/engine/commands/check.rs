@@ -5,7 +5,6 @@
 use super::tolerance;
 use crate::engine::accuracy::{self, Ladder};
 use crate::engine::as_built;
-use crate::engine::verdict::{self, Check};
 use crate::engine::drawing::{self, Disc};
 use crate::engine::golden::{self, GoldenResult};
 use crate::engine::mass_properties::{mass_properties, unbalances, MassProperties, Unbalance};
@@ -14,6 +13,7 @@ use crate::engine::resolution::{self, Resolution};
 use crate::engine::scene::{self, Writes};
 use crate::engine::summary::{self, SceneSummary};
 use crate::engine::torque_curve;
+use crate::engine::verdict::{self, Check};
 use crate::error::{Error, ErrorKind, Result};
 use crate::measure::fit::Identification;
 use crate::model::results::{SceneResult, TorqueCurve};

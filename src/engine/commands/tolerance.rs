@@ -1,11 +1,11 @@
 //! `tolerance`: the Monte Carlo of a spec's `tolerances:`, whole, as one shard of a split run,
 //! or merged from the shards; and the study as one check of `check --tolerance`.
 
-use crate::engine::verdict::{Check, CheckKind, Evidence};
 use crate::engine::limit::passes;
 use crate::engine::tolerance::sensitivity::{self, Sensitivity};
 use crate::engine::tolerance::summary::{self, Summary};
 use crate::engine::tolerance::{shard, shard_len, Records, ToleranceStudy};
+use crate::engine::verdict::{Check, CheckKind, Evidence};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::quantity::Bound;
 use crate::progress::{Phase, Progress};

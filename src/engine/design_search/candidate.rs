@@ -4,7 +4,7 @@
 
 use crate::error::Result;
 use crate::geometry::disc_solid;
-use crate::geometry::mass_properties::{face_moments, DiscMass, SECTION_TOLERANCE_MM};
+use crate::geometry::mass_properties::DiscMass;
 use crate::geometry::profile::Profile;
 use crate::model::requirements::{Continuous, Requirements, Variables};
 use crate::model::strength::PartStrength;
@@ -97,8 +97,13 @@ impl Candidate {
             support: None,
         };
         let holes = disc_solid::pin_holes(&pins, self.hole_radius_mm(req));
-        let face = face_moments(&profile, &holes, None, SECTION_TOLERANCE_MM);
-        DiscMass::new(face, x.face_width_mm, req.density_kg_per_mm3)
+        DiscMass::of_face(
+            &profile,
+            &holes,
+            None,
+            x.face_width_mm,
+            req.density_kg_per_mm3,
+        )
     }
 
     /// Crank period of the loaded curves under the requirements' tilt, in mesh periods

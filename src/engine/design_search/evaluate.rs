@@ -4,8 +4,8 @@
 
 use super::candidate::Candidate;
 pub use super::failure::{Failure, Miss, Requirement};
-use crate::engine::verdict::Check;
 use crate::engine::scene::{self, Writes};
+use crate::engine::verdict::Check;
 use crate::error::{ErrorKind, Result};
 use crate::model::quantity::{self, LimitDef, Quantity};
 use crate::model::requirements::{ObjectiveKind, Requirements};

@@ -41,8 +41,7 @@ pub(super) fn section(
                     .collect::<Vec<_>>().join(", "))))
         }
         @if let Some(b) = &d.crank_bearing {
-            (row("crank bearing (each disc)", format!("C {} N, life exponent p {}",
-                number(b.dynamic_load_rating_n), number(b.life_exponent))))
+            (row("crank bearing (each disc)", bearing_text(b)))
         }
         @for (k, v) in friction_rows(d.friction.as_ref(), d.thermal.as_ref()) {
             (row(k, v))
@@ -192,4 +191,22 @@ fn crowning(c: &Crowning) -> Option<String> {
             number(crowned_fraction)
         )),
     }
+}
+
+/// The crank bearing as given: its dynamic rating and life exponent, and, where the spec
+/// gives them, its static rating C0 (the strength effect's static safety) and its outer
+/// diameter (the disc's bore).
+fn bearing_text(b: &crate::model::CrankBearing) -> String {
+    let mut text = format!(
+        "C {} N, life exponent p {}",
+        number(b.dynamic_load_rating_n),
+        number(b.life_exponent)
+    );
+    if let Some(c0) = b.static_load_rating_n {
+        text += &format!(", C0 {} N", number(c0));
+    }
+    if let Some(d) = b.outer_diameter_mm {
+        text += &format!(", outer diameter {} mm (the disc's bore)", number(d));
+    }
+    text
 }

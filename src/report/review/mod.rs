@@ -41,9 +41,9 @@ pub use as_built::AsBuiltView;
 pub use optimisation::{OptimisationView, StudyPoint};
 
 use crate::engine::accuracy::Ladder;
-use crate::engine::verdict::Check;
 use crate::engine::drawing::Disc;
 use crate::engine::golden::GoldenResult;
+use crate::engine::verdict::Check;
 use crate::error::Result;
 use crate::model::results::SceneResult;
 use crate::model::Scene;

@@ -124,15 +124,23 @@ scenes:
     effects: [clearance]
 ";
 
-#[test]
-fn the_e_to_zero_limit_is_an_annulus_with_holes() {
-    let spec = cycloid::spec::parse("near-circle.yaml", NEAR_CIRCLE).unwrap();
-    let run = check(&spec, &CheckOptions::default(), &Silent).unwrap();
+/// `NEAR_CIRCLE`'s face in closed form: its outer radius r (mm), and the area (mm²) and polar
+/// moment (mm⁴) of the circle r less its 8 holes of radius rh on rw (parallel axes) and the
+/// bore.
+fn near_circle_face() -> (f64, f64, f64) {
     let (r, rh, rw, bore) = (36.0_f64, 4.0 + 1e-7, 22.0_f64, 10.0_f64);
     let area = PI * r * r - 8.0 * PI * rh * rh - PI * bore * bore;
     let polar = 0.5 * PI * r.powi(4)
         - 8.0 * PI * rh * rh * (0.5 * rh * rh + rw * rw)
         - 0.5 * PI * bore.powi(4);
+    (r, area, polar)
+}
+
+#[test]
+fn the_e_to_zero_limit_is_an_annulus_with_holes() {
+    let spec = cycloid::spec::parse("near-circle.yaml", NEAR_CIRCLE).unwrap();
+    let run = check(&spec, &CheckOptions::default(), &Silent).unwrap();
+    let (r, area, polar) = near_circle_face();
     let per_mm2 = 2700e-9 * 10.0;
     let (mass, jc) = (per_mm2 * area, per_mm2 * polar * 1e-6);
     let sliver = 1e-4 * 2.0 * PI * r;
@@ -195,11 +203,7 @@ fn bad_mass_inputs_are_refused_where_written() {
 /// polygon's 1e-6 relative sliver is far from moving a fourth digit here (the closed forms
 /// are 0.0905910, 6.54691e-5, 5.41067e-7, 1.761106e-5).
 fn near_circle_figures() -> [String; 6] {
-    let (r, rh, rw, bore) = (36.0_f64, 4.0 + 1e-7, 22.0_f64, 10.0_f64);
-    let area = PI * r * r - 8.0 * PI * rh * rh - PI * bore * bore;
-    let polar = 0.5 * PI * r.powi(4)
-        - 8.0 * PI * rh * rh * (0.5 * rh * rh + rw * rw)
-        - 0.5 * PI * bore.powi(4);
+    let (_, area, polar) = near_circle_face();
     let per_mm2 = 2700e-9 * 10.0;
     let (mass, jc) = (per_mm2 * area, per_mm2 * polar * 1e-6);
     let orbit = mass * 1e-20;

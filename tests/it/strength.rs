@@ -686,18 +686,7 @@ fn a_tolerance_study_judges_the_strength_limits_per_sample() {
         let row: Vec<f64> = (csv.lines().nth(k + 1).unwrap().split(','))
             .map(|x| x.parse().unwrap_or(f64::NAN))
             .collect();
-        let out = format!("sample{k}.yaml");
-        let w = run(&[
-            "tolerance",
-            "t.yaml",
-            "--write-sample",
-            &k.to_string(),
-            &out,
-        ]);
-        assert_eq!(w.code(), 0, "{w:?}");
-        let c = run(&["check", &out, "--json", "c.json"]);
-        assert!(c.code() <= 1, "{c:?}");
-        let doc: serde_json::Value = serde_json::from_str(&dir.read("c.json")).unwrap();
+        let (_, doc) = crate::common::replayed_sample(&dir.path, "t.yaml", k);
         let checked = |key: &str| {
             let checks = doc["checks"].as_array().unwrap();
             let c = checks

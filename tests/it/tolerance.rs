@@ -8,7 +8,7 @@ use crate::common;
 use crate::common::{cycloid, PaperSpec, Scratch};
 use cycloid::engine::tolerance::stats::clopper_pearson;
 use cycloid::engine::tolerance::{sensitivity, shard, summary, ToleranceStudy};
-use cycloid::engine::{scene, verdict};
+use cycloid::engine::verdict;
 use cycloid::model::tolerances::Kind;
 use cycloid::progress::Silent;
 
@@ -115,21 +115,9 @@ fn clopper_pearson_meets_its_closed_forms_and_a_table() {
     assert!((hi - 0.4450).abs() < 5e-5, "{hi}");
 }
 
-/// The nominal result of a spec's first scene, by the engine.
-fn nominal_run(spec: &cycloid::spec::Spec) -> cycloid::model::results::SceneResult {
-    let s = &spec.scenes[0];
-    scene::run(
-        spec,
-        s,
-        &scene::plan(spec, s, scene::Writes::default()),
-        &Default::default(),
-    )
-    .unwrap()
-}
-
 /// The nominal min clearance of a spec's first scene, by the engine.
 fn nominal_min_clearance(spec: &cycloid::spec::Spec) -> f64 {
-    verdict::evaluate(spec, &[nominal_run(spec)]).unwrap()[0].value
+    verdict::evaluate(spec, &[crate::common::run_first_scene(spec)]).unwrap()[0].value
 }
 
 /// A design whose nominal min clearance is exactly its limit, with a symmetric error in the
@@ -180,7 +168,7 @@ fn the_clearance_moves_one_for_one_with_the_equidistant_error() {
     // is ΔRrp − ΔRp exactly (MODEL.md "Clearance"): ∂q/∂ΔRp = −1 while the root stays the
     // smallest gap over ±h (its margin to the next smallest is micrometres, h is 0.1 µm).
     let at = cycloid::report::table::evidence(
-        &verdict::evaluate(&spec, &[nominal_run(&spec)]).unwrap()[0].at,
+        &verdict::evaluate(&spec, &[crate::common::run_first_scene(&spec)]).unwrap()[0].at,
     );
     assert!(at.contains("tooth phase 0.000"), "{at}");
     let shift = study
@@ -554,21 +542,7 @@ fn a_written_sample_replays_its_record() {
         .unwrap();
     for k in [0usize, 7] {
         let row: Vec<&str> = csv.lines().nth(k + 1).unwrap().split(',').collect();
-        let out = format!("sample{k}.yaml");
-        let w = cycloid(
-            here.as_path(),
-            &[
-                "tolerance",
-                "t.yaml",
-                "--write-sample",
-                &k.to_string(),
-                &out,
-            ],
-        );
-        assert_eq!(w.code(), 0, "{w:?}");
-        let c = cycloid(here.as_path(), &["check", &out, "--json", "c.json"]);
-        assert!(c.code() <= 1, "{c:?}");
-        let doc: serde_json::Value = serde_json::from_str(&dir.read("c.json")).unwrap();
+        let (out, doc) = crate::common::replayed_sample(here.as_path(), "t.yaml", k);
         let checks = doc["checks"].as_array().unwrap();
         let value = checks
             .iter()

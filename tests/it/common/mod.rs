@@ -501,3 +501,19 @@ pub(crate) fn run_first_scene(spec: &Spec) -> cycloid::model::results::SceneResu
     )
     .unwrap()
 }
+
+/// Sample `k` of the tolerance study `study` (a spec file in `dir`) written back as a spec
+/// (`tolerance --write-sample`) and checked (`check --json`): the sample's spec and its results
+/// JSON. Exit 0 or 1 required of the check (a sample may fail a limit).
+pub(crate) fn replayed_sample(dir: &Path, study: &str, k: usize) -> (String, serde_json::Value) {
+    let out = format!("sample{k}.yaml");
+    let w = cycloid(
+        dir,
+        &["tolerance", study, "--write-sample", &k.to_string(), &out],
+    );
+    assert_eq!(w.code(), 0, "{w:?}");
+    let c = cycloid(dir, &["check", &out, "--json", "c.json"]);
+    assert!(c.code() <= 1, "{c:?}");
+    let json = std::fs::read_to_string(dir.join("c.json")).unwrap();
+    (out, serde_json::from_str(&json).unwrap())
+}

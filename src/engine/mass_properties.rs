@@ -18,8 +18,6 @@ pub struct MassProperties {
     /// output turns at ω/nc), plus the rollers' spin when they turn and their inertia is given;
     /// the pins, crank shaft and its bearings are not in it.
     pub input_inertia_kgmm2: f64,
-    /// The discs' share of J_in, Σ (m·e² + J_c/nc²), kg·mm².
-    pub discs_kgmm2: f64,
     /// The output's share of J_in, J_out/nc², kg·mm².
     pub output_kgmm2: f64,
     /// The rollers' spin's share of J_in, J_r·⟨Σ(Ωᵢ/ω)²⟩ (`geometry::roller_spin`), kg·mm²: 0
@@ -43,7 +41,6 @@ pub fn mass_properties(spec: &Spec) -> MassProperties {
     MassProperties {
         disc,
         input_inertia_kgmm2: discs + output + rollers,
-        discs_kgmm2: discs,
         output_kgmm2: output,
         rollers_kgmm2: rollers,
     }

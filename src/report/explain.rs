@@ -198,7 +198,9 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
     let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
     out += &discs_line(spec);
     out += &friction_lines(spec);
-    out += &super::mass_properties::explain_design(spec);
+    let mass = crate::engine::mass_properties::mass_properties(spec);
+    let unbalances = crate::engine::mass_properties::unbalances(spec, &mass.disc);
+    out += &super::mass_properties::explain_design(spec, &mass);
     let deviations = deviation_lines(&spec.design.deviations);
     if !deviations.is_empty() {
         out += &format!(
@@ -268,7 +270,8 @@ pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
                 "  note    output pins not modelled: loaded TE is the disc lag β alone (βo = 0)\n";
         }
         if plan.has(Effect::Inertia) {
-            out += &super::mass_properties::explain_scene(spec, k, scene);
+            let unbalance = unbalances.iter().find(|u| u.scene == k);
+            out += &super::mass_properties::explain_scene(spec, scene, &mass.disc, unbalance);
         }
         for p in &plan.effects {
             out += &format!("  compute {:<15} {}\n", p.effect.name(), p.reason);

@@ -3,7 +3,8 @@
 //! terminal's lines after the headline results, `check --explain`'s lines and the crank
 //! bearing's plot at speed.
 
-use crate::engine::mass_properties::{mass_properties, unbalances, MassProperties, Unbalance};
+use crate::engine::mass_properties::{MassProperties, Unbalance};
+use crate::geometry::mass_properties::DiscMass;
 use crate::model::Scene;
 use crate::numeric::number;
 use crate::spec::Spec;
@@ -120,9 +121,8 @@ pub fn scene_note(spec: &Spec, u: &Unbalance) -> String {
 
 /// `check --explain`'s lines on the design's mass: the disc's mass properties and
 /// J_in = Σ(m·e² + J_c/nc²) + J_out/i² with its numbers (i = nc, the output turning at ω/nc).
-pub fn explain_design(spec: &Spec) -> String {
+pub fn explain_design(spec: &Spec, m: &MassProperties) -> String {
     let d = &spec.design;
-    let m = mass_properties(spec);
     let kgm2 = |x: f64| number(units::kgm2(x));
     let rollers = match m.rollers_kgmm2 > 0.0 {
         true => format!(
@@ -149,16 +149,20 @@ pub fn explain_design(spec: &Spec) -> String {
         number(d.eccentricity_mm),
         d.teeth,
         kgm2(d.output_inertia_kgmm2),
-        included(&m)
+        included(m)
     )
 }
 
-/// `check --explain`'s lines on scene `k` (`scene`) computing `inertia`: F_c = m·(e+de)·ω² with
-/// its numbers at the scene's speed (each duty bin at its own), where it enters, and the
-/// discs' unbalance on the crank.
-pub fn explain_scene(spec: &Spec, k: usize, scene: &Scene) -> String {
+/// `check --explain`'s lines on `scene` computing `inertia`: F_c = m·(e+de)·ω² with its
+/// numbers for `disc` at the scene's speed (each duty bin at its own), where it enters, and the
+/// discs' `unbalance` on the crank (`engine::mass_properties::unbalances`, the scene's).
+pub fn explain_scene(
+    spec: &Spec,
+    scene: &Scene,
+    disc: &DiscMass,
+    unbalance: Option<&Unbalance>,
+) -> String {
     let d = &spec.design;
-    let disc = mass_properties(spec).disc;
     let e = d.built_eccentricity_mm();
     let bins = scene.duty_cycle.iter().flatten().map(|b| b.input_speed_rpm);
     let forces: Vec<String> = (scene.input_speed_rpm.into_iter().chain(bins))
@@ -181,7 +185,6 @@ pub fn explain_scene(spec: &Spec, k: usize, scene: &Scene) -> String {
          those without it\n",
         forces.join("; ")
     );
-    let unbalance = unbalances(spec, &disc).into_iter().find(|u| u.scene == k);
     if let (true, Some(u)) = (d.discs > 1, unbalance) {
         out += &format!(
             "  note    unbalance at {} rpm: the {} discs leave on the crank a force of {} N and \

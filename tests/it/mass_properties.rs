@@ -169,8 +169,14 @@ fn the_results_json_has_the_mass_properties() {
     assert_eq!(doc["disc_mass_kg"].as_f64(), Some(run.mass.disc.mass_kg));
     let j = doc["input_inertia_kgm2"].as_f64().unwrap();
     assert!((j / (run.mass.input_inertia_kgmm2 * 1e-6) - 1.0).abs() < 1e-15);
-    assert!(doc["disc_inertia_kgm2"].as_f64().unwrap() > 0.0);
-    assert!(doc["disc_centroid_offset_mm"].as_f64().unwrap() >= 0.0);
+    // J_c against the annulus's closed form, within the polygon's sliver (as above).
+    let (r, _, polar) = near_circle_face();
+    let jc = 2700e-9 * 10.0 * polar * 1e-6;
+    let sliver = 1e-4 * 2.0 * PI * r;
+    let got = doc["disc_inertia_kgm2"].as_f64().unwrap();
+    assert!((got / jc - 1.0).abs() < r * r * sliver / polar, "{got} vs {jc}");
+    // By its symmetry the disc's centroid is its centre, to the polygon's sampling.
+    assert!(doc["disc_centroid_offset_mm"].as_f64().unwrap() < 1e-4);
 }
 
 /// A density of zero or less, and a negative output inertia, are refused where written.

@@ -302,12 +302,21 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         )?,
     };
     let m = &raw.material;
+    if let Some(d) = raw.roller_material.and_then(|r| r.density_kg_per_m3) {
+        return Err(Error::invalid(
+            "roller_material.density_kg_per_m3",
+            format!(
+                "the search weighs the rollers and pins at `material.density_kg_per_m3` (its \
+                 mass objective), so {} kg/m³ would change nothing: remove it",
+                numeric::input(d)
+            ),
+        ));
+    }
+    // The density is the search's (`density` below); the candidates' specs are written with
+    // their own.
     let disc_material = RawMaterial {
-        youngs_modulus_gpa: m.youngs_modulus_gpa,
-        poisson_ratio: m.poisson_ratio,
-        yield_strength_mpa: m.yield_strength_mpa,
-        contact_fatigue: m.contact_fatigue,
         density_kg_per_m3: None,
+        ..*m
     };
     let roller_material = raw
         .roller_material

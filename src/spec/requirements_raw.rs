@@ -32,7 +32,7 @@ pub(crate) struct RawRequirements {
     #[serde(default)]
     pub duty_cycle: Option<Vec<RawDutyBin>>,
     pub envelope: RawEnvelope,
-    pub material: RawRequirementsMaterial,
+    pub material: RawMaterial,
     /// The rollers' and the output pins' material: the keys of a spec's
     /// `reducer.roller_material`.
     #[serde(default)]
@@ -75,19 +75,6 @@ pub(crate) struct RawEnvelope {
     pub housing_wall_mm: Option<f64>,
     #[serde(default)]
     pub axial_allowance_mm: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(crate) struct RawRequirementsMaterial {
-    pub youngs_modulus_gpa: f64,
-    pub poisson_ratio: f64,
-    #[serde(default)]
-    pub density_kg_per_m3: Option<f64>,
-    #[serde(default)]
-    pub yield_strength_mpa: Option<f64>,
-    #[serde(default)]
-    pub contact_fatigue: Option<RawContactFatigue>,
 }
 
 #[derive(Debug, Deserialize)]

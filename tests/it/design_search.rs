@@ -1268,6 +1268,19 @@ fn a_strength_limit_without_its_input_is_refused_at_its_key() {
             "output_pins.support.disc_positions_mm",
             "gives 1 position(s), but the search tries 2 disc(s)",
         ),
+        // Not a strength input, but read with the same material block: the search weighs
+        // rollers and pins at the discs' density, so the rollers' own would change nothing.
+        (
+            with.replace(
+                "output_pins:\n",
+                "roller_material:\n  youngs_modulus_gpa: 206.0\n  poisson_ratio: 0.3\n  \
+                 density_kg_per_m3: 7800.0\noutput_pins:\n",
+            ),
+            "min_static_safety: 2.0",
+            "roller_material.density_kg_per_m3",
+            "the search weighs the rollers and pins at `material.density_kg_per_m3` (its mass \
+             objective), so 7800 kg/m³ would change nothing: remove it",
+        ),
     ];
     for (text, limit, key, rule) in cases {
         let text = text.replace("limits:\n", &format!("limits:\n  {limit}\n"));

@@ -174,7 +174,10 @@ fn the_results_json_has_the_mass_properties() {
     let jc = 2700e-9 * 10.0 * polar * 1e-6;
     let sliver = 1e-4 * 2.0 * PI * r;
     let got = doc["disc_inertia_kgm2"].as_f64().unwrap();
-    assert!((got / jc - 1.0).abs() < r * r * sliver / polar, "{got} vs {jc}");
+    assert!(
+        (got / jc - 1.0).abs() < r * r * sliver / polar,
+        "{got} vs {jc}"
+    );
     // By its symmetry the disc's centroid is its centre, to the polygon's sampling.
     assert!(doc["disc_centroid_offset_mm"].as_f64().unwrap() < 1e-4);
 }

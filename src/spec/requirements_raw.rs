@@ -2,8 +2,8 @@
 //! [`Requirements`](crate::model::requirements::Requirements); `spec::requirements` checks it.
 
 use super::raw::{
-    RawContactFatigue, RawCrowning, RawDutyBin, RawFriction, RawLimits, RawMaterial,
-    RawMisalignment, RawPinSupport, RawThermal,
+    RawCrowning, RawDutyBin, RawFriction, RawLimits, RawMaterial, RawMisalignment, RawPinSupport,
+    RawThermal,
 };
 use serde::Deserialize;
 

@@ -37,7 +37,7 @@ pub fn mass_properties(spec: &Spec) -> MassProperties {
     let discs =
         design.discs as f64 * disc.input_inertia_kgmm2(design.eccentricity_mm, design.teeth);
     let output = design.output_inertia_kgmm2 / (nc * nc);
-    let rollers = spec.roller_inertia_kgmm2 * mean_square_spin_ratio(design);
+    let rollers = design.roller_inertia_kgmm2 * mean_square_spin_ratio(design);
     MassProperties {
         disc,
         input_inertia_kgmm2: discs + output + rollers,

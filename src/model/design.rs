@@ -127,6 +127,10 @@ pub struct Design {
     /// The output's inertia about its axis, kg·mm² (spec: `reducer.output_inertia_kgm2`, in
     /// kg·m²; 0: not given), for the inertia at the input.
     pub output_inertia_kgmm2: f64,
+    /// J_r, each roller's inertia about its own axis, kg·mm² (`reducer.roller_inertia_kgm2`,
+    /// kg·m²; 0: not given), given only for rollers that turn on their pins: their spin's
+    /// share of the inertia at the input (`engine::mass_properties`).
+    pub roller_inertia_kgmm2: f64,
 }
 
 /// The rating of the crank bearing of a disc (ISO 281): its basic dynamic load rating C and

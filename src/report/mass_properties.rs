@@ -129,7 +129,7 @@ pub fn explain_design(spec: &Spec, m: &MassProperties) -> String {
             " + J_r·⟨Σ(Ωᵢ/ω)²⟩ {} (the rollers' spin, J_r {} kg·m² each, rolling on the disc at \
              Ωᵢ = (ω/nc)·(|Cᵢ − I| − Rrp)/Rrp)",
             kgm2(m.rollers_kgmm2),
-            kgm2(spec.roller_inertia_kgmm2)
+            kgm2(d.roller_inertia_kgmm2)
         ),
         false => String::new(),
     };

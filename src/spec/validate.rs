@@ -88,11 +88,14 @@ pub(super) fn material(key: &str, raw: RawMaterial) -> Result<Material> {
 fn design(raw: RawReducer) -> Result<Design> {
     let deviations = raw.deviations.clone();
     let friction = raw.friction.clone();
+    let roller_inertia_kgm2 = raw.roller_inertia_kgm2;
     let mut design = nominal_design(raw)?;
     bore_fits(&design)?;
     design.friction = friction
         .map(|f| super::friction::friction(&f, &design))
         .transpose()?;
+    // Its rule reads the rollers' friction mode.
+    design.roller_inertia_kgmm2 = super::mass::roller_inertia(roller_inertia_kgm2, &design)?;
     if let Some(d) = deviations {
         design.deviations = super::deviations::build(&d, &design)?;
     }
@@ -189,6 +192,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
         structure_compliance_rad_per_nmm,
         density_kg_per_mm3: mass.density_kg_per_mm3,
         output_inertia_kgmm2: mass.output_inertia_kgmm2,
+        roller_inertia_kgmm2: 0.0,
     })
 }
 
@@ -606,9 +610,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     if raw.name.trim().is_empty() {
         return Err(Error::invalid("name", "must not be empty".into()));
     }
-    let roller_inertia_kgm2 = raw.reducer.roller_inertia_kgm2;
     let design = design(raw.reducer)?;
-    let roller_inertia_kgmm2 = super::mass::roller_inertia(roller_inertia_kgm2, &design)?;
     let modification = modification(&raw.modification)?;
     super::deviations::check(&design, &modification)?;
     if raw.scenes.is_empty() {
@@ -724,7 +726,6 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         golden_root,
         studies,
         accuracy,
-        roller_inertia_kgmm2,
     })
 }
 

@@ -34,10 +34,6 @@ pub struct Spec {
     pub measured: Option<crate::model::measured::MeasuredProfile>,
     /// Tolerance bands and the Monte Carlo study of them (`tolerances:`), if given.
     pub tolerances: Option<crate::model::tolerances::PartTolerances>,
-    /// J_r, each roller's inertia about its own axis, kg·mm² (`reducer.roller_inertia_kgm2`,
-    /// kg·m²; 0: not given), given only for rollers that turn on their pins: their spin's
-    /// share of the inertia at the input (`engine::mass_properties`).
-    pub roller_inertia_kgmm2: f64,
 }
 
 impl Spec {

@@ -158,6 +158,7 @@ mod tests {
             structure_compliance_rad_per_nmm: 0.0,
             density_kg_per_mm3: 7.85e-6,
             output_inertia_kgmm2: 0.0,
+            roller_inertia_kgmm2: 0.0,
         }
     }
 

@@ -306,6 +306,7 @@ pub(crate) fn design(rollers: usize, eccentricity_mm: f64, rp_mm: f64, rrp_mm: f
         structure_compliance_rad_per_nmm: 0.0,
         density_kg_per_mm3: 7.85e-6,
         output_inertia_kgmm2: 0.0,
+        roller_inertia_kgmm2: 0.0,
     }
 }
 

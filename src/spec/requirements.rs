@@ -220,13 +220,7 @@ fn strength_limits(
     strength: &Strength,
     bearing: Option<&crate::model::CrankBearing>,
 ) -> Result<()> {
-    let inputs = super::strength::Inputs {
-        support: raw.output_pins.is_some(),
-        pins_yield: strength.rollers.yield_strength_mpa.is_some(),
-        fatigue_law: strength.disc.contact_fatigue.is_some()
-            || strength.rollers.contact_fatigue.is_some(),
-        static_rating: bearing.and_then(|b| b.static_load_rating_n).is_some(),
-    };
+    let inputs = super::strength::Inputs::new(strength, raw.output_pins.is_some(), bearing);
     for key in raw.limits.keys() {
         let at = format!("limits.{key}");
         if let Some(why) = super::strength::missing_input(key, &inputs, "") {

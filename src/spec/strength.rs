@@ -7,7 +7,7 @@ use super::raw::{RawContactFatigue, RawMaterial};
 use super::values::positive;
 use crate::error::{Error, Result};
 use crate::model::strength::{ContactFatigue, PartStrength, Strength};
-use crate::model::{Design, Effect, Limits, Plan, Scene};
+use crate::model::{CrankBearing, Design, Effect, Limits, Plan, Scene};
 use crate::numeric;
 
 /// The largest pressure exponent of an S–N law: published rolling-contact laws lie between
@@ -93,15 +93,23 @@ pub(crate) struct Inputs {
 impl Inputs {
     /// What `design` gives.
     pub(crate) fn of(design: &Design) -> Inputs {
+        let bearing = design.crank_bearing.as_ref();
+        Inputs::new(&design.strength, design.pins.support.is_some(), bearing)
+    }
+
+    /// What the materials' `strength`, a pin `support` (given or not) and the crank `bearing`
+    /// give: a spec's design or a requirements file's blocks.
+    pub(crate) fn new(
+        strength: &Strength,
+        support: bool,
+        bearing: Option<&CrankBearing>,
+    ) -> Inputs {
         Inputs {
-            support: design.pins.support.is_some(),
-            pins_yield: design.strength.rollers.yield_strength_mpa.is_some(),
-            fatigue_law: design.strength.disc.contact_fatigue.is_some()
-                || design.strength.rollers.contact_fatigue.is_some(),
-            static_rating: design
-                .crank_bearing
-                .and_then(|b| b.static_load_rating_n)
-                .is_some(),
+            support,
+            pins_yield: strength.rollers.yield_strength_mpa.is_some(),
+            fatigue_law: strength.disc.contact_fatigue.is_some()
+                || strength.rollers.contact_fatigue.is_some(),
+            static_rating: bearing.and_then(|b| b.static_load_rating_n).is_some(),
         }
     }
 }

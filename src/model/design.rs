@@ -168,6 +168,13 @@ pub fn k1(eccentricity_mm: f64, rollers: usize, roller_circle_radius_mm: f64) ->
     eccentricity_mm * rollers as f64 / roller_circle_radius_mm
 }
 
+/// Root radius of the modified profile, mm: the locus radius Rp + ΔRp (`locus_radius_mm`) less
+/// e and the offset Rrp + ΔRrp (`offset_mm`), where the output-pin holes must stop short: the
+/// spec's hole rule (`spec::rules`) and a design search's ligaments.
+pub fn root_radius_mm(locus_radius_mm: f64, eccentricity_mm: f64, offset_mm: f64) -> f64 {
+    locus_radius_mm - eccentricity_mm - offset_mm
+}
+
 /// Gap between neighbouring rollers, mm: 2·Rp·sin(π/np) − 2·Rrp (the rollers overlap at
 /// ≤ 0): the spec's rule (`spec::rules`) and a design search's `rules.min_roller_gap_mm`.
 pub fn roller_gap_mm(roller_circle_radius_mm: f64, roller_radius_mm: f64, rollers: usize) -> f64 {

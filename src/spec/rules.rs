@@ -2,7 +2,7 @@
 //! the numbers and the spec key to change.
 
 use crate::error::{Error, ErrorKind, Result};
-use crate::model::design::{roller_gap_mm, Ligaments};
+use crate::model::design::{roller_gap_mm, root_radius_mm, Ligaments};
 use crate::model::{Design, Modification};
 use crate::units;
 
@@ -26,7 +26,7 @@ pub fn check(design: &Design, m: &Modification) -> Result<()> {
         ));
     }
     let locus_radius = rp + m.shift_mm;
-    let locus_k1 = e * np / locus_radius;
+    let locus_k1 = crate::model::design::k1(e, design.rollers, locus_radius);
     if locus_radius <= 0.0 || locus_k1 >= 1.0 {
         return Err(rule(
             "modification.shift_mm",
@@ -68,7 +68,7 @@ pub fn check(design: &Design, m: &Modification) -> Result<()> {
             ),
         ));
     }
-    check_holes(design, locus_radius - e - offset)
+    check_holes(design, root_radius_mm(locus_radius, e, offset))
 }
 
 fn check_holes(design: &Design, root_radius: f64) -> Result<()> {

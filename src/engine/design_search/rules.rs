@@ -5,7 +5,7 @@
 
 use super::candidate::Candidate;
 use super::failure::{Failure, Requirement};
-use crate::model::design::{k1, roller_gap_mm, Ligaments};
+use crate::model::design::{k1, roller_gap_mm, root_radius_mm, Ligaments};
 use crate::model::requirements::Requirements;
 use crate::model::Crowning;
 
@@ -44,9 +44,11 @@ pub fn failures(req: &Requirements, c: &Candidate) -> Vec<Failure> {
         roller_gap_mm(x.roller_circle_radius_mm, x.roller_radius_mm, c.rollers()),
         req.rules.min_roller_gap_mm,
     );
-    let root = x.roller_circle_radius_mm + x.shift_mm
-        - x.eccentricity_mm
-        - (x.roller_radius_mm + x.equidistant_mm);
+    let root = root_radius_mm(
+        x.roller_circle_radius_mm + x.shift_mm,
+        x.eccentricity_mm,
+        x.roller_radius_mm + x.equidistant_mm,
+    );
     let ligaments = Ligaments::of(
         x.pin_circle_radius_mm,
         c.hole_radius_mm(req),

@@ -10,7 +10,8 @@
 # e.g. build main, copy target/release/cycloid to /tmp/before, build the change, then
 # `tools/same-outputs.sh /tmp/before target/release/cycloid`. Exit 0: identical; 1: the
 # differing files are listed (diff them under OUT_DIR). Takes a few minutes (the paper's
-# studies and the crown study dominate).
+# studies and the crown study dominate). BIN_BEFORE may be the `before` directory of an
+# earlier run (OUT_DIR/before): its recorded outputs are then compared, not run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 before="$(realpath "$1")" after="$(realpath "$2")" out="${3:-$(mktemp -d)}"
@@ -32,7 +33,12 @@ record() {
     xargs -0 sed -i -E -e "s#$dir/##g" -e 's/in [0-9]+\.[0-9]+ s\b/in <time> s/g' \
       -e 's/>[0-9]+(\.[0-9]+)? m?s</><time></g'
 }
-record "$before" "$out/before"
+if [ -d "$before" ]; then
+  mkdir -p "$out" && cp -a "$before" "$out/before"
+  # The recorded outputs name their own directory, masked when recorded.
+else
+  record "$before" "$out/before"
+fi
 record "$after" "$out/after"
 if diff -rq "$out/before" "$out/after"; then
   echo "identical: every shipped spec's terminal text, JSON and review ($out)"

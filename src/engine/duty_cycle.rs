@@ -60,10 +60,7 @@ fn revolution_weights(bins: &[DutyBinResult]) -> Vec<f64> {
 /// The crank-bearing equivalent load of each disc in one bin's run, N (one entry per disc);
 /// `None` when the bin's run did not rate it (no `crank_bearing`, or not whole loaded periods).
 pub fn bin_equivalent_loads(r: &SceneResult) -> Option<Vec<f64>> {
-    if r.discs.is_empty() {
-        return r.bearing_life.map(|b| vec![b.equivalent_load_n]);
-    }
-    r.discs
+    r.each_disc()
         .iter()
         .map(|d| d.bearing_life.map(|b| b.equivalent_load_n))
         .collect()

@@ -65,10 +65,7 @@ pub fn lives(design: &Design, bins: &[DutyBinResult]) -> Vec<DutyFatigue> {
 /// (over whole periods); `None` when the run has none.
 fn bin_pressures(r: &SceneResult) -> Option<Vec<f64>> {
     let of = |d: &SceneResult| Some(d.loaded.strength?.fatigue?.pressure_mpa);
-    if r.discs.is_empty() {
-        return of(r).map(|p| vec![p]);
-    }
-    r.discs.iter().map(of).collect()
+    r.each_disc().iter().map(of).collect()
 }
 
 /// Miner's sum of the damage rates `(per hour, on the coast flank)`: the life 1/max(D_drive,

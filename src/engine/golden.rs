@@ -397,14 +397,14 @@ pub fn computed<'a>(
         .find(|r| r.name == g.scene)
         .ok_or_else(|| Error::computation(format!("scene `{}` was not run", g.scene)))?;
     let disc = match g.disc {
-        Some(k) => r.discs.get(k).unwrap_or(r),
+        Some(k) => r.each_disc().get(k).unwrap_or(r),
         None => r,
     };
     let curves = q.curves(disc).ok_or_else(|| {
-        let why = if !r.discs.is_empty() && g.disc.is_none() {
+        let why = if r.each_disc().len() > 1 && g.disc.is_none() {
             format!(
                 "with {} discs a disc's curve needs `disc: k` in the golden entry",
-                r.discs.len()
+                r.each_disc().len()
             )
         } else {
             "a ratio needs at least 3 crank angles".to_string()

@@ -209,55 +209,54 @@ fn run_one(
         duty: None,
     };
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
-    if design.discs == 1 {
-        // None without a sweep.
-        let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
-        let mut loaded = loaded_sweep(design, model.as_ref(), (scene, plan), progress)?;
-        first_order_valid(design, m, scene, (&loaded, 0.0))?;
-        if plan.computes(Effect::Strength) {
-            loaded.pin_stress = strength::pin_stress(design, &scene.crank_rad, &[&loaded]);
-            loaded.strength = strength::disc_strength(design, (scene, plan), &loaded);
-        }
-        let efficiency = match &model {
-            Some(_) => efficiency::efficiency(design, (scene, plan), &[&loaded])?,
-            None => None,
-        };
-        let mut one = result(scene.name.clone(), clearance(0, 0.0)?, loaded);
-        one.torsion = torsion;
-        one.efficiency = efficiency.map(|e| e.0);
-        return Ok(one);
-    }
     let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
-    let sweeps = loaded_disc_sweeps(design, model.as_ref(), (scene, plan), progress)?;
-    let mut reducer = result(scene.name.clone(), None, LoadedSweep::default());
+    let sweeps = loaded_sweeps(design, model.as_ref(), (scene, plan), progress)?;
+    let mut discs = Vec::with_capacity(design.discs);
     for k in 0..design.discs {
         let mut loaded = LoadedSweep::default();
         if let Some(s) = &sweeps {
             loaded = s.discs[k].clone();
-            loaded.torque_nmm = Some(s.torque_nmm[k].clone());
+            // A disc's torque share is a curve of its own only beside other discs.
+            loaded.torque_nmm = (design.discs > 1).then(|| s.torque_nmm[k].clone());
             first_order_valid(design, m, scene, (&loaded, design.disc_phase_rad(k)))?;
             loaded.strength = strength::disc_strength(design, (scene, plan), &loaded);
         }
-        let name = format!("{} disc {k}", scene.name);
-        let disc = result(name, clearance(k, design.disc_phase_rad(k))?, loaded);
-        reducer.discs.push(disc);
+        let name = match design.discs {
+            1 => scene.name.clone(),
+            _ => format!("{} disc {k}", scene.name),
+        };
+        discs.push(result(
+            name,
+            clearance(k, design.disc_phase_rad(k))?,
+            loaded,
+        ));
     }
-    if let Some(s) = &sweeps {
-        let discs: Vec<&LoadedSweep> = s.discs.iter().collect();
-        if let Some((all, each)) = efficiency::efficiency(design, (scene, plan), &discs)? {
-            reducer.efficiency = Some(all);
-            for (disc, e) in reducer.discs.iter_mut().zip(each) {
-                disc.efficiency = Some(e);
-            }
+    // The reducer's curves, over every disc.
+    let each: Vec<&LoadedSweep> = discs.iter().map(|d| &d.loaded).collect();
+    let (mut efficiency, mut pin_stress) = (None, None);
+    if sweeps.is_some() {
+        efficiency = efficiency::efficiency(design, (scene, plan), &each)?;
+        if plan.computes(Effect::Strength) {
+            pin_stress = strength::pin_stress(design, &scene.crank_rad, &each);
         }
     }
-    if let Some(s) = sweeps.as_ref().filter(|_| plan.computes(Effect::Strength)) {
-        let discs: Vec<&LoadedSweep> = s.discs.iter().collect();
-        reducer.loaded.pin_stress = strength::pin_stress(design, &scene.crank_rad, &discs);
+    // One disc: its result is the scene's (`SceneResult::each_disc`); several: the reducer's
+    // curves beside each disc's result.
+    let mut whole = match discs.len() {
+        1 => discs.remove(0),
+        _ => result(scene.name.clone(), None, LoadedSweep::default()),
+    };
+    if let Some((all, each)) = efficiency {
+        whole.efficiency = Some(all);
+        for (disc, e) in discs.iter_mut().zip(each) {
+            disc.efficiency = Some(e);
+        }
     }
-    reducer.loaded.transmission = sweeps.and_then(|s| s.transmission);
-    reducer.torsion = torsion;
-    Ok(reducer)
+    whole.loaded.transmission = sweeps.and_then(|s| s.transmission);
+    whole.loaded.pin_stress = pin_stress;
+    whole.torsion = torsion;
+    whole.discs = discs;
+    Ok(whole)
 }
 
 /// A duty-cycle scene ([`engine::duty_cycle`](crate::engine::duty_cycle)): each bin run as
@@ -462,22 +461,10 @@ fn torsion_loops(
         })
 }
 
-/// The loaded sweep of one disc of `model` (the scene's loaded model), when the plan runs it.
-fn loaded_sweep(
-    design: &Design,
-    model: Option<&Model>,
-    (scene, plan): (&Scene, &Plan),
-    progress: &dyn Progress,
-) -> Result<LoadedSweep> {
-    let Some(model) = model else {
-        return Ok(LoadedSweep::default());
-    };
-    let periodic = scene.spans_loaded_periods(design, plan);
-    sweep::sweep(model, &scene.crank_rad, periodic, progress).map_err(|f| sweep_failed(scene, f))
-}
-
-/// The coupled loaded sweep of several discs ([`equilibrium::discs`](crate::equilibrium::discs)), when the plan runs it.
-fn loaded_disc_sweeps(
+/// The loaded sweep of the scene's discs (`discs_sweep::sweep_reducer`: one disc, or several
+/// coupled through the output, [`equilibrium::discs`](crate::equilibrium::discs)), when the
+/// plan runs it.
+fn loaded_sweeps(
     design: &Design,
     model: Option<&Model>,
     (scene, plan): (&Scene, &Plan),
@@ -486,9 +473,8 @@ fn loaded_disc_sweeps(
     let Some(model) = model else {
         return Ok(None);
     };
-    let discs = Discs::new(model, design.discs);
     let periodic = scene.spans_loaded_periods(design, plan);
-    discs_sweep::sweep_discs(&discs, &scene.crank_rad, periodic, progress)
+    discs_sweep::sweep_reducer(model, design.discs, &scene.crank_rad, (periodic, progress))
         .map(Some)
         .map_err(|f| sweep_failed(scene, f))
 }

@@ -333,6 +333,32 @@ fn solve_in_two_waves(
     Ok(())
 }
 
+/// The loaded sweep of a reducer of `count` discs (each disc as `model`, the scene's model of
+/// the disc at phase 0, at its crank phase 2πk/N): the one entry of a scene's loaded run,
+/// whatever N. One disc carries the whole torque at every angle, so its split is trivial and
+/// its balance is the one-disc solve (`sweep::sweep`, its output lag γ the disc's own; in
+/// exact geometry `sweep_discs` of one disc gives the same bits, held by the property test
+/// `discs::one_disc_through_the_coupled_solve_is_todays_sweep`, while a first-order disc alone
+/// has a leaner kernel); its torque share is T at every angle. Several discs are coupled
+/// through γ (`sweep_discs`).
+pub fn sweep_reducer(
+    model: &Model,
+    count: usize,
+    crank_rad: &[f64],
+    (periodic, progress): (bool, &dyn Progress),
+) -> Result<DiscSweeps, SweepFailure> {
+    if count > 1 {
+        let discs = Discs::new(model, count);
+        return sweep_discs(&discs, crank_rad, periodic, progress);
+    }
+    let mut one = super::sweep::sweep(model, crank_rad, periodic, progress)?;
+    Ok(DiscSweeps {
+        transmission: one.transmission.take(),
+        torque_nmm: vec![vec![model.torque_nmm; crank_rad.len()]],
+        discs: vec![one],
+    })
+}
+
 /// `sweep::sweep` of several discs: chunks of `CHUNK` angles in parallel, each angle
 /// warm-started from the previous ones of its chunk (split and lags), so results do not
 /// depend on the thread count.

@@ -138,17 +138,7 @@ fn solve_rollers(
         work.slopes.0 = 0.0;
         return Ok(lag);
     }
-    if work.reaches.len() != r.count() {
-        work.reaches = vec![
-            Reach {
-                crank_rad: crank,
-                lag_rad: guess,
-                offset_mm: offset,
-                gap_mm: f64::NEG_INFINITY,
-            };
-            r.count()
-        ];
-    }
+    Reach::size(&mut work.reaches, r.count(), (crank, guess, offset));
     let exact_final = work.exact_final;
     let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
     let trig = AngleTrig::new(crank, model.teeth);
@@ -427,17 +417,7 @@ fn solve_rollers_coupled(
     };
     let centre = e_phi * model.eccentricity_mm + offset;
     let target = model.torque_nmm + pins.shift;
-    if work.reaches.len() != r.count() {
-        work.reaches = vec![
-            Reach {
-                crank_rad: crank,
-                lag_rad: guess,
-                offset_mm: offset,
-                gap_mm: f64::NEG_INFINITY,
-            };
-            r.count()
-        ];
-    }
+    Reach::size(&mut work.reaches, r.count(), (crank, guess, offset));
     let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
     let trig = AngleTrig::new(crank, model.teeth);
     let offset_norm = offset.norm();

@@ -53,6 +53,22 @@ pub struct Reach {
     pub gap_mm: f64,
 }
 
+impl Reach {
+    /// `reaches` for `count` rollers: as they are when there are that many, else each
+    /// roller's reach unknown (no gap yet) at the pose `(crank_rad, lag_rad, offset_mm)`.
+    pub fn size(reaches: &mut Vec<Reach>, count: usize, (crank, lag, offset): (f64, f64, Vec2)) {
+        if reaches.len() != count {
+            let unknown = Reach {
+                crank_rad: crank,
+                lag_rad: lag,
+                offset_mm: offset,
+                gap_mm: f64::NEG_INFINITY,
+            };
+            *reaches = vec![unknown; count];
+        }
+    }
+}
+
 /// Trigonometry of one crank angle, shared by every evaluation at that angle: the eccentric
 /// direction e_φ and the ideal disc rotation −φ/nc. A lag β then costs only a small rotation.
 #[derive(Debug, Clone, Copy, PartialEq)]

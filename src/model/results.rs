@@ -434,6 +434,18 @@ pub struct SceneResult {
     pub duty: Option<Box<DutyCycle>>,
 }
 
+impl SceneResult {
+    /// Each disc's results, at least one, in disc order: with several discs their own
+    /// (`discs`), with one the scene's result itself (which holds its disc's curves). What
+    /// reads a disc's figures of every disc reads them here, whatever N.
+    pub fn each_disc(&self) -> &[SceneResult] {
+        match self.discs.is_empty() {
+            true => std::slice::from_ref(self),
+            false => &self.discs,
+        }
+    }
+}
+
 /// A duty cycle's results (`engine::duty_cycle`, ISO 281 with the Palmgren–Miner rule).
 #[derive(Debug, Clone)]
 pub struct DutyCycle {

@@ -153,7 +153,7 @@ const TE_CAPTION: &str = "The loaded transmission error over the crank, arcsec: 
 
 /// The smallest gap over the rollers at each angle, µm (disc 0's with several discs).
 fn smallest_gap_um(r: &SceneResult) -> Option<Vec<f64>> {
-    let c = (r.clearance.as_ref()).or_else(|| r.discs.first()?.clearance.as_ref())?;
+    let c = r.each_disc().first()?.clearance.as_ref()?;
     let smallest = |i: usize| c.gap_mm.iter().map(|g| g[i]).fold(f64::INFINITY, f64::min);
     Some(
         (0..r.crank_rad.len())

@@ -17,11 +17,9 @@ pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
         .iter()
         .zip(results)
         .flat_map(|(s, r)| {
-            let one = r.discs.is_empty().then_some((None, r));
-            let each = r.discs.iter().enumerate().map(|(k, d)| (Some(k), d));
-            one.into_iter()
-                .chain(each)
-                .filter_map(move |(k, d)| Some((s, k, d.bearing_life?)))
+            let several = r.each_disc().len() > 1;
+            let each = r.each_disc().iter().enumerate();
+            each.filter_map(move |(k, d)| Some((s, several.then_some(k), d.bearing_life?)))
         })
         .collect();
     let notes: Vec<String> = explain::notes(spec)

@@ -61,6 +61,7 @@ mod reliability;
 mod report;
 mod review_plots;
 mod reviewer_texts;
+mod same_outputs;
 mod slurm_cluster;
 mod snapshots;
 mod spec_locate;

@@ -1,0 +1,163 @@
+//! Issue 40's contract for a refactor: a change that moves code keeps every output. Each
+//! spec below (one disc, two discs, a duty cycle, torsion with friction, efficiency, strength,
+//! inertia at speed, a tilted face: every result shape and every effect's document) is run
+//! through `check --json --report`, and its terminal text with the exit code, its results JSON
+//! and every file of its review are hashed (SHA-256 of each file, listed by path, the list
+//! hashed) and held to the digest recorded with the build before the change
+//! (`tools/output-digests.sh`, which does the same with shell tools, so the digests do not come
+//! from this code). Masked, as `tools/same-outputs.sh` masks them: the output directory's path
+//! and the accuracy ladder's wall-clock cells. `tools/same-outputs.sh` compares all 34 shipped
+//! specs byte for byte (minutes); this is the part CI can afford (seconds).
+//!
+//! A change that alters an output on purpose re-records the digests with its own build and
+//! names the change in its commit.
+
+use crate::common::{cycloid_here, files, Scratch};
+use sha2::{Digest, Sha256};
+use std::path::Path;
+
+/// (spec under `specs/`, digest), recorded by `tools/output-digests.sh` with the build of
+/// 4234b47 (before issue 40's one run path, typed locations and registry documents).
+#[rustfmt::skip]
+const RECORDED: &[(&str, &str)] = &[
+    ("reducer", "26022e7a8447c92087abcb2de46ea72ef1c568b153cdcb78bd1e744e09ee7c16"),
+    ("reducer-loaded", "3498a8b63bb2e1b4f915461d2cf0be43ec6c01f79dd353b37801f43c2a1afd5e"),
+    ("reducer-two-discs", "df63b4cab442e15e8aa62f890fbc7238b17bc3593f19ff0c6510929d4607774e"),
+    ("reducer-duty-cycle", "2d1bd254defac3a85102d97d443b69e35c8c62c454067194e809bf1efa85b7d5"),
+    ("reducer-torsion", "57e1c86a1400fdb2da9e1db07f49b4c22e3b76bffeb2f49d40b9cc99b3354dfb"),
+    ("reducer-efficiency", "a0b5ddf13bcb3db501c806e381282441aab2dc7da32b269efe6e0b37eba76660"),
+    ("reducer-strength", "f2625eefd9ec7ffdd36d10c6da925f8360f66381ec5329d5b43bb99a0ad99a72"),
+    ("reducer-at-speed", "a94d0b830696e153fd6ce8133a09314b984cd35b86bcd91d08dabf8692a83649"),
+    ("reducer-misaligned", "ad4d831c56156700f9cc4460492588a48b721e97b5bae2ce67372083a316bdb9"),
+];
+
+/// The wall-clock figures masked as the shell's `sed -E` masks them:
+/// `s/in [0-9]+\.[0-9]+ s\b/in <time> s/g` ("13 rungs in 0.86 s"), then
+/// `s/>[0-9]+(\.[0-9]+)? m?s</><time></g` (the accuracy ladder's cells, `>0.4 ms<`).
+fn mask_times(text: &str) -> String {
+    let text = replace_matches(text, "in ", "in <time> s", seconds_end);
+    replace_matches(&text, ">", "><time><", cell_end)
+}
+
+/// `text` with each match replaced: a match starts with `start` and ends where `end` (given
+/// the bytes and where `start` ends) says; matches are taken left to right, not overlapping.
+fn replace_matches(
+    text: &str,
+    start: &str,
+    with: &str,
+    end: fn(&[u8], usize) -> Option<usize>,
+) -> String {
+    let b = text.as_bytes();
+    let (mut out, mut copied, mut i) = (String::with_capacity(text.len()), 0, 0);
+    while i < b.len() {
+        match b[i..]
+            .starts_with(start.as_bytes())
+            .then(|| end(b, i + start.len()))
+        {
+            Some(Some(e)) => {
+                out.push_str(&text[copied..i]);
+                out.push_str(with);
+                (i, copied) = (e, e);
+            }
+            _ => i += 1,
+        }
+    }
+    out.push_str(&text[copied..]);
+    out
+}
+
+/// The end of `[0-9]+` from `from`, if there is at least one digit.
+fn digits(b: &[u8], from: usize) -> Option<usize> {
+    let end = (from..).find(|&j| !b.get(j).is_some_and(u8::is_ascii_digit))?;
+    (end > from).then_some(end)
+}
+
+/// Where `[0-9]+\.[0-9]+ s\b` from `i` ends, if it matches there.
+fn seconds_end(b: &[u8], i: usize) -> Option<usize> {
+    let i = digits(b, i)?;
+    let i = digits(b, (b.get(i) == Some(&b'.')).then_some(i + 1)?)?;
+    let word = |j: usize| {
+        b.get(j)
+            .is_some_and(|c| c.is_ascii_alphanumeric() || *c == b'_')
+    };
+    (b.get(i..i + 2) == Some(b" s") && !word(i + 2)).then_some(i + 2)
+}
+
+/// Where `[0-9]+(\.[0-9]+)? m?s<` from `i` ends (after the `<`), if it matches there.
+fn cell_end(b: &[u8], i: usize) -> Option<usize> {
+    let mut i = digits(b, i)?;
+    if b.get(i) == Some(&b'.') {
+        i = digits(b, i + 1)?;
+    }
+    if b.get(i) != Some(&b' ') {
+        return None;
+    }
+    i += 1 + usize::from(b.get(i + 1) == Some(&b'm'));
+    (b.get(i) == Some(&b's') && b.get(i + 1) == Some(&b'<')).then_some(i + 2)
+}
+
+/// The digest of a run's directory: each file's SHA-256 and `./path` as `sha256sum` lists
+/// them, in byte order of the path, the list hashed.
+fn digest(dir: &Path) -> String {
+    let mut list = String::new();
+    for (name, bytes) in files(dir).into_iter().filter(|(n, _)| !n.ends_with('/')) {
+        list.push_str(&format!("{:x}  ./{name}\n", Sha256::digest(&bytes)));
+    }
+    format!("{:x}", Sha256::digest(list.as_bytes()))
+}
+
+fn run(scratch: &Scratch, spec: &str) -> String {
+    let dir = scratch.join(spec);
+    std::fs::create_dir_all(&dir).unwrap();
+    let (json, review) = (dir.join("results.json"), dir.join("review"));
+    let run = cycloid_here(&[
+        "check",
+        &format!("specs/{spec}.yaml"),
+        "--json",
+        json.to_str().unwrap(),
+        "--report",
+        review.to_str().unwrap(),
+    ]);
+    let prefix = format!("{}/", dir.display());
+    let stdout = format!("{}exit {}\n", run.stdout, run.code());
+    std::fs::write(dir.join("stdout"), mask_times(&stdout.replace(&prefix, ""))).unwrap();
+    for (name, bytes) in files(&review) {
+        if name.ends_with(".html") {
+            let text = String::from_utf8(bytes).unwrap().replace(&prefix, "");
+            std::fs::write(review.join(name), mask_times(&text)).unwrap();
+        }
+    }
+    digest(&dir)
+}
+
+#[test]
+fn the_shipped_specs_outputs_are_those_recorded_before_the_change() {
+    let scratch = Scratch::new("same-outputs");
+    let moved: Vec<String> = RECORDED
+        .iter()
+        .filter_map(|&(spec, recorded)| {
+            let now = run(&scratch, spec);
+            (now != recorded).then(|| format!("{spec}: recorded {recorded}, now {now}"))
+        })
+        .collect();
+    assert!(
+        moved.is_empty(),
+        "outputs differ from the recording (run tools/same-outputs.sh with the build before \
+         the change to see which bytes):\n{}",
+        moved.join("\n")
+    );
+}
+
+/// The mask catches the ladder's cells and nothing else that looks like them.
+#[test]
+fn only_wall_clock_cells_are_masked() {
+    assert_eq!(
+        mask_times("<td>0.4 ms</td><td>12 s</td><td>3.25 s<x>0.4ms<"),
+        "<td><time></td><td><time></td><td><time><x>0.4ms<"
+    );
+    assert_eq!(mask_times(">1.5 mm<>s<> ms<"), ">1.5 mm<>s<> ms<");
+    assert_eq!(
+        mask_times("13 rungs in 0.86 s; in 12.5 s. in 3 s, in 1.5 sec, in 0.2 s_"),
+        "13 rungs in <time> s; in <time> s. in 3 s, in 1.5 sec, in 0.2 s_"
+    );
+}

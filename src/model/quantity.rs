@@ -584,7 +584,13 @@ pub const MAX_ROLLER_FORCE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("roller_force_n"),
-    read: Read::Scalar(|r| Some(largest(r, &r.loaded.rollers.as_ref()?.force_n, Part::Roller))),
+    read: Read::Scalar(|r| {
+        Some(largest(
+            r,
+            &r.loaded.rollers.as_ref()?.force_n,
+            Part::Roller,
+        ))
+    }),
 };
 
 /// The largest Hertz peak pressure of the rollers' contacts, MPa, with the roller and the crank

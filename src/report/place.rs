@@ -50,8 +50,14 @@ fn site(s: &Site) -> String {
     match s {
         Site::Crank(c) => crank(c.rad),
         Site::Part(a) => part_at(a),
-        Site::Sampled { crank: c, angles: 1 } => format!("{}, {ONLY_ANGLE}", crank(c.rad)),
-        Site::Sampled { crank: c, angles: n } => {
+        Site::Sampled {
+            crank: c,
+            angles: 1,
+        } => format!("{}, {ONLY_ANGLE}", crank(c.rad)),
+        Site::Sampled {
+            crank: c,
+            angles: n,
+        } => {
             format!("{}, over the scene's {}", crank(c.rad), angles(*n))
         }
         Site::Locked(c) => format!("{} locked", crank(c.rad)),
@@ -88,7 +94,8 @@ fn site(s: &Site) -> String {
         } => format!(
             "{part} at {} MPa{}",
             number(*pressure_mpa),
-            at.as_ref().map_or(String::new(), |a| format!(", {}", part_at(a)))
+            at.as_ref()
+                .map_or(String::new(), |a| format!(", {}", part_at(a)))
         ),
         Site::DutyFatigue { part } => format!("{part} under the cycle (Miner, flanks apart)"),
         Site::StaticSafety { force_n, at } => format!(
@@ -224,10 +231,305 @@ pub fn counts_scene_angles(p: &Place) -> bool {
         Site::Sampled { angles, .. } => angles != 1,
         Site::Gap { over, .. } => matches!(over, MinCoverage::Angles(_)),
         Site::Efficiency {
-            driver,
-            self_locks,
-            ..
+            driver, self_locks, ..
         } => driver == Driver::Output && !self_locks,
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::results::SampledPeriod;
+
+    fn at_deg(index: usize, deg: f64) -> Crank {
+        Crank {
+            index,
+            rad: deg.to_radians(),
+        }
+    }
+
+    fn roller(index: usize, deg: f64) -> PartAt {
+        PartAt {
+            part: Part::Roller,
+            index,
+            crank: at_deg(7, deg),
+        }
+    }
+
+    /// Constructed places and the words each must read as, written by hand from the wording
+    /// every output has carried ("roller 3 at crank 12.30°": angles to two decimals in degrees,
+    /// figures to four significant digits; bin, then disc, then the site).
+    fn cases() -> Vec<(Place, &'static str)> {
+        let of = Place::of;
+        let bin = Bin {
+            index: 2,
+            output_torque_nmm: 40_000.0,
+            input_speed_rpm: 1500.0,
+        };
+        let period = SampledPeriod {
+            period_rad: 36f64.to_radians(),
+            step_rad: 0.01f64.to_radians(),
+            error_bound_mm: 1.234e-4,
+        };
+        let efficiency = |driver, self_locks, locked| {
+            of(Site::Efficiency {
+                driver,
+                self_locks,
+                locked,
+                angles: 360,
+            })
+        };
+        vec![
+            (of(Site::Crank(at_deg(0, 12.3))), "crank 12.30°"),
+            (of(Site::Part(roller(3, 12.3))), "roller 3 at crank 12.30°"),
+            (
+                of(Site::Part(PartAt {
+                    part: Part::Pin,
+                    index: 0,
+                    crank: at_deg(1, -1.0),
+                })),
+                "pin 0 at crank -1.00°",
+            ),
+            (
+                of(Site::Spread {
+                    min: at_deg(1, 1.0),
+                    max: at_deg(2, 2.0),
+                }),
+                "min at 1.00°, max at 2.00°",
+            ),
+            (of(Site::Locked(at_deg(5, 5.0))), "crank 5.00° locked"),
+            (
+                Place {
+                    bin: None,
+                    disc: Some(1),
+                    site: Site::Part(roller(3, 12.3)),
+                },
+                "disc 1: roller 3 at crank 12.30°",
+            ),
+            (
+                Place {
+                    bin: Some(bin),
+                    disc: None,
+                    site: Site::Part(roller(3, 12.3)),
+                },
+                "bin 2 (40.00 N·m, 1500 rpm): roller 3 at crank 12.30°",
+            ),
+            (
+                Place {
+                    bin: Some(bin),
+                    disc: Some(0),
+                    site: Site::Crank(at_deg(0, 0.0)),
+                },
+                "bin 2 (40.00 N·m, 1500 rpm): disc 0: crank 0.00°",
+            ),
+            (
+                of(Site::Sampled {
+                    crank: at_deg(828, 82.8),
+                    angles: 3600,
+                }),
+                "crank 82.80°, over the scene's 3600 crank angles",
+            ),
+            (
+                of(Site::Sampled {
+                    crank: at_deg(0, 0.0),
+                    angles: 1,
+                }),
+                "crank 0.00°, the scene's only crank angle",
+            ),
+            (
+                of(Site::Gap {
+                    roller: 4,
+                    crank_rad: 0.0,
+                    tooth_phase: 0.25,
+                    over: MinCoverage::Angles(1),
+                }),
+                "roller 4 at crank 0.00°, tooth phase 0.250 (0 root, 0.5 tip), over the scene's \
+                 1 crank angle only",
+            ),
+            (
+                of(Site::Gap {
+                    roller: 0,
+                    crank_rad: 3f64.to_radians(),
+                    tooth_phase: 0.5,
+                    over: MinCoverage::Period(period),
+                }),
+                "roller 0 at crank 3.00°, tooth phase 0.500 (0 root, 0.5 tip), over the whole \
+                 period of 36.00° sampled every 0.01000° (error ≤ 0.1234 µm)",
+            ),
+            (
+                of(Site::Slice {
+                    at: roller(2, 16.2),
+                    slice: 5,
+                    slices: 11,
+                }),
+                "roller 2 at crank 16.20°, slice 5 of 11 (slice 0 at z = −B/2)",
+            ),
+            (
+                of(Site::Rule(Rule::BearingEquivalentLoad)),
+                "(mean of Fb^p over the sweep)^(1/p)",
+            ),
+            (
+                Place {
+                    bin: None,
+                    disc: Some(1),
+                    site: Site::Rule(Rule::DutyEquivalentLoad),
+                },
+                "disc 1: (Σ share·n·P^p / Σ share·n)^(1/p) over the bins",
+            ),
+            (
+                of(Site::Rule(Rule::EquivalentTorque)),
+                "(Σ share·n·|T|³ / Σ share·n)^(1/3) over the bins",
+            ),
+            (of(Site::Rule(Rule::MeanSpeed)), "Σ share·n over the bins"),
+            (
+                of(Site::Rule(Rule::DutyMeanEfficiency)),
+                "energy delivered / energy entering over the bins, each as its power flows",
+            ),
+            (
+                of(Site::Rule(Rule::Temperature)),
+                "ambient + mean power loss/(h·A)",
+            ),
+            (of(Site::Life { load_n: 1949.0 }), "at P = 1949 N"),
+            (
+                Place {
+                    bin: None,
+                    disc: Some(1),
+                    site: Site::DutyLife {
+                        load_n: 1234.4,
+                        mean_speed_rpm: 750.0,
+                    },
+                },
+                "disc 1: at P = 1234 N, mean speed 750.0 rpm",
+            ),
+            (
+                of(Site::Fatigue {
+                    part: "disc",
+                    pressure_mpa: 1278.0,
+                    at: Some(roller(2, 16.2)),
+                }),
+                "disc at 1278 MPa, roller 2 at crank 16.20°",
+            ),
+            (
+                of(Site::Fatigue {
+                    part: "rollers",
+                    pressure_mpa: 1278.0,
+                    at: None,
+                }),
+                "rollers at 1278 MPa",
+            ),
+            (
+                of(Site::DutyFatigue { part: "rollers" }),
+                "rollers under the cycle (Miner, flanks apart)",
+            ),
+            (
+                of(Site::StaticSafety {
+                    force_n: 1949.0,
+                    at: Some(at_deg(828, 82.8)),
+                }),
+                "C0 / 1949 N at crank 82.80°",
+            ),
+            (
+                of(Site::StaticSafety {
+                    force_n: 1949.0,
+                    at: None,
+                }),
+                "C0 / 1949 N",
+            ),
+            (
+                of(Site::PowerLoss(PathLosses {
+                    rollers: 12.5,
+                    output_pins: 3.25,
+                    crank_bearing: 1.0,
+                    no_load: 0.0,
+                })),
+                "mean over the crank angles: rollers 12.50 W, output pins 3.250 W, crank bearing \
+                 1.000 W, no-load 0 W",
+            ),
+            (
+                efficiency(Driver::Input, false, 0),
+                "P_out/(P_out + mean loss) over the scene's crank angles",
+            ),
+            (
+                efficiency(Driver::Output, true, 7),
+                "SELF-LOCKS: back-driven (the output drives, T < 0), the mean loss exceeds the \
+                 power P = |T|·ω_out entering at the output, (P − mean loss)/P ≤ 0 over the \
+                 scene's crank angles; the input must push at 7 of 360 crank angles \
+                 (self_locking_deg)",
+            ),
+            (
+                efficiency(Driver::Output, false, 0),
+                "back-driven (the output drives, T < 0): (P − mean loss)/P, P = |T|·ω_out \
+                 entering at the output, over the scene's crank angles",
+            ),
+            (
+                efficiency(Driver::Output, false, 7),
+                "back-driven (the output drives, T < 0): (P − mean loss)/P, P = |T|·ω_out \
+                 entering at the output, over the scene's crank angles; self-locks at 7 of 360 \
+                 crank angles (self_locking_deg)",
+            ),
+            (
+                of(Site::Unbounded(Unbounded::Life { load_n: 0.0 })),
+                "unbounded: P = 0 N, no load wears the bearing (written as 1.798e308 h, the \
+                 largest number)",
+            ),
+            (
+                of(Site::Unbounded(Unbounded::Life { load_n: 2500.0 })),
+                "unbounded: at P = 2500 N the life is beyond 1.798e308 h, the largest number",
+            ),
+            (
+                of(Site::Unbounded(Unbounded::PinSafety)),
+                "unbounded: no pin is bent (written as 1.798e308, the largest number)",
+            ),
+            (
+                of(Site::Unbounded(Unbounded::Fatigue {
+                    part: "rollers",
+                    pressure_mpa: 0.0,
+                })),
+                "unbounded: the rollers take no damage at 0 MPa (written as 1.798e308 h, the \
+                 largest number)",
+            ),
+            (
+                of(Site::Unbounded(Unbounded::StaticSafety)),
+                "unbounded: the bearing carries no force (written as 1.798e308, the largest \
+                 number)",
+            ),
+            (
+                of(Site::Unbounded(Unbounded::DutyFatigue { part: "disc" })),
+                "unbounded: no bin wears the disc (written as 1.798e308 h, the largest number)",
+            ),
+            (
+                Place {
+                    bin: None,
+                    disc: Some(0),
+                    site: Site::Unbounded(Unbounded::DutyLife),
+                },
+                "disc 0: unbounded: no bin loads the bearing enough to wear it (written as \
+                 1.798e308 h, the largest number)",
+            ),
+        ]
+    }
+
+    #[test]
+    fn a_place_reads_as_every_output_has_worded_it() {
+        for (place, words) in cases() {
+            assert_eq!(text(&place), words, "{place:?}");
+        }
+    }
+
+    /// The typed tests a headline makes of a place say what its words say: whether they name
+    /// the scene's only angle, and whether they end on the scene's angles after a comma (what
+    /// the headline's sampling used to be chosen by, searching the words).
+    #[test]
+    fn what_a_headline_asks_of_a_place_agrees_with_its_words() {
+        for (place, words) in cases() {
+            assert_eq!(
+                names_only_angle(&place),
+                words.contains(ONLY_ANGLE),
+                "{words}"
+            );
+            let counted = words.contains(", over the scene's ");
+            assert_eq!(counts_scene_angles(&place), counted, "{words}");
+        }
     }
 }

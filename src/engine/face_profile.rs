@@ -12,6 +12,8 @@ use super::scene::{self, RunOptions};
 use crate::contact::face_width::slice_centre_mm;
 use crate::error::{Error, Result};
 use crate::model::face::Misalignment;
+use crate::model::place::{Place, Site};
+use crate::model::quantity::MAX_LINE_LOAD;
 use crate::model::results::{FaceLoads, SceneResult};
 use crate::model::{Design, Plan, Scene};
 use crate::spec::Spec;
@@ -59,7 +61,7 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
         let picked = if tilted {
             worst_factor(face).map(|p| (FaceAngle::WorstFactor, p))
         } else {
-            largest_line_load(face).map(|p| (FaceAngle::LargestLineLoad, p))
+            largest_line_load(r).map(|p| (FaceAngle::LargestLineLoad, p))
         };
         let Some((angle, (k, roller))) = picked else {
             continue;
@@ -105,11 +107,18 @@ fn worst_factor(face: &FaceLoads) -> Option<(usize, usize)> {
     Some((k, roller))
 }
 
-/// The angle and roller of the largest line load (`max_line_load_n_per_mm`'s).
-fn largest_line_load(face: &FaceLoads) -> Option<(usize, usize)> {
-    face.face_load_factor.first()?;
-    let (_, roller, k, _) = face.peak_line_load();
-    Some((k, roller))
+/// The angle and roller of the largest line load, where the registry found it
+/// (`max_line_load_n_per_mm`'s place). Read from a scene whose own run resolves the face, so
+/// that the place is of that run (not a bin's, nor a disc's).
+fn largest_line_load(r: &SceneResult) -> Option<(usize, usize)> {
+    match MAX_LINE_LOAD.scalar(r)?.at {
+        Place {
+            bin: None,
+            disc: None,
+            site: Site::Slice { at, .. },
+        } => Some((at.crank.index, at.index)),
+        _ => None,
+    }
 }
 
 /// Roller `roller`'s line loads in `scene` of `design` at `crank_rad`, N/mm: the scene's loaded

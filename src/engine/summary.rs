@@ -15,8 +15,8 @@ pub struct Headline {
     pub quantity: &'static Quantity,
     /// In the quantity's unit.
     pub value: f64,
-    /// Where it occurs.
-    pub at: String,
+    /// Where it occurs, as data (`report::place` says it in words).
+    pub at: crate::model::place::Place,
     /// Beyond its plausible band, no limit judging it (`engine::plausibility`): a mark for
     /// the reader, not a failed check. `None` from `summarise`; `marked` sets it.
     pub beyond: Option<Beyond>,

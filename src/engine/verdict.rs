@@ -40,8 +40,8 @@ pub struct Check {
 /// Where a check's value occurs, or what it rests on.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Evidence {
-    /// Where the registry's extreme occurs (its place label: "roller 3 at crank 12.30°").
-    Place(String),
+    /// Where the registry's extreme occurs (`Extreme::at`: roller 3 at crank angle 12).
+    Place(crate::model::place::Place),
     /// A golden curve's worst point: where, the golden and the current value, the golden file.
     Golden {
         worst: crate::engine::golden::Point,

@@ -18,6 +18,7 @@ pub mod limits;
 pub mod measured;
 pub mod modification;
 pub mod period;
+pub mod place;
 pub mod quantity;
 pub mod requirements;
 pub mod results;

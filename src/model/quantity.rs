@@ -4,14 +4,13 @@
 //! their quantities up here; a new quantity is one entry.
 //!
 //! A quantity is either per crank angle (`Shape::Curve`, or one curve per roller or pin) or a
-//! scalar of the whole sweep (`Shape::Scalar`: an extreme with where it occurs). Values are in
-//! the unit named by the key (arcsec, N, mm, MPa, deg).
+//! scalar of the whole sweep (`Shape::Scalar`: an extreme with where it occurs, as data:
+//! `model::place`). Values are in the unit named by the key (arcsec, N, mm, MPa, deg).
 
 use super::effect::{Detail, Effect};
-use super::results::{
-    BacklashCurves, Driver, DutyCycle, MinCoverage, ReducerEfficiency, SceneResult, TorsionFigures,
-};
-use crate::numeric::{extremes, fluctuation, max_entry, number};
+use super::place::{Bin, Crank, Part, PartAt, Place, Rule, Site, Unbounded};
+use super::results::{BacklashCurves, DutyCycle, ReducerEfficiency, SceneResult, TorsionFigures};
+use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 
 /// Rows `[column][angle]` in output units.
@@ -41,13 +40,13 @@ impl Shape {
     }
 }
 
-/// A scalar of a sweep and where it occurs ("roller 3 at crank 12.30°").
+/// A scalar of a sweep and where it occurs (roller 3 at crank 0.2147 rad).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Extreme {
     /// The value, in the unit of the quantity's key.
     pub value: f64,
-    /// Where it occurs, for people ("roller 3 at crank 12.30°").
-    pub at: String,
+    /// Where it occurs, or what it rests on, as data (`report::place` says it in words).
+    pub at: Place,
 }
 
 #[derive(Clone, Copy)]
@@ -120,7 +119,7 @@ impl Quantity {
 
     /// The scalar's value and where it occurs; `None` when not computed, or for a curve. With
     /// several discs, a quantity of each disc (a force, a clearance) is the worst over the
-    /// discs, and where it occurs names the disc ("disc 1: roller 3 at crank 12.30°").
+    /// discs, and where it occurs names the disc (`Place::disc`).
     pub fn scalar(&self, r: &SceneResult) -> Option<Extreme> {
         let Read::Scalar(read) = self.read else {
             return None;
@@ -133,34 +132,29 @@ impl Quantity {
                 .iter()
                 .enumerate()
                 .filter_map(|(k, disc)| {
-                    let e = read(disc)?;
-                    Some(Extreme {
-                        at: format!("disc {k}: {}", e.at),
-                        ..e
-                    })
+                    let mut e = read(disc)?;
+                    e.at.disc = Some(k);
+                    Some(e)
                 })
                 .reduce(|a, b| if self.worse(b.value, a.value) { b } else { a })
         })
     }
 
     /// In a duty-cycle scene (`SceneResult::duty`), the worst value over its bins' runs, named
-    /// by its bin ("bin 2 (40 N·m, 1500 rpm): roller 3 at crank 12.30°"); `None` otherwise.
+    /// by its bin, its torque and speed (`Place::bin`); `None` otherwise.
     fn worst_bin(&self, r: &SceneResult) -> Option<Extreme> {
         let duty = r.duty.as_ref()?;
         duty.bins
             .iter()
             .enumerate()
             .filter_map(|(j, b)| {
-                let e = self.scalar(&b.result)?;
-                Some(Extreme {
-                    at: format!(
-                        "bin {j} ({} N·m, {} rpm): {}",
-                        number(units::nm(b.bin.output_torque_nmm)),
-                        number(b.bin.input_speed_rpm),
-                        e.at
-                    ),
-                    ..e
-                })
+                let mut e = self.scalar(&b.result)?;
+                e.at.bin = Some(Bin {
+                    index: j,
+                    output_torque_nmm: b.bin.output_torque_nmm,
+                    input_speed_rpm: b.bin.input_speed_rpm,
+                });
+                Some(e)
             })
             .reduce(|a, b| if self.worse(b.value, a.value) { b } else { a })
     }
@@ -235,39 +229,51 @@ fn one(v: &[f64]) -> Rows {
     vec![v.to_vec()]
 }
 
-fn crank_deg(r: &SceneResult, k: usize) -> f64 {
-    units::deg(r.crank_rad.get(k).copied().unwrap_or(0.0))
+/// Crank angle `k` of the run (φ = 0 past its end: an extreme of an empty curve).
+fn crank(r: &SceneResult, k: usize) -> Crank {
+    Crank {
+        index: k,
+        rad: r.crank_rad.get(k).copied().unwrap_or(0.0),
+    }
 }
 
-/// The largest entry of per-part curves and where: "roller 3 at crank 12.30°".
-fn largest(r: &SceneResult, rows: &[Vec<f64>], what: &str) -> Extreme {
-    let (value, i, k) = max_entry(rows);
+/// An extreme at a place of the scene's own run.
+fn at(value: f64, site: Site) -> Extreme {
     Extreme {
         value,
-        at: format!("{what} {i} at crank {:.2}°", crank_deg(r, k)),
+        at: Place::of(site),
     }
+}
+
+/// Part `i` of `part` at the run's crank angle `k`.
+fn part_at(r: &SceneResult, part: Part, i: usize, k: usize) -> PartAt {
+    PartAt {
+        part,
+        index: i,
+        crank: crank(r, k),
+    }
+}
+
+/// The largest entry of per-part curves and where: roller 3 at crank angle 12.
+fn largest(r: &SceneResult, rows: &[Vec<f64>], part: Part) -> Extreme {
+    let (value, i, k) = max_entry(rows);
+    at(value, Site::Part(part_at(r, part, i, k)))
 }
 
 /// The largest value of a curve and where.
 fn highest(r: &SceneResult, curve: &[f64]) -> Extreme {
     let (_, (value, k)) = extremes(curve);
-    Extreme {
-        value,
-        at: format!("crank {:.2}°", crank_deg(r, k)),
-    }
+    at(value, Site::Crank(crank(r, k)))
 }
 
 /// max − min of a curve (scaled), with where each occurs.
 fn spread(r: &SceneResult, curve: &[f64], scale: f64) -> Extreme {
     let ((_, lo), (_, hi)) = extremes(curve);
-    Extreme {
-        value: fluctuation(curve) * scale,
-        at: format!(
-            "min at {:.2}°, max at {:.2}°",
-            crank_deg(r, lo),
-            crank_deg(r, hi)
-        ),
-    }
+    let site = Site::Spread {
+        min: crank(r, lo),
+        max: crank(r, hi),
+    };
+    at(fluctuation(curve) * scale, site)
 }
 
 /// Gap of each roller at the ideal pose (β = 0), mm, one curve per roller
@@ -537,41 +543,17 @@ pub const MIN_CLEARANCE: Quantity = Quantity {
     period: None,
     of: Some("clearance_mm"),
     read: Read::Scalar(|r| {
-        r.clearance.as_ref().map(|c| Extreme {
-            value: c.min.gap_mm,
-            at: format!(
-                "roller {} at crank {:.2}°, tooth phase {} (0 root, 0.5 tip), {}",
-                c.min.roller,
-                units::deg(c.min.crank_rad),
-                crate::numeric::phase(c.min.tooth_phase),
-                over(&c.coverage)
-            ),
+        r.clearance.as_ref().map(|c| {
+            let site = Site::Gap {
+                roller: c.min.roller,
+                crank_rad: c.min.crank_rad,
+                tooth_phase: c.min.tooth_phase,
+                over: c.coverage,
+            };
+            at(c.min.gap_mm, site)
         })
     }),
 };
-
-/// What the smallest gap was sought over, for people: the whole period of the gaps, its step
-/// and the error bound, or the scene's angles alone.
-fn over(coverage: &MinCoverage) -> String {
-    match coverage {
-        MinCoverage::Period(p) => format!(
-            "over the whole period of {}° sampled every {}° (error ≤ {} µm)",
-            number(units::deg(p.period_rad)),
-            number(units::deg(p.step_rad)),
-            number(units::um(p.error_bound_mm))
-        ),
-        MinCoverage::Angles(n) => format!("over the scene's {} only", angles(*n)),
-    }
-}
-
-/// "1 crank angle", "4 crank angles".
-fn angles(n: usize) -> String {
-    format!("{n} crank angle{}", if n == 1 { "" } else { "s" })
-}
-
-/// How a one-angle scene's extreme says where it was sought: its place already names the
-/// angle ("crank 0.00°, the scene's only crank angle"), said once.
-pub const ONLY_ANGLE: &str = "the scene's only crank angle";
 
 /// The largest unloaded lost motion over the scene's crank angles (only those: its closing lags
 /// are not sought over the whole mesh), arcsec.
@@ -584,13 +566,12 @@ pub const MAX_LOST_MOTION: Quantity = Quantity {
     period: None,
     of: Some("lost_motion_arcsec"),
     read: Read::Scalar(|r| {
-        let mut e = highest(r, &backlash(r)?.lost_motion_rad);
-        e.value = units::arcsec(e.value);
-        e.at = match r.crank_rad.len() {
-            1 => format!("{}, {ONLY_ANGLE}", e.at),
-            n => format!("{}, over the scene's {}", e.at, angles(n)),
+        let (_, (value, k)) = extremes(&backlash(r)?.lost_motion_rad);
+        let site = Site::Sampled {
+            crank: crank(r, k),
+            angles: r.crank_rad.len(),
         };
-        Some(e)
+        Some(at(units::arcsec(value), site))
     }),
 };
 
@@ -603,7 +584,13 @@ pub const MAX_ROLLER_FORCE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("roller_force_n"),
-    read: Read::Scalar(|r| Some(largest(r, &r.loaded.rollers.as_ref()?.force_n, "roller"))),
+    read: Read::Scalar(|r| {
+        Some(largest(
+            r,
+            &r.loaded.rollers.as_ref()?.force_n,
+            Part::Roller,
+        ))
+    }),
 };
 
 /// The largest Hertz peak pressure of the rollers' contacts, MPa, with the roller and the crank
@@ -620,7 +607,7 @@ pub const MAX_CONTACT_PRESSURE: Quantity = Quantity {
         Some(largest(
             r,
             &r.loaded.rollers.as_ref()?.pressure_mpa,
-            "roller",
+            Part::Roller,
         ))
     }),
 };
@@ -654,14 +641,12 @@ pub const MAX_LINE_LOAD: Quantity = Quantity {
         let face = r.loaded.rollers.as_ref()?.face.as_ref()?;
         let (value, i, k, s) = face.peak_line_load();
         face.line_load_n_per_mm.first()?.first()?;
-        let n = face.slices;
-        Some(Extreme {
-            value,
-            at: format!(
-                "roller {i} at crank {:.2}°, slice {s} of {n} (slice 0 at z = −B/2)",
-                crank_deg(r, k)
-            ),
-        })
+        let site = Site::Slice {
+            at: part_at(r, Part::Roller, i, k),
+            slice: s,
+            slices: face.slices,
+        };
+        Some(at(value, site))
     }),
 };
 
@@ -678,10 +663,7 @@ pub const MIN_ROLLERS_IN_CONTACT: Quantity = Quantity {
         let c = r.loaded.rollers.as_ref()?;
         let counts: Vec<f64> = c.contacts.iter().map(|&n| n as f64).collect();
         let ((value, k), _) = extremes(&counts);
-        Some(Extreme {
-            value,
-            at: format!("crank {:.2}°", crank_deg(r, k)),
-        })
+        Some(at(value, Site::Crank(crank(r, k))))
     }),
 };
 
@@ -724,7 +706,7 @@ pub const MAX_PIN_FORCE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("pin_force_n"),
-    read: Read::Scalar(|r| Some(largest(r, &r.loaded.pins.as_ref()?.force_n, "pin"))),
+    read: Read::Scalar(|r| Some(largest(r, &r.loaded.pins.as_ref()?.force_n, Part::Pin))),
 };
 
 /// The largest crank-bearing force |Fb|, N, with the crank angle.
@@ -836,10 +818,7 @@ fn curve_extreme(r: &SceneResult, q: &Quantity, largest: bool) -> Option<Extreme
     let values = q.curves(r)?.values.pop()?;
     let ((lo, klo), (hi, khi)) = extremes(&values);
     let (value, k) = if largest { (hi, khi) } else { (lo, klo) };
-    Some(Extreme {
-        value,
-        at: format!("crank {:.2}° locked", crank_deg(r, k)),
-    })
+    Some(at(value, Site::Locked(crank(r, k))))
 }
 
 /// The largest torsion lost motion over the locked crank angles, arcmin.
@@ -901,10 +880,7 @@ pub const BEARING_EQUIVALENT_LOAD: Quantity = Quantity {
     period: None,
     of: None,
     read: Read::Scalar(|r| {
-        r.bearing_life.map(|b| Extreme {
-            value: b.equivalent_load_n,
-            at: "(mean of Fb^p over the sweep)^(1/p)".to_string(),
-        })
+        (r.bearing_life).map(|b| at(b.equivalent_load_n, Site::Rule(Rule::BearingEquivalentLoad)))
     }),
 };
 
@@ -921,19 +897,12 @@ pub const BEARING_LIFE: Quantity = Quantity {
     of: None,
     read: Read::Scalar(|r| {
         let b = r.bearing_life?;
-        let p = crate::numeric::number(b.equivalent_load_n);
-        Some(Extreme {
-            value: b.life_h?,
-            at: match (b.is_unbounded(), b.equivalent_load_n == 0.0) {
-                (false, _) => format!("at P = {p} N"),
-                (true, true) => "unbounded: P = 0 N, no load wears the bearing (written as \
-                                 1.798e308 h, the largest number)"
-                    .to_string(),
-                (true, false) => format!(
-                    "unbounded: at P = {p} N the life is beyond 1.798e308 h, the largest number"
-                ),
-            },
-        })
+        let load_n = b.equivalent_load_n;
+        let site = match b.is_unbounded() {
+            false => Site::Life { load_n },
+            true => Site::Unbounded(Unbounded::Life { load_n }),
+        };
+        Some(at(b.life_h?, site))
     }),
 };
 
@@ -970,7 +939,7 @@ pub const MAX_PIN_BENDING_STRESS: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("pin_bending_stress_mpa"),
-    read: Read::Scalar(|r| Some(largest(r, &pin_stress(r)?.bending_stress_mpa, "pin"))),
+    read: Read::Scalar(|r| Some(largest(r, &pin_stress(r)?.bending_stress_mpa, Part::Pin))),
 };
 
 /// The largest peak shear stress 4·V/(3·A) of an output pin, MPa, with the pin and the crank
@@ -983,7 +952,7 @@ pub const MAX_PIN_SHEAR_STRESS: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| Some(largest(r, &pin_stress(r)?.shear_stress_mpa, "pin"))),
+    read: Read::Scalar(|r| Some(largest(r, &pin_stress(r)?.shear_stress_mpa, Part::Pin))),
 };
 
 /// The pins' safety against yield in bending: yield strength / the largest bending stress,
@@ -1000,18 +969,14 @@ pub const PIN_BENDING_SAFETY: Quantity = Quantity {
     read: Read::Scalar(|r| {
         let p = pin_stress(r)?;
         let yield_mpa = p.yield_strength_mpa?;
-        let most = largest(r, &p.bending_stress_mpa, "pin");
+        let most = largest(r, &p.bending_stress_mpa, Part::Pin);
         let safety = yield_mpa / most.value;
         Some(match safety.is_finite() {
             true => Extreme {
                 value: safety,
                 at: most.at,
             },
-            false => Extreme {
-                value: f64::MAX,
-                at: "unbounded: no pin is bent (written as 1.798e308, the largest number)"
-                    .to_string(),
-            },
+            false => at(f64::MAX, Site::Unbounded(Unbounded::PinSafety)),
         })
     }),
 };
@@ -1033,22 +998,21 @@ pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
         }
         let f = disc_strength(r)?.fatigue?;
         let (value, part) = f.shorter()?;
-        let p = number(f.pressure_mpa);
+        let pressure_mpa = f.pressure_mpa;
         // Where the largest pressure is (the one the life is at), when the curves hold it.
         let place = (r.loaded.rollers.as_ref())
-            .map(|c| largest(r, &c.pressure_mpa, "roller"))
-            .filter(|e| e.value == f.pressure_mpa)
-            .map_or(String::new(), |e| format!(", {}", e.at));
-        Some(Extreme {
-            value,
-            at: match value == super::results::UNBOUNDED_LIFE_H {
-                false => format!("{part} at {p} MPa{place}"),
-                true => format!(
-                    "unbounded: the {part} take no damage at {p} MPa (written as 1.798e308 h, \
-                     the largest number)"
-                ),
+            .map(|c| max_entry(&c.pressure_mpa))
+            .filter(|&(p, _, _)| p == pressure_mpa)
+            .map(|(_, i, k)| part_at(r, Part::Roller, i, k));
+        let site = match value == super::results::UNBOUNDED_LIFE_H {
+            false => Site::Fatigue {
+                part,
+                pressure_mpa,
+                at: place,
             },
-        })
+            true => Site::Unbounded(Unbounded::Fatigue { part, pressure_mpa }),
+        };
+        Some(at(value, site))
     }),
 };
 
@@ -1065,21 +1029,19 @@ pub const STATIC_SAFETY: Quantity = Quantity {
     of: None,
     read: Read::Scalar(|r| {
         let s = disc_strength(r)?.static_safety?;
-        let f = number(s.largest_force_n);
         // Where the largest bearing force is, when the curve holds it.
         let place = (r.loaded.bearing.as_ref())
-            .map(|b| highest(r, &b.force_n))
-            .filter(|e| e.value == s.largest_force_n)
-            .map_or(String::new(), |e| format!(" at {}", e.at));
-        Some(Extreme {
-            value: s.safety,
-            at: match s.safety == f64::MAX {
-                false => format!("C0 / {f} N{place}"),
-                true => "unbounded: the bearing carries no force (written as 1.798e308, the \
-                         largest number)"
-                    .to_string(),
+            .map(|b| extremes(&b.force_n).1)
+            .filter(|&(f, _)| f == s.largest_force_n)
+            .map(|(_, k)| crank(r, k));
+        let site = match s.safety == f64::MAX {
+            false => Site::StaticSafety {
+                force_n: s.largest_force_n,
+                at: place,
             },
-        })
+            true => Site::Unbounded(Unbounded::StaticSafety),
+        };
+        Some(at(s.safety, site))
     }),
 };
 
@@ -1091,16 +1053,19 @@ fn duty_fatigue(d: &DutyCycle) -> Option<Extreme> {
         .flat_map(|(k, f)| [(f.disc_h, "disc", k), (f.rollers_h, "rollers", k)])
         .filter_map(|(h, part, k)| Some((h?, part, k)))
         .reduce(|a, b| if b.0 < a.0 { b } else { a })
-        .map(|(value, part, k)| Extreme {
-            value,
-            at: match (several, value == super::results::UNBOUNDED_LIFE_H) {
-                (false, false) => format!("{part} under the cycle (Miner, flanks apart)"),
-                (true, false) => format!("disc {k}: {part} under the cycle (Miner, flanks apart)"),
-                (_, true) => format!(
-                    "unbounded: no bin wears the {part} (written as 1.798e308 h, the largest \
-                     number)"
-                ),
-            },
+        .map(|(value, part, k)| {
+            let unbounded = value == super::results::UNBOUNDED_LIFE_H;
+            Extreme {
+                value,
+                at: Place {
+                    bin: None,
+                    disc: (several && !unbounded).then_some(k),
+                    site: match unbounded {
+                        false => Site::DutyFatigue { part },
+                        true => Site::Unbounded(Unbounded::DutyFatigue { part }),
+                    },
+                },
+            }
         })
 }
 
@@ -1109,11 +1074,15 @@ fn duty(r: &SceneResult) -> Option<&DutyCycle> {
     r.duty.as_deref()
 }
 
-/// "disc k: " with several discs, nothing with one.
-fn disc_prefix(r: &SceneResult, k: usize) -> String {
-    match duty(r).map_or(0, |d| d.life.len()) {
-        0 | 1 => String::new(),
-        _ => format!("disc {k}: "),
+/// A duty cycle's figure of disc `k` at `site`, naming the disc with several discs.
+fn of_disc(r: &SceneResult, k: usize, value: f64, site: Site) -> Extreme {
+    Extreme {
+        value,
+        at: Place {
+            bin: None,
+            disc: (duty(r).map_or(0, |d| d.life.len()) > 1).then_some(k),
+            site,
+        },
     }
 }
 
@@ -1132,20 +1101,14 @@ pub const DUTY_LIFE: Quantity = Quantity {
     read: Read::Scalar(|r| {
         let d = duty(r)?;
         let (k, b) = d.shortest_life()?;
-        let at = match b.is_unbounded() {
-            true => "unbounded: no bin loads the bearing enough to wear it (written as \
-                     1.798e308 h, the largest number)"
-                .to_string(),
-            false => format!(
-                "at P = {} N, mean speed {} rpm",
-                number(b.equivalent_load_n),
-                number(d.mean_speed_rpm)
-            ),
+        let site = match b.is_unbounded() {
+            true => Site::Unbounded(Unbounded::DutyLife),
+            false => Site::DutyLife {
+                load_n: b.equivalent_load_n,
+                mean_speed_rpm: d.mean_speed_rpm,
+            },
         };
-        Some(Extreme {
-            value: b.life_h?,
-            at: format!("{}{at}", disc_prefix(r, k)),
-        })
+        Some(of_disc(r, k, b.life_h?, site))
     }),
 };
 
@@ -1168,13 +1131,8 @@ pub const DUTY_EQUIVALENT_LOAD: Quantity = Quantity {
                 a
             }
         })?;
-        Some(Extreme {
-            value: b.equivalent_load_n,
-            at: format!(
-                "{}(Σ share·n·P^p / Σ share·n)^(1/p) over the bins",
-                disc_prefix(r, k)
-            ),
-        })
+        let site = Site::Rule(Rule::DutyEquivalentLoad);
+        Some(of_disc(r, k, b.equivalent_load_n, site))
     }),
 };
 
@@ -1190,10 +1148,8 @@ pub const EQUIVALENT_TORQUE: Quantity = Quantity {
     of: None,
     read: Read::Scalar(|r| {
         let d = duty(r)?;
-        Some(Extreme {
-            value: units::nm(d.equivalent_torque_nmm),
-            at: "(Σ share·n·|T|³ / Σ share·n)^(1/3) over the bins".to_string(),
-        })
+        let site = Site::Rule(Rule::EquivalentTorque);
+        Some(at(units::nm(d.equivalent_torque_nmm), site))
     }),
 };
 
@@ -1208,10 +1164,7 @@ pub const MEAN_SPEED: Quantity = Quantity {
     of: None,
     read: Read::Scalar(|r| {
         let d = duty(r)?;
-        Some(Extreme {
-            value: d.mean_speed_rpm,
-            at: "Σ share·n over the bins".to_string(),
-        })
+        Some(at(d.mean_speed_rpm, Site::Rule(Rule::MeanSpeed)))
     }),
 };
 
@@ -1227,11 +1180,8 @@ pub const DUTY_MEAN_EFFICIENCY: Quantity = Quantity {
     period: None,
     of: None,
     read: Read::Scalar(|r| {
-        Some(Extreme {
-            value: duty(r)?.mean_efficiency?,
-            at: "energy delivered / energy entering over the bins, each as its power flows"
-                .to_string(),
-        })
+        let site = Site::Rule(Rule::DutyMeanEfficiency);
+        Some(at(duty(r)?.mean_efficiency?, site))
     }),
 };
 
@@ -1279,40 +1229,17 @@ pub const MEAN_EFFICIENCY: Quantity = Quantity {
     period: None,
     of: Some("efficiency"),
     read: Read::Scalar(|r| {
-        reducer_efficiency(r).map(|e| Extreme {
-            value: e.mean_efficiency,
-            at: efficiency_basis(e, r.crank_rad.len()),
+        reducer_efficiency(r).map(|e| {
+            let site = Site::Efficiency {
+                driver: e.driver,
+                self_locks: e.self_locks,
+                locked: e.self_locking_crank_rad.len(),
+                angles: r.crank_rad.len(),
+            };
+            at(e.mean_efficiency, site)
         })
     }),
 };
-
-/// What a scene's mean efficiency is of, where it is read (the headline, a limit's row, the
-/// review): with the input driving P_out/(P_out + mean loss); with the output driving (T < 0)
-/// the back-driven (P − mean loss)/P, the crank angles where the input must still push, and,
-/// when the mean loss takes all of P, that the scene self-locks (`engine::power_flow`).
-fn efficiency_basis(e: &ReducerEfficiency, angles: usize) -> String {
-    const OVER: &str = "over the scene's crank angles";
-    const BACK: &str = "back-driven (the output drives, T < 0)";
-    let locked = e.self_locking_crank_rad.len();
-    match (e.driver, e.self_locks) {
-        (Driver::Input, _) => format!("P_out/(P_out + mean loss) {OVER}"),
-        (Driver::Output, true) => format!(
-            "SELF-LOCKS: {BACK}, the mean loss exceeds the power P = |T|·ω_out entering at the \
-             output, (P − mean loss)/P ≤ 0 {OVER}; the input must push at {locked} of {angles} \
-             crank angles (self_locking_deg)"
-        ),
-        (Driver::Output, false) => {
-            let at =
-                format!("{BACK}: (P − mean loss)/P, P = |T|·ω_out entering at the output, {OVER}");
-            match locked {
-                0 => at,
-                _ => format!(
-                    "{at}; self-locks at {locked} of {angles} crank angles (self_locking_deg)"
-                ),
-            }
-        }
-    }
-}
 
 /// The mean power lost to friction on every path, W, with a speed (`EfficiencyCurves::
 /// power_loss_w`; a disc's: its contacts').
@@ -1326,17 +1253,7 @@ pub const TOTAL_POWER_LOSS: Quantity = Quantity {
     of: None,
     read: Read::Scalar(|r| {
         let p = r.efficiency.as_ref()?.power_loss_w()?;
-        Some(Extreme {
-            value: p.total(),
-            at: format!(
-                "mean over the crank angles: rollers {} W, output pins {} W, crank bearing {} W, \
-                 no-load {} W",
-                number(p.rollers),
-                number(p.output_pins),
-                number(p.crank_bearing),
-                number(p.no_load)
-            ),
-        })
+        Some(at(p.total(), Site::PowerLoss(p)))
     }),
 };
 
@@ -1350,10 +1267,8 @@ pub const TEMPERATURE: Quantity = Quantity {
     period: None,
     of: None,
     read: Read::Scalar(|r| {
-        reducer_efficiency(r)?.temperature_c.map(|t| Extreme {
-            value: t,
-            at: "ambient + mean power loss/(h·A)".to_string(),
-        })
+        let t = reducer_efficiency(r)?.temperature_c?;
+        Some(at(t, Site::Rule(Rule::Temperature)))
     }),
 };
 

@@ -672,12 +672,12 @@ pub struct GoldenDoc<'a> {
 
 /// One headline result of a scene ([`engine::summary`](crate::engine::summary)).
 #[derive(Serialize)]
-pub struct HeadlineDoc<'a> {
+pub struct HeadlineDoc {
     key: &'static str,
     label: &'static str,
     value: Finite,
     unit: &'static str,
-    at: &'a str,
+    at: String,
     /// The plausible band's upper end the value lies beyond (`engine::plausibility`), in the
     /// quantity's unit; only on a marked headline.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -687,7 +687,7 @@ pub struct HeadlineDoc<'a> {
 #[derive(Serialize)]
 pub struct SummaryDoc<'a> {
     scene: &'a str,
-    headlines: Vec<HeadlineDoc<'a>>,
+    headlines: Vec<HeadlineDoc>,
 }
 
 /// One term of a study's objective at the optimum, unweighted, in its own unit.
@@ -956,7 +956,7 @@ fn summary(s: &SceneSummary) -> SummaryDoc<'_> {
                 label: h.quantity.label,
                 value: Finite(h.value),
                 unit: h.quantity.unit,
-                at: &h.at,
+                at: super::place::text(&h.at),
                 beyond_plausible: h.beyond.map(|b| Finite(b.band)),
             })
             .collect(),

@@ -17,6 +17,7 @@ pub mod json;
 pub mod junit;
 pub mod mass_properties;
 pub mod optimisation;
+pub mod place;
 pub mod review;
 pub mod step;
 pub mod stl;

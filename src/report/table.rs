@@ -5,7 +5,8 @@ use crate::engine::plausibility::{Basis, Beyond};
 use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
 use crate::engine::verdict::{Bound, Check, CheckKind, Evidence};
 use crate::model::quantity::{find_limit, Quantity, COUNTS};
-use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE, ONLY_ANGLE};
+use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE};
+use crate::report::place::{self, ONLY_ANGLE};
 
 /// Format a number for a person: [`numeric::number`](crate::numeric::number), the one
 /// formatter (4 significant figures after rounding: 9.99999998 reads 10.00, not 10.000).
@@ -406,7 +407,7 @@ fn preloaded(h: &Headline) -> bool {
 /// its line already says over what. An unloaded lost motion beside the reducer's ±3 % figure
 /// of the same scene says why the two differ.
 pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> String {
-    let mut at = h.at.clone();
+    let mut at = place::text(&h.at);
     if preloaded(h) {
         let (overlap, unit) = match in_arcmin(h, s) {
             true => (arcsec_to_arcmin(-h.value), "arcmin"),
@@ -429,9 +430,9 @@ pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> Stri
         && others
             .flat_map(|o| &o.headlines)
             .any(|o| o.quantity.key == h.quantity.key);
-    if shared && !at.contains(ONLY_ANGLE) {
+    if shared && !place::names_only_angle(&h.at) {
         // A place that counts the scene's angles already gets their step alone.
-        at += &match at.contains(", over the scene's ") {
+        at += &match place::counts_scene_angles(&h.at) {
             true => format!(", every {}°", step_deg(s)),
             false => format!("; {}", sampling(s)),
         };
@@ -529,7 +530,7 @@ fn step_deg(s: &SceneSummary) -> String {
 /// the checks (terminal, JSON, JUnit, the review).
 pub fn evidence(e: &Evidence) -> String {
     match e {
-        Evidence::Place(place) => place.clone(),
+        Evidence::Place(p) => place::text(p),
         Evidence::Golden { worst, path } => format!(
             "worst at {}: golden {}, now {} ({})",
             super::golden::place(worst),

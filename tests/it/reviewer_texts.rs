@@ -645,11 +645,12 @@ fn a_torsion_scenes_unloaded_lost_motion_reads_in_arcmin() {
 #[test]
 fn a_preloaded_lost_motion_beside_torsion_figures_reads_in_arcmin() {
     use cycloid::engine::summary::{Headline, SceneSummary};
+    use cycloid::model::place::{Crank, Place, Site};
     use cycloid::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION};
     let headline = |quantity, value: f64| Headline {
         quantity,
         value,
-        at: "crank 0.00°".to_string(),
+        at: Place::of(Site::Crank(Crank { index: 0, rad: 0.0 })),
         beyond: None,
         resolution: 0.0,
     };

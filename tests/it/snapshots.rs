@@ -161,6 +161,7 @@ fn colour_only_when_asked() {
 #[test]
 fn failures_come_first_the_furthest_outside_first() {
     use cycloid::engine::verdict::{Bound, Check, CheckKind};
+    use cycloid::model::place::{Crank, Place, Site};
     let check = |id: &str, value: f64, limit: f64, bound: Bound| Check {
         id: id.into(),
         kind: CheckKind::Limit,
@@ -172,7 +173,10 @@ fn failures_come_first_the_furthest_outside_first() {
             Bound::Max => value <= limit,
             Bound::Min => value >= limit,
         },
-        at: cycloid::engine::verdict::Evidence::Place(String::new()),
+        at: cycloid::engine::verdict::Evidence::Place(Place::of(Site::Crank(Crank {
+            index: 0,
+            rad: 0.0,
+        }))),
     };
     let checks = vec![
         check("s/passes", 1.0, 2.0, Bound::Max),

@@ -332,7 +332,8 @@ fn the_scenes_lives_and_static_safety() {
     let q = cycloid::model::quantity::find("min_contact_fatigue_life_h").unwrap();
     let shorter = q.scalar(&r).unwrap();
     assert_eq!(shorter.value, f.disc_h.unwrap());
-    assert!(shorter.at.starts_with("disc"), "{}", shorter.at);
+    let words = cycloid::report::place::text(&shorter.at);
+    assert!(words.starts_with("disc"), "{words}");
     let s0 = s.static_safety.unwrap().safety;
     assert!((s0 / (9000.0 / fb) - 1.0).abs() <= 1e-12);
     let q = cycloid::model::quantity::find("pin_bending_safety").unwrap();

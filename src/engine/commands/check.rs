@@ -275,9 +275,9 @@ fn all_finite(spec: &Spec, results: &[SceneResult]) -> Result<()> {
         {
             if let Some(x) = q.scalar(r).filter(|x| !x.value.is_finite()) {
                 return Err(Error::computation(format!(
-                    "scene `{}`: {} is {} ({}), not a finite number: the inputs are beyond what \
-                     the model computes; nothing is judged",
-                    scene.name, q.key, x.value, x.at
+                    "scene `{}`: {} is {}, not a finite number: the inputs are beyond what the \
+                     model computes; nothing is judged",
+                    scene.name, q.key, x.value
                 )));
             }
         }

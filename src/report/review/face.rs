@@ -8,9 +8,9 @@ use crate::engine::face_profile::{FaceAngle, FaceProfile};
 use crate::model::quantity::MAX_LINE_LOAD;
 use crate::model::results::SceneResult;
 use crate::numeric::number;
+use crate::report::place;
 use crate::report::svg::{LinePlot, Series, PALETTE};
 use crate::spec::Spec;
-use crate::units;
 use maud::html;
 
 /// The line loads `q` of the slices centred at `z_mm` on a face `width_mm` wide (n equal
@@ -40,9 +40,9 @@ pub(super) fn section(
         let scene = &spec.scenes[p.scene];
         // The tilt as run: the scene's plus the one as built.
         let m = spec.design.deviations.face(&scene.face).misalignment;
-        // As the check table locates an extreme (`quantity`'s locations: two decimals), so that
-        // the plot names the same angle the table does.
-        let crank = format!("crank {:.2}°", units::deg(p.crank_rad));
+        // As the check table locates an extreme (`report::place`), so that the plot names the
+        // same angle the table does.
+        let crank = place::crank(p.crank_rad);
         let why = match p.angle {
             FaceAngle::WorstFactor => "largest face load factor",
             FaceAngle::LargestLineLoad => "largest line load",
@@ -63,7 +63,7 @@ pub(super) fn section(
                 format!(
                     "; the scene's max line load, {} N/mm, is at {}",
                     number(e.value),
-                    e.at
+                    place::text(&e.at)
                 )
             })
             .unwrap_or_default();

@@ -10,6 +10,7 @@
 use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
 use crate::model::results::SceneResult;
 use crate::numeric::extremes;
+use crate::report::place;
 use crate::report::svg::{LinePlot, MapCell, MapPlot, Mark, RefLine, Series, PALETTE, RED};
 use crate::report::table::{figure, with_unit};
 use crate::spec::Spec;
@@ -475,7 +476,7 @@ fn scalars(r: &SceneResult, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> Str
             let e = s.scalar(r)?;
             let (unit, convert) = shown(def, s.unit);
             let value = shown_value(s, convert(e.value), unit);
-            Some(format!("{} {value}: {}", s.label, e.at))
+            Some(format!("{} {value}: {}", s.label, place::text(&e.at)))
         })
         .collect::<Vec<_>>()
         .join("; ")

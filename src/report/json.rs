@@ -1,9 +1,11 @@
 //! The results JSON (schema 1): typed documents (`Document`, `#[derive(Serialize)]`) that
-//! borrow the results and convert them to the units named in their keys as they are
-//! serialised; no tree of values is built. Arrays are \[roller\]\[angle\] or \[angle\]; a quantity
-//! that was not computed is absent, never zero. The keys are documented in the README
-//! ("Results JSON"); every registry quantity a scene computed is there under its key. What a
-//! study's result holds is mapped in one place, `StudyDoc::new`.
+//! borrow the results; no tree of values is built. Arrays are \[roller\]\[angle\] or
+//! \[angle\]; a quantity that was not computed is absent, never zero. The keys are documented
+//! in the README ("Results JSON"). A scene's document (`SceneDoc`) is the registry's: every
+//! quantity a scene computed (`model::quantity::QUANTITIES`) is there under its key with the
+//! values, in the units, `Quantity::curves` and `Quantity::scalar` give, in the order `SCENE`
+//! lists; what is no registry quantity is typed beside them (`Extra`). What a study's result
+//! holds is mapped in one place, `StudyDoc::new`.
 //!
 //! No number in the file is null, NaN or infinite: serialising a non-finite number is an
 //! error and the run stops with it (the engine never produces one: a computation that fails
@@ -16,7 +18,9 @@ use crate::engine::summary::SceneSummary;
 use crate::engine::verdict::{Check, CheckKind};
 use crate::error::Result;
 use crate::model::quantity::{self as q, Quantity, QUANTITIES};
-use crate::model::results::{ClearanceSweep, EfficiencyCurves, MinCoverage, SceneResult};
+use crate::model::results::{
+    ClearanceSweep, EfficiencyCurves, MinCoverage, SceneResult, TorsionCompliances,
+};
 use crate::model::Study;
 use crate::numeric::extremes;
 use crate::report::explain::{hysteresis, torsion_compliances, torsion_law_note};
@@ -44,53 +48,34 @@ impl Serialize for Finite {
     }
 }
 
-/// The unit a curve is written in, from the engine's (mm, N, MPa, rad).
+/// A curve as the registry or the results hold it, already in its key's unit.
 #[derive(Clone, Copy)]
-pub enum To {
-    /// The engine's own unit (mm, N, MPa, a ratio).
-    Same,
-    Deg,
-    Arcsec,
-    /// N·mm to N·m.
-    Nm,
-}
-
-impl To {
-    /// A match rather than a function pointer: the conversion inlines into the loop that
-    /// writes a curve, which is most of the file's cost.
-    #[inline]
-    fn convert(self, x: f64) -> f64 {
-        match self {
-            To::Same => x,
-            To::Deg => units::deg(x),
-            To::Arcsec => units::arcsec(x),
-            To::Nm => units::nm(x),
-        }
-    }
-}
-
-/// A curve in engine units, converted to the key's unit as it is written.
-#[derive(Clone, Copy)]
-pub struct Curve<'a> {
-    values: &'a [f64],
-    to: To,
-}
-
-impl<'a> Curve<'a> {
-    fn new(values: &'a [f64], to: To) -> Self {
-        Curve { values, to }
-    }
-
-    fn plain(values: &'a [f64]) -> Self {
-        Curve::new(values, To::Same)
-    }
-}
+pub struct Curve<'a>(&'a [f64]);
 
 impl Serialize for Curve<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut seq = s.serialize_seq(Some(self.values.len()))?;
-        for &v in self.values {
-            seq.serialize_element(&Finite(self.to.convert(v)))?;
+        let mut seq = s.serialize_seq(Some(self.0.len()))?;
+        for &v in self.0 {
+            seq.serialize_element(&Finite(v))?;
+        }
+        seq.end()
+    }
+}
+
+/// A count per crank angle (`q::COUNTS`), written as whole numbers; one that is not (never:
+/// the registry's counts are whole) is an error, not rounded.
+pub struct Counts<'a>(&'a [f64]);
+
+impl Serialize for Counts<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(Some(self.0.len()))?;
+        for &n in self.0 {
+            if !(n >= 0.0 && n.fract() == 0.0 && n < u64::MAX as f64) {
+                return Err(S::Error::custom(format!(
+                    "a count is {n}, not a whole number (a bug: please report it with the spec)"
+                )));
+            }
+            seq.serialize_element(&(n as u64))?;
         }
         seq.end()
     }
@@ -102,7 +87,7 @@ pub struct Rows<'a>(&'a [Vec<f64>]);
 
 impl Serialize for Rows<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.collect_seq(self.0.iter().map(|row| Curve::plain(row)))
+        s.collect_seq(self.0.iter().map(|row| Curve(row)))
     }
 }
 
@@ -111,7 +96,7 @@ pub struct FlatRows<'a>(std::slice::ChunksExact<'a, f64>);
 
 impl Serialize for FlatRows<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.collect_seq(self.0.clone().map(Curve::plain))
+        s.collect_seq(self.0.clone().map(Curve))
     }
 }
 
@@ -150,136 +135,117 @@ pub struct MinClearanceOver {
     crank_angles: Option<usize>,
 }
 
-/// One scene: its curves, the registry's scalars and a few extremes.
-#[derive(Serialize)]
+/// One scene's document: the entries of `SCENE` in its order. Every curve of the registry
+/// (`QUANTITIES`) that the scene computed is there under its key with the values
+/// `Quantity::curves` gives (the registry's units: the document converts nothing of its
+/// own), every scalar too; beside them the entries that are no registry quantity (`Extra`).
 pub struct SceneDoc<'a> {
-    /// The scene's name and crank angles; absent in a disc's document (`discs`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    name: Option<&'a str>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    crank_deg: Option<Curve<'a>>,
-    /// A disc's share of the output torque (in a disc's document).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    torque_nm: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    clearance_mm: Option<Rows<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    min_clearance_at: Option<MinClearanceAt>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    min_clearance_over: Option<MinClearanceOver>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    backlash_arcsec: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    backlash_reverse_arcsec: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    lost_motion_arcsec: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    lag_arcsec: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    roller_force_n: Option<Rows<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    contact_pressure_mpa: Option<Rows<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    contact_half_width_mm: Option<Rows<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    contacts: Option<&'a [usize]>,
-    /// The line load of every roller along the face, N/mm \[roller\]\[crank\]\[slice\], with
-    /// more than one slice (MODEL.md "Along the face width").
-    #[serde(skip_serializing_if = "Option::is_none")]
-    line_load_n_per_mm: Option<Vec<FlatRows<'a>>>,
-    /// The face load factor at each crank angle, where the scene resolves the face.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    face_load_factor: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    output_lag_arcsec: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pin_force_n: Option<Rows<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    bearing_force_n: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    bearing_angle_deg: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    bearing_deflection_mm: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    residual: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    te_arcsec: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    te_max_arcsec: Option<Finite>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    te_min_arcsec: Option<Finite>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    ratio: Option<Curve<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    ratio_max: Option<Finite>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    ratio_min: Option<Finite>,
-    /// η at each crank angle (`efficiency`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    efficiency: Option<Curve<'a>>,
-    /// The input torque at each crank angle, N·m.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    input_torque_nm: Option<Curve<'a>>,
-    /// The crank angles where the reducer self-locks (the output drives, T < 0, and the input
-    /// must still push), degrees; empty when it back-drives everywhere or T ≥ 0.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    self_locking_deg: Option<Curve<'a>>,
-    /// The mean power lost on each path, W (with a speed; a disc's: its contacts').
-    #[serde(skip_serializing_if = "Option::is_none")]
-    power_loss_w: Option<PowerLossDoc>,
-    /// Why the losses in watts are absent (no speed), with `efficiency`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    power_loss_note: Option<&'static str>,
-    /// The registry's scalars the scene computed (`QUANTITIES`): min_clearance_mm,
-    /// max_roller_force_n, ... (with several discs, the worst over the discs).
-    #[serde(flatten)]
-    scalars: Pairs,
-    /// A torsion scene's curves and figures (`TorsionDoc`).
-    #[serde(flatten)]
-    torsion: Option<TorsionDoc>,
-    /// With several discs, each disc's curves and scalars (MODEL.md "Several discs").
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    discs: Vec<SceneDoc<'a>>,
-    /// A duty-cycle scene's bins and each disc's life under the cycle (`DutyDoc`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    duty_cycle: Option<DutyDoc<'a>>,
-    /// The `strength` effect's pin stresses and contact fatigue lives (`StrengthDoc`).
-    #[serde(flatten)]
-    strength: StrengthDoc<'a>,
+    r: &'a SceneResult,
+    /// With the scene's name and crank angles; without in a disc's document (`discs`, a duty
+    /// bin's run).
+    named: bool,
 }
 
-/// The `strength` effect's curves and lives beside the registry's scalars (`engine::strength`).
-#[derive(Serialize)]
-pub struct StrengthDoc<'a> {
-    /// σ_b of each output pin, MPa \[pin\]\[crank\] (the reducer's, every disc's force summed).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pin_bending_stress_mpa: Option<Rows<'a>>,
-    /// The disc's and the rollers' contact fatigue lives, h (a disc's own with several).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    contact_fatigue_life_h: Option<FatigueDoc>,
+/// One entry, or a group of entries, of a scene's document.
+#[derive(Clone, Copy)]
+enum Field {
+    /// A registry curve under its key, as `Quantity::curves` gives it (one curve per roller
+    /// or pin: rows; a count: whole numbers).
+    Curve(&'static Quantity),
+    /// A registry curve, then its largest and smallest value under these two keys.
+    CurveAndExtremes(&'static Quantity, &'static str, &'static str),
+    /// Every registry scalar the scene computed (`Quantity::scalar`: with several discs the
+    /// worst over the discs), in the registry's order.
+    Scalars,
+    /// Entries that are not registry quantities.
+    Extra(Extra),
 }
 
-/// The two lives of `StrengthDoc`, each when its S–N law is given.
+/// The entries of a scene's document that no limit or golden reads, kept typed here: each is
+/// either not a curve over the crank angles or not a property of the design.
+#[derive(Clone, Copy)]
+enum Extra {
+    /// `name`, `crank_deg`: the scene and its abscissa (not in a disc's document).
+    Name,
+    /// `min_clearance_at`, `min_clearance_over`: where `min_clearance_mm` is and what it was
+    /// sought over, as numbers (its `at` says it for people).
+    MinClearance,
+    /// `line_load_n_per_mm` \[roller\]\[crank\]\[slice\], with more than one slice (MODEL.md
+    /// "Along the face width"): three indices, no registry shape; `max_line_load_n_per_mm` is
+    /// its registry scalar.
+    LineLoads,
+    /// `residual`: the equilibrium's, solver noise left out of the registry (`QUANTITIES`).
+    Residual,
+    /// `self_locking_deg` (the crank angles where the input must push while the output
+    /// drives: a set of angles, not a curve), `power_loss_w` (each path's mean loss, W, with a
+    /// speed) and `power_loss_note` (why they are absent without one).
+    Losses,
+    /// A torsion scene's loop: `torque_nm` \[m\] and `torsion_arcmin` \[crank\]\[m\].
+    TorsionLoop,
+    /// A torsion scene's rigidity each way, N·m/arcmin \[crank\] (the registry's is the smaller).
+    TorsionDirections,
+    /// A torsion scene's texts: `hysteresis` and `compliances` (`CompliancesDoc`).
+    TorsionNotes,
+    /// `discs`: with several discs, each disc's document (MODEL.md "Several discs").
+    Discs,
+    /// `duty_cycle`: a duty-cycle scene's bins and each disc's life (`DutyDoc`).
+    DutyCycle,
+    /// `contact_fatigue_life_h`: the disc's and the rollers' lives, h (`FatigueDoc`).
+    Fatigue,
+}
+
+/// The scene document's entries in their order (the order of the results JSON's keys, which
+/// a reader may rely on; the registry's own order puts the curves apart from the sub-documents
+/// written beside them). Every curve of `QUANTITIES` is here once (a unit test holds it).
+const SCENE: &[Field] = &[
+    Field::Extra(Extra::Name),
+    Field::Curve(&q::DISC_TORQUE),
+    Field::Curve(&q::CLEARANCE),
+    Field::Extra(Extra::MinClearance),
+    Field::Curve(&q::BACKLASH),
+    Field::Curve(&q::BACKLASH_REVERSE),
+    Field::Curve(&q::LOST_MOTION),
+    Field::Curve(&q::LAG),
+    Field::Curve(&q::ROLLER_FORCE),
+    Field::Curve(&q::CONTACT_PRESSURE),
+    Field::Curve(&q::CONTACT_HALF_WIDTH),
+    Field::Curve(&q::CONTACTS),
+    Field::Extra(Extra::LineLoads),
+    Field::Curve(&q::FACE_LOAD_FACTOR),
+    Field::Curve(&q::OUTPUT_LAG),
+    Field::Curve(&q::PIN_FORCE),
+    Field::Curve(&q::BEARING_FORCE),
+    Field::Curve(&q::BEARING_ANGLE),
+    Field::Curve(&q::BEARING_DEFLECTION),
+    Field::Extra(Extra::Residual),
+    Field::CurveAndExtremes(&q::TE, "te_max_arcsec", "te_min_arcsec"),
+    Field::CurveAndExtremes(&q::RATIO, "ratio_max", "ratio_min"),
+    Field::Curve(&q::EFFICIENCY),
+    Field::Curve(&q::INPUT_TORQUE),
+    Field::Extra(Extra::Losses),
+    Field::Scalars,
+    Field::Extra(Extra::TorsionLoop),
+    Field::Curve(&q::TORSION_LOST_MOTION),
+    Field::Curve(&q::TORSION_BACKLASH),
+    Field::Curve(&q::TORSIONAL_RIGIDITY),
+    Field::Extra(Extra::TorsionDirections),
+    Field::Curve(&q::HYSTERESIS_LOSS),
+    Field::Curve(&q::HYSTERESIS_ENERGY),
+    Field::Extra(Extra::TorsionNotes),
+    Field::Extra(Extra::Discs),
+    Field::Extra(Extra::DutyCycle),
+    Field::Curve(&q::PIN_BENDING_STRESS),
+    Field::Extra(Extra::Fatigue),
+];
+
+/// The disc's and the rollers' contact fatigue lives, h, each when its S–N law is given (a
+/// disc's own with several discs; `engine::strength`).
 #[derive(Serialize)]
 pub struct FatigueDoc {
     #[serde(skip_serializing_if = "Option::is_none")]
     disc: Option<Finite>,
     #[serde(skip_serializing_if = "Option::is_none")]
     rollers: Option<Finite>,
-}
-
-impl<'a> StrengthDoc<'a> {
-    fn new(r: &'a SceneResult) -> Self {
-        let fatigue = r.loaded.strength.and_then(|s| s.fatigue);
-        StrengthDoc {
-            pin_bending_stress_mpa: (r.loaded.pin_stress.as_ref())
-                .map(|p| Rows(&p.bending_stress_mpa)),
-            contact_fatigue_life_h: fatigue.map(|f| FatigueDoc {
-                disc: f.disc_h.map(Finite),
-                rollers: f.rollers_h.map(Finite),
-            }),
-        }
-    }
 }
 
 /// A duty-cycle scene's block (`engine::duty_cycle`): each disc's crank bearing under the
@@ -376,32 +342,6 @@ impl<'a> DutyDoc<'a> {
     }
 }
 
-/// A torsion scene's block in the results JSON (flattened into the scene object): its loop,
-/// torsion angles and catalogue figures.
-#[derive(Serialize)]
-pub struct TorsionDoc {
-    /// The loop's torques, N·m \[m\].
-    torque_nm: Vec<Finite>,
-    /// γ \[crank\]\[m\], arcmin.
-    torsion_arcmin: Vec<Vec<Finite>>,
-    lost_motion_arcmin: Vec<Finite>,
-    backlash_arcmin: Vec<Finite>,
-    /// The smaller direction \[crank\].
-    torsional_rigidity_nm_per_arcmin: Vec<Finite>,
-    torsional_rigidity_forward_nm_per_arcmin: Vec<Finite>,
-    torsional_rigidity_reverse_nm_per_arcmin: Vec<Finite>,
-    /// With friction in the loop: γ_unloading − γ_loading at T = 0 \[crank\], arcmin.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    hysteresis_loss_arcmin: Option<Vec<Finite>>,
-    /// With friction in the loop: its area, the energy per cycle \[crank\], J.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    hysteresis_energy_j: Option<Vec<Finite>>,
-    /// Where the hysteresis loss comes from (0 without friction), and how it is read.
-    hysteresis: &'static str,
-    /// What the torsion angle is made of.
-    compliances: CompliancesDoc,
-}
-
 /// The contact law and compliances of a torsion curve (`explain::torsion_compliances`).
 #[derive(Serialize)]
 pub struct CompliancesDoc {
@@ -449,59 +389,29 @@ impl PowerLossDoc {
 pub const NO_SPEED: &str = "no input_speed_rpm: the efficiency does not depend on the speed \
      (Coulomb friction), the losses in watts and the temperature need one";
 
-/// A per-crank curve of the registry, as written.
-fn registry(r: &SceneResult, quantity: &Quantity) -> Vec<Finite> {
-    let values = quantity.curves(r).and_then(|mut c| c.values.pop());
-    finite(values.unwrap_or_default())
+/// The line load of every roller along the face, N/mm \[roller\]\[crank\]\[slice\], where the
+/// scene resolves the face in more than one slice.
+fn line_loads(r: &SceneResult) -> Option<Vec<FlatRows<'_>>> {
+    let f = r.loaded.rollers.as_ref()?.face.as_ref()?;
+    let loaded = f.slices > 1 && f.line_load_n_per_mm.first().is_some_and(|r| !r.is_empty());
+    loaded.then(|| {
+        (0..f.line_load_n_per_mm.len())
+            .map(|i| FlatRows(f.angles(i)))
+            .collect()
+    })
 }
 
-impl TorsionDoc {
-    pub fn new(r: &SceneResult) -> Option<TorsionDoc> {
-        let t = r.torsion.as_ref()?;
-        let direction = |pick: fn((f64, f64)) -> f64| {
-            finite(
-                t.figures
-                    .iter()
-                    .map(|f| nm_per_arcmin(pick(f.rigidity_nmm_per_rad))),
-            )
-        };
-        Some(TorsionDoc {
-            torque_nm: finite(t.torque_nmm.iter().map(|&x| units::nm(x))),
-            torsion_arcmin: t
-                .torsion_rad
-                .iter()
-                .map(|row| finite(row.iter().map(|&g| units::arcmin(g))))
-                .collect(),
-            lost_motion_arcmin: registry(r, &q::TORSION_LOST_MOTION),
-            backlash_arcmin: registry(r, &q::TORSION_BACKLASH),
-            torsional_rigidity_nm_per_arcmin: registry(r, &q::TORSIONAL_RIGIDITY),
-            torsional_rigidity_forward_nm_per_arcmin: direction(|d| d.0),
-            torsional_rigidity_reverse_nm_per_arcmin: direction(|d| d.1),
-            hysteresis_loss_arcmin: t.friction.then(|| registry(r, &q::HYSTERESIS_LOSS)),
-            hysteresis_energy_j: t.friction.then(|| registry(r, &q::HYSTERESIS_ENERGY)),
-            hysteresis: hysteresis(t.friction),
-            compliances: {
-                let c = &t.compliances;
-                let text = torsion_compliances(c);
-                CompliancesDoc {
-                    contact_law: c.contact_law.name(),
-                    modelled: text.modelled,
-                    not_modelled: text.not_modelled,
-                    given: text.given,
-                    structure_arcmin_per_knm: Finite(units::arcmin_per_knm(
-                        c.structure_rad_per_nmm,
-                    )),
-                    note: torsion_law_note(c.contact_law),
-                }
-            },
-        })
+/// What a torsion curve's angle is made of (`explain::torsion_compliances`).
+fn compliances(c: &TorsionCompliances) -> CompliancesDoc {
+    let text = torsion_compliances(c);
+    CompliancesDoc {
+        contact_law: c.contact_law.name(),
+        modelled: text.modelled,
+        not_modelled: text.not_modelled,
+        given: text.given,
+        structure_arcmin_per_knm: Finite(units::arcmin_per_knm(c.structure_rad_per_nmm)),
+        note: torsion_law_note(c.contact_law),
     }
-}
-
-/// (max, min) of a curve.
-fn max_min(values: &[f64], to: To) -> (Option<Finite>, Option<Finite>) {
-    let ((lo, _), (hi, _)) = extremes(values);
-    (Some(Finite(to.convert(hi))), Some(Finite(to.convert(lo))))
 }
 
 fn min_clearance_at(c: &ClearanceSweep) -> MinClearanceAt {
@@ -529,88 +439,180 @@ fn min_clearance_over(c: &ClearanceSweep) -> MinClearanceOver {
     }
 }
 
+/// Writes `key: value` when there is a value.
+fn entry<M: SerializeMap, T: Serialize>(
+    map: &mut M,
+    key: &'static str,
+    value: Option<T>,
+) -> std::result::Result<(), M::Error> {
+    value.map_or(Ok(()), |v| map.serialize_entry(key, &v))
+}
+
+/// Crank angles, degrees.
+fn degrees(crank_rad: &[f64]) -> Vec<Finite> {
+    finite(crank_rad.iter().map(|&a| units::deg(a)))
+}
+
 impl<'a> SceneDoc<'a> {
     pub fn new(r: &'a SceneResult) -> Self {
-        let c = r.clearance.as_ref();
-        let backlash = c.and_then(|c| c.backlash.as_ref());
-        let l = &r.loaded;
-        let (rollers, pins, bearing) = (l.rollers.as_ref(), l.pins.as_ref(), l.bearing.as_ref());
-        let te = l.transmission.as_ref();
-        let ratio = te.and_then(|t| t.ratio.as_deref());
-        let arcsec = |v: &'a [f64]| Curve::new(v, To::Arcsec);
-        let (te_max_arcsec, te_min_arcsec) =
-            te.map_or((None, None), |t| max_min(&t.te_rad, To::Arcsec));
-        let (ratio_max, ratio_min) = ratio.map_or((None, None), |v| max_min(v, To::Same));
-        let reducer_eff = r.efficiency.as_ref().and_then(|e| e.reducer.as_ref());
-        SceneDoc {
-            name: Some(&r.name),
-            crank_deg: Some(Curve::new(&r.crank_rad, To::Deg)),
-            torque_nm: l.torque_nmm.as_deref().map(|t| Curve::new(t, To::Nm)),
-            clearance_mm: c.map(|c| Rows(&c.gap_mm)),
-            min_clearance_at: c.map(min_clearance_at),
-            min_clearance_over: c.map(min_clearance_over),
-            backlash_arcsec: backlash.map(|b| arcsec(&b.forward_rad)),
-            backlash_reverse_arcsec: backlash.map(|b| arcsec(&b.reverse_rad)),
-            lost_motion_arcsec: backlash.map(|b| arcsec(&b.lost_motion_rad)),
-            lag_arcsec: rollers.map(|c| arcsec(&c.lag_rad)),
-            roller_force_n: rollers.map(|c| Rows(&c.force_n)),
-            contact_pressure_mpa: rollers.map(|c| Rows(&c.pressure_mpa)),
-            contact_half_width_mm: rollers.map(|c| Rows(&c.half_width_mm)),
-            contacts: rollers.map(|c| c.contacts.as_slice()),
-            line_load_n_per_mm: rollers
-                .and_then(|c| c.face.as_ref())
-                .filter(|f| {
-                    f.slices > 1 && f.line_load_n_per_mm.first().is_some_and(|r| !r.is_empty())
-                })
-                .map(|f| {
-                    (0..f.line_load_n_per_mm.len())
-                        .map(|i| FlatRows(f.angles(i)))
-                        .collect()
-                }),
-            face_load_factor: rollers
-                .and_then(|c| c.face.as_ref())
-                .map(|f| Curve::plain(&f.face_load_factor)),
-            output_lag_arcsec: pins.map(|p| arcsec(&p.output_lag_rad)),
-            pin_force_n: pins.map(|p| Rows(&p.force_n)),
-            bearing_force_n: bearing.map(|b| Curve::plain(&b.force_n)),
-            bearing_angle_deg: bearing.map(|b| Curve::new(&b.angle_rad, To::Deg)),
-            bearing_deflection_mm: bearing.map(|b| Curve::plain(&b.deflection_mm)),
-            residual: bearing.map(|b| Curve::plain(&b.residual)),
-            te_arcsec: te.map(|t| arcsec(&t.te_rad)),
-            te_max_arcsec,
-            te_min_arcsec,
-            ratio: ratio.map(Curve::plain),
-            ratio_max,
-            ratio_min,
-            efficiency: reducer_eff.map(|e| Curve::plain(&e.efficiency)),
-            input_torque_nm: reducer_eff.map(|e| Curve::new(&e.input_torque_nmm, To::Nm)),
-            self_locking_deg: reducer_eff.map(|e| Curve::new(&e.self_locking_crank_rad, To::Deg)),
-            power_loss_w: r.efficiency.as_ref().and_then(PowerLossDoc::new),
-            power_loss_note: r
-                .efficiency
-                .as_ref()
-                .filter(|e| e.input_speed_rad_s.is_none())
-                .map(|_| NO_SPEED),
-            scalars: Pairs(
-                QUANTITIES
-                    .iter()
-                    .filter_map(|q| Some((q.key, Finite(q.scalar(r)?.value))))
-                    .collect(),
-            ),
-            torsion: TorsionDoc::new(r),
-            discs: r.discs.iter().map(SceneDoc::disc).collect(),
-            duty_cycle: DutyDoc::new(r),
-            strength: StrengthDoc::new(r),
-        }
+        SceneDoc { r, named: true }
     }
 
     /// A disc's document: its curves and scalars, without the scene's name and angles.
     fn disc(r: &'a SceneResult) -> Self {
-        SceneDoc {
-            name: None,
-            crank_deg: None,
-            ..SceneDoc::new(r)
+        SceneDoc { r, named: false }
+    }
+
+    /// A registry curve under its key, and its extremes under `extremes`' keys.
+    fn curve<M: SerializeMap>(
+        &self,
+        map: &mut M,
+        quantity: &'static Quantity,
+        extremes_keys: Option<(&'static str, &'static str)>,
+    ) -> std::result::Result<(), M::Error> {
+        let Some(curves) = quantity.curves(self.r) else {
+            return Ok(());
+        };
+        let row = curves.values.first().map_or(&[][..], Vec::as_slice);
+        if quantity.shape.per().is_some() {
+            map.serialize_entry(quantity.key, &Rows(&curves.values))?;
+        } else if q::COUNTS.contains(&quantity) {
+            map.serialize_entry(quantity.key, &Counts(row))?;
+        } else {
+            map.serialize_entry(quantity.key, &Curve(row))?;
         }
+        if let Some((max_key, min_key)) = extremes_keys {
+            let ((lo, _), (hi, _)) = extremes(row);
+            map.serialize_entry(max_key, &Finite(hi))?;
+            map.serialize_entry(min_key, &Finite(lo))?;
+        }
+        Ok(())
+    }
+
+    fn extra<M: SerializeMap>(
+        &self,
+        map: &mut M,
+        extra: Extra,
+    ) -> std::result::Result<(), M::Error> {
+        let r = self.r;
+        let clearance = r.clearance.as_ref();
+        let reducer_eff = r.efficiency.as_ref().and_then(|e| e.reducer.as_ref());
+        let torsion = r.torsion.as_ref();
+        match extra {
+            Extra::Name => {
+                entry(map, "name", self.named.then_some(&r.name))?;
+                entry(map, "crank_deg", self.named.then(|| degrees(&r.crank_rad)))
+            }
+            Extra::MinClearance => {
+                entry(map, "min_clearance_at", clearance.map(min_clearance_at))?;
+                entry(map, "min_clearance_over", clearance.map(min_clearance_over))
+            }
+            Extra::LineLoads => entry(map, "line_load_n_per_mm", line_loads(r)),
+            Extra::Residual => entry(
+                map,
+                "residual",
+                r.loaded.bearing.as_ref().map(|b| Curve(&b.residual)),
+            ),
+            Extra::Losses => {
+                entry(
+                    map,
+                    "self_locking_deg",
+                    reducer_eff.map(|e| degrees(&e.self_locking_crank_rad)),
+                )?;
+                entry(
+                    map,
+                    "power_loss_w",
+                    r.efficiency.as_ref().and_then(PowerLossDoc::new),
+                )?;
+                entry(
+                    map,
+                    "power_loss_note",
+                    (r.efficiency.as_ref())
+                        .filter(|e| e.input_speed_rad_s.is_none())
+                        .map(|_| NO_SPEED),
+                )
+            }
+            Extra::TorsionLoop => {
+                entry(
+                    map,
+                    "torque_nm",
+                    torsion.map(|t| finite(t.torque_nmm.iter().map(|&x| units::nm(x)))),
+                )?;
+                entry(
+                    map,
+                    "torsion_arcmin",
+                    torsion.map(|t| {
+                        (t.torsion_rad.iter())
+                            .map(|row| finite(row.iter().map(|&g| units::arcmin(g))))
+                            .collect::<Vec<_>>()
+                    }),
+                )
+            }
+            Extra::TorsionDirections => {
+                let direction = |pick: fn((f64, f64)) -> f64| {
+                    torsion.map(|t| {
+                        finite(
+                            (t.figures.iter()).map(|f| nm_per_arcmin(pick(f.rigidity_nmm_per_rad))),
+                        )
+                    })
+                };
+                entry(
+                    map,
+                    "torsional_rigidity_forward_nm_per_arcmin",
+                    direction(|d| d.0),
+                )?;
+                entry(
+                    map,
+                    "torsional_rigidity_reverse_nm_per_arcmin",
+                    direction(|d| d.1),
+                )
+            }
+            Extra::TorsionNotes => {
+                entry(map, "hysteresis", torsion.map(|t| hysteresis(t.friction)))?;
+                entry(
+                    map,
+                    "compliances",
+                    torsion.map(|t| compliances(&t.compliances)),
+                )
+            }
+            Extra::Discs => entry(
+                map,
+                "discs",
+                (!r.discs.is_empty())
+                    .then(|| r.discs.iter().map(SceneDoc::disc).collect::<Vec<_>>()),
+            ),
+            Extra::DutyCycle => entry(map, "duty_cycle", DutyDoc::new(r)),
+            Extra::Fatigue => entry(
+                map,
+                "contact_fatigue_life_h",
+                (r.loaded.strength.and_then(|s| s.fatigue)).map(|f| FatigueDoc {
+                    disc: f.disc_h.map(Finite),
+                    rollers: f.rollers_h.map(Finite),
+                }),
+            ),
+        }
+    }
+}
+
+impl Serialize for SceneDoc<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut map = s.serialize_map(None)?;
+        for field in SCENE {
+            match *field {
+                Field::Curve(quantity) => self.curve(&mut map, quantity, None)?,
+                Field::CurveAndExtremes(quantity, max, min) => {
+                    self.curve(&mut map, quantity, Some((max, min)))?
+                }
+                Field::Scalars => {
+                    for quantity in QUANTITIES {
+                        let value = quantity.scalar(self.r).map(|e| Finite(e.value));
+                        entry(&mut map, quantity.key, value)?;
+                    }
+                }
+                Field::Extra(extra) => self.extra(&mut map, extra)?,
+            }
+        }
+        map.end()
     }
 }
 
@@ -1021,11 +1023,45 @@ mod tests {
             assert!(serde_json::to_string(&Finite(x)).is_err(), "{x}");
         }
         let curve = [0.0, -0.0, 1.5, f64::NAN];
-        assert!(serde_json::to_string(&Curve::plain(&curve)).is_err());
+        assert!(serde_json::to_string(&Curve(&curve)).is_err());
         assert_eq!(
-            serde_json::to_string(&Curve::plain(&curve[..3])).unwrap(),
+            serde_json::to_string(&Curve(&curve[..3])).unwrap(),
             "[0.0,-0.0,1.5]"
         );
+    }
+
+    /// The scene document names every curve of the registry once: none is left out of the
+    /// results JSON, none written twice.
+    #[test]
+    fn the_scene_document_has_every_registry_curve_once() {
+        let curves = |f: &Field| match *f {
+            Field::Curve(q) | Field::CurveAndExtremes(q, _, _) => Some(q.key),
+            _ => None,
+        };
+        let mut listed: Vec<_> = SCENE.iter().filter_map(curves).collect();
+        listed.sort_unstable();
+        let mut registry: Vec<_> = (QUANTITIES.iter())
+            .filter(|q| !q.is_scalar())
+            .map(|q| q.key)
+            .collect();
+        registry.sort_unstable();
+        assert_eq!(listed, registry);
+        assert_eq!(
+            SCENE.iter().filter(|f| matches!(f, Field::Scalars)).count(),
+            1
+        );
+    }
+
+    /// A count is written as a whole number, and one that is not is an error, not rounded.
+    #[test]
+    fn counts_are_whole_numbers() {
+        assert_eq!(
+            serde_json::to_string(&Counts(&[0.0, 3.0])).unwrap(),
+            "[0,3]"
+        );
+        for x in [2.5, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(serde_json::to_string(&Counts(&[x])).is_err(), "{x}");
+        }
     }
 
     /// The compact formatter's zeros are serde_json's (the value read back is the same).

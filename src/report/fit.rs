@@ -249,7 +249,9 @@ pub fn form_curve(spec: &Spec, id: &Identification) -> FormCurve {
     let rows = 16 * spec.design.teeth;
     let t = |k: usize| TAU * k as f64 / rows as f64;
     FormCurve {
-        t_deg: (0..rows).map(|k| at_decimals(units::deg(t(k)), 4)).collect(),
+        t_deg: (0..rows)
+            .map(|k| at_decimals(units::deg(t(k)), 4))
+            .collect(),
         w_um: (0..rows)
             .map(|k| at_decimals(units::um(id.form.value_mm(t(k))), 4))
             .collect(),

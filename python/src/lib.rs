@@ -5,8 +5,10 @@
 //! The results reach Python through the results JSON's own typed documents
 //! (`cycloid::report::json`): they are serialised by [`tree::Ser`] straight into Python
 //! objects, every list of numbers a numpy array, so the keys, units and shapes are those of
-//! `cycloid check --json` and no JSON text is written or read. Every computation runs with
-//! the GIL released; a Rust panic becomes a Python `RuntimeError`.
+//! `cycloid check --json` and no JSON text is written or read. The tolerance samples, the
+//! profile and the fit come the same way from the documents their CSV files are written from
+//! (`report::tolerance::SamplesDoc`, `report::export::ProfileDoc`, `report::fit::FitDoc`).
+//! Every computation runs with the GIL released; a Rust panic becomes a Python `RuntimeError`.
 
 mod progress;
 mod tree;

@@ -256,8 +256,6 @@ def tolerance(
     in place of the spec's."""
     columns, report = _cycloid.tolerance(_spec(spec), samples, seed, progress)
     _done(progress)
-    if "sample" in columns:
-        columns["sample"] = columns["sample"].astype(np.int64)
     return ToleranceRun(samples=columns, report=json.loads(report))
 
 

@@ -5,18 +5,18 @@
 //! The results reach Python through the results JSON's own typed documents
 //! (`cycloid::report::json`): they are serialised by [`tree::Ser`] straight into Python
 //! objects, every list of numbers a numpy array, so the keys, units and shapes are those of
-//! `cycloid check --json` and no JSON text is written or read. Every computation runs with
-//! the GIL released; a Rust panic becomes a Python `RuntimeError`.
+//! `cycloid check --json` and no JSON text is written or read. The tolerance samples, the
+//! profile and the fit come the same way from the documents their CSV files are written from
+//! (`report::tolerance::SamplesDoc`, `report::export::ProfileDoc`, `report::fit::FitDoc`).
+//! Every computation runs with the GIL released; a Rust panic becomes a Python `RuntimeError`.
 
 mod progress;
 mod tree;
 
 use cycloid::error::{Error, ErrorKind};
 use cycloid::report::json::{Contents, Document};
-use numpy::PyArray1;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Arc;
 
@@ -265,8 +265,9 @@ fn optimise(
     Ok(tree.bind(py).get_item("studies")?.unbind())
 }
 
-/// The spec's tolerance study (`samples` and `seed` in place of the spec's): the columns of
-/// `--samples-csv` by name, each a numpy array, and the JSON report of `--json` as text.
+/// The spec's tolerance study (`samples` and `seed` in place of the spec's): its samples
+/// document (`cycloid::report::tolerance::SamplesDoc`, the columns of `--samples-csv` by name,
+/// each a numpy array) and the JSON report of `--json` as text.
 #[pyfunction]
 #[pyo3(signature = (spec, samples=None, seed=None, progress=None))]
 fn tolerance(
@@ -285,12 +286,12 @@ fn tolerance(
         let run = cycloid::tolerance(&spec, samples, false, &sink)?;
         let report = &cycloid::report::tolerance::json;
         let json = report(&run.study, &run.summary, &run.records, None);
-        let csv = cycloid::report::tolerance::samples_csv(&run.study, &run.records);
-        Ok((csv, json))
+        let doc = cycloid::report::tolerance::samples(&run.study, &run.records);
+        Ok((doc, json))
     });
     sink.finish(py)?;
-    let (csv, json) = table?;
-    Ok((csv_columns(py, &csv)?, json))
+    let (doc, json) = table?;
+    Ok((tree::to_py(py, &doc)?, json))
 }
 
 /// The requirements search of `cycloid design` on the requirements file at `path`: the front,
@@ -315,102 +316,32 @@ fn design(
     front
 }
 
-/// The columns of a CSV table of numbers (a header line, then rows) as numpy arrays by name.
-fn csv_columns(py: Python<'_>, csv: &str) -> PyResult<Py<PyAny>> {
-    let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
-    let names: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
-    let mut columns: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
-    for line in lines.filter(|l| !l.is_empty()) {
-        for (column, cell) in columns.iter_mut().zip(line.split(',')) {
-            column.push(
-                cell.parse::<f64>().map_err(|e| {
-                    PyRuntimeError::new_err(format!("samples table: `{cell}`: {e}"))
-                })?,
-            );
-        }
-    }
-    let dict = PyDict::new(py);
-    for (name, column) in names.into_iter().zip(columns) {
-        dict.set_item(name, PyArray1::from_vec(py, column))?;
-    }
-    Ok(dict.into_any().unbind())
-}
-
-/// The spec's whole modified profile, chords within `tolerance_mm`: the columns of `cycloid
-/// profile --csv` (x_mm, y_mm, normal_x, normal_y, curvature_per_mm) as numpy arrays, and the
-/// output-pin holes of its DXF (`holes_x_mm`, `holes_y_mm`, `hole_radius_mm`).
+/// The spec's whole modified profile, chords within `tolerance_mm`: its document
+/// (`cycloid::report::export::ProfileDoc`: the columns of `cycloid profile --csv`, x_mm, y_mm,
+/// normal_x, normal_y, curvature_per_mm, as numpy arrays, and the output-pin holes of its DXF,
+/// `holes_x_mm`, `holes_y_mm`, `hole_radius_mm`).
 #[pyfunction]
 fn profile(py: Python<'_>, spec: &PySpec, tolerance_mm: f64) -> PyResult<Py<PyAny>> {
     let spec = spec.spec.clone();
-    let points = {
-        let spec = spec.clone();
-        detached(py, move || cycloid::profile(&spec, tolerance_mm))?
-    };
-    type Point = cycloid::geometry::polyline::ProfilePoint;
-    let column = |f: fn(&Point) -> f64| PyArray1::from_vec(py, points.iter().map(f).collect());
-    let dict = PyDict::new(py);
-    dict.set_item("x_mm", column(|p| p.point.x))?;
-    dict.set_item("y_mm", column(|p| p.point.y))?;
-    dict.set_item("normal_x", column(|p| p.normal.x))?;
-    dict.set_item("normal_y", column(|p| p.normal.y))?;
-    dict.set_item("curvature_per_mm", column(|p| p.curvature_per_mm))?;
-    let pins = &spec.design.pins;
-    let centres: Vec<[f64; 2]> = (0..pins.count).map(|j| pins.centre_mm(j)).collect();
-    dict.set_item(
-        "holes_x_mm",
-        PyArray1::from_vec(py, centres.iter().map(|c| c[0]).collect()),
-    )?;
-    dict.set_item(
-        "holes_y_mm",
-        PyArray1::from_vec(py, centres.iter().map(|c| c[1]).collect()),
-    )?;
-    dict.set_item("hole_radius_mm", spec.design.hole_radius_mm())?;
-    Ok(dict.into_any().unbind())
+    let doc = detached(py, move || {
+        let points = cycloid::profile(&spec, tolerance_mm)?;
+        Ok(cycloid::report::export::ProfileDoc::new(&spec, &points))
+    })?;
+    tree::to_py(py, &doc)
 }
 
-/// Identify the disc of the spec's `measured_profile`: the estimates (value, standard
-/// uncertainty) in the spec's units, the residuals, the report `cycloid fit` prints and the
-/// form-error curve of `--form-csv` as numpy columns.
+/// Identify the disc of the spec's `measured_profile`: its document
+/// (`cycloid::report::fit::FitDoc`: the estimates as (value, standard uncertainty) tuples in
+/// the spec's units, the residuals, the report `cycloid fit` prints and the form-error curve of
+/// `--form-csv` as numpy columns).
 #[pyfunction]
 fn fit(py: Python<'_>, spec: &PySpec) -> PyResult<Py<PyAny>> {
     let spec = spec.spec.clone();
-    let (id, text, form) = {
-        let spec = spec.clone();
-        detached(py, move || {
-            let id = cycloid::fit(&spec)?;
-            let text = cycloid::report::fit::render(&spec, &id);
-            let form = cycloid::report::fit::form_csv(&spec, &id);
-            Ok((id, text, form))
-        })?
-    };
-    type Estimate = cycloid::measure::fitted::Estimate;
-    let pair = |e: &Estimate, scale: f64| (e.value * scale, e.sigma * scale);
-    let deg = cycloid::units::deg(1.0);
-    let dict = PyDict::new(py);
-    dict.set_item("centre_x_mm", pair(&id.centre_mm[0], 1.0))?;
-    dict.set_item("centre_y_mm", pair(&id.centre_mm[1], 1.0))?;
-    dict.set_item("orientation_deg", pair(&id.orientation_rad, deg))?;
-    dict.set_item("shift_mm", id.shift_mm.as_ref().map(|e| pair(e, 1.0)))?;
-    dict.set_item(
-        "equidistant_mm",
-        id.equidistant_mm.as_ref().map(|e| pair(e, 1.0)),
-    )?;
-    dict.set_item(
-        "rotation_deg",
-        id.rotation_rad.as_ref().map(|e| pair(e, deg)),
-    )?;
-    let m = &id.modification;
-    let modification = PyDict::new(py);
-    modification.set_item("shift_mm", m.shift_mm)?;
-    modification.set_item("equidistant_mm", m.equidistant_mm)?;
-    modification.set_item("rotation_deg", cycloid::units::deg(m.rotation_rad))?;
-    dict.set_item("modification", modification)?;
-    dict.set_item("residual_rms_mm", id.residual_rms_mm)?;
-    dict.set_item("residual_max_mm", id.residual_max_mm)?;
-    dict.set_item("condition", id.condition)?;
-    dict.set_item("report", text)?;
-    dict.set_item("form", csv_columns(py, &form)?)?;
-    Ok(dict.into_any().unbind())
+    let doc = detached(py, move || {
+        let id = cycloid::fit(&spec)?;
+        Ok(cycloid::report::fit::document(&spec, &id))
+    })?;
+    tree::to_py(py, &doc)
 }
 
 #[pymodule]

@@ -1,15 +1,16 @@
 //! A serde serializer into Python objects: maps and structs become dicts, strings and numbers
 //! their Python types, and a list of numbers a numpy array (`float64`, or `int64` for counts);
 //! a list of equal-shape float arrays one array of one more dimension (a `[roller][angle]`
-//! curve 2-D, a `[roller][crank][slice]` line load 3-D). Each array owns its data (copied out
-//! of the document), so it outlives the run it came from.
+//! curve 2-D, a `[roller][crank][slice]` line load 3-D). A tuple struct (a value and its
+//! uncertainty, `report::fit::ValueSigma`) becomes a Python tuple, whatever its items. Each
+//! array owns its data (copied out of the document), so it outlives the run it came from.
 //!
 //! The typed documents of the results JSON go through it unchanged, so the keys, units and
 //! shapes are the JSON's, with no text in between.
 
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyList, PyString};
+use pyo3::types::{PyBool, PyDict, PyList, PyString, PyTuple};
 use serde::ser::{self, Serialize};
 use std::fmt;
 
@@ -358,8 +359,13 @@ impl<'py> ser::SerializeTupleStruct for Seq<'py> {
     fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), SerError> {
         ser::SerializeSeq::serialize_element(self, value)
     }
+    /// A Python tuple, never an array.
     fn end(self) -> Result<Node<'py>, SerError> {
-        ser::SerializeSeq::end(self)
+        let items = (self.items.into_iter())
+            .map(|item| item.into_py(self.py))
+            .collect::<Result<Vec<_>, _>>()?;
+        let tuple = PyTuple::new(self.py, items).map_err(py_err)?;
+        Ok(Node::Obj(tuple.into_any()))
     }
 }
 

@@ -310,6 +310,23 @@ def test_tolerance_samples_equal_the_cli_csv(cli, tmp_path):
     assert not np.array_equal(other.samples[header[1]], got.samples[header[1]])
 
 
+def test_tolerance_samples_hold_the_json_worst_samples(cli, tmp_path):
+    """Each worst sample of `tolerance --json`, read by Python's own JSON reader, is the same
+    row of the Python arrays: every part's deviation and every limit's value, bit for bit."""
+    out = tmp_path / "report.json"
+    done = run_cli(cli, "tolerance", "specs/reducer-tolerance.yaml", "--samples", "40", "--json", str(out))
+    assert done.returncode in (0, 1), done.stderr
+    report = json.loads(out.read_text())
+    got = cycloid.tolerance("specs/reducer-tolerance.yaml", samples=40)
+    assert report["worst"]
+    for w in report["worst"]:
+        k = w["sample"]
+        assert got.samples["sample"][k] == k
+        for name, value in {**w["deviations_mm"], **w["values"]}.items():
+            assert got.samples[name].dtype == np.float64 and got.samples[name].shape == (40,)
+            assert got.samples[name][k] == value, (name, k)
+
+
 def test_optimise_equals_the_check_studies(paper):
     """One study of the paper's, alone, finds what `check` found for it."""
     first = paper["run"].studies[0]
@@ -341,6 +358,28 @@ def test_fit_finds_the_modification_the_points_were_drawn_with(cli, tmp_path):
     assert got["form"]["t_deg"].shape == got["form"]["w_um"].shape
     done = run_cli(cli, "fit", str(spec_path))
     assert done.returncode == 0, done.stderr
+    assert done.stdout == got["report"]
+
+
+def test_fit_form_equals_the_cli_form_csv(cli, tmp_path):
+    """The shipped measured disc: the form curve is the numbers `fit --form-csv` writes (16
+    points a tooth pitch), and each estimate a (value, standard uncertainty) tuple of floats."""
+    out = tmp_path / "form.csv"
+    done = run_cli(cli, "fit", "specs/reducer-measured.yaml", "--form-csv", str(out))
+    assert done.returncode == 0, done.stderr
+    lines = out.read_text().splitlines()
+    header, table = lines[0].split(","), [[float(x) for x in l.split(",")] for l in lines[1:]]
+    got = cycloid.fit("specs/reducer-measured.yaml")
+    assert list(got["form"]) == header == ["t_deg", "w_um"]
+    for i, name in enumerate(header):
+        column = got["form"][name]
+        assert column.dtype == np.float64 and column.shape == (16 * 9,)
+        assert np.array_equal(column, [row[i] for row in table]), name
+    for key in ("centre_x_mm", "centre_y_mm", "orientation_deg", "shift_mm", "equidistant_mm"):
+        value = got[key]
+        assert isinstance(value, tuple) and len(value) == 2, key
+        assert all(isinstance(x, float) for x in value), key
+    assert got["rotation_deg"] is None
     assert done.stdout == got["report"]
 
 

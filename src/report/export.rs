@@ -8,6 +8,7 @@ pub use crate::geometry::polyline::{polyline, ProfilePoint};
 use crate::model::design::disc_phase_rad;
 use crate::spec::Spec;
 use crate::units;
+use serde::Serialize;
 
 fn header_lines(spec: &Spec, tolerance_mm: f64, count: usize) -> Vec<String> {
     let m = &spec.modification;
@@ -27,17 +28,54 @@ fn header_lines(spec: &Spec, tolerance_mm: f64, count: usize) -> Vec<String> {
     ]
 }
 
-/// CSV text: `#` header lines, then x_mm,y_mm,normal_x,normal_y,curvature_per_mm.
+/// The profile as columns, one value per point in profile order (disc frame, mm; the outward
+/// unit normal; the curvature, 1/mm, positive where convex), and the output-pin holes of the
+/// DXF (centres on the pin circle, hole radius). What `profile --csv` writes (at its
+/// decimals) and the Python `profile` returns as arrays.
+#[derive(Serialize)]
+pub struct ProfileDoc {
+    pub x_mm: Vec<f64>,
+    pub y_mm: Vec<f64>,
+    pub normal_x: Vec<f64>,
+    pub normal_y: Vec<f64>,
+    pub curvature_per_mm: Vec<f64>,
+    pub holes_x_mm: Vec<f64>,
+    pub holes_y_mm: Vec<f64>,
+    pub hole_radius_mm: f64,
+}
+
+impl ProfileDoc {
+    /// The document of the profile `points` of `spec`.
+    pub fn new(spec: &Spec, points: &[ProfilePoint]) -> Self {
+        let column = |f: fn(&ProfilePoint) -> f64| points.iter().map(f).collect();
+        let pins = &spec.design.pins;
+        let centres: Vec<[f64; 2]> = (0..pins.count).map(|j| pins.centre_mm(j)).collect();
+        ProfileDoc {
+            x_mm: column(|p| p.point.x),
+            y_mm: column(|p| p.point.y),
+            normal_x: column(|p| p.normal.x),
+            normal_y: column(|p| p.normal.y),
+            curvature_per_mm: column(|p| p.curvature_per_mm),
+            holes_x_mm: centres.iter().map(|c| c[0]).collect(),
+            holes_y_mm: centres.iter().map(|c| c[1]).collect(),
+            hole_radius_mm: spec.design.hole_radius_mm(),
+        }
+    }
+}
+
+/// CSV text: `#` header lines, then the profile document's point columns,
+/// x_mm,y_mm,normal_x,normal_y,curvature_per_mm.
 pub fn csv(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
     let mut out: String = header_lines(spec, tolerance_mm, points.len())
         .iter()
         .map(|l| format!("# {l}\n"))
         .collect();
+    let d = ProfileDoc::new(spec, points);
     out += "x_mm,y_mm,normal_x,normal_y,curvature_per_mm\n";
-    for p in points {
+    for i in 0..d.x_mm.len() {
         out += &format!(
             "{:.9},{:.9},{:.12},{:.12},{:.9e}\n",
-            p.point.x, p.point.y, p.normal.x, p.normal.y, p.curvature_per_mm
+            d.x_mm[i], d.y_mm[i], d.normal_x[i], d.normal_y[i], d.curvature_per_mm[i]
         );
     }
     out

@@ -8,6 +8,7 @@ use crate::measure::fitted::Estimate;
 use crate::measure::flanks::arc_length_mm;
 use crate::spec::Spec;
 use crate::units;
+use serde::Serialize;
 use std::f64::consts::TAU;
 
 /// `x` with `decimals`, without the sign of a value that rounds to zero (`-0.000` → `0.000`).
@@ -160,17 +161,109 @@ pub fn flank_length_mm(spec: &Spec, id: &Identification) -> f64 {
     )
 }
 
-/// The form-error curve as CSV: `t_deg,w_um` at 1/16 of a tooth pitch (nc·16 rows).
-pub fn form_csv(spec: &Spec, id: &Identification) -> String {
+/// `x` as the number [`fixed`] writes with `decimals`: what a reader of that text reads back.
+fn at_decimals(x: f64, decimals: usize) -> f64 {
+    // The text of a number parses back (NaN and infinities included), so `x` is never used.
+    fixed(x, decimals).parse().unwrap_or(x)
+}
+
+/// A value and its standard uncertainty, in the unit its key names: a pair in JSON, a tuple in
+/// Python.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ValueSigma(pub f64, pub f64);
+
+impl ValueSigma {
+    /// `e` with lengths in mm (the engine's unit).
+    fn mm(e: Estimate) -> Self {
+        ValueSigma(e.value, e.sigma)
+    }
+
+    /// `e`, an angle in rad, in degrees.
+    fn deg(e: Estimate) -> Self {
+        ValueSigma(units::deg(e.value), units::deg(e.sigma))
+    }
+}
+
+/// The identified modification, in the spec's units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ModificationDoc {
+    pub shift_mm: f64,
+    pub equidistant_mm: f64,
+    pub rotation_deg: f64,
+}
+
+/// The form-error curve w(t) along the normal (w > 0: material missing) at 1/16 of a tooth
+/// pitch (nc·16 points), as `--form-csv` states it: t in degrees and w in µm, each at 4
+/// decimals (0.1 nm).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FormCurve {
+    pub t_deg: Vec<f64>,
+    pub w_um: Vec<f64>,
+}
+
+/// What `cycloid fit` finds: each estimate as (value, standard uncertainty) in its key's unit
+/// (None when not fitted), the identified modification, the residuals (mm), the Jacobian's
+/// condition number, the text `cycloid fit` prints and the form-error curve. What the Python
+/// `fit` returns.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FitDoc {
+    pub centre_x_mm: ValueSigma,
+    pub centre_y_mm: ValueSigma,
+    pub orientation_deg: ValueSigma,
+    pub shift_mm: Option<ValueSigma>,
+    pub equidistant_mm: Option<ValueSigma>,
+    pub rotation_deg: Option<ValueSigma>,
+    pub modification: ModificationDoc,
+    pub residual_rms_mm: f64,
+    pub residual_max_mm: f64,
+    pub condition: f64,
+    pub report: String,
+    pub form: FormCurve,
+}
+
+/// The fit document of the identification `id` of `spec`'s measured disc.
+pub fn document(spec: &Spec, id: &Identification) -> FitDoc {
+    let m = &id.modification;
+    FitDoc {
+        centre_x_mm: ValueSigma::mm(id.centre_mm[0]),
+        centre_y_mm: ValueSigma::mm(id.centre_mm[1]),
+        orientation_deg: ValueSigma::deg(id.orientation_rad),
+        shift_mm: id.shift_mm.map(ValueSigma::mm),
+        equidistant_mm: id.equidistant_mm.map(ValueSigma::mm),
+        rotation_deg: id.rotation_rad.map(ValueSigma::deg),
+        modification: ModificationDoc {
+            shift_mm: m.shift_mm,
+            equidistant_mm: m.equidistant_mm,
+            rotation_deg: units::deg(m.rotation_rad),
+        },
+        residual_rms_mm: id.residual_rms_mm,
+        residual_max_mm: id.residual_max_mm,
+        condition: id.condition,
+        report: render(spec, id),
+        form: form_curve(spec, id),
+    }
+}
+
+/// The form-error curve at t_k = 2πk/(16·nc), k = 0 … 16·nc − 1.
+pub fn form_curve(spec: &Spec, id: &Identification) -> FormCurve {
     let rows = 16 * spec.design.teeth;
+    let t = |k: usize| TAU * k as f64 / rows as f64;
+    FormCurve {
+        t_deg: (0..rows)
+            .map(|k| at_decimals(units::deg(t(k)), 4))
+            .collect(),
+        w_um: (0..rows)
+            .map(|k| at_decimals(units::um(id.form.value_mm(t(k))), 4))
+            .collect(),
+    }
+}
+
+/// The form-error curve as CSV: `t_deg,w_um`, a row per point of [`form_curve`].
+pub fn form_csv(spec: &Spec, id: &Identification) -> String {
+    let curve = form_curve(spec, id);
     let mut out = String::from("t_deg,w_um\n");
-    for k in 0..rows {
-        let t = TAU * k as f64 / rows as f64;
-        out += &format!(
-            "{},{}\n",
-            fixed(units::deg(t), 4),
-            fixed(units::um(id.form.value_mm(t)), 4)
-        );
+    for (t, w) in curve.t_deg.iter().zip(&curve.w_um) {
+        out += &format!("{},{}\n", fixed(*t, 4), fixed(*w, 4));
     }
     out
 }

@@ -8,6 +8,8 @@ use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::model::quantity::Bound;
 use crate::model::tolerances::{Distribution, NORMAL_CUT_SIGMA};
 use crate::numeric::number;
+use serde::ser::SerializeMap;
+use serde::{Serialize, Serializer};
 use serde_json::{json, Map, Value};
 
 /// How the report's quantiles are defined (printed and in the JSON).
@@ -360,20 +362,67 @@ fn sensitivity_json(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> 
     })
 }
 
-/// The per-sample CSV: `sample`, every drawn deviation, every limited quantity; rows in sample
-/// order. The deviations are drawn again from (seed, k).
-pub fn samples_csv(study: &ToleranceStudy, records: &Records) -> String {
+/// The name of the samples' index column.
+const SAMPLE_COLUMN: &str = "sample";
+
+/// The samples of a study as columns: `sample` (the index k), then each drawn deviation (mm)
+/// and each limited quantity (in its unit), named as the CSV's header names them; one value
+/// per sample, in sample order. The deviations are drawn again from (seed, k). What
+/// `--samples-csv` writes and the Python `tolerance` returns as arrays.
+pub struct SamplesDoc {
+    pub sample: Vec<u64>,
+    /// (column name, values), deviations first, then limits, as the CSV's header orders them.
+    pub columns: Vec<(String, Vec<f64>)>,
+}
+
+/// A map from column name to its values, in column order (names are data: one per part and
+/// limit of the study).
+impl Serialize for SamplesDoc {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut map = s.serialize_map(Some(1 + self.columns.len()))?;
+        map.serialize_entry(SAMPLE_COLUMN, &self.sample)?;
+        for (name, values) in &self.columns {
+            map.serialize_entry(name, values)?;
+        }
+        map.end()
+    }
+}
+
+/// The samples document of a study's records.
+pub fn samples(study: &ToleranceStudy, records: &Records) -> SamplesDoc {
     let discs = study.spec.design.discs;
     let l = study.limits.len();
-    let mut header = vec!["sample".to_string()];
-    header.extend(study.params.iter().map(|p| p.name(discs)));
-    header.extend(study.limits.iter().map(|(d, _)| d.quantity.key.to_string()));
+    let n = records.values.len().checked_div(l).unwrap_or(0);
+    let mut columns: Vec<(String, Vec<f64>)> = (study.params.iter())
+        .map(|p| (p.name(discs), Vec::with_capacity(n)))
+        .collect();
+    for k in 0..n as u64 {
+        for ((_, column), v) in columns.iter_mut().zip(study.draw(k)) {
+            column.push(v);
+        }
+    }
+    columns.extend(
+        (study.limits.iter().enumerate())
+            .map(|(i, (d, _))| (d.quantity.key.to_string(), records.column(i, l).collect())),
+    );
+    SamplesDoc {
+        sample: (0..n as u64).collect(),
+        columns,
+    }
+}
+
+/// The per-sample CSV: the samples document's columns under their names, a row per sample;
+/// numbers in shortest round-trip form.
+pub fn samples_csv(study: &ToleranceStudy, records: &Records) -> String {
+    let doc = samples(study, records);
+    let mut header = vec![SAMPLE_COLUMN.to_string()];
+    header.extend(doc.columns.iter().map(|(name, _)| name.clone()));
     let mut out = header.join(",");
     out.push('\n');
-    for (k, row) in records.values.chunks(l).enumerate() {
+    for (row, k) in doc.sample.iter().enumerate() {
         out += &k.to_string();
-        for v in study.draw(k as u64).iter().chain(row) {
-            out += &format!(",{v:?}");
+        for (_, values) in &doc.columns {
+            out += &format!(",{:?}", values[row]);
         }
         out.push('\n');
     }

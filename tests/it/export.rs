@@ -317,3 +317,65 @@ fn csv_has_the_header_and_a_row_per_point_with_unit_outward_normals() {
     println!("largest |n·chord| {worst_tilt:.4}");
     assert!(worst_tilt < 0.1);
 }
+
+/// The profile document (what the Python `profile` returns) holds the CSV's columns to their
+/// printed decimals and the DXF's holes: M holes, hole j at angle 2πj/M on the pin circle rw,
+/// radius pin + e + hole clearance (the spec's 3 + 2 + 0 mm).
+#[test]
+fn the_profile_document_is_the_csv_with_the_dxf_holes() {
+    let (spec, profile) = paper_profile();
+    let tol = 5e-3;
+    let points = export::polyline(&profile, tol);
+    let doc = export::ProfileDoc::new(&spec, &points);
+    let text = export::csv(&spec, &points, tol);
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let columns = [
+        &doc.x_mm,
+        &doc.y_mm,
+        &doc.normal_x,
+        &doc.normal_y,
+        &doc.curvature_per_mm,
+    ];
+    assert_eq!(
+        header,
+        ["x_mm", "y_mm", "normal_x", "normal_y", "curvature_per_mm"]
+    );
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), points.len());
+    for (k, row) in rows.iter().enumerate() {
+        for (c, cell) in row.split(',').enumerate() {
+            let read: f64 = cell.parse().unwrap();
+            let value = columns[c][k];
+            // Half a unit of the CSV's last printed decimal: 9 for x, y (mm), 12 for the
+            // normal, 10 significant digits for the curvature; doubled for the value's own
+            // round-off at that size.
+            let half_unit = match c {
+                0 | 1 => 5e-10,
+                2 | 3 => 5e-13,
+                _ => 5e-10 * value.abs(),
+            };
+            assert!(
+                (read - value).abs() <= 2.0 * half_unit,
+                "{} row {k}",
+                header[c]
+            );
+        }
+    }
+    let pins = &spec.design.pins;
+    assert_eq!(pins.count, 6);
+    assert_eq!((doc.holes_x_mm.len(), doc.holes_y_mm.len()), (6, 6));
+    for j in 0..6 {
+        let a = TAU * j as f64 / 6.0;
+        // The centre's two products of rw with cos, sin: a few ulp of 18 mm.
+        assert!(
+            (doc.holes_x_mm[j] - 18.0 * a.cos()).abs() < 1e-13,
+            "hole {j}"
+        );
+        assert!(
+            (doc.holes_y_mm[j] - 18.0 * a.sin()).abs() < 1e-13,
+            "hole {j}"
+        );
+    }
+    assert_eq!(doc.hole_radius_mm, 3.0 + 2.0 + 0.0);
+}

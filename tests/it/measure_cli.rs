@@ -502,3 +502,59 @@ fn shipped_measured_spec_recovers_its_planted_form_error() {
         drawn.stdout
     );
 }
+
+/// The fit document (what the Python `fit` returns) of the shipped measured disc states what
+/// tools/make-measured.py drew it with, each in its key's unit: the centre at (0.3, −0.2) mm,
+/// turned 7° (degrees, not radians), the drawing's ΔRp 0.125 and ΔRrp 0.1593 mm as (value,
+/// σ), no rotation fitted, and the form error w(t) = 4 µm·cos 2t (µm, not mm) at 16 points a
+/// tooth pitch, t in degrees; `--form-csv` prints the curve's own numbers.
+#[test]
+fn the_fit_document_states_the_drawn_disc_in_its_units() {
+    let spec = cycloid::spec::load("specs/reducer-measured.yaml").unwrap();
+    let id = cycloid::fit(&spec).unwrap();
+    let doc = cycloid::report::fit::document(&spec, &id);
+    // The report prints lengths to 1e-6 mm and angles to 1e-6°: the fit of the 290
+    // noise-free points (9 printed decimals) is within 2e-7 of either.
+    let near = |(value, sigma): (f64, f64), truth: f64| {
+        (value - truth).abs() < 1e-6 && (0.0..1e-6).contains(&sigma)
+    };
+    let pair = |v: cycloid::report::fit::ValueSigma| (v.0, v.1);
+    assert!(near(pair(doc.centre_x_mm), 0.3), "{:?}", doc.centre_x_mm);
+    assert!(near(pair(doc.centre_y_mm), -0.2), "{:?}", doc.centre_y_mm);
+    assert!(
+        near(pair(doc.orientation_deg), 7.0),
+        "{:?}",
+        doc.orientation_deg
+    );
+    assert!(near(pair(doc.shift_mm.unwrap()), 0.125));
+    assert!(near(pair(doc.equidistant_mm.unwrap()), 0.1593));
+    assert_eq!(doc.rotation_deg, None);
+    assert!((doc.modification.shift_mm - 0.125).abs() < 1e-6);
+    assert_eq!(doc.modification.rotation_deg, 0.0);
+    let n = 16 * 9;
+    assert_eq!((doc.form.t_deg.len(), doc.form.w_um.len()), (n, n));
+    for k in 0..n {
+        let t_deg = 360.0 * k as f64 / n as f64;
+        assert_eq!(
+            doc.form.t_deg[k], t_deg,
+            "t_{k}: 2.5° steps, exact at 4 decimals"
+        );
+        // 1e-3 µm: the curve's 4 decimals (5e-5 µm) and the fitted amplitude's error, of the
+        // size of the residual (0.3 nm RMS).
+        let w = 4.0 * (2.0 * t_deg.to_radians()).cos();
+        assert!(
+            (doc.form.w_um[k] - w).abs() < 1e-3,
+            "w_{k}: {}",
+            doc.form.w_um[k]
+        );
+    }
+    let csv = cycloid::report::fit::form_csv(&spec, &id);
+    let rows: Vec<(f64, f64)> = (csv.lines().skip(1))
+        .map(|l| l.split_once(',').unwrap())
+        .map(|(t, w)| (t.parse().unwrap(), w.parse().unwrap()))
+        .collect();
+    let stated: Vec<(f64, f64)> = (doc.form.t_deg.iter().copied())
+        .zip(doc.form.w_um.iter().copied())
+        .collect();
+    assert_eq!(rows, stated);
+}

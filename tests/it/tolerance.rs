@@ -987,3 +987,49 @@ fn a_study_with_no_band_is_refused_at_its_key() {
         assert!(!r.stdout.contains("NOT SHOWN"), "{r:?}");
     }
 }
+
+/// The samples document (what `--samples-csv` writes and the Python `tolerance` returns) holds
+/// each sample in its own row: the JSON report's worst samples, built apart (from the study's
+/// draw of (seed, k) and the records' row k), read the same numbers in that row for every part
+/// and limit; the CSV is the document's columns under the same names, in order, bit for bit.
+#[test]
+fn the_samples_document_holds_each_sample_in_its_row() {
+    use cycloid::report::tolerance as report;
+    let spec = with_tolerances(&format!("{EVERY_KIND}  seed: 5\n")).parse("t.yaml");
+    let run = cycloid::engine::commands::tolerance(&spec, Some(24), false, &Silent).unwrap();
+    let doc = report::samples(&run.study, &run.records);
+    assert_eq!(doc.sample, (0..24).collect::<Vec<u64>>());
+    let json = report::json(&run.study, &run.summary, &run.records, None);
+    let json: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let column = |name: &str| match doc.columns.iter().find(|(n, _)| n == name) {
+        Some((_, values)) => values.clone(),
+        None => panic!("no column `{name}`"),
+    };
+    let worst = json["worst"].as_array().unwrap();
+    assert!(!worst.is_empty());
+    for w in worst {
+        let k = w["sample"].as_u64().unwrap() as usize;
+        let deviations = w["deviations_mm"].as_object().unwrap();
+        assert_eq!(deviations.len(), run.study.params.len());
+        for (name, value) in deviations.iter().chain(w["values"].as_object().unwrap()) {
+            let (got, read) = (column(name)[k], value.as_f64().unwrap());
+            // One ulp: serde_json's reader (without its float_roundtrip feature) may round the
+            // last bit of a shortest-form number; the CSV below is read exactly.
+            let ulps = (got.to_bits() as i64 - read.to_bits() as i64).abs();
+            assert!(ulps <= 1, "{name}[{k}]: {got:?} against {read:?}");
+        }
+    }
+    let csv = report::samples_csv(&run.study, &run.records);
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let names: Vec<&str> = doc.columns.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(header, [&["sample"][..], &names].concat());
+    for (k, line) in lines.enumerate() {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells[0], k.to_string());
+        for (cell, (name, values)) in cells[1..].iter().zip(&doc.columns) {
+            let read: f64 = cell.parse().unwrap();
+            assert_eq!(read.to_bits(), values[k].to_bits(), "{name}[{k}]");
+        }
+    }
+}

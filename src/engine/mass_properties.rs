@@ -26,8 +26,8 @@ pub struct MassProperties {
 }
 
 /// The mass properties of `spec`'s discs under its modification, with the disc's form error
-/// when it has one: the face inside the profile's polygon within `SECTION_TOLERANCE_MM`, less
-/// the output-pin holes and the bore of `disc_solid`, over the face width at the density; and
+/// when it has one: the face inside the profile (`geometry::mass_properties::profile_moments`),
+/// less the output-pin holes and the bore of `disc_solid`, over the face width at the density; and
 /// the inertia at the input, with the rollers' spin when the spec gives their inertia (only
 /// for rollers that turn).
 pub fn mass_properties(spec: &Spec) -> MassProperties {

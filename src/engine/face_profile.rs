@@ -13,7 +13,7 @@ use crate::contact::face_width::slice_centre_mm;
 use crate::error::{Error, Result};
 use crate::model::face::Misalignment;
 use crate::model::place::{Place, Site};
-use crate::model::quantity::MAX_LINE_LOAD;
+use crate::model::quantity::{MAX_FACE_LOAD_FACTOR, MAX_LINE_LOAD};
 use crate::model::results::{FaceLoads, SceneResult};
 use crate::model::{Design, Plan, Scene};
 use crate::spec::Spec;
@@ -59,7 +59,7 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
             continue;
         };
         let picked = if tilted {
-            worst_factor(face).map(|p| (FaceAngle::WorstFactor, p))
+            worst_factor(r, face).map(|p| (FaceAngle::WorstFactor, p))
         } else {
             largest_line_load(r).map(|p| (FaceAngle::LargestLineLoad, p))
         };
@@ -97,10 +97,18 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
     Ok(out)
 }
 
-/// The angle of the largest face load factor and the roller carrying the peak line load there.
-fn worst_factor(face: &FaceLoads) -> Option<(usize, usize)> {
-    let factors = face.face_load_factor.iter().enumerate();
-    let (k, _) = factors.max_by(|a, b| a.1.total_cmp(b.1))?;
+/// The angle of the largest face load factor, where the registry found it
+/// (`max_face_load_factor`'s place: its first angle on a tie), and the roller carrying the
+/// peak line load there in the recorded loads.
+fn worst_factor(r: &SceneResult, face: &FaceLoads) -> Option<(usize, usize)> {
+    let k = match MAX_FACE_LOAD_FACTOR.scalar(r)?.at {
+        Place {
+            bin: None,
+            disc: None,
+            site: Site::Crank(crank),
+        } => crank.index,
+        _ => return None,
+    };
     let peak = |i: usize| face.at(i, k).iter().copied().fold(0.0, f64::max);
     let rollers = 0..face.line_load_n_per_mm.len();
     let roller = rollers.max_by(|&a, &b| peak(a).total_cmp(&peak(b)))?;

@@ -34,8 +34,11 @@ record() {
       -e 's/>[0-9]+(\.[0-9]+)? m?s</><time></g'
 }
 if [ -d "$before" ]; then
-  mkdir -p "$out" && cp -a "$before" "$out/before"
   # The recorded outputs name their own directory, masked when recorded.
+  if [ "$before" != "$(realpath -m "$out/before")" ]; then
+    rm -rf "$out/before" && mkdir -p "$out" && cp -a "$before" "$out/before"
+  fi
+  rm -rf "$out/after"
 else
   record "$before" "$out/before"
 fi

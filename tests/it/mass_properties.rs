@@ -90,10 +90,10 @@ fn the_shipped_discs_area_is_steiners_formula_for_its_offset_profile() {
 
 /// The same near the undercut (specs/hard/undercut-99pct.yaml: R' = 30, r' = 7.58 + 0.03,
 /// e = 2.4, np = 10, six holes of radius 2.5 + 2.4 on 11 mm): the profile's convex radius
-/// falls to 0.08 mm at its tips, where Γ' nearly vanishes and its moments' trapezoid sums
-/// converge slowest. Its first moment's harmonics (±1 mod 9 lobes) once aliased onto the
-/// mean in two sums alike and left a centroid 1.1e-5 mm off centre; the area is held to
-/// Steiner's formula as above, the centroid to round-off.
+/// falls to 0.08 mm at its tips (Γ' small there; the sums still converge at 1,281 points, the
+/// rate being set by K1, next test). Its first moment's harmonics (±1 mod 9 lobes) once
+/// aliased onto the mean in two sums alike and left a centroid 1.1e-5 mm off centre; the area
+/// is held to Steiner's formula as above, the centroid to round-off.
 #[test]
 fn a_disc_near_its_undercut_has_steiners_area_and_its_centroid_at_its_centre() {
     let spec = cycloid::spec::load("specs/hard/undercut-99pct.yaml").unwrap();
@@ -413,5 +413,33 @@ fn a_roller_inertia_for_rollers_that_do_not_turn_is_refused_where_written() {
                 && shown.contains(rule),
             "{shown}"
         );
+    }
+}
+
+/// As the locus factor K1 = e·np/R' nears 1 the trapezoid sums converge ever slower (the
+/// branch point of |C'| nears the real axis), and the spec accepts any K1 < 1. The shipped
+/// disc with the rollers shrunk to 0.05 mm (no undercut) and no modification, at K1 = 0.999
+/// (converged sums, held to Steiner's formula within 1e-11 of the face as above) and at
+/// K1 = 0.9999 (beyond the sums' cap: the 0.1 µm polygon, off by at most tol × perimeter,
+/// about 0.02 mm² of a 2,180 mm² face; its chords also move the centroid by up to that sliver
+/// over the area's reach). Before the polygon took over, the K1 = 0.9999 disc's unconverged
+/// sums put its centroid 0.0062 mm off centre, silently.
+#[test]
+fn a_locus_factor_near_one_keeps_the_mass_exact_or_within_the_polygons_bound() {
+    for (e, tolerance_mm2) in [(2.997, 1e-11 * 2200.0), (2.9997, 1e-4 * 200.0)] {
+        let spec = crate::common::PaperSpec::new()
+            .edit("eccentricity_mm: 2.0 ", &format!("eccentricity_mm: {e} "))
+            .edit("roller_radius_mm: 3.0 ", "roller_radius_mm: 0.05 ")
+            .modification(0.0, 0.0)
+            .parse("k1-near-one.yaml");
+        let disc = cycloid::geometry::mass_properties::disc_mass(&spec.design, &spec.modification);
+        let face = steiner_face((30.0, 0.05, e, 10.0), 6.0 * PI * (3.0 + e).powi(2));
+        let got = disc.face.area_mm2;
+        assert!(
+            (face - got).abs() <= tolerance_mm2,
+            "K1 {}: {got} vs {face}",
+            e / 3.0
+        );
+        assert!(disc.centroid_offset_mm < 1e-4, "K1 {}: {disc:?}", e / 3.0);
     }
 }

@@ -211,13 +211,19 @@ fn run_one(
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
     let sweeps = loaded_sweeps(design, model.as_ref(), (scene, plan), progress)?;
+    let swept = sweeps.is_some();
+    // Each disc's curves and torque share, moved out of the sweep (not copied).
+    let (mut each, transmission) = match sweeps {
+        Some(s) => (s.discs.into_iter().zip(s.torque_nmm), s.transmission),
+        None => (Vec::new().into_iter().zip(Vec::new()), None),
+    };
     let mut discs = Vec::with_capacity(design.discs);
     for k in 0..design.discs {
         let mut loaded = LoadedSweep::default();
-        if let Some(s) = &sweeps {
-            loaded = s.discs[k].clone();
+        if let Some((curves, torque)) = each.next() {
+            loaded = curves;
             // A disc's torque share is a curve of its own only beside other discs.
-            loaded.torque_nmm = (design.discs > 1).then(|| s.torque_nmm[k].clone());
+            loaded.torque_nmm = (design.discs > 1).then_some(torque);
             first_order_valid(design, m, scene, (&loaded, design.disc_phase_rad(k)))?;
             loaded.strength = strength::disc_strength(design, (scene, plan), &loaded);
         }
@@ -234,7 +240,7 @@ fn run_one(
     // The reducer's curves, over every disc.
     let each: Vec<&LoadedSweep> = discs.iter().map(|d| &d.loaded).collect();
     let (mut efficiency, mut pin_stress) = (None, None);
-    if sweeps.is_some() {
+    if swept {
         efficiency = efficiency::efficiency(design, (scene, plan), &each)?;
         if plan.computes(Effect::Strength) {
             pin_stress = strength::pin_stress(design, &scene.crank_rad, &each);
@@ -252,7 +258,7 @@ fn run_one(
             disc.efficiency = Some(e);
         }
     }
-    whole.loaded.transmission = sweeps.and_then(|s| s.transmission);
+    whole.loaded.transmission = transmission;
     whole.loaded.pin_stress = pin_stress;
     whole.torsion = torsion;
     whole.discs = discs;

@@ -39,7 +39,7 @@ fn main() {
             (s, t.elapsed().as_secs_f64())
         };
         let ((c, tc), (s, ts)) = (go(&closed), go(&sliced));
-        let (rc, rs) = (c.rollers.unwrap(), s.rollers.unwrap());
+        let (rc, rs) = (c.0.rollers.unwrap(), s.0.rollers.unwrap());
         let (fc, fs) = (rc.face.unwrap(), rs.face.unwrap());
         let arcsec = 180.0 / std::f64::consts::PI * 3600.0;
         let max = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0, f64::max);

@@ -32,7 +32,7 @@ fn main() {
     } else {
         sweep::sweep(&model, &crank, true, &cycloid::progress::Silent)
             .expect("sweep")
-            .transmission
+            .1
     };
     let te = &transmission.expect("te").te_rad;
     println!("{} angles, TE[0] = {:e} rad", te.len(), te[0]);

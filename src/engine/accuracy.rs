@@ -198,7 +198,9 @@ impl Outputs {
             crank_rad: r.crank_rad.clone(),
             te_arcsec,
             ratio: curve(&quantity::RATIO),
-            contacts: r.loaded.rollers.as_ref().map(|c| c.contacts.clone()),
+            contacts: (r.only_disc())
+                .and_then(|d| d.loaded.rollers.as_ref())
+                .map(|c| c.contacts.clone()),
             scalars,
         }
     }
@@ -685,7 +687,9 @@ pub fn run(
         let mut clearance_seconds = 0.0;
         if clearance && !clearance_plan.effects.is_empty() {
             let (c, seconds) = timed(spec, &s, &clearance_plan, &settings)?;
-            result.clearance = c.clearance;
+            for (disc, timed) in result.discs.iter_mut().zip(c.discs) {
+                disc.clearance = timed.clearance;
+            }
             clearance_seconds = seconds;
         }
         Ok(Run {

@@ -106,12 +106,12 @@ pub const FLANK_MM: f64 = 3.0;
 /// Points of the close-up's flank.
 const FLANK_POINTS: usize = 1201;
 
-/// The crank angle the drawing uses by default: where the smallest gap of the first scene that
-/// computes clearance occurs, else 0.
+/// The crank angle the drawing uses by default: where the smallest gap of the first one-disc
+/// scene that computes clearance occurs, else 0.
 pub fn default_crank_rad(results: &[SceneResult]) -> f64 {
     results
         .iter()
-        .find_map(|r| r.clearance.as_ref())
+        .find_map(|r| r.only_disc()?.clearance.as_ref())
         .map_or(0.0, |c| c.min.crank_rad)
 }
 

@@ -60,7 +60,7 @@ fn revolution_weights(bins: &[DutyBinResult]) -> Vec<f64> {
 /// The crank-bearing equivalent load of each disc in one bin's run, N (one entry per disc);
 /// `None` when the bin's run did not rate it (no `crank_bearing`, or not whole loaded periods).
 pub fn bin_equivalent_loads(r: &SceneResult) -> Option<Vec<f64>> {
-    r.each_disc()
+    r.discs
         .iter()
         .map(|d| d.bearing_life.map(|b| b.equivalent_load_n))
         .collect()
@@ -152,7 +152,7 @@ pub fn damage_shares(design: &Design, bins: &[DutyBinResult]) -> Option<Vec<Vec<
 /// each disc's.
 fn standstill_without_efficiency(mut b: DutyBinResult) -> DutyBinResult {
     if b.bin.input_speed_rpm == 0.0 {
-        b.result.efficiency = None;
+        b.result.reducer.efficiency = None;
         for d in &mut b.result.discs {
             d.efficiency = None;
         }
@@ -166,7 +166,7 @@ fn standstill_without_efficiency(mut b: DutyBinResult) -> DutyBinResult {
 fn energy_efficiency(bins: &[DutyBinResult]) -> Option<f64> {
     let (mut delivered, mut entering) = (0.0, 0.0);
     for b in bins.iter().filter(|b| b.bin.input_speed_rpm > 0.0) {
-        let e = b.result.efficiency.as_ref()?;
+        let e = b.result.reducer.efficiency.as_ref()?;
         let energy = PowerFlow::of(e.reducer.as_ref()?).energy(e.mean_loss_nmm.total());
         let w = b.bin.time_share * b.bin.input_speed_rpm;
         delivered += w * energy.delivered_nmm;

@@ -8,7 +8,7 @@
 //! lasts 1/max(D_drive, D_coast) hours. A standstill (nᵢ = 0) turns no revolution and adds none.
 
 use crate::contact::fatigue;
-use crate::model::results::{DutyBinResult, SceneResult, UNBOUNDED_LIFE_H};
+use crate::model::results::{DiscResult, DutyBinResult, SceneResult, UNBOUNDED_LIFE_H};
 use crate::model::strength::{ContactFatigue, DutyFatigue};
 use crate::model::Design;
 
@@ -64,8 +64,8 @@ pub fn lives(design: &Design, bins: &[DutyBinResult]) -> Vec<DutyFatigue> {
 /// The largest Hertz pressure of each disc in one bin's run, MPa, as its strength found it
 /// (over whole periods); `None` when the run has none.
 fn bin_pressures(r: &SceneResult) -> Option<Vec<f64>> {
-    let of = |d: &SceneResult| Some(d.loaded.strength?.fatigue?.pressure_mpa);
-    r.each_disc().iter().map(of).collect()
+    let of = |d: &DiscResult| Some(d.loaded.strength?.fatigue?.pressure_mpa);
+    r.discs.iter().map(of).collect()
 }
 
 /// Miner's sum of the damage rates `(per hour, on the coast flank)`: the life 1/max(D_drive,

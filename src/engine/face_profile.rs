@@ -52,10 +52,13 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
     for (index, (s, r)) in spec.scenes.iter().zip(results).enumerate() {
         // The tilt as run: the scene's plus the one as built (`reducer.deviations`).
         let tilted = !spec.design.deviations.face(&s.face).misalignment.is_zero();
-        if (!tilted && s.face.crowning.is_none()) || !r.discs.is_empty() {
+        if !tilted && s.face.crowning.is_none() {
             continue;
         }
-        let Some(face) = r.loaded.rollers.as_ref().and_then(|c| c.face.as_ref()) else {
+        let Some(disc) = r.only_disc() else {
+            continue;
+        };
+        let Some(face) = disc.loaded.rollers.as_ref().and_then(|c| c.face.as_ref()) else {
             continue;
         };
         let picked = if tilted {
@@ -154,7 +157,9 @@ fn line_loads_at(
     let options = RunOptions::for_spec(spec);
     let r = scene::run_design(design, &spec.modification, (&at, &plan), &options)
         .map_err(|e| scene::at_scene(spec, scene, e))?;
-    let face = r.loaded.rollers.as_ref().and_then(|c| c.face.as_ref());
+    let face = (r.discs.first())
+        .and_then(|d| d.loaded.rollers.as_ref())
+        .and_then(|c| c.face.as_ref());
     face.filter(|f| roller < f.line_load_n_per_mm.len())
         .map(|f| f.at(roller, 0).to_vec())
         .ok_or_else(|| {

@@ -396,15 +396,16 @@ pub fn computed<'a>(
         .iter()
         .find(|r| r.name == g.scene)
         .ok_or_else(|| Error::computation(format!("scene `{}` was not run", g.scene)))?;
-    let disc = match g.disc {
-        Some(k) => r.each_disc().get(k).unwrap_or(r),
-        None => r,
+    // A disc's curve of the disc named (with one disc, `disc: 0` or none), else the scene's.
+    let curves = match g.disc {
+        Some(k) if !q.of_reducer() => r.discs.get(k).and_then(|d| q.disc_curves(d)),
+        _ => q.curves(r),
     };
-    let curves = q.curves(disc).ok_or_else(|| {
-        let why = if r.each_disc().len() > 1 && g.disc.is_none() {
+    let curves = curves.ok_or_else(|| {
+        let why = if r.names_discs() && g.disc.is_none() {
             format!(
                 "with {} discs a disc's curve needs `disc: k` in the golden entry",
-                r.each_disc().len()
+                r.discs.len()
             )
         } else {
             "a ratio needs at least 3 crank angles".to_string()

@@ -20,7 +20,9 @@ use crate::geometry::first_order;
 use crate::geometry::mesh_minimum::{self, MeshMinimum};
 use crate::model::accuracy::LadderTolerances;
 use crate::model::quantity::QUANTITIES;
-use crate::model::results::{BearingLife, ClearanceSweep, DutyBinResult, LoadedSweep, SceneResult};
+use crate::model::results::{
+    BearingLife, ClearanceSweep, DiscResult, DutyBinResult, LoadedSweep, ReducerResult, SceneResult,
+};
 use crate::model::{
     Design, Detail, Effect, FrictionModel, GeometryMode, Modification, Plan, Scene,
 };
@@ -197,17 +199,6 @@ fn run_one(
         }
         clearance_sweep(&mut whole, (scene, plan), shift, progress).map(Some)
     };
-    let result = |name: String, clearance, loaded: LoadedSweep| SceneResult {
-        name,
-        crank_rad: scene.crank_rad.clone(),
-        bearing_life: bearing_life(design, scene, plan, &loaded),
-        clearance,
-        loaded,
-        torsion: None,
-        efficiency: None,
-        discs: Vec::new(),
-        duty: None,
-    };
     let torsion = torsion_loops(design, m, (scene, plan), settings, progress)?;
     let model = runs_loaded(plan).then(|| loaded_model(design, m, scene, plan, settings));
     let sweeps = loaded_sweeps(design, model.as_ref(), (scene, plan), progress)?;
@@ -231,38 +222,39 @@ fn run_one(
             1 => scene.name.clone(),
             _ => format!("{} disc {k}", scene.name),
         };
-        discs.push(result(
+        discs.push(DiscResult {
             name,
-            clearance(k, design.disc_phase_rad(k))?,
+            clearance: clearance(k, design.disc_phase_rad(k))?,
+            bearing_life: bearing_life(design, scene, plan, &loaded),
             loaded,
-        ));
+            efficiency: None,
+        });
     }
     // The reducer's curves, over every disc.
-    let each: Vec<&LoadedSweep> = discs.iter().map(|d| &d.loaded).collect();
-    let (mut efficiency, mut pin_stress) = (None, None);
-    if swept {
-        efficiency = efficiency::efficiency(design, (scene, plan), &each)?;
-        if plan.computes(Effect::Strength) {
-            pin_stress = strength::pin_stress(design, &scene.crank_rad, &each);
-        }
-    }
-    // One disc: its result is the scene's (`SceneResult::each_disc`); several: the reducer's
-    // curves beside each disc's result.
-    let mut whole = match discs.len() {
-        1 => discs.remove(0),
-        _ => result(scene.name.clone(), None, LoadedSweep::default()),
+    let mut reducer = ReducerResult {
+        transmission,
+        torsion,
+        ..ReducerResult::default()
     };
-    if let Some((all, each)) = efficiency {
-        whole.efficiency = Some(all);
-        for (disc, e) in discs.iter_mut().zip(each) {
-            disc.efficiency = Some(e);
+    if swept {
+        let each: Vec<&LoadedSweep> = discs.iter().map(|d| &d.loaded).collect();
+        if plan.computes(Effect::Strength) {
+            reducer.pin_stress = strength::pin_stress(design, &scene.crank_rad, &each);
+        }
+        if let Some((all, each)) = efficiency::efficiency(design, (scene, plan), &each)? {
+            reducer.efficiency = Some(all);
+            for (disc, e) in discs.iter_mut().zip(each) {
+                disc.efficiency = Some(e);
+            }
         }
     }
-    whole.loaded.transmission = transmission;
-    whole.loaded.pin_stress = pin_stress;
-    whole.torsion = torsion;
-    whole.discs = discs;
-    Ok(whole)
+    Ok(SceneResult {
+        name: scene.name.clone(),
+        crank_rad: scene.crank_rad.clone(),
+        reducer,
+        discs,
+        duty: None,
+    })
 }
 
 /// A duty-cycle scene ([`engine::duty_cycle`](crate::engine::duty_cycle)): each bin run as
@@ -314,11 +306,7 @@ fn run_duty_cycle(
     Ok(SceneResult {
         name: scene.name.clone(),
         crank_rad: scene.crank_rad.clone(),
-        clearance: None,
-        loaded: LoadedSweep::default(),
-        torsion: None,
-        bearing_life: None,
-        efficiency: None,
+        reducer: ReducerResult::default(),
         discs: Vec::new(),
         duty: Some(Box::new(duty_cycle::combine(design, runs))),
     })

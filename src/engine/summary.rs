@@ -90,7 +90,7 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
 /// of a torsion loop, the finest of its locked angles' resolutions
 /// (`TorsionCurves::hysteresis_resolution_rad`), arcmin; else 0.
 fn resolution(q: &Quantity, r: &SceneResult) -> f64 {
-    match &r.torsion {
+    match &r.reducer.torsion {
         Some(t) if q.key == MAX_HYSTERESIS_LOSS.key => (0..t.figures.len())
             .map(|k| crate::units::arcmin(t.hysteresis_resolution_rad(k)))
             .reduce(f64::min)
@@ -100,15 +100,15 @@ fn resolution(q: &Quantity, r: &SceneResult) -> f64 {
 }
 
 /// Each disc's torque share over the crank angles (`DISC_TORQUE`): the mean, the range and the
-/// scene's torque; empty for one disc or a scene without loaded discs.
+/// scene's torque; empty for one disc (it has no share curve) or a scene without loaded discs.
 fn shares(r: &SceneResult) -> Vec<TorqueShare> {
     let curves: Vec<Vec<f64>> = r
         .discs
         .iter()
-        .filter_map(|d| DISC_TORQUE.curves(d)?.values.pop())
+        .filter_map(|d| DISC_TORQUE.disc_curves(d)?.values.pop())
         .filter(|c| !c.is_empty())
         .collect();
-    if curves.len() != r.discs.len() || curves.len() < 2 {
+    if curves.len() != r.discs.len() {
         return Vec::new();
     }
     let scene_nm: f64 = curves.iter().map(|c| c[0]).sum();

@@ -33,7 +33,7 @@ pub fn torque_curve(spec: &Spec, at_scene: &Scene) -> Result<Option<TorqueCurve>
                 ..at_scene.clone()
             };
             let r = scene::run(spec, &at, &plan, &Default::default())?;
-            let mean = r
+            let mean = (r.reducer)
                 .efficiency
                 .and_then(|e| e.reducer)
                 .map_or(1.0, |e| e.mean_efficiency);

@@ -351,9 +351,9 @@ pub fn sweep_reducer(
         let discs = Discs::new(model, count);
         return sweep_discs(&discs, crank_rad, periodic, progress);
     }
-    let mut one = super::sweep::sweep(model, crank_rad, periodic, progress)?;
+    let (one, transmission) = super::sweep::sweep(model, crank_rad, periodic, progress)?;
     Ok(DiscSweeps {
-        transmission: one.transmission.take(),
+        transmission,
         torque_nmm: vec![vec![model.torque_nmm; crank_rad.len()]],
         discs: vec![one],
     })

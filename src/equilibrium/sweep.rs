@@ -423,13 +423,14 @@ fn solve_chunk(
 /// the chunk, so results do not depend on how chunks are shared out (scratch space is reused
 /// across chunks, its state restarted). A failure is reported at the first crank angle that
 /// fails.
-/// `progress` hears of every chunk of crank angles done.
+/// `progress` hears of every chunk of crank angles done. The disc's curves, and its
+/// transmission (TE δ = β + βo and ratio) when the rollers are modelled.
 pub fn sweep(
     model: &Model,
     crank_rad: &[f64],
     periodic: bool,
     progress: &dyn Progress,
-) -> Result<LoadedSweep, SweepFailure> {
+) -> Result<(LoadedSweep, Option<Transmission>), SweepFailure> {
     let mut columns = Columns::new(model, crank_rad.len());
     let lean = FirstOrderSweep::new(model);
     let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
@@ -462,7 +463,12 @@ pub(super) fn transmission(
     Transmission { te_rad, ratio }
 }
 
-fn collect(model: &Model, crank_rad: &[f64], columns: Columns, periodic: bool) -> LoadedSweep {
+fn collect(
+    model: &Model,
+    crank_rad: &[f64],
+    columns: Columns,
+    periodic: bool,
+) -> (LoadedSweep, Option<Transmission>) {
     let te_rad = model.rollers.is_some().then(|| {
         let c = &columns;
         c.lag
@@ -471,10 +477,8 @@ fn collect(model: &Model, crank_rad: &[f64], columns: Columns, periodic: bool) -
             .map(|(b, o)| b + o)
             .collect()
     });
-    LoadedSweep {
-        transmission: te_rad.map(|te| transmission(te, crank_rad, model.teeth, periodic)),
-        ..disc_curves(model, columns)
-    }
+    let transmission = te_rad.map(|te| transmission(te, crank_rad, model.teeth, periodic));
+    (disc_curves(model, columns), transmission)
 }
 
 /// A disc's own curves from its columns: lags, forces, bearing (no transmission: with several

@@ -9,7 +9,10 @@
 
 use super::effect::{Detail, Effect};
 use super::place::{Bin, Crank, Part, PartAt, Place, Rule, Site, Unbounded};
-use super::results::{BacklashCurves, DutyCycle, ReducerEfficiency, SceneResult, TorsionFigures};
+use super::results::{
+    BacklashCurves, DiscResult, DutyCycle, EfficiencyCurves, ReducerEfficiency, ReducerResult,
+    SceneResult, TorsionFigures,
+};
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 
@@ -49,10 +52,30 @@ pub struct Extreme {
     pub at: Place,
 }
 
+/// Where a quantity is read from, which makes it a disc's or the reducer's
+/// (`Quantity::of_reducer`). A scalar's reader takes the run's crank angles beside the results,
+/// to say where its extreme occurs.
 #[derive(Clone, Copy)]
 enum Read {
-    Curves(fn(&SceneResult) -> Option<Rows>),
-    Scalar(fn(&SceneResult) -> Option<Extreme>),
+    /// Each disc's curves.
+    DiscCurves(fn(&DiscResult) -> Option<Rows>),
+    /// The reducer's curves, over all its discs.
+    ReducerCurves(fn(&ReducerResult) -> Option<Rows>),
+    /// Each disc's scalar: the scene's is the worst over its discs.
+    DiscScalar(fn(&DiscResult, &[f64]) -> Option<Extreme>),
+    /// The reducer's scalar.
+    ReducerScalar(fn(&ReducerResult, &[f64]) -> Option<Extreme>),
+    /// A scalar of friction losses: the scene's is the reducer's (every disc's contacts and
+    /// the drag), a disc's document gives the disc's own contacts' (`DiscResult::efficiency`).
+    Losses(fn(&EfficiencyCurves) -> Option<Extreme>),
+    /// A duty cycle's own figure (`DUTY`).
+    CycleScalar(fn(&DutyCycle) -> Option<Extreme>),
+    /// Each disc's scalar, which a duty cycle gives of its own when it computes it (else the
+    /// worst over its bins).
+    DiscOrCycle(
+        fn(&DiscResult, &[f64]) -> Option<Extreme>,
+        fn(&DutyCycle) -> Option<Extreme>,
+    ),
 }
 
 /// One quantity of the registry.
@@ -103,13 +126,28 @@ pub struct Curves {
 }
 
 impl Quantity {
-    /// The quantity's curves in a scene's results; `None` when the scene did not compute it,
-    /// or for a scalar.
+    /// The quantity's curves in a scene's results: the reducer's, or a disc's curves of a
+    /// one-disc scene (`SceneResult::only_disc`; with several discs each disc's are
+    /// `disc_curves`); `None` when the scene did not compute it, or for a scalar.
     pub fn curves(&self, r: &SceneResult) -> Option<Curves> {
-        let Read::Curves(read) = self.read else {
-            return None;
-        };
-        let values = read(r)?;
+        match self.read {
+            Read::ReducerCurves(read) => self.named(read(&r.reducer)?),
+            Read::DiscCurves(read) => self.named(read(r.only_disc()?)?),
+            _ => None,
+        }
+    }
+
+    /// The quantity's curves in one disc's results; `None` for the reducer's quantities, when
+    /// not computed, or for a scalar.
+    pub fn disc_curves(&self, d: &DiscResult) -> Option<Curves> {
+        match self.read {
+            Read::DiscCurves(read) => self.named(read(d)?),
+            _ => None,
+        }
+    }
+
+    /// Rows under their column names.
+    fn named(&self, values: Rows) -> Option<Curves> {
         let columns = match self.shape.per() {
             Some(what) => (0..values.len()).map(|i| format!("{what}_{i}")).collect(),
             None => vec![self.key.to_string()],
@@ -117,33 +155,55 @@ impl Quantity {
         Some(Curves { columns, values })
     }
 
-    /// The scalar's value and where it occurs; `None` when not computed, or for a curve. With
-    /// several discs, a quantity of each disc (a force, a clearance) is the worst over the
-    /// discs, and where it occurs names the disc (`Place::disc`).
+    /// The scalar's value and where it occurs; `None` when not computed, or for a curve. A
+    /// quantity of each disc (a force, a clearance) is the worst over the discs, and where it
+    /// occurs names the disc with several (`Place::disc`); in a duty-cycle scene the cycle's
+    /// own figure or the worst over the bins (`worst_bin`).
     pub fn scalar(&self, r: &SceneResult) -> Option<Extreme> {
-        let Read::Scalar(read) = self.read else {
-            return None;
-        };
-        if r.duty.is_some() && self.for_duty() == Some(false) {
-            return None;
+        if let Some(duty) = r.duty.as_deref() {
+            if self.for_duty() == Some(false) {
+                return None;
+            }
+            let own = match self.read {
+                Read::CycleScalar(read) | Read::DiscOrCycle(_, read) => read(duty),
+                _ => None,
+            };
+            return own.or_else(|| self.worst_bin(duty));
         }
-        read(r).or_else(|| self.worst_bin(r)).or_else(|| {
-            r.discs
-                .iter()
-                .enumerate()
-                .filter_map(|(k, disc)| {
-                    let mut e = read(disc)?;
-                    e.at.disc = Some(k);
-                    Some(e)
-                })
-                .reduce(|a, b| if self.worse(b.value, a.value) { b } else { a })
-        })
+        let c = r.crank_rad.as_slice();
+        match self.read {
+            Read::ReducerScalar(read) => read(&r.reducer, c),
+            Read::Losses(read) => read(r.reducer.efficiency.as_ref()?),
+            Read::DiscScalar(read) | Read::DiscOrCycle(read, _) => {
+                let named = r.names_discs();
+                (r.discs.iter().enumerate())
+                    .filter_map(|(k, disc)| {
+                        let mut e = read(disc, c)?;
+                        if named {
+                            e.at.disc = Some(k);
+                        }
+                        Some(e)
+                    })
+                    .reduce(|a, b| if self.worse(b.value, a.value) { b } else { a })
+            }
+            _ => None,
+        }
+    }
+
+    /// The scalar of one disc alone over the crank angles `crank_rad` (a disc's document); a
+    /// friction loss is the disc's own contacts' (`Read::Losses`); `None` for the reducer's
+    /// quantities, when not computed, or for a curve.
+    pub fn disc_scalar(&self, d: &DiscResult, crank_rad: &[f64]) -> Option<Extreme> {
+        match self.read {
+            Read::DiscScalar(read) | Read::DiscOrCycle(read, _) => read(d, crank_rad),
+            Read::Losses(read) => read(d.efficiency.as_ref()?),
+            _ => None,
+        }
     }
 
     /// In a duty-cycle scene (`SceneResult::duty`), the worst value over its bins' runs, named
-    /// by its bin, its torque and speed (`Place::bin`); `None` otherwise.
-    fn worst_bin(&self, r: &SceneResult) -> Option<Extreme> {
-        let duty = r.duty.as_ref()?;
+    /// by its bin, its torque and speed (`Place::bin`).
+    fn worst_bin(&self, duty: &DutyCycle) -> Option<Extreme> {
         duty.bins
             .iter()
             .enumerate()
@@ -187,13 +247,14 @@ impl Quantity {
         }
     }
 
-    /// Whether the reducer as a whole has this curve (the output's TE and ratio, the
-    /// torsion under a locked input) rather than each disc (MODEL.md "Several discs").
+    /// Whether the reducer as a whole has this quantity (the output's TE and ratio, the
+    /// torsion under a locked input, the efficiency, the pins' stresses, a duty cycle's
+    /// figures) rather than each disc (MODEL.md "Several discs"): where its reader reads it.
     pub fn of_reducer(&self) -> bool {
-        matches!(self.key, "te_arcsec" | "ratio")
-            || self.effect == Effect::Torsion
-            || self.effect == Effect::Efficiency
-            || self.key == PIN_BENDING_STRESS.key
+        !matches!(
+            self.read,
+            Read::DiscCurves(_) | Read::DiscScalar(_) | Read::DiscOrCycle(..)
+        )
     }
 
     /// Whether it is one value for the whole sweep (`Shape::Scalar`) rather than curves.
@@ -216,9 +277,9 @@ impl Quantity {
     }
 }
 
-/// The backlash curves of a scene, when computed.
-fn backlash(r: &SceneResult) -> Option<&BacklashCurves> {
-    r.clearance.as_ref()?.backlash.as_ref()
+/// The backlash curves of a disc, when computed.
+fn backlash(d: &DiscResult) -> Option<&BacklashCurves> {
+    d.clearance.as_ref()?.backlash.as_ref()
 }
 
 fn arcsec(v: &[f64]) -> Rows {
@@ -229,11 +290,11 @@ fn one(v: &[f64]) -> Rows {
     vec![v.to_vec()]
 }
 
-/// Crank angle `k` of the run (φ = 0 past its end: an extreme of an empty curve).
-fn crank(r: &SceneResult, k: usize) -> Crank {
+/// Crank angle `k` of the run's angles `c` (φ = 0 past its end: an extreme of an empty curve).
+fn crank(c: &[f64], k: usize) -> Crank {
     Crank {
         index: k,
-        rad: r.crank_rad.get(k).copied().unwrap_or(0.0),
+        rad: c.get(k).copied().unwrap_or(0.0),
     }
 }
 
@@ -245,33 +306,33 @@ fn at(value: f64, site: Site) -> Extreme {
     }
 }
 
-/// Part `i` of `part` at the run's crank angle `k`.
-fn part_at(r: &SceneResult, part: Part, i: usize, k: usize) -> PartAt {
+/// Part `i` of `part` at the run's crank angle `k` (of the angles `c`).
+fn part_at(c: &[f64], part: Part, i: usize, k: usize) -> PartAt {
     PartAt {
         part,
         index: i,
-        crank: crank(r, k),
+        crank: crank(c, k),
     }
 }
 
 /// The largest entry of per-part curves and where: roller 3 at crank angle 12.
-fn largest(r: &SceneResult, rows: &[Vec<f64>], part: Part) -> Extreme {
+fn largest(c: &[f64], rows: &[Vec<f64>], part: Part) -> Extreme {
     let (value, i, k) = max_entry(rows);
-    at(value, Site::Part(part_at(r, part, i, k)))
+    at(value, Site::Part(part_at(c, part, i, k)))
 }
 
 /// The largest value of a curve and where.
-fn highest(r: &SceneResult, curve: &[f64]) -> Extreme {
+fn highest(c: &[f64], curve: &[f64]) -> Extreme {
     let (_, (value, k)) = extremes(curve);
-    at(value, Site::Crank(crank(r, k)))
+    at(value, Site::Crank(crank(c, k)))
 }
 
 /// max − min of a curve (scaled), with where each occurs.
-fn spread(r: &SceneResult, curve: &[f64], scale: f64) -> Extreme {
+fn spread(c: &[f64], curve: &[f64], scale: f64) -> Extreme {
     let ((_, lo), (_, hi)) = extremes(curve);
     let site = Site::Spread {
-        min: crank(r, lo),
-        max: crank(r, hi),
+        min: crank(c, lo),
+        max: crank(c, hi),
     };
     at(fluctuation(curve) * scale, site)
 }
@@ -286,7 +347,7 @@ pub const CLEARANCE: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.clearance.as_ref().map(|c| c.gap_mm.clone())),
+    read: Read::DiscCurves(|d| d.clearance.as_ref().map(|c| c.gap_mm.clone())),
 };
 
 /// Unloaded TE: the smallest closing lag of the rollers that a positive torque closes, arcsec
@@ -299,7 +360,7 @@ pub const BACKLASH: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| backlash(r).map(|b| arcsec(&b.forward_rad))),
+    read: Read::DiscCurves(|d| backlash(d).map(|b| arcsec(&b.forward_rad))),
 };
 
 /// The closing lag the other way, as a magnitude, arcsec (`BacklashCurves::reverse_rad`).
@@ -311,7 +372,7 @@ pub const BACKLASH_REVERSE: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| backlash(r).map(|b| arcsec(&b.reverse_rad))),
+    read: Read::DiscCurves(|d| backlash(d).map(|b| arcsec(&b.reverse_rad))),
 };
 
 /// Unloaded lost motion: backlash + reverse backlash, arcsec (`BacklashCurves::lost_motion_rad`).
@@ -323,7 +384,7 @@ pub const LOST_MOTION: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| backlash(r).map(|b| arcsec(&b.lost_motion_rad))),
+    read: Read::DiscCurves(|d| backlash(d).map(|b| arcsec(&b.lost_motion_rad))),
 };
 
 /// β, the lag of the disc behind its ideal angle −φ/nc under load, arcsec
@@ -336,7 +397,7 @@ pub const LAG: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| arcsec(&c.lag_rad))),
+    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| arcsec(&c.lag_rad))),
 };
 
 /// Loaded TE δ = β + βo (with several discs the common output lag γ), arcsec
@@ -349,7 +410,7 @@ pub const TE: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.loaded.transmission.as_ref().map(|t| arcsec(&t.te_rad))),
+    read: Read::ReducerCurves(|r| r.transmission.as_ref().map(|t| arcsec(&t.te_rad))),
 };
 
 /// Transmission ratio κ = dφ/dφout = 1/(1/nc − dδ/dφ), dimensionless (`Transmission::ratio`);
@@ -362,9 +423,8 @@ pub const RATIO: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| {
-        r.loaded
-            .transmission
+    read: Read::ReducerCurves(|r| {
+        r.transmission
             .as_ref()
             .and_then(|t| t.ratio.as_deref().map(one))
     }),
@@ -379,7 +439,7 @@ pub const ROLLER_FORCE: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| c.force_n.clone())),
+    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| c.force_n.clone())),
 };
 
 /// Hertz peak pressure p0 of each roller's contact, MPa, one curve per roller
@@ -392,7 +452,7 @@ pub const CONTACT_PRESSURE: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| c.pressure_mpa.clone())),
+    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| c.pressure_mpa.clone())),
 };
 
 /// Hertz half-width b of each roller's contact, mm, one curve per roller
@@ -405,7 +465,7 @@ pub const CONTACT_HALF_WIDTH: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.loaded.rollers.as_ref().map(|c| c.half_width_mm.clone())),
+    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| c.half_width_mm.clone())),
 };
 
 /// How many rollers carry a force at each crank angle (`RollerCurves::contacts`).
@@ -417,8 +477,8 @@ pub const CONTACTS: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| {
-        r.loaded
+    read: Read::DiscCurves(|d| {
+        d.loaded
             .rollers
             .as_ref()
             .map(|c| vec![c.contacts.iter().map(|&n| n as f64).collect()])
@@ -436,8 +496,8 @@ pub const FACE_LOAD_FACTOR: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| {
-        Some(one(&r
+    read: Read::DiscCurves(|d| {
+        Some(one(&d
             .loaded
             .rollers
             .as_ref()?
@@ -456,8 +516,8 @@ pub const DISC_TORQUE: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| {
-        let t = r.loaded.torque_nmm.as_ref()?;
+    read: Read::DiscCurves(|d| {
+        let t = d.loaded.torque_nmm.as_ref()?;
         Some(vec![t.iter().map(|&x| units::nm(x)).collect()])
     }),
 };
@@ -472,7 +532,7 @@ pub const OUTPUT_LAG: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.loaded.pins.as_ref().map(|p| arcsec(&p.output_lag_rad))),
+    read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| arcsec(&p.output_lag_rad))),
 };
 
 /// Contact force of each output pin on the disc, N, one curve per pin (`PinCurves::force_n`).
@@ -484,7 +544,7 @@ pub const PIN_FORCE: Quantity = Quantity {
     shape: Shape::PerPin,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.loaded.pins.as_ref().map(|p| p.force_n.clone())),
+    read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| p.force_n.clone())),
 };
 
 /// |Fb|, the magnitude of the crank bearing's force on the disc, N (`BearingCurves::force_n`).
@@ -496,7 +556,7 @@ pub const BEARING_FORCE: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.loaded.bearing.as_ref().map(|b| one(&b.force_n))),
+    read: Read::DiscCurves(|d| d.loaded.bearing.as_ref().map(|b| one(&b.force_n))),
 };
 
 /// ε, the angle of the bearing force from the eccentric direction, counter-clockwise, degrees in
@@ -509,8 +569,8 @@ pub const BEARING_ANGLE: Quantity = Quantity {
     shape: Shape::Curve,
     period: Some(360.0),
     of: None,
-    read: Read::Curves(|r| {
-        r.loaded
+    read: Read::DiscCurves(|d| {
+        d.loaded
             .bearing
             .as_ref()
             .map(|b| vec![b.angle_rad.iter().map(|&a| units::deg(a)).collect()])
@@ -527,7 +587,7 @@ pub const BEARING_DEFLECTION: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| r.loaded.bearing.as_ref().map(|b| one(&b.deflection_mm))),
+    read: Read::DiscCurves(|d| d.loaded.bearing.as_ref().map(|b| one(&b.deflection_mm))),
 };
 
 /// The smallest gap over the rollers and the whole mesh (the whole crank period of the gaps,
@@ -542,15 +602,15 @@ pub const MIN_CLEARANCE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("clearance_mm"),
-    read: Read::Scalar(|r| {
-        r.clearance.as_ref().map(|c| {
+    read: Read::DiscScalar(|d, _| {
+        d.clearance.as_ref().map(|gaps| {
             let site = Site::Gap {
-                roller: c.min.roller,
-                crank_rad: c.min.crank_rad,
-                tooth_phase: c.min.tooth_phase,
-                over: c.coverage,
+                roller: gaps.min.roller,
+                crank_rad: gaps.min.crank_rad,
+                tooth_phase: gaps.min.tooth_phase,
+                over: gaps.coverage,
             };
-            at(c.min.gap_mm, site)
+            at(gaps.min.gap_mm, site)
         })
     }),
 };
@@ -565,11 +625,11 @@ pub const MAX_LOST_MOTION: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("lost_motion_arcsec"),
-    read: Read::Scalar(|r| {
-        let (_, (value, k)) = extremes(&backlash(r)?.lost_motion_rad);
+    read: Read::DiscScalar(|d, c| {
+        let (_, (value, k)) = extremes(&backlash(d)?.lost_motion_rad);
         let site = Site::Sampled {
-            crank: crank(r, k),
-            angles: r.crank_rad.len(),
+            crank: crank(c, k),
+            angles: c.len(),
         };
         Some(at(units::arcsec(value), site))
     }),
@@ -584,10 +644,10 @@ pub const MAX_ROLLER_FORCE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("roller_force_n"),
-    read: Read::Scalar(|r| {
+    read: Read::DiscScalar(|d, c| {
         Some(largest(
-            r,
-            &r.loaded.rollers.as_ref()?.force_n,
+            c,
+            &d.loaded.rollers.as_ref()?.force_n,
             Part::Roller,
         ))
     }),
@@ -603,10 +663,10 @@ pub const MAX_CONTACT_PRESSURE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("contact_pressure_mpa"),
-    read: Read::Scalar(|r| {
+    read: Read::DiscScalar(|d, c| {
         Some(largest(
-            r,
-            &r.loaded.rollers.as_ref()?.pressure_mpa,
+            c,
+            &d.loaded.rollers.as_ref()?.pressure_mpa,
             Part::Roller,
         ))
     }),
@@ -621,9 +681,9 @@ pub const MAX_FACE_LOAD_FACTOR: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("face_load_factor"),
-    read: Read::Scalar(|r| {
-        let face = r.loaded.rollers.as_ref()?.face.as_ref()?;
-        Some(highest(r, &face.face_load_factor))
+    read: Read::DiscScalar(|d, c| {
+        let face = d.loaded.rollers.as_ref()?.face.as_ref()?;
+        Some(highest(c, &face.face_load_factor))
     }),
 };
 
@@ -637,12 +697,12 @@ pub const MAX_LINE_LOAD: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        let face = r.loaded.rollers.as_ref()?.face.as_ref()?;
+    read: Read::DiscScalar(|d, c| {
+        let face = d.loaded.rollers.as_ref()?.face.as_ref()?;
         let (value, i, k, s) = face.peak_line_load();
         face.line_load_n_per_mm.first()?.first()?;
         let site = Site::Slice {
-            at: part_at(r, Part::Roller, i, k),
+            at: part_at(c, Part::Roller, i, k),
             slice: s,
             slices: face.slices,
         };
@@ -659,11 +719,11 @@ pub const MIN_ROLLERS_IN_CONTACT: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("contacts"),
-    read: Read::Scalar(|r| {
-        let c = r.loaded.rollers.as_ref()?;
-        let counts: Vec<f64> = c.contacts.iter().map(|&n| n as f64).collect();
+    read: Read::DiscScalar(|d, c| {
+        let rollers = d.loaded.rollers.as_ref()?;
+        let counts: Vec<f64> = rollers.contacts.iter().map(|&n| n as f64).collect();
         let ((value, k), _) = extremes(&counts);
-        Some(at(value, Site::Crank(crank(r, k))))
+        Some(at(value, Site::Crank(crank(c, k))))
     }),
 };
 
@@ -676,9 +736,9 @@ pub const TE_FLUCTUATION: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("te_arcsec"),
-    read: Read::Scalar(|r| {
-        let t = r.loaded.transmission.as_ref()?;
-        Some(spread(r, &t.te_rad, units::arcsec(1.0)))
+    read: Read::ReducerScalar(|r, c| {
+        let t = r.transmission.as_ref()?;
+        Some(spread(c, &t.te_rad, units::arcsec(1.0)))
     }),
 };
 
@@ -691,9 +751,9 @@ pub const RATIO_FLUCTUATION: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("ratio"),
-    read: Read::Scalar(|r| {
-        let ratio = r.loaded.transmission.as_ref()?.ratio.as_ref()?;
-        Some(spread(r, ratio, 1.0))
+    read: Read::ReducerScalar(|r, c| {
+        let ratio = r.transmission.as_ref()?.ratio.as_ref()?;
+        Some(spread(c, ratio, 1.0))
     }),
 };
 
@@ -706,7 +766,7 @@ pub const MAX_PIN_FORCE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("pin_force_n"),
-    read: Read::Scalar(|r| Some(largest(r, &r.loaded.pins.as_ref()?.force_n, Part::Pin))),
+    read: Read::DiscScalar(|d, c| Some(largest(c, &d.loaded.pins.as_ref()?.force_n, Part::Pin))),
 };
 
 /// The largest crank-bearing force |Fb|, N, with the crank angle.
@@ -718,7 +778,7 @@ pub const MAX_BEARING_FORCE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("bearing_force_n"),
-    read: Read::Scalar(|r| Some(highest(r, &r.loaded.bearing.as_ref()?.force_n))),
+    read: Read::DiscScalar(|d, c| Some(highest(c, &d.loaded.bearing.as_ref()?.force_n))),
 };
 
 /// The largest relative residual of the balances (the paper's Eqs. 12–14) over the crank angles,
@@ -731,11 +791,11 @@ pub const MAX_RESIDUAL: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| Some(highest(r, &r.loaded.bearing.as_ref()?.residual))),
+    read: Read::DiscScalar(|d, c| Some(highest(c, &d.loaded.bearing.as_ref()?.residual))),
 };
 
 /// The catalogue figures of a torsion scene, `[crank]`, read by `figure`.
-fn torsion_figures(r: &SceneResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
+fn torsion_figures(r: &ReducerResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
     let t = r.torsion.as_ref()?;
     Some(vec![t.figures.iter().map(figure).collect()])
 }
@@ -750,7 +810,7 @@ pub const TORSION_LOST_MOTION: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| torsion_figures(r, |f| units::arcmin(f.lost_motion_rad))),
+    read: Read::ReducerCurves(|r| torsion_figures(r, |f| units::arcmin(f.lost_motion_rad))),
 };
 
 /// Torsion backlash γ(0⁺) − γ(0⁻), the dead band at zero torque, arcmin, at each locked crank
@@ -763,7 +823,7 @@ pub const TORSION_BACKLASH: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| torsion_figures(r, |f| units::arcmin(f.backlash_rad))),
+    read: Read::ReducerCurves(|r| torsion_figures(r, |f| units::arcmin(f.backlash_rad))),
 };
 
 /// Torsional rigidity, the secant stiffness between 50 % and 100 % of the rated torque in the
@@ -776,12 +836,12 @@ pub const TORSIONAL_RIGIDITY: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| torsion_figures(r, |f| units::nm_per_arcmin(f.rigidity()))),
+    read: Read::ReducerCurves(|r| torsion_figures(r, |f| units::nm_per_arcmin(f.rigidity()))),
 };
 
 /// The figures of a torsion scene whose loop carries friction, `[crank]`, read by `figure`
 /// (none without friction: the frictionless loop has no hysteresis to read).
-fn friction_figures(r: &SceneResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
+fn friction_figures(r: &ReducerResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
     r.torsion.as_ref().filter(|t| t.friction)?;
     torsion_figures(r, figure)
 }
@@ -796,7 +856,7 @@ pub const HYSTERESIS_LOSS: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| friction_figures(r, |f| units::arcmin(f.hysteresis_rad))),
+    read: Read::ReducerCurves(|r| friction_figures(r, |f| units::arcmin(f.hysteresis_rad))),
 };
 
 /// The energy friction takes per cycle of a torsion loop, its area ∮ T dγ, J, at each locked
@@ -809,16 +869,19 @@ pub const HYSTERESIS_ENERGY: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| friction_figures(r, |f| 1e-3 * f.loop_energy_nmm)),
+    read: Read::ReducerCurves(|r| friction_figures(r, |f| 1e-3 * f.loop_energy_nmm)),
 };
 
 /// The largest (`largest` true) or smallest value of a per-crank curve of the registry, with
 /// the crank angle where it occurs.
-fn curve_extreme(r: &SceneResult, q: &Quantity, largest: bool) -> Option<Extreme> {
-    let values = q.curves(r)?.values.pop()?;
+fn curve_extreme((r, c): (&ReducerResult, &[f64]), q: &Quantity, largest: bool) -> Option<Extreme> {
+    let Read::ReducerCurves(read) = q.read else {
+        return None;
+    };
+    let values = read(r)?.pop()?;
     let ((lo, klo), (hi, khi)) = extremes(&values);
     let (value, k) = if largest { (hi, khi) } else { (lo, klo) };
-    Some(at(value, Site::Locked(crank(r, k))))
+    Some(at(value, Site::Locked(crank(c, k))))
 }
 
 /// The largest torsion lost motion over the locked crank angles, arcmin.
@@ -830,7 +893,7 @@ pub const MAX_TORSION_LOST_MOTION: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("lost_motion_arcmin"),
-    read: Read::Scalar(|r| curve_extreme(r, &TORSION_LOST_MOTION, true)),
+    read: Read::ReducerScalar(|r, c| curve_extreme((r, c), &TORSION_LOST_MOTION, true)),
 };
 
 /// The largest torsion backlash over the locked crank angles, arcmin.
@@ -842,7 +905,7 @@ pub const MAX_TORSION_BACKLASH: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("backlash_arcmin"),
-    read: Read::Scalar(|r| curve_extreme(r, &TORSION_BACKLASH, true)),
+    read: Read::ReducerScalar(|r, c| curve_extreme((r, c), &TORSION_BACKLASH, true)),
 };
 
 /// The smallest torsional rigidity over the locked crank angles, N·m/arcmin.
@@ -854,7 +917,7 @@ pub const MIN_TORSIONAL_RIGIDITY: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("torsional_rigidity_nm_per_arcmin"),
-    read: Read::Scalar(|r| curve_extreme(r, &TORSIONAL_RIGIDITY, false)),
+    read: Read::ReducerScalar(|r, c| curve_extreme((r, c), &TORSIONAL_RIGIDITY, false)),
 };
 
 /// The largest hysteresis loss over the locked crank angles, arcmin.
@@ -866,7 +929,7 @@ pub const MAX_HYSTERESIS_LOSS: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("hysteresis_loss_arcmin"),
-    read: Read::Scalar(|r| curve_extreme(r, &HYSTERESIS_LOSS, true)),
+    read: Read::ReducerScalar(|r, c| curve_extreme((r, c), &HYSTERESIS_LOSS, true)),
 };
 
 /// The crank bearing's equivalent dynamic load P = (mean of Fb^p over the sweep)^(1/p), N
@@ -879,8 +942,8 @@ pub const BEARING_EQUIVALENT_LOAD: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        (r.bearing_life).map(|b| at(b.equivalent_load_n, Site::Rule(Rule::BearingEquivalentLoad)))
+    read: Read::DiscScalar(|d, _| {
+        (d.bearing_life).map(|b| at(b.equivalent_load_n, Site::Rule(Rule::BearingEquivalentLoad)))
     }),
 };
 
@@ -895,8 +958,8 @@ pub const BEARING_LIFE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        let b = r.bearing_life?;
+    read: Read::DiscScalar(|d, _| {
+        let b = d.bearing_life?;
         let load_n = b.equivalent_load_n;
         let site = match b.is_unbounded() {
             false => Site::Life { load_n },
@@ -907,13 +970,13 @@ pub const BEARING_LIFE: Quantity = Quantity {
 };
 
 /// The output pins' stresses, when the scene computes them (`Effect::Strength`).
-fn pin_stress(r: &SceneResult) -> Option<&super::strength::PinStress> {
-    r.loaded.pin_stress.as_ref()
+fn pin_stress(r: &ReducerResult) -> Option<&super::strength::PinStress> {
+    r.pin_stress.as_ref()
 }
 
 /// A disc's strength figures, when the scene computes them (`Effect::Strength`).
-fn disc_strength(r: &SceneResult) -> Option<super::strength::DiscStrength> {
-    r.loaded.strength
+fn disc_strength(d: &DiscResult) -> Option<super::strength::DiscStrength> {
+    d.loaded.strength
 }
 
 /// σ_b = 32·M/(π·d³) of each output pin at its most loaded section, MPa, one curve per pin
@@ -927,7 +990,7 @@ pub const PIN_BENDING_STRESS: Quantity = Quantity {
     shape: Shape::PerPin,
     period: None,
     of: None,
-    read: Read::Curves(|r| Some(pin_stress(r)?.bending_stress_mpa.clone())),
+    read: Read::ReducerCurves(|r| Some(pin_stress(r)?.bending_stress_mpa.clone())),
 };
 
 /// The largest output-pin bending stress, MPa, with the pin and the crank angle.
@@ -939,7 +1002,9 @@ pub const MAX_PIN_BENDING_STRESS: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("pin_bending_stress_mpa"),
-    read: Read::Scalar(|r| Some(largest(r, &pin_stress(r)?.bending_stress_mpa, Part::Pin))),
+    read: Read::ReducerScalar(|r, c| {
+        Some(largest(c, &pin_stress(r)?.bending_stress_mpa, Part::Pin))
+    }),
 };
 
 /// The largest peak shear stress 4·V/(3·A) of an output pin, MPa, with the pin and the crank
@@ -952,7 +1017,7 @@ pub const MAX_PIN_SHEAR_STRESS: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| Some(largest(r, &pin_stress(r)?.shear_stress_mpa, Part::Pin))),
+    read: Read::ReducerScalar(|r, c| Some(largest(c, &pin_stress(r)?.shear_stress_mpa, Part::Pin))),
 };
 
 /// The pins' safety against yield in bending: yield strength / the largest bending stress,
@@ -966,10 +1031,10 @@ pub const PIN_BENDING_SAFETY: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
+    read: Read::ReducerScalar(|r, c| {
         let p = pin_stress(r)?;
         let yield_mpa = p.yield_strength_mpa?;
-        let most = largest(r, &p.bending_stress_mpa, Part::Pin);
+        let most = largest(c, &p.bending_stress_mpa, Part::Pin);
         let safety = yield_mpa / most.value;
         Some(match safety.is_finite() {
             true => Extreme {
@@ -992,28 +1057,28 @@ pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        if let Some(d) = duty(r) {
-            return duty_fatigue(d);
-        }
-        let f = disc_strength(r)?.fatigue?;
-        let (value, part) = f.shorter()?;
-        let pressure_mpa = f.pressure_mpa;
-        // Where the largest pressure is (the one the life is at), when the curves hold it.
-        let place = (r.loaded.rollers.as_ref())
-            .map(|c| max_entry(&c.pressure_mpa))
-            .filter(|&(p, _, _)| p == pressure_mpa)
-            .map(|(_, i, k)| part_at(r, Part::Roller, i, k));
-        let site = match value == super::results::UNBOUNDED_LIFE_H {
-            false => Site::Fatigue {
-                part,
-                pressure_mpa,
-                at: place,
-            },
-            true => Site::Unbounded(Unbounded::Fatigue { part, pressure_mpa }),
-        };
-        Some(at(value, site))
-    }),
+    read: Read::DiscOrCycle(
+        |d, c| {
+            let f = disc_strength(d)?.fatigue?;
+            let (value, part) = f.shorter()?;
+            let pressure_mpa = f.pressure_mpa;
+            // Where the largest pressure is (the one the life is at), when the curves hold it.
+            let place = (d.loaded.rollers.as_ref())
+                .map(|rollers| max_entry(&rollers.pressure_mpa))
+                .filter(|&(p, _, _)| p == pressure_mpa)
+                .map(|(_, i, k)| part_at(c, Part::Roller, i, k));
+            let site = match value == super::results::UNBOUNDED_LIFE_H {
+                false => Site::Fatigue {
+                    part,
+                    pressure_mpa,
+                    at: place,
+                },
+                true => Site::Unbounded(Unbounded::Fatigue { part, pressure_mpa }),
+            };
+            Some(at(value, site))
+        },
+        duty_fatigue,
+    ),
 };
 
 /// The crank bearing's static safety s0 = C0 / the largest bearing force (ISO 76), with
@@ -1027,13 +1092,13 @@ pub const STATIC_SAFETY: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        let s = disc_strength(r)?.static_safety?;
+    read: Read::DiscScalar(|d, c| {
+        let s = disc_strength(d)?.static_safety?;
         // Where the largest bearing force is, when the curve holds it.
-        let place = (r.loaded.bearing.as_ref())
+        let place = (d.loaded.bearing.as_ref())
             .map(|b| extremes(&b.force_n).1)
             .filter(|&(f, _)| f == s.largest_force_n)
-            .map(|(_, k)| crank(r, k));
+            .map(|(_, k)| crank(c, k));
         let site = match s.safety == f64::MAX {
             false => Site::StaticSafety {
                 force_n: s.largest_force_n,
@@ -1069,18 +1134,13 @@ fn duty_fatigue(d: &DutyCycle) -> Option<Extreme> {
         })
 }
 
-/// A duty cycle's results, when the scene runs one.
-fn duty(r: &SceneResult) -> Option<&DutyCycle> {
-    r.duty.as_deref()
-}
-
 /// A duty cycle's figure of disc `k` at `site`, naming the disc with several discs.
-fn of_disc(r: &SceneResult, k: usize, value: f64, site: Site) -> Extreme {
+fn of_disc(d: &DutyCycle, k: usize, value: f64, site: Site) -> Extreme {
     Extreme {
         value,
         at: Place {
             bin: None,
-            disc: (duty(r).map_or(0, |d| d.life.len()) > 1).then_some(k),
+            disc: (d.life.len() > 1).then_some(k),
             site,
         },
     }
@@ -1098,8 +1158,7 @@ pub const DUTY_LIFE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        let d = duty(r)?;
+    read: Read::CycleScalar(|d| {
         let (k, b) = d.shortest_life()?;
         let site = match b.is_unbounded() {
             true => Site::Unbounded(Unbounded::DutyLife),
@@ -1108,7 +1167,7 @@ pub const DUTY_LIFE: Quantity = Quantity {
                 mean_speed_rpm: d.mean_speed_rpm,
             },
         };
-        Some(of_disc(r, k, b.life_h?, site))
+        Some(of_disc(d, k, b.life_h?, site))
     }),
 };
 
@@ -1122,8 +1181,7 @@ pub const DUTY_EQUIVALENT_LOAD: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        let d = duty(r)?;
+    read: Read::CycleScalar(|d| {
         let (k, b) = d.life.iter().enumerate().reduce(|a, b| {
             if b.1.equivalent_load_n > a.1.equivalent_load_n {
                 b
@@ -1132,7 +1190,7 @@ pub const DUTY_EQUIVALENT_LOAD: Quantity = Quantity {
             }
         })?;
         let site = Site::Rule(Rule::DutyEquivalentLoad);
-        Some(of_disc(r, k, b.equivalent_load_n, site))
+        Some(of_disc(d, k, b.equivalent_load_n, site))
     }),
 };
 
@@ -1146,8 +1204,7 @@ pub const EQUIVALENT_TORQUE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        let d = duty(r)?;
+    read: Read::CycleScalar(|d| {
         let site = Site::Rule(Rule::EquivalentTorque);
         Some(at(units::nm(d.equivalent_torque_nmm), site))
     }),
@@ -1162,10 +1219,7 @@ pub const MEAN_SPEED: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        let d = duty(r)?;
-        Some(at(d.mean_speed_rpm, Site::Rule(Rule::MeanSpeed)))
-    }),
+    read: Read::CycleScalar(|d| Some(at(d.mean_speed_rpm, Site::Rule(Rule::MeanSpeed)))),
 };
 
 /// The mean efficiency of a duty cycle weighted by energy, Σ sᵢ·Dᵢ / Σ sᵢ·Eᵢ (each bin's
@@ -1179,14 +1233,14 @@ pub const DUTY_MEAN_EFFICIENCY: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
+    read: Read::CycleScalar(|d| {
         let site = Site::Rule(Rule::DutyMeanEfficiency);
-        Some(at(duty(r)?.mean_efficiency?, site))
+        Some(at(d.mean_efficiency?, site))
     }),
 };
 
 /// The reducer's efficiency figures of a scene, when computed.
-fn reducer_efficiency(r: &SceneResult) -> Option<&ReducerEfficiency> {
+fn reducer_efficiency(r: &ReducerResult) -> Option<&ReducerEfficiency> {
     r.efficiency.as_ref()?.reducer.as_ref()
 }
 
@@ -1200,7 +1254,7 @@ pub const EFFICIENCY: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| reducer_efficiency(r).map(|e| one(&e.efficiency))),
+    read: Read::ReducerCurves(|r| reducer_efficiency(r).map(|e| one(&e.efficiency))),
 };
 
 /// The input torque at each crank angle, N·m (`ReducerEfficiency::input_torque_nmm`).
@@ -1212,7 +1266,7 @@ pub const INPUT_TORQUE: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::Curves(|r| {
+    read: Read::ReducerCurves(|r| {
         reducer_efficiency(r)
             .map(|e| vec![e.input_torque_nmm.iter().map(|&t| units::nm(t)).collect()])
     }),
@@ -1228,13 +1282,13 @@ pub const MEAN_EFFICIENCY: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("efficiency"),
-    read: Read::Scalar(|r| {
+    read: Read::ReducerScalar(|r, c| {
         reducer_efficiency(r).map(|e| {
             let site = Site::Efficiency {
                 driver: e.driver,
                 self_locks: e.self_locks,
                 locked: e.self_locking_crank_rad.len(),
-                angles: r.crank_rad.len(),
+                angles: c.len(),
             };
             at(e.mean_efficiency, site)
         })
@@ -1251,8 +1305,8 @@ pub const TOTAL_POWER_LOSS: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
-        let p = r.efficiency.as_ref()?.power_loss_w()?;
+    read: Read::Losses(|e| {
+        let p = e.power_loss_w()?;
         Some(at(p.total(), Site::PowerLoss(p)))
     }),
 };
@@ -1266,7 +1320,7 @@ pub const TEMPERATURE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: None,
-    read: Read::Scalar(|r| {
+    read: Read::ReducerScalar(|r, _| {
         let t = reducer_efficiency(r)?.temperature_c?;
         Some(at(t, Site::Rule(Rule::Temperature)))
     }),

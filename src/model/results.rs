@@ -174,8 +174,8 @@ pub struct Transmission {
     pub ratio: Option<Vec<f64>>,
 }
 
-/// The loaded curves of a scene (or of one disc of several) over its crank angles, each `None`
-/// when its effect was not computed.
+/// One disc's loaded curves over the scene's crank angles, each `None` when its effect was not
+/// computed (the reducer's curves over all discs are `ReducerResult`'s).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct LoadedSweep {
     /// The disc's share of the output torque, N·mm `[angle]`: in a disc of several only.
@@ -186,9 +186,6 @@ pub struct LoadedSweep {
     pub pins: Option<PinCurves>,
     /// The crank bearing's force and the balance residuals (`Effect::Bearing`).
     pub bearing: Option<BearingCurves>,
-    /// TE and ratio, with the rollers modelled; with several discs the reducer's (its own
-    /// `SceneResult::loaded`), none of a disc's.
-    pub transmission: Option<Transmission>,
     /// The friction losses of the disc's contacts at each angle, per unit input speed,
     /// N·mm/rad `[angle]` (the input's drag aside: that is the reducer's), from each angle's
     /// solution as the sweep solved it: recorded for the effect `efficiency` only
@@ -198,10 +195,6 @@ pub struct LoadedSweep {
     /// balance (`Coupling::input_torque`): recorded with `losses` for the coupled friction
     /// model only.
     pub input_torque_nmm: Option<Vec<f64>>,
-    /// The output pins' stresses (`Effect::Strength` with a pin support): the reducer's, on a
-    /// single disc's sweep or with several discs on the scene's own (`SceneResult::loaded`),
-    /// none of a disc's.
-    pub pin_stress: Option<super::strength::PinStress>,
     /// A disc's contact fatigue and crank bearing's static safety (`Effect::Strength`).
     pub strength: Option<super::strength::DiscStrength>,
 }
@@ -404,30 +397,21 @@ pub struct TorqueCurve {
     pub mean_efficiency: Vec<f64>,
 }
 
-/// Everything computed for one scene. A quantity that was not computed is `None`.
+/// Everything computed for one scene, the same shape for any number of discs: the reducer's
+/// curves over all its discs, and each disc's own results (one disc is `discs.len() == 1`).
+/// A quantity that was not computed is `None`.
 #[derive(Debug, Clone)]
 pub struct SceneResult {
-    /// The scene's name; a disc's of several is `<scene> disc k`.
+    /// The scene's name.
     pub name: String,
     /// The scene's crank angles φ, rad (`Scene::crank_rad`).
     pub crank_rad: Vec<f64>,
-    /// The unloaded gaps at the ideal pose (`Effect::Clearance`).
-    pub clearance: Option<ClearanceSweep>,
-    /// The loaded curves (none computed: every part `None`).
-    pub loaded: LoadedSweep,
-    /// A torsion scene's curves and figures (`Effect::Torsion`).
-    pub torsion: Option<TorsionCurves>,
-    /// The crank bearing's rating life, when the design has a `crank_bearing` and the scene
-    /// computes the bearing force over whole loaded periods.
-    pub bearing_life: Option<BearingLife>,
-    /// Friction losses, efficiency and heat (`Effect::Efficiency`); with several discs, each
-    /// disc's own losses in its `discs` entry.
-    pub efficiency: Option<EfficiencyCurves>,
-    /// With several discs (MODEL.md "Several discs"), each disc's own results, disc k at the
-    /// crank phase 2πk/N, at the scene's crank angles: its clearance and its loaded curves
-    /// (with its torque share). The scene's own `clearance` is then `None` and its `loaded`
-    /// holds the reducer's transmission alone (the common output lag γ). Empty for one disc.
-    pub discs: Vec<SceneResult>,
+    /// The reducer's curves over all its discs (all `None` in a duty-cycle scene).
+    pub reducer: ReducerResult,
+    /// Each disc's results, disc k at the crank phase 2πk/N (MODEL.md "Several discs"), at
+    /// the scene's crank angles: at least one in a run scene; none in a duty-cycle scene
+    /// (each bin has its own).
+    pub discs: Vec<DiscResult>,
     /// A duty-cycle scene's bins and what the cycle gives (`engine::duty_cycle`); the scene's
     /// own curves are then empty (each bin has its own), and a scalar of the registry is the
     /// worst over the bins (`Quantity::scalar`). `None` for an ordinary scene.
@@ -435,15 +419,53 @@ pub struct SceneResult {
 }
 
 impl SceneResult {
-    /// Each disc's results, at least one, in disc order: with several discs their own
-    /// (`discs`), with one the scene's result itself (which holds its disc's curves). What
-    /// reads a disc's figures of every disc reads them here, whatever N.
-    pub fn each_disc(&self) -> &[SceneResult] {
-        match self.discs.is_empty() {
-            true => std::slice::from_ref(self),
-            false => &self.discs,
+    /// The disc of a one-disc scene, whose curves are written and drawn as the scene's own;
+    /// `None` with several discs (each is named, `disc k`) or none (a duty cycle). The one
+    /// place that asks how many discs there are to decide how results are presented.
+    pub fn only_disc(&self) -> Option<&DiscResult> {
+        match self.discs.as_slice() {
+            [one] => Some(one),
+            _ => None,
         }
     }
+
+    /// Whether the discs are named (`disc k`) in what is said of them: with several discs.
+    pub fn names_discs(&self) -> bool {
+        self.discs.len() > 1
+    }
+}
+
+/// The reducer's results over all its discs (MODEL.md "Several discs"): what no single disc has.
+#[derive(Debug, Clone, Default)]
+pub struct ReducerResult {
+    /// TE and ratio, with the rollers modelled: with several discs from the common output lag
+    /// γ (`equilibrium::discs_sweep`).
+    pub transmission: Option<Transmission>,
+    /// The output pins' stresses (`Effect::Strength` with a pin support): every disc's force
+    /// on each pin.
+    pub pin_stress: Option<super::strength::PinStress>,
+    /// Friction losses, efficiency and heat (`Effect::Efficiency`): every disc's contacts and
+    /// the input's drag, with the reducer's figures (`EfficiencyCurves::reducer`).
+    pub efficiency: Option<EfficiencyCurves>,
+    /// A torsion scene's curves and figures (`Effect::Torsion`).
+    pub torsion: Option<TorsionCurves>,
+}
+
+/// One disc's results over the scene's crank angles.
+#[derive(Debug, Clone)]
+pub struct DiscResult {
+    /// The scene's name, or `<scene> disc k` with several discs.
+    pub name: String,
+    /// The unloaded gaps at the ideal pose (`Effect::Clearance`).
+    pub clearance: Option<ClearanceSweep>,
+    /// The loaded curves (none computed: every part `None`).
+    pub loaded: LoadedSweep,
+    /// The crank bearing's rating life, when the design has a `crank_bearing` and the scene
+    /// computes the bearing force over whole loaded periods.
+    pub bearing_life: Option<BearingLife>,
+    /// The friction losses of the disc's own contacts (no drag, no reducer figures), with
+    /// several discs; `None` for one disc (its losses are the reducer's but for the drag).
+    pub efficiency: Option<EfficiencyCurves>,
 }
 
 /// A duty cycle's results (`engine::duty_cycle`, ISO 281 with the Palmgren–Miner rule).

@@ -19,7 +19,8 @@ use crate::engine::verdict::{Check, CheckKind};
 use crate::error::Result;
 use crate::model::quantity::{self as q, Quantity, QUANTITIES};
 use crate::model::results::{
-    ClearanceSweep, EfficiencyCurves, MinCoverage, SceneResult, TorsionCompliances,
+    ClearanceSweep, DiscResult, EfficiencyCurves, LoadedSweep, MinCoverage, SceneResult,
+    TorsionCompliances,
 };
 use crate::model::Study;
 use crate::numeric::extremes;
@@ -141,9 +142,19 @@ pub struct MinClearanceOver {
 /// own), every scalar too; beside them the entries that are no registry quantity (`Extra`).
 pub struct SceneDoc<'a> {
     r: &'a SceneResult,
-    /// With the scene's name and crank angles; without in a disc's document (`discs`, a duty
-    /// bin's run).
-    named: bool,
+    /// Whose results the document writes.
+    of: Of<'a>,
+}
+
+/// Whose results a scene's document writes.
+#[derive(Clone, Copy)]
+enum Of<'a> {
+    /// The scene's: the reducer's curves, and its disc's with one disc
+    /// (`SceneResult::only_disc`); with the scene's name and crank angles when `named` (not in a
+    /// duty bin's run).
+    Scene { named: bool },
+    /// One disc's alone, without the scene's name and angles (`discs`).
+    Disc(&'a DiscResult),
 }
 
 /// One entry, or a group of entries, of a scene's document.
@@ -335,7 +346,7 @@ impl<'a> DutyDoc<'a> {
                     mean_efficiency: q::MEAN_EFFICIENCY
                         .scalar(&b.result)
                         .map(|e| Finite(e.value)),
-                    results: SceneDoc::disc(&b.result),
+                    results: SceneDoc::unnamed(&b.result),
                 })
                 .collect(),
         })
@@ -391,8 +402,8 @@ pub const NO_SPEED: &str = "no input_speed_rpm: the efficiency does not depend o
 
 /// The line load of every roller along the face, N/mm \[roller\]\[crank\]\[slice\], where the
 /// scene resolves the face in more than one slice.
-fn line_loads(r: &SceneResult) -> Option<Vec<FlatRows<'_>>> {
-    let f = r.loaded.rollers.as_ref()?.face.as_ref()?;
+fn line_loads(loaded: &LoadedSweep) -> Option<Vec<FlatRows<'_>>> {
+    let f = loaded.rollers.as_ref()?.face.as_ref()?;
     let loaded = f.slices > 1 && f.line_load_n_per_mm.first().is_some_and(|r| !r.is_empty());
     loaded.then(|| {
         (0..f.line_load_n_per_mm.len())
@@ -455,12 +466,30 @@ fn degrees(crank_rad: &[f64]) -> Vec<Finite> {
 
 impl<'a> SceneDoc<'a> {
     pub fn new(r: &'a SceneResult) -> Self {
-        SceneDoc { r, named: true }
+        let of = Of::Scene { named: true };
+        SceneDoc { r, of }
     }
 
-    /// A disc's document: its curves and scalars, without the scene's name and angles.
-    fn disc(r: &'a SceneResult) -> Self {
-        SceneDoc { r, named: false }
+    /// A duty bin's run: the scene's document without its name and angles.
+    fn unnamed(r: &'a SceneResult) -> Self {
+        let of = Of::Scene { named: false };
+        SceneDoc { r, of }
+    }
+
+    /// The disc whose curves the document writes: one disc's alone, or the scene's only disc.
+    fn disc(&self) -> Option<&'a DiscResult> {
+        match self.of {
+            Of::Scene { .. } => self.r.only_disc(),
+            Of::Disc(d) => Some(d),
+        }
+    }
+
+    /// The losses the document writes: the reducer's in the scene's, a disc's own in its.
+    fn efficiency(&self) -> Option<&'a EfficiencyCurves> {
+        match self.of {
+            Of::Scene { .. } => self.r.reducer.efficiency.as_ref(),
+            Of::Disc(d) => d.efficiency.as_ref(),
+        }
     }
 
     /// A registry curve under its key, and its extremes under `extremes`' keys.
@@ -470,7 +499,11 @@ impl<'a> SceneDoc<'a> {
         quantity: &'static Quantity,
         extremes_keys: Option<(&'static str, &'static str)>,
     ) -> std::result::Result<(), M::Error> {
-        let Some(curves) = quantity.curves(self.r) else {
+        let curves = match self.of {
+            Of::Scene { .. } => quantity.curves(self.r),
+            Of::Disc(d) => quantity.disc_curves(d),
+        };
+        let Some(curves) = curves else {
             return Ok(());
         };
         let row = curves.values.first().map_or(&[][..], Vec::as_slice);
@@ -495,23 +528,29 @@ impl<'a> SceneDoc<'a> {
         extra: Extra,
     ) -> std::result::Result<(), M::Error> {
         let r = self.r;
-        let clearance = r.clearance.as_ref();
-        let reducer_eff = r.efficiency.as_ref().and_then(|e| e.reducer.as_ref());
-        let torsion = r.torsion.as_ref();
+        let (scene, named) = match self.of {
+            Of::Scene { named } => (true, named),
+            Of::Disc(_) => (false, false),
+        };
+        let loaded = self.disc().map(|d| &d.loaded);
+        let clearance = self.disc().and_then(|d| d.clearance.as_ref());
+        let efficiency = self.efficiency();
+        let reducer_eff = efficiency.and_then(|e| e.reducer.as_ref());
+        let torsion = r.reducer.torsion.as_ref().filter(|_| scene);
         match extra {
             Extra::Name => {
-                entry(map, "name", self.named.then_some(&r.name))?;
-                entry(map, "crank_deg", self.named.then(|| degrees(&r.crank_rad)))
+                entry(map, "name", named.then_some(&r.name))?;
+                entry(map, "crank_deg", named.then(|| degrees(&r.crank_rad)))
             }
             Extra::MinClearance => {
                 entry(map, "min_clearance_at", clearance.map(min_clearance_at))?;
                 entry(map, "min_clearance_over", clearance.map(min_clearance_over))
             }
-            Extra::LineLoads => entry(map, "line_load_n_per_mm", line_loads(r)),
+            Extra::LineLoads => entry(map, "line_load_n_per_mm", loaded.and_then(line_loads)),
             Extra::Residual => entry(
                 map,
                 "residual",
-                r.loaded.bearing.as_ref().map(|b| Curve(&b.residual)),
+                (loaded.and_then(|l| l.bearing.as_ref())).map(|b| Curve(&b.residual)),
             ),
             Extra::Losses => {
                 entry(
@@ -519,15 +558,11 @@ impl<'a> SceneDoc<'a> {
                     "self_locking_deg",
                     reducer_eff.map(|e| degrees(&e.self_locking_crank_rad)),
                 )?;
-                entry(
-                    map,
-                    "power_loss_w",
-                    r.efficiency.as_ref().and_then(PowerLossDoc::new),
-                )?;
+                entry(map, "power_loss_w", efficiency.and_then(PowerLossDoc::new))?;
                 entry(
                     map,
                     "power_loss_note",
-                    (r.efficiency.as_ref())
+                    efficiency
                         .filter(|e| e.input_speed_rad_s.is_none())
                         .map(|_| NO_SPEED),
                 )
@@ -578,14 +613,17 @@ impl<'a> SceneDoc<'a> {
             Extra::Discs => entry(
                 map,
                 "discs",
-                (!r.discs.is_empty())
-                    .then(|| r.discs.iter().map(SceneDoc::disc).collect::<Vec<_>>()),
+                (scene && r.names_discs()).then(|| {
+                    (r.discs.iter())
+                        .map(|d| SceneDoc { r, of: Of::Disc(d) })
+                        .collect::<Vec<_>>()
+                }),
             ),
-            Extra::DutyCycle => entry(map, "duty_cycle", DutyDoc::new(r)),
+            Extra::DutyCycle => entry(map, "duty_cycle", DutyDoc::new(r).filter(|_| scene)),
             Extra::Fatigue => entry(
                 map,
                 "contact_fatigue_life_h",
-                (r.loaded.strength.and_then(|s| s.fatigue)).map(|f| FatigueDoc {
+                (loaded.and_then(|l| l.strength?.fatigue)).map(|f| FatigueDoc {
                     disc: f.disc_h.map(Finite),
                     rollers: f.rollers_h.map(Finite),
                 }),
@@ -605,7 +643,11 @@ impl Serialize for SceneDoc<'_> {
                 }
                 Field::Scalars => {
                     for quantity in QUANTITIES {
-                        let value = quantity.scalar(self.r).map(|e| Finite(e.value));
+                        let value = match self.of {
+                            Of::Scene { .. } => quantity.scalar(self.r),
+                            Of::Disc(d) => quantity.disc_scalar(d, &self.r.crank_rad),
+                        };
+                        let value = value.map(|e| Finite(e.value));
                         entry(&mut map, quantity.key, value)?;
                     }
                 }

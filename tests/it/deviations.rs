@@ -131,8 +131,8 @@ fn every_roller_moved_outward_is_a_larger_roller_circle() {
         run(&larger, &ground, &scene),
     );
     let (ra, rb) = (
-        la.loaded.rollers.as_ref().unwrap(),
-        lb.loaded.rollers.as_ref().unwrap(),
+        la.discs[0].loaded.rollers.as_ref().unwrap(),
+        lb.discs[0].loaded.rollers.as_ref().unwrap(),
     );
     for (fa, fb) in ra.force_n.iter().zip(&rb.force_n) {
         let scale = fb.iter().fold(1.0_f64, |m, f| m.max(f.abs()));
@@ -194,8 +194,8 @@ fn every_roller_moved_along_the_circle_is_a_turned_housing() {
         &loaded_scene(from, from + 36.0, 36, effects),
     );
     let (ra, rb) = (
-        built.loaded.rollers.unwrap(),
-        turned.loaded.rollers.unwrap(),
+        built.discs[0].loaded.rollers.clone().unwrap(),
+        turned.discs[0].loaded.rollers.clone().unwrap(),
     );
     let shifted: Vec<f64> = rb.lag_rad.iter().map(|l| l - lag).collect();
     let scale = shifted.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
@@ -337,13 +337,16 @@ fn pins_and_holes_moved_outward_are_a_larger_pin_circle() {
         run(&moved, &PAPER_OPTIMUM, &scene),
         run(&larger, &PAPER_OPTIMUM, &scene),
     );
-    let (pa, pb) = (a.loaded.pins.unwrap(), b.loaded.pins.unwrap());
+    let (pa, pb) = (
+        a.discs[0].loaded.pins.clone().unwrap(),
+        b.discs[0].loaded.pins.clone().unwrap(),
+    );
     for (fa, fb) in pa.force_n.iter().zip(&pb.force_n) {
         let scale = fb.iter().fold(1.0_f64, |m, f| m.max(f.abs()));
         assert!(max_abs_diff(fa, fb) < 1e-7 * scale);
     }
-    let ta = a.loaded.transmission.unwrap().te_rad;
-    let tb = b.loaded.transmission.unwrap().te_rad;
+    let ta = a.reducer.transmission.unwrap().te_rad;
+    let tb = b.reducer.transmission.unwrap().te_rad;
     let scale = tb.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
     assert!(max_abs_diff(&ta, &tb) < 1e-7 * scale);
 }
@@ -365,9 +368,12 @@ fn a_hole_moved_alone_changes_its_pins_load_and_keeps_the_balance() {
         run(&moved, &PAPER_OPTIMUM, &scene),
         run(&paper_design(), &PAPER_OPTIMUM, &scene),
     );
-    let bearing = a.loaded.bearing.as_ref().unwrap();
+    let bearing = a.discs[0].loaded.bearing.as_ref().unwrap();
     assert!(bearing.residual.iter().all(|r| *r <= 1e-9));
-    let (pa, pb) = (a.loaded.pins.unwrap(), b.loaded.pins.unwrap());
+    let (pa, pb) = (
+        a.discs[0].loaded.pins.clone().unwrap(),
+        b.discs[0].loaded.pins.clone().unwrap(),
+    );
     let changed = max_abs_diff(&pa.force_n[2], &pb.force_n[2]);
     // 4 µm of a hole against a pin stiffness of ~7e5 N/mm: hundreds of newtons.
     assert!(changed > 10.0, "pin 2's force changed by {changed} N");

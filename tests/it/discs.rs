@@ -10,7 +10,7 @@ use cycloid::equilibrium::discs::Discs;
 use cycloid::equilibrium::discs_sweep::sweep_discs;
 use cycloid::equilibrium::loaded::{AngleSolution, Model};
 use cycloid::equilibrium::sweep;
-use cycloid::model::results::SceneResult;
+use cycloid::model::results::{DiscResult, SceneResult};
 use cycloid::model::{ContactLaw, Design, Effect, GeometryMode, Plan, Scene, TorqueSweep};
 use cycloid::progress::Silent;
 use proptest::prelude::*;
@@ -67,7 +67,7 @@ fn run(case: &Case, discs: usize, scene: &Scene, pins: bool) -> Option<SceneResu
     }
 }
 
-fn torque(disc: &SceneResult, a: usize) -> f64 {
+fn torque(disc: &DiscResult, a: usize) -> f64 {
     disc.loaded.torque_nmm.as_ref().unwrap()[a]
 }
 
@@ -114,8 +114,12 @@ fn interference_free(case: &Case) -> bool {
         GeometryMode::Exact,
     );
     let plan = Plan::of(&scene.name, &[Effect::Clearance]);
-    run_design(&case.design, &case.m, (&scene, &plan), &Default::default())
-        .is_ok_and(|r| r.clearance.is_some_and(|c| c.min.gap_mm >= 0.0))
+    run_design(&case.design, &case.m, (&scene, &plan), &Default::default()).is_ok_and(|r| {
+        r.discs[0]
+            .clearance
+            .as_ref()
+            .is_some_and(|c| c.min.gap_mm >= 0.0)
+    })
 }
 
 fn laws() -> impl Strategy<Value = (ContactLaw, GeometryMode)> {
@@ -185,7 +189,7 @@ proptest! {
             }
         };
         prop_assert_eq!(r.discs.len(), discs);
-        let te = &r.loaded.transmission.as_ref().unwrap().te_rad;
+        let te = &r.reducer.transmission.as_ref().unwrap().te_rad;
         let model = Model::new(&case.design, &case.m, &scene, &plan);
         let alone = Discs::new(&model, discs);
         let d = &case.design;
@@ -256,10 +260,10 @@ proptest! {
         let coupled =
             sweep_discs(&Discs::new(&model, 1), &scene.crank_rad, false, &Silent).unwrap();
         let disc = &coupled.discs[0];
-        prop_assert_eq!(&one.rollers, &disc.rollers);
-        prop_assert_eq!(&one.pins, &disc.pins);
-        prop_assert_eq!(&one.bearing, &disc.bearing);
-        prop_assert_eq!(&one.transmission, &coupled.transmission);
+        prop_assert_eq!(&one.0.rollers, &disc.rollers);
+        prop_assert_eq!(&one.0.pins, &disc.pins);
+        prop_assert_eq!(&one.0.bearing, &disc.bearing);
+        prop_assert_eq!(&one.1, &coupled.transmission);
         prop_assert!(coupled.torque_nmm[0].iter().all(|&t| t == scene.output_torque_nmm));
     }
 
@@ -287,8 +291,8 @@ proptest! {
         let (two, one) = (two.unwrap(), one.unwrap());
         let t = scene.output_torque_nmm;
         let (te2, te1) = (
-            &two.loaded.transmission.as_ref().unwrap().te_rad,
-            &one.loaded.transmission.as_ref().unwrap().te_rad,
+            &two.reducer.transmission.as_ref().unwrap().te_rad,
+            &one.reducer.transmission.as_ref().unwrap().te_rad,
         );
         for a in 0..scene.crank_rad.len() {
             let (t0, t1) = (torque(&two.discs[0], a), torque(&two.discs[1], a));
@@ -346,7 +350,7 @@ proptest! {
                 return Ok(());
             }
         };
-        let t = r.torsion.as_ref().unwrap();
+        let t = r.reducer.torsion.as_ref().unwrap();
         let row = &t.torsion_rad[0];
         let rising = &row[..=2 * steps];
         prop_assert!(rising.windows(2).all(|w| w[1] > w[0]), "{rising:?}");
@@ -403,7 +407,7 @@ fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it(
         eleven_rollers(2, ("tiny", t_nm), (0.0, 108.0, 1080), first_order).parse("tiny.yaml");
     let r = first_scene(&spec).unwrap_or_else(|e| panic!("{e}"));
     let t = t_nm * 1e3;
-    let te = &r.loaded.transmission.as_ref().unwrap().te_rad;
+    let te = &r.reducer.transmission.as_ref().unwrap().te_rad;
     let mut floated = 0;
     for (a, &gamma) in te.iter().enumerate() {
         let sum: f64 = r.discs.iter().map(|d| torque(d, a)).sum();
@@ -461,7 +465,7 @@ fn a_floating_disc_in_exact_geometry_rests_where_one_disc_at_zero_torque_does() 
     let mut floated = 0;
     for (k, disc) in two.discs.iter().enumerate() {
         let alone = run(&spec(1, 0.0, 180.0 * k as f64));
-        let rest = &alone.loaded.rollers.as_ref().unwrap().lag_rad;
+        let rest = &alone.discs[0].loaded.rollers.as_ref().unwrap().lag_rad;
         let lag = &disc.loaded.rollers.as_ref().unwrap().lag_rad;
         for a in 0..lag.len() {
             if torque(disc, a) != 0.0 {
@@ -505,9 +509,9 @@ fn coupled_sweep_in_two_waves_is_the_same_on_one_and_on_four_threads() {
     for (a, b) in one.discs.iter().zip(&four.discs) {
         assert_eq!(a.loaded, b.loaded);
     }
-    assert_eq!(one.loaded.transmission, four.loaded.transmission);
+    assert_eq!(one.reducer.transmission, four.reducer.transmission);
     let t = 20_000.0;
-    let angles = one.loaded.transmission.as_ref().unwrap().te_rad.len();
+    let angles = one.reducer.transmission.as_ref().unwrap().te_rad.len();
     assert!(angles >= 257, "{angles} angles: fewer than five chunks");
     for a in 0..angles {
         let sum: f64 = one.discs.iter().map(|d| torque(d, a)).sum();
@@ -620,7 +624,7 @@ fn preloaded_odd_discs_hold_each_other_through_a_torsion_loop() {
         .scenes(&item)
         .parse("preloaded.yaml");
     let r = first_scene(&spec).unwrap_or_else(|e| panic!("{e}"));
-    let t = r.torsion.as_ref().unwrap();
+    let t = r.reducer.torsion.as_ref().unwrap();
     for row in &t.torsion_rad {
         let rising = &row[..=80];
         assert!(rising.windows(2).all(|w| w[1] > w[0]), "{rising:?}");

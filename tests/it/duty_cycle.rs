@@ -501,13 +501,10 @@ fn every_bin_carries_the_clearance_of_the_scene_alone() {
         };
         let duty = run(&duty_spec(&head, &ROBOT, "bearing, clearance"));
         let alone = run(&ordinary_spec(&head, ROBOT[0], "bearing, clearance"));
-        let of = |r: &SceneResult| match discs {
-            1 => vec![r.clearance.clone().expect("clearance")],
-            _ => r
-                .discs
-                .iter()
-                .map(|d| d.clearance.clone().unwrap())
-                .collect(),
+        let of = |r: &SceneResult| -> Vec<_> {
+            (r.discs.iter())
+                .map(|d| d.clearance.clone().expect("clearance"))
+                .collect()
         };
         let expected = of(&alone);
         assert_eq!(expected.len(), discs);

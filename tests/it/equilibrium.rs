@@ -199,7 +199,7 @@ fn run_with_backlash(spec: &Spec) -> (SceneResult, Vec<f64>) {
     let mut plan = Plan::for_scene(scene);
     plan.ask(&cycloid::model::quantity::BACKLASH, "test");
     let result = run(spec, scene, &plan, &Default::default()).unwrap();
-    let clearance = result.clearance.as_ref().unwrap();
+    let clearance = result.discs[0].clearance.as_ref().unwrap();
     let backlash = clearance.backlash.as_ref().unwrap().forward_rad.clone();
     (result, backlash)
 }
@@ -627,7 +627,7 @@ proptest! {
         // times Σ k·|l|), on which the solver settles a straddled root (`solve::Root`): two
         // warm starts may land a step apart, so that resolution over the slope is added, twice.
         let loaded = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent).expect("sweep");
-        let rc = loaded.rollers.unwrap();
+        let rc = loaded.0.rollers.unwrap();
         let gap_resolution = 16.0 * f64::EPSILON * (r.rp + r.e + r.shift.abs() + r.equidistant.abs());
         for (k, sol) in sols.iter().enumerate() {
             let (x, y) = (rc.lag_rad[k], sol.lag_rad.unwrap());
@@ -1109,7 +1109,7 @@ fn a_soft_bearing_deflects_by_its_force_over_its_stiffness_and_still_balances() 
     assert!(ratio.iter().all(|&q| q < 1.0));
     // The sweep reports the deflection.
     let loaded = sweep::sweep(&soft, &angles, false, &cycloid::progress::Silent).unwrap();
-    let bearing = loaded.bearing.unwrap();
+    let bearing = loaded.0.bearing.unwrap();
     for (k, y) in b.iter().enumerate() {
         assert!((bearing.deflection_mm[k] - y.centre_offset_mm.norm()).abs() <= 1e-12);
         // |u| = |Fb|/kb by the bearing law; rounding only.
@@ -1251,7 +1251,7 @@ fn zero_torque_on_a_clearance_profile_is_force_free_and_lags_by_the_backlash() {
     scene.steps = 24;
     let spec = r.spec(&scene);
     let (result, backlash) = run_with_backlash(&spec);
-    let loaded = &result.loaded;
+    let loaded = &result.discs[0].loaded;
     let rollers = loaded.rollers.as_ref().unwrap();
     assert!(rollers.force_n.iter().flatten().all(|&f| f == 0.0));
     assert!(rollers.contacts.iter().all(|&c| c == 0));
@@ -1268,7 +1268,7 @@ fn zero_torque_on_a_clearance_profile_is_force_free_and_lags_by_the_backlash() {
         );
     }
     // With no pin load the output does not lag: TE = β.
-    let te = &loaded.transmission.as_ref().unwrap().te_rad;
+    let te = &result.reducer.transmission.as_ref().unwrap().te_rad;
     for (t, l) in te.iter().zip(&rollers.lag_rad) {
         assert!((t - l).abs() <= 1e-15);
     }
@@ -1302,7 +1302,7 @@ fn mean_ratio_over_whole_periods() {
             &Default::default(),
         )
         .unwrap();
-        let tr = result.loaded.transmission.unwrap();
+        let tr = result.reducer.transmission.unwrap();
         let kappa = tr.ratio.unwrap();
         let n = kappa.len() as f64;
         let nc = 9.0;
@@ -1612,11 +1612,11 @@ fn paper_optimum_at_10_nm_regression() {
     let spec = r.spec(&scene);
     let (result, backlash) = run_with_backlash(&spec);
     let angles = &result.crank_rad;
-    let loaded = &result.loaded;
+    let loaded = &result.discs[0].loaded;
     let rollers = loaded.rollers.as_ref().unwrap();
     let pins = loaded.pins.as_ref().unwrap();
     let bearing = loaded.bearing.as_ref().unwrap();
-    let tr = loaded.transmission.as_ref().unwrap();
+    let tr = result.reducer.transmission.as_ref().unwrap();
 
     // Equilibrium at every angle.
     assert!(bearing.residual.iter().all(|&x| x <= 1e-9));
@@ -1868,7 +1868,7 @@ proptest! {
             .collect();
         let swept = sweep::sweep(&m, &angles, false, &cycloid::progress::Silent)
             .unwrap_or_else(|f| panic!("sweep over {angles:?}: {f:?}"));
-        let forces = &swept.rollers.unwrap().force_n;
+        let forces = &swept.0.rollers.unwrap().force_n;
         for (k, phi) in angles.iter().enumerate() {
             let cold = solve_angle(&m, *phi, &AngleSolution::default()).unwrap();
             // Both balance to the solver's 1e-11; forces then agree to stiffness × arm × the

@@ -40,6 +40,7 @@ fn run(spec: &Spec) -> LoadedSweep {
     let model = Model::new(&spec.design, &spec.modification, scene, &plan);
     sweep::sweep(&model, &scene.crank_rad, true, &cycloid::progress::Silent)
         .unwrap_or_else(|f| panic!("{f:?}"))
+        .0
 }
 
 fn face_of(l: &LoadedSweep) -> &FaceLoads {
@@ -402,7 +403,7 @@ fn the_closed_form_balance_matches_200_winkler_slices() {
                 .unwrap_or_else(|f| panic!("{f:?}"))
         };
         let (closed, sliced) = (go(&closed_model), go(&sliced_model));
-        let (rc, rs) = (closed.rollers.unwrap(), sliced.rollers.unwrap());
+        let (rc, rs) = (closed.0.rollers.unwrap(), sliced.0.rollers.unwrap());
         let arcsec = 180.0 / std::f64::consts::PI * 3600.0;
         let peak = rc.force_n.iter().flatten().copied().fold(0.0, f64::max);
         for k in 0..scene.crank_rad.len() {
@@ -567,7 +568,7 @@ fn the_sweep_matches_each_angle_solved_alone_on_a_tilted_face() {
     let plan = Plan::for_scene(scene);
     let model = Model::new(&s.design, &s.modification, scene, &plan);
     let swept = sweep::sweep(&model, &scene.crank_rad, true, &cycloid::progress::Silent).unwrap();
-    let r = swept.rollers.unwrap();
+    let r = swept.0.rollers.unwrap();
     let peak = r.force_n.iter().flatten().copied().fold(0.0, f64::max);
     for (k, &phi) in scene.crank_rad.iter().enumerate() {
         let alone = solve_angle(&model, phi, &AngleSolution::default()).unwrap();

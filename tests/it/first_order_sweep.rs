@@ -265,7 +265,7 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
             "moment {moment} at {phi}"
         );
     }
-    let sweep = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent).unwrap();
+    let (sweep, _) = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent).unwrap();
     assert_agrees("paper", &model, &angles, &sweep);
 }
 
@@ -289,7 +289,7 @@ fn sweep_agrees_with_the_general_solve_on_hard_cases() {
         let scene = 0;
         let model = model(&spec, scene);
         let angles = grid(&spec, scene, 240);
-        let sweep = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent)
+        let (sweep, _) = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent)
             .unwrap_or_else(|f| panic!("{case}: {:?}", f.failure));
         assert_agrees(case, &model, &angles, &sweep);
     }

@@ -82,7 +82,7 @@ fn an_overload_is_outside_the_first_order_validity() {
         &Default::default(),
     )
     .unwrap();
-    let rollers = r.loaded.rollers.as_ref().unwrap();
+    let rollers = r.discs[0].loaded.rollers.as_ref().unwrap();
     let validity = LagValidity::new(&parsed.design, &parsed.modification);
     let worst = (0..s.crank_rad.len())
         .map(|k| {

@@ -371,7 +371,7 @@ fn engine_input_torque_is_output_plus_losses_in_first_order_geometry() {
             ("steps: 1080", "steps: 108"),
         ]);
         let r = run_efficiency(&text);
-        let e = r.efficiency.as_ref().unwrap();
+        let e = r.reducer.efficiency.as_ref().unwrap();
         let reducer = e.reducer.as_ref().unwrap();
         let torque_per_nc = 20_000.0 / 9.0;
         for (t_in, loss) in reducer.input_torque_nmm.iter().zip(&e.loss_nmm) {
@@ -395,7 +395,7 @@ fn back_driving_and_self_locking_are_reported() {
         ("output_torque_nm: 20.0", "output_torque_nm: -20.0"),
         ("steps: 1080", "steps: 108"),
     ]));
-    let reducer = back.efficiency.unwrap().reducer.unwrap();
+    let reducer = back.reducer.efficiency.unwrap().reducer.unwrap();
     assert!(reducer.input_torque_nmm.iter().all(|t| *t < 0.0));
     assert!(reducer.self_locking_crank_rad.is_empty());
     let text = efficiency_spec(&[
@@ -403,7 +403,12 @@ fn back_driving_and_self_locking_are_reported() {
         ("steps: 1080", "steps: 108"),
     ])
     .replace("mu: 0.06 ", "mu: 0.9 ");
-    let locked = run_efficiency(&text).efficiency.unwrap().reducer.unwrap();
+    let locked = run_efficiency(&text)
+        .reducer
+        .efficiency
+        .unwrap()
+        .reducer
+        .unwrap();
     assert!(locked.input_torque_nmm.iter().all(|t| *t > 0.0));
     assert_eq!(locked.self_locking_crank_rad.len(), 108);
 }

@@ -128,11 +128,11 @@ fn run_scene(spec: &Spec, index: usize) -> SceneResult {
 
 /// Roller forces [roller][angle], N.
 fn roller_forces(r: &SceneResult) -> &Vec<Vec<f64>> {
-    &r.loaded.rollers.as_ref().unwrap().force_n
+    &r.discs[0].loaded.rollers.as_ref().unwrap().force_n
 }
 
 fn pin_forces(r: &SceneResult) -> &Vec<Vec<f64>> {
-    &r.loaded.pins.as_ref().unwrap().force_n
+    &r.discs[0].loaded.pins.as_ref().unwrap().force_n
 }
 
 fn max_abs(rows: &[Vec<f64>]) -> f64 {
@@ -165,7 +165,7 @@ fn zero_modification_loads_the_whole_loaded_half() {
     cli_case("zero-modification", 0);
     let spec = load("zero-modification");
     let r = run_scene(&spec, 0);
-    let gaps = &r.clearance.as_ref().unwrap().gap_mm;
+    let gaps = &r.discs[0].clearance.as_ref().unwrap().gap_mm;
     assert!(max_abs(gaps) <= 1e-12, "gaps {:e}", max_abs(gaps));
     let forces = roller_forces(&r);
     let d = &spec.design;
@@ -194,8 +194,8 @@ fn nano_modification_matches_zero_within_the_derived_bound() {
     let (zero, nano) = (load("zero-modification"), load("nano-modification"));
     let (rz, rn) = (run_scene(&zero, 0), run_scene(&nano, 0));
     let (gz, gn) = (
-        &rz.clearance.as_ref().unwrap().gap_mm,
-        &rn.clearance.as_ref().unwrap().gap_mm,
+        &rz.discs[0].clearance.as_ref().unwrap().gap_mm,
+        &rn.discs[0].clearance.as_ref().unwrap().gap_mm,
     );
     let delta = gz
         .iter()
@@ -209,13 +209,13 @@ fn nano_modification_matches_zero_within_the_derived_bound() {
         "max |Δgap| = {delta:e} mm, bound {first_order_bound:e}"
     );
     // The smallest gap is the tip gap, 1 nm, resolved to 1e-15 mm.
-    let min = rn.clearance.as_ref().unwrap().min.gap_mm;
+    let min = rn.discs[0].clearance.as_ref().unwrap().min.gap_mm;
     assert!((min - 1e-9).abs() <= 1e-15, "min gap {min:e}");
     let k = stiffness(&nano);
     let d = &nano.design;
     let (lz, ln) = (
-        &rz.loaded.rollers.as_ref().unwrap().lag_rad,
-        &rn.loaded.rollers.as_ref().unwrap().lag_rad,
+        &rz.discs[0].loaded.rollers.as_ref().unwrap().lag_rad,
+        &rn.discs[0].loaded.rollers.as_ref().unwrap().lag_rad,
     );
     let (fz, fnano) = (roller_forces(&rz), roller_forces(&rn));
     for (j, &phi) in rz.crank_rad.iter().enumerate() {
@@ -315,7 +315,7 @@ fn torque_1e_6_is_balanced_and_linear() {
                     );
                 }
             }
-            let residual = &small.loaded.bearing.as_ref().unwrap().residual;
+            let residual = &small.discs[0].loaded.bearing.as_ref().unwrap().residual;
             let worst = residual.iter().cloned().fold(0.0, f64::max);
             assert!(
                 worst <= 1e-9,
@@ -339,7 +339,7 @@ fn pin_share_deviation(spec: &Spec, r: &SceneResult, torque_nmm: f64) -> f64 {
     let d = &spec.design;
     let (m, rw, nc) = (d.pins.count, d.pins.circle_radius_mm, d.teeth as f64);
     let forces = pin_forces(r);
-    let beta = &r.loaded.rollers.as_ref().unwrap().lag_rad;
+    let beta = &r.discs[0].loaded.rollers.as_ref().unwrap().lag_rad;
     let mut worst = 0.0f64;
     for (k, &phi) in r.crank_rad.iter().enumerate() {
         let psi = -phi / nc + beta[k];
@@ -377,7 +377,7 @@ fn torque_1e5_reports_the_pressure_as_a_number() {
     // The share is first order in the pin's travel w ≈ rw·βo against the eccentricity: the
     // gap e − |w − O| has a second-order part |w|²/(2e), relative rw·βo/(2e) to the first.
     let d = &spec.design;
-    let lag = &heavy.loaded.pins.as_ref().unwrap().output_lag_rad;
+    let lag = &heavy.discs[0].loaded.pins.as_ref().unwrap().output_lag_rad;
     let travel = d.pins.circle_radius_mm * lag.iter().fold(0.0f64, |m, b| m.max(b.abs()));
     let bound = travel / d.eccentricity_mm;
     let deviation = pin_share_deviation(&spec, &heavy, 1e8);
@@ -453,7 +453,7 @@ fn preload_at_zero_torque_loads_both_flanks() {
         assert!((driving - braking).abs() <= 0.05 * (driving + braking));
     }
     assert_eq!(max_abs(pin_forces(&r)), 0.0);
-    let b = r.loaded.bearing.as_ref().unwrap();
+    let b = r.discs[0].loaded.bearing.as_ref().unwrap();
     assert!(b.force_n.iter().all(|f| *f > 1e3));
     assert!(b.residual.iter().all(|x| *x <= 1e-9));
 }
@@ -535,7 +535,7 @@ fn three_rollers_cross_their_dead_band_in_torsion() {
     };
     let plan = scene::plan(&spec, s, writes);
     let r = scene::run(&spec, s, &plan, &Default::default()).unwrap();
-    let lost = &r
+    let lost = &r.discs[0]
         .clearance
         .as_ref()
         .unwrap()
@@ -543,7 +543,7 @@ fn three_rollers_cross_their_dead_band_in_torsion() {
         .as_ref()
         .unwrap()
         .lost_motion_rad;
-    let figures = &r.torsion.as_ref().unwrap().figures;
+    let figures = &r.reducer.torsion.as_ref().unwrap().figures;
     assert!(figures[0].backlash_rad > 0.164, "{:?}", figures[0]);
     for (f, l) in figures.iter().zip(lost) {
         let (band, unloaded) = (f.backlash_rad * ARCSEC_PER_RAD, l * ARCSEC_PER_RAD);
@@ -568,8 +568,8 @@ fn hole_clearance_loads_pins_one_by_one() {
     ideal_spec.design.pins.hole_clearance_mm = 0.0;
     let ideal = run_scene(&ideal_spec, 0);
     let (pl, pi) = (pin_forces(&loose), pin_forces(&ideal));
-    let lag = &loose.loaded.pins.as_ref().unwrap().output_lag_rad;
-    let beta = &loose.loaded.rollers.as_ref().unwrap().lag_rad;
+    let lag = &loose.discs[0].loaded.pins.as_ref().unwrap().output_lag_rad;
+    let beta = &loose.discs[0].loaded.rollers.as_ref().unwrap().lag_rad;
     let (m, nc) = (spec.design.pins.count, spec.design.teeth as f64);
     for (k, &phi) in loose.crank_rad.iter().enumerate() {
         assert!(lag[k] * rw >= c, "βo·rw = {} < c", lag[k] * rw);
@@ -669,7 +669,7 @@ fn multi_revolution_curves_repeat_with_the_loaded_period() {
     from_zero.scenes[0].crank_rad = (0..216).map(|k| (0.5 * k as f64).to_radians()).collect();
     let base = run_scene(&from_zero, 0);
     let turns = run_scene(&spec, 0);
-    let te = |r: &SceneResult| r.loaded.transmission.as_ref().unwrap().te_rad.clone();
+    let te = |r: &SceneResult| r.reducer.transmission.as_ref().unwrap().te_rad.clone();
     let (tb, tt) = (te(&base), te(&turns));
     let (fb, ft) = (roller_forces(&base), roller_forces(&turns));
     let scale = max_abs(fb);
@@ -702,7 +702,7 @@ fn tiny_face_width_scales_forces_and_pressures() {
     wide.scenes[0].output_torque_nmm = 1e4;
     let ratio = tiny.design.face_width_mm / wide.design.face_width_mm;
     let (rt, rw) = (run_scene(&tiny, 0), run_scene(&wide, 0));
-    let lag = |r: &SceneResult| r.loaded.rollers.as_ref().unwrap().lag_rad.clone();
+    let lag = |r: &SceneResult| r.discs[0].loaded.rollers.as_ref().unwrap().lag_rad.clone();
     for (a, b) in lag(&rt).iter().zip(&lag(&rw)) {
         assert!((a - b).abs() <= 1e-9 * b.abs(), "β {a} vs {b}");
     }
@@ -717,7 +717,15 @@ fn tiny_face_width_scales_forces_and_pressures() {
             "{a} vs {ratio} × {b}"
         );
     }
-    let pressure = |r: &SceneResult| r.loaded.rollers.as_ref().unwrap().pressure_mpa.clone();
+    let pressure = |r: &SceneResult| {
+        r.discs[0]
+            .loaded
+            .rollers
+            .as_ref()
+            .unwrap()
+            .pressure_mpa
+            .clone()
+    };
     let (pt, pw) = (pressure(&rt), pressure(&rw));
     let scale = max_abs(&pw);
     for (a, b) in pt.iter().flatten().zip(pw.iter().flatten()) {

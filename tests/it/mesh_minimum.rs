@@ -11,7 +11,7 @@
 
 use crate::common::*;
 use cycloid::geometry::clearance::{self, Mesh, Pose, Scope};
-use cycloid::model::results::{MinCoverage, SampledPeriod, SceneResult};
+use cycloid::model::results::{DiscResult, MinCoverage, SampledPeriod, SceneResult};
 use cycloid::progress::Silent;
 use cycloid::spec::Spec;
 use cycloid::units;
@@ -56,7 +56,7 @@ fn run(spec: &Spec) -> Vec<SceneResult> {
 }
 
 /// The period the run sampled, with its step and bound.
-fn sampled(r: &SceneResult) -> SampledPeriod {
+fn sampled(r: &DiscResult) -> SampledPeriod {
     match r.clearance.as_ref().unwrap().coverage {
         MinCoverage::Period(p) => p,
         other => panic!("{}: the smallest gap over {other:?}", r.name),
@@ -160,7 +160,7 @@ fn true_minimum(mesh: &Mesh, period_rad: f64, step_rad: f64) -> (f64, usize, f64
 
 /// The reported minimum of `r` lies in [true, true + bound], and is the gap of the reported
 /// roller at the reported crank angle (plus the disc's phase `shift_rad`).
-fn assert_bounded(mesh: &Mesh, r: &SceneResult, shift_rad: f64) -> f64 {
+fn assert_bounded(mesh: &Mesh, r: &DiscResult, shift_rad: f64) -> f64 {
     let c = r.clearance.as_ref().unwrap();
     let p = sampled(r);
     let (truth, _, _) = true_minimum(mesh, p.period_rad, p.step_rad / 8.0);
@@ -214,16 +214,16 @@ fn a_form_error_is_checked_over_its_whole_period_whatever_the_scene_samples() {
     let mesh = Mesh::new(&s.design, &s.modification);
     let results = run(&s);
     for r in &results {
-        let p = sampled(r);
+        let p = sampled(&r.discs[0]);
         assert!(
             (units::deg(p.period_rad) - 324.0).abs() < 1e-9,
             "{}",
             r.name
         );
         assert!(p.error_bound_mm <= 1e-4, "{}: {}", r.name, p.error_bound_mm);
-        assert_bounded(&mesh, r, 0.0);
+        assert_bounded(&mesh, &r.discs[0], 0.0);
     }
-    let c = results[0].clearance.as_ref().unwrap();
+    let c = results[0].discs[0].clearance.as_ref().unwrap();
     let scene_only = c
         .gap_mm
         .iter()
@@ -246,8 +246,8 @@ fn rollers_as_built_with_a_form_error_are_checked_over_3240_degrees() {
     let s = spec(&format!("{ROLLER_6}{FORM_2}"), &[("torsion", 0.0, 36.0, 4)]);
     let mesh = Mesh::new(&s.design, &s.modification);
     let r = &run(&s)[0];
-    assert!((units::deg(sampled(r).period_rad) - 3240.0).abs() < 1e-9);
-    assert_bounded(&mesh, r, 0.0);
+    assert!((units::deg(sampled(&r.discs[0]).period_rad) - 3240.0).abs() < 1e-9);
+    assert_bounded(&mesh, &r.discs[0], 0.0);
 }
 
 /// Two discs, 180° apart: each samples the same period (once for both) and reports the same
@@ -325,7 +325,7 @@ fn the_error_bound_holds_on_hard_designs() {
         let r = cycloid::engine::scene::run(&s, &scene, &plan, &Default::default()).unwrap();
         let mesh = Mesh::new(&s.design, &s.modification);
         eprintln!("{name}:");
-        assert_bounded(&mesh, &r, 0.0);
+        assert_bounded(&mesh, &r.discs[0], 0.0);
     }
 }
 
@@ -335,10 +335,10 @@ fn the_error_bound_holds_on_hard_designs() {
 fn a_nominal_scene_over_a_mesh_period_is_its_own_sampling() {
     let s = spec("", &[("mesh", 0.0, 36.0, 360)]);
     let r = &run(&s)[0];
-    let p = sampled(r);
+    let p = sampled(&r.discs[0]);
     assert!((units::deg(p.step_rad) - 0.1).abs() < 1e-12);
     assert!((units::deg(p.period_rad) - 36.0).abs() < 1e-12);
-    let c = r.clearance.as_ref().unwrap();
+    let c = r.discs[0].clearance.as_ref().unwrap();
     let own = c
         .gap_mm
         .iter()
@@ -347,7 +347,7 @@ fn a_nominal_scene_over_a_mesh_period_is_its_own_sampling() {
         .fold(f64::INFINITY, f64::min);
     assert_eq!(c.min.gap_mm, own);
     let mesh = Mesh::new(&s.design, &s.modification);
-    assert_bounded(&mesh, r, 0.0);
+    assert_bounded(&mesh, &r.discs[0], 0.0);
 }
 
 /// What the terminal and the JSON say: the whole period, its step and the bound for the

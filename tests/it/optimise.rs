@@ -181,7 +181,7 @@ fn the_optimiser_objective_is_the_checkers_ratio_fluctuation() {
         &Default::default(),
     )
     .unwrap();
-    let ratio = result.loaded.transmission.unwrap().ratio.unwrap();
+    let ratio = result.reducer.transmission.unwrap().ratio.unwrap();
     let fluct = cycloid::numeric::fluctuation(&ratio);
     let objective = cycloid::model::quantity::find_objective("ratio_fluctuation").unwrap();
     assert_eq!(e.terms, vec![(objective, fluct)]);

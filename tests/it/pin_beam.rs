@@ -93,8 +93,8 @@ fn one_disc_output_lag_is_the_torque_over_the_series_stiffness() {
     );
     let r = run(&s);
     let k_eff = 1.0 / (1.0 / contact_stiffness() + a * a * a / (3.0 * bending_stiffness()));
-    let beta = &r.loaded.rollers.as_ref().unwrap().lag_rad;
-    let pins = r.loaded.pins.as_ref().unwrap();
+    let beta = &r.discs[0].loaded.rollers.as_ref().unwrap().lag_rad;
+    let pins = r.discs[0].loaded.pins.as_ref().unwrap();
     let t = 10_000.0;
     for (i, &phi) in r.crank_rad.iter().enumerate() {
         let sum: f64 = (0..PINS)
@@ -134,8 +134,8 @@ fn with_johnsons_law_the_closing_is_the_contacts_approach_plus_the_bending() {
         radii_mm: [hole, PIN_RADIUS_MM],
         effective_radius_mm: 1.0 / (1.0 / PIN_RADIUS_MM - 1.0 / hole),
     };
-    let beta = &r.loaded.rollers.as_ref().unwrap().lag_rad;
-    let pins = r.loaded.pins.as_ref().unwrap();
+    let beta = &r.discs[0].loaded.rollers.as_ref().unwrap().lag_rad;
+    let pins = r.discs[0].loaded.pins.as_ref().unwrap();
     let mut loaded = 0;
     for (i, &phi) in r.crank_rad.iter().enumerate() {
         for (j, f) in pins.force_n.iter().enumerate() {
@@ -259,7 +259,7 @@ fn the_rigidity_falls_to_the_series_formula_when_the_pins_bend() {
     let rigid = torsion(None, "roller_contact, output_pins", "");
     let bent = torsion(Some(support), "roller_contact, output_pins", "");
     let ratio = 1.0 + contact_stiffness() * a * a * a / (3.0 * bending_stiffness());
-    let t = |r: &SceneResult| r.torsion.clone().unwrap();
+    let t = |r: &SceneResult| r.reducer.torsion.clone().unwrap();
     let (tr, tg, tb) = (t(&rollers), t(&rigid), t(&bent));
     for k in 0..tr.figures.len() {
         for m in 0..tr.torque_nmm.len() {
@@ -302,7 +302,10 @@ fn the_structure_adds_c_times_t_to_the_torsion_angle() {
         "  structure_compliance_arcmin_per_knm: 0.75\n",
     );
     let c = 0.75 * (PI / 10_800.0) / 1e6;
-    let (a, b) = (without.torsion.unwrap(), with.torsion.unwrap());
+    let (a, b) = (
+        without.reducer.torsion.unwrap(),
+        with.reducer.torsion.unwrap(),
+    );
     let (rated, steps) = (20_000.0, 4);
     for k in 0..a.figures.len() {
         for (m, &t) in a.torque_nmm.iter().enumerate() {

@@ -761,7 +761,7 @@ fn the_drawn_forces_are_those_of_the_sweep() {
     let drawn = disc(&spec, crank_rad).unwrap();
     let loaded = drawn.loaded.expect("a loaded scene");
     assert_eq!(loaded.scene, "rated");
-    let l = &r.loaded;
+    let l = &r.discs[0].loaded;
     let (rollers, pins, bearing) = (
         &l.rollers.as_ref().unwrap().force_n,
         &l.pins.as_ref().unwrap().force_n,

@@ -4,7 +4,7 @@
 //! (`discs[k]`) for a disc's results and in a duty bin's (`duty_cycle.bins[j].results`) for
 //! the bin's run. Read back from the JSON text, not from the document's own types.
 
-use cycloid::model::quantity::QUANTITIES;
+use cycloid::model::quantity::{Curves, Extreme, Quantity, QUANTITIES};
 use cycloid::model::results::SceneResult;
 use serde_json::Value;
 
@@ -26,19 +26,49 @@ fn numbers(v: &Value, what: &str) -> Vec<f64> {
     .collect()
 }
 
-/// Checks the registry's quantities of `r` against its object `json`, and its discs' and duty
-/// bins' against theirs; returns the keys of the curves found.
+/// Checks the registry's quantities of `r` against its object `json`, and its discs' (with
+/// several) and duty bins' against theirs; returns the keys of the curves found.
 fn registry_in_json(json: &Value, r: &SceneResult, what: &str) -> Vec<&'static str> {
+    let mut seen = quantities_in_json(json, (&|q| q.scalar(r), &|q| q.curves(r)), what);
+    for (k, disc) in r.discs.iter().enumerate().filter(|_| r.names_discs()) {
+        let scalar = |q: &Quantity| q.disc_scalar(disc, &r.crank_rad);
+        seen.extend(quantities_in_json(
+            &json["discs"][k],
+            (&scalar, &|q| q.disc_curves(disc)),
+            &format!("{what} disc {k}"),
+        ));
+    }
+    for (j, bin) in r.duty.iter().flat_map(|d| &d.bins).enumerate() {
+        let results = &json["duty_cycle"]["bins"][j]["results"];
+        seen.extend(registry_in_json(
+            results,
+            &bin.result,
+            &format!("{what} bin {j}"),
+        ));
+    }
+    seen
+}
+
+/// A scalar's or a curves' reader of the registry's quantities.
+type Reader<'a, T> = &'a dyn Fn(&Quantity) -> Option<T>;
+
+/// Checks the quantities `scalar` and `curves` read against the object `json`; returns the
+/// keys of the curves found.
+fn quantities_in_json(
+    json: &Value,
+    (scalar, curves): (Reader<'_, Extreme>, Reader<'_, Curves>),
+    what: &str,
+) -> Vec<&'static str> {
     let mut seen = Vec::new();
     for q in QUANTITIES {
         let at = format!("{what}: {}", q.key);
-        if let Some(e) = q.scalar(r) {
+        if let Some(e) = scalar(q) {
             let value = json[q.key]
                 .as_f64()
                 .unwrap_or_else(|| panic!("{at} missing"));
             assert!(same(value, e.value), "{at}: {value} against {}", e.value);
         }
-        let Some(c) = q.curves(r) else { continue };
+        let Some(c) = curves(q) else { continue };
         seen.push(q.key);
         let rows = match q.shape.per() {
             Some(_) => (json[q.key]
@@ -56,21 +86,6 @@ fn registry_in_json(json: &Value, r: &SceneResult, what: &str) -> Vec<&'static s
                 assert!(same(x, y), "{at}: {x} against {y}");
             }
         }
-    }
-    for (k, disc) in r.discs.iter().enumerate() {
-        seen.extend(registry_in_json(
-            &json["discs"][k],
-            disc,
-            &format!("{what} disc {k}"),
-        ));
-    }
-    for (j, bin) in r.duty.iter().flat_map(|d| &d.bins).enumerate() {
-        let results = &json["duty_cycle"]["bins"][j]["results"];
-        seen.extend(registry_in_json(
-            results,
-            &bin.result,
-            &format!("{what} bin {j}"),
-        ));
     }
     seen
 }

@@ -981,7 +981,7 @@ fn the_duty_cycle_is_drawn_as_its_spectrum_and_each_bins_shares() {
     let duty = result.results[0].duty.as_ref().unwrap();
     let p = 10.0 / 3.0;
     let loads: Vec<f64> = (duty.bins.iter())
-        .map(|b| b.result.bearing_life.unwrap().equivalent_load_n)
+        .map(|b| b.result.discs[0].bearing_life.unwrap().equivalent_load_n)
         .collect();
     let damage: Vec<f64> = (bins.iter().zip(&loads))
         .map(|(&(_, n, s), &l)| s * n * l.powf(p))

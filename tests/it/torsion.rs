@@ -37,7 +37,8 @@ fn torsion_spec(modification: Option<(f64, f64)>, crank: &str, effects: &str, ex
 use crate::common::run_first_scene as run;
 
 fn curves(r: &SceneResult) -> &TorsionCurves {
-    r.torsion
+    r.reducer
+        .torsion
         .as_ref()
         .expect("a torsion scene computes torsion")
 }
@@ -204,7 +205,7 @@ fn slope_matches_the_loaded_te(discs: usize) {
         s.effects = vec![cycloid::model::Effect::Bearing];
         let plan = cycloid::model::Plan::for_scene(&s);
         let r = scene::run(&spec, &s, &plan, &Default::default()).unwrap();
-        r.loaded.transmission.unwrap().te_rad[0]
+        r.reducer.transmission.unwrap().te_rad[0]
     };
     let top = *t.torsion_rad[0]
         .iter()
@@ -296,7 +297,7 @@ fn the_dead_band_is_the_unloaded_lost_motion_of_the_clearance_effect() {
         &Default::default(),
     )
     .unwrap();
-    let lost = &r
+    let lost = &r.discs[0]
         .clearance
         .as_ref()
         .unwrap()

@@ -126,7 +126,7 @@ fn comparison_plots(
             out.push((file("clearance"), plot, CLEARANCE_CAPTION));
         }
         let te = |r: &SceneResult| {
-            let t = r.loaded.transmission.as_ref()?;
+            let t = r.reducer.transmission.as_ref()?;
             Some(
                 t.te_rad
                     .iter()
@@ -153,7 +153,7 @@ const TE_CAPTION: &str = "The loaded transmission error over the crank, arcsec: 
 
 /// The smallest gap over the rollers at each angle, µm (disc 0's with several discs).
 fn smallest_gap_um(r: &SceneResult) -> Option<Vec<f64>> {
-    let c = r.each_disc().first()?.clearance.as_ref()?;
+    let c = r.discs.first()?.clearance.as_ref()?;
     let smallest = |i: usize| c.gap_mm.iter().map(|g| g[i]).fold(f64::INFINITY, f64::min);
     Some(
         (0..r.crank_rad.len())
@@ -453,7 +453,7 @@ fn flank_table(spec: &Spec, id: &Identification) -> maud::Markup {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::results::{ClearanceSweep, MinClearance, MinCoverage};
+    use crate::model::results::{ClearanceSweep, DiscResult, MinClearance, MinCoverage};
 
     /// Points more than the gap apart are not joined: a NaN between them; the points come
     /// sorted over [0, 2π) whatever their order and turn (2π + 0.05 is 0.05, first).
@@ -486,10 +486,9 @@ mod tests {
     /// roller 1 is nearest at the first angle, roller 0 at the second.
     #[test]
     fn the_smallest_gap_is_the_least_over_the_rollers_at_each_angle() {
-        let r = SceneResult {
+        let disc = DiscResult {
             name: "s".into(),
             efficiency: None,
-            crank_rad: vec![0.0, 0.1],
             clearance: Some(ClearanceSweep {
                 gap_mm: vec![vec![0.003, 0.001], vec![0.002, 0.005]],
                 min: MinClearance {
@@ -502,9 +501,13 @@ mod tests {
                 backlash: None,
             }),
             loaded: Default::default(),
-            torsion: None,
             bearing_life: None,
-            discs: Vec::new(),
+        };
+        let r = SceneResult {
+            name: "s".into(),
+            crank_rad: vec![0.0, 0.1],
+            reducer: Default::default(),
+            discs: vec![disc],
             duty: None,
         };
         let got = smallest_gap_um(&r).unwrap();

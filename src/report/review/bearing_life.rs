@@ -17,9 +17,9 @@ pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
         .iter()
         .zip(results)
         .flat_map(|(s, r)| {
-            let several = r.each_disc().len() > 1;
-            let each = r.each_disc().iter().enumerate();
-            each.filter_map(move |(k, d)| Some((s, several.then_some(k), d.bearing_life?)))
+            let named = r.names_discs();
+            let each = r.discs.iter().enumerate();
+            each.filter_map(move |(k, d)| Some((s, named.then_some(k), d.bearing_life?)))
         })
         .collect();
     let notes: Vec<String> = explain::notes(spec)

@@ -177,7 +177,7 @@ pub(super) fn section(
         .iter()
         .zip(results)
         .enumerate()
-        .filter_map(|(k, (s, r))| Some((k, s, r.efficiency.as_ref()?)))
+        .filter_map(|(k, (s, r))| Some((k, s, r.reducer.efficiency.as_ref()?)))
         .collect();
     if scenes.is_empty() {
         return None;

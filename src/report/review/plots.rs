@@ -8,7 +8,7 @@
 //! drawn as their envelope over the parts, with a part × crank heat map beside it.
 
 use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
-use crate::model::results::SceneResult;
+use crate::model::results::{DiscResult, SceneResult};
 use crate::numeric::extremes;
 use crate::report::place;
 use crate::report::svg::{LinePlot, MapCell, MapPlot, Mark, RefLine, Series, PALETTE, RED};
@@ -249,34 +249,53 @@ fn crank_axis(r: &SceneResult) -> (Vec<f64>, Option<(f64, f64)>) {
     (x, range)
 }
 
-/// Every plot of a scene; files are named `{prefix}-{plot}.svg`. `at_speed`: what a scene at
-/// speed adds to the title of the plots that include the centripetal force
-/// (`report::mass_properties::bearing_plot_note`).
+/// Every plot of a scene, or of its disc `disc` alone (`Some`: that disc's curves only, the
+/// scene's being the reducer's and its only disc's); files are named `{prefix}-{plot}.svg`.
+/// `at_speed`: what a scene at speed adds to the title of the plots that include the
+/// centripetal force (`report::mass_properties::bearing_plot_note`).
 pub fn scene_plots(
     spec: &Spec,
-    r: &SceneResult,
+    (r, disc): (&SceneResult, Option<&DiscResult>),
     prefix: &str,
     at_speed: Option<&str>,
 ) -> Vec<Plot> {
+    let of = Of { r, disc };
     PLOTS
         .iter()
-        .flat_map(|def| plot(spec, r, def, prefix, at_speed))
+        .flat_map(|def| plot(spec, of, def, prefix, at_speed))
         .collect()
+}
+
+/// The results a plot draws: the scene's, or one disc's of it.
+#[derive(Clone, Copy)]
+struct Of<'a> {
+    r: &'a SceneResult,
+    disc: Option<&'a DiscResult>,
+}
+
+impl Of<'_> {
+    fn curves(&self, q: &Quantity) -> Option<Curves> {
+        match self.disc {
+            None => q.curves(self.r),
+            Some(d) => q.disc_curves(d),
+        }
+    }
+
+    fn scalar(&self, q: &Quantity) -> Option<crate::model::quantity::Extreme> {
+        match self.disc {
+            None => q.scalar(self.r),
+            Some(d) => q.disc_scalar(d, &self.r.crank_rad),
+        }
+    }
 }
 
 /// One plot (and its heat map when the curves are too many), or nothing when the scene did not
 /// compute its curves.
-fn plot(
-    spec: &Spec,
-    r: &SceneResult,
-    def: &PlotDef,
-    prefix: &str,
-    at_speed: Option<&str>,
-) -> Vec<Plot> {
+fn plot(spec: &Spec, of: Of<'_>, def: &PlotDef, prefix: &str, at_speed: Option<&str>) -> Vec<Plot> {
     let drawn: Vec<(&Quantity, Curves)> = def
         .curves
         .iter()
-        .filter_map(|&q| Some((q, q.curves(r)?)))
+        .filter_map(|&q| Some((q, of.curves(q)?)))
         .collect();
     let Some((first, _)) = drawn.first() else {
         return Vec::new();
@@ -288,7 +307,7 @@ fn plot(
     } else {
         format!("{name} ({unit})")
     };
-    let (x, x_range) = crank_axis(r);
+    let (x, x_range) = crank_axis(of.r);
     let sparse = x.len() < SPARSE_ANGLES;
     let mut title = def.title.to_string();
     if sparse {
@@ -349,7 +368,7 @@ fn plot(
             })
             .collect();
     }
-    p.subtitle = scalars(r, &drawn, def);
+    p.subtitle = scalars(of, &drawn, def);
     let limits = limit_lines(spec, &drawn, def);
     if !limits.is_empty() {
         notes.push("Dashed red: the spec's limits on these curves.".into());
@@ -468,12 +487,12 @@ fn heat_map(
 }
 
 /// The registry's scalars of the drawn curves, with where they occur, for the subtitle.
-fn scalars(r: &SceneResult, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> String {
+fn scalars(of: Of<'_>, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> String {
     QUANTITIES
         .iter()
         .filter(|s| drawn.iter().any(|(q, _)| s.of == Some(q.key)))
         .filter_map(|s| {
-            let e = s.scalar(r)?;
+            let e = of.scalar(s)?;
             let (unit, convert) = shown(def, s.unit);
             let value = shown_value(s, convert(e.value), unit);
             Some(format!("{} {value}: {}", s.label, place::text(&e.at)))

@@ -23,18 +23,18 @@ pub(super) fn section(
     // A duty cycle's curves are its bins', each at its own speed: no one speed to name.
     let at_speed = (unbalance.filter(|_| scene.duty_cycle.is_none()))
         .map(crate::report::mass_properties::bearing_plot_note);
-    let plots = plots::scene_plots(spec, r, &prefix, at_speed.as_deref());
-    // With several discs, each disc's own curves (forces, lags, bearing, its torque share).
-    let discs: Vec<(usize, Vec<plots::Plot>)> = r
-        .discs
-        .iter()
+    let plots = plots::scene_plots(spec, (r, None), &prefix, at_speed.as_deref());
+    // With several discs, each disc's own curves (forces, lags, bearing, its torque share);
+    // one disc's are the scene's.
+    let discs: Vec<(usize, Vec<plots::Plot>)> = (r.discs.iter())
         .enumerate()
+        .filter(|_| r.names_discs())
         .map(|(d, disc)| {
             (
                 d,
                 plots::scene_plots(
                     spec,
-                    disc,
+                    (r, Some(disc)),
                     &format!("{prefix}-disc-{d}"),
                     at_speed.as_deref(),
                 ),

@@ -211,7 +211,9 @@ pub(super) fn section(
 ) -> Vec<Section> {
     let mut out = Vec::new();
     for (k, (scene, r)) in spec.scenes.iter().zip(results).enumerate() {
-        let Some(t) = &r.torsion else { continue };
+        let Some(t) = &r.reducer.torsion else {
+            continue;
+        };
         let id = format!("{}-torsion", prefix(k, scene));
         let file = format!("{id}.svg");
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));

@@ -59,6 +59,7 @@ mod progress;
 mod readme;
 mod reliability;
 mod report;
+mod result_shape;
 mod results_json;
 mod review_plots;
 mod reviewer_texts;

@@ -25,11 +25,12 @@ use crate::model::results::{
 use crate::model::Study;
 use crate::numeric::extremes;
 use crate::report::explain::{hysteresis, torsion_compliances, torsion_law_note};
+use crate::report::json_text::{self, Entries};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
 use serde::{Serialize, Serializer};
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::Path;
 
 /// A number JSON can hold: serialising a non-finite one is an error.
@@ -38,13 +39,9 @@ pub struct Finite(pub f64);
 
 impl Serialize for Finite {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        if self.0.is_finite() {
-            s.serialize_f64(self.0)
-        } else {
-            Err(S::Error::custom(format!(
-                "a result is {}, which JSON cannot hold (a bug: please report it with the spec)",
-                self.0
-            )))
+        match self.0.is_finite() {
+            true => s.serialize_f64(self.0),
+            false => Err(json_text::not_finite(self.0)),
         }
     }
 }
@@ -493,7 +490,7 @@ impl<'a> SceneDoc<'a> {
     }
 
     /// A registry curve under its key, and its extremes under `extremes`' keys.
-    fn curve<M: SerializeMap>(
+    fn curve<M: CurveMap>(
         &self,
         map: &mut M,
         quantity: &'static Quantity,
@@ -508,11 +505,11 @@ impl<'a> SceneDoc<'a> {
         };
         let row = curves.values.first().map_or(&[][..], Vec::as_slice);
         if quantity.shape.per().is_some() {
-            map.serialize_entry(quantity.key, &Rows(&curves.values))?;
+            map.rows(quantity.key, &curves.values)?;
         } else if q::COUNTS.contains(&quantity) {
             map.serialize_entry(quantity.key, &Counts(row))?;
         } else {
-            map.serialize_entry(quantity.key, &Curve(row))?;
+            map.curve(quantity.key, row)?;
         }
         if let Some((max_key, min_key)) = extremes_keys {
             let ((lo, _), (hi, _)) = extremes(row);
@@ -632,27 +629,126 @@ impl<'a> SceneDoc<'a> {
     }
 }
 
+impl SceneDoc<'_> {
+    /// One field's entries (none when the scene did not compute it).
+    fn field<M: CurveMap>(&self, map: &mut M, field: Field) -> std::result::Result<(), M::Error> {
+        match field {
+            Field::Curve(quantity) => self.curve(map, quantity, None),
+            Field::CurveAndExtremes(quantity, max, min) => {
+                self.curve(map, quantity, Some((max, min)))
+            }
+            Field::Scalars => QUANTITIES.iter().try_for_each(|q| self.scalar(map, q)),
+            Field::Extra(extra) => self.extra(map, extra),
+        }
+    }
+
+    /// A registry scalar under its key, when the scene computed it.
+    fn scalar<M: SerializeMap>(
+        &self,
+        map: &mut M,
+        quantity: &'static Quantity,
+    ) -> std::result::Result<(), M::Error> {
+        let value = match self.of {
+            Of::Scene { .. } => quantity.scalar(self.r),
+            Of::Disc(d) => quantity.disc_scalar(d, &self.r.crank_rad),
+        };
+        entry(map, quantity.key, value.map(|e| Finite(e.value)))
+    }
+
+    /// The document's entries as text, a part per field of `SCENE` in its order: written
+    /// on the threads there are (rayon), their numbers by `json_text`; with `write_object`
+    /// the text its `Serialize` gives.
+    /// The scalars are a part each: reading them is a tenth of the work.
+    fn parts(&self) -> serde_json::Result<Vec<Entries>> {
+        use rayon::prelude::*;
+        enum Part {
+            Field(Field),
+            Scalar(&'static Quantity),
+        }
+        let parts: Vec<_> = (SCENE.iter())
+            .flat_map(|&field| match field {
+                Field::Scalars => QUANTITIES.iter().map(|&q| Part::Scalar(q)).collect(),
+                _ => vec![Part::Field(field)],
+            })
+            .collect();
+        (parts.par_iter())
+            .map(|part| {
+                let mut entries = Entries::default();
+                match *part {
+                    Part::Field(field) => self.field(&mut entries, field),
+                    Part::Scalar(quantity) => self.scalar(&mut entries, quantity),
+                }
+                .map(|()| entries)
+            })
+            .collect()
+    }
+}
+
+/// Where a scene document's entries go: an object of serde's (`Serde`, the document inside
+/// another, a disc's or a duty bin's), or the text of `json_text`, which writes curves
+/// without serde's per-number path (the results file's scenes).
+trait CurveMap: SerializeMap {
+    /// `key: [x…]`.
+    fn curve(&mut self, key: &'static str, row: &[f64]) -> std::result::Result<(), Self::Error>;
+    /// `key: [[x…]…]`, a row per roller or pin.
+    fn rows(
+        &mut self,
+        key: &'static str,
+        rows: &[Vec<f64>],
+    ) -> std::result::Result<(), Self::Error>;
+}
+
+/// A serde map as a `CurveMap`.
+struct Serde<M>(M);
+
+impl<M: SerializeMap> SerializeMap for Serde<M> {
+    type Ok = M::Ok;
+    type Error = M::Error;
+
+    fn serialize_key<T: ?Sized + Serialize>(
+        &mut self,
+        key: &T,
+    ) -> std::result::Result<(), M::Error> {
+        self.0.serialize_key(key)
+    }
+
+    fn serialize_value<T: ?Sized + Serialize>(
+        &mut self,
+        value: &T,
+    ) -> std::result::Result<(), M::Error> {
+        self.0.serialize_value(value)
+    }
+
+    fn end(self) -> std::result::Result<M::Ok, M::Error> {
+        self.0.end()
+    }
+}
+
+impl<M: SerializeMap> CurveMap for Serde<M> {
+    fn curve(&mut self, key: &'static str, row: &[f64]) -> std::result::Result<(), M::Error> {
+        self.0.serialize_entry(key, &Curve(row))
+    }
+
+    fn rows(&mut self, key: &'static str, rows: &[Vec<f64>]) -> std::result::Result<(), M::Error> {
+        self.0.serialize_entry(key, &Rows(rows))
+    }
+}
+
+impl CurveMap for Entries {
+    fn curve(&mut self, key: &'static str, row: &[f64]) -> serde_json::Result<()> {
+        self.raw(key, |text| json_text::numbers(text, row))
+    }
+
+    fn rows(&mut self, key: &'static str, rows: &[Vec<f64>]) -> serde_json::Result<()> {
+        self.raw(key, |text| json_text::rows(text, rows))
+    }
+}
+
 impl Serialize for SceneDoc<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut map = s.serialize_map(None)?;
-        for field in SCENE {
-            match *field {
-                Field::Curve(quantity) => self.curve(&mut map, quantity, None)?,
-                Field::CurveAndExtremes(quantity, max, min) => {
-                    self.curve(&mut map, quantity, Some((max, min)))?
-                }
-                Field::Scalars => {
-                    for quantity in QUANTITIES {
-                        let value = match self.of {
-                            Of::Scene { .. } => quantity.scalar(self.r),
-                            Of::Disc(d) => quantity.disc_scalar(d, &self.r.crank_rad),
-                        };
-                        let value = value.map(|e| Finite(e.value));
-                        entry(&mut map, quantity.key, value)?;
-                    }
-                }
-                Field::Extra(extra) => self.extra(&mut map, extra)?,
-            }
+        let mut map = Serde(s.serialize_map(None)?);
+        for &field in SCENE {
+            self.field(&mut map, field)?;
         }
         map.end()
     }
@@ -859,9 +955,16 @@ impl<'a> StudyDoc<'a> {
     }
 }
 
-/// The whole results document.
-#[derive(Serialize)]
+/// The whole results document: its head, the scenes' documents, its tail, in this order.
 pub struct Document<'a> {
+    head: Head<'a>,
+    scenes: Vec<SceneDoc<'a>>,
+    tail: Tail<'a>,
+}
+
+/// The results document's entries before its scenes.
+#[derive(Serialize)]
+struct Head<'a> {
     schema: u32,
     name: &'a str,
     tool_version: &'static str,
@@ -884,7 +987,11 @@ pub struct Document<'a> {
     unbalance: Vec<UnbalanceDoc<'a>>,
     checks: Vec<CheckDoc<'a>>,
     golden: Vec<GoldenDoc<'a>>,
-    scenes: Vec<SceneDoc<'a>>,
+}
+
+/// The results document's entries after its scenes.
+#[derive(Serialize)]
+struct Tail<'a> {
     summary: Vec<SummaryDoc<'a>>,
     studies: Vec<StudyDoc<'a>>,
 }
@@ -920,6 +1027,52 @@ struct UnbalanceDoc<'a> {
 impl<'a> Document<'a> {
     pub fn new(c: &Contents<'a>) -> Self {
         Document {
+            head: Head::new(c),
+            scenes: c.results.iter().map(SceneDoc::new).collect(),
+            tail: Tail {
+                summary: c.summaries.iter().map(summary).collect(),
+                studies: c
+                    .studies
+                    .iter()
+                    .filter_map(|r| {
+                        let study = c.spec.studies.iter().find(|s| s.name == r.name)?;
+                        Some(StudyDoc::new(c.spec, study, r))
+                    })
+                    .collect(),
+            },
+        }
+    }
+
+    /// Write the document (compact) to `out`: the head and tail serialised by serde_json,
+    /// each scene's entries by `SceneDoc::parts`. All of it is formatted before the first
+    /// byte is written, so an error (a non-finite number) writes nothing.
+    pub fn write_to(&self, out: &mut dyn Write) -> std::io::Result<()> {
+        let (mut head, mut tail) = (Entries::default(), Entries::default());
+        head.flatten(&self.head)?;
+        tail.flatten(&self.tail)?;
+        let scenes = (self.scenes.iter())
+            .map(SceneDoc::parts)
+            .collect::<serde_json::Result<Vec<_>>>()?;
+        // The head is never empty (`schema`), so the scenes' key follows a separator.
+        out.write_all(b"{")?;
+        out.write_all(head.as_bytes())?;
+        out.write_all(b",\"scenes\":[")?;
+        for (i, parts) in scenes.iter().enumerate() {
+            out.write_all(if i > 0 { b"," } else { b"" })?;
+            json_text::write_object(out, parts)?;
+        }
+        out.write_all(b"]")?;
+        if !tail.as_bytes().is_empty() {
+            out.write_all(b",")?;
+            out.write_all(tail.as_bytes())?;
+        }
+        out.write_all(b"}")
+    }
+}
+
+impl<'a> Head<'a> {
+    fn new(c: &Contents<'a>) -> Self {
+        Head {
             schema: 1,
             name: &c.spec.name,
             tool_version: env!("CARGO_PKG_VERSION"),
@@ -941,16 +1094,6 @@ impl<'a> Document<'a> {
                 .collect(),
             checks: c.checks.iter().map(check).collect(),
             golden: c.goldens.iter().map(golden).collect(),
-            scenes: c.results.iter().map(SceneDoc::new).collect(),
-            summary: c.summaries.iter().map(summary).collect(),
-            studies: c
-                .studies
-                .iter()
-                .filter_map(|r| {
-                    let study = c.spec.studies.iter().find(|s| s.name == r.name)?;
-                    Some(StudyDoc::new(c.spec, study, r))
-                })
-                .collect(),
         }
     }
 }
@@ -1011,7 +1154,7 @@ fn summary(s: &SceneSummary) -> SummaryDoc<'_> {
 /// compares with the registry.
 pub fn scenes_value(spec: &Spec, results: &[SceneResult]) -> serde_json::Result<serde_json::Value> {
     let summaries = crate::engine::summary::marked(spec, results);
-    serde_json::to_value(Document::new(&Contents {
+    let doc = Document::new(&Contents {
         spec,
         checks: &[],
         results,
@@ -1020,39 +1163,16 @@ pub fn scenes_value(spec: &Spec, results: &[SceneResult]) -> serde_json::Result<
         studies: &[],
         mass: None,
         unbalance: &[],
-    }))
+    });
+    let mut text = Vec::new();
+    doc.write_to(&mut text).map_err(serde_json::Error::io)?;
+    serde_json::from_slice(&text)
 }
 
-/// serde_json's compact format, with zeros (most of the forces and pressures: a roller out of
-/// contact) written without the float formatter, which costs as much for 0.0 as for any
-/// number.
-struct Compact;
-
-impl serde_json::ser::Formatter for Compact {
-    fn write_f64<W: ?Sized + Write>(&mut self, out: &mut W, value: f64) -> std::io::Result<()> {
-        if value == 0.0 {
-            out.write_all(if value.is_sign_negative() {
-                b"-0.0"
-            } else {
-                b"0.0"
-            })
-        } else {
-            serde_json::ser::CompactFormatter.write_f64(out, value)
-        }
-    }
-}
-
-/// Write the document to `path` atomically ([`files::write_atomic_with`](crate::files::write_atomic_with)), compact, through a
-/// buffer of 64 KiB: it stays in cache, and the writes of a few bytes per number into it
-/// inline (through the `dyn Write` below it they would be calls).
+/// Write the document (`Document::write_to`) to `path` atomically
+/// ([`files::write_atomic_with`](crate::files::write_atomic_with)).
 pub fn write(path: &Path, doc: &Document) -> Result<()> {
-    crate::files::write_atomic_with(path, |out| {
-        let mut out = BufWriter::with_capacity(64 << 10, out);
-        doc.serialize(&mut serde_json::Serializer::with_formatter(
-            &mut out, Compact,
-        ))?;
-        out.flush()
-    })
+    crate::files::write_atomic_with(path, |out| doc.write_to(out))
 }
 
 #[cfg(test)]
@@ -1103,23 +1223,6 @@ mod tests {
         );
         for x in [2.5, -1.0, f64::NAN, f64::INFINITY] {
             assert!(serde_json::to_string(&Counts(&[x])).is_err(), "{x}");
-        }
-    }
-
-    /// The compact formatter's zeros are serde_json's (the value read back is the same).
-    #[test]
-    fn zeros_are_written_as_serde_json_writes_them() {
-        for x in [0.0, -0.0] {
-            let mut ours = Vec::new();
-            Finite(x)
-                .serialize(&mut serde_json::Serializer::with_formatter(
-                    &mut ours, Compact,
-                ))
-                .unwrap();
-            assert_eq!(
-                String::from_utf8(ours).unwrap(),
-                serde_json::to_string(&x).unwrap()
-            );
         }
     }
 }

@@ -14,6 +14,7 @@ pub mod export;
 pub mod fit;
 pub mod golden;
 pub mod json;
+pub mod json_text;
 pub mod junit;
 pub mod mass_properties;
 pub mod optimisation;

@@ -1,0 +1,279 @@
+//! The results JSON's text, written into byte buffers: a curve's numbers without serde's
+//! per-number path, and objects whose entries are written apart (on several threads) and
+//! joined. What it writes is the text serde_json's compact serialiser gives for the same
+//! values, byte for byte (the tests below hold it); `report::json` says what is written.
+//!
+//! Why not serde_json alone: a 3,600-angle scene is about 165,000 numbers, and serde's path
+//! for each (the sequence's state, the separator, the finiteness test, a write into the
+//! buffer) cost as much again as formatting the number; and serde_json takes a value already
+//! written as text only through `RawValue`, which parses it again (BENCHMARKS.md "JSON
+//! output").
+
+use serde::ser::{Error as _, SerializeMap};
+use serde::Serialize;
+use std::io::Write;
+
+/// serde_json's compact format, with zeros (most of the forces and pressures: a roller out of
+/// contact) written without the float formatter, which costs as much for 0.0 as for any
+/// number.
+pub struct Compact;
+
+impl serde_json::ser::Formatter for Compact {
+    fn write_f64<W: ?Sized + Write>(&mut self, out: &mut W, value: f64) -> std::io::Result<()> {
+        let mut digits = zmij::Buffer::new();
+        out.write_all(
+            zero(value)
+                .unwrap_or_else(|| digits.format_finite(value))
+                .as_bytes(),
+        )
+    }
+}
+
+/// "0.0" or "-0.0" for a zero, as serde_json writes them; `None` for any other number.
+fn zero(value: f64) -> Option<&'static str> {
+    match value == 0.0 {
+        true if value.is_sign_negative() => Some("-0.0"),
+        true => Some("0.0"),
+        false => None,
+    }
+}
+
+/// `value` serialised by serde_json (compact, `Compact`'s zeros) at the end of `buf`.
+pub fn serialize_into<T: ?Sized + Serialize>(
+    buf: &mut Vec<u8>,
+    value: &T,
+) -> serde_json::Result<()> {
+    value.serialize(&mut serde_json::Serializer::with_formatter(buf, Compact))
+}
+
+/// The error of a number JSON cannot hold (`report::json::Finite` says the same).
+pub fn not_finite<E: serde::ser::Error>(value: f64) -> E {
+    E::custom(format!(
+        "a result is {value}, which JSON cannot hold (a bug: please report it with the spec)"
+    ))
+}
+
+/// `[x0,x1,…]` at the end of `buf`: each number in serde_json's shortest round-trip form
+/// (zmij's, the formatter serde_json calls), a non-finite one an error. The buffer is grown
+/// once, for the longest numbers (zmij's 24 bytes), and a zero is written as a constant:
+/// in this loop a copy of unknown length is a call.
+pub fn numbers(buf: &mut Vec<u8>, row: &[f64]) -> serde_json::Result<()> {
+    let mut digits = zmij::Buffer::new();
+    buf.reserve(2 + 25 * row.len());
+    buf.push(b'[');
+    for (i, &x) in row.iter().enumerate() {
+        if i > 0 {
+            buf.push(b',');
+        }
+        if x == 0.0 {
+            match x.is_sign_negative() {
+                true => buf.extend_from_slice(b"-0.0"),
+                false => buf.extend_from_slice(b"0.0"),
+            }
+        } else if x.is_finite() {
+            buf.extend_from_slice(digits.format_finite(x).as_bytes());
+        } else {
+            return Err(not_finite(x));
+        }
+    }
+    buf.push(b']');
+    Ok(())
+}
+
+/// `[[…],[…],…]`: rows of numbers (`numbers`).
+pub fn rows(buf: &mut Vec<u8>, rows: &[Vec<f64>]) -> serde_json::Result<()> {
+    buf.push(b'[');
+    for (i, row) in rows.iter().enumerate() {
+        if i > 0 {
+            buf.push(b',');
+        }
+        numbers(buf, row)?;
+    }
+    buf.push(b']');
+    Ok(())
+}
+
+/// The entries of a JSON object, `"key":value,…`, without its braces: a part of an object
+/// that `object` joins with others. Its values are serialised by serde_json (`SerializeMap`),
+/// or written by a function of this module (`raw`).
+#[derive(Default)]
+pub struct Entries {
+    text: Vec<u8>,
+}
+
+impl Entries {
+    /// The entries' text, `"key":value,…`.
+    pub fn as_bytes(&self) -> &[u8] {
+        &self.text
+    }
+
+    /// `"key":` then what `write` appends.
+    pub fn raw(
+        &mut self,
+        key: &str,
+        write: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()>,
+    ) -> serde_json::Result<()> {
+        self.serialize_key(key)?;
+        write(&mut self.text)
+    }
+
+    /// The entries of `value`, which serialises as a JSON object (a struct), as this object's
+    /// (serde's `flatten`, without its buffering).
+    pub fn flatten<T: Serialize>(&mut self, value: &T) -> serde_json::Result<()> {
+        let mut object = Vec::new();
+        serialize_into(&mut object, value)?;
+        match object.as_slice() {
+            [b'{', b'}'] => Ok(()),
+            [b'{', inner @ .., b'}'] => {
+                self.separate();
+                self.text.extend_from_slice(inner);
+                Ok(())
+            }
+            _ => Err(serde_json::Error::custom(
+                "a flattened value is not an object",
+            )),
+        }
+    }
+
+    fn separate(&mut self) {
+        if !self.text.is_empty() {
+            self.text.push(b',');
+        }
+    }
+}
+
+impl SerializeMap for Entries {
+    type Ok = ();
+    type Error = serde_json::Error;
+
+    fn serialize_key<T: ?Sized + Serialize>(&mut self, key: &T) -> serde_json::Result<()> {
+        self.separate();
+        serialize_into(&mut self.text, key)?;
+        self.text.push(b':');
+        Ok(())
+    }
+
+    fn serialize_value<T: ?Sized + Serialize>(&mut self, value: &T) -> serde_json::Result<()> {
+        serialize_into(&mut self.text, value)
+    }
+
+    fn end(self) -> serde_json::Result<()> {
+        Ok(())
+    }
+}
+
+/// `{…}` to `out`: the object whose entries are `parts`' in their order (an empty part adds
+/// none), each part written as it is (not copied into one buffer first).
+pub fn write_object(out: &mut dyn Write, parts: &[Entries]) -> std::io::Result<()> {
+    out.write_all(b"{")?;
+    let mut first = true;
+    for part in parts.iter().filter(|p| !p.text.is_empty()) {
+        out.write_all(if std::mem::take(&mut first) {
+            b""
+        } else {
+            b","
+        })?;
+        out.write_all(&part.text)?;
+    }
+    out.write_all(b"}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand_chacha::rand_core::SeedableRng;
+    use rand_distr::{Distribution as _, StandardUniform};
+
+    fn serde(value: &impl Serialize) -> String {
+        serde_json::to_string(value).unwrap()
+    }
+
+    fn ours(write: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()>) -> String {
+        let mut buf = Vec::new();
+        write(&mut buf).unwrap();
+        String::from_utf8(buf).unwrap()
+    }
+
+    /// The numbers' text is serde_json's own for the numbers a result holds (forces of a few
+    /// newtons, angles in arcseconds, pressures) and for the edges of the format: zeros of
+    /// both signs, subnormals, the largest and smallest normal numbers, the switch to an
+    /// exponent (1e16, 1e-7 and their neighbours), and 100,000 numbers of random bits
+    /// (every exponent and mantissa pattern, the non-finite ones left out).
+    #[test]
+    fn numbers_are_written_as_serde_json_writes_them() {
+        let mut edge = vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.5,
+            0.1,
+            1.0 / 3.0,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            f64::MIN_POSITIVE / 3.0,
+            5e-324,
+            f64::MAX,
+            f64::MIN,
+            f64::EPSILON,
+            1e15,
+            1e16,
+            1e17,
+            1e21,
+            1e22,
+            1e-5,
+            1e-6,
+            1e-7,
+            123456789.0,
+            2.5e-4,
+        ];
+        for x in [1e16_f64, 1e-7, 1e21] {
+            edge.push(f64::from_bits(x.to_bits() - 1));
+            edge.push(f64::from_bits(x.to_bits() + 1));
+        }
+        assert_eq!(ours(|b| numbers(b, &edge)), serde(&edge));
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(40);
+        let random: Vec<f64> = (0..100_000)
+            .map(|_| f64::from_bits(StandardUniform.sample(&mut rng)))
+            .filter(|x| x.is_finite())
+            .collect();
+        assert_eq!(ours(|b| numbers(b, &random)), serde(&random));
+        let rows = vec![random[..3].to_vec(), vec![], vec![0.0, 2.0]];
+        assert_eq!(ours(|b| super::rows(b, &rows)), serde(&rows));
+        assert_eq!(ours(|b| numbers(b, &[])), "[]");
+    }
+
+    /// A non-finite number is an error, as `Finite` makes it, not the `null` serde_json
+    /// writes.
+    #[test]
+    fn a_non_finite_number_is_an_error() {
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let error = numbers(&mut Vec::new(), &[1.0, x]).unwrap_err();
+            assert!(error.to_string().contains("JSON cannot hold"), "{error}");
+        }
+    }
+
+    /// Objects joined from parts, and a flattened struct, are the object serde_json writes
+    /// for the same entries; an empty part adds no separator.
+    #[test]
+    fn joined_entries_are_one_object() {
+        #[derive(Serialize)]
+        struct Head {
+            a: u32,
+            b: &'static str,
+        }
+        #[derive(Serialize)]
+        struct Nothing {}
+        let mut first = Entries::default();
+        first.flatten(&Head { a: 1, b: "x\"y" }).unwrap();
+        first.flatten(&Nothing {}).unwrap();
+        let mut second = Entries::default();
+        second.serialize_entry("c", &[0.5, -0.0, 0.0]).unwrap();
+        second.raw("d", |b| numbers(b, &[2.0])).unwrap();
+        let object =
+            |parts: &[Entries]| ours(|b| write_object(b, parts).map_err(serde_json::Error::io));
+        let text = object(&[first, Entries::default(), second]);
+        let expected = serde_json::json!({"a": 1, "b": "x\"y", "c": [0.5, -0.0, 0.0], "d": [2.0]});
+        assert_eq!(text, serde(&expected));
+        assert_eq!(object(&[Entries::default()]), "{}");
+    }
+}

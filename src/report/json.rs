@@ -641,7 +641,7 @@ impl<'a> From<&'a Point> for PointDoc<'a> {
     fn from(p: &'a Point) -> Self {
         PointDoc {
             column: &p.column,
-            crank_deg: Finite(p.crank_deg),
+            crank_deg: Finite(p.at.crank_deg),
             golden: Finite(p.golden),
             value: Finite(p.value),
             deviation: Finite(p.deviation),

@@ -31,22 +31,7 @@ use serde::{Serialize, Serializer};
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
-/// A number JSON can hold: serialising a non-finite one is an error.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Finite(pub f64);
-
-impl Serialize for Finite {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        if self.0.is_finite() {
-            s.serialize_f64(self.0)
-        } else {
-            Err(S::Error::custom(format!(
-                "a result is {}, which JSON cannot hold (a bug: please report it with the spec)",
-                self.0
-            )))
-        }
-    }
-}
+pub use super::finite::Finite;
 
 /// A curve as the registry or the results hold it, already in its key's unit.
 #[derive(Clone, Copy)]

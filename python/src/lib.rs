@@ -285,7 +285,7 @@ fn tolerance(
     let table = detached(py, || {
         let run = cycloid::tolerance(&spec, samples, false, &sink)?;
         let report = &cycloid::report::tolerance::json;
-        let json = report(&run.study, &run.summary, &run.records, None);
+        let json = report(&run.study, &run.summary, &run.records, None)?;
         let doc = cycloid::report::tolerance::samples(&run.study, &run.records);
         Ok((doc, json))
     });

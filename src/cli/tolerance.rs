@@ -145,7 +145,7 @@ fn finish(run: Whole, outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome>
         &report::tolerance::render(study, summary, records, sens),
     )?;
     if let Some(p) = outputs.json {
-        write_file(p, &report::tolerance::json(study, summary, records, sens))?;
+        write_file(p, &report::tolerance::json(study, summary, records, sens)?)?;
     }
     if let Some(p) = outputs.csv {
         write_file(p, &report::tolerance::samples_csv(study, records))?;

@@ -19,7 +19,8 @@
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::files;
-use crate::model::quantity::Curves;
+use crate::model::place::{GoldenAt, Part, Place, Site};
+use crate::model::quantity::{Curves, Shape};
 use crate::model::results::SceneResult;
 use crate::model::{Golden, GoldenTolerance};
 use crate::spec::Spec;
@@ -185,7 +186,10 @@ fn same_angle(a: f64, b: f64, slack: f64) -> bool {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Point {
     pub column: String,
-    pub crank_deg: f64,
+    /// Its column's part and its angle, as compared.
+    pub at: GoldenAt,
+    /// The disc whose curve the golden holds (`Golden::disc`), with several discs.
+    pub disc: Option<usize>,
     pub golden: f64,
     pub value: f64,
     /// |value − golden|.
@@ -195,6 +199,15 @@ pub struct Point {
 }
 
 impl Point {
+    /// Where it lies, for `report::place` to word.
+    pub fn place(&self) -> Place {
+        Place {
+            bin: None,
+            disc: self.disc,
+            site: Site::Golden(self.at),
+        }
+    }
+
     /// deviation / band: ≤ 1 inside the band.
     pub fn ratio(&self) -> f64 {
         if self.deviation == 0.0 {
@@ -207,6 +220,17 @@ impl Point {
     }
 }
 
+/// The part whose curve a column is (`roller_3`: roller 3), as `Quantity::curves` names the
+/// columns from `Shape::per`; `None` for a quantity of one curve (`te_arcsec`).
+fn part_of(column: &str) -> Option<(Part, usize)> {
+    let (what, index) = column.rsplit_once('_')?;
+    let part = [(Shape::PerRoller, Part::Roller), (Shape::PerPin, Part::Pin)]
+        .into_iter()
+        .find(|(shape, _)| shape.per() == Some(what))?
+        .1;
+    Some((part, index.parse().ok()?))
+}
+
 /// A whole-curve comparison.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Comparison {
@@ -217,6 +241,15 @@ pub struct Comparison {
     /// The point with the largest |deviation|.
     pub largest: Point,
     pub passed: bool,
+}
+
+impl Comparison {
+    /// The comparison of disc `disc`'s curve: its points name the disc.
+    fn of_disc(mut self, disc: Option<usize>) -> Comparison {
+        self.worst.disc = disc;
+        self.largest.disc = disc;
+        self
+    }
 }
 
 /// The difference a − b, taken into (−period/2, period/2] for a wrapping angle.
@@ -311,6 +344,7 @@ pub fn compare(
     let mut worst: Option<Point> = None;
     let mut largest: Option<Point> = None;
     for (c, column) in now.columns.iter().enumerate() {
+        let part = part_of(column);
         let (gy, ry) = (&golden.curves.values[c], &now.values[c]);
         let (base_x, base_y, other_x, other_y) = if golden_sets {
             (&golden.crank_deg[..], &gy[..], now_deg, &ry[..])
@@ -324,7 +358,8 @@ pub fn compare(
             let (g, v) = if golden_sets { (b, o) } else { (o, b) };
             let p = Point {
                 column: column.clone(),
-                crank_deg: x,
+                at: GoldenAt { part, crank_deg: x },
+                disc: None,
                 golden: g,
                 value: v,
                 deviation: deviation(v, g, period),
@@ -444,6 +479,7 @@ pub fn evaluate(
                     ),
                 )
             })?;
+            let comparison = comparison.of_disc(g.disc);
             Ok(GoldenResult {
                 golden: g.clone(),
                 unit: g.quantity.unit,
@@ -699,7 +735,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
                         period,
                     )
                 }) {
-                Ok(c) => BlessChange::Compared(c),
+                Ok(c) => BlessChange::Compared(c.of_disc(g.disc)),
                 Err(m) => BlessChange::Replaced(m),
             },
         };

@@ -1,7 +1,8 @@
 //! Where a scalar of a sweep occurs, or what it rests on, as data (`quantity::Extreme::at`):
 //! which bin of a duty cycle, which disc of several, which part and index, which crank angle.
-//! Built by the registry (`model::quantity`) where it finds the extreme; said in words only by
-//! `report::place`, for every view (terminal, results JSON, JUnit, the review, explain).
+//! Built by the registry (`model::quantity`) where it finds the extreme, and by
+//! `engine::golden::compare` for a golden comparison's points; said in words only by
+//! `report::place`, for every view (terminal, results JSON, JUnit, the review, explain, bless).
 //!
 //! Units and frames: a crank angle is the input crank's φ, rad, counter-clockwise positive,
 //! the disc centre at (e, 0) at φ = 0 (MODEL.md "Conventions"), as `SceneResult::crank_rad`
@@ -168,6 +169,21 @@ pub enum Site {
     },
     /// A figure with no finite bound, and why.
     Unbounded(Unbounded),
+    /// A point of a golden curve's comparison (`engine::golden::Point`).
+    Golden(GoldenAt),
+}
+
+/// A point of a golden comparison: a column of the curves at one of the angles compared.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GoldenAt {
+    /// The roller or pin whose column it is (`roller_3`: roller 3); `None` for a quantity of
+    /// one curve (`te_arcsec`).
+    pub part: Option<(Part, usize)>,
+    /// The crank angle, degrees, as compared: the golden file's (as read from it) or the run's
+    /// (`units::deg` of `crank_rad`), whichever sets the angles (`engine::golden::compare`).
+    /// In degrees, not rad, because a golden's angles are degrees and a round trip through
+    /// radians can move the printed hundredth (1.875° reads 1.87° after it).
+    pub crank_deg: f64,
 }
 
 /// The formula of a figure that is no extreme (a mean, an equivalent).

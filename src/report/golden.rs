@@ -1,8 +1,10 @@
 //! What `cycloid bless` says it did ([`engine::golden::bless`](crate::engine::golden::bless)): per golden file, what moved, by
 //! how much and where.
 
-use crate::engine::golden::{BlessChange, Blessed, Written};
+use crate::engine::golden::{BlessChange, Blessed, Point, Written};
+use crate::model::place::Place;
 use crate::numeric::number;
+use crate::report::place;
 use crate::spec::Spec;
 
 /// The lines `cycloid bless` prints: per golden, what moved, by how much and where.
@@ -43,7 +45,7 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
                 } else {
                     format!(" {}", b.unit)
                 },
-                place(&c.largest),
+                place::text(&c.largest.place()),
                 number(c.largest.golden),
                 number(c.largest.value),
                 if c.passed {
@@ -68,13 +70,11 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
     out
 }
 
-/// Where a golden point lies: "roller 3 at crank 12.30°" (or "crank 12.30°" for a single
-/// curve).
-pub fn place(p: &crate::engine::golden::Point) -> String {
-    match p.column.rsplit_once('_') {
-        Some((what, i)) if i.parse::<usize>().is_ok() => {
-            format!("{what} {i} at crank {:.2}°", p.crank_deg)
-        }
-        _ => format!("crank {:.2}°", p.crank_deg),
-    }
+/// Where a golden point lies, in a row that names the golden's disc already (a check's id, the
+/// review's curve: `Golden::disc_suffix`), so without it: "roller 3 at crank 12.30°".
+pub fn in_row(p: &Point) -> String {
+    place::text(&Place {
+        disc: None,
+        ..p.place()
+    })
 }

@@ -33,18 +33,7 @@ use serde::{Serialize, Serializer};
 use std::io::Write;
 use std::path::Path;
 
-/// A number JSON can hold: serialising a non-finite one is an error.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Finite(pub f64);
-
-impl Serialize for Finite {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        match self.0.is_finite() {
-            true => s.serialize_f64(self.0),
-            false => Err(json_text::not_finite(self.0)),
-        }
-    }
-}
+pub use super::finite::Finite;
 
 /// A curve as the registry or the results hold it, already in its key's unit.
 #[derive(Clone, Copy)]
@@ -779,7 +768,7 @@ impl<'a> From<&'a Point> for PointDoc<'a> {
     fn from(p: &'a Point) -> Self {
         PointDoc {
             column: &p.column,
-            crank_deg: Finite(p.crank_deg),
+            crank_deg: Finite(p.at.crank_deg),
             golden: Finite(p.golden),
             value: Finite(p.value),
             deviation: Finite(p.deviation),

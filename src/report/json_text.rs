@@ -9,6 +9,7 @@
 //! written as text only through `RawValue`, which parses it again (BENCHMARKS.md "JSON
 //! output").
 
+use super::finite::not_finite;
 use serde::ser::{Error as _, SerializeMap};
 use serde::Serialize;
 use std::io::Write;
@@ -44,13 +45,6 @@ pub fn serialize_into<T: ?Sized + Serialize>(
     value: &T,
 ) -> serde_json::Result<()> {
     value.serialize(&mut serde_json::Serializer::with_formatter(buf, Compact))
-}
-
-/// The error of a number JSON cannot hold (`report::json::Finite` says the same).
-pub fn not_finite<E: serde::ser::Error>(value: f64) -> E {
-    E::custom(format!(
-        "a result is {value}, which JSON cannot hold (a bug: please report it with the spec)"
-    ))
 }
 
 /// `[x0,x1,…]` at the end of `buf`: each number in serde_json's shortest round-trip form

@@ -11,6 +11,7 @@ pub mod check_review;
 pub mod design;
 pub mod explain;
 pub mod export;
+pub mod finite;
 pub mod fit;
 pub mod golden;
 pub mod json;

@@ -4,7 +4,7 @@
 //! figures to `numeric::number`'s four significant digits.
 
 use crate::model::friction::PathLosses;
-use crate::model::place::{Bin, Crank, Part, PartAt, Place, Rule, Site, Unbounded};
+use crate::model::place::{Bin, Crank, GoldenAt, Part, PartAt, Place, Rule, Site, Unbounded};
 use crate::model::results::{Driver, MinCoverage};
 use crate::numeric::{number, phase};
 use crate::units;
@@ -32,16 +32,38 @@ fn bin(b: &Bin) -> String {
 
 /// A crank angle φ, rad, as every place reads it: "crank 12.30°".
 pub fn crank(rad: f64) -> String {
-    format!("crank {:.2}°", units::deg(rad))
+    crank_deg(units::deg(rad))
+}
+
+/// A crank angle held in degrees (a golden's): "crank 12.30°".
+fn crank_deg(deg: f64) -> String {
+    format!("crank {deg:.2}°")
+}
+
+/// "roller", "pin".
+fn part_name(part: Part) -> &'static str {
+    match part {
+        Part::Roller => "roller",
+        Part::Pin => "pin",
+    }
 }
 
 /// "roller 3 at crank 12.30°", "pin 0 at crank 1.00°".
 fn part_at(a: &PartAt) -> String {
-    let part = match a.part {
-        Part::Roller => "roller",
-        Part::Pin => "pin",
-    };
-    format!("{part} {} at {}", a.index, crank(a.crank.rad))
+    format!(
+        "{} {} at {}",
+        part_name(a.part),
+        a.index,
+        crank(a.crank.rad)
+    )
+}
+
+/// A golden point: "roller 3 at crank 12.30°", or "crank 12.30°" on a curve of its own.
+fn golden_at(g: &GoldenAt) -> String {
+    match g.part {
+        Some((part, index)) => format!("{} {index} at {}", part_name(part), crank_deg(g.crank_deg)),
+        None => crank_deg(g.crank_deg),
+    }
 }
 
 /// The site on a run, in words.
@@ -111,6 +133,7 @@ fn site(s: &Site) -> String {
             angles,
         } => efficiency(*driver, *self_locks, *locked, *angles),
         Site::Unbounded(u) => unbounded(u),
+        Site::Golden(g) => golden_at(g),
     }
 }
 
@@ -507,6 +530,31 @@ mod tests {
                 "disc 0: unbounded: no bin loads the bearing enough to wear it (written as \
                  1.798e308 h, the largest number)",
             ),
+            (
+                of(Site::Golden(GoldenAt {
+                    part: Some((Part::Roller, 3)),
+                    crank_deg: 12.3,
+                })),
+                "roller 3 at crank 12.30°",
+            ),
+            (
+                of(Site::Golden(GoldenAt {
+                    part: Some((Part::Pin, 2)),
+                    crank_deg: -1.0,
+                })),
+                "pin 2 at crank -1.00°",
+            ),
+            (
+                Place {
+                    bin: None,
+                    disc: Some(1),
+                    site: Site::Golden(GoldenAt {
+                        part: None,
+                        crank_deg: 66.7,
+                    }),
+                },
+                "disc 1: crank 66.70°",
+            ),
         ]
     }
 
@@ -515,6 +563,22 @@ mod tests {
         for (place, words) in cases() {
             assert_eq!(text(&place), words, "{place:?}");
         }
+    }
+
+    /// A golden point's angle reads as the comparison had it, in degrees: 1.875° and 0.575° (a
+    /// golden sampled every 0.025°) to two decimals, as `{:.2}` rounds their exact binary
+    /// values (1.875 is a tie, to even; 0.575 is 0.57499…). Through radians and back they
+    /// would read 1.87° and 0.58°, which the second half shows of the words of a rad angle.
+    #[test]
+    fn a_golden_point_reads_its_angle_in_the_degrees_it_was_compared_at() {
+        let at = |part, crank_deg| text(&Place::of(Site::Golden(GoldenAt { part, crank_deg })));
+        assert_eq!(
+            at(Some((Part::Roller, 0)), 1.875),
+            "roller 0 at crank 1.88°"
+        );
+        assert_eq!(at(None, 0.575), "crank 0.57°");
+        assert_eq!(crank(units::rad(1.875)), "crank 1.87°");
+        assert_eq!(crank(units::rad(0.575)), "crank 0.58°");
     }
 
     /// The typed tests a headline makes of a place say what its words say: whether they name

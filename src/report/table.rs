@@ -533,7 +533,7 @@ pub fn evidence(e: &Evidence) -> String {
         Evidence::Place(p) => place::text(p),
         Evidence::Golden { worst, path } => format!(
             "worst at {}: golden {}, now {} ({})",
-            super::golden::place(worst),
+            super::golden::in_row(worst),
             number(worst.golden),
             number(worst.value),
             path.display()

@@ -2,15 +2,17 @@
 //! Every number written to a file is in Rust's shortest round-trip form (serde_json, `{:?}`),
 //! so that the files of a sharded and an unsharded run compare byte for byte.
 
+use super::finite::Finite;
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, ToleranceStudy};
+use crate::error::{Error, Result};
 use crate::model::quantity::Bound;
 use crate::model::tolerances::{Distribution, NORMAL_CUT_SIGMA};
 use crate::numeric::number;
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
-use serde_json::{json, Map, Value};
+use std::collections::BTreeMap;
 
 /// How the report's quantiles are defined (printed and in the JSON).
 pub const QUANTILE_DEFINITION: &str =
@@ -245,121 +247,204 @@ fn sensitivity_text(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> 
     out
 }
 
-/// The drawn values of sample k by column name.
-fn draws(study: &ToleranceStudy, k: u64) -> Map<String, Value> {
-    let discs = study.spec.design.discs;
-    study
-        .params
-        .iter()
-        .zip(study.draw(k))
-        .map(|(p, v)| (p.name(discs), json!(v)))
-        .collect()
+/// The JSON document of a study (`tolerance --json`). Its fields, and those of the documents
+/// in it, are in alphabetical order, as its keys have always been written (it was built as a
+/// `serde_json` map, which sorts them); the maps keyed by a part's or a quantity's name are
+/// sorted maps for the same reason.
+#[derive(Serialize)]
+struct StudyDoc<'a> {
+    bands_mm: BTreeMap<&'static str, Finite>,
+    distribution: &'static str,
+    failure_rate: Finite,
+    failure_rate_ci95: [Finite; 2],
+    failures: u64,
+    limits: Vec<LimitDoc>,
+    max_failure_rate: Finite,
+    passed: bool,
+    quantile_definition: &'static str,
+    samples: u64,
+    scene: &'a str,
+    seed: u64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sensitivity: Option<SensitivityDoc>,
+    spec: SpecDoc<'a>,
+    worst: Vec<WorstDoc>,
 }
 
-/// The JSON document of a study.
+#[derive(Serialize)]
+struct SpecDoc<'a> {
+    name: &'a str,
+    path: &'a str,
+}
+
+/// The distribution of one limited quantity over the samples, and its failures.
+#[derive(Serialize)]
+struct LimitDoc {
+    bound: &'static str,
+    failure_rate: Finite,
+    failure_rate_ci95: [Finite; 2],
+    failures: u64,
+    key: &'static str,
+    limit: Finite,
+    max: Finite,
+    mean: Finite,
+    min: Finite,
+    quantiles: Vec<QuantileDoc>,
+    quantity: &'static str,
+    std: Finite,
+    unit: &'static str,
+}
+
+/// The value below which the fraction `p` of the samples lie (`QUANTILE_DEFINITION`).
+#[derive(Serialize)]
+struct QuantileDoc {
+    p: Finite,
+    value: Finite,
+}
+
+/// One of the worst samples: its draws and its limited quantities.
+#[derive(Serialize)]
+struct WorstDoc {
+    deviations_mm: BTreeMap<String, Finite>,
+    excess: Finite,
+    sample: u64,
+    values: BTreeMap<&'static str, Finite>,
+}
+
+/// The sensitivities about the nominal reducer (`--sensitivity`).
+#[derive(Serialize)]
+struct SensitivityDoc {
+    caveat: &'static str,
+    limits: Vec<LimitSensitivityDoc>,
+    step_mm: Finite,
+}
+
+#[derive(Serialize)]
+struct LimitSensitivityDoc {
+    derivative_per_mm: BTreeMap<String, Finite>,
+    linear_sigma: Finite,
+    monte_carlo_sigma: Finite,
+    pareto: Vec<ParetoDoc>,
+    quantity: &'static str,
+}
+
+/// A kind of tolerance's share of a limit's linear variance.
+#[derive(Serialize)]
+struct ParetoDoc {
+    share: Finite,
+    tolerance: &'static str,
+    variance: Finite,
+}
+
+/// Named values, a sorted map from each name to its value.
+fn named<K: Ord>(pairs: impl Iterator<Item = (K, f64)>) -> BTreeMap<K, Finite> {
+    pairs.map(|(name, v)| (name, Finite(v))).collect()
+}
+
+/// The drawn values of sample k by column name.
+fn draws(study: &ToleranceStudy, k: u64) -> BTreeMap<String, Finite> {
+    let discs = study.spec.design.discs;
+    named((study.params.iter().map(|p| p.name(discs))).zip(study.draw(k)))
+}
+
+/// A Clopper–Pearson interval as its JSON pair.
+fn interval(i: (f64, f64)) -> [Finite; 2] {
+    [Finite(i.0), Finite(i.1)]
+}
+
+/// The JSON document of a study; an error if a number in it is not finite.
 pub fn json(
     study: &ToleranceStudy,
     s: &Summary,
     records: &Records,
     sens: Option<&Sensitivity>,
-) -> String {
+) -> Result<String> {
     let t = &study.tolerances;
     let l = study.limits.len();
-    let limits: Vec<Value> = s
-        .limits
-        .iter()
-        .map(|x| {
-            json!({
-                "key": x.key,
-                "quantity": x.quantity,
-                "unit": x.unit,
-                "bound": bound_sign(x.bound),
-                "limit": x.limit,
-                "min": x.min,
-                "quantiles": QUANTILES.iter().zip(x.quantiles).map(|(p, q)| json!({"p": p, "value": q})).collect::<Vec<_>>(),
-                "max": x.max,
-                "mean": x.mean,
-                "std": x.std,
-                "failures": x.failures,
-                "failure_rate": s.limit_rate(x),
-                "failure_rate_ci95": [x.interval.0, x.interval.1],
-            })
+    let limits = (s.limits.iter())
+        .map(|x| LimitDoc {
+            bound: bound_sign(x.bound),
+            failure_rate: Finite(s.limit_rate(x)),
+            failure_rate_ci95: interval(x.interval),
+            failures: x.failures,
+            key: x.key,
+            limit: Finite(x.limit),
+            max: Finite(x.max),
+            mean: Finite(x.mean),
+            min: Finite(x.min),
+            quantiles: (QUANTILES.iter().zip(x.quantiles))
+                .map(|(&p, q)| QuantileDoc {
+                    p: Finite(p),
+                    value: Finite(q),
+                })
+                .collect(),
+            quantity: x.quantity,
+            std: Finite(x.std),
+            unit: x.unit,
         })
         .collect();
-    let worst: Vec<Value> = s
-        .worst
-        .iter()
-        .map(|&(k, excess)| {
-            let row = records.row(k, l);
-            let values: Map<String, Value> = study
-                .limits
-                .iter()
-                .zip(row)
-                .map(|((d, _), v)| (d.quantity.key.to_string(), json!(v)))
-                .collect();
-            json!({"sample": k, "excess": excess, "values": values, "deviations_mm": draws(study, k)})
+    let worst = (s.worst.iter())
+        .map(|&(k, excess)| WorstDoc {
+            deviations_mm: draws(study, k),
+            excess: Finite(excess),
+            sample: k,
+            values: named(
+                (study.limits.iter().map(|(d, _)| d.quantity.key))
+                    .zip(records.row(k, l).iter().copied()),
+            ),
         })
         .collect();
-    let bands: Map<String, Value> = t
-        .toleranced()
-        .map(|k| (k.name().to_string(), json!(t.band_mm(k))))
-        .collect();
-    let mut doc = json!({
-        "spec": {"name": study.spec.name, "path": study.spec.path},
-        "scene": study.spec.scenes[t.scene].name,
-        "samples": s.samples,
-        "seed": t.seed,
-        "distribution": t.distribution.name(),
-        "bands_mm": bands,
-        "quantile_definition": QUANTILE_DEFINITION,
-        "limits": limits,
-        "failures": s.failures,
-        "failure_rate": s.rate(),
-        "failure_rate_ci95": [s.interval.0, s.interval.1],
-        "max_failure_rate": s.max_failure_rate,
-        "passed": s.passed(),
-        "worst": worst,
-    });
-    if let Some(sens) = sens {
-        doc["sensitivity"] = sensitivity_json(study, s, sens);
-    }
-    let mut text = serde_json::to_string_pretty(&doc).unwrap_or_default();
+    let doc = StudyDoc {
+        bands_mm: named(t.toleranced().map(|k| (k.name(), t.band_mm(k)))),
+        distribution: t.distribution.name(),
+        failure_rate: Finite(s.rate()),
+        failure_rate_ci95: interval(s.interval),
+        failures: s.failures,
+        limits,
+        max_failure_rate: Finite(s.max_failure_rate),
+        passed: s.passed(),
+        quantile_definition: QUANTILE_DEFINITION,
+        samples: s.samples,
+        scene: &study.spec.scenes[t.scene].name,
+        seed: t.seed,
+        sensitivity: sens.map(|sens| sensitivity_doc(study, s, sens)),
+        spec: SpecDoc {
+            name: &study.spec.name,
+            path: &study.spec.path,
+        },
+        worst,
+    };
+    let mut text = serde_json::to_string_pretty(&doc)
+        .map_err(|e| Error::computation(format!("the study's JSON: {e}")))?;
     text.push('\n');
-    text
+    Ok(text)
 }
 
-fn sensitivity_json(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> Value {
+fn sensitivity_doc(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> SensitivityDoc {
     let discs = study.spec.design.discs;
-    let per_limit: Vec<Value> = s
-        .limits
-        .iter()
-        .enumerate()
-        .map(|(l, x)| {
-            let d: Map<String, Value> = study
-                .params
-                .iter()
-                .zip(&sens.derivative[l])
-                .map(|(p, d)| (p.name(discs), json!(d)))
-                .collect();
-            let pareto: Vec<Value> = sens
-                .pareto(study, l)
-                .into_iter()
-                .map(|(k, var, share)| json!({"tolerance": k.name(), "variance": var, "share": share}))
-                .collect();
-            json!({
-                "quantity": x.quantity,
-                "derivative_per_mm": d,
-                "linear_sigma": sens.linear_sigma(l),
-                "monte_carlo_sigma": x.std,
-                "pareto": pareto,
-            })
+    let limits = (s.limits.iter().enumerate())
+        .map(|(l, x)| LimitSensitivityDoc {
+            derivative_per_mm: named(
+                (study.params.iter().map(|p| p.name(discs)))
+                    .zip(sens.derivative[l].iter().copied()),
+            ),
+            linear_sigma: Finite(sens.linear_sigma(l)),
+            monte_carlo_sigma: Finite(x.std),
+            pareto: (sens.pareto(study, l).into_iter())
+                .map(|(k, var, share)| ParetoDoc {
+                    share: Finite(share),
+                    tolerance: k.name(),
+                    variance: Finite(var),
+                })
+                .collect(),
+            quantity: x.quantity,
         })
         .collect();
-    json!({
-        "step_mm": crate::engine::tolerance::sensitivity::STEP_MM,
-        "caveat": LINEAR_CAVEAT,
-        "limits": per_limit,
-    })
+    SensitivityDoc {
+        caveat: LINEAR_CAVEAT,
+        limits,
+        step_mm: Finite(crate::engine::tolerance::sensitivity::STEP_MM),
+    }
 }
 
 /// The name of the samples' index column.

@@ -266,9 +266,96 @@ fn compare_interpolates_the_finer_curve_at_the_coarser_angles() {
     };
     let c = compare(&golden, &coarse, &coarse_now, tol, None).unwrap();
     assert!(!c.passed);
-    assert!((c.worst.crank_deg - 6.0).abs() < 1e-9, "{c:?}");
+    assert!((c.worst.at.crank_deg - 6.0).abs() < 1e-9, "{c:?}");
     assert!((c.worst.deviation - 0.01).abs() < 1e-9);
     assert!((c.worst.ratio() - 10.0).abs() < 1e-6);
+}
+
+/// The worst point of a comparison names its column's part and the angle as compared: a bump
+/// of 10 bands in one column at 1.875° (an exact binary, a tie at two decimals) is found in
+/// that column at that angle, and read "… at crank 1.88°" as `{:.2}` rounds 1.875 (to even);
+/// the angle taken through radians and back reads 1.87°. A quantity of one curve names no part.
+#[test]
+fn compare_names_the_part_and_the_angle_of_its_worst_point() {
+    use cycloid::model::place::{GoldenAt, Part};
+    let xs = grid(0.125, 288);
+    let f = |x: f64| 100.0 + 5.0 * (x.to_radians() * 10.0).sin();
+    let tol = GoldenTolerance {
+        abs: 1e-3,
+        rel: 0.0,
+    };
+    for (columns, bumped, part) in [
+        (
+            vec!["roller_0", "roller_1", "roller_2"],
+            2,
+            Some((Part::Roller, 2)),
+        ),
+        (vec!["pin_0", "pin_1"], 1, Some((Part::Pin, 1))),
+        (vec!["te_arcsec"], 0, None),
+    ] {
+        let columns: Vec<String> = columns.into_iter().map(String::from).collect();
+        let values = |bump: f64| {
+            (0..columns.len())
+                .map(|c| {
+                    curve(&xs, |x| {
+                        f(x) + if c == bumped && x == 1.875 { bump } else { 0.0 }
+                    })
+                })
+                .collect()
+        };
+        let golden = GoldenCurves {
+            crank_deg: xs.clone(),
+            curves: Curves {
+                columns: columns.clone(),
+                values: values(0.0),
+            },
+        };
+        let now = Curves {
+            columns: columns.clone(),
+            values: values(0.01),
+        };
+        let c = compare(&golden, &xs, &now, tol, None).unwrap();
+        let at = GoldenAt {
+            part,
+            crank_deg: 1.875,
+        };
+        assert_eq!((c.worst.at, c.worst.disc), (at, None), "{c:?}");
+        let words = match part {
+            Some((Part::Roller, i)) => format!("roller {i} at crank 1.88°"),
+            Some((Part::Pin, i)) => format!("pin {i} at crank 1.88°"),
+            None => "crank 1.88°".to_string(),
+        };
+        assert_eq!(cycloid::report::place::text(&c.worst.place()), words);
+        assert_eq!(cycloid::report::golden::in_row(&c.worst), words);
+    }
+}
+
+/// With several discs a golden's points name the disc whose curve it holds
+/// (`specs/reducer-two-discs.yaml`: TE of the reducer, a torque of disc 0 and of disc 1, a
+/// bearing force of disc 1); the check's row names the disc in its id (`[disc 1]`) and words
+/// the place without it, as the shipped outputs have.
+#[test]
+fn a_golden_of_a_disc_names_the_disc_in_its_place() {
+    let spec = cycloid::spec::load("specs/reducer-two-discs.yaml").unwrap();
+    let run = cycloid::check(
+        &spec,
+        &cycloid::CheckOptions::default(),
+        &cycloid::progress::Silent,
+    )
+    .unwrap();
+    let discs: Vec<Option<usize>> = run.goldens.iter().map(|g| g.golden.disc).collect();
+    assert_eq!(discs, [None, Some(0), Some(1), Some(1)]);
+    for g in &run.goldens {
+        for point in [&g.comparison.worst, &g.comparison.largest] {
+            assert_eq!(point.disc, g.golden.disc);
+            let words = cycloid::report::place::text(&point.place());
+            let row = cycloid::report::golden::in_row(point);
+            match g.golden.disc {
+                Some(k) => assert_eq!(words, format!("disc {k}: {row}")),
+                None => assert_eq!(words, row),
+            }
+        }
+    }
 }
 
 #[test]

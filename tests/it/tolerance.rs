@@ -999,7 +999,7 @@ fn the_samples_document_holds_each_sample_in_its_row() {
     let run = cycloid::engine::commands::tolerance(&spec, Some(24), false, &Silent).unwrap();
     let doc = report::samples(&run.study, &run.records);
     assert_eq!(doc.sample, (0..24).collect::<Vec<u64>>());
-    let json = report::json(&run.study, &run.summary, &run.records, None);
+    let json = report::json(&run.study, &run.summary, &run.records, None).unwrap();
     let json: serde_json::Value = serde_json::from_str(&json).unwrap();
     let column = |name: &str| match doc.columns.iter().find(|(n, _)| n == name) {
         Some((_, values)) => values.clone(),
@@ -1030,6 +1030,184 @@ fn the_samples_document_holds_each_sample_in_its_row() {
         for (cell, (name, values)) in cells[1..].iter().zip(&doc.columns) {
             let read: f64 = cell.parse().unwrap();
             assert_eq!(read.to_bits(), values[k].to_bits(), "{name}[{k}]");
+        }
+    }
+}
+
+/// `tolerance --json` holds the study it reports: read back, every field is the computed
+/// study's (the summary, the bands, the worst samples' draws and values, the sensitivities),
+/// under the keys docs/tolerance.md names and no other; each limit's min and max are those of
+/// its recorded values, and its failure rate its failures over the samples. A number is the
+/// computed double to 2 ulp: the JSON writes the shortest text that reads back to it, and
+/// serde_json's default parser (no `float_roundtrip`) reads that text back to within an ulp.
+#[test]
+fn the_study_json_reads_back_as_the_computed_study() {
+    use cycloid::engine::tolerance::summary::QUANTILES;
+    use serde_json::Value;
+    let spec = with_tolerances(&format!("{EVERY_KIND}  samples: 24\n  seed: 5\n")).parse("t.yaml");
+    let run = cycloid::tolerance(&spec, None, true, &Silent).unwrap();
+    let (study, s, records) = (&run.study, &run.summary, &run.records);
+    let sens = run.sensitivity.as_ref().unwrap();
+    let text = cycloid::report::tolerance::json(study, s, records, Some(sens)).unwrap();
+    let doc: Value = serde_json::from_str(&text).unwrap();
+    let keys = |v: &Value| v.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
+    let expect = |names: &[&str]| {
+        let mut names: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+        names.sort();
+        names
+    };
+    assert_eq!(
+        keys(&doc),
+        expect(&[
+            "spec",
+            "scene",
+            "samples",
+            "seed",
+            "distribution",
+            "bands_mm",
+            "quantile_definition",
+            "limits",
+            "failures",
+            "failure_rate",
+            "failure_rate_ci95",
+            "max_failure_rate",
+            "passed",
+            "worst",
+            "sensitivity",
+        ])
+    );
+    let t = &study.tolerances;
+    let same = |v: &Value, x: f64| {
+        let got = v
+            .as_f64()
+            .unwrap_or_else(|| panic!("{v} is no number, want {x}"));
+        assert!(
+            (got - x).abs() <= 2.0 * f64::EPSILON * x.abs(),
+            "{got} vs {x}"
+        );
+    };
+    let pair = |v: &Value, (a, b): (f64, f64)| {
+        assert_eq!(v.as_array().unwrap().len(), 2, "{v}");
+        same(&v[0], a);
+        same(&v[1], b);
+    };
+    assert_eq!(doc["spec"]["name"], spec.name.as_str());
+    assert_eq!(doc["spec"]["path"], "t.yaml");
+    assert_eq!(doc["scene"], "rated");
+    assert_eq!(doc["samples"], 24);
+    assert_eq!(doc["seed"], 5);
+    assert_eq!(doc["distribution"], t.distribution.name());
+    let bands = doc["bands_mm"].as_object().unwrap();
+    assert_eq!(bands.len(), t.toleranced().count());
+    for k in t.toleranced() {
+        same(&bands[k.name()], t.band_mm(k));
+    }
+    assert_eq!(doc["failures"], s.failures);
+    same(&doc["failure_rate"], s.failures as f64 / 24.0);
+    pair(&doc["failure_rate_ci95"], s.interval);
+    same(&doc["max_failure_rate"], 0.5);
+    assert_eq!(doc["passed"], s.passed());
+    let l = study.limits.len();
+    let limits = doc["limits"].as_array().unwrap();
+    assert_eq!(limits.len(), l);
+    for (i, (x, j)) in s.limits.iter().zip(limits).enumerate() {
+        assert_eq!(
+            keys(j),
+            expect(&[
+                "key",
+                "quantity",
+                "unit",
+                "bound",
+                "limit",
+                "min",
+                "quantiles",
+                "max",
+                "mean",
+                "std",
+                "failures",
+                "failure_rate",
+                "failure_rate_ci95",
+            ])
+        );
+        let values: Vec<f64> = records.column(i, l).collect();
+        assert_eq!(j["key"], "min_clearance_mm");
+        assert_eq!(j["quantity"], "min_clearance_mm");
+        assert_eq!(j["unit"], "mm");
+        assert_eq!(j["bound"], ">=");
+        same(&j["limit"], 0.015);
+        same(
+            &j["min"],
+            values.iter().copied().fold(f64::INFINITY, f64::min),
+        );
+        same(
+            &j["max"],
+            values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        );
+        same(&j["mean"], x.mean);
+        same(&j["std"], x.std);
+        assert_eq!(j["failures"], x.failures);
+        same(&j["failure_rate"], x.failures as f64 / 24.0);
+        pair(&j["failure_rate_ci95"], x.interval);
+        let quantiles = j["quantiles"].as_array().unwrap();
+        assert_eq!(quantiles.len(), QUANTILES.len());
+        for ((q, p), value) in quantiles.iter().zip(QUANTILES).zip(x.quantiles) {
+            assert_eq!(keys(q), ["p", "value"]);
+            same(&q["p"], p);
+            same(&q["value"], value);
+        }
+    }
+    let worst = doc["worst"].as_array().unwrap();
+    assert_eq!(worst.len(), s.worst.len());
+    assert!(!worst.is_empty());
+    let discs = spec.design.discs;
+    for (&(k, excess), w) in s.worst.iter().zip(worst) {
+        assert_eq!(keys(w), ["deviations_mm", "excess", "sample", "values"]);
+        assert_eq!(w["sample"], k);
+        same(&w["excess"], excess);
+        let row = records.row(k, l);
+        same(&w["values"]["min_clearance_mm"], row[0]);
+        let drawn = w["deviations_mm"].as_object().unwrap();
+        assert_eq!(drawn.len(), study.params.len());
+        for (p, v) in study.params.iter().zip(study.draw(k)) {
+            same(&drawn[&p.name(discs)], v);
+        }
+    }
+    let sj = &doc["sensitivity"];
+    assert_eq!(keys(sj), ["caveat", "limits", "step_mm"]);
+    same(&sj["step_mm"], sensitivity::STEP_MM);
+    assert_eq!(sj["caveat"], cycloid::report::tolerance::LINEAR_CAVEAT);
+    for (i, (x, j)) in s
+        .limits
+        .iter()
+        .zip(sj["limits"].as_array().unwrap())
+        .enumerate()
+    {
+        assert_eq!(
+            keys(j),
+            [
+                "derivative_per_mm",
+                "linear_sigma",
+                "monte_carlo_sigma",
+                "pareto",
+                "quantity"
+            ]
+        );
+        assert_eq!(j["quantity"], x.quantity);
+        same(&j["linear_sigma"], sens.linear_sigma(i));
+        same(&j["monte_carlo_sigma"], x.std);
+        let d = j["derivative_per_mm"].as_object().unwrap();
+        assert_eq!(d.len(), study.params.len());
+        for (p, v) in study.params.iter().zip(&sens.derivative[i]) {
+            same(&d[&p.name(discs)], *v);
+        }
+        let pareto = j["pareto"].as_array().unwrap();
+        let want = sens.pareto(study, i);
+        assert_eq!(pareto.len(), want.len());
+        for (p, (kind, variance, share)) in pareto.iter().zip(want) {
+            assert_eq!(keys(p), ["share", "tolerance", "variance"]);
+            assert_eq!(p["tolerance"], kind.name());
+            same(&p["variance"], variance);
+            same(&p["share"], share);
         }
     }
 }

@@ -24,7 +24,7 @@ pub(super) fn section(goldens: &[GoldenResult]) -> Option<Section> {
                         td { code { (g.golden.path.display()) } }
                         td.num { (with_unit(number(w.deviation), g.unit)) }
                         td.num { (with_unit(number(w.band), g.unit)) }
-                        td { (crate::report::golden::place(w)) }
+                        td { (crate::report::golden::in_row(w)) }
                         td.num { (g.comparison.points) }
                         td.verdict { (if g.comparison.passed { "pass" } else { "FAIL" }) }
                     }

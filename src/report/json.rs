@@ -25,7 +25,7 @@ use crate::model::results::{
 use crate::model::Study;
 use crate::numeric::extremes;
 use crate::report::explain::{hysteresis, torsion_compliances, torsion_law_note};
-use crate::report::json_text::{self, Entries};
+use crate::report::json_text::{self, Object, Text};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
@@ -644,32 +644,13 @@ impl SceneDoc<'_> {
         entry(map, quantity.key, value.map(|e| Finite(e.value)))
     }
 
-    /// The document's entries as text, a part per field of `SCENE` in its order: written
-    /// on the threads there are (rayon), their numbers by `json_text`; with `write_object`
-    /// the text its `Serialize` gives.
-    /// The scalars are a part each: reading them is a tenth of the work.
-    fn parts(&self) -> serde_json::Result<Vec<Entries>> {
-        use rayon::prelude::*;
-        enum Part {
-            Field(Field),
-            Scalar(&'static Quantity),
+    /// Write the document as `Serialize` would, its curves' numbers by `json_text`.
+    fn write(&self, text: &mut Text) -> serde_json::Result<()> {
+        let mut object = Object::new(text)?;
+        for &field in SCENE {
+            self.field(&mut object, field)?;
         }
-        let parts: Vec<_> = (SCENE.iter())
-            .flat_map(|&field| match field {
-                Field::Scalars => QUANTITIES.iter().map(|&q| Part::Scalar(q)).collect(),
-                _ => vec![Part::Field(field)],
-            })
-            .collect();
-        (parts.par_iter())
-            .map(|part| {
-                let mut entries = Entries::default();
-                match *part {
-                    Part::Field(field) => self.field(&mut entries, field),
-                    Part::Scalar(quantity) => self.scalar(&mut entries, quantity),
-                }
-                .map(|()| entries)
-            })
-            .collect()
+        object.end()
     }
 }
 
@@ -723,9 +704,9 @@ impl<M: SerializeMap> CurveMap for Serde<M> {
     }
 }
 
-impl CurveMap for Entries {
+impl CurveMap for Object<'_, '_> {
     fn curve(&mut self, key: &'static str, row: &[f64]) -> serde_json::Result<()> {
-        self.raw(key, |text| json_text::numbers(text, row))
+        self.raw(key, |text| text.with(|buf| json_text::numbers(buf, row)))
     }
 
     fn rows(&mut self, key: &'static str, rows: &[Vec<f64>]) -> serde_json::Result<()> {
@@ -1033,29 +1014,22 @@ impl<'a> Document<'a> {
     }
 
     /// Write the document (compact) to `out`: the head and tail serialised by serde_json,
-    /// each scene's entries by `SceneDoc::parts`. All of it is formatted before the first
-    /// byte is written, so an error (a non-finite number) writes nothing.
+    /// each scene by `SceneDoc::write`.
     pub fn write_to(&self, out: &mut dyn Write) -> std::io::Result<()> {
-        let (mut head, mut tail) = (Entries::default(), Entries::default());
-        head.flatten(&self.head)?;
-        tail.flatten(&self.tail)?;
-        let scenes = (self.scenes.iter())
-            .map(SceneDoc::parts)
-            .collect::<serde_json::Result<Vec<_>>>()?;
-        // The head is never empty (`schema`), so the scenes' key follows a separator.
-        out.write_all(b"{")?;
-        out.write_all(head.as_bytes())?;
-        out.write_all(b",\"scenes\":[")?;
-        for (i, parts) in scenes.iter().enumerate() {
-            out.write_all(if i > 0 { b"," } else { b"" })?;
-            json_text::write_object(out, parts)?;
-        }
-        out.write_all(b"]")?;
-        if !tail.as_bytes().is_empty() {
-            out.write_all(b",")?;
-            out.write_all(tail.as_bytes())?;
-        }
-        out.write_all(b"}")
+        let mut text = Text::new(out);
+        let mut object = Object::new(&mut text)?;
+        object.flatten(&self.head)?;
+        object.raw("scenes", |text| {
+            text.push(b"[")?;
+            for (i, scene) in self.scenes.iter().enumerate() {
+                text.push(if i > 0 { b"," } else { b"" })?;
+                scene.write(text)?;
+            }
+            text.push(b"]")
+        })?;
+        object.flatten(&self.tail)?;
+        object.end()?;
+        text.finish()
     }
 }
 

@@ -1,13 +1,12 @@
-//! The results JSON's text, written into byte buffers: a curve's numbers without serde's
-//! per-number path, and objects whose entries are written apart (on several threads) and
-//! joined. What it writes is the text serde_json's compact serialiser gives for the same
-//! values, byte for byte (the tests below hold it); `report::json` says what is written.
+//! The results JSON's text, streamed through one buffer: a curve's numbers written without
+//! serde's per-number path, everything else serialised by serde_json into the same buffer.
+//! What it writes is the text serde_json's compact serialiser gives for the same values, byte
+//! for byte (the tests below hold it); `report::json` says what is written.
 //!
 //! Why not serde_json alone: a 3,600-angle scene is about 165,000 numbers, and serde's path
 //! for each (the sequence's state, the separator, the finiteness test, a write into the
-//! buffer) cost as much again as formatting the number; and serde_json takes a value already
-//! written as text only through `RawValue`, which parses it again (BENCHMARKS.md "JSON
-//! output").
+//! buffer) costs a fifth of formatting it; and serde_json takes a value already written as
+//! text only through `RawValue`, which parses it again (BENCHMARKS.md "JSON output").
 
 use super::finite::not_finite;
 use serde::ser::{Error as _, SerializeMap};
@@ -74,41 +73,89 @@ pub fn numbers(buf: &mut Vec<u8>, row: &[f64]) -> serde_json::Result<()> {
     Ok(())
 }
 
-/// `[[…],[…],…]`: rows of numbers (`numbers`).
-pub fn rows(buf: &mut Vec<u8>, rows: &[Vec<f64>]) -> serde_json::Result<()> {
-    buf.push(b'[');
+/// `[[…],[…],…]`: rows of numbers (`numbers`), each row to the buffer then on.
+pub fn rows(text: &mut Text, rows: &[Vec<f64>]) -> serde_json::Result<()> {
+    text.push(b"[")?;
     for (i, row) in rows.iter().enumerate() {
-        if i > 0 {
-            buf.push(b',');
+        text.push(if i > 0 { b"," } else { b"" })?;
+        text.with(|buf| numbers(buf, row))?;
+    }
+    text.push(b"]")
+}
+
+/// Text on its way to a writer: appended to a buffer, which goes to the writer whenever it
+/// holds 64 KiB (it stays in cache and is reused, where a buffer of the whole file would be
+/// new memory, a page fault every 4 KiB).
+pub struct Text<'a> {
+    buf: Vec<u8>,
+    out: &'a mut dyn Write,
+}
+
+impl<'a> Text<'a> {
+    const FLUSH_AT: usize = 64 << 10;
+
+    pub fn new(out: &'a mut dyn Write) -> Self {
+        Text {
+            buf: Vec::with_capacity(2 * Self::FLUSH_AT),
+            out,
         }
-        numbers(buf, row)?;
-    }
-    buf.push(b']');
-    Ok(())
-}
-
-/// The entries of a JSON object, `"key":value,…`, without its braces: a part of an object
-/// that `object` joins with others. Its values are serialised by serde_json (`SerializeMap`),
-/// or written by a function of this module (`raw`).
-#[derive(Default)]
-pub struct Entries {
-    text: Vec<u8>,
-}
-
-impl Entries {
-    /// The entries' text, `"key":value,…`.
-    pub fn as_bytes(&self) -> &[u8] {
-        &self.text
     }
 
-    /// `"key":` then what `write` appends.
+    /// `bytes` as they are.
+    pub fn push(&mut self, bytes: &[u8]) -> serde_json::Result<()> {
+        self.buf.extend_from_slice(bytes);
+        self.flush_when_full()
+    }
+
+    /// What `write` appends to the buffer.
+    pub fn with(
+        &mut self,
+        write: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()>,
+    ) -> serde_json::Result<()> {
+        write(&mut self.buf)?;
+        self.flush_when_full()
+    }
+
+    fn flush_when_full(&mut self) -> serde_json::Result<()> {
+        if self.buf.len() >= Self::FLUSH_AT {
+            self.out
+                .write_all(&self.buf)
+                .map_err(serde_json::Error::io)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+
+    /// Write what is left in the buffer.
+    pub fn finish(mut self) -> std::io::Result<()> {
+        self.out.write_all(&self.buf)?;
+        self.buf.clear();
+        Ok(())
+    }
+}
+
+/// A JSON object being written, `{"key":value,…}`: its values serialised by serde_json
+/// (`SerializeMap`), written by a function of this module (`raw`), or another object's
+/// entries (`flatten`). `end` closes it.
+pub struct Object<'t, 'a> {
+    text: &'t mut Text<'a>,
+    empty: bool,
+}
+
+impl<'t, 'a> Object<'t, 'a> {
+    pub fn new(text: &'t mut Text<'a>) -> serde_json::Result<Self> {
+        text.push(b"{")?;
+        Ok(Object { text, empty: true })
+    }
+
+    /// `"key":` then what `write` writes.
     pub fn raw(
         &mut self,
         key: &str,
-        write: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()>,
+        write: impl FnOnce(&mut Text<'a>) -> serde_json::Result<()>,
     ) -> serde_json::Result<()> {
         self.serialize_key(key)?;
-        write(&mut self.text)
+        write(self.text)
     }
 
     /// The entries of `value`, which serialises as a JSON object (a struct), as this object's
@@ -119,9 +166,8 @@ impl Entries {
         match object.as_slice() {
             [b'{', b'}'] => Ok(()),
             [b'{', inner @ .., b'}'] => {
-                self.separate();
-                self.text.extend_from_slice(inner);
-                Ok(())
+                self.separate()?;
+                self.text.push(inner)
             }
             _ => Err(serde_json::Error::custom(
                 "a flattened value is not an object",
@@ -129,47 +175,34 @@ impl Entries {
         }
     }
 
-    fn separate(&mut self) {
-        if !self.text.is_empty() {
-            self.text.push(b',');
+    fn separate(&mut self) -> serde_json::Result<()> {
+        match std::mem::replace(&mut self.empty, false) {
+            true => Ok(()),
+            false => self.text.push(b","),
         }
     }
 }
 
-impl SerializeMap for Entries {
+impl SerializeMap for Object<'_, '_> {
     type Ok = ();
     type Error = serde_json::Error;
 
     fn serialize_key<T: ?Sized + Serialize>(&mut self, key: &T) -> serde_json::Result<()> {
-        self.separate();
-        serialize_into(&mut self.text, key)?;
-        self.text.push(b':');
-        Ok(())
+        self.separate()?;
+        self.text.with(|buf| {
+            serialize_into(buf, key)?;
+            buf.push(b':');
+            Ok(())
+        })
     }
 
     fn serialize_value<T: ?Sized + Serialize>(&mut self, value: &T) -> serde_json::Result<()> {
-        serialize_into(&mut self.text, value)
+        self.text.with(|buf| serialize_into(buf, value))
     }
 
     fn end(self) -> serde_json::Result<()> {
-        Ok(())
+        self.text.push(b"}")
     }
-}
-
-/// `{…}` to `out`: the object whose entries are `parts`' in their order (an empty part adds
-/// none), each part written as it is (not copied into one buffer first).
-pub fn write_object(out: &mut dyn Write, parts: &[Entries]) -> std::io::Result<()> {
-    out.write_all(b"{")?;
-    let mut first = true;
-    for part in parts.iter().filter(|p| !p.text.is_empty()) {
-        out.write_all(if std::mem::take(&mut first) {
-            b""
-        } else {
-            b","
-        })?;
-        out.write_all(&part.text)?;
-    }
-    out.write_all(b"}")
 }
 
 #[cfg(test)]
@@ -232,7 +265,11 @@ mod tests {
             .collect();
         assert_eq!(ours(|b| numbers(b, &random)), serde(&random));
         let rows = vec![random[..3].to_vec(), vec![], vec![0.0, 2.0]];
-        assert_eq!(ours(|b| super::rows(b, &rows)), serde(&rows));
+        let mut out = Vec::new();
+        let mut text = Text::new(&mut out);
+        super::rows(&mut text, &rows).unwrap();
+        text.finish().unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), serde(&rows));
         assert_eq!(ours(|b| numbers(b, &[])), "[]");
     }
 
@@ -246,10 +283,11 @@ mod tests {
         }
     }
 
-    /// Objects joined from parts, and a flattened struct, are the object serde_json writes
-    /// for the same entries; an empty part adds no separator.
+    /// An object of a flattened struct, serialised and raw entries is the object
+    /// serde_json writes for the same entries, through buffers smaller and larger than the
+    /// one the text is flushed at; an empty struct adds no separator.
     #[test]
-    fn joined_entries_are_one_object() {
+    fn an_object_is_the_object_serde_json_writes() {
         #[derive(Serialize)]
         struct Head {
             a: u32,
@@ -257,17 +295,25 @@ mod tests {
         }
         #[derive(Serialize)]
         struct Nothing {}
-        let mut first = Entries::default();
-        first.flatten(&Head { a: 1, b: "x\"y" }).unwrap();
-        first.flatten(&Nothing {}).unwrap();
-        let mut second = Entries::default();
-        second.serialize_entry("c", &[0.5, -0.0, 0.0]).unwrap();
-        second.raw("d", |b| numbers(b, &[2.0])).unwrap();
-        let object =
-            |parts: &[Entries]| ours(|b| write_object(b, parts).map_err(serde_json::Error::io));
-        let text = object(&[first, Entries::default(), second]);
-        let expected = serde_json::json!({"a": 1, "b": "x\"y", "c": [0.5, -0.0, 0.0], "d": [2.0]});
-        assert_eq!(text, serde(&expected));
-        assert_eq!(object(&[Entries::default()]), "{}");
+        let long: Vec<f64> = (0..20_000).map(|i| f64::from(i) / 7.0).collect();
+        let mut out = Vec::new();
+        let mut text = Text::new(&mut out);
+        let mut object = Object::new(&mut text).unwrap();
+        object.flatten(&Nothing {}).unwrap();
+        object.flatten(&Head { a: 1, b: "x\"y" }).unwrap();
+        object.flatten(&Nothing {}).unwrap();
+        object.serialize_entry("c", &[0.5, -0.0, 0.0]).unwrap();
+        object.raw("d", |t| t.with(|b| numbers(b, &long))).unwrap();
+        object.raw("e", |t| t.with(|b| numbers(b, &[2.0]))).unwrap();
+        object.end().unwrap();
+        text.finish().unwrap();
+        let expected =
+            serde_json::json!({"a": 1, "b": "x\"y", "c": [0.5, -0.0, 0.0], "d": long, "e": [2.0]});
+        assert_eq!(String::from_utf8(out).unwrap(), serde(&expected));
+        let mut out = Vec::new();
+        let mut text = Text::new(&mut out);
+        Object::new(&mut text).unwrap().end().unwrap();
+        text.finish().unwrap();
+        assert_eq!(out, b"{}");
     }
 }

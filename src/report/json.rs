@@ -926,9 +926,13 @@ impl<'a> StudyDoc<'a> {
 }
 
 /// The whole results document: its head, the scenes' documents, its tail, in this order.
+/// `write_to` writes it; its `Serialize` (the Python bindings' tree) gives the same entries.
+#[derive(Serialize)]
 pub struct Document<'a> {
+    #[serde(flatten)]
     head: Head<'a>,
     scenes: Vec<SceneDoc<'a>>,
+    #[serde(flatten)]
     tail: Tail<'a>,
 }
 

@@ -90,6 +90,36 @@ fn quantities_in_json(
     seen
 }
 
+/// The results file (`Document::write_to`, `report::json_text`'s numbers) is, byte for byte,
+/// the document's `Serialize` through serde_json (what the Python bindings read), for every
+/// shape of result: one disc, two discs (each disc's document inside), a duty cycle's bins,
+/// a torsion loop, efficiency, strength.
+fn the_written_document_is_its_serialisation(
+    spec: &cycloid::spec::Spec,
+    results: &[SceneResult],
+    path: &str,
+) {
+    use cycloid::report::json::{Contents, Document};
+    let summaries = cycloid::engine::summary::marked(spec, results);
+    let doc = Document::new(&Contents {
+        spec,
+        checks: &[],
+        results,
+        goldens: &[],
+        summaries: &summaries,
+        studies: &[],
+        mass: None,
+        unbalance: &[],
+    });
+    let mut written = Vec::new();
+    doc.write_to(&mut written).unwrap();
+    let serialised = serde_json::to_string(&doc).unwrap();
+    assert!(
+        String::from_utf8(written).unwrap() == serialised,
+        "{path}: the written JSON differs from serde_json's"
+    );
+}
+
 /// Every scene of the shipped specs that together compute every curve of the registry (two
 /// discs for a disc's torque share, a resolved face, friction, strength, a duty cycle, a
 /// torsion loop with friction for its hysteresis), on a few crank angles, every effect its
@@ -133,6 +163,7 @@ fn every_registry_quantity_a_scene_computes_is_in_its_document() {
                     .unwrap_or_else(|e| panic!("{path} {}: {e:?}", scene.name)),
             );
         }
+        the_written_document_is_its_serialisation(&spec, &results, path);
         let doc = cycloid::report::json::scenes_value(&spec, &results).unwrap();
         for (i, r) in results.iter().enumerate() {
             let what = format!("{path} scene {}", r.name);

@@ -8,6 +8,7 @@ use crate::engine::tolerance::summary::{Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::{Error, Result};
 use crate::model::quantity::Bound;
+use crate::model::results::UNBOUNDED_LIFE_H;
 use crate::model::tolerances::{Distribution, NORMAL_CUT_SIGMA};
 use crate::numeric::number;
 use serde::ser::SerializeMap;
@@ -106,9 +107,9 @@ pub fn render(
             number(l.limit),
             l.unit
         )];
-        row.push(number(l.min));
-        row.extend(l.quantiles.iter().map(|&q| number(q)));
-        row.push(number(l.max));
+        row.push(value(l.min));
+        row.extend(l.quantiles.iter().map(|&q| value(q)));
+        row.push(value(l.max));
         row.push(l.failures.to_string());
         row.push(format!(
             "{} [{}, {}]",
@@ -213,6 +214,25 @@ fn columns(rows: &[Vec<String>]) -> String {
     out
 }
 
+/// A statistic of a limited quantity with its unit (`show`), or why there is none: a sample's
+/// value without a finite bound (an unbounded life or safety) has no mean, spread or
+/// derivative (in the JSON: null).
+pub fn statistic(x: Option<f64>, show: impl Fn(String) -> String) -> String {
+    x.map_or_else(
+        || "none (a sample is unbounded)".to_string(),
+        |x| show(number(x)),
+    )
+}
+
+/// A sample's value of a limited quantity: "unbounded" for a life or safety without a finite
+/// bound (`UNBOUNDED_LIFE_H`).
+pub fn value(x: f64) -> String {
+    match x == UNBOUNDED_LIFE_H {
+        true => "unbounded".to_string(),
+        false => number(x),
+    }
+}
+
 /// The sensitivities: per limit the linear σ beside the Monte Carlo σ, and the Pareto of the
 /// kinds (share of the linear variance).
 fn sensitivity_text(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> String {
@@ -222,12 +242,10 @@ fn sensitivity_text(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> 
     );
     for (l, ls) in s.limits.iter().enumerate() {
         out += &format!(
-            "{}: linear stack-up σ = {} {}, Monte Carlo σ = {} {}\n",
+            "{}: linear stack-up σ = {}, Monte Carlo σ = {}\n",
             ls.quantity,
-            number(sens.linear_sigma(l)),
-            ls.unit,
-            number(ls.std),
-            ls.unit
+            statistic(sens.linear_sigma(l), |x| format!("{x} {}", ls.unit)),
+            statistic(ls.std, |x| format!("{x} {}", ls.unit)),
         );
         let mut rows = vec![vec![
             "  tolerance".to_string(),
@@ -287,11 +305,11 @@ struct LimitDoc {
     key: &'static str,
     limit: Finite,
     max: Finite,
-    mean: Finite,
+    mean: Option<Finite>,
     min: Finite,
     quantiles: Vec<QuantileDoc>,
     quantity: &'static str,
-    std: Finite,
+    std: Option<Finite>,
     unit: &'static str,
 }
 
@@ -321,9 +339,9 @@ struct SensitivityDoc {
 
 #[derive(Serialize)]
 struct LimitSensitivityDoc {
-    derivative_per_mm: BTreeMap<String, Finite>,
-    linear_sigma: Finite,
-    monte_carlo_sigma: Finite,
+    derivative_per_mm: BTreeMap<String, Option<Finite>>,
+    linear_sigma: Option<Finite>,
+    monte_carlo_sigma: Option<Finite>,
     pareto: Vec<ParetoDoc>,
     quantity: &'static str,
 }
@@ -370,7 +388,7 @@ pub fn json(
             key: x.key,
             limit: Finite(x.limit),
             max: Finite(x.max),
-            mean: Finite(x.mean),
+            mean: x.mean.map(Finite),
             min: Finite(x.min),
             quantiles: (QUANTILES.iter().zip(x.quantiles))
                 .map(|(&p, q)| QuantileDoc {
@@ -379,7 +397,7 @@ pub fn json(
                 })
                 .collect(),
             quantity: x.quantity,
-            std: Finite(x.std),
+            std: x.std.map(Finite),
             unit: x.unit,
         })
         .collect();
@@ -424,12 +442,11 @@ fn sensitivity_doc(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> S
     let discs = study.spec.design.discs;
     let limits = (s.limits.iter().enumerate())
         .map(|(l, x)| LimitSensitivityDoc {
-            derivative_per_mm: named(
-                (study.params.iter().map(|p| p.name(discs)))
-                    .zip(sens.derivative[l].iter().copied()),
-            ),
-            linear_sigma: Finite(sens.linear_sigma(l)),
-            monte_carlo_sigma: Finite(x.std),
+            derivative_per_mm: (study.params.iter().map(|p| p.name(discs)))
+                .zip(sens.derivative[l].iter().map(|d| d.map(Finite)))
+                .collect(),
+            linear_sigma: sens.linear_sigma(l).map(Finite),
+            monte_carlo_sigma: x.std.map(Finite),
             pareto: (sens.pareto(study, l).into_iter())
                 .map(|(k, var, share)| ParetoDoc {
                     share: Finite(share),

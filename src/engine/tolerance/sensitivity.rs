@@ -9,6 +9,7 @@
 
 use super::ToleranceStudy;
 use crate::error::Result;
+use crate::model::results::UNBOUNDED_LIFE_H;
 use crate::model::tolerances::Kind;
 
 /// Step of the central differences, mm (0.1 µm). The engine solves to 1e-9 relative: a force
@@ -22,26 +23,33 @@ pub const STEP_MM: f64 = 1e-4;
 /// parameter (columns, the study's parameters), at the nominal reducer.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sensitivity {
-    /// `derivative[l][p]` = ∂q_l/∂p, in the quantity's unit per mm.
-    pub derivative: Vec<Vec<f64>>,
+    /// `derivative[l][p]` = ∂q_l/∂p, in the quantity's unit per mm; `None` where q has no
+    /// finite bound on either side (`UNBOUNDED_LIFE_H`: a life or safety without load or
+    /// damage), which has no derivative.
+    pub derivative: Vec<Vec<Option<f64>>>,
     /// σ_p of each parameter, mm.
     pub sigma_mm: Vec<f64>,
 }
 
 impl Sensitivity {
-    /// The linear stack-up σ of limit l: sqrt(Σ_p (∂q/∂p·σ_p)²).
-    pub fn linear_sigma(&self, l: usize) -> f64 {
+    /// The linear stack-up σ of limit l: sqrt(Σ_p (∂q/∂p·σ_p)²); `None` without every
+    /// derivative.
+    pub fn linear_sigma(&self, l: usize) -> Option<f64> {
         self.derivative[l]
             .iter()
             .zip(&self.sigma_mm)
-            .map(|(d, s)| (d * s).powi(2))
-            .sum::<f64>()
-            .sqrt()
+            .map(|(d, s)| d.map(|d| (d * s).powi(2)))
+            .sum::<Option<f64>>()
+            .map(f64::sqrt)
     }
 
     /// The variance contribution of each kind to limit l, largest first: (kind, Σ over its
     /// parts of (∂q/∂p·σ_p)², share of the total).
+    /// Empty without every derivative.
     pub fn pareto(&self, study: &ToleranceStudy, l: usize) -> Vec<(Kind, f64, f64)> {
+        if self.linear_sigma(l).is_none() {
+            return Vec::new();
+        }
         let mut by_kind: Vec<(Kind, f64)> = Vec::new();
         for ((p, d), s) in study
             .params
@@ -49,7 +57,7 @@ impl Sensitivity {
             .zip(&self.derivative[l])
             .zip(&self.sigma_mm)
         {
-            let v = (d * s).powi(2);
+            let v = (d.unwrap_or(0.0) * s).powi(2);
             match by_kind.iter_mut().find(|(k, _)| *k == p.kind) {
                 Some((_, sum)) => *sum += v,
                 None => by_kind.push((p.kind, v)),
@@ -65,8 +73,9 @@ impl Sensitivity {
     }
 }
 
-/// ∂q/∂p of one parameter: (q(+h) − q(−h)) / 2h, every other parameter nominal.
-pub fn derivatives(study: &ToleranceStudy, param: usize, step_mm: f64) -> Result<Vec<f64>> {
+/// ∂q/∂p of one parameter: (q(+h) − q(−h)) / 2h, every other parameter nominal; `None` for a
+/// quantity unbounded at either side.
+pub fn derivatives(study: &ToleranceStudy, param: usize, step_mm: f64) -> Result<Vec<Option<f64>>> {
     let at = |h: f64| {
         let mut values = vec![0.0; study.params.len()];
         values[param] = h;
@@ -79,7 +88,10 @@ pub fn derivatives(study: &ToleranceStudy, param: usize, step_mm: f64) -> Result
     Ok(plus
         .iter()
         .zip(&minus)
-        .map(|(p, m)| (p - m) / (2.0 * step_mm))
+        .map(|(&p, &m)| {
+            let bounded = p != UNBOUNDED_LIFE_H && m != UNBOUNDED_LIFE_H;
+            bounded.then(|| (p - m) / (2.0 * step_mm))
+        })
         .collect())
 }
 
@@ -91,7 +103,7 @@ pub fn run(
     use rayon::prelude::*;
     let n = study.params.len();
     progress.start("sensitivities", n as u64);
-    let columns: Vec<Result<Vec<f64>>> = (0..n)
+    let columns: Vec<Result<Vec<Option<f64>>>> = (0..n)
         .into_par_iter()
         .map(|p| {
             let d = derivatives(study, p, STEP_MM);
@@ -100,7 +112,7 @@ pub fn run(
         })
         .collect();
     progress.finish();
-    let columns: Vec<Vec<f64>> = columns.into_iter().collect::<Result<_>>()?;
+    let columns: Vec<Vec<Option<f64>>> = columns.into_iter().collect::<Result<_>>()?;
     let derivative = (0..study.limits.len())
         .map(|l| columns.iter().map(|c| c[l]).collect())
         .collect();

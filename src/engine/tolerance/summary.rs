@@ -6,6 +6,7 @@
 use super::stats::{clopper_pearson, quantile};
 use super::{Records, ToleranceStudy};
 use crate::model::quantity::Bound;
+use crate::model::results::UNBOUNDED_LIFE_H;
 
 /// The quantiles the report gives: ±3σ of a normal (0.135 %, 99.865 %) and the median.
 pub const QUANTILES: [f64; 3] = [0.00135, 0.5, 0.99865];
@@ -31,9 +32,11 @@ pub struct LimitSummary {
     /// At `QUANTILES`.
     pub quantiles: [f64; 3],
     pub max: f64,
-    pub mean: f64,
-    /// Sample standard deviation (n − 1).
-    pub std: f64,
+    /// The mean; `None` when a sample's value has no finite bound (`UNBOUNDED_LIFE_H`: a life
+    /// or safety without load or damage), whose mean and spread are no number.
+    pub mean: Option<f64>,
+    /// Sample standard deviation (n − 1); `None` as `mean`.
+    pub std: Option<f64>,
     pub failures: u64,
     /// 95 % Clopper–Pearson interval of the failure rate.
     pub interval: (f64, f64),
@@ -116,6 +119,17 @@ pub fn samples_to_show(max: f64) -> Option<u64> {
     Some(n)
 }
 
+/// The mean and the sample standard deviation (n − 1; 0 for one value) of `values`.
+fn mean_and_std(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let var = match values.len() > 1 {
+        true => values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0),
+        false => 0.0,
+    };
+    (mean, var.sqrt())
+}
+
 /// The summary of `records`, which hold every sample of the study in sample order.
 pub fn summarise(study: &ToleranceStudy, records: &Records) -> Summary {
     let l = study.limits.len();
@@ -134,11 +148,12 @@ pub fn summarise(study: &ToleranceStudy, records: &Records) -> Summary {
                 .step_by(l)
                 .filter(|p| !**p)
                 .count() as u64;
-            let mean = values.iter().sum::<f64>() / n as f64;
-            let var = if n > 1 {
-                values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64
-            } else {
-                0.0
+            let (mean, std) = match values.contains(&UNBOUNDED_LIFE_H) {
+                true => (None, None),
+                false => {
+                    let (mean, std) = mean_and_std(&values);
+                    (Some(mean), Some(std))
+                }
             };
             let mut sorted = values;
             sorted.sort_unstable_by(f64::total_cmp);
@@ -153,7 +168,7 @@ pub fn summarise(study: &ToleranceStudy, records: &Records) -> Summary {
                 quantiles: QUANTILES.map(|p| quantile(&sorted, p)),
                 max: sorted[n - 1],
                 mean,
-                std: var.sqrt(),
+                std,
                 failures,
                 interval: clopper_pearson(failures, n as u64, alpha),
             }

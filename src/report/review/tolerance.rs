@@ -10,11 +10,13 @@ use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::Result;
+use crate::model::results::UNBOUNDED_LIFE_H;
 use crate::numeric::number;
 use crate::report::svg::{LinePlot, Series, PALETTE, RED};
 use crate::report::table::with_unit;
 use crate::report::tolerance::{
-    distribution_text, percent, percent_label, LINEAR_CAVEAT, MEASURED_NOTE, QUANTILE_DEFINITION,
+    distribution_text, percent, percent_label, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
+    QUANTILE_DEFINITION,
 };
 use maud::{html, Markup};
 use std::path::Path;
@@ -26,10 +28,20 @@ fn bins(n: usize) -> usize {
 
 /// The histogram of limit `l`'s values as a step outline, with the limit as a dashed red
 /// vertical line; the x range holds both the values and the limit.
-fn histogram(study: &ToleranceStudy, records: &Records, l: usize, ls: &LimitSummary) -> String {
+fn histogram(
+    study: &ToleranceStudy,
+    records: &Records,
+    l: usize,
+    ls: &LimitSummary,
+) -> Option<String> {
     let step = study.limits.len();
-    let values: Vec<f64> = records.column(l, step).collect();
-    let (lo, hi) = (ls.min, ls.max);
+    // An unbounded life or safety has no place on the axis: the bounded samples are drawn.
+    let values: Vec<f64> = (records.column(l, step))
+        .filter(|&v| v != UNBOUNDED_LIFE_H)
+        .collect();
+    let unbounded = study.samples() - values.len();
+    let lo = values.iter().copied().reduce(f64::min)?;
+    let hi = values.iter().copied().fold(lo, f64::max);
     let nb = bins(values.len());
     let width = if hi > lo { (hi - lo) / nb as f64 } else { 1.0 };
     let mut counts = vec![0usize; nb];
@@ -62,8 +74,11 @@ fn histogram(study: &ToleranceStudy, records: &Records, l: usize, ls: &LimitSumm
         ls.bound.symbol(),
         number(ls.limit),
         ls.failures,
-        values.len()
+        values.len() + unbounded
     );
+    if unbounded > 0 {
+        plot.subtitle += &format!("; {unbounded} unbounded samples not drawn");
+    }
     plot.include_zero = true;
     plot.series.push(Series::new("samples", x, y, PALETTE[0]));
     let mut limit = Series::new(
@@ -75,7 +90,7 @@ fn histogram(study: &ToleranceStudy, records: &Records, l: usize, ls: &LimitSumm
     limit.dashed = true;
     plot.series.push(limit);
     plot.x_range = Some(with_margin(lo.min(ls.limit), hi.max(ls.limit)));
-    plot.to_svg()
+    Some(plot.to_svg())
 }
 
 /// A histogram's x range: the values and the limit, grown by `MARGIN` of its span at each
@@ -103,9 +118,9 @@ fn rates_section(s: &Summary) -> Section {
                     tr class=(if l.failures == 0 { "pass" } else { "fail" }) {
                         td { code { (l.key) } " " (l.bound.symbol()) " "
                             (with_unit(number(l.limit), l.unit)) }
-                        td.num { (number(l.min)) }
-                        @for q in l.quantiles { td.num { (number(q)) } }
-                        td.num { (number(l.max)) }
+                        td.num { (value(l.min)) }
+                        @for q in l.quantiles { td.num { (value(q)) } }
+                        td.num { (value(l.max)) }
                         td.num { (l.failures) }
                         td.num { (percent(s.limit_rate(l))) " ["
                             (percent(l.interval.0)) ", " (percent(l.interval.1)) "]" }
@@ -164,7 +179,7 @@ fn worst_section(study: &ToleranceStudy, s: &Summary, records: &Records) -> Sect
                 @for &(k, _) in &s.worst {
                     tr {
                         td.num { (k) }
-                        @for v in records.row(k, l) { td.num { (number(*v)) } }
+                        @for v in records.row(k, l) { td.num { (value(*v)) } }
                         td { (crate::report::tolerance::largest_draws(study, k, 4)) }
                     }
                 }
@@ -179,8 +194,8 @@ fn sensitivity_section(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) 
         p.note { "Derivatives by central differences on the exact engine about the nominal \
                   reducer; linear stack-up σ = √Σ(∂q/∂p·σp)². Note: " (LINEAR_CAVEAT) "." }
         @for (l, ls) in s.limits.iter().enumerate() {
-            h3 { code { (ls.quantity) } ": linear σ " (with_unit(number(sens.linear_sigma(l)), ls.unit))
-                ", Monte Carlo σ " (with_unit(number(ls.std), ls.unit)) }
+            h3 { code { (ls.quantity) } ": linear σ " (statistic(sens.linear_sigma(l), |x| with_unit(x, ls.unit)))
+                ", Monte Carlo σ " (statistic(ls.std, |x| with_unit(x, ls.unit))) }
             (data_table(
                 html! { th { "tolerance (tighten first at the top)" } th { "share of the variance" }
                     th { "σ contribution" } },
@@ -214,7 +229,10 @@ pub fn render(
     let mut figures = Vec::new();
     for (l, ls) in s.limits.iter().enumerate() {
         let name = format!("tolerance-{}.svg", ls.key);
-        files.push((name.clone(), histogram(study, records, l, ls)));
+        let Some(svg) = histogram(study, records, l, ls) else {
+            continue;
+        };
+        files.push((name.clone(), svg));
         figures.push(figure(
             &name,
             &format!("Distribution of {}", ls.quantity),
@@ -223,8 +241,8 @@ pub fn render(
                 ls.label,
                 percent_label(QUANTILES[0]),
                 percent_label(QUANTILES[2]),
-                number(ls.quantiles[0]),
-                number(ls.quantiles[2])
+                value(ls.quantiles[0]),
+                value(ls.quantiles[2])
             ),
         ));
     }

@@ -420,8 +420,8 @@ pub struct SceneResult {
 
 impl SceneResult {
     /// The disc of a one-disc scene, whose curves are written and drawn as the scene's own;
-    /// `None` with several discs (each is named, `disc k`) or none (a duty cycle). The one
-    /// place that asks how many discs there are to decide how results are presented.
+    /// `None` with several discs (each is named, `disc k`) or none (a duty cycle). With
+    /// `names_discs`, what the results' presentation asks of the number of discs.
     pub fn only_disc(&self) -> Option<&DiscResult> {
         match self.discs.as_slice() {
             [one] => Some(one),

@@ -16,7 +16,7 @@ use std::io::Write;
 /// serde_json's compact format, with zeros (most of the forces and pressures: a roller out of
 /// contact) written without the float formatter, which costs as much for 0.0 as for any
 /// number.
-pub struct Compact;
+struct Compact;
 
 impl serde_json::ser::Formatter for Compact {
     fn write_f64<W: ?Sized + Write>(&mut self, out: &mut W, value: f64) -> std::io::Result<()> {
@@ -39,10 +39,7 @@ fn zero(value: f64) -> Option<&'static str> {
 }
 
 /// `value` serialised by serde_json (compact, `Compact`'s zeros) at the end of `buf`.
-pub fn serialize_into<T: ?Sized + Serialize>(
-    buf: &mut Vec<u8>,
-    value: &T,
-) -> serde_json::Result<()> {
+fn serialize_into<T: ?Sized + Serialize>(buf: &mut Vec<u8>, value: &T) -> serde_json::Result<()> {
     value.serialize(&mut serde_json::Serializer::with_formatter(buf, Compact))
 }
 
@@ -85,7 +82,9 @@ pub fn rows(text: &mut Text, rows: &[Vec<f64>]) -> serde_json::Result<()> {
 
 /// Text on its way to a writer: appended to a buffer, which goes to the writer whenever it
 /// holds 64 KiB (it stays in cache and is reused, where a buffer of the whole file would be
-/// new memory, a page fault every 4 KiB).
+/// new memory, a page fault every 4 KiB). A value serialised by serde (`Object`'s
+/// `SerializeMap`) goes into the buffer whole first: a scene's discs' documents and a duty
+/// cycle's bins grow it to their size.
 pub struct Text<'a> {
     buf: Vec<u8>,
     out: &'a mut dyn Write,
@@ -187,10 +186,15 @@ impl SerializeMap for Object<'_, '_> {
     type Ok = ();
     type Error = serde_json::Error;
 
+    /// A key must serialise as a string (serde_json would quote a number; none is written).
     fn serialize_key<T: ?Sized + Serialize>(&mut self, key: &T) -> serde_json::Result<()> {
         self.separate()?;
         self.text.with(|buf| {
+            let start = buf.len();
             serialize_into(buf, key)?;
+            if buf.get(start) != Some(&b'"') {
+                return Err(serde_json::Error::custom("a key is not a string"));
+            }
             buf.push(b':');
             Ok(())
         })
@@ -315,5 +319,10 @@ mod tests {
         Object::new(&mut text).unwrap().end().unwrap();
         text.finish().unwrap();
         assert_eq!(out, b"{}");
+        // A number as a key is refused (serde_json quotes it; written bare it is no JSON).
+        let mut out = Vec::new();
+        let mut text = Text::new(&mut out);
+        let mut object = Object::new(&mut text).unwrap();
+        assert!(object.serialize_entry(&7, &1.0).is_err());
     }
 }

@@ -1234,7 +1234,15 @@ fn an_unbounded_life_has_no_mean_spread_or_derivative() {
     dir.write("t.yaml", spec);
     let r = cycloid(
         here.as_path(),
-        &["tolerance", "t.yaml", "--sensitivity", "--json", "t.json", "--report", "rep"],
+        &[
+            "tolerance",
+            "t.yaml",
+            "--sensitivity",
+            "--json",
+            "t.json",
+            "--report",
+            "rep",
+        ],
     );
     assert_eq!(r.code(), 0, "{r:?}");
     let doc: serde_json::Value = serde_json::from_str(&dir.read("t.json")).unwrap();
@@ -1243,14 +1251,21 @@ fn an_unbounded_life_has_no_mean_spread_or_derivative() {
         let unbounded = limit["key"] == fatigue;
         assert_eq!(limit["mean"].is_null(), unbounded, "{limit}");
         assert_eq!(limit["std"].is_null(), unbounded, "{limit}");
-        assert_eq!(limit["max"].as_f64() == Some(f64::MAX), unbounded, "{limit}");
+        assert_eq!(
+            limit["max"].as_f64() == Some(f64::MAX),
+            unbounded,
+            "{limit}"
+        );
     }
     for limit in doc["sensitivity"]["limits"].as_array().unwrap() {
         let unbounded = limit["quantity"] == fatigue;
         assert_eq!(limit["linear_sigma"].is_null(), unbounded, "{limit}");
         assert_eq!(limit["monte_carlo_sigma"].is_null(), unbounded, "{limit}");
         let derivatives = limit["derivative_per_mm"].as_object().unwrap();
-        assert!(derivatives.values().all(|d| d.is_null() == unbounded), "{limit}");
+        assert!(
+            derivatives.values().all(|d| d.is_null() == unbounded),
+            "{limit}"
+        );
         assert_eq!(limit["pareto"].as_array().unwrap().is_empty(), unbounded);
     }
     let line = (r.stdout.lines())
@@ -1263,8 +1278,13 @@ fn an_unbounded_life_has_no_mean_spread_or_derivative() {
     ));
     let page = dir.read("rep/index.html");
     for shown in [&r.stdout, &page] {
-        assert!(!shown.contains("e308") && !shown.contains("inf "), "{shown}");
+        assert!(
+            !shown.contains("e308") && !shown.contains("inf "),
+            "{shown}"
+        );
     }
-    assert!(!dir.join("rep/tolerance-min_contact_fatigue_life_h.svg").exists());
+    assert!(!dir
+        .join("rep/tolerance-min_contact_fatigue_life_h.svg")
+        .exists());
     assert!(dir.join("rep/tolerance-min_static_safety.svg").exists());
 }

@@ -1121,19 +1121,29 @@ fn summary(s: &SceneSummary) -> SummaryDoc<'_> {
 /// compares with the registry.
 pub fn scenes_value(spec: &Spec, results: &[SceneResult]) -> serde_json::Result<serde_json::Value> {
     let summaries = crate::engine::summary::marked(spec, results);
-    let doc = Document::new(&Contents {
+    let doc = scenes_document(spec, results, &summaries);
+    let mut text = Vec::new();
+    doc.write_to(&mut text).map_err(serde_json::Error::io)?;
+    serde_json::from_slice(&text)
+}
+
+/// The document of scenes alone (no checks, goldens, studies or mass properties), with their
+/// `summaries` (`engine::summary::marked`).
+pub fn scenes_document<'a>(
+    spec: &'a Spec,
+    results: &'a [SceneResult],
+    summaries: &'a [SceneSummary],
+) -> Document<'a> {
+    Document::new(&Contents {
         spec,
         checks: &[],
         results,
         goldens: &[],
-        summaries: &summaries,
+        summaries,
         studies: &[],
         mass: None,
         unbalance: &[],
-    });
-    let mut text = Vec::new();
-    doc.write_to(&mut text).map_err(serde_json::Error::io)?;
-    serde_json::from_slice(&text)
+    })
 }
 
 /// Write the document (`Document::write_to`) to `path` atomically

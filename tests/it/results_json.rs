@@ -99,18 +99,8 @@ fn the_written_document_is_its_serialisation(
     results: &[SceneResult],
     path: &str,
 ) {
-    use cycloid::report::json::{Contents, Document};
     let summaries = cycloid::engine::summary::marked(spec, results);
-    let doc = Document::new(&Contents {
-        spec,
-        checks: &[],
-        results,
-        goldens: &[],
-        summaries: &summaries,
-        studies: &[],
-        mass: None,
-        unbalance: &[],
-    });
+    let doc = cycloid::report::json::scenes_document(spec, results, &summaries);
     let mut written = Vec::new();
     doc.write_to(&mut written).unwrap();
     let serialised = serde_json::to_string(&doc).unwrap();

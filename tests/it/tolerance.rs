@@ -1287,4 +1287,8 @@ fn an_unbounded_life_has_no_mean_spread_or_derivative() {
         .join("rep/tolerance-min_contact_fatigue_life_h.svg")
         .exists());
     assert!(dir.join("rep/tolerance-min_static_safety.svg").exists());
+    assert!(page.contains(
+        "<code>min_contact_fatigue_life_h</code>: every sample unbounded (no finite life or safety), \
+         so no histogram."
+    ));
 }

@@ -226,10 +226,11 @@ pub fn render(
     sens: Option<&Sensitivity>,
 ) -> Vec<(String, String)> {
     let mut files = Vec::new();
-    let mut figures = Vec::new();
+    let (mut figures, mut unbounded) = (Vec::new(), Vec::new());
     for (l, ls) in s.limits.iter().enumerate() {
         let name = format!("tolerance-{}.svg", ls.key);
         let Some(svg) = histogram(study, records, l, ls) else {
+            unbounded.push(ls.quantity);
             continue;
         };
         files.push((name.clone(), svg));
@@ -250,7 +251,12 @@ pub fn render(
     sections.push(Section::new(
         "distributions",
         html! { "Distributions" },
-        html! { div.grid { @for f in &figures { (f) } } },
+        html! {
+            div.grid { @for f in &figures { (f) } }
+            @for q in &unbounded {
+                p { code { (q) } ": every sample unbounded (no finite life or safety), so no histogram." }
+            }
+        },
     ));
     sections.push(worst_section(study, s, records));
     if let Some(sens) = sens {

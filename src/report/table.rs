@@ -104,13 +104,10 @@ pub fn value(c: &Check) -> String {
             number(-c.value),
             c.unit
         )
-    } else if c.value == f64::MAX {
-        // The engine's "no bound" (a bearing no load wears, a study with no constraint).
-        "unbounded".to_string()
     } else if c.value == f64::MIN {
         "none (the evaluation failed)".to_string()
     } else {
-        shown(c.value)
+        place::or_unbounded(c.value, shown)
     }
 }
 

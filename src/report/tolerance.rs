@@ -8,7 +8,6 @@ use crate::engine::tolerance::summary::{Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::{Error, Result};
 use crate::model::quantity::Bound;
-use crate::model::results::UNBOUNDED_LIFE_H;
 use crate::model::tolerances::{Distribution, NORMAL_CUT_SIGMA};
 use crate::numeric::number;
 use serde::ser::SerializeMap;
@@ -224,13 +223,9 @@ pub fn statistic(x: Option<f64>, show: impl Fn(String) -> String) -> String {
     )
 }
 
-/// A sample's value of a limited quantity: "unbounded" for a life or safety without a finite
-/// bound (`UNBOUNDED_LIFE_H`).
+/// A sample's value of a limited quantity (`report::place::or_unbounded`).
 pub fn value(x: f64) -> String {
-    match x == UNBOUNDED_LIFE_H {
-        true => "unbounded".to_string(),
-        false => number(x),
-    }
+    super::place::or_unbounded(x, number)
 }
 
 /// The sensitivities: per limit the linear σ beside the Monte Carlo σ, and the Pareto of the

@@ -5,6 +5,7 @@ use super::common::{data_table, Section};
 use crate::model::results::SceneResult;
 use crate::numeric::number;
 use crate::report::explain;
+use crate::report::place::or_unbounded;
 use crate::spec::Spec;
 use maud::html;
 
@@ -45,10 +46,7 @@ pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
                 td { code { (s.name) } @if let Some(k) = k { " disc " (k) } }
                 td { (s.input_speed_rpm.map_or("—".to_string(), number)) }
                 td { (number(b.equivalent_load_n)) }
-                td { (b.life_h.map_or("not rated".to_string(), |h| match b.is_unbounded() {
-                    true => "unbounded".to_string(),
-                    false => number(h),
-                })) }
+                td { (b.life_h.map_or("not rated".to_string(), |h| or_unbounded(h, number))) }
             } } },
         ))
         @for n in &notes { p.note { (n) } }

@@ -9,6 +9,7 @@ use crate::engine::duty_cycle::{bin_equivalent_loads, damage_shares};
 use crate::model::quantity::{MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY};
 use crate::model::results::SceneResult;
 use crate::numeric::number;
+use crate::report::place::or_unbounded;
 use crate::spec::Spec;
 use crate::units;
 use maud::html;
@@ -64,9 +65,8 @@ pub(super) fn section(
                     li {
                         @if d.life.len() > 1 { "disc " (k) ": " }
                         "crank-bearing life L10h "
-                        (b.life_h.map_or("not rated".to_string(), |h| match b.is_unbounded() {
-                            true => "unbounded".to_string(),
-                            false => format!("{} h", number(h)),
+                        (b.life_h.map_or("not rated".to_string(), |h| {
+                            or_unbounded(h, |h| format!("{} h", number(h)))
                         }))
                         " at P = " (number(b.equivalent_load_n)) " N"
                     }

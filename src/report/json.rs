@@ -508,7 +508,7 @@ impl<'a> SceneDoc<'a> {
         Ok(())
     }
 
-    fn extra<M: SerializeMap>(
+    fn extra<M: CurveMap>(
         &self,
         map: &mut M,
         extra: Extra,
@@ -524,20 +524,21 @@ impl<'a> SceneDoc<'a> {
         let reducer_eff = efficiency.and_then(|e| e.reducer.as_ref());
         let torsion = r.reducer.torsion.as_ref().filter(|_| scene);
         match extra {
-            Extra::Name => {
-                entry(map, "name", named.then_some(&r.name))?;
-                entry(map, "crank_deg", named.then(|| degrees(&r.crank_rad)))
+            Extra::Name if named => {
+                map.serialize_entry("name", &r.name)?;
+                let crank_deg: Vec<f64> = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
+                map.curve("crank_deg", &crank_deg)
             }
+            Extra::Name => Ok(()),
             Extra::MinClearance => {
                 entry(map, "min_clearance_at", clearance.map(min_clearance_at))?;
                 entry(map, "min_clearance_over", clearance.map(min_clearance_over))
             }
             Extra::LineLoads => entry(map, "line_load_n_per_mm", loaded.and_then(line_loads)),
-            Extra::Residual => entry(
-                map,
-                "residual",
-                (loaded.and_then(|l| l.bearing.as_ref())).map(|b| Curve(&b.residual)),
-            ),
+            Extra::Residual => match loaded.and_then(|l| l.bearing.as_ref()) {
+                Some(b) => map.curve("residual", &b.residual),
+                None => Ok(()),
+            },
             Extra::Losses => {
                 entry(
                     map,

@@ -43,28 +43,47 @@ fn serialize_into<T: ?Sized + Serialize>(buf: &mut Vec<u8>, value: &T) -> serde_
     value.serialize(&mut serde_json::Serializer::with_formatter(buf, Compact))
 }
 
+/// `,0.0` 64 times: a run of positive zeros (a roller out of contact over a range of crank
+/// angles) is copied from it at once.
+const COMMA_ZEROS: [u8; 256] = {
+    let mut zeros = [0; 256];
+    let mut i = 0;
+    while i < zeros.len() {
+        zeros[i] = b",0.0"[i % 4];
+        i += 1;
+    }
+    zeros
+};
+
 /// `[x0,x1,…]` at the end of `buf`: each number in serde_json's shortest round-trip form
 /// (zmij's, the formatter serde_json calls), a non-finite one an error. The buffer is grown
-/// once, for the longest numbers (zmij's 24 bytes), and a zero is written as a constant:
-/// in this loop a copy of unknown length is a call.
+/// once, for the longest numbers (zmij's 24 bytes); a run of positive zeros (most of the
+/// forces and pressures) is one copy from `COMMA_ZEROS` and a negative zero a constant.
 pub fn numbers(buf: &mut Vec<u8>, row: &[f64]) -> serde_json::Result<()> {
     let mut digits = zmij::Buffer::new();
     buf.reserve(2 + 25 * row.len());
     buf.push(b'[');
-    for (i, &x) in row.iter().enumerate() {
+    let mut i = 0;
+    while let Some(&x) = row.get(i) {
+        if x.to_bits() == 0 {
+            let run = (row[i..].iter().take(COMMA_ZEROS.len() / 4))
+                .take_while(|z| z.to_bits() == 0)
+                .count();
+            buf.extend_from_slice(&COMMA_ZEROS[usize::from(i == 0)..4 * run]);
+            i += run;
+            continue;
+        }
         if i > 0 {
             buf.push(b',');
         }
         if x == 0.0 {
-            match x.is_sign_negative() {
-                true => buf.extend_from_slice(b"-0.0"),
-                false => buf.extend_from_slice(b"0.0"),
-            }
+            buf.extend_from_slice(b"-0.0");
         } else if x.is_finite() {
             buf.extend_from_slice(digits.format_finite(x).as_bytes());
         } else {
             return Err(not_finite(x));
         }
+        i += 1;
     }
     buf.push(b']');
     Ok(())
@@ -275,6 +294,18 @@ mod tests {
         text.finish().unwrap();
         assert_eq!(String::from_utf8(out).unwrap(), serde(&rows));
         assert_eq!(ours(|b| numbers(b, &[])), "[]");
+        // Runs of zeros shorter and longer than one copy (64), first, last and between
+        // numbers, with a negative zero breaking one.
+        for (lead, run) in [(0, 1), (0, 64), (1, 65), (2, 130), (1, 200)] {
+            let mut row = vec![1.5; lead];
+            row.extend(std::iter::repeat_n(0.0, run));
+            row.push(-0.0);
+            row.extend(std::iter::repeat_n(0.0, run));
+            row.push(2.0);
+            assert_eq!(ours(|b| numbers(b, &row)), serde(&row), "{lead} then {run} zeros");
+            row.truncate(lead + run);
+            assert_eq!(ours(|b| numbers(b, &row)), serde(&row), "{lead} then {run} zeros");
+        }
     }
 
     /// A non-finite number is an error, as `Finite` makes it, not the `null` serde_json

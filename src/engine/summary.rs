@@ -5,7 +5,9 @@
 //! puts it at the top.
 
 use crate::engine::plausibility::{self, Beyond};
-use crate::model::quantity::{Quantity, DISC_TORQUE, MAX_HYSTERESIS_LOSS, SUMMARY};
+use crate::model::quantity::{
+    Extreme, Quantity, DISC_TORQUE, MAX_HYSTERESIS_LOSS, QUANTITIES, SUMMARY,
+};
 use crate::model::results::SceneResult;
 use crate::spec::Spec;
 
@@ -43,6 +45,9 @@ pub struct TorqueShare {
 pub struct SceneSummary {
     pub scene: String,
     pub headlines: Vec<Headline>,
+    /// Every registry scalar the scene computed (`Quantity::scalar`), in `QUANTITIES`' order:
+    /// computed once here, read by the headlines, the finiteness guard and the results JSON.
+    pub scalars: Vec<(&'static Quantity, Extreme)>,
     /// How many crank angles the scene samples.
     pub angles: usize,
     /// The step between its first two crank angles, rad (0 with one angle).
@@ -59,21 +64,23 @@ pub struct SceneSummary {
 pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
     results
         .iter()
-        .map(|r| SceneSummary {
+        .map(|r| (r, scalars(r)))
+        .map(|(r, scalars)| SceneSummary {
             scene: r.name.clone(),
             headlines: SUMMARY
                 .iter()
                 .filter_map(|&q| {
-                    let e = q.scalar(r)?;
+                    let (_, e) = scalars.iter().find(|(s, _)| s.key == q.key)?;
                     Some(Headline {
                         quantity: q,
                         value: e.value,
-                        at: e.at,
+                        at: e.at.clone(),
                         beyond: None,
                         resolution: resolution(q, r),
                     })
                 })
                 .collect(),
+            scalars,
             angles: r.crank_rad.len(),
             step_rad: match r.crank_rad.as_slice() {
                 [a, b, ..] => b - a,
@@ -83,6 +90,14 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
             discs: r.discs.len().max(1),
             shares: shares(r),
         })
+        .collect()
+}
+
+/// Every registry scalar `r` computed, in `QUANTITIES`' order (`SceneSummary::scalars`).
+pub fn scalars(r: &SceneResult) -> Vec<(&'static Quantity, Extreme)> {
+    QUANTITIES
+        .iter()
+        .filter_map(|&q| Some((q, q.scalar(r)?)))
         .collect()
 }
 

@@ -16,8 +16,57 @@ use super::results::{
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 
-/// Rows `[column][angle]` in output units.
-type Rows = Vec<Vec<f64>>;
+/// Rows `[column][angle]` in output units, as a curve's reader gives them: the results' own
+/// where they hold them in the key's unit (no copy: the results JSON writes them as they are),
+/// else computed from them (a unit conversion, a count as a number).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Rows<'a> {
+    /// The results' rows.
+    Stored(&'a [Vec<f64>]),
+    /// One row of the results.
+    Row(&'a [f64]),
+    /// Rows computed from the results.
+    Computed(Vec<Vec<f64>>),
+}
+
+impl<'a> Rows<'a> {
+    /// How many rows (rollers, pins; 1 for a curve).
+    pub fn len(&self) -> usize {
+        match self {
+            Rows::Stored(rows) => rows.len(),
+            Rows::Row(_) => 1,
+            Rows::Computed(rows) => rows.len(),
+        }
+    }
+
+    /// No rows.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Row `i`, `[angle]`.
+    pub fn row(&self, i: usize) -> &[f64] {
+        match self {
+            Rows::Stored(rows) => &rows[i],
+            Rows::Row(row) => row,
+            Rows::Computed(rows) => &rows[i],
+        }
+    }
+
+    /// Each row in order.
+    pub fn iter(&self) -> impl Iterator<Item = &[f64]> {
+        (0..self.len()).map(|i| self.row(i))
+    }
+
+    /// The rows as owned vectors (a copy where they are the results').
+    pub fn into_owned(self) -> Vec<Vec<f64>> {
+        match self {
+            Rows::Stored(rows) => rows.to_vec(),
+            Rows::Row(row) => vec![row.to_vec()],
+            Rows::Computed(rows) => rows,
+        }
+    }
+}
 
 /// How a quantity is laid out over a scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -58,9 +107,9 @@ pub struct Extreme {
 #[derive(Clone, Copy)]
 enum Read {
     /// Each disc's curves.
-    DiscCurves(fn(&DiscResult) -> Option<Rows>),
+    DiscCurves(fn(&DiscResult) -> Option<Rows<'_>>),
     /// The reducer's curves, over all its discs.
-    ReducerCurves(fn(&ReducerResult) -> Option<Rows>),
+    ReducerCurves(fn(&ReducerResult) -> Option<Rows<'_>>),
     /// Each disc's scalar: the scene's is the worst over its discs.
     DiscScalar(fn(&DiscResult, &[f64]) -> Option<Extreme>),
     /// The reducer's scalar.
@@ -130,9 +179,14 @@ impl Quantity {
     /// one-disc scene (`SceneResult::only_disc`; with several discs each disc's are
     /// `disc_curves`); `None` when the scene did not compute it, or for a scalar.
     pub fn curves(&self, r: &SceneResult) -> Option<Curves> {
+        self.named(self.rows(r)?)
+    }
+
+    /// `curves`' rows, without their names, borrowed where the results hold them.
+    pub fn rows<'r>(&self, r: &'r SceneResult) -> Option<Rows<'r>> {
         match self.read {
-            Read::ReducerCurves(read) => self.named(read(&r.reducer)?),
-            Read::DiscCurves(read) => self.named(read(r.only_disc()?)?),
+            Read::ReducerCurves(read) => read(&r.reducer),
+            Read::DiscCurves(read) => read(r.only_disc()?),
             _ => None,
         }
     }
@@ -140,14 +194,20 @@ impl Quantity {
     /// The quantity's curves in one disc's results; `None` for the reducer's quantities, when
     /// not computed, or for a scalar.
     pub fn disc_curves(&self, d: &DiscResult) -> Option<Curves> {
+        self.named(self.disc_rows(d)?)
+    }
+
+    /// `disc_curves`' rows, without their names, borrowed where the results hold them.
+    pub fn disc_rows<'d>(&self, d: &'d DiscResult) -> Option<Rows<'d>> {
         match self.read {
-            Read::DiscCurves(read) => self.named(read(d)?),
+            Read::DiscCurves(read) => read(d),
             _ => None,
         }
     }
 
     /// Rows under their column names.
-    fn named(&self, values: Rows) -> Option<Curves> {
+    fn named(&self, rows: Rows) -> Option<Curves> {
+        let values = rows.into_owned();
         let columns = match self.shape.per() {
             Some(what) => (0..values.len()).map(|i| format!("{what}_{i}")).collect(),
             None => vec![self.key.to_string()],
@@ -282,12 +342,12 @@ fn backlash(d: &DiscResult) -> Option<&BacklashCurves> {
     d.clearance.as_ref()?.backlash.as_ref()
 }
 
-fn arcsec(v: &[f64]) -> Rows {
-    vec![v.iter().map(|&x| units::arcsec(x)).collect()]
+fn arcsec(v: &[f64]) -> Rows<'static> {
+    Rows::Computed(vec![v.iter().map(|&x| units::arcsec(x)).collect()])
 }
 
-fn one(v: &[f64]) -> Rows {
-    vec![v.to_vec()]
+fn one(v: &[f64]) -> Rows<'_> {
+    Rows::Row(v)
 }
 
 /// Crank angle `k` of the run's angles `c` (φ = 0 past its end: an extreme of an empty curve).
@@ -347,7 +407,7 @@ pub const CLEARANCE: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| d.clearance.as_ref().map(|c| c.gap_mm.clone())),
+    read: Read::DiscCurves(|d| d.clearance.as_ref().map(|c| Rows::Stored(&c.gap_mm))),
 };
 
 /// Unloaded TE: the smallest closing lag of the rollers that a positive torque closes, arcsec
@@ -439,7 +499,7 @@ pub const ROLLER_FORCE: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| c.force_n.clone())),
+    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| Rows::Stored(&c.force_n))),
 };
 
 /// Hertz peak pressure p0 of each roller's contact, MPa, one curve per roller
@@ -452,7 +512,12 @@ pub const CONTACT_PRESSURE: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| c.pressure_mpa.clone())),
+    read: Read::DiscCurves(|d| {
+        d.loaded
+            .rollers
+            .as_ref()
+            .map(|c| Rows::Stored(&c.pressure_mpa))
+    }),
 };
 
 /// Hertz half-width b of each roller's contact, mm, one curve per roller
@@ -465,7 +530,12 @@ pub const CONTACT_HALF_WIDTH: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| c.half_width_mm.clone())),
+    read: Read::DiscCurves(|d| {
+        d.loaded
+            .rollers
+            .as_ref()
+            .map(|c| Rows::Stored(&c.half_width_mm))
+    }),
 };
 
 /// How many rollers carry a force at each crank angle (`RollerCurves::contacts`).
@@ -481,7 +551,7 @@ pub const CONTACTS: Quantity = Quantity {
         d.loaded
             .rollers
             .as_ref()
-            .map(|c| vec![c.contacts.iter().map(|&n| n as f64).collect()])
+            .map(|c| Rows::Computed(vec![c.contacts.iter().map(|&n| n as f64).collect()]))
     }),
 };
 
@@ -518,7 +588,10 @@ pub const DISC_TORQUE: Quantity = Quantity {
     of: None,
     read: Read::DiscCurves(|d| {
         let t = d.loaded.torque_nmm.as_ref()?;
-        Some(vec![t.iter().map(|&x| units::nm(x)).collect()])
+        Some(Rows::Computed(vec![t
+            .iter()
+            .map(|&x| units::nm(x))
+            .collect()]))
     }),
 };
 
@@ -544,7 +617,7 @@ pub const PIN_FORCE: Quantity = Quantity {
     shape: Shape::PerPin,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| p.force_n.clone())),
+    read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| Rows::Stored(&p.force_n))),
 };
 
 /// |Fb|, the magnitude of the crank bearing's force on the disc, N (`BearingCurves::force_n`).
@@ -573,7 +646,7 @@ pub const BEARING_ANGLE: Quantity = Quantity {
         d.loaded
             .bearing
             .as_ref()
-            .map(|b| vec![b.angle_rad.iter().map(|&a| units::deg(a)).collect()])
+            .map(|b| Rows::Computed(vec![b.angle_rad.iter().map(|&a| units::deg(a)).collect()]))
     }),
 };
 
@@ -795,9 +868,9 @@ pub const MAX_RESIDUAL: Quantity = Quantity {
 };
 
 /// The catalogue figures of a torsion scene, `[crank]`, read by `figure`.
-fn torsion_figures(r: &ReducerResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
+fn torsion_figures(r: &ReducerResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows<'_>> {
     let t = r.torsion.as_ref()?;
-    Some(vec![t.figures.iter().map(figure).collect()])
+    Some(Rows::Computed(vec![t.figures.iter().map(figure).collect()]))
 }
 
 /// Torsion lost motion γ(+3 %) − γ(−3 %) of the rated torque, arcmin, at each locked crank angle
@@ -841,7 +914,10 @@ pub const TORSIONAL_RIGIDITY: Quantity = Quantity {
 
 /// The figures of a torsion scene whose loop carries friction, `[crank]`, read by `figure`
 /// (none without friction: the frictionless loop has no hysteresis to read).
-fn friction_figures(r: &ReducerResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows> {
+fn friction_figures(
+    r: &ReducerResult,
+    figure: impl Fn(&TorsionFigures) -> f64,
+) -> Option<Rows<'_>> {
     r.torsion.as_ref().filter(|t| t.friction)?;
     torsion_figures(r, figure)
 }
@@ -878,8 +954,8 @@ fn curve_extreme((r, c): (&ReducerResult, &[f64]), q: &Quantity, largest: bool) 
     let Read::ReducerCurves(read) = q.read else {
         return None;
     };
-    let values = read(r)?.pop()?;
-    let ((lo, klo), (hi, khi)) = extremes(&values);
+    let rows = read(r)?;
+    let ((lo, klo), (hi, khi)) = extremes(rows.iter().last()?);
     let (value, k) = if largest { (hi, khi) } else { (lo, klo) };
     Some(at(value, Site::Locked(crank(c, k))))
 }
@@ -990,7 +1066,7 @@ pub const PIN_BENDING_STRESS: Quantity = Quantity {
     shape: Shape::PerPin,
     period: None,
     of: None,
-    read: Read::ReducerCurves(|r| Some(pin_stress(r)?.bending_stress_mpa.clone())),
+    read: Read::ReducerCurves(|r| Some(Rows::Stored(&pin_stress(r)?.bending_stress_mpa))),
 };
 
 /// The largest output-pin bending stress, MPa, with the pin and the crank angle.
@@ -1267,8 +1343,13 @@ pub const INPUT_TORQUE: Quantity = Quantity {
     period: None,
     of: None,
     read: Read::ReducerCurves(|r| {
-        reducer_efficiency(r)
-            .map(|e| vec![e.input_torque_nmm.iter().map(|&t| units::nm(t)).collect()])
+        reducer_efficiency(r).map(|e| {
+            Rows::Computed(vec![e
+                .input_torque_nmm
+                .iter()
+                .map(|&t| units::nm(t))
+                .collect()])
+        })
     }),
 };
 

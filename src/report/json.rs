@@ -17,7 +17,7 @@ use crate::engine::optimise::StudyResult;
 use crate::engine::summary::SceneSummary;
 use crate::engine::verdict::{Check, CheckKind};
 use crate::error::Result;
-use crate::model::quantity::{self as q, Quantity, QUANTITIES};
+use crate::model::quantity::{self as q, Extreme, Quantity, QUANTITIES};
 use crate::model::results::{
     ClearanceSweep, DiscResult, EfficiencyCurves, LoadedSweep, MinCoverage, SceneResult,
     TorsionCompliances,
@@ -57,12 +57,7 @@ impl Serialize for Counts<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         let mut seq = s.serialize_seq(Some(self.0.len()))?;
         for &n in self.0 {
-            if !(n >= 0.0 && n.fract() == 0.0 && n < u64::MAX as f64) {
-                return Err(S::Error::custom(format!(
-                    "a count is {n}, not a whole number (a bug: please report it with the spec)"
-                )));
-            }
-            seq.serialize_element(&(n as u64))?;
+            seq.serialize_element(&json_text::count(n).map_err(S::Error::custom)?)?;
         }
         seq.end()
     }
@@ -70,11 +65,11 @@ impl Serialize for Counts<'_> {
 
 /// Curves \[part\]\[angle\] in the key's unit.
 #[derive(Clone, Copy)]
-pub struct Rows<'a>(&'a [Vec<f64>]);
+pub struct Rows<'a>(&'a q::Rows<'a>);
 
 impl Serialize for Rows<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.collect_seq(self.0.iter().map(|row| Curve(row)))
+        s.collect_seq(self.0.iter().map(Curve))
     }
 }
 
@@ -130,6 +125,9 @@ pub struct SceneDoc<'a> {
     r: &'a SceneResult,
     /// Whose results the document writes.
     of: Of<'a>,
+    /// The scene's scalars as its summary computed them (`SceneSummary::scalars`); without
+    /// one (a disc's document, a duty bin's run) each is read from the results.
+    scalars: Option<&'a [(&'static Quantity, Extreme)]>,
 }
 
 /// Whose results a scene's document writes.
@@ -451,15 +449,21 @@ fn degrees(crank_rad: &[f64]) -> Vec<Finite> {
 }
 
 impl<'a> SceneDoc<'a> {
-    pub fn new(r: &'a SceneResult) -> Self {
+    /// The scene's document; `summary` is its summary, when there is one.
+    pub fn new(r: &'a SceneResult, summary: Option<&'a SceneSummary>) -> Self {
         let of = Of::Scene { named: true };
-        SceneDoc { r, of }
+        let scalars = summary.map(|s| s.scalars.as_slice());
+        SceneDoc { r, of, scalars }
     }
 
     /// A duty bin's run: the scene's document without its name and angles.
     fn unnamed(r: &'a SceneResult) -> Self {
         let of = Of::Scene { named: false };
-        SceneDoc { r, of }
+        SceneDoc {
+            r,
+            of,
+            scalars: None,
+        }
     }
 
     /// The disc whose curves the document writes: one disc's alone, or the scene's only disc.
@@ -485,18 +489,18 @@ impl<'a> SceneDoc<'a> {
         quantity: &'static Quantity,
         extremes_keys: Option<(&'static str, &'static str)>,
     ) -> std::result::Result<(), M::Error> {
-        let curves = match self.of {
-            Of::Scene { .. } => quantity.curves(self.r),
-            Of::Disc(d) => quantity.disc_curves(d),
+        let rows = match self.of {
+            Of::Scene { .. } => quantity.rows(self.r),
+            Of::Disc(d) => quantity.disc_rows(d),
         };
-        let Some(curves) = curves else {
+        let Some(rows) = rows else {
             return Ok(());
         };
-        let row = curves.values.first().map_or(&[][..], Vec::as_slice);
+        let row = rows.iter().next().unwrap_or_default();
         if quantity.shape.per().is_some() {
-            map.rows(quantity.key, &curves.values)?;
+            map.rows(quantity.key, &rows)?;
         } else if q::COUNTS.contains(&quantity) {
-            map.serialize_entry(quantity.key, &Counts(row))?;
+            map.counts(quantity.key, row)?;
         } else {
             map.curve(quantity.key, row)?;
         }
@@ -508,11 +512,7 @@ impl<'a> SceneDoc<'a> {
         Ok(())
     }
 
-    fn extra<M: CurveMap>(
-        &self,
-        map: &mut M,
-        extra: Extra,
-    ) -> std::result::Result<(), M::Error> {
+    fn extra<M: CurveMap>(&self, map: &mut M, extra: Extra) -> std::result::Result<(), M::Error> {
         let r = self.r;
         let (scene, named) = match self.of {
             Of::Scene { named } => (true, named),
@@ -602,7 +602,11 @@ impl<'a> SceneDoc<'a> {
                 "discs",
                 (scene && r.names_discs()).then(|| {
                     (r.discs.iter())
-                        .map(|d| SceneDoc { r, of: Of::Disc(d) })
+                        .map(|d| SceneDoc {
+                            r,
+                            of: Of::Disc(d),
+                            scalars: None,
+                        })
                         .collect::<Vec<_>>()
                 }),
             ),
@@ -627,7 +631,11 @@ impl SceneDoc<'_> {
             Field::CurveAndExtremes(quantity, max, min) => {
                 self.curve(map, quantity, Some((max, min)))
             }
-            Field::Scalars => QUANTITIES.iter().try_for_each(|q| self.scalar(map, q)),
+            Field::Scalars => match self.scalars {
+                Some(scalars) => (scalars.iter())
+                    .try_for_each(|(q, e)| map.serialize_entry(q.key, &Finite(e.value))),
+                None => QUANTITIES.iter().try_for_each(|q| self.scalar(map, q)),
+            },
             Field::Extra(extra) => self.extra(map, extra),
         }
     }
@@ -662,11 +670,9 @@ trait CurveMap: SerializeMap {
     /// `key: [x…]`.
     fn curve(&mut self, key: &'static str, row: &[f64]) -> std::result::Result<(), Self::Error>;
     /// `key: [[x…]…]`, a row per roller or pin.
-    fn rows(
-        &mut self,
-        key: &'static str,
-        rows: &[Vec<f64>],
-    ) -> std::result::Result<(), Self::Error>;
+    fn rows(&mut self, key: &'static str, rows: &q::Rows) -> std::result::Result<(), Self::Error>;
+    /// `key: [n…]`, whole numbers (`Counts`).
+    fn counts(&mut self, key: &'static str, row: &[f64]) -> std::result::Result<(), Self::Error>;
 }
 
 /// A serde map as a `CurveMap`.
@@ -700,8 +706,12 @@ impl<M: SerializeMap> CurveMap for Serde<M> {
         self.0.serialize_entry(key, &Curve(row))
     }
 
-    fn rows(&mut self, key: &'static str, rows: &[Vec<f64>]) -> std::result::Result<(), M::Error> {
+    fn rows(&mut self, key: &'static str, rows: &q::Rows) -> std::result::Result<(), M::Error> {
         self.0.serialize_entry(key, &Rows(rows))
+    }
+
+    fn counts(&mut self, key: &'static str, row: &[f64]) -> std::result::Result<(), M::Error> {
+        self.0.serialize_entry(key, &Counts(row))
     }
 }
 
@@ -710,8 +720,12 @@ impl CurveMap for Object<'_, '_> {
         self.raw(key, |text| text.with(|buf| json_text::numbers(buf, row)))
     }
 
-    fn rows(&mut self, key: &'static str, rows: &[Vec<f64>]) -> serde_json::Result<()> {
-        self.raw(key, |text| json_text::rows(text, rows))
+    fn rows(&mut self, key: &'static str, rows: &q::Rows) -> serde_json::Result<()> {
+        self.raw(key, |text| json_text::rows(text, rows.iter()))
+    }
+
+    fn counts(&mut self, key: &'static str, row: &[f64]) -> serde_json::Result<()> {
+        self.raw(key, |text| text.with(|buf| json_text::counts(buf, row)))
     }
 }
 
@@ -1003,7 +1017,9 @@ impl<'a> Document<'a> {
     pub fn new(c: &Contents<'a>) -> Self {
         Document {
             head: Head::new(c),
-            scenes: c.results.iter().map(SceneDoc::new).collect(),
+            scenes: (c.results.iter().enumerate())
+                .map(|(k, r)| SceneDoc::new(r, c.summaries.get(k).filter(|s| s.scene == r.name)))
+                .collect(),
             tail: Tail {
                 summary: c.summaries.iter().map(summary).collect(),
                 studies: c

@@ -63,36 +63,90 @@ pub fn numbers(buf: &mut Vec<u8>, row: &[f64]) -> serde_json::Result<()> {
     let mut digits = zmij::Buffer::new();
     buf.reserve(2 + 25 * row.len());
     buf.push(b'[');
+    // The first number without its comma (written, then taken out), the rest each after one.
     let mut i = 0;
-    while let Some(&x) = row.get(i) {
-        if x.to_bits() == 0 {
-            let run = (row[i..].iter().take(COMMA_ZEROS.len() / 4))
-                .take_while(|z| z.to_bits() == 0)
-                .count();
-            buf.extend_from_slice(&COMMA_ZEROS[usize::from(i == 0)..4 * run]);
-            i += run;
-            continue;
-        }
+    if !row.is_empty() {
+        let start = buf.len();
+        i = number(buf, &mut digits, row)?;
+        buf.remove(start);
+    }
+    while i < row.len() {
+        i += number(buf, &mut digits, &row[i..])?;
+    }
+    buf.push(b']');
+    Ok(())
+}
+
+/// `,x` for `row`'s first number, or `,0.0,0.0…` for the run of positive zeros it starts (up
+/// to 64); how many numbers it wrote.
+#[inline(always)]
+fn number(buf: &mut Vec<u8>, digits: &mut zmij::Buffer, row: &[f64]) -> serde_json::Result<usize> {
+    let x = row[0];
+    // Finite and not zero, in one comparison of the bits without the sign: the common case.
+    if (x.to_bits() & !(1 << 63)).wrapping_sub(1) < f64::INFINITY.to_bits() - 1 {
+        buf.push(b',');
+        buf.extend_from_slice(digits.format_finite(x).as_bytes());
+        Ok(1)
+    } else if x.to_bits() == 0 {
+        let run = (row.iter().take(COMMA_ZEROS.len() / 4))
+            .take_while(|z| z.to_bits() == 0)
+            .count();
+        buf.extend_from_slice(&COMMA_ZEROS[..4 * run]);
+        Ok(run)
+    } else if x == 0.0 {
+        buf.extend_from_slice(b",-0.0");
+        Ok(1)
+    } else {
+        Err(not_finite(x))
+    }
+}
+
+/// `n` as the whole number it is; an error, not a rounding, where it is not one (a count of
+/// the registry never is: `report::json::Counts`).
+pub fn count(n: f64) -> Result<u64, String> {
+    // `n as u64` back to a double is `n` only for a whole `n` in range (`fract` is a call of
+    // libm's trunc on this target, the largest part of a count's cost).
+    match n >= 0.0 && n < u64::MAX as f64 && (n as u64) as f64 == n {
+        true => Ok(n as u64),
+        false => Err(format!(
+            "a count is {n}, not a whole number (a bug: please report it with the spec)"
+        )),
+    }
+}
+
+/// `[n0,n1,…]` at the end of `buf`: each `count` in decimal, as serde_json writes a `u64`.
+pub fn counts(buf: &mut Vec<u8>, row: &[f64]) -> serde_json::Result<()> {
+    buf.push(b'[');
+    for (i, &n) in row.iter().enumerate() {
         if i > 0 {
             buf.push(b',');
         }
-        if x == 0.0 {
-            buf.extend_from_slice(b"-0.0");
-        } else if x.is_finite() {
-            buf.extend_from_slice(digits.format_finite(x).as_bytes());
-        } else {
-            return Err(not_finite(x));
+        let mut n = count(n).map_err(serde_json::Error::custom)?;
+        if n < 10 {
+            // Rollers in contact: one digit, the common case.
+            buf.push(b'0' + n as u8);
+            continue;
         }
-        i += 1;
+        let mut digits = [0; 20];
+        let mut start = digits.len();
+        loop {
+            start -= 1;
+            digits[start] = b'0' + (n % 10) as u8;
+            n /= 10;
+            if n == 0 {
+                break;
+            }
+        }
+        buf.extend_from_slice(&digits[start..]);
     }
     buf.push(b']');
     Ok(())
 }
 
 /// `[[…],[…],…]`: rows of numbers (`numbers`), each row to the buffer then on.
-pub fn rows(text: &mut Text, rows: &[Vec<f64>]) -> serde_json::Result<()> {
+pub fn rows<'r>(text: &mut Text, rows: impl Iterator<Item = &'r [f64]>) -> serde_json::Result<()> {
     text.push(b"[")?;
-    for (i, row) in rows.iter().enumerate() {
+    for (i, row) in rows.enumerate() {
         text.push(if i > 0 { b"," } else { b"" })?;
         text.with(|buf| numbers(buf, row))?;
     }
@@ -290,7 +344,7 @@ mod tests {
         let rows = vec![random[..3].to_vec(), vec![], vec![0.0, 2.0]];
         let mut out = Vec::new();
         let mut text = Text::new(&mut out);
-        super::rows(&mut text, &rows).unwrap();
+        super::rows(&mut text, rows.iter().map(Vec::as_slice)).unwrap();
         text.finish().unwrap();
         assert_eq!(String::from_utf8(out).unwrap(), serde(&rows));
         assert_eq!(ours(|b| numbers(b, &[])), "[]");
@@ -302,9 +356,31 @@ mod tests {
             row.push(-0.0);
             row.extend(std::iter::repeat_n(0.0, run));
             row.push(2.0);
-            assert_eq!(ours(|b| numbers(b, &row)), serde(&row), "{lead} then {run} zeros");
+            assert_eq!(
+                ours(|b| numbers(b, &row)),
+                serde(&row),
+                "{lead} then {run} zeros"
+            );
             row.truncate(lead + run);
-            assert_eq!(ours(|b| numbers(b, &row)), serde(&row), "{lead} then {run} zeros");
+            assert_eq!(
+                ours(|b| numbers(b, &row)),
+                serde(&row),
+                "{lead} then {run} zeros"
+            );
+        }
+    }
+
+    /// Counts are serde_json's text for the same `u64`s (0, one and several digits, the
+    /// largest below 2⁶⁴ a double holds); a fraction, a negative count or a NaN is an error.
+    #[test]
+    fn counts_are_written_as_serde_json_writes_integers() {
+        let whole = [0.0, 1.0, 9.0, 10.0, 12.0, 1e15, 18446744073709549568.0];
+        let expected: Vec<u64> = vec![0, 1, 9, 10, 12, 1_000_000_000_000_000, 18446744073709549568];
+        assert_eq!(ours(|b| counts(b, &whole)), serde(&expected));
+        assert_eq!(ours(|b| counts(b, &[])), "[]");
+        for bad in [0.5, -1.0, f64::NAN, 2f64.powi(64)] {
+            let error = counts(&mut Vec::new(), &[1.0, bad]).unwrap_err();
+            assert!(error.to_string().contains("not a whole number"), "{error}");
         }
     }
 

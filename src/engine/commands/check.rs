@@ -16,6 +16,7 @@ use crate::engine::torque_curve;
 use crate::engine::verdict::{self, Check};
 use crate::error::{Error, ErrorKind, Result};
 use crate::measure::fit::Identification;
+use crate::model::quantity::Quantity;
 use crate::model::results::{SceneResult, TorqueCurve};
 use crate::model::{Modification, Study};
 use crate::progress::{Budget, Phase, Progress};
@@ -198,7 +199,8 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec)?;
     let results = scenes(&spec, options.writes, progress)?;
-    all_finite(&spec, &results)?;
+    let summaries = summary::marked(&spec, &results);
+    all_finite(&summaries)?;
     let mut checks = verdict::evaluate(&spec, &results)?;
     let studies = studies(&spec, spec.studies.iter().collect(), progress);
     checks.extend(verdict::optimisation(&spec, &studies));
@@ -225,7 +227,6 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
         // The study draws from the drawing, whatever disc the other checks run on.
         checks.push(tolerance::failure_rate_check(drawing, progress)?);
     }
-    let summaries = summary::marked(&spec, &results);
     let review = match options.review {
         Some(r) => Some(Review {
             disc: drawing::disc(
@@ -266,20 +267,17 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
 /// (an input the spec's bounds let through, a computation that overflowed) is an error naming
 /// the scene and the quantity, never a figure a limit compares or a page shows. A rating life
 /// is the exception: infinite where nothing loads the bearing (an unbounded life).
-fn all_finite(spec: &Spec, results: &[SceneResult]) -> Result<()> {
-    use crate::model::quantity::{BEARING_LIFE, DUTY_LIFE, QUANTITIES};
-    for (scene, r) in spec.scenes.iter().zip(results) {
-        for q in QUANTITIES
-            .iter()
-            .filter(|q| ![BEARING_LIFE.key, DUTY_LIFE.key].contains(&q.key))
-        {
-            if let Some(x) = q.scalar(r).filter(|x| !x.value.is_finite()) {
-                return Err(Error::computation(format!(
-                    "scene `{}`: {} is {}, not a finite number: the inputs are beyond what the \
-                     model computes; nothing is judged",
-                    scene.name, q.key, x.value
-                )));
-            }
+fn all_finite(summaries: &[SceneSummary]) -> Result<()> {
+    use crate::model::quantity::{BEARING_LIFE, DUTY_LIFE};
+    for s in summaries {
+        let unbounded = |q: &Quantity| [BEARING_LIFE.key, DUTY_LIFE.key].contains(&q.key);
+        let beyond = (s.scalars.iter()).find(|(q, x)| !unbounded(q) && !x.value.is_finite());
+        if let Some((q, x)) = beyond {
+            return Err(Error::computation(format!(
+                "scene `{}`: {} is {}, not a finite number: the inputs are beyond what the \
+                 model computes; nothing is judged",
+                s.scene, q.key, x.value
+            )));
         }
     }
     Ok(())

@@ -657,6 +657,7 @@ fn a_preloaded_lost_motion_beside_torsion_figures_reads_in_arcmin() {
     let scene = |headlines| SceneSummary {
         scene: "torsion".into(),
         headlines,
+        scalars: Vec::new(),
         angles: 1,
         step_rad: 0.0,
         first_rad: 0.0,

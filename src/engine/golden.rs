@@ -437,19 +437,18 @@ pub fn computed<'a>(
         _ => q.curves(r),
     };
     let curves = curves.ok_or_else(|| {
-        let why = if r.names_discs() && g.disc.is_none() {
+        let message = if r.names_discs() && g.disc.is_none() {
             format!(
-                "with {} discs a disc's curve needs `disc: k` in the golden entry",
+                "scene `{}` computed no `{}` (with {} discs a disc's curve needs `disc: k` in \
+                 the golden entry)",
+                g.scene,
+                g.quantity,
                 r.discs.len()
             )
         } else {
-            "a ratio needs at least 3 crank angles".to_string()
+            super::missing::not_computed(q, r)
         };
-        Error::new(
-            ErrorKind::InvalidValue,
-            format!("scene `{}` computed no `{}` ({why})", g.scene, g.quantity),
-        )
-        .at_key(format!("{}.quantity", g.key))
+        Error::new(ErrorKind::InvalidValue, message).at_key(format!("{}.quantity", g.key))
     })?;
     let deg = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
     Ok((r, deg, curves))

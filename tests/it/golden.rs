@@ -398,6 +398,53 @@ fn compare_names_the_part_and_the_angle_of_its_worst_point() {
     }
 }
 
+/// On a one-disc reducer a golden of `disc: 0` (which validation allows) is the golden without
+/// `disc`: `bless` words where its curve moved the same, without naming the disc. Two goldens
+/// of the roller forces, one with `disc: 0`, one without, are moved alike (roller 0 at 12.3°
+/// by 0.5 N) and blessed again: their lines are the same but for the file (before, the first
+/// said "disc 0: roller 0 at crank 12.30°").
+#[test]
+fn bless_does_not_name_the_disc_of_a_one_disc_reducer() {
+    let dir = scratch("one-disc");
+    let spec = dir.join("spec.yaml");
+    let golden = |file: &str, disc: &str| {
+        format!(
+            "  - scene: rated\n    quantity: roller_force_n\n{disc}    file: golden/{file}.csv\n    \
+             tolerance: {{ abs: 0.01, rel: 1.0e-6 }}\n"
+        )
+    };
+    let entries = golden("named", "    disc: 0\n") + &golden("plain", "");
+    write(&spec, &spec_text(360, &entries));
+    assert_eq!(run(&["bless", p(&spec)]).0, 0);
+    for file in ["named", "plain"] {
+        let path = dir.join(&format!("golden/{file}.csv"));
+        let moved: Vec<String> = (std::fs::read_to_string(&path).unwrap().lines())
+            .map(|line| match line.split_once(',') {
+                Some(("12.3", rest)) => {
+                    let (first, others) = rest.split_once(',').unwrap();
+                    format!("12.3,{},{others}", first.parse::<f64>().unwrap() + 0.5)
+                }
+                _ => line.to_string(),
+            })
+            .collect();
+        write(&path, &(moved.join("\n") + "\n"));
+    }
+    let (code, out, err) = run(&["bless", p(&spec)]);
+    assert_eq!(code, 0, "{out}{err}");
+    let line = |file: &str| {
+        let line = out
+            .lines()
+            .find(|l| l.contains(&format!("{file}.csv")))
+            .unwrap();
+        line.replace(&format!("{file}.csv"), "FILE.csv")
+    };
+    assert!(
+        line("plain").contains("at roller 0 at crank 12.30°"),
+        "{out}"
+    );
+    assert_eq!(line("named"), line("plain"));
+}
+
 /// With several discs a golden's points name the disc whose curve it holds
 /// (`specs/reducer-two-discs.yaml`: TE of the reducer, a torque of disc 0 and of disc 1, a
 /// bearing force of disc 1); the check's row names the disc in its id (`[disc 1]`) and words

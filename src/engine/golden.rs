@@ -244,8 +244,11 @@ pub struct Comparison {
 }
 
 impl Comparison {
-    /// The comparison of disc `disc`'s curve: its points name the disc.
-    fn of_disc(mut self, disc: Option<usize>) -> Comparison {
+    /// The comparison of golden `g`'s curve in scene `r`: its points name the golden's disc
+    /// when the scene has several (`SceneResult::names_discs`); a one-disc reducer's disc 0
+    /// is not named, as a golden without `disc` (`Place::disc`).
+    fn of_disc(mut self, g: &Golden, r: &SceneResult) -> Comparison {
+        let disc = g.disc.filter(|_| r.names_discs());
         self.worst.disc = disc;
         self.largest.disc = disc;
         self
@@ -437,19 +440,18 @@ pub fn computed<'a>(
         _ => q.curves(r),
     };
     let curves = curves.ok_or_else(|| {
-        let why = if r.names_discs() && g.disc.is_none() {
+        let message = if r.names_discs() && g.disc.is_none() {
             format!(
-                "with {} discs a disc's curve needs `disc: k` in the golden entry",
+                "scene `{}` computed no `{}` (with {} discs a disc's curve needs `disc: k` in \
+                 the golden entry)",
+                g.scene,
+                g.quantity,
                 r.discs.len()
             )
         } else {
-            "a ratio needs at least 3 crank angles".to_string()
+            super::missing::not_computed(q, r)
         };
-        Error::new(
-            ErrorKind::InvalidValue,
-            format!("scene `{}` computed no `{}` ({why})", g.scene, g.quantity),
-        )
-        .at_key(format!("{}.quantity", g.key))
+        Error::new(ErrorKind::InvalidValue, message).at_key(format!("{}.quantity", g.key))
     })?;
     let deg = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
     Ok((r, deg, curves))
@@ -465,7 +467,7 @@ pub fn evaluate(
         .iter()
         .zip(loaded)
         .map(|(g, golden)| {
-            let (_, deg, curves) = computed(g, results)?;
+            let (r, deg, curves) = computed(g, results)?;
             let period = g.quantity.period;
             let comparison = compare(golden, &deg, &curves, g.tolerance, period).map_err(|m| {
                 file_error(
@@ -479,7 +481,7 @@ pub fn evaluate(
                     ),
                 )
             })?;
-            let comparison = comparison.of_disc(g.disc);
+            let comparison = comparison.of_disc(g, r);
             Ok(GoldenResult {
                 golden: g.clone(),
                 unit: g.quantity.unit,
@@ -706,7 +708,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
     let mut batch = files::Batch::new();
     let mut out = Vec::new();
     for g in &spec.golden {
-        let (_, deg, curves) = computed(g, results)?;
+        let (r, deg, curves) = computed(g, results)?;
         let unit = g.quantity.unit;
         let period = g.quantity.period;
         let new = GoldenCurves {
@@ -735,7 +737,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
                         period,
                     )
                 }) {
-                Ok(c) => BlessChange::Compared(c.of_disc(g.disc)),
+                Ok(c) => BlessChange::Compared(c.of_disc(g, r)),
                 Err(m) => BlessChange::Replaced(m),
             },
         };

@@ -23,6 +23,7 @@ pub mod face_profile;
 pub mod golden;
 pub mod limit;
 pub mod mass_properties;
+pub mod missing;
 pub mod optimise;
 pub mod plausibility;
 pub mod power_flow;

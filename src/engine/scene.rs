@@ -218,12 +218,7 @@ fn run_one(
             first_order_valid(design, m, scene, (&loaded, design.disc_phase_rad(k)))?;
             loaded.strength = strength::disc_strength(design, (scene, plan), &loaded);
         }
-        let name = match design.discs {
-            1 => scene.name.clone(),
-            _ => format!("{} disc {k}", scene.name),
-        };
         discs.push(DiscResult {
-            name,
             clearance: clearance(k, design.disc_phase_rad(k))?,
             bearing_life: bearing_life(design, scene, plan, &loaded),
             loaded,

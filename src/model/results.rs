@@ -454,8 +454,6 @@ pub struct ReducerResult {
 /// One disc's results over the scene's crank angles.
 #[derive(Debug, Clone)]
 pub struct DiscResult {
-    /// The scene's name, or `<scene> disc k` with several discs.
-    pub name: String,
     /// The unloaded gaps at the ideal pose (`Effect::Clearance`).
     pub clearance: Option<ClearanceSweep>,
     /// The loaded curves (none computed: every part `None`).

@@ -10,6 +10,40 @@ use crate::numeric::number;
 use crate::spec::Spec;
 use crate::units;
 
+/// Below this fraction of the size of the terms it is summed from, a centroid offset or a net
+/// unbalance force is round-off and is said as none, not printed as a number. The centroid
+/// S/A: `geometry::mass_properties::profile_moments` returns S once two trapezoid sums agree
+/// within max(`PROFILE_MOMENTS_REL_TOL`, 8·√n·ε) ≤ 7.2e-13 (at its cap of 163,841 points) of
+/// A·r_g, so S/A is off by at most ~1e-12·r_g (r_g the face's radius of gyration; the holes'
+/// and the bore's closed forms add an ulp of their circle); the shipped discs show 3e-15 mm at
+/// r_g ≈ 20 mm (1.6e-16). The net force Σ F_c·e_φk of evenly phased discs: each unit vector
+/// within an ulp, so ≤ N·ε·F_c (1.2e-16·F_c seen). 1e-9 is 1,000 times the larger bound, and
+/// 1e-9·r_g = 2e-8 mm on the shipped disc, 50,000 times below a micrometre, so an offset from a
+/// real deviation (a form error, micrometres) is still printed. A profile integrated as its
+/// polygon (K1 near 1, within `SECTION_TOLERANCE_MM`) is not round-off: its offset is printed.
+const ROUND_OFF: f64 = 1e-9;
+
+/// `value` unless it is round-off of terms of size `scale` (`ROUND_OFF`).
+fn resolved(value: f64, scale: f64) -> Option<f64> {
+    (value > ROUND_OFF * scale).then_some(value)
+}
+
+/// "centroid on the centre", or "centroid 0.001234 mm off it" (`ROUND_OFF` of the face's
+/// radius of gyration √(J/A)).
+fn centroid(d: &DiscMass) -> String {
+    let radius_of_gyration_mm = (d.face.polar_mm4 / d.face.area_mm2).sqrt();
+    match resolved(d.centroid_offset_mm, radius_of_gyration_mm) {
+        Some(offset) => format!("centroid {} mm off it", number(offset)),
+        None => "centroid on the centre".to_string(),
+    }
+}
+
+/// The net unbalance force of `discs` discs on the crank, N, or none when it is round-off of
+/// their `discs`·F_c (`ROUND_OFF`): evenly phased discs cancel.
+fn net_force_n(u: &Unbalance, discs: usize) -> Option<f64> {
+    resolved(u.force_n, discs as f64 * u.disc_force_n)
+}
+
 /// What J_in includes, as the design table and the terminal say it.
 fn included(m: &MassProperties) -> String {
     let mut parts = vec!["the discs' orbit and turning"];
@@ -42,11 +76,11 @@ pub fn design_rows(spec: &Spec, m: &MassProperties) -> Vec<(&'static str, String
             "mass properties (each disc)",
             format!(
                 "mass {} kg at density ρ {} kg/m³, polar inertia J_c {} kg·m² about its \
-                 centre, centroid {} mm off it",
+                 centre, {}",
                 number(d.mass_kg),
                 number(units::kg_per_m3(spec.design.density_kg_per_mm3)),
                 number(units::kgm2(d.inertia_kgmm2)),
-                number(d.centroid_offset_mm)
+                centroid(d)
             ),
         ),
         (
@@ -71,13 +105,15 @@ pub fn headlines(spec: &Spec, m: &MassProperties, unbalance: &[Unbalance]) -> St
         included(m)
     );
     for u in unbalance {
+        let force = match net_force_n(u, spec.design.discs) {
+            Some(f) => format!("unbalance on the crank {} N", number(f)),
+            None => "no unbalance force on the crank (the discs' forces cancel)".to_string(),
+        };
         out += &format!(
-            "scene `{}` at {} rpm: each disc's centripetal force {} N; unbalance on the crank \
-             {} N, couple {} N·m\n",
+            "scene `{}` at {} rpm: each disc's centripetal force {} N; {force}, couple {} N·m\n",
             spec.scenes[u.scene].name,
             number(u.input_speed_rpm),
             number(u.disc_force_n),
-            number(u.force_n),
             number(units::nm(u.moment_nmm))
         );
     }
@@ -109,10 +145,13 @@ pub fn scene_note(spec: &Spec, u: &Unbalance) -> String {
         number(u.disc_force_n)
     );
     if spec.design.discs > 1 {
+        let force = match net_force_n(u, spec.design.discs) {
+            Some(f) => format!("an unbalance force of {} N", number(f)),
+            None => "no unbalance force (their forces cancel)".to_string(),
+        };
         s += &format!(
-            " The {} discs leave on the crank an unbalance force of {} N and a couple of {} N·m.",
+            " The {} discs leave on the crank {force} and a couple of {} N·m.",
             spec.design.discs,
-            number(u.force_n),
             number(units::nm(u.moment_nmm))
         );
     }
@@ -186,12 +225,15 @@ pub fn explain_scene(
         forces.join("; ")
     );
     if let (true, Some(u)) = (d.discs > 1, unbalance) {
+        let force = match net_force_n(u, d.discs) {
+            Some(f) => format!("a force of {} N", number(f)),
+            None => "no force (their forces cancel)".to_string(),
+        };
         out += &format!(
-            "  note    unbalance at {} rpm: the {} discs leave on the crank a force of {} N and \
-             a couple of {} N·m about their mean mid-plane\n",
+            "  note    unbalance at {} rpm: the {} discs leave on the crank {force} and a couple \
+             of {} N·m about their mean mid-plane\n",
             number(u.input_speed_rpm),
             d.discs,
-            number(u.force_n),
             number(units::nm(u.moment_nmm))
         );
     }

@@ -202,6 +202,74 @@ fn a_missing_golden_file_is_exit_2_naming_it_and_suggesting_bless() {
     assert!(err.contains(&format!("spec.yaml:{line}:5:")), "{err}");
 }
 
+/// A golden of a curve the scene's effects cover but its run cannot hold says which quantity
+/// is missing and why, at the golden's `quantity` key, exit 2 (`check` and `bless` alike): a
+/// disc's torque share on a one-disc reducer (computed with several discs only; it used to
+/// say "a ratio needs at least 3 crank angles"), and a ratio over 2 crank angles.
+#[test]
+fn a_golden_of_a_curve_the_run_left_out_says_what_is_missing_and_why() {
+    let dir = scratch("not-computed");
+    let spec = dir.join("spec.yaml");
+    let golden = |quantity: &str| {
+        format!(
+            "  - scene: rated\n    quantity: {quantity}\n    file: golden/g.csv\n    \
+             tolerance: {{ abs: 0.01, rel: 1.0e-6 }}\n"
+        )
+    };
+    for (steps, quantity, why) in [
+        (
+            36,
+            "torque_nm",
+            "(disc torque share Tk): a disc's share of the torque is computed with several \
+             discs only",
+        ),
+        (
+            2,
+            "ratio",
+            "(transmission ratio κ = dφ/dφout): a ratio needs at least 3 crank angles, the \
+             scene has 2",
+        ),
+    ] {
+        let text = spec_text(steps, &golden(quantity));
+        write(&spec, &text);
+        let line = 1 + text
+            .lines()
+            .position(|l| l.contains(&format!("quantity: {quantity}")))
+            .unwrap();
+        let (code, out, err) = run(&["bless", p(&spec)]);
+        assert_eq!(code, 2, "{out}{err}");
+        assert_eq!(
+            err,
+            format!(
+                "{}:{line}:5: invalid value: golden[0].quantity: scene `rated` computed no \
+                 `{quantity}` {why}\n",
+                p(&spec)
+            )
+        );
+    }
+    // A torsion loop without friction has no hysteresis (specs/reducer-torsion.yaml).
+    let torsion = std::fs::read_to_string("specs/reducer-torsion.yaml").unwrap();
+    let text = torsion.replacen(
+        "limits:\n",
+        "golden:\n  - scene: torsion\n    quantity: hysteresis_loss_arcmin\n    file: g.csv\n    \
+         tolerance: { abs: 0.01, rel: 1.0e-6 }\nlimits:\n",
+        1,
+    );
+    write(&spec, &text);
+    let line = 1 + text.lines().position(|l| l.contains("hysteresis")).unwrap();
+    let (code, out, err) = run(&["bless", p(&spec)]);
+    assert_eq!(code, 2, "{out}{err}");
+    assert_eq!(
+        err,
+        format!(
+            "{}:{line}:5: invalid value: golden[0].quantity: scene `torsion` computed no \
+             `hysteresis_loss_arcmin` (hysteresis loss (friction, at zero torque)): its torsion \
+             loop has no friction to lose (give `reducer.friction`)\n",
+            p(&spec)
+        )
+    );
+}
+
 #[test]
 fn a_golden_whose_columns_or_range_no_longer_match_is_exit_2() {
     let dir = scratch("mismatch");
@@ -328,6 +396,53 @@ fn compare_names_the_part_and_the_angle_of_its_worst_point() {
         assert_eq!(cycloid::report::place::text(&c.worst.place()), words);
         assert_eq!(cycloid::report::golden::in_row(&c.worst), words);
     }
+}
+
+/// On a one-disc reducer a golden of `disc: 0` (which validation allows) is the golden without
+/// `disc`: `bless` words where its curve moved the same, without naming the disc. Two goldens
+/// of the roller forces, one with `disc: 0`, one without, are moved alike (roller 0 at 12.3°
+/// by 0.5 N) and blessed again: their lines are the same but for the file (before, the first
+/// said "disc 0: roller 0 at crank 12.30°").
+#[test]
+fn bless_does_not_name_the_disc_of_a_one_disc_reducer() {
+    let dir = scratch("one-disc");
+    let spec = dir.join("spec.yaml");
+    let golden = |file: &str, disc: &str| {
+        format!(
+            "  - scene: rated\n    quantity: roller_force_n\n{disc}    file: golden/{file}.csv\n    \
+             tolerance: {{ abs: 0.01, rel: 1.0e-6 }}\n"
+        )
+    };
+    let entries = golden("named", "    disc: 0\n") + &golden("plain", "");
+    write(&spec, &spec_text(360, &entries));
+    assert_eq!(run(&["bless", p(&spec)]).0, 0);
+    for file in ["named", "plain"] {
+        let path = dir.join(&format!("golden/{file}.csv"));
+        let moved: Vec<String> = (std::fs::read_to_string(&path).unwrap().lines())
+            .map(|line| match line.split_once(',') {
+                Some(("12.3", rest)) => {
+                    let (first, others) = rest.split_once(',').unwrap();
+                    format!("12.3,{},{others}", first.parse::<f64>().unwrap() + 0.5)
+                }
+                _ => line.to_string(),
+            })
+            .collect();
+        write(&path, &(moved.join("\n") + "\n"));
+    }
+    let (code, out, err) = run(&["bless", p(&spec)]);
+    assert_eq!(code, 0, "{out}{err}");
+    let line = |file: &str| {
+        let line = out
+            .lines()
+            .find(|l| l.contains(&format!("{file}.csv")))
+            .unwrap();
+        line.replace(&format!("{file}.csv"), "FILE.csv")
+    };
+    assert!(
+        line("plain").contains("at roller 0 at crank 12.30°"),
+        "{out}"
+    );
+    assert_eq!(line("named"), line("plain"));
 }
 
 /// With several discs a golden's points name the disc whose curve it holds

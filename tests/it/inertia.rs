@@ -169,23 +169,16 @@ fn the_terminal_explain_and_review_say_the_force_at_speed_and_the_unbalance() {
     let line = (run.stdout.lines())
         .find(|l| l.starts_with("scene `fast` at 3000 rpm"))
         .unwrap_or_else(|| panic!("{}", run.stdout));
-    let head = format!(
-        "scene `fast` at 3000 rpm: each disc's centripetal force {force} N; unbalance on the \
-         crank "
+    // The net force is round-off of 2·F_c (cos π = −1 to an ulp; the JSON's ~1e-16·F_c):
+    // said as none, not printed as a number.
+    assert_eq!(
+        line,
+        format!(
+            "scene `fast` at 3000 rpm: each disc's centripetal force {force} N; no unbalance \
+             force on the crank (the discs' forces cancel), couple {couple} N·m"
+        )
     );
-    assert!(line.starts_with(&head), "{line}");
-    assert!(
-        line.ends_with(&format!(" N, couple {couple} N·m")),
-        "{line}"
-    );
-    // The residual force is round-off of F_c (cos π = −1 to an ulp).
-    let residual: f64 = line[head.len()..]
-        .split(' ')
-        .next()
-        .unwrap()
-        .parse()
-        .unwrap();
-    assert!(residual.abs() <= 1e-12 * fc, "{line}");
+    assert!(json["unbalance"][0]["unbalance_force_n"].as_f64().unwrap() <= 1e-12 * fc);
 
     let explain = cycloid(&dir.path, &["check", "s.yaml", "--explain"]).stdout;
     let w = 3000.0 * TAU / 60.0;
@@ -198,9 +191,13 @@ fn the_terminal_explain_and_review_say_the_force_at_speed_and_the_unbalance() {
         shown(w)
     );
     assert!(explain.contains(&formula), "{explain}");
-    assert!(explain.contains(&format!(
-        "a couple of {couple} N·m about their mean mid-plane"
-    )));
+    assert!(
+        explain.contains(&format!(
+            "  note    unbalance at 3000 rpm: the 2 discs leave on the crank no force (their \
+             forces cancel) and a couple of {couple} N·m about their mean mid-plane\n"
+        )),
+        "{explain}"
+    );
 
     let html = dir.read("review/index.html");
     let title = format!("Crank-bearing force at 3000 rpm, includes m·(e+de)·ω² = {force} N");
@@ -212,11 +209,29 @@ fn the_terminal_explain_and_review_say_the_force_at_speed_and_the_unbalance() {
     assert!(html.contains(&format!(
         "F_c = m·(e+de)·ω² = {force} N (effect inertia): in the bearing's force at every \
          angle, its life and static safety; the contacts are those without it. The 2 discs \
-         leave on the crank an unbalance force of "
+         leave on the crank no unbalance force (their forces cancel) and a couple of {couple} \
+         N·m.</p>"
     )));
-    assert!(html.contains(&format!("N and a couple of {couple} N·m.</p>")));
     // The scene without `inertia` says nothing of speed.
     assert!(!dir
         .read("review/scene-1-rated-disc-0-clearance.svg")
         .contains("rpm"));
+}
+
+/// One disc leaves its whole F_c on the crank (Σ F_c·e_φk of one term): a real force, which
+/// the terminal prints as a number, the disc's centripetal force itself (worked out here from
+/// the JSON's mass), while two discs' round-off is said as none (above).
+#[test]
+fn one_disc_leaves_its_centripetal_force_on_the_crank_as_a_number() {
+    let dir = Scratch::new("inertia-one-disc");
+    dir.write("s.yaml", SPEC.replacen("  discs: 2 ", "  discs: 1 ", 1));
+    let run = cycloid(&dir.path, &["check", "s.yaml", "--json", "r.json"]);
+    assert_eq!(run.code(), 0, "{}", run.stderr);
+    let json: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    let force = shown(centripetal_n(&json));
+    let line = format!(
+        "scene `fast` at 3000 rpm: each disc's centripetal force {force} N; unbalance on the \
+         crank {force} N, couple 0 N·m\n"
+    );
+    assert!(run.stdout.contains(&line), "{}", run.stdout);
 }

@@ -304,6 +304,68 @@ fn the_reviews_design_table_has_the_mass_properties() {
     )));
 }
 
+/// specs/reducer.yaml's disc with a form error of `order` and 2 µm along the normal.
+fn with_form(order: usize, cos_mm: f64) -> String {
+    std::fs::read_to_string("specs/reducer.yaml").unwrap().replacen(
+        "  output_pins:\n",
+        &format!(
+            "  deviations:\n    form:\n      - {{order: {order}, cos_mm: {cos_mm:?}, sin_mm: 0.0}}\n  \
+             output_pins:\n"
+        ),
+        1,
+    )
+}
+
+/// The review's mass row of `text`, from "centroid" to the end of its cell.
+fn centroid_words(name: &str, text: &str) -> String {
+    let dir = crate::common::Scratch::new(name);
+    dir.write("s.yaml", text);
+    let out = crate::common::cycloid(&dir.path, &["check", "s.yaml", "--report", "review"]);
+    assert!(out.code() <= 1, "{}{}", out.stdout, out.stderr);
+    let html = dir.read("review/index.html");
+    let row = html
+        .split("<tr><th>mass properties (each disc)</th><td>")
+        .nth(1)
+        .unwrap();
+    let row = &row[..row.find("</td>").unwrap()];
+    row[row.find("centroid").unwrap()..].to_string()
+}
+
+/// The review says a centroid on the disc's centre in words and prints a real offset as a
+/// number. The disc is invariant under a turn by 2π/nc (9 lobes, 6 holes), and with a form
+/// error of order 3 still under a turn by 2π/3 (t → t + 2π/3 turns C(t) by 2π/3, as 10·2π/3
+/// ≡ 2π/3): its centroid is its centre by symmetry, the computed offset round-off. A form
+/// error of order 10 (≡ 1 mod 9) breaks every symmetry but the mirror: its first-order
+/// change of S, −∮ w·Γ·|Γ'| dt, has a mean against Γ's harmonics 1 + 9m, so the centroid
+/// moves in proportion to the amplitude: doubling it doubles the offset, to within the second
+/// order (a relative 1e-3 here: w/r_g ~ 1e-4, with a generous factor).
+#[test]
+fn the_review_says_a_centred_centroid_in_words_and_prints_a_real_offset() {
+    let shipped = std::fs::read_to_string("specs/reducer.yaml").unwrap();
+    assert_eq!(
+        centroid_words("centroid-shipped", &shipped),
+        "centroid on the centre"
+    );
+    assert_eq!(
+        centroid_words("centroid-order-3", &with_form(3, 0.002)),
+        "centroid on the centre"
+    );
+    let offset = |cos_mm: f64| {
+        let spec = cycloid::spec::parse("s.yaml", &with_form(10, cos_mm)).unwrap();
+        check(&spec, &CheckOptions::default(), &Silent)
+            .unwrap()
+            .mass
+            .disc
+            .centroid_offset_mm
+    };
+    let (single, double) = (offset(0.002), offset(0.004));
+    assert!((double / single - 2.0).abs() < 1e-3, "{single} {double}");
+    assert_eq!(
+        centroid_words("centroid-order-10", &with_form(10, 0.002)),
+        format!("centroid {} mm off it", cycloid::numeric::number(single))
+    );
+}
+
 /// `NEAR_CIRCLE` at eccentricity `e_mm` with rollers that turn on their pins and the given
 /// `reducer.roller_inertia_kgm2` line (`""`: none).
 fn spinning(e_mm: &str, inertia: &str) -> String {

@@ -55,11 +55,11 @@ fn run(spec: &Spec) -> Vec<SceneResult> {
     run.results
 }
 
-/// The period the run sampled, with its step and bound.
-fn sampled(r: &DiscResult) -> SampledPeriod {
+/// The period the run sampled, with its step and bound, of the disc `what` names.
+fn sampled(r: &DiscResult, what: &str) -> SampledPeriod {
     match r.clearance.as_ref().unwrap().coverage {
         MinCoverage::Period(p) => p,
-        other => panic!("{}: the smallest gap over {other:?}", r.name),
+        other => panic!("{what}: the smallest gap over {other:?}"),
     }
 }
 
@@ -159,10 +159,11 @@ fn true_minimum(mesh: &Mesh, period_rad: f64, step_rad: f64) -> (f64, usize, f64
 }
 
 /// The reported minimum of `r` lies in [true, true + bound], and is the gap of the reported
-/// roller at the reported crank angle (plus the disc's phase `shift_rad`).
-fn assert_bounded(mesh: &Mesh, r: &DiscResult, shift_rad: f64) -> f64 {
+/// roller at the reported crank angle (plus the disc's phase `shift_rad`); `what` names the
+/// disc in messages.
+fn assert_bounded(mesh: &Mesh, (r, what): (&DiscResult, &str), shift_rad: f64) -> f64 {
     let c = r.clearance.as_ref().unwrap();
-    let p = sampled(r);
+    let p = sampled(r, what);
     let (truth, _, _) = true_minimum(mesh, p.period_rad, p.step_rad / 8.0);
     let at = mesh
         .roller_gap(
@@ -174,21 +175,18 @@ fn assert_bounded(mesh: &Mesh, r: &DiscResult, shift_rad: f64) -> f64 {
         .gap_mm;
     assert!(
         (at - c.min.gap_mm).abs() < SAME_MM,
-        "{}: {at} at the place",
-        r.name
+        "{what}: {at} at the place"
     );
     let above = c.min.gap_mm - truth;
     eprintln!(
-        "{}: {:.6} µm, {:.3e} µm above the true minimum, bound {:.3e} µm",
-        r.name,
+        "{what}: {:.6} µm, {:.3e} µm above the true minimum, bound {:.3e} µm",
         units::um(c.min.gap_mm),
         units::um(above),
         units::um(p.error_bound_mm)
     );
     assert!(
         (-SAME_MM..=p.error_bound_mm + SAME_MM).contains(&above),
-        "{}: reported {} true {truth}: {above} mm above, bound {}",
-        r.name,
+        "{what}: reported {} true {truth}: {above} mm above, bound {}",
         c.min.gap_mm,
         p.error_bound_mm
     );
@@ -214,14 +212,14 @@ fn a_form_error_is_checked_over_its_whole_period_whatever_the_scene_samples() {
     let mesh = Mesh::new(&s.design, &s.modification);
     let results = run(&s);
     for r in &results {
-        let p = sampled(&r.discs[0]);
+        let p = sampled(&r.discs[0], &r.name);
         assert!(
             (units::deg(p.period_rad) - 324.0).abs() < 1e-9,
             "{}",
             r.name
         );
         assert!(p.error_bound_mm <= 1e-4, "{}: {}", r.name, p.error_bound_mm);
-        assert_bounded(&mesh, &r.discs[0], 0.0);
+        assert_bounded(&mesh, (&r.discs[0], &r.name), 0.0);
     }
     let c = results[0].discs[0].clearance.as_ref().unwrap();
     let scene_only = c
@@ -246,8 +244,8 @@ fn rollers_as_built_with_a_form_error_are_checked_over_3240_degrees() {
     let s = spec(&format!("{ROLLER_6}{FORM_2}"), &[("torsion", 0.0, 36.0, 4)]);
     let mesh = Mesh::new(&s.design, &s.modification);
     let r = &run(&s)[0];
-    assert!((units::deg(sampled(&r.discs[0]).period_rad) - 3240.0).abs() < 1e-9);
-    assert_bounded(&mesh, &r.discs[0], 0.0);
+    assert!((units::deg(sampled(&r.discs[0], &r.name).period_rad) - 3240.0).abs() < 1e-9);
+    assert_bounded(&mesh, (&r.discs[0], &r.name), 0.0);
 }
 
 /// Two discs, 180° apart: each samples the same period (once for both) and reports the same
@@ -271,7 +269,12 @@ fn several_discs_report_the_smallest_gap_each_at_its_own_place() {
             (0.0..units::rad(324.0)).contains(&c.min.crank_rad),
             "disc {k}"
         );
-        values.push(assert_bounded(&mesh, disc, s.design.disc_phase_rad(k)));
+        let what = format!("{} disc {k}", r.name);
+        values.push(assert_bounded(
+            &mesh,
+            (disc, &what),
+            s.design.disc_phase_rad(k),
+        ));
     }
     assert_eq!(values[0], values[1]);
 }
@@ -325,7 +328,7 @@ fn the_error_bound_holds_on_hard_designs() {
         let r = cycloid::engine::scene::run(&s, &scene, &plan, &Default::default()).unwrap();
         let mesh = Mesh::new(&s.design, &s.modification);
         eprintln!("{name}:");
-        assert_bounded(&mesh, &r.discs[0], 0.0);
+        assert_bounded(&mesh, (&r.discs[0], &r.name), 0.0);
     }
 }
 
@@ -335,7 +338,7 @@ fn the_error_bound_holds_on_hard_designs() {
 fn a_nominal_scene_over_a_mesh_period_is_its_own_sampling() {
     let s = spec("", &[("mesh", 0.0, 36.0, 360)]);
     let r = &run(&s)[0];
-    let p = sampled(&r.discs[0]);
+    let p = sampled(&r.discs[0], &r.name);
     assert!((units::deg(p.step_rad) - 0.1).abs() < 1e-12);
     assert!((units::deg(p.period_rad) - 36.0).abs() < 1e-12);
     let c = r.discs[0].clearance.as_ref().unwrap();
@@ -347,7 +350,7 @@ fn a_nominal_scene_over_a_mesh_period_is_its_own_sampling() {
         .fold(f64::INFINITY, f64::min);
     assert_eq!(c.min.gap_mm, own);
     let mesh = Mesh::new(&s.design, &s.modification);
-    assert_bounded(&mesh, &r.discs[0], 0.0);
+    assert_bounded(&mesh, (&r.discs[0], &r.name), 0.0);
 }
 
 /// What the terminal and the JSON say: the whole period, its step and the bound for the

@@ -416,12 +416,8 @@ fn read_objective(
     o: Objective,
     r: &crate::model::results::SceneResult,
 ) -> Result<(Objective, f64), String> {
-    let value = o.quantity.scalar(r).map(|x| x.value).ok_or_else(|| {
-        format!(
-            "{} was not computed (a ratio needs at least 3 crank angles)",
-            o.quantity.label
-        )
-    })?;
+    let value = (o.quantity.scalar(r).map(|x| x.value))
+        .ok_or_else(|| crate::engine::missing::not_computed(o.quantity, r))?;
     if value.is_finite() {
         Ok((o, value))
     } else {

@@ -487,7 +487,6 @@ mod tests {
     #[test]
     fn the_smallest_gap_is_the_least_over_the_rollers_at_each_angle() {
         let disc = DiscResult {
-            name: "s".into(),
             efficiency: None,
             clearance: Some(ClearanceSweep {
                 gap_mm: vec![vec![0.003, 0.001], vec![0.002, 0.005]],

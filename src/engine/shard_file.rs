@@ -57,6 +57,72 @@ pub fn place(names: &[String], indices: &[u64], count: u64) -> Result<Vec<usize>
     Ok(by_index.into_iter().flatten().collect())
 }
 
+/// What every shard of one run must hold alike, as a shard's header says it: the text the run
+/// was made from (its SHA-256 and path), the seed, the items of the whole run and the shard
+/// count; and the shard's own index.
+pub struct Belongs<'a> {
+    pub sha256: &'a [u8; 32],
+    pub path: &'a str,
+    pub seed: u64,
+    pub items: u64,
+    pub index: u64,
+    pub count: u64,
+}
+
+/// A run's words in a merge's refusals: the run (`design search`), its text (`requirements
+/// file`), its items' count (`candidate count`), and whether shards of one run must name the
+/// text by one path, with that path's words (`requirements path`).
+pub struct RunWords {
+    pub run: &'static str,
+    pub text: &'static str,
+    pub items: &'static str,
+    pub same_path: Option<&'static str>,
+}
+
+/// Check that a complete set of shards (`names` their paths, for messages, `headers` theirs)
+/// belongs to one run: refused when they differ in text, seed, item count or shard count, or
+/// when a shard is missing or given twice (named by index). The positions in `headers` of the
+/// shards in index order (`place`).
+pub fn check_set(names: &[String], headers: &[Belongs], words: &RunWords) -> Result<Vec<usize>> {
+    let Some(h0) = headers.first() else {
+        return Err(refuse("merge needs at least one shard file".into()));
+    };
+    for (name, h) in names.iter().zip(headers) {
+        let differs = |what: &str, a: String, b: String| {
+            refuse(format!(
+                "{name} (shard {}) is of another {} than {} (shard {}): its {what} is {a}, not \
+                 {b}; merge only the shards of one run",
+                h.index, words.run, names[0], h0.index
+            ))
+        };
+        if h.sha256 != h0.sha256 {
+            return Err(differs(
+                words.text,
+                format!("`{}` (sha256 {})", h.path, hex(&h.sha256[..6])),
+                format!("`{}` (sha256 {})", h0.path, hex(&h0.sha256[..6])),
+            ));
+        }
+        if let Some(what) = words.same_path.filter(|_| h.path != h0.path) {
+            return Err(differs(
+                what,
+                format!("`{}`", h.path),
+                format!("`{}`", h0.path),
+            ));
+        }
+        for (what, a, b) in [
+            ("seed", h.seed, h0.seed),
+            (words.items, h.items, h0.items),
+            ("shard count", h.count, h0.count),
+        ] {
+            if a != b {
+                return Err(differs(what, a.to_string(), b.to_string()));
+            }
+        }
+    }
+    let indices: Vec<u64> = headers.iter().map(|h| h.index).collect();
+    place(names, &indices, h0.count)
+}
+
 /// A merge's refusal of its set of shards.
 pub fn refuse(message: String) -> Error {
     Error::new(ErrorKind::InvalidValue, message)

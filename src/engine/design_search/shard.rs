@@ -30,7 +30,7 @@
 use super::candidate::{Candidate, Choice};
 use super::evaluate::{Evaluation, Stage};
 use super::failure::{Failure, Miss, Requirement};
-use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
+use crate::engine::shard_file::{self, refuse, seal, Belongs, Reader, RunWords};
 use crate::error::Result;
 use crate::model::requirements::Requirements;
 use crate::model::requirements::Variables;
@@ -283,58 +283,31 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
 }
 
 /// Check that a complete set of shards (`names` their paths, for messages) belongs to one
-/// search: refused when they differ in requirements, seed, candidate count or shard count, or
-/// when a shard is missing or given twice (named by index). The positions in `shards` of the
-/// shards in index order.
+/// search (`shard_file::check_set`: one requirements text by one path). The positions in
+/// `shards` of the shards in index order.
 pub fn check_set(names: &[String], shards: &[Shard]) -> Result<Vec<usize>> {
-    let Some(first) = shards.first() else {
-        return Err(refuse("merge needs at least one shard file".into()));
-    };
-    let h0 = &first.header;
-    for (name, s) in names.iter().zip(shards) {
-        let h = &s.header;
-        let differs = |what: &str, a: String, b: String| {
-            refuse(format!(
-                "{name} (shard {}) is of another design search than {} (shard {}): its {what} \
-                 is {a}, not {b}; merge only the shards of one run",
-                h.index, names[0], h0.index
-            ))
-        };
-        if h.requirements_sha256 != h0.requirements_sha256 {
-            return Err(differs(
-                "requirements file",
-                format!(
-                    "`{}` (sha256 {})",
-                    h.requirements_path,
-                    hex(&h.requirements_sha256[..6])
-                ),
-                format!(
-                    "`{}` (sha256 {})",
-                    h0.requirements_path,
-                    hex(&h0.requirements_sha256[..6])
-                ),
-            ));
-        }
-        if h.requirements_path != h0.requirements_path {
-            // The front's specs name the requirements path: one run, one path.
-            return Err(differs(
-                "requirements path",
-                format!("`{}`", h.requirements_path),
-                format!("`{}`", h0.requirements_path),
-            ));
-        }
-        for (what, a, b) in [
-            ("seed", h.seed, h0.seed),
-            ("candidate count", h.candidates, h0.candidates),
-            ("shard count", h.count, h0.count),
-        ] {
-            if a != b {
-                return Err(differs(what, a.to_string(), b.to_string()));
+    let headers: Vec<Belongs> = shards
+        .iter()
+        .map(|s| {
+            let h = &s.header;
+            Belongs {
+                sha256: &h.requirements_sha256,
+                // The front's specs name the requirements path: one run, one path.
+                path: &h.requirements_path,
+                seed: h.seed,
+                items: h.candidates,
+                index: h.index,
+                count: h.count,
             }
-        }
-    }
-    let indices: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
-    place(names, &indices, h0.count)
+        })
+        .collect();
+    let words = RunWords {
+        run: "design search",
+        text: "requirements file",
+        items: "candidate count",
+        same_path: Some("requirements path"),
+    };
+    shard_file::check_set(names, &headers, &words)
 }
 
 /// The global stage's evaluations of every candidate, in the order of `global_candidates`,

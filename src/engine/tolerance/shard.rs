@@ -15,7 +15,7 @@
 //! follow from its value and the spec's limit (`Merged::study`).
 
 use super::{shard_len, Records};
-use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
+use crate::engine::shard_file::{check_set, refuse, seal, Belongs, Reader, RunWords};
 use crate::error::Result;
 
 pub const MAGIC: &[u8; 16] = b"cycloid-tol-shrd";
@@ -154,39 +154,28 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
 /// shards' paths, for messages): refused when they differ in spec, seed, sample count or
 /// shard count, or when a shard is missing or given twice (named by index).
 pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
-    let Some(first) = shards.first() else {
-        return Err(refuse("merge needs at least one shard file".into()));
-    };
-    let h0 = &first.header;
-    for (name, s) in names.iter().zip(shards) {
-        let h = &s.header;
-        let differs = |what: &str, a: String, b: String| {
-            refuse(format!(
-                "{name} (shard {}) is of another study than {} (shard {}): its {what} is {a}, \
-                 not {b}; merge only the shards of one run",
-                h.index, names[0], h0.index
-            ))
-        };
-        if h.spec_sha256 != h0.spec_sha256 {
-            return Err(differs(
-                "spec",
-                format!("`{}` (sha256 {})", h.spec_path, hex(&h.spec_sha256[..6])),
-                format!("`{}` (sha256 {})", h0.spec_path, hex(&h0.spec_sha256[..6])),
-            ));
-        }
-        for (what, a, b) in [
-            ("seed", h.seed, h0.seed),
-            ("sample count", h.samples, h0.samples),
-            ("shard count", h.count, h0.count),
-        ] {
-            if a != b {
-                return Err(differs(what, a.to_string(), b.to_string()));
+    let headers: Vec<Belongs> = shards
+        .iter()
+        .map(|s| {
+            let h = &s.header;
+            Belongs {
+                sha256: &h.spec_sha256,
+                path: &h.spec_path,
+                seed: h.seed,
+                items: h.samples,
+                index: h.index,
+                count: h.count,
             }
-        }
-    }
-    let count = h0.count;
-    let indices: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
-    place(names, &indices, count)?;
+        })
+        .collect();
+    let words = RunWords {
+        run: "study",
+        text: "spec",
+        items: "sample count",
+        same_path: None,
+    };
+    check_set(names, &headers, &words)?;
+    let (h0, count) = (&shards[0].header, shards[0].header.count);
     let l = h0.limits as usize;
     let n = h0.samples as usize;
     if n.saturating_mul(l) > super::MAX_SAMPLE_LIMITS {

@@ -137,11 +137,7 @@ fn finish(
         out,
         &report::design::render(req, &run.search, out_dir, time),
     )?;
-    Ok(if run.feasible() {
-        Outcome::Passed
-    } else {
-        Outcome::ChecksFailed
-    })
+    Ok(Outcome::of(run.feasible()))
 }
 
 /// One shard `(i, n)` of the global stage's `all` candidates, written to `file` for `merge`.

@@ -155,11 +155,7 @@ fn finish(run: Whole, outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome>
             report::review::tolerance::write(Path::new(dir), study, summary, records, sens)?;
         print(out, &review_line(dir, files))?;
     }
-    Ok(if summary.passed() {
-        Outcome::Passed
-    } else {
-        Outcome::ChecksFailed
-    })
+    Ok(Outcome::of(summary.passed()))
 }
 
 /// One shard: its samples' records, written to `file` for `merge`.

@@ -57,16 +57,20 @@ pub fn place(names: &[String], indices: &[u64], count: u64) -> Result<Vec<usize>
     Ok(by_index.into_iter().flatten().collect())
 }
 
-/// What every shard of one run must hold alike, as a shard's header says it: the text the run
-/// was made from (its SHA-256 and path), the seed, the items of the whole run and the shard
-/// count; and the shard's own index.
-pub struct Belongs<'a> {
-    pub sha256: &'a [u8; 32],
-    pub path: &'a str,
+/// What a shard says about the run it belongs to: the text the run was made from (a spec's, a
+/// requirements file's: its SHA-256, path and text), the seed, the items of the whole run
+/// (samples, candidates), and the shard's place among the run's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Header {
+    pub text_sha256: [u8; 32],
     pub seed: u64,
+    /// Items of the whole run: the study's samples, the global stage's candidates.
     pub items: u64,
+    /// 0-based shard index I and shard count N.
     pub index: u64,
     pub count: u64,
+    pub text_path: String,
+    pub text: String,
 }
 
 /// A run's words in a merge's refusals: the run (`design search`), its text (`requirements
@@ -83,7 +87,7 @@ pub struct RunWords {
 /// belongs to one run: refused when they differ in text, seed, item count or shard count, or
 /// when a shard is missing or given twice (named by index). The positions in `headers` of the
 /// shards in index order (`place`).
-pub fn check_set(names: &[String], headers: &[Belongs], words: &RunWords) -> Result<Vec<usize>> {
+pub fn check_set(names: &[String], headers: &[&Header], words: &RunWords) -> Result<Vec<usize>> {
     let Some(h0) = headers.first() else {
         return Err(refuse("merge needs at least one shard file".into()));
     };
@@ -95,18 +99,18 @@ pub fn check_set(names: &[String], headers: &[Belongs], words: &RunWords) -> Res
                 h.index, words.run, names[0], h0.index
             ))
         };
-        if h.sha256 != h0.sha256 {
+        if h.text_sha256 != h0.text_sha256 {
             return Err(differs(
                 words.text,
-                format!("`{}` (sha256 {})", h.path, hex(&h.sha256[..6])),
-                format!("`{}` (sha256 {})", h0.path, hex(&h0.sha256[..6])),
+                format!("`{}` (sha256 {})", h.text_path, hex(&h.text_sha256[..6])),
+                format!("`{}` (sha256 {})", h0.text_path, hex(&h0.text_sha256[..6])),
             ));
         }
-        if let Some(what) = words.same_path.filter(|_| h.path != h0.path) {
+        if let Some(what) = words.same_path.filter(|_| h.text_path != h0.text_path) {
             return Err(differs(
                 what,
-                format!("`{}`", h.path),
-                format!("`{}`", h0.path),
+                format!("`{}`", h.text_path),
+                format!("`{}`", h0.text_path),
             ));
         }
         for (what, a, b) in [

@@ -30,7 +30,7 @@
 use super::candidate::{Candidate, Choice};
 use super::evaluate::{Evaluation, Stage};
 use super::failure::{Failure, Miss, Requirement};
-use crate::engine::shard_file::{self, refuse, seal, Belongs, Reader, RunWords};
+use crate::engine::shard_file::{self, refuse, seal, Reader, RunWords};
 use crate::error::Result;
 use crate::model::requirements::Requirements;
 use crate::model::requirements::Variables;
@@ -38,19 +38,9 @@ use crate::model::requirements::Variables;
 pub const MAGIC: &[u8; 16] = b"cycloid-dsg-shrd";
 pub const VERSION: u32 = 2;
 
-/// What a shard says about the search it belongs to.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Header {
-    pub requirements_sha256: [u8; 32],
-    pub seed: u64,
-    /// Candidates of the whole global stage.
-    pub candidates: u64,
-    /// 0-based shard index I and shard count N.
-    pub index: u64,
-    pub count: u64,
-    pub requirements_path: String,
-    pub requirements_text: String,
-}
+/// What a shard says about the search it belongs to: its text is the requirements file's,
+/// its items the candidates of the whole global stage.
+pub use crate::engine::shard_file::Header;
 
 /// One shard read back: its header and its evaluations, in increasing candidate index.
 #[derive(Debug, Clone)]
@@ -80,16 +70,16 @@ fn text_u32(b: &mut Vec<u8>, s: &str) {
 
 /// The bytes of a shard file.
 pub fn encode(h: &Header, evaluations: &[Evaluation]) -> Vec<u8> {
-    let mut b = Vec::with_capacity(256 + h.requirements_text.len() + evaluations.len() * 128);
+    let mut b = Vec::with_capacity(256 + h.text.len() + evaluations.len() * 128);
     b.extend_from_slice(MAGIC);
     b.extend_from_slice(&VERSION.to_le_bytes());
-    b.extend_from_slice(&h.requirements_sha256);
-    for v in [h.seed, h.candidates, h.index, h.count] {
+    b.extend_from_slice(&h.text_sha256);
+    for v in [h.seed, h.items, h.index, h.count] {
         b.extend_from_slice(&v.to_le_bytes());
     }
-    text_u32(&mut b, &h.requirements_path);
-    b.extend_from_slice(&(h.requirements_text.len() as u64).to_le_bytes());
-    b.extend_from_slice(h.requirements_text.as_bytes());
+    text_u32(&mut b, &h.text_path);
+    b.extend_from_slice(&(h.text.len() as u64).to_le_bytes());
+    b.extend_from_slice(h.text.as_bytes());
     for e in evaluations {
         let c = e.candidate.choice;
         for n in [c.teeth, c.pins, c.discs] {
@@ -270,13 +260,13 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
     }
     Ok(Shard {
         header: Header {
-            requirements_sha256,
+            text_sha256: requirements_sha256,
             seed,
-            candidates,
+            items: candidates,
             index,
             count,
-            requirements_path,
-            requirements_text,
+            text_path: requirements_path,
+            text: requirements_text,
         },
         evaluations,
     })
@@ -286,25 +276,12 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
 /// search (`shard_file::check_set`: one requirements text by one path). The positions in
 /// `shards` of the shards in index order.
 pub fn check_set(names: &[String], shards: &[Shard]) -> Result<Vec<usize>> {
-    let headers: Vec<Belongs> = shards
-        .iter()
-        .map(|s| {
-            let h = &s.header;
-            Belongs {
-                sha256: &h.requirements_sha256,
-                // The front's specs name the requirements path: one run, one path.
-                path: &h.requirements_path,
-                seed: h.seed,
-                items: h.candidates,
-                index: h.index,
-                count: h.count,
-            }
-        })
-        .collect();
+    let headers: Vec<&Header> = shards.iter().map(|s| &s.header).collect();
     let words = RunWords {
         run: "design search",
         text: "requirements file",
         items: "candidate count",
+        // The front's specs name the requirements path: one run, one path.
         same_path: Some("requirements path"),
     };
     shard_file::check_set(names, &headers, &words)
@@ -323,18 +300,14 @@ pub fn merge(req: &Requirements, ordered: Vec<(&str, Shard)>) -> Result<Vec<Eval
         refuse(format!(
             "{}: the shards hold {a} {what}, their requirements `{}` give {b}: written by \
              another version of cycloid",
-            ordered[0].0, h0.requirements_path
+            ordered[0].0, h0.text_path
         ))
     };
     if h0.seed != u64::from(req.search.seed) {
         return Err(from_here("as seed", h0.seed, u64::from(req.search.seed)));
     }
-    if h0.candidates != candidates.len() as u64 {
-        return Err(from_here(
-            "candidates",
-            h0.candidates,
-            candidates.len() as u64,
-        ));
+    if h0.items != candidates.len() as u64 {
+        return Err(from_here("candidates", h0.items, candidates.len() as u64));
     }
     let count = h0.count as usize;
     let mut all: Vec<Option<Evaluation>> = vec![None; candidates.len()];

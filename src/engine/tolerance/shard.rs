@@ -15,30 +15,21 @@
 //! follow from its value and the spec's limit (`Merged::study`).
 
 use super::{shard_len, Records};
-use crate::engine::shard_file::{check_set, refuse, seal, Belongs, Reader, RunWords};
+use crate::engine::shard_file::{check_set, refuse, seal, Reader, RunWords};
 use crate::error::Result;
 
 pub const MAGIC: &[u8; 16] = b"cycloid-tol-shrd";
 pub const VERSION: u32 = 2;
 
-/// What a shard says about the study it belongs to.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Header {
-    pub spec_sha256: [u8; 32],
-    pub seed: u64,
-    pub samples: u64,
-    /// 0-based shard index I and shard count N.
-    pub index: u64,
-    pub count: u64,
-    pub limits: u32,
-    pub spec_path: String,
-    pub spec_text: String,
-}
+/// What a shard says about the study it belongs to: its text is the spec's, its items the
+/// study's samples.
+pub use crate::engine::shard_file::Header;
 
-/// One shard read back: its header and records.
+/// One shard read back: its header, the limits L of each sample, and its records.
 #[derive(Debug, Clone)]
 pub struct Shard {
     pub header: Header,
+    pub limits: u32,
     pub records: Records,
 }
 
@@ -46,20 +37,20 @@ pub struct Shard {
 pub use crate::engine::shard_file::text_hash as spec_hash;
 
 /// The bytes of a shard file.
-pub fn encode(h: &Header, records: &Records) -> Vec<u8> {
-    let mut b = Vec::with_capacity(128 + h.spec_text.len() + records.values.len() * 9);
+pub fn encode(h: &Header, limits: u32, records: &Records) -> Vec<u8> {
+    let mut b = Vec::with_capacity(128 + h.text.len() + records.values.len() * 9);
     b.extend_from_slice(MAGIC);
     b.extend_from_slice(&VERSION.to_le_bytes());
-    b.extend_from_slice(&h.spec_sha256);
-    for v in [h.seed, h.samples, h.index, h.count] {
+    b.extend_from_slice(&h.text_sha256);
+    for v in [h.seed, h.items, h.index, h.count] {
         b.extend_from_slice(&v.to_le_bytes());
     }
-    b.extend_from_slice(&h.limits.to_le_bytes());
-    b.extend_from_slice(&(h.spec_path.len() as u32).to_le_bytes());
-    b.extend_from_slice(h.spec_path.as_bytes());
-    b.extend_from_slice(&(h.spec_text.len() as u64).to_le_bytes());
-    b.extend_from_slice(h.spec_text.as_bytes());
-    let l = h.limits as usize;
+    b.extend_from_slice(&limits.to_le_bytes());
+    b.extend_from_slice(&(h.text_path.len() as u32).to_le_bytes());
+    b.extend_from_slice(h.text_path.as_bytes());
+    b.extend_from_slice(&(h.text.len() as u64).to_le_bytes());
+    b.extend_from_slice(h.text.as_bytes());
+    let l = limits as usize;
     for (v, p) in records.values.chunks(l).zip(records.passed.chunks(l)) {
         for x in v {
             b.extend_from_slice(&x.to_le_bytes());
@@ -137,15 +128,15 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
     }
     Ok(Shard {
         header: Header {
-            spec_sha256,
+            text_sha256: spec_sha256,
             seed,
-            samples,
+            items: samples,
             index,
             count,
-            limits,
-            spec_path,
-            spec_text,
+            text_path: spec_path,
+            text: spec_text,
         },
+        limits,
         records,
     })
 }
@@ -154,20 +145,7 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
 /// shards' paths, for messages): refused when they differ in spec, seed, sample count or
 /// shard count, or when a shard is missing or given twice (named by index).
 pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
-    let headers: Vec<Belongs> = shards
-        .iter()
-        .map(|s| {
-            let h = &s.header;
-            Belongs {
-                sha256: &h.spec_sha256,
-                path: &h.spec_path,
-                seed: h.seed,
-                items: h.samples,
-                index: h.index,
-                count: h.count,
-            }
-        })
-        .collect();
+    let headers: Vec<&Header> = shards.iter().map(|s| &s.header).collect();
     let words = RunWords {
         run: "study",
         text: "spec",
@@ -176,8 +154,8 @@ pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
     };
     check_set(names, &headers, &words)?;
     let (h0, count) = (&shards[0].header, shards[0].header.count);
-    let l = h0.limits as usize;
-    let n = h0.samples as usize;
+    let l = shards[0].limits as usize;
+    let n = h0.items as usize;
     if n.saturating_mul(l) > super::MAX_SAMPLE_LIMITS {
         return Err(refuse(format!(
             "the shards hold {n} samples × {l} limits, beyond the {} sample-limits one study \

@@ -172,23 +172,16 @@ fn run_merge(paths: &[String], out_dir: Option<&str>, out: &mut dyn Write) -> Re
     let files = read_shard_files(paths, MAX_SHARD_BYTES)?;
     let merged = commands::merge_design_shards(&files)?;
     let mut inputs = shard_inputs(paths);
-    inputs.push((
-        format!(
-            "the requirements file {} the shards name",
-            merged.requirements_path
-        ),
-        PathBuf::from(&merged.requirements_path),
-    ));
+    let named = format!(
+        "the requirements file {} the shards name",
+        merged.requirements_path
+    );
     // The recorded path is relative to where the shards ran: also beside each shard.
-    for p in paths {
-        let beside = Path::new(p).parent().unwrap_or(Path::new(""));
-        inputs.push((
-            format!(
-                "the requirements file {} the shards name",
-                merged.requirements_path
-            ),
-            beside.join(&merged.requirements_path),
-        ));
+    let beside = paths
+        .iter()
+        .map(|p| Path::new(p).parent().unwrap_or(Path::new("")));
+    for dir in std::iter::once(Path::new("")).chain(beside) {
+        inputs.push((named.clone(), dir.join(&merged.requirements_path)));
     }
     // The requirements outlive the merge the evaluations are moved into.
     let (requirements, shards) = (merged.requirements.clone(), merged.shards);

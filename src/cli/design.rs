@@ -33,7 +33,7 @@ pub(super) fn run(args: DesignArgs, out: &mut dyn Write) -> Result<Outcome> {
     // As `spec::requirements::load`, keeping the text for a shard's header.
     let text = files::read_text(Path::new(&path), "requirements", files::MAX_INPUT_BYTES)?;
     let req = spec::requirements::parse(&path, &text)?;
-    let candidates = commands::design_candidates(&req);
+    let candidates = crate::engine::design_search::global_candidate_count(&req);
     let noun = "candidates of the global stage";
     let shard = match &args.shard {
         Some(s) => Some(parse_shard_of(s, candidates, noun)?),

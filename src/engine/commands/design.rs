@@ -103,11 +103,6 @@ pub fn front_checks(run: &DesignRun, progress: &dyn Progress) -> Result<Vec<Chec
         .collect()
 }
 
-/// The global stage's candidates of a search in all (`--shard I/N` takes N at most this).
-pub fn design_candidates(req: &Requirements) -> u64 {
-    design_search::global_candidate_count(req)
-}
-
 /// Shard `(i, n)` of the search of `req` (read as `text` from `requirements_path`): the
 /// global stage's evaluations of the candidates j ≡ i (mod n), encoded as the shard file
 /// that `merge_design_shards` reads.

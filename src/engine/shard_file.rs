@@ -73,6 +73,38 @@ pub struct Header {
     pub text: String,
 }
 
+impl Header {
+    /// A shard file's bytes before its content (`Reader::header` reads them back): `magic`,
+    /// `version`, the text's SHA-256, the seed, items, index and count (u64 each), the
+    /// format's own fields `own`, the path (u32 length + UTF-8) and the text (u64 length +
+    /// UTF-8); `capacity` reserved for the whole file.
+    pub fn bytes(
+        &self,
+        (magic, version): (&[u8; 16], u32),
+        own: &[u8],
+        capacity: usize,
+    ) -> Vec<u8> {
+        let mut b = Vec::with_capacity(capacity);
+        b.extend_from_slice(magic);
+        b.extend_from_slice(&version.to_le_bytes());
+        b.extend_from_slice(&self.text_sha256);
+        for v in [self.seed, self.items, self.index, self.count] {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        b.extend_from_slice(own);
+        put_short_text(&mut b, &self.text_path);
+        b.extend_from_slice(&(self.text.len() as u64).to_le_bytes());
+        b.extend_from_slice(self.text.as_bytes());
+        b
+    }
+}
+
+/// A u32 length, then the UTF-8 of `s` (`Reader::short_text`).
+pub fn put_short_text(b: &mut Vec<u8>, s: &str) {
+    b.extend_from_slice(&(s.len() as u32).to_le_bytes());
+    b.extend_from_slice(s.as_bytes());
+}
+
 /// A run's words in a merge's refusals: the run (`design search`), its text (`requirements
 /// file`), its items' count (`candidate count`), and whether shards of one run must name the
 /// text by one path, with that path's words (`requirements path`).
@@ -256,6 +288,32 @@ impl<'a> Reader<'a> {
     pub fn short_text(&mut self, what: &str) -> Result<String> {
         let n = self.u32()? as usize;
         self.text(n, what)
+    }
+
+    /// A header as `Header::bytes` wrote it, after the version: `own` reads the format's own
+    /// fields; `what` names the path and the text in a refusal.
+    pub fn header<T>(
+        &mut self,
+        own: impl FnOnce(&mut Self) -> Result<T>,
+        (path_what, text_what): (&str, &str),
+    ) -> Result<(Header, T)> {
+        let text_sha256: [u8; 32] = self.take(32)?.try_into().unwrap_or_default();
+        let (seed, items, index, count) = (self.u64()?, self.u64()?, self.u64()?, self.u64()?);
+        let own = own(self)?;
+        let text_path = self.short_text(path_what)?;
+        let n = self.u64()?;
+        let n = usize::try_from(n).map_err(|_| self.bad("it ends early"))?;
+        let text = self.text(n, text_what)?;
+        let header = Header {
+            text_sha256,
+            seed,
+            items,
+            index,
+            count,
+            text_path,
+            text,
+        };
+        Ok((header, own))
     }
 
     /// A count of items of at least `least` bytes each: no more than the bytes left hold.

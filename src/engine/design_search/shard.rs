@@ -30,7 +30,7 @@
 use super::candidate::{Candidate, Choice};
 use super::evaluate::{Evaluation, Stage};
 use super::failure::{Failure, Miss, Requirement};
-use crate::engine::shard_file::{self, refuse, seal, Reader, RunWords};
+use crate::engine::shard_file::{self, put_short_text, refuse, seal, Reader, RunWords};
 use crate::error::Result;
 use crate::model::requirements::Requirements;
 use crate::model::requirements::Variables;
@@ -63,23 +63,10 @@ pub fn share(all: &[Candidate], (i, n): (u64, u64)) -> Vec<Candidate> {
         .collect()
 }
 
-fn text_u32(b: &mut Vec<u8>, s: &str) {
-    b.extend_from_slice(&(s.len() as u32).to_le_bytes());
-    b.extend_from_slice(s.as_bytes());
-}
-
 /// The bytes of a shard file.
 pub fn encode(h: &Header, evaluations: &[Evaluation]) -> Vec<u8> {
-    let mut b = Vec::with_capacity(256 + h.text.len() + evaluations.len() * 128);
-    b.extend_from_slice(MAGIC);
-    b.extend_from_slice(&VERSION.to_le_bytes());
-    b.extend_from_slice(&h.text_sha256);
-    for v in [h.seed, h.items, h.index, h.count] {
-        b.extend_from_slice(&v.to_le_bytes());
-    }
-    text_u32(&mut b, &h.text_path);
-    b.extend_from_slice(&(h.text.len() as u64).to_le_bytes());
-    b.extend_from_slice(h.text.as_bytes());
+    let capacity = 256 + h.text.len() + evaluations.len() * 128;
+    let mut b = h.bytes((MAGIC, VERSION), &[], capacity);
     for e in evaluations {
         let c = e.candidate.choice;
         for n in [c.teeth, c.pins, c.discs] {
@@ -110,8 +97,8 @@ pub fn encode(h: &Header, evaluations: &[Evaluation]) -> Vec<u8> {
 fn failure(b: &mut Vec<u8>, f: &Failure) {
     b.push(tag(&f.requirement));
     match &f.requirement {
-        Requirement::SpecRule(at) => text_u32(b, at),
-        Requirement::Limit(def) => text_u32(b, def.key),
+        Requirement::SpecRule(at) => put_short_text(b, at),
+        Requirement::Limit(def) => put_short_text(b, def.key),
         _ => {}
     }
     match &f.miss {
@@ -122,7 +109,7 @@ fn failure(b: &mut Vec<u8>, f: &Failure) {
         }
         Miss::Said(m) => {
             b.push(1);
-            text_u32(b, m);
+            put_short_text(b, m);
         }
     }
 }
@@ -230,16 +217,12 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         VERSION,
     )?;
     let content = r.bytes;
-    let requirements_sha256: [u8; 32] = r.take(32)?.try_into().unwrap_or_default();
-    let (seed, candidates, index, count) = (r.u64()?, r.u64()?, r.u64()?, r.u64()?);
-    let requirements_path = r.short_text("requirements path")?;
-    let n = r.u64()?;
-    let n = usize::try_from(n).map_err(|_| r.bad("it ends early"))?;
-    let requirements_text = r.text(n, "requirements text")?;
+    let (header, ()) = r.header(|_| Ok(()), ("requirements path", "requirements text"))?;
+    let (candidates, index, count) = (header.items, header.index, header.count);
     if count == 0 || index >= count || count > candidates.max(1) {
         return Err(r.bad(&format!("shard {index}/{count} of {candidates} candidates")));
     }
-    if requirements_hash(&requirements_text) != requirements_sha256 {
+    if requirements_hash(&header.text) != header.text_sha256 {
         return Err(
             r.bad("the requirements it holds do not match the requirements' hash in its header")
         );
@@ -259,15 +242,7 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         )));
     }
     Ok(Shard {
-        header: Header {
-            text_sha256: requirements_sha256,
-            seed,
-            items: candidates,
-            index,
-            count,
-            text_path: requirements_path,
-            text: requirements_text,
-        },
+        header,
         evaluations,
     })
 }

@@ -38,18 +38,8 @@ pub use crate::engine::shard_file::text_hash as spec_hash;
 
 /// The bytes of a shard file.
 pub fn encode(h: &Header, limits: u32, records: &Records) -> Vec<u8> {
-    let mut b = Vec::with_capacity(128 + h.text.len() + records.values.len() * 9);
-    b.extend_from_slice(MAGIC);
-    b.extend_from_slice(&VERSION.to_le_bytes());
-    b.extend_from_slice(&h.text_sha256);
-    for v in [h.seed, h.items, h.index, h.count] {
-        b.extend_from_slice(&v.to_le_bytes());
-    }
-    b.extend_from_slice(&limits.to_le_bytes());
-    b.extend_from_slice(&(h.text_path.len() as u32).to_le_bytes());
-    b.extend_from_slice(h.text_path.as_bytes());
-    b.extend_from_slice(&(h.text.len() as u64).to_le_bytes());
-    b.extend_from_slice(h.text.as_bytes());
+    let capacity = 128 + h.text.len() + records.values.len() * 9;
+    let mut b = h.bytes((MAGIC, VERSION), &limits.to_le_bytes(), capacity);
     let l = limits as usize;
     for (v, p) in records.values.chunks(l).zip(records.passed.chunks(l)) {
         for x in v {
@@ -70,20 +60,12 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         VERSION,
     )?;
     let bytes = r.bytes;
-    let spec_sha256: [u8; 32] = r.take(32)?.try_into().unwrap_or_default();
-    let (seed, samples, index, count) = (r.u64()?, r.u64()?, r.u64()?, r.u64()?);
-    let limits = r.u32()?;
-    let n = r.u32()? as usize;
-    let spec_path = r.text(n, "spec")?;
-    let n = r.u64()?;
-    let spec_text = r.text(
-        usize::try_from(n).map_err(|_| r.bad("it ends early"))?,
-        "spec",
-    )?;
+    let (header, limits) = r.header(Reader::u32, ("spec", "spec"))?;
+    let (samples, index, count) = (header.items, header.index, header.count);
     if count == 0 || index >= count || count > samples.max(1) || limits == 0 {
         return Err(r.bad(&format!("shard {index}/{count} with {limits} limits")));
     }
-    if spec_hash(&spec_text) != spec_sha256 {
+    if spec_hash(&header.text) != header.text_sha256 {
         return Err(r.bad("the spec it holds does not match the spec's hash in its header"));
     }
     let l = limits as usize;
@@ -127,15 +109,7 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         }
     }
     Ok(Shard {
-        header: Header {
-            text_sha256: spec_sha256,
-            seed,
-            items: samples,
-            index,
-            count,
-            text_path: spec_path,
-            text: spec_text,
-        },
+        header,
         limits,
         records,
     })

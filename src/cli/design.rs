@@ -5,7 +5,7 @@
 
 use super::args::{DesignArgs, DesignCommand};
 use super::output::{distinct_outputs, print};
-use super::shard::{parse_shard_of, read_shard_files, shard_inputs, slurm_shard_of};
+use super::shard::{parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands::{self, DesignRun};
 use crate::error::{Error, ErrorKind, Result};
@@ -36,8 +36,8 @@ pub(super) fn run(args: DesignArgs, out: &mut dyn Write) -> Result<Outcome> {
     let candidates = crate::engine::design_search::global_candidate_count(&req);
     let noun = "candidates of the global stage";
     let shard = match &args.shard {
-        Some(s) => Some(parse_shard_of(s, candidates, noun)?),
-        None => slurm_shard_of(candidates, noun)?,
+        Some(s) => Some(parse_shard(s, candidates, noun)?),
+        None => slurm_shard(candidates, noun)?,
     };
     match (shard, args.out.as_deref()) {
         (Some(shard), Some(file)) => {

@@ -4,6 +4,15 @@
 use super::loaded::{AngleSolution, Model};
 use crate::geometry::{cross, Vec2};
 
+/// |x| relative to `scale` (|x| itself when the scale is 0: nothing to compare with).
+pub(super) fn rel(x: f64, scale: f64) -> f64 {
+    if scale > 0.0 {
+        x.abs() / scale
+    } else {
+        x.abs()
+    }
+}
+
 /// Relative residual of the paper's Eqs. 12–14, evaluated independently of how the solution
 /// was found: force balance (Eqs. 12–13), moment balance about the fixed origin with every
 /// force at its contact point and the bearing force at the disc centre, and the pin/roller
@@ -78,13 +87,6 @@ impl BalanceSums {
         if bearing != Vec2::zeros() {
             self.add(centre, bearing.norm(), bearing);
         }
-        let rel = |x: f64, scale: f64| {
-            if scale > 0.0 {
-                x.abs() / scale
-            } else {
-                x.abs()
-            }
-        };
         let ((mr, sr), (mp, sp)) = (self.rollers, self.pins);
         rel(self.force.norm(), self.force_scale)
             .max(rel(self.moment, self.moment_scale))

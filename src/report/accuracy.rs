@@ -129,7 +129,12 @@ pub fn steps_text(x: f64) -> String {
 }
 
 fn tolerance_text(q: LadderQuantity, t: &LadderTolerances) -> String {
-    super::table::with_unit(short(q.tolerance(t)), q.unit())
+    let v = short(q.tolerance(t));
+    if q.unit().is_empty() {
+        v
+    } else {
+        format!("{v} {}", q.unit())
+    }
 }
 
 /// The lines before the first row: scene, reference, tolerances, column headings.

@@ -42,8 +42,8 @@
 use super::angle_solution::AngleSolution;
 use super::friction::sliding::{self, disc_speed_ratio, disc_velocity, relative_crank_speed_ratio};
 use super::pins::PinState;
-use super::residual::rel;
 use super::rollers::RollerState;
+use super::solve::rel;
 use crate::geometry::{angle_from, cross, Vec2};
 use crate::model::{Design, Friction};
 

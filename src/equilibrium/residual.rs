@@ -2,16 +2,8 @@
 //! evaluated independently of how the solution was found.
 
 use super::loaded::{AngleSolution, Model};
+use super::solve::rel;
 use crate::geometry::{cross, Vec2};
-
-/// |x| relative to `scale` (|x| itself when the scale is 0: nothing to compare with).
-pub(super) fn rel(x: f64, scale: f64) -> f64 {
-    if scale > 0.0 {
-        x.abs() / scale
-    } else {
-        x.abs()
-    }
-}
 
 /// Relative residual of the paper's Eqs. 12–14, evaluated independently of how the solution
 /// was found: force balance (Eqs. 12–13), moment balance about the fixed origin with every

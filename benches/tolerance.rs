@@ -72,17 +72,16 @@ fn merge_100_shards_of_10k(b: divan::Bencher) {
             records.passed.extend([true, true]);
         }
         let header = shard::Header {
-            spec_sha256: shard::spec_hash(&spec.source),
+            text_sha256: shard::spec_hash(&spec.source),
             seed: 0,
-            samples: count,
+            items: count,
             index: i,
             count: shards,
-            limits: 2,
-            spec_path: spec.path.clone(),
-            spec_text: spec.source.clone(),
+            text_path: spec.path.clone(),
+            text: spec.source.clone(),
         };
         let path = dir.join(format!("s{i}"));
-        std::fs::write(&path, shard::encode(&header, &records)).unwrap();
+        std::fs::write(&path, shard::encode(&header, 2, &records)).unwrap();
         names.push(path.display().to_string());
     }
     b.bench(|| {

@@ -18,23 +18,6 @@ pub fn max_entry(rows: &[Vec<f64>]) -> (f64, usize, usize) {
     }
 }
 
-/// Smallest entry of a \[row\]\[angle\] array: (value, row, angle index). Empty gives (0, 0, 0).
-pub fn min_entry(rows: &[Vec<f64>]) -> (f64, usize, usize) {
-    let mut best = (f64::INFINITY, 0, 0);
-    for (i, row) in rows.iter().enumerate() {
-        for (k, &v) in row.iter().enumerate() {
-            if v < best.0 {
-                best = (v, i, k);
-            }
-        }
-    }
-    if best.0.is_finite() {
-        best
-    } else {
-        (0.0, 0, 0)
-    }
-}
-
 /// (min, max) of a curve with their indices.
 pub fn extremes(values: &[f64]) -> ((f64, usize), (f64, usize)) {
     let mut lo = (f64::INFINITY, 0);
@@ -260,7 +243,6 @@ mod tests {
     fn extremes_and_entries() {
         let rows = vec![vec![1.0, 5.0, -2.0], vec![3.0, -7.0, 4.0]];
         assert_eq!(max_entry(&rows), (5.0, 0, 1));
-        assert_eq!(min_entry(&rows), (-7.0, 1, 1));
         assert_eq!(extremes(&rows[1]), ((-7.0, 1), (4.0, 2)));
         assert_eq!(fluctuation(&rows[0]), 7.0);
         assert_eq!(fluctuation(&[]), 0.0);

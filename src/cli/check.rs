@@ -109,11 +109,7 @@ fn checked(args: &CheckArgs, out: &mut dyn Write, guarded: &mut bool) -> Result<
     print_run(&run, args, out)?;
     write_outputs(&run, args, out)?;
     print(out, &report::table::verdict_line(&run.checks))?;
-    Ok(if run.passed() {
-        Outcome::Passed
-    } else {
-        Outcome::ChecksFailed
-    })
+    Ok(Outcome::of(run.passed()))
 }
 
 /// The review's options from `--report-crank-deg` and `--report-map-steps` (the angle checked

@@ -5,7 +5,7 @@
 
 use super::args::{DesignArgs, DesignCommand};
 use super::output::{distinct_outputs, print};
-use super::shard::{parse_shard_of, read_shard_files, shard_inputs, slurm_shard_of};
+use super::shard::{parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands::{self, DesignRun};
 use crate::error::{Error, ErrorKind, Result};
@@ -33,11 +33,11 @@ pub(super) fn run(args: DesignArgs, out: &mut dyn Write) -> Result<Outcome> {
     // As `spec::requirements::load`, keeping the text for a shard's header.
     let text = files::read_text(Path::new(&path), "requirements", files::MAX_INPUT_BYTES)?;
     let req = spec::requirements::parse(&path, &text)?;
-    let candidates = commands::design_candidates(&req);
+    let candidates = crate::engine::design_search::global_candidate_count(&req);
     let noun = "candidates of the global stage";
     let shard = match &args.shard {
-        Some(s) => Some(parse_shard_of(s, candidates, noun)?),
-        None => slurm_shard_of(candidates, noun)?,
+        Some(s) => Some(parse_shard(s, candidates, noun)?),
+        None => slurm_shard(candidates, noun)?,
     };
     match (shard, args.out.as_deref()) {
         (Some(shard), Some(file)) => {
@@ -137,11 +137,7 @@ fn finish(
         out,
         &report::design::render(req, &run.search, out_dir, time),
     )?;
-    Ok(if run.feasible() {
-        Outcome::Passed
-    } else {
-        Outcome::ChecksFailed
-    })
+    Ok(Outcome::of(run.feasible()))
 }
 
 /// One shard `(i, n)` of the global stage's `all` candidates, written to `file` for `merge`.
@@ -176,23 +172,16 @@ fn run_merge(paths: &[String], out_dir: Option<&str>, out: &mut dyn Write) -> Re
     let files = read_shard_files(paths, MAX_SHARD_BYTES)?;
     let merged = commands::merge_design_shards(&files)?;
     let mut inputs = shard_inputs(paths);
-    inputs.push((
-        format!(
-            "the requirements file {} the shards name",
-            merged.requirements_path
-        ),
-        PathBuf::from(&merged.requirements_path),
-    ));
+    let named = format!(
+        "the requirements file {} the shards name",
+        merged.requirements_path
+    );
     // The recorded path is relative to where the shards ran: also beside each shard.
-    for p in paths {
-        let beside = Path::new(p).parent().unwrap_or(Path::new(""));
-        inputs.push((
-            format!(
-                "the requirements file {} the shards name",
-                merged.requirements_path
-            ),
-            beside.join(&merged.requirements_path),
-        ));
+    let beside = paths
+        .iter()
+        .map(|p| Path::new(p).parent().unwrap_or(Path::new("")));
+    for dir in std::iter::once(Path::new("")).chain(beside) {
+        inputs.push((named.clone(), dir.join(&merged.requirements_path)));
     }
     // The requirements outlive the merge the evaluations are moved into.
     let (requirements, shards) = (merged.requirements.clone(), merged.shards);

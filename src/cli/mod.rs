@@ -31,6 +31,17 @@ pub enum Outcome {
     ChecksFailed,
 }
 
+impl Outcome {
+    /// `Passed` when every check `passed`, else `ChecksFailed`.
+    pub fn of(passed: bool) -> Self {
+        if passed {
+            Outcome::Passed
+        } else {
+            Outcome::ChecksFailed
+        }
+    }
+}
+
 /// Run a parsed command, writing the user-facing text to `out` (without colour).
 pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Outcome> {
     run_with(cli, out, false)

@@ -52,11 +52,7 @@ pub(super) fn run(args: &OptimiseArgs, out: &mut dyn Write) -> Result<Outcome> {
             )?;
         }
     }
-    Ok(if run.feasible() {
-        Outcome::Passed
-    } else {
-        Outcome::ChecksFailed
-    })
+    Ok(Outcome::of(run.feasible()))
 }
 
 /// `optimise --write OUT`: the spec of a study's optimum, written only when it is feasible;

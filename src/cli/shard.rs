@@ -32,13 +32,8 @@ pub(super) fn invalid(message: String) -> Error {
     Error::new(ErrorKind::InvalidValue, message)
 }
 
-/// `--shard I/N`: 0 ≤ I < N, 1 ≤ N ≤ samples.
-pub fn parse_shard(text: &str, samples: u64) -> Result<(u64, u64)> {
-    parse_shard_of(text, samples, "samples")
-}
-
-/// `--shard I/N`: 0 ≤ I < N, 1 ≤ N ≤ `units` (what is split, named `noun`).
-pub(super) fn parse_shard_of(text: &str, samples: u64, noun: &str) -> Result<(u64, u64)> {
+/// `--shard I/N`: 0 ≤ I < N, 1 ≤ N ≤ `samples` (what is split, named `noun`).
+pub fn parse_shard(text: &str, samples: u64, noun: &str) -> Result<(u64, u64)> {
     let rule = |why: String| {
         invalid(format!(
             "--shard {text}: {why}; a shard is I/N with 0 <= I < N (0-based) and N at most the \
@@ -61,20 +56,15 @@ pub(super) fn parse_shard_of(text: &str, samples: u64, noun: &str) -> Result<(u6
     Ok((i, n))
 }
 
-/// The shard of a Slurm job array task: I = SLURM_ARRAY_TASK_ID − SLURM_ARRAY_TASK_MIN (so
-/// `--array=0-99` and `--array=1-100` both give I = 0 … 99), N = SLURM_ARRAY_TASK_COUNT. The
-/// array must be contiguous (no step, no list): I must come out below N.
-pub(super) fn slurm_shard(samples: u64) -> Result<Option<(u64, u64)>> {
-    slurm_shard_of(samples, "samples")
-}
-
 /// The environment variable that declines a job array's shard: `0` runs the whole study or
 /// search in a task (an array whose tasks run several specs), `1` or unset takes the shard.
 pub(super) const DECLINE_VAR: &str = "CYCLOID_SLURM_SHARD";
 
-/// The shard of a Slurm job array task (`slurm_shard`), of `samples` units named `noun`; none
-/// when `DECLINE_VAR` is `0`.
-pub(super) fn slurm_shard_of(samples: u64, noun: &str) -> Result<Option<(u64, u64)>> {
+/// The shard of a Slurm job array task, of `samples` units named `noun`: I =
+/// SLURM_ARRAY_TASK_ID − SLURM_ARRAY_TASK_MIN (so `--array=0-99` and `--array=1-100` both give
+/// I = 0 … 99), N = SLURM_ARRAY_TASK_COUNT. The array must be contiguous (no step, no list): I
+/// must come out below N. None when `DECLINE_VAR` is `0`.
+pub(super) fn slurm_shard(samples: u64, noun: &str) -> Result<Option<(u64, u64)>> {
     let var = |name: &str| std::env::var(name).ok();
     match var(DECLINE_VAR).as_deref().map(str::trim) {
         None | Some("1") => {}
@@ -119,7 +109,7 @@ pub(super) fn slurm_shard_of(samples: u64, noun: &str) -> Result<Option<(u64, u6
             "SLURM_ARRAY_TASK_ID {id} is below SLURM_ARRAY_TASK_MIN {min}"
         ))
     })?;
-    parse_shard_of(&format!("{i}/{count}"), samples, noun)
+    parse_shard(&format!("{i}/{count}"), samples, noun)
         .map(Some)
         .map_err(|e| {
             invalid(format!(

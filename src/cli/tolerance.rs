@@ -42,8 +42,8 @@ pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
     let study = ToleranceStudy::new(&spec, args.samples).map_err(|e| spec.locate(e))?;
     let samples = study.samples() as u64;
     let shard = match &args.shard {
-        Some(s) => Some(parse_shard(s, samples)?),
-        None => slurm_shard(samples)?,
+        Some(s) => Some(parse_shard(s, samples, "samples")?),
+        None => slurm_shard(samples, "samples")?,
     };
     let sample_out = args.write_sample.as_ref().map(|v| v[1].as_str());
     let outputs = Outputs {
@@ -155,11 +155,7 @@ fn finish(run: Whole, outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome>
             report::review::tolerance::write(Path::new(dir), study, summary, records, sens)?;
         print(out, &review_line(dir, files))?;
     }
-    Ok(if summary.passed() {
-        Outcome::Passed
-    } else {
-        Outcome::ChecksFailed
-    })
+    Ok(Outcome::of(summary.passed()))
 }
 
 /// One shard: its samples' records, written to `file` for `merge`.

@@ -123,11 +123,7 @@ pub fn disc(spec: &Spec, crank_rad: f64) -> Result<Disc> {
     let mesh = Mesh::new(d, &spec.modification);
     let loaded = loaded_at(spec, crank_rad)?;
     let pose = match &loaded {
-        Some((_, sol)) => Pose {
-            crank_rad,
-            lag_rad: sol.lag_rad.unwrap_or(0.0),
-            centre_offset_mm: sol.centre_offset_mm,
-        },
+        Some((_, sol)) => Pose::new(crank_rad, sol.lag_rad.unwrap_or(0.0), sol.centre_offset_mm),
         None => Pose::ideal(crank_rad),
     };
     let centre = mesh.disc_centre(&pose);

@@ -59,18 +59,6 @@ pub enum Basis {
     },
 }
 
-impl Basis {
-    /// The torque's force scale T/arm, N.
-    pub fn scale_n(&self) -> Option<f64> {
-        match self {
-            Basis::TorqueScale {
-                torque_nmm, arm_mm, ..
-            } => Some(torque_nmm / arm_mm),
-            _ => None,
-        }
-    }
-}
-
 /// A headline value beyond its plausible band.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Beyond {

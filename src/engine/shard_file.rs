@@ -57,6 +57,108 @@ pub fn place(names: &[String], indices: &[u64], count: u64) -> Result<Vec<usize>
     Ok(by_index.into_iter().flatten().collect())
 }
 
+/// What a shard says about the run it belongs to: the text the run was made from (a spec's, a
+/// requirements file's: its SHA-256, path and text), the seed, the items of the whole run
+/// (samples, candidates), and the shard's place among the run's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Header {
+    pub text_sha256: [u8; 32],
+    pub seed: u64,
+    /// Items of the whole run: the study's samples, the global stage's candidates.
+    pub items: u64,
+    /// 0-based shard index I and shard count N.
+    pub index: u64,
+    pub count: u64,
+    pub text_path: String,
+    pub text: String,
+}
+
+impl Header {
+    /// A shard file's bytes before its content (`Reader::header` reads them back): `magic`,
+    /// `version`, the text's SHA-256, the seed, items, index and count (u64 each), the
+    /// format's own fields `own`, the path (u32 length + UTF-8) and the text (u64 length +
+    /// UTF-8); `capacity` reserved for the whole file.
+    pub fn bytes(
+        &self,
+        (magic, version): (&[u8; 16], u32),
+        own: &[u8],
+        capacity: usize,
+    ) -> Vec<u8> {
+        let mut b = Vec::with_capacity(capacity);
+        b.extend_from_slice(magic);
+        b.extend_from_slice(&version.to_le_bytes());
+        b.extend_from_slice(&self.text_sha256);
+        for v in [self.seed, self.items, self.index, self.count] {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        b.extend_from_slice(own);
+        put_short_text(&mut b, &self.text_path);
+        b.extend_from_slice(&(self.text.len() as u64).to_le_bytes());
+        b.extend_from_slice(self.text.as_bytes());
+        b
+    }
+}
+
+/// A u32 length, then the UTF-8 of `s` (`Reader::short_text`).
+pub fn put_short_text(b: &mut Vec<u8>, s: &str) {
+    b.extend_from_slice(&(s.len() as u32).to_le_bytes());
+    b.extend_from_slice(s.as_bytes());
+}
+
+/// A run's words in a merge's refusals: the run (`design search`), its text (`requirements
+/// file`), its items' count (`candidate count`), and whether shards of one run must name the
+/// text by one path, with that path's words (`requirements path`).
+pub struct RunWords {
+    pub run: &'static str,
+    pub text: &'static str,
+    pub items: &'static str,
+    pub same_path: Option<&'static str>,
+}
+
+/// Check that a complete set of shards (`names` their paths, for messages, `headers` theirs)
+/// belongs to one run: refused when they differ in text, seed, item count or shard count, or
+/// when a shard is missing or given twice (named by index). The positions in `headers` of the
+/// shards in index order (`place`).
+pub fn check_set(names: &[String], headers: &[&Header], words: &RunWords) -> Result<Vec<usize>> {
+    let Some(h0) = headers.first() else {
+        return Err(refuse("merge needs at least one shard file".into()));
+    };
+    for (name, h) in names.iter().zip(headers) {
+        let differs = |what: &str, a: String, b: String| {
+            refuse(format!(
+                "{name} (shard {}) is of another {} than {} (shard {}): its {what} is {a}, not \
+                 {b}; merge only the shards of one run",
+                h.index, words.run, names[0], h0.index
+            ))
+        };
+        if h.text_sha256 != h0.text_sha256 {
+            return Err(differs(
+                words.text,
+                format!("`{}` (sha256 {})", h.text_path, hex(&h.text_sha256[..6])),
+                format!("`{}` (sha256 {})", h0.text_path, hex(&h0.text_sha256[..6])),
+            ));
+        }
+        if let Some(what) = words.same_path.filter(|_| h.text_path != h0.text_path) {
+            return Err(differs(
+                what,
+                format!("`{}`", h.text_path),
+                format!("`{}`", h0.text_path),
+            ));
+        }
+        for (what, a, b) in [
+            ("seed", h.seed, h0.seed),
+            (words.items, h.items, h0.items),
+            ("shard count", h.count, h0.count),
+        ] {
+            if a != b {
+                return Err(differs(what, a.to_string(), b.to_string()));
+            }
+        }
+    }
+    let indices: Vec<u64> = headers.iter().map(|h| h.index).collect();
+    place(names, &indices, h0.count)
+}
+
 /// A merge's refusal of its set of shards.
 pub fn refuse(message: String) -> Error {
     Error::new(ErrorKind::InvalidValue, message)
@@ -186,6 +288,32 @@ impl<'a> Reader<'a> {
     pub fn short_text(&mut self, what: &str) -> Result<String> {
         let n = self.u32()? as usize;
         self.text(n, what)
+    }
+
+    /// A header as `Header::bytes` wrote it, after the version: `own` reads the format's own
+    /// fields; `what` names the path and the text in a refusal.
+    pub fn header<T>(
+        &mut self,
+        own: impl FnOnce(&mut Self) -> Result<T>,
+        (path_what, text_what): (&str, &str),
+    ) -> Result<(Header, T)> {
+        let text_sha256: [u8; 32] = self.take(32)?.try_into().unwrap_or_default();
+        let (seed, items, index, count) = (self.u64()?, self.u64()?, self.u64()?, self.u64()?);
+        let own = own(self)?;
+        let text_path = self.short_text(path_what)?;
+        let n = self.u64()?;
+        let n = usize::try_from(n).map_err(|_| self.bad("it ends early"))?;
+        let text = self.text(n, text_what)?;
+        let header = Header {
+            text_sha256,
+            seed,
+            items,
+            index,
+            count,
+            text_path,
+            text,
+        };
+        Ok((header, own))
     }
 
     /// A count of items of at least `least` bytes each: no more than the bytes left hold.

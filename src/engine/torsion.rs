@@ -101,20 +101,6 @@ pub fn figures(rated_nmm: f64, gamma: &[f64; 8]) -> Result<TorsionFigures, Strin
     })
 }
 
-/// The reducer's output lag γ (rad) at a locked crank angle under the output torque
-/// `torque_nmm`, warm-started from `work` (the last solve of the same angle): the coupled
-/// balance of the discs ([`equilibrium::discs`](crate::equilibrium::discs)); with one disc γ = β + βo, β the disc's lag
-/// (rollers) and βo the pins' deflection (0 when the pins are not modelled). With friction, on
-/// the branch the discs are on (`equilibrium::torsion::solve_point`).
-pub fn output_lag(
-    discs: &mut Discs,
-    crank_rad: f64,
-    torque_nmm: f64,
-    work: &mut CoupledWork,
-) -> Result<f64, SolveFailure> {
-    solve_point(discs, crank_rad, torque_nmm, work)
-}
-
 /// A solve of the torsion loop that failed: where, and why.
 #[derive(Debug, Clone)]
 pub struct TorsionFailure {
@@ -153,7 +139,7 @@ pub fn at_angle(
     let mut work = CoupledWork::new(&discs);
     let fail = |torque_nmm, failure| TorsionFailure::new(crank_rad, torque_nmm, failure);
     let mut solve = |t: f64, work: &mut CoupledWork| {
-        output_lag(&mut discs, crank_rad, t, work)
+        solve_point(&mut discs, crank_rad, t, work)
             .map(|g| g + structure_rad_per_nmm * t)
             .map_err(|f| fail(t, solve_failed(f)))
     };

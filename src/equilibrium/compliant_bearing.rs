@@ -53,11 +53,7 @@ fn evaluate_at(
     sol.centre_offset_mm = Vec2::new(x[0], x[1]);
     sol.lag_rad = Some(x[2]);
     sol.output_lag_rad = Some(x[3]);
-    let pose = Pose {
-        crank_rad: crank,
-        lag_rad: x[2],
-        centre_offset_mm: sol.centre_offset_mm,
-    };
+    let pose = Pose::new(crank, x[2], sol.centre_offset_mm);
     r.evaluate(&pose, &mut sol.rollers)
         .map_err(SolveFailure::Gap)?;
     p.evaluate(

@@ -43,6 +43,7 @@ use super::angle_solution::AngleSolution;
 use super::friction::sliding::{self, disc_speed_ratio, disc_velocity, relative_crank_speed_ratio};
 use super::pins::PinState;
 use super::rollers::RollerState;
+use super::solve::rel;
 use crate::geometry::{angle_from, cross, Vec2};
 use crate::model::{Design, Friction};
 
@@ -301,13 +302,6 @@ impl Coupling {
             torque += t;
             torque_scale += t.abs();
         }
-        let rel = |x: f64, scale: f64| {
-            if scale > 0.0 {
-                x.abs() / scale
-            } else {
-                x.abs()
-            }
-        };
         let pins = if sol.pins.is_empty() {
             0.0
         } else {

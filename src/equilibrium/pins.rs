@@ -109,14 +109,9 @@ impl Pins {
             clearance_mm: design.pins.hole_clearance_mm,
             hole_radius_mm: hole,
             contact: LineContact {
-                contact_modulus_mpa: design.contact_modulus_mpa(),
-                compliance_per_mpa: [
-                    design.disc_material.compliance_per_mpa(),
-                    design.roller_material.compliance_per_mpa(),
-                ],
-                length_mm: design.face_width_mm,
                 radii_mm: [hole, pin],
                 effective_radius_mm: 1.0 / (1.0 / pin - 1.0 / hole),
+                ..super::rollers::Rollers::materials(design)
             },
             law,
             gap_resolution_mm: 16.0

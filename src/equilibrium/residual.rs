@@ -2,6 +2,7 @@
 //! evaluated independently of how the solution was found.
 
 use super::loaded::{AngleSolution, Model};
+use super::solve::rel;
 use crate::geometry::{cross, Vec2};
 
 /// Relative residual of the paper's Eqs. 12–14, evaluated independently of how the solution
@@ -78,13 +79,6 @@ impl BalanceSums {
         if bearing != Vec2::zeros() {
             self.add(centre, bearing.norm(), bearing);
         }
-        let rel = |x: f64, scale: f64| {
-            if scale > 0.0 {
-                x.abs() / scale
-            } else {
-                x.abs()
-            }
-        };
         let ((mr, sr), (mp, sp)) = (self.rollers, self.pins);
         rel(self.force.norm(), self.force_scale)
             .max(rel(self.moment, self.moment_scale))

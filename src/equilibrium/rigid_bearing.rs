@@ -106,11 +106,7 @@ fn solve_rollers(
     guess: f64,
     work: &mut Work,
 ) -> Result<f64, SolveFailure> {
-    let pose = |lag| Pose {
-        crank_rad: crank,
-        lag_rad: lag,
-        centre_offset_mm: offset,
-    };
+    let pose = |lag| Pose::new(crank, lag, offset);
     // The closed form needs a constant stiffness: not along a crowned or tilted face.
     let linear = r.geometry == GeometryMode::FirstOrder
         && r.law == ContactLaw::PaperLinear
@@ -410,11 +406,7 @@ fn solve_rollers_coupled(
     pins: &PinTotals,
     work: &mut Work,
 ) -> Result<f64, SolveFailure> {
-    let pose = |lag| Pose {
-        crank_rad: crank,
-        lag_rad: lag,
-        centre_offset_mm: offset,
-    };
+    let pose = |lag| Pose::new(crank, lag, offset);
     let centre = e_phi * model.eccentricity_mm + offset;
     let target = model.torque_nmm + pins.shift;
     Reach::size(&mut work.reaches, r.count(), (crank, guess, offset));

@@ -284,8 +284,9 @@ impl Rollers {
         (curvature_per_mm + 1.0 / d.roller_radius_mm).max(1.0 / d.roller_circle_radius_mm)
     }
 
-    /// The materials and length of every roller contact (radii left to `line_contact`).
-    fn materials(d: &Design) -> LineContact {
+    /// The materials and length of every roller and output-pin contact (the rollers' material
+    /// is the pins'; radii left to `line_contact` and the pins' hole).
+    pub(super) fn materials(d: &Design) -> LineContact {
         LineContact {
             contact_modulus_mpa: d.contact_modulus_mpa(),
             compliance_per_mpa: [

@@ -501,6 +501,15 @@ pub fn settle_straddle(
     })
 }
 
+/// |x| relative to `scale` (|x| itself when the scale is 0: nothing to compare with).
+pub(super) fn rel(x: f64, scale: f64) -> f64 {
+    if scale > 0.0 {
+        x.abs() / scale
+    } else {
+        x.abs()
+    }
+}
+
 /// Exact root of the first-order linear balance
 ///   M(x) = Σ_i k·max(0, l_i·x − g_i)·l_i = target,
 /// a continuous, non-decreasing, piecewise-linear function of the lag x (each term is a contact

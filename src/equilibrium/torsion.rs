@@ -88,9 +88,11 @@ pub fn set_branch(discs: &mut Discs, work: &mut CoupledWork, sigma: f64) {
     }
 }
 
-/// γ (rad) at the output torque `torque_nmm` on the branch the discs are on, at the locked
-/// crank angle `crank_rad`, warm-started from `work`; every disc's ρ is then that of this
-/// point, for the next.
+/// The reducer's output lag γ (rad) at the output torque `torque_nmm` on the branch the discs
+/// are on, at the locked crank angle `crank_rad`, warm-started from `work` (the last solve of
+/// the same angle): the coupled balance of the discs ([`equilibrium::discs`](crate::equilibrium::discs)); with one
+/// disc γ = β + βo, β the disc's lag (rollers) and βo the pins' deflection (0 when the pins are
+/// not modelled). Every disc's ρ is then that of this point, for the next.
 pub fn solve_point(
     discs: &mut Discs,
     crank_rad: f64,

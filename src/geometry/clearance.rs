@@ -35,10 +35,14 @@ impl Pose {
     }
 
     pub fn lagging(crank_rad: f64, lag_rad: f64) -> Self {
+        Self::new(crank_rad, lag_rad, Vec2::zeros())
+    }
+
+    pub fn new(crank_rad: f64, lag_rad: f64, centre_offset_mm: Vec2) -> Self {
         Pose {
             crank_rad,
             lag_rad,
-            centre_offset_mm: Vec2::zeros(),
+            centre_offset_mm,
         }
     }
 }

@@ -24,11 +24,7 @@ pub fn escape(text: &str) -> String {
 }
 
 fn with_unit(x: f64, unit: &str) -> String {
-    if unit.is_empty() {
-        number(x)
-    } else {
-        format!("{} {unit}", number(x))
-    }
+    super::table::with_unit(number(x), unit)
 }
 
 /// One line saying what the check found.

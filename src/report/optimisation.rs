@@ -269,11 +269,9 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
         scene.output_torque_nmm / 1000.0,
         scene.crank_rad.len()
     );
-    out += &row(study, "start", &r.start);
-    for (label, e) in &r.references {
+    for (label, e) in listed(r) {
         out += &row(study, label, e);
     }
-    out += &row(study, "optimum", &r.optimum);
     for (label, e) in r.references.iter().map(|(l, e)| (l.as_str(), e)) {
         if e.objective.is_finite() && r.optimum.objective.is_finite() {
             let diff = r.optimum.objective - e.objective;
@@ -297,10 +295,7 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
             if m.satisfied() { "ok" } else { "VIOLATED" }
         );
     }
-    for (label, e) in std::iter::once(("start", &r.start))
-        .chain(r.references.iter().map(|(l, e)| (l.as_str(), e)))
-        .chain(std::iter::once(("optimum", &r.optimum)))
-    {
+    for (label, e) in listed(r) {
         if let Some(note) = eq8_note(label, e, study) {
             out += &note;
         }
@@ -585,6 +580,13 @@ fn winning_path(study: &Study, r: &StudyResult) -> (Vec<(f64, f64)>, String, usi
     }
 }
 
+/// The study's points as every list of them runs: the start, each reference, the optimum.
+fn listed(r: &StudyResult) -> impl Iterator<Item = (&str, &Evaluation)> {
+    std::iter::once(("start", &r.start))
+        .chain(r.references.iter().map(|(l, e)| (l.as_str(), e)))
+        .chain(std::iter::once(("optimum", &r.optimum)))
+}
+
 /// The table's columns: start, references, optimum.
 fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
     let point = |label: &str, e: &Evaluation| StudyPoint {
@@ -599,10 +601,7 @@ fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
         feasible: e.feasible(),
         margins: e.margins.clone(),
     };
-    let mut points = vec![point("start", &r.start)];
-    points.extend(r.references.iter().map(|(l, e)| point(l, e)));
-    points.push(point("optimum", &r.optimum));
-    points
+    listed(r).map(|(l, e)| point(l, e)).collect()
 }
 
 /// The remarks under the table: what the objective hides, the optimum against each reference,
@@ -610,9 +609,7 @@ fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
 fn notes(study: &Study, r: &StudyResult) -> Vec<String> {
     let mut notes = vec![format!(
         "What the objective hides: {}.",
-        std::iter::once(("start", &r.start))
-            .chain(r.references.iter().map(|(l, e)| (l.as_str(), e)))
-            .chain(std::iter::once(("optimum", &r.optimum)))
+        listed(r)
             .map(|(label, e)| format!("{label}: {}", geometry_text(e)))
             .collect::<Vec<_>>()
             .join("; ")
@@ -629,10 +626,7 @@ fn notes(study: &Study, r: &StudyResult) -> Vec<String> {
             ));
         }
     }
-    for (label, e) in std::iter::once(("start", &r.start))
-        .chain(r.references.iter().map(|(l, e)| (l.as_str(), e)))
-        .chain(std::iter::once(("optimum", &r.optimum)))
-    {
+    for (label, e) in listed(r) {
         if let Some(note) = eq8_note(label, e, study) {
             let note = note.trim().trim_start_matches("note: ");
             let mut chars = note.chars();

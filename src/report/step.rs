@@ -33,22 +33,18 @@ impl Data {
 
     fn point(&mut self, p: Point) -> Id {
         let p = self.at.point(p);
-        self.add(format!(
-            "CARTESIAN_POINT('',({},{},{}))",
-            real(p[0]),
-            real(p[1]),
-            real(p[2])
-        ))
+        self.triple("CARTESIAN_POINT", p)
     }
 
     fn direction(&mut self, d: Point) -> Id {
         let d = self.at.direction(d);
-        self.add(format!(
-            "DIRECTION('',({},{},{}))",
-            real(d[0]),
-            real(d[1]),
-            real(d[2])
-        ))
+        self.triple("DIRECTION", d)
+    }
+
+    /// An entity `kind` of three reals (a point or a direction, already placed).
+    fn triple(&mut self, kind: &str, p: Point) -> Id {
+        let [x, y, z] = p.map(real);
+        self.add(format!("{kind}('',({x},{y},{z}))"))
     }
 
     fn placement(&mut self, origin: Point, axis: Point) -> Id {

@@ -20,22 +20,9 @@ const KEY: &str = "min_bearing_life_h";
 /// The duty cycle's limit (`scenes[].duty_cycle`): the same rules, the speeds the bins'.
 const DUTY_KEY: &str = "min_duty_life_h";
 
-/// The rule on the spec's scenes (`scenes`, the spec's list) for the reducer `design`;
-/// `built` says what made it differ from the drawing (`None`: the spec's own reducer), for
-/// the error to name.
-pub(crate) fn check(
-    limits: &Limits,
-    design: &Design,
-    scenes: &[Scene],
-    built: Option<&str>,
-) -> Result<()> {
-    for (i, s) in scenes.iter().enumerate() {
-        check_scene(limits, design, (i, s), built)?;
-    }
-    Ok(())
-}
-
-/// The rule on scene `i` of the spec alone (the one scene a tolerance study runs).
+/// The rule on scene `i` of the spec (each in turn, or the one scene a tolerance study runs)
+/// for the reducer `design`; `built` says what made it differ from the drawing (`None`: the
+/// spec's own reducer), for the error to name.
 pub(crate) fn check_scene(
     limits: &Limits,
     design: &Design,

@@ -3,7 +3,8 @@
 //! do not overlap, a ground profile that is still a disc.
 
 use super::raw::{RawCentreDeviation, RawDeviations};
-use crate::error::{Error, ErrorKind, Result};
+use super::rules::rule;
+use crate::error::{Error, Result};
 use crate::model::{
     CentreDeviation, Design, Deviations, FormTerm, Misalignment, Modification, RollerDeviation,
     MAX_FORM_ORDER,
@@ -178,10 +179,6 @@ fn form(raw: &[super::raw::RawFormTerm], teeth: usize, rp: f64) -> Result<Vec<Fo
     Ok(terms)
 }
 
-fn rule(key: String, message: String) -> Error {
-    Error::new(ErrorKind::ImpossibleDesign, message).at_key(&key)
-}
-
 /// The rules of an as-built state: the ground profile (modification plus grinding errors) is a
 /// disc (`rules::check`); no part moves by the eccentricity or more (the teeth are 2e deep and a
 /// pin hole is e wider than its pin: a part moved that far is out of its mesh, as a disc centre
@@ -203,7 +200,7 @@ pub(crate) fn check(design: &Design, m: &Modification) -> Result<()> {
             return Ok(());
         }
         Err(rule(
-            key,
+            &key,
             format!(
                 "{what} moves by {} mm, not less than the eccentricity e = {} mm: a part moved \
                  that far is out of its mesh (the teeth are 2e deep, a hole is e wider than its pin)",
@@ -276,7 +273,7 @@ fn regular_with_form(design: &Design, m: &Modification) -> Result<()> {
         let w = d.form_mm(t);
         if 1.0 - (offset + w) * kappa <= 0.0 {
             return Err(rule(
-                format!("{KEY}.form"),
+                &format!("{KEY}.form"),
                 format!(
                     "the form error undercuts the profile at t = {}°: r' + w = {} mm reaches \
                      the locus's radius of curvature {} mm there",
@@ -310,7 +307,7 @@ fn rollers_apart(design: &Design) -> Result<()> {
         let radii = 2.0 * design.roller_radius_mm + d.roller(i).radius_mm + d.roller(j).radius_mm;
         if apart <= radii {
             return Err(rule(
-                format!("{KEY}.rollers"),
+                &format!("{KEY}.rollers"),
                 format!(
                     "rollers {i} and {j} overlap as built: their centres are {} mm apart, \
                      less than the sum of their radii {} mm",

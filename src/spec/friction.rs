@@ -84,48 +84,45 @@ fn no_bore(key: &str, bore: Option<f64>) -> Result<()> {
     }
 }
 
+/// The bore of a contact's mode at `key` (`mode` and `bore` as written): `None` for `fixed`,
+/// the bore below `radius` for its one turning mode (`turning`); `part` names the contact in
+/// an unknown mode's error.
+fn turning_bore(
+    key: &str,
+    (mode, bore_mm): (&str, Option<f64>),
+    radius: (f64, &str),
+    (turning, part): (&str, &str),
+) -> Result<Option<f64>> {
+    match mode {
+        "fixed" => no_bore(key, bore_mm).map(|()| None),
+        m if m == turning => bore(key, turning, bore_mm, radius).map(Some),
+        other => Err(Error::invalid(
+            format!("{key}.mode"),
+            format!("unknown {part} mode `{other}`; known: fixed, {turning}"),
+        )),
+    }
+}
+
 fn rollers(base: &str, raw: &RawRollerFriction, radius: (f64, &str)) -> Result<RollerFriction> {
     let key = &format!("{base}.rollers");
-    let mode = match raw.mode.as_str() {
-        "fixed" => {
-            no_bore(key, raw.bore_radius_mm)?;
-            RollerMode::Fixed
-        }
-        "rotating" => RollerMode::Rotating {
-            bore_radius_mm: bore(key, "rotating", raw.bore_radius_mm, radius)?,
-        },
-        other => {
-            return Err(Error::invalid(
-                format!("{key}.mode"),
-                format!("unknown roller mode `{other}`; known: fixed, rotating"),
-            ))
-        }
-    };
+    let mode = (&*raw.mode, raw.bore_radius_mm);
+    let bore = turning_bore(key, mode, radius, ("rotating", "roller"))?;
     Ok(RollerFriction {
-        mode,
+        mode: bore.map_or(RollerMode::Fixed, |bore_radius_mm| RollerMode::Rotating {
+            bore_radius_mm,
+        }),
         mu: mu(&format!("{key}.mu"), raw.mu)?,
     })
 }
 
 fn output_pins(base: &str, raw: &RawPinFriction, radius: (f64, &str)) -> Result<PinFriction> {
     let key = &format!("{base}.output_pins");
-    let mode = match raw.mode.as_str() {
-        "fixed" => {
-            no_bore(key, raw.bore_radius_mm)?;
-            PinMode::Fixed
-        }
-        "sleeve" => PinMode::Sleeve {
-            bore_radius_mm: bore(key, "sleeve", raw.bore_radius_mm, radius)?,
-        },
-        other => {
-            return Err(Error::invalid(
-                format!("{key}.mode"),
-                format!("unknown output-pin mode `{other}`; known: fixed, sleeve"),
-            ))
-        }
-    };
+    let mode = (&*raw.mode, raw.bore_radius_mm);
+    let bore = turning_bore(key, mode, radius, ("sleeve", "output-pin"))?;
     Ok(PinFriction {
-        mode,
+        mode: bore.map_or(PinMode::Fixed, |bore_radius_mm| PinMode::Sleeve {
+            bore_radius_mm,
+        }),
         mu: mu(&format!("{key}.mu"), raw.mu)?,
     })
 }

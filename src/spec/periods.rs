@@ -15,22 +15,9 @@ use crate::error::{Error, Result};
 use crate::model::{Design, Limits, Plan, Scene, Study};
 use crate::{numeric, units};
 
-/// Every limit on a loaded figure, on every scene of `scenes` that computes it, for the
-/// reducer `design`; `built` says what made it differ from the drawing (`None`: the spec's own
-/// reducer), for the error to name.
-pub(crate) fn check(
-    limits: &Limits,
-    design: &Design,
-    scenes: &[Scene],
-    built: Option<&str>,
-) -> Result<()> {
-    for (i, s) in scenes.iter().enumerate() {
-        check_scene(limits, design, (i, s), built)?;
-    }
-    Ok(())
-}
-
-/// The rule on scene `i` of the spec alone (the one scene a tolerance study runs).
+/// Every limit on a loaded figure, on scene `i` of the spec (each in turn, or the one scene a
+/// tolerance study runs) if it computes it, for the reducer `design`; `built` says what made
+/// it differ from the drawing (`None`: the spec's own reducer), for the error to name.
 pub(crate) fn check_scene(
     limits: &Limits,
     design: &Design,

@@ -6,7 +6,8 @@ use crate::model::design::{roller_gap_mm, root_radius_mm, Ligaments};
 use crate::model::{Design, Modification};
 use crate::units;
 
-fn rule(key: &str, message: String) -> Error {
+/// The refusal of an impossible design by a rule, at the spec key to change.
+pub(super) fn rule(key: &str, message: String) -> Error {
     Error::new(ErrorKind::ImpossibleDesign, message).at_key(key)
 }
 

@@ -668,10 +668,11 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     };
     let limits = limits(&raw.limits)?;
     let built = (!design.deviations.is_nominal()).then_some("`reducer.deviations`");
-    super::bearing_life::check(&limits, &design, &scenes, built)?;
+    let every_scene = || scenes.iter().enumerate();
+    every_scene().try_for_each(|s| super::bearing_life::check_scene(&limits, &design, s, built))?;
     super::strength::check(&limits, &design, &scenes)?;
     super::inertia::check(&design, &scenes)?;
-    super::periods::check(&limits, &design, &scenes, built)?;
+    every_scene().try_for_each(|s| super::periods::check_scene(&limits, &design, s, built))?;
     super::friction::check_limits(&limits, &design, &scenes)?;
     let mut golden = Vec::new();
     for (i, g) in raw.golden.into_iter().enumerate() {

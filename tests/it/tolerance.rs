@@ -354,7 +354,11 @@ fn a_merge_refuses_shards_that_do_not_belong_together() {
     let bytes = std::fs::read(dir.join("a1")).unwrap();
     let mut s = shard::decode("a1", &bytes).unwrap();
     s.header.seed = 4;
-    std::fs::write(dir.join("d1"), shard::encode(&s.header, &s.records)).unwrap();
+    std::fs::write(
+        dir.join("d1"),
+        shard::encode(&s.header, s.limits, &s.records),
+    )
+    .unwrap();
     for (set, says) in [
         (["a0", "b1", "a2"], "its spec is `u.yaml`"),
         (["a0", "c1", "a2"], "its sample count is 13, not 12"),
@@ -666,7 +670,7 @@ fn a_shard_is_verified_whole_before_it_is_merged() {
     merge(&dir, &["a0", "a1", "a2"], "whole");
     let good = std::fs::read(dir.join("a1")).unwrap();
     let parsed = shard::decode("a1", &good).unwrap();
-    let limits = parsed.header.limits as usize;
+    let limits = parsed.limits as usize;
     // Where the records start: 4 samples of shard 1, 9 bytes per limit, then the checksum.
     let records_at = good.len() - 32 - parsed.records.values.len() * 9;
     let verdicts_at = records_at + 8 * limits;
@@ -678,7 +682,7 @@ fn a_shard_is_verified_whole_before_it_is_merged() {
     let forged = |f: &dyn Fn(&mut shard::Shard)| {
         let mut s = parsed.clone();
         f(&mut s);
-        shard::encode(&s.header, &s.records)
+        shard::encode(&s.header, s.limits, &s.records)
     };
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
         (
@@ -710,7 +714,7 @@ fn a_shard_is_verified_whole_before_it_is_merged() {
         ),
         (
             "one digit of the embedded spec",
-            forged(&|s| s.header.spec_text = s.header.spec_text.replacen("seed: 3", "seed: 4", 1)),
+            forged(&|s| s.header.text = s.header.text.replacen("seed: 3", "seed: 4", 1)),
             "the spec it holds does not match the spec's hash in its header",
         ),
     ];
@@ -736,7 +740,7 @@ fn a_shard_is_verified_whole_before_it_is_merged() {
     }
     // One shard of a run claiming 2⁴⁰ samples in 2⁴⁰ shards, its one sample real.
     let huge = forged(&|s| {
-        (s.header.samples, s.header.count) = (1 << 40, 1 << 40);
+        (s.header.items, s.header.count) = (1 << 40, 1 << 40);
         s.records.values.truncate(limits);
         s.records.passed.truncate(limits);
     });

@@ -8,8 +8,9 @@ use crate::common;
 use crate::common::{cycloid_here, PaperSpec, Scratch};
 use cycloid::engine::bearing_life::{equivalent_load, rating_life, relative_speed_rpm};
 use cycloid::engine::scene::{self, Writes};
-use cycloid::engine::torsion::{self, figures, FIGURE_TORQUES, ZERO_SIDE};
+use cycloid::engine::torsion::{figures, FIGURE_TORQUES, ZERO_SIDE};
 use cycloid::equilibrium::discs::{CoupledWork, Discs};
+use cycloid::equilibrium::torsion::solve_point;
 use cycloid::model::results::{SceneResult, TorsionCurves};
 use cycloid::spec::Spec;
 use cycloid::units;
@@ -217,7 +218,7 @@ fn slope_matches_the_loaded_te(discs: usize) {
         "{discs} disc(s): γ(rated) {top} vs te {}",
         te(rated)
     );
-    // dγ/dT by the torsion solve itself (`output_lag`) at T ± h.
+    // dγ/dT by the torsion solve itself (`solve_point`) at T ± h.
     let plan = scene::plan(&spec, &spec.scenes[0], Writes::default());
     let model = scene::loaded_model(
         &spec.design,
@@ -230,8 +231,8 @@ fn slope_matches_the_loaded_te(discs: usize) {
         let h = 1e-3 * rated;
         let mut discs = Discs::new(&model, discs);
         let mut work = CoupledWork::new(&discs);
-        let up = torsion::output_lag(&mut discs, phi, at + h, &mut work).unwrap();
-        let down = torsion::output_lag(&mut discs, phi, at - h, &mut work).unwrap();
+        let up = solve_point(&mut discs, phi, at + h, &mut work).unwrap();
+        let down = solve_point(&mut discs, phi, at - h, &mut work).unwrap();
         (up - down) / (2.0 * h)
     };
     let h = 1e-3 * rated;

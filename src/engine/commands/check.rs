@@ -183,7 +183,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
                 Some(_) => {
                     let mut designed = drawing.clone();
                     designed.design.deviations.misalignment = Default::default();
-                    Some(scenes(&designed, options.writes, progress)?)
+                    Some(scene::run_all(&designed, options.writes, progress)?)
                 }
                 None => None,
             };
@@ -198,7 +198,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
     };
     // Read the golden files before computing anything: a missing one fails fast.
     let golden_curves = golden::load_all(&spec)?;
-    let results = scenes(&spec, options.writes, progress)?;
+    let results = scene::run_all(&spec, options.writes, progress)?;
     let summaries = summary::marked(&spec, &results);
     all_finite(&summaries)?;
     let mut checks = verdict::evaluate(&spec, &results)?;
@@ -281,12 +281,6 @@ fn all_finite(summaries: &[SceneSummary]) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// Every scene of `spec`, in parallel; results (and the first error) in spec order
-/// (`scene::run_all`).
-pub fn scenes(spec: &Spec, writes: Writes, progress: &dyn Progress) -> Result<Vec<SceneResult>> {
-    scene::run_all(spec, writes, progress)
 }
 
 /// Studies in parallel, in the order given, their evaluations counted.

@@ -103,11 +103,6 @@ pub fn front_checks(run: &DesignRun, progress: &dyn Progress) -> Result<Vec<Chec
         .collect()
 }
 
-/// The global stage's candidates of a search in all (`--shard I/N` takes N at most this).
-pub fn design_candidates(req: &Requirements) -> u64 {
-    design_search::global_candidate_count(req)
-}
-
 /// Shard `(i, n)` of the search of `req` (read as `text` from `requirements_path`): the
 /// global stage's evaluations of the candidates j ≡ i (mod n), encoded as the shard file
 /// that `merge_design_shards` reads.
@@ -142,13 +137,13 @@ pub fn design_shard(
     let what = format!("global stage, shard {i}/{n}: rules, screen, full check");
     let evaluations = design_search::global_stage(req, &mine, &what, progress)?;
     let header = shard::Header {
-        requirements_sha256: shard::requirements_hash(text),
+        text_sha256: shard::requirements_hash(text),
         seed: u64::from(req.search.seed),
-        candidates: all.len() as u64,
+        items: all.len() as u64,
         index: i,
         count: n,
-        requirements_path: requirements_path.to_string(),
-        requirements_text: text.to_string(),
+        text_path: requirements_path.to_string(),
+        text: text.to_string(),
     };
     Ok(shard::encode(&header, &evaluations))
 }
@@ -177,16 +172,15 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
     let names: Vec<String> = files.iter().map(|(name, _)| name.clone()).collect();
     let order = shard::check_set(&names, &shards)?;
     let h = shards[0].header.clone();
-    let requirements = crate::spec::requirements::parse(&h.requirements_path, &h.requirements_text)
-        .map_err(|e| {
-            Error::new(
-                ErrorKind::InvalidValue,
-                format!(
-                    "{}: the requirements the shards hold do not load in this cycloid: {}",
-                    names[0], e.message
-                ),
-            )
-        })?;
+    let requirements = crate::spec::requirements::parse(&h.text_path, &h.text).map_err(|e| {
+        Error::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "{}: the requirements the shards hold do not load in this cycloid: {}",
+                names[0], e.message
+            ),
+        )
+    })?;
     // The shards in index order, moved (their evaluations move on into the search).
     let mut rank = vec![0; order.len()];
     for (k, &i) in order.iter().enumerate() {
@@ -202,8 +196,8 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
     ordered.sort_unstable_by_key(|(k, _)| *k);
     let evaluations = shard::merge(&requirements, ordered.into_iter().map(|(_, s)| s).collect())?;
     Ok(MergedDesign {
-        requirements_path: h.requirements_path,
-        requirements_sha256: h.requirements_sha256,
+        requirements_path: h.text_path,
+        requirements_sha256: h.text_sha256,
         shards: h.count,
         requirements,
         evaluations,

@@ -16,12 +16,12 @@ mod tolerance;
 pub use accuracy::accuracy;
 pub use bless::bless;
 pub use check::{
-    check, map, map_steps_allowed, scenes, studies, AsBuilt, CheckOptions, CheckRun, Review,
-    ReviewOptions, MAX_MAP_STEPS,
+    check, map, map_steps_allowed, studies, AsBuilt, CheckOptions, CheckRun, Review, ReviewOptions,
+    MAX_MAP_STEPS,
 };
 pub use design::{
-    design, design_candidates, design_file, design_from_shards, design_name, design_shard,
-    front_checks, front_spec, merge_design_shards, DesignRun, MergedDesign,
+    design, design_file, design_from_shards, design_name, design_shard, front_checks, front_spec,
+    merge_design_shards, DesignRun, MergedDesign,
 };
 pub use fit::fit;
 pub use optimise::{optimise, OptimiseRun};

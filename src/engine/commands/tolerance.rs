@@ -102,16 +102,15 @@ pub fn tolerance_shard(
     let what = format!("tolerance shard {i}/{n}");
     let records = samples_of(study, (i, n), &what, progress)?;
     let header = shard::Header {
-        spec_sha256: shard::spec_hash(&spec.source),
+        text_sha256: shard::spec_hash(&spec.source),
         seed: study.tolerances.seed,
-        samples: study.samples() as u64,
+        items: study.samples() as u64,
         index: i,
         count: n,
-        limits: study.limits.len() as u32,
-        spec_path: spec.path.clone(),
-        spec_text: spec.source.clone(),
+        text_path: spec.path.clone(),
+        text: spec.source.clone(),
     };
-    Ok(shard::encode(&header, &records))
+    Ok(shard::encode(&header, study.limits.len() as u32, &records))
 }
 
 /// The shards of one run joined: the spec they carry and every sample's records.
@@ -192,10 +191,10 @@ pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
     let records = shard::merge(&names, &shards)?;
     let h = &shards[0].header;
     Ok(Merged {
-        spec: crate::spec::parse(&h.spec_path, &h.spec_text)?,
+        spec: crate::spec::parse(&h.text_path, &h.text)?,
         records,
-        samples: h.samples,
-        limits: h.limits as usize,
+        samples: h.items,
+        limits: shards[0].limits as usize,
         count: h.count,
         first: names[0].clone(),
         files: shards

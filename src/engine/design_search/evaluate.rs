@@ -58,14 +58,6 @@ impl Evaluation {
             .map(|(k, &v)| if k.maximise() { -v } else { v })
             .collect()
     }
-
-    /// The worst failure's relative excess (negative infinity when feasible).
-    pub fn worst_excess(&self) -> f64 {
-        self.failures
-            .iter()
-            .map(Failure::excess)
-            .fold(f64::NEG_INFINITY, f64::max)
-    }
 }
 
 /// Limits whose scene extreme over a subset of the crank angles can only be less extreme than

@@ -65,7 +65,8 @@ pub fn choices(req: &Requirements) -> Vec<Choice> {
     out
 }
 
-/// How many candidates `global_candidates` gives: choices × samples, without building them.
+/// How many candidates `global_candidates` gives: choices × samples, without building them
+/// (`--shard I/N` takes N at most this).
 pub fn global_candidate_count(req: &Requirements) -> u64 {
     choices(req).len() as u64 * req.search.samples as u64
 }

@@ -30,7 +30,7 @@
 use super::candidate::{Candidate, Choice};
 use super::evaluate::{Evaluation, Stage};
 use super::failure::{Failure, Miss, Requirement};
-use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
+use crate::engine::shard_file::{self, put_short_text, refuse, seal, Reader, RunWords};
 use crate::error::Result;
 use crate::model::requirements::Requirements;
 use crate::model::requirements::Variables;
@@ -38,19 +38,9 @@ use crate::model::requirements::Variables;
 pub const MAGIC: &[u8; 16] = b"cycloid-dsg-shrd";
 pub const VERSION: u32 = 2;
 
-/// What a shard says about the search it belongs to.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Header {
-    pub requirements_sha256: [u8; 32],
-    pub seed: u64,
-    /// Candidates of the whole global stage.
-    pub candidates: u64,
-    /// 0-based shard index I and shard count N.
-    pub index: u64,
-    pub count: u64,
-    pub requirements_path: String,
-    pub requirements_text: String,
-}
+/// What a shard says about the search it belongs to: its text is the requirements file's,
+/// its items the candidates of the whole global stage.
+pub use crate::engine::shard_file::Header;
 
 /// One shard read back: its header and its evaluations, in increasing candidate index.
 #[derive(Debug, Clone)]
@@ -73,23 +63,10 @@ pub fn share(all: &[Candidate], (i, n): (u64, u64)) -> Vec<Candidate> {
         .collect()
 }
 
-fn text_u32(b: &mut Vec<u8>, s: &str) {
-    b.extend_from_slice(&(s.len() as u32).to_le_bytes());
-    b.extend_from_slice(s.as_bytes());
-}
-
 /// The bytes of a shard file.
 pub fn encode(h: &Header, evaluations: &[Evaluation]) -> Vec<u8> {
-    let mut b = Vec::with_capacity(256 + h.requirements_text.len() + evaluations.len() * 128);
-    b.extend_from_slice(MAGIC);
-    b.extend_from_slice(&VERSION.to_le_bytes());
-    b.extend_from_slice(&h.requirements_sha256);
-    for v in [h.seed, h.candidates, h.index, h.count] {
-        b.extend_from_slice(&v.to_le_bytes());
-    }
-    text_u32(&mut b, &h.requirements_path);
-    b.extend_from_slice(&(h.requirements_text.len() as u64).to_le_bytes());
-    b.extend_from_slice(h.requirements_text.as_bytes());
+    let capacity = 256 + h.text.len() + evaluations.len() * 128;
+    let mut b = h.bytes((MAGIC, VERSION), &[], capacity);
     for e in evaluations {
         let c = e.candidate.choice;
         for n in [c.teeth, c.pins, c.discs] {
@@ -120,8 +97,8 @@ pub fn encode(h: &Header, evaluations: &[Evaluation]) -> Vec<u8> {
 fn failure(b: &mut Vec<u8>, f: &Failure) {
     b.push(tag(&f.requirement));
     match &f.requirement {
-        Requirement::SpecRule(at) => text_u32(b, at),
-        Requirement::Limit(def) => text_u32(b, def.key),
+        Requirement::SpecRule(at) => put_short_text(b, at),
+        Requirement::Limit(def) => put_short_text(b, def.key),
         _ => {}
     }
     match &f.miss {
@@ -132,7 +109,7 @@ fn failure(b: &mut Vec<u8>, f: &Failure) {
         }
         Miss::Said(m) => {
             b.push(1);
-            text_u32(b, m);
+            put_short_text(b, m);
         }
     }
 }
@@ -240,16 +217,12 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         VERSION,
     )?;
     let content = r.bytes;
-    let requirements_sha256: [u8; 32] = r.take(32)?.try_into().unwrap_or_default();
-    let (seed, candidates, index, count) = (r.u64()?, r.u64()?, r.u64()?, r.u64()?);
-    let requirements_path = r.short_text("requirements path")?;
-    let n = r.u64()?;
-    let n = usize::try_from(n).map_err(|_| r.bad("it ends early"))?;
-    let requirements_text = r.text(n, "requirements text")?;
+    let (header, ()) = r.header(|_| Ok(()), ("requirements path", "requirements text"))?;
+    let (candidates, index, count) = (header.items, header.index, header.count);
     if count == 0 || index >= count || count > candidates.max(1) {
         return Err(r.bad(&format!("shard {index}/{count} of {candidates} candidates")));
     }
-    if requirements_hash(&requirements_text) != requirements_sha256 {
+    if requirements_hash(&header.text) != header.text_sha256 {
         return Err(
             r.bad("the requirements it holds do not match the requirements' hash in its header")
         );
@@ -269,72 +242,24 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         )));
     }
     Ok(Shard {
-        header: Header {
-            requirements_sha256,
-            seed,
-            candidates,
-            index,
-            count,
-            requirements_path,
-            requirements_text,
-        },
+        header,
         evaluations,
     })
 }
 
 /// Check that a complete set of shards (`names` their paths, for messages) belongs to one
-/// search: refused when they differ in requirements, seed, candidate count or shard count, or
-/// when a shard is missing or given twice (named by index). The positions in `shards` of the
-/// shards in index order.
+/// search (`shard_file::check_set`: one requirements text by one path). The positions in
+/// `shards` of the shards in index order.
 pub fn check_set(names: &[String], shards: &[Shard]) -> Result<Vec<usize>> {
-    let Some(first) = shards.first() else {
-        return Err(refuse("merge needs at least one shard file".into()));
+    let headers: Vec<&Header> = shards.iter().map(|s| &s.header).collect();
+    let words = RunWords {
+        run: "design search",
+        text: "requirements file",
+        items: "candidate count",
+        // The front's specs name the requirements path: one run, one path.
+        same_path: Some("requirements path"),
     };
-    let h0 = &first.header;
-    for (name, s) in names.iter().zip(shards) {
-        let h = &s.header;
-        let differs = |what: &str, a: String, b: String| {
-            refuse(format!(
-                "{name} (shard {}) is of another design search than {} (shard {}): its {what} \
-                 is {a}, not {b}; merge only the shards of one run",
-                h.index, names[0], h0.index
-            ))
-        };
-        if h.requirements_sha256 != h0.requirements_sha256 {
-            return Err(differs(
-                "requirements file",
-                format!(
-                    "`{}` (sha256 {})",
-                    h.requirements_path,
-                    hex(&h.requirements_sha256[..6])
-                ),
-                format!(
-                    "`{}` (sha256 {})",
-                    h0.requirements_path,
-                    hex(&h0.requirements_sha256[..6])
-                ),
-            ));
-        }
-        if h.requirements_path != h0.requirements_path {
-            // The front's specs name the requirements path: one run, one path.
-            return Err(differs(
-                "requirements path",
-                format!("`{}`", h.requirements_path),
-                format!("`{}`", h0.requirements_path),
-            ));
-        }
-        for (what, a, b) in [
-            ("seed", h.seed, h0.seed),
-            ("candidate count", h.candidates, h0.candidates),
-            ("shard count", h.count, h0.count),
-        ] {
-            if a != b {
-                return Err(differs(what, a.to_string(), b.to_string()));
-            }
-        }
-    }
-    let indices: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
-    place(names, &indices, h0.count)
+    shard_file::check_set(names, &headers, &words)
 }
 
 /// The global stage's evaluations of every candidate, in the order of `global_candidates`,
@@ -350,18 +275,14 @@ pub fn merge(req: &Requirements, ordered: Vec<(&str, Shard)>) -> Result<Vec<Eval
         refuse(format!(
             "{}: the shards hold {a} {what}, their requirements `{}` give {b}: written by \
              another version of cycloid",
-            ordered[0].0, h0.requirements_path
+            ordered[0].0, h0.text_path
         ))
     };
     if h0.seed != u64::from(req.search.seed) {
         return Err(from_here("as seed", h0.seed, u64::from(req.search.seed)));
     }
-    if h0.candidates != candidates.len() as u64 {
-        return Err(from_here(
-            "candidates",
-            h0.candidates,
-            candidates.len() as u64,
-        ));
+    if h0.items != candidates.len() as u64 {
+        return Err(from_here("candidates", h0.items, candidates.len() as u64));
     }
     let count = h0.count as usize;
     let mut all: Vec<Option<Evaluation>> = vec![None; candidates.len()];

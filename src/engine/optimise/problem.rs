@@ -218,11 +218,6 @@ impl<'a> Problem<'a> {
         self.point_at_unit(z).modification
     }
 
-    /// Variable values of a point.
-    pub fn variables_of(&self, p: &Point) -> Vec<f64> {
-        self.study.variables.iter().map(|v| v.kind.get(p)).collect()
-    }
-
     /// A point's place in the unit cube of the variables.
     pub fn unit_of(&self, p: &Point) -> Vec<f64> {
         self.study

@@ -15,30 +15,21 @@
 //! follow from its value and the spec's limit (`Merged::study`).
 
 use super::{shard_len, Records};
-use crate::engine::shard_file::{hex, place, refuse, seal, Reader};
+use crate::engine::shard_file::{check_set, refuse, seal, Reader, RunWords};
 use crate::error::Result;
 
 pub const MAGIC: &[u8; 16] = b"cycloid-tol-shrd";
 pub const VERSION: u32 = 2;
 
-/// What a shard says about the study it belongs to.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Header {
-    pub spec_sha256: [u8; 32],
-    pub seed: u64,
-    pub samples: u64,
-    /// 0-based shard index I and shard count N.
-    pub index: u64,
-    pub count: u64,
-    pub limits: u32,
-    pub spec_path: String,
-    pub spec_text: String,
-}
+/// What a shard says about the study it belongs to: its text is the spec's, its items the
+/// study's samples.
+pub use crate::engine::shard_file::Header;
 
-/// One shard read back: its header and records.
+/// One shard read back: its header, the limits L of each sample, and its records.
 #[derive(Debug, Clone)]
 pub struct Shard {
     pub header: Header,
+    pub limits: u32,
     pub records: Records,
 }
 
@@ -46,20 +37,10 @@ pub struct Shard {
 pub use crate::engine::shard_file::text_hash as spec_hash;
 
 /// The bytes of a shard file.
-pub fn encode(h: &Header, records: &Records) -> Vec<u8> {
-    let mut b = Vec::with_capacity(128 + h.spec_text.len() + records.values.len() * 9);
-    b.extend_from_slice(MAGIC);
-    b.extend_from_slice(&VERSION.to_le_bytes());
-    b.extend_from_slice(&h.spec_sha256);
-    for v in [h.seed, h.samples, h.index, h.count] {
-        b.extend_from_slice(&v.to_le_bytes());
-    }
-    b.extend_from_slice(&h.limits.to_le_bytes());
-    b.extend_from_slice(&(h.spec_path.len() as u32).to_le_bytes());
-    b.extend_from_slice(h.spec_path.as_bytes());
-    b.extend_from_slice(&(h.spec_text.len() as u64).to_le_bytes());
-    b.extend_from_slice(h.spec_text.as_bytes());
-    let l = h.limits as usize;
+pub fn encode(h: &Header, limits: u32, records: &Records) -> Vec<u8> {
+    let capacity = 128 + h.text.len() + records.values.len() * 9;
+    let mut b = h.bytes((MAGIC, VERSION), &limits.to_le_bytes(), capacity);
+    let l = limits as usize;
     for (v, p) in records.values.chunks(l).zip(records.passed.chunks(l)) {
         for x in v {
             b.extend_from_slice(&x.to_le_bytes());
@@ -79,20 +60,12 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         VERSION,
     )?;
     let bytes = r.bytes;
-    let spec_sha256: [u8; 32] = r.take(32)?.try_into().unwrap_or_default();
-    let (seed, samples, index, count) = (r.u64()?, r.u64()?, r.u64()?, r.u64()?);
-    let limits = r.u32()?;
-    let n = r.u32()? as usize;
-    let spec_path = r.text(n, "spec")?;
-    let n = r.u64()?;
-    let spec_text = r.text(
-        usize::try_from(n).map_err(|_| r.bad("it ends early"))?,
-        "spec",
-    )?;
+    let (header, limits) = r.header(Reader::u32, ("spec", "spec"))?;
+    let (samples, index, count) = (header.items, header.index, header.count);
     if count == 0 || index >= count || count > samples.max(1) || limits == 0 {
         return Err(r.bad(&format!("shard {index}/{count} with {limits} limits")));
     }
-    if spec_hash(&spec_text) != spec_sha256 {
+    if spec_hash(&header.text) != header.text_sha256 {
         return Err(r.bad("the spec it holds does not match the spec's hash in its header"));
     }
     let l = limits as usize;
@@ -136,16 +109,8 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         }
     }
     Ok(Shard {
-        header: Header {
-            spec_sha256,
-            seed,
-            samples,
-            index,
-            count,
-            limits,
-            spec_path,
-            spec_text,
-        },
+        header,
+        limits,
         records,
     })
 }
@@ -154,41 +119,17 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
 /// shards' paths, for messages): refused when they differ in spec, seed, sample count or
 /// shard count, or when a shard is missing or given twice (named by index).
 pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
-    let Some(first) = shards.first() else {
-        return Err(refuse("merge needs at least one shard file".into()));
+    let headers: Vec<&Header> = shards.iter().map(|s| &s.header).collect();
+    let words = RunWords {
+        run: "study",
+        text: "spec",
+        items: "sample count",
+        same_path: None,
     };
-    let h0 = &first.header;
-    for (name, s) in names.iter().zip(shards) {
-        let h = &s.header;
-        let differs = |what: &str, a: String, b: String| {
-            refuse(format!(
-                "{name} (shard {}) is of another study than {} (shard {}): its {what} is {a}, \
-                 not {b}; merge only the shards of one run",
-                h.index, names[0], h0.index
-            ))
-        };
-        if h.spec_sha256 != h0.spec_sha256 {
-            return Err(differs(
-                "spec",
-                format!("`{}` (sha256 {})", h.spec_path, hex(&h.spec_sha256[..6])),
-                format!("`{}` (sha256 {})", h0.spec_path, hex(&h0.spec_sha256[..6])),
-            ));
-        }
-        for (what, a, b) in [
-            ("seed", h.seed, h0.seed),
-            ("sample count", h.samples, h0.samples),
-            ("shard count", h.count, h0.count),
-        ] {
-            if a != b {
-                return Err(differs(what, a.to_string(), b.to_string()));
-            }
-        }
-    }
-    let count = h0.count;
-    let indices: Vec<u64> = shards.iter().map(|s| s.header.index).collect();
-    place(names, &indices, count)?;
-    let l = h0.limits as usize;
-    let n = h0.samples as usize;
+    check_set(names, &headers, &words)?;
+    let (h0, count) = (&shards[0].header, shards[0].header.count);
+    let l = shards[0].limits as usize;
+    let n = h0.items as usize;
     if n.saturating_mul(l) > super::MAX_SAMPLE_LIMITS {
         return Err(refuse(format!(
             "the shards hold {n} samples × {l} limits, beyond the {} sample-limits one study \

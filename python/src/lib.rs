@@ -171,17 +171,7 @@ struct PyRun {
 
 impl PyRun {
     fn document(&self) -> Document<'_> {
-        let r = &self.run;
-        Document::new(&Contents {
-            spec: &r.spec,
-            checks: &r.checks,
-            results: &r.results,
-            goldens: &r.goldens,
-            summaries: &r.summaries,
-            studies: &r.studies,
-            mass: Some(&r.mass),
-            unbalance: &r.unbalance,
-        })
+        Document::new(&Contents::of(&self.run))
     }
 }
 

@@ -169,16 +169,7 @@ fn print_run(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()
 fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     let spec = &run.spec;
     if let Some(p) = args.json {
-        let doc = report::json::Document::new(&report::json::Contents {
-            spec,
-            checks: &run.checks,
-            results: &run.results,
-            goldens: &run.goldens,
-            summaries: &run.summaries,
-            studies: &run.studies,
-            mass: Some(&run.mass),
-            unbalance: &run.unbalance,
-        });
+        let doc = report::json::Document::new(&report::json::Contents::of(run));
         report::json::write(Path::new(p), &doc)?;
     }
     if let Some(p) = args.junit {

@@ -1002,6 +1002,22 @@ pub struct Contents<'a> {
     pub unbalance: &'a [Unbalance],
 }
 
+impl<'a> Contents<'a> {
+    /// Everything a check's run computed.
+    pub fn of(run: &'a crate::engine::commands::CheckRun) -> Self {
+        Contents {
+            spec: &run.spec,
+            checks: &run.checks,
+            results: &run.results,
+            goldens: &run.goldens,
+            summaries: &run.summaries,
+            studies: &run.studies,
+            mass: Some(&run.mass),
+            unbalance: &run.unbalance,
+        }
+    }
+}
+
 /// One scene's unbalance at speed (`engine::mass_properties::Unbalance`).
 #[derive(Serialize)]
 struct UnbalanceDoc<'a> {

@@ -94,7 +94,7 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
 }
 
 /// Every registry scalar `r` computed, in `QUANTITIES`' order (`SceneSummary::scalars`).
-pub fn scalars(r: &SceneResult) -> Vec<(&'static Quantity, Extreme)> {
+fn scalars(r: &SceneResult) -> Vec<(&'static Quantity, Extreme)> {
     QUANTITIES
         .iter()
         .filter_map(|&q| Some((q, q.scalar(r)?)))

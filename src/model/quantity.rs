@@ -30,32 +30,14 @@ pub enum Rows<'a> {
 }
 
 impl<'a> Rows<'a> {
-    /// How many rows (rollers, pins; 1 for a curve).
-    pub fn len(&self) -> usize {
-        match self {
-            Rows::Stored(rows) => rows.len(),
-            Rows::Row(_) => 1,
-            Rows::Computed(rows) => rows.len(),
-        }
-    }
-
-    /// No rows.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Row `i`, `[angle]`.
-    pub fn row(&self, i: usize) -> &[f64] {
-        match self {
-            Rows::Stored(rows) => &rows[i],
-            Rows::Row(row) => row,
-            Rows::Computed(rows) => &rows[i],
-        }
-    }
-
-    /// Each row in order.
+    /// Each row, `[angle]`, in order.
     pub fn iter(&self) -> impl Iterator<Item = &[f64]> {
-        (0..self.len()).map(|i| self.row(i))
+        let (rows, row): (&[Vec<f64>], Option<&[f64]>) = match self {
+            Rows::Stored(rows) => (rows, None),
+            Rows::Row(row) => (&[], Some(row)),
+            Rows::Computed(rows) => (rows, None),
+        };
+        row.into_iter().chain(rows.iter().map(Vec::as_slice))
     }
 
     /// The rows as owned vectors (a copy where they are the results').

@@ -1125,7 +1125,7 @@ pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
                 .map(|rollers| max_entry(&rollers.pressure_mpa))
                 .filter(|&(p, _, _)| p == pressure_mpa)
                 .map(|(_, i, k)| part_at(c, Part::Roller, i, k));
-            let site = match value == super::results::UNBOUNDED_LIFE_H {
+            let site = match super::results::is_unbounded(value) {
                 false => Site::Fatigue {
                     part,
                     pressure_mpa,
@@ -1177,7 +1177,7 @@ fn duty_fatigue(d: &DutyCycle) -> Option<Extreme> {
         .filter_map(|(h, part, k)| Some((h?, part, k)))
         .reduce(|a, b| if b.0 < a.0 { b } else { a })
         .map(|(value, part, k)| {
-            let unbounded = value == super::results::UNBOUNDED_LIFE_H;
+            let unbounded = super::results::is_unbounded(value);
             Extreme {
                 value,
                 at: Place {

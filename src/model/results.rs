@@ -306,6 +306,12 @@ pub struct TorsionCompliances {
 /// "unbounded" beside it (`BearingLife::is_unbounded`).
 pub const UNBOUNDED_LIFE_H: f64 = f64::MAX;
 
+/// Whether `x` is the engine's "no finite bound" (`UNBOUNDED_LIFE_H`), not a number to sum,
+/// difference or draw.
+pub fn is_unbounded(x: f64) -> bool {
+    x == UNBOUNDED_LIFE_H
+}
+
 /// Rating life of the crank bearing over a scene's sweep (ISO 281 with a varying load).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BearingLife {
@@ -319,7 +325,7 @@ pub struct BearingLife {
 impl BearingLife {
     /// Whether the life is unbounded (`UNBOUNDED_LIFE_H`): no load, or beyond every double.
     pub fn is_unbounded(&self) -> bool {
-        self.life_h == Some(UNBOUNDED_LIFE_H)
+        self.life_h.is_some_and(is_unbounded)
     }
 }
 

@@ -209,17 +209,17 @@ fn efficiency(driver: Driver, self_locks: bool, locked: usize, angles: usize) ->
     }
 }
 
-/// Why a figure has no finite bound, and that it is written as the largest double.
 /// A value that may be the engine's "no bound" (`UNBOUNDED_LIFE_H`, the largest double: a life
 /// or safety without load or damage, a study with no constraint) as a person reads it:
 /// "unbounded", else `show(x)`.
 pub fn or_unbounded(x: f64, show: impl FnOnce(f64) -> String) -> String {
-    match x == crate::model::results::UNBOUNDED_LIFE_H {
+    match crate::model::results::is_unbounded(x) {
         true => "unbounded".to_string(),
         false => show(x),
     }
 }
 
+/// Why a figure has no finite bound, and that it is written as the largest double.
 fn unbounded(u: &Unbounded) -> String {
     match u {
         Unbounded::Life { load_n } if *load_n == 0.0 => "unbounded: P = 0 N, no load wears the \

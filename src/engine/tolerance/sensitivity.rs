@@ -9,7 +9,7 @@
 
 use super::ToleranceStudy;
 use crate::error::Result;
-use crate::model::results::UNBOUNDED_LIFE_H;
+use crate::model::results::is_unbounded;
 use crate::model::tolerances::Kind;
 
 /// Step of the central differences, mm (0.1 µm). The engine solves to 1e-9 relative: a force
@@ -47,17 +47,16 @@ impl Sensitivity {
     /// parts of (∂q/∂p·σ_p)², share of the total).
     /// Empty without every derivative.
     pub fn pareto(&self, study: &ToleranceStudy, l: usize) -> Vec<(Kind, f64, f64)> {
-        if self.linear_sigma(l).is_none() {
-            return Vec::new();
-        }
-        let mut by_kind: Vec<(Kind, f64)> = Vec::new();
-        for ((p, d), s) in study
-            .params
+        let Some(derivative) = self.derivative[l]
             .iter()
-            .zip(&self.derivative[l])
-            .zip(&self.sigma_mm)
-        {
-            let v = (d.unwrap_or(0.0) * s).powi(2);
+            .copied()
+            .collect::<Option<Vec<f64>>>()
+        else {
+            return Vec::new();
+        };
+        let mut by_kind: Vec<(Kind, f64)> = Vec::new();
+        for ((p, d), s) in study.params.iter().zip(derivative).zip(&self.sigma_mm) {
+            let v = (d * s).powi(2);
             match by_kind.iter_mut().find(|(k, _)| *k == p.kind) {
                 Some((_, sum)) => *sum += v,
                 None => by_kind.push((p.kind, v)),
@@ -89,7 +88,7 @@ pub fn derivatives(study: &ToleranceStudy, param: usize, step_mm: f64) -> Result
         .iter()
         .zip(&minus)
         .map(|(&p, &m)| {
-            let bounded = p != UNBOUNDED_LIFE_H && m != UNBOUNDED_LIFE_H;
+            let bounded = !is_unbounded(p) && !is_unbounded(m);
             bounded.then(|| (p - m) / (2.0 * step_mm))
         })
         .collect())

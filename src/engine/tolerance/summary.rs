@@ -6,7 +6,7 @@
 use super::stats::{clopper_pearson, quantile};
 use super::{Records, ToleranceStudy};
 use crate::model::quantity::Bound;
-use crate::model::results::UNBOUNDED_LIFE_H;
+use crate::model::results::is_unbounded;
 
 /// The quantiles the report gives: ±3σ of a normal (0.135 %, 99.865 %) and the median.
 pub const QUANTILES: [f64; 3] = [0.00135, 0.5, 0.99865];
@@ -148,7 +148,7 @@ pub fn summarise(study: &ToleranceStudy, records: &Records) -> Summary {
                 .step_by(l)
                 .filter(|p| !**p)
                 .count() as u64;
-            let (mean, std) = match values.contains(&UNBOUNDED_LIFE_H) {
+            let (mean, std) = match values.iter().any(|&v| is_unbounded(v)) {
                 true => (None, None),
                 false => {
                     let (mean, std) = mean_and_std(&values);

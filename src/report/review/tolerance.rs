@@ -10,7 +10,7 @@ use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::Result;
-use crate::model::results::UNBOUNDED_LIFE_H;
+use crate::model::results::is_unbounded;
 use crate::numeric::number;
 use crate::report::svg::{LinePlot, Series, PALETTE, RED};
 use crate::report::table::with_unit;
@@ -37,7 +37,7 @@ fn histogram(
     let step = study.limits.len();
     // An unbounded life or safety has no place on the axis: the bounded samples are drawn.
     let values: Vec<f64> = (records.column(l, step))
-        .filter(|&v| v != UNBOUNDED_LIFE_H)
+        .filter(|&v| !is_unbounded(v))
         .collect();
     let unbounded = study.samples() - values.len();
     let lo = values.iter().copied().reduce(f64::min)?;
@@ -74,7 +74,7 @@ fn histogram(
         ls.bound.symbol(),
         number(ls.limit),
         ls.failures,
-        values.len() + unbounded
+        study.samples()
     );
     if unbounded > 0 {
         plot.subtitle += &format!("; {unbounded} unbounded samples not drawn");

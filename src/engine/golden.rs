@@ -20,7 +20,7 @@
 use crate::error::{Error, ErrorKind, Result};
 use crate::files;
 use crate::model::place::{GoldenAt, Part, Place, Site};
-use crate::model::quantity::{Curves, Shape};
+use crate::model::quantity::Curves;
 use crate::model::results::SceneResult;
 use crate::model::{Golden, GoldenTolerance};
 use crate::spec::Spec;
@@ -220,17 +220,6 @@ impl Point {
     }
 }
 
-/// The part whose curve a column is (`roller_3`: roller 3), as `Quantity::curves` names the
-/// columns from `Shape::per`; `None` for a quantity of one curve (`te_arcsec`).
-fn part_of(column: &str) -> Option<(Part, usize)> {
-    let (what, index) = column.rsplit_once('_')?;
-    let part = [(Shape::PerRoller, Part::Roller), (Shape::PerPin, Part::Pin)]
-        .into_iter()
-        .find(|(shape, _)| shape.per() == Some(what))?
-        .1;
-    Some((part, index.parse().ok()?))
-}
-
 /// A whole-curve comparison.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Comparison {
@@ -306,13 +295,14 @@ fn deviation(value: f64, golden: f64, period: Option<f64>) -> f64 {
 
 /// Compare computed curves (at `now_deg`) with a golden. Errors (columns or crank ranges that
 /// do not match) mean the golden does not describe this quantity any more: re-bless it.
-/// `period` is the quantity's wrap-around (360 for an angle in degrees), if any.
+/// `period` is the quantity's wrap-around (360 for an angle in degrees), if any; `part` what
+/// column k is a curve of (`Shape::part`: roller k, pin k), if the quantity has a curve per part.
 pub fn compare(
     golden: &GoldenCurves,
     now_deg: &[f64],
     now: &Curves,
     tolerance: GoldenTolerance,
-    period: Option<f64>,
+    (period, part): (Option<f64>, Option<Part>),
 ) -> std::result::Result<Comparison, String> {
     if golden.curves.columns != now.columns {
         return Err(format!(
@@ -347,7 +337,7 @@ pub fn compare(
     let mut worst: Option<Point> = None;
     let mut largest: Option<Point> = None;
     for (c, column) in now.columns.iter().enumerate() {
-        let part = part_of(column);
+        let part = part.map(|p| (p, c));
         let (gy, ry) = (&golden.curves.values[c], &now.values[c]);
         let (base_x, base_y, other_x, other_y) = if golden_sets {
             (&golden.crank_deg[..], &gy[..], now_deg, &ry[..])
@@ -468,8 +458,8 @@ pub fn evaluate(
         .zip(loaded)
         .map(|(g, golden)| {
             let (r, deg, curves) = computed(g, results)?;
-            let period = g.quantity.period;
-            let comparison = compare(golden, &deg, &curves, g.tolerance, period).map_err(|m| {
+            let of = (g.quantity.period, g.quantity.shape.part());
+            let comparison = compare(golden, &deg, &curves, g.tolerance, of).map_err(|m| {
                 file_error(
                     g,
                     format!(
@@ -734,7 +724,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
                         &written.crank_deg,
                         &written.curves,
                         g.tolerance,
-                        period,
+                        (period, g.quantity.shape.part()),
                     )
                 }) {
                 Ok(c) => BlessChange::Compared(c.of_disc(g, r)),

@@ -72,6 +72,15 @@ impl Shape {
             _ => None,
         }
     }
+
+    /// The part one column is a curve of, when there is one curve per part.
+    pub fn part(self) -> Option<Part> {
+        match self {
+            Shape::PerRoller => Some(Part::Roller),
+            Shape::PerPin => Some(Part::Pin),
+            _ => None,
+        }
+    }
 }
 
 /// A scalar of a sweep and where it occurs (roller 3 at crank 0.2147 rad).

@@ -316,7 +316,7 @@ fn compare_interpolates_the_finer_curve_at_the_coarser_angles() {
         abs: 1e-3,
         rel: 0.0,
     };
-    let c = compare(&golden, &fine, &now, tol, None).unwrap();
+    let c = compare(&golden, &fine, &now, tol, (None, None)).unwrap();
     // Linear interpolation error ≤ h²·max|f''|/8 with f'' = 5·(10·π/180)² per deg².
     let bound = 0.1f64.powi(2) * 5.0 * (10f64.to_radians()).powi(2) / 8.0;
     assert!(c.worst.deviation <= bound * 1.01, "{c:?}");
@@ -332,14 +332,15 @@ fn compare_interpolates_the_finer_curve_at_the_coarser_angles() {
         columns,
         values: vec![curve(&coarse, |x| f(x) + if x == 6.0 { 0.01 } else { 0.0 })],
     };
-    let c = compare(&golden, &coarse, &coarse_now, tol, None).unwrap();
+    let c = compare(&golden, &coarse, &coarse_now, tol, (None, None)).unwrap();
     assert!(!c.passed);
     assert!((c.worst.at.crank_deg - 6.0).abs() < 1e-9, "{c:?}");
     assert!((c.worst.deviation - 0.01).abs() < 1e-9);
     assert!((c.worst.ratio() - 10.0).abs() < 1e-6);
 }
 
-/// The worst point of a comparison names its column's part and the angle as compared: a bump
+/// The worst point of a comparison names its column's part (column k: the quantity's part k,
+/// `Shape::part`) and the angle as compared: a bump
 /// of 10 bands in one column at 1.875° (an exact binary, a tie at two decimals) is found in
 /// that column at that angle, and read "… at crank 1.88°" as `{:.2}` rounds 1.875 (to even);
 /// the angle taken through radians and back reads 1.87°. A quantity of one curve names no part.
@@ -382,7 +383,7 @@ fn compare_names_the_part_and_the_angle_of_its_worst_point() {
             columns: columns.clone(),
             values: values(0.01),
         };
-        let c = compare(&golden, &xs, &now, tol, None).unwrap();
+        let c = compare(&golden, &xs, &now, tol, (None, part.map(|(p, _)| p))).unwrap();
         let at = GoldenAt {
             part,
             crank_deg: 1.875,
@@ -491,9 +492,13 @@ fn compare_wraps_angles_and_handles_infinite_values() {
         abs: 1e-3,
         rel: 0.0,
     };
-    let c = compare(&golden, &xs, &now, tol, Some(360.0)).unwrap();
+    let c = compare(&golden, &xs, &now, tol, (Some(360.0), None)).unwrap();
     assert!(c.passed && c.worst.deviation < 1e-3, "{c:?}");
-    assert!(!compare(&golden, &xs, &now, tol, None).unwrap().passed);
+    assert!(
+        !compare(&golden, &xs, &now, tol, (None, None))
+            .unwrap()
+            .passed
+    );
 
     let inf = GoldenCurves {
         crank_deg: xs.clone(),
@@ -503,12 +508,16 @@ fn compare_wraps_angles_and_handles_infinite_values() {
         },
     };
     let same = inf.curves.clone();
-    assert!(compare(&inf, &xs, &same, tol, None).unwrap().passed);
+    assert!(compare(&inf, &xs, &same, tol, (None, None)).unwrap().passed);
     let finite = Curves {
         columns: vec!["backlash_arcsec".into()],
         values: vec![curve(&xs, |_| 1.0)],
     };
-    assert!(!compare(&inf, &xs, &finite, tol, None).unwrap().passed);
+    assert!(
+        !compare(&inf, &xs, &finite, tol, (None, None))
+            .unwrap()
+            .passed
+    );
 }
 
 #[test]

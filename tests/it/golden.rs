@@ -339,11 +339,11 @@ fn compare_interpolates_the_finer_curve_at_the_coarser_angles() {
     assert!((c.worst.ratio() - 10.0).abs() < 1e-6);
 }
 
-/// The worst point of a comparison names its column's part (column k: the quantity's part k,
-/// `Shape::part`) and the angle as compared: a bump
-/// of 10 bands in one column at 1.875° (an exact binary, a tie at two decimals) is found in
-/// that column at that angle, and read "… at crank 1.88°" as `{:.2}` rounds 1.875 (to even);
-/// the angle taken through radians and back reads 1.87°. A quantity of one curve names no part.
+/// The worst point of a comparison names its column's part (column k is the quantity's part k,
+/// `Shape::part`) and the angle as compared: a bump of 10 bands in one column at 1.875° (an
+/// exact binary, a tie at two decimals) is found in that column at that angle, and read "… at
+/// crank 1.88°" as `{:.2}` rounds 1.875 (to even); the angle taken through radians and back
+/// reads 1.87°. A quantity of one curve names no part.
 #[test]
 fn compare_names_the_part_and_the_angle_of_its_worst_point() {
     use cycloid::model::place::{GoldenAt, Part};

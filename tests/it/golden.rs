@@ -216,6 +216,25 @@ fn a_golden_of_a_curve_the_run_left_out_says_what_is_missing_and_why() {
              tolerance: {{ abs: 0.01, rel: 1.0e-6 }}\n"
         )
     };
+    // `bless` on `text` stops at the golden's quantity line with "scene `scene` computed no
+    // `quantity` {why}".
+    let refused = |text: &str, scene: &str, quantity: &str, why: &str| {
+        write(&spec, text);
+        let line = 1 + text
+            .lines()
+            .position(|l| l.contains(&format!("quantity: {quantity}")))
+            .unwrap();
+        let (code, out, err) = run(&["bless", p(&spec)]);
+        assert_eq!(code, 2, "{out}{err}");
+        assert_eq!(
+            err,
+            format!(
+                "{}:{line}:5: invalid value: golden[0].quantity: scene `{scene}` computed no \
+                 `{quantity}` {why}\n",
+                p(&spec)
+            )
+        );
+    };
     for (steps, quantity, why) in [
         (
             36,
@@ -230,22 +249,7 @@ fn a_golden_of_a_curve_the_run_left_out_says_what_is_missing_and_why() {
              scene has 2",
         ),
     ] {
-        let text = spec_text(steps, &golden(quantity));
-        write(&spec, &text);
-        let line = 1 + text
-            .lines()
-            .position(|l| l.contains(&format!("quantity: {quantity}")))
-            .unwrap();
-        let (code, out, err) = run(&["bless", p(&spec)]);
-        assert_eq!(code, 2, "{out}{err}");
-        assert_eq!(
-            err,
-            format!(
-                "{}:{line}:5: invalid value: golden[0].quantity: scene `rated` computed no \
-                 `{quantity}` {why}\n",
-                p(&spec)
-            )
-        );
+        refused(&spec_text(steps, &golden(quantity)), "rated", quantity, why);
     }
     // A torsion loop without friction has no hysteresis (specs/reducer-torsion.yaml).
     let torsion = std::fs::read_to_string("specs/reducer-torsion.yaml").unwrap();
@@ -255,18 +259,12 @@ fn a_golden_of_a_curve_the_run_left_out_says_what_is_missing_and_why() {
          tolerance: { abs: 0.01, rel: 1.0e-6 }\nlimits:\n",
         1,
     );
-    write(&spec, &text);
-    let line = 1 + text.lines().position(|l| l.contains("hysteresis")).unwrap();
-    let (code, out, err) = run(&["bless", p(&spec)]);
-    assert_eq!(code, 2, "{out}{err}");
-    assert_eq!(
-        err,
-        format!(
-            "{}:{line}:5: invalid value: golden[0].quantity: scene `torsion` computed no \
-             `hysteresis_loss_arcmin` (hysteresis loss (friction, at zero torque)): its torsion \
-             loop has no friction to lose (give `reducer.friction`)\n",
-            p(&spec)
-        )
+    refused(
+        &text,
+        "torsion",
+        "hysteresis_loss_arcmin",
+        "(hysteresis loss (friction, at zero torque)): its torsion loop has no friction to lose \
+         (give `reducer.friction`)",
     );
 }
 

@@ -653,13 +653,85 @@ impl SceneDoc<'_> {
         entry(map, quantity.key, value.map(|e| Finite(e.value)))
     }
 
-    /// Write the document as `Serialize` would, its curves' numbers by `json_text`.
+    /// Write the document as `Serialize` would, its curves' numbers by `json_text`. A long
+    /// scene's fields after the first entry are written by two threads from both ends of
+    /// `SCENE` (`Ends`): this one from the front into `text`, a worker of the pool from the
+    /// back into memory, copied after the front's. A field's text is the same whoever writes
+    /// it, so the file is the same bytes. Why: the sweep runs on every core, the JSON's
+    /// formatting on one (BENCHMARKS.md "The JSON on two threads").
     fn write(&self, text: &mut Text) -> serde_json::Result<()> {
         let mut object = Object::new(text)?;
-        for &field in SCENE {
+        let mut fields = SCENE.iter().enumerate();
+        for (_, &field) in fields.by_ref() {
             self.field(&mut object, field)?;
+            if !object.is_empty() {
+                break;
+            }
+        }
+        let Some((next, _)) = fields.next().filter(|_| self.is_long()) else {
+            for (_, &field) in fields {
+                self.field(&mut object, field)?;
+            }
+            return object.end();
+        };
+        let ends = Ends::new(next..SCENE.len());
+        let mut back = None;
+        let front = rayon::in_place_scope(|s| {
+            s.spawn(|_| back = Some(self.write_from_back(&ends)));
+            ends.front()
+                .try_for_each(|i| self.field(&mut object, SCENE[i]))
+        });
+        front?;
+        let (bytes, segments) = back.unwrap_or_else(|| Ok((Vec::new(), Vec::new())))?;
+        for range in segments.into_iter().rev() {
+            object.pass(&bytes[range])?;
         }
         object.end()
+    }
+
+    /// The fields `ends` gives from the back, each written after a comma into memory: the
+    /// text and each field's bytes in it, last field first.
+    fn write_from_back(
+        &self,
+        ends: &Ends,
+    ) -> serde_json::Result<(Vec<u8>, Vec<std::ops::Range<usize>>)> {
+        // Room for ten curves' numbers at each angle without growing (25 bytes a number at
+        // most): the back half of a scene of ten rollers or pins.
+        let mut text = Text::in_memory(250 * self.r.crank_rad.len());
+        let mut segments = Vec::new();
+        for i in ends.back() {
+            let start = text.bytes().len();
+            self.field(&mut Object::after_first(&mut text), SCENE[i])?;
+            segments.push(start..text.bytes().len());
+        }
+        Ok((text.into_bytes(), segments))
+    }
+
+    /// Whether the document is long enough that a second thread pays for waking it: a
+    /// scene of `LONG_SCENE` crank angles or more.
+    fn is_long(&self) -> bool {
+        matches!(self.of, Of::Scene { .. }) && self.r.crank_rad.len() >= LONG_SCENE
+    }
+}
+
+/// Crank angles from which a scene's document is written on two threads (`SceneDoc::write`).
+pub const LONG_SCENE: usize = 1024;
+
+/// The indices of a range handed out from both ends, each once: `front` from the first up,
+/// `back` from the last down, until they meet.
+struct Ends(std::sync::Mutex<std::ops::Range<usize>>);
+
+impl Ends {
+    fn new(range: std::ops::Range<usize>) -> Self {
+        Ends(std::sync::Mutex::new(range))
+    }
+
+    fn front(&self) -> impl Iterator<Item = usize> + '_ {
+        std::iter::from_fn(|| self.0.lock().ok()?.next())
+    }
+
+    fn back(&self) -> impl Iterator<Item = usize> + '_ {
+        std::iter::from_fn(|| self.0.lock().ok()?.next_back())
     }
 }
 

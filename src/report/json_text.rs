@@ -160,7 +160,8 @@ pub fn rows<'r>(text: &mut Text, rows: impl Iterator<Item = &'r [f64]>) -> serde
 /// cycle's bins grow it to their size.
 pub struct Text<'a> {
     buf: Vec<u8>,
-    out: &'a mut dyn Write,
+    /// Where the buffer goes when full; none for text kept in memory (`Text::in_memory`).
+    out: Option<&'a mut dyn Write>,
 }
 
 impl<'a> Text<'a> {
@@ -169,14 +170,46 @@ impl<'a> Text<'a> {
     pub fn new(out: &'a mut dyn Write) -> Self {
         Text {
             buf: Vec::with_capacity(2 * Self::FLUSH_AT),
-            out,
+            out: Some(out),
         }
+    }
+
+    /// Text that stays in its buffer (`bytes` reads it, `into_bytes` takes it), room for
+    /// `capacity` bytes made at once (untouched room costs no page).
+    pub fn in_memory(capacity: usize) -> Text<'static> {
+        Text {
+            buf: Vec::with_capacity(capacity),
+            out: None,
+        }
+    }
+
+    /// The text in memory so far (all of it for `in_memory` text).
+    pub fn bytes(&self) -> &[u8] {
+        &self.buf
+    }
+
+    /// The text in memory.
+    pub fn into_bytes(self) -> Vec<u8> {
+        self.buf
     }
 
     /// `bytes` as they are.
     pub fn push(&mut self, bytes: &[u8]) -> serde_json::Result<()> {
         self.buf.extend_from_slice(bytes);
         self.flush_when_full()
+    }
+
+    /// `bytes` as they are, text another `Text` wrote in memory: to the writer after the
+    /// buffer, without a copy into it.
+    pub fn pass(&mut self, bytes: &[u8]) -> serde_json::Result<()> {
+        match &mut self.out {
+            Some(out) => {
+                out.write_all(&self.buf).map_err(serde_json::Error::io)?;
+                self.buf.clear();
+                out.write_all(bytes).map_err(serde_json::Error::io)
+            }
+            None => self.push(bytes),
+        }
     }
 
     /// What `write` appends to the buffer.
@@ -189,18 +222,21 @@ impl<'a> Text<'a> {
     }
 
     fn flush_when_full(&mut self) -> serde_json::Result<()> {
-        if self.buf.len() >= Self::FLUSH_AT {
-            self.out
-                .write_all(&self.buf)
-                .map_err(serde_json::Error::io)?;
-            self.buf.clear();
+        match &mut self.out {
+            Some(out) if self.buf.len() >= Self::FLUSH_AT => {
+                out.write_all(&self.buf).map_err(serde_json::Error::io)?;
+                self.buf.clear();
+            }
+            _ => (),
         }
         Ok(())
     }
 
     /// Write what is left in the buffer.
     pub fn finish(mut self) -> std::io::Result<()> {
-        self.out.write_all(&self.buf)?;
+        if let Some(out) = &mut self.out {
+            out.write_all(&self.buf)?;
+        }
         self.buf.clear();
         Ok(())
     }
@@ -218,6 +254,12 @@ impl<'t, 'a> Object<'t, 'a> {
     pub fn new(text: &'t mut Text<'a>) -> serde_json::Result<Self> {
         text.push(b"{")?;
         Ok(Object { text, empty: true })
+    }
+
+    /// More entries of an object whose first entry is written elsewhere: each after a comma,
+    /// and no braces (`end` is not called).
+    pub fn after_first(text: &'t mut Text<'a>) -> Self {
+        Object { text, empty: false }
     }
 
     /// `"key":` then what `write` writes.
@@ -245,6 +287,16 @@ impl<'t, 'a> Object<'t, 'a> {
                 "a flattened value is not an object",
             )),
         }
+    }
+
+    /// Whether no entry is written yet.
+    pub fn is_empty(&self) -> bool {
+        self.empty
+    }
+
+    /// Entries another `Object` wrote in memory (`Text::pass`).
+    pub fn pass(&mut self, bytes: &[u8]) -> serde_json::Result<()> {
+        self.text.pass(bytes)
     }
 
     fn separate(&mut self) -> serde_json::Result<()> {

@@ -110,6 +110,35 @@ fn the_written_document_is_its_serialisation(
     );
 }
 
+/// A long scene's document is written on two threads (`report::json::LONG_SCENE` crank angles
+/// and more: fields from both ends of the document, the back ones copied after the front's),
+/// and is still, byte for byte, its serialisation: one disc with a resolved face (line
+/// loads), and two discs (each disc's document inside).
+#[test]
+fn a_long_scene_written_on_two_threads_is_its_serialisation() {
+    for (path, name) in [
+        ("specs/reducer-misaligned.yaml", "designed"),
+        ("specs/reducer-two-discs.yaml", "rated"),
+    ] {
+        let text = std::fs::read_to_string(path).unwrap();
+        let spec = cycloid::spec::parse(path, &text).unwrap_or_else(|e| panic!("{path}: {e}"));
+        let mut scene = (spec.scenes.iter().find(|s| s.name == name).unwrap()).clone();
+        // Angles 1 mrad apart from the scene's first: a sweep like any other, longer.
+        let first = scene.crank_rad[0];
+        scene.crank_rad = (0..cycloid::report::json::LONG_SCENE + 37)
+            .map(|k| first + 1e-3 * k as f64)
+            .collect();
+        let writes = cycloid::engine::scene::Writes {
+            json: true,
+            report: false,
+        };
+        let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
+        let result = cycloid::engine::scene::run(&spec, &scene, &plan, &Default::default())
+            .unwrap_or_else(|e| panic!("{path} {}: {e:?}", scene.name));
+        the_written_document_is_its_serialisation(&spec, &[result], path);
+    }
+}
+
 /// Every scene of the shipped specs that together compute every curve of the registry (two
 /// discs for a disc's torque share, a resolved face, friction, strength, a duty cycle, a
 /// torsion loop with friction for its hysteresis), on a few crank angles, every effect its

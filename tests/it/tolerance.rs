@@ -117,7 +117,13 @@ fn clopper_pearson_meets_its_closed_forms_and_a_table() {
 
 /// The nominal min clearance of a spec's first scene, by the engine.
 fn nominal_min_clearance(spec: &cycloid::spec::Spec) -> f64 {
-    verdict::evaluate(spec, &[crate::common::run_first_scene(spec)]).unwrap()[0].value
+    first_scene_checks(spec)[0].value
+}
+
+/// The checks of a spec's limits on its first scene.
+fn first_scene_checks(spec: &cycloid::spec::Spec) -> Vec<verdict::Check> {
+    let summaries = cycloid::engine::summary::summarise(&[crate::common::run_first_scene(spec)]);
+    verdict::evaluate(spec, &summaries).unwrap()
 }
 
 /// A design whose nominal min clearance is exactly its limit, with a symmetric error in the
@@ -168,9 +174,7 @@ fn the_clearance_moves_one_for_one_with_the_equidistant_error() {
     // The paper optimum's smallest gap is at a tooth root (tooth phase 0), where the normal gap
     // is ΔRrp − ΔRp exactly (MODEL.md "Clearance"): ∂q/∂ΔRp = −1 while the root stays the
     // smallest gap over ±h (its margin to the next smallest is micrometres, h is 0.1 µm).
-    let at = cycloid::report::table::evidence(
-        &verdict::evaluate(&spec, &[crate::common::run_first_scene(&spec)]).unwrap()[0].at,
-    );
+    let at = cycloid::report::table::evidence(&first_scene_checks(&spec)[0].at);
     assert!(at.contains("tooth phase 0.000"), "{at}");
     let shift = study
         .params

@@ -629,7 +629,9 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
         };
         let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
         let r = cycloid::engine::scene::run(&spec, &scene, &plan, &Default::default()).unwrap();
-        let doc = cycloid::report::json::scenes_value(&spec, std::slice::from_ref(&r)).unwrap();
+        let results = std::slice::from_ref(&r);
+        let summaries = cycloid::engine::summary::marked(&spec, results);
+        let doc = cycloid::report::json::scenes_value(&spec, results, &summaries).unwrap();
         let json = &doc["scenes"][0];
         let mut seen = curves_in_json(json, &|q| q.curves(&r));
         for (k, disc) in r.discs.iter().enumerate().filter(|_| r.names_discs()) {

@@ -1300,3 +1300,41 @@ fn an_unbounded_life_has_no_mean_spread_or_derivative() {
          so no histogram."
     ));
 }
+
+/// A shard whose header no study has is refused by the decoder in the tolerance study's words
+/// (the check is `shard_file::Reader::check_header`, shared with the design search's shards):
+/// no limits, an index at its count, more shards than samples, and a spec that is not the one
+/// the header's hash names.
+#[test]
+fn a_header_no_study_has_is_refused_in_its_words() {
+    use cycloid::engine::tolerance::Records;
+    let header = |index, count, text: &str| shard::Header {
+        text_sha256: shard::spec_hash("spec"),
+        seed: 1,
+        items: 4,
+        index,
+        count,
+        text_path: "t.yaml".into(),
+        text: text.into(),
+    };
+    for (h, limits, says) in [
+        (header(0, 2, "spec"), 0, "shard 0/2 with 0 limits"),
+        (header(2, 2, "spec"), 1, "shard 2/2 with 1 limits"),
+        (header(0, 5, "spec"), 1, "shard 0/5 with 1 limits"),
+        (
+            header(0, 2, "spec, changed"),
+            1,
+            "the spec it holds does not match the spec's hash in its header",
+        ),
+    ] {
+        // `encode` takes at least one limit: the count L (a u32 after the mark, the version,
+        // the hash and four u64) is set afterwards and the file sealed again.
+        let mut bytes = shard::encode(&h, 1, &Records::default());
+        bytes.truncate(bytes.len() - cycloid::engine::shard_file::CHECKSUM);
+        bytes[84..88].copy_from_slice(&u32::to_le_bytes(limits));
+        let bytes = cycloid::engine::shard_file::seal(bytes);
+        let e = shard::decode("s.bin", &bytes).unwrap_err();
+        let expected = format!("s.bin: not a shard file of `cycloid tolerance`: {says}");
+        assert_eq!(e.message, expected, "{h:?}");
+    }
+}

@@ -232,16 +232,11 @@ pub struct Comparison {
     pub passed: bool,
 }
 
-impl Comparison {
-    /// The comparison of golden `g`'s curve in scene `r`: its points name the golden's disc
-    /// when the scene has several (`SceneResult::names_discs`); a one-disc reducer's disc 0
-    /// is not named, as a golden without `disc` (`Place::disc`).
-    fn of_disc(mut self, g: &Golden, r: &SceneResult) -> Comparison {
-        let disc = g.disc.filter(|_| r.names_discs());
-        self.worst.disc = disc;
-        self.largest.disc = disc;
-        self
-    }
+/// The disc golden `g`'s points name in scene `r` (`Point::disc`): the golden's disc when the
+/// scene has several (`SceneResult::names_discs`); a one-disc reducer's disc 0 is not named,
+/// as a golden without `disc` (`Place::disc`).
+fn named_disc(g: &Golden, r: &SceneResult) -> Option<usize> {
+    g.disc.filter(|_| r.names_discs())
 }
 
 /// The difference a − b, taken into (−period/2, period/2] for a wrapping angle.
@@ -296,13 +291,15 @@ fn deviation(value: f64, golden: f64, period: Option<f64>) -> f64 {
 /// Compare computed curves (at `now_deg`) with a golden. Errors (columns or crank ranges that
 /// do not match) mean the golden does not describe this quantity any more: re-bless it.
 /// `period` is the quantity's wrap-around (360 for an angle in degrees), if any; `part` what
-/// column k is a curve of (`Shape::part`: roller k, pin k), if the quantity has a curve per part.
+/// column k is a curve of (`Shape::part`: roller k, pin k), if the quantity has a curve per part;
+/// `disc` the disc the points name (`Point::disc`), if any.
 pub fn compare(
     golden: &GoldenCurves,
     now_deg: &[f64],
     now: &Curves,
     tolerance: GoldenTolerance,
     (period, part): (Option<f64>, Option<Part>),
+    disc: Option<usize>,
 ) -> std::result::Result<Comparison, String> {
     if golden.curves.columns != now.columns {
         return Err(format!(
@@ -352,7 +349,7 @@ pub fn compare(
             let p = Point {
                 column: column.clone(),
                 at: GoldenAt { part, crank_deg: x },
-                disc: None,
+                disc,
                 golden: g,
                 value: v,
                 deviation: deviation(v, g, period),
@@ -459,19 +456,20 @@ pub fn evaluate(
         .map(|(g, golden)| {
             let (r, deg, curves) = computed(g, results)?;
             let of = (g.quantity.period, g.quantity.shape.part());
-            let comparison = compare(golden, &deg, &curves, g.tolerance, of).map_err(|m| {
-                file_error(
-                    g,
-                    format!(
-                        "golden file `{}` does not match scene `{}`: {m}; if the change is \
+            let disc = named_disc(g, r);
+            let comparison =
+                compare(golden, &deg, &curves, g.tolerance, of, disc).map_err(|m| {
+                    file_error(
+                        g,
+                        format!(
+                            "golden file `{}` does not match scene `{}`: {m}; if the change is \
                          intended, re-bless with `cycloid bless {}`",
-                        g.path.display(),
-                        g.scene,
-                        spec.path
-                    ),
-                )
-            })?;
-            let comparison = comparison.of_disc(g, r);
+                            g.path.display(),
+                            g.scene,
+                            spec.path
+                        ),
+                    )
+                })?;
             Ok(GoldenResult {
                 golden: g.clone(),
                 unit: g.quantity.unit,
@@ -725,9 +723,10 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
                         &written.curves,
                         g.tolerance,
                         (period, g.quantity.shape.part()),
+                        named_disc(g, r),
                     )
                 }) {
-                Ok(c) => BlessChange::Compared(c.of_disc(g, r)),
+                Ok(c) => BlessChange::Compared(c),
                 Err(m) => BlessChange::Replaced(m),
             },
         };

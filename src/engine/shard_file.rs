@@ -316,6 +316,19 @@ impl<'a> Reader<'a> {
         Ok((header, own))
     }
 
+    /// Refuse a header read back (`header`) that no shard of a run has: a shard count N of 0,
+    /// an index I ≥ N, or more shards than the run's items (a run of none is one shard),
+    /// refused for `place`; or a text other than the one its SHA-256 names, for `text`.
+    pub fn check_header(&self, h: &Header, place: &str, text: &str) -> Result<()> {
+        if h.count == 0 || h.index >= h.count || h.count > h.items.max(1) {
+            return Err(self.bad(place));
+        }
+        if text_hash(&h.text) != h.text_sha256 {
+            return Err(self.bad(text));
+        }
+        Ok(())
+    }
+
     /// A count of items of at least `least` bytes each: no more than the bytes left hold.
     pub fn count(&mut self, least: usize) -> Result<usize> {
         let n = self.u32()? as usize;

@@ -60,6 +60,18 @@ pub struct SceneSummary {
     pub shares: Vec<TorqueShare>,
 }
 
+impl SceneSummary {
+    /// The scene's scalar of `q`, if it computed it (`scalars`).
+    pub fn scalar(&self, q: &Quantity) -> Option<&Extreme> {
+        scalar_in(&self.scalars, q)
+    }
+}
+
+/// `q`'s scalar among `scalars`, matched by key.
+fn scalar_in<'a>(scalars: &'a [(&Quantity, Extreme)], q: &Quantity) -> Option<&'a Extreme> {
+    scalars.iter().find(|(s, _)| s.key == q.key).map(|(_, e)| e)
+}
+
 /// The summary of every scene, in spec order.
 pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
     results
@@ -70,7 +82,7 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
             headlines: SUMMARY
                 .iter()
                 .filter_map(|&q| {
-                    let (_, e) = scalars.iter().find(|(s, _)| s.key == q.key)?;
+                    let e = scalar_in(&scalars, q)?;
                     Some(Headline {
                         quantity: q,
                         value: e.value,

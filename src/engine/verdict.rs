@@ -5,7 +5,7 @@ pub use super::limit::{excess, passes, tolerance};
 use crate::error::{Error, Result};
 pub use crate::model::quantity::Bound;
 
-use crate::model::results::SceneResult;
+use super::summary::SceneSummary;
 use crate::model::Limits;
 use crate::model::Plan;
 use crate::spec::Spec;
@@ -118,13 +118,14 @@ pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
         .collect()
 }
 
-/// Evaluate the spec's limits on the results of its scenes. A limit applies to every scene
-/// whose plan computes its quantity; a value missing from such a scene is an error, never a
-/// skipped check (a planning fault must not pass a limit silently).
-pub fn evaluate(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Check>> {
+/// Evaluate the spec's limits on the summaries of its scenes (`engine::summary`: each scene's
+/// registry scalars, computed once). A limit applies to every scene whose plan computes its
+/// quantity; a value missing from such a scene is an error, never a skipped check (a planning
+/// fault must not pass a limit silently).
+pub fn evaluate(spec: &Spec, summaries: &[SceneSummary]) -> Result<Vec<Check>> {
     let mut checks = Vec::new();
-    for r in results {
-        let scene = spec.scenes.iter().find(|s| s.name == r.name);
+    for r in summaries {
+        let scene = spec.scenes.iter().find(|s| s.name == r.scene);
         let plan = scene.map(Plan::for_scene);
         // The quantities along the face width are those of a scene that resolves the face.
         let face = scene.is_some_and(|s| spec.design.deviations.face(&s.face).is_resolved());
@@ -133,13 +134,13 @@ pub fn evaluate(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Check>> {
             if plan.as_ref().is_some_and(|p| !p.computes_quantity(q)) {
                 continue;
             }
-            let Some(e) = q.scalar(r) else {
+            let Some(e) = r.scalar(q) else {
                 let expected = face || !crate::model::quantity::NEEDS_FACE.contains(&q);
                 if expected && plan.is_some() {
                     return Err(Error::computation(format!(
                         "scene `{}` computes `{}` but its {} is missing: no check of `limits.{}` \
                          can pass without it",
-                        r.name,
+                        r.scene,
                         q.effect.name(),
                         q.label,
                         l.def.key
@@ -148,14 +149,14 @@ pub fn evaluate(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Check>> {
                 continue;
             };
             checks.push(Check {
-                id: format!("{}/{}", r.name, l.def.key),
+                id: format!("{}/{}", r.scene, l.def.key),
                 kind: CheckKind::Limit,
                 unit: q.unit,
                 value: e.value,
                 limit: l.value,
                 bound: l.def.bound,
                 passed: passes(e.value, l.value, l.def.bound),
-                at: Evidence::Place(e.at),
+                at: Evidence::Place(e.at.clone()),
             });
         }
     }
@@ -239,6 +240,7 @@ pub fn resolution(r: &crate::engine::resolution::Resolution) -> Check {
 mod tests {
     use super::evaluate;
     use crate::engine::scene::{self, Writes};
+    use crate::engine::summary::summarise;
     use crate::model::Plan;
 
     /// A lost-motion limit on a clearance scene: with the scene planned as the spec asks (the
@@ -258,12 +260,12 @@ mod tests {
             &Default::default(),
         )
         .unwrap();
-        let checks = evaluate(&spec, &[planned]).unwrap();
+        let checks = evaluate(&spec, &summarise(&[planned])).unwrap();
         assert!(checks
             .iter()
             .any(|c| c.id.ends_with("/max_lost_motion_arcsec")));
         let bare = scene::run(&spec, s, &Plan::for_scene(s), &Default::default()).unwrap();
-        let e = evaluate(&spec, &[bare]).unwrap_err();
+        let e = evaluate(&spec, &summarise(&[bare])).unwrap_err();
         assert!(e.to_string().contains("max_lost_motion_arcsec"), "{e}");
     }
 }

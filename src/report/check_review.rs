@@ -44,6 +44,7 @@ fn with_input<T>(
         spec,
         checks: &run.checks,
         results: &run.results,
+        summaries: &run.summaries,
         goldens: &run.goldens,
         disc: &review.disc,
         optimisation: &views,

@@ -1222,11 +1222,14 @@ fn summary(s: &SceneSummary) -> SummaryDoc<'_> {
     }
 }
 
-/// The results of scenes alone (no checks, goldens or studies) as a JSON value: what a test
-/// compares with the registry.
-pub fn scenes_value(spec: &Spec, results: &[SceneResult]) -> serde_json::Result<serde_json::Value> {
-    let summaries = crate::engine::summary::marked(spec, results);
-    let doc = scenes_document(spec, results, &summaries);
+/// The results of scenes alone (no checks, goldens or studies) with their `summaries`
+/// (`engine::summary::marked`) as a JSON value: what a test compares with the registry.
+pub fn scenes_value(
+    spec: &Spec,
+    results: &[SceneResult],
+    summaries: &[SceneSummary],
+) -> serde_json::Result<serde_json::Value> {
+    let doc = scenes_document(spec, results, summaries);
     let mut text = Vec::new();
     doc.write_to(&mut text).map_err(serde_json::Error::io)?;
     serde_json::from_slice(&text)

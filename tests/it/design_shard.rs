@@ -328,3 +328,34 @@ fn a_directory_at_an_output_file_path_is_left_alone() {
         "a file changed, appeared or vanished"
     );
 }
+
+/// A shard whose header no run has is refused by the decoder in the design search's words
+/// (the check is `shard_file::Reader::check_header`, shared with the tolerance study's
+/// shards): an index at its count, more shards than candidates, no shards, and requirements
+/// that are not the ones the header's hash names.
+#[test]
+fn a_header_no_search_has_is_refused_in_its_words() {
+    use cycloid::engine::design_search::shard::{decode, encode, requirements_hash, Header};
+    let header = |index, count, text: &str| Header {
+        text_sha256: requirements_hash("requirements"),
+        seed: 1,
+        items: 4,
+        index,
+        count,
+        text_path: "req.yaml".into(),
+        text: text.into(),
+    };
+    for (h, says) in [
+        (header(2, 2, "requirements"), "shard 2/2 of 4 candidates"),
+        (header(0, 5, "requirements"), "shard 0/5 of 4 candidates"),
+        (header(0, 0, "requirements"), "shard 0/0 of 4 candidates"),
+        (
+            header(0, 2, "requirements, changed"),
+            "the requirements it holds do not match the requirements' hash in its header",
+        ),
+    ] {
+        let e = decode("s.bin", &encode(&h, &[])).unwrap_err();
+        let expected = format!("s.bin: not a shard file of `cycloid design`: {says}");
+        assert_eq!(e.message, expected, "{h:?}");
+    }
+}

@@ -314,7 +314,7 @@ fn compare_interpolates_the_finer_curve_at_the_coarser_angles() {
         abs: 1e-3,
         rel: 0.0,
     };
-    let c = compare(&golden, &fine, &now, tol, (None, None)).unwrap();
+    let c = compare(&golden, &fine, &now, tol, (None, None), None).unwrap();
     // Linear interpolation error ≤ h²·max|f''|/8 with f'' = 5·(10·π/180)² per deg².
     let bound = 0.1f64.powi(2) * 5.0 * (10f64.to_radians()).powi(2) / 8.0;
     assert!(c.worst.deviation <= bound * 1.01, "{c:?}");
@@ -330,7 +330,7 @@ fn compare_interpolates_the_finer_curve_at_the_coarser_angles() {
         columns,
         values: vec![curve(&coarse, |x| f(x) + if x == 6.0 { 0.01 } else { 0.0 })],
     };
-    let c = compare(&golden, &coarse, &coarse_now, tol, (None, None)).unwrap();
+    let c = compare(&golden, &coarse, &coarse_now, tol, (None, None), None).unwrap();
     assert!(!c.passed);
     assert!((c.worst.at.crank_deg - 6.0).abs() < 1e-9, "{c:?}");
     assert!((c.worst.deviation - 0.01).abs() < 1e-9);
@@ -381,7 +381,7 @@ fn compare_names_the_part_and_the_angle_of_its_worst_point() {
             columns: columns.clone(),
             values: values(0.01),
         };
-        let c = compare(&golden, &xs, &now, tol, (None, part.map(|(p, _)| p))).unwrap();
+        let c = compare(&golden, &xs, &now, tol, (None, part.map(|(p, _)| p)), None).unwrap();
         let at = GoldenAt {
             part,
             crank_deg: 1.875,
@@ -490,10 +490,10 @@ fn compare_wraps_angles_and_handles_infinite_values() {
         abs: 1e-3,
         rel: 0.0,
     };
-    let c = compare(&golden, &xs, &now, tol, (Some(360.0), None)).unwrap();
+    let c = compare(&golden, &xs, &now, tol, (Some(360.0), None), None).unwrap();
     assert!(c.passed && c.worst.deviation < 1e-3, "{c:?}");
     assert!(
-        !compare(&golden, &xs, &now, tol, (None, None))
+        !compare(&golden, &xs, &now, tol, (None, None), None)
             .unwrap()
             .passed
     );
@@ -506,13 +506,17 @@ fn compare_wraps_angles_and_handles_infinite_values() {
         },
     };
     let same = inf.curves.clone();
-    assert!(compare(&inf, &xs, &same, tol, (None, None)).unwrap().passed);
+    assert!(
+        compare(&inf, &xs, &same, tol, (None, None), None)
+            .unwrap()
+            .passed
+    );
     let finite = Curves {
         columns: vec!["backlash_arcsec".into()],
         values: vec![curve(&xs, |_| 1.0)],
     };
     assert!(
-        !compare(&inf, &xs, &finite, tol, (None, None))
+        !compare(&inf, &xs, &finite, tol, (None, None), None)
             .unwrap()
             .passed
     );
@@ -629,7 +633,9 @@ fn every_golden_quantity_is_the_json_array_of_the_same_name() {
         };
         let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
         let r = cycloid::engine::scene::run(&spec, &scene, &plan, &Default::default()).unwrap();
-        let doc = cycloid::report::json::scenes_value(&spec, std::slice::from_ref(&r)).unwrap();
+        let results = std::slice::from_ref(&r);
+        let summaries = cycloid::engine::summary::marked(&spec, results);
+        let doc = cycloid::report::json::scenes_value(&spec, results, &summaries).unwrap();
         let json = &doc["scenes"][0];
         let mut seen = curves_in_json(json, &|q| q.curves(&r));
         for (k, disc) in r.discs.iter().enumerate().filter(|_| r.names_discs()) {

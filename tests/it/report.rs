@@ -305,6 +305,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         &Default::default(),
     )
     .unwrap();
+    let summaries = cycloid::engine::summary::marked(&spec, std::slice::from_ref(&r));
     // A synthetic bowl with its minimum at (0.125, 0.16), infeasible where ΔRrp − ΔRp < 0.015,
     // not evaluated (a design rule) in one corner.
     let mut map = Vec::new();
@@ -378,6 +379,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         spec: &spec,
         checks: &[],
         results: std::slice::from_ref(&r),
+        summaries: &summaries,
         goldens: &[],
         disc: &disc,
         optimisation: std::slice::from_ref(&view),
@@ -447,6 +449,7 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         spec: &spec,
         checks: &[],
         results: std::slice::from_ref(&r),
+        summaries: &summaries,
         goldens: &[],
         disc: &disc,
         optimisation: &[],

@@ -137,7 +137,8 @@ fn colour_only_when_asked() {
         &Default::default(),
     )
     .unwrap();
-    let checks = cycloid::engine::verdict::evaluate(&spec, &[r]).unwrap();
+    let summaries = cycloid::engine::summary::summarise(&[r]);
+    let checks = cycloid::engine::verdict::evaluate(&spec, &summaries).unwrap();
     let plain = cycloid::report::table::render_styled(&checks, false);
     let coloured = cycloid::report::table::render_styled(&checks, true);
     assert!(!plain.contains('\x1b'));

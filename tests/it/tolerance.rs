@@ -117,7 +117,13 @@ fn clopper_pearson_meets_its_closed_forms_and_a_table() {
 
 /// The nominal min clearance of a spec's first scene, by the engine.
 fn nominal_min_clearance(spec: &cycloid::spec::Spec) -> f64 {
-    verdict::evaluate(spec, &[crate::common::run_first_scene(spec)]).unwrap()[0].value
+    first_scene_checks(spec)[0].value
+}
+
+/// The checks of a spec's limits on its first scene.
+fn first_scene_checks(spec: &cycloid::spec::Spec) -> Vec<verdict::Check> {
+    let summaries = cycloid::engine::summary::summarise(&[crate::common::run_first_scene(spec)]);
+    verdict::evaluate(spec, &summaries).unwrap()
 }
 
 /// A design whose nominal min clearance is exactly its limit, with a symmetric error in the
@@ -168,9 +174,7 @@ fn the_clearance_moves_one_for_one_with_the_equidistant_error() {
     // The paper optimum's smallest gap is at a tooth root (tooth phase 0), where the normal gap
     // is ΔRrp − ΔRp exactly (MODEL.md "Clearance"): ∂q/∂ΔRp = −1 while the root stays the
     // smallest gap over ±h (its margin to the next smallest is micrometres, h is 0.1 µm).
-    let at = cycloid::report::table::evidence(
-        &verdict::evaluate(&spec, &[crate::common::run_first_scene(&spec)]).unwrap()[0].at,
-    );
+    let at = cycloid::report::table::evidence(&first_scene_checks(&spec)[0].at);
     assert!(at.contains("tooth phase 0.000"), "{at}");
     let shift = study
         .params
@@ -1295,4 +1299,42 @@ fn an_unbounded_life_has_no_mean_spread_or_derivative() {
         "<code>min_contact_fatigue_life_h</code>: every sample unbounded (no finite life or safety), \
          so no histogram."
     ));
+}
+
+/// A shard whose header no study has is refused by the decoder in the tolerance study's words
+/// (the check is `shard_file::Reader::check_header`, shared with the design search's shards):
+/// no limits, an index at its count, more shards than samples, and a spec that is not the one
+/// the header's hash names.
+#[test]
+fn a_header_no_study_has_is_refused_in_its_words() {
+    use cycloid::engine::tolerance::Records;
+    let header = |index, count, text: &str| shard::Header {
+        text_sha256: shard::spec_hash("spec"),
+        seed: 1,
+        items: 4,
+        index,
+        count,
+        text_path: "t.yaml".into(),
+        text: text.into(),
+    };
+    for (h, limits, says) in [
+        (header(0, 2, "spec"), 0, "shard 0/2 with 0 limits"),
+        (header(2, 2, "spec"), 1, "shard 2/2 with 1 limits"),
+        (header(0, 5, "spec"), 1, "shard 0/5 with 1 limits"),
+        (
+            header(0, 2, "spec, changed"),
+            1,
+            "the spec it holds does not match the spec's hash in its header",
+        ),
+    ] {
+        // `encode` takes at least one limit: the count L (a u32 after the mark, the version,
+        // the hash and four u64) is set afterwards and the file sealed again.
+        let mut bytes = shard::encode(&h, 1, &Records::default());
+        bytes.truncate(bytes.len() - cycloid::engine::shard_file::CHECKSUM);
+        bytes[84..88].copy_from_slice(&u32::to_le_bytes(limits));
+        let bytes = cycloid::engine::shard_file::seal(bytes);
+        let e = shard::decode("s.bin", &bytes).unwrap_err();
+        let expected = format!("s.bin: not a shard file of `cycloid tolerance`: {says}");
+        assert_eq!(e.message, expected, "{h:?}");
+    }
 }

@@ -201,7 +201,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
     let results = scene::run_all(&spec, options.writes, progress)?;
     let summaries = summary::marked(&spec, &results);
     all_finite(&summaries)?;
-    let mut checks = verdict::evaluate(&spec, &results)?;
+    let mut checks = verdict::evaluate(&spec, &summaries)?;
     let studies = studies(&spec, spec.studies.iter().collect(), progress);
     checks.extend(verdict::optimisation(&spec, &studies));
     let goldens = golden::evaluate(&spec, &results, &golden_curves)?;

@@ -5,21 +5,22 @@
 use super::candidate::Candidate;
 pub use super::failure::{Failure, Miss, Requirement};
 use crate::engine::scene::{self, Writes};
+use crate::engine::summary::{self, SceneSummary};
 use crate::engine::verdict::Check;
 use crate::error::{ErrorKind, Result};
 use crate::model::quantity::{self, LimitDef, Quantity};
 use crate::model::requirements::{ObjectiveKind, Requirements};
-use crate::model::results::SceneResult;
 use crate::progress::Silent;
 use crate::spec::Spec;
 
-/// The scenes of a candidate's spec and the checks of its limits: what `check` computes for a
-/// spec without goldens, studies, an accuracy scene or measured points (the only specs a
+/// The summaries of a candidate's scenes and the checks of its limits: what `check` computes
+/// for a spec without goldens, studies, an accuracy scene or measured points (the only specs a
 /// search writes; `tests/it/design_search.rs` runs `check` itself on the front's specs).
-fn check(spec: &Spec) -> Result<(Vec<SceneResult>, Vec<Check>)> {
+fn check(spec: &Spec) -> Result<(Vec<SceneSummary>, Vec<Check>)> {
     let results = scene::run_all(spec, Writes::default(), &Silent)?;
-    let checks = crate::engine::verdict::evaluate(spec, &results)?;
-    Ok((results, checks))
+    let summaries = summary::summarise(&results);
+    let checks = crate::engine::verdict::evaluate(spec, &summaries)?;
+    Ok((summaries, checks))
 }
 
 /// The stage a candidate reached.
@@ -172,7 +173,7 @@ pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
 /// The full check of `c` (its rules already passed).
 pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
     let spec = candidate_spec(req, c, req.search.steps_per_mesh_period)?;
-    let (results, checks) = match check(&spec) {
+    let (summaries, checks) = match check(&spec) {
         Ok(r) => r,
         Err(e) if e.kind == ErrorKind::Computation => {
             return Ok(Evaluation {
@@ -186,7 +187,7 @@ pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
     };
     let failures = failed(&checks)?;
     let objectives = if failures.is_empty() {
-        objectives(req, c, &results)?
+        objectives(req, c, &summaries)?
     } else {
         Vec::new()
     };
@@ -227,12 +228,12 @@ fn failed(checks: &[Check]) -> Result<Vec<Failure>> {
 }
 
 /// The objectives of a fully checked candidate, in the requirements' order.
-fn objectives(req: &Requirements, c: &Candidate, results: &[SceneResult]) -> Result<Vec<f64>> {
+fn objectives(req: &Requirements, c: &Candidate, summaries: &[SceneSummary]) -> Result<Vec<f64>> {
     // The worst over the scenes that compute the quantity, by the way it is better.
     let worst = |q: &Quantity, maximise: bool| -> Result<f64> {
-        let values: Vec<f64> = results
+        let values: Vec<f64> = summaries
             .iter()
-            .filter_map(|r| q.scalar(r).map(|e| e.value))
+            .filter_map(|s| s.scalar(q).map(|e| e.value))
             .collect();
         let v = if maximise {
             values.iter().copied().fold(f64::INFINITY, f64::min)

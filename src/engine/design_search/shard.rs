@@ -219,14 +219,11 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
     let content = r.bytes;
     let (header, ()) = r.header(|_| Ok(()), ("requirements path", "requirements text"))?;
     let (candidates, index, count) = (header.items, header.index, header.count);
-    if count == 0 || index >= count || count > candidates.max(1) {
-        return Err(r.bad(&format!("shard {index}/{count} of {candidates} candidates")));
-    }
-    if requirements_hash(&header.text) != header.text_sha256 {
-        return Err(
-            r.bad("the requirements it holds do not match the requirements' hash in its header")
-        );
-    }
+    r.check_header(
+        &header,
+        &format!("shard {index}/{count} of {candidates} candidates"),
+        "the requirements it holds do not match the requirements' hash in its header",
+    )?;
     let rows = shard_len(candidates, (index, count));
     // Each evaluation takes at least 85 bytes: no more rows than the file holds are read.
     if rows.saturating_mul(85) > (content.len() - r.at) as u64 {

@@ -156,7 +156,8 @@ impl<'a> ToleranceStudy<'a> {
             &scene::RunOptions::for_spec(spec),
         )
         .map_err(context)?;
-        let checks = verdict::evaluate(spec, std::slice::from_ref(&result)).map_err(context)?;
+        let summaries = crate::engine::summary::summarise(std::slice::from_ref(&result));
+        let checks = verdict::evaluate(spec, &summaries).map_err(context)?;
         let mut values = Vec::with_capacity(self.limits.len());
         let mut passed = Vec::with_capacity(self.limits.len());
         for (def, _) in &self.limits {

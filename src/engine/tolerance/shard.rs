@@ -62,12 +62,15 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
     let bytes = r.bytes;
     let (header, limits) = r.header(Reader::u32, ("spec", "spec"))?;
     let (samples, index, count) = (header.items, header.index, header.count);
-    if count == 0 || index >= count || count > samples.max(1) || limits == 0 {
-        return Err(r.bad(&format!("shard {index}/{count} with {limits} limits")));
+    let place = format!("shard {index}/{count} with {limits} limits");
+    if limits == 0 {
+        return Err(r.bad(&place));
     }
-    if spec_hash(&header.text) != header.text_sha256 {
-        return Err(r.bad("the spec it holds does not match the spec's hash in its header"));
-    }
+    r.check_header(
+        &header,
+        &place,
+        "the spec it holds does not match the spec's hash in its header",
+    )?;
     let l = limits as usize;
     let rows = shard_len(samples, (index, count));
     let body = &bytes[r.at..];

@@ -59,6 +59,8 @@ pub struct ReportInput<'a> {
     /// Limit and golden checks.
     pub checks: &'a [Check],
     pub results: &'a [SceneResult],
+    /// Each scene's summary, as the run marked it (`engine::summary::marked`).
+    pub summaries: &'a [crate::engine::summary::SceneSummary],
     pub goldens: &'a [GoldenResult],
     /// The disc at the drawing's crank angle, as the engine computed it.
     pub disc: &'a Disc,
@@ -93,7 +95,7 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         .as_ref()
         .map_or(input.spec.modification, |v| v.designed_modification);
     let mut sections = vec![
-        summary::section(input.spec, input.results),
+        summary::section(input.summaries),
         design::section(input.spec, &designed, input.mass),
     ];
     if let Some(view) = &input.as_built {

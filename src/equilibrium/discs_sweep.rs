@@ -67,8 +67,13 @@ fn record_coupled(
         failure,
     };
     chunk.output_lag[k] = solve_general(discs, phi, work).map_err(fail)?;
+    // Several discs are solved at their shares (`work.models`), one at the scene's model.
+    let models = match discs.count() {
+        1 => &discs.models,
+        _ => &work.models,
+    };
     for (d, rows) in chunk.discs.iter_mut().enumerate() {
-        let (model, w) = (&work.models[d], &work.works[d]);
+        let (model, w) = (&models[d], &work.works[d]);
         if !all_finite(&w.sol) {
             return Err(fail(SolveFailure::NonFinite {
                 x: w.sol.lag_rad.unwrap_or(0.0),
@@ -85,15 +90,12 @@ fn record_coupled(
 /// (`angle::solve_into` at the model's torque), its output lag γ = β + βo its own. (The coupled
 /// solve of one disc would round γ through the Newton's common lag, and at zero torque solve a
 /// compliant bearing as a rigid one, `discs::solve_disc`.) Returns γ, rad; each disc's solution
-/// and torque are in `work`.
+/// is in `work`, and with several discs its model at its share.
 fn solve_general(discs: &Discs, phi: f64, work: &mut CoupledWork) -> Result<f64, SolveFailure> {
     if discs.count() > 1 {
         return solve_coupled(discs, phi, work);
     }
-    if work.models.is_empty() {
-        work.models.clone_from(&discs.models);
-    }
-    solve_into(&work.models[0], phi + discs.phases[0], &mut work.works[0])?;
+    solve_into(&discs.models[0], phi + discs.phases[0], &mut work.works[0])?;
     Ok(output_lag(&work.works[0]))
 }
 

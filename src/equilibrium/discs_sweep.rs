@@ -55,7 +55,7 @@ fn solve_disc_chunk(
     Ok(())
 }
 
-/// Angle k (crank `phi`) by the general coupled solve (`solve_general`), recorded in `chunk`.
+/// Angle k (crank `phi`) by the general solve (`solve_general`), recorded in `chunk`.
 fn record_coupled(
     discs: &Discs,
     (k, phi): (usize, f64),
@@ -88,9 +88,9 @@ fn record_coupled(
 /// The discs at crank `phi` by the general solve: several by the coupled solve
 /// (`discs::solve_coupled`); one carries the whole torque and solves alone
 /// (`angle::solve_into` at the model's torque), its output lag γ = β + βo its own. (The coupled
-/// solve of one disc would round γ through the Newton's common lag, and at zero torque solve a
-/// compliant bearing as a rigid one, `discs::solve_disc`.) Returns γ, rad; each disc's solution
-/// is in `work`, and with several discs its model at its share.
+/// solve of one disc would take the Newton's bookkeeping at every angle, and at zero torque
+/// hold a compliant bearing rigid, as for a disc let float, `discs::solve_disc`.) Returns γ,
+/// rad; each disc's solution is in `work`, and with several discs its model at its share.
 fn solve_general(discs: &Discs, phi: f64, work: &mut CoupledWork) -> Result<f64, SolveFailure> {
     if discs.count() > 1 {
         return solve_coupled(discs, phi, work);

@@ -2,7 +2,6 @@
 //! Single-threaded by default (RAYON_NUM_THREADS=1 recommended for the per-core targets).
 
 use cycloid::equilibrium::discs_sweep;
-use cycloid::equilibrium::sweep;
 use cycloid::geometry::clearance::{self, Mesh, Scope};
 use cycloid::model::GeometryMode;
 use cycloid::spec::{self, Spec};
@@ -90,21 +89,30 @@ fn loaded(b: divan::Bencher, geometry: GeometryMode) {
 
 fn loaded_with(b: divan::Bencher, geometry: GeometryMode, rollers: usize) {
     let (model, c) = common::rated_sweep(geometry, 3600, rollers);
-    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
+    b.bench(|| {
+        discs_sweep::sweep_reducer(black_box(&model), 1, &c, (true, &cycloid::progress::Silent))
+            .unwrap()
+    });
 }
 
 /// Loaded sweep of 360 crank angles (the angles of `check_clearance_only_360`), exact geometry.
 #[divan::bench]
 fn loaded_sweep_360_exact(b: divan::Bencher) {
     let (model, c) = common::rated_sweep(GeometryMode::Exact, 360, 10);
-    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
+    b.bench(|| {
+        discs_sweep::sweep_reducer(black_box(&model), 1, &c, (true, &cycloid::progress::Silent))
+            .unwrap()
+    });
 }
 
 /// Loaded sweep of 360 crank angles, first-order geometry.
 #[divan::bench]
 fn loaded_sweep_360_first_order(b: divan::Bencher) {
     let (model, c) = common::rated_sweep(GeometryMode::FirstOrder, 360, 10);
-    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
+    b.bench(|| {
+        discs_sweep::sweep_reducer(black_box(&model), 1, &c, (true, &cycloid::progress::Silent))
+            .unwrap()
+    });
 }
 
 /// Loaded sweep of 3,600 crank angles, exact geometry (target < 10 ms on one core).
@@ -151,7 +159,10 @@ fn coupled_sweep_3600_exact(b: divan::Bencher) {
         no_load_torque_nmm: cycloid::model::NoLoadTorque::constant(0.0),
     };
     let model = model.with_friction(&friction, &design);
-    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
+    b.bench(|| {
+        discs_sweep::sweep_reducer(black_box(&model), 1, &c, (true, &cycloid::progress::Silent))
+            .unwrap()
+    });
 }
 
 /// Two discs (issue 14): the coupled sweep of `loaded_sweep_3600_exact`'s model and angles
@@ -529,7 +540,10 @@ fn face_sweep(
         model.rollers = model.rollers.map(|r| r.with_face_by_slices(&face));
     }
     let c = crank(360);
-    b.bench(|| sweep::sweep(black_box(&model), &c, true, &cycloid::progress::Silent).unwrap());
+    b.bench(|| {
+        discs_sweep::sweep_reducer(black_box(&model), 1, &c, (true, &cycloid::progress::Silent))
+            .unwrap()
+    });
 }
 
 /// A crowned disc (Rc 1 m, flat over 4 mm) tilted 0.3 mrad about x and y, cut into `slices`.

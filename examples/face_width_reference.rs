@@ -6,9 +6,10 @@
 //!
 //! Run: `cargo run --release --example face_width_reference`.
 
+use cycloid::equilibrium::discs_sweep;
 use cycloid::equilibrium::loaded::Model;
-use cycloid::equilibrium::sweep;
 use cycloid::model::{Crowning, Misalignment, Plan};
+use cycloid::progress::Silent;
 
 fn main() {
     let spec = cycloid::spec::load("specs/reducer-loaded.yaml").expect("specs/reducer-loaded.yaml");
@@ -35,11 +36,14 @@ fn main() {
         sliced.rollers = sliced.rollers.map(|r| r.with_face_by_slices(&scene.face));
         let go = |m: &Model| {
             let t = std::time::Instant::now();
-            let s = sweep::sweep(m, &scene.crank_rad, true, &cycloid::progress::Silent).unwrap();
-            (s, t.elapsed().as_secs_f64())
+            let s = discs_sweep::sweep_reducer(m, 1, &scene.crank_rad, (true, &Silent)).unwrap();
+            (
+                s.discs.into_iter().next().unwrap(),
+                t.elapsed().as_secs_f64(),
+            )
         };
         let ((c, tc), (s, ts)) = (go(&closed), go(&sliced));
-        let (rc, rs) = (c.0.rollers.unwrap(), s.0.rollers.unwrap());
+        let (rc, rs) = (c.rollers.unwrap(), s.rollers.unwrap());
         let (fc, fs) = (rc.face.unwrap(), rs.face.unwrap());
         let arcsec = 180.0 / std::f64::consts::PI * 3600.0;
         let max = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0, f64::max);

@@ -220,7 +220,7 @@ impl CoupledWork {
 }
 
 /// Disc k's output lag γk = βk + βo,k (βo,k = 0 without pins: rigid coupling), rad.
-fn output_lag(work: &Work) -> f64 {
+pub(super) fn output_lag(work: &Work) -> f64 {
     work.sol.lag_rad.unwrap_or(0.0) + work.sol.output_lag_rad.unwrap_or(0.0)
 }
 

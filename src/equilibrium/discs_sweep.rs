@@ -1,8 +1,12 @@
-//! The loaded sweep of several discs on one crank (`discs::solve_coupled` at every crank
-//! angle): each disc's curves and torque share, and the reducer's transmission from the common
-//! output lag. The columns, chunks and curves are those of one disc's sweep (`sweep`).
+//! The loaded sweep of a reducer's discs on one crank, one or several (`discs::solve_coupled`
+//! at every crank angle): each disc's curves and torque share, and the reducer's transmission
+//! from the common output lag. One disc is N = 1 on the same path: it carries the whole torque,
+//! so it skips what only a split needs (the Newton on the shares, their history, the second
+//! wave) and solves alone (`angle::solve_into`, or its lean kernel at the whole torque), its
+//! output lag γ = β + βo its own. The columns, chunks and curves are `sweep`'s.
 
-use super::discs::{common_lag, converged, solve_coupled, CoupledWork, Discs, Share};
+use super::angle::solve_into;
+use super::discs::{common_lag, converged, output_lag, solve_coupled, CoupledWork, Discs, Share};
 use super::first_order_sweep::{FirstOrderSweep, Scratch};
 use super::loaded::Model;
 use super::solve::SolveFailure;
@@ -15,8 +19,8 @@ use crate::model::results::{LoadedSweep, Transmission};
 use crate::progress::Progress;
 use rayon::prelude::*;
 
-/// A sweep of several discs (`discs::solve_coupled` at every crank angle): each disc's curves
-/// (its lags, forces, bearing; no transmission of its own) and torque share, and the
+/// A sweep of a reducer's discs (`discs::solve_coupled` at every crank angle): each disc's
+/// curves (its lags, forces, bearing; no transmission of its own) and torque share, and the
 /// reducer's transmission from the common output lag γ.
 #[derive(Debug, Clone)]
 pub struct DiscSweeps {
@@ -26,7 +30,7 @@ pub struct DiscSweeps {
     pub transmission: Option<Transmission>,
 }
 
-/// One chunk of a several-disc sweep: each disc's rows, its torque share and γ.
+/// One chunk of a sweep: each disc's rows, its torque share and γ.
 struct DiscChunk<'a> {
     discs: Vec<Chunk<'a>>,
     torque: Vec<&'a mut [f64]>,
@@ -51,8 +55,7 @@ fn solve_disc_chunk(
     Ok(())
 }
 
-/// Angle k (crank `phi`) by the general coupled solve (`discs::solve_coupled`), recorded in
-/// `chunk`.
+/// Angle k (crank `phi`) by the general solve (`solve_general`), recorded in `chunk`.
 fn record_coupled(
     discs: &Discs,
     (k, phi): (usize, f64),
@@ -63,9 +66,14 @@ fn record_coupled(
         crank_rad: phi,
         failure,
     };
-    chunk.output_lag[k] = solve_coupled(discs, phi, work).map_err(fail)?;
+    chunk.output_lag[k] = solve_general(discs, phi, work).map_err(fail)?;
+    // Several discs are solved at their shares (`work.models`), one at the scene's model.
+    let models = match discs.count() {
+        1 => &discs.models,
+        _ => &work.models,
+    };
     for (d, rows) in chunk.discs.iter_mut().enumerate() {
-        let (model, w) = (&work.models[d], &work.works[d]);
+        let (model, w) = (&models[d], &work.works[d]);
         if !all_finite(&w.sol) {
             return Err(fail(SolveFailure::NonFinite {
                 x: w.sol.lag_rad.unwrap_or(0.0),
@@ -75,6 +83,20 @@ fn record_coupled(
         chunk.torque[d][k] = model.torque_nmm;
     }
     Ok(())
+}
+
+/// The discs at crank `phi` by the general solve: several by the coupled solve
+/// (`discs::solve_coupled`); one carries the whole torque and solves alone
+/// (`angle::solve_into` at the model's torque), its output lag γ = β + βo its own. (The coupled
+/// solve of one disc would take the Newton's bookkeeping at every angle, and at zero torque
+/// hold a compliant bearing rigid, as for a disc let float, `discs::solve_disc`.) Returns γ,
+/// rad; each disc's solution is in `work`, and with several discs its model at its share.
+fn solve_general(discs: &Discs, phi: f64, work: &mut CoupledWork) -> Result<f64, SolveFailure> {
+    if discs.count() > 1 {
+        return solve_coupled(discs, phi, work);
+    }
+    solve_into(&discs.models[0], phi + discs.phases[0], &mut work.works[0])?;
+    Ok(output_lag(&work.works[0]))
 }
 
 /// A chunk of angles of several discs by the general coupled solve alone, its split guessed
@@ -136,15 +158,15 @@ const LEAN_STEPS: usize = 3;
 impl LeanDisc<'_> {
     /// Angle k by the kernel at its share's torque, its screen renewed when it lapsed: the
     /// angle recorded in `rows` (a later Newton step at the angle records it again), and the
-    /// share's output lag γk (rad) and stiffness 1/ck (N·mm/rad) set. `None` where the kernel
-    /// leaves the angle to the general solve, or the disc has no contact (no compliance of its
-    /// own).
+    /// share's output lag γk = βk + βo,k (rad) and stiffness 1/ck (N·mm/rad) set. `None` where
+    /// the kernel leaves the angle to the general solve; else whether the disc has a contact
+    /// (a compliance of its own).
     fn solve(
         &mut self,
         (model, work): (&Model, &Work),
         k: usize,
         rows: &mut Chunk<'_>,
-    ) -> Option<()> {
+    ) -> Option<bool> {
         let phi = self.cranks[k];
         let (sin, cos) = self.crank_direction.sin_cos(phi);
         let guess = || work.guess(phi, model);
@@ -160,7 +182,7 @@ impl LeanDisc<'_> {
         // The kernel's own compliance on its contact set: exact until a contact changes.
         let c = s.compliance_rad_per_nmm;
         (self.share.lag, self.share.weight) = (s.lag_rad + s.output_lag_rad, 1.0 / c);
-        c.is_finite().then_some(())
+        Some(c.is_finite())
     }
 }
 
@@ -197,7 +219,7 @@ impl<'a> Lean<'a> {
     }
 
     /// Every disc at angle k at its share's torque (`LeanDisc::solve`), or `None` when one
-    /// leaves the angle to the coupled solve.
+    /// leaves the angle to the coupled solve or has no contact (no compliance of its own).
     fn solve_discs(
         &mut self,
         discs: &Discs,
@@ -211,7 +233,7 @@ impl<'a> Lean<'a> {
             .zip(discs.models.iter().zip(&work.works))
             .zip(&mut chunk.discs);
         for ((disc, solver), rows) in per_disc {
-            disc.solve(solver, k, rows)?;
+            disc.solve(solver, k, rows)?.then_some(())?;
         }
         Some(())
     }
@@ -224,7 +246,7 @@ impl<'a> Lean<'a> {
     /// Angle k (crank `phi`) by the kernels at the shares extrapolated from the last angles,
     /// corrected by the Newton on the shares until the split settles: γ, each disc recorded in
     /// `chunk` and remembered in `work`. `None` (the chunk's entries at k cleared) leaves the
-    /// angle to the coupled solve.
+    /// angle to the coupled solve. One disc has no split to settle (`solve_alone`).
     fn solve(
         &mut self,
         discs: &Discs,
@@ -234,8 +256,8 @@ impl<'a> Lean<'a> {
         chunk: &mut DiscChunk<'_>,
     ) -> Option<f64> {
         let n = self.discs.len();
-        if n == 0 {
-            return None;
+        if n < 2 {
+            return self.solve_alone(discs, k, work, chunk);
         }
         let (total, tol) = (discs.torque_nmm, self.tol);
         let weights = work.extrapolation(phi, self.reach);
@@ -287,16 +309,43 @@ impl<'a> Lean<'a> {
         work.remember_split(phi, next, total);
         Some(common)
     }
+
+    /// Angle k of one disc (none: no kernel), which carries the whole torque: its kernel at
+    /// that torque, with no Newton on the shares and no split to remember; γ is the disc's own
+    /// β + βo (a disc without contact has no compliance, and needs none). `None` (its entries
+    /// at k cleared) leaves the angle to the general solve.
+    fn solve_alone(
+        &mut self,
+        discs: &Discs,
+        k: usize,
+        work: &mut CoupledWork,
+        chunk: &mut DiscChunk<'_>,
+    ) -> Option<f64> {
+        let (disc, rows) = (self.discs.first_mut()?, &mut chunk.discs[0]);
+        let total = discs.torque_nmm;
+        disc.share.torque = total;
+        if disc
+            .solve((&discs.models[0], &work.works[0]), k, rows)
+            .is_none()
+        {
+            rows.clear(k);
+            return None;
+        }
+        chunk.torque[0][k] = total;
+        let lags = (rows.lag[k], rows.output_lag[k]);
+        work.works[0].remember_lags(disc.cranks[k], lags, total);
+        Some(disc.share.lag)
+    }
 }
 
-/// The chunks of a sweep the general coupled solve takes (no lean kernels) in two waves: the
-/// even chunks from no history, then each odd chunk continuing the split of the even chunk
-/// before it. A chunk's first angles otherwise guess the split from fewer than the four
-/// angles the Newton on the shares needs to settle in one step (at the first, an equal
+/// The chunks of a sweep of several discs the general coupled solve takes (no lean kernels) in
+/// two waves: the even chunks from no history, then each odd chunk continuing the split of the
+/// even chunk before it. A chunk's first angles otherwise guess the split from fewer than the
+/// four angles the Newton on the shares needs to settle in one step (at the first, an equal
 /// split), and each further step there is a disc solve over every roller. The waves are fixed
 /// by the chunks' order, so results do not depend on the thread count. The lean kernels run
 /// in one wave: their extra steps at chunk starts are no dearer than a second wave's
-/// bookkeeping.
+/// bookkeeping; so does one disc, which has no split to carry.
 fn solve_in_two_waves(
     discs: &Discs,
     crank_rad: &[f64],
@@ -335,33 +384,24 @@ fn solve_in_two_waves(
 
 /// The loaded sweep of a reducer of `count` discs (each disc as `model`, the scene's model of
 /// the disc at phase 0, at its crank phase 2πk/N): the one entry of a scene's loaded run,
-/// whatever N. One disc carries the whole torque at every angle, so its split is trivial and
-/// its balance is the one-disc solve (`sweep::sweep`, its output lag γ the disc's own; in
-/// exact geometry `sweep_discs` of one disc gives the same bits, held by the property test
-/// `discs::one_disc_through_the_coupled_solve_is_todays_sweep`, while a first-order disc alone
-/// has a leaner kernel); its torque share is T at every angle. Several discs are coupled
-/// through γ (`sweep_discs`).
+/// whatever N (`sweep_discs`). One disc carries the whole torque at every angle: its torque
+/// share is T and its output lag γ = β + βo is the reducer's.
 pub fn sweep_reducer(
     model: &Model,
     count: usize,
     crank_rad: &[f64],
     (periodic, progress): (bool, &dyn Progress),
 ) -> Result<DiscSweeps, SweepFailure> {
-    if count > 1 {
-        let discs = Discs::new(model, count);
-        return sweep_discs(&discs, crank_rad, periodic, progress);
-    }
-    let (one, transmission) = super::sweep::sweep(model, crank_rad, periodic, progress)?;
-    Ok(DiscSweeps {
-        transmission,
-        torque_nmm: vec![vec![model.torque_nmm; crank_rad.len()]],
-        discs: vec![one],
-    })
+    sweep_discs(&Discs::new(model, count), crank_rad, periodic, progress)
 }
 
-/// `sweep::sweep` of several discs: chunks of `CHUNK` angles in parallel, each angle
-/// warm-started from the previous ones of its chunk (split and lags), so results do not
-/// depend on the thread count.
+/// Solve the discs at every crank angle and collect their curves. Chunks of `CHUNK` angles run
+/// in parallel; within a chunk each angle is warm-started from the previous ones (split and
+/// lags), and from nothing before the chunk but, with several discs on the general solve, the
+/// split of the chunk before it (`solve_in_two_waves`): results do not depend on how chunks
+/// are shared out, nor on the thread count (scratch space is reused across chunks, its state
+/// restarted). A failure is reported at the first crank angle that fails; `progress` hears of
+/// every chunk of crank angles done.
 pub fn sweep_discs(
     discs: &Discs,
     crank_rad: &[f64],
@@ -387,7 +427,7 @@ pub fn sweep_discs(
             chunk.discs.push(rows);
         }
     }
-    if discs.models.iter().all(FirstOrderSweep::applies) {
+    if discs.count() == 1 || discs.models.iter().all(FirstOrderSweep::applies) {
         let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
             .par_chunks(CHUNK)
             .zip(per_chunk)

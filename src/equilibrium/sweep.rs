@@ -1,21 +1,17 @@
-//! The loaded sweep over the crank angles of a scene (one angle's solve is `angle`), and its
-//! curves: lags, forces, pressures, bearing force, TE and ratio. Several discs' sweep is
-//! `discs_sweep`, on the same columns and chunks.
+//! The curves of the loaded sweep over the crank angles of a scene: lags, forces, pressures,
+//! bearing force, TE and ratio, as columns written in place chunk by chunk. The sweep that
+//! fills them, of one disc or several, is `discs_sweep` (one angle's solve is `angle`).
 //! Arrays are \[angle\] or \[roller|pin\]\[angle\]; engine units (rad, N, MPa, mm).
 
-use super::angle::solve_into;
-use super::first_order_sweep::{FirstOrderSweep, Row, Scratch, Summary};
+use super::first_order_sweep::{Row, Summary};
 use super::loaded::{AngleSolution, Model};
 use super::rollers::Rollers;
 use super::solve::SolveFailure;
-use super::work::Work;
-use crate::geometry::{angle_from, cross, NearbyAtan2, NearbySinCos, Vec2};
+use crate::geometry::{angle_from, cross, NearbyAtan2, Vec2};
 use crate::model::friction::PathLosses;
 use crate::model::results::{
     BearingCurves, FaceLoads, LoadedSweep, PinCurves, RollerCurves, Transmission,
 };
-use crate::progress::Progress;
-use rayon::prelude::*;
 
 /// Crank angles solved in sequence by one worker, warm-starting each from the previous. The
 /// chunk size is fixed (not derived from the thread count) so results are the same bit for bit
@@ -376,76 +372,6 @@ impl<'a> Chunk<'a> {
     }
 }
 
-fn solve_chunk(
-    model: &Model,
-    lean: Option<&FirstOrderSweep<'_>>,
-    crank_rad: &[f64],
-    chunk: &mut Chunk<'_>,
-    scratch: &mut Scratch,
-) -> Result<(), SweepFailure> {
-    let mut work = Work::default();
-    scratch.restart();
-    let mut crank_direction = NearbySinCos::default();
-    let mut bearing_angle = NearbyAtan2::default();
-    for (k, &phi) in crank_rad.iter().enumerate() {
-        if let Some(lean) = lean {
-            let (sin, cos) = crank_direction.sin_cos(phi);
-            let e_phi = Vec2::new(cos, sin);
-            let guess = || work.guess(phi, model);
-            if let Some(s) = lean.solve(phi, (cos, sin), guess, scratch, &mut chunk.row(k)) {
-                chunk.record_first_order(k, e_phi, &s, &mut bearing_angle);
-                if !scratch.screened() {
-                    lean.screen(&crank_rad[k + 1..], s.lag_rad, scratch);
-                }
-                // The lags from the recorded entries: loading them from `s` as a pair stalls
-                // on the two separate stores that wrote them.
-                work.remember_lags(phi, (chunk.lag[k], chunk.output_lag[k]), model.torque_nmm);
-                continue;
-            }
-        }
-        let fail = |failure| SweepFailure {
-            crank_rad: phi,
-            failure,
-        };
-        solve_into(model, phi, &mut work).map_err(fail)?;
-        if !all_finite(&work.sol) {
-            return Err(fail(SolveFailure::NonFinite {
-                x: work.sol.lag_rad.unwrap_or(0.0),
-            }));
-        }
-        chunk.record(k, model, (phi, work.e_phi), &work.sol);
-    }
-    Ok(())
-}
-
-/// Solve every crank angle and collect the curves. Chunks of `CHUNK` angles run in parallel;
-/// within a chunk each angle is warm-started from the previous ones, and from nothing before
-/// the chunk, so results do not depend on how chunks are shared out (scratch space is reused
-/// across chunks, its state restarted). A failure is reported at the first crank angle that
-/// fails.
-/// `progress` hears of every chunk of crank angles done. The disc's curves, and its
-/// transmission (TE δ = β + βo and ratio) when the rollers are modelled.
-pub fn sweep(
-    model: &Model,
-    crank_rad: &[f64],
-    periodic: bool,
-    progress: &dyn Progress,
-) -> Result<(LoadedSweep, Option<Transmission>), SweepFailure> {
-    let mut columns = Columns::new(model, crank_rad.len());
-    let lean = FirstOrderSweep::new(model);
-    let outcomes: Vec<Result<(), SweepFailure>> = crank_rad
-        .par_chunks(CHUNK)
-        .zip(columns.chunks())
-        .map_init(Scratch::default, |scratch, (c, mut chunk)| {
-            let done = solve_chunk(model, lean.as_ref(), c, &mut chunk, scratch);
-            progress.advance(c.len() as u64);
-            done
-        })
-        .collect();
-    outcomes.into_iter().collect::<Result<(), _>>()?;
-    Ok(collect(model, crank_rad, columns, periodic))
-}
-
 /// The transmission of a sweep from its TE (rad) at `crank_rad`: κ = 1/(1/nc − dδ/dφ).
 pub(super) fn transmission(
     te_rad: Vec<f64>,
@@ -463,26 +389,8 @@ pub(super) fn transmission(
     Transmission { te_rad, ratio }
 }
 
-fn collect(
-    model: &Model,
-    crank_rad: &[f64],
-    columns: Columns,
-    periodic: bool,
-) -> (LoadedSweep, Option<Transmission>) {
-    let te_rad = model.rollers.is_some().then(|| {
-        let c = &columns;
-        c.lag
-            .iter()
-            .zip(&c.output_lag)
-            .map(|(b, o)| b + o)
-            .collect()
-    });
-    let transmission = te_rad.map(|te| transmission(te, crank_rad, model.teeth, periodic));
-    (disc_curves(model, columns), transmission)
-}
-
-/// A disc's own curves from its columns: lags, forces, bearing (no transmission: with several
-/// discs that is the reducer's, from the common output lag).
+/// A disc's own curves from its columns: lags, forces, bearing (no transmission: that is the
+/// reducer's, from the common output lag).
 pub(super) fn disc_curves(model: &Model, c: Columns) -> LoadedSweep {
     let face = model
         .rollers

@@ -6,10 +6,10 @@ use crate::common;
 use crate::common::{cases, Case};
 use cycloid::engine::scene::run_design;
 use cycloid::equilibrium::angle::solve_angle;
-use cycloid::equilibrium::discs::Discs;
-use cycloid::equilibrium::discs_sweep::sweep_discs;
+use cycloid::equilibrium::discs::{solve_coupled, CoupledWork, Discs};
+use cycloid::equilibrium::discs_sweep::{sweep_discs, sweep_reducer};
+use cycloid::equilibrium::first_order_sweep::FirstOrderSweep;
 use cycloid::equilibrium::loaded::{AngleSolution, Model};
-use cycloid::equilibrium::sweep;
 use cycloid::model::results::{DiscResult, SceneResult};
 use cycloid::model::{ContactLaw, Design, Effect, GeometryMode, Plan, Scene, TorqueSweep};
 use cycloid::progress::Silent;
@@ -239,11 +239,12 @@ proptest! {
         }
     }
 
-    /// One disc through the coupled solve is the one-disc sweep, bit for bit (exact geometry,
-    /// where both run `angle::solve_into` angle by angle; the first-order one-disc sweep has a
-    /// faster kernel of its own).
+    /// One disc through the coupled solve (`discs::solve_coupled`, as torsion and the drawing
+    /// solve a scene) is the sweep of one disc, bit for bit, angle after angle: in exact
+    /// geometry both solve the disc at the whole torque by `angle::solve_into`, warm-started
+    /// from the angles before (one chunk of 24 angles).
     #[test]
-    fn one_disc_through_the_coupled_solve_is_todays_sweep(
+    fn one_disc_through_the_coupled_solve_is_the_sweep(
         case in cases(),
         hertz in any::<bool>(),
         phase in 0.0f64..1.0,
@@ -253,18 +254,58 @@ proptest! {
         let scene = scene(&case.design, phase, law, GeometryMode::Exact);
         let plan = Plan::of(&scene.name, &effects(pins));
         let model = Model::new(&case.design, &case.m, &scene, &plan);
-        // (A design the one-disc sweep itself cannot solve is not this property's case.)
-        let one = sweep::sweep(&model, &scene.crank_rad, false, &cycloid::progress::Silent);
-        prop_assume!(one.is_ok());
-        let one = one.unwrap();
-        let coupled =
-            sweep_discs(&Discs::new(&model, 1), &scene.crank_rad, false, &Silent).unwrap();
-        let disc = &coupled.discs[0];
-        prop_assert_eq!(&one.0.rollers, &disc.rollers);
-        prop_assert_eq!(&one.0.pins, &disc.pins);
-        prop_assert_eq!(&one.0.bearing, &disc.bearing);
-        prop_assert_eq!(&one.1, &coupled.transmission);
-        prop_assert!(coupled.torque_nmm[0].iter().all(|&t| t == scene.output_torque_nmm));
+        // (A design the sweep itself cannot solve is not this property's case.)
+        let swept = sweep_reducer(&model, 1, &scene.crank_rad, (false, &Silent));
+        prop_assume!(swept.is_ok());
+        let swept = swept.unwrap();
+        let (disc, te) = (&swept.discs[0], &swept.transmission.as_ref().unwrap().te_rad);
+        let rollers = disc.rollers.as_ref().unwrap();
+        let discs = Discs::new(&model, 1);
+        let mut work = CoupledWork::new(&discs);
+        for (k, &phi) in scene.crank_rad.iter().enumerate() {
+            let gamma = solve_coupled(&discs, phi, &mut work).unwrap();
+            let sol = &work.works[0].sol;
+            prop_assert_eq!(gamma.to_bits(), te[k].to_bits(), "angle {}", k);
+            prop_assert_eq!(sol.lag_rad, Some(rollers.lag_rad[k]));
+            for (i, s) in sol.rollers.iter().enumerate() {
+                prop_assert_eq!(s.force_n, rollers.force_n[i][k], "roller {} angle {}", i, k);
+            }
+            if let Some(p) = &disc.pins {
+                prop_assert_eq!(sol.output_lag_rad, Some(p.output_lag_rad[k]));
+                for (j, s) in sol.pins.iter().enumerate() {
+                    prop_assert_eq!(s.force_n, p.force_n[j][k], "pin {} angle {}", j, k);
+                }
+            }
+            prop_assert_eq!(work.models[0].torque_nmm, swept.torque_nmm[0][k]);
+        }
+    }
+
+    /// One disc carries the whole torque at its own output lag (MODEL.md "Several discs":
+    /// Σ Tk = T, γ = βk + βo,k): its share is T and the reducer's TE is the disc's β + βo, to
+    /// the bit, in the lean first-order sweep too, where a Newton on the one share would round
+    /// γ through its common lag (T − T1 + w1·γ1)/w1.
+    #[test]
+    fn one_disc_carries_the_torque_at_its_own_output_lag(
+        case in cases(),
+        phase in 0.0f64..1.0,
+        pins in any::<bool>(),
+    ) {
+        let scene = scene(&case.design, phase, ContactLaw::PaperLinear, GeometryMode::FirstOrder);
+        let plan = Plan::of(&scene.name, &effects(pins));
+        let model = Model::new(&case.design, &case.m, &scene, &plan);
+        prop_assert!(FirstOrderSweep::applies(&model), "the lean kernel's case");
+        let swept = sweep_discs(&Discs::new(&model, 1), &scene.crank_rad, false, &Silent);
+        prop_assume!(swept.is_ok());
+        let swept = swept.unwrap();
+        let te = &swept.transmission.as_ref().unwrap().te_rad;
+        let disc = &swept.discs[0];
+        let lag = &disc.rollers.as_ref().unwrap().lag_rad;
+        let output_lag = disc.pins.as_ref().map(|p| &p.output_lag_rad);
+        for k in 0..te.len() {
+            let own = lag[k] + output_lag.map_or(0.0, |o| o[k]);
+            prop_assert_eq!(te[k].to_bits(), own.to_bits(), "angle {}: {:e} vs {:e}", k, te[k], own);
+            prop_assert_eq!(swept.torque_nmm[0][k], scene.output_torque_nmm);
+        }
     }
 
     /// With an even roller count, the second of two discs meshes in the same phase (half a
@@ -435,6 +476,41 @@ fn first_order_discs_near_zero_torque_float_rather_than_take_a_share_against_it(
     }
     // The case is the one it claims to be: discs do float here.
     assert!(floated > 0, "no disc floated");
+}
+
+/// One disc at zero torque on a compliant crank bearing (`specs/hard/preload-compliant-bearing.yaml`:
+/// interference preload, kb = 1e6 N/mm): the preloaded contacts load the bearing, whose
+/// centre moves until the bearing holds them by its stiffness, |Fb| = kb·|u| (the bearing
+/// law), with |Fb| > 0 at every angle. The disc carries the whole torque, zero here; solving it
+/// as a share of a split would take it for a disc let float and hold its centre rigid (u = 0,
+/// `discs::solve_disc`). Tolerance: Fb = −kb·u is formed from u, so only the rounding of the
+/// product and of the two norms separates |Fb| from kb·|u| (a few ulp; 1e-12 allowed).
+#[test]
+fn one_disc_at_zero_torque_holds_its_preload_on_the_compliant_bearing() {
+    let spec = cycloid::spec::load("specs/hard/preload-compliant-bearing.yaml").unwrap();
+    let scene = &spec.scenes[0];
+    assert_eq!(scene.output_torque_nmm, 0.0, "the case is zero torque");
+    let kb = scene
+        .bearing_stiffness_n_per_mm
+        .expect("a compliant bearing");
+    let plan = Plan::for_scene(scene);
+    let model = Model::new(&spec.design, &spec.modification, scene, &plan);
+    let swept = sweep_discs(&Discs::new(&model, 1), &scene.crank_rad, false, &Silent)
+        .unwrap_or_else(|f| panic!("{f:?}"));
+    let bearing = swept.discs[0].bearing.as_ref().unwrap();
+    for (k, (&f, &u)) in bearing
+        .force_n
+        .iter()
+        .zip(&bearing.deflection_mm)
+        .enumerate()
+    {
+        assert!(f > 0.0, "angle {k}: the preload does not load the bearing");
+        assert!(
+            (f - kb * u).abs() <= 1e-12 * f,
+            "angle {k}: |Fb| = {f} N, kb·|u| = {} N",
+            kb * u
+        );
+    }
 }
 
 /// A disc that floats (no share of the torque) reports the lag of the limit T → 0⁺, as one

@@ -626,7 +626,7 @@ proptest! {
         // round-off (`Rollers::moment_resolution`: 16·ε·(Rp + e + |ΔRp| + |ΔRrp|) per exact gap
         // times Σ k·|l|), on which the solver settles a straddled root (`solve::Root`): two
         // warm starts may land a step apart, so that resolution over the slope is added, twice.
-        let loaded = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent).expect("sweep");
+        let loaded = crate::common::one_disc_sweep(&model, &angles, false).expect("sweep");
         let rc = loaded.0.rollers.unwrap();
         let gap_resolution = 16.0 * f64::EPSILON * (r.rp + r.e + r.shift.abs() + r.equidistant.abs());
         for (k, sol) in sols.iter().enumerate() {
@@ -1108,7 +1108,7 @@ fn a_soft_bearing_deflects_by_its_force_over_its_stiffness_and_still_balances() 
     eprintln!("soft bearing: |Fb| / |Fb rigid| over the period: {ratio:.3?}");
     assert!(ratio.iter().all(|&q| q < 1.0));
     // The sweep reports the deflection.
-    let loaded = sweep::sweep(&soft, &angles, false, &cycloid::progress::Silent).unwrap();
+    let loaded = crate::common::one_disc_sweep(&soft, &angles, false).unwrap();
     let bearing = loaded.0.bearing.unwrap();
     for (k, y) in b.iter().enumerate() {
         assert!((bearing.deflection_mm[k] - y.centre_offset_mm.norm()).abs() <= 1e-12);
@@ -1866,7 +1866,7 @@ proptest! {
         let angles: Vec<f64> = (0..steps)
             .map(|k| from + turns * TAU * k as f64 / (steps - 1) as f64)
             .collect();
-        let swept = sweep::sweep(&m, &angles, false, &cycloid::progress::Silent)
+        let swept = crate::common::one_disc_sweep(&m, &angles, false)
             .unwrap_or_else(|f| panic!("sweep over {angles:?}: {f:?}"));
         let forces = &swept.0.rollers.unwrap().force_n;
         for (k, phi) in angles.iter().enumerate() {

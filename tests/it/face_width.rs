@@ -9,7 +9,6 @@
 use cycloid::contact::face_width::FaceWidth;
 use cycloid::contact::law::{self, LineContact};
 use cycloid::equilibrium::loaded::Model;
-use cycloid::equilibrium::sweep;
 use cycloid::model::results::{FaceLoads, LoadedSweep};
 use cycloid::model::{ContactLaw, Crowning, Face, Misalignment, Plan};
 use cycloid::spec::Spec;
@@ -38,7 +37,7 @@ fn run(spec: &Spec) -> LoadedSweep {
     let scene = &spec.scenes[0];
     let plan = Plan::for_scene(scene);
     let model = Model::new(&spec.design, &spec.modification, scene, &plan);
-    sweep::sweep(&model, &scene.crank_rad, true, &cycloid::progress::Silent)
+    crate::common::one_disc_sweep(&model, &scene.crank_rad, true)
         .unwrap_or_else(|f| panic!("{f:?}"))
         .0
 }
@@ -399,7 +398,7 @@ fn the_closed_form_balance_matches_200_winkler_slices() {
             .rollers
             .map(|r| r.with_face_by_slices(&scene.face));
         let go = |m: &Model| {
-            sweep::sweep(m, &scene.crank_rad, true, &cycloid::progress::Silent)
+            crate::common::one_disc_sweep(m, &scene.crank_rad, true)
                 .unwrap_or_else(|f| panic!("{f:?}"))
         };
         let (closed, sliced) = (go(&closed_model), go(&sliced_model));
@@ -567,7 +566,7 @@ fn the_sweep_matches_each_angle_solved_alone_on_a_tilted_face() {
     let scene = &s.scenes[0];
     let plan = Plan::for_scene(scene);
     let model = Model::new(&s.design, &s.modification, scene, &plan);
-    let swept = sweep::sweep(&model, &scene.crank_rad, true, &cycloid::progress::Silent).unwrap();
+    let swept = crate::common::one_disc_sweep(&model, &scene.crank_rad, true).unwrap();
     let r = swept.0.rollers.unwrap();
     let peak = r.force_n.iter().flatten().copied().fold(0.0, f64::max);
     for (k, &phi) in scene.crank_rad.iter().enumerate() {

@@ -12,7 +12,6 @@ use cycloid::equilibrium::discs_sweep;
 use cycloid::equilibrium::first_order_sweep::{FirstOrderSweep, Row, Scratch};
 use cycloid::equilibrium::loaded::{AngleSolution, Model};
 use cycloid::equilibrium::residual::residual;
-use cycloid::equilibrium::sweep;
 use cycloid::model::results::LoadedSweep;
 use cycloid::model::{ContactLaw, GeometryMode};
 use cycloid::spec::{self, Spec};
@@ -265,7 +264,7 @@ fn kernel_settles_every_angle_of_the_paper_design_and_agrees() {
             "moment {moment} at {phi}"
         );
     }
-    let (sweep, _) = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent).unwrap();
+    let (sweep, _) = crate::common::one_disc_sweep(&model, &angles, false).unwrap();
     assert_agrees("paper", &model, &angles, &sweep);
 }
 
@@ -289,7 +288,7 @@ fn sweep_agrees_with_the_general_solve_on_hard_cases() {
         let scene = 0;
         let model = model(&spec, scene);
         let angles = grid(&spec, scene, 240);
-        let (sweep, _) = sweep::sweep(&model, &angles, false, &cycloid::progress::Silent)
+        let (sweep, _) = crate::common::one_disc_sweep(&model, &angles, false)
             .unwrap_or_else(|f| panic!("{case}: {:?}", f.failure));
         assert_agrees(case, &model, &angles, &sweep);
     }
@@ -306,7 +305,7 @@ fn sweep_is_the_same_on_one_and_on_four_threads() {
     for (path, model, angles) in thread_cases() {
         let on = |threads| {
             on_threads(threads, || {
-                sweep::sweep(&model, &angles, true, &cycloid::progress::Silent).unwrap()
+                crate::common::one_disc_sweep(&model, &angles, true).unwrap()
             })
         };
         assert_eq!(on(1), on(4), "{path}");

@@ -9,7 +9,6 @@
 
 use crate::common::{assert_refused_at, Scratch};
 use cycloid::equilibrium::loaded::Model;
-use cycloid::equilibrium::sweep;
 use cycloid::model::results::{LoadedSweep, Transmission};
 use cycloid::model::Plan;
 use cycloid::spec::Spec;
@@ -222,8 +221,7 @@ fn solve_at(spec: &Spec, crank_rad: &[f64]) -> (LoadedSweep, Option<Transmission
     let scene = &spec.scenes[0];
     let plan = Plan::for_scene(scene);
     let model = Model::new(&spec.design, &spec.modification, scene, &plan);
-    sweep::sweep(&model, crank_rad, false, &cycloid::progress::Silent)
-        .unwrap_or_else(|f| panic!("{f:?}"))
+    crate::common::one_disc_sweep(&model, crank_rad, false).unwrap_or_else(|f| panic!("{f:?}"))
 }
 
 /// The forces of angle `k` that must repeat: the bearing force's magnitude and the roller and

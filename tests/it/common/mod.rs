@@ -503,6 +503,25 @@ pub(crate) fn run_first_scene(spec: &Spec) -> cycloid::model::results::SceneResu
     .unwrap()
 }
 
+/// The loaded sweep of one disc of `model` at `crank_rad` (`discs_sweep::sweep_reducer`, N = 1):
+/// the disc's curves and the reducer's transmission.
+pub(crate) fn one_disc_sweep(
+    model: &cycloid::equilibrium::loaded::Model,
+    crank_rad: &[f64],
+    periodic: bool,
+) -> Result<
+    (
+        cycloid::model::results::LoadedSweep,
+        Option<cycloid::model::results::Transmission>,
+    ),
+    cycloid::equilibrium::sweep::SweepFailure,
+> {
+    use cycloid::equilibrium::discs_sweep::sweep_reducer;
+    let swept = sweep_reducer(model, 1, crank_rad, (periodic, &cycloid::progress::Silent))?;
+    let disc = swept.discs.into_iter().next().expect("one disc");
+    Ok((disc, swept.transmission))
+}
+
 /// Sample `k` of the tolerance study `study` (a spec file in `dir`) written back as a spec
 /// (`tolerance --write-sample`) and checked (`check --json`): the sample's spec and its results
 /// JSON. Exit 0 or 1 required of the check (a sample may fail a limit).

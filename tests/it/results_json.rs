@@ -135,7 +135,9 @@ fn a_long_scene_written_on_two_threads_is_its_serialisation() {
         let plan = cycloid::engine::scene::plan(&spec, &scene, writes);
         let result = cycloid::engine::scene::run(&spec, &scene, &plan, &Default::default())
             .unwrap_or_else(|e| panic!("{path} {}: {e:?}", scene.name));
-        the_written_document_is_its_serialisation(&spec, &[result], path);
+        let results = [result];
+        let summaries = cycloid::engine::summary::summarise(&results);
+        the_written_document_is_its_serialisation(&spec, &results, &summaries, path);
     }
 }
 

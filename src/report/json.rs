@@ -654,31 +654,24 @@ impl SceneDoc<'_> {
     }
 
     /// Write the document as `Serialize` would, its curves' numbers by `json_text`. A long
-    /// scene's fields after the first entry are written by two threads from both ends of
-    /// `SCENE` (`Ends`): this one from the front into `text`, a worker of the pool from the
-    /// back into memory, copied after the front's. A field's text is the same whoever writes
-    /// it, so the file is the same bytes. Why: the sweep runs on every core, the JSON's
-    /// formatting on one (BENCHMARKS.md "The JSON on two threads").
+    /// scene's fields are written by two threads from both ends of `SCENE` (`Ends`): this one
+    /// from the front into `text`, a worker of the pool from the back into memory, passed on
+    /// after the front's. A field's text is the same whoever writes it, so the file is the
+    /// same bytes. Why: the sweep runs on every core, the JSON's formatting on one
+    /// (BENCHMARKS.md "The JSON on two threads").
     fn write(&self, text: &mut Text) -> serde_json::Result<()> {
         let mut object = Object::new(text)?;
-        let mut fields = SCENE.iter().enumerate();
-        for (_, &field) in fields.by_ref() {
-            self.field(&mut object, field)?;
-            if !object.is_empty() {
-                break;
-            }
-        }
-        let Some((next, _)) = fields.next().filter(|_| self.is_long()) else {
-            for (_, &field) in fields {
-                self.field(&mut object, field)?;
-            }
+        if !self.is_long() {
+            SCENE.iter().try_for_each(|&f| self.field(&mut object, f))?;
             return object.end();
-        };
-        let ends = Ends::new(next..SCENE.len());
+        }
+        // The first field, a named scene's name (`is_long`), is this thread's: every field
+        // the other writes follows an entry, after a comma.
+        let ends = Ends::new(1..SCENE.len());
         let mut back = None;
         let front = rayon::in_place_scope(|s| {
             s.spawn(|_| back = Some(self.write_from_back(&ends)));
-            ends.front()
+            (std::iter::once(0).chain(ends.front()))
                 .try_for_each(|i| self.field(&mut object, SCENE[i]))
         });
         front?;
@@ -708,9 +701,10 @@ impl SceneDoc<'_> {
     }
 
     /// Whether the document is long enough that a second thread pays for waking it: a
-    /// scene of `LONG_SCENE` crank angles or more.
+    /// named scene (its first field, `Extra::Name`, always written) of `LONG_SCENE` crank
+    /// angles or more.
     fn is_long(&self) -> bool {
-        matches!(self.of, Of::Scene { .. }) && self.r.crank_rad.len() >= LONG_SCENE
+        matches!(self.of, Of::Scene { named: true }) && self.r.crank_rad.len() >= LONG_SCENE
     }
 }
 

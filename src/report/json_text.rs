@@ -289,11 +289,6 @@ impl<'t, 'a> Object<'t, 'a> {
         }
     }
 
-    /// Whether no entry is written yet.
-    pub fn is_empty(&self) -> bool {
-        self.empty
-    }
-
     /// Entries another `Object` wrote in memory (`Text::pass`).
     pub fn pass(&mut self, bytes: &[u8]) -> serde_json::Result<()> {
         self.text.pass(bytes)

@@ -655,7 +655,7 @@ impl SceneDoc<'_> {
 
     /// Write the document as `Serialize` would, its curves' numbers by `json_text`. A long
     /// scene's fields are written by two threads from both ends of `SCENE` (`Ends`): this one
-    /// from the front into `text`, a worker of the pool from the back into memory, passed on
+    /// from the front into `text`, a second from the back into memory, passed on
     /// after the front's. A field's text is the same whoever writes it, so the file is the
     /// same bytes. Why: the sweep runs on every core, the JSON's formatting on one
     /// (BENCHMARKS.md "The JSON on two threads").
@@ -669,8 +669,11 @@ impl SceneDoc<'_> {
         // the other writes follows an entry, after a comma.
         let ends = Ends::new(1..SCENE.len());
         let mut back = None;
-        let front = rayon::in_place_scope(|s| {
-            s.spawn(|_| back = Some(self.write_from_back(&ends)));
+        // A thread of its own, not a worker of rayon's pool: a pool's worker asleep since the
+        // sweep took from 30 µs to past the end of the front's work to start (a new thread:
+        // 0.1–0.16 ms; BENCHMARKS.md "The JSON on two threads").
+        let front = std::thread::scope(|s| {
+            s.spawn(|| back = Some(self.write_from_back(&ends)));
             (std::iter::once(0).chain(ends.front()))
                 .try_for_each(|i| self.field(&mut object, SCENE[i]))
         });

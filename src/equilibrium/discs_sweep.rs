@@ -1,6 +1,6 @@
-//! The loaded sweep of a reducer's discs on one crank, one or several (`discs::solve_coupled`
-//! at every crank angle): each disc's curves and torque share, and the reducer's transmission
-//! from the common output lag. One disc is N = 1 on the same path: it carries the whole torque,
+//! The loaded sweep of a reducer's discs on one crank, one or several (several by
+//! `discs::solve_coupled` at every crank angle): each disc's curves and torque share, and the
+//! reducer's transmission from the common output lag. One disc is N = 1 on the same path: it carries the whole torque,
 //! so it skips what only a split needs (the Newton on the shares, their history, the second
 //! wave) and solves alone (`angle::solve_into`, or its lean kernel at the whole torque), its
 //! output lag γ = β + βo its own. The columns, chunks and curves are `sweep`'s.
@@ -19,9 +19,9 @@ use crate::model::results::{LoadedSweep, Transmission};
 use crate::progress::Progress;
 use rayon::prelude::*;
 
-/// A sweep of a reducer's discs (`discs::solve_coupled` at every crank angle): each disc's
-/// curves (its lags, forces, bearing; no transmission of its own) and torque share, and the
-/// reducer's transmission from the common output lag γ.
+/// A sweep of a reducer's discs (`sweep_discs`): each disc's curves (its lags, forces,
+/// bearing; no transmission of its own) and torque share, and the reducer's transmission from
+/// the common output lag γ.
 #[derive(Debug, Clone)]
 pub struct DiscSweeps {
     pub discs: Vec<LoadedSweep>,
@@ -123,8 +123,8 @@ fn solve_coupled_chunk(
 /// shares extrapolated from the last angles, and the Newton on the shares, weighted by each
 /// kernel's own compliance at its solution, corrects them until the split settles
 /// (`discs::converged`); an angle it does not settle goes to the coupled solve. One per
-/// worker, restarted at every chunk (`Lean::restart`): its kernels and scratch space are
-/// built once per sweep.
+/// worker's run of chunks (rayon's `map_init`), restarted at every chunk (`Lean::restart`):
+/// its kernels and scratch space are built once for the chunks a worker takes in a row.
 struct Lean<'a> {
     /// Every disc's kernel and state, or none: the lean path needs them all.
     discs: Vec<LeanDisc<'a>>,
@@ -384,8 +384,8 @@ fn solve_in_two_waves(
 
 /// The loaded sweep of a reducer of `count` discs (each disc as `model`, the scene's model of
 /// the disc at phase 0, at its crank phase 2πk/N): the one entry of a scene's loaded run,
-/// whatever N (`sweep_discs`). One disc carries the whole torque at every angle: its torque
-/// share is T and its output lag γ = β + βo is the reducer's.
+/// whatever N ≥ 1 (`sweep_discs`; the spec refuses no disc). One disc carries the whole torque
+/// at every angle: its torque share is T and its output lag γ = β + βo is the reducer's.
 pub fn sweep_reducer(
     model: &Model,
     count: usize,

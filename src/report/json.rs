@@ -671,26 +671,36 @@ impl SceneDoc<'_> {
         let mut back = None;
         // A thread of its own, not a worker of rayon's pool: a pool's worker asleep since the
         // sweep took from 30 µs to past the end of the front's work to start (a new thread:
-        // 0.1–0.16 ms; BENCHMARKS.md "The JSON on two threads").
+        // 0.1–0.16 ms; BENCHMARKS.md "The JSON on two threads"). Where none can be had (a
+        // cap on threads), this one takes every field.
         let front = std::thread::scope(|s| {
-            s.spawn(|| back = Some(self.write_from_back(&ends)));
+            let spawned = std::thread::Builder::new()
+                .spawn_scoped(s, || back = Some(self.write_from_back(&ends)));
+            drop(spawned);
             (std::iter::once(0).chain(ends.front()))
                 .try_for_each(|i| self.field(&mut object, SCENE[i]))
         });
         front?;
-        let (bytes, segments) = back.unwrap_or_else(|| Ok((Vec::new(), Vec::new())))?;
-        for range in segments.into_iter().rev() {
-            object.pass(&bytes[range])?;
-        }
+        pass_back(&mut object, back)?;
+        object.end()
+    }
+
+    /// The document with fields `..m` written as the front's and the rest as the back's
+    /// (`write`'s split, at a given place and on one thread).
+    #[cfg(test)]
+    fn write_split(&self, text: &mut Text, m: usize) -> serde_json::Result<()> {
+        let mut object = Object::new(text)?;
+        (SCENE[..m].iter()).try_for_each(|&f| self.field(&mut object, f))?;
+        pass_back(
+            &mut object,
+            Some(self.write_from_back(&Ends::new(m..SCENE.len()))),
+        )?;
         object.end()
     }
 
     /// The fields `ends` gives from the back, each written after a comma into memory: the
     /// text and each field's bytes in it, last field first.
-    fn write_from_back(
-        &self,
-        ends: &Ends,
-    ) -> serde_json::Result<(Vec<u8>, Vec<std::ops::Range<usize>>)> {
+    fn write_from_back(&self, ends: &Ends) -> serde_json::Result<Back> {
         // Room for ten curves' numbers at each angle without growing (25 bytes a number at
         // most): the back half of a scene of ten rollers or pins.
         let mut text = Text::in_memory(250 * self.r.crank_rad.len());
@@ -705,10 +715,28 @@ impl SceneDoc<'_> {
 
     /// Whether the document is long enough that a second thread pays for waking it: a
     /// named scene (its first field, `Extra::Name`, always written) of `LONG_SCENE` crank
-    /// angles or more.
+    /// angles or more, where the run may use more than one thread (`RAYON_NUM_THREADS`).
     fn is_long(&self) -> bool {
-        matches!(self.of, Of::Scene { named: true }) && self.r.crank_rad.len() >= LONG_SCENE
+        matches!(self.of, Of::Scene { named: true })
+            && self.r.crank_rad.len() >= LONG_SCENE
+            && rayon::current_num_threads() > 1
     }
+}
+
+/// The text the back's thread wrote and each field's bytes in it, last field first.
+type Back = (Vec<u8>, Vec<std::ops::Range<usize>>);
+
+/// The back's fields (`SceneDoc::write_from_back`), in their order after the front's: none
+/// when no second thread was had, whose fields the front then wrote.
+fn pass_back(
+    object: &mut Object,
+    back: Option<serde_json::Result<Back>>,
+) -> serde_json::Result<()> {
+    let Some(back) = back else {
+        return Ok(());
+    };
+    let (bytes, segments) = back?;
+    (segments.into_iter().rev()).try_for_each(|range| object.pass(&bytes[range]))
 }
 
 /// Crank angles from which a scene's document is written on two threads (`SceneDoc::write`).
@@ -723,12 +751,14 @@ impl Ends {
         Ends(std::sync::Mutex::new(range))
     }
 
+    // A poisoned lock (a panic while it was held) still holds a whole range: `next` cannot
+    // panic.
     fn front(&self) -> impl Iterator<Item = usize> + '_ {
-        std::iter::from_fn(|| self.0.lock().ok()?.next())
+        std::iter::from_fn(|| self.0.lock().unwrap_or_else(|e| e.into_inner()).next())
     }
 
     fn back(&self) -> impl Iterator<Item = usize> + '_ {
-        std::iter::from_fn(|| self.0.lock().ok()?.next_back())
+        std::iter::from_fn(|| (self.0.lock().unwrap_or_else(|e| e.into_inner())).next_back())
     }
 }
 
@@ -1294,6 +1324,41 @@ mod tests {
             SCENE.iter().filter(|f| matches!(f, Field::Scalars)).count(),
             1
         );
+    }
+
+    /// A long scene's document is the same bytes wherever `SceneDoc::write` splits its fields
+    /// between the front's thread and the back's (the split is the threads' race): every
+    /// split, for a one-disc scene with line loads, a two-disc scene (each disc's document
+    /// inside) and a duty cycle (its bins), against serde_json's text of the document.
+    #[test]
+    fn a_scene_document_is_the_same_bytes_wherever_its_fields_are_split() {
+        use crate::engine::scene::{self, Writes};
+        for (path, name) in [
+            ("specs/reducer-misaligned.yaml", "designed"),
+            ("specs/reducer-two-discs.yaml", "rated"),
+            ("specs/reducer-duty-cycle.yaml", "robot-joint"),
+        ] {
+            let spec = crate::spec::load(path).unwrap();
+            let mut s = (spec.scenes.iter().find(|s| s.name == name))
+                .unwrap_or_else(|| panic!("{path}: no scene {name}"))
+                .clone();
+            s.crank_rad.truncate(5);
+            let writes = Writes {
+                json: true,
+                report: false,
+            };
+            let plan = scene::plan(&spec, &s, writes);
+            let r = scene::run(&spec, &s, &plan, &Default::default()).unwrap();
+            let doc = SceneDoc::new(&r, None);
+            let serialised = serde_json::to_vec(&doc).unwrap();
+            for m in 1..=SCENE.len() {
+                let mut written = Vec::new();
+                let mut text = Text::new(&mut written);
+                doc.write_split(&mut text, m).unwrap();
+                text.finish().unwrap();
+                assert!(written == serialised, "{path}: split at field {m}");
+            }
+        }
     }
 
     /// A count is written as a whole number, and one that is not is an error, not rounded.

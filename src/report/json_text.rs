@@ -157,7 +157,9 @@ pub fn rows<'r>(text: &mut Text, rows: impl Iterator<Item = &'r [f64]>) -> serde
 /// holds 64 KiB (it stays in cache and is reused, where a buffer of the whole file would be
 /// new memory, a page fault every 4 KiB). A value serialised by serde (`Object`'s
 /// `SerializeMap`) goes into the buffer whole first: a scene's discs' documents and a duty
-/// cycle's bins grow it to their size.
+/// cycle's bins grow it to their size. A long scene's back fields are written by a second
+/// thread into a buffer of their own (`Text::in_memory`, up to the scene's text when the
+/// writer is slow), passed on after the front's (`Text::pass`).
 pub struct Text<'a> {
     buf: Vec<u8>,
     /// Where the buffer goes when full; none for text kept in memory (`Text::in_memory`).

@@ -114,30 +114,20 @@ pub fn count(n: f64) -> Result<u64, String> {
     }
 }
 
-/// `[n0,n1,…]` at the end of `buf`: each `count` in decimal, as serde_json writes a `u64`.
+/// `[n0,n1,…]` at the end of `buf`: each `count` in decimal by itoa, as serde_json writes a
+/// `u64` (it calls itoa).
 pub fn counts(buf: &mut Vec<u8>, row: &[f64]) -> serde_json::Result<()> {
+    let mut digits = itoa::Buffer::new();
     buf.push(b'[');
     for (i, &n) in row.iter().enumerate() {
         if i > 0 {
             buf.push(b',');
         }
-        let mut n = count(n).map_err(serde_json::Error::custom)?;
-        if n < 10 {
-            // Rollers in contact: one digit, the common case.
-            buf.push(b'0' + n as u8);
-            continue;
+        match count(n).map_err(serde_json::Error::custom)? {
+            // Rollers in contact: one digit, the common case, without itoa's call.
+            n @ 0..10 => buf.push(b'0' + n as u8),
+            n => buf.extend_from_slice(digits.format(n).as_bytes()),
         }
-        let mut digits = [0; 20];
-        let mut start = digits.len();
-        loop {
-            start -= 1;
-            digits[start] = b'0' + (n % 10) as u8;
-            n /= 10;
-            if n == 0 {
-                break;
-            }
-        }
-        buf.extend_from_slice(&digits[start..]);
     }
     buf.push(b']');
     Ok(())

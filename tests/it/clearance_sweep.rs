@@ -347,11 +347,7 @@ fn sweep_is_the_same_on_one_and_on_four_threads() {
     let mesh = Mesh::new(&spec.design, &spec.modification);
     let crank = crank(0.0, 1000);
     let on = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        crate::common::on_threads(threads, || {
             (
                 clearance::sweep(&mesh, &crank, Scope::Backlash, &cycloid::progress::Silent)
                     .unwrap(),

@@ -254,11 +254,7 @@ fn the_paper_table_1_is_found_as_the_known_answer() {
 fn a_seed_gives_the_same_front_bit_for_bit_on_any_number_of_threads() {
     let req = small();
     let a = design_search::search(&req, &Silent).unwrap();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
-    let b = pool.install(|| design_search::search(&req, &Silent).unwrap());
+    let b = crate::common::on_threads(1, || design_search::search(&req, &Silent).unwrap());
     let bits = |r: &design_search::SearchRun| -> Vec<u64> {
         r.front
             .iter()

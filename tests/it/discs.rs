@@ -575,13 +575,8 @@ fn coupled_sweep_in_two_waves_is_the_same_on_one_and_on_four_threads() {
     let spec = eleven_rollers(2, ("rated", 20.0), (0.0, 30.0, 300), ("bearing", ""))
         .parse("odd-exact.yaml");
     let run = || first_scene(&spec).unwrap();
-    let pool = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-    };
-    let (one, four) = (pool(1).install(run), pool(4).install(run));
+    let on = crate::common::on_threads;
+    let (one, four) = (on(1, run), on(4, run));
     for (a, b) in one.discs.iter().zip(&four.discs) {
         assert_eq!(a.loaded, b.loaded);
     }

@@ -304,7 +304,7 @@ fn sweep_agrees_with_the_general_solve_on_hard_cases() {
 fn sweep_is_the_same_on_one_and_on_four_threads() {
     for (path, model, angles) in thread_cases() {
         let on = |threads| {
-            on_threads(threads, || {
+            crate::common::on_threads(threads, || {
                 crate::common::one_disc_sweep(&model, &angles, true).unwrap()
             })
         };
@@ -332,12 +332,6 @@ fn thread_cases() -> Vec<(&'static str, Model, Vec<f64>)> {
     .collect()
 }
 
-/// `f` on a pool of `threads` threads.
-fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads);
-    pool.build().unwrap().install(f)
-}
-
 /// The same for two discs (`discs_sweep::sweep_discs`), whose lean kernels and scratch
 /// space are built once per thread and restarted at every chunk: on one thread each chunk
 /// after the first inherits the screens, active sets and followed rotations of the one
@@ -349,7 +343,10 @@ fn two_discs_sweep_the_same_on_one_and_on_four_threads() {
         let discs = cycloid::equilibrium::discs::Discs::new(&model, 2);
         let silent = &cycloid::progress::Silent;
         let sweep = || discs_sweep::sweep_discs(&discs, &angles, true, silent).unwrap();
-        let (one, four) = (on_threads(1, sweep), on_threads(4, sweep));
+        let (one, four) = (
+            crate::common::on_threads(1, sweep),
+            crate::common::on_threads(4, sweep),
+        );
         assert_eq!(one.discs, four.discs, "{path}");
         assert_eq!(one.torque_nmm, four.torque_nmm, "{path}");
         assert_eq!(one.transmission, four.transmission, "{path}");

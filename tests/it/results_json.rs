@@ -137,7 +137,10 @@ fn a_long_scene_written_on_two_threads_is_its_serialisation() {
             .unwrap_or_else(|e| panic!("{path} {}: {e:?}", scene.name));
         let results = [result];
         let summaries = cycloid::engine::summary::summarise(&results);
-        the_written_document_is_its_serialisation(&spec, &results, &summaries, path);
+        // Two threads at least: with one the document is written on one (`SceneDoc::is_long`).
+        crate::common::on_threads(2, || {
+            the_written_document_is_its_serialisation(&spec, &results, &summaries, path)
+        });
     }
 }
 

@@ -537,3 +537,10 @@ pub(crate) fn replayed_sample(dir: &Path, study: &str, k: usize) -> (String, ser
     let json = std::fs::read_to_string(dir.join("c.json")).unwrap();
     (out, serde_json::from_str(&json).unwrap())
 }
+
+/// `f` on a rayon pool of `threads` threads (results that must not depend on the thread count;
+/// code that splits its work only with more than one).
+pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads);
+    pool.build().unwrap().install(f)
+}

@@ -276,6 +276,10 @@ proptest! {
                     prop_assert_eq!(s.force_n, p.force_n[j][k], "pin {} angle {}", j, k);
                 }
             }
+            if let Some(b) = &disc.bearing {
+                let force = sol.bearing_force_n.map(|f| f.norm());
+                prop_assert_eq!(force, Some(b.force_n[k]), "bearing, angle {}", k);
+            }
             prop_assert_eq!(work.models[0].torque_nmm, swept.torque_nmm[0][k]);
         }
     }

@@ -16,7 +16,6 @@ use crate::engine::torque_curve;
 use crate::engine::verdict::{self, Check};
 use crate::error::{Error, ErrorKind, Result};
 use crate::measure::fit::Identification;
-use crate::model::quantity::Quantity;
 use crate::model::results::{SceneResult, TorqueCurve};
 use crate::model::{Modification, Study};
 use crate::progress::{Budget, Phase, Progress};
@@ -265,13 +264,11 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
 
 /// The last guard against a false pass: a scalar of the registry that is not a finite number
 /// (an input the spec's bounds let through, a computation that overflowed) is an error naming
-/// the scene and the quantity, never a figure a limit compares or a page shows. A rating life
-/// is the exception: infinite where nothing loads the bearing (an unbounded life).
+/// the scene and the quantity, never a figure a limit compares or a page shows. (A life with
+/// no finite bound is `UNBOUNDED_LIFE_H`, the largest double: a finite number.)
 fn all_finite(summaries: &[SceneSummary]) -> Result<()> {
-    use crate::model::quantity::{BEARING_LIFE, DUTY_LIFE};
     for s in summaries {
-        let unbounded = |q: &Quantity| [BEARING_LIFE.key, DUTY_LIFE.key].contains(&q.key);
-        let beyond = (s.scalars.iter()).find(|(q, x)| !unbounded(q) && !x.value.is_finite());
+        let beyond = (s.scalars.iter()).find(|(_, x)| !x.value.is_finite());
         if let Some((q, x)) = beyond {
             return Err(Error::computation(format!(
                 "scene `{}`: {} is {}, not a finite number: the inputs are beyond what the \

@@ -333,8 +333,13 @@ fn backlash(d: &DiscResult) -> Option<&BacklashCurves> {
     d.clearance.as_ref()?.backlash.as_ref()
 }
 
+/// One curve of `v` converted by `unit` (`units`: rad to arcsec, N·mm to N·m, …).
+fn converted(v: &[f64], unit: fn(f64) -> f64) -> Rows<'static> {
+    Rows::Computed(vec![v.iter().map(|&x| unit(x)).collect()])
+}
+
 fn arcsec(v: &[f64]) -> Rows<'static> {
-    Rows::Computed(vec![v.iter().map(|&x| units::arcsec(x)).collect()])
+    converted(v, units::arcsec)
 }
 
 fn one(v: &[f64]) -> Rows<'_> {
@@ -577,13 +582,7 @@ pub const DISC_TORQUE: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| {
-        let t = d.loaded.torque_nmm.as_ref()?;
-        Some(Rows::Computed(vec![t
-            .iter()
-            .map(|&x| units::nm(x))
-            .collect()]))
-    }),
+    read: Read::DiscCurves(|d| Some(converted(d.loaded.torque_nmm.as_ref()?, units::nm))),
 };
 
 /// βo, the lag of the output behind the disc from the pins' deflection, arcsec
@@ -634,10 +633,7 @@ pub const BEARING_ANGLE: Quantity = Quantity {
     period: Some(360.0),
     of: None,
     read: Read::DiscCurves(|d| {
-        d.loaded
-            .bearing
-            .as_ref()
-            .map(|b| Rows::Computed(vec![b.angle_rad.iter().map(|&a| units::deg(a)).collect()]))
+        (d.loaded.bearing.as_ref()).map(|b| converted(&b.angle_rad, units::deg))
     }),
 };
 
@@ -1334,13 +1330,7 @@ pub const INPUT_TORQUE: Quantity = Quantity {
     period: None,
     of: None,
     read: Read::ReducerCurves(|r| {
-        reducer_efficiency(r).map(|e| {
-            Rows::Computed(vec![e
-                .input_torque_nmm
-                .iter()
-                .map(|&t| units::nm(t))
-                .collect()])
-        })
+        reducer_efficiency(r).map(|e| converted(&e.input_torque_nmm, units::nm))
     }),
 };
 

@@ -540,7 +540,7 @@ pub(crate) fn replayed_sample(dir: &Path, study: &str, k: usize) -> (String, ser
 
 /// `f` on a rayon pool of `threads` threads (results that must not depend on the thread count;
 /// code that splits its work only with more than one).
-pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+pub(crate) fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads);
     pool.build().unwrap().install(f)
 }

@@ -30,15 +30,8 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
     // disc: a bearing life over the drawing's loaded period no longer spans whole load cycles.
     let what = "the disc identified from `measured_profile`, whose form error repeats only \
                 after a whole turn of the disc";
-    let (limits, design, every_scene) = (&built.limits, &built.design, || {
-        built.scenes.iter().enumerate()
-    });
-    every_scene()
-        .try_for_each(|s| crate::spec::bearing_life::check_scene(limits, design, s, Some(what)))
-        .and_then(|()| {
-            every_scene()
-                .try_for_each(|s| crate::spec::periods::check_scene(limits, design, s, Some(what)))
-        })
+    let scenes = built.scenes.iter().enumerate();
+    crate::spec::periods::check_built(&built.limits, &built.design, scenes, what)
         .map_err(|e| spec.locate(e))?;
     Ok(Some((built, id)))
 }

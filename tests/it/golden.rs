@@ -203,7 +203,8 @@ fn a_missing_golden_file_is_exit_2_naming_it_and_suggesting_bless() {
 }
 
 /// A golden of a curve the scene's effects cover but its run cannot hold says which quantity
-/// is missing and why, at the golden's `quantity` key, exit 2 (`check` and `bless` alike): a
+/// is missing and why, at the golden's `quantity` key, exit 2 (`bless` here; `check` reads
+/// the curve through the same `engine::golden::computed`): a
 /// disc's torque share on a one-disc reducer (computed with several discs only; it used to
 /// say "a ratio needs at least 3 crank angles"), and a ratio over 2 crank angles.
 #[test]

@@ -332,9 +332,9 @@ fn centroid_words(name: &str, text: &str) -> String {
 }
 
 /// The review says a centroid on the disc's centre in words and prints a real offset as a
-/// number. The disc is invariant under a turn by 2π/nc (9 lobes, 6 holes), and with a form
-/// error of order 3 still under a turn by 2π/3 (t → t + 2π/3 turns C(t) by 2π/3, as 10·2π/3
-/// ≡ 2π/3): its centroid is its centre by symmetry, the computed offset round-off. A form
+/// number. The disc is invariant under a turn by 2π/3 (the common symmetry of its 9 lobes and
+/// 6 holes), and with a form error of order 3 still under it (t → t + 2π/3 turns C(t) by
+/// 2π/3, as 10·2π/3 ≡ 2π/3): its centroid is its centre by symmetry, the computed offset round-off. A form
 /// error of order 10 (≡ 1 mod 9) breaks every symmetry but the mirror: its first-order
 /// change of S, −∮ w·Γ·|Γ'| dt, has a mean against Γ's harmonics 1 + 9m, so the centroid
 /// moves in proportion to the amplitude: doubling it doubles the offset, to within the second

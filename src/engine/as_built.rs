@@ -31,7 +31,7 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
     let what = "the disc identified from `measured_profile`, whose form error repeats only \
                 after a whole turn of the disc";
     let scenes = built.scenes.iter().enumerate();
-    crate::spec::periods::check_built(&built.limits, &built.design, scenes, what)
+    crate::spec::bearing_life::check_built(&built.limits, &built.design, scenes, what)
         .map_err(|e| spec.locate(e))?;
     Ok(Some((built, id)))
 }

@@ -20,6 +20,21 @@ const KEY: &str = "min_bearing_life_h";
 /// The duty cycle's limit (`scenes[].duty_cycle`): the same rules, the speeds the bins'.
 const DUTY_KEY: &str = "min_duty_life_h";
 
+/// This module's rule (`check_scene`) on each of `scenes`, then the periods'
+/// (`periods::check_scene`), for a reducer other than the drawing, `built` saying what made it
+/// differ: the rules the parts a tolerance study draws and the disc as built are held to.
+pub(crate) fn check_built<'s>(
+    limits: &Limits,
+    design: &Design,
+    mut scenes: impl Iterator<Item = (usize, &'s Scene)> + Clone,
+    built: &str,
+) -> Result<()> {
+    scenes
+        .clone()
+        .try_for_each(|s| check_scene(limits, design, s, Some(built)))?;
+    scenes.try_for_each(|s| super::periods::check_scene(limits, design, s, Some(built)))
+}
+
 /// The rule on scene `i` of the spec (each in turn, or the one scene a tolerance study runs)
 /// for the reducer `design`; `built` says what made it differ from the drawing (`None`: the
 /// spec's own reducer), for the error to name.

@@ -15,20 +15,6 @@ use crate::error::{Error, Result};
 use crate::model::{Design, Limits, Plan, Scene, Study};
 use crate::{numeric, units};
 
-/// The bearing life's rule (`bearing_life::check_scene`) on each of `scenes`, then this
-/// module's, for a reducer other than the drawing, `built` saying what made it differ: the
-/// rules the parts a tolerance study draws and the disc as built are held to.
-pub(crate) fn check_built<'s>(
-    limits: &Limits,
-    design: &Design,
-    mut scenes: impl Iterator<Item = (usize, &'s Scene)> + Clone,
-    built: &str,
-) -> Result<()> {
-    let bearing_life = |s| super::bearing_life::check_scene(limits, design, s, Some(built));
-    scenes.clone().try_for_each(bearing_life)?;
-    scenes.try_for_each(|s| check_scene(limits, design, s, Some(built)))
-}
-
 /// Every limit on a loaded figure, on scene `i` of the spec (each in turn, or the one scene a
 /// tolerance study runs) if it computes it, for the reducer `design`; `built` says what made
 /// it differ from the drawing (`None`: the spec's own reducer), for the error to name.

@@ -139,7 +139,7 @@ fn drawn_periods(
         .collect();
     let what = format!("the parts the tolerance study draws: {}", kinds.join(", "));
     let scene = (tol.scene, &scenes[tol.scene]);
-    super::periods::check_built(limits, &drawn, std::iter::once(scene), &what)
+    super::bearing_life::check_built(limits, &drawn, std::iter::once(scene), &what)
 }
 
 /// The kinds whose deviations one rule of an as-built state judges together.

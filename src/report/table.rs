@@ -6,13 +6,8 @@ use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
 use crate::engine::verdict::{Bound, Check, CheckKind, Evidence};
 use crate::model::quantity::{find_limit, Quantity, COUNTS};
 use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE};
+use crate::numeric::number;
 use crate::report::place::{self, ONLY_ANGLE};
-
-/// Format a number for a person: [`numeric::number`](crate::numeric::number), the one
-/// formatter (4 significant figures after rounding: 9.99999998 reads 10.00, not 10.000).
-pub fn number(x: f64) -> String {
-    crate::numeric::number(x)
-}
 
 /// A value of `q` (in its unit) as every output prints it — headline, checks table, review,
 /// plots: a count (`quantity::COUNTS`) as a whole number, any other value as `number` (four
@@ -520,7 +515,7 @@ pub fn sampling(s: &SceneSummary) -> String {
 
 /// A scene's crank step, degrees, as people read it.
 fn step_deg(s: &SceneSummary) -> String {
-    crate::numeric::number(crate::units::deg(s.step_rad))
+    number(crate::units::deg(s.step_rad))
 }
 
 /// Where a check's value occurs, or what it rests on, in words: the "where" of every view of
@@ -557,8 +552,8 @@ pub fn evidence(e: &Evidence) -> String {
             "{failures} of {samples} samples fail some limit; {} Clopper–Pearson interval [{}, \
              {}]{}{}",
             crate::numeric::percent_label(*confidence),
-            super::tolerance::percent(interval.0),
-            super::tolerance::percent(interval.1),
+            crate::numeric::percent(interval.0),
+            crate::numeric::percent(interval.1),
             match crate::engine::tolerance::summary::not_shown(
                 *failures,
                 *samples,

@@ -9,7 +9,7 @@ use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::{Error, Result};
 use crate::model::quantity::Bound;
 use crate::model::tolerances::{Distribution, NORMAL_CUT_SIGMA};
-use crate::numeric::number;
+use crate::numeric::{number, percent};
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 use std::collections::BTreeMap;
@@ -47,11 +47,6 @@ pub fn distribution_text(d: Distribution) -> String {
         }
         Distribution::Uniform => "uniform distribution over the band".to_string(),
     }
-}
-
-/// A fraction as a percentage for people.
-pub(super) fn percent(x: f64) -> String {
-    crate::numeric::percent(x)
 }
 
 /// The bands in force, `kind ±b` (mm).

@@ -11,11 +11,11 @@ use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANT
 use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::Result;
 use crate::model::results::is_unbounded;
-use crate::numeric::number;
+use crate::numeric::{number, percent};
 use crate::report::svg::{LinePlot, Series, PALETTE, RED};
 use crate::report::table::with_unit;
 use crate::report::tolerance::{
-    distribution_text, percent, percent_label, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
+    distribution_text, percent_label, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
     QUANTILE_DEFINITION,
 };
 use maud::{html, Markup};

@@ -9,7 +9,7 @@
 //! a hole's wall runs up through the hole. The bottom face never faces the viewer.
 
 use crate::engine::commands::solid_picture::SolidPicture;
-use crate::report::svg::{document, px};
+use crate::report::svg::{document, px, trimmed};
 use maud::{html, PreEscaped};
 
 /// The view direction, toward the viewer (isometric: equal angles with the three axes), disc
@@ -114,8 +114,9 @@ pub fn picture(solid: &SolidPicture) -> (String, usize) {
     let mut polygons = String::with_capacity(100 * drawn.len());
     for f in &drawn {
         let g = format!("{:02x}", f.shade);
+        // Screen coordinates in mm, to 1 µm.
         let pts: Vec<String> = (f.points.iter())
-            .map(|&(x, y)| format!("{},{}", mm3(x), mm3(y)))
+            .map(|&(x, y)| format!("{},{}", trimmed(x, 3), trimmed(y, 3)))
             .collect();
         let class = if f.top { "face" } else { "wall" };
         polygons += &format!(
@@ -133,15 +134,4 @@ pub fn picture(solid: &SolidPicture) -> (String, usize) {
         }
     };
     (document(W, H, body), drawn.len())
-}
-
-/// A screen coordinate in mm to 1 µm, trailing zeros dropped.
-fn mm3(x: f64) -> String {
-    let s = format!("{x:.3}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.to_string()
-    }
 }

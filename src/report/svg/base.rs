@@ -16,7 +16,12 @@ pub const FONT: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
 
 /// A pixel coordinate with two decimals (enough for any screen, keeps files small).
 pub fn px(x: f64) -> String {
-    let s = format!("{x:.2}");
+    trimmed(x, 2)
+}
+
+/// `x` to `decimals`, trailing zeros dropped, "-0" read as "0".
+pub fn trimmed(x: f64, decimals: usize) -> String {
+    let s = format!("{x:.decimals$}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {
         "0".into()

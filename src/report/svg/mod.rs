@@ -17,4 +17,4 @@ pub use line::{LinePlot, Mark, RefLine, Series, YCut};
 pub use map::{MapCell, MapPlot, Marker, Shape, LOG_SPAN};
 pub use ticks::{ticks, Ticks};
 
-pub use base::{document, points, px, text_width, widest, FONT, PALETTE, RED};
+pub use base::{document, points, px, text_width, trimmed, widest, FONT, PALETTE, RED};

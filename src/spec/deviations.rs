@@ -4,6 +4,7 @@
 
 use super::raw::{RawCentreDeviation, RawDeviations};
 use super::rules::rule;
+use super::values::finite;
 use crate::error::{Error, Result};
 use crate::model::{
     CentreDeviation, Design, Deviations, FormTerm, Misalignment, Modification, RollerDeviation,
@@ -13,10 +14,6 @@ use crate::numeric;
 use std::f64::consts::TAU;
 
 const KEY: &str = "reducer.deviations";
-
-fn finite(key: String, value: f64) -> Result<f64> {
-    super::values::finite(&key, value)
-}
 
 /// An index into `count` parts named `what`, each given once (`seen`).
 fn index(key: String, value: i64, count: usize, what: &str, seen: &mut [bool]) -> Result<usize> {
@@ -41,17 +38,17 @@ fn index(key: String, value: i64, count: usize, what: &str, seen: &mut [bool]) -
 
 fn centre(key: &str, raw: &RawCentreDeviation) -> Result<CentreDeviation> {
     Ok(CentreDeviation {
-        radial_mm: finite(format!("{key}.radial_mm"), raw.radial_mm)?,
-        tangential_mm: finite(format!("{key}.tangential_mm"), raw.tangential_mm)?,
+        radial_mm: finite(&format!("{key}.radial_mm"), raw.radial_mm)?,
+        tangential_mm: finite(&format!("{key}.tangential_mm"), raw.tangential_mm)?,
     })
 }
 
 /// The validated deviations of `design` (the design rules of the parts are `check`'s).
 pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> {
     let mut d = Deviations {
-        eccentricity_mm: finite(format!("{KEY}.eccentricity_mm"), raw.eccentricity_mm)?,
-        shift_mm: finite(format!("{KEY}.shift_mm"), raw.shift_mm)?,
-        equidistant_mm: finite(format!("{KEY}.equidistant_mm"), raw.equidistant_mm)?,
+        eccentricity_mm: finite(&format!("{KEY}.eccentricity_mm"), raw.eccentricity_mm)?,
+        shift_mm: finite(&format!("{KEY}.shift_mm"), raw.shift_mm)?,
+        equidistant_mm: finite(&format!("{KEY}.equidistant_mm"), raw.equidistant_mm)?,
         misalignment: match raw.misalignment {
             // mrad → rad, as a scene's (`spec::face::scene_face`).
             Some(m) => Misalignment {
@@ -77,10 +74,10 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
         let i = index(key.clone(), r.index, design.rollers, "rollers", &mut seen)?;
         d.rollers[i] = RollerDeviation {
             centre: CentreDeviation {
-                radial_mm: finite(format!("{key}.radial_mm"), r.radial_mm)?,
-                tangential_mm: finite(format!("{key}.tangential_mm"), r.tangential_mm)?,
+                radial_mm: finite(&format!("{key}.radial_mm"), r.radial_mm)?,
+                tangential_mm: finite(&format!("{key}.tangential_mm"), r.tangential_mm)?,
             },
-            radius_mm: finite(format!("{key}.radius_mm"), r.radius_mm)?,
+            radius_mm: finite(&format!("{key}.radius_mm"), r.radius_mm)?,
         };
     }
     let pins = design.pins.count;
@@ -172,8 +169,8 @@ fn form(raw: &[super::raw::RawFormTerm], teeth: usize, rp: f64) -> Result<Vec<Fo
         }
         terms.push(FormTerm {
             order: order as usize,
-            cos_mm: finite(format!("{key}.cos_mm"), f.cos_mm)?,
-            sin_mm: finite(format!("{key}.sin_mm"), f.sin_mm)?,
+            cos_mm: finite(&format!("{key}.cos_mm"), f.cos_mm)?,
+            sin_mm: finite(&format!("{key}.sin_mm"), f.sin_mm)?,
         });
     }
     Ok(terms)

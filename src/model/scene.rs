@@ -135,11 +135,6 @@ impl TorqueSweep {
 }
 
 impl Scene {
-    /// True when the sweep covers a whole number of mesh periods (so unloaded curves wrap).
-    pub fn spans_whole_periods(&self, design: &Design) -> bool {
-        self.spans_whole(design.mesh_period_rad())
-    }
-
     /// True when the sweep covers a whole number of the periods of the reducer as run
     /// (`Scene::run_period_rad`, this scene's tilt included): its loaded curves wrap, and a
     /// mean or an extreme over it is one over whole load cycles.

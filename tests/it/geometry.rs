@@ -608,7 +608,7 @@ fn paper_sweep(
     // One mesh period in 0.1° steps (reducer.yaml's scene).
     assert_eq!(scene.crank_rad.len(), 360);
     assert!((scene.crank_rad[1] - scene.crank_rad[0] - 0.1f64.to_radians()).abs() < 1e-15);
-    assert!(scene.spans_whole_periods(&spec.design));
+    assert!(scene.spans_whole(spec.design.mesh_period_rad()));
     let mesh = Mesh::new(&spec.design, &spec.modification);
     let sweep = clearance::sweep(
         &mesh,

@@ -15,6 +15,14 @@ pub struct Location {
     pub column: usize,
 }
 
+impl Location {
+    /// Line `line`, column `column` of the file `file`.
+    pub fn new(file: &str, line: usize, column: usize) -> Location {
+        let file = file.to_string();
+        Location { file, line, column }
+    }
+}
+
 /// What went wrong, in the user's terms.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ErrorKind {

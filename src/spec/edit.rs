@@ -225,13 +225,8 @@ pub fn with_values(
             (None, Some(name)) if !name.is_empty() && !name.contains(['.', '[']) => {
                 insert_value(&mut out, name, value)
             }
-            (None, _) => add_key(&mut out, key, value).map_err(|e| {
-                e.at(crate::error::Location {
-                    file: path.to_string(),
-                    line: 1,
-                    column: 1,
-                })
-            })?,
+            (None, _) => add_key(&mut out, key, value)
+                .map_err(|e| e.at(crate::error::Location::new(path, 1, 1)))?,
         }
     }
     let spec = super::parse(path, &out)?;

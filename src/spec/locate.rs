@@ -28,11 +28,7 @@ pub fn locate_duplicate(text: &str, parent: &str, key: &str) -> Option<(usize, u
 pub fn locate_error(error: Error, path: &str, text: &str) -> Error {
     let mut error = locate_key(error, path, text);
     if error.location.is_none() {
-        error.location = Some(Location {
-            file: path.to_string(),
-            line: 1,
-            column: 1,
-        });
+        error.location = Some(Location::new(path, 1, 1));
     }
     error
 }
@@ -42,11 +38,7 @@ pub fn locate_error(error: Error, path: &str, text: &str) -> Error {
 pub fn locate_key(mut error: Error, path: &str, text: &str) -> Error {
     if error.location.is_none() {
         if let Some((line, column)) = error.key_path.as_deref().and_then(|k| locate(text, k)) {
-            error.location = Some(Location {
-                file: path.to_string(),
-                line,
-                column,
-            });
+            error.location = Some(Location::new(path, line, column));
         }
     }
     error

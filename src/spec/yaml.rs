@@ -6,11 +6,7 @@ use super::raw::*;
 use crate::error::{Error, ErrorKind, Location, Result};
 
 pub(crate) fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
-    let at = |line: usize, column: usize| Location {
-        file: path.to_string(),
-        line,
-        column,
-    };
+    let at = |line, column| Location::new(path, line, column);
     // YAML syntax first, on an untyped value: a syntax error then carries no key path (the
     // typed pass would name whatever key it had reached, e.g. `name` for a tab on line 2).
     // Duplicate keys and integers too large for any YAML value are left to the typed pass,
@@ -76,11 +72,7 @@ fn requirements_file(path: &str, text: &str, value: &serde_yaml::Value) -> Resul
              `cycloid design {path}` searches the designs that meet it"
         ),
     )
-    .at(Location {
-        file: path.to_string(),
-        line,
-        column,
-    }))
+    .at(Location::new(path, line, column)))
 }
 
 fn deserialize<O>(path: &str, text: &str) -> Result<RawSpecOf<RawOptimise>>
@@ -111,11 +103,7 @@ pub(crate) fn parse_document<T: serde::de::DeserializeOwned>(
     text: &str,
     what: &str,
 ) -> Result<T> {
-    let at = |line: usize, column: usize| Location {
-        file: path.to_string(),
-        line,
-        column,
-    };
+    let at = |line, column| Location::new(path, line, column);
     match serde_yaml::from_str::<serde_yaml::Value>(text) {
         Ok(serde_yaml::Value::Null) => {
             return Err(Error::new(ErrorKind::Syntax, format!("the {what} is empty")).at(at(1, 1)))
@@ -133,11 +121,7 @@ pub(crate) fn parse_document<T: serde::de::DeserializeOwned>(
 
 /// The typed pass: serde's error turned into the spec's words, at its key and location.
 fn typed<T: serde::de::DeserializeOwned>(path: &str, text: &str) -> Result<T> {
-    let at = |line: usize, column: usize| Location {
-        file: path.to_string(),
-        line,
-        column,
-    };
+    let at = |line, column| Location::new(path, line, column);
     let de = serde_yaml::Deserializer::from_str(text);
     serde_path_to_error::deserialize(de).map_err(|err| {
         let key_path = err.path().to_string();

@@ -102,7 +102,8 @@ pub fn short(x: f64) -> String {
     }
 }
 
-fn seconds_text(s: f64) -> String {
+/// A run's time: milliseconds below a second, else seconds.
+pub fn seconds_text(s: f64) -> String {
     if s < 1.0 {
         format!("{:.1} ms", s * 1000.0)
     } else {
@@ -135,6 +136,16 @@ fn tolerance_text(q: LadderQuantity, t: &LadderTolerances) -> String {
     } else {
         format!("{v} {}", q.unit())
     }
+}
+
+/// The quantities of the ladder this scene does not compute, described. The face quantities
+/// exist only for a crowned or tilted face: a 2-D scene's ladder does not name them.
+pub fn not_computed(l: &Layout) -> Vec<String> {
+    LadderQuantity::ALL
+        .into_iter()
+        .filter(|q| !q.is_face() && !l.quantities.contains(q))
+        .map(description)
+        .collect()
 }
 
 /// The lines before the first row: scene, reference, tolerances, column headings.
@@ -173,13 +184,7 @@ pub fn header(l: &Layout) -> String {
             FACE_SLICES[FACE_SLICES.len() - 1]
         );
     }
-    // The face quantities exist only for a crowned or tilted face: a 2-D scene's ladder does
-    // not name them.
-    let missing: Vec<String> = LadderQuantity::ALL
-        .into_iter()
-        .filter(|q| !q.is_face() && !l.quantities.contains(q))
-        .map(description)
-        .collect();
+    let missing = not_computed(l);
     if !missing.is_empty() {
         s += &format!(
             "not computed by this scene (no column): {}\n",

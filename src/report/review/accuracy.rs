@@ -4,18 +4,14 @@
 use super::common::{data_table, Section};
 use crate::engine::accuracy::{self as acc, Ladder, Variation};
 use crate::numeric::number;
-use crate::report::accuracy::{self as text, description, skipped_text};
+use crate::report::accuracy::{self as text, seconds_text, skipped_text};
 use maud::html;
 
 /// The accuracy ladder as a table: one row per rung, errors against the reference, times, the
 /// cheapest rung that meets every tolerance highlighted; observed orders and notes below.
 pub(super) fn section(ladder: &Ladder) -> Section {
     let l = &ladder.layout;
-    let missing: Vec<String> = acc::LadderQuantity::ALL
-        .into_iter()
-        .filter(|q| !q.is_face() && !l.quantities.contains(q))
-        .map(description)
-        .collect();
+    let missing = text::not_computed(l);
     let settings_rungs = ladder
         .rungs
         .iter()
@@ -24,13 +20,6 @@ pub(super) fn section(ladder: &Ladder) -> Section {
         .rungs
         .iter()
         .any(|r| r.variation == Variation::ContactLaw);
-    let time = |s: f64| {
-        if s < 1.0 {
-            format!("{:.1} ms", s * 1000.0)
-        } else {
-            format!("{s:.2} s")
-        }
-    };
     let orders: Vec<_> = l
         .quantities
         .iter()
@@ -100,7 +89,7 @@ pub(super) fn section(ladder: &Ladder) -> Section {
                         td { (r.geometry.name()) }
                         td { (r.law.name()) }
                         td.num { (format!("{:e}", r.rel_tol)) }
-                        td.num { (time(r.seconds)) }
+                        td.num { (seconds_text(r.seconds)) }
                         @for &q in &l.quantities {
                             @let over = !r.is_reference && !r.model_difference
                                 && r.error(q).is_some_and(|e| !q.within(e, &l.tolerances));

@@ -88,7 +88,7 @@ fn checked(args: &CheckArgs, out: &mut dyn Write, guarded: &mut bool) -> Result<
     if args.explain {
         print(
             out,
-            &report::explain::explain_check(&spec, writes, args.tolerance),
+            &report::explain::explain(&spec, writes, args.tolerance),
         )?;
         if let Some(m) = &spec.measured {
             let line = format!(

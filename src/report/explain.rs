@@ -185,16 +185,11 @@ pub fn notes(spec: &Spec) -> Vec<String> {
     scene::notes(spec).iter().map(note).collect()
 }
 
-/// Human-readable plan of a spec run that writes `writes`: what runs, in which scene, and why
-/// (`check --explain` without `--tolerance`).
-pub fn explain(spec: &Spec, writes: Writes) -> String {
-    explain_check(spec, writes, false)
-}
-
-/// Human-readable plan of `check` on `spec` writing `writes`, with the tolerance study when
-/// `tolerance` (`--tolerance`): the discs, every scene, then the studies, the goldens, the
-/// accuracy ladder and the tolerance study: everything the run will compute.
-pub fn explain_check(spec: &Spec, writes: Writes, tolerance: bool) -> String {
+/// Human-readable plan of `check` on `spec` writing `writes` (`check --explain`): what runs, in
+/// which scene, and why, with the tolerance study when `tolerance` (`--tolerance`): the discs,
+/// every scene, then the studies, the goldens, the accuracy ladder and the tolerance study:
+/// everything the run will compute.
+pub fn explain(spec: &Spec, writes: Writes, tolerance: bool) -> String {
     let mut out = format!("spec `{}`: {} scene(s)\n", spec.name, spec.scenes.len());
     out += &discs_line(spec);
     out += &friction_lines(spec);

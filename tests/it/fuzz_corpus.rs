@@ -183,7 +183,7 @@ fn exercise(text: &str) -> Result<bool, String> {
     let outcome = catch_unwind(AssertUnwindSafe(|| {
         match cycloid::spec::parse("fuzz.yaml", text) {
             Ok(spec) => {
-                let _ = cycloid::report::explain::explain(&spec, Default::default());
+                let _ = cycloid::report::explain::explain(&spec, Default::default(), false);
                 Ok(true)
             }
             Err(e) => {

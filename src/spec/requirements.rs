@@ -158,27 +158,19 @@ fn face(
 ) -> Result<(Misalignment, usize)> {
     let face = super::face::scene_face("", raw.misalignment, raw.face_slices)?;
     let (misalignment, slices) = (face.misalignment, face.slices);
-    let slices_key = |other: &str| {
-        if raw.face_slices.is_some() {
-            "face_slices".to_string()
-        } else {
-            other.to_string()
-        }
-    };
-    if !misalignment.is_zero() && slices < 2 {
+    let shaped = [
+        ("misalignment", "tilted", !misalignment.is_zero()),
+        ("crowning", "crowned", raw.crowning.is_some()),
+    ];
+    if let Some((key, what, _)) = shaped.into_iter().find(|s| s.2 && slices < 2) {
+        // At `face_slices` where it is given (too few), else at what needs them.
+        let key = if raw.face_slices.is_some() { "face_slices" } else { key };
         return Err(Error::invalid(
-            slices_key("misalignment"),
-            "a tilted face needs `face_slices: 2` or more (20 is a good start), the slices \
-             the line load is reported at"
-                .to_string(),
-        ));
-    }
-    if raw.crowning.is_some() && slices < 2 {
-        return Err(Error::invalid(
-            slices_key("crowning"),
-            "a crowned face needs `face_slices: 2` or more (20 is a good start), the slices \
-             the line load is reported at"
-                .to_string(),
+            key,
+            format!(
+                "a {what} face needs `face_slices: 2` or more (20 is a good start), the slices \
+                 the line load is reported at"
+            ),
         ));
     }
     for key in ["max_face_load_factor", "max_line_load_n_per_mm"] {
@@ -393,14 +385,9 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         .transpose()?;
     // The peak scene carries the largest torque the reducer sees; a bin beyond it (driving or
     // braking, |T|) would be judged on forces the peak does not bound.
-    if let Some(j) = raw
-        .duty_cycle
-        .as_deref()
-        .unwrap_or_default()
-        .iter()
-        .position(|b| b.output_torque_nm.abs() > peak)
-    {
-        let torque = raw.duty_cycle.as_deref().unwrap_or_default()[j].output_torque_nm;
+    let bins = raw.duty_cycle.as_deref().unwrap_or_default().iter();
+    if let Some((j, bin)) = bins.enumerate().find(|(_, b)| b.output_torque_nm.abs() > peak) {
+        let torque = bin.output_torque_nm;
         return Err(Error::invalid(
             format!("duty_cycle[{j}].output_torque_nm"),
             format!(

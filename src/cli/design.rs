@@ -4,11 +4,11 @@
 //! SHARD...` the rest of the search from the shards, written as the unsharded run writes it.
 
 use super::args::{DesignArgs, DesignCommand};
-use super::output::{distinct_outputs, print};
+use super::output::{distinct_outputs, print, usage};
 use super::shard::{parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands::{self, DesignRun};
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::files::{self, identity, Batch};
 use crate::model::requirements::Requirements;
 use crate::report::design::Timing;
@@ -20,10 +20,6 @@ use std::path::{Path, PathBuf};
 /// Largest shard file read, bytes: 64 MiB of requirements text and 1 GiB of evaluations (a
 /// million candidates at under 1 KiB each), a bound on what a wrong path makes the merge read.
 const MAX_SHARD_BYTES: u64 = files::MAX_INPUT_BYTES + (1 << 30);
-
-fn usage(m: String) -> Error {
-    Error::new(ErrorKind::Usage, format!("{m}; nothing was written"))
-}
 
 pub(super) fn run(args: DesignArgs, out: &mut dyn Write) -> Result<Outcome> {
     if let Some(DesignCommand::Merge { shards, out: dir }) = args.merge {

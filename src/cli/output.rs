@@ -13,6 +13,11 @@ pub(super) fn write_file(path: &str, text: &str) -> Result<()> {
     files::write_atomic(Path::new(path), text.as_bytes())
 }
 
+/// A usage error `m`, which says that nothing was written.
+pub(super) fn usage(m: String) -> Error {
+    Error::new(ErrorKind::Usage, format!("{m}; nothing was written"))
+}
+
 /// Refuse, before anything is written, outputs that would destroy an input or one another: an
 /// empty path, an output at the path of one of `inputs` (what it is, its path), or two
 /// outputs at one path. `outputs` are (option, path if given); a `--report` directory also
@@ -21,7 +26,6 @@ pub(super) fn distinct_outputs(
     inputs: &[(String, PathBuf)],
     outputs: &[(&str, Option<&str>)],
 ) -> Result<()> {
-    let usage = |m: String| Error::new(ErrorKind::Usage, format!("{m}; nothing was written"));
     let mut claimed: Vec<(String, PathBuf)> = inputs
         .iter()
         .map(|(what, p)| (what.clone(), files::identity(p)))

@@ -2,7 +2,8 @@
 //! and `cycloid tolerance merge`.
 
 use super::args::{ToleranceArgs, ToleranceCommand};
-use super::output::{distinct_outputs, inputs_of, print, review_line, write_file, write_spec};
+use super::output::{distinct_outputs, inputs_of, print, review_line, usage, write_file};
+use super::output::write_spec;
 use super::shard::{invalid, parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands;
@@ -10,7 +11,7 @@ use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::Summary;
 use crate::engine::tolerance::Records;
 use crate::engine::tolerance::ToleranceStudy;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::Result;
 use crate::files;
 use crate::report::terminal::Terminal;
 use crate::{report, spec};
@@ -62,16 +63,12 @@ pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
     }
     match (shard, &args.out) {
         (Some(shard), Some(file)) => {
-            let whole = [
-                ("--json", outputs.json.is_some()),
-                ("--samples-csv", outputs.csv.is_some()),
-                ("--report", outputs.report.is_some()),
-                ("--sensitivity", args.sensitivity),
-            ];
-            if let Some((flag, _)) = whole.iter().find(|(_, given)| *given) {
+            let whole = outputs.paths().map(|(flag, path)| (flag, path.is_some()));
+            let mut whole = whole.into_iter().chain([("--sensitivity", args.sensitivity)]);
+            if let Some((flag, _)) = whole.find(|(_, given)| *given) {
                 // The sensitivities are derivatives about the nominal reducer, not a sum over
                 // samples: an unsharded run computes them, and a merge does not.
-                let instead = match *flag {
+                let instead = match flag {
                     "--sensitivity" => {
                         "run it without --shard (`cycloid tolerance SPEC \
                                         --sensitivity`: derivatives about the nominal reducer, \
@@ -79,25 +76,16 @@ pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
                     }
                     _ => "give it to `cycloid tolerance merge`",
                 };
-                return Err(Error::new(
-                    ErrorKind::Usage,
-                    format!("{flag} is not for a shard: {instead}; nothing was written"),
-                ));
+                return Err(usage(format!("{flag} is not for a shard: {instead}")));
             }
             run_shard(&study, shard, file, out)
         }
-        (Some((i, n)), None) => Err(Error::new(
-            ErrorKind::Usage,
-            format!(
-                "shard {i}/{n} (from --shard or the Slurm job array) needs --out SHARD_FILE, the \
-                 file it writes for `cycloid tolerance merge`; nothing was written"
-            ),
-        )),
-        (None, Some(_)) => Err(Error::new(
-            ErrorKind::Usage,
-            "--out writes a shard file: give --shard I/N too (or run in a Slurm job array); \
-             nothing was written"
-                .to_string(),
+        (Some((i, n)), None) => Err(usage(format!(
+            "shard {i}/{n} (from --shard or the Slurm job array) needs --out SHARD_FILE, the \
+             file it writes for `cycloid tolerance merge`"
+        ))),
+        (None, Some(_)) => Err(usage(
+            "--out writes a shard file: give --shard I/N too (or run in a Slurm job array)".into(),
         )),
         (None, None) => {
             let run = commands::tolerance(&spec, args.samples, args.sensitivity, &Terminal)?;

@@ -2,8 +2,8 @@
 //! and `cycloid tolerance merge`.
 
 use super::args::{ToleranceArgs, ToleranceCommand};
-use super::output::{distinct_outputs, inputs_of, print, review_line, usage, write_file};
 use super::output::write_spec;
+use super::output::{distinct_outputs, inputs_of, print, review_line, usage, write_file};
 use super::shard::{invalid, parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands;
@@ -64,7 +64,9 @@ pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
     match (shard, &args.out) {
         (Some(shard), Some(file)) => {
             let whole = outputs.paths().map(|(flag, path)| (flag, path.is_some()));
-            let mut whole = whole.into_iter().chain([("--sensitivity", args.sensitivity)]);
+            let mut whole = whole
+                .into_iter()
+                .chain([("--sensitivity", args.sensitivity)]);
             if let Some((flag, _)) = whole.find(|(_, given)| *given) {
                 // The sensitivities are derivatives about the nominal reducer, not a sum over
                 // samples: an unsharded run computes them, and a merge does not.

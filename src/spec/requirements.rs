@@ -164,7 +164,11 @@ fn face(
     ];
     if let Some((key, what, _)) = shaped.into_iter().find(|s| s.2 && slices < 2) {
         // At `face_slices` where it is given (too few), else at what needs them.
-        let key = if raw.face_slices.is_some() { "face_slices" } else { key };
+        let key = if raw.face_slices.is_some() {
+            "face_slices"
+        } else {
+            key
+        };
         return Err(Error::invalid(
             key,
             format!(
@@ -386,7 +390,10 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
     // The peak scene carries the largest torque the reducer sees; a bin beyond it (driving or
     // braking, |T|) would be judged on forces the peak does not bound.
     let bins = raw.duty_cycle.as_deref().unwrap_or_default().iter();
-    if let Some((j, bin)) = bins.enumerate().find(|(_, b)| b.output_torque_nm.abs() > peak) {
+    if let Some((j, bin)) = bins
+        .enumerate()
+        .find(|(_, b)| b.output_torque_nm.abs() > peak)
+    {
         let torque = bin.output_torque_nm;
         return Err(Error::invalid(
             format!("duty_cycle[{j}].output_torque_nm"),

@@ -29,10 +29,7 @@ fn with_unit(x: f64, unit: &str) -> String {
 
 /// One line saying what the check found.
 pub fn message(c: &Check) -> String {
-    let op = match c.bound {
-        Bound::Max => "≤",
-        Bound::Min => "≥",
-    };
+    let op = c.bound.symbol();
     let beyond = match c.bound {
         Bound::Max => c.value - c.limit,
         Bound::Min => c.limit - c.value,

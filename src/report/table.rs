@@ -137,10 +137,7 @@ pub fn limit(c: &Check) -> String {
     if is_lost_motion(c) && c.limit < 0.0 {
         return format!("overlap ≥ {} {}", number(-c.limit), c.unit);
     }
-    let op = match c.bound {
-        Bound::Max => "≤",
-        Bound::Min => "≥",
-    };
+    let op = c.bound.symbol();
     with_unit(format!("{op} {}", check_figure(c, c.limit)), shown_unit(c))
 }
 

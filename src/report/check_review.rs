@@ -6,22 +6,11 @@ use std::path::Path;
 
 /// Write the design review of `run` into `dir`; how many files it has.
 pub fn write(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
-    with_input(run, review, |input| {
-        Ok(super::review::write(dir, input)?.len())
-    })
+    Ok(super::review::shell::write_files(dir, &render(run, review))?.len())
 }
 
 /// The design review of `run` as files (name, text), `index.html` last.
 pub fn render(run: &CheckRun, review: &Review) -> Vec<(String, String)> {
-    with_input(run, review, super::review::render)
-}
-
-/// `f` of the review's input built from `run` and `review`.
-fn with_input<T>(
-    run: &CheckRun,
-    review: &Review,
-    f: impl FnOnce(&super::review::ReportInput) -> T,
-) -> T {
     let spec = &run.spec;
     let views: Vec<_> = (spec.studies.iter().zip(&run.studies).zip(&review.maps))
         .map(|((s, r), cells)| super::optimisation::view(spec, s, r, cells, review.map_steps))
@@ -57,5 +46,5 @@ fn with_input<T>(
         mass: Some(&run.mass),
         unbalance: &run.unbalance,
     };
-    f(&input)
+    super::review::render(&input)
 }

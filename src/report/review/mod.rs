@@ -44,14 +44,12 @@ use crate::engine::accuracy::Ladder;
 use crate::engine::drawing::Disc;
 use crate::engine::golden::GoldenResult;
 use crate::engine::verdict::Check;
-use crate::error::Result;
 use crate::model::results::SceneResult;
 use crate::model::Scene;
 use crate::spec::Spec;
 use common::{slug, Section};
 use maud::html;
-use shell::{shell, write_files};
-use std::path::{Path, PathBuf};
+use shell::shell;
 
 /// Everything the report shows.
 pub struct ReportInput<'a> {
@@ -148,13 +146,6 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
     sections.extend(input.accuracy.map(accuracy::section));
     files.push(("index.html".into(), page(input, &sections)));
     files
-}
-
-/// Write the report into `dir` (created if missing) as one batch: every file is staged, then
-/// all are renamed into place, `index.html` last, so a reader never sees a page that links
-/// figures of another run; returns the files written.
-pub fn write(dir: &Path, input: &ReportInput) -> Result<Vec<PathBuf>> {
-    write_files(dir, &render(input))
 }
 
 fn page(input: &ReportInput, sections: &[Section]) -> String {

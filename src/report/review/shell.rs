@@ -11,9 +11,10 @@ use crate::spec::Spec;
 use maud::{html, Markup, PreEscaped, DOCTYPE};
 use std::path::{Path, PathBuf};
 
-/// `files` (name, text) into `dir` (created if missing) as one batch, in their order: the
-/// page that links the others comes last. Returns the paths written.
-pub(super) fn write_files(dir: &Path, files: &[(String, String)]) -> Result<Vec<PathBuf>> {
+/// `files` (name, text) into `dir` (created if missing) as one batch, in their order: every
+/// file is staged, then all are renamed into place, the page that links the others last, so a
+/// reader never sees a page that links figures of another run. Returns the paths written.
+pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
     let mut batch = Batch::new();
     let mut written = Vec::new();

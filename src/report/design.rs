@@ -225,25 +225,15 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
     }
     let cols = columns(req);
     let _ = writeln!(s, "\nPareto front, {} designs:", run.front.len());
-    let mut header = vec!["#".to_string()];
-    header.extend(cols.iter().map(|(h, _)| h.clone()));
-    let rows: Vec<Vec<String>> = cells(&cols, &run.front)
-        .into_iter()
-        .enumerate()
-        .map(|(k, c)| {
-            let mut r = vec![format!("{}", k + 1)];
-            r.extend(c);
-            r
-        })
-        .collect();
-    let widths: Vec<usize> = (0..header.len())
-        .map(|c| {
-            rows.iter()
-                .map(|r| r[c].chars().count())
-                .chain([header[c].chars().count()])
-                .max()
-                .unwrap_or(0)
-        })
+    // The header, then each design numbered from 1; every column as wide as its widest cell.
+    let mut rows = vec![std::iter::once("#".to_string())
+        .chain(cols.iter().map(|(h, _)| h.clone()))
+        .collect::<Vec<_>>()];
+    for (k, c) in cells(&cols, &run.front).into_iter().enumerate() {
+        rows.push(std::iter::once(format!("{}", k + 1)).chain(c).collect());
+    }
+    let widths: Vec<usize> = (0..rows[0].len())
+        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
         .collect();
     let line = |cells: &[String]| -> String {
         cells
@@ -253,7 +243,6 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
             .collect::<Vec<_>>()
             .join("  ")
     };
-    let _ = writeln!(s, "{}", line(&header));
     for r in &rows {
         let _ = writeln!(s, "{}", line(r));
     }
@@ -294,23 +283,13 @@ pub fn csv(req: &Requirements, run: &SearchRun) -> String {
 /// An objective as a plot axis names it for a person: the quantity in words and its unit in
 /// parentheses ("mass (kg)", "max contact pressure (MPa)"), not the YAML key (`mass_kg`).
 pub fn axis_label(kind: ObjectiveKind) -> String {
-    match unit(kind) {
-        "" => what(kind).to_string(),
-        u => format!("{} ({u})", what(kind)),
+    match words(kind) {
+        (what, "") => what.to_string(),
+        (what, unit) => format!("{what} ({unit})"),
     }
 }
 
-/// An objective's quantity in words ("mass", "max contact pressure").
-fn what(kind: ObjectiveKind) -> &'static str {
-    words(kind).0
-}
-
-/// An objective's unit ("kg"; "" for a ratio).
-fn unit(kind: ObjectiveKind) -> &'static str {
-    words(kind).1
-}
-
-/// An objective's (quantity in words, unit).
+/// An objective's (quantity in words, unit): ("mass", "kg"); the unit "" for a ratio.
 fn words(kind: ObjectiveKind) -> (&'static str, &'static str) {
     match kind {
         ObjectiveKind::OuterDiameter => ("outer diameter", "mm"),
@@ -338,7 +317,7 @@ pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> St
     let aim = |o: ObjectiveKind| {
         format!(
             "{} {}",
-            what(o),
+            words(o).0,
             if o.maximise() {
                 "maximised"
             } else {

@@ -11,7 +11,7 @@ use super::effect::{Detail, Effect};
 use super::place::{Bin, Crank, Part, PartAt, Place, Rule, Site, Unbounded};
 use super::results::{
     BacklashCurves, DiscResult, DutyCycle, EfficiencyCurves, ReducerEfficiency, ReducerResult,
-    SceneResult, TorsionFigures,
+    RollerCurves, SceneResult, TorsionFigures,
 };
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
@@ -328,6 +328,11 @@ impl Quantity {
     }
 }
 
+/// The rollers' curves of a disc's loaded sweep, when computed.
+fn rollers(d: &DiscResult) -> Option<&RollerCurves> {
+    d.loaded.rollers.as_ref()
+}
+
 /// The backlash curves of a disc, when computed.
 fn backlash(d: &DiscResult) -> Option<&BacklashCurves> {
     d.clearance.as_ref()?.backlash.as_ref()
@@ -453,7 +458,7 @@ pub const LAG: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| arcsec(&c.lag_rad))),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| arcsec(&c.lag_rad))),
 };
 
 /// Loaded TE δ = β + βo (with several discs the common output lag γ), arcsec
@@ -495,7 +500,7 @@ pub const ROLLER_FORCE: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| d.loaded.rollers.as_ref().map(|c| Rows::Stored(&c.force_n))),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.force_n))),
 };
 
 /// Hertz peak pressure p0 of each roller's contact, MPa, one curve per roller
@@ -508,12 +513,7 @@ pub const CONTACT_PRESSURE: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| {
-        d.loaded
-            .rollers
-            .as_ref()
-            .map(|c| Rows::Stored(&c.pressure_mpa))
-    }),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.pressure_mpa))),
 };
 
 /// Hertz half-width b of each roller's contact, mm, one curve per roller
@@ -526,12 +526,7 @@ pub const CONTACT_HALF_WIDTH: Quantity = Quantity {
     shape: Shape::PerRoller,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| {
-        d.loaded
-            .rollers
-            .as_ref()
-            .map(|c| Rows::Stored(&c.half_width_mm))
-    }),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.half_width_mm))),
 };
 
 /// How many rollers carry a force at each crank angle (`RollerCurves::contacts`).
@@ -544,10 +539,7 @@ pub const CONTACTS: Quantity = Quantity {
     period: None,
     of: None,
     read: Read::DiscCurves(|d| {
-        d.loaded
-            .rollers
-            .as_ref()
-            .map(|c| Rows::Computed(vec![c.contacts.iter().map(|&n| n as f64).collect()]))
+        rollers(d).map(|c| Rows::Computed(vec![c.contacts.iter().map(|&n| n as f64).collect()]))
     }),
 };
 
@@ -562,15 +554,7 @@ pub const FACE_LOAD_FACTOR: Quantity = Quantity {
     shape: Shape::Curve,
     period: None,
     of: None,
-    read: Read::DiscCurves(|d| {
-        Some(one(&d
-            .loaded
-            .rollers
-            .as_ref()?
-            .face
-            .as_ref()?
-            .face_load_factor))
-    }),
+    read: Read::DiscCurves(|d| Some(one(&rollers(d)?.face.as_ref()?.face_load_factor))),
 };
 
 /// A disc's share Tk of the torque, N·m (`LoadedSweep::torque_nmm`): with several discs only.
@@ -704,13 +688,7 @@ pub const MAX_ROLLER_FORCE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("roller_force_n"),
-    read: Read::DiscScalar(|d, c| {
-        Some(largest(
-            c,
-            &d.loaded.rollers.as_ref()?.force_n,
-            Part::Roller,
-        ))
-    }),
+    read: Read::DiscScalar(|d, c| Some(largest(c, &rollers(d)?.force_n, Part::Roller))),
 };
 
 /// The largest Hertz peak pressure of the rollers' contacts, MPa, with the roller and the crank
@@ -723,13 +701,7 @@ pub const MAX_CONTACT_PRESSURE: Quantity = Quantity {
     shape: Shape::Scalar,
     period: None,
     of: Some("contact_pressure_mpa"),
-    read: Read::DiscScalar(|d, c| {
-        Some(largest(
-            c,
-            &d.loaded.rollers.as_ref()?.pressure_mpa,
-            Part::Roller,
-        ))
-    }),
+    read: Read::DiscScalar(|d, c| Some(largest(c, &rollers(d)?.pressure_mpa, Part::Roller))),
 };
 
 /// The largest face load factor over the crank angles, with the angle (`FACE_LOAD_FACTOR`).
@@ -742,7 +714,7 @@ pub const MAX_FACE_LOAD_FACTOR: Quantity = Quantity {
     period: None,
     of: Some("face_load_factor"),
     read: Read::DiscScalar(|d, c| {
-        let face = d.loaded.rollers.as_ref()?.face.as_ref()?;
+        let face = rollers(d)?.face.as_ref()?;
         Some(highest(c, &face.face_load_factor))
     }),
 };
@@ -758,7 +730,7 @@ pub const MAX_LINE_LOAD: Quantity = Quantity {
     period: None,
     of: None,
     read: Read::DiscScalar(|d, c| {
-        let face = d.loaded.rollers.as_ref()?.face.as_ref()?;
+        let face = rollers(d)?.face.as_ref()?;
         let (value, i, k, s) = face.peak_line_load();
         face.line_load_n_per_mm.first()?.first()?;
         let site = Site::Slice {
@@ -780,8 +752,7 @@ pub const MIN_ROLLERS_IN_CONTACT: Quantity = Quantity {
     period: None,
     of: Some("contacts"),
     read: Read::DiscScalar(|d, c| {
-        let rollers = d.loaded.rollers.as_ref()?;
-        let counts: Vec<f64> = rollers.contacts.iter().map(|&n| n as f64).collect();
+        let counts: Vec<f64> = rollers(d)?.contacts.iter().map(|&n| n as f64).collect();
         let ((value, k), _) = extremes(&counts);
         Some(at(value, Site::Crank(crank(c, k))))
     }),
@@ -1126,8 +1097,8 @@ pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
             let (value, part) = f.shorter()?;
             let pressure_mpa = f.pressure_mpa;
             // Where the largest pressure is (the one the life is at), when the curves hold it.
-            let place = (d.loaded.rollers.as_ref())
-                .map(|rollers| max_entry(&rollers.pressure_mpa))
+            let place = rollers(d)
+                .map(|r| max_entry(&r.pressure_mpa))
                 .filter(|&(p, _, _)| p == pressure_mpa)
                 .map(|(_, i, k)| part_at(c, Part::Roller, i, k));
             let site = match super::results::is_unbounded(value) {

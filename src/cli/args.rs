@@ -23,51 +23,9 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Run every scene of a spec and check its limits.
-    Check {
-        /// The YAML spec.
-        spec: String,
-        /// Write the results as JSON to this path.
-        #[arg(long)]
-        json: Option<String>,
-        /// Print what will be computed and why, then stop.
-        #[arg(long)]
-        explain: bool,
-        /// Write a JUnit XML report (one test case per check and golden curve) to this path.
-        #[arg(long)]
-        junit: Option<String>,
-        /// Write a design-review report (index.html and SVG plots) into this directory.
-        #[arg(long)]
-        report: Option<String>,
-        /// Crank angle of the disc drawing in the report, degrees [default: where the smallest
-        /// gap occurs].
-        #[arg(long, allow_negative_numbers = true)]
-        report_crank_deg: Option<f64>,
-        /// Grid points per variable of each study's objective map in the report (0: no map;
-        /// the map costs steps² evaluations per study).
-        #[arg(long, default_value_t = DEFAULT_REPORT_MAP_STEPS)]
-        report_map_steps: usize,
-        /// Also run the Monte Carlo of the spec's `tolerances:` (as `cycloid tolerance`); its
-        /// failure rate against `max_failure_rate` joins the checks.
-        #[arg(long)]
-        tolerance: bool,
-    },
+    Check(CheckArgs),
     /// Optimise the tooth-profile modification as the spec's `optimise` section says.
-    Optimise {
-        /// The YAML spec; its `optimise` section (one study or a list) says what to optimise.
-        spec: String,
-        /// Run only this study (default: all).
-        #[arg(long)]
-        study: Option<String>,
-        /// Write the spec with the optimum of the study (the first, or --study) filled in.
-        #[arg(long)]
-        write: Option<String>,
-        /// Write the objective over a grid of the first two variables as CSV.
-        #[arg(long)]
-        map: Option<String>,
-        /// Grid points per variable for --map.
-        #[arg(long, default_value_t = 21)]
-        map_steps: usize,
-    },
+    Optimise(OptimiseArgs),
     /// Run a scene on a ladder of settings (crank steps per mesh period, geometry, contact law,
     /// solver tolerance) and print each rung's error against the finest rung and its time.
     Accuracy {
@@ -145,6 +103,60 @@ pub enum Command {
         #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
         tolerance_um: f64,
     },
+}
+
+/// `cycloid check SPEC [options]`: where it writes its results besides the terminal, and what
+/// else it runs.
+#[derive(Debug, clap::Args)]
+pub struct CheckArgs {
+    /// The YAML spec.
+    pub spec: String,
+    /// Write the results as JSON to this path.
+    #[arg(long)]
+    pub json: Option<String>,
+    /// Print what will be computed and why, then stop.
+    #[arg(long)]
+    pub explain: bool,
+    /// Write a JUnit XML report (one test case per check and golden curve) to this path.
+    #[arg(long)]
+    pub junit: Option<String>,
+    /// Write a design-review report (index.html and SVG plots) into this directory.
+    #[arg(long)]
+    pub report: Option<String>,
+    /// Crank angle of the disc drawing in the report, degrees [default: where the smallest
+    /// gap occurs].
+    #[arg(long, allow_negative_numbers = true)]
+    pub report_crank_deg: Option<f64>,
+    /// Grid points per variable of each study's objective map in the report (0: no map;
+    /// the map costs steps² evaluations per study).
+    #[arg(long, default_value_t = DEFAULT_REPORT_MAP_STEPS)]
+    pub report_map_steps: usize,
+    /// Also run the Monte Carlo of the spec's `tolerances:` (as `cycloid tolerance`); its
+    /// failure rate against `max_failure_rate` joins the checks.
+    #[arg(long)]
+    pub tolerance: bool,
+    /// Whether the checks table's verdicts are coloured: not an option, set by `run_with`.
+    #[arg(skip)]
+    pub color: bool,
+}
+
+/// `cycloid optimise SPEC [options]`.
+#[derive(Debug, clap::Args)]
+pub struct OptimiseArgs {
+    /// The YAML spec; its `optimise` section (one study or a list) says what to optimise.
+    pub spec: String,
+    /// Run only this study (default: all).
+    #[arg(long)]
+    pub study: Option<String>,
+    /// Write the spec with the optimum of the study (the first, or --study) filled in.
+    #[arg(long)]
+    pub write: Option<String>,
+    /// Write the objective over a grid of the first two variables as CSV.
+    #[arg(long)]
+    pub map: Option<String>,
+    /// Grid points per variable for --map.
+    #[arg(long, default_value_t = 21)]
+    pub map_steps: usize,
 }
 
 /// `cycloid tolerance SPEC [options]`, or `cycloid tolerance merge SHARD...`.

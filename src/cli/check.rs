@@ -3,7 +3,7 @@
 
 use super::output::{distinct_outputs, inputs_of, print, print_keeping};
 use super::output::{review_line, write_file};
-use super::Outcome;
+use super::{CheckArgs, Outcome};
 use crate::engine::commands::{self, CheckOptions, CheckRun, ReviewOptions};
 use crate::engine::scene::Writes;
 use crate::error::{ErrorKind, Result};
@@ -12,36 +12,23 @@ use crate::{report, spec};
 use std::io::Write;
 use std::path::Path;
 
-/// Where `check` writes its results besides the terminal, and what else it runs.
-pub(super) struct CheckArgs<'a> {
-    pub spec: &'a str,
-    pub json: Option<&'a str>,
-    pub junit: Option<&'a str>,
-    pub report: Option<&'a str>,
-    pub report_crank_deg: Option<f64>,
-    pub report_map_steps: usize,
-    pub explain: bool,
-    pub tolerance: bool,
-    pub color: bool,
-}
-
-impl CheckArgs<'_> {
+impl CheckArgs {
     /// The files and directories this run writes, by option.
     fn paths(&self) -> [(&'static str, Option<&str>); 3] {
         [
-            ("--json", self.json),
-            ("--junit", self.junit),
-            ("--report", self.report),
+            ("--json", self.json.as_deref()),
+            ("--junit", self.junit.as_deref()),
+            ("--report", self.report.as_deref()),
         ]
     }
 }
 
 /// `cycloid check`; a run that stops on an error still writes it as a JUnit error case.
 pub(super) fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<Outcome> {
-    distinct_outputs(&inputs_of(args.spec, None), &args.paths())?;
+    distinct_outputs(&inputs_of(&args.spec, None), &args.paths())?;
     let mut guarded = false;
     let result = checked(args, out, &mut guarded);
-    let (Err(e), Some(path)) = (result.as_ref(), args.junit) else {
+    let (Err(e), Some(path)) = (result.as_ref(), args.junit.as_deref()) else {
         return result;
     };
     if matches!(e.kind, ErrorKind::Usage | ErrorKind::OutputClosed) {
@@ -51,7 +38,7 @@ pub(super) fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<Outcome> {
     // that did not load names files nobody knows (its goldens, its measured points): then the
     // case replaces only a JUnit report of ours or nothing.
     if guarded || ours_or_absent(path) {
-        let doc = report::junit::error_document(args.spec, &e.to_string());
+        let doc = report::junit::error_document(&args.spec, &e.to_string());
         let _ = write_file(path, &doc);
         return result;
     }
@@ -78,8 +65,8 @@ fn ours_or_absent(path: &str) -> bool {
 /// `check` itself; `guarded` is set once every file the spec names is known and no output
 /// replaces one of them.
 fn checked(args: &CheckArgs, out: &mut dyn Write, guarded: &mut bool) -> Result<Outcome> {
-    let spec = spec::load(args.spec)?;
-    distinct_outputs(&inputs_of(args.spec, Some(&spec)), &args.paths())?;
+    let spec = spec::load(&args.spec)?;
+    distinct_outputs(&inputs_of(&args.spec, Some(&spec)), &args.paths())?;
     *guarded = true;
     let writes = Writes {
         json: args.json.is_some(),
@@ -121,7 +108,7 @@ fn review_options(args: &CheckArgs) -> Result<Option<ReviewOptions>> {
         0
     };
     let review = ReviewOptions::new(args.report_crank_deg, steps)?;
-    Ok(args.report.map(|_| review))
+    Ok(args.report.as_ref().map(|_| review))
 }
 
 /// The terminal's account of a run: the disc as built, the studies, the checks table, the
@@ -168,11 +155,11 @@ fn print_run(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()
 /// The JSON, JUnit and design review asked for.
 fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()> {
     let spec = &run.spec;
-    if let Some(p) = args.json {
+    if let Some(p) = &args.json {
         let doc = report::json::Document::new(&report::json::Contents::of(run));
         report::json::write(Path::new(p), &doc)?;
     }
-    if let Some(p) = args.junit {
+    if let Some(p) = &args.junit {
         write_file(
             p,
             &report::junit::document(&spec.name, &spec.path, &run.checks),
@@ -184,7 +171,7 @@ fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Resul
     if let Some((l, seconds)) = &review.ladder {
         print(out, &report::accuracy::ladder_line(l, *seconds))?;
     }
-    if let Some(dir) = args.report {
+    if let Some(dir) = &args.report {
         let files = report::check_review::write(Path::new(dir), run, review)?;
         print(out, &review_line(dir, files))?;
     }

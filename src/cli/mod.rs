@@ -16,7 +16,7 @@ mod shard;
 mod tolerance;
 
 pub use args::{
-    Cli, Command, DesignArgs, DesignCommand, ToleranceArgs, ToleranceCommand,
+    CheckArgs, Cli, Command, DesignArgs, DesignCommand, OptimiseArgs, ToleranceArgs, ToleranceCommand,
     DEFAULT_REPORT_MAP_STEPS,
 };
 pub use shard::parse_shard;
@@ -50,29 +50,7 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Outcome> {
 /// Run a parsed command; `color` colours the verdicts of the checks table.
 pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
     match cli.command {
-        Command::Check {
-            spec,
-            json,
-            explain,
-            junit,
-            report,
-            report_crank_deg,
-            report_map_steps,
-            tolerance,
-        } => {
-            let args = check::CheckArgs {
-                spec: &spec,
-                json: json.as_deref(),
-                junit: junit.as_deref(),
-                report: report.as_deref(),
-                report_crank_deg,
-                report_map_steps,
-                explain,
-                tolerance,
-                color,
-            };
-            check::run(&args, out)
-        }
+        Command::Check(args) => check::run(&CheckArgs { color, ..args }, out),
         Command::Bless { spec } => bless::run(&spec, out),
         Command::Accuracy {
             spec,
@@ -92,22 +70,7 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             };
             accuracy::run(&spec, &asked, out)
         }
-        Command::Optimise {
-            spec,
-            study,
-            write,
-            map,
-            map_steps,
-        } => {
-            let args = optimise::OptimiseArgs {
-                spec: &spec,
-                study: study.as_deref(),
-                write: write.as_deref(),
-                map: map.as_deref(),
-                map_steps,
-            };
-            optimise::run(&args, out)
-        }
+        Command::Optimise(args) => optimise::run(&args, out),
         Command::Profile {
             spec,
             csv,

@@ -2,7 +2,7 @@
 //! the objective map asked for.
 
 use super::output::{distinct_outputs, inputs_of, print, write_file, write_spec};
-use super::Outcome;
+use super::{OptimiseArgs, Outcome};
 use crate::engine::commands::{self, MAX_MAP_STEPS};
 use crate::engine::optimise::StudyResult;
 use crate::error::{Error, ErrorKind, Result};
@@ -11,19 +11,11 @@ use crate::report::terminal::Terminal;
 use crate::{report, spec};
 use std::io::Write;
 
-/// The options of `cycloid optimise`.
-pub(super) struct OptimiseArgs<'a> {
-    pub spec: &'a str,
-    pub study: Option<&'a str>,
-    pub write: Option<&'a str>,
-    pub map: Option<&'a str>,
-    pub map_steps: usize,
-}
-
 pub(super) fn run(args: &OptimiseArgs, out: &mut dyn Write) -> Result<Outcome> {
-    let path = args.spec;
+    let path = args.spec.as_str();
     let spec = spec::load(path)?;
-    let outputs = [("--write", args.write), ("--map", args.map)];
+    let (write, map) = (args.write.as_deref(), args.map.as_deref());
+    let outputs = [("--write", write), ("--map", map)];
     distinct_outputs(&inputs_of(path, Some(&spec)), &outputs)?;
     if args.map.is_some() && !commands::map_steps_allowed(args.map_steps) {
         return Err(Error::new(
@@ -34,17 +26,17 @@ pub(super) fn run(args: &OptimiseArgs, out: &mut dyn Write) -> Result<Outcome> {
             ),
         ));
     }
-    let map_steps = args.map.map(|_| args.map_steps);
-    let run = commands::optimise(&spec, args.study, map_steps, &Terminal)?;
+    let map_steps = map.map(|_| args.map_steps);
+    let run = commands::optimise(&spec, args.study.as_deref(), map_steps, &Terminal)?;
     for (k, (study, r)) in run.studies.iter().enumerate() {
         print(out, &report::optimisation::render(&spec, study, r))?;
         if k > 0 {
             continue;
         }
-        if let Some(p) = args.write {
+        if let Some(p) = write {
             print(out, &write_optimum(&spec, path, study, r, p)?)?;
         }
-        if let (Some(p), Some(cells)) = (args.map, &run.map) {
+        if let (Some(p), Some(cells)) = (map, &run.map) {
             write_file(p, &report::optimisation::map_csv(study, cells))?;
             print(
                 out,

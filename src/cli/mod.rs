@@ -16,8 +16,8 @@ mod shard;
 mod tolerance;
 
 pub use args::{
-    CheckArgs, Cli, Command, DesignArgs, DesignCommand, OptimiseArgs, ToleranceArgs, ToleranceCommand,
-    DEFAULT_REPORT_MAP_STEPS,
+    CheckArgs, Cli, Command, DesignArgs, DesignCommand, OptimiseArgs, ToleranceArgs,
+    ToleranceCommand, DEFAULT_REPORT_MAP_STEPS,
 };
 pub use shard::parse_shard;
 

@@ -83,26 +83,30 @@ pub enum Command {
     Design(DesignArgs),
     /// Export the modified disc profile as CSV points and a DXF polyline, and the disc as a
     /// STEP solid and an STL mesh.
-    Profile {
-        /// The YAML spec whose design and modification give the profile.
-        spec: String,
-        /// Write the profile points as CSV (x_mm, y_mm) to this path (optional).
-        #[arg(long)]
-        csv: Option<String>,
-        /// Write the profile as a closed DXF polyline to this path (optional).
-        #[arg(long)]
-        dxf: Option<String>,
-        /// Write the disc as one STEP (AP214) solid to this path (optional).
-        #[arg(long)]
-        step: Option<String>,
-        /// Write the disc as a closed ASCII STL mesh to this path (optional).
-        #[arg(long)]
-        stl: Option<String>,
-        /// Largest chordal error of the exported polyline, µm (at least 0.001); also the
-        /// largest distance of the STEP solid's and the STL mesh's surface from the disc.
-        #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
-        tolerance_um: f64,
-    },
+    Profile(ProfileArgs),
+}
+
+/// `cycloid profile SPEC [options]`: the files it writes (each optional, at least one).
+#[derive(Debug, clap::Args)]
+pub struct ProfileArgs {
+    /// The YAML spec whose design and modification give the profile.
+    pub spec: String,
+    /// Write the profile points as CSV (x_mm, y_mm) to this path (optional).
+    #[arg(long)]
+    pub csv: Option<String>,
+    /// Write the profile as a closed DXF polyline to this path (optional).
+    #[arg(long)]
+    pub dxf: Option<String>,
+    /// Write the disc as one STEP (AP214) solid to this path (optional).
+    #[arg(long)]
+    pub step: Option<String>,
+    /// Write the disc as a closed ASCII STL mesh to this path (optional).
+    #[arg(long)]
+    pub stl: Option<String>,
+    /// Largest chordal error of the exported polyline, µm (at least 0.001); also the
+    /// largest distance of the STEP solid's and the STL mesh's surface from the disc.
+    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
+    pub tolerance_um: f64,
 }
 
 /// `cycloid check SPEC [options]`: where it writes its results besides the terminal, and what

@@ -16,7 +16,7 @@ mod shard;
 mod tolerance;
 
 pub use args::{
-    CheckArgs, Cli, Command, DesignArgs, DesignCommand, OptimiseArgs, ToleranceArgs,
+    CheckArgs, Cli, Command, DesignArgs, DesignCommand, OptimiseArgs, ProfileArgs, ToleranceArgs,
     ToleranceCommand, DEFAULT_REPORT_MAP_STEPS,
 };
 pub use shard::parse_shard;
@@ -71,22 +71,7 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
             accuracy::run(&spec, &asked, out)
         }
         Command::Optimise(args) => optimise::run(&args, out),
-        Command::Profile {
-            spec,
-            csv,
-            dxf,
-            step,
-            stl,
-            tolerance_um,
-        } => {
-            let outputs = profile::Outputs {
-                csv: csv.as_deref(),
-                dxf: dxf.as_deref(),
-                step: step.as_deref(),
-                stl: stl.as_deref(),
-            };
-            profile::run(&spec, &outputs, tolerance_um, out)
-        }
+        Command::Profile(args) => profile::run(&args, out),
         Command::Fit {
             spec,
             write,

@@ -2,34 +2,18 @@
 //! disc as a STEP solid and an STL mesh.
 
 use super::output::{distinct_outputs, inputs_of, print, write_file};
-use super::Outcome;
+use super::{Outcome, ProfileArgs};
 use crate::engine::commands::{self, MIN_PROFILE_TOLERANCE_MM};
 use crate::error::{Error, ErrorKind, Result};
 use crate::report::{export, step, stl};
 use crate::{numeric, spec, units};
 use std::io::Write;
 
-/// The files `profile` writes (each optional, at least one).
-pub(super) struct Outputs<'a> {
-    pub(super) csv: Option<&'a str>,
-    pub(super) dxf: Option<&'a str>,
-    pub(super) step: Option<&'a str>,
-    pub(super) stl: Option<&'a str>,
-}
-
-pub(super) fn run(
-    path: &str,
-    outputs: &Outputs,
-    tolerance_um: f64,
-    out: &mut dyn Write,
-) -> Result<Outcome> {
+pub(super) fn run(args: &ProfileArgs, out: &mut dyn Write) -> Result<Outcome> {
+    let (path, tolerance_um) = (args.spec.as_str(), args.tolerance_um);
     check_tolerance(tolerance_um)?;
-    let Outputs {
-        csv,
-        dxf,
-        step: step_path,
-        stl: stl_path,
-    } = *outputs;
+    let paths = [&args.csv, &args.dxf, &args.step, &args.stl].map(Option::as_deref);
+    let [csv, dxf, step_path, stl_path] = paths;
     if [csv, dxf, step_path, stl_path].iter().all(Option::is_none) {
         return Err(Error::new(
             ErrorKind::Usage,

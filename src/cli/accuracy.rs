@@ -2,29 +2,19 @@
 //! library's ladder, its rows printed as each rung finishes.
 
 use super::output::{print, stdout_error};
-use super::Outcome;
+use super::{AccuracyArgs, Outcome};
 use crate::engine::accuracy::{self, Setting};
 use crate::engine::commands;
 use crate::error::{Error, ErrorKind, Result};
 use crate::{report, spec};
 use std::io::Write;
 
-/// The options of `cycloid accuracy` as given; unset ones come from the spec's `accuracy`
-/// section, else the defaults.
-pub(super) struct AccuracyArgs {
-    pub scene: Option<String>,
-    pub finest: Option<i64>,
-    pub settings_steps: Option<i64>,
-    /// TE (arcsec), force (N), ratio, clearance (µm).
-    pub tolerances: [Option<f64>; 4],
-}
-
 fn bad(flag: &str, m: String) -> Error {
     Error::new(ErrorKind::InvalidValue, format!("--{flag}: {m}"))
 }
 
-pub(super) fn run(path: &str, asked: &AccuracyArgs, out: &mut dyn Write) -> Result<Outcome> {
-    let spec = spec::load(path)?;
+pub(super) fn run(asked: &AccuracyArgs, out: &mut dyn Write) -> Result<Outcome> {
+    let spec = spec::load(&asked.spec)?;
     let (scene, options) = options(&spec, asked)?;
     // Rows are printed as their runs finish: the finest run comes first and takes longest.
     let mut written: Result<()> = Ok(());
@@ -80,7 +70,12 @@ fn options(spec: &spec::Spec, asked: &AccuracyArgs) -> Result<(usize, accuracy::
         "clearance-tol-um",
     ]
     .into_iter()
-    .zip(asked.tolerances)
+    .zip([
+        asked.te_tol_arcsec,
+        asked.force_tol_n,
+        asked.ratio_tol,
+        asked.clearance_tol_um,
+    ])
     .zip([
         &mut t.te_arcsec,
         &mut t.force_n,

@@ -28,34 +28,7 @@ pub enum Command {
     Optimise(OptimiseArgs),
     /// Run a scene on a ladder of settings (crank steps per mesh period, geometry, contact law,
     /// solver tolerance) and print each rung's error against the finest rung and its time.
-    Accuracy {
-        /// The YAML spec.
-        spec: String,
-        /// The scene to run [default: the spec's `accuracy.scene`, else the first scene with
-        /// roller contact, else the first scene].
-        #[arg(long)]
-        scene: Option<String>,
-        /// Crank steps per mesh period of the finest rung, the reference: 12·2^k, at least 24
-        /// [default: the spec's `accuracy.finest_steps_per_period`, else 3072].
-        #[arg(long, allow_negative_numbers = true)]
-        finest: Option<i64>,
-        /// Crank steps per mesh period of the rungs that change one setting [default: the
-        /// cheapest steps rung that meets every tolerance, else the finest].
-        #[arg(long, allow_negative_numbers = true)]
-        settings_steps: Option<i64>,
-        /// Tolerance on the TE curve and the TE fluctuation, arcsec [default: 0.1].
-        #[arg(long, allow_negative_numbers = true)]
-        te_tol_arcsec: Option<f64>,
-        /// Tolerance on the max roller and bearing forces, N [default: 0.5].
-        #[arg(long, allow_negative_numbers = true)]
-        force_tol_n: Option<f64>,
-        /// Tolerance on the ratio fluctuation κmax − κmin [default: 1e-4].
-        #[arg(long, allow_negative_numbers = true)]
-        ratio_tol: Option<f64>,
-        /// Tolerance on the min clearance, µm [default: 0.1].
-        #[arg(long, allow_negative_numbers = true)]
-        clearance_tol_um: Option<f64>,
-    },
+    Accuracy(AccuracyArgs),
     /// Rewrite the golden files of a spec from the current results, on purpose, and print
     /// what moved. CI never blesses.
     Bless {
@@ -107,6 +80,38 @@ pub struct ProfileArgs {
     /// largest distance of the STEP solid's and the STL mesh's surface from the disc.
     #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
     pub tolerance_um: f64,
+}
+
+/// `cycloid accuracy SPEC [options]`: the options as given; unset ones come from the spec's
+/// `accuracy` section, else the defaults.
+#[derive(Debug, clap::Args)]
+pub struct AccuracyArgs {
+    /// The YAML spec.
+    pub spec: String,
+    /// The scene to run [default: the spec's `accuracy.scene`, else the first scene with
+    /// roller contact, else the first scene].
+    #[arg(long)]
+    pub scene: Option<String>,
+    /// Crank steps per mesh period of the finest rung, the reference: 12·2^k, at least 24
+    /// [default: the spec's `accuracy.finest_steps_per_period`, else 3072].
+    #[arg(long, allow_negative_numbers = true)]
+    pub finest: Option<i64>,
+    /// Crank steps per mesh period of the rungs that change one setting [default: the
+    /// cheapest steps rung that meets every tolerance, else the finest].
+    #[arg(long, allow_negative_numbers = true)]
+    pub settings_steps: Option<i64>,
+    /// Tolerance on the TE curve and the TE fluctuation, arcsec [default: 0.1].
+    #[arg(long, allow_negative_numbers = true)]
+    pub te_tol_arcsec: Option<f64>,
+    /// Tolerance on the max roller and bearing forces, N [default: 0.5].
+    #[arg(long, allow_negative_numbers = true)]
+    pub force_tol_n: Option<f64>,
+    /// Tolerance on the ratio fluctuation κmax − κmin [default: 1e-4].
+    #[arg(long, allow_negative_numbers = true)]
+    pub ratio_tol: Option<f64>,
+    /// Tolerance on the min clearance, µm [default: 0.1].
+    #[arg(long, allow_negative_numbers = true)]
+    pub clearance_tol_um: Option<f64>,
 }
 
 /// `cycloid check SPEC [options]`: where it writes its results besides the terminal, and what

@@ -16,8 +16,8 @@ mod shard;
 mod tolerance;
 
 pub use args::{
-    CheckArgs, Cli, Command, DesignArgs, DesignCommand, OptimiseArgs, ProfileArgs, ToleranceArgs,
-    ToleranceCommand, DEFAULT_REPORT_MAP_STEPS,
+    AccuracyArgs, CheckArgs, Cli, Command, DesignArgs, DesignCommand, OptimiseArgs, ProfileArgs,
+    ToleranceArgs, ToleranceCommand, DEFAULT_REPORT_MAP_STEPS,
 };
 pub use shard::parse_shard;
 
@@ -52,24 +52,7 @@ pub fn run_with(cli: Cli, out: &mut dyn Write, color: bool) -> Result<Outcome> {
     match cli.command {
         Command::Check(args) => check::run(&CheckArgs { color, ..args }, out),
         Command::Bless { spec } => bless::run(&spec, out),
-        Command::Accuracy {
-            spec,
-            scene,
-            finest,
-            settings_steps,
-            te_tol_arcsec,
-            force_tol_n,
-            ratio_tol,
-            clearance_tol_um,
-        } => {
-            let asked = accuracy::AccuracyArgs {
-                scene,
-                finest,
-                settings_steps,
-                tolerances: [te_tol_arcsec, force_tol_n, ratio_tol, clearance_tol_um],
-            };
-            accuracy::run(&spec, &asked, out)
-        }
+        Command::Accuracy(args) => accuracy::run(&args, out),
         Command::Optimise(args) => optimise::run(&args, out),
         Command::Profile(args) => profile::run(&args, out),
         Command::Fit {

@@ -149,6 +149,17 @@ pub struct CheckArgs {
     pub color: bool,
 }
 
+impl CheckArgs {
+    /// The files and directories this run writes, by option.
+    pub(super) fn paths(&self) -> [(&'static str, Option<&str>); 3] {
+        [
+            ("--json", self.json.as_deref()),
+            ("--junit", self.junit.as_deref()),
+            ("--report", self.report.as_deref()),
+        ]
+    }
+}
+
 /// `cycloid optimise SPEC [options]`.
 #[derive(Debug, clap::Args)]
 pub struct OptimiseArgs {

@@ -12,17 +12,6 @@ use crate::{report, spec};
 use std::io::Write;
 use std::path::Path;
 
-impl CheckArgs {
-    /// The files and directories this run writes, by option.
-    fn paths(&self) -> [(&'static str, Option<&str>); 3] {
-        [
-            ("--json", self.json.as_deref()),
-            ("--junit", self.junit.as_deref()),
-            ("--report", self.report.as_deref()),
-        ]
-    }
-}
-
 /// `cycloid check`; a run that stops on an error still writes it as a JUnit error case.
 pub(super) fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<Outcome> {
     distinct_outputs(&inputs_of(&args.spec, None), &args.paths())?;

@@ -9,7 +9,7 @@ fuzz_target!(|text: &str| {
     match cycloid::spec::parse("fuzz.yaml", text) {
         Ok(spec) => {
             let _ = cycloid::engine::check::validate(&spec);
-            let _ = cycloid::report::explain::explain(&spec, Default::default());
+            let _ = cycloid::report::explain::explain(&spec, Default::default(), false);
         }
         Err(e) => {
             let rendered = e.to_string();

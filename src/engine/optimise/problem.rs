@@ -42,11 +42,8 @@ impl Margin {
 
     fn upper(name: &str, unit: &'static str, value: f64, bound: f64) -> Self {
         Margin {
-            name: name.into(),
-            unit,
-            value,
-            bound,
             margin: bound - value,
+            ..Margin::lower(name, unit, value, bound)
         }
     }
 

@@ -210,11 +210,6 @@ impl<'a> Problem<'a> {
         self.point_at(&x)
     }
 
-    /// The modification at z of the unit cube of the variables (`point_at_unit`).
-    pub fn modification_at_unit(&self, z: &[f64]) -> Modification {
-        self.point_at_unit(z).modification
-    }
-
     /// A point's place in the unit cube of the variables.
     pub fn unit_of(&self, p: &Point) -> Vec<f64> {
         self.study

@@ -4,6 +4,7 @@
 //! Arrays are \[angle\] or \[roller|pin\]\[angle\]; engine units (rad, N, MPa, mm).
 
 use super::first_order_sweep::{Row, Summary};
+use super::friction::loss::disc_losses;
 use super::loaded::{AngleSolution, Model};
 use super::rollers::Rollers;
 use super::solve::SolveFailure;
@@ -359,7 +360,8 @@ impl<'a> Chunk<'a> {
             return;
         };
         if let Some(l) = self.loss.first_mut() {
-            l[k] = losses.disc(crank_rad, sol);
+            // The disc's contact losses at its crank angle (its phase included), N·mm/rad.
+            l[k] = disc_losses(&losses.friction, &losses.design, crank_rad, sol);
         }
         if let (Some(t), Some(c)) = (self.input_torque.first_mut(), &losses.input) {
             t[k] = c.input_torque(self.bearing_force[k], self.bearing_angle[k]);

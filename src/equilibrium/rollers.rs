@@ -371,23 +371,14 @@ impl Rollers {
     /// Evaluate every roller at `pose`. `states` holds the previous evaluation (its `t` is the
     /// warm start) or is empty.
     pub fn evaluate(&self, pose: &Pose, states: &mut Vec<RollerState>) -> Result<(), GapFailure> {
-        self.evaluate_within(pose, states, &mut [])
-    }
-
-    /// Evaluate at `pose`, skipping rollers whose `reaches` entry proves a positive gap (they
-    /// get zero force and the bound as gap). With an empty `reaches` every roller is evaluated;
-    /// otherwise an evaluated roller's entry is updated.
-    pub fn evaluate_within(
-        &self,
-        pose: &Pose,
-        states: &mut Vec<RollerState>,
-        reaches: &mut [Reach],
-    ) -> Result<(), GapFailure> {
         let trig = AngleTrig::new(pose.crank_rad, self.design.teeth);
-        self.evaluate_at(pose, &trig, states, reaches)
+        self.evaluate_at(pose, &trig, states, &mut [])
     }
 
-    /// `evaluate_within` with the angle's trigonometry computed once by the caller.
+    /// Evaluate at `pose`, with the angle's trigonometry computed once by the caller, skipping
+    /// rollers whose `reaches` entry proves a positive gap (they get zero force and the bound as
+    /// gap). With an empty `reaches` every roller is evaluated; otherwise an evaluated roller's
+    /// entry is updated.
     pub fn evaluate_at(
         &self,
         pose: &Pose,

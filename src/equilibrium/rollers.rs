@@ -427,7 +427,10 @@ impl Rollers {
                         self.nearest_state(i, pose, trig, state, centre, (s, c))?
                     }
                 }
-                GeometryMode::FirstOrder => self.first_order_state(i, pose, trig.e_phi),
+                GeometryMode::FirstOrder => {
+                    let term = self.first_order_term(i, trig.e_phi);
+                    self.first_order_from_term(i, pose, trig.e_phi, term)
+                }
             };
             if let Some(reach) = reaches.get_mut(i) {
                 *reach = Reach {
@@ -553,11 +556,6 @@ impl Rollers {
             point: self.centres[i] - self.design.roller_radius_mm * normal,
             t,
         }
-    }
-
-    /// First-order state of roller i at `pose` (`first_order_term`, `first_order_from_term`).
-    fn first_order_state(&self, i: usize, pose: &Pose, e_phi: Vec2) -> RollerState {
-        self.first_order_from_term(i, pose, e_phi, self.first_order_term(i, e_phi))
     }
 
     /// First-order gaps at zero lag and arms of every roller at the eccentric direction

@@ -46,23 +46,25 @@ pub fn fluctuation(values: &[f64]) -> f64 {
 /// A number for a person: 4 significant figures, no exponent for ordinary magnitudes
 /// (1e-3 ≤ |x| < 1e6), exponent form otherwise (never a 300-digit decimal).
 pub fn number(x: f64) -> String {
-    match decimals(x) {
+    match decimals(x, 1e-3) {
         _ if x == 0.0 => "0".to_string(),
         Some(digits) => format!("{x:.digits$}"),
         None => format!("{x:.3e}"),
     }
 }
 
-/// The decimals `number` prints `x` with (four significant digits), or `None` where it
-/// prints an exponent (|x| outside [1e-3, 1e6)).
-fn decimals(x: f64) -> Option<usize> {
+/// The decimals that give `x` four significant digits where it rounds into [`smallest`, 1e6),
+/// else `None` (an exponent): `number` prints decimals from 1e-3, a column from 1e-4 (one
+/// decade further down: a column may need it).
+fn decimals(x: f64, smallest: f64) -> Option<usize> {
     // The magnitude after rounding to four significant digits: 9.99996 prints as 10.00 (four
     // digits), not 10.000, and 999999.7 as 1.000e6.
     let a = x.abs();
     let unit = 10f64.powi(a.log10().floor() as i32 - 3);
     let rounded = (a / unit).round() * unit;
-    let decimal = (1e-3..1e6).contains(&rounded);
-    decimal.then(|| (3 - (rounded.log10() + 1e-12).floor() as i32).clamp(0, 6) as usize)
+    (smallest..1e6)
+        .contains(&rounded)
+        .then(|| (3 - (rounded.log10() + 1e-12).floor() as i32).max(0) as usize)
 }
 
 /// The cells of one column of numbers, by one rule for the whole column: whole numbers (a
@@ -75,10 +77,10 @@ pub fn column(values: &[f64]) -> Vec<String> {
     let decimal = values
         .iter()
         .filter(|&&x| x != 0.0)
-        .all(|&x| column_decimals(x).is_some());
+        .all(|&x| decimals(x, 1e-4).is_some());
     values
         .iter()
-        .map(|&x| match column_decimals(x) {
+        .map(|&x| match decimals(x, 1e-4) {
             _ if x == 0.0 => "0".to_string(),
             _ if counts => format!("{x:.0}"),
             Some(digits) if decimal => format!("{x:.digits$}"),
@@ -87,24 +89,13 @@ pub fn column(values: &[f64]) -> Vec<String> {
         .collect()
 }
 
-/// The decimals that give `x` four significant digits where it rounds into [1e-4, 1e6) (one
-/// decade further down than `number`'s decimals: a column may need it), else `None`.
-fn column_decimals(x: f64) -> Option<usize> {
-    let a = x.abs();
-    let unit = 10f64.powi(a.log10().floor() as i32 - 3);
-    let rounded = (a / unit).round() * unit;
-    (1e-4..1e6)
-        .contains(&rounded)
-        .then(|| (3 - (rounded.log10() + 1e-12).floor() as i32).max(0) as usize)
-}
-
 /// The change from `from` to `to`, signed, to the decimals the larger of the two is printed
 /// with (`number`), so that it reads against them: a change below their last printed digit is
 /// "0", not a number in exponent form far below what the values show. Where the values
 /// print with an exponent, the change is `number`'s, signed.
 pub fn change(from: f64, to: f64) -> String {
     let x = to - from;
-    match decimals(from.abs().max(to.abs())) {
+    match decimals(from.abs().max(to.abs()), 1e-3) {
         Some(digits) => signed(x, digits).unwrap_or_else(|| "0".to_string()),
         None if x == 0.0 => "0".to_string(),
         None => format!("{x:+.3e}"),

@@ -720,15 +720,21 @@ pub fn run(
     run_once(COARSEST, geometry, law, default_tol, true)?;
     let reference_run = run_once(options.finest, geometry, law, default_tol, true)?;
     let reference = reference_run.outputs.clone();
+    // A rung from its run, compared with `against` where given (a face-slices rung: the same
+    // angles as its reference), else with the reference in a grid nested in the finest.
     let make = |label: String,
                 variation: Variation,
                 geometry: GeometryMode,
                 law: ContactLaw,
                 rel_tol: f64,
-                run: Run| {
+                run: Run,
+                against: Option<&Outputs>| {
         let n = run.outputs.crank_rad.len();
-        let ratio = layout.angles(options.finest) / n;
-        let (errors, te_at_nodes_arcsec) = errors(&reference, &run.outputs, ratio, layout.periodic);
+        let (reference, ratio) = match against {
+            Some(outputs) => (outputs, 1),
+            None => (&reference, layout.angles(options.finest) / n),
+        };
+        let (errors, te_at_nodes_arcsec) = errors(reference, &run.outputs, ratio, layout.periodic);
         Rung {
             label,
             variation,
@@ -759,6 +765,7 @@ pub fn run(
             law,
             default_tol,
             run,
+            None,
         );
         progress(Event::Rung(&layout, &rung));
         rungs.push(rung);
@@ -771,6 +778,7 @@ pub fn run(
         law,
         default_tol,
         reference_run,
+        None,
     );
     top.is_reference = true;
     progress(Event::Rung(&layout, &top));
@@ -834,7 +842,7 @@ pub fn run(
             let clearance = LadderQuantity::MinClearance.index();
             run.outputs.scalars[clearance] = base.outputs.scalars[clearance];
             run.clearance_seconds = base.clearance_seconds;
-            let rung = make(label, variation, g, l, tol, run);
+            let rung = make(label, variation, g, l, tol, run, None);
             progress(Event::Rung(&layout, &rung));
             rungs.push(rung);
         }
@@ -853,30 +861,17 @@ pub fn run(
         let finest_slices = FACE_SLICES[FACE_SLICES.len() - 1];
         let slices_reference = run_slices(finest_slices)?;
         let slice_rung = |n: usize, run: Run| {
-            let (errors, te_at_nodes_arcsec) =
-                errors(&slices_reference.outputs, &run.outputs, 1, layout.periodic);
-            let angles = run.outputs.crank_rad.len();
-            Rung {
-                label: if n == finest_slices {
-                    format!("face slices {n} (reference)")
-                } else {
-                    format!("face slices {n}")
-                },
-                variation: Variation::FaceSlices,
-                steps_per_period: layout.steps_per_period(angles),
-                angles,
-                geometry,
-                law,
-                rel_tol: default_tol,
-                slices: n,
-                seconds: run.loaded_seconds + run.clearance_seconds,
-                clearance_seconds: run.clearance_seconds,
-                outputs: run.outputs,
-                errors,
-                te_at_nodes_arcsec,
-                is_reference: n == finest_slices,
-                model_difference: false,
-            }
+            let label = if n == finest_slices {
+                format!("face slices {n} (reference)")
+            } else {
+                format!("face slices {n}")
+            };
+            let against = Some(&slices_reference.outputs);
+            let variation = Variation::FaceSlices;
+            let mut rung = make(label, variation, geometry, law, default_tol, run, against);
+            rung.slices = n;
+            rung.is_reference = n == finest_slices;
+            rung
         };
         for &n in &FACE_SLICES[..FACE_SLICES.len() - 1] {
             let rung = slice_rung(n, run_slices(n)?);

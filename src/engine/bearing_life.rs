@@ -12,10 +12,7 @@ use crate::model::results::UNBOUNDED_LIFE_H;
 /// P = (mean of F^p)^(1/p), N, over bearing forces `force_n` (N) sampled evenly over whole
 /// load cycles (the rectangle rule is then the mean of the periodic load). 0 without samples.
 pub fn equivalent_load(force_n: &[f64], exponent: f64) -> f64 {
-    if force_n.is_empty() {
-        return 0.0;
-    }
-    // Scaled by the largest force so that F^p cannot overflow for any p.
+    // Scaled by the largest force so that F^p cannot overflow for any p (no samples: 0).
     let largest = force_n.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     if largest == 0.0 {
         return 0.0;
@@ -31,20 +28,6 @@ pub fn equivalent_load(force_n: &[f64], exponent: f64) -> f64 {
 /// The relative speed of the crank and the disc, rpm: n·(1 + 1/nc) for an input speed n.
 pub fn relative_speed_rpm(input_rpm: f64, teeth: usize) -> f64 {
     input_rpm * (1.0 + 1.0 / teeth as f64)
-}
-
-/// (P in N, L10h in hours) of a crank bearing of rating `rating_n` (C, N) and life exponent
-/// `exponent` (p) under the bearing-force curve `force_n` (N, evenly over whole load cycles),
-/// at the input speed `input_rpm` (n) of a disc with `teeth` (nc) (`life_h`).
-pub fn rating_life(
-    force_n: &[f64],
-    rating_n: f64,
-    exponent: f64,
-    input_rpm: f64,
-    teeth: usize,
-) -> (f64, f64) {
-    let p = equivalent_load(force_n, exponent);
-    (p, life_h(p, rating_n, exponent, input_rpm, teeth))
 }
 
 /// L10h, hours, of a bearing of rating `rating_n` (C, N) and life exponent `exponent` (p)

@@ -539,19 +539,17 @@ pub fn previous_meta(g: &Golden) -> Option<(PathBuf, serde_yaml::Value)> {
         let v: serde_yaml::Value = serde_yaml::from_str(&text).ok()?;
         Some((path, v))
     };
-    let field =
-        |v: &serde_yaml::Value, k: &str| v.get(k).and_then(|x| x.as_str()).map(String::from);
     read(meta_path(&g.path)).or_else(|| {
-        read(legacy_meta_path(&g.path)).filter(|(_, v)| {
-            field(v, "scene").as_deref() == Some(g.scene.as_str())
-                && field(v, "quantity").as_deref() == Some(g.quantity.key)
+        read(legacy_meta_path(&g.path)).filter(|m| {
+            meta_field(Some(m), "scene").as_deref() == Some(g.scene.as_str())
+                && meta_field(Some(m), "quantity").as_deref() == Some(g.quantity.key)
         })
     })
 }
 
-/// A text field of a golden's previous metadata (`reviewed`, `date`), if it can be read.
-fn meta_field(meta: &Option<(PathBuf, serde_yaml::Value)>, field: &str) -> Option<String> {
-    meta.as_ref()?.1.get(field)?.as_str().map(str::to_string)
+/// A text field of a golden's metadata (`reviewed`, `date`, `scene`), if it can be read.
+fn meta_field(meta: Option<&(PathBuf, serde_yaml::Value)>, field: &str) -> Option<String> {
+    meta?.1.get(field)?.as_str().map(str::to_string)
 }
 
 /// SHA-256 of a text as lowercase hex (what `sha256sum` prints for the file).
@@ -735,12 +733,12 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
         // version and review; only a stale field of its metadata (the spec's hash, path,
         // tolerance) is brought up to date.
         let kept = matches!(&change, BlessChange::Compared(c) if c.passed);
-        let old = |field: &str, now: &str| match meta_field(&previous, field) {
+        let old = |field: &str, now: &str| match meta_field(previous.as_ref(), field) {
             Some(old) if kept => old,
             _ => now.to_string(),
         };
         let date = old("date", &date);
-        let reviewed = match (&change, meta_field(&previous, "reviewed")) {
+        let reviewed = match (&change, meta_field(previous.as_ref(), "reviewed")) {
             (BlessChange::Compared(c), Some(old)) if c.passed => old,
             (_, Some(old)) if !old.starts_with("NOT REVIEWED") => format!(
                 "NOT REVIEWED since {date}: the curve moved outside its tolerance when blessed. \

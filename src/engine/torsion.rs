@@ -110,16 +110,6 @@ pub struct TorsionFailure {
     pub failure: String,
 }
 
-impl TorsionFailure {
-    fn new(crank_rad: f64, torque_nmm: f64, failure: String) -> Self {
-        TorsionFailure {
-            crank_rad,
-            torque_nmm,
-            failure,
-        }
-    }
-}
-
 /// The torsion curve over the loop and the figures at one locked crank angle: the torsion
 /// angle γ(T) + c_s·T, γ the loaded model's output lag and c_s (`structure_rad_per_nmm`,
 /// rad/(N·mm)) the rest of the reducer's torsional compliance, in series (a spring in series
@@ -137,7 +127,11 @@ pub fn at_angle(
     }
     let mut discs = discs.clone();
     let mut work = CoupledWork::new(&discs);
-    let fail = |torque_nmm, failure| TorsionFailure::new(crank_rad, torque_nmm, failure);
+    let fail = |torque_nmm, failure| TorsionFailure {
+        crank_rad,
+        torque_nmm,
+        failure,
+    };
     let mut solve = |t: f64, work: &mut CoupledWork| {
         solve_point(&mut discs, crank_rad, t, work)
             .map(|g| g + structure_rad_per_nmm * t)
@@ -188,7 +182,11 @@ fn friction_loop(
         .collect();
     up.sort_by(f64::total_cmp);
     up.dedup();
-    let fail = |torque_nmm, failure| TorsionFailure::new(crank_rad, torque_nmm, failure);
+    let fail = |torque_nmm, failure| TorsionFailure {
+        crank_rad,
+        torque_nmm,
+        failure,
+    };
     let (loading, unloading) = branches(discs, crank_rad, &up, structure_rad_per_nmm)
         .map_err(|(t, f)| fail(t, solve_failed(f)))?;
     let traversed = Traversed::new(&up, loading, unloading)

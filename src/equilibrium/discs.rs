@@ -644,7 +644,7 @@ fn solve_disc(
     // whose lag may jump far (across the backlash), would carry such a bound past a contact,
     // so it does not use them.
     if work.works[k].solved_at(phi) {
-        work.works[k].reach_all();
+        work.works[k].reaches.clear();
     }
     // A disc without a share does not load its bearing: its centre sits where a rigid one
     // holds it (and the compliant solve need not find a balance of round-off).

@@ -413,7 +413,7 @@ pub fn sweep_discs(
     let mut columns: Vec<Columns> = discs.models.iter().map(|m| Columns::new(m, n)).collect();
     let mut torque = vec![vec![0.0; n]; discs.count()];
     let mut output_lag = vec![0.0; n];
-    let mut per_chunk: Vec<DiscChunk<'_>> = piece_rows(&mut torque, chunks)
+    let mut per_chunk: Vec<DiscChunk<'_>> = piece_rows(&mut torque, chunks, 1)
         .into_iter()
         .zip(pieces(&mut output_lag))
         .map(|(torque, output_lag)| DiscChunk {

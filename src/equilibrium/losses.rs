@@ -3,9 +3,7 @@
 //! (`friction::loss::disc_losses`) and, with the coupled model, its share of the input torque
 //! (`Coupling::input_torque`), each measured where the angle's solution is at hand.
 
-use super::angle_solution::AngleSolution;
 use super::coupling::Coupling;
-use super::friction::loss::{disc_losses, PathLosses};
 use crate::model::{Design, Friction, FrictionModel};
 
 /// What a sweep records of the friction at each solved angle, for the effect `efficiency`
@@ -30,11 +28,5 @@ impl LossModel {
             design: design.clone(),
             input: coupled.then(|| Coupling::new(&friction, design)),
         }
-    }
-
-    /// The disc's contact losses at its crank angle `crank_rad` (its phase included) from its
-    /// solution, N·mm/rad (`disc_losses`).
-    pub fn disc(&self, crank_rad: f64, solution: &AngleSolution) -> PathLosses {
-        disc_losses(&self.friction, &self.design, crank_rad, solution)
     }
 }

@@ -371,23 +371,14 @@ impl Rollers {
     /// Evaluate every roller at `pose`. `states` holds the previous evaluation (its `t` is the
     /// warm start) or is empty.
     pub fn evaluate(&self, pose: &Pose, states: &mut Vec<RollerState>) -> Result<(), GapFailure> {
-        self.evaluate_within(pose, states, &mut [])
-    }
-
-    /// Evaluate at `pose`, skipping rollers whose `reaches` entry proves a positive gap (they
-    /// get zero force and the bound as gap). With an empty `reaches` every roller is evaluated;
-    /// otherwise an evaluated roller's entry is updated.
-    pub fn evaluate_within(
-        &self,
-        pose: &Pose,
-        states: &mut Vec<RollerState>,
-        reaches: &mut [Reach],
-    ) -> Result<(), GapFailure> {
         let trig = AngleTrig::new(pose.crank_rad, self.design.teeth);
-        self.evaluate_at(pose, &trig, states, reaches)
+        self.evaluate_at(pose, &trig, states, &mut [])
     }
 
-    /// `evaluate_within` with the angle's trigonometry computed once by the caller.
+    /// Evaluate at `pose`, with the angle's trigonometry computed once by the caller, skipping
+    /// rollers whose `reaches` entry proves a positive gap (they get zero force and the bound as
+    /// gap). With an empty `reaches` every roller is evaluated; otherwise an evaluated roller's
+    /// entry is updated.
     pub fn evaluate_at(
         &self,
         pose: &Pose,
@@ -436,7 +427,10 @@ impl Rollers {
                         self.nearest_state(i, pose, trig, state, centre, (s, c))?
                     }
                 }
-                GeometryMode::FirstOrder => self.first_order_state(i, pose, trig.e_phi),
+                GeometryMode::FirstOrder => {
+                    let term = self.first_order_term(i, trig.e_phi);
+                    self.first_order_from_term(i, pose, trig.e_phi, term)
+                }
             };
             if let Some(reach) = reaches.get_mut(i) {
                 *reach = Reach {
@@ -562,11 +556,6 @@ impl Rollers {
             point: self.centres[i] - self.design.roller_radius_mm * normal,
             t,
         }
-    }
-
-    /// First-order state of roller i at `pose` (`first_order_term`, `first_order_from_term`).
-    fn first_order_state(&self, i: usize, pose: &Pose, e_phi: Vec2) -> RollerState {
-        self.first_order_from_term(i, pose, e_phi, self.first_order_term(i, e_phi))
     }
 
     /// First-order gaps at zero lag and arms of every roller at the eccentric direction

@@ -518,19 +518,11 @@ pub(super) fn rel(x: f64, scale: f64) -> f64 {
 /// (clearance, no preload) the answer is its upper end, the limit target → 0⁺.
 /// `None` when the target is never reached (no arm of the needed sign).
 /// `events` is scratch space: (breakpoint, change of A, change of B).
-pub fn piecewise_linear_root(
-    k: f64,
-    terms: &[(f64, f64)],
-    target: f64,
-    events: &mut Vec<(f64, f64, f64)>,
-) -> Option<f64> {
-    piecewise_linear_root_near(k, terms, target, f64::NAN, events)
-}
-
-/// `piecewise_linear_root` started from a guess (the previous crank angle's root): a few
-/// Newton steps on the segment of the guess, each exact on its segment; when one lands on the
-/// segment it was computed from, that is the root. Otherwise (or at zero target, or without a
-/// guess) the breakpoint sweep decides.
+///
+/// Started from a guess (the previous crank angle's root): a few Newton steps on the segment
+/// of the guess, each exact on its segment; when one lands on the segment it was computed
+/// from, that is the root. Otherwise (or at zero target, or without a guess: NaN) the
+/// breakpoint sweep decides.
 pub fn piecewise_linear_root_near(
     k: f64,
     terms: &[(f64, f64)],
@@ -659,7 +651,8 @@ mod tests {
             .map(|(g, l)| g / l)
             .fold(f64::INFINITY, f64::min);
         for target in [1e-3, 1e-97, 1e-297] {
-            let x = piecewise_linear_root(k, &terms, target, &mut Vec::new()).unwrap();
+            let x =
+                piecewise_linear_root_near(k, &terms, target, f64::NAN, &mut Vec::new()).unwrap();
             // The root sits on the first closing breakpoint to within one ulp of it plus
             // the approach T/(k·l²) it needs (below 1e-10 rad at 1e-3 N·mm).
             assert!(
@@ -667,7 +660,8 @@ mod tests {
                 "{target:e}: {x:e} < {closes:e}"
             );
             assert!(x <= closes + 1e-10, "{target:e}: {x:e}");
-            let below = piecewise_linear_root(k, &terms, -target, &mut Vec::new()).unwrap();
+            let below =
+                piecewise_linear_root_near(k, &terms, -target, f64::NAN, &mut Vec::new()).unwrap();
             assert!(below <= -closes * (1.0 - 1e-15), "{target:e}: {below:e}");
         }
     }

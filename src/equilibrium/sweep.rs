@@ -4,6 +4,7 @@
 //! Arrays are \[angle\] or \[roller|pin\]\[angle\]; engine units (rad, N, MPa, mm).
 
 use super::first_order_sweep::{Row, Summary};
+use super::friction::loss::disc_losses;
 use super::loaded::{AngleSolution, Model};
 use super::rollers::Rollers;
 use super::solve::SolveFailure;
@@ -125,21 +126,16 @@ pub(super) fn pieces<T>(column: &mut [T]) -> std::slice::ChunksMut<'_, T> {
     column.chunks_mut(CHUNK)
 }
 
-/// \[column\]\[angle\] cut into \[chunk\]\[column\] pieces of `CHUNK` angles (`chunks` of them).
-pub(super) fn piece_rows<T>(columns: &mut [Vec<T>], chunks: usize) -> Vec<Vec<&mut [T]>> {
-    let width = columns.len();
-    let mut rows: Vec<Vec<&mut [T]>> = (0..chunks).map(|_| Vec::with_capacity(width)).collect();
-    for column in columns {
-        for (row, piece) in rows.iter_mut().zip(pieces(column)) {
-            row.push(piece);
-        }
-    }
-    rows
-}
-
-/// \[column\]\[angle·width\] cut into \[chunk\]\[column\] pieces of `CHUNK` angles.
-fn piece_rows_of<T>(columns: &mut [Vec<T>], chunks: usize, width: usize) -> Vec<Vec<&mut [T]>> {
-    let mut rows: Vec<Vec<&mut [T]>> = (0..chunks).map(|_| Vec::new()).collect();
+/// \[column\]\[angle·width\] cut into \[chunk\]\[column\] pieces of `CHUNK` angles (`chunks` of
+/// them; `width` entries an angle).
+pub(super) fn piece_rows<T>(
+    columns: &mut [Vec<T>],
+    chunks: usize,
+    width: usize,
+) -> Vec<Vec<&mut [T]>> {
+    let mut rows: Vec<Vec<&mut [T]>> = (0..chunks)
+        .map(|_| Vec::with_capacity(columns.len()))
+        .collect();
     for column in columns {
         for (row, piece) in rows.iter_mut().zip(column.chunks_mut(CHUNK * width)) {
             row.push(piece);
@@ -194,16 +190,16 @@ impl Columns {
     /// The chunks of `CHUNK` angles, in order.
     pub(super) fn chunks(&mut self) -> Vec<Chunk<'_>> {
         let n = self.lag.len().div_ceil(CHUNK);
-        let mut roller_force = piece_rows(&mut self.roller_force, n).into_iter();
-        let mut pressure = piece_rows(&mut self.pressure, n).into_iter();
-        let mut half_width = piece_rows(&mut self.half_width, n).into_iter();
-        let mut pin_force = piece_rows(&mut self.pin_force, n).into_iter();
-        let mut pin_direction = piece_rows(&mut self.pin_direction, n).into_iter();
-        let mut loss = piece_rows(&mut self.loss, n).into_iter();
-        let mut input_torque = piece_rows(&mut self.input_torque, n).into_iter();
+        let mut roller_force = piece_rows(&mut self.roller_force, n, 1).into_iter();
+        let mut pressure = piece_rows(&mut self.pressure, n, 1).into_iter();
+        let mut half_width = piece_rows(&mut self.half_width, n, 1).into_iter();
+        let mut pin_force = piece_rows(&mut self.pin_force, n, 1).into_iter();
+        let mut pin_direction = piece_rows(&mut self.pin_direction, n, 1).into_iter();
+        let mut loss = piece_rows(&mut self.loss, n, 1).into_iter();
+        let mut input_torque = piece_rows(&mut self.input_torque, n, 1).into_iter();
         let slices = self.slices;
-        let mut line_load = piece_rows_of(&mut self.line_load, n, slices).into_iter();
-        let mut face_factor = piece_rows(&mut self.face_factor, n).into_iter();
+        let mut line_load = piece_rows(&mut self.line_load, n, slices).into_iter();
+        let mut face_factor = piece_rows(&mut self.face_factor, n, 1).into_iter();
         let scalars = pieces(&mut self.lag)
             .zip(pieces(&mut self.output_lag))
             .zip(pieces(&mut self.contacts))
@@ -364,7 +360,8 @@ impl<'a> Chunk<'a> {
             return;
         };
         if let Some(l) = self.loss.first_mut() {
-            l[k] = losses.disc(crank_rad, sol);
+            // The disc's contact losses at its crank angle (its phase included), N·mm/rad.
+            l[k] = disc_losses(&losses.friction, &losses.design, crank_rad, sol);
         }
         if let (Some(t), Some(c)) = (self.input_torque.first_mut(), &losses.input) {
             t[k] = c.input_torque(self.bearing_force[k], self.bearing_angle[k]);

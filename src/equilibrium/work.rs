@@ -158,13 +158,6 @@ impl Work {
         }
     }
 
-    /// Evaluate every roller at the next solve: the bounds that let a sweep skip a roller out
-    /// of reach are kept from the last solve; a solve of the same angle at another torque (a
-    /// disc's share, `discs`) starts without them.
-    pub(super) fn reach_all(&mut self) {
-        self.reaches.clear();
-    }
-
     /// Whether `crank` is the angle solved last.
     pub(super) fn solved_at(&self, crank: f64) -> bool {
         self.filled > 0 && self.history[2].crank == crank

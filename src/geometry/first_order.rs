@@ -20,17 +20,12 @@ pub struct FirstOrderRoller {
 /// Roller i at crank φ, lag 0 (the profile rotation Δδ is included as a lag).
 pub fn roller(design: &Design, m: &Modification, i: usize, crank_rad: f64) -> FirstOrderRoller {
     let (s, c) = (design.roller_angle(i) - crank_rad).sin_cos();
-    let (gap_mm, arm_mm) = from_phase(design, m, c, s);
+    let (gap_mm, arm_mm) = Coefficients::new(design, m).at(c, s);
     FirstOrderRoller { gap_mm, arm_mm }
 }
 
-/// (gap at zero lag, arm) of a roller from cos φi and sin φi.
-#[inline]
-pub fn from_phase(design: &Design, m: &Modification, cos_phi_i: f64, sin_phi_i: f64) -> (f64, f64) {
-    Coefficients::new(design, m).at(cos_phi_i, sin_phi_i)
-}
-
-/// The design and modification constants of `from_phase`, computed once for a sweep.
+/// The design and modification constants of the first-order gaps and arms, computed once for
+/// a sweep.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Coefficients {
     /// 1 + K1².

@@ -59,10 +59,13 @@ pub fn read(path: &str, format: PointsFormat) -> Result<Vec<MeasuredPoint>> {
         MAX_FILE_BYTES,
     )?;
     match format {
-        PointsFormat::Csv => parse_csv(path, &encoding::decode(&bytes, Fallback::Replace)),
+        PointsFormat::Csv => {
+            let text = encoding::decode(&bytes, Fallback::Replace);
+            parse_csv_at_most(path, &text, MAX_POINTS)
+        }
         PointsFormat::Dxf => {
             let text = encoding::decode(&bytes, encoding::dxf_fallback(&bytes));
-            parse_dxf(path, &text)
+            parse_dxf_at_most(path, &text, MAX_POINTS)
         }
     }
 }
@@ -126,12 +129,8 @@ fn csv_records<'t>(
     })
 }
 
-pub fn parse_csv(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
-    parse_csv_at_most(path, text, MAX_POINTS)
-}
-
-/// `parse_csv` refusing more than `max` points (`MAX_POINTS`; a parameter so that the bound is
-/// tested without a file of 10^7 rows).
+/// The points of a CSV text, refusing more than `max` (`read` gives `MAX_POINTS`; a parameter
+/// so that the bound is tested without a file of 10^7 rows).
 pub fn parse_csv_at_most(path: &str, text: &str, max: usize) -> Result<Vec<MeasuredPoint>> {
     let mut rows = csv_records(path, text);
     let (header_line, header) = rows
@@ -440,11 +439,7 @@ fn entities<'a>(all: &'a [Pair<'a>]) -> Vec<Entity<'a>> {
         .collect()
 }
 
-pub fn parse_dxf(path: &str, text: &str) -> Result<Vec<MeasuredPoint>> {
-    parse_dxf_at_most(path, text, MAX_POINTS)
-}
-
-/// `parse_dxf` refusing more than `max` points (`MAX_POINTS`), as `parse_csv_at_most`.
+/// The points of a DXF text, refusing more than `max` (`MAX_POINTS`), as `parse_csv_at_most`.
 pub fn parse_dxf_at_most(path: &str, text: &str, max: usize) -> Result<Vec<MeasuredPoint>> {
     let all = pairs(path, text)?;
     require_mm(path, &all)?;

@@ -6,7 +6,7 @@
 //! is missing" of a scene that ran without a life to check.
 
 use crate::common::{cycloid, Scratch};
-use cycloid::engine::bearing_life::{life_h, rating_life};
+use cycloid::engine::bearing_life::{equivalent_load, life_h};
 use cycloid::model::results::UNBOUNDED_LIFE_H;
 
 /// The shipped torsion spec: the paper's design with a crank bearing (C = 12 kN), a torsion
@@ -164,7 +164,8 @@ fn the_life_is_finite_or_unbounded_never_infinite() {
         life_h(12_000.0 * 1e-100, 12_000.0, 10.0 / 3.0, 1500.0, 9),
         UNBOUNDED_LIFE_H
     );
-    let (p, life) = rating_life(&[1000.0; 3], 12_000.0, 10.0 / 3.0, 1500.0, 9);
+    let p = equivalent_load(&[1000.0; 3], 10.0 / 3.0);
+    let life = life_h(p, 12_000.0, 10.0 / 3.0, 1500.0, 9);
     assert_eq!(p, 1000.0);
     assert!((life - 39_561.3).abs() <= 1e-5 * 39_561.3, "{life}");
 }

@@ -1891,7 +1891,7 @@ proptest! {
     /// "proved" a contact away. 1e-12·Rp covers the two searches' round-off.
     #[test]
     fn a_stored_reach_is_the_true_gap(c in common::cases(), phase in 0.0f64..1.0) {
-        use cycloid::equilibrium::rollers::{Reach, Rollers};
+        use cycloid::equilibrium::rollers::{AngleTrig, Reach, Rollers};
         use cycloid::geometry::clearance::Pose;
         let rollers = Rollers::new(&c.design, &c.m, ContactLaw::PaperLinear, GeometryMode::Exact);
         let mesh = Mesh::new(&c.design, &c.m);
@@ -1906,7 +1906,8 @@ proptest! {
             let phi = period * (phase + k as f64 / 16.0);
             let lag = lag_scale * (k as f64 * 0.7).sin();
             let pose = Pose::lagging(phi, lag);
-            rollers.evaluate_within(&pose, &mut states, &mut reaches).unwrap();
+            let trig = AngleTrig::new(phi, c.design.teeth);
+            rollers.evaluate_at(&pose, &trig, &mut states, &mut reaches).unwrap();
             for (i, reach) in reaches.iter().enumerate() {
                 if reach.crank_rad != phi || reach.lag_rad != lag {
                     continue; // skipped at this pose: its bound, not a stored gap

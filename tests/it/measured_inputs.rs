@@ -397,7 +397,7 @@ fn a_spline_of_120000_control_points_is_read() {
 /// Case 5, every other count: a CSV of more than the reader's bound and a polyline of more
 /// vertices are refused at the line that goes past it, naming it; exactly the bound is read.
 /// The bound is a parameter (`parse_*_at_most`) so that this runs on 1,000 rows, not 10^7
-/// (issue 39 §5: a scan of 10^7 points is read); `parse_csv`/`parse_dxf` use `MAX_POINTS`.
+/// (issue 39 §5: a scan of 10^7 points is read); `points::read` uses `MAX_POINTS`.
 #[test]
 fn every_count_of_the_reader_is_bounded() {
     const MAX: usize = 1_000;

@@ -53,7 +53,7 @@ fn the_global_sample_fills_the_box_and_lies_on_the_faces() {
     let on = |pred: &dyn Fn(&Modification) -> bool| {
         zs[512..]
             .iter()
-            .filter(|z| pred(&problem.modification_at_unit(z)))
+            .filter(|z| pred(&problem.point_at_unit(z).modification))
             .count()
     };
     let near = |a: f64, b: f64| (a - b).abs() < 1e-15;

@@ -6,7 +6,7 @@
 use crate::common;
 
 use crate::common::{cycloid_here, PaperSpec, Scratch};
-use cycloid::engine::bearing_life::{equivalent_load, rating_life, relative_speed_rpm};
+use cycloid::engine::bearing_life::{equivalent_load, life_h, relative_speed_rpm};
 use cycloid::engine::scene::{self, Writes};
 use cycloid::engine::torsion::{figures, FIGURE_TORQUES, ZERO_SIDE};
 use cycloid::equilibrium::discs::{CoupledWork, Discs};
@@ -322,12 +322,13 @@ fn the_dead_band_is_the_unloaded_lost_motion_of_the_clearance_effect() {
 #[test]
 fn the_rating_life_of_a_constant_load_is_the_hand_value() {
     let force = vec![1000.0; 7];
-    let (p, life) = rating_life(&force, 12_000.0, 10.0 / 3.0, 1500.0, 9);
+    let p = equivalent_load(&force, 10.0 / 3.0);
+    let life = life_h(p, 12_000.0, 10.0 / 3.0, 1500.0, 9);
     assert!((p - 1000.0).abs() <= 1e-9, "{p}");
     assert!((life - 39_561.3).abs() <= 1e-5 * 39_561.3, "{life}");
     // No load, no finite life: the unbounded life (the largest double), not ∞ in the outputs.
     assert_eq!(
-        rating_life(&[0.0; 3], 12_000.0, 3.0, 1500.0, 9).1,
+        life_h(equivalent_load(&[0.0; 3], 3.0), 12_000.0, 3.0, 1500.0, 9),
         cycloid::model::results::UNBOUNDED_LIFE_H
     );
 }
@@ -337,7 +338,7 @@ fn the_rating_life_of_a_constant_load_is_the_hand_value() {
 #[test]
 fn the_life_is_at_the_crank_speed_relative_to_the_disc() {
     assert_eq!(relative_speed_rpm(900.0, 9), 1000.0);
-    let life = |nc| rating_life(&[2000.0], 10_000.0, 3.0, 1000.0, nc).1;
+    let life = |nc| life_h(equivalent_load(&[2000.0], 3.0), 10_000.0, 3.0, 1000.0, nc);
     let ratio = life(1) / life(9);
     assert!((ratio - (10.0 / 9.0) / 2.0).abs() <= 1e-12, "{ratio}");
 }

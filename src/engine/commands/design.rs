@@ -182,19 +182,17 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
         )
     })?;
     // The shards in index order, moved (their evaluations move on into the search).
-    let mut rank = vec![0; order.len()];
-    for (k, &i) in order.iter().enumerate() {
-        rank[i] = k;
-    }
-    let mut ordered: Vec<(usize, (&str, shard::Shard))> = names
+    let mut given: Vec<Option<(&str, shard::Shard)>> = names
         .iter()
         .map(String::as_str)
         .zip(shards)
-        .enumerate()
-        .map(|(i, s)| (rank[i], s))
+        .map(Some)
         .collect();
-    ordered.sort_unstable_by_key(|(k, _)| *k);
-    let evaluations = shard::merge(&requirements, ordered.into_iter().map(|(_, s)| s).collect())?;
+    let ordered = order
+        .iter()
+        .map(|&i| given[i].take().expect("check_set places each shard once"))
+        .collect();
+    let evaluations = shard::merge(&requirements, ordered)?;
     Ok(MergedDesign {
         requirements_path: h.text_path,
         requirements_sha256: h.text_sha256,

@@ -2,7 +2,7 @@
 //! at a quarter of the crank angles, judged only on the limits that sampling cannot make
 //! easier) and the full check of the spec a front design is written as.
 
-use super::candidate::Candidate;
+use super::candidate::{self, Candidate};
 pub use super::failure::{Failure, Miss, Requirement};
 use crate::engine::scene::{self, Writes};
 use crate::engine::summary::{self, SceneSummary};
@@ -113,12 +113,6 @@ impl Tally {
     }
 }
 
-/// The validated spec of `c` with `steps` crank angles per mesh period, named `candidate`
-/// while it is searched.
-fn candidate_spec(req: &Requirements, c: &Candidate, steps: usize) -> Result<Spec> {
-    super::candidate::spec(req, c, "candidate", steps)
-}
-
 /// Take `c` through the rules, the screen and the full check, as far as it goes.
 pub fn evaluate(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
     match screen(req, c)? {
@@ -142,7 +136,7 @@ pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
         return stop(Stage::Rules, failures);
     }
     let steps = req.search.steps_per_mesh_period;
-    let spec = match candidate_spec(req, c, steps / 4) {
+    let spec = match candidate::spec(req, c, "candidate", steps / 4) {
         Ok(s) => s,
         Err(e) if e.kind == ErrorKind::ImpossibleDesign => {
             return stop(
@@ -172,7 +166,7 @@ pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
 
 /// The full check of `c` (its rules already passed).
 pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
-    let spec = candidate_spec(req, c, req.search.steps_per_mesh_period)?;
+    let spec = candidate::spec(req, c, "candidate", req.search.steps_per_mesh_period)?;
     let (summaries, checks) = match check(&spec) {
         Ok(r) => r,
         Err(e) if e.kind == ErrorKind::Computation => {

@@ -42,11 +42,8 @@ impl Margin {
 
     fn upper(name: &str, unit: &'static str, value: f64, bound: f64) -> Self {
         Margin {
-            name: name.into(),
-            unit,
-            value,
-            bound,
             margin: bound - value,
+            ..Margin::lower(name, unit, value, bound)
         }
     }
 
@@ -211,11 +208,6 @@ impl<'a> Problem<'a> {
             .map(|(v, &zi)| v.at_unit(zi))
             .collect();
         self.point_at(&x)
-    }
-
-    /// The modification at z of the unit cube of the variables (`point_at_unit`).
-    pub fn modification_at_unit(&self, z: &[f64]) -> Modification {
-        self.point_at_unit(z).modification
     }
 
     /// A point's place in the unit cube of the variables.

@@ -776,7 +776,7 @@ fn a_study_beyond_the_memory_bound_is_refused_before_it_runs() {
     assert_eq!(r.code(), 2, "{r:?}");
     assert!(
         r.stderr.contains(
-            "--samples 1000000000: 1000000000 samples × 1 limits are 1000000000 sample-limits, \
+            "--samples 1000000000: 1000000000 samples × 1 limit are 1000000000 sample-limits, \
              beyond the 268435456 one study holds"
         ),
         "{}",
@@ -791,7 +791,7 @@ fn a_study_beyond_the_memory_bound_is_refused_before_it_runs() {
     assert_eq!(r.code(), 2, "{r:?}");
     assert!(
         r.stderr
-            .contains("tolerances.samples: 300000000 samples × 1 limits")
+            .contains("tolerances.samples: 300000000 samples × 1 limit are")
             && r.stderr
                 .contains("at most 268435456 samples with these limits"),
         "{}",
@@ -1319,8 +1319,8 @@ fn a_header_no_study_has_is_refused_in_its_words() {
     };
     for (h, limits, says) in [
         (header(0, 2, "spec"), 0, "shard 0/2 with 0 limits"),
-        (header(2, 2, "spec"), 1, "shard 2/2 with 1 limits"),
-        (header(0, 5, "spec"), 1, "shard 0/5 with 1 limits"),
+        (header(2, 2, "spec"), 1, "shard 2/2 with 1 limit"),
+        (header(0, 5, "spec"), 1, "shard 0/5 with 1 limit"),
         (
             header(0, 2, "spec, changed"),
             1,

@@ -227,6 +227,11 @@ const RUN_BLOCK: usize = 1 << 14;
 /// sample of the study, so the bound is on the whole study, sharded or not.
 pub const MAX_SAMPLE_LIMITS: usize = 1 << 28;
 
+/// "1 limit", "3 limits": a count of a study's limits as a message says it.
+pub(super) fn limits_counted(limits: usize) -> String {
+    format!("{limits} limit{}", if limits == 1 { "" } else { "s" })
+}
+
 /// A study of `samples` samples judged by `limits` limits fits the records one process holds;
 /// else the error names the bound (`flag`: the count came from `--samples`).
 fn held_in_memory(samples: usize, limits: usize, flag: bool) -> Result<()> {
@@ -236,9 +241,10 @@ fn held_in_memory(samples: usize, limits: usize, flag: bool) -> Result<()> {
     let e = Error::new(
         ErrorKind::InvalidValue,
         format!(
-            "{samples} samples × {limits} limits are {} sample-limits, beyond the \
+            "{samples} samples × {} are {} sample-limits, beyond the \
              {MAX_SAMPLE_LIMITS} one study holds (9 bytes each, 2.4 GB, held whole by a run \
              and by a merge): at most {} samples with these limits",
+            limits_counted(limits),
             samples as u128 * limits as u128,
             MAX_SAMPLE_LIMITS / limits
         ),

@@ -62,7 +62,10 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
     let bytes = r.bytes;
     let (header, limits) = r.header(Reader::u32, ("spec", "spec"))?;
     let (samples, index, count) = (header.items, header.index, header.count);
-    let place = format!("shard {index}/{count} with {limits} limits");
+    let place = format!(
+        "shard {index}/{count} with {}",
+        super::limits_counted(limits as usize)
+    );
     if limits == 0 {
         return Err(r.bad(&place));
     }

@@ -24,7 +24,7 @@ pub fn escape(text: &str) -> String {
 }
 
 fn with_unit(x: f64, unit: &str) -> String {
-    super::table::with_unit(number(x), unit)
+    crate::numeric::with_unit(number(x), unit)
 }
 
 /// One line saying what the check found.

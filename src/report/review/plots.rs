@@ -12,7 +12,8 @@ use crate::model::results::{DiscResult, SceneResult};
 use crate::numeric::extremes;
 use crate::report::place;
 use crate::report::svg::{LinePlot, MapCell, MapPlot, Mark, RefLine, Series, PALETTE, RED};
-use crate::report::table::{figure, with_unit};
+use crate::numeric::with_unit;
+use crate::report::table::figure;
 use crate::spec::Spec;
 use crate::units;
 

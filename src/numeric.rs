@@ -53,6 +53,15 @@ pub fn number(x: f64) -> String {
     }
 }
 
+/// A value followed by its unit, if any ("2.000 mm", "3").
+pub fn with_unit(x: String, unit: &str) -> String {
+    if unit.is_empty() {
+        x
+    } else {
+        format!("{x} {unit}")
+    }
+}
+
 /// The decimals that give `x` four significant digits where it rounds into [`smallest`, 1e6),
 /// else `None` (an exponent): `number` prints decimals from 1e-3, a column from 1e-4 (one
 /// decade further down: a column may need it).

@@ -82,12 +82,12 @@ fn write_optimum(
     let text = spec::edit::optimum_spec(
         out_path,
         &spec.source,
-        &r.optimum.modification,
+        &r.optimum.point.modification,
         study
             .variables
             .iter()
             .any(|v| v.kind.of_crown())
-            .then_some(&r.optimum.crowning),
+            .then_some(&r.optimum.point.crowning),
         &name,
         &header,
     )?;

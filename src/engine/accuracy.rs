@@ -641,11 +641,6 @@ fn part(plan: &Plan, keep: impl Fn(Effect) -> bool) -> Plan {
     }
 }
 
-/// Run the ladder of one scene. `progress` hears of every finished rung as it finishes.
-///
-/// The clearance (unloaded, exact geometry) and the loaded effects are run and timed apart:
-/// the clearance depends on the crank steps only, so the settings rungs reuse the clearance of
-/// the steps rung at their resolution, its result and its measured time.
 /// A scene's run to `settings`, heard by nobody.
 fn run_options(settings: &Settings) -> scene::RunOptions<'static> {
     scene::RunOptions {
@@ -654,6 +649,11 @@ fn run_options(settings: &Settings) -> scene::RunOptions<'static> {
     }
 }
 
+/// Run the ladder of one scene. `progress` hears of every finished rung as it finishes.
+///
+/// The clearance (unloaded, exact geometry) and the loaded effects are run and timed apart:
+/// the clearance depends on the crank steps only, so the settings rungs reuse the clearance of
+/// the steps rung at their resolution, its result and its measured time.
 pub fn run(
     spec: &Spec,
     scene_index: usize,

@@ -11,7 +11,7 @@ use crate::engine::accuracy::{
 };
 use crate::engine::resolution::Resolution;
 use crate::equilibrium::solve::Settings;
-use crate::numeric::number;
+use crate::numeric::{number, with_unit};
 
 /// What a quantity's error is, in words.
 pub fn description(q: LadderQuantity) -> String {
@@ -130,12 +130,7 @@ pub fn steps_text(x: f64) -> String {
 }
 
 fn tolerance_text(q: LadderQuantity, t: &LadderTolerances) -> String {
-    let v = short(q.tolerance(t));
-    if q.unit().is_empty() {
-        v
-    } else {
-        format!("{v} {}", q.unit())
-    }
+    with_unit(short(q.tolerance(t)), q.unit())
 }
 
 /// The quantities of the ladder this scene does not compute, described. The face quantities
@@ -396,17 +391,11 @@ pub fn misses_text(res: &Resolution) -> String {
         .misses
         .iter()
         .map(|&(q, e)| {
-            let unit = q.unit();
-            let unit = if unit.is_empty() {
-                String::new()
-            } else {
-                format!(" {unit}")
-            };
             format!(
-                "{} {} > {}{unit}",
+                "{} {} > {}",
                 q.label(),
                 number(e),
-                number(q.tolerance(&res.tolerances))
+                with_unit(number(q.tolerance(&res.tolerances)), q.unit())
             )
         })
         .collect();

@@ -13,7 +13,7 @@ use crate::model::{
     CentreDeviation, ContactLaw, Design, Detail, Deviations, Effect, Face, FrictionModel,
     PinFriction, PinMode, PinSupport, PinSupportKind, Plan, RollerFriction, RollerMode, Scene,
 };
-use crate::numeric::{input, number};
+use crate::numeric::{input, number, with_unit};
 use crate::spec::Spec;
 use crate::units;
 
@@ -658,12 +658,7 @@ fn goldens_text(spec: &Spec) -> String {
 
 /// A golden's band abs + rel·|golden| in words, without a term that is zero.
 fn band(abs: f64, unit: &str, rel: f64) -> String {
-    // Formatted here, not by `table::with_unit`: table reads tolerance, which reads explain's
-    // notes, so an import of table here would close a circle.
-    let abs_text = match unit {
-        "" => number(abs),
-        _ => format!("{} {unit}", number(abs)),
-    };
+    let abs_text = with_unit(number(abs), unit);
     let rel_text = format!("{} of the golden value", crate::numeric::percent(rel));
     match (abs != 0.0, rel != 0.0) {
         (true, true) => format!("{abs_text} + {rel_text}"),

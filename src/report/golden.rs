@@ -3,7 +3,7 @@
 
 use crate::engine::golden::{BlessChange, Blessed, Point, Written};
 use crate::model::place::Place;
-use crate::numeric::number;
+use crate::numeric::{number, with_unit};
 use crate::report::place;
 use crate::spec::Spec;
 
@@ -38,13 +38,8 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
             BlessChange::Replaced(why) => format!("replaced ({why})"),
             BlessChange::Compared(c) if c.largest.deviation == 0.0 => "unchanged".into(),
             BlessChange::Compared(c) => format!(
-                "max |change| {}{} at {} ({} → {}); {}",
-                number(c.largest.deviation),
-                if b.unit.is_empty() {
-                    String::new()
-                } else {
-                    format!(" {}", b.unit)
-                },
+                "max |change| {} at {} ({} → {}); {}",
+                with_unit(number(c.largest.deviation), b.unit),
                 place::text(&c.largest.place()),
                 number(c.largest.golden),
                 number(c.largest.value),

@@ -1007,7 +1007,7 @@ impl<'a> StudyDoc<'a> {
                     .map(|v| {
                         (
                             v.kind.key(),
-                            Finite(v.kind.to_spec_unit(v.kind.get(&o.point()))),
+                            Finite(v.kind.to_spec_unit(v.kind.get(&o.point))),
                         )
                     })
                     .collect(),

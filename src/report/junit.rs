@@ -3,7 +3,7 @@
 //! and how far outside it lies; an invalid spec or a failed computation is one `<error>` case.
 
 use crate::engine::verdict::{Bound, Check, CheckKind};
-use crate::numeric::number;
+use crate::numeric::{number, with_unit};
 
 /// Escape text for XML attributes and character data.
 pub fn escape(text: &str) -> String {
@@ -23,10 +23,6 @@ pub fn escape(text: &str) -> String {
     out
 }
 
-fn with_unit(x: f64, unit: &str) -> String {
-    super::table::with_unit(number(x), unit)
-}
-
 /// One line saying what the check found.
 pub fn message(c: &Check) -> String {
     let op = c.bound.symbol();
@@ -39,22 +35,22 @@ pub fn message(c: &Check) -> String {
             // As the terminal reads it: a failure rate in percent (`table::shown_scale`).
             let (scale, unit) = (super::table::shown_scale(c), super::table::shown_unit(c));
             let verdict = if c.passed {
-                format!("{} inside", with_unit(-beyond * scale, unit))
+                format!("{} inside", with_unit(number(-beyond * scale), unit))
             } else {
-                format!("{} outside", with_unit(beyond * scale, unit))
+                format!("{} outside", with_unit(number(beyond * scale), unit))
             };
             format!(
                 "value {}, limit {op} {}: {verdict}; {}",
                 super::table::value(c),
-                with_unit(c.limit * scale, unit),
+                with_unit(number(c.limit * scale), unit),
                 super::table::evidence(&c.at)
             )
         }
         CheckKind::Golden => format!(
             "deviation {} {} tolerance band {}{}; {}",
-            with_unit(c.value, c.unit),
+            with_unit(number(c.value), c.unit),
             if c.passed { "within" } else { "outside" },
-            with_unit(c.limit, c.unit),
+            with_unit(number(c.limit), c.unit),
             // The band's multiple, to four significant digits ("2.5e-7× the band", not
             // "0.000×"); none for a zero band.
             if c.limit > 0.0 {

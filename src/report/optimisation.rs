@@ -40,7 +40,7 @@ fn variables(study: &Study, e: &Evaluation) -> String {
             format!(
                 "{} {:.6}",
                 v.kind.key(),
-                v.kind.to_spec_unit(v.kind.get(&e.point()))
+                v.kind.to_spec_unit(v.kind.get(&e.point))
             )
         })
         .collect::<Vec<_>>()
@@ -148,7 +148,7 @@ pub fn outcome(r: &StudyResult) -> String {
 fn on_bounds(study: &Study, r: &StudyResult) -> String {
     let mut out = String::new();
     for v in &study.variables {
-        let x = v.kind.get(&r.optimum.point());
+        let x = v.kind.get(&r.optimum.point);
         let near = 1e-6 * (v.upper - v.lower).abs();
         let side = if (x - v.lower).abs() <= near {
             "lower"
@@ -238,7 +238,7 @@ fn eq8_note(label: &str, e: &Evaluation, study: &Study) -> Option<String> {
     let (lo, _) = study.tip_clearance_mm?;
     let min = e.min_clearance?;
     let dt = study.min_clearance_mm?;
-    let tip = e.modification.tip_clearance_mm();
+    let tip = e.point.modification.tip_clearance_mm();
     let eq8 = tip >= lo - crate::engine::limit::tolerance(lo);
     (eq8 && !crate::engine::limit::passes(min.gap_mm, dt, crate::engine::verdict::Bound::Min)).then(
         || {
@@ -321,7 +321,7 @@ pub fn map_csv(study: &Study, cells: &[Evaluation]) -> String {
     out += "objective,feasible,min_clearance_mm,tip_clearance_mm\n";
     for e in cells {
         for v in vars.iter().take(2) {
-            out += &format!("{},", v.kind.to_spec_unit(v.kind.get(&e.point())));
+            out += &format!("{},", v.kind.to_spec_unit(v.kind.get(&e.point)));
         }
         let objective = if e.objective.is_finite() {
             format!("{}", e.objective)
@@ -334,7 +334,7 @@ pub fn map_csv(study: &Study, cells: &[Evaluation]) -> String {
         out += &format!(
             "{objective},{},{min},{}\n",
             e.feasible(),
-            e.modification.tip_clearance_mm()
+            e.point.modification.tip_clearance_mm()
         );
     }
     out
@@ -376,7 +376,7 @@ fn xy(study: &Study, e: &Evaluation) -> (f64, f64) {
         study
             .variables
             .get(k)
-            .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.point())))
+            .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.point)))
     };
     (at(0), at(1))
 }
@@ -527,7 +527,7 @@ fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) ->
             format!(
                 "{} held at the optimum's {}",
                 v.kind.key(),
-                number(v.kind.to_spec_unit(v.kind.get(&r.optimum.point())))
+                number(v.kind.to_spec_unit(v.kind.get(&r.optimum.point)))
             )
         })
         .collect();
@@ -594,7 +594,7 @@ fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
         variables: study
             .variables
             .iter()
-            .map(|v| v.kind.to_spec_unit(v.kind.get(&e.point())))
+            .map(|v| v.kind.to_spec_unit(v.kind.get(&e.point)))
             .collect(),
         objective: e.failure.is_none().then_some(e.objective),
         failure: e.failure.clone(),

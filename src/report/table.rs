@@ -6,7 +6,7 @@ use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
 use crate::engine::verdict::{Bound, Check, CheckKind, Evidence};
 use crate::model::quantity::{find_limit, Quantity, COUNTS};
 use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE};
-use crate::numeric::number;
+use crate::numeric::{number, with_unit};
 use crate::report::place::{self, ONLY_ANGLE};
 
 /// A value of `q` (in its unit) as every output prints it — headline, checks table, review,
@@ -36,15 +36,6 @@ fn check_figure(c: &Check, x: f64) -> String {
     match checked_quantity(c) {
         Some(q) if shown_scale(c) == 1.0 => figure(q, x),
         _ => number(shown_scale(c) * x),
-    }
-}
-
-/// A value followed by its unit, if any ("2.000 mm", "3").
-pub fn with_unit(x: String, unit: &str) -> String {
-    if unit.is_empty() {
-        x
-    } else {
-        format!("{x} {unit}")
     }
 }
 

@@ -9,7 +9,7 @@ use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::{Error, Result};
 use crate::model::quantity::Bound;
 use crate::model::tolerances::{Distribution, NORMAL_CUT_SIGMA};
-use crate::numeric::{number, percent};
+use crate::numeric::{number, percent, with_unit};
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 use std::collections::BTreeMap;
@@ -159,10 +159,7 @@ pub fn worst_values(study: &ToleranceStudy, records: &Records, k: u64, excess: f
                 .is_eq()
         })
         .map(|((def, limit), &v)| {
-            let unit = |x: f64| match def.quantity.unit {
-                "" => number(x),
-                u => format!("{} {u}", number(x)),
-            };
+            let unit = |x: f64| with_unit(number(x), def.quantity.unit);
             format!(
                 "{} {} ({} {})",
                 def.quantity.key,

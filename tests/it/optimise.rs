@@ -72,7 +72,7 @@ fn the_same_spec_gives_the_same_optimum_bit_for_bit() {
     let s = study(&spec, "positive-ratio");
     let a = run_study(&spec, s, &cycloid::progress::Silent);
     let b = run_study(&spec, s, &cycloid::progress::Silent);
-    assert_eq!(a.optimum.modification, b.optimum.modification);
+    assert_eq!(a.optimum.point.modification, b.optimum.point.modification);
     assert_eq!(a.optimum.objective.to_bits(), b.optimum.objective.to_bits());
     assert_eq!(a.evaluations, b.evaluations);
 }
@@ -118,7 +118,7 @@ fn positive_ratio_optimum_is_no_worse_than_the_papers_and_satisfies_every_constr
     assert!(r.optimum.feasible());
     // Re-check the whole-mesh clearance through the other code path (the full clearance sweep
     // with backlash, not the optimiser's min_gap) on the exact geometry.
-    let m = r.optimum.modification;
+    let m = r.optimum.point.modification;
     let tip = m.equidistant_mm - m.shift_mm;
     assert!((0.015..=0.5).contains(&tip), "tip clearance {tip}");
     let sweep = clearance::sweep(
@@ -224,7 +224,7 @@ fn the_map_covers_the_grid_and_marks_the_tip_constraint() {
     );
     assert_eq!(cells.len(), 16);
     for c in &cells {
-        let tip = c.modification.equidistant_mm - c.modification.shift_mm;
+        let tip = c.point.modification.equidistant_mm - c.point.modification.shift_mm;
         if !(0.015..=0.5).contains(&tip) {
             assert!(!c.feasible(), "tip {tip} must be infeasible");
         }
@@ -591,10 +591,10 @@ fn a_pure_tilt_has_an_interior_best_crown_no_worse_than_a_fine_scan() {
         .min_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
         .unwrap();
     assert!(best.is_finite());
-    let Crowning::Circular { radius_mm, .. } = r.optimum.crowning else {
+    let Crowning::Circular { radius_mm, .. } = r.optimum.point.crowning else {
         panic!(
             "the optimum keeps a circular crown: {:?}",
-            r.optimum.crowning
+            r.optimum.point.crowning
         )
     };
     assert!((lo..=hi).contains(&radius_mm), "{radius_mm}");
@@ -653,7 +653,7 @@ fn the_written_spec_carries_the_crown_found_and_checks() {
     let spec = spec::parse("tilt.yaml", &text).unwrap();
     let r = run_study(&spec, study(&spec, "crown"), &cycloid::progress::Silent);
     let back = spec::parse("best.yaml", &written).unwrap();
-    assert_eq!(back.scenes[0].face.crowning, r.optimum.crowning);
+    assert_eq!(back.scenes[0].face.crowning, r.optimum.point.crowning);
     assert_ne!(back.scenes[0].face.crowning, spec.scenes[0].face.crowning);
     let scene = &back.scenes[0];
     let result = cycloid::engine::scene::run(

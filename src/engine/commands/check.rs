@@ -335,7 +335,7 @@ fn maps(
         .iter()
         .zip(studies)
         .map(|(s, r)| match steps >= 2 {
-            true => map(spec, s, steps, &r.optimum.point(), progress),
+            true => map(spec, s, steps, &r.optimum.point, progress),
             false => Vec::new(),
         })
         .collect()

@@ -48,7 +48,7 @@ pub fn optimise<'a>(
     }
     let results = studies(spec, chosen.clone(), progress);
     let map = match (map_steps, results.first()) {
-        (Some(steps), Some(r)) => Some(map(spec, chosen[0], steps, &r.optimum.point(), progress)),
+        (Some(steps), Some(r)) => Some(map(spec, chosen[0], steps, &r.optimum.point, progress)),
         _ => None,
     };
     Ok(OptimiseRun {

@@ -72,11 +72,11 @@ pub fn run(
     progress: &dyn Progress,
 ) -> LocalRun {
     let dims = problem.study.variables.len();
-    let z0: Vec<f64> = problem.unit_of(&start.point());
+    let z0: Vec<f64> = problem.unit_of(&start.point);
     let path: RefCell<Vec<Evaluation>> = RefCell::new(Vec::new());
     let eval = |z: &[f64]| -> Evaluation {
         let p = problem.point_at_unit(z);
-        if let Some(e) = path.borrow().iter().rev().find(|e| e.point() == p) {
+        if let Some(e) = path.borrow().iter().rev().find(|e| e.point == p) {
             return e.clone();
         }
         progress.advance(1);

@@ -63,9 +63,9 @@ impl Margin {
 /// Everything known about one candidate modification.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Evaluation {
-    pub modification: Modification,
-    /// The candidate's crowning (the spec's unless the study varies the crown).
-    pub crowning: crate::model::Crowning,
+    /// The candidate: its modification and crowning (the spec's unless the study varies the
+    /// crown).
+    pub point: Point,
     /// Weighted objective; +∞ when the candidate could not be evaluated, or was not because a
     /// constraint already failed (a screened evaluation).
     pub objective: f64,
@@ -85,22 +85,13 @@ pub struct Evaluation {
 impl Evaluation {
     fn new(p: &Point) -> Self {
         Evaluation {
-            modification: p.modification,
-            crowning: p.crowning,
+            point: *p,
             objective: f64::INFINITY,
             terms: Vec::new(),
             margins: Vec::new(),
             min_clearance: None,
             lost_motion_arcsec: None,
             failure: None,
-        }
-    }
-
-    /// The candidate: its modification and crowning.
-    pub fn point(&self) -> Point {
-        Point {
-            modification: self.modification,
-            crowning: self.crowning,
         }
     }
 
@@ -358,7 +349,7 @@ impl<'a> Problem<'a> {
         if e.failure.is_some() || (e.min_clearance.is_some() && e.lost_motion_arcsec.is_some()) {
             return e;
         }
-        let mesh = Mesh::new(&self.spec.design, &e.modification);
+        let mesh = Mesh::new(&self.spec.design, &e.point.modification);
         if e.min_clearance.is_none() {
             e.min_clearance = self.min_clearance(&mesh).ok();
         }

@@ -3,7 +3,7 @@
 use super::common::{data_table, verdict, Section};
 use crate::engine::golden::GoldenResult;
 use crate::numeric::number;
-use crate::report::table::with_unit;
+use crate::numeric::with_unit;
 use maud::html;
 
 pub(super) fn section(goldens: &[GoldenResult]) -> Option<Section> {

@@ -11,9 +11,9 @@ use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANT
 use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::Result;
 use crate::model::results::is_unbounded;
+use crate::numeric::with_unit;
 use crate::numeric::{number, percent};
 use crate::report::svg::{LinePlot, Series, PALETTE, RED};
-use crate::report::table::with_unit;
 use crate::report::tolerance::{
     distribution_text, percent_label, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
     QUANTILE_DEFINITION,

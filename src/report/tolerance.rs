@@ -231,8 +231,8 @@ fn sensitivity_text(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> 
         out += &format!(
             "{}: linear stack-up σ = {}, Monte Carlo σ = {}\n",
             ls.quantity,
-            statistic(sens.linear_sigma(l), |x| format!("{x} {}", ls.unit)),
-            statistic(ls.std, |x| format!("{x} {}", ls.unit)),
+            statistic(sens.linear_sigma(l), |x| with_unit(x, ls.unit)),
+            statistic(ls.std, |x| with_unit(x, ls.unit)),
         );
         let mut rows = vec![vec![
             "  tolerance".to_string(),
@@ -243,7 +243,7 @@ fn sensitivity_text(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> 
             rows.push(vec![
                 format!("  {}", kind.name()),
                 percent(share),
-                format!("{} {}", number(var.sqrt()), ls.unit),
+                with_unit(number(var.sqrt()), ls.unit),
             ]);
         }
         out += &columns(&rows);

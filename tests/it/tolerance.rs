@@ -1284,6 +1284,12 @@ fn an_unbounded_life_has_no_mean_spread_or_derivative() {
         "min_contact_fatigue_life_h: linear stack-up σ = none (a sample is unbounded), \
          Monte Carlo σ = none (a sample is unbounded)"
     ));
+    // The static safety is a ratio, without a unit: its σ and its contributions are bare
+    // numbers (a unit's separating space stood before the comma and at the line's end).
+    for line in r.stdout.lines() {
+        assert!(!line.ends_with(' ') && !line.contains(" ,"), "{line:?}");
+    }
+    assert!(r.stdout.contains("static_safety: linear stack-up σ = "));
     let page = dir.read("rep/index.html");
     for shown in [&r.stdout, &page] {
         assert!(

@@ -2,9 +2,9 @@
 //! (fuzz/corpus/spec_parse/, the seeds of `cargo +nightly fuzz run spec_parse`) and a few
 //! thousand deterministic mutations of the shipped specs (byte flips, truncations, duplicated,
 //! dropped and re-indented lines, swapped values, extreme and non-finite numbers, spliced
-//! lines of another spec). Every input either parses, and then passes the checks that run
-//! before any computation (`check::validate`, `report::explain`), or gives an error rendered
-//! as `file:line:column: ...` — never a panic.
+//! lines of another spec). Every input either parses, and then its plan is written
+//! (`report::explain`), or gives an error rendered as `file:line:column: ...` — never a panic:
+//! the fuzz target's own property (`fuzz/fuzz_targets/spec_parse_property.rs`), included.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
@@ -177,40 +177,19 @@ fn mutate(text: &str, other: &str, rng: &mut Rng) -> String {
     }
 }
 
-/// Parse one input (which runs the coverage checks); on success explain it. Err is a panic's message or
-/// an error rendered without its location.
+include!("../../fuzz/fuzz_targets/spec_parse_property.rs");
+
+/// One input through the fuzz target's property (`spec_parse_property`): Ok(whether it
+/// parsed), or Err with the message of the panic, an unlocated error's among them.
 fn exercise(text: &str) -> Result<bool, String> {
-    let outcome = catch_unwind(AssertUnwindSafe(|| {
-        match cycloid::spec::parse("fuzz.yaml", text) {
-            Ok(spec) => {
-                let _ = cycloid::report::explain::explain(&spec, Default::default(), false);
-                Ok(true)
-            }
-            Err(e) => {
-                let rendered = e.to_string();
-                let located = rendered
-                    .strip_prefix("fuzz.yaml:")
-                    .and_then(|r| r.split_once(':'))
-                    .and_then(|(line, r)| Some((line, r.split_once(": ")?.0)))
-                    .is_some_and(|(line, column)| {
-                        line.parse::<usize>().is_ok_and(|l| l >= 1)
-                            && column.parse::<usize>().is_ok_and(|c| c >= 1)
-                    });
-                if located && e.location.is_some() {
-                    Ok(false)
-                } else {
-                    Err(format!("error without file:line:column: {rendered}"))
-                }
-            }
-        }
-    }));
-    outcome.unwrap_or_else(|panic| {
+    let outcome = catch_unwind(AssertUnwindSafe(|| spec_parse_property(text)));
+    outcome.map_err(|panic| {
         let message = panic
             .downcast_ref::<String>()
             .cloned()
             .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
             .unwrap_or_default();
-        Err(format!("panic: {message}"))
+        format!("panic: {message}")
     })
 }
 

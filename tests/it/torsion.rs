@@ -331,6 +331,8 @@ fn the_rating_life_of_a_constant_load_is_the_hand_value() {
         life_h(equivalent_load(&[0.0; 3], 3.0), 12_000.0, 3.0, 1500.0, 9),
         cycloid::model::results::UNBOUNDED_LIFE_H
     );
+    // No samples: P = 0 as documented, not the mean's 0/0 (NaN).
+    assert_eq!(equivalent_load(&[], 10.0 / 3.0), 0.0);
 }
 
 /// The speed is that of the crank relative to the disc, n·(1 + 1/nc): with one tooth (nc = 1)

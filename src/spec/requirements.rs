@@ -162,7 +162,7 @@ fn face(
         ("misalignment", "tilted", !misalignment.is_zero()),
         ("crowning", "crowned", raw.crowning.is_some()),
     ];
-    if let Some((key, what, _)) = shaped.into_iter().find(|s| s.2 && slices < 2) {
+    if let Some((key, what, _)) = shaped.into_iter().find(|&(_, _, is)| is && slices < 2) {
         // At `face_slices` where it is given (too few), else at what needs them.
         let key = if raw.face_slices.is_some() {
             "face_slices"

@@ -621,26 +621,6 @@ fn timed(
     Ok((first.expect("at least one run"), best))
 }
 
-/// The plan with only the effects `keep` accepts.
-fn part(plan: &Plan, keep: impl Fn(Effect) -> bool) -> Plan {
-    Plan {
-        duty: plan.duty,
-        scene: plan.scene.clone(),
-        effects: plan
-            .effects
-            .iter()
-            .filter(|p| keep(p.effect))
-            .cloned()
-            .collect(),
-        details: plan
-            .details
-            .iter()
-            .filter(|p| keep(p.detail.effect()))
-            .cloned()
-            .collect(),
-    }
-}
-
 /// A scene's run to `settings`, heard by nobody.
 fn run_options(settings: &Settings) -> scene::RunOptions<'static> {
     scene::RunOptions {
@@ -665,8 +645,8 @@ pub fn run(
     let layout = layout(spec, scene, options);
     progress(Event::Started(&layout));
     let plan = Plan::for_scene(scene);
-    let clearance_plan = part(&plan, |e| e == Effect::Clearance);
-    let loaded_plan = part(&plan, |e| e != Effect::Clearance);
+    let clearance_plan = scene::part(&plan, |e| e == Effect::Clearance);
+    let loaded_plan = scene::part(&plan, |e| e != Effect::Clearance);
     let default_tol = Settings::default().rel_tol;
     // One run of `s` at `rel_tol`, its loaded effects and (with `clearance`) its clearance
     // timed apart.

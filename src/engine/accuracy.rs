@@ -588,6 +588,9 @@ pub fn curve_error(fine: &[f64], coarse: &[f64], ratio: usize, periodic: bool) -
     (curve, nodes)
 }
 
+/// The model a rung solves: its geometry, contact law and solver tolerance (rel_tol).
+type Model = (GeometryMode, ContactLaw, f64);
+
 /// A rung's run: its outputs and the measured times of its loaded effects and its clearance.
 #[derive(Clone)]
 struct Run {
@@ -621,26 +624,6 @@ fn timed(
     Ok((first.expect("at least one run"), best))
 }
 
-/// The plan with only the effects `keep` accepts.
-fn part(plan: &Plan, keep: impl Fn(Effect) -> bool) -> Plan {
-    Plan {
-        duty: plan.duty,
-        scene: plan.scene.clone(),
-        effects: plan
-            .effects
-            .iter()
-            .filter(|p| keep(p.effect))
-            .cloned()
-            .collect(),
-        details: plan
-            .details
-            .iter()
-            .filter(|p| keep(p.detail.effect()))
-            .cloned()
-            .collect(),
-    }
-}
-
 /// A scene's run to `settings`, heard by nobody.
 fn run_options(settings: &Settings) -> scene::RunOptions<'static> {
     scene::RunOptions {
@@ -665,8 +648,8 @@ pub fn run(
     let layout = layout(spec, scene, options);
     progress(Event::Started(&layout));
     let plan = Plan::for_scene(scene);
-    let clearance_plan = part(&plan, |e| e == Effect::Clearance);
-    let loaded_plan = part(&plan, |e| e != Effect::Clearance);
+    let clearance_plan = scene::part(&plan, |e| e == Effect::Clearance);
+    let loaded_plan = scene::part(&plan, |e| e != Effect::Clearance);
     let default_tol = Settings::default().rel_tol;
     // One run of `s` at `rel_tol`, its loaded effects and (with `clearance`) its clearance
     // timed apart.
@@ -699,9 +682,7 @@ pub fn run(
         })
     };
     let run_once = |steps_per_period: usize,
-                    geometry: GeometryMode,
-                    law: ContactLaw,
-                    rel_tol: f64,
+                    (geometry, law, rel_tol): Model,
                     clearance: bool|
      -> Result<Run> {
         let mut s = scene.clone();
@@ -715,18 +696,17 @@ pub fn run(
         run_scene(&s, rel_tol, clearance)
     };
     let (geometry, law) = (scene.geometry, scene.contact_law);
+    let own = (geometry, law, default_tol);
     // Warm-up, untimed: the first run of a process starts the thread pool and touches fresh
     // memory, which would be charged to the reference otherwise.
-    run_once(COARSEST, geometry, law, default_tol, true)?;
-    let reference_run = run_once(options.finest, geometry, law, default_tol, true)?;
+    run_once(COARSEST, own, true)?;
+    let reference_run = run_once(options.finest, own, true)?;
     let reference = reference_run.outputs.clone();
     // A rung from its run, compared with `against` where given (a face-slices rung: the same
     // angles as its reference), else with the reference in a grid nested in the finest.
     let make = |label: String,
                 variation: Variation,
-                geometry: GeometryMode,
-                law: ContactLaw,
-                rel_tol: f64,
+                (geometry, law, rel_tol): Model,
                 run: Run,
                 against: Option<&Outputs>| {
         let n = run.outputs.crank_rad.len();
@@ -757,29 +737,14 @@ pub fn run(
     let mut rungs = Vec::new();
     let mut n = COARSEST;
     while n < options.finest {
-        let run = run_once(n, geometry, law, default_tol, true)?;
-        let rung = make(
-            format!("steps {n}"),
-            Variation::Steps,
-            geometry,
-            law,
-            default_tol,
-            run,
-            None,
-        );
+        let run = run_once(n, own, true)?;
+        let rung = make(format!("steps {n}"), Variation::Steps, own, run, None);
         progress(Event::Rung(&layout, &rung));
         rungs.push(rung);
         n *= 2;
     }
-    let mut top = make(
-        format!("steps {} (reference)", options.finest),
-        Variation::Steps,
-        geometry,
-        law,
-        default_tol,
-        reference_run,
-        None,
-    );
+    let label = format!("steps {} (reference)", options.finest);
+    let mut top = make(label, Variation::Steps, own, reference_run, None);
     top.is_reference = true;
     progress(Event::Rung(&layout, &top));
     rungs.push(top);
@@ -812,16 +777,12 @@ pub fn run(
             (
                 format!("{} geometry", other_geometry.name()),
                 Variation::Geometry,
-                other_geometry,
-                law,
-                default_tol,
+                (other_geometry, law, default_tol),
             ),
             (
                 format!("{} law", other_law.name()),
                 Variation::ContactLaw,
-                geometry,
-                other_law,
-                default_tol,
+                (geometry, other_law, default_tol),
             ),
         ];
         if geometry == GeometryMode::FirstOrder && law == ContactLaw::PaperLinear {
@@ -831,18 +792,16 @@ pub fn run(
                 variants.push((
                     format!("rel_tol {}", tol_text(tol)),
                     Variation::SolverTolerance,
-                    geometry,
-                    law,
-                    tol,
+                    (geometry, law, tol),
                 ));
             }
         }
-        for (label, variation, g, l, tol) in variants {
-            let mut run = run_once(settings_steps, g, l, tol, false)?;
+        for (label, variation, model) in variants {
+            let mut run = run_once(settings_steps, model, false)?;
             let clearance = LadderQuantity::MinClearance.index();
             run.outputs.scalars[clearance] = base.outputs.scalars[clearance];
             run.clearance_seconds = base.clearance_seconds;
-            let rung = make(label, variation, g, l, tol, run, None);
+            let rung = make(label, variation, model, run, None);
             progress(Event::Rung(&layout, &rung));
             rungs.push(rung);
         }
@@ -868,7 +827,7 @@ pub fn run(
             };
             let against = Some(&slices_reference.outputs);
             let variation = Variation::FaceSlices;
-            let mut rung = make(label, variation, geometry, law, default_tol, run, against);
+            let mut rung = make(label, variation, own, run, against);
             rung.slices = n;
             rung.is_reference = n == finest_slices;
             rung

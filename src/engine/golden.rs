@@ -554,11 +554,7 @@ fn meta_field(meta: Option<&(PathBuf, serde_yaml::Value)>, field: &str) -> Optio
 
 /// SHA-256 of a text as lowercase hex (what `sha256sum` prints for the file).
 pub fn sha256_hex(text: &str) -> String {
-    use sha2::Digest;
-    sha2::Sha256::digest(text.as_bytes())
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect()
+    super::shard_file::hex(&super::shard_file::text_hash(text))
 }
 
 /// Today's date (UTC) as YYYY-MM-DD; `SOURCE_DATE_EPOCH` (seconds) overrides the clock.

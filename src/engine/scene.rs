@@ -307,28 +307,37 @@ fn run_duty_cycle(
     })
 }
 
-/// The clearance of each disc of `design` over the scene's angles, in disc order, as
-/// `run_one` computes them (one mesh minimum for all, disc k at its crank phase, disc 0's
-/// exactly 0).
+/// The clearance of each disc of `design` over the scene's angles, in disc order: `run_one`
+/// with the plan's clearance alone (one mesh minimum for all, disc k at its crank phase).
 fn clearances(
     design: &Design,
     m: &Modification,
     (scene, plan): (&Scene, &Plan),
     options: &RunOptions,
 ) -> Result<Vec<ClearanceSweep>> {
-    let mesh = Mesh::new(design, m);
-    let target = mesh_minimum::Target::new(design, options.clearance_tolerance_mm);
-    let mut whole = MeshMinimum::new(&mesh, target);
-    (0..design.discs)
-        .map(|k| {
-            clearance_sweep(
-                &mut whole,
-                (scene, plan),
-                design.disc_phase_rad(k),
-                options.progress,
-            )
-        })
-        .collect()
+    let alone = part(plan, |e| e == Effect::Clearance);
+    let discs = run_one(design, m, (scene, &alone), options, None)?.discs;
+    Ok(discs.into_iter().filter_map(|d| d.clearance).collect())
+}
+
+/// The plan with only the effects `keep` accepts (and their details).
+pub(crate) fn part(plan: &Plan, keep: impl Fn(Effect) -> bool) -> Plan {
+    Plan {
+        duty: plan.duty,
+        scene: plan.scene.clone(),
+        effects: plan
+            .effects
+            .iter()
+            .filter(|p| keep(p.effect))
+            .cloned()
+            .collect(),
+        details: plan
+            .details
+            .iter()
+            .filter(|p| keep(p.detail.effect()))
+            .cloned()
+            .collect(),
+    }
 }
 
 /// The clearance of a disc at crank phase `shift` over the scene's angles, with the smallest

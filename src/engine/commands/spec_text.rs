@@ -19,6 +19,13 @@ fn flow(pairs: &[(&str, Option<String>)]) -> String {
     format!("{{ {} }}", items.join(", "))
 }
 
+/// A line `key: value` (`key` indented as the line is), when the value is given.
+fn line(s: &mut String, key: &str, value: Option<String>) {
+    if let Some(v) = value {
+        let _ = writeln!(s, "{key}: {v}");
+    }
+}
+
 /// The text of `raw`, with `header` first as comments: the keys a design search's spec uses
 /// (no studies, goldens, deviations or measured points: it has none).
 pub(crate) fn spec_text(raw: &RawSpec, header: &str) -> String {
@@ -33,9 +40,7 @@ pub(crate) fn spec_text(raw: &RawSpec, header: &str) -> String {
     let _ = writeln!(s, "modification:");
     let _ = writeln!(s, "  shift_mm: {}", num(m.shift_mm));
     let _ = writeln!(s, "  equidistant_mm: {}", num(m.equidistant_mm));
-    if let Some(c) = &m.crowning {
-        let _ = writeln!(s, "  crowning: {}", crowning(c));
-    }
+    line(&mut s, "  crowning", m.crowning.as_ref().map(crowning));
     let _ = writeln!(s, "scenes:");
     raw.scenes.iter().for_each(|c| scene(&mut s, c));
     if !raw.limits.is_empty() {
@@ -92,12 +97,9 @@ fn reducer(s: &mut String, r: &RawReducer) {
             "    dynamic_load_rating_n: {}",
             num(b.dynamic_load_rating_n)
         );
-        if let Some(p) = b.life_exponent {
-            let _ = writeln!(s, "    life_exponent: {}", num(p));
-        }
-        if let Some(c0) = b.static_load_rating_n {
-            let _ = writeln!(s, "    static_load_rating_n: {}", num(c0));
-        }
+        line(s, "    life_exponent", b.life_exponent.map(num));
+        let c0 = b.static_load_rating_n.map(num);
+        line(s, "    static_load_rating_n", c0);
     }
     if let Some(f) = &r.friction {
         friction(s, f);
@@ -120,12 +122,8 @@ fn material(s: &mut String, key: &str, m: &RawMaterial) {
     let _ = writeln!(s, "  {key}:");
     let _ = writeln!(s, "    youngs_modulus_gpa: {}", num(m.youngs_modulus_gpa));
     let _ = writeln!(s, "    poisson_ratio: {}", num(m.poisson_ratio));
-    if let Some(d) = m.density_kg_per_m3 {
-        let _ = writeln!(s, "    density_kg_per_m3: {}", num(d));
-    }
-    if let Some(y) = m.yield_strength_mpa {
-        let _ = writeln!(s, "    yield_strength_mpa: {}", num(y));
-    }
+    line(s, "    density_kg_per_m3", m.density_kg_per_m3.map(num));
+    line(s, "    yield_strength_mpa", m.yield_strength_mpa.map(num));
     if let Some(f) = &m.contact_fatigue {
         let law = flow(&[
             ("pressure_mpa", Some(num(f.pressure_mpa))),
@@ -146,19 +144,11 @@ fn friction(s: &mut String, f: &RawFriction) {
         ])
     };
     let _ = writeln!(s, "  friction:");
-    if let Some(m) = &f.model {
-        let _ = writeln!(s, "    model: {m}");
-    }
-    if let Some(r) = &f.rollers {
-        let _ = writeln!(s, "    rollers: {}", path(&r.mode, r.mu, r.bore_radius_mm));
-    }
-    if let Some(p) = &f.output_pins {
-        let _ = writeln!(
-            s,
-            "    output_pins: {}",
-            path(&p.mode, p.mu, p.bore_radius_mm)
-        );
-    }
+    line(s, "    model", f.model.clone());
+    let rollers = (f.rollers.as_ref()).map(|r| path(&r.mode, r.mu, r.bore_radius_mm));
+    line(s, "    rollers", rollers);
+    let pins = (f.output_pins.as_ref()).map(|p| path(&p.mode, p.mu, p.bore_radius_mm));
+    line(s, "    output_pins", pins);
     if let Some(b) = &f.crank_bearing {
         let bearing = flow(&[
             ("mu", Some(num(b.mu))),
@@ -193,12 +183,8 @@ fn crowning(c: &RawCrowning) -> String {
 
 fn scene(s: &mut String, c: &RawScene) {
     let _ = writeln!(s, "  - name: {}", c.name);
-    if let Some(t) = c.output_torque_nm {
-        let _ = writeln!(s, "    output_torque_nm: {}", num(t));
-    }
-    if let Some(n) = c.input_speed_rpm {
-        let _ = writeln!(s, "    input_speed_rpm: {}", num(n));
-    }
+    line(s, "    output_torque_nm", c.output_torque_nm.map(num));
+    line(s, "    input_speed_rpm", c.input_speed_rpm.map(num));
     if let Some(bins) = &c.duty_cycle {
         let _ = writeln!(s, "    duty_cycle:");
         for b in bins {
@@ -230,8 +216,6 @@ fn scene(s: &mut String, c: &RawScene) {
         ]);
         let _ = writeln!(s, "    misalignment: {tilt}");
     }
-    if let Some(n) = c.face_slices {
-        let _ = writeln!(s, "    face_slices: {n}");
-    }
+    line(s, "    face_slices", c.face_slices.map(|n| n.to_string()));
     let _ = writeln!(s, "    effects: [{}]", c.effects.join(", "));
 }

@@ -121,8 +121,8 @@ pub struct Merged {
     limits: usize,
     count: u64,
     first: String,
-    /// (shard index, the file it was read from).
-    files: Vec<(u64, String)>,
+    /// The file each shard was read from, by shard index.
+    files: Vec<String>,
 }
 
 impl Merged {
@@ -153,14 +153,15 @@ impl Merged {
         let cells = self.records.values.iter().zip(&self.records.passed);
         for (cell, (&value, &passed)) in cells.enumerate() {
             let (def, limit) = study.limits[cell % l];
+            let shard = (cell / l) as u64 % self.count;
             if passes(value, limit, def.bound) != passed {
                 return Err(Error::new(
                     ErrorKind::InvalidValue,
                     format!(
                         "{}: shard {} of {} holds sample {} with `{}` = {value} marked {}, which \
                          its limit {limit} does not give: the shard was altered",
-                        self.file_of((cell / l) as u64 % self.count),
-                        (cell / l) as u64 % self.count,
+                        self.files[shard as usize],
+                        shard,
                         self.count,
                         cell / l,
                         def.key,
@@ -170,14 +171,6 @@ impl Merged {
             }
         }
         Ok(())
-    }
-
-    /// The file shard `index` was read from.
-    fn file_of(&self, index: u64) -> &str {
-        self.files
-            .iter()
-            .find(|(i, _)| *i == index)
-            .map_or("?", |(_, name)| name.as_str())
     }
 }
 
@@ -190,6 +183,11 @@ pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
     let names: Vec<String> = files.iter().map(|(name, _)| name.clone()).collect();
     let records = shard::merge(&names, &shards)?;
     let h = &shards[0].header;
+    // `merge` checked that the shards hold each index below the count once.
+    let mut files = vec![String::new(); h.count as usize];
+    for (s, name) in shards.iter().zip(&names) {
+        files[s.header.index as usize] = name.clone();
+    }
     Ok(Merged {
         spec: crate::spec::parse(&h.text_path, &h.text)?,
         records,
@@ -197,11 +195,7 @@ pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
         limits: shards[0].limits as usize,
         count: h.count,
         first: names[0].clone(),
-        files: shards
-            .iter()
-            .map(|s| s.header.index)
-            .zip(names.iter().cloned())
-            .collect(),
+        files,
     })
 }
 

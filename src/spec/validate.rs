@@ -1205,6 +1205,12 @@ fn study(
         let m = modification_at(&at, (r.shift_mm, r.equidistant_mm, r.rotation_deg))?;
         references.push((r.label, m));
     }
+    // The global stage's interior and boundary points are points of one Sobol sequence.
+    let sobol = |name: &str, value: Option<i64>, default: fn(usize) -> usize| {
+        let why = "the length of the global stage's Sobol sequence";
+        let value = value.unwrap_or(default(dims) as i64);
+        count_capped(&format!("{key}.{name}"), value, 1, MAX_GLOBAL_SAMPLES, why)
+    };
     Ok(Study {
         name: raw.name.unwrap_or_else(|| format!("study-{}", index + 1)),
         scene,
@@ -1221,21 +1227,11 @@ fn study(
             .optimum_max_objective
             .map(|x| finite(&format!("{key}.optimum_max_objective"), x))
             .transpose()?,
-        global_samples: count_capped(
-            &format!("{key}.global_samples"),
-            raw.global_samples
-                .unwrap_or(default_global_samples(dims) as i64),
-            1,
-            MAX_GLOBAL_SAMPLES,
-            "the length of the global stage's Sobol sequence",
-        )?,
-        boundary_samples: count_capped(
-            &format!("{key}.boundary_samples"),
-            raw.boundary_samples
-                .unwrap_or(default_boundary_samples(dims) as i64),
-            1,
-            MAX_GLOBAL_SAMPLES,
-            "the length of the global stage's Sobol sequence",
+        global_samples: sobol("global_samples", raw.global_samples, default_global_samples)?,
+        boundary_samples: sobol(
+            "boundary_samples",
+            raw.boundary_samples,
+            default_boundary_samples,
         )?,
         local_evaluations: count_capped(
             &format!("{key}.local_evaluations"),

@@ -116,7 +116,8 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
         ));
     }
     let pins = &raw.output_pins;
-    let strength = super::strength::materials(&raw.material, raw.roller_material.as_ref())?;
+    let strength =
+        super::strength::materials_at("reducer.", &raw.material, raw.roller_material.as_ref())?;
     let mass = super::mass::inputs(&raw)?;
     let disc_material = material("reducer.material", raw.material)?;
     let roller_material = match raw.roller_material {

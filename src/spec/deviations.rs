@@ -103,13 +103,7 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
                     ),
                 ))
             }
-            (Some(k), discs) if (0..discs as i64).contains(&k) => k as usize,
-            (Some(k), discs) => {
-                return Err(Error::invalid(
-                    format!("{key}.disc"),
-                    format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
-                ))
-            }
+            (Some(k), discs) => super::values::disc_index(&format!("{key}.disc"), k, discs)?,
         };
         let j = index(key.clone(), h.index, pins, "holes per disc", &mut seen[k])?;
         d.holes[k][j] = centre(&key, (h.radial_mm, h.tangential_mm))?;

@@ -6,7 +6,7 @@ use super::raw::*;
 use super::rules::rule;
 use super::scenes::{refuse_duty, refuse_first_order, scene_index};
 use super::validated::{Accuracy, Spec};
-use super::values::{finite, length, not_blank, positive, zero_or_positive};
+use super::values::{disc_index, finite, length, not_blank, positive, zero_or_positive};
 use super::yaml::did_you_mean;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
@@ -851,16 +851,10 @@ fn golden_entry(
     (scenes, discs): (&[Scene], usize),
 ) -> Result<Golden> {
     let key = format!("golden[{i}]");
-    let disc = match raw.disc {
-        None => None,
-        Some(k) if (0..discs as i64).contains(&k) => Some(k as usize),
-        Some(k) => {
-            return Err(Error::invalid(
-                format!("{key}.disc"),
-                format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
-            ))
-        }
-    };
+    let disc = raw
+        .disc
+        .map(|k| disc_index(&format!("{key}.disc"), k, discs))
+        .transpose()?;
     let index = scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     refuse_duty(scenes, index, &format!("{key}.scene"), "a golden curve")?;
     let quantity = quantity::find_curve(&raw.quantity).ok_or_else(|| {

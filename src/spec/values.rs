@@ -35,6 +35,17 @@ pub(super) fn zero_or_positive(key: &str, value: f64) -> Result<f64> {
     }
 }
 
+/// A disc's index at `key`: one of the reducer's `discs`, numbered from 0.
+pub(super) fn disc_index(key: &str, k: i64, discs: usize) -> Result<usize> {
+    if (0..discs as i64).contains(&k) {
+        return Ok(k as usize);
+    }
+    Err(Error::invalid(
+        key,
+        format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
+    ))
+}
+
 /// A positive finite number.
 pub(super) fn positive(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {

@@ -416,41 +416,57 @@ pub fn sweep(
     })
 }
 
-/// The smallest gap of the columns \[roller\]\[angle\], scanned angle by angle, roller by roller,
-/// a new minimum only when lower by more than `TIE_MM`; its place on the tooth from the
-/// roller's closest point evaluated from scratch.
+/// The smallest gap of the columns \[roller\]\[angle\] (`lowest` over every angle, below an
+/// infinite gap); its place on the tooth from the roller's closest point evaluated from scratch.
 fn smallest(
     mesh: &Mesh,
     crank_rad: &[f64],
     gap_mm: &[Vec<f64>],
 ) -> Result<MinClearance, GapFailure> {
-    let mut min = MinClearance {
+    let none = MinClearance {
         gap_mm: f64::INFINITY,
         roller: 0,
         crank_rad: 0.0,
         tooth_phase: 0.0,
     };
-    for (k, &phi) in crank_rad.iter().enumerate() {
+    let min = lowest(crank_rad, gap_mm, 0..crank_rad.len(), Some(none)).unwrap_or(none);
+    on_tooth(mesh, min)
+}
+
+/// The smallest gap of the columns \[roller\]\[angle\] at the angles `angles`, scanned angle by
+/// angle, roller by roller, below `min` (none: the first gap is the first minimum), a new
+/// minimum only when lower by more than `TIE_MM`; its tooth phase left 0.
+pub(super) fn lowest(
+    crank_rad: &[f64],
+    gap_mm: &[Vec<f64>],
+    angles: std::ops::Range<usize>,
+    mut min: Option<MinClearance>,
+) -> Option<MinClearance> {
+    for k in angles {
         for (i, gaps) in gap_mm.iter().enumerate() {
-            if gaps[k] < min.gap_mm - TIE_MM {
-                min.gap_mm = gaps[k];
-                min.roller = i;
-                min.crank_rad = phi;
+            if min.is_none_or(|m| gaps[k] < m.gap_mm - TIE_MM) {
+                min = Some(MinClearance {
+                    gap_mm: gaps[k],
+                    roller: i,
+                    crank_rad: crank_rad[k],
+                    tooth_phase: 0.0,
+                });
             }
         }
     }
-    if min.gap_mm.is_finite() {
-        min.tooth_phase = tooth_phase(mesh, min.roller, min.crank_rad)?;
-    }
-    Ok(min)
+    min
 }
 
-/// Where roller i's closest point lies on its tooth at crank φ and the ideal pose: 0 at the
-/// root, 0.5 at the tip (`MinClearance::tooth_phase`), from the closest point found afresh.
-pub fn tooth_phase(mesh: &Mesh, roller: usize, crank_rad: f64) -> Result<f64, GapFailure> {
-    let tooth = TAU / mesh.teeth as f64;
-    let foot = mesh.roller_gap(roller, &Pose::ideal(crank_rad), None)?;
-    Ok(foot.t.rem_euclid(tooth) / tooth)
+/// `min` with where its roller's closest point lies on its tooth, when it is a gap (finite), at
+/// its crank φ and the ideal pose: 0 at the root, 0.5 at the tip (`MinClearance::tooth_phase`),
+/// from the closest point found afresh.
+pub fn on_tooth(mesh: &Mesh, mut min: MinClearance) -> Result<MinClearance, GapFailure> {
+    if min.gap_mm.is_finite() {
+        let tooth = TAU / mesh.teeth as f64;
+        let foot = mesh.roller_gap(min.roller, &Pose::ideal(min.crank_rad), None)?;
+        min.tooth_phase = foot.t.rem_euclid(tooth) / tooth;
+    }
+    Ok(min)
 }
 
 /// The curves of a sweep, \[roller\]\[angle\] and \[angle\]; the backlash columns are empty for

@@ -31,7 +31,7 @@ pub const SECTION_TOLERANCE_MM: f64 = 1e-4;
 
 /// The area moments of a plane region about the disc centre: A = ∫dA (mm²), the first moment
 /// S = ∫(x, y) dA (mm³) and the polar second moment J = ∫(x² + y²) dA (mm⁴).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct AreaMoments {
     pub area_mm2: f64,
     pub first_mm3: Vec2,
@@ -59,11 +59,7 @@ impl AreaMoments {
 ///   A = ½·Σ cᵢ,  S = ⅙·Σ cᵢ·(pᵢ + pᵢ₊₁),
 ///   J = (1/12)·Σ cᵢ·(|pᵢ|² + pᵢ·pᵢ₊₁ + |pᵢ₊₁|²).
 pub fn polygon_moments(points: &[Vec2]) -> AreaMoments {
-    let mut m = AreaMoments {
-        area_mm2: 0.0,
-        first_mm3: Vec2::zeros(),
-        polar_mm4: 0.0,
-    };
+    let mut m = AreaMoments::default();
     for (i, &a) in points.iter().enumerate() {
         let b = points[(i + 1) % points.len()];
         let c = cross(a, b);
@@ -139,11 +135,7 @@ fn agree(a: &AreaMoments, b: &AreaMoments, n: usize) -> bool {
 /// The trapezoid sums of `profile_moments`' integrals on `n` equal steps of t.
 fn trapezoid_moments(profile: &Profile, n: usize) -> AreaMoments {
     let h = std::f64::consts::TAU / n as f64;
-    let mut m = AreaMoments {
-        area_mm2: 0.0,
-        first_mm3: Vec2::zeros(),
-        polar_mm4: 0.0,
-    };
+    let mut m = AreaMoments::default();
     for i in 0..n {
         let t = h * i as f64;
         let (p, d) = (profile.point(t), profile.tangent(t));

@@ -269,45 +269,25 @@ fn sample_at(
             .collect();
         let swept = clearance::sweep(mesh, &crank, Scope::Gaps, &Silent)?;
         m = m.max(curvature(&crank, &swept.gap_mm));
-        if let Some(low) = smallest_inside(&crank, &swept.gap_mm) {
+        // The angles but the first and the last (those of the neighbouring blocks).
+        let inside = 1..crank.len().saturating_sub(1);
+        if let Some(low) = clearance::lowest(&crank, &swept.gap_mm, inside, None) {
             if best.is_none_or(|b| low.gap_mm < b.gap_mm - TIE_MM) {
                 best = Some(low);
             }
         }
     }
-    let mut min = best.unwrap_or(MinClearance {
+    let none = MinClearance {
         gap_mm: f64::INFINITY,
         roller: 0,
         crank_rad: start_rad,
         tooth_phase: 0.0,
-    });
-    if min.gap_mm.is_finite() {
-        min.tooth_phase = clearance::tooth_phase(mesh, min.roller, min.crank_rad)?;
-    }
+    };
+    let min = clearance::on_tooth(mesh, best.unwrap_or(none))?;
     let period = SampledPeriod {
         period_rad: target.period_rad(mesh),
         step_rad: h,
         error_bound_mm: bound_mm(h, m),
     };
     Ok((min, period))
-}
-
-/// The smallest gap of the columns \[roller\]\[angle\] at the angles but the first and the last,
-/// angle by angle, roller by roller, a new minimum only when lower by more than `TIE_MM` (as
-/// `clearance::sweep`); its tooth phase left to the caller.
-fn smallest_inside(crank_rad: &[f64], gap_mm: &[Vec<f64>]) -> Option<MinClearance> {
-    let mut min: Option<MinClearance> = None;
-    for k in 1..crank_rad.len().saturating_sub(1) {
-        for (i, gaps) in gap_mm.iter().enumerate() {
-            if min.is_none_or(|m| gaps[k] < m.gap_mm - TIE_MM) {
-                min = Some(MinClearance {
-                    gap_mm: gaps[k],
-                    roller: i,
-                    crank_rad: crank_rad[k],
-                    tooth_phase: 0.0,
-                });
-            }
-        }
-    }
-    min
 }

@@ -308,10 +308,7 @@ impl Entity<'_> {
                 format!("{} without group code {code}", self.kind),
             )
         })?;
-        v.parse::<f64>()
-            .ok()
-            .filter(|x| x.is_finite())
-            .ok_or_else(|| at(path, line + 1, format!("`{v}` is not a finite number")))
+        parse_number(path, *line, v)
     }
 
     fn closed(&self) -> bool {

@@ -3,7 +3,7 @@
 //! that no scene evaluates would otherwise pass unseen.
 
 use super::Spec;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::model::quantity::NEEDS_FACE;
 use crate::model::{Effect, Plan};
 
@@ -16,26 +16,24 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
         if scene.is_some_and(|s| {
             NEEDS_FACE.contains(&q) && !spec.design.deviations.face(&s.face).is_resolved()
         }) {
-            return Err(Error::new(
-                ErrorKind::InvalidValue,
+            return Err(Error::invalid(
+                format!("{}.quantity", g.key),
                 format!(
                     "scene `{}` does not resolve the load along the face width; give it                      `face_slices: 2` or more",
                     g.scene
                 ),
-            )
-            .at_key(format!("{}.quantity", g.key)));
+            ));
         }
         if scene.is_some_and(|s| !Plan::for_scene(s).computes(q.effect)) {
-            return Err(Error::new(
-                ErrorKind::InvalidValue,
+            return Err(Error::invalid(
+                format!("{}.quantity", g.key),
                 format!(
                     "scene `{}` does not compute `{}`; add the effect `{}` to the scene",
                     g.scene,
                     q.key,
                     q.effect.name()
                 ),
-            )
-            .at_key(format!("{}.quantity", g.key)));
+            ));
         }
     }
     for l in &spec.limits.entries {
@@ -47,13 +45,12 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
                 && (!face || spec.design.deviations.face(&s.face).is_resolved())
         });
         if face && !covered {
-            return Err(Error::new(
-                ErrorKind::InvalidValue,
+            return Err(Error::invalid(
+                format!("limits.{}", d.key),
                 "no scene resolves the load along the face width; give a scene with \
                  `roller_contact` and `face_slices: 2` or more"
                     .to_string(),
-            )
-            .at_key(format!("limits.{}", d.key)));
+            ));
         }
         if !covered {
             let how = match effect {
@@ -79,11 +76,10 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
                 ),
                 e => format!("add the effect `{}` to a scene", e.name()),
             };
-            return Err(Error::new(
-                ErrorKind::InvalidValue,
+            return Err(Error::invalid(
+                format!("limits.{}", d.key),
                 format!("no scene computes this limit's quantity; {how}"),
-            )
-            .at_key(format!("limits.{}", d.key)));
+            ));
         }
     }
     Ok(())

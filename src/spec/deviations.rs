@@ -2,13 +2,12 @@
 //! (MODEL.md "Part deviations"): indices in range, parts that stay in their mesh, rollers that
 //! do not overlap, a ground profile that is still a disc.
 
-use super::raw::{RawCentreDeviation, RawDeviations};
+use super::raw::RawDeviations;
 use super::rules::rule;
 use super::values::finite;
 use crate::error::{Error, Result};
 use crate::model::{
-    CentreDeviation, Design, Deviations, FormTerm, Misalignment, Modification, RollerDeviation,
-    MAX_FORM_ORDER,
+    CentreDeviation, Design, Deviations, FormTerm, Modification, RollerDeviation, MAX_FORM_ORDER,
 };
 use crate::numeric;
 use std::f64::consts::TAU;
@@ -36,10 +35,11 @@ fn index(key: String, value: i64, count: usize, what: &str, seen: &mut [bool]) -
     Ok(i)
 }
 
-fn centre(key: &str, raw: &RawCentreDeviation) -> Result<CentreDeviation> {
+/// A part's centre deviation at `key`: (radial, tangential), mm, each finite.
+fn centre(key: &str, (radial, tangential): (f64, f64)) -> Result<CentreDeviation> {
     Ok(CentreDeviation {
-        radial_mm: finite(&format!("{key}.radial_mm"), raw.radial_mm)?,
-        tangential_mm: finite(&format!("{key}.tangential_mm"), raw.tangential_mm)?,
+        radial_mm: finite(&format!("{key}.radial_mm"), radial)?,
+        tangential_mm: finite(&format!("{key}.tangential_mm"), tangential)?,
     })
 }
 
@@ -49,20 +49,11 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
         eccentricity_mm: finite(&format!("{KEY}.eccentricity_mm"), raw.eccentricity_mm)?,
         shift_mm: finite(&format!("{KEY}.shift_mm"), raw.shift_mm)?,
         equidistant_mm: finite(&format!("{KEY}.equidistant_mm"), raw.equidistant_mm)?,
-        misalignment: match raw.misalignment {
-            // mrad → rad, as a scene's (`spec::face::scene_face`).
-            Some(m) => Misalignment {
-                about_x_rad: super::values::tilt_rad(
-                    &format!("{KEY}.misalignment.about_x_mrad"),
-                    m.about_x_mrad,
-                )?,
-                about_y_rad: super::values::tilt_rad(
-                    &format!("{KEY}.misalignment.about_y_mrad"),
-                    m.about_y_mrad,
-                )?,
-            },
-            None => Misalignment::default(),
-        },
+        // mrad → rad, as a scene's.
+        misalignment: super::face::misalignment_at(
+            &format!("{KEY}.misalignment"),
+            raw.misalignment,
+        )?,
         ..Deviations::default()
     };
     let mut seen = vec![false; design.rollers];
@@ -73,10 +64,7 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
         let key = format!("{KEY}.rollers[{n}]");
         let i = index(key.clone(), r.index, design.rollers, "rollers", &mut seen)?;
         d.rollers[i] = RollerDeviation {
-            centre: CentreDeviation {
-                radial_mm: finite(&format!("{key}.radial_mm"), r.radial_mm)?,
-                tangential_mm: finite(&format!("{key}.tangential_mm"), r.tangential_mm)?,
-            },
+            centre: centre(&key, (r.radial_mm, r.tangential_mm))?,
             radius_mm: finite(&format!("{key}.radius_mm"), r.radius_mm)?,
         };
     }
@@ -95,7 +83,7 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
             ));
         }
         let j = index(key.clone(), p.index, pins, "output pins", &mut seen)?;
-        d.pins[j] = centre(&key, p)?;
+        d.pins[j] = centre(&key, (p.radial_mm, p.tangential_mm))?;
     }
     d.form = form(&raw.form, design.teeth, design.roller_circle_radius_mm)?;
     let mut seen = vec![vec![false; pins]; design.discs];
@@ -115,16 +103,10 @@ pub(crate) fn build(raw: &RawDeviations, design: &Design) -> Result<Deviations> 
                     ),
                 ))
             }
-            (Some(k), discs) if (0..discs as i64).contains(&k) => k as usize,
-            (Some(k), discs) => {
-                return Err(Error::invalid(
-                    format!("{key}.disc"),
-                    format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
-                ))
-            }
+            (Some(k), discs) => super::values::disc_index(&format!("{key}.disc"), k, discs)?,
         };
         let j = index(key.clone(), h.index, pins, "holes per disc", &mut seen[k])?;
-        d.holes[k][j] = centre(&key, h)?;
+        d.holes[k][j] = centre(&key, (h.radial_mm, h.tangential_mm))?;
     }
     Ok(d)
 }

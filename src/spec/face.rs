@@ -131,13 +131,7 @@ pub(crate) fn scene_face(
     misalignment: Option<RawMisalignment>,
     slices: Option<i64>,
 ) -> Result<Face> {
-    let misalignment = match misalignment {
-        Some(m) => Misalignment {
-            about_x_rad: tilt_rad(&format!("{key}misalignment.about_x_mrad"), m.about_x_mrad)?,
-            about_y_rad: tilt_rad(&format!("{key}misalignment.about_y_mrad"), m.about_y_mrad)?,
-        },
-        None => Misalignment::default(),
-    };
+    let misalignment = misalignment_at(&format!("{key}misalignment"), misalignment)?;
     let slices = match slices {
         None => 1,
         Some(n) if (1..=MAX_FACE_SLICES as i64).contains(&n) => n as usize,
@@ -152,6 +146,18 @@ pub(crate) fn scene_face(
         crowning: Crowning::None,
         misalignment,
         slices,
+    })
+}
+
+/// A tilt at `key` (a scene's `misalignment`, `reducer.deviations.misalignment`): each axis
+/// within ±`values::MAX_TILT_MRAD`, mrad → rad; none given: no tilt.
+pub(crate) fn misalignment_at(key: &str, raw: Option<RawMisalignment>) -> Result<Misalignment> {
+    Ok(match raw {
+        Some(m) => Misalignment {
+            about_x_rad: tilt_rad(&format!("{key}.about_x_mrad"), m.about_x_mrad)?,
+            about_y_rad: tilt_rad(&format!("{key}.about_y_mrad"), m.about_y_mrad)?,
+        },
+        None => Misalignment::default(),
     })
 }
 

@@ -13,9 +13,7 @@ fn invalid(key: &str, message: String) -> Error {
 }
 
 pub(crate) fn build(spec_path: &str, raw: RawMeasuredProfile) -> Result<MeasuredProfile> {
-    if raw.file.trim().is_empty() {
-        return Err(invalid("file", "must not be empty".into()));
-    }
+    super::values::not_blank("measured_profile.file", &raw.file)?;
     let format: PointsFormat = raw.format.parse().map_err(|m| invalid("format", m))?;
     if !(0..=MAX_HARMONICS).contains(&raw.harmonics) {
         return Err(invalid(

@@ -9,6 +9,16 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::files::identity;
 use std::path::{Component, Path, PathBuf};
 
+/// The paths `spec` names, resolved against its directory, each with its key: `golden[i].file`,
+/// `golden_root`, `measured_profile.file`.
+fn named_paths(spec: &super::Spec) -> Vec<(String, PathBuf)> {
+    let golden = (spec.golden.iter()).map(|g| (format!("{}.file", g.key), g.path.clone()));
+    let root = (spec.golden_root.iter()).map(|r| ("golden_root".into(), r.clone()));
+    let measured =
+        (spec.measured.iter()).map(|m| ("measured_profile.file".into(), PathBuf::from(&m.path)));
+    golden.chain(root).chain(measured).collect()
+}
+
 /// `text`, a spec read from `from`, as it must read when written to `to`: each relative path it
 /// names rewritten from `to`'s directory to the same file (symbolic links followed, as the
 /// kernel will when the written spec is read). Unchanged when both are in one directory. The
@@ -18,22 +28,7 @@ pub fn relocate(text: &str, from: &str, to: &str) -> Result<String> {
     if from_dir == to_dir {
         return Ok(text.to_string());
     }
-    let spec = super::parse(from, text)?;
-    let mut named: Vec<(String, PathBuf)> = spec
-        .golden
-        .iter()
-        .map(|g| (format!("{}.file", g.key), g.path.clone()))
-        .collect();
-    named.extend(
-        spec.golden_root
-            .iter()
-            .map(|r| ("golden_root".into(), r.clone())),
-    );
-    named.extend(
-        spec.measured
-            .iter()
-            .map(|m| ("measured_profile.file".into(), PathBuf::from(&m.path))),
-    );
+    let named = named_paths(&super::parse(from, text)?);
     let mut out = text.to_string();
     // From the last key to the first, so the offsets of the ones still to do stay valid.
     let mut edits: Vec<(usize, String)> = Vec::new();
@@ -57,22 +52,11 @@ pub fn relocate(text: &str, from: &str, to: &str) -> Result<String> {
     for (offset, value) in edits {
         replace_value(&mut out, offset, &value);
     }
-    let back = super::parse(to, &out)?;
-    let same = |a: &Path, b: &Path| identity(a) == identity(b);
-    let kept = back.golden.len() == spec.golden.len()
-        && back
-            .golden
-            .iter()
-            .zip(&spec.golden)
-            .all(|(a, b)| same(&a.path, &b.path))
-        && match (&back.golden_root, &spec.golden_root) {
-            (Some(a), Some(b)) => same(a, b),
-            (a, b) => a.is_none() && b.is_none(),
-        }
-        && match (&back.measured, &spec.measured) {
-            (Some(a), Some(b)) => same(Path::new(&a.path), Path::new(&b.path)),
-            (a, b) => a.is_none() && b.is_none(),
-        };
+    let back = named_paths(&super::parse(to, &out)?);
+    let same = |(k, a): &(String, PathBuf), (l, b): &(String, PathBuf)| {
+        k == l && identity(a) == identity(b)
+    };
+    let kept = back.len() == named.len() && back.iter().zip(&named).all(|(a, b)| same(a, b));
     if !kept {
         return Err(unwritable("the paths it names", to));
     }

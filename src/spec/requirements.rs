@@ -628,9 +628,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         .as_ref()
         .map(|p| pin_support(&p.support, &search))
         .transpose()?;
-    if raw.name.trim().is_empty() {
-        return Err(Error::invalid("name", "must not be empty".to_string()));
-    }
+    super::values::not_blank("name", &raw.name)?;
     Ok(Requirements {
         name: raw.name,
         ratios,

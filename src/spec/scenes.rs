@@ -1,16 +1,15 @@
 //! A spec's scenes by name, for the sections that name one and for messages.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::Scene;
 
 /// The index of the scene named `name`; else an error at `key` that lists the scenes.
 pub fn scene_index(scenes: &[Scene], name: &str, key: &str) -> Result<usize> {
     scenes.iter().position(|s| s.name == name).ok_or_else(|| {
-        crate::error::Error::new(
-            crate::error::ErrorKind::InvalidValue,
+        Error::invalid(
+            key,
             format!("no scene named `{name}`; scenes: {}", scene_names(scenes)),
         )
-        .at_key(key)
     })
 }
 
@@ -18,14 +17,13 @@ pub fn scene_index(scenes: &[Scene], name: &str, key: &str) -> Result<usize> {
 /// needs the exact one ("…, but {why}").
 pub fn refuse_first_order(scenes: &[Scene], why: &str) -> Result<()> {
     match (scenes.iter()).position(|s| s.geometry == crate::model::GeometryMode::FirstOrder) {
-        Some(i) => Err(crate::error::Error::new(
-            crate::error::ErrorKind::InvalidValue,
+        Some(i) => Err(Error::invalid(
+            format!("scenes[{i}].geometry"),
             format!(
                 "scene `{}` asks for the first-order geometry, but {why}",
                 scenes[i].name
             ),
-        )
-        .at_key(format!("scenes[{i}].geometry"))),
+        )),
         None => Ok(()),
     }
 }
@@ -45,16 +43,15 @@ pub fn scene_names(scenes: &[Scene]) -> String {
 pub(crate) fn refuse_duty(scenes: &[Scene], index: usize, key: &str, what: &str) -> Result<()> {
     let scene = &scenes[index];
     match &scene.duty_cycle {
-        Some(bins) => Err(crate::error::Error::new(
-            crate::error::ErrorKind::InvalidValue,
+        Some(bins) => Err(Error::invalid(
+            key,
             format!(
                 "scene `{}` runs a duty cycle ({} bins, one run each): {what} needs one run of \
                  a scene; name a scene with its own `output_torque_nm`",
                 scene.name,
                 bins.len()
             ),
-        )
-        .at_key(key)),
+        )),
         None => Ok(()),
     }
 }

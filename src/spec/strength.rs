@@ -15,14 +15,8 @@ use crate::numeric;
 /// beyond 30 a 1 % error in the pressure is a 35 % error in the life.
 pub(crate) const MAX_EXPONENT: f64 = 30.0;
 
-/// The disc's (`reducer.material`) and the rollers' (`reducer.roller_material`, the disc's
-/// when not given) strength.
-pub(crate) fn materials(disc: &RawMaterial, rollers: Option<&RawMaterial>) -> Result<Strength> {
-    materials_at("reducer.", disc, rollers)
-}
-
-/// `materials` with its keys under `prefix` (`reducer.` in a spec, none in a requirements
-/// file).
+/// The disc's (`material`) and the rollers' (`roller_material`, the disc's when not given)
+/// strength, their keys under `prefix` (`reducer.` in a spec, none in a requirements file).
 pub(crate) fn materials_at(
     prefix: &str,
     disc: &RawMaterial,

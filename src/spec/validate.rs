@@ -3,9 +3,10 @@
 
 use super::paths::resolve;
 use super::raw::*;
+use super::rules::rule;
 use super::scenes::{refuse_duty, refuse_first_order, scene_index};
 use super::validated::{Accuracy, Spec};
-use super::values::{finite, length, positive};
+use super::values::{disc_index, finite, length, not_blank, positive, zero_or_positive};
 use super::yaml::did_you_mean;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
@@ -106,34 +107,25 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
     let teeth = count("reducer.teeth", raw.teeth, 2)?;
     let rollers = count("reducer.rollers", raw.rollers, 3)?;
     if rollers != teeth + 1 {
-        return Err(Error::new(
-            ErrorKind::ImpossibleDesign,
+        return Err(rule(
+            "reducer.rollers",
             format!(
                 "rollers must equal teeth + 1 (one-tooth-difference reducer): \
                  rollers = {rollers}, teeth = {teeth}"
             ),
-        )
-        .at_key("reducer.rollers"));
+        ));
     }
     let pins = &raw.output_pins;
-    let strength = super::strength::materials(&raw.material, raw.roller_material.as_ref())?;
+    let strength =
+        super::strength::materials_at("reducer.", &raw.material, raw.roller_material.as_ref())?;
     let mass = super::mass::inputs(&raw)?;
     let disc_material = material("reducer.material", raw.material)?;
     let roller_material = match raw.roller_material {
         Some(m) => material("reducer.roller_material", m)?,
         None => disc_material,
     };
-    let clearance = raw.output_pins.hole_clearance_mm;
     let clearance_key = "reducer.output_pins.hole_clearance_mm";
-    if !(clearance.is_finite() && clearance >= 0.0) {
-        return Err(Error::invalid(
-            clearance_key,
-            format!(
-                "must be zero or positive, got {}",
-                numeric::input(clearance)
-            ),
-        ));
-    }
+    let clearance = zero_or_positive(clearance_key, raw.output_pins.hole_clearance_mm)?;
     if clearance > 0.0 {
         length(clearance_key, clearance)?;
     }
@@ -308,8 +300,8 @@ fn bore_fits(design: &Design) -> Result<()> {
     if 0.5 * d < inner_edge {
         return Ok(());
     }
-    Err(Error::new(
-        ErrorKind::ImpossibleDesign,
+    Err(rule(
+        "reducer.crank_bearing.outer_diameter_mm",
         format!(
             "the bore of the crank bearing (radius {} mm) reaches the output-pin holes, whose \
              edges come within rw − (pin radius + e + hole clearance) = {} − {} = {} mm of the \
@@ -319,8 +311,7 @@ fn bore_fits(design: &Design) -> Result<()> {
             numeric::input(design.hole_radius_mm()),
             numeric::input(inner_edge)
         ),
-    )
-    .at_key("reducer.crank_bearing.outer_diameter_mm"))
+    ))
 }
 
 /// The exponents a rating life accepts (`reducer.crank_bearing.life_exponent`): ISO 281 uses
@@ -366,11 +357,16 @@ fn torque_sweep(key: &str, raw: &RawTorqueSweep, angles: usize) -> Result<Torque
     })
 }
 
-fn modification(raw: &RawModification) -> Result<Modification> {
+/// A modification at `key` (`modification`, or a study's `references[j]`): shift and
+/// equidistant finite, mm; rotation within ±`MAX_CRANK_DEG`, degrees → rad.
+fn modification_at(
+    key: &str,
+    (shift, equidistant, rotation_deg): (f64, f64, f64),
+) -> Result<Modification> {
     Ok(Modification {
-        shift_mm: finite("modification.shift_mm", raw.shift_mm)?,
-        equidistant_mm: finite("modification.equidistant_mm", raw.equidistant_mm)?,
-        rotation_rad: units::rad(angle_deg("modification.rotation_deg", raw.rotation_deg)?),
+        shift_mm: finite(&format!("{key}.shift_mm"), shift)?,
+        equidistant_mm: finite(&format!("{key}.equidistant_mm"), equidistant)?,
+        rotation_rad: units::rad(angle_deg(&format!("{key}.rotation_deg"), rotation_deg)?),
     })
 }
 
@@ -437,12 +433,7 @@ pub fn crank_angles(from_deg: f64, to_deg: f64, steps: usize) -> Vec<f64> {
 
 fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene> {
     let key = format!("scenes[{index}]");
-    if raw.name.trim().is_empty() {
-        return Err(Error::invalid(
-            format!("{key}.name"),
-            "must not be empty".into(),
-        ));
-    }
+    not_blank(&format!("{key}.name"), &raw.name)?;
     let mut effects = Vec::new();
     for (j, name) in raw.effects.iter().enumerate() {
         let effect = Effect::listed().find(|e| e.name() == name).ok_or_else(|| {
@@ -607,11 +598,13 @@ pub(super) fn limits(raw: &RawLimits) -> Result<Limits> {
 }
 
 pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
-    if raw.name.trim().is_empty() {
-        return Err(Error::invalid("name", "must not be empty".into()));
-    }
+    not_blank("name", &raw.name)?;
     let design = design(raw.reducer)?;
-    let modification = modification(&raw.modification)?;
+    let m = &raw.modification;
+    let modification = modification_at(
+        "modification",
+        (m.shift_mm, m.equidistant_mm, m.rotation_deg),
+    )?;
     super::deviations::check(&design, &modification)?;
     if raw.scenes.is_empty() {
         return Err(Error::invalid(
@@ -688,12 +681,9 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
         }
         golden.push(g);
     }
-    let golden_root = match raw.golden_root.as_deref() {
-        Some(root) if root.trim().is_empty() => {
-            return Err(Error::invalid("golden_root", "must not be empty".into()))
-        }
-        root => root.map(|r| resolve(path, r)),
-    };
+    let golden_root = (raw.golden_root.as_deref())
+        .map(|r| not_blank("golden_root", r).map(|()| resolve(path, r)))
+        .transpose()?;
     let accuracy = raw
         .accuracy
         .map(|a| accuracy_section(a, &scenes, &design))
@@ -861,16 +851,10 @@ fn golden_entry(
     (scenes, discs): (&[Scene], usize),
 ) -> Result<Golden> {
     let key = format!("golden[{i}]");
-    let disc = match raw.disc {
-        None => None,
-        Some(k) if (0..discs as i64).contains(&k) => Some(k as usize),
-        Some(k) => {
-            return Err(Error::invalid(
-                format!("{key}.disc"),
-                format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
-            ))
-        }
-    };
+    let disc = raw
+        .disc
+        .map(|k| disc_index(&format!("{key}.disc"), k, discs))
+        .transpose()?;
     let index = scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
     refuse_duty(scenes, index, &format!("{key}.scene"), "a golden curve")?;
     let quantity = quantity::find_curve(&raw.quantity).ok_or_else(|| {
@@ -903,21 +887,10 @@ fn golden_entry(
         }
         _ => {}
     }
-    if raw.file.trim().is_empty() {
-        return Err(Error::invalid(
-            format!("{key}.file"),
-            "must not be empty".into(),
-        ));
-    }
+    not_blank(&format!("{key}.file"), &raw.file)?;
     let (abs, rel) = (raw.tolerance.abs, raw.tolerance.rel);
-    for (name, v) in [("abs", abs), ("rel", rel)] {
-        if !(v.is_finite() && v >= 0.0) {
-            return Err(Error::invalid(
-                format!("{key}.tolerance.{name}"),
-                format!("must be zero or positive, got {}", numeric::input(v)),
-            ));
-        }
-    }
+    zero_or_positive(&format!("{key}.tolerance.abs"), abs)?;
+    zero_or_positive(&format!("{key}.tolerance.rel"), rel)?;
     if abs == 0.0 && rel == 0.0 {
         return Err(Error::invalid(
             format!("{key}.tolerance"),
@@ -952,18 +925,21 @@ fn bounds(key: &str, b: [f64; 2]) -> Result<(f64, f64)> {
     Ok((lo, hi))
 }
 
+/// The objective named `name`, else an error at `key` listing the objectives.
+fn find_objective(key: &str, name: &str) -> Result<Objective> {
+    quantity::find_objective(name).ok_or_else(|| {
+        Error::invalid(
+            key,
+            format!(
+                "unknown objective `{name}`; known objectives: {}",
+                quantity::objective_names()
+            ),
+        )
+    })
+}
+
 fn objective(key: &str, raw: RawObjective) -> Result<Vec<(Objective, f64)>> {
-    let named = |name: &str| {
-        quantity::find_objective(name).ok_or_else(|| {
-            Error::invalid(
-                key,
-                format!(
-                    "unknown objective `{name}`; known objectives: {}",
-                    quantity::objective_names()
-                ),
-            )
-        })
-    };
+    let named = |name: &str| find_objective(key, name);
     match raw {
         RawObjective::Name(name) => Ok(vec![(named(&name)?, 1.0)]),
         RawObjective::Weighted(map) => {
@@ -1078,16 +1054,7 @@ fn objective_limits(key: &str, raw: &BTreeMap<String, f64>) -> Result<Vec<(Objec
     raw.iter()
         .map(|(name, &bound)| {
             let at = format!("{key}.{name}");
-            let o = quantity::find_objective(name).ok_or_else(|| {
-                Error::invalid(
-                    &at,
-                    format!(
-                        "unknown objective `{name}`; known objectives: {}",
-                        quantity::objective_names()
-                    ),
-                )
-            })?;
-            Ok((o, finite(&at, bound)?))
+            Ok((find_objective(&at, name)?, finite(&at, bound)?))
         })
         .collect()
 }
@@ -1229,16 +1196,16 @@ fn study(
         .transpose()?;
     let mut references = Vec::new();
     for (j, r) in raw.references.into_iter().enumerate() {
-        let rk = format!("{key}.references[{j}]");
-        references.push((
-            r.label,
-            Modification {
-                shift_mm: finite(&format!("{rk}.shift_mm"), r.shift_mm)?,
-                equidistant_mm: finite(&format!("{rk}.equidistant_mm"), r.equidistant_mm)?,
-                rotation_rad: units::rad(angle_deg(&format!("{rk}.rotation_deg"), r.rotation_deg)?),
-            },
-        ));
+        let at = format!("{key}.references[{j}]");
+        let m = modification_at(&at, (r.shift_mm, r.equidistant_mm, r.rotation_deg))?;
+        references.push((r.label, m));
     }
+    // The global stage's interior and boundary points are points of one Sobol sequence.
+    let sobol = |name: &str, value: Option<i64>, default: fn(usize) -> usize| {
+        let why = "the length of the global stage's Sobol sequence";
+        let value = value.unwrap_or(default(dims) as i64);
+        count_capped(&format!("{key}.{name}"), value, 1, MAX_GLOBAL_SAMPLES, why)
+    };
     Ok(Study {
         name: raw.name.unwrap_or_else(|| format!("study-{}", index + 1)),
         scene,
@@ -1255,21 +1222,11 @@ fn study(
             .optimum_max_objective
             .map(|x| finite(&format!("{key}.optimum_max_objective"), x))
             .transpose()?,
-        global_samples: count_capped(
-            &format!("{key}.global_samples"),
-            raw.global_samples
-                .unwrap_or(default_global_samples(dims) as i64),
-            1,
-            MAX_GLOBAL_SAMPLES,
-            "the length of the global stage's Sobol sequence",
-        )?,
-        boundary_samples: count_capped(
-            &format!("{key}.boundary_samples"),
-            raw.boundary_samples
-                .unwrap_or(default_boundary_samples(dims) as i64),
-            1,
-            MAX_GLOBAL_SAMPLES,
-            "the length of the global stage's Sobol sequence",
+        global_samples: sobol("global_samples", raw.global_samples, default_global_samples)?,
+        boundary_samples: sobol(
+            "boundary_samples",
+            raw.boundary_samples,
+            default_boundary_samples,
         )?,
         local_evaluations: count_capped(
             &format!("{key}.local_evaluations"),

@@ -15,6 +15,37 @@ pub(super) fn finite(key: &str, value: f64) -> Result<f64> {
     }
 }
 
+/// `value` when it holds more than blanks (a name, a file path).
+pub(super) fn not_blank(key: &str, value: &str) -> Result<()> {
+    if value.trim().is_empty() {
+        return Err(Error::invalid(key, "must not be empty".into()));
+    }
+    Ok(())
+}
+
+/// A finite number of at least 0 (a clearance, a tolerance band).
+pub(super) fn zero_or_positive(key: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(
+            key,
+            format!("must be zero or positive, got {}", numeric::input(value)),
+        ))
+    }
+}
+
+/// A disc's index at `key`: one of the reducer's `discs`, numbered from 0.
+pub(super) fn disc_index(key: &str, k: i64, discs: usize) -> Result<usize> {
+    if (0..discs as i64).contains(&k) {
+        return Ok(k as usize);
+    }
+    Err(Error::invalid(
+        key,
+        format!("the reducer has {discs} disc(s), numbered from 0; got {k}"),
+    ))
+}
+
 /// A positive finite number.
 pub(super) fn positive(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {

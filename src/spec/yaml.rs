@@ -6,11 +6,7 @@ use super::raw::*;
 use crate::error::{Error, ErrorKind, Location, Result};
 
 pub(crate) fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
-    let at = |line, column| Location::new(path, line, column);
-    // YAML syntax first, on an untyped value: a syntax error then carries no key path (the
-    // typed pass would name whatever key it had reached, e.g. `name` for a tab on line 2).
-    // Duplicate keys and integers too large for any YAML value are left to the typed pass,
-    // which knows their key path.
+    // Integers too large for any YAML value are left to the typed pass too.
     let typed_error = |m: &str| {
         [
             "duplicate entry with key",
@@ -20,37 +16,44 @@ pub(crate) fn parse_raw(path: &str, text: &str) -> Result<RawSpec> {
         .iter()
         .any(|p| m.contains(p))
     };
-    match serde_yaml::from_str::<serde_yaml::Value>(text) {
-        Ok(serde_yaml::Value::Null) => {
-            return Err(Error::new(
-                ErrorKind::Syntax,
-                "the spec is empty; it needs at least `name`, `reducer` and `scenes`",
-            )
-            .at(at(1, 1)))
-        }
-        Err(err) if !typed_error(&err.to_string()) => {
-            let (line, column) = err.location().map_or((1, 1), |l| (l.line(), l.column()));
-            return Err(
-                Error::new(ErrorKind::Syntax, yaml_message(&err.to_string())).at(at(line, column)),
-            );
-        }
-        Ok(value) => requirements_file(path, text, &value)?,
-        _ => {}
-    }
-    match deserialize::<RawOptimise>(path, text) {
+    let empty = "the spec is empty; it needs at least `name`, `reducer` and `scenes`";
+    requirements_file(path, text, &syntax(path, text, empty, typed_error)?)?;
+    match typed::<RawSpec>(path, text) {
         // An untagged `optimise` that matched no form: parse again as the form the YAML has
         // (a mapping is one study, a list is many) to get the precise key and location.
         Err(e) if e.key_path.as_deref() == Some("optimise") => {
             let shape: serde_yaml::Value = serde_yaml::from_str(text).unwrap_or_default();
             let precise = match shape.get("optimise") {
                 Some(serde_yaml::Value::Sequence(_)) => {
-                    deserialize::<Vec<RawStudy>>(path, text).err()
+                    typed::<RawSpecOf<Vec<RawStudy>>>(path, text).err()
                 }
-                _ => deserialize::<RawStudy>(path, text).err(),
+                _ => typed::<RawSpecOf<RawStudy>>(path, text).err(),
             };
             Err(precise.unwrap_or(e))
         }
         other => other,
+    }
+}
+
+/// YAML syntax first, on an untyped value: a syntax error then carries no key path (the typed
+/// pass would name whatever key it had reached, e.g. `name` for a tab on line 2). An empty
+/// document is refused with `empty`; the errors `typed_error` picks (duplicate keys) are left
+/// to the typed pass, which knows their key path (the value is then null).
+fn syntax(
+    path: &str,
+    text: &str,
+    empty: &str,
+    typed_error: impl Fn(&str) -> bool,
+) -> Result<serde_yaml::Value> {
+    let at = |line, column| Location::new(path, line, column);
+    match serde_yaml::from_str::<serde_yaml::Value>(text) {
+        Ok(serde_yaml::Value::Null) => Err(Error::new(ErrorKind::Syntax, empty).at(at(1, 1))),
+        Err(err) if !typed_error(&err.to_string()) => {
+            let (line, column) = err.location().map_or((1, 1), |l| (l.line(), l.column()));
+            Err(Error::new(ErrorKind::Syntax, yaml_message(&err.to_string())).at(at(line, column)))
+        }
+        Ok(value) => Ok(value),
+        Err(_) => Ok(serde_yaml::Value::Null),
     }
 }
 
@@ -75,26 +78,6 @@ fn requirements_file(path: &str, text: &str, value: &serde_yaml::Value) -> Resul
     .at(Location::new(path, line, column)))
 }
 
-fn deserialize<O>(path: &str, text: &str) -> Result<RawSpecOf<RawOptimise>>
-where
-    O: serde::de::DeserializeOwned + Into<RawOptimise>,
-{
-    let raw: RawSpecOf<O> = typed(path, text)?;
-    Ok(RawSpecOf {
-        name: raw.name,
-        reducer: raw.reducer,
-        modification: raw.modification,
-        scenes: raw.scenes,
-        limits: raw.limits,
-        optimise: raw.optimise.map(Into::into),
-        golden: raw.golden,
-        golden_root: raw.golden_root,
-        accuracy: raw.accuracy,
-        measured_profile: raw.measured_profile,
-        tolerances: raw.tolerances,
-    })
-}
-
 /// A YAML document of another kind than a spec (a requirements file), with the spec's located
 /// errors: syntax first (no key path), then the typed pass (its key path); `what` names the
 /// document in the error of an empty file.
@@ -103,19 +86,8 @@ pub(crate) fn parse_document<T: serde::de::DeserializeOwned>(
     text: &str,
     what: &str,
 ) -> Result<T> {
-    let at = |line, column| Location::new(path, line, column);
-    match serde_yaml::from_str::<serde_yaml::Value>(text) {
-        Ok(serde_yaml::Value::Null) => {
-            return Err(Error::new(ErrorKind::Syntax, format!("the {what} is empty")).at(at(1, 1)))
-        }
-        Err(err) if !err.to_string().contains("duplicate entry with key") => {
-            let (line, column) = err.location().map_or((1, 1), |l| (l.line(), l.column()));
-            return Err(
-                Error::new(ErrorKind::Syntax, yaml_message(&err.to_string())).at(at(line, column)),
-            );
-        }
-        _ => {}
-    }
+    let duplicate = |m: &str| m.contains("duplicate entry with key");
+    syntax(path, text, &format!("the {what} is empty"), duplicate)?;
     typed(path, text)
 }
 
@@ -141,18 +113,6 @@ fn typed<T: serde::de::DeserializeOwned>(path: &str, text: &str) -> Result<T> {
         }
         error
     })
-}
-
-impl From<RawStudy> for RawOptimise {
-    fn from(s: RawStudy) -> Self {
-        RawOptimise::One(Box::new(s))
-    }
-}
-
-impl From<Vec<RawStudy>> for RawOptimise {
-    fn from(v: Vec<RawStudy>) -> Self {
-        RawOptimise::Many(v)
-    }
 }
 
 /// serde_yaml's message without what the error already says elsewhere: its own key-path prefix

@@ -19,7 +19,8 @@ pub(crate) fn check(spec: &Spec) -> Result<()> {
             return Err(Error::invalid(
                 format!("{}.quantity", g.key),
                 format!(
-                    "scene `{}` does not resolve the load along the face width; give it                      `face_slices: 2` or more",
+                    "scene `{}` does not resolve the load along the face width; give it \
+                     `face_slices: 2` or more",
                     g.scene
                 ),
             ));

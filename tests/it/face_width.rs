@@ -541,6 +541,15 @@ fn bad_face_values_are_refused_where_they_are_written() {
             "scenes[0].face_slices",
             "face_slices: 2",
         ),
+        // A golden of a face quantity in a scene that does not resolve the face: the rule
+        // with one space before its key (the message once held a run of 22 spaces).
+        (
+            "",
+            "golden:\n  - scene: rated\n    quantity: face_load_factor\n    \
+             file: face_load_factor.csv\n    tolerance: { abs: 0.01 }\n",
+            "golden[0].quantity",
+            "face width; give it `face_slices: 2` or more",
+        ),
     ];
     let dir = crate::common::Scratch::new("face-bad");
     for (modification, scene, key, rule) in cases {

@@ -232,20 +232,7 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
     for (k, c) in cells(&cols, &run.front).into_iter().enumerate() {
         rows.push(std::iter::once(format!("{}", k + 1)).chain(c).collect());
     }
-    let widths: Vec<usize> = (0..rows[0].len())
-        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
-        .collect();
-    let line = |cells: &[String]| -> String {
-        cells
-            .iter()
-            .zip(&widths)
-            .map(|(c, w)| format!("{c:>w$}"))
-            .collect::<Vec<_>>()
-            .join("  ")
-    };
-    for r in &rows {
-        let _ = writeln!(s, "{}", line(r));
-    }
+    s += &crate::report::table::columns(&rows, true);
     if let Some(dir) = out_dir {
         let _ = writeln!(
             s,

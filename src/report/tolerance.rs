@@ -3,6 +3,7 @@
 //! so that the files of a sharded and an unsharded run compare byte for byte.
 
 use super::finite::Finite;
+use super::table::columns;
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, ToleranceStudy};
@@ -113,7 +114,7 @@ pub fn render(
         ));
         rows.push(row);
     }
-    out += &columns(&rows);
+    out += &columns(&rows, false);
     out += &format!(
         "\nfailure rate (a sample fails when any limit fails): {} of {} = {} [{}, {}] ({} \
          Clopper–Pearson), allowed {}: {}\n",
@@ -187,24 +188,6 @@ pub fn largest_draws(study: &ToleranceStudy, k: u64, count: usize) -> String {
         .join(", ")
 }
 
-/// Rows of cells in left-aligned columns.
-fn columns(rows: &[Vec<String>]) -> String {
-    let widths: Vec<usize> = (0..rows[0].len())
-        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
-        .collect();
-    let mut out = String::new();
-    for r in rows {
-        let cells: Vec<String> = r
-            .iter()
-            .zip(&widths)
-            .map(|(cell, w)| format!("{cell:<w$}"))
-            .collect();
-        out += cells.join("  ").trim_end();
-        out.push('\n');
-    }
-    out
-}
-
 /// A statistic of a limited quantity with its unit (`show`), or why there is none: a sample's
 /// value without a finite bound (an unbounded life or safety) has no mean, spread or
 /// derivative (in the JSON: null).
@@ -246,7 +229,7 @@ fn sensitivity_text(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> 
                 with_unit(number(var.sqrt()), ls.unit),
             ]);
         }
-        out += &columns(&rows);
+        out += &columns(&rows, false);
     }
     out += &format!("note: {LINEAR_CAVEAT}\n");
     out

@@ -6,7 +6,7 @@ use crate::engine::design_search::failure::{Failure, Miss, Requirement};
 use crate::engine::design_search::missed::{Cause, Count, Infeasible};
 use crate::engine::design_search::{Evaluation, SearchRun, Tally};
 use crate::model::requirements::{ObjectiveKind, Requirements};
-use crate::numeric::number;
+use crate::numeric::{number, with_unit};
 use crate::report::review::disc::thumbnail;
 use crate::report::svg::base::{document, px};
 use crate::report::svg::labels::{Bounds, Label, Layout, Obstacle};
@@ -101,15 +101,12 @@ fn tally_line(what: &str, t: &Tally) -> String {
 pub fn miss_text(f: &Failure) -> String {
     match &f.miss {
         Miss::Bound { value, limit } => {
-            let unit = match f.requirement.unit() {
-                "" => String::new(),
-                u => format!(" {u}"),
-            };
+            let unit = |x: f64| with_unit(number(x), f.requirement.unit());
             format!(
-                "best {}{unit}, required {} {}{unit}",
-                number(*value),
+                "best {}, required {} {}",
+                unit(*value),
                 f.requirement.bound().symbol(),
-                number(*limit)
+                unit(*limit)
             )
         }
         Miss::Said(m) => crate::error::printable(m, &[]).into_owned(),

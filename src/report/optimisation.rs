@@ -7,7 +7,7 @@ use crate::engine::optimise::problem::Evaluation;
 use crate::engine::optimise::verify::Verification;
 use crate::engine::optimise::{Found, StudyResult};
 use crate::model::{Study, VariableKind};
-use crate::numeric::number;
+use crate::numeric::{number, with_unit};
 use crate::report::review::{OptimisationView, StudyPoint};
 use crate::report::svg::MapCell;
 use crate::spec::Spec;
@@ -477,11 +477,8 @@ fn summary(spec: &Spec, study: &Study) -> String {
         ));
     }
     for (o, bound) in &study.objective_limits {
-        let unit = match o.quantity.unit {
-            "" => String::new(),
-            u => format!(" {u}"),
-        };
-        constraints.push(format!("{} ≤ {}{unit}", o.name, short(*bound)));
+        let bound = with_unit(short(*bound), o.quantity.unit);
+        constraints.push(format!("{} ≤ {bound}", o.name));
     }
     format!(
         "Minimise {} on scene “{}” ({} N·m, {} crank angles) over {}{}.",

@@ -267,10 +267,8 @@ pub fn csv(req: &Requirements, run: &SearchRun) -> String {
 /// An objective as a plot axis names it for a person: the quantity in words and its unit in
 /// parentheses ("mass (kg)", "max contact pressure (MPa)"), not the YAML key (`mass_kg`).
 pub fn axis_label(kind: ObjectiveKind) -> String {
-    match words(kind) {
-        (what, "") => what.to_string(),
-        (what, unit) => format!("{what} ({unit})"),
-    }
+    let (what, unit) = words(kind);
+    crate::report::svg::axis_label(what, unit)
 }
 
 /// An objective's (quantity in words, unit): ("mass", "kg"); the unit "" for a ratio.

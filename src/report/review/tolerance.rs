@@ -13,7 +13,7 @@ use crate::error::Result;
 use crate::model::results::is_unbounded;
 use crate::numeric::with_unit;
 use crate::numeric::{number, percent};
-use crate::report::svg::{LinePlot, Series, PALETTE, RED};
+use crate::report::svg::{axis_label, LinePlot, Series, PALETTE, RED};
 use crate::report::tolerance::{
     distribution_text, percent_label, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
     QUANTILE_DEFINITION,
@@ -58,14 +58,9 @@ fn histogram(
     x.push(lo + nb as f64 * width);
     y.push(0.0);
     let top = counts.iter().copied().max().unwrap_or(1) as f64;
-    let unit = if ls.unit.is_empty() {
-        String::new()
-    } else {
-        format!(" ({})", ls.unit)
-    };
     let mut plot = LinePlot::new(
         &format!("{} over {} samples", ls.label, values.len()),
-        &format!("{}{unit}", ls.quantity),
+        &axis_label(ls.quantity, ls.unit),
         "samples per bin",
     );
     plot.subtitle = format!(

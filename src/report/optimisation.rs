@@ -8,6 +8,7 @@ use crate::engine::optimise::verify::Verification;
 use crate::engine::optimise::{Found, StudyResult};
 use crate::model::{Study, VariableKind};
 use crate::numeric::{number, with_unit};
+use crate::report::review::plots::capitalised;
 use crate::report::review::{OptimisationView, StudyPoint};
 use crate::report::svg::MapCell;
 use crate::spec::Spec;
@@ -626,9 +627,7 @@ fn notes(study: &Study, r: &StudyResult) -> Vec<String> {
     for (label, e) in listed(r) {
         if let Some(note) = eq8_note(label, e, study) {
             let note = note.trim().trim_start_matches("note: ");
-            let mut chars = note.chars();
-            let first = chars.next().map(|c| c.to_uppercase().to_string());
-            notes.push(format!("{}{}.", first.unwrap_or_default(), chars.as_str()));
+            notes.push(format!("{}.", capitalised(note)));
         }
     }
     notes

@@ -419,7 +419,8 @@ fn per_part(x: &[f64], rows: &[Vec<f64>], part: &str) -> (Vec<Series>, Option<St
     (series, note)
 }
 
-fn capitalised(word: &str) -> String {
+/// `word` with its first letter upper-case.
+pub(crate) fn capitalised(word: &str) -> String {
     let mut chars = word.chars();
     chars
         .next()

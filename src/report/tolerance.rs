@@ -106,23 +106,16 @@ pub fn render(
         row.extend(l.quantiles.iter().map(|&q| value(q)));
         row.push(value(l.max));
         row.push(l.failures.to_string());
-        row.push(format!(
-            "{} [{}, {}]",
-            percent(s.limit_rate(l)),
-            percent(l.interval.0),
-            percent(l.interval.1)
-        ));
+        row.push(rate_text(s.limit_rate(l), l.interval));
         rows.push(row);
     }
     out += &columns(&rows, false);
     out += &format!(
-        "\nfailure rate (a sample fails when any limit fails): {} of {} = {} [{}, {}] ({} \
+        "\nfailure rate (a sample fails when any limit fails): {} of {} = {} ({} \
          Clopper–Pearson), allowed {}: {}\n",
         s.failures,
         s.samples,
-        percent(s.rate()),
-        percent(s.interval.0),
-        percent(s.interval.1),
+        rate_text(s.rate(), s.interval),
         percent_label(CONFIDENCE),
         percent(s.max_failure_rate),
         verdict(s)
@@ -143,6 +136,11 @@ pub fn render(
         out += &format!("note: {}\n", super::explain::note(&note));
     }
     out
+}
+
+/// A failure rate with its Clopper–Pearson interval: "1.250 % [0.4100 %, 2.900 %]".
+pub fn rate_text(rate: f64, (lo, hi): (f64, f64)) -> String {
+    format!("{} [{}, {}]", percent(rate), percent(lo), percent(hi))
 }
 
 /// Sample k's value of the limit(s) it is worst on (those whose excess over the limit,

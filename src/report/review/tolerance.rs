@@ -15,7 +15,7 @@ use crate::numeric::with_unit;
 use crate::numeric::{number, percent};
 use crate::report::svg::{axis_label, LinePlot, Series, PALETTE, RED};
 use crate::report::tolerance::{
-    distribution_text, percent_label, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
+    distribution_text, percent_label, rate_text, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
     QUANTILE_DEFINITION,
 };
 use maud::{html, Markup};
@@ -117,16 +117,14 @@ fn rates_section(s: &Summary) -> Section {
                         @for q in l.quantiles { td.num { (value(q)) } }
                         td.num { (value(l.max)) }
                         td.num { (l.failures) }
-                        td.num { (percent(s.limit_rate(l))) " ["
-                            (percent(l.interval.0)) ", " (percent(l.interval.1)) "]" }
+                        td.num { (rate_text(s.limit_rate(l), l.interval)) }
                     }
                 }
                 tr class=(if s.passed() { "pass" } else { "fail" }) {
                     td { b { "any limit" } " (allowed " (percent(s.max_failure_rate)) ")" }
                     td colspan="5" {}
                     td.num { (s.failures) }
-                    td.num.verdict { (percent(s.rate())) " [" (percent(s.interval.0)) ", "
-                        (percent(s.interval.1)) "]" }
+                    td.num.verdict { (rate_text(s.rate(), s.interval)) }
                 }
             },
         ))

@@ -11,7 +11,9 @@ use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
 use crate::model::results::{DiscResult, SceneResult};
 use crate::numeric::{extremes, with_unit};
 use crate::report::place;
-use crate::report::svg::{axis_label, LinePlot, MapCell, MapPlot, Mark, RefLine, Series, PALETTE, RED};
+use crate::report::svg::{
+    axis_label, LinePlot, MapCell, MapPlot, Mark, RefLine, Series, PALETTE, RED,
+};
 use crate::report::table::figure;
 use crate::spec::Spec;
 use crate::units;

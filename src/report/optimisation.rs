@@ -186,19 +186,17 @@ pub fn verification_text(study: &Study, r: &StudyResult) -> Option<String> {
     // A difference at the objective's round-off (1e-9 of it, the local runs' stop tolerance)
     // is a tie, not a grid point beating the search.
     let round_off = |d: f64| d <= 1e-9 * r.optimum.objective.abs();
+    let n = v.refinements.len();
+    let refined = format!(
+        "{n} refinement{} from there; ",
+        if n == 1 { "" } else { "s" }
+    );
     let searched = match v.beat_search_by() {
         Some(d) if round_off(d) => format!(
-            "a grid point tied with the search (by {}, round-off), {} refinement{} from there; ",
-            number(d),
-            v.refinements.len(),
-            if v.refinements.len() == 1 { "" } else { "s" }
+            "a grid point tied with the search (by {}, round-off), {refined}",
+            number(d)
         ),
-        Some(d) => format!(
-            "a grid point beat the search by {}, {} refinement{} from there; ",
-            number(d),
-            v.refinements.len(),
-            if v.refinements.len() == 1 { "" } else { "s" }
-        ),
+        Some(d) => format!("a grid point beat the search by {}, {refined}", number(d)),
         None => String::new(),
     };
     Some(match (&v.best, v.margin) {

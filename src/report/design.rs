@@ -229,7 +229,7 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
     for (k, c) in cells(&cols, &run.front).into_iter().enumerate() {
         rows.push(std::iter::once(format!("{}", k + 1)).chain(c).collect());
     }
-    s += &crate::report::table::columns(&rows, true);
+    s += &crate::report::columns::columns(&rows, true);
     if let Some(dir) = out_dir {
         let _ = writeln!(
             s,

@@ -2,8 +2,8 @@
 //! Every number written to a file is in Rust's shortest round-trip form (serde_json, `{:?}`),
 //! so that the files of a sharded and an unsharded run compare byte for byte.
 
+use super::columns::columns;
 use super::finite::Finite;
-use super::table::columns;
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, ToleranceStudy};

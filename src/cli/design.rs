@@ -8,8 +8,8 @@ use super::output::{distinct_outputs, print, usage};
 use super::shard::{parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands::{self, DesignRun};
-use crate::error::{Error, Result};
-use crate::files::{self, identity, Batch};
+use crate::error::Result;
+use crate::files::{self, identity};
 use crate::model::requirements::Requirements;
 use crate::report::design::Timing;
 use crate::report::terminal::Terminal;
@@ -118,16 +118,7 @@ fn finish(
                 )));
             }
         }
-        // The output directory and each design's review folder.
-        let folders = (0..run.specs.len()).map(|k| dir.join(commands::design_name(k)));
-        for d in std::iter::once(dir.to_path_buf()).chain(folders) {
-            std::fs::create_dir_all(&d).map_err(|e| Error::io(&d.display().to_string(), e))?;
-        }
-        let mut batch = Batch::new();
-        for (name, text) in &files {
-            batch.add(&dir.join(name), text.as_bytes())?;
-        }
-        batch.commit()?;
+        report::review::shell::write_files(dir, &files)?;
     }
     print(
         out,

@@ -14,7 +14,7 @@ pub(super) fn run(args: &ProfileArgs, out: &mut dyn Write) -> Result<Outcome> {
     check_tolerance(tolerance_um)?;
     let paths = [&args.csv, &args.dxf, &args.step, &args.stl].map(Option::as_deref);
     let [csv, dxf, step_path, stl_path] = paths;
-    if [csv, dxf, step_path, stl_path].iter().all(Option::is_none) {
+    if paths.iter().all(Option::is_none) {
         return Err(Error::new(
             ErrorKind::Usage,
             "profile writes the profile to --csv PATH, --dxf PATH, --step PATH, --stl PATH or \
@@ -22,15 +22,11 @@ pub(super) fn run(args: &ProfileArgs, out: &mut dyn Write) -> Result<Outcome> {
         ));
     }
     let spec = spec::load(path)?;
-    distinct_outputs(
-        &inputs_of(path, Some(&spec)),
-        &[
-            ("--csv", csv),
-            ("--dxf", dxf),
-            ("--step", step_path),
-            ("--stl", stl_path),
-        ],
-    )?;
+    let outputs: Vec<_> = ["--csv", "--dxf", "--step", "--stl"]
+        .into_iter()
+        .zip(paths)
+        .collect();
+    distinct_outputs(&inputs_of(path, Some(&spec)), &outputs)?;
     let tol = units::mm_from_um(tolerance_um);
     let points = commands::profile(&spec, tol)?;
     // The solids are built before any file is written: a refused disc writes nothing.

@@ -80,16 +80,10 @@ pub fn resolution_warning(r: &Resolution) -> Option<String> {
     })
 }
 
+/// Widths of the rung's label and of a number's column, characters (`{:>w$}` pads by
+/// characters: "—" is one).
 const LABEL_W: usize = 26;
 const NUM_W: usize = 13;
-
-fn pad_left(s: &str, w: usize) -> String {
-    format!("{}{s}", " ".repeat(w.saturating_sub(s.chars().count())))
-}
-
-fn pad_right(s: &str, w: usize) -> String {
-    format!("{s}{}", " ".repeat(w.saturating_sub(s.chars().count())))
-}
 
 /// A number for the table: 3 significant digits, exponent form below 0.01.
 pub fn short(x: f64) -> String {
@@ -187,16 +181,13 @@ pub fn header(l: &Layout) -> String {
         );
     }
     let mut h1 = format!(
-        "{}{}{}{}",
-        pad_right("rung", LABEL_W),
-        pad_left("steps/period", 13),
-        pad_left("angles", 8),
-        pad_left("time", 11)
+        "{:<LABEL_W$}{:>13}{:>8}{:>11}",
+        "rung", "steps/period", "angles", "time"
     );
     let mut h2 = " ".repeat(LABEL_W + 13 + 8 + 11);
     for q in &l.quantities {
-        h1 += &pad_left(q.label(), NUM_W + 1);
-        h2 += &pad_left(q.unit(), NUM_W + 1);
+        h1 += &format!("{:>w$}", q.label(), w = NUM_W + 1);
+        h2 += &format!("{:>w$}", q.unit(), w = NUM_W + 1);
     }
     h1 += "  tolerances";
     s += h1.trim_end();
@@ -209,11 +200,11 @@ pub fn header(l: &Layout) -> String {
 /// One row of the table; `cheapest` appends the mark.
 pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
     let mut s = format!(
-        "{}{}{}{}",
-        pad_right(&r.label, LABEL_W),
-        pad_left(&steps_text(r.steps_per_period), 13),
-        pad_left(&r.angles.to_string(), 8),
-        pad_left(&seconds_text(r.seconds), 11)
+        "{:<LABEL_W$}{:>13}{:>8}{:>11}",
+        r.label,
+        steps_text(r.steps_per_period),
+        r.angles,
+        seconds_text(r.seconds)
     );
     for &q in &l.quantities {
         let cell = match r.error(q) {
@@ -221,7 +212,7 @@ pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
             Some(e) => short(e),
             None => "n/a".to_string(),
         };
-        s += &pad_left(&cell, NUM_W + 1);
+        s += &format!("{cell:>w$}", w = NUM_W + 1);
     }
     let (_, verdict) = verdict(r, &l.tolerances);
     s += "  ";
@@ -310,11 +301,7 @@ pub fn footer(ladder: &Ladder) -> String {
                 .map(|(_, p)| p.map_or("—".to_string(), order_text))
                 .collect();
             let fit = ladder.fitted_order(q).map_or("—".to_string(), order_text);
-            Some(format!(
-                "  {}{}   fit {fit}",
-                pad_right(q.label(), 15),
-                text.join(" ")
-            ))
+            Some(format!("  {:<15}{}   fit {fit}", q.label(), text.join(" ")))
         })
         .collect();
     if !orders.is_empty() {

@@ -6,7 +6,7 @@ use crate::engine::design_search::failure::{Failure, Miss, Requirement};
 use crate::engine::design_search::missed::{Cause, Count, Infeasible};
 use crate::engine::design_search::{Evaluation, SearchRun, Tally};
 use crate::model::requirements::{ObjectiveKind, Requirements};
-use crate::numeric::number;
+use crate::numeric::{number, with_unit};
 use crate::report::review::disc::thumbnail;
 use crate::report::svg::base::{document, px};
 use crate::report::svg::labels::{Bounds, Label, Layout, Obstacle};
@@ -101,15 +101,12 @@ fn tally_line(what: &str, t: &Tally) -> String {
 pub fn miss_text(f: &Failure) -> String {
     match &f.miss {
         Miss::Bound { value, limit } => {
-            let unit = match f.requirement.unit() {
-                "" => String::new(),
-                u => format!(" {u}"),
-            };
+            let unit = |x: f64| with_unit(number(x), f.requirement.unit());
             format!(
-                "best {}{unit}, required {} {}{unit}",
-                number(*value),
+                "best {}, required {} {}",
+                unit(*value),
                 f.requirement.bound().symbol(),
-                number(*limit)
+                unit(*limit)
             )
         }
         Miss::Said(m) => crate::error::printable(m, &[]).into_owned(),
@@ -232,20 +229,7 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
     for (k, c) in cells(&cols, &run.front).into_iter().enumerate() {
         rows.push(std::iter::once(format!("{}", k + 1)).chain(c).collect());
     }
-    let widths: Vec<usize> = (0..rows[0].len())
-        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
-        .collect();
-    let line = |cells: &[String]| -> String {
-        cells
-            .iter()
-            .zip(&widths)
-            .map(|(c, w)| format!("{c:>w$}"))
-            .collect::<Vec<_>>()
-            .join("  ")
-    };
-    for r in &rows {
-        let _ = writeln!(s, "{}", line(r));
-    }
+    s += &crate::report::columns::columns(&rows, true);
     if let Some(dir) = out_dir {
         let _ = writeln!(
             s,
@@ -283,10 +267,8 @@ pub fn csv(req: &Requirements, run: &SearchRun) -> String {
 /// An objective as a plot axis names it for a person: the quantity in words and its unit in
 /// parentheses ("mass (kg)", "max contact pressure (MPa)"), not the YAML key (`mass_kg`).
 pub fn axis_label(kind: ObjectiveKind) -> String {
-    match words(kind) {
-        (what, "") => what.to_string(),
-        (what, unit) => format!("{what} ({unit})"),
-    }
+    let (what, unit) = words(kind);
+    crate::report::svg::axis_label(what, unit)
 }
 
 /// An objective's (quantity in words, unit): ("mass", "kg"); the unit "" for a ratio.

@@ -8,6 +8,7 @@
 pub mod accuracy;
 pub mod as_built;
 pub mod check_review;
+pub mod columns;
 pub mod design;
 pub mod explain;
 pub mod export;

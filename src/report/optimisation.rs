@@ -7,7 +7,8 @@ use crate::engine::optimise::problem::Evaluation;
 use crate::engine::optimise::verify::Verification;
 use crate::engine::optimise::{Found, StudyResult};
 use crate::model::{Study, VariableKind};
-use crate::numeric::number;
+use crate::numeric::{number, with_unit};
+use crate::report::review::plots::capitalised;
 use crate::report::review::{OptimisationView, StudyPoint};
 use crate::report::svg::MapCell;
 use crate::spec::Spec;
@@ -185,19 +186,17 @@ pub fn verification_text(study: &Study, r: &StudyResult) -> Option<String> {
     // A difference at the objective's round-off (1e-9 of it, the local runs' stop tolerance)
     // is a tie, not a grid point beating the search.
     let round_off = |d: f64| d <= 1e-9 * r.optimum.objective.abs();
+    let n = v.refinements.len();
+    let refined = format!(
+        "{n} refinement{} from there; ",
+        if n == 1 { "" } else { "s" }
+    );
     let searched = match v.beat_search_by() {
         Some(d) if round_off(d) => format!(
-            "a grid point tied with the search (by {}, round-off), {} refinement{} from there; ",
-            number(d),
-            v.refinements.len(),
-            if v.refinements.len() == 1 { "" } else { "s" }
+            "a grid point tied with the search (by {}, round-off), {refined}",
+            number(d)
         ),
-        Some(d) => format!(
-            "a grid point beat the search by {}, {} refinement{} from there; ",
-            number(d),
-            v.refinements.len(),
-            if v.refinements.len() == 1 { "" } else { "s" }
-        ),
+        Some(d) => format!("a grid point beat the search by {}, {refined}", number(d)),
         None => String::new(),
     };
     Some(match (&v.best, v.margin) {
@@ -477,11 +476,8 @@ fn summary(spec: &Spec, study: &Study) -> String {
         ));
     }
     for (o, bound) in &study.objective_limits {
-        let unit = match o.quantity.unit {
-            "" => String::new(),
-            u => format!(" {u}"),
-        };
-        constraints.push(format!("{} ≤ {}{unit}", o.name, short(*bound)));
+        let bound = with_unit(short(*bound), o.quantity.unit);
+        constraints.push(format!("{} ≤ {bound}", o.name));
     }
     format!(
         "Minimise {} on scene “{}” ({} N·m, {} crank angles) over {}{}.",
@@ -629,9 +625,7 @@ fn notes(study: &Study, r: &StudyResult) -> Vec<String> {
     for (label, e) in listed(r) {
         if let Some(note) = eq8_note(label, e, study) {
             let note = note.trim().trim_start_matches("note: ");
-            let mut chars = note.chars();
-            let first = chars.next().map(|c| c.to_uppercase().to_string());
-            notes.push(format!("{}{}.", first.unwrap_or_default(), chars.as_str()));
+            notes.push(format!("{}.", capitalised(note)));
         }
     }
     notes

@@ -300,12 +300,11 @@ pub fn render_summary(summaries: &[SceneSummary]) -> String {
         let value_w = rows.iter().map(|r| r.value.chars().count()).max();
         let (label_w, value_w) = (label_w.unwrap_or(0), value_w.unwrap_or(0));
         for r in &rows {
+            // The width format pads by characters, as the widths are counted.
             let line = format!(
-                "{}{}{}  {}{}  {}",
+                "{}{:<label_w$}  {:>value_w$}  {}",
                 if r.marked { "! " } else { "  " },
                 r.label,
-                " ".repeat(label_w - r.label.chars().count()),
-                " ".repeat(value_w - r.value.chars().count()),
                 r.value,
                 r.at
             );

@@ -2,6 +2,7 @@
 //! Every number written to a file is in Rust's shortest round-trip form (serde_json, `{:?}`),
 //! so that the files of a sharded and an unsharded run compare byte for byte.
 
+use super::columns::columns;
 use super::finite::Finite;
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{Summary, CONFIDENCE, QUANTILES};
@@ -105,23 +106,16 @@ pub fn render(
         row.extend(l.quantiles.iter().map(|&q| value(q)));
         row.push(value(l.max));
         row.push(l.failures.to_string());
-        row.push(format!(
-            "{} [{}, {}]",
-            percent(s.limit_rate(l)),
-            percent(l.interval.0),
-            percent(l.interval.1)
-        ));
+        row.push(rate_text(s.limit_rate(l), l.interval));
         rows.push(row);
     }
-    out += &columns(&rows);
+    out += &columns(&rows, false);
     out += &format!(
-        "\nfailure rate (a sample fails when any limit fails): {} of {} = {} [{}, {}] ({} \
+        "\nfailure rate (a sample fails when any limit fails): {} of {} = {} ({} \
          Clopper–Pearson), allowed {}: {}\n",
         s.failures,
         s.samples,
-        percent(s.rate()),
-        percent(s.interval.0),
-        percent(s.interval.1),
+        rate_text(s.rate(), s.interval),
         percent_label(CONFIDENCE),
         percent(s.max_failure_rate),
         verdict(s)
@@ -142,6 +136,11 @@ pub fn render(
         out += &format!("note: {}\n", super::explain::note(&note));
     }
     out
+}
+
+/// A failure rate with its Clopper–Pearson interval: "1.250 % [0.4100 %, 2.900 %]".
+pub fn rate_text(rate: f64, (lo, hi): (f64, f64)) -> String {
+    format!("{} [{}, {}]", percent(rate), percent(lo), percent(hi))
 }
 
 /// Sample k's value of the limit(s) it is worst on (those whose excess over the limit,
@@ -187,24 +186,6 @@ pub fn largest_draws(study: &ToleranceStudy, k: u64, count: usize) -> String {
         .join(", ")
 }
 
-/// Rows of cells in left-aligned columns.
-fn columns(rows: &[Vec<String>]) -> String {
-    let widths: Vec<usize> = (0..rows[0].len())
-        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
-        .collect();
-    let mut out = String::new();
-    for r in rows {
-        let cells: Vec<String> = r
-            .iter()
-            .zip(&widths)
-            .map(|(cell, w)| format!("{cell:<w$}"))
-            .collect();
-        out += cells.join("  ").trim_end();
-        out.push('\n');
-    }
-    out
-}
-
 /// A statistic of a limited quantity with its unit (`show`), or why there is none: a sample's
 /// value without a finite bound (an unbounded life or safety) has no mean, spread or
 /// derivative (in the JSON: null).
@@ -246,7 +227,7 @@ fn sensitivity_text(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> 
                 with_unit(number(var.sqrt()), ls.unit),
             ]);
         }
-        out += &columns(&rows);
+        out += &columns(&rows, false);
     }
     out += &format!("note: {LINEAR_CAVEAT}\n");
     out

@@ -45,9 +45,8 @@ use crate::engine::drawing::Disc;
 use crate::engine::golden::GoldenResult;
 use crate::engine::verdict::Check;
 use crate::model::results::SceneResult;
-use crate::model::Scene;
 use crate::spec::Spec;
-use common::{slug, Section};
+use common::Section;
 use maud::html;
 use shell::shell;
 
@@ -125,13 +124,7 @@ pub fn render(input: &ReportInput) -> Vec<(String, String)> {
         input.results,
         &mut files,
     ));
-    let prefix = |k: usize, s: &Scene| format!("scene-{}-{}", k + 1, slug(&s.name));
-    sections.extend(torsion::section(
-        input.spec,
-        input.results,
-        prefix,
-        &mut files,
-    ));
+    sections.extend(torsion::section(input.spec, input.results, &mut files));
     sections.extend(bearing_life::section(input.spec, input.results));
     sections.extend(duty_cycle::section(input.spec, input.results, &mut files));
     sections.extend(efficiency::section(

@@ -11,7 +11,9 @@ use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
 use crate::model::results::{DiscResult, SceneResult};
 use crate::numeric::{extremes, with_unit};
 use crate::report::place;
-use crate::report::svg::{LinePlot, MapCell, MapPlot, Mark, RefLine, Series, PALETTE, RED};
+use crate::report::svg::{
+    axis_label, LinePlot, MapCell, MapPlot, Mark, RefLine, Series, PALETTE, RED,
+};
 use crate::report::table::figure;
 use crate::spec::Spec;
 use crate::units;
@@ -302,11 +304,7 @@ fn plot(spec: &Spec, of: Of<'_>, def: &PlotDef, prefix: &str, at_speed: Option<&
     };
     let (unit, convert) = shown(def, first.unit);
     let name = def.y_label.unwrap_or(first.label);
-    let y_label = if unit.is_empty() {
-        name.to_string()
-    } else {
-        format!("{name} ({unit})")
-    };
+    let y_label = axis_label(name, unit);
     let (x, x_range) = crank_axis(of.r);
     let sparse = x.len() < SPARSE_ANGLES;
     let mut title = def.title.to_string();
@@ -423,7 +421,8 @@ fn per_part(x: &[f64], rows: &[Vec<f64>], part: &str) -> (Vec<Series>, Option<St
     (series, note)
 }
 
-fn capitalised(word: &str) -> String {
+/// `word` with its first letter upper-case.
+pub(crate) fn capitalised(word: &str) -> String {
     let mut chars = word.chars();
     chars
         .next()

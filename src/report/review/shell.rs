@@ -13,13 +13,20 @@ use std::path::{Path, PathBuf};
 
 /// `files` (name, text) into `dir` (created if missing) as one batch, in their order: every
 /// file is staged, then all are renamed into place, the page that links the others last, so a
-/// reader never sees a page that links figures of another run. Returns the paths written.
+/// reader never sees a page that links figures of another run. A name in a folder
+/// (`design-01/index.html`, a design search's review of each design) has its folder created.
+/// Returns the paths written.
 pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(&dir.display().to_string(), e))?;
     let mut batch = Batch::new();
     let mut written = Vec::new();
+    let mkdir =
+        |d: &Path| std::fs::create_dir_all(d).map_err(|e| Error::io(&d.display().to_string(), e));
+    mkdir(dir)?;
     for (name, text) in files {
         let path = dir.join(name);
+        if let Some(folder) = path.parent().filter(|p| *p != dir) {
+            mkdir(folder)?;
+        }
         batch.add(&path, text.as_bytes())?;
         written.push(path);
     }

@@ -13,9 +13,9 @@ use crate::error::Result;
 use crate::model::results::is_unbounded;
 use crate::numeric::with_unit;
 use crate::numeric::{number, percent};
-use crate::report::svg::{LinePlot, Series, PALETTE, RED};
+use crate::report::svg::{axis_label, LinePlot, Series, PALETTE, RED};
 use crate::report::tolerance::{
-    distribution_text, percent_label, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
+    distribution_text, percent_label, rate_text, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
     QUANTILE_DEFINITION,
 };
 use maud::{html, Markup};
@@ -58,14 +58,9 @@ fn histogram(
     x.push(lo + nb as f64 * width);
     y.push(0.0);
     let top = counts.iter().copied().max().unwrap_or(1) as f64;
-    let unit = if ls.unit.is_empty() {
-        String::new()
-    } else {
-        format!(" ({})", ls.unit)
-    };
     let mut plot = LinePlot::new(
         &format!("{} over {} samples", ls.label, values.len()),
-        &format!("{}{unit}", ls.quantity),
+        &axis_label(ls.quantity, ls.unit),
         "samples per bin",
     );
     plot.subtitle = format!(
@@ -122,16 +117,14 @@ fn rates_section(s: &Summary) -> Section {
                         @for q in l.quantiles { td.num { (value(q)) } }
                         td.num { (value(l.max)) }
                         td.num { (l.failures) }
-                        td.num { (percent(s.limit_rate(l))) " ["
-                            (percent(l.interval.0)) ", " (percent(l.interval.1)) "]" }
+                        td.num { (rate_text(s.limit_rate(l), l.interval)) }
                     }
                 }
                 tr class=(if s.passed() { "pass" } else { "fail" }) {
                     td { b { "any limit" } " (allowed " (percent(s.max_failure_rate)) ")" }
                     td colspan="5" {}
                     td.num { (s.failures) }
-                    td.num.verdict { (percent(s.rate())) " [" (percent(s.interval.0)) ", "
-                        (percent(s.interval.1)) "]" }
+                    td.num.verdict { (rate_text(s.rate(), s.interval)) }
                 }
             },
         ))

@@ -206,7 +206,6 @@ fn not_modelled(parts: &[String]) -> String {
 pub(super) fn section(
     spec: &Spec,
     results: &[SceneResult],
-    prefix: impl Fn(usize, &Scene) -> String,
     files: &mut Vec<(String, String)>,
 ) -> Vec<Section> {
     let mut out = Vec::new();
@@ -214,7 +213,7 @@ pub(super) fn section(
         let Some(t) = &r.reducer.torsion else {
             continue;
         };
-        let id = format!("{}-torsion", prefix(k, scene));
+        let id = format!("{}-torsion", super::scenes::id(k, scene));
         let file = format!("{id}.svg");
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));
         let c = torsion_compliances(&t.compliances);

@@ -49,6 +49,15 @@ impl Series {
     }
 }
 
+/// An axis label: the quantity and its unit in parentheses, "max roller force (N)", or the
+/// quantity alone without a unit (a ratio).
+pub fn axis_label(name: &str, unit: &str) -> String {
+    match unit {
+        "" => name.to_string(),
+        unit => format!("{name} ({unit})"),
+    }
+}
+
 /// A cut in the y axis: the values between `lo` and `hi` (a band with no data, e.g. a
 /// torsion curve's dead band) are left out, the axis drawn as two panels, the lower spanning
 /// the data up to `lo` and the upper from `hi`, each with its own ticks; the cut is marked on

@@ -13,7 +13,7 @@ pub mod map;
 pub mod ticks;
 
 pub use frame::Frame;
-pub use line::{LinePlot, Mark, RefLine, Series, YCut};
+pub use line::{axis_label, LinePlot, Mark, RefLine, Series, YCut};
 pub use map::{MapCell, MapPlot, Marker, Shape, LOG_SPAN};
 pub use ticks::{ticks, Ticks};
 

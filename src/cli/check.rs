@@ -66,14 +66,6 @@ fn checked(args: &CheckArgs, out: &mut dyn Write, guarded: &mut bool) -> Result<
             out,
             &report::explain::explain(&spec, writes, args.tolerance),
         )?;
-        if let Some(m) = &spec.measured {
-            let line = format!(
-                "\nas built: every scene runs on the disc identified from `{}` (its \
-                 modification and form error), exact geometry\n",
-                m.path
-            );
-            print(out, &line)?;
-        }
         return Ok(Outcome::Passed);
     }
     let options = CheckOptions {

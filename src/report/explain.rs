@@ -318,6 +318,13 @@ pub fn explain(spec: &Spec, writes: Writes, tolerance: bool) -> String {
     out += &goldens_text(spec);
     out += &ladder_text(spec, writes);
     out += &tolerance_text(spec, tolerance);
+    if let Some(m) = &spec.measured {
+        out += &format!(
+            "\nas built: every scene runs on the disc identified from `{}` (its modification \
+             and form error), exact geometry\n",
+            m.path
+        );
+    }
     out
 }
 
@@ -526,8 +533,7 @@ fn friction_lines(spec: &Spec) -> String {
         return String::new();
     };
     let mut out = format!(
-        "friction (reducer.friction): the {} model, {}
-",
+        "friction (reducer.friction): the {} model, {}\n",
         f.model,
         match f.model {
             FrictionModel::Loss => {

@@ -1107,6 +1107,27 @@ fn explain_says_what_reads_the_backlash() {
     assert_eq!(explain(&two_scenes, &[]), skip);
 }
 
+/// `--explain` of a spec with a measured disc ends by saying that every scene runs on the disc
+/// identified from the file the spec names (`measured_profile.file`, relative to the spec's
+/// folder, shown as found from where the tool runs), in exact geometry: the run identifies it
+/// before any scene (`engine::as_built`).
+#[test]
+fn explain_says_the_scenes_run_on_the_measured_disc() {
+    let out = cycloid(
+        Path::new(env!("CARGO_MANIFEST_DIR")),
+        &["check", "specs/reducer-measured.yaml", "--explain"],
+    );
+    assert_eq!(out.code, Some(0), "{out:?}");
+    assert!(
+        out.stdout.ends_with(
+            "\n\nas built: every scene runs on the disc identified from \
+             `specs/measured/reducer-disc.csv` (its modification and form error), exact geometry\n"
+        ),
+        "{}",
+        out.stdout
+    );
+}
+
 /// `--explain` computes nothing: a design whose check fails (exit 1) explains with exit 0, no
 /// table, and no results file even with `--json`.
 #[test]

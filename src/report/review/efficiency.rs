@@ -215,7 +215,7 @@ pub(super) fn section(
         figures.push((
             "efficiency-losses.svg".into(),
             "Power lost on each path".into(),
-            "the mean over each scene's crank angles at its input speed".into(),
+            "The mean over each scene's crank angles at its input speed".into(),
         ));
     }
     let model = spec.design.friction.map_or("none", |f| f.model.name());

@@ -231,7 +231,7 @@ pub fn render(
             &name,
             &format!("Distribution of {}", ls.quantity),
             &format!(
-                "every sample's {}; the dashed red line is the limit; {} to {}: {} to {}",
+                "Every sample's {}; the dashed red line is the limit; {} to {}: {} to {}",
                 ls.label,
                 percent_label(QUANTILES[0]),
                 percent_label(QUANTILES[2]),

@@ -224,7 +224,7 @@ pub(super) fn section(
                 (not_modelled(&c.not_modelled)) ". Given: " (c.given.join("; "))
                 ". " (torsion_law_note(t.compliances.contact_law)) "."
             }
-            (figure(&file, "Torsion curve", "one curve per locked crank angle (a dot per \
+            (figure(&file, "Torsion curve", "One curve per locked crank angle (a dot per \
                 torque where the torques are few); the points of the figures (±3 %, ±50 %, \
                 ±100 % of the rated torque) marked ◇; at T = 0 the dead band is the vertical \
                 step from γ(0⁻) to γ(0⁺). When the band is wider than twice the twist beyond \

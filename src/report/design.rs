@@ -7,6 +7,7 @@ use crate::engine::design_search::missed::{Cause, Count, Infeasible};
 use crate::engine::design_search::{Evaluation, SearchRun, Tally};
 use crate::model::requirements::{ObjectiveKind, Requirements};
 use crate::numeric::{number, with_unit};
+use crate::report::columns::{self, Align};
 use crate::report::review::disc::thumbnail;
 use crate::report::svg::base::{document, px};
 use crate::report::svg::labels::{Bounds, Label, Layout, Obstacle};
@@ -229,7 +230,7 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
     for (k, c) in cells(&cols, &run.front).into_iter().enumerate() {
         rows.push(std::iter::once(format!("{}", k + 1)).chain(c).collect());
     }
-    s += &crate::report::columns::columns(&rows, true);
+    s += &columns::columns(&rows, |_| Align::Right);
     if let Some(dir) = out_dir {
         let _ = writeln!(
             s,

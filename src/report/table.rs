@@ -7,6 +7,7 @@ use crate::engine::verdict::{Bound, Check, CheckKind, Evidence};
 use crate::model::quantity::{find_limit, Quantity, COUNTS};
 use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE};
 use crate::numeric::{number, with_unit};
+use crate::report::columns::{columns, Align};
 use crate::report::place::{self, ONLY_ANGLE};
 
 /// A value of `q` (in its unit) as every output prints it — headline, checks table, review,
@@ -295,22 +296,14 @@ pub fn render_summary(summaries: &[SceneSummary]) -> String {
             out += "  no headline results (the scene computes none of them)\n";
             continue;
         }
-        let rows = summary_rows(s, summaries);
-        let label_w = rows.iter().map(|r| r.label.chars().count()).max();
-        let value_w = rows.iter().map(|r| r.value.chars().count()).max();
-        let (label_w, value_w) = (label_w.unwrap_or(0), value_w.unwrap_or(0));
-        for r in &rows {
-            // The width format pads by characters, as the widths are counted.
-            let line = format!(
-                "{}{:<label_w$}  {:>value_w$}  {}",
-                if r.marked { "! " } else { "  " },
-                r.label,
-                r.value,
-                r.at
-            );
-            out += line.trim_end();
-            out += "\n";
-        }
+        let rows: Vec<Vec<String>> = (summary_rows(s, summaries).into_iter())
+            .map(|r| {
+                let mark = if r.marked { "! " } else { "  " };
+                vec![format!("{mark}{}", r.label), r.value, r.at]
+            })
+            .collect();
+        // The values right-aligned, the labels and places left.
+        out += &columns(&rows, |c| if c == 1 { Align::Right } else { Align::Left });
     }
     out
 }

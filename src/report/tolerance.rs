@@ -2,7 +2,7 @@
 //! Every number written to a file is in Rust's shortest round-trip form (serde_json, `{:?}`),
 //! so that the files of a sharded and an unsharded run compare byte for byte.
 
-use super::columns::columns;
+use super::columns::{columns, Align};
 use super::finite::Finite;
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{Summary, CONFIDENCE, QUANTILES};
@@ -109,7 +109,7 @@ pub fn render(
         row.push(rate_text(s.limit_rate(l), l.interval));
         rows.push(row);
     }
-    out += &columns(&rows, false);
+    out += &columns(&rows, |_| Align::Left);
     out += &format!(
         "\nfailure rate (a sample fails when any limit fails): {} of {} = {} ({} \
          Clopper–Pearson), allowed {}: {}\n",
@@ -227,7 +227,7 @@ fn sensitivity_text(study: &ToleranceStudy, s: &Summary, sens: &Sensitivity) -> 
                 with_unit(number(var.sqrt()), ls.unit),
             ]);
         }
-        out += &columns(&rows, false);
+        out += &columns(&rows, |_| Align::Left);
     }
     out += &format!("note: {LINEAR_CAVEAT}\n");
     out

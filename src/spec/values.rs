@@ -15,7 +15,7 @@ pub(super) fn finite(key: &str, value: f64) -> Result<f64> {
     }
 }
 
-/// `value` when it holds more than blanks (a name, a file path).
+/// Refused at `key` unless `value` holds more than blanks (a name, a file path).
 pub(super) fn not_blank(key: &str, value: &str) -> Result<()> {
     if value.trim().is_empty() {
         return Err(Error::invalid(key, "must not be empty".into()));

@@ -96,11 +96,10 @@ pub fn render(
     let mut rows = vec![header];
     for l in &s.limits {
         let mut row = vec![format!(
-            "{} {} {} {}",
+            "{} {} {}",
             l.key,
             l.bound.symbol(),
-            number(l.limit),
-            l.unit
+            with_unit(number(l.limit), l.unit)
         )];
         row.push(value(l.min));
         row.extend(l.quantiles.iter().map(|&q| value(q)));

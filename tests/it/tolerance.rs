@@ -1222,6 +1222,46 @@ fn the_study_json_reads_back_as_the_computed_study() {
     }
 }
 
+/// A limit without a unit (a safety factor) in the study's table: its cell is the key, the
+/// bound and the number, with no unit's space after it, so the column is as wide as that text
+/// and the next column starts two spaces after the widest limit (the table's gap). The cell
+/// once ended in a space, which widened the column when a unit-less limit was the widest.
+#[test]
+fn a_limit_without_a_unit_ends_at_its_number_in_the_table() {
+    let dir = Scratch::new("tolerance-unitless");
+    let here = dir.join("");
+    let spec = std::fs::read_to_string("specs/reducer-strength.yaml").unwrap();
+    // The spec's limits (its indented lines after `limits:`) replaced by two unit-less ones.
+    let start = spec.find("limits:\n").unwrap();
+    let body = start + "limits:\n".len();
+    let block: usize = (spec[body..].lines())
+        .take_while(|l| l.starts_with("  "))
+        .map(|l| l.len() + 1)
+        .sum();
+    let end = (body + block).min(spec.len());
+    let spec = format!(
+        "{}limits:\n  min_pin_bending_safety: 2.0\n  min_static_safety: 2.0\n{}\
+         tolerances:\n  scene: rated\n  max_failure_rate: 0.5\n  shift_mm: 0.002\n  \
+         equidistant_mm: 0.002\n  samples: 6\n",
+        &spec[..start],
+        &spec[end..]
+    );
+    dir.write("t.yaml", spec);
+    let r = cycloid(here.as_path(), &["tolerance", "t.yaml"]);
+    assert_eq!(r.code(), 0, "{r:?}");
+    // The widest cell of the first column: the longer key, its bound and its limit.
+    let row = (r.stdout.lines())
+        .find(|l| l.starts_with("min_pin_bending_safety ≥ "))
+        .unwrap_or_else(|| panic!("{}", r.stdout));
+    let after_bound = &row["min_pin_bending_safety ≥ ".len()..];
+    let limit = after_bound.split(' ').next().unwrap();
+    let rest = &after_bound[limit.len()..];
+    assert!(
+        rest.starts_with("  ") && !rest[2..].starts_with(' '),
+        "{row:?}"
+    );
+}
+
 /// A limit whose every sample has no finite bound (the contact fatigue life of a disc whose
 /// pressures all lie at or below the law's endurance pressure: `UNBOUNDED_LIFE_H`) has no mean,
 /// spread, derivative or linear stack-up. The JSON writes them as null beside the other

@@ -2,6 +2,7 @@
 //! and its table of catalogue figures (`sections`).
 
 use super::common::{data_table, figure, Section};
+use super::plots::capitalised;
 use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
 use crate::model::Scene;
@@ -218,7 +219,7 @@ pub(super) fn section(
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));
         let c = torsion_compliances(&t.compliances);
         let body = html! {
-            p.note { (DEFINITIONS) " " b { (hysteresis(t.friction)) "." } }
+            p.note { (DEFINITIONS) " " b { (capitalised(hysteresis(t.friction))) "." } }
             p.note {
                 "Compliances modelled: " (c.modelled.join("; ")) ". Not modelled: "
                 (not_modelled(&c.not_modelled)) ". Given: " (c.given.join("; "))

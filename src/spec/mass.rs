@@ -3,7 +3,7 @@
 //! computed from.
 
 use super::raw::RawReducer;
-use super::values::{finite, positive};
+use super::values::{finite, positive, zero_or_positive};
 use crate::error::{Error, Result};
 use crate::model::{Design, RollerMode};
 use crate::{numeric, units};
@@ -38,13 +38,7 @@ pub(super) fn inputs(raw: &RawReducer) -> Result<MassInputs> {
         .unwrap_or(STEEL_DENSITY_KG_PER_M3);
     let density = positive("reducer.material.density_kg_per_m3", density)?;
     let key = "reducer.output_inertia_kgm2";
-    let output = finite(key, raw.output_inertia_kgm2.unwrap_or(0.0))?;
-    if output < 0.0 {
-        return Err(Error::invalid(
-            key,
-            format!("must be zero or positive, got {}", numeric::input(output)),
-        ));
-    }
+    let output = zero_or_positive(key, finite(key, raw.output_inertia_kgm2.unwrap_or(0.0))?)?;
     Ok(MassInputs {
         density_kg_per_mm3: units::kg_per_mm3(density),
         output_inertia_kgmm2: units::kgmm2(output),
@@ -59,13 +53,7 @@ pub(super) fn roller_inertia(kgm2: Option<f64>, design: &Design) -> Result<f64> 
     let Some(j) = kgm2 else {
         return Ok(0.0);
     };
-    let j = finite(key, j)?;
-    if j < 0.0 {
-        return Err(Error::invalid(
-            key,
-            format!("must be zero or positive, got {}", numeric::input(j)),
-        ));
-    }
+    let j = zero_or_positive(key, finite(key, j)?)?;
     let rollers = design.friction.and_then(|f| f.rollers).map(|r| r.mode);
     if !matches!(rollers, Some(RollerMode::Rotating { .. })) {
         return Err(Error::invalid(

@@ -170,7 +170,9 @@ fn centre_newton(
             return Ok(best);
         }
         let step = if exact_jacobian {
-            centre_step_by_differences(model, kb, crank, work, u, &best)?
+            let jacobian = jacobian_by_differences(model, kb, crank, work, u)?;
+            work.sol = best.clone();
+            jacobian.lu().solve(&(-force)).unwrap_or_else(|| force / kb)
         } else {
             centre_step(kb, &best, force)
         };
@@ -230,15 +232,7 @@ fn directional_roots(
         if force_merit(model, kb, &best) <= tol {
             return Ok(best);
         }
-        let h = 1e-6 * u.norm().max(1e-3);
-        let mut jacobian = nalgebra::Matrix2::zeros();
-        for axis in 0..2 {
-            let mut d = Vec2::zeros();
-            d[axis] = h;
-            let plus = centre_residual(model, kb, crank, work, u + d)?;
-            let minus = centre_residual(model, kb, crank, work, u - d)?;
-            jacobian.set_column(axis, &((plus - minus) / (2.0 * h)));
-        }
+        let jacobian = jacobian_by_differences(model, kb, crank, work, u)?;
         let symmetric = (jacobian + jacobian.transpose()) * 0.5;
         let directions = symmetric.symmetric_eigen().eigenvectors;
         for e in directions.column_iter() {
@@ -343,18 +337,17 @@ fn force_merit(model: &Model, kb: f64, sol: &AngleSolution) -> f64 {
     r.component_div(&s).amax()
 }
 
-/// The Newton step of the centre offset with ∂R/∂u by central differences of R(u), the lags
-/// re-solved at each offset: exact to the differences' error, geometric stiffness included.
-/// The step h is 1e-6 of the larger of |u| and the gap resolution's scale (1e-3 mm): far above
-/// the round-off of R, far below the distance over which the contact set changes.
-fn centre_step_by_differences(
+/// ∂R/∂u by central differences of R(u), the lags re-solved at each offset: exact to the
+/// differences' error, geometric stiffness included. The step h is 1e-6 of the larger of |u|
+/// and the gap resolution's scale (1e-3 mm): far above the round-off of R, far below the
+/// distance over which the contact set changes. `work` is left at the last offset tried.
+fn jacobian_by_differences(
     model: &Model,
     kb: f64,
     crank: f64,
     work: &mut Work,
     u: Vec2,
-    at: &AngleSolution,
-) -> Result<Vec2, SolveFailure> {
+) -> Result<nalgebra::Matrix2<f64>, SolveFailure> {
     let residual = |work: &mut Work, x: Vec2| centre_residual(model, kb, crank, work, x);
     let h = 1e-6 * u.norm().max(1e-3);
     let mut jacobian = nalgebra::Matrix2::zeros();
@@ -364,9 +357,7 @@ fn centre_step_by_differences(
         let column = (residual(work, u + d)? - residual(work, u - d)?) / (2.0 * h);
         jacobian.set_column(axis, &column);
     }
-    work.sol = at.clone();
-    let force = force_residual(model, kb, at);
-    Ok(jacobian.lu().solve(&(-force)).unwrap_or_else(|| force / kb))
+    Ok(jacobian)
 }
 
 /// The Newton step of the centre offset: −(∂R/∂u)⁻¹·R with the lags eliminated from the 4×4

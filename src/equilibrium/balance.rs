@@ -121,13 +121,11 @@ pub fn closed_form<C: Contact + Clone>(
     if torque == 0.0 || (m - torque).abs() <= rel_tol * torque.abs().max(scale) {
         return Ok((lag, scale));
     }
-    let mut other = states.clone();
-    let (at, weight) = settle_straddle(lag, lag, m, torque, |y| {
-        evaluate(y, &mut other);
-        Ok(moment(&other).0)
+    let settled = settle(lag, lag, torque, states, |y, other| {
+        evaluate(y, other);
+        Ok(())
     })?;
-    blend(states, &other, weight);
-    Ok((if weight.y > 0.5 { at } else { lag }, scale))
+    Ok((settled, scale))
 }
 
 /// Settle a root the iterative solve straddles (`Root::straddle`): `states` hold the contacts

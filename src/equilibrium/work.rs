@@ -180,7 +180,7 @@ impl Work {
             output_lag,
             torque,
         };
-        if self.filled > 0 && self.history[2].crank == crank {
+        if self.solved_at(crank) {
             self.history[2] = solved;
             return;
         }

@@ -35,7 +35,7 @@
 //! computed at the solution and a fit above `MAX_CONDITION` is refused.
 //!
 //! Each Gauss–Newton step is the tall least-squares problem min ‖J·δ + d‖ with J's columns
-//! scaled to unit norm, solved on the way by the normal equations (`normal_step`) and at the
+//! scaled to unit norm, solved on the way by the normal equations (`normal_solve`) and at the
 //! solution by the same normal equations while the condition number is at most 1e4 (their
 //! errors ~κ²·ε ≤ 2e-8), else by a Householder QR of J; steps are halved until the sum of
 //! squares decreases. Uncertainties: σ̂² = Σd²/(m − n), cov = σ̂²·(JᵀJ)⁻¹ = σ̂²·S⁻¹·P·R⁻¹R⁻ᵀ·Pᵀ·S⁻¹
@@ -443,6 +443,14 @@ fn solve(jacobian: &[f64], n: usize, residuals: &[f64]) -> Result<Step> {
     })
 }
 
+/// The factored normal equations of `normal_solve`.
+struct Normal {
+    scaled: Mat<f64>,
+    scale: Vec<f64>,
+    llt: faer::linalg::solvers::Llt<f64>,
+    delta: Vec<f64>,
+}
+
 /// A Gauss–Newton step on the way, from the normal equations: (S⁻¹JᵀJS⁻¹)·y = −S⁻¹Jᵀd,
 /// δ = S⁻¹·y, by a Cholesky factorisation of the n × n column-scaled normal matrix (JᵀJ costs
 /// m·n² flops in a matrix product, half a Householder QR's 2·m·n² and at a faster rate).
@@ -456,18 +464,6 @@ fn solve(jacobian: &[f64], n: usize, residuals: &[f64]) -> Result<Step> {
 /// and statistics come from the normal equations only while κ ≤ `NORMAL_CONDITION` = 1e4
 /// (errors ≤ ~2e-8), else from a Householder QR of J (`solve`), which polishes the last step
 /// to QR accuracy and rejects κ above `MAX_CONDITION`.
-fn normal_step(jacobian: &[f64], n: usize, residuals: &[f64]) -> Option<Vec<f64>> {
-    normal_solve(jacobian, n, residuals).map(|s| s.delta)
-}
-
-/// The factored normal equations of `normal_step`.
-struct Normal {
-    scaled: Mat<f64>,
-    scale: Vec<f64>,
-    llt: faer::linalg::solvers::Llt<f64>,
-    delta: Vec<f64>,
-}
-
 fn normal_solve(jacobian: &[f64], n: usize, residuals: &[f64]) -> Option<Normal> {
     let m = residuals.len();
     // The row-major m × n Jacobian is the column-major n × m matrix Jᵀ: no copy.
@@ -679,8 +675,8 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
     let mut converged = false;
     while iterations < MAX_ITERATIONS {
         iterations += 1;
-        let delta = match normal_step(&jac, n, &residuals) {
-            Some(delta) => delta,
+        let delta = match normal_solve(&jac, n, &residuals) {
+            Some(normal) => normal.delta,
             None => solve(&jac, n, &residuals)?.delta,
         };
         let cost = sum_squares(&residuals);

@@ -17,6 +17,21 @@ use crate::model::{ConvexRadius, Design, FormTerm, Locus, Modification};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+/// Largest step of the closest-point Newton iterations, rad of t.
+const MAX_STEP: f64 = 0.05;
+/// Most steps of the closest-point Newton iterations.
+const MAX_ITER: usize = 60;
+
+/// The guarded Newton step on h(t) = (C(t) − q)·C'(t) = 0 of a closest-point iteration: −h/h'
+/// within ±`MAX_STEP`, or a full `MAX_STEP` downhill where h' ≤ 0 (not a minimum yet).
+fn newton_step(h: f64, dh: f64) -> f64 {
+    if dh > 0.0 {
+        (-h / dh).clamp(-MAX_STEP, MAX_STEP)
+    } else {
+        -h.signum() * MAX_STEP
+    }
+}
+
 /// Disc profile of one design and modification, and, for a disc as built, its form error
 /// (`with_form`): Γ(t) = Rot(Δδ)·(C(t) − (r' + w(t))·N(t)).
 #[derive(Debug, Clone, PartialEq)]
@@ -423,8 +438,6 @@ impl Profile {
     /// Guarded Newton from `seed` for the foot of `q` (`q` in the unturned frame); the foot must
     /// stay within `reach` of `t0`.
     fn newton(&self, q: Vec2, t0: f64, seed: f64, reach: f64) -> Result<Foot, ClosestPointFailure> {
-        const MAX_STEP: f64 = 0.05;
-        const MAX_ITER: usize = 60;
         let mut t = seed;
         let n = self.rollers as f64;
         // sin/cos are computed once; Newton updates advance them by angle addition.
@@ -442,11 +455,7 @@ impl Profile {
             if dh > 0.0 && h.abs() <= noise {
                 return self.foot_from(t, &j, q);
             }
-            let step = if dh > 0.0 {
-                (-h / dh).clamp(-MAX_STEP, MAX_STEP)
-            } else {
-                -h.signum() * MAX_STEP
-            };
+            let step = newton_step(h, dh);
             if step.abs() <= 1e-13 {
                 return self.foot_from(t, &j, q);
             }
@@ -519,8 +528,6 @@ impl Profile {
         w: Vec2,
         s_start: f64,
     ) -> Result<Foot, ClosestPointFailure> {
-        const MAX_STEP: f64 = 0.05;
-        const MAX_ITER: usize = 60;
         let n = self.rollers as f64;
         let (e, rl) = (self.eccentricity_mm, self.locus_radius_mm);
         let LocusFrame {
@@ -568,11 +575,7 @@ impl Profile {
             let (_, _, diff, d1, d2) = at(e1, en);
             let h = diff.dot(&d1);
             let dh = d1.norm_squared() + diff.dot(&d2);
-            let step = if dh > 0.0 {
-                (-h / dh).clamp(-MAX_STEP, MAX_STEP)
-            } else {
-                -h.signum() * MAX_STEP
-            };
+            let step = newton_step(h, dh);
             if step.abs() <= 1e-13 {
                 return foot(s, e1, en);
             }
@@ -655,11 +658,7 @@ impl Profile {
             let d = at_foot + moved - (normal_c - n0) * r - normal_c * form.0;
             let h = d.dot(&g.d1);
             let dh = g.d1.norm_squared() + d.dot(&g.d2);
-            let step = if dh > 0.0 {
-                (-h / dh).clamp(-0.05, 0.05)
-            } else {
-                -h.signum() * 0.05
-            };
+            let step = newton_step(h, dh);
             if dh > 0.0 && step.abs() <= 1e-14 {
                 let normal = Vec2::new(g.d1.y, -g.d1.x) / g.d1.norm();
                 let signed = -d.dot(&normal);

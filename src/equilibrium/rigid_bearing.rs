@@ -18,21 +18,6 @@ use crate::geometry::clearance::{GapFailure, Pose};
 use crate::geometry::Vec2;
 use crate::model::{ContactLaw, GeometryMode};
 
-fn roller_balance(
-    r: &Rollers,
-    pose: &Pose,
-    states: &mut Vec<RollerState>,
-) -> Result<Balance, GapFailure> {
-    r.evaluate(pose, states)?;
-    let (value, slope, scale) = moment(states);
-    Ok(Balance {
-        value,
-        slope,
-        scale,
-        resolution: r.moment_resolution(states, pose.centre_offset_mm.norm()),
-    })
-}
-
 /// Zero torque with clearance leaves the disc free within its backlash; we report the limit
 /// T → 0⁺: the lag at which the nearest contact in the load direction just closes.
 /// Newton on the smallest gap, x ← x + min(gap/(−∂gap/∂x)) over contacts that close as x grows.
@@ -196,13 +181,13 @@ fn solve_rollers(
         if free || !in_contact(states.iter().map(|s| &s.force_n)) {
             lag = touching(
                 |l| {
-                    roller_balance(r, &pose(l), states)
-                        .map(|_| states.iter().map(|s| (s.gap_mm, -s.arm_mm)).collect())
+                    r.evaluate(&pose(l), states)
+                        .map(|()| states.iter().map(|s| (s.gap_mm, -s.arm_mm)).collect())
                 },
                 lag,
             )
             .map_err(SolveFailure::Gap)?;
-            roller_balance(r, &pose(lag), states).map_err(SolveFailure::Gap)?;
+            r.evaluate(&pose(lag), states).map_err(SolveFailure::Gap)?;
             reaches
                 .iter_mut()
                 .for_each(|x| x.gap_mm = f64::NEG_INFINITY);

@@ -455,7 +455,7 @@ pub fn evaluate(
         .zip(loaded)
         .map(|(g, golden)| {
             let (r, deg, curves) = computed(g, results)?;
-            let of = (g.quantity.period, g.quantity.shape.part());
+            let of = (g.quantity.period(), g.quantity.shape.part());
             let disc = named_disc(g, r);
             let comparison =
                 compare(golden, &deg, &curves, g.tolerance, of, disc).map_err(|m| {
@@ -692,7 +692,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
     for g in &spec.golden {
         let (r, deg, curves) = computed(g, results)?;
         let unit = g.quantity.unit;
-        let period = g.quantity.period;
+        let period = g.quantity.period();
         let new = GoldenCurves {
             crank_deg: deg.clone(),
             curves,

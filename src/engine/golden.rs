@@ -17,7 +17,7 @@
 //! A point passes when |value − golden| ≤ abs + rel·|golden|. The worst point is the one
 //! furthest outside (or least inside) its band.
 
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::files;
 use crate::model::place::{GoldenAt, Part, Place, Site};
 use crate::model::quantity::Curves;
@@ -384,7 +384,7 @@ pub struct GoldenResult {
 }
 
 fn file_error(g: &Golden, message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message).at_key(format!("{}.file", g.key))
+    Error::invalid(format!("{}.file", g.key), message)
 }
 
 /// Read every golden file of a spec (before any computation, so a missing file fails fast).
@@ -438,7 +438,7 @@ pub fn computed<'a>(
         } else {
             super::missing::not_computed(q, r)
         };
-        Error::new(ErrorKind::InvalidValue, message).at_key(format!("{}.quantity", g.key))
+        Error::invalid(format!("{}.quantity", g.key), message)
     })?;
     let deg = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
     Ok((r, deg, curves))

@@ -229,11 +229,8 @@ fn objectives(req: &Requirements, c: &Candidate, summaries: &[SceneSummary]) -> 
             .iter()
             .filter_map(|s| s.scalar(q).map(|e| e.value))
             .collect();
-        let v = if maximise {
-            values.iter().copied().fold(f64::INFINITY, f64::min)
-        } else {
-            values.iter().copied().fold(f64::NEG_INFINITY, f64::max)
-        };
+        let ((lowest, _), (highest, _)) = crate::numeric::extremes(&values);
+        let v = if maximise { lowest } else { highest };
         if v.is_finite() {
             Ok(v)
         } else {

@@ -204,7 +204,7 @@ impl Point {
         Place {
             bin: None,
             disc: self.disc,
-            site: Site::Golden(self.at),
+            ..Place::of(Site::Golden(self.at))
         }
     }
 

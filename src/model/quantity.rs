@@ -1110,30 +1110,21 @@ fn duty_fatigue(d: &DutyCycle) -> Option<Extreme> {
         .reduce(|a, b| if b.0 < a.0 { b } else { a })
         .map(|(value, part, k)| {
             let unbounded = super::results::is_unbounded(value);
-            Extreme {
-                value,
-                at: Place {
-                    bin: None,
-                    disc: (several && !unbounded).then_some(k),
-                    site: match unbounded {
-                        false => Site::DutyFatigue { part },
-                        true => Site::Unbounded(Unbounded::DutyFatigue { part }),
-                    },
-                },
-            }
+            let site = match unbounded {
+                false => Site::DutyFatigue { part },
+                true => Site::Unbounded(Unbounded::DutyFatigue { part }),
+            };
+            let mut e = at(value, site);
+            e.at.disc = (several && !unbounded).then_some(k);
+            e
         })
 }
 
 /// A duty cycle's figure of disc `k` at `site`, naming the disc with several discs.
 fn of_disc(d: &DutyCycle, k: usize, value: f64, site: Site) -> Extreme {
-    Extreme {
-        value,
-        at: Place {
-            bin: None,
-            disc: (d.life.len() > 1).then_some(k),
-            site,
-        },
-    }
+    let mut e = at(value, site);
+    e.at.disc = (d.life.len() > 1).then_some(k);
+    e
 }
 
 /// The crank bearing's rating life under a duty cycle, hours (ISO 281 with Palmgren–Miner,

@@ -23,6 +23,7 @@ use crate::model::place::{GoldenAt, Part, Place, Site};
 use crate::model::quantity::Curves;
 use crate::model::results::SceneResult;
 use crate::model::{Golden, GoldenTolerance};
+use crate::numeric;
 use crate::spec::Spec;
 use crate::units;
 use serde::{Deserialize, Serialize};
@@ -202,7 +203,6 @@ impl Point {
     /// Where it lies, for `report::place` to word.
     pub fn place(&self) -> Place {
         Place {
-            bin: None,
             disc: self.disc,
             ..Place::of(Site::Golden(self.at))
         }
@@ -268,13 +268,6 @@ fn interpolate(xs: &[f64], ys: &[f64], x: f64, period: Option<f64>) -> Option<f6
     Some(ys[k - 1] + w * difference(ys[k], ys[k - 1], period))
 }
 
-fn step(xs: &[f64]) -> f64 {
-    match xs {
-        [a, b, ..] => b - a,
-        _ => 0.0,
-    }
-}
-
 fn deviation(value: f64, golden: f64, period: Option<f64>) -> f64 {
     if value == golden {
         0.0
@@ -315,7 +308,7 @@ pub fn compare(
     let (r0, r1) = (now_deg[0], *now_deg.last().unwrap_or(&0.0));
     // Both curves cover the scene's range: from the same first angle to last angles at most
     // one step of the coarser apart (0.2° steps end at 107.8°, 0.1° steps at 107.9°).
-    let slack = step(now_deg).max(step(&golden.crank_deg));
+    let slack = numeric::step(now_deg).max(numeric::step(&golden.crank_deg));
     if !(same_angle(g0, r0, 0.0) && same_angle(g1, r1, slack)) {
         let n = csv_number;
         return Err(format!(

@@ -33,6 +33,14 @@ pub fn extremes(values: &[f64]) -> ((f64, usize), (f64, usize)) {
     (lo, hi)
 }
 
+/// The step between the first two of evenly spaced samples `values` (0 with fewer than two).
+pub fn step(values: &[f64]) -> f64 {
+    match values {
+        [a, b, ..] => b - a,
+        _ => 0.0,
+    }
+}
+
 /// max − min of a curve (0 when empty).
 pub fn fluctuation(values: &[f64]) -> f64 {
     let ((lo, _), (hi, _)) = extremes(values);

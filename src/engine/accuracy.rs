@@ -451,9 +451,7 @@ impl Ladder {
             })
             .collect()
     }
-}
 
-impl Ladder {
     /// Least-squares slope of log e against log N over the steps rungs below the reference,
     /// without the one just below it (its error against the reference is inflated by the
     /// reference's own error: e(N/2)/e(N) = 2^p + 1 instead of 2^p). `None` with fewer than two

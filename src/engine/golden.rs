@@ -17,12 +17,13 @@
 //! A point passes when |value − golden| ≤ abs + rel·|golden|. The worst point is the one
 //! furthest outside (or least inside) its band.
 
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::files;
 use crate::model::place::{GoldenAt, Part, Place, Site};
 use crate::model::quantity::Curves;
 use crate::model::results::SceneResult;
 use crate::model::{Golden, GoldenTolerance};
+use crate::numeric;
 use crate::spec::Spec;
 use crate::units;
 use serde::{Deserialize, Serialize};
@@ -202,9 +203,8 @@ impl Point {
     /// Where it lies, for `report::place` to word.
     pub fn place(&self) -> Place {
         Place {
-            bin: None,
             disc: self.disc,
-            site: Site::Golden(self.at),
+            ..Place::of(Site::Golden(self.at))
         }
     }
 
@@ -268,13 +268,6 @@ fn interpolate(xs: &[f64], ys: &[f64], x: f64, period: Option<f64>) -> Option<f6
     Some(ys[k - 1] + w * difference(ys[k], ys[k - 1], period))
 }
 
-fn step(xs: &[f64]) -> f64 {
-    match xs {
-        [a, b, ..] => b - a,
-        _ => 0.0,
-    }
-}
-
 fn deviation(value: f64, golden: f64, period: Option<f64>) -> f64 {
     if value == golden {
         0.0
@@ -315,7 +308,7 @@ pub fn compare(
     let (r0, r1) = (now_deg[0], *now_deg.last().unwrap_or(&0.0));
     // Both curves cover the scene's range: from the same first angle to last angles at most
     // one step of the coarser apart (0.2° steps end at 107.8°, 0.1° steps at 107.9°).
-    let slack = step(now_deg).max(step(&golden.crank_deg));
+    let slack = numeric::step(now_deg).max(numeric::step(&golden.crank_deg));
     if !(same_angle(g0, r0, 0.0) && same_angle(g1, r1, slack)) {
         let n = csv_number;
         return Err(format!(
@@ -384,7 +377,7 @@ pub struct GoldenResult {
 }
 
 fn file_error(g: &Golden, message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message).at_key(format!("{}.file", g.key))
+    Error::invalid(format!("{}.file", g.key), message)
 }
 
 /// Read every golden file of a spec (before any computation, so a missing file fails fast).
@@ -438,7 +431,7 @@ pub fn computed<'a>(
         } else {
             super::missing::not_computed(q, r)
         };
-        Error::new(ErrorKind::InvalidValue, message).at_key(format!("{}.quantity", g.key))
+        Error::invalid(format!("{}.quantity", g.key), message)
     })?;
     let deg = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
     Ok((r, deg, curves))
@@ -455,7 +448,7 @@ pub fn evaluate(
         .zip(loaded)
         .map(|(g, golden)| {
             let (r, deg, curves) = computed(g, results)?;
-            let of = (g.quantity.period, g.quantity.shape.part());
+            let of = (g.quantity.period(), g.quantity.shape.part());
             let disc = named_disc(g, r);
             let comparison =
                 compare(golden, &deg, &curves, g.tolerance, of, disc).map_err(|m| {
@@ -692,7 +685,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
     for g in &spec.golden {
         let (r, deg, curves) = computed(g, results)?;
         let unit = g.quantity.unit;
-        let period = g.quantity.period;
+        let period = g.quantity.period();
         let new = GoldenCurves {
             crank_deg: deg.clone(),
             curves,

@@ -407,7 +407,7 @@ fn first_order_valid(
         return Ok(());
     }
     let share = match change.is_finite() {
-        true => format!("{} %", crate::numeric::number(100.0 * change)),
+        true => crate::numeric::percent(change),
         false => "more than any number".to_string(),
     };
     Err(Error::computation(format!(

@@ -94,10 +94,7 @@ pub fn summarise(results: &[SceneResult]) -> Vec<SceneSummary> {
                 .collect(),
             scalars,
             angles: r.crank_rad.len(),
-            step_rad: match r.crank_rad.as_slice() {
-                [a, b, ..] => b - a,
-                _ => 0.0,
-            },
+            step_rad: crate::numeric::step(&r.crank_rad),
             first_rad: r.crank_rad.first().copied().unwrap_or(0.0),
             discs: r.discs.len().max(1),
             shares: shares(r),

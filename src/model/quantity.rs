@@ -131,8 +131,6 @@ pub struct Quantity {
     pub effect: Effect,
     /// How it is laid out over a scene.
     pub shape: Shape,
-    /// For an angle that wraps (±180°), its period: deviations are taken modulo it.
-    pub period: Option<f64>,
     /// For a scalar, the curve it is an extreme of (where a limit on it is drawn).
     pub of: Option<&'static str>,
     read: Read,
@@ -318,6 +316,11 @@ impl Quantity {
         NEEDS_BACKLASH.contains(&self).then_some(Detail::Backlash)
     }
 
+    /// For an angle that wraps (±180°), its period: deviations are taken modulo it (`WRAPS`).
+    pub fn period(&self) -> Option<f64> {
+        WRAPS.iter().find(|(q, _)| *q == self).map(|&(_, p)| p)
+    }
+
     /// "label (unit)" for an axis.
     pub fn axis_label(&self) -> String {
         if self.unit.is_empty() {
@@ -406,7 +409,6 @@ pub const CLEARANCE: Quantity = Quantity {
     label: "clearance",
     effect: Effect::Clearance,
     shape: Shape::PerRoller,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| d.clearance.as_ref().map(|c| Rows::Stored(&c.gap_mm))),
 };
@@ -419,7 +421,6 @@ pub const BACKLASH: Quantity = Quantity {
     label: "backlash (unloaded TE)",
     effect: Effect::Clearance,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| backlash(d).map(|b| arcsec(&b.forward_rad))),
 };
@@ -431,7 +432,6 @@ pub const BACKLASH_REVERSE: Quantity = Quantity {
     label: "reverse backlash",
     effect: Effect::Clearance,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| backlash(d).map(|b| arcsec(&b.reverse_rad))),
 };
@@ -443,7 +443,6 @@ pub const LOST_MOTION: Quantity = Quantity {
     label: "lost motion",
     effect: Effect::Clearance,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| backlash(d).map(|b| arcsec(&b.lost_motion_rad))),
 };
@@ -456,7 +455,6 @@ pub const LAG: Quantity = Quantity {
     label: "disc lag β",
     effect: Effect::RollerContact,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| rollers(d).map(|c| arcsec(&c.lag_rad))),
 };
@@ -469,7 +467,6 @@ pub const TE: Quantity = Quantity {
     label: "loaded TE δ = β + βo",
     effect: Effect::RollerContact,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| r.transmission.as_ref().map(|t| arcsec(&t.te_rad))),
 };
@@ -482,7 +479,6 @@ pub const RATIO: Quantity = Quantity {
     label: "transmission ratio κ = dφ/dφout",
     effect: Effect::RollerContact,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| {
         r.transmission
@@ -498,7 +494,6 @@ pub const ROLLER_FORCE: Quantity = Quantity {
     label: "roller force",
     effect: Effect::RollerContact,
     shape: Shape::PerRoller,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.force_n))),
 };
@@ -511,7 +506,6 @@ pub const CONTACT_PRESSURE: Quantity = Quantity {
     label: "Hertz peak pressure",
     effect: Effect::RollerContact,
     shape: Shape::PerRoller,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.pressure_mpa))),
 };
@@ -524,7 +518,6 @@ pub const CONTACT_HALF_WIDTH: Quantity = Quantity {
     label: "contact half-width",
     effect: Effect::RollerContact,
     shape: Shape::PerRoller,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.half_width_mm))),
 };
@@ -536,7 +529,6 @@ pub const CONTACTS: Quantity = Quantity {
     label: "rollers in contact",
     effect: Effect::RollerContact,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| {
         rollers(d).map(|c| Rows::Computed(vec![c.contacts.iter().map(|&n| n as f64).collect()]))
@@ -552,7 +544,6 @@ pub const FACE_LOAD_FACTOR: Quantity = Quantity {
     label: "face load factor",
     effect: Effect::RollerContact,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| Some(one(&rollers(d)?.face.as_ref()?.face_load_factor))),
 };
@@ -564,7 +555,6 @@ pub const DISC_TORQUE: Quantity = Quantity {
     label: "disc torque share Tk",
     effect: Effect::RollerContact,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| Some(converted(d.loaded.torque_nmm.as_ref()?, units::nm))),
 };
@@ -577,7 +567,6 @@ pub const OUTPUT_LAG: Quantity = Quantity {
     label: "output lag βo",
     effect: Effect::OutputPins,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| arcsec(&p.output_lag_rad))),
 };
@@ -589,7 +578,6 @@ pub const PIN_FORCE: Quantity = Quantity {
     label: "output-pin force",
     effect: Effect::OutputPins,
     shape: Shape::PerPin,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| Rows::Stored(&p.force_n))),
 };
@@ -601,7 +589,6 @@ pub const BEARING_FORCE: Quantity = Quantity {
     label: "crank-bearing force |Fb|",
     effect: Effect::Bearing,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| d.loaded.bearing.as_ref().map(|b| one(&b.force_n))),
 };
@@ -614,7 +601,6 @@ pub const BEARING_ANGLE: Quantity = Quantity {
     label: "crank-bearing force angle ε",
     effect: Effect::Bearing,
     shape: Shape::Curve,
-    period: Some(360.0),
     of: None,
     read: Read::DiscCurves(|d| {
         (d.loaded.bearing.as_ref()).map(|b| converted(&b.angle_rad, units::deg))
@@ -629,7 +615,6 @@ pub const BEARING_DEFLECTION: Quantity = Quantity {
     label: "crank-bearing deflection",
     effect: Effect::Bearing,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::DiscCurves(|d| d.loaded.bearing.as_ref().map(|b| one(&b.deflection_mm))),
 };
@@ -644,7 +629,6 @@ pub const MIN_CLEARANCE: Quantity = Quantity {
     label: "min clearance over the mesh",
     effect: Effect::Clearance,
     shape: Shape::Scalar,
-    period: None,
     of: Some("clearance_mm"),
     read: Read::DiscScalar(|d, _| {
         d.clearance.as_ref().map(|gaps| {
@@ -667,7 +651,6 @@ pub const MAX_LOST_MOTION: Quantity = Quantity {
     label: "max lost motion (unloaded)",
     effect: Effect::Clearance,
     shape: Shape::Scalar,
-    period: None,
     of: Some("lost_motion_arcsec"),
     read: Read::DiscScalar(|d, c| {
         let (_, (value, k)) = extremes(&backlash(d)?.lost_motion_rad);
@@ -686,7 +669,6 @@ pub const MAX_ROLLER_FORCE: Quantity = Quantity {
     label: "max roller force",
     effect: Effect::RollerContact,
     shape: Shape::Scalar,
-    period: None,
     of: Some("roller_force_n"),
     read: Read::DiscScalar(|d, c| Some(largest(c, &rollers(d)?.force_n, Part::Roller))),
 };
@@ -699,7 +681,6 @@ pub const MAX_CONTACT_PRESSURE: Quantity = Quantity {
     label: "max Hertz pressure",
     effect: Effect::RollerContact,
     shape: Shape::Scalar,
-    period: None,
     of: Some("contact_pressure_mpa"),
     read: Read::DiscScalar(|d, c| Some(largest(c, &rollers(d)?.pressure_mpa, Part::Roller))),
 };
@@ -711,7 +692,6 @@ pub const MAX_FACE_LOAD_FACTOR: Quantity = Quantity {
     label: "max face load factor",
     effect: Effect::RollerContact,
     shape: Shape::Scalar,
-    period: None,
     of: Some("face_load_factor"),
     read: Read::DiscScalar(|d, c| {
         let face = rollers(d)?.face.as_ref()?;
@@ -727,7 +707,6 @@ pub const MAX_LINE_LOAD: Quantity = Quantity {
     label: "max line load",
     effect: Effect::RollerContact,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::DiscScalar(|d, c| {
         let face = rollers(d)?.face.as_ref()?;
@@ -749,7 +728,6 @@ pub const MIN_ROLLERS_IN_CONTACT: Quantity = Quantity {
     label: "fewest rollers in contact",
     effect: Effect::RollerContact,
     shape: Shape::Scalar,
-    period: None,
     of: Some("contacts"),
     read: Read::DiscScalar(|d, c| {
         let counts: Vec<f64> = rollers(d)?.contacts.iter().map(|&n| n as f64).collect();
@@ -765,7 +743,6 @@ pub const TE_FLUCTUATION: Quantity = Quantity {
     label: "TE fluctuation δmax − δmin",
     effect: Effect::RollerContact,
     shape: Shape::Scalar,
-    period: None,
     of: Some("te_arcsec"),
     read: Read::ReducerScalar(|r, c| {
         let t = r.transmission.as_ref()?;
@@ -780,7 +757,6 @@ pub const RATIO_FLUCTUATION: Quantity = Quantity {
     label: "ratio fluctuation κmax − κmin",
     effect: Effect::RollerContact,
     shape: Shape::Scalar,
-    period: None,
     of: Some("ratio"),
     read: Read::ReducerScalar(|r, c| {
         let ratio = r.transmission.as_ref()?.ratio.as_ref()?;
@@ -795,7 +771,6 @@ pub const MAX_PIN_FORCE: Quantity = Quantity {
     label: "max pin force",
     effect: Effect::OutputPins,
     shape: Shape::Scalar,
-    period: None,
     of: Some("pin_force_n"),
     read: Read::DiscScalar(|d, c| Some(largest(c, &d.loaded.pins.as_ref()?.force_n, Part::Pin))),
 };
@@ -807,7 +782,6 @@ pub const MAX_BEARING_FORCE: Quantity = Quantity {
     label: "max crank-bearing force",
     effect: Effect::Bearing,
     shape: Shape::Scalar,
-    period: None,
     of: Some("bearing_force_n"),
     read: Read::DiscScalar(|d, c| Some(highest(c, &d.loaded.bearing.as_ref()?.force_n))),
 };
@@ -820,7 +794,6 @@ pub const MAX_RESIDUAL: Quantity = Quantity {
     label: "largest residual of Eqs. 12–14",
     effect: Effect::Bearing,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::DiscScalar(|d, c| Some(highest(c, &d.loaded.bearing.as_ref()?.residual))),
 };
@@ -839,7 +812,6 @@ pub const TORSION_LOST_MOTION: Quantity = Quantity {
     label: "lost motion at ±3 % rated torque",
     effect: Effect::Torsion,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| torsion_figures(r, |f| units::arcmin(f.lost_motion_rad))),
 };
@@ -852,7 +824,6 @@ pub const TORSION_BACKLASH: Quantity = Quantity {
     label: "backlash (dead band at zero torque)",
     effect: Effect::Torsion,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| torsion_figures(r, |f| units::arcmin(f.backlash_rad))),
 };
@@ -865,7 +836,6 @@ pub const TORSIONAL_RIGIDITY: Quantity = Quantity {
     label: "torsional rigidity (50–100 % rated, smaller direction)",
     effect: Effect::Torsion,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| torsion_figures(r, |f| units::nm_per_arcmin(f.rigidity()))),
 };
@@ -888,7 +858,6 @@ pub const HYSTERESIS_LOSS: Quantity = Quantity {
     label: "hysteresis loss (friction, at zero torque)",
     effect: Effect::Torsion,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| friction_figures(r, |f| units::arcmin(f.hysteresis_rad))),
 };
@@ -901,7 +870,6 @@ pub const HYSTERESIS_ENERGY: Quantity = Quantity {
     label: "energy per cycle of the torsion loop",
     effect: Effect::Torsion,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| friction_figures(r, |f| 1e-3 * f.loop_energy_nmm)),
 };
@@ -925,7 +893,6 @@ pub const MAX_TORSION_LOST_MOTION: Quantity = Quantity {
     label: "max lost motion of the reducer (±3 % of rated torque)",
     effect: Effect::Torsion,
     shape: Shape::Scalar,
-    period: None,
     of: Some("lost_motion_arcmin"),
     read: Read::ReducerScalar(|r, c| curve_extreme((r, c), &TORSION_LOST_MOTION, true)),
 };
@@ -937,7 +904,6 @@ pub const MAX_TORSION_BACKLASH: Quantity = Quantity {
     label: "max backlash of the reducer (torsion dead band)",
     effect: Effect::Torsion,
     shape: Shape::Scalar,
-    period: None,
     of: Some("backlash_arcmin"),
     read: Read::ReducerScalar(|r, c| curve_extreme((r, c), &TORSION_BACKLASH, true)),
 };
@@ -949,7 +915,6 @@ pub const MIN_TORSIONAL_RIGIDITY: Quantity = Quantity {
     label: "min torsional rigidity",
     effect: Effect::Torsion,
     shape: Shape::Scalar,
-    period: None,
     of: Some("torsional_rigidity_nm_per_arcmin"),
     read: Read::ReducerScalar(|r, c| curve_extreme((r, c), &TORSIONAL_RIGIDITY, false)),
 };
@@ -961,7 +926,6 @@ pub const MAX_HYSTERESIS_LOSS: Quantity = Quantity {
     label: "max hysteresis loss of the reducer (friction)",
     effect: Effect::Torsion,
     shape: Shape::Scalar,
-    period: None,
     of: Some("hysteresis_loss_arcmin"),
     read: Read::ReducerScalar(|r, c| curve_extreme((r, c), &HYSTERESIS_LOSS, true)),
 };
@@ -974,7 +938,6 @@ pub const BEARING_EQUIVALENT_LOAD: Quantity = Quantity {
     label: "crank-bearing equivalent load P",
     effect: Effect::Bearing,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::DiscScalar(|d, _| {
         (d.bearing_life).map(|b| at(b.equivalent_load_n, Site::Rule(Rule::BearingEquivalentLoad)))
@@ -990,7 +953,6 @@ pub const BEARING_LIFE: Quantity = Quantity {
     label: "crank-bearing rating life L10h",
     effect: Effect::Bearing,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::DiscScalar(|d, _| {
         let b = d.bearing_life?;
@@ -1022,7 +984,6 @@ pub const PIN_BENDING_STRESS: Quantity = Quantity {
     label: "output-pin bending stress",
     effect: Effect::Strength,
     shape: Shape::PerPin,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| Some(Rows::Stored(&pin_stress(r)?.bending_stress_mpa))),
 };
@@ -1034,7 +995,6 @@ pub const MAX_PIN_BENDING_STRESS: Quantity = Quantity {
     label: "max pin bending stress",
     effect: Effect::Strength,
     shape: Shape::Scalar,
-    period: None,
     of: Some("pin_bending_stress_mpa"),
     read: Read::ReducerScalar(|r, c| {
         Some(largest(c, &pin_stress(r)?.bending_stress_mpa, Part::Pin))
@@ -1049,7 +1009,6 @@ pub const MAX_PIN_SHEAR_STRESS: Quantity = Quantity {
     label: "max pin shear stress",
     effect: Effect::Strength,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::ReducerScalar(|r, c| Some(largest(c, &pin_stress(r)?.shear_stress_mpa, Part::Pin))),
 };
@@ -1063,7 +1022,6 @@ pub const PIN_BENDING_SAFETY: Quantity = Quantity {
     label: "pin bending safety (yield / stress)",
     effect: Effect::Strength,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::ReducerScalar(|r, c| {
         let p = pin_stress(r)?;
@@ -1089,7 +1047,6 @@ pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
     label: "contact fatigue life (shorter of disc and rollers)",
     effect: Effect::Strength,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::DiscOrCycle(
         |d, c| {
@@ -1124,7 +1081,6 @@ pub const STATIC_SAFETY: Quantity = Quantity {
     label: "crank-bearing static safety s0",
     effect: Effect::Strength,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::DiscScalar(|d, c| {
         let s = disc_strength(d)?.static_safety?;
@@ -1154,30 +1110,21 @@ fn duty_fatigue(d: &DutyCycle) -> Option<Extreme> {
         .reduce(|a, b| if b.0 < a.0 { b } else { a })
         .map(|(value, part, k)| {
             let unbounded = super::results::is_unbounded(value);
-            Extreme {
-                value,
-                at: Place {
-                    bin: None,
-                    disc: (several && !unbounded).then_some(k),
-                    site: match unbounded {
-                        false => Site::DutyFatigue { part },
-                        true => Site::Unbounded(Unbounded::DutyFatigue { part }),
-                    },
-                },
-            }
+            let site = match unbounded {
+                false => Site::DutyFatigue { part },
+                true => Site::Unbounded(Unbounded::DutyFatigue { part }),
+            };
+            let mut e = at(value, site);
+            e.at.disc = (several && !unbounded).then_some(k);
+            e
         })
 }
 
 /// A duty cycle's figure of disc `k` at `site`, naming the disc with several discs.
 fn of_disc(d: &DutyCycle, k: usize, value: f64, site: Site) -> Extreme {
-    Extreme {
-        value,
-        at: Place {
-            bin: None,
-            disc: (d.life.len() > 1).then_some(k),
-            site,
-        },
-    }
+    let mut e = at(value, site);
+    e.at.disc = (d.life.len() > 1).then_some(k);
+    e
 }
 
 /// The crank bearing's rating life under a duty cycle, hours (ISO 281 with Palmgren–Miner,
@@ -1190,7 +1137,6 @@ pub const DUTY_LIFE: Quantity = Quantity {
     label: "crank-bearing life under the duty cycle L10h",
     effect: Effect::Bearing,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::CycleScalar(|d| {
         let (k, b) = d.shortest_life()?;
@@ -1213,7 +1159,6 @@ pub const DUTY_EQUIVALENT_LOAD: Quantity = Quantity {
     label: "crank-bearing equivalent load under the duty cycle P",
     effect: Effect::Bearing,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::CycleScalar(|d| {
         let (k, b) = d.life.iter().enumerate().reduce(|a, b| {
@@ -1236,7 +1181,6 @@ pub const EQUIVALENT_TORQUE: Quantity = Quantity {
     label: "equivalent output torque (root-mean-cube)",
     effect: Effect::Bearing,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::CycleScalar(|d| {
         let site = Site::Rule(Rule::EquivalentTorque);
@@ -1251,7 +1195,6 @@ pub const MEAN_SPEED: Quantity = Quantity {
     label: "mean input speed",
     effect: Effect::Bearing,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::CycleScalar(|d| Some(at(d.mean_speed_rpm, Site::Rule(Rule::MeanSpeed)))),
 };
@@ -1265,7 +1208,6 @@ pub const DUTY_MEAN_EFFICIENCY: Quantity = Quantity {
     label: "mean efficiency over the duty cycle (by energy)",
     effect: Effect::Efficiency,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::CycleScalar(|d| {
         let site = Site::Rule(Rule::DutyMeanEfficiency);
@@ -1286,7 +1228,6 @@ pub const EFFICIENCY: Quantity = Quantity {
     label: "efficiency η",
     effect: Effect::Efficiency,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| reducer_efficiency(r).map(|e| one(&e.efficiency))),
 };
@@ -1298,7 +1239,6 @@ pub const INPUT_TORQUE: Quantity = Quantity {
     label: "input torque",
     effect: Effect::Efficiency,
     shape: Shape::Curve,
-    period: None,
     of: None,
     read: Read::ReducerCurves(|r| {
         reducer_efficiency(r).map(|e| converted(&e.input_torque_nmm, units::nm))
@@ -1313,7 +1253,6 @@ pub const MEAN_EFFICIENCY: Quantity = Quantity {
     label: "mean efficiency",
     effect: Effect::Efficiency,
     shape: Shape::Scalar,
-    period: None,
     of: Some("efficiency"),
     read: Read::ReducerScalar(|r, c| {
         reducer_efficiency(r).map(|e| {
@@ -1336,7 +1275,6 @@ pub const TOTAL_POWER_LOSS: Quantity = Quantity {
     label: "power loss",
     effect: Effect::Efficiency,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::Losses(|e| {
         let p = e.power_loss_w()?;
@@ -1351,7 +1289,6 @@ pub const TEMPERATURE: Quantity = Quantity {
     label: "steady temperature",
     effect: Effect::Efficiency,
     shape: Shape::Scalar,
-    period: None,
     of: None,
     read: Read::ReducerScalar(|r, _| {
         let t = reducer_efficiency(r)?.temperature_c?;
@@ -1451,6 +1388,9 @@ pub const NEEDS_FACE: &[&Quantity] = &[&FACE_LOAD_FACTOR, &MAX_FACE_LOAD_FACTOR,
 /// when one of them is read.
 pub const NEEDS_BACKLASH: &[&Quantity] =
     &[&BACKLASH, &BACKLASH_REVERSE, &LOST_MOTION, &MAX_LOST_MOTION];
+
+/// The angles that wrap (±180°), each with its period in the key's unit (`Quantity::period`).
+pub const WRAPS: &[(&Quantity, f64)] = &[(&BEARING_ANGLE, 360.0)];
 
 /// The headline results of a scene, in the order a summary shows them.
 pub const SUMMARY: &[&Quantity] = &[

@@ -266,10 +266,7 @@ impl TorsionCurves {
     /// this (0.0077 arcmin on the paper's design at 20 N·m, 20 steps). 0 where the loop has no
     /// step or no stiffness (nothing is hidden then).
     pub fn hysteresis_resolution_rad(&self, k: usize) -> f64 {
-        let step_nmm = match self.torque_nmm.as_slice() {
-            [a, b, ..] => (b - a).abs(),
-            _ => 0.0,
-        };
+        let step_nmm = crate::numeric::step(&self.torque_nmm).abs();
         let rigidity = self.figures.get(k).map_or(0.0, TorsionFigures::rigidity);
         if step_nmm > 0.0 && rigidity.is_finite() && rigidity > 0.0 {
             step_nmm / rigidity

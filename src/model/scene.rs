@@ -197,37 +197,32 @@ impl Plan {
     /// The plan of `scene`: the effects it asks for (and `torsion` for a `torque_sweep`) and
     /// what they need; no details until something asks (`Plan::ask`).
     pub fn for_scene(scene: &Scene) -> Plan {
-        let mut effects: Vec<PlannedEffect> = Vec::new();
-        if scene.torque_sweep.is_some() {
-            add(
-                &mut effects,
-                Effect::Torsion,
-                "asked for by torque_sweep".to_string(),
-            );
-        }
-        for &asked in &scene.effects {
-            add(&mut effects, asked, "asked for by the scene".to_string());
-        }
-        effects.sort_by_key(|p| p.effect);
+        let sweep =
+            (scene.torque_sweep.as_ref()).map(|_| (Effect::Torsion, "asked for by torque_sweep"));
+        let asked = scene.effects.iter().map(|&e| (e, "asked for by the scene"));
         Plan {
-            scene: scene.name.clone(),
-            effects,
-            details: Vec::new(),
             duty: scene.duty_cycle.is_some(),
+            ..Plan::asked(&scene.name, sweep.into_iter().chain(asked))
         }
     }
 
     /// The plan of `effects` and what they need, for the scene named `scene` (an
     /// optimisation candidate, a test).
     pub fn of(scene: &str, effects: &[Effect]) -> Plan {
-        let mut planned: Vec<PlannedEffect> = Vec::new();
-        for &asked in effects {
-            add(&mut planned, asked, "asked for".to_string());
+        Plan::asked(scene, effects.iter().map(|&e| (e, "asked for")))
+    }
+
+    /// The plan of the effects `asked`, each with why, and what they need, for the scene named
+    /// `scene`: each effect once, in `Effect`'s order; no details, no duty cycle.
+    fn asked(scene: &str, asked: impl Iterator<Item = (Effect, &'static str)>) -> Plan {
+        let mut effects: Vec<PlannedEffect> = Vec::new();
+        for (effect, why) in asked {
+            add(&mut effects, effect, why.to_string());
         }
-        planned.sort_by_key(|p| p.effect);
+        effects.sort_by_key(|p| p.effect);
         Plan {
             scene: scene.to_string(),
-            effects: planned,
+            effects,
             details: Vec::new(),
             duty: false,
         }

@@ -163,8 +163,7 @@ impl Disc {
             .collect();
         let circles: Vec<Circle> = holes.iter().chain(self.bore.iter()).copied().collect();
         disc_mesh(&outline, &circles, self.face_width_mm, tolerance_mm).ok_or_else(|| {
-            Error::new(
-                ErrorKind::Computation,
+            Error::computation(
                 "the disc's face could not be triangulated (its outline touches itself or a \
                  hole): no STL was written",
             )

@@ -167,23 +167,16 @@ pub fn screen(req: &Requirements, c: &Candidate) -> Result<Option<Evaluation>> {
 /// The full check of `c` (its rules already passed).
 pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
     let spec = candidate::spec(req, c, "candidate", req.search.steps_per_mesh_period)?;
-    let (summaries, checks) = match check(&spec) {
-        Ok(r) => r,
-        Err(e) if e.kind == ErrorKind::Computation => {
-            return Ok(Evaluation {
-                candidate: *c,
-                stage: Stage::Full,
-                failures: vec![torque(e)],
-                objectives: Vec::new(),
-            })
+    let (failures, objectives) = match check(&spec) {
+        Ok((summaries, checks)) => {
+            let failures = failed(&checks)?;
+            match failures.is_empty() {
+                true => (failures, objectives(req, c, &summaries)?),
+                false => (failures, Vec::new()),
+            }
         }
+        Err(e) if e.kind == ErrorKind::Computation => (vec![torque(e)], Vec::new()),
         Err(e) => return Err(e),
-    };
-    let failures = failed(&checks)?;
-    let objectives = if failures.is_empty() {
-        objectives(req, c, &summaries)?
-    } else {
-        Vec::new()
     };
     Ok(Evaluation {
         candidate: *c,
@@ -229,11 +222,8 @@ fn objectives(req: &Requirements, c: &Candidate, summaries: &[SceneSummary]) -> 
             .iter()
             .filter_map(|s| s.scalar(q).map(|e| e.value))
             .collect();
-        let v = if maximise {
-            values.iter().copied().fold(f64::INFINITY, f64::min)
-        } else {
-            values.iter().copied().fold(f64::NEG_INFINITY, f64::max)
-        };
+        let ((lowest, _), (highest, _)) = crate::numeric::extremes(&values);
+        let v = if maximise { lowest } else { highest };
         if v.is_finite() {
             Ok(v)
         } else {

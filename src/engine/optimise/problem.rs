@@ -330,12 +330,11 @@ impl<'a> Problem<'a> {
             &crate::progress::Silent,
         )
         .map_err(|f| f.to_string())?;
-        let max = sweep
+        let lost = sweep
             .backlash
             .as_ref()
-            .map_or(&[][..], |b| &b.lost_motion_rad)
-            .iter()
-            .fold(f64::NEG_INFINITY, |a, &b| a.max(b));
+            .map_or(&[][..], |b| &b.lost_motion_rad);
+        let (_, (max, _)) = crate::numeric::extremes(lost);
         if max.is_finite() {
             Ok(units::arcsec(max))
         } else {

@@ -84,16 +84,15 @@ impl<'a> ToleranceStudy<'a> {
             .map(|l| (l.def, l.value))
             .collect();
         if limits.is_empty() {
-            return Err(Error::new(
-                ErrorKind::InvalidValue,
+            return Err(Error::invalid(
+                "tolerances.scene",
                 format!(
                     "scene `{}` evaluates none of the spec's limits: a study judges the samples by \
                      the limits their scene computes; set a limit of what it computes or choose \
                      another scene",
                     scene.name
                 ),
-            )
-            .at_key("tolerances.scene"));
+            ));
         }
         held_in_memory(tolerances.samples, limits.len(), samples.is_some())?;
         Ok(ToleranceStudy {

@@ -8,6 +8,7 @@ use crate::engine::optimise::verify::Verification;
 use crate::engine::optimise::{Found, StudyResult};
 use crate::model::{Study, VariableKind};
 use crate::numeric::{number, with_unit};
+use crate::report::place::counted;
 use crate::report::review::plots::capitalised;
 use crate::report::review::{OptimisationView, StudyPoint};
 use crate::report::svg::MapCell;
@@ -125,11 +126,10 @@ fn stop_text(s: StopReason) -> &'static str {
 /// How the search went: evaluations, time and where the optimum was found.
 pub fn outcome(r: &StudyResult) -> String {
     format!(
-        "{} evaluations ({} global, {} local run{}{}) in {:.2} s; {}",
+        "{} evaluations ({} global, {}{}) in {:.2} s; {}",
         r.evaluations,
         r.global.len(),
-        r.local_runs.len(),
-        if r.local_runs.len() == 1 { "" } else { "s" },
+        counted(r.local_runs.len(), "local run"),
         r.verification.as_ref().map_or(String::new(), |v| format!(
             ", {} grid points{}",
             v.points,
@@ -187,10 +187,7 @@ pub fn verification_text(study: &Study, r: &StudyResult) -> Option<String> {
     // is a tie, not a grid point beating the search.
     let round_off = |d: f64| d <= 1e-9 * r.optimum.objective.abs();
     let n = v.refinements.len();
-    let refined = format!(
-        "{n} refinement{} from there; ",
-        if n == 1 { "" } else { "s" }
-    );
+    let refined = format!("{} from there; ", counted(n, "refinement"));
     let searched = match v.beat_search_by() {
         Some(d) if round_off(d) => format!(
             "a grid point tied with the search (by {}, round-off), {refined}",

@@ -26,6 +26,7 @@ use crate::model::Study;
 use crate::numeric::extremes;
 use crate::report::explain::{hysteresis, torsion_compliances, torsion_law_note};
 use crate::report::json_text::{self, Object, Text};
+use crate::report::optimisation::spec_value;
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
@@ -1001,15 +1002,8 @@ impl<'a> StudyDoc<'a> {
                 .collect(),
             objective_value: o.objective.is_finite().then_some(Finite(o.objective)),
             variables: Pairs(
-                study
-                    .variables
-                    .iter()
-                    .map(|v| {
-                        (
-                            v.kind.key(),
-                            Finite(v.kind.to_spec_unit(v.kind.get(&o.point))),
-                        )
-                    })
+                (study.variables.iter())
+                    .map(|v| (v.kind.key(), Finite(spec_value(v, o))))
                     .collect(),
             ),
             constraints: o

@@ -331,7 +331,7 @@ impl<'a> DutyDoc<'a> {
                     mean_efficiency: q::MEAN_EFFICIENCY
                         .scalar(&b.result)
                         .map(|e| Finite(e.value)),
-                    results: SceneDoc::unnamed(&b.result),
+                    results: SceneDoc::without_summary(&b.result, Of::Scene { named: false }),
                 })
                 .collect(),
         })
@@ -457,9 +457,9 @@ impl<'a> SceneDoc<'a> {
         SceneDoc { r, of, scalars }
     }
 
-    /// A duty bin's run: the scene's document without its name and angles.
-    fn unnamed(r: &'a SceneResult) -> Self {
-        let of = Of::Scene { named: false };
+    /// A document without a summary, its scalars read from the results: a duty bin's run
+    /// (the scene's document without its name and angles) or one disc's.
+    fn without_summary(r: &'a SceneResult, of: Of<'a>) -> Self {
         SceneDoc {
             r,
             of,
@@ -603,11 +603,7 @@ impl<'a> SceneDoc<'a> {
                 "discs",
                 (scene && r.names_discs()).then(|| {
                     (r.discs.iter())
-                        .map(|d| SceneDoc {
-                            r,
-                            of: Of::Disc(d),
-                            scalars: None,
-                        })
+                        .map(|d| SceneDoc::without_summary(r, Of::Disc(d)))
                         .collect::<Vec<_>>()
                 }),
             ),

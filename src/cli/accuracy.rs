@@ -1,16 +1,16 @@
 //! `cycloid accuracy`: the options as given over the spec's `accuracy:` section, then the
 //! library's ladder, its rows printed as each rung finishes.
 
-use super::output::{print, stdout_error};
+use super::output::{invalid, print, stdout_error};
 use super::{AccuracyArgs, Outcome};
 use crate::engine::accuracy::{self, Setting};
 use crate::engine::commands;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::{report, spec};
 use std::io::Write;
 
 fn bad(flag: &str, m: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, format!("--{flag}: {m}"))
+    invalid(format!("--{flag}: {m}"))
 }
 
 pub(super) fn run(asked: &AccuracyArgs, out: &mut dyn Write) -> Result<Outcome> {

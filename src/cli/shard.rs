@@ -1,7 +1,8 @@
 //! Which shard of a tolerance study or a design search a run computes: `--shard I/N`, or the task of a Slurm job
 //! array.
 
-use crate::error::{Error, ErrorKind, Result};
+use super::output::invalid;
+use crate::error::Result;
 use crate::files;
 use std::path::{Path, PathBuf};
 
@@ -25,11 +26,6 @@ pub(super) fn shard_inputs(paths: &[String]) -> Vec<(String, PathBuf)> {
         .iter()
         .map(|p| (format!("the shard file {p}"), PathBuf::from(p)))
         .collect()
-}
-
-/// A bad shard value (from `--shard`, `--write-sample` or the Slurm job array).
-pub(super) fn invalid(message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message)
 }
 
 /// `--shard I/N`: 0 ≤ I < N, 1 ≤ N ≤ `samples` (what is split, named `noun`).

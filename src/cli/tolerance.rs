@@ -3,8 +3,8 @@
 
 use super::args::{ToleranceArgs, ToleranceCommand};
 use super::output::write_spec;
-use super::output::{distinct_outputs, inputs_of, print, review_line, usage, write_file};
-use super::shard::{invalid, parse_shard, read_shard_files, shard_inputs, slurm_shard};
+use super::output::{distinct_outputs, inputs_of, invalid, print, review_line, usage, write_file};
+use super::shard::{parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands;
 use crate::engine::tolerance::sensitivity::Sensitivity;

@@ -13,20 +13,15 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
         .iter()
         .filter(|b| b.written != Written::Nothing)
         .count();
-    let mut out = if changed == 0 {
-        format!(
-            "cycloid bless `{}`: {} golden file(s), no change beyond their tolerances: nothing \
-             written\n",
-            spec.name,
-            blessed.len()
-        )
-    } else {
-        format!(
-            "cycloid bless `{}`: {} golden file(s), {changed} written\n",
-            spec.name,
-            blessed.len()
-        )
+    let written = match changed {
+        0 => "no change beyond their tolerances: nothing written".to_string(),
+        n => format!("{n} written"),
     };
+    let mut out = format!(
+        "cycloid bless `{}`: {} golden file(s), {written}\n",
+        spec.name,
+        blessed.len()
+    );
     for b in blessed {
         let file = b.golden.path.display();
         let cols = match b.golden.quantity.shape.per() {

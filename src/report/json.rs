@@ -26,6 +26,7 @@ use crate::model::Study;
 use crate::numeric::extremes;
 use crate::report::explain::{hysteresis, torsion_compliances, torsion_law_note};
 use crate::report::json_text::{self, Object, Text};
+use crate::report::optimisation::spec_value;
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
@@ -330,7 +331,7 @@ impl<'a> DutyDoc<'a> {
                     mean_efficiency: q::MEAN_EFFICIENCY
                         .scalar(&b.result)
                         .map(|e| Finite(e.value)),
-                    results: SceneDoc::unnamed(&b.result),
+                    results: SceneDoc::without_summary(&b.result, Of::Scene { named: false }),
                 })
                 .collect(),
         })
@@ -456,9 +457,9 @@ impl<'a> SceneDoc<'a> {
         SceneDoc { r, of, scalars }
     }
 
-    /// A duty bin's run: the scene's document without its name and angles.
-    fn unnamed(r: &'a SceneResult) -> Self {
-        let of = Of::Scene { named: false };
+    /// A document without a summary, its scalars read from the results: a duty bin's run
+    /// (the scene's document without its name and angles) or one disc's.
+    fn without_summary(r: &'a SceneResult, of: Of<'a>) -> Self {
         SceneDoc {
             r,
             of,
@@ -602,11 +603,7 @@ impl<'a> SceneDoc<'a> {
                 "discs",
                 (scene && r.names_discs()).then(|| {
                     (r.discs.iter())
-                        .map(|d| SceneDoc {
-                            r,
-                            of: Of::Disc(d),
-                            scalars: None,
-                        })
+                        .map(|d| SceneDoc::without_summary(r, Of::Disc(d)))
                         .collect::<Vec<_>>()
                 }),
             ),
@@ -1001,15 +998,8 @@ impl<'a> StudyDoc<'a> {
                 .collect(),
             objective_value: o.objective.is_finite().then_some(Finite(o.objective)),
             variables: Pairs(
-                study
-                    .variables
-                    .iter()
-                    .map(|v| {
-                        (
-                            v.kind.key(),
-                            Finite(v.kind.to_spec_unit(v.kind.get(&o.point))),
-                        )
-                    })
+                (study.variables.iter())
+                    .map(|v| (v.kind.key(), Finite(spec_value(v, o))))
                     .collect(),
             ),
             constraints: o

@@ -6,8 +6,9 @@ use crate::engine::optimise::local::StopReason;
 use crate::engine::optimise::problem::Evaluation;
 use crate::engine::optimise::verify::Verification;
 use crate::engine::optimise::{Found, StudyResult};
-use crate::model::{Study, VariableKind};
+use crate::model::{Study, Variable, VariableKind};
 use crate::numeric::{number, with_unit};
+use crate::report::place::counted;
 use crate::report::review::plots::capitalised;
 use crate::report::review::{OptimisationView, StudyPoint};
 use crate::report::svg::MapCell;
@@ -33,17 +34,16 @@ fn objective_label(study: &Study) -> String {
         .join(" + ")
 }
 
+/// A variable's value at point `e`, in the spec's unit.
+pub fn spec_value(v: &Variable, e: &Evaluation) -> f64 {
+    v.kind.to_spec_unit(v.kind.get(&e.point))
+}
+
 fn variables(study: &Study, e: &Evaluation) -> String {
     study
         .variables
         .iter()
-        .map(|v| {
-            format!(
-                "{} {:.6}",
-                v.kind.key(),
-                v.kind.to_spec_unit(v.kind.get(&e.point))
-            )
-        })
+        .map(|v| format!("{} {:.6}", v.kind.key(), spec_value(v, e)))
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -125,11 +125,10 @@ fn stop_text(s: StopReason) -> &'static str {
 /// How the search went: evaluations, time and where the optimum was found.
 pub fn outcome(r: &StudyResult) -> String {
     format!(
-        "{} evaluations ({} global, {} local run{}{}) in {:.2} s; {}",
+        "{} evaluations ({} global, {}{}) in {:.2} s; {}",
         r.evaluations,
         r.global.len(),
-        r.local_runs.len(),
-        if r.local_runs.len() == 1 { "" } else { "s" },
+        counted(r.local_runs.len(), "local run"),
         r.verification.as_ref().map_or(String::new(), |v| format!(
             ", {} grid points{}",
             v.points,
@@ -187,10 +186,7 @@ pub fn verification_text(study: &Study, r: &StudyResult) -> Option<String> {
     // is a tie, not a grid point beating the search.
     let round_off = |d: f64| d <= 1e-9 * r.optimum.objective.abs();
     let n = v.refinements.len();
-    let refined = format!(
-        "{n} refinement{} from there; ",
-        if n == 1 { "" } else { "s" }
-    );
+    let refined = format!("{} from there; ", counted(n, "refinement"));
     let searched = match v.beat_search_by() {
         Some(d) if round_off(d) => format!(
             "a grid point tied with the search (by {}, round-off), {refined}",
@@ -320,7 +316,7 @@ pub fn map_csv(study: &Study, cells: &[Evaluation]) -> String {
     out += "objective,feasible,min_clearance_mm,tip_clearance_mm\n";
     for e in cells {
         for v in vars.iter().take(2) {
-            out += &format!("{},", v.kind.to_spec_unit(v.kind.get(&e.point)));
+            out += &format!("{},", spec_value(v, e));
         }
         let objective = if e.objective.is_finite() {
             format!("{}", e.objective)
@@ -371,12 +367,7 @@ pub fn objective_axis_label(study: &Study) -> String {
 /// A point of the study in the map's plane: its first two variables in the spec's units (0 for
 /// a variable the study does not have).
 fn xy(study: &Study, e: &Evaluation) -> (f64, f64) {
-    let at = |k: usize| {
-        study
-            .variables
-            .get(k)
-            .map_or(0.0, |v| v.kind.to_spec_unit(v.kind.get(&e.point)))
-    };
+    let at = |k: usize| study.variables.get(k).map_or(0.0, |v| spec_value(v, e));
     (at(0), at(1))
 }
 
@@ -523,7 +514,7 @@ fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) ->
             format!(
                 "{} held at the optimum's {}",
                 v.kind.key(),
-                number(v.kind.to_spec_unit(v.kind.get(&r.optimum.point)))
+                number(spec_value(v, &r.optimum))
             )
         })
         .collect();
@@ -587,11 +578,7 @@ fn listed(r: &StudyResult) -> impl Iterator<Item = (&str, &Evaluation)> {
 fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
     let point = |label: &str, e: &Evaluation| StudyPoint {
         label: label.to_string(),
-        variables: study
-            .variables
-            .iter()
-            .map(|v| v.kind.to_spec_unit(v.kind.get(&e.point)))
-            .collect(),
+        variables: study.variables.iter().map(|v| spec_value(v, e)).collect(),
         objective: e.failure.is_none().then_some(e.objective),
         failure: e.failure.clone(),
         feasible: e.feasible(),

@@ -79,9 +79,11 @@ fn site(s: &Site) -> String {
         Site::Sampled {
             crank: c,
             angles: n,
-        } => {
-            format!("{}, over the scene's {}", crank(c.rad), angles(*n))
-        }
+        } => format!(
+            "{}, over the scene's {}",
+            crank(c.rad),
+            counted(*n, "crank angle")
+        ),
         Site::Locked(c) => format!("{} locked", crank(c.rad)),
         Site::Spread { min, max } => format!("min at {}, max at {}", deg(min), deg(max)),
         Site::Gap {
@@ -137,9 +139,9 @@ fn site(s: &Site) -> String {
     }
 }
 
-/// "1 crank angle", "4 crank angles".
-fn angles(n: usize) -> String {
-    format!("{n} crank angle{}", if n == 1 { "" } else { "s" })
+/// `n` of `noun`, its plural an added "s": "1 crank angle", "4 crank angles".
+pub fn counted(n: usize, noun: &str) -> String {
+    format!("{n} {noun}{}", if n == 1 { "" } else { "s" })
 }
 
 /// What the smallest gap was sought over: the whole period of the gaps, its step and the error
@@ -152,7 +154,7 @@ fn sought_over(coverage: &MinCoverage) -> String {
             number(units::deg(p.step_rad)),
             number(units::um(p.error_bound_mm))
         ),
-        MinCoverage::Angles(n) => format!("over the scene's {} only", angles(*n)),
+        MinCoverage::Angles(n) => format!("over the scene's {} only", counted(*n, "crank angle")),
     }
 }
 

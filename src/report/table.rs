@@ -8,7 +8,7 @@ use crate::model::quantity::{find_limit, Quantity, COUNTS};
 use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE};
 use crate::numeric::{number, with_unit};
 use crate::report::columns::{columns, Align};
-use crate::report::place::{self, ONLY_ANGLE};
+use crate::report::place::{self, counted, ONLY_ANGLE};
 
 /// A value of `q` (in its unit) as every output prints it — headline, checks table, review,
 /// plots: a count (`quantity::COUNTS`) as a whole number, any other value as `number` (four
@@ -182,9 +182,8 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
     }
     let failed = checks.iter().filter(|c| !c.passed).count();
     out += &format!(
-        "{} check{}: {} passed, {} failed\n",
-        checks.len(),
-        if checks.len() == 1 { "" } else { "s" },
+        "{}: {} passed, {} failed\n",
+        counted(checks.len(), "check"),
         checks.len() - failed,
         failed
     );

@@ -3,7 +3,7 @@
 //! points with every constraint's margin. Drawn from an `OptimisationView`, which
 //! [`report::optimisation::view`](crate::report::optimisation::view) builds from a study's result.
 
-use super::common::{figure, scrolling, signed, slug, Section};
+use super::common::{figure, scrolling, signed, slug, verdict, Section};
 use crate::engine::optimise::problem::Margin;
 use crate::numeric::number;
 use crate::report::svg::{MapCell, MapPlot, Marker, Shape, RED};
@@ -188,7 +188,7 @@ pub(super) fn study(o: &OptimisationView, file: &str) -> Markup {
                 tr {
                     th { "verdict" }
                     @for p in &o.points {
-                        td.verdict class=(if p.feasible { "pass" } else { "fail" }) {
+                        td.verdict class=(verdict(p.feasible)) {
                             (if p.feasible { "feasible" } else { "INFEASIBLE" })
                         }
                     }

@@ -309,11 +309,7 @@ fn plot(spec: &Spec, of: Of<'_>, def: &PlotDef, prefix: &str, at_speed: Option<&
     let sparse = x.len() < SPARSE_ANGLES;
     let mut title = def.title.to_string();
     if sparse {
-        title += &format!(
-            " at {} crank angle{}",
-            x.len(),
-            if x.len() == 1 { "" } else { "s" }
-        );
+        title += &format!(" at {}", place::counted(x.len(), "crank angle"));
     }
     if let (true, Some(note)) = (def.speed_in_title, at_speed) {
         title += &format!(" {note}");

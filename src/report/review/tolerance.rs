@@ -4,7 +4,7 @@
 //! beside the Monte Carlo spread and the Pareto of the tolerances. The page, tables and plots
 //! are the design review's own (`shell::shell`, `common::data_table`, `svg::LinePlot`).
 
-use super::common::{data_table, figure, Section};
+use super::common::{data_table, figure, verdict, Section};
 use super::shell::{shell, write_files};
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANTILES};
@@ -110,7 +110,7 @@ fn rates_section(s: &Summary) -> Section {
                 th { "failure rate [" (percent_label(CONFIDENCE)) " CI]" } },
             html! {
                 @for l in &s.limits {
-                    tr class=(if l.failures == 0 { "pass" } else { "fail" }) {
+                    tr class=(verdict(l.failures == 0)) {
                         td { code { (l.key) } " " (l.bound.symbol()) " "
                             (with_unit(number(l.limit), l.unit)) }
                         td.num { (value(l.min)) }
@@ -120,7 +120,7 @@ fn rates_section(s: &Summary) -> Section {
                         td.num { (rate_text(s.limit_rate(l), l.interval)) }
                     }
                 }
-                tr class=(if s.passed() { "pass" } else { "fail" }) {
+                tr class=(verdict(s.passed())) {
                     td { b { "any limit" } " (allowed " (percent(s.max_failure_rate)) ")" }
                     td colspan="5" {}
                     td.num { (s.failures) }

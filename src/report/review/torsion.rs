@@ -10,6 +10,7 @@ use crate::numeric::number;
 use crate::report::explain::{
     hysteresis, hysteresis_in_plot, torsion_compliances, torsion_law_note,
 };
+use crate::report::place::counted;
 use crate::report::svg::{LinePlot, Mark, Series, YCut, PALETTE};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
@@ -63,8 +64,8 @@ fn torsion_plot(scene: &Scene, r: &SceneResult, t: &TorsionCurves) -> LinePlot {
     let sparse = torques < SPARSE_TORQUES;
     let mut plot = LinePlot::new(
         &format!(
-            "Torsion at {angles} locked crank angle{}, {torques} torques: scene {}",
-            if angles == 1 { "" } else { "s" },
+            "Torsion at {}, {torques} torques: scene {}",
+            counted(angles, "locked crank angle"),
             scene.name
         ),
         "output torque T (N·m)",

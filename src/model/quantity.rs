@@ -316,6 +316,11 @@ impl Quantity {
         NEEDS_BACKLASH.contains(&self).then_some(Detail::Backlash)
     }
 
+    /// Whether its values count rollers (`COUNTS`): whole numbers, and a limit on it too.
+    pub fn is_count(&self) -> bool {
+        COUNTS.contains(&self)
+    }
+
     /// For an angle that wraps (±180°), its period: deviations are taken modulo it (`WRAPS`).
     pub fn period(&self) -> Option<f64> {
         WRAPS.iter().find(|(q, _)| *q == self).map(|&(_, p)| p)
@@ -1430,7 +1435,8 @@ pub const SUMMARY: &[&Quantity] = &[
 pub const SPREADS: &[&Quantity] = &[&TE_FLUCTUATION, &RATIO_FLUCTUATION];
 
 /// The quantities whose values count rollers: every output prints them as whole numbers, any
-/// other quantity to four significant digits (`report::table::figure`).
+/// other quantity to four significant digits (`report::table::figure`), and a limit on one
+/// must be a whole number (`spec::validate`).
 pub const COUNTS: &[&Quantity] = &[&CONTACTS, &MIN_ROLLERS_IN_CONTACT];
 
 /// The quantity with this key.
@@ -1483,8 +1489,6 @@ pub struct LimitDef {
     pub quantity: &'static Quantity,
     /// Which side of the limit passes.
     pub bound: Bound,
-    /// The limit is a count (a whole number).
-    pub whole: bool,
     /// The values the bounded quantity can physically take, (lowest, highest) in the
     /// limit's unit: a limit outside them is refused at its key (it could never be met, or
     /// never fail). Unbounded (−∞, ∞) where the registry states no range.
@@ -1500,28 +1504,24 @@ pub const LIMITS: &[LimitDef] = &[
         key: "min_clearance_mm",
         quantity: &MIN_CLEARANCE,
         bound: Bound::Min,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "max_roller_force_n",
         quantity: &MAX_ROLLER_FORCE,
         bound: Bound::Max,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "max_contact_pressure_mpa",
         quantity: &MAX_CONTACT_PRESSURE,
         bound: Bound::Max,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "max_face_load_factor",
         quantity: &MAX_FACE_LOAD_FACTOR,
         bound: Bound::Max,
-        whole: false,
         // The peak line load is at least the mean of its roller's (a limit below 1 could
         // never pass).
         range: (1.0, f64::INFINITY),
@@ -1530,133 +1530,114 @@ pub const LIMITS: &[LimitDef] = &[
         key: "max_line_load_n_per_mm",
         quantity: &MAX_LINE_LOAD,
         bound: Bound::Max,
-        whole: false,
         range: (0.0, f64::INFINITY),
     },
     LimitDef {
         key: "min_rollers_in_contact",
         quantity: &MIN_ROLLERS_IN_CONTACT,
         bound: Bound::Min,
-        whole: true,
         range: ANY,
     },
     LimitDef {
         key: "max_te_fluctuation_arcsec",
         quantity: &TE_FLUCTUATION,
         bound: Bound::Max,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "max_ratio_fluctuation",
         quantity: &RATIO_FLUCTUATION,
         bound: Bound::Max,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "max_pin_force_n",
         quantity: &MAX_PIN_FORCE,
         bound: Bound::Max,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "max_bearing_force_n",
         quantity: &MAX_BEARING_FORCE,
         bound: Bound::Max,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "max_lost_motion_arcsec",
         quantity: &MAX_LOST_MOTION,
         bound: Bound::Max,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "max_lost_motion_arcmin",
         quantity: &MAX_TORSION_LOST_MOTION,
         bound: Bound::Max,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "min_torsional_rigidity_nm_per_arcmin",
         quantity: &MIN_TORSIONAL_RIGIDITY,
         bound: Bound::Min,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "max_hysteresis_loss_arcmin",
         quantity: &MAX_HYSTERESIS_LOSS,
         bound: Bound::Max,
-        whole: false,
         range: (0.0, f64::INFINITY),
     },
     LimitDef {
         key: "min_bearing_life_h",
         quantity: &BEARING_LIFE,
         bound: Bound::Min,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "min_duty_life_h",
         quantity: &DUTY_LIFE,
         bound: Bound::Min,
-        whole: false,
         range: ANY,
     },
     LimitDef {
         key: "min_mean_efficiency",
         quantity: &MEAN_EFFICIENCY,
         bound: Bound::Min,
-        whole: false,
         range: (0.0, 1.0),
     },
     LimitDef {
         key: "max_power_loss_w",
         quantity: &TOTAL_POWER_LOSS,
         bound: Bound::Max,
-        whole: false,
         range: (0.0, f64::INFINITY),
     },
     LimitDef {
         key: "max_temperature_c",
         quantity: &TEMPERATURE,
         bound: Bound::Max,
-        whole: false,
         range: (-273.15, f64::INFINITY),
     },
     LimitDef {
         key: "max_pin_bending_stress_mpa",
         quantity: &MAX_PIN_BENDING_STRESS,
         bound: Bound::Max,
-        whole: false,
         range: (0.0, f64::INFINITY),
     },
     LimitDef {
         key: "min_pin_bending_safety",
         quantity: &PIN_BENDING_SAFETY,
         bound: Bound::Min,
-        whole: false,
         range: (0.0, f64::INFINITY),
     },
     LimitDef {
         key: "min_contact_fatigue_life_h",
         quantity: &MIN_CONTACT_FATIGUE_LIFE,
         bound: Bound::Min,
-        whole: false,
         range: (0.0, f64::INFINITY),
     },
     LimitDef {
         key: "min_static_safety",
         quantity: &STATIC_SAFETY,
         bound: Bound::Min,
-        whole: false,
         range: (0.0, f64::INFINITY),
     },
 ];

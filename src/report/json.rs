@@ -500,7 +500,7 @@ impl<'a> SceneDoc<'a> {
         let row = rows.iter().next().unwrap_or_default();
         if quantity.shape.per().is_some() {
             map.rows(quantity.key, &rows)?;
-        } else if q::COUNTS.contains(&quantity) {
+        } else if quantity.is_count() {
             map.counts(quantity.key, row)?;
         } else {
             map.curve(quantity.key, row)?;

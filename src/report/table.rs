@@ -4,7 +4,7 @@
 use crate::engine::plausibility::{Basis, Beyond};
 use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
 use crate::engine::verdict::{Bound, Check, CheckKind, Evidence};
-use crate::model::quantity::{find_limit, Quantity, COUNTS};
+use crate::model::quantity::{find_limit, Quantity};
 use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE};
 use crate::numeric::{number, with_unit};
 use crate::report::columns::{columns, Align};
@@ -15,8 +15,7 @@ use crate::report::place::{self, counted, ONLY_ANGLE};
 /// significant digits), so that one quantity reads alike everywhere (an efficiency of 1 is
 /// "1.000", never "1" in one place and "1.000" in another).
 pub fn figure(q: &Quantity, x: f64) -> String {
-    let count = COUNTS.iter().any(|c| c.key == q.key);
-    if count && x.fract() == 0.0 && x.abs() < 1e9 {
+    if q.is_count() && x.fract() == 0.0 && x.abs() < 1e9 {
         format!("{x:.0}")
     } else {
         number(x)
@@ -211,7 +210,7 @@ pub fn verdict_line(checks: &[Check]) -> String {
 /// between counts, else [`numeric::change`](crate::numeric::change).
 pub fn figure_change(q: &Quantity, from: f64, to: f64) -> String {
     let whole = |x: f64| x.fract() == 0.0 && x.abs() < 1e9;
-    let counts = COUNTS.iter().any(|c| c.key == q.key) && whole(from) && whole(to);
+    let counts = q.is_count() && whole(from) && whole(to);
     match to - from {
         x if counts && x != 0.0 => format!("{x:+.0}"),
         _ => crate::numeric::change(from, to),

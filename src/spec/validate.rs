@@ -549,7 +549,7 @@ pub(super) fn limits(raw: &RawLimits) -> Result<Limits> {
         let Some(value) = bound(def.key)? else {
             continue;
         };
-        if def.whole && (value.fract() != 0.0 || value < 0.0) {
+        if def.quantity.is_count() && (value.fract() != 0.0 || value < 0.0) {
             return Err(Error::invalid(
                 format!("limits.{}", def.key),
                 format!(

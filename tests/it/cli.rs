@@ -246,6 +246,21 @@ fn wrong_type_says_what_was_expected_in_spec_terms() {
     );
 }
 
+/// A limit on a count is a whole number: the fewest rollers in contact cannot be 2.5, so such
+/// a limit is refused at its key (line 28, the line added above `min_clearance_mm`) rather than
+/// read as 3 or as 2.
+#[test]
+fn a_limit_on_a_count_must_be_a_whole_number() {
+    assert_rejected(
+        &paper_with(&[(
+            "  min_clearance_mm: 0.015 ",
+            "  min_rollers_in_contact: 2.5\n  min_clearance_mm: 0.015 ",
+        )]),
+        "spec.yaml:28:3: invalid value: limits.min_rollers_in_contact: must be a whole number of \
+         at least 0, got 2.5",
+    );
+}
+
 /// The undercut rule with its numbers, at the key to change. Rrp + ΔRrp = 10 + 0.1593.
 #[test]
 fn undercut_names_the_rule_and_the_numbers() {

@@ -134,7 +134,7 @@ pub fn outcome(r: &StudyResult) -> String {
             v.points,
             match v.refinements.len() {
                 0 => String::new(),
-                n => format!(", {n} refinements"),
+                n => format!(", {}", counted(n, "refinement")),
             }
         )),
         r.elapsed.as_secs_f64(),

@@ -77,6 +77,29 @@ fn the_same_spec_gives_the_same_optimum_bit_for_bit() {
     assert_eq!(a.evaluations, b.evaluations);
 }
 
+/// The search's one-line outcome names the verification's refinements as a count of them:
+/// "1 refinement", "2 refinements" (the counts are set on a real result, so the line is the
+/// one a study prints; only the number of refinements is the test's).
+#[test]
+fn the_outcome_says_one_refinement_in_the_singular() {
+    let spec = small_paper();
+    let mut r = run_study(
+        &spec,
+        study(&spec, "positive-ratio"),
+        &cycloid::progress::Silent,
+    );
+    let run = r.local_runs[0].clone();
+    for (n, said) in [(1, "1 refinement)"), (2, "2 refinements)")] {
+        let v = r
+            .verification
+            .as_mut()
+            .expect("the study verifies on a grid");
+        v.refinements = vec![run.clone(); n];
+        let line = cycloid::report::optimisation::outcome(&r);
+        assert!(line.contains(&format!("grid points, {said}")), "{line}");
+    }
+}
+
 /// Counts what it hears.
 #[derive(Default)]
 struct Count(std::sync::atomic::AtomicU64);

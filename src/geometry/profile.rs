@@ -24,6 +24,9 @@ const MAX_ITER: usize = 60;
 
 /// The guarded Newton step on h(t) = (C(t) − q)·C'(t) = 0 of a closest-point iteration: −h/h'
 /// within ±`MAX_STEP`, or a full `MAX_STEP` downhill where h' ≤ 0 (not a minimum yet).
+/// Inlined as the three copies it replaced were: `closest_point_in_frame` runs once per roller
+/// and angle, and called it cost 0.1 % more instructions over a whole check.
+#[inline]
 fn newton_step(h: f64, dh: f64) -> f64 {
     if dh > 0.0 {
         (-h / dh).clamp(-MAX_STEP, MAX_STEP)

@@ -92,6 +92,42 @@ pub struct Extreme {
     pub at: Place,
 }
 
+/// Whose results a quantity is read from: a scene's, or one disc's of it.
+#[derive(Clone, Copy)]
+pub struct Of<'a> {
+    /// The scene's results: its crank angles, and with `disc` None the reducer's curves and
+    /// scalars and its only disc's (`SceneResult::only_disc`).
+    pub r: &'a SceneResult,
+    /// One disc of the scene, read alone.
+    pub disc: Option<&'a DiscResult>,
+}
+
+impl<'a> Of<'a> {
+    /// `q`'s rows in these results (`Quantity::rows`, `Quantity::disc_rows`).
+    pub fn rows(&self, q: &Quantity) -> Option<Rows<'a>> {
+        match self.disc {
+            None => q.rows(self.r),
+            Some(d) => q.disc_rows(d),
+        }
+    }
+
+    /// `q`'s curves in these results (`Quantity::curves`, `Quantity::disc_curves`).
+    pub fn curves(&self, q: &Quantity) -> Option<Curves> {
+        match self.disc {
+            None => q.curves(self.r),
+            Some(d) => q.disc_curves(d),
+        }
+    }
+
+    /// `q`'s scalar in these results (`Quantity::scalar`, `Quantity::disc_scalar`).
+    pub fn scalar(&self, q: &Quantity) -> Option<Extreme> {
+        match self.disc {
+            None => q.scalar(self.r),
+            Some(d) => q.disc_scalar(d, &self.r.crank_rad),
+        }
+    }
+}
+
 /// Where a quantity is read from, which makes it a disc's or the reducer's
 /// (`Quantity::of_reducer`). A scalar's reader takes the run's crank angles beside the results,
 /// to say where its extreme occurs.

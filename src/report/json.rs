@@ -17,7 +17,7 @@ use crate::engine::optimise::StudyResult;
 use crate::engine::summary::SceneSummary;
 use crate::engine::verdict::{Check, CheckKind};
 use crate::error::Result;
-use crate::model::quantity::{self as q, Extreme, Quantity, QUANTITIES};
+use crate::model::quantity::{self as q, Extreme, Of, Quantity, QUANTITIES};
 use crate::model::results::{
     ClearanceSweep, DiscResult, EfficiencyCurves, LoadedSweep, MinCoverage, SceneResult,
     TorsionCompliances,
@@ -123,23 +123,14 @@ pub struct MinClearanceOver {
 /// `Quantity::curves` gives (the registry's units: the document converts nothing of its
 /// own), every scalar too; beside them the entries that are no registry quantity (`Extra`).
 pub struct SceneDoc<'a> {
-    r: &'a SceneResult,
-    /// Whose results the document writes.
+    /// Whose results the document writes: the scene's, or one disc's alone (`discs`).
     of: Of<'a>,
+    /// Whether it begins with the scene's name and crank angles (not in a duty bin's run, nor
+    /// in a disc's document).
+    named: bool,
     /// The scene's scalars as its summary computed them (`SceneSummary::scalars`); without
     /// one (a disc's document, a duty bin's run) each is read from the results.
     scalars: Option<&'a [(&'static Quantity, Extreme)]>,
-}
-
-/// Whose results a scene's document writes.
-#[derive(Clone, Copy)]
-enum Of<'a> {
-    /// The scene's: the reducer's curves, and its disc's with one disc
-    /// (`SceneResult::only_disc`); with the scene's name and crank angles when `named` (not in a
-    /// duty bin's run).
-    Scene { named: bool },
-    /// One disc's alone, without the scene's name and angles (`discs`).
-    Disc(&'a DiscResult),
 }
 
 /// One entry, or a group of entries, of a scene's document.
@@ -331,7 +322,10 @@ impl<'a> DutyDoc<'a> {
                     mean_efficiency: q::MEAN_EFFICIENCY
                         .scalar(&b.result)
                         .map(|e| Finite(e.value)),
-                    results: SceneDoc::without_summary(&b.result, Of::Scene { named: false }),
+                    results: SceneDoc::without_summary(Of {
+                        r: &b.result,
+                        disc: None,
+                    }),
                 })
                 .collect(),
         })
@@ -452,34 +446,33 @@ fn degrees(crank_rad: &[f64]) -> Vec<Finite> {
 impl<'a> SceneDoc<'a> {
     /// The scene's document; `summary` is its summary, when there is one.
     pub fn new(r: &'a SceneResult, summary: Option<&'a SceneSummary>) -> Self {
-        let of = Of::Scene { named: true };
-        let scalars = summary.map(|s| s.scalars.as_slice());
-        SceneDoc { r, of, scalars }
+        SceneDoc {
+            of: Of { r, disc: None },
+            named: true,
+            scalars: summary.map(|s| s.scalars.as_slice()),
+        }
     }
 
     /// A document without a summary, its scalars read from the results: a duty bin's run
     /// (the scene's document without its name and angles) or one disc's.
-    fn without_summary(r: &'a SceneResult, of: Of<'a>) -> Self {
+    fn without_summary(of: Of<'a>) -> Self {
         SceneDoc {
-            r,
             of,
+            named: false,
             scalars: None,
         }
     }
 
     /// The disc whose curves the document writes: one disc's alone, or the scene's only disc.
     fn disc(&self) -> Option<&'a DiscResult> {
-        match self.of {
-            Of::Scene { .. } => self.r.only_disc(),
-            Of::Disc(d) => Some(d),
-        }
+        self.of.disc.or_else(|| self.of.r.only_disc())
     }
 
     /// The losses the document writes: the reducer's in the scene's, a disc's own in its.
     fn efficiency(&self) -> Option<&'a EfficiencyCurves> {
-        match self.of {
-            Of::Scene { .. } => self.r.reducer.efficiency.as_ref(),
-            Of::Disc(d) => d.efficiency.as_ref(),
+        match self.of.disc {
+            None => self.of.r.reducer.efficiency.as_ref(),
+            Some(d) => d.efficiency.as_ref(),
         }
     }
 
@@ -490,11 +483,7 @@ impl<'a> SceneDoc<'a> {
         quantity: &'static Quantity,
         extremes_keys: Option<(&'static str, &'static str)>,
     ) -> std::result::Result<(), M::Error> {
-        let rows = match self.of {
-            Of::Scene { .. } => quantity.rows(self.r),
-            Of::Disc(d) => quantity.disc_rows(d),
-        };
-        let Some(rows) = rows else {
+        let Some(rows) = self.of.rows(quantity) else {
             return Ok(());
         };
         let row = rows.iter().next().unwrap_or_default();
@@ -514,11 +503,7 @@ impl<'a> SceneDoc<'a> {
     }
 
     fn extra<M: CurveMap>(&self, map: &mut M, extra: Extra) -> std::result::Result<(), M::Error> {
-        let r = self.r;
-        let (scene, named) = match self.of {
-            Of::Scene { named } => (true, named),
-            Of::Disc(_) => (false, false),
-        };
+        let (r, scene, named) = (self.of.r, self.of.disc.is_none(), self.named);
         let loaded = self.disc().map(|d| &d.loaded);
         let clearance = self.disc().and_then(|d| d.clearance.as_ref());
         let efficiency = self.efficiency();
@@ -603,7 +588,7 @@ impl<'a> SceneDoc<'a> {
                 "discs",
                 (scene && r.names_discs()).then(|| {
                     (r.discs.iter())
-                        .map(|d| SceneDoc::without_summary(r, Of::Disc(d)))
+                        .map(|d| SceneDoc::without_summary(Of { r, disc: Some(d) }))
                         .collect::<Vec<_>>()
                 }),
             ),
@@ -643,10 +628,7 @@ impl SceneDoc<'_> {
         map: &mut M,
         quantity: &'static Quantity,
     ) -> std::result::Result<(), M::Error> {
-        let value = match self.of {
-            Of::Scene { .. } => quantity.scalar(self.r),
-            Of::Disc(d) => quantity.disc_scalar(d, &self.r.crank_rad),
-        };
+        let value = self.of.scalar(quantity);
         entry(map, quantity.key, value.map(|e| Finite(e.value)))
     }
 
@@ -700,7 +682,7 @@ impl SceneDoc<'_> {
     fn write_from_back(&self, ends: &Ends) -> serde_json::Result<Back> {
         // Room for ten curves' numbers at each angle without growing (25 bytes a number at
         // most): the back half of a scene of ten rollers or pins.
-        let mut text = Text::in_memory(250 * self.r.crank_rad.len());
+        let mut text = Text::in_memory(250 * self.of.r.crank_rad.len());
         let mut segments = Vec::new();
         for i in ends.back() {
             let start = text.bytes().len();
@@ -714,9 +696,7 @@ impl SceneDoc<'_> {
     /// named scene (its first field, `Extra::Name`, always written) of `LONG_SCENE` crank
     /// angles or more, where the run may use more than one thread (`RAYON_NUM_THREADS`).
     fn is_long(&self) -> bool {
-        matches!(self.of, Of::Scene { named: true })
-            && self.r.crank_rad.len() >= LONG_SCENE
-            && rayon::current_num_threads() > 1
+        self.named && self.of.r.crank_rad.len() >= LONG_SCENE && rayon::current_num_threads() > 1
     }
 }
 

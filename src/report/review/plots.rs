@@ -7,7 +7,7 @@
 //! centred on the curve. More than `MAX_CURVES` curves of one quantity (one per roller) are
 //! drawn as their envelope over the parts, with a part × crank heat map beside it.
 
-use crate::model::quantity::{self as q, Curves, Quantity, QUANTITIES, SPREADS};
+use crate::model::quantity::{self as q, Curves, Of, Quantity, QUANTITIES, SPREADS};
 use crate::model::results::{DiscResult, SceneResult};
 use crate::numeric::{extremes, with_unit};
 use crate::report::place;
@@ -266,29 +266,6 @@ pub fn scene_plots(
         .iter()
         .flat_map(|def| plot(spec, of, def, prefix, at_speed))
         .collect()
-}
-
-/// The results a plot draws: the scene's, or one disc's of it.
-#[derive(Clone, Copy)]
-struct Of<'a> {
-    r: &'a SceneResult,
-    disc: Option<&'a DiscResult>,
-}
-
-impl Of<'_> {
-    fn curves(&self, q: &Quantity) -> Option<Curves> {
-        match self.disc {
-            None => q.curves(self.r),
-            Some(d) => q.disc_curves(d),
-        }
-    }
-
-    fn scalar(&self, q: &Quantity) -> Option<crate::model::quantity::Extreme> {
-        match self.disc {
-            None => q.scalar(self.r),
-            Some(d) => q.disc_scalar(d, &self.r.crank_rad),
-        }
-    }
 }
 
 /// One plot (and its heat map when the curves are too many), or nothing when the scene did not

@@ -6,7 +6,7 @@ use cycloid::model::quantity::{Curves, Quantity, QUANTITIES};
 use cycloid::model::GoldenTolerance;
 use std::path::Path;
 
-use crate::common::{cycloid_here, cycloid_with, PaperSpec, Scratch};
+use crate::common::{cycloid_here, cycloid_with, scene_item, PaperSpec, Scratch};
 
 /// A fresh scratch directory for one test.
 fn scratch(name: &str) -> Scratch {
@@ -520,6 +520,53 @@ fn compare_wraps_angles_and_handles_infinite_values() {
         !compare(&inf, &xs, &finite, tol, (None, None), None)
             .unwrap()
             .passed
+    );
+}
+
+/// The crank-bearing force's angle is a direction: a golden of it written a whole turn off
+/// (every value + 360°) is the same curve, and `check` passes it through the whole path (spec,
+/// run, registry, comparison); half a turn off is the opposite direction and fails.
+#[test]
+fn a_bearing_angle_golden_a_whole_turn_off_is_the_same_curve() {
+    let dir = scratch("bearing-angle-turn");
+    let spec = dir.join("spec.yaml");
+    let crank = "{ from_deg: 0.0, to_deg: 36.0, steps: 90 }";
+    let text = PaperSpec::new()
+        .scenes(&scene_item(
+            "rated",
+            10.0,
+            crank,
+            "clearance, roller_contact, bearing",
+        ))
+        .with(
+            "golden:\n  - scene: rated\n    quantity: bearing_angle_deg\n    \
+             file: golden/angle.csv\n    tolerance: { abs: 0.001, rel: 0.0 }\n",
+        )
+        .text()
+        .to_string();
+    write(&spec, &text);
+    let (code, out, err) = run(&["bless", p(&spec)]);
+    assert_eq!(code, 0, "{out}{err}");
+    let csv = dir.join("golden/angle.csv");
+    let blessed = std::fs::read_to_string(&csv).unwrap();
+    let turned = |by: f64| -> String {
+        let mut lines = blessed.lines();
+        let mut text = format!("{}\n", lines.next().unwrap());
+        for line in lines {
+            let (crank, angle) = line.split_once(',').unwrap();
+            let angle: f64 = angle.parse().unwrap();
+            text += &format!("{crank},{}\n", angle + by);
+        }
+        text
+    };
+    write(&csv, &turned(360.0));
+    let (code, out, err) = run(&["check", p(&spec)]);
+    assert_eq!(code, 0, "a whole turn off is the same angle:\n{out}{err}");
+    write(&csv, &turned(180.0));
+    let (code, out, err) = run(&["check", p(&spec)]);
+    assert_eq!(
+        code, 1,
+        "half a turn off is the opposite direction:\n{out}{err}"
     );
 }
 

@@ -517,6 +517,44 @@ fn one_disc_at_zero_torque_holds_its_preload_on_the_compliant_bearing() {
     }
 }
 
+/// The same preloaded disc on a bearing a thousand times softer (kb = 1e3 N/mm, the softest
+/// the stiffness property of `equilibrium.rs` draws) under 1 N·m: Newton on the centre offset
+/// meets kinks of R(u) here (a contact closing at the answer) and at some angles hands over to
+/// the roots along the principal directions (`compliant_bearing::directional_roots`), which no
+/// other test or shipped spec reaches. Every angle must still solve to the documented 1e-9
+/// relative residual of the paper's Eqs. 12–14, hold the bearing law |Fb| = kb·|u| (as above,
+/// rounding only: 1e-12), and keep the disc centre in the mesh (|u| < e).
+#[test]
+fn a_soft_compliant_bearing_under_preload_and_load_balances_at_every_angle() {
+    let mut spec = cycloid::spec::load("specs/hard/preload-compliant-bearing.yaml").unwrap();
+    let kb = 1e3;
+    spec.scenes[0].bearing_stiffness_n_per_mm = Some(kb);
+    spec.scenes[0].output_torque_nmm = 1e3;
+    let scene = &spec.scenes[0];
+    let plan = Plan::for_scene(scene);
+    let model = Model::new(&spec.design, &spec.modification, scene, &plan);
+    let swept = sweep_discs(&Discs::new(&model, 1), &scene.crank_rad, false, &Silent)
+        .unwrap_or_else(|f| panic!("{f:?}"));
+    let bearing = swept.discs[0].bearing.as_ref().unwrap();
+    let e = spec.design.eccentricity_mm;
+    for (k, ((&f, &u), &residual)) in (bearing.force_n.iter())
+        .zip(&bearing.deflection_mm)
+        .zip(&bearing.residual)
+        .enumerate()
+    {
+        assert!(residual <= 1e-9, "angle {k}: residual {residual:e}");
+        assert!(
+            (f - kb * u).abs() <= 1e-12 * f,
+            "angle {k}: |Fb| = {f} N, kb·|u| = {} N",
+            kb * u
+        );
+        assert!(
+            u < e,
+            "angle {k}: the centre moved {u} mm, beyond e = {e} mm"
+        );
+    }
+}
+
 /// A disc that floats (no share of the torque) reports the lag of the limit T → 0⁺, as one
 /// disc at zero torque does (`rigid_bearing::touching`): the nearest contact in the load direction,
 /// at the near side of its backlash. At 1e-6 N·m on 11 rollers in exact geometry the discs

@@ -206,7 +206,7 @@ pub fn optimisation(spec: &Spec, results: &[crate::engine::optimise::StudyResult
                 passed: passes(o.objective, limit, Bound::Max),
                 at: Evidence::Optimum(
                     (study.variables.iter())
-                        .map(|v| (v.kind.key(), v.kind.to_spec_unit(v.kind.get(&o.point))))
+                        .map(|v| (v.kind.key(), v.kind.spec_value(&o.point)))
                         .collect(),
                 ),
             });

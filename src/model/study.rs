@@ -127,6 +127,11 @@ impl VariableKind {
             _ => value,
         }
     }
+
+    /// The value of this variable at a point, in the spec's unit (`get`, `to_spec_unit`).
+    pub fn spec_value(self, p: &Point) -> f64 {
+        self.to_spec_unit(self.get(p))
+    }
 }
 
 /// A variable of a study and its bounds, engine units (mm, or rad for the rotation).

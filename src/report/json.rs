@@ -26,7 +26,6 @@ use crate::model::Study;
 use crate::numeric::extremes;
 use crate::report::explain::{hysteresis, torsion_compliances, torsion_law_note};
 use crate::report::json_text::{self, Object, Text};
-use crate::report::optimisation::spec_value;
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
@@ -979,7 +978,7 @@ impl<'a> StudyDoc<'a> {
             objective_value: o.objective.is_finite().then_some(Finite(o.objective)),
             variables: Pairs(
                 (study.variables.iter())
-                    .map(|v| (v.kind.key(), Finite(spec_value(v, o))))
+                    .map(|v| (v.kind.key(), Finite(v.kind.spec_value(&o.point))))
                     .collect(),
             ),
             constraints: o

@@ -6,7 +6,7 @@ use crate::engine::optimise::local::StopReason;
 use crate::engine::optimise::problem::Evaluation;
 use crate::engine::optimise::verify::Verification;
 use crate::engine::optimise::{Found, StudyResult};
-use crate::model::{Study, Variable, VariableKind};
+use crate::model::{Study, VariableKind};
 use crate::numeric::{number, with_unit};
 use crate::report::place::counted;
 use crate::report::review::plots::capitalised;
@@ -34,16 +34,11 @@ fn objective_label(study: &Study) -> String {
         .join(" + ")
 }
 
-/// A variable's value at point `e`, in the spec's unit.
-pub fn spec_value(v: &Variable, e: &Evaluation) -> f64 {
-    v.kind.to_spec_unit(v.kind.get(&e.point))
-}
-
 fn variables(study: &Study, e: &Evaluation) -> String {
     study
         .variables
         .iter()
-        .map(|v| format!("{} {:.6}", v.kind.key(), spec_value(v, e)))
+        .map(|v| format!("{} {:.6}", v.kind.key(), v.kind.spec_value(&e.point)))
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -316,7 +311,7 @@ pub fn map_csv(study: &Study, cells: &[Evaluation]) -> String {
     out += "objective,feasible,min_clearance_mm,tip_clearance_mm\n";
     for e in cells {
         for v in vars.iter().take(2) {
-            out += &format!("{},", spec_value(v, e));
+            out += &format!("{},", v.kind.spec_value(&e.point));
         }
         let objective = if e.objective.is_finite() {
             format!("{}", e.objective)
@@ -367,7 +362,12 @@ pub fn objective_axis_label(study: &Study) -> String {
 /// A point of the study in the map's plane: its first two variables in the spec's units (0 for
 /// a variable the study does not have).
 fn xy(study: &Study, e: &Evaluation) -> (f64, f64) {
-    let at = |k: usize| study.variables.get(k).map_or(0.0, |v| spec_value(v, e));
+    let at = |k: usize| {
+        study
+            .variables
+            .get(k)
+            .map_or(0.0, |v| v.kind.spec_value(&e.point))
+    };
     (at(0), at(1))
 }
 
@@ -514,7 +514,7 @@ fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) ->
             format!(
                 "{} held at the optimum's {}",
                 v.kind.key(),
-                number(spec_value(v, &r.optimum))
+                number(v.kind.spec_value(&r.optimum.point))
             )
         })
         .collect();
@@ -578,7 +578,11 @@ fn listed(r: &StudyResult) -> impl Iterator<Item = (&str, &Evaluation)> {
 fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
     let point = |label: &str, e: &Evaluation| StudyPoint {
         label: label.to_string(),
-        variables: study.variables.iter().map(|v| spec_value(v, e)).collect(),
+        variables: study
+            .variables
+            .iter()
+            .map(|v| v.kind.spec_value(&e.point))
+            .collect(),
         objective: e.failure.is_none().then_some(e.objective),
         failure: e.failure.clone(),
         feasible: e.feasible(),

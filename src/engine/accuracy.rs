@@ -646,8 +646,8 @@ pub fn run(
     let layout = layout(spec, scene, options);
     progress(Event::Started(&layout));
     let plan = Plan::for_scene(scene);
-    let clearance_plan = scene::part(&plan, |e| e == Effect::Clearance);
-    let loaded_plan = scene::part(&plan, |e| e != Effect::Clearance);
+    let clearance_plan = plan.part(|e| e == Effect::Clearance);
+    let loaded_plan = plan.part(|e| e != Effect::Clearance);
     let default_tol = Settings::default().rel_tol;
     // One run of `s` at `rel_tol`, its loaded effects and (with `clearance`) its clearance
     // timed apart.

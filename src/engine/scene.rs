@@ -315,29 +315,9 @@ fn clearances(
     (scene, plan): (&Scene, &Plan),
     options: &RunOptions,
 ) -> Result<Vec<ClearanceSweep>> {
-    let alone = part(plan, |e| e == Effect::Clearance);
+    let alone = plan.part(|e| e == Effect::Clearance);
     let discs = run_one(design, m, (scene, &alone), options, None)?.discs;
     Ok(discs.into_iter().filter_map(|d| d.clearance).collect())
-}
-
-/// The plan with only the effects `keep` accepts (and their details).
-pub(crate) fn part(plan: &Plan, keep: impl Fn(Effect) -> bool) -> Plan {
-    Plan {
-        duty: plan.duty,
-        scene: plan.scene.clone(),
-        effects: plan
-            .effects
-            .iter()
-            .filter(|p| keep(p.effect))
-            .cloned()
-            .collect(),
-        details: plan
-            .details
-            .iter()
-            .filter(|p| keep(p.detail.effect()))
-            .cloned()
-            .collect(),
-    }
 }
 
 /// The clearance of a disc at crank phase `shift` over the scene's angles, with the smallest

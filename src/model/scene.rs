@@ -212,6 +212,22 @@ impl Plan {
         Plan::asked(scene, effects.iter().map(|&e| (e, "asked for")))
     }
 
+    /// The plan with only the effects `keep` accepts (and their details).
+    pub fn part(&self, keep: impl Fn(Effect) -> bool) -> Plan {
+        Plan {
+            duty: self.duty,
+            scene: self.scene.clone(),
+            effects: (self.effects.iter())
+                .filter(|p| keep(p.effect))
+                .cloned()
+                .collect(),
+            details: (self.details.iter())
+                .filter(|p| keep(p.detail.effect()))
+                .cloned()
+                .collect(),
+        }
+    }
+
     /// The plan of the effects `asked`, each with why, and what they need, for the scene named
     /// `scene`: each effect once, in `Effect`'s order; no details, no duty cycle.
     fn asked(scene: &str, asked: impl Iterator<Item = (Effect, &'static str)>) -> Plan {

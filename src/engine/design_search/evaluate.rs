@@ -170,10 +170,13 @@ pub fn full(req: &Requirements, c: &Candidate) -> Result<Evaluation> {
     let (failures, objectives) = match check(&spec) {
         Ok((summaries, checks)) => {
             let failures = failed(&checks)?;
-            match failures.is_empty() {
-                true => (failures, objectives(req, c, &summaries)?),
-                false => (failures, Vec::new()),
-            }
+            // Objectives only of a candidate that meets every requirement.
+            let objectives = if failures.is_empty() {
+                objectives(req, c, &summaries)?
+            } else {
+                Vec::new()
+            };
+            (failures, objectives)
         }
         Err(e) if e.kind == ErrorKind::Computation => (vec![torque(e)], Vec::new()),
         Err(e) => return Err(e),

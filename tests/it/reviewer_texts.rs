@@ -774,3 +774,35 @@ fn the_design_table_states_the_friction_inputs() {
     assert!(!plain.contains("friction"), "{plain}");
     assert!(!plain.contains("heat"), "{plain}");
 }
+
+/// Every figure caption of a review ends with a full stop, as the page's other prose does: the
+/// reviews of the specs with the torsion curve, the efficiency plots and two discs' scene plots
+/// (three captions there once stopped without one).
+#[test]
+fn every_figure_caption_ends_with_a_full_stop() {
+    let dir = Scratch::new("captions");
+    for (k, spec) in ["reducer-torsion", "reducer-efficiency", "reducer-two-discs"]
+        .iter()
+        .enumerate()
+    {
+        let out = dir.join(&format!("review-{k}"));
+        let run = cycloid_here(&[
+            "check",
+            &format!("specs/{spec}.yaml"),
+            "--report",
+            out.to_str().unwrap(),
+        ]);
+        assert!(matches!(run.code, Some(0 | 1)), "{run:?}");
+        let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+        let captions: Vec<&str> = (html.split("<figcaption>").skip(1))
+            .map(|c| &c[..c.find("</figcaption>").unwrap()])
+            .collect();
+        assert!(!captions.is_empty(), "{spec}: no figure");
+        for c in captions {
+            assert!(
+                c.ends_with('.'),
+                "{spec}: a caption without its full stop: {c}"
+            );
+        }
+    }
+}

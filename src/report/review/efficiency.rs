@@ -193,7 +193,7 @@ pub(super) fn section(
             file,
             format!("Efficiency against torque, scene {}", s.name),
             format!(
-                "{} torques from {} to {} N·m; the scene's {} N·m marked (diamond){}",
+                "{} torques from {} to {} N·m; the scene's {} N·m marked (diamond){}.",
                 c.torque_nmm.len(),
                 signed(number(units::nm(
                     c.torque_nmm.first().copied().unwrap_or(0.0)
@@ -215,7 +215,7 @@ pub(super) fn section(
         figures.push((
             "efficiency-losses.svg".into(),
             "Power lost on each path".into(),
-            "The mean over each scene's crank angles at its input speed".into(),
+            "The mean over each scene's crank angles at its input speed.".into(),
         ));
     }
     let model = spec.design.friction.map_or("none", |f| f.model.name());

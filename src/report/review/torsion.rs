@@ -231,7 +231,7 @@ pub(super) fn section(
                 ±100 % of the rated torque) marked ◇; at T = 0 the dead band is the vertical \
                 step from γ(0⁻) to γ(0⁺). When the band is wider than twice the twist beyond \
                 it, the y axis is cut across the band (zigzags, the band's width written in \
-                the cut), so that the slope beyond it shows"))
+                the cut), so that the slope beyond it shows."))
             (figures_table(r, t))
         };
         out.push(Section::new(

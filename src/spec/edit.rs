@@ -4,6 +4,7 @@
 //! --write` of a form error), a measured profile removed (`tolerance --write-sample`). Values are printed in Rust's shortest round-trip form, and every
 //! result is parsed again and must give back exactly what was written.
 
+use super::locate::line_of;
 use super::locate_offset;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::{Crowning, Deviations, Modification};
@@ -99,8 +100,7 @@ fn insert_under(text: &mut String, at: usize, key: &str, value: &str) {
     if let Some(brace) = text[at..line_end].find('{') {
         text.insert_str(at + brace + 1, &format!(" {key}: {value},"));
     } else {
-        let line_start = text[..at].rfind('\n').map_or(0, |n| n + 1);
-        let column = at - line_start;
+        let (_, column) = line_of(text, at);
         // The indent of the mapping's own keys where it has any (a spec may indent by 4).
         let child = text[line_end..]
             .lines()
@@ -391,12 +391,6 @@ fn block(d: &Deviations, indent: usize) -> String {
         }
     }
     s
-}
-
-/// The start of the line holding `offset`, and the column of `offset` in it.
-fn line_of(text: &str, offset: usize) -> (usize, usize) {
-    let start = text[..offset].rfind('\n').map_or(0, |n| n + 1);
-    (start, offset - start)
 }
 
 /// The end of the block whose key line starts at `start` with its key at `column`: the start

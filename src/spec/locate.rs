@@ -83,7 +83,7 @@ fn find_key(text: &str, from: usize, key: &str) -> Option<usize> {
             .next_back()
             .is_none_or(|c| !(c.is_alphanumeric() || c == '_'));
         let after = text[end..].trim_start_matches(' ');
-        let line_start = text[..at].rfind('\n').map_or(0, |n| n + 1);
+        let (line_start, _) = line_of(text, at);
         let in_comment = text[line_start..at].contains('#');
         if before_ok && after.starts_with(':') && !in_comment {
             return Some(at);
@@ -175,8 +175,7 @@ fn find_flow_item(text: &str, open: usize, index: usize) -> Option<usize> {
 
 /// Item `index` of the block sequence on the lines after the key at `from`.
 fn find_block_item(text: &str, from: usize, line_end: usize, index: usize) -> Option<usize> {
-    let line_start = text[..from].rfind('\n').map_or(0, |n| n + 1);
-    let key_indent = from - line_start;
+    let (_, key_indent) = line_of(text, from);
     let mut indent: Option<usize> = None;
     let mut count = 0;
     let mut offset = (line_end + 1).min(text.len());
@@ -216,8 +215,12 @@ fn find_block_item(text: &str, from: usize, line_end: usize, index: usize) -> Op
 }
 
 pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset];
-    let line = before.matches('\n').count() + 1;
-    let column = offset - before.rfind('\n').map_or(0, |n| n + 1) + 1;
-    (line, column)
+    let line = text[..offset].matches('\n').count() + 1;
+    (line, line_of(text, offset).1 + 1)
+}
+
+/// The start of the line holding `offset`, and the column of `offset` in it (from 0).
+pub(super) fn line_of(text: &str, offset: usize) -> (usize, usize) {
+    let start = text[..offset].rfind('\n').map_or(0, |n| n + 1);
+    (start, offset - start)
 }

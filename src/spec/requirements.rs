@@ -49,7 +49,7 @@ fn non_negative(key: &str, value: f64) -> Result<f64> {
     }
 }
 
-/// A `[lower, upper]` range of finite numbers, lower ≤ upper; `positive`: lower > 0.
+/// A `[lower, upper]` range of finite numbers, lower ≤ upper; `positive_only`: lower > 0.
 fn range(key: &str, raw: &[f64], positive_only: bool) -> Result<Range> {
     let &[lower, upper] = raw else {
         return Err(Error::invalid(
@@ -360,28 +360,21 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
     }
     let s = &raw.search;
     let zero = [0.0, 0.0];
-    let continuous = Continuous {
-        eccentricity_mm: range("search.eccentricity_mm", &s.eccentricity_mm, true)?,
-        roller_circle_radius_mm: range(
-            "search.roller_circle_radius_mm",
-            &s.roller_circle_radius_mm,
-            true,
-        )?,
-        roller_radius_mm: range("search.roller_radius_mm", &s.roller_radius_mm, true)?,
-        face_width_mm: range("search.face_width_mm", &s.face_width_mm, true)?,
-        pin_circle_radius_mm: range("search.pin_circle_radius_mm", &s.pin_circle_radius_mm, true)?,
-        pin_radius_mm: range("search.pin_radius_mm", &s.pin_radius_mm, true)?,
-        shift_mm: range(
-            "search.shift_mm",
-            s.shift_mm.as_deref().unwrap_or(&zero),
-            false,
-        )?,
-        equidistant_mm: range(
-            "search.equidistant_mm",
-            s.equidistant_mm.as_deref().unwrap_or(&zero),
-            false,
-        )?,
-    };
+    // In the order of `Continuous::KEYS`: six sizes (positive), then the two modifications.
+    let given: [(&[f64], bool); 8] = [
+        (&s.eccentricity_mm, true),
+        (&s.roller_circle_radius_mm, true),
+        (&s.roller_radius_mm, true),
+        (&s.face_width_mm, true),
+        (&s.pin_circle_radius_mm, true),
+        (&s.pin_radius_mm, true),
+        (s.shift_mm.as_deref().unwrap_or(&zero), false),
+        (s.equidistant_mm.as_deref().unwrap_or(&zero), false),
+    ];
+    let ranges = (Continuous::KEYS.iter().zip(given))
+        .map(|(key, (raw, positive_only))| range(&format!("search.{key}"), raw, positive_only))
+        .collect::<Result<Vec<_>>>()?;
+    let continuous = Continuous::from_array(ranges.try_into().expect("one range per key"));
     let duty_cycle = raw
         .duty_cycle
         .as_deref()

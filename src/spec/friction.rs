@@ -7,7 +7,7 @@ use super::raw::{
     RawBearingFriction, RawFriction, RawNoLoad, RawPinFriction, RawRollerFriction, RawThermal,
 };
 use super::values::{
-    finite, length, within, HEAT_TRANSFER_W_PER_M2K, HOUSING_AREA_M2, MAX_SPEED_RPM,
+    finite, length, named, within, HEAT_TRANSFER_W_PER_M2K, HOUSING_AREA_M2, MAX_SPEED_RPM,
 };
 use crate::error::{Error, Result};
 use crate::model::{
@@ -216,12 +216,8 @@ pub(crate) fn friction_at(
     roller: (f64, &str),
     pin: (f64, &str),
 ) -> Result<Friction> {
-    let model = match raw.model.as_deref() {
-        None => FrictionModel::Coupled,
-        Some(name) => name
-            .parse()
-            .map_err(|m| Error::invalid(format!("{base}.model"), m))?,
-    };
+    let model =
+        named(&format!("{base}.model"), raw.model.as_deref())?.unwrap_or(FrictionModel::Coupled);
     let no_load = match &raw.no_load_torque_nmm {
         None => NoLoadTorque::constant(0.0),
         Some(t) => no_load(&format!("{base}.no_load_torque_nmm"), t)?,

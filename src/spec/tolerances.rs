@@ -4,6 +4,7 @@
 //! rules of an as-built state, [`spec::deviations::check`](crate::spec::deviations::check)).
 
 use super::raw::RawTolerances;
+use super::values::named;
 use crate::error::{Error, Result};
 use crate::model::tolerances::{Distribution, Kind, PartTolerances, NORMAL_CUT_SIGMA};
 use crate::model::{
@@ -52,10 +53,8 @@ pub(crate) fn build(
             ));
         }
     }
-    let distribution = match raw.distribution.as_deref() {
-        None => Distribution::Normal,
-        Some(d) => d.parse().map_err(|m| invalid("distribution", m))?,
-    };
+    let distribution = named(&format!("{KEY}.distribution"), raw.distribution.as_deref())?
+        .unwrap_or(Distribution::Normal);
     let scene = super::scenes::scene_index(scenes, &raw.scene, &format!("{KEY}.scene"))?;
     super::scenes::refuse_duty(scenes, scene, &format!("{KEY}.scene"), "a tolerance study")?;
     if scenes[scene].geometry != GeometryMode::Exact {

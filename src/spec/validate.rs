@@ -6,7 +6,7 @@ use super::raw::*;
 use super::rules::rule;
 use super::scenes::{refuse_duty, refuse_first_order, scene_index};
 use super::validated::{Accuracy, Spec};
-use super::values::{disc_index, finite, length, not_blank, positive, zero_or_positive};
+use super::values::{disc_index, finite, length, named, not_blank, positive, zero_or_positive};
 use super::yaml::did_you_mean;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
@@ -19,13 +19,6 @@ use crate::model::study::{
 use crate::model::*;
 use crate::{numeric, units};
 use std::collections::BTreeMap;
-
-/// A named choice (`contact_law`, `geometry`), when given.
-fn named<T: std::str::FromStr<Err = String>>(key: &str, value: Option<&str>) -> Result<Option<T>> {
-    value
-        .map(|v| v.parse().map_err(|m| Error::invalid(key, m)))
-        .transpose()
-}
 
 /// Largest crank angle magnitude, degrees (~28,000 revolutions): an angle's rounding stays
 /// below 1e-9 rad.

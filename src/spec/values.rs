@@ -15,6 +15,17 @@ pub(super) fn finite(key: &str, value: f64) -> Result<f64> {
     }
 }
 
+/// A named choice (`contact_law`, `geometry`, `reducer.friction.model`,
+/// `tolerances.distribution`), when given.
+pub(super) fn named<T: std::str::FromStr<Err = String>>(
+    key: &str,
+    value: Option<&str>,
+) -> Result<Option<T>> {
+    value
+        .map(|v| v.parse().map_err(|m| Error::invalid(key, m)))
+        .transpose()
+}
+
 /// Refused at `key` unless `value` holds more than blanks (a name, a file path).
 pub(super) fn not_blank(key: &str, value: &str) -> Result<()> {
     if value.trim().is_empty() {

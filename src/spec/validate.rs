@@ -7,7 +7,7 @@ use super::rules::rule;
 use super::scenes::{refuse_duty, refuse_first_order, scene_index};
 use super::validated::{Accuracy, Spec};
 use super::values::{disc_index, finite, length, named, not_blank, positive, zero_or_positive};
-use super::yaml::did_you_mean;
+use super::yaml::{did_you_mean, unknown_key};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::accuracy as acc;
 use crate::model::quantity;
@@ -511,20 +511,11 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
 pub(super) fn limits(raw: &RawLimits) -> Result<Limits> {
     const OPTIMUM: &str = "optimum_max_objective";
     const RESOLVED: &str = "accuracy_resolved";
-    let known = || {
-        quantity::LIMITS
-            .iter()
-            .map(|l| l.key)
-            .chain([OPTIMUM, RESOLVED])
-    };
-    if let Some(unknown) = raw.keys().find(|k| known().all(|key| key != k.as_str())) {
-        let message = match did_you_mean(unknown, known()) {
-            Some(close) => format!("unknown key; did you mean `{close}`?"),
-            None => format!(
-                "unknown key; the keys here are {}",
-                known().collect::<Vec<_>>().join(", ")
-            ),
-        };
+    let known: Vec<&str> = (quantity::LIMITS.iter().map(|l| l.key))
+        .chain([OPTIMUM, RESOLVED])
+        .collect();
+    if let Some(unknown) = raw.keys().find(|k| !known.contains(&k.as_str())) {
+        let message = unknown_key(unknown, &known);
         return Err(Error::new(ErrorKind::Syntax, message).at_key(format!("limits.{unknown}")));
     }
     let bound = |key: &str| -> Result<Option<f64>> {

@@ -169,12 +169,7 @@ fn user_message(
         // serde_path_to_error's path already ends with the unknown key.
         let names = backticked(rest);
         let (unknown, known) = names.split_first().map_or(("", &[][..]), |(u, k)| (*u, k));
-        let message = match did_you_mean(unknown, known.iter().copied()) {
-            Some(close) => format!("unknown key; did you mean `{close}`?"),
-            None if known.is_empty() => "unknown key; this mapping takes no keys".to_string(),
-            None => format!("unknown key; the keys here are {}", known.join(", ")),
-        };
-        return (key_path.to_string(), message, None);
+        return (key_path.to_string(), unknown_key(unknown, known), None);
     }
     if let Some(rest) = message.strip_prefix("missing field ") {
         return (
@@ -214,6 +209,15 @@ fn user_message(
         .replace(", expected i64", ", expected an integer")
         .replace(", expected f64", ", expected a number");
     (key_path.to_string(), message, None)
+}
+
+/// The refusal of a key not among `known`: the closest known key, or all of them.
+pub(crate) fn unknown_key(unknown: &str, known: &[&str]) -> String {
+    match did_you_mean(unknown, known.iter().copied()) {
+        Some(close) => format!("unknown key; did you mean `{close}`?"),
+        None if known.is_empty() => "unknown key; this mapping takes no keys".to_string(),
+        None => format!("unknown key; the keys here are {}", known.join(", ")),
+    }
 }
 
 /// The closest of `known` to `unknown` when it is close enough to be a misspelling.

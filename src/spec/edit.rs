@@ -129,21 +129,16 @@ fn insert_value(text: &mut String, key: &str, value: &str) {
     }
 }
 
-/// The spec text with `m` as its modification.
+/// The spec text with `m` as its modification: `with_values` of its three keys, read back.
 pub fn with_modification(path: &str, text: &str, m: &Modification) -> Result<String> {
-    let mut out = text.to_string();
-    for (key, value) in [
+    let values = [
         ("shift_mm", m.shift_mm),
         ("equidistant_mm", m.equidistant_mm),
         ("rotation_deg", units::deg(m.rotation_rad)),
-    ] {
-        let value = format!("{value:?}");
-        match locate_offset(&out, &format!("modification.{key}")) {
-            Some(offset) => replace_value(&mut out, offset, &value),
-            None => insert_value(&mut out, key, &value),
-        }
-    }
-    let written = super::parse(path, &out)?;
+    ]
+    .map(|(key, value)| (format!("modification.{key}"), format!("{value:?}")));
+    let values = values.each_ref().map(|(k, v)| (k.as_str(), v.as_str()));
+    let (out, written) = with_values(path, text, &values)?;
     let back = written.modification;
     let same = back.shift_mm == m.shift_mm
         && back.equidistant_mm == m.equidistant_mm

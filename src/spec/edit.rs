@@ -167,22 +167,16 @@ pub fn with_crowning(path: &str, text: &str, crowning: &Crowning) -> Result<Stri
             "{path}: only a circular crowning is written back, not {crowning:?}"
         )));
     };
-    let mut out = text.to_string();
-    for (key, value) in [("radius_mm", radius_mm), ("start_mm", start_mm)] {
-        let value = format!("{value:?}");
-        match locate_offset(&out, &format!("modification.crowning.{key}")) {
-            Some(offset) => replace_value(&mut out, offset, &value),
-            None => {
-                let at = locate_offset(&out, "modification.crowning").ok_or_else(|| {
-                    refuse(format!(
-                        "{path}: no `modification.crowning` to write the crown into"
-                    ))
-                })?;
-                insert_under(&mut out, at, key, &value)
-            }
-        }
+    if locate_offset(text, "modification.crowning").is_none() {
+        return Err(refuse(format!(
+            "{path}: no `modification.crowning` to write the crown into"
+        )));
     }
-    let written = super::parse(path, &out)?;
+    // A key the mapping lacks is added to it (`add_key`).
+    let values = [("radius_mm", radius_mm), ("start_mm", start_mm)]
+        .map(|(key, value)| (format!("modification.crowning.{key}"), format!("{value:?}")));
+    let values = values.each_ref().map(|(k, v)| (k.as_str(), v.as_str()));
+    let (out, written) = with_values(path, text, &values)?;
     let back = written.scenes.first().map(|s| s.face.crowning);
     if back != Some(*crowning) {
         return Err(Error::new(

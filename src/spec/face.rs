@@ -14,19 +14,11 @@ use crate::numeric;
 /// far below what the Winkler model itself resolves.
 pub(crate) const MAX_FACE_SLICES: usize = 1000;
 
-/// `modification.crowning`, checked against the face width B: a circular crown's radius > 0
-/// and its flat half-length in [0, B/2); a logarithmic profile's load, end drop and load
-/// coefficient > 0 and its crowned fraction in (0, 1]. A key of the other kind is refused.
-pub(crate) fn crowning(raw: Option<&RawCrowning>, design: &Design) -> Result<Crowning> {
-    match raw {
-        Some(raw) => crowning_at("modification.crowning", raw, (design.face_width_mm, "")),
-        None => Ok(Crowning::None),
-    }
-}
-
-/// A crowning at `at` (`modification.crowning`, or a requirements file's `crowning`) by the
-/// rules of [`crowning`], its flat middle checked against the face width `face.0`, mm; `face.1`
-/// says which face width that is when it is not the design's own (empty: the design's).
+/// A crowning at `at` (`modification.crowning`, or a requirements file's `crowning`), checked
+/// against the face width B = `face.0`, mm (`face.1` says which face width that is when it is
+/// not the design's own; empty: the design's): a circular crown's radius > 0 and its flat
+/// half-length in [0, B/2); a logarithmic profile's load, end drop and load coefficient > 0
+/// and its crowned fraction in (0, 1]. A key of the other kind is refused.
 pub(crate) fn crowning_at(at: &str, raw: &RawCrowning, face: (f64, &str)) -> Result<Crowning> {
     let key = |k: &str| format!("{at}.{k}");
     let refuse_foreign = |names: &[(&str, bool)], kind: &str| -> Result<()> {

@@ -596,7 +596,10 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
             "a spec needs at least one scene".into(),
         ));
     }
-    let crowning = super::face::crowning(raw.modification.crowning.as_ref(), &design)?;
+    let crowning = (raw.modification.crowning.as_ref())
+        .map(|c| super::face::crowning_at("modification.crowning", c, (design.face_width_mm, "")))
+        .transpose()?
+        .unwrap_or_default();
     let written: Vec<(bool, bool)> = (raw.scenes.iter())
         .map(|s| (s.misalignment.is_some(), s.face_slices.is_some()))
         .collect();

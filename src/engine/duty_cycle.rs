@@ -60,37 +60,33 @@ pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
         .map(|(&w, b)| (w, b.bin.output_torque_nmm))
         .collect();
     let equivalent_torque_nmm = weighted_power_mean(&torques, 3.0);
-    let life = match design.crank_bearing {
-        Some(rating) => {
-            let loads: Option<Vec<Vec<f64>>> = bins
-                .iter()
-                .map(|b| bin_equivalent_loads(&b.result))
-                .collect();
-            loads.map_or_else(Vec::new, |loads| {
+    let loads: Option<Vec<Vec<f64>>> = bins
+        .iter()
+        .map(|b| bin_equivalent_loads(&b.result))
+        .collect();
+    let life = match (design.crank_bearing, loads) {
+        (Some(rating), Some(loads)) => (0..design.discs)
+            .map(|k| {
+                let pairs: Vec<(f64, f64)> = weights
+                    .iter()
+                    .zip(&loads)
+                    .map(|(&w, l)| (w, l[k]))
+                    .collect();
                 let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
-                (0..design.discs)
-                    .map(|k| {
-                        let pairs: Vec<(f64, f64)> = weights
-                            .iter()
-                            .zip(&loads)
-                            .map(|(&w, l)| (w, l[k]))
-                            .collect();
-                        let load = weighted_power_mean(&pairs, p);
-                        BearingLife {
-                            equivalent_load_n: load,
-                            life_h: Some(bearing_life::life_h(
-                                load,
-                                c,
-                                p,
-                                mean_speed_rpm,
-                                design.teeth,
-                            )),
-                        }
-                    })
-                    .collect()
+                let load = weighted_power_mean(&pairs, p);
+                BearingLife {
+                    equivalent_load_n: load,
+                    life_h: Some(bearing_life::life_h(
+                        load,
+                        c,
+                        p,
+                        mean_speed_rpm,
+                        design.teeth,
+                    )),
+                }
             })
-        }
-        None => Vec::new(),
+            .collect(),
+        _ => Vec::new(),
     };
     DutyCycle {
         contact_fatigue: crate::engine::duty_fatigue::lives(design, &bins),

@@ -75,12 +75,7 @@ impl<'a> ToleranceStudy<'a> {
         let params = tol::parameters(&tolerances, d.rollers, d.pins.count, d.discs);
         let scene = &spec.scenes[tolerances.scene];
         let plan = scene::plan(spec, scene, scene::Writes::default());
-        let keys = verdict::limits_for(&spec.limits, &plan);
-        let limits: Vec<_> = spec
-            .limits
-            .entries
-            .iter()
-            .filter(|l| keys.contains(&l.def.key))
+        let limits: Vec<_> = (verdict::limits_for(&spec.limits, &plan).into_iter())
             .map(|l| (l.def, l.value))
             .collect();
         if limits.is_empty() {

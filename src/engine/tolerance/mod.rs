@@ -105,15 +105,8 @@ impl<'a> ToleranceStudy<'a> {
     pub fn notes(&self) -> Vec<scene::Note> {
         let scene = &self.spec.scenes[self.tolerances.scene];
         let largest = self.tolerances.largest_draw_mm(tol::Kind::Eccentricity);
-        let preload = scene::pin_interference_mm(&self.spec.design, largest);
-        match (self.plan.has(crate::model::Effect::OutputPins), preload) {
-            (true, Some(depth)) => vec![scene::Note::PinsPreloaded {
-                scene: scene.name.clone(),
-                interference_mm: depth,
-                drawn: true,
-            }],
-            _ => Vec::new(),
-        }
+        let preload = scene::pins_preloaded(&self.spec.design, (scene, &self.plan), largest, true);
+        preload.into_iter().collect()
     }
 
     pub fn samples(&self) -> usize {

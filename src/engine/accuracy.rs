@@ -284,17 +284,25 @@ impl Rung {
         self.errors[q.index()]
     }
 
-    /// The quantities whose error exceeds its tolerance.
-    pub fn misses(&self, t: &LadderTolerances) -> Vec<LadderQuantity> {
-        LadderQuantity::ALL
-            .into_iter()
-            .filter(|&q| self.error(q).is_some_and(|e| !q.within(e, t)))
-            .collect()
-    }
-
     pub fn meets(&self, t: &LadderTolerances) -> bool {
-        self.misses(t).is_empty()
+        misses(&self.errors, t).is_empty()
     }
+}
+
+/// The quantities whose error (index: `LadderQuantity as usize`) exceeds its tolerance, each
+/// with its error in its unit.
+pub fn misses(
+    errors: &[Option<f64>; QUANTITIES],
+    t: &LadderTolerances,
+) -> Vec<(LadderQuantity, f64)> {
+    LadderQuantity::ALL
+        .into_iter()
+        .filter_map(|q| {
+            errors[q.index()]
+                .filter(|&e| !q.within(e, t))
+                .map(|e| (q, e))
+        })
+        .collect()
 }
 
 /// The cheapest of `rungs` that meets every tolerance: the least work (`Rung::work`) among

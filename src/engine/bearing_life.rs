@@ -12,17 +12,29 @@ use crate::model::results::UNBOUNDED_LIFE_H;
 /// P = (mean of F^p)^(1/p), N, over bearing forces `force_n` (N) sampled evenly over whole
 /// load cycles (the rectangle rule is then the mean of the periodic load). 0 without samples.
 pub fn equivalent_load(force_n: &[f64], exponent: f64) -> f64 {
-    // Scaled by the largest force so that F^p cannot overflow for any p (no samples: 0).
-    let largest = force_n.iter().fold(0.0f64, |m, f| m.max(f.abs()));
-    if largest == 0.0 {
+    let pairs: Vec<(f64, f64)> = force_n.iter().map(|&f| (1.0, f)).collect();
+    weighted_power_mean(&pairs, exponent)
+}
+
+/// The weighted power mean (Σ wᵢ·xᵢ^p / Σ wᵢ)^(1/p) of magnitudes `x` (≥ 0) with weights
+/// `w` (≥ 0, not all 0), scaled by the largest x so that x^p cannot overflow; 0 when every
+/// weighted x is 0.
+pub fn weighted_power_mean(pairs: &[(f64, f64)], p: f64) -> f64 {
+    let largest = pairs
+        .iter()
+        .filter(|(w, _)| *w > 0.0)
+        .fold(0.0f64, |m, (_, x)| m.max(x.abs()));
+    let weight: f64 = pairs.iter().map(|(w, _)| w).sum();
+    if largest == 0.0 || weight <= 0.0 {
         return 0.0;
     }
-    let mean = force_n
+    // A zero weight leaves its value out (its x may exceed the largest weighted one).
+    let sum: f64 = pairs
         .iter()
-        .map(|f| (f.abs() / largest).powf(exponent))
-        .sum::<f64>()
-        / force_n.len() as f64;
-    largest * mean.powf(1.0 / exponent)
+        .filter(|(w, _)| *w > 0.0)
+        .map(|(w, x)| w * (x.abs() / largest).powf(p))
+        .sum();
+    largest * (sum / weight).powf(1.0 / p)
 }
 
 /// The relative speed of the crank and the disc, rpm: n·(1 + 1/nc) for an input speed n.
@@ -45,5 +57,26 @@ pub fn life_h(load_n: f64, rating_n: f64, exponent: f64, input_rpm: f64, teeth: 
         hours
     } else {
         UNBOUNDED_LIFE_H
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::weighted_power_mean;
+
+    /// Equal values give that value whatever the weights; zero weights leave a value out; the
+    /// cube mean of (1, 2) with equal weights is (9/2)^(1/3); huge values do not overflow.
+    #[test]
+    fn the_weighted_power_mean_is_a_mean() {
+        assert_eq!(
+            weighted_power_mean(&[(0.3, 5.0), (0.7, 5.0)], 10.0 / 3.0),
+            5.0
+        );
+        assert_eq!(weighted_power_mean(&[(0.0, 9.0), (2.0, 4.0)], 3.0), 4.0);
+        let m = weighted_power_mean(&[(1.0, 1.0), (1.0, 2.0)], 3.0);
+        assert!((m - 4.5f64.cbrt()).abs() < 1e-15, "{m}");
+        let big = weighted_power_mean(&[(1.0, 1e300), (1.0, 1e300)], 10.0);
+        assert!((big / 1e300 - 1.0).abs() < 1e-15, "{big}");
+        assert_eq!(weighted_power_mean(&[(1.0, 0.0)], 3.0), 0.0);
     }
 }

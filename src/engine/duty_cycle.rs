@@ -24,31 +24,10 @@
 //!   entering in one cycle. A bin at a standstill moves no power: it has no efficiency (its run
 //!   keeps none, `combine`) and adds nothing. With no energy moved at all it is 1.
 
-use crate::engine::bearing_life;
+use crate::engine::bearing_life::{self, weighted_power_mean};
 use crate::engine::power_flow::PowerFlow;
 use crate::model::results::{BearingLife, DutyBinResult, DutyCycle, SceneResult};
 use crate::model::Design;
-
-/// The weighted power mean (Σ wᵢ·xᵢ^p / Σ wᵢ)^(1/p) of magnitudes `x` (≥ 0) with weights
-/// `w` (≥ 0, not all 0), scaled by the largest x so that x^p cannot overflow; 0 when every
-/// weighted x is 0.
-pub fn weighted_power_mean(pairs: &[(f64, f64)], p: f64) -> f64 {
-    let largest = pairs
-        .iter()
-        .filter(|(w, _)| *w > 0.0)
-        .fold(0.0f64, |m, (_, x)| m.max(x.abs()));
-    let weight: f64 = pairs.iter().map(|(w, _)| w).sum();
-    if largest == 0.0 || weight <= 0.0 {
-        return 0.0;
-    }
-    // A zero weight leaves its value out (its x may exceed the largest weighted one).
-    let sum: f64 = pairs
-        .iter()
-        .filter(|(w, _)| *w > 0.0)
-        .map(|(w, x)| w * (x.abs() / largest).powf(p))
-        .sum();
-    largest * (sum / weight).powf(1.0 / p)
-}
 
 /// Each bin's revolution weight sᵢ·nᵢ (rpm), in the bins' order.
 fn revolution_weights(bins: &[DutyBinResult]) -> Vec<f64> {
@@ -81,37 +60,33 @@ pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
         .map(|(&w, b)| (w, b.bin.output_torque_nmm))
         .collect();
     let equivalent_torque_nmm = weighted_power_mean(&torques, 3.0);
-    let life = match design.crank_bearing {
-        Some(rating) => {
-            let loads: Option<Vec<Vec<f64>>> = bins
-                .iter()
-                .map(|b| bin_equivalent_loads(&b.result))
-                .collect();
-            loads.map_or_else(Vec::new, |loads| {
+    let loads: Option<Vec<Vec<f64>>> = bins
+        .iter()
+        .map(|b| bin_equivalent_loads(&b.result))
+        .collect();
+    let life = match (design.crank_bearing, loads) {
+        (Some(rating), Some(loads)) => (0..design.discs)
+            .map(|k| {
+                let pairs: Vec<(f64, f64)> = weights
+                    .iter()
+                    .zip(&loads)
+                    .map(|(&w, l)| (w, l[k]))
+                    .collect();
                 let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
-                (0..design.discs)
-                    .map(|k| {
-                        let pairs: Vec<(f64, f64)> = weights
-                            .iter()
-                            .zip(&loads)
-                            .map(|(&w, l)| (w, l[k]))
-                            .collect();
-                        let load = weighted_power_mean(&pairs, p);
-                        BearingLife {
-                            equivalent_load_n: load,
-                            life_h: Some(bearing_life::life_h(
-                                load,
-                                c,
-                                p,
-                                mean_speed_rpm,
-                                design.teeth,
-                            )),
-                        }
-                    })
-                    .collect()
+                let load = weighted_power_mean(&pairs, p);
+                BearingLife {
+                    equivalent_load_n: load,
+                    life_h: Some(bearing_life::life_h(
+                        load,
+                        c,
+                        p,
+                        mean_speed_rpm,
+                        design.teeth,
+                    )),
+                }
             })
-        }
-        None => Vec::new(),
+            .collect(),
+        _ => Vec::new(),
     };
     DutyCycle {
         contact_fatigue: crate::engine::duty_fatigue::lives(design, &bins),
@@ -177,25 +152,4 @@ fn energy_efficiency(bins: &[DutyBinResult]) -> Option<f64> {
     } else {
         1.0
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::weighted_power_mean;
-
-    /// Equal values give that value whatever the weights; zero weights leave a value out; the
-    /// cube mean of (1, 2) with equal weights is (9/2)^(1/3); huge values do not overflow.
-    #[test]
-    fn the_weighted_power_mean_is_a_mean() {
-        assert_eq!(
-            weighted_power_mean(&[(0.3, 5.0), (0.7, 5.0)], 10.0 / 3.0),
-            5.0
-        );
-        assert_eq!(weighted_power_mean(&[(0.0, 9.0), (2.0, 4.0)], 3.0), 4.0);
-        let m = weighted_power_mean(&[(1.0, 1.0), (1.0, 2.0)], 3.0);
-        assert!((m - 4.5f64.cbrt()).abs() < 1e-15, "{m}");
-        let big = weighted_power_mean(&[(1.0, 1e300), (1.0, 1e300)], 10.0);
-        assert!((big / 1e300 - 1.0).abs() < 1e-15, "{big}");
-        assert_eq!(weighted_power_mean(&[(1.0, 0.0)], 3.0), 0.0);
-    }
 }

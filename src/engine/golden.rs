@@ -727,8 +727,8 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
             _ => now.to_string(),
         };
         let date = old("date", &date);
-        let reviewed = match (&change, meta_field(previous.as_ref(), "reviewed")) {
-            (BlessChange::Compared(c), Some(old)) if c.passed => old,
+        let reviewed = match (kept, meta_field(previous.as_ref(), "reviewed")) {
+            (true, Some(old)) => old,
             (_, Some(old)) if !old.starts_with("NOT REVIEWED") => format!(
                 "NOT REVIEWED since {date}: the curve moved outside its tolerance when blessed. \
                  Previous review: {old}"
@@ -763,9 +763,10 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
         let meta_text =
             serde_yaml::to_string(&meta).map_err(|e| Error::computation(e.to_string()))?;
         let meta_now = meta_path(&g.path);
-        let legacy = previous.as_ref().is_some_and(|(old, _)| *old != meta_now);
-        let meta_same =
-            !legacy && std::fs::read_to_string(&meta_now).is_ok_and(|old| old == meta_text);
+        // A review under the legacy name moves to the current one.
+        let legacy = previous.map(|(old, _)| old).filter(|old| *old != meta_now);
+        let meta_same = legacy.is_none()
+            && std::fs::read_to_string(&meta_now).is_ok_and(|old| old == meta_text);
         let written = match (kept, meta_same) {
             (true, true) => Written::Nothing,
             (true, false) => Written::Metadata,
@@ -777,8 +778,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
         if written != Written::Nothing {
             batch.add(&meta_now, meta_text.as_bytes())?;
         }
-        // A review under the legacy name moves to the current one.
-        if let Some((old, _)) = previous.filter(|(old, _)| *old != meta_now) {
+        if let Some(old) = legacy {
             batch.remove(&old);
         }
         out.push(Blessed {

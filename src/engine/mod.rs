@@ -27,9 +27,6 @@ pub mod missing;
 pub mod optimise;
 pub mod plausibility;
 pub mod power_flow;
-pub mod verdict;
-/// The progress observer (`crate::progress`), where the engine's callers look for it.
-pub use crate::progress;
 pub mod resolution;
 pub mod scene;
 pub mod shard_file;
@@ -38,3 +35,4 @@ pub mod summary;
 pub mod tolerance;
 pub mod torque_curve;
 pub mod torsion;
+pub mod verdict;

@@ -78,7 +78,7 @@ pub fn of_ladder(ladder: &Ladder, scene_angles: usize) -> Resolution {
         .filter(|r| !r.is_reference)
         .map(|r| StepsRung {
             steps: r.steps_per_period.round() as usize,
-            misses: misses(&ladder.layout.tolerances, |q| r.error(q)),
+            misses: accuracy::misses(&r.errors, &ladder.layout.tolerances),
         })
         .collect();
     Resolution {
@@ -133,16 +133,6 @@ fn rung(layout: &Layout, reference: &Outputs, steps: usize, outputs: Outputs) ->
     let (errors, _) = accuracy::errors(reference, &outputs, ratio, layout.periodic);
     StepsRung {
         steps,
-        misses: misses(&layout.tolerances, |q| errors[q as usize]),
+        misses: accuracy::misses(&errors, &layout.tolerances),
     }
-}
-
-fn misses(
-    t: &LadderTolerances,
-    error: impl Fn(LadderQuantity) -> Option<f64>,
-) -> Vec<(LadderQuantity, f64)> {
-    LadderQuantity::ALL
-        .into_iter()
-        .filter_map(|q| error(q).filter(|&e| !q.within(e, t)).map(|e| (q, e)))
-        .collect()
 }

@@ -524,12 +524,22 @@ pub enum Note {
     },
 }
 
-/// How far a crank longer than the pin holes allow presses every pin into its hole, mm:
-/// de − c for an eccentricity deviation de and hole clearance c (a hole's radius is pin + e +
-/// c, the pin's centre sits e + de from the hole's), when positive.
-pub fn pin_interference_mm(design: &Design, eccentricity_deviation_mm: f64) -> Option<f64> {
+/// The note of `scene` (run by `plan`, with the output pins) whose crank is longer than the
+/// pin holes allow: it presses every pin into its hole by de − c, mm, for an eccentricity
+/// deviation de and hole clearance c (a hole's radius is pin + e + c, the pin's centre sits
+/// e + de from the hole's), when positive; `drawn` as `Note::PinsPreloaded` says.
+pub fn pins_preloaded(
+    design: &Design,
+    (scene, plan): (&Scene, &Plan),
+    eccentricity_deviation_mm: f64,
+    drawn: bool,
+) -> Option<Note> {
     let depth = eccentricity_deviation_mm - design.pins.hole_clearance_mm;
-    (depth > 0.0).then_some(depth)
+    (plan.has(Effect::OutputPins) && depth > 0.0).then(|| Note::PinsPreloaded {
+        scene: scene.name.clone(),
+        interference_mm: depth,
+        drawn,
+    })
 }
 
 /// The notes of a spec's scenes, in scene order: a torsion scene's zero hysteresis, pins
@@ -550,16 +560,7 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
             });
         }
         let de = spec.design.deviations.eccentricity_mm;
-        if let (true, Some(depth)) = (
-            plan.has(Effect::OutputPins),
-            pin_interference_mm(&spec.design, de),
-        ) {
-            notes.push(Note::PinsPreloaded {
-                scene: name(),
-                interference_mm: depth,
-                drawn: false,
-            });
-        }
+        notes.extend(pins_preloaded(&spec.design, (scene, &plan), de, false));
         if spec.design.crank_bearing.is_some() && plan.computes(Effect::Bearing) {
             if !scene.spans_loaded_periods(&spec.design, &plan) {
                 notes.push(Note::LifeNotRated {

@@ -166,8 +166,7 @@ pub fn refuse(message: String) -> Error {
 
 /// SHA-256 of the text a shard names its run by (a spec's, a requirements file's).
 pub fn text_hash(text: &str) -> [u8; 32] {
-    use sha2::Digest;
-    sha2::Sha256::digest(text.as_bytes()).into()
+    Sha256::digest(text.as_bytes()).into()
 }
 
 /// Bytes as lower-case hex (a hash in a message).

@@ -320,22 +320,22 @@ impl<'a> Traversed<'a> {
         }
     }
 
-    /// The hysteresis loss (rad): the loop's width falling − rising at T = 0, the mean of its
-    /// values at 0⁻ and 0⁺ (±`zero_nmm`, each side of a dead band).
+    /// The loop's width γ_falling − γ_rising (rad) at `t`.
+    fn width(&self, t: f64) -> f64 {
+        self.falling(t) - self.rising(t)
+    }
+
+    /// The hysteresis loss (rad): the loop's width at T = 0, the mean of its values at 0⁻ and
+    /// 0⁺ (±`zero_nmm`, each side of a dead band).
     fn width_at_zero(&self, zero_nmm: f64) -> f64 {
-        let width = |t: f64| self.falling(t) - self.rising(t);
-        0.5 * (width(-zero_nmm) + width(zero_nmm))
+        0.5 * (self.width(-zero_nmm) + self.width(zero_nmm))
     }
 
     /// The loop's area ∮ T dγ = ∫ (γ_falling − γ_rising) dT over −Trated…Trated (N·mm = mJ):
     /// the energy friction takes per cycle, by trapezoids over `up`.
     fn area(&self) -> f64 {
-        self.up
-            .windows(2)
-            .map(|w| {
-                let width = |t: f64| self.falling(t) - self.rising(t);
-                0.5 * (width(w[0]) + width(w[1])) * (w[1] - w[0])
-            })
+        (self.up.windows(2))
+            .map(|w| 0.5 * (self.width(w[0]) + self.width(w[1])) * (w[1] - w[0]))
             .sum()
     }
 }

@@ -6,8 +6,8 @@ use crate::error::{Error, Result};
 pub use crate::model::quantity::Bound;
 
 use super::summary::SceneSummary;
-use crate::model::Limits;
 use crate::model::Plan;
+use crate::model::{Limit, Limits};
 use crate::spec::Spec;
 
 /// What a check compares.
@@ -108,13 +108,12 @@ impl Check {
     }
 }
 
-/// Keys of the limits that a scene with this plan evaluates.
-pub fn limits_for(limits: &Limits, plan: &Plan) -> Vec<&'static str> {
+/// The limits that a scene with this plan evaluates, in their order.
+pub fn limits_for<'a>(limits: &'a Limits, plan: &Plan) -> Vec<&'a Limit> {
     limits
         .entries
         .iter()
         .filter(|l| plan.computes_quantity(l.def.quantity))
-        .map(|l| l.def.key)
         .collect()
 }
 

@@ -6,7 +6,7 @@
 //! Columns have fixed widths so rows can be printed as they finish.
 
 use crate::engine::accuracy::{
-    tol_text, Ladder, LadderQuantity, LadderTolerances, Layout, Rung, Skipped, Variation,
+    misses, tol_text, Ladder, LadderQuantity, LadderTolerances, Layout, Rung, Skipped, Variation,
     FACE_SLICES,
 };
 use crate::engine::resolution::Resolution;
@@ -32,11 +32,11 @@ pub fn verdict(r: &Rung, t: &LadderTolerances) -> (&'static str, String) {
     if r.model_difference {
         return ("model", "model difference".to_string());
     }
-    let misses = r.misses(t);
-    if misses.is_empty() {
+    let missed = misses(&r.errors, t);
+    if missed.is_empty() {
         ("pass", "met".to_string())
     } else {
-        let names: Vec<&str> = misses.iter().map(|q| q.label()).collect();
+        let names: Vec<&str> = missed.iter().map(|(q, _)| q.label()).collect();
         ("fail", format!("not met: {}", names.join(", ")))
     }
 }

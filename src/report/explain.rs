@@ -309,7 +309,9 @@ pub fn explain(spec: &Spec, writes: Writes, tolerance: bool) -> String {
         if !skipped.is_empty() {
             out += &format!("  skip    {} (not asked for)\n", skipped.join(", "));
         }
-        let limits = verdict::limits_for(&spec.limits, &plan);
+        let limits: Vec<&str> = (verdict::limits_for(&spec.limits, &plan).iter())
+            .map(|l| l.def.key)
+            .collect();
         if !limits.is_empty() {
             out += &format!("  limits  {}\n", limits.join(", "));
         }

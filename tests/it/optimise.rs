@@ -104,7 +104,7 @@ fn the_outcome_says_one_refinement_in_the_singular() {
 #[derive(Default)]
 struct Count(std::sync::atomic::AtomicU64);
 
-impl cycloid::engine::progress::Progress for Count {
+impl cycloid::progress::Progress for Count {
     fn advance(&self, n: u64) {
         self.0.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
     }
@@ -238,13 +238,7 @@ fn writing_the_optimum_keeps_comments_and_reads_back_exactly() {
 fn the_map_covers_the_grid_and_marks_the_tip_constraint() {
     let spec = small_paper();
     let s = study(&spec, "positive-ratio");
-    let cells = optimise::map(
-        &spec,
-        s,
-        4,
-        &s.start_point(),
-        &cycloid::engine::progress::Silent,
-    );
+    let cells = optimise::map(&spec, s, 4, &s.start_point(), &cycloid::progress::Silent);
     assert_eq!(cells.len(), 16);
     for c in &cells {
         let tip = c.point.modification.equidistant_mm - c.point.modification.shift_mm;
@@ -427,13 +421,7 @@ fn no_point_of_the_verification_grid_beats_the_papers_optima() {
         let v = r.verification.as_ref().expect("verified");
         assert_eq!(v.points, 41 * 41);
         let stated = v.margin.expect("a feasible grid and optimum");
-        let cells = optimise::map(
-            &spec,
-            s,
-            41,
-            &s.start_point(),
-            &cycloid::engine::progress::Silent,
-        );
+        let cells = optimise::map(&spec, s, 41, &s.start_point(), &cycloid::progress::Silent);
         let best = cells
             .iter()
             .filter(|c| c.feasible())

@@ -92,30 +92,14 @@ pub fn global_candidates(req: &Requirements) -> Vec<Candidate> {
     out
 }
 
-/// Evaluate candidates in parallel, results in their order; each reports one unit.
-pub fn evaluate_all(
-    req: &Requirements,
-    candidates: &[Candidate],
-    progress: &dyn Progress,
-) -> Result<Vec<Evaluation>> {
-    candidates
-        .par_iter()
-        .map(|c| {
-            let e = evaluate::evaluate(req, c);
-            progress.advance(1);
-            e
-        })
-        .collect()
-}
-
-/// The front of the feasible evaluations: indices into `all`.
-pub fn front_of(req: &Requirements, all: &[Evaluation]) -> Vec<usize> {
-    let feasible: Vec<usize> = (0..all.len()).filter(|&i| all[i].feasible()).collect();
-    let points: Vec<Vec<f64>> = feasible.iter().map(|&i| all[i].minimised(req)).collect();
+/// The front of the feasible evaluations of `all`, in `all`'s order.
+pub fn front_of(req: &Requirements, all: &[Evaluation]) -> Vec<Evaluation> {
+    let feasible: Vec<&Evaluation> = all.iter().filter(|e| e.feasible()).collect();
+    let points: Vec<Vec<f64>> = feasible.iter().map(|e| e.minimised(req)).collect();
     let refs: Vec<&[f64]> = points.iter().map(Vec::as_slice).collect();
     pareto::front(&refs)
         .into_iter()
-        .map(|k| feasible[k])
+        .map(|k| feasible[k].clone())
         .collect()
 }
 
@@ -131,7 +115,8 @@ pub fn search(req: &Requirements, progress: &dyn Progress) -> Result<SearchRun> 
     finish(req, all, progress)
 }
 
-/// The global stage's evaluations of `candidates`, in their order, heard as `what`.
+/// The global stage's evaluations of `candidates`, in parallel, in their order, heard as
+/// `what` (a unit per candidate).
 pub fn global_stage(
     req: &Requirements,
     candidates: &[Candidate],
@@ -142,9 +127,16 @@ pub fn global_stage(
         slow_units: true,
         ..Phase::new(what, "designs", candidates.len() as u64)
     });
-    let all = evaluate_all(req, candidates, &*phase)?;
+    let all = candidates
+        .par_iter()
+        .map(|c| {
+            let e = evaluate::evaluate(req, c);
+            phase.advance(1);
+            e
+        })
+        .collect();
     phase.finish();
-    Ok(all)
+    all
 }
 
 /// The search from the global stage's evaluations of every candidate (`all`, in the order of
@@ -163,7 +155,6 @@ pub fn finish(
     for _ in 0..REFINE_ROUNDS {
         let starts: Vec<Evaluation> = front_of(req, &all)
             .into_iter()
-            .map(|i| all[i].clone())
             .filter(|e| !refined.contains(&e.candidate))
             .collect();
         if starts.is_empty() || req.search.refine_budget == 0 {
@@ -188,10 +179,7 @@ pub fn finish(
             all.push(e);
         }
     }
-    let mut front: Vec<Evaluation> = front_of(req, &all)
-        .into_iter()
-        .map(|i| all[i].clone())
-        .collect();
+    let mut front = front_of(req, &all);
     front.sort_by(|a, b| {
         a.minimised(req)
             .partial_cmp(&b.minimised(req))

@@ -16,9 +16,9 @@
 //! depend on the number of threads.
 
 use super::problem::{Evaluation, Problem};
-use crate::engine::progress::Progress;
 use crate::model::study::MAX_GLOBAL_SAMPLES;
 use crate::model::{Study, VariableKind};
+use crate::progress::Progress;
 use rayon::prelude::*;
 
 /// The fixed scrambling seed of the interior sample (any value would do; this one is the

@@ -7,7 +7,7 @@
 //! Objective and constraints at one point share one evaluation through a cache.
 
 use super::problem::{Evaluation, Problem};
-use crate::engine::progress::Progress;
+use crate::progress::Progress;
 use cobyla::{minimize, Func, RhoBeg, StopTols, SuccessStatus};
 use std::cell::RefCell;
 

@@ -22,8 +22,8 @@ pub mod problem;
 pub mod seeds;
 pub mod verify;
 
-use crate::engine::progress::Progress;
 use crate::model::Study;
+use crate::progress::Progress;
 use crate::spec::Spec;
 use local::{LocalRun, StopReason};
 use problem::{best, Evaluation, Problem};

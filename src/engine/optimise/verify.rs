@@ -6,7 +6,7 @@
 use super::local::{self, LocalRun};
 use super::problem::{best, Evaluation, Problem};
 use super::seeds;
-use crate::engine::progress::Progress;
+use crate::progress::Progress;
 use rayon::prelude::*;
 
 /// The verification of one study's optimum.

@@ -75,12 +75,7 @@ impl<'a> ToleranceStudy<'a> {
         let params = tol::parameters(&tolerances, d.rollers, d.pins.count, d.discs);
         let scene = &spec.scenes[tolerances.scene];
         let plan = scene::plan(spec, scene, scene::Writes::default());
-        let keys = verdict::limits_for(&spec.limits, &plan);
-        let limits: Vec<_> = spec
-            .limits
-            .entries
-            .iter()
-            .filter(|l| keys.contains(&l.def.key))
+        let limits: Vec<_> = (verdict::limits_for(&spec.limits, &plan).into_iter())
             .map(|l| (l.def, l.value))
             .collect();
         if limits.is_empty() {
@@ -110,15 +105,8 @@ impl<'a> ToleranceStudy<'a> {
     pub fn notes(&self) -> Vec<scene::Note> {
         let scene = &self.spec.scenes[self.tolerances.scene];
         let largest = self.tolerances.largest_draw_mm(tol::Kind::Eccentricity);
-        let preload = scene::pin_interference_mm(&self.spec.design, largest);
-        match (self.plan.has(crate::model::Effect::OutputPins), preload) {
-            (true, Some(depth)) => vec![scene::Note::PinsPreloaded {
-                scene: scene.name.clone(),
-                interference_mm: depth,
-                drawn: true,
-            }],
-            _ => Vec::new(),
-        }
+        let preload = scene::pins_preloaded(&self.spec.design, (scene, &self.plan), largest, true);
+        preload.into_iter().collect()
     }
 
     pub fn samples(&self) -> usize {

@@ -243,8 +243,7 @@ impl Mesh {
         // (np·t_i ≡ np·φ/nc mod 2π) and x the excess of the parts as built and the bearing
         // offset (`centre_excess`). The closest point is found from that form, without the
         // rounding of subtracting vectors of size Rp (see `closest_point_near_locus`).
-        let t_i = std::f64::consts::TAU * i as f64 / self.rollers as f64
-            + pose.crank_rad / self.teeth as f64;
+        let t_i = self.locus_parameter(i, &Pose::ideal(pose.crank_rad));
         let (s, c) = self.disc_rotation(pose).sin_cos();
         let (sp, cp) = pose.crank_rad.sin_cos();
         let excess = self.centre_excess(i, Vec2::new(cp, sp), pose.centre_offset_mm);

@@ -86,15 +86,29 @@ pub fn johnson_approach_mm(c: &LineContact, force_n: f64) -> (f64, f64) {
 /// Invert Johnson's law: the force that produces approach `d` (safeguarded Newton in ln F,
 /// started from the linear law; d(ln F) steps are bounded so the iteration cannot overshoot).
 pub fn johnson_force(c: &LineContact, approach_mm: f64) -> ContactForce {
+    johnson_force_in_series(c, (0.0, paper_linear_stiffness(c)), approach_mm)
+}
+
+/// `johnson_force` of the contact in series with a spring of compliance `compliance` (mm/N; 0:
+/// the contact alone, bit for bit): the force F with d(F) + c·F = approach and the series
+/// stiffness 1/(∂d/∂F + c), Newton started from F = k0·approach (`k0` the linear law's
+/// stiffness, in series with the spring).
+#[inline]
+pub fn johnson_force_in_series(
+    c: &LineContact,
+    (compliance, k0): (f64, f64),
+    approach_mm: f64,
+) -> ContactForce {
     if approach_mm <= 0.0 {
         return ContactForce::NONE;
     }
-    let mut ln_f = (paper_linear_stiffness(c) * approach_mm).ln();
+    let mut ln_f = (k0 * approach_mm).ln();
     for _ in 0..100 {
         let f = ln_f.exp();
         let (d, dd) = johnson_approach_mm(c, f);
-        // Newton on g(ln F) = d(F) − d_target, g' = F·∂d/∂F.
-        let step = ((approach_mm - d) / (f * dd.max(1e-300))).clamp(-2.0, 2.0);
+        // Newton on g(ln F) = d(F) + c·F − d_target, g' = F·(∂d/∂F + c).
+        let slope = (dd + compliance).max(1e-300);
+        let step = ((approach_mm - d - compliance * f) / (f * slope)).clamp(-2.0, 2.0);
         ln_f += step;
         if step.abs() < 1e-14 {
             break;
@@ -104,7 +118,7 @@ pub fn johnson_force(c: &LineContact, approach_mm: f64) -> ContactForce {
     let (_, dd) = johnson_approach_mm(c, f);
     ContactForce {
         force_n: f,
-        stiffness_n_per_mm: 1.0 / dd,
+        stiffness_n_per_mm: 1.0 / (dd + compliance),
     }
 }
 

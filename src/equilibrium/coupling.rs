@@ -302,17 +302,15 @@ impl Coupling {
             torque += t;
             torque_scale += t.abs();
         }
-        let pins = if sol.pins.is_empty() {
-            0.0
-        } else {
-            rel(torque - output_torque_nmm, torque_scale)
-        };
         // Without pins in the solution the disc's torque is the model's, not a contact's: only
         // the force balance is checked.
-        let moment = if sol.pins.is_empty() {
-            0.0
+        let (moment, pins) = if sol.pins.is_empty() {
+            (0.0, 0.0)
         } else {
-            rel(moment, moment_scale)
+            (
+                rel(moment, moment_scale),
+                rel(torque - output_torque_nmm, torque_scale),
+            )
         };
         rel(force.norm(), force_scale).max(moment).max(pins)
     }

@@ -130,8 +130,8 @@ impl PinBeam {
 /// series stiffness dF/d(approach_total) = 1/(1/k_contact + c), k_contact = dF/dd of the
 /// contact at F. With the paper's linear law F = approach/(1/k + c) exactly; with Johnson's
 /// law d_contact is strictly increasing (`law::johnson_approach_mm`), so is the sum, and a
-/// safeguarded Newton in ln F (as `law::johnson_force`) finds its one root. c = 0 is the
-/// contact alone, bit for bit.
+/// safeguarded Newton in ln F (`law::johnson_force_in_series`) finds its one root. c = 0 is
+/// the contact alone, bit for bit.
 pub fn series_force(
     contact_law: ContactLaw,
     contact: &LineContact,
@@ -142,35 +142,16 @@ pub fn series_force(
         return law::force(contact_law, contact, approach_mm);
     }
     let c = compliance_mm_per_n;
+    // The linear law in series.
+    let k = 1.0 / (1.0 / law::paper_linear_stiffness(contact) + c);
     match contact_law {
-        ContactLaw::PaperLinear => {
-            let k = 1.0 / (1.0 / law::paper_linear_stiffness(contact) + c);
-            ContactForce {
-                force_n: k * approach_mm,
-                stiffness_n_per_mm: k,
-            }
-        }
-        ContactLaw::HertzNonlinear => {
-            // Start from the linear law in series: Johnson's law is softer than it at these
-            // loads, so the answer lies below; the step bound keeps Newton from overshooting.
-            let k0 = 1.0 / (1.0 / law::paper_linear_stiffness(contact) + c);
-            let mut ln_f = (k0 * approach_mm).ln();
-            for _ in 0..100 {
-                let f = ln_f.exp();
-                let (d, dd) = law::johnson_approach_mm(contact, f);
-                let step = ((approach_mm - d - c * f) / (f * (dd + c))).clamp(-2.0, 2.0);
-                ln_f += step;
-                if step.abs() < 1e-14 {
-                    break;
-                }
-            }
-            let f = ln_f.exp();
-            let (_, dd) = law::johnson_approach_mm(contact, f);
-            ContactForce {
-                force_n: f,
-                stiffness_n_per_mm: 1.0 / (dd + c),
-            }
-        }
+        ContactLaw::PaperLinear => ContactForce {
+            force_n: k * approach_mm,
+            stiffness_n_per_mm: k,
+        },
+        // Started from the linear law in series: Johnson's law is softer than it at these
+        // loads, so the answer lies below.
+        ContactLaw::HertzNonlinear => law::johnson_force_in_series(contact, (c, k), approach_mm),
     }
 }
 

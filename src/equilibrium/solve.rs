@@ -325,14 +325,15 @@ pub fn monotone_root<E: Into<SolveFailure>>(
         // forces that are themselves round-off (an unmodified profile touching every roller at
         // zero torque) is 1 at any x.
         let zero = target == 0.0 && b.value.abs() <= b.resolution;
+        let found = Root {
+            x,
+            residual,
+            iterations: calls,
+            straddle: None,
+            slope: b.slope,
+        };
         if residual <= settings.rel_tol || zero {
-            return Ok(Root {
-                x,
-                residual,
-                iterations: calls,
-                straddle: None,
-                slope: b.slope,
-            });
+            return Ok(found);
         }
         if b.value < target {
             lo = x;
@@ -397,13 +398,7 @@ pub fn monotone_root<E: Into<SolveFailure>>(
                 }
             }
             return if residual <= 1e-9 {
-                Ok(Root {
-                    x,
-                    residual,
-                    iterations: calls,
-                    straddle: None,
-                    slope: b.slope,
-                })
+                Ok(found)
             } else {
                 Err(SolveFailure::NotConverged { x, residual })
             };

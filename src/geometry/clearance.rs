@@ -243,8 +243,7 @@ impl Mesh {
         // (np·t_i ≡ np·φ/nc mod 2π) and x the excess of the parts as built and the bearing
         // offset (`centre_excess`). The closest point is found from that form, without the
         // rounding of subtracting vectors of size Rp (see `closest_point_near_locus`).
-        let t_i = std::f64::consts::TAU * i as f64 / self.rollers as f64
-            + pose.crank_rad / self.teeth as f64;
+        let t_i = self.locus_parameter(i, &Pose::ideal(pose.crank_rad));
         let (s, c) = self.disc_rotation(pose).sin_cos();
         let (sp, cp) = pose.crank_rad.sin_cos();
         let excess = self.centre_excess(i, Vec2::new(cp, sp), pose.centre_offset_mm);
@@ -496,26 +495,22 @@ impl Columns {
 
     /// The rows of the chunks of `CHUNK` angles, in order.
     fn chunks(&mut self, angles: usize) -> Vec<Rows<'_>> {
-        let n = angles.div_ceil(CHUNK);
-        let mut rows: Vec<Rows<'_>> = (0..n)
-            .map(|_| Rows {
-                gap_mm: Vec::with_capacity(self.gap_mm.len()),
-                backlash: None,
-            })
+        let mut gap_mm: Vec<_> = self
+            .gap_mm
+            .iter_mut()
+            .map(|c| c.chunks_mut(CHUNK))
             .collect();
-        for column in &mut self.gap_mm {
-            for (row, piece) in rows.iter_mut().zip(column.chunks_mut(CHUNK)) {
-                row.gap_mm.push(piece);
-            }
-        }
-        let backlash = self
+        let mut backlash = self
             .forward_rad
             .chunks_mut(CHUNK)
             .zip(self.reverse_rad.chunks_mut(CHUNK));
-        for (row, pair) in rows.iter_mut().zip(backlash) {
-            row.backlash = Some(pair);
-        }
-        rows
+        (0..angles.div_ceil(CHUNK))
+            .map(|_| Rows {
+                // The next piece of every roller's column.
+                gap_mm: gap_mm.iter_mut().filter_map(Iterator::next).collect(),
+                backlash: backlash.next(),
+            })
+            .collect()
     }
 }
 

@@ -171,8 +171,17 @@ pub struct DiscMass {
 }
 
 impl DiscMass {
-    /// The prism of `face` over `face_width_mm` at `density_kg_per_mm3`.
-    pub fn new(face: AreaMoments, face_width_mm: f64, density_kg_per_mm3: f64) -> Self {
+    /// The disc whose face lies inside `profile` less `holes` and `bore`, `face_width_mm`
+    /// thick, at `density_kg_per_mm3`: the face's moments (`face_moments`) over the face width. Every disc mass is this call: `disc_mass` for a
+    /// spec's design, the design search's candidate before its design exists.
+    pub fn of_face(
+        profile: &Profile,
+        holes: &[Circle],
+        bore: Option<&Circle>,
+        face_width_mm: f64,
+        density_kg_per_mm3: f64,
+    ) -> DiscMass {
+        let face = face_moments(profile, holes, bore);
         let per_mm2 = density_kg_per_mm3 * face_width_mm;
         DiscMass {
             face,
@@ -201,6 +210,13 @@ impl DiscMass {
         let nc = teeth as f64;
         self.inertia_kgmm2 / (nc * nc)
     }
+
+    /// F = m·e·ω², N: the centripetal force that keeps this disc's centre on its orbit of
+    /// radius `eccentricity_mm` at the crank speed `crank_rad_per_s` (kg · mm · 1e-3 m/mm ·
+    /// rad²/s²), the force the crank bearing carries at zero torque.
+    pub fn centripetal_force_n(&self, eccentricity_mm: f64, crank_rad_per_s: f64) -> f64 {
+        self.mass_kg * units::m_from_mm(eccentricity_mm) * crank_rad_per_s * crank_rad_per_s
+    }
 }
 
 /// One disc of `design` under `modification` (with the disc's form error when it has one):
@@ -219,29 +235,6 @@ pub fn disc_mass(design: &Design, modification: &Modification) -> DiscMass {
         design.face_width_mm,
         design.density_kg_per_mm3,
     )
-}
-
-impl DiscMass {
-    /// The disc whose face lies inside `profile` less `holes` and `bore`, `face_width_mm`
-    /// thick, at `density_kg_per_mm3`: the face's moments (`face_moments`) over the face width. Every disc mass is this call: `disc_mass` for a
-    /// spec's design, the design search's candidate before its design exists.
-    pub fn of_face(
-        profile: &Profile,
-        holes: &[Circle],
-        bore: Option<&Circle>,
-        face_width_mm: f64,
-        density_kg_per_mm3: f64,
-    ) -> DiscMass {
-        let face = face_moments(profile, holes, bore);
-        DiscMass::new(face, face_width_mm, density_kg_per_mm3)
-    }
-
-    /// F = m·e·ω², N: the centripetal force that keeps this disc's centre on its orbit of
-    /// radius `eccentricity_mm` at the crank speed `crank_rad_per_s` (kg · mm · 1e-3 m/mm ·
-    /// rad²/s²), the force the crank bearing carries at zero torque.
-    pub fn centripetal_force_n(&self, eccentricity_mm: f64, crank_rad_per_s: f64) -> f64 {
-        self.mass_kg * units::m_from_mm(eccentricity_mm) * crank_rad_per_s * crank_rad_per_s
-    }
 }
 
 #[cfg(test)]

@@ -241,7 +241,11 @@ impl<'a> State<'a> {
     /// w(t) and, in `basis`, (cos k·t, sin k·t) of every order of the series.
     fn form(&self, t: f64, basis: &mut [f64]) -> f64 {
         let l = self.layout;
-        cos_sin_orders(t, &l.orders, basis);
+        let harmonics = cos_sin_of_orders(t, l.orders.iter().copied());
+        for (pair, (c, s)) in basis.chunks_exact_mut(2).zip(harmonics) {
+            pair[0] = c;
+            pair[1] = s;
+        }
         basis
             .iter()
             .zip(&self.params[l.form..])
@@ -875,15 +879,6 @@ fn finish(
 
 /// Most orders of a form-error series ([`spec::measured::MAX_HARMONICS`](crate::spec::measured::MAX_HARMONICS) = 200 and fewer).
 const MAX_ORDERS: usize = 256;
-
-/// (cos k·t, sin k·t) for the ascending `orders`, into `out` in pairs.
-fn cos_sin_orders(t: f64, orders: &[usize], out: &mut [f64]) {
-    let pairs = cos_sin_of_orders(t, orders.iter().copied());
-    for (pair, (c, s)) in out.chunks_exact_mut(2).zip(pairs) {
-        pair[0] = c;
-        pair[1] = s;
-    }
-}
 
 /// The bins per tooth pitch in t over which `Coverage::fraction` counts the points.
 pub const COVERAGE_BINS_PER_TOOTH: usize = 16;

@@ -440,15 +440,13 @@ fn entities<'a>(all: &'a [Pair<'a>]) -> Vec<Entity<'a>> {
 pub fn parse_dxf_at_most(path: &str, text: &str, max: usize) -> Result<Vec<MeasuredPoint>> {
     let all = pairs(path, text)?;
     require_mm(path, &all)?;
-    let list = entities(&all);
+    let mut list = entities(&all).into_iter().peekable();
     let mut points = Vec::new();
     let mut closed_profiles = 0;
-    let mut i = 0;
-    while i < list.len() {
-        let e = &list[i];
+    while let Some(e) = list.next() {
         match e.kind {
             "LWPOLYLINE" => {
-                refuse_open(path, e)?;
+                refuse_open(path, &e)?;
                 closed_profiles += 1;
                 push_profile(&mut points, e.vertices(path)?);
             }
@@ -458,19 +456,13 @@ pub fn parse_dxf_at_most(path: &str, text: &str, max: usize) -> Result<Vec<Measu
                 push_profile(&mut points, e.spline_points(path, room, max)?);
             }
             "POLYLINE" => {
-                refuse_open(path, e)?;
+                refuse_open(path, &e)?;
                 closed_profiles += 1;
                 let mut vertices = Vec::new();
-                i += 1;
-                while i < list.len() && list[i].kind == "VERTEX" {
-                    vertices.extend(list[i].vertices(path)?);
-                    i += 1;
+                while let Some(v) = list.next_if(|v| v.kind == "VERTEX") {
+                    vertices.extend(v.vertices(path)?);
                 }
                 push_profile(&mut points, vertices);
-                if points.len() > max {
-                    return Err(too_many(path, e.line, max));
-                }
-                continue;
             }
             "CIRCLE" => {
                 let layer = e.value(8).unwrap_or("");
@@ -506,7 +498,6 @@ pub fn parse_dxf_at_most(path: &str, text: &str, max: usize) -> Result<Vec<Measu
         if points.len() > max {
             return Err(too_many(path, e.line, max));
         }
-        i += 1;
     }
     if closed_profiles == 0 {
         return Err(at(

@@ -215,10 +215,7 @@ pub fn explain(spec: &Spec, writes: Writes, tolerance: bool) -> String {
     for (k, scene) in spec.scenes.iter().enumerate() {
         let plan = scene::plan(spec, scene, writes);
         let first = units::deg(scene.crank_rad.first().copied().unwrap_or(0.0));
-        let step = match scene.crank_rad.as_slice() {
-            [a, b, ..] => units::deg(b - a),
-            _ => 0.0,
-        };
+        let step = units::deg(crate::numeric::step(&scene.crank_rad));
         let load = match &scene.torque_sweep {
             Some(t) => format!(
                 "input locked, output torque looped ±{} N·m ({} steps per quarter)",

@@ -77,10 +77,7 @@ pub(super) fn section(
 
 pub(super) fn scene_summary(spec: &Spec, scene: &Scene) -> String {
     let plan = Plan::for_scene(scene);
-    let step = match scene.crank_rad.as_slice() {
-        [a, b, ..] => units::deg(b - a),
-        _ => 0.0,
-    };
+    let step = units::deg(crate::numeric::step(&scene.crank_rad));
     let effects: Vec<&str> = plan.effects.iter().map(|p| p.effect.name()).collect();
     let load = match &scene.torque_sweep {
         Some(t) => format!(

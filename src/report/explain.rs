@@ -725,14 +725,6 @@ pub fn deviation_lines(d: &Deviations) -> Vec<String> {
             um(d.equidistant_mm)
         ));
     }
-    for (i, r) in d.rollers.iter().enumerate().filter(|(_, r)| !r.is_zero()) {
-        lines.push(format!(
-            "roller {i}: radial {}, tangential {}, radius {}",
-            um(r.centre.radial_mm),
-            um(r.centre.tangential_mm),
-            um(r.radius_mm)
-        ));
-    }
     let centre = |what: String, c: &CentreDeviation| {
         format!(
             "{what}: radial {}, tangential {}",
@@ -740,6 +732,10 @@ pub fn deviation_lines(d: &Deviations) -> Vec<String> {
             um(c.tangential_mm)
         )
     };
+    for (i, r) in d.rollers.iter().enumerate().filter(|(_, r)| !r.is_zero()) {
+        let at = centre(format!("roller {i}"), &r.centre);
+        lines.push(format!("{at}, radius {}", um(r.radius_mm)));
+    }
     for (j, p) in d.pins.iter().enumerate().filter(|(_, p)| !p.is_zero()) {
         lines.push(centre(format!("pin {j}"), p));
     }

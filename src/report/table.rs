@@ -61,11 +61,6 @@ pub fn use_color(is_terminal: bool) -> bool {
     is_terminal && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
 }
 
-/// The table without colour, one check a row, worst failures first.
-pub fn render(checks: &[Check]) -> String {
-    render_styled(checks, false)
-}
-
 /// ANSI styles of the verdicts: the only control sequences the tool itself prints.
 pub const FAIL_STYLE: &str = "\x1b[1;31m";
 pub const PASS_STYLE: &str = "\x1b[32m";

@@ -192,12 +192,11 @@ pub const NOTHING_JUDGED: &str = "NOTHING JUDGED: 0 checks, so neither PASS nor 
 pub fn verdict_line(checks: &[Check]) -> String {
     let failed = checks.iter().filter(|c| !c.passed).count();
     let n = checks.len();
-    let noun = if n == 1 { "check" } else { "checks" };
     match failed {
         // Exit 0 all the same: nothing failed, but "PASS: 0 of 0" would read as a verdict.
         _ if n == 0 => NOTHING_JUDGED.to_string(),
-        0 => format!("PASS: {n} of {n} {noun} passed\n"),
-        f => format!("FAIL: {f} of {n} {noun} failed\n"),
+        0 => format!("PASS: {n} of {} passed\n", counted(n, "check")),
+        f => format!("FAIL: {f} of {} failed\n", counted(n, "check")),
     }
 }
 

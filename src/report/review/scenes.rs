@@ -64,13 +64,10 @@ pub(super) fn section(
             div.grid { @for p in disc { (figure(&p.file, &p.title, &p.caption)) } }
         }
     };
-    files.extend(plots.into_iter().map(|p| (p.file, p.svg)));
-    files.extend(
-        discs
-            .into_iter()
-            .flat_map(|(_, p)| p)
-            .map(|p| (p.file, p.svg)),
-    );
+    let every = plots
+        .into_iter()
+        .chain(discs.into_iter().flat_map(|(_, p)| p));
+    files.extend(every.map(|p| (p.file, p.svg)));
     let heading = html! { "Scene " code { (scene.name) } };
     Some(Section::new(prefix, heading, body))
 }

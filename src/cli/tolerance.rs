@@ -91,13 +91,8 @@ pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
         )),
         (None, None) => {
             let run = commands::tolerance(&spec, args.samples, args.sensitivity, &Terminal)?;
-            let whole = Whole(
-                &run.study,
-                &run.records,
-                &run.summary,
-                run.sensitivity.as_ref(),
-            );
-            finish(whole, &outputs, out)
+            let sens = run.sensitivity.as_ref();
+            finish(&run.study, &run.records, &run.summary, sens, &outputs, out)
         }
     }
 }
@@ -119,17 +114,16 @@ impl Outputs<'_> {
     }
 }
 
-/// A whole study's records, their summary and the sensitivities, if computed.
-struct Whole<'a>(
-    &'a ToleranceStudy<'a>,
-    &'a Records,
-    &'a Summary,
-    Option<&'a Sensitivity>,
-);
-
-/// Print and write what the records of every sample say; the verdict of the failure rate.
-fn finish(run: Whole, outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome> {
-    let Whole(study, records, summary, sens) = run;
+/// Print and write what the records of every sample of a whole study say, with their summary
+/// and the sensitivities, if computed; the verdict of the failure rate.
+fn finish(
+    study: &ToleranceStudy,
+    records: &Records,
+    summary: &Summary,
+    sens: Option<&Sensitivity>,
+    outputs: &Outputs,
+    out: &mut dyn Write,
+) -> Result<Outcome> {
     print(
         out,
         &report::tolerance::render(study, summary, records, sens),
@@ -183,7 +177,7 @@ fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result
     distinct_outputs(&inputs, &outputs.paths())?;
     let study = merged.study()?;
     let summary = crate::engine::tolerance::summary::summarise(&study, &merged.records);
-    finish(Whole(&study, &merged.records, &summary, None), outputs, out)
+    finish(&study, &merged.records, &summary, None, outputs, out)
 }
 
 /// `--write-sample K OUT`.

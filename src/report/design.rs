@@ -8,6 +8,7 @@ use crate::engine::design_search::{Evaluation, SearchRun, Tally};
 use crate::model::requirements::{ObjectiveKind, Requirements};
 use crate::numeric::{number, with_unit};
 use crate::report::columns::{self, Align};
+use crate::report::place::listed;
 use crate::report::review::disc::thumbnail;
 use crate::report::svg::base::{document, px};
 use crate::report::svg::labels::{Bounds, Label, Layout, Obstacle};
@@ -158,15 +159,7 @@ fn cause_text(inf: &Infeasible) -> String {
         Cause::Together(sets) => {
             let each: Vec<String> = sets
                 .iter()
-                .map(|set| {
-                    let keys: Vec<String> = set.iter().map(key_text).collect();
-                    match keys.split_last() {
-                        Some((last, rest)) if !rest.is_empty() => {
-                            format!("{} and {last}", rest.join(", "))
-                        }
-                        _ => keys.join(""),
-                    }
-                })
+                .map(|set| listed(&set.iter().map(key_text).collect::<Vec<_>>(), "and"))
                 .collect();
             format!(
                 "each requirement is met by some design, never all by one: no design meets {} \

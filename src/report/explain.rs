@@ -215,10 +215,7 @@ pub fn explain(spec: &Spec, writes: Writes, tolerance: bool) -> String {
     for (k, scene) in spec.scenes.iter().enumerate() {
         let plan = scene::plan(spec, scene, writes);
         let first = units::deg(scene.crank_rad.first().copied().unwrap_or(0.0));
-        let step = match scene.crank_rad.as_slice() {
-            [a, b, ..] => units::deg(b - a),
-            _ => 0.0,
-        };
+        let step = units::deg(crate::numeric::step(&scene.crank_rad));
         let load = match &scene.torque_sweep {
             Some(t) => format!(
                 "input locked, output torque looped ±{} N·m ({} steps per quarter)",
@@ -730,14 +727,6 @@ pub fn deviation_lines(d: &Deviations) -> Vec<String> {
             um(d.equidistant_mm)
         ));
     }
-    for (i, r) in d.rollers.iter().enumerate().filter(|(_, r)| !r.is_zero()) {
-        lines.push(format!(
-            "roller {i}: radial {}, tangential {}, radius {}",
-            um(r.centre.radial_mm),
-            um(r.centre.tangential_mm),
-            um(r.radius_mm)
-        ));
-    }
     let centre = |what: String, c: &CentreDeviation| {
         format!(
             "{what}: radial {}, tangential {}",
@@ -745,6 +734,10 @@ pub fn deviation_lines(d: &Deviations) -> Vec<String> {
             um(c.tangential_mm)
         )
     };
+    for (i, r) in d.rollers.iter().enumerate().filter(|(_, r)| !r.is_zero()) {
+        let at = centre(format!("roller {i}"), &r.centre);
+        lines.push(format!("{at}, radius {}", um(r.radius_mm)));
+    }
     for (j, p) in d.pins.iter().enumerate().filter(|(_, p)| !p.is_zero()) {
         lines.push(centre(format!("pin {j}"), p));
     }

@@ -41,11 +41,7 @@ pub struct Curve<'a>(&'a [f64]);
 
 impl Serialize for Curve<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut seq = s.serialize_seq(Some(self.0.len()))?;
-        for &v in self.0 {
-            seq.serialize_element(&Finite(v))?;
-        }
-        seq.end()
+        s.collect_seq(self.0.iter().map(|&v| Finite(v)))
     }
 }
 

@@ -7,6 +7,7 @@ use crate::engine::mass_properties::{MassProperties, Unbalance};
 use crate::geometry::mass_properties::DiscMass;
 use crate::model::Scene;
 use crate::numeric::number;
+use crate::report::place::listed;
 use crate::spec::Spec;
 use crate::units;
 
@@ -56,15 +57,6 @@ fn included(m: &MassProperties) -> String {
         false => left_out.push("the rollers"),
     }
     format!("{}; not {}", listed(&parts, "and"), listed(&left_out, "or"))
-}
-
-/// "a", "a and b", "a, b and c" (`word` "and" or "or").
-fn listed(items: &[&str], word: &str) -> String {
-    match items {
-        [] => String::new(),
-        [one] => one.to_string(),
-        [rest @ .., last] => format!("{} {word} {last}", rest.join(", ")),
-    }
 }
 
 /// The design table's rows (what, value): one disc's mass properties and the inertia at the

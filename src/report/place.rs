@@ -8,6 +8,7 @@ use crate::model::place::{Bin, Crank, GoldenAt, Part, PartAt, Place, Rule, Site,
 use crate::model::results::{Driver, MinCoverage};
 use crate::numeric::{number, phase};
 use crate::units;
+use std::borrow::Borrow;
 
 /// How a one-angle scene's extreme says where it was sought: its place already names the
 /// angle ("crank 0.00°, the scene's only crank angle"), said once.
@@ -142,6 +143,15 @@ fn site(s: &Site) -> String {
 /// `n` of `noun`, its plural an added "s": "1 crank angle", "4 crank angles".
 pub fn counted(n: usize, noun: &str) -> String {
     format!("{n} {noun}{}", if n == 1 { "" } else { "s" })
+}
+
+/// "a", "a and b", "a, b and c" (`word` "and" or "or").
+pub fn listed<S: Borrow<str>>(items: &[S], word: &str) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.borrow().to_string(),
+        [rest @ .., last] => format!("{} {word} {}", rest.join(", "), last.borrow()),
+    }
 }
 
 /// What the smallest gap was sought over: the whole period of the gaps, its step and the error

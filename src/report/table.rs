@@ -61,11 +61,6 @@ pub fn use_color(is_terminal: bool) -> bool {
     is_terminal && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
 }
 
-/// The table without colour, one check a row, worst failures first.
-pub fn render(checks: &[Check]) -> String {
-    render_styled(checks, false)
-}
-
 /// ANSI styles of the verdicts: the only control sequences the tool itself prints.
 pub const FAIL_STYLE: &str = "\x1b[1;31m";
 pub const PASS_STYLE: &str = "\x1b[32m";
@@ -197,12 +192,11 @@ pub const NOTHING_JUDGED: &str = "NOTHING JUDGED: 0 checks, so neither PASS nor 
 pub fn verdict_line(checks: &[Check]) -> String {
     let failed = checks.iter().filter(|c| !c.passed).count();
     let n = checks.len();
-    let noun = if n == 1 { "check" } else { "checks" };
     match failed {
         // Exit 0 all the same: nothing failed, but "PASS: 0 of 0" would read as a verdict.
         _ if n == 0 => NOTHING_JUDGED.to_string(),
-        0 => format!("PASS: {n} of {n} {noun} passed\n"),
-        f => format!("FAIL: {f} of {n} {noun} failed\n"),
+        0 => format!("PASS: {n} of {} passed\n", counted(n, "check")),
+        f => format!("FAIL: {f} of {} failed\n", counted(n, "check")),
     }
 }
 

@@ -138,17 +138,12 @@ fn friction_rows(f: Option<&Friction>, t: Option<&Thermal>) -> Vec<(&'static str
             },
         ));
         let t0 = &f.no_load_torque_nmm;
-        if !t0.is_constant() {
-            rows.push((
-                "no-load torque at the input",
-                crate::report::explain::no_load_table(t0),
-            ));
-        } else if t0.max_nmm() > 0.0 {
-            rows.push((
-                "no-load torque at the input",
-                format!("{} N·mm", input(t0.max_nmm())),
-            ));
-        }
+        let no_load = if !t0.is_constant() {
+            Some(crate::report::explain::no_load_table(t0))
+        } else {
+            (t0.max_nmm() > 0.0).then(|| format!("{} N·mm", input(t0.max_nmm())))
+        };
+        rows.extend(no_load.map(|v| ("no-load torque at the input", v)));
     }
     if let Some(t) = t {
         rows.push((

@@ -5,7 +5,6 @@
 
 use super::common::{data_table, figure, signed, Section};
 use crate::model::friction::PathLosses;
-use crate::model::quantity::MEAN_EFFICIENCY;
 use crate::model::results::{
     Driver, EfficiencyCurves, ReducerEfficiency, SceneResult, TorqueCurve,
 };
@@ -60,15 +59,10 @@ fn torque_plot(spec: &Spec, scene: &Scene, c: &TorqueCurve, r: &ReducerEfficienc
         )
         .marked(Mark::Diamond),
     );
-    let limit = spec
-        .limits
-        .entries
-        .iter()
-        .find(|l| l.def.quantity.key == MEAN_EFFICIENCY.key);
-    if let Some(l) = limit {
+    if let Some(value) = spec.limits.get("min_mean_efficiency") {
         plot.ref_lines.push(RefLine {
-            value: l.value,
-            label: format!("limit {}", number(l.value)),
+            value,
+            label: format!("limit {}", number(value)),
             color: RED.into(),
         });
     }
@@ -98,8 +92,7 @@ fn mean_cell(r: &ReducerEfficiency) -> String {
 
 /// The caption's word on the dashed red line, when the spec sets `min_mean_efficiency`.
 fn limit_note(spec: &Spec) -> &'static str {
-    let limited = (spec.limits.entries.iter()).any(|l| l.def.quantity.key == MEAN_EFFICIENCY.key);
-    if limited {
+    if spec.limits.get("min_mean_efficiency").is_some() {
         "; dashed red: the spec's limit min_mean_efficiency"
     } else {
         ""

@@ -64,23 +64,17 @@ pub(super) fn section(
             div.grid { @for p in disc { (figure(&p.file, &p.title, &p.caption)) } }
         }
     };
-    files.extend(plots.into_iter().map(|p| (p.file, p.svg)));
-    files.extend(
-        discs
-            .into_iter()
-            .flat_map(|(_, p)| p)
-            .map(|p| (p.file, p.svg)),
-    );
+    let every = plots
+        .into_iter()
+        .chain(discs.into_iter().flat_map(|(_, p)| p));
+    files.extend(every.map(|p| (p.file, p.svg)));
     let heading = html! { "Scene " code { (scene.name) } };
     Some(Section::new(prefix, heading, body))
 }
 
 pub(super) fn scene_summary(spec: &Spec, scene: &Scene) -> String {
     let plan = Plan::for_scene(scene);
-    let step = match scene.crank_rad.as_slice() {
-        [a, b, ..] => units::deg(b - a),
-        _ => 0.0,
-    };
+    let step = units::deg(crate::numeric::step(&scene.crank_rad));
     let effects: Vec<&str> = plan.effects.iter().map(|p| p.effect.name()).collect();
     let load = match &scene.torque_sweep {
         Some(t) => format!(

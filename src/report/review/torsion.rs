@@ -10,7 +10,7 @@ use crate::numeric::number;
 use crate::report::explain::{
     hysteresis, hysteresis_in_plot, torsion_compliances, torsion_law_note,
 };
-use crate::report::place::counted;
+use crate::report::place::{self, counted};
 use crate::report::svg::{LinePlot, Mark, Series, YCut, PALETTE};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
@@ -85,8 +85,7 @@ fn torsion_plot(scene: &Scene, r: &SceneResult, t: &TorsionCurves) -> LinePlot {
     };
     for (k, (x, y)) in drawn.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
-        let crank = units::deg(r.crank_rad[k]);
-        let curve = Series::new(format!("crank {crank:.2}°"), x.clone(), y.clone(), color);
+        let curve = Series::new(place::crank(r.crank_rad[k]), x.clone(), y.clone(), color);
         plot.series.push(if sparse {
             curve.marked(Mark::Dot)
         } else {

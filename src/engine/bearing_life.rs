@@ -12,28 +12,22 @@ use crate::model::results::UNBOUNDED_LIFE_H;
 /// P = (mean of F^p)^(1/p), N, over bearing forces `force_n` (N) sampled evenly over whole
 /// load cycles (the rectangle rule is then the mean of the periodic load). 0 without samples.
 pub fn equivalent_load(force_n: &[f64], exponent: f64) -> f64 {
-    let pairs: Vec<(f64, f64)> = force_n.iter().map(|&f| (1.0, f)).collect();
-    weighted_power_mean(&pairs, exponent)
+    weighted_power_mean(force_n.iter().map(|&f| (1.0, f)), exponent)
 }
 
 /// The weighted power mean (Σ wᵢ·xᵢ^p / Σ wᵢ)^(1/p) of magnitudes `x` (≥ 0) with weights
 /// `w` (≥ 0, not all 0), scaled by the largest x so that x^p cannot overflow; 0 when every
-/// weighted x is 0.
-pub fn weighted_power_mean(pairs: &[(f64, f64)], p: f64) -> f64 {
-    let largest = pairs
-        .iter()
-        .filter(|(w, _)| *w > 0.0)
-        .fold(0.0f64, |m, (_, x)| m.max(x.abs()));
-    let weight: f64 = pairs.iter().map(|(w, _)| w).sum();
+/// weighted x is 0. The pairs (w, x) are read three times and never stored: the bearing's
+/// equivalent load is this mean over every crank angle of a scene.
+pub fn weighted_power_mean(pairs: impl Iterator<Item = (f64, f64)> + Clone, p: f64) -> f64 {
+    let weight: f64 = pairs.clone().map(|(w, _)| w).sum();
+    // A zero weight leaves its value out (its x may exceed the largest weighted one).
+    let weighted = pairs.filter(|&(w, _)| w > 0.0);
+    let largest = (weighted.clone()).fold(0.0f64, |m, (_, x)| m.max(x.abs()));
     if largest == 0.0 || weight <= 0.0 {
         return 0.0;
     }
-    // A zero weight leaves its value out (its x may exceed the largest weighted one).
-    let sum: f64 = pairs
-        .iter()
-        .filter(|(w, _)| *w > 0.0)
-        .map(|(w, x)| w * (x.abs() / largest).powf(p))
-        .sum();
+    let sum: f64 = weighted.map(|(w, x)| w * (x.abs() / largest).powf(p)).sum();
     largest * (sum / weight).powf(1.0 / p)
 }
 
@@ -69,14 +63,17 @@ mod tests {
     #[test]
     fn the_weighted_power_mean_is_a_mean() {
         assert_eq!(
-            weighted_power_mean(&[(0.3, 5.0), (0.7, 5.0)], 10.0 / 3.0),
+            weighted_power_mean([(0.3, 5.0), (0.7, 5.0)].into_iter(), 10.0 / 3.0),
             5.0
         );
-        assert_eq!(weighted_power_mean(&[(0.0, 9.0), (2.0, 4.0)], 3.0), 4.0);
-        let m = weighted_power_mean(&[(1.0, 1.0), (1.0, 2.0)], 3.0);
+        assert_eq!(
+            weighted_power_mean([(0.0, 9.0), (2.0, 4.0)].into_iter(), 3.0),
+            4.0
+        );
+        let m = weighted_power_mean([(1.0, 1.0), (1.0, 2.0)].into_iter(), 3.0);
         assert!((m - 4.5f64.cbrt()).abs() < 1e-15, "{m}");
-        let big = weighted_power_mean(&[(1.0, 1e300), (1.0, 1e300)], 10.0);
+        let big = weighted_power_mean([(1.0, 1e300), (1.0, 1e300)].into_iter(), 10.0);
         assert!((big / 1e300 - 1.0).abs() < 1e-15, "{big}");
-        assert_eq!(weighted_power_mean(&[(1.0, 0.0)], 3.0), 0.0);
+        assert_eq!(weighted_power_mean([(1.0, 0.0)].into_iter(), 3.0), 0.0);
     }
 }

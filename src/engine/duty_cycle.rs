@@ -54,12 +54,8 @@ pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
         .collect();
     let weights = revolution_weights(&bins);
     let mean_speed_rpm: f64 = weights.iter().sum();
-    let torques: Vec<(f64, f64)> = weights
-        .iter()
-        .zip(&bins)
-        .map(|(&w, b)| (w, b.bin.output_torque_nmm))
-        .collect();
-    let equivalent_torque_nmm = weighted_power_mean(&torques, 3.0);
+    let torques = (weights.iter().zip(&bins)).map(|(&w, b)| (w, b.bin.output_torque_nmm));
+    let equivalent_torque_nmm = weighted_power_mean(torques, 3.0);
     let loads: Option<Vec<Vec<f64>>> = bins
         .iter()
         .map(|b| bin_equivalent_loads(&b.result))
@@ -67,13 +63,9 @@ pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
     let life = match (design.crank_bearing, loads) {
         (Some(rating), Some(loads)) => (0..design.discs)
             .map(|k| {
-                let pairs: Vec<(f64, f64)> = weights
-                    .iter()
-                    .zip(&loads)
-                    .map(|(&w, l)| (w, l[k]))
-                    .collect();
+                let pairs = weights.iter().zip(&loads).map(|(&w, l)| (w, l[k]));
                 let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
-                let load = weighted_power_mean(&pairs, p);
+                let load = weighted_power_mean(pairs, p);
                 BearingLife {
                     equivalent_load_n: load,
                     life_h: Some(bearing_life::life_h(

@@ -31,9 +31,7 @@ use crate::model::Design;
 
 /// Each bin's revolution weight sᵢ·nᵢ (rpm), in the bins' order.
 fn revolution_weights(bins: &[DutyBinResult]) -> Vec<f64> {
-    bins.iter()
-        .map(|b| b.bin.time_share * b.bin.input_speed_rpm)
-        .collect()
+    bins.iter().map(|b| b.bin.revolution_weight_rpm()).collect()
 }
 
 /// The crank-bearing equivalent load of each disc in one bin's run, N (one entry per disc);
@@ -135,7 +133,7 @@ fn energy_efficiency(bins: &[DutyBinResult]) -> Option<f64> {
     for b in bins.iter().filter(|b| b.bin.input_speed_rpm > 0.0) {
         let e = b.result.reducer.efficiency.as_ref()?;
         let energy = PowerFlow::of(e.reducer.as_ref()?).energy(e.mean_loss_nmm.total());
-        let w = b.bin.time_share * b.bin.input_speed_rpm;
+        let w = b.bin.revolution_weight_rpm();
         delivered += w * energy.delivered_nmm;
         entering += w * energy.entering_nmm;
     }

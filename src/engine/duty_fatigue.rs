@@ -37,7 +37,7 @@ pub fn lives(design: &Design, bins: &[DutyBinResult]) -> Vec<DutyFatigue> {
                 .iter()
                 .zip(&pressures)
                 .map(|(b, p)| {
-                    let turns_per_h = b.bin.time_share * b.bin.input_speed_rpm * 60.0;
+                    let turns_per_h = b.bin.revolution_weight_rpm() * 60.0;
                     let rate = turns_per_h * passes / fatigue::cycles_to_failure(&law, p[k]);
                     (rate, b.bin.output_torque_nmm < 0.0)
                 })

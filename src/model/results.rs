@@ -500,6 +500,11 @@ pub struct DutyBinResult {
 }
 
 impl DutyCycle {
+    /// sᵢ·nᵢ / Σ sⱼ·nⱼ: the share of the cycle's revolutions that bin `b` turns.
+    pub fn revolution_share(&self, b: &DutyBinResult) -> f64 {
+        b.bin.revolution_weight_rpm() / self.mean_speed_rpm
+    }
+
     /// The reducer's life under the cycle: the shortest of its discs' (each disc has its own
     /// crank bearing), with the disc; `None` when not rated.
     pub fn shortest_life(&self) -> Option<(usize, BearingLife)> {

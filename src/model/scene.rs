@@ -96,6 +96,12 @@ pub struct DutyBin {
 }
 
 impl DutyBin {
+    /// sᵢ·nᵢ, rpm: the bin's weight in the cycle's revolutions (its time share times its input
+    /// speed; 0 at a standstill).
+    pub fn revolution_weight_rpm(&self) -> f64 {
+        self.time_share * self.input_speed_rpm
+    }
+
     /// The scene one bin runs as: `scene` at the bin's torque and speed (no speed at a
     /// standstill: no life in hours, no watts), without the cycle.
     pub fn scene(&self, scene: &Scene) -> Scene {

@@ -306,9 +306,7 @@ impl<'a> DutyDoc<'a> {
                     output_torque_nm: Finite(units::nm(b.bin.output_torque_nmm)),
                     input_speed_rpm: Finite(b.bin.input_speed_rpm),
                     time_share: Finite(b.bin.time_share),
-                    revolution_share: Finite(
-                        b.bin.time_share * b.bin.input_speed_rpm / d.mean_speed_rpm,
-                    ),
+                    revolution_share: Finite(d.revolution_share(b)),
                     equivalent_load_n: crate::engine::duty_cycle::bin_equivalent_loads(&b.result)
                         .map(finite),
                     max_contact_pressure_mpa: q::MAX_CONTACT_PRESSURE

@@ -118,10 +118,7 @@ pub(crate) fn bins_at(at: &str, bins: &[RawDutyBin]) -> Result<Vec<DutyBin>> {
             ),
         ));
     }
-    if cycle
-        .iter()
-        .all(|b| b.time_share * b.input_speed_rpm == 0.0)
-    {
+    if cycle.iter().all(|b| b.revolution_weight_rpm() == 0.0) {
         return Err(Error::invalid(
             at,
             "no bin turns the crank (every bin with a share has speed 0): a cycle at a \

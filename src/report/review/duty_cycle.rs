@@ -93,7 +93,7 @@ pub(super) fn section(
                     td { (signed(number(units::nm(b.bin.output_torque_nmm)))) }
                     td { (number(b.bin.input_speed_rpm)) }
                     td { (number(b.bin.time_share)) }
-                    td { (number(b.bin.time_share * b.bin.input_speed_rpm / d.mean_speed_rpm)) }
+                    td { (number(d.revolution_share(b))) }
                     td { (bin_equivalent_loads(&b.result).map_or("—".to_string(), |p| {
                         p.iter().map(|&x| number(x)).collect::<Vec<_>>().join(", ")
                     })) }

@@ -122,9 +122,7 @@ pub(super) fn shares(scene: &str, d: &DutyCycle, damage: Option<&[Vec<f64>]>) ->
         (
             "revolutions".into(),
             "revolution-share",
-            (d.bins.iter())
-                .map(|b| b.bin.time_share * b.bin.input_speed_rpm / d.mean_speed_rpm)
-                .collect(),
+            (d.bins.iter()).map(|b| d.revolution_share(b)).collect(),
         ),
     ];
     for (k, shares) in damage.unwrap_or_default().iter().enumerate() {

@@ -3,6 +3,7 @@
 //! registry (`model::quantity`) reads these in the output units of its keys.
 
 use super::friction::{FrictionModel, PathLosses};
+use crate::numeric::max_entry;
 
 /// Where the smallest gap of a sweep occurs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -118,17 +119,10 @@ impl FaceLoads {
     /// The largest line load over rollers, angles and slices, N/mm, and where: (value, roller,
     /// angle, slice), the first in that order; (0, 0, 0, 0) when nothing is loaded.
     pub fn peak_line_load(&self) -> (f64, usize, usize, usize) {
-        let mut best = (0.0, 0, 0, 0);
-        for i in 0..self.line_load_n_per_mm.len() {
-            for (k, slices) in self.angles(i).enumerate() {
-                for (s, &q) in slices.iter().enumerate() {
-                    if q > best.0 {
-                        best = (q, i, k, s);
-                    }
-                }
-            }
+        match max_entry(&self.line_load_n_per_mm) {
+            (q, i, j) if q > 0.0 => (q, i, j / self.slices, j % self.slices),
+            _ => (0.0, 0, 0, 0),
         }
-        best
     }
 }
 

@@ -508,10 +508,7 @@ pub enum Event<'a> {
 /// The scene a ladder runs by default: the first that computes roller contact (not a duty
 /// cycle's, which runs once per bin), else the first.
 pub fn default_scene(spec: &Spec) -> usize {
-    spec.scenes
-        .iter()
-        .position(|s| Plan::for_scene(s).computes(Effect::RollerContact) && s.duty_cycle.is_none())
-        .unwrap_or(0)
+    spec.scenes.iter().position(Scene::loaded_once).unwrap_or(0)
 }
 
 pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {

@@ -21,7 +21,7 @@ use crate::error::{Error, Result};
 use crate::geometry::clearance::{Mesh, Pose, RollerGap};
 use crate::geometry::{polyline, rotate, Vec2};
 use crate::model::results::SceneResult;
-use crate::model::{Effect, Plan};
+use crate::model::Plan;
 use crate::spec::Spec;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -172,11 +172,7 @@ type LoadedAt = ((String, Option<usize>), AngleSolution);
 /// The first scene with roller contact (not a duty cycle's, which has no one torque), solved
 /// at `crank_rad`.
 fn loaded_at(spec: &Spec, crank_rad: f64) -> Result<Option<LoadedAt>> {
-    let Some(scene) = spec
-        .scenes
-        .iter()
-        .find(|s| Plan::for_scene(s).computes(Effect::RollerContact) && s.duty_cycle.is_none())
-    else {
+    let Some(scene) = spec.scenes.iter().find(|s| s.loaded_once()) else {
         return Ok(None);
     };
     let plan = Plan::for_scene(scene);

@@ -141,6 +141,12 @@ impl TorqueSweep {
 }
 
 impl Scene {
+    /// Computes roller contact in one run at one torque (a duty cycle's runs once per bin):
+    /// the scene the accuracy ladder runs and the disc drawing solves by default.
+    pub fn loaded_once(&self) -> bool {
+        Plan::for_scene(self).computes(Effect::RollerContact) && self.duty_cycle.is_none()
+    }
+
     /// True when the sweep covers a whole number of the periods of the reducer as run
     /// (`Scene::run_period_rad`, this scene's tilt included): its loaded curves wrap, and a
     /// mean or an extreme over it is one over whole load cycles.

@@ -381,7 +381,12 @@ impl Layout {
         self.base_angles * (steps_per_period / COARSEST)
     }
 
-    fn steps_per_period(&self, angles: usize) -> f64 {
+    /// The crank angles of a steps rung of `steps_per_period`, rad: nested in the finest's.
+    pub(crate) fn crank_rad(&self, steps_per_period: usize) -> Vec<f64> {
+        spec::crank_angles(self.from_deg, self.to_deg, self.angles(steps_per_period))
+    }
+
+    pub(crate) fn steps_per_period(&self, angles: usize) -> f64 {
         angles as f64 / self.periods
     }
 }
@@ -689,11 +694,7 @@ pub fn run(
                     clearance: bool|
      -> Result<Run> {
         let mut s = scene.clone();
-        s.crank_rad = spec::crank_angles(
-            layout.from_deg,
-            layout.to_deg,
-            layout.angles(steps_per_period),
-        );
+        s.crank_rad = layout.crank_rad(steps_per_period);
         s.geometry = geometry;
         s.contact_law = law;
         run_scene(&s, rel_tol, clearance)

@@ -14,7 +14,7 @@ use super::accuracy::{self, Ladder, LadderQuantity, LadderTolerances, Layout, Ou
 use crate::engine::scene;
 use crate::error::Result;
 use crate::model::Plan;
-use crate::spec::{self, Spec};
+use crate::spec::Spec;
 
 /// A steps rung of the ladder and the tolerances it misses.
 #[derive(Debug, Clone, PartialEq)]
@@ -83,7 +83,7 @@ pub fn of_ladder(ladder: &Ladder, scene_angles: usize) -> Resolution {
         .collect();
     Resolution {
         scene: ladder.layout.scene.clone(),
-        scene_steps: scene_angles as f64 / ladder.layout.periods,
+        scene_steps: ladder.layout.steps_per_period(scene_angles),
         finest: ladder.layout.finest,
         tolerances: ladder.layout.tolerances,
         rungs,
@@ -98,7 +98,7 @@ pub fn run(spec: &Spec, scene_index: usize, options: &accuracy::Options) -> Resu
     let layout = accuracy::layout(spec, scene, options);
     let outputs = |steps: usize| -> Result<Outputs> {
         let mut s = scene.clone();
-        s.crank_rad = spec::crank_angles(layout.from_deg, layout.to_deg, layout.angles(steps));
+        s.crank_rad = layout.crank_rad(steps);
         Ok(Outputs::of(
             &scene::run(spec, &s, &Plan::for_scene(&s), &Default::default())?,
             layout.face,
@@ -107,7 +107,7 @@ pub fn run(spec: &Spec, scene_index: usize, options: &accuracy::Options) -> Resu
     let reference = outputs(options.finest)?;
     let mut resolution = Resolution {
         scene: scene.name.clone(),
-        scene_steps: scene.crank_rad.len() as f64 / layout.periods,
+        scene_steps: layout.steps_per_period(scene.crank_rad.len()),
         finest: options.finest,
         tolerances: options.tolerances,
         rungs: Vec::new(),

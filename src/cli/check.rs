@@ -138,7 +138,7 @@ fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Resul
     let spec = &run.spec;
     if let Some(p) = &args.json {
         let doc = report::json::Document::new(&report::json::Contents::of(run));
-        report::json::write(Path::new(p), &doc)?;
+        crate::files::write_atomic_with(Path::new(p), |out| doc.write_to(out))?;
     }
     if let Some(p) = &args.junit {
         write_file(
@@ -153,7 +153,8 @@ fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Resul
         print(out, &report::accuracy::ladder_line(l, *seconds))?;
     }
     if let Some(dir) = &args.report {
-        let files = report::check_review::write(Path::new(dir), run, review)?;
+        let pages = report::check_review::render(run, review);
+        let files = report::review::shell::write_files(Path::new(dir), &pages)?.len();
         print(out, &review_line(dir, files))?;
     }
     Ok(())

@@ -135,8 +135,8 @@ fn finish(
         write_file(p, &report::tolerance::samples_csv(study, records))?;
     }
     if let Some(dir) = outputs.report {
-        let files =
-            report::review::tolerance::write(Path::new(dir), study, summary, records, sens)?;
+        let pages = report::review::tolerance::render(study, summary, records, sens);
+        let files = report::review::shell::write_files(Path::new(dir), &pages)?.len();
         print(out, &review_line(dir, files))?;
     }
     Ok(Outcome::of(summary.passed()))

@@ -107,11 +107,7 @@ pub fn seconds_text(s: f64) -> String {
 
 /// An observed order, two decimals (no "-0.00" for an error that did not move).
 pub fn order_text(p: f64) -> String {
-    if p.abs() < 0.005 {
-        "0.00".to_string()
-    } else {
-        format!("{p:.2}")
-    }
+    super::fit::fixed(p, 2)
 }
 
 /// Steps per period (or periods): an integer as such, else two decimals.

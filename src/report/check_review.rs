@@ -1,13 +1,6 @@
 //! The design review of a `check` run: the page's input built from what the run computed.
 
 use crate::engine::commands::{CheckRun, Review};
-use crate::error::Result;
-use std::path::Path;
-
-/// Write the design review of `run` into `dir`; how many files it has.
-pub fn write(dir: &Path, run: &CheckRun, review: &Review) -> Result<usize> {
-    Ok(super::review::shell::write_files(dir, &render(run, review))?.len())
-}
 
 /// The design review of `run` as files (name, text), `index.html` last.
 pub fn render(run: &CheckRun, review: &Review) -> Vec<(String, String)> {

@@ -16,7 +16,6 @@ use crate::engine::mass_properties::{MassProperties, Unbalance};
 use crate::engine::optimise::StudyResult;
 use crate::engine::summary::SceneSummary;
 use crate::engine::verdict::{Check, CheckKind};
-use crate::error::Result;
 use crate::model::quantity::{self as q, Extreme, Of, Quantity, QUANTITIES};
 use crate::model::results::{
     ClearanceSweep, DiscResult, EfficiencyCurves, LoadedSweep, MinCoverage, SceneResult,
@@ -31,7 +30,6 @@ use crate::units::{self, nm_per_arcmin};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
 use serde::{Serialize, Serializer};
 use std::io::Write;
-use std::path::Path;
 
 pub use super::finite::Finite;
 
@@ -1242,12 +1240,6 @@ pub fn scenes_document<'a>(
         mass: None,
         unbalance: &[],
     })
-}
-
-/// Write the document (`Document::write_to`) to `path` atomically
-/// ([`files::write_atomic_with`](crate::files::write_atomic_with)).
-pub fn write(path: &Path, doc: &Document) -> Result<()> {
-    crate::files::write_atomic_with(path, |out| doc.write_to(out))
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! The disc as an ASCII STL mesh: one facet per triangle, its unit normal outward, vertices
 //! counter-clockwise seen from outside, mm, nine decimals (1 pm) as the CSV's coordinates.
 
+use super::review::solid::{cross, dot};
 use crate::geometry::disc_mesh::TriangleMesh;
 use crate::spec::Spec;
 
@@ -31,12 +32,8 @@ pub fn stl(spec: &Spec, mesh: &TriangleMesh) -> String {
 fn unit_normal(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
     let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-    let n = [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ];
-    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    let n = cross(u, v);
+    let len = dot(n, n).sqrt();
     if len > 0.0 {
         n.map(|x| x / len + 0.0)
     } else {

@@ -5,11 +5,10 @@
 //! are the design review's own (`shell::shell`, `common::data_table`, `svg::LinePlot`).
 
 use super::common::{data_table, figure, verdict, Section};
-use super::shell::{shell, write_files};
+use super::shell::shell;
 use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANTILES};
 use crate::engine::tolerance::{Records, ToleranceStudy};
-use crate::error::Result;
 use crate::model::results::is_unbounded;
 use crate::numeric::with_unit;
 use crate::numeric::{number, percent};
@@ -19,7 +18,6 @@ use crate::report::tolerance::{
     QUANTILE_DEFINITION,
 };
 use maud::{html, Markup};
-use std::path::Path;
 
 /// Bins of a histogram of n values: √n, from 10 to 60.
 fn bins(n: usize) -> usize {
@@ -270,16 +268,4 @@ pub fn render(
         shell(study.spec, "Tolerance review", banner, &sections),
     ));
     files
-}
-
-/// Write the review into `dir` as one batch (`index.html` last); the number of files.
-pub fn write(
-    dir: &Path,
-    study: &ToleranceStudy,
-    s: &Summary,
-    records: &Records,
-    sens: Option<&Sensitivity>,
-) -> Result<usize> {
-    let files = render(study, s, records, sens);
-    Ok(write_files(dir, &files)?.len())
 }

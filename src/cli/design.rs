@@ -145,7 +145,7 @@ fn run_shard(
         &format!(
             "cycloid design `{}`: shard {i}/{n} ({count} of the global stage's {all} \
              candidates) written to {file}; finish the search with `cycloid design merge`\n",
-            crate::error::printable(&req.name, &[]),
+            req.name,
         ),
     )?;
     Ok(Outcome::Passed)

@@ -8,7 +8,7 @@ use super::residual::residual_at;
 use super::rigid_bearing::{net_force, solve_rigid};
 use super::solve::SolveFailure;
 use super::work::Work;
-use crate::geometry::Vec2;
+use crate::geometry::{unit, Vec2};
 
 /// Solve one crank angle with the model's bearing, warm-started from `previous`.
 pub fn solve_angle(
@@ -28,8 +28,7 @@ pub fn solve_angle(
 /// Solve one crank angle into `work.sol`, then remember it for the next angle's guess.
 pub fn solve_into(model: &Model, crank: f64, work: &mut Work) -> Result<(), SolveFailure> {
     work.forget_if_far(crank, model);
-    let (sin, cos) = crank.sin_cos();
-    work.e_phi = Vec2::new(cos, sin);
+    work.e_phi = unit(crank);
     match model.bearing_stiffness_n_per_mm {
         Some(_) if model.coupled().is_some() => {
             return Err(SolveFailure::Evaluation(

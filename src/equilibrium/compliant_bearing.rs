@@ -380,7 +380,7 @@ fn centre_step(kb: f64, sol: &AngleSolution, force: Vec2) -> Vec2 {
 mod tests {
     use super::{compliant_jacobian, compliant_residual, evaluate_at, solve_rigid, Work};
     use super::{AngleSolution, Model};
-    use crate::geometry::Vec2;
+    use crate::geometry::{unit, Vec2};
     use crate::model::{Effect, Plan};
     use nalgebra::Vector4;
     use proptest::prelude::*;
@@ -389,8 +389,7 @@ mod tests {
     /// bearing's force and the residual left out: the test reads the lags and the states).
     fn rigid_solution(model: &Model, crank: f64) -> AngleSolution {
         let mut work = Work::exact_from(AngleSolution::default());
-        let (sin, cos) = crank.sin_cos();
-        work.e_phi = Vec2::new(cos, sin);
+        work.e_phi = unit(crank);
         solve_rigid(model, crank, &mut work, Vec2::zeros()).unwrap();
         work.sol
     }

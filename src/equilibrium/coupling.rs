@@ -44,7 +44,7 @@ use super::friction::sliding::{self, disc_speed_ratio, disc_velocity, relative_c
 use super::pins::PinState;
 use super::rollers::RollerState;
 use super::solve::rel;
-use crate::geometry::{angle_from, cross, Vec2};
+use crate::geometry::{angle_from, cross, unit, Vec2};
 use crate::model::{Design, Friction};
 
 /// The friction of the coupled balance, per unit normal force (`Friction` reduced to what the
@@ -363,12 +363,6 @@ fn sign(v: f64) -> f64 {
     } else {
         0.0
     }
-}
-
-/// (cos φ, sin φ).
-fn unit(crank_rad: f64) -> Vec2 {
-    let (s, c) = crank_rad.sin_cos();
-    Vec2::new(c, s)
 }
 
 /// The power terms of one disc at one crank angle, per unit input speed, N·mm/rad

@@ -946,7 +946,7 @@ pub fn finish(work: &mut CoupledWork, crank: f64, torque: &[f64], total: f64, la
 mod tests {
     use super::Discs;
     use crate::equilibrium::loaded::Model;
-    use crate::geometry::Vec2;
+    use crate::geometry::unit;
     use crate::model::{Effect, Plan};
     use std::f64::consts::TAU;
 
@@ -967,7 +967,7 @@ mod tests {
                 let pins = disc.pins.as_ref().unwrap();
                 for (phi, lag) in [(0.3, 1e-3), (2.0, -4e-4), (5.5, 0.0)] {
                     let phi_k: f64 = phi + TAU * k as f64 / count as f64;
-                    let e_phi = Vec2::new(phi_k.cos(), phi_k.sin());
+                    let e_phi = unit(phi_k);
                     let psi = -phi_k / nc + lag;
                     let mut states = Vec::new();
                     pins.first_order_at(e_phi, psi.sin_cos(), e_phi * 2.0, 0.0, &mut states);

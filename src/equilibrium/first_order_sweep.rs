@@ -39,7 +39,7 @@ use super::rollers::Rollers;
 use super::solve::piecewise_linear_root_near;
 use crate::contact::hertz_line::HertzFactors;
 use crate::contact::law;
-use crate::geometry::{sin_cos, NearbySinCos, Vec2};
+use crate::geometry::{sin_cos, unit, NearbySinCos, Vec2};
 use crate::model::{ContactLaw, GeometryMode};
 
 /// The closed-form sweep of one model, when the model is one it applies to.
@@ -418,8 +418,7 @@ impl<'a> FirstOrderSweep<'a> {
             });
         let middle = 0.5 * (lo + hi);
         let reach = (hi - middle).max(middle - lo);
-        let (sin, cos) = middle.sin_cos();
-        self.roller_terms(Vec2::new(cos, sin), scratch);
+        self.roller_terms(unit(middle), scratch);
         let lag_reach = SCREEN_LAG_SHARE * lag_rad.abs() + SCREEN_LAG_FLOOR_RAD;
         let coefficients = &self.rollers.first_order;
         let n = self.roller_units.x.len();
@@ -683,7 +682,7 @@ mod tests {
         let column = || vec![vec![0.0]; n];
         for k in 0..12 {
             let phi = 0.05 * k as f64;
-            let e = crate::geometry::Vec2::new(phi.cos(), phi.sin());
+            let e = crate::geometry::unit(phi);
             let solve = |scratch: &mut Scratch| {
                 let (mut f, mut p, mut w) = (column(), column(), column());
                 let mut pf = vec![vec![0.0]; kernel.pin_units.x.len()];
@@ -754,7 +753,7 @@ mod tests {
             let r = kernel.rollers;
             let left_out = all(r.units.len()) & !screen.candidates;
             for &phi in &crank {
-                let e = crate::geometry::Vec2::new(phi.cos(), phi.sin());
+                let e = crate::geometry::unit(phi);
                 for i in bits(left_out) {
                     let u = r.units[i];
                     let (g, l) = r.first_order.at(u.dot(&e), crate::geometry::cross(e, u));

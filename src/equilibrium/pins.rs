@@ -10,7 +10,7 @@
 use super::balance::impl_contact;
 use super::pin_beam::{series_force, PinBeam};
 use crate::contact::law::{self, ContactForce, LineContact};
-use crate::geometry::{cross, rotate, sin_cos, Vec2};
+use crate::geometry::{cross, rotate, sin_cos, unit, Vec2};
 use crate::model::{ContactLaw, Design};
 
 /// One pin's contact.
@@ -74,7 +74,7 @@ fn pattern(m: usize) -> Vec<Vec2> {
     (0..m)
         .map(|j| {
             let a = std::f64::consts::TAU * j as f64 / m as f64;
-            Vec2::new(a.cos(), a.sin())
+            unit(a)
         })
         .collect()
 }
@@ -216,8 +216,7 @@ impl Pins {
         output_lag: f64,
         out: &mut Vec<PinState>,
     ) {
-        let (sc, cc) = crank_rad.sin_cos();
-        self.evaluate_at(Vec2::new(cc, sc), psi.sin_cos(), offset, output_lag, out);
+        self.evaluate_at(unit(crank_rad), psi.sin_cos(), offset, output_lag, out);
     }
 
     /// `evaluate` from the eccentric direction e_φ and (sin, cos) of ψ, computed once per crank

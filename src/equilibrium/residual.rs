@@ -3,15 +3,14 @@
 
 use super::loaded::{AngleSolution, Model};
 use super::solve::rel;
-use crate::geometry::{cross, Vec2};
+use crate::geometry::{cross, unit, Vec2};
 
 /// Relative residual of the paper's Eqs. 12–14, evaluated independently of how the solution
 /// was found: force balance (Eqs. 12–13), moment balance about the fixed origin with every
 /// force at its contact point and the bearing force at the disc centre, and the pin/roller
 /// moment equality about the disc centre (Eq. 14).
 pub fn residual(model: &Model, crank: f64, sol: &AngleSolution, bearing: Vec2) -> f64 {
-    let (sin, cos) = crank.sin_cos();
-    residual_at(model, Vec2::new(cos, sin), sol, bearing)
+    residual_at(model, unit(crank), sol, bearing)
 }
 
 /// `residual` with the eccentric direction e_φ = (cos φ, sin φ) given, in one pass over the

@@ -16,7 +16,7 @@ use crate::contact::law::{self, ContactForce, LineContact};
 use crate::geometry::clearance::{GapFailure, Mesh, Pose};
 use crate::geometry::first_order;
 use crate::geometry::profile::LocusFrame;
-use crate::geometry::{cross, rotate, sin_cos, wrap_pi, Vec2};
+use crate::geometry::{cross, rotate, sin_cos, unit, wrap_pi, Vec2};
 use crate::model::{ContactLaw, Design, Face, GeometryMode, Modification};
 
 /// One roller's contact at one pose.
@@ -83,14 +83,13 @@ pub struct AngleTrig {
 
 impl AngleTrig {
     pub fn new(crank_rad: f64, teeth: usize) -> Self {
-        let (s, c) = crank_rad.sin_cos();
         let turn = crank_rad / teeth as f64;
         let lobe = (teeth + 1) as f64 * turn;
         AngleTrig {
             crank_rad,
-            e_phi: Vec2::new(c, s),
+            e_phi: unit(crank_rad),
             ideal: (-turn).sin_cos(),
-            lobe: Vec2::new(lobe.cos(), lobe.sin()),
+            lobe: unit(lobe),
         }
     }
 

@@ -9,7 +9,7 @@
 //!   the roller's gap closes as β grows: ∂gap/∂β = −l exactly.
 
 use super::profile::{ClosestPointFailure, LocusFrame, Profile};
-use super::{cross, rotate, sin_cos, wrap_pi, Vec2};
+use super::{cross, rotate, sin_cos, unit, wrap_pi, Vec2};
 use crate::model::results::{BacklashCurves, ClearanceSweep, MinClearance, MinCoverage};
 use crate::model::{Design, Modification};
 use crate::progress::{Progress, Silent};
@@ -188,15 +188,14 @@ impl Mesh {
 
     /// Disc centre in the fixed frame: (e + de)·(cos φ, sin φ) + u.
     pub fn disc_centre(&self, pose: &Pose) -> Vec2 {
-        let (s, c) = pose.crank_rad.sin_cos();
-        Vec2::new(c, s) * (self.eccentricity_mm + self.eccentricity_deviation_mm)
+        unit(pose.crank_rad) * (self.eccentricity_mm + self.eccentricity_deviation_mm)
             + pose.centre_offset_mm
     }
 
     /// Roller i's nominal centre, Rp·(cos 2πi/np, sin 2πi/np), fixed frame.
     pub fn nominal_centre(&self, i: usize) -> Vec2 {
         let a = std::f64::consts::TAU * i as f64 / self.rollers as f64;
-        Vec2::new(a.cos(), a.sin()) * self.roller_circle_radius_mm
+        unit(a) * self.roller_circle_radius_mm
     }
 
     /// Unit vector of roller i's nominal place: its nominal centre over Rp (so formed, the
@@ -245,8 +244,7 @@ impl Mesh {
         // rounding of subtracting vectors of size Rp (see `closest_point_near_locus`).
         let t_i = self.locus_parameter(i, &Pose::ideal(pose.crank_rad));
         let (s, c) = self.disc_rotation(pose).sin_cos();
-        let (sp, cp) = pose.crank_rad.sin_cos();
-        let excess = self.centre_excess(i, Vec2::new(cp, sp), pose.centre_offset_mm);
+        let excess = self.centre_excess(i, unit(pose.crank_rad), pose.centre_offset_mm);
         let w = rotate(excess, c, -s);
         let precise = |start: f64| {
             self.profile
@@ -610,18 +608,17 @@ impl<'a> Tracker<'a> {
             // e·e^{i·np·t_ref} at β = 0, with e^{i·np·t_ref} = e^{i·np·φ/nc} for every roller.
             let turn = phi / nc;
             let (st, ct) = turn.sin_cos();
-            let (sl, cl) = (np * turn).sin_cos();
             let (mut forward, mut reverse) = (f64::INFINITY, f64::INFINITY);
-            let (sp, cp) = phi.sin_cos();
+            let e_phi = unit(phi);
             for (i, w) in warm.iter_mut().enumerate() {
                 let frame = LocusFrame {
                     t_ref: TAU * i as f64 / np + turn,
                     r_ref: mesh.roller_circle_radius_mm,
                     base: rotate(self.units[i], ct, st),
-                    lobe: Vec2::new(cl, sl),
+                    lobe: unit(np * turn),
                 };
                 // The parts as built, in the disc frame at β = 0 (ψ = −φ/nc).
-                let excess = mesh.centre_excess(i, Vec2::new(cp, sp), Vec2::zeros());
+                let excess = mesh.centre_excess(i, e_phi, Vec2::zeros());
                 let frame = Seat {
                     frame,
                     excess: rotate(excess, ct, st),

@@ -3,7 +3,7 @@
 //! --step` writes and `--stl` meshes).
 
 use super::profile::Profile;
-use super::Vec2;
+use super::{unit, Vec2};
 use crate::model::{Design, OutputPins};
 use std::f64::consts::TAU;
 
@@ -173,7 +173,7 @@ pub fn circle_polygon(circle: &Circle, tolerance_mm: f64, clockwise: bool) -> Ve
     (0..n)
         .map(|i| {
             let a = sign * TAU * i as f64 / n as f64;
-            circle.centre + Vec2::new(a.cos(), a.sin()) * r
+            circle.centre + unit(a) * r
         })
         .collect()
 }

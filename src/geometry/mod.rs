@@ -50,6 +50,13 @@ pub fn wrap_tau(x: f64) -> f64 {
     }
 }
 
+/// The unit vector at angle x, (cos x, sin x).
+#[inline]
+pub fn unit(x: f64) -> Vec2 {
+    let (s, c) = x.sin_cos();
+    Vec2::new(c, s)
+}
+
 /// Rotate `v` counter-clockwise by the angle whose cosine and sine are given.
 #[inline]
 pub fn rotate(v: Vec2, cos: f64, sin: f64) -> Vec2 {

@@ -12,7 +12,7 @@
 //! r' must be smaller than the smallest convex radius of curvature of C.
 
 use super::form_error::FormError;
-use super::{cmul, cross, expi_minus_one, rotate, sin_cos, Vec2};
+use super::{cmul, cross, expi_minus_one, rotate, sin_cos, unit, Vec2};
 use crate::model::{ConvexRadius, Design, FormTerm, Locus, Modification};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -515,8 +515,8 @@ impl Profile {
         LocusFrame {
             t_ref,
             r_ref,
-            base: Vec2::new(t_ref.cos(), t_ref.sin()),
-            lobe: Vec2::new((n * t_ref).cos(), (n * t_ref).sin()),
+            base: unit(t_ref),
+            lobe: unit(n * t_ref),
         }
     }
 
@@ -610,7 +610,7 @@ impl Profile {
         let point = j.c - self.offset_mm * n;
         if self.has_form() {
             let n_t = self.rollers as f64 * t;
-            let trig = (Vec2::new(t.cos(), t.sin()), Vec2::new(n_t.cos(), n_t.sin()));
+            let trig = (unit(t), unit(n_t));
             return self.formed_foot(t, trig, point - q);
         }
         Ok(Foot {

@@ -47,7 +47,7 @@ use super::thinning::{self, Thinning};
 use super::{Feature, MeasuredPoint};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::profile::{ClosestPointFailure, Foot, Profile};
-use crate::geometry::{cos_sin_of_orders, cross, rotate, wrap_pi, Vec2};
+use crate::geometry::{cos_sin_of_orders, cross, rotate, unit, wrap_pi, Vec2};
 use crate::model::measured::Fitted;
 use crate::model::{Design, Modification};
 use faer::linalg::solvers::SolveLstsq;
@@ -284,7 +284,7 @@ impl<'a> State<'a> {
             row[2] = turn;
             if let Some(i) = l.shift {
                 let (s, c) = self.rotation;
-                let radial = rotate(Vec2::new(t.cos(), t.sin()), c, s);
+                let radial = rotate(unit(t), c, s);
                 row[i] = -radial.dot(&foot.normal);
             }
             if let Some(i) = l.equidistant {
@@ -976,7 +976,7 @@ fn initial(
         let sum = holes.iter().fold(Vec2::zeros(), |acc, (j, p)| {
             let v = p - centre;
             let a = v.y.atan2(v.x) - TAU * *j as f64 / m;
-            acc + Vec2::new(a.cos(), a.sin())
+            acc + unit(a)
         });
         let orientation = sum.y.atan2(sum.x);
         if let Some(i) = layout.rotation {

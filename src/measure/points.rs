@@ -16,7 +16,7 @@
 use super::encoding::{self, Fallback};
 use super::{Feature, MeasuredPoint};
 use crate::error::{Error, ErrorKind, Location, Result};
-use crate::geometry::Vec2;
+use crate::geometry::{unit, Vec2};
 use crate::model::measured::PointsFormat;
 use std::f64::consts::TAU;
 
@@ -487,7 +487,7 @@ pub fn parse_dxf_at_most(path: &str, text: &str, max: usize) -> Result<Vec<Measu
                 for k in 0..CIRCLE_POINTS {
                     let a = TAU * k as f64 / CIRCLE_POINTS as f64;
                     points.push(MeasuredPoint {
-                        point: centre + Vec2::new(a.cos(), a.sin()) * radius,
+                        point: centre + unit(a) * radius,
                         feature: Feature::Hole(j),
                         line: e.line,
                     });

@@ -122,7 +122,7 @@ mod tests {
     use super::*;
     use crate::equilibrium::rollers::Rollers;
     use crate::geometry::clearance::Pose;
-    use crate::geometry::Vec2;
+    use crate::geometry::{unit, Vec2};
     use crate::model::{
         ContactLaw, FrictionModel, GeometryMode, Material, Modification, OutputPins,
     };
@@ -180,8 +180,8 @@ mod tests {
     /// (|P_i − I| − Rrp)/nc with P_i = Rp(cos 2πi/np, sin 2πi/np), I = e·np(cos φ, sin φ).
     fn closed_roller(d: &Design, i: usize, phi: f64) -> f64 {
         let a = std::f64::consts::TAU * i as f64 / d.rollers as f64;
-        let p = Vec2::new(a.cos(), a.sin()) * d.roller_circle_radius_mm;
-        let pitch = Vec2::new(phi.cos(), phi.sin()) * (d.eccentricity_mm * d.rollers as f64);
+        let p = unit(a) * d.roller_circle_radius_mm;
+        let pitch = unit(phi) * (d.eccentricity_mm * d.rollers as f64);
         ((p - pitch).norm() - d.roller_radius_mm) / d.teeth as f64
     }
 

@@ -128,6 +128,21 @@ pub fn signed(x: f64, decimals: usize) -> Option<String> {
     (!zero).then(|| format!("{x:+.decimals$}"))
 }
 
+/// `x` with `decimals`, without the sign of a value that rounds to zero (`-0.000` → `0.000`).
+pub fn fixed(x: f64, decimals: usize) -> String {
+    let s = format!("{x:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
+}
+
+/// A change `x` with `decimals`, signed as [`change`] signs one ([`signed`]: `+25.000`,
+/// `-9.300`), and unsigned where it rounds to zero (`0.000`).
+pub fn fixed_change(x: f64, decimals: usize) -> String {
+    signed(x, decimals).unwrap_or_else(|| fixed(0.0, decimals))
+}
+
 /// A value as the user wrote it when that is short, else in exponent form: spec inputs in
 /// messages (`1e300` stays readable, `0.015` stays `0.015`).
 pub fn input(x: f64) -> String {
@@ -180,6 +195,17 @@ pub fn percent_label(p: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Signed like the headline changes beside it, and a change at the round-off of a fit
+    /// (1e-12 either way) reads as no change at all.
+    #[test]
+    fn a_change_is_signed_and_round_off_reads_zero() {
+        assert_eq!(fixed_change(25.0, 3), "+25.000");
+        assert_eq!(fixed_change(-9.3, 3), "-9.300");
+        assert_eq!(fixed_change(1e-12, 3), "0.000");
+        assert_eq!(fixed_change(-1e-12, 3), "0.000");
+        assert_eq!(fixed_change(0.0005, 3), "+0.001");
+    }
 
     /// A change reads against the values it is between: to their printed decimals, signed,
     /// and "0" below their last digit (a difference at the round-off of two 1,234.5 N forces

@@ -107,7 +107,7 @@ pub fn seconds_text(s: f64) -> String {
 
 /// An observed order, two decimals (no "-0.00" for an error that did not move).
 pub fn order_text(p: f64) -> String {
-    super::fit::fixed(p, 2)
+    crate::numeric::fixed(p, 2)
 }
 
 /// Steps per period (or periods): an integer as such, else two decimals.

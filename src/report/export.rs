@@ -2,10 +2,10 @@
 //! spaced so that the chordal error (distance of the true profile from each chord) stays
 //! under a tolerance.
 
-use super::fit::fixed;
 use crate::geometry::placement::Body;
 pub use crate::geometry::polyline::{polyline, ProfilePoint};
 use crate::model::design::disc_phase_rad;
+use crate::numeric::fixed;
 use crate::spec::Spec;
 use crate::units;
 use serde::Serialize;

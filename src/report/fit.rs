@@ -6,25 +6,11 @@ use crate::geometry::profile::Profile;
 use crate::measure::fit::Identification;
 use crate::measure::fitted::Estimate;
 use crate::measure::flanks::arc_length_mm;
+use crate::numeric::fixed;
 use crate::spec::Spec;
 use crate::units;
 use serde::Serialize;
 use std::f64::consts::TAU;
-
-/// `x` with `decimals`, without the sign of a value that rounds to zero (`-0.000` → `0.000`).
-pub(super) fn fixed(x: f64, decimals: usize) -> String {
-    let s = format!("{x:.decimals$}");
-    match s.strip_prefix('-') {
-        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
-        _ => s,
-    }
-}
-
-/// A change `x` with `decimals`, signed as [`numeric::change`](crate::numeric::change) signs one ([`numeric::signed`](crate::numeric::signed):
-/// `+25.000`, `-9.300`), and unsigned where it rounds to zero (`0.000`).
-pub(super) fn fixed_change(x: f64, decimals: usize) -> String {
-    crate::numeric::signed(x, decimals).unwrap_or_else(|| fixed(0.0, decimals))
-}
 
 fn row(name: &str, e: Estimate, unit: &str) -> String {
     let (value, sigma) = match unit {
@@ -270,19 +256,6 @@ pub fn form_csv(spec: &Spec, id: &Identification) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::fixed_change;
-
-    /// Signed like the headline changes beside it, and a change at the round-off of a fit
-    /// (1e-12 either way) reads as no change at all.
-    #[test]
-    fn a_change_is_signed_and_round_off_reads_zero() {
-        assert_eq!(fixed_change(25.0, 3), "+25.000");
-        assert_eq!(fixed_change(-9.3, 3), "-9.300");
-        assert_eq!(fixed_change(1e-12, 3), "0.000");
-        assert_eq!(fixed_change(-1e-12, 3), "0.000");
-        assert_eq!(fixed_change(0.0005, 3), "+0.001");
-    }
-
     #[test]
     fn ordinals_read_as_english() {
         let read: Vec<String> = [1, 2, 3, 4, 11, 12, 13, 21, 102, 111]

@@ -19,14 +19,14 @@ pub fn px(x: f64) -> String {
     trimmed(x, 2)
 }
 
-/// `x` to `decimals`, trailing zeros dropped, "-0" read as "0".
+/// `x` to `decimals` (`numeric::fixed`: no "-0"), trailing zeros of the decimals dropped.
 pub fn trimmed(x: f64, decimals: usize) -> String {
-    let s = format!("{x:.decimals$}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
+    let s = crate::numeric::fixed(x, decimals);
+    // Only decimals are trimmed: "10" at no decimals stays 10.
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
     } else {
-        s.to_string()
+        s
     }
 }
 
@@ -85,4 +85,21 @@ pub fn document(w: f64, h: f64, body: Markup) -> String {
         }
     };
     doc.into_string() + "\n"
+}
+
+#[cfg(test)]
+mod tests {
+    use super::trimmed;
+
+    /// Only the zeros after the point go: 1.50 reads 1.5 and 2.000 reads 2, but ten at no
+    /// decimals stays "10" (trimming every trailing zero read it as "1"); a value that rounds
+    /// to zero reads "0", not "-0".
+    #[test]
+    fn trimming_drops_only_trailing_decimal_zeros() {
+        assert_eq!(trimmed(1.5, 2), "1.5");
+        assert_eq!(trimmed(2.0, 3), "2");
+        assert_eq!(trimmed(10.0, 0), "10");
+        assert_eq!(trimmed(-0.001, 2), "0");
+        assert_eq!(trimmed(-0.25, 2), "-0.25");
+    }
 }

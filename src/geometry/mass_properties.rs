@@ -172,8 +172,9 @@ pub struct DiscMass {
 
 impl DiscMass {
     /// The disc whose face lies inside `profile` less `holes` and `bore`, `face_width_mm`
-    /// thick, at `density_kg_per_mm3`: the face's moments (`face_moments`) over the face width. Every disc mass is this call: `disc_mass` for a
-    /// spec's design, the design search's candidate before its design exists.
+    /// thick, at `density_kg_per_mm3`: the face's moments (`face_moments`) over the face
+    /// width. Every disc mass is this call: `disc_mass` for a spec's design, the design
+    /// search's candidate before its design exists.
     pub fn of_face(
         profile: &Profile,
         holes: &[Circle],

@@ -434,8 +434,8 @@ fn bad_duty_cycles_are_located() {
 }
 
 /// The JSON and the design review of the shipped cycle: every number finite (no null, NaN or
-/// ∞), one record per bin with its time share as given, revolution shares sᵢ·nᵢ/Σ sⱼ·nⱼ that
-/// sum to 1 (1e-12: four rounded quotients) and are 0 at the standstill, the cycle's figures
+/// ∞), one record per bin with its time share as given, revolution shares sᵢ·nᵢ/Σ sⱼ·nⱼ (each
+/// from the bins as given) that sum to 1 (1e-12: four rounded quotients) and are 0 at the standstill, the cycle's figures
 /// among the scene's keys, and a "Duty cycle" section with one table row per bin.
 #[test]
 fn the_json_and_the_review_show_every_bin() {
@@ -470,11 +470,15 @@ fn the_json_and_the_review_show_every_bin() {
     let bins = scene["duty_cycle"]["bins"].as_array().unwrap();
     assert_eq!(bins.len(), ROBOT.len());
     let mut total = 0.0;
+    let revolutions: f64 = ROBOT.iter().map(|&(_, n, s)| s * n).sum();
     for (b, &(t, n, s)) in bins.iter().zip(&ROBOT) {
         assert_eq!(b["output_torque_nm"].as_f64(), Some(t));
         assert_eq!(b["time_share"].as_f64(), Some(s));
         let share = b["revolution_share"].as_f64().unwrap();
         assert_eq!(share == 0.0, n == 0.0, "{b}");
+        // The bin's own sᵢ·nᵢ over the cycle's Σ sⱼ·nⱼ, from the spec's inputs: a share by time
+        // or by speed alone also sums to 1 (round-off of two products and a quotient: 1e-15).
+        assert!((share - s * n / revolutions).abs() < 1e-15, "{b}");
         total += share;
         assert!(b["results"]["bearing_force_n"].is_array());
     }

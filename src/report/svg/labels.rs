@@ -195,12 +195,7 @@ impl Layout {
                 // capped so that a diagonal does not push it twice as far).
                 let reach = (ux.abs() * w / 2.0 + uy.abs() * h / 2.0).min((w / 2.0).hypot(h / 2.0));
                 let d = label.gap + step + reach;
-                let b = Bounds::new(
-                    ax + ux * d - w / 2.0,
-                    ay + uy * d - h / 2.0,
-                    ax + ux * d + w / 2.0,
-                    ay + uy * d + h / 2.0,
-                );
+                let b = box_of(&label.text, label.size, (ax + ux * d, ay + uy * d));
                 let outside = !self.frame.contains(&b);
                 let hits = self.hits(&b);
                 let key = (outside, hits);

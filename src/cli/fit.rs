@@ -25,17 +25,15 @@ pub(super) fn run(
         let text = spec::edit::with_modification(p, &spec.source, &id.modification)?;
         let mut deviations = spec.design.deviations.clone();
         deviations.form = as_built::form_terms(&id);
-        let text = if deviations.form.is_empty() {
-            text
+        let (text, what) = if deviations.form.is_empty() {
+            (text, "the identified modification")
         } else {
-            spec::edit::with_deviations(&text, path, &deviations, p)?
+            (
+                spec::edit::with_deviations(&text, path, &deviations, p)?,
+                "the identified modification and form error (reducer.deviations.form)",
+            )
         };
         write_spec(path, p, &text)?;
-        let what = if deviations.form.is_empty() {
-            "the identified modification"
-        } else {
-            "the identified modification and form error (reducer.deviations.form)"
-        };
         print(out, &format!("wrote {p} with {what}\n"))?;
     }
     Ok(Outcome::Passed)

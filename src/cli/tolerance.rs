@@ -199,20 +199,19 @@ fn write_sample(
     let deviations = study.deviations(&study.draw(k));
     // The sample is the drawing's parts as drawn: a measured disc would replace the drawing's
     // in the replay (`check` runs on the disc as built), so the written spec has none.
-    let source = match &spec.measured {
-        Some(_) => spec::edit::without_measured_profile(&spec.source, path)?,
-        None => spec.source.clone(),
+    let (source, without) = match &spec.measured {
+        Some(m) => (
+            spec::edit::without_measured_profile(&spec.source, path)?,
+            format!(
+                ", without the measured profile `{}` (the sample is drawn from the drawing)",
+                m.path
+            ),
+        ),
+        None => (spec.source.clone(), String::new()),
     };
     let text = spec::edit::with_deviations(&source, &spec.path, &deviations, path)?;
     let text = report::tolerance::sample_header(study, k) + &text;
     write_spec(&spec.path, path, &text)?;
-    let without = match &spec.measured {
-        Some(m) => format!(
-            ", without the measured profile `{}` (the sample is drawn from the drawing)",
-            m.path
-        ),
-        None => String::new(),
-    };
     print(
         out,
         &format!("wrote {path}: sample {k}'s deviations as reducer.deviations{without}; replay it with `cycloid check {path}`\n"),

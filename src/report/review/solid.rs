@@ -8,6 +8,7 @@
 //! leaves an outer wall toward the viewer runs outward, away from the face, and one that leaves
 //! a hole's wall runs up through the hole. The bottom face never faces the viewer.
 
+use super::common::extent;
 use crate::engine::commands::solid_picture::SolidPicture;
 use crate::report::svg::{document, px, trimmed};
 use maud::{html, PreEscaped};
@@ -101,12 +102,7 @@ pub fn picture(solid: &SolidPicture) -> (String, usize) {
     let drawn = facets(solid);
     let xs = drawn.iter().flat_map(|f| f.points.map(|p| p.0));
     let ys = drawn.iter().flat_map(|f| f.points.map(|p| p.1));
-    let span = |v: &mut dyn Iterator<Item = f64>| {
-        v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-            (lo.min(x), hi.max(x))
-        })
-    };
-    let ((x0, x1), (y0, y1)) = (span(&mut xs.into_iter()), span(&mut ys.into_iter()));
+    let ((x0, x1), (y0, y1)) = (extent(xs), extent(ys));
     let top = 34.0;
     let scale = ((W - 2.0 * MARGIN) / (x1 - x0)).min((H - top - MARGIN) / (y1 - y0));
     let tx = 0.5 * W - scale * 0.5 * (x0 + x1);

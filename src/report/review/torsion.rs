@@ -1,7 +1,7 @@
 //! The review's torsion under a locked input ([`engine::torsion`](crate::engine::torsion)): per torsion scene its curves
 //! and its table of catalogue figures (`sections`).
 
-use super::common::{data_table, figure, Section};
+use super::common::{data_table, extent, figure, Section};
 use super::plots::capitalised;
 use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
@@ -110,12 +110,7 @@ fn torsion_plot(scene: &Scene, r: &SceneResult, t: &TorsionCurves) -> LinePlot {
 /// side, over every angle; labelled with the backlash figures' range.
 fn dead_band_cut(t: &TorsionCurves, lines: &[(Vec<f64>, Vec<f64>)], steps: usize) -> Option<YCut> {
     let side = |range: fn(&[f64], usize) -> &[f64]| {
-        let values = lines
-            .iter()
-            .flat_map(|(_, y)| range(y, steps).iter().copied());
-        values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(v), b.max(v))
-        })
+        extent((lines.iter()).flat_map(|(_, y)| range(y, steps).iter().copied()))
     };
     let below = side(|y, s| &y[..=s]);
     let above = side(|y, s| &y[s + 1..]);
@@ -126,10 +121,7 @@ fn dead_band_cut(t: &TorsionCurves, lines: &[(Vec<f64>, Vec<f64>)], steps: usize
     if !wide {
         return None;
     }
-    let bands = t.figures.iter().map(|f| units::arcmin(f.backlash_rad));
-    let (least, most) = bands.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-        (a.min(v), b.max(v))
-    });
+    let (least, most) = extent(t.figures.iter().map(|f| units::arcmin(f.backlash_rad)));
     let band = if number(least) == number(most) {
         number(least)
     } else {

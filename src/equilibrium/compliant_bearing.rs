@@ -448,7 +448,7 @@ mod tests {
                 + at.pins.iter().map(|p| p.force_n).sum::<f64>();
             let profile = &model.rollers.as_ref().unwrap().mesh.profile;
             let kappa = (0..=200)
-                .map(|k| profile.locus_curvature_at(-1.0 + 0.01 * k as f64).abs())
+                .map(|k| profile.locus().curvature_at(-1.0 + 0.01 * k as f64).abs())
                 .fold(0.0, f64::max);
             let geometric = forces * (kappa + 1.0 / d.eccentricity_mm) * (1.0 + lever).powi(2);
             let factor = [1.0, 1.0, 1.0 + lever, 1.0 + lever];

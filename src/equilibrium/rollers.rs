@@ -154,7 +154,8 @@ impl Rollers {
             - mesh.profile.eccentricity_mm * design.rollers as f64)
             .max(1e-6);
         let ripple = mesh.profile.form().bend_bound() / (slowest * slowest);
-        let mut convex = mesh.profile.min_convex_radius().radius_mm - mesh.profile.offset_mm;
+        let mut convex =
+            mesh.profile.locus().min_convex_radius().radius_mm - mesh.profile.offset_mm;
         if ripple > 0.0 {
             convex = 1.0 / (1.0 / convex.max(1e-6) + ripple);
         }

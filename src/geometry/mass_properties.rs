@@ -150,15 +150,6 @@ fn trapezoid_moments(profile: &Profile, n: usize) -> AreaMoments {
     m
 }
 
-/// The disc's face: inside `profile` (`profile_moments`), less `holes` and the `bore`, which
-/// the design rules keep inside the profile and apart.
-pub fn face_moments(profile: &Profile, holes: &[Circle], bore: Option<&Circle>) -> AreaMoments {
-    holes
-        .iter()
-        .chain(bore)
-        .fold(profile_moments(profile), |m, c| m.less(circle_moments(c)))
-}
-
 /// Mass properties of one disc, a prism of its face over the face width B: m = ρ·B·A (kg),
 /// J_c = ρ·B·J (kg·mm², about the disc centre, the axis of its own turning) and the centroid's
 /// distance from the disc centre (mm; zero for a disc as drawn, by its symmetry).
@@ -171,10 +162,11 @@ pub struct DiscMass {
 }
 
 impl DiscMass {
-    /// The disc whose face lies inside `profile` less `holes` and `bore`, `face_width_mm`
-    /// thick, at `density_kg_per_mm3`: the face's moments (`face_moments`) over the face
-    /// width. Every disc mass is this call: `disc_mass` for a spec's design, the design
-    /// search's candidate before its design exists.
+    /// The disc whose face lies inside `profile` (`profile_moments`) less `holes` and `bore`
+    /// (which the design rules keep inside the profile and apart), `face_width_mm` thick, at
+    /// `density_kg_per_mm3`: the face's moments over the face width. Every disc mass is this
+    /// call: `disc_mass` for a spec's design, the design search's candidate before its design
+    /// exists.
     pub fn of_face(
         profile: &Profile,
         holes: &[Circle],
@@ -182,7 +174,8 @@ impl DiscMass {
         face_width_mm: f64,
         density_kg_per_mm3: f64,
     ) -> DiscMass {
-        let face = face_moments(profile, holes, bore);
+        let face = (holes.iter().chain(bore))
+            .fold(profile_moments(profile), |m, c| m.less(circle_moments(c)));
         let per_mm2 = density_kg_per_mm3 * face_width_mm;
         DiscMass {
             face,

@@ -13,7 +13,7 @@
 
 use super::form_error::FormError;
 use super::{cmul, cross, expi_minus_one, rotate, sin_cos, unit, Vec2};
-use crate::model::{ConvexRadius, Design, FormTerm, Locus, Modification};
+use crate::model::{Design, FormTerm, Locus, Modification};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -218,12 +218,8 @@ impl Profile {
     /// In closed form (expand C' × C'' and |C'|² with c = cos((n − 1)t)):
     ///   κ_C = (R'² + e²n³ − R'e·n(n + 1)·c) / (R'² + e²n² − 2R'e·n·c)^{3/2}.
     pub fn locus_curvature(&self, t: f64) -> f64 {
-        self.locus_curvature_at(((self.rollers - 1) as f64 * t).cos())
-    }
-
-    /// κ_C from c = cos((n − 1)t); see `locus_curvature`.
-    pub fn locus_curvature_at(&self, c: f64) -> f64 {
-        self.locus().curvature_at(c)
+        self.locus()
+            .curvature_at(((self.rollers - 1) as f64 * t).cos())
     }
 
     /// The locus C of this profile, for its closed forms.
@@ -333,17 +329,11 @@ impl Profile {
         }
     }
 
-    /// κ_Γ from c = cos((n − 1)t): with κ_C = N/D (`locus_curvature_at`),
+    /// κ_Γ from c = cos((n − 1)t): with κ_C = N/D (`Locus::curvature_at`),
     /// κ_Γ = κ_C/(1 − r'κ_C) = N/(D − r'·N), one division.
     pub fn curvature_at(&self, c: f64) -> f64 {
         let (numerator, denominator) = self.locus().curvature_parts(c);
         numerator / (denominator - self.offset_mm * numerator)
-    }
-
-    /// The smallest convex radius of curvature of C (= 1/max κ_C), in closed form
-    /// ([`model::Locus::min_convex_radius`](crate::model::Locus::min_convex_radius)).
-    pub fn min_convex_radius(&self) -> ConvexRadius {
-        self.locus().min_convex_radius()
     }
 
     /// A lower bound of the reach of the locus C, mm: a point closer to C than the reach has one

@@ -71,11 +71,7 @@ pub fn read(path: &str, format: PointsFormat) -> Result<Vec<MeasuredPoint>> {
 }
 
 fn at(path: &str, line: usize, message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message).at(Location {
-        file: path.to_string(),
-        line,
-        column: 1,
-    })
+    Error::new(ErrorKind::InvalidValue, message).at(Location::new(path, line, 1))
 }
 
 /// The error of one point more than `max` (`MAX_POINTS`), at the line that gave it.

@@ -21,6 +21,11 @@ impl CentreDeviation {
         self.radial_mm == 0.0 && self.tangential_mm == 0.0
     }
 
+    /// How far the centre moves, √(dr² + dt²), mm (dt taken as a length).
+    pub fn size_mm(&self) -> f64 {
+        self.radial_mm.hypot(self.tangential_mm)
+    }
+
     /// The centre's displacement in the frame of its circle, (x, y) mm, for a part whose
     /// nominal centre is at `radius_mm` on the direction (cos a, sin a) = `unit`: the moved
     /// centre is (R + dr)·(cos(a + dt/R), sin(a + dt/R)), formed so that no term of size R is

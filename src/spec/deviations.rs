@@ -194,7 +194,7 @@ pub(crate) fn check(design: &Design, m: &Modification) -> Result<()> {
         d.eccentricity_mm.abs(),
     )?;
     for (i, r) in d.rollers.iter().enumerate() {
-        let moved = r.centre.radial_mm.hypot(r.centre.tangential_mm) + r.radius_mm.abs();
+        let moved = r.centre.size_mm() + r.radius_mm.abs();
         too_far(
             format!("{KEY}.rollers"),
             format!("roller {i} (centre and radius)"),
@@ -202,20 +202,12 @@ pub(crate) fn check(design: &Design, m: &Modification) -> Result<()> {
         )?;
     }
     for (j, p) in d.pins.iter().enumerate() {
-        too_far(
-            format!("{KEY}.pins"),
-            format!("pin {j}"),
-            p.radial_mm.hypot(p.tangential_mm),
-        )?;
+        too_far(format!("{KEY}.pins"), format!("pin {j}"), p.size_mm())?;
     }
     for (k, holes) in d.holes.iter().enumerate() {
         for (j, h) in holes.iter().enumerate() {
             let what = format!("hole {j} of disc {k}");
-            too_far(
-                format!("{KEY}.holes"),
-                what,
-                h.radial_mm.hypot(h.tangential_mm),
-            )?;
+            too_far(format!("{KEY}.holes"), what, h.size_mm())?;
         }
     }
     too_far(

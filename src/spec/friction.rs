@@ -357,7 +357,7 @@ fn no_load_speeds(design: &Design, scenes: &[Scene]) -> Result<()> {
 /// the efficiency (the losses in watts are the losses × ω), and `reducer.thermal` for a
 /// temperature. Refused before anything runs, at the scene or the limit.
 pub(super) fn check_limits(limits: &Limits, design: &Design, scenes: &[Scene]) -> Result<()> {
-    let set = |key: &str| limits.entries.iter().any(|l| l.def.key == key);
+    let set = |key: &str| limits.get(key).is_some();
     if set("max_hysteresis_loss_arcmin") && design.friction.is_none() {
         return Err(Error::invalid(
             "limits.max_hysteresis_loss_arcmin",

@@ -1124,9 +1124,10 @@ fn study(
             (VariableKind::CrownStart, p.crown_start_mm),
         ] {
             if let Some(x) = value {
+                let at = format!("{key}.start.{}", kind.key());
                 if kind.of_crown() && !variables.iter().any(|v: &Variable| v.kind == kind) {
                     return Err(Error::invalid(
-                        format!("{key}.start.{}", kind.key()),
+                        at,
                         format!(
                             "is the start of a variable the study does not vary: give \
                              `variables.{}` bounds, or set `modification.crowning` instead",
@@ -1134,10 +1135,7 @@ fn study(
                         ),
                     ));
                 }
-                kind.set(
-                    &mut start,
-                    finite(&format!("{key}.start.{}", kind.key()), x)?,
-                );
+                kind.set(&mut start, finite(&at, x)?);
             }
         }
     }

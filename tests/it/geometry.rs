@@ -372,7 +372,7 @@ proptest! {
         let d = &c.design;
         let p = Profile::new(d, &c.m);
         let (rho, t) = min_convex_radius_closed(d.rollers, d.eccentricity_mm, p.locus_radius_mm);
-        let found = p.min_convex_radius();
+        let found = p.locus().min_convex_radius();
         // Golden-section refinement of a smooth maximum: the value to round-off (relative
         // 1e-12 allowed 1e-10); the place only to ~sqrt(1e-16) of the t-scale 1/np.
         prop_assert!((found.radius_mm - rho).abs() <= 1e-10 * rho,
@@ -719,7 +719,7 @@ fn paper_optimum_has_its_min_clearance_at_root_and_tip() {
 fn paper_min_convex_radius_is_inside_the_flank() {
     let d = paper_design();
     let p = Profile::new(&d, &Modification::default());
-    let found = p.min_convex_radius();
+    let found = p.locus().min_convex_radius();
     println!(
         "paper locus: min convex radius {:.6} mm at t = {:.5}°",
         found.radius_mm,

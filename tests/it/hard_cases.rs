@@ -482,6 +482,7 @@ fn k1_near_one_works_and_k1_of_one_is_refused() {
 fn undercut_limit_is_sharp() {
     let spec = load("undercut-99pct");
     let limit = cycloid::geometry::profile::Profile::new(&spec.design, &spec.modification)
+        .locus()
         .min_convex_radius()
         .radius_mm;
     let offset = spec.design.roller_radius_mm + spec.modification.equidistant_mm;

@@ -208,17 +208,23 @@ fn centre_newton(
         // reduced Jacobian by finite differences.
         exact_jacobian |= length < 0.25 || force.norm() > 0.5 * before;
     }
+    // Out of steps short of the tolerance: Newton crawled (a Jacobian nearly singular along the
+    // orbit's tangent, where the disc turning with the crank moves no contact, and the other
+    // force row growing as the square of the step: the line search keeps 1/128 to 1/256 of each).
     work.sol = best.clone();
-    let merit = force_merit(model, kb, &best);
-    settled(best, merit)
+    match settled(best.clone(), force_merit(model, kb, &best)) {
+        Ok(sol) => Ok(sol),
+        Err(_) => directional_roots(model, kb, crank, work, u, best),
+    }
 }
 
-/// Finish a compliant solve that Newton cannot: R is strongly monotone (its symmetric part of
-/// ∂R/∂u is ≤ −kb: the bearing's own stiffness plus the contacts', which only resist), so along
-/// any unit direction e the component e·R(u + s·e) decreases strictly in s, and its root is a
-/// monotone 1-D problem that `monotone_root` brackets and solves whatever the kinks. Alternate
-/// such roots along the principal directions of the reduced Jacobian (by differences), which
-/// are nearly decoupled near the answer, until the force residual meets the tolerance.
+/// Finish a compliant solve that Newton cannot (it cycles at a kink, or crawls and runs out of
+/// steps): R is strongly monotone (its symmetric part of ∂R/∂u is ≤ −kb: the bearing's own
+/// stiffness plus the contacts', which only resist), so along any unit direction e the
+/// component e·R(u + s·e) decreases strictly in s, and its root is a monotone 1-D problem that
+/// `monotone_root` brackets and solves whatever the kinks. Alternate such roots along the
+/// principal directions of the reduced Jacobian (by differences), which are nearly decoupled
+/// near the answer, until the force residual meets the tolerance.
 fn directional_roots(
     model: &Model,
     kb: f64,

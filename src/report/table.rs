@@ -148,19 +148,16 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
     }
     let line = |row: [&str; 5]| {
         let mut s = String::new();
-        for (k, (cell, w)) in row.iter().zip(widths).enumerate() {
+        for (cell, w) in row.iter().zip(widths) {
             let pad = " ".repeat(w - cell.chars().count());
             let shown = match (color, *cell) {
                 (true, "FAIL") => format!("{FAIL_STYLE}{cell}{PLAIN_STYLE}"),
                 (true, "pass") => format!("{PASS_STYLE}{cell}{PLAIN_STYLE}"),
                 _ => cell.to_string(),
             };
-            if k + 1 == row.len() {
-                s += &shown;
-            } else {
-                s += &format!("{shown}{pad}  ");
-            }
+            s += &format!("{shown}{pad}  ");
         }
+        // The last cell's padding and gap go with the line's trailing spaces.
         s.trim_end().to_string() + "\n"
     };
     let mut out = line(header);

@@ -169,13 +169,12 @@ impl Batch {
     /// fails, the targets already replaced get their backups back, so the batch replaces all of
     /// its files or none.
     pub fn commit(mut self) -> Result<()> {
-        let staged = std::mem::take(&mut self.staged);
         let mut done: Vec<(PathBuf, Option<PathBuf>)> = Vec::new();
-        for (temp, target) in &staged {
+        for (temp, target) in &self.staged {
             let backup = if fs::symlink_metadata(target).is_ok() {
                 let backup = temporary(target);
                 if let Err(e) = fs::rename(target, &backup) {
-                    return Err(undo(&staged, &done, target, e));
+                    return Err(undo(&done, target, e));
                 }
                 Some(backup)
             } else {
@@ -191,10 +190,12 @@ impl Batch {
                 if let Some(b) = &backup {
                     let _ = fs::rename(b, target);
                 }
-                return Err(undo(&staged, &done, target, e));
+                return Err(undo(&done, target, e));
             }
             done.push((target.clone(), backup));
         }
+        // Every temporary file is in place: none is left for `drop` to remove.
+        self.staged.clear();
         for (_, backup) in done {
             if let Some(b) = backup {
                 let _ = fs::remove_file(b);
@@ -204,13 +205,9 @@ impl Batch {
     }
 }
 
-/// Put the replaced targets of a failed commit back and remove every temporary file.
-fn undo(
-    staged: &[(Option<PathBuf>, PathBuf)],
-    done: &[(PathBuf, Option<PathBuf>)],
-    failed: &Path,
-    e: io::Error,
-) -> Error {
+/// Put the replaced targets of a failed commit back (the batch, dropped, removes its
+/// temporary files).
+fn undo(done: &[(PathBuf, Option<PathBuf>)], failed: &Path, e: io::Error) -> Error {
     for (target, backup) in done.iter().rev() {
         match backup {
             Some(b) => {
@@ -221,15 +218,12 @@ fn undo(
             }
         }
     }
-    for temp in staged.iter().filter_map(|(t, _)| t.as_ref()) {
-        let _ = fs::remove_file(temp);
-    }
     Error::io(&failed.display().to_string(), e)
 }
 
 impl Drop for Batch {
-    /// A batch dropped without `commit` (an error while staging a later file) leaves no
-    /// temporary files behind.
+    /// A batch dropped without a `commit` that succeeded (an error while staging a later file,
+    /// or a commit that failed) leaves no temporary files behind.
     fn drop(&mut self) {
         for temp in self.staged.iter().filter_map(|(t, _)| t.as_ref()) {
             let _ = fs::remove_file(temp);

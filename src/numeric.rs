@@ -154,14 +154,10 @@ pub fn input(x: f64) -> String {
     // plain where that reads (65.45454545), an exponent beyond (1.234567891e-9).
     let exponent = x.abs().log10().floor();
     if (-3.0..9.0).contains(&exponent) {
-        let digits = (9 - exponent as i32).max(0) as usize;
+        // At least one decimal (exponent ≤ 8), so the zeros trimmed are decimals.
+        let digits = (9 - exponent as i32) as usize;
         let s = format!("{x:.digits$}");
-        let s = if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.')
-        } else {
-            &s
-        };
-        s.to_string()
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
     } else {
         let s = format!("{x:.9e}");
         let (m, e) = s.split_once('e').unwrap_or((&s, "0"));

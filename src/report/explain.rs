@@ -331,19 +331,6 @@ pub fn explain(spec: &Spec, writes: Writes, tolerance: bool) -> String {
 /// source and this design's numbers, and one `skip` line for each figure the spec gives no input
 /// for (`docs/effects/strength.md`).
 fn strength_lines(spec: &Spec, scene: &Scene, plan: &Plan) -> String {
-    let (formulas, unjudged) = strength_plan(spec, scene, plan);
-    let mut out = String::new();
-    for f in formulas {
-        out += &format!("  formula {f}\n");
-    }
-    for u in unjudged {
-        out += &format!("  skip    {u}\n");
-    }
-    out
-}
-
-/// The strength formulas of `scene` and what it cannot judge, as two lists of sentences.
-fn strength_plan(spec: &Spec, scene: &Scene, plan: &Plan) -> (Vec<String>, Vec<String>) {
     let design = &spec.design;
     let (mut formulas, mut unjudged) = (Vec::new(), Vec::new());
     match (design.pins.support, PinBeam::of(design)) {
@@ -382,7 +369,9 @@ fn strength_plan(spec: &Spec, scene: &Scene, plan: &Plan) -> (Vec<String>, Vec<S
             "static safety: reducer.crank_bearing.static_load_rating_n not given".to_string(),
         ),
     }
-    (formulas, unjudged)
+    let formulas = formulas.iter().map(|f| format!("  formula {f}\n"));
+    let skips = unjudged.iter().map(|u| format!("  skip    {u}\n"));
+    formulas.chain(skips).collect()
 }
 
 /// The pins' bending, shear and safety formulas for the pin of diameter `d_mm` held by

@@ -607,20 +607,12 @@ impl SceneDoc<'_> {
             Field::Scalars => match self.scalars {
                 Some(scalars) => (scalars.iter())
                     .try_for_each(|(q, e)| map.serialize_entry(q.key, &Finite(e.value))),
-                None => QUANTITIES.iter().try_for_each(|q| self.scalar(map, q)),
+                None => (QUANTITIES.iter()).try_for_each(|q| {
+                    entry(map, q.key, self.of.scalar(q).map(|e| Finite(e.value)))
+                }),
             },
             Field::Extra(extra) => self.extra(map, extra),
         }
-    }
-
-    /// A registry scalar under its key, when the scene computed it.
-    fn scalar<M: SerializeMap>(
-        &self,
-        map: &mut M,
-        quantity: &'static Quantity,
-    ) -> std::result::Result<(), M::Error> {
-        let value = self.of.scalar(quantity);
-        entry(map, quantity.key, value.map(|e| Finite(e.value)))
     }
 
     /// Write the document as `Serialize` would, its curves' numbers by `json_text`. A long

@@ -32,8 +32,8 @@ pub fn message(c: &Check) -> String {
     };
     match c.kind {
         CheckKind::Limit => {
-            // As the terminal reads it: a failure rate in percent (`table::shown_scale`).
-            let (scale, unit) = (super::table::shown_scale(c), super::table::shown_unit(c));
+            // As the terminal reads it: a failure rate in percent (`table::shown_in`).
+            let (scale, unit) = super::table::shown_in(c);
             let verdict = if c.passed {
                 format!("{} inside", with_unit(number(-beyond * scale), unit))
             } else {

@@ -31,11 +31,11 @@ fn checked_quantity(c: &Check) -> Option<&'static Quantity> {
         .map(|l| l.quantity)
 }
 
-/// A check's value or limit `x` as a person reads it (`shown_scale`): its quantity's `figure`.
+/// A check's value or limit `x` as a person reads it (`shown_in`): its quantity's `figure`.
 fn check_figure(c: &Check, x: f64) -> String {
-    match checked_quantity(c) {
-        Some(q) if shown_scale(c) == 1.0 => figure(q, x),
-        _ => number(shown_scale(c) * x),
+    match (checked_quantity(c), shown_in(c).0) {
+        (Some(q), 1.0) => figure(q, x),
+        (_, scale) => number(scale * x),
     }
 }
 
@@ -71,7 +71,7 @@ pub const STYLES: [&str; 3] = [FAIL_STYLE, PASS_STYLE, PLAIN_STYLE];
 /// round-off tolerance (−8.2e-14 mm against ≥ 0 mm) reads as the limit, said so, not as a
 /// negative clearance marked "pass". The JSON keeps the value as computed.
 pub fn value(c: &Check) -> String {
-    let shown = |x: f64| with_unit(check_figure(c, x), shown_unit(c));
+    let shown = |x: f64| with_unit(check_figure(c, x), shown_in(c).1);
     let wrong_side = match c.bound {
         Bound::Max => c.value > c.limit,
         Bound::Min => c.value < c.limit,
@@ -92,20 +92,13 @@ pub fn value(c: &Check) -> String {
     }
 }
 
-/// What a person reads a check's value and limit in: a failure rate (a fraction in the check,
-/// the JSON and JUnit) in percent, as `cycloid tolerance` prints every rate; else as computed.
-pub fn shown_scale(c: &Check) -> f64 {
+/// What a person reads a check's value and limit in, (scale, unit): a failure rate (a fraction
+/// in the check, the JSON and JUnit) in percent, as `cycloid tolerance` prints every rate;
+/// else as computed, in the check's unit.
+pub fn shown_in(c: &Check) -> (f64, &'static str) {
     match c.at {
-        Evidence::FailureRate { .. } => 100.0,
-        _ => 1.0,
-    }
-}
-
-/// The unit a person reads a check in: `%` for a failure rate (see `shown_scale`).
-pub fn shown_unit(c: &Check) -> &'static str {
-    match c.at {
-        Evidence::FailureRate { .. } => "%",
-        _ => c.unit,
+        Evidence::FailureRate { .. } => (100.0, "%"),
+        _ => (1.0, c.unit),
     }
 }
 
@@ -124,7 +117,7 @@ pub fn limit(c: &Check) -> String {
         return format!("overlap ≥ {} {}", number(-c.limit), c.unit);
     }
     let op = c.bound.symbol();
-    with_unit(format!("{op} {}", check_figure(c, c.limit)), shown_unit(c))
+    with_unit(format!("{op} {}", check_figure(c, c.limit)), shown_in(c).1)
 }
 
 /// The table, one check a row, worst failures first; `color` adds ANSI colour to the verdicts.
@@ -155,19 +148,16 @@ pub fn render_styled(checks: &[Check], color: bool) -> String {
     }
     let line = |row: [&str; 5]| {
         let mut s = String::new();
-        for (k, (cell, w)) in row.iter().zip(widths).enumerate() {
+        for (cell, w) in row.iter().zip(widths) {
             let pad = " ".repeat(w - cell.chars().count());
             let shown = match (color, *cell) {
                 (true, "FAIL") => format!("{FAIL_STYLE}{cell}{PLAIN_STYLE}"),
                 (true, "pass") => format!("{PASS_STYLE}{cell}{PLAIN_STYLE}"),
                 _ => cell.to_string(),
             };
-            if k + 1 == row.len() {
-                s += &shown;
-            } else {
-                s += &format!("{shown}{pad}  ");
-            }
+            s += &format!("{shown}{pad}  ");
         }
+        // The last cell's padding and gap go with the line's trailing spaces.
         s.trim_end().to_string() + "\n"
     };
     let mut out = line(header);

@@ -20,9 +20,7 @@ fn compliant_residual(model: &Model, kb: f64, sol: &AngleSolution) -> (Vector4<f
     let u = sol.centre_offset_mm;
     let (mr, _, sr) = moment(&sol.rollers);
     let (mp, _, sp) = moment(&sol.pins);
-    let force_scale: f64 = sol.rollers.iter().map(|s| s.force_n).sum::<f64>()
-        + sol.pins.iter().map(|s| s.force_n).sum::<f64>()
-        + kb * u.norm();
+    let scale = force_scale(kb, sol);
     let t = model.torque_nmm.abs();
     (
         Vector4::new(
@@ -31,7 +29,7 @@ fn compliant_residual(model: &Model, kb: f64, sol: &AngleSolution) -> (Vector4<f
             mr - model.torque_nmm,
             mp - model.torque_nmm,
         ),
-        Vector4::new(force_scale, force_scale, t.max(sr), t.max(sp)).map(|s| s.max(1e-300)),
+        Vector4::new(scale, scale, t.max(sr), t.max(sp)).map(|s| s.max(1e-300)),
     )
 }
 

@@ -9,9 +9,9 @@ use super::loaded::{AngleSolution, Model};
 use super::rigid_bearing::{net_force, solve_rigid};
 use super::solve::{monotone_root, Balance, Settings, SolveFailure};
 use super::work::Work;
-#[cfg(test)]
-use crate::geometry::clearance::Pose;
 use crate::geometry::Vec2;
+#[cfg(test)]
+use crate::geometry::{clearance::Pose, unit};
 use nalgebra::{Matrix4, Vector4};
 
 /// Residual vector of the compliant problem and the per-row scales.
@@ -54,10 +54,10 @@ fn evaluate_at(
     let pose = Pose::new(crank, x[2], sol.centre_offset_mm);
     r.evaluate(&pose, &mut sol.rollers)
         .map_err(SolveFailure::Gap)?;
-    p.evaluate(
-        crank,
+    p.evaluate_at(
+        unit(crank),
+        (-crank / model.teeth as f64 + x[2]).sin_cos(),
         sol.centre_offset_mm,
-        -crank / model.teeth as f64 + x[2],
         x[3],
         &mut sol.pins,
     );

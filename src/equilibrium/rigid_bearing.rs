@@ -371,10 +371,10 @@ fn coupled_roller_moment(
     }
     let fb = -(force + pins.force);
     let norm = fb.norm();
-    let arm = c.bearing_sign() * c.bearing_arm_mm;
-    let moment = arm * norm;
+    let moment = c.bearing_moment(norm);
     if norm > 0.0 {
-        dm -= arm * fb.dot(&-dforce) / norm;
+        // M_b is linear in |Fb|, and ∂|Fb|/∂β = Fb·∂Fb/∂β/|Fb|.
+        dm -= c.bearing_moment(fb.dot(&-dforce)) / norm;
     }
     (m - moment, dm, scale + moment.abs())
 }

@@ -137,16 +137,10 @@ fn stiffness_continuation(
     work: &mut Work,
 ) -> Result<AngleSolution, SolveFailure> {
     let mut u = Vec2::zeros();
-    let mut sol = None;
-    for stage in (0..=4).rev() {
-        let s = centre_newton(model, kb * 10f64.powi(stage), crank, work, u)?;
-        u = s.centre_offset_mm;
-        sol = Some(s);
+    for stage in (1..=4).rev() {
+        u = centre_newton(model, kb * 10f64.powi(stage), crank, work, u)?.centre_offset_mm;
     }
-    sol.ok_or(SolveFailure::NotConverged {
-        x: 0.0,
-        residual: f64::INFINITY,
-    })
+    centre_newton(model, kb, crank, work, u)
 }
 
 /// Newton on the centre offset from `start` (see `solve_compliant`).

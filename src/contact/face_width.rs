@@ -286,29 +286,18 @@ impl FaceWidth {
     ) -> f64 {
         let out = &mut out[..self.slices];
         let mut peak = 0.0_f64;
-        self.each_line_load(law, c, d, t, |s, q| {
+        // Slice s's line load q_s.
+        let mut f = |s: usize, q: f64| {
             out[s] = q;
             peak = peak.max(q);
-        });
-        peak
-    }
-
-    /// `line_loads`, slice by slice: `f(s, q_s)`.
-    fn each_line_load(
-        &self,
-        law: ContactLaw,
-        c: &LineContact,
-        d: f64,
-        t: f64,
-        mut f: impl FnMut(usize, f64),
-    ) {
+        };
         let n = self.slices;
         let h = self.width_mm / n as f64;
         let per_mm = law::paper_linear_stiffness(c) / self.width_mm;
         if self.closed_form(law) {
             let Some((p, q)) = self.loaded(d, t) else {
                 (0..n).for_each(|s| f(s, 0.0));
-                return;
+                return peak;
             };
             let half = 0.5 * self.width_mm;
             // The slices that meet (p, q): those holding p and q carry
@@ -331,7 +320,7 @@ impl FaceWidth {
                 f(last - 1, end(last - 1));
             }
             (last..n).for_each(|s| f(s, 0.0));
-            return;
+            return peak;
         }
         let slice = self.slice_contact(c);
         for s in 0..n {
@@ -347,6 +336,7 @@ impl FaceWidth {
                 },
             );
         }
+        peak
     }
 
     /// The contact of one slice: length B/n.

@@ -9,9 +9,9 @@ use super::loaded::{AngleSolution, Model};
 use super::rigid_bearing::{net_force, solve_rigid};
 use super::solve::{monotone_root, Balance, Settings, SolveFailure};
 use super::work::Work;
-#[cfg(test)]
-use crate::geometry::clearance::Pose;
 use crate::geometry::Vec2;
+#[cfg(test)]
+use crate::geometry::{clearance::Pose, unit};
 use nalgebra::{Matrix4, Vector4};
 
 /// Residual vector of the compliant problem and the per-row scales.
@@ -20,9 +20,7 @@ fn compliant_residual(model: &Model, kb: f64, sol: &AngleSolution) -> (Vector4<f
     let u = sol.centre_offset_mm;
     let (mr, _, sr) = moment(&sol.rollers);
     let (mp, _, sp) = moment(&sol.pins);
-    let force_scale: f64 = sol.rollers.iter().map(|s| s.force_n).sum::<f64>()
-        + sol.pins.iter().map(|s| s.force_n).sum::<f64>()
-        + kb * u.norm();
+    let scale = force_scale(kb, sol);
     let t = model.torque_nmm.abs();
     (
         Vector4::new(
@@ -31,7 +29,7 @@ fn compliant_residual(model: &Model, kb: f64, sol: &AngleSolution) -> (Vector4<f
             mr - model.torque_nmm,
             mp - model.torque_nmm,
         ),
-        Vector4::new(force_scale, force_scale, t.max(sr), t.max(sp)).map(|s| s.max(1e-300)),
+        Vector4::new(scale, scale, t.max(sr), t.max(sp)).map(|s| s.max(1e-300)),
     )
 }
 
@@ -56,10 +54,10 @@ fn evaluate_at(
     let pose = Pose::new(crank, x[2], sol.centre_offset_mm);
     r.evaluate(&pose, &mut sol.rollers)
         .map_err(SolveFailure::Gap)?;
-    p.evaluate(
-        crank,
+    p.evaluate_at(
+        unit(crank),
+        (-crank / model.teeth as f64 + x[2]).sin_cos(),
         sol.centre_offset_mm,
-        -crank / model.teeth as f64 + x[2],
         x[3],
         &mut sol.pins,
     );
@@ -139,16 +137,10 @@ fn stiffness_continuation(
     work: &mut Work,
 ) -> Result<AngleSolution, SolveFailure> {
     let mut u = Vec2::zeros();
-    let mut sol = None;
-    for stage in (0..=4).rev() {
-        let s = centre_newton(model, kb * 10f64.powi(stage), crank, work, u)?;
-        u = s.centre_offset_mm;
-        sol = Some(s);
+    for stage in (1..=4).rev() {
+        u = centre_newton(model, kb * 10f64.powi(stage), crank, work, u)?.centre_offset_mm;
     }
-    sol.ok_or(SolveFailure::NotConverged {
-        x: 0.0,
-        residual: f64::INFINITY,
-    })
+    centre_newton(model, kb, crank, work, u)
 }
 
 /// Newton on the centre offset from `start` (see `solve_compliant`).

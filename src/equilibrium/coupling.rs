@@ -195,9 +195,10 @@ impl Coupling {
     }
 
     /// M_b = ±c_b·|Fb|: the bearing's friction moment on the disc (counter-clockwise
-    /// positive; `bearing_sign`), N·mm.
-    pub fn bearing_moment(&self, bearing_force_n: Vec2) -> f64 {
-        self.bearing_sign() * self.bearing_arm_mm * bearing_force_n.norm()
+    /// positive; `bearing_sign`) under a bearing force of magnitude |Fb| = `bearing_force_n`
+    /// (N), N·mm.
+    pub fn bearing_moment(&self, bearing_force_n: f64) -> f64 {
+        self.bearing_sign() * self.bearing_arm_mm * bearing_force_n
     }
 
     /// Σ of every contact force on the disc (normal and friction) at crank angle `crank_rad`,
@@ -261,11 +262,11 @@ impl Coupling {
     /// T_in = E × Fb + M_b: one disc's share of the input torque from the crank's balance about
     /// the axis, N·mm, with the bearing's force on the disc given as the sweep records it: its
     /// magnitude |Fb| = `bearing_force_n` (N) at the angle ε = `angle_rad` from e_φ, so
-    /// E × Fb = (e + de)·|Fb|·sin ε and M_b = ±c_b·|Fb| (`bearing_sign`). The one home of the
-    /// formula: the coupled balance's energy and the efficiency's input torque call it.
+    /// E × Fb = (e + de)·|Fb|·sin ε and M_b = ±c_b·|Fb| (`bearing_moment`). The one home of
+    /// the formula: the coupled balance's energy and the efficiency's input torque call it.
     pub fn input_torque(&self, bearing_force_n: f64, angle_rad: f64) -> f64 {
         self.eccentricity_mm * bearing_force_n * angle_rad.sin()
-            + self.bearing_sign() * self.bearing_arm_mm * bearing_force_n
+            + self.bearing_moment(bearing_force_n)
     }
 
     /// The largest relative residual of one disc's coupled balance at crank angle `crank_rad`,
@@ -277,7 +278,7 @@ impl Coupling {
         let centre = e_phi * self.eccentricity_mm + sol.centre_offset_mm;
         let fb = sol.bearing_force_n.unwrap_or_default();
         let (mut force, mut force_scale) = (fb, fb.norm());
-        let mb = self.bearing_moment(fb);
+        let mb = self.bearing_moment(fb.norm());
         let (mut moment, mut moment_scale) = (mb, mb.abs());
         let mut add = |point: Vec2, f: Vec2| {
             force += f;
@@ -327,7 +328,7 @@ impl Coupling {
         let mut e = Energy {
             input: self.input_torque(fb.norm(), angle_from(e_phi, fb)),
             output: output_torque_nmm / nc as f64,
-            crank_bearing: self.bearing_moment(fb) * relative_crank_speed_ratio(nc),
+            crank_bearing: self.bearing_moment(fb.norm()) * relative_crank_speed_ratio(nc),
             ..Energy::default()
         };
         for s in sol.rollers.iter().filter(|s| s.force_n != 0.0) {

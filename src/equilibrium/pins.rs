@@ -199,8 +199,9 @@ impl Pins {
         self.beam_gaps_mm.get(j).copied().unwrap_or(0.0)
     }
 
-    /// Evaluate every pin at crank φ with the disc centre at e·(cos φ, sin φ) + `offset`;
-    /// `psi` is the disc rotation; `output_lag` is βo.
+    /// Evaluate every pin with the disc centre at e·e_φ + `offset`, from the eccentric
+    /// direction e_φ = (cos φ, sin φ) and (sin, cos) of the disc rotation ψ, computed once per
+    /// crank angle by the caller; `output_lag` is βo.
     ///
     /// The approach of a pin is tiny (~1e-7 mm at small torques) next to the pin and hole
     /// positions (~rw from the origin), so the gap is never formed by subtracting those nearly
@@ -208,19 +209,6 @@ impl Pins {
     /// With w = Q − rw·e^{iγ} = rw·e^{iγ}·(e^{iβo} − 1) and O the disc centre, d = w − O and
     ///   e + c − |d| = c − (|d|² − e²)/(|d| + e),  |d|² − e² = 2e·ê·u + |u|² − 2·O·w + |w|²,
     /// every term of which is formed from small quantities.
-    pub fn evaluate(
-        &self,
-        crank_rad: f64,
-        offset: Vec2,
-        psi: f64,
-        output_lag: f64,
-        out: &mut Vec<PinState>,
-    ) {
-        self.evaluate_at(unit(crank_rad), psi.sin_cos(), offset, output_lag, out);
-    }
-
-    /// `evaluate` from the eccentric direction e_φ and (sin, cos) of ψ, computed once per crank
-    /// angle by the caller.
     pub fn evaluate_at(
         &self,
         ecc: Vec2,

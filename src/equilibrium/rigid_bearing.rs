@@ -371,10 +371,10 @@ fn coupled_roller_moment(
     }
     let fb = -(force + pins.force);
     let norm = fb.norm();
-    let arm = c.bearing_sign() * c.bearing_arm_mm;
-    let moment = arm * norm;
+    let moment = c.bearing_moment(norm);
     if norm > 0.0 {
-        dm -= arm * fb.dot(&-dforce) / norm;
+        // M_b is linear in |Fb|, and ∂|Fb|/∂β = Fb·∂Fb/∂β/|Fb|.
+        dm -= c.bearing_moment(fb.dot(&-dforce)) / norm;
     }
     (m - moment, dm, scale + moment.abs())
 }
@@ -461,20 +461,6 @@ fn self_locking(
     })
 }
 
-/// The pins' coupled balance: βo with Σ F_j·ã_j = T (the flange's torque, friction included).
-fn solve_pins_coupled(
-    model: &Model,
-    c: &Coupling,
-    p: &Pins,
-    (e_phi, offset, psi): (Vec2, Vec2, f64),
-    guess: f64,
-    work: &mut Work,
-) -> Result<f64, SolveFailure> {
-    let centre = e_phi * model.eccentricity_mm + offset;
-    let arm = |s: &PinState| c.pin_arm(e_phi, centre, s);
-    Ok(pins_root(model, p, (e_phi, offset, psi), guess, work, arm)?.x)
-}
-
 /// The root βo of the pins' balance Σ F_j·arm_j = T at the disc rotation ψ (the search of
 /// both the frictionless balance, arm = a_j, and the coupled one, arm = ã_j), the pins' states
 /// left at the root and its slope kept in `work.slopes.1`.
@@ -523,10 +509,17 @@ fn solve_rigid_coupled(
     let e_phi = work.e_phi;
     let centre = e_phi * model.eccentricity_mm + offset;
     let psi = |lag: f64| ideal + if model.rollers.is_some() { lag } else { 0.0 };
+    // The pins' coupled balance at the rollers' lag: βo with Σ F_j·ã_j = T (the flange's
+    // torque, friction included), from the guess `out`.
+    let solve_pins = |p: &Pins, lag: f64, out: f64, work: &mut Work| {
+        let arm = |s: &PinState| c.pin_arm(e_phi, centre, s);
+        let out = pins_root(model, p, (e_phi, offset, psi(lag)), out, work, arm)?.x;
+        work.sol.output_lag_rad = Some(out);
+        Ok::<_, SolveFailure>(out)
+    };
     let mut totals = PinTotals::default();
     if let Some(p) = &model.pins {
-        out = solve_pins_coupled(model, c, p, (e_phi, offset, psi(lag)), out, work)?;
-        work.sol.output_lag_rad = Some(out);
+        out = solve_pins(p, lag, out, work)?;
         totals = PinTotals::of(c, e_phi, centre, &work.sol.pins);
     }
     let Some(r) = &model.rollers else {
@@ -539,8 +532,7 @@ fn solve_rigid_coupled(
         let Some(p) = &model.pins else {
             return Ok(());
         };
-        out = solve_pins_coupled(model, c, p, (e_phi, offset, psi(lag)), out, work)?;
-        work.sol.output_lag_rad = Some(out);
+        out = solve_pins(p, lag, out, work)?;
         let moved = PinTotals::of(c, e_phi, centre, &work.sol.pins);
         let before = coupled_roller_moment(c, crank, centre, &work.sol.rollers, &totals);
         let after = coupled_roller_moment(c, crank, centre, &work.sol.rollers, &moved);

@@ -229,23 +229,6 @@ impl Rollers {
         self.slices
     }
 
-    /// The line load (N/mm) of roller state `s` in each slice, its force/(B/n), into `out`
-    /// (`slices` entries; `FaceWidth::line_loads`): F/B on a uniform face; 0 out of contact.
-    pub fn line_loads(&self, s: &RollerState, out: &mut [f64]) {
-        if s.force_n <= 0.0 {
-            out.fill(0.0);
-            return;
-        }
-        match &self.face {
-            None => out.fill(s.force_n / self.design.face_width_mm),
-            Some(face) => {
-                let c = self.line_contact(self.curvature(s));
-                let t = face.approach_slope((-s.normal.x, -s.normal.y));
-                face.line_loads(self.law, &c, -s.gap_mm, t, out);
-            }
-        }
-    }
-
     /// The linear law's stiffness k = (π/4)·E*·L, N/mm.
     pub fn linear_stiffness(&self) -> f64 {
         self.linear_stiffness
@@ -311,22 +294,27 @@ impl Rollers {
         hertz(&self.line_contact(self.curvature(s)), s.force_n)
     }
 
-    /// `line_loads` of roller state `s` into `out`, with its Hertz pressure and half-width and
-    /// the peak line load (N/mm): on a face that is not uniform, those of the peak slice's line
-    /// load q, returned with the line loads rather than computed again (Hertz per unit length:
-    /// p0 = sqrt(q·E*/(π·R*)), b = sqrt(4·q·R*/(π·E*))); else `hertz`.
+    /// The line load (N/mm) of roller state `s` in each slice, its force/(B/n), into `out`
+    /// (`slices` entries; `FaceWidth::line_loads`): F/B on a uniform face; 0 out of contact;
+    /// with its Hertz pressure and half-width and the peak line load (N/mm): on a face that is
+    /// not uniform, those of the peak slice's line load q, returned with the line loads rather
+    /// than computed again (Hertz per unit length: p0 = sqrt(q·E*/(π·R*)),
+    /// b = sqrt(4·q·R*/(π·E*))); else `hertz`.
     pub fn hertz_and_line_loads(&self, s: &RollerState, out: &mut [f64]) -> (HertzLine, f64) {
-        if let (Some(face), true) = (&self.face, s.force_n > 0.0) {
-            let c = self.line_contact(self.curvature(s));
-            let t = face.approach_slope((-s.normal.x, -s.normal.y));
-            let peak = face.line_loads(self.law, &c, -s.gap_mm, t, out);
-            let unit = LineContact {
-                length_mm: 1.0,
-                ..c
-            };
-            return (hertz(&unit, peak), peak);
+        match &self.face {
+            _ if s.force_n <= 0.0 => out.fill(0.0),
+            None => out.fill(s.force_n / self.design.face_width_mm),
+            Some(face) => {
+                let c = self.line_contact(self.curvature(s));
+                let t = face.approach_slope((-s.normal.x, -s.normal.y));
+                let peak = face.line_loads(self.law, &c, -s.gap_mm, t, out);
+                let unit = LineContact {
+                    length_mm: 1.0,
+                    ..c
+                };
+                return (hertz(&unit, peak), peak);
+            }
         }
-        self.line_loads(s, out);
         (self.hertz(s), out.iter().copied().fold(0.0, f64::max))
     }
 

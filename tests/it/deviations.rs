@@ -497,8 +497,9 @@ fn every_path_sees_the_same_parts_as_built() {
     for phi in turn(16) {
         let psi = -phi / 9.0;
         let de = Vec2::new(phi.cos(), phi.sin()) * built.deviations.eccentricity_mm;
-        built_pins.evaluate(phi, Vec2::zeros(), psi, 1e-4, &mut a);
-        nominal_pins.evaluate(phi, de, psi, 1e-4, &mut b);
+        let (e_phi, rotation) = (cycloid::geometry::unit(phi), psi.sin_cos());
+        built_pins.evaluate_at(e_phi, rotation, Vec2::zeros(), 1e-4, &mut a);
+        nominal_pins.evaluate_at(e_phi, rotation, de, 1e-4, &mut b);
         for (p, q) in a.iter().zip(&b) {
             assert!((p.gap_mm - q.gap_mm).abs() < 1e-12 && (p.arm_mm - q.arm_mm).abs() < 1e-12);
         }

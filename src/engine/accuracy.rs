@@ -372,7 +372,8 @@ pub struct Layout {
     /// The scene loads a crowned or tilted face: the face quantities are watched and the
     /// face-slices rungs run, at the scene's own `angles_own` crank angles.
     pub face: bool,
-    /// The scene's own crank angles (the face-slices rungs run them).
+    /// The scene's own crank angles (the face-slices rungs run them; the resolution verdict
+    /// judges the scene's steps per mesh period from them).
     pub angles_own: usize,
 }
 

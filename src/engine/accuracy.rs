@@ -138,11 +138,6 @@ impl LadderQuantity {
         }
     }
 
-    /// The effect a scene must compute for this quantity to exist.
-    pub fn effect(self) -> Effect {
-        self.registry().effect
-    }
-
     pub fn tolerance(self, t: &LadderTolerances) -> f64 {
         match self {
             LadderQuantity::TeCurve | LadderQuantity::TeFluctuation => t.te_arcsec,
@@ -535,7 +530,7 @@ pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
         base_angles: base,
         quantities: LadderQuantity::ALL
             .into_iter()
-            .filter(|q| plan.has(q.effect()) && (face || !q.is_face()))
+            .filter(|q| plan.has(q.registry().effect) && (face || !q.is_face()))
             .collect(),
         finest: options.finest,
         tolerances: options.tolerances,

@@ -138,11 +138,6 @@ impl LadderQuantity {
         }
     }
 
-    /// The effect a scene must compute for this quantity to exist.
-    pub fn effect(self) -> Effect {
-        self.registry().effect
-    }
-
     pub fn tolerance(self, t: &LadderTolerances) -> f64 {
         match self {
             LadderQuantity::TeCurve | LadderQuantity::TeFluctuation => t.te_arcsec,
@@ -372,7 +367,8 @@ pub struct Layout {
     /// The scene loads a crowned or tilted face: the face quantities are watched and the
     /// face-slices rungs run, at the scene's own `angles_own` crank angles.
     pub face: bool,
-    /// The scene's own crank angles (the face-slices rungs run them).
+    /// The scene's own crank angles (the face-slices rungs run them; the resolution verdict
+    /// judges the scene's steps per mesh period from them).
     pub angles_own: usize,
 }
 
@@ -534,7 +530,7 @@ pub(crate) fn layout(spec: &Spec, scene: &Scene, options: &Options) -> Layout {
         base_angles: base,
         quantities: LadderQuantity::ALL
             .into_iter()
-            .filter(|q| plan.has(q.effect()) && (face || !q.is_face()))
+            .filter(|q| plan.has(q.registry().effect) && (face || !q.is_face()))
             .collect(),
         finest: options.finest,
         tolerances: options.tolerances,

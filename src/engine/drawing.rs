@@ -19,7 +19,7 @@ use crate::equilibrium::loaded::AngleSolution;
 use crate::equilibrium::solve::Settings;
 use crate::error::{Error, Result};
 use crate::geometry::clearance::{Mesh, Pose, RollerGap};
-use crate::geometry::{polyline, rotate, Vec2};
+use crate::geometry::{polyline, rotate, unit, Vec2};
 use crate::model::results::SceneResult;
 use crate::model::Plan;
 use crate::spec::Spec;
@@ -134,7 +134,7 @@ pub fn disc(spec: &Spec, crank_rad: f64) -> Result<Disc> {
         .iter()
         .map(|p| centre + rotate(p.point, c, s))
         .collect();
-    let on_pin_circle = |angle: f64| Vec2::new(angle.cos(), angle.sin()) * d.pins.circle_radius_mm;
+    let on_pin_circle = |angle: f64| unit(angle) * d.pins.circle_radius_mm;
     let m = d.pins.count;
     let gamma = |j: usize| TAU * j as f64 / m as f64 + psi;
     let output_lag = loaded

@@ -4,7 +4,7 @@
 use crate::geometry::mass_properties::{disc_mass, DiscMass};
 use crate::geometry::placement::disc_body;
 use crate::geometry::roller_spin::mean_square_spin_ratio;
-use crate::geometry::Vec2;
+use crate::geometry::{unit, Vec2};
 use crate::model::{Effect, Plan};
 use crate::spec::Spec;
 use crate::units;
@@ -74,7 +74,7 @@ pub fn unbalances(spec: &Spec, disc: &DiscMass) -> Vec<Unbalance> {
         .map(|k| {
             let phase = design.disc_phase_rad(k);
             let z = disc_body(design, k).placement.z_mm + 0.5 * design.face_width_mm;
-            (Vec2::new(phase.cos(), phase.sin()), z)
+            (unit(phase), z)
         })
         .collect();
     let mean_z = bodies.iter().map(|b| b.1).sum::<f64>() / bodies.len() as f64;

@@ -40,6 +40,18 @@ pub struct Resolution {
 }
 
 impl Resolution {
+    /// The verdict on the scene of `layout` (its own crank angles, the ladder's finest steps
+    /// and tolerances) from the steps rungs `rungs`.
+    fn of(layout: &Layout, rungs: Vec<StepsRung>) -> Resolution {
+        Resolution {
+            scene: layout.scene.clone(),
+            scene_steps: layout.steps_per_period(layout.angles_own),
+            finest: layout.finest,
+            tolerances: layout.tolerances,
+            rungs,
+        }
+    }
+
     /// Steps per mesh period from which on every steps rung meets the tolerances (the finest
     /// when the rung below it misses).
     pub fn needed_steps(&self) -> usize {
@@ -72,7 +84,7 @@ impl Resolution {
 }
 
 /// The resolution verdict from a ladder already run (the design review's).
-pub fn of_ladder(ladder: &Ladder, scene_angles: usize) -> Resolution {
+pub fn of_ladder(ladder: &Ladder) -> Resolution {
     let rungs = ladder
         .steps_rungs()
         .filter(|r| !r.is_reference)
@@ -81,13 +93,7 @@ pub fn of_ladder(ladder: &Ladder, scene_angles: usize) -> Resolution {
             misses: accuracy::misses(&r.errors, &ladder.layout.tolerances),
         })
         .collect();
-    Resolution {
-        scene: ladder.layout.scene.clone(),
-        scene_steps: ladder.layout.steps_per_period(scene_angles),
-        finest: ladder.layout.finest,
-        tolerances: ladder.layout.tolerances,
-        rungs,
-    }
+    Resolution::of(&ladder.layout, rungs)
 }
 
 /// The resolution verdict of the spec's accuracy scene, running the reference and the steps
@@ -105,13 +111,7 @@ pub fn run(spec: &Spec, scene_index: usize, options: &accuracy::Options) -> Resu
         ))
     };
     let reference = outputs(options.finest)?;
-    let mut resolution = Resolution {
-        scene: scene.name.clone(),
-        scene_steps: layout.steps_per_period(scene.crank_rad.len()),
-        finest: options.finest,
-        tolerances: options.tolerances,
-        rungs: Vec::new(),
-    };
+    let mut resolution = Resolution::of(&layout, Vec::new());
     let mut steps = accuracy::COARSEST;
     while steps < options.finest {
         let rung = rung(&layout, &reference, steps, outputs(steps)?);

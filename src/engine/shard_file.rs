@@ -255,26 +255,25 @@ impl<'a> Reader<'a> {
         Ok(s)
     }
 
+    /// The next `N` bytes.
+    fn array<const N: usize>(&mut self) -> Result<[u8; N]> {
+        Ok(self.take(N)?.try_into().unwrap_or([0; N]))
+    }
+
     pub fn u8(&mut self) -> Result<u8> {
         Ok(self.take(1)?[0])
     }
 
     pub fn u32(&mut self) -> Result<u32> {
-        Ok(u32::from_le_bytes(
-            self.take(4)?.try_into().unwrap_or_default(),
-        ))
+        self.array().map(u32::from_le_bytes)
     }
 
     pub fn u64(&mut self) -> Result<u64> {
-        Ok(u64::from_le_bytes(
-            self.take(8)?.try_into().unwrap_or_default(),
-        ))
+        self.array().map(u64::from_le_bytes)
     }
 
     pub fn f64(&mut self) -> Result<f64> {
-        Ok(f64::from_le_bytes(
-            self.take(8)?.try_into().unwrap_or_default(),
-        ))
+        self.array().map(f64::from_le_bytes)
     }
 
     /// `n` bytes of UTF-8, the file's `what`.
@@ -296,7 +295,7 @@ impl<'a> Reader<'a> {
         own: impl FnOnce(&mut Self) -> Result<T>,
         (path_what, text_what): (&str, &str),
     ) -> Result<(Header, T)> {
-        let text_sha256: [u8; 32] = self.take(32)?.try_into().unwrap_or_default();
+        let text_sha256 = self.array()?;
         let (seed, items, index, count) = (self.u64()?, self.u64()?, self.u64()?, self.u64()?);
         let own = own(self)?;
         let text_path = self.short_text(path_what)?;

@@ -6,7 +6,7 @@
 use crate::contact::fatigue;
 use crate::equilibrium::pin_beam::PinBeam;
 use crate::equilibrium::pin_stress::{self, Beam};
-use crate::geometry::{rotate, Vec2};
+use crate::geometry::{rotate, unit, Vec2};
 use crate::model::results::{LoadedSweep, PinCurves, UNBOUNDED_LIFE_H};
 use crate::model::strength::{DiscStrength, FatigueLives, PinStress, StaticSafety};
 use crate::model::{Design, Effect, Plan, Scene};
@@ -36,9 +36,8 @@ pub fn pin_stress(design: &Design, crank_rad: &[f64], discs: &[&LoadedSweep]) ->
         for j in 0..count {
             let loads: Vec<(f64, Vec2)> = (0..discs.len())
                 .map(|k| {
-                    let (s, c) = (phi + design.disc_phase_rad(k)).sin_cos();
                     let (sd, cd) = pins[k].direction_rad[j][a].sin_cos();
-                    let along = rotate(Vec2::new(c, s), cd, sd);
+                    let along = rotate(unit(phi + design.disc_phase_rad(k)), cd, sd);
                     (support.disc_positions_mm[k], pins[k].force_n[j][a] * along)
                 })
                 .collect();

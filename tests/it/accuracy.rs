@@ -621,8 +621,7 @@ fn the_resolution_verdict_is_the_full_ladders() {
     let spec = spec::load("specs/reducer-loaded.yaml").unwrap();
     let a = spec.accuracy.as_ref().unwrap();
     let full = accuracy::run(&spec, a.scene, &a.options, &mut |_| {}).unwrap();
-    let angles = spec.scenes[a.scene].crank_rad.len();
-    let from_ladder = resolution::of_ladder(&full, angles);
+    let from_ladder = resolution::of_ladder(&full);
     let alone = resolution::run(&spec, a.scene, &a.options).unwrap();
     assert_eq!(from_ladder.needed_steps(), alone.needed_steps());
     assert_eq!(from_ladder.resolved(), alone.resolved());

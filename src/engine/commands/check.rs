@@ -212,10 +212,7 @@ fn run(drawing: &Spec, options: &CheckOptions, progress: &dyn Progress) -> Resul
         _ => None,
     };
     let resolution = match (&spec.accuracy, &ladder) {
-        (Some(a), Some((l, _))) => Some(resolution::of_ladder(
-            l,
-            spec.scenes[a.scene].crank_rad.len(),
-        )),
+        (Some(_), Some((l, _))) => Some(resolution::of_ladder(l)),
         (Some(a), None) => Some(resolution::run(&spec, a.scene, &a.options)?),
         _ => None,
     };

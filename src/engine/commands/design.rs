@@ -52,7 +52,7 @@ pub fn front_spec(req: &Requirements, requirements_path: &str, k: usize, e: &Eva
         req.name,
         objectives.join(", ")
     );
-    let name = format!("{}-design-{:02}", req.name, k + 1);
+    let name = format!("{}-{}", req.name, design_name(k));
     let raw = candidate::raw_spec(req, &e.candidate, &name, req.search.steps_per_mesh_period);
     super::spec_text::spec_text(&raw, &header)
 }

@@ -110,7 +110,8 @@ pub fn spacing(study: &Study) -> f64 {
 }
 
 /// Evaluate the global sample at `zs` (infeasible points get no objective: they never seed a
-/// local run), each told to `progress`.
+/// local run), each told to `progress`; the verification grid's points are evaluated the same
+/// way (`verify::run`).
 pub fn sample(problem: &Problem, zs: &[Vec<f64>], progress: &dyn Progress) -> Vec<Evaluation> {
     zs.par_iter()
         .map(|z| {

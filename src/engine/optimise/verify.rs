@@ -60,13 +60,7 @@ pub fn run(problem: &Problem, searched: &Evaluation, progress: &dyn Progress) ->
     let dims = problem.study.variables.len();
     let steps = problem.study.verify_grid;
     let zs = points(steps, dims);
-    let grid: Vec<Evaluation> = zs
-        .par_iter()
-        .map(|z| {
-            progress.advance(1);
-            problem.evaluate_screened(&problem.point_at_unit(z), true)
-        })
-        .collect();
+    let grid = super::global::sample(problem, &zs, progress);
     let feasible = grid.iter().filter(|e| e.feasible()).count();
     let best_point = best(grid.iter().filter(|e| e.feasible())).cloned();
     let searched_objective = if searched.feasible() {

@@ -84,13 +84,6 @@ impl Summary {
             self.max_failure_rate,
         )
     }
-
-    /// The fewest samples whose interval, with no failure, lies within `max_failure_rate`:
-    /// 1 − (α/2)^(1/n) ≤ max, n = ⌈ln(α/2)/ln(1 − max)⌉ checked against the interval itself;
-    /// `None` when no count can (a max of 0).
-    pub fn samples_to_show(&self) -> Option<u64> {
-        samples_to_show(self.max_failure_rate)
-    }
 }
 
 /// `Summary::not_shown` of `failures` in `samples` whose interval reaches up to `upper`,
@@ -99,7 +92,9 @@ pub fn not_shown(failures: u64, samples: u64, upper: f64, max: f64) -> bool {
     upper > max && failures as f64 / samples as f64 <= max
 }
 
-/// `Summary::samples_to_show` of a limit `max` on the failure rate.
+/// The fewest samples whose interval, with no failure, lies within `max`, the limit on the
+/// failure rate: 1 − (α/2)^(1/n) ≤ max, n = ⌈ln(α/2)/ln(1 − max)⌉ checked against the interval
+/// itself; `None` when no count can (a max of 0).
 pub fn samples_to_show(max: f64) -> Option<u64> {
     if max <= 0.0 {
         return None;

@@ -539,6 +539,89 @@ fn a_softer_compliant_bearing_under_preload_balances_at_every_angle() {
     preloaded_disc_balances_at_every_angle(100.0, 0.0);
 }
 
+/// What a soft bearing does to the transmission, against kinematics: moving the disc centre
+/// along the tangent of its orbit is what turning the crank does, so it moves no contact to
+/// first order, and a centre pushed by u_t along it stands where the crank would have put it
+/// after a turn of u_t/e, which the disc passes to the output divided by nc: the TE
+/// δ = β + βo on 300 N/mm under 1 N·m must be the TE on a rigid bearing less u_t/(e·nc) at
+/// every angle (u the centre's offset, t̂ = (−sin φ, cos φ) the orbit's tangent). The centre
+/// moves up to 0.41 mm along it here (e = 2 mm), a TE of ~4,500 arcsec.
+/// Tolerance, what the first order leaves out: the orbit's curvature over a push of |u|, a
+/// crank turn of (|u|/e)² rad at most, over nc; and the radial part u_r, which moves the
+/// contacts' approaches by up to |u_r| and so the lags by up to |u_r|·Σ|l|/Σl² (rollers, arms
+/// l) and |u_r|·Σ|a|/Σa² (pins, arms a), as in `a_very_stiff_bearing_agrees_with_the_rigid_one`
+/// (×2 for the contacts' unequal stiffnesses). A wrong sign misses by twice the push's TE, a
+/// push not divided by nc by nc − 1 = 8 times it: beyond the tolerance wherever the push is
+/// larger than the radial part (the test counts where it is not).
+#[test]
+fn a_soft_bearing_turns_the_output_as_the_crank_would_for_its_tangential_deflection() {
+    let model = |kb: Option<f64>| {
+        let mut spec = cycloid::spec::load("specs/hard/preload-compliant-bearing.yaml").unwrap();
+        spec.scenes[0].bearing_stiffness_n_per_mm = kb;
+        spec.scenes[0].output_torque_nmm = 1e3;
+        let scene = &spec.scenes[0];
+        let plan = Plan::for_scene(scene);
+        let model = Model::new(&spec.design, &spec.modification, scene, &plan);
+        (model, spec.design, scene.crank_rad.clone())
+    };
+    let (soft, design, cranks) = model(Some(300.0));
+    let (rigid, _, _) = model(None);
+    let (e, nc) = (design.eccentricity_mm, design.teeth as f64);
+    let (mut s, mut r) = (AngleSolution::default(), AngleSolution::default());
+    let (mut largest_push_mm, mut missed) = (0.0f64, 0usize);
+    for (k, &phi) in cranks.iter().enumerate() {
+        s = solve_angle(&soft, phi, &s).unwrap_or_else(|f| panic!("angle {k}: {f:?}"));
+        r = solve_angle(&rigid, phi, &r).unwrap_or_else(|f| panic!("angle {k}: {f:?}"));
+        let te = |a: &AngleSolution| a.lag_rad.unwrap() + a.output_lag_rad.unwrap();
+        let u = s.centre_offset_mm;
+        let (u_t, u_r) = (
+            u.x * -phi.sin() + u.y * phi.cos(),
+            u.x * phi.cos() + u.y * phi.sin(),
+        );
+        let reach = |arms: Vec<f64>| {
+            let (l1, l2) = arms
+                .iter()
+                .fold((0.0, 0.0), |(a, b), l| (a + l.abs(), b + l * l));
+            l1 / l2
+        };
+        let rollers = reach(
+            s.rollers
+                .iter()
+                .filter(|c| c.force_n > 0.0)
+                .map(|c| c.arm_mm)
+                .collect(),
+        );
+        let pins = reach(
+            s.pins
+                .iter()
+                .filter(|c| c.force_n > 0.0)
+                .map(|c| c.arm_mm)
+                .collect(),
+        );
+        let expected = -u_t / (e * nc);
+        let got = te(&s) - te(&r);
+        let tol = (u.norm() / e).powi(2) / nc + 2.0 * u_r.abs() * (rollers + pins);
+        assert!(
+            (got - expected).abs() <= tol,
+            "angle {k}: TE rose by {got:e} rad, the crank's turn of the push over nc is {expected:e} rad (tol {tol:e})"
+        );
+        largest_push_mm = largest_push_mm.max(u_t.abs());
+        // Where a sign or the nc would be wrong and still pass.
+        missed += usize::from(2.0 * expected.abs() <= tol);
+    }
+    eprintln!(
+        "largest push {largest_push_mm} mm; angles too close to tell: {missed} of {}",
+        cranks.len()
+    );
+    // The case is the one it claims to be: the push is a sizeable part of e, and the tolerance
+    // tells a wrong factor at most angles.
+    assert!(
+        largest_push_mm > 0.1 * e,
+        "largest push {largest_push_mm} mm"
+    );
+    assert!(missed < cranks.len() / 4);
+}
+
 /// `specs/hard/preload-compliant-bearing.yaml` on a bearing of `kb` N/mm under `torque_nmm`:
 /// every angle must solve to the documented 1e-9 relative residual of the paper's Eqs. 12–14,
 /// hold the bearing law |Fb| = kb·|u| (as above, rounding only: 1e-12), and keep the disc

@@ -4,6 +4,7 @@
 //! YAML parser (`yaml`); value and design-rule errors locate their key in the text (`locate`).
 
 pub(crate) mod bearing_life;
+pub(crate) mod bearing_push;
 pub(crate) mod coverage;
 pub(crate) mod deviations;
 pub mod duty_cycle;

@@ -652,6 +652,7 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     every_scene().try_for_each(|s| super::bearing_life::check_scene(&limits, &design, s, built))?;
     super::strength::check(&limits, &design, &scenes)?;
     super::inertia::check(&design, &scenes)?;
+    super::bearing_push::check(&design, &scenes)?;
     every_scene().try_for_each(|s| super::periods::check_scene(&limits, &design, s, built))?;
     super::friction::check_limits(&limits, &design, &scenes)?;
     let mut golden = Vec::new();

@@ -290,6 +290,27 @@ fn undercut_of_the_unmodified_design_matches_the_readme() {
     );
 }
 
+/// A crank bearing too soft for the torque, refused before any solve with the rule's numbers
+/// (`spec::bearing_push`): the rated scene made loaded, 10 N·m on one disc of nc = 9 teeth at
+/// e = 2 mm, loads the bearing tangentially by 10,000/(9·2) = 555.6 N on average, which moves
+/// the centre of a 250 N/mm bearing by 2.222 mm > e; it needs more than 10,000/(9·4) =
+/// 277.8 N/mm. The key is the line added under the scene's effects (line 27).
+#[test]
+fn a_crank_bearing_too_soft_for_the_torque_names_the_rule_and_the_numbers() {
+    assert_rejected(
+        &paper_with(&[(
+            "    effects: [clearance]",
+            "    effects: [bearing]\n    bearing_stiffness_n_per_mm: 250",
+        )]),
+        "spec.yaml:27:5: impossible design: scenes[0].bearing_stiffness_n_per_mm: scene `rated`: \
+         the crank bearing of 250 N/mm cannot hold the disc at 10 N·m: over a period the input \
+         torque loads each disc's bearing tangentially by T/(N·nc·e) = 555.6 N on average \
+         (N = 1 disc, nc = 9, e = 2 mm), which moves its centre by 2.222 mm on average, more \
+         than e: the disc would leave its mesh; the bearing needs more than T/(N·nc·e²) = \
+         277.8 N/mm",
+    );
+}
+
 #[test]
 fn rollers_must_be_teeth_plus_one() {
     assert_rejected(

@@ -14,7 +14,7 @@
 //! housing (they spin on their axes, not round it): the load passes each once per crank turn,
 //! on each disc's track.
 
-use crate::model::results::UNBOUNDED_LIFE_H;
+use crate::model::results::bounded;
 use crate::model::strength::ContactFatigue;
 
 /// Passes of the load over each lobe of a disc of `teeth` (nc) per crank turn: np/nc.
@@ -46,10 +46,5 @@ pub fn life_h(
     passes_per_turn: f64,
     input_rpm: f64,
 ) -> f64 {
-    let hours = cycles_to_failure(law, pressure_mpa) / (passes_per_turn * input_rpm * 60.0);
-    if hours.is_finite() {
-        hours
-    } else {
-        UNBOUNDED_LIFE_H
-    }
+    bounded(cycles_to_failure(law, pressure_mpa) / (passes_per_turn * input_rpm * 60.0))
 }

@@ -7,7 +7,7 @@
 //! relative to the disc, which itself turns backwards at n/nc: the relative speed is
 //! n·(1 + 1/nc), so L10h = (C/P)^p · 10⁶ / (60 · n · (1 + 1/nc)) hours.
 
-use crate::model::results::UNBOUNDED_LIFE_H;
+use crate::model::results::{bounded, UNBOUNDED_LIFE_H};
 
 /// P = (mean of F^p)^(1/p), N, over bearing forces `force_n` (N) sampled evenly over whole
 /// load cycles (the rectangle rule is then the mean of the periodic load). 0 without samples.
@@ -46,12 +46,7 @@ pub fn life_h(load_n: f64, rating_n: f64, exponent: f64, input_rpm: f64, teeth: 
         return UNBOUNDED_LIFE_H;
     }
     let revolutions = (rating_n / load_n).powf(exponent) * 1e6;
-    let hours = revolutions / (60.0 * relative_speed_rpm(input_rpm, teeth));
-    if hours.is_finite() {
-        hours
-    } else {
-        UNBOUNDED_LIFE_H
-    }
+    bounded(revolutions / (60.0 * relative_speed_rpm(input_rpm, teeth)))
 }
 
 #[cfg(test)]

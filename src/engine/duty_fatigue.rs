@@ -8,7 +8,7 @@
 //! lasts 1/max(D_drive, D_coast) hours. A standstill (nᵢ = 0) turns no revolution and adds none.
 
 use crate::contact::fatigue;
-use crate::model::results::{DiscResult, DutyBinResult, SceneResult, UNBOUNDED_LIFE_H};
+use crate::model::results::{bounded, DiscResult, DutyBinResult, SceneResult};
 use crate::model::strength::{ContactFatigue, DutyFatigue};
 use crate::model::Design;
 
@@ -73,12 +73,7 @@ fn bin_pressures(r: &SceneResult) -> Option<Vec<f64>> {
 pub fn miner(rates: &[(f64, bool)]) -> (f64, Vec<f64>) {
     let flank = |coast: bool| -> f64 { rates.iter().filter(|r| r.1 == coast).map(|r| r.0).sum() };
     let (drive, coast) = (flank(false), flank(true));
-    let hours = 1.0 / drive.max(coast);
-    let life = if hours.is_finite() {
-        hours
-    } else {
-        UNBOUNDED_LIFE_H
-    };
+    let life = bounded(1.0 / drive.max(coast));
     let shares = rates
         .iter()
         .map(|&(d, c)| {

@@ -7,7 +7,7 @@ use crate::contact::fatigue;
 use crate::equilibrium::pin_beam::PinBeam;
 use crate::equilibrium::pin_stress::{self, Beam};
 use crate::geometry::{rotate, unit, Vec2};
-use crate::model::results::{LoadedSweep, PinCurves, UNBOUNDED_LIFE_H};
+use crate::model::results::{bounded, LoadedSweep, PinCurves};
 use crate::model::strength::{DiscStrength, FatigueLives, PinStress, StaticSafety};
 use crate::model::{Design, Effect, Plan, Scene};
 
@@ -110,6 +110,6 @@ pub fn static_safety(c0_n: f64, largest_force_n: f64) -> StaticSafety {
     let s0 = c0_n / largest_force_n;
     StaticSafety {
         largest_force_n,
-        safety: if s0.is_finite() { s0 } else { UNBOUNDED_LIFE_H },
+        safety: bounded(s0),
     }
 }

@@ -303,6 +303,16 @@ pub fn is_unbounded(x: f64) -> bool {
     x == UNBOUNDED_LIFE_H
 }
 
+/// A life or safety `x` as the engine writes it: `UNBOUNDED_LIFE_H` where it has no finite
+/// bound (∞ from no damage or no load, or beyond the largest double), else `x`.
+pub fn bounded(x: f64) -> f64 {
+    if x.is_finite() {
+        x
+    } else {
+        UNBOUNDED_LIFE_H
+    }
+}
+
 /// Rating life of the crank bearing over a scene's sweep (ISO 281 with a varying load).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BearingLife {

@@ -33,6 +33,12 @@ pub fn extremes(values: &[f64]) -> ((f64, usize), (f64, usize)) {
     (lo, hi)
 }
 
+/// The smallest and largest of `values` (∞ and −∞ for none; `min`/`max` pass over a NaN).
+pub fn extent(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    let start = (f64::INFINITY, f64::NEG_INFINITY);
+    (values.into_iter()).fold(start, |(lo, hi), v| (lo.min(v), hi.max(v)))
+}
+
 /// The step between the first two of evenly spaced samples `values` (0 with fewer than two).
 pub fn step(values: &[f64]) -> f64 {
     match values {

@@ -411,11 +411,7 @@ impl<'a> FirstOrderSweep<'a> {
             return;
         }
         scratch.screens_left -= 1;
-        let (lo, hi) = crank_ahead
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-                (lo.min(x), hi.max(x))
-            });
+        let (lo, hi) = crate::numeric::extent(crank_ahead.iter().copied());
         let middle = 0.5 * (lo + hi);
         let reach = (hi - middle).max(middle - lo);
         self.roller_terms(unit(middle), scratch);

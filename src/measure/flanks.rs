@@ -138,12 +138,7 @@ pub fn summarise(pts: &[(f64, f64)]) -> Option<FlankSummary> {
     }
     let slope = pts.iter().map(|p| (p.0 - ms) * (p.1 - md)).sum::<f64>() / sss;
     let range = |f: &dyn Fn(&(f64, f64)) -> f64| {
-        let (lo, hi) = pts
-            .iter()
-            .map(f)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(v), hi.max(v))
-            });
+        let (lo, hi) = crate::numeric::extent(pts.iter().map(f));
         hi - lo
     };
     Some(FlankSummary {

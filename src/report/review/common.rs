@@ -42,12 +42,6 @@ pub(super) fn data_table(head: Markup, rows: Markup) -> Markup {
     scrolling(html! { table { thead { tr { (head) } } tbody { (rows) } } })
 }
 
-/// The smallest and largest of `values` (∞ and −∞ for none).
-pub(super) fn extent(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
-    let start = (f64::INFINITY, f64::NEG_INFINITY);
-    (values.into_iter()).fold(start, |(lo, hi), v| (lo.min(v), hi.max(v)))
-}
-
 pub(super) fn verdict(passed: bool) -> &'static str {
     if passed {
         "pass"

@@ -8,8 +8,8 @@
 //! leaves an outer wall toward the viewer runs outward, away from the face, and one that leaves
 //! a hole's wall runs up through the hole. The bottom face never faces the viewer.
 
-use super::common::extent;
 use crate::engine::commands::solid_picture::SolidPicture;
+use crate::numeric::extent;
 use crate::report::svg::{document, px, trimmed};
 use maud::{html, PreEscaped};
 

@@ -1,12 +1,12 @@
 //! The review's torsion under a locked input ([`engine::torsion`](crate::engine::torsion)): per torsion scene its curves
 //! and its table of catalogue figures (`sections`).
 
-use super::common::{data_table, extent, figure, Section};
+use super::common::{data_table, figure, Section};
 use super::plots::capitalised;
 use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
 use crate::model::Scene;
-use crate::numeric::number;
+use crate::numeric::{extent, number};
 use crate::report::explain::{
     hysteresis, hysteresis_in_plot, torsion_compliances, torsion_law_note,
 };

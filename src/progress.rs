@@ -45,6 +45,15 @@ impl Phase {
             slow_units: false,
         }
     }
+
+    /// A phase like `new` whose units each take long (a design, a sample): a display may
+    /// show the rate.
+    pub fn slow(what: impl Into<String>, unit: &'static str, total: u64) -> Phase {
+        Phase {
+            slow_units: true,
+            ..Phase::new(what, unit, total)
+        }
+    }
 }
 
 /// Forwards to `inner` the units a piece of work reports, and on `close` the rest of the

@@ -40,10 +40,7 @@ pub fn tolerance<'a>(
     let records = samples_of(&study, (0, 1), "tolerance study", progress)?;
     let sensitivity = match sensitivity {
         true => {
-            let phase = Phase {
-                slow_units: true,
-                ..Phase::new("sensitivities", "parameters", study.params.len() as u64)
-            };
+            let phase = Phase::slow("sensitivities", "parameters", study.params.len() as u64);
             let heard = progress.phase(&phase);
             Some(sensitivity::run(&study, &*heard).map_err(|e| spec.locate(e))?)
         }
@@ -66,10 +63,7 @@ fn samples_of(
     progress: &dyn Progress,
 ) -> Result<Records> {
     let count = shard_len(study.samples() as u64, (i, n));
-    let phase = Phase {
-        slow_units: true,
-        ..Phase::new(what, "samples", count)
-    };
+    let phase = Phase::slow(what, "samples", count);
     let heard = progress.phase(&phase);
     study.run((i, n), &*heard).map_err(|e| study.spec.locate(e))
 }

@@ -123,10 +123,7 @@ pub fn global_stage(
     what: &str,
     progress: &dyn Progress,
 ) -> Result<Vec<Evaluation>> {
-    let phase = progress.phase(&Phase {
-        slow_units: true,
-        ..Phase::new(what, "designs", candidates.len() as u64)
-    });
+    let phase = progress.phase(&Phase::slow(what, "designs", candidates.len() as u64));
     let all = candidates
         .par_iter()
         .map(|c| {
@@ -161,14 +158,11 @@ pub fn finish(
             break;
         }
         refined.extend(starts.iter().map(|e| e.candidate));
-        let phase = progress.phase(&Phase {
-            slow_units: true,
-            ..Phase::new(
-                "local refinement of the front",
-                "designs",
-                (starts.len() * req.search.refine_budget) as u64,
-            )
-        });
+        let phase = progress.phase(&Phase::slow(
+            "local refinement of the front",
+            "designs",
+            (starts.len() * req.search.refine_budget) as u64,
+        ));
         let runs: Vec<Vec<Evaluation>> = starts
             .par_iter()
             .map(|s| refine::refine(req, s, &*phase))

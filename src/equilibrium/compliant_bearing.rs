@@ -258,6 +258,9 @@ fn directional_roots(
             u += e * root.x;
             solve_rigid(model, crank, work, u)?;
             best = work.sol.clone();
+            if u.norm() > model.eccentricity_mm {
+                return Err(out_of_mesh(kb, u, force_residual(model, kb, &best), model));
+            }
         }
     }
     work.sol = best.clone();

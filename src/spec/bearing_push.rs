@@ -5,13 +5,17 @@
 //! about the input axis gives the input torque as e times the tangential component of the
 //! bearing force, T_in = e·Fb_t. The solves with a compliant bearing are frictionless (the
 //! coupled friction model is refused with one, the loss model is computed after them), so the
-//! work balance over a period, with the elastic energy periodic, gives the mean of T_in as the
-//! disc's torque over the mean ratio nc: the tangential force averages T_k/(nc·e), and the
-//! centre's push along the orbit's tangent, Fb_t/kb, averages T_k/(nc·e·kb). The discs' shares
-//! T_k sum to T, so the most loaded averages at least T/N. Its push at some angle is at least
-//! its mean, and a centre moved beyond e has left the mesh (`SolveFailure::OutOfMesh`): a
-//! scene with T/(N·nc·e·kb) > e cannot be solved over the reducer's period, and is refused
-//! before it is tried, with the stiffness it would need, T/(N·nc·e²).
+//! work balance over a period, the elastic energy periodic, gives the input torque's mean as
+//! T/nc plus the energy released where the solution path snaps (a fold of the equilibria the
+//! sweep jumps across), which is never negative: for a positive torque the mean is at least
+//! T/nc. Summed over the N discs the tangential forces then average at least T/(nc·e), so the
+//! most loaded disc's averages at least T/(N·nc·e), and its centre's push along the orbit's
+//! tangent, Fb_t/kb, at least T/(N·nc·e·kb). Its push at some angle is at least its mean, and
+//! a centre moved beyond e has left the mesh (`SolveFailure::OutOfMesh`): a scene with
+//! T/(N·nc·e·kb) > e cannot be solved over the reducer's period, and is refused before it is
+//! tried, with the stiffness it would need, T/(N·nc·e²). A negative torque is not judged: the
+//! released energy lowers its mean (by 4 % on the preloaded disc of
+//! `specs/hard/preload-compliant-bearing.yaml` at −1 N·m on 300 N/mm).
 
 use super::rules::rule;
 use crate::error::Result;
@@ -21,7 +25,7 @@ use crate::units;
 
 /// Refuse the first scene whose compliant crank bearing the torque must push beyond e on
 /// average (module doc). A torque loop (`torque_sweep`) holds the crank still, so the mean over
-/// a period does not apply to it; a duty cycle is judged at its largest torque.
+/// a period does not apply to it; a duty cycle is judged at its largest positive torque.
 pub(super) fn check(design: &Design, scenes: &[Scene]) -> Result<()> {
     let e = design.built_eccentricity_mm();
     let (discs, nc) = (design.discs as f64, design.teeth as f64);
@@ -32,35 +36,48 @@ pub(super) fn check(design: &Design, scenes: &[Scene]) -> Result<()> {
         if s.torque_sweep.is_some() || !Plan::for_scene(s).has(Effect::Bearing) {
             continue;
         }
-        let torque_nmm = match &s.duty_cycle {
-            Some(bins) => bins
-                .iter()
-                .map(|b| b.output_torque_nmm.abs())
-                .fold(0.0, f64::max),
-            None => s.output_torque_nmm.abs(),
+        // The largest positive torque, and the duty-cycle bin that has it.
+        let (torque_nmm, bin) = match &s.duty_cycle {
+            Some(bins) => (bins.iter().enumerate())
+                .map(|(j, b)| (b.output_torque_nmm, Some(j)))
+                .fold((0.0, None), |a, b| if b.0 > a.0 { b } else { a }),
+            None => (s.output_torque_nmm, None),
         };
         let force_n = torque_nmm / (discs * nc * e);
         let push_mm = force_n / kb;
         if push_mm > e {
+            let (held, which, leaves) = match design.discs {
+                1 => ("disc", "the disc's", "the disc"),
+                _ => ("discs", "the most loaded disc's", "that disc"),
+            };
+            let at = bin.map_or(String::new(), |j| format!(" (duty-cycle bin {j})"));
             return Err(rule(
                 &format!("scenes[{i}].bearing_stiffness_n_per_mm"),
                 format!(
-                    "scene `{}`: the crank bearing of {} N/mm cannot hold the disc at {} N·m: \
-                     over a period the input torque loads each disc's bearing tangentially by \
-                     T/(N·nc·e) = {force_n:.1} N on average (N = {} {}, nc = {}, e = {} mm), \
-                     which moves its centre by {push_mm:.3} mm on average, more than e: the disc \
-                     would leave its mesh; the bearing needs more than T/(N·nc·e²) = {:.1} N/mm",
+                    "scene `{}`: a crank bearing of {} N/mm cannot hold the {held} at {} N·m{at}: \
+                     over a period the input torque loads {which} bearing tangentially by at \
+                     least T/(N·nc·e) = {} N on average (N = {}, nc = {}, e = {} mm), which \
+                     moves its centre by at least {} mm on average, more than e: {leaves} would \
+                     leave its mesh; the bearing needs more than T/(N·nc·e²) = {} N/mm",
                     s.name,
                     input(kb),
                     input(units::nm(torque_nmm)),
+                    input(significant(force_n, f64::round)),
                     design.discs,
-                    if design.discs == 1 { "disc" } else { "discs" },
                     design.teeth,
                     input(e),
-                    force_n / e,
+                    input(significant(push_mm, f64::round)),
+                    input(significant(force_n / e, f64::ceil)),
                 ),
             ));
         }
     }
     Ok(())
+}
+
+/// `x` to 4 significant digits, the last rounded by `round` (`f64::ceil` for a bound that
+/// must not be understated).
+fn significant(x: f64, round: fn(f64) -> f64) -> f64 {
+    let unit = 10f64.powf(x.abs().log10().floor() - 3.0);
+    round(x / unit) * unit
 }

@@ -303,11 +303,11 @@ fn a_crank_bearing_too_soft_for_the_torque_names_the_rule_and_the_numbers() {
             "    effects: [bearing]\n    bearing_stiffness_n_per_mm: 250",
         )]),
         "spec.yaml:27:5: impossible design: scenes[0].bearing_stiffness_n_per_mm: scene `rated`: \
-         the crank bearing of 250 N/mm cannot hold the disc at 10 N·m: over a period the input \
-         torque loads each disc's bearing tangentially by T/(N·nc·e) = 555.6 N on average \
-         (N = 1 disc, nc = 9, e = 2 mm), which moves its centre by 2.222 mm on average, more \
-         than e: the disc would leave its mesh; the bearing needs more than T/(N·nc·e²) = \
-         277.8 N/mm",
+         a crank bearing of 250 N/mm cannot hold the disc at 10 N·m: over a period the input \
+         torque loads the disc's bearing tangentially by at least T/(N·nc·e) = 555.6 N on \
+         average (N = 1, nc = 9, e = 2 mm), which moves its centre by at least 2.222 mm on \
+         average, more than e: the disc would leave its mesh; the bearing needs more than \
+         T/(N·nc·e²) = 277.8 N/mm",
     );
 }
 

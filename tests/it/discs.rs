@@ -552,7 +552,9 @@ fn a_softer_compliant_bearing_under_preload_balances_at_every_angle() {
 /// l) and |u_r|·Σ|a|/Σa² (pins, arms a), as in `a_very_stiff_bearing_agrees_with_the_rigid_one`
 /// (×2 for the contacts' unequal stiffnesses). A wrong sign misses by twice the push's TE, a
 /// push not divided by nc by nc − 1 = 8 times it: beyond the tolerance wherever the push is
-/// larger than the radial part (the test counts where it is not).
+/// larger than the radial part (the test counts where it is not). The tolerance is loose (at
+/// the largest push, 21 % of the push's TE): it tells a sign or a missing nc, not an error of
+/// a few per cent.
 #[test]
 fn a_soft_bearing_turns_the_output_as_the_crank_would_for_its_tangential_deflection() {
     let (spec, soft) = preloaded(Some(300.0), 1e3);
@@ -617,7 +619,8 @@ fn a_soft_bearing_turns_the_output_as_the_crank_would_for_its_tangential_deflect
 /// The premise of the bearing's push rule (`spec::bearing_push`), by the work balance: the
 /// crank's moment balance makes the input torque e·Fb_t (Fb_t = |Fb|·sin ε, the bearing
 /// force's tangential component), and over a whole period of a frictionless solve, its elastic
-/// energy periodic, the input torque averages T/nc. Checked on 500 N/mm under 10 N·m, where
+/// energy periodic, the input torque averages T/nc plus the energy released where the path
+/// snaps (none here, as the mean shows). Checked on 500 N/mm under 10 N·m, where
 /// the centre moves up to 1.3 mm: the scene's 108 angles are one period of the reducer as run
 /// (108°), evenly spaced, whose plain mean is exact for the curve's harmonics below the 108th;
 /// what is left is the content at and above it (the kinks where contacts open and close),

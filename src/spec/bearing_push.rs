@@ -20,7 +20,7 @@
 use super::rules::rule;
 use crate::error::Result;
 use crate::model::{Design, Effect, Plan, Scene};
-use crate::numeric::input;
+use crate::numeric::{input, number};
 use crate::units;
 
 /// Refuse the first scene whose compliant crank bearing the torque must push beyond e on
@@ -62,12 +62,12 @@ pub(super) fn check(design: &Design, scenes: &[Scene]) -> Result<()> {
                     s.name,
                     input(kb),
                     input(units::nm(torque_nmm)),
-                    input(significant(force_n, f64::round)),
+                    number(force_n),
                     design.discs,
                     design.teeth,
                     input(e),
-                    input(significant(push_mm, f64::round)),
-                    input(significant(force_n / e, f64::ceil)),
+                    number(push_mm),
+                    number(rounded_up(force_n / e)),
                 ),
             ));
         }
@@ -75,9 +75,9 @@ pub(super) fn check(design: &Design, scenes: &[Scene]) -> Result<()> {
     Ok(())
 }
 
-/// `x` to 4 significant digits, the last rounded by `round` (`f64::ceil` for a bound that
-/// must not be understated).
-fn significant(x: f64, round: fn(f64) -> f64) -> f64 {
-    let unit = 10f64.powf(x.abs().log10().floor() - 3.0);
-    round(x / unit) * unit
+/// `x` > 0 rounded up at its fourth significant digit, so that `number`'s four digits never
+/// understate a bound (277.78 N/mm shows as 277.8, 277.71 as 277.8, not 277.7).
+fn rounded_up(x: f64) -> f64 {
+    let unit = 10f64.powf(x.log10().floor() - 3.0);
+    (x / unit).ceil() * unit
 }

@@ -311,6 +311,57 @@ fn a_crank_bearing_too_soft_for_the_torque_names_the_rule_and_the_numbers() {
     );
 }
 
+/// The rule's other wordings, numbers by hand: two discs on a duty cycle are judged at the
+/// largest positive bin (30 N·m, bin 1; the −40 N·m bin is larger in size but not judged):
+/// 30,000/(2·9·2) = 833.3 N, /250 = 3.333 mm, 30,000/(2·9·4) = 416.7 N/mm. A torque so small
+/// that the numbers need their significant digits: 3/(9·2) = 0.1667 N, /0.05 = 3.333 mm, and
+/// 3/36 = 0.083333… N/mm written rounded up, 0.08334 (rounded to nearest it would read
+/// 0.08333, a stiffness that is not enough).
+#[test]
+fn a_crank_bearing_too_soft_names_the_most_loaded_disc_the_bin_and_rounds_the_need_up() {
+    assert_rejected(
+        &paper_with(&[
+            (
+                "  eccentricity_mm: 2.0 ",
+                "  discs: 2\n  eccentricity_mm: 2.0 ",
+            ),
+            (
+                "    output_torque_nm: 10.0 ",
+                "    duty_cycle:\n\
+                 \x20     - { output_torque_nm: 5.0, input_speed_rpm: 1000.0, time_share: 0.3 }\n\
+                 \x20     - { output_torque_nm: 30.0, input_speed_rpm: 1000.0, time_share: 0.3 }\n\
+                 \x20     - { output_torque_nm: -40.0, input_speed_rpm: 1000.0, time_share: 0.4 }\n\
+                 \x20   # ",
+            ),
+            (
+                "    effects: [clearance]",
+                "    effects: [bearing]\n    bearing_stiffness_n_per_mm: 250",
+            ),
+        ]),
+        "spec.yaml:32:5: impossible design: scenes[0].bearing_stiffness_n_per_mm: scene `rated`: \
+         a crank bearing of 250 N/mm cannot hold the discs at 30 N·m (duty-cycle bin 1): over a \
+         period the input torque loads the most loaded disc's bearing tangentially by at least \
+         T/(N·nc·e) = 833.3 N on average (N = 2, nc = 9, e = 2 mm), which moves its centre by \
+         at least 3.333 mm on average, more than e: that disc would leave its mesh; the bearing \
+         needs more than T/(N·nc·e²) = 416.7 N/mm",
+    );
+    assert_rejected(
+        &paper_with(&[
+            ("output_torque_nm: 10.0 ", "output_torque_nm: 0.003 "),
+            (
+                "    effects: [clearance]",
+                "    effects: [bearing]\n    bearing_stiffness_n_per_mm: 0.05",
+            ),
+        ]),
+        "spec.yaml:27:5: impossible design: scenes[0].bearing_stiffness_n_per_mm: scene `rated`: \
+         a crank bearing of 0.05 N/mm cannot hold the disc at 0.003 N·m: over a period the input \
+         torque loads the disc's bearing tangentially by at least T/(N·nc·e) = 0.1667 N on \
+         average (N = 1, nc = 9, e = 2 mm), which moves its centre by at least 3.333 mm on \
+         average, more than e: the disc would leave its mesh; the bearing needs more than \
+         T/(N·nc·e²) = 0.08334 N/mm",
+    );
+}
+
 #[test]
 fn rollers_must_be_teeth_plus_one() {
     assert_rejected(

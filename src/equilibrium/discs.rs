@@ -822,12 +822,8 @@ fn by_lag(
             solve_disc(discs, work, k, crank, t).map_err(of_disc(discs, k, crank))?;
         }
     }
-    let lags: Vec<f64> = (0..discs.count())
-        .map(|k| output_lag(&work.works[k]))
-        .collect();
-    let t: Vec<f64> = (0..discs.count())
-        .map(|k| work.models[k].torque_nmm)
-        .collect();
+    let lags: Vec<f64> = work.works.iter().map(output_lag).collect();
+    let t: Vec<f64> = work.models.iter().map(|m| m.torque_nmm).collect();
     // A guard, not the criterion: a loaded disc off γ, or shares off T, is a failure to
     // report at the angle, never a result.
     let off = t

@@ -314,7 +314,7 @@ impl FaceWidth {
             if last > first + 1 {
                 let whole = first + 1..last - 1;
                 for (s, crown) in whole.clone().zip(&self.slice_crown_mm[whole]) {
-                    let z = (s as f64 + 0.5) * h - half;
+                    let z = self.slice_centre_mm(s);
                     f(s, (per_mm * (d + t * z - crown)).max(0.0));
                 }
                 f(last - 1, end(last - 1));

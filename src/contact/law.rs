@@ -33,6 +33,15 @@ impl ContactForce {
         force_n: 0.0,
         stiffness_n_per_mm: 0.0,
     };
+
+    /// A linear law of stiffness `k` (N/mm) at approach `approach_mm`: F = k·d.
+    #[inline]
+    pub fn linear(k: f64, approach_mm: f64) -> ContactForce {
+        ContactForce {
+            force_n: k * approach_mm,
+            stiffness_n_per_mm: k,
+        }
+    }
 }
 
 /// Paper Eq. 9: F = (π/4)·E*·L·d, a constant stiffness k = (π/4)·E*·L.
@@ -128,13 +137,7 @@ pub fn force(law: ContactLaw, c: &LineContact, approach_mm: f64) -> ContactForce
         return ContactForce::NONE;
     }
     match law {
-        ContactLaw::PaperLinear => {
-            let k = paper_linear_stiffness(c);
-            ContactForce {
-                force_n: k * approach_mm,
-                stiffness_n_per_mm: k,
-            }
-        }
+        ContactLaw::PaperLinear => ContactForce::linear(paper_linear_stiffness(c), approach_mm),
         ContactLaw::HertzNonlinear => johnson_force(c, approach_mm),
     }
 }

@@ -228,14 +228,13 @@ pub(super) fn output_lag(work: &Work) -> f64 {
 /// plus 1/(∂M/∂βo) of the pins (geometry held fixed); `None` when a balance has no
 /// stiffness (no contact).
 fn tangent_compliance(work: &Work) -> Option<f64> {
+    let sol = &work.sol;
+    let slopes = [
+        sol.lag_rad.map(|_| moment(&sol.rollers).1),
+        sol.output_lag_rad.map(|_| moment(&sol.pins).1),
+    ];
     let mut c = 0.0;
-    if work.sol.lag_rad.is_some() {
-        let slope = moment(&work.sol.rollers).1;
-        (slope > 0.0).then_some(())?;
-        c += 1.0 / slope;
-    }
-    if work.sol.output_lag_rad.is_some() {
-        let slope = moment(&work.sol.pins).1;
+    for slope in slopes.into_iter().flatten() {
         (slope > 0.0).then_some(())?;
         c += 1.0 / slope;
     }
@@ -782,8 +781,7 @@ fn by_lag(
         }
         Ok(shares.iter().sum())
     };
-    let lo = lag.iter().cloned().fold(f64::INFINITY, f64::min);
-    let hi = lag.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let (lo, hi) = crate::numeric::extent(lag.iter().copied());
     let below = (lo, sum_at(lo, work)?);
     let above = (hi, sum_at(hi, work)?);
     let width = 4.0 * f64::EPSILON * hi.abs().max(lo.abs());
@@ -824,12 +822,8 @@ fn by_lag(
             solve_disc(discs, work, k, crank, t).map_err(of_disc(discs, k, crank))?;
         }
     }
-    let lags: Vec<f64> = (0..discs.count())
-        .map(|k| output_lag(&work.works[k]))
-        .collect();
-    let t: Vec<f64> = (0..discs.count())
-        .map(|k| work.models[k].torque_nmm)
-        .collect();
+    let lags: Vec<f64> = work.works.iter().map(output_lag).collect();
+    let t: Vec<f64> = work.models.iter().map(|m| m.torque_nmm).collect();
     // A guard, not the criterion: a loaded disc off γ, or shares off T, is a failure to
     // report at the angle, never a result.
     let off = t

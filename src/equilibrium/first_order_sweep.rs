@@ -38,7 +38,6 @@ use super::residual::BalanceSums;
 use super::rollers::Rollers;
 use super::solve::piecewise_linear_root_near;
 use crate::contact::hertz_line::HertzFactors;
-use crate::contact::law;
 use crate::geometry::{sin_cos, unit, NearbySinCos, Vec2};
 use crate::model::{ContactLaw, GeometryMode};
 
@@ -51,8 +50,6 @@ pub struct FirstOrderSweep<'a> {
     torque_nmm: f64,
     rollers: &'a Rollers,
     pins: Option<(&'a Pins, f64)>,
-    /// Linear stiffness of a roller contact, N/mm.
-    roller_stiffness: f64,
     /// The Hertz pressure and width factors of the rollers' contacts ([`contact::hertz_line`](crate::contact::hertz_line)).
     hertz: HertzFactors,
     /// The roller directions u_i and the pin directions w_j as x and y columns, so that the
@@ -262,14 +259,12 @@ impl<'a> FirstOrderSweep<'a> {
             Some(p) => Some((p, p.linear_stiffness()?)),
             None => None,
         };
-        let c = &r.materials;
         Some(FirstOrderSweep {
             model,
             torque_nmm: model.torque_nmm,
             rollers: r,
             pins,
-            roller_stiffness: law::paper_linear_stiffness(c),
-            hertz: HertzFactors::of(c),
+            hertz: HertzFactors::of(&r.materials),
             roller_units: Columns::of(&r.units),
             pin_units: pins.map_or_else(Columns::default, |(p, _)| Columns::of(&p.base)),
             pin_gaps: pins.map_or_else(Vec::new, |(p, _)| vec![p.clearance_mm; p.base.len()]),
@@ -379,7 +374,7 @@ impl<'a> FirstOrderSweep<'a> {
         let n = self.roller_units.x.len();
         self.settle(
             Balance {
-                stiffness: self.roller_stiffness,
+                stiffness: self.rollers.linear_stiffness(),
                 gap: &scratch.gap[..n],
                 arm: &scratch.arm[..n],
                 force: &mut scratch.force[..n],

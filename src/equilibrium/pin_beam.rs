@@ -149,10 +149,7 @@ pub fn series_force(
     // The linear law in series.
     let k = 1.0 / (1.0 / law::paper_linear_stiffness(contact) + c);
     match contact_law {
-        ContactLaw::PaperLinear => ContactForce {
-            force_n: k * approach_mm,
-            stiffness_n_per_mm: k,
-        },
+        ContactLaw::PaperLinear => ContactForce::linear(k, approach_mm),
         // Started from the linear law in series: Johnson's law is softer than it at these
         // loads, so the answer lies below.
         ContactLaw::HertzNonlinear => law::johnson_force_in_series(contact, (c, k), approach_mm),

@@ -9,7 +9,7 @@
 
 use super::balance::impl_contact;
 use super::pin_beam::{series_force, PinBeam};
-use crate::contact::law::{self, ContactForce, LineContact};
+use crate::contact::law::{ContactForce, LineContact};
 use crate::geometry::{cross, rotate, sin_cos, unit, Vec2};
 use crate::model::{ContactLaw, Design};
 
@@ -319,15 +319,12 @@ impl Pins {
     }
 
     /// Linear-law stiffness, N/mm, when the law is linear; with bending pins the
-    /// contact's and the pin's in series, 1/(1/k + c_kk) (`pin_beam::series_force`).
+    /// contact's and the pin's in series, 1/(1/k + c_kk): `pin_beam::series_force`'s, the same
+    /// at every approach under the linear law (read at 1 mm).
     pub fn linear_stiffness(&self) -> Option<f64> {
         (self.law == ContactLaw::PaperLinear).then(|| {
-            let k = law::paper_linear_stiffness(&self.contact);
-            if self.beam_compliance_mm_per_n == 0.0 {
-                k
-            } else {
-                1.0 / (1.0 / k + self.beam_compliance_mm_per_n)
-            }
+            let c = self.beam_compliance_mm_per_n;
+            series_force(self.law, &self.contact, c, 1.0).stiffness_n_per_mm
         })
     }
 }

@@ -334,10 +334,7 @@ impl Rollers {
             return ContactForce::NONE;
         }
         match self.law {
-            ContactLaw::PaperLinear => ContactForce {
-                force_n: -gap_mm * self.linear_stiffness,
-                stiffness_n_per_mm: self.linear_stiffness,
-            },
+            ContactLaw::PaperLinear => ContactForce::linear(self.linear_stiffness, -gap_mm),
             ContactLaw::HertzNonlinear => {
                 let c = self.line_contact(self.mesh.profile.curvature(t));
                 law::force(self.law, &c, -gap_mm)

@@ -376,12 +376,9 @@ pub(super) fn transmission(
     teeth: usize,
     periodic: bool,
 ) -> Transmission {
-    let h = match crank_rad {
-        [a, b, ..] => b - a,
-        _ => 1.0,
-    };
     let nc = teeth as f64;
-    let ratio = derivative(&te_rad, h, periodic)
+    // The step is read only where there are three angles or more (`derivative`).
+    let ratio = derivative(&te_rad, crate::numeric::step(crank_rad), periodic)
         .map(|d| d.iter().map(|dd| 1.0 / (1.0 / nc - dd)).collect());
     Transmission { te_rad, ratio }
 }

@@ -1,7 +1,7 @@
 //! The review's torsion under a locked input ([`engine::torsion`](crate::engine::torsion)): per torsion scene its curves
 //! and its table of catalogue figures (`sections`).
 
-use super::common::{data_table, figure, Section};
+use super::common::{data_table, figure, numbered, Section};
 use super::plots::capitalised;
 use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
@@ -206,7 +206,7 @@ pub(super) fn section(
         let Some(t) = &r.reducer.torsion else {
             continue;
         };
-        let id = format!("{}-torsion", super::scenes::id(k, scene));
+        let id = format!("{}-torsion", numbered("scene", k, &scene.name));
         let file = format!("{id}.svg");
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));
         let c = torsion_compliances(&t.compliances);

@@ -20,18 +20,13 @@ use maud::{html, Markup};
 /// branches coincide), the rising branch from −rated to +rated with both one-sided values at
 /// T = 0 (the dead band as a vertical step), in (N·m, arcmin).
 fn centre_line(t: &TorsionCurves, k: usize, steps: usize) -> (Vec<f64>, Vec<f64>) {
-    let row = &t.torsion_rad[k];
-    let mut x: Vec<f64> = t.torque_nmm[..=2 * steps]
-        .iter()
-        .map(|&v| units::nm(v))
-        .collect();
-    let mut y: Vec<f64> = row[..=2 * steps]
-        .iter()
-        .map(|&g| units::arcmin(g))
-        .collect();
+    let (mut x, mut y) = whole_loop(t, k);
     // γ(0⁺), from the falling branch, right after γ(0⁻).
+    let at_zero_plus = y[3 * steps];
+    x.truncate(2 * steps + 1);
+    y.truncate(2 * steps + 1);
     x.insert(steps + 1, 0.0);
-    y.insert(steps + 1, units::arcmin(row[3 * steps]));
+    y.insert(steps + 1, at_zero_plus);
     (x, y)
 }
 

@@ -2,7 +2,7 @@
 //! results, and write the JSON, JUnit and design review asked for.
 
 use super::output::{distinct_outputs, inputs_of, print, print_keeping};
-use super::output::{review_line, write_file};
+use super::output::{write_file, write_review};
 use super::{CheckArgs, Outcome};
 use crate::engine::commands::{self, CheckOptions, CheckRun, ReviewOptions};
 use crate::engine::scene::Writes;
@@ -153,9 +153,7 @@ fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Resul
         print(out, &report::accuracy::ladder_line(l, *seconds))?;
     }
     if let Some(dir) = &args.report {
-        let pages = report::check_review::render(run, review);
-        let files = report::review::shell::write_files(Path::new(dir), &pages)?.len();
-        print(out, &review_line(dir, files))?;
+        write_review(out, dir, &report::check_review::render(run, review))?;
     }
     Ok(())
 }

@@ -124,10 +124,14 @@ pub(super) fn stdout_error(e: std::io::Error) -> Error {
     }
 }
 
-/// The line that says where a design review was written.
-pub(super) fn review_line(dir: &str, files: usize) -> String {
-    format!(
-        "design review: {} ({files} files)\n",
-        Path::new(dir).join("index.html").display()
-    )
+/// Write a design review's `pages` into `dir` as one batch, and say where it was written.
+pub(super) fn write_review(
+    out: &mut dyn Write,
+    dir: &str,
+    pages: &[(String, String)],
+) -> Result<()> {
+    crate::report::review::shell::write_files(Path::new(dir), pages)?;
+    let (index, files) = (Path::new(dir).join("index.html"), pages.len());
+    let line = format!("design review: {} ({files} files)\n", index.display());
+    print(out, &line)
 }

@@ -3,7 +3,7 @@
 
 use super::args::{ToleranceArgs, ToleranceCommand};
 use super::output::write_spec;
-use super::output::{distinct_outputs, inputs_of, invalid, print, review_line, usage, write_file};
+use super::output::{distinct_outputs, inputs_of, invalid, print, usage, write_file, write_review};
 use super::shard::{parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands;
@@ -136,8 +136,7 @@ fn finish(
     }
     if let Some(dir) = outputs.report {
         let pages = report::review::tolerance::render(study, summary, records, sens);
-        let files = report::review::shell::write_files(Path::new(dir), &pages)?.len();
-        print(out, &review_line(dir, files))?;
+        write_review(out, dir, &pages)?;
     }
     Ok(Outcome::of(summary.passed()))
 }

@@ -1,6 +1,6 @@
 //! The building blocks every section of the design review (and the tolerance study's review)
-//! shares: a section with its anchor and heading, a figure, a table, a verdict's class, a file
-//! name from a name.
+//! shares: a section with its anchor and heading, a figure, a table, a verdict's class, a
+//! numbered anchor or file name from a name.
 
 use maud::{html, Markup};
 
@@ -50,9 +50,10 @@ pub(super) fn verdict(passed: bool) -> &'static str {
     }
 }
 
-/// A file-name part from a name: ASCII letters, digits, `-` and `_`; anything else `_`. Not
-/// unique (`a b` and `a_b` give the same), so file names also carry an index.
-pub(super) fn slug(name: &str) -> String {
+/// The anchor or file-name start of the `k`th (from 0) `kind` named `name`: "scene-1-rated",
+/// numbered from 1, of the name its ASCII letters, digits, `-` and `_`, anything else `_`. The
+/// name alone is not unique (`a b` and `a_b` give the same), so the number is always there.
+pub(super) fn numbered(kind: &str, k: usize, name: &str) -> String {
     let kept = |c: char| c.is_ascii_alphanumeric() || c == '-' || c == '_';
-    name.replace(|c: char| !kept(c), "_")
+    format!("{kind}-{}-{}", k + 1, name.replace(|c: char| !kept(c), "_"))
 }

@@ -352,10 +352,8 @@ pub fn close_up(disc: &Disc) -> (String, String) {
     let mut layout = Layout::new(Bounds::new(wx, wy, wx + wl, wy + wl));
     let flank: Vec<(f64, f64)> = c.flank.iter().map(|&p| f.at(p)).collect();
     layout.obstacles.extend(labels::polyline(&flank));
-    let roller = f.at(c.roller_centre);
-    layout
-        .obstacles
-        .push(Obstacle::Ring(roller, f.len(c.roller_radius_mm)));
+    let (roller, r_roller) = (f.at(c.roller_centre), f.len(c.roller_radius_mm));
+    layout.obstacles.push(Obstacle::Ring(roller, r_roller));
     layout.obstacles.push(Obstacle::Segment((x, y0), (x, y1)));
     for y in [y0, y1] {
         layout
@@ -382,9 +380,8 @@ pub fn close_up(disc: &Disc) -> (String, String) {
         clipPath id="win" { rect x=(px(wx)) y=(px(wy)) width=(px(wl)) height=(px(wl)) {} }
         g clip-path="url(#win)" {
             path.profile d=(f.path(&wedge)) fill="#cfe0f1" stroke="#1f4e79" stroke-width="1.5" {}
-            circle cx=(px(f.x(c.roller_centre.x))) cy=(px(f.y(c.roller_centre.y)))
-                r=(px(f.len(c.roller_radius_mm))) fill="#e6e6e6" fill-opacity="0.85" stroke="#444"
-                stroke-width="1.5" {}
+            circle cx=(px(roller.0)) cy=(px(roller.1)) r=(px(r_roller)) fill="#e6e6e6"
+                fill-opacity="0.85" stroke="#444" stroke-width="1.5" {}
         }
         line x1=(px(x)) y1=(px(y0)) x2=(px(x)) y2=(px(y1)) stroke=(color) stroke-width="2" {}
         (tick(y0))

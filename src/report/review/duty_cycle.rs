@@ -3,7 +3,7 @@
 //! speed, energy-weighted efficiency), a table of its bins and their pictures (`duty_spectrum`:
 //! the load spectrum, and each bin's shares of time, revolutions and bearing damage).
 
-use super::common::{data_table, figure, signed, slug, Section};
+use super::common::{data_table, figure, numbered, signed, Section};
 use super::duty_spectrum;
 use crate::engine::duty_cycle::{bin_equivalent_loads, damage_shares};
 use crate::model::quantity::{MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY};
@@ -33,7 +33,7 @@ pub(super) fn section(
     }
     let mut pictures = Vec::new();
     for &(k, s, d) in &cycles {
-        let prefix = format!("duty-{}-{}", k + 1, slug(&s.name));
+        let prefix = numbered("duty", k, &s.name);
         let damage = damage_shares(&spec.design, &d.bins);
         let (spectrum, shares) = (
             format!("{prefix}-spectrum.svg"),

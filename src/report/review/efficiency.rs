@@ -176,6 +176,7 @@ pub(super) fn section(
         return None;
     }
     let mut figures = Vec::new();
+    let nm = |t_nmm: f64| signed(number(units::nm(t_nmm)));
     for &(k, s, e) in &scenes {
         let (Some(Some(c)), Some(r)) = (curves.get(k), &e.reducer) else {
             continue;
@@ -188,13 +189,9 @@ pub(super) fn section(
             format!(
                 "{} torques from {} to {} N·m; the scene's {} N·m marked (diamond){}.",
                 c.torque_nmm.len(),
-                signed(number(units::nm(
-                    c.torque_nmm.first().copied().unwrap_or(0.0)
-                ))),
-                signed(number(units::nm(
-                    c.torque_nmm.last().copied().unwrap_or(0.0)
-                ))),
-                signed(number(units::nm(s.output_torque_nmm))),
+                nm(c.torque_nmm.first().copied().unwrap_or(0.0)),
+                nm(c.torque_nmm.last().copied().unwrap_or(0.0)),
+                nm(s.output_torque_nmm),
                 limit_note(spec)
             ),
         ));

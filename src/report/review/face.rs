@@ -3,7 +3,7 @@
 //! angle (a tilted scene's worst face load factor, a crowned, aligned scene's largest line
 //! load; the plot's title names it), tilted against designed (the same disc without the tilt).
 
-use super::common::{figure, slug, Section};
+use super::common::{figure, numbered, Section};
 use crate::engine::face_profile::{FaceAngle, FaceProfile};
 use crate::model::quantity::MAX_LINE_LOAD;
 use crate::model::results::SceneResult;
@@ -93,7 +93,7 @@ pub(super) fn section(
             s.dashed = true;
             plot.series.push(s);
         }
-        let file = format!("face-{}-{}.svg", p.scene + 1, slug(&scene.name));
+        let file = format!("{}.svg", numbered("face", p.scene, &scene.name));
         files.push((file.clone(), plot.to_svg()));
         figures.push((
             file,

@@ -3,7 +3,7 @@
 //! points with every constraint's margin. Drawn from an `OptimisationView`, which
 //! [`report::optimisation::view`](crate::report::optimisation::view) builds from a study's result.
 
-use super::common::{figure, scrolling, signed, slug, verdict, Section};
+use super::common::{figure, numbered, scrolling, signed, verdict, Section};
 use crate::engine::optimise::problem::Margin;
 use crate::numeric::number;
 use crate::report::svg::{MapCell, MapPlot, Marker, Shape, RED};
@@ -75,7 +75,7 @@ pub struct StudyPoint {
 pub(super) fn section(views: &[OptimisationView], files: &mut Vec<(String, String)>) -> Section {
     let mut studies = Vec::new();
     for (k, o) in views.iter().enumerate() {
-        let file = format!("optimisation-{}-{}.svg", k + 1, slug(&o.name));
+        let file = format!("{}.svg", numbered("optimisation", k, &o.name));
         files.push((file.clone(), optimisation_svg(o)));
         studies.push(study(o, &file));
     }

@@ -1,7 +1,7 @@
 //! The review's section of each scene: what it computes, over which crank angles, and the plots
 //! of its curves (`plots`), each disc's own with several discs.
 
-use super::common::{figure, slug, Section};
+use super::common::{figure, numbered, Section};
 use super::plots;
 use crate::engine::mass_properties::Unbalance;
 use crate::model::results::SceneResult;
@@ -11,11 +11,6 @@ use crate::spec::Spec;
 use crate::units;
 use maud::html;
 
-/// Scene `k`'s anchor in the page and the start of its files' names: "scene-1-rated".
-pub(super) fn id(k: usize, scene: &Scene) -> String {
-    format!("scene-{}-{}", k + 1, slug(&scene.name))
-}
-
 /// A scene's plots, or nothing when it computed no curve a plot draws.
 /// `unbalance`: the scene's at speed, when it computes `inertia`.
 pub(super) fn section(
@@ -24,7 +19,7 @@ pub(super) fn section(
     unbalance: Option<&Unbalance>,
     files: &mut Vec<(String, String)>,
 ) -> Option<Section> {
-    let prefix = id(k, scene);
+    let prefix = numbered("scene", k, &scene.name);
     // A duty cycle's curves are its bins', each at its own speed: no one speed to name.
     let at_speed = (unbalance.filter(|_| scene.duty_cycle.is_none()))
         .map(crate::report::mass_properties::bearing_plot_note);

@@ -9,16 +9,14 @@ use crate::files::Batch;
 use crate::report::svg::FONT;
 use crate::spec::Spec;
 use maud::{html, Markup, PreEscaped, DOCTYPE};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// `files` (name, text) into `dir` (created if missing) as one batch, in their order: every
 /// file is staged, then all are renamed into place, the page that links the others last, so a
 /// reader never sees a page that links figures of another run. A name in a folder
 /// (`design-01/index.html`, a design search's review of each design) has its folder created.
-/// Returns the paths written.
-pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<Vec<PathBuf>> {
+pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<()> {
     let mut batch = Batch::new();
-    let mut written = Vec::new();
     let mkdir =
         |d: &Path| std::fs::create_dir_all(d).map_err(|e| Error::io(&d.display().to_string(), e));
     mkdir(dir)?;
@@ -28,10 +26,8 @@ pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<Vec<PathBuf
             mkdir(folder)?;
         }
         batch.add(&path, text.as_bytes())?;
-        written.push(path);
     }
-    batch.commit()?;
-    Ok(written)
+    batch.commit()
 }
 
 pub(super) const STYLE: &str = r#"

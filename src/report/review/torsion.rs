@@ -1,7 +1,7 @@
 //! The review's torsion under a locked input ([`engine::torsion`](crate::engine::torsion)): per torsion scene its curves
 //! and its table of catalogue figures (`sections`).
 
-use super::common::{data_table, figure, Section};
+use super::common::{data_table, figure, numbered, Section};
 use super::plots::capitalised;
 use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
@@ -20,18 +20,13 @@ use maud::{html, Markup};
 /// branches coincide), the rising branch from −rated to +rated with both one-sided values at
 /// T = 0 (the dead band as a vertical step), in (N·m, arcmin).
 fn centre_line(t: &TorsionCurves, k: usize, steps: usize) -> (Vec<f64>, Vec<f64>) {
-    let row = &t.torsion_rad[k];
-    let mut x: Vec<f64> = t.torque_nmm[..=2 * steps]
-        .iter()
-        .map(|&v| units::nm(v))
-        .collect();
-    let mut y: Vec<f64> = row[..=2 * steps]
-        .iter()
-        .map(|&g| units::arcmin(g))
-        .collect();
+    let (mut x, mut y) = whole_loop(t, k);
     // γ(0⁺), from the falling branch, right after γ(0⁻).
+    let at_zero_plus = y[3 * steps];
+    x.truncate(2 * steps + 1);
+    y.truncate(2 * steps + 1);
     x.insert(steps + 1, 0.0);
-    y.insert(steps + 1, units::arcmin(row[3 * steps]));
+    y.insert(steps + 1, at_zero_plus);
     (x, y)
 }
 
@@ -206,7 +201,7 @@ pub(super) fn section(
         let Some(t) = &r.reducer.torsion else {
             continue;
         };
-        let id = format!("{}-torsion", super::scenes::id(k, scene));
+        let id = format!("{}-torsion", numbered("scene", k, &scene.name));
         let file = format!("{id}.svg");
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));
         let c = torsion_compliances(&t.compliances);

@@ -56,7 +56,8 @@ pub fn wrap(text: &str, width: f64) -> Vec<String> {
     lines
 }
 
-/// Top of the plot area under a title and `subtitle_lines` lines of subtitle.
+/// Top of the plot area under a title and `subtitle_lines` lines of subtitle, which is also
+/// where the next subtitle line's baseline would be.
 pub fn top(subtitle_lines: usize) -> f64 {
     44.0 + 18.0 * subtitle_lines as f64
 }
@@ -66,7 +67,7 @@ pub fn titles(left: f64, title: &str, subtitle: &[String]) -> Markup {
     html! {
         text x=(px(left)) y="24" font-size="16" font-weight="bold" { (title) }
         @for (k, line) in subtitle.iter().enumerate() {
-            text x=(px(left)) y=(px(44.0 + 18.0 * k as f64)) font-size="12" fill="#555" { (line) }
+            text x=(px(left)) y=(px(top(k))) font-size="12" fill="#555" { (line) }
         }
     }
 }

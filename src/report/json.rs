@@ -76,17 +76,12 @@ impl Serialize for FlatRows<'_> {
     }
 }
 
-/// `key: value` pairs written as an object, in their order: the registry's scalars of a scene,
-/// a study's variables.
+/// `key: value` pairs written as an object, in their order: a study's variables.
 pub struct Pairs(Vec<(&'static str, Finite)>);
 
 impl Serialize for Pairs {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut map = s.serialize_map(Some(self.0.len()))?;
-        for (key, value) in &self.0 {
-            map.serialize_entry(key, value)?;
-        }
-        map.end()
+        s.collect_map(self.0.iter().copied())
     }
 }
 

@@ -58,10 +58,13 @@ pub fn hysteresis(friction: bool) -> &'static str {
 /// (paper_linear law, exact geometry)", "output-pin contacts (paper_linear law)"; not modelled
 /// "pin bending (pins rigid)", "crank bearing (rigid)"; given "none (carrier, housing and
 /// shafts rigid)".
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct CompliancesText {
+    /// Computed by the loaded model.
     pub modelled: Vec<String>,
+    /// Held rigid by the model (a rigid crank bearing, rigid pins): no twist of theirs.
     pub not_modelled: Vec<String>,
+    /// Given in the spec and added (the structure's c·T).
     pub given: Vec<String>,
 }
 

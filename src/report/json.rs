@@ -780,9 +780,7 @@ impl CurveMap for Object<'_, '_> {
 impl Serialize for SceneDoc<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         let mut map = Serde(s.serialize_map(None)?);
-        for &field in SCENE {
-            self.field(&mut map, field)?;
-        }
+        SCENE.iter().try_for_each(|&f| self.field(&mut map, f))?;
         map.end()
     }
 }

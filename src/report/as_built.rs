@@ -27,7 +27,7 @@ pub fn describe(spec: &Spec, id: &Identification) -> String {
         m.equidistant_mm,
         units::deg(m.rotation_rad),
         form.form.len(),
-        form.form_bound_mm() * 1e3,
-        id.residual_rms_mm * 1e3
+        units::um(form.form_bound_mm()),
+        units::um(id.residual_rms_mm)
     )
 }

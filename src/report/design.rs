@@ -314,8 +314,7 @@ pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> St
     let xs: Vec<f64> = run.front.iter().map(|e| e.objectives[i]).collect();
     let ys: Vec<f64> = run.front.iter().map(|e| e.objectives[j]).collect();
     let span = |v: &[f64]| {
-        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let (lo, hi) = crate::numeric::extent(v.iter().copied());
         ticks(lo, hi, 5, true)
     };
     let (tx, ty) = (span(&xs), span(&ys));

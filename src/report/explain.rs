@@ -58,10 +58,13 @@ pub fn hysteresis(friction: bool) -> &'static str {
 /// (paper_linear law, exact geometry)", "output-pin contacts (paper_linear law)"; not modelled
 /// "pin bending (pins rigid)", "crank bearing (rigid)"; given "none (carrier, housing and
 /// shafts rigid)".
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct CompliancesText {
+    /// Computed by the loaded model.
     pub modelled: Vec<String>,
+    /// Held rigid by the model (a rigid crank bearing, rigid pins): no twist of theirs.
     pub not_modelled: Vec<String>,
+    /// Given in the spec and added (the structure's c·T).
     pub given: Vec<String>,
 }
 
@@ -172,8 +175,8 @@ pub fn note(n: &Note) -> String {
                 false => "`reducer.deviations` make",
             },
             match drawn {
-                true => format!("up to {}", number(interference_mm * 1e3)),
-                false => number(interference_mm * 1e3),
+                true => format!("up to {}", number(units::um(*interference_mm))),
+                false => number(units::um(*interference_mm)),
             }
         ),
     }
@@ -704,7 +707,7 @@ fn tolerance_text(spec: &Spec, asked: bool) -> String {
 
 /// The part deviations in force (`reducer.deviations`), one line each (empty when nominal).
 pub fn deviation_lines(d: &Deviations) -> Vec<String> {
-    let um = |mm: f64| format!("{:+.3} µm", mm * 1e3);
+    let um = |mm: f64| format!("{:+.3} µm", units::um(mm));
     let mut lines = Vec::new();
     if d.eccentricity_mm != 0.0 {
         lines.push(format!("crank eccentricity {}", um(d.eccentricity_mm)));
@@ -741,7 +744,7 @@ pub fn deviation_lines(d: &Deviations) -> Vec<String> {
             d.form.len(),
             d.form.iter().map(|f| f.order).min().unwrap_or(0),
             d.form.iter().map(|f| f.order).max().unwrap_or(0),
-            d.form_bound_mm() * 1e3
+            units::um(d.form_bound_mm())
         ));
     }
     lines

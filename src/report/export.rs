@@ -18,12 +18,12 @@ fn header_lines(spec: &Spec, tolerance_mm: f64, count: usize) -> Vec<String> {
             "modification: shift {} mm, equidistant {} mm, rotation {} deg",
             m.shift_mm,
             m.equidistant_mm,
-            m.rotation_rad.to_degrees()
+            units::deg(m.rotation_rad)
         ),
         format!(
             "units: mm, disc frame (origin at disc centre, tooth root on +x); \
              {count} points, chordal error <= {} um",
-            tolerance_mm * 1000.0
+            units::um(tolerance_mm)
         ),
     ]
 }

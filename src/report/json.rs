@@ -23,7 +23,7 @@ use crate::model::results::{
 };
 use crate::model::Study;
 use crate::numeric::extremes;
-use crate::report::explain::{hysteresis, torsion_compliances, torsion_law_note};
+use crate::report::explain::{hysteresis, torsion_compliances, torsion_law_note, CompliancesText};
 use crate::report::json_text::{self, Object, Text};
 use crate::spec::Spec;
 use crate::units::{self, nm_per_arcmin};
@@ -76,17 +76,12 @@ impl Serialize for FlatRows<'_> {
     }
 }
 
-/// `key: value` pairs written as an object, in their order: the registry's scalars of a scene,
-/// a study's variables.
+/// `key: value` pairs written as an object, in their order: a study's variables.
 pub struct Pairs(Vec<(&'static str, Finite)>);
 
 impl Serialize for Pairs {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut map = s.serialize_map(Some(self.0.len()))?;
-        for (key, value) in &self.0 {
-            map.serialize_entry(key, value)?;
-        }
-        map.end()
+        s.collect_map(self.0.iter().copied())
     }
 }
 
@@ -327,12 +322,9 @@ impl<'a> DutyDoc<'a> {
 #[derive(Serialize)]
 pub struct CompliancesDoc {
     contact_law: &'static str,
-    /// Computed by the loaded model.
-    modelled: Vec<String>,
-    /// Held rigid by the model (a rigid crank bearing, rigid pins): no twist of theirs.
-    not_modelled: Vec<String>,
-    /// Given in the spec and added (the structure's c·T).
-    given: Vec<String>,
+    /// `modelled`, `not_modelled`, `given`.
+    #[serde(flatten)]
+    lists: CompliancesText,
     /// The rest of the reducer's torsional compliance, arcmin per kN·m (0: none given).
     structure_arcmin_per_knm: Finite,
     /// Where the law puts the rigidity against a catalogue's.
@@ -384,12 +376,9 @@ fn line_loads(loaded: &LoadedSweep) -> Option<Vec<FlatRows<'_>>> {
 
 /// What a torsion curve's angle is made of (`explain::torsion_compliances`).
 fn compliances(c: &TorsionCompliances) -> CompliancesDoc {
-    let text = torsion_compliances(c);
     CompliancesDoc {
         contact_law: c.contact_law.name(),
-        modelled: text.modelled,
-        not_modelled: text.not_modelled,
-        given: text.given,
+        lists: torsion_compliances(c),
         structure_arcmin_per_knm: Finite(units::arcmin_per_knm(c.structure_rad_per_nmm)),
         note: torsion_law_note(c.contact_law),
     }
@@ -791,9 +780,7 @@ impl CurveMap for Object<'_, '_> {
 impl Serialize for SceneDoc<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         let mut map = Serde(s.serialize_map(None)?);
-        for &field in SCENE {
-            self.field(&mut map, field)?;
-        }
+        SCENE.iter().try_for_each(|&f| self.field(&mut map, f))?;
         map.end()
     }
 }

@@ -237,10 +237,10 @@ fn eq8_note(label: &str, e: &Evaluation, study: &Study) -> Option<String> {
              violates the whole-mesh clearance: {:.1} µm < {:.1} µm at roller {}, crank {:.2}°, \
              tooth phase {} (0 root, 0.5 tip){}\n",
             tip,
-            min.gap_mm * 1000.0,
-            dt * 1000.0,
+            crate::units::um(min.gap_mm),
+            crate::units::um(dt),
             min.roller,
-            min.crank_rad.to_degrees(),
+            crate::units::deg(min.crank_rad),
             crate::numeric::phase(min.tooth_phase),
             if min.gap_mm < 0.0 { " — interference" } else { "" }
         )
@@ -256,7 +256,7 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
         r.name,
         objective_label(study),
         scene.name,
-        scene.output_torque_nmm / 1000.0,
+        crate::units::nm(scene.output_torque_nmm),
         scene.crank_rad.len()
     );
     for (label, e) in listed(r) {
@@ -474,7 +474,7 @@ fn summary(spec: &Spec, study: &Study) -> String {
         "Minimise {} on scene “{}” ({} N·m, {} crank angles) over {}{}.",
         objective_label(study),
         scene.name,
-        short(scene.output_torque_nmm / 1000.0),
+        short(crate::units::nm(scene.output_torque_nmm)),
         scene.crank_rad.len(),
         bounds.join(", "),
         if constraints.is_empty() {

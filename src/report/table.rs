@@ -420,7 +420,7 @@ pub fn headline_at(h: &Headline, s: &SceneSummary, all: &[SceneSummary]) -> Stri
 /// Why a headline is marked: its band and what the band rests on (`engine::plausibility`),
 /// and the limit that would judge it.
 pub fn beyond_text(h: &Headline, b: &Beyond) -> String {
-    let gpa = |mpa: f64| number(mpa / 1e3);
+    let gpa = |mpa: f64| number(crate::units::gpa(mpa));
     let why = match b.basis {
         Basis::Steel {
             disc_e_mpa,

@@ -10,7 +10,7 @@ use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::error::{Error, Result};
 use crate::model::quantity::Bound;
 use crate::model::tolerances::{Distribution, NORMAL_CUT_SIGMA};
-use crate::numeric::{number, percent, with_unit};
+use crate::numeric::{number, percent, percent_label, with_unit};
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 use std::collections::BTreeMap;
@@ -36,8 +36,6 @@ fn bound_sign(b: Bound) -> &'static str {
         Bound::Max => "<=",
     }
 }
-
-pub use crate::numeric::percent_label;
 
 /// A distribution for people, with its band and cut: "normal distribution (band = 3σ, draws
 /// beyond 6σ drawn again)", "uniform distribution over the band".

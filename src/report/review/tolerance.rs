@@ -11,10 +11,10 @@ use crate::engine::tolerance::summary::{LimitSummary, Summary, CONFIDENCE, QUANT
 use crate::engine::tolerance::{Records, ToleranceStudy};
 use crate::model::results::is_unbounded;
 use crate::numeric::with_unit;
-use crate::numeric::{number, percent};
+use crate::numeric::{number, percent, percent_label};
 use crate::report::svg::{axis_label, LinePlot, Series, PALETTE, RED};
 use crate::report::tolerance::{
-    distribution_text, percent_label, rate_text, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
+    distribution_text, rate_text, statistic, value, LINEAR_CAVEAT, MEASURED_NOTE,
     QUANTILE_DEFINITION,
 };
 use maud::{html, Markup};

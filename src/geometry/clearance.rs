@@ -349,8 +349,7 @@ pub enum Scope {
 /// after a tooth): a uniform sweep over whole mesh periods needs only its first period.
 pub fn min_gap(mesh: &Mesh, crank_rad: &[f64]) -> Result<MinClearance, GapFailure> {
     let crank = first_period(mesh, crank_rad);
-    let columns = Tracker::new(mesh).sweep(crank, Scope::Gaps, &Silent)?;
-    smallest(mesh, crank, &columns.gap_mm)
+    Ok(sweep(mesh, crank, Scope::Gaps, &Silent)?.min)
 }
 
 /// The leading mesh period of a uniform sweep that covers at least one whole period on its

@@ -135,15 +135,8 @@ pub fn check(
             ));
         }
     }
-    if scene.torque_sweep.is_some() {
-        return Err((
-            Setting::Scene,
-            format!(
-                "scene `{}` is a torsion scene (`torque_sweep`): the ladder needs a scene loaded \
-                 over the crank angle (`output_torque_nm`)",
-                scene.name
-            ),
-        ));
+    if let Some(m) = scene.torsion_refusal("the ladder") {
+        return Err((Setting::Scene, m));
     }
     if scene.duty_cycle.is_some() {
         return Err((

@@ -184,28 +184,19 @@ pub enum ObjectiveKind {
     Efficiency,
 }
 
+named!(ObjectiveKind "objective" {
+    OuterDiameter => "outer_diameter_mm",
+    AxialLength => "axial_length_mm",
+    Mass => "mass_kg",
+    ContactPressure => "max_contact_pressure_mpa",
+    TeFluctuation => "te_fluctuation_arcsec",
+    LostMotion => "max_lost_motion_arcsec",
+    BearingLife => "bearing_life_h",
+    Rigidity => "torsional_rigidity_nm_per_arcmin",
+    Efficiency => "efficiency",
+});
+
 impl ObjectiveKind {
-    /// Every objective with its key under `objectives:`.
-    pub const ALL: [(&'static str, ObjectiveKind); 9] = [
-        ("outer_diameter_mm", ObjectiveKind::OuterDiameter),
-        ("axial_length_mm", ObjectiveKind::AxialLength),
-        ("mass_kg", ObjectiveKind::Mass),
-        ("max_contact_pressure_mpa", ObjectiveKind::ContactPressure),
-        ("te_fluctuation_arcsec", ObjectiveKind::TeFluctuation),
-        ("max_lost_motion_arcsec", ObjectiveKind::LostMotion),
-        ("bearing_life_h", ObjectiveKind::BearingLife),
-        ("torsional_rigidity_nm_per_arcmin", ObjectiveKind::Rigidity),
-        ("efficiency", ObjectiveKind::Efficiency),
-    ];
-
-    /// Its key.
-    pub fn key(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|(_, k)| *k == self)
-            .map_or("", |(n, _)| n)
-    }
-
     /// Larger is better.
     pub fn maximise(self) -> bool {
         matches!(

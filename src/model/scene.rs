@@ -141,6 +141,18 @@ impl TorqueSweep {
 }
 
 impl Scene {
+    /// Why `what` (a study, the accuracy ladder) cannot run this scene when it is a torsion
+    /// scene: it has no loaded curves over the crank angle.
+    pub fn torsion_refusal(&self, what: &str) -> Option<String> {
+        self.torque_sweep.is_some().then(|| {
+            format!(
+                "scene `{}` is a torsion scene (`torque_sweep`): {what} needs a scene loaded \
+                 over the crank angle (`output_torque_nm`)",
+                self.name
+            )
+        })
+    }
+
     /// Computes roller contact in one run at one torque (a duty cycle's runs once per bin):
     /// the scene the accuracy ladder runs and the disc drawing solves by default.
     pub fn loaded_once(&self) -> bool {

@@ -57,9 +57,9 @@ fn columns(req: &Requirements) -> Vec<Column<'_>> {
         Box::new(|e: &Evaluation| e.candidate.mass_kg(req)),
     ));
     for (i, o) in req.objectives.iter().enumerate() {
-        if !cols.iter().any(|(h, _)| h == o.key()) {
+        if !cols.iter().any(|(h, _)| h == o.name()) {
             cols.push((
-                o.key().to_string(),
+                o.name().to_string(),
                 Box::new(move |e: &Evaluation| e.objectives[i]),
             ));
         }
@@ -190,7 +190,7 @@ pub fn render(req: &Requirements, run: &SearchRun, out_dir: Option<&str>, time: 
     let objectives: Vec<String> = req
         .objectives
         .iter()
-        .map(|o| format!("{} ({})", o.key(), if o.maximise() { "max" } else { "min" }))
+        .map(|o| format!("{o} ({})", if o.maximise() { "max" } else { "min" }))
         .collect();
     let _ = writeln!(
         s,

@@ -578,25 +578,24 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
     let mut objectives = Vec::new();
     for (i, name) in raw.objectives.iter().enumerate() {
         let key = format!("objectives[{i}]");
-        let Some((_, kind)) = ObjectiveKind::ALL.iter().find(|(k, _)| k == name) else {
-            let known: Vec<_> = ObjectiveKind::ALL.iter().map(|(k, _)| *k).collect();
+        let Some(kind) = ObjectiveKind::from_name(name) else {
             return Err(Error::invalid(
                 key,
                 format!(
                     "unknown objective `{name}`; the objectives are {}",
-                    known.join(", ")
+                    ObjectiveKind::names()
                 ),
             ));
         };
-        if objectives.contains(kind) {
+        if objectives.contains(&kind) {
             return Err(Error::invalid(key, format!("`{name}` is listed twice")));
         }
-        if *kind == ObjectiveKind::BearingLife {
+        if kind == ObjectiveKind::BearingLife {
             life_needs(key)?;
-        } else if *kind == ObjectiveKind::Efficiency {
+        } else if kind == ObjectiveKind::Efficiency {
             needs_friction(key)?;
         }
-        objectives.push(*kind);
+        objectives.push(kind);
     }
     let search = Search {
         continuous,

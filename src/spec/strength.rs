@@ -85,12 +85,6 @@ pub(crate) struct Inputs {
 }
 
 impl Inputs {
-    /// What `design` gives.
-    pub(crate) fn of(design: &Design) -> Inputs {
-        let bearing = design.crank_bearing.as_ref();
-        Inputs::new(&design.strength, design.pins.support.is_some(), bearing)
-    }
-
     /// What the materials' `strength`, a pin `support` (given or not) and the crank `bearing`
     /// give: a spec's design or a requirements file's blocks.
     pub(crate) fn new(
@@ -139,7 +133,8 @@ pub(crate) fn missing_input(key: &str, inputs: &Inputs, prefix: &str) -> Option<
 
 /// What each strength limit needs of the design and of the scenes that compute it.
 pub(crate) fn check(limits: &Limits, design: &Design, scenes: &[Scene]) -> Result<()> {
-    let inputs = Inputs::of(design);
+    let bearing = design.crank_bearing.as_ref();
+    let inputs = Inputs::new(&design.strength, design.pins.support.is_some(), bearing);
     for limit in &limits.entries {
         let key = limit.def.key;
         if let Some(why) = missing_input(key, &inputs, "reducer.") {

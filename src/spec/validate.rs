@@ -755,22 +755,6 @@ fn first_order_torques(design: &Design, scenes: &[Scene]) -> Result<()> {
     Ok(())
 }
 
-/// `what` (a study) runs its scene over the crank angle: a torsion scene has no such curves
-/// (the accuracy ladder refuses one in [`model::accuracy::check`](crate::model::accuracy::check)).
-fn not_torsion(key: &str, scene: &Scene, what: &str) -> Result<()> {
-    if scene.torque_sweep.is_some() {
-        return Err(Error::invalid(
-            key,
-            format!(
-                "scene `{}` is a torsion scene (`torque_sweep`): {what} needs a scene loaded \
-                 over the crank angle (`output_torque_nm`)",
-                scene.name
-            ),
-        ));
-    }
-    Ok(())
-}
-
 /// `accuracy:`: the scene exists and computes something the ladder compares, the rungs are
 /// rungs of the ladder, the tolerances are positive.
 fn accuracy_section(raw: RawAccuracy, scenes: &[Scene], design: &Design) -> Result<Accuracy> {
@@ -1075,7 +1059,9 @@ fn study(
     (modification, crowning, design): (&Modification, Crowning, &Design),
 ) -> Result<Study> {
     let scene = scene_index(scenes, &raw.scene, &format!("{key}.scene"))?;
-    not_torsion(&format!("{key}.scene"), &scenes[scene], "a study")?;
+    if let Some(m) = scenes[scene].torsion_refusal("a study") {
+        return Err(Error::invalid(format!("{key}.scene"), m));
+    }
     refuse_duty(scenes, scene, &format!("{key}.scene"), "a study")?;
     let mut variables = Vec::new();
     let v = &raw.variables;

@@ -42,7 +42,7 @@ pub fn front_spec(req: &Requirements, requirements_path: &str, k: usize, e: &Eva
         .objectives
         .iter()
         .zip(&e.objectives)
-        .map(|(o, v)| format!("{} = {v}", o.key()))
+        .map(|(o, v)| format!("{} = {v}", o.name()))
         .collect();
     let header = format!(
         "Written by `cycloid design {requirements_path}`: design {} of the Pareto front of `{}`.\n\

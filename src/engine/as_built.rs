@@ -57,10 +57,8 @@ pub fn fit(spec: &Spec, measured: &MeasuredProfile) -> Result<Identification> {
         }
         e
     })?;
-    of_this_design(spec, measured, &id).map_err(|e| {
-        let e = Error::new(ErrorKind::InvalidValue, e.message);
-        spec.locate(e.at_key("measured_profile.file"))
-    })?;
+    of_this_design(spec, measured, &id)
+        .map_err(|e| spec.locate(e.at_key("measured_profile.file")))?;
     Ok(id)
 }
 

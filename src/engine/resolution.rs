@@ -55,14 +55,10 @@ impl Resolution {
     /// Steps per mesh period from which on every steps rung meets the tolerances (the finest
     /// when the rung below it misses).
     pub fn needed_steps(&self) -> usize {
-        let mut needed = self.finest;
-        for r in self.rungs.iter().rev() {
-            if !r.misses.is_empty() {
-                break;
-            }
-            needed = r.steps;
-        }
-        needed
+        (self.rungs.iter().rev())
+            .take_while(|r| r.misses.is_empty())
+            .last()
+            .map_or(self.finest, |r| r.steps)
     }
 
     /// Fine enough: the coarsest rung meets every tolerance, or the scene is at least as fine

@@ -104,7 +104,7 @@ pub struct RunOptions<'a> {
     /// (`geometry::mesh_minimum`): the spec's `accuracy.tolerance.clearance_um`.
     pub clearance_tolerance_mm: f64,
     /// Hears of the crank angles done by each sweep the plan runs (`start` is the caller's:
-    /// `sweeps` says how many it will hear of).
+    /// `scene_sweeps` says how many it will hear of).
     pub progress: &'a dyn Progress,
 }
 
@@ -575,27 +575,15 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
     notes
 }
 
-/// How many sweeps over its crank angles `plan` runs for a reducer of `discs` discs
-/// (clearance once per disc, loaded, torsion): the work a progress display of the scene
-/// counts, in crank angles.
-pub fn sweeps(plan: &Plan, discs: usize) -> usize {
-    clearance_sweeps(plan, discs)
-        + usize::from(runs_loaded(plan))
-        + usize::from(plan.has(Effect::Torsion))
-}
-
-/// The clearance's sweeps of `plan`: one per disc.
-fn clearance_sweeps(plan: &Plan, discs: usize) -> usize {
-    discs * usize::from(plan.has(Effect::Clearance))
-}
-
-/// `sweeps` of `scene`: those of its plan; with a duty cycle the clearance's once (the bins
-/// share it, `run_duty_cycle`) and the others once per bin.
+/// How many sweeps over its crank angles `scene`'s `plan` runs for a reducer of `discs` discs:
+/// the work a progress display of the scene counts, in crank angles. The clearance once per
+/// disc (with a duty cycle too: the bins share it, `run_duty_cycle`), the loaded sweep and the
+/// torsion once per bin.
 pub fn scene_sweeps(scene: &Scene, plan: &Plan, discs: usize) -> usize {
     // A duty cycle has at least one bin (the spec refuses an empty one).
     let bins = scene.duty_cycle.as_ref().map_or(1, Vec::len);
-    let clearance = clearance_sweeps(plan, discs);
-    clearance + bins * (sweeps(plan, discs) - clearance)
+    let clearance = discs * usize::from(plan.has(Effect::Clearance));
+    clearance + bins * (usize::from(runs_loaded(plan)) + usize::from(plan.has(Effect::Torsion)))
 }
 
 /// Whether `plan` runs the loaded sweep over the crank angle (roller contact, output pins or

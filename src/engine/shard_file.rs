@@ -238,13 +238,10 @@ impl<'a> Reader<'a> {
 
     /// The refusal of this file for `why`.
     pub fn bad(&self, why: &str) -> Error {
-        Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "{}: not a shard file of `{}`: {why}",
-                self.path, self.command
-            ),
-        )
+        refuse(format!(
+            "{}: not a shard file of `{}`: {why}",
+            self.path, self.command
+        ))
     }
 
     pub fn take(&mut self, n: usize) -> Result<&'a [u8]> {

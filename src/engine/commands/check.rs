@@ -303,24 +303,6 @@ pub fn studies(spec: &Spec, studies: Vec<&Study>, progress: &dyn Progress) -> Ve
         .collect()
 }
 
-/// The objective map of `study` over `steps` per variable around `around`, its cells counted.
-pub fn map(
-    spec: &Spec,
-    study: &Study,
-    steps: usize,
-    around: &crate::model::Point,
-    progress: &dyn Progress,
-) -> Vec<Evaluation> {
-    let cells = if study.variables.len() > 1 {
-        steps * steps
-    } else {
-        steps
-    };
-    let what = format!("objective map of `{}`", study.name);
-    let heard = progress.phase(&Phase::new(what, "cells", cells as u64));
-    optimise::map(spec, study, steps, around, &*heard)
-}
-
 /// Each study's map around its optimum (none below 2 steps).
 fn maps(
     spec: &Spec,
@@ -332,7 +314,7 @@ fn maps(
         .iter()
         .zip(studies)
         .map(|(s, r)| match steps >= 2 {
-            true => map(spec, s, steps, &r.optimum.point, progress),
+            true => optimise::map(spec, s, steps, &r.optimum.point, progress),
             false => Vec::new(),
         })
         .collect()

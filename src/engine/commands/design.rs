@@ -5,7 +5,8 @@
 use super::check::{check, CheckOptions, CheckRun, ReviewOptions};
 use crate::engine::design_search::{self, candidate, shard, Evaluation, SearchRun};
 use crate::engine::scene::Writes;
-use crate::error::{Error, ErrorKind, Result};
+use crate::engine::shard_file::refuse;
+use crate::error::Result;
 use crate::model::requirements::Requirements;
 use crate::progress::Progress;
 
@@ -173,13 +174,10 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
     let order = shard::check_set(&names, &shards)?;
     let h = shards[0].header.clone();
     let requirements = crate::spec::requirements::parse(&h.text_path, &h.text).map_err(|e| {
-        Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "{}: the requirements the shards hold do not load in this cycloid: {}",
-                names[0], e.message
-            ),
-        )
+        refuse(format!(
+            "{}: the requirements the shards hold do not load in this cycloid: {}",
+            names[0], e.message
+        ))
     })?;
     // The shards in index order, moved (their evaluations move on into the search).
     let mut given: Vec<Option<(&str, shard::Shard)>> = names

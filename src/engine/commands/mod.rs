@@ -16,7 +16,7 @@ mod tolerance;
 pub use accuracy::accuracy;
 pub use bless::bless;
 pub use check::{
-    check, map, map_steps_allowed, studies, AsBuilt, CheckOptions, CheckRun, Review, ReviewOptions,
+    check, map_steps_allowed, studies, AsBuilt, CheckOptions, CheckRun, Review, ReviewOptions,
     MAX_MAP_STEPS,
 };
 pub use design::{

@@ -1,7 +1,7 @@
 //! `optimise`: the spec's optimisation studies, and the first one's objective map.
 
-use super::check::{map, map_steps_allowed, studies, MAX_MAP_STEPS};
-use crate::engine::optimise::{problem::Evaluation, StudyResult};
+use super::check::{map_steps_allowed, studies, MAX_MAP_STEPS};
+use crate::engine::optimise::{map, problem::Evaluation, StudyResult};
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::Study;
 use crate::progress::Progress;

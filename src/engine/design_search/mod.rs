@@ -124,16 +124,14 @@ pub fn global_stage(
     progress: &dyn Progress,
 ) -> Result<Vec<Evaluation>> {
     let phase = progress.phase(&Phase::slow(what, "designs", candidates.len() as u64));
-    let all = candidates
+    candidates
         .par_iter()
         .map(|c| {
             let e = evaluate::evaluate(req, c);
             phase.advance(1);
             e
         })
-        .collect();
-    phase.finish();
-    all
+        .collect()
 }
 
 /// The search from the global stage's evaluations of every candidate (`all`, in the order of
@@ -167,7 +165,6 @@ pub fn finish(
             .par_iter()
             .map(|s| refine::refine(req, s, &*phase))
             .collect::<Result<_>>()?;
-        phase.finish();
         for e in runs.into_iter().flatten() {
             local.add(&e);
             all.push(e);

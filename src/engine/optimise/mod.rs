@@ -23,7 +23,7 @@ pub mod seeds;
 pub mod verify;
 
 use crate::model::Study;
-use crate::progress::Progress;
+use crate::progress::{Phase, Progress};
 use crate::spec::Spec;
 use local::{LocalRun, StopReason};
 use problem::{best, Evaluation, Problem};
@@ -208,7 +208,8 @@ fn found(
 }
 
 /// The objective over a `steps` × `steps` grid of the study's first two variables (the others
-/// held at `around`), evaluated in parallel, each cell told to `progress`; rows in grid order.
+/// held at `around`), evaluated in parallel, its cells counted in a phase of `progress`; rows
+/// in grid order.
 pub fn map(
     spec: &Spec,
     study: &Study,
@@ -229,6 +230,8 @@ pub fn map(
     let cells: Vec<(usize, usize)> = (0..steps)
         .flat_map(|i| (0..if vars.len() > 1 { steps } else { 1 }).map(move |j| (i, j)))
         .collect();
+    let what = format!("objective map of `{}`", study.name);
+    let heard = progress.phase(&Phase::new(what, "cells", cells.len() as u64));
     cells
         .par_iter()
         .map(|&(i, j)| {
@@ -237,7 +240,7 @@ pub fn map(
             if vars.len() > 1 {
                 vars[1].kind.set(&mut m, axis(1, j));
             }
-            progress.advance(1);
+            heard.advance(1);
             problem.evaluate_point(&m)
         })
         .collect()

@@ -172,12 +172,11 @@ impl<'a> ToleranceStudy<'a> {
     }
 
     /// The records of the samples k ≡ `shard.0` (mod `shard.1`), in increasing k, in parallel;
-    /// `progress` hears of each sample done. The first error (in k order) is the error.
+    /// `progress` (the caller's phase) hears of each sample done. The first error (in k order) is the error.
     pub fn run(&self, shard: (u64, u64), progress: &dyn Progress) -> Result<Records> {
         use rayon::prelude::*;
         let rows = shard_len(self.samples() as u64, shard);
         let cells = rows as usize * self.limits.len();
-        progress.start("tolerance study", rows);
         let mut records = Records {
             values: Vec::with_capacity(cells),
             passed: Vec::with_capacity(cells),
@@ -201,7 +200,6 @@ impl<'a> ToleranceStudy<'a> {
                 records.passed.extend(p);
             }
         }
-        progress.finish();
         Ok(records)
     }
 }

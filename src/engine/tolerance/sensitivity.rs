@@ -101,7 +101,6 @@ pub fn run(
 ) -> Result<Sensitivity> {
     use rayon::prelude::*;
     let n = study.params.len();
-    progress.start("sensitivities", n as u64);
     let columns: Vec<Result<Vec<Option<f64>>>> = (0..n)
         .into_par_iter()
         .map(|p| {
@@ -110,7 +109,6 @@ pub fn run(
             d
         })
         .collect();
-    progress.finish();
     let columns: Vec<Vec<Option<f64>>> = columns.into_iter().collect::<Result<_>>()?;
     let derivative = (0..study.limits.len())
         .map(|l| columns.iter().map(|c| c[l]).collect())

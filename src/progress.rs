@@ -6,12 +6,8 @@
 
 /// Hears of work as it is done. Called from worker threads.
 pub trait Progress: Sync {
-    /// `total` units of work are about to start, described by `what`.
-    fn start(&self, _what: &str, _total: u64) {}
     /// `n` more units are done.
     fn advance(&self, _n: u64) {}
-    /// The work described last is done.
-    fn finish(&self) {}
     /// A listener for one phase of a command (the scenes, the studies, a map, the ladder):
     /// the phase ends when the listener is dropped. By default nobody listens.
     fn phase(&self, _phase: &Phase) -> Box<dyn Progress + '_> {

@@ -37,18 +37,8 @@ impl Bar {
 }
 
 impl Progress for Bar {
-    fn start(&self, what: &str, total: u64) {
-        self.bar.set_message(what.to_string());
-        self.bar.set_length(total);
-        self.bar.set_position(0);
-    }
-
     fn advance(&self, n: u64) {
         self.bar.inc(n);
-    }
-
-    fn finish(&self) {
-        self.bar.finish_and_clear();
     }
 }
 

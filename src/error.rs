@@ -106,6 +106,12 @@ impl Error {
         Error::new(ErrorKind::InvalidValue, message).at_key(key_path)
     }
 
+    /// An [`ErrorKind::InvalidValue`] error about no spec key: a flag's value, or a refusal of
+    /// the spec or a file as a whole.
+    pub fn invalid_value(message: impl Into<String>) -> Self {
+        Error::new(ErrorKind::InvalidValue, message)
+    }
+
     /// An [`ErrorKind::Computation`] error: a computation that could not give its result.
     pub fn computation(message: impl Into<String>) -> Self {
         Error::new(ErrorKind::Computation, message)

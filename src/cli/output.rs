@@ -21,7 +21,7 @@ pub(super) fn usage(m: String) -> Error {
 /// A bad value `m` of an option (`--shard`, `--write-sample`, `--map-steps`, …) or of the Slurm
 /// job array.
 pub(super) fn invalid(m: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, m)
+    Error::invalid_value(m)
 }
 
 /// Refuse, before anything is written, outputs that would destroy an input or one another: an

@@ -33,7 +33,7 @@
 
 use crate::engine::scene;
 use crate::equilibrium::solve::Settings;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 pub use crate::model::accuracy::{
     base_angles, check, ladder_steps, tolerance, LadderTolerances, Options, Setting, COARSEST,
     DEFAULT_FINEST, FACE_SLICES, MAX_FINEST,
@@ -648,7 +648,7 @@ pub fn run(
     progress: &mut dyn FnMut(Event),
 ) -> Result<Ladder> {
     let scene = &spec.scenes[scene_index];
-    check(&spec.design, scene, options).map_err(|(_, m)| Error::new(ErrorKind::InvalidValue, m))?;
+    check(&spec.design, scene, options).map_err(|(_, m)| Error::invalid_value(m))?;
     let layout = layout(spec, scene, options);
     progress(Event::Started(&layout));
     let plan = Plan::for_scene(scene);

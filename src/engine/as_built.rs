@@ -3,7 +3,7 @@
 //! the fitted form error (`reducer.deviations.form`), exact geometry (MODEL.md "Measured
 //! profiles"). `check` runs every scene and limit on that spec.
 
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::measure::fit::{self, Identification};
 use crate::measure::points;
 use crate::model::measured::MeasuredProfile;
@@ -83,36 +83,30 @@ fn of_this_design(spec: &Spec, measured: &MeasuredProfile, id: &Identification) 
     let not_this = "the points are not a disc of this design, or not in mm";
     // NaN (no finite fit) is refused too.
     if moved.is_nan() || moved >= e {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "the disc identified from `{file}` lies up to {} mm from the drawing's profile \
-                 (shift_mm {} mm and equidistant_mm {} mm from the spec's, form error up to {} \
-                 mm), not less than the eccentricity e = {} mm that a part as built may move \
-                 (the teeth are 2e deep): {not_this}",
-                numeric::number(moved),
-                numeric::change(m0.shift_mm, m.shift_mm),
-                numeric::change(m0.equidistant_mm, m.equidistant_mm),
-                numeric::number(form_bound),
-                numeric::input(e)
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "the disc identified from `{file}` lies up to {} mm from the drawing's profile \
+             (shift_mm {} mm and equidistant_mm {} mm from the spec's, form error up to {} \
+             mm), not less than the eccentricity e = {} mm that a part as built may move \
+             (the teeth are 2e deep): {not_this}",
+            numeric::number(moved),
+            numeric::change(m0.shift_mm, m.shift_mm),
+            numeric::change(m0.equidistant_mm, m.equidistant_mm),
+            numeric::number(form_bound),
+            numeric::input(e)
+        )));
     }
     if let Some(hole) = id
         .hole_radius_offset_mm
         .filter(|h| h.value.is_nan() || h.value.abs() >= e)
     {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "the holes identified from `{file}` are {} mm off the design's radius {} mm, \
-                 not less than the eccentricity e = {} mm (a hole is e wider than its pin): \
-                 {not_this}",
-                numeric::number(hole.value),
-                numeric::number(spec.design.hole_radius_mm()),
-                numeric::input(e)
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "the holes identified from `{file}` are {} mm off the design's radius {} mm, \
+             not less than the eccentricity e = {} mm (a hole is e wider than its pin): \
+             {not_this}",
+            numeric::number(hole.value),
+            numeric::number(spec.design.hole_radius_mm()),
+            numeric::input(e)
+        )));
     }
     let mut disc = spec.design.clone();
     disc.deviations = Deviations {
@@ -120,16 +114,13 @@ fn of_this_design(spec: &Spec, measured: &MeasuredProfile, id: &Identification) 
         ..Deviations::default()
     };
     crate::spec::deviations::check(&disc, &m).map_err(|r| {
-        Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "the disc identified from `{file}` (shift_mm {}, equidistant_mm {}) breaks a \
-                 design rule, {not_this}: {}",
-                numeric::number(m.shift_mm),
-                numeric::number(m.equidistant_mm),
-                r.message
-            ),
-        )
+        Error::invalid_value(format!(
+            "the disc identified from `{file}` (shift_mm {}, equidistant_mm {}) breaks a \
+             design rule, {not_this}: {}",
+            numeric::number(m.shift_mm),
+            numeric::number(m.equidistant_mm),
+            r.message
+        ))
     })
 }
 

@@ -3,7 +3,7 @@
 //! a reader of its little-endian fields whose every refusal names the file and the command
 //! that writes it.
 
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use sha2::{Digest, Sha256};
 
 /// Missing shards a merge's refusal lists by index, at most.
@@ -161,7 +161,7 @@ pub fn check_set(names: &[String], headers: &[&Header], words: &RunWords) -> Res
 
 /// A merge's refusal of its set of shards.
 pub fn refuse(message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message)
+    Error::invalid_value(message)
 }
 
 /// SHA-256 of the text a shard names its run by (a spec's, a requirements file's).

@@ -45,7 +45,7 @@ use super::fitted::{Estimate, FittedPoint, FormError, Harmonic};
 use super::flanks::{flanks, Flank};
 use super::thinning::{self, Thinning};
 use super::{Feature, MeasuredPoint};
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::geometry::profile::{ClosestPointFailure, Foot, Profile};
 use crate::geometry::{cos_sin_of_orders, cross, rotate, unit, wrap_pi, Vec2};
 use crate::model::measured::Fitted;
@@ -573,21 +573,17 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
         Feature::Hole(j) if j >= design.pins.count => Some((p.line, j)),
         _ => None,
     }) {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "line {}: hole:{} does not exist: the design has {} output-pin holes, \
-                 numbered 0 to {}",
-                bad.0,
-                bad.1,
-                design.pins.count,
-                design.pins.count - 1
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "line {}: hole:{} does not exist: the design has {} output-pin holes, \
+             numbered 0 to {}",
+            bad.0,
+            bad.1,
+            design.pins.count,
+            design.pins.count - 1
+        )));
     }
     if request.fit.rotation && hole_points == 0 {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
+        return Err(Error::invalid_value(
             "`rotation_deg` cannot be fitted without points on the pin holes: the rotation \
              modification is the turn of the teeth relative to the holes, and on the profile \
              alone it is the same motion as the orientation of the disc on the machine",
@@ -599,26 +595,20 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
         FormError::orders(request.harmonics, design.teeth),
     );
     if layout.orders.len() > MAX_ORDERS {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "{} form-error orders asked for; at most {MAX_ORDERS}",
-                layout.orders.len()
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "{} form-error orders asked for; at most {MAX_ORDERS}",
+            layout.orders.len()
+        )));
     }
     if profile_count <= layout.len {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "{profile_count} profile points for {} unknowns (centre, orientation, {} fitted \
-                 modifications, {} form-error coefficients): measure more points or ask for \
-                 fewer harmonics",
-                layout.len,
-                layout.len - 3 - 2 * layout.orders.len(),
-                2 * layout.orders.len()
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "{profile_count} profile points for {} unknowns (centre, orientation, {} fitted \
+             modifications, {} form-error coefficients): measure more points or ask for \
+             fewer harmonics",
+            layout.len,
+            layout.len - 3 - 2 * layout.orders.len(),
+            2 * layout.orders.len()
+        )));
     }
     // Points repeated (one point measured over and over) fix no more unknowns than one: the
     // circle through them, and every foot after it, would be NaN.
@@ -630,15 +620,12 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
     distinct.sort_unstable();
     distinct.dedup();
     if distinct.len() <= layout.len {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "{} distinct profile points (of {profile_count}; the others repeat them) for {} \
-                 unknowns: measure points spread along the profile",
-                distinct.len(),
-                layout.len
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "{} distinct profile points (of {profile_count}; the others repeat them) for {} \
+             unknowns: measure points spread along the profile",
+            distinct.len(),
+            layout.len
+        )));
     }
     let thinning = thinning::needed(profile_count, hole_points, layout.len, MAX_JACOBIAN_ENTRIES);
     let thinned;
@@ -651,16 +638,13 @@ pub fn identify(request: &Request, points: &[MeasuredPoint]) -> Result<Identific
     };
     let entries = points.len().saturating_mul(layout.len);
     if entries > MAX_JACOBIAN_ENTRIES {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "{} points × {} unknowns = {entries} Jacobian entries, more than the \
-                 {MAX_JACOBIAN_ENTRIES} (128 MiB) a fit holds: thin the points (every k-th) or \
-                 ask for fewer harmonics",
-                points.len(),
-                layout.len
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "{} points × {} unknowns = {entries} Jacobian entries, more than the \
+             {MAX_JACOBIAN_ENTRIES} (128 MiB) a fit holds: thin the points (every k-th) or \
+             ask for fewer harmonics",
+            points.len(),
+            layout.len
+        )));
     }
     let (mut params, mut feet) = initial(request, &layout, points)?;
     let n = layout.len;
@@ -780,29 +764,23 @@ fn finish(
     let m = points.len();
     let rms = (sum_squares(residuals) / m as f64).sqrt();
     if last.condition > MAX_CONDITION || !last.condition.is_finite() {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "the identification is ill-posed: the condition number of its Jacobian is \
-                 {:.2e}, above {MAX_CONDITION:.0e}; the least determined unknown is the {}: \
-                 measure more of the profile, or ask for fewer harmonics or fitted \
-                 modifications",
-                last.condition,
-                layout.name(last.weakest)
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "the identification is ill-posed: the condition number of its Jacobian is \
+             {:.2e}, above {MAX_CONDITION:.0e}; the least determined unknown is the {}: \
+             measure more of the profile, or ask for fewer harmonics or fitted \
+             modifications",
+            last.condition,
+            layout.name(last.weakest)
+        )));
     }
     if rms > MAX_RMS_MM {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "the points are not a disc of this design: after the fit their RMS distance \
-                 to the profile is {:.1} µm, more than the {:.0} µm any ground disc keeps \
-                 (check the design, the file's units (mm) and its features)",
-                rms * 1e3,
-                MAX_RMS_MM * 1e3
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "the points are not a disc of this design: after the fit their RMS distance \
+             to the profile is {:.1} µm, more than the {:.0} µm any ground disc keeps \
+             (check the design, the file's units (mm) and its features)",
+            rms * 1e3,
+            MAX_RMS_MM * 1e3
+        )));
     }
     let dof = (m - layout.len) as f64;
     let sigma = (sum_squares(residuals) / dof).sqrt();

@@ -15,7 +15,7 @@
 
 use super::encoding::{self, Fallback};
 use super::{Feature, MeasuredPoint};
-use crate::error::{Error, ErrorKind, Location, Result};
+use crate::error::{Error, Location, Result};
 use crate::geometry::{unit, Vec2};
 use crate::model::measured::PointsFormat;
 use std::f64::consts::TAU;
@@ -71,7 +71,7 @@ pub fn read(path: &str, format: PointsFormat) -> Result<Vec<MeasuredPoint>> {
 }
 
 fn at(path: &str, line: usize, message: String) -> Error {
-    Error::new(ErrorKind::InvalidValue, message).at(Location::new(path, line, 1))
+    Error::invalid_value(message).at(Location::new(path, line, 1))
 }
 
 /// The error of one point more than `max` (`MAX_POINTS`), at the line that gave it.
@@ -401,7 +401,7 @@ pub fn spline_sample_count(control: usize) -> usize {
 
 /// What an open SPLINE is told.
 const OPEN_SPLINE: &str = "an open SPLINE (its ends apart): profile points are read from one \
-     closed curve; close it in the CAD program, or delete it if it is not the disc outline";
+                           closed curve; close it in the CAD program, or delete it if it is not the disc outline";
 
 /// The number of the value `v` of the pair whose code is at `line`, finite.
 fn parse_number(path: &str, line: usize, v: &str) -> Result<f64> {

@@ -6,7 +6,7 @@
 
 use super::locate::line_of;
 use super::locate_offset;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::model::{Crowning, Deviations, Modification};
 use crate::units;
 
@@ -144,10 +144,9 @@ pub fn with_modification(path: &str, text: &str, m: &Modification) -> Result<Str
         && back.equidistant_mm == m.equidistant_mm
         && (back.rotation_rad - m.rotation_rad).abs() <= 1e-15;
     if !same {
-        return Err(Error::new(
-            ErrorKind::Computation,
-            format!("the written spec reads back as {back:?}, not the optimum {m:?}"),
-        ));
+        return Err(Error::computation(format!(
+            "the written spec reads back as {back:?}, not the optimum {m:?}"
+        )));
     }
     Ok(out)
 }
@@ -157,7 +156,7 @@ pub fn with_modification(path: &str, text: &str, m: &Modification) -> Result<Str
 /// of the crown (`crown_radius_mm`, `crown_start_mm`) writes back. The spec must have a
 /// circular crowning, and the result must read back as exactly `crowning`.
 pub fn with_crowning(path: &str, text: &str, crowning: &Crowning) -> Result<String> {
-    let refuse = |m: String| Error::new(ErrorKind::InvalidValue, m);
+    let refuse = |m: String| Error::invalid_value(m);
     let Crowning::Circular {
         radius_mm,
         start_mm,
@@ -179,10 +178,9 @@ pub fn with_crowning(path: &str, text: &str, crowning: &Crowning) -> Result<Stri
     let (out, written) = with_values(path, text, &values)?;
     let back = written.scenes.first().map(|s| s.face.crowning);
     if back != Some(*crowning) {
-        return Err(Error::new(
-            ErrorKind::Computation,
-            format!("the written spec reads back with the crowning {back:?}, not {crowning:?}"),
-        ));
+        return Err(Error::computation(format!(
+            "the written spec reads back with the crowning {back:?}, not {crowning:?}"
+        )));
     }
     Ok(out)
 }
@@ -295,13 +293,10 @@ pub fn optimum_spec(
     let out = format!("{header}{}", with_modification(out_path, &out, m)?);
     let back = super::parse(out_path, &out)?;
     if back.name != name || !back.golden.is_empty() {
-        return Err(Error::new(
-            ErrorKind::Computation,
-            format!(
-                "the written spec reads back with name `{}`, not `{name}`",
-                back.name
-            ),
-        ));
+        return Err(Error::computation(format!(
+            "the written spec reads back with name `{}`, not `{name}`",
+            back.name
+        )));
     }
     Ok(out)
 }
@@ -321,10 +316,9 @@ pub fn without_measured_profile(text: &str, out_path: &str) -> Result<String> {
         );
     }
     if super::parse(out_path, &out)?.measured.is_some() {
-        return Err(Error::new(
-            ErrorKind::Computation,
-            format!("the written spec {out_path} still reads back with a measured_profile"),
-        ));
+        return Err(Error::computation(format!(
+            "the written spec {out_path} still reads back with a measured_profile"
+        )));
     }
     Ok(out)
 }
@@ -404,7 +398,7 @@ fn block_end(text: &str, start: usize, column: usize) -> usize {
 /// Spec `text` (read from `path`) with `d` as its `reducer.deviations`, replacing the block
 /// there is; the result must parse back (as `out_path`) to exactly `d`.
 pub fn with_deviations(text: &str, path: &str, d: &Deviations, out_path: &str) -> Result<String> {
-    let refuse = |m: String| Error::new(ErrorKind::InvalidValue, m);
+    let refuse = |m: String| Error::invalid_value(m);
     let mut text = text.to_string();
     if let Some(at) = locate_offset(&text, "reducer.deviations") {
         let (start, column) = line_of(&text, at);
@@ -423,13 +417,10 @@ pub fn with_deviations(text: &str, path: &str, d: &Deviations, out_path: &str) -
     text.insert_str(start, &block(d, column));
     let back = super::parse(out_path, &text)?;
     if back.design.deviations != *d {
-        return Err(Error::new(
-            ErrorKind::Computation,
-            format!(
-                "the written spec reads back as {:?}, not the deviations written, {d:?}",
-                back.design.deviations
-            ),
-        ));
+        return Err(Error::computation(format!(
+            "the written spec reads back as {:?}, not the deviations written, {d:?}",
+            back.design.deviations
+        )));
     }
     Ok(text)
 }

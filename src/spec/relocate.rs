@@ -5,7 +5,7 @@
 
 use super::edit::{replace_value, scalar_span};
 use super::locate_offset;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::files::identity;
 use std::path::{Component, Path, PathBuf};
 
@@ -72,13 +72,10 @@ fn directory(path: &str) -> PathBuf {
 }
 
 fn unwritable(what: &str, to: &str) -> Error {
-    Error::new(
-        ErrorKind::Computation,
-        format!(
-            "{to}: could not rewrite {what} of the spec for its new directory; write it beside \
-             the source spec"
-        ),
-    )
+    Error::computation(format!(
+        "{to}: could not rewrite {what} of the spec for its new directory; write it beside \
+         the source spec"
+    ))
 }
 
 /// The path from directory `from` to `to`, both absolute and resolved (`identity`).

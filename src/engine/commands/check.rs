@@ -14,7 +14,7 @@ use crate::engine::scene::{self, Writes};
 use crate::engine::summary::{self, SceneSummary};
 use crate::engine::torque_curve;
 use crate::engine::verdict::{self, Check};
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::measure::fit::Identification;
 use crate::model::results::{SceneResult, TorqueCurve};
 use crate::model::{Modification, Study};
@@ -63,7 +63,7 @@ impl ReviewOptions {
     /// `--report-map-steps`): the drawing's crank angle, degrees, finite and within the crank
     /// angles a spec may give; the maps 0 (none) or 2 to `MAX_MAP_STEPS` steps.
     pub fn new(crank_deg: Option<f64>, map_steps: usize) -> Result<Self> {
-        let bad = |m: String| Err(Error::new(ErrorKind::InvalidValue, m));
+        let bad = |m: String| Err(Error::invalid_value(m));
         if let Some(deg) = crank_deg.filter(|d| !d.is_finite()) {
             return bad(format!(
                 "--report-crank-deg must be a finite angle, got {deg}"

@@ -1,7 +1,7 @@
 //! `fit`: identify the disc that a spec's measured points lie on.
 
 use crate::engine::as_built;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::measure::fit::Identification;
 use crate::spec::Spec;
 
@@ -30,15 +30,12 @@ use crate::spec::Spec;
 /// ```
 pub fn fit(spec: &Spec) -> Result<Identification> {
     let measured = spec.measured.as_ref().ok_or_else(|| {
-        Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "{}: the spec has no `measured_profile:` section; add \
-                 `measured_profile: {{file: points.csv, format: csv, harmonics: 0, fit: \
-                 [shift_mm, equidistant_mm]}}`",
-                spec.path
-            ),
-        )
+        Error::invalid_value(format!(
+            "{}: the spec has no `measured_profile:` section; add \
+             `measured_profile: {{file: points.csv, format: csv, harmonics: 0, fit: \
+             [shift_mm, equidistant_mm]}}`",
+            spec.path
+        ))
     })?;
     as_built::fit(spec, measured)
 }

@@ -2,7 +2,7 @@
 
 use super::check::{map_steps_allowed, studies, MAX_MAP_STEPS};
 use crate::engine::optimise::{map, problem::Evaluation, StudyResult};
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::model::Study;
 use crate::progress::Progress;
 use crate::spec::Spec;
@@ -41,10 +41,9 @@ pub fn optimise<'a>(
 ) -> Result<OptimiseRun<'a>> {
     let chosen = chosen(spec, only)?;
     if let Some(steps) = map_steps.filter(|&s| !map_steps_allowed(s)) {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!("an objective map has 2 to {MAX_MAP_STEPS} steps per variable, got {steps}"),
-        ));
+        return Err(Error::invalid_value(format!(
+            "an objective map has 2 to {MAX_MAP_STEPS} steps per variable, got {steps}"
+        )));
     }
     let results = studies(spec, chosen.clone(), progress);
     let map = match (map_steps, results.first()) {
@@ -60,10 +59,10 @@ pub fn optimise<'a>(
 /// The studies to run: the one named `only`, else all; a spec without studies is refused.
 fn chosen<'a>(spec: &'a Spec, only: Option<&str>) -> Result<Vec<&'a Study>> {
     if spec.studies.is_empty() {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!("{}: the spec has no `optimise` section", spec.path),
-        ));
+        return Err(Error::invalid_value(format!(
+            "{}: the spec has no `optimise` section",
+            spec.path
+        )));
     }
     let Some(name) = only else {
         return Ok(spec.studies.iter().collect());
@@ -73,17 +72,14 @@ fn chosen<'a>(spec: &'a Spec, only: Option<&str>) -> Result<Vec<&'a Study>> {
         .iter()
         .find(|s| s.name == name)
         .ok_or_else(|| {
-            Error::new(
-                ErrorKind::InvalidValue,
-                format!(
-                    "no study named `{name}`; studies: {}",
-                    spec.studies
-                        .iter()
-                        .map(|s| s.name.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            )
+            Error::invalid_value(format!(
+                "no study named `{name}`; studies: {}",
+                spec.studies
+                    .iter()
+                    .map(|s| s.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))
         })?;
     Ok(vec![study])
 }

@@ -1,6 +1,6 @@
 //! `profile`: the modified disc profile as a polyline within a chordal tolerance.
 
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::geometry::disc_mesh::{disc_mesh, TriangleMesh};
 use crate::geometry::disc_solid::{self, Circle, DiscSolid};
 use crate::geometry::placement::{self, disc_body, Body, Placement};
@@ -33,13 +33,10 @@ pub fn profile(spec: &Spec, tolerance_mm: f64) -> Result<Vec<ProfilePoint>> {
 fn check_tolerance(tolerance_mm: f64) -> Result<()> {
     // NaN fails too.
     if tolerance_mm.is_nan() || tolerance_mm < MIN_PROFILE_TOLERANCE_MM {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
-            format!(
-                "the profile's chordal tolerance must be at least {MIN_PROFILE_TOLERANCE_MM} mm, \
-                 got {tolerance_mm} mm"
-            ),
-        ));
+        return Err(Error::invalid_value(format!(
+            "the profile's chordal tolerance must be at least {MIN_PROFILE_TOLERANCE_MM} mm, \
+             got {tolerance_mm} mm"
+        )));
     }
     Ok(())
 }
@@ -64,8 +61,7 @@ pub struct Disc {
 /// not the straight extrusion these exports build.
 pub fn disc(spec: &Spec) -> Result<Disc> {
     if crowned(spec) {
-        return Err(Error::new(
-            ErrorKind::InvalidValue,
+        return Err(Error::invalid_value(
             "the disc is crowned (`modification.crowning`): the STEP and STL exports build a \
              straight flank extruded over the face width and would not be this disc; export a \
              section with --csv or --dxf instead",

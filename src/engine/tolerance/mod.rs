@@ -13,7 +13,7 @@ pub mod stats;
 pub mod summary;
 
 use crate::engine::{scene, verdict};
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::model::quantity::LimitDef;
 use crate::model::tolerances::{self as tol, Parameter, PartTolerances};
 use crate::model::{Deviations, Plan};
@@ -58,18 +58,15 @@ impl<'a> ToleranceStudy<'a> {
     /// The study of `spec`'s `tolerances:` with `samples` samples (the spec's unless given).
     pub fn new(spec: &'a Spec, samples: Option<usize>) -> Result<ToleranceStudy<'a>> {
         let mut tolerances = spec.tolerances.clone().ok_or_else(|| {
-            Error::new(
-                ErrorKind::InvalidValue,
-                format!(
-                    "{}: the spec has no `tolerances:` section; add `tolerances: {{scene: NAME, \
-                     max_failure_rate: 0.0027, roller_radial_mm: 0.005}}` (bands in mm)",
-                    spec.path
-                ),
-            )
+            Error::invalid_value(format!(
+                "{}: the spec has no `tolerances:` section; add `tolerances: {{scene: NAME, \
+                 max_failure_rate: 0.0027, roller_radial_mm: 0.005}}` (bands in mm)",
+                spec.path
+            ))
         })?;
         if let Some(n) = samples {
             tolerances.samples = crate::spec::tolerances::sample_count(n as i128)
-                .map_err(|m| Error::new(ErrorKind::InvalidValue, format!("--samples {m}")))?;
+                .map_err(|m| Error::invalid_value(format!("--samples {m}")))?;
         }
         let d = &spec.design;
         let params = tol::parameters(&tolerances, d.rollers, d.pins.count, d.discs);
@@ -223,17 +220,14 @@ fn held_in_memory(samples: usize, limits: usize, flag: bool) -> Result<()> {
     if samples.saturating_mul(limits) <= MAX_SAMPLE_LIMITS {
         return Ok(());
     }
-    let e = Error::new(
-        ErrorKind::InvalidValue,
-        format!(
-            "{samples} samples × {} are {} sample-limits, beyond the \
-             {MAX_SAMPLE_LIMITS} one study holds (9 bytes each, 2.4 GB, held whole by a run \
-             and by a merge): at most {} samples with these limits",
-            limits_counted(limits),
-            samples as u128 * limits as u128,
-            MAX_SAMPLE_LIMITS / limits
-        ),
-    );
+    let e = Error::invalid_value(format!(
+        "{samples} samples × {} are {} sample-limits, beyond the \
+         {MAX_SAMPLE_LIMITS} one study holds (9 bytes each, 2.4 GB, held whole by a run \
+         and by a merge): at most {} samples with these limits",
+        limits_counted(limits),
+        samples as u128 * limits as u128,
+        MAX_SAMPLE_LIMITS / limits
+    ));
     Err(match flag {
         true => Error {
             message: format!("--samples {samples}: {}", e.message),

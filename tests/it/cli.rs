@@ -298,10 +298,7 @@ fn undercut_of_the_unmodified_design_matches_the_readme() {
 #[test]
 fn a_crank_bearing_too_soft_for_the_torque_names_the_rule_and_the_numbers() {
     assert_rejected(
-        &paper_with(&[(
-            "    effects: [clearance]",
-            "    effects: [bearing]\n    bearing_stiffness_n_per_mm: 250",
-        )]),
+        &on_a_crank_bearing_of("250", &[]),
         "spec.yaml:27:5: impossible design: scenes[0].bearing_stiffness_n_per_mm: scene `rated`: \
          a crank bearing of 250 N/mm cannot hold the disc at 10 N·m: over a period the input \
          torque loads the disc's bearing tangentially by at least T/(N·nc·e) = 555.6 N on \
@@ -309,6 +306,15 @@ fn a_crank_bearing_too_soft_for_the_torque_names_the_rule_and_the_numbers() {
          average, more than e: the disc would leave its mesh; the bearing needs more than \
          T/(N·nc·e²) = 277.8 N/mm",
     );
+}
+
+/// The paper's spec with `edits`, its scene computing the bearing on a compliant crank bearing
+/// of `kb` N/mm (a line added under the scene's effects: line 27 without other edits).
+fn on_a_crank_bearing_of(kb: &str, edits: &[(&str, &str)]) -> String {
+    let bearing = format!("    effects: [bearing]\n    bearing_stiffness_n_per_mm: {kb}");
+    let mut edits = edits.to_vec();
+    edits.push(("    effects: [clearance]", &bearing));
+    paper_with(&edits)
 }
 
 /// The rule's other wordings, numbers by hand: two discs on a duty cycle are judged at the
@@ -320,24 +326,23 @@ fn a_crank_bearing_too_soft_for_the_torque_names_the_rule_and_the_numbers() {
 #[test]
 fn a_crank_bearing_too_soft_names_the_most_loaded_disc_the_bin_and_rounds_the_need_up() {
     assert_rejected(
-        &paper_with(&[
-            (
-                "  eccentricity_mm: 2.0 ",
-                "  discs: 2\n  eccentricity_mm: 2.0 ",
-            ),
-            (
-                "    output_torque_nm: 10.0 ",
-                "    duty_cycle:\n\
+        &on_a_crank_bearing_of(
+            "250",
+            &[
+                (
+                    "  eccentricity_mm: 2.0 ",
+                    "  discs: 2\n  eccentricity_mm: 2.0 ",
+                ),
+                (
+                    "    output_torque_nm: 10.0 ",
+                    "    duty_cycle:\n\
                  \x20     - { output_torque_nm: 5.0, input_speed_rpm: 1000.0, time_share: 0.3 }\n\
                  \x20     - { output_torque_nm: 30.0, input_speed_rpm: 1000.0, time_share: 0.3 }\n\
                  \x20     - { output_torque_nm: -40.0, input_speed_rpm: 1000.0, time_share: 0.4 }\n\
                  \x20   # ",
-            ),
-            (
-                "    effects: [clearance]",
-                "    effects: [bearing]\n    bearing_stiffness_n_per_mm: 250",
-            ),
-        ]),
+                ),
+            ],
+        ),
         "spec.yaml:32:5: impossible design: scenes[0].bearing_stiffness_n_per_mm: scene `rated`: \
          a crank bearing of 250 N/mm cannot hold the discs at 30 N·m (duty-cycle bin 1): over a \
          period the input torque loads the most loaded disc's bearing tangentially by at least \
@@ -346,13 +351,10 @@ fn a_crank_bearing_too_soft_names_the_most_loaded_disc_the_bin_and_rounds_the_ne
          needs more than T/(N·nc·e²) = 416.7 N/mm",
     );
     assert_rejected(
-        &paper_with(&[
-            ("output_torque_nm: 10.0 ", "output_torque_nm: 0.003 "),
-            (
-                "    effects: [clearance]",
-                "    effects: [bearing]\n    bearing_stiffness_n_per_mm: 0.05",
-            ),
-        ]),
+        &on_a_crank_bearing_of(
+            "0.05",
+            &[("output_torque_nm: 10.0 ", "output_torque_nm: 0.003 ")],
+        ),
         "spec.yaml:27:5: impossible design: scenes[0].bearing_stiffness_n_per_mm: scene `rated`: \
          a crank bearing of 0.05 N/mm cannot hold the disc at 0.003 N·m: over a period the input \
          torque loads the disc's bearing tangentially by at least T/(N·nc·e) = 0.1667 N on \

@@ -1,7 +1,7 @@
 //! `cycloid accuracy`: the options as given over the spec's `accuracy:` section, then the
 //! library's ladder, its rows printed as each rung finishes.
 
-use super::output::{invalid, print, stdout_error};
+use super::output::{print, stdout_error};
 use super::{AccuracyArgs, Outcome};
 use crate::engine::accuracy::{self, Setting};
 use crate::engine::commands;
@@ -10,7 +10,7 @@ use crate::{report, spec};
 use std::io::Write;
 
 fn bad(flag: &str, m: String) -> Error {
-    invalid(format!("--{flag}: {m}"))
+    Error::invalid_value(format!("--{flag}: {m}"))
 }
 
 pub(super) fn run(asked: &AccuracyArgs, out: &mut dyn Write) -> Result<Outcome> {

@@ -1,11 +1,11 @@
 //! `cycloid optimise`: run the spec's studies, print each, and write the optimum's spec and
 //! the objective map asked for.
 
-use super::output::{distinct_outputs, inputs_of, invalid, print, write_file, write_spec};
+use super::output::{distinct_outputs, inputs_of, print, write_file, write_spec};
 use super::{OptimiseArgs, Outcome};
 use crate::engine::commands::{self, MAX_MAP_STEPS};
 use crate::engine::optimise::StudyResult;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::Study;
 use crate::report::terminal::Terminal;
 use crate::{report, spec};
@@ -18,7 +18,7 @@ pub(super) fn run(args: &OptimiseArgs, out: &mut dyn Write) -> Result<Outcome> {
     let outputs = [("--write", write), ("--map", map)];
     distinct_outputs(&inputs_of(path, Some(&spec)), &outputs)?;
     if args.map.is_some() && !commands::map_steps_allowed(args.map_steps) {
-        return Err(invalid(format!(
+        return Err(Error::invalid_value(format!(
             "--map-steps must be 2 to {MAX_MAP_STEPS}, got {}",
             args.map_steps
         )));

@@ -18,12 +18,6 @@ pub(super) fn usage(m: String) -> Error {
     Error::new(ErrorKind::Usage, format!("{m}; nothing was written"))
 }
 
-/// A bad value `m` of an option (`--shard`, `--write-sample`, `--map-steps`, …) or of the Slurm
-/// job array.
-pub(super) fn invalid(m: String) -> Error {
-    Error::invalid_value(m)
-}
-
 /// Refuse, before anything is written, outputs that would destroy an input or one another: an
 /// empty path, an output at the path of one of `inputs` (what it is, its path), or two
 /// outputs at one path. `outputs` are (option, path if given); a `--report` directory also

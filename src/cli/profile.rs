@@ -1,7 +1,7 @@
 //! `cycloid profile`: export the modified profile as CSV points and a DXF polyline, and the
 //! disc as a STEP solid and an STL mesh.
 
-use super::output::{distinct_outputs, inputs_of, invalid, print, write_file};
+use super::output::{distinct_outputs, inputs_of, print, write_file};
 use super::{Outcome, ProfileArgs};
 use crate::engine::commands::{self, MIN_PROFILE_TOLERANCE_MM};
 use crate::error::{Error, ErrorKind, Result};
@@ -80,14 +80,14 @@ pub(super) fn run(args: &ProfileArgs, out: &mut dyn Write) -> Result<Outcome> {
 /// `--tolerance-um` is a positive number of at least 1 nm.
 fn check_tolerance(tolerance_um: f64) -> Result<()> {
     if !(tolerance_um.is_finite() && tolerance_um > 0.0) {
-        return Err(invalid(format!(
+        return Err(Error::invalid_value(format!(
             "--tolerance-um must be a positive number, got {}",
             numeric::input(tolerance_um)
         )));
     }
     let min_um = units::um(MIN_PROFILE_TOLERANCE_MM);
     if tolerance_um < min_um {
-        return Err(invalid(format!(
+        return Err(Error::invalid_value(format!(
             "--tolerance-um must be at least {min_um} (1 nm), got {}",
             numeric::input(tolerance_um)
         )));

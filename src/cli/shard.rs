@@ -1,8 +1,7 @@
 //! Which shard of a tolerance study or a design search a run computes: `--shard I/N`, or the task of a Slurm job
 //! array.
 
-use super::output::invalid;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::files;
 use std::path::{Path, PathBuf};
 
@@ -31,7 +30,7 @@ pub(super) fn shard_inputs(paths: &[String]) -> Vec<(String, PathBuf)> {
 /// `--shard I/N`: 0 ≤ I < N, 1 ≤ N ≤ `samples` (what is split, named `noun`).
 pub fn parse_shard(text: &str, samples: u64, noun: &str) -> Result<(u64, u64)> {
     let rule = |why: String| {
-        invalid(format!(
+        Error::invalid_value(format!(
             "--shard {text}: {why}; a shard is I/N with 0 <= I < N (0-based) and N at most the \
              {samples} {noun}"
         ))
@@ -66,7 +65,7 @@ pub(super) fn slurm_shard(samples: u64, noun: &str) -> Result<Option<(u64, u64)>
         None | Some("1") => {}
         Some("0") => return Ok(None),
         Some(other) => {
-            return Err(invalid(format!(
+            return Err(Error::invalid_value(format!(
                 "{DECLINE_VAR}={other}: give 0 (run the whole study in each task) or 1 (a task \
                  of a Slurm job array computes its shard, the default)"
             )))
@@ -78,7 +77,7 @@ pub(super) fn slurm_shard(samples: u64, noun: &str) -> Result<Option<(u64, u64)>
     };
     let number = |name: &str, v: &str| {
         v.trim().parse::<u64>().map_err(|_| {
-            invalid(format!(
+            Error::invalid_value(format!(
                 "{name}={v}: not a whole number (from the Slurm job array)"
             ))
         })
@@ -93,7 +92,7 @@ pub(super) fn slurm_shard(samples: u64, noun: &str) -> Result<Option<(u64, u64)>
     // shard indices 0 … N−1, and half the shards would be refused only after the others ran.
     if let Some(step) = var("SLURM_ARRAY_TASK_STEP") {
         if number("SLURM_ARRAY_TASK_STEP", &step)? != 1 {
-            return Err(invalid(format!(
+            return Err(Error::invalid_value(format!(
                 "SLURM_ARRAY_TASK_STEP={step}: the job array has a step; give it as one \
                  contiguous range such as --array=0-{}",
                 count.saturating_sub(1)
@@ -101,14 +100,14 @@ pub(super) fn slurm_shard(samples: u64, noun: &str) -> Result<Option<(u64, u64)>
         }
     }
     let i = id.checked_sub(min).ok_or_else(|| {
-        invalid(format!(
+        Error::invalid_value(format!(
             "SLURM_ARRAY_TASK_ID {id} is below SLURM_ARRAY_TASK_MIN {min}"
         ))
     })?;
     parse_shard(&format!("{i}/{count}"), samples, noun)
         .map(Some)
         .map_err(|e| {
-            invalid(format!(
+            Error::invalid_value(format!(
                 "from the Slurm job array (task id {id}, min {min}, count {count}): {}; give the \
                  array as a contiguous range such as --array=0-{}",
                 e.message,

@@ -3,7 +3,7 @@
 
 use super::args::{ToleranceArgs, ToleranceCommand};
 use super::output::write_spec;
-use super::output::{distinct_outputs, inputs_of, invalid, print, usage, write_file, write_review};
+use super::output::{distinct_outputs, inputs_of, print, usage, write_file, write_review};
 use super::shard::{parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands;
@@ -11,7 +11,7 @@ use crate::engine::tolerance::sensitivity::Sensitivity;
 use crate::engine::tolerance::summary::Summary;
 use crate::engine::tolerance::Records;
 use crate::engine::tolerance::ToleranceStudy;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::files;
 use crate::report::terminal::Terminal;
 use crate::{report, spec};
@@ -73,8 +73,8 @@ pub(super) fn run(args: ToleranceArgs, out: &mut dyn Write) -> Result<Outcome> {
                 let instead = match flag {
                     "--sensitivity" => {
                         "run it without --shard (`cycloid tolerance SPEC \
-                                        --sensitivity`: derivatives about the nominal reducer, \
-                                        whatever the samples)"
+                         --sensitivity`: derivatives about the nominal reducer, \
+                         whatever the samples)"
                     }
                     _ => "give it to `cycloid tolerance merge`",
                 };
@@ -188,9 +188,9 @@ fn write_sample(
 ) -> Result<Outcome> {
     let n = study.samples() as u64;
     let k: u64 = k.parse().ok().filter(|&k| k < n).ok_or_else(|| {
-        invalid(format!(
+        Error::invalid_value(format!(
             "--write-sample {k}: the sample must be a whole number 0 to {} (the study has {n} \
-                 samples)",
+             samples)",
             n - 1
         ))
     })?;

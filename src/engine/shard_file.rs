@@ -32,7 +32,7 @@ pub fn place(names: &[String], indices: &[u64], count: u64) -> Result<Vec<usize>
             .map(|i| i.to_string())
             .collect();
         let more = count - given.len() as u64 - missing.len() as u64;
-        return Err(refuse(format!(
+        return Err(Error::invalid_value(format!(
             "shards of {count} missing: {}{} (0-based indices); merge needs every shard of the \
              run",
             missing.join(", "),
@@ -47,7 +47,7 @@ pub fn place(names: &[String], indices: &[u64], count: u64) -> Result<Vec<usize>
     for (i, &index) in indices.iter().enumerate() {
         let slot = &mut by_index[index as usize];
         if let Some(j) = slot {
-            return Err(refuse(format!(
+            return Err(Error::invalid_value(format!(
                 "shard {index} of {count} is given twice: {} and {}",
                 names[*j], names[i]
             )));
@@ -121,11 +121,11 @@ pub struct RunWords {
 /// shards in index order (`place`).
 pub fn check_set(names: &[String], headers: &[&Header], words: &RunWords) -> Result<Vec<usize>> {
     let Some(h0) = headers.first() else {
-        return Err(refuse("merge needs at least one shard file".into()));
+        return Err(Error::invalid_value("merge needs at least one shard file"));
     };
     for (name, h) in names.iter().zip(headers) {
         let differs = |what: &str, a: String, b: String| {
-            refuse(format!(
+            Error::invalid_value(format!(
                 "{name} (shard {}) is of another {} than {} (shard {}): its {what} is {a}, not \
                  {b}; merge only the shards of one run",
                 h.index, words.run, names[0], h0.index
@@ -157,11 +157,6 @@ pub fn check_set(names: &[String], headers: &[&Header], words: &RunWords) -> Res
     }
     let indices: Vec<u64> = headers.iter().map(|h| h.index).collect();
     place(names, &indices, h0.count)
-}
-
-/// A merge's refusal of its set of shards.
-pub fn refuse(message: String) -> Error {
-    Error::invalid_value(message)
 }
 
 /// SHA-256 of the text a shard names its run by (a spec's, a requirements file's).
@@ -238,7 +233,7 @@ impl<'a> Reader<'a> {
 
     /// The refusal of this file for `why`.
     pub fn bad(&self, why: &str) -> Error {
-        refuse(format!(
+        Error::invalid_value(format!(
             "{}: not a shard file of `{}`: {why}",
             self.path, self.command
         ))

@@ -5,8 +5,7 @@
 use super::check::{check, CheckOptions, CheckRun, ReviewOptions};
 use crate::engine::design_search::{self, candidate, shard, Evaluation, SearchRun};
 use crate::engine::scene::Writes;
-use crate::engine::shard_file::refuse;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::requirements::Requirements;
 use crate::progress::Progress;
 
@@ -174,7 +173,7 @@ pub fn merge_design_shards(files: &[(String, Vec<u8>)]) -> Result<MergedDesign> 
     let order = shard::check_set(&names, &shards)?;
     let h = shards[0].header.clone();
     let requirements = crate::spec::requirements::parse(&h.text_path, &h.text).map_err(|e| {
-        refuse(format!(
+        Error::invalid_value(format!(
             "{}: the requirements the shards hold do not load in this cycloid: {}",
             names[0], e.message
         ))

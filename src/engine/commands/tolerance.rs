@@ -2,12 +2,11 @@
 //! or merged from the shards; and the study as one check of `check --tolerance`.
 
 use crate::engine::limit::passes;
-use crate::engine::shard_file::refuse;
 use crate::engine::tolerance::sensitivity::{self, Sensitivity};
 use crate::engine::tolerance::summary::{self, Summary};
 use crate::engine::tolerance::{shard, shard_len, Records, ToleranceStudy};
 use crate::engine::verdict::{Check, CheckKind, Evidence};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::quantity::Bound;
 use crate::progress::{Phase, Progress};
 use crate::spec::Spec;
@@ -125,7 +124,7 @@ impl Merged {
     pub fn study(&self) -> Result<ToleranceStudy<'_>> {
         let study = ToleranceStudy::new(&self.spec, Some(self.samples as usize))?;
         if study.limits.len() != self.limits {
-            return Err(refuse(format!(
+            return Err(Error::invalid_value(format!(
                 "{}: the shards hold {} limits, their spec evaluates {}: written by another \
                  version of cycloid",
                 self.first,
@@ -147,7 +146,7 @@ impl Merged {
             let (def, limit) = study.limits[cell % l];
             let shard = (cell / l) as u64 % self.count;
             if passes(value, limit, def.bound) != passed {
-                return Err(refuse(format!(
+                return Err(Error::invalid_value(format!(
                     "{}: shard {} of {} holds sample {} with `{}` = {value} marked {}, which its \
                      limit {limit} does not give: the shard was altered",
                     self.files[shard as usize],

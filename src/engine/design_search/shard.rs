@@ -30,8 +30,8 @@
 use super::candidate::{Candidate, Choice};
 use super::evaluate::{Evaluation, Stage};
 use super::failure::{Failure, Miss, Requirement};
-use crate::engine::shard_file::{self, put_short_text, refuse, seal, Reader, RunWords};
-use crate::error::Result;
+use crate::engine::shard_file::{self, put_short_text, seal, Reader, RunWords};
+use crate::error::{Error, Result};
 use crate::model::requirements::Requirements;
 use crate::model::requirements::Variables;
 
@@ -269,7 +269,7 @@ pub fn merge(req: &Requirements, ordered: Vec<(&str, Shard)>) -> Result<Vec<Eval
     let candidates = super::global_candidates(req);
     let h0 = &ordered[0].1.header;
     let from_here = |what: &str, a: u64, b: u64| {
-        refuse(format!(
+        Error::invalid_value(format!(
             "{}: the shards hold {a} {what}, their requirements `{}` give {b}: written by \
              another version of cycloid",
             ordered[0].0, h0.text_path
@@ -288,7 +288,7 @@ pub fn merge(req: &Requirements, ordered: Vec<(&str, Shard)>) -> Result<Vec<Eval
             let j = i + row * count;
             let c = &candidates[j];
             let bad = |why: &str| {
-                refuse(format!(
+                Error::invalid_value(format!(
                     "{name}: shard {i} of {count} holds candidate {j} {why}: written by another \
                      version of cycloid, or altered"
                 ))
@@ -337,7 +337,9 @@ pub fn merge(req: &Requirements, ordered: Vec<(&str, Shard)>) -> Result<Vec<Eval
     }
     all.into_iter()
         .enumerate()
-        .map(|(j, e)| e.ok_or_else(|| refuse(format!("no shard holds candidate {j}"))))
+        .map(|(j, e)| {
+            e.ok_or_else(|| Error::invalid_value(format!("no shard holds candidate {j}")))
+        })
         .collect()
 }
 

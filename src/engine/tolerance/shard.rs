@@ -15,8 +15,8 @@
 //! follow from its value and the spec's limit (`Merged::study`).
 
 use super::{shard_len, Records};
-use crate::engine::shard_file::{check_set, refuse, seal, Reader, RunWords};
-use crate::error::Result;
+use crate::engine::shard_file::{check_set, seal, Reader, RunWords};
+use crate::error::{Error, Result};
 
 pub const MAGIC: &[u8; 16] = b"cycloid-tol-shrd";
 pub const VERSION: u32 = 2;
@@ -137,7 +137,7 @@ pub fn merge(names: &[String], shards: &[Shard]) -> Result<Records> {
     let l = shards[0].limits as usize;
     let n = h0.items as usize;
     if n.saturating_mul(l) > super::MAX_SAMPLE_LIMITS {
-        return Err(refuse(format!(
+        return Err(Error::invalid_value(format!(
             "the shards hold {n} samples × {l} limits, beyond the {} sample-limits one study \
              holds",
             super::MAX_SAMPLE_LIMITS

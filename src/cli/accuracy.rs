@@ -37,19 +37,7 @@ pub(super) fn run(asked: &AccuracyArgs, out: &mut dyn Write) -> Result<Outcome> 
 fn options(spec: &spec::Spec, asked: &AccuracyArgs) -> Result<(usize, accuracy::Options)> {
     let from_spec = spec.accuracy.as_ref();
     let scene = match &asked.scene {
-        Some(name) => spec
-            .scenes
-            .iter()
-            .position(|s| &s.name == name)
-            .ok_or_else(|| {
-                bad(
-                    "scene",
-                    format!(
-                        "no scene named `{name}`; scenes: {}",
-                        spec::scene_names(&spec.scenes)
-                    ),
-                )
-            })?,
+        Some(name) => spec::scene_index(&spec.scenes, name, "--scene")?,
         None => from_spec.map_or_else(|| accuracy::default_scene(spec), |a| a.scene),
     };
     let mut options = from_spec.map_or_else(accuracy::Options::default, |a| a.options);

@@ -20,15 +20,10 @@
 use super::design::Design;
 use super::face::Face;
 
-/// The crank period of the loaded curves of a scene whose face is `face` (its crowning, tilt
-/// and slices) on `design` as built, with or without the output pins, rad: whole crank turns
-/// when the face the contacts see (`Deviations::face`: the scene's tilt plus the tilt as
-/// built) is tilted.
-pub fn loaded_period_rad(design: &Design, face: &Face, pins_modelled: bool) -> f64 {
-    design.loaded_period_rad(pins_modelled, tilted(design, face))
-}
-
-/// Whether the contacts of a scene with `face` on `design` see a tilt (θ_scene + θ_dev ≠ 0).
+/// Whether the contacts of a scene with `face` on `design` see a tilt (θ_scene + θ_dev ≠ 0):
+/// the face the contacts see is `Deviations::face`, the scene's tilt plus the tilt as built,
+/// and its loaded curves then repeat only after whole crank turns
+/// (`Design::loaded_period_rad`).
 pub fn tilted(design: &Design, face: &Face) -> bool {
     !design.deviations.face(face).misalignment.is_zero()
 }

@@ -167,10 +167,11 @@ impl Scene {
     }
 
     /// The crank period of this scene's loaded curves under `plan` on the reducer `design` as
-    /// built, rad (`period::loaded_period_rad`, with the pins when the plan models them): the
-    /// one period of the reducer as run that every consumer reads.
+    /// built, rad (`Design::loaded_period_rad`, with the pins when the plan models them, tilted
+    /// when `period::tilted`): the one period of the reducer as run that every consumer reads.
     pub fn run_period_rad(&self, design: &Design, plan: &Plan) -> f64 {
-        super::period::loaded_period_rad(design, &self.face, plan.has(Effect::OutputPins))
+        let tilted = super::period::tilted(design, &self.face);
+        design.loaded_period_rad(plan.has(Effect::OutputPins), tilted)
     }
 
     /// True when the sweep covers a whole number of `period_rad` (so its curves wrap around).

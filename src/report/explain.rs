@@ -205,10 +205,9 @@ pub fn explain(spec: &Spec, writes: Writes, tolerance: bool) -> String {
             "parts as built (reducer.deviations), in force in every scene, exact geometry; \
              gaps repeat every {}°, loaded curves with the pins every {}°:\n",
             number(units::deg(spec.design.mesh_period_rad())),
-            number(units::deg(period::loaded_period_rad(
-                &spec.design,
-                &Face::default(),
-                true
+            number(units::deg(spec.design.loaded_period_rad(
+                true,
+                period::tilted(&spec.design, &Face::default())
             )))
         );
         for line in deviations {

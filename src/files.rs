@@ -139,10 +139,6 @@ pub struct Batch {
 }
 
 impl Batch {
-    pub fn new() -> Self {
-        Batch::default()
-    }
-
     /// Stage `path` with the content `write` produces.
     pub fn add_with(
         &mut self,
@@ -312,7 +308,7 @@ mod tests {
         fs::write(dir.join("front.csv/keep"), "mine").unwrap();
         let err = write_atomic(&dir.join("front.csv"), b"x").unwrap_err();
         assert!(err.to_string().contains("is a directory"), "{err}");
-        let mut batch = Batch::new();
+        let mut batch = Batch::default();
         batch.add(&dir.join("a.csv"), b"a").unwrap();
         assert!(batch.add(&dir.join("front.csv"), b"x").is_err());
         drop(batch);
@@ -332,7 +328,7 @@ mod tests {
         let (a, b) = (dir.join("a.csv"), dir.join("b.csv"));
         fs::write(&a, "a0").unwrap();
         fs::write(&b, "b0").unwrap();
-        let mut batch = Batch::new();
+        let mut batch = Batch::default();
         batch.add(&a, b"a1").unwrap();
         let failed = batch.add_with(&b, |_| Err(io::Error::other("killed")));
         assert!(failed.is_err());
@@ -341,7 +337,7 @@ mod tests {
         assert_eq!(fs::read_to_string(&b).unwrap(), "b0");
         assert_eq!(entries(&dir), ["a.csv", "b.csv"]);
         let c = dir.join("c.csv");
-        let mut batch = Batch::new();
+        let mut batch = Batch::default();
         for (p, t) in [(&a, "a2"), (&b, "b2"), (&c, "c2")] {
             batch.add(p, t.as_bytes()).unwrap();
         }
@@ -362,7 +358,7 @@ mod tests {
         fs::create_dir_all(&sub).unwrap();
         let (a, b) = (dir.join("a.csv"), sub.join("b.csv"));
         fs::write(&a, "a0").unwrap();
-        let mut batch = Batch::new();
+        let mut batch = Batch::default();
         batch.add(&a, b"a1").unwrap();
         batch.add(&b, b"b1").unwrap();
         fs::remove_dir_all(&sub).unwrap();
@@ -380,14 +376,14 @@ mod tests {
         fs::write(&old, "review").unwrap();
         let sub = dir.join("sub");
         fs::create_dir_all(&sub).unwrap();
-        let mut batch = Batch::new();
+        let mut batch = Batch::default();
         batch.add(&new, b"review").unwrap();
         batch.remove(&old);
         batch.add(&sub.join("x"), b"x").unwrap();
         fs::remove_dir_all(&sub).unwrap();
         assert!(batch.commit().is_err());
         assert_eq!(entries(&dir), ["te.meta.yaml"]);
-        let mut batch = Batch::new();
+        let mut batch = Batch::default();
         batch.add(&new, b"review").unwrap();
         batch.remove(&old);
         batch.commit().unwrap();

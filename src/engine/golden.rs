@@ -680,7 +680,7 @@ fn check_writable(spec: &Spec) -> Result<()> {
 pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
     check_writable(spec)?;
     let date = today();
-    let mut batch = files::Batch::new();
+    let mut batch = files::Batch::default();
     let mut out = Vec::new();
     for g in &spec.golden {
         let (r, deg, curves) = computed(g, results)?;

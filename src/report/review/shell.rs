@@ -16,7 +16,7 @@ use std::path::Path;
 /// reader never sees a page that links figures of another run. A name in a folder
 /// (`design-01/index.html`, a design search's review of each design) has its folder created.
 pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<()> {
-    let mut batch = Batch::new();
+    let mut batch = Batch::default();
     let mkdir =
         |d: &Path| std::fs::create_dir_all(d).map_err(|e| Error::io(&d.display().to_string(), e));
     mkdir(dir)?;

@@ -76,8 +76,11 @@ fn of_this_design(spec: &Spec, measured: &MeasuredProfile, id: &Identification) 
         m.shift_mm - m0.shift_mm,
         m.equidistant_mm - m0.equidistant_mm,
     );
-    let form = form_terms(id);
-    let form_bound = form.iter().fold(0.0, |s, f| s + f.amplitude_mm());
+    let deviations = Deviations {
+        form: form_terms(id),
+        ..Deviations::default()
+    };
+    let form_bound = deviations.form_bound_mm();
     let moved = shift.abs() + equidistant.abs() + form_bound;
     let file = &measured.path;
     let not_this = "the points are not a disc of this design, or not in mm";
@@ -109,10 +112,7 @@ fn of_this_design(spec: &Spec, measured: &MeasuredProfile, id: &Identification) 
         )));
     }
     let mut disc = spec.design.clone();
-    disc.deviations = Deviations {
-        form,
-        ..Deviations::default()
-    };
+    disc.deviations = deviations;
     crate::spec::deviations::check(&disc, &m).map_err(|r| {
         Error::invalid_value(format!(
             "the disc identified from `{file}` (shift_mm {}, equidistant_mm {}) breaks a \

@@ -7,6 +7,7 @@
 //! relative to the disc, which itself turns backwards at n/nc: the relative speed is
 //! n·(1 + 1/nc), so L10h = (C/P)^p · 10⁶ / (60 · n · (1 + 1/nc)) hours.
 
+use crate::equilibrium::friction::sliding::relative_crank_speed_ratio;
 use crate::model::results::{bounded, UNBOUNDED_LIFE_H};
 
 /// P = (mean of F^p)^(1/p), N, over bearing forces `force_n` (N) sampled evenly over whole
@@ -31,9 +32,10 @@ pub fn weighted_power_mean(pairs: impl Iterator<Item = (f64, f64)> + Clone, p: f
     largest * (sum / weight).powf(1.0 / p)
 }
 
-/// The relative speed of the crank and the disc, rpm: n·(1 + 1/nc) for an input speed n.
+/// The relative speed of the crank and the disc, rpm: n·(1 + 1/nc) for an input speed n
+/// (`sliding::relative_crank_speed_ratio`).
 pub fn relative_speed_rpm(input_rpm: f64, teeth: usize) -> f64 {
-    input_rpm * (1.0 + 1.0 / teeth as f64)
+    input_rpm * relative_crank_speed_ratio(teeth)
 }
 
 /// L10h, hours, of a bearing of rating `rating_n` (C, N) and life exponent `exponent` (p)

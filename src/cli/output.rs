@@ -2,7 +2,7 @@
 //! written, files written atomically, and text for a person printed with its control
 //! characters escaped.
 
-use crate::engine::golden;
+use crate::engine::golden::{legacy_meta_path, meta_path};
 use crate::error::{Error, ErrorKind, Result};
 use crate::{files, spec};
 use std::io::Write;
@@ -82,7 +82,7 @@ pub(super) fn inputs_of(spec_path: &str, spec: Option<&spec::Spec>) -> Vec<(Stri
     let Some(spec) = spec else { return inputs };
     for g in &spec.golden {
         inputs.push((format!("the golden file of {}", g.key), g.path.clone()));
-        for meta in golden::meta_paths(&g.path) {
+        for meta in [meta_path(&g.path), legacy_meta_path(&g.path)] {
             inputs.push((format!("the metadata of {}", g.key), meta));
         }
     }

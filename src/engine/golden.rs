@@ -487,11 +487,6 @@ pub fn legacy_meta_path(csv: &Path) -> PathBuf {
     csv.with_extension("meta.yaml")
 }
 
-/// Both metadata names of a golden: the current one, then the legacy one.
-pub fn meta_paths(csv: &Path) -> [PathBuf; 2] {
-    [meta_path(csv), legacy_meta_path(csv)]
-}
-
 /// What `<name>.meta.yaml` holds. `reviewed` is written by a person; `bless` keeps it while
 /// the curve stays inside its tolerance and marks it NOT REVIEWED when the curve moves out.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

@@ -19,13 +19,19 @@ pub fn passes(value: f64, limit: f64, bound: Bound) -> bool {
     }
 }
 
+/// How far beyond `limit` in the direction `bound` `value` lies, in its unit: positive
+/// outside, negative inside.
+pub fn beyond(value: f64, limit: f64, bound: Bound) -> f64 {
+    match bound {
+        Bound::Max => value - limit,
+        Bound::Min => limit - value,
+    }
+}
+
 /// How far beyond `limit` in the direction `bound` a value lies, relative to |limit| (to 1
 /// when the limit is 0): positive outside, negative inside; a NaN is infinitely outside.
 pub fn excess(value: f64, limit: f64, bound: Bound) -> f64 {
-    let beyond = match bound {
-        Bound::Max => value - limit,
-        Bound::Min => limit - value,
-    };
+    let beyond = beyond(value, limit, bound);
     if beyond.is_nan() {
         f64::INFINITY
     } else {

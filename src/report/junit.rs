@@ -2,7 +2,7 @@
 //! suite per spec. A failed check is a `<failure>` whose message carries the value, the limit
 //! and how far outside it lies; an invalid spec or a failed computation is one `<error>` case.
 
-use crate::engine::verdict::{Bound, Check, CheckKind};
+use crate::engine::verdict::{Check, CheckKind};
 use crate::numeric::{number, with_unit};
 
 /// Escape text for XML attributes and character data.
@@ -26,10 +26,7 @@ pub fn escape(text: &str) -> String {
 /// One line saying what the check found.
 pub fn message(c: &Check) -> String {
     let op = c.bound.symbol();
-    let beyond = match c.bound {
-        Bound::Max => c.value - c.limit,
-        Bound::Min => c.limit - c.value,
-    };
+    let beyond = crate::engine::limit::beyond(c.value, c.limit, c.bound);
     match c.kind {
         CheckKind::Limit => {
             // As the terminal reads it: a failure rate in percent (`table::shown_in`).

@@ -3,7 +3,7 @@
 
 use crate::engine::plausibility::{Basis, Beyond};
 use crate::engine::summary::{Headline, SceneSummary, TorqueShare};
-use crate::engine::verdict::{Bound, Check, CheckKind, Evidence};
+use crate::engine::verdict::{Check, CheckKind, Evidence};
 use crate::model::quantity::{find_limit, Quantity};
 use crate::model::quantity::{MAX_LOST_MOTION, MAX_TORSION_LOST_MOTION, MIN_CLEARANCE};
 use crate::numeric::{number, with_unit};
@@ -72,10 +72,7 @@ pub const STYLES: [&str; 3] = [FAIL_STYLE, PASS_STYLE, PLAIN_STYLE];
 /// negative clearance marked "pass". The JSON keeps the value as computed.
 pub fn value(c: &Check) -> String {
     let shown = |x: f64| with_unit(check_figure(c, x), shown_in(c).1);
-    let wrong_side = match c.bound {
-        Bound::Max => c.value > c.limit,
-        Bound::Min => c.value < c.limit,
-    };
+    let wrong_side = crate::engine::limit::beyond(c.value, c.limit, c.bound) > 0.0;
     if c.passed && wrong_side {
         format!("{} (to round-off)", shown(c.limit))
     } else if is_lost_motion(c) && c.value < 0.0 {

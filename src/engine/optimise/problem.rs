@@ -9,7 +9,7 @@
 
 use crate::engine::scene;
 use crate::geometry::clearance::{self, Mesh};
-use crate::model::quantity::{RATIO_FLUCTUATION, TE_FLUCTUATION};
+use crate::model::quantity::{Bound, RATIO_FLUCTUATION, TE_FLUCTUATION};
 use crate::model::results::MinClearance;
 use crate::model::{Effect, Modification, Objective, Plan, Point, Scene, Study};
 use crate::spec::deviations;
@@ -25,6 +25,8 @@ pub struct Margin {
     pub unit: &'static str,
     pub value: f64,
     pub bound: f64,
+    /// Which side `bound` limits: `Min` a lower bound, `Max` an upper one.
+    pub side: Bound,
     /// value − bound for a lower bound, bound − value for an upper one.
     pub margin: f64,
 }
@@ -36,12 +38,14 @@ impl Margin {
             unit,
             value,
             bound,
+            side: Bound::Min,
             margin: value - bound,
         }
     }
 
     fn upper(name: &str, unit: &'static str, value: f64, bound: f64) -> Self {
         Margin {
+            side: Bound::Max,
             margin: bound - value,
             ..Margin::lower(name, unit, value, bound)
         }

@@ -160,14 +160,6 @@ impl<'a> ToleranceStudy<'a> {
         Ok((values, passed))
     }
 
-    /// Sample k evaluated; an error names the sample and how to replay it.
-    pub fn evaluate_sample(&self, k: u64) -> Result<(Vec<f64>, Vec<bool>)> {
-        self.evaluate(
-            &self.draw(k),
-            &format!("sample {k} (replay it with --write-sample {k} OUT)"),
-        )
-    }
-
     /// The records of the samples k ≡ `shard.0` (mod `shard.1`), in increasing k, in parallel;
     /// `progress` (the caller's phase) hears of each sample done. The first error (in k order) is the error.
     pub fn run(&self, shard: (u64, u64), progress: &dyn Progress) -> Result<Records> {
@@ -186,7 +178,9 @@ impl<'a> ToleranceStudy<'a> {
                 .into_par_iter()
                 .map(|r| {
                     let k = shard.0 + r * shard.1;
-                    let r = self.evaluate_sample(k);
+                    // An error names the sample and how to replay it.
+                    let replay = format!("sample {k} (replay it with --write-sample {k} OUT)");
+                    let r = self.evaluate(&self.draw(k), &replay);
                     progress.advance(1);
                     r
                 })

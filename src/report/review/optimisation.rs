@@ -216,15 +216,9 @@ pub(super) fn constraint_row(c: &Margin, points: &[StudyPoint]) -> Markup {
         Some((n, q)) => (n, format!(" ({q}")),
         None => (c.name.as_str(), String::new()),
     };
-    // A lower bound has margin value − bound, an upper one bound − value.
-    let op = if (c.margin - (c.value - c.bound)).abs() <= (c.margin - (c.bound - c.value)).abs() {
-        "≥"
-    } else {
-        "≤"
-    };
     html! {
         tr {
-            th { (name) br; small { (op) " " (number(c.bound)) (qualifier) } }
+            th { (name) br; small { (c.side.symbol()) " " (number(c.bound)) (qualifier) } }
             @for p in points {
                 @match p.margins.iter().find(|m| m.name == c.name) {
                     Some(m) => td.num.violated[!m.satisfied()] {

@@ -520,6 +520,29 @@ fn section<'a>(html: &'a str, id: &str) -> &'a str {
     &rest[..rest.find("</section>").unwrap()]
 }
 
+/// The crank-bearing life section says why a scene's life is not rated, and nothing else: a
+/// torsion scene whose name says "crank-bearing" keeps its hysteresis note out of it (the
+/// section once picked its notes by that word).
+#[test]
+fn the_bearing_life_section_takes_only_the_notes_on_the_life() {
+    let dir = Scratch::new("report-life-notes");
+    let two_discs = std::fs::read_to_string("specs/reducer-two-discs.yaml").unwrap();
+    let (spec, _goldens) = two_discs.split_once("# Golden curves").unwrap();
+    assert_eq!(spec.matches("  - name: torsion\n").count(), 1);
+    let spec = spec.replace("  - name: torsion\n", "  - name: crank-bearing-loop\n");
+    dir.write("spec.yaml", spec);
+    let out = run(&dir.path, &["check", "spec.yaml", "--report", "r"]);
+    assert_eq!(out.code, Some(0), "{out:?}");
+    let html = dir.read("r/index.html");
+    let life = section(&html, "crank-bearing-life");
+    // The life table is there: the rated scene's row of each disc.
+    assert!(life.contains("disc 1"), "{life}");
+    assert!(!life.contains("hysteresis"), "{life}");
+    // The note is still the run's (the terminal's notes).
+    let note = "note: scene `crank-bearing-loop`: hysteresis loss 0";
+    assert!(out.stdout.contains(note), "{}", out.stdout);
+}
+
 /// Scenes named `a b` and `a_b` (the same once made a file name) each link their own plots:
 /// the 36° scene's crank axis is labelled up to 36°, the 18° scene's only to 18°.
 #[test]

@@ -2,6 +2,7 @@
 //! that rated it, and why a scene could not.
 
 use super::common::{data_table, Section};
+use crate::engine::scene::{self, Note};
 use crate::model::results::SceneResult;
 use crate::numeric::number;
 use crate::report::explain;
@@ -23,9 +24,15 @@ pub(super) fn section(spec: &Spec, results: &[SceneResult]) -> Option<Section> {
             each.filter_map(move |(k, d)| Some((s, named.then_some(k), d.bearing_life?)))
         })
         .collect();
-    let notes: Vec<String> = explain::notes(spec)
-        .into_iter()
-        .filter(|n| n.contains("crank-bearing"))
+    // The notes of a life not rated, by kind: a scene's name may say "crank-bearing" too.
+    let notes: Vec<String> = (scene::notes(spec).iter())
+        .filter(|n| {
+            matches!(
+                n,
+                Note::LifeNotRated { .. } | Note::LifeHoursNotRated { .. }
+            )
+        })
+        .map(explain::note)
         .collect();
     if rated.is_empty() && notes.is_empty() {
         return None;

@@ -103,8 +103,8 @@ pub struct RunOptions<'a> {
     /// The error bound sought for the smallest gap over the whole mesh, mm
     /// (`geometry::mesh_minimum`): the spec's `accuracy.tolerance.clearance_um`.
     pub clearance_tolerance_mm: f64,
-    /// Hears of the crank angles done by each sweep the plan runs (`start` is the caller's:
-    /// `scene_sweeps` says how many it will hear of).
+    /// Hears of the crank angles done by each sweep the plan runs (the caller's phase, whose
+    /// count `scene_sweeps` gives).
     pub progress: &'a dyn Progress,
 }
 

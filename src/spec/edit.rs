@@ -156,18 +156,17 @@ pub fn with_modification(path: &str, text: &str, m: &Modification) -> Result<Str
 /// of the crown (`crown_radius_mm`, `crown_start_mm`) writes back. The spec must have a
 /// circular crowning, and the result must read back as exactly `crowning`.
 pub fn with_crowning(path: &str, text: &str, crowning: &Crowning) -> Result<String> {
-    let refuse = |m: String| Error::invalid_value(m);
     let Crowning::Circular {
         radius_mm,
         start_mm,
     } = *crowning
     else {
-        return Err(refuse(format!(
+        return Err(Error::invalid_value(format!(
             "{path}: only a circular crowning is written back, not {crowning:?}"
         )));
     };
     if locate_offset(text, "modification.crowning").is_none() {
-        return Err(refuse(format!(
+        return Err(Error::invalid_value(format!(
             "{path}: no `modification.crowning` to write the crown into"
         )));
     }
@@ -398,18 +397,18 @@ fn block_end(text: &str, start: usize, column: usize) -> usize {
 /// Spec `text` (read from `path`) with `d` as its `reducer.deviations`, replacing the block
 /// there is; the result must parse back (as `out_path`) to exactly `d`.
 pub fn with_deviations(text: &str, path: &str, d: &Deviations, out_path: &str) -> Result<String> {
-    let refuse = |m: String| Error::invalid_value(m);
     let mut text = text.to_string();
     if let Some(at) = locate_offset(&text, "reducer.deviations") {
         let (start, column) = line_of(&text, at);
         let end = block_end(&text, start, column);
         text.replace_range(start..end, "");
     }
-    let teeth = locate_offset(&text, "reducer.teeth")
-        .ok_or_else(|| refuse(format!("{path}: no `reducer.teeth` key to write beside")))?;
+    let teeth = locate_offset(&text, "reducer.teeth").ok_or_else(|| {
+        Error::invalid_value(format!("{path}: no `reducer.teeth` key to write beside"))
+    })?;
     let (start, column) = line_of(&text, teeth);
     if text[start..teeth].trim() != "" {
-        return Err(refuse(format!(
+        return Err(Error::invalid_value(format!(
             "{path}: `reducer` is written in flow style ({{...}}); write it as a block mapping \
              to write deviations into it"
         )));

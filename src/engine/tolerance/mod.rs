@@ -161,7 +161,8 @@ impl<'a> ToleranceStudy<'a> {
     }
 
     /// The records of the samples k ≡ `shard.0` (mod `shard.1`), in increasing k, in parallel;
-    /// `progress` (the caller's phase) hears of each sample done. The first error (in k order) is the error.
+    /// `progress` (the caller's phase) hears of each sample done. The first error (in k order)
+    /// is the error.
     pub fn run(&self, shard: (u64, u64), progress: &dyn Progress) -> Result<Records> {
         use rayon::prelude::*;
         let rows = shard_len(self.samples() as u64, shard);

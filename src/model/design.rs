@@ -262,12 +262,10 @@ impl Design {
 
     /// Mesh period in crank angle: 2π/np, after which every gap repeats with the roller index
     /// shifted by one; with rollers as built that are not alike, a whole crank turn; with a
-    /// form error on the disc, a whole turn of the disc (nc crank turns).
+    /// form error on the disc, a whole turn of the disc (nc crank turns): the loaded period
+    /// without the pins and the tilt (`loaded_period_rad`).
     pub fn mesh_period_rad(&self) -> f64 {
-        if !self.deviations.form.is_empty() {
-            return std::f64::consts::TAU * self.teeth as f64;
-        }
-        std::f64::consts::TAU / self.mesh_periods_per_turn() as f64
+        self.loaded_period_rad(false, false)
     }
 
     /// Teeth after which the disc as built is itself again: nc/gcd(nc, k₁, k₂, …) over the

@@ -111,12 +111,10 @@ impl<'a> Of<'a> {
         }
     }
 
-    /// `q`'s curves in these results (`Quantity::curves`, `Quantity::disc_curves`).
+    /// `q`'s curves in these results (`Quantity::curves`, `Quantity::disc_curves`): `rows`
+    /// under their names.
     pub fn curves(&self, q: &Quantity) -> Option<Curves> {
-        match self.disc {
-            None => q.curves(self.r),
-            Some(d) => q.disc_curves(d),
-        }
+        q.named(self.rows(q)?)
     }
 
     /// `q`'s scalar in these results (`Quantity::scalar`, `Quantity::disc_scalar`).

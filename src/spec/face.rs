@@ -204,20 +204,31 @@ pub(crate) fn apply(
                 ),
             ));
         }
-        let cells = (design.rollers.max(design.pins.count) * scene.crank_rad.len()) as i64
-            * face.slices as i64;
-        if face.slices > 1 && cells > MAX_ROLLER_ANGLES {
-            return Err(Error::invalid(
-                format!("scenes[{i}].face_slices"),
-                format!(
-                    "{} slices × {} contacts × {} crank angles is {cells} line loads, more than \
-                     the {MAX_ROLLER_ANGLES} a scene may hold; give fewer slices or steps",
-                    face.slices,
-                    design.rollers.max(design.pins.count),
-                    scene.crank_rad.len()
-                ),
-            ));
-        }
+        let contacts = design.rollers.max(design.pins.count);
+        let key = format!("scenes[{i}].face_slices");
+        line_loads_fit(&key, face.slices, (contacts, scene.crank_rad.len()), "")?;
     }
     Ok(())
+}
+
+/// The line loads of a face cut into `slices` (2 or more; one slice holds none), `contacts`
+/// × `angles` × `slices` of them, fit in a scene's memory (`MAX_ROLLER_ANGLES`), else the
+/// refusal at `key`; `case` names the design they are of (" (ratio 9, 6 pins)"), or is empty.
+pub(crate) fn line_loads_fit(
+    key: &str,
+    slices: usize,
+    (contacts, angles): (usize, usize),
+    case: &str,
+) -> Result<()> {
+    let cells = (contacts * angles) as i64 * slices as i64;
+    if slices < 2 || cells <= MAX_ROLLER_ANGLES {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        key,
+        format!(
+            "{slices} slices × {contacts} contacts × {angles} crank angles{case} is {cells} line \
+             loads, more than the {MAX_ROLLER_ANGLES} a scene may hold; give fewer slices or steps"
+        ),
+    ))
 }

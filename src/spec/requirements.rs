@@ -9,7 +9,6 @@ use crate::error::{Error, Result};
 use crate::model::design::MAX_DISCS;
 use crate::model::requirements::loaded_mesh_periods;
 use crate::model::requirements::*;
-use crate::model::scene::MAX_ROLLER_ANGLES;
 use crate::model::strength::Strength;
 use crate::model::{Misalignment, PinSupport};
 use crate::numeric;
@@ -187,23 +186,11 @@ fn face(
             ));
         }
     }
-    if slices > 1 {
-        for &nc in ratios {
-            for &m in pin_counts {
-                let angles = steps * loaded_mesh_periods(nc, m, !misalignment.is_zero());
-                let contacts = (nc + 1).max(m);
-                let cells = (contacts * angles * slices) as i64;
-                if cells > MAX_ROLLER_ANGLES {
-                    return Err(Error::invalid(
-                        "face_slices",
-                        format!(
-                            "{slices} slices × {contacts} contacts × {angles} crank angles (ratio \
-                             {nc}, {m} pins) is {cells} line loads, more than the \
-                             {MAX_ROLLER_ANGLES} a scene may hold; give fewer slices or steps"
-                        ),
-                    ));
-                }
-            }
+    for &nc in ratios {
+        for &m in pin_counts {
+            let angles = steps * loaded_mesh_periods(nc, m, !misalignment.is_zero());
+            let case = format!(" (ratio {nc}, {m} pins)");
+            super::face::line_loads_fit("face_slices", slices, ((nc + 1).max(m), angles), &case)?;
         }
     }
     Ok((misalignment, slices))

@@ -12,7 +12,7 @@
 //! scene reaches its limits without a life to check.
 
 use crate::error::{Error, Result};
-use crate::model::{Design, Effect, Limits, Plan, Scene};
+use crate::model::{Design, Limits, Plan, Scene};
 
 /// The limit's key.
 const KEY: &str = "min_bearing_life_h";
@@ -67,10 +67,6 @@ pub(crate) fn check_scene(
 /// the spec, which computes its life: an input speed (a duty cycle's bins have theirs) and
 /// whole loaded periods of `design`.
 fn scene(design: &Design, (i, s): (usize, &Scene), built: Option<&str>, key: &str) -> Result<()> {
-    let plan = Plan::for_scene(s);
-    if !plan.computes(Effect::Bearing) {
-        return Ok(());
-    }
     if s.input_speed_rpm.is_none() && s.duty_cycle.is_none() {
         return Err(Error::invalid(
             format!("scenes[{i}]"),

@@ -9,7 +9,7 @@
 use super::raw::{RawDutyBin, RawScene};
 use super::values::finite;
 use crate::error::{Error, Result};
-use crate::model::{DutyBin, Effect};
+use crate::model::{DutyBin, Effect, Plan};
 use crate::{numeric, units};
 
 /// How far from 1 the time shares of a cycle may sum: their round-off as decimals (ten
@@ -43,9 +43,7 @@ pub(super) fn duty_cycle(
             ));
         }
     }
-    let bearing = effects
-        .iter()
-        .any(|&e| e == Effect::Bearing || e.needs().contains(&Effect::Bearing));
+    let bearing = Plan::of(&raw.name, effects).has(Effect::Bearing);
     if bins.is_empty() {
         return Err(empty(&at));
     }

@@ -662,18 +662,17 @@ pub fn run(
             rel_tol,
             ..Settings::default()
         };
-        let s = s.clone();
         let (mut result, loaded_seconds) = if loaded_plan.effects.is_empty() {
             (
-                scene::run(spec, &s, &loaded_plan, &run_options(&settings))?,
+                scene::run(spec, s, &loaded_plan, &run_options(&settings))?,
                 0.0,
             )
         } else {
-            timed(spec, &s, &loaded_plan, &settings)?
+            timed(spec, s, &loaded_plan, &settings)?
         };
         let mut clearance_seconds = 0.0;
         if clearance && !clearance_plan.effects.is_empty() {
-            let (c, seconds) = timed(spec, &s, &clearance_plan, &settings)?;
+            let (c, seconds) = timed(spec, s, &clearance_plan, &settings)?;
             for (disc, timed) in result.discs.iter_mut().zip(c.discs) {
                 disc.clearance = timed.clearance;
             }

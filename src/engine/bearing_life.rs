@@ -8,7 +8,8 @@
 //! n·(1 + 1/nc), so L10h = (C/P)^p · 10⁶ / (60 · n · (1 + 1/nc)) hours.
 
 use crate::equilibrium::friction::sliding::relative_crank_speed_ratio;
-use crate::model::results::{bounded, UNBOUNDED_LIFE_H};
+use crate::model::design::CrankBearing;
+use crate::model::results::{bounded, BearingLife, UNBOUNDED_LIFE_H};
 
 /// P = (mean of F^p)^(1/p), N, over bearing forces `force_n` (N) sampled evenly over whole
 /// load cycles (the rectangle rule is then the mean of the periodic load). 0 without samples.
@@ -49,6 +50,21 @@ pub fn life_h(load_n: f64, rating_n: f64, exponent: f64, input_rpm: f64, teeth: 
     }
     let revolutions = (rating_n / load_n).powf(exponent) * 1e6;
     bounded(revolutions / (60.0 * relative_speed_rpm(input_rpm, teeth)))
+}
+
+/// The rating life of the bearing `rating` under the equivalent load `load_n` (P, N): in hours
+/// (`life_h`) at the input speed `input_rpm` of a disc with `teeth`, when it has one.
+pub fn life(
+    load_n: f64,
+    rating: CrankBearing,
+    input_rpm: Option<f64>,
+    teeth: usize,
+) -> BearingLife {
+    let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
+    BearingLife {
+        equivalent_load_n: load_n,
+        life_h: input_rpm.map(|n| life_h(load_n, c, p, n, teeth)),
+    }
 }
 
 #[cfg(test)]

@@ -26,7 +26,7 @@
 
 use crate::engine::bearing_life::{self, weighted_power_mean};
 use crate::engine::power_flow::PowerFlow;
-use crate::model::results::{BearingLife, DutyBinResult, DutyCycle, SceneResult};
+use crate::model::results::{DutyBinResult, DutyCycle, SceneResult};
 use crate::model::Design;
 
 /// Each bin's revolution weight sᵢ·nᵢ (rpm), in the bins' order.
@@ -62,18 +62,8 @@ pub fn combine(design: &Design, bins: Vec<DutyBinResult>) -> DutyCycle {
         (Some(rating), Some(loads)) => (0..design.discs)
             .map(|k| {
                 let pairs = weights.iter().zip(&loads).map(|(&w, l)| (w, l[k]));
-                let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
-                let load = weighted_power_mean(pairs, p);
-                BearingLife {
-                    equivalent_load_n: load,
-                    life_h: Some(bearing_life::life_h(
-                        load,
-                        c,
-                        p,
-                        mean_speed_rpm,
-                        design.teeth,
-                    )),
-                }
+                let load = weighted_power_mean(pairs, rating.life_exponent);
+                bearing_life::life(load, rating, Some(mean_speed_rpm), design.teeth)
             })
             .collect(),
         _ => Vec::new(),

@@ -42,11 +42,7 @@ pub fn efficiency(
     else {
         return Ok(None);
     };
-    let per_disc: Vec<&Vec<PathLosses>> = discs
-        .iter()
-        .map(|d| d.losses.as_ref())
-        .collect::<Option<_>>()
-        .ok_or_else(|| not_recorded("losses"))?;
+    let per_disc = recorded(discs, |d| d.losses.as_ref(), "losses")?;
     let speed = scene.input_speed_rpm.map(units::rad_per_s);
     let curves = |loss_nmm: Vec<PathLosses>, reducer| EfficiencyCurves {
         model: friction.model,
@@ -78,13 +74,20 @@ pub fn efficiency(
     Ok(Some((curves(total, Some(reducer)), disc_curves)))
 }
 
-/// The error of a sweep that did not record what the efficiency reads (`Model::losses` not
-/// set by the scene's loaded model): a fault of the engine, not of the spec.
-fn not_recorded(what: &str) -> Error {
-    Error::computation(format!(
-        "the efficiency: the loaded sweep recorded no {what} (the scene's loaded model did not \
-         ask for them)"
-    ))
+/// What each disc's sweep recorded for the efficiency (`field`, named `what`); an error when a
+/// sweep did not record it (`Model::losses` not set by the scene's loaded model): a fault of
+/// the engine, not of the spec.
+fn recorded<'a, T>(
+    discs: &[&'a LoadedSweep],
+    field: impl Fn(&'a LoadedSweep) -> Option<&'a T>,
+    what: &str,
+) -> Result<Vec<&'a T>> {
+    (discs.iter().map(|d| field(d)).collect::<Option<_>>()).ok_or_else(|| {
+        Error::computation(format!(
+            "the efficiency: the loaded sweep recorded no {what} (the scene's loaded model did \
+             not ask for them)"
+        ))
+    })
 }
 
 /// The reducer's efficiency, input torque and temperature from its losses `[angle]`.
@@ -144,11 +147,7 @@ fn crank_input_torque(
     scene: &Scene,
     discs: &[&LoadedSweep],
 ) -> Result<Vec<f64>> {
-    let shares: Vec<&Vec<f64>> = discs
-        .iter()
-        .map(|d| d.input_torque_nmm.as_ref())
-        .collect::<Option<_>>()
-        .ok_or_else(|| not_recorded("input torque"))?;
+    let shares = recorded(discs, |d| d.input_torque_nmm.as_ref(), "input torque")?;
     let drag = friction.no_load_torque_nmm.at_rpm(scene.input_speed_rpm);
     Ok((0..scene.crank_rad.len())
         .map(|i| {

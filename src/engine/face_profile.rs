@@ -15,7 +15,7 @@ use crate::model::face::Misalignment;
 use crate::model::place::{Place, Site};
 use crate::model::quantity::{MAX_FACE_LOAD_FACTOR, MAX_LINE_LOAD};
 use crate::model::results::{FaceLoads, SceneResult};
-use crate::model::{Design, Plan, Scene};
+use crate::model::{Plan, Scene};
 use crate::spec::Spec;
 
 /// Which crank angle a profile shows.
@@ -70,16 +70,6 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
             continue;
         };
         let crank_rad = s.crank_rad[k];
-        // Designed: neither the scene's tilt nor the one as built.
-        let mut untilted = spec.design.clone();
-        untilted.deviations.misalignment = Misalignment::default();
-        let designed = Scene {
-            face: crate::model::Face {
-                misalignment: Misalignment::default(),
-                ..s.face
-            },
-            ..s.clone()
-        };
         out.push(FaceProfile {
             scene: index,
             crank_rad,
@@ -90,9 +80,7 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
                 .collect(),
             tilted_n_per_mm: face.at(roller, k).to_vec(),
             designed_n_per_mm: match tilted {
-                true => Some(line_loads_at(
-                    spec, &untilted, &designed, crank_rad, roller,
-                )?),
+                true => Some(designed_line_loads(spec, s, crank_rad, roller)?),
                 false => None,
             },
         });
@@ -132,18 +120,24 @@ fn largest_line_load(r: &SceneResult) -> Option<(usize, usize)> {
     }
 }
 
-/// Roller `roller`'s line loads in `scene` of `design` at `crank_rad`, N/mm: the scene's loaded
-/// effects run at that one angle (no duty cycle: the scene's own torque) through the run path
-/// (`scene::run_design`, with the spec's options), read from what its sweep recorded.
-fn line_loads_at(
+/// Roller `roller`'s line loads in `scene` as designed at `crank_rad`, N/mm: neither the
+/// scene's tilt nor the one as built, the scene's loaded effects run at that one angle (no duty
+/// cycle: the scene's own torque) through the run path (`scene::run_design`, with the spec's
+/// options), read from what its sweep recorded.
+fn designed_line_loads(
     spec: &Spec,
-    design: &Design,
     scene: &Scene,
     crank_rad: f64,
     roller: usize,
 ) -> Result<Vec<f64>> {
+    let mut design = spec.design.clone();
+    design.deviations.misalignment = Misalignment::default();
     let at = Scene {
         crank_rad: vec![crank_rad],
+        face: crate::model::Face {
+            misalignment: Misalignment::default(),
+            ..scene.face
+        },
         effects: scene
             .effects
             .iter()
@@ -155,7 +149,7 @@ fn line_loads_at(
     };
     let plan = Plan::for_scene(&at);
     let options = RunOptions::for_spec(spec);
-    let r = scene::run_design(design, &spec.modification, (&at, &plan), &options)
+    let r = scene::run_design(&design, &spec.modification, (&at, &plan), &options)
         .map_err(|e| scene::at_scene(spec, scene, e))?;
     let face = (r.discs.first())
         .and_then(|d| d.loaded.rollers.as_ref())

@@ -232,13 +232,6 @@ pub struct Comparison {
     pub passed: bool,
 }
 
-/// The disc golden `g`'s points name in scene `r` (`Point::disc`): the golden's disc when the
-/// scene has several (`SceneResult::names_discs`); a one-disc reducer's disc 0 is not named,
-/// as a golden without `disc` (`Place::disc`).
-fn named_disc(g: &Golden, r: &SceneResult) -> Option<usize> {
-    g.disc.filter(|_| r.names_discs())
-}
-
 /// The difference a − b, taken into (−period/2, period/2] for a wrapping angle.
 fn difference(a: f64, b: f64, period: Option<f64>) -> f64 {
     match period {
@@ -372,7 +365,6 @@ pub fn compare(
 #[derive(Debug, Clone, PartialEq)]
 pub struct GoldenResult {
     pub golden: Golden,
-    pub unit: &'static str,
     pub comparison: Comparison,
 }
 
@@ -404,11 +396,11 @@ pub fn load_all(spec: &Spec) -> Result<Vec<GoldenCurves>> {
         .collect()
 }
 
-/// The computed curves of a golden's quantity, in output units.
-pub fn computed<'a>(
-    g: &Golden,
-    results: &'a [SceneResult],
-) -> Result<(&'a SceneResult, Vec<f64>, Curves)> {
+/// The computed curves of a golden's quantity, in output units, their crank angles in degrees,
+/// and the disc their points name (`Point::disc`): the golden's disc when the scene has several
+/// (`SceneResult::names_discs`); a one-disc reducer's disc 0 is not named, as a golden without
+/// `disc` (`Place::disc`).
+pub fn computed(g: &Golden, results: &[SceneResult]) -> Result<(Vec<f64>, Curves, Option<usize>)> {
     let q = g.quantity;
     let r = results
         .iter()
@@ -434,7 +426,7 @@ pub fn computed<'a>(
         Error::invalid(format!("{}.quantity", g.key), message)
     })?;
     let deg = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
-    Ok((r, deg, curves))
+    Ok((deg, curves, g.disc.filter(|_| r.names_discs())))
 }
 
 /// Compare every golden of a spec with the results.
@@ -447,9 +439,8 @@ pub fn evaluate(
         .iter()
         .zip(loaded)
         .map(|(g, golden)| {
-            let (r, deg, curves) = computed(g, results)?;
+            let (deg, curves, disc) = computed(g, results)?;
             let of = (g.quantity.period(), g.quantity.shape.part());
-            let disc = named_disc(g, r);
             let comparison =
                 compare(golden, &deg, &curves, g.tolerance, of, disc).map_err(|m| {
                     file_error(
@@ -465,7 +456,6 @@ pub fn evaluate(
                 })?;
             Ok(GoldenResult {
                 golden: g.clone(),
-                unit: g.quantity.unit,
                 comparison,
             })
         })
@@ -582,7 +572,6 @@ pub enum BlessChange {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Blessed {
     pub golden: Golden,
-    pub unit: &'static str,
     pub rows: usize,
     pub change: BlessChange,
     pub written: Written,
@@ -678,8 +667,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
     let mut batch = files::Batch::default();
     let mut out = Vec::new();
     for g in &spec.golden {
-        let (r, deg, curves) = computed(g, results)?;
-        let unit = g.quantity.unit;
+        let (deg, curves, disc) = computed(g, results)?;
         let period = g.quantity.period();
         let new = GoldenCurves {
             crank_deg: deg.clone(),
@@ -705,7 +693,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
                         &written.curves,
                         g.tolerance,
                         (period, g.quantity.shape.part()),
-                        named_disc(g, r),
+                        disc,
                     )
                 }) {
                 Ok(c) => BlessChange::Compared(c),
@@ -737,7 +725,7 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
             spec_sha256: sha256_hex(&spec.source),
             scene: g.scene.clone(),
             quantity: g.quantity.to_string(),
-            unit: unit.to_string(),
+            unit: g.quantity.unit.to_string(),
             crank: format!(
                 "{} angles from {}° to {}°",
                 deg.len(),
@@ -778,7 +766,6 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
         }
         out.push(Blessed {
             golden: g.clone(),
-            unit,
             rows: deg.len(),
             change,
             written,

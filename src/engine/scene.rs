@@ -483,14 +483,9 @@ fn bearing_life(
     if !scene.spans_loaded_periods(design, plan) {
         return None;
     }
-    let (c, p) = (rating.dynamic_load_rating_n, rating.life_exponent);
-    let load = bearing_life::equivalent_load(force, p);
-    Some(BearingLife {
-        equivalent_load_n: load,
-        life_h: scene
-            .input_speed_rpm
-            .map(|n| bearing_life::life_h(load, c, p, n, design.teeth)),
-    })
+    let load = bearing_life::equivalent_load(force, rating.life_exponent);
+    let rpm = scene.input_speed_rpm;
+    Some(bearing_life::life(load, rating, rpm, design.teeth))
 }
 
 /// What a reader of the results must be told besides the numbers ([`report::explain`](crate::report::explain) says

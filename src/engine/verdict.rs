@@ -97,7 +97,7 @@ impl Check {
             kind: CheckKind::Golden,
             value: w.deviation,
             limit: w.band,
-            unit: g.unit,
+            unit: g.golden.quantity.unit,
             bound: Bound::Max,
             passed: g.comparison.passed,
             at: Evidence::Golden {

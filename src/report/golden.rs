@@ -34,7 +34,7 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
             BlessChange::Compared(c) if c.largest.deviation == 0.0 => "unchanged".into(),
             BlessChange::Compared(c) => format!(
                 "max |change| {} at {} ({} → {}); {}",
-                with_unit(number(c.largest.deviation), b.unit),
+                with_unit(number(c.largest.deviation), b.golden.quantity.unit),
                 place::text(&c.largest.place()),
                 number(c.largest.golden),
                 number(c.largest.value),

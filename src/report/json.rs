@@ -1158,7 +1158,7 @@ fn golden(g: &GoldenResult) -> GoldenDoc<'_> {
         scene: &g.golden.scene,
         quantity: g.golden.quantity.key,
         disc: g.golden.disc,
-        unit: g.unit,
+        unit: g.golden.quantity.unit,
         file: g.golden.path.display().to_string(),
         tolerance: GoldenToleranceDoc {
             abs: Finite(g.golden.tolerance.abs),

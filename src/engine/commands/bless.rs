@@ -27,13 +27,12 @@ pub fn bless(spec: &Spec) -> Result<Vec<Blessed>> {
     if spec.golden.is_empty() {
         return Ok(Vec::new());
     }
-    let mut results = Vec::new();
-    for s in &spec.scenes {
-        if spec.golden.iter().any(|g| g.scene == s.name) {
+    let results = (spec.scenes.iter())
+        .filter(|s| spec.golden.iter().any(|g| g.scene == s.name))
+        .map(|s| {
             let plan = scene::plan(spec, s, scene::Writes::default());
-            let r = scene::run(spec, s, &plan, &Default::default()).map_err(|e| spec.locate(e))?;
-            results.push(r);
-        }
-    }
-    golden::bless(spec, &results).map_err(|e| spec.locate(e))
+            scene::run(spec, s, &plan, &Default::default())
+        })
+        .collect::<Result<Vec<_>>>();
+    (results.and_then(|r| golden::bless(spec, &r))).map_err(|e| spec.locate(e))
 }

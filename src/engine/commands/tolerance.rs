@@ -113,9 +113,8 @@ pub struct Merged {
     pub records: Records,
     samples: u64,
     limits: usize,
-    count: u64,
     first: String,
-    /// The file each shard was read from, by shard index.
+    /// The file each shard was read from, by shard index (as many as the run has shards).
     files: Vec<String>,
 }
 
@@ -140,18 +139,18 @@ impl Merged {
     /// shard altered consistently (its checksum written again) still cannot pass a value
     /// beyond its limit.
     fn verdicts_follow(&self, study: &ToleranceStudy) -> Result<()> {
-        let l = study.limits.len();
+        let (l, count) = (study.limits.len(), self.files.len() as u64);
         let cells = self.records.values.iter().zip(&self.records.passed);
         for (cell, (&value, &passed)) in cells.enumerate() {
             let (def, limit) = study.limits[cell % l];
-            let shard = (cell / l) as u64 % self.count;
+            let shard = (cell / l) as u64 % count;
             if passes(value, limit, def.bound) != passed {
                 return Err(Error::invalid_value(format!(
                     "{}: shard {} of {} holds sample {} with `{}` = {value} marked {}, which its \
                      limit {limit} does not give: the shard was altered",
                     self.files[shard as usize],
                     shard,
-                    self.count,
+                    count,
                     cell / l,
                     def.key,
                     if passed { "passed" } else { "failed" }
@@ -181,7 +180,6 @@ pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
         records,
         samples: h.items,
         limits: shards[0].limits as usize,
-        count: h.count,
         first: names[0].clone(),
         files,
     })

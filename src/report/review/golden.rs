@@ -22,8 +22,8 @@ pub(super) fn section(goldens: &[GoldenResult]) -> Option<Section> {
                     tr class=(verdict(g.comparison.passed)) {
                         td { code { (g.golden.scene) "/" (g.golden.quantity.key) (g.golden.disc_suffix()) } }
                         td { code { (g.golden.path.display()) } }
-                        td.num { (with_unit(number(w.deviation), g.unit)) }
-                        td.num { (with_unit(number(w.band), g.unit)) }
+                        td.num { (with_unit(number(w.deviation), g.golden.quantity.unit)) }
+                        td.num { (with_unit(number(w.band), g.golden.quantity.unit)) }
                         td { (crate::report::golden::in_row(w)) }
                         td.num { (g.comparison.points) }
                         td.verdict { (if g.comparison.passed { "pass" } else { "FAIL" }) }

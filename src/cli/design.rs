@@ -35,8 +35,13 @@ pub(super) fn run(args: DesignArgs, out: &mut dyn Write) -> Result<Outcome> {
         Some(s) => Some(parse_shard(s, candidates, noun)?),
         None => slurm_shard(candidates, noun)?,
     };
+    let inputs = [(
+        format!("the requirements file {path}"),
+        PathBuf::from(&path),
+    )];
     match (shard, args.out.as_deref()) {
         (Some(shard), Some(file)) => {
+            distinct_outputs(&inputs, &[("--out", Some(file))])?;
             run_shard(&req, (&path, &text), (shard, candidates), file, out)
         }
         (Some((i, n)), None) => Err(usage(format!(
@@ -48,10 +53,6 @@ pub(super) fn run(args: DesignArgs, out: &mut dyn Write) -> Result<Outcome> {
             let started = std::time::Instant::now();
             let run = commands::design(&req, &path, &Terminal)?;
             let time = Timing::Whole(started.elapsed().as_secs_f64());
-            let inputs = [(
-                format!("the requirements file {path}"),
-                PathBuf::from(&path),
-            )];
             finish(&req, &run, dir, &time, (&inputs, None), out)
         }
     }
@@ -135,8 +136,6 @@ fn run_shard(
     file: &str,
     out: &mut dyn Write,
 ) -> Result<Outcome> {
-    let inputs = [(format!("the requirements file {path}"), PathBuf::from(path))];
-    distinct_outputs(&inputs, &[("--out", Some(file))])?;
     let bytes = commands::design_shard(req, path, text, (i, n), &Terminal)?;
     files::write_atomic(Path::new(file), &bytes)?;
     let count = crate::engine::design_search::shard::shard_len(all, (i, n));

@@ -1,7 +1,7 @@
 //! The disc as an ASCII STL mesh: one facet per triangle, its unit normal outward, vertices
 //! counter-clockwise seen from outside, mm, nine decimals (1 pm) as the CSV's coordinates.
 
-use super::review::solid::{cross, dot};
+use super::review::solid::unit_normal;
 use crate::geometry::disc_mesh::TriangleMesh;
 use crate::spec::Spec;
 
@@ -25,18 +25,4 @@ pub fn stl(spec: &Spec, mesh: &TriangleMesh) -> String {
         out += " endloop\nendfacet\n";
     }
     out + &format!("endsolid {name}\n")
-}
-
-/// (b − a) × (c − a), made unit; a degenerate triangle (zero area) gets the zero normal, which
-/// STL readers recompute from the vertices.
-fn unit_normal(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
-    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-    let n = cross(u, v);
-    let len = dot(n, n).sqrt();
-    if len > 0.0 {
-        n.map(|x| x / len + 0.0)
-    } else {
-        [0.0; 3]
-    }
 }

@@ -9,6 +9,7 @@ use crate::engine::summary::{summarise, SceneSummary};
 use crate::geometry::profile::Profile;
 use crate::geometry::{polyline, Vec2};
 use crate::measure::fit::{coverage_bin_rad, Identification};
+use crate::model::quantity::TE;
 use crate::model::results::SceneResult;
 use crate::model::Modification;
 use crate::numeric::{fixed, fixed_change};
@@ -126,15 +127,8 @@ fn comparison_plots(
             let plot = pair_plot(&title, "smallest gap over the rollers (µm)", &x, dg, bg);
             out.push((file("clearance"), plot, CLEARANCE_CAPTION));
         }
-        let te = |r: &SceneResult| {
-            let t = r.reducer.transmission.as_ref()?;
-            Some(
-                t.te_rad
-                    .iter()
-                    .map(|&v| units::arcsec(v))
-                    .collect::<Vec<_>>(),
-            )
-        };
+        // The registry's TE curve (arcsec): one row.
+        let te = |r: &SceneResult| Some(TE.rows(r)?.into_owned().swap_remove(0));
         if let (Some(dt), Some(bt)) = (te(d), te(b)) {
             let title = format!("{}: TE, designed and as built", b.name);
             let plot = pair_plot(&title, "transmission error (arcsec)", &x, dt, bt);

@@ -2,6 +2,9 @@
 //! shares: a section with its anchor and heading, a figure, a table, a verdict's class, a
 //! numbered anchor or file name from a name.
 
+use crate::model::results::SceneResult;
+use crate::model::Scene;
+use crate::spec::Spec;
 use maud::{html, Markup};
 
 /// A section of the page: its anchor, its heading (in the table of contents too) and body.
@@ -56,4 +59,16 @@ pub(super) fn verdict(passed: bool) -> &'static str {
 pub(super) fn numbered(kind: &str, k: usize, name: &str) -> String {
     let kept = |c: char| c.is_ascii_alphanumeric() || c == '-' || c == '_';
     format!("{kind}-{}-{}", k + 1, name.replace(|c: char| !kept(c), "_"))
+}
+
+/// The scenes whose result has what `pick` takes from it (a duty cycle, efficiency curves):
+/// (index, scene, what it took), in the spec's order.
+pub(super) fn scenes_with<'a, T>(
+    spec: &'a Spec,
+    results: &'a [SceneResult],
+    pick: impl Fn(&'a SceneResult) -> Option<T>,
+) -> Vec<(usize, &'a Scene, T)> {
+    let each = spec.scenes.iter().zip(results).enumerate();
+    each.filter_map(|(k, (s, r))| Some((k, s, pick(r)?)))
+        .collect()
 }

@@ -3,7 +3,7 @@
 //! speed, energy-weighted efficiency), a table of its bins and their pictures (`duty_spectrum`:
 //! the load spectrum, and each bin's shares of time, revolutions and bearing damage).
 
-use super::common::{data_table, figure, numbered, signed, Section};
+use super::common::{data_table, figure, numbered, scenes_with, signed, Section};
 use super::duty_spectrum;
 use crate::engine::duty_cycle::{bin_equivalent_loads, damage_shares};
 use crate::model::quantity::{MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY};
@@ -21,13 +21,7 @@ pub(super) fn section(
     results: &[SceneResult],
     files: &mut Vec<(String, String)>,
 ) -> Option<Section> {
-    let cycles: Vec<_> = spec
-        .scenes
-        .iter()
-        .zip(results)
-        .enumerate()
-        .filter_map(|(k, (s, r))| Some((k, s, r.duty.as_deref()?)))
-        .collect();
+    let cycles = scenes_with(spec, results, |r| r.duty.as_deref());
     if cycles.is_empty() {
         return None;
     }

@@ -3,11 +3,9 @@
 //! of the scene's (`TorqueCurve`, solved by [`engine::torque_curve`](crate::engine::torque_curve)), and with a speed the mean power lost
 //! on each path as a stacked bar.
 
-use super::common::{data_table, figure, signed, Section};
+use super::common::{data_table, figure, scenes_with, signed, Section};
 use crate::model::friction::PathLosses;
-use crate::model::results::{
-    Driver, EfficiencyCurves, ReducerEfficiency, SceneResult, TorqueCurve,
-};
+use crate::model::results::{Driver, ReducerEfficiency, SceneResult, TorqueCurve};
 use crate::model::Scene;
 use crate::numeric::number;
 use crate::report::svg::{document, px, ticks, LinePlot, Mark, RefLine, Series, PALETTE, RED};
@@ -165,13 +163,7 @@ pub(super) fn section(
     curves: &[Option<TorqueCurve>],
     files: &mut Vec<(String, String)>,
 ) -> Option<Section> {
-    let scenes: Vec<(usize, &Scene, &EfficiencyCurves)> = spec
-        .scenes
-        .iter()
-        .zip(results)
-        .enumerate()
-        .filter_map(|(k, (s, r))| Some((k, s, r.reducer.efficiency.as_ref()?)))
-        .collect();
+    let scenes = scenes_with(spec, results, |r| r.reducer.efficiency.as_ref());
     if scenes.is_empty() {
         return None;
     }

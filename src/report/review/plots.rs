@@ -221,9 +221,10 @@ fn shown(def: &PlotDef, unit: &'static str) -> (&'static str, fn(f64) -> f64) {
     }
 }
 
-/// A value of `q` with its unit as shown (`unit`, converted) for a person ("-23.41 µm", "2").
-fn shown_value(q: &Quantity, value: f64, unit: &str) -> String {
-    with_unit(figure(q, value), unit)
+/// A value of `q` (in the registry's unit) as `def` shows it, with its unit ("-23.41 µm", "2").
+fn shown_value(def: &PlotDef, q: &Quantity, value: f64) -> String {
+    let (unit, convert) = shown(def, q.unit);
+    with_unit(figure(q, convert(value)), unit)
 }
 
 /// Tick step of the crank axis: a sixth of a mesh period over one period, half a period over
@@ -293,7 +294,7 @@ fn plot(spec: &Spec, of: Of<'_>, def: &PlotDef, prefix: &str, at_speed: Option<&
     }
     let small = def.ripple_in_title.then(|| small_ripple(&drawn)).flatten();
     if let Some(ripple) = small {
-        title += &format!(" (ripple {})", shown_value(first, convert(ripple), unit));
+        title += &format!(" (ripple {})", shown_value(def, first, ripple));
     }
     let mut p = LinePlot::new(&title, "crank angle φ (deg)", &y_label);
     p.x_step = mesh_step(spec, &x);
@@ -465,8 +466,7 @@ fn scalars(of: Of<'_>, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> String {
         .filter(|s| drawn.iter().any(|(q, _)| s.of == Some(q.key)))
         .filter_map(|s| {
             let e = of.scalar(s)?;
-            let (unit, convert) = shown(def, s.unit);
-            let value = shown_value(s, convert(e.value), unit);
+            let value = shown_value(def, s, e.value);
             Some(format!("{} {value}: {}", s.label, place::text(&e.at)))
         })
         .collect::<Vec<_>>()
@@ -482,13 +482,13 @@ fn limit_lines(spec: &Spec, drawn: &[(&Quantity, Curves)], def: &PlotDef) -> Vec
         let Some((_, curves)) = drawn.iter().find(|(c, _)| Some(c.key) == scalar.of) else {
             continue;
         };
-        let (unit, convert) = shown(def, scalar.unit);
+        let (_, convert) = shown(def, scalar.unit);
         let line = |value: f64, label: String| RefLine {
             value,
             label,
             color: RED.into(),
         };
-        let shown_limit = shown_value(scalar, convert(limit.value), unit);
+        let shown_limit = shown_value(def, scalar, limit.value);
         if SPREADS.contains(&scalar) {
             let values: Vec<f64> = curves.values.concat();
             let ((lo, _), (hi, _)) = extremes(&values);

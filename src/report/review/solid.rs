@@ -33,16 +33,30 @@ const W: f64 = 660.0;
 const H: f64 = 520.0;
 const MARGIN: f64 = 16.0;
 
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
         a[0] * b[1] - a[1] * b[0],
     ]
+}
+
+/// (b − a) × (c − a), made unit; a degenerate triangle (zero area) gets the zero normal, which
+/// STL readers recompute from the vertices.
+pub(crate) fn unit_normal(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let n = cross(u, v);
+    let len = dot(n, n).sqrt();
+    if len > 0.0 {
+        n.map(|x| x / len + 0.0)
+    } else {
+        [0.0; 3]
+    }
 }
 
 fn unit(a: [f64; 3]) -> [f64; 3] {
@@ -74,13 +88,11 @@ fn facets(solid: &SolidPicture) -> Vec<Facet> {
     let mut out: Vec<Facet> = (mesh.triangles.iter())
         .filter_map(|t| {
             let [a, b, c] = t.map(|i| mesh.vertices[i]);
-            let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-            let n = cross(sub(b, a), sub(c, a));
-            let len = dot(n, n).sqrt();
-            if len == 0.0 || dot(n, VIEW) <= 1e-9 * len {
+            // A degenerate triangle's zero normal faces nobody.
+            let n = unit_normal(a, b, c);
+            if dot(n, VIEW) <= 1e-9 {
                 return None;
             }
-            let n = n.map(|x| x / len);
             let lit = 0.3 + 0.7 * dot(n, LIGHT).max(0.0);
             let centroid = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
             Some(Facet {

@@ -1,7 +1,7 @@
 //! The review's torsion under a locked input ([`engine::torsion`](crate::engine::torsion)): per torsion scene its curves
 //! and its table of catalogue figures (`sections`).
 
-use super::common::{data_table, figure, numbered, Section};
+use super::common::{data_table, figure, numbered, scenes_with, Section};
 use super::plots::capitalised;
 use crate::engine::torsion::FIGURE_TORQUES;
 use crate::model::results::{SceneResult, TorsionCurves};
@@ -197,10 +197,8 @@ pub(super) fn section(
     files: &mut Vec<(String, String)>,
 ) -> Vec<Section> {
     let mut out = Vec::new();
-    for (k, (scene, r)) in spec.scenes.iter().zip(results).enumerate() {
-        let Some(t) = &r.reducer.torsion else {
-            continue;
-        };
+    let torsion = scenes_with(spec, results, |r| Some((r, r.reducer.torsion.as_ref()?)));
+    for (k, scene, (r, t)) in torsion {
         let id = format!("{}-torsion", numbered("scene", k, &scene.name));
         let file = format!("{id}.svg");
         files.push((file.clone(), torsion_plot(scene, r, t).to_svg()));

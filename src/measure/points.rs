@@ -412,22 +412,12 @@ fn parse_number(path: &str, line: usize, v: &str) -> Result<f64> {
 }
 
 fn entities<'a>(all: &'a [Pair<'a>]) -> Vec<Entity<'a>> {
-    let starts: Vec<usize> = all
-        .iter()
-        .enumerate()
-        .filter(|(_, p)| p.1 == 0)
-        .map(|(i, _)| i)
-        .collect();
-    starts
-        .iter()
-        .enumerate()
-        .map(|(k, &s)| {
-            let end = starts.get(k + 1).copied().unwrap_or(all.len());
-            Entity {
-                kind: all[s].2,
-                line: all[s].0,
-                pairs: &all[s + 1..end],
-            }
+    (all.chunk_by(|_, next| next.1 != 0))
+        .filter(|e| e[0].1 == 0)
+        .map(|e| Entity {
+            kind: e[0].2,
+            line: e[0].0,
+            pairs: &e[1..],
         })
         .collect()
 }

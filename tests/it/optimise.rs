@@ -3,7 +3,7 @@
 
 use crate::common;
 use cycloid::engine::optimise::global;
-use cycloid::engine::optimise::problem::Problem;
+use cycloid::engine::optimise::problem::{point_at_unit, Problem};
 use cycloid::engine::optimise::{self, run_study};
 use cycloid::geometry::clearance::{self, Mesh, Scope};
 use cycloid::model::{Crowning, Modification};
@@ -49,11 +49,10 @@ fn the_global_sample_fills_the_box_and_lies_on_the_faces() {
     // Then 64 points on each face that lies inside the box: the 4 box sides, and the two
     // planes ΔRrp − ΔRp = 0.015 and 0.5 mm of the tip band (the valleys of the objectives lie
     // along the lower one), each exactly on its face up to the round-off of z ↦ mm (1e-15 mm).
-    let problem = Problem::new(&spec, s);
     let on = |pred: &dyn Fn(&Modification) -> bool| {
         zs[512..]
             .iter()
-            .filter(|z| pred(&problem.point_at_unit(z).modification))
+            .filter(|z| pred(&point_at_unit(s, z).modification))
             .count()
     };
     let near = |a: f64, b: f64| (a - b).abs() < 1e-15;

@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::geometry::disc_solid;
 use crate::geometry::mass_properties::DiscMass;
 use crate::geometry::profile::Profile;
-use crate::model::requirements::{Continuous, Requirements, Variables};
+use crate::model::requirements::{loaded_mesh_periods, Continuous, Requirements, Variables};
 use crate::model::strength::PartStrength;
 use crate::model::{Crowning, Friction, Material, OutputPins, PinMode, RollerMode};
 use crate::spec::raw::*;
@@ -105,16 +105,6 @@ impl Candidate {
             req.density_kg_per_mm3,
         )
     }
-
-    /// Crank period of the loaded curves under the requirements' tilt, in mesh periods
-    /// (`model::requirements::loaded_mesh_periods`).
-    pub fn loaded_mesh_periods(&self, req: &Requirements) -> usize {
-        crate::model::requirements::loaded_mesh_periods(
-            self.choice.teeth,
-            self.choice.pins,
-            !req.misalignment.is_zero(),
-        )
-    }
 }
 
 /// The validated spec of `c` under `req` (`raw_spec`, checked as any spec is: the same rules,
@@ -199,8 +189,10 @@ pub(crate) fn raw_spec(req: &Requirements, c: &Candidate, name: &str, steps: usi
 /// The scenes of [`raw_spec`]; the torsion scene stays aligned (its face is uniform, one
 /// slice, unless crowned: then the spec's rule cuts every loaded crowned face into slices).
 fn raw_scenes(req: &Requirements, c: &Candidate, steps: usize) -> Vec<RawScene> {
+    let m = &req.misalignment;
     let mesh_deg = 360.0 / c.rollers() as f64;
-    let periods = c.loaded_mesh_periods(req);
+    // The crank period of the loaded curves under the requirements' tilt, in mesh periods.
+    let periods = loaded_mesh_periods(c.choice.teeth, c.choice.pins, !m.is_zero());
     let crank = |to_deg: f64, steps: usize| RawCrank {
         from_deg: 0.0,
         to_deg,
@@ -212,7 +204,6 @@ fn raw_scenes(req: &Requirements, c: &Candidate, steps: usize) -> Vec<RawScene> 
         effects: effects.iter().map(|e| e.to_string()).collect(),
         ..RawScene::default()
     };
-    let m = &req.misalignment;
     // A running scene (rated, peak, duty): the loaded period, the requirements' tilt and slices.
     let loaded = |name: &str, effects: &[&str]| RawScene {
         crank: crank(mesh_deg * periods as f64, steps * periods),

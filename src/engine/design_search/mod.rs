@@ -82,10 +82,7 @@ pub fn global_candidates(req: &Requirements) -> Vec<Candidate> {
             .wrapping_mul(0x9E37_79B9)
             .wrapping_add(i as u32);
         for k in 0..req.search.samples as u32 {
-            let mut u = [0.0; 8];
-            for (d, ud) in u.iter_mut().enumerate() {
-                *ud = f64::from(sobol_burley::sample(k, d as u32, seed));
-            }
+            let u = std::array::from_fn(|d| f64::from(sobol_burley::sample(k, d as u32, seed)));
             out.push(Candidate::at(choice, space, &u));
         }
     }

@@ -15,7 +15,7 @@
 //! Results are collected in a fixed order (interior, then face by face), so the outcome does not
 //! depend on the number of threads.
 
-use super::problem::{Evaluation, Problem};
+use super::problem::{point_at_unit, Evaluation, Problem};
 use crate::model::study::MAX_GLOBAL_SAMPLES;
 use crate::model::{Study, VariableKind};
 use crate::progress::Progress;
@@ -72,13 +72,8 @@ fn on_face(study: &Study, face: Face, u: &[f64]) -> Option<Vec<f64>> {
     z[index] = match face {
         Face::Box { upper, .. } => f64::from(u8::from(upper)),
         Face::Tip { tip_mm, .. } => {
-            let vars = &study.variables;
-            let mut p = study.start_point();
-            for (v, &zi) in vars.iter().zip(&z) {
-                v.kind.set(&mut p, v.at_unit(zi));
-            }
-            let m = p.modification;
-            let v = &vars[index];
+            let m = point_at_unit(study, &z).modification;
+            let v = &study.variables[index];
             let value = match v.kind {
                 VariableKind::Equidistant => m.shift_mm + tip_mm,
                 _ => m.equidistant_mm - tip_mm,
@@ -116,7 +111,7 @@ pub fn sample(problem: &Problem, zs: &[Vec<f64>], progress: &dyn Progress) -> Ve
     zs.par_iter()
         .map(|z| {
             progress.advance(1);
-            problem.evaluate_screened(&problem.point_at_unit(z), true)
+            problem.evaluate_screened(&point_at_unit(problem.study, z), true)
         })
         .collect()
 }

@@ -6,7 +6,7 @@
 //! g(z) ≥ 0, each relative to its bound so that constraints of different units weigh alike.
 //! Objective and constraints at one point share one evaluation through a cache.
 
-use super::problem::{Evaluation, Problem};
+use super::problem::{point_at_unit, Evaluation, Problem};
 use crate::progress::Progress;
 use cobyla::{minimize, Func, RhoBeg, StopTols, SuccessStatus};
 use std::cell::RefCell;
@@ -75,7 +75,7 @@ pub fn run(
     let z0: Vec<f64> = problem.unit_of(&start.point);
     let path: RefCell<Vec<Evaluation>> = RefCell::new(Vec::new());
     let eval = |z: &[f64]| -> Evaluation {
-        let p = problem.point_at_unit(z);
+        let p = point_at_unit(problem.study, z);
         if let Some(e) = path.borrow().iter().rev().find(|e| e.point == p) {
             return e.clone();
         }

@@ -132,12 +132,17 @@ impl Evaluation {
 
 /// The best of `candidates` by `Evaluation::better_than`; the first of equals.
 pub fn best<'a>(candidates: impl IntoIterator<Item = &'a Evaluation>) -> Option<&'a Evaluation> {
-    candidates
-        .into_iter()
-        .fold(None, |best: Option<&Evaluation>, e| match best {
-            Some(b) if !e.better_than(b) => Some(b),
-            _ => Some(e),
-        })
+    (candidates.into_iter()).reduce(|b, e| if e.better_than(b) { e } else { b })
+}
+
+/// The point of `study` at z of the unit cube of its variables (z = 0 lower bounds, 1 upper
+/// bounds; `Variable::at_unit`, logarithmic for the crown radius), the others at its start.
+pub fn point_at_unit(study: &Study, z: &[f64]) -> Point {
+    let mut p = study.start_point();
+    for (v, &zi) in study.variables.iter().zip(z) {
+        v.kind.set(&mut p, v.at_unit(zi));
+    }
+    p
 }
 
 /// The effects a candidate of a study simulates: those of its objectives' quantities (the
@@ -181,28 +186,6 @@ impl<'a> Problem<'a> {
                 &[&study.objective[..], &study.objective_limits[..]].concat(),
             ),
         }
-    }
-
-    /// The point at variable values x (engine units, in `study.variables` order).
-    pub fn point_at(&self, x: &[f64]) -> Point {
-        let mut p = self.study.start_point();
-        for (v, &value) in self.study.variables.iter().zip(x) {
-            v.kind.set(&mut p, value);
-        }
-        p
-    }
-
-    /// The point at z of the unit cube of the variables (z = 0 lower bounds, 1 upper bounds;
-    /// `Variable::at_unit`, logarithmic for the crown radius).
-    pub fn point_at_unit(&self, z: &[f64]) -> Point {
-        let x: Vec<f64> = self
-            .study
-            .variables
-            .iter()
-            .zip(z)
-            .map(|(v, &zi)| v.at_unit(zi))
-            .collect();
-        self.point_at(&x)
     }
 
     /// A point's place in the unit cube of the variables.

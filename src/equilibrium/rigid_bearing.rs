@@ -15,7 +15,7 @@ use super::rollers::{AngleTrig, Reach, RollerState, Rollers};
 use super::solve::{monotone_root, Balance, Root, SolveFailure};
 use super::work::Work;
 use crate::geometry::clearance::{GapFailure, Pose};
-use crate::geometry::Vec2;
+use crate::geometry::{z_cross, Vec2};
 use crate::model::{ContactLaw, GeometryMode};
 
 /// Zero torque with clearance leaves the disc free within its backlash; we report the limit
@@ -351,7 +351,7 @@ fn coupled_roller_moment(
         let df = s.stiffness_n_per_mm * s.arm_mm;
         dm += df * arm;
         scale += (s.force_n * arm).abs();
-        let t = Vec2::new(-s.normal.y, s.normal.x);
+        let t = z_cross(s.normal);
         let unit = -s.normal - t * (c.roller * c.roller_sign(crank, centre, s));
         force += unit * s.force_n;
         dforce += unit * df;

@@ -12,7 +12,7 @@
 //! r' must be smaller than the smallest convex radius of curvature of C.
 
 use super::form_error::FormError;
-use super::{cmul, cross, expi_minus_one, rotate, sin_cos, unit, Vec2};
+use super::{cmul, cross, expi_minus_one, rotate, sin_cos, unit, z_cross, Vec2};
 use crate::model::{Design, FormTerm, Locus, Modification};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -540,7 +540,7 @@ impl Profile {
             let radial = Vec2::new(rl - r_ref, 0.0) + e1 * rl;
             let diff = cmul(base, radial) - cmul(lobe, en) * e + fixed;
             let v = et * rl - ent * (e * n);
-            let d1 = Vec2::new(-v.y, v.x);
+            let d1 = z_cross(v);
             let d2 = ent * (e * n * n) - et * rl;
             (et, ent, diff, d1, d2)
         };
@@ -627,16 +627,15 @@ impl Profile {
         const MAX_ITER: usize = 30;
         let n = self.rollers as f64;
         let (e, rl, r) = (self.eccentricity_mm, self.locus_radius_mm, self.offset_mm);
-        let perp = |v: Vec2| Vec2::new(-v.y, v.x);
         let jet_at = |e1: Vec2, en: Vec2| {
             let et = base + cmul(base, e1);
             let ent = lobe + cmul(lobe, en);
             let jet = LocusJet {
                 c: et * rl - ent * e,
-                d1: perp(et * rl - ent * (e * n)),
+                d1: z_cross(et * rl - ent * (e * n)),
                 d2: ent * (e * n * n) - et * rl,
             };
-            let d3 = perp(ent * (e * n * n * n) - et * rl);
+            let d3 = z_cross(ent * (e * n * n * n) - et * rl);
             let moved = cmul(base, e1) * rl - cmul(lobe, en) * e;
             (jet, d3, moved)
         };

@@ -153,9 +153,8 @@ fn centre_newton(
 ) -> Result<AngleSolution, SolveFailure> {
     let mut u = start;
     let tol = compliant_tolerance(model);
-    solve_rigid(model, crank, work, u)?;
+    let mut force = centre_residual(model, kb, crank, work, u)?;
     let mut best = work.sol.clone();
-    let mut force = force_residual(model, kb, &best);
     let mut exact_jacobian = false;
     for _ in 0..MAX_CENTRE_STEPS {
         if force_merit(model, kb, &best) <= tol {

@@ -44,7 +44,7 @@ use super::friction::sliding::{self, disc_speed_ratio, disc_velocity, relative_c
 use super::pins::PinState;
 use super::rollers::RollerState;
 use super::solve::rel;
-use crate::geometry::{angle_from, cross, unit, Vec2};
+use crate::geometry::{angle_from, cross, unit, z_cross, Vec2};
 use crate::model::{Design, Friction};
 
 /// The friction of the coupled balance, per unit normal force (`Friction` reduced to what the
@@ -154,7 +154,7 @@ impl Coupling {
 
     /// The friction force of roller `s` on the disc, N: −c_r·F·s·t, t = ẑ × n.
     pub fn roller_friction(&self, crank_rad: f64, centre: Vec2, s: &RollerState) -> Vec2 {
-        let t = Vec2::new(-s.normal.y, s.normal.x);
+        let t = z_cross(s.normal);
         t * (-self.roller * s.force_n * self.roller_sign(crank_rad, centre, s))
     }
 
@@ -164,10 +164,10 @@ impl Coupling {
     /// of σ·(−O_d·u_j − ρ·X_j·u_j) (`sliding::torsion_pin_sliding`), or zero where it vanishes.
     pub fn pin_direction(&self, e_phi: Vec2, centre: Vec2, p: &PinState) -> Vec2 {
         match self.sliding {
-            Sliding::Running => Vec2::new(-e_phi.y, e_phi.x),
+            Sliding::Running => z_cross(e_phi),
             Sliding::Torsion { sigma, pin_ratio } => {
                 let v = sliding::torsion_pin_sliding(centre, p.point, p.direction, pin_ratio);
-                Vec2::new(-p.direction.y, p.direction.x) * sign(sigma * v)
+                z_cross(p.direction) * sign(sigma * v)
             }
         }
     }
@@ -339,7 +339,7 @@ impl Coupling {
         for p in sol.pins.iter().filter(|p| p.force_n != 0.0) {
             // The hole's material relative to the pin: v_disc(X) − ωd ẑ × X.
             let x = p.point;
-            let relative = disc_velocity(crank_rad, ecc, nc, x) - Vec2::new(-x.y, x.x) * wd;
+            let relative = disc_velocity(crank_rad, ecc, nc, x) - z_cross(x) * wd;
             let friction = self.pin_friction(e_phi, centre, p);
             e.output_pins -= friction.dot(&relative);
             e.normal_work -= p.force_n * p.direction.dot(&relative);
@@ -348,7 +348,7 @@ impl Coupling {
             e.pin_convention += p.force_n * cross(centre, p.direction) / nc as f64;
         }
         // The crank pushes at E with velocity ω ẑ × E; the disc's field at its centre.
-        let eccentric_velocity = Vec2::new(-e_phi.y, e_phi.x) * ecc;
+        let eccentric_velocity = z_cross(e_phi) * ecc;
         e.bearing_offset =
             fb.dot(&(eccentric_velocity - disc_velocity(crank_rad, ecc, nc, centre)));
         e

@@ -15,7 +15,7 @@ use super::rollers::{AngleTrig, Reach, RollerState, Rollers};
 use super::solve::{monotone_root, Balance, Root, SolveFailure};
 use super::work::Work;
 use crate::geometry::clearance::{GapFailure, Pose};
-use crate::geometry::Vec2;
+use crate::geometry::{z_cross, Vec2};
 use crate::model::{ContactLaw, GeometryMode};
 
 /// Zero torque with clearance leaves the disc free within its backlash; we report the limit
@@ -119,25 +119,13 @@ fn solve_rollers(
         work.slopes.0 = 0.0;
         return Ok(lag);
     }
-    Reach::size(&mut work.reaches, r.count(), (crank, guess, offset));
-    let exact_final = work.exact_final;
-    let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
-    let trig = AngleTrig::new(crank, model.teeth);
-    let offset_norm = offset.norm();
-    let root = monotone_root(
-        |lag| {
-            r.evaluate_at(&pose(lag), &trig, states, reaches)?;
-            let (value, slope, scale) = moment(states);
-            Ok::<_, GapFailure>(Balance {
-                value,
-                slope,
-                scale,
-                resolution: r.moment_resolution(states, offset_norm),
-            })
-        },
-        model.torque_nmm,
-        guess,
-        &model.settings,
+    let root = rollers_root(
+        model,
+        r,
+        (crank, offset),
+        (model.torque_nmm, guess),
+        work,
+        moment,
     )
     .map_err(|failure| match failure {
         // Not one lag tried moved the rollers' moment towards the torque: nothing touches on
@@ -155,21 +143,20 @@ fn solve_rollers(
         } => beyond_reach(r, &pose(x), value, model.torque_nmm),
         other => other,
     })?;
-    work.slopes.0 = root.slope;
+    let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
+    let offset_norm = offset.norm();
     let mut lag = root.x;
     if let Some(towards) = root.straddle {
         // The balance steps over the torque between two adjacent lags (round-off of the
         // gaps): every roller exact at both ends, forces mixed so that Σ F·l = T.
         let exact = |lag: f64, states: &mut Vec<RollerState>| {
-            r.evaluate_at(&pose(lag), &trig, states, &mut [])
-                .map_err(SolveFailure::Gap)
+            r.evaluate(&pose(lag), states).map_err(SolveFailure::Gap)
         };
         exact(lag, states)?;
         lag = settle(lag, towards, model.torque_nmm, states, exact)?;
-    } else if exact_final {
+    } else if work.exact_final {
         // Every roller exact at the answer (skipped ones carried only a gap bound).
-        r.evaluate_at(&pose(lag), &trig, states, &mut [])
-            .map_err(SolveFailure::Gap)?;
+        r.evaluate(&pose(lag), states).map_err(SolveFailure::Gap)?;
     }
     if model.torque_nmm == 0.0 {
         // Free in the backlash: no contact carries force, or none more than round-off. The
@@ -364,7 +351,7 @@ fn coupled_roller_moment(
         let df = s.stiffness_n_per_mm * s.arm_mm;
         dm += df * arm;
         scale += (s.force_n * arm).abs();
-        let t = Vec2::new(-s.normal.y, s.normal.x);
+        let t = z_cross(s.normal);
         let unit = -s.normal - t * (c.roller * c.roller_sign(crank, centre, s));
         force += unit * s.force_n;
         dforce += unit * df;
@@ -394,41 +381,24 @@ fn solve_rollers_coupled(
     let pose = |lag| Pose::new(crank, lag, offset);
     let centre = e_phi * model.eccentricity_mm + offset;
     let target = model.torque_nmm + pins.shift;
-    Reach::size(&mut work.reaches, r.count(), (crank, guess, offset));
-    let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
-    let trig = AngleTrig::new(crank, model.teeth);
-    let offset_norm = offset.norm();
-    let root = monotone_root(
-        |lag| {
-            r.evaluate_at(&pose(lag), &trig, states, reaches)?;
-            let (value, slope, scale) = coupled_roller_moment(c, crank, centre, states, pins);
-            Ok::<_, GapFailure>(Balance {
-                value,
-                slope,
-                scale,
-                resolution: r.moment_resolution(states, offset_norm),
-            })
+    let balance = |states: &[RollerState]| coupled_roller_moment(c, crank, centre, states, pins);
+    let root = rollers_root(model, r, (crank, offset), (target, guess), work, balance).map_err(
+        |failure| match failure {
+            SolveFailure::NoBracket {
+                nearest: Some((x, value)),
+                ..
+            } if value != 0.0 => {
+                let at = (crank, centre, &pose(x));
+                self_locking(c, r, at, pins, model.torque_nmm)
+                    .unwrap_or_else(|| beyond_reach(r, &pose(x), value, target))
+            }
+            other => other,
         },
-        target,
-        guess,
-        &model.settings,
-    )
-    .map_err(|failure| match failure {
-        SolveFailure::NoBracket {
-            nearest: Some((x, value)),
-            ..
-        } if value != 0.0 => {
-            let at = (crank, centre, &pose(x));
-            self_locking(c, r, at, pins, model.torque_nmm)
-                .unwrap_or_else(|| beyond_reach(r, &pose(x), value, target))
-        }
-        other => other,
-    })?;
-    work.slopes.0 = root.slope;
+    )?;
     // A straddled root (round-off of the gaps) is taken at its end: its balance is within the
     // round-off of the gaps, which the tolerance of the pins' pass below accepts.
     if root.straddle.is_some() || work.exact_final {
-        r.evaluate_at(&pose(root.x), &trig, states, &mut [])
+        r.evaluate(&pose(root.x), &mut work.sol.rollers)
             .map_err(SolveFailure::Gap)?;
     }
     Ok(root.x)
@@ -459,6 +429,41 @@ fn self_locking(
         normal_moment_nmm: normal,
         lag_rad: pose.lag_rad,
     })
+}
+
+/// The root β of the rollers' balance `balance` = `target` at the centre offset `offset` (the
+/// search of both the frictionless balance Σ F·l and the coupled one Σ F·l̃ − c_b·|Fb|), the
+/// rollers' states left at the root and its slope kept in `work.slopes.0`.
+fn rollers_root(
+    model: &Model,
+    r: &Rollers,
+    (crank, offset): (f64, Vec2),
+    (target, guess): (f64, f64),
+    work: &mut Work,
+    balance: impl Fn(&[RollerState]) -> (f64, f64, f64),
+) -> Result<Root, SolveFailure> {
+    let pose = |lag| Pose::new(crank, lag, offset);
+    let trig = AngleTrig::new(crank, model.teeth);
+    Reach::size(&mut work.reaches, r.count(), pose(guess));
+    let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
+    let offset_norm = offset.norm();
+    let root = monotone_root(
+        |lag| {
+            r.evaluate_at(&pose(lag), &trig, states, reaches)?;
+            let (value, slope, scale) = balance(states);
+            Ok::<_, GapFailure>(Balance {
+                value,
+                slope,
+                scale,
+                resolution: r.moment_resolution(states, offset_norm),
+            })
+        },
+        target,
+        guess,
+        &model.settings,
+    )?;
+    work.slopes.0 = root.slope;
+    Ok(root)
 }
 
 /// The root βo of the pins' balance Σ F_j·arm_j = T at the disc rotation ψ (the search of

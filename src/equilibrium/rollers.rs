@@ -47,21 +47,17 @@ impl RollerState {
 /// (first order) plus `curvature_bound`·(Δφ² + Δβ²), and the gap moves no more than it does.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Reach {
-    pub crank_rad: f64,
-    pub lag_rad: f64,
-    pub offset_mm: Vec2,
+    pub pose: Pose,
     pub gap_mm: f64,
 }
 
 impl Reach {
     /// `reaches` for `count` rollers: as they are when there are that many, else each
-    /// roller's reach unknown (no gap yet) at the pose `(crank_rad, lag_rad, offset_mm)`.
-    pub fn size(reaches: &mut Vec<Reach>, count: usize, (crank, lag, offset): (f64, f64, Vec2)) {
+    /// roller's reach unknown (no gap yet) at `pose`.
+    pub fn size(reaches: &mut Vec<Reach>, count: usize, pose: Pose) {
         if reaches.len() != count {
             let unknown = Reach {
-                crank_rad: crank,
-                lag_rad: lag,
-                offset_mm: offset,
+                pose,
                 gap_mm: f64::NEG_INFINITY,
             };
             *reaches = vec![unknown; count];
@@ -344,9 +340,9 @@ impl Rollers {
 
     /// A lower bound on roller i's gap at `pose`, from where it was last evaluated.
     fn gap_lower_bound(&self, reach: &Reach, pose: &Pose) -> f64 {
-        let dphi = (pose.crank_rad - reach.crank_rad).abs();
-        let dlag = (pose.lag_rad - reach.lag_rad).abs();
-        let du = (pose.centre_offset_mm - reach.offset_mm).norm();
+        let dphi = (pose.crank_rad - reach.pose.crank_rad).abs();
+        let dlag = (pose.lag_rad - reach.pose.lag_rad).abs();
+        let du = (pose.centre_offset_mm - reach.pose.centre_offset_mm).norm();
         let nc = self.design.teeth as f64;
         let orbit = self.design.eccentricity_mm + self.mesh.eccentricity_deviation_mm.abs();
         let first = self.reach_radius_mm * (dphi / nc + dlag) + orbit * dphi + du;
@@ -419,9 +415,7 @@ impl Rollers {
             };
             if let Some(reach) = reaches.get_mut(i) {
                 *reach = Reach {
-                    crank_rad: pose.crank_rad,
-                    lag_rad: pose.lag_rad,
-                    offset_mm: pose.centre_offset_mm,
+                    pose: *pose,
                     gap_mm: st.gap_mm,
                 };
             }

@@ -154,6 +154,8 @@ impl Columns {
             .is_some_and(|r| r.slices() > 1 || r.face().is_some());
         let pins = model.pins.as_ref().map_or(0, |p| p.count);
         let column = || vec![0.0; angles];
+        // A column that only some models record: one, or none.
+        let optional = |recorded: bool| Vec::from_iter(recorded.then(column));
         Columns {
             lag: column(),
             output_lag: column(),
@@ -170,20 +172,12 @@ impl Columns {
             loss: (0..usize::from(model.losses.is_some()))
                 .map(|_| vec![PathLosses::default(); angles])
                 .collect(),
-            input_torque: (0..usize::from(
-                model.losses.as_ref().is_some_and(|l| l.input.is_some()),
-            ))
-                .map(|_| column())
-                .collect(),
+            input_torque: optional(model.losses.as_ref().is_some_and(|l| l.input.is_some())),
             line_load: (0..if resolved { rollers } else { 0 })
                 .map(|_| vec![0.0; angles * slices])
                 .collect(),
             slices,
-            face_factor: (0..usize::from(
-                model.rollers.as_ref().is_some_and(|r| r.face().is_some()),
-            ))
-                .map(|_| column())
-                .collect(),
+            face_factor: optional(model.rollers.as_ref().is_some_and(|r| r.face().is_some())),
         }
     }
 

@@ -20,6 +20,12 @@ pub fn cross(a: Vec2, b: Vec2) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// ẑ × v = (−v.y, v.x): `v` turned a quarter turn counter-clockwise.
+#[inline]
+pub fn z_cross(v: Vec2) -> Vec2 {
+    Vec2::new(-v.y, v.x)
+}
+
 /// The angle of `v` from the unit direction `from`, counter-clockwise, in [−π, π], rad:
 /// atan2(from × v, from·v).
 #[inline]

@@ -12,7 +12,7 @@
 //! r' must be smaller than the smallest convex radius of curvature of C.
 
 use super::form_error::FormError;
-use super::{cmul, cross, expi_minus_one, rotate, sin_cos, unit, Vec2};
+use super::{cmul, cross, expi_minus_one, rotate, sin_cos, unit, z_cross, Vec2};
 use crate::model::{Design, FormTerm, Locus, Modification};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -239,8 +239,9 @@ impl Profile {
             - 3.0 * cross(j.d1, j.d2) / s2.powf(1.5) * j.d1.dot(&j.d2) / s2
     }
 
-    fn unrotated_normal(j: &LocusJet) -> Vec2 {
-        Vec2::new(j.d1.y, -j.d1.x) / j.d1.norm()
+    /// The outward unit normal, unturned, of a curve whose derivative is `d1`: −ẑ × d1/|d1|.
+    fn unrotated_normal(d1: Vec2) -> Vec2 {
+        Vec2::new(d1.y, -d1.x) / d1.norm()
     }
 
     fn turned(&self, v: Vec2) -> Vec2 {
@@ -255,16 +256,15 @@ impl Profile {
     pub fn point(&self, t: f64) -> Vec2 {
         let j = self.locus_jet(t);
         let w = self.form.jet(t).0;
-        self.turned(j.c - (self.offset_mm + w) * Self::unrotated_normal(&j))
+        self.turned(j.c - (self.offset_mm + w) * Self::unrotated_normal(j.d1))
     }
 
     /// Outward unit normal of Γ at t, disc frame (that of C when there is no form error).
     pub fn normal(&self, t: f64) -> Vec2 {
         if self.has_form() {
-            let g = self.formed_jet(t).d1;
-            return self.turned(Vec2::new(g.y, -g.x) / g.norm());
+            return self.turned(Self::unrotated_normal(self.formed_jet(t).d1));
         }
-        self.turned(Self::unrotated_normal(&self.locus_jet(t)))
+        self.turned(Self::unrotated_normal(self.locus_jet(t).d1))
     }
 
     /// Γ'(t), mm/rad, disc frame: |C'|·(1 − r'κ_C)·T without a form error.
@@ -399,7 +399,7 @@ impl Profile {
         let mut ds = [0.0; SCAN + 1];
         for d in &mut ds {
             let j = self.jet_from(&trig);
-            *d = (j.c - self.offset_mm * Self::unrotated_normal(&j) - q).norm();
+            *d = (j.c - self.offset_mm * Self::unrotated_normal(j.d1) - q).norm();
             trig = trig.turned_by(&turn);
         }
         let seeds = (1..SCAN)
@@ -540,13 +540,13 @@ impl Profile {
             let radial = Vec2::new(rl - r_ref, 0.0) + e1 * rl;
             let diff = cmul(base, radial) - cmul(lobe, en) * e + fixed;
             let v = et * rl - ent * (e * n);
-            let d1 = Vec2::new(-v.y, v.x);
+            let d1 = z_cross(v);
             let d2 = ent * (e * n * n) - et * rl;
             (et, ent, diff, d1, d2)
         };
         let foot = |s: f64, e1: Vec2, en: Vec2| {
             let (et, ent, diff, d1, _) = at(e1, en);
-            let normal = Vec2::new(d1.y, -d1.x) / d1.norm();
+            let normal = Self::unrotated_normal(d1);
             if self.has_form() {
                 let at_foot = diff - self.offset_mm * normal;
                 return self.formed_foot(t_ref + s, (et, ent), at_foot);
@@ -596,7 +596,7 @@ impl Profile {
     }
 
     fn foot_from(&self, t: f64, j: &LocusJet, q: Vec2) -> Result<Foot, ClosestPointFailure> {
-        let n = Self::unrotated_normal(j);
+        let n = Self::unrotated_normal(j.d1);
         let point = j.c - self.offset_mm * n;
         if self.has_form() {
             let n_t = self.rollers as f64 * t;
@@ -627,33 +627,32 @@ impl Profile {
         const MAX_ITER: usize = 30;
         let n = self.rollers as f64;
         let (e, rl, r) = (self.eccentricity_mm, self.locus_radius_mm, self.offset_mm);
-        let perp = |v: Vec2| Vec2::new(-v.y, v.x);
         let jet_at = |e1: Vec2, en: Vec2| {
             let et = base + cmul(base, e1);
             let ent = lobe + cmul(lobe, en);
             let jet = LocusJet {
                 c: et * rl - ent * e,
-                d1: perp(et * rl - ent * (e * n)),
+                d1: z_cross(et * rl - ent * (e * n)),
                 d2: ent * (e * n * n) - et * rl,
             };
-            let d3 = perp(ent * (e * n * n * n) - et * rl);
+            let d3 = z_cross(ent * (e * n * n * n) - et * rl);
             let moved = cmul(base, e1) * rl - cmul(lobe, en) * e;
             (jet, d3, moved)
         };
-        let n0 = Self::unrotated_normal(&jet_at(Vec2::zeros(), Vec2::zeros()).0);
+        let n0 = Self::unrotated_normal(jet_at(Vec2::zeros(), Vec2::zeros()).0.d1);
         let reach = PI / self.rollers as f64;
         let mut s = 0.0;
         for iteration in 1..=MAX_ITER {
             let (jet, d3, moved) = jet_at(expi_minus_one(s), expi_minus_one(n * s));
             let form = self.form.jet(t0 + s);
             let g = self.formed_from(&jet, d3, form);
-            let normal_c = Self::unrotated_normal(&jet);
+            let normal_c = Self::unrotated_normal(jet.d1);
             let d = at_foot + moved - (normal_c - n0) * r - normal_c * form.0;
             let h = d.dot(&g.d1);
             let dh = g.d1.norm_squared() + d.dot(&g.d2);
             let step = newton_step(h, dh);
             if dh > 0.0 && step.abs() <= 1e-14 {
-                let normal = Vec2::new(g.d1.y, -g.d1.x) / g.d1.norm();
+                let normal = Self::unrotated_normal(g.d1);
                 let signed = -d.dot(&normal);
                 return Ok(Foot {
                     t: super::wrap_tau(t0 + s),

@@ -1897,7 +1897,7 @@ proptest! {
         let mesh = Mesh::new(&c.design, &c.m);
         let period = TAU / c.design.rollers as f64;
         let (mut states, mut reaches) = (Vec::new(), vec![
-            Reach { crank_rad: 0.0, lag_rad: 0.0, offset_mm: Vec2::zeros(), gap_mm: f64::NEG_INFINITY };
+            Reach { pose: Pose::ideal(0.0), gap_mm: f64::NEG_INFINITY };
             c.design.rollers
         ]);
         // Lags across the backlash of a small modification, both ways.
@@ -1909,7 +1909,7 @@ proptest! {
             let trig = AngleTrig::new(phi, c.design.teeth);
             rollers.evaluate_at(&pose, &trig, &mut states, &mut reaches).unwrap();
             for (i, reach) in reaches.iter().enumerate() {
-                if reach.crank_rad != phi || reach.lag_rad != lag {
+                if reach.pose.crank_rad != phi || reach.pose.lag_rad != lag {
                     continue; // skipped at this pose: its bound, not a stored gap
                 }
                 let cold = mesh.roller_gap(i, &pose, None).unwrap().gap_mm;

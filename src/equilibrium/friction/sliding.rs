@@ -7,7 +7,7 @@
 //! O_d = e(cos φ, sin φ) moving at v_c = e·ω(−sin φ, cos φ); its instantaneous centre is the
 //! pitch point I = e·np(cos φ, sin φ).
 
-use crate::geometry::{cross, Vec2};
+use crate::geometry::{cross, z_cross, Vec2};
 
 /// ωd / ω = −1/nc: the disc's (and output's) speed per unit input speed.
 pub fn disc_speed_ratio(teeth: usize) -> f64 {
@@ -28,7 +28,7 @@ pub fn disc_velocity(crank_rad: f64, eccentricity_mm: f64, teeth: usize, point_m
     let centre_velocity = Vec2::new(-s, c) * eccentricity_mm;
     let r = point_mm - centre;
     // ẑ × r = (−r_y, r_x)
-    centre_velocity + Vec2::new(-r.y, r.x) * disc_speed_ratio(teeth)
+    centre_velocity + z_cross(r) * disc_speed_ratio(teeth)
 }
 
 /// The disc's sliding speed over a fixed roller at contact point `point_mm`, along the

@@ -329,15 +329,13 @@ pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> St
         .iter()
         .enumerate()
         .map(|(k, &c)| {
-            let text = (k + 1).to_string();
-            let label = Label {
-                text: text.clone(),
+            layout.place(&Label {
+                text: (k + 1).to_string(),
                 size: 10.0,
                 anchor: c,
                 gap: 5.0,
                 toward: (1.0, -1.0),
-            };
-            (layout.place(&label), text)
+            })
         })
         .collect();
     let body: Markup = html! {
@@ -362,8 +360,8 @@ pub fn front_plot(req: &Requirements, run: &SearchRun, i: usize, j: usize) -> St
         @for &(x, y) in &spots {
             circle cx=(px(x)) cy=(px(y)) r="4" fill="#1f77b4" {}
         }
-        @for (p, text) in &placed {
-            (p.draw(text, 10.0, "#333", true))
+        @for p in &placed {
+            (p.draw("#333", true))
         }
     };
     document(w, h, body)

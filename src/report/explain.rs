@@ -452,29 +452,21 @@ fn fatigue_formulas(design: &Design, scene: &Scene) -> Vec<String> {
             input(f.exponent)
         )
     };
-    let mut lines = Vec::new();
-    let parts = [
-        ("disc", s.disc.contact_fatigue),
-        ("rollers", s.rollers.contact_fatigue),
-    ];
-    match parts {
-        [(_, Some(d)), (_, Some(r))] if d == r => lines.push(format!(
-            "contact fatigue of disc and rollers {} cycles to failure at the Hertz pressure p \
-             (Basquin's form)",
-            law(&d)
-        )),
-        _ => {
-            for (part, f) in parts {
-                if let Some(f) = f {
-                    lines.push(format!(
-                        "contact fatigue of the {part} {} cycles to failure at the Hertz \
-                         pressure p (Basquin's form)",
-                        law(&f)
-                    ));
-                }
-            }
-        }
-    }
+    let (disc, rollers) = (s.disc.contact_fatigue, s.rollers.contact_fatigue);
+    // One law of both parts is said once.
+    let parts = match (disc, rollers) {
+        (Some(d), Some(r)) if d == r => vec![("disc and rollers", disc)],
+        _ => vec![("the disc", disc), ("the rollers", rollers)],
+    };
+    let mut lines: Vec<String> = (parts.into_iter())
+        .filter_map(|(part, f)| {
+            Some(format!(
+                "contact fatigue of {part} {} cycles to failure at the Hertz pressure p \
+                 (Basquin's form)",
+                law(&f?)
+            ))
+        })
+        .collect();
     let disc_passes = fatigue::disc_passes_per_crank_turn(design.teeth);
     lines.push(format!(
         "passes per crank turn: each disc lobe np/nc = {}/{} = {} (the load turns 1 + 1/nc \

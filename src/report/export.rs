@@ -81,11 +81,12 @@ pub fn csv(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
     out
 }
 
-/// DXF (R12) text: one closed POLYLINE on layer PROFILE, and the output-pin holes as CIRCLE
-/// entities on layers HOLE_0 … HOLE_{M−1} (hole j at angle 2πj/M on the pin circle, its radius
-/// the pin's plus e plus the hole clearance; cut in the same set-up, they fix the rotation
-/// modification), units mm ($INSUNITS = 4).
+/// DXF (R12) text of the profile document: one closed POLYLINE on layer PROFILE, and the
+/// output-pin holes as CIRCLE entities on layers HOLE_0 … HOLE_{M−1} (hole j at angle 2πj/M on
+/// the pin circle, its radius the pin's plus e plus the hole clearance; cut in the same set-up,
+/// they fix the rotation modification), units mm ($INSUNITS = 4).
 pub fn dxf(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
+    let d = ProfileDoc::new(spec, points);
     let mut out = String::new();
     let mut pair = |code: i32, value: &str| out += &format!("{code}\n{value}\n");
     for line in header_lines(spec, tolerance_mm, points.len()) {
@@ -106,25 +107,23 @@ pub fn dxf(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
     for (code, value) in [(66, "1"), (70, "1"), (10, "0.0"), (20, "0.0"), (30, "0.0")] {
         pair(code, value);
     }
-    for p in points {
+    for (x, y) in d.x_mm.iter().zip(&d.y_mm) {
         pair(0, "VERTEX");
         pair(8, "PROFILE");
-        pair(10, &format!("{:.9}", p.point.x));
-        pair(20, &format!("{:.9}", p.point.y));
+        pair(10, &format!("{x:.9}"));
+        pair(20, &format!("{y:.9}"));
         pair(30, "0.0");
     }
     for (code, value) in [(0, "SEQEND"), (8, "PROFILE")] {
         pair(code, value);
     }
-    let pins = &spec.design.pins;
-    for j in 0..pins.count {
-        let [x, y] = pins.centre_mm(j);
+    for (j, (x, y)) in d.holes_x_mm.iter().zip(&d.holes_y_mm).enumerate() {
         pair(0, "CIRCLE");
         pair(8, &format!("HOLE_{j}"));
         pair(10, &format!("{x:.9}"));
         pair(20, &format!("{y:.9}"));
         pair(30, "0.0");
-        pair(40, &format!("{:.9}", spec.design.hole_radius_mm()));
+        pair(40, &format!("{:.9}", d.hole_radius_mm));
     }
     for (code, value) in [(0, "ENDSEC"), (0, "EOF")] {
         pair(code, value);

@@ -95,15 +95,16 @@ pub struct MinClearanceAt {
 /// What the smallest gap was sought over (`MinCoverage`): the whole period of the gaps, its
 /// step and the error bound of the sampling, or the scene's own crank angles alone.
 #[derive(Serialize)]
-pub struct MinClearanceOver {
-    #[serde(skip_serializing_if = "Option::is_none")]
-    period_deg: Option<Finite>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    step_deg: Option<Finite>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    error_bound_mm: Option<Finite>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    crank_angles: Option<usize>,
+#[serde(untagged)]
+pub enum MinClearanceOver {
+    Period {
+        period_deg: Finite,
+        step_deg: Finite,
+        error_bound_mm: Finite,
+    },
+    Angles {
+        crank_angles: usize,
+    },
 }
 
 /// One scene's document: the entries of `SCENE` in its order. Every curve of the registry
@@ -394,18 +395,12 @@ fn min_clearance_at(c: &ClearanceSweep) -> MinClearanceAt {
 
 fn min_clearance_over(c: &ClearanceSweep) -> MinClearanceOver {
     match c.coverage {
-        MinCoverage::Period(p) => MinClearanceOver {
-            period_deg: Some(Finite(units::deg(p.period_rad))),
-            step_deg: Some(Finite(units::deg(p.step_rad))),
-            error_bound_mm: Some(Finite(p.error_bound_mm)),
-            crank_angles: None,
+        MinCoverage::Period(p) => MinClearanceOver::Period {
+            period_deg: Finite(units::deg(p.period_rad)),
+            step_deg: Finite(units::deg(p.step_rad)),
+            error_bound_mm: Finite(p.error_bound_mm),
         },
-        MinCoverage::Angles(n) => MinClearanceOver {
-            period_deg: None,
-            step_deg: None,
-            error_bound_mm: None,
-            crank_angles: Some(n),
-        },
+        MinCoverage::Angles(n) => MinClearanceOver::Angles { crank_angles: n },
     }
 }
 

@@ -232,12 +232,12 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
                 toward: (x - ox, y - oy),
             };
             let color = if i == tight { RED } else { "#333" };
-            (layout.place(&label), label, color)
+            (layout.place(&label), color)
         })
         .collect();
     let forces: Vec<_> = arrows
         .iter()
-        .map(|a| (layout.place(&a.label), &a.label, a.color.as_str()))
+        .map(|a| (layout.place(&a.label), a.color.as_str()))
         .collect();
     let body = html! {
         text x="14" y="24" font-size="16" font-weight="bold" { "Disc at crank φ = " (format!("{phi:.2}")) "°" }
@@ -265,11 +265,8 @@ pub fn whole(disc: &Disc, teeth: usize, eccentricity_mm: f64) -> (String, String
         circle cx=(px(ox)) cy=(px(oy)) r="3" fill="#333" {}
         circle cx=(px(cx)) cy=(px(cy)) r="3" fill=(RED) {}
         g.arrows { @for a in &arrows { (a.drawn) } }
-        @for (placed, label, color) in &numbers {
-            (placed.draw(&label.text, label.size, color, false))
-        }
-        @for (placed, label, color) in &forces {
-            (placed.draw(&label.text, label.size, color, false))
+        @for (placed, color) in numbers.iter().chain(&forces) {
+            (placed.draw(color, false))
         }
         (f.scale_bar(w - 30.0, h - 20.0, 10.0, "10 mm"))
     };
@@ -360,9 +357,8 @@ pub fn close_up(disc: &Disc) -> (String, String) {
             .obstacles
             .push(Obstacle::Segment((x - 8.0, y), (x + 8.0, y)));
     }
-    let text = format!("{what} {} µm", number(units::um(c.gap_mm)));
     let gap_label = layout.place(&Label {
-        text: text.clone(),
+        text: format!("{what} {} µm", number(units::um(c.gap_mm))),
         size: 14.0,
         anchor: (x + 10.0, (y0 + y1) / 2.0),
         gap: 2.0,
@@ -386,7 +382,7 @@ pub fn close_up(disc: &Disc) -> (String, String) {
         line x1=(px(x)) y1=(px(y0)) x2=(px(x)) y2=(px(y1)) stroke=(color) stroke-width="2" {}
         (tick(y0))
         (tick(y1))
-        (gap_label.draw(&text, 14.0, color, true))
+        (gap_label.draw(color, true))
         rect x=(px(wx)) y=(px(wy)) width=(px(wl)) height=(px(wl)) fill="none" stroke="#333" {}
         (f.scale_bar(f.x(window / 2.0), h - 22.0, bar, &format!("{:.0} µm", units::um(bar))))
     };

@@ -116,14 +116,16 @@ pub struct Label {
     pub toward: (f64, f64),
 }
 
-/// A placed label: its box, where its text starts (anchor "start", baseline y) and the
-/// leader line from its anchor when it was moved far.
+/// A placed label: its box, where its text starts (anchor "start", baseline y), the leader
+/// line from its anchor when it was moved far, and the label's text and font size.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Placed {
     pub bounds: Bounds,
     pub x: f64,
     pub y: f64,
     pub leader: Option<((f64, f64), (f64, f64))>,
+    pub text: String,
+    pub size: f64,
 }
 
 /// White margin kept around a label's text, pixels (the text's halo is 0.14 em wide).
@@ -218,6 +220,8 @@ impl Layout {
             x: bounds.x0 + PAD,
             y: bounds.y0 + PAD + 0.8 * label.size,
             leader,
+            text: label.text.clone(),
+            size: label.size,
         }
     }
 }
@@ -225,15 +229,17 @@ impl Layout {
 impl Placed {
     /// The label as SVG: its leader line (thin grey, class `leader`) and its text (class
     /// `label`, a white halo, start-anchored), in `color`.
-    pub fn draw(&self, text: &str, size: f64, color: &str, bold: bool) -> Markup {
+    pub fn draw(&self, color: &str, bold: bool) -> Markup {
         html! {
             @if let Some((a, b)) = self.leader {
                 line.leader x1=(px(a.0)) y1=(px(a.1)) x2=(px(b.0)) y2=(px(b.1)) stroke="#777"
                     stroke-width="0.8" {}
             }
-            text.label x=(px(self.x)) y=(px(self.y)) font-size=(size)
+            text.label x=(px(self.x)) y=(px(self.y)) font-size=(self.size)
                 font-weight=[bold.then_some("bold")] fill=(color) stroke="white"
-                stroke-width=(size * 0.28) stroke-linejoin="round" paint-order="stroke" { (text) }
+                stroke-width=(self.size * 0.28) stroke-linejoin="round" paint-order="stroke" {
+                    (self.text)
+                }
         }
     }
 }

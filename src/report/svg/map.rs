@@ -457,7 +457,7 @@ impl MapPlot {
                 (symbol(self.markers[k].shape, spots[k].0, spots[k].1, &self.markers[k].color))
             }
             @for (p, m) in &placed {
-                (p.draw(&m.label, 12.0, &m.color, true))
+                (p.draw(&m.color, true))
             }
         }
     }

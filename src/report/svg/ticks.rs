@@ -76,12 +76,7 @@ pub fn every(lo: f64, hi: f64, step: f64) -> Ticks {
 impl Ticks {
     /// A tick's label: its decimals, a true minus sign, never "−0".
     pub fn label(&self, v: f64) -> String {
-        let s = format!("{v:.*}", self.decimals);
-        if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
-            s[1..].to_string()
-        } else {
-            s.replace('-', "−")
-        }
+        crate::numeric::fixed(v, self.decimals).replace('-', "−")
     }
 
     /// Grow the range by one step at an end that `v` (a limit) would sit on, so that a line

@@ -56,11 +56,8 @@ pub use crate::engine::shard_file::shard_len;
 
 /// The candidates of shard `(i, n)`: those of `all` whose index j ≡ i (mod n), in order.
 pub fn share(all: &[Candidate], (i, n): (u64, u64)) -> Vec<Candidate> {
-    all.iter()
-        .enumerate()
-        .filter(|(j, _)| *j as u64 % n.max(1) == i)
-        .map(|(_, c)| *c)
-        .collect()
+    let step = n.max(1) as usize;
+    all.iter().skip(i as usize).step_by(step).copied().collect()
 }
 
 /// The bytes of a shard file.

@@ -5,7 +5,7 @@
 use super::common::{figure, Section};
 use crate::engine::commands::solid_picture::SolidPicture;
 use crate::engine::drawing::{Disc, Part};
-use crate::geometry::Vec2;
+use crate::geometry::{z_cross, Vec2};
 use crate::numeric::number;
 use crate::report::svg::frame::Frame;
 use crate::report::svg::labels::{self, Bounds, Label, Layout, Obstacle};
@@ -88,7 +88,7 @@ fn arrow(f: &Frame, from: Vec2, to: Vec2, color: &str, label: &str) -> Option<Ar
     let (hx, hy) = f.at(to);
     let head = 9.0_f64.min(len * 0.5);
     let (bx, by) = (hx - u.x * head, hy - u.y * head);
-    let side = Vec2::new(-u.y, u.x) * head * 0.45;
+    let side = z_cross(u) * head * 0.45;
     let (fx, fy) = f.at(from);
     let corners = [
         (hx, hy),

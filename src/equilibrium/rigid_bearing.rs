@@ -119,10 +119,11 @@ fn solve_rollers(
         work.slopes.0 = 0.0;
         return Ok(lag);
     }
+    let trig = AngleTrig::new(crank, model.teeth);
     let root = rollers_root(
         model,
         r,
-        (crank, offset),
+        (&trig, offset),
         (model.torque_nmm, guess),
         work,
         moment,
@@ -150,13 +151,15 @@ fn solve_rollers(
         // The balance steps over the torque between two adjacent lags (round-off of the
         // gaps): every roller exact at both ends, forces mixed so that Σ F·l = T.
         let exact = |lag: f64, states: &mut Vec<RollerState>| {
-            r.evaluate(&pose(lag), states).map_err(SolveFailure::Gap)
+            r.evaluate_at(&pose(lag), &trig, states, &mut [])
+                .map_err(SolveFailure::Gap)
         };
         exact(lag, states)?;
         lag = settle(lag, towards, model.torque_nmm, states, exact)?;
     } else if work.exact_final {
         // Every roller exact at the answer (skipped ones carried only a gap bound).
-        r.evaluate(&pose(lag), states).map_err(SolveFailure::Gap)?;
+        r.evaluate_at(&pose(lag), &trig, states, &mut [])
+            .map_err(SolveFailure::Gap)?;
     }
     if model.torque_nmm == 0.0 {
         // Free in the backlash: no contact carries force, or none more than round-off. The
@@ -382,7 +385,8 @@ fn solve_rollers_coupled(
     let centre = e_phi * model.eccentricity_mm + offset;
     let target = model.torque_nmm + pins.shift;
     let balance = |states: &[RollerState]| coupled_roller_moment(c, crank, centre, states, pins);
-    let root = rollers_root(model, r, (crank, offset), (target, guess), work, balance).map_err(
+    let trig = AngleTrig::new(crank, model.teeth);
+    let root = rollers_root(model, r, (&trig, offset), (target, guess), work, balance).map_err(
         |failure| match failure {
             SolveFailure::NoBracket {
                 nearest: Some((x, value)),
@@ -398,7 +402,7 @@ fn solve_rollers_coupled(
     // A straddled root (round-off of the gaps) is taken at its end: its balance is within the
     // round-off of the gaps, which the tolerance of the pins' pass below accepts.
     if root.straddle.is_some() || work.exact_final {
-        r.evaluate(&pose(root.x), &mut work.sol.rollers)
+        r.evaluate_at(&pose(root.x), &trig, &mut work.sol.rollers, &mut [])
             .map_err(SolveFailure::Gap)?;
     }
     Ok(root.x)
@@ -431,25 +435,26 @@ fn self_locking(
     })
 }
 
-/// The root β of the rollers' balance `balance` = `target` at the centre offset `offset` (the
-/// search of both the frictionless balance Σ F·l and the coupled one Σ F·l̃ − c_b·|Fb|), the
-/// rollers' states left at the root and its slope kept in `work.slopes.0`.
+/// The root β of the rollers' balance `balance` = `target` at the crank angle of `trig` and the
+/// centre offset `offset` (the search of both the frictionless balance Σ F·l and the coupled
+/// one Σ F·l̃ − c_b·|Fb|), the rollers' states left at the root and its slope kept in
+/// `work.slopes.0`. The caller computes the angle's trigonometry once, for its exact
+/// re-evaluations too.
 fn rollers_root(
     model: &Model,
     r: &Rollers,
-    (crank, offset): (f64, Vec2),
+    (trig, offset): (&AngleTrig, Vec2),
     (target, guess): (f64, f64),
     work: &mut Work,
     balance: impl Fn(&[RollerState]) -> (f64, f64, f64),
 ) -> Result<Root, SolveFailure> {
-    let pose = |lag| Pose::new(crank, lag, offset);
-    let trig = AngleTrig::new(crank, model.teeth);
+    let pose = |lag| Pose::new(trig.crank_rad, lag, offset);
     Reach::size(&mut work.reaches, r.count(), pose(guess));
     let (states, reaches) = (&mut work.sol.rollers, &mut work.reaches);
     let offset_norm = offset.norm();
     let root = monotone_root(
         |lag| {
-            r.evaluate_at(&pose(lag), &trig, states, reaches)?;
+            r.evaluate_at(&pose(lag), trig, states, reaches)?;
             let (value, slope, scale) = balance(states);
             Ok::<_, GapFailure>(Balance {
                 value,

@@ -2,7 +2,7 @@
 //! requirement, and the design's value against its limit, or what the engine said).
 
 use crate::engine::limit::excess;
-use crate::model::quantity::{Bound, LimitDef, LIMITS};
+use crate::model::quantity::{find_limit, Bound, LimitDef};
 
 /// A requirement a design of the search must meet.
 #[derive(Debug, Clone, PartialEq)]
@@ -48,7 +48,7 @@ impl Requirement {
 
     /// The limit of `limits:` with this key.
     pub fn limit(key: &str) -> Option<Requirement> {
-        LIMITS.iter().find(|d| d.key == key).map(Requirement::Limit)
+        find_limit(key).map(Requirement::Limit)
     }
 
     /// The unit of its value and limit ("" for K1, a count or a ratio).

@@ -173,11 +173,7 @@ pub fn finish(
             .partial_cmp(&b.minimised(req))
             .unwrap_or(std::cmp::Ordering::Equal)
     });
-    let infeasible = if front.is_empty() {
-        Some(missed::diagnose(req, &all))
-    } else {
-        None
-    };
+    let infeasible = front.is_empty().then(|| missed::diagnose(req, &all));
     Ok(SearchRun {
         front,
         global,

@@ -74,14 +74,10 @@ impl Default for Options {
 /// A steps-per-period value of the ladder: 12·2^k with 24 ≤ n ≤ `MAX_FINEST` (`min` 12 for the
 /// settings resolution). The message says what is accepted.
 pub fn ladder_steps(n: i64, min: usize) -> std::result::Result<usize, String> {
-    let mut rungs = Vec::new();
-    let mut r = COARSEST;
-    while r <= MAX_FINEST {
-        if r >= min {
-            rungs.push(r);
-        }
-        r *= 2;
-    }
+    let rungs: Vec<usize> = std::iter::successors(Some(COARSEST), |r| Some(2 * r))
+        .take_while(|&r| r <= MAX_FINEST)
+        .filter(|&r| r >= min)
+        .collect();
     match rungs.iter().find(|&&r| r as i64 == n) {
         Some(&r) => Ok(r),
         None => Err(format!(

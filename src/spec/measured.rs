@@ -23,19 +23,15 @@ pub(crate) fn build(spec_path: &str, raw: RawMeasuredProfile) -> Result<Measured
     }
     let mut fit = Fitted::default();
     for (i, name) in raw.fit.iter().enumerate() {
-        let flag = match name.as_str() {
-            "shift_mm" => &mut fit.shift,
-            "equidistant_mm" => &mut fit.equidistant,
-            "rotation_deg" => &mut fit.rotation,
-            other => {
-                return Err(invalid(
-                    &format!("fit[{i}]"),
-                    format!(
-                        "unknown modification `{other}`; known: {}",
-                        FITTED_NAMES.join(", ")
-                    ),
-                ))
-            }
+        let flags = [&mut fit.shift, &mut fit.equidistant, &mut fit.rotation];
+        let Some((_, flag)) = FITTED_NAMES.iter().zip(flags).find(|(n, _)| *n == name) else {
+            return Err(invalid(
+                &format!("fit[{i}]"),
+                format!(
+                    "unknown modification `{name}`; known: {}",
+                    FITTED_NAMES.join(", ")
+                ),
+            ));
         };
         if *flag {
             return Err(invalid(

@@ -224,17 +224,18 @@ pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
     s + "\n"
 }
 
+/// Whether the ladder has rungs that change one setting (geometry, contact law, solver
+/// tolerance) rather than the crank steps or the face slices.
+pub fn has_settings_rungs(ladder: &Ladder) -> bool {
+    (ladder.rungs.iter()).any(|r| !matches!(r.variation, Variation::Steps | Variation::FaceSlices))
+}
+
 /// The lines after the last row: the cheapest rung, the observed orders, the notes.
 pub fn footer(ladder: &Ladder) -> String {
     let l = &ladder.layout;
     let reference = ladder.reference();
     let mut s = String::new();
-    if ladder.layout.loaded
-        && ladder
-            .rungs
-            .iter()
-            .any(|r| !matches!(r.variation, Variation::Steps | Variation::FaceSlices))
-    {
+    if ladder.layout.loaded && has_settings_rungs(ladder) {
         s += &format!(
             "settings rungs at {} steps per mesh period{}\n",
             ladder.settings_steps,

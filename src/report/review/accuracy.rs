@@ -12,10 +12,7 @@ use maud::html;
 pub(super) fn section(ladder: &Ladder) -> Section {
     let l = &ladder.layout;
     let missing = text::not_computed(l);
-    let settings_rungs = ladder
-        .rungs
-        .iter()
-        .any(|r| !matches!(r.variation, Variation::Steps | Variation::FaceSlices));
+    let settings_rungs = text::has_settings_rungs(ladder);
     let other_law = ladder
         .rungs
         .iter()

@@ -63,16 +63,12 @@ pub(super) fn run(args: &ProfileArgs, out: &mut dyn Write) -> Result<Outcome> {
         ),
     )?;
     if let Some(d) = &disc {
-        let shape = export::SolidShape {
-            pieces: solid.as_ref().map(|s| s[0].0.piece_count()),
-            triangles: mesh.as_ref().map(|m| m.triangles.len()),
-            holes: d.holes.len(),
-            bore_diameter_mm: d.bore.map(|c| 2.0 * c.radius_mm),
-            as_built: d.as_built,
-            bodies: d.bodies.clone(),
-            face_width_mm: d.face_width_mm,
-        };
-        print(out, &export::solid_lines(&shape, tolerance_um))?;
+        let pieces = solid.as_ref().map(|s| s[0].0.piece_count());
+        let triangles = mesh.as_ref().map(|m| m.triangles.len());
+        print(
+            out,
+            &export::solid_lines(d, pieces, triangles, tolerance_um),
+        )?;
     }
     Ok(Outcome::Passed)
 }

@@ -105,9 +105,10 @@ pub fn seconds_text(s: f64) -> String {
     }
 }
 
-/// An observed order, two decimals (no "-0.00" for an error that did not move).
-pub fn order_text(p: f64) -> String {
-    crate::numeric::fixed(p, 2)
+/// An observed order, two decimals (no "-0.00" for an error that did not move); "—" where an
+/// error is at round-off.
+pub fn order_text(p: Option<f64>) -> String {
+    p.map_or("—".to_string(), |p| crate::numeric::fixed(p, 2))
 }
 
 /// Steps per period (or periods): an integer as such, else two decimals.
@@ -193,6 +194,15 @@ pub fn header(l: &Layout) -> String {
     s
 }
 
+/// A rung's error in `q` for the table: "—" for the reference, "n/a" where not computed.
+pub fn error_cell(r: &Rung, q: LadderQuantity) -> String {
+    match r.error(q) {
+        _ if r.is_reference => "—".to_string(),
+        Some(e) => short(e),
+        None => "n/a".to_string(),
+    }
+}
+
 /// One row of the table; `cheapest` appends the mark.
 pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
     let mut s = format!(
@@ -203,12 +213,7 @@ pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
         seconds_text(r.seconds)
     );
     for &q in &l.quantities {
-        let cell = match r.error(q) {
-            _ if r.is_reference => "—".to_string(),
-            Some(e) => short(e),
-            None => "n/a".to_string(),
-        };
-        s += &format!("{cell:>w$}", w = NUM_W + 1);
+        s += &format!("{:>w$}", error_cell(r, q), w = NUM_W + 1);
     }
     let (_, verdict) = verdict(r, &l.tolerances);
     s += "  ";
@@ -219,17 +224,18 @@ pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
     s + "\n"
 }
 
+/// Whether the ladder has rungs that change one setting (geometry, contact law, solver
+/// tolerance) rather than the crank steps or the face slices.
+pub fn has_settings_rungs(ladder: &Ladder) -> bool {
+    (ladder.rungs.iter()).any(|r| !matches!(r.variation, Variation::Steps | Variation::FaceSlices))
+}
+
 /// The lines after the last row: the cheapest rung, the observed orders, the notes.
 pub fn footer(ladder: &Ladder) -> String {
     let l = &ladder.layout;
     let reference = ladder.reference();
     let mut s = String::new();
-    if ladder.layout.loaded
-        && ladder
-            .rungs
-            .iter()
-            .any(|r| !matches!(r.variation, Variation::Steps | Variation::FaceSlices))
-    {
+    if ladder.layout.loaded && has_settings_rungs(ladder) {
         s += &format!(
             "settings rungs at {} steps per mesh period{}\n",
             ladder.settings_steps,
@@ -292,11 +298,8 @@ pub fn footer(ladder: &Ladder) -> String {
             if o.is_empty() {
                 return None;
             }
-            let text: Vec<String> = o
-                .iter()
-                .map(|(_, p)| p.map_or("—".to_string(), order_text))
-                .collect();
-            let fit = ladder.fitted_order(q).map_or("—".to_string(), order_text);
+            let text: Vec<String> = o.iter().map(|&(_, p)| order_text(p)).collect();
+            let fit = order_text(ladder.fitted_order(q));
             Some(format!("  {:<15}{}   fit {fit}", q.label(), text.join(" ")))
         })
         .collect();

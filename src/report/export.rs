@@ -2,7 +2,7 @@
 //! spaced so that the chordal error (distance of the true profile from each chord) stays
 //! under a tolerance.
 
-use crate::geometry::placement::Body;
+use crate::engine::commands::Disc;
 pub use crate::geometry::polyline::{polyline, ProfilePoint};
 use crate::model::design::disc_phase_rad;
 use crate::numeric::fixed;
@@ -131,53 +131,43 @@ pub fn dxf(spec: &Spec, points: &[ProfilePoint], tolerance_mm: f64) -> String {
     out
 }
 
-/// What the solid exports hold, for the lines `profile` prints about them.
-pub struct SolidShape {
-    /// Cubic pieces of the STEP solid's profile, when it was written.
-    pub pieces: Option<usize>,
-    /// Triangles of the STL mesh, when it was written.
-    pub triangles: Option<usize>,
-    pub holes: usize,
-    pub bore_diameter_mm: Option<f64>,
-    /// Whether the profile is the disc identified from `measured_profile`.
-    pub as_built: bool,
-    /// Each disc as a body of the files (one: its own frame).
-    pub bodies: Vec<Body>,
-    /// B, mm.
-    pub face_width_mm: f64,
-}
-
-/// The lines `profile` prints about the STEP solid and the STL mesh: what they hold and what
-/// they do not (no bore without the bearing's outer diameter).
-pub fn solid_lines(shape: &SolidShape, tolerance_um: f64) -> String {
+/// The lines `profile` prints about the STEP solid (`pieces`: its cubic pieces, when it was
+/// written) and the STL mesh (`triangles`: its triangles, when it was written) of `disc`: what
+/// they hold and what they do not (no bore without the bearing's outer diameter).
+pub fn solid_lines(
+    disc: &Disc,
+    pieces: Option<usize>,
+    triangles: Option<usize>,
+    tolerance_um: f64,
+) -> String {
     let mut out = String::new();
-    let profile = if shape.as_built {
+    let profile = if disc.as_built {
         "the disc as built (identified from `measured_profile`)"
     } else {
         "the drawing's profile"
     };
-    if let Some(n) = shape.pieces {
+    if let Some(n) = pieces {
         out += &format!(
             "STEP solid: {profile} as {n} cubic B-spline pieces within {tolerance_um} um, \
              extruded over the face width\n"
         );
     }
-    if let Some(n) = shape.triangles {
+    if let Some(n) = triangles {
         out += &format!("STL mesh: {profile}, {n} triangles within {tolerance_um} um, closed\n");
     }
-    out += &format!("holes: {} output-pin holes; ", shape.holes);
-    out += &match shape.bore_diameter_mm {
-        Some(d) => format!("bore {} mm\n", crate::numeric::input(d)),
+    out += &format!("holes: {} output-pin holes; ", disc.holes.len());
+    out += &match disc.bore {
+        Some(c) => format!("bore {} mm\n", crate::numeric::input(2.0 * c.radius_mm)),
         None => "no bore (give reducer.crank_bearing.outer_diameter_mm to cut one)\n".to_string(),
     };
-    let n = shape.bodies.len();
+    let n = disc.bodies.len();
     if n > 1 {
         out += &format!(
             "discs: {n} bodies, each disc where the reducer puts it at crank angle 0 (the \
              reducer's frame: origin on the input axis, roller 0 on +x):\n"
         );
     }
-    for (k, body) in shape.bodies.iter().enumerate().filter(|_| n > 1) {
+    for (k, body) in disc.bodies.iter().enumerate().filter(|_| n > 1) {
         let p = &body.placement;
         let part = if body.hole_turn_rad == 0.0 {
             "disc 1's part".to_string()
@@ -196,7 +186,7 @@ pub fn solid_lines(shape: &SolidShape, tolerance_um: f64) -> String {
             fixed(p.centre.y, 4),
             fixed(units::deg(p.turn_rad), 4),
             fixed(p.z_mm, 3),
-            fixed(p.z_mm + shape.face_width_mm, 3),
+            fixed(p.z_mm + disc.face_width_mm, 3),
         );
     }
     out

@@ -12,10 +12,7 @@ use maud::html;
 pub(super) fn section(ladder: &Ladder) -> Section {
     let l = &ladder.layout;
     let missing = text::not_computed(l);
-    let settings_rungs = ladder
-        .rungs
-        .iter()
-        .any(|r| !matches!(r.variation, Variation::Steps | Variation::FaceSlices));
+    let settings_rungs = text::has_settings_rungs(ladder);
     let other_law = ladder
         .rungs
         .iter()
@@ -26,7 +23,6 @@ pub(super) fn section(ladder: &Ladder) -> Section {
         .map(|&q| (q, ladder.orders(q)))
         .filter(|(_, o)| !o.is_empty())
         .collect();
-    let order_text = |p: Option<f64>| p.map_or("—".to_string(), text::order_text);
     let body = html! {
         p.note {
             "Scene " code { (l.scene) } " over crank " (number(l.from_deg)) "° to "
@@ -93,10 +89,7 @@ pub(super) fn section(ladder: &Ladder) -> Section {
                         @for &q in &l.quantities {
                             @let over = !r.is_reference && !r.model_difference
                                 && r.error(q).is_some_and(|e| !q.within(e, &l.tolerances));
-                            td.num.over[over] {
-                                @if r.is_reference { "—" }
-                                @else { (r.error(q).map_or("n/a".to_string(), text::short)) }
-                            }
+                            td.num.over[over] { (text::error_cell(r, q)) }
                         }
                         td.verdict { (verdict) @if cheapest { " — " b { "cheapest" } } }
                     }
@@ -114,8 +107,8 @@ pub(super) fn section(ladder: &Ladder) -> Section {
                     @for (q, o) in &orders {
                         tr {
                             td { (q.label()) }
-                            @for (_, p) in o { td.num { (order_text(*p)) } }
-                            td.num { b { (order_text(ladder.fitted_order(*q))) } }
+                            @for (_, p) in o { td.num { (text::order_text(*p)) } }
+                            td.num { b { (text::order_text(ladder.fitted_order(*q))) } }
                         }
                     }
                 },

@@ -372,7 +372,7 @@ fn first_order_valid(
             .iter_mut()
             .zip(&rollers.force_n)
             .for_each(|(f, curve)| *f = curve[k]);
-        let change = validity.moment_change(design, crank + phase_rad, lag, &forces);
+        let change = validity.moment_change(crank + phase_rad, lag, &forces);
         let change = if change.is_nan() {
             f64::INFINITY
         } else {

@@ -5,7 +5,7 @@
 
 use crate::contact::fatigue;
 use crate::equilibrium::pin_beam::PinBeam;
-use crate::equilibrium::pin_stress::{self, Beam};
+use crate::equilibrium::pin_stress;
 use crate::geometry::{rotate, unit, Vec2};
 use crate::model::results::{bounded, LoadedSweep, PinCurves};
 use crate::model::strength::{DiscStrength, FatigueLives, PinStress, StaticSafety};
@@ -17,7 +17,7 @@ use crate::model::{Design, Effect, Plan, Scene};
 /// Disc k's hole pushes pin j with the force F_kj (its magnitude from the sweep) along the
 /// direction the sweep recorded (`PinCurves::direction_rad`: the angle δ_kj from disc k's
 /// eccentric direction e_φk = (cos(φ + 2πk/N), sin(φ + 2πk/N))), each disc's force at its own
-/// mid-plane; the vectors are summed along the pin (`pin_stress::Beam::largest`).
+/// mid-plane; the vectors are summed along the pin (`pin_stress::largest`).
 pub fn pin_stress(design: &Design, crank_rad: &[f64], discs: &[&LoadedSweep]) -> Option<PinStress> {
     let support = design.pins.support?;
     let pins: Vec<&PinCurves> = discs
@@ -25,10 +25,6 @@ pub fn pin_stress(design: &Design, crank_rad: &[f64], discs: &[&LoadedSweep]) ->
         .map(|d| d.pins.as_ref())
         .collect::<Option<_>>()?;
     let diameter = 2.0 * PinBeam::of(design)?.bending_radius_mm;
-    let beam = Beam {
-        kind: support.kind,
-        length_mm: support.length_mm,
-    };
     let count = design.pins.count;
     let mut bending = vec![vec![0.0; crank_rad.len()]; count];
     let mut shear = bending.clone();
@@ -41,7 +37,7 @@ pub fn pin_stress(design: &Design, crank_rad: &[f64], discs: &[&LoadedSweep]) ->
                     (support.disc_positions_mm[k], pins[k].force_n[j][a] * along)
                 })
                 .collect();
-            let (m, v) = beam.largest(&loads);
+            let (m, v) = pin_stress::largest(&support, &loads);
             bending[j][a] = pin_stress::bending_stress_mpa(m, diameter);
             shear[j][a] = pin_stress::shear_stress_mpa(v, diameter);
         }

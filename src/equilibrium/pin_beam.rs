@@ -44,12 +44,8 @@ pub struct PinBeam {
     pub coefficients_mm_per_n: [[f64; MAX_DISCS]; MAX_DISCS],
     /// The discs along the pin (the first `discs` rows and columns are used).
     pub discs: usize,
-    /// The support the coefficients are of.
-    pub kind: PinSupportKind,
     /// Radius of the pin that bends, mm (the pin, or the pin inside a sleeve).
     pub bending_radius_mm: f64,
-    /// EI, N·mm².
-    pub bending_stiffness_nmm2: f64,
 }
 
 /// I = π·d⁴/64 of a round section of diameter `diameter_mm`, mm⁴.
@@ -108,9 +104,7 @@ impl PinBeam {
         Some(PinBeam {
             coefficients_mm_per_n: c,
             discs: design.discs,
-            kind: support.kind,
             bending_radius_mm: r,
-            bending_stiffness_nmm2: ei,
         })
     }
 

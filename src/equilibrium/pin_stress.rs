@@ -23,58 +23,47 @@
 //! τ = 4·V/(3·A), A = π·d²/4 (Jourawski's formula for a circle; the mean V/A is ¾ of it).
 
 use crate::geometry::Vec2;
-use crate::model::PinSupportKind;
+use crate::model::{PinSupport, PinSupportKind};
 use std::f64::consts::PI;
 
-/// How a pin is held and how long it is.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Beam {
-    /// The support.
-    pub kind: PinSupportKind,
-    /// L, mm.
-    pub length_mm: f64,
+/// The share of a unit load at `a_mm` that the far support of `pin` carries: 0 for a
+/// cantilever, `pin_beam::prop_share` (R = a²·(3L − a)/(2L³)) for a propped one.
+fn prop_share(pin: &PinSupport, a_mm: f64) -> f64 {
+    match pin.kind {
+        PinSupportKind::Cantilever => 0.0,
+        PinSupportKind::BothEnds => super::pin_beam::prop_share(a_mm, pin.length_mm),
+    }
 }
 
-impl Beam {
-    /// The share of a unit load at `a_mm` that the far support carries: 0 for a cantilever,
-    /// `pin_beam::prop_share` (R = a²·(3L − a)/(2L³)) for a propped one.
-    fn prop_share(&self, a_mm: f64) -> f64 {
-        match self.kind {
-            PinSupportKind::Cantilever => 0.0,
-            PinSupportKind::BothEnds => super::pin_beam::prop_share(a_mm, self.length_mm),
-        }
-    }
+/// m(z), the bending moment of `pin` at section `z_mm` per unit force at `a_mm`, mm.
+pub fn moment_per_force_mm(pin: &PinSupport, a_mm: f64, z_mm: f64) -> f64 {
+    (a_mm - z_mm).max(0.0) - prop_share(pin, a_mm) * (pin.length_mm - z_mm)
+}
 
-    /// m(z), the bending moment at section `z_mm` per unit force at `a_mm`, mm.
-    pub fn moment_per_force_mm(&self, a_mm: f64, z_mm: f64) -> f64 {
-        (a_mm - z_mm).max(0.0) - self.prop_share(a_mm) * (self.length_mm - z_mm)
-    }
+/// v(z), the shear force of `pin` just beyond section `z_mm` per unit force at `a_mm`.
+pub fn shear_per_force(pin: &PinSupport, a_mm: f64, z_mm: f64) -> f64 {
+    let inside = if z_mm < a_mm { 1.0 } else { 0.0 };
+    inside - prop_share(pin, a_mm)
+}
 
-    /// v(z), the shear force just beyond section `z_mm` per unit force at `a_mm`.
-    pub fn shear_per_force(&self, a_mm: f64, z_mm: f64) -> f64 {
-        let inside = if z_mm < a_mm { 1.0 } else { 0.0 };
-        inside - self.prop_share(a_mm)
+/// The largest |M| (N·mm) and |V| (N) along `pin` under the loads `(a_k in mm, F_k in N)`:
+/// |Σ F_k·m_k(z)| at the clamp and under each load, |Σ F_k·v_k(z)| just beyond each.
+pub fn largest(pin: &PinSupport, loads: &[(f64, Vec2)]) -> (f64, f64) {
+    let sections = std::iter::once(0.0).chain(loads.iter().map(|l| l.0));
+    let (mut moment, mut shear) = (0.0f64, 0.0f64);
+    for z in sections {
+        let m: Vec2 = loads
+            .iter()
+            .map(|&(a, f)| f * moment_per_force_mm(pin, a, z))
+            .sum();
+        let v: Vec2 = loads
+            .iter()
+            .map(|&(a, f)| f * shear_per_force(pin, a, z))
+            .sum();
+        moment = moment.max(m.norm());
+        shear = shear.max(v.norm());
     }
-
-    /// The largest |M| (N·mm) and |V| (N) along the pin under the loads `(a_k in mm, F_k in
-    /// N)`: |Σ F_k·m_k(z)| at the clamp and under each load, |Σ F_k·v_k(z)| just beyond each.
-    pub fn largest(&self, loads: &[(f64, Vec2)]) -> (f64, f64) {
-        let sections = std::iter::once(0.0).chain(loads.iter().map(|l| l.0));
-        let (mut moment, mut shear) = (0.0f64, 0.0f64);
-        for z in sections {
-            let m: Vec2 = loads
-                .iter()
-                .map(|&(a, f)| f * self.moment_per_force_mm(a, z))
-                .sum();
-            let v: Vec2 = loads
-                .iter()
-                .map(|&(a, f)| f * self.shear_per_force(a, z))
-                .sum();
-            moment = moment.max(m.norm());
-            shear = shear.max(v.norm());
-        }
-        (moment, shear)
-    }
+    (moment, shear)
 }
 
 /// σ_b = 32·M/(π·d³), MPa, of a bending moment `moment_nmm` (N·mm) in a round section of

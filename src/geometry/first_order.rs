@@ -125,33 +125,30 @@ impl Coefficients {
 /// rollers hold at most ~8.5e4 N·m; it reaches 1 at about 4.6e4 N·m. The modifications' own
 /// second order (ΔR²/ρ) is left out of ε: it does not grow with the load.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LagValidity {
+pub struct LagValidity<'a> {
+    design: &'a Design,
     locus: crate::model::design::Locus,
     coefficients: Coefficients,
-    roller_circle_mm: f64,
-    eccentricity_mm: f64,
-    rollers: usize,
 }
 
-impl LagValidity {
+impl<'a> LagValidity<'a> {
     /// The bound's constants for `design` under the modification `m` (the locus of R' = Rp +
     /// ΔRp, the closed form's coefficients).
-    pub fn new(design: &Design, m: &Modification) -> Self {
+    pub fn new(design: &'a Design, m: &Modification) -> Self {
         LagValidity {
+            design,
             locus: design.locus(m),
             coefficients: Coefficients::new(design, m),
-            roller_circle_mm: design.roller_circle_radius_mm,
-            eccentricity_mm: design.eccentricity_mm,
-            rollers: design.rollers,
         }
     }
 
     /// (l_i, H_i) of the roller at (cos φi, sin φi), mm (see the type).
     pub fn arm_and_bend(&self, cos_phi_i: f64, sin_phi_i: f64) -> (f64, f64) {
         let (_, arm, inverse_s) = self.coefficients.with_inverse_s(cos_phi_i, sin_phi_i);
-        let (e, k1) = (self.eccentricity_mm, self.coefficients.k1);
-        let normal_reach = (self.roller_circle_mm + k1 * e
-            - e * (self.rollers as f64 + 1.0) * cos_phi_i)
+        let (d, k1) = (self.design, self.coefficients.k1);
+        let e = d.eccentricity_mm;
+        let normal_reach = (d.roller_circle_radius_mm + k1 * e
+            - e * (d.rollers as f64 + 1.0) * cos_phi_i)
             * inverse_s;
         let bend = self.locus.curvature_at(cos_phi_i) * normal_reach * normal_reach - normal_reach;
         (arm, bend)
@@ -160,16 +157,10 @@ impl LagValidity {
     /// ε at the crank angle `crank_rad` and lag `lag_rad` of rollers carrying `force_n[i]` (N):
     /// the share of the rollers' moment their arms move by over the lag. 0 without a force;
     /// not finite when the forces are not.
-    pub fn moment_change(
-        &self,
-        design: &Design,
-        crank_rad: f64,
-        lag_rad: f64,
-        force_n: &[f64],
-    ) -> f64 {
+    pub fn moment_change(&self, crank_rad: f64, lag_rad: f64, force_n: &[f64]) -> f64 {
         let (mut moved, mut moment) = (0.0, 0.0);
         for (i, &f) in force_n.iter().enumerate().filter(|(_, f)| **f != 0.0) {
-            let (s, c) = (design.roller_angle(i) - crank_rad).sin_cos();
+            let (s, c) = (self.design.roller_angle(i) - crank_rad).sin_cos();
             let (arm, bend) = self.arm_and_bend(c, s);
             moved += f.abs() * bend.abs();
             moment += f.abs() * arm.abs();

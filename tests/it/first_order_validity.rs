@@ -87,7 +87,7 @@ fn an_overload_is_outside_the_first_order_validity() {
     let worst = (0..s.crank_rad.len())
         .map(|k| {
             let forces: Vec<f64> = rollers.force_n.iter().map(|f| f[k]).collect();
-            validity.moment_change(&parsed.design, s.crank_rad[k], rollers.lag_rad[k], &forces)
+            validity.moment_change(s.crank_rad[k], rollers.lag_rad[k], &forces)
         })
         .fold(0.0, f64::max);
     // Measured: 0.025.

@@ -180,7 +180,7 @@ pub fn optimisation(spec: &Spec, results: &[crate::engine::optimise::StudyResult
             value: if o.failure.is_some() {
                 f64::MIN
             } else {
-                tightest.map_or(f64::MAX, |m| m.margin)
+                tightest.map_or(f64::MAX, |m| m.margin())
             },
             limit: 0.0,
             bound: Bound::Min,

@@ -954,7 +954,7 @@ impl<'a> StudyDoc<'a> {
                     name: &m.name,
                     value: Finite(m.value),
                     bound: Finite(m.bound),
-                    margin: Finite(m.margin),
+                    margin: Finite(m.margin()),
                     satisfied: m.satisfied(),
                 })
                 .collect(),

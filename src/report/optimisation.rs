@@ -281,7 +281,7 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
             m.name,
             number(m.value),
             number(m.bound),
-            number(m.margin),
+            number(m.margin()),
             if m.satisfied() { "ok" } else { "VIOLATED" }
         );
     }

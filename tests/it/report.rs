@@ -335,7 +335,6 @@ fn the_optimisation_map_and_path_are_drawn_when_given() {
         value,
         bound: 0.015,
         side: cycloid::model::quantity::Bound::Min,
-        margin: value - 0.015,
     };
     let point = |label: &str, x: f64, y: f64, z: f64| StudyPoint {
         label: label.into(),

@@ -16,19 +16,18 @@ use crate::spec::deviations;
 use crate::spec::Spec;
 use crate::units;
 
-/// A constraint's value, its bound and the margin (≥ 0 satisfied), in the constraint's unit.
+/// A constraint's value and its bound, in the constraint's unit, and which side the bound
+/// limits (`margin`: ≥ 0 satisfied).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Margin {
     /// What is constrained and where the bound comes from, e.g. "min_clearance_mm (whole mesh)".
     pub name: String,
-    /// Unit of `value`, `bound` and `margin` ("mm", "arcsec").
+    /// Unit of `value`, `bound` and the margin ("mm", "arcsec").
     pub unit: &'static str,
     pub value: f64,
     pub bound: f64,
     /// Which side `bound` limits: `Min` a lower bound, `Max` an upper one.
     pub side: Bound,
-    /// value − bound for a lower bound, bound − value for an upper one.
-    pub margin: f64,
 }
 
 impl Margin {
@@ -39,28 +38,35 @@ impl Margin {
             value,
             bound,
             side: Bound::Min,
-            margin: value - bound,
         }
     }
 
     fn upper(name: &str, unit: &'static str, value: f64, bound: f64) -> Self {
         Margin {
             side: Bound::Max,
-            margin: bound - value,
             ..Margin::lower(name, unit, value, bound)
+        }
+    }
+
+    /// The margin, in the constraint's unit (≥ 0 satisfied): value − bound for a lower bound,
+    /// bound − value for an upper one.
+    pub fn margin(&self) -> f64 {
+        match self.side {
+            Bound::Min => self.value - self.bound,
+            Bound::Max => self.bound - self.value,
         }
     }
 
     /// Satisfied within the checker's comparison tolerance (`limit::tolerance`).
     pub fn satisfied(&self) -> bool {
-        self.margin >= -crate::engine::limit::tolerance(self.bound)
+        self.margin() >= -crate::engine::limit::tolerance(self.bound)
     }
 
     /// The margin relative to the bound, at least 1 of its unit (`limit::Scale::LimitOrUnit`):
     /// constraints of different units compare by this.
     pub fn relative(&self) -> f64 {
         use crate::engine::limit::{relative, Scale};
-        relative(self.margin, self.bound, Scale::LimitOrUnit)
+        relative(self.margin(), self.bound, Scale::LimitOrUnit)
     }
 }
 

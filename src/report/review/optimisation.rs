@@ -234,10 +234,11 @@ pub(super) fn constraint_row(c: &Margin, points: &[StudyPoint]) -> Markup {
 /// A constraint's margin as the table shows it: on the bound within the checker's tolerance
 /// (decimal inputs such as 0.150 − 0.135 land a few 1e-17 mm off), else signed.
 pub(super) fn margin_text(m: &Margin) -> String {
-    if m.margin.abs() <= crate::engine::limit::tolerance(m.bound) {
+    let margin = m.margin();
+    if margin.abs() <= crate::engine::limit::tolerance(m.bound) {
         "margin 0 (on the bound)".into()
     } else {
-        let sign = if m.margin > 0.0 { "+" } else { "" };
-        signed(format!("margin {sign}{}", number(m.margin)))
+        let sign = if margin > 0.0 { "+" } else { "" };
+        signed(format!("margin {sign}{}", number(margin)))
     }
 }

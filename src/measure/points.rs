@@ -401,7 +401,7 @@ pub fn spline_sample_count(control: usize) -> usize {
 
 /// What an open SPLINE is told.
 const OPEN_SPLINE: &str = "an open SPLINE (its ends apart): profile points are read from one \
-                           closed curve; close it in the CAD program, or delete it if it is not the disc outline";
+     closed curve; close it in the CAD program, or delete it if it is not the disc outline";
 
 /// The number of the value `v` of the pair whose code is at `line`, finite.
 fn parse_number(path: &str, line: usize, v: &str) -> Result<f64> {

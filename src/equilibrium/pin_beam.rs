@@ -140,14 +140,24 @@ pub fn series_force(
         return law::force(contact_law, contact, approach_mm);
     }
     let c = compliance_mm_per_n;
-    // The linear law in series.
-    let k = 1.0 / (1.0 / law::paper_linear_stiffness(contact) + c);
+    let k = series_linear_stiffness(contact, c);
     match contact_law {
         ContactLaw::PaperLinear => ContactForce::linear(k, approach_mm),
         // Started from the linear law in series: Johnson's law is softer than it at these
         // loads, so the answer lies below.
         ContactLaw::HertzNonlinear => law::johnson_force_in_series(contact, (c, k), approach_mm),
     }
+}
+
+/// The paper's linear law of `contact` in series with a spring of compliance
+/// `compliance_mm_per_n`: 1/(1/k + c), N/mm; c = 0 is the contact's k itself, bit for bit.
+#[inline]
+pub fn series_linear_stiffness(contact: &LineContact, compliance_mm_per_n: f64) -> f64 {
+    let k = law::paper_linear_stiffness(contact);
+    if compliance_mm_per_n == 0.0 {
+        return k;
+    }
+    1.0 / (1.0 / k + compliance_mm_per_n)
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@
 //! carry a positive output torque. Exact derivatives: ∂gap/∂βo = −(Q − O) × û and ∂gap/∂u = û.
 
 use super::balance::impl_contact;
-use super::pin_beam::{series_force, PinBeam};
+use super::pin_beam::{series_force, series_linear_stiffness, PinBeam};
 use crate::contact::law::{ContactForce, LineContact};
 use crate::geometry::{cross, rotate, sin_cos, unit, Vec2};
 use crate::model::{ContactLaw, Design};
@@ -319,13 +319,11 @@ impl Pins {
     }
 
     /// Linear-law stiffness, N/mm, when the law is linear; with bending pins the
-    /// contact's and the pin's in series, 1/(1/k + c_kk): `pin_beam::series_force`'s, the same
-    /// at every approach under the linear law (read at 1 mm).
+    /// contact's and the pin's in series, 1/(1/k + c_kk) (`pin_beam::series_linear_stiffness`,
+    /// the stiffness `series_force` applies).
     pub fn linear_stiffness(&self) -> Option<f64> {
-        (self.law == ContactLaw::PaperLinear).then(|| {
-            let c = self.beam_compliance_mm_per_n;
-            series_force(self.law, &self.contact, c, 1.0).stiffness_n_per_mm
-        })
+        (self.law == ContactLaw::PaperLinear)
+            .then(|| series_linear_stiffness(&self.contact, self.beam_compliance_mm_per_n))
     }
 }
 

@@ -1219,6 +1219,45 @@ pub fn scenes_document<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::results::{MinClearance, SampledPeriod};
+
+    /// `min_clearance_over` is one of the two objects docs/results-json.md gives: the whole
+    /// period's three figures, or the scene's crank angles alone, never a mix (the enum that
+    /// replaced four optional fields must not tag its variant or write the other's keys).
+    #[test]
+    fn the_minimum_is_sought_over_a_period_or_over_the_crank_angles_alone() {
+        let min = MinClearance {
+            gap_mm: 0.01,
+            roller: 0,
+            crank_rad: 0.0,
+            tooth_phase: 0.0,
+        };
+        let over = |coverage| {
+            let c = ClearanceSweep {
+                gap_mm: Vec::new(),
+                min,
+                coverage,
+                backlash: None,
+            };
+            serde_json::to_value(min_clearance_over(&c)).unwrap()
+        };
+        let angles = over(MinCoverage::Angles(36));
+        assert_eq!(angles, serde_json::json!({ "crank_angles": 36 }));
+        let period = over(MinCoverage::Period(SampledPeriod {
+            period_rad: std::f64::consts::PI,
+            step_rad: 0.01,
+            error_bound_mm: 1e-6,
+        }));
+        // serde_json's Value keeps its keys sorted.
+        let keys: Vec<&str> = period
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(|k| k.as_str())
+            .collect();
+        assert_eq!(keys, ["error_bound_mm", "period_deg", "step_deg"]);
+        assert_eq!(period["error_bound_mm"], 1e-6);
+    }
 
     #[test]
     fn a_non_finite_number_is_an_error_not_null() {

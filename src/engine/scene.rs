@@ -562,7 +562,7 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
                     scene: name(),
                     loaded_period_rad: scene.run_period_rad(&spec.design, &plan),
                 });
-            } else if scene.input_speed_rpm.is_none() && scene.duty_cycle.is_none() {
+            } else if !scene.has_speed() {
                 notes.push(Note::LifeHoursNotRated { scene: name() });
             }
         }

@@ -153,6 +153,12 @@ impl Scene {
         })
     }
 
+    /// Runs at a speed: its own `input_speed_rpm`, or a duty cycle's bins, each with theirs.
+    /// A figure in hours or a centripetal force needs it.
+    pub fn has_speed(&self) -> bool {
+        self.input_speed_rpm.is_some() || self.duty_cycle.is_some()
+    }
+
     /// Computes roller contact in one run at one torque (a duty cycle's runs once per bin):
     /// the scene the accuracy ladder runs and the disc drawing solves by default.
     pub fn loaded_once(&self) -> bool {

@@ -425,7 +425,7 @@ fn fatigue_unjudged(design: &Design, scene: &Scene, plan: &Plan) -> Option<Strin
             "no contact_fatigue law given (reducer.material or reducer.roller_material)".into(),
         );
     }
-    if scene.input_speed_rpm.is_none() && scene.duty_cycle.is_none() {
+    if !scene.has_speed() {
         return Some("the scene has no input_speed_rpm (a life in hours is at a speed)".into());
     }
     if !scene.spans_loaded_periods(design, plan) {

@@ -67,7 +67,7 @@ pub(crate) fn check_scene(
 /// the spec, which computes its life: an input speed (a duty cycle's bins have theirs) and
 /// whole loaded periods of `design`.
 fn scene(design: &Design, (i, s): (usize, &Scene), built: Option<&str>, key: &str) -> Result<()> {
-    if s.input_speed_rpm.is_none() && s.duty_cycle.is_none() {
+    if !s.has_speed() {
         return Err(Error::invalid(
             format!("scenes[{i}]"),
             format!(

@@ -23,7 +23,7 @@ pub(super) fn check(design: &Design, scenes: &[Scene]) -> Result<()> {
                 format!("scene `{}` computes `inertia`, {why}", s.name),
             ))
         };
-        if s.input_speed_rpm.is_none() && s.duty_cycle.is_none() {
+        if !s.has_speed() {
             return refuse(
                 "which needs `input_speed_rpm`: the centripetal force m·e·ω² is at a speed",
             );

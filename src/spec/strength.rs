@@ -152,7 +152,7 @@ pub(crate) fn check(limits: &Limits, design: &Design, scenes: &[Scene]) -> Resul
 fn speeds(scenes: &[Scene], key: &str) -> Result<()> {
     for (i, s) in scenes.iter().enumerate() {
         let computes = Plan::for_scene(s).computes(Effect::Strength);
-        if computes && s.input_speed_rpm.is_none() && s.duty_cycle.is_none() {
+        if computes && !s.has_speed() {
             return Err(Error::invalid(
                 format!("scenes[{i}]"),
                 format!(

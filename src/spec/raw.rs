@@ -122,15 +122,6 @@ pub(crate) enum RawOptimise {
     Many(Vec<RawStudy>),
 }
 
-impl RawOptimise {
-    pub(crate) fn into_studies(self) -> Vec<RawStudy> {
-        match self {
-            RawOptimise::One(s) => vec![*s],
-            RawOptimise::Many(v) => v,
-        }
-    }
-}
-
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawStudy {

@@ -621,31 +621,28 @@ pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     exact_as_built(&design, &scenes)?;
     super::friction::check_scenes(&design, &scenes)?;
     first_order_torques(&design, &scenes)?;
-    let studies = match raw.optimise {
-        Some(o) => {
-            let many = matches!(o, RawOptimise::Many(_));
-            let raws = o.into_studies();
-            let mut studies: Vec<Study> = Vec::new();
-            for (i, r) in raws.into_iter().enumerate() {
-                let key = if many {
-                    format!("optimise[{i}]")
-                } else {
-                    "optimise".to_string()
-                };
-                let s = study(&key, i, r, &scenes, (&modification, crowning, &design))?;
-                super::periods::check_study(&s, &key, &design, &scenes)?;
-                if studies.iter().any(|o| o.name == s.name) {
-                    return Err(Error::invalid(
-                        format!("{key}.name"),
-                        format!("study name `{}` is used twice", s.name),
-                    ));
-                }
-                studies.push(s);
-            }
-            studies
-        }
-        None => Vec::new(),
+    let (raws, many) = match raw.optimise {
+        None => (Vec::new(), false),
+        Some(RawOptimise::One(s)) => (vec![*s], false),
+        Some(RawOptimise::Many(v)) => (v, true),
     };
+    let mut studies: Vec<Study> = Vec::new();
+    for (i, r) in raws.into_iter().enumerate() {
+        let key = if many {
+            format!("optimise[{i}]")
+        } else {
+            "optimise".to_string()
+        };
+        let s = study(&key, i, r, &scenes, (&modification, crowning, &design))?;
+        super::periods::check_study(&s, &key, &design, &scenes)?;
+        if studies.iter().any(|o| o.name == s.name) {
+            return Err(Error::invalid(
+                format!("{key}.name"),
+                format!("study name `{}` is used twice", s.name),
+            ));
+        }
+        studies.push(s);
+    }
     let limits = limits(&raw.limits)?;
     let built = (!design.deviations.is_nominal()).then_some("`reducer.deviations`");
     let every_scene = || scenes.iter().enumerate();

@@ -194,7 +194,7 @@ fn pins_at(
     lag: f64,
     states: &mut Vec<PinState>,
 ) {
-    if model.first_order_pins() {
+    if model.first_order {
         let centre = e_phi * model.eccentricity_mm + offset;
         p.first_order_at(e_phi, rotation, centre, lag, states);
     } else {
@@ -212,7 +212,7 @@ fn solve_pins(
     guess: f64,
     work: &mut Work,
 ) -> Result<f64, SolveFailure> {
-    let first_order = model.first_order_pins();
+    let first_order = model.first_order;
     if let (true, Some(k), true) = (first_order, p.linear_stiffness(), offset == Vec2::zeros()) {
         let centre = e_phi * model.eccentricity_mm;
         p.first_order_at(e_phi, psi.sin_cos(), centre, 0.0, &mut work.sol.pins);

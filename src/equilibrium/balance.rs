@@ -12,6 +12,8 @@ pub trait Contact {
     fn stiffness_n_per_mm(&self) -> f64;
     /// Moment arm about the disc centre, mm: the contact's moment is F·arm.
     fn arm_mm(&self) -> f64;
+    /// Gap, mm (negative: the contact is pressed).
+    fn gap_mm(&self) -> f64;
     /// ∂gap/∂x, mm/rad (−arm for a roller: ∂gap/∂β = −l).
     fn gap_slope_mm(&self) -> f64;
     /// Force, stiffness and gap become w.x·self + w.y·other.
@@ -33,6 +35,9 @@ macro_rules! impl_contact {
             }
             fn arm_mm(&self) -> f64 {
                 self.arm_mm
+            }
+            fn gap_mm(&self) -> f64 {
+                self.gap_mm
             }
             fn gap_slope_mm(&self) -> f64 {
                 let $s = self;

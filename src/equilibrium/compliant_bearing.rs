@@ -52,8 +52,7 @@ fn evaluate_at(
     sol.lag_rad = Some(x[2]);
     sol.output_lag_rad = Some(x[3]);
     let pose = Pose::new(crank, x[2], sol.centre_offset_mm);
-    r.evaluate(&pose, &mut sol.rollers)
-        .map_err(SolveFailure::Gap)?;
+    r.evaluate(&pose, &mut sol.rollers)?;
     p.evaluate_at(
         unit(crank),
         (-crank / model.teeth as f64 + x[2]).sin_cos(),

@@ -273,12 +273,12 @@ pub fn solve_coupled(
         .pins
         .as_ref()
         .is_some_and(|p| p.couples_discs());
-    if !coupled {
-        return solve_shares(discs, crank, work, Verify::Floating).map(|(g, _)| g);
-    }
     let n = discs.count();
     if work.models.len() != n {
         work.models = discs.models.clone();
+    }
+    if !coupled {
+        return solve_shares(discs, crank, work, Verify::Floating).map(|(g, _)| g);
     }
     let beam = *discs.models[0]
         .pins
@@ -413,9 +413,6 @@ fn solve_shares(
     verify: Verify,
 ) -> Result<(f64, [bool; MAX_DISCS]), SolveFailure> {
     let n = discs.count();
-    if work.models.len() != n {
-        work.models = discs.models.clone();
-    }
     let total = discs.torque_nmm;
     let reach = discs.models[0].warm_reach();
     let weights = work.extrapolation(crank, reach);

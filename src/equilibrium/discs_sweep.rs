@@ -37,13 +37,19 @@ struct DiscChunk<'a> {
     output_lag: &'a mut [f64],
 }
 
-fn solve_disc_chunk(
+/// A chunk of angles, each by the lean kernels (`Lean`; none where they do not apply) or else
+/// by the general solve, its split guessed at the first angles from `before` (the chunk before
+/// it) where given: its work, whose split the next chunk continues from.
+fn solve_chunk(
     discs: &Discs,
     crank_rad: &[f64],
     chunk: &mut DiscChunk<'_>,
-    lean: &mut Lean<'_>,
-) -> Result<(), SweepFailure> {
+    (lean, before): (&mut Lean<'_>, Option<&CoupledWork>),
+) -> Result<CoupledWork, SweepFailure> {
     let mut work = CoupledWork::new(discs);
+    if let Some(before) = before {
+        work.continue_from(before);
+    }
     lean.restart(discs, crank_rad);
     for (k, &phi) in crank_rad.iter().enumerate() {
         if let Some(gamma) = lean.solve(discs, phi, k, &mut work, chunk) {
@@ -52,7 +58,7 @@ fn solve_disc_chunk(
         }
         record_coupled(discs, (k, phi), &mut work, chunk)?;
     }
-    Ok(())
+    Ok(work)
 }
 
 /// Angle k (crank `phi`) by the general solve (`solve_general`), recorded in `chunk`.
@@ -97,25 +103,6 @@ fn solve_general(discs: &Discs, phi: f64, work: &mut CoupledWork) -> Result<f64,
     }
     solve_into(&discs.models[0], phi + discs.phases[0], &mut work.works[0])?;
     Ok(output_lag(&work.works[0]))
-}
-
-/// A chunk of angles of several discs by the general coupled solve alone, its split guessed
-/// at the first angles from `before` (the chunk before it) where given: its work, whose
-/// split the next chunk continues from.
-fn solve_coupled_chunk(
-    discs: &Discs,
-    crank_rad: &[f64],
-    chunk: &mut DiscChunk<'_>,
-    before: Option<&CoupledWork>,
-) -> Result<CoupledWork, SweepFailure> {
-    let mut work = CoupledWork::new(discs);
-    if let Some(before) = before {
-        work.continue_from(before);
-    }
-    for (k, &phi) in crank_rad.iter().enumerate() {
-        record_coupled(discs, (k, phi), &mut work, chunk)?;
-    }
-    Ok(work)
 }
 
 /// The lean first-order kernel of each disc (`FirstOrderSweep`), where it applies to every
@@ -364,7 +351,8 @@ fn solve_in_two_waves(
             .into_par_iter()
             .map(|(i, (c, mut chunk))| {
                 let from = before.get(i / 2).and_then(|b| b.as_ref().ok());
-                let done = solve_coupled_chunk(discs, c, &mut chunk, from);
+                // No kernels: a disc's model needs the general solve (`sweep_discs`).
+                let done = solve_chunk(discs, c, &mut chunk, (&mut Lean::new(discs), from));
                 progress.advance(c.len() as u64);
                 done
             })
@@ -434,7 +422,7 @@ pub fn sweep_discs(
             .map_init(
                 || Lean::new(discs),
                 |lean, (c, mut chunk)| {
-                    let done = solve_disc_chunk(discs, c, &mut chunk, lean);
+                    let done = solve_chunk(discs, c, &mut chunk, (lean, None)).map(drop);
                     progress.advance(c.len() as u64);
                     done
                 },

@@ -23,7 +23,8 @@ pub struct Model {
     /// The crank's eccentricity as built, e + de, mm: the disc centre's orbit.
     pub eccentricity_mm: f64,
     pub settings: Settings,
-    /// First-order geometry (also for pins when rollers are not modelled).
+    /// First-order geometry: the rollers' (`Rollers::geometry`, the scene's too) and the
+    /// pins', which follow it (ideal directions, linear gaps), also without the rollers.
     pub first_order: bool,
     /// Friction inside the balance (the coupled model), when active; none: frictionless.
     pub coupling: Option<Coupling>,
@@ -105,14 +106,6 @@ impl Model {
         self.coupling
             .as_ref()
             .filter(|c| self.torque_nmm != 0.0 || c.is_torsion())
-    }
-
-    /// Pins follow the rollers' geometry mode (first order: ideal directions, linear gaps).
-    pub(super) fn first_order_pins(&self) -> bool {
-        self.rollers
-            .as_ref()
-            .is_some_and(|r| r.geometry == GeometryMode::FirstOrder)
-            || self.first_order
     }
 }
 

@@ -20,17 +20,20 @@ use crate::model::{ContactLaw, GeometryMode};
 
 /// Zero torque with clearance leaves the disc free within its backlash; we report the limit
 /// T → 0⁺: the lag at which the nearest contact in the load direction just closes.
-/// Newton on the smallest gap, x ← x + min(gap/(−∂gap/∂x)) over contacts that close as x grows.
-fn touching<S>(
-    mut eval: impl FnMut(f64) -> Result<Vec<(f64, f64)>, S>,
+/// Newton on the smallest gap, x ← x + min(gap/(−∂gap/∂x)) over contacts that close as x grows,
+/// the contacts `states` evaluated at each x by `evaluate`.
+fn touching<C: Contact, S>(
+    states: &mut Vec<C>,
+    mut evaluate: impl FnMut(f64, &mut Vec<C>) -> Result<(), S>,
     start: f64,
 ) -> Result<f64, S> {
     let mut x = start;
     for _ in 0..50 {
-        let step = eval(x)?
-            .into_iter()
-            .filter(|&(_, slope)| slope < 0.0)
-            .map(|(gap, slope)| gap / -slope)
+        evaluate(x, states)?;
+        let step = states
+            .iter()
+            .filter(|s| s.gap_slope_mm() < 0.0)
+            .map(|s| s.gap_mm() / -s.gap_slope_mm())
             .fold(f64::INFINITY, f64::min);
         if !step.is_finite() {
             break;
@@ -44,10 +47,11 @@ fn touching<S>(
     // Newton may stop a rounding error past the touch (a gap of −1e-18 mm, a force of 1e-12 N),
     // which would make the contact count at zero torque depend on rounding.
     for _ in 0..8 {
-        let overlap = eval(x)?
-            .into_iter()
-            .filter(|&(gap, slope)| slope < 0.0 && gap < 0.0)
-            .map(|(gap, slope)| gap / slope)
+        evaluate(x, states)?;
+        let overlap = states
+            .iter()
+            .filter(|s| s.gap_slope_mm() < 0.0 && s.gap_mm() < 0.0)
+            .map(|s| s.gap_mm() / s.gap_slope_mm())
             .fold(0.0, f64::max);
         if overlap == 0.0 {
             break;
@@ -57,8 +61,8 @@ fn touching<S>(
     Ok(x)
 }
 
-fn in_contact<'a>(forces: impl IntoIterator<Item = &'a f64>) -> bool {
-    forces.into_iter().any(|&f| f > 0.0)
+fn in_contact<C: Contact>(states: &[C]) -> bool {
+    states.iter().any(|s| s.force_n() > 0.0)
 }
 
 /// The rollers' moment never reached the torque within the lags searched: say how far it got
@@ -158,8 +162,7 @@ fn solve_rollers(
         lag = settle(lag, towards, model.torque_nmm, states, exact)?;
     } else if work.exact_final {
         // Every roller exact at the answer (skipped ones carried only a gap bound).
-        r.evaluate_at(&pose(lag), &trig, states, &mut [])
-            .map_err(SolveFailure::Gap)?;
+        r.evaluate_at(&pose(lag), &trig, states, &mut [])?;
     }
     if model.torque_nmm == 0.0 {
         // Free in the backlash: no contact carries force, or none more than round-off. The
@@ -168,16 +171,9 @@ fn solve_rollers(
         // the far side's edge, where a roller's force of round-off still counts as a contact:
         // the limit T → 0⁺ is the near contact in the load direction all the same.
         let free = round_off(states, r.moment_resolution(states, offset_norm));
-        if free || !in_contact(states.iter().map(|s| &s.force_n)) {
-            lag = touching(
-                |l| {
-                    r.evaluate(&pose(l), states)
-                        .map(|()| states.iter().map(|s| (s.gap_mm, -s.arm_mm)).collect())
-                },
-                lag,
-            )
-            .map_err(SolveFailure::Gap)?;
-            r.evaluate(&pose(lag), states).map_err(SolveFailure::Gap)?;
+        if free || !in_contact(states) {
+            lag = touching(states, |l, states| r.evaluate(&pose(l), states), lag)?;
+            r.evaluate(&pose(lag), states)?;
             reaches
                 .iter_mut()
                 .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
@@ -198,7 +194,7 @@ fn pins_at(
     lag: f64,
     states: &mut Vec<PinState>,
 ) {
-    if model.first_order_pins() {
+    if model.first_order {
         let centre = e_phi * model.eccentricity_mm + offset;
         p.first_order_at(e_phi, rotation, centre, lag, states);
     } else {
@@ -216,7 +212,7 @@ fn solve_pins(
     guess: f64,
     work: &mut Work,
 ) -> Result<f64, SolveFailure> {
-    let first_order = model.first_order_pins();
+    let first_order = model.first_order;
     if let (true, Some(k), true) = (first_order, p.linear_stiffness(), offset == Vec2::zeros()) {
         let centre = e_phi * model.eccentricity_mm;
         p.first_order_at(e_phi, psi.sin_cos(), centre, 0.0, &mut work.sol.pins);
@@ -243,27 +239,19 @@ fn solve_pins(
     let rotation = psi.sin_cos();
     let evaluate = |lag: f64, states: &mut Vec<PinState>| {
         pins_at(model, p, (e_phi, rotation, offset), lag, states);
+        Ok::<_, SolveFailure>(())
     };
     // `states` holds the evaluation at root.x: the solver's last evaluation is at its answer.
     let mut lag = root.x;
     if let Some(towards) = root.straddle {
         // As for the rollers: forces mixed between two neighbouring output lags.
-        lag = settle(lag, towards, model.torque_nmm, states, |y, other| {
-            evaluate(y, other);
-            Ok(())
-        })?;
-    }
-    if model.torque_nmm == 0.0 && !in_contact(states.iter().map(|s| &s.force_n)) {
-        lag = touching(
-            |l| {
-                evaluate(l, states);
-                Ok::<_, SolveFailure>(states.iter().map(|s| (s.gap_mm, s.gap_slope_mm)).collect())
-            },
-            lag,
-        )?;
-        evaluate(lag, states);
+        lag = settle(lag, towards, model.torque_nmm, states, evaluate)?;
     }
     if model.torque_nmm == 0.0 {
+        if !in_contact(states) {
+            lag = touching(states, evaluate, lag)?;
+            evaluate(lag, states)?;
+        }
         let resolution = p.moment_resolution(states, offset.norm());
         unload_round_off(states, resolution);
     }
@@ -402,8 +390,7 @@ fn solve_rollers_coupled(
     // A straddled root (round-off of the gaps) is taken at its end: its balance is within the
     // round-off of the gaps, which the tolerance of the pins' pass below accepts.
     if root.straddle.is_some() || work.exact_final {
-        r.evaluate_at(&pose(root.x), &trig, &mut work.sol.rollers, &mut [])
-            .map_err(SolveFailure::Gap)?;
+        r.evaluate_at(&pose(root.x), &trig, &mut work.sol.rollers, &mut [])?;
     }
     Ok(root.x)
 }

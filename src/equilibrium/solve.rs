@@ -20,7 +20,6 @@ pub struct Balance {
 pub struct Root {
     pub x: f64,
     pub residual: f64,
-    pub iterations: usize,
     /// The other end of a one-ulp bracket across which the balance steps over the target by
     /// no more than its round-off (`monotone_root`): no double meets the tolerance, and the
     /// caller mixes its states at `x` and near this end (`settle_straddle`). `residual` is
@@ -300,7 +299,7 @@ pub fn monotone_root<E: Into<SolveFailure>>(
     let mut nearest: Option<(f64, f64)> = None;
     // Whether x is an end of the search range that a march stepped onto (`within_range`).
     let mut at_end = false;
-    for calls in 1..=settings.max_iterations {
+    for _ in 0..settings.max_iterations {
         let b = match eval(x) {
             Ok(b) => b,
             // The range's end is an extra point beyond the march's own steps: where the balance
@@ -328,7 +327,6 @@ pub fn monotone_root<E: Into<SolveFailure>>(
         let found = Root {
             x,
             residual,
-            iterations: calls,
             straddle: None,
             slope: b.slope,
         };
@@ -391,7 +389,6 @@ pub fn monotone_root<E: Into<SolveFailure>>(
                     return Ok(Root {
                         x,
                         residual: relative(&blend, target),
-                        iterations: calls,
                         straddle: Some(if x == lo { hi } else { lo }),
                         slope: blend.slope,
                     });

@@ -21,10 +21,8 @@ use crate::units;
 /// else computed from them (a unit conversion, a count as a number).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Rows<'a> {
-    /// The results' rows.
+    /// The results' rows (one row: `one`).
     Stored(&'a [Vec<f64>]),
-    /// One row of the results.
-    Row(&'a [f64]),
     /// Rows computed from the results.
     Computed(Vec<Vec<f64>>),
 }
@@ -32,19 +30,17 @@ pub enum Rows<'a> {
 impl<'a> Rows<'a> {
     /// Each row, `[angle]`, in order.
     pub fn iter(&self) -> impl Iterator<Item = &[f64]> {
-        let (rows, row): (&[Vec<f64>], Option<&[f64]>) = match self {
-            Rows::Stored(rows) => (rows, None),
-            Rows::Row(row) => (&[], Some(row)),
-            Rows::Computed(rows) => (rows, None),
+        let rows: &[Vec<f64>] = match self {
+            Rows::Stored(rows) => rows,
+            Rows::Computed(rows) => rows,
         };
-        row.into_iter().chain(rows.iter().map(Vec::as_slice))
+        rows.iter().map(Vec::as_slice)
     }
 
     /// The rows as owned vectors (a copy where they are the results').
     pub fn into_owned(self) -> Vec<Vec<f64>> {
         match self {
             Rows::Stored(rows) => rows.to_vec(),
-            Rows::Row(row) => vec![row.to_vec()],
             Rows::Computed(rows) => rows,
         }
     }
@@ -389,8 +385,9 @@ fn arcsec(v: &[f64]) -> Rows<'static> {
     converted(v, units::arcsec)
 }
 
-fn one(v: &[f64]) -> Rows<'_> {
-    Rows::Row(v)
+/// One row of the results.
+fn one(v: &Vec<f64>) -> Rows<'_> {
+    Rows::Stored(std::slice::from_ref(v))
 }
 
 /// Crank angle `k` of the run's angles `c` (φ = 0 past its end: an extreme of an empty curve).
@@ -522,7 +519,7 @@ pub const RATIO: Quantity = Quantity {
     read: Read::ReducerCurves(|r| {
         r.transmission
             .as_ref()
-            .and_then(|t| t.ratio.as_deref().map(one))
+            .and_then(|t| t.ratio.as_ref().map(one))
     }),
 };
 
@@ -1009,11 +1006,6 @@ fn pin_stress(r: &ReducerResult) -> Option<&super::strength::PinStress> {
     r.pin_stress.as_ref()
 }
 
-/// A disc's strength figures, when the scene computes them (`Effect::Strength`).
-fn disc_strength(d: &DiscResult) -> Option<super::strength::DiscStrength> {
-    d.loaded.strength
-}
-
 /// σ_b = 32·M/(π·d³) of each output pin at its most loaded section, MPa, one curve per pin
 /// (`PinStress::bending_stress_mpa`; `equilibrium::pin_stress`): every disc's force on the pin
 /// summed as vectors, on the pin that bends (the pin, or the pin inside a free sleeve).
@@ -1089,7 +1081,7 @@ pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
     of: None,
     read: Read::DiscOrCycle(
         |d, c| {
-            let f = disc_strength(d)?.fatigue?;
+            let f = d.loaded.strength?.fatigue?;
             let (value, part) = f.shorter()?;
             let pressure_mpa = f.pressure_mpa;
             // Where the largest pressure is (the one the life is at), when the curves hold it.
@@ -1122,7 +1114,7 @@ pub const STATIC_SAFETY: Quantity = Quantity {
     shape: Shape::Scalar,
     of: None,
     read: Read::DiscScalar(|d, c| {
-        let s = disc_strength(d)?.static_safety?;
+        let s = d.loaded.strength?.static_safety?;
         // Where the largest bearing force is, when the curve holds it.
         let place = (d.loaded.bearing.as_ref())
             .map(|b| extremes(&b.force_n).1)

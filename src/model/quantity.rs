@@ -16,35 +16,11 @@ use super::results::{
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 
-/// Rows `[column][angle]` in output units, as a curve's reader gives them: the results' own
-/// where they hold them in the key's unit (no copy: the results JSON writes them as they are),
-/// else computed from them (a unit conversion, a count as a number).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Rows<'a> {
-    /// The results' rows (one row: `one`).
-    Stored(&'a [Vec<f64>]),
-    /// Rows computed from the results.
-    Computed(Vec<Vec<f64>>),
-}
-
-impl<'a> Rows<'a> {
-    /// Each row, `[angle]`, in order.
-    pub fn iter(&self) -> impl Iterator<Item = &[f64]> {
-        let rows: &[Vec<f64>] = match self {
-            Rows::Stored(rows) => rows,
-            Rows::Computed(rows) => rows,
-        };
-        rows.iter().map(Vec::as_slice)
-    }
-
-    /// The rows as owned vectors (a copy where they are the results').
-    pub fn into_owned(self) -> Vec<Vec<f64>> {
-        match self {
-            Rows::Stored(rows) => rows.to_vec(),
-            Rows::Computed(rows) => rows,
-        }
-    }
-}
+/// Rows `[column][angle]` in output units, as a curve's reader gives them: borrowed, the
+/// results' own where they hold them in the key's unit (no copy: the results JSON writes them
+/// as they are; one row: `one`), else owned, computed from them (a unit conversion, a count as
+/// a number).
+pub type Rows<'a> = std::borrow::Cow<'a, [Vec<f64>]>;
 
 /// How a quantity is laid out over a scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -258,9 +234,7 @@ impl Quantity {
                 (r.discs.iter().enumerate())
                     .filter_map(|(k, disc)| {
                         let mut e = read(disc, c)?;
-                        if named {
-                            e.at.disc = Some(k);
-                        }
+                        e.at.disc = named.then_some(k);
                         Some(e)
                     })
                     .reduce(|a, b| if self.worse(b.value, a.value) { b } else { a })
@@ -378,7 +352,7 @@ fn backlash(d: &DiscResult) -> Option<&BacklashCurves> {
 
 /// One curve of `v` converted by `unit` (`units`: rad to arcsec, N·mm to N·m, …).
 fn converted(v: &[f64], unit: fn(f64) -> f64) -> Rows<'static> {
-    Rows::Computed(vec![v.iter().map(|&x| unit(x)).collect()])
+    Rows::Owned(vec![v.iter().map(|&x| unit(x)).collect()])
 }
 
 fn arcsec(v: &[f64]) -> Rows<'static> {
@@ -387,7 +361,7 @@ fn arcsec(v: &[f64]) -> Rows<'static> {
 
 /// One row of the results.
 fn one(v: &Vec<f64>) -> Rows<'_> {
-    Rows::Stored(std::slice::from_ref(v))
+    Rows::Borrowed(std::slice::from_ref(v))
 }
 
 /// Crank angle `k` of the run's angles `c` (φ = 0 past its end: an extreme of an empty curve).
@@ -446,7 +420,7 @@ pub const CLEARANCE: Quantity = Quantity {
     effect: Effect::Clearance,
     shape: Shape::PerRoller,
     of: None,
-    read: Read::DiscCurves(|d| d.clearance.as_ref().map(|c| Rows::Stored(&c.gap_mm))),
+    read: Read::DiscCurves(|d| d.clearance.as_ref().map(|c| Rows::Borrowed(&c.gap_mm))),
 };
 
 /// Unloaded TE: the smallest closing lag of the rollers that a positive torque closes, arcsec
@@ -531,7 +505,7 @@ pub const ROLLER_FORCE: Quantity = Quantity {
     effect: Effect::RollerContact,
     shape: Shape::PerRoller,
     of: None,
-    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.force_n))),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Borrowed(&c.force_n))),
 };
 
 /// Hertz peak pressure p0 of each roller's contact, MPa, one curve per roller
@@ -543,7 +517,7 @@ pub const CONTACT_PRESSURE: Quantity = Quantity {
     effect: Effect::RollerContact,
     shape: Shape::PerRoller,
     of: None,
-    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.pressure_mpa))),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Borrowed(&c.pressure_mpa))),
 };
 
 /// Hertz half-width b of each roller's contact, mm, one curve per roller
@@ -555,7 +529,7 @@ pub const CONTACT_HALF_WIDTH: Quantity = Quantity {
     effect: Effect::RollerContact,
     shape: Shape::PerRoller,
     of: None,
-    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.half_width_mm))),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Borrowed(&c.half_width_mm))),
 };
 
 /// How many rollers carry a force at each crank angle (`RollerCurves::contacts`).
@@ -567,7 +541,7 @@ pub const CONTACTS: Quantity = Quantity {
     shape: Shape::Curve,
     of: None,
     read: Read::DiscCurves(|d| {
-        rollers(d).map(|c| Rows::Computed(vec![c.contacts.iter().map(|&n| n as f64).collect()]))
+        rollers(d).map(|c| Rows::Owned(vec![c.contacts.iter().map(|&n| n as f64).collect()]))
     }),
 };
 
@@ -615,7 +589,7 @@ pub const PIN_FORCE: Quantity = Quantity {
     effect: Effect::OutputPins,
     shape: Shape::PerPin,
     of: None,
-    read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| Rows::Stored(&p.force_n))),
+    read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| Rows::Borrowed(&p.force_n))),
 };
 
 /// |Fb|, the magnitude of the crank bearing's force on the disc, N (`BearingCurves::force_n`).
@@ -837,7 +811,7 @@ pub const MAX_RESIDUAL: Quantity = Quantity {
 /// The catalogue figures of a torsion scene, `[crank]`, read by `figure`.
 fn torsion_figures(r: &ReducerResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows<'_>> {
     let t = r.torsion.as_ref()?;
-    Some(Rows::Computed(vec![t.figures.iter().map(figure).collect()]))
+    Some(Rows::Owned(vec![t.figures.iter().map(figure).collect()]))
 }
 
 /// Torsion lost motion γ(+3 %) − γ(−3 %) of the rated torque, arcmin, at each locked crank angle
@@ -1016,7 +990,7 @@ pub const PIN_BENDING_STRESS: Quantity = Quantity {
     effect: Effect::Strength,
     shape: Shape::PerPin,
     of: None,
-    read: Read::ReducerCurves(|r| Some(Rows::Stored(&pin_stress(r)?.bending_stress_mpa))),
+    read: Read::ReducerCurves(|r| Some(Rows::Borrowed(&pin_stress(r)?.bending_stress_mpa))),
 };
 
 /// The largest output-pin bending stress, MPa, with the pin and the crank angle.

@@ -1094,7 +1094,7 @@ pub const STATIC_SAFETY: Quantity = Quantity {
             .map(|b| extremes(&b.force_n).1)
             .filter(|&(f, _)| f == s.largest_force_n)
             .map(|(_, k)| crank(c, k));
-        let site = match s.safety == f64::MAX {
+        let site = match super::results::is_unbounded(s.safety) {
             false => Site::StaticSafety {
                 force_n: s.largest_force_n,
                 at: place,

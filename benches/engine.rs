@@ -496,7 +496,7 @@ fn duty_scene(b: divan::Bencher, single: bool) {
     let spec = spec::load("specs/reducer-duty-cycle.yaml").expect("specs/reducer-duty-cycle.yaml");
     let duty = spec.scenes[0].clone();
     let scene = match single {
-        true => duty.duty_cycle.as_ref().unwrap()[0].scene(&duty),
+        true => duty.duty_cycle.as_ref().unwrap()[0].scene(&duty, 0),
         false => duty,
     };
     let plan = cycloid::model::Plan::for_scene(&scene);

@@ -268,13 +268,9 @@ fn run_duty_cycle(
     options: &RunOptions,
 ) -> Result<SceneResult> {
     use rayon::prelude::*;
-    let bin_scene = |j: usize, bin: &crate::model::DutyBin| crate::model::Scene {
-        name: format!("{} bin {j}", scene.name),
-        ..bin.scene(scene)
-    };
     let shared = match bins.first() {
         Some(bin) if plan.has(Effect::Clearance) => {
-            clearances(design, m, (&bin_scene(0, bin), plan), options).ok()
+            clearances(design, m, (&bin.scene(scene, 0), plan), options).ok()
         }
         _ => None,
     };
@@ -282,7 +278,7 @@ fn run_duty_cycle(
         .par_iter()
         .enumerate()
         .map(|(j, bin)| {
-            let at = bin_scene(j, bin);
+            let at = bin.scene(scene, j);
             run_one(design, m, (&at, plan), options, shared.as_deref()).map_err(|mut e| {
                 e.key_path = Some(match e.key_path.take().as_deref() {
                     Some("output_torque_nm") => format!("duty_cycle[{j}].output_torque_nm"),

@@ -1,7 +1,6 @@
 //! Limits → checks → verdicts. A limit applies to every scene that computes its quantity.
 
-/// How a value compares with a limit ([`engine::limit`](crate::engine::limit)), where checks look for it.
-pub use super::limit::{excess, passes, tolerance};
+use super::limit::{excess, passes};
 use crate::error::{Error, Result};
 pub use crate::model::quantity::Bound;
 

@@ -16,39 +16,11 @@ use super::results::{
 use crate::numeric::{extremes, fluctuation, max_entry};
 use crate::units;
 
-/// Rows `[column][angle]` in output units, as a curve's reader gives them: the results' own
-/// where they hold them in the key's unit (no copy: the results JSON writes them as they are),
-/// else computed from them (a unit conversion, a count as a number).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Rows<'a> {
-    /// The results' rows.
-    Stored(&'a [Vec<f64>]),
-    /// One row of the results.
-    Row(&'a [f64]),
-    /// Rows computed from the results.
-    Computed(Vec<Vec<f64>>),
-}
-
-impl<'a> Rows<'a> {
-    /// Each row, `[angle]`, in order.
-    pub fn iter(&self) -> impl Iterator<Item = &[f64]> {
-        let (rows, row): (&[Vec<f64>], Option<&[f64]>) = match self {
-            Rows::Stored(rows) => (rows, None),
-            Rows::Row(row) => (&[], Some(row)),
-            Rows::Computed(rows) => (rows, None),
-        };
-        row.into_iter().chain(rows.iter().map(Vec::as_slice))
-    }
-
-    /// The rows as owned vectors (a copy where they are the results').
-    pub fn into_owned(self) -> Vec<Vec<f64>> {
-        match self {
-            Rows::Stored(rows) => rows.to_vec(),
-            Rows::Row(row) => vec![row.to_vec()],
-            Rows::Computed(rows) => rows,
-        }
-    }
-}
+/// Rows `[column][angle]` in output units, as a curve's reader gives them: borrowed, the
+/// results' own where they hold them in the key's unit (no copy: the results JSON writes them
+/// as they are; one row: `one`), else owned, computed from them (a unit conversion, a count as
+/// a number).
+pub type Rows<'a> = std::borrow::Cow<'a, [Vec<f64>]>;
 
 /// How a quantity is laid out over a scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -262,9 +234,7 @@ impl Quantity {
                 (r.discs.iter().enumerate())
                     .filter_map(|(k, disc)| {
                         let mut e = read(disc, c)?;
-                        if named {
-                            e.at.disc = Some(k);
-                        }
+                        e.at.disc = named.then_some(k);
                         Some(e)
                     })
                     .reduce(|a, b| if self.worse(b.value, a.value) { b } else { a })
@@ -382,15 +352,16 @@ fn backlash(d: &DiscResult) -> Option<&BacklashCurves> {
 
 /// One curve of `v` converted by `unit` (`units`: rad to arcsec, N·mm to N·m, …).
 fn converted(v: &[f64], unit: fn(f64) -> f64) -> Rows<'static> {
-    Rows::Computed(vec![v.iter().map(|&x| unit(x)).collect()])
+    Rows::Owned(vec![v.iter().map(|&x| unit(x)).collect()])
 }
 
 fn arcsec(v: &[f64]) -> Rows<'static> {
     converted(v, units::arcsec)
 }
 
-fn one(v: &[f64]) -> Rows<'_> {
-    Rows::Row(v)
+/// One row of the results.
+fn one(v: &Vec<f64>) -> Rows<'_> {
+    Rows::Borrowed(std::slice::from_ref(v))
 }
 
 /// Crank angle `k` of the run's angles `c` (φ = 0 past its end: an extreme of an empty curve).
@@ -449,7 +420,7 @@ pub const CLEARANCE: Quantity = Quantity {
     effect: Effect::Clearance,
     shape: Shape::PerRoller,
     of: None,
-    read: Read::DiscCurves(|d| d.clearance.as_ref().map(|c| Rows::Stored(&c.gap_mm))),
+    read: Read::DiscCurves(|d| d.clearance.as_ref().map(|c| Rows::Borrowed(&c.gap_mm))),
 };
 
 /// Unloaded TE: the smallest closing lag of the rollers that a positive torque closes, arcsec
@@ -522,7 +493,7 @@ pub const RATIO: Quantity = Quantity {
     read: Read::ReducerCurves(|r| {
         r.transmission
             .as_ref()
-            .and_then(|t| t.ratio.as_deref().map(one))
+            .and_then(|t| t.ratio.as_ref().map(one))
     }),
 };
 
@@ -534,7 +505,7 @@ pub const ROLLER_FORCE: Quantity = Quantity {
     effect: Effect::RollerContact,
     shape: Shape::PerRoller,
     of: None,
-    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.force_n))),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Borrowed(&c.force_n))),
 };
 
 /// Hertz peak pressure p0 of each roller's contact, MPa, one curve per roller
@@ -546,7 +517,7 @@ pub const CONTACT_PRESSURE: Quantity = Quantity {
     effect: Effect::RollerContact,
     shape: Shape::PerRoller,
     of: None,
-    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.pressure_mpa))),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Borrowed(&c.pressure_mpa))),
 };
 
 /// Hertz half-width b of each roller's contact, mm, one curve per roller
@@ -558,7 +529,7 @@ pub const CONTACT_HALF_WIDTH: Quantity = Quantity {
     effect: Effect::RollerContact,
     shape: Shape::PerRoller,
     of: None,
-    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Stored(&c.half_width_mm))),
+    read: Read::DiscCurves(|d| rollers(d).map(|c| Rows::Borrowed(&c.half_width_mm))),
 };
 
 /// How many rollers carry a force at each crank angle (`RollerCurves::contacts`).
@@ -570,7 +541,7 @@ pub const CONTACTS: Quantity = Quantity {
     shape: Shape::Curve,
     of: None,
     read: Read::DiscCurves(|d| {
-        rollers(d).map(|c| Rows::Computed(vec![c.contacts.iter().map(|&n| n as f64).collect()]))
+        rollers(d).map(|c| Rows::Owned(vec![c.contacts.iter().map(|&n| n as f64).collect()]))
     }),
 };
 
@@ -618,7 +589,7 @@ pub const PIN_FORCE: Quantity = Quantity {
     effect: Effect::OutputPins,
     shape: Shape::PerPin,
     of: None,
-    read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| Rows::Stored(&p.force_n))),
+    read: Read::DiscCurves(|d| d.loaded.pins.as_ref().map(|p| Rows::Borrowed(&p.force_n))),
 };
 
 /// |Fb|, the magnitude of the crank bearing's force on the disc, N (`BearingCurves::force_n`).
@@ -840,7 +811,7 @@ pub const MAX_RESIDUAL: Quantity = Quantity {
 /// The catalogue figures of a torsion scene, `[crank]`, read by `figure`.
 fn torsion_figures(r: &ReducerResult, figure: impl Fn(&TorsionFigures) -> f64) -> Option<Rows<'_>> {
     let t = r.torsion.as_ref()?;
-    Some(Rows::Computed(vec![t.figures.iter().map(figure).collect()]))
+    Some(Rows::Owned(vec![t.figures.iter().map(figure).collect()]))
 }
 
 /// Torsion lost motion γ(+3 %) − γ(−3 %) of the rated torque, arcmin, at each locked crank angle
@@ -1009,11 +980,6 @@ fn pin_stress(r: &ReducerResult) -> Option<&super::strength::PinStress> {
     r.pin_stress.as_ref()
 }
 
-/// A disc's strength figures, when the scene computes them (`Effect::Strength`).
-fn disc_strength(d: &DiscResult) -> Option<super::strength::DiscStrength> {
-    d.loaded.strength
-}
-
 /// σ_b = 32·M/(π·d³) of each output pin at its most loaded section, MPa, one curve per pin
 /// (`PinStress::bending_stress_mpa`; `equilibrium::pin_stress`): every disc's force on the pin
 /// summed as vectors, on the pin that bends (the pin, or the pin inside a free sleeve).
@@ -1024,7 +990,7 @@ pub const PIN_BENDING_STRESS: Quantity = Quantity {
     effect: Effect::Strength,
     shape: Shape::PerPin,
     of: None,
-    read: Read::ReducerCurves(|r| Some(Rows::Stored(&pin_stress(r)?.bending_stress_mpa))),
+    read: Read::ReducerCurves(|r| Some(Rows::Borrowed(&pin_stress(r)?.bending_stress_mpa))),
 };
 
 /// The largest output-pin bending stress, MPa, with the pin and the crank angle.
@@ -1089,7 +1055,7 @@ pub const MIN_CONTACT_FATIGUE_LIFE: Quantity = Quantity {
     of: None,
     read: Read::DiscOrCycle(
         |d, c| {
-            let f = disc_strength(d)?.fatigue?;
+            let f = d.loaded.strength?.fatigue?;
             let (value, part) = f.shorter()?;
             let pressure_mpa = f.pressure_mpa;
             // Where the largest pressure is (the one the life is at), when the curves hold it.
@@ -1122,13 +1088,13 @@ pub const STATIC_SAFETY: Quantity = Quantity {
     shape: Shape::Scalar,
     of: None,
     read: Read::DiscScalar(|d, c| {
-        let s = disc_strength(d)?.static_safety?;
+        let s = d.loaded.strength?.static_safety?;
         // Where the largest bearing force is, when the curve holds it.
         let place = (d.loaded.bearing.as_ref())
             .map(|b| extremes(&b.force_n).1)
             .filter(|&(f, _)| f == s.largest_force_n)
             .map(|(_, k)| crank(c, k));
-        let site = match s.safety == f64::MAX {
+        let site = match super::results::is_unbounded(s.safety) {
             false => Site::StaticSafety {
                 force_n: s.largest_force_n,
                 at: place,

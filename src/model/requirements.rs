@@ -5,7 +5,7 @@
 use super::design::{CrankBearing, Material, PinSupport};
 use super::limits::Limits;
 use super::strength::Strength;
-use super::{Crowning, DutyBin, Friction, Misalignment, Thermal};
+use super::{Crowning, DutyBin, Effect, Friction, Misalignment, Thermal};
 
 /// Crank period of the loaded curves of a search's design with `teeth` nc, np = nc + 1 rollers
 /// and `pins` M, in mesh periods of 2π/np (M units of `design::pinned_period_units`):
@@ -268,17 +268,16 @@ pub struct Requirements {
 impl Requirements {
     /// A strength limit is set: the running scenes compute `strength` (issue 41).
     pub fn needs_strength(&self) -> bool {
-        (self.limits.entries.iter()).any(|l| l.def.quantity.effect == super::Effect::Strength)
+        self.limits_effect(Effect::Strength)
     }
 
-    /// The torsion scene is needed (a rigidity or torsional lost-motion limit or objective).
+    /// The torsion scene is needed (a rigidity objective, or a limit on a torsion figure).
     pub fn needs_torsion(&self) -> bool {
-        self.objectives.contains(&ObjectiveKind::Rigidity)
-            || self
-                .limits
-                .get("min_torsional_rigidity_nm_per_arcmin")
-                .is_some()
-            || self.limits.get("max_lost_motion_arcmin").is_some()
-            || self.limits.get("max_hysteresis_loss_arcmin").is_some()
+        self.objectives.contains(&ObjectiveKind::Rigidity) || self.limits_effect(Effect::Torsion)
+    }
+
+    /// A limit bounds a quantity of `effect`.
+    fn limits_effect(&self, effect: Effect) -> bool {
+        (self.limits.entries.iter()).any(|l| l.def.quantity.effect == effect)
     }
 }

@@ -102,10 +102,11 @@ impl DutyBin {
         self.time_share * self.input_speed_rpm
     }
 
-    /// The scene one bin runs as: `scene` at the bin's torque and speed (no speed at a
-    /// standstill: no life in hours, no watts), without the cycle.
-    pub fn scene(&self, scene: &Scene) -> Scene {
+    /// The scene bin `j` runs as: `scene` at the bin's torque and speed (no speed at a
+    /// standstill: no life in hours, no watts), without the cycle, named `<scene> bin j`.
+    pub fn scene(&self, scene: &Scene, j: usize) -> Scene {
         Scene {
+            name: format!("{} bin {j}", scene.name),
             output_torque_nmm: self.output_torque_nmm,
             input_speed_rpm: (self.input_speed_rpm > 0.0).then_some(self.input_speed_rpm),
             duty_cycle: None,

@@ -63,7 +63,7 @@ pub struct Rows<'a>(&'a q::Rows<'a>);
 
 impl Serialize for Rows<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.collect_seq(self.0.iter().map(Curve))
+        s.collect_seq(self.0.iter().map(|row| Curve(row)))
     }
 }
 
@@ -461,7 +461,7 @@ impl<'a> SceneDoc<'a> {
         let Some(rows) = self.of.rows(quantity) else {
             return Ok(());
         };
-        let row = rows.iter().next().unwrap_or_default();
+        let row = rows.first().map(Vec::as_slice).unwrap_or_default();
         if quantity.shape.per().is_some() {
             map.rows(quantity.key, &rows)?;
         } else if quantity.is_count() {
@@ -764,7 +764,9 @@ impl CurveMap for Object<'_, '_> {
     }
 
     fn rows(&mut self, key: &'static str, rows: &q::Rows) -> serde_json::Result<()> {
-        self.raw(key, |text| json_text::rows(text, rows.iter()))
+        self.raw(key, |text| {
+            json_text::rows(text, rows.iter().map(Vec::as_slice))
+        })
     }
 
     fn counts(&mut self, key: &'static str, row: &[f64]) -> serde_json::Result<()> {

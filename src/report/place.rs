@@ -231,35 +231,32 @@ pub fn or_unbounded(x: f64, show: impl FnOnce(f64) -> String) -> String {
     }
 }
 
-/// Why a figure has no finite bound, and that it is written as the largest double.
+/// Why a figure has no finite bound, and that it is written as the largest double (a life in
+/// hours, a safety as a number).
 fn unbounded(u: &Unbounded) -> String {
-    match u {
-        Unbounded::Life { load_n } if *load_n == 0.0 => "unbounded: P = 0 N, no load wears the \
-                                                          bearing (written as 1.798e308 h, the \
-                                                          largest number)"
-            .to_string(),
-        Unbounded::Life { load_n } => format!(
-            "unbounded: at P = {} N the life is beyond 1.798e308 h, the largest number",
-            number(*load_n)
-        ),
-        Unbounded::PinSafety => {
-            "unbounded: no pin is bent (written as 1.798e308, the largest number)".to_string()
+    let (why, unit) = match u {
+        Unbounded::Life { load_n } if *load_n == 0.0 => {
+            ("P = 0 N, no load wears the bearing".to_string(), " h")
         }
-        Unbounded::Fatigue { part, pressure_mpa } => format!(
-            "unbounded: the {part} take no damage at {} MPa (written as 1.798e308 h, the largest \
-             number)",
-            number(*pressure_mpa)
+        Unbounded::Life { load_n } => {
+            return format!(
+                "unbounded: at P = {} N the life is beyond 1.798e308 h, the largest number",
+                number(*load_n)
+            )
+        }
+        Unbounded::PinSafety => ("no pin is bent".to_string(), ""),
+        Unbounded::Fatigue { part, pressure_mpa } => (
+            format!("the {part} take no damage at {} MPa", number(*pressure_mpa)),
+            " h",
         ),
-        Unbounded::StaticSafety => "unbounded: the bearing carries no force (written as \
-                                    1.798e308, the largest number)"
-            .to_string(),
-        Unbounded::DutyFatigue { part } => format!(
-            "unbounded: no bin wears the {part} (written as 1.798e308 h, the largest number)"
+        Unbounded::StaticSafety => ("the bearing carries no force".to_string(), ""),
+        Unbounded::DutyFatigue { part } => (format!("no bin wears the {part}"), " h"),
+        Unbounded::DutyLife => (
+            "no bin loads the bearing enough to wear it".to_string(),
+            " h",
         ),
-        Unbounded::DutyLife => "unbounded: no bin loads the bearing enough to wear it (written \
-                                as 1.798e308 h, the largest number)"
-            .to_string(),
-    }
+    };
+    format!("unbounded: {why} (written as 1.798e308{unit}, the largest number)")
 }
 
 /// Whether a place names the scene's only crank angle already (`ONLY_ANGLE`): a headline

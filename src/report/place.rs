@@ -87,15 +87,11 @@ fn site(s: &Site) -> String {
         ),
         Site::Locked(c) => format!("{} locked", crank(c.rad)),
         Site::Spread { min, max } => format!("min at {}, max at {}", deg(min), deg(max)),
-        Site::Gap {
-            roller,
-            crank_rad,
-            tooth_phase,
-            over,
-        } => format!(
-            "roller {roller} at {}, tooth phase {} (0 root, 0.5 tip), {}",
-            crank(*crank_rad),
-            phase(*tooth_phase),
+        Site::Gap { min, over } => format!(
+            "roller {} at {}, tooth phase {} (0 root, 0.5 tip), {}",
+            min.roller,
+            crank(min.crank_rad),
+            phase(min.tooth_phase),
             sought_over(over)
         ),
         Site::Slice { at, slice, slices } => format!(
@@ -282,12 +278,21 @@ pub fn counts_scene_angles(p: &Place) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::results::SampledPeriod;
+    use crate::model::results::{MinClearance, SampledPeriod};
 
     fn at_deg(index: usize, deg: f64) -> Crank {
         Crank {
             index,
             rad: deg.to_radians(),
+        }
+    }
+
+    fn gap(roller: usize, crank_rad: f64, tooth_phase: f64) -> MinClearance {
+        MinClearance {
+            gap_mm: 0.0,
+            roller,
+            crank_rad,
+            tooth_phase,
         }
     }
 
@@ -381,9 +386,7 @@ mod tests {
             ),
             (
                 of(Site::Gap {
-                    roller: 4,
-                    crank_rad: 0.0,
-                    tooth_phase: 0.25,
+                    min: gap(4, 0.0, 0.25),
                     over: MinCoverage::Angles(1),
                 }),
                 "roller 4 at crank 0.00°, tooth phase 0.250 (0 root, 0.5 tip), over the scene's \
@@ -391,9 +394,7 @@ mod tests {
             ),
             (
                 of(Site::Gap {
-                    roller: 0,
-                    crank_rad: 3f64.to_radians(),
-                    tooth_phase: 0.5,
+                    min: gap(0, 3f64.to_radians(), 0.5),
                     over: MinCoverage::Period(period),
                 }),
                 "roller 0 at crank 3.00°, tooth phase 0.500 (0 root, 0.5 tip), over the whole \

@@ -240,19 +240,7 @@ fn optimise(
         Ok(run.studies.into_iter().map(|(_, r)| r).collect::<Vec<_>>())
     });
     sink.finish(py)?;
-    let results = results?;
-    let doc = Document::new(&Contents {
-        spec: &spec,
-        checks: &[],
-        results: &[],
-        goldens: &[],
-        summaries: &[],
-        studies: &results,
-        mass: None,
-        unbalance: &[],
-    });
-    let tree = tree::to_py(py, &doc)?;
-    Ok(tree.bind(py).get_item("studies")?.unbind())
+    tree::to_py(py, &cycloid::report::json::studies(&spec, &results?))
 }
 
 /// The spec's tolerance study (`samples` and `seed` in place of the spec's): its samples

@@ -82,49 +82,42 @@ impl<'py> Node<'py> {
     }
 }
 
-/// The list `items`: an array when they are all numbers or all equal-length float arrays.
+/// The list `items`: an array when arrays are asked for and they are all numbers or all
+/// equal-length float arrays, else a Python list.
 fn list<'py>(py: Python<'py>, items: Vec<Node<'py>>, arrays: bool) -> Result<Node<'py>, SerError> {
-    if items.is_empty() || !arrays {
-        let out = PyList::empty(py);
-        for item in items {
-            out.append(item.into_py(py)?).map_err(py_err)?;
+    if arrays && !items.is_empty() {
+        if items.iter().all(|n| matches!(n, Node::Float(_))) {
+            let v = items
+                .into_iter()
+                .map(|n| match n {
+                    Node::Float(x) => x,
+                    _ => unreachable!("all floats"),
+                })
+                .collect();
+            return Ok(Node::Floats(v));
         }
-        return Ok(Node::Obj(out.into_any()));
-    }
-    if items.is_empty() {
-        return Ok(Node::Obj(PyList::empty(py).into_any()));
-    }
-    if items.iter().all(|n| matches!(n, Node::Float(_))) {
-        let v = items
-            .into_iter()
-            .map(|n| match n {
-                Node::Float(x) => x,
-                _ => unreachable!("all floats"),
-            })
-            .collect();
-        return Ok(Node::Floats(v));
-    }
-    if items.iter().all(|n| matches!(n, Node::Int(_))) {
-        let v: Vec<i64> = items
-            .into_iter()
-            .map(|n| match n {
-                Node::Int(i) => i,
-                _ => unreachable!("all ints"),
-            })
-            .collect();
-        return Ok(Node::Obj(PyArray1::from_vec(py, v).into_any()));
-    }
-    if let Some(shape) = common_shape(&items) {
-        let mut flat = Vec::with_capacity(items.len() * shape.iter().product::<usize>());
-        for item in &items {
-            match item {
-                Node::Floats(v) | Node::Array(_, v) => flat.extend_from_slice(v),
-                _ => unreachable!("all arrays"),
+        if items.iter().all(|n| matches!(n, Node::Int(_))) {
+            let v: Vec<i64> = items
+                .into_iter()
+                .map(|n| match n {
+                    Node::Int(i) => i,
+                    _ => unreachable!("all ints"),
+                })
+                .collect();
+            return Ok(Node::Obj(PyArray1::from_vec(py, v).into_any()));
+        }
+        if let Some(shape) = common_shape(&items) {
+            let mut flat = Vec::with_capacity(items.len() * shape.iter().product::<usize>());
+            for item in &items {
+                match item {
+                    Node::Floats(v) | Node::Array(_, v) => flat.extend_from_slice(v),
+                    _ => unreachable!("all arrays"),
+                }
             }
+            let mut dims = vec![items.len()];
+            dims.extend(shape);
+            return Ok(Node::Array(dims, flat));
         }
-        let mut dims = vec![items.len()];
-        dims.extend(shape);
-        return Ok(Node::Array(dims, flat));
     }
     let out = PyList::empty(py);
     for item in items {

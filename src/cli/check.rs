@@ -5,7 +5,7 @@ use super::output::{distinct_outputs, inputs_of, print, print_keeping};
 use super::output::{write_file, write_review};
 use super::{CheckArgs, Outcome};
 use crate::engine::commands::{self, CheckOptions, CheckRun, ReviewOptions};
-use crate::engine::scene::Writes;
+use crate::engine::scene::{self, Writes};
 use crate::error::{ErrorKind, Result};
 use crate::report::terminal::Terminal;
 use crate::{report, spec};
@@ -127,8 +127,8 @@ fn print_run(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()
         out,
         &report::mass_properties::headlines(spec, &run.mass, &run.unbalance),
     )?;
-    for note in report::explain::notes(spec) {
-        print(out, &format!("note: {note}\n"))?;
+    for note in scene::notes(spec) {
+        print(out, &format!("note: {}\n", report::explain::note(&note)))?;
     }
     Ok(())
 }

@@ -10,7 +10,7 @@
 //! MPa, speeds rpm, powers W, torques N·mm.
 
 use super::friction::PathLosses;
-use super::results::{Driver, MinCoverage};
+use super::results::{Driver, MinClearance, MinCoverage};
 
 /// Where a scalar occurs: the bin and disc whose run holds it (outermost first), and the site
 /// on that run.
@@ -98,15 +98,11 @@ pub enum Site {
         /// Where its max is.
         max: Crank,
     },
-    /// The smallest gap (`MinClearance`).
+    /// The smallest gap.
     Gap {
-        /// Its roller.
-        roller: usize,
-        /// Its crank angle φ, rad: over the whole mesh a sample of the period, not one of the
-        /// run's angles.
-        crank_rad: f64,
-        /// Its place on the tooth: 0 root, 0.5 tip.
-        tooth_phase: f64,
+        /// Its roller, crank angle (over the whole mesh a sample of the period, not one of the
+        /// run's angles) and place on the tooth.
+        min: MinClearance,
         /// What it was sought over.
         over: MinCoverage,
     },

@@ -643,9 +643,7 @@ pub const MIN_CLEARANCE: Quantity = Quantity {
     read: Read::DiscScalar(|d, _| {
         d.clearance.as_ref().map(|gaps| {
             let site = Site::Gap {
-                roller: gaps.min.roller,
-                crank_rad: gaps.min.crank_rad,
-                tooth_phase: gaps.min.tooth_phase,
+                min: gaps.min,
                 over: gaps.coverage,
             };
             at(gaps.min.gap_mm, site)

@@ -1,5 +1,5 @@
 //! What a run will do and what its numbers leave unsaid, in words: `check --explain`'s plan of
-//! every scene (`explain`), the notes a reader of the results must be told (`notes`, from
+//! every scene (`explain`), the notes a reader of the results must be told (`note`, each of
 //! [`engine::scene::notes`](crate::engine::scene::notes)) and the sentence every output gives of a torsion scene's hysteresis.
 
 use crate::contact::fatigue;
@@ -180,12 +180,6 @@ pub fn note(n: &Note) -> String {
             }
         ),
     }
-}
-
-/// What a reader of the results of `spec` must be told besides the numbers, one line each: a
-/// torsion scene's zero hysteresis, a crank bearing whose life a scene could not rate.
-pub fn notes(spec: &Spec) -> Vec<String> {
-    scene::notes(spec).iter().map(note).collect()
 }
 
 /// Human-readable plan of `check` on `spec` writing `writes` (`check --explain`): what runs, in

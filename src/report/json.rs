@@ -1054,6 +1054,17 @@ impl<'a> Contents<'a> {
     }
 }
 
+/// The documents of `results`, each matched to its study of `spec` by name: the results
+/// document's `studies`, and what the Python `optimise` returns.
+pub fn studies<'a>(spec: &'a Spec, results: &'a [StudyResult]) -> Vec<StudyDoc<'a>> {
+    (results.iter())
+        .filter_map(|r| {
+            let study = spec.studies.iter().find(|s| s.name == r.name)?;
+            Some(StudyDoc::new(spec, study, r))
+        })
+        .collect()
+}
+
 /// One scene's unbalance at speed (`engine::mass_properties::Unbalance`).
 #[derive(Serialize)]
 struct UnbalanceDoc<'a> {
@@ -1074,14 +1085,7 @@ impl<'a> Document<'a> {
                 .collect(),
             tail: Tail {
                 summary: c.summaries.iter().map(summary).collect(),
-                studies: c
-                    .studies
-                    .iter()
-                    .filter_map(|r| {
-                        let study = c.spec.studies.iter().find(|s| s.name == r.name)?;
-                        Some(StudyDoc::new(c.spec, study, r))
-                    })
-                    .collect(),
+                studies: studies(c.spec, c.studies),
             },
         }
     }

@@ -87,15 +87,11 @@ fn site(s: &Site) -> String {
         ),
         Site::Locked(c) => format!("{} locked", crank(c.rad)),
         Site::Spread { min, max } => format!("min at {}, max at {}", deg(min), deg(max)),
-        Site::Gap {
-            roller,
-            crank_rad,
-            tooth_phase,
-            over,
-        } => format!(
-            "roller {roller} at {}, tooth phase {} (0 root, 0.5 tip), {}",
-            crank(*crank_rad),
-            phase(*tooth_phase),
+        Site::Gap { min, over } => format!(
+            "roller {} at {}, tooth phase {} (0 root, 0.5 tip), {}",
+            min.roller,
+            crank(min.crank_rad),
+            phase(min.tooth_phase),
             sought_over(over)
         ),
         Site::Slice { at, slice, slices } => format!(
@@ -231,35 +227,32 @@ pub fn or_unbounded(x: f64, show: impl FnOnce(f64) -> String) -> String {
     }
 }
 
-/// Why a figure has no finite bound, and that it is written as the largest double.
+/// Why a figure has no finite bound, and that it is written as the largest double (a life in
+/// hours, a safety as a number).
 fn unbounded(u: &Unbounded) -> String {
-    match u {
-        Unbounded::Life { load_n } if *load_n == 0.0 => "unbounded: P = 0 N, no load wears the \
-                                                          bearing (written as 1.798e308 h, the \
-                                                          largest number)"
-            .to_string(),
-        Unbounded::Life { load_n } => format!(
-            "unbounded: at P = {} N the life is beyond 1.798e308 h, the largest number",
-            number(*load_n)
-        ),
-        Unbounded::PinSafety => {
-            "unbounded: no pin is bent (written as 1.798e308, the largest number)".to_string()
+    let (why, unit) = match u {
+        Unbounded::Life { load_n } if *load_n == 0.0 => {
+            ("P = 0 N, no load wears the bearing".to_string(), " h")
         }
-        Unbounded::Fatigue { part, pressure_mpa } => format!(
-            "unbounded: the {part} take no damage at {} MPa (written as 1.798e308 h, the largest \
-             number)",
-            number(*pressure_mpa)
+        Unbounded::Life { load_n } => {
+            return format!(
+                "unbounded: at P = {} N the life is beyond 1.798e308 h, the largest number",
+                number(*load_n)
+            )
+        }
+        Unbounded::PinSafety => ("no pin is bent".to_string(), ""),
+        Unbounded::Fatigue { part, pressure_mpa } => (
+            format!("the {part} take no damage at {} MPa", number(*pressure_mpa)),
+            " h",
         ),
-        Unbounded::StaticSafety => "unbounded: the bearing carries no force (written as \
-                                    1.798e308, the largest number)"
-            .to_string(),
-        Unbounded::DutyFatigue { part } => format!(
-            "unbounded: no bin wears the {part} (written as 1.798e308 h, the largest number)"
+        Unbounded::StaticSafety => ("the bearing carries no force".to_string(), ""),
+        Unbounded::DutyFatigue { part } => (format!("no bin wears the {part}"), " h"),
+        Unbounded::DutyLife => (
+            "no bin loads the bearing enough to wear it".to_string(),
+            " h",
         ),
-        Unbounded::DutyLife => "unbounded: no bin loads the bearing enough to wear it (written \
-                                as 1.798e308 h, the largest number)"
-            .to_string(),
-    }
+    };
+    format!("unbounded: {why} (written as 1.798e308{unit}, the largest number)")
 }
 
 /// Whether a place names the scene's only crank angle already (`ONLY_ANGLE`): a headline
@@ -285,12 +278,21 @@ pub fn counts_scene_angles(p: &Place) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::results::SampledPeriod;
+    use crate::model::results::{MinClearance, SampledPeriod};
 
     fn at_deg(index: usize, deg: f64) -> Crank {
         Crank {
             index,
             rad: deg.to_radians(),
+        }
+    }
+
+    fn gap(roller: usize, crank_rad: f64, tooth_phase: f64) -> MinClearance {
+        MinClearance {
+            gap_mm: 0.0,
+            roller,
+            crank_rad,
+            tooth_phase,
         }
     }
 
@@ -384,9 +386,7 @@ mod tests {
             ),
             (
                 of(Site::Gap {
-                    roller: 4,
-                    crank_rad: 0.0,
-                    tooth_phase: 0.25,
+                    min: gap(4, 0.0, 0.25),
                     over: MinCoverage::Angles(1),
                 }),
                 "roller 4 at crank 0.00°, tooth phase 0.250 (0 root, 0.5 tip), over the scene's \
@@ -394,9 +394,7 @@ mod tests {
             ),
             (
                 of(Site::Gap {
-                    roller: 0,
-                    crank_rad: 3f64.to_radians(),
-                    tooth_phase: 0.5,
+                    min: gap(0, 3f64.to_radians(), 0.5),
                     over: MinCoverage::Period(period),
                 }),
                 "roller 0 at crank 3.00°, tooth phase 0.500 (0 root, 0.5 tip), over the whole \

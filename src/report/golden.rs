@@ -2,7 +2,7 @@
 //! how much and where.
 
 use crate::engine::golden::{BlessChange, Blessed, Point, Written};
-use crate::model::place::Place;
+use crate::model::place::{Place, Site};
 use crate::numeric::{number, with_unit};
 use crate::report::place;
 use crate::spec::Spec;
@@ -63,8 +63,5 @@ pub fn bless_report(spec: &Spec, blessed: &[Blessed]) -> String {
 /// Where a golden point lies, in a row that names the golden's disc already (a check's id, the
 /// review's curve: `Golden::disc_suffix`), so without it: "roller 3 at crank 12.30°".
 pub fn in_row(p: &Point) -> String {
-    place::text(&Place {
-        disc: None,
-        ..p.place()
-    })
+    place::text(&Place::of(Site::Golden(p.at)))
 }

@@ -64,6 +64,16 @@ pub enum Part {
     Pin,
 }
 
+impl Part {
+    /// Its name, in a column's name and in a place: "roller", "pin".
+    pub fn name(self) -> &'static str {
+        match self {
+            Part::Roller => "roller",
+            Part::Pin => "pin",
+        }
+    }
+}
+
 /// One part's curve at one crank angle: roller or pin `index` at `crank`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PartAt {

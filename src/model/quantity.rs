@@ -38,11 +38,7 @@ pub enum Shape {
 impl Shape {
     /// What one column is ("roller", "pin") when there is one curve per part.
     pub fn per(self) -> Option<&'static str> {
-        match self {
-            Shape::PerRoller => Some("roller"),
-            Shape::PerPin => Some("pin"),
-            _ => None,
-        }
+        self.part().map(Part::name)
     }
 
     /// The part one column is a curve of, when there is one curve per part.

@@ -4,7 +4,7 @@
 //! figures to `numeric::number`'s four significant digits.
 
 use crate::model::friction::PathLosses;
-use crate::model::place::{Bin, Crank, GoldenAt, Part, PartAt, Place, Rule, Site, Unbounded};
+use crate::model::place::{Bin, Crank, GoldenAt, PartAt, Place, Rule, Site, Unbounded};
 use crate::model::results::{Driver, MinCoverage};
 use crate::numeric::{number, phase};
 use crate::units;
@@ -41,28 +41,15 @@ fn crank_deg(deg: f64) -> String {
     format!("crank {deg:.2}°")
 }
 
-/// "roller", "pin".
-fn part_name(part: Part) -> &'static str {
-    match part {
-        Part::Roller => "roller",
-        Part::Pin => "pin",
-    }
-}
-
 /// "roller 3 at crank 12.30°", "pin 0 at crank 1.00°".
 fn part_at(a: &PartAt) -> String {
-    format!(
-        "{} {} at {}",
-        part_name(a.part),
-        a.index,
-        crank(a.crank.rad)
-    )
+    format!("{} {} at {}", a.part.name(), a.index, crank(a.crank.rad))
 }
 
 /// A golden point: "roller 3 at crank 12.30°", or "crank 12.30°" on a curve of its own.
 fn golden_at(g: &GoldenAt) -> String {
     match g.part {
-        Some((part, index)) => format!("{} {index} at {}", part_name(part), crank_deg(g.crank_deg)),
+        Some((part, index)) => format!("{} {index} at {}", part.name(), crank_deg(g.crank_deg)),
         None => crank_deg(g.crank_deg),
     }
 }
@@ -278,6 +265,7 @@ pub fn counts_scene_angles(p: &Place) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::place::Part;
     use crate::model::results::{MinClearance, SampledPeriod};
 
     fn at_deg(index: usize, deg: f64) -> Crank {

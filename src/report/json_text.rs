@@ -88,9 +88,15 @@ fn number(buf: &mut Vec<u8>, digits: &mut zmij::Buffer, row: &[f64]) -> serde_js
         buf.extend_from_slice(digits.format_finite(x).as_bytes());
         Ok(1)
     } else if x.to_bits() == 0 {
-        let run = (row.iter().take(COMMA_ZEROS.len() / 4))
-            .take_while(|z| z.to_bits() == 0)
+        // Whole blocks of eight zeros each tested by one OR of their bits (a run is mostly
+        // whole blocks: the run up to 64 costs about one instruction a zero, not six), then
+        // the zeros after the last block one by one.
+        let row = &row[..row.len().min(COMMA_ZEROS.len() / 4)];
+        let blocks = (row.chunks_exact(8))
+            .take_while(|b| b.iter().fold(0, |bits, z| bits | z.to_bits()) == 0)
             .count();
+        let ones = row[8 * blocks..].iter().take_while(|z| z.to_bits() == 0);
+        let run = 8 * blocks + ones.count();
         buf.extend_from_slice(&COMMA_ZEROS[..4 * run]);
         Ok(run)
     } else if x == 0.0 {
@@ -387,9 +393,18 @@ mod tests {
         text.finish().unwrap();
         assert_eq!(String::from_utf8(out).unwrap(), serde(&rows));
         assert_eq!(ours(|b| numbers(b, &[])), "[]");
-        // Runs of zeros shorter and longer than one copy (64), first, last and between
-        // numbers, with a negative zero breaking one.
-        for (lead, run) in [(0, 1), (0, 64), (1, 65), (2, 130), (1, 200)] {
+        // Runs of zeros shorter and longer than one copy (64) and than a block of eight (7,
+        // 13: a block and five after it), first, last and between numbers, with a negative
+        // zero breaking one.
+        for (lead, run) in [
+            (0, 1),
+            (0, 7),
+            (3, 13),
+            (0, 64),
+            (1, 65),
+            (2, 130),
+            (1, 200),
+        ] {
             let mut row = vec![1.5; lead];
             row.extend(std::iter::repeat_n(0.0, run));
             row.push(-0.0);

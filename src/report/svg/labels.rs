@@ -61,11 +61,10 @@ impl Bounds {
 
     /// Distances from `c` to the box's nearest and farthest points.
     fn distances(&self, c: (f64, f64)) -> (f64, f64) {
-        let near_x = c.0.clamp(self.x0, self.x1) - c.0;
-        let near_y = c.1.clamp(self.y0, self.y1) - c.1;
+        let near = self.nearest(c);
         let far_x = (c.0 - self.x0).abs().max((c.0 - self.x1).abs());
         let far_y = (c.1 - self.y0).abs().max((c.1 - self.y1).abs());
-        (near_x.hypot(near_y), far_x.hypot(far_y))
+        ((near.0 - c.0).hypot(near.1 - c.1), far_x.hypot(far_y))
     }
 
     /// The box's point nearest to `p`.

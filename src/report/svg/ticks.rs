@@ -37,22 +37,24 @@ pub fn ticks(mut lo: f64, mut hi: f64, target: usize, expand: bool) -> Ticks {
         ((a - 1e-9).ceil() * step, (b + 1e-9).floor() * step)
     };
     let (lo, hi) = if expand { (first, last) } else { (lo, hi) };
+    stepped(lo, hi, step, first, last)
+}
+
+/// Ticks of [lo, hi] at first, first + step, ... up to last (a value within 1e-9 steps of
+/// zero is zero), labelled with the decimals the step needs.
+fn stepped(lo: f64, hi: f64, step: f64, first: f64, last: f64) -> Ticks {
+    let n = ((last - first) / step + 1e-9).floor() as i64;
+    let values = (0..=n.max(0))
+        .map(|k| first + k as f64 * step)
+        .map(|v| if v.abs() < step * 1e-9 { 0.0 } else { v })
+        .collect();
     Ticks {
         lo,
         hi,
         step,
-        values: steps(first, last, step),
+        values,
         decimals: decimals(step),
     }
-}
-
-/// first, first + step, ... up to last (a value within 1e-9 steps of zero is zero).
-fn steps(first: f64, last: f64, step: f64) -> Vec<f64> {
-    let n = ((last - first) / step + 1e-9).floor() as i64;
-    (0..=n.max(0))
-        .map(|k| first + k as f64 * step)
-        .map(|v| if v.abs() < step * 1e-9 { 0.0 } else { v })
-        .collect()
 }
 
 /// Decimals that show every multiple of `step` exactly (2.5 needs one more than 2).
@@ -64,13 +66,7 @@ fn decimals(step: f64) -> usize {
 
 /// Ticks every `step` (e.g. 6° over a 36° mesh period) inside [lo, hi].
 pub fn every(lo: f64, hi: f64, step: f64) -> Ticks {
-    Ticks {
-        lo,
-        hi,
-        step,
-        values: steps((lo / step - 1e-9).ceil() * step, hi, step),
-        decimals: decimals(step),
-    }
+    stepped(lo, hi, step, (lo / step - 1e-9).ceil() * step, hi)
 }
 
 impl Ticks {

@@ -62,12 +62,9 @@ pub struct Circle {
 /// `Design::hole_radius_mm`).
 pub fn pin_holes(pins: &OutputPins, hole_radius_mm: f64) -> Vec<Circle> {
     (0..pins.count)
-        .map(|j| {
-            let [x, y] = pins.centre_mm(j);
-            Circle {
-                centre: Vec2::new(x, y),
-                radius_mm: hole_radius_mm,
-            }
+        .map(|j| Circle {
+            centre: Vec2::from(pins.centre_mm(j)),
+            radius_mm: hole_radius_mm,
         })
         .collect()
 }

@@ -74,10 +74,7 @@ impl FormError {
         let x = super::wrap_tau(t) * self.per_rad;
         let i = (x as usize).min(n - 1);
         let s = x - i as f64;
-        let [c0, c1, c2, c3, c4, c5] = self.table[i];
-        let w = c0 + s * (c1 + s * (c2 + s * (c3 + s * (c4 + s * c5))));
-        let d1 = c1 + s * (2.0 * c2 + s * (3.0 * c3 + s * (4.0 * c4 + s * 5.0 * c5)));
-        let d2 = 2.0 * c2 + s * (6.0 * c3 + s * (12.0 * c4 + s * 20.0 * c5));
+        let [w, d1, d2] = quintic_at(self.table[i], s);
         let h = self.per_rad;
         (self.constant_mm + w, d1 * h, d2 * h * h)
     }
@@ -181,6 +178,16 @@ fn quintic(l: [f64; 3], r: [f64; 3]) -> [f64; 6] {
     ]
 }
 
+/// The quintic of coefficients c0..c5 at s and its first two derivatives in s, by Horner.
+#[inline]
+fn quintic_at([c0, c1, c2, c3, c4, c5]: [f64; 6], s: f64) -> [f64; 3] {
+    [
+        c0 + s * (c1 + s * (c2 + s * (c3 + s * (c4 + s * c5)))),
+        c1 + s * (2.0 * c2 + s * (3.0 * c3 + s * (4.0 * c4 + s * 5.0 * c5))),
+        2.0 * c2 + s * (6.0 * c3 + s * (12.0 * c4 + s * 20.0 * c5)),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -191,13 +198,7 @@ mod tests {
     fn the_quintic_meets_its_end_conditions() {
         let (l, r) = ([1.0, -2.0, 3.0], [-0.5, 4.0, -7.0]);
         let c = quintic(l, r);
-        let at = |s: f64| {
-            let v = c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * c[5]))));
-            let d1 = c[1] + s * (2.0 * c[2] + s * (3.0 * c[3] + s * (4.0 * c[4] + s * 5.0 * c[5])));
-            let d2 = 2.0 * c[2] + s * (6.0 * c[3] + s * (12.0 * c[4] + s * 20.0 * c[5]));
-            [v, d1, d2]
-        };
-        for (got, want) in [(at(0.0), l), (at(1.0), r)] {
+        for (got, want) in [(quintic_at(c, 0.0), l), (quintic_at(c, 1.0), r)] {
             for j in 0..3 {
                 assert!((got[j] - want[j]).abs() < 1e-12, "{got:?} vs {want:?}");
             }

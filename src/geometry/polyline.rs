@@ -2,7 +2,7 @@
 //! what the profile export writes and the design review draws.
 
 use super::profile::Profile;
-use super::Vec2;
+use super::{cross, Vec2};
 use std::f64::consts::TAU;
 
 /// One exported profile point. Disc frame, mm.
@@ -26,7 +26,7 @@ fn chord_error(profile: &Profile, a: f64, b: f64) -> f64 {
     let error = |t: f64| {
         let p = profile.point(t) - pa;
         if len > 0.0 {
-            (p.x * chord.y - p.y * chord.x).abs() / len
+            cross(p, chord).abs() / len
         } else {
             p.norm()
         }

@@ -209,8 +209,7 @@ impl Profile {
     pub fn locus_d3(&self, t: f64) -> Vec2 {
         let n = self.rollers as f64;
         let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
-        let (s, c) = t.sin_cos();
-        let (sn, cn) = (n * t).sin_cos();
+        let Trig { s, c, sn, cn } = Trig::at(t, n);
         Vec2::new(r * s - e * n.powi(3) * sn, -r * c + e * n.powi(3) * cn)
     }
 

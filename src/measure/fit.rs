@@ -893,10 +893,10 @@ fn initial(
     points: &[MeasuredPoint],
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     let design = request.design;
-    let profile: Vec<Vec2> = points
+    let profile: Vec<MeasuredPoint> = points
         .iter()
         .filter(|p| p.feature == Feature::Profile)
-        .map(|p| p.point)
+        .copied()
         .collect();
     let centre = circle_centre(&profile);
     let mut params = vec![0.0; layout.len];
@@ -918,12 +918,7 @@ fn initial(
     // ~11 per tooth of the paper's 9-tooth disc, and the scan only has to rank 48 turns of which
     // the Gauss–Newton steps refine the best).
     let stride = (profile.len() / 100).max(1);
-    let sample: Vec<MeasuredPoint> = points
-        .iter()
-        .filter(|p| p.feature == Feature::Profile)
-        .step_by(stride)
-        .copied()
-        .collect();
+    let sample: Vec<MeasuredPoint> = profile.iter().step_by(stride).copied().collect();
     let pitch = TAU / design.teeth as f64;
     const SCAN: usize = 48;
     let mut best = (f64::INFINITY, 0.0);
@@ -982,14 +977,16 @@ fn start_feet(params: &[f64], points: &[MeasuredPoint]) -> Vec<f64> {
 
 /// Centre of the least-squares circle through the points (Kåsa: x² + y² = 2a·x + 2b·y + c,
 /// linear in a, b, c), about their mean to keep the squares small.
-fn circle_centre(points: &[Vec2]) -> Vec2 {
+fn circle_centre(points: &[MeasuredPoint]) -> Vec2 {
     let n = points.len().max(1) as f64;
-    let mean = points.iter().fold(Vec2::zeros(), |a, p| a + p) / n;
+    let mean = points.iter().fold(Vec2::zeros(), |a, p| a + p.point) / n;
     let a = Mat::from_fn(points.len(), 3, |i, c| {
-        let p = points[i] - mean;
+        let p = points[i].point - mean;
         [2.0 * p.x, 2.0 * p.y, 1.0][c]
     });
-    let mut b = Mat::from_fn(points.len(), 1, |i, _| (points[i] - mean).norm_squared());
+    let mut b = Mat::from_fn(points.len(), 1, |i, _| {
+        (points[i].point - mean).norm_squared()
+    });
     a.col_piv_qr().solve_lstsq_in_place(b.as_mut());
     mean + Vec2::new(b[(0, 0)], b[(1, 0)])
 }

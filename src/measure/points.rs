@@ -467,9 +467,6 @@ pub fn parse_dxf_at_most(path: &str, text: &str, max: usize) -> Result<Vec<Measu
                     })?;
                 let centre = Vec2::new(e.number(path, 10)?, e.number(path, 20)?);
                 let radius = e.number(path, 40)?;
-                if points.len() + CIRCLE_POINTS > max {
-                    return Err(too_many(path, e.line, max));
-                }
                 for k in 0..CIRCLE_POINTS {
                     let a = TAU * k as f64 / CIRCLE_POINTS as f64;
                     points.push(MeasuredPoint {

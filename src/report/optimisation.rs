@@ -262,16 +262,13 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
     for (label, e) in listed(r) {
         out += &row(study, label, e);
     }
-    for (label, e) in r.references.iter().map(|(l, e)| (l.as_str(), e)) {
-        if e.objective.is_finite() && r.optimum.objective.is_finite() {
-            let diff = r.optimum.objective - e.objective;
-            let verdict = match diff {
-                d if d < 0.0 => "better",
-                0.0 => "equal",
-                _ => "WORSE",
-            };
-            out += &format!("  optimum vs {label}: {} ({verdict})\n", number(diff));
-        }
+    for (label, _, diff) in against_references(r) {
+        let verdict = match diff {
+            d if d < 0.0 => "better",
+            0.0 => "equal",
+            _ => "WORSE",
+        };
+        out += &format!("  optimum vs {label}: {} ({verdict})\n", number(diff));
     }
     out += &on_bounds(study, r);
     out += "  constraints at the optimum:\n";
@@ -574,6 +571,13 @@ fn listed(r: &StudyResult) -> impl Iterator<Item = (&str, &Evaluation)> {
         .chain(std::iter::once(("optimum", &r.optimum)))
 }
 
+/// The references whose objective and the optimum's are finite, each with the optimum's less its.
+fn against_references(r: &StudyResult) -> impl Iterator<Item = (&str, &Evaluation, f64)> {
+    (r.references.iter())
+        .filter(|(_, e)| e.objective.is_finite() && r.optimum.objective.is_finite())
+        .map(|(l, e)| (l.as_str(), e, r.optimum.objective - e.objective))
+}
+
 /// The table's columns: start, references, optimum.
 fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
     let point = |label: &str, e: &Evaluation| StudyPoint {
@@ -601,17 +605,14 @@ fn notes(study: &Study, r: &StudyResult) -> Vec<String> {
             .collect::<Vec<_>>()
             .join("; ")
     )];
-    for (label, e) in &r.references {
-        if e.objective.is_finite() && r.optimum.objective.is_finite() {
-            let diff = r.optimum.objective - e.objective;
-            notes.push(format!(
-                "The optimum's objective is {} {} than the {label}'s ({} vs {}).",
-                number(diff.abs()),
-                if diff <= 0.0 { "lower" } else { "HIGHER" },
-                number(r.optimum.objective),
-                number(e.objective)
-            ));
-        }
+    for (label, e, diff) in against_references(r) {
+        notes.push(format!(
+            "The optimum's objective is {} {} than the {label}'s ({} vs {}).",
+            number(diff.abs()),
+            if diff <= 0.0 { "lower" } else { "HIGHER" },
+            number(r.optimum.objective),
+            number(e.objective)
+        ));
     }
     for (label, e) in listed(r) {
         if let Some(note) = eq8_note(label, e, study) {

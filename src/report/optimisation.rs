@@ -504,17 +504,6 @@ fn map_cells(study: &Study, map: &[Evaluation]) -> Vec<MapCell> {
 /// How the map was made: its grid, its evaluations and the variables held fixed.
 fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) -> String {
     let vars = &study.variables;
-    let held: Vec<String> = vars
-        .iter()
-        .skip(2)
-        .map(|v| {
-            format!(
-                "{} held at the optimum's {}",
-                v.kind.key(),
-                number(v.kind.spec_value(&r.optimum.point))
-            )
-        })
-        .collect();
     if map.is_empty() {
         "no map computed".to_string()
     } else {
@@ -524,8 +513,12 @@ fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) ->
             format!("{steps} points")
         };
         let mut note = format!("{grid}, {} evaluations", map.len());
-        for h in &held {
-            note += &format!("; {h}");
+        for v in vars.iter().skip(2) {
+            note += &format!(
+                "; {} held at the optimum's {}",
+                v.kind.key(),
+                number(v.kind.spec_value(&r.optimum.point))
+            );
         }
         note
     }

@@ -667,12 +667,10 @@ pub fn bless(spec: &Spec, results: &[SceneResult]) -> Result<Vec<Blessed>> {
     let mut batch = files::Batch::default();
     let mut out = Vec::new();
     for g in &spec.golden {
-        let (deg, curves, disc) = computed(g, results)?;
+        let (crank_deg, curves, disc) = computed(g, results)?;
         let period = g.quantity.period();
-        let new = GoldenCurves {
-            crank_deg: deg.clone(),
-            curves,
-        };
+        let new = GoldenCurves { crank_deg, curves };
+        let deg = &new.crank_deg;
         // Compare what will be written (rounded) with what was there.
         let csv = new.to_csv();
         let written = GoldenCurves::parse(&g.path.display().to_string(), &csv).map_err(|m| {

@@ -11,6 +11,7 @@ use crate::engine::accuracy::{
 };
 use crate::engine::resolution::Resolution;
 use crate::equilibrium::solve::Settings;
+use crate::model::{ContactLaw, GeometryMode};
 use crate::numeric::{number, with_unit};
 
 /// What a quantity's error is, in words.
@@ -41,13 +42,13 @@ pub fn verdict(r: &Rung, t: &LadderTolerances) -> (&'static str, String) {
     }
 }
 
-/// A rung's settings: "exact geometry, paper_linear, rel_tol 1e-11".
-fn settings(r: &Rung) -> String {
+/// A model's settings (a rung's, the reference's): "exact geometry, paper_linear, rel_tol 1e-11".
+fn settings(geometry: GeometryMode, law: ContactLaw, rel_tol: f64) -> String {
     format!(
         "{} geometry, {}, rel_tol {}",
-        r.geometry.name(),
-        r.law.name(),
-        tol_text(r.rel_tol)
+        geometry.name(),
+        law.name(),
+        tol_text(rel_tol)
     )
 }
 
@@ -145,12 +146,10 @@ pub fn header(l: &Layout) -> String {
         steps_text(l.periods)
     );
     s += &format!(
-        "reference: {} steps per mesh period ({} crank angles), {} geometry, {}, rel_tol {}\n",
+        "reference: {} steps per mesh period ({} crank angles), {}\n",
         l.finest,
         l.angles(l.finest),
-        l.geometry.name(),
-        l.law.name(),
-        tol_text(Settings::default().rel_tol)
+        settings(l.geometry, l.law, Settings::default().rel_tol)
     );
     let tolerances: Vec<String> = l
         .quantities
@@ -177,11 +176,8 @@ pub fn header(l: &Layout) -> String {
             missing.join(", ")
         );
     }
-    let mut h1 = format!(
-        "{:<LABEL_W$}{:>13}{:>8}{:>11}",
-        "rung", "steps/period", "angles", "time"
-    );
-    let mut h2 = " ".repeat(LABEL_W + 13 + 8 + 11);
+    let mut h1 = leading("rung", "steps/period", "angles", "time");
+    let mut h2 = leading("", "", "", "");
     for q in &l.quantities {
         h1 += &format!("{:>w$}", q.label(), w = NUM_W + 1);
         h2 += &format!("{:>w$}", q.unit(), w = NUM_W + 1);
@@ -192,6 +188,12 @@ pub fn header(l: &Layout) -> String {
     s += h2.trim_end();
     s += "\n";
     s
+}
+
+/// The cells before the errors, at their columns' widths: rung, steps per period, angles,
+/// time.
+fn leading(rung: &str, steps: &str, angles: &str, time: &str) -> String {
+    format!("{rung:<LABEL_W$}{steps:>13}{angles:>8}{time:>11}")
 }
 
 /// A rung's error in `q` for the table: "—" for the reference, "n/a" where not computed.
@@ -205,12 +207,11 @@ pub fn error_cell(r: &Rung, q: LadderQuantity) -> String {
 
 /// One row of the table; `cheapest` appends the mark.
 pub fn row(l: &Layout, r: &Rung, cheapest: bool) -> String {
-    let mut s = format!(
-        "{:<LABEL_W$}{:>13}{:>8}{:>11}",
-        r.label,
-        steps_text(r.steps_per_period),
-        r.angles,
-        seconds_text(r.seconds)
+    let mut s = leading(
+        &r.label,
+        &steps_text(r.steps_per_period),
+        &r.angles.to_string(),
+        &seconds_text(r.seconds),
     );
     for &q in &l.quantities {
         s += &format!("{:>w$}", error_cell(r, q), w = NUM_W + 1);
@@ -260,7 +261,7 @@ pub fn footer(ladder: &Ladder) -> String {
                 r.angles,
                 r.label,
                 steps_text(r.steps_per_period),
-                settings(r),
+                settings(r.geometry, r.law, r.rel_tol),
                 seconds_text(r.seconds),
                 seconds_text(reference.seconds)
             );

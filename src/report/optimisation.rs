@@ -262,16 +262,13 @@ pub fn render(spec: &Spec, study: &Study, r: &StudyResult) -> String {
     for (label, e) in listed(r) {
         out += &row(study, label, e);
     }
-    for (label, e) in r.references.iter().map(|(l, e)| (l.as_str(), e)) {
-        if e.objective.is_finite() && r.optimum.objective.is_finite() {
-            let diff = r.optimum.objective - e.objective;
-            let verdict = match diff {
-                d if d < 0.0 => "better",
-                0.0 => "equal",
-                _ => "WORSE",
-            };
-            out += &format!("  optimum vs {label}: {} ({verdict})\n", number(diff));
-        }
+    for (label, _, diff) in against_references(r) {
+        let verdict = match diff {
+            d if d < 0.0 => "better",
+            0.0 => "equal",
+            _ => "WORSE",
+        };
+        out += &format!("  optimum vs {label}: {} ({verdict})\n", number(diff));
     }
     out += &on_bounds(study, r);
     out += "  constraints at the optimum:\n";
@@ -507,17 +504,6 @@ fn map_cells(study: &Study, map: &[Evaluation]) -> Vec<MapCell> {
 /// How the map was made: its grid, its evaluations and the variables held fixed.
 fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) -> String {
     let vars = &study.variables;
-    let held: Vec<String> = vars
-        .iter()
-        .skip(2)
-        .map(|v| {
-            format!(
-                "{} held at the optimum's {}",
-                v.kind.key(),
-                number(v.kind.spec_value(&r.optimum.point))
-            )
-        })
-        .collect();
     if map.is_empty() {
         "no map computed".to_string()
     } else {
@@ -527,8 +513,12 @@ fn map_note(study: &Study, r: &StudyResult, map: &[Evaluation], steps: usize) ->
             format!("{steps} points")
         };
         let mut note = format!("{grid}, {} evaluations", map.len());
-        for h in &held {
-            note += &format!("; {h}");
+        for v in vars.iter().skip(2) {
+            note += &format!(
+                "; {} held at the optimum's {}",
+                v.kind.key(),
+                number(v.kind.spec_value(&r.optimum.point))
+            );
         }
         note
     }
@@ -574,6 +564,13 @@ fn listed(r: &StudyResult) -> impl Iterator<Item = (&str, &Evaluation)> {
         .chain(std::iter::once(("optimum", &r.optimum)))
 }
 
+/// The references whose objective and the optimum's are finite, each with the optimum's less its.
+fn against_references(r: &StudyResult) -> impl Iterator<Item = (&str, &Evaluation, f64)> {
+    (r.references.iter())
+        .filter(|(_, e)| e.objective.is_finite() && r.optimum.objective.is_finite())
+        .map(|(l, e)| (l.as_str(), e, r.optimum.objective - e.objective))
+}
+
 /// The table's columns: start, references, optimum.
 fn table_points(study: &Study, r: &StudyResult) -> Vec<StudyPoint> {
     let point = |label: &str, e: &Evaluation| StudyPoint {
@@ -601,17 +598,14 @@ fn notes(study: &Study, r: &StudyResult) -> Vec<String> {
             .collect::<Vec<_>>()
             .join("; ")
     )];
-    for (label, e) in &r.references {
-        if e.objective.is_finite() && r.optimum.objective.is_finite() {
-            let diff = r.optimum.objective - e.objective;
-            notes.push(format!(
-                "The optimum's objective is {} {} than the {label}'s ({} vs {}).",
-                number(diff.abs()),
-                if diff <= 0.0 { "lower" } else { "HIGHER" },
-                number(r.optimum.objective),
-                number(e.objective)
-            ));
-        }
+    for (label, e, diff) in against_references(r) {
+        notes.push(format!(
+            "The optimum's objective is {} {} than the {label}'s ({} vs {}).",
+            number(diff.abs()),
+            if diff <= 0.0 { "lower" } else { "HIGHER" },
+            number(r.optimum.objective),
+            number(e.objective)
+        ));
     }
     for (label, e) in listed(r) {
         if let Some(note) = eq8_note(label, e, study) {

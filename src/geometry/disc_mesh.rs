@@ -83,3 +83,32 @@ fn face_triangles(rings: &[Vec<Vec2>], flat: &[Vec2]) -> Option<Vec<[usize; 3]>>
     });
     Some(triangles.collect())
 }
+
+/// a · b.
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// a × b.
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The unit normal of the triangle (a, b, c), outward for a triangle of a `TriangleMesh`:
+/// (b − a) × (c − a), made unit (−0 written as 0); a degenerate triangle (zero area) gets the
+/// zero normal, which STL readers recompute from the vertices.
+pub fn unit_normal(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let n = cross(u, v);
+    let len = dot(n, n).sqrt();
+    if len > 0.0 {
+        n.map(|x| x / len + 0.0)
+    } else {
+        [0.0; 3]
+    }
+}

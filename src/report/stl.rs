@@ -1,8 +1,7 @@
 //! The disc as an ASCII STL mesh: one facet per triangle, its unit normal outward, vertices
 //! counter-clockwise seen from outside, mm, nine decimals (1 pm) as the CSV's coordinates.
 
-use super::review::solid::unit_normal;
-use crate::geometry::disc_mesh::TriangleMesh;
+use crate::geometry::disc_mesh::{unit_normal, TriangleMesh};
 use crate::spec::Spec;
 
 /// The STL text of `mesh`, named after `spec`'s name (printable ASCII only; STL has no

@@ -9,6 +9,7 @@
 //! a hole's wall runs up through the hole. The bottom face never faces the viewer.
 
 use crate::engine::commands::solid_picture::SolidPicture;
+use crate::geometry::disc_mesh::{cross, dot, unit_normal};
 use crate::numeric::extent;
 use crate::report::svg::{document, px, trimmed};
 use maud::{html, PreEscaped};
@@ -32,32 +33,6 @@ const LIGHT: [f64; 3] = [
 const W: f64 = 660.0;
 const H: f64 = 520.0;
 const MARGIN: f64 = 16.0;
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// (b − a) × (c − a), made unit; a degenerate triangle (zero area) gets the zero normal, which
-/// STL readers recompute from the vertices.
-pub(crate) fn unit_normal(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
-    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-    let n = cross(u, v);
-    let len = dot(n, n).sqrt();
-    if len > 0.0 {
-        n.map(|x| x / len + 0.0)
-    } else {
-        [0.0; 3]
-    }
-}
 
 fn unit(a: [f64; 3]) -> [f64; 3] {
     let n = dot(a, a).sqrt();

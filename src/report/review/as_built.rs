@@ -128,7 +128,7 @@ fn comparison_plots(
             out.push((file("clearance"), plot, CLEARANCE_CAPTION));
         }
         // The registry's TE curve (arcsec): one row.
-        let te = |r: &SceneResult| Some(TE.rows(r)?.into_owned().swap_remove(0));
+        let te = |r: &SceneResult| TE.rows(r)?.into_owned().pop();
         if let (Some(dt), Some(bt)) = (te(d), te(b)) {
             let title = format!("{}: TE, designed and as built", b.name);
             let plot = pair_plot(&title, "transmission error (arcsec)", &x, dt, bt);

@@ -169,9 +169,9 @@ impl Columns {
             bearing_angle: column(),
             residual: column(),
             deflection: column(),
-            loss: (0..usize::from(model.losses.is_some()))
-                .map(|_| vec![PathLosses::default(); angles])
-                .collect(),
+            loss: Vec::from_iter(
+                (model.losses.is_some()).then(|| vec![PathLosses::default(); angles]),
+            ),
             input_torque: optional(model.losses.as_ref().is_some_and(|l| l.input.is_some())),
             line_load: (0..if resolved { rollers } else { 0 })
                 .map(|_| vec![0.0; angles * slices])

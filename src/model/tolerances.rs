@@ -125,17 +125,11 @@ impl Parameter {
     /// The column name of the samples CSV: `roller3_radial_mm`, `pin0_tangential_mm`,
     /// `hole2_radial_mm` (`disc1_hole2_radial_mm` with several discs), `shift_mm`.
     pub fn name(&self, discs: usize) -> String {
-        let (part, what) = match self.kind {
-            Kind::Eccentricity | Kind::Shift | Kind::Equidistant => {
-                return self.kind.name().to_string()
-            }
-            Kind::RollerRadial => ("roller", "radial"),
-            Kind::RollerTangential => ("roller", "tangential"),
-            Kind::RollerRadius => ("roller", "radius"),
-            Kind::PinRadial => ("pin", "radial"),
-            Kind::PinTangential => ("pin", "tangential"),
-            Kind::HoleRadial => ("hole", "radial"),
-            Kind::HoleTangential => ("hole", "tangential"),
+        // A part's kind is named `{part}_{what}_mm` (`roller_radial_mm`); the crank's and the
+        // grinding errors' (`eccentricity_mm`, `shift_mm`) name no part.
+        let key = self.kind.name();
+        let Some((part, what)) = key.strip_suffix("_mm").and_then(|k| k.split_once('_')) else {
+            return key.to_string();
         };
         let disc = if part == "hole" && discs > 1 {
             format!("disc{}_", self.disc)

@@ -457,24 +457,17 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
         .transpose()?;
     let crank_rad = crank(&format!("{key}.crank"), &raw.crank, rollers, used)?;
     let duty_cycle = super::duty_cycle::duty_cycle(&key, &raw, &effects)?;
-    let torque_sweep = match &raw.torque_sweep {
-        Some(t) => {
-            if raw.output_torque_nm.is_some() {
-                return Err(Error::invalid(
-                    format!("{key}.output_torque_nm"),
-                    "a scene with `torque_sweep` loads the output with its own torque loop; \
-                     give either `torque_sweep` or `output_torque_nm`, not both"
-                        .into(),
-                ));
-            }
-            Some(torque_sweep(
-                &format!("{key}.torque_sweep"),
-                t,
-                crank_rad.len(),
-            )?)
-        }
-        None => None,
-    };
+    if raw.torque_sweep.is_some() && raw.output_torque_nm.is_some() {
+        return Err(Error::invalid(
+            format!("{key}.output_torque_nm"),
+            "a scene with `torque_sweep` loads the output with its own torque loop; give \
+             either `torque_sweep` or `output_torque_nm`, not both"
+                .into(),
+        ));
+    }
+    let torque_sweep = (raw.torque_sweep.as_ref())
+        .map(|t| torque_sweep(&format!("{key}.torque_sweep"), t, crank_rad.len()))
+        .transpose()?;
     let input_speed_rpm = raw
         .input_speed_rpm
         .map(|n| {

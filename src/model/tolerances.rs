@@ -42,6 +42,17 @@ named!(Kind "deviation kind" {
     Equidistant => "equidistant_mm",
 });
 
+/// The kinds drawn for each roller, in the draw order (`parameters`).
+pub const ROLLER_KINDS: [Kind; 3] = [
+    Kind::RollerRadial,
+    Kind::RollerTangential,
+    Kind::RollerRadius,
+];
+/// The kinds drawn for each output pin, in the draw order.
+pub const PIN_KINDS: [Kind; 2] = [Kind::PinRadial, Kind::PinTangential];
+/// The kinds drawn for each pin hole of each disc, in the draw order.
+pub const HOLE_KINDS: [Kind; 2] = [Kind::HoleRadial, Kind::HoleTangential];
+
 /// How a deviation is distributed in its band ±b.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Distribution {
@@ -125,17 +136,11 @@ impl Parameter {
     /// The column name of the samples CSV: `roller3_radial_mm`, `pin0_tangential_mm`,
     /// `hole2_radial_mm` (`disc1_hole2_radial_mm` with several discs), `shift_mm`.
     pub fn name(&self, discs: usize) -> String {
-        let (part, what) = match self.kind {
-            Kind::Eccentricity | Kind::Shift | Kind::Equidistant => {
-                return self.kind.name().to_string()
-            }
-            Kind::RollerRadial => ("roller", "radial"),
-            Kind::RollerTangential => ("roller", "tangential"),
-            Kind::RollerRadius => ("roller", "radius"),
-            Kind::PinRadial => ("pin", "radial"),
-            Kind::PinTangential => ("pin", "tangential"),
-            Kind::HoleRadial => ("hole", "radial"),
-            Kind::HoleTangential => ("hole", "tangential"),
+        // A part's kind is named `{part}_{what}_mm` (`roller_radial_mm`); the crank's and the
+        // grinding errors' (`eccentricity_mm`, `shift_mm`) name no part.
+        let key = self.kind.name();
+        let Some((part, what)) = key.strip_suffix("_mm").and_then(|k| k.split_once('_')) else {
+            return key.to_string();
         };
         let disc = if part == "hole" && discs > 1 {
             format!("disc{}_", self.disc)
@@ -167,18 +172,12 @@ pub fn parameters(
             all.extend(kinds.iter().map(|&kind| Parameter { kind, part, disc }));
         }
     };
-    use Kind::*;
-    per_part(
-        &mut all,
-        0,
-        rollers,
-        &[RollerRadial, RollerTangential, RollerRadius],
-    );
-    per_part(&mut all, 0, pins, &[PinRadial, PinTangential]);
+    per_part(&mut all, 0, rollers, &ROLLER_KINDS);
+    per_part(&mut all, 0, pins, &PIN_KINDS);
     for disc in 0..discs {
-        per_part(&mut all, disc, pins, &[HoleRadial, HoleTangential]);
+        per_part(&mut all, disc, pins, &HOLE_KINDS);
     }
-    all.extend([one(Shift), one(Equidistant)]);
+    all.extend([one(Kind::Shift), one(Kind::Equidistant)]);
     all.retain(|p| tol.band_mm(p.kind) > 0.0);
     all
 }
@@ -191,17 +190,17 @@ pub fn deviations(
     (rollers, pins, discs): (usize, usize, usize),
 ) -> Deviations {
     let mut d = Deviations::default();
-    let has = |f: fn(Kind) -> bool| params.iter().any(|p| f(p.kind));
-    use Kind::*;
-    if has(|k| matches!(k, RollerRadial | RollerTangential | RollerRadius)) {
+    let has = |kinds: &[Kind]| params.iter().any(|p| kinds.contains(&p.kind));
+    if has(&ROLLER_KINDS) {
         d.rollers = vec![RollerDeviation::default(); rollers];
     }
-    if has(|k| matches!(k, PinRadial | PinTangential)) {
+    if has(&PIN_KINDS) {
         d.pins = vec![CentreDeviation::default(); pins];
     }
-    if has(|k| matches!(k, HoleRadial | HoleTangential)) {
+    if has(&HOLE_KINDS) {
         d.holes = vec![vec![CentreDeviation::default(); pins]; discs];
     }
+    use Kind::*;
     for (p, &v) in params.iter().zip(values) {
         let slot = match p.kind {
             Eccentricity => &mut d.eccentricity_mm,

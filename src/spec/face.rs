@@ -21,7 +21,9 @@ pub(crate) const MAX_FACE_SLICES: usize = 1000;
 /// and its crowned fraction in (0, 1]. A key of the other kind is refused.
 pub(crate) fn crowning_at(at: &str, raw: &RawCrowning, face: (f64, &str)) -> Result<Crowning> {
     let key = |k: &str| format!("{at}.{k}");
-    let refuse_foreign = |names: &[(&str, bool)], kind: &str| -> Result<()> {
+    // The kind matched below (`circular`, `logarithmic`), which names both refusals.
+    let kind = raw.kind.as_str();
+    let refuse_foreign = |names: &[(&str, bool)]| -> Result<()> {
         match names.iter().find(|(_, given)| *given) {
             Some((name, _)) => Err(Error::invalid(
                 key(name),
@@ -30,27 +32,24 @@ pub(crate) fn crowning_at(at: &str, raw: &RawCrowning, face: (f64, &str)) -> Res
             None => Ok(()),
         }
     };
+    let needed = |k: &str, v: Option<f64>| {
+        v.ok_or_else(|| Error::invalid(at, format!("a `{kind}` crowning needs `{k}`")))
+    };
     let half = 0.5 * face.0;
     let which = if face.1.is_empty() {
         String::new()
     } else {
         format!(" (B {})", face.1)
     };
-    match raw.kind.as_str() {
+    match kind {
         "circular" => {
-            refuse_foreign(
-                &[
-                    ("design_load_n", raw.design_load_n.is_some()),
-                    ("end_drop_mm", raw.end_drop_mm.is_some()),
-                    ("load_coefficient", raw.load_coefficient.is_some()),
-                    ("crowned_fraction", raw.crowned_fraction.is_some()),
-                ],
-                "circular",
-            )?;
-            let radius = raw.radius_mm.ok_or_else(|| {
-                Error::invalid(at, "a `circular` crowning needs `radius_mm`".into())
-            })?;
-            let radius_mm = length(&key("radius_mm"), radius)?;
+            refuse_foreign(&[
+                ("design_load_n", raw.design_load_n.is_some()),
+                ("end_drop_mm", raw.end_drop_mm.is_some()),
+                ("load_coefficient", raw.load_coefficient.is_some()),
+                ("crowned_fraction", raw.crowned_fraction.is_some()),
+            ])?;
+            let radius_mm = length(&key("radius_mm"), needed("radius_mm", raw.radius_mm)?)?;
             let start_mm = finite(&key("start_mm"), raw.start_mm.unwrap_or(0.0))?;
             if !(0.0..half).contains(&start_mm) {
                 return Err(Error::invalid(
@@ -69,16 +68,10 @@ pub(crate) fn crowning_at(at: &str, raw: &RawCrowning, face: (f64, &str)) -> Res
             })
         }
         "logarithmic" => {
-            refuse_foreign(
-                &[
-                    ("radius_mm", raw.radius_mm.is_some()),
-                    ("start_mm", raw.start_mm.is_some()),
-                ],
-                "logarithmic",
-            )?;
-            let needed = |k: &str, v: Option<f64>| {
-                v.ok_or_else(|| Error::invalid(at, format!("a `logarithmic` crowning needs `{k}`")))
-            };
+            refuse_foreign(&[
+                ("radius_mm", raw.radius_mm.is_some()),
+                ("start_mm", raw.start_mm.is_some()),
+            ])?;
             let design_load_n = positive(
                 &key("design_load_n"),
                 needed("design_load_n", raw.design_load_n)?,

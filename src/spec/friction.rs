@@ -28,23 +28,15 @@ fn mu(key: &str, value: f64) -> Result<f64> {
         return Ok(value);
     }
     // Below 0 (or no number) is another mistake than a coefficient too large.
-    if value.is_nan() || value < 0.0 {
-        return Err(Error::invalid(
-            key,
-            format!(
-                "must lie in [0, 1), got {}: a friction coefficient is a ratio of forces, 0 \
-                 (no friction) or more",
-                numeric::input(value)
-            ),
-        ));
-    }
+    let why = if value.is_nan() || value < 0.0 {
+        "a friction coefficient is a ratio of forces, 0 (no friction) or more"
+    } else {
+        "a friction coefficient of 1 or more is no engineering contact's (lubricated steel \
+         ~0.001–0.1, dry polymer on steel ~0.2–0.5)"
+    };
     Err(Error::invalid(
         key,
-        format!(
-            "must lie in [0, 1), got {}: a friction coefficient of 1 or more is no \
-             engineering contact's (lubricated steel ~0.001–0.1, dry polymer on steel ~0.2–0.5)",
-            numeric::input(value)
-        ),
+        format!("must lie in [0, 1), got {}: {why}", numeric::input(value)),
     ))
 }
 

@@ -80,16 +80,11 @@ fn unwritable(what: &str, to: &str) -> Error {
 
 /// The path from directory `from` to `to`, both absolute and resolved (`identity`).
 fn relative(from: &Path, to: &Path) -> PathBuf {
-    let a: Vec<Component> = from.components().collect();
-    let b: Vec<Component> = to.components().collect();
-    let common = a.iter().zip(&b).take_while(|(x, y)| x == y).count();
-    let mut out = PathBuf::new();
-    for _ in common..a.len() {
-        out.push("..");
-    }
-    for c in &b[common..] {
-        out.push(c.as_os_str());
-    }
+    let common = (from.components().zip(to.components()))
+        .take_while(|(x, y)| x == y)
+        .count();
+    let up = std::iter::repeat_n(Component::ParentDir, from.components().count() - common);
+    let mut out: PathBuf = up.chain(to.components().skip(common)).collect();
     if out.as_os_str().is_empty() {
         out.push(".");
     }

@@ -6,7 +6,9 @@
 use super::raw::RawTolerances;
 use super::values::named;
 use crate::error::{Error, Result};
-use crate::model::tolerances::{Distribution, Kind, PartTolerances, NORMAL_CUT_SIGMA};
+use crate::model::tolerances::{
+    Distribution, Kind, PartTolerances, HOLE_KINDS, NORMAL_CUT_SIGMA, PIN_KINDS, ROLLER_KINDS,
+};
 use crate::model::{
     CentreDeviation, Design, Deviations, GeometryMode, Limits, Modification, RollerDeviation, Scene,
 };
@@ -144,13 +146,9 @@ fn drawn_periods(
 /// The kinds whose deviations one rule of an as-built state judges together.
 const GROUPS: [&[Kind]; 5] = [
     &[Kind::Eccentricity],
-    &[
-        Kind::RollerRadial,
-        Kind::RollerTangential,
-        Kind::RollerRadius,
-    ],
-    &[Kind::PinRadial, Kind::PinTangential],
-    &[Kind::HoleRadial, Kind::HoleTangential],
+    &ROLLER_KINDS,
+    &PIN_KINDS,
+    &HOLE_KINDS,
     &[Kind::Shift, Kind::Equidistant],
 ];
 

@@ -79,24 +79,21 @@ pub(super) fn material(key: &str, raw: RawMaterial) -> Result<Material> {
     })
 }
 
-fn design(raw: RawReducer) -> Result<Design> {
-    let deviations = raw.deviations.clone();
-    let friction = raw.friction.clone();
-    let roller_inertia_kgm2 = raw.roller_inertia_kgm2;
+fn design(raw: &RawReducer) -> Result<Design> {
     let mut design = nominal_design(raw)?;
     bore_fits(&design)?;
-    design.friction = friction
-        .map(|f| super::friction::friction(&f, &design))
+    design.friction = (raw.friction.as_ref())
+        .map(|f| super::friction::friction(f, &design))
         .transpose()?;
     // Its rule reads the rollers' friction mode.
-    design.roller_inertia_kgmm2 = super::mass::roller_inertia(roller_inertia_kgm2, &design)?;
-    if let Some(d) = deviations {
-        design.deviations = super::deviations::build(&d, &design)?;
+    design.roller_inertia_kgmm2 = super::mass::roller_inertia(raw.roller_inertia_kgm2, &design)?;
+    if let Some(d) = &raw.deviations {
+        design.deviations = super::deviations::build(d, &design)?;
     }
     Ok(design)
 }
 
-fn nominal_design(raw: RawReducer) -> Result<Design> {
+fn nominal_design(raw: &RawReducer) -> Result<Design> {
     let teeth = count("reducer.teeth", raw.teeth, 2)?;
     let rollers = count("reducer.rollers", raw.rollers, 3)?;
     if rollers != teeth + 1 {
@@ -111,7 +108,7 @@ fn nominal_design(raw: RawReducer) -> Result<Design> {
     let pins = &raw.output_pins;
     let strength =
         super::strength::materials_at("reducer.", &raw.material, raw.roller_material.as_ref())?;
-    let mass = super::mass::inputs(&raw)?;
+    let mass = super::mass::inputs(raw)?;
     let disc_material = material("reducer.material", raw.material)?;
     let roller_material = match raw.roller_material {
         Some(m) => material("reducer.roller_material", m)?,
@@ -460,24 +457,17 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
         .transpose()?;
     let crank_rad = crank(&format!("{key}.crank"), &raw.crank, rollers, used)?;
     let duty_cycle = super::duty_cycle::duty_cycle(&key, &raw, &effects)?;
-    let torque_sweep = match &raw.torque_sweep {
-        Some(t) => {
-            if raw.output_torque_nm.is_some() {
-                return Err(Error::invalid(
-                    format!("{key}.output_torque_nm"),
-                    "a scene with `torque_sweep` loads the output with its own torque loop; \
-                     give either `torque_sweep` or `output_torque_nm`, not both"
-                        .into(),
-                ));
-            }
-            Some(torque_sweep(
-                &format!("{key}.torque_sweep"),
-                t,
-                crank_rad.len(),
-            )?)
-        }
-        None => None,
-    };
+    if raw.torque_sweep.is_some() && raw.output_torque_nm.is_some() {
+        return Err(Error::invalid(
+            format!("{key}.output_torque_nm"),
+            "a scene with `torque_sweep` loads the output with its own torque loop; give \
+             either `torque_sweep` or `output_torque_nm`, not both"
+                .into(),
+        ));
+    }
+    let torque_sweep = (raw.torque_sweep.as_ref())
+        .map(|t| torque_sweep(&format!("{key}.torque_sweep"), t, crank_rad.len()))
+        .transpose()?;
     let input_speed_rpm = raw
         .input_speed_rpm
         .map(|n| {
@@ -583,7 +573,7 @@ pub(super) fn limits(raw: &RawLimits) -> Result<Limits> {
 
 pub(crate) fn build(path: &str, text: &str, raw: RawSpec) -> Result<Spec> {
     not_blank("name", &raw.name)?;
-    let design = design(raw.reducer)?;
+    let design = design(&raw.reducer)?;
     let m = &raw.modification;
     let modification = modification_at(
         "modification",

@@ -51,7 +51,7 @@ pub fn face_profiles(spec: &Spec, results: &[SceneResult]) -> Result<Vec<FacePro
     let mut out = Vec::new();
     for (index, (s, r)) in spec.scenes.iter().zip(results).enumerate() {
         // The tilt as run: the scene's plus the one as built (`reducer.deviations`).
-        let tilted = !spec.design.deviations.face(&s.face).misalignment.is_zero();
+        let tilted = crate::model::period::tilted(&spec.design, &s.face);
         if !tilted && s.face.crowning.is_none() {
             continue;
         }

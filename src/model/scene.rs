@@ -181,14 +181,11 @@ impl Scene {
         design.loaded_period_rad(plan.has(Effect::OutputPins), tilted)
     }
 
-    /// True when the sweep covers a whole number of `period_rad` (so its curves wrap around).
+    /// True when the sweep covers a whole number of `period_rad` (so its curves wrap around);
+    /// never with fewer than two angles (no step, `numeric::step`: no span).
     pub fn spans_whole(&self, period_rad: f64) -> bool {
         let n = self.crank_rad.len();
-        if n < 2 {
-            return false;
-        }
-        let step = self.crank_rad[1] - self.crank_rad[0];
-        let span = step * n as f64 / period_rad;
+        let span = crate::numeric::step(&self.crank_rad) * n as f64 / period_rad;
         (span - span.round()).abs() < 1e-9 && span.round() >= 1.0
     }
 }

@@ -70,21 +70,11 @@ pub fn run(problem: &Problem, searched: &Evaluation, progress: &dyn Progress) ->
     };
     let h = 1.0 / (steps - 1).max(1) as f64;
     // Grid points that beat the search and are the best of their neighbourhood.
-    let better: Vec<usize> = (0..grid.len())
-        .filter(|&k| grid[k].feasible() && grid[k].objective < searched_objective)
-        .collect();
-    let starts = seeds::local_minima(&zs, &grid, &better, seeds::radius(h, dims));
+    let better = |e: &Evaluation| e.feasible() && e.objective < searched_objective;
+    let starts = seeds::local_minima(&zs, &grid, better, seeds::radius(h, dims));
     let refinements: Vec<LocalRun> = starts
         .par_iter()
-        .map(|&k| {
-            local::run(
-                problem,
-                &grid[k],
-                h,
-                problem.study.local_evaluations,
-                progress,
-            )
-        })
+        .map(|s| local::run(problem, s, h, progress))
         .collect();
     Verification {
         steps,

@@ -165,13 +165,12 @@ fn run_shard(
 
 /// `merge`: read, check and join the shards, then report as an unsharded run would.
 fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome> {
-    let inputs = shard_inputs(paths);
+    let mut inputs = shard_inputs(paths);
     distinct_outputs(&inputs, &outputs.paths())?;
     let files = read_shard_files(paths, MAX_SHARD_BYTES)?;
     let merged = commands::merge_shards(&files)?;
     // The shards name their spec and, through it, its goldens and measured points: none of
     // them may be replaced either.
-    let mut inputs = inputs;
     inputs.extend(inputs_of(&merged.spec.path, Some(&merged.spec)));
     distinct_outputs(&inputs, &outputs.paths())?;
     let study = merged.study()?;

@@ -12,11 +12,9 @@ use crate::engine::tolerance::summary::Summary;
 use crate::engine::tolerance::Records;
 use crate::engine::tolerance::ToleranceStudy;
 use crate::error::{Error, Result};
-use crate::files;
 use crate::report::terminal::Terminal;
 use crate::{report, spec};
 use std::io::Write;
-use std::path::Path;
 
 /// Largest shard file read, bytes: the records of the most sample-limits a study holds (9
 /// bytes each) and a spec of the largest input size, with room for the header.
@@ -132,7 +130,7 @@ fn finish(
         write_file(p, &report::tolerance::json(study, summary, records, sens)?)?;
     }
     if let Some(p) = outputs.csv {
-        write_file(p, &report::tolerance::samples_csv(study, records))?;
+        write_file(p, report::tolerance::samples_csv(study, records))?;
     }
     if let Some(dir) = outputs.report {
         let pages = report::review::tolerance::render(study, summary, records, sens);
@@ -149,7 +147,7 @@ fn run_shard(
     out: &mut dyn Write,
 ) -> Result<Outcome> {
     let bytes = commands::tolerance_shard(study, (i, n), &Terminal)?;
-    files::write_atomic(Path::new(file), &bytes)?;
+    write_file(file, &bytes)?;
     let count = crate::engine::tolerance::shard_len(study.samples() as u64, (i, n));
     print(
         out,

@@ -143,7 +143,7 @@ fn write_outputs(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Resul
     if let Some(p) = &args.junit {
         write_file(
             p,
-            &report::junit::document(&spec.name, &spec.path, &run.checks),
+            report::junit::document(&spec.name, &spec.path, &run.checks),
         )?;
     }
     let Some(review) = &run.review else {

@@ -4,7 +4,7 @@
 //! SHARD...` the rest of the search from the shards, written as the unsharded run writes it.
 
 use super::args::{DesignArgs, DesignCommand};
-use super::output::{distinct_outputs, print, usage};
+use super::output::{distinct_outputs, print, usage, write_file};
 use super::shard::{parse_shard, read_shard_files, shard_inputs, slurm_shard};
 use super::Outcome;
 use crate::engine::commands::{self, DesignRun};
@@ -137,7 +137,7 @@ fn run_shard(
     out: &mut dyn Write,
 ) -> Result<Outcome> {
     let bytes = commands::design_shard(req, path, text, (i, n), &Terminal)?;
-    files::write_atomic(Path::new(file), &bytes)?;
+    write_file(file, &bytes)?;
     let count = crate::engine::design_search::shard::shard_len(all, (i, n));
     print(
         out,

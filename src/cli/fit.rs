@@ -19,7 +19,7 @@ pub(super) fn run(
     let id = commands::fit(&spec)?;
     print(out, &report::fit::render(&spec, &id))?;
     if let Some(p) = form_csv {
-        write_file(p, &report::fit::form_csv(&spec, &id))?;
+        write_file(p, report::fit::form_csv(&spec, &id))?;
     }
     if let Some(p) = write {
         let text = spec::edit::with_modification(p, &spec.source, &id.modification)?;

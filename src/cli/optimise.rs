@@ -34,7 +34,7 @@ pub(super) fn run(args: &OptimiseArgs, out: &mut dyn Write) -> Result<Outcome> {
             print(out, &write_optimum(&spec, path, study, r, p)?)?;
         }
         if let (Some(p), Some(cells)) = (map, &run.map) {
-            write_file(p, &report::optimisation::map_csv(study, cells))?;
+            write_file(p, report::optimisation::map_csv(study, cells))?;
             print(
                 out,
                 &format!("wrote the objective map of `{}` to {p}\n", r.name),

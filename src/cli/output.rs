@@ -9,8 +9,8 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Write an output file atomically (a temporary file renamed into place).
-pub(super) fn write_file(path: &str, text: &str) -> Result<()> {
-    files::write_atomic(Path::new(path), text.as_bytes())
+pub(super) fn write_file(path: &str, contents: impl AsRef<[u8]>) -> Result<()> {
+    files::write_atomic(Path::new(path), contents.as_ref())
 }
 
 /// A usage error `m`, which says that nothing was written.

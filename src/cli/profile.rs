@@ -43,16 +43,16 @@ pub(super) fn run(args: &ProfileArgs, out: &mut dyn Write) -> Result<Outcome> {
         _ => None,
     };
     if let Some(p) = csv {
-        write_file(p, &export::csv(&spec, &points, tol))?;
+        write_file(p, export::csv(&spec, &points, tol))?;
     }
     if let Some(p) = dxf {
-        write_file(p, &export::dxf(&spec, &points, tol))?;
+        write_file(p, export::dxf(&spec, &points, tol))?;
     }
     if let (Some(p), Some(s)) = (step_path, &solid) {
-        write_file(p, &step::step(&spec, s))?;
+        write_file(p, step::step(&spec, s))?;
     }
     if let (Some(p), Some(m)) = (stl_path, &mesh) {
-        write_file(p, &stl::stl(&spec, m))?;
+        write_file(p, stl::stl(&spec, m))?;
     }
     print(
         out,

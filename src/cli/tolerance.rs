@@ -12,11 +12,9 @@ use crate::engine::tolerance::summary::Summary;
 use crate::engine::tolerance::Records;
 use crate::engine::tolerance::ToleranceStudy;
 use crate::error::{Error, Result};
-use crate::files;
 use crate::report::terminal::Terminal;
 use crate::{report, spec};
 use std::io::Write;
-use std::path::Path;
 
 /// Largest shard file read, bytes: the records of the most sample-limits a study holds (9
 /// bytes each) and a spec of the largest input size, with room for the header.
@@ -132,7 +130,7 @@ fn finish(
         write_file(p, &report::tolerance::json(study, summary, records, sens)?)?;
     }
     if let Some(p) = outputs.csv {
-        write_file(p, &report::tolerance::samples_csv(study, records))?;
+        write_file(p, report::tolerance::samples_csv(study, records))?;
     }
     if let Some(dir) = outputs.report {
         let pages = report::review::tolerance::render(study, summary, records, sens);
@@ -149,7 +147,7 @@ fn run_shard(
     out: &mut dyn Write,
 ) -> Result<Outcome> {
     let bytes = commands::tolerance_shard(study, (i, n), &Terminal)?;
-    files::write_atomic(Path::new(file), &bytes)?;
+    write_file(file, &bytes)?;
     let count = crate::engine::tolerance::shard_len(study.samples() as u64, (i, n));
     print(
         out,
@@ -165,13 +163,12 @@ fn run_shard(
 
 /// `merge`: read, check and join the shards, then report as an unsharded run would.
 fn run_merge(paths: &[String], outputs: &Outputs, out: &mut dyn Write) -> Result<Outcome> {
-    let inputs = shard_inputs(paths);
+    let mut inputs = shard_inputs(paths);
     distinct_outputs(&inputs, &outputs.paths())?;
     let files = read_shard_files(paths, MAX_SHARD_BYTES)?;
     let merged = commands::merge_shards(&files)?;
     // The shards name their spec and, through it, its goldens and measured points: none of
     // them may be replaced either.
-    let mut inputs = inputs;
     inputs.extend(inputs_of(&merged.spec.path, Some(&merged.spec)));
     distinct_outputs(&inputs, &outputs.paths())?;
     let study = merged.study()?;

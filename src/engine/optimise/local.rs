@@ -62,13 +62,12 @@ pub struct LocalRun {
     pub stop: StopReason,
 }
 
-/// Run COBYLA from `start`, with initial steps of `rho_begin` of each variable's range, telling
-/// `progress` of every evaluation.
+/// Run COBYLA from `start`, with initial steps of `rho_begin` of each variable's range and at
+/// most the study's `local_evaluations`, telling `progress` of every evaluation.
 pub fn run(
     problem: &Problem,
     start: &Evaluation,
     rho_begin: f64,
-    max_evaluations: usize,
     progress: &dyn Progress,
 ) -> LocalRun {
     let dims = problem.study.variables.len();
@@ -115,7 +114,7 @@ pub fn run(
         &bounds,
         &cons,
         (),
-        max_evaluations,
+        problem.study.local_evaluations,
         RhoBeg::All(rho_begin),
         Some(stop),
     );

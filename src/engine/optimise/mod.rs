@@ -115,18 +115,11 @@ pub fn run_study(spec: &Spec, study: &Study, progress: &dyn Progress) -> StudyRe
     let zs = global::points(study);
     let global = global::sample(&problem, &zs, progress);
     let h = global::spacing(study);
-    let feasible: Vec<usize> = (0..global.len())
-        .filter(|&k| global[k].feasible())
-        .collect();
-    let mut starts = vec![start.clone()];
-    starts.extend(
-        seeds::local_minima(&zs, &global, &feasible, seeds::radius(h, dims))
-            .into_iter()
-            .map(|k| global[k].clone()),
-    );
+    let seeds = seeds::local_minima(&zs, &global, Evaluation::feasible, seeds::radius(h, dims));
+    let starts: Vec<&Evaluation> = std::iter::once(&start).chain(seeds).collect();
     let local_runs: Vec<LocalRun> = starts
         .par_iter()
-        .map(|s| local::run(&problem, s, h, study.local_evaluations, progress))
+        .map(|s| local::run(&problem, s, h, progress))
         .collect();
     let searched = best(
         std::iter::once(&start)

@@ -14,16 +14,16 @@ pub fn radius(h: f64, dims: usize) -> f64 {
     1.01 * h * (dims.max(1) as f64).sqrt()
 }
 
-/// Of `candidates` (indices into `zs` and `evals`, feasible points), the best first, those
-/// with no better candidate within `radius`: at most `LOCAL_SEEDS`. Equal objectives rank by
-/// index, so the choice does not depend on evaluation order.
-pub fn local_minima(
+/// Of the evaluations `evals` at `zs` that `candidate` admits (feasible points), the best
+/// first, those with no better candidate within `radius`: at most `LOCAL_SEEDS`. Equal
+/// objectives rank by index, so the choice does not depend on evaluation order.
+pub fn local_minima<'a>(
     zs: &[Vec<f64>],
-    evals: &[Evaluation],
-    candidates: &[usize],
+    evals: &'a [Evaluation],
+    candidate: impl Fn(&Evaluation) -> bool,
     radius: f64,
-) -> Vec<usize> {
-    let mut ranked = candidates.to_vec();
+) -> Vec<&'a Evaluation> {
+    let mut ranked: Vec<usize> = (0..evals.len()).filter(|&k| candidate(&evals[k])).collect();
     ranked.sort_by(|&a, &b| evals[a].objective.total_cmp(&evals[b].objective));
     let near = |a: usize, b: usize| {
         let d2: f64 = zs[a]
@@ -39,7 +39,7 @@ pub fn local_minima(
             break;
         }
         if !ranked[..rank].iter().any(|&better| near(better, k)) {
-            out.push(k);
+            out.push(&evals[k]);
         }
     }
     out

@@ -38,10 +38,9 @@ impl Verification {
     }
 }
 
-/// The grid's points in the unit cube, the first variable varying slowest.
-pub fn points(steps: usize, dims: usize) -> Vec<Vec<f64>> {
+/// The grid's points in the unit cube, `h` apart, the first variable varying slowest.
+pub fn points(steps: usize, dims: usize, h: f64) -> Vec<Vec<f64>> {
     let total = steps.pow(dims as u32);
-    let h = 1.0 / (steps - 1).max(1) as f64;
     (0..total)
         .map(|mut k| {
             let mut z = vec![0.0; dims];
@@ -59,7 +58,8 @@ pub fn points(steps: usize, dims: usize) -> Vec<Vec<f64>> {
 pub fn run(problem: &Problem, searched: &Evaluation, progress: &dyn Progress) -> Verification {
     let dims = problem.study.variables.len();
     let steps = problem.study.verify_grid;
-    let zs = points(steps, dims);
+    let h = 1.0 / (steps - 1).max(1) as f64;
+    let zs = points(steps, dims, h);
     let grid = super::global::sample(problem, &zs, progress);
     let feasible = grid.iter().filter(|e| e.feasible()).count();
     let best_point = best(grid.iter().filter(|e| e.feasible())).cloned();
@@ -68,23 +68,12 @@ pub fn run(problem: &Problem, searched: &Evaluation, progress: &dyn Progress) ->
     } else {
         f64::INFINITY
     };
-    let h = 1.0 / (steps - 1).max(1) as f64;
     // Grid points that beat the search and are the best of their neighbourhood.
-    let better: Vec<usize> = (0..grid.len())
-        .filter(|&k| grid[k].feasible() && grid[k].objective < searched_objective)
-        .collect();
-    let starts = seeds::local_minima(&zs, &grid, &better, seeds::radius(h, dims));
+    let better = |e: &Evaluation| e.feasible() && e.objective < searched_objective;
+    let starts = seeds::local_minima(&zs, &grid, better, seeds::radius(h, dims));
     let refinements: Vec<LocalRun> = starts
         .par_iter()
-        .map(|&k| {
-            local::run(
-                problem,
-                &grid[k],
-                h,
-                problem.study.local_evaluations,
-                progress,
-            )
-        })
+        .map(|s| local::run(problem, s, h, progress))
         .collect();
     Verification {
         steps,

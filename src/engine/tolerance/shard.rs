@@ -91,24 +91,21 @@ pub fn decode(path: &str, bytes: &[u8]) -> Result<Shard> {
         passed: Vec::with_capacity(cells),
     };
     for (row, cells) in body.chunks_exact(9 * l).enumerate() {
+        let k = index + row as u64 * count;
         let (v, p) = cells.split_at(8 * l);
         let values = v
             .chunks_exact(8)
             .map(|c| f64::from_le_bytes(c.try_into().unwrap_or_default()));
         for value in values {
             if !value.is_finite() {
-                return Err(r.bad(&format!(
-                    "sample {} holds the value {value}",
-                    index + row as u64 * count
-                )));
+                return Err(r.bad(&format!("sample {k} holds the value {value}")));
             }
             records.values.push(value);
         }
         for &b in p {
             if b > 1 {
                 return Err(r.bad(&format!(
-                    "sample {} holds the verdict byte {b}, neither 0 (failed) nor 1 (passed)",
-                    index + row as u64 * count
+                    "sample {k} holds the verdict byte {b}, neither 0 (failed) nor 1 (passed)"
                 )));
             }
             records.passed.push(b == 1);

@@ -57,20 +57,11 @@ impl Serialize for Counts<'_> {
     }
 }
 
-/// Curves \[part\]\[angle\] in the key's unit.
-#[derive(Clone, Copy)]
-pub struct Rows<'a>(&'a q::Rows<'a>);
+/// Curves \[part\]\[angle\] in the key's unit: a registry quantity's rows (`q::Rows`), or
+/// the rows of a flat table (`FaceLoads::angles`).
+pub struct Rows<I>(I);
 
-impl Serialize for Rows<'_> {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.collect_seq(self.0.iter().map(|row| Curve(row)))
-    }
-}
-
-/// Rows of a flat table (`FaceLoads::angles`), written as `Rows` writes its rows.
-pub struct FlatRows<'a>(std::slice::ChunksExact<'a, f64>);
-
-impl Serialize for FlatRows<'_> {
+impl<'a, I: Iterator<Item = &'a [f64]> + Clone> Serialize for Rows<I> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         s.collect_seq(self.0.clone().map(Curve))
     }
@@ -365,12 +356,12 @@ pub const NO_SPEED: &str = "no input_speed_rpm: the efficiency does not depend o
 
 /// The line load of every roller along the face, N/mm \[roller\]\[crank\]\[slice\], where the
 /// scene resolves the face in more than one slice.
-fn line_loads(loaded: &LoadedSweep) -> Option<Vec<FlatRows<'_>>> {
+fn line_loads(loaded: &LoadedSweep) -> Option<Vec<Rows<std::slice::ChunksExact<'_, f64>>>> {
     let f = loaded.rollers.as_ref()?.face.as_ref()?;
     let loaded = f.slices > 1 && f.line_load_n_per_mm.first().is_some_and(|r| !r.is_empty());
     loaded.then(|| {
         (0..f.line_load_n_per_mm.len())
-            .map(|i| FlatRows(f.angles(i)))
+            .map(|i| Rows(f.angles(i)))
             .collect()
     })
 }
@@ -750,7 +741,8 @@ impl<M: SerializeMap> CurveMap for Serde<M> {
     }
 
     fn rows(&mut self, key: &'static str, rows: &q::Rows) -> std::result::Result<(), M::Error> {
-        self.0.serialize_entry(key, &Rows(rows))
+        self.0
+            .serialize_entry(key, &Rows(rows.iter().map(Vec::as_slice)))
     }
 
     fn counts(&mut self, key: &'static str, row: &[f64]) -> std::result::Result<(), M::Error> {

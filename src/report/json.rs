@@ -405,8 +405,8 @@ fn entry<M: SerializeMap, T: Serialize>(
 }
 
 /// Crank angles, degrees.
-fn degrees(crank_rad: &[f64]) -> Vec<Finite> {
-    finite(crank_rad.iter().map(|&a| units::deg(a)))
+fn degrees(crank_rad: &[f64]) -> Vec<f64> {
+    crank_rad.iter().map(|&a| units::deg(a)).collect()
 }
 
 impl<'a> SceneDoc<'a> {
@@ -478,8 +478,7 @@ impl<'a> SceneDoc<'a> {
         match extra {
             Extra::Name if named => {
                 map.serialize_entry("name", &r.name)?;
-                let crank_deg: Vec<f64> = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
-                map.curve("crank_deg", &crank_deg)
+                map.curve("crank_deg", &degrees(&r.crank_rad))
             }
             Extra::Name => Ok(()),
             Extra::MinClearance => {
@@ -492,11 +491,9 @@ impl<'a> SceneDoc<'a> {
                 None => Ok(()),
             },
             Extra::Losses => {
-                entry(
-                    map,
-                    "self_locking_deg",
-                    reducer_eff.map(|e| degrees(&e.self_locking_crank_rad)),
-                )?;
+                if let Some(e) = reducer_eff {
+                    map.curve("self_locking_deg", &degrees(&e.self_locking_crank_rad))?;
+                }
                 entry(map, "power_loss_w", efficiency.and_then(PowerLossDoc::new))?;
                 entry(
                     map,

@@ -504,38 +504,27 @@ impl<'a> SceneDoc<'a> {
                 )
             }
             Extra::TorsionLoop => {
-                entry(
-                    map,
-                    "torque_nm",
-                    torsion.map(|t| finite(t.torque_nmm.iter().map(|&x| units::nm(x)))),
-                )?;
-                entry(
-                    map,
-                    "torsion_arcmin",
-                    torsion.map(|t| {
-                        (t.torsion_rad.iter())
-                            .map(|row| finite(row.iter().map(|&g| units::arcmin(g))))
-                            .collect::<Vec<_>>()
-                    }),
-                )
+                let Some(t) = torsion else { return Ok(()) };
+                let torque_nm: Vec<f64> = t.torque_nmm.iter().map(|&x| units::nm(x)).collect();
+                map.curve("torque_nm", &torque_nm)?;
+                let arcmin = |row: &Vec<f64>| row.iter().map(|&g| units::arcmin(g)).collect();
+                let torsion_arcmin = t.torsion_rad.iter().map(arcmin).collect();
+                map.rows("torsion_arcmin", &q::Rows::Owned(torsion_arcmin))
             }
             Extra::TorsionDirections => {
-                let direction = |pick: fn((f64, f64)) -> f64| {
-                    torsion.map(|t| {
-                        finite(
-                            (t.figures.iter()).map(|f| nm_per_arcmin(pick(f.rigidity_nmm_per_rad))),
-                        )
-                    })
+                let Some(t) = torsion else { return Ok(()) };
+                let direction = |pick: fn((f64, f64)) -> f64| -> Vec<f64> {
+                    (t.figures.iter())
+                        .map(|f| nm_per_arcmin(pick(f.rigidity_nmm_per_rad)))
+                        .collect()
                 };
-                entry(
-                    map,
+                map.curve(
                     "torsional_rigidity_forward_nm_per_arcmin",
-                    direction(|d| d.0),
+                    &direction(|d| d.0),
                 )?;
-                entry(
-                    map,
+                map.curve(
                     "torsional_rigidity_reverse_nm_per_arcmin",
-                    direction(|d| d.1),
+                    &direction(|d| d.1),
                 )
             }
             Extra::TorsionNotes => {

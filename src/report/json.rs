@@ -57,20 +57,11 @@ impl Serialize for Counts<'_> {
     }
 }
 
-/// Curves \[part\]\[angle\] in the key's unit.
-#[derive(Clone, Copy)]
-pub struct Rows<'a>(&'a q::Rows<'a>);
+/// Curves \[part\]\[angle\] in the key's unit: a registry quantity's rows (`q::Rows`), or
+/// the rows of a flat table (`FaceLoads::angles`).
+pub struct Rows<I>(I);
 
-impl Serialize for Rows<'_> {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        s.collect_seq(self.0.iter().map(|row| Curve(row)))
-    }
-}
-
-/// Rows of a flat table (`FaceLoads::angles`), written as `Rows` writes its rows.
-pub struct FlatRows<'a>(std::slice::ChunksExact<'a, f64>);
-
-impl Serialize for FlatRows<'_> {
+impl<'a, I: Iterator<Item = &'a [f64]> + Clone> Serialize for Rows<I> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         s.collect_seq(self.0.clone().map(Curve))
     }
@@ -365,12 +356,12 @@ pub const NO_SPEED: &str = "no input_speed_rpm: the efficiency does not depend o
 
 /// The line load of every roller along the face, N/mm \[roller\]\[crank\]\[slice\], where the
 /// scene resolves the face in more than one slice.
-fn line_loads(loaded: &LoadedSweep) -> Option<Vec<FlatRows<'_>>> {
+fn line_loads(loaded: &LoadedSweep) -> Option<Vec<Rows<std::slice::ChunksExact<'_, f64>>>> {
     let f = loaded.rollers.as_ref()?.face.as_ref()?;
     let loaded = f.slices > 1 && f.line_load_n_per_mm.first().is_some_and(|r| !r.is_empty());
     loaded.then(|| {
         (0..f.line_load_n_per_mm.len())
-            .map(|i| FlatRows(f.angles(i)))
+            .map(|i| Rows(f.angles(i)))
             .collect()
     })
 }
@@ -414,8 +405,8 @@ fn entry<M: SerializeMap, T: Serialize>(
 }
 
 /// Crank angles, degrees.
-fn degrees(crank_rad: &[f64]) -> Vec<Finite> {
-    finite(crank_rad.iter().map(|&a| units::deg(a)))
+fn degrees(crank_rad: &[f64]) -> Vec<f64> {
+    crank_rad.iter().map(|&a| units::deg(a)).collect()
 }
 
 impl<'a> SceneDoc<'a> {
@@ -487,8 +478,7 @@ impl<'a> SceneDoc<'a> {
         match extra {
             Extra::Name if named => {
                 map.serialize_entry("name", &r.name)?;
-                let crank_deg: Vec<f64> = r.crank_rad.iter().map(|&a| units::deg(a)).collect();
-                map.curve("crank_deg", &crank_deg)
+                map.curve("crank_deg", &degrees(&r.crank_rad))
             }
             Extra::Name => Ok(()),
             Extra::MinClearance => {
@@ -501,11 +491,9 @@ impl<'a> SceneDoc<'a> {
                 None => Ok(()),
             },
             Extra::Losses => {
-                entry(
-                    map,
-                    "self_locking_deg",
-                    reducer_eff.map(|e| degrees(&e.self_locking_crank_rad)),
-                )?;
+                if let Some(e) = reducer_eff {
+                    map.curve("self_locking_deg", &degrees(&e.self_locking_crank_rad))?;
+                }
                 entry(map, "power_loss_w", efficiency.and_then(PowerLossDoc::new))?;
                 entry(
                     map,
@@ -516,38 +504,27 @@ impl<'a> SceneDoc<'a> {
                 )
             }
             Extra::TorsionLoop => {
-                entry(
-                    map,
-                    "torque_nm",
-                    torsion.map(|t| finite(t.torque_nmm.iter().map(|&x| units::nm(x)))),
-                )?;
-                entry(
-                    map,
-                    "torsion_arcmin",
-                    torsion.map(|t| {
-                        (t.torsion_rad.iter())
-                            .map(|row| finite(row.iter().map(|&g| units::arcmin(g))))
-                            .collect::<Vec<_>>()
-                    }),
-                )
+                let Some(t) = torsion else { return Ok(()) };
+                let torque_nm: Vec<f64> = t.torque_nmm.iter().map(|&x| units::nm(x)).collect();
+                map.curve("torque_nm", &torque_nm)?;
+                let arcmin = |row: &Vec<f64>| row.iter().map(|&g| units::arcmin(g)).collect();
+                let torsion_arcmin = t.torsion_rad.iter().map(arcmin).collect();
+                map.rows("torsion_arcmin", &q::Rows::Owned(torsion_arcmin))
             }
             Extra::TorsionDirections => {
-                let direction = |pick: fn((f64, f64)) -> f64| {
-                    torsion.map(|t| {
-                        finite(
-                            (t.figures.iter()).map(|f| nm_per_arcmin(pick(f.rigidity_nmm_per_rad))),
-                        )
-                    })
+                let Some(t) = torsion else { return Ok(()) };
+                let direction = |pick: fn((f64, f64)) -> f64| -> Vec<f64> {
+                    (t.figures.iter())
+                        .map(|f| nm_per_arcmin(pick(f.rigidity_nmm_per_rad)))
+                        .collect()
                 };
-                entry(
-                    map,
+                map.curve(
                     "torsional_rigidity_forward_nm_per_arcmin",
-                    direction(|d| d.0),
+                    &direction(|d| d.0),
                 )?;
-                entry(
-                    map,
+                map.curve(
                     "torsional_rigidity_reverse_nm_per_arcmin",
-                    direction(|d| d.1),
+                    &direction(|d| d.1),
                 )
             }
             Extra::TorsionNotes => {
@@ -750,7 +727,8 @@ impl<M: SerializeMap> CurveMap for Serde<M> {
     }
 
     fn rows(&mut self, key: &'static str, rows: &q::Rows) -> std::result::Result<(), M::Error> {
-        self.0.serialize_entry(key, &Rows(rows))
+        self.0
+            .serialize_entry(key, &Rows(rows.iter().map(Vec::as_slice)))
     }
 
     fn counts(&mut self, key: &'static str, row: &[f64]) -> std::result::Result<(), M::Error> {

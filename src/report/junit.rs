@@ -71,18 +71,7 @@ fn classname(suite: &str, c: &Check) -> String {
 /// The document for a finished run.
 pub fn document(spec_name: &str, spec_path: &str, checks: &[Check]) -> String {
     let failures = checks.iter().filter(|c| !c.passed).count();
-    let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    out += &format!(
-        "<testsuites name=\"cycloid\" tests=\"{}\" failures=\"{failures}\" errors=\"0\">\n",
-        checks.len()
-    );
-    out += &format!(
-        "  <testsuite name=\"{}\" tests=\"{}\" failures=\"{failures}\" errors=\"0\" skipped=\"0\" \
-         time=\"0\">\n",
-        escape(spec_name),
-        checks.len()
-    );
-    out += &format!(
+    let mut cases = format!(
         "    <properties>\n      <property name=\"spec\" value=\"{}\"/>\n      \
          <property name=\"tool_version\" value=\"{}\"/>\n    </properties>\n",
         escape(spec_path),
@@ -90,39 +79,46 @@ pub fn document(spec_name: &str, spec_path: &str, checks: &[Check]) -> String {
     );
     for c in checks {
         let text = escape(&message(c));
-        out += &format!(
+        cases += &format!(
             "    <testcase classname=\"{}\" name=\"{}\" time=\"0\">\n",
             escape(&classname(spec_name, c)),
             escape(c.name())
         );
         if c.passed {
-            out += &format!("      <system-out>{text}</system-out>\n");
+            cases += &format!("      <system-out>{text}</system-out>\n");
         } else {
             let kind = match c.kind {
                 CheckKind::Limit => "limit",
                 CheckKind::Golden => "golden",
             };
-            out += &format!(
+            cases += &format!(
                 "      <failure message=\"{text}\" type=\"{kind}\">{}: {text}</failure>\n",
                 escape(&c.id)
             );
         }
-        out += "    </testcase>\n";
+        cases += "    </testcase>\n";
     }
-    out += "  </testsuite>\n</testsuites>\n";
-    out
+    suite(spec_name, checks.len(), failures, 0, &cases)
 }
 
 /// The document for a run that stopped on an error (exit 2): one test case in error.
 pub fn error_document(spec_path: &str, error: &str) -> String {
-    let text = escape(error);
+    let (path, text) = (escape(spec_path), escape(error));
+    let case = format!(
+        "    <testcase classname=\"cycloid\" name=\"check {path}\" time=\"0\">\n      \
+         <error message=\"{text}\" type=\"invalid\">{text}</error>\n    </testcase>\n"
+    );
+    suite(spec_path, 1, 0, 1, &case)
+}
+
+/// The XML document of one test suite, `name`, of `tests` cases (`failures` failed, `errors`
+/// in error) around `cases`, its properties and test cases.
+fn suite(name: &str, tests: usize, failures: usize, errors: usize, cases: &str) -> String {
+    let counts = format!("tests=\"{tests}\" failures=\"{failures}\" errors=\"{errors}\"");
     format!(
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
-         <testsuites name=\"cycloid\" tests=\"1\" failures=\"0\" errors=\"1\">\n  \
-         <testsuite name=\"{path}\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\" time=\"0\">\n    \
-         <testcase classname=\"cycloid\" name=\"check {path}\" time=\"0\">\n      \
-         <error message=\"{text}\" type=\"invalid\">{text}</error>\n    \
-         </testcase>\n  </testsuite>\n</testsuites>\n",
-        path = escape(spec_path)
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"cycloid\" {counts}>\n  \
+         <testsuite name=\"{}\" {counts} skipped=\"0\" time=\"0\">\n{cases}  </testsuite>\n\
+         </testsuites>\n",
+        escape(name)
     )
 }

@@ -18,14 +18,13 @@
 //! - Mean speed n_m = Σ sᵢ·nᵢ, rpm (the time mean of the input speed).
 //! - Mean efficiency weighted by energy, with `efficiency`: η = Σ sᵢ·Dᵢ / Σ sᵢ·Eᵢ, each bin's
 //!   energy delivered Dᵢ and entering Eᵢ from its power flow at its mean loss
-//!   (`engine::power_flow`, Pᵢ = |Tᵢ|·ωᵢ/nc, lossᵢ its losses per unit speed × ωᵢ, ωᵢ ∝ nᵢ):
+//!   (`model::power_flow`, Pᵢ = |Tᵢ|·ωᵢ/nc, lossᵢ its losses per unit speed × ωᵢ, ωᵢ ∝ nᵢ):
 //!   the input driving, Eᵢ = Pᵢ + lossᵢ and Dᵢ = Pᵢ; the output driving (Tᵢ < 0), Eᵢ = Pᵢ and
 //!   Dᵢ = Pᵢ − lossᵢ; self-locked, Eᵢ = lossᵢ and Dᵢ = 0. The energy delivered over the energy
 //!   entering in one cycle. A bin at a standstill moves no power: it has no efficiency (its run
 //!   keeps none, `combine`) and adds nothing. With no energy moved at all it is 1.
 
 use crate::engine::bearing_life::{self, weighted_power_mean};
-use crate::engine::power_flow::PowerFlow;
 use crate::model::results::{DutyBinResult, DutyCycle, SceneResult};
 use crate::model::Design;
 
@@ -116,13 +115,13 @@ fn standstill_without_efficiency(mut b: DutyBinResult) -> DutyBinResult {
 }
 
 /// Σ sᵢ·nᵢ·Dᵢ / Σ sᵢ·nᵢ·Eᵢ, each bin's energy delivered and entering per unit speed from its
-/// power flow at its mean loss (`engine::power_flow`, `EfficiencyCurves::mean_loss_nmm`) times
+/// power flow at its mean loss (`model::power_flow`, `EfficiencyCurves::mean_loss_nmm`) times
 /// nᵢ (∝ ωᵢ); `None` unless every turning bin computed the efficiency; 1 when no energy moves.
 fn energy_efficiency(bins: &[DutyBinResult]) -> Option<f64> {
     let (mut delivered, mut entering) = (0.0, 0.0);
     for b in bins.iter().filter(|b| b.bin.input_speed_rpm > 0.0) {
         let e = b.result.reducer.efficiency.as_ref()?;
-        let energy = PowerFlow::of(e.reducer.as_ref()?).energy(e.mean_loss_nmm.total());
+        let energy = e.reducer.as_ref()?.flow.energy(e.mean_loss_nmm.total());
         let w = b.bin.revolution_weight_rpm();
         delivered += w * energy.delivered_nmm;
         entering += w * energy.entering_nmm;

@@ -12,7 +12,7 @@
 //!
 //! Powers per unit input speed (N·mm/rad, the power at ω = 1 rad/s in N·mm/s):
 //! P = |T|/nc with T the scene's output torque (all discs); η(φ) is the efficiency of the power
-//! that flows at loss(φ) (`engine::power_flow`: P/(P + loss) with the input driving, (P −
+//! that flows at loss(φ) (`model::power_flow`: P/(P + loss) with the input driving, (P −
 //! loss)/P with the output driving, T < 0), mean η the same at the mean loss (the mean of the
 //! losses, not of η). With no output torque η is 0 where anything is lost and 1 where nothing
 //! is (no NaN). Coulomb friction
@@ -20,9 +20,9 @@
 //! losses × ω × 1e-3 and exist only with `input_speed_rpm`, the temperature ambient +
 //! P/(h·A) only with `reducer.thermal` too.
 
-use crate::engine::power_flow::PowerFlow;
 use crate::equilibrium::friction::loss::{reducer_losses, PathLosses};
 use crate::error::{Error, Result};
+use crate::model::power_flow::PowerFlow;
 use crate::model::results::{EfficiencyCurves, LoadedSweep, ReducerEfficiency};
 use crate::model::{Design, Effect, Friction, FrictionModel, Plan, Scene};
 use crate::units;
@@ -112,8 +112,7 @@ fn reducer_figures(
         loss.iter().map(|l| torque / nc + l.total()).collect()
     });
     ReducerEfficiency {
-        driver: flow.driver,
-        output_power_nmm: flow.output_power_nmm,
+        flow,
         efficiency: loss.iter().map(|l| flow.efficiency(l.total())).collect(),
         mean_efficiency: flow.efficiency(mean_loss),
         self_locks: flow.self_locks(mean_loss),

@@ -26,7 +26,6 @@ pub mod mass_properties;
 pub mod missing;
 pub mod optimise;
 pub mod plausibility;
-pub mod power_flow;
 pub mod resolution;
 pub mod scene;
 pub mod shard_file;

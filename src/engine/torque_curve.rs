@@ -27,7 +27,7 @@ pub fn torque_curve(spec: &Spec, at_scene: &Scene) -> Result<Option<TorqueCurve>
         .par_iter()
         .map(|f| {
             // The scene's own sign: a back-driven scene's curve is back-driven too, each
-            // point's efficiency that of its power flow (`engine::power_flow`).
+            // point's efficiency that of its power flow (`model::power_flow`).
             let at = Scene {
                 output_torque_nmm: at_scene.output_torque_nmm * f,
                 ..at_scene.clone()

@@ -19,6 +19,7 @@ pub mod measured;
 pub mod modification;
 pub mod period;
 pub mod place;
+pub mod power_flow;
 pub mod quantity;
 pub mod requirements;
 pub mod results;

@@ -10,7 +10,8 @@
 //! MPa, speeds rpm, powers W, torques N·mm.
 
 use super::friction::PathLosses;
-use super::results::{Driver, MinClearance, MinCoverage};
+use super::power_flow::Driver;
+use super::results::{MinClearance, MinCoverage};
 
 /// Where a scalar occurs: the bin and disc whose run holds it (outermost first), and the site
 /// on that run.
@@ -162,7 +163,7 @@ pub enum Site {
     },
     /// The mean power lost on each path, W.
     PowerLoss(PathLosses),
-    /// What a mean efficiency is of (`engine::power_flow`).
+    /// What a mean efficiency is of (`model::power_flow`).
     Efficiency {
         /// Whose power enters.
         driver: Driver,

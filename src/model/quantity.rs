@@ -1256,7 +1256,7 @@ pub const MEAN_EFFICIENCY: Quantity = Quantity {
     read: Read::ReducerScalar(|r, c| {
         reducer_efficiency(r).map(|e| {
             let site = Site::Efficiency {
-                driver: e.driver,
+                driver: e.flow.driver,
                 self_locks: e.self_locks,
                 locked: e.self_locking_crank_rad.len(),
                 angles: c.len(),

@@ -3,6 +3,7 @@
 //! registry (`model::quantity`) reads these in the output units of its keys.
 
 use super::friction::{FrictionModel, PathLosses};
+use super::power_flow::PowerFlow;
 use crate::numeric::max_entry;
 
 /// Where the smallest gap of a sweep occurs.
@@ -349,32 +350,22 @@ pub struct EfficiencyCurves {
     pub reducer: Option<ReducerEfficiency>,
 }
 
-/// The side of the reducer whose power enters it (`engine::power_flow`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Driver {
-    /// The input drives, the output torque resists the motion (T ≥ 0).
-    Input,
-    /// The output drives, its torque pushes along the motion (T < 0): back-driven.
-    Output,
-}
-
 /// The reducer's efficiency, input torque and temperature over a scene (MODEL.md "Friction,
 /// efficiency and heat").
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReducerEfficiency {
-    /// The side that drives, from the sign of T (`engine::power_flow`).
-    pub driver: Driver,
-    /// P per unit input speed, |T|/nc, N·mm/rad (T the scene's output torque): the power
-    /// through the output flange, leaving it with the input driving, entering with the output.
-    pub output_power_nmm: f64,
-    /// η(φ) of the power that flows at each crank angle, `[angle]` (`engine::power_flow`):
+    /// The side that drives, from the sign of T, and P per unit input speed, |T|/nc, N·mm/rad
+    /// (T the scene's output torque): the power through the output flange, leaving it with the
+    /// input driving, entering with the output.
+    pub flow: PowerFlow,
+    /// η(φ) of the power that flows at each crank angle, `[angle]` (`model::power_flow`):
     /// P/(P + loss(φ)) with the input driving, (P − loss(φ))/P with the output.
     pub efficiency: Vec<f64>,
     /// The same at the mean loss: the mean of the losses, not of η; ≤ 0 where the output
     /// drives and the mean loss takes all it brings (the reducer self-locks).
     pub mean_efficiency: f64,
     /// Whether the output drives and the mean loss takes all the power it brings: the scene
-    /// self-locks (`engine::power_flow::PowerFlow::self_locks`).
+    /// self-locks (`model::power_flow::PowerFlow::self_locks`).
     pub self_locks: bool,
     /// The input torque at each crank angle, N·mm, `[angle]`: the loss model's T/nc + loss,
     /// the coupled model's from the crank's balance (with its ripple).

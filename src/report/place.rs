@@ -5,7 +5,8 @@
 
 use crate::model::friction::PathLosses;
 use crate::model::place::{Bin, Crank, GoldenAt, PartAt, Place, Rule, Site, Unbounded};
-use crate::model::results::{Driver, MinCoverage};
+use crate::model::power_flow::Driver;
+use crate::model::results::MinCoverage;
 use crate::numeric::{number, phase};
 use crate::units;
 use std::borrow::Borrow;
@@ -180,7 +181,7 @@ fn power_loss(p: &PathLosses) -> String {
 /// What a scene's mean efficiency is of, where it is read (the headline, a limit's row, the
 /// review): with the input driving P_out/(P_out + mean loss); with the output driving (T < 0)
 /// the back-driven (P − mean loss)/P, the crank angles where the input must still push, and,
-/// when the mean loss takes all of P, that the scene self-locks (`engine::power_flow`).
+/// when the mean loss takes all of P, that the scene self-locks (`model::power_flow`).
 fn efficiency(driver: Driver, self_locks: bool, locked: usize, angles: usize) -> String {
     const OVER: &str = "over the scene's crank angles";
     const BACK: &str = "back-driven (the output drives, T < 0)";

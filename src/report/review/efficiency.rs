@@ -5,7 +5,8 @@
 
 use super::common::{data_table, figure, scenes_with, signed, Section};
 use crate::model::friction::PathLosses;
-use crate::model::results::{Driver, ReducerEfficiency, SceneResult, TorqueCurve};
+use crate::model::power_flow::Driver;
+use crate::model::results::{ReducerEfficiency, SceneResult, TorqueCurve};
 use crate::model::Scene;
 use crate::numeric::number;
 use crate::report::svg::{document, px, ticks, LinePlot, Mark, RefLine, Series, PALETTE, RED};
@@ -38,7 +39,7 @@ fn torque_plot(spec: &Spec, scene: &Scene, c: &TorqueCurve, r: &ReducerEfficienc
     plot.subtitle = format!(
         "{} over the scene's crank angles, the scene solved again at each torque; the drag and \
          any preload lose whatever the torque, so the efficiency falls at light load",
-        flow_formula(r.driver)
+        flow_formula(r.flow.driver)
     );
     let x: Vec<f64> = c.torque_nmm.iter().map(|&t| units::nm(t)).collect();
     plot.series.push(Series::new(
@@ -67,7 +68,7 @@ fn torque_plot(spec: &Spec, scene: &Scene, c: &TorqueCurve, r: &ReducerEfficienc
     plot
 }
 
-/// The mean efficiency of the power that flows (`engine::power_flow`): P_out/(P_out + mean
+/// The mean efficiency of the power that flows (`model::power_flow`): P_out/(P_out + mean
 /// loss) with the input driving, (P − mean loss)/P with the output driving.
 fn flow_formula(driver: Driver) -> &'static str {
     match driver {
@@ -81,7 +82,7 @@ fn flow_formula(driver: Driver) -> &'static str {
 /// A scene's mean efficiency as its row reads it: back-driven and self-locking scenes say so.
 fn mean_cell(r: &ReducerEfficiency) -> String {
     let value = number(r.mean_efficiency);
-    match (r.driver, r.self_locks) {
+    match (r.flow.driver, r.self_locks) {
         (Driver::Input, _) => value,
         (Driver::Output, false) => format!("{value} (back-driven)"),
         (Driver::Output, true) => format!("{value} (back-driven: SELF-LOCKS)"),
@@ -203,7 +204,7 @@ pub(super) fn section(
     let model = spec.design.friction.map_or("none", |f| f.model.name());
     let back_driven = (scenes.iter())
         .filter_map(|(_, _, e)| e.reducer.as_ref())
-        .any(|r| r.driver == Driver::Output);
+        .any(|r| r.flow.driver == Driver::Output);
     let body = html! {
         p.note {
             "Each loss is a Coulomb force μ·F times the speed its surfaces slide at (docs/effects/friction.md, \

@@ -17,7 +17,14 @@
 //!   self-locking drives of the literature (e.g. a worm pair's tan(γ − ρ)/tan γ < 0), not
 //!   clamped: how far below 0 says how hard the input must push.
 
-use crate::model::results::{Driver, ReducerEfficiency};
+/// The side of the reducer whose power enters it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Driver {
+    /// The input drives, the output torque resists the motion (T ≥ 0).
+    Input,
+    /// The output drives, its torque pushes along the motion (T < 0): back-driven.
+    Output,
+}
 
 /// The flow of one run: its driving side and the power through the output flange.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,7 +39,9 @@ pub struct PowerFlow {
 /// side) and what reaches the driven side.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Energy {
+    /// What enters the reducer, at either side.
     pub entering_nmm: f64,
+    /// What reaches the driven side (0 where it self-locks).
     pub delivered_nmm: f64,
 }
 
@@ -46,14 +55,6 @@ impl PowerFlow {
                 false => Driver::Input,
             },
             output_power_nmm: output_torque_nmm.abs() / teeth as f64,
-        }
-    }
-
-    /// The flow a run's figures were computed with.
-    pub fn of(r: &ReducerEfficiency) -> Self {
-        PowerFlow {
-            driver: r.driver,
-            output_power_nmm: r.output_power_nmm,
         }
     }
 

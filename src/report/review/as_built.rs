@@ -16,6 +16,7 @@ use crate::numeric::{fixed, fixed_change};
 use crate::numeric::{number, with_unit};
 use crate::report::fit::flank_length_mm;
 use crate::report::svg::frame::{titles, wrap, Frame};
+use crate::report::svg::ticks::log_label;
 use crate::report::svg::{self, document, px, LinePlot, Series, PALETTE, RED};
 use crate::report::table::figure_change;
 use crate::spec::Spec;
@@ -55,7 +56,7 @@ pub(super) fn section(
     let drawing_file = "as-built-disc.svg";
     let (drawing, times) = disc_drawing(spec, &view.designed_modification, &from_design);
     files.push((drawing_file.into(), drawing));
-    let times = round_number(times);
+    let times = log_label(times);
     // Micrometres to the nanometre, as `cycloid fit` prints them: a change at the round-off
     // of the fit reads 0.000 µm (not 6.134e-12 µm, nor −0.000).
     let um = |mm: f64| format!("{} µm", fixed(units::um(mm), 3));
@@ -313,12 +314,6 @@ pub fn magnification(largest_mm: f64, tooth_height_mm: f64) -> f64 {
     }
 }
 
-/// A 1, 2 or 5 × 10^k as people write it: 50, 0.2 (no trailing zeros, no binary residue).
-pub fn round_number(x: f64) -> String {
-    let decimals = (-x.log10().floor()).max(0.0) as usize;
-    format!("{x:.decimals$}")
-}
-
 /// The largest 1, 2 or 5 × 10^k at most `x` (> 0).
 fn round_down_125(x: f64) -> f64 {
     let decade = 10f64.powf(x.log10().floor());
@@ -369,7 +364,7 @@ pub fn disc_drawing(
     let gap = coverage_bin_rad(d.teeth);
     let runs = points.chunk_by(|a, b| b.t - a.t <= gap);
     let stride = points.len().div_ceil(MOST_DOTS).max(1);
-    let times = round_number(m);
+    let times = log_label(m);
     let bar_um = round_down_125(units::um(largest.max(1e-6)));
     let title = format!("Disc as built against the design: deviation ×{times}");
     let subtitle = if largest > 0.0 {
@@ -397,7 +392,7 @@ pub fn disc_drawing(
         }
         (f.scale_bar(w - 30.0, h - 20.0, 10.0, "10 mm"))
         (deviation_bar(&f, (20.0, h - 20.0), m * bar_um * 1e-3,
-            &format!("{} µm deviation, drawn ×{times}", round_number(bar_um))))
+            &format!("{} µm deviation, drawn ×{times}", log_label(bar_um))))
     };
     (document(w, h, body), m)
 }

@@ -332,13 +332,9 @@ fn plot(spec: &Spec, of: Of<'_>, def: &PlotDef, prefix: &str, at_speed: Option<&
         }
     }
     if sparse {
-        p.series = std::mem::take(&mut p.series)
-            .into_iter()
-            .map(|s| {
-                let mark = if s.dashed { Mark::Diamond } else { Mark::Dot };
-                s.marked(mark)
-            })
-            .collect();
+        for s in &mut p.series {
+            s.marks = Some(if s.dashed { Mark::Diamond } else { Mark::Dot });
+        }
     }
     p.subtitle = scalars(of, &drawn, def);
     let limits = limit_lines(spec, &drawn, def);

@@ -214,12 +214,25 @@ fn dot_mark(cx: f64, cy: f64) -> Markup {
     }
 }
 
-/// An axis's ticks: positions on the drawn scale, their labels, and the range they span.
+/// Ticks and the range they span: each tick's position on the drawn scale and its label.
 struct AxisTicks {
     lo: f64,
     hi: f64,
-    values: Vec<f64>,
-    labels: Vec<String>,
+    ticks: Vec<(f64, String)>,
+}
+
+/// Ticks over [lo, hi] with their labels: 1-2-5 steps of a logarithmic scale (`log`, 0 < lo),
+/// else round linear ticks inside the range.
+fn labelled(lo: f64, hi: f64, log: bool) -> AxisTicks {
+    if log {
+        let ticks = log_ticks(lo, hi).into_iter().map(|v| (v, log_label(v)));
+        let ticks = ticks.collect();
+        return AxisTicks { lo, hi, ticks };
+    }
+    let t = ticks(lo, hi, 6, false);
+    let ticks = t.values.iter().map(|&v| (v, t.label(v))).collect();
+    let (lo, hi) = (t.lo, t.hi);
+    AxisTicks { lo, hi, ticks }
 }
 
 /// Ticks over [lo, hi] of a linear axis, or of a logarithmic one whose drawn values are the
@@ -227,21 +240,11 @@ struct AxisTicks {
 fn axis_ticks(lo: f64, hi: f64, log: bool) -> AxisTicks {
     let (from, to) = (lo.exp(), hi.exp());
     if log && from > 0.0 && to.is_finite() {
-        let values = log_ticks(from, to);
-        return AxisTicks {
-            lo,
-            hi,
-            labels: values.iter().map(|&v| log_label(v)).collect(),
-            values: values.iter().map(|v| v.ln()).collect(),
-        };
+        let ticks = labelled(from, to, true).ticks.into_iter();
+        let ticks = ticks.map(|(v, label)| (v.ln(), label)).collect();
+        return AxisTicks { lo, hi, ticks };
     }
-    let t = ticks(lo, hi, 6, false);
-    AxisTicks {
-        labels: t.values.iter().map(|&v| t.label(v)).collect(),
-        lo: t.lo,
-        hi: t.hi,
-        values: t.values,
-    }
+    labelled(lo, hi, false)
 }
 
 /// A pixel box (x0, y0, x1, y1).
@@ -296,15 +299,7 @@ impl MapPlot {
     /// Colour-bar ticks and their labels.
     fn z_ticks(&self) -> Vec<(f64, String)> {
         let (lo, hi) = self.z_bounds();
-        if self.log_scale() {
-            log_ticks(lo, hi)
-                .into_iter()
-                .map(|v| (v, log_label(v)))
-                .collect()
-        } else {
-            let t = ticks(lo, hi, 6, false);
-            t.values.iter().map(|&v| (v, t.label(v))).collect()
-        }
+        labelled(lo, hi, self.log_scale()).ticks
     }
 
     fn legend(&self) -> Vec<(Swatch, String)> {
@@ -541,7 +536,7 @@ impl MapPlot {
         }
         let xt = axis_ticks(x_lo, x_hi, self.log_axes.0);
         let yt = axis_ticks(y_lo, y_hi, self.log_axes.1);
-        let label_w = widest(yt.labels.iter());
+        let label_w = widest(yt.ticks.iter().map(|(_, label)| label));
         let zlabel_w = widest(self.z_ticks().into_iter().map(|(_, l)| l));
         let legend = self.legend();
         let w = self.width;
@@ -585,14 +580,14 @@ impl MapPlot {
             rect x=(px(a.left)) y=(px(a.top)) width=(px(a.width)) height=(px(a.height))
                 fill="#f4f4f4" {}
             (cells)
-            @for (&v, label) in yt.values.iter().zip(&yt.labels) {
+            @for &(v, ref label) in &yt.ticks {
                 text x=(px(a.left - 8.0)) y=(px(sy(v) + 4.0)) font-size="12" text-anchor="end" {
                     (label)
                 }
                 line x1=(px(a.left - 5.0)) y1=(px(sy(v))) x2=(px(a.left)) y2=(px(sy(v)))
                     stroke="#333" {}
             }
-            @for (&v, label) in xt.values.iter().zip(&xt.labels) {
+            @for &(v, ref label) in &xt.ticks {
                 text x=(px(sx(v))) y=(px(a.bottom() + 19.0)) font-size="12" text-anchor="middle" {
                     (label)
                 }

@@ -85,12 +85,10 @@ enum Crown {
 
 impl FaceWidth {
     /// The face `face` of contacts of width B = `width_mm` between bodies of contact modulus
-    /// E* (MPa; for the logarithmic crown's A, E' = 2·E*). `crowned`: the disc's crown applies
-    /// (the rollers; the pins' holes are not crowned).
-    pub fn new(face: &Face, width_mm: f64, contact_modulus_mpa: f64, crowned: bool) -> Self {
+    /// E* (MPa; for the logarithmic crown's A, E' = 2·E*).
+    pub fn new(face: &Face, width_mm: f64, contact_modulus_mpa: f64) -> Self {
         let half = 0.5 * width_mm;
         let crown = match face.crowning {
-            _ if !crowned => Crown::None,
             Crowning::None => Crown::None,
             Crowning::Circular {
                 radius_mm,

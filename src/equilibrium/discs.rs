@@ -269,24 +269,18 @@ pub fn solve_coupled(
     crank: f64,
     work: &mut CoupledWork,
 ) -> Result<f64, SolveFailure> {
-    let coupled = discs.models[0]
-        .pins
-        .as_ref()
-        .is_some_and(|p| p.couples_discs());
     let n = discs.count();
     if work.models.len() != n {
         work.models = discs.models.clone();
     }
-    if !coupled {
+    let Some(first) = discs.models[0].pins.as_ref().filter(|p| p.couples_discs()) else {
         return solve_shares(discs, crank, work, Verify::Floating).map(|(g, _)| g);
-    }
-    let beam = *discs.models[0]
-        .pins
-        .as_ref()
-        .and_then(|p| p.beam())
-        .expect("coupled pins are beams");
-    let c = &beam.coefficients_mm_per_n;
-    let pins = discs.models[0].pins.as_ref().map_or(0, |p| p.count);
+    };
+    let c = &first
+        .beam()
+        .expect("coupled pins are beams")
+        .coefficients_mm_per_n;
+    let pins = first.count;
     let mut last = (0.0, f64::INFINITY);
     // The last pass's gaps x and their image G(x), for the secant (Anderson) step.
     let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;

@@ -195,7 +195,6 @@ impl Rollers {
                 face,
                 self.design.face_width_mm,
                 self.materials.contact_modulus_mpa,
-                true,
             )
         });
         self

@@ -192,7 +192,7 @@ fn line_loads_where_the_contact_opens_on_a_slice_edge_inside_one_and_with_one_sl
             slices,
             ..Face::default()
         };
-        let fw = FaceWidth::new(&face, 8.0, c.contact_modulus_mpa, true);
+        let fw = FaceWidth::new(&face, 8.0, c.contact_modulus_mpa);
         let mut q = vec![f64::NAN; slices];
         let peak = fw.line_loads(ContactLaw::PaperLinear, &c, d, t, &mut q);
         for (s, (&got, want)) in q.iter().zip(&expected).enumerate() {
@@ -245,7 +245,7 @@ fn the_closed_form_equals_fine_slices_and_its_stiffness_the_derivative() {
             misalignment: Misalignment::default(),
             slices: 20,
         };
-        let fw = FaceWidth::new(&face, width, c.contact_modulus_mpa, true);
+        let fw = FaceWidth::new(&face, width, c.contact_modulus_mpa);
         let closed = fw.force(ContactLaw::PaperLinear, &c, d, t);
         let n = 100_000;
         let h = width / n as f64;
@@ -290,7 +290,7 @@ fn johnson_slices_of_a_uniform_face_sum_to_the_2d_law() {
             slices: 13,
             ..Face::default()
         };
-        let fw = FaceWidth::new(&face, 8.0, c.contact_modulus_mpa, true).by_slices();
+        let fw = FaceWidth::new(&face, 8.0, c.contact_modulus_mpa).by_slices();
         let sliced = fw.force(ContactLaw::HertzNonlinear, &c, d, 0.0);
         let whole = law::force(ContactLaw::HertzNonlinear, &c, d);
         assert!(
@@ -644,7 +644,7 @@ fn the_face_load_factor_is_at_least_one() {
         } else {
             ContactLaw::PaperLinear
         };
-        let fw = FaceWidth::new(&face, width, c.contact_modulus_mpa, true);
+        let fw = FaceWidth::new(&face, width, c.contact_modulus_mpa);
         let f = fw.force(law, &c, d, t).force_n;
         let mut q = vec![f64::NAN; slices];
         let top = fw.line_loads(law, &c, d, t, &mut q);
@@ -751,7 +751,7 @@ fn the_reach_of_a_tilt_is_the_largest_closing_over_the_face() {
             misalignment,
             slices: 10,
         };
-        let reach = FaceWidth::new(&face, width, 100_000.0, true).reach_mm;
+        let reach = FaceWidth::new(&face, width, 100_000.0).reach_mm;
         let sampled = (0..=m)
             .map(|j| {
                 let z = -0.5 * width + j as f64 * dz;
@@ -817,7 +817,7 @@ fn the_logarithmic_crown_is_fujiwara_and_kawases_profile_by_hand() {
             misalignment: Misalignment::default(),
             slices: 20,
         };
-        FaceWidth::new(&face, 8.0, 100_000.0, true)
+        FaceWidth::new(&face, 8.0, 100_000.0)
     };
     let fk = crown(0.5, 0.005);
     let near = |a: f64, b: f64| (a - b).abs() <= 1e-13;

@@ -120,7 +120,7 @@ fn print_run(run: &CheckRun, args: &CheckArgs, out: &mut dyn Write) -> Result<()
         .as_ref()
         .and_then(report::accuracy::resolution_warning)
     {
-        print(out, &format!("{w}\n"))?;
+        print(out, &format!("warning: {w}\n"))?;
     }
     print(out, &report::table::render_summary(&run.summaries))?;
     print(

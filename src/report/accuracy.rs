@@ -66,11 +66,11 @@ pub fn skipped_text(s: Skipped) -> &'static str {
     }
 }
 
-/// The warning `check` prints under its verdict when the scene is unresolved.
+/// The warning `check` prints under its verdict when the scene is unresolved (after `warning: `).
 pub fn resolution_warning(r: &Resolution) -> Option<String> {
     (!r.resolved()).then(|| {
         format!(
-            "warning: scene `{}` is solved at {} crank steps per mesh period; its accuracy \
+            "scene `{}` is solved at {} crank steps per mesh period; its accuracy \
              ladder needs {} to meet the tolerances ({}); refine the crank steps or loosen \
              `accuracy.tolerance`",
             r.scene,

@@ -11,7 +11,6 @@ pub fn render(run: &CheckRun, review: &Review) -> Vec<(String, String)> {
     // The resolution warning `check` printed, as a banner under the verdict.
     let warnings: Vec<String> = (run.resolution.as_ref())
         .and_then(crate::report::accuracy::resolution_warning)
-        .map(|w| w.strip_prefix("warning: ").unwrap_or(&w).to_string())
         .into_iter()
         .collect();
     let as_built = run.as_built.as_ref().and_then(|a| {

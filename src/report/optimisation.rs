@@ -2,6 +2,7 @@
 //! constraint's margin, evaluations, time and why it stopped; the objective map CSV; and the
 //! same study as a view for the design-review report (`view`).
 
+use crate::engine::limit::passes;
 use crate::engine::optimise::local::StopReason;
 use crate::engine::optimise::problem::Evaluation;
 use crate::engine::optimise::verify::Verification;
@@ -229,10 +230,9 @@ fn eq8_note(label: &str, e: &Evaluation, study: &Study) -> Option<String> {
     let min = e.min_clearance?;
     let dt = study.min_clearance_mm?;
     let tip = e.point.modification.tip_clearance_mm();
-    let eq8 = tip >= lo - crate::engine::limit::tolerance(lo);
-    (eq8 && !crate::engine::limit::passes(min.gap_mm, dt, crate::engine::verdict::Bound::Min)).then(
-        || {
-            format!(
+    let at_least = |x: f64, limit: f64| passes(x, limit, crate::model::quantity::Bound::Min);
+    (at_least(tip, lo) && !at_least(min.gap_mm, dt)).then(|| {
+        format!(
             "  note: the {label} satisfies the paper's Eq. 8 (ΔRrp − ΔRp = {:.4} mm ≥ {lo} mm) but \
              violates the whole-mesh clearance: {:.1} µm < {:.1} µm at roller {}, crank {:.2}°, \
              tooth phase {} (0 root, 0.5 tip){}\n",
@@ -244,8 +244,7 @@ fn eq8_note(label: &str, e: &Evaluation, study: &Study) -> Option<String> {
             crate::numeric::phase(min.tooth_phase),
             if min.gap_mm < 0.0 { " — interference" } else { "" }
         )
-        },
-    )
+    })
 }
 
 /// The full text of one study result.

@@ -6,34 +6,9 @@ use crate::progress::{Phase, Progress};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 
-/// A progress bar of `total` units described by `what`.
+/// A progress bar of one phase (`Terminal::phase`).
 pub struct Bar {
     bar: ProgressBar,
-}
-
-impl Bar {
-    /// Drawn only when stdout is a terminal and `total` is at least `min_total`; `rate` shows
-    /// the units per second, for work whose units take long each.
-    fn styled(what: &str, unit: &str, total: u64, min_total: u64, rate: &str) -> Bar {
-        let shown = std::io::stdout().is_terminal() && total >= min_total;
-        let bar = ProgressBar::with_draw_target(
-            Some(total),
-            if shown {
-                ProgressDrawTarget::stderr()
-            } else {
-                ProgressDrawTarget::hidden()
-            },
-        );
-        let template =
-            format!("{{msg}} [{{bar:30}}] {{human_pos}}/{{human_len}} {unit}{rate}, {{eta}} left");
-        bar.set_style(
-            ProgressStyle::with_template(&template)
-                .unwrap_or_else(|_| ProgressStyle::default_bar())
-                .progress_chars("=> "),
-        );
-        bar.set_message(what.to_string());
-        Bar { bar }
-    }
 }
 
 impl Progress for Bar {
@@ -48,9 +23,29 @@ impl Progress for Bar {
 pub struct Terminal;
 
 impl Progress for Terminal {
+    /// The phase's bar, drawn only when stdout is a terminal and the phase is worth showing;
+    /// with the units per second for work whose units take long each.
     fn phase(&self, p: &Phase) -> Box<dyn Progress + '_> {
+        let shown = std::io::stdout().is_terminal() && p.total >= p.worth_showing;
+        let bar = ProgressBar::with_draw_target(
+            Some(p.total),
+            if shown {
+                ProgressDrawTarget::stderr()
+            } else {
+                ProgressDrawTarget::hidden()
+            },
+        );
+        let unit = p.unit;
         let rate = if p.slow_units { ", {per_sec}" } else { "" };
-        Box::new(Bar::styled(&p.what, p.unit, p.total, p.worth_showing, rate))
+        let template =
+            format!("{{msg}} [{{bar:30}}] {{human_pos}}/{{human_len}} {unit}{rate}, {{eta}} left");
+        bar.set_style(
+            ProgressStyle::with_template(&template)
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        bar.set_message(p.what.clone());
+        Box::new(Bar { bar })
     }
 }
 

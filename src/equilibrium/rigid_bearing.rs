@@ -21,7 +21,8 @@ use crate::model::{ContactLaw, GeometryMode};
 /// Zero torque with clearance leaves the disc free within its backlash; we report the limit
 /// T → 0⁺: the lag at which the nearest contact in the load direction just closes.
 /// Newton on the smallest gap, x ← x + min(gap/(−∂gap/∂x)) over contacts that close as x grows,
-/// the contacts `states` evaluated at each x by `evaluate`.
+/// the contacts `states` evaluated at each x by `evaluate`; they hold the evaluation at the
+/// lag returned.
 fn touching<C: Contact, S>(
     states: &mut Vec<C>,
     mut evaluate: impl FnMut(f64, &mut Vec<C>) -> Result<(), S>,
@@ -54,10 +55,11 @@ fn touching<C: Contact, S>(
             .map(|s| s.gap_mm() / s.gap_slope_mm())
             .fold(0.0, f64::max);
         if overlap == 0.0 {
-            break;
+            return Ok(x);
         }
         x -= overlap + f64::EPSILON * x.abs();
     }
+    evaluate(x, states)?;
     Ok(x)
 }
 
@@ -173,7 +175,6 @@ fn solve_rollers(
         let free = round_off(states, r.moment_resolution(states, offset_norm));
         if free || !in_contact(states) {
             lag = touching(states, |l, states| r.evaluate(&pose(l), states), lag)?;
-            r.evaluate(&pose(lag), states)?;
             reaches
                 .iter_mut()
                 .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
@@ -250,7 +251,6 @@ fn solve_pins(
     if model.torque_nmm == 0.0 {
         if !in_contact(states) {
             lag = touching(states, evaluate, lag)?;
-            evaluate(lag, states)?;
         }
         let resolution = p.moment_resolution(states, offset.norm());
         unload_round_off(states, resolution);

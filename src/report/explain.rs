@@ -296,7 +296,7 @@ pub fn explain(spec: &Spec, writes: Writes, tolerance: bool) -> String {
             .filter(|e| !plan.has(*e))
             .filter(|e| *e != Effect::Efficiency || spec.design.friction.is_some())
             .filter(|e| *e != Effect::Strength || strength_given)
-            .filter(|e| *e != Effect::Inertia || scene.input_speed_rpm.is_some())
+            .filter(|e| *e != Effect::Inertia || scene.has_speed())
             .map(|e| e.name())
             .collect();
         if !skipped.is_empty() {

@@ -327,11 +327,10 @@ fn no_load_speeds(design: &Design, scenes: &[Scene]) -> Result<()> {
     if (design.friction).is_none_or(|f| f.no_load_torque_nmm.is_constant()) {
         return Ok(());
     }
-    match scenes.iter().position(|s| {
-        Plan::for_scene(s).computes(Effect::Efficiency)
-            && s.input_speed_rpm.is_none()
-            && s.duty_cycle.is_none()
-    }) {
+    match scenes
+        .iter()
+        .position(|s| Plan::for_scene(s).computes(Effect::Efficiency) && !s.has_speed())
+    {
         Some(i) => Err(Error::invalid(
             format!("scenes[{i}]"),
             format!(

@@ -4,7 +4,7 @@
 //! path (one scene per bin, its own `bearing_life_h`) combined by hand, from a closed form, or
 //! from a property (one bin, identical bins, speed scaling); none from the duty code's output.
 
-use crate::common::{cycloid, Scratch};
+use crate::common::{cycloid, cycloid_here, Scratch};
 use cycloid::model::quantity::{
     Quantity, BEARING_LIFE, DUTY_LIFE, DUTY_MEAN_EFFICIENCY, EQUIVALENT_TORQUE,
     MAX_CONTACT_PRESSURE, MEAN_EFFICIENCY, MEAN_SPEED, TOTAL_POWER_LOSS,
@@ -570,4 +570,25 @@ fn a_duty_cycle_sweeps_its_clearance_once() {
         assert_eq!(done, (discs + bins) * n, "{discs} discs: angles swept");
         assert_eq!(heard.total.into_inner(), done, "{discs} discs: announced");
     }
+}
+
+/// A duty cycle runs at its bins' speeds, so `inertia` is open to it as to a scene with its own
+/// `input_speed_rpm` (the spec accepts it and the run gives the centripetal force at the fastest
+/// bin): `--explain` lists it among what the shipped cycle does not ask for. Before, the plan
+/// read the scene's own speed alone and left inertia out of a duty cycle's list.
+#[test]
+fn the_plan_of_a_duty_cycle_offers_inertia_as_a_scene_at_speed_does() {
+    let plan = cycloid_here(&["check", "specs/reducer-duty-cycle.yaml", "--explain"]).stdout;
+    assert!(
+        plan.contains("  skip    clearance, inertia (not asked for)\n"),
+        "{plan}"
+    );
+    let dir = Scratch::new("duty-inertia");
+    let with_inertia = SHIPPED.replace("effects: [bearing]", "effects: [bearing, inertia]");
+    let (code, out, err) = check(&dir, &with_inertia);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains("at 2000 rpm: each disc's centripetal force"),
+        "{out}"
+    );
 }

@@ -278,29 +278,70 @@ impl Mesh {
         })
     }
 
-    /// Lag at which roller i's gap closes at crank φ (Newton on gap(β) = 0, ∂gap/∂β = −l).
+    /// Lag at which roller i's gap first closes at crank φ as the disc turns the way `sign`
+    /// says (+1: β grows, the forward backlash; −1: β falls, the reverse), from scratch; `None`
+    /// when it does not close within half a roller pitch (π/np) that way.
+    ///
+    /// The way its nearest flank at β = 0 closes (the sign of its arm), Newton from β = 0
+    /// (`close_from`). The other way that flank opens, and the roller closes on another part
+    /// of the profile, or on the same flank once its foot has slid past a root: the far side of
+    /// its tooth space, nearer than its own flank when the roller sits beyond the centre of
+    /// curvature of a sharp root. It is reached by `march` and closed by Newton.
+    pub fn closing_lag_toward(
+        &self,
+        i: usize,
+        crank_rad: f64,
+        sign: f64,
+    ) -> Result<Option<f64>, GapFailure> {
+        let pose = Pose::ideal(crank_rad);
+        let g = self.roller_gap(i, &pose, None)?;
+        let rate = self.gap_rate_bound_mm(self.roller_in_disc(i, &pose).norm());
+        let reach = PI / self.rollers as f64;
+        let rp = self.roller_circle_radius_mm;
+        let gap_arm = |g: &RollerGap| (g.gap_mm, g.arm_mm);
+        let next = |lag, _: &RollerGap| {
+            self.roller_gap(i, &Pose::lagging(crank_rad, lag), None)
+                .ok()
+        };
+        let Some((lag, g)) = march(sign, rate, reach, rp, g, gap_arm, next) else {
+            return Ok(None);
+        };
+        let b = self.close_from(i, Pose::lagging(crank_rad, lag), g);
+        Ok(b.filter(|&b| beyond(sign, lag, b)))
+    }
+
+    /// A bound on how fast a roller's gap changes with the lag, |∂gap/∂β| = |l| (mm), for a
+    /// roller centre at `radius_mm` from the disc centre: the arm is the distance from the disc
+    /// centre to the normal at the foot, at most |p|. Without a form error the normal is the
+    /// locus's, and every normal of the locus C(t) = R'e^{it} − e·e^{i·np·t} passes through
+    /// the pitch point nc·e·e^{i·np·t} (C − that point = −iC'), so |l| ≤ e·nc (with 1e-9 for
+    /// round-off).
+    pub fn gap_rate_bound_mm(&self, radius_mm: f64) -> f64 {
+        if self.profile.has_form() {
+            return radius_mm;
+        }
+        let pitch = self.profile.eccentricity_mm * self.teeth as f64 * (1.0 + 1e-9);
+        pitch.min(radius_mm)
+    }
+
+    /// Newton on gap(β) = 0 (∂gap/∂β = −l) from `pose`, where roller i's gap is `g`.
     ///
     /// `None` when the roller cannot close within half a roller pitch of disc rotation: its arm
     /// is too small or of the wrong sign, or following it would push the roller centre so deep
-    /// into the disc that the nearest flank is no longer its own. Such a roller never sets the
-    /// backlash, which is the smallest closing lag. Steps are damped to a tenth of that reach.
-    pub fn closing_lag(&self, i: usize, crank_rad: f64) -> Result<Option<f64>, GapFailure> {
+    /// into the disc that the nearest flank is no longer its own. Steps are damped to a tenth
+    /// of that reach.
+    fn close_from(&self, i: usize, mut pose: Pose, mut g: RollerGap) -> Option<f64> {
         let reach = std::f64::consts::PI / self.rollers as f64;
-        let mut pose = Pose::ideal(crank_rad);
-        let mut g = self.roller_gap(i, &pose, None)?;
         for _ in 0..60 {
             if g.arm_mm.abs() < 1e-9 * self.roller_circle_radius_mm {
-                return Ok(None);
+                return None;
             }
             let step = (g.gap_mm / g.arm_mm).clamp(-0.1 * reach, 0.1 * reach);
             pose.lag_rad += step;
             if pose.lag_rad.abs() > reach {
-                return Ok(None);
+                return None;
             }
-            g = match self.roller_gap(i, &pose, Some(g.t)) {
-                Ok(g) => g,
-                Err(_) => return Ok(None),
-            };
+            g = self.roller_gap(i, &pose, Some(g.t)).ok()?;
             // Converged when the step is negligible or the gap is closed to its round-off (a few
             // ulp of Rp). The step test alone cannot be met once round-off in the gap, divided
             // by the arm, exceeds 1e-15 + 1e-12·|β| rad: such a roller would be reported as not
@@ -312,14 +353,62 @@ impl Mesh {
                 // opens while the other still interferes), the roller has not closed.
                 if let Ok(fresh) = self.roller_gap(i, &pose, None) {
                     if fresh.gap_mm < g.gap_mm - 1e-12 * self.roller_circle_radius_mm {
-                        return Ok(None);
+                        return None;
                     }
                 }
-                return Ok(Some(pose.lag_rad));
+                return Some(pose.lag_rad);
             }
         }
-        Ok(None)
+        None
     }
+}
+
+/// Steps of `march` before a roller is given up as not closing.
+const MARCH_STEPS: usize = 64;
+
+/// Turns the disc from β = 0 the way `sign` says until the flank nearest the roller closes
+/// that way (its arm l has the sign of `sign`): that lag and the gap there, the start of the
+/// Newton iteration that closes it; `None` when the roller is proven open up to `limit` (rad),
+/// or interferes at β = 0 on a flank that opens that way (it holds the disc the other way).
+///
+/// The gap changes by at most `rate_mm` per radian of lag (`Mesh::gap_rate_bound_mm`): from a
+/// gap g the next g/rate rad are free, and each step is that long (at least the round-off of a
+/// closed gap). Nothing closes between the steps, whatever flank is nearest; `gap_arm` reads
+/// (gap, l) from a state and `next` is the nearest foot at a lag, from the state before.
+fn march<G>(
+    sign: f64,
+    rate_mm: f64,
+    limit: f64,
+    rp: f64,
+    mut g: G,
+    gap_arm: impl Fn(&G) -> (f64, f64),
+    mut next: impl FnMut(f64, &G) -> Option<G>,
+) -> Option<(f64, G)> {
+    let mut lag = 0.0;
+    for _ in 0..MARCH_STEPS {
+        let (gap, arm) = gap_arm(&g);
+        let closes = sign * arm > 1e-9 * rp;
+        if lag == 0.0 && (closes || gap <= 0.0) {
+            return closes.then_some((lag, g));
+        }
+        let free = gap.max(32.0 * f64::EPSILON * rp) / rate_mm;
+        if sign * lag + free > limit {
+            return None;
+        }
+        if closes {
+            return Some((lag, g));
+        }
+        lag += sign * free;
+        g = next(lag, &g)?;
+    }
+    None
+}
+
+/// A closing lag `b` found by Newton from the lag `from` that `march` reached is taken when it
+/// lies beyond it (`march` proved the gap open before); from β = 0 it may lie either side (a
+/// roller that interferes closes behind).
+fn beyond(sign: f64, from: f64, b: f64) -> bool {
+    from == 0.0 || sign * b >= sign * from
 }
 
 /// Gaps closer than this count as equal when locating the minimum, so that mirror-symmetric
@@ -380,8 +469,10 @@ pub fn first_period<'a>(mesh: &Mesh, crank_rad: &'a [f64]) -> &'a [f64] {
 /// and accepted when its distance from the locus proves it the nearest point of Γ
 /// (`Tracker::certified_mm`); otherwise, and at a failure, the roller is evaluated from scratch
 /// (`Mesh::roller_gap` with its scanning search). Closing lags
-/// follow the same way (`Tracker::closing_lag`). Chunks of `CHUNK` angles run in parallel and
-/// write their rows in place.
+/// follow the same way (`Tracker::closing_lag`), each roller's the way its nearest flank
+/// closes; the other way it is turned until another flank closes, while that can still come
+/// before the backlash found (`Tracker::closing_toward`). Chunks of `CHUNK` angles run in
+/// parallel and write their rows in place.
 /// `progress` hears of every chunk of crank angles done.
 pub fn sweep(
     mesh: &Mesh,
@@ -534,6 +625,7 @@ struct Warm {
 /// Roller i at one crank angle: its locus frame, the excess of the parts as built over the
 /// locus form in the disc frame at β = 0 (`Mesh::centre_excess` turned by −ψ), and r' − its
 /// radius (the gap is this plus its centre's distance from the locus).
+#[derive(Clone, Copy)]
 struct Seat {
     frame: LocusFrame,
     excess: Vec2,
@@ -563,6 +655,11 @@ struct Tracker<'a> {
     /// its frame: `Mesh::foot_guess` at β = 0, the roller's own locus parameter t_ref turned
     /// back by the profile's rotation (reduced to within half a tooth pitch).
     first_s: f64,
+    /// The radius extrema of the locus in turn (`Profile::arc_ends`).
+    arc_ends: Vec<Vec2>,
+    /// e·nc, the largest moment arm, when the profile has no form error
+    /// (`Mesh::gap_rate_bound_mm`; `Tracker::stays_open` proves nothing with one).
+    pitch_mm: Option<f64>,
 }
 
 impl<'a> Tracker<'a> {
@@ -573,6 +670,8 @@ impl<'a> Tracker<'a> {
             units: (0..mesh.rollers).map(|i| mesh.roller_unit(i)).collect(),
             certified_mm: certified_mm(profile),
             first_s: wrap_pi(-profile.rotation_rad),
+            arc_ends: profile.arc_ends(),
+            pitch_mm: (!profile.has_form()).then(|| mesh.gap_rate_bound_mm(f64::INFINITY)),
         }
     }
 
@@ -602,7 +701,9 @@ impl<'a> Tracker<'a> {
         let mesh = self.mesh;
         let (nc, np) = (mesh.teeth as f64, mesh.rollers as f64);
         let mut warm = vec![Warm::default(); mesh.rollers];
+        let mut seated = Vec::with_capacity(mesh.rollers);
         for (k, &phi) in crank_rad.iter().enumerate() {
+            seated.clear();
             // Roller i's frame: t_ref = 2πi/np + φ/nc, the roller centre e^{i·t_ref}·Rp −
             // e·e^{i·np·t_ref} at β = 0, with e^{i·np·t_ref} = e^{i·np·φ/nc} for every roller.
             let turn = phi / nc;
@@ -635,13 +736,35 @@ impl<'a> Tracker<'a> {
                     Some((b, _)) if g.arm_mm < 0.0 => reverse = reverse.min(-b),
                     _ => {}
                 }
+                seated.push((frame, g));
             }
             if let Some((f, r)) = &mut rows.backlash {
+                self.other_ways(phi, &seated, &mut forward, &mut reverse);
                 f[k] = forward;
                 r[k] = reverse;
             }
         }
         Ok(())
+    }
+
+    /// Each roller the way its nearest flank at β = 0 opens (both ways when its arm is too small
+    /// to close either), where it may close first on another part of the profile: the backlash
+    /// each way lowered to such a closing lag (`closing_toward`), unless the roller is proven
+    /// open up to it (`stays_open`). `seated` holds every roller's seat and gap at β = 0.
+    fn other_ways(&self, phi: f64, seated: &[(Seat, Found)], forward: &mut f64, reverse: &mut f64) {
+        let rp = self.mesh.roller_circle_radius_mm;
+        let reach = PI / self.mesh.rollers as f64;
+        for (i, (frame, g)) in seated.iter().enumerate() {
+            for (sign, best) in [(1.0, &mut *forward), (-1.0, &mut *reverse)] {
+                let limit = best.min(reach);
+                if sign * g.arm_mm > 1e-9 * rp || self.stays_open(frame, g, sign, limit) {
+                    continue;
+                }
+                if let Some(b) = self.closing_toward(i, phi, frame, g, sign, limit) {
+                    *best = best.min(sign * b);
+                }
+            }
+        }
     }
 
     /// Roller i's gap at β = 0, followed from the foot offset `warm` (at the start of a chunk
@@ -654,9 +777,22 @@ impl<'a> Tracker<'a> {
         frame: &Seat,
         warm: Option<f64>,
     ) -> Result<Found, GapFailure> {
-        match self.follow(frame, 0.0, warm.unwrap_or(self.first_s)) {
+        self.nearest(i, phi, frame, 0.0, warm.unwrap_or(self.first_s))
+    }
+
+    /// Roller i's gap at lag β from the nearest point of Γ: followed from the offset `s_start`,
+    /// or from scratch when the foot followed is not proven the nearest point.
+    fn nearest(
+        &self,
+        i: usize,
+        phi: f64,
+        frame: &Seat,
+        lag_rad: f64,
+        s_start: f64,
+    ) -> Result<Found, GapFailure> {
+        match self.follow(frame, lag_rad, s_start) {
             Ok(g) if g.nearest => Ok(g),
-            _ => self.afresh(i, phi, frame),
+            _ => self.afresh(i, phi, frame, lag_rad),
         }
     }
 
@@ -676,8 +812,7 @@ impl<'a> Tracker<'a> {
             .profile
             .closest_point_in_frame(&frame.frame, lag_rad, w, s_start)?;
         let f = &frame.frame;
-        let centre = f.base * f.r_ref - f.lobe * mesh.eccentricity_mm + frame.excess;
-        let p = rotate(centre, cb, -sb);
+        let p = rotate(self.centre(frame), cb, -sb);
         Ok(Found {
             gap_mm: frame.offset_mm + foot.locus_distance_mm,
             arm_mm: cross(p, foot.normal),
@@ -686,9 +821,17 @@ impl<'a> Tracker<'a> {
         })
     }
 
-    /// The gap at β = 0 from scratch (`Mesh::roller_gap`, with its scanning search).
-    fn afresh(&self, i: usize, phi: f64, frame: &Seat) -> Result<Found, GapFailure> {
-        let g = self.mesh.roller_gap(i, &Pose::ideal(phi), None)?;
+    /// The roller centre in the disc frame at β = 0: e^{i·t_ref}·Rp − e·e^{i·np·t_ref} + x.
+    fn centre(&self, frame: &Seat) -> Vec2 {
+        let f = &frame.frame;
+        f.base * f.r_ref - f.lobe * self.mesh.eccentricity_mm + frame.excess
+    }
+
+    /// The gap at lag β from scratch (`Mesh::roller_gap`, with its scanning search).
+    fn afresh(&self, i: usize, phi: f64, frame: &Seat, lag_rad: f64) -> Result<Found, GapFailure> {
+        let g = self
+            .mesh
+            .roller_gap(i, &Pose::lagging(phi, lag_rad), None)?;
         Ok(Found {
             gap_mm: g.gap_mm,
             arm_mm: g.arm_mm,
@@ -697,7 +840,7 @@ impl<'a> Tracker<'a> {
         })
     }
 
-    /// Roller i's closing lag and its foot offset: the Newton iteration of `Mesh::closing_lag`
+    /// Roller i's closing lag and its foot offset: the Newton iteration of `Mesh::close_from`
     /// on gap(β) = 0, from the previous angle's closing lag when there is one, else from β = 0
     /// with the gap just found (whose first step is the first-order closing lag g/l).
     ///
@@ -732,7 +875,61 @@ impl<'a> Tracker<'a> {
             .map(|(b, g)| (b, g.s))
     }
 
-    /// Newton on gap(β) = 0 from lag β with gap g (`Mesh::closing_lag`): the closing lag and
+    /// Roller i's closing lag the way `sign` turns the disc, below `limit` (rad), where its
+    /// nearest flank at β = 0 opens (`Mesh::closing_lag_toward`): `march` to where the nearest
+    /// flank closes, then Newton.
+    fn closing_toward(
+        &self,
+        i: usize,
+        phi: f64,
+        frame: &Seat,
+        at_zero: &Found,
+        sign: f64,
+        limit: f64,
+    ) -> Option<f64> {
+        let rate = self.mesh.gap_rate_bound_mm(self.centre(frame).norm());
+        let rp = self.mesh.roller_circle_radius_mm;
+        let gap_arm = |g: &Found| (g.gap_mm, g.arm_mm);
+        let next = |lag, g: &Found| self.nearest(i, phi, frame, lag, g.s).ok();
+        let (lag, g) = march(sign, rate, limit, rp, *at_zero, gap_arm, next)?;
+        let (b, _) = self.close(i, phi, frame, lag, g)?;
+        beyond(sign, lag, b).then_some(b)
+    }
+
+    /// Whether the roller, its nearest foot at β = 0 on an arc of the locus whose arm has the
+    /// sign opposite to `sign`, is proven not to close the way `sign` turns the disc within
+    /// `limit` (rad), without turning it.
+    ///
+    /// To close that way, the roller centre q must come within |r''| (the locus distance at
+    /// which its gap is zero, `Seat::offset_mm`) of an arc whose arm has the sign of `sign`.
+    /// From the foot's arc that takes passing one of its ends (`Profile::arc_ends`, those on
+    /// either side of the foot's parameter t) or another arc: C meets a ball about q of radius below the reach of the locus in one arc,
+    /// the one through the nearest foot (a second would hold a local minimum of the distance,
+    /// which within the reach is the nearest point, Federer 1959, Thm 4.8 (12)). So such an
+    /// arc is at least ρ = min(distance to the ends, the certified reach) from q, and q, turning
+    /// on a circle of radius |p|, needs at least (ρ − |r''|)/|p| rad to come within |r''| of it.
+    /// A form error breaks the offset form the arcs are read from: no proof then.
+    fn stays_open(&self, frame: &Seat, at_zero: &Found, sign: f64, limit: f64) -> bool {
+        let Some(pitch) = self.pitch_mm else {
+            return false;
+        };
+        if sign * at_zero.arm_mm >= 0.0 {
+            return false;
+        }
+        // The gap's own bound first (`march`'s first step), without the arc's ends.
+        if at_zero.gap_mm > pitch * limit {
+            return true;
+        }
+        let q = self.centre(frame);
+        let ends = self.arc_ends.len();
+        let t = frame.frame.t_ref + at_zero.s;
+        let k = (t * (ends / 2) as f64 / PI).floor() as i64;
+        let end = |k: i64| (q - self.arc_ends[k.rem_euclid(ends as i64) as usize]).norm();
+        let rho = end(k).min(end(k + 1)).min(self.certified_mm);
+        (rho - frame.offset_mm.abs()) / q.norm() > limit
+    }
+
+    /// Newton on gap(β) = 0 from lag β with gap g (`Mesh::close_from`): the closing lag and
     /// the gap found there, or `None` when the roller does not close within half a roller pitch.
     fn close(
         &self,
@@ -749,7 +946,7 @@ impl<'a> Tracker<'a> {
         // pointing away from the flank it would close on, is thrown back and forth between two
         // lags by the clamped steps. Every step being a function of the state, a state seen
         // before repeats forever and the roller never closes: said at once instead of after
-        // the 60 iterations of `Mesh::closing_lag`.
+        // the 60 iterations of `Mesh::close_from`.
         let mut before = [(f64::NAN, f64::NAN); 2];
         for _ in 0..60 {
             if g.arm_mm.abs() < 1e-9 * rp {
@@ -768,7 +965,7 @@ impl<'a> Tracker<'a> {
             let closed = g.gap_mm.abs() <= 32.0 * f64::EPSILON * rp;
             if closed || step.abs() <= 1e-15 + 1e-12 * lag.abs() {
                 // A foot not proven the nearest point: if another part of the profile is nearer
-                // at this lag, the roller has not closed (`Mesh::closing_lag`).
+                // at this lag, the roller has not closed (`Mesh::close_from`).
                 if !g.nearest {
                     if let Ok(fresh) = mesh.roller_gap(i, &Pose::lagging(phi, lag), None) {
                         if fresh.gap_mm < g.gap_mm - 1e-12 * rp {

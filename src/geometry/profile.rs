@@ -205,6 +205,22 @@ impl Profile {
         }
     }
 
+    /// The extrema of |C| in turn, disc frame, mm: C(kπ/nc) for k = 0 … 2nc − 1
+    /// (|C|² = R'² + e² − 2R'e·cos(nc·t)), a root (|C| = R' − e) at even k, a tip (R' + e) at
+    /// odd k. Between two in turn a foot's moment arm keeps its sign: the arm is the distance
+    /// from the disc centre to the normal at the foot, zero only where the normal is radial, at
+    /// an extremum of |C|.
+    pub fn arc_ends(&self) -> Vec<Vec2> {
+        let nc = self.rollers - 1;
+        let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
+        (0..2 * nc)
+            .map(|k| {
+                let radius = if k % 2 == 0 { r - e } else { r + e };
+                self.turned(unit(k as f64 * PI / nc as f64) * radius)
+            })
+            .collect()
+    }
+
     /// C''' at t, mm/rad³ (for the derivative of the curvature).
     pub fn locus_d3(&self, t: f64) -> Vec2 {
         let n = self.rollers as f64;

@@ -2,7 +2,8 @@
 //! closest point and closing lag from one crank angle to the next, against the evaluation of
 //! every roller and angle from scratch that it replaced: `Mesh::roller_gap` without a warm
 //! start (Newton from the roller's own locus parameter, cross-checked by the scanning search)
-//! and `Mesh::closing_lag` (Newton from β = 0). Both find the same closest points and closing
+//! and `Mesh::closing_lag_toward` both ways (Newton from β = 0 on the nearest flank, the other
+//! way from where the march reaches a flank that closes). Both find the same closest points and closing
 //! lags; the tolerances are the brief's (gaps within 1e-9 mm, backlash within 1e-6 arcsec)
 //! and cover the round-off of two routes to the same foot (~1e-13 mm) and the closing lags'
 //! stopping rule (a relative step of 1e-12, ~1e-14 rad here). The backlash tolerance adds the
@@ -30,8 +31,7 @@ const GAP_MM: f64 = 1e-9;
 const BACKLASH_RAD: f64 = 1e-6 / 206_264.806_247_096_36;
 
 /// Today's sweep from scratch, one roller and angle at a time: gaps [roller][angle], forward
-/// and reverse backlash [angle] (`Mesh::closing_lag` of every roller; forward among rollers
-/// whose arm at β = 0 is positive, reverse among the others).
+/// and reverse backlash [angle] (`Mesh::closing_lag_toward` of every roller, each way).
 struct Reference {
     gap_mm: Vec<Vec<f64>>,
     forward_rad: Vec<f64>,
@@ -62,17 +62,15 @@ fn reference(mesh: &Mesh, crank: &[f64]) -> Reference {
                 .roller_gap(i, &Pose::ideal(phi), None)
                 .unwrap_or_else(|f| panic!("{f}"));
             r.gap_mm[i].push(g.gap_mm);
-            let Some(b) = mesh.closing_lag(i, phi).unwrap() else {
-                continue;
-            };
-            let stop = match mesh.roller_gap(i, &Pose::lagging(phi, b), None) {
-                Ok(at) => at.gap_mm.abs().max(closed_mm) / at.arm_mm.abs(),
-                Err(_) => 0.0,
-            };
-            if g.arm_mm > 0.0 {
-                forward.push((b, stop));
-            } else if g.arm_mm < 0.0 {
-                reverse.push((-b, stop));
+            for (sign, lags) in [(1.0, &mut forward), (-1.0, &mut reverse)] {
+                let Some(b) = mesh.closing_lag_toward(i, phi, sign).unwrap() else {
+                    continue;
+                };
+                let stop = match mesh.roller_gap(i, &Pose::lagging(phi, b), None) {
+                    Ok(at) => at.gap_mm.abs().max(closed_mm) / at.arm_mm.abs(),
+                    Err(_) => 0.0,
+                };
+                lags.push((sign * b, stop));
             }
         }
         let (forward, forward_stop) = smallest_lag(&forward);

@@ -238,6 +238,75 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(
+        // A quarter of the run's count: each case evaluates the whole profile ~40,000 times.
+        std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse::<u32>().ok()).map_or(16, |n| n.div_ceil(4))
+    ))]
+
+    /// The backlash each way is the first lag at which a roller touches the disc, by brute
+    /// force: every roller's gap from the nearest point of the whole profile
+    /// (`brute_force_signed_distance`, no closest-point search and no moment arm), at 24 lags
+    /// short of the sweep's backlash (none may touch) and at it (one touches). A roller whose
+    /// gap at β = 0 exceeds |p| times the backlash cannot touch before it (its centre turns on
+    /// a circle of radius |p|, so its gap changes by at most |p| per radian) and is left out.
+    /// Designs that interfere at β = 0 are left out: their backlash is negative that way.
+    #[test]
+    fn backlash_is_the_first_lag_at_which_a_roller_touches(c in cases(), phi in 0.0..TAU) {
+        let mesh = Mesh::new(&c.design, &c.m);
+        // φ = 0 puts roller 0 on the centreline of a tooth space, as near one side as the
+        // other: where a roller closes first on the side it is not nearest.
+        for phi in [0.0, phi] {
+            first_touch_is_the_backlash(&mesh, phi)?;
+        }
+    }
+}
+
+/// `backlash_is_the_first_lag_at_which_a_roller_touches` at crank φ.
+fn first_touch_is_the_backlash(mesh: &Mesh, phi: f64) -> Result<(), TestCaseError> {
+    let s = clearance::sweep(mesh, &[phi], Scope::Backlash, &cycloid::progress::Silent)
+        .unwrap_or_else(|f| panic!("{f}"));
+    let b = s.backlash.as_ref().expect("backlash");
+    let rollers = mesh.rollers;
+    let brute = |i: usize, lag: f64| {
+        let p = mesh.roller_in_disc(i, &Pose::lagging(phi, lag));
+        brute_force_signed_distance(&mesh.profile, p, 4096).0 - mesh.roller_radius(i)
+    };
+    let at_zero: Vec<f64> = (0..rollers).map(|i| brute(i, 0.0)).collect();
+    if at_zero.iter().any(|&g| g <= 0.0) {
+        return Ok(());
+    }
+    let reach = PI / rollers as f64;
+    for (sign, backlash) in [(1.0, b.forward_rad[0]), (-1.0, b.reverse_rad[0])] {
+        let end = backlash.min(reach);
+        let near: Vec<usize> = (0..rollers)
+            .filter(|&i| {
+                at_zero[i] <= mesh.roller_in_disc(i, &Pose::ideal(phi)).norm() * end * 1.01
+            })
+            .collect();
+        let least = |lag: f64| {
+            near.iter()
+                .map(|&i| brute(i, lag))
+                .fold(f64::INFINITY, f64::min)
+        };
+        for k in 1..24 {
+            let lag = sign * end * k as f64 / 24.0;
+            let g = least(lag);
+            prop_assert!(g > 0.0, "sign {sign}: a roller touches at lag {lag} ({g} mm), before the backlash {backlash}");
+        }
+        if backlash.is_finite() {
+            // The sweep stops within 32 ulp of Rp of closing; the brute force's distance is
+            // good to its golden-section round-off (~1e-12 mm): 1e-9 mm covers both.
+            let g = least(sign * backlash);
+            prop_assert!(
+                g.abs() <= 1e-9,
+                "sign {sign}: least gap {g} mm at the backlash {backlash}"
+            );
+        }
+    }
+    Ok(())
+}
+
 // ---------------------------------------------------------------------------------------------
 // 1e. The closest point is the global nearest point
 
@@ -494,10 +563,11 @@ proptest! {
         }
     }
 
-    /// Mesh::closing_lag returns a lag at which the gap is zero (to round-off), for any
-    /// modification; and it does find one for every roller that the first-order model says
-    /// closes nearby: with a pure equidistant δ = 1e-3·e every roller with |arm| ≥ 0.2·e·nc closes
-    /// at δ/arm up to the second-order term |∂²gap/∂β²|·δ/(2·arm²) (relative), with
+    /// Mesh::closing_lag_toward returns a lag at which the gap is zero (to round-off) each way,
+    /// for any modification; and it does find one for every roller that the first-order model
+    /// says closes nearby (the way its arm says): with a pure equidistant δ = 1e-3·e every
+    /// roller with |arm| ≥ 0.2·e·nc closes at δ/arm up to the second-order term
+    /// |∂²gap/∂β²|·δ/(2·arm²) (relative), with
     /// |∂²gap/∂β²| ≤ |p| + |p|²·max|κ_C| (a roller centre on a circle of radius |p| ≤ Rp + e
     /// crossing a curve of curvature ≤ max|κ_C|).
     #[test]
@@ -505,7 +575,7 @@ proptest! {
         let d = &c.design;
         let mesh = Mesh::new(d, &c.m);
         for i in 0..d.rollers {
-            if let Some(b) = mesh.closing_lag(i, phi).unwrap() {
+            for b in [1.0, -1.0].map(|sign| mesh.closing_lag_toward(i, phi, sign).unwrap()).into_iter().flatten() {
                 let g = gap(&mesh, i, phi, b);
                 // Converged to the gap's round-off, ~1e-14·Rp.
                 prop_assert!(g.abs() <= 1e-12 * d.roller_circle_radius_mm,
@@ -520,7 +590,7 @@ proptest! {
         for i in 0..d.rollers {
             let arm = arm_closed(d, i, phi);
             if arm.abs() >= 0.2 * e_nc {
-                let b = mesh.closing_lag(i, phi).unwrap();
+                let b = mesh.closing_lag_toward(i, phi, arm.signum()).unwrap();
                 prop_assert!(b.is_some(), "roller {i} (arm {arm} mm) does not close");
                 let b = b.unwrap();
                 prop_assert!((b * arm / delta - 1.0).abs() <= bound,

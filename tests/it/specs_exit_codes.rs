@@ -161,6 +161,11 @@ const EXPECTED: &[(&str, i32, &str)] = &[
         0,
         "preload on a soft crank bearing",
     ),
+    (
+        "hard/sharp-root.yaml",
+        0,
+        "a root sharper than the modification: a roller closes both ways",
+    ),
 ];
 
 /// Spec files under `dir`, one level of subdirectories deep, as paths relative to specs/.

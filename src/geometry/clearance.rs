@@ -312,16 +312,10 @@ impl Mesh {
 
     /// A bound on how fast a roller's gap changes with the lag, |∂gap/∂β| = |l| (mm), for a
     /// roller centre at `radius_mm` from the disc centre: the arm is the distance from the disc
-    /// centre to the normal at the foot, at most |p|. Without a form error the normal is the
-    /// locus's, and every normal of the locus C(t) = R'e^{it} − e·e^{i·np·t} passes through
-    /// the pitch point nc·e·e^{i·np·t} (C − that point = −iC'), so |l| ≤ e·nc (with 1e-9 for
-    /// round-off).
+    /// centre to the normal at the foot, at most |p|, and at most `Profile::arm_bound_mm`
+    /// (e·nc without a form error).
     pub fn gap_rate_bound_mm(&self, radius_mm: f64) -> f64 {
-        if self.profile.has_form() {
-            return radius_mm;
-        }
-        let pitch = self.profile.eccentricity_mm * self.teeth as f64 * (1.0 + 1e-9);
-        pitch.min(radius_mm)
+        self.profile.arm_bound_mm().min(radius_mm)
     }
 
     /// Newton on gap(β) = 0 (∂gap/∂β = −l) from `pose`, where roller i's gap is `g`.
@@ -657,8 +651,10 @@ struct Tracker<'a> {
     first_s: f64,
     /// The radius extrema of the locus in turn (`Profile::arc_ends`).
     arc_ends: Vec<Vec2>,
-    /// e·nc, the largest moment arm, when the profile has no form error
-    /// (`Mesh::gap_rate_bound_mm`; `Tracker::stays_open` proves nothing with one).
+    /// The largest moment arm of a foot (`Profile::arm_bound_mm`).
+    arm_bound_mm: f64,
+    /// That bound, e·nc, when the profile has no form error (`Tracker::stays_open` proves
+    /// nothing with one).
     pitch_mm: Option<f64>,
 }
 
@@ -671,7 +667,8 @@ impl<'a> Tracker<'a> {
             certified_mm: certified_mm(profile),
             first_s: wrap_pi(-profile.rotation_rad),
             arc_ends: profile.arc_ends(),
-            pitch_mm: (!profile.has_form()).then(|| mesh.gap_rate_bound_mm(f64::INFINITY)),
+            arm_bound_mm: profile.arm_bound_mm(),
+            pitch_mm: (!profile.has_form()).then(|| profile.arm_bound_mm()),
         }
     }
 
@@ -887,7 +884,7 @@ impl<'a> Tracker<'a> {
         sign: f64,
         limit: f64,
     ) -> Option<f64> {
-        let rate = self.mesh.gap_rate_bound_mm(self.centre(frame).norm());
+        let rate = self.arm_bound_mm.min(self.centre(frame).norm());
         let rp = self.mesh.roller_circle_radius_mm;
         let gap_arm = |g: &Found| (g.gap_mm, g.arm_mm);
         let next = |lag, g: &Found| self.nearest(i, phi, frame, lag, g.s).ok();

@@ -114,6 +114,11 @@ impl FormError {
         self.amplitudes().map(|(k, a)| k * k * a).sum()
     }
 
+    /// The largest |w′| the form error can reach, mm/rad: Σ k·amplitude.
+    pub fn slope_bound(&self) -> f64 {
+        self.amplitudes().map(|(k, a)| k * a).sum()
+    }
+
     /// The largest |w| the form error can reach, mm: Σ amplitude.
     pub fn bound_mm(&self) -> f64 {
         self.constant_mm.abs() + self.amplitudes().map(|(_, a)| a).sum::<f64>()

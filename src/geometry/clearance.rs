@@ -303,11 +303,14 @@ impl Mesh {
             self.roller_gap(i, &Pose::lagging(crank_rad, lag), None)
                 .ok()
         };
-        let Some((lag, g)) = march(sign, rate, reach, rp, g, gap_arm, next) else {
-            return Ok(None);
-        };
-        let b = self.close_from(i, Pose::lagging(crank_rad, lag), g);
-        Ok(b.filter(|&b| beyond(sign, lag, b)))
+        Ok(match march(sign, rate, reach, rp, g, gap_arm, next) {
+            None => None,
+            Some(Reached::Closed(b)) => Some(b),
+            Some(Reached::Flank(lag, g)) => {
+                let b = self.close_from(i, Pose::lagging(crank_rad, lag), g);
+                b.filter(|&b| beyond(sign, lag, b))
+            }
+        })
     }
 
     /// A bound on how fast a roller's gap changes with the lag, |∂gap/∂β| = |l| (mm), for a
@@ -357,18 +360,28 @@ impl Mesh {
     }
 }
 
-/// Steps of `march` before a roller is given up as not closing.
+/// Proven-free steps of `march` before it probes.
 const MARCH_STEPS: usize = 64;
 
+/// Where `march` leaves a roller.
+enum Reached<G> {
+    /// The flank nearest the roller closes the way the disc turns from this lag, with this
+    /// state there: the start of the Newton iteration that closes it.
+    Flank(f64, G),
+    /// The gap closes at this lag, bracketed by `probe`.
+    Closed(f64),
+}
+
 /// Turns the disc from β = 0 the way `sign` says until the flank nearest the roller closes
-/// that way (its arm l has the sign of `sign`): that lag and the gap there, the start of the
-/// Newton iteration that closes it; `None` when the roller is proven open up to `limit` (rad),
-/// or interferes at β = 0 on a flank that opens that way (it holds the disc the other way).
+/// that way (its arm l has the sign of `sign`); `None` when the roller is proven open up to
+/// `limit` (rad), or interferes at β = 0 on a flank that opens that way (it holds the disc the
+/// other way).
 ///
 /// The gap changes by at most `rate_mm` per radian of lag (`Mesh::gap_rate_bound_mm`): from a
 /// gap g the next g/rate rad are free, and each step is that long (at least the round-off of a
 /// closed gap). Nothing closes between the steps, whatever flank is nearest; `gap_arm` reads
-/// (gap, l) from a state and `next` is the nearest foot at a lag, from the state before.
+/// (gap, l) from a state and `next` is the nearest foot at a lag, from the state before. After
+/// `MARCH_STEPS` such steps it probes (`probe`).
 fn march<G>(
     sign: f64,
     rate_mm: f64,
@@ -377,25 +390,68 @@ fn march<G>(
     mut g: G,
     gap_arm: impl Fn(&G) -> (f64, f64),
     mut next: impl FnMut(f64, &G) -> Option<G>,
-) -> Option<(f64, G)> {
-    let mut lag = 0.0;
+) -> Option<Reached<G>> {
+    let (mut lag, mut free) = (0.0, 0.0);
     for _ in 0..MARCH_STEPS {
         let (gap, arm) = gap_arm(&g);
         let closes = sign * arm > 1e-9 * rp;
         if lag == 0.0 && (closes || gap <= 0.0) {
-            return closes.then_some((lag, g));
+            return closes.then_some(Reached::Flank(lag, g));
         }
-        let free = gap.max(32.0 * f64::EPSILON * rp) / rate_mm;
+        free = gap.max(32.0 * f64::EPSILON * rp) / rate_mm;
         if sign * lag + free > limit {
             return None;
         }
         if closes {
-            return Some((lag, g));
+            return Some(Reached::Flank(lag, g));
         }
         lag += sign * free;
         g = next(lag, &g)?;
     }
-    None
+    probe(sign, (lag, g), free, limit, |g| gap_arm(g).0, next)
+}
+
+/// After `MARCH_STEPS` proven-free steps, which a roller near a root can take with its gap a
+/// micrometre and its arm near zero (the gap grows by a fraction of itself per step, and its
+/// foot has yet to pass the root), the gap is probed at lags whose distance from there doubles
+/// from the last step, up to `limit`. The first probe at which it is closed and the open lag
+/// before it bracket a closing, which bisection narrows to the closing lags' stopping rule
+/// (1e-15 + 1e-12·|β| rad). Not a proof: a flank that the roller touches and leaves again
+/// between two probes is missed.
+fn probe<G>(
+    sign: f64,
+    (mut lag, mut g): (f64, G),
+    mut step: f64,
+    limit: f64,
+    gap: impl Fn(&G) -> f64,
+    mut next: impl FnMut(f64, &G) -> Option<G>,
+) -> Option<Reached<G>> {
+    let shut = loop {
+        step *= 2.0;
+        let at = sign * (sign * lag + step).min(limit);
+        let h = next(at, &g)?;
+        if gap(&h) <= 0.0 {
+            break at;
+        }
+        if sign * at >= limit {
+            return None;
+        }
+        (lag, g) = (at, h);
+    };
+    let (mut open, mut shut) = ((lag, g), shut);
+    for _ in 0..200 {
+        if (shut - open.0).abs() <= 1e-15 + 1e-12 * shut.abs() {
+            break;
+        }
+        let mid = 0.5 * (open.0 + shut);
+        let h = next(mid, &open.1)?;
+        if gap(&h) > 0.0 {
+            open = (mid, h);
+        } else {
+            shut = mid;
+        }
+    }
+    Some(Reached::Closed(shut))
 }
 
 /// A closing lag `b` found by Newton from the lag `from` that `march` reached is taken when it
@@ -888,9 +944,13 @@ impl<'a> Tracker<'a> {
         let rp = self.mesh.roller_circle_radius_mm;
         let gap_arm = |g: &Found| (g.gap_mm, g.arm_mm);
         let next = |lag, g: &Found| self.nearest(i, phi, frame, lag, g.s).ok();
-        let (lag, g) = march(sign, rate, limit, rp, *at_zero, gap_arm, next)?;
-        let (b, _) = self.close(i, phi, frame, lag, g)?;
-        beyond(sign, lag, b).then_some(b)
+        match march(sign, rate, limit, rp, *at_zero, gap_arm, next)? {
+            Reached::Closed(b) => Some(b),
+            Reached::Flank(lag, g) => {
+                let (b, _) = self.close(i, phi, frame, lag, g)?;
+                beyond(sign, lag, b).then_some(b)
+            }
+        }
     }
 
     /// Whether the roller, its nearest foot at β = 0 on an arc of the locus whose arm has the

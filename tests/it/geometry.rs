@@ -262,6 +262,23 @@ proptest! {
     }
 }
 
+/// A roller beside a root, its gap at β = 0 a micrometre and its arm −0.18 mm: its foot passes
+/// the root at ~3e-5 rad of forward lag and it closes at 7.5e-5 rad, before every other roller
+/// (found by an adversarial review with its own brute force). Steps proven free of a
+/// micrometre over e·nc = 36.6 mm cannot get there in 64, and the roller was left out: the
+/// forward backlash read 1.14e-4 rad (52 % high), and 2.29e-5 against 2.21e-5 with the second
+/// modification. The brute force of `first_touch_is_the_backlash`, at ±φ (mirror images).
+#[test]
+fn a_roller_that_closes_after_its_foot_passes_a_root_counts() {
+    let d = design(7, 6.096576197344774, 51.97582770190419, 2.3877038089533467);
+    for (shift, equidistant, phi) in [(0.05, 0.050001000000000004, 1e-3), (0.01, 0.010001, 1e-4)] {
+        let mesh = Mesh::new(&d, &modification(shift, equidistant, 0.0));
+        for phi in [phi, -phi] {
+            first_touch_is_the_backlash(&mesh, phi).unwrap();
+        }
+    }
+}
+
 /// `backlash_is_the_first_lag_at_which_a_roller_touches` at crank φ.
 fn first_touch_is_the_backlash(mesh: &Mesh, phi: f64) -> Result<(), TestCaseError> {
     let s = clearance::sweep(mesh, &[phi], Scope::Backlash, &cycloid::progress::Silent)

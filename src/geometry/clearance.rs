@@ -303,14 +303,12 @@ impl Mesh {
             self.roller_gap(i, &Pose::lagging(crank_rad, lag), None)
                 .ok()
         };
-        Ok(match march(sign, rate, reach, rp, g, gap_arm, next) {
-            None => None,
-            Some(Reached::Closed(b)) => Some(b),
-            Some(Reached::Flank(lag, g)) => {
-                let b = self.close_from(i, Pose::lagging(crank_rad, lag), g);
-                b.filter(|&b| beyond(sign, lag, b))
-            }
-        })
+        let reached = march(sign, rate, reach, rp, g, gap_arm, next);
+        Ok(reached.and_then(|r| {
+            r.closing(sign, |lag, g| {
+                self.close_from(i, Pose::lagging(crank_rad, lag), g)
+            })
+        }))
     }
 
     /// A bound on how fast a roller's gap changes with the lag, |∂gap/∂β| = |l| (mm), for a
@@ -370,6 +368,20 @@ enum Reached<G> {
     Flank(f64, G),
     /// The gap closes at this lag, bracketed by `probe`.
     Closed(f64),
+}
+
+impl<G> Reached<G> {
+    /// The closing lag: bracketed, or by `newton` from the flank's lag and state. Newton's root
+    /// is taken when it lies beyond that lag (`march` proved the gap open before); from β = 0
+    /// it may lie either side (a roller that interferes closes behind).
+    fn closing(self, sign: f64, newton: impl FnOnce(f64, G) -> Option<f64>) -> Option<f64> {
+        match self {
+            Reached::Closed(b) => Some(b),
+            Reached::Flank(lag, g) => {
+                newton(lag, g).filter(|&b| lag == 0.0 || sign * b >= sign * lag)
+            }
+        }
+    }
 }
 
 /// Turns the disc from β = 0 the way `sign` says until the flank nearest the roller closes
@@ -452,13 +464,6 @@ fn probe<G>(
         }
     }
     Some(Reached::Closed(shut))
-}
-
-/// A closing lag `b` found by Newton from the lag `from` that `march` reached is taken when it
-/// lies beyond it (`march` proved the gap open before); from β = 0 it may lie either side (a
-/// roller that interferes closes behind).
-fn beyond(sign: f64, from: f64, b: f64) -> bool {
-    from == 0.0 || sign * b >= sign * from
 }
 
 /// Gaps closer than this count as equal when locating the minimum, so that mirror-symmetric
@@ -707,11 +712,8 @@ struct Tracker<'a> {
     first_s: f64,
     /// The radius extrema of the locus in turn (`Profile::arc_ends`).
     arc_ends: Vec<Vec2>,
-    /// The largest moment arm of a foot (`Profile::arm_bound_mm`).
+    /// The largest moment arm of a foot (`Profile::arm_bound_mm`), the march's rate.
     arm_bound_mm: f64,
-    /// That bound, e·nc, when the profile has no form error (`Tracker::stays_open` proves
-    /// nothing with one).
-    pitch_mm: Option<f64>,
 }
 
 impl<'a> Tracker<'a> {
@@ -724,7 +726,6 @@ impl<'a> Tracker<'a> {
             first_s: wrap_pi(-profile.rotation_rad),
             arc_ends: profile.arc_ends(),
             arm_bound_mm: profile.arm_bound_mm(),
-            pitch_mm: (!profile.has_form()).then(|| profile.arm_bound_mm()),
         }
     }
 
@@ -940,17 +941,14 @@ impl<'a> Tracker<'a> {
         sign: f64,
         limit: f64,
     ) -> Option<f64> {
+        // `Mesh::gap_rate_bound_mm`, its arm bound computed once.
         let rate = self.arm_bound_mm.min(self.centre(frame).norm());
         let rp = self.mesh.roller_circle_radius_mm;
         let gap_arm = |g: &Found| (g.gap_mm, g.arm_mm);
         let next = |lag, g: &Found| self.nearest(i, phi, frame, lag, g.s).ok();
-        match march(sign, rate, limit, rp, *at_zero, gap_arm, next)? {
-            Reached::Closed(b) => Some(b),
-            Reached::Flank(lag, g) => {
-                let (b, _) = self.close(i, phi, frame, lag, g)?;
-                beyond(sign, lag, b).then_some(b)
-            }
-        }
+        march(sign, rate, limit, rp, *at_zero, gap_arm, next)?.closing(sign, |lag, g| {
+            self.close(i, phi, frame, lag, g).map(|(b, _)| b)
+        })
     }
 
     /// Whether the roller, its nearest foot at β = 0 on an arc of the locus whose arm has the
@@ -967,14 +965,11 @@ impl<'a> Tracker<'a> {
     /// on a circle of radius |p|, needs at least (ρ − |r''|)/|p| rad to come within |r''| of it.
     /// A form error breaks the offset form the arcs are read from: no proof then.
     fn stays_open(&self, frame: &Seat, at_zero: &Found, sign: f64, limit: f64) -> bool {
-        let Some(pitch) = self.pitch_mm else {
-            return false;
-        };
-        if sign * at_zero.arm_mm >= 0.0 {
+        if sign * at_zero.arm_mm >= 0.0 || self.mesh.profile.has_form() {
             return false;
         }
         // The gap's own bound first (`march`'s first step), without the arc's ends.
-        if at_zero.gap_mm > pitch * limit {
+        if at_zero.gap_mm > self.arm_bound_mm * limit {
             return true;
         }
         let q = self.centre(frame);

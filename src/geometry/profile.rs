@@ -210,9 +210,9 @@ impl Profile {
     /// passes through the pitch point nc·e·e^{i·np·t} (C − that point = −iC′), at most e·nc
     /// from the centre. A form error w tilts Γ's normal from C's by θ, with
     /// tan θ = |w′|/((1 − (r′ + w)·κ_C)·|C′|) (Γ′ = (1 − (r′ + w)·κ_C)·|C′|·T − w′·N), which adds
-    /// at most |Γ|·sin θ ≤ (R′ + e + r′ + |w|)·tan θ; |C′| ≥ R′ − e·np, and κ_C is at most the
-    /// largest convex curvature (`locus_reach_bound_mm`'s three candidates). Infinite when
-    /// that speed is not bounded away from zero. With 1e-9 for round-off.
+    /// at most |Γ|·sin θ ≤ (R′ + e + r′ + |w|)·tan θ; |C′| ≥ R′ − e·np, and κ_C is at most its
+    /// single maximum, 1/`Locus::min_convex_radius` (0 where the locus is nowhere convex).
+    /// Infinite when that speed is not bounded away from zero. With 1e-9 for round-off.
     pub fn arm_bound_mm(&self) -> f64 {
         let (r, e) = (self.locus_radius_mm, self.eccentricity_mm);
         let n = self.rollers as f64;
@@ -220,15 +220,9 @@ impl Profile {
         if !self.has_form() {
             return pitch * (1.0 + 1e-9);
         }
-        let locus = self.locus();
-        let convex = [
-            locus.curvature_at(1.0),
-            locus.curvature_at(-1.0),
-            1.0 / locus.min_convex_radius().radius_mm,
-        ];
+        let convex = 1.0 / self.locus().min_convex_radius().radius_mm;
         let w = self.form.bound_mm();
-        let speed =
-            (1.0 - (self.offset_mm + w) * convex.into_iter().fold(0.0, f64::max)) * (r - e * n);
+        let speed = (1.0 - (self.offset_mm + w) * convex) * (r - e * n);
         if speed <= 0.0 || r - e * n <= 0.0 {
             return f64::INFINITY;
         }

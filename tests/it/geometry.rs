@@ -246,7 +246,7 @@ proptest! {
 
     /// The backlash each way is the first lag at which a roller touches the disc, by brute
     /// force: every roller's gap from the nearest point of the whole profile
-    /// (`brute_force_signed_distance`, no closest-point search and no moment arm), at 24 lags
+    /// (`brute_force_signed_distance`, no closest-point search and no moment arm), at 23 lags
     /// short of the sweep's backlash (none may touch) and at it (one touches). A roller whose
     /// gap at β = 0 exceeds |p| times the backlash cannot touch before it (its centre turns on
     /// a circle of radius |p|, so its gap changes by at most |p| per radian) and is left out.

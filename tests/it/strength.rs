@@ -111,6 +111,48 @@ fn one_disc_pin_stress_is_the_beams_closed_form_for_both_supports() {
     }
 }
 
+/// The coupled friction model puts the hole's Coulomb force on each pin beside its normal
+/// force (MODEL.md "Friction: the coupled model": the hole slides over its pin along
+/// τ = ẑ × e_φ, its friction on the disc is −c_p·F·τ, so on the pin +c_p·F·τ, c_p = μ for fixed
+/// pins). Both act at the disc's mid-plane, so the pin bends under their resultant,
+/// F·sqrt(1 + μ²) in the first-order geometry, where the normal force lies along e_φ exactly
+/// and τ is perpendicular to it. One disc, cantilever at a = 10 mm, μ = 0.3:
+/// σ = 32·F·a·sqrt(1.09)/(π·d³) and τ = 4·F·sqrt(1.09)/(3A) with F each pin's recorded normal
+/// force (Coulomb's law and Roark Table 8.1 case 1a, written out here). The normal force alone
+/// would be 4.4 % low. Tolerance 1e-12 relative: a few roundings of the same products.
+#[test]
+fn coupled_friction_on_the_pins_bends_them_with_the_normal_force() {
+    let support = "{ kind: cantilever, length_mm: 14.0, disc_positions_mm: [10.0] }";
+    let friction = "  friction:\n    model: coupled\n    output_pins: { mode: fixed, mu: 0.3 }\n";
+    let crank = "{ from_deg: 0.0, to_deg: 108.0, steps: 30 }";
+    let scene = scene_item("rated", 10.0, crank, "strength, efficiency")
+        + "    geometry: first_order\n    contact_law: paper_linear\n";
+    let r = run(&parse(&spec_text(1, Some(support), ("", friction), &scene)));
+    let forces = &r.discs[0].loaded.pins.as_ref().unwrap().force_n;
+    let stress = r.reducer.pin_stress.as_ref().expect("pin stress computed");
+    let resultant = (1.0f64 + 0.3 * 0.3).sqrt();
+    let area = PI * PIN_DIAMETER_MM * PIN_DIAMETER_MM / 4.0;
+    let mut loaded_pins = 0;
+    for (j, pin) in forces.iter().enumerate() {
+        for (k, &f) in pin.iter().enumerate() {
+            let want = sigma(f * resultant * 10.0);
+            let got = stress.bending_stress_mpa[j][k];
+            assert!(
+                (got - want).abs() <= 1e-12 * want.max(1.0),
+                "pin {j} at {k}: {got} vs {want}"
+            );
+            let tau = 4.0 * f * resultant / (3.0 * area);
+            let got = stress.shear_stress_mpa[j][k];
+            assert!(
+                (got - tau).abs() <= 1e-12 * tau.max(1.0),
+                "shear {j} {k}: {got} vs {tau}"
+            );
+            loaded_pins += usize::from(f > 0.0);
+        }
+    }
+    assert!(loaded_pins > 0);
+}
+
 /// Two discs at crank phases 0 and π on a cantilever 20 mm long at 6 and 16 mm: disc k's pin
 /// force lies along its own eccentric direction (MODEL.md "Several discs"), so the two discs
 /// push a pin they share in opposite directions. Superposed (Roark Table 8.1 case 1a, point

@@ -234,7 +234,12 @@ fn run_one(
     if swept {
         let each: Vec<&LoadedSweep> = discs.iter().map(|d| &d.loaded).collect();
         if plan.computes(Effect::Strength) {
-            reducer.pin_stress = strength::pin_stress(design, &scene.crank_rad, &each);
+            // The coupled model's friction on the pins bends them too (a crank sweep's).
+            let pin_friction = (model.as_ref().and_then(|m| m.coupled()))
+                .filter(|c| !c.is_torsion())
+                .map_or(0.0, |c| c.pin);
+            reducer.pin_stress =
+                strength::pin_stress(design, &scene.crank_rad, &each, pin_friction);
         }
         if let Some((all, each)) = efficiency::efficiency(design, (scene, plan), &each)? {
             reducer.efficiency = Some(all);

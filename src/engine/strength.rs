@@ -6,7 +6,7 @@
 use crate::contact::fatigue;
 use crate::equilibrium::pin_beam::PinBeam;
 use crate::equilibrium::pin_stress;
-use crate::geometry::{rotate, unit, Vec2};
+use crate::geometry::{rotate, unit, z_cross, Vec2};
 use crate::model::results::{bounded, LoadedSweep, PinCurves};
 use crate::model::strength::{DiscStrength, FatigueLives, PinStress, StaticSafety};
 use crate::model::{Design, Effect, Plan, Scene};
@@ -18,7 +18,17 @@ use crate::model::{Design, Effect, Plan, Scene};
 /// direction the sweep recorded (`PinCurves::direction_rad`: the angle δ_kj from disc k's
 /// eccentric direction e_φk = (cos(φ + 2πk/N), sin(φ + 2πk/N))), each disc's force at its own
 /// mid-plane; the vectors are summed along the pin (`pin_stress::largest`).
-pub fn pin_stress(design: &Design, crank_rad: &[f64], discs: &[&LoadedSweep]) -> Option<PinStress> {
+///
+/// `pin_friction` is c_p of the coupled friction model when the sweep balanced with it
+/// (`loaded::Model::coupled`, a running crank sweep), else 0: the hole slides over its pin
+/// along τ = ẑ × e_φk, so its friction on the disc is −c_p·F·τ (`Coupling::pin_friction`) and
+/// on the pin +c_p·F·τ, at the same mid-plane as the normal force; the pin bends under both.
+pub fn pin_stress(
+    design: &Design,
+    crank_rad: &[f64],
+    discs: &[&LoadedSweep],
+    pin_friction: f64,
+) -> Option<PinStress> {
     let support = design.pins.support?;
     let pins: Vec<&PinCurves> = discs
         .iter()
@@ -33,7 +43,8 @@ pub fn pin_stress(design: &Design, crank_rad: &[f64], discs: &[&LoadedSweep]) ->
             let loads: Vec<(f64, Vec2)> = (0..discs.len())
                 .map(|k| {
                     let (sd, cd) = pins[k].direction_rad[j][a].sin_cos();
-                    let along = rotate(unit(phi + design.disc_phase_rad(k)), cd, sd);
+                    let e_phi = unit(phi + design.disc_phase_rad(k));
+                    let along = rotate(e_phi, cd, sd) + z_cross(e_phi) * pin_friction;
                     (support.disc_positions_mm[k], pins[k].force_n[j][a] * along)
                 })
                 .collect();

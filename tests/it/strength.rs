@@ -545,6 +545,34 @@ fn miner_over_a_duty_cycle_keeps_the_flanks_apart() {
     assert_eq!(q.scalar(&r).unwrap().value, f.disc_h.unwrap());
 }
 
+/// A bin of no time turns no revolution and wears nothing, whatever its N(p) (Palmgren–Miner:
+/// its damage is sᵢ·nᵢ·60·c/N = 0). Under the law N(p) = 1·(1e-9 MPa/p)^30 any pressure above
+/// ~1e-8·10^10.8 MPa gives an N below the smallest double, 0 in f64 (at ~800 MPa here,
+/// (1.25e-12)^30 ≈ 1e-356), so the turning bin's damage rate is infinite and its life 0 h, as
+/// the scene alone would give (N/(c·n·60) = 0). The zero-time bin at twice the torque must
+/// neither hide that (0·c/0 is NaN, which a max over the flanks drops: the life read
+/// unbounded) nor make a share NaN (inf/inf: the results JSON then cannot be written). Exact:
+/// 0 h, and the shares 1 and 0.
+#[test]
+fn a_bin_of_no_time_adds_no_damage_even_where_n_underflows() {
+    let material = "    contact_fatigue: { pressure_mpa: 1.0e-9, cycles: 1.0, exponent: 30.0 }\n";
+    let scenes = "  - name: duty\n    duty_cycle:\n      \
+        - { output_torque_nm: 10.0, input_speed_rpm: 1500.0, time_share: 1.0 }\n      \
+        - { output_torque_nm: 20.0, input_speed_rpm: 1500.0, time_share: 0.0 }\n    \
+        crank: { from_deg: 0.0, to_deg: 108.0, steps: 108 }\n    \
+        geometry: first_order\n    effects: [bearing, strength]\n\
+        limits:\n  min_contact_fatigue_life_h: 1.0\n";
+    let r = run(&parse(&spec_text(1, None, (material, ""), scenes)));
+    let f = &r.duty.as_ref().unwrap().contact_fatigue[0];
+    for (life, shares) in [
+        (f.disc_h.unwrap(), &f.disc_shares),
+        (f.rollers_h.unwrap(), &f.rollers_shares),
+    ] {
+        assert_eq!(life, 0.0, "the turning bin's life alone is 0 h");
+        assert_eq!(shares, &vec![1.0, 0.0]);
+    }
+}
+
 /// The shipped `specs/reducer-strength.yaml` with its static safety bound raised to 8 (its s0
 /// is ~7.2), so that one strength check fails.
 pub(crate) fn strength_failing() -> String {

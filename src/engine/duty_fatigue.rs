@@ -38,7 +38,12 @@ pub fn lives(design: &Design, bins: &[DutyBinResult]) -> Vec<DutyFatigue> {
                 .zip(&pressures)
                 .map(|(b, p)| {
                     let turns_per_h = b.bin.revolution_weight_rpm() * 60.0;
-                    let rate = turns_per_h * passes / fatigue::cycles_to_failure(&law, p[k]);
+                    // A bin that turns nothing wears nothing, whatever N (0·c/N, which is NaN
+                    // where N underflows to 0).
+                    let rate = match turns_per_h > 0.0 {
+                        true => turns_per_h * passes / fatigue::cycles_to_failure(&law, p[k]),
+                        false => 0.0,
+                    };
                     (rate, b.bin.output_torque_nmm < 0.0)
                 })
                 .collect();
@@ -70,15 +75,27 @@ fn bin_pressures(r: &SceneResult) -> Option<Vec<f64>> {
 
 /// Miner's sum of the damage rates `(per hour, on the coast flank)`: the life 1/max(D_drive,
 /// D_coast), h (`UNBOUNDED_LIFE_H` without damage), and each bin's share of its flank's damage.
+/// A rate is infinite where N(p) underflows to 0: the life is then 0 h and the flank's damage
+/// is shared equally by its infinite rates (never inf/inf).
 pub fn miner(rates: &[(f64, bool)]) -> (f64, Vec<f64>) {
     let flank = |coast: bool| -> f64 { rates.iter().filter(|r| r.1 == coast).map(|r| r.0).sum() };
+    let infinite = |coast: bool| {
+        let on = rates.iter().filter(|r| r.1 == coast && r.0.is_infinite());
+        on.count() as f64
+    };
     let (drive, coast) = (flank(false), flank(true));
     let life = bounded(1.0 / drive.max(coast));
     let shares = rates
         .iter()
         .map(|&(d, c)| {
             let total = if c { coast } else { drive };
-            if total > 0.0 {
+            if total.is_infinite() {
+                if d.is_infinite() {
+                    1.0 / infinite(c)
+                } else {
+                    0.0
+                }
+            } else if total > 0.0 {
                 d / total
             } else {
                 0.0

@@ -560,3 +560,41 @@ fn a_disc_with_grinding_errors_has_the_mass_of_the_disc_as_ground() {
         }
     }
 }
+
+/// The crank as built, e + de (`reducer.deviations.eccentricity_mm`), is the orbit of every
+/// disc centre: the centripetal force takes it (m·(e + de)·ω²), and so must the orbit's share
+/// of the inertia at the input, m·(e + de)². The profile keeps the e it was ground with, so the
+/// disc's mass and J_c do not change with de, and the inertia at the input of two discs must
+/// grow by exactly 2·m·((e + de)² − e²), with m from Steiner's formula (`steiner_face`, the
+/// shipped spec's profile R' = 30.125, r' = 3.1593, six holes of radius 3 + 2 + 0.01 on 18 mm
+/// and the 24 mm bore). Both specs have a hole clearance of 10 µm (no preload from the longer
+/// crank). Tolerance 1e-9 of the 7.1e-9 kg·m² difference: the two J_in (2.6e-5 kg·m²) are
+/// sums to round-off (1e-21 kg·m²). Before, J_in used the nominal e and did not move at all.
+#[test]
+fn the_inertia_at_the_input_takes_the_orbit_of_the_crank_as_built() {
+    let base = std::fs::read_to_string("specs/reducer-at-speed.yaml")
+        .unwrap()
+        .replacen("hole_clearance_mm: 0.0 ", "hole_clearance_mm: 0.01 ", 1);
+    let built = base.replacen(
+        "  output_inertia_kgm2: 0.002",
+        "  deviations: { eccentricity_mm: 0.01 }\n  output_inertia_kgm2: 0.002",
+        1,
+    );
+    assert!(base.contains("hole_clearance_mm: 0.01 ") && built.contains("eccentricity_mm: 0.01 }"));
+    let j_in = |name: &str, text: &str| {
+        let spec = cycloid::spec::parse(name, text).unwrap();
+        check(&spec, &CheckOptions::default(), &Silent)
+            .unwrap()
+            .mass
+            .input_inertia_kgmm2
+            * 1e-6
+    };
+    let holes = 6.0 * PI * 5.01 * 5.01 + PI * 144.0;
+    let mass = 7850e-9 * 8.0 * steiner_face((30.125, 3.1593, 2.0, 10.0), holes);
+    let expected = 2.0 * mass * (2.01_f64.powi(2) - 4.0) * 1e-6;
+    let got = j_in("built.yaml", &built) - j_in("base.yaml", &base);
+    assert!(
+        (got - expected).abs() <= 1e-9 * expected,
+        "ΔJ_in {got} vs 2·m·((e + de)² − e²) = {expected} kg·m²"
+    );
+}

@@ -14,7 +14,8 @@ use crate::units;
 pub struct MassProperties {
     /// One disc (the discs are identical).
     pub disc: DiscMass,
-    /// J_in, kg·mm²: Σ over the discs of m·e² + J_c/nc², plus the output's J_out/nc² (the
+    /// J_in, kg·mm²: Σ over the discs of m·e² + J_c/nc² (e the crank's as built, e + de: the
+    /// orbit of every disc centre), plus the output's J_out/nc² (the
     /// output turns at ω/nc), plus the rollers' spin when they turn and their inertia is given;
     /// the pins, crank shaft and its bearings are not in it.
     pub input_inertia_kgmm2: f64,
@@ -34,8 +35,8 @@ pub fn mass_properties(spec: &Spec) -> MassProperties {
     let design = &spec.design;
     let disc = disc_mass(design, &spec.modification);
     let nc = design.teeth as f64;
-    let discs =
-        design.discs as f64 * disc.input_inertia_kgmm2(design.eccentricity_mm, design.teeth);
+    let discs = design.discs as f64
+        * disc.input_inertia_kgmm2(design.built_eccentricity_mm(), design.teeth);
     let output = design.output_inertia_kgmm2 / (nc * nc);
     let rollers = design.roller_inertia_kgmm2 * mean_square_spin_ratio(design);
     MassProperties {

@@ -155,6 +155,11 @@ pub fn scene_note(spec: &Spec, u: &Unbalance) -> String {
 pub fn explain_design(spec: &Spec, m: &MassProperties) -> String {
     let d = &spec.design;
     let kgm2 = |x: f64| number(units::kgm2(x));
+    // The orbit is the crank's as built; named e + de only when the crank has a deviation.
+    let orbit = match d.deviations.eccentricity_mm == 0.0 {
+        true => "e",
+        false => "e + de",
+    };
     let rollers = match m.rollers_kgmm2 > 0.0 {
         true => format!(
             " + J_r·⟨Σ(Ωᵢ/ω)²⟩ {} (the rollers' spin, J_r {} kg·m² each, rolling on the disc at \
@@ -168,16 +173,16 @@ pub fn explain_design(spec: &Spec, m: &MassProperties) -> String {
         "mass (density ρ {} kg/m³): each disc {} kg from its exact profile less the pin holes \
          and the bore, J_c {} kg·m² about its centre\n  inertia at the input \
          J_in = Σ(m·e² + J_c/nc²) + J_out/i² = {} × ({} + {}) + {}{rollers} = {} kg·m² (m·e² at \
-         e {} mm, nc = i = {}, J_out {} kg·m²); {}\n",
+         {orbit} {} mm, nc = i = {}, J_out {} kg·m²); {}\n",
         number(units::kg_per_m3(d.density_kg_per_mm3)),
         number(m.disc.mass_kg),
         kgm2(m.disc.inertia_kgmm2),
         d.discs,
-        kgm2(m.disc.orbit_inertia_kgmm2(d.eccentricity_mm)),
+        kgm2(m.disc.orbit_inertia_kgmm2(d.built_eccentricity_mm())),
         kgm2(m.disc.turning_inertia_kgmm2(d.teeth)),
         kgm2(m.output_kgmm2),
         kgm2(m.input_inertia_kgmm2),
-        number(d.eccentricity_mm),
+        number(d.built_eccentricity_mm()),
         d.teeth,
         kgm2(d.output_inertia_kgmm2),
         included(m)

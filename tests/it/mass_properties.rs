@@ -505,3 +505,96 @@ fn a_locus_factor_near_one_keeps_the_mass_exact_or_within_the_polygons_bound() {
         assert!(disc.centroid_offset_mm < 1e-4, "K1 {}: {disc:?}", e / 3.0);
     }
 }
+
+/// The disc as ground: `reducer.deviations.shift_mm` and `equidistant_mm` are the grinding
+/// errors, added to the spec's modification for every check (`Deviations::ground`, the mesh
+/// of `geometry::clearance`), so the disc the mass is of must be ground the same way: R' =
+/// 30 + 0.125 + 0.02 and r' = 3 + 0.1593 + 0.03 here. Expected: Steiner's formula for that
+/// offset profile (`steiner_face`, independent of the code's integration), less the six holes
+/// of radius 5 on 18 mm and the 24 mm bore, times ρ·B; and at zero torque the crank bearing
+/// carries that mass's m·e·ω² (e = 2 mm, 3000 rpm, worked out here) at every angle. Before,
+/// the mass was of the drawing's profile (R' = 30.125, r' = 3.1593): 1.6e-3 heavier than the
+/// disc the checks ran on. Tolerances: the face as in the shipped disc's test above (1e-11),
+/// the bearing force 1e-9 (its angle's round trip through degrees in the JSON).
+#[test]
+fn a_disc_with_grinding_errors_has_the_mass_of_the_disc_as_ground() {
+    let text = std::fs::read_to_string("specs/reducer-at-speed.yaml")
+        .unwrap()
+        .replacen(
+            "  output_inertia_kgm2: 0.002",
+            "  deviations: { shift_mm: 0.02, equidistant_mm: 0.03 }\n  output_inertia_kgm2: 0.002",
+            1,
+        )
+        .replacen(
+            "    output_torque_nm: 10.0\n    input_speed_rpm: 3000.0\n",
+            "    output_torque_nm: 0.0\n    input_speed_rpm: 3000.0\n",
+            1,
+        );
+    assert!(text.contains("shift_mm: 0.02,") && text.contains("output_torque_nm: 0.0"));
+    let holes = 6.0 * PI * 25.0 + PI * 144.0;
+    let face = steiner_face((30.145, 3.1893, 2.0, 10.0), holes);
+    let mass = 7850e-9 * 8.0 * face;
+    let spec = cycloid::spec::parse("as-ground.yaml", &text).unwrap();
+    let run = check(&spec, &CheckOptions::default(), &Silent).unwrap();
+    let got = run.mass.disc.face.area_mm2;
+    assert!((face - got).abs() <= 1e-11 * face, "{got} vs {face} mm²");
+
+    let dir = crate::common::Scratch::new("mass-as-ground");
+    dir.write("s.yaml", &text);
+    let out = crate::common::cycloid(&dir.path, &["check", "s.yaml", "--json", "r.json"]);
+    assert_eq!(out.code, Some(0), "{}{}", out.stdout, out.stderr);
+    let doc: serde_json::Value = serde_json::from_str(&dir.read("r.json")).unwrap();
+    let w = 3000.0 * 2.0 * PI / 60.0;
+    let fc = mass * 2e-3 * w * w;
+    for k in 0..2 {
+        let forces = doc["scenes"][1]["discs"][k]["bearing_force_n"]
+            .as_array()
+            .unwrap();
+        assert_eq!(forces.len(), 72);
+        for (i, f) in forces.iter().enumerate() {
+            let f = f.as_f64().unwrap();
+            assert!(
+                (f - fc).abs() <= 1e-9 * fc,
+                "disc {k}, angle {i}: {f} N vs m·e·ω² = {fc} N"
+            );
+        }
+    }
+}
+
+/// The crank as built, e + de (`reducer.deviations.eccentricity_mm`), is the orbit of every
+/// disc centre: the centripetal force takes it (m·(e + de)·ω²), and so must the orbit's share
+/// of the inertia at the input, m·(e + de)². The profile keeps the e it was ground with, so the
+/// disc's mass and J_c do not change with de, and the inertia at the input of two discs must
+/// grow by exactly 2·m·((e + de)² − e²), with m from Steiner's formula (`steiner_face`, the
+/// shipped spec's profile R' = 30.125, r' = 3.1593, six holes of radius 3 + 2 + 0.01 on 18 mm
+/// and the 24 mm bore). Both specs have a hole clearance of 10 µm (no preload from the longer
+/// crank). Tolerance 1e-9 of the 7.1e-9 kg·m² difference: the two J_in (2.6e-5 kg·m²) are
+/// sums to round-off (1e-21 kg·m²). Before, J_in used the nominal e and did not move at all.
+#[test]
+fn the_inertia_at_the_input_takes_the_orbit_of_the_crank_as_built() {
+    let base = std::fs::read_to_string("specs/reducer-at-speed.yaml")
+        .unwrap()
+        .replacen("hole_clearance_mm: 0.0 ", "hole_clearance_mm: 0.01 ", 1);
+    let built = base.replacen(
+        "  output_inertia_kgm2: 0.002",
+        "  deviations: { eccentricity_mm: 0.01 }\n  output_inertia_kgm2: 0.002",
+        1,
+    );
+    assert!(base.contains("hole_clearance_mm: 0.01 ") && built.contains("eccentricity_mm: 0.01 }"));
+    let j_in = |name: &str, text: &str| {
+        let spec = cycloid::spec::parse(name, text).unwrap();
+        check(&spec, &CheckOptions::default(), &Silent)
+            .unwrap()
+            .mass
+            .input_inertia_kgmm2
+            * 1e-6
+    };
+    let holes = 6.0 * PI * 5.01 * 5.01 + PI * 144.0;
+    let mass = 7850e-9 * 8.0 * steiner_face((30.125, 3.1593, 2.0, 10.0), holes);
+    let expected = 2.0 * mass * (2.01_f64.powi(2) - 4.0) * 1e-6;
+    let got = j_in("built.yaml", &built) - j_in("base.yaml", &base);
+    assert!(
+        (got - expected).abs() <= 1e-9 * expected,
+        "ΔJ_in {got} vs 2·m·((e + de)² − e²) = {expected} kg·m²"
+    );
+}

@@ -338,3 +338,66 @@ fn assert_bodies_mesh(name: &str, spec_text: &str) -> String {
     }
     run.stdout
 }
+
+/// A disc ground with errors (`reducer.deviations.shift_mm: 0.05`, `equidistant_mm: −0.03`;
+/// MODEL.md "Part deviations": grinding errors add to ΔRp and ΔRrp) is checked on its ground
+/// profile, R' = 30 + 0.125 + 0.05 = 30.175 mm and r' = 3 + 0.1593 − 0.03 = 3.1293 mm (its
+/// smallest gap is ΔRrp − ΔRp as ground, −45.7 µm). The exports and the mass are of the disc
+/// that `check` checks, as they are with a form error: the same ground profile. Expected
+/// values, written here from the ground R' and r' and no code of the export: the root of tooth
+/// 0 at (R' − e − r', 0) = (25.0457, 0) mm (C(0) = (R' − e, 0), the normal there +x), to
+/// round-off (1e-12 mm); the face by Steiner's formula for the inward parallel curve of the
+/// locus (`steiner_face`, as the shipped disc's mass test), to 1e-11 as there; the STL's volume
+/// within tol × (outline + circles) × B of it, as `the_stl_mesh_is_closed_...`. Before, all
+/// three were the drawing's disc (R' = 30.125, r' = 3.1593): a root 80 µm inside, a face
+/// 14.3 mm² (0.77 %) smaller.
+#[test]
+fn grinding_errors_are_in_the_exported_disc_and_its_mass() {
+    let text = PaperSpec::new()
+        .edit(
+            "  output_pins:\n",
+            "  deviations: {shift_mm: 0.05, equidistant_mm: -0.03}\n  output_pins:\n",
+        )
+        .text()
+        .to_string();
+    let dir = Scratch::new("disc-ground");
+    dir.write("g.yaml", &text);
+    let spec = cycloid::spec::parse("g.yaml", &text).unwrap();
+    let (rp, rr, e) = (30.175, 3.1293, 2.0);
+    let solid = commands::disc(&spec).unwrap().solid(0.5e-3).unwrap();
+    let root = solid.teeth[0][0].control[0];
+    assert!(
+        (root.x - (rp - e - rr)).abs() < 1e-12 && root.y.abs() < 1e-12,
+        "root at {root:?}"
+    );
+    let face = crate::mass_properties::steiner_face((rp, rr, e, 10.0), 6.0 * PI * 25.0);
+    let run = cycloid::check(
+        &spec,
+        &cycloid::CheckOptions::default(),
+        &cycloid::progress::Silent,
+    )
+    .unwrap();
+    let got = run.mass.disc.face.area_mm2;
+    assert!((got - face).abs() <= 1e-11 * face, "{got} vs {face}");
+    let out = cycloid(&dir.path, &["profile", "g.yaml", "--stl", "g.stl"]);
+    assert_eq!(out.code(), 0, "{}", out.stderr);
+    let volume: f64 = (stl_triangles(&dir.read("g.stl")).iter())
+        .map(|[a, b, c]| {
+            let x = [
+                b[1] * c[2] - b[2] * c[1],
+                b[2] * c[0] - b[0] * c[2],
+                b[0] * c[1] - b[1] * c[0],
+            ];
+            (a[0] * x[0] + a[1] * x[1] + a[2] * x[2]) / 6.0
+        })
+        .sum();
+    // The outline's length: the locus's, at most 2π(R' + e·np) (|C'| ≤ R' + e·np), less 2π·r'
+    // (a regular inward parallel curve of a closed curve turning once); the holes' 6·2π·5 mm.
+    let outline = 2.0 * PI * (rp + e * 10.0 - rr) + 2.0 * PI * 30.0;
+    let bound = 0.5e-3 * outline * 8.0;
+    assert!(
+        (volume - face * 8.0).abs() <= bound,
+        "mesh {volume} mm³, ground disc {} mm³, bound {bound}",
+        face * 8.0
+    );
+}

@@ -213,13 +213,15 @@ impl DiscMass {
     }
 }
 
-/// One disc of `design` under `modification` (with the disc's form error when it has one):
+/// One disc of `design` under `modification` as ground (with the grinding errors and the disc's
+/// form error when it has them, as `check` meshes it):
 /// the face inside the profile (`profile_moments`), less the output-pin
 /// holes and the bore of `disc_solid`, over the face width at the design's density. The one
 /// home of a disc's mass: the results' mass properties, the design search's mass objective and
 /// the centripetal force of `Effect::Inertia` read it.
 pub fn disc_mass(design: &Design, modification: &Modification) -> DiscMass {
-    let profile = Profile::new(design, modification).with_form(&design.deviations.form);
+    let d = &design.deviations;
+    let profile = Profile::new(design, &d.ground(modification)).with_form(&d.form);
     let holes = super::disc_solid::pin_holes(&design.pins, design.hole_radius_mm());
     let bore = super::disc_solid::bore(design);
     DiscMass::of_face(

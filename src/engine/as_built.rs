@@ -24,6 +24,11 @@ pub fn identify(spec: &Spec) -> Result<Option<(Spec, Identification)>> {
     let id = fit(spec, measured)?;
     let mut built = spec.clone();
     built.modification = id.modification;
+    // The points are the disc as ground: its grinding errors are in the identified
+    // modification (as its form error is in the fitted one, which replaces any given), and
+    // adding the spec's `deviations.shift_mm` / `equidistant_mm` again would check another disc.
+    built.design.deviations.shift_mm = 0.0;
+    built.design.deviations.equidistant_mm = 0.0;
     built.design.deviations.form = form_terms(&id);
     crate::spec::deviations::check(&built.design, &built.modification)?;
     // The fitted form error makes the loaded curves repeat only after a whole turn of the

@@ -111,8 +111,7 @@ pub struct RollerPart {
 }
 
 impl Mesh {
-    /// The mesh of `design` as built, its profile ground to `modification` plus the design's
-    /// grinding errors (`Deviations::ground`).
+    /// The mesh of `design` as built, its profile as ground (`Profile::as_ground`).
     pub fn new(design: &Design, modification: &Modification) -> Self {
         let d = &design.deviations;
         let rp = design.roller_circle_radius_mm;
@@ -132,7 +131,7 @@ impl Mesh {
             Vec::new()
         };
         Mesh {
-            profile: Profile::new(design, &d.ground(modification)).with_form(&d.form),
+            profile: Profile::as_ground(design, modification),
             teeth: design.teeth,
             rollers: design.rollers,
             eccentricity_mm: design.eccentricity_mm,

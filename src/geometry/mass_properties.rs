@@ -213,15 +213,13 @@ impl DiscMass {
     }
 }
 
-/// One disc of `design` under `modification`, as ground: the modification plus the design's
-/// grinding errors (`Deviations::ground`) and with the disc's form error when it has one, the
-/// profile every check runs on (`geometry::clearance`'s mesh); the face inside it
-/// (`profile_moments`), less the output-pin holes and the bore of `disc_solid`, over the face
-/// width at the design's density. The one home of a disc's mass: the results' mass properties,
-/// the design search's mass objective and the centripetal force of `Effect::Inertia` read it.
+/// One disc of `design` under `modification`, as ground (`Profile::as_ground`, the profile
+/// every check runs on): the face inside it (`profile_moments`), less the output-pin holes and
+/// the bore of `disc_solid`, over the face width at the design's density. The one home of a
+/// disc's mass: the results' mass properties, the design search's mass objective and the
+/// centripetal force of `Effect::Inertia` read it.
 pub fn disc_mass(design: &Design, modification: &Modification) -> DiscMass {
-    let d = &design.deviations;
-    let profile = Profile::new(design, &d.ground(modification)).with_form(&d.form);
+    let profile = Profile::as_ground(design, modification);
     let holes = super::disc_solid::pin_holes(&design.pins, design.hole_radius_mm());
     let bore = super::disc_solid::bore(design);
     DiscMass::of_face(

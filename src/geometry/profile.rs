@@ -176,6 +176,14 @@ impl Profile {
         self
     }
 
+    /// The disc of `design` as ground: `modification` plus the design's grinding errors
+    /// (`Deviations::ground`), with its form error; the profile every check meshes, the one the
+    /// mass and the solid exports are of.
+    pub fn as_ground(design: &Design, modification: &Modification) -> Self {
+        let d = &design.deviations;
+        Profile::new(design, &d.ground(modification)).with_form(&d.form)
+    }
+
     /// Whether the profile carries a form error.
     pub fn has_form(&self) -> bool {
         self.form.is_some()

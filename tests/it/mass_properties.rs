@@ -112,7 +112,7 @@ fn a_disc_near_its_undercut_has_steiners_area_and_its_centroid_at_its_centre() {
 /// e·e^{i·np·t} (regular: no undercut), less `holes_mm2`, by Steiner's formula
 /// A_C − r'·L_C + π·r'² with A_C = π(R'² + np·e²) and L_C = ∫|C'| on 20,000 points of the
 /// periodic trapezoid rule (|C'|² = R'² + np²e² − 2·np·R'·e·cos((np − 1)t)).
-fn steiner_face((rp, rr, e, np): (f64, f64, f64, f64), holes_mm2: f64) -> f64 {
+pub(crate) fn steiner_face((rp, rr, e, np): (f64, f64, f64, f64), holes_mm2: f64) -> f64 {
     let n = 20_000;
     let length: f64 = (0..n)
         .map(|k| {

@@ -41,8 +41,9 @@ fn check_tolerance(tolerance_mm: f64) -> Result<()> {
     Ok(())
 }
 
-/// The disc the solid exports are made of: the profile (as built, with its identified
-/// modification and form error, when the spec has `measured_profile`), the output-pin holes,
+/// The disc the solid exports are made of: the profile as `check` meshes it (as built, with
+/// its identified modification and form error, when the spec has `measured_profile`; ground
+/// with `reducer.deviations`' grinding errors and form error when it has them), the output-pin holes,
 /// the bore when the crank bearing's outer diameter is given, and the face width.
 pub struct Disc {
     pub profile: Profile,
@@ -72,7 +73,7 @@ pub fn disc(spec: &Spec) -> Result<Disc> {
         Some(b) => (&b.design, &b.modification),
         None => (&spec.design, &spec.modification),
     };
-    let profile = Profile::new(d, m).with_form(&d.deviations.form);
+    let profile = Profile::as_ground(d, m);
     let design = &spec.design;
     let holes = disc_solid::pin_holes(&design.pins, design.hole_radius_mm());
     let bore = disc_solid::bore(design);

@@ -9,7 +9,7 @@ use crate::spec::Spec;
 
 /// The picture's chordal tolerance as a share of the roller circle's outer radius Rp + Rrp:
 /// 1/1000 is 0.3 pixel on a disc drawn 600 pixels across (the review's picture), and keeps the
-/// mesh to a couple of thousand triangles (the export's 0.5 µm gives the paper's disc 13,448).
+/// mesh to a couple of thousand triangles (the export's 0.5 µm gives the paper's disc 12,320).
 pub const PICTURE_TOLERANCE_SHARE: f64 = 1e-3;
 
 /// The mesh to picture and what its caption names.

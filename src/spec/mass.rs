@@ -3,7 +3,7 @@
 //! computed from.
 
 use super::raw::RawReducer;
-use super::values::{finite, positive, zero_or_positive};
+use super::values::{finite, within, zero_or_positive};
 use crate::error::{Error, Result};
 use crate::model::{Design, RollerMode};
 use crate::{numeric, units};
@@ -11,13 +11,26 @@ use crate::{numeric, units};
 /// Default density of every part (a spec's and the requirements'): steel, 7,850 kg/m³.
 pub const STEEL_DENSITY_KG_PER_M3: f64 = 7850.0;
 
+/// Smallest and largest density of a disc, kg/m³: an aerogel's (about 1) to four times
+/// osmium's 22,590, the densest element; beyond them a mass, and the unbalance it makes, is
+/// no part's.
+const DENSITY_KG_PER_M3: (f64, f64) = (1.0, 1e5);
+
+/// A density (kg/m³) written at `key` (steel's when not given), within `DENSITY_KG_PER_M3`:
+/// a spec's discs and the requirements' parts.
+pub(super) fn density(key: &str, kg_per_m3: Option<f64>) -> Result<f64> {
+    let value = kg_per_m3.unwrap_or(STEEL_DENSITY_KG_PER_M3);
+    let why = "a solid part lies between an aerogel (about 1 kg/m³) and osmium (22,590 kg/m³)";
+    within(key, value, DENSITY_KG_PER_M3, "kg/m³", why)
+}
+
 /// The mass inputs of a reducer, engine units.
 pub(super) struct MassInputs {
     pub density_kg_per_mm3: f64,
     pub output_inertia_kgmm2: f64,
 }
 
-/// The disc's density (> 0, steel's by default) and the output's inertia (≥ 0, 0 by
+/// The disc's density (`density`, steel's by default) and the output's inertia (≥ 0, 0 by
 /// default). A density under `roller_material` is refused: only the discs' mass is computed,
 /// and a value that changes nothing would mislead.
 pub(super) fn inputs(raw: &RawReducer) -> Result<MassInputs> {
@@ -32,11 +45,10 @@ pub(super) fn inputs(raw: &RawReducer) -> Result<MassInputs> {
             ),
         ));
     }
-    let density = raw
-        .material
-        .density_kg_per_m3
-        .unwrap_or(STEEL_DENSITY_KG_PER_M3);
-    let density = positive("reducer.material.density_kg_per_m3", density)?;
+    let density = density(
+        "reducer.material.density_kg_per_m3",
+        raw.material.density_kg_per_m3,
+    )?;
     let key = "reducer.output_inertia_kgm2";
     let output = zero_or_positive(key, finite(key, raw.output_inertia_kgm2.unwrap_or(0.0))?)?;
     Ok(MassInputs {

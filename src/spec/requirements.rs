@@ -301,10 +301,7 @@ fn build(raw: RawRequirements) -> Result<Requirements> {
         .transpose()?;
     let material = material("material", disc_material)?;
     let strength = super::strength::materials_at("", &disc_material, raw.roller_material.as_ref())?;
-    let density = positive(
-        "material.density_kg_per_m3",
-        m.density_kg_per_m3.unwrap_or(STEEL_DENSITY_KG_PER_M3),
-    )?;
+    let density = super::mass::density("material.density_kg_per_m3", m.density_kg_per_m3)?;
     let crank_bearing = raw
         .crank_bearing
         .as_ref()

@@ -217,7 +217,9 @@ fn the_results_json_has_the_mass_properties() {
     assert!(doc["disc_centroid_offset_mm"].as_f64().unwrap() < 1e-10);
 }
 
-/// A density of zero or less, and a negative output inertia, are refused where written.
+/// A density of zero or less, or beyond any solid's (1e300 kg/m³ made the mass and the
+/// unbalance inf, and the run failed without a place), and a negative output inertia, are
+/// refused where written.
 #[test]
 fn bad_mass_inputs_are_refused_where_written() {
     let cases = [
@@ -226,6 +228,12 @@ fn bad_mass_inputs_are_refused_where_written() {
             "density_kg_per_m3: 0.0",
             "near-circle.yaml:11:",
             "reducer.material.density_kg_per_m3",
+        ),
+        (
+            "density_kg_per_m3: 2700.0",
+            "density_kg_per_m3: 1.0e300",
+            "near-circle.yaml:11:",
+            "must lie in [1, 100000] kg/m³, got 1e300",
         ),
         (
             "output_inertia_kgm2: 0.002",

@@ -55,6 +55,16 @@ impl Effect {
         }
     }
 
+    /// Whether it is read off the loaded curves over the crank angle as the crank turns (a
+    /// sweep's forces, lags and speeds), which a torsion scene, its input locked, does not
+    /// compute; roller contact, output pins and the bearing are parts of its loaded model.
+    pub fn reads_the_sweep(self) -> bool {
+        matches!(
+            self,
+            Effect::Efficiency | Effect::Strength | Effect::Inertia
+        )
+    }
+
     /// The effects a scene's `effects` list names (`torsion` is asked for by `torque_sweep`).
     pub fn listed() -> impl Iterator<Item = Effect> {
         Effect::ALL.into_iter().filter(|&e| e != Effect::Torsion)

@@ -468,6 +468,18 @@ fn scene(index: usize, raw: RawScene, rollers: usize, used: i64) -> Result<Scene
     let torque_sweep = (raw.torque_sweep.as_ref())
         .map(|t| torque_sweep(&format!("{key}.torque_sweep"), t, crank_rad.len()))
         .transpose()?;
+    if let Some(e) = effects.iter().find(|e| e.reads_the_sweep()) {
+        if torque_sweep.is_some() {
+            return Err(Error::invalid(
+                format!("{key}.effects"),
+                format!(
+                    "`{e}` is read off the loaded curves over the crank angle, which a scene \
+                     with `torque_sweep` does not compute (it locks the input at each angle: \
+                     docs/effects/torsion.md); ask for it in a scene with `output_torque_nm`"
+                ),
+            ));
+        }
+    }
     let input_speed_rpm = raw
         .input_speed_rpm
         .map(|n| {

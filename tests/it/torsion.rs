@@ -453,6 +453,22 @@ fn bad_torsion_and_bearing_inputs_are_refused_with_the_rule() {
             "is not a whole number of loaded periods (108.0°)",
         ),
     ];
+    // An effect read off the loaded curves over the crank angle, which a locked input does
+    // not turn through: it computed nothing and said nothing (the explanation listed it).
+    let cases: Vec<(String, &str, &str)> = (cases.into_iter())
+        .chain(["efficiency", "strength", "inertia"].map(|e| {
+            let item = torsion("20.0", "4", "    input_speed_rpm: 1500.0\n");
+            (
+                spec_text(
+                    "",
+                    &item.replace("[bearing]", &format!("[bearing, {e}]")),
+                    "",
+                ),
+                "scenes[0].effects",
+                "which a scene with `torque_sweep` does not compute",
+            )
+        }))
+        .collect();
     for (k, (text, key, rule)) in cases.iter().enumerate() {
         let name = format!("bad-{k}.yaml");
         dir.write(&name, text);

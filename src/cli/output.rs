@@ -18,10 +18,10 @@ pub(super) fn usage(m: String) -> Error {
     Error::new(ErrorKind::Usage, format!("{m}; nothing was written"))
 }
 
-/// Refuse, before anything is written, outputs that would destroy an input or one another: an
-/// empty path, an output at the path of one of `inputs` (what it is, its path), or two
-/// outputs at one path. `outputs` are (option, path if given); a `--report` directory also
-/// claims its `index.html`.
+/// Refuse, before anything is written, outputs that would destroy an input or one another or
+/// could not be written: an empty path, a file in a folder that does not exist, an output at
+/// the path of one of `inputs` (what it is, its path), or two outputs at one path. `outputs`
+/// are (option, path if given); a `--report` directory also claims its `index.html`.
 pub(super) fn distinct_outputs(
     inputs: &[(String, PathBuf)],
     outputs: &[(&str, Option<&str>)],
@@ -46,6 +46,17 @@ pub(super) fn distinct_outputs(
         if flag != "--report" && meta.as_ref().is_some_and(|m| m.is_dir()) {
             return Err(usage(format!(
                 "{flag} {path} is a directory; give a file path"
+            )));
+        }
+        // A file goes into a folder that exists (a review makes its own): found only when it
+        // is written, after the outputs before it.
+        let folder = Path::new(path)
+            .parent()
+            .filter(|f| !f.as_os_str().is_empty());
+        if let Some(f) = folder.filter(|f| flag != "--report" && !f.is_dir()) {
+            return Err(usage(format!(
+                "{flag} {path}: the folder {} does not exist; create it or give another path",
+                f.display()
             )));
         }
         let mut ids = vec![files::identity(Path::new(path))];

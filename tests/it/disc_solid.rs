@@ -134,17 +134,7 @@ fn the_stl_mesh_is_closed_and_holds_the_discs_volume() {
     assert!(directed
         .keys()
         .all(|(a, b)| directed.contains_key(&(*b, *a))));
-    // Divergence theorem: V = Σ v0 · (v1 × v2) / 6 over outward triangles.
-    let volume: f64 = (triangles.iter())
-        .map(|[a, b, c]| {
-            let x = [
-                b[1] * c[2] - b[2] * c[1],
-                b[2] * c[0] - b[0] * c[2],
-                b[0] * c[1] - b[1] * c[0],
-            ];
-            (a[0] * x[0] + a[1] * x[1] + a[2] * x[2]) / 6.0
-        })
-        .sum();
+    let volume = enclosed_volume(&triangles);
     // The exact face: the profile's area ½∮(x·y' − y·x') dt by the trapezoid rule, which
     // converges geometrically for a smooth periodic integrand (20,000 points: round-off),
     // less 6 holes of radius 5 mm and the 8 mm bore, times B = 8 mm.
@@ -197,6 +187,28 @@ fn a_bad_path_for_a_solid_is_exit_2() {
         assert_eq!(run.code(), 2, "{args:?}: {}", run.stderr);
     }
     assert_eq!(dir.read("disc.yaml"), spec_with_bore().text());
+    // A later output into a folder that does not exist: refused before the first is written
+    // (the CSV and the STEP were, and the run ended on the STL's i/o error).
+    let run = cycloid(
+        &dir.path,
+        &[
+            "profile",
+            "disc.yaml",
+            "--csv",
+            "d.csv",
+            "--stl",
+            "missing/d.stl",
+        ],
+    );
+    assert_eq!(run.code(), 2, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("--stl missing/d.stl: the folder missing does not exist")
+            && run.stderr.contains("nothing was written"),
+        "{}",
+        run.stderr
+    );
+    assert!(!dir.exists("d.csv"));
 }
 
 #[test]
@@ -381,16 +393,7 @@ fn grinding_errors_are_in_the_exported_disc_and_its_mass() {
     assert!((got - face).abs() <= 1e-11 * face, "{got} vs {face}");
     let out = cycloid(&dir.path, &["profile", "g.yaml", "--stl", "g.stl"]);
     assert_eq!(out.code(), 0, "{}", out.stderr);
-    let volume: f64 = (stl_triangles(&dir.read("g.stl")).iter())
-        .map(|[a, b, c]| {
-            let x = [
-                b[1] * c[2] - b[2] * c[1],
-                b[2] * c[0] - b[0] * c[2],
-                b[0] * c[1] - b[1] * c[0],
-            ];
-            (a[0] * x[0] + a[1] * x[1] + a[2] * x[2]) / 6.0
-        })
-        .sum();
+    let volume = enclosed_volume(&stl_triangles(&dir.read("g.stl")));
     // The outline's length: the locus's, at most 2π(R' + e·np) (|C'| ≤ R' + e·np), less 2π·r'
     // (a regular inward parallel curve of a closed curve turning once); the holes' 6·2π·5 mm.
     let outline = 2.0 * PI * (rp + e * 10.0 - rr) + 2.0 * PI * 30.0;
@@ -461,4 +464,19 @@ fn grinding_errors_beside_measured_points_are_in_the_points() {
         (built - planted).abs() <= 0.01,
         "{built} µm vs {planted} µm"
     );
+}
+
+/// The volume the triangles enclose, by the divergence theorem: V = Σ v0 · (v1 × v2) / 6 over
+/// outward triangles.
+fn enclosed_volume(triangles: &[[[f64; 3]; 3]]) -> f64 {
+    (triangles.iter())
+        .map(|[a, b, c]| {
+            let x = [
+                b[1] * c[2] - b[2] * c[1],
+                b[2] * c[0] - b[0] * c[2],
+                b[0] * c[1] - b[1] * c[0],
+            ];
+            (a[0] * x[0] + a[1] * x[1] + a[2] * x[2]) / 6.0
+        })
+        .sum()
 }

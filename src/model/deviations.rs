@@ -170,6 +170,11 @@ impl Deviations {
         self.pins.iter().any(|p| !p.is_zero()) || self.holes.iter().flatten().any(|h| !h.is_zero())
     }
 
+    /// Whether the disc is ground off the drawing: a grinding error (`ground`) or a form error.
+    pub fn grinds(&self) -> bool {
+        self.shift_mm != 0.0 || self.equidistant_mm != 0.0 || !self.form.is_empty()
+    }
+
     /// The modification as ground: the spec's plus the grinding errors.
     pub fn ground(&self, m: &Modification) -> Modification {
         Modification {

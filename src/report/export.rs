@@ -2,7 +2,7 @@
 //! spaced so that the chordal error (distance of the true profile from each chord) stays
 //! under a tolerance.
 
-use crate::engine::commands::Disc;
+use crate::engine::commands::{Disc, DiscSource};
 pub use crate::geometry::polyline::{polyline, ProfilePoint};
 use crate::model::design::disc_phase_rad;
 use crate::numeric::fixed;
@@ -141,10 +141,13 @@ pub fn solid_lines(
     tolerance_um: f64,
 ) -> String {
     let mut out = String::new();
-    let profile = if disc.as_built {
-        "the disc as built (identified from `measured_profile`)"
-    } else {
-        "the drawing's profile"
+    let profile = match disc.source {
+        DiscSource::Drawing => "the drawing's profile",
+        DiscSource::Ground => {
+            "the disc as ground (the drawing's modification with reducer.deviations' grinding \
+             and form errors)"
+        }
+        DiscSource::Measured => "the disc as built (identified from `measured_profile`)",
     };
     if let Some(n) = pieces {
         out += &format!(

@@ -244,7 +244,9 @@ fn a_measured_disc_exports_the_disc_as_built() {
     assert_eq!(run.code(), 0, "{}", run.stderr);
     assert!(run.stdout.contains("as built"), "{}", run.stdout);
     let built = commands::disc(&cycloid::spec::load(spec).unwrap()).unwrap();
-    assert!(built.as_built && built.profile.has_form());
+    assert!(
+        built.source == cycloid::engine::commands::DiscSource::Measured && built.profile.has_form()
+    );
 }
 
 /// Every disc of `specs/reducer-two-discs.yaml` (the paper's disc, twice, at crank phases 0
@@ -393,6 +395,13 @@ fn grinding_errors_are_in_the_exported_disc_and_its_mass() {
     assert!((got - face).abs() <= 1e-11 * face, "{got} vs {face}");
     let out = cycloid(&dir.path, &["profile", "g.yaml", "--stl", "g.stl"]);
     assert_eq!(out.code(), 0, "{}", out.stderr);
+    // It says which disc it is: not the drawing's profile, which it was labelled before.
+    assert!(
+        out.stdout
+            .contains("STL mesh: the disc as ground (the drawing's modification with"),
+        "{}",
+        out.stdout
+    );
     let volume = enclosed_volume(&stl_triangles(&dir.read("g.stl")));
     // The outline's length: the locus's, at most 2π(R' + e·np) (|C'| ≤ R' + e·np), less 2π·r'
     // (a regular inward parallel curve of a closed curve turning once); the holes' 6·2π·5 mm.

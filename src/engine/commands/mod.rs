@@ -25,7 +25,7 @@ pub use design::{
 };
 pub use fit::fit;
 pub use optimise::{optimise, OptimiseRun};
-pub use profile::{crowned, disc, profile, Disc, MIN_PROFILE_TOLERANCE_MM};
+pub use profile::{crowned, disc, profile, Disc, DiscSource, MIN_PROFILE_TOLERANCE_MM};
 pub use tolerance::{
     failure_rate_check, merge_shards, tolerance, tolerance_shard, Merged, ToleranceRun,
 };

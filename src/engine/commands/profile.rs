@@ -51,11 +51,23 @@ pub struct Disc {
     pub holes: Vec<Circle>,
     pub bore: Option<Circle>,
     pub face_width_mm: f64,
-    /// Whether the profile is the one identified from `measured_profile`.
-    pub as_built: bool,
+    /// Which disc the profile is.
+    pub source: DiscSource,
     /// Each disc of the reducer as a body of the exports (`placement::disc_body`): one disc
     /// in its own frame, several each where the reducer puts it.
     pub bodies: Vec<Body>,
+}
+
+/// Which disc the solid exports are of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiscSource {
+    /// The drawing's modification.
+    Drawing,
+    /// The drawing's modification ground with `reducer.deviations`' grinding errors or form
+    /// error.
+    Ground,
+    /// The disc identified from `measured_profile`.
+    Measured,
 }
 
 /// The disc of `spec` for `profile --step`/`--stl`. A crowned disc is refused: its flanks are
@@ -83,7 +95,11 @@ pub fn disc(spec: &Spec) -> Result<Disc> {
         holes,
         bore,
         face_width_mm: design.face_width_mm,
-        as_built: built.is_some(),
+        source: match &built {
+            Some(_) => DiscSource::Measured,
+            None if d.deviations.grinds() => DiscSource::Ground,
+            None => DiscSource::Drawing,
+        },
         bodies: (0..design.discs).map(|k| disc_body(design, k)).collect(),
     })
 }

@@ -2,7 +2,7 @@
 //! `profile --stl` writes (`commands::profile::Disc::mesh`), built at a coarser chordal
 //! tolerance so that the picture stays small. Disc frame, mm.
 
-use super::profile::{crowned, disc};
+use super::profile::{crowned, disc, DiscSource};
 use crate::error::Result;
 use crate::geometry::disc_mesh::TriangleMesh;
 use crate::spec::Spec;
@@ -22,8 +22,8 @@ pub struct SolidPicture {
     pub face_width_mm: f64,
     /// The crank bearing's bore, mm (`None`: no bore).
     pub bore_diameter_mm: Option<f64>,
-    /// Whether the disc is the one identified from `measured_profile`.
-    pub as_built: bool,
+    /// Which disc the mesh is.
+    pub source: DiscSource,
 }
 
 /// The solid of `spec` (the drawing's spec, as `profile` reads it) to picture; `None` when
@@ -43,6 +43,6 @@ pub fn solid_picture(spec: &Spec) -> Result<Option<SolidPicture>> {
         tolerance_mm,
         face_width_mm: disc.face_width_mm,
         bore_diameter_mm: disc.bore.map(|b| 2.0 * b.radius_mm),
-        as_built: disc.as_built,
+        source: disc.source,
     }))
 }

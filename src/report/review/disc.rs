@@ -4,6 +4,7 @@
 
 use super::common::{figure, Section};
 use crate::engine::commands::solid_picture::SolidPicture;
+use crate::engine::commands::DiscSource;
 use crate::engine::drawing::{Disc, Part};
 use crate::geometry::{z_cross, Vec2};
 use crate::numeric::number;
@@ -59,10 +60,10 @@ fn solid_caption(s: &SolidPicture, holes: usize, drawn: usize) -> String {
         Some(d) => format!("the crank bearing's bore ⌀ {} mm", number(d)),
         None => "no bore (reducer.crank_bearing.outer_diameter_mm not given)".into(),
     };
-    let built = if s.as_built {
-        " as built (identified from the measured profile)"
-    } else {
-        ""
+    let built = match s.source {
+        DiscSource::Drawing => "",
+        DiscSource::Ground => " as ground (with reducer.deviations' grinding and form errors)",
+        DiscSource::Measured => " as built (identified from the measured profile)",
     };
     format!(
         "Isometric view, from the +x, −y side above the face z = B, of the closed triangle \

@@ -5,6 +5,7 @@
 use crate::contact::fatigue;
 use crate::engine::scene::{self, Note, Writes};
 use crate::engine::verdict;
+use crate::equilibrium::coupling::Coupling;
 use crate::equilibrium::pin_beam::PinBeam;
 use crate::model::period;
 use crate::model::results::TorsionCompliances;
@@ -331,7 +332,13 @@ fn strength_lines(spec: &Spec, scene: &Scene, plan: &Plan) -> String {
     let (mut formulas, mut unjudged) = (Vec::new(), Vec::new());
     match (design.pins.support, PinBeam::of(design)) {
         (Some(support), Some(beam)) => {
-            formulas.extend(pin_formulas(design, &support, 2.0 * beam.bending_radius_mm));
+            // The coupled model's friction on the pins bends them too (`engine::scene`
+            // balances a crank sweep that computes `efficiency` with it).
+            let pin_friction = (design.friction)
+                .filter(|f| f.model == FrictionModel::Coupled && plan.computes(Effect::Efficiency))
+                .map(|f| Coupling::new(&f, design).pin);
+            let d_mm = 2.0 * beam.bending_radius_mm;
+            formulas.extend(pin_formulas(design, &support, d_mm, pin_friction));
         }
         _ => unjudged.push(
             "pin bending stress and safety: reducer.output_pins.support not given (the pins \
@@ -372,7 +379,12 @@ fn strength_lines(spec: &Spec, scene: &Scene, plan: &Plan) -> String {
 
 /// The pins' bending, shear and safety formulas for the pin of diameter `d_mm` held by
 /// `support` (Roark, Table 8.1 cases 1a and 1c).
-fn pin_formulas(design: &Design, support: &PinSupport, d_mm: f64) -> Vec<String> {
+fn pin_formulas(
+    design: &Design,
+    support: &PinSupport,
+    d_mm: f64,
+    pin_friction: Option<f64>,
+) -> Vec<String> {
     let discs = &support.disc_positions_mm[..design.discs];
     let at: Vec<String> = discs.iter().map(|&a| input(a)).collect();
     let moment = match support.kind {
@@ -389,8 +401,13 @@ fn pin_formulas(design: &Design, support: &PinSupport, d_mm: f64) -> Vec<String>
     let mut lines = vec![
         format!(
             "pin bending σ_b = 32·M/(π·d³), d = {} mm (the pin that bends), {moment}; F_k \
-             disc k's pin force at a_k = {} mm from the flange{}",
+             disc k's pin force{} at a_k = {} mm from the flange{}",
             input(d_mm),
+            pin_friction.map_or(String::new(), |c| format!(
+                " (the hole's whole push: its normal force F and the coupled model's Coulomb \
+                 force c_p·F along ẑ × e_φk, c_p = {}, F·√(1 + c_p²) in all)",
+                number(c)
+            )),
             at.join(", "),
             if discs.len() > 1 {
                 ", the discs' moments summed as vectors"

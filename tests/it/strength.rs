@@ -127,7 +127,14 @@ fn coupled_friction_on_the_pins_bends_them_with_the_normal_force() {
     let crank = "{ from_deg: 0.0, to_deg: 108.0, steps: 30 }";
     let scene = scene_item("rated", 10.0, crank, "strength, efficiency")
         + "    geometry: first_order\n    contact_law: paper_linear\n";
-    let r = run(&parse(&spec_text(1, Some(support), ("", friction), &scene)));
+    let spec = parse(&spec_text(1, Some(support), ("", friction), &scene));
+    let r = run(&spec);
+    // --explain says so, with c_p = μ of fixed pins.
+    let explained = cycloid::report::explain::explain(&spec, Default::default(), false);
+    assert!(
+        explained.contains("Coulomb force c_p·F along ẑ × e_φk, c_p = 0.3000"),
+        "{explained}"
+    );
     let forces = &r.discs[0].loaded.pins.as_ref().unwrap().force_n;
     let stress = r.reducer.pin_stress.as_ref().expect("pin stress computed");
     let resultant = (1.0f64 + 0.3 * 0.3).sqrt();

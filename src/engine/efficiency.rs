@@ -8,7 +8,8 @@
 //! (`LoadedSweep::losses`, measured by `equilibrium::friction::loss`), and the coupled model
 //! each disc's share of the input torque from the crank's balance (`Coupling::input_torque`);
 //! here they are summed over the discs. The loss model's input torque is the reducer's energy
-//! balance (`reducer_figures`).
+//! balance (`reducer_figures`), and so is the coupled model's at zero torque, whose balance is
+//! the frictionless one (a preload's friction is in its losses, not in that balance).
 //!
 //! Powers per unit input speed (N·mm/rad, the power at ω = 1 rad/s in N·mm/s):
 //! P = |T|/nc with T the scene's output torque (all discs); η(φ) is the efficiency of the power
@@ -58,9 +59,15 @@ pub fn efficiency(
             reducer_losses(&friction, scene.input_speed_rpm, discs)
         })
         .collect();
+    // At zero torque the coupled model's balance is the frictionless one
+    // (`loaded::Model::coupled`): its crank's balance holds no contact friction, yet a
+    // preload's contacts slide and lose. Its input torque is then the loss model's energy
+    // balance, T_in·ω = the losses.
     let input = match friction.model {
-        FrictionModel::Loss => None,
-        FrictionModel::Coupled => Some(crank_input_torque(&friction, scene, discs)?),
+        FrictionModel::Coupled if scene.output_torque_nmm != 0.0 => {
+            Some(crank_input_torque(&friction, scene, discs)?)
+        }
+        FrictionModel::Loss | FrictionModel::Coupled => None,
     };
     let reducer = reducer_figures(design, scene, &total, speed, input);
     let disc_curves = if per_disc.len() > 1 {

@@ -381,8 +381,10 @@ fn solve_rollers_coupled(
                 ..
             } if value != 0.0 => {
                 let at = (crank, centre, &pose(x));
+                // Said in the scene's output torque: the balance's moment less the pins' shift.
+                let moment = value - pins.shift;
                 self_locking(c, r, at, pins, model.torque_nmm)
-                    .unwrap_or_else(|| beyond_reach(r, &pose(x), value, target))
+                    .unwrap_or_else(|| beyond_reach(r, &pose(x), moment, model.torque_nmm))
             }
             other => other,
         },

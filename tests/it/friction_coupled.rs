@@ -495,3 +495,31 @@ scenes:
         );
     }
 }
+
+/// A coupled balance that cannot be found names the scene's output torque, not the rollers'
+/// target with the pins' friction in it (at μ 0.999999 back-driven at −20 N·m it read
+/// "an output torque of −18.00124816 N·m"): the shipped efficiency spec with the coupled model
+/// and every μ at 0.999999, −20 N·m.
+#[test]
+fn a_coupled_balance_beyond_reach_names_the_scenes_torque() {
+    let shipped = include_str!("../../specs/reducer-efficiency.yaml");
+    let text = shipped
+        .replacen("model: loss", "model: coupled", 1)
+        .replace("mu: 0.06 ", "mu: 0.999999 ")
+        .replacen("mu: 0.0025 ", "mu: 0.999999 ", 1)
+        .replacen("output_torque_nm: 20.0", "output_torque_nm: -20.0", 1);
+    let spec = cycloid::spec::parse("mu.yaml", &text).unwrap();
+    let run = cycloid::check(
+        &spec,
+        &cycloid::CheckOptions::default(),
+        &cycloid::progress::Silent,
+    );
+    let Err(e) = run else {
+        panic!("a balance at μ 0.999999")
+    };
+    let shown = e.to_string();
+    assert!(
+        shown.contains("cannot balance an output torque of -20 N·m"),
+        "{shown}"
+    );
+}

@@ -505,6 +505,9 @@ pub enum Note {
     },
     /// A scene whose crank-bearing life in hours is not rated: it has no `input_speed_rpm`.
     LifeHoursNotRated { scene: String },
+    /// A scene that computes `efficiency` without `input_speed_rpm`: its losses have no watts
+    /// (losses × ω) and no temperature; η does not depend on the speed.
+    LossWattsNotRated { scene: String },
     /// A scene with the output pins whose crank is longer than the holes were bored for by
     /// more than their clearance: every pin is pressed into its hole by `interference_mm`
     /// (de − c) at every crank angle, whatever the torque, and the crank bearing carries that
@@ -538,9 +541,9 @@ pub fn pins_preloaded(
     })
 }
 
-/// The notes of a spec's scenes, in scene order: a torsion scene's zero hysteresis, pins
-/// preloaded by a crank longer than their holes allow, a crank bearing whose life a scene
-/// could not rate.
+/// The notes of a spec's scenes, in scene order: a torsion scene's zero hysteresis, losses
+/// without a speed to give their watts, pins preloaded by a crank longer than their holes
+/// allow, a crank bearing whose life a scene could not rate.
 pub fn notes(spec: &Spec) -> Vec<Note> {
     let mut notes = Vec::new();
     for scene in &spec.scenes {
@@ -554,6 +557,9 @@ pub fn notes(spec: &Spec) -> Vec<Note> {
                     .friction
                     .is_some_and(|f| Coupling::new(&f, &spec.design).active()),
             });
+        }
+        if plan.computes(Effect::Efficiency) && !scene.has_speed() {
+            notes.push(Note::LossWattsNotRated { scene: name() });
         }
         let de = spec.design.deviations.eccentricity_mm;
         notes.extend(pins_preloaded(&spec.design, (scene, &plan), de, false));

@@ -162,6 +162,10 @@ pub fn note(n: &Note) -> String {
             "scene `{scene}`: crank-bearing life in hours not rated: the scene has no \
              `input_speed_rpm`"
         ),
+        Note::LossWattsNotRated { scene } => format!(
+            "scene `{scene}`: friction losses in watts (and the temperature) not given: the \
+             scene has no `input_speed_rpm`; the efficiency does not depend on the speed"
+        ),
         Note::PinsPreloaded {
             scene,
             interference_mm,

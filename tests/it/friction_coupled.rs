@@ -523,3 +523,37 @@ fn a_coupled_balance_beyond_reach_names_the_scenes_torque() {
         "{shown}"
     );
 }
+
+/// Without `input_speed_rpm` an efficiency scene's losses have no watts and no temperature:
+/// the run says so in a note (docs/effects/friction.md promised one; none was given), and
+/// with the speed it does not.
+#[test]
+fn losses_without_a_speed_are_noted() {
+    let shipped = include_str!("../../specs/reducer-efficiency.yaml");
+    // Without the speed, and the limits that need it (watts, temperature, life in hours).
+    let without: String = (shipped
+        .replacen("    input_speed_rpm: 1500.0", "", 1)
+        .lines())
+    .filter(|l| {
+        ![
+            "max_power_loss_w",
+            "max_temperature_c",
+            "min_bearing_life_h",
+        ]
+        .iter()
+        .any(|k| l.contains(k))
+    })
+    .map(|l| format!("{l}\n"))
+    .collect();
+    let notes = |text: &str| {
+        let spec = cycloid::spec::parse("e.yaml", text).unwrap();
+        let notes = cycloid::engine::scene::notes(&spec);
+        notes
+            .iter()
+            .map(cycloid::report::explain::note)
+            .collect::<Vec<_>>()
+    };
+    let said = "friction losses in watts (and the temperature) not given";
+    assert!(notes(&without).iter().any(|n| n.contains(said)));
+    assert!(!notes(shipped).iter().any(|n| n.contains(said)));
+}

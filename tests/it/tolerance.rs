@@ -1509,3 +1509,37 @@ fn the_shipped_study_and_its_page_are_the_closed_form_of_the_tied_minimum() {
         );
     }
 }
+
+/// `tolerance merge` takes "every shard file of the run, in any order" and gives the unsharded
+/// run's JSON and report byte for byte. Shards of one spec may name it by two spellings of its
+/// path (a task run from another directory, `./t.yaml`): its text and hash are one, and the
+/// merge accepts them. The merged study must then not depend on which shard is named first:
+/// before, the spec (and its path in the JSON and the report) was read from the first file
+/// given, so `merge s1 s0 s2` wrote `"path": "./t.yaml"` where `merge s0 s1 s2` and the
+/// unsharded run wrote `"path": "t.yaml"`. Expected: the unsharded run's bytes (another
+/// process, no merge), for both orders; the spec is shard 0's, as the samples start there.
+#[test]
+fn a_merge_is_the_same_whatever_order_its_shards_are_given_in() {
+    let dir = Scratch::new("tolerance-shard-order");
+    small_study(&dir, 30);
+    let here = dir.join("");
+    let whole = cycloid(
+        here.as_path(),
+        &["tolerance", "t.yaml", "--json", "whole.json"],
+    );
+    assert_eq!(whole.code(), 0, "{whole:?}");
+    for (i, spec) in [(0, "t.yaml"), (1, "./t.yaml"), (2, "t.yaml")] {
+        let (shard, out) = (format!("{i}/3"), format!("s{i}.bin"));
+        let r = cycloid(
+            here.as_path(),
+            &["tolerance", spec, "--shard", &shard, "--out", &out],
+        );
+        assert_eq!(r.code(), 0, "{r:?}");
+    }
+    let a = merge(&dir, &["s0.bin", "s1.bin", "s2.bin"], "a");
+    let b = merge(&dir, &["s1.bin", "s0.bin", "s2.bin"], "b");
+    assert_eq!(dir.read("whole.json"), dir.read("a.json"));
+    assert_eq!(dir.read("whole.json"), dir.read("b.json"));
+    assert_eq!(a.stdout, b.stdout);
+    assert_eq!(whole.stdout, b.stdout);
+}

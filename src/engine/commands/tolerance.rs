@@ -169,8 +169,12 @@ pub fn merge_shards(files: &[(String, Vec<u8>)]) -> Result<Merged> {
         .collect::<Result<Vec<_>>>()?;
     let names: Vec<String> = files.iter().map(|(name, _)| name.clone()).collect();
     let records = shard::merge(&names, &shards)?;
-    let h = &shards[0].header;
-    // `merge` checked that the shards hold each index below the count once.
+    // `merge` checked that the shards hold each index below the count once. The spec is shard
+    // 0's, whatever the order the files are given in: shards of one spec may name it by two
+    // spellings of its path (its text and hash are one), and the merged study must not depend
+    // on which file is named first.
+    let zero = shards.iter().find(|s| s.header.index == 0);
+    let h = &zero.unwrap_or(&shards[0]).header;
     let mut files = vec![String::new(); h.count as usize];
     for (s, name) in shards.iter().zip(&names) {
         files[s.header.index as usize] = name.clone();

@@ -157,6 +157,23 @@ impl FaceWidth {
         theta * z - self.curvature * (z - self.flat_mm).powi(2)
     }
 
+    /// How far beyond its 2-D approach d a contact with slope t (rad) along the face must close
+    /// before it carries force, mm: the largest t·z − crown(z) where the force is read. The
+    /// closed form integrates over the whole face (`reach` of |t|: the crown is symmetric);
+    /// summed slices read the law at their centres. The contact carries force exactly when
+    /// d + this > 0, so a gap less this is the gap to its first touch (the zero-torque pose).
+    pub fn closing_mm(&self, law: ContactLaw, t: f64) -> f64 {
+        if self.closed_form(law) {
+            return self.reach(t.abs());
+        }
+        (0..self.slices)
+            .map(|s| {
+                let z = self.slice_centre_mm(s);
+                t * z - self.crown_mm(z)
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// This face summed over its slices whatever the law: the Winkler model of n slices the
     /// closed form is the limit of (n → ∞), to check it against and to time it.
     pub fn by_slices(mut self) -> Self {

@@ -22,10 +22,12 @@ use crate::model::{ContactLaw, GeometryMode};
 /// T → 0⁺: the lag at which the nearest contact in the load direction just closes.
 /// Newton on the smallest gap, x ← x + min(gap/(−∂gap/∂x)) over contacts that close as x grows,
 /// the contacts `states` evaluated at each x by `evaluate`; they hold the evaluation at the
-/// lag returned.
+/// lag returned. `gap` is a contact's gap to its first touch: along a tilted or crowned face
+/// the 2-D gap less what the face closes beyond it (`Rollers::touch_gap_mm`), else the gap.
 fn touching<C: Contact, S>(
     states: &mut Vec<C>,
     mut evaluate: impl FnMut(f64, &mut Vec<C>) -> Result<(), S>,
+    gap: impl Fn(&C) -> f64,
     start: f64,
 ) -> Result<f64, S> {
     let mut x = start;
@@ -34,7 +36,7 @@ fn touching<C: Contact, S>(
         let step = states
             .iter()
             .filter(|s| s.gap_slope_mm() < 0.0)
-            .map(|s| s.gap_mm() / -s.gap_slope_mm())
+            .map(|s| gap(s) / -s.gap_slope_mm())
             .fold(f64::INFINITY, f64::min);
         if !step.is_finite() {
             break;
@@ -51,8 +53,8 @@ fn touching<C: Contact, S>(
         evaluate(x, states)?;
         let overlap = states
             .iter()
-            .filter(|s| s.gap_slope_mm() < 0.0 && s.gap_mm() < 0.0)
-            .map(|s| s.gap_mm() / s.gap_slope_mm())
+            .filter(|s| s.gap_slope_mm() < 0.0 && gap(s) < 0.0)
+            .map(|s| gap(s) / s.gap_slope_mm())
             .fold(0.0, f64::max);
         if overlap == 0.0 {
             return Ok(x);
@@ -174,7 +176,8 @@ fn solve_rollers(
         // the limit T → 0⁺ is the near contact in the load direction all the same.
         let free = round_off(states, r.moment_resolution(states, offset_norm));
         if free || !in_contact(states) {
-            lag = touching(states, |l, states| r.evaluate(&pose(l), states), lag)?;
+            let evaluate = |l, states: &mut Vec<RollerState>| r.evaluate(&pose(l), states);
+            lag = touching(states, evaluate, |s| r.touch_gap_mm(s), lag)?;
             reaches
                 .iter_mut()
                 .for_each(|x| x.gap_mm = f64::NEG_INFINITY);
@@ -250,7 +253,7 @@ fn solve_pins(
     }
     if model.torque_nmm == 0.0 {
         if !in_contact(states) {
-            lag = touching(states, evaluate, lag)?;
+            lag = touching(states, evaluate, |s: &PinState| s.gap_mm, lag)?;
         }
         let resolution = p.moment_resolution(states, offset.norm());
         unload_round_off(states, resolution);

@@ -209,6 +209,19 @@ impl Rollers {
         r
     }
 
+    /// The gap of roller state `s` to its first touch, mm: its 2-D gap (at the middle of the
+    /// face) less what a tilt or crown closes beyond it (`FaceWidth::closing_mm`); the 2-D gap
+    /// on a uniform face. Zero where the roller starts to carry force.
+    pub fn touch_gap_mm(&self, s: &RollerState) -> f64 {
+        match &self.face {
+            None => s.gap_mm,
+            Some(face) => {
+                let t = face.approach_slope((-s.normal.x, -s.normal.y));
+                s.gap_mm - face.closing_mm(self.law, t)
+            }
+        }
+    }
+
     /// The face along which the contacts vary, when it is not uniform.
     pub fn face(&self) -> Option<&FaceWidth> {
         self.face.as_ref()

@@ -482,6 +482,70 @@ fn the_balance_holds_with_a_tilt() {
     }
 }
 
+/// At zero output torque a tilted disc rests free in its backlash: MODEL.md reports the limit
+/// T → 0⁺, the lag at which the nearest contact just closes. With a rigid bearing and no torque
+/// the rollers' moment Σ F·l must be zero, and on the loaded flank every arm has one sign, so
+/// every roller force is zero (the 2-D model's answer too) and the balance's residual is
+/// round-off; and the limit T → 0⁺ is continuous: at 1e-12 N·m the lag has moved from the
+/// touching lag by about sqrt(T) of a triangular contact (~1e-5 arcsec here, the sqrt of 1e-3
+/// of the 2.6e-4 arcsec a 1e-9 N·m load moves it), so 1e-3 arcsec separates them. Before, the
+/// zero-torque solve put the disc at the 2-D touching lag (the gaps at the middle of the
+/// face), 17.2 arcsec past the tilted face's first contact: rollers pressed with 250 N at no
+/// torque, the residual 1.
+#[test]
+fn a_tilted_disc_at_zero_torque_touches_and_carries_nothing() {
+    let crowning = "  crowning: { kind: circular, radius_mm: 1000.0, start_mm: 2.0 }\n";
+    let log = "  crowning: { kind: logarithmic, design_load_n: 500.0, end_drop_mm: 0.002 }\n";
+    let tilt = "    misalignment: { about_x_mrad: 0.3, about_y_mrad: 0.2 }\n    face_slices: 8\n";
+    for (modification, law) in [
+        ("", ""),
+        (crowning, ""),
+        (log, ""),
+        ("", "    contact_law: hertz_nonlinear\n"),
+    ] {
+        let at = |torque: &str| {
+            let text = spec(modification, &format!("{law}{tilt}"), 12).replace(
+                "output_torque_nm: 10.0",
+                &format!("output_torque_nm: {torque}"),
+            );
+            run(&parse(&text))
+        };
+        let (zero, tiny) = (at("0.0"), at("1.0e-12"));
+        let what = format!("{modification}{law}");
+        let rollers = zero.rollers.as_ref().unwrap();
+        let most = rollers
+            .force_n
+            .iter()
+            .flatten()
+            .copied()
+            .fold(0.0, f64::max);
+        assert!(
+            most <= 1e-9,
+            "{what}: a roller carries {most} N at zero torque"
+        );
+        let residual = zero
+            .bearing
+            .as_ref()
+            .unwrap()
+            .residual
+            .iter()
+            .copied()
+            .fold(0.0, f64::max);
+        assert!(
+            residual <= 1e-9,
+            "{what}: residual {residual:e} at zero torque"
+        );
+        let near = tiny.rollers.as_ref().unwrap();
+        for (a, (l0, l1)) in rollers.lag_rad.iter().zip(&near.lag_rad).enumerate() {
+            let arcsec = (l0 - l1).abs().to_degrees() * 3600.0;
+            assert!(
+                arcsec <= 1e-3,
+                "{what}: angle {a}: lag at 0 off that at 0⁺ by {arcsec} arcsec"
+            );
+        }
+    }
+}
+
 /// Bad values are refused at their key's file:line:column with the rule, exit 2.
 #[test]
 fn bad_face_values_are_refused_where_they_are_written() {

@@ -446,8 +446,7 @@ fn the_balance_holds_with_a_tilt() {
             24,
         ));
         let l = run(&s);
-        let b = l.bearing.as_ref().unwrap();
-        let worst = b.residual.iter().copied().fold(0.0, f64::max);
+        let worst = largest_residual(&l);
         assert!(worst <= 1e-9, "{extra}: residual {worst:e}");
         let r = l.rollers.as_ref().unwrap();
         assert!(r.force_n.iter().flatten().all(|f| f.is_finite()));
@@ -468,15 +467,7 @@ fn the_balance_holds_with_a_tilt() {
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(r.discs.len(), 2);
     for disc in &r.discs {
-        let worst = disc
-            .loaded
-            .bearing
-            .as_ref()
-            .unwrap()
-            .residual
-            .iter()
-            .copied()
-            .fold(0.0, f64::max);
+        let worst = largest_residual(&disc.loaded);
         assert!(worst <= 1e-9, "two discs: residual {worst:e}");
         assert!(disc.loaded.rollers.as_ref().unwrap().face.is_some());
     }
@@ -523,14 +514,7 @@ fn a_tilted_disc_at_zero_torque_touches_and_carries_nothing() {
             most <= 1e-9,
             "{what}: a roller carries {most} N at zero torque"
         );
-        let residual = zero
-            .bearing
-            .as_ref()
-            .unwrap()
-            .residual
-            .iter()
-            .copied()
-            .fold(0.0, f64::max);
+        let residual = largest_residual(&zero);
         assert!(
             residual <= 1e-9,
             "{what}: residual {residual:e} at zero torque"
@@ -1089,4 +1073,10 @@ fn the_review_draws_a_tilt_as_built_against_the_untilted_design() {
         "the untilted solve converges"
     );
     assert_ne!(p.designed_n_per_mm.as_ref(), Some(&p.tilted_n_per_mm));
+}
+
+/// The largest residual of the balance over a sweep's crank angles (`equilibrium::residual`).
+fn largest_residual(loaded: &cycloid::model::results::LoadedSweep) -> f64 {
+    let bearing = loaded.bearing.as_ref().unwrap();
+    bearing.residual.iter().copied().fold(0.0, f64::max)
 }

@@ -48,17 +48,6 @@ pub(super) fn distinct_outputs(
                 "{flag} {path} is a directory; give a file path"
             )));
         }
-        // A file goes into a folder that exists (a review makes its own): found only when it
-        // is written, after the outputs before it.
-        let folder = Path::new(path)
-            .parent()
-            .filter(|f| !f.as_os_str().is_empty());
-        if let Some(f) = folder.filter(|f| flag != "--report" && !f.is_dir()) {
-            return Err(usage(format!(
-                "{flag} {path}: the folder {} does not exist; create it or give another path",
-                f.display()
-            )));
-        }
         let mut ids = vec![files::identity(Path::new(path))];
         if flag == "--report" {
             ids.push(ids[0].join("index.html"));
@@ -71,6 +60,20 @@ pub(super) fn distinct_outputs(
                 )));
             }
             claimed.push((format!("the output of {flag}"), id));
+        }
+    }
+    // A file goes into a folder that exists (a review makes its own): found only when it is
+    // written, after the outputs before it.
+    for &(flag, path) in outputs.iter().filter(|o| o.0 != "--report") {
+        let Some(path) = path else { continue };
+        let folder = Path::new(path)
+            .parent()
+            .filter(|f| !f.as_os_str().is_empty());
+        if let Some(f) = folder.filter(|f| !f.is_dir()) {
+            return Err(usage(format!(
+                "{flag} {path}: the folder {} does not exist; create it or give another path",
+                f.display()
+            )));
         }
     }
     Ok(())

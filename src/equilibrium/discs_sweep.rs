@@ -99,7 +99,15 @@ fn record_coupled(
 /// rad; each disc's solution is in `work`, and with several discs its model at its share.
 fn solve_general(discs: &Discs, phi: f64, work: &mut CoupledWork) -> Result<f64, SolveFailure> {
     if discs.count() > 1 {
-        return solve_coupled(discs, phi, work);
+        // The shares, beam gaps and lags extrapolated from the angles before can start a disc's
+        // own solve where it runs away (two tilted discs on bending pins: a lag of 3e3 rad).
+        // Such an angle is solved again from nothing before it is said to fail.
+        return solve_coupled(discs, phi, work).or_else(|failure| {
+            let mut cold = CoupledWork::new(discs);
+            let gamma = solve_coupled(discs, phi, &mut cold).map_err(|_| failure)?;
+            *work = cold;
+            Ok(gamma)
+        });
     }
     solve_into(&discs.models[0], phi + discs.phases[0], &mut work.works[0])?;
     Ok(output_lag(&work.works[0]))

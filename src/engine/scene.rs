@@ -24,7 +24,7 @@ use crate::model::results::{
     BearingLife, ClearanceSweep, DiscResult, DutyBinResult, LoadedSweep, ReducerResult, SceneResult,
 };
 use crate::model::{
-    Design, Detail, Effect, FrictionModel, GeometryMode, Modification, Plan, Scene,
+    Design, Detail, Effect, Friction, FrictionModel, GeometryMode, Modification, Plan, Scene,
 };
 use crate::progress::{Phase, Progress, Silent};
 use crate::spec::Spec;
@@ -234,10 +234,8 @@ fn run_one(
     if swept {
         let each: Vec<&LoadedSweep> = discs.iter().map(|d| &d.loaded).collect();
         if plan.computes(Effect::Strength) {
-            // The coupled model's friction on the pins bends them too (a crank sweep's).
-            let pin_friction = (model.as_ref().and_then(|m| m.coupled()))
-                .filter(|c| !c.is_torsion())
-                .map_or(0.0, |c| c.pin);
+            // The coupled model's friction on the pins bends them too.
+            let pin_friction = (model.as_ref().and_then(Model::coupled)).map_or(0.0, |c| c.pin);
             reducer.pin_stress =
                 strength::pin_stress(design, &scene.crank_rad, &each, pin_friction);
         }
@@ -596,6 +594,13 @@ fn runs_loaded(plan: &Plan) -> bool {
         .any(|e| e.is_loaded() && plan.computes(e))
 }
 
+/// The friction a crank sweep of `plan` balances with: the coupled model's, when the scene
+/// computes `efficiency` (`loaded_model`; a torsion loop balances with any model's).
+pub fn coupled_sweep(design: &Design, plan: &Plan) -> Option<Friction> {
+    (design.friction)
+        .filter(|f| f.model == FrictionModel::Coupled && plan.computes(Effect::Efficiency))
+}
+
 /// The loaded model of a scene (roller contact, output pins, bearing as `plan` says) solved to
 /// `settings`: what the sweep of `run_design` solves at every crank angle, and what the design
 /// review's drawing solves at its one angle.
@@ -623,10 +628,10 @@ pub fn loaded_model(
             model.coupling = model.coupling.map(|c| c.in_torsion(1.0));
             model
         }
-        Some(f) if f.model == FrictionModel::Coupled && plan.computes(Effect::Efficiency) => {
-            model.with_friction(&f, design)
-        }
-        _ => model,
+        _ => match coupled_sweep(design, plan) {
+            Some(f) => model.with_friction(&f, design),
+            None => model,
+        },
     }
 }
 

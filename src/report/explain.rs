@@ -336,11 +336,10 @@ fn strength_lines(spec: &Spec, scene: &Scene, plan: &Plan) -> String {
     let (mut formulas, mut unjudged) = (Vec::new(), Vec::new());
     match (design.pins.support, PinBeam::of(design)) {
         (Some(support), Some(beam)) => {
-            // The coupled model's friction on the pins bends them too (`engine::scene`
-            // balances a crank sweep that computes `efficiency` with it).
-            let pin_friction = (design.friction)
-                .filter(|f| f.model == FrictionModel::Coupled && plan.computes(Effect::Efficiency))
-                .map(|f| Coupling::new(&f, design).pin);
+            // The coupled model's friction on the pins bends them too.
+            let pin_friction = scene::coupled_sweep(design, plan)
+                .map(|f| Coupling::new(&f, design).pin)
+                .filter(|&c| c > 0.0);
             let d_mm = 2.0 * beam.bending_radius_mm;
             formulas.extend(pin_formulas(design, &support, d_mm, pin_friction));
         }

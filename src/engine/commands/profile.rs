@@ -41,10 +41,10 @@ fn check_tolerance(tolerance_mm: f64) -> Result<()> {
     Ok(())
 }
 
-/// The disc the solid exports are made of: the profile as `check` meshes it (as built, with
-/// its identified modification and form error, when the spec has `measured_profile`; ground
-/// with `reducer.deviations`' grinding errors and form error when it has them), the output-pin holes,
-/// the bore when the crank bearing's outer diameter is given, and the face width.
+/// The disc the solid exports are made of: the profile as `check` meshes it
+/// (`Profile::as_ground`; as built, with its identified modification and form error, when the
+/// spec has `measured_profile`), the output-pin holes, the bore when the crank bearing's outer
+/// diameter is given, and the face width.
 pub struct Disc {
     pub profile: Profile,
     pub teeth: usize,
